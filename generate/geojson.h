@@ -1,0 +1,36 @@
+// Vector layers as GeoJSON: written with shortest round-trip doubles, closed rings, outer
+// rings counter-clockwise and holes clockwise; read back for validation.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "geom/plain.h"
+
+namespace exacity {
+
+struct VectorFeature {
+  nlohmann::ordered_json properties;
+  geom::Polygon polygon;  // for polygon layers
+  geom::Polyline line;    // for line layers
+};
+
+struct Layer {
+  std::string name;
+  bool lines = false;
+  std::vector<VectorFeature> features;
+};
+
+void write_geojson(const Layer& layer, const nlohmann::json& crs, const std::filesystem::path& file);
+
+// Reads a layer written by write_geojson (or any GeoJSON of Polygons or LineStrings).
+// Anything malformed is appended to `problems`, one line each, and skipped.
+Layer read_geojson(const std::filesystem::path& file, std::vector<std::string>& problems);
+
+// Shortest text that reads back as the same double.
+std::string format_number(double v);
+
+}  // namespace exacity

@@ -1,0 +1,26 @@
+// Outputs are written into a staging folder beside the target and renamed into place at
+// the end, so a failed run leaves no half-written output and an earlier one stays whole.
+#pragma once
+
+#include <filesystem>
+
+namespace exacity {
+
+class OutputFolder {
+ public:
+  // Throws UserError when `target` is a file, or a non-empty folder that no earlier
+  // exacity run wrote (it holds no report.json): nothing of the user's is overwritten.
+  explicit OutputFolder(std::filesystem::path target);
+  ~OutputFolder();
+  OutputFolder(const OutputFolder&) = delete;
+  OutputFolder& operator=(const OutputFolder&) = delete;
+
+  const std::filesystem::path& staging() const { return staging_; }
+  void commit();
+
+ private:
+  std::filesystem::path target_, staging_;
+  bool committed_ = false;
+};
+
+}  // namespace exacity

@@ -1,0 +1,294 @@
+#include "generate/sketch.h"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "generate/errors.h"
+
+namespace exacity {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+ZoneParams default_params(ZoneType type) {
+  ZoneParams p;
+  if (type == ZoneType::Commercial || type == ZoneType::Industrial) {
+    // Manhattan grid (seed 000): straight roads, smaller jitter.
+    p.jitter = 10;
+    p.segment_deviation = 0;
+    p.origin_deviation = 0;
+    p.block_area = type == ZoneType::Commercial ? 15000 : 30000;
+  }
+  return p;
+}
+
+double default_width(RoadClass road_class) {
+  switch (road_class) {
+    case RoadClass::Highway: return 24;
+    case RoadClass::Main: return 12;
+    case RoadClass::Local: return 8;
+  }
+  return 8;
+}
+
+namespace {
+
+std::string quote(std::string_view s) { return "\"" + std::string(s) + "\""; }
+
+template <std::size_t N>
+std::string list(const std::array<std::string_view, N>& names) {
+  std::string r;
+  for (auto n : names) r += (r.empty() ? "" : ", ") + std::string(n);
+  return r;
+}
+
+class Parser {
+ public:
+  explicit Parser(const fs::path& path) : file_(path.string()) {}
+
+  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+    throw UserError(file_ + ": " + where + ": " + what);
+  }
+
+  double number(const json& j, const std::string& where, double min, double max) const {
+    if (!j.is_number()) fail(where, "expected a number, found " + std::string(j.type_name()));
+    double v = j.get<double>();
+    if (!std::isfinite(v)) fail(where, "the number is not finite; write a finite number");
+    if (v < min || v > max)
+      fail(where, "value " + json(v).dump() + " is out of range; use a value from " + json(min).dump() +
+                      " to " + json(max).dump());
+    return v;
+  }
+
+  void known_keys(const json& obj, const std::string& where, const std::set<std::string>& keys) const {
+    if (!obj.is_object()) fail(where, "expected an object, found " + std::string(obj.type_name()));
+    for (auto& [k, v] : obj.items()) {
+      if (keys.count(k)) continue;
+      std::string valid;
+      for (auto& key : keys) valid += (valid.empty() ? "" : ", ") + key;
+      fail(where, "unknown key " + quote(k) + "; remove it or use one of: " + valid);
+    }
+  }
+
+  geom::Vec2 position(const json& j, const std::string& where) const {
+    if (!j.is_array() || j.size() < 2 || !j[0].is_number() || !j[1].is_number())
+      fail(where, "a position must be an array [x, y] of numbers");
+    double x = j[0].get<double>(), y = j[1].get<double>();
+    if (!std::isfinite(x) || !std::isfinite(y))
+      fail(where, "coordinate " + j.dump() + " is not a finite number; use finite coordinates in metres");
+    return {x, y};
+  }
+
+  std::vector<geom::Vec2> positions(const json& j, const std::string& where) const {
+    if (!j.is_array()) fail(where, "expected an array of positions");
+    std::vector<geom::Vec2> pts;
+    for (std::size_t i = 0; i < j.size(); ++i) {
+      geom::Vec2 p = position(j[i], where + " position " + std::to_string(i));
+      if (pts.empty() || !(pts.back() == p)) pts.push_back(p);  // repeated points are legal
+    }
+    return pts;
+  }
+
+  geom::Ring ring(const json& j, const std::string& where) const {
+    geom::Ring r = positions(j, where);
+    if (r.size() > 1 && r.front() == r.back()) r.pop_back();
+    std::set<std::pair<double, double>> distinct;
+    for (auto p : r) distinct.insert({p.x, p.y});
+    if (distinct.size() < 3)
+      fail(where, "ring has " + std::to_string(distinct.size()) +
+                      " distinct points; a ring needs at least 3, so add points or delete the ring");
+    return r;
+  }
+
+  geom::Polygon polygon(const json& j, const std::string& where) const {
+    if (!j.is_array() || j.empty()) fail(where, "a Polygon needs at least one ring");
+    geom::Polygon p;
+    p.outer = ring(j[0], where + " outer ring");
+    for (std::size_t i = 1; i < j.size(); ++i) p.holes.push_back(ring(j[i], where + " hole " + std::to_string(i)));
+    return p;
+  }
+
+  void feature(const json& f, int index, Sketch& sketch) const {
+    std::string where = "features[" + std::to_string(index) + "]";
+    if (!f.is_object() || f.value("type", "") != "Feature") fail(where, "not a GeoJSON Feature");
+    if (!f.contains("geometry") || f["geometry"].is_null())
+      fail(where, "feature has no geometry; draw a Polygon for a zone or a LineString for a road, or delete it");
+    const json& g = f["geometry"];
+    if (!g.is_object() || !g.contains("coordinates")) fail(where, "geometry has no coordinates");
+    std::string type = g.value("type", "");
+    const json& coords = g["coordinates"];
+    const json props = f.contains("properties") && f["properties"].is_object() ? f["properties"] : json::object();
+    bool is_zone = props.contains("zone"), is_road = props.contains("road");
+    if (is_zone == is_road)
+      fail(where, is_zone ? "feature has both \"zone\" and \"road\"; keep one"
+                          : "feature has neither a \"zone\" nor a \"road\" property; add one");
+
+    if (is_zone) {
+      const json& z = props["zone"];
+      std::string zname = z.is_string() ? z.get<std::string>() : z.dump();
+      auto zt = parse_zone_type(zname);
+      if (!zt)
+        fail(where, "unknown zone type " + quote(zname) + "; did you mean " + quote(nearest_zone_name(zname)) +
+                        "? (valid: " + list(kZoneTypeNames) + ")");
+      ZoneFeature zf{index, *zt, {}};
+      if (type == "Polygon") {
+        zf.polygons.push_back(polygon(coords, where));
+      } else if (type == "MultiPolygon" && coords.is_array()) {
+        for (std::size_t i = 0; i < coords.size(); ++i)
+          zf.polygons.push_back(polygon(coords[i], where + " polygon " + std::to_string(i)));
+      } else {
+        fail(where, "a zone must be a Polygon or MultiPolygon, not " + quote(type));
+      }
+      sketch.zones.push_back(std::move(zf));
+      return;
+    }
+
+    const json& r = props["road"];
+    std::string rname = r.is_string() ? r.get<std::string>() : r.dump();
+    auto rc = parse_road_class(rname);
+    if (!rc)
+      fail(where, "unknown road class " + quote(rname) + "; did you mean " +
+                      quote(nearest_road_class_name(rname)) + "? (valid: " + list(kRoadClassNames) + ")");
+    RoadFeature rf{index, *rc, default_width(*rc), {}};
+    if (props.contains("width") && !props["width"].is_null())
+      rf.width = number(props["width"], where + " width", 0.5, 500);
+    auto line = [&](const json& j, const std::string& w) {
+      geom::Polyline l = positions(j, w);
+      if (l.size() < 2) fail(w, "a road needs at least 2 distinct points");
+      rf.lines.push_back(std::move(l));
+    };
+    if (type == "LineString") {
+      line(coords, where);
+    } else if (type == "MultiLineString" && coords.is_array()) {
+      for (std::size_t i = 0; i < coords.size(); ++i) line(coords[i], where + " line " + std::to_string(i));
+    } else {
+      fail(where, "a road must be a LineString or MultiLineString, not " + quote(type));
+    }
+    sketch.roads.push_back(std::move(rf));
+  }
+
+  void settings(const json& ex, Sketch& sketch) const {
+    const std::string w = "\"exacity\"";
+    known_keys(ex, w, {"version", "seed", "terrain", "models", "zones"});
+    if (ex.contains("version") && number(ex["version"], w + ".version", 1, 1) != 1) fail(w, "unsupported version");
+    if (ex.contains("seed")) {
+      const json& s = ex["seed"];
+      if (!s.is_number_integer() || s.get<std::int64_t>() < 0)
+        fail(w + ".seed", "the seed must be a non-negative integer");
+      sketch.seed = s.get<std::uint64_t>();
+    }
+    if (ex.contains("models")) {
+      if (!ex["models"].is_string()) fail(w + ".models", "expected the path of a model library (a string)");
+      sketch.models = sketch.path.parent_path() / ex["models"].get<std::string>();
+    }
+    if (ex.contains("terrain")) sketch.terrain = terrain(ex["terrain"], sketch.path);
+    if (ex.contains("zones")) {
+      const json& zones = ex["zones"];
+      known_keys(zones, w + ".zones", {kZoneTypeNames.begin(), kZoneTypeNames.end()});
+      for (auto& [zname, params] : zones.items()) {
+        ZoneType zt = *parse_zone_type(zname);
+        sketch.zone_params[zt] = zone_params(params, zt, w + ".zones." + zname);
+      }
+    }
+  }
+
+  TerrainSpec terrain(const json& t, const fs::path& sketch_path) const {
+    const std::string w = "\"exacity\".terrain";
+    known_keys(t, w, {"heightmap", "bounds", "height"});
+    TerrainSpec spec;
+    if (!t.contains("heightmap") || !t["heightmap"].is_string())
+      fail(w, "\"heightmap\" must name an image file (PNG, TIFF or EXR)");
+    spec.heightmap = sketch_path.parent_path() / t["heightmap"].get<std::string>();
+    if (!t.contains("bounds") || !t["bounds"].is_array() || t["bounds"].size() != 4)
+      fail(w + ".bounds", "give the area the heightmap covers as [min_x, min_y, max_x, max_y]");
+    const json& b = t["bounds"];
+    double big = 1e9;
+    spec.bounds = {number(b[0], w + ".bounds", -big, big), number(b[1], w + ".bounds", -big, big),
+                   number(b[2], w + ".bounds", -big, big), number(b[3], w + ".bounds", -big, big)};
+    if (!(spec.bounds.max_x > spec.bounds.min_x) || !(spec.bounds.max_y > spec.bounds.min_y))
+      fail(w + ".bounds", "bounds " + b.dump() + " have zero area; give [min_x, min_y, max_x, max_y] with min < max");
+    if (t.contains("height")) {
+      const json& h = t["height"];
+      if (!h.is_array() || h.size() != 2) fail(w + ".height", "give [lowest, highest] in metres");
+      spec.low = number(h[0], w + ".height", -1e5, 1e5);
+      spec.high = number(h[1], w + ".height", -1e5, 1e5);
+    }
+    return spec;
+  }
+
+  ZoneParams zone_params(const json& j, ZoneType zt, const std::string& w) const {
+    known_keys(j, w, {"block_area", "segment_length", "branches", "jitter", "segment_deviation",
+                      "origin_deviation", "main_width", "local_width"});
+    ZoneParams p = default_params(zt);
+    auto set = [&](const char* key, double& field, double min, double max) {
+      if (j.contains(key)) field = number(j[key], w + "." + key, min, max);
+    };
+    set("block_area", p.block_area, 100, 1e9);
+    set("segment_length", p.segment_length, 1, 10000);
+    double branches = p.branches;
+    set("branches", branches, 1, 16);
+    p.branches = static_cast<int>(branches);
+    set("jitter", p.jitter, 0, 180);
+    set("segment_deviation", p.segment_deviation, 0, 90);
+    set("origin_deviation", p.origin_deviation, 0, 180);
+    set("main_width", p.main_width, 0.5, 200);
+    set("local_width", p.local_width, 0.5, 200);
+    return p;
+  }
+
+ private:
+  std::string file_;
+};
+
+}  // namespace
+
+Sketch parse_sketch(const std::string& text, const fs::path& path) {
+  Parser parser(path);
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::parse_error& e) {
+    // e.byte is one past the offending character.
+    std::size_t line = 1, column = 1, end = std::min<std::size_t>(e.byte ? e.byte - 1 : 0, text.size());
+    for (std::size_t i = 0; i < end; ++i) {
+      if (text[i] == '\n') ++line, column = 1;
+      else ++column;
+    }
+    std::string what = e.what();
+    if (auto colon = what.find(": "); colon != std::string::npos) what = what.substr(colon + 2);
+    throw UserError(path.string() + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                    ": malformed JSON (" + what + "); fix the syntax there");
+  }
+  if (!doc.is_object() || doc.value("type", "") != "FeatureCollection")
+    parser.fail("top level", "a sketch must be a GeoJSON FeatureCollection");
+  if (!doc.contains("features") || !doc["features"].is_array())
+    parser.fail("top level", "the FeatureCollection has no \"features\" array");
+
+  Sketch sketch;
+  sketch.path = path;
+  for (ZoneType t : {ZoneType::Residential, ZoneType::Commercial, ZoneType::Industrial, ZoneType::Park,
+                     ZoneType::Water})
+    sketch.zone_params[t] = default_params(t);
+  if (doc.contains("crs")) sketch.crs = doc["crs"];
+  if (doc.contains("exacity")) parser.settings(doc["exacity"], sketch);
+  const json& features = doc["features"];
+  for (std::size_t i = 0; i < features.size(); ++i) parser.feature(features[i], static_cast<int>(i), sketch);
+  if (sketch.zones.empty() && sketch.roads.empty())
+    parser.fail("features", "the sketch has no zones and no roads; draw at least one zone polygon");
+  return sketch;
+}
+
+Sketch load_sketch(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw UserError(path.string() + ": cannot read the sketch (" +
+                    (fs::exists(path) ? "permission denied or not a file" : "no such file") +
+                    "); give the path of a GeoJSON sketch");
+  }
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_sketch(ss.str(), path);
+}
+
+}  // namespace exacity

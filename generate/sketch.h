@@ -1,0 +1,68 @@
+// The sketch: a GeoJSON FeatureCollection with Exacity's settings in the "exacity" member
+// (DESIGN.md, The sketch).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "generate/zone_type.h"
+#include "geom/plain.h"
+
+namespace exacity {
+
+// Road growth parameters of one zone type (used from the road-network stage on).
+struct ZoneParams {
+  double block_area = 12000;        // m²: faces above this are subdivided again
+  double segment_length = 40;       // m: one growth step
+  int branches = 4;                 // roads grown from each seed point
+  double jitter = 15;               // degrees: level-n orientation jitter is ±jitter/n
+  double segment_deviation = 8;     // degrees: Δsegm at level 0, falling by 2 per level
+  double origin_deviation = 30;     // degrees: Δorig
+  double main_width = 12;           // m
+  double local_width = 8;           // m
+};
+
+struct TerrainSpec {
+  std::filesystem::path heightmap;  // resolved against the sketch's folder
+  geom::Box bounds;
+  double low = 0, high = 100;       // heights of the image's lowest and highest values
+};
+
+struct ZoneFeature {
+  int index = 0;                    // position in "features"
+  ZoneType type = ZoneType::Residential;
+  std::vector<geom::Polygon> polygons;  // rings as drawn: any orientation, maybe self-intersecting
+};
+
+struct RoadFeature {
+  int index = 0;
+  RoadClass road_class = RoadClass::Highway;
+  double width = 24;
+  std::vector<geom::Polyline> lines;
+};
+
+struct Sketch {
+  std::filesystem::path path;
+  std::uint64_t seed = 1;
+  nlohmann::json crs;               // null when the sketch has none
+  std::optional<TerrainSpec> terrain;
+  std::filesystem::path models;     // empty when the sketch names no model library
+  std::map<ZoneType, ZoneParams> zone_params;
+  std::vector<ZoneFeature> zones;
+  std::vector<RoadFeature> roads;
+};
+
+ZoneParams default_params(ZoneType type);
+double default_width(RoadClass road_class);
+
+// Throws UserError with one line naming the file, the feature and the fix.
+Sketch load_sketch(const std::filesystem::path& path);
+Sketch parse_sketch(const std::string& text, const std::filesystem::path& path);
+
+}  // namespace exacity

@@ -1,0 +1,17 @@
+// The planar map as the vector layers of DESIGN.md's Outputs table.
+#pragma once
+
+#include "generate/geojson.h"
+#include "generate/sketch.h"
+#include "generate/zone_map.h"
+
+namespace exacity {
+
+struct CityLayers {
+  Layer zones{"zones", false, {}}, water{"water", false, {}};
+  Layer roads{"roads", true, {}}, road_areas{"road_areas", false, {}};
+};
+
+CityLayers extract_layers(const ZoneMap& zone_map, const Sketch& sketch);
+
+}  // namespace exacity

@@ -1,0 +1,31 @@
+// The exact kernel and its basic types, named once. Included only by geom/*.cpp.
+#pragma once
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+
+#include "geom/plain.h"
+
+namespace geom::exact {
+
+using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
+using FT = Kernel::FT;
+using Point = Kernel::Point_2;
+using Segment = Kernel::Segment_2;
+using Line = Kernel::Line_2;
+
+inline Point to_exact(Vec2 p) { return Point(p.x, p.y); }
+
+// Rounds the exact value, so the result does not depend on how far the lazy kernel
+// happened to evaluate it.
+inline Vec2 to_plain(const Point& p) {
+  return {CGAL::to_double(CGAL::exact(p.x())), CGAL::to_double(CGAL::exact(p.y()))};
+}
+
+// A ring of exact points (not closed: the last point is not repeated).
+using ExactRing = std::vector<Point>;
+
+// Pieces whose union is the stroke of a polyline (see PlanarMap::add_stroke), each a
+// counter-clockwise simple ring.
+std::vector<ExactRing> stroke_pieces(const Polyline& line, double half_width);
+
+}  // namespace geom::exact

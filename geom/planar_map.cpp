@@ -1,0 +1,363 @@
+// The CGAL arrangement behind PlanarMap. This is the heavy translation unit: keep CGAL
+// arrangement code here and nowhere else.
+#include "geom/planar_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <map>
+#include <unordered_map>
+#include <unordered_set>
+
+#include <CGAL/Arr_curve_data_traits_2.h>
+#include <CGAL/Arr_extended_dcel.h>
+#include <CGAL/Arr_observer.h>
+#include <CGAL/Arr_segment_traits_2.h>
+#include <CGAL/Arrangement_2.h>
+#include <CGAL/Polygon_2_algorithms.h>
+
+#include "geom/exact.h"
+
+namespace geom {
+namespace {
+
+using exact::Kernel;
+using exact::Point;
+using exact::to_exact;
+using exact::to_plain;
+
+using Tags = std::vector<CurveTag>;
+
+// Overlapping curves become one edge that carries the tags of all of them.
+struct ConcatenateTags {
+  Tags operator()(const Tags& a, const Tags& b) const {
+    Tags r = a;
+    r.insert(r.end(), b.begin(), b.end());
+    return r;
+  }
+};
+
+using SegmentTraits = CGAL::Arr_segment_traits_2<Kernel>;
+using Traits = CGAL::Arr_curve_data_traits_2<SegmentTraits, Tags, ConcatenateTags>;
+using Dcel = CGAL::Arr_face_extended_dcel<Traits, int>;
+using Arrangement = CGAL::Arrangement_2<Traits, Dcel>;
+using Curve = Traits::Curve_2;
+using Halfedge = Arrangement::Halfedge_const_handle;
+using Face = Arrangement::Face_const_handle;
+using Vertex = Arrangement::Vertex_const_handle;
+
+// When a batch splits a face, both parts keep the label the face had.
+class LabelKeeper : public CGAL::Arr_observer<Arrangement> {
+ public:
+  explicit LabelKeeper(Arrangement& arr) : CGAL::Arr_observer<Arrangement>(arr) {}
+  void after_split_face(Arrangement::Face_handle f, Arrangement::Face_handle new_f,
+                        bool) override {
+    new_f->set_data(f->data());
+  }
+};
+
+void add_winding(Windings& w, int counter, int delta) {
+  auto it = std::lower_bound(w.begin(), w.end(), std::make_pair(counter, INT32_MIN));
+  if (it != w.end() && it->first == counter) {
+    it->second += delta;
+    if (it->second == 0) w.erase(it);
+  } else {
+    w.insert(it, {counter, delta});
+  }
+}
+
+// Calls f for every halfedge on every boundary cycle of face `face`.
+template <typename F>
+void for_each_boundary_halfedge(Face face, F&& f) {
+  auto walk = [&](auto ccb) {
+    auto h = ccb;
+    do f(Halfedge(h)); while (++h != ccb);
+  };
+  for (auto c = face->outer_ccbs_begin(); c != face->outer_ccbs_end(); ++c) walk(*c);
+  for (auto c = face->inner_ccbs_begin(); c != face->inner_ccbs_end(); ++c) walk(*c);
+}
+
+// A closed loop of halfedges, written as the source points of its halfedges.
+std::vector<Point> loop_points(const std::vector<Halfedge>& loop) {
+  std::vector<Point> pts;
+  pts.reserve(loop.size());
+  for (const Halfedge& h : loop) pts.push_back(h->source()->point());
+  return pts;
+}
+
+CGAL::Orientation loop_orientation(const std::vector<Point>& pts) {
+  auto lowest = std::min_element(pts.begin(), pts.end(), [](const Point& a, const Point& b) {
+    return CGAL::compare_xy(a, b) == CGAL::SMALLER;
+  });
+  std::size_t i = lowest - pts.begin(), n = pts.size();
+  return CGAL::orientation(pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
+}
+
+// The loop with its vertices rounded to doubles. Exact vertices closer than the
+// rounding step can land on one double: repeats and the zero-width spikes they leave
+// are dropped. Neighbouring faces share those vertices and drop them alike, so the
+// written polygons still meet edge to edge. Empty when the loop collapses.
+Ring plain_ring(const std::vector<Point>& pts) {
+  Ring r;
+  r.reserve(pts.size());
+  for (const Point& p : pts) {
+    Vec2 v = to_plain(p);
+    while (r.size() >= 2 && r[r.size() - 2] == v) r.pop_back();  // spike a, b, a
+    if (r.empty() || !(r.back() == v)) r.push_back(v);
+  }
+  for (bool changed = true; changed && r.size() >= 3;) {  // the same across the seam
+    changed = false;
+    if (r.front() == r.back()) r.pop_back(), changed = true;
+    else if (r[r.size() - 2] == r.front()) r.pop_back(), changed = true;
+    else if (r[1] == r.back()) r.erase(r.begin()), changed = true;
+  }
+  if (r.size() < 3) r.clear();
+  return r;
+}
+
+// Splits a closed walk that passes some vertex twice into loops that pass none twice.
+std::vector<std::vector<Halfedge>> split_at_repeated_vertices(const std::vector<Halfedge>& walk) {
+  std::vector<std::vector<Halfedge>> loops;
+  std::vector<Halfedge> stack;
+  std::unordered_map<const void*, std::size_t> position;  // vertex -> index in stack
+  for (const Halfedge& h : walk) {
+    const void* v = &*h->source();
+    auto it = position.find(v);
+    if (it != position.end()) {
+      std::size_t k = it->second;
+      loops.emplace_back(stack.begin() + k, stack.end());
+      for (std::size_t i = k; i < stack.size(); ++i) position.erase(&*stack[i]->source());
+      stack.resize(k);
+    }
+    position[v] = stack.size();
+    stack.push_back(h);
+  }
+  if (!stack.empty()) loops.push_back(std::move(stack));
+  return loops;
+}
+
+}  // namespace
+
+int winding_of(const Windings& w, int counter) {
+  auto it = std::lower_bound(w.begin(), w.end(), std::make_pair(counter, INT32_MIN));
+  return it != w.end() && it->first == counter ? it->second : 0;
+}
+
+struct PlanarMap::Impl {
+  Arrangement arr;
+  LabelKeeper keeper{arr};
+  std::vector<Curve> pending;
+  std::map<int, std::vector<Point>> polylines;
+
+  void add_edge(const Point& a, const Point& b, CurveTag tag) {
+    if (a == b) return;
+    // A tag's sign is stored relative to the left-to-right direction of the edge.
+    if (CGAL::compare_xy(a, b) == CGAL::LARGER) tag.sign = -tag.sign;
+    pending.emplace_back(exact::Segment(a, b), Tags{tag});
+  }
+
+  int group_of(Face f, const std::vector<int>& group_of_label) const {
+    int l = f->data();
+    return l >= 0 && l < static_cast<int>(group_of_label.size()) ? group_of_label[l] : -1;
+  }
+};
+
+PlanarMap::PlanarMap() : impl_(std::make_unique<Impl>()) { impl_->arr.unbounded_face()->set_data(-1); }
+PlanarMap::~PlanarMap() = default;
+PlanarMap::PlanarMap(PlanarMap&&) noexcept = default;
+PlanarMap& PlanarMap::operator=(PlanarMap&&) noexcept = default;
+
+void PlanarMap::add_ring(const Ring& ring, int counter, int aux) {
+  for (std::size_t i = 0; i < ring.size(); ++i)
+    impl_->add_edge(to_exact(ring[i]), to_exact(ring[(i + 1) % ring.size()]), {counter, +1, aux});
+}
+
+void PlanarMap::add_edge(Vec2 a, Vec2 b, int counter) {
+  impl_->add_edge(to_exact(a), to_exact(b), {counter, +1, 0});
+}
+
+void PlanarMap::add_stroke(const Polyline& line, double half_width, int counter) {
+  for (const exact::ExactRing& piece : exact::stroke_pieces(line, half_width))
+    for (std::size_t i = 0; i < piece.size(); ++i)
+      impl_->add_edge(piece[i], piece[(i + 1) % piece.size()], {counter, +1, 0});
+}
+
+void PlanarMap::add_polyline(const Polyline& line, int tag) {
+  std::vector<Point>& pts = impl_->polylines[tag];
+  pts.clear();
+  for (Vec2 p : line) pts.push_back(to_exact(p));
+  for (std::size_t i = 0; i + 1 < pts.size(); ++i)
+    impl_->add_edge(pts[i], pts[i + 1], {tag, 0, static_cast<int>(i)});
+}
+
+void PlanarMap::insert_batch() {
+  CGAL::insert(impl_->arr, impl_->pending.begin(), impl_->pending.end());
+  impl_->pending.clear();
+}
+
+void PlanarMap::label_faces(const std::function<int(const Windings&)>& label_of) {
+  Arrangement& arr = impl_->arr;
+  std::unordered_map<const void*, Windings> windings;
+  std::deque<Arrangement::Face_handle> queue{arr.unbounded_face()};
+  windings[&*arr.unbounded_face()] = {};
+  while (!queue.empty()) {
+    Arrangement::Face_handle f = queue.front();
+    queue.pop_front();
+    const Windings wf = windings.at(&*f);
+    f->set_data(label_of(wf));
+    for_each_boundary_halfedge(f, [&](Halfedge h) {
+      Arrangement::Face_handle g = arr.non_const_handle(h->twin()->face());
+      if (windings.count(&*g)) return;
+      // h has f on its left: crossing h from right to left raises a counter by one
+      // for every ring edge running the same way as h.
+      Windings wg = wf;
+      bool left_to_right = h->direction() == CGAL::ARR_LEFT_TO_RIGHT;
+      for (const CurveTag& t : h->curve().data())
+        if (t.sign != 0) add_winding(wg, t.counter, (t.sign > 0) == left_to_right ? -1 : +1);
+      windings.emplace(&*g, std::move(wg));
+      queue.push_back(g);
+    });
+  }
+}
+
+std::vector<std::vector<Polygon>> PlanarMap::dissolve(const std::vector<int>& group_of_label,
+                                                      int group_count) const {
+  const Arrangement& arr = impl_->arr;
+  auto group = [&](Face f) { return impl_->group_of(f, group_of_label); };
+  std::vector<std::vector<Polygon>> result(group_count);
+  std::unordered_set<const void*> seen_faces, used;
+
+  for (auto start = arr.faces_begin(); start != arr.faces_end(); ++start) {
+    int g = group(start);
+    if (g < 0 || seen_faces.count(&*start)) continue;
+
+    // One edge-connected component of faces in group g, and its boundary halfedges.
+    std::vector<Halfedge> boundary;
+    std::deque<Face> queue{start};
+    seen_faces.insert(&*start);
+    while (!queue.empty()) {
+      Face f = queue.front();
+      queue.pop_front();
+      for_each_boundary_halfedge(f, [&](Halfedge h) {
+        Face t = h->twin()->face();
+        if (group(t) != g) {
+          boundary.push_back(h);
+        } else if (seen_faces.insert(&*t).second) {
+          queue.push_back(t);
+        }
+      });
+    }
+
+    // Walk the boundary keeping the component on the left, turning as tightly as
+    // possible at each vertex, then cut the walks where they touch themselves.
+    std::vector<std::vector<Point>> outers, holes;
+    for (const Halfedge& first : boundary) {
+      if (used.count(&*first)) continue;
+      std::vector<Halfedge> walk;
+      Halfedge h = first;
+      do {
+        used.insert(&*h);
+        walk.push_back(h);
+        Halfedge next = h->next();
+        while (group(next->twin()->face()) == g) next = next->twin()->next();
+        h = next;
+      } while (h != first);
+      for (const auto& loop : split_at_repeated_vertices(walk)) {
+        std::vector<Point> pts = loop_points(loop);
+        (loop_orientation(pts) == CGAL::COUNTERCLOCKWISE ? outers : holes).push_back(std::move(pts));
+      }
+    }
+
+    std::vector<Polygon> polygons;
+    for (const auto& o : outers) polygons.push_back({plain_ring(o), {}});
+    for (const auto& hole : holes) {
+      std::size_t owner = 0;
+      if (outers.size() > 1) {
+        Point probe = CGAL::midpoint(hole[0], hole[1]);
+        double best_area = 0;
+        for (std::size_t k = 0; k < outers.size(); ++k) {
+          if (CGAL::bounded_side_2(outers[k].begin(), outers[k].end(), probe, Kernel()) !=
+              CGAL::ON_BOUNDED_SIDE)
+            continue;
+          double area = CGAL::to_double(CGAL::polygon_area_2(outers[k].begin(), outers[k].end(), Kernel()));
+          if (best_area == 0 || area < best_area) best_area = area, owner = k;
+        }
+      }
+      Ring ring = plain_ring(hole);
+      if (!polygons.empty() && !ring.empty()) polygons[owner].holes.push_back(std::move(ring));
+    }
+    for (Polygon& p : polygons)
+      if (!p.outer.empty()) result[g].push_back(std::move(p));
+  }
+  return result;
+}
+
+std::vector<PolylinePiece> PlanarMap::polyline_pieces(int tag) const {
+  auto found = impl_->polylines.find(tag);
+  if (found == impl_->polylines.end()) return {};
+  const std::vector<Point>& pts = found->second;
+  struct Item {
+    int segment;
+    Halfedge h;
+  };
+  std::vector<Item> items;
+  for (auto e = impl_->arr.edges_begin(); e != impl_->arr.edges_end(); ++e) {
+    for (const CurveTag& t : e->curve().data()) {
+      if (t.counter != tag || t.sign != 0) continue;
+      bool segment_left_to_right = CGAL::compare_xy(pts[t.aux], pts[t.aux + 1]) == CGAL::SMALLER;
+      bool edge_left_to_right = e->direction() == CGAL::ARR_LEFT_TO_RIGHT;
+      items.push_back({t.aux, segment_left_to_right == edge_left_to_right ? Halfedge(e) : Halfedge(e->twin())});
+    }
+  }
+  std::sort(items.begin(), items.end(), [&](const Item& a, const Item& b) {
+    if (a.segment != b.segment) return a.segment < b.segment;
+    return CGAL::compare_distance_to_point(pts[a.segment], a.h->source()->point(),
+                                           b.h->source()->point()) == CGAL::SMALLER;
+  });
+  std::vector<PolylinePiece> pieces;
+  for (const Item& it : items)
+    pieces.push_back({it.segment, to_plain(it.h->source()->point()), to_plain(it.h->target()->point()),
+                      it.h->face()->data(), it.h->twin()->face()->data()});
+  return pieces;
+}
+
+void PlanarMap::for_each_edge(
+    const std::function<void(const std::vector<CurveTag>&, Vec2, Vec2)>& f) const {
+  for (auto e = impl_->arr.edges_begin(); e != impl_->arr.edges_end(); ++e)
+    f(e->curve().data(), to_plain(e->source()->point()), to_plain(e->target()->point()));
+}
+
+bool PlanarMap::point_near_label(int label, Vec2& out) const {
+  for (auto f = impl_->arr.faces_begin(); f != impl_->arr.faces_end(); ++f) {
+    if (f->data() != label) continue;
+    bool found = false;
+    for_each_boundary_halfedge(f, [&](Halfedge h) {
+      if (!found) out = to_plain(h->source()->point()), found = true;
+    });
+    if (found) return true;
+  }
+  return false;
+}
+
+double PlanarMap::widest_face(int label) const {
+  double widest = 0;
+  for (auto f = impl_->arr.faces_begin(); f != impl_->arr.faces_end(); ++f) {
+    if (f->data() != label || f->is_unbounded()) continue;
+    exact::FT twice_area = 0;
+    double perimeter = 0;
+    for_each_boundary_halfedge(f, [&](Halfedge h) {
+      const Point &a = h->source()->point(), &b = h->target()->point();
+      twice_area += a.x() * b.y() - a.y() * b.x();
+      perimeter += std::sqrt(CGAL::to_double(CGAL::squared_distance(a, b)));
+    });
+    if (perimeter > 0) widest = std::max(widest, std::abs(CGAL::to_double(twice_area)) / perimeter);
+  }
+  return widest;
+}
+
+PlanarMapCounts PlanarMap::counts() const {
+  const Arrangement& arr = impl_->arr;
+  return {arr.number_of_vertices(), arr.number_of_edges(), arr.number_of_faces()};
+}
+
+}  // namespace geom

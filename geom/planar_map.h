@@ -1,0 +1,92 @@
+// One exact planar map (a CGAL arrangement on the exact kernel) behind a plain interface.
+//
+// Curves are inserted in batches. Each curve carries tags: a ring edge tagged
+// (counter, +1) raises `counter`'s winding number by one for the face on its left, so
+// after a batch every face knows, per counter, how often the tagged rings wind around it.
+// Callers turn those windings into face labels (small integers whose meaning is theirs);
+// an observer keeps a label on both halves when a later batch splits a labelled face.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "geom/plain.h"
+
+namespace geom {
+
+struct CurveTag {
+  int counter = 0;
+  int sign = 0;  // +1: edge of a ring around `counter`; 0: a tagged curve that bounds nothing
+  int aux = 0;   // caller's index (ring index, segment index, ...)
+  friend bool operator==(const CurveTag&, const CurveTag&) = default;
+};
+
+// Non-zero winding numbers of one face, sorted by counter.
+using Windings = std::vector<std::pair<int, int>>;
+
+int winding_of(const Windings& w, int counter);
+
+// A piece of a tagged polyline between two map vertices, with the labels on its sides.
+struct PolylinePiece {
+  int segment = 0;  // index of the polyline segment it lies on
+  Vec2 from, to;
+  int left_label = -1, right_label = -1;
+};
+
+struct PlanarMapCounts {
+  std::size_t vertices = 0, edges = 0, faces = 0;
+};
+
+class PlanarMap {
+ public:
+  PlanarMap();
+  ~PlanarMap();
+  PlanarMap(PlanarMap&&) noexcept;
+  PlanarMap& operator=(PlanarMap&&) noexcept;
+
+  // Queued for the next insert_batch(). Zero-length edges are skipped.
+  void add_ring(const Ring& ring, int counter, int aux = 0);
+  // One edge a -> b of some ring around `counter`, for outlines built edge by edge.
+  void add_edge(Vec2 a, Vec2 b, int counter);
+  // A stroke of `half_width` around the polyline: flat ends, mitred joints (bevelled
+  // past a mitre limit of 4), built by the grid-line rule; all pieces wind around `counter`.
+  void add_stroke(const Polyline& line, double half_width, int counter);
+  // The polyline itself, bounding nothing, findable later with polyline_pieces(tag).
+  void add_polyline(const Polyline& line, int tag);
+
+  // Inserts everything queued in one sweep.
+  void insert_batch();
+
+  // Labels every face with label_of(its windings); the unbounded face included.
+  void label_faces(const std::function<int(const Windings&)>& label_of);
+
+  // Merges faces by group (group_of_label[label], -1 for none) into polygons with
+  // holes: result[g] lists group g's polygons. Rings are simple; a hole may touch its
+  // outer ring at a vertex.
+  std::vector<std::vector<Polygon>> dissolve(const std::vector<int>& group_of_label,
+                                             int group_count) const;
+
+  // The pieces of polyline `tag`, in order along it.
+  std::vector<PolylinePiece> polyline_pieces(int tag) const;
+
+  // Calls f with the tags of every edge and its end points.
+  void for_each_edge(const std::function<void(const std::vector<CurveTag>&, Vec2, Vec2)>& f) const;
+
+  // A vertex on the boundary of some face with this label, to point a user at it.
+  bool point_near_label(int label, Vec2& out) const;
+
+  // The largest 2·area/perimeter over the faces with this label: about the width of a
+  // thin face (area computed exactly), 0 when no face has the label.
+  double widest_face(int label) const;
+
+  PlanarMapCounts counts() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace geom

@@ -1,0 +1,14 @@
+// Exact checks on polygons given in doubles (the exports as they were written).
+#pragma once
+
+#include "geom/plain.h"
+
+namespace geom {
+
+// Exact sign of the ring's area: +1 counter-clockwise, -1 clockwise, 0 degenerate.
+int ring_orientation(const Ring& ring);
+
+// No vertex repeated, no two edges meeting except neighbours at their shared vertex.
+bool ring_is_simple(const Ring& ring);
+
+}  // namespace geom
