@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -36,6 +37,18 @@ namespace {
 
 std::string quote(std::string_view s) { return "\"" + std::string(s) + "\""; }
 
+// nlohmann::json refuses numbers beyond a double's range (such as 1e999) outright. So
+// that the error can name the feature, parse_sketch re-reads the text with each such
+// literal replaced by a marker string, and the parser reports the marker where it finds it.
+constexpr std::string_view kOverflowMarker = "exacity-overflow:";
+
+std::optional<std::string> overflowed_literal(const json& j) {
+  if (!j.is_string()) return std::nullopt;
+  const std::string& s = j.get_ref<const std::string&>();
+  if (s.rfind(kOverflowMarker, 0) != 0) return std::nullopt;
+  return s.substr(kOverflowMarker.size());
+}
+
 template <std::size_t N>
 std::string list(const std::array<std::string_view, N>& names) {
   std::string r;
@@ -52,6 +65,7 @@ class Parser {
   }
 
   double number(const json& j, const std::string& where, double min, double max) const {
+    if (auto literal = overflowed_literal(j)) fail(where, *literal + " is not a finite number; write a finite number");
     if (!j.is_number()) fail(where, "expected a number, found " + std::string(j.type_name()));
     double v = j.get<double>();
     if (!std::isfinite(v)) fail(where, "the number is not finite; write a finite number");
@@ -72,6 +86,10 @@ class Parser {
   }
 
   geom::Vec2 position(const json& j, const std::string& where) const {
+    if (j.is_array() && j.size() >= 2)
+      for (const json& c : {j[0], j[1]})
+        if (auto literal = overflowed_literal(c))
+          fail(where, "coordinate " + *literal + " is not a finite number; use finite coordinates in metres");
     if (!j.is_array() || j.size() < 2 || !j[0].is_number() || !j[1].is_number())
       fail(where, "a position must be an array [x, y] of numbers");
     double x = j[0].get<double>(), y = j[1].get<double>();
@@ -246,13 +264,28 @@ class Parser {
 Sketch parse_sketch(const std::string& text, const fs::path& path) {
   Parser parser(path);
   json doc;
+  std::string marked = text;
   try {
-    doc = json::parse(text);
+    for (;;) {
+      try {
+        doc = json::parse(marked);
+        break;
+      } catch (const json::out_of_range& e) {
+        // "number overflow parsing '1e999'": mark that literal and read again.
+        std::string what = e.what();
+        auto open = what.find('\''), close = what.rfind('\'');
+        if (e.id != 406 || open == std::string::npos || close <= open) throw;
+        std::string literal = what.substr(open + 1, close - open - 1);
+        auto at = marked.find(literal);
+        if (at == std::string::npos) throw;
+        marked.replace(at, literal.size(), "\"" + std::string(kOverflowMarker) + literal + "\"");
+      }
+    }
   } catch (const json::parse_error& e) {
     // e.byte is one past the offending character.
-    std::size_t line = 1, column = 1, end = std::min<std::size_t>(e.byte ? e.byte - 1 : 0, text.size());
+    std::size_t line = 1, column = 1, end = std::min<std::size_t>(e.byte ? e.byte - 1 : 0, marked.size());
     for (std::size_t i = 0; i < end; ++i) {
-      if (text[i] == '\n') ++line, column = 1;
+      if (marked[i] == '\n') ++line, column = 1;
       else ++column;
     }
     std::string what = e.what();

@@ -31,22 +31,30 @@ Terrain Terrain::load(const TerrainSpec& spec) {
     fail("is unreadable (" + in->geterror() + ")");
   in->close();
 
-  int colour = channels >= 3 ? 3 : 1;  // grey (maybe with alpha), or RGB that must be grey
+  bool scaled_by_type = is.format == OIIO::TypeDesc::UINT8 || is.format == OIIO::TypeDesc::UINT16 ||
+                        is.format == OIIO::TypeDesc::UINT32;
+  float full_scale = 1.0f;
+  if (!scaled_by_type) {
+    full_scale = 0.0f;
+    for (float v : pixels) full_scale = std::max(full_scale, v);
+  }
+  // Grey saved as RGB often carries dithering of a level or so between channels
+  // (measured: 1/255 in a real 8-bit heightmap); a real colour image differs far more.
+  const float tolerance = 2.0f / 255.0f * std::max(full_scale, 1e-30f);
   std::vector<float> values(static_cast<std::size_t>(w) * h);
   for (std::size_t i = 0; i < values.size(); ++i) {
     const float* p = &pixels[i * channels];
-    if (colour == 3 && (p[0] != p[1] || p[0] != p[2])) {
-      fail("is a colour image (pixel " + std::to_string(i % w) + "," + std::to_string(i / w) +
-           " has different R, G, B); save it as greyscale");
+    float v = p[0];
+    if (std::isnan(v)) fail("has a NaN value at pixel " + std::to_string(i % w) + "," + std::to_string(i / w));
+    if (channels >= 3) {
+      float lo = std::min({p[0], p[1], p[2]}), hi = std::max({p[0], p[1], p[2]});
+      if (hi - lo > tolerance)
+        fail("is a colour image (pixel " + std::to_string(i % w) + "," + std::to_string(i / w) +
+             " has R, G, B = " + std::to_string(p[0]) + ", " + std::to_string(p[1]) + ", " + std::to_string(p[2]) +
+             "); save it as greyscale");
+      v = (p[0] + p[1] + p[2]) / 3;  // 0 only where every channel is 0
     }
-    if (std::isnan(p[0])) fail("has a NaN value at pixel " + std::to_string(i % w) + "," + std::to_string(i / w));
-    values[i] = p[0];
-  }
-  bool scaled_by_type = is.format == OIIO::TypeDesc::UINT8 || is.format == OIIO::TypeDesc::UINT16 ||
-                        is.format == OIIO::TypeDesc::UINT32;
-  if (!scaled_by_type) {
-    float top = *std::max_element(values.begin(), values.end());
-    for (float& v : values) v = top > 0 ? std::max(v, 0.0f) / top : 0.0f;
+    values[i] = full_scale > 0 ? std::max(v, 0.0f) / full_scale : 0.0f;
   }
   return Terrain(spec, w, h, std::move(values));
 }

@@ -1,0 +1,87 @@
+#!/usr/bin/python3
+"""Independent check of an exacity output folder with GEOS (through shapely).
+
+Written apart from exacity's own exact validator so that a bug in one is caught by the
+other: every polygon valid in the OGC sense, outer rings counter-clockwise and holes
+clockwise, rings closed; zones, water and non-bridge road areas pairwise disjoint (their
+overlaps have no area); bridges over water.
+
+Usage: check_layers.py OUT_DIR   (exit 0 when every check holds, 1 otherwise)
+"""
+import json
+import sys
+import warnings
+from pathlib import Path
+
+from shapely.geometry import LineString, Polygon
+from shapely.strtree import STRtree
+
+warnings.filterwarnings("ignore", message="STRtree will be changed")  # shapely 1.8 on Debian 12
+
+AREA_TOLERANCE = 1e-6  # m²: GEOS computes overlaps in doubles
+
+
+def load(path):
+    doc = json.loads(path.read_text())
+    assert doc["type"] == "FeatureCollection", f"{path}: not a FeatureCollection"
+    return doc["features"]
+
+
+def signed_area(ring):
+    return sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(ring, ring[1:])) / 2
+
+
+def main(out):
+    problems = []
+    polygons = []  # (name, kind, shapely polygon)
+    for layer in ("zones", "water", "road_areas"):
+        for i, f in enumerate(load(out / "vector" / f"{layer}.geojson")):
+            name = f"{layer}[{i}]"
+            g = f["geometry"]
+            if g["type"] != "Polygon":
+                problems.append(f"{name}: geometry is {g['type']}, expected Polygon")
+                continue
+            rings = g["coordinates"]
+            for k, ring in enumerate(rings):
+                if len(ring) < 4 or ring[0] != ring[-1]:
+                    problems.append(f"{name}: ring {k} is not closed")
+                area = signed_area(ring)
+                if (k == 0) != (area > 0):
+                    problems.append(f"{name}: ring {k} has the wrong orientation (signed area {area})")
+            poly = Polygon(rings[0], rings[1:])
+            if not poly.is_valid:
+                from shapely.validation import explain_validity
+                problems.append(f"{name}: invalid: {explain_validity(poly)}")
+            kind = "bridge" if f["properties"].get("bridge") else layer
+            polygons.append((name, kind, poly))
+    for i, f in enumerate(load(out / "vector" / "roads.geojson")):
+        line = LineString(f["geometry"]["coordinates"])
+        if not line.is_valid or line.length <= 0:
+            problems.append(f"roads[{i}]: invalid centre line")
+
+    surfaces = [(n, p) for n, k, p in polygons if k != "bridge" and p.is_valid]
+    tree = STRtree([p for _, p in surfaces])
+    index = {id(p): i for i, (_, p) in enumerate(surfaces)}
+    for i, (name, poly) in enumerate(surfaces):
+        for other in tree.query(poly):
+            j = index[id(other)]
+            if j <= i:
+                continue
+            overlap = poly.intersection(other).area
+            if overlap > AREA_TOLERANCE:
+                problems.append(f"{name} and {surfaces[j][0]} overlap by {overlap} m²")
+    water = [p for _, k, p in polygons if k == "water" and p.is_valid]
+    for name, kind, poly in polygons:
+        if kind == "bridge" and poly.is_valid:
+            covered = sum(poly.intersection(w).area for w in water)
+            if poly.area - covered > AREA_TOLERANCE:
+                problems.append(f"{name}: bridge not over water ({poly.area - covered} m² on land)")
+
+    for p in problems:
+        print("problem:", p)
+    print(f"{out}: {len(polygons)} polygons, {'ok' if not problems else f'{len(problems)} problems'}")
+    return 0 if not problems else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main(Path(sys.argv[1])))

@@ -1,0 +1,182 @@
+// End to end through the exacity binary: every example generates and validates (exactly,
+// and independently with GEOS), runs are byte-identical, bad input exits 2 with one
+// line and no output folder.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/test_util.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kSource = EXACITY_SOURCE_DIR;
+
+struct Result {
+  int code;
+  std::string out;  // stdout and stderr
+};
+
+Result run(const std::string& args) {
+  std::string cmd = std::string(EXACITY_BINARY) + " " + args + " 2>&1";
+  Result r{0, ""};
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::array<char, 4096> buf;
+  while (fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
+  int status = pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::vector<fs::path> examples() {
+  std::vector<fs::path> v;
+  for (const auto& e : fs::directory_iterator(kSource / "examples"))
+    if (e.path().extension() == ".geojson") v.push_back(e.path());
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+// Every output file but report.json's timings, which are measurements.
+std::map<std::string, std::string> outputs(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    if (!e.is_regular_file()) continue;
+    std::string rel = fs::relative(e.path(), dir).string();
+    std::string text = read(e.path());
+    if (rel == "report.json") {
+      auto j = nlohmann::ordered_json::parse(text);
+      j.erase("timings_s");
+      text = j.dump();
+    }
+    files[rel] = text;
+  }
+  return files;
+}
+
+}  // namespace
+
+TEST(Cli, EveryExampleGeneratesAndValidates) {
+  auto list = examples();
+  ASSERT_GE(list.size(), 3u);
+  for (const fs::path& sketch : list) {
+    fs::path out = testing_util::temp_dir("cli-" + sketch.stem().string()) / "out";
+    Result g = run("generate " + sketch.string() + " -o " + out.string() + " --quiet");
+    ASSERT_EQ(g.code, 0) << sketch << "\n" << g.out;
+    for (const char* f : {"vector/zones.geojson", "vector/water.geojson", "vector/roads.geojson",
+                          "vector/road_areas.geojson", "map.svg", "report.json"})
+      EXPECT_TRUE(fs::exists(out / f)) << f;
+    auto report = nlohmann::json::parse(read(out / "report.json"));
+    EXPECT_EQ(report["validation"]["ok"], true);
+    EXPECT_GT(report["counts"]["zones"].get<int>(), 0);
+
+    Result v = run("validate " + out.string());
+    EXPECT_EQ(v.code, 0) << v.out;
+    EXPECT_NE(v.out.find("valid"), std::string::npos);
+
+    std::string independent = "/usr/bin/python3 " + (kSource / "tests" / "check_layers.py").string() + " " + out.string();
+    EXPECT_EQ(std::system((independent + " > /dev/null").c_str()), 0) << "GEOS disagrees: " << independent;
+  }
+}
+
+TEST(Cli, SameSketchGivesByteIdenticalOutputs) {
+  fs::path base = testing_util::temp_dir("cli-determinism");
+  for (const fs::path& sketch : examples()) {
+    ASSERT_EQ(run("generate " + sketch.string() + " -o " + (base / "a").string() + " -q").code, 0);
+    ASSERT_EQ(run("generate " + sketch.string() + " -o " + (base / "b").string() + " -q").code, 0);
+    auto a = outputs(base / "a"), b = outputs(base / "b");
+    ASSERT_EQ(a.size(), b.size());
+    for (const auto& [name, text] : a) EXPECT_TRUE(text == b[name]) << sketch << ": " << name << " differs";
+  }
+}
+
+TEST(Cli, ValidateCatchesATamperedOutput) {
+  fs::path out = testing_util::temp_dir("cli-tamper") / "out";
+  ASSERT_EQ(run("generate " + (kSource / "examples" / "town.geojson").string() + " -o " + out.string() + " -q").code, 0);
+  // Move one vertex of the first zone: it now overlaps its neighbour or leaves a gap.
+  auto zones = nlohmann::json::parse(read(out / "vector" / "zones.geojson"));
+  auto& ring = zones["features"][0]["geometry"]["coordinates"][0];
+  ring[1][0] = ring[1][0].get<double>() + 3.0;
+  std::ofstream(out / "vector" / "zones.geojson") << zones.dump();
+  Result v = run("validate " + out.string());
+  EXPECT_EQ(v.code, 1) << v.out;
+  EXPECT_NE(v.out.find("problem:"), std::string::npos) << v.out;
+}
+
+TEST(Cli, BadInputExitsTwoWithOneLineAndNoOutput) {
+  fs::path dir = testing_util::temp_dir("cli-bad");
+  struct Case {
+    std::string name, text, expect;
+  };
+  const std::string zone = R"({"type":"Feature","properties":{"zone":"park"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[9,0],[9,9],[0,0]]]}})";
+  std::vector<Case> cases = {
+      {"syntax", "{\"type\": \"FeatureCollection\",\n \"features\": [}", "malformed JSON"},
+      {"nogeom", R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"zone":"park"},"geometry":null}]})", "no geometry"},
+      {"zone", R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"zone":"parc"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,0]]]}}]})", "did you mean \"park\""},
+      {"heightmap", R"({"type":"FeatureCollection","exacity":{"terrain":{"heightmap":"missing.png","bounds":[0,0,10,10]}},"features":[)" + zone + "]}", "not found"},
+      {"key", R"({"type":"FeatureCollection","exacity":{"colour":1},"features":[)" + zone + "]}", "unknown key \"colour\""},
+  };
+  for (const Case& c : cases) {
+    fs::path sketch = dir / (c.name + ".geojson");
+    std::ofstream(sketch) << c.text;
+    fs::path out = dir / ("out-" + c.name);
+    Result r = run("generate " + sketch.string() + " -o " + out.string() + " --quiet");
+    EXPECT_EQ(r.code, 2) << c.name << ": " << r.out;
+    EXPECT_NE(r.out.find(c.expect), std::string::npos) << c.name << ": " << r.out;
+    std::string file = c.name == "heightmap" ? (dir / "missing.png").string() : sketch.string();
+    EXPECT_NE(r.out.find(file), std::string::npos) << "names the file: " << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << "one line: " << r.out;
+    EXPECT_FALSE(fs::exists(out)) << c.name;
+  }
+  // No staging folder left behind either.
+  for (const auto& e : fs::directory_iterator(dir)) EXPECT_EQ(e.path().filename().string().find(".out-"), std::string::npos);
+}
+
+TEST(Cli, OutputPathsThatMustNotBeOverwritten) {
+  fs::path dir = testing_util::temp_dir("cli-paths");
+  std::string town = (kSource / "examples" / "town.geojson").string();
+  std::ofstream(dir / "a-file") << "mine";
+  Result r = run("generate " + town + " -o " + (dir / "a-file").string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("is a file"), std::string::npos) << r.out;
+  EXPECT_EQ(read(dir / "a-file"), "mine");
+
+  fs::create_directories(dir / "notes");
+  std::ofstream(dir / "notes" / "todo.txt") << "keep me";
+  r = run("generate " + town + " -o " + (dir / "notes").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_EQ(read(dir / "notes" / "todo.txt"), "keep me");
+
+  // An earlier exacity output is replaced whole.
+  ASSERT_EQ(run("generate " + town + " -o " + (dir / "out").string() + " -q").code, 0);
+  std::ofstream(dir / "out" / "stale.txt") << "old";
+  ASSERT_EQ(run("generate " + town + " -o " + (dir / "out").string() + " -q").code, 0);
+  EXPECT_FALSE(fs::exists(dir / "out" / "stale.txt"));
+}
+
+TEST(Cli, HelpAndVersion) {
+  Result h = run("--help");
+  EXPECT_EQ(h.code, 0);
+  EXPECT_NE(h.out.find("generate"), std::string::npos);
+  EXPECT_NE(h.out.find("validate"), std::string::npos);
+  EXPECT_EQ(run("generate --help").code, 0);
+  Result v = run("--version");
+  EXPECT_EQ(v.code, 0);
+  EXPECT_NE(v.out.find("exacity 0."), std::string::npos);
+  EXPECT_EQ(run("frobnicate").code, 2);
+  EXPECT_EQ(run("generate").code, 2);  // no sketch
+}

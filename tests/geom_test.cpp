@@ -1,0 +1,190 @@
+// The exact planar map: windings, labels kept on split, dissolving, strokes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "geom/planar_map.h"
+#include "geom/polygon_check.h"
+#include "tests/test_util.h"
+
+using geom::PlanarMap;
+using geom::Polygon;
+using geom::Ring;
+using geom::Windings;
+using testing_util::area;
+
+namespace {
+
+Ring square(double x0, double y0, double size) { return {{x0, y0}, {x0 + size, y0}, {x0 + size, y0 + size}, {x0, y0 + size}}; }
+
+// Area per group after dissolving with group = label.
+std::vector<double> group_areas(const PlanarMap& map, int groups) {
+  std::vector<int> identity(groups);
+  for (int i = 0; i < groups; ++i) identity[i] = i;
+  std::vector<double> areas(groups, 0.0);
+  auto polys = map.dissolve(identity, groups);
+  for (int g = 0; g < groups; ++g)
+    for (const Polygon& p : polys[g]) areas[g] += area(p);
+  return areas;
+}
+
+}  // namespace
+
+TEST(PlanarMap, OverlappingSquaresWindOncePerRing) {
+  PlanarMap map;
+  map.add_ring(square(0, 0, 10), 0);
+  map.add_ring(square(5, 5, 10), 1);
+  map.insert_batch();
+  map.label_faces([](const Windings& w) {
+    EXPECT_LE(w.size(), 2u);
+    for (auto [c, n] : w) EXPECT_EQ(n, 1) << "counter " << c;
+    return (geom::winding_of(w, 0) != 0) + 2 * (geom::winding_of(w, 1) != 0);
+  });
+  auto a = group_areas(map, 4);
+  EXPECT_EQ(a[1], 75);
+  EXPECT_EQ(a[2], 75);
+  EXPECT_EQ(a[3], 25);
+}
+
+TEST(PlanarMap, ClockwiseRingWindsMinusOne) {
+  PlanarMap map;
+  Ring r = square(0, 0, 4);
+  std::reverse(r.begin(), r.end());
+  map.add_ring(r, 7);
+  map.insert_batch();
+  std::vector<int> seen;
+  map.label_faces([&](const Windings& w) {
+    seen.push_back(geom::winding_of(w, 7));
+    return 0;
+  });
+  std::sort(seen.begin(), seen.end());
+  EXPECT_EQ(seen, (std::vector<int>{-1, 0}));
+}
+
+TEST(PlanarMap, PentagramCentreWindsTwice) {
+  PlanarMap map;
+  // A pentagram on integer points: its centre pentagon is wound twice.
+  map.add_ring({{0, -10}, {6, 8}, {-10, -3}, {10, -3}, {-6, 8}}, 0);
+  map.insert_batch();
+  std::vector<int> seen;
+  map.label_faces([&](const Windings& w) {
+    int n = geom::winding_of(w, 0);
+    seen.push_back(n);
+    return n;
+  });
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 2), 1);  // the centre
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), 5);  // the points
+}
+
+TEST(PlanarMap, SplitFaceKeepsItsLabel) {
+  PlanarMap map;
+  map.add_ring(square(0, 0, 10), 0);
+  map.insert_batch();
+  map.label_faces([](const Windings& w) { return geom::winding_of(w, 0) != 0 ? 1 : 0; });
+  auto before = map.counts();
+  map.add_polyline({{0, 3}, {10, 7}}, 0);  // splits the square in two
+  map.insert_batch();
+  EXPECT_EQ(map.counts().faces, before.faces + 1);
+  auto a = group_areas(map, 2);
+  EXPECT_EQ(a[1], 100);
+  auto polys = map.dissolve({-1, 0}, 1);
+  ASSERT_EQ(polys[0].size(), 1u);  // dissolved back into one square
+}
+
+TEST(PlanarMap, DissolveSplitsARingThatTouchesItself) {
+  PlanarMap map;
+  map.add_ring(square(0, 0, 10), 0);
+  Ring hole{{0, 5}, {4, 3}, {4, 7}};  // touches the outer ring at (0, 5)
+  std::reverse(hole.begin(), hole.end());
+  map.add_ring(hole, 0);
+  map.insert_batch();
+  map.label_faces([](const Windings& w) { return geom::winding_of(w, 0) == 1 ? 1 : 0; });
+  auto polys = map.dissolve({-1, 0}, 1);
+  ASSERT_EQ(polys[0].size(), 1u);
+  const Polygon& p = polys[0][0];
+  ASSERT_EQ(p.holes.size(), 1u);
+  EXPECT_TRUE(geom::ring_is_simple(p.outer));
+  EXPECT_TRUE(geom::ring_is_simple(p.holes[0]));
+  EXPECT_EQ(geom::ring_orientation(p.outer), 1);
+  EXPECT_EQ(geom::ring_orientation(p.holes[0]), -1);
+  EXPECT_EQ(area(p), 100 - 8);
+}
+
+TEST(PlanarMap, SquaresTouchingAtACornerStayTwoPolygons) {
+  PlanarMap map;
+  map.add_ring(square(0, 0, 1), 0);
+  map.add_ring(square(1, 1, 1), 0);
+  map.insert_batch();
+  map.label_faces([](const Windings& w) { return geom::winding_of(w, 0) ? 1 : 0; });
+  auto polys = map.dissolve({-1, 0}, 1);
+  EXPECT_EQ(polys[0].size(), 2u);
+}
+
+TEST(PlanarMap, PolylinePiecesComeInOrderWithTheirSides) {
+  PlanarMap map;
+  map.add_ring(square(2, -1, 2), 0);
+  map.add_ring(square(6, -1, 2), 0);
+  map.add_polyline({{10, 0}, {0, 0}}, 3);  // right to left through both squares
+  map.insert_batch();
+  map.label_faces([](const Windings& w) { return geom::winding_of(w, 0) ? 1 : 0; });
+  auto pieces = map.polyline_pieces(3);
+  ASSERT_EQ(pieces.size(), 5u);
+  double xs[] = {10, 8, 6, 4, 2, 0};
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    EXPECT_EQ(pieces[i].from.x, xs[i]);
+    EXPECT_EQ(pieces[i].to.x, xs[i + 1]);
+    int inside = i % 2 == 1;
+    EXPECT_EQ(pieces[i].left_label, inside);
+    EXPECT_EQ(pieces[i].right_label, inside);
+  }
+}
+
+TEST(Stroke, RightAngleBendIsMitred) {
+  PlanarMap map;
+  map.add_stroke({{0, 0}, {100, 0}, {100, 100}}, 5, 0);
+  map.insert_batch();
+  map.label_faces([](const Windings& w) { return geom::winding_of(w, 0) > 0 ? 1 : 0; });
+  auto polys = map.dissolve({-1, 0}, 1);
+  ASSERT_EQ(polys[0].size(), 1u);
+  // Two 100 x 10 bars, their 5 x 5 overlap counted once, and the 5 x 5 mitre corner.
+  EXPECT_EQ(area(polys[0][0]), 2000);
+  EXPECT_TRUE(polys[0][0].holes.empty());
+  bool has_mitre_corner = false;
+  for (auto p : polys[0][0].outer) has_mitre_corner |= p == geom::Vec2{105, -5};
+  EXPECT_TRUE(has_mitre_corner);
+}
+
+TEST(Stroke, HairpinIsBevelledNotSpiked) {
+  PlanarMap map;
+  map.add_stroke({{0, 0}, {100, 0}, {0, 4}}, 5, 0);  // a turn of about 177.7 degrees
+  map.insert_batch();
+  map.label_faces([](const Windings& w) { return geom::winding_of(w, 0) > 0 ? 1 : 0; });
+  auto polys = map.dissolve({-1, 0}, 1);
+  ASSERT_EQ(polys[0].size(), 1u);
+  for (auto p : polys[0][0].outer) EXPECT_LE(p.x, 100 + 4 * 5) << "mitre past the limit";
+  EXPECT_TRUE(geom::ring_is_simple(polys[0][0].outer));
+}
+
+TEST(Stroke, OffsetsLieOnTheGrid) {
+  PlanarMap map;
+  map.add_stroke({{0.1, 0.2}, {33.3, 17.7}}, 3.3, 0);
+  map.insert_batch();
+  map.label_faces([](const Windings& w) { return geom::winding_of(w, 0) > 0 ? 1 : 0; });
+  auto polys = map.dissolve({-1, 0}, 1);
+  ASSERT_EQ(polys[0].size(), 1u);
+  for (auto p : polys[0][0].outer) {
+    EXPECT_EQ(p.x * 1024, std::nearbyint(p.x * 1024));
+    EXPECT_EQ(p.y * 1024, std::nearbyint(p.y * 1024));
+  }
+}
+
+TEST(PolygonCheck, SimpleAndOriented) {
+  EXPECT_TRUE(geom::ring_is_simple(square(0, 0, 1)));
+  EXPECT_EQ(geom::ring_orientation(square(0, 0, 1)), 1);
+  EXPECT_FALSE(geom::ring_is_simple({{0, 0}, {2, 2}, {2, 0}, {0, 2}}));  // bow tie
+  EXPECT_FALSE(geom::ring_is_simple({{0, 0}, {1, 0}, {1, 1}, {1, 0}, {0, 1}}));  // repeated vertex
+  EXPECT_EQ(geom::ring_orientation({{0, 0}, {1, 1}, {2, 2}}), 0);
+  // Two points a hair apart still count as distinct: the check is exact.
+  EXPECT_TRUE(geom::ring_is_simple({{0, 0}, {1, 0}, {1, 1e-300}}));
+}

@@ -1,0 +1,123 @@
+// Sketch parsing: every bad input gets one clear line; degenerate but legal input parses.
+#include <gtest/gtest.h>
+
+#include "generate/errors.h"
+#include "generate/sketch.h"
+
+using namespace exacity;
+
+namespace {
+
+std::string with_features(const std::string& features, const std::string& settings = "{}") {
+  return R"({"type": "FeatureCollection", "exacity": )" + settings + R"(, "features": [)" + features + "]}";
+}
+
+const std::string kSquare =
+    R"({"type": "Feature", "properties": {"zone": "residential"}, "geometry": {"type": "Polygon", "coordinates": [[[0,0],[10,0],[10,10],[0,10],[0,0]]]}})";
+
+// The message of the UserError that parsing `text` throws, or "" when it parses.
+std::string error_of(const std::string& text) {
+  try {
+    parse_sketch(text, "city.geojson");
+  } catch (const UserError& e) {
+    std::string m = e.what();
+    EXPECT_EQ(m.find('\n'), std::string::npos) << "one line: " << m;
+    EXPECT_EQ(m.rfind("city.geojson", 0), 0u) << "names the file first: " << m;
+    return m;
+  }
+  return "";
+}
+
+void expect_error(const std::string& text, std::initializer_list<const char*> parts) {
+  std::string m = error_of(text);
+  ASSERT_FALSE(m.empty()) << "accepted: " << text;
+  for (const char* p : parts) EXPECT_NE(m.find(p), std::string::npos) << "'" << p << "' missing in: " << m;
+}
+
+}  // namespace
+
+TEST(SketchErrors, MalformedJsonGivesLineAndColumn) {
+  expect_error("{\"type\": \"FeatureCollection\",\n  \"features\": [,]}", {"city.geojson:2:", "malformed JSON"});
+}
+
+TEST(SketchErrors, MissingOrNullGeometry) {
+  expect_error(with_features(R"({"type": "Feature", "properties": {"zone": "park"}})"), {"features[0]", "no geometry"});
+  expect_error(with_features(R"({"type": "Feature", "properties": {"zone": "park"}, "geometry": null})"),
+               {"features[0]", "no geometry"});
+}
+
+TEST(SketchErrors, UnknownZoneTypeSuggestsTheNearest) {
+  expect_error(with_features(kSquare + "," + R"({"type": "Feature", "properties": {"zone": "residental"}, "geometry": {"type": "Polygon", "coordinates": [[[0,0],[1,0],[1,1],[0,0]]]}})"),
+               {"features[1]", "\"residental\"", "did you mean \"residential\""});
+  expect_error(with_features(R"({"type": "Feature", "properties": {"road": "motorway"}, "geometry": {"type": "LineString", "coordinates": [[0,0],[1,0]]}})"),
+               {"features[0]", "unknown road class"});
+}
+
+TEST(SketchErrors, RingWithFewerThanThreeDistinctPoints) {
+  expect_error(with_features(R"({"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": "Polygon", "coordinates": [[[0,0],[1,1],[0,0],[1,1],[0,0]]]}})"),
+               {"features[0]", "2 distinct points", "at least 3"});
+}
+
+TEST(SketchErrors, NonFiniteCoordinate) {
+  expect_error(with_features(R"({"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": "Polygon", "coordinates": [[[0,0],[1e999,0],[1,1],[0,0]]]}})"),
+               {"features[0]", "not a finite number"});
+}
+
+TEST(SketchErrors, UnknownKeyInSettingsIsNamed) {
+  expect_error(with_features(kSquare, R"({"seed": 1, "sede": 2})"), {"\"exacity\"", "unknown key \"sede\""});
+  expect_error(with_features(kSquare, R"({"terrain": {"heightmap": "a.png", "bounds": [0,0,1,1], "heigth": [0,1]}})"),
+               {"terrain", "unknown key \"heigth\""});
+  expect_error(with_features(kSquare, R"({"zones": {"residential": {"block_areaa": 1}}})"),
+               {"unknown key \"block_areaa\""});
+}
+
+TEST(SketchErrors, HeightmapBoundsWithZeroArea) {
+  expect_error(with_features(kSquare, R"({"terrain": {"heightmap": "a.png", "bounds": [0,0,0,100]}})"),
+               {"bounds", "zero area"});
+}
+
+TEST(SketchErrors, OtherMistakes) {
+  expect_error(R"({"type": "Feature"})", {"FeatureCollection"});
+  expect_error(with_features(R"({"type": "Feature", "properties": {}, "geometry": {"type": "Point", "coordinates": [0,0]}})"),
+               {"neither"});
+  expect_error(with_features(R"({"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": "LineString", "coordinates": [[0,0],[1,0]]}})"),
+               {"Polygon or MultiPolygon"});
+  expect_error(with_features(kSquare, R"({"seed": -3})"), {"seed"});
+}
+
+TEST(SketchParse, DegenerateButLegalInput) {
+  // Repeated consecutive points, an unclosed ring, collinear edges, a zone drawn twice.
+  std::string text = with_features(
+      kSquare + "," + kSquare + "," +
+      R"({"type": "Feature", "properties": {"zone": "commercial", "name": "x"}, "geometry": {"type": "Polygon", "coordinates": [[[0,0],[0,0],[5,0],[10,0],[10,10]]]}},
+         {"type": "Feature", "properties": {"road": "highway"}, "geometry": {"type": "LineString", "coordinates": [[-5,0],[-5,0],[15,0]]}})",
+      R"({"seed": 42, "zones": {"commercial": {"branches": 6}}})");
+  Sketch s = parse_sketch(text, "city.geojson");
+  EXPECT_EQ(s.seed, 42u);
+  ASSERT_EQ(s.zones.size(), 3u);
+  EXPECT_EQ(s.zones[2].polygons[0].outer.size(), 4u);  // the repeated point dropped
+  EXPECT_EQ(s.zones[2].type, ZoneType::Commercial);
+  EXPECT_EQ(s.zone_params.at(ZoneType::Commercial).branches, 6);
+  ASSERT_EQ(s.roads.size(), 1u);
+  EXPECT_EQ(s.roads[0].width, 24);  // a highway's default width
+  EXPECT_EQ(s.roads[0].lines[0].size(), 2u);
+  EXPECT_EQ(s.roads[0].index, 3);
+}
+
+TEST(SketchParse, CrsAndMultiGeometries) {
+  std::string text = R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "EPSG:28992"}},
+    "features": [
+      {"type": "Feature", "properties": {"zone": "industrial"}, "geometry": {"type": "MultiPolygon", "coordinates": [
+        [[[0,0],[4,0],[4,4],[0,4],[0,0]], [[1,1],[1,2],[2,2],[2,1],[1,1]]], [[[5,5],[6,5],[6,6],[5,5]]]]}},
+      {"type": "Feature", "properties": {"road": "local", "width": 6}, "geometry": {"type": "MultiLineString", "coordinates": [[[0,0],[1,1]], [[2,2],[3,3]]]}}]})";
+  Sketch s = parse_sketch(text, "city.geojson");
+  EXPECT_EQ(s.crs["properties"]["name"], "EPSG:28992");
+  ASSERT_EQ(s.zones[0].polygons.size(), 2u);
+  EXPECT_EQ(s.zones[0].polygons[0].holes.size(), 1u);
+  EXPECT_EQ(s.roads[0].lines.size(), 2u);
+  EXPECT_EQ(s.roads[0].width, 6);
+}
+
+TEST(SketchParse, MissingFileIsAUserError) {
+  EXPECT_THROW(load_sketch("/nonexistent/city.geojson"), UserError);
+}
