@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# Quick start, step 1: install what is missing, build Exacity (Release) and generate the
+# default example city into out/town.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/install-deps.sh
+cmake --preset release >/dev/null
+cmake --build --preset release
+./build/release/cli/exacity generate examples/town.geojson -o out/town
+echo "exacity: outputs are in $(pwd)/out/town (vector/*.geojson, map.svg, report.json)"

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Quick start, step 2: install what is missing, build the test configuration (assertions
+# and CGAL's preconditions on, warnings as errors) and run the whole test suite.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/install-deps.sh
+cmake --workflow --preset test
