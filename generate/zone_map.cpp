@@ -40,6 +40,38 @@ int DrawnZones::top_zone(const geom::Windings& w) const {
   return top;
 }
 
+namespace {
+
+// Where road lines meet end to end (GIS editors and OpenStreetMap split roads into many
+// lines), their flat ends would leave a notch: two ends of equal width get the mitre a
+// single line would have, and other meetings a disc around the node.
+void add_end_joints(const Sketch& sketch, int road_base, geom::PlanarMap& map) {
+  struct End {
+    int road;
+    geom::Vec2 inner;  // the nearest other vertex along the line
+    double half_width;
+  };
+  std::map<std::pair<double, double>, std::vector<End>> ends;
+  for (int r = 0; r < static_cast<int>(sketch.roads.size()); ++r) {
+    for (const geom::Polyline& line : sketch.roads[r].lines) {
+      // Lines have at least two distinct points, and consecutive repeats are dropped.
+      const double hw = sketch.roads[r].width / 2;
+      ends[{line.front().x, line.front().y}].push_back({r, line[1], hw});
+      ends[{line.back().x, line.back().y}].push_back({r, line[line.size() - 2], hw});
+    }
+  }
+  for (const auto& [at, meeting] : ends) {
+    geom::Vec2 q{at.first, at.second};
+    if (meeting.size() == 2 && meeting[0].half_width == meeting[1].half_width) {
+      map.add_joint(meeting[0].inner, q, meeting[1].inner, meeting[0].half_width, road_base + meeting[0].road);
+    } else if (meeting.size() > 1) {
+      for (const End& e : meeting) map.add_disc(q, e.half_width, road_base + e.road);
+    }
+  }
+}
+
+}  // namespace
+
 ZoneMap build_zone_map(const Sketch& sketch, const Terrain* terrain) {
   ZoneMap zm;
   constexpr int kWater = 0;
@@ -57,6 +89,7 @@ ZoneMap build_zone_map(const Sketch& sketch, const Terrain* terrain) {
       zm.map.add_polyline(line, tag++);
     }
   }
+  add_end_joints(sketch, road_base, zm.map);
   DrawnZones drawn(sketch.zones, zm.map, road_base + roads);
   zm.map.insert_batch();
 

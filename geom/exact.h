@@ -28,4 +28,11 @@ using ExactRing = std::vector<Point>;
 // counter-clockwise simple ring.
 std::vector<ExactRing> stroke_pieces(const Polyline& line, double half_width);
 
+// What fills the outer side of the bend a -> q -> b in a stroke: a mitre, or a bevel past
+// the mitre limit; empty where the path runs straight on.
+ExactRing joint_piece(Vec2 a, Vec2 q, Vec2 b, double half_width);
+
+// A 16-gon around the disc of radius r at c, its corners on the grid.
+ExactRing disc_piece(Vec2 c, double r);
+
 }  // namespace geom::exact

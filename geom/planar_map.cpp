@@ -156,6 +156,10 @@ struct PlanarMap::Impl {
     pending.emplace_back(exact::Segment(a, b), Tags{tag});
   }
 
+  void add_exact_ring(const exact::ExactRing& ring, int counter) {
+    for (std::size_t i = 0; i < ring.size(); ++i) add_edge(ring[i], ring[(i + 1) % ring.size()], {counter, +1, 0});
+  }
+
   int group_of(Face f, const std::vector<int>& group_of_label) const {
     int l = f->data();
     return l >= 0 && l < static_cast<int>(group_of_label.size()) ? group_of_label[l] : -1;
@@ -177,9 +181,15 @@ void PlanarMap::add_edge(Vec2 a, Vec2 b, int counter) {
 }
 
 void PlanarMap::add_stroke(const Polyline& line, double half_width, int counter) {
-  for (const exact::ExactRing& piece : exact::stroke_pieces(line, half_width))
-    for (std::size_t i = 0; i < piece.size(); ++i)
-      impl_->add_edge(piece[i], piece[(i + 1) % piece.size()], {counter, +1, 0});
+  for (const exact::ExactRing& piece : exact::stroke_pieces(line, half_width)) impl_->add_exact_ring(piece, counter);
+}
+
+void PlanarMap::add_joint(Vec2 a, Vec2 q, Vec2 b, double half_width, int counter) {
+  impl_->add_exact_ring(exact::joint_piece(a, q, b, half_width), counter);
+}
+
+void PlanarMap::add_disc(Vec2 centre, double radius, int counter) {
+  impl_->add_exact_ring(exact::disc_piece(centre, radius), counter);
 }
 
 void PlanarMap::add_polyline(const Polyline& line, int tag) {

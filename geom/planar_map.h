@@ -54,6 +54,10 @@ class PlanarMap {
   // A stroke of `half_width` around the polyline: flat ends, mitred joints (bevelled
   // past a mitre limit of 4), built by the grid-line rule; all pieces wind around `counter`.
   void add_stroke(const Polyline& line, double half_width, int counter);
+  // The joint a stroke would have at q on a path a -> q -> b, for two strokes that meet
+  // end to end; and a 16-gon around a disc, for where several meet.
+  void add_joint(Vec2 a, Vec2 q, Vec2 b, double half_width, int counter);
+  void add_disc(Vec2 centre, double radius, int counter);
   // The polyline itself, bounding nothing, findable later with polyline_pieces(tag).
   void add_polyline(const Polyline& line, int tag);
 

@@ -23,11 +23,47 @@ ExactRing counter_clockwise(ExactRing r) {
   return r;
 }
 
-struct Side {
-  Vec2 start, end;  // the offset segment's grid points
-};
+// The offset of segment p -> q by d to its left, through two grid points.
+std::pair<Point, Point> side(Vec2 p, Vec2 q, double d) {
+  double dx = q.x - p.x, dy = q.y - p.y, len = std::hypot(dx, dy);
+  Vec2 n{-dy / len, dx / len};
+  return {to_exact(offset(p, n, d)), to_exact(offset(q, n, d))};
+}
 
 }  // namespace
+
+ExactRing joint_piece(Vec2 a, Vec2 q, Vec2 b, double hw) {
+  Point pa = to_exact(a), pq = to_exact(q), pb = to_exact(b);
+  CGAL::Orientation turn = CGAL::orientation(pa, pq, pb);
+  if (turn == CGAL::COLLINEAR) return {};
+  // The outer side of the bend: right of a left turn, left of a right turn.
+  double d = turn == CGAL::LEFT_TURN ? -hw : hw;
+  auto [s0, r0] = side(a, q, d);
+  auto [r1, s1] = side(q, b, d);
+  auto meet = CGAL::intersection(Line(s0, r0), Line(r1, s1));
+  if (meet) {
+    if (const Point* m = boost::get<Point>(&*meet)) {
+      Vec2 mp = to_plain(*m);
+      if (std::hypot(mp.x - q.x, mp.y - q.y) <= kMitreLimit * hw) {
+        ExactRing mitre = counter_clockwise({pq, r0, *m, r1});
+        if (!mitre.empty()) return mitre;
+      }
+    }
+  }
+  return counter_clockwise({pq, r0, r1});  // bevel
+}
+
+ExactRing disc_piece(Vec2 c, double r) {
+  // Circumscribed, so the disc of radius r lies inside it.
+  constexpr int kSides = 16;
+  const double R = r / std::cos(M_PI / kSides);
+  ExactRing ring;
+  for (int i = 0; i < kSides; ++i) {
+    double t = 2 * M_PI * i / kSides;
+    ring.push_back(to_exact(offset(c, Vec2{std::cos(t), std::sin(t)}, R)));
+  }
+  return counter_clockwise(std::move(ring));
+}
 
 std::vector<ExactRing> stroke_pieces(const Polyline& input, double hw) {
   Polyline line;
@@ -35,39 +71,15 @@ std::vector<ExactRing> stroke_pieces(const Polyline& input, double hw) {
     if (line.empty() || !(line.back() == p)) line.push_back(p);
   std::vector<ExactRing> pieces;
   if (line.size() < 2) return pieces;
-
-  std::vector<Side> left, right;
   for (std::size_t i = 0; i + 1 < line.size(); ++i) {
-    Vec2 p = line[i], q = line[i + 1];
-    double dx = q.x - p.x, dy = q.y - p.y, len = std::hypot(dx, dy);
-    Vec2 n{-dy / len, dx / len};
-    left.push_back({offset(p, n, hw), offset(q, n, hw)});
-    right.push_back({offset(p, n, -hw), offset(q, n, -hw)});
-    ExactRing quad = counter_clockwise({to_exact(right.back().start), to_exact(right.back().end),
-                                        to_exact(left.back().end), to_exact(left.back().start)});
+    auto [left_start, left_end] = side(line[i], line[i + 1], hw);
+    auto [right_start, right_end] = side(line[i], line[i + 1], -hw);
+    ExactRing quad = counter_clockwise({right_start, right_end, left_end, left_start});
     if (!quad.empty()) pieces.push_back(std::move(quad));
   }
-
-  // Joints: fill the gap on the outer side of each bend.
   for (std::size_t i = 1; i + 1 < line.size(); ++i) {
-    Point a = to_exact(line[i - 1]), q = to_exact(line[i]), b = to_exact(line[i + 1]);
-    CGAL::Orientation turn = CGAL::orientation(a, q, b);
-    if (turn == CGAL::COLLINEAR) continue;
-    const Side& s0 = turn == CGAL::LEFT_TURN ? right[i - 1] : left[i - 1];
-    const Side& s1 = turn == CGAL::LEFT_TURN ? right[i] : left[i];
-    Point r0 = to_exact(s0.end), r1 = to_exact(s1.start);
-    ExactRing wedge;
-    Line l0(to_exact(s0.start), r0), l1(r1, to_exact(s1.end));
-    auto meet = CGAL::intersection(l0, l1);
-    if (meet) {
-      if (const Point* m = boost::get<Point>(&*meet)) {
-        Vec2 mp = to_plain(*m);
-        double reach = std::hypot(mp.x - line[i].x, mp.y - line[i].y);
-        if (reach <= kMitreLimit * hw) wedge = counter_clockwise({q, r0, *m, r1});
-      }
-    }
-    if (wedge.empty()) wedge = counter_clockwise({q, r0, r1});  // bevel
-    if (!wedge.empty()) pieces.push_back(std::move(wedge));
+    ExactRing joint = joint_piece(line[i - 1], line[i], line[i + 1], hw);
+    if (!joint.empty()) pieces.push_back(std::move(joint));
   }
   return pieces;
 }

@@ -46,6 +46,24 @@ Areas areas(const CityLayers& l) {
   return a;
 }
 
+// Whether a point lies inside some polygon of the layer (even-odd ray casting: test
+// points are chosen well away from edges).
+bool covers(const Layer& layer, geom::Vec2 p) {
+  auto in_ring = [&](const geom::Ring& r) {
+    bool in = false;
+    for (std::size_t i = 0, j = r.size() - 1; i < r.size(); j = i++)
+      if ((r[i].y > p.y) != (r[j].y > p.y) && p.x < (r[j].x - r[i].x) * (p.y - r[i].y) / (r[j].y - r[i].y) + r[i].x)
+        in = !in;
+    return in;
+  };
+  for (const auto& f : layer.features) {
+    bool in = in_ring(f.polygon.outer);
+    for (const auto& h : f.polygon.holes) in = in && !in_ring(h);
+    if (in) return true;
+  }
+  return false;
+}
+
 CityLayers layers_of(const std::vector<std::string>& features, const Terrain* terrain = nullptr) {
   Sketch s = parse_sketch(sketch_text(features), "test.geojson");
   return extract_layers(build_zone_map(s, terrain), s);
@@ -177,4 +195,27 @@ TEST(ZoneMap, UtmSizedCoordinatesGiveTheSameTopology) {
   EXPECT_EQ(la.road_areas.features.size(), lb.road_areas.features.size());
   Validation v = generate_and_validate("utm", sketch_text(shifted(500000, 5000000)));
   EXPECT_TRUE(v.ok()) << (v.problems.empty() ? "" : v.problems[0]);
+}
+
+TEST(ZoneMap, RoadsMeetingEndToEndJoinLikeOneLine) {
+  // The L of Stroke.RightAngleBendIsMitred drawn as two roads, one of them reversed.
+  Areas a = areas(layers_of({road(10, "[[0,0],[100,0]]"), road(10, "[[100,100],[100,0]]")}));
+  EXPECT_EQ(a.road, 2000);
+  // Three ends at one node: discs close the notch between flat ends. (100.7, -4.9) lies
+  // below the east road's end and before the north-east road's start.
+  CityLayers l = layers_of({road(10, "[[0,0],[100,0]]"), road(10, "[[100,0],[200,30]]"), road(6, "[[100,0],[40,80]]")});
+  EXPECT_TRUE(covers(l.road_areas, {100.7, -4.9}));
+  EXPECT_FALSE(covers(l.road_areas, {100.7, -5.5}));
+  for (const auto& f : l.road_areas.features) EXPECT_TRUE(f.polygon.holes.empty());
+}
+
+TEST(ZoneMap, CollinearEdgesAndAZoneDrawnTwice) {
+  Validation v = generate_and_validate(
+      "collinear", sketch_text({zone("residential", "[[[0,0],[3,0],[5,0],[10,0],[10,4],[10,10],[0,10],[0,0]]]"),
+                                zone("residential", "[[[0,0],[10,0],[10,10],[0,10],[0,0]]]"),
+                                zone("commercial", "[[[10,0],[20,0],[20,10],[10,10],[10,5],[10,0]]]")}));
+  EXPECT_TRUE(v.ok()) << (v.problems.empty() ? "" : v.problems[0]);
+  Areas a = areas(layers_of({zone("residential", "[[[0,0],[3,0],[5,0],[10,0],[10,4],[10,10],[0,10],[0,0]]]"),
+                             zone("residential", "[[[0,0],[10,0],[10,10],[0,10],[0,0]]]")}));
+  EXPECT_EQ(a.zone["residential"], 100);
 }
