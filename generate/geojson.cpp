@@ -32,7 +32,7 @@ void write_ring(std::ostream& out, const geom::Ring& r) {
 
 }  // namespace
 
-void write_geojson(const Layer& layer, const json& crs, const fs::path& file) {
+void write_geojson(const Layer& layer, const nlohmann::ordered_json& crs, const fs::path& file) {
   std::ofstream out(file, std::ios::binary);
   if (!out) throw UserError(file.string() + ": cannot write this file; check the output folder's permissions");
   out << "{\"type\":\"FeatureCollection\",\"name\":" << json(layer.name).dump();

@@ -24,7 +24,7 @@ struct Layer {
   std::vector<VectorFeature> features;
 };
 
-void write_geojson(const Layer& layer, const nlohmann::json& crs, const std::filesystem::path& file);
+void write_geojson(const Layer& layer, const nlohmann::ordered_json& crs, const std::filesystem::path& file);
 
 // Reads a layer written by write_geojson (or any GeoJSON of Polygons or LineStrings).
 // Anything malformed is appended to `problems`, one line each, and skipped.

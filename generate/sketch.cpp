@@ -1,5 +1,6 @@
 #include "generate/sketch.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <optional>
@@ -186,6 +187,30 @@ class Parser {
     sketch.roads.push_back(std::move(rf));
   }
 
+  // Coordinates are metres. Longitude/latitude (the GeoJSON default) would make a city a
+  // fraction of a metre wide, so say so before anything is built.
+  void expect_metres(const Sketch& sketch) const {
+    std::string crs = sketch.crs.is_null() ? "" : sketch.crs.dump();
+    const std::string fix = "; Exacity needs metres: reproject the sketch first, e.g. "
+                            "ogr2ogr -t_srs EPSG:<UTM zone> metres.geojson sketch.geojson";
+    for (const char* geographic : {"4326", "CRS84", "4258", "4269"})
+      if (crs.find(geographic) != std::string::npos) fail("crs", "the sketch is in longitude/latitude (" + crs + ")" + fix);
+    geom::Box b{1e300, 1e300, -1e300, -1e300};
+    auto add = [&](geom::Vec2 p) {
+      b.min_x = std::min(b.min_x, p.x), b.max_x = std::max(b.max_x, p.x);
+      b.min_y = std::min(b.min_y, p.y), b.max_y = std::max(b.max_y, p.y);
+    };
+    for (const auto& z : sketch.zones)
+      for (const auto& p : z.polygons)
+        for (auto v : p.outer) add(v);
+    for (const auto& r : sketch.roads)
+      for (const auto& l : r.lines)
+        for (auto v : l) add(v);
+    bool degree_sized = b.width() < 1 && b.height() < 1 && b.min_x >= -180 && b.max_x <= 180 && b.min_y >= -90 && b.max_y <= 90;
+    if (degree_sized)
+      fail("features", "the whole sketch spans less than 1 x 1 unit, so its coordinates look like longitude/latitude" + fix);
+  }
+
   void settings(const json& ex, Sketch& sketch) const {
     const std::string w = "\"exacity\"";
     known_keys(ex, w, {"version", "seed", "terrain", "models", "zones"});
@@ -303,12 +328,13 @@ Sketch parse_sketch(const std::string& text, const fs::path& path) {
   for (ZoneType t : {ZoneType::Residential, ZoneType::Commercial, ZoneType::Industrial, ZoneType::Park,
                      ZoneType::Water})
     sketch.zone_params[t] = default_params(t);
-  if (doc.contains("crs")) sketch.crs = doc["crs"];
+  if (doc.contains("crs")) sketch.crs = nlohmann::ordered_json::parse(marked)["crs"];  // keeps key order
   if (doc.contains("exacity")) parser.settings(doc["exacity"], sketch);
   const json& features = doc["features"];
   for (std::size_t i = 0; i < features.size(); ++i) parser.feature(features[i], static_cast<int>(i), sketch);
   if (sketch.zones.empty() && sketch.roads.empty())
     parser.fail("features", "the sketch has no zones and no roads; draw at least one zone polygon");
+  parser.expect_metres(sketch);
   return sketch;
 }
 

@@ -50,7 +50,7 @@ struct RoadFeature {
 struct Sketch {
   std::filesystem::path path;
   std::uint64_t seed = 1;
-  nlohmann::json crs;               // null when the sketch has none
+  nlohmann::ordered_json crs;       // null when the sketch has none; copied as written
   std::optional<TerrainSpec> terrain;
   std::filesystem::path models;     // empty when the sketch names no model library
   std::map<ZoneType, ZoneParams> zone_params;

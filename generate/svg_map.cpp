@@ -5,6 +5,8 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <ostream>
+#include <vector>
 
 #include "generate/errors.h"
 
@@ -37,6 +39,41 @@ std::string path_data(const geom::Polygon& poly, const geom::Box& b) {
   ring(poly.outer);
   for (const auto& h : poly.holes) ring(h);
   return d;
+}
+
+// A key to the colours and a scale bar, sized in screen pixels (px world units each).
+void write_legend(std::ostream& out, const CityLayers& layers, double w, double h, double px) {
+  std::vector<std::pair<std::string, std::string>> keys;
+  for (const auto& [zone, colour] : kZoneColours)
+    for (const auto& f : layers.zones.features)
+      if (f.properties.value("zone", "") == zone) {
+        keys.emplace_back(zone, colour);
+        break;
+      }
+  if (!layers.water.features.empty()) keys.emplace_back("water", "#5b9bd5");
+  if (!layers.road_areas.features.empty()) keys.emplace_back("road", "#6b6b6b");
+  for (const auto& f : layers.road_areas.features)
+    if (f.properties.value("bridge", false)) {
+      keys.emplace_back("bridge", "#3a3a3a");
+      break;
+    }
+  auto n = [&](double pixels) { return format_number(pixels * px); };
+  double line = 20, x = 10, y = h / px - 10 - line * (keys.size() + 1);
+  out << "<g class=\"legend\" font-family=\"sans-serif\" font-size=\"" << n(13) << "\">\n"
+      << "<rect x=\"" << n(x - 6) << "\" y=\"" << n(y - 6) << "\" width=\"" << n(150) << "\" height=\""
+      << n(line * (keys.size() + 1) + 8) << "\" fill=\"#ffffff\" fill-opacity=\"0.85\"/>\n";
+  for (const auto& [label, colour] : keys) {
+    out << "<rect x=\"" << n(x) << "\" y=\"" << n(y) << "\" width=\"" << n(14) << "\" height=\"" << n(14)
+        << "\" fill=\"" << colour << "\"/><text x=\"" << n(x + 22) << "\" y=\"" << n(y + 12) << "\">" << label
+        << "</text>\n";
+    y += line;
+  }
+  // Scale bar: 1, 2 or 5 times a power of ten, about a fifth of the map wide.
+  double target = w / 5, step = std::pow(10, std::floor(std::log10(target)));
+  double metres = target >= 5 * step ? 5 * step : target >= 2 * step ? 2 * step : step;
+  out << "<rect x=\"" << n(x) << "\" y=\"" << n(y + 4) << "\" width=\"" << format_number(std::min(metres, w))
+      << "\" height=\"" << n(4) << "\" fill=\"#222222\"/><text x=\"" << n(x) << "\" y=\"" << n(y + 20)
+      << "\" font-size=\"" << n(11) << "\">" << format_number(metres) << " m</text>\n</g>\n";
 }
 
 }  // namespace
@@ -80,7 +117,9 @@ void write_svg_map(const CityLayers& layers, const std::filesystem::path& file) 
     for (std::size_t i = 0; i < f.line.size(); ++i) out << (i ? " " : "") << point(f.line[i], b);
     out << "\"/>\n";
   }
-  out << "</g>\n</svg>\n";
+  out << "</g>\n";
+  write_legend(out, layers, w, h, stroke);
+  out << "</svg>\n";
 }
 
 }  // namespace exacity

@@ -85,6 +85,15 @@ TEST(SketchErrors, OtherMistakes) {
   expect_error(with_features(kSquare, R"({"seed": -3})"), {"seed"});
 }
 
+TEST(SketchErrors, LongitudeLatitudeIsRefused) {
+  const std::string lonlat =
+      R"({"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": "Polygon", "coordinates": [[[24.94,60.16],[24.95,60.16],[24.95,60.17],[24.94,60.16]]]}})";
+  expect_error(with_features(lonlat), {"longitude/latitude", "ogr2ogr"});
+  expect_error(R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:OGC:1.3:CRS84"}}, "features": [)" +
+                   kSquare + "]}",
+               {"crs", "longitude/latitude"});
+}
+
 TEST(SketchParse, DegenerateButLegalInput) {
   // Repeated consecutive points, an unclosed ring, collinear edges, a zone drawn twice.
   std::string text = with_features(
@@ -112,6 +121,7 @@ TEST(SketchParse, CrsAndMultiGeometries) {
       {"type": "Feature", "properties": {"road": "local", "width": 6}, "geometry": {"type": "MultiLineString", "coordinates": [[[0,0],[1,1]], [[2,2],[3,3]]]}}]})";
   Sketch s = parse_sketch(text, "city.geojson");
   EXPECT_EQ(s.crs["properties"]["name"], "EPSG:28992");
+  EXPECT_EQ(s.crs.dump(), R"({"type":"name","properties":{"name":"EPSG:28992"}})");  // as written
   ASSERT_EQ(s.zones[0].polygons.size(), 2u);
   EXPECT_EQ(s.zones[0].polygons[0].holes.size(), 1u);
   EXPECT_EQ(s.roads[0].lines.size(), 2u);
