@@ -3,8 +3,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 
 #include <CLI/CLI.hpp>
+#include <tbb/global_control.h>
 
 #include "cli/progress.h"
 #include "generate/errors.h"
@@ -66,6 +68,9 @@ int main(int argc, char** argv) {
   gen->add_option("-o,--output", out, "Output folder (replaced if an earlier exacity run wrote it)")
       ->capture_default_str();
   gen->add_flag("-q,--quiet", quiet, "Hide progress");
+  int threads = 0;
+  gen->add_option("--threads", threads, "Worker threads (0: one per core); the output does not depend on it")
+      ->check(CLI::Range(0, 1024));
 
   fs::path check_dir;
   auto* val = app.add_subcommand("validate", "Re-check every invariant of an output folder exactly");
@@ -79,6 +84,9 @@ int main(int argc, char** argv) {
   }
 
   try {
+    std::unique_ptr<tbb::global_control> limit;
+    if (threads > 0)
+      limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
     if (*gen) return generate(sketch_path, out, quiet);
     if (*val) return validate(check_dir);
   } catch (const UserError& e) {

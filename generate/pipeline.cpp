@@ -4,7 +4,9 @@
 #include <fstream>
 #include <optional>
 
+#include "generate/blocks.h"
 #include "generate/errors.h"
+#include "generate/road_network.h"
 #include "generate/svg_map.h"
 #include "generate/terrain.h"
 #include "generate/validate.h"
@@ -45,23 +47,38 @@ class Stages {
 }  // namespace
 
 GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const ProgressFn& progress) {
-  Stages stages(progress, 5);
+  Stages stages(progress, 7);
   std::optional<Terrain> terrain = stages.run("terrain", [&]() -> std::optional<Terrain> {
     if (!sketch.terrain) return std::nullopt;
     return Terrain::load(*sketch.terrain);
   });
   ZoneMap zone_map = stages.run("zone map", [&] { return build_zone_map(sketch, terrain ? &*terrain : nullptr); });
-  CityLayers layers = stages.run("vector layers", [&] { return extract_layers(zone_map, sketch); });
+  RoadNetwork network = stages.run("road network", [&] { return grow_road_network(std::move(zone_map), sketch); });
+  std::vector<Block> blocks = stages.run("blocks", [&] { return cut_blocks(network.map, sketch); });
+  CityLayers layers = stages.run("vector layers", [&] { return extract_layers(network.map, blocks, sketch); });
   stages.run("export", [&] {
     fs::create_directories(dir / "vector");
     fs::copy_file(sketch.path, dir / "sketch.geojson");
-    for (const Layer* l : {&layers.zones, &layers.water, &layers.roads, &layers.road_areas})
+    for (const Layer* l : {&layers.zones, &layers.water, &layers.roads, &layers.road_areas, &layers.blocks})
       write_geojson(*l, sketch.crs, dir / "vector" / (l->name + ".geojson"));
     write_svg_map(layers, dir / "map.svg");
   });
   Validation validation = stages.run("validation", [&] { return validate_output(dir); });
 
-  auto counts = zone_map.map.counts();
+  // Road segments per class, junctions per degree (1: a dead end at a region's edge).
+  ordered_json segments = ordered_json::object(), roads_by_class = ordered_json::object();
+  for (const MapRoad& r : network.map.roads) {
+    std::string c(name(r.road_class));
+    roads_by_class[c] = roads_by_class.value(c, 0) + 1;
+    for (const auto& line : r.lines) segments[c] = segments.value(c, 0) + static_cast<int>(line.size()) - 1;
+  }
+  ordered_json junctions = ordered_json::object();
+  for (auto [degree, count] : network.map.map.polyline_degrees())
+    if (degree != 2) junctions[std::to_string(degree)] = count;
+  int green = 0;
+  for (const Block& b : blocks) green += b.green;
+
+  auto counts = network.map.map.counts();
   ordered_json report{
       {"generator", "exacity"},
       {"version", kVersion},
@@ -72,7 +89,16 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
         {"water", layers.water.features.size()},
         {"roads", layers.roads.features.size()},
         {"road_areas", layers.road_areas.features.size()},
+        {"blocks", blocks.size() - green},
+        {"green_spaces", green},
         {"map", {{"vertices", counts.vertices}, {"edges", counts.edges}, {"faces", counts.faces}}}}},
+      {"road_network",
+       {{"regions", network.stats.regions},
+        {"levels", network.stats.levels},
+        {"roads", roads_by_class},
+        {"segments", segments},
+        {"junctions_by_degree", junctions},
+        {"cells_without_access", network.stats.cells_without_access}}},
       {"validation",
        {{"ok", validation.ok()}, {"problems", validation.problems}, {"widest_sliver_m", validation.widest_sliver}}},
       {"timings_s", stages.seconds},

@@ -262,7 +262,8 @@ class Parser {
 
   ZoneParams zone_params(const json& j, ZoneType zt, const std::string& w) const {
     known_keys(j, w, {"block_area", "segment_length", "branches", "jitter", "segment_deviation",
-                      "origin_deviation", "main_width", "local_width"});
+                      "origin_deviation", "main_width", "local_width", "min_block_area", "min_block_width",
+                      "bridges"});
     ZoneParams p = default_params(zt);
     auto set = [&](const char* key, double& field, double min, double max) {
       if (j.contains(key)) field = number(j[key], w + "." + key, min, max);
@@ -274,9 +275,15 @@ class Parser {
     p.branches = static_cast<int>(branches);
     set("jitter", p.jitter, 0, 180);
     set("segment_deviation", p.segment_deviation, 0, 90);
-    set("origin_deviation", p.origin_deviation, 0, 180);
+    set("origin_deviation", p.origin_deviation, 0, 80);  // below 90, so every road makes progress
     set("main_width", p.main_width, 0.5, 200);
     set("local_width", p.local_width, 0.5, 200);
+    set("min_block_area", p.min_block_area, 0, 1e9);
+    set("min_block_width", p.min_block_width, 0, 1e4);
+    if (j.contains("bridges")) {
+      if (!j["bridges"].is_boolean()) fail(w + ".bridges", "expected true or false");
+      p.bridges = j["bridges"].get<bool>();
+    }
     return p;
   }
 

@@ -26,6 +26,9 @@ struct ZoneParams {
   double origin_deviation = 30;     // degrees: Δorig
   double main_width = 12;           // m
   double local_width = 8;           // m
+  double min_block_area = 200;      // m²: smaller blocks become green space
+  double min_block_width = 6;       // m: so do thinner ones (2 x area / perimeter)
+  bool bridges = false;             // roads cross heightmap water in this zone, or stop at the shore
 };
 
 struct TerrainSpec {

@@ -1,7 +1,8 @@
 #include "generate/validate.h"
 
-#include <fstream>
-#include <sstream>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
 
 #include "generate/drawn_zones.h"
 #include "generate/errors.h"
@@ -18,75 +19,60 @@ constexpr std::size_t kMaxProblems = 20;
 
 // Written coordinates are the exact vertices rounded to doubles, so where a constructed
 // vertex lies on a drawn edge, the written edge and the drawn edge bound a sliver about
-// 1e-13 m wide (1e-9 m at UTM-sized coordinates). Comparisons with the drawn sketch
-// accept faces thinner than this; every other check is exact without tolerance.
-constexpr double kRoundingSliver = 1e-6;
+// 1e-13 m wide (1e-9 m at UTM-sized coordinates), and a road's end written on a drawn
+// edge lies that far from it. Comparisons with the drawn sketch accept this much; every
+// other check is exact without tolerance.
+constexpr double kRounding = 1e-6;
 
-enum class Kind { Zone, Water, Road, Bridge };
+enum class Kind { Zone, Park, Water, Road, Bridge, Block };
 
 struct PolygonRef {
   Kind kind;
   std::string name;  // "zones.geojson features[3]"
-  std::string zone;  // for zones
+  std::string zone;  // for zones and blocks
+  bool green = false;
 };
 
 std::string near(geom::Vec2 p) { return " near (" + format_number(p.x) + ", " + format_number(p.y) + ")"; }
 
-}  // namespace
-
-Validation validate_output(const fs::path& dir) {
-  Validation v;
-  auto problem = [&](const std::string& p) {
-    if (v.problems.size() < kMaxProblems) v.problems.push_back(p);
-  };
-
-  Sketch sketch;
-  try {
-    sketch = load_sketch(dir / "sketch.geojson");
-  } catch (const UserError& e) {
-    problem(std::string("sketch copy: ") + e.what());
-    return v;
+class Checker {
+ public:
+  explicit Checker(Validation& v) : v_(v) {}
+  void problem(const std::string& p) {
+    if (v_.problems.size() < kMaxProblems) v_.problems.push_back(p);
   }
+  Validation& v_;
+};
 
-  std::vector<std::string> read_problems;
-  Layer zones = read_geojson(dir / "vector" / "zones.geojson", read_problems);
-  Layer water = read_geojson(dir / "vector" / "water.geojson", read_problems);
-  Layer road_areas = read_geojson(dir / "vector" / "road_areas.geojson", read_problems);
-  Layer roads = read_geojson(dir / "vector" / "roads.geojson", read_problems);
-  for (auto& p : read_problems) problem(p);
-
-  // Each polygon alone: simple rings, outer counter-clockwise, holes clockwise.
-  std::vector<PolygonRef> refs;
-  std::vector<const geom::Polygon*> polygons;
-  auto check_layer = [&](const Layer& layer, auto kind_of) {
-    v.features[layer.name] = static_cast<int>(layer.features.size());
-    for (std::size_t i = 0; i < layer.features.size(); ++i) {
-      const VectorFeature& f = layer.features[i];
-      std::string name = layer.name + ".geojson features[" + std::to_string(i) + "]";
-      if (!f.properties.contains("id")) problem(name + ": no \"id\"");
-      if (geom::ring_orientation(f.polygon.outer) != 1)
-        problem(name + ": outer ring is not simple and counter-clockwise" + near(f.polygon.outer[0]));
-      for (const auto& h : f.polygon.holes)
-        if (geom::ring_orientation(h) != -1) problem(name + ": a hole is not simple and clockwise" + near(h[0]));
-      refs.push_back({kind_of(f), name, f.properties.value("zone", "")});
-      polygons.push_back(&f.polygon);
-    }
-  };
-  check_layer(zones, [](const VectorFeature&) { return Kind::Zone; });
-  check_layer(water, [](const VectorFeature&) { return Kind::Water; });
-  check_layer(road_areas,
-              [](const VectorFeature& f) { return f.properties.value("bridge", false) ? Kind::Bridge : Kind::Road; });
-  v.features["roads"] = static_cast<int>(roads.features.size());
-  for (std::size_t i = 0; i < roads.features.size(); ++i) {
-    const VectorFeature& f = roads.features[i];
-    for (const char* key : {"id", "class", "width", "level", "bridge"})
-      if (!f.properties.contains(key)) problem("roads.geojson features[" + std::to_string(i) + "]: no \"" + key + "\"");
-    if (f.line.size() < 2) problem("roads.geojson features[" + std::to_string(i) + "]: fewer than 2 positions");
+// Simple rings, outer counter-clockwise, holes clockwise; records each polygon.
+void check_polygons(Checker& c, const Layer& layer, std::vector<PolygonRef>& refs,
+                    std::vector<const geom::Polygon*>& polygons) {
+  c.v_.features[layer.name] = static_cast<int>(layer.features.size());
+  for (std::size_t i = 0; i < layer.features.size(); ++i) {
+    const VectorFeature& f = layer.features[i];
+    std::string name = layer.name + ".geojson features[" + std::to_string(i) + "]";
+    if (!f.properties.contains("id")) c.problem(name + ": no \"id\"");
+    if (geom::ring_orientation(f.polygon.outer) != 1)
+      c.problem(name + ": outer ring is not simple and counter-clockwise" + near(f.polygon.outer[0]));
+    for (const auto& h : f.polygon.holes)
+      if (geom::ring_orientation(h) != -1) c.problem(name + ": a hole is not simple and clockwise" + near(h[0]));
+    std::string zone = f.properties.value("zone", "");
+    Kind kind = layer.name == "zones"   ? (zone == "park" ? Kind::Park : Kind::Zone)
+                : layer.name == "water" ? Kind::Water
+                : layer.name == "blocks" ? Kind::Block
+                : f.properties.value("bridge", false) ? Kind::Bridge
+                                                      : Kind::Road;
+    refs.push_back({kind, name, zone, f.properties.value("green", false)});
+    polygons.push_back(&f.polygon);
   }
-  if (!v.ok()) return v;
+}
 
-  // All polygons and the drawn zones in one exact map: polygon p's outer ring winds
-  // around counter 2p, its holes around 2p + 1.
+// All polygons and the drawn zones in one exact map. Polygon p's outer ring winds around
+// counter 2p and its holes around 2p + 1. Over the drawn zones, zones + water + road
+// areas cover every point once, and so do blocks + parks + water + road areas; a block
+// lies where a zone of its type does (or is green space).
+void check_tiling(Checker& c, const Sketch& sketch, const std::vector<PolygonRef>& refs,
+                  const std::vector<const geom::Polygon*>& polygons) {
   geom::PlanarMap map;
   const int P = static_cast<int>(polygons.size());
   for (int p = 0; p < P; ++p) {
@@ -101,7 +87,7 @@ Validation validate_output(const fs::path& dir) {
   std::vector<std::string> messages{""};
   std::vector<bool> against_sketch{false};
   std::map<std::string, int> message_index{{"", 0}};
-  auto intern = [&](const std::string& m, bool sketch_check = false) {
+  auto wrong = [&](const std::string& m, bool sketch_check = false) {
     auto [it, added] = message_index.emplace(m, static_cast<int>(messages.size()));
     if (added) messages.push_back(m), against_sketch.push_back(sketch_check);
     return it->second;
@@ -112,51 +98,207 @@ Validation validate_output(const fs::path& dir) {
       int p = w[i].first / 2, outer = 0, holes = 0;
       for (; i < w.size() && w[i].first < 2 * P && w[i].first / 2 == p; ++i)
         (w[i].first % 2 == 0 ? outer : holes) = w[i].second;
-      if (outer != 0 && outer != 1) return intern(refs[p].name + ": outer ring winds " + std::to_string(outer) + " times");
-      if (holes != 0 && (holes != -1 || outer != 1)) return intern(refs[p].name + ": holes overlap or leave the outer ring");
+      if (outer != 0 && outer != 1) return wrong(refs[p].name + ": outer ring winds " + std::to_string(outer) + " times");
+      if (holes != 0 && (holes != -1 || outer != 1)) return wrong(refs[p].name + ": holes overlap or leave the outer ring");
       if (outer == 1 && holes == 0) inside.push_back(p);
     }
-    int surface = 0, bridges = 0, water_here = 0, zone_here = -1;
-    std::vector<std::string> names;
-    for (int p : inside) {
-      Kind k = refs[p].kind;
-      if (k == Kind::Bridge) ++bridges;
-      else ++surface, names.push_back(refs[p].name);
-      if (k == Kind::Water) ++water_here;
-      if (k == Kind::Zone) zone_here = p;
+    std::map<Kind, std::vector<int>> here;
+    for (int p : inside) here[refs[p].kind].push_back(p);
+    auto count = [&](std::initializer_list<Kind> kinds) {
+      std::size_t n = 0;
+      for (Kind k : kinds) n += here[k].size();
+      return n;
+    };
+    auto names = [&](std::initializer_list<Kind> kinds) {
+      std::string s;
+      for (Kind k : kinds)
+        for (int p : here[k]) s += (s.empty() ? "" : " and ") + refs[p].name;
+      return s;
+    };
+    const auto zoning = {Kind::Zone, Kind::Park, Kind::Water, Kind::Road};
+    const auto blocking = {Kind::Block, Kind::Park, Kind::Water, Kind::Road};
+    if (count(zoning) > 1) return wrong(names(zoning) + " overlap");
+    if (count(blocking) > 1) return wrong(names(blocking) + " overlap");
+    if (count({Kind::Bridge}) > 1) return wrong("two bridges overlap");
+    if (count({Kind::Bridge}) == 1 && count({Kind::Water}) == 0) return wrong("a bridge lies outside the water");
+    if (count({Kind::Zone}) != count({Kind::Block}))
+      return wrong((count({Kind::Zone}) ? names({Kind::Zone}) + " holds no block" : names({Kind::Block}) + " lies outside the zones"));
+    if (count({Kind::Block}) == 1) {
+      const PolygonRef &b = refs[here[Kind::Block][0]], &z = refs[here[Kind::Zone][0]];
+      if (!b.green && b.zone != z.zone) return wrong(b.name + " says \"" + b.zone + "\" inside " + z.name + " (\"" + z.zone + "\")");
     }
     int top = drawn.top_zone(w);
-    if (surface > 1) return intern(names[0] + " and " + names[1] + " overlap");
-    if (bridges > 1) return intern("two bridges overlap");
-    if (bridges == 1 && water_here == 0) return intern("a bridge lies outside the water");
-    if (top >= 0 && surface == 0)
-      return intern("the drawn zone features[" + std::to_string(sketch.zones[top].index) +
-                    "] is not covered by a zone, water or road area", true);
-    if (zone_here >= 0 && top < 0) return intern(refs[zone_here].name + " lies outside every drawn zone", true);
-    if (zone_here >= 0 && refs[zone_here].zone != name(sketch.zones[top].type))
-      return intern(refs[zone_here].name + " says zone \"" + refs[zone_here].zone + "\" where the sketch draws \"" +
-                    std::string(name(sketch.zones[top].type)) + "\"", true);
+    std::size_t surfaces = count(zoning);
+    if (top >= 0 && surfaces == 0)
+      return wrong("the drawn zone features[" + std::to_string(sketch.zones[top].index) +
+                       "] is not covered by a zone, water or road area", true);
+    if (top < 0 && count({Kind::Zone, Kind::Park}) > 0) return wrong(names({Kind::Zone, Kind::Park}) + " lies outside every drawn zone", true);
+    if (top >= 0 && count({Kind::Zone, Kind::Park}) == 1) {
+      const PolygonRef& z = refs[here[Kind::Zone].empty() ? here[Kind::Park][0] : here[Kind::Zone][0]];
+      if (z.zone != name(sketch.zones[top].type))
+        return wrong(z.name + " says zone \"" + z.zone + "\" where the sketch draws \"" +
+                         std::string(name(sketch.zones[top].type)) + "\"", true);
+    }
     return 0;
   });
   for (std::size_t m = 1; m < messages.size(); ++m) {
     if (against_sketch[m]) {
       double width = map.widest_face(static_cast<int>(m));
-      if (width <= kRoundingSliver) {
-        v.widest_sliver = std::max(v.widest_sliver, width);
+      if (width <= kRounding) {
+        c.v_.widest_sliver = std::max(c.v_.widest_sliver, width);
         continue;
       }
     }
     geom::Vec2 at;
-    problem(messages[m] + (map.point_near_label(static_cast<int>(m), at) ? near(at) : ""));
+    c.problem(messages[m] + (map.point_near_label(static_cast<int>(m), at) ? near(at) : ""));
   }
 
   // Two rings of one polygon may touch at a vertex but not run along each other.
   map.for_each_edge([&](const std::vector<geom::CurveTag>& tags, geom::Vec2 a, geom::Vec2) {
     for (std::size_t i = 0; i < tags.size(); ++i)
       for (std::size_t j = i + 1; j < tags.size(); ++j)
-        if (tags[i].counter < 2 * P && tags[i].counter / 2 == tags[j].counter / 2 && tags[j].counter < 2 * P)
-          problem(refs[tags[i].counter / 2].name + ": two of its rings share an edge" + near(a));
+        if (tags[i].counter < 2 * P && tags[j].counter < 2 * P && tags[i].counter / 2 == tags[j].counter / 2)
+          c.problem(refs[tags[i].counter / 2].name + ": two of its rings share an edge" + near(a));
   });
+}
+
+// Segments in buckets, to find those near a point.
+class SegmentIndex {
+ public:
+  explicit SegmentIndex(double bucket) : bucket_(bucket) {}
+  void add(geom::Vec2 a, geom::Vec2 b) {
+    std::size_t id = segments_.size();
+    segments_.push_back({a, b});
+    for (long j = key(std::min(a.y, b.y)); j <= key(std::max(a.y, b.y)); ++j)
+      for (long i = key(std::min(a.x, b.x)); i <= key(std::max(a.x, b.x)); ++i) buckets_[{i, j}].push_back(id);
+  }
+  void add_ring(const geom::Ring& r) {
+    for (std::size_t i = 0; i < r.size(); ++i) add(r[i], r[(i + 1) % r.size()]);
+  }
+  bool near(geom::Vec2 p, double tolerance) const {
+    auto it = buckets_.find({key(p.x), key(p.y)});
+    if (it == buckets_.end()) return false;
+    for (std::size_t id : it->second) {
+      auto [a, b] = segments_[id];
+      double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
+      double t = len2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0) : 0;
+      if (std::hypot(a.x + t * dx - p.x, a.y + t * dy - p.y) <= tolerance) return true;
+    }
+    return false;
+  }
+
+ private:
+  long key(double v) const { return static_cast<long>(std::floor(v / bucket_)); }
+  struct PairHash {
+    std::size_t operator()(const std::pair<long, long>& k) const { return std::hash<long>()(k.first * 1000003 ^ k.second); }
+  };
+  double bucket_;
+  std::vector<std::pair<geom::Vec2, geom::Vec2>> segments_;
+  std::unordered_map<std::pair<long, long>, std::vector<std::size_t>, PairHash> buckets_;
+};
+
+// Every grown road ends on another road (at one of its vertices, exactly) or on the
+// region's edge (a drawn zone ring, water, or another road's area); each region's grown
+// roads form one connected graph.
+void check_roads(Checker& c, const Sketch& sketch, const Layer& roads, const Layer& water, const Layer& road_areas) {
+  struct PointHash {
+    std::size_t operator()(const geom::Vec2& p) const { return std::hash<double>()(p.x) * 31 ^ std::hash<double>()(p.y); }
+  };
+  std::unordered_map<geom::Vec2, std::vector<int>, PointHash> roads_at;  // vertex -> roads through it
+  std::map<int, std::vector<const VectorFeature*>> pieces;                // road -> its pieces in order
+  for (const auto& f : roads.features) {
+    int r = f.properties.value("road", -1);
+    pieces[r].push_back(&f);
+    for (auto p : f.line) roads_at[p].push_back(r);
+  }
+  SegmentIndex edges(16.0);
+  for (const auto& z : sketch.zones)
+    for (const auto& p : z.polygons) {
+      edges.add_ring(p.outer);
+      for (const auto& h : p.holes) edges.add_ring(h);
+    }
+  for (const auto& f : water.features) edges.add_ring(f.polygon.outer);
+  std::map<int, std::vector<const geom::Polygon*>> areas;  // road -> its areas
+  for (const auto& f : road_areas.features) areas[f.properties.value("road", -1)].push_back(&f.polygon);
+
+  for (const auto& [r, list] : pieces) {
+    if (list.front()->properties["level"].is_null()) continue;  // drawn in the sketch
+    SegmentIndex others(16.0);
+    for (const auto& [o, polys] : areas)
+      if (o != r)
+        for (const auto* p : polys) {
+          others.add_ring(p->outer);
+          for (const auto& h : p->holes) others.add_ring(h);
+        }
+    for (geom::Vec2 end : {list.front()->line.front(), list.back()->line.back()}) {
+      bool on_road = false;
+      for (int o : roads_at[end]) on_road |= o != r;
+      if (!on_road && !edges.near(end, kRounding) && !others.near(end, kRounding))
+        c.problem("roads.geojson: road " + std::to_string(r) + " ends in the open" + near(end));
+    }
+  }
+
+  // Connectivity: union-find over vertices, per region.
+  std::unordered_map<geom::Vec2, int, PointHash> node;
+  std::vector<int> parent;
+  auto id = [&](geom::Vec2 p) {
+    auto [it, added] = node.emplace(p, static_cast<int>(parent.size()));
+    if (added) parent.push_back(it->second);
+    return it->second;
+  };
+  std::function<int(int)> find = [&](int x) { return parent[x] == x ? x : parent[x] = find(parent[x]); };
+  std::map<int, std::vector<int>> region_nodes;
+  for (const auto& [r, list] : pieces) {
+    const auto& props = list.front()->properties;
+    if (props["region"].is_null()) continue;
+    for (const auto* f : list)
+      for (std::size_t i = 0; i < f->line.size(); ++i) {
+        int a = id(f->line[i]);
+        region_nodes[props["region"].get<int>()].push_back(a);
+        if (i > 0) parent[find(a)] = find(id(f->line[i - 1]));
+      }
+  }
+  for (const auto& [region, nodes] : region_nodes) {
+    int root = find(nodes.front());
+    for (int n : nodes)
+      if (find(n) != root) {
+        c.problem("roads.geojson: the roads of region " + std::to_string(region) + " are not connected");
+        break;
+      }
+  }
+}
+
+}  // namespace
+
+Validation validate_output(const fs::path& dir) {
+  Validation v;
+  Checker c(v);
+  Sketch sketch;
+  try {
+    sketch = load_sketch(dir / "sketch.geojson");
+  } catch (const UserError& e) {
+    c.problem(std::string("sketch copy: ") + e.what());
+    return v;
+  }
+  std::vector<std::string> read_problems;
+  auto read = [&](const char* name) { return read_geojson(dir / "vector" / (std::string(name) + ".geojson"), read_problems); };
+  Layer zones = read("zones"), water = read("water"), road_areas = read("road_areas"), blocks = read("blocks"),
+        roads = read("roads");
+  for (auto& p : read_problems) c.problem(p);
+
+  std::vector<PolygonRef> refs;
+  std::vector<const geom::Polygon*> polygons;
+  for (const Layer* l : {&zones, &water, &road_areas, &blocks}) check_polygons(c, *l, refs, polygons);
+  v.features["roads"] = static_cast<int>(roads.features.size());
+  for (std::size_t i = 0; i < roads.features.size(); ++i) {
+    const VectorFeature& f = roads.features[i];
+    for (const char* key : {"id", "road", "class", "width", "level", "region", "bridge"})
+      if (!f.properties.contains(key)) c.problem("roads.geojson features[" + std::to_string(i) + "]: no \"" + key + "\"");
+    if (f.line.size() < 2) c.problem("roads.geojson features[" + std::to_string(i) + "]: fewer than 2 positions");
+  }
+  if (!v.ok()) return v;
+  check_tiling(c, sketch, refs, polygons);
+  check_roads(c, sketch, roads, water, road_areas);
   return v;
 }
 

@@ -13,18 +13,20 @@ void dissolve(const ZoneMap& zm, int group_count, GroupOf group_of, Add add) {
   for (const FaceLabel& l : zm.labels) groups.push_back(group_of(l));
   auto polygons = zm.map.dissolve(groups, group_count);
   for (int g = 0; g < group_count; ++g)
-    for (geom::Polygon& p : polygons[g]) add(g, std::move(p));
+    for (geom::Dissolved& d : polygons[g]) add(g, std::move(d.polygon));
 }
 
-void add_polygon(Layer& layer, ordered_json props, geom::Polygon p) {
+void add_polygon(Layer& layer, const ordered_json& props, geom::Polygon p) {
   ordered_json full{{"id", static_cast<int>(layer.features.size())}};
   if (props.is_object()) full.update(props);
   layer.features.push_back({std::move(full), std::move(p), {}});
 }
 
+ordered_json or_null(int v) { return v >= 0 ? ordered_json(v) : ordered_json(nullptr); }
+
 }  // namespace
 
-CityLayers extract_layers(const ZoneMap& zm, const Sketch& sketch) {
+CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, const Sketch& sketch) {
   CityLayers out;
   const int zone_types = static_cast<int>(ZoneType::Water);  // water has its own layer
   dissolve(zm, zone_types,
@@ -35,28 +37,31 @@ CityLayers extract_layers(const ZoneMap& zm, const Sketch& sketch) {
   dissolve(zm, 1, [](const FaceLabel& l) { return l.cover == Cover::Water ? 0 : -1; },
            [&](int, geom::Polygon p) { add_polygon(out.water, {}, std::move(p)); });
 
-  const int roads = static_cast<int>(sketch.roads.size());
+  const int roads = static_cast<int>(zm.roads.size());
   dissolve(zm, 2 * roads,
            [](const FaceLabel& l) { return l.road >= 0 && (l.cover == Cover::Road || l.bridge) ? 2 * l.road + l.bridge : -1; },
            [&](int g, geom::Polygon p) {
              add_polygon(out.road_areas, {{"road", g / 2}, {"bridge", g % 2 == 1}}, std::move(p));
            });
 
-  // Centre lines, cut where they go on or off a bridge.
+  for (const Block& b : blocks)
+    add_polygon(out.blocks, {{"zone", name(b.zone)}, {"green", b.green}, {"roads", b.roads}}, b.polygon);
+
+  // Centre lines with every junction as a vertex, cut where they go on or off a bridge.
   for (int r = 0; r < roads; ++r) {
-    const RoadFeature& road = sketch.roads[r];
+    const MapRoad& road = zm.roads[r];
     for (int k = 0; k < static_cast<int>(road.lines.size()); ++k) {
       geom::Polyline run;
       bool run_bridge = false;
       auto flush = [&] {
         if (run.size() < 2) return;
         ordered_json props{{"id", static_cast<int>(out.roads.features.size())}, {"road", r},
-                           {"class", name(road.road_class)}, {"width", road.width}, {"level", 0},
-                           {"bridge", run_bridge}};
+                           {"class", name(road.road_class)}, {"width", road.width}, {"level", or_null(road.level)},
+                           {"region", or_null(road.region)}, {"bridge", run_bridge}};
         out.roads.features.push_back({std::move(props), {}, std::move(run)});
         run.clear();
       };
-      for (const geom::PolylinePiece& piece : zm.map.polyline_pieces(zm.first_line_tag[r] + k)) {
+      for (const geom::PolylinePiece& piece : zm.map.polyline_pieces(road.first_tag + k)) {
         bool bridge = zm.labels[piece.left_label].cover == Cover::Water &&
                       zm.labels[piece.right_label].cover == Cover::Water;
         if (!run.empty() && (bridge != run_bridge || !(run.back() == piece.from))) flush();

@@ -1,6 +1,7 @@
 // The planar map as the vector layers of DESIGN.md's Outputs table.
 #pragma once
 
+#include "generate/blocks.h"
 #include "generate/geojson.h"
 #include "generate/sketch.h"
 #include "generate/zone_map.h"
@@ -10,8 +11,9 @@ namespace exacity {
 struct CityLayers {
   Layer zones{"zones", false, {}}, water{"water", false, {}};
   Layer roads{"roads", true, {}}, road_areas{"road_areas", false, {}};
+  Layer blocks{"blocks", false, {}};
 };
 
-CityLayers extract_layers(const ZoneMap& zone_map, const Sketch& sketch);
+CityLayers extract_layers(const ZoneMap& zone_map, const std::vector<Block>& blocks, const Sketch& sketch);
 
 }  // namespace exacity

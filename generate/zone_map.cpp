@@ -72,39 +72,29 @@ void add_end_joints(const Sketch& sketch, int road_base, geom::PlanarMap& map) {
 
 }  // namespace
 
-ZoneMap build_zone_map(const Sketch& sketch, const Terrain* terrain) {
-  ZoneMap zm;
+int ZoneMap::road_of_counter(int counter) const {
+  if (counter >= 1 && counter <= sketch_roads) return counter - 1;
+  if (counter >= generated_base && counter < generated_base + static_cast<int>(roads.size()) - sketch_roads)
+    return sketch_roads + counter - generated_base;
+  return -1;
+}
+
+void ZoneMap::label(const Sketch& sketch) {
   constexpr int kWater = 0;
-  const int road_base = 1;
-  const int roads = static_cast<int>(sketch.roads.size());
-
-  if (terrain) {
-    for (auto [a, b] : terrain->water_boundary()) zm.map.add_edge(a, b, kWater);
-  }
-  int tag = 0;
-  for (int r = 0; r < roads; ++r) {
-    zm.first_line_tag.push_back(tag);
-    for (const geom::Polyline& line : sketch.roads[r].lines) {
-      zm.map.add_stroke(line, sketch.roads[r].width / 2, road_base + r);
-      zm.map.add_polyline(line, tag++);
-    }
-  }
-  add_end_joints(sketch, road_base, zm.map);
-  DrawnZones drawn(sketch.zones, zm.map, road_base + roads);
-  zm.map.insert_batch();
-
   std::map<FaceLabel, int> index;
-  zm.map.label_faces([&](const geom::Windings& w) {
+  labels.clear();
+  map.label_faces([&](const geom::Windings& w) {
     FaceLabel l;
-    l.zone = drawn.top_zone(w);
+    l.zone = drawn->top_zone(w);
     for (auto [counter, winding] : w) {
-      if (counter >= road_base && counter < road_base + roads) {
-        l.road = counter - road_base;  // the first road listed owns a crossing
+      // Counters grow with road index, so the first road found is the first listed:
+      // it owns a crossing.
+      if (int r = road_of_counter(counter); r >= 0) {
+        l.road = r;
         break;
       }
     }
-    bool water = geom::winding_of(w, kWater) != 0 ||
-                 (l.zone >= 0 && sketch.zones[l.zone].type == ZoneType::Water);
+    bool water = geom::winding_of(w, kWater) != 0 || (l.zone >= 0 && sketch.zones[l.zone].type == ZoneType::Water);
     if (water) {
       l.cover = Cover::Water;
       l.bridge = l.road >= 0;
@@ -113,10 +103,35 @@ ZoneMap build_zone_map(const Sketch& sketch, const Terrain* terrain) {
     } else if (l.zone >= 0) {
       l.cover = Cover::Zone;
     }
-    auto [it, added] = index.emplace(l, static_cast<int>(zm.labels.size()));
-    if (added) zm.labels.push_back(l);
+    auto [it, added] = index.emplace(l, static_cast<int>(labels.size()));
+    if (added) labels.push_back(l);
     return it->second;
   });
+}
+
+ZoneMap build_zone_map(const Sketch& sketch, const Terrain* terrain) {
+  ZoneMap zm;
+  const int road_base = 1;
+  zm.sketch_roads = static_cast<int>(sketch.roads.size());
+  if (terrain) {
+    for (auto [a, b] : terrain->water_boundary()) zm.map.add_edge(a, b, 0);
+  }
+  int tag = 0;
+  for (int r = 0; r < zm.sketch_roads; ++r) {
+    const RoadFeature& f = sketch.roads[r];
+    MapRoad road{f.road_class, f.width, -1, -1, f.index, {}, tag};
+    for (const geom::Polyline& line : f.lines) {
+      zm.map.add_stroke(line, f.width / 2, road_base + r);
+      road.lines.push_back(geom::Path::from(line));
+      zm.map.add_path(road.lines.back(), tag++);
+    }
+    zm.roads.push_back(std::move(road));
+  }
+  add_end_joints(sketch, road_base, zm.map);
+  zm.drawn = std::make_shared<DrawnZones>(sketch.zones, zm.map, road_base + zm.sketch_roads);
+  zm.generated_base = zm.drawn->end_counter();
+  zm.map.insert_batch();
+  zm.label(sketch);
   return zm;
 }
 

@@ -1,11 +1,14 @@
-// The zone map: drawn zones, heightmap water and highway road areas in one exact planar
-// map, every face labelled with what covers it (seed 000, 3.1).
+// The city's planar map: drawn zones, heightmap water and road areas in one exact
+// arrangement, every face labelled with what covers it (seed 000, 3.1). The road-network
+// stage refines the same map.
 #pragma once
 
 #include <compare>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include "generate/drawn_zones.h"
 #include "generate/sketch.h"
 #include "generate/terrain.h"
 #include "geom/planar_map.h"
@@ -18,15 +21,36 @@ enum class Cover : std::uint8_t { Outside, Zone, Water, Road };
 struct FaceLabel {
   Cover cover = Cover::Outside;
   int zone = -1;        // index into Sketch::zones of the drawn zone on top, -1 if none
-  int road = -1;        // index into Sketch::roads of the road whose surface this is, -1 if none
+  int road = -1;        // index into ZoneMap::roads of the road whose surface this is, -1 if none
   bool bridge = false;  // a road surface over water
   friend auto operator<=>(const FaceLabel&, const FaceLabel&) = default;
 };
 
+// A road in the map: a sketch road (level -1) or a generated one.
+struct MapRoad {
+  RoadClass road_class = RoadClass::Highway;
+  double width = 0;
+  int level = -1;    // growth level; -1 for roads drawn in the sketch
+  int region = -1;   // the region it was grown in; -1 for roads drawn in the sketch
+  int feature = -1;  // its index in the sketch's features; -1 for generated roads
+  std::vector<geom::Path> lines;
+  int first_tag = 0;  // polyline tag of lines[0]; the others follow
+};
+
 struct ZoneMap {
   geom::PlanarMap map;
-  std::vector<FaceLabel> labels;   // indexed by face label
-  std::vector<int> first_line_tag; // per road: tag of its first centre line
+  std::vector<FaceLabel> labels;  // indexed by face label
+  std::vector<MapRoad> roads;     // sketch roads first, in sketch order
+  int sketch_roads = 0;
+
+  // Counters: water is 0, sketch road r is 1 + r, then the drawn zones' rings, then
+  // generated roads from generated_base on.
+  std::shared_ptr<DrawnZones> drawn;
+  int generated_base = 0;
+
+  int road_of_counter(int counter) const;
+  // (Re)labels every face from its windings.
+  void label(const Sketch& sketch);
 };
 
 ZoneMap build_zone_map(const Sketch& sketch, const Terrain* terrain);

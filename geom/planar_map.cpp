@@ -1,5 +1,5 @@
-// The CGAL arrangement behind PlanarMap. This is the heavy translation unit: keep CGAL
-// arrangement code here and nowhere else.
+// The CGAL arrangement behind PlanarMap and cell splitting. This is the heavy translation
+// unit: keep CGAL arrangement code here and nowhere else.
 #include "geom/planar_map.h"
 
 #include <algorithm>
@@ -9,6 +9,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include <CGAL/Arr_batched_point_location.h>
 #include <CGAL/Arr_curve_data_traits_2.h>
 #include <CGAL/Arr_extended_dcel.h>
 #include <CGAL/Arr_observer.h>
@@ -16,7 +17,7 @@
 #include <CGAL/Arrangement_2.h>
 #include <CGAL/Polygon_2_algorithms.h>
 
-#include "geom/exact.h"
+#include "geom/cell_impl.h"
 
 namespace geom {
 namespace {
@@ -44,17 +45,22 @@ using Arrangement = CGAL::Arrangement_2<Traits, Dcel>;
 using Curve = Traits::Curve_2;
 using Halfedge = Arrangement::Halfedge_const_handle;
 using Face = Arrangement::Face_const_handle;
-using Vertex = Arrangement::Vertex_const_handle;
 
 // When a batch splits a face, both parts keep the label the face had.
 class LabelKeeper : public CGAL::Arr_observer<Arrangement> {
  public:
   explicit LabelKeeper(Arrangement& arr) : CGAL::Arr_observer<Arrangement>(arr) {}
-  void after_split_face(Arrangement::Face_handle f, Arrangement::Face_handle new_f,
-                        bool) override {
+  void after_split_face(Arrangement::Face_handle f, Arrangement::Face_handle new_f, bool) override {
     new_f->set_data(f->data());
   }
 };
+
+// Queues the edge a -> b; a tag's sign is stored relative to the edge's left-to-right direction.
+void add_curve(std::vector<Curve>& curves, const Point& a, const Point& b, CurveTag tag) {
+  if (a == b) return;
+  if (CGAL::compare_xy(a, b) == CGAL::LARGER) tag.sign = -tag.sign;
+  curves.emplace_back(exact::Segment(a, b), Tags{tag});
+}
 
 void add_winding(Windings& w, int counter, int delta) {
   auto it = std::lower_bound(w.begin(), w.end(), std::make_pair(counter, INT32_MIN));
@@ -77,136 +83,8 @@ void for_each_boundary_halfedge(Face face, F&& f) {
   for (auto c = face->inner_ccbs_begin(); c != face->inner_ccbs_end(); ++c) walk(*c);
 }
 
-// A closed loop of halfedges, written as the source points of its halfedges.
-std::vector<Point> loop_points(const std::vector<Halfedge>& loop) {
-  std::vector<Point> pts;
-  pts.reserve(loop.size());
-  for (const Halfedge& h : loop) pts.push_back(h->source()->point());
-  return pts;
-}
-
-CGAL::Orientation loop_orientation(const std::vector<Point>& pts) {
-  auto lowest = std::min_element(pts.begin(), pts.end(), [](const Point& a, const Point& b) {
-    return CGAL::compare_xy(a, b) == CGAL::SMALLER;
-  });
-  std::size_t i = lowest - pts.begin(), n = pts.size();
-  return CGAL::orientation(pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
-}
-
-// The loop with its vertices rounded to doubles. Exact vertices closer than the
-// rounding step can land on one double: repeats and the zero-width spikes they leave
-// are dropped. Neighbouring faces share those vertices and drop them alike, so the
-// written polygons still meet edge to edge. Empty when the loop collapses.
-Ring plain_ring(const std::vector<Point>& pts) {
-  Ring r;
-  r.reserve(pts.size());
-  for (const Point& p : pts) {
-    Vec2 v = to_plain(p);
-    while (r.size() >= 2 && r[r.size() - 2] == v) r.pop_back();  // spike a, b, a
-    if (r.empty() || !(r.back() == v)) r.push_back(v);
-  }
-  for (bool changed = true; changed && r.size() >= 3;) {  // the same across the seam
-    changed = false;
-    if (r.front() == r.back()) r.pop_back(), changed = true;
-    else if (r[r.size() - 2] == r.front()) r.pop_back(), changed = true;
-    else if (r[1] == r.back()) r.erase(r.begin()), changed = true;
-  }
-  if (r.size() < 3) r.clear();
-  return r;
-}
-
-// Splits a closed walk that passes some vertex twice into loops that pass none twice.
-std::vector<std::vector<Halfedge>> split_at_repeated_vertices(const std::vector<Halfedge>& walk) {
-  std::vector<std::vector<Halfedge>> loops;
-  std::vector<Halfedge> stack;
-  std::unordered_map<const void*, std::size_t> position;  // vertex -> index in stack
-  for (const Halfedge& h : walk) {
-    const void* v = &*h->source();
-    auto it = position.find(v);
-    if (it != position.end()) {
-      std::size_t k = it->second;
-      loops.emplace_back(stack.begin() + k, stack.end());
-      for (std::size_t i = k; i < stack.size(); ++i) position.erase(&*stack[i]->source());
-      stack.resize(k);
-    }
-    position[v] = stack.size();
-    stack.push_back(h);
-  }
-  if (!stack.empty()) loops.push_back(std::move(stack));
-  return loops;
-}
-
-}  // namespace
-
-int winding_of(const Windings& w, int counter) {
-  auto it = std::lower_bound(w.begin(), w.end(), std::make_pair(counter, INT32_MIN));
-  return it != w.end() && it->first == counter ? it->second : 0;
-}
-
-struct PlanarMap::Impl {
-  Arrangement arr;
-  LabelKeeper keeper{arr};
-  std::vector<Curve> pending;
-  std::map<int, std::vector<Point>> polylines;
-
-  void add_edge(const Point& a, const Point& b, CurveTag tag) {
-    if (a == b) return;
-    // A tag's sign is stored relative to the left-to-right direction of the edge.
-    if (CGAL::compare_xy(a, b) == CGAL::LARGER) tag.sign = -tag.sign;
-    pending.emplace_back(exact::Segment(a, b), Tags{tag});
-  }
-
-  void add_exact_ring(const exact::ExactRing& ring, int counter) {
-    for (std::size_t i = 0; i < ring.size(); ++i) add_edge(ring[i], ring[(i + 1) % ring.size()], {counter, +1, 0});
-  }
-
-  int group_of(Face f, const std::vector<int>& group_of_label) const {
-    int l = f->data();
-    return l >= 0 && l < static_cast<int>(group_of_label.size()) ? group_of_label[l] : -1;
-  }
-};
-
-PlanarMap::PlanarMap() : impl_(std::make_unique<Impl>()) { impl_->arr.unbounded_face()->set_data(-1); }
-PlanarMap::~PlanarMap() = default;
-PlanarMap::PlanarMap(PlanarMap&&) noexcept = default;
-PlanarMap& PlanarMap::operator=(PlanarMap&&) noexcept = default;
-
-void PlanarMap::add_ring(const Ring& ring, int counter, int aux) {
-  for (std::size_t i = 0; i < ring.size(); ++i)
-    impl_->add_edge(to_exact(ring[i]), to_exact(ring[(i + 1) % ring.size()]), {counter, +1, aux});
-}
-
-void PlanarMap::add_edge(Vec2 a, Vec2 b, int counter) {
-  impl_->add_edge(to_exact(a), to_exact(b), {counter, +1, 0});
-}
-
-void PlanarMap::add_stroke(const Polyline& line, double half_width, int counter) {
-  for (const exact::ExactRing& piece : exact::stroke_pieces(line, half_width)) impl_->add_exact_ring(piece, counter);
-}
-
-void PlanarMap::add_joint(Vec2 a, Vec2 q, Vec2 b, double half_width, int counter) {
-  impl_->add_exact_ring(exact::joint_piece(a, q, b, half_width), counter);
-}
-
-void PlanarMap::add_disc(Vec2 centre, double radius, int counter) {
-  impl_->add_exact_ring(exact::disc_piece(centre, radius), counter);
-}
-
-void PlanarMap::add_polyline(const Polyline& line, int tag) {
-  std::vector<Point>& pts = impl_->polylines[tag];
-  pts.clear();
-  for (Vec2 p : line) pts.push_back(to_exact(p));
-  for (std::size_t i = 0; i + 1 < pts.size(); ++i)
-    impl_->add_edge(pts[i], pts[i + 1], {tag, 0, static_cast<int>(i)});
-}
-
-void PlanarMap::insert_batch() {
-  CGAL::insert(impl_->arr, impl_->pending.begin(), impl_->pending.end());
-  impl_->pending.clear();
-}
-
-void PlanarMap::label_faces(const std::function<int(const Windings&)>& label_of) {
-  Arrangement& arr = impl_->arr;
+// Gives every face label_of(its windings), walking out from the unbounded face.
+void label_all_faces(Arrangement& arr, const std::function<int(const Windings&)>& label_of) {
   std::unordered_map<const void*, Windings> windings;
   std::deque<Arrangement::Face_handle> queue{arr.unbounded_face()};
   windings[&*arr.unbounded_face()] = {};
@@ -230,18 +108,59 @@ void PlanarMap::label_faces(const std::function<int(const Windings&)>& label_of)
   }
 }
 
-std::vector<std::vector<Polygon>> PlanarMap::dissolve(const std::vector<int>& group_of_label,
-                                                      int group_count) const {
-  const Arrangement& arr = impl_->arr;
-  auto group = [&](Face f) { return impl_->group_of(f, group_of_label); };
-  std::vector<std::vector<Polygon>> result(group_count);
-  std::unordered_set<const void*> seen_faces, used;
+// Splits a closed walk that passes some vertex twice into loops that pass none twice.
+std::vector<std::vector<Halfedge>> split_at_repeated_vertices(const std::vector<Halfedge>& walk) {
+  std::vector<std::vector<Halfedge>> loops;
+  std::vector<Halfedge> stack;
+  std::unordered_map<const void*, std::size_t> position;  // vertex -> index in stack
+  for (const Halfedge& h : walk) {
+    const void* v = &*h->source();
+    auto it = position.find(v);
+    if (it != position.end()) {
+      std::size_t k = it->second;
+      loops.emplace_back(stack.begin() + k, stack.end());
+      for (std::size_t i = k; i < stack.size(); ++i) position.erase(&*stack[i]->source());
+      stack.resize(k);
+    }
+    position[v] = stack.size();
+    stack.push_back(h);
+  }
+  if (!stack.empty()) loops.push_back(std::move(stack));
+  return loops;
+}
 
+std::vector<Point> loop_points(const std::vector<Halfedge>& loop) {
+  std::vector<Point> pts;
+  pts.reserve(loop.size());
+  for (const Halfedge& h : loop) pts.push_back(h->source()->point());
+  return pts;
+}
+
+CGAL::Orientation loop_orientation(const std::vector<Point>& pts) {
+  auto lowest = std::min_element(pts.begin(), pts.end(), [](const Point& a, const Point& b) {
+    return CGAL::compare_xy(a, b) == CGAL::SMALLER;
+  });
+  std::size_t i = lowest - pts.begin(), n = pts.size();
+  return CGAL::orientation(pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
+}
+
+// A polygon of halfedge loops: one counter-clockwise outer loop, clockwise holes.
+struct LoopPolygon {
+  std::vector<Halfedge> outer;
+  std::vector<std::vector<Halfedge>> holes;
+};
+
+// Calls emit(group, polygons, neighbour labels) for each edge-connected component of faces
+// that share a group (group_of(face) >= 0), in face order. Boundaries are walked with the
+// component on the left, turning as tightly as possible at each vertex, and cut where
+// they touch themselves, so every loop is simple; a hole may touch its outer loop.
+template <typename GroupOf, typename Emit>
+void trace_components(const Arrangement& arr, GroupOf group_of, Emit emit) {
+  std::unordered_set<const void*> seen_faces, used;
   for (auto start = arr.faces_begin(); start != arr.faces_end(); ++start) {
-    int g = group(start);
+    int g = group_of(Face(start));
     if (g < 0 || seen_faces.count(&*start)) continue;
 
-    // One edge-connected component of faces in group g, and its boundary halfedges.
     std::vector<Halfedge> boundary;
     std::deque<Face> queue{start};
     seen_faces.insert(&*start);
@@ -250,7 +169,7 @@ std::vector<std::vector<Polygon>> PlanarMap::dissolve(const std::vector<int>& gr
       queue.pop_front();
       for_each_boundary_halfedge(f, [&](Halfedge h) {
         Face t = h->twin()->face();
-        if (group(t) != g) {
+        if (group_of(t) != g) {
           boundary.push_back(h);
         } else if (seen_faces.insert(&*t).second) {
           queue.push_back(t);
@@ -258,10 +177,11 @@ std::vector<std::vector<Polygon>> PlanarMap::dissolve(const std::vector<int>& gr
       });
     }
 
-    // Walk the boundary keeping the component on the left, turning as tightly as
-    // possible at each vertex, then cut the walks where they touch themselves.
-    std::vector<std::vector<Point>> outers, holes;
+    std::vector<std::vector<Halfedge>> outers, holes;
+    std::vector<std::vector<Point>> outer_points;
+    std::vector<int> neighbours;
     for (const Halfedge& first : boundary) {
+      neighbours.push_back(first->twin()->face()->data());
       if (used.count(&*first)) continue;
       std::vector<Halfedge> walk;
       Halfedge h = first;
@@ -269,37 +189,225 @@ std::vector<std::vector<Polygon>> PlanarMap::dissolve(const std::vector<int>& gr
         used.insert(&*h);
         walk.push_back(h);
         Halfedge next = h->next();
-        while (group(next->twin()->face()) == g) next = next->twin()->next();
+        while (group_of(next->twin()->face()) == g) next = next->twin()->next();
         h = next;
       } while (h != first);
-      for (const auto& loop : split_at_repeated_vertices(walk)) {
+      for (auto& loop : split_at_repeated_vertices(walk)) {
         std::vector<Point> pts = loop_points(loop);
-        (loop_orientation(pts) == CGAL::COUNTERCLOCKWISE ? outers : holes).push_back(std::move(pts));
+        if (loop_orientation(pts) == CGAL::COUNTERCLOCKWISE) {
+          outers.push_back(std::move(loop));
+          outer_points.push_back(std::move(pts));
+        } else {
+          holes.push_back(std::move(loop));
+        }
       }
     }
+    std::sort(neighbours.begin(), neighbours.end());
+    neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
 
-    std::vector<Polygon> polygons;
-    for (const auto& o : outers) polygons.push_back({plain_ring(o), {}});
-    for (const auto& hole : holes) {
+    std::vector<LoopPolygon> polygons;
+    for (auto& o : outers) polygons.push_back({std::move(o), {}});
+    for (auto& hole : holes) {
       std::size_t owner = 0;
-      if (outers.size() > 1) {
-        Point probe = CGAL::midpoint(hole[0], hole[1]);
+      if (outer_points.size() > 1) {
+        Point probe = CGAL::midpoint(hole[0]->source()->point(), hole[0]->target()->point());
         double best_area = 0;
-        for (std::size_t k = 0; k < outers.size(); ++k) {
-          if (CGAL::bounded_side_2(outers[k].begin(), outers[k].end(), probe, Kernel()) !=
-              CGAL::ON_BOUNDED_SIDE)
-            continue;
-          double area = CGAL::to_double(CGAL::polygon_area_2(outers[k].begin(), outers[k].end(), Kernel()));
+        for (std::size_t k = 0; k < outer_points.size(); ++k) {
+          const auto& o = outer_points[k];
+          if (CGAL::bounded_side_2(o.begin(), o.end(), probe, Kernel()) != CGAL::ON_BOUNDED_SIDE) continue;
+          double area = CGAL::to_double(CGAL::polygon_area_2(o.begin(), o.end(), Kernel()));
           if (best_area == 0 || area < best_area) best_area = area, owner = k;
         }
       }
-      Ring ring = plain_ring(hole);
-      if (!polygons.empty() && !ring.empty()) polygons[owner].holes.push_back(std::move(ring));
+      if (!polygons.empty()) polygons[owner].holes.push_back(std::move(hole));
     }
-    for (Polygon& p : polygons)
-      if (!p.outer.empty()) result[g].push_back(std::move(p));
+    emit(g, polygons, neighbours);
   }
+}
+
+// The loop with its vertices rounded to doubles. Exact vertices closer than the
+// rounding step can land on one double: repeats and the zero-width spikes they leave
+// are dropped. Neighbouring faces share those vertices and drop them alike, so the
+// written polygons still meet edge to edge. Empty when the loop collapses.
+Ring plain_ring(const std::vector<Halfedge>& loop) {
+  Ring r;
+  r.reserve(loop.size());
+  for (const Halfedge& h : loop) {
+    Vec2 v = to_plain(h->source()->point());
+    while (r.size() >= 2 && r[r.size() - 2] == v) r.pop_back();  // spike a, b, a
+    if (r.empty() || !(r.back() == v)) r.push_back(v);
+  }
+  for (bool changed = true; changed && r.size() >= 3;) {  // the same across the seam
+    changed = false;
+    if (r.front() == r.back()) r.pop_back(), changed = true;
+    else if (r[r.size() - 2] == r.front()) r.pop_back(), changed = true;
+    else if (r[1] == r.back()) r.erase(r.begin()), changed = true;
+  }
+  if (r.size() < 3) r.clear();
+  return r;
+}
+
+// Cells from traced polygons; kind_of(h) gives the kind of boundary halfedge h.
+template <typename KindOf>
+void add_cells(const std::vector<LoopPolygon>& polygons, KindOf kind_of, std::vector<Cell>& out) {
+  auto ring = [&](const std::vector<Halfedge>& loop) {
+    KindRing r;
+    for (const Halfedge& h : loop) r.points.push_back(h->source()->point()), r.kinds.push_back(kind_of(h));
+    return r;
+  };
+  for (const LoopPolygon& p : polygons) {
+    std::vector<KindRing> holes;
+    for (const auto& h : p.holes) holes.push_back(ring(h));
+    out.push_back(make_cell(ring(p.outer), std::move(holes)));
+  }
+}
+
+}  // namespace
+
+int winding_of(const Windings& w, int counter) {
+  auto it = std::lower_bound(w.begin(), w.end(), std::make_pair(counter, INT32_MIN));
+  return it != w.end() && it->first == counter ? it->second : 0;
+}
+
+struct PlanarMap::Impl {
+  Arrangement arr;
+  LabelKeeper keeper{arr};
+  std::vector<Curve> pending;
+  std::map<int, std::vector<Point>> polylines;
+
+  void add_edge(const Point& a, const Point& b, CurveTag tag) { add_curve(pending, a, b, tag); }
+
+  void add_exact_ring(const exact::ExactRing& ring, int counter) {
+    for (std::size_t i = 0; i < ring.size(); ++i) add_edge(ring[i], ring[(i + 1) % ring.size()], {counter, +1, 0});
+  }
+
+  void add_polyline(std::vector<Point> pts, int tag) {
+    for (std::size_t i = 0; i + 1 < pts.size(); ++i) add_edge(pts[i], pts[i + 1], {tag, 0, static_cast<int>(i)});
+    polylines[tag] = std::move(pts);
+  }
+
+  auto group_function(const std::vector<int>& group_of_label) const {
+    return [&group_of_label](Face f) {
+      int l = f->data();
+      return l >= 0 && l < static_cast<int>(group_of_label.size()) ? group_of_label[l] : -1;
+    };
+  }
+};
+
+PlanarMap::PlanarMap() : impl_(std::make_unique<Impl>()) { impl_->arr.unbounded_face()->set_data(-1); }
+PlanarMap::~PlanarMap() = default;
+PlanarMap::PlanarMap(PlanarMap&&) noexcept = default;
+PlanarMap& PlanarMap::operator=(PlanarMap&&) noexcept = default;
+
+void PlanarMap::add_ring(const Ring& ring, int counter, int aux) {
+  for (std::size_t i = 0; i < ring.size(); ++i)
+    impl_->add_edge(to_exact(ring[i]), to_exact(ring[(i + 1) % ring.size()]), {counter, +1, aux});
+}
+
+void PlanarMap::add_edge(Vec2 a, Vec2 b, int counter) { impl_->add_edge(to_exact(a), to_exact(b), {counter, +1, 0}); }
+
+void PlanarMap::add_stroke(const Polyline& line, double half_width, int counter) {
+  for (const exact::ExactRing& piece : exact::stroke_pieces(line, half_width)) impl_->add_exact_ring(piece, counter);
+}
+
+void PlanarMap::add_joint(Vec2 a, Vec2 q, Vec2 b, double half_width, int counter) {
+  impl_->add_exact_ring(exact::joint_piece(a, q, b, half_width), counter);
+}
+
+void PlanarMap::add_disc(Vec2 centre, double radius, int counter) {
+  impl_->add_exact_ring(exact::disc_piece(centre, radius), counter);
+}
+
+void PlanarMap::add_polyline(const Polyline& line, int tag) {
+  std::vector<Point> pts;
+  for (Vec2 p : line) pts.push_back(to_exact(p));
+  impl_->add_polyline(std::move(pts), tag);
+}
+
+void PlanarMap::add_path(const Path& path, int tag) { impl_->add_polyline(path.exact().points, tag); }
+
+void PlanarMap::add_path_stroke(const Path& path, double half_width, int counter) {
+  add_stroke(path.to_plain(), half_width, counter);
+}
+
+void PlanarMap::insert_batch() {
+  CGAL::insert(impl_->arr, impl_->pending.begin(), impl_->pending.end());
+  impl_->pending.clear();
+}
+
+void PlanarMap::label_faces(const std::function<int(const Windings&)>& label_of) {
+  label_all_faces(impl_->arr, label_of);
+}
+
+std::vector<std::vector<Dissolved>> PlanarMap::dissolve(const std::vector<int>& group_of_label,
+                                                        int group_count) const {
+  std::vector<std::vector<Dissolved>> result(group_count);
+  trace_components(impl_->arr, impl_->group_function(group_of_label),
+                   [&](int g, const std::vector<LoopPolygon>& polygons, const std::vector<int>& neighbours) {
+                     for (const LoopPolygon& lp : polygons) {
+                       Dissolved d{{plain_ring(lp.outer), {}}, neighbours};
+                       if (d.polygon.outer.empty()) continue;
+                       for (const auto& h : lp.holes) {
+                         Ring ring = plain_ring(h);
+                         if (!ring.empty()) d.polygon.holes.push_back(std::move(ring));
+                       }
+                       result[g].push_back(std::move(d));
+                     }
+                   });
   return result;
+}
+
+std::vector<Cell> PlanarMap::cells(const std::vector<int>& group_of_label, const std::vector<int>& kind_of_label) const {
+  std::vector<Cell> cells;
+  auto kind_of = [&](Halfedge h) {
+    int l = h->twin()->face()->data();
+    return l >= 0 && l < static_cast<int>(kind_of_label.size()) ? kind_of_label[l] : 0;
+  };
+  trace_components(impl_->arr, impl_->group_function(group_of_label),
+                   [&](int, const std::vector<LoopPolygon>& polygons, const std::vector<int>&) {
+                     add_cells(polygons, kind_of, cells);
+                   });
+  return cells;
+}
+
+std::vector<Cell> split_cell(const Cell& cell, const std::vector<Path>& roads, int road_kind) {
+  // A small arrangement of the cell's boundary (winding around counter 0, tagged with each
+  // edge's kind) and the roads (counter 1); every face inside becomes a cell.
+  Arrangement arr;
+  std::vector<Curve> curves;
+  auto add_ring = [&](const KindRing& r) {
+    for (std::size_t i = 0; i < r.points.size(); ++i)
+      add_curve(curves, r.points[i], r.points[(i + 1) % r.points.size()], {0, +1, r.kinds[i]});
+  };
+  add_ring(cell.exact().outer);
+  for (const auto& h : cell.exact().holes) add_ring(h);
+  for (const Path& road : roads) {
+    const auto& p = road.exact().points;
+    for (std::size_t i = 0; i + 1 < p.size(); ++i) add_curve(curves, p[i], p[i + 1], {1, 0, 0});
+  }
+  CGAL::insert(arr, curves.begin(), curves.end());
+  label_all_faces(arr, [](const Windings& w) { return winding_of(w, 0) != 0 ? 1 : -1; });
+
+  std::unordered_map<const void*, int> index;  // each face inside is its own group
+  for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f)
+    if (f->data() == 1) index.emplace(&*f, static_cast<int>(index.size()));
+  auto group_of = [&](Face f) {
+    auto it = index.find(&*f);
+    return it == index.end() ? -1 : it->second;
+  };
+  auto kind_of = [&](Halfedge h) {
+    int kind = 0;
+    for (const CurveTag& t : h->curve().data()) {
+      if (t.counter == 1) return road_kind;
+      kind = t.aux;
+    }
+    return kind;
+  };
+  std::vector<Cell> parts;
+  trace_components(arr, group_of, [&](int, const std::vector<LoopPolygon>& polygons, const std::vector<int>&) {
+    add_cells(polygons, kind_of, parts);
+  });
+  return parts;
 }
 
 std::vector<PolylinePiece> PlanarMap::polyline_pieces(int tag) const {
@@ -321,8 +429,8 @@ std::vector<PolylinePiece> PlanarMap::polyline_pieces(int tag) const {
   }
   std::sort(items.begin(), items.end(), [&](const Item& a, const Item& b) {
     if (a.segment != b.segment) return a.segment < b.segment;
-    return CGAL::compare_distance_to_point(pts[a.segment], a.h->source()->point(),
-                                           b.h->source()->point()) == CGAL::SMALLER;
+    return CGAL::compare_distance_to_point(pts[a.segment], a.h->source()->point(), b.h->source()->point()) ==
+           CGAL::SMALLER;
   });
   std::vector<PolylinePiece> pieces;
   for (const Item& it : items)
@@ -331,8 +439,43 @@ std::vector<PolylinePiece> PlanarMap::polyline_pieces(int tag) const {
   return pieces;
 }
 
-void PlanarMap::for_each_edge(
-    const std::function<void(const std::vector<CurveTag>&, Vec2, Vec2)>& f) const {
+std::vector<int> PlanarMap::labels_at(const std::vector<Vec2>& points) const {
+  using Result = CGAL::Arr_point_location_result<Arrangement>;
+  std::vector<Point> query;
+  for (Vec2 p : points) query.push_back(to_exact(p));
+  std::vector<std::pair<Point, Result::Type>> found;
+  CGAL::locate(impl_->arr, query.begin(), query.end(), std::back_inserter(found));
+  // The sweep reports points in its own order: match them back exactly.
+  std::map<Point, int, decltype([](const Point& a, const Point& b) { return CGAL::compare_xy(a, b) == CGAL::SMALLER; })> label;
+  for (const auto& [p, where] : found) {
+    const Face* f = boost::get<Face>(&where);
+    label[p] = f ? (*f)->data() : -1;
+  }
+  std::vector<int> labels;
+  for (const Point& p : query) labels.push_back(label.at(p));
+  return labels;
+}
+
+std::map<int, int> PlanarMap::polyline_degrees() const {
+  std::map<int, int> degrees;
+  for (auto v = impl_->arr.vertices_begin(); v != impl_->arr.vertices_end(); ++v) {
+    int degree = 0;
+    if (v->is_isolated()) continue;
+    auto h = v->incident_halfedges();
+    auto first = h;
+    do {
+      for (const CurveTag& t : h->curve().data())
+        if (t.sign == 0) {
+          ++degree;
+          break;
+        }
+    } while (++h != first);
+    if (degree > 0) ++degrees[degree];
+  }
+  return degrees;
+}
+
+void PlanarMap::for_each_edge(const std::function<void(const std::vector<CurveTag>&, Vec2, Vec2)>& f) const {
   for (auto e = impl_->arr.edges_begin(); e != impl_->arr.edges_end(); ++e)
     f(e->curve().data(), to_plain(e->source()->point()), to_plain(e->target()->point()));
 }

@@ -9,10 +9,12 @@
 
 #include <cstddef>
 #include <functional>
+#include <map>
 #include <memory>
 #include <utility>
 #include <vector>
 
+#include "geom/cell.h"
 #include "geom/plain.h"
 
 namespace geom {
@@ -34,6 +36,12 @@ struct PolylinePiece {
   int segment = 0;  // index of the polyline segment it lies on
   Vec2 from, to;
   int left_label = -1, right_label = -1;
+};
+
+// A polygon made of faces, and the labels of the faces just outside it.
+struct Dissolved {
+  Polygon polygon;
+  std::vector<int> neighbour_labels;  // sorted, unique
 };
 
 struct PlanarMapCounts {
@@ -60,6 +68,9 @@ class PlanarMap {
   void add_disc(Vec2 centre, double radius, int counter);
   // The polyline itself, bounding nothing, findable later with polyline_pieces(tag).
   void add_polyline(const Polyline& line, int tag);
+  // The same for exact paths, and a path's stroke (its vertices rounded for the offsets).
+  void add_path(const Path& path, int tag);
+  void add_path_stroke(const Path& path, double half_width, int counter);
 
   // Inserts everything queued in one sweep.
   void insert_batch();
@@ -70,14 +81,24 @@ class PlanarMap {
   // Merges faces by group (group_of_label[label], -1 for none) into polygons with
   // holes: result[g] lists group g's polygons. Rings are simple; a hole may touch its
   // outer ring at a vertex.
-  std::vector<std::vector<Polygon>> dissolve(const std::vector<int>& group_of_label,
-                                             int group_count) const;
+  std::vector<std::vector<Dissolved>> dissolve(const std::vector<int>& group_of_label,
+                                               int group_count) const;
+
+  // Components of faces with group >= 0 as exact cells, in face order: each boundary
+  // edge's kind is kind_of_label[label of the face across it].
+  std::vector<Cell> cells(const std::vector<int>& group_of_label, const std::vector<int>& kind_of_label) const;
 
   // The pieces of polyline `tag`, in order along it.
   std::vector<PolylinePiece> polyline_pieces(int tag) const;
 
   // Calls f with the tags of every edge and its end points.
   void for_each_edge(const std::function<void(const std::vector<CurveTag>&, Vec2, Vec2)>& f) const;
+
+  // The labels of the faces holding each point (of an edge or vertex: -1), found in one sweep.
+  std::vector<int> labels_at(const std::vector<Vec2>& points) const;
+
+  // How many polyline edges meet at each vertex where any meet: degree -> vertex count.
+  std::map<int, int> polyline_degrees() const;
 
   // A vertex on the boundary of some face with this label, to point a user at it.
   bool point_near_label(int label, Vec2& out) const;

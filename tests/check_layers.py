@@ -36,7 +36,7 @@ def signed_area(ring):
 def main(out):
     problems = []
     polygons = []  # (name, kind, shapely polygon)
-    for layer in ("zones", "water", "road_areas"):
+    for layer in ("zones", "water", "road_areas", "blocks"):
         for i, f in enumerate(load(out / "vector" / f"{layer}.geojson")):
             name = f"{layer}[{i}]"
             g = f["geometry"]
@@ -55,23 +55,27 @@ def main(out):
                 from shapely.validation import explain_validity
                 problems.append(f"{name}: invalid: {explain_validity(poly)}")
             kind = "bridge" if f["properties"].get("bridge") else layer
+            if layer == "zones" and f["properties"].get("zone") == "park":
+                kind = "park"
             polygons.append((name, kind, poly))
     for i, f in enumerate(load(out / "vector" / "roads.geojson")):
         line = LineString(f["geometry"]["coordinates"])
         if not line.is_valid or line.length <= 0:
             problems.append(f"roads[{i}]: invalid centre line")
 
-    surfaces = [(n, p) for n, k, p in polygons if k != "bridge" and p.is_valid]
-    tree = STRtree([p for _, p in surfaces])
-    index = {id(p): i for i, (_, p) in enumerate(surfaces)}
-    for i, (name, poly) in enumerate(surfaces):
-        for other in tree.query(poly):
-            j = index[id(other)]
-            if j <= i:
-                continue
-            overlap = poly.intersection(other).area
-            if overlap > AREA_TOLERANCE:
-                problems.append(f"{name} and {surfaces[j][0]} overlap by {overlap} m²")
+    # Two tilings: zones, water and road areas; blocks, parks, water and road areas.
+    for kinds in ({"zones", "park", "water", "road_areas"}, {"blocks", "park", "water", "road_areas"}):
+        surfaces = [(n, p) for n, k, p in polygons if k in kinds and p.is_valid]
+        tree = STRtree([p for _, p in surfaces])
+        index = {id(p): i for i, (_, p) in enumerate(surfaces)}
+        for i, (name, poly) in enumerate(surfaces):
+            for other in tree.query(poly):
+                j = index[id(other)]
+                if j <= i:
+                    continue
+                overlap = poly.intersection(other).area
+                if overlap > AREA_TOLERANCE:
+                    problems.append(f"{name} and {surfaces[j][0]} overlap by {overlap} m²")
     water = [p for _, k, p in polygons if k == "water" and p.is_valid]
     for name, kind, poly in polygons:
         if kind == "bridge" and poly.is_valid:

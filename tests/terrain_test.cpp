@@ -37,7 +37,7 @@ std::vector<geom::Polygon> water_polygons(const Terrain& t) {
     EXPECT_TRUE(n == 0 || n == 1);
     return n;
   });
-  return map.dissolve({-1, 0}, 1)[0];
+  return testing_util::polygons(map.dissolve({-1, 0}, 1)[0]);
 }
 
 template <typename T>

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <string>
 
-#include "geom/plain.h"
+#include "geom/planar_map.h"
 
 namespace testing_util {
 
@@ -22,6 +22,13 @@ inline double area(const geom::Polygon& p) {
   double a = signed_area(p.outer);
   for (const auto& h : p.holes) a += signed_area(h);
   return a;
+}
+
+// The polygons of one dissolved group.
+inline std::vector<geom::Polygon> polygons(const std::vector<geom::Dissolved>& group) {
+  std::vector<geom::Polygon> out;
+  for (const auto& d : group) out.push_back(d.polygon);
+  return out;
 }
 
 // A fresh empty folder under the system's temporary folder.

@@ -1,0 +1,22 @@
+// Blocks: the faces left once road areas, water and parks are taken out, one per zone
+// type where zones touch. Blocks too small or too thin to build on become green space,
+// so the map still tiles the drawn zones.
+#pragma once
+
+#include <vector>
+
+#include "generate/sketch.h"
+#include "generate/zone_map.h"
+
+namespace exacity {
+
+struct Block {
+  ZoneType zone = ZoneType::Residential;  // the drawn zone's type; Park for green space
+  bool green = false;
+  geom::Polygon polygon;
+  std::vector<int> roads;  // indices into ZoneMap::roads of the roads it fronts
+};
+
+std::vector<Block> cut_blocks(const ZoneMap& zone_map, const Sketch& sketch);
+
+}  // namespace exacity

@@ -1,0 +1,215 @@
+#include "generate/road_network.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include <tbb/parallel_for.h>
+
+#include "generate/random.h"
+#include "geom/grid.h"
+
+namespace exacity {
+namespace {
+
+// Kinds of cell edges: a road grown in the same region, or anything else. A cell below the
+// top level must reach a road of its region, so every region's road graph is connected.
+constexpr int kEdge = 0, kRoad = 1;
+constexpr int kMaxLevels = 24;
+constexpr int kConnectorTries = 8;
+
+// A cell waiting to be grown.
+struct Work {
+  geom::Cell cell;
+  std::uint64_t id;    // stable: the region's index, then each split's part index
+  double orientation;  // degrees
+  int region;
+  ZoneType type;       // the parent's, until the seed's face tells
+};
+
+// What growing one cell gave.
+struct Grown {
+  std::optional<geom::Vec2> seed;
+  ZoneType type = ZoneType::Residential;
+  std::vector<geom::Path> roads;
+  std::vector<Work> parts;  // to grow at the next level
+  bool without_access = false;
+};
+
+// The grid point `distance` from p at `degrees`.
+geom::Vec2 ahead(geom::Vec2 p, double degrees, double distance) {
+  double t = degrees * M_PI / 180;
+  return geom::snap(geom::Vec2{p.x + distance * std::cos(t), p.y + distance * std::sin(t)});
+}
+
+// Grows `branches` roads from the seed; at levels below the top, at least one must reach a
+// road or the cell is left without roads.
+std::vector<geom::Path> grow_roads(const geom::Cell& cell, geom::Vec2 seed, const ZoneParams& p, int level,
+                                   double orientation, Random& rng) {
+  const double segment_deviation = std::max(p.segment_deviation - 2.0 * level, 0.0);
+  const geom::Box b = cell.bounds();
+  const double reach = 2 * std::hypot(b.width(), b.height()) + 1;  // past the cell from anywhere in it
+  const int max_steps = static_cast<int>(reach / (p.segment_length * std::cos(p.origin_deviation * M_PI / 180))) + 2;
+
+  geom::Growth growth(cell, p.segment_length);
+  std::vector<geom::Path> roads;
+  bool reached_road = level == 0;
+  for (int i = 0; i < p.branches; ++i) {
+    const double alpha = orientation + 360.0 * i / p.branches;
+    growth.begin(seed);
+    int met;
+    if (segment_deviation == 0) {
+      // Straight: one segment on the line through the seed and a far grid point, so every
+      // piece of the road lies exactly on one line.
+      met = growth.extend(ahead(seed, alpha, reach));
+    } else {
+      double theta = alpha;
+      geom::Vec2 at = seed;
+      int steps = 0;
+      do {
+        double lo = std::max(theta - segment_deviation, alpha - p.origin_deviation);
+        double hi = std::min(theta + segment_deviation, alpha + p.origin_deviation);
+        theta = rng.uniform(lo, hi);
+        at = ahead(at, theta, p.segment_length);
+        met = growth.extend(at);
+        if (met == geom::Growth::kFree && ++steps > max_steps) met = growth.extend(ahead(at, theta, reach));
+      } while (met == geom::Growth::kFree);
+    }
+    geom::Path road = growth.end();
+    if (road.empty()) continue;
+    reached_road |= met == kRoad;
+    roads.push_back(std::move(road));
+  }
+  if (reached_road) return roads;
+
+  // Connect the seed straight to the nearest road edges of the cell, one try each.
+  auto targets = cell.edges_of_kind(kRoad);
+  auto distance = [&](const std::pair<geom::Vec2, geom::Vec2>& e) {
+    return std::hypot((e.first.x + e.second.x) / 2 - seed.x, (e.first.y + e.second.y) / 2 - seed.y);
+  };
+  std::stable_sort(targets.begin(), targets.end(), [&](const auto& a, const auto& c) { return distance(a) < distance(c); });
+  for (std::size_t k = 0; k < std::min<std::size_t>(targets.size(), kConnectorTries); ++k) {
+    geom::Vec2 mid{(targets[k].first.x + targets[k].second.x) / 2, (targets[k].first.y + targets[k].second.y) / 2};
+    if (mid == seed) continue;
+    geom::Growth trial(cell, p.segment_length);
+    for (const geom::Path& r : roads) trial.add_obstacle(r);
+    trial.begin(seed);
+    int met = trial.extend(ahead(seed, std::atan2(mid.y - seed.y, mid.x - seed.x) * 180 / M_PI, reach));
+    geom::Path connector = trial.end();
+    if (met == kRoad && !connector.empty()) {
+      roads.push_back(std::move(connector));
+      return roads;
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
+  RoadNetwork net;
+  auto params = [&](ZoneType t) -> const ZoneParams& { return sketch.zone_params.at(t); };
+
+  // Regions: connected faces of zones roads grow in (and the water under them where the
+  // zone lets roads bridge it).
+  std::vector<int> group(zm.labels.size(), -1), kind(zm.labels.size(), kEdge);
+  for (std::size_t l = 0; l < zm.labels.size(); ++l) {
+    const FaceLabel& f = zm.labels[l];
+    ZoneType t = f.zone >= 0 ? sketch.zones[f.zone].type : ZoneType::Park;
+    bool growable = f.zone >= 0 && grows_roads(t);
+    if ((f.cover == Cover::Zone && growable) || (f.cover == Cover::Water && growable && params(t).bridges)) group[l] = 0;
+  }
+  std::vector<Work> level_work;
+  const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Roads));
+  for (geom::Cell& cell : zm.map.cells(group, kind)) {
+    std::uint64_t id = mix(stage, level_work.size());
+    Random rng(id);
+    level_work.push_back({std::move(cell), id, rng.uniform(0, 360), static_cast<int>(level_work.size()),
+                          ZoneType::Residential});
+  }
+  net.stats.regions = static_cast<int>(level_work.size());
+
+  struct Seed {
+    geom::Vec2 at;
+    int first_road;
+  };
+  std::vector<Seed> seeds;
+  for (int level = 0; !level_work.empty() && level < kMaxLevels; ++level) {
+    net.stats.levels = level + 1;
+    std::vector<Grown> grown(level_work.size());
+    std::vector<geom::Vec2> seed_points;
+    for (std::size_t i = 0; i < level_work.size(); ++i) {
+      grown[i].seed = level_work[i].cell.point_inside_near(level_work[i].cell.centroid());
+      if (grown[i].seed) seed_points.push_back(*grown[i].seed);
+    }
+    // The zone type at each seed, all found in one sweep.
+    std::vector<int> seed_labels = zm.map.labels_at(seed_points);
+    for (std::size_t i = 0, k = 0; i < level_work.size(); ++i) {
+      grown[i].type = level_work[i].type;
+      if (!grown[i].seed) continue;
+      int l = seed_labels[k++];
+      if (l >= 0 && zm.labels[l].zone >= 0 && grows_roads(sketch.zones[zm.labels[l].zone].type))
+        grown[i].type = sketch.zones[zm.labels[l].zone].type;
+    }
+
+    tbb::parallel_for(std::size_t(0), level_work.size(), [&](std::size_t i) {
+      const Work& w = level_work[i];
+      Grown& g = grown[i];
+      if (!g.seed) return;
+      const ZoneParams& p = params(g.type);
+      Random rng(mix(w.id, 1));
+      g.roads = grow_roads(w.cell, *g.seed, p, level, w.orientation, rng);
+      if (g.roads.empty()) {
+        g.without_access = level > 0;
+        return;
+      }
+      std::vector<geom::Cell> parts = geom::split_cell(w.cell, g.roads, kRoad);
+      if (parts.size() < 2) return;  // the roads did not divide it: stop here
+      for (std::size_t k = 0; k < parts.size(); ++k) {
+        if (parts[k].area() <= p.block_area) continue;
+        std::uint64_t id = mix(w.id, k + 2);
+        Random part_rng(id);
+        double jitter = p.jitter / (level + 1);
+        g.parts.push_back({std::move(parts[k]), id, w.orientation + part_rng.uniform(-jitter, jitter), w.region, g.type});
+      }
+    });
+
+    std::vector<Work> next;
+    for (std::size_t i = 0; i < grown.size(); ++i) {
+      Grown& g = grown[i];
+      net.stats.cells_without_access += g.without_access;
+      if (!g.roads.empty()) seeds.push_back({*g.seed, static_cast<int>(zm.roads.size())});
+      const ZoneParams& p = params(g.type);
+      for (geom::Path& road : g.roads) {
+        MapRoad r;
+        r.road_class = level == 0 ? RoadClass::Main : RoadClass::Local;
+        r.width = level == 0 ? p.main_width : p.local_width;
+        r.level = level;
+        r.region = level_work[i].region;
+        r.lines.push_back(std::move(road));
+        zm.roads.push_back(std::move(r));
+      }
+      for (Work& w : g.parts) next.push_back(std::move(w));
+    }
+    level_work = std::move(next);
+  }
+
+  // Every generated road into the map in one batch: centre line, area, and a disc where
+  // the roads of a seed meet.
+  int tag = 0;
+  for (const MapRoad& r : zm.roads) tag = std::max(tag, r.first_tag + static_cast<int>(r.lines.size()));
+  auto counter_of = [&](int road) { return zm.generated_base + road - zm.sketch_roads; };
+  for (int r = zm.sketch_roads; r < static_cast<int>(zm.roads.size()); ++r) {
+    MapRoad& road = zm.roads[r];
+    road.first_tag = tag;
+    zm.map.add_path(road.lines[0], tag++);
+    zm.map.add_path_stroke(road.lines[0], road.width / 2, counter_of(r));
+  }
+  for (const Seed& s : seeds) zm.map.add_disc(s.at, zm.roads[s.first_road].width / 2, counter_of(s.first_road));
+  zm.map.insert_batch();
+  zm.label(sketch);
+  net.map = std::move(zm);
+  return net;
+}
+
+}  // namespace exacity

@@ -1,0 +1,29 @@
+// Road growth (seed 000, 3.2.1) in exact vector form: from a seed point in each region,
+// roads grow step by step until they meet a road or the region's edge; they split the
+// region, and each part above its zone's block area is grown again, one level deeper.
+#pragma once
+
+#include "generate/sketch.h"
+#include "generate/zone_map.h"
+
+namespace exacity {
+
+struct RoadNetworkStats {
+  int regions = 0;
+  int levels = 0;
+  int cells_without_access = 0;  // cells left whole: none of their roads could reach a road
+};
+
+struct RoadNetwork {
+  ZoneMap map;  // the zone map with the grown roads' centre lines and areas, relabelled
+  RoadNetworkStats stats;
+};
+
+RoadNetwork grow_road_network(ZoneMap zones, const Sketch& sketch);
+
+// The zone types roads grow in.
+inline bool grows_roads(ZoneType t) {
+  return t == ZoneType::Residential || t == ZoneType::Commercial || t == ZoneType::Industrial;
+}
+
+}  // namespace exacity

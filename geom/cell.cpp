@@ -1,0 +1,264 @@
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <CGAL/Polygon_2_algorithms.h>
+
+#include "geom/cell_impl.h"
+#include "geom/grid.h"
+
+namespace geom {
+
+using exact::Kernel;
+using exact::Point;
+using exact::Segment;
+using exact::to_exact;
+
+Path Path::from(const Polyline& line) {
+  auto impl = std::make_shared<Impl>();
+  for (Vec2 p : line) impl->points.push_back(to_exact(p));
+  return Path(std::move(impl));
+}
+
+std::size_t Path::size() const { return impl_ ? impl_->points.size() : 0; }
+Vec2 Path::point(std::size_t i) const { return exact::to_plain(impl_->points[i]); }
+
+Polyline Path::to_plain() const {
+  Polyline line;
+  for (std::size_t i = 0; i < size(); ++i) line.push_back(point(i));
+  return line;
+}
+
+bool Path::is_straight() const {
+  const auto& p = impl_->points;
+  for (std::size_t i = 2; i < p.size(); ++i)
+    if (!CGAL::collinear(p[0], p[1], p[i])) return false;
+  return true;
+}
+
+Cell make_cell(KindRing outer, std::vector<KindRing> holes) {
+  auto impl = std::make_shared<Cell::Impl>();
+  exact::FT twice_area = 0;
+  Box b{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+        std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest()};
+  auto add = [&](const KindRing& r) {
+    for (std::size_t i = 0; i < r.points.size(); ++i) {
+      const Point &a = r.points[i], &c = r.points[(i + 1) % r.points.size()];
+      twice_area += a.x() * c.y() - a.y() * c.x();
+      Vec2 v = exact::to_plain(a);
+      b.min_x = std::min(b.min_x, v.x), b.max_x = std::max(b.max_x, v.x);
+      b.min_y = std::min(b.min_y, v.y), b.max_y = std::max(b.max_y, v.y);
+    }
+  };
+  add(outer);
+  for (const auto& h : holes) add(h);
+  impl->area = CGAL::to_double(twice_area) / 2;
+  impl->bounds = b;
+  impl->outer = std::move(outer);
+  impl->holes = std::move(holes);
+  return Cell(std::move(impl));
+}
+
+double Cell::area() const { return impl_->area; }
+Box Cell::bounds() const { return impl_->bounds; }
+
+Vec2 Cell::centroid() const {
+  // Of the outer ring's area, in doubles relative to its first vertex: a choice, not topology.
+  const auto& pts = impl_->outer.points;
+  Vec2 o = exact::to_plain(pts[0]);
+  double a = 0, cx = 0, cy = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    Vec2 p = exact::to_plain(pts[i]), q = exact::to_plain(pts[(i + 1) % pts.size()]);
+    p = {p.x - o.x, p.y - o.y}, q = {q.x - o.x, q.y - o.y};
+    double c = p.x * q.y - q.x * p.y;
+    a += c, cx += (p.x + q.x) * c, cy += (p.y + q.y) * c;
+  }
+  if (a == 0) return o;
+  return {o.x + cx / (3 * a), o.y + cy / (3 * a)};
+}
+
+bool Cell::contains(Vec2 v) const {
+  Point p = to_exact(v);
+  const auto& outer = impl_->outer.points;
+  if (CGAL::bounded_side_2(outer.begin(), outer.end(), p, Kernel()) != CGAL::ON_BOUNDED_SIDE) return false;
+  for (const auto& h : impl_->holes)
+    if (CGAL::bounded_side_2(h.points.begin(), h.points.end(), p, Kernel()) != CGAL::ON_UNBOUNDED_SIDE) return false;
+  return true;
+}
+
+std::optional<Vec2> Cell::point_inside_near(Vec2 wanted) const {
+  Vec2 s = snap(wanted);
+  if (contains(s)) return s;
+  // Boundary edges nearest to `wanted` first; step inwards (interior is on each edge's left).
+  struct Candidate {
+    double distance;
+    Vec2 foot, inward;
+  };
+  std::vector<Candidate> candidates;
+  auto visit = [&](const KindRing& r) {
+    for (std::size_t i = 0; i < r.points.size(); ++i) {
+      Vec2 a = exact::to_plain(r.points[i]), b = exact::to_plain(r.points[(i + 1) % r.points.size()]);
+      double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
+      if (len2 == 0) continue;
+      double t = std::clamp(((wanted.x - a.x) * dx + (wanted.y - a.y) * dy) / len2, 0.0, 1.0);
+      Vec2 foot{a.x + t * dx, a.y + t * dy};
+      double len = std::sqrt(len2);
+      candidates.push_back({std::hypot(foot.x - wanted.x, foot.y - wanted.y), foot, {-dy / len, dx / len}});
+    }
+  };
+  visit(impl_->outer);
+  for (const auto& h : impl_->holes) visit(h);
+  std::sort(candidates.begin(), candidates.end(),
+            [](const Candidate& a, const Candidate& b) { return a.distance < b.distance; });
+  double size = std::max(impl_->bounds.width(), impl_->bounds.height());
+  for (std::size_t k = 0; k < std::min<std::size_t>(candidates.size(), 16); ++k) {
+    for (double d = 1.0 / 64; d < size; d *= 2) {
+      Vec2 p = snap(Vec2{candidates[k].foot.x + candidates[k].inward.x * d, candidates[k].foot.y + candidates[k].inward.y * d});
+      if (contains(p)) return p;
+    }
+  }
+  return std::nullopt;
+}
+
+std::vector<std::pair<Vec2, Vec2>> Cell::edges_of_kind(int kind) const {
+  std::vector<std::pair<Vec2, Vec2>> edges;
+  auto visit = [&](const KindRing& r) {
+    for (std::size_t i = 0; i < r.points.size(); ++i)
+      if (r.kinds[i] == kind) edges.push_back({exact::to_plain(r.points[i]), exact::to_plain(r.points[(i + 1) % r.points.size()])});
+  };
+  visit(impl_->outer);
+  for (const auto& h : impl_->holes) visit(h);
+  return edges;
+}
+
+Polygon Cell::to_plain() const {
+  auto ring = [](const KindRing& r) {
+    Ring out;
+    for (const Point& p : r.points) out.push_back(exact::to_plain(p));
+    return out;
+  };
+  Polygon p{ring(impl_->outer), {}};
+  for (const auto& h : impl_->holes) p.holes.push_back(ring(h));
+  return p;
+}
+
+// --- Growth -------------------------------------------------------------------------
+
+struct Growth::Impl {
+  struct Obstacle {
+    Segment segment;
+    Box box;
+    int kind;
+  };
+  Box bounds;
+  double bucket = 1;
+  int nx = 1, ny = 1;
+  std::vector<std::vector<int>> buckets;  // obstacle indices per bucket
+  std::vector<Obstacle> obstacles;
+  std::vector<int> stamp;  // per obstacle: the query that last looked at it
+  int query = 0;
+  std::vector<Point> road;
+  bool ended = false;
+
+  static Box box_of(Vec2 a, Vec2 b) {
+    return {std::min(a.x, b.x), std::min(a.y, b.y), std::max(a.x, b.x), std::max(a.y, b.y)};
+  }
+
+  template <typename F>
+  void for_each_bucket(const Box& b, F&& f) const {
+    auto cx = [&](double x) { return std::clamp(static_cast<int>((x - bounds.min_x) / bucket), 0, nx - 1); };
+    auto cy = [&](double y) { return std::clamp(static_cast<int>((y - bounds.min_y) / bucket), 0, ny - 1); };
+    for (int j = cy(b.min_y); j <= cy(b.max_y); ++j)
+      for (int i = cx(b.min_x); i <= cx(b.max_x); ++i) f(j * nx + i);
+  }
+
+  void add(const Point& a, const Point& b, int kind) {
+    if (a == b) return;
+    Box box = box_of(exact::to_plain(a), exact::to_plain(b));
+    int id = static_cast<int>(obstacles.size());
+    obstacles.push_back({Segment(a, b), box, kind});
+    stamp.push_back(-1);
+    for_each_bucket(box, [&](int k) { buckets[k].push_back(id); });
+  }
+};
+
+Growth::Growth(const Cell& cell, double step) : impl_(std::make_unique<Impl>()) {
+  Impl& g = *impl_;
+  g.bounds = cell.bounds();
+  // Buckets about two steps wide, at most 256 a side.
+  double extent = std::max({g.bounds.width(), g.bounds.height(), 1e-3});
+  g.bucket = std::max(extent / 256, 2 * step);
+  g.nx = std::max(1, static_cast<int>(std::ceil(g.bounds.width() / g.bucket)) + 1);
+  g.ny = std::max(1, static_cast<int>(std::ceil(g.bounds.height() / g.bucket)) + 1);
+  g.buckets.resize(static_cast<std::size_t>(g.nx) * g.ny);
+  auto add_ring = [&](const KindRing& r) {
+    for (std::size_t i = 0; i < r.points.size(); ++i) g.add(r.points[i], r.points[(i + 1) % r.points.size()], r.kinds[i]);
+  };
+  add_ring(cell.exact().outer);
+  for (const auto& h : cell.exact().holes) add_ring(h);
+}
+
+Growth::~Growth() = default;
+
+void Growth::begin(Vec2 start) {
+  impl_->road = {to_exact(start)};
+  impl_->ended = false;
+}
+
+int Growth::extend(Vec2 next) {
+  Impl& g = *impl_;
+  if (g.ended) return kFree;
+  const Point p = g.road.back(), q = to_exact(next);
+  if (p == q) return kFree;
+  const Segment step(p, q);
+  ++g.query;
+  std::optional<Point> best;
+  int best_kind = kFree;
+  g.for_each_bucket(Impl::box_of(exact::to_plain(p), next), [&](int k) {
+    for (int id : g.buckets[k]) {
+      if (g.stamp[id] == g.query) continue;
+      g.stamp[id] = g.query;
+      const Impl::Obstacle& o = g.obstacles[id];
+      if (!CGAL::do_intersect(step, o.segment)) continue;
+      auto meet = CGAL::intersection(step, o.segment);
+      Point at;
+      if (const Point* x = boost::get<Point>(&*meet)) {
+        if (*x == p) continue;  // where this step starts: the road's own previous vertex
+        at = *x;
+      } else {
+        const Segment& overlap = boost::get<Segment>(*meet);
+        at = CGAL::compare_distance_to_point(p, overlap.source(), overlap.target()) == CGAL::SMALLER
+                 ? overlap.source() : overlap.target();
+      }
+      if (!best || CGAL::compare_distance_to_point(p, at, *best) == CGAL::SMALLER ||
+          (at == *best && o.kind > best_kind)) {
+        best = at;
+        best_kind = o.kind;
+      }
+    }
+  });
+  const Point stop = best ? *best : q;
+  if (stop != p) {
+    g.add(p, stop, kOwnRoad);
+    g.road.push_back(stop);
+  }
+  if (best) g.ended = true;
+  return best ? best_kind : kFree;
+}
+
+void Growth::add_obstacle(const Path& road) {
+  const auto& p = road.exact().points;
+  for (std::size_t i = 0; i + 1 < p.size(); ++i) impl_->add(p[i], p[i + 1], kOwnRoad);
+}
+
+Path Growth::end() {
+  Impl& g = *impl_;
+  g.ended = true;
+  if (g.road.size() < 2) return Path();
+  auto impl = std::make_shared<Path::Impl>();
+  impl->points = std::move(g.road);
+  g.road.clear();
+  return Path(std::move(impl));
+}
+
+}  // namespace geom

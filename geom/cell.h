@@ -1,0 +1,90 @@
+// Exact cells for road growth: a cell is a polygon with holes whose boundary vertices are
+// exact (grid points or meetings of grid lines) and whose edges carry a kind chosen by the
+// caller (say, "road" or "zone edge"); a path is a road centre line with exact vertices.
+// Roads grow inside a cell step by step; a step that meets the cell's boundary or an
+// earlier road ends exactly where it first meets it.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "geom/plain.h"
+
+namespace geom {
+
+class Path {
+ public:
+  struct Impl;
+  Path() = default;
+  explicit Path(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
+  static Path from(const Polyline& line);  // the doubles as exact points
+
+  std::size_t size() const;
+  bool empty() const { return size() < 2; }
+  Vec2 point(std::size_t i) const;  // rounded to doubles
+  Polyline to_plain() const;
+  // Every vertex exactly on the line through the first two.
+  bool is_straight() const;
+  const Impl& exact() const { return *impl_; }
+
+ private:
+  std::shared_ptr<const Impl> impl_;
+};
+
+class Cell {
+ public:
+  struct Impl;
+  Cell() = default;
+  explicit Cell(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
+
+  double area() const;  // the exact area, rounded
+  Box bounds() const;
+  Vec2 centroid() const;
+  // Strictly inside, decided exactly.
+  bool contains(Vec2 p) const;
+  // A grid point strictly inside: `wanted` rounded to the grid when that is inside,
+  // otherwise a point just inside the boundary near where it passes closest to `wanted`.
+  std::optional<Vec2> point_inside_near(Vec2 wanted) const;
+  // Boundary edges of the given kind, rounded.
+  std::vector<std::pair<Vec2, Vec2>> edges_of_kind(int kind) const;
+  Polygon to_plain() const;
+  const Impl& exact() const { return *impl_; }
+
+ private:
+  std::shared_ptr<const Impl> impl_;
+};
+
+// Roads growing inside one cell.
+class Growth {
+ public:
+  static constexpr int kFree = -2;     // the step met nothing
+  static constexpr int kOwnRoad = -1;  // the step met a road grown here
+
+  // `step` is the usual step length, to size the search index.
+  Growth(const Cell& cell, double step);
+  ~Growth();
+  Growth(const Growth&) = delete;
+  Growth& operator=(const Growth&) = delete;
+
+  // Starts a road at a grid point strictly inside the cell.
+  void begin(Vec2 start);
+  // Extends the road towards the grid point `next`. Returns kFree when the segment met
+  // nothing; otherwise the road now ends at the first point the segment met, and the
+  // result is the kind of what it met (a boundary kind, or kOwnRoad).
+  int extend(Vec2 next);
+  // The road begun last (empty when it has no length); later roads stop where they meet it.
+  Path end();
+  // A road grown before, which later roads stop at.
+  void add_obstacle(const Path& road);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// The cell cut by roads that run inside it from boundary to boundary or to each other:
+// the parts, their new edges of kind `road_kind`.
+std::vector<Cell> split_cell(const Cell& cell, const std::vector<Path>& roads, int road_kind);
+
+}  // namespace geom
