@@ -157,6 +157,7 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
       Grown& g = grown[i];
       if (!g.seed) return;
       const ZoneParams& p = params(g.type);
+      if (w.cell.area() <= p.block_area) return;  // small enough to be one block
       Random rng(mix(w.id, 1));
       g.roads = grow_roads(w.cell, *g.seed, p, level, w.orientation, rng);
       if (g.roads.empty()) {

@@ -21,9 +21,4 @@ struct RoadNetwork {
 
 RoadNetwork grow_road_network(ZoneMap zones, const Sketch& sketch);
 
-// The zone types roads grow in.
-inline bool grows_roads(ZoneType t) {
-  return t == ZoneType::Residential || t == ZoneType::Commercial || t == ZoneType::Industrial;
-}
-
 }  // namespace exacity

@@ -162,23 +162,27 @@ void check_tiling(Checker& c, const Sketch& sketch, const std::vector<PolygonRef
   });
 }
 
-// Segments in buckets, to find those near a point.
+// Segments in buckets, each with an owner, to find those near a point.
 class SegmentIndex {
  public:
   explicit SegmentIndex(double bucket) : bucket_(bucket) {}
-  void add(geom::Vec2 a, geom::Vec2 b) {
+  void add(geom::Vec2 a, geom::Vec2 b, int owner = -1) {
     std::size_t id = segments_.size();
     segments_.push_back({a, b});
+    owners_.push_back(owner);
     for (long j = key(std::min(a.y, b.y)); j <= key(std::max(a.y, b.y)); ++j)
       for (long i = key(std::min(a.x, b.x)); i <= key(std::max(a.x, b.x)); ++i) buckets_[{i, j}].push_back(id);
   }
-  void add_ring(const geom::Ring& r) {
-    for (std::size_t i = 0; i < r.size(); ++i) add(r[i], r[(i + 1) % r.size()]);
+  void add_polygon(const geom::Polygon& p, int owner = -1) {
+    for (const geom::Ring* r : rings(p))
+      for (std::size_t i = 0; i < r->size(); ++i) add((*r)[i], (*r)[(i + 1) % r->size()], owner);
   }
-  bool near(geom::Vec2 p, double tolerance) const {
+  // Whether a segment not owned by `except` passes within `tolerance` of p.
+  bool near(geom::Vec2 p, double tolerance, int except = -2) const {
     auto it = buckets_.find({key(p.x), key(p.y)});
     if (it == buckets_.end()) return false;
     for (std::size_t id : it->second) {
+      if (owners_[id] == except) continue;
       auto [a, b] = segments_[id];
       double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
       double t = len2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0) : 0;
@@ -192,8 +196,14 @@ class SegmentIndex {
   struct PairHash {
     std::size_t operator()(const std::pair<long, long>& k) const { return std::hash<long>()(k.first * 1000003 ^ k.second); }
   };
+  static std::vector<const geom::Ring*> rings(const geom::Polygon& p) {
+    std::vector<const geom::Ring*> r{&p.outer};
+    for (const auto& h : p.holes) r.push_back(&h);
+    return r;
+  }
   double bucket_;
   std::vector<std::pair<geom::Vec2, geom::Vec2>> segments_;
+  std::vector<int> owners_;
   std::unordered_map<std::pair<long, long>, std::vector<std::size_t>, PairHash> buckets_;
 };
 
@@ -211,29 +221,19 @@ void check_roads(Checker& c, const Sketch& sketch, const Layer& roads, const Lay
     pieces[r].push_back(&f);
     for (auto p : f.line) roads_at[p].push_back(r);
   }
+  // The region's edge: drawn zone rings, water, and road areas (each owned by its road).
   SegmentIndex edges(16.0);
   for (const auto& z : sketch.zones)
-    for (const auto& p : z.polygons) {
-      edges.add_ring(p.outer);
-      for (const auto& h : p.holes) edges.add_ring(h);
-    }
-  for (const auto& f : water.features) edges.add_ring(f.polygon.outer);
-  std::map<int, std::vector<const geom::Polygon*>> areas;  // road -> its areas
-  for (const auto& f : road_areas.features) areas[f.properties.value("road", -1)].push_back(&f.polygon);
+    for (const auto& p : z.polygons) edges.add_polygon(p);
+  for (const auto& f : water.features) edges.add_polygon(f.polygon);
+  for (const auto& f : road_areas.features) edges.add_polygon(f.polygon, f.properties.value("road", -1));
 
   for (const auto& [r, list] : pieces) {
     if (list.front()->properties["level"].is_null()) continue;  // drawn in the sketch
-    SegmentIndex others(16.0);
-    for (const auto& [o, polys] : areas)
-      if (o != r)
-        for (const auto* p : polys) {
-          others.add_ring(p->outer);
-          for (const auto& h : p->holes) others.add_ring(h);
-        }
     for (geom::Vec2 end : {list.front()->line.front(), list.back()->line.back()}) {
       bool on_road = false;
       for (int o : roads_at[end]) on_road |= o != r;
-      if (!on_road && !edges.near(end, kRounding) && !others.near(end, kRounding))
+      if (!on_road && !edges.near(end, kRounding, r))
         c.problem("roads.geojson: road " + std::to_string(r) + " ends in the open" + near(end));
     }
   }

@@ -48,6 +48,7 @@ CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, c
     add_polygon(out.blocks, {{"zone", name(b.zone)}, {"green", b.green}, {"roads", b.roads}}, b.polygon);
 
   // Centre lines with every junction as a vertex, cut where they go on or off a bridge.
+  auto pieces_of = zm.map.polyline_pieces();
   for (int r = 0; r < roads; ++r) {
     const MapRoad& road = zm.roads[r];
     for (int k = 0; k < static_cast<int>(road.lines.size()); ++k) {
@@ -61,7 +62,7 @@ CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, c
         out.roads.features.push_back({std::move(props), {}, std::move(run)});
         run.clear();
       };
-      for (const geom::PolylinePiece& piece : zm.map.polyline_pieces(road.first_tag + k)) {
+      for (const geom::PolylinePiece& piece : pieces_of[road.first_tag + k]) {
         bool bridge = zm.labels[piece.left_label].cover == Cover::Water &&
                       zm.labels[piece.right_label].cover == Cover::Water;
         if (!run.empty() && (bridge != run_bridge || !(run.back() == piece.from))) flush();

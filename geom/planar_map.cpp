@@ -410,33 +410,36 @@ std::vector<Cell> split_cell(const Cell& cell, const std::vector<Path>& roads, i
   return parts;
 }
 
-std::vector<PolylinePiece> PlanarMap::polyline_pieces(int tag) const {
-  auto found = impl_->polylines.find(tag);
-  if (found == impl_->polylines.end()) return {};
-  const std::vector<Point>& pts = found->second;
+std::map<int, std::vector<PolylinePiece>> PlanarMap::polyline_pieces() const {
   struct Item {
     int segment;
-    Halfedge h;
+    Halfedge h;  // running the polyline's way
   };
-  std::vector<Item> items;
+  std::map<int, std::vector<Item>> items;
   for (auto e = impl_->arr.edges_begin(); e != impl_->arr.edges_end(); ++e) {
     for (const CurveTag& t : e->curve().data()) {
-      if (t.counter != tag || t.sign != 0) continue;
+      auto line = impl_->polylines.find(t.counter);
+      if (t.sign != 0 || line == impl_->polylines.end()) continue;
+      const std::vector<Point>& pts = line->second;
       bool segment_left_to_right = CGAL::compare_xy(pts[t.aux], pts[t.aux + 1]) == CGAL::SMALLER;
       bool edge_left_to_right = e->direction() == CGAL::ARR_LEFT_TO_RIGHT;
-      items.push_back({t.aux, segment_left_to_right == edge_left_to_right ? Halfedge(e) : Halfedge(e->twin())});
+      items[t.counter].push_back({t.aux, segment_left_to_right == edge_left_to_right ? Halfedge(e) : Halfedge(e->twin())});
     }
   }
-  std::sort(items.begin(), items.end(), [&](const Item& a, const Item& b) {
-    if (a.segment != b.segment) return a.segment < b.segment;
-    return CGAL::compare_distance_to_point(pts[a.segment], a.h->source()->point(), b.h->source()->point()) ==
-           CGAL::SMALLER;
-  });
-  std::vector<PolylinePiece> pieces;
-  for (const Item& it : items)
-    pieces.push_back({it.segment, to_plain(it.h->source()->point()), to_plain(it.h->target()->point()),
-                      it.h->face()->data(), it.h->twin()->face()->data()});
-  return pieces;
+  std::map<int, std::vector<PolylinePiece>> result;
+  for (auto& [tag, list] : items) {
+    const std::vector<Point>& pts = impl_->polylines.at(tag);
+    std::sort(list.begin(), list.end(), [&](const Item& a, const Item& b) {
+      if (a.segment != b.segment) return a.segment < b.segment;
+      return CGAL::compare_distance_to_point(pts[a.segment], a.h->source()->point(), b.h->source()->point()) ==
+             CGAL::SMALLER;
+    });
+    std::vector<PolylinePiece>& pieces = result[tag];
+    for (const Item& it : list)
+      pieces.push_back({it.segment, to_plain(it.h->source()->point()), to_plain(it.h->target()->point()),
+                        it.h->face()->data(), it.h->twin()->face()->data()});
+  }
+  return result;
 }
 
 std::vector<int> PlanarMap::labels_at(const std::vector<Vec2>& points) const {

@@ -88,8 +88,8 @@ class PlanarMap {
   // edge's kind is kind_of_label[label of the face across it].
   std::vector<Cell> cells(const std::vector<int>& group_of_label, const std::vector<int>& kind_of_label) const;
 
-  // The pieces of polyline `tag`, in order along it.
-  std::vector<PolylinePiece> polyline_pieces(int tag) const;
+  // The pieces of every polyline, in order along each: result[tag].
+  std::map<int, std::vector<PolylinePiece>> polyline_pieces() const;
 
   // Calls f with the tags of every edge and its end points.
   void for_each_edge(const std::function<void(const std::vector<CurveTag>&, Vec2, Vec2)>& f) const;

@@ -128,7 +128,7 @@ TEST(PlanarMap, PolylinePiecesComeInOrderWithTheirSides) {
   map.add_polyline({{10, 0}, {0, 0}}, 3);  // right to left through both squares
   map.insert_batch();
   map.label_faces([](const Windings& w) { return geom::winding_of(w, 0) ? 1 : 0; });
-  auto pieces = map.polyline_pieces(3);
+  auto pieces = map.polyline_pieces()[3];
   ASSERT_EQ(pieces.size(), 5u);
   double xs[] = {10, 8, 6, 4, 2, 0};
   for (std::size_t i = 0; i < pieces.size(); ++i) {

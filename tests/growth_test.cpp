@@ -1,0 +1,137 @@
+// Exact road growth in cells: where a growing road stops, and how roads split a cell.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "geom/cell.h"
+#include "geom/planar_map.h"
+#include "tests/test_util.h"
+
+using geom::Cell;
+using geom::Growth;
+using geom::Vec2;
+
+namespace {
+
+constexpr int kEdge = 0, kRoad = 1;
+
+// The faces of a ring as one cell, its edges of kind kEdge.
+Cell cell_of(const geom::Ring& ring) {
+  geom::PlanarMap map;
+  map.add_ring(ring, 0);
+  map.insert_batch();
+  map.label_faces([](const geom::Windings& w) { return geom::winding_of(w, 0) != 0 ? 1 : 0; });
+  auto cells = map.cells({-1, 0}, {kEdge, kEdge});
+  EXPECT_EQ(cells.size(), 1u);
+  return cells.at(0);
+}
+
+const geom::Ring kSquare{{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+
+}  // namespace
+
+TEST(Growth, StopsExactlyAtTheEdgeItMeets) {
+  Growth g(cell_of(kSquare), 1);
+  g.begin({5, 5});
+  EXPECT_EQ(g.extend({7, 6}), Growth::kFree);
+  EXPECT_EQ(g.extend({13, 7.5}), kEdge);
+  geom::Path road = g.end();
+  ASSERT_EQ(road.size(), 3u);
+  EXPECT_EQ(road.point(2), (Vec2{10, 6.75}));  // on x = 10, on the line through (7,6) and (13,7.5)
+}
+
+TEST(Growth, ReachingAnEdgeExactlyAtAVertex) {
+  Growth g(cell_of(kSquare), 1);
+  g.begin({5, 5});
+  EXPECT_EQ(g.extend({20, 20}), kEdge);
+  geom::Path road = g.end();
+  EXPECT_EQ(road.point(1), (Vec2{10, 10}));
+}
+
+TEST(Growth, RunningOntoAnEdgeStopsWhereTheyFirstTouch) {
+  // An L: from inside, a road along y = 5 reaches the reflex corner (5, 5) and would run on
+  // along the edge (5,5)-(10,5).
+  Growth g(cell_of({{0, 0}, {10, 0}, {10, 5}, {5, 5}, {5, 10}, {0, 10}}), 1);
+  g.begin({1, 5});
+  EXPECT_EQ(g.extend({20, 5}), kEdge);
+  geom::Path road = g.end();
+  ASSERT_EQ(road.size(), 2u);
+  EXPECT_EQ(road.point(1), (Vec2{5, 5}));
+}
+
+TEST(Growth, LaterRoadsStopAtEarlierOnesAndAtTheirJunctions) {
+  Growth g(cell_of(kSquare), 1);
+  g.begin({5, 5});
+  g.extend({50, 5});
+  geom::Path east = g.end();
+  g.begin({5, 5});
+  g.extend({5, 50});
+  geom::Path north = g.end();
+  // Through the junction (5, 5) itself.
+  g.begin({2, 2});
+  EXPECT_EQ(g.extend({8, 8}), Growth::kOwnRoad);
+  EXPECT_EQ(g.end().point(1), (Vec2{5, 5}));
+  // Onto a road, running along it: stops where it first touches it.
+  g.begin({1, 5});
+  EXPECT_EQ(g.extend({9, 5}), Growth::kOwnRoad);
+  EXPECT_EQ(g.end().point(1), (Vec2{5, 5}));
+  // Its own earlier segment stops it too.
+  g.begin({8, 2});
+  EXPECT_EQ(g.extend({9, 3}), Growth::kFree);
+  EXPECT_EQ(g.extend({7, 3}), Growth::kFree);
+  EXPECT_EQ(g.extend({9, 1.5}), Growth::kOwnRoad);
+  EXPECT_EQ(east.point(1), (Vec2{10, 5}));
+  EXPECT_EQ(north.point(1), (Vec2{5, 10}));
+}
+
+TEST(Growth, SplitCellGivesExactPartsWithRoadEdges) {
+  Cell square = cell_of(kSquare);
+  Growth g(square, 1);
+  std::vector<geom::Path> roads;
+  for (Vec2 far : {Vec2{50, 5}, Vec2{5, 50}, Vec2{-50, 5}, Vec2{5, -50}}) {
+    g.begin({5, 5});
+    g.extend(far);
+    roads.push_back(g.end());
+  }
+  auto parts = geom::split_cell(square, roads, kRoad);
+  ASSERT_EQ(parts.size(), 4u);
+  for (const Cell& c : parts) {
+    EXPECT_EQ(c.area(), 25);
+    EXPECT_EQ(c.edges_of_kind(kRoad).size(), 2u);
+    EXPECT_EQ(c.edges_of_kind(kEdge).size(), 2u);
+  }
+  // A part of a part: a road across it, both ways from inside, splits it exactly again.
+  Growth again(parts[0], 1);
+  Vec2 inside = *parts[0].point_inside_near(parts[0].centroid());
+  std::vector<geom::Path> across;
+  for (double dx : {100.0, -100.0}) {
+    again.begin(inside);
+    again.extend({inside.x + dx, inside.y + dx / 100});
+    across.push_back(again.end());
+  }
+  auto quarter = geom::split_cell(parts[0], across, kRoad);
+  ASSERT_EQ(quarter.size(), 2u);
+  EXPECT_EQ(quarter[0].area() + quarter[1].area(), 25);
+}
+
+TEST(Growth, PointInsideNearFindsTheInsideOfANonConvexCell) {
+  // A C shape whose centroid falls in the gap.
+  Cell c = cell_of({{0, 0}, {10, 0}, {10, 2}, {2, 2}, {2, 8}, {10, 8}, {10, 10}, {0, 10}});
+  Vec2 centre = c.centroid();
+  EXPECT_FALSE(c.contains(centre));
+  auto p = c.point_inside_near(centre);
+  ASSERT_TRUE(p.has_value());
+  EXPECT_TRUE(c.contains(*p));
+  EXPECT_LT(std::hypot(p->x - centre.x, p->y - centre.y), 4);
+}
+
+TEST(Growth, StraightPathsAreExactlyStraight) {
+  Growth g(cell_of(kSquare), 1);
+  g.begin({0.1, 0.3});
+  g.extend({1000.7, 300.9});
+  EXPECT_TRUE(g.end().is_straight());
+  g.begin({3, 3});
+  g.extend({4, 4});
+  g.extend({5, 4});
+  EXPECT_FALSE(g.end().is_straight());
+}
