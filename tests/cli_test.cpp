@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -93,28 +94,77 @@ TEST(Cli, EveryExampleGeneratesAndValidates) {
   }
 }
 
-TEST(Cli, SameSketchGivesByteIdenticalOutputs) {
+TEST(Cli, SameSketchGivesByteIdenticalOutputsWhateverTheThreadCount) {
   fs::path base = testing_util::temp_dir("cli-determinism");
   for (const fs::path& sketch : examples()) {
-    ASSERT_EQ(run("generate " + sketch.string() + " -o " + (base / "a").string() + " -q").code, 0);
-    ASSERT_EQ(run("generate " + sketch.string() + " -o " + (base / "b").string() + " -q").code, 0);
+    ASSERT_EQ(run("generate " + sketch.string() + " -o " + (base / "a").string() + " -q --threads 1").code, 0);
+    ASSERT_EQ(run("generate " + sketch.string() + " -o " + (base / "b").string() + " -q --threads 2").code, 0);
     auto a = outputs(base / "a"), b = outputs(base / "b");
     ASSERT_EQ(a.size(), b.size());
     for (const auto& [name, text] : a) EXPECT_TRUE(text == b[name]) << sketch << ": " << name << " differs";
   }
 }
 
-TEST(Cli, ValidateCatchesATamperedOutput) {
-  fs::path out = testing_util::temp_dir("cli-tamper") / "out";
-  ASSERT_EQ(run("generate " + (kSource / "examples" / "town.geojson").string() + " -o " + out.string() + " -q").code, 0);
-  // Move one vertex of the first zone: it now overlaps its neighbour or leaves a gap.
-  auto zones = nlohmann::json::parse(read(out / "vector" / "zones.geojson"));
-  auto& ring = zones["features"][0]["geometry"]["coordinates"][0];
-  ring[1][0] = ring[1][0].get<double>() + 3.0;
-  std::ofstream(out / "vector" / "zones.geojson") << zones.dump();
-  Result v = run("validate " + out.string());
+// Generates the town, lets `tamper` edit one layer, and returns what validate says.
+Result validate_tampered(const std::string& name, const std::string& layer,
+                         const std::function<void(nlohmann::json&)>& tamper) {
+  fs::path out = testing_util::temp_dir("cli-tamper-" + name) / "out";
+  EXPECT_EQ(run("generate " + (kSource / "examples" / "town.geojson").string() + " -o " + out.string() + " -q").code, 0);
+  fs::path file = out / "vector" / (layer + ".geojson");
+  auto doc = nlohmann::json::parse(read(file));
+  tamper(doc);
+  std::ofstream(file) << doc.dump();
+  return run("validate " + out.string());
+}
+
+TEST(Cli, ValidateCatchesAMovedZoneVertex) {
+  Result v = validate_tampered("zone", "zones", [](nlohmann::json& doc) {
+    auto& ring = doc["features"][0]["geometry"]["coordinates"][0];
+    ring[1][0] = ring[1][0].get<double>() + 3.0;  // now it overlaps a neighbour or leaves a gap
+  });
   EXPECT_EQ(v.code, 1) << v.out;
   EXPECT_NE(v.out.find("problem:"), std::string::npos) << v.out;
+}
+
+TEST(Cli, ValidateCatchesAMissingBlock) {
+  Result v = validate_tampered("block", "blocks", [](nlohmann::json& doc) { doc["features"].erase(0); });
+  EXPECT_EQ(v.code, 1) << v.out;
+  EXPECT_NE(v.out.find("holds no block"), std::string::npos) << v.out;
+}
+
+TEST(Cli, ValidateCatchesARoadEndingInTheOpen) {
+  Result v = validate_tampered("end", "roads", [](nlohmann::json& doc) {
+    for (auto& f : doc["features"])
+      if (!f["properties"]["level"].is_null()) {
+        auto& first = f["geometry"]["coordinates"][0];
+        first[0] = first[0].get<double>() + 0.5;
+        first[1] = first[1].get<double>() + 0.25;
+        break;
+      }
+  });
+  EXPECT_EQ(v.code, 1) << v.out;
+  EXPECT_NE(v.out.find("ends in the open"), std::string::npos) << v.out;
+}
+
+TEST(Cli, ValidateCatchesADisconnectedRegion) {
+  Result v = validate_tampered("region", "roads", [](nlohmann::json& doc) {
+    // Say the last grown road belongs to the first region, far from it.
+    int first_region = -1;
+    for (auto& f : doc["features"])
+      if (!f["properties"]["region"].is_null()) {
+        first_region = f["properties"]["region"];
+        break;
+      }
+    int moved = -1;
+    for (auto it = doc["features"].rbegin(); it != doc["features"].rend(); ++it) {
+      auto& p = (*it)["properties"];
+      if (p["region"].is_null() || p["region"] == first_region) continue;
+      if (moved < 0) moved = p["road"];
+      if (p["road"] == moved) p["region"] = first_region;
+    }
+  });
+  EXPECT_EQ(v.code, 1) << v.out;
+  EXPECT_NE(v.out.find("are not connected"), std::string::npos) << v.out;
 }
 
 TEST(Cli, BadInputExitsTwoWithOneLineAndNoOutput) {
