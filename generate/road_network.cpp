@@ -184,7 +184,7 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
       for (geom::Path& road : g.roads) {
         MapRoad r;
         r.road_class = level == 0 ? RoadClass::Main : RoadClass::Local;
-        r.width = level == 0 ? p.main_width : p.local_width;
+        r.width = road_width(p, level);
         r.level = level;
         r.region = level_work[i].region;
         r.lines.push_back(std::move(road));

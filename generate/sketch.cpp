@@ -25,6 +25,10 @@ ZoneParams default_params(ZoneType type) {
   return p;
 }
 
+double road_width(const ZoneParams& p, int level) {
+  return p.road_widths[std::min<std::size_t>(level, p.road_widths.size() - 1)];
+}
+
 double default_width(RoadClass road_class) {
   switch (road_class) {
     case RoadClass::Highway: return 24;
@@ -262,7 +266,7 @@ class Parser {
 
   ZoneParams zone_params(const json& j, ZoneType zt, const std::string& w) const {
     known_keys(j, w, {"block_area", "segment_length", "branches", "jitter", "segment_deviation",
-                      "origin_deviation", "main_width", "local_width", "min_block_area", "min_block_width",
+                      "origin_deviation", "road_widths", "min_block_area", "min_block_width",
                       "bridges"});
     ZoneParams p = default_params(zt);
     auto set = [&](const char* key, double& field, double min, double max) {
@@ -276,8 +280,13 @@ class Parser {
     set("jitter", p.jitter, 0, 180);
     set("segment_deviation", p.segment_deviation, 0, 90);
     set("origin_deviation", p.origin_deviation, 0, 80);  // below 90, so every road makes progress
-    set("main_width", p.main_width, 0.5, 200);
-    set("local_width", p.local_width, 0.5, 200);
+    if (j.contains("road_widths")) {
+      const json& widths = j["road_widths"];
+      if (!widths.is_array() || widths.empty()) fail(w + ".road_widths", "give a list of widths in metres, one per level");
+      p.road_widths.clear();
+      for (std::size_t i = 0; i < widths.size(); ++i)
+        p.road_widths.push_back(number(widths[i], w + ".road_widths[" + std::to_string(i) + "]", 0.5, 200));
+    }
     set("min_block_area", p.min_block_area, 0, 1e9);
     set("min_block_width", p.min_block_width, 0, 1e4);
     if (j.contains("bridges")) {

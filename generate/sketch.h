@@ -24,8 +24,7 @@ struct ZoneParams {
   double jitter = 15;               // degrees: level-n orientation jitter is ±jitter/n
   double segment_deviation = 8;     // degrees: Δsegm at level 0, falling by 2 per level
   double origin_deviation = 30;     // degrees: Δorig
-  double main_width = 12;           // m
-  double local_width = 8;           // m
+  std::vector<double> road_widths{12, 8};  // m: at level n, road_widths[min(n, last)]
   double min_block_area = 200;      // m²: smaller blocks become green space
   double min_block_width = 6;       // m: so do thinner ones (2 x area / perimeter)
   bool bridges = false;             // roads cross heightmap water in this zone, or stop at the shore
@@ -62,6 +61,7 @@ struct Sketch {
 };
 
 ZoneParams default_params(ZoneType type);
+double road_width(const ZoneParams& p, int level);
 double default_width(RoadClass road_class);
 
 // Throws UserError with one line naming the file, the feature and the fix.

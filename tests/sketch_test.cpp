@@ -100,13 +100,17 @@ TEST(SketchParse, DegenerateButLegalInput) {
       kSquare + "," + kSquare + "," +
       R"({"type": "Feature", "properties": {"zone": "commercial", "name": "x"}, "geometry": {"type": "Polygon", "coordinates": [[[0,0],[0,0],[5,0],[10,0],[10,10]]]}},
          {"type": "Feature", "properties": {"road": "highway"}, "geometry": {"type": "LineString", "coordinates": [[-5,0],[-5,0],[15,0]]}})",
-      R"({"seed": 42, "zones": {"commercial": {"branches": 6}}})");
+      R"({"seed": 42, "zones": {"commercial": {"branches": 6, "road_widths": [14, 9, 6]}}})");
   Sketch s = parse_sketch(text, "city.geojson");
   EXPECT_EQ(s.seed, 42u);
   ASSERT_EQ(s.zones.size(), 3u);
   EXPECT_EQ(s.zones[2].polygons[0].outer.size(), 4u);  // the repeated point dropped
   EXPECT_EQ(s.zones[2].type, ZoneType::Commercial);
   EXPECT_EQ(s.zone_params.at(ZoneType::Commercial).branches, 6);
+  EXPECT_EQ(road_width(s.zone_params.at(ZoneType::Commercial), 0), 14);
+  EXPECT_EQ(road_width(s.zone_params.at(ZoneType::Commercial), 2), 6);
+  EXPECT_EQ(road_width(s.zone_params.at(ZoneType::Commercial), 7), 6);
+  EXPECT_EQ(road_width(s.zone_params.at(ZoneType::Residential), 3), 8);
   ASSERT_EQ(s.roads.size(), 1u);
   EXPECT_EQ(s.roads[0].width, 24);  // a highway's default width
   EXPECT_EQ(s.roads[0].lines[0].size(), 2u);
