@@ -29,7 +29,7 @@ struct Work {
 
 // What growing one cell gave.
 struct Grown {
-  std::optional<geom::Vec2> seed;
+  std::optional<geom::Vec2> seed;  // where its roads start
   ZoneType type = ZoneType::Residential;
   std::vector<geom::Path> roads;
   std::vector<Work> parts;  // to grow at the next level
@@ -42,17 +42,12 @@ geom::Vec2 ahead(geom::Vec2 p, double degrees, double distance) {
   return geom::snap(geom::Vec2{p.x + distance * std::cos(t), p.y + distance * std::sin(t)});
 }
 
-// Grows `branches` roads from the seed; at levels below the top, at least one must reach a
-// road or the cell is left without roads.
-std::vector<geom::Path> grow_roads(const geom::Cell& cell, geom::Vec2 seed, const ZoneParams& p, int level,
-                                   double orientation, Random& rng) {
+// Grows `branches` roads from the seed. Returns whether one reached a road of the region
+// (always true at the top level, where there are none yet).
+bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const ZoneParams& p, int level, double orientation,
+                   double reach, Random& rng, std::vector<geom::Path>& roads) {
   const double segment_deviation = std::max(p.segment_deviation - 2.0 * level, 0.0);
-  const geom::Box b = cell.bounds();
-  const double reach = 2 * std::hypot(b.width(), b.height()) + 1;  // past the cell from anywhere in it
   const int max_steps = static_cast<int>(reach / (p.segment_length * std::cos(p.origin_deviation * M_PI / 180))) + 2;
-
-  geom::Growth growth(cell, p.segment_length);
-  std::vector<geom::Path> roads;
   bool reached_road = level == 0;
   for (int i = 0; i < p.branches; ++i) {
     const double alpha = orientation + 360.0 * i / p.branches;
@@ -80,28 +75,50 @@ std::vector<geom::Path> grow_roads(const geom::Cell& cell, geom::Vec2 seed, cons
     reached_road |= met == kRoad;
     roads.push_back(std::move(road));
   }
-  if (reached_road) return roads;
+  return reached_road;
+}
 
-  // Connect the seed straight to the nearest road edges of the cell, one try each.
-  auto targets = cell.edges_of_kind(kRoad);
-  auto distance = [&](const std::pair<geom::Vec2, geom::Vec2>& e) {
-    return std::hypot((e.first.x + e.second.x) / 2 - seed.x, (e.first.y + e.second.y) / 2 - seed.y);
-  };
-  std::stable_sort(targets.begin(), targets.end(), [&](const auto& a, const auto& c) { return distance(a) < distance(c); });
-  for (std::size_t k = 0; k < std::min<std::size_t>(targets.size(), kConnectorTries); ++k) {
-    geom::Vec2 mid{(targets[k].first.x + targets[k].second.x) / 2, (targets[k].first.y + targets[k].second.y) / 2};
-    if (mid == seed) continue;
-    geom::Growth trial(cell, p.segment_length);
-    for (const geom::Path& r : roads) trial.add_obstacle(r);
-    trial.begin(seed);
-    int met = trial.extend(ahead(seed, std::atan2(mid.y - seed.y, mid.x - seed.x) * 180 / M_PI, reach));
-    geom::Path connector = trial.end();
-    if (met == kRoad && !connector.empty()) {
-      roads.push_back(std::move(connector));
-      return roads;
-    }
+struct CellRoads {
+  geom::Vec2 seed;
+  std::vector<geom::Path> roads;
+};
+
+// The roads of one cell, grown from its seed. Below the top level they must reach a road
+// of the region; when none does (a concave cell can hide its roads from the seed), they
+// are grown again from just inside one of its road edges, the first branch heading
+// straight back to it. Empty when that fails too.
+CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const ZoneParams& p, int level, double orientation,
+                    Random& rng) {
+  const geom::Box b = cell.bounds();
+  const double reach = 2 * std::hypot(b.width(), b.height()) + 1;  // past the cell from anywhere in it
+  {
+    geom::Growth growth(cell, p.segment_length);
+    CellRoads grown{seed, {}};
+    if (grow_branches(growth, seed, p, level, orientation, reach, rng, grown.roads)) return grown;
   }
-  return {};
+  auto edges = cell.edges_of_kind(kRoad);
+  auto mid = [](const std::pair<geom::Vec2, geom::Vec2>& e) {
+    return geom::Vec2{(e.first.x + e.second.x) / 2, (e.first.y + e.second.y) / 2};
+  };
+  auto length = [](const std::pair<geom::Vec2, geom::Vec2>& e) {
+    return std::hypot(e.second.x - e.first.x, e.second.y - e.first.y);
+  };
+  std::stable_sort(edges.begin(), edges.end(), [&](const auto& x, const auto& y) { return length(x) > length(y); });
+  for (std::size_t k = 0; k < std::min<std::size_t>(edges.size(), kConnectorTries); ++k) {
+    const auto& [a, c] = edges[k];
+    double len = length(edges[k]);
+    if (len == 0) continue;
+    geom::Vec2 m = mid(edges[k]), inward{-(c.y - a.y) / len, (c.x - a.x) / len};  // the cell is on the left
+    // Half a block deep: the side branches then run one block behind this road.
+    double d = std::sqrt(p.block_area) / 2;
+    auto start = cell.point_inside_near({m.x + inward.x * d, m.y + inward.y * d});
+    if (!start) continue;
+    geom::Growth growth(cell, p.segment_length);
+    CellRoads grown{*start, {}};
+    double back = std::atan2(m.y - start->y, m.x - start->x) * 180 / M_PI;
+    if (grow_branches(growth, *start, p, level, back, reach, rng, grown.roads)) return grown;
+  }
+  return {seed, {}};
 }
 
 }  // namespace
@@ -159,7 +176,9 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
       const ZoneParams& p = params(g.type);
       if (w.cell.area() <= p.block_area) return;  // small enough to be one block
       Random rng(mix(w.id, 1));
-      g.roads = grow_roads(w.cell, *g.seed, p, level, w.orientation, rng);
+      CellRoads grown = grow_cell(w.cell, *g.seed, p, level, w.orientation, rng);
+      g.seed = grown.seed;
+      g.roads = std::move(grown.roads);
       if (g.roads.empty()) {
         g.without_access = level > 0;
         return;
@@ -167,7 +186,8 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
       std::vector<geom::Cell> parts = geom::split_cell(w.cell, g.roads, kRoad);
       if (parts.size() < 2) return;  // the roads did not divide it: stop here
       for (std::size_t k = 0; k < parts.size(); ++k) {
-        if (parts[k].area() <= p.block_area) continue;
+        // Small enough, or hardly smaller than the cell (the roads only shaved it): done.
+        if (parts[k].area() <= p.block_area || parts[k].area() > 0.95 * w.cell.area()) continue;
         std::uint64_t id = mix(w.id, k + 2);
         Random part_rng(id);
         double jitter = p.jitter / (level + 1);
