@@ -36,33 +36,32 @@ double area(const geom::Polygon& p) {
 }  // namespace
 
 std::vector<Block> cut_blocks(const ZoneMap& zm, const Sketch& sketch) {
-  const int types = static_cast<int>(ZoneType::Water);
-  std::vector<int> group(zm.labels.size(), -1);
+  std::vector<int> group(zm.labels.size(), -1), road_across(zm.labels.size(), -1);
   for (std::size_t l = 0; l < zm.labels.size(); ++l) {
     const FaceLabel& f = zm.labels[l];
     if (f.cover == Cover::Zone && grows_roads(sketch.zones[f.zone].type))
       group[l] = static_cast<int>(sketch.zones[f.zone].type);
+    if (f.road >= 0 && (f.cover == Cover::Road || f.bridge)) road_across[l] = f.road;
   }
   std::vector<Block> blocks;
-  auto parts = zm.map.dissolve(group, types);
-  for (int t = 0; t < types; ++t) {
-    const ZoneParams& p = sketch.zone_params.at(static_cast<ZoneType>(t));
-    for (geom::Dissolved& d : parts[t]) {
-      Block b;
-      b.zone = static_cast<ZoneType>(t);
-      double a = area(d.polygon);
-      if (a < p.min_block_area || 2 * a / perimeter(d.polygon) < p.min_block_width) {
-        b.green = true;
-        b.zone = ZoneType::Park;
-      }
-      for (int l : d.neighbour_labels)
-        if (l >= 0 && zm.labels[l].road >= 0 && (zm.labels[l].cover == Cover::Road || zm.labels[l].bridge))
-          b.roads.push_back(zm.labels[l].road);
-      std::sort(b.roads.begin(), b.roads.end());
-      b.roads.erase(std::unique(b.roads.begin(), b.roads.end()), b.roads.end());
-      b.polygon = std::move(d.polygon);
-      blocks.push_back(std::move(b));
+  std::vector<int> types;
+  std::vector<geom::Cell> cells = zm.map.cells(group, road_across, &types);
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    geom::Cell& cell = cells[i];
+    Block b;
+    b.polygon = cell.to_plain();
+    if (b.polygon.outer.empty()) continue;
+    b.zone = static_cast<ZoneType>(types[i]);
+    const ZoneParams& p = sketch.zone_params.at(b.zone);
+    double a = area(b.polygon);
+    if (a < p.min_block_area || 2 * a / perimeter(b.polygon) < p.min_block_width) {
+      b.green = true;
+      b.zone = ZoneType::Park;
     }
+    for (int k : cell.edge_kinds())
+      if (k >= 0) b.roads.push_back(k);
+    b.cell = std::move(cell);
+    blocks.push_back(std::move(b));
   }
   return blocks;
 }

@@ -13,7 +13,8 @@ namespace exacity {
 struct Block {
   ZoneType zone = ZoneType::Residential;  // the drawn zone's type; Park for green space
   bool green = false;
-  geom::Polygon polygon;
+  geom::Cell cell;         // exact; an edge's kind is the index of the road across it, or -1
+  geom::Polygon polygon;   // rounded
   std::vector<int> roads;  // indices into ZoneMap::roads of the roads it fronts
 };
 

@@ -132,14 +132,29 @@ std::vector<std::pair<Vec2, Vec2>> Cell::edges_of_kind(int kind) const {
 }
 
 Polygon Cell::to_plain() const {
-  auto ring = [](const KindRing& r) {
-    Ring out;
-    for (const Point& p : r.points) out.push_back(exact::to_plain(p));
-    return out;
-  };
-  Polygon p{ring(impl_->outer), {}};
-  for (const auto& h : impl_->holes) p.holes.push_back(ring(h));
+  Polygon p{exact::round_ring(impl_->outer.points), {}};
+  if (p.outer.empty()) return p;
+  for (const auto& h : impl_->holes) {
+    Ring r = exact::round_ring(h.points);
+    if (!r.empty()) p.holes.push_back(std::move(r));
+  }
   return p;
+}
+
+std::vector<Vec2> Cell::corners() const {
+  const auto& pts = impl_->outer.points;
+  std::vector<Vec2> corners;
+  for (std::size_t i = 0, n = pts.size(); i < n; ++i)
+    if (!CGAL::collinear(pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n])) corners.push_back(exact::to_plain(pts[i]));
+  return corners;
+}
+
+std::vector<int> Cell::edge_kinds() const {
+  std::vector<int> kinds = impl_->outer.kinds;
+  for (const auto& h : impl_->holes) kinds.insert(kinds.end(), h.kinds.begin(), h.kinds.end());
+  std::sort(kinds.begin(), kinds.end());
+  kinds.erase(std::unique(kinds.begin(), kinds.end()), kinds.end());
+  return kinds;
 }
 
 // --- Growth -------------------------------------------------------------------------

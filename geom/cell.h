@@ -46,8 +46,13 @@ class Cell {
   // A grid point strictly inside: `wanted` rounded to the grid when that is inside,
   // otherwise a point just inside the boundary near where it passes closest to `wanted`.
   std::optional<Vec2> point_inside_near(Vec2 wanted) const;
+  // The outer ring's vertices but those exactly in line with their neighbours, rounded.
+  std::vector<Vec2> corners() const;
+  // The kinds of the boundary's edges, each once, sorted.
+  std::vector<int> edge_kinds() const;
   // Boundary edges of the given kind, rounded.
   std::vector<std::pair<Vec2, Vec2>> edges_of_kind(int kind) const;
+  // Rounded as exact::round_ring does; an empty outer ring when it collapses.
   Polygon to_plain() const;
   const Impl& exact() const { return *impl_; }
 

@@ -24,6 +24,12 @@ inline Vec2 to_plain(const Point& p) {
 // A ring of exact points (not closed: the last point is not repeated).
 using ExactRing = std::vector<Point>;
 
+// The ring with its vertices rounded to doubles. Exact vertices closer than the rounding
+// step can land on one double: repeats and the zero-width spikes they leave are dropped.
+// Rings that share exact vertices drop them alike, so written polygons still meet edge to
+// edge. Empty when the ring collapses.
+Ring round_ring(const std::vector<Point>& points);
+
 // Pieces whose union is the stroke of a polyline (see PlanarMap::add_stroke), each a
 // counter-clockwise simple ring.
 std::vector<ExactRing> stroke_pieces(const Polyline& line, double half_width);

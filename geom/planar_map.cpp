@@ -225,27 +225,7 @@ void trace_components(const Arrangement& arr, GroupOf group_of, Emit emit) {
   }
 }
 
-// The loop with its vertices rounded to doubles. Exact vertices closer than the
-// rounding step can land on one double: repeats and the zero-width spikes they leave
-// are dropped. Neighbouring faces share those vertices and drop them alike, so the
-// written polygons still meet edge to edge. Empty when the loop collapses.
-Ring plain_ring(const std::vector<Halfedge>& loop) {
-  Ring r;
-  r.reserve(loop.size());
-  for (const Halfedge& h : loop) {
-    Vec2 v = to_plain(h->source()->point());
-    while (r.size() >= 2 && r[r.size() - 2] == v) r.pop_back();  // spike a, b, a
-    if (r.empty() || !(r.back() == v)) r.push_back(v);
-  }
-  for (bool changed = true; changed && r.size() >= 3;) {  // the same across the seam
-    changed = false;
-    if (r.front() == r.back()) r.pop_back(), changed = true;
-    else if (r[r.size() - 2] == r.front()) r.pop_back(), changed = true;
-    else if (r[1] == r.back()) r.erase(r.begin()), changed = true;
-  }
-  if (r.size() < 3) r.clear();
-  return r;
-}
+Ring plain_ring(const std::vector<Halfedge>& loop) { return exact::round_ring(loop_points(loop)); }
 
 // Cells from traced polygons; kind_of(h) gives the kind of boundary halfedge h.
 template <typename KindOf>
@@ -324,6 +304,11 @@ void PlanarMap::add_polyline(const Polyline& line, int tag) {
   impl_->add_polyline(std::move(pts), tag);
 }
 
+void PlanarMap::add_cell(const Cell& cell, int counter) {
+  impl_->add_exact_ring(cell.exact().outer.points, counter);
+  for (const KindRing& h : cell.exact().holes) impl_->add_exact_ring(h.points, counter);
+}
+
 void PlanarMap::add_path(const Path& path, int tag) { impl_->add_polyline(path.exact().points, tag); }
 
 void PlanarMap::add_path_stroke(const Path& path, double half_width, int counter) {
@@ -357,15 +342,17 @@ std::vector<std::vector<Dissolved>> PlanarMap::dissolve(const std::vector<int>& 
   return result;
 }
 
-std::vector<Cell> PlanarMap::cells(const std::vector<int>& group_of_label, const std::vector<int>& kind_of_label) const {
+std::vector<Cell> PlanarMap::cells(const std::vector<int>& group_of_label, const std::vector<int>& kind_of_label,
+                                   std::vector<int>* groups) const {
   std::vector<Cell> cells;
   auto kind_of = [&](Halfedge h) {
     int l = h->twin()->face()->data();
     return l >= 0 && l < static_cast<int>(kind_of_label.size()) ? kind_of_label[l] : 0;
   };
   trace_components(impl_->arr, impl_->group_function(group_of_label),
-                   [&](int, const std::vector<LoopPolygon>& polygons, const std::vector<int>&) {
+                   [&](int g, const std::vector<LoopPolygon>& polygons, const std::vector<int>&) {
                      add_cells(polygons, kind_of, cells);
+                     if (groups) groups->resize(cells.size(), g);
                    });
   return cells;
 }

@@ -62,6 +62,8 @@ class PlanarMap {
   // A stroke of `half_width` around the polyline: flat ends, mitred joints (bevelled
   // past a mitre limit of 4), built by the grid-line rule; all pieces wind around `counter`.
   void add_stroke(const Polyline& line, double half_width, int counter);
+  // The rings of a cell (holes wind the other way), around `counter`.
+  void add_cell(const Cell& cell, int counter);
   // The joint a stroke would have at q on a path a -> q -> b, for two strokes that meet
   // end to end; and a 16-gon around a disc, for where several meet.
   void add_joint(Vec2 a, Vec2 q, Vec2 b, double half_width, int counter);
@@ -86,7 +88,9 @@ class PlanarMap {
 
   // Components of faces with group >= 0 as exact cells, in face order: each boundary
   // edge's kind is kind_of_label[label of the face across it].
-  std::vector<Cell> cells(const std::vector<int>& group_of_label, const std::vector<int>& kind_of_label) const;
+  // When `groups` is given, it receives each cell's group.
+  std::vector<Cell> cells(const std::vector<int>& group_of_label, const std::vector<int>& kind_of_label,
+                          std::vector<int>* groups = nullptr) const;
 
   // The pieces of every polyline, in order along each: result[tag].
   std::map<int, std::vector<PolylinePiece>> polyline_pieces() const;

@@ -53,6 +53,24 @@ ExactRing joint_piece(Vec2 a, Vec2 q, Vec2 b, double hw) {
   return counter_clockwise({pq, r0, r1});  // bevel
 }
 
+Ring round_ring(const std::vector<Point>& points) {
+  Ring r;
+  r.reserve(points.size());
+  for (const Point& p : points) {
+    Vec2 v = to_plain(p);
+    while (r.size() >= 2 && r[r.size() - 2] == v) r.pop_back();  // spike a, b, a
+    if (r.empty() || !(r.back() == v)) r.push_back(v);
+  }
+  for (bool changed = true; changed && r.size() >= 3;) {  // the same across the seam
+    changed = false;
+    if (r.front() == r.back()) r.pop_back(), changed = true;
+    else if (r[r.size() - 2] == r.front()) r.pop_back(), changed = true;
+    else if (r[1] == r.back()) r.erase(r.begin()), changed = true;
+  }
+  if (r.size() < 3) r.clear();
+  return r;
+}
+
 ExactRing disc_piece(Vec2 c, double r) {
   // Circumscribed, so the disc of radius r lies inside it.
   constexpr int kSides = 16;
