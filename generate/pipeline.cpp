@@ -6,6 +6,7 @@
 
 #include "generate/blocks.h"
 #include "generate/errors.h"
+#include "generate/lots.h"
 #include "generate/road_network.h"
 #include "generate/svg_map.h"
 #include "generate/terrain.h"
@@ -47,7 +48,7 @@ class Stages {
 }  // namespace
 
 GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const ProgressFn& progress) {
-  Stages stages(progress, 7);
+  Stages stages(progress, 8);
   std::optional<Terrain> terrain = stages.run("terrain", [&]() -> std::optional<Terrain> {
     if (!sketch.terrain) return std::nullopt;
     return Terrain::load(*sketch.terrain);
@@ -55,11 +56,16 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
   ZoneMap zone_map = stages.run("zone map", [&] { return build_zone_map(sketch, terrain ? &*terrain : nullptr); });
   RoadNetwork network = stages.run("road network", [&] { return grow_road_network(std::move(zone_map), sketch); });
   std::vector<Block> blocks = stages.run("blocks", [&] { return cut_blocks(network.map, sketch); });
-  CityLayers layers = stages.run("vector layers", [&] { return extract_layers(network.map, blocks, sketch); });
+  std::vector<Lot> lots = stages.run("lots", [&] {
+    std::vector<Lot> planned = plan_lots(blocks, sketch);
+    insert_lots(network.map, blocks, planned, sketch);
+    return planned;
+  });
+  CityLayers layers = stages.run("vector layers", [&] { return extract_layers(network.map, blocks, lots, sketch); });
   stages.run("export", [&] {
     fs::create_directories(dir / "vector");
     fs::copy_file(sketch.path, dir / "sketch.geojson");
-    for (const Layer* l : {&layers.zones, &layers.water, &layers.roads, &layers.road_areas, &layers.blocks})
+    for (const Layer* l : {&layers.zones, &layers.water, &layers.roads, &layers.road_areas, &layers.blocks, &layers.lots})
       write_geojson(*l, sketch.crs, dir / "vector" / (l->name + ".geojson"));
     write_svg_map(layers, dir / "map.svg");
   });
@@ -91,6 +97,7 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
         {"road_areas", layers.road_areas.features.size()},
         {"blocks", blocks.size() - green},
         {"green_spaces", green},
+        {"lots", layers.lots.features.size()},
         {"map", {{"vertices", counts.vertices}, {"edges", counts.edges}, {"faces", counts.faces}}}}},
       {"road_network",
        {{"regions", network.stats.regions},

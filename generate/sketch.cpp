@@ -21,6 +21,7 @@ ZoneParams default_params(ZoneType type) {
     p.segment_deviation = 0;
     p.origin_deviation = 0;
     p.block_area = type == ZoneType::Commercial ? 15000 : 30000;
+    p.lot_area = type == ZoneType::Commercial ? 1500 : 3000;
   }
   return p;
 }
@@ -267,7 +268,7 @@ class Parser {
   ZoneParams zone_params(const json& j, ZoneType zt, const std::string& w) const {
     known_keys(j, w, {"block_area", "segment_length", "branches", "jitter", "segment_deviation",
                       "origin_deviation", "road_widths", "min_block_area", "min_block_width",
-                      "bridges"});
+                      "bridges", "lots", "lot_area", "min_lot_edge", "min_lot_area"});
     ZoneParams p = default_params(zt);
     auto set = [&](const char* key, double& field, double min, double max) {
       if (j.contains(key)) field = number(j[key], w + "." + key, min, max);
@@ -289,6 +290,14 @@ class Parser {
     }
     set("min_block_area", p.min_block_area, 0, 1e9);
     set("min_block_width", p.min_block_width, 0, 1e4);
+    set("lot_area", p.lot_area, 10, 1e8);
+    set("min_lot_edge", p.min_lot_edge, 0, 1e4);
+    set("min_lot_area", p.min_lot_area, 0, 1e8);
+    if (j.contains("lots")) {
+      if (!j["lots"].is_string() || (j["lots"] != "allocation" && j["lots"] != "split"))
+        fail(w + ".lots", "expected \"allocation\" (seed 000) or \"split\" (seed 003)");
+      p.lots = j["lots"].get<std::string>();
+    }
     if (j.contains("bridges")) {
       if (!j["bridges"].is_boolean()) fail(w + ".bridges", "expected true or false");
       p.bridges = j["bridges"].get<bool>();

@@ -28,6 +28,12 @@ struct ZoneParams {
   double min_block_area = 200;      // m²: smaller blocks become green space
   double min_block_width = 6;       // m: so do thinner ones (2 x area / perimeter)
   bool bridges = false;             // roads cross heightmap water in this zone, or stop at the shore
+  // Lots: "allocation" (seed 000: corner and inside lots, one inset lot, or four quarters)
+  // or "split" (seed 003: halve perpendicular to the longest edge down to lot_area).
+  std::string lots = "allocation";
+  double lot_area = 600;            // m²: split stops below this
+  double min_lot_edge = 3;          // m: allocated lots with a shorter edge are dropped
+  double min_lot_area = 20;         // m²: smaller pieces of lots are dropped
 };
 
 struct TerrainSpec {

@@ -51,6 +51,7 @@ void write_legend(std::ostream& out, const CityLayers& layers, double w, double 
         break;
       }
   if (!layers.water.features.empty()) keys.emplace_back("water", "#5b9bd5");
+  if (!layers.lots.features.empty()) keys.emplace_back("lot", "#f7ecdc");
   if (!layers.road_areas.features.empty()) keys.emplace_back("road", "#6b6b6b");
   for (const auto& f : layers.road_areas.features)
     if (f.properties.value("bridge", false)) {
@@ -107,6 +108,10 @@ void write_svg_map(const CityLayers& layers, const std::filesystem::path& file) 
     auto it = kZoneColours.find(f.properties.value("zone", ""));
     return it == kZoneColours.end() ? "#dddddd" : it->second;
   });
+  out << "<g class=\"lots\" fill=\"#fbf3e6\" fill-opacity=\"0.55\" stroke=\"#8a6d4b\" stroke-width=\""
+      << format_number(stroke * 0.5) << "\">\n";
+  for (const auto& f : layers.lots.features) out << "<path fill-rule=\"evenodd\" d=\"" << path_data(f.polygon, b) << "\"/>\n";
+  out << "</g>\n";
   polygons(layers.water, "water", [](const VectorFeature&) { return "#5b9bd5"; });
   polygons(layers.road_areas, "road_areas",
            [](const VectorFeature& f) { return f.properties.value("bridge", false) ? "#3a3a3a" : "#6b6b6b"; });

@@ -7,6 +7,7 @@
 #include "generate/drawn_zones.h"
 #include "generate/errors.h"
 #include "generate/geojson.h"
+#include "geom/measure.h"
 #include "geom/planar_map.h"
 #include "geom/polygon_check.h"
 
@@ -24,13 +25,16 @@ constexpr std::size_t kMaxProblems = 20;
 // other check is exact without tolerance.
 constexpr double kRounding = 1e-6;
 
-enum class Kind { Zone, Park, Water, Road, Bridge, Block };
+enum class Kind { Zone, Park, Water, Road, Bridge, Block, Lot };
 
 struct PolygonRef {
   Kind kind;
   std::string name;  // "zones.geojson features[3]"
-  std::string zone;  // for zones and blocks
+  std::string zone;  // for zones, blocks and lots
   bool green = false;
+  int id = -1;       // the feature's id
+  int block = -1;    // for lots: the block it names
+  bool frontage = false;  // for lots: must touch a road area
 };
 
 std::string near(geom::Vec2 p) { return " near (" + format_number(p.x) + ", " + format_number(p.y) + ")"; }
@@ -60,9 +64,11 @@ void check_polygons(Checker& c, const Layer& layer, std::vector<PolygonRef>& ref
     Kind kind = layer.name == "zones"   ? (zone == "park" ? Kind::Park : Kind::Zone)
                 : layer.name == "water" ? Kind::Water
                 : layer.name == "blocks" ? Kind::Block
+                : layer.name == "lots"   ? Kind::Lot
                 : f.properties.value("bridge", false) ? Kind::Bridge
                                                       : Kind::Road;
-    refs.push_back({kind, name, zone, f.properties.value("green", false)});
+    refs.push_back({kind, name, zone, f.properties.value("green", false), f.properties.value("id", -1),
+                    f.properties.value("block", -1), f.properties.value("frontage", false)});
     polygons.push_back(&f.polygon);
   }
 }
@@ -123,6 +129,12 @@ void check_tiling(Checker& c, const Sketch& sketch, const std::vector<PolygonRef
     if (count({Kind::Bridge}) == 1 && count({Kind::Water}) == 0) return wrong("a bridge lies outside the water");
     if (count({Kind::Zone}) != count({Kind::Block}))
       return wrong((count({Kind::Zone}) ? names({Kind::Zone}) + " holds no block" : names({Kind::Block}) + " lies outside the zones"));
+    if (count({Kind::Lot}) > 1) return wrong(names({Kind::Lot}) + " overlap");
+    if (count({Kind::Lot}) == 1) {
+      const PolygonRef& lot = refs[here[Kind::Lot][0]];
+      if (count({Kind::Block}) == 0 || refs[here[Kind::Block][0]].id != lot.block)
+        return wrong(lot.name + " leaves its block " + std::to_string(lot.block));
+    }
     if (count({Kind::Block}) == 1) {
       const PolygonRef &b = refs[here[Kind::Block][0]], &z = refs[here[Kind::Zone][0]];
       if (!b.green && b.zone != z.zone) return wrong(b.name + " says \"" + b.zone + "\" inside " + z.name + " (\"" + z.zone + "\")");
@@ -153,13 +165,23 @@ void check_tiling(Checker& c, const Sketch& sketch, const std::vector<PolygonRef
     c.problem(messages[m] + (map.point_near_label(static_cast<int>(m), at) ? near(at) : ""));
   }
 
-  // Two rings of one polygon may touch at a vertex but not run along each other.
+  // Two rings of one polygon may touch at a vertex but not run along each other. A lot
+  // that needs frontage shares an edge with a road area.
+  std::vector<bool> fronts(P, false);
   map.for_each_edge([&](const std::vector<geom::CurveTag>& tags, geom::Vec2 a, geom::Vec2) {
-    for (std::size_t i = 0; i < tags.size(); ++i)
+    bool road = false;
+    for (const auto& t : tags)
+      if (t.counter < 2 * P && (refs[t.counter / 2].kind == Kind::Road || refs[t.counter / 2].kind == Kind::Bridge)) road = true;
+    for (std::size_t i = 0; i < tags.size(); ++i) {
+      if (tags[i].counter >= 2 * P) continue;
+      if (road) fronts[tags[i].counter / 2] = true;
       for (std::size_t j = i + 1; j < tags.size(); ++j)
-        if (tags[i].counter < 2 * P && tags[j].counter < 2 * P && tags[i].counter / 2 == tags[j].counter / 2)
+        if (tags[j].counter < 2 * P && tags[i].counter / 2 == tags[j].counter / 2)
           c.problem(refs[tags[i].counter / 2].name + ": two of its rings share an edge" + near(a));
+    }
   });
+  for (int p = 0; p < P; ++p)
+    if (refs[p].kind == Kind::Lot && refs[p].frontage && !fronts[p]) c.problem(refs[p].name + " needs road frontage and has none");
 }
 
 // Segments in buckets, each with an owner, to find those near a point.
@@ -283,12 +305,17 @@ Validation validate_output(const fs::path& dir) {
   std::vector<std::string> read_problems;
   auto read = [&](const char* name) { return read_geojson(dir / "vector" / (std::string(name) + ".geojson"), read_problems); };
   Layer zones = read("zones"), water = read("water"), road_areas = read("road_areas"), blocks = read("blocks"),
-        roads = read("roads");
+        lots = read("lots"), roads = read("roads");
   for (auto& p : read_problems) c.problem(p);
 
   std::vector<PolygonRef> refs;
   std::vector<const geom::Polygon*> polygons;
-  for (const Layer* l : {&zones, &water, &road_areas, &blocks}) check_polygons(c, *l, refs, polygons);
+  for (const Layer* l : {&zones, &water, &road_areas, &blocks, &lots}) check_polygons(c, *l, refs, polygons);
+  for (const auto& f : lots.features) {
+    auto zt = parse_zone_type(f.properties.value("zone", ""));
+    if (zt && geom::area(f.polygon) < sketch.zone_params.at(*zt).min_lot_area)
+      c.problem("lots.geojson: lot " + std::to_string(f.properties.value("id", -1)) + " is under its zone's min_lot_area");
+  }
   v.features["roads"] = static_cast<int>(roads.features.size());
   for (std::size_t i = 0; i < roads.features.size(); ++i) {
     const VectorFeature& f = roads.features[i];

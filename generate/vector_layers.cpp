@@ -1,5 +1,7 @@
 #include "generate/vector_layers.h"
 
+#include "geom/measure.h"
+
 namespace exacity {
 namespace {
 
@@ -26,7 +28,8 @@ ordered_json or_null(int v) { return v >= 0 ? ordered_json(v) : ordered_json(nul
 
 }  // namespace
 
-CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, const Sketch& sketch) {
+CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
+                          const Sketch& sketch) {
   CityLayers out;
   const int zone_types = static_cast<int>(ZoneType::Water);  // water has its own layer
   dissolve(zm, zone_types,
@@ -44,8 +47,26 @@ CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, c
              add_polygon(out.road_areas, {{"road", g / 2}, {"bridge", g % 2 == 1}}, std::move(p));
            });
 
-  for (const Block& b : blocks)
-    add_polygon(out.blocks, {{"zone", name(b.zone)}, {"green", b.green}, {"roads", b.roads}}, b.polygon);
+  // Blocks from the final map, so they share every vertex with the other layers (lots add
+  // vertices on block edges); before lots are in the map, from the blocks themselves.
+  auto block_properties = [&](const Block& b) {
+    return ordered_json{{"zone", name(b.zone)}, {"green", b.green}, {"roads", b.roads}};
+  };
+  if (zm.block_base >= 0) {
+    dissolve(zm, static_cast<int>(blocks.size()), [](const FaceLabel& l) { return l.block; },
+             [&](int g, geom::Polygon p) { add_polygon(out.blocks, block_properties(blocks[g]), std::move(p)); });
+  } else {
+    for (const Block& b : blocks) add_polygon(out.blocks, block_properties(b), b.polygon);
+  }
+
+  // Lots: each piece of a lot left on its block, but pieces under the zone's minimum.
+  dissolve(zm, static_cast<int>(lots.size()), [](const FaceLabel& l) { return l.lot; },
+           [&](int g, geom::Polygon p) {
+             const Lot& lot = lots[g];
+             if (geom::area(p) < sketch.zone_params.at(lot.zone).min_lot_area) return;
+             add_polygon(out.lots, {{"lot", g}, {"block", lot.block}, {"zone", name(lot.zone)}, {"frontage", lot.frontage}},
+                         std::move(p));
+           });
 
   // Centre lines with every junction as a vertex, cut where they go on or off a bridge.
   auto pieces_of = zm.map.polyline_pieces();

@@ -3,6 +3,7 @@
 
 #include "generate/blocks.h"
 #include "generate/geojson.h"
+#include "generate/lots.h"
 #include "generate/sketch.h"
 #include "generate/zone_map.h"
 
@@ -11,9 +12,10 @@ namespace exacity {
 struct CityLayers {
   Layer zones{"zones", false, {}}, water{"water", false, {}};
   Layer roads{"roads", true, {}}, road_areas{"road_areas", false, {}};
-  Layer blocks{"blocks", false, {}};
+  Layer blocks{"blocks", false, {}}, lots{"lots", false, {}};
 };
 
-CityLayers extract_layers(const ZoneMap& zone_map, const std::vector<Block>& blocks, const Sketch& sketch);
+CityLayers extract_layers(const ZoneMap& zone_map, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
+                          const Sketch& sketch);
 
 }  // namespace exacity

@@ -65,6 +65,16 @@ void ZoneMap::label(const Sketch& sketch) {
         break;
       }
     }
+    if (block_base >= 0 && !water && l.road < 0) {
+      // Lots lie in their own block only: where one would cross a road it stops there.
+      for (auto [counter, winding] : w) {
+        if (counter >= block_base && counter < lot_base && l.block < 0) l.block = counter - block_base;
+        if (counter >= lot_base && l.block >= 0 && lot_block[counter - lot_base] == l.block) {
+          l.lot = counter - lot_base;
+          break;
+        }
+      }
+    }
     if (water) {
       l.cover = Cover::Water;
       l.bridge = l.road >= 0;

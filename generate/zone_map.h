@@ -23,6 +23,8 @@ struct FaceLabel {
   int zone = -1;        // index into Sketch::zones of the drawn zone on top, -1 if none
   int road = -1;        // index into ZoneMap::roads of the road whose surface this is, -1 if none
   bool bridge = false;  // a road surface over water
+  int block = -1;       // index of the block it lies in, once blocks are in the map
+  int lot = -1;         // index of the lot it lies in, once lots are in the map
   friend auto operator<=>(const FaceLabel&, const FaceLabel&) = default;
 };
 
@@ -52,6 +54,10 @@ struct ZoneMap {
   // generated roads from generated_base on.
   std::shared_ptr<DrawnZones> drawn;
   int generated_base = 0;
+  // Then, once the lots stage has run, block b winds around block_base + b and lot l
+  // around lot_base + l.
+  int block_base = -1, lot_base = -1;
+  std::vector<int> lot_block;  // per lot: its block
 
   int road_of_counter(int counter) const;
   // (Re)labels every face from its windings.

@@ -143,10 +143,10 @@ Polygon Cell::to_plain() const {
 
 std::vector<Vec2> Cell::corners() const {
   const auto& pts = impl_->outer.points;
-  std::vector<Vec2> corners;
+  std::vector<Point> corners;
   for (std::size_t i = 0, n = pts.size(); i < n; ++i)
-    if (!CGAL::collinear(pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n])) corners.push_back(exact::to_plain(pts[i]));
-  return corners;
+    if (!CGAL::collinear(pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n])) corners.push_back(pts[i]);
+  return exact::round_ring(corners);  // corners closer than a double apart become one
 }
 
 std::vector<int> Cell::edge_kinds() const {

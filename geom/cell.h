@@ -46,7 +46,8 @@ class Cell {
   // A grid point strictly inside: `wanted` rounded to the grid when that is inside,
   // otherwise a point just inside the boundary near where it passes closest to `wanted`.
   std::optional<Vec2> point_inside_near(Vec2 wanted) const;
-  // The outer ring's vertices but those exactly in line with their neighbours, rounded.
+  // The outer ring's vertices but those exactly in line with their neighbours, rounded
+  // (corners that round to one double become one; empty when fewer than 3 are left).
   std::vector<Vec2> corners() const;
   // The kinds of the boundary's edges, each once, sorted.
   std::vector<int> edge_kinds() const;

@@ -13,7 +13,10 @@ using Point = Kernel::Point_2;
 using Segment = Kernel::Segment_2;
 using Line = Kernel::Line_2;
 
-inline Point to_exact(Vec2 p) { return Point(p.x, p.y); }
+inline Point to_exact(Vec2 p) {
+  CGAL_assertion(std::isfinite(p.x) && std::isfinite(p.y));
+  return Point(p.x, p.y);
+}
 
 // Rounds the exact value, so the result does not depend on how far the lazy kernel
 // happened to evaluate it.

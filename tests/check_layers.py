@@ -14,7 +14,7 @@ import warnings
 from fractions import Fraction as F
 from pathlib import Path
 
-from shapely.geometry import LineString, Polygon
+from shapely.geometry import LineString, Polygon, shape
 from shapely.strtree import STRtree
 
 warnings.filterwarnings("ignore", message="STRtree will be changed")  # shapely 1.8 on Debian 12
@@ -36,7 +36,7 @@ def signed_area(ring):
 def main(out):
     problems = []
     polygons = []  # (name, kind, shapely polygon)
-    for layer in ("zones", "water", "road_areas", "blocks"):
+    for layer in ("zones", "water", "road_areas", "blocks", "lots"):
         for i, f in enumerate(load(out / "vector" / f"{layer}.geojson")):
             name = f"{layer}[{i}]"
             g = f["geometry"]
@@ -63,8 +63,10 @@ def main(out):
         if not line.is_valid or line.length <= 0:
             problems.append(f"roads[{i}]: invalid centre line")
 
-    # Two tilings: zones, water and road areas; blocks, parks, water and road areas.
-    for kinds in ({"zones", "park", "water", "road_areas"}, {"blocks", "park", "water", "road_areas"}):
+    # Two tilings: zones, water and road areas; blocks, parks, water and road areas. And
+    # lots apart from each other and from roads.
+    for kinds in ({"zones", "park", "water", "road_areas"}, {"blocks", "park", "water", "road_areas"},
+                  {"lots", "road_areas", "water"}):
         surfaces = [(n, p) for n, k, p in polygons if k in kinds and p.is_valid]
         tree = STRtree([p for _, p in surfaces])
         index = {id(p): i for i, (_, p) in enumerate(surfaces)}
@@ -82,6 +84,12 @@ def main(out):
             covered = sum(poly.intersection(w).area for w in water)
             if poly.area - covered > AREA_TOLERANCE:
                 problems.append(f"{name}: bridge not over water ({poly.area - covered} m² on land)")
+
+    blocks = {f["properties"]["id"]: shape(f["geometry"]) for f in load(out / "vector" / "blocks.geojson")}
+    for i, f in enumerate(load(out / "vector" / "lots.geojson")):
+        outside = shape(f["geometry"]).difference(blocks[f["properties"]["block"]]).area
+        if outside > AREA_TOLERANCE:
+            problems.append(f"lots[{i}]: {outside} m² outside its block {f['properties']['block']}")
 
     for p in problems:
         print("problem:", p)

@@ -4,25 +4,13 @@
 #include <filesystem>
 #include <string>
 
+#include "geom/measure.h"
 #include "geom/planar_map.h"
 
 namespace testing_util {
 
-// Shoelace area in doubles: exact for the small integer coordinates the tests use.
-inline double signed_area(const geom::Ring& r) {
-  double a = 0;
-  for (std::size_t i = 0; i < r.size(); ++i) {
-    const geom::Vec2 &p = r[i], &q = r[(i + 1) % r.size()];
-    a += p.x * q.y - q.x * p.y;
-  }
-  return a / 2;
-}
-
-inline double area(const geom::Polygon& p) {
-  double a = signed_area(p.outer);
-  for (const auto& h : p.holes) a += signed_area(h);
-  return a;
-}
+using geom::area;
+using geom::signed_area;
 
 // The polygons of one dissolved group.
 inline std::vector<geom::Polygon> polygons(const std::vector<geom::Dissolved>& group) {
