@@ -14,6 +14,7 @@
 #include <tbb/global_control.h>
 
 #include "generate/blocks.h"
+#include "generate/buildings.h"
 #include "generate/lots.h"
 #include "generate/road_network.h"
 #include "generate/svg_map.h"
@@ -73,7 +74,11 @@ int main(int argc, char** argv) {
   row("lots", seconds_since(t), std::to_string(lots.size()) + " lots");
 
   t = std::chrono::steady_clock::now();
-  CityLayers layers = extract_layers(net.map, blocks, lots, sketch);
+  std::vector<Building> buildings = place_buildings(net.map, lots, sketch);
+  row("buildings", seconds_since(t), std::to_string(buildings.size()) + " footprints");
+
+  t = std::chrono::steady_clock::now();
+  CityLayers layers = extract_layers(net.map, blocks, lots, buildings, sketch);
   row("vector layers", seconds_since(t), std::to_string(layers.roads.features.size()) + " road pieces");
 
   fs::path out = fs::temp_directory_path() / "exacity-scale";
@@ -81,7 +86,7 @@ int main(int argc, char** argv) {
   fs::create_directories(out / "vector");
   t = std::chrono::steady_clock::now();
   fs::copy_file(sketch.path, out / "sketch.geojson");
-  for (const Layer* l : {&layers.zones, &layers.water, &layers.roads, &layers.road_areas, &layers.blocks, &layers.lots})
+  for (const Layer* l : {&layers.zones, &layers.water, &layers.roads, &layers.road_areas, &layers.blocks, &layers.lots, &layers.buildings})
     write_geojson(*l, sketch.crs, out / "vector" / (l->name + ".geojson"));
   write_svg_map(layers, out / "map.svg");
   row("export", seconds_since(t), out.string());

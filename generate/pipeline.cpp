@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "generate/blocks.h"
+#include "generate/buildings.h"
 #include "generate/errors.h"
 #include "generate/lots.h"
 #include "generate/road_network.h"
@@ -48,7 +49,7 @@ class Stages {
 }  // namespace
 
 GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const ProgressFn& progress) {
-  Stages stages(progress, 8);
+  Stages stages(progress, 9);
   std::optional<Terrain> terrain = stages.run("terrain", [&]() -> std::optional<Terrain> {
     if (!sketch.terrain) return std::nullopt;
     return Terrain::load(*sketch.terrain);
@@ -61,11 +62,14 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
     insert_lots(network.map, blocks, planned, sketch);
     return planned;
   });
-  CityLayers layers = stages.run("vector layers", [&] { return extract_layers(network.map, blocks, lots, sketch); });
+  std::vector<Building> buildings = stages.run("buildings", [&] { return place_buildings(network.map, lots, sketch); });
+  CityLayers layers =
+      stages.run("vector layers", [&] { return extract_layers(network.map, blocks, lots, buildings, sketch); });
   stages.run("export", [&] {
     fs::create_directories(dir / "vector");
     fs::copy_file(sketch.path, dir / "sketch.geojson");
-    for (const Layer* l : {&layers.zones, &layers.water, &layers.roads, &layers.road_areas, &layers.blocks, &layers.lots})
+    for (const Layer* l : {&layers.zones, &layers.water, &layers.roads, &layers.road_areas, &layers.blocks, &layers.lots,
+                             &layers.buildings})
       write_geojson(*l, sketch.crs, dir / "vector" / (l->name + ".geojson"));
     write_svg_map(layers, dir / "map.svg");
   });
@@ -98,6 +102,7 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
         {"blocks", blocks.size() - green},
         {"green_spaces", green},
         {"lots", layers.lots.features.size()},
+        {"buildings", layers.buildings.features.size()},
         {"map", {{"vertices", counts.vertices}, {"edges", counts.edges}, {"faces", counts.faces}}}}},
       {"road_network",
        {{"regions", network.stats.regions},

@@ -23,6 +23,8 @@ ZoneParams default_params(ZoneType type) {
     p.block_area = type == ZoneType::Commercial ? 15000 : 30000;
     p.lot_area = type == ZoneType::Commercial ? 1500 : 3000;
   }
+  if (type == ZoneType::Commercial) p.setback = 2, p.min_height = 12, p.max_height = 48;
+  if (type == ZoneType::Industrial) p.setback = 4, p.min_height = 5, p.max_height = 12;
   return p;
 }
 
@@ -268,7 +270,8 @@ class Parser {
   ZoneParams zone_params(const json& j, ZoneType zt, const std::string& w) const {
     known_keys(j, w, {"block_area", "segment_length", "branches", "jitter", "segment_deviation",
                       "origin_deviation", "road_widths", "min_block_area", "min_block_width",
-                      "bridges", "lots", "lot_area", "min_lot_edge", "min_lot_area"});
+                      "bridges", "lots", "lot_area", "min_lot_edge", "min_lot_area", "setback", "heights",
+                      "min_footprint_area"});
     ZoneParams p = default_params(zt);
     auto set = [&](const char* key, double& field, double min, double max) {
       if (j.contains(key)) field = number(j[key], w + "." + key, min, max);
@@ -293,6 +296,14 @@ class Parser {
     set("lot_area", p.lot_area, 10, 1e8);
     set("min_lot_edge", p.min_lot_edge, 0, 1e4);
     set("min_lot_area", p.min_lot_area, 0, 1e8);
+    set("setback", p.setback, 0, 1e3);
+    set("min_footprint_area", p.min_footprint_area, 0, 1e8);
+    if (j.contains("heights")) {
+      const json& h = j["heights"];
+      if (!h.is_array() || h.size() != 2) fail(w + ".heights", "give [lowest, highest] building heights in metres");
+      p.min_height = number(h[0], w + ".heights", 0.5, 1000);
+      p.max_height = number(h[1], w + ".heights", p.min_height, 1000);
+    }
     if (j.contains("lots")) {
       if (!j["lots"].is_string() || (j["lots"] != "allocation" && j["lots"] != "split"))
         fail(w + ".lots", "expected \"allocation\" (seed 000) or \"split\" (seed 003)");

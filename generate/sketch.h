@@ -34,6 +34,9 @@ struct ZoneParams {
   double lot_area = 600;            // m²: split stops below this
   double min_lot_edge = 3;          // m: allocated lots with a shorter edge are dropped
   double min_lot_area = 20;         // m²: smaller pieces of lots are dropped
+  double setback = 3;               // m: footprints keep this far inside their lot's edges
+  double min_height = 4, max_height = 12;  // m: near the city centre; half that at its edge
+  double min_footprint_area = 30;   // m²: smaller footprints get no building
 };
 
 struct TerrainSpec {

@@ -52,6 +52,7 @@ void write_legend(std::ostream& out, const CityLayers& layers, double w, double 
       }
   if (!layers.water.features.empty()) keys.emplace_back("water", "#5b9bd5");
   if (!layers.lots.features.empty()) keys.emplace_back("lot", "#f7ecdc");
+  if (!layers.buildings.features.empty()) keys.emplace_back("building", "#9a8672");
   if (!layers.road_areas.features.empty()) keys.emplace_back("road", "#6b6b6b");
   for (const auto& f : layers.road_areas.features)
     if (f.properties.value("bridge", false)) {
@@ -111,6 +112,10 @@ void write_svg_map(const CityLayers& layers, const std::filesystem::path& file) 
   out << "<g class=\"lots\" fill=\"#fbf3e6\" fill-opacity=\"0.55\" stroke=\"#8a6d4b\" stroke-width=\""
       << format_number(stroke * 0.5) << "\">\n";
   for (const auto& f : layers.lots.features) out << "<path fill-rule=\"evenodd\" d=\"" << path_data(f.polygon, b) << "\"/>\n";
+  out << "</g>\n";
+  out << "<g class=\"buildings\" fill=\"#9a8672\" stroke=\"#5e4f40\" stroke-width=\"" << format_number(stroke * 0.5)
+      << "\">\n";
+  for (const auto& f : layers.buildings.features) out << "<path fill-rule=\"evenodd\" d=\"" << path_data(f.polygon, b) << "\"/>\n";
   out << "</g>\n";
   polygons(layers.water, "water", [](const VectorFeature&) { return "#5b9bd5"; });
   polygons(layers.road_areas, "road_areas",

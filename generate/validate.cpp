@@ -25,7 +25,7 @@ constexpr std::size_t kMaxProblems = 20;
 // other check is exact without tolerance.
 constexpr double kRounding = 1e-6;
 
-enum class Kind { Zone, Park, Water, Road, Bridge, Block, Lot };
+enum class Kind { Zone, Park, Water, Road, Bridge, Block, Lot, Building };
 
 struct PolygonRef {
   Kind kind;
@@ -35,6 +35,7 @@ struct PolygonRef {
   int id = -1;       // the feature's id
   int block = -1;    // for lots: the block it names
   bool frontage = false;  // for lots: must touch a road area
+  int lot = -1;      // for lots: their lot; for buildings: the lot they stand on
 };
 
 std::string near(geom::Vec2 p) { return " near (" + format_number(p.x) + ", " + format_number(p.y) + ")"; }
@@ -65,10 +66,11 @@ void check_polygons(Checker& c, const Layer& layer, std::vector<PolygonRef>& ref
                 : layer.name == "water" ? Kind::Water
                 : layer.name == "blocks" ? Kind::Block
                 : layer.name == "lots"   ? Kind::Lot
+                : layer.name == "buildings" ? Kind::Building
                 : f.properties.value("bridge", false) ? Kind::Bridge
                                                       : Kind::Road;
     refs.push_back({kind, name, zone, f.properties.value("green", false), f.properties.value("id", -1),
-                    f.properties.value("block", -1), f.properties.value("frontage", false)});
+                    f.properties.value("block", -1), f.properties.value("frontage", false), f.properties.value("lot", -1)});
     polygons.push_back(&f.polygon);
   }
 }
@@ -134,6 +136,12 @@ void check_tiling(Checker& c, const Sketch& sketch, const std::vector<PolygonRef
       const PolygonRef& lot = refs[here[Kind::Lot][0]];
       if (count({Kind::Block}) == 0 || refs[here[Kind::Block][0]].id != lot.block)
         return wrong(lot.name + " leaves its block " + std::to_string(lot.block));
+    }
+    if (count({Kind::Building}) > 1) return wrong(names({Kind::Building}) + " overlap");
+    if (count({Kind::Building}) == 1) {
+      const PolygonRef& b = refs[here[Kind::Building][0]];
+      if (count({Kind::Lot}) == 0 || refs[here[Kind::Lot][0]].lot != b.lot)
+        return wrong(b.name + " leaves its lot " + std::to_string(b.lot));
     }
     if (count({Kind::Block}) == 1) {
       const PolygonRef &b = refs[here[Kind::Block][0]], &z = refs[here[Kind::Zone][0]];
@@ -305,12 +313,15 @@ Validation validate_output(const fs::path& dir) {
   std::vector<std::string> read_problems;
   auto read = [&](const char* name) { return read_geojson(dir / "vector" / (std::string(name) + ".geojson"), read_problems); };
   Layer zones = read("zones"), water = read("water"), road_areas = read("road_areas"), blocks = read("blocks"),
-        lots = read("lots"), roads = read("roads");
+        lots = read("lots"), buildings = read("buildings"), roads = read("roads");
   for (auto& p : read_problems) c.problem(p);
 
   std::vector<PolygonRef> refs;
   std::vector<const geom::Polygon*> polygons;
-  for (const Layer* l : {&zones, &water, &road_areas, &blocks, &lots}) check_polygons(c, *l, refs, polygons);
+  for (const Layer* l : {&zones, &water, &road_areas, &blocks, &lots, &buildings}) check_polygons(c, *l, refs, polygons);
+  for (const auto& f : buildings.features)
+    if (!(f.properties.value("height", 0.0) > 0))
+      c.problem("buildings.geojson: building " + std::to_string(f.properties.value("id", -1)) + " has no height");
   for (const auto& f : lots.features) {
     auto zt = parse_zone_type(f.properties.value("zone", ""));
     if (zt && geom::area(f.polygon) < sketch.zone_params.at(*zt).min_lot_area)

@@ -29,7 +29,7 @@ ordered_json or_null(int v) { return v >= 0 ? ordered_json(v) : ordered_json(nul
 }  // namespace
 
 CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
-                          const Sketch& sketch) {
+                          const std::vector<Building>& buildings, const Sketch& sketch) {
   CityLayers out;
   const int zone_types = static_cast<int>(ZoneType::Water);  // water has its own layer
   dissolve(zm, zone_types,
@@ -67,6 +67,10 @@ CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, c
              add_polygon(out.lots, {{"lot", g}, {"block", lot.block}, {"zone", name(lot.zone)}, {"frontage", lot.frontage}},
                          std::move(p));
            });
+
+  for (const Building& b : buildings)
+    add_polygon(out.buildings, {{"lot", b.lot}, {"zone", name(b.zone)}, {"height", b.height}, {"roof", "flat"}, {"model", nullptr}},
+                b.polygon);
 
   // Centre lines with every junction as a vertex, cut where they go on or off a bridge.
   auto pieces_of = zm.map.polyline_pieces();

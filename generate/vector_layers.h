@@ -2,6 +2,7 @@
 #pragma once
 
 #include "generate/blocks.h"
+#include "generate/buildings.h"
 #include "generate/geojson.h"
 #include "generate/lots.h"
 #include "generate/sketch.h"
@@ -12,10 +13,10 @@ namespace exacity {
 struct CityLayers {
   Layer zones{"zones", false, {}}, water{"water", false, {}};
   Layer roads{"roads", true, {}}, road_areas{"road_areas", false, {}};
-  Layer blocks{"blocks", false, {}}, lots{"lots", false, {}};
+  Layer blocks{"blocks", false, {}}, lots{"lots", false, {}}, buildings{"buildings", false, {}};
 };
 
 CityLayers extract_layers(const ZoneMap& zone_map, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
-                          const Sketch& sketch);
+                          const std::vector<Building>& buildings, const Sketch& sketch);
 
 }  // namespace exacity

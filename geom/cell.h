@@ -89,6 +89,11 @@ class Growth {
   std::unique_ptr<Impl> impl_;
 };
 
+// The cell less a band of width `setback` inside every boundary edge (DESIGN.md rule 3:
+// each band's inner side runs through two offset points rounded to the grid); the parts
+// left, exact. Bands run `setback` past each edge's ends, so corners are cleared too.
+std::vector<Cell> inset_cell(const Cell& cell, double setback);
+
 // The cell cut by roads that run inside it from boundary to boundary or to each other:
 // the parts, their new edges of kind `road_kind`.
 std::vector<Cell> split_cell(const Cell& cell, const std::vector<Path>& roads, int road_kind);

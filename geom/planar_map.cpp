@@ -18,6 +18,7 @@
 #include <CGAL/Polygon_2_algorithms.h>
 
 #include "geom/cell_impl.h"
+#include "geom/grid.h"
 
 namespace geom {
 namespace {
@@ -394,6 +395,40 @@ std::vector<Cell> split_cell(const Cell& cell, const std::vector<Path>& roads, i
   trace_components(arr, group_of, [&](int, const std::vector<LoopPolygon>& polygons, const std::vector<int>&) {
     add_cells(polygons, kind_of, parts);
   });
+  return parts;
+}
+
+std::vector<Cell> inset_cell(const Cell& cell, double s) {
+  // The cell winds around counter 0, the bands around counter 1; what is inside the
+  // first and outside every band is left.
+  Arrangement arr;
+  std::vector<Curve> curves;
+  auto add_ring = [&](const std::vector<Point>& r, int counter, int kind) {
+    for (std::size_t i = 0; i < r.size(); ++i) add_curve(curves, r[i], r[(i + 1) % r.size()], {counter, +1, kind});
+  };
+  auto add_bands = [&](const KindRing& r) {
+    add_ring(r.points, 0, 0);
+    for (std::size_t i = 0; i < r.points.size(); ++i) {
+      Vec2 a = to_plain(r.points[i]), b = to_plain(r.points[(i + 1) % r.points.size()]);
+      double len = std::hypot(b.x - a.x, b.y - a.y);
+      if (len == 0) continue;
+      Vec2 t{(b.x - a.x) / len, (b.y - a.y) / len}, n{-t.y, t.x};  // the cell is on the left
+      const double out = 1.0;  // reaches past the edge's exact position, whatever the rounding
+      auto at = [&](Vec2 p, double along, double across) {
+        return to_exact(snap(Vec2{p.x + t.x * along + n.x * across, p.y + t.y * along + n.y * across}));
+      };
+      add_ring({at(a, -s, -out), at(b, s, -out), at(b, s, s), at(a, -s, s)}, 1, 0);
+    }
+  };
+  add_bands(cell.exact().outer);
+  for (const KindRing& h : cell.exact().holes) add_bands(h);
+  CGAL::insert(arr, curves.begin(), curves.end());
+  label_all_faces(arr, [](const Windings& w) { return winding_of(w, 0) != 0 && winding_of(w, 1) == 0 ? 1 : -1; });
+  std::vector<Cell> parts;
+  trace_components(arr, [](Face f) { return f->data() == 1 ? 0 : -1; },
+                   [&](int, const std::vector<LoopPolygon>& polygons, const std::vector<int>&) {
+                     add_cells(polygons, [](Halfedge) { return 0; }, parts);
+                   });
   return parts;
 }
 

@@ -36,7 +36,7 @@ def signed_area(ring):
 def main(out):
     problems = []
     polygons = []  # (name, kind, shapely polygon)
-    for layer in ("zones", "water", "road_areas", "blocks", "lots"):
+    for layer in ("zones", "water", "road_areas", "blocks", "lots", "buildings"):
         for i, f in enumerate(load(out / "vector" / f"{layer}.geojson")):
             name = f"{layer}[{i}]"
             g = f["geometry"]
@@ -66,7 +66,7 @@ def main(out):
     # Two tilings: zones, water and road areas; blocks, parks, water and road areas. And
     # lots apart from each other and from roads.
     for kinds in ({"zones", "park", "water", "road_areas"}, {"blocks", "park", "water", "road_areas"},
-                  {"lots", "road_areas", "water"}):
+                  {"lots", "road_areas", "water"}, {"buildings", "road_areas", "water"}):
         surfaces = [(n, p) for n, k, p in polygons if k in kinds and p.is_valid]
         tree = STRtree([p for _, p in surfaces])
         index = {id(p): i for i, (_, p) in enumerate(surfaces)}
@@ -90,6 +90,14 @@ def main(out):
         outside = shape(f["geometry"]).difference(blocks[f["properties"]["block"]]).area
         if outside > AREA_TOLERANCE:
             problems.append(f"lots[{i}]: {outside} m² outside its block {f['properties']['block']}")
+
+    lots = {}
+    for f in load(out / "vector" / "lots.geojson"):
+        lots[f["properties"]["lot"]] = shape(f["geometry"]).union(lots.get(f["properties"]["lot"], Polygon()))
+    for i, f in enumerate(load(out / "vector" / "buildings.geojson")):
+        outside = shape(f["geometry"]).difference(lots[f["properties"]["lot"]]).area
+        if outside > AREA_TOLERANCE:
+            problems.append(f"buildings[{i}]: {outside} m² outside its lot {f['properties']['lot']}")
 
     for p in problems:
         print("problem:", p)

@@ -135,3 +135,19 @@ TEST(Growth, StraightPathsAreExactlyStraight) {
   g.extend({5, 4});
   EXPECT_FALSE(g.end().is_straight());
 }
+
+TEST(Inset, SquareAndLShapeLoseExactlyTheirSetbackBands) {
+  auto square = geom::inset_cell(cell_of(kSquare), 2);
+  ASSERT_EQ(square.size(), 1u);
+  EXPECT_EQ(square[0].area(), 36);
+  EXPECT_EQ(square[0].bounds().min_x, 2);
+  EXPECT_EQ(square[0].bounds().max_y, 8);
+  // An L of arms 4 wide: inset by 1, two 8 x 2 arms sharing a 2 x 2 corner.
+  auto l = geom::inset_cell(cell_of({{0, 0}, {10, 0}, {10, 4}, {4, 4}, {4, 10}, {0, 10}}), 1);
+  ASSERT_EQ(l.size(), 1u);
+  EXPECT_EQ(l[0].area(), 28);
+  EXPECT_TRUE(l[0].contains({2.5, 8.5}));
+  EXPECT_FALSE(l[0].contains({3.5, 3.5}));
+  // Too thin for its setback: nothing is left.
+  EXPECT_TRUE(geom::inset_cell(cell_of({{0, 0}, {10, 0}, {10, 3}, {0, 3}}), 2).empty());
+}

@@ -4,6 +4,7 @@
 
 #include <fstream>
 
+#include "generate/buildings.h"
 #include "generate/lots.h"
 #include "generate/pipeline.h"
 #include "generate/validate.h"
@@ -99,4 +100,19 @@ TEST(Lots, CitiesWithEveryStrategyValidate) {
     EXPECT_GT(v.features["lots"], 20) << strategy;
     EXPECT_GT(report["counts"]["lots"].get<int>(), 20);
   }
+}
+
+TEST(Buildings, HeightsFallWithDistanceFromTheCentre) {
+  ZoneParams p = default_params(ZoneType::Commercial);  // 12 to 48 m
+  Random rng(3);
+  double tallest_centre = 0, tallest_edge = 0;
+  for (int i = 0; i < 2000; ++i) {
+    double at_centre = building_height(p, 0, 1000, rng), at_edge = building_height(p, 1500, 1000, rng);
+    EXPECT_GE(at_centre, p.min_height);
+    EXPECT_LE(at_centre, 2 * p.max_height);
+    EXPECT_GE(at_edge, p.min_height / 2);
+    EXPECT_LE(at_edge, p.max_height / 2);  // no towers at the edge
+    tallest_centre = std::max(tallest_centre, at_centre), tallest_edge = std::max(tallest_edge, at_edge);
+  }
+  EXPECT_GT(tallest_centre, p.max_height);  // the rare doubled towers
 }

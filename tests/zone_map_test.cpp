@@ -66,7 +66,7 @@ bool covers(const Layer& layer, geom::Vec2 p) {
 
 CityLayers layers_of(const std::vector<std::string>& features, const Terrain* terrain = nullptr) {
   Sketch s = parse_sketch(sketch_text(features), "test.geojson");
-  return extract_layers(build_zone_map(s, terrain), {}, {}, s);
+  return extract_layers(build_zone_map(s, terrain), {}, {}, {}, s);
 }
 
 // Runs the whole generate job and returns the exact validator's verdict.
@@ -190,7 +190,7 @@ TEST(ZoneMap, UtmSizedCoordinatesGiveTheSameTopology) {
   EXPECT_EQ(a.map.counts().vertices, b.map.counts().vertices);
   EXPECT_EQ(a.map.counts().edges, b.map.counts().edges);
   EXPECT_EQ(a.map.counts().faces, b.map.counts().faces);
-  CityLayers la = extract_layers(a, {}, {}, near), lb = extract_layers(b, {}, {}, far);
+  CityLayers la = extract_layers(a, {}, {}, {}, near), lb = extract_layers(b, {}, {}, {}, far);
   EXPECT_EQ(la.zones.features.size(), lb.zones.features.size());
   EXPECT_EQ(la.road_areas.features.size(), lb.road_areas.features.size());
   Validation v = generate_and_validate("utm", sketch_text(shifted(500000, 5000000)));

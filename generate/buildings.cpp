@@ -1,0 +1,67 @@
+#include "generate/buildings.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include <tbb/parallel_for.h>
+
+#include "geom/measure.h"
+
+namespace exacity {
+
+double building_height(const ZoneParams& p, double distance, double radius, Random& rng) {
+  double near_centre = radius > 0 ? 1 - std::min(distance / radius, 1.0) : 1;
+  double scale = 0.5 + 0.5 * near_centre;
+  double top = p.max_height * scale;
+  if (rng.uniform() < 0.1 * near_centre * near_centre) top *= 2;  // a rare tower near the centre
+  double h = rng.uniform(p.min_height * scale, std::max(top, p.min_height * scale));
+  return std::round(h * 100) / 100;  // centimetres
+}
+
+std::vector<Building> place_buildings(const ZoneMap& zm, const std::vector<Lot>& lots, const Sketch& sketch) {
+  // Lots as they ended up in the map (cut back at roads), one cell per piece.
+  std::vector<int> group(zm.labels.size(), -1), kind(zm.labels.size(), 0), lot_of;
+  for (std::size_t l = 0; l < zm.labels.size(); ++l) group[l] = zm.labels[l].lot;
+  std::vector<geom::Cell> pieces = zm.map.cells(group, kind, &lot_of);
+
+  geom::Box city{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+                 std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest()};
+  for (const geom::Cell& c : pieces) {
+    geom::Box b = c.bounds();
+    city = {std::min(city.min_x, b.min_x), std::min(city.min_y, b.min_y), std::max(city.max_x, b.max_x),
+            std::max(city.max_y, b.max_y)};
+  }
+  const geom::Vec2 centre{(city.min_x + city.max_x) / 2, (city.min_y + city.max_y) / 2};
+  const double radius = std::hypot(city.width(), city.height()) / 2;
+  const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Buildings));
+
+  std::vector<std::optional<Building>> placed(pieces.size());
+  tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
+    const Lot& lot = lots[lot_of[i]];
+    const ZoneParams& p = sketch.zone_params.at(lot.zone);
+    // The lots layer drops the same small pieces.
+    if (geom::area(pieces[i].to_plain()) < p.min_lot_area) return;
+    std::optional<Building> best;
+    double best_area = p.min_footprint_area;
+    for (geom::Cell& part : geom::inset_cell(pieces[i], p.setback)) {
+      geom::Polygon polygon = part.to_plain();
+      double a = geom::area(polygon);
+      if (polygon.outer.empty() || a < best_area) continue;
+      best_area = a;
+      best = Building{lot_of[i], lot.zone, std::move(part), std::move(polygon), 0};
+    }
+    if (!best) return;
+    geom::Vec2 c = best->footprint.centroid();
+    Random rng(mix(stage, i));
+    best->height = building_height(p, std::hypot(c.x - centre.x, c.y - centre.y), radius, rng);
+    placed[i] = std::move(best);
+  });
+  std::vector<Building> buildings;
+  for (auto& b : placed)
+    if (b) buildings.push_back(std::move(*b));
+  return buildings;
+}
+
+}  // namespace exacity
