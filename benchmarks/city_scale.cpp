@@ -16,6 +16,7 @@
 #include "generate/blocks.h"
 #include "generate/buildings.h"
 #include "generate/lots.h"
+#include "generate/obj_export.h"
 #include "generate/road_network.h"
 #include "generate/svg_map.h"
 #include "generate/validate.h"
@@ -90,6 +91,10 @@ int main(int argc, char** argv) {
     write_geojson(*l, sketch.crs, out / "vector" / (l->name + ".geojson"));
   write_svg_map(layers, out / "map.svg");
   row("export", seconds_since(t), out.string());
+
+  t = std::chrono::steady_clock::now();
+  ObjCounts mesh = write_obj(buildings, out / "city.obj");
+  row("3d export", seconds_since(t), std::to_string(mesh.faces) + " faces in city.obj");
 
   t = std::chrono::steady_clock::now();
   Validation v = validate_output(out);

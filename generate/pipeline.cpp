@@ -8,6 +8,7 @@
 #include "generate/buildings.h"
 #include "generate/errors.h"
 #include "generate/lots.h"
+#include "generate/obj_export.h"
 #include "generate/road_network.h"
 #include "generate/svg_map.h"
 #include "generate/terrain.h"
@@ -49,7 +50,7 @@ class Stages {
 }  // namespace
 
 GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const ProgressFn& progress) {
-  Stages stages(progress, 9);
+  Stages stages(progress, 10);
   std::optional<Terrain> terrain = stages.run("terrain", [&]() -> std::optional<Terrain> {
     if (!sketch.terrain) return std::nullopt;
     return Terrain::load(*sketch.terrain);
@@ -73,6 +74,7 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
       write_geojson(*l, sketch.crs, dir / "vector" / (l->name + ".geojson"));
     write_svg_map(layers, dir / "map.svg");
   });
+  ObjCounts mesh = stages.run("3d export", [&] { return write_obj(buildings, dir / "city.obj"); });
   Validation validation = stages.run("validation", [&] { return validate_output(dir); });
 
   // Road segments per class, junctions per degree (1: a dead end at a region's edge).
@@ -103,7 +105,8 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
         {"green_spaces", green},
         {"lots", layers.lots.features.size()},
         {"buildings", layers.buildings.features.size()},
-        {"map", {{"vertices", counts.vertices}, {"edges", counts.edges}, {"faces", counts.faces}}}}},
+        {"map", {{"vertices", counts.vertices}, {"edges", counts.edges}, {"faces", counts.faces}}},
+        {"mesh", {{"vertices", mesh.vertices}, {"faces", mesh.faces}}}}},
       {"road_network",
        {{"regions", network.stats.regions},
         {"levels", network.stats.levels},

@@ -79,7 +79,8 @@ TEST(Cli, EveryExampleGeneratesAndValidates) {
     Result g = run("generate " + sketch.string() + " -o " + out.string() + " --quiet");
     ASSERT_EQ(g.code, 0) << sketch << "\n" << g.out;
     for (const char* f : {"vector/zones.geojson", "vector/water.geojson", "vector/roads.geojson",
-                          "vector/road_areas.geojson", "map.svg", "report.json"})
+                          "vector/road_areas.geojson", "vector/blocks.geojson", "vector/lots.geojson",
+                          "vector/buildings.geojson", "map.svg", "city.obj", "city.mtl", "report.json"})
       EXPECT_TRUE(fs::exists(out / f)) << f;
     auto report = nlohmann::json::parse(read(out / "report.json"));
     EXPECT_EQ(report["validation"]["ok"], true);

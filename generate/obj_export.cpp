@@ -1,0 +1,70 @@
+#include "generate/obj_export.h"
+
+#include <fstream>
+#include <map>
+
+#include "generate/building_mesh.h"
+#include "generate/errors.h"
+#include "generate/geojson.h"
+
+namespace exacity {
+namespace {
+
+// Diffuse colours: facades by zone, roofs darker, ground grey.
+struct Colour {
+  double r, g, b;
+};
+const std::map<std::string, Colour> kFacade = {
+    {"residential", {0.85, 0.72, 0.58}}, {"commercial", {0.62, 0.70, 0.80}}, {"industrial", {0.66, 0.62, 0.55}}};
+
+Colour colour(const std::string& zone, Surface s) {
+  Colour c = kFacade.count(zone) ? kFacade.at(zone) : Colour{0.8, 0.8, 0.8};
+  if (s == Surface::Roof) return {c.r * 0.6, c.g * 0.55, c.b * 0.5};
+  if (s == Surface::Ground) return {0.45, 0.45, 0.45};
+  return c;
+}
+
+}  // namespace
+
+ObjCounts write_obj(const std::vector<Building>& buildings, const std::filesystem::path& obj_file) {
+  std::filesystem::path mtl_file = obj_file;
+  mtl_file.replace_extension(".mtl");
+  std::ofstream obj(obj_file, std::ios::binary), mtl(mtl_file, std::ios::binary);
+  if (!obj || !mtl) throw UserError(obj_file.string() + ": cannot write this file; check the output folder's permissions");
+
+  for (const char* zone : {"residential", "commercial", "industrial"})
+    for (Surface s : {Surface::Ground, Surface::Wall, Surface::Roof}) {
+      Colour c = colour(zone, s);
+      mtl << "newmtl " << zone << '_' << kSurfaceNames[static_cast<int>(s)] << "\nKd " << format_number(c.r) << ' '
+          << format_number(c.g) << ' ' << format_number(c.b) << "\n\n";
+    }
+
+  obj << "# Exacity city: x east, y north, z up, metres\nmtllib " << mtl_file.filename().string() << '\n';
+  ObjCounts counts;
+  for (std::size_t i = 0; i < buildings.size(); ++i) {
+    const Building& b = buildings[i];
+    Mesh mesh = building_mesh(b);
+    auto surface = surface_property(mesh);
+    obj << "o building_" << i << '\n';
+    for (auto v : mesh.vertices()) {
+      const auto& p = mesh.point(v);
+      obj << "v " << format_number(p[0]) << ' ' << format_number(p[1]) << ' ' << format_number(p[2]) << '\n';
+    }
+    // Faces grouped by material; OBJ indices count from 1 across the file.
+    for (Surface s : {Surface::Ground, Surface::Wall, Surface::Roof}) {
+      obj << "usemtl " << name(b.zone) << '_' << kSurfaceNames[static_cast<int>(s)] << '\n';
+      for (auto f : mesh.faces()) {
+        if (mesh.property(surface, f) != static_cast<int>(s)) continue;
+        obj << 'f';
+        for (auto v : mesh.fv_range(f)) obj << ' ' << counts.vertices + v.idx() + 1;
+        obj << '\n';
+        ++counts.faces;
+      }
+    }
+    counts.vertices += mesh.n_vertices();
+  }
+  if (!obj || !mtl) throw UserError(obj_file.string() + ": write failed (disk full?)");
+  return counts;
+}
+
+}  // namespace exacity

@@ -1,0 +1,15 @@
+// Triangles covering a polygon with holes, for roofs and ground surfaces.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "geom/plain.h"
+
+namespace geom {
+
+// Triangles as indices into the polygon's vertices, numbered outer ring first, then each
+// hole in turn; counter-clockwise. Constrained Delaunay, with exact predicates.
+std::vector<std::array<int, 3>> triangulate(const Polygon& polygon);
+
+}  // namespace geom

@@ -1,0 +1,84 @@
+// Building meshes: closed, outward, the volume of their prism; and the OBJ they make.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "generate/building_mesh.h"
+#include "generate/obj_export.h"
+#include "tests/test_util.h"
+
+using namespace exacity;
+
+namespace {
+
+Building prism(geom::Polygon footprint, double height) {
+  Building b;
+  b.polygon = std::move(footprint);
+  b.height = height;
+  return b;
+}
+
+// Divergence theorem over the faces, fanned from their first vertex.
+double volume(const Mesh& mesh) {
+  double v = 0;
+  for (auto f : mesh.faces()) {
+    std::vector<OpenMesh::Vec3d> p;
+    for (auto vh : mesh.fv_range(f)) p.push_back(mesh.point(vh));
+    for (std::size_t i = 1; i + 1 < p.size(); ++i) v += OpenMesh::dot(p[0], OpenMesh::cross(p[i], p[i + 1])) / 6;
+  }
+  return v;
+}
+
+void expect_closed(const Mesh& mesh) {
+  for (auto e : mesh.edges()) EXPECT_FALSE(mesh.is_boundary(e)) << "open edge";
+}
+
+}  // namespace
+
+TEST(BuildingMesh, BoxIsClosedWithItsVolume) {
+  Mesh m = building_mesh(prism({{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {}}, 5));
+  expect_closed(m);
+  EXPECT_DOUBLE_EQ(volume(m), 500);  // positive: faces point outwards
+  EXPECT_EQ(m.n_faces(), 4u + 2u + 2u);
+  auto surface = surface_property(m);
+  int roofs = 0;
+  for (auto f : m.faces()) roofs += m.property(surface, f) == static_cast<int>(Surface::Roof);
+  EXPECT_EQ(roofs, 2);
+}
+
+TEST(BuildingMesh, CourtyardAndLShapeAreClosed) {
+  geom::Polygon courtyard{{{0, 0}, {20, 0}, {20, 20}, {0, 20}}, {{{5, 5}, {5, 15}, {15, 15}, {15, 5}}}};
+  Mesh c = building_mesh(prism(courtyard, 9));
+  expect_closed(c);
+  EXPECT_NEAR(volume(c), (400 - 100) * 9, 1e-9);
+  Mesh l = building_mesh(prism({{{0, 0}, {10, 0}, {10, 4}, {4, 4}, {4, 10}, {0, 10}}, {}}, 3));
+  expect_closed(l);
+  EXPECT_NEAR(volume(l), 64 * 3, 1e-9);
+}
+
+TEST(BuildingMesh, ObjHoldsEveryBuildingAtFullPrecision) {
+  auto dir = testing_util::temp_dir("obj");
+  std::vector<Building> buildings{prism({{{0.1, 0.2}, {10, 0}, {10, 10}, {0, 10}}, {}}, 5),
+                                  prism({{{500000.123456789, 5000000.5}, {500010, 5000000.5}, {500010, 5000010}}, {}}, 7.25)};
+  ObjCounts counts = write_obj(buildings, dir / "city.obj");
+  EXPECT_EQ(counts.vertices, 8u + 6u);
+  EXPECT_EQ(counts.faces, 8u + 3u + 1u + 1u);
+  std::ifstream in(dir / "city.obj");
+  std::string line, text;
+  std::size_t vertices = 0, faces = 0;
+  while (std::getline(in, line)) {
+    text += line + "\n";
+    if (line.rfind("v ", 0) == 0) ++vertices;
+    if (line.rfind("f ", 0) == 0) {
+      ++faces;
+      std::istringstream ss(line.substr(2));
+      std::size_t i;
+      while (ss >> i) EXPECT_LE(i, counts.vertices);
+    }
+  }
+  EXPECT_EQ(vertices, counts.vertices);
+  EXPECT_EQ(faces, counts.faces);
+  EXPECT_NE(text.find("v 500000.123456789 5000000.5 7.25"), std::string::npos) << "shortest round-trip doubles";
+  EXPECT_TRUE(std::filesystem::exists(dir / "city.mtl"));
+}
