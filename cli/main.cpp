@@ -32,9 +32,9 @@ int generate(const fs::path& sketch_path, const fs::path& out, bool quiet) {
   }
   folder.commit();
   const auto& counts = result.report["counts"];
-  std::printf("exacity: wrote %s (zones %d, water %d, roads %d, road areas %d); open %s\n", out.string().c_str(),
-              counts["zones"].get<int>(), counts["water"].get<int>(), counts["roads"].get<int>(),
-              counts["road_areas"].get<int>(), (out / "map.svg").string().c_str());
+  std::printf("exacity: wrote %s (roads %d, blocks %d, lots %d, buildings %d); open %s\n", out.string().c_str(),
+              counts["roads"].get<int>(), counts["blocks"].get<int>(), counts["lots"].get<int>(),
+              counts["buildings"].get<int>(), (out / "map.svg").string().c_str());
   if (!result.valid) {
     for (const auto& p : result.report["validation"]["problems"])
       std::fprintf(stderr, "exacity: invalid output: %s\n", p.get<std::string>().c_str());
