@@ -6,6 +6,7 @@
 
 #include "generate/blocks.h"
 #include "generate/buildings.h"
+#include "generate/cityjson_export.h"
 #include "generate/errors.h"
 #include "generate/lots.h"
 #include "generate/obj_export.h"
@@ -74,7 +75,10 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
       write_geojson(*l, sketch.crs, dir / "vector" / (l->name + ".geojson"));
     write_svg_map(layers, dir / "map.svg");
   });
-  ObjCounts mesh = stages.run("3d export", [&] { return write_obj(buildings, dir / "city.obj"); });
+  ObjCounts mesh = stages.run("3d export", [&] {
+    write_cityjson(layers, buildings, sketch, dir / "city.city.json");
+    return write_obj(buildings, dir / "city.obj");
+  });
   Validation validation = stages.run("validation", [&] { return validate_output(dir); });
 
   // Road segments per class, junctions per degree (1: a dead end at a region's edge).

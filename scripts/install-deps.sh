@@ -9,7 +9,7 @@ packages=(
   libopenmesh-dev libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libtbb-dev
   nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  python3 python3-shapely
+  python3 python3-shapely python3-jsonschema
 )
 
 missing=()

@@ -80,7 +80,8 @@ TEST(Cli, EveryExampleGeneratesAndValidates) {
     ASSERT_EQ(g.code, 0) << sketch << "\n" << g.out;
     for (const char* f : {"vector/zones.geojson", "vector/water.geojson", "vector/roads.geojson",
                           "vector/road_areas.geojson", "vector/blocks.geojson", "vector/lots.geojson",
-                          "vector/buildings.geojson", "map.svg", "city.obj", "city.mtl", "report.json"})
+                          "vector/buildings.geojson", "map.svg", "city.obj", "city.mtl", "city.city.json",
+                          "report.json"})
       EXPECT_TRUE(fs::exists(out / f)) << f;
     auto report = nlohmann::json::parse(read(out / "report.json"));
     EXPECT_EQ(report["validation"]["ok"], true);
@@ -92,6 +93,20 @@ TEST(Cli, EveryExampleGeneratesAndValidates) {
 
     std::string independent = "/usr/bin/python3 " + (kSource / "tests" / "check_layers.py").string() + " " + out.string();
     EXPECT_EQ(std::system((independent + " > /dev/null").c_str()), 0) << "GEOS disagrees: " << independent;
+  }
+}
+
+// The official CityJSON 2.0.2 schemas are in ../shared/data (not ours to commit).
+TEST(Cli, CityJsonMatchesTheSchemasAndItsSolidsAreClosed) {
+  fs::path schemas = kSource / ".." / "shared" / "data" / "cityjson-2.0.2-schemas";
+  if (!fs::exists(schemas / "cityjson.schema.json")) GTEST_SKIP() << "no CityJSON schemas at " << schemas;
+  for (const char* example : {"tangle", "valley"}) {
+    fs::path out = testing_util::temp_dir(std::string("cli-cityjson-") + example) / "out";
+    ASSERT_EQ(run("generate " + (kSource / "examples" / (std::string(example) + ".geojson")).string() + " -o " +
+                  out.string() + " -q").code, 0);
+    std::string check = "/usr/bin/python3 " + (kSource / "tests" / "check_cityjson.py").string() + " " +
+                        (out / "city.city.json").string() + " " + schemas.string();
+    EXPECT_EQ(std::system((check + " > /dev/null").c_str()), 0) << check;
   }
 }
 

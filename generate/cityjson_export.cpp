@@ -1,0 +1,186 @@
+#include "generate/cityjson_export.h"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <regex>
+
+#include "generate/errors.h"
+#include "geom/triangulate.h"
+
+namespace exacity {
+namespace {
+
+using nlohmann::json;
+
+constexpr double kScale = 0.001;  // millimetres
+
+// Quantised vertices, each stored once.
+class Vertices {
+ public:
+  explicit Vertices(geom::Vec2 origin) : origin_(origin) {}
+  int operator()(double x, double y, double z) {
+    std::array<long long, 3> q{std::llround((x - origin_.x) / kScale), std::llround((y - origin_.y) / kScale),
+                               std::llround(z / kScale)};
+    auto [it, added] = index_.emplace(q, static_cast<int>(list_.size()));
+    if (added) list_.push_back(q);
+    return it->second;
+  }
+  // The vertex straight below vertex i, at height 0.
+  int below(int i) {
+    auto q = list_[i];
+    q[2] = 0;
+    auto [it, added] = index_.emplace(q, static_cast<int>(list_.size()));
+    if (added) list_.push_back(q);
+    return it->second;
+  }
+  json to_json() const {
+    json v = json::array();
+    for (const auto& q : list_) v.push_back({q[0], q[1], q[2]});
+    return v;
+  }
+
+ private:
+  geom::Vec2 origin_;
+  std::map<std::array<long long, 3>, int> index_;
+  std::vector<std::array<long long, 3>> list_;
+};
+
+// A ring as quantised vertex indices at height z, with the repeats and spikes that
+// quantisation makes dropped; empty when fewer than 3 vertices are left.
+std::vector<int> quantised_ring(const geom::Ring& r, double z, Vertices& v) {
+  std::vector<int> q;
+  for (geom::Vec2 p : r) {
+    int i = v(p.x, p.y, z);
+    while (q.size() >= 2 && q[q.size() - 2] == i) q.pop_back();  // spike a, b, a
+    if (q.empty() || q.back() != i) q.push_back(i);
+  }
+  for (bool changed = true; changed && q.size() >= 3;) {  // the same across the seam
+    changed = false;
+    if (q.front() == q.back()) q.pop_back(), changed = true;
+    else if (q[q.size() - 2] == q.front()) q.pop_back(), changed = true;
+    else if (q[1] == q.back()) q.erase(q.begin()), changed = true;
+  }
+  if (q.size() < 3) q.clear();
+  return q;
+}
+
+// A flat surface from a polygon at height z: outer ring then holes, each counter-clockwise
+// seen from the side the surface faces. Empty when the outer ring collapses.
+json surface(const geom::Polygon& p, double z, bool facing_down, Vertices& v) {
+  json s = json::array();
+  auto add = [&](const geom::Ring& r) {
+    std::vector<int> q = quantised_ring(r, z, v);
+    if (facing_down) std::reverse(q.begin(), q.end());
+    if (!q.empty()) s.push_back(q);
+    return !q.empty();
+  };
+  if (!add(p.outer)) return json::array();
+  for (const auto& h : p.holes) add(h);
+  return s;
+}
+
+// The closed shell of a prism: ground, a wall per edge, roof; with each surface's class.
+// Walls follow the same quantised rings as ground and roof, so the shell stays closed.
+bool prism(const Building& b, Vertices& v, json& shell, std::vector<int>& classes) {
+  json ground = surface(b.polygon, 0, true, v), roof = surface(b.polygon, b.height, false, v);
+  if (ground.empty() || roof.empty()) return false;
+  shell.push_back(ground);
+  classes.push_back(0);
+  for (const json& top : roof) {
+    std::vector<int> ring = top.get<std::vector<int>>();
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      // Roof and ground vertices differ only in z: quantised the same way, so look them up.
+      int a = ring[i], c = ring[(i + 1) % ring.size()];
+      shell.push_back(json::array({json::array({v.below(a), v.below(c), c, a})}));
+      classes.push_back(1);
+    }
+  }
+  shell.push_back(roof);
+  classes.push_back(2);
+  return true;
+}
+
+// Polygons smaller than the quantum vanish; null when all do.
+json multisurface(const std::vector<const VectorFeature*>& features, Vertices& v) {
+  json boundaries = json::array();
+  for (const auto* f : features) {
+    json s = surface(f->polygon, 0, false, v);
+    if (!s.empty()) boundaries.push_back(s);
+  }
+  if (boundaries.empty()) return nullptr;
+  return {{"type", "MultiSurface"}, {"lod", "1"}, {"boundaries", boundaries}};
+}
+
+}  // namespace
+
+void write_cityjson(const CityLayers& layers, const std::vector<Building>& buildings, const Sketch& sketch,
+                    const std::filesystem::path& file) {
+  geom::Box box{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+                std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest()};
+  for (const Layer* l : {&layers.zones, &layers.water, &layers.road_areas})
+    for (const auto& f : l->features)
+      for (auto p : f.polygon.outer)
+        box = {std::min(box.min_x, p.x), std::min(box.min_y, p.y), std::max(box.max_x, p.x), std::max(box.max_y, p.y)};
+  if (box.min_x > box.max_x) box = {0, 0, 1, 1};
+  const geom::Vec2 origin{std::floor(box.min_x), std::floor(box.min_y)};
+  Vertices v(origin);
+  json objects = json::object();
+
+  const json semantics_surfaces = json::array({{{"type", "GroundSurface"}}, {{"type", "WallSurface"}}, {{"type", "RoofSurface"}}});
+  for (std::size_t i = 0; i < buildings.size(); ++i) {
+    const Building& b = buildings[i];
+    json shell = json::array();
+    std::vector<int> classes;
+    if (!prism(b, v, shell, classes)) continue;
+    json lod1{{"type", "Solid"}, {"lod", "1"}, {"boundaries", json::array({shell})}};
+    json lod2{{"type", "Solid"}, {"lod", "2"}, {"boundaries", json::array({shell})},
+              {"semantics", {{"surfaces", semantics_surfaces}, {"values", json::array({classes})}}}};
+    objects["building-" + std::to_string(i)] = {
+        {"type", "Building"},
+        {"attributes", {{"lot", b.lot}, {"zone", name(b.zone)}, {"measuredHeight", b.height}, {"roofType", "flat"}}},
+        {"geometry", json::array({lod1, lod2})}};
+  }
+  auto surfaces = [&](const Layer& layer, const std::string& prefix, const std::string& type, const std::string& key) {
+    std::map<std::string, std::vector<const VectorFeature*>> grouped;  // by `key`'s value
+    for (const auto& f : layer.features) grouped[key.empty() ? "" : f.properties[key].dump()].push_back(&f);
+    int n = 0;
+    for (const auto& [value, features] : grouped) {
+      json geometry = multisurface(features, v);
+      if (geometry.is_null()) continue;
+      json o{{"type", type}, {"geometry", json::array({geometry})}};
+      if (!key.empty()) o["attributes"] = {{key, json::parse(value)}};
+      objects[prefix + std::to_string(n++)] = o;
+    }
+  };
+  surfaces(layers.road_areas, "road-", "Road", "road");
+  surfaces(layers.zones, "landuse-", "LandUse", "zone");
+  surfaces(layers.water, "water-", "WaterBody", "");
+
+  // The ground under the city: the rectangle around it, flat (the heightmap is not applied yet).
+  geom::Polygon ground{{{box.min_x, box.min_y}, {box.max_x, box.min_y}, {box.max_x, box.max_y}, {box.min_x, box.max_y}}, {}};
+  json tin = json::array();
+  for (const auto& t : geom::triangulate(ground))
+    tin.push_back(json::array({json::array({v(ground.outer[t[0]].x, ground.outer[t[0]].y, 0),
+                                            v(ground.outer[t[1]].x, ground.outer[t[1]].y, 0),
+                                            v(ground.outer[t[2]].x, ground.outer[t[2]].y, 0)})}));
+  objects["terrain"] = {{"type", "TINRelief"}, {"geometry", json::array({{{"type", "CompositeSurface"}, {"lod", "1"}, {"boundaries", tin}}})}};
+
+  json doc{{"type", "CityJSON"},
+           {"version", "2.0"},
+           {"transform", {{"scale", {kScale, kScale, kScale}}, {"translate", {origin.x, origin.y, 0.0}}}},
+           {"CityObjects", objects},
+           {"vertices", v.to_json()}};
+  // An EPSG code in the sketch's crs becomes the reference system.
+  std::smatch m;
+  std::string crs = sketch.crs.is_null() ? "" : sketch.crs.dump();
+  if (std::regex_search(crs, m, std::regex("EPSG:+([0-9]+)")))
+    doc["metadata"] = {{"referenceSystem", "https://www.opengis.net/def/crs/EPSG/0/" + m[1].str()}};
+
+  std::ofstream out(file, std::ios::binary);
+  out << doc.dump() << '\n';
+  if (!out) throw UserError(file.string() + ": write failed (disk full?)");
+}
+
+}  // namespace exacity

@@ -1,0 +1,18 @@
+// OUT/city.city.json: CityJSON 2.0. Buildings as LOD1 and LOD2 solids (LOD2 with
+// GroundSurface, WallSurface and RoofSurface semantics), roads, land use and water as LOD1
+// surfaces, a TINRelief under the city; vertices quantised to millimetres by `transform`.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "generate/buildings.h"
+#include "generate/sketch.h"
+#include "generate/vector_layers.h"
+
+namespace exacity {
+
+void write_cityjson(const CityLayers& layers, const std::vector<Building>& buildings, const Sketch& sketch,
+                    const std::filesystem::path& file);
+
+}  // namespace exacity
