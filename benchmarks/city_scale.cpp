@@ -16,7 +16,8 @@
 #include "generate/blocks.h"
 #include "generate/buildings.h"
 #include "generate/lots.h"
-#include "generate/obj_export.h"
+#include "generate/cityjson_export.h"
+#include "generate/mesh_export.h"
 #include "generate/road_network.h"
 #include "generate/svg_map.h"
 #include "generate/validate.h"
@@ -104,8 +105,9 @@ int main(int argc, char** argv) {
   row("export", seconds_since(t), out.string());
 
   t = std::chrono::steady_clock::now();
-  ObjCounts mesh = write_obj(buildings, out / "city.obj");
-  row("3d export", seconds_since(t), std::to_string(mesh.faces) + " faces in city.obj");
+  write_cityjson(layers, buildings, sketch, out / "city.city.json");
+  MeshCounts mesh = write_meshes(buildings, out / "city.obj", out / "city.ply");
+  row("3d export", seconds_since(t), std::to_string(mesh.faces) + " faces in city.obj and city.ply, city.city.json");
 
   t = std::chrono::steady_clock::now();
   Validation v = validate_output(out);

@@ -9,7 +9,7 @@
 #include "generate/cityjson_export.h"
 #include "generate/errors.h"
 #include "generate/lots.h"
-#include "generate/obj_export.h"
+#include "generate/mesh_export.h"
 #include "generate/road_network.h"
 #include "generate/svg_map.h"
 #include "generate/terrain.h"
@@ -75,9 +75,9 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
       write_geojson(*l, sketch.crs, dir / "vector" / (l->name + ".geojson"));
     write_svg_map(layers, dir / "map.svg");
   });
-  ObjCounts mesh = stages.run("3d export", [&] {
+  MeshCounts mesh = stages.run("3d export", [&] {
     write_cityjson(layers, buildings, sketch, dir / "city.city.json");
-    return write_obj(buildings, dir / "city.obj");
+    return write_meshes(buildings, dir / "city.obj", dir / "city.ply");
   });
   Validation validation = stages.run("validation", [&] { return validate_output(dir); });
 

@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "generate/building_mesh.h"
-#include "generate/obj_export.h"
+#include "generate/mesh_export.h"
 #include "tests/test_util.h"
 
 using namespace exacity;
@@ -61,7 +61,7 @@ TEST(BuildingMesh, ObjHoldsEveryBuildingAtFullPrecision) {
   auto dir = testing_util::temp_dir("obj");
   std::vector<Building> buildings{prism({{{0.1, 0.2}, {10, 0}, {10, 10}, {0, 10}}, {}}, 5),
                                   prism({{{500000.123456789, 5000000.5}, {500010, 5000000.5}, {500010, 5000010}}, {}}, 7.25)};
-  ObjCounts counts = write_obj(buildings, dir / "city.obj");
+  MeshCounts counts = write_meshes(buildings, dir / "city.obj", dir / "city.ply");
   EXPECT_EQ(counts.vertices, 8u + 6u);
   EXPECT_EQ(counts.faces, 8u + 3u + 1u + 1u);
   std::ifstream in(dir / "city.obj");
@@ -81,4 +81,10 @@ TEST(BuildingMesh, ObjHoldsEveryBuildingAtFullPrecision) {
   EXPECT_EQ(faces, counts.faces);
   EXPECT_NE(text.find("v 500000.123456789 5000000.5 7.25"), std::string::npos) << "shortest round-trip doubles";
   EXPECT_TRUE(std::filesystem::exists(dir / "city.mtl"));
+  // The PLY holds the same mesh: its header counts, then the same doubles.
+  std::ifstream ply(dir / "city.ply");
+  std::string ply_text((std::istreambuf_iterator<char>(ply)), std::istreambuf_iterator<char>());
+  EXPECT_NE(ply_text.find("element vertex " + std::to_string(counts.vertices) + "\n"), std::string::npos);
+  EXPECT_NE(ply_text.find("element face " + std::to_string(counts.faces) + "\n"), std::string::npos);
+  EXPECT_NE(ply_text.find("\n500000.123456789 5000000.5 7.25\n"), std::string::npos);
 }

@@ -80,7 +80,7 @@ TEST(Cli, EveryExampleGeneratesAndValidates) {
     ASSERT_EQ(g.code, 0) << sketch << "\n" << g.out;
     for (const char* f : {"vector/zones.geojson", "vector/water.geojson", "vector/roads.geojson",
                           "vector/road_areas.geojson", "vector/blocks.geojson", "vector/lots.geojson",
-                          "vector/buildings.geojson", "map.svg", "city.obj", "city.mtl", "city.city.json",
+                          "vector/buildings.geojson", "map.svg", "city.obj", "city.mtl", "city.ply", "city.city.json",
                           "report.json"})
       EXPECT_TRUE(fs::exists(out / f)) << f;
     auto report = nlohmann::json::parse(read(out / "report.json"));

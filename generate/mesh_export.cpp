@@ -1,7 +1,8 @@
-#include "generate/obj_export.h"
+#include "generate/mesh_export.h"
 
 #include <fstream>
 #include <map>
+#include <sstream>
 
 #include "generate/building_mesh.h"
 #include "generate/errors.h"
@@ -26,7 +27,8 @@ Colour colour(const std::string& zone, Surface s) {
 
 }  // namespace
 
-ObjCounts write_obj(const std::vector<Building>& buildings, const std::filesystem::path& obj_file) {
+MeshCounts write_meshes(const std::vector<Building>& buildings, const std::filesystem::path& obj_file,
+                        const std::filesystem::path& ply_file) {
   std::filesystem::path mtl_file = obj_file;
   mtl_file.replace_extension(".mtl");
   std::ofstream obj(obj_file, std::ios::binary), mtl(mtl_file, std::ios::binary);
@@ -40,11 +42,21 @@ ObjCounts write_obj(const std::vector<Building>& buildings, const std::filesyste
     }
 
   obj << "# Exacity city: x east, y north, z up, metres\nmtllib " << mtl_file.filename().string() << '\n';
-  ObjCounts counts;
+  MeshCounts counts;
+  std::ostringstream ply_vertices, ply_faces;
   for (std::size_t i = 0; i < buildings.size(); ++i) {
     const Building& b = buildings[i];
     Mesh mesh = building_mesh(b);
     auto surface = surface_property(mesh);
+    for (auto v : mesh.vertices()) {
+      const auto& p = mesh.point(v);
+      ply_vertices << format_number(p[0]) << ' ' << format_number(p[1]) << ' ' << format_number(p[2]) << '\n';
+    }
+    for (auto f : mesh.faces()) {
+      ply_faces << mesh.valence(f);
+      for (auto v : mesh.fv_range(f)) ply_faces << ' ' << counts.vertices + v.idx();
+      ply_faces << ' ' << mesh.property(surface, f) << '\n';
+    }
     obj << "o building_" << i << '\n';
     for (auto v : mesh.vertices()) {
       const auto& p = mesh.point(v);
@@ -63,7 +75,13 @@ ObjCounts write_obj(const std::vector<Building>& buildings, const std::filesyste
     }
     counts.vertices += mesh.n_vertices();
   }
-  if (!obj || !mtl) throw UserError(obj_file.string() + ": write failed (disk full?)");
+  std::ofstream ply(ply_file, std::ios::binary);
+  ply << "ply\nformat ascii 1.0\ncomment Exacity city: x east, y north, z up, metres; surface 0 ground, 1 wall, 2 roof\n"
+      << "element vertex " << counts.vertices << "\nproperty double x\nproperty double y\nproperty double z\n"
+      << "element face " << counts.faces << "\nproperty list uchar int vertex_indices\nproperty uchar surface\n"
+      << "end_header\n"
+      << ply_vertices.str() << ply_faces.str();
+  if (!obj || !mtl || !ply) throw UserError(obj_file.string() + ": write failed (disk full?)");
   return counts;
 }
 
