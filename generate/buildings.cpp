@@ -20,6 +20,42 @@ double building_height(const ZoneParams& p, double distance, double radius, Rand
   return std::round(h * 100) / 100;  // centimetres
 }
 
+namespace {
+
+// Four corners, each within 10 degrees of square.
+bool near_rectangle(const geom::Polygon& p) {
+  if (p.outer.size() != 4 || !p.holes.empty()) return false;
+  for (int i = 0; i < 4; ++i) {
+    geom::Vec2 a = p.outer[(i + 3) % 4], o = p.outer[i], c = p.outer[(i + 1) % 4];
+    double ux = a.x - o.x, uy = a.y - o.y, wx = c.x - o.x, wy = c.y - o.y;
+    double cosine = (ux * wx + uy * wy) / (std::hypot(ux, uy) * std::hypot(wx, wy));
+    if (std::abs(cosine) > std::sin(10 * M_PI / 180)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void choose_roof(Building& b, const ZoneParams& p) {
+  b.roof = "flat";
+  b.eaves = b.height;
+  b.roof_faces.clear();
+  std::string want = p.roof;
+  if (want == "auto") want = b.zone != ZoneType::Residential ? "flat" : near_rectangle(b.polygon) ? "gabled" : "hipped";
+  if (want == "flat") return;
+  const double slope = std::tan(p.roof_pitch * M_PI / 180);
+  std::vector<geom::Face3> faces;
+  if (want == "gabled") faces = geom::gabled_roof(b.polygon, 0, slope);
+  if (faces.empty()) want = "hipped", faces = geom::hipped_roof(b.polygon, 0, slope);
+  double rise = geom::roof_top(faces);
+  if (faces.empty() || rise <= 0 || rise > b.height / 2) return;
+  b.roof = want;
+  b.eaves = b.height - rise;
+  for (geom::Face3& f : faces)
+    for (geom::Vec3& v : f) v[2] += b.eaves;
+  b.roof_faces = std::move(faces);
+}
+
 std::vector<Building> place_buildings(const ZoneMap& zm, const std::vector<Lot>& lots, const Sketch& sketch) {
   // Lots as they ended up in the map (cut back at roads), one cell per piece.
   std::vector<int> group(zm.labels.size(), -1), kind(zm.labels.size(), 0), lot_of;
@@ -50,12 +86,17 @@ std::vector<Building> place_buildings(const ZoneMap& zm, const std::vector<Lot>&
       double a = geom::area(polygon);
       if (polygon.outer.empty() || a < best_area) continue;
       best_area = a;
-      best = Building{lot_of[i], lot.zone, std::move(part), std::move(polygon), 0};
+      best = Building{};
+      best->lot = lot_of[i];
+      best->zone = lot.zone;
+      best->footprint = std::move(part);
+      best->polygon = std::move(polygon);
     }
     if (!best) return;
     geom::Vec2 c = best->footprint.centroid();
     Random rng(mix(stage, i));
     best->height = building_height(p, std::hypot(c.x - centre.x, c.y - centre.y), radius, rng);
+    choose_roof(*best, p);
     placed[i] = std::move(best);
   });
   std::vector<Building> buildings;

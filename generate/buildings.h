@@ -9,6 +9,7 @@
 #include "generate/random.h"
 #include "generate/sketch.h"
 #include "generate/zone_map.h"
+#include "geom/roof.h"
 
 namespace exacity {
 
@@ -17,8 +18,16 @@ struct Building {
   ZoneType zone = ZoneType::Residential;
   geom::Cell footprint;    // exact
   geom::Polygon polygon;   // rounded
-  double height = 0;       // m
+  double height = 0;       // m, to the top of the roof
+  std::string roof = "flat";
+  double eaves = 0;        // m: where walls meet a pitched roof (the height, for flat roofs)
+  std::vector<geom::Face3> roof_faces;  // pitched roofs only, in place
 };
+
+// The roof a footprint gets: its kind, its faces (none for flat) and the eaves height.
+// A pitched roof rising over half the building's height, or whose skeleton leaves the
+// footprint, falls back to flat.
+void choose_roof(Building& b, const ZoneParams& p);
 
 // One building per lot piece big enough, lot by lot in parallel.
 std::vector<Building> place_buildings(const ZoneMap& zone_map, const std::vector<Lot>& lots, const Sketch& sketch);

@@ -6,6 +6,7 @@
 #include <map>
 #include <regex>
 
+#include "generate/building_mesh.h"
 #include "generate/errors.h"
 #include "geom/triangulate.h"
 
@@ -103,6 +104,26 @@ bool prism(const Building& b, Vertices& v, json& shell, std::vector<int>& classe
 }
 
 // Polygons smaller than the quantum vanish; null when all do.
+// The shell of the building's mesh, each face with its surface class; false when a face
+// collapses under quantisation.
+bool mesh_shell(const Building& b, Vertices& v, json& shell, std::vector<int>& classes) {
+  Mesh mesh = building_mesh(b);
+  auto surface = surface_property(mesh);
+  for (auto f : mesh.faces()) {
+    std::vector<int> ring;
+    for (auto vh : mesh.fv_range(f)) {
+      const auto& p = mesh.point(vh);
+      ring.push_back(v(p[0], p[1], p[2]));
+    }
+    std::vector<int> distinct(ring);
+    std::sort(distinct.begin(), distinct.end());
+    if (std::unique(distinct.begin(), distinct.end()) != distinct.end()) return false;
+    shell.push_back(json::array({ring}));
+    classes.push_back(mesh.property(surface, f));
+  }
+  return true;
+}
+
 json multisurface(const std::vector<const VectorFeature*>& features, Vertices& v) {
   json boundaries = json::array();
   for (const auto* f : features) {
@@ -135,11 +156,15 @@ void write_cityjson(const CityLayers& layers, const std::vector<Building>& build
     std::vector<int> classes;
     if (!prism(b, v, shell, classes)) continue;
     json lod1{{"type", "Solid"}, {"lod", "1"}, {"boundaries", json::array({shell})}};
-    json lod2{{"type", "Solid"}, {"lod", "2"}, {"boundaries", json::array({shell})},
-              {"semantics", {{"surfaces", semantics_surfaces}, {"values", json::array({classes})}}}};
+    // LOD2 has the roof as built; where quantisation collapses a face of it, the prism.
+    json lod2_shell = json::array();
+    std::vector<int> lod2_classes;
+    if (!mesh_shell(b, v, lod2_shell, lod2_classes)) lod2_shell = shell, lod2_classes = classes;
+    json lod2{{"type", "Solid"}, {"lod", "2"}, {"boundaries", json::array({lod2_shell})},
+              {"semantics", {{"surfaces", semantics_surfaces}, {"values", json::array({lod2_classes})}}}};
     objects["building-" + std::to_string(i)] = {
         {"type", "Building"},
-        {"attributes", {{"lot", b.lot}, {"zone", name(b.zone)}, {"measuredHeight", b.height}, {"roofType", "flat"}}},
+        {"attributes", {{"lot", b.lot}, {"zone", name(b.zone)}, {"measuredHeight", b.height}, {"roofType", b.roof}}},
         {"geometry", json::array({lod1, lod2})}};
   }
   auto surfaces = [&](const Layer& layer, const std::string& prefix, const std::string& type, const std::string& key) {

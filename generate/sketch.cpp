@@ -271,7 +271,7 @@ class Parser {
     known_keys(j, w, {"block_area", "segment_length", "branches", "jitter", "segment_deviation",
                       "origin_deviation", "road_widths", "min_block_area", "min_block_width",
                       "bridges", "lots", "lot_area", "min_lot_edge", "min_lot_area", "setback", "heights",
-                      "min_footprint_area"});
+                      "min_footprint_area", "roof", "roof_pitch"});
     ZoneParams p = default_params(zt);
     auto set = [&](const char* key, double& field, double min, double max) {
       if (j.contains(key)) field = number(j[key], w + "." + key, min, max);
@@ -298,6 +298,13 @@ class Parser {
     set("min_lot_area", p.min_lot_area, 0, 1e8);
     set("setback", p.setback, 0, 1e3);
     set("min_footprint_area", p.min_footprint_area, 0, 1e8);
+    set("roof_pitch", p.roof_pitch, 1, 75);
+    if (j.contains("roof")) {
+      const json& r = j["roof"];
+      if (!r.is_string() || (r != "auto" && r != "flat" && r != "gabled" && r != "hipped"))
+        fail(w + ".roof", "expected \"auto\", \"flat\", \"gabled\" or \"hipped\"");
+      p.roof = r.get<std::string>();
+    }
     if (j.contains("heights")) {
       const json& h = j["heights"];
       if (!h.is_array() || h.size() != 2) fail(w + ".heights", "give [lowest, highest] building heights in metres");

@@ -37,6 +37,10 @@ struct ZoneParams {
   double setback = 3;               // m: footprints keep this far inside their lot's edges
   double min_height = 4, max_height = 12;  // m: near the city centre; half that at its edge
   double min_footprint_area = 30;   // m²: smaller footprints get no building
+  // "auto": gabled on near-rectangular residential footprints, hipped on the others, flat
+  // elsewhere; or "flat", "gabled" (falls back to hipped), "hipped" for every footprint.
+  std::string roof = "auto";
+  double roof_pitch = 30;           // degrees
 };
 
 struct TerrainSpec {

@@ -69,7 +69,7 @@ CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, c
            });
 
   for (const Building& b : buildings)
-    add_polygon(out.buildings, {{"lot", b.lot}, {"zone", name(b.zone)}, {"height", b.height}, {"roof", "flat"}, {"model", nullptr}},
+    add_polygon(out.buildings, {{"lot", b.lot}, {"zone", name(b.zone)}, {"height", b.height}, {"roof", b.roof}, {"model", nullptr}},
                 b.polygon);
 
   // Centre lines with every junction as a vertex, cut where they go on or off a bridge.

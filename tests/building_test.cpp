@@ -1,11 +1,13 @@
 // Building meshes: closed, outward, the volume of their prism; and the OBJ they make.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
 #include "generate/building_mesh.h"
 #include "generate/mesh_export.h"
+#include "geom/polygon_check.h"
 #include "tests/test_util.h"
 
 using namespace exacity;
@@ -16,6 +18,7 @@ Building prism(geom::Polygon footprint, double height) {
   Building b;
   b.polygon = std::move(footprint);
   b.height = height;
+  b.eaves = height;  // flat
   return b;
 }
 
@@ -87,4 +90,62 @@ TEST(BuildingMesh, ObjHoldsEveryBuildingAtFullPrecision) {
   EXPECT_NE(ply_text.find("element vertex " + std::to_string(counts.vertices) + "\n"), std::string::npos);
   EXPECT_NE(ply_text.find("element face " + std::to_string(counts.faces) + "\n"), std::string::npos);
   EXPECT_NE(ply_text.find("\n500000.123456789 5000000.5 7.25\n"), std::string::npos);
+}
+
+namespace {
+
+Building roofed(geom::Polygon footprint, double height, const std::string& roof) {
+  Building b = prism(std::move(footprint), height);
+  ZoneParams p = default_params(ZoneType::Residential);
+  p.roof = roof;
+  choose_roof(b, p);
+  return b;
+}
+
+// Every face of the mesh, seen from above, is a simple polygon (walls are upright and skipped).
+void expect_simple_roof_faces(const Mesh& m) {
+  auto surface = surface_property(m);
+  for (auto f : m.faces()) {
+    if (m.property(surface, f) != static_cast<int>(Surface::Roof)) continue;
+    geom::Ring r;
+    for (auto v : m.fv_range(f)) r.push_back({m.point(v)[0], m.point(v)[1]});
+    EXPECT_TRUE(geom::ring_is_simple(r));
+  }
+}
+
+}  // namespace
+
+TEST(BuildingMesh, HippedRoofsOnLAndUShapesAreClosedAndSimple) {
+  geom::Polygon l{{{0, 0}, {20, 0}, {20, 8}, {8, 8}, {8, 20}, {0, 20}}, {}};
+  geom::Polygon u{{{0, 0}, {24, 0}, {24, 20}, {16, 20}, {16, 8}, {8, 8}, {8, 20}, {0, 20}}, {}};
+  for (const auto& [footprint, area] : {std::pair{l, 256.0}, std::pair{u, 384.0}}) {
+    Building b = roofed(footprint, 12, "hipped");
+    ASSERT_EQ(b.roof, "hipped");
+    EXPECT_NEAR(b.eaves, 12 - 4 * std::tan(M_PI / 6), 1e-9);  // arms 8 wide: the ridge 4 in
+    Mesh m = building_mesh(b);
+    expect_closed(m);
+    expect_simple_roof_faces(m);
+    EXPECT_GT(volume(m), area * b.eaves);
+    EXPECT_LT(volume(m), area * b.height);
+  }
+}
+
+TEST(BuildingMesh, GabledRoofHasItsPrismVolume) {
+  Building b = roofed({{{0, 0}, {10, 0}, {10, 6}, {0, 6}}, {}}, 9, "gabled");
+  ASSERT_EQ(b.roof, "gabled");
+  double rise = 3 * std::tan(M_PI / 6);
+  EXPECT_NEAR(b.eaves, 9 - rise, 1e-12);
+  Mesh m = building_mesh(b);
+  expect_closed(m);
+  EXPECT_NEAR(volume(m), 60 * b.eaves + 0.5 * 6 * rise * 10, 1e-9);
+  auto surface = surface_property(m);
+  int walls = 0;
+  for (auto f : m.faces()) walls += m.property(surface, f) == static_cast<int>(Surface::Wall);
+  EXPECT_EQ(walls, 4 + 2);  // four walls and two gables
+}
+
+TEST(BuildingMesh, RoofTooTallForTheBuildingFallsBackToFlat) {
+  Building b = roofed({{{0, 0}, {40, 0}, {40, 40}, {0, 40}}, {}}, 8, "hipped");  // the rise would be 11.5 m
+  EXPECT_EQ(b.roof, "flat");
+  EXPECT_EQ(b.eaves, 8);
 }
