@@ -8,6 +8,7 @@
 
 #include "generate/building_mesh.h"
 #include "generate/errors.h"
+#include "geom/ring_cleanup.h"
 #include "geom/triangulate.h"
 
 namespace exacity {
@@ -52,18 +53,8 @@ class Vertices {
 // quantisation makes dropped; empty when fewer than 3 vertices are left.
 std::vector<int> quantised_ring(const geom::Ring& r, double z, Vertices& v) {
   std::vector<int> q;
-  for (geom::Vec2 p : r) {
-    int i = v(p.x, p.y, z);
-    while (q.size() >= 2 && q[q.size() - 2] == i) q.pop_back();  // spike a, b, a
-    if (q.empty() || q.back() != i) q.push_back(i);
-  }
-  for (bool changed = true; changed && q.size() >= 3;) {  // the same across the seam
-    changed = false;
-    if (q.front() == q.back()) q.pop_back(), changed = true;
-    else if (q[q.size() - 2] == q.front()) q.pop_back(), changed = true;
-    else if (q[1] == q.back()) q.erase(q.begin()), changed = true;
-  }
-  if (q.size() < 3) q.clear();
+  for (geom::Vec2 p : r) q.push_back(v(p.x, p.y, z));
+  geom::drop_repeats_and_spikes(q);
   return q;
 }
 

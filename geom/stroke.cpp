@@ -6,6 +6,7 @@
 
 #include "geom/exact.h"
 #include "geom/grid.h"
+#include "geom/ring_cleanup.h"
 
 namespace geom::exact {
 namespace {
@@ -56,18 +57,8 @@ ExactRing joint_piece(Vec2 a, Vec2 q, Vec2 b, double hw) {
 Ring round_ring(const std::vector<Point>& points) {
   Ring r;
   r.reserve(points.size());
-  for (const Point& p : points) {
-    Vec2 v = to_plain(p);
-    while (r.size() >= 2 && r[r.size() - 2] == v) r.pop_back();  // spike a, b, a
-    if (r.empty() || !(r.back() == v)) r.push_back(v);
-  }
-  for (bool changed = true; changed && r.size() >= 3;) {  // the same across the seam
-    changed = false;
-    if (r.front() == r.back()) r.pop_back(), changed = true;
-    else if (r[r.size() - 2] == r.front()) r.pop_back(), changed = true;
-    else if (r[1] == r.back()) r.erase(r.begin()), changed = true;
-  }
-  if (r.size() < 3) r.clear();
+  for (const Point& p : points) r.push_back(to_plain(p));
+  drop_repeats_and_spikes(r);
   return r;
 }
 
