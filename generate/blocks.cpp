@@ -1,8 +1,5 @@
 #include "generate/blocks.h"
 
-#include <cmath>
-
-#include "generate/road_network.h"
 #include "geom/measure.h"
 
 namespace exacity {

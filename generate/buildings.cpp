@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <optional>
 
 #include <tbb/parallel_for.h>
@@ -62,13 +61,8 @@ std::vector<Building> place_buildings(const ZoneMap& zm, const std::vector<Lot>&
   for (std::size_t l = 0; l < zm.labels.size(); ++l) group[l] = zm.labels[l].lot;
   std::vector<geom::Cell> pieces = zm.map.cells(group, kind, &lot_of);
 
-  geom::Box city{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
-                 std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest()};
-  for (const geom::Cell& c : pieces) {
-    geom::Box b = c.bounds();
-    city = {std::min(city.min_x, b.min_x), std::min(city.min_y, b.min_y), std::max(city.max_x, b.max_x),
-            std::max(city.max_y, b.max_y)};
-  }
+  geom::Box city = geom::Box::none();
+  for (const geom::Cell& c : pieces) city.add(c.bounds());
   const geom::Vec2 centre{(city.min_x + city.max_x) / 2, (city.min_y + city.max_y) / 2};
   const double radius = std::hypot(city.width(), city.height()) / 2;
   const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Buildings));

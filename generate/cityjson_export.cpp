@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <fstream>
-#include <limits>
 #include <map>
 #include <regex>
 
@@ -94,7 +93,6 @@ bool prism(const Building& b, Vertices& v, json& shell, std::vector<int>& classe
   return true;
 }
 
-// Polygons smaller than the quantum vanish; null when all do.
 // The shell of the building's mesh, each face with its surface class; false when a face
 // collapses under quantisation.
 bool mesh_shell(const Building& b, Vertices& v, json& shell, std::vector<int>& classes) {
@@ -115,6 +113,7 @@ bool mesh_shell(const Building& b, Vertices& v, json& shell, std::vector<int>& c
   return true;
 }
 
+// Polygons smaller than the quantum vanish; null when all do.
 json multisurface(const std::vector<const VectorFeature*>& features, Vertices& v) {
   json boundaries = json::array();
   for (const auto* f : features) {
@@ -129,13 +128,12 @@ json multisurface(const std::vector<const VectorFeature*>& features, Vertices& v
 
 void write_cityjson(const CityLayers& layers, const std::vector<Building>& buildings, const Sketch& sketch,
                     const std::filesystem::path& file) {
-  geom::Box box{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
-                std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest()};
+  geom::Box box = geom::Box::none();
   for (const Layer* l : {&layers.zones, &layers.water, &layers.road_areas})
     for (const auto& f : l->features)
       for (auto p : f.polygon.outer)
-        box = {std::min(box.min_x, p.x), std::min(box.min_y, p.y), std::max(box.max_x, p.x), std::max(box.max_y, p.y)};
-  if (box.min_x > box.max_x) box = {0, 0, 1, 1};
+        box.add(p);
+  if (box.holds_nothing()) box = {0, 0, 1, 1};
   const geom::Vec2 origin{std::floor(box.min_x), std::floor(box.min_y)};
   Vertices v(origin);
   json objects = json::object();

@@ -202,17 +202,13 @@ class Parser {
                             "ogr2ogr -t_srs EPSG:<UTM zone> metres.geojson sketch.geojson";
     for (const char* geographic : {"4326", "CRS84", "4258", "4269"})
       if (crs.find(geographic) != std::string::npos) fail("crs", "the sketch is in longitude/latitude (" + crs + ")" + fix);
-    geom::Box b{1e300, 1e300, -1e300, -1e300};
-    auto add = [&](geom::Vec2 p) {
-      b.min_x = std::min(b.min_x, p.x), b.max_x = std::max(b.max_x, p.x);
-      b.min_y = std::min(b.min_y, p.y), b.max_y = std::max(b.max_y, p.y);
-    };
+    geom::Box b = geom::Box::none();
     for (const auto& z : sketch.zones)
       for (const auto& p : z.polygons)
-        for (auto v : p.outer) add(v);
+        for (auto v : p.outer) b.add(v);
     for (const auto& r : sketch.roads)
       for (const auto& l : r.lines)
-        for (auto v : l) add(v);
+        for (auto v : l) b.add(v);
     bool degree_sized = b.width() < 1 && b.height() < 1 && b.min_x >= -180 && b.max_x <= 180 && b.min_y >= -90 && b.max_y <= 90;
     if (degree_sized)
       fail("features", "the whole sketch spans less than 1 x 1 unit, so its coordinates look like longitude/latitude" + fix);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <limits>
 #include <map>
 #include <ostream>
 #include <vector>
@@ -15,15 +14,6 @@ namespace {
 
 const std::map<std::string, const char*> kZoneColours = {
     {"residential", "#f2c9a0"}, {"commercial", "#a9c8ec"}, {"industrial", "#cdb89a"}, {"park", "#a8d38d"}};
-
-struct Frame {
-  geom::Box box{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
-                std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest()};
-  void add(geom::Vec2 p) {
-    box.min_x = std::min(box.min_x, p.x), box.min_y = std::min(box.min_y, p.y);
-    box.max_x = std::max(box.max_x, p.x), box.max_y = std::max(box.max_y, p.y);
-  }
-};
 
 // y flips so north is up; coordinates stay exact relative to the frame's corner.
 std::string point(geom::Vec2 p, const geom::Box& b) {
@@ -81,13 +71,12 @@ void write_legend(std::ostream& out, const CityLayers& layers, double w, double 
 }  // namespace
 
 void write_svg_map(const CityLayers& layers, const std::filesystem::path& file) {
-  Frame frame;
+  geom::Box b = geom::Box::none();
   for (const Layer* l : {&layers.zones, &layers.water, &layers.road_areas})
     for (const auto& f : l->features)
-      for (auto p : f.polygon.outer) frame.add(p);
+      for (auto p : f.polygon.outer) b.add(p);
   for (const auto& f : layers.roads.features)
-    for (auto p : f.line) frame.add(p);
-  geom::Box b = frame.box;
+    for (auto p : f.line) b.add(p);
   if (!(b.max_x > b.min_x)) b = {0, 0, 1, 1};
   double w = b.width(), h = std::max(b.height(), 1e-9);
   double px_w = 1200, px_h = std::max(1.0, std::round(px_w * h / w));

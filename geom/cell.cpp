@@ -39,15 +39,12 @@ bool Path::is_straight() const {
 Cell make_cell(KindRing outer, std::vector<KindRing> holes) {
   auto impl = std::make_shared<Cell::Impl>();
   exact::FT twice_area = 0;
-  Box b{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
-        std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest()};
+  Box b = Box::none();
   auto add = [&](const KindRing& r) {
     for (std::size_t i = 0; i < r.points.size(); ++i) {
       const Point &a = r.points[i], &c = r.points[(i + 1) % r.points.size()];
       twice_area += a.x() * c.y() - a.y() * c.x();
-      Vec2 v = exact::to_plain(a);
-      b.min_x = std::min(b.min_x, v.x), b.max_x = std::max(b.max_x, v.x);
-      b.min_y = std::min(b.min_y, v.y), b.max_y = std::max(b.max_y, v.y);
+      b.add(exact::to_plain(a));
     }
   };
   add(outer);

@@ -2,6 +2,8 @@
 // see only these types.
 #pragma once
 
+#include <algorithm>
+#include <limits>
 #include <vector>
 
 namespace geom {
@@ -24,6 +26,21 @@ struct Box {
   double min_x = 0, min_y = 0, max_x = 0, max_y = 0;
   double width() const { return max_x - min_x; }
   double height() const { return max_y - min_y; }
+
+  // A box that holds nothing yet, to grow with add().
+  static Box none() {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    return {inf, inf, -inf, -inf};
+  }
+  bool holds_nothing() const { return min_x > max_x; }
+  void add(Vec2 p) {
+    min_x = std::min(min_x, p.x), min_y = std::min(min_y, p.y);
+    max_x = std::max(max_x, p.x), max_y = std::max(max_y, p.y);
+  }
+  void add(const Box& b) {
+    if (b.holds_nothing()) return;
+    add(Vec2{b.min_x, b.min_y}), add(Vec2{b.max_x, b.max_y});
+  }
 };
 
 }  // namespace geom
