@@ -105,8 +105,9 @@ int main(int argc, char** argv) {
   row("export", seconds_since(t), out.string());
 
   t = std::chrono::steady_clock::now();
-  write_cityjson(layers, buildings, sketch, out / "city.city.json");
-  MeshCounts mesh = write_meshes(buildings, out / "city.obj", out / "city.ply");
+  std::vector<Mesh> meshes = building_meshes(buildings);
+  write_cityjson(layers, buildings, meshes, sketch, out / "city.city.json");
+  MeshCounts mesh = write_meshes(buildings, meshes, out / "city.obj", out / "city.ply");
   row("3d export", seconds_since(t), std::to_string(mesh.faces) + " faces in city.obj and city.ply, city.city.json");
 
   t = std::chrono::steady_clock::now();

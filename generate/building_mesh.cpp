@@ -3,6 +3,8 @@
 #include <cmath>
 #include <map>
 
+#include <tbb/parallel_for.h>
+
 #include "geom/triangulate.h"
 
 namespace exacity {
@@ -23,6 +25,12 @@ OpenMesh::FPropHandleT<int> surface_property(const Mesh& mesh) {
   OpenMesh::FPropHandleT<int> surface;
   if (!mesh.get_property_handle(surface, "surface")) throw std::logic_error("mesh has no surface property");
   return surface;
+}
+
+std::vector<Mesh> building_meshes(const std::vector<Building>& buildings) {
+  std::vector<Mesh> meshes(buildings.size());
+  tbb::parallel_for(std::size_t(0), buildings.size(), [&](std::size_t i) { meshes[i] = building_mesh(buildings[i]); });
+  return meshes;
 }
 
 Mesh building_mesh(const Building& b) {

@@ -21,6 +21,9 @@ inline constexpr const char* kSurfaceNames[] = {"ground", "wall", "roof"};
 // the mesh's "surface" face property.
 Mesh building_mesh(const Building& b);
 
+// building_mesh of every building, in parallel; the exporters share them.
+std::vector<Mesh> building_meshes(const std::vector<Building>& buildings);
+
 // The face property that says which surface a face belongs to.
 OpenMesh::FPropHandleT<int> surface_property(const Mesh& mesh);
 

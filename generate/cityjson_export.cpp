@@ -5,7 +5,6 @@
 #include <map>
 #include <regex>
 
-#include "generate/building_mesh.h"
 #include "generate/errors.h"
 #include "geom/ring_cleanup.h"
 #include "geom/triangulate.h"
@@ -95,8 +94,7 @@ bool prism(const Building& b, Vertices& v, json& shell, std::vector<int>& classe
 
 // The shell of the building's mesh, each face with its surface class; false when a face
 // collapses under quantisation.
-bool mesh_shell(const Building& b, Vertices& v, json& shell, std::vector<int>& classes) {
-  Mesh mesh = building_mesh(b);
+bool mesh_shell(const Mesh& mesh, Vertices& v, json& shell, std::vector<int>& classes) {
   auto surface = surface_property(mesh);
   for (auto f : mesh.faces()) {
     std::vector<int> ring;
@@ -126,8 +124,8 @@ json multisurface(const std::vector<const VectorFeature*>& features, Vertices& v
 
 }  // namespace
 
-void write_cityjson(const CityLayers& layers, const std::vector<Building>& buildings, const Sketch& sketch,
-                    const std::filesystem::path& file) {
+void write_cityjson(const CityLayers& layers, const std::vector<Building>& buildings, const std::vector<Mesh>& meshes,
+                    const Sketch& sketch, const std::filesystem::path& file) {
   geom::Box box = geom::Box::none();
   for (const Layer* l : {&layers.zones, &layers.water, &layers.road_areas})
     for (const auto& f : l->features)
@@ -148,7 +146,7 @@ void write_cityjson(const CityLayers& layers, const std::vector<Building>& build
     // LOD2 has the roof as built; where quantisation collapses a face of it, the prism.
     json lod2_shell = json::array();
     std::vector<int> lod2_classes;
-    if (!mesh_shell(b, v, lod2_shell, lod2_classes)) lod2_shell = shell, lod2_classes = classes;
+    if (!mesh_shell(meshes[i], v, lod2_shell, lod2_classes)) lod2_shell = shell, lod2_classes = classes;
     json lod2{{"type", "Solid"}, {"lod", "2"}, {"boundaries", json::array({lod2_shell})},
               {"semantics", {{"surfaces", semantics_surfaces}, {"values", json::array({lod2_classes})}}}};
     objects["building-" + std::to_string(i)] = {

@@ -6,13 +6,14 @@
 #include <filesystem>
 #include <vector>
 
-#include "generate/buildings.h"
+#include "generate/building_mesh.h"
 #include "generate/sketch.h"
 #include "generate/vector_layers.h"
 
 namespace exacity {
 
-void write_cityjson(const CityLayers& layers, const std::vector<Building>& buildings, const Sketch& sketch,
-                    const std::filesystem::path& file);
+// meshes[i] is building_mesh(buildings[i]).
+void write_cityjson(const CityLayers& layers, const std::vector<Building>& buildings, const std::vector<Mesh>& meshes,
+                    const Sketch& sketch, const std::filesystem::path& file);
 
 }  // namespace exacity

@@ -4,7 +4,6 @@
 #include <map>
 #include <sstream>
 
-#include "generate/building_mesh.h"
 #include "generate/errors.h"
 #include "generate/geojson.h"
 
@@ -27,8 +26,8 @@ Colour colour(const std::string& zone, Surface s) {
 
 }  // namespace
 
-MeshCounts write_meshes(const std::vector<Building>& buildings, const std::filesystem::path& obj_file,
-                        const std::filesystem::path& ply_file) {
+MeshCounts write_meshes(const std::vector<Building>& buildings, const std::vector<Mesh>& meshes,
+                        const std::filesystem::path& obj_file, const std::filesystem::path& ply_file) {
   std::filesystem::path mtl_file = obj_file;
   mtl_file.replace_extension(".mtl");
   std::ofstream obj(obj_file, std::ios::binary), mtl(mtl_file, std::ios::binary);
@@ -46,7 +45,7 @@ MeshCounts write_meshes(const std::vector<Building>& buildings, const std::files
   std::ostringstream ply_vertices, ply_faces;
   for (std::size_t i = 0; i < buildings.size(); ++i) {
     const Building& b = buildings[i];
-    Mesh mesh = building_mesh(b);
+    const Mesh& mesh = meshes[i];
     auto surface = surface_property(mesh);
     for (auto v : mesh.vertices()) {
       const auto& p = mesh.point(v);

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "generate/buildings.h"
+#include "generate/building_mesh.h"
 
 namespace exacity {
 
@@ -14,8 +14,8 @@ struct MeshCounts {
   std::size_t vertices = 0, faces = 0;
 };
 
-// Writes both files; the counts are of the whole city.
-MeshCounts write_meshes(const std::vector<Building>& buildings, const std::filesystem::path& obj_file,
-                        const std::filesystem::path& ply_file);
+// Writes both files; meshes[i] is building_mesh(buildings[i]). The counts are of the whole city.
+MeshCounts write_meshes(const std::vector<Building>& buildings, const std::vector<Mesh>& meshes,
+                        const std::filesystem::path& obj_file, const std::filesystem::path& ply_file);
 
 }  // namespace exacity

@@ -76,8 +76,9 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
     write_svg_map(layers, dir / "map.svg");
   });
   MeshCounts mesh = stages.run("3d export", [&] {
-    write_cityjson(layers, buildings, sketch, dir / "city.city.json");
-    return write_meshes(buildings, dir / "city.obj", dir / "city.ply");
+    std::vector<Mesh> meshes = building_meshes(buildings);
+    write_cityjson(layers, buildings, meshes, sketch, dir / "city.city.json");
+    return write_meshes(buildings, meshes, dir / "city.obj", dir / "city.ply");
   });
   Validation validation = stages.run("validation", [&] { return validate_output(dir); });
 

@@ -64,7 +64,7 @@ TEST(BuildingMesh, ObjHoldsEveryBuildingAtFullPrecision) {
   auto dir = testing_util::temp_dir("obj");
   std::vector<Building> buildings{prism({{{0.1, 0.2}, {10, 0}, {10, 10}, {0, 10}}, {}}, 5),
                                   prism({{{500000.123456789, 5000000.5}, {500010, 5000000.5}, {500010, 5000010}}, {}}, 7.25)};
-  MeshCounts counts = write_meshes(buildings, dir / "city.obj", dir / "city.ply");
+  MeshCounts counts = write_meshes(buildings, building_meshes(buildings), dir / "city.obj", dir / "city.ply");
   EXPECT_EQ(counts.vertices, 8u + 6u);
   EXPECT_EQ(counts.faces, 8u + 3u + 1u + 1u);
   std::ifstream in(dir / "city.obj");
