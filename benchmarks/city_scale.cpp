@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
   row("lots", seconds_since(t), std::to_string(lots.size()) + " lots");
 
   t = std::chrono::steady_clock::now();
-  std::vector<Building> buildings = place_buildings(net.map, lots, sketch);
+  std::vector<Building> buildings = place_buildings(net.map, lots, sketch, nullptr, nullptr);
   row("buildings", seconds_since(t), std::to_string(buildings.size()) + " footprints");
 
   t = std::chrono::steady_clock::now();
@@ -105,8 +105,8 @@ int main(int argc, char** argv) {
   row("export", seconds_since(t), out.string());
 
   t = std::chrono::steady_clock::now();
-  std::vector<Mesh> meshes = building_meshes(buildings);
-  write_cityjson(layers, buildings, meshes, sketch, out / "city.city.json");
+  std::vector<Mesh> meshes = building_meshes(buildings, nullptr);
+  write_cityjson(layers, buildings, meshes, nullptr, nullptr, sketch, out / "city.city.json");
   MeshCounts mesh = write_meshes(buildings, meshes, out / "city.obj", out / "city.ply");
   row("3d export", seconds_since(t), std::to_string(mesh.faces) + " faces in city.obj and city.ply, city.city.json");
 

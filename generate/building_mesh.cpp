@@ -27,13 +27,19 @@ OpenMesh::FPropHandleT<int> surface_property(const Mesh& mesh) {
   return surface;
 }
 
-std::vector<Mesh> building_meshes(const std::vector<Building>& buildings) {
+std::vector<Mesh> building_meshes(const std::vector<Building>& buildings, const ModelLibrary* library) {
   std::vector<Mesh> meshes(buildings.size());
-  tbb::parallel_for(std::size_t(0), buildings.size(), [&](std::size_t i) { meshes[i] = building_mesh(buildings[i]); });
+  tbb::parallel_for(std::size_t(0), buildings.size(),
+                    [&](std::size_t i) { meshes[i] = building_mesh(buildings[i], library); });
   return meshes;
 }
 
-Mesh building_mesh(const Building& b) {
+Vec3 Placement::apply(Vec3 v, double floor) const {
+  const double c = std::cos(angle) * scale, s = std::sin(angle) * scale;
+  return {position.x + c * v[0] - s * v[1], position.y + s * v[0] + c * v[1], floor + scale * v[2]};
+}
+
+Mesh building_mesh(const Building& b, const ModelLibrary* library) {
   Mesh mesh;
   OpenMesh::FPropHandleT<int> surface;
   mesh.add_property(surface, "surface");
@@ -46,29 +52,69 @@ Mesh building_mesh(const Building& b) {
   };
   auto add = [&](const std::vector<Mesh::VertexHandle>& face, Surface s) {
     Mesh::FaceHandle f = mesh.add_face(face);
+    if (!f.is_valid()) {
+      // A model's mesh need not be manifold: a face that cannot join its neighbours
+      // stands alone, so nothing of the model is lost.
+      std::vector<Mesh::VertexHandle> own;
+      for (auto v : face) own.push_back(mesh.add_vertex(mesh.point(v)));
+      f = mesh.add_face(own);
+    }
     if (f.is_valid()) mesh.property(surface, f) = static_cast<int>(s);
   };
-  // Walls up to the eaves: a quad per ring edge, outward (rings run with the inside on
-  // their left).
-  auto walls = [&](const geom::Ring& r) {
+  // Walls from the base up to z: a quad per ring edge, outward (rings run with the
+  // inside on their left).
+  auto walls = [&](const geom::Ring& r, double z) {
     for (std::size_t i = 0; i < r.size(); ++i) {
       geom::Vec2 a = r[i], c = r[(i + 1) % r.size()];
-      add({vertex(a.x, a.y, 0), vertex(c.x, c.y, 0), vertex(c.x, c.y, b.eaves), vertex(a.x, a.y, b.eaves)}, Surface::Wall);
+      add({vertex(a.x, a.y, b.base), vertex(c.x, c.y, b.base), vertex(c.x, c.y, z), vertex(a.x, a.y, z)}, Surface::Wall);
     }
   };
-  walls(b.polygon.outer);
-  for (const auto& h : b.polygon.holes) walls(h);
-  std::vector<geom::Vec2> points(b.polygon.outer);
-  for (const auto& h : b.polygon.holes) points.insert(points.end(), h.begin(), h.end());
-  for (const auto& t : geom::triangulate(b.polygon)) {
-    const geom::Vec2 &p = points[t[0]], &q = points[t[1]], &r = points[t[2]];
-    add({vertex(p.x, p.y, 0), vertex(r.x, r.y, 0), vertex(q.x, q.y, 0)}, Surface::Ground);
-    if (b.roof_faces.empty()) add({vertex(p.x, p.y, b.eaves), vertex(q.x, q.y, b.eaves), vertex(r.x, r.y, b.eaves)}, Surface::Roof);
+  // Flat faces over the footprint at height z, facing up or down.
+  auto cap = [&](double z, bool down, Surface s) {
+    std::vector<geom::Vec2> points(b.polygon.outer);
+    for (const auto& h : b.polygon.holes) points.insert(points.end(), h.begin(), h.end());
+    for (const auto& t : geom::triangulate(b.polygon)) {
+      const geom::Vec2 &p = points[t[0]], &q = points[t[1]], &r = points[t[2]];
+      if (down) add({vertex(p.x, p.y, z), vertex(r.x, r.y, z), vertex(q.x, q.y, z)}, s);
+      else add({vertex(p.x, p.y, z), vertex(q.x, q.y, z), vertex(r.x, r.y, z)}, s);
+    }
+  };
+
+  if (b.placed.model >= 0) {
+    // A foundation from the lowest terrain under the model up to where it stands.
+    if (b.floor > b.base) {
+      walls(b.polygon.outer, b.floor);
+      cap(b.base, true, Surface::Ground);
+      cap(b.floor, false, Surface::Roof);
+    }
+    if (!library) return mesh;
+    const TriangleMesh& m = library->models[b.placed.model].mesh;
+    std::vector<Mesh::VertexHandle> handles;
+    for (const Vec3& v : m.vertices) {
+      Vec3 w = b.placed.apply(v, b.floor);
+      handles.push_back(mesh.add_vertex({w[0], w[1], w[2]}));
+    }
+    for (const auto& t : m.triangles) {
+      const Vec3 &p = m.vertices[t[0]], &q = m.vertices[t[1]], &r = m.vertices[t[2]];
+      double nx = (q[1] - p[1]) * (r[2] - p[2]) - (q[2] - p[2]) * (r[1] - p[1]);
+      double ny = (q[2] - p[2]) * (r[0] - p[0]) - (q[0] - p[0]) * (r[2] - p[2]);
+      double nz = (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
+      double len = std::sqrt(nx * nx + ny * ny + nz * nz);
+      Surface s = nz > 0.5 * len ? Surface::Roof : nz < -0.5 * len ? Surface::Ground : Surface::Wall;
+      add({handles[t[0]], handles[t[1]], handles[t[2]]}, s);
+    }
+    return mesh;
   }
+
+  const double eaves = b.floor + b.eaves;
+  walls(b.polygon.outer, eaves);
+  for (const auto& h : b.polygon.holes) walls(h, eaves);
+  cap(b.base, true, Surface::Ground);
+  if (b.roof_faces.empty()) cap(eaves, false, Surface::Roof);
   // Pitched roofs: faces rising from the eaves (a gable's upright triangle counts as wall).
   for (const geom::Face3& f : b.roof_faces) {
     std::vector<Mesh::VertexHandle> face;
-    for (const geom::Vec3& v : f) face.push_back(vertex(v[0], v[1], v[2]));
+    for (const geom::Vec3& v : f) face.push_back(vertex(v[0], v[1], v[2] + b.floor));
     add(face, is_gable(f) ? Surface::Wall : Surface::Roof);
   }
   return mesh;

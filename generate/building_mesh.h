@@ -14,15 +14,19 @@ struct MeshTraits : OpenMesh::DefaultTraits {
 };
 using Mesh = OpenMesh::PolyMesh_ArrayKernelT<MeshTraits>;
 
+// A foundation's top counts as roof: it is what the model stands on.
 enum class Surface : int { Ground = 0, Wall = 1, Roof = 2 };
 inline constexpr const char* kSurfaceNames[] = {"ground", "wall", "roof"};
 
-// The mesh of one building: closed, outward-facing, z up. Each face carries a Surface in
-// the mesh's "surface" face property.
-Mesh building_mesh(const Building& b);
+// The mesh of one building, z up, each face carrying a Surface in the mesh's "surface"
+// face property. An extruded building is closed and outward-facing, its walls reaching
+// down to the terrain's lowest point under it. A placed model is its library mesh moved
+// into place (faces classed by their slope) on a foundation where the ground slopes;
+// without a library, only the foundation.
+Mesh building_mesh(const Building& b, const ModelLibrary* library);
 
 // building_mesh of every building, in parallel; the exporters share them.
-std::vector<Mesh> building_meshes(const std::vector<Building>& buildings);
+std::vector<Mesh> building_meshes(const std::vector<Building>& buildings, const ModelLibrary* library);
 
 // The face property that says which surface a face belongs to.
 OpenMesh::FPropHandleT<int> surface_property(const Mesh& mesh);

@@ -6,6 +6,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "generate/model_placement.h"
 #include "geom/measure.h"
 
 namespace exacity {
@@ -33,6 +34,22 @@ bool near_rectangle(const geom::Polygon& p) {
   return true;
 }
 
+// The largest part of the piece inset by the setback, when it is big enough.
+std::optional<Building> extruded_building(const geom::Cell& piece, const ZoneParams& p) {
+  std::optional<Building> best;
+  double best_area = p.min_footprint_area;
+  for (geom::Cell& part : geom::inset_cell(piece, p.setback)) {
+    geom::Polygon polygon = part.to_plain();
+    double a = geom::area(polygon);
+    if (polygon.outer.empty() || a < best_area) continue;
+    best_area = a;
+    best = Building{};
+    best->footprint = std::move(part);
+    best->polygon = std::move(polygon);
+  }
+  return best;
+}
+
 }  // namespace
 
 void choose_roof(Building& b, const ZoneParams& p) {
@@ -55,10 +72,16 @@ void choose_roof(Building& b, const ZoneParams& p) {
   b.roof_faces = std::move(faces);
 }
 
-std::vector<Building> place_buildings(const ZoneMap& zm, const std::vector<Lot>& lots, const Sketch& sketch) {
-  // Lots as they ended up in the map (cut back at roads), one cell per piece.
+std::vector<Building> place_buildings(const ZoneMap& zm, const std::vector<Lot>& lots, const Sketch& sketch,
+                                      const ModelLibrary* library, const Terrain* terrain) {
+  // Lots as they ended up in the map (cut back at roads), one cell per piece; edges
+  // along a road surface have kind 1.
+  constexpr int kRoad = 1;
   std::vector<int> group(zm.labels.size(), -1), kind(zm.labels.size(), 0), lot_of;
-  for (std::size_t l = 0; l < zm.labels.size(); ++l) group[l] = zm.labels[l].lot;
+  for (std::size_t l = 0; l < zm.labels.size(); ++l) {
+    group[l] = zm.labels[l].lot;
+    if (zm.labels[l].cover == Cover::Road || zm.labels[l].bridge) kind[l] = kRoad;
+  }
   std::vector<geom::Cell> pieces = zm.map.cells(group, kind, &lot_of);
 
   geom::Box city = geom::Box::none();
@@ -67,35 +90,41 @@ std::vector<Building> place_buildings(const ZoneMap& zm, const std::vector<Lot>&
   const double radius = std::hypot(city.width(), city.height()) / 2;
   const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Buildings));
 
-  std::vector<std::optional<Building>> placed(pieces.size());
+  std::vector<std::vector<Building>> placed(pieces.size());
   tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
     const Lot& lot = lots[lot_of[i]];
     const ZoneParams& p = sketch.zone_params.at(lot.zone);
     // The lots layer drops the same small pieces.
     if (geom::area(pieces[i].to_plain()) < p.min_lot_area) return;
-    std::optional<Building> best;
-    double best_area = p.min_footprint_area;
-    for (geom::Cell& part : geom::inset_cell(pieces[i], p.setback)) {
-      geom::Polygon polygon = part.to_plain();
-      double a = geom::area(polygon);
-      if (polygon.outer.empty() || a < best_area) continue;
-      best_area = a;
-      best = Building{};
-      best->lot = lot_of[i];
-      best->zone = lot.zone;
-      best->footprint = std::move(part);
-      best->polygon = std::move(polygon);
-    }
-    if (!best) return;
-    geom::Vec2 c = best->footprint.centroid();
     Random rng(mix(stage, i));
-    best->height = building_height(p, std::hypot(c.x - centre.x, c.y - centre.y), radius, rng);
-    choose_roof(*best, p);
-    placed[i] = std::move(best);
+    std::vector<Building>& here = placed[i];
+    std::vector<geom::Ring> taken;
+    auto models = [&](ModelKind k) {
+      if (!library) return;
+      for (Building& b : place_models(pieces[i], kRoad, taken, library->choices(lot.zone, k), k, *library, p, rng))
+        here.push_back(std::move(b));
+    };
+    if (library && !library->choices(lot.zone, ModelKind::Building).empty()) {
+      models(ModelKind::Building);
+    } else if (std::optional<Building> b = extruded_building(pieces[i], p)) {
+      geom::Vec2 c = b->footprint.centroid();
+      b->height = building_height(p, std::hypot(c.x - centre.x, c.y - centre.y), radius, rng);
+      b->zone = lot.zone;
+      choose_roof(*b, p);
+      taken.push_back(b->polygon.outer);
+      here.push_back(std::move(*b));
+    }
+    models(ModelKind::Street);
+    models(ModelKind::Tree);
+    for (Building& b : here) {
+      b.lot = lot_of[i];
+      b.zone = lot.zone;
+      if (terrain) std::tie(b.base, b.floor) = terrain->range_under(b.polygon.outer);
+    }
   });
   std::vector<Building> buildings;
-  for (auto& b : placed)
-    if (b) buildings.push_back(std::move(*b));
+  for (auto& here : placed)
+    for (Building& b : here) buildings.push_back(std::move(b));
   return buildings;
 }
 

@@ -6,22 +6,40 @@
 #include <vector>
 
 #include "generate/lots.h"
+#include "generate/model_library.h"
 #include "generate/random.h"
 #include "generate/sketch.h"
+#include "generate/terrain.h"
 #include "generate/zone_map.h"
 #include "geom/roof.h"
 
 namespace exacity {
 
+// A placed model: its library index, where its origin stands, the turn (radians,
+// counter-clockwise) that brings its x axis along the row, its size and colour variant.
+struct Placement {
+  int model = -1;
+  geom::Vec2 position;
+  double angle = 0, scale = 1;
+  int tint = 0;
+  // A point of the model's mesh in the city, standing on `floor`.
+  Vec3 apply(Vec3 v, double floor) const;
+};
+inline constexpr int kTints = 4;
+
 struct Building {
   int lot = -1;  // index into the lots
   ZoneType zone = ZoneType::Residential;
-  geom::Cell footprint;    // exact
+  geom::Cell footprint;    // exact; empty for placed models, whose polygon is on the grid
   geom::Polygon polygon;   // rounded
+  Placement placed;        // placed.model < 0: an extruded footprint
   double height = 0;       // m, to the top of the roof
   std::string roof = "flat";
   double eaves = 0;        // m: where walls meet a pitched roof (the height, for flat roofs)
   std::vector<geom::Face3> roof_faces;  // pitched roofs only, in place
+  // Terrain under the footprint: the building stands on `floor` (the highest point), its
+  // walls or foundation reach down to `base` (the lowest). Heights above count from floor.
+  double base = 0, floor = 0;
 };
 
 // The roof a footprint gets: its kind, its faces (none for flat) and the eaves height.
@@ -29,8 +47,11 @@ struct Building {
 // footprint, falls back to flat.
 void choose_roof(Building& b, const ZoneParams& p);
 
-// One building per lot piece big enough, lot by lot in parallel.
-std::vector<Building> place_buildings(const ZoneMap& zone_map, const std::vector<Lot>& lots, const Sketch& sketch);
+// Lot by lot in parallel: on each lot piece big enough, rows of models facing the road
+// where the library has buildings for the zone, else one extruded footprint; then the
+// library's street furniture and trees where they fit. Each stands on the terrain.
+std::vector<Building> place_buildings(const ZoneMap& zone_map, const std::vector<Lot>& lots, const Sketch& sketch,
+                                      const ModelLibrary* library, const Terrain* terrain);
 
 // Seed 003's height: uniform in the zone's range scaled by 1 - distance / radius (down to
 // half at the city's edge); the top doubles with a chance of 0.1 × that scale².

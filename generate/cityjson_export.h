@@ -8,12 +8,15 @@
 
 #include "generate/building_mesh.h"
 #include "generate/sketch.h"
+#include "generate/terrain.h"
 #include "generate/vector_layers.h"
 
 namespace exacity {
 
-// meshes[i] is building_mesh(buildings[i]).
+// meshes[i] is building_mesh(buildings[i]). Placed models are instances of templates,
+// one per library model; on terrain, ground surfaces are draped over it.
 void write_cityjson(const CityLayers& layers, const std::vector<Building>& buildings, const std::vector<Mesh>& meshes,
-                    const Sketch& sketch, const std::filesystem::path& file);
+                    const ModelLibrary* library, const Terrain* terrain, const Sketch& sketch,
+                    const std::filesystem::path& file);
 
 }  // namespace exacity

@@ -6,26 +6,9 @@
 
 #include "generate/errors.h"
 #include "generate/geojson.h"
+#include "generate/palette.h"
 
 namespace exacity {
-namespace {
-
-// Diffuse colours: facades by zone, roofs darker, ground grey.
-struct Colour {
-  double r, g, b;
-};
-const std::map<std::string, Colour> kFacade = {
-    {"residential", {0.85, 0.72, 0.58}}, {"commercial", {0.62, 0.70, 0.80}}, {"industrial", {0.66, 0.62, 0.55}}};
-
-Colour colour(const std::string& zone, Surface s) {
-  Colour c = kFacade.count(zone) ? kFacade.at(zone) : Colour{0.8, 0.8, 0.8};
-  if (s == Surface::Roof) return {c.r * 0.6, c.g * 0.55, c.b * 0.5};
-  if (s == Surface::Ground) return {0.45, 0.45, 0.45};
-  return c;
-}
-
-}  // namespace
-
 MeshCounts write_meshes(const std::vector<Building>& buildings, const std::vector<Mesh>& meshes,
                         const std::filesystem::path& obj_file, const std::filesystem::path& ply_file) {
   std::filesystem::path mtl_file = obj_file;
@@ -33,11 +16,11 @@ MeshCounts write_meshes(const std::vector<Building>& buildings, const std::vecto
   std::ofstream obj(obj_file, std::ios::binary), mtl(mtl_file, std::ios::binary);
   if (!obj || !mtl) throw UserError(obj_file.string() + ": cannot write this file; check the output folder's permissions");
 
-  for (const char* zone : {"residential", "commercial", "industrial"})
+  for (ZoneType zone : {ZoneType::Residential, ZoneType::Commercial, ZoneType::Industrial})
     for (Surface s : {Surface::Ground, Surface::Wall, Surface::Roof}) {
-      Colour c = colour(zone, s);
-      mtl << "newmtl " << zone << '_' << kSurfaceNames[static_cast<int>(s)] << "\nKd " << format_number(c.r) << ' '
-          << format_number(c.g) << ' ' << format_number(c.b) << "\n\n";
+      Colour c = surface_colour(zone, s);
+      mtl << "newmtl " << name(zone) << '_' << kSurfaceNames[static_cast<int>(s)] << "\nKd " << format_number(c[0]) << ' '
+          << format_number(c[1]) << ' ' << format_number(c[2]) << "\n\n";
     }
 
   obj << "# Exacity city: x east, y north, z up, metres\nmtllib " << mtl_file.filename().string() << '\n';

@@ -8,8 +8,10 @@
 #include "generate/buildings.h"
 #include "generate/cityjson_export.h"
 #include "generate/errors.h"
+#include "generate/gltf_export.h"
 #include "generate/lots.h"
 #include "generate/mesh_export.h"
+#include "generate/model_library.h"
 #include "generate/road_network.h"
 #include "generate/svg_map.h"
 #include "generate/terrain.h"
@@ -51,12 +53,18 @@ class Stages {
 }  // namespace
 
 GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const ProgressFn& progress) {
-  Stages stages(progress, 10);
+  Stages stages(progress, 11);
   std::optional<Terrain> terrain = stages.run("terrain", [&]() -> std::optional<Terrain> {
     if (!sketch.terrain) return std::nullopt;
     return Terrain::load(*sketch.terrain);
   });
-  ZoneMap zone_map = stages.run("zone map", [&] { return build_zone_map(sketch, terrain ? &*terrain : nullptr); });
+  std::optional<ModelLibrary> library = stages.run("model library", [&]() -> std::optional<ModelLibrary> {
+    if (sketch.models.empty()) return std::nullopt;
+    return load_model_library(sketch.models);
+  });
+  const ModelLibrary* models = library ? &*library : nullptr;
+  const Terrain* ground = terrain ? &*terrain : nullptr;
+  ZoneMap zone_map = stages.run("zone map", [&] { return build_zone_map(sketch, ground); });
   RoadNetwork network = stages.run("road network", [&] { return grow_road_network(std::move(zone_map), sketch); });
   std::vector<Block> blocks = stages.run("blocks", [&] { return cut_blocks(network.map, sketch); });
   std::vector<Lot> lots = stages.run("lots", [&] {
@@ -64,9 +72,9 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
     insert_lots(network.map, blocks, planned, sketch);
     return planned;
   });
-  std::vector<Building> buildings = stages.run("buildings", [&] { return place_buildings(network.map, lots, sketch); });
+  std::vector<Building> buildings = stages.run("buildings", [&] { return place_buildings(network.map, lots, sketch, models, ground); });
   CityLayers layers =
-      stages.run("vector layers", [&] { return extract_layers(network.map, blocks, lots, buildings, sketch); });
+      stages.run("vector layers", [&] { return extract_layers(network.map, blocks, lots, buildings, sketch, models); });
   stages.run("export", [&] {
     fs::create_directories(dir / "vector");
     fs::copy_file(sketch.path, dir / "sketch.geojson");
@@ -75,9 +83,11 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
       write_geojson(*l, sketch.crs, dir / "vector" / (l->name + ".geojson"));
     write_svg_map(layers, dir / "map.svg");
   });
+  GltfCounts gltf;
   MeshCounts mesh = stages.run("3d export", [&] {
-    std::vector<Mesh> meshes = building_meshes(buildings);
-    write_cityjson(layers, buildings, meshes, sketch, dir / "city.city.json");
+    std::vector<Mesh> meshes = building_meshes(buildings, models);
+    write_cityjson(layers, buildings, meshes, models, ground, sketch, dir / "city.city.json");
+    gltf = write_gltf(layers, buildings, meshes, models, ground, dir / "city.glb");
     return write_meshes(buildings, meshes, dir / "city.obj", dir / "city.ply");
   });
   Validation validation = stages.run("validation", [&] { return validate_output(dir); });
@@ -111,7 +121,8 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
         {"lots", layers.lots.features.size()},
         {"buildings", layers.buildings.features.size()},
         {"map", {{"vertices", counts.vertices}, {"edges", counts.edges}, {"faces", counts.faces}}},
-        {"mesh", {{"vertices", mesh.vertices}, {"faces", mesh.faces}}}}},
+        {"mesh", {{"vertices", mesh.vertices}, {"faces", mesh.faces}}},
+        {"gltf", {{"meshes", gltf.meshes}, {"instances", gltf.instances}, {"triangles", gltf.triangles}}}}},
       {"road_network",
        {{"regions", network.stats.regions},
         {"levels", network.stats.levels},

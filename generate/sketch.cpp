@@ -267,7 +267,7 @@ class Parser {
     known_keys(j, w, {"block_area", "segment_length", "branches", "jitter", "segment_deviation",
                       "origin_deviation", "road_widths", "min_block_area", "min_block_width",
                       "bridges", "lots", "lot_area", "min_lot_edge", "min_lot_area", "setback", "heights",
-                      "min_footprint_area", "roof", "roof_pitch"});
+                      "min_footprint_area", "roof", "roof_pitch", "density"});
     ZoneParams p = default_params(zt);
     auto set = [&](const char* key, double& field, double min, double max) {
       if (j.contains(key)) field = number(j[key], w + "." + key, min, max);
@@ -300,6 +300,12 @@ class Parser {
       if (!r.is_string() || (r != "auto" && r != "flat" && r != "gabled" && r != "hipped"))
         fail(w + ".roof", "expected \"auto\", \"flat\", \"gabled\" or \"hipped\"");
       p.roof = r.get<std::string>();
+    }
+    if (j.contains("density")) {
+      const json& d = j["density"];
+      if (!d.is_string() || (d != "dense" && d != "normal" && d != "sparse"))
+        fail(w + ".density", "expected \"dense\", \"normal\" or \"sparse\" (how far apart placed models stand)");
+      p.density = d.get<std::string>();
     }
     if (j.contains("heights")) {
       const json& h = j["heights"];

@@ -41,6 +41,9 @@ struct ZoneParams {
   // elsewhere; or "flat", "gabled" (falls back to hipped), "hipped" for every footprint.
   std::string roof = "auto";
   double roof_pitch = 30;           // degrees
+  // How far apart placed models stand in their rows, centre to centre (seed 002's
+  // _Dense/_Sparse): "dense" 1.25–1.5 model widths, "normal" 2–3, "sparse" 4–5.
+  std::string density = "normal";
 };
 
 struct TerrainSpec {

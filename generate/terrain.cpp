@@ -73,6 +73,49 @@ double Terrain::height_at(geom::Vec2 p) const {
   return spec_.low + t * (spec_.high - spec_.low);
 }
 
+double Terrain::pixel_size() const {
+  return std::min(spec_.bounds.width() / width_, spec_.bounds.height() / height_);
+}
+
+std::vector<geom::Vec2> Terrain::pixel_centres(const geom::Box& box) const {
+  const geom::Box& b = spec_.bounds;
+  const double pw = b.width() / width_, ph = b.height() / height_;
+  int c0 = std::max(0, static_cast<int>(std::floor((box.min_x - b.min_x) / pw))),
+      c1 = std::min(width_ - 1, static_cast<int>(std::ceil((box.max_x - b.min_x) / pw)));
+  int r0 = std::max(0, static_cast<int>(std::floor((b.max_y - box.max_y) / ph))),
+      r1 = std::min(height_ - 1, static_cast<int>(std::ceil((b.max_y - box.min_y) / ph)));
+  std::vector<geom::Vec2> centres;
+  for (int r = r0; r <= r1; ++r)
+    for (int c = c0; c <= c1; ++c) centres.push_back({b.min_x + (c + 0.5) * pw, b.max_y - (r + 0.5) * ph});
+  return centres;
+}
+
+std::pair<double, double> Terrain::range_under(const geom::Ring& ring) const {
+  double low = INFINITY, high = -INFINITY;
+  auto sample = [&](geom::Vec2 p) {
+    double h = height_at(p);
+    low = std::min(low, h), high = std::max(high, h);
+  };
+  const double step = pixel_size() / 2;
+  geom::Box box = geom::Box::none();
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    geom::Vec2 a = ring[i], b = ring[(i + 1) % ring.size()];
+    box.add(a);
+    int n = static_cast<int>(std::ceil(std::hypot(b.x - a.x, b.y - a.y) / step));
+    for (int k = 0; k < std::max(n, 1); ++k) sample({a.x + (b.x - a.x) * k / n, a.y + (b.y - a.y) * k / n});
+  }
+  // Pixel centres inside (even-odd test in doubles: this only samples).
+  for (geom::Vec2 p : pixel_centres(box)) {
+    bool inside = false;
+    for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
+      if ((ring[i].y > p.y) != (ring[j].y > p.y) &&
+          p.x < ring[j].x + (ring[i].x - ring[j].x) * (p.y - ring[j].y) / (ring[i].y - ring[j].y))
+        inside = !inside;
+    if (inside) sample(p);
+  }
+  return {low, high};
+}
+
 geom::Vec2 Terrain::corner(int col, int row) const {
   const geom::Box& b = spec_.bounds;
   // The outer corners are the bounds themselves, so the water outline meets them exactly.

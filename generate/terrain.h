@@ -26,6 +26,13 @@ class Terrain {
 
   // Bilinear height in metres at a point (clamped to the bounds).
   double height_at(geom::Vec2 p) const;
+  // The lowest and highest terrain under a ring: sampled at its corners, along its edges
+  // and at the pixel centres inside, so no pixel under it is missed.
+  std::pair<double, double> range_under(const geom::Ring& ring) const;
+  // The centres of the pixels around the box (a pixel's margin included).
+  std::vector<geom::Vec2> pixel_centres(const geom::Box& box) const;
+  // The size of a pixel on the ground, the finer of its two sides, in metres.
+  double pixel_size() const;
 
   // The corner between pixel columns col-1, col and rows row-1, row, on the grid.
   geom::Vec2 corner(int col, int row) const;

@@ -29,7 +29,7 @@ ordered_json or_null(int v) { return v >= 0 ? ordered_json(v) : ordered_json(nul
 }  // namespace
 
 CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
-                          const std::vector<Building>& buildings, const Sketch& sketch) {
+                          const std::vector<Building>& buildings, const Sketch& sketch, const ModelLibrary* library) {
   CityLayers out;
   const int zone_types = static_cast<int>(ZoneType::Water);  // water has its own layer
   dissolve(zm, zone_types,
@@ -68,9 +68,17 @@ CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, c
                          std::move(p));
            });
 
-  for (const Building& b : buildings)
-    add_polygon(out.buildings, {{"lot", b.lot}, {"zone", name(b.zone)}, {"height", b.height}, {"roof", b.roof}, {"model", nullptr}},
+  for (const Building& b : buildings) {
+    nlohmann::ordered_json model = nullptr, kind = "building";
+    if (b.placed.model >= 0) {
+      const Model& m = library->models[b.placed.model];
+      model = m.name;
+      kind = m.kind == ModelKind::Tree ? "tree" : m.kind == ModelKind::Street ? "street" : "building";
+    }
+    add_polygon(out.buildings,
+                {{"lot", b.lot}, {"zone", name(b.zone)}, {"height", b.height}, {"roof", b.roof}, {"model", model}, {"kind", kind}},
                 b.polygon);
+  }
 
   // Centre lines with every junction as a vertex, cut where they go on or off a bridge.
   auto pieces_of = zm.map.polyline_pieces();

@@ -17,6 +17,7 @@ struct CityLayers {
 };
 
 CityLayers extract_layers(const ZoneMap& zone_map, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
-                          const std::vector<Building>& buildings, const Sketch& sketch);
+                          const std::vector<Building>& buildings, const Sketch& sketch,
+                          const ModelLibrary* library = nullptr);
 
 }  // namespace exacity

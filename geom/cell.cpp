@@ -83,6 +83,33 @@ bool Cell::contains(Vec2 v) const {
   return true;
 }
 
+bool Cell::holds(const Ring& ring) const {
+  if (ring.size() < 3 || !contains(ring[0])) return false;
+  Box box = Box::none();
+  for (Vec2 v : ring) box.add(v);
+  std::vector<Segment> sides;
+  for (std::size_t i = 0; i < ring.size(); ++i) sides.emplace_back(to_exact(ring[i]), to_exact(ring[(i + 1) % ring.size()]));
+  auto crosses = [&](const KindRing& r) {
+    for (std::size_t i = 0; i < r.points.size(); ++i) {
+      Segment e(r.points[i], r.points[(i + 1) % r.points.size()]);
+      CGAL::Bbox_2 eb = e.bbox();
+      if (eb.xmax() < box.min_x || eb.xmin() > box.max_x || eb.ymax() < box.min_y || eb.ymin() > box.max_y) continue;
+      for (const Segment& s : sides)
+        if (CGAL::do_intersect(s, e)) return true;
+    }
+    return false;
+  };
+  // With no boundary edge meeting the ring and one vertex inside, the ring lies inside
+  // the outer ring; a hole could still sit wholly within it.
+  if (crosses(impl_->outer)) return false;
+  std::vector<Point> pts;
+  for (Vec2 v : ring) pts.push_back(to_exact(v));
+  for (const auto& h : impl_->holes)
+    if (crosses(h) || CGAL::bounded_side_2(pts.begin(), pts.end(), h.points[0], Kernel()) != CGAL::ON_UNBOUNDED_SIDE)
+      return false;
+  return true;
+}
+
 std::optional<Vec2> Cell::point_inside_near(Vec2 wanted) const {
   Vec2 s = snap(wanted);
   if (contains(s)) return s;

@@ -43,6 +43,9 @@ class Cell {
   Vec2 centroid() const;
   // Strictly inside, decided exactly.
   bool contains(Vec2 p) const;
+  // The simple ring and all it encloses lie strictly inside, decided exactly: touching
+  // the boundary counts as leaving it.
+  bool holds(const Ring& ring) const;
   // A grid point strictly inside: `wanted` rounded to the grid when that is inside,
   // otherwise a point just inside the boundary near where it passes closest to `wanted`.
   std::optional<Vec2> point_inside_near(Vec2 wanted) const;

@@ -2,6 +2,7 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_2_algorithms.h>
+#include <CGAL/convex_hull_2.h>
 
 namespace geom {
 namespace {
@@ -28,6 +29,32 @@ bool ring_is_simple(const Ring& ring) {
   if (ring.size() < 3) return false;
   auto pts = points(ring);
   return CGAL::is_simple_2(pts.begin(), pts.end(), K());
+}
+
+bool rings_meet(const Ring& a, const Ring& b) {
+  if (a.empty() || b.empty()) return false;
+  Box ba = Box::none(), bb = Box::none();
+  for (Vec2 v : a) ba.add(v);
+  for (Vec2 v : b) bb.add(v);
+  if (ba.max_x < bb.min_x || bb.max_x < ba.min_x || ba.max_y < bb.min_y || bb.max_y < ba.min_y) return false;
+  auto pa = points(a), pb = points(b);
+  for (std::size_t i = 0; i < pa.size(); ++i) {
+    K::Segment_2 s(pa[i], pa[(i + 1) % pa.size()]);
+    for (std::size_t j = 0; j < pb.size(); ++j)
+      if (CGAL::do_intersect(s, K::Segment_2(pb[j], pb[(j + 1) % pb.size()]))) return true;
+  }
+  // No edges meet: either one lies inside the other or they are apart.
+  return CGAL::bounded_side_2(pb.begin(), pb.end(), pa[0], K()) != CGAL::ON_UNBOUNDED_SIDE ||
+         CGAL::bounded_side_2(pa.begin(), pa.end(), pb[0], K()) != CGAL::ON_UNBOUNDED_SIDE;
+}
+
+Ring convex_hull(const std::vector<Vec2>& points) {
+  std::vector<K::Point_2> pts, hull;
+  for (Vec2 p : points) pts.emplace_back(p.x, p.y);
+  CGAL::convex_hull_2(pts.begin(), pts.end(), std::back_inserter(hull), K());
+  Ring ring;
+  for (const auto& p : hull) ring.push_back({p.x(), p.y()});
+  return ring;
 }
 
 }  // namespace geom

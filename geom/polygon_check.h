@@ -11,4 +11,10 @@ int ring_orientation(const Ring& ring);
 // No vertex repeated, no two edges meeting except neighbours at their shared vertex.
 bool ring_is_simple(const Ring& ring);
 
+// The closed regions the two simple rings bound meet (touching counts), decided exactly.
+bool rings_meet(const Ring& a, const Ring& b);
+
+// The convex hull of the points, counter-clockwise, without collinear points; exact.
+Ring convex_hull(const std::vector<Vec2>& points);
+
 }  // namespace geom

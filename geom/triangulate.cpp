@@ -20,7 +20,9 @@ using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constrai
 
 }  // namespace
 
-std::vector<std::array<int, 3>> triangulate(const Polygon& polygon) {
+std::vector<std::array<int, 3>> triangulate(const Polygon& polygon) { return triangulate(polygon, {}); }
+
+std::vector<std::array<int, 3>> triangulate(const Polygon& polygon, const std::vector<Vec2>& inside) {
   Cdt cdt;
   std::map<std::pair<double, double>, Cdt::Vertex_handle> placed;
   int index = 0;
@@ -40,6 +42,14 @@ std::vector<std::array<int, 3>> triangulate(const Polygon& polygon) {
   };
   ring(polygon.outer);
   for (const Ring& h : polygon.holes) ring(h);
+  for (Vec2 p : inside) {
+    auto [it, added] = placed.emplace(std::make_pair(p.x, p.y), Cdt::Vertex_handle());
+    if (added) {
+      it->second = cdt.insert(K::Point_2(p.x, p.y));
+      it->second->info() = index;
+    }
+    ++index;
+  }
 
   // Faces inside: an odd number of constrained edges away from the infinite face.
   for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info() = -1;

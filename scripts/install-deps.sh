@@ -1,27 +1,37 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages that Exacity builds, runs and tests with; only the
-# missing ones, so a second run costs nothing.
+# Installs the Debian 12 packages that Exacity builds, runs and tests with, and the npm
+# validators the tests run (tests/js, pinned by its package-lock.json); only what is
+# missing, so a second run costs nothing.
 set -euo pipefail
+cd "$(dirname "$0")/.."
 
 packages=(
   g++ cmake ninja-build ccache pkg-config
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libopenmesh-dev libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libtbb-dev
-  nlohmann-json3-dev libcli11-dev
+  nlohmann-json3-dev libcli11-dev libtinygltf-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  python3 python3-shapely python3-jsonschema
+  python3 python3-shapely
 )
 
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
-if ((${#missing[@]} == 0)); then
-  exit 0
+# Node.js with npm, from Debian unless the machine has it already.
+command -v npm >/dev/null || missing+=(nodejs npm)
+
+if ((${#missing[@]} > 0)); then
+  sudo=()
+  if [ "$(id -u)" -ne 0 ]; then sudo=(sudo); fi
+  echo "exacity: installing ${missing[*]}" >&2
+  "${sudo[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
 
-sudo=()
-if [ "$(id -u)" -ne 0 ]; then sudo=(sudo); fi
-echo "exacity: installing ${missing[*]}" >&2
-"${sudo[@]}" apt-get update -qq
-DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq "${missing[@]}" >/dev/null
+# The glTF and CityJSON validators the tests run, at the versions package-lock.json names.
+if ! cmp -s tests/js/package-lock.json tests/js/node_modules/.installed-lock.json 2>/dev/null; then
+  echo "exacity: installing the test validators (npm ci in tests/js)" >&2
+  npm ci --prefix tests/js --no-audit --no-fund --loglevel=error >/dev/null
+  cp tests/js/package-lock.json tests/js/node_modules/.installed-lock.json
+fi

@@ -6,7 +6,9 @@
 #include <sstream>
 
 #include "generate/building_mesh.h"
+#include "generate/ground_mesh.h"
 #include "generate/mesh_export.h"
+#include "generate/terrain.h"
 #include "geom/polygon_check.h"
 #include "tests/test_util.h"
 
@@ -40,7 +42,7 @@ void expect_closed(const Mesh& mesh) {
 }  // namespace
 
 TEST(BuildingMesh, BoxIsClosedWithItsVolume) {
-  Mesh m = building_mesh(prism({{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {}}, 5));
+  Mesh m = building_mesh(prism({{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {}}, 5), nullptr);
   expect_closed(m);
   EXPECT_DOUBLE_EQ(volume(m), 500);  // positive: faces point outwards
   EXPECT_EQ(m.n_faces(), 4u + 2u + 2u);
@@ -52,10 +54,10 @@ TEST(BuildingMesh, BoxIsClosedWithItsVolume) {
 
 TEST(BuildingMesh, CourtyardAndLShapeAreClosed) {
   geom::Polygon courtyard{{{0, 0}, {20, 0}, {20, 20}, {0, 20}}, {{{5, 5}, {5, 15}, {15, 15}, {15, 5}}}};
-  Mesh c = building_mesh(prism(courtyard, 9));
+  Mesh c = building_mesh(prism(courtyard, 9), nullptr);
   expect_closed(c);
   EXPECT_NEAR(volume(c), (400 - 100) * 9, 1e-9);
-  Mesh l = building_mesh(prism({{{0, 0}, {10, 0}, {10, 4}, {4, 4}, {4, 10}, {0, 10}}, {}}, 3));
+  Mesh l = building_mesh(prism({{{0, 0}, {10, 0}, {10, 4}, {4, 4}, {4, 10}, {0, 10}}, {}}, 3), nullptr);
   expect_closed(l);
   EXPECT_NEAR(volume(l), 64 * 3, 1e-9);
 }
@@ -64,7 +66,7 @@ TEST(BuildingMesh, ObjHoldsEveryBuildingAtFullPrecision) {
   auto dir = testing_util::temp_dir("obj");
   std::vector<Building> buildings{prism({{{0.1, 0.2}, {10, 0}, {10, 10}, {0, 10}}, {}}, 5),
                                   prism({{{500000.123456789, 5000000.5}, {500010, 5000000.5}, {500010, 5000010}}, {}}, 7.25)};
-  MeshCounts counts = write_meshes(buildings, building_meshes(buildings), dir / "city.obj", dir / "city.ply");
+  MeshCounts counts = write_meshes(buildings, building_meshes(buildings, nullptr), dir / "city.obj", dir / "city.ply");
   EXPECT_EQ(counts.vertices, 8u + 6u);
   EXPECT_EQ(counts.faces, 8u + 3u + 1u + 1u);
   std::ifstream in(dir / "city.obj");
@@ -122,7 +124,7 @@ TEST(BuildingMesh, HippedRoofsOnLAndUShapesAreClosedAndSimple) {
     Building b = roofed(footprint, 12, "hipped");
     ASSERT_EQ(b.roof, "hipped");
     EXPECT_NEAR(b.eaves, 12 - 4 * std::tan(M_PI / 6), 1e-9);  // arms 8 wide: the ridge 4 in
-    Mesh m = building_mesh(b);
+    Mesh m = building_mesh(b, nullptr);
     expect_closed(m);
     expect_simple_roof_faces(m);
     EXPECT_GT(volume(m), area * b.eaves);
@@ -135,7 +137,7 @@ TEST(BuildingMesh, GabledRoofHasItsPrismVolume) {
   ASSERT_EQ(b.roof, "gabled");
   double rise = 3 * std::tan(M_PI / 6);
   EXPECT_NEAR(b.eaves, 9 - rise, 1e-12);
-  Mesh m = building_mesh(b);
+  Mesh m = building_mesh(b, nullptr);
   expect_closed(m);
   EXPECT_NEAR(volume(m), 60 * b.eaves + 0.5 * 6 * rise * 10, 1e-9);
   auto surface = surface_property(m);
@@ -148,4 +150,53 @@ TEST(BuildingMesh, RoofTooTallForTheBuildingFallsBackToFlat) {
   Building b = roofed({{{0, 0}, {40, 0}, {40, 40}, {0, 40}}, {}}, 8, "hipped");  // the rise would be 11.5 m
   EXPECT_EQ(b.roof, "flat");
   EXPECT_EQ(b.eaves, 8);
+}
+
+TEST(BuildingMesh, OnASlopeTheWallsReachTheLowestGroundAndTheHeightCountsFromTheHighest) {
+  // Values rising west to east: heights 0 m to 20 m over 100 m, linear between pixel centres.
+  TerrainSpec spec{"ramp.png", {0, 0, 100, 100}, 0, 20};
+  std::vector<float> values;
+  for (int row = 0; row < 10; ++row)
+    for (int col = 0; col < 10; ++col) values.push_back(static_cast<float>(col) / 9);
+  Terrain ramp(spec, 10, 10, values);
+  Building b = prism({{{30, 30}, {50, 30}, {50, 45}, {30, 45}}, {}}, 7);
+  std::tie(b.base, b.floor) = ramp.range_under(b.polygon.outer);
+  EXPECT_EQ(b.base, ramp.height_at({30, 30}));
+  EXPECT_EQ(b.floor, ramp.height_at({50, 30}));
+  EXPECT_NEAR(b.floor - b.base, 20.0 * 20 / 90, 1e-6);  // 20 m across, 20 m per 90 m between the outer centres
+  Mesh m = building_mesh(b, nullptr);
+  expect_closed(m);
+  double low = INFINITY, high = -INFINITY;
+  for (auto v : m.vertices()) low = std::min(low, m.point(v)[2]), high = std::max(high, m.point(v)[2]);
+  EXPECT_EQ(low, b.base);
+  EXPECT_EQ(high, b.floor + 7);
+  EXPECT_NEAR(volume(m), 300 * (b.floor + 7 - b.base), 1e-9);
+}
+
+TEST(Ground, DrapedSurfacesBendWithTheTerrainAndCoverThePolygon) {
+  // A ridge along x = 50: a road crossing it must rise over it, not cut through.
+  TerrainSpec spec{"ridge.png", {0, 0, 100, 100}, 0, 30};
+  std::vector<float> values;
+  for (int row = 0; row < 20; ++row)
+    for (int col = 0; col < 20; ++col) values.push_back(1.0f - std::abs(col - 9.5f) / 9.5f);
+  Terrain ridge(spec, 20, 20, values);
+  geom::Polygon road{{{10, 45}, {90, 45}, {90, 55}, {10, 55}}, {{{40, 48}, {40, 52}, {60, 52}, {60, 48}}}};
+  GroundMesh m;
+  drape(road, &ridge, 0.1, m);
+  double area = 0, top = -INFINITY;
+  for (const auto& t : m.triangles) {
+    const Vec3 &a = m.vertices[t[0]], &b = m.vertices[t[1]], &c = m.vertices[t[2]];
+    double twice = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+    EXPECT_GT(twice, 0);  // counter-clockwise from above
+    area += twice / 2;
+  }
+  for (const Vec3& v : m.vertices) {
+    EXPECT_EQ(v[2], ridge.height_at({v[0], v[1]}) + 0.1);
+    top = std::max(top, v[2]);
+  }
+  EXPECT_NEAR(area, 800 - 80, 1e-9);
+  EXPECT_GT(top, 28.0);  // the crest (30 m) is reached, not bridged from the road's ends (~3 m)
+  GroundMesh flat;
+  drape(road, nullptr, 0, flat);
+  EXPECT_EQ(flat.vertices.size(), 8u);
 }

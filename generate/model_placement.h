@@ -1,0 +1,22 @@
+// Models on one lot piece (seeds 001 and 002): buildings in rows parallel to the lot's
+// principal road frontage, their fronts to the road, spaced by the zone's density and
+// placed largest first; street furniture along the frontage inside the setback; trees
+// where room is left. Every footprint is checked exactly: strictly inside the lot piece
+// (so off roads, water and parks) and apart from every footprint already there.
+#pragma once
+
+#include <vector>
+
+#include "generate/buildings.h"
+
+namespace exacity {
+
+// `taken`: footprints already on the piece. `road_kind`: the edge kind of road frontage.
+std::vector<Building> place_models(const geom::Cell& piece, int road_kind, std::vector<geom::Ring>& taken,
+                                   const std::vector<int>& choices, ModelKind kind, const ModelLibrary& library,
+                                   const ZoneParams& params, Random& rng);
+
+// The model's outline turned by `angle`, scaled and moved to `position`, on the grid.
+geom::Ring placed_outline(const Model& model, const Placement& p);
+
+}  // namespace exacity

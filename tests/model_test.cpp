@@ -1,0 +1,251 @@
+// Placed models: OBJ files as real exporters write them, the library's normalisation, the
+// exact footprint checks, and rows of models facing the road.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "generate/errors.h"
+#include "generate/model_library.h"
+#include "generate/model_placement.h"
+#include "geom/cell.h"
+#include "geom/grid.h"
+#include "geom/planar_map.h"
+#include "geom/polygon_check.h"
+#include "tests/test_util.h"
+
+using namespace exacity;
+namespace fs = std::filesystem;
+using geom::Vec2;
+
+namespace {
+
+fs::path write(const fs::path& dir, const std::string& name, const std::string& text) {
+  std::ofstream(dir / name) << text;
+  return dir / name;
+}
+
+// A cell from a ring: edges along `road_edges` (by index) have kind 1, the rest 0.
+geom::Cell lot(const geom::Ring& ring, std::vector<int> road_edges) {
+  geom::PlanarMap map;
+  map.add_ring(ring, 0);
+  // Thin road strips outside the chosen edges give those edges kind 1.
+  for (int e : road_edges) {
+    Vec2 a = ring[e], b = ring[(e + 1) % ring.size()];
+    double dx = b.x - a.x, dy = b.y - a.y, len = std::hypot(dx, dy);
+    Vec2 out{dy / len * 5, -dx / len * 5};
+    map.add_ring({a, {a.x + out.x, a.y + out.y}, {b.x + out.x, b.y + out.y}, b}, 1);
+  }
+  map.insert_batch();
+  map.label_faces([](const geom::Windings& w) {
+    return geom::winding_of(w, 0) != 0 ? 1 : geom::winding_of(w, 1) != 0 ? 2 : 0;
+  });
+  auto cells = map.cells({-1, 0, -1}, {0, 0, 1});
+  EXPECT_EQ(cells.size(), 1u);
+  return cells.at(0);
+}
+
+// A unit-less box model: w x d x h in file units, Z-up, base at z0.
+std::string box_obj(double w, double d, double h, double z0 = 0) {
+  std::string s;
+  for (double z : {z0, z0 + h})
+    for (auto [x, y] : {std::pair{-w / 2, -d / 2}, {w / 2, -d / 2}, {w / 2, d / 2}, {-w / 2, d / 2}})
+      s += "v " + std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z) + "\n";
+  return s + "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+}
+
+}  // namespace
+
+TEST(ObjFile, ReadsTheQuirksOfRealFiles) {
+  fs::path dir = testing_util::temp_dir("obj-quirks");
+  // A concave hexagon (an L) as one n-gon with negative indices and v/vt/vn corners,
+  // groups and objects, a doubled face (reversed), a stray vertex, comments, a
+  // continued line and a material from the .mtl.
+  write(dir, "l.mtl", "newmtl red\nKd 0.8 0.1 0.1\n");
+  fs::path file = write(dir, "l.obj",
+                        "# awkward\nmtllib l.mtl\no first\ng walls\nv 100 100 100\n"
+                        "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nvt 0 0\nvn 0 0 1\n"
+                        "usemtl red\nf -6/1/1 -5/1/1 -4//1 \\\n -3 -2/1 -1\n"
+                        "g copy\nf 7 6 5 4 3 2\n");
+  TriangleMesh m = read_obj(file);
+  EXPECT_EQ(m.vertices.size(), 6u);  // the stray vertex is gone
+  ASSERT_EQ(m.triangles.size(), 4u);  // the hexagon once: its reversed copy is a repeat
+  double area = 0;
+  for (const auto& t : m.triangles) {
+    const Vec3 &a = m.vertices[t[0]], &b = m.vertices[t[1]], &c = m.vertices[t[2]];
+    area += ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])) / 2;
+  }
+  EXPECT_EQ(area, 3.0);  // counter-clockwise and not a fan across the notch
+  ASSERT_EQ(m.materials.size(), 1u);
+  EXPECT_EQ(m.materials[0].name, "red");
+  EXPECT_EQ(m.materials[0].colour[0], 0.8);
+}
+
+TEST(ObjFile, BadIndexNamesTheFileAndLine) {
+  fs::path dir = testing_util::temp_dir("obj-bad");
+  fs::path file = write(dir, "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");
+  try {
+    read_obj(file);
+    FAIL() << "no error";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.obj line 4"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(read_obj(dir / "missing.obj"), UserError);
+  EXPECT_THROW(read_obj(write(dir, "empty.obj", "v 0 0 0\n")), UserError);
+}
+
+TEST(ModelLibrary, YUpMillimetresAndASunkenBaseComeOutInMetresStandingOnZero) {
+  fs::path dir = testing_util::temp_dir("library");
+  // Y-up, millimetres: 4000 wide (x), 10000 high (y), 6000 deep (z), base at y = -500.
+  std::string yup;
+  for (double y : {-500.0, 9500.0})
+    for (auto [x, z] : {std::pair{-2000.0, 3000.0}, {2000.0, 3000.0}, {2000.0, -3000.0}, {-2000.0, -3000.0}})
+      yup += "v " + std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z) + "\n";
+  yup += "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+  write(dir, "tall.obj", yup);
+  write(dir, "library.json",
+        R"({"models": [{"file": "tall.obj", "zones": ["commercial"], "up": "y", "unit": "mm"}]})");
+  ModelLibrary lib = load_model_library(dir / "library.json");
+  ASSERT_EQ(lib.models.size(), 1u);
+  const Model& m = lib.models[0];
+  EXPECT_EQ(m.name, "tall");
+  EXPECT_EQ(m.height, 10.0);
+  EXPECT_EQ(m.width, 4.0);
+  EXPECT_EQ(m.depth, 6.0);
+  double lowest = INFINITY;
+  for (const Vec3& v : m.mesh.vertices) lowest = std::min(lowest, v[2]);
+  EXPECT_EQ(lowest, 0.0);
+  EXPECT_EQ(geom::signed_area(m.outline), 24.0);
+  EXPECT_EQ(lib.choices(ZoneType::Commercial, ModelKind::Building), std::vector<int>{0});
+  EXPECT_TRUE(lib.choices(ZoneType::Residential, ModelKind::Building).empty());
+}
+
+TEST(ModelLibrary, FrontTurnsToMinusY) {
+  // A wedge whose front (+x in the file) is its tall side: after loading, the tall side faces -y.
+  TriangleMesh wedge;
+  wedge.vertices = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}, {2, 0, 3}, {2, 1, 3}};
+  wedge.triangles = {{0, 3, 2}, {0, 2, 1}, {1, 2, 5}, {1, 5, 4}, {0, 1, 4}, {3, 5, 2}, {0, 4, 5}, {0, 5, 3}};
+  wedge.material.assign(wedge.triangles.size(), 0);
+  wedge.materials = {{"default", {0.5, 0.5, 0.5}}};
+  Model m = normalise_model(wedge, "z", "+x", 1, "test");
+  for (const Vec3& v : m.mesh.vertices)
+    if (v[2] == 3) {
+      EXPECT_EQ(v[1], -m.depth / 2);  // the tall edge is at the front
+    }
+  EXPECT_EQ(m.width, 1.0);
+  EXPECT_EQ(m.depth, 2.0);
+  EXPECT_THROW(normalise_model(wedge, "z", "+z", 1, "test"), UserError);
+}
+
+TEST(ModelLibrary, OutlineIsTheExactShadowAndPiecesGetTheirHull) {
+  // An L-shaped prism: its outline is the L itself.
+  TriangleMesh l;
+  l.vertices = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}};
+  l.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}};
+  l.material.assign(4, 0);
+  l.materials = {{"default", {}}};
+  Model m = normalise_model(l, "z", "-y", 1, "test");
+  EXPECT_EQ(m.outline.size(), 6u);
+  EXPECT_EQ(geom::signed_area(m.outline), 3.0);
+  // Two separate squares: the hull of both.
+  TriangleMesh two;
+  two.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {3, 0, 0}, {4, 0, 0}, {4, 1, 0}, {3, 1, 0}};
+  two.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};
+  two.material.assign(4, 0);
+  two.materials = {{"default", {}}};
+  Model t = normalise_model(two, "z", "-y", 1, "test");
+  EXPECT_EQ(t.outline.size(), 4u);
+  EXPECT_EQ(geom::signed_area(t.outline), 4.0);
+}
+
+TEST(ModelLibrary, BadEntriesAreNamed) {
+  fs::path dir = testing_util::temp_dir("library-bad");
+  write(dir, "box.obj", box_obj(4, 4, 4));
+  auto error = [&](const std::string& entry) {
+    write(dir, "library.json", R"({"models": [)" + entry + "]}");
+    try {
+      load_model_library(dir / "library.json");
+    } catch (const UserError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error(R"({"file": "box.obj", "zones": ["park"]})").find("models[0]: \"zones\""), std::string::npos);
+  EXPECT_NE(error(R"({"file": "box.obj", "zones": ["residential"], "up": "x"})").find("\"up\""), std::string::npos);
+  EXPECT_NE(error(R"({"file": "box.obj", "zones": ["residential"], "weight": "heavy"})").find("models[0]"), std::string::npos);
+  EXPECT_NE(error(R"({"file": "none.obj", "zones": ["residential"]})").find("none.obj"), std::string::npos);
+  EXPECT_NE(error(R"({"file": "box.obj", "zones": ["residential"], "colour": 1})").find("unknown key"), std::string::npos);
+}
+
+TEST(FootprintChecks, TouchingCountsAndHolesAreSeen) {
+  geom::Ring a{{0, 0}, {2, 0}, {2, 2}, {0, 2}}, touching{{2, 0}, {4, 0}, {4, 2}, {2, 2}},
+      apart{{2.0009765625, 0}, {4, 0}, {4, 2}, {2.0009765625, 2}}, inner{{0.5, 0.5}, {1, 0.5}, {1, 1}};
+  EXPECT_TRUE(geom::rings_meet(a, touching));
+  EXPECT_FALSE(geom::rings_meet(a, apart));
+  EXPECT_TRUE(geom::rings_meet(a, inner));  // one inside the other, no edges crossing
+  EXPECT_TRUE(geom::rings_meet(inner, a));
+
+  geom::Cell square = lot({{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {});
+  EXPECT_TRUE(square.holds({{1, 1}, {9, 1}, {9, 9}, {1, 9}}));
+  EXPECT_FALSE(square.holds({{0, 1}, {9, 1}, {9, 9}, {1, 9}}));  // a corner on the boundary
+  EXPECT_FALSE(square.holds({{-1, -1}, {11, -1}, {11, 11}, {-1, 11}}));
+}
+
+TEST(ModelRows, ModelsStandInsideTheLotApartAndFacingTheRoad) {
+  fs::path dir = testing_util::temp_dir("rows");
+  write(dir, "small.obj", box_obj(6, 5, 4));
+  write(dir, "large.obj", box_obj(12, 8, 9));
+  write(dir, "library.json", R"({"models": [
+      {"file": "small.obj", "zones": ["residential"], "up": "z"},
+      {"file": "large.obj", "zones": ["residential"], "up": "z"}]})");
+  ModelLibrary lib = load_model_library(dir / "library.json");
+  // A lot 80 m along a road on its south edge (edge 0), 40 m deep, turned by 30 degrees.
+  const double c = std::cos(M_PI / 6), s = std::sin(M_PI / 6);
+  auto turn = [&](double x, double y) { return geom::snap(Vec2{100 + c * x - s * y, 50 + s * x + c * y}); };
+  geom::Ring ring{turn(0, 0), turn(80, 0), turn(80, 40), turn(0, 40)};
+  geom::Cell cell = lot(ring, {0});
+  const double road = std::atan2(ring[1].y - ring[0].y, ring[1].x - ring[0].x);  // on the grid, near 30 degrees
+  ZoneParams params = default_params(ZoneType::Residential);
+  for (const char* density : {"dense", "normal", "sparse"}) {
+    params.density = density;
+    Random rng(7);
+    std::vector<geom::Ring> taken;
+    auto placed = place_models(cell, 1, taken, lib.choices(ZoneType::Residential, ModelKind::Building),
+                               ModelKind::Building, lib, params, rng);
+    ASSERT_FALSE(placed.empty()) << density;
+    for (std::size_t i = 0; i < placed.size(); ++i) {
+      EXPECT_TRUE(cell.holds(placed[i].polygon.outer));
+      EXPECT_NEAR(placed[i].placed.angle, road, 1e-12);  // x along the road, front (-y) towards it
+      for (std::size_t j = 0; j < i; ++j) EXPECT_FALSE(geom::rings_meet(placed[i].polygon.outer, placed[j].polygon.outer));
+    }
+    // Largest first: the first placed is a large one, at the front row (its centre 3 m
+    // setback + half its depth from the road).
+    EXPECT_EQ(placed[0].placed.model, 1) << density;
+    const Vec2 p = placed[0].placed.position;
+    const double depth = -s * (p.x - 100) + c * (p.y - 50);
+    EXPECT_NEAR(depth, params.setback + 4 * placed[0].placed.scale, 1e-2);
+  }
+}
+
+TEST(ModelRows, DensityChangesHowManyFit) {
+  fs::path dir = testing_util::temp_dir("rows-density");
+  write(dir, "house.obj", box_obj(8, 8, 6));
+  write(dir, "library.json", R"({"models": [{"file": "house.obj", "zones": ["residential"], "up": "z", "scale": [1, 1]}]})");
+  ModelLibrary lib = load_model_library(dir / "library.json");
+  geom::Cell cell = lot({{0, 0}, {200, 0}, {200, 16}, {0, 16}}, {0});
+  ZoneParams params = default_params(ZoneType::Residential);
+  std::map<std::string, std::size_t> count;
+  for (const char* density : {"dense", "normal", "sparse"}) {
+    params.density = density;
+    Random rng(3);
+    std::vector<geom::Ring> taken;
+    count[density] = place_models(cell, 1, taken, {0}, ModelKind::Building, lib, params, rng).size();
+  }
+  // One row of 8 m houses along 200 m: spacing 1.25–1.5, 2–3 and 4–5 widths.
+  EXPECT_GE(count["dense"], 16u);
+  EXPECT_LE(count["dense"], 20u);
+  EXPECT_GE(count["normal"], 8u);
+  EXPECT_LE(count["normal"], 13u);
+  EXPECT_GE(count["sparse"], 5u);
+  EXPECT_LE(count["sparse"], 7u);
+}
