@@ -3,6 +3,9 @@
 #include <cmath>
 #include <map>
 
+#include <mutex>
+
+#include <OpenMesh/Core/System/omstream.hh>
 #include <tbb/parallel_for.h>
 
 #include "geom/triangulate.h"
@@ -19,6 +22,13 @@ bool is_gable(const geom::Face3& f) {
   return std::abs(cross) <= 1e-9 * scale;
 }
 
+// OpenMesh reports every face of a non-manifold model it cannot join on stderr; such faces
+// are handled here (they stand alone), so the reports are noise.
+void quiet_openmesh() {
+  static std::once_flag once;
+  std::call_once(once, [] { omerr().disable(); });
+}
+
 }  // namespace
 
 OpenMesh::FPropHandleT<int> surface_property(const Mesh& mesh) {
@@ -28,6 +38,7 @@ OpenMesh::FPropHandleT<int> surface_property(const Mesh& mesh) {
 }
 
 std::vector<Mesh> building_meshes(const std::vector<Building>& buildings, const ModelLibrary* library) {
+  quiet_openmesh();
   std::vector<Mesh> meshes(buildings.size());
   tbb::parallel_for(std::size_t(0), buildings.size(),
                     [&](std::size_t i) { meshes[i] = building_mesh(buildings[i], library); });
@@ -40,6 +51,7 @@ Vec3 Placement::apply(Vec3 v, double floor) const {
 }
 
 Mesh building_mesh(const Building& b, const ModelLibrary* library) {
+  quiet_openmesh();
   Mesh mesh;
   OpenMesh::FPropHandleT<int> surface;
   mesh.add_property(surface, "surface");

@@ -8,4 +8,4 @@ bash scripts/install-deps.sh
 cmake --preset release >/dev/null
 cmake --build --preset release
 ./build/release/cli/exacity generate examples/town.geojson -o out/town
-echo "exacity: outputs are in $(pwd)/out/town (vector/*.geojson, map.svg, city.obj, report.json)"
+echo "exacity: outputs are in $(pwd)/out/town (vector/*.geojson, map.svg, city.obj, city.glb, city.city.json, report.json)"

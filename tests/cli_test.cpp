@@ -202,7 +202,11 @@ TEST(Cli, BadInputExitsTwoWithOneLineAndNoOutput) {
       {"zone", R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"zone":"parc"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,0]]]}}]})", "did you mean \"park\""},
       {"heightmap", R"({"type":"FeatureCollection","exacity":{"terrain":{"heightmap":"missing.png","bounds":[0,0,10,10]}},"features":[)" + zone + "]}", "not found"},
       {"key", R"({"type":"FeatureCollection","exacity":{"colour":1},"features":[)" + zone + "]}", "unknown key \"colour\""},
+      {"library", R"({"type":"FeatureCollection","exacity":{"models":"missing.json"},"features":[)" + zone + "]}", "cannot read the model library"},
+      {"model", R"({"type":"FeatureCollection","exacity":{"models":"bad-library.json"},"features":[)" + zone + "]}", "line 2: vertex index 2 points to no vertex"},
   };
+  std::ofstream(dir / "bad-library.json") << R"({"models": [{"file": "bad.obj", "zones": ["residential"]}]})";
+  std::ofstream(dir / "bad.obj") << "v 0 0 0\nf 1 2 5\n";
   for (const Case& c : cases) {
     fs::path sketch = dir / (c.name + ".geojson");
     std::ofstream(sketch) << c.text;
@@ -210,7 +214,10 @@ TEST(Cli, BadInputExitsTwoWithOneLineAndNoOutput) {
     Result r = run("generate " + sketch.string() + " -o " + out.string() + " --quiet");
     EXPECT_EQ(r.code, 2) << c.name << ": " << r.out;
     EXPECT_NE(r.out.find(c.expect), std::string::npos) << c.name << ": " << r.out;
-    std::string file = c.name == "heightmap" ? (dir / "missing.png").string() : sketch.string();
+    std::string file = c.name == "heightmap" ? (dir / "missing.png").string()
+                       : c.name == "library" ? (dir / "missing.json").string()
+                       : c.name == "model"   ? (dir / "bad.obj").string()
+                                             : sketch.string();
     EXPECT_NE(r.out.find(file), std::string::npos) << "names the file: " << r.out;
     EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << "one line: " << r.out;
     EXPECT_FALSE(fs::exists(out)) << c.name;
