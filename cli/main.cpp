@@ -3,7 +3,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <fstream>
 #include <memory>
+#include <sstream>
 
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
@@ -14,21 +16,72 @@
 #include "generate/pipeline.h"
 #include "generate/sketch.h"
 #include "generate/validate.h"
+#include "render/render.h"
 
 namespace fs = std::filesystem;
 using namespace exacity;
 
 namespace {
 
-int generate(const fs::path& sketch_path, const fs::path& out, bool quiet) {
+// The render options a user gives; the camera spec is parsed once the city is known.
+struct RenderOptions {
+  std::string camera;
+  float fov = 45;
+  std::string size = "960x540";
+  int spp = 16;
+  bool overview = false, minimap = false, orthographic = false;
+};
+
+render::RenderRequest request_for(const City& city, const RenderOptions& o, const std::string& camera_source) {
+  render::RenderRequest r;
+  int w = 0, h = 0;
+  char x = 0;
+  std::istringstream size(o.size);
+  if (!(size >> w >> x >> h) || x != 'x' || w < 8 || h < 8 || w > 16384 || h > 16384 || !size.eof())
+    throw UserError("--size " + o.size + ": expected WIDTHxHEIGHT such as 1920x1080 (8 to 16384 each)");
+  r.width = w, r.height = h, r.spp = o.spp;
+  const std::string spec = !o.camera.empty() ? o.camera : city.sketch.camera;
+  if (spec.empty()) {
+    r.camera = render::default_camera(city);
+    r.camera.fov_y = o.fov;
+  } else {
+    try {
+      r.camera = render::Camera::parse(spec, o.fov);
+    } catch (const std::invalid_argument& e) {
+      throw UserError((!o.camera.empty() ? std::string("--camera") : camera_source + " \"exacity\".camera") + " \"" + spec +
+                      "\": " + e.what() + "; e.g. orbit:target=0,0,0,azimuth=225,elevation=35,distance=900 or "
+                      "look:from=0,-500,200,to=0,0,0");
+    }
+  }
+  r.overview = o.overview, r.minimap = o.minimap, r.orthographic_overview = o.orthographic;
+  return r;
+}
+
+nlohmann::ordered_json render_with_progress(const City& city, render::RenderRequest r, ProgressReport& progress) {
+  return render::render_city(city, r, [&](const std::string& stage, double f) { progress.fraction("render " + stage, f); });
+}
+
+int generate(const fs::path& sketch_path, const fs::path& out, bool quiet, const RenderOptions* rendering) {
   Sketch sketch = load_sketch(sketch_path);
   OutputFolder folder(out);
   GenerateResult result;
   {
     ProgressReport progress(quiet);
-    result = generate_city(sketch, folder.staging(), [&](int i, int n, const std::string& stage) {
-      progress.stage(i, n, stage);
-    });
+    StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); },
+                     kCityStages + kWriteStages + (rendering ? 1 : 0));
+    City city = build_city(sketch, clock);
+    result = write_city(city, folder.staging(), clock);
+    if (rendering) {
+      // The default still, the overview and the minimap, into OUT/render.
+      const fs::path dir = folder.staging() / "render";
+      fs::create_directories(dir);
+      render::RenderRequest r = request_for(city, *rendering, sketch.path.string());
+      r.overview = r.minimap = true;
+      r.still = dir / "still.png", r.overview_file = dir / "overview.png", r.minimap_file = dir / "minimap.png";
+      result.report["render"] = clock.run("render", [&] { return render_with_progress(city, r, progress); });
+      result.report["timings_s"] = clock.seconds;
+      std::ofstream(folder.staging() / "report.json", std::ios::binary) << result.report.dump(2) << "\n";
+    }
   }
   folder.commit();
   const auto& counts = result.report["counts"];
@@ -40,6 +93,38 @@ int generate(const fs::path& sketch_path, const fs::path& out, bool quiet) {
       std::fprintf(stderr, "exacity: invalid output: %s\n", p.get<std::string>().c_str());
     throw InternalError("the generated city failed validation (see report.json); please report this sketch");
   }
+  return 0;
+}
+
+// Rebuilds the city of an output folder in memory (same sketch, same seed: the same city)
+// and renders it.
+int render_folder(const fs::path& out, const RenderOptions& o, const fs::path& file, bool quiet) {
+  if (!fs::is_regular_file(out / "report.json") || !fs::is_regular_file(out / "sketch.geojson"))
+    throw UserError(out.string() + ": not an output folder of exacity generate (no report.json or sketch.geojson); run exacity generate first");
+  nlohmann::json report = nlohmann::json::parse(std::ifstream(out / "report.json"), nullptr, false);
+  if (report.is_discarded() || !report.contains("sketch_path"))
+    throw UserError((out / "report.json").string() + ": unreadable or from an older exacity; generate the city again");
+  // The copy's relative paths (heightmap, models) resolve where the original sketch was.
+  std::ifstream in(out / "sketch.geojson", std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  Sketch sketch = parse_sketch(text.str(), report["sketch_path"].get<std::string>());
+  ProgressReport progress(quiet);
+  StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); }, kCityStages + 1);
+  City city = build_city(sketch, clock);
+  render::RenderRequest r = request_for(city, o, (out / "sketch.geojson").string());
+  r.still = file.empty() ? out / "render" / "still.png" : file;
+  if (r.still.extension() != ".png") throw UserError(r.still.string() + ": the still is written as PNG; give a file ending in .png");
+  const fs::path dir = r.still.parent_path().empty() ? fs::path(".") : r.still.parent_path();
+  fs::create_directories(dir);
+  r.overview_file = dir / "overview.png", r.minimap_file = dir / "minimap.png";
+  nlohmann::ordered_json stats = clock.run("render", [&] { return render_with_progress(city, r, progress); });
+  fs::path json = r.still;
+  json.replace_extension(".json");
+  std::ofstream(json, std::ios::binary) << stats.dump(2) << "\n";
+  progress.finish();
+  std::printf("exacity: wrote %s and %s (%s)%s%s\n", r.still.string().c_str(), fs::path(r.still).replace_extension(".exr").string().c_str(),
+              json.filename().string().c_str(), r.overview ? ", overview.png" : "", r.minimap ? ", minimap.png" : "");
   return 0;
 }
 
@@ -72,6 +157,31 @@ int main(int argc, char** argv) {
   gen->add_option("--threads", threads, "Worker threads (0: one per core); the output does not depend on it")
       ->check(CLI::Range(0, 1024));
 
+  bool render_too = false;
+  RenderOptions render_options;
+  gen->add_flag("--render", render_too, "Also render the default still, the overview and the minimap into OUT/render");
+  auto add_render_options = [&](CLI::App* c) {
+    c->add_option("--fov", render_options.fov, "Vertical field of view, degrees")->check(CLI::Range(5.0, 150.0))->capture_default_str();
+    c->add_option("--size", render_options.size, "Image size WIDTHxHEIGHT")->capture_default_str();
+    c->add_option("--spp", render_options.spp, "Samples per pixel")->check(CLI::Range(1, 65536))->capture_default_str();
+  };
+  add_render_options(gen);
+
+  fs::path render_dir, render_file;
+  auto* ren = app.add_subcommand("render", "Render a generated city: a still, and the overview and minimap if asked");
+  ren->add_option("OUT", render_dir, "An output folder of exacity generate")->required();
+  ren->add_option("--camera", render_options.camera,
+                  "orbit:target=X,Y,Z,azimuth=DEG,elevation=DEG,distance=M or look:from=X,Y,Z,to=X,Y,Z "
+                  "(default: the sketch's camera, else from the south-west)");
+  add_render_options(ren);
+  ren->add_flag("--overview", render_options.overview, "Also render the whole city from straight above (overview.png)");
+  ren->add_flag("--orthographic", render_options.orthographic, "Make the overview orthographic");
+  ren->add_flag("--minimap", render_options.minimap, "Also draw the minimap (minimap.png) and set it into the still");
+  ren->add_option("-o,--output", render_file, "The still, a .png (default OUT/render/still.png); the .exr goes beside it");
+  ren->add_flag("-q,--quiet", quiet, "Hide progress");
+  ren->add_option("--threads", threads, "Worker threads (0: one per core); the image does not depend on it")
+      ->check(CLI::Range(0, 1024));
+
   fs::path check_dir;
   auto* val = app.add_subcommand("validate", "Re-check every invariant of an output folder exactly");
   val->add_option("OUT", check_dir, "An output folder of exacity generate")->required();
@@ -87,7 +197,8 @@ int main(int argc, char** argv) {
     std::unique_ptr<tbb::global_control> limit;
     if (threads > 0)
       limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
-    if (*gen) return generate(sketch_path, out, quiet);
+    if (*gen) return generate(sketch_path, out, quiet, render_too ? &render_options : nullptr);
+    if (*ren) return render_folder(render_dir, render_options, render_file, quiet);
     if (*val) return validate(check_dir);
   } catch (const UserError& e) {
     std::fprintf(stderr, "exacity: error: %s\n", e.what());

@@ -45,6 +45,25 @@ std::vector<Mesh> building_meshes(const std::vector<Building>& buildings, const 
   return meshes;
 }
 
+MeshTriangles mesh_triangles(const Mesh& mesh) {
+  MeshTriangles out;
+  auto surface = surface_property(mesh);
+  for (auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    out.vertices.push_back({p[0], p[1], p[2]});
+  }
+  for (auto f : mesh.faces()) {
+    std::vector<int> face;
+    std::vector<Vec3> corners;
+    for (auto v : mesh.fv_range(f)) face.push_back(v.idx()), corners.push_back(out.vertices[v.idx()]);
+    for (const auto& t : triangulate_planar(corners)) {
+      out.triangles.push_back({face[t[0]], face[t[1]], face[t[2]]});
+      out.surface.push_back(static_cast<Surface>(mesh.property(surface, f)));
+    }
+  }
+  return out;
+}
+
 Vec3 Placement::apply(Vec3 v, double floor) const {
   const double c = std::cos(angle) * scale, s = std::sin(angle) * scale;
   return {position.x + c * v[0] - s * v[1], position.y + s * v[0] + c * v[1], floor + scale * v[2]};

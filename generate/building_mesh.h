@@ -28,6 +28,14 @@ Mesh building_mesh(const Building& b, const ModelLibrary* library);
 // building_mesh of every building, in parallel; the exporters share them.
 std::vector<Mesh> building_meshes(const std::vector<Building>& buildings, const ModelLibrary* library);
 
+// The mesh as triangles (faces triangulated in their plane): one per entry of `surface`.
+struct MeshTriangles {
+  std::vector<Vec3> vertices;
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<Surface> surface;
+};
+MeshTriangles mesh_triangles(const Mesh& mesh);
+
 // The face property that says which surface a face belongs to.
 OpenMesh::FPropHandleT<int> surface_property(const Mesh& mesh);
 

@@ -184,18 +184,14 @@ GltfCounts write_gltf(const CityLayers& layers, const std::vector<Building>& bui
     const Building& b = buildings[i];
     if (b.placed.model >= 0 && !(b.floor > b.base)) continue;
     const Mesh mesh = b.placed.model >= 0 ? building_mesh(b, nullptr) : Mesh();
-    const Mesh& m = b.placed.model >= 0 ? mesh : meshes[i];
-    auto surface = surface_property(m);
-    for (auto f : m.faces()) {
-      Triangles& t = merged[{b.zone, m.property(surface, f)}];
-      std::vector<std::uint32_t> corners;
-      for (auto v : m.fv_range(f)) {
-        const auto& p = m.point(v);
-        corners.push_back(static_cast<std::uint32_t>(t.positions.size()));
+    const MeshTriangles tris = mesh_triangles(b.placed.model >= 0 ? mesh : meshes[i]);
+    for (std::size_t k = 0; k < tris.triangles.size(); ++k) {
+      Triangles& t = merged[{b.zone, static_cast<int>(tris.surface[k])}];
+      for (int v : tris.triangles[k]) {
+        const Vec3& p = tris.vertices[v];
+        t.indices.push_back(static_cast<std::uint32_t>(t.positions.size()));
         t.positions.push_back(local(p[0], p[1], p[2]));
       }
-      // Faces are planar and convex (walls, roof slopes) or triangles: a fan.
-      for (std::size_t k = 1; k + 1 < corners.size(); ++k) t.indices.insert(t.indices.end(), {corners[0], corners[k], corners[k + 1]});
     }
   }
   std::vector<std::pair<std::pair<int, int>, int>> parts;

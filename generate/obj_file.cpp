@@ -38,15 +38,14 @@ void read_mtl(const fs::path& file, std::map<std::string, Vec3>& colours) {
   }
 }
 
-// Triangles of one polygon face: a fan when it is a triangle or convex, otherwise a
-// triangulation of the polygon projected on the plane it mostly lies in.
-std::vector<std::array<int, 3>> triangulate_face(const std::vector<int>& face, const std::vector<Vec3>& v) {
-  std::vector<std::array<int, 3>> out;
-  const std::size_t n = face.size();
-  if (n == 3) return {{face[0], face[1], face[2]}};
+}  // namespace
+
+std::vector<std::array<int, 3>> triangulate_planar(const std::vector<Vec3>& v) {
+  const int n = static_cast<int>(v.size());
+  if (n == 3) return {{0, 1, 2}};
   Vec3 normal{0, 0, 0};  // Newell's normal
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3 &a = v[face[i]], &b = v[face[(i + 1) % n]];
+  for (int i = 0; i < n; ++i) {
+    const Vec3 &a = v[i], &b = v[(i + 1) % n];
     normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
     normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
     normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
@@ -57,25 +56,24 @@ std::vector<std::array<int, 3>> triangulate_face(const std::vector<int>& face, c
   const int ax = (drop + 1) % 3, ay = (drop + 2) % 3;
   const bool flip = normal[drop] < 0;
   geom::Polygon projected;
-  for (std::size_t i = 0; i < n; ++i) {
-    std::size_t k = flip ? n - 1 - i : i;
-    projected.outer.push_back({v[face[k]][ax], v[face[k]][ay]});
+  for (int i = 0; i < n; ++i) {
+    int k = flip ? n - 1 - i : i;
+    projected.outer.push_back({v[k][ax], v[k][ay]});
   }
+  std::vector<std::array<int, 3>> out;
   auto tris = geom::triangulate(projected);
-  if (tris.size() + 2 != n) {  // not a simple polygon: a fan is the best guess
-    for (std::size_t i = 1; i + 1 < n; ++i) out.push_back({face[0], face[i], face[i + 1]});
+  if (static_cast<int>(tris.size()) + 2 != n) {  // not a simple polygon: a fan is the best guess
+    for (int i = 1; i + 1 < n; ++i) out.push_back({0, i, i + 1});
     return out;
   }
   for (const auto& t : tris) {
     std::array<int, 3> tri;
-    for (int j = 0; j < 3; ++j) tri[j] = face[flip ? n - 1 - t[j] : t[j]];
+    for (int j = 0; j < 3; ++j) tri[j] = flip ? n - 1 - t[j] : t[j];
     if (flip) std::swap(tri[1], tri[2]);
     out.push_back(tri);
   }
   return out;
 }
-
-}  // namespace
 
 TriangleMesh read_obj(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -161,7 +159,10 @@ TriangleMesh read_obj(const fs::path& file) {
       if (face.empty() || vertex_of[i] != face.back()) face.push_back(vertex_of[i]);
     while (face.size() > 1 && face.front() == face.back()) face.pop_back();
     if (face.size() < 3) continue;
-    for (const auto& t : triangulate_face(face, mesh.vertices)) {
+    std::vector<Vec3> corners;
+    for (int i : face) corners.push_back(mesh.vertices[i]);
+    for (auto t : triangulate_planar(corners)) {
+      for (int& i : t) i = face[i];
       Vec3 n = cross(sub(mesh.vertices[t[1]], mesh.vertices[t[0]]), sub(mesh.vertices[t[2]], mesh.vertices[t[0]]));
       if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue;
       std::array<int, 3> key = t;

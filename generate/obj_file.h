@@ -25,6 +25,11 @@ struct TriangleMesh {
   std::vector<MeshMaterial> materials;        // at least one
 };
 
+// Triangles of a planar polygon in 3D, as indices into `corners`, wound as the polygon is:
+// triangulated in the plane it mostly lies in (a fan would cross a concave notch), or a
+// fan when the polygon is not simple there.
+std::vector<std::array<int, 3>> triangulate_planar(const std::vector<Vec3>& corners);
+
 // Reads the file, merging vertices at the same position and dropping triangles that
 // repeat another (either winding) or have no area. Throws UserError naming the file and
 // line when the file cannot be read, an index points nowhere or nothing is left.

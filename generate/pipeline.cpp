@@ -23,58 +23,45 @@ namespace exacity {
 namespace fs = std::filesystem;
 using nlohmann::ordered_json;
 
-namespace {
-
-// Times stages into the report and tells the progress callback as each begins.
-class Stages {
- public:
-  Stages(const ProgressFn& progress, int count) : progress_(progress), count_(count) {}
-  template <typename F>
-  auto run(const std::string& name, F&& f) {
-    if (progress_) progress_(++index_, count_, name);
-    auto start = std::chrono::steady_clock::now();
-    struct Record {
-      Stages& s;
-      const std::string& name;
-      std::chrono::steady_clock::time_point start;
-      ~Record() {
-        s.seconds[name] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      }
-    } record{*this, name, start};
-    return f();
-  }
-  ordered_json seconds = ordered_json::object();
-
- private:
-  const ProgressFn& progress_;
-  int count_, index_ = 0;
-};
-
-}  // namespace
-
-GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const ProgressFn& progress) {
-  Stages stages(progress, 11);
-  std::optional<Terrain> terrain = stages.run("terrain", [&]() -> std::optional<Terrain> {
+City build_city(const Sketch& sketch, StageClock& stages) {
+  City city{sketch, std::nullopt, std::nullopt, {}, {}, {}, {}, {}};
+  city.terrain = stages.run("terrain", [&]() -> std::optional<Terrain> {
     if (!sketch.terrain) return std::nullopt;
     return Terrain::load(*sketch.terrain);
   });
-  std::optional<ModelLibrary> library = stages.run("model library", [&]() -> std::optional<ModelLibrary> {
+  city.library = stages.run("model library", [&]() -> std::optional<ModelLibrary> {
     if (sketch.models.empty()) return std::nullopt;
     return load_model_library(sketch.models);
   });
-  const ModelLibrary* models = library ? &*library : nullptr;
-  const Terrain* ground = terrain ? &*terrain : nullptr;
-  ZoneMap zone_map = stages.run("zone map", [&] { return build_zone_map(sketch, ground); });
-  RoadNetwork network = stages.run("road network", [&] { return grow_road_network(std::move(zone_map), sketch); });
-  std::vector<Block> blocks = stages.run("blocks", [&] { return cut_blocks(network.map, sketch); });
-  std::vector<Lot> lots = stages.run("lots", [&] {
-    std::vector<Lot> planned = plan_lots(blocks, sketch);
-    insert_lots(network.map, blocks, planned, sketch);
+  ZoneMap zone_map = stages.run("zone map", [&] { return build_zone_map(sketch, city.ground()); });
+  city.network = stages.run("road network", [&] { return grow_road_network(std::move(zone_map), sketch); });
+  city.blocks = stages.run("blocks", [&] { return cut_blocks(city.network.map, sketch); });
+  city.lots = stages.run("lots", [&] {
+    std::vector<Lot> planned = plan_lots(city.blocks, sketch);
+    insert_lots(city.network.map, city.blocks, planned, sketch);
     return planned;
   });
-  std::vector<Building> buildings = stages.run("buildings", [&] { return place_buildings(network.map, lots, sketch, models, ground); });
-  CityLayers layers =
-      stages.run("vector layers", [&] { return extract_layers(network.map, blocks, lots, buildings, sketch, models); });
+  city.buildings = stages.run("buildings", [&] {
+    return place_buildings(city.network.map, city.lots, sketch, city.models(), city.ground());
+  });
+  city.layers = stages.run("vector layers", [&] {
+    return extract_layers(city.network.map, city.blocks, city.lots, city.buildings, sketch, city.models());
+  });
+  return city;
+}
+
+GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const ProgressFn& progress) {
+  StageClock stages(progress, kCityStages + kWriteStages);
+  City city = build_city(sketch, stages);
+  return write_city(city, dir, stages);
+}
+
+GenerateResult write_city(const City& city, const fs::path& dir, StageClock& stages) {
+  const Sketch& sketch = city.sketch;
+  const CityLayers& layers = city.layers;
+  const auto& buildings = city.buildings;
+  const RoadNetwork& network = city.network;
+  const auto& blocks = city.blocks;
   stages.run("export", [&] {
     fs::create_directories(dir / "vector");
     fs::copy_file(sketch.path, dir / "sketch.geojson");
@@ -85,9 +72,9 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
   });
   GltfCounts gltf;
   MeshCounts mesh = stages.run("3d export", [&] {
-    std::vector<Mesh> meshes = building_meshes(buildings, models);
-    write_cityjson(layers, buildings, meshes, models, ground, sketch, dir / "city.city.json");
-    gltf = write_gltf(layers, buildings, meshes, models, ground, dir / "city.glb");
+    std::vector<Mesh> meshes = building_meshes(buildings, city.models());
+    write_cityjson(layers, buildings, meshes, city.models(), city.ground(), sketch, dir / "city.city.json");
+    gltf = write_gltf(layers, buildings, meshes, city.models(), city.ground(), dir / "city.glb");
     return write_meshes(buildings, meshes, dir / "city.obj", dir / "city.ply");
   });
   Validation validation = stages.run("validation", [&] { return validate_output(dir); });
@@ -110,6 +97,8 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
       {"generator", "exacity"},
       {"version", kVersion},
       {"sketch", sketch.path.filename().string()},
+      // Where the sketch's relative paths (heightmap, models) resolve, for `exacity render`.
+      {"sketch_path", fs::absolute(sketch.path).lexically_normal().string()},
       {"seed", sketch.seed},
       {"counts",
        {{"zones", layers.zones.features.size()},

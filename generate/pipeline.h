@@ -1,26 +1,84 @@
 // The generate job: sketch to every output, stage after stage (DESIGN.md, The pipeline).
 #pragma once
 
+#include <chrono>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "generate/blocks.h"
+#include "generate/buildings.h"
+#include "generate/lots.h"
+#include "generate/model_library.h"
+#include "generate/road_network.h"
 #include "generate/sketch.h"
+#include "generate/terrain.h"
+#include "generate/vector_layers.h"
 
 namespace exacity {
 
 // Called as each stage starts: its position (1-based), the stage count, its name.
 using ProgressFn = std::function<void(int, int, const std::string&)>;
 
+// Times stages and tells the progress callback as each begins.
+class StageClock {
+ public:
+  StageClock(ProgressFn progress, int count) : progress_(std::move(progress)), count_(count) {}
+  template <typename F>
+  auto run(const std::string& name, F&& f) {
+    if (progress_) progress_(++index_, count_, name);
+    const auto start = std::chrono::steady_clock::now();
+    struct Record {
+      StageClock& clock;
+      const std::string& name;
+      std::chrono::steady_clock::time_point start;
+      ~Record() {
+        clock.seconds[name] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      }
+    } record{*this, name, start};
+    return f();
+  }
+  nlohmann::ordered_json seconds = nlohmann::ordered_json::object();
+
+ private:
+  ProgressFn progress_;
+  int count_, index_ = 0;
+};
+
+// The city in memory, every stage up to the vector layers: what the exports and the
+// renderer read.
+struct City {
+  Sketch sketch;
+  std::optional<Terrain> terrain;
+  std::optional<ModelLibrary> library;
+  RoadNetwork network;
+  std::vector<Block> blocks;
+  std::vector<Lot> lots;
+  std::vector<Building> buildings;
+  CityLayers layers;
+
+  const Terrain* ground() const { return terrain ? &*terrain : nullptr; }
+  const ModelLibrary* models() const { return library ? &*library : nullptr; }
+};
+
+inline constexpr int kCityStages = 8;
+
+// Runs the city's stages on `clock` (kCityStages of them).
+City build_city(const Sketch& sketch, StageClock& clock);
+
 struct GenerateResult {
   nlohmann::ordered_json report;  // as written to report.json
   bool valid = false;
 };
 
-// Writes every output into `dir`, which must exist and be empty.
+// Writes every output into `dir`, which must exist and be empty. `extra_stages` more
+// stages follow on the same clock (the caller's), counted in the progress total.
 GenerateResult generate_city(const Sketch& sketch, const std::filesystem::path& dir, const ProgressFn& progress);
+GenerateResult write_city(const City& city, const std::filesystem::path& dir, StageClock& clock);
+inline constexpr int kWriteStages = 3;
 
 inline constexpr const char* kVersion = "0.1.0";
 

@@ -216,7 +216,7 @@ class Parser {
 
   void settings(const json& ex, Sketch& sketch) const {
     const std::string w = "\"exacity\"";
-    known_keys(ex, w, {"version", "seed", "terrain", "models", "zones"});
+    known_keys(ex, w, {"version", "seed", "terrain", "models", "zones", "camera"});
     if (ex.contains("version") && number(ex["version"], w + ".version", 1, 1) != 1) fail(w, "unsupported version");
     if (ex.contains("seed")) {
       const json& s = ex["seed"];
@@ -227,6 +227,11 @@ class Parser {
     if (ex.contains("models")) {
       if (!ex["models"].is_string()) fail(w + ".models", "expected the path of a model library (a string)");
       sketch.models = sketch.path.parent_path() / ex["models"].get<std::string>();
+    }
+    if (ex.contains("camera")) {
+      if (!ex["camera"].is_string())
+        fail(w + ".camera", "expected a camera such as \"orbit:target=0,0,0,azimuth=225,elevation=35,distance=900\"");
+      sketch.camera = ex["camera"].get<std::string>();
     }
     if (ex.contains("terrain")) sketch.terrain = terrain(ex["terrain"], sketch.path);
     if (ex.contains("zones")) {

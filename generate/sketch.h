@@ -71,6 +71,7 @@ struct Sketch {
   nlohmann::ordered_json crs;       // null when the sketch has none; copied as written
   std::optional<TerrainSpec> terrain;
   std::filesystem::path models;     // empty when the sketch names no model library
+  std::string camera;               // the still's camera (exacity render's --camera syntax), or empty
   std::map<ZoneType, ZoneParams> zone_params;
   std::vector<ZoneFeature> zones;
   std::vector<RoadFeature> roads;

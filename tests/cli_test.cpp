@@ -260,3 +260,37 @@ TEST(Cli, HelpAndVersion) {
   EXPECT_EQ(run("frobnicate").code, 2);
   EXPECT_EQ(run("generate").code, 2);  // no sketch
 }
+
+TEST(Cli, RenderWritesStillOverviewAndMinimapTheSameWhateverTheThreadCount) {
+  fs::path base = testing_util::temp_dir("cli-render");
+  fs::path out = base / "out";
+  Result g = run("generate " + (kSource / "examples" / "hillside.geojson").string() + " -o " + out.string() +
+                 " -q --render --size 96x64 --spp 2");
+  ASSERT_EQ(g.code, 0) << g.out;
+  for (const char* f : {"render/still.png", "render/still.exr", "render/overview.png", "render/minimap.png"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  auto report = nlohmann::json::parse(read(out / "report.json"));
+  ASSERT_TRUE(report.contains("render"));
+  EXPECT_GT(report["render"]["tiles"]["count"].get<int>(), 0);
+  EXPECT_GT(report["render"]["still"]["camera_rays"].get<long>(), 0);
+
+  const std::string camera = " --camera orbit:target=400,600,40,azimuth=250,elevation=25,distance=500 --size 80x48 --spp 3 --minimap";
+  for (int threads : {1, 2}) {
+    Result r = run("render " + out.string() + camera + " -q --threads " + std::to_string(threads) + " -o " +
+                   (base / ("still" + std::to_string(threads) + ".png")).string());
+    ASSERT_EQ(r.code, 0) << r.out;
+  }
+  EXPECT_TRUE(read(base / "still1.png") == read(base / "still2.png"));
+  EXPECT_TRUE(read(base / "still1.exr") == read(base / "still2.exr"));
+  EXPECT_TRUE(fs::exists(base / "minimap.png"));
+  auto stats = nlohmann::json::parse(read(base / "still1.json"));
+  EXPECT_EQ(stats["size"][0], 80);
+  EXPECT_GT(stats["tiles"]["culled"].get<int>(), 0) << "a close camera leaves tiles out";
+
+  Result bad = run("render " + out.string() + " --camera orbit:target=1,2 -q");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.out.find("--camera"), std::string::npos) << bad.out;
+  EXPECT_EQ(std::count(bad.out.begin(), bad.out.end(), '\n'), 1) << bad.out;
+  Result nowhere = run("render " + (base / "missing").string() + " -q");
+  EXPECT_EQ(nowhere.code, 2);
+}

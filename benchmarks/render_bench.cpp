@@ -1,0 +1,119 @@
+// The renderer at scale: Embree scene build time and memory for a city, raw rtcIntersect1
+// throughput beside the path tracer's own ray rate on the same scene (their ratio is the
+// figure), and the time of a still. Measures; asserts nothing.
+//
+//   build/release/benchmarks/exacity_render_bench [SKETCH] [--size WxH] [--spp N] [--threads N] [--models LIBRARY]
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include "generate/pipeline.h"
+#include "render/path_tracer.h"
+#include "render/render.h"
+#include "render/sampling.h"
+#include "render/scene.h"
+
+using namespace render;
+namespace fs = std::filesystem;
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+double rss_mib() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  fs::path sketch_path = fs::path(EXACITY_SOURCE_DIR) / "benchmarks" / "city_10km.geojson", models;
+  int width = 1920, height = 1080, spp = 64, threads = 0;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--size") && i + 1 < argc) std::sscanf(argv[++i], "%dx%d", &width, &height);
+    else if (!std::strcmp(argv[i], "--spp") && i + 1 < argc) spp = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--models") && i + 1 < argc) models = argv[++i];
+    else sketch_path = argv[i];
+  }
+  std::unique_ptr<tbb::global_control> limit;
+  if (threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+  exacity::Sketch sketch = exacity::load_sketch(sketch_path);
+  if (!models.empty()) sketch.models = fs::absolute(models);
+
+  auto t = std::chrono::steady_clock::now();
+  exacity::StageClock clock(nullptr, exacity::kCityStages);
+  exacity::City city = exacity::build_city(sketch, clock);
+  std::printf("city %s: %zu buildings, built in %.1f s; peak memory %.0f MiB\n", sketch_path.filename().c_str(),
+              city.buildings.size(), seconds_since(t), rss_mib());
+
+  const Sky sky(200, 40);
+  Camera camera = default_camera(city);
+  SceneOptions options;
+  options.view = &camera;
+  options.aspect = static_cast<float>(width) / static_cast<float>(height);
+  const double before = rss_mib();
+  t = std::chrono::steady_clock::now();
+  RenderScene scene(city, sky.sun_direction(), options);
+  const double build_s = seconds_since(t);
+  int culled = 0, simple = 0;
+  for (const auto& tl : scene.tiles) culled += tl.level == "culled", simple += tl.level == "simple";
+  std::printf("scene: %.2f s, %zu triangles, %zu instances, %zu tiles (%d culled, %d simple); peak memory %.0f MiB (+%.0f)\n",
+              build_s, scene.triangles, scene.instances, scene.tiles.size(), culled, simple, rss_mib(), rss_mib() - before);
+  camera.from = scene.to_scene(camera.from.x, camera.from.y, camera.from.z);
+  camera.to = scene.to_scene(camera.to.x, camera.to.y, camera.to.z);
+
+  // Raw Embree: one camera ray and one random upward bounce ray per pixel, the same kinds
+  // of rays the path tracer casts, through rtcIntersect1 alone.
+  std::vector<V3> origins, directions;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      V3 o, d;
+      camera.ray(x + 0.5f, y + 0.5f, width, height, o, d);
+      origins.push_back(o), directions.push_back(d);
+      Surface s;
+      if (scene.intersect(o, d, INFINITY, s)) {
+        Sampler rng(static_cast<std::uint64_t>(y) * width + x, 0);
+        origins.push_back(s.position + s.normal * 1e-3f);
+        directions.push_back(Frame(s.normal).to_world(cosine_hemisphere(rng.next(), rng.next())));
+      }
+    }
+  // Passes over the set until a second has gone, so thread start-up does not count.
+  std::atomic<std::size_t> hits{0};
+  std::size_t cast = 0;
+  t = std::chrono::steady_clock::now();
+  while (seconds_since(t) < 1.0) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, origins.size(), 4096), [&](const auto& r) {
+      std::size_t h = 0;
+      for (std::size_t i = r.begin(); i < r.end(); ++i) h += scene.raw_intersect(origins[i], directions[i]);
+      hits += h;
+    });
+    cast += origins.size();
+  }
+  const double raw_s = seconds_since(t);
+  const double raw_rate = static_cast<double>(cast) / raw_s;
+  std::printf("raw rtcIntersect1: %zu rays (camera rays and one bounce each) in %.2f s: %.2f M rays/s\n", cast, raw_s,
+              raw_rate / 1e6);
+
+  RayCounts rays;
+  t = std::chrono::steady_clock::now();
+  Image img = trace(scene, sky, camera, TraceSettings{width, height, spp}, &rays);
+  const double still_s = seconds_since(t);
+  const double all = static_cast<double>(rays.camera + rays.bounce + rays.shadow);
+  std::printf("path tracer, %dx%d at %d spp: %.1f s; %.0f M rays (camera %.0f M, bounce %.0f M, shadow %.0f M): %.2f M rays/s, "
+              "%.0f%% of raw\n",
+              width, height, spp, still_s, all / 1e6, static_cast<double>(rays.camera) / 1e6, static_cast<double>(rays.bounce) / 1e6, static_cast<double>(rays.shadow) / 1e6,
+              all / still_s / 1e6, 100 * all / still_s / raw_rate);
+  std::printf("peak memory %.0f MiB\n", rss_mib());
+  return 0;
+}

@@ -1,0 +1,61 @@
+// Cameras (seed 000, 3.3): a spherical orbit bound to the upper hemisphere or a look-at
+// camera, perspective or orthographic; the overview camera that sees the whole city; and
+// the ground region a camera sees, for the minimap.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "geom/plain.h"
+#include "render/vec.h"
+
+namespace render {
+
+struct Camera {
+  V3 from, to;
+  float fov_y = 50;            // degrees, vertical
+  bool orthographic = false;
+  float ortho_height = 100;    // m the image spans vertically, orthographic only
+
+  // From `target`: azimuth counter-clockwise from east, elevation above the horizon
+  // (kept within 1..90 degrees, the upper hemisphere), distance in metres.
+  static Camera orbit(V3 target, float azimuth_deg, float elevation_deg, float distance, float fov_y = 50);
+  static Camera look(V3 from, V3 to, float fov_y = 50);
+  // "orbit:target=X,Y,Z,azimuth=DEG,elevation=DEG,distance=M" or "look:from=X,Y,Z,to=X,Y,Z";
+  // throws std::invalid_argument with what is wrong.
+  static Camera parse(const std::string& spec, float fov_y);
+
+  V3 forward() const { return normalize(to - from); }
+  V3 right() const;
+  V3 up() const { return cross(right(), forward()); }
+  // The ray through the image point (px, py), pixels from the top-left corner.
+  void ray(float px, float py, int width, int height, V3& origin, V3& direction) const;
+};
+
+// A camera's rays for one image size, its frame worked out once.
+class Lens {
+ public:
+  Lens(const Camera& camera, int width, int height);
+  void ray(float px, float py, V3& origin, V3& direction) const;
+
+ private:
+  V3 from_, forward_, right_, up_;
+  float width_, height_, half_x_, half_y_;
+  bool orthographic_;
+};
+
+// Seed 000, 3.3.4: straight down over the city's centre, at the height where the whole map
+// is seen: height = map height / (2 tan(fov_y / 2)), the map height being the box's extent
+// north-south or its east-west extent over the aspect ratio, whichever is more; counted
+// from `top`, the highest point of the city. Orthographic: the map height is spanned.
+Camera overview_camera(const geom::Box& city, float top, float fov_y, float aspect, bool orthographic);
+float overview_height(const geom::Box& city, float fov_y, float aspect);
+
+// Where the image's corner rays meet the ground plane z = ground, as a quadrilateral
+// (bottom-left, bottom-right, top-right, top-left). Where an upper ray points at or above
+// the horizon, the lower ray on its side is followed on along the ground to the edge of
+// `bounds` instead (seed 000's special case).
+std::vector<geom::Vec2> ground_footprint(const Camera& camera, int width, int height, float ground,
+                                         const geom::Box& bounds);
+
+}  // namespace render

@@ -1,0 +1,25 @@
+// Images out through OpenImageIO: a multi-layer EXR (half RGB beauty; float depth and
+// normals, half albedo, a 32-bit integer id; zip compression, lossless) and tone-mapped
+// 8-bit sRGB PNGs. Files are written under a temporary name and renamed into place.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "render/path_tracer.h"
+
+namespace render {
+
+struct Rgb8 {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> pixels;  // RGB, row 0 at the top
+  void set(int x, int y, V3 c);
+};
+
+void write_exr(const Image& image, const std::filesystem::path& file);
+// ACES filmic curve (Narkowicz's fit) after `exposure`, then the sRGB transfer function.
+Rgb8 tone_map(const Image& image, float exposure);
+void write_png(const Rgb8& image, const std::filesystem::path& file);
+
+}  // namespace render

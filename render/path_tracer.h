@@ -1,0 +1,50 @@
+// The path tracer (Embree's tutorial layout: render a tile, render a pixel, shade): next
+// event estimation towards the sun and the sky, each combined with the surface's own
+// sampling by multiple importance sampling (power heuristic); Russian roulette after
+// three bounces.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "render/camera.h"
+#include "render/sampling.h"
+#include "render/scene.h"
+#include "render/sky.h"
+
+namespace render {
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<V3> beauty;           // linear radiance, the mean of the samples
+  std::vector<float> depth;         // distance to the first hit (infinity: sky)
+  std::vector<V3> normal, albedo;   // of the first hit, world space
+  std::vector<std::uint32_t> id;    // the first hit's entity (see Entity)
+};
+
+struct TraceSettings {
+  int width = 960, height = 540, spp = 16;
+  int max_depth = 8;
+};
+
+struct RayCounts {
+  std::uint64_t camera = 0, bounce = 0, shadow = 0;
+  RayCounts& operator+=(const RayCounts& o) {
+    camera += o.camera, bounce += o.bounce, shadow += o.shadow;
+    return *this;
+  }
+};
+
+// Called with the tiles done and the tile count, from the calling thread only.
+using TileProgress = std::function<void(int, int)>;
+
+// `camera` in scene coordinates.
+Image trace(const RenderScene& scene, const Sky& sky, const Camera& camera, const TraceSettings& settings,
+            RayCounts* counts = nullptr, const TileProgress& progress = nullptr);
+
+// One path's radiance along a ray (exposed for tests); the rays it casts are added to `counts`.
+V3 radiance(const RenderScene& scene, const Sky& sky, V3 origin, V3 direction, Sampler& rng, int max_depth,
+            RayCounts& counts, Surface* first = nullptr);
+
+}  // namespace render

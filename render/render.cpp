@@ -1,0 +1,165 @@
+#include "render/render.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "render/image_io.h"
+#include "render/path_tracer.h"
+#include "render/scene.h"
+
+namespace render {
+namespace fs = std::filesystem;
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+void line(Rgb8& img, V3 colour, float x0, float y0, float x1, float y1, int thickness) {
+  const int steps = static_cast<int>(std::ceil(std::max(std::abs(x1 - x0), std::abs(y1 - y0)))) + 1;
+  for (int i = 0; i <= steps; ++i) {
+    const float t = static_cast<float>(i) / static_cast<float>(steps);
+    const int x = static_cast<int>(std::lround(x0 + (x1 - x0) * t)), y = static_cast<int>(std::lround(y0 + (y1 - y0) * t));
+    for (int dy = -thickness / 2; dy <= thickness / 2; ++dy)
+      for (int dx = -thickness / 2; dx <= thickness / 2; ++dx) img.set(x + dx, y + dy, colour);
+  }
+}
+
+void disc(Rgb8& img, V3 colour, float cx, float cy, float r) {
+  for (int y = static_cast<int>(cy - r); y <= static_cast<int>(cy + r); ++y)
+    for (int x = static_cast<int>(cx - r); x <= static_cast<int>(cx + r); ++x)
+      if ((x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r) img.set(x, y, colour);
+}
+
+}  // namespace
+
+Camera default_camera(const exacity::City& city) {
+  geom::Box box = geom::Box::none();
+  for (const auto* l : {&city.layers.zones, &city.layers.water, &city.layers.road_areas})
+    for (const auto& f : l->features)
+      for (auto p : f.polygon.outer) box.add(p);
+  if (box.holds_nothing()) box = {0, 0, 100, 100};
+  const double cx = (box.min_x + box.max_x) / 2, cy = (box.min_y + box.max_y) / 2;
+  const double z = city.ground() ? city.ground()->height_at({cx, cy}) : 0;
+  const float distance = static_cast<float>(0.5 * std::hypot(box.width(), box.height()));
+  return Camera::orbit({static_cast<float>(cx), static_cast<float>(cy), static_cast<float>(z)}, 235, 30, distance, 45);
+}
+
+nlohmann::ordered_json render_city(const exacity::City& city, const RenderRequest& request, const RenderProgress& progress) {
+  auto t = std::chrono::steady_clock::now();
+  const Sky sky(request.sun_azimuth, request.sun_elevation, request.turbidity);
+  const float aspect = static_cast<float>(request.width) / static_cast<float>(request.height);
+  SceneOptions options;
+  options.view = &request.camera;
+  options.aspect = aspect;
+  if (progress) progress("scene", 0);
+  RenderScene scene(city, sky.sun_direction(), options);
+  const double scene_s = seconds_since(t);
+  Camera camera = request.camera;
+  camera.from = scene.to_scene(camera.from.x, camera.from.y, camera.from.z);
+  camera.to = scene.to_scene(camera.to.x, camera.to.y, camera.to.z);
+
+  TraceSettings settings{request.width, request.height, request.spp};
+  RayCounts rays;
+  t = std::chrono::steady_clock::now();
+  Image still = trace(scene, sky, camera, settings, &rays, [&](int done, int all) {
+    if (progress) progress("still", static_cast<double>(done) / all);
+  });
+  const double still_s = seconds_since(t);
+  Rgb8 still_png = tone_map(still, request.exposure);
+
+  nlohmann::ordered_json levels = nlohmann::ordered_json::object();
+  int culled = 0;
+  for (const auto& tl : scene.tiles) {
+    levels[tl.level] = levels.value(tl.level, 0) + 1;
+    culled += tl.level == "culled";
+  }
+  nlohmann::ordered_json report{
+      {"size", {request.width, request.height}},
+      {"samples_per_pixel", request.spp},
+      {"camera", {{"from", {request.camera.from.x, request.camera.from.y, request.camera.from.z}},
+                  {"to", {request.camera.to.x, request.camera.to.y, request.camera.to.z}},
+                  {"fov_y", request.camera.fov_y}}},
+      {"tiles", {{"count", scene.tiles.size()}, {"culled", culled}, {"by_level", levels}}},
+      {"scene", {{"triangles", scene.triangles}, {"instances", scene.instances}, {"build_s", scene_s}}},
+      {"still", {{"seconds", still_s},
+                 {"camera_rays", rays.camera},
+                 {"bounce_rays", rays.bounce},
+                 {"shadow_rays", rays.shadow},
+                 {"rays_per_s", static_cast<double>(rays.camera + rays.bounce + rays.shadow) / still_s}}},
+  };
+  nlohmann::ordered_json tile_levels = nlohmann::ordered_json::array();
+  for (const auto& tl : scene.tiles) tile_levels.push_back({tl.tile, tl.level});
+  report["tiles"]["levels"] = tile_levels;
+
+  if (request.overview || request.minimap) {
+    // The whole city from above, in a scene without culling.
+    SceneOptions all;
+    all.aspect = 1;
+    RenderScene whole(city, sky.sun_direction(), all);
+    const int size_overview = std::max(request.width, request.height);
+    if (request.overview) {
+      const float top = whole.top;
+      Camera over = overview_camera(whole.bounds, top, request.camera.fov_y, 1, request.orthographic_overview);
+      TraceSettings s{size_overview, size_overview, request.spp};
+      Image img = trace(whole, sky, over, s, nullptr, [&](int done, int n) {
+        if (progress) progress("overview", static_cast<double>(done) / n);
+      });
+      write_png(tone_map(img, request.exposure), request.overview_file);
+      report["overview"] = {{"height_m", over.from.z - top}, {"orthographic", request.orthographic_overview}};
+    }
+    if (request.minimap) {
+      const int m = 256;
+      Camera top_down = overview_camera(whole.bounds, whole.top, 45, 1, true);
+      Image img = trace(whole, sky, top_down, TraceSettings{m, m, std::max(1, request.spp / 4)});
+      Rgb8 map = tone_map(img, request.exposure);
+      // Scene coordinates to minimap pixels (the orthographic top-down view, north up).
+      const float span = top_down.ortho_height;
+      auto px = [&](geom::Vec2 p) {
+        return std::pair<float, float>{(static_cast<float>(p.x) - top_down.from.x) / span * m + m / 2.0f,
+                                       m / 2.0f - (static_cast<float>(p.y) - top_down.from.y) / span * m};
+      };
+      const geom::Box& b = whole.bounds;
+      const geom::Box far{b.min_x - b.width(), b.min_y - b.height(), b.max_x + b.width(), b.max_y + b.height()};
+      // The still's view, from its own scene (the same origin: both centre on the city).
+      std::vector<geom::Vec2> seen = ground_footprint(camera, request.width, request.height, whole.ground, b);
+      (void)far;
+      for (int i = 0; i < 4; ++i) {
+        auto [x0, y0] = px(seen[i]);
+        auto [x1, y1] = px(seen[(i + 1) % 4]);
+        line(map, {1.0f, 0.85f, 0.1f}, x0, y0, x1, y1, 2);
+      }
+      auto [cx, cy] = px({camera.from.x, camera.from.y});
+      const V3 heading = camera.forward();
+      const float hl = std::hypot(heading.x, heading.y);
+      if (hl > 1e-4f) line(map, {0.9f, 0.1f, 0.1f}, cx, cy, cx + heading.x / hl * 18, cy - heading.y / hl * 18, 2);
+      disc(map, {0.9f, 0.1f, 0.1f}, cx, cy, 4);
+      write_png(map, request.minimap_file);
+      // Set into the still's top-right corner, a third of its height, with a frame.
+      const int size = std::max(32, request.height / 3), x0 = request.width - size - 8, y0 = 8;
+      for (int y = -2; y < size + 2; ++y)
+        for (int x = -2; x < size + 2; ++x) {
+          const bool frame = x < 0 || y < 0 || x >= size || y >= size;
+          const std::uint8_t* p = &map.pixels[(static_cast<std::size_t>(std::clamp(y * m / size, 0, m - 1)) * m +
+                                               std::clamp(x * m / size, 0, m - 1)) * 3];
+          std::uint8_t* q = nullptr;
+          if (x0 + x >= 0 && y0 + y >= 0 && x0 + x < request.width && y0 + y < request.height)
+            q = &still_png.pixels[(static_cast<std::size_t>(y0 + y) * request.width + (x0 + x)) * 3];
+          if (!q) continue;
+          for (int c = 0; c < 3; ++c) q[c] = frame ? 255 : p[c];
+        }
+      report["minimap"] = {{"visible_ground", {{seen[0].x + scene.origin_x, seen[0].y + scene.origin_y},
+                                               {seen[1].x + scene.origin_x, seen[1].y + scene.origin_y},
+                                               {seen[2].x + scene.origin_x, seen[2].y + scene.origin_y},
+                                               {seen[3].x + scene.origin_x, seen[3].y + scene.origin_y}}}};
+    }
+  }
+  fs::path exr = request.still;
+  exr.replace_extension(".exr");
+  write_exr(still, exr);
+  write_png(still_png, request.still);
+  return report;
+}
+
+}  // namespace render

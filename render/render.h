@@ -1,0 +1,37 @@
+// Renders a city held in memory: the still from a camera, the overview from straight
+// above, and the minimap with the still's visible ground region (seed 000, 3.3.4).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "generate/pipeline.h"
+#include "render/camera.h"
+
+namespace render {
+
+struct RenderRequest {
+  Camera camera;  // city coordinates
+  int width = 960, height = 540, spp = 16;
+  bool overview = false, orthographic_overview = false, minimap = false;
+  float sun_azimuth = 200, sun_elevation = 40, turbidity = 3, exposure = 0.25f;
+  std::filesystem::path still;  // PNG; the EXR goes beside it
+  std::filesystem::path overview_file, minimap_file;
+};
+
+// From the south-west, 30 degrees up, at half the city's diagonal from its centre.
+Camera default_camera(const exacity::City& city);
+
+// The stage name, then the fraction of it done.
+using RenderProgress = std::function<void(const std::string&, double)>;
+
+// Writes the still (PNG and EXR), and the overview and minimap when asked; the minimap is
+// also set into the still's top-right corner. Returns what report.json records: sizes,
+// samples, scene and render times, rays, and how each city tile was drawn.
+nlohmann::ordered_json render_city(const exacity::City& city, const RenderRequest& request,
+                                   const RenderProgress& progress = nullptr);
+
+}  // namespace render

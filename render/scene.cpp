@@ -1,0 +1,536 @@
+#include "render/scene.h"
+
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+#include "generate/building_mesh.h"
+#include "generate/ground_mesh.h"
+#include "generate/palette.h"
+#include "generate/random.h"
+#include "render/noise.h"
+
+namespace render {
+namespace {
+
+using exacity::ZoneType;
+
+V3 colour(const exacity::Colour& c) { return {static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2])}; }
+
+// Facade and roof palettes per zone type; each building picks one of each (seed 000).
+const std::vector<V3>& facades(ZoneType z) {
+  static const std::vector<V3> residential{{0.80f, 0.72f, 0.60f}, {0.72f, 0.48f, 0.36f}, {0.86f, 0.82f, 0.66f}, {0.70f, 0.70f, 0.68f}};
+  static const std::vector<V3> commercial{{0.62f, 0.64f, 0.66f}, {0.50f, 0.56f, 0.62f}, {0.76f, 0.72f, 0.64f}, {0.84f, 0.84f, 0.82f}};
+  static const std::vector<V3> industrial{{0.55f, 0.56f, 0.56f}, {0.56f, 0.40f, 0.30f}, {0.58f, 0.62f, 0.56f}};
+  return z == ZoneType::Commercial ? commercial : z == ZoneType::Industrial ? industrial : residential;
+}
+const std::vector<V3>& roofs(ZoneType z) {
+  static const std::vector<V3> residential{{0.45f, 0.18f, 0.12f}, {0.22f, 0.22f, 0.25f}, {0.38f, 0.28f, 0.20f}};
+  static const std::vector<V3> flat{{0.30f, 0.30f, 0.30f}, {0.42f, 0.41f, 0.39f}};
+  return z == ZoneType::Residential ? residential : flat;
+}
+
+// A ribbon of `width` along a ground path, its corners draped over the terrain, in pieces
+// no longer than half a pixel; dashes where `dash` > 0 (dash on, gap off, metres).
+void ribbon(const geom::Polyline& line, double offset, double width, double dash, double gap, const exacity::Terrain* terrain,
+            double lift, std::vector<V3>& verts, std::vector<std::array<int, 3>>& tris, const RenderScene& s) {
+  const double step = terrain ? terrain->pixel_size() / 2 : 1e9;
+  double along = 0;
+  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+    geom::Vec2 a = line[i], b = line[i + 1];
+    const double len = std::hypot(b.x - a.x, b.y - a.y);
+    if (len == 0) continue;
+    const double ux = (b.x - a.x) / len, uy = (b.y - a.y) / len, nx = -uy, ny = ux;
+    double t = 0;
+    while (t < len) {
+      double end = len;
+      bool on = true;
+      if (dash > 0) {
+        const double phase = std::fmod(along + t, dash + gap);
+        on = phase < dash;
+        end = std::min(len, t + (on ? dash - phase : dash + gap - phase));
+      }
+      end = std::min(end, t + step);
+      if (on) {
+        auto corner = [&](double at, double side) {
+          double x = a.x + ux * at + nx * (offset + side), y = a.y + uy * at + ny * (offset + side);
+          double z = (terrain ? terrain->height_at({x, y}) : 0) + lift;
+          return s.to_scene(x, y, z);
+        };
+        const int first = static_cast<int>(verts.size());
+        verts.insert(verts.end(), {corner(t, -width / 2), corner(end, -width / 2), corner(end, width / 2), corner(t, width / 2)});
+        tris.push_back({first, first + 1, first + 2});
+        tris.push_back({first, first + 2, first + 3});
+      }
+      t = end + 1e-9;
+    }
+    along += len;
+  }
+}
+
+struct Plane {
+  V3 n;
+  float d;  // inside where dot(n, p) + d >= 0
+};
+
+// The four side planes of the camera's view, facing in.
+std::vector<Plane> frustum(const Camera& c, float aspect) {
+  const V3 f = c.forward(), r = c.right(), u = cross(r, f);
+  std::vector<Plane> planes;
+  auto add = [&](V3 n, V3 p) { planes.push_back({n, -dot(n, p)}); };
+  if (c.orthographic) {
+    const float hh = c.ortho_height / 2, hw = hh * aspect;
+    add(r, c.from - r * hw), add(r * -1, c.from + r * hw), add(u, c.from - u * hh), add(u * -1, c.from + u * hh);
+    return planes;
+  }
+  const float t = std::tan(c.fov_y * kPi / 360), ta = t * aspect;
+  // A side plane holds the camera and the two corner directions on that side.
+  const V3 tl = f + r * -ta + u * t, tr = f + r * ta + u * t, bl = f + r * -ta + u * -t, br = f + r * ta + u * -t;
+  add(normalize(cross(bl, tl)), c.from), add(normalize(cross(tr, br)), c.from);
+  add(normalize(cross(tl, tr)), c.from), add(normalize(cross(br, bl)), c.from);
+  return planes;
+}
+
+struct Box3 {
+  V3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  void add(V3 p) { lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)}, hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)}; }
+  void add(const Box3& b) { add(b.lo), add(b.hi); }
+  bool outside(const Plane& p) const {
+    V3 far{p.n.x >= 0 ? hi.x : lo.x, p.n.y >= 0 ? hi.y : lo.y, p.n.z >= 0 ? hi.z : lo.z};
+    return dot(p.n, far) + p.d < 0;
+  }
+};
+
+// A bounding volume hierarchy over tile boxes, for the tiles a frustum can see.
+class TileBvh {
+ public:
+  explicit TileBvh(const std::vector<Box3>& boxes) : boxes_(boxes) {
+    std::vector<int> ids;
+    for (int i = 0; i < static_cast<int>(boxes.size()); ++i)
+      if (boxes[i].lo.x <= boxes[i].hi.x) ids.push_back(i);
+    if (!ids.empty()) build(ids, 0, static_cast<int>(ids.size()));
+  }
+  void visible(const std::vector<Plane>& planes, std::vector<bool>& seen) const {
+    if (!nodes_.empty()) visit(0, planes, seen);
+  }
+
+ private:
+  struct Node {
+    Box3 box;
+    int left = -1, right = -1, tile = -1;
+  };
+  int build(std::vector<int>& ids, int begin, int end) {
+    Node node;
+    for (int i = begin; i < end; ++i) node.box.add(boxes_[ids[i]]);
+    const int at = static_cast<int>(nodes_.size());
+    nodes_.push_back(node);
+    if (end - begin == 1) {
+      nodes_[at].tile = ids[begin];
+      return at;
+    }
+    const V3 size = node.box.hi - node.box.lo;
+    const int axis = size.x >= size.y ? 0 : 1;
+    const int mid = (begin + end) / 2;
+    std::nth_element(ids.begin() + begin, ids.begin() + mid, ids.begin() + end, [&](int a, int b) {
+      return (boxes_[a].lo[axis] + boxes_[a].hi[axis]) < (boxes_[b].lo[axis] + boxes_[b].hi[axis]);
+    });
+    const int left = build(ids, begin, mid), right = build(ids, mid, end);
+    nodes_[at].left = left, nodes_[at].right = right;
+    return at;
+  }
+  void visit(int n, const std::vector<Plane>& planes, std::vector<bool>& seen) const {
+    for (const Plane& p : planes)
+      if (nodes_[n].box.outside(p)) return;
+    if (nodes_[n].tile >= 0) {
+      seen[nodes_[n].tile] = true;
+      return;
+    }
+    visit(nodes_[n].left, planes, seen), visit(nodes_[n].right, planes, seen);
+  }
+  const std::vector<Box3>& boxes_;
+  std::vector<Node> nodes_;
+};
+
+const Noise& noise() {
+  static const Noise n;
+  return n;
+}
+
+}  // namespace
+
+struct RenderScene::Geometry {
+  std::vector<int> material;          // per triangle; for instances, per model triangle
+  std::vector<std::uint32_t> entity;  // per triangle; empty for instances
+  // Instances: their entity, the offset into the materials of their colour variant, and
+  // the turn that takes the model's normals into the city.
+  bool instance = false;
+  std::uint32_t instance_entity = 0;
+  int material_base = 0;
+  float cos_turn = 1, sin_turn = 0;
+};
+
+unsigned RenderScene::add_triangles(const std::vector<V3>& vertices, const std::vector<std::array<int, 3>>& tris, Geometry info) {
+  RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices.size()));
+  for (std::size_t i = 0; i < vertices.size(); ++i) v[3 * i] = vertices[i].x, v[3 * i + 1] = vertices[i].y, v[3 * i + 2] = vertices[i].z;
+  auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), tris.size()));
+  for (std::size_t i = 0; i < tris.size(); ++i)
+    for (int k = 0; k < 3; ++k) t[3 * i + k] = static_cast<unsigned>(tris[i][k]);
+  rtcCommitGeometry(g);
+  unsigned id = rtcAttachGeometry(scene_, g);
+  rtcReleaseGeometry(g);
+  if (geometries_.size() <= id) geometries_.resize(id + 1);
+  geometries_[id] = std::move(info);
+  triangles += tris.size();
+  return id;
+}
+
+RenderScene::RenderScene(const std::vector<TriangleSoup>& soups, bool ground_plane) : ground_plane_(ground_plane) {
+  device_ = rtcNewDevice(nullptr);
+  scene_ = rtcNewScene(device_);
+  bounds = geom::Box::none();
+  for (const TriangleSoup& s : soups) {
+    materials_.push_back(s.material);
+    patterns_.push_back(Pattern::None);
+    Geometry info;
+    info.material.assign(s.triangles.size(), static_cast<int>(materials_.size()) - 1);
+    info.entity.assign(s.triangles.size(), s.entity);
+    for (V3 p : s.vertices) bounds.add(geom::Vec2{p.x, p.y}), top = std::max(top, p.z);
+    add_triangles(s.vertices, s.triangles, std::move(info));
+  }
+  materials_.push_back({Material::Diffuse, {0.3f, 0.45f, 0.2f}});
+  patterns_.push_back(Pattern::Grass);
+  grass_material_ = static_cast<int>(materials_.size()) - 1;
+  rtcCommitScene(scene_);
+}
+
+RenderScene::RenderScene(const exacity::City& city, V3 sun, const SceneOptions& options) : ground_plane_(options.ground_plane) {
+  device_ = rtcNewDevice(nullptr);
+  if (!device_) throw std::runtime_error("Embree: no device");
+  scene_ = rtcNewScene(device_);
+  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
+  build(city, sun, options);
+  rtcCommitScene(scene_);
+}
+
+RenderScene::~RenderScene() {
+  if (scene_) rtcReleaseScene(scene_);
+  for (RTCScene s : model_scenes_)
+    if (s) rtcReleaseScene(s);
+  if (device_) rtcReleaseDevice(device_);
+}
+
+void RenderScene::build(const exacity::City& city, V3 sun, const SceneOptions& options) {
+  const auto& layers = city.layers;
+  const exacity::Terrain* terrain = city.ground();
+  geom::Box world = geom::Box::none();
+  for (const auto* l : {&layers.zones, &layers.water, &layers.road_areas})
+    for (const auto& f : l->features)
+      for (auto p : f.polygon.outer) world.add(p);
+  if (world.holds_nothing()) world = {0, 0, 1, 1};
+  origin_x = std::round((world.min_x + world.max_x) / 2), origin_y = std::round((world.min_y + world.max_y) / 2);
+  bounds = {world.min_x - origin_x, world.min_y - origin_y, world.max_x - origin_x, world.max_y - origin_y};
+
+  auto material = [&](Material m, Pattern p = Pattern::None) {
+    materials_.push_back(m);
+    patterns_.push_back(p);
+    return static_cast<int>(materials_.size()) - 1;
+  };
+  grass_material_ = material({Material::Diffuse, {0.30f, 0.45f, 0.20f}}, Pattern::Grass);
+  const int sidewalk = material({Material::Diffuse, {0.40f, 0.39f, 0.37f}});
+  const int asphalt = material({Material::Diffuse, {0.09f, 0.09f, 0.10f}});
+  const int paint = material({Material::Diffuse, {0.85f, 0.85f, 0.80f}});
+  const int yellow = material({Material::Diffuse, {0.80f, 0.62f, 0.12f}});
+  const int water = material({Material::Glossy, {0.02f, 0.06f, 0.08f}, 0.02f, 1.33f});
+  std::map<ZoneType, int> lot_ground{{ZoneType::Residential, grass_material_},
+                                     {ZoneType::Commercial, material({Material::Diffuse, {0.50f, 0.49f, 0.46f}})},
+                                     {ZoneType::Industrial, material({Material::Diffuse, {0.42f, 0.40f, 0.37f}})}};
+  std::map<std::pair<ZoneType, int>, int> facade, roof;
+  for (ZoneType z : {ZoneType::Residential, ZoneType::Commercial, ZoneType::Industrial}) {
+    for (int i = 0; i < static_cast<int>(facades(z).size()); ++i)
+      facade[{z, i}] = material({Material::Diffuse, facades(z)[i]}, Pattern::Windows);
+    for (int i = 0; i < static_cast<int>(roofs(z).size()); ++i) roof[{z, i}] = material({Material::Diffuse, roofs(z)[i]});
+  }
+
+  // The ground: terrain, then layers a few centimetres above each other.
+  {
+    exacity::GroundMesh g = exacity::terrain_tin(terrain, world, 512);
+    std::vector<V3> v;
+    for (const auto& p : g.vertices) v.push_back(to_scene(p[0], p[1], p[2]));
+    Geometry info;
+    info.material.assign(g.triangles.size(), grass_material_);
+    info.entity.assign(g.triangles.size(), entity_id(Entity::Terrain, 0));
+    add_triangles(v, g.triangles, std::move(info));
+    ground = INFINITY;
+    for (const V3& p : v) ground = std::min(ground, p.z);
+  }
+  auto draped = [&](const exacity::Layer& layer, double lift_of_bridge, auto style) {
+    exacity::GroundMesh g;
+    Geometry info;
+    for (const auto& f : layer.features) {
+      const auto [m, entity, lift] = style(f);
+      if (m < 0) continue;
+      const std::size_t before = g.triangles.size();
+      exacity::drape(f.polygon, terrain, f.properties.value("bridge", false) ? lift_of_bridge : lift, g);
+      info.material.resize(g.triangles.size(), m);
+      info.entity.resize(g.triangles.size(), entity);
+      (void)before;
+    }
+    std::vector<V3> v;
+    for (const auto& p : g.vertices) v.push_back(to_scene(p[0], p[1], p[2]));
+    if (!g.triangles.empty()) add_triangles(v, g.triangles, std::move(info));
+  };
+  using Style = std::tuple<int, std::uint32_t, double>;
+  draped(layers.zones, 0.03, [&](const exacity::VectorFeature& f) {
+    const bool park = f.properties.value("zone", "") == "park";
+    return Style{park ? grass_material_ : sidewalk, entity_id(Entity::Zone, f.properties.value("id", 0)), 0.03};
+  });
+  draped(layers.lots, 0.06, [&](const exacity::VectorFeature& f) {
+    auto z = exacity::parse_zone_type(f.properties.value("zone", "residential"));
+    return Style{lot_ground.count(*z) ? lot_ground[*z] : sidewalk, entity_id(Entity::Lot, f.properties.value("id", 0)), 0.06};
+  });
+  draped(layers.water, 0.05, [&](const exacity::VectorFeature& f) {
+    return Style{water, entity_id(Entity::Water, f.properties.value("id", 0)), 0.05};
+  });
+  draped(layers.road_areas, 0.30, [&](const exacity::VectorFeature& f) {
+    return Style{asphalt, entity_id(Entity::Road, f.properties.value("road", 0)), 0.10};
+  });
+  // Centre stripes (solid yellow on highways, dashed white elsewhere) and dashed lane lines.
+  {
+    std::vector<V3> v;
+    std::vector<std::array<int, 3>> t;
+    Geometry info;
+    for (const auto& f : layers.roads.features) {
+      const bool highway = f.properties.value("class", "") == "highway";
+      const double width = f.properties.value("width", 8.0), lift = f.properties.value("bridge", false) ? 0.32 : 0.12;
+      const std::size_t before = t.size();
+      ribbon(f.line, 0, 0.15, highway ? 0 : 3, 5, terrain, lift, v, t, *this);
+      info.material.resize(t.size(), highway ? yellow : paint);
+      if (highway && width >= 14)
+        for (double side : {-width / 4, width / 4}) ribbon(f.line, side, 0.12, 3, 6, terrain, lift, v, t, *this);
+      info.material.resize(t.size(), paint);
+      info.entity.resize(t.size(), entity_id(Entity::Road, f.properties.value("road", 0)));
+      (void)before;
+    }
+    if (!t.empty()) add_triangles(v, t, std::move(info));
+  }
+
+  // Buildings by tile.
+  const auto& buildings = city.buildings;
+  const int nx = std::max(1, static_cast<int>(std::ceil(world.width() / options.tile_size)));
+  const int ny = std::max(1, static_cast<int>(std::ceil(world.height() / options.tile_size)));
+  std::vector<int> tile_of(buildings.size());
+  std::vector<Box3> boxes(static_cast<std::size_t>(nx * ny));
+  for (std::size_t i = 0; i < buildings.size(); ++i) {
+    const auto& b = buildings[i];
+    geom::Box fb = geom::Box::none();
+    for (auto p : b.polygon.outer) fb.add(p);
+    const double cx = (fb.min_x + fb.max_x) / 2, cy = (fb.min_y + fb.max_y) / 2;
+    const int tx = std::clamp(static_cast<int>((cx - world.min_x) / options.tile_size), 0, nx - 1);
+    const int ty = std::clamp(static_cast<int>((cy - world.min_y) / options.tile_size), 0, ny - 1);
+    tile_of[i] = ty * nx + tx;
+    boxes[tile_of[i]].add(to_scene(fb.min_x, fb.min_y, b.base));
+    boxes[tile_of[i]].add(to_scene(fb.max_x, fb.max_y, b.floor + b.height));
+    top = std::max(top, static_cast<float>(b.floor + b.height));
+  }
+  // Shadows reach in from outside the view: grow each box towards the sun by its shadow.
+  const float sun_run = sun.z > 0.05f ? std::min(600.0f, 1.0f / std::tan(std::asin(sun.z))) : 600.0f;
+  for (Box3& b : boxes)
+    if (b.lo.x <= b.hi.x) {
+      const float reach = (b.hi.z - b.lo.z) * sun_run;
+      b.add(b.lo + V3{sun.x, sun.y, 0} * reach), b.add(b.hi + V3{sun.x, sun.y, 0} * reach);
+    }
+  std::vector<bool> seen(boxes.size(), options.view == nullptr);
+  Camera view;
+  if (options.view) {
+    view = *options.view;
+    view.from = to_scene(options.view->from.x, options.view->from.y, options.view->from.z);
+    view.to = to_scene(options.view->to.x, options.view->to.y, options.view->to.z);
+    TileBvh(boxes).visible(frustum(view, options.aspect), seen);
+  }
+  std::vector<bool> detailed(boxes.size(), true);
+  for (std::size_t k = 0; k < boxes.size(); ++k) {
+    if (boxes[k].lo.x > boxes[k].hi.x) continue;  // empty
+    if (options.view) {
+      const V3 c = (boxes[k].lo + boxes[k].hi) * 0.5f;
+      detailed[k] = length(c - view.from) <= options.detail_distance;
+    }
+    tiles.push_back({static_cast<int>(k), !seen[k] ? "culled" : detailed[k] ? "detailed" : "simple"});
+  }
+
+  const exacity::ModelLibrary* library = city.models();
+  std::vector<int> model_material_base;  // per (model, tint): first global material
+  std::vector<std::vector<int>> model_local;  // per model: its triangles' materials
+  if (library) {
+    model_scenes_.assign(library->models.size(), nullptr);
+    for (const auto& m : library->models) {
+      model_material_base.push_back(static_cast<int>(materials_.size()));
+      for (int tint = 0; tint < exacity::kTints; ++tint)
+        for (const auto& mat : m.mesh.materials) {
+          const bool glass = mat.name.find("glass") != std::string::npos || mat.name.find("window") != std::string::npos;
+          material({glass ? Material::Glossy : Material::Diffuse, colour(exacity::tinted(mat.colour, tint)), 0.05f, 1.5f});
+        }
+      model_local.push_back(m.mesh.material);
+    }
+  }
+  std::vector<std::vector<V3>> tile_vertices(boxes.size());
+  std::vector<std::vector<std::array<int, 3>>> tile_triangles(boxes.size());
+  std::vector<Geometry> tile_info(boxes.size());
+  for (std::size_t i = 0; i < buildings.size(); ++i) {
+    const int k = tile_of[i];
+    if (!seen[k]) continue;
+    const auto& b = buildings[i];
+    exacity::Mesh mesh;
+    if (b.placed.model >= 0) {
+      const exacity::Model& model = library->models[b.placed.model];
+      if (!detailed[k] && model.kind != exacity::ModelKind::Building) continue;
+      if (!model_scenes_[b.placed.model]) {
+        RTCScene ms = rtcNewScene(device_);
+        RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), model.mesh.vertices.size()));
+        for (std::size_t j = 0; j < model.mesh.vertices.size(); ++j)
+          for (int c = 0; c < 3; ++c) v[3 * j + c] = static_cast<float>(model.mesh.vertices[j][c]);
+        auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), model.mesh.triangles.size()));
+        for (std::size_t j = 0; j < model.mesh.triangles.size(); ++j)
+          for (int c = 0; c < 3; ++c) t[3 * j + c] = static_cast<unsigned>(model.mesh.triangles[j][c]);
+        rtcCommitGeometry(g);
+        rtcAttachGeometry(ms, g);
+        rtcReleaseGeometry(g);
+        rtcCommitScene(ms);
+        model_scenes_[b.placed.model] = ms;
+      }
+      RTCGeometry inst = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+      rtcSetGeometryInstancedScene(inst, model_scenes_[b.placed.model]);
+      const float c = std::cos(static_cast<float>(b.placed.angle)) * static_cast<float>(b.placed.scale);
+      const float s = std::sin(static_cast<float>(b.placed.angle)) * static_cast<float>(b.placed.scale);
+      const V3 at = to_scene(b.placed.position.x, b.placed.position.y, b.floor);
+      const float sc = static_cast<float>(b.placed.scale);
+      // Column-major 3x4: the turn and scale, then the translation.
+      const float xfm[12] = {c, s, 0, -s, c, 0, 0, 0, sc, at.x, at.y, at.z};
+      rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+      rtcCommitGeometry(inst);
+      unsigned id = rtcAttachGeometry(scene_, inst);
+      rtcReleaseGeometry(inst);
+      Geometry info;
+      info.instance = true;
+      info.instance_entity = entity_id(Entity::Model, i);
+      info.material_base = model_material_base[b.placed.model] + b.placed.tint * static_cast<int>(model.mesh.materials.size());
+      info.material = model_local[b.placed.model];
+      info.cos_turn = std::cos(static_cast<float>(b.placed.angle)), info.sin_turn = std::sin(static_cast<float>(b.placed.angle));
+      if (geometries_.size() <= id) geometries_.resize(id + 1);
+      geometries_[id] = std::move(info);
+      ++instances;
+      if (!(b.floor > b.base)) continue;
+      mesh = exacity::building_mesh(b, nullptr);  // its foundation
+    } else if (detailed[k]) {
+      mesh = exacity::building_mesh(b, library);
+    } else {
+      exacity::Building box = b;  // the simple level: the footprint extruded, no roof
+      box.roof_faces.clear();
+      box.eaves = box.height;
+      mesh = exacity::building_mesh(box, library);
+    }
+    exacity::Random pick(exacity::mix(city.sketch.seed, i));
+    const int f = facade[{b.zone, static_cast<int>(pick.next() % facades(b.zone).size())}];
+    const int r = roof[{b.zone, static_cast<int>(pick.next() % roofs(b.zone).size())}];
+    const exacity::MeshTriangles tris = exacity::mesh_triangles(mesh);
+    const int first = static_cast<int>(tile_vertices[k].size());
+    for (const auto& p : tris.vertices) tile_vertices[k].push_back(to_scene(p[0], p[1], p[2]));
+    for (std::size_t j = 0; j < tris.triangles.size(); ++j) {
+      const auto& t = tris.triangles[j];
+      tile_triangles[k].push_back({first + t[0], first + t[1], first + t[2]});
+      tile_info[k].material.push_back(tris.surface[j] == exacity::Surface::Roof ? r : tris.surface[j] == exacity::Surface::Wall ? f : sidewalk);
+      tile_info[k].entity.push_back(entity_id(Entity::Building, i));
+    }
+  }
+  for (std::size_t k = 0; k < boxes.size(); ++k)
+    if (!tile_triangles[k].empty()) add_triangles(tile_vertices[k], tile_triangles[k], std::move(tile_info[k]));
+}
+
+bool RenderScene::raw_intersect(V3 o, V3 d) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh{};
+  rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z;
+  rh.ray.dir_x = d.x, rh.ray.dir_y = d.y, rh.ray.dir_z = d.z;
+  rh.ray.tnear = 0, rh.ray.tfar = INFINITY, rh.ray.mask = 0xffffffff;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &context, &rh);
+  return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+}
+
+bool RenderScene::intersect(V3 o, V3 d, float tmax, Surface& s) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh{};
+  rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z;
+  rh.ray.dir_x = d.x, rh.ray.dir_y = d.y, rh.ray.dir_z = d.z;
+  rh.ray.tnear = 0, rh.ray.tfar = tmax, rh.ray.mask = 0xffffffff;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &context, &rh);
+  int m;
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+    // The ground plane beyond the city.
+    if (!ground_plane_ || d.z >= 0 || o.z <= ground) return false;
+    const float t = (ground - o.z) / d.z;
+    if (t > tmax) return false;
+    s.distance = t;
+    s.position = o + d * t;
+    s.normal = {0, 0, 1};
+    s.entity = entity_id(Entity::Terrain, 0);
+    m = grass_material_;
+  } else {
+    s.distance = rh.ray.tfar;
+    s.position = o + d * rh.ray.tfar;
+    V3 n{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
+    if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
+      const Geometry& g = geometries_[rh.hit.instID[0]];
+      n = {g.cos_turn * n.x - g.sin_turn * n.y, g.sin_turn * n.x + g.cos_turn * n.y, n.z};
+      m = g.material_base + g.material[rh.hit.primID];
+      s.entity = g.instance_entity;
+    } else {
+      const Geometry& g = geometries_[rh.hit.geomID];
+      m = g.material[rh.hit.primID];
+      s.entity = g.entity[rh.hit.primID];
+    }
+    s.normal = normalize(n);
+    if (dot(s.normal, d) > 0) s.normal = s.normal * -1;
+  }
+  s.material = materials_[m];
+  switch (patterns_[m]) {
+    case Pattern::Windows:
+      // A grid of windows on walls: 3.3 m floors, 3 m bays.
+      if (std::abs(s.normal.z) < 0.3f) {
+        const float along = s.position.x * -s.normal.y + s.position.y * s.normal.x;
+        const float floor = s.position.z / 3.3f - std::floor(s.position.z / 3.3f);
+        const float bay = along / 3.0f - std::floor(along / 3.0f);
+        if (floor > 0.3f && floor < 0.78f && bay > 0.2f && bay < 0.8f)
+          s.material = {Material::Glossy, {0.04f, 0.05f, 0.06f}, 0.05f, 1.5f};
+      }
+      break;
+    case Pattern::Grass: {
+      const float coarse = noise().fractal(s.position.x * 0.02f, s.position.y * 0.02f, 2);
+      const float fine = noise()(s.position.x * 0.9f, s.position.y * 0.9f);
+      const V3 lush{0.20f, 0.40f, 0.12f}, dry{0.42f, 0.45f, 0.22f};
+      const float t = std::clamp(0.5f + coarse * 1.2f, 0.0f, 1.0f);
+      s.material.albedo = (lush * (1 - t) + dry * t) * (0.85f + 0.3f * fine);
+      break;
+    }
+    case Pattern::None: break;
+  }
+  return true;
+}
+
+bool RenderScene::occluded(V3 o, V3 d, float tmax) const {
+  if (ground_plane_ && d.z < 0 && o.z > ground && (ground - o.z) / d.z < tmax) return true;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay r{};
+  r.org_x = o.x, r.org_y = o.y, r.org_z = o.z;
+  r.dir_x = d.x, r.dir_y = d.y, r.dir_z = d.z;
+  r.tnear = 0, r.tfar = tmax, r.mask = 0xffffffff;
+  rtcOccluded1(scene_, &context, &r);
+  return r.tfar < 0;  // Embree sets tfar to -inf on a hit
+}
+
+}  // namespace render

@@ -1,0 +1,98 @@
+// The Embree scene of a city, built from the city in memory: the terrain and the ground
+// layers draped over it (zones as sidewalks, lots, water, roads with a centre stripe and
+// lane markings), building meshes merged per city tile, and each placed model stored once
+// as its own scene and placed by an instance in the top scene (Debian's Embree allows one
+// instance level). Tiles outside the view frustum stay out (a BVH over tile boxes finds
+// them); distant tiles get a simpler level. Every hit maps back to its city entity.
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "generate/pipeline.h"
+#include "render/camera.h"
+#include "render/material.h"
+
+namespace render {
+
+// The id layer: the entity kind in the top byte, its index (a building, lot, road or
+// zone feature id) below.
+enum class Entity : std::uint32_t { None = 0, Building = 1, Model = 2, Lot = 3, Road = 4, Zone = 5, Water = 6, Terrain = 7 };
+inline std::uint32_t entity_id(Entity kind, std::size_t index) {
+  return static_cast<std::uint32_t>(kind) << 24 | static_cast<std::uint32_t>(index & 0xffffff);
+}
+
+// A surface's look before its pattern: window grids on facades, grass on open ground.
+enum class Pattern : std::uint8_t { None, Windows, Grass };
+
+struct Surface {
+  V3 position, normal;  // the normal faces the incoming ray
+  Material material;
+  std::uint32_t entity = 0;
+  float distance = 0;
+};
+
+// A triangle soup with one material, for tests and simple scenes.
+struct TriangleSoup {
+  std::vector<V3> vertices;
+  std::vector<std::array<int, 3>> triangles;
+  Material material;
+  std::uint32_t entity = 0;
+};
+
+struct SceneOptions {
+  const Camera* view = nullptr;  // world coordinates; null: no culling, every tile detailed
+  float aspect = 16.0f / 9;
+  float detail_distance = 2500;  // m: tiles farther than this get extruded boxes, no roofs
+  float tile_size = 400;         // m
+  bool ground_plane = true;      // the infinite grass plane beyond the city
+};
+
+struct TileLevel {
+  int tile;
+  std::string level;  // "detailed", "simple" or "culled"
+};
+
+class RenderScene {
+ public:
+  RenderScene(const exacity::City& city, V3 sun_direction, const SceneOptions& options);
+  explicit RenderScene(const std::vector<TriangleSoup>& soups, bool ground_plane = false);
+  ~RenderScene();
+  RenderScene(const RenderScene&) = delete;
+  RenderScene& operator=(const RenderScene&) = delete;
+
+  // The nearest surface along the ray (origin and direction in scene coordinates).
+  bool intersect(V3 origin, V3 direction, float tmax, Surface& hit) const;
+  bool occluded(V3 origin, V3 direction, float tmax) const;
+  // Raw Embree throughput, for the benchmark: rtcIntersect1 alone.
+  bool raw_intersect(V3 origin, V3 direction) const;
+
+  // Scene coordinates are city coordinates less this origin (floats keep millimetres).
+  double origin_x = 0, origin_y = 0;
+  V3 to_scene(double x, double y, double z) const {
+    return {static_cast<float>(x - origin_x), static_cast<float>(y - origin_y), static_cast<float>(z)};
+  }
+  geom::Box bounds;        // the city, in scene coordinates
+  float ground = 0, top = 0;
+  std::vector<TileLevel> tiles;
+  std::size_t triangles = 0, instances = 0;
+
+ private:
+  struct Geometry;
+  unsigned add_triangles(const std::vector<V3>& vertices, const std::vector<std::array<int, 3>>& tris, Geometry info);
+  void build(const exacity::City& city, V3 sun, const SceneOptions& options);
+
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  std::vector<RTCScene> model_scenes_;
+  std::vector<Geometry> geometries_;  // by top-level geomID
+  std::vector<Material> materials_;
+  std::vector<Pattern> patterns_;     // by material
+  bool ground_plane_ = true;
+  int grass_material_ = -1;
+};
+
+}  // namespace render

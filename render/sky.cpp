@@ -1,0 +1,99 @@
+#include "render/sky.h"
+
+#include <cmath>
+
+namespace render {
+namespace {
+
+constexpr float kDegree = kPi / 180;
+constexpr float kSunHalfAngle = 0.5f * kDegree;  // twice the real sun's, for softer shadows
+// Sky luminance comes in kcd/m²; this brings a clear zenith near 1.
+constexpr float kLuminanceToRadiance = 0.1f;
+// The sun's irradiance at normal incidence above the atmosphere, in the same units: a few
+// times the clear sky's, as on a sunny day.
+constexpr float kSunIrradiance = 8.0f;
+
+}  // namespace
+
+Sky::Sky(float sun_azimuth, float sun_elevation, float turbidity, float sky_scale, float sun_scale)
+    : turbidity_(turbidity), scale_(sky_scale) {
+  const float az = sun_azimuth * kDegree, el = std::clamp(sun_elevation, -10.0f, 90.0f) * kDegree;
+  sun_ = {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
+  sun_frame_ = Frame(sun_);
+  sun_cos_max_ = std::cos(kSunHalfAngle);
+  theta_s_ = kPi / 2 - std::max(el, 0.0f);
+  const float T = turbidity;
+  // The paper's Perez coefficients (its appendix), for luminance Y and chromaticities x, y.
+  const float Y[5] = {0.1787f * T - 1.4630f, -0.3554f * T + 0.4275f, -0.0227f * T + 5.3251f, 0.1206f * T - 2.5771f,
+                      -0.0670f * T + 0.3703f};
+  const float x[5] = {-0.0193f * T - 0.2592f, -0.0665f * T + 0.0008f, -0.0004f * T + 0.2125f, -0.0641f * T - 0.8989f,
+                      -0.0033f * T + 0.0452f};
+  const float y[5] = {-0.0167f * T - 0.2608f, -0.0950f * T + 0.0092f, -0.0079f * T + 0.2102f, -0.0441f * T - 1.6537f,
+                      -0.0109f * T + 0.0529f};
+  std::copy(Y, Y + 5, cY_), std::copy(x, x + 5, cx_), std::copy(y, y + 5, cy_);
+  // Zenith luminance and chromaticity.
+  const float chi = (4.0f / 9 - T / 120) * (kPi - 2 * theta_s_);
+  zenith_Y_ = (4.0453f * T - 4.9710f) * std::tan(chi) - 0.2155f * T + 2.4192f;
+  const float t3 = theta_s_ * theta_s_ * theta_s_, t2 = theta_s_ * theta_s_, t1 = theta_s_;
+  zenith_x_ = (0.00166f * t3 - 0.00375f * t2 + 0.00209f * t1) * T * T +
+              (-0.02903f * t3 + 0.06377f * t2 - 0.03202f * t1 + 0.00394f) * T +
+              (0.11693f * t3 - 0.21196f * t2 + 0.06052f * t1 + 0.25886f);
+  zenith_y_ = (0.00275f * t3 - 0.00610f * t2 + 0.00317f * t1) * T * T +
+              (-0.04214f * t3 + 0.08970f * t2 - 0.04153f * t1 + 0.00516f) * T +
+              (0.15346f * t3 - 0.26756f * t2 + 0.06670f * t1 + 0.26688f);
+  norm_Y_ = perez(cY_, 1, theta_s_), norm_x_ = perez(cx_, 1, theta_s_), norm_y_ = perez(cy_, 1, theta_s_);
+
+  // The sun's colour: light through `airmass` atmospheres, blue scattered most.
+  const float airmass = 1 / std::max(std::sin(std::max(el, 0.0f)), 0.05f);
+  const V3 depth{0.02f, 0.05f, 0.12f};
+  const float k = 0.25f * T;
+  V3 transmit{std::exp(-depth.x * k * airmass), std::exp(-depth.y * k * airmass), std::exp(-depth.z * k * airmass)};
+  const float solid_angle = 2 * kPi * (1 - sun_cos_max_);
+  sun_radiance_ = transmit * (kSunIrradiance * sun_scale / solid_angle);
+  if (sun_.z <= 0) sun_radiance_ = {0, 0, 0};
+
+  table_.resize(static_cast<std::size_t>(kRows) * kColumns);
+  for (int r = 0; r < kRows; ++r)
+    for (int c = 0; c < kColumns; ++c) {
+      const float t = static_cast<float>(r) / (kRows - 1), z = 1 - t * t;
+      const float phi = (static_cast<float>(c) / kColumns - 0.5f) * 2 * kPi;
+      const float h = std::sqrt(1 - z * z);
+      table_[static_cast<std::size_t>(r) * kColumns + c] = model_radiance({h * std::cos(phi), h * std::sin(phi), z});
+    }
+}
+
+float Sky::perez(const float c[5], float cos_theta, float gamma) const {
+  const float cg = std::cos(gamma);
+  return (1 + c[0] * std::exp(c[1] / std::max(cos_theta, 0.01f))) * (1 + c[2] * std::exp(c[3] * gamma) + c[4] * cg * cg);
+}
+
+V3 Sky::radiance(V3 dir) const {
+  if (scale_ == 0) return {0, 0, 0};
+  // Rows by sqrt(1 - z), about even in the angle from the zenith down.
+  const float u = std::sqrt(1 - std::clamp(dir.z, 0.0f, 1.0f)) * (kRows - 1);
+  const float v = (std::atan2(dir.y, dir.x) / (2 * kPi) + 0.5f) * kColumns;
+  const int r0 = std::min(static_cast<int>(u), kRows - 2), c0 = static_cast<int>(v) % kColumns, c1 = (c0 + 1) % kColumns;
+  const float fu = u - static_cast<float>(r0), fv = v - std::floor(v);
+  auto at = [&](int r, int c) { return table_[static_cast<std::size_t>(r) * kColumns + c]; };
+  return (at(r0, c0) * (1 - fv) + at(r0, c1) * fv) * (1 - fu) + (at(r0 + 1, c0) * (1 - fv) + at(r0 + 1, c1) * fv) * fu;
+}
+
+V3 Sky::model_radiance(V3 dir) const {
+  if (scale_ == 0) return {0, 0, 0};
+  dir.z = std::max(dir.z, 0.001f);
+  dir = normalize(dir);
+  const float gamma = std::acos(std::clamp(dot(dir, sun_), -1.0f, 1.0f));
+  const float Y = zenith_Y_ * perez(cY_, dir.z, gamma) / norm_Y_;
+  const float x = zenith_x_ * perez(cx_, dir.z, gamma) / norm_x_;
+  const float y = zenith_y_ * perez(cy_, dir.z, gamma) / norm_y_;
+  // xyY to XYZ to linear sRGB (D65).
+  const float X = x / y * Y, Z = (1 - x - y) / y * Y;
+  V3 rgb{3.2406f * X - 1.5372f * Y - 0.4986f * Z, -0.9689f * X + 1.8758f * Y + 0.0415f * Z,
+         0.0557f * X - 0.2040f * Y + 1.0570f * Z};
+  rgb = {std::max(rgb.x, 0.0f), std::max(rgb.y, 0.0f), std::max(rgb.z, 0.0f)};
+  return rgb * (kLuminanceToRadiance * scale_);
+}
+
+V3 Sky::sun_irradiance() const { return sun_radiance_ * (2 * kPi * (1 - sun_cos_max_)); }
+
+}  // namespace render

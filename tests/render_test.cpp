@@ -1,0 +1,232 @@
+// The renderer against analytic answers: a white furnace, energy conservation, a sun-lit
+// plane; cameras, the overview height and the minimap's ground footprint by hand; images
+// independent of the thread count; the EXR's data layers read back exactly.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <OpenImageIO/imageio.h>
+#include <tbb/global_control.h>
+
+#include "generate/pipeline.h"
+#include "render/camera.h"
+#include "render/image_io.h"
+#include "render/material.h"
+#include "render/path_tracer.h"
+#include "render/sampling.h"
+#include "render/scene.h"
+#include "render/sky.h"
+#include "tests/test_util.h"
+
+using namespace render;
+
+namespace {
+
+// A closed box, [-s, s]^3, as twelve triangles.
+TriangleSoup box(float s, Material m) {
+  TriangleSoup b;
+  for (int i = 0; i < 8; ++i) b.vertices.push_back({i & 1 ? s : -s, i & 2 ? s : -s, i & 4 ? s : -s});
+  b.triangles = {{0, 1, 3}, {0, 3, 2}, {4, 6, 7}, {4, 7, 5}, {0, 4, 5}, {0, 5, 1},
+                 {2, 3, 7}, {2, 7, 6}, {0, 2, 6}, {0, 6, 4}, {1, 5, 7}, {1, 7, 3}};
+  b.material = m;
+  return b;
+}
+
+double mean_luminance(const Image& img) {
+  double sum = 0;
+  for (V3 c : img.beauty) sum += (c.x + c.y + c.z) / 3;
+  return sum / static_cast<double>(img.beauty.size());
+}
+
+}  // namespace
+
+TEST(Render, WhiteFurnaceGivesEmissionOverOneMinusAlbedo) {
+  // Inside a closed box whose every wall emits 1 and reflects 80%: L = 1 / (1 - 0.8) = 5.
+  Material white{Material::Diffuse, {0.8f, 0.8f, 0.8f}};
+  white.emission = {1, 1, 1};
+  RenderScene scene({box(10, white)});
+  Sky off(0, 45, 3, 0, 0);
+  Camera c = Camera::look({0, 0, 0}, {1, 0.3f, 0.2f}, 90);
+  TraceSettings t{16, 16, 256, 100000};
+  Image img = trace(scene, off, c, t);
+  EXPECT_NEAR(mean_luminance(img), 5.0, 5.0 * 0.02);
+}
+
+TEST(Render, EveryMaterialConservesEnergyAndSamplesWhatItEvaluates) {
+  const std::vector<Material> materials{{Material::Diffuse, {1, 1, 1}},
+                                        {Material::Glossy, {1, 1, 1}, 0.05f, 1.5f},
+                                        {Material::Glossy, {1, 1, 1}, 0.3f, 1.5f},
+                                        {Material::Glossy, {0.5f, 0.5f, 0.5f}, 0.6f, 1.33f},
+                                        {Material::Glossy, {0.02f, 0.06f, 0.08f}, 0.02f, 1.33f}};
+  for (const Material& m : materials)
+    for (float cos_o : {0.95f, 0.6f, 0.2f}) {
+      const V3 wo{std::sqrt(1 - cos_o * cos_o), 0, cos_o};
+      // The reflected fraction two ways: uniform directions (eval alone), and the
+      // material's own sampling (its weights).
+      double uniform = 0, sampled = 0;
+      const int n = 400000;
+      Sampler rng(7, static_cast<std::uint64_t>(cos_o * 100));
+      for (int i = 0; i < n; ++i) {
+        float u1 = rng.next(), u2 = rng.next();
+        float z = u1, r = std::sqrt(1 - z * z), phi = 2 * kPi * u2;
+        uniform += eval(m, wo, {r * std::cos(phi), r * std::sin(phi), z}).x * 2 * kPi;
+        BsdfSample s;
+        if (sample(m, wo, rng.next(), rng.next(), rng.next(), s)) sampled += s.weight.x;
+      }
+      uniform /= n, sampled /= n;
+      EXPECT_LE(sampled, 1.0 + 0.01) << m.kind << " roughness " << m.roughness << " cos " << cos_o;
+      // Uniform directions rarely find a sharp lobe: compare where the lobe is wide.
+      if (m.kind == Material::Diffuse || m.roughness >= 0.3f) {
+        EXPECT_NEAR(sampled, uniform, 0.03 * std::max(uniform, 0.05)) << m.kind << " roughness " << m.roughness;
+      }
+    }
+}
+
+TEST(Render, SunLitPlaneMatchesItsIrradiance) {
+  // A white-ish plane under the sun alone: L = albedo / pi * E_sun * sin(elevation).
+  TriangleSoup plane;
+  plane.vertices = {{-5000, -5000, 0}, {5000, -5000, 0}, {5000, 5000, 0}, {-5000, 5000, 0}};
+  plane.triangles = {{0, 1, 2}, {0, 2, 3}};
+  plane.material = {Material::Diffuse, {0.5f, 0.5f, 0.5f}};
+  RenderScene scene({plane});
+  for (float elevation : {30.0f, 60.0f}) {
+    Sky sun_only(100, elevation, 3, 0, 1);
+    Camera c = Camera::look({0, 0, 50}, {0, 20, 0}, 40);
+    Image img = trace(scene, sun_only, c, TraceSettings{16, 16, 16, 4});
+    const V3 e = sun_only.sun_irradiance();
+    const float sin_el = std::sin(elevation * kPi / 180);
+    for (const V3& px : img.beauty) {
+      EXPECT_NEAR(px.x, 0.5f / kPi * e.x * sin_el, 0.01f * 0.5f / kPi * e.x * sin_el);
+      EXPECT_NEAR(px.z, 0.5f / kPi * e.z * sin_el, 0.01f * 0.5f / kPi * e.z * sin_el);
+    }
+  }
+}
+
+TEST(Render, SkyTableFollowsThePreethamModel) {
+  Sky sky(200, 35, 3);
+  Sampler rng(1, 2);
+  for (int i = 0; i < 2000; ++i) {
+    V3 d = cosine_hemisphere(rng.next(), rng.next());
+    if (d.z < 0.02f) continue;
+    V3 a = sky.radiance(d), b = sky.model_radiance(d);
+    EXPECT_NEAR(a.y, b.y, 0.03f * b.y + 1e-3f) << d.x << " " << d.y << " " << d.z;
+  }
+  // Brighter towards the sun than away from it, bluer at the zenith than near the horizon.
+  const V3 s = sky.sun_direction();
+  EXPECT_GT(luminance(sky.model_radiance(normalize(s + V3{0, 0, 0.2f}))), luminance(sky.model_radiance(normalize(V3{-s.x, -s.y, 0.3f}))));
+  const V3 zenith = sky.model_radiance({0, 0, 1});
+  EXPECT_GT(zenith.z / zenith.x, 1.0f);
+}
+
+TEST(Camera, OverviewHeightSeesTheWholeMap) {
+  geom::Box city{0, 0, 1000, 600};
+  EXPECT_NEAR(overview_height(city, 60, 1), 1000 / (2 * std::tan(kPi / 6)), 1e-3);  // the width decides
+  EXPECT_NEAR(overview_height(city, 60, 2), 600 / (2 * std::tan(kPi / 6)), 1e-3);   // the height decides
+  Camera c = overview_camera(city, 20, 60, 1, false);
+  EXPECT_NEAR(c.from.z, 20 + 866.0254f, 1e-2);
+  // Its corner rays land on the map's corners (the width fills the image).
+  auto quad = ground_footprint(c, 100, 100, 20, {-1e4, -1e4, 1e4, 1e4});
+  EXPECT_NEAR(quad[0].x, 0, 1e-2);
+  EXPECT_NEAR(quad[1].x, 1000, 1e-2);
+}
+
+TEST(Camera, GroundFootprintByHand) {
+  // Straight down from 100 m with a 90 degree view: a 200 m square, north up.
+  Camera down = Camera::look({0, 0, 100}, {0, 0, 0}, 90);
+  auto q = ground_footprint(down, 100, 100, 0, {-1e4, -1e4, 1e4, 1e4});
+  const std::vector<geom::Vec2> expect{{-100, -100}, {100, -100}, {100, 100}, {-100, 100}};
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(q[i].x, expect[i].x, 1e-3) << i;
+    EXPECT_NEAR(q[i].y, expect[i].y, 1e-3) << i;
+  }
+  // Level, 10 m up, looking north with 60 degrees: the upper rays never reach the ground,
+  // so the lower rays are followed on to the bounds' north edge.
+  Camera level = Camera::look({0, 0, 10}, {0, 100, 10}, 60);
+  q = ground_footprint(level, 100, 100, 0, {-1000, -1000, 1000, 1000});
+  const double t = std::tan(kPi / 6), near_y = 10 / t;
+  EXPECT_NEAR(q[0].x, -10, 1e-3);
+  EXPECT_NEAR(q[0].y, near_y, 1e-3);
+  EXPECT_NEAR(q[1].x, 10, 1e-3);
+  EXPECT_NEAR(q[3].y, 1000, 1e-3);
+  EXPECT_NEAR(q[3].x, -10 - t * (1000 - near_y), 1e-2);
+  EXPECT_NEAR(q[2].x, 10 + t * (1000 - near_y), 1e-2);
+}
+
+TEST(Camera, OrbitStaysAboveTheGroundAndSpecsParse) {
+  Camera c = Camera::parse("orbit:target=10,20,0,azimuth=90,elevation=-30,distance=100", 50);
+  EXPECT_GT(c.from.z, 0);  // elevation kept to the upper hemisphere
+  EXPECT_NEAR(c.to.x, 10, 1e-6);
+  c = Camera::parse("orbit:target=0,0,0,azimuth=0,elevation=90,distance=100", 50);
+  EXPECT_NEAR(c.from.z, 100, 1e-3);
+  EXPECT_NEAR(c.right().x, 1, 1e-6);  // straight down: east to the right
+  c = Camera::parse("look:from=0,-10,5,to=0,0,0", 40);
+  EXPECT_NEAR(c.forward().y, 10 / std::sqrt(125.0f), 1e-6);
+  for (const char* bad : {"orbit:target=0,0,azimuth=1,elevation=2,distance=3", "look:from=1,2,3", "pan:x=1",
+                          "look:from=0,0,0,to=0,0,0", "orbit:target=a,0,0,azimuth=0,elevation=1,distance=2"})
+    EXPECT_THROW(Camera::parse(bad, 50), std::invalid_argument) << bad;
+}
+
+TEST(Render, CityImagesAreTheSameWhateverTheThreadCountAndHitsNameTheirEntity) {
+  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 3}, "features": [
+    {"type": "Feature", "properties": {"zone": "residential"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [400, 0], [400, 300], [0, 300], [0, 0]]]}}]})";
+  exacity::Sketch sketch = exacity::parse_sketch(text, "threads.geojson");
+  exacity::StageClock clock(nullptr, exacity::kCityStages);
+  exacity::City city = exacity::build_city(sketch, clock);
+  ASSERT_FALSE(city.buildings.empty());
+  Sky sky(200, 40);
+  RenderScene scene(city, sky.sun_direction(), SceneOptions{});
+  Camera c = Camera::orbit({0, 0, 0}, 235, 35, 400, 45);
+  std::vector<Image> images;
+  for (int threads : {1, 2}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    images.push_back(trace(scene, sky, c, TraceSettings{48, 32, 4}));
+  }
+  ASSERT_EQ(images[0].beauty.size(), images[1].beauty.size());
+  for (std::size_t i = 0; i < images[0].beauty.size(); ++i) {
+    EXPECT_EQ(images[0].beauty[i].x, images[1].beauty[i].x);
+    EXPECT_EQ(images[0].id[i], images[1].id[i]);
+  }
+  // Straight down onto a building's footprint, a vertex-free point inside it: its entity.
+  const auto& b = city.buildings[0];
+  geom::Vec2 inside = b.footprint.point_inside_near(b.footprint.centroid()).value();
+  Surface hit;
+  ASSERT_TRUE(scene.intersect(scene.to_scene(inside.x, inside.y, 500), {0, 0, -1}, INFINITY, hit));
+  EXPECT_EQ(hit.entity, entity_id(Entity::Building, 0));
+  EXPECT_NEAR(hit.position.z, b.floor + b.height, 1e-3);  // flat or the ridge's height at most
+}
+
+TEST(Render, ExrKeepsItsDataLayersExactly) {
+  Image img;
+  img.width = 3, img.height = 2;
+  for (int i = 0; i < 6; ++i) {
+    img.beauty.push_back({0.5f * i, 1, 2});
+    img.depth.push_back(i == 5 ? INFINITY : 10.25f + i);
+    img.normal.push_back({0, 0, 1});
+    img.albedo.push_back({0.25f, 0.5f, 0.75f});
+    img.id.push_back(entity_id(Entity::Building, 1000000 + i));
+  }
+  auto dir = testing_util::temp_dir("exr");
+  write_exr(img, dir / "still.exr");
+  auto in = OIIO::ImageInput::open((dir / "still.exr").string());
+  ASSERT_TRUE(in);
+  const OIIO::ImageSpec& spec = in->spec();
+  auto channel = [&](const std::string& name) {
+    for (int c = 0; c < spec.nchannels; ++c)
+      if (spec.channelnames[c] == name) return c;
+    return -1;
+  };
+  const int id = channel("id"), z = channel("Z"), r = channel("R");
+  ASSERT_GE(id, 0);
+  ASSERT_GE(z, 0);
+  EXPECT_EQ(spec.channelformat(id), OIIO::TypeDesc::UINT);
+  EXPECT_EQ(spec.channelformat(r), OIIO::TypeDesc::HALF);
+  std::vector<std::uint32_t> ids(6);
+  std::vector<float> depth(6);
+  ASSERT_TRUE(in->read_image(0, 0, id, id + 1, OIIO::TypeDesc::UINT, ids.data()));
+  ASSERT_TRUE(in->read_image(0, 0, z, z + 1, OIIO::TypeDesc::FLOAT, depth.data()));
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_EQ(ids[i], img.id[i]);
+    EXPECT_EQ(depth[i], img.depth[i]);
+  }
+}
