@@ -68,8 +68,10 @@ int main(int argc, char** argv) {
   const double build_s = seconds_since(t);
   int culled = 0, simple = 0;
   for (const auto& tl : scene.tiles) culled += tl.level == "culled", simple += tl.level == "simple";
-  std::printf("scene: %.2f s, %zu triangles, %zu instances, %zu tiles (%d culled, %d simple); peak memory %.0f MiB (+%.0f)\n",
-              build_s, scene.triangles, scene.instances, scene.tiles.size(), culled, simple, rss_mib(), rss_mib() - before);
+  std::printf("scene: %.2f s, %zu triangles, %zu instances, %zu tiles (%d culled, %d simple); Embree held %.0f MiB at "
+              "most; process peak %.0f MiB (%.0f before the scene)\n",
+              build_s, scene.triangles, scene.instances, scene.tiles.size(), culled, simple,
+              static_cast<double>(scene.embree_peak_bytes()) / (1 << 20), rss_mib(), before);
   camera.from = scene.to_scene(camera.from.x, camera.from.y, camera.from.z);
   camera.to = scene.to_scene(camera.to.x, camera.to.y, camera.to.z);
 

@@ -122,6 +122,15 @@ int render_folder(const fs::path& out, const RenderOptions& o, const fs::path& f
   fs::path json = r.still;
   json.replace_extension(".json");
   std::ofstream(json, std::ios::binary) << stats.dump(2) << "\n";
+  if (file.empty()) {
+    // The folder's own render: report.json records it too (written aside, then renamed).
+    nlohmann::ordered_json full = nlohmann::ordered_json::parse(std::ifstream(out / "report.json"), nullptr, false);
+    if (!full.is_discarded()) {
+      full["render"] = stats;
+      std::ofstream(out / ".report.json.partial", std::ios::binary) << full.dump(2) << "\n";
+      fs::rename(out / ".report.json.partial", out / "report.json");
+    }
+  }
   progress.finish();
   std::printf("exacity: wrote %s and %s (%s)%s%s\n", r.still.string().c_str(), fs::path(r.still).replace_extension(".exr").string().c_str(),
               json.filename().string().c_str(), r.overview ? ", overview.png" : "", r.minimap ? ", minimap.png" : "");

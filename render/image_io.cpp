@@ -39,15 +39,15 @@ void write_exr(const Image& img, const fs::path& file) {
   OIIO::ImageSpec spec(img.width, img.height, 11);
   spec.channelnames = {"R", "G", "B", "Z", "N.X", "N.Y", "N.Z", "albedo.R", "albedo.G", "albedo.B", "id"};
   spec.channelformats = {OIIO::TypeDesc::HALF,  OIIO::TypeDesc::HALF,  OIIO::TypeDesc::HALF,  OIIO::TypeDesc::FLOAT,
-                         OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::HALF,
-                         OIIO::TypeDesc::HALF,  OIIO::TypeDesc::HALF,  OIIO::TypeDesc::UINT};
+                         OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::FLOAT,
+                         OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::UINT};
   spec.z_channel = 3;
   spec.attribute("compression", "zip");
   // The writer stamps the time otherwise, and the same city must give the same bytes.
   spec.attribute("DateTime", "");
   const std::size_t n = img.beauty.size();
-  // 3 halves, 4 floats, 3 halves, 1 uint: 6 + 16 + 6 + 4 bytes.
-  constexpr std::size_t kPixel = 32;
+  // 3 halves, 7 floats, 1 uint: 6 + 28 + 4 bytes.
+  constexpr std::size_t kPixel = 38;
   std::vector<unsigned char> data(n * kPixel);
   for (std::size_t i = 0; i < n; ++i) {
     unsigned char* p = &data[i * kPixel];
@@ -58,8 +58,8 @@ void write_exr(const Image& img, const fs::path& file) {
     auto single = [&](float v, int at) { std::memcpy(p + at, &v, 4); };
     half(img.beauty[i].x, 0), half(img.beauty[i].y, 2), half(img.beauty[i].z, 4);
     single(img.depth[i], 6), single(img.normal[i].x, 10), single(img.normal[i].y, 14), single(img.normal[i].z, 18);
-    half(img.albedo[i].x, 22), half(img.albedo[i].y, 24), half(img.albedo[i].z, 26);
-    std::memcpy(p + 28, &img.id[i], 4);
+    single(img.albedo[i].x, 22), single(img.albedo[i].y, 26), single(img.albedo[i].z, 30);
+    std::memcpy(p + 34, &img.id[i], 4);
   }
   write(file, spec, data.data());
 }

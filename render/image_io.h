@@ -1,5 +1,5 @@
-// Images out through OpenImageIO: a multi-layer EXR (half RGB beauty; float depth and
-// normals, half albedo, a 32-bit integer id; zip compression, lossless) and tone-mapped
+// Images out through OpenImageIO: a multi-layer EXR (half RGB beauty; float depth,
+// normals and albedo, a 32-bit integer id; zip compression, lossless) and tone-mapped
 // 8-bit sRGB PNGs. Files are written under a temporary name and renamed into place.
 #pragma once
 

@@ -151,6 +151,15 @@ class TileBvh {
   std::vector<Node> nodes_;
 };
 
+RTCRayHit ray_hit(V3 o, V3 d, float tmax) {
+  RTCRayHit rh{};
+  rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z;
+  rh.ray.dir_x = d.x, rh.ray.dir_y = d.y, rh.ray.dir_z = d.z;
+  rh.ray.tnear = 0, rh.ray.tfar = tmax, rh.ray.mask = 0xffffffff;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
 const Noise& noise() {
   static const Noise n;
   return n;
@@ -185,9 +194,25 @@ unsigned RenderScene::add_triangles(const std::vector<V3>& vertices, const std::
   return id;
 }
 
-RenderScene::RenderScene(const std::vector<TriangleSoup>& soups, bool ground_plane) : ground_plane_(ground_plane) {
+void RenderScene::start_device() {
   device_ = rtcNewDevice(nullptr);
+  if (!device_) throw std::runtime_error("Embree: no device");
+  rtcSetDeviceMemoryMonitorFunction(
+      device_,
+      [](void* user, ssize_t bytes, bool) {
+        auto* m = static_cast<Memory*>(user);
+        const std::int64_t now = m->now += bytes;
+        std::size_t peak = m->peak;
+        while (now > 0 && static_cast<std::size_t>(now) > peak && !m->peak.compare_exchange_weak(peak, static_cast<std::size_t>(now))) {
+        }
+        return true;
+      },
+      memory_.get());
   scene_ = rtcNewScene(device_);
+}
+
+RenderScene::RenderScene(const std::vector<TriangleSoup>& soups, bool ground_plane) : ground_plane_(ground_plane) {
+  start_device();
   bounds = geom::Box::none();
   for (const TriangleSoup& s : soups) {
     materials_.push_back(s.material);
@@ -205,9 +230,7 @@ RenderScene::RenderScene(const std::vector<TriangleSoup>& soups, bool ground_pla
 }
 
 RenderScene::RenderScene(const exacity::City& city, V3 sun, const SceneOptions& options) : ground_plane_(options.ground_plane) {
-  device_ = rtcNewDevice(nullptr);
-  if (!device_) throw std::runtime_error("Embree: no device");
-  scene_ = rtcNewScene(device_);
+  start_device();
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
   build(city, sun, options);
   rtcCommitScene(scene_);
@@ -448,25 +471,17 @@ void RenderScene::build(const exacity::City& city, V3 sun, const SceneOptions& o
 }
 
 bool RenderScene::raw_intersect(V3 o, V3 d) const {
+  RTCRayHit rh = ray_hit(o, d, INFINITY);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRayHit rh{};
-  rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z;
-  rh.ray.dir_x = d.x, rh.ray.dir_y = d.y, rh.ray.dir_z = d.z;
-  rh.ray.tnear = 0, rh.ray.tfar = INFINITY, rh.ray.mask = 0xffffffff;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &context, &rh);
   return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
 }
 
 bool RenderScene::intersect(V3 o, V3 d, float tmax, Surface& s) const {
+  RTCRayHit rh = ray_hit(o, d, tmax);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRayHit rh{};
-  rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z;
-  rh.ray.dir_x = d.x, rh.ray.dir_y = d.y, rh.ray.dir_z = d.z;
-  rh.ray.tnear = 0, rh.ray.tfar = tmax, rh.ray.mask = 0xffffffff;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &context, &rh);
   int m;
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {

@@ -8,7 +8,9 @@
 
 #include <embree3/rtcore.h>
 
+#include <atomic>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -79,8 +81,16 @@ class RenderScene {
   float ground = 0, top = 0;
   std::vector<TileLevel> tiles;
   std::size_t triangles = 0, instances = 0;
+  // The most memory Embree held at once, from its device's memory monitor.
+  std::size_t embree_peak_bytes() const { return memory_->peak; }
 
  private:
+  struct Memory {
+    std::atomic<std::int64_t> now{0};
+    std::atomic<std::size_t> peak{0};
+  };
+  void start_device();
+  std::unique_ptr<Memory> memory_ = std::make_unique<Memory>();
   struct Geometry;
   unsigned add_triangles(const std::vector<V3>& vertices, const std::vector<std::array<int, 3>>& tris, Geometry info);
   void build(const exacity::City& city, V3 sun, const SceneOptions& options);

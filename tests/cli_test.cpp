@@ -287,6 +287,14 @@ TEST(Cli, RenderWritesStillOverviewAndMinimapTheSameWhateverTheThreadCount) {
   EXPECT_EQ(stats["size"][0], 80);
   EXPECT_GT(stats["tiles"]["culled"].get<int>(), 0) << "a close camera leaves tiles out";
 
+  // Into the folder itself: report.json records the render.
+  Result into = run("render " + out.string() + camera + " -q");
+  ASSERT_EQ(into.code, 0) << into.out;
+  EXPECT_TRUE(fs::exists(out / "render" / "still.json"));
+  auto updated = nlohmann::json::parse(read(out / "report.json"));
+  EXPECT_EQ(updated["render"]["size"][0], 80);
+  EXPECT_EQ(updated["validation"]["ok"], true);
+
   Result bad = run("render " + out.string() + " --camera orbit:target=1,2 -q");
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.out.find("--camera"), std::string::npos) << bad.out;

@@ -216,11 +216,12 @@ TEST(Render, ExrKeepsItsDataLayersExactly) {
       if (spec.channelnames[c] == name) return c;
     return -1;
   };
-  const int id = channel("id"), z = channel("Z"), r = channel("R");
+  const int id = channel("id"), z = channel("Z"), r = channel("R"), albedo = channel("albedo.G");
   ASSERT_GE(id, 0);
   ASSERT_GE(z, 0);
   EXPECT_EQ(spec.channelformat(id), OIIO::TypeDesc::UINT);
   EXPECT_EQ(spec.channelformat(r), OIIO::TypeDesc::HALF);
+  EXPECT_EQ(spec.channelformat(albedo), OIIO::TypeDesc::FLOAT);
   std::vector<std::uint32_t> ids(6);
   std::vector<float> depth(6);
   ASSERT_TRUE(in->read_image(0, 0, id, id + 1, OIIO::TypeDesc::UINT, ids.data()));

@@ -135,3 +135,14 @@ TEST(SketchParse, CrsAndMultiGeometries) {
 TEST(SketchParse, MissingFileIsAUserError) {
   EXPECT_THROW(load_sketch("/nonexistent/city.geojson"), UserError);
 }
+
+TEST(Sketch, CameraAndDensityAndModelsAreRead) {
+  Sketch s = parse_sketch(with_features(kSquare, R"({"camera": "look:from=0,-50,30,to=5,5,0", "models": "lib/models.json",
+                                                   "zones": {"residential": {"density": "sparse"}}})"),
+                          "dir/city.geojson");
+  EXPECT_EQ(s.camera, "look:from=0,-50,30,to=5,5,0");
+  EXPECT_EQ(s.models, std::filesystem::path("dir/lib/models.json"));
+  EXPECT_EQ(s.zone_params.at(ZoneType::Residential).density, "sparse");
+  expect_error(with_features(kSquare, R"({"camera": 3})"), {"camera", "orbit:"});
+  expect_error(with_features(kSquare, R"({"zones": {"residential": {"density": "packed"}}})"), {"density", "\"dense\""});
+}
