@@ -122,10 +122,8 @@ nlohmann::ordered_json render_city(const exacity::City& city, const RenderReques
                                        m / 2.0f - (static_cast<float>(p.y) - top_down.from.y) / span * m};
       };
       const geom::Box& b = whole.bounds;
-      const geom::Box far{b.min_x - b.width(), b.min_y - b.height(), b.max_x + b.width(), b.max_y + b.height()};
       // The still's view, from its own scene (the same origin: both centre on the city).
       std::vector<geom::Vec2> seen = ground_footprint(camera, request.width, request.height, whole.ground, b);
-      (void)far;
       for (int i = 0; i < 4; ++i) {
         auto [x0, y0] = px(seen[i]);
         auto [x1, y1] = px(seen[(i + 1) % 4]);

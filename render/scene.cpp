@@ -293,11 +293,9 @@ void RenderScene::build(const exacity::City& city, V3 sun, const SceneOptions& o
     for (const auto& f : layer.features) {
       const auto [m, entity, lift] = style(f);
       if (m < 0) continue;
-      const std::size_t before = g.triangles.size();
       exacity::drape(f.polygon, terrain, f.properties.value("bridge", false) ? lift_of_bridge : lift, g);
       info.material.resize(g.triangles.size(), m);
       info.entity.resize(g.triangles.size(), entity);
-      (void)before;
     }
     std::vector<V3> v;
     for (const auto& p : g.vertices) v.push_back(to_scene(p[0], p[1], p[2]));
@@ -326,14 +324,12 @@ void RenderScene::build(const exacity::City& city, V3 sun, const SceneOptions& o
     for (const auto& f : layers.roads.features) {
       const bool highway = f.properties.value("class", "") == "highway";
       const double width = f.properties.value("width", 8.0), lift = f.properties.value("bridge", false) ? 0.32 : 0.12;
-      const std::size_t before = t.size();
       ribbon(f.line, 0, 0.15, highway ? 0 : 3, 5, terrain, lift, v, t, *this);
       info.material.resize(t.size(), highway ? yellow : paint);
       if (highway && width >= 14)
         for (double side : {-width / 4, width / 4}) ribbon(f.line, side, 0.12, 3, 6, terrain, lift, v, t, *this);
       info.material.resize(t.size(), paint);
       info.entity.resize(t.size(), entity_id(Entity::Road, f.properties.value("road", 0)));
-      (void)before;
     }
     if (!t.empty()) add_triangles(v, t, std::move(info));
   }
