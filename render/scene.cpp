@@ -277,7 +277,11 @@ void RenderScene::build(const exacity::City& city, V3 sun, const SceneOptions& o
 
   // The ground: terrain, then layers a few centimetres above each other.
   {
-    exacity::GroundMesh g = exacity::terrain_tin(terrain, world, 512);
+    // The heightmap reaches a city's size past it on every side (its edge values carried
+    // on), so the plane beyond, at the lowest height, meets no cliff in view.
+    const geom::Box wide{world.min_x - world.width(), world.min_y - world.height(), world.max_x + world.width(),
+                         world.max_y + world.height()};
+    exacity::GroundMesh g = exacity::terrain_tin(terrain, terrain ? wide : world, 768);
     std::vector<V3> v;
     for (const auto& p : g.vertices) v.push_back(to_scene(p[0], p[1], p[2]));
     Geometry info;
