@@ -29,6 +29,7 @@ struct RenderOptions {
   float fov = 45;
   std::string size = "960x540";
   int spp = 16;
+  float haze = 0;
   bool overview = false, minimap = false, orthographic = false;
 };
 
@@ -54,6 +55,7 @@ render::RenderRequest request_for(const City& city, const RenderOptions& o, cons
     }
   }
   r.overview = o.overview, r.minimap = o.minimap, r.orthographic_overview = o.orthographic;
+  r.haze_visibility = o.haze;
   return r;
 }
 
@@ -173,6 +175,10 @@ int main(int argc, char** argv) {
     c->add_option("--fov", render_options.fov, "Vertical field of view, degrees")->check(CLI::Range(5.0, 150.0))->capture_default_str();
     c->add_option("--size", render_options.size, "Image size WIDTHxHEIGHT")->capture_default_str();
     c->add_option("--spp", render_options.spp, "Samples per pixel")->check(CLI::Range(1, 65536))->capture_default_str();
+    c->add_option("--haze", render_options.haze,
+                  "Haze for aerial perspective and light shafts: the visibility in metres (0: clear air)")
+        ->check(CLI::Range(0.0, 1e7))
+        ->capture_default_str();
   };
   add_render_options(gen);
 

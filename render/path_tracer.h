@@ -23,9 +23,24 @@ struct Image {
   std::vector<std::uint32_t> id;    // the first hit's entity (see Entity)
 };
 
+// A homogeneous layer of haze from the ground up to `top` (scene z): light scatters in it
+// (Henyey–Greenstein, asymmetry g) and is not absorbed, which gives aerial perspective
+// and, where buildings shade it from the sun, light shafts (seed 003), physically.
+struct Haze {
+  float density = 0;  // scattering per metre; 0: clear air
+  float top = 500;
+  float g = 0.7f;
+  // Koschmieder: the visibility at which contrast falls to 2%.
+  static float density_for_visibility(float metres) { return 3.912f / metres; }
+};
+
 struct TraceSettings {
+  TraceSettings() = default;
+  TraceSettings(int w, int h, int samples, int depth = 8, Haze fog = {})
+      : width(w), height(h), spp(samples), max_depth(depth), haze(fog) {}
   int width = 960, height = 540, spp = 16;
   int max_depth = 8;
+  Haze haze;
 };
 
 struct RayCounts {
@@ -45,6 +60,11 @@ Image trace(const RenderScene& scene, const Sky& sky, const Camera& camera, cons
 
 // One path's radiance along a ray (exposed for tests); the rays it casts are added to `counts`.
 V3 radiance(const RenderScene& scene, const Sky& sky, V3 origin, V3 direction, Sampler& rng, int max_depth,
-            RayCounts& counts, Surface* first = nullptr);
+            RayCounts& counts, Surface* first = nullptr, const Haze& haze = {});
+
+// Henyey–Greenstein's phase function for the angle between the light's old and new
+// directions, and a new direction drawn from it.
+float henyey_greenstein(float cos_theta, float g);
+V3 sample_henyey_greenstein(V3 direction, float g, float u1, float u2);
 
 }  // namespace render

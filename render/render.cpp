@@ -61,6 +61,9 @@ nlohmann::ordered_json render_city(const exacity::City& city, const RenderReques
   camera.to = scene.to_scene(camera.to.x, camera.to.y, camera.to.z);
 
   TraceSettings settings{request.width, request.height, request.spp};
+  Haze haze;
+  if (request.haze_visibility > 0) haze = {Haze::density_for_visibility(request.haze_visibility), scene.ground + 500, 0.7f};
+  settings.haze = haze;
   RayCounts rays;
   t = std::chrono::steady_clock::now();
   Image still = trace(scene, sky, camera, settings, &rays, [&](int done, int all) {
@@ -78,6 +81,7 @@ nlohmann::ordered_json render_city(const exacity::City& city, const RenderReques
   nlohmann::ordered_json report{
       {"size", {request.width, request.height}},
       {"samples_per_pixel", request.spp},
+      {"haze_visibility_m", request.haze_visibility},
       {"camera", {{"from", {request.camera.from.x, request.camera.from.y, request.camera.from.z}},
                   {"to", {request.camera.to.x, request.camera.to.y, request.camera.to.z}},
                   {"fov_y", request.camera.fov_y}}},
@@ -103,7 +107,7 @@ nlohmann::ordered_json render_city(const exacity::City& city, const RenderReques
     if (request.overview) {
       const float top = whole.top;
       Camera over = overview_camera(whole.bounds, top, request.camera.fov_y, 1, request.orthographic_overview);
-      TraceSettings s{size_overview, size_overview, request.spp};
+      TraceSettings s{size_overview, size_overview, request.spp, 8, haze};
       Image img = trace(whole, sky, over, s, nullptr, [&](int done, int n) {
         if (progress) progress("overview", static_cast<double>(done) / n);
       });

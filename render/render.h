@@ -18,6 +18,7 @@ struct RenderRequest {
   int width = 960, height = 540, spp = 16;
   bool overview = false, orthographic_overview = false, minimap = false;
   float sun_azimuth = 200, sun_elevation = 40, turbidity = 3, exposure = 0.25f;
+  float haze_visibility = 0;  // m; 0: clear air. Haze fills the 500 m over the lowest ground.
   std::filesystem::path still;  // PNG; the EXR goes beside it
   std::filesystem::path overview_file, minimap_file;
 };

@@ -52,6 +52,33 @@ TEST(Render, WhiteFurnaceGivesEmissionOverOneMinusAlbedo) {
   EXPECT_NEAR(mean_luminance(img), 5.0, 5.0 * 0.02);
 }
 
+TEST(Render, HazeInTheFurnaceChangesNothing) {
+  // A medium that scatters and absorbs nothing leaves a uniform radiance field as it is.
+  Material white{Material::Diffuse, {0.8f, 0.8f, 0.8f}};
+  white.emission = {1, 1, 1};
+  RenderScene scene({box(10, white)});
+  Sky off(0, 45, 3, 0, 0);
+  Camera c = Camera::look({0, 0, 0}, {1, 0.3f, 0.2f}, 90);
+  TraceSettings t{16, 16, 256, 100000};
+  t.haze = {0.2f, 100, 0.7f};  // five metres between scatterings on average
+  EXPECT_NEAR(mean_luminance(trace(scene, off, c, t)), 5.0, 5.0 * 0.02);
+}
+
+TEST(Render, HenyeyGreensteinSamplesItsOwnDensity) {
+  for (float g : {0.0f, 0.7f, -0.4f}) {
+    // Its mean cosine is g, and the density integrates to one.
+    Sampler rng(3, 4);
+    double mean = 0, integral = 0;
+    const int n = 200000;
+    for (int i = 0; i < n; ++i) {
+      mean += dot(sample_henyey_greenstein({0, 0, 1}, g, rng.next(), rng.next()), V3{0, 0, 1});
+      integral += henyey_greenstein(1 - 2 * rng.next(), g) * 4 * kPi;
+    }
+    EXPECT_NEAR(mean / n, g, 0.01) << g;
+    EXPECT_NEAR(integral / n, 1.0, 0.03) << g;
+  }
+}
+
 TEST(Render, EveryMaterialConservesEnergyAndSamplesWhatItEvaluates) {
   const std::vector<Material> materials{{Material::Diffuse, {1, 1, 1}},
                                         {Material::Glossy, {1, 1, 1}, 0.05f, 1.5f},
