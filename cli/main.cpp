@@ -5,6 +5,7 @@
 #include <iostream>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -33,6 +34,19 @@ struct RenderOptions {
   bool overview = false, minimap = false, orthographic = false;
 };
 
+// The camera the user gave (option first, then the sketch's), parsed; nullopt for none.
+std::optional<render::Camera> given_camera(const Sketch& sketch, const RenderOptions& o, const std::string& camera_source) {
+  const std::string spec = !o.camera.empty() ? o.camera : sketch.camera;
+  if (spec.empty()) return std::nullopt;
+  try {
+    return render::Camera::parse(spec, o.fov);
+  } catch (const std::invalid_argument& e) {
+    throw UserError((!o.camera.empty() ? std::string("--camera") : camera_source + " \"exacity\".camera") + " \"" + spec +
+                    "\": " + e.what() + "; e.g. orbit:target=0,0,0,azimuth=225,elevation=35,distance=900 or "
+                    "look:from=0,-500,200,to=0,0,0");
+  }
+}
+
 render::RenderRequest request_for(const City& city, const RenderOptions& o, const std::string& camera_source) {
   render::RenderRequest r;
   int w = 0, h = 0;
@@ -41,18 +55,11 @@ render::RenderRequest request_for(const City& city, const RenderOptions& o, cons
   if (!(size >> w >> x >> h) || x != 'x' || w < 8 || h < 8 || w > 16384 || h > 16384 || !size.eof())
     throw UserError("--size " + o.size + ": expected WIDTHxHEIGHT such as 1920x1080 (8 to 16384 each)");
   r.width = w, r.height = h, r.spp = o.spp;
-  const std::string spec = !o.camera.empty() ? o.camera : city.sketch.camera;
-  if (spec.empty()) {
+  if (auto given = given_camera(city.sketch, o, camera_source)) {
+    r.camera = *given;
+  } else {
     r.camera = render::default_camera(city);
     r.camera.fov_y = o.fov;
-  } else {
-    try {
-      r.camera = render::Camera::parse(spec, o.fov);
-    } catch (const std::invalid_argument& e) {
-      throw UserError((!o.camera.empty() ? std::string("--camera") : camera_source + " \"exacity\".camera") + " \"" + spec +
-                      "\": " + e.what() + "; e.g. orbit:target=0,0,0,azimuth=225,elevation=35,distance=900 or "
-                      "look:from=0,-500,200,to=0,0,0");
-    }
   }
   r.overview = o.overview, r.minimap = o.minimap, r.orthographic_overview = o.orthographic;
   r.haze_visibility = o.haze;
@@ -65,6 +72,7 @@ nlohmann::ordered_json render_with_progress(const City& city, render::RenderRequ
 
 int generate(const fs::path& sketch_path, const fs::path& out, bool quiet, const RenderOptions* rendering) {
   Sketch sketch = load_sketch(sketch_path);
+  if (rendering) given_camera(sketch, *rendering, sketch_path.string());  // a bad camera stops us before any work
   OutputFolder folder(out);
   GenerateResult result;
   {
@@ -111,6 +119,7 @@ int render_folder(const fs::path& out, const RenderOptions& o, const fs::path& f
   std::stringstream text;
   text << in.rdbuf();
   Sketch sketch = parse_sketch(text.str(), report["sketch_path"].get<std::string>());
+  given_camera(sketch, o, (out / "sketch.geojson").string());  // a bad camera stops us before any work
   ProgressReport progress(quiet);
   StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); }, kCityStages + 1);
   City city = build_city(sketch, clock);
