@@ -301,4 +301,13 @@ TEST(Cli, RenderWritesStillOverviewAndMinimapTheSameWhateverTheThreadCount) {
   EXPECT_EQ(std::count(bad.out.begin(), bad.out.end(), '\n'), 1) << bad.out;
   Result nowhere = run("render " + (base / "missing").string() + " -q");
   EXPECT_EQ(nowhere.code, 2);
+
+  // A sketch's bad camera stops generate --render before anything is written.
+  std::ofstream(base / "camera.geojson") << R"({"type": "FeatureCollection", "exacity": {"camera": "orbit:target=0,0"},
+    "features": [{"type": "Feature", "properties": {"zone": "park"},
+                  "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [50, 0], [50, 50], [0, 0]]]}}]})";
+  Result camera_error = run("generate " + (base / "camera.geojson").string() + " -o " + (base / "camera-out").string() + " --render -q");
+  EXPECT_EQ(camera_error.code, 2);
+  EXPECT_NE(camera_error.out.find("\"exacity\".camera"), std::string::npos) << camera_error.out;
+  EXPECT_FALSE(fs::exists(base / "camera-out"));
 }
