@@ -71,8 +71,12 @@ void Camera::ray(float px, float py, int width, int height, V3& origin, V3& dire
 }
 
 Lens::Lens(const Camera& c, int width, int height)
-    : from_(c.from), forward_(c.forward()), right_(c.right()), width_(static_cast<float>(width)),
-      height_(static_cast<float>(height)), orthographic_(c.orthographic) {
+    : from_(c.from),
+      forward_(c.forward()),
+      right_(c.right()),
+      width_(static_cast<float>(width)),
+      height_(static_cast<float>(height)),
+      orthographic_(c.orthographic) {
   up_ = cross(right_, forward_);
   const float aspect = width_ / height_;
   // Half the image's extent: in metres (orthographic) or as the tangent of half the view.
@@ -97,7 +101,8 @@ float overview_height(const geom::Box& city, float fov_y, float aspect) {
 }
 
 Camera overview_camera(const geom::Box& city, float top, float fov_y, float aspect, bool orthographic) {
-  const V3 centre{static_cast<float>((city.min_x + city.max_x) / 2), static_cast<float>((city.min_y + city.max_y) / 2), top};
+  const V3 centre{static_cast<float>((city.min_x + city.max_x) / 2), static_cast<float>((city.min_y + city.max_y) / 2),
+                  top};
   Camera c{centre + V3{0, 0, overview_height(city, fov_y, aspect)}, centre, fov_y};
   c.orthographic = orthographic;
   c.ortho_height = static_cast<float>(std::max(city.height(), city.width() / aspect));

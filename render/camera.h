@@ -13,9 +13,9 @@ namespace render {
 
 struct Camera {
   V3 from, to;
-  float fov_y = 50;            // degrees, vertical
+  float fov_y = 50;  // degrees, vertical
   bool orthographic = false;
-  float ortho_height = 100;    // m the image spans vertically, orthographic only
+  float ortho_height = 100;  // m the image spans vertically, orthographic only
 
   // From `target`: azimuth counter-clockwise from east, elevation above the horizon
   // (kept within 1..90 degrees, the upper hemisphere), distance in metres.

@@ -1,11 +1,11 @@
 #include "render/image_io.h"
 
+#include <Imath/half.h>
+#include <OpenImageIO/imageio.h>
+
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
-
-#include <Imath/half.h>
-#include <OpenImageIO/imageio.h>
 
 namespace render {
 namespace fs = std::filesystem;

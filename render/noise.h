@@ -40,14 +40,22 @@ class Noise {
   static float lerp(float t, float a, float b) { return a + t * (b - a); }
   static float grad(int hash, float x, float y) {
     switch (hash & 7) {
-      case 0: return x + y;
-      case 1: return -x + y;
-      case 2: return x - y;
-      case 3: return -x - y;
-      case 4: return x;
-      case 5: return -x;
-      case 6: return y;
-      default: return -y;
+      case 0:
+        return x + y;
+      case 1:
+        return -x + y;
+      case 2:
+        return x - y;
+      case 3:
+        return -x - y;
+      case 4:
+        return x;
+      case 5:
+        return -x;
+      case 6:
+        return y;
+      default:
+        return -y;
     }
   }
   std::array<std::uint8_t, 256> perm_;

@@ -1,13 +1,12 @@
 #include "render/path_tracer.h"
 
-#include <xmmintrin.h>
 #include <pmmintrin.h>
+#include <tbb/parallel_for.h>
+#include <xmmintrin.h>
 
 #include <cmath>
 #include <mutex>
 #include <thread>
-
-#include <tbb/parallel_for.h>
 
 #include "render/sampling.h"
 
@@ -85,7 +84,8 @@ V3 radiance(const RenderScene& scene, const Sky& sky, V3 o, V3 d, Sampler& rng, 
           const float phase = henyey_greenstein(dot(d, wi), haze.g);
           ++counts.shadow;
           if (!scene.occluded(p, wi, INFINITY))
-            L += beta * sky.sun_radiance() * (phase * transmittance(haze, p, wi) * power_heuristic(sun_pdf, phase) / sun_pdf);
+            L += beta * sky.sun_radiance() *
+                 (phase * transmittance(haze, p, wi) * power_heuristic(sun_pdf, phase) / sun_pdf);
         }
         const V3 next = sample_henyey_greenstein(d, haze.g, rng.next(), rng.next());
         prev_pdf = henyey_greenstein(dot(d, next), haze.g);
@@ -159,7 +159,8 @@ Image trace(const RenderScene& scene, const Sky& sky, const Camera& camera, cons
   const std::size_t n = static_cast<std::size_t>(t.width) * t.height;
   img.beauty.assign(n, {}), img.normal.assign(n, {}), img.albedo.assign(n, {});
   img.depth.assign(n, INFINITY), img.id.assign(n, 0);
-  const int tiles_x = (t.width + kTile - 1) / kTile, tiles_y = (t.height + kTile - 1) / kTile, tiles = tiles_x * tiles_y;
+  const int tiles_x = (t.width + kTile - 1) / kTile, tiles_y = (t.height + kTile - 1) / kTile,
+            tiles = tiles_x * tiles_y;
   const Lens lens(camera, t.width, t.height);
   std::atomic<int> done{0};
   std::mutex report;

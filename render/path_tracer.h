@@ -17,10 +17,10 @@ namespace render {
 
 struct Image {
   int width = 0, height = 0;
-  std::vector<V3> beauty;           // linear radiance, the mean of the samples
-  std::vector<float> depth;         // distance to the first hit (infinity: sky)
-  std::vector<V3> normal, albedo;   // of the first hit, world space
-  std::vector<std::uint32_t> id;    // the first hit's entity (see Entity)
+  std::vector<V3> beauty;          // linear radiance, the mean of the samples
+  std::vector<float> depth;        // distance to the first hit (infinity: sky)
+  std::vector<V3> normal, albedo;  // of the first hit, world space
+  std::vector<std::uint32_t> id;   // the first hit's entity (see Entity)
 };
 
 // A homogeneous layer of haze from the ground up to `top` (scene z): light scatters in it

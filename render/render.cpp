@@ -20,7 +20,8 @@ void line(Rgb8& img, V3 colour, float x0, float y0, float x1, float y1, int thic
   const int steps = static_cast<int>(std::ceil(std::max(std::abs(x1 - x0), std::abs(y1 - y0)))) + 1;
   for (int i = 0; i <= steps; ++i) {
     const float t = static_cast<float>(i) / static_cast<float>(steps);
-    const int x = static_cast<int>(std::lround(x0 + (x1 - x0) * t)), y = static_cast<int>(std::lround(y0 + (y1 - y0) * t));
+    const int x = static_cast<int>(std::lround(x0 + (x1 - x0) * t)),
+              y = static_cast<int>(std::lround(y0 + (y1 - y0) * t));
     for (int dy = -thickness / 2; dy <= thickness / 2; ++dy)
       for (int dx = -thickness / 2; dx <= thickness / 2; ++dx) img.set(x + dx, y + dy, colour);
   }
@@ -46,7 +47,8 @@ Camera default_camera(const exacity::City& city) {
   return Camera::orbit({static_cast<float>(cx), static_cast<float>(cy), static_cast<float>(z)}, 235, 30, distance, 45);
 }
 
-nlohmann::ordered_json render_city(const exacity::City& city, const RenderRequest& request, const RenderProgress& progress) {
+nlohmann::ordered_json render_city(const exacity::City& city, const RenderRequest& request,
+                                   const RenderProgress& progress) {
   auto t = std::chrono::steady_clock::now();
   const Sky sky(request.sun_azimuth, request.sun_elevation, request.turbidity);
   const float aspect = static_cast<float>(request.width) / static_cast<float>(request.height);
@@ -62,7 +64,8 @@ nlohmann::ordered_json render_city(const exacity::City& city, const RenderReques
 
   TraceSettings settings{request.width, request.height, request.spp};
   Haze haze;
-  if (request.haze_visibility > 0) haze = {Haze::density_for_visibility(request.haze_visibility), scene.ground + 500, 0.7f};
+  if (request.haze_visibility > 0)
+    haze = {Haze::density_for_visibility(request.haze_visibility), scene.ground + 500, 0.7f};
   settings.haze = haze;
   RayCounts rays;
   t = std::chrono::steady_clock::now();
@@ -82,17 +85,22 @@ nlohmann::ordered_json render_city(const exacity::City& city, const RenderReques
       {"size", {request.width, request.height}},
       {"samples_per_pixel", request.spp},
       {"haze_visibility_m", request.haze_visibility},
-      {"camera", {{"from", {request.camera.from.x, request.camera.from.y, request.camera.from.z}},
-                  {"to", {request.camera.to.x, request.camera.to.y, request.camera.to.z}},
-                  {"fov_y", request.camera.fov_y}}},
+      {"camera",
+       {{"from", {request.camera.from.x, request.camera.from.y, request.camera.from.z}},
+        {"to", {request.camera.to.x, request.camera.to.y, request.camera.to.z}},
+        {"fov_y", request.camera.fov_y}}},
       {"tiles", {{"count", scene.tiles.size()}, {"culled", culled}, {"by_level", levels}}},
-      {"scene", {{"triangles", scene.triangles}, {"instances", scene.instances}, {"build_s", scene_s},
-                 {"embree_peak_mib", static_cast<double>(scene.embree_peak_bytes()) / (1 << 20)}}},
-      {"still", {{"seconds", still_s},
-                 {"camera_rays", rays.camera},
-                 {"bounce_rays", rays.bounce},
-                 {"shadow_rays", rays.shadow},
-                 {"rays_per_s", static_cast<double>(rays.camera + rays.bounce + rays.shadow) / still_s}}},
+      {"scene",
+       {{"triangles", scene.triangles},
+        {"instances", scene.instances},
+        {"build_s", scene_s},
+        {"embree_peak_mib", static_cast<double>(scene.embree_peak_bytes()) / (1 << 20)}}},
+      {"still",
+       {{"seconds", still_s},
+        {"camera_rays", rays.camera},
+        {"bounce_rays", rays.bounce},
+        {"shadow_rays", rays.shadow},
+        {"rays_per_s", static_cast<double>(rays.camera + rays.bounce + rays.shadow) / still_s}}},
   };
   nlohmann::ordered_json tile_levels = nlohmann::ordered_json::array();
   for (const auto& tl : scene.tiles) tile_levels.push_back({tl.tile, tl.level});
@@ -145,17 +153,19 @@ nlohmann::ordered_json render_city(const exacity::City& city, const RenderReques
         for (int x = -2; x < size + 2; ++x) {
           const bool frame = x < 0 || y < 0 || x >= size || y >= size;
           const std::uint8_t* p = &map.pixels[(static_cast<std::size_t>(std::clamp(y * m / size, 0, m - 1)) * m +
-                                               std::clamp(x * m / size, 0, m - 1)) * 3];
+                                               std::clamp(x * m / size, 0, m - 1)) *
+                                              3];
           std::uint8_t* q = nullptr;
           if (x0 + x >= 0 && y0 + y >= 0 && x0 + x < request.width && y0 + y < request.height)
             q = &still_png.pixels[(static_cast<std::size_t>(y0 + y) * request.width + (x0 + x)) * 3];
           if (!q) continue;
           for (int c = 0; c < 3; ++c) q[c] = frame ? 255 : p[c];
         }
-      report["minimap"] = {{"visible_ground", {{seen[0].x + scene.origin_x, seen[0].y + scene.origin_y},
-                                               {seen[1].x + scene.origin_x, seen[1].y + scene.origin_y},
-                                               {seen[2].x + scene.origin_x, seen[2].y + scene.origin_y},
-                                               {seen[3].x + scene.origin_x, seen[3].y + scene.origin_y}}}};
+      report["minimap"] = {{"visible_ground",
+                            {{seen[0].x + scene.origin_x, seen[0].y + scene.origin_y},
+                             {seen[1].x + scene.origin_x, seen[1].y + scene.origin_y},
+                             {seen[2].x + scene.origin_x, seen[2].y + scene.origin_y},
+                             {seen[3].x + scene.origin_x, seen[3].y + scene.origin_y}}}};
     }
   }
   fs::path exr = request.still;

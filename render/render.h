@@ -4,9 +4,8 @@
 
 #include <filesystem>
 #include <functional>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "generate/pipeline.h"
 #include "render/camera.h"
@@ -18,7 +17,7 @@ struct RenderRequest {
   int width = 960, height = 540, spp = 16;
   bool overview = false, orthographic_overview = false, minimap = false;
   float sun_azimuth = 200, sun_elevation = 40, turbidity = 3, exposure = 0.25f;
-  float haze_visibility = 0;  // m; 0: clear air. Haze fills the 500 m over the lowest ground.
+  float haze_visibility = 0;    // m; 0: clear air. Haze fills the 500 m over the lowest ground.
   std::filesystem::path still;  // PNG; the EXR goes beside it
   std::filesystem::path overview_file, minimap_file;
 };

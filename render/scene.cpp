@@ -15,12 +15,16 @@ namespace {
 
 using exacity::ZoneType;
 
-V3 colour(const exacity::Colour& c) { return {static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2])}; }
+V3 colour(const exacity::Colour& c) {
+  return {static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2])};
+}
 
 // Facade and roof palettes per zone type; each building picks one of each (seed 000).
 const std::vector<V3>& facades(ZoneType z) {
-  static const std::vector<V3> residential{{0.80f, 0.72f, 0.60f}, {0.72f, 0.48f, 0.36f}, {0.86f, 0.82f, 0.66f}, {0.70f, 0.70f, 0.68f}};
-  static const std::vector<V3> commercial{{0.62f, 0.64f, 0.66f}, {0.50f, 0.56f, 0.62f}, {0.76f, 0.72f, 0.64f}, {0.84f, 0.84f, 0.82f}};
+  static const std::vector<V3> residential{
+      {0.80f, 0.72f, 0.60f}, {0.72f, 0.48f, 0.36f}, {0.86f, 0.82f, 0.66f}, {0.70f, 0.70f, 0.68f}};
+  static const std::vector<V3> commercial{
+      {0.62f, 0.64f, 0.66f}, {0.50f, 0.56f, 0.62f}, {0.76f, 0.72f, 0.64f}, {0.84f, 0.84f, 0.82f}};
   static const std::vector<V3> industrial{{0.55f, 0.56f, 0.56f}, {0.56f, 0.40f, 0.30f}, {0.58f, 0.62f, 0.56f}};
   return z == ZoneType::Commercial ? commercial : z == ZoneType::Industrial ? industrial : residential;
 }
@@ -32,8 +36,9 @@ const std::vector<V3>& roofs(ZoneType z) {
 
 // A ribbon of `width` along a ground path, its corners draped over the terrain, in pieces
 // no longer than half a pixel; dashes where `dash` > 0 (dash on, gap off, metres).
-void ribbon(const geom::Polyline& line, double offset, double width, double dash, double gap, const exacity::Terrain* terrain,
-            double lift, std::vector<V3>& verts, std::vector<std::array<int, 3>>& tris, const RenderScene& s) {
+void ribbon(const geom::Polyline& line, double offset, double width, double dash, double gap,
+            const exacity::Terrain* terrain, double lift, std::vector<V3>& verts, std::vector<std::array<int, 3>>& tris,
+            const RenderScene& s) {
   const double step = terrain ? terrain->pixel_size() / 2 : 1e9;
   double along = 0;
   for (std::size_t i = 0; i + 1 < line.size(); ++i) {
@@ -58,7 +63,8 @@ void ribbon(const geom::Polyline& line, double offset, double width, double dash
           return s.to_scene(x, y, z);
         };
         const int first = static_cast<int>(verts.size());
-        verts.insert(verts.end(), {corner(t, -width / 2), corner(end, -width / 2), corner(end, width / 2), corner(t, width / 2)});
+        verts.insert(verts.end(),
+                     {corner(t, -width / 2), corner(end, -width / 2), corner(end, width / 2), corner(t, width / 2)});
         tris.push_back({first, first + 1, first + 2});
         tris.push_back({first, first + 2, first + 3});
       }
@@ -93,7 +99,10 @@ std::vector<Plane> frustum(const Camera& c, float aspect) {
 
 struct Box3 {
   V3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-  void add(V3 p) { lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)}, hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)}; }
+  void add(V3 p) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)},
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
   void add(const Box3& b) { add(b.lo), add(b.hi); }
   bool outside(const Plane& p) const {
     V3 far{p.n.x >= 0 ? hi.x : lo.x, p.n.y >= 0 ? hi.y : lo.y, p.n.z >= 0 ? hi.z : lo.z};
@@ -167,6 +176,13 @@ const Noise& noise() {
 
 }  // namespace
 
+// The materials of the ground and of buildings, as indices.
+struct RenderScene::Palette {
+  int sidewalk = 0, asphalt = 0, paint = 0, yellow = 0, water = 0;
+  std::map<ZoneType, int> lot_ground;
+  std::map<std::pair<ZoneType, int>, int> facade, roof;  // (zone, palette entry)
+};
+
 struct RenderScene::Geometry {
   std::vector<int> material;          // per triangle; for instances, per model triangle
   std::vector<std::uint32_t> entity;  // per triangle; empty for instances
@@ -178,11 +194,15 @@ struct RenderScene::Geometry {
   float cos_turn = 1, sin_turn = 0;
 };
 
-unsigned RenderScene::add_triangles(const std::vector<V3>& vertices, const std::vector<std::array<int, 3>>& tris, Geometry info) {
+unsigned RenderScene::add_triangles(const std::vector<V3>& vertices, const std::vector<std::array<int, 3>>& tris,
+                                    Geometry info) {
   RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices.size()));
-  for (std::size_t i = 0; i < vertices.size(); ++i) v[3 * i] = vertices[i].x, v[3 * i + 1] = vertices[i].y, v[3 * i + 2] = vertices[i].z;
-  auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), tris.size()));
+  auto* v = static_cast<float*>(
+      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices.size()));
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    v[3 * i] = vertices[i].x, v[3 * i + 1] = vertices[i].y, v[3 * i + 2] = vertices[i].z;
+  auto* t = static_cast<unsigned*>(
+      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), tris.size()));
   for (std::size_t i = 0; i < tris.size(); ++i)
     for (int k = 0; k < 3; ++k) t[3 * i + k] = static_cast<unsigned>(tris[i][k]);
   rtcCommitGeometry(g);
@@ -203,7 +223,8 @@ void RenderScene::start_device() {
         auto* m = static_cast<Memory*>(user);
         const std::int64_t now = m->now += bytes;
         std::size_t peak = m->peak;
-        while (now > 0 && static_cast<std::size_t>(now) > peak && !m->peak.compare_exchange_weak(peak, static_cast<std::size_t>(now))) {
+        while (now > 0 && static_cast<std::size_t>(now) > peak &&
+               !m->peak.compare_exchange_weak(peak, static_cast<std::size_t>(now))) {
         }
         return true;
       },
@@ -229,7 +250,8 @@ RenderScene::RenderScene(const std::vector<TriangleSoup>& soups, bool ground_pla
   rtcCommitScene(scene_);
 }
 
-RenderScene::RenderScene(const exacity::City& city, V3 sun, const SceneOptions& options) : ground_plane_(options.ground_plane) {
+RenderScene::RenderScene(const exacity::City& city, V3 sun, const SceneOptions& options)
+    : ground_plane_(options.ground_plane) {
   start_device();
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
   build(city, sun, options);
@@ -245,7 +267,6 @@ RenderScene::~RenderScene() {
 
 void RenderScene::build(const exacity::City& city, V3 sun, const SceneOptions& options) {
   const auto& layers = city.layers;
-  const exacity::Terrain* terrain = city.ground();
   geom::Box world = geom::Box::none();
   for (const auto* l : {&layers.zones, &layers.water, &layers.road_areas})
     for (const auto& f : l->features)
@@ -254,28 +275,40 @@ void RenderScene::build(const exacity::City& city, V3 sun, const SceneOptions& o
   origin_x = std::round((world.min_x + world.max_x) / 2), origin_y = std::round((world.min_y + world.max_y) / 2);
   bounds = {world.min_x - origin_x, world.min_y - origin_y, world.max_x - origin_x, world.max_y - origin_y};
 
-  auto material = [&](Material m, Pattern p = Pattern::None) {
-    materials_.push_back(m);
-    patterns_.push_back(p);
-    return static_cast<int>(materials_.size()) - 1;
-  };
-  grass_material_ = material({Material::Diffuse, {0.30f, 0.45f, 0.20f}}, Pattern::Grass);
-  const int sidewalk = material({Material::Diffuse, {0.40f, 0.39f, 0.37f}});
-  const int asphalt = material({Material::Diffuse, {0.09f, 0.09f, 0.10f}});
-  const int paint = material({Material::Diffuse, {0.85f, 0.85f, 0.80f}});
-  const int yellow = material({Material::Diffuse, {0.80f, 0.62f, 0.12f}});
-  const int water = material({Material::Glossy, {0.02f, 0.06f, 0.08f}, 0.02f, 1.33f});
-  std::map<ZoneType, int> lot_ground{{ZoneType::Residential, grass_material_},
-                                     {ZoneType::Commercial, material({Material::Diffuse, {0.50f, 0.49f, 0.46f}})},
-                                     {ZoneType::Industrial, material({Material::Diffuse, {0.42f, 0.40f, 0.37f}})}};
-  std::map<std::pair<ZoneType, int>, int> facade, roof;
+  Palette palette;
+  make_palette(palette);
+  add_ground(city, world, palette);
+  add_buildings(city, world, sun, options, palette);
+}
+
+int RenderScene::add_material(Material m, Pattern p) {
+  materials_.push_back(m);
+  patterns_.push_back(p);
+  return static_cast<int>(materials_.size()) - 1;
+}
+
+void RenderScene::make_palette(Palette& p) {
+  grass_material_ = add_material({Material::Diffuse, {0.30f, 0.45f, 0.20f}}, Pattern::Grass);
+  p.sidewalk = add_material({Material::Diffuse, {0.40f, 0.39f, 0.37f}});
+  p.asphalt = add_material({Material::Diffuse, {0.09f, 0.09f, 0.10f}});
+  p.paint = add_material({Material::Diffuse, {0.85f, 0.85f, 0.80f}});
+  p.yellow = add_material({Material::Diffuse, {0.80f, 0.62f, 0.12f}});
+  p.water = add_material({Material::Glossy, {0.02f, 0.06f, 0.08f}, 0.02f, 1.33f});
+  p.lot_ground = {{ZoneType::Residential, grass_material_},
+                  {ZoneType::Commercial, add_material({Material::Diffuse, {0.50f, 0.49f, 0.46f}})},
+                  {ZoneType::Industrial, add_material({Material::Diffuse, {0.42f, 0.40f, 0.37f}})}};
   for (ZoneType z : {ZoneType::Residential, ZoneType::Commercial, ZoneType::Industrial}) {
     for (int i = 0; i < static_cast<int>(facades(z).size()); ++i)
-      facade[{z, i}] = material({Material::Diffuse, facades(z)[i]}, Pattern::Windows);
-    for (int i = 0; i < static_cast<int>(roofs(z).size()); ++i) roof[{z, i}] = material({Material::Diffuse, roofs(z)[i]});
+      p.facade[{z, i}] = add_material({Material::Diffuse, facades(z)[i]}, Pattern::Windows);
+    for (int i = 0; i < static_cast<int>(roofs(z).size()); ++i)
+      p.roof[{z, i}] = add_material({Material::Diffuse, roofs(z)[i]});
   }
+}
 
-  // The ground: terrain, then layers a few centimetres above each other.
+// The ground: terrain, then layers a few centimetres above each other.
+void RenderScene::add_ground(const exacity::City& city, const geom::Box& world, const Palette& palette) {
+  const auto& layers = city.layers;
+  const exacity::Terrain* terrain = city.ground();
   {
     // The heightmap reaches a city's size past it on every side (its edge values carried
     // on), so the plane beyond, at the lowest height, meets no cliff in view.
@@ -308,17 +341,18 @@ void RenderScene::build(const exacity::City& city, V3 sun, const SceneOptions& o
   using Style = std::tuple<int, std::uint32_t, double>;
   draped(layers.zones, 0.03, [&](const exacity::VectorFeature& f) {
     const bool park = f.properties.value("zone", "") == "park";
-    return Style{park ? grass_material_ : sidewalk, entity_id(Entity::Zone, f.properties.value("id", 0)), 0.03};
+    return Style{park ? grass_material_ : palette.sidewalk, entity_id(Entity::Zone, f.properties.value("id", 0)), 0.03};
   });
   draped(layers.lots, 0.06, [&](const exacity::VectorFeature& f) {
     auto z = exacity::parse_zone_type(f.properties.value("zone", "residential"));
-    return Style{lot_ground.count(*z) ? lot_ground[*z] : sidewalk, entity_id(Entity::Lot, f.properties.value("id", 0)), 0.06};
+    const int m = palette.lot_ground.count(*z) ? palette.lot_ground.at(*z) : palette.sidewalk;
+    return Style{m, entity_id(Entity::Lot, f.properties.value("id", 0)), 0.06};
   });
   draped(layers.water, 0.05, [&](const exacity::VectorFeature& f) {
-    return Style{water, entity_id(Entity::Water, f.properties.value("id", 0)), 0.05};
+    return Style{palette.water, entity_id(Entity::Water, f.properties.value("id", 0)), 0.05};
   });
   draped(layers.road_areas, 0.30, [&](const exacity::VectorFeature& f) {
-    return Style{asphalt, entity_id(Entity::Road, f.properties.value("road", 0)), 0.10};
+    return Style{palette.asphalt, entity_id(Entity::Road, f.properties.value("road", 0)), 0.10};
   });
   // Centre stripes (solid yellow on highways, dashed white elsewhere) and dashed lane lines.
   {
@@ -329,16 +363,19 @@ void RenderScene::build(const exacity::City& city, V3 sun, const SceneOptions& o
       const bool highway = f.properties.value("class", "") == "highway";
       const double width = f.properties.value("width", 8.0), lift = f.properties.value("bridge", false) ? 0.32 : 0.12;
       ribbon(f.line, 0, 0.15, highway ? 0 : 3, 5, terrain, lift, v, t, *this);
-      info.material.resize(t.size(), highway ? yellow : paint);
+      info.material.resize(t.size(), highway ? palette.yellow : palette.paint);
       if (highway && width >= 14)
         for (double side : {-width / 4, width / 4}) ribbon(f.line, side, 0.12, 3, 6, terrain, lift, v, t, *this);
-      info.material.resize(t.size(), paint);
+      info.material.resize(t.size(), palette.paint);
       info.entity.resize(t.size(), entity_id(Entity::Road, f.properties.value("road", 0)));
     }
     if (!t.empty()) add_triangles(v, t, std::move(info));
   }
+}
 
-  // Buildings by tile.
+// Buildings by tile, culled and given their level.
+void RenderScene::add_buildings(const exacity::City& city, const geom::Box& world, V3 sun, const SceneOptions& options,
+                                const Palette& palette) {
   const auto& buildings = city.buildings;
   const int nx = std::max(1, static_cast<int>(std::ceil(world.width() / options.tile_size)));
   const int ny = std::max(1, static_cast<int>(std::ceil(world.height() / options.tile_size)));
@@ -382,7 +419,7 @@ void RenderScene::build(const exacity::City& city, V3 sun, const SceneOptions& o
   }
 
   const exacity::ModelLibrary* library = city.models();
-  std::vector<int> model_material_base;  // per (model, tint): first global material
+  std::vector<int> model_material_base;       // per (model, tint): first global material
   std::vector<std::vector<int>> model_local;  // per model: its triangles' materials
   if (library) {
     model_scenes_.assign(library->models.size(), nullptr);
@@ -390,8 +427,10 @@ void RenderScene::build(const exacity::City& city, V3 sun, const SceneOptions& o
       model_material_base.push_back(static_cast<int>(materials_.size()));
       for (int tint = 0; tint < exacity::kTints; ++tint)
         for (const auto& mat : m.mesh.materials) {
-          const bool glass = mat.name.find("glass") != std::string::npos || mat.name.find("window") != std::string::npos;
-          material({glass ? Material::Glossy : Material::Diffuse, colour(exacity::tinted(mat.colour, tint)), 0.05f, 1.5f});
+          const bool glass =
+              mat.name.find("glass") != std::string::npos || mat.name.find("window") != std::string::npos;
+          add_material(
+              {glass ? Material::Glossy : Material::Diffuse, colour(exacity::tinted(mat.colour, tint)), 0.05f, 1.5f});
         }
       model_local.push_back(m.mesh.material);
     }
@@ -410,10 +449,12 @@ void RenderScene::build(const exacity::City& city, V3 sun, const SceneOptions& o
       if (!model_scenes_[b.placed.model]) {
         RTCScene ms = rtcNewScene(device_);
         RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), model.mesh.vertices.size()));
+        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                              3 * sizeof(float), model.mesh.vertices.size()));
         for (std::size_t j = 0; j < model.mesh.vertices.size(); ++j)
           for (int c = 0; c < 3; ++c) v[3 * j + c] = static_cast<float>(model.mesh.vertices[j][c]);
-        auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), model.mesh.triangles.size()));
+        auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                 3 * sizeof(unsigned), model.mesh.triangles.size()));
         for (std::size_t j = 0; j < model.mesh.triangles.size(); ++j)
           for (int c = 0; c < 3; ++c) t[3 * j + c] = static_cast<unsigned>(model.mesh.triangles[j][c]);
         rtcCommitGeometry(g);
@@ -437,9 +478,11 @@ void RenderScene::build(const exacity::City& city, V3 sun, const SceneOptions& o
       Geometry info;
       info.instance = true;
       info.instance_entity = entity_id(Entity::Model, i);
-      info.material_base = model_material_base[b.placed.model] + b.placed.tint * static_cast<int>(model.mesh.materials.size());
+      info.material_base =
+          model_material_base[b.placed.model] + b.placed.tint * static_cast<int>(model.mesh.materials.size());
       info.material = model_local[b.placed.model];
-      info.cos_turn = std::cos(static_cast<float>(b.placed.angle)), info.sin_turn = std::sin(static_cast<float>(b.placed.angle));
+      info.cos_turn = std::cos(static_cast<float>(b.placed.angle)),
+      info.sin_turn = std::sin(static_cast<float>(b.placed.angle));
       if (geometries_.size() <= id) geometries_.resize(id + 1);
       geometries_[id] = std::move(info);
       ++instances;
@@ -454,15 +497,17 @@ void RenderScene::build(const exacity::City& city, V3 sun, const SceneOptions& o
       mesh = exacity::building_mesh(box, library);
     }
     exacity::Random pick(exacity::mix(city.sketch.seed, i));
-    const int f = facade[{b.zone, static_cast<int>(pick.next() % facades(b.zone).size())}];
-    const int r = roof[{b.zone, static_cast<int>(pick.next() % roofs(b.zone).size())}];
+    const int f = palette.facade.at({b.zone, static_cast<int>(pick.next() % facades(b.zone).size())});
+    const int r = palette.roof.at({b.zone, static_cast<int>(pick.next() % roofs(b.zone).size())});
     const exacity::MeshTriangles tris = exacity::mesh_triangles(mesh);
     const int first = static_cast<int>(tile_vertices[k].size());
     for (const auto& p : tris.vertices) tile_vertices[k].push_back(to_scene(p[0], p[1], p[2]));
     for (std::size_t j = 0; j < tris.triangles.size(); ++j) {
       const auto& t = tris.triangles[j];
       tile_triangles[k].push_back({first + t[0], first + t[1], first + t[2]});
-      tile_info[k].material.push_back(tris.surface[j] == exacity::Surface::Roof ? r : tris.surface[j] == exacity::Surface::Wall ? f : sidewalk);
+      tile_info[k].material.push_back(tris.surface[j] == exacity::Surface::Roof   ? r
+                                      : tris.surface[j] == exacity::Surface::Wall ? f
+                                                                                  : palette.sidewalk);
       tile_info[k].entity.push_back(entity_id(Entity::Building, i));
     }
   }
@@ -531,7 +576,8 @@ bool RenderScene::intersect(V3 o, V3 d, float tmax, Surface& s) const {
       s.material.albedo = (lush * (1 - t) + dry * t) * (0.85f + 0.3f * fine);
       break;
     }
-    case Pattern::None: break;
+    case Pattern::None:
+      break;
   }
   return true;
 }

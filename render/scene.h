@@ -22,7 +22,16 @@ namespace render {
 
 // The id layer: the entity kind in the top byte, its index (a building, lot, road or
 // zone feature id) below.
-enum class Entity : std::uint32_t { None = 0, Building = 1, Model = 2, Lot = 3, Road = 4, Zone = 5, Water = 6, Terrain = 7 };
+enum class Entity : std::uint32_t {
+  None = 0,
+  Building = 1,
+  Model = 2,
+  Lot = 3,
+  Road = 4,
+  Zone = 5,
+  Water = 6,
+  Terrain = 7
+};
 inline std::uint32_t entity_id(Entity kind, std::size_t index) {
   return static_cast<std::uint32_t>(kind) << 24 | static_cast<std::uint32_t>(index & 0xffffff);
 }
@@ -77,7 +86,7 @@ class RenderScene {
   V3 to_scene(double x, double y, double z) const {
     return {static_cast<float>(x - origin_x), static_cast<float>(y - origin_y), static_cast<float>(z)};
   }
-  geom::Box bounds;        // the city, in scene coordinates
+  geom::Box bounds;  // the city, in scene coordinates
   float ground = 0, top = 0;
   std::vector<TileLevel> tiles;
   std::size_t triangles = 0, instances = 0;
@@ -92,15 +101,21 @@ class RenderScene {
   void start_device();
   std::unique_ptr<Memory> memory_ = std::make_unique<Memory>();
   struct Geometry;
+  struct Palette;
   unsigned add_triangles(const std::vector<V3>& vertices, const std::vector<std::array<int, 3>>& tris, Geometry info);
+  int add_material(Material m, Pattern p = Pattern::None);
   void build(const exacity::City& city, V3 sun, const SceneOptions& options);
+  void make_palette(Palette& p);
+  void add_ground(const exacity::City& city, const geom::Box& world, const Palette& palette);
+  void add_buildings(const exacity::City& city, const geom::Box& world, V3 sun, const SceneOptions& options,
+                     const Palette& palette);
 
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   std::vector<RTCScene> model_scenes_;
   std::vector<Geometry> geometries_;  // by top-level geomID
   std::vector<Material> materials_;
-  std::vector<Pattern> patterns_;     // by material
+  std::vector<Pattern> patterns_;  // by material
   bool ground_plane_ = true;
   int grass_material_ = -1;
 };

@@ -64,7 +64,8 @@ Sky::Sky(float sun_azimuth, float sun_elevation, float turbidity, float sky_scal
 
 float Sky::perez(const float c[5], float cos_theta, float gamma) const {
   const float cg = std::cos(gamma);
-  return (1 + c[0] * std::exp(c[1] / std::max(cos_theta, 0.01f))) * (1 + c[2] * std::exp(c[3] * gamma) + c[4] * cg * cg);
+  return (1 + c[0] * std::exp(c[1] / std::max(cos_theta, 0.01f))) *
+         (1 + c[2] * std::exp(c[3] * gamma) + c[4] * cg * cg);
 }
 
 V3 Sky::radiance(V3 dir) const {
@@ -72,7 +73,8 @@ V3 Sky::radiance(V3 dir) const {
   // Rows by sqrt(1 - z), about even in the angle from the zenith down.
   const float u = std::sqrt(1 - std::clamp(dir.z, 0.0f, 1.0f)) * (kRows - 1);
   const float v = (std::atan2(dir.y, dir.x) / (2 * kPi) + 0.5f) * kColumns;
-  const int r0 = std::min(static_cast<int>(u), kRows - 2), c0 = static_cast<int>(v) % kColumns, c1 = (c0 + 1) % kColumns;
+  const int r0 = std::min(static_cast<int>(u), kRows - 2), c0 = static_cast<int>(v) % kColumns,
+            c1 = (c0 + 1) % kColumns;
   const float fu = u - static_cast<float>(r0), fv = v - std::floor(v);
   auto at = [&](int r, int c) { return table_[static_cast<std::size_t>(r) * kColumns + c]; };
   return (at(r0, c0) * (1 - fv) + at(r0, c1) * fv) * (1 - fu) + (at(r0 + 1, c0) * (1 - fv) + at(r0 + 1, c1) * fv) * fu;

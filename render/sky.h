@@ -39,7 +39,7 @@ class Sky {
   float turbidity_, scale_, theta_s_;
   float cY_[5], cx_[5], cy_[5];
   float zenith_Y_, zenith_x_, zenith_y_;
-  float norm_Y_, norm_x_, norm_y_;  // the Perez functions at the zenith
+  float norm_Y_, norm_x_, norm_y_;                  // the Perez functions at the zenith
   static constexpr int kRows = 64, kColumns = 128;  // sqrt(1 - z) from the zenith, azimuth
   std::vector<V3> table_;
 };
