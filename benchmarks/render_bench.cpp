@@ -72,8 +72,7 @@ int main(int argc, char** argv) {
               "most; process peak %.0f MiB (%.0f before the scene)\n",
               build_s, scene.triangles, scene.instances, scene.tiles.size(), culled, simple,
               static_cast<double>(scene.embree_peak_bytes()) / (1 << 20), rss_mib(), before);
-  camera.from = scene.to_scene(camera.from.x, camera.from.y, camera.from.z);
-  camera.to = scene.to_scene(camera.to.x, camera.to.y, camera.to.z);
+  camera = scene.to_scene(camera);
 
   // Raw Embree: one camera ray and one random upward bounce ray per pixel, the same kinds
   // of rays the path tracer casts, through rtcIntersect1 alone.

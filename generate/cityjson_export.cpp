@@ -160,11 +160,7 @@ json templates(const ModelLibrary& library) {
 void write_cityjson(const CityLayers& layers, const std::vector<Building>& buildings, const std::vector<Mesh>& meshes,
                     const ModelLibrary* library, const Terrain* terrain, const Sketch& sketch,
                     const std::filesystem::path& file) {
-  geom::Box box = geom::Box::none();
-  for (const Layer* l : {&layers.zones, &layers.water, &layers.road_areas})
-    for (const auto& f : l->features)
-      for (auto p : f.polygon.outer)
-        box.add(p);
+  geom::Box box = layers.ground_bounds();
   if (box.holds_nothing()) box = {0, 0, 1, 1};
   const geom::Vec2 origin{std::floor(box.min_x), std::floor(box.min_y)};
   Vertices v(origin);

@@ -123,10 +123,7 @@ class Glb {
 
 GltfCounts write_gltf(const CityLayers& layers, const std::vector<Building>& buildings, const std::vector<Mesh>& meshes,
                       const ModelLibrary* library, const Terrain* terrain, const std::filesystem::path& file) {
-  geom::Box box = geom::Box::none();
-  for (const Layer* l : {&layers.zones, &layers.water, &layers.road_areas})
-    for (const auto& f : l->features)
-      for (auto p : f.polygon.outer) box.add(p);
+  geom::Box box = layers.ground_bounds();
   if (box.holds_nothing()) box = {0, 0, 1, 1};
   const geom::Vec2 origin{std::round((box.min_x + box.max_x) / 2), std::round((box.min_y + box.max_y) / 2)};
   // Exacity's x east, y north, z up to glTF's x, y up, z south, about the origin.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geom/measure.h"
 #include "geom/triangulate.h"
 
 namespace exacity {
@@ -14,17 +15,8 @@ void drape(const geom::Polygon& polygon, const Terrain* terrain, double lift, Gr
     dense = polygon;
   } else {
     const double step = terrain->pixel_size() / 2;
-    auto split = [&](const geom::Ring& r) {
-      geom::Ring d;
-      for (std::size_t i = 0; i < r.size(); ++i) {
-        geom::Vec2 a = r[i], b = r[(i + 1) % r.size()];
-        int n = std::max(1, static_cast<int>(std::ceil(std::hypot(b.x - a.x, b.y - a.y) / step)));
-        for (int k = 0; k < n; ++k) d.push_back({a.x + (b.x - a.x) * k / n, a.y + (b.y - a.y) * k / n});
-      }
-      return d;
-    };
-    dense.outer = split(polygon.outer);
-    for (const auto& h : polygon.holes) dense.holes.push_back(split(h));
+    dense.outer = geom::densified(polygon.outer, step);
+    for (const auto& h : polygon.holes) dense.holes.push_back(geom::densified(h, step));
     // Pixel centres inside, kept a quarter pixel clear of the edges so no sliver forms.
     geom::Box box = geom::Box::none();
     for (geom::Vec2 p : polygon.outer) box.add(p);
@@ -32,9 +24,9 @@ void drape(const geom::Polygon& polygon, const Terrain* terrain, double lift, Gr
       bool in = false;
       double nearest = INFINITY;
       auto visit = [&](const geom::Ring& r) {
+        in ^= geom::odd_crossings(r, p);
         for (std::size_t i = 0, j = r.size() - 1; i < r.size(); j = i++) {
           geom::Vec2 a = r[j], b = r[i];
-          if ((b.y > p.y) != (a.y > p.y) && p.x < a.x + (b.x - a.x) * (p.y - a.y) / (b.y - a.y)) in = !in;
           double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
           double t = len2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0) : 0;
           nearest = std::min(nearest, std::hypot(a.x + t * dx - p.x, a.y + t * dy - p.y));

@@ -12,18 +12,21 @@ namespace {
 using geom::Vec2;
 
 // The edge rows run along: the longest road frontage (or longest edge, for a lot with
-// none), its direction u, the inward normal n, and the piece's extent along both.
+// none, `on_road` false), its direction u, the inward normal n, and the piece's extent
+// along both.
 struct Frontage {
   Vec2 a, u, n;
   double t0 = 0, t1 = 0, depth = 0;
+  bool on_road = false;
 };
 
 Frontage principal_frontage(const geom::Cell& piece, int road_kind) {
   auto edges = piece.edges_of_kind(road_kind);
   std::vector<Vec2> corners = piece.corners();
+  Frontage f;
+  f.on_road = !edges.empty();
   if (edges.empty())
     for (std::size_t i = 0; i < corners.size(); ++i) edges.push_back({corners[i], corners[(i + 1) % corners.size()]});
-  Frontage f;
   double longest = 0;
   for (auto [a, b] : edges) {
     double len = std::hypot(b.x - a.x, b.y - a.y);
@@ -103,7 +106,7 @@ std::vector<Building> place_models(const geom::Cell& piece, int road_kind, std::
 
   if (kind == ModelKind::Street) {
     // One every `spacing` metres along the road frontage, in the middle of the setback strip.
-    if (piece.edges_of_kind(road_kind).empty()) return out;
+    if (!f.on_road) return out;
     for (double t = f.t0 + lib.models[choices[0]].spacing / 2; t < f.t1;) {
       int m = pick(choices, lib, rng);
       double scale = rng.uniform(lib.models[m].min_scale, lib.models[m].max_scale);

@@ -71,10 +71,7 @@ void write_legend(std::ostream& out, const CityLayers& layers, double w, double 
 }  // namespace
 
 void write_svg_map(const CityLayers& layers, const std::filesystem::path& file) {
-  geom::Box b = geom::Box::none();
-  for (const Layer* l : {&layers.zones, &layers.water, &layers.road_areas})
-    for (const auto& f : l->features)
-      for (auto p : f.polygon.outer) b.add(p);
+  geom::Box b = layers.ground_bounds();
   for (const auto& f : layers.roads.features)
     for (auto p : f.line) b.add(p);
   if (!(b.max_x > b.min_x)) b = {0, 0, 1, 1};

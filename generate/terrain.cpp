@@ -8,6 +8,7 @@
 
 #include "generate/errors.h"
 #include "geom/grid.h"
+#include "geom/measure.h"
 
 namespace exacity {
 
@@ -96,23 +97,11 @@ std::pair<double, double> Terrain::range_under(const geom::Ring& ring) const {
     double h = height_at(p);
     low = std::min(low, h), high = std::max(high, h);
   };
-  const double step = pixel_size() / 2;
   geom::Box box = geom::Box::none();
-  for (std::size_t i = 0; i < ring.size(); ++i) {
-    geom::Vec2 a = ring[i], b = ring[(i + 1) % ring.size()];
-    box.add(a);
-    int n = static_cast<int>(std::ceil(std::hypot(b.x - a.x, b.y - a.y) / step));
-    for (int k = 0; k < std::max(n, 1); ++k) sample({a.x + (b.x - a.x) * k / n, a.y + (b.y - a.y) * k / n});
-  }
-  // Pixel centres inside (even-odd test in doubles: this only samples).
-  for (geom::Vec2 p : pixel_centres(box)) {
-    bool inside = false;
-    for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
-      if ((ring[i].y > p.y) != (ring[j].y > p.y) &&
-          p.x < ring[j].x + (ring[i].x - ring[j].x) * (p.y - ring[j].y) / (ring[i].y - ring[j].y))
-        inside = !inside;
-    if (inside) sample(p);
-  }
+  for (geom::Vec2 p : ring) box.add(p);
+  for (geom::Vec2 p : geom::densified(ring, pixel_size() / 2)) sample(p);
+  for (geom::Vec2 p : pixel_centres(box))
+    if (geom::odd_crossings(ring, p)) sample(p);
   return {low, high};
 }
 

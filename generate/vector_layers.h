@@ -14,6 +14,16 @@ struct CityLayers {
   Layer zones{"zones", false, {}}, water{"water", false, {}};
   Layer roads{"roads", true, {}}, road_areas{"road_areas", false, {}};
   Layer blocks{"blocks", false, {}}, lots{"lots", false, {}}, buildings{"buildings", false, {}};
+
+  // The box around zones, water and road areas (what covers the ground); holds nothing
+  // for an empty city.
+  geom::Box ground_bounds() const {
+    geom::Box box = geom::Box::none();
+    for (const Layer* l : {&zones, &water, &road_areas})
+      for (const auto& f : l->features)
+        for (geom::Vec2 p : f.polygon.outer) box.add(p);
+    return box;
+  }
 };
 
 CityLayers extract_layers(const ZoneMap& zone_map, const std::vector<Block>& blocks, const std::vector<Lot>& lots,

@@ -1,6 +1,7 @@
 // Measures in doubles, for choices and reports (never for topology).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "geom/plain.h"
@@ -33,6 +34,28 @@ inline double perimeter(const Polygon& p) {
   ring(p.outer);
   for (const auto& h : p.holes) ring(h);
   return sum;
+}
+
+// The ring with every edge split into equal pieces no longer than `step` (samples along
+// it, not geometry).
+inline Ring densified(const Ring& r, double step) {
+  Ring out;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    const Vec2 a = r[i], b = r[(i + 1) % r.size()];
+    const int n = std::max(1, static_cast<int>(std::ceil(std::hypot(b.x - a.x, b.y - a.y) / step)));
+    for (int k = 0; k < n; ++k) out.push_back({a.x + (b.x - a.x) * k / n, a.y + (b.y - a.y) * k / n});
+  }
+  return out;
+}
+
+// Whether the ring crosses a ray from p an odd number of times (even-odd rule, in
+// doubles: for sampling, not for topology).
+inline bool odd_crossings(const Ring& r, Vec2 p) {
+  bool in = false;
+  for (std::size_t i = 0, j = r.size() - 1; i < r.size(); j = i++)
+    if ((r[i].y > p.y) != (r[j].y > p.y) && p.x < r[j].x + (r[i].x - r[j].x) * (p.y - r[j].y) / (r[i].y - r[j].y))
+      in = !in;
+  return in;
 }
 
 }  // namespace geom

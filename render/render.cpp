@@ -36,10 +36,7 @@ void disc(Rgb8& img, V3 colour, float cx, float cy, float r) {
 }  // namespace
 
 Camera default_camera(const exacity::City& city) {
-  geom::Box box = geom::Box::none();
-  for (const auto* l : {&city.layers.zones, &city.layers.water, &city.layers.road_areas})
-    for (const auto& f : l->features)
-      for (auto p : f.polygon.outer) box.add(p);
+  geom::Box box = city.layers.ground_bounds();
   if (box.holds_nothing()) box = {0, 0, 100, 100};
   const double cx = (box.min_x + box.max_x) / 2, cy = (box.min_y + box.max_y) / 2;
   const double z = city.ground() ? city.ground()->height_at({cx, cy}) : 0;
@@ -58,9 +55,7 @@ nlohmann::ordered_json render_city(const exacity::City& city, const RenderReques
   if (progress) progress("scene", 0);
   RenderScene scene(city, sky.sun_direction(), options);
   const double scene_s = seconds_since(t);
-  Camera camera = request.camera;
-  camera.from = scene.to_scene(camera.from.x, camera.from.y, camera.from.z);
-  camera.to = scene.to_scene(camera.to.x, camera.to.y, camera.to.z);
+  const Camera camera = scene.to_scene(request.camera);
 
   TraceSettings settings{request.width, request.height, request.spp};
   Haze haze;

@@ -267,10 +267,7 @@ RenderScene::~RenderScene() {
 
 void RenderScene::build(const exacity::City& city, V3 sun, const SceneOptions& options) {
   const auto& layers = city.layers;
-  geom::Box world = geom::Box::none();
-  for (const auto* l : {&layers.zones, &layers.water, &layers.road_areas})
-    for (const auto& f : l->features)
-      for (auto p : f.polygon.outer) world.add(p);
+  geom::Box world = layers.ground_bounds();
   if (world.holds_nothing()) world = {0, 0, 1, 1};
   origin_x = std::round((world.min_x + world.max_x) / 2), origin_y = std::round((world.min_y + world.max_y) / 2);
   bounds = {world.min_x - origin_x, world.min_y - origin_y, world.max_x - origin_x, world.max_y - origin_y};
@@ -403,9 +400,7 @@ void RenderScene::add_buildings(const exacity::City& city, const geom::Box& worl
   std::vector<bool> seen(boxes.size(), options.view == nullptr);
   Camera view;
   if (options.view) {
-    view = *options.view;
-    view.from = to_scene(options.view->from.x, options.view->from.y, options.view->from.z);
-    view.to = to_scene(options.view->to.x, options.view->to.y, options.view->to.z);
+    view = to_scene(*options.view);
     TileBvh(boxes).visible(frustum(view, options.aspect), seen);
   }
   std::vector<bool> detailed(boxes.size(), true);

@@ -86,6 +86,11 @@ class RenderScene {
   V3 to_scene(double x, double y, double z) const {
     return {static_cast<float>(x - origin_x), static_cast<float>(y - origin_y), static_cast<float>(z)};
   }
+  // A camera given in city coordinates, moved into the scene's.
+  Camera to_scene(Camera c) const {
+    c.from = to_scene(c.from.x, c.from.y, c.from.z), c.to = to_scene(c.to.x, c.to.y, c.to.z);
+    return c;
+  }
   geom::Box bounds;  // the city, in scene coordinates
   float ground = 0, top = 0;
   std::vector<TileLevel> tiles;

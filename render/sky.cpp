@@ -16,12 +16,12 @@ constexpr float kSunIrradiance = 8.0f;
 }  // namespace
 
 Sky::Sky(float sun_azimuth, float sun_elevation, float turbidity, float sky_scale, float sun_scale)
-    : turbidity_(turbidity), scale_(sky_scale) {
+    : scale_(sky_scale) {
   const float az = sun_azimuth * kDegree, el = std::clamp(sun_elevation, -10.0f, 90.0f) * kDegree;
   sun_ = {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
   sun_frame_ = Frame(sun_);
   sun_cos_max_ = std::cos(kSunHalfAngle);
-  theta_s_ = kPi / 2 - std::max(el, 0.0f);
+  const float theta_s = kPi / 2 - std::max(el, 0.0f);  // the sun's angle from the zenith
   const float T = turbidity;
   // The paper's Perez coefficients (its appendix), for luminance Y and chromaticities x, y.
   const float Y[5] = {0.1787f * T - 1.4630f, -0.3554f * T + 0.4275f, -0.0227f * T + 5.3251f, 0.1206f * T - 2.5771f,
@@ -32,16 +32,16 @@ Sky::Sky(float sun_azimuth, float sun_elevation, float turbidity, float sky_scal
                       -0.0109f * T + 0.0529f};
   std::copy(Y, Y + 5, cY_), std::copy(x, x + 5, cx_), std::copy(y, y + 5, cy_);
   // Zenith luminance and chromaticity.
-  const float chi = (4.0f / 9 - T / 120) * (kPi - 2 * theta_s_);
+  const float chi = (4.0f / 9 - T / 120) * (kPi - 2 * theta_s);
   zenith_Y_ = (4.0453f * T - 4.9710f) * std::tan(chi) - 0.2155f * T + 2.4192f;
-  const float t3 = theta_s_ * theta_s_ * theta_s_, t2 = theta_s_ * theta_s_, t1 = theta_s_;
+  const float t3 = theta_s * theta_s * theta_s, t2 = theta_s * theta_s, t1 = theta_s;
   zenith_x_ = (0.00166f * t3 - 0.00375f * t2 + 0.00209f * t1) * T * T +
               (-0.02903f * t3 + 0.06377f * t2 - 0.03202f * t1 + 0.00394f) * T +
               (0.11693f * t3 - 0.21196f * t2 + 0.06052f * t1 + 0.25886f);
   zenith_y_ = (0.00275f * t3 - 0.00610f * t2 + 0.00317f * t1) * T * T +
               (-0.04214f * t3 + 0.08970f * t2 - 0.04153f * t1 + 0.00516f) * T +
               (0.15346f * t3 - 0.26756f * t2 + 0.06670f * t1 + 0.26688f);
-  norm_Y_ = perez(cY_, 1, theta_s_), norm_x_ = perez(cx_, 1, theta_s_), norm_y_ = perez(cy_, 1, theta_s_);
+  norm_Y_ = perez(cY_, 1, theta_s), norm_x_ = perez(cx_, 1, theta_s), norm_y_ = perez(cy_, 1, theta_s);
 
   // The sun's colour: light through `airmass` atmospheres, blue scattered most.
   const float airmass = 1 / std::max(std::sin(std::max(el, 0.0f)), 0.05f);

@@ -36,7 +36,7 @@ class Sky {
   Frame sun_frame_;
   float sun_cos_max_;
   V3 sun_radiance_;
-  float turbidity_, scale_, theta_s_;
+  float scale_;
   float cY_[5], cx_[5], cy_[5];
   float zenith_Y_, zenith_x_, zenith_y_;
   float norm_Y_, norm_x_, norm_y_;                  // the Perez functions at the zenith

@@ -38,30 +38,25 @@ double mean_luminance(const Image& img) {
   return sum / static_cast<double>(img.beauty.size());
 }
 
-}  // namespace
-
-TEST(Render, WhiteFurnaceGivesEmissionOverOneMinusAlbedo) {
-  // Inside a closed box whose every wall emits 1 and reflects 80%: L = 1 / (1 - 0.8) = 5.
+// The mean radiance seen inside a closed box whose every wall emits 1 and reflects 80%,
+// the sun and sky off: L = 1 / (1 - 0.8) = 5.
+double furnace(Haze haze) {
   Material white{Material::Diffuse, {0.8f, 0.8f, 0.8f}};
   white.emission = {1, 1, 1};
   RenderScene scene({box(10, white)});
   Sky off(0, 45, 3, 0, 0);
   Camera c = Camera::look({0, 0, 0}, {1, 0.3f, 0.2f}, 90);
-  TraceSettings t{16, 16, 256, 100000};
-  Image img = trace(scene, off, c, t);
-  EXPECT_NEAR(mean_luminance(img), 5.0, 5.0 * 0.02);
+  return mean_luminance(trace(scene, off, c, TraceSettings{16, 16, 256, 100000, haze}));
 }
 
+}  // namespace
+
+TEST(Render, WhiteFurnaceGivesEmissionOverOneMinusAlbedo) { EXPECT_NEAR(furnace({}), 5.0, 5.0 * 0.02); }
+
 TEST(Render, HazeInTheFurnaceChangesNothing) {
-  // A medium that scatters and absorbs nothing leaves a uniform radiance field as it is.
-  Material white{Material::Diffuse, {0.8f, 0.8f, 0.8f}};
-  white.emission = {1, 1, 1};
-  RenderScene scene({box(10, white)});
-  Sky off(0, 45, 3, 0, 0);
-  Camera c = Camera::look({0, 0, 0}, {1, 0.3f, 0.2f}, 90);
-  TraceSettings t{16, 16, 256, 100000};
-  t.haze = {0.2f, 100, 0.7f};  // five metres between scatterings on average
-  EXPECT_NEAR(mean_luminance(trace(scene, off, c, t)), 5.0, 5.0 * 0.02);
+  // A medium that scatters and absorbs nothing leaves a uniform radiance field as it is;
+  // five metres between scatterings on average.
+  EXPECT_NEAR(furnace({0.2f, 100, 0.7f}), 5.0, 5.0 * 0.02);
 }
 
 TEST(Render, HenyeyGreensteinSamplesItsOwnDensity) {
