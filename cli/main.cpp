@@ -16,6 +16,7 @@
 #include "generate/output_folder.h"
 #include "generate/pipeline.h"
 #include "generate/sketch.h"
+#include "generate/statistics.h"
 #include "generate/validate.h"
 #include "render/render.h"
 
@@ -158,6 +159,24 @@ int validate(const fs::path& out) {
   return v.ok() ? 0 : 1;
 }
 
+// The city statistics of an output folder, recomputed from its layers, and of real data.
+int stats(const fs::path& out, const std::vector<fs::path>& real) {
+  if (!out.empty()) {
+    if (!fs::is_regular_file(out / "sketch.geojson") || !fs::is_directory(out / "vector"))
+      throw UserError(out.string() + ": not an output folder of exacity generate (no sketch.geojson or vector/); run exacity generate first");
+    Sketch sketch = load_sketch(out / "sketch.geojson");
+    std::vector<std::string> problems;
+    auto read = [&](const char* name) { return read_geojson(out / "vector" / (std::string(name) + ".geojson"), problems); };
+    Layer zones = read("zones"), water = read("water"), road_areas = read("road_areas"), blocks = read("blocks"),
+          lots = read("lots"), buildings = read("buildings"), roads = read("roads");
+    if (!problems.empty()) throw UserError(problems.front() + "; generate the city again");
+    std::printf("%s\n%s", out.string().c_str(),
+                format_statistics(city_statistics({&zones, &water, &road_areas, &blocks, &lots, &buildings, &roads, &sketch})).c_str());
+  }
+  for (const fs::path& file : real) std::printf("%s (real)\n%s", file.string().c_str(), format_statistics(real_statistics(file)).c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -210,8 +229,15 @@ int main(int argc, char** argv) {
   auto* val = app.add_subcommand("validate", "Re-check every invariant of an output folder exactly");
   val->add_option("OUT", check_dir, "An output folder of exacity generate")->required();
 
+  fs::path stats_dir;
+  std::vector<fs::path> real_files;
+  auto* sta = app.add_subcommand("stats", "Print a city's statistics (block, lot and footprint sizes, streets), and real data's");
+  sta->add_option("OUT", stats_dir, "An output folder of exacity generate");
+  sta->add_option("--real", real_files, "GeoJSON of real footprints or streets (metres or lon/lat), measured the same way");
+
   try {
     app.parse(argc, argv);
+    if (*sta && stats_dir.empty() && real_files.empty()) throw CLI::ValidationError("stats", "give OUT, --real FILE or both");
   } catch (const CLI::ParseError& e) {
     int code = app.exit(e);
     return code == 0 ? 0 : 2;
@@ -224,6 +250,7 @@ int main(int argc, char** argv) {
     if (*gen) return generate(sketch_path, out, quiet, render_too ? &render_options : nullptr);
     if (*ren) return render_folder(render_dir, render_options, render_file, quiet);
     if (*val) return validate(check_dir);
+    if (*sta) return stats(stats_dir, real_files);
   } catch (const UserError& e) {
     std::fprintf(stderr, "exacity: error: %s\n", e.what());
     return 2;

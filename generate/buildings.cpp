@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "generate/model_placement.h"
+#include "geom/grid.h"
 #include "geom/measure.h"
 
 namespace exacity {
@@ -34,20 +35,47 @@ bool near_rectangle(const geom::Polygon& p) {
   return true;
 }
 
-// The largest part of the piece inset by the setback, when it is big enough.
-std::optional<Building> extruded_building(const geom::Cell& piece, const ZoneParams& p) {
-  std::optional<Building> best;
-  double best_area = p.min_footprint_area;
-  for (geom::Cell& part : geom::inset_cell(piece, p.setback)) {
-    geom::Polygon polygon = part.to_plain();
-    double a = geom::area(polygon);
-    if (polygon.outer.empty() || a < best_area) continue;
-    best_area = a;
-    best = Building{};
-    best->footprint = std::move(part);
-    best->polygon = std::move(polygon);
+// Rectangles in a row along the lot's street frontage, fronts `setback` behind the street
+// (seed 002's rows facing the road), each `footprint_width` by `footprint_depth` and no
+// larger than `max_footprint_area`, `building_gap` apart and half that inside the lot's
+// other edges; where one does not fit, a smaller one is tried, down to
+// `min_footprint_width`. Each is checked exactly against the lot and the footprints taken.
+std::vector<geom::Ring> street_footprints(const geom::Cell& lot, const ZoneParams& p, std::vector<geom::Ring>& taken,
+                                          Random& rng) {
+  std::vector<geom::Ring> out;
+  const Frontage f = principal_frontage(lot, kLotRoadEdge);
+  if (!f.on_road || !(f.t1 > f.t0)) return out;
+  const double clearance = std::max(p.building_gap / 2, 0.05), front = std::max(p.setback, 0.1);
+  auto rectangle = [&](double t, double w, double d, double grow) {
+    const double ahead = std::min(grow, front / 2);
+    geom::Ring r;
+    for (auto [along, across] : {std::pair{t - grow, front - ahead}, {t + w + grow, front - ahead},
+                                 {t + w + grow, front + d + grow}, {t - grow, front + d + grow}})
+      r.push_back(geom::snap(f.at(along, across)));
+    return r;
+  };
+  for (double t = f.t0 + clearance; t + p.min_footprint_width <= f.t1;) {
+    double w = rng.uniform(p.footprint_width.min, p.footprint_width.max);
+    double d = rng.uniform(p.footprint_depth.min, p.footprint_depth.max);
+    if (w * d > p.max_footprint_area) {
+      const double s = std::sqrt(p.max_footprint_area / (w * d));
+      w *= s, d *= s;
+    }
+    bool placed = false;
+    for (double scale : {1.0, 0.8, 0.64, 0.5}) {
+      const double ws = std::max(w * scale, p.min_footprint_width), ds = std::max(d * scale, p.min_footprint_width);
+      if (t + ws > f.t1 || ws * ds < p.min_footprint_area || ws * ds > p.max_footprint_area) continue;
+      geom::Ring ring = rectangle(t, ws, ds, 0);
+      if (!fits(lot, rectangle(t, ws, ds, clearance), {}) || !fits(lot, ring, taken)) continue;
+      taken.push_back(ring);
+      out.push_back(std::move(ring));
+      t += ws + p.building_gap;
+      placed = true;
+      break;
+    }
+    if (!placed) t += std::max(p.min_footprint_width / 2, 1.0);
   }
-  return best;
+  return out;
 }
 
 }  // namespace
@@ -72,52 +100,44 @@ void choose_roof(Building& b, const ZoneParams& p) {
   b.roof_faces = std::move(faces);
 }
 
-std::vector<Building> place_buildings(const ZoneMap& zm, const std::vector<Lot>& lots, const Sketch& sketch,
-                                      const ModelLibrary* library, const Terrain* terrain) {
-  // Lots as they ended up in the map (cut back at roads), one cell per piece; edges
-  // along a road surface have kind 1.
-  constexpr int kRoad = 1;
-  std::vector<int> group(zm.labels.size(), -1), kind(zm.labels.size(), 0), lot_of;
-  for (std::size_t l = 0; l < zm.labels.size(); ++l) {
-    group[l] = zm.labels[l].lot;
-    if (zm.labels[l].cover == Cover::Road || zm.labels[l].bridge) kind[l] = kRoad;
-  }
-  std::vector<geom::Cell> pieces = zm.map.cells(group, kind, &lot_of);
-
+std::vector<Building> place_buildings(const std::vector<Lot>& lots, const Sketch& sketch, const ModelLibrary* library,
+                                      const Terrain* terrain) {
   geom::Box city = geom::Box::none();
-  for (const geom::Cell& c : pieces) city.add(c.bounds());
+  for (const Lot& lot : lots) city.add(lot.cell.bounds());
   const geom::Vec2 centre{(city.min_x + city.max_x) / 2, (city.min_y + city.max_y) / 2};
   const double radius = std::hypot(city.width(), city.height()) / 2;
   const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Buildings));
 
-  std::vector<std::vector<Building>> placed(pieces.size());
-  tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
-    const Lot& lot = lots[lot_of[i]];
+  std::vector<std::vector<Building>> placed(lots.size());
+  tbb::parallel_for(std::size_t(0), lots.size(), [&](std::size_t i) {
+    const Lot& lot = lots[i];
     const ZoneParams& p = sketch.zone_params.at(lot.zone);
-    // The lots layer drops the same small pieces.
-    if (geom::area(pieces[i].to_plain()) < p.min_lot_area) return;
     Random rng(mix(stage, i));
     std::vector<Building>& here = placed[i];
     std::vector<geom::Ring> taken;
     auto models = [&](ModelKind k) {
       if (!library) return;
-      for (Building& b : place_models(pieces[i], kRoad, taken, library->choices(lot.zone, k), k, *library, p, rng))
+      for (Building& b : place_models(lot.cell, kLotRoadEdge, taken, library->choices(lot.zone, k), k, *library, p, rng))
         here.push_back(std::move(b));
     };
     if (library && !library->choices(lot.zone, ModelKind::Building).empty()) {
       models(ModelKind::Building);
-    } else if (std::optional<Building> b = extruded_building(pieces[i], p)) {
-      geom::Vec2 c = b->footprint.centroid();
-      b->height = building_height(p, std::hypot(c.x - centre.x, c.y - centre.y), radius, rng);
-      b->zone = lot.zone;
-      choose_roof(*b, p);
-      taken.push_back(b->polygon.outer);
-      here.push_back(std::move(*b));
+    } else {
+      for (geom::Ring& ring : street_footprints(lot.cell, p, taken, rng)) {
+        Building b;
+        b.polygon.outer = std::move(ring);
+        geom::Vec2 c{0, 0};
+        for (geom::Vec2 v : b.polygon.outer) c.x += v.x / 4, c.y += v.y / 4;  // a rectangle's centre
+        b.height = building_height(p, std::hypot(c.x - centre.x, c.y - centre.y), radius, rng);
+        b.zone = lot.zone;
+        choose_roof(b, p);
+        here.push_back(std::move(b));
+      }
     }
     models(ModelKind::Street);
     models(ModelKind::Tree);
     for (Building& b : here) {
-      b.lot = lot_of[i];
+      b.lot = static_cast<int>(i);
       b.zone = lot.zone;
       if (terrain) std::tie(b.base, b.floor) = terrain->range_under(b.polygon.outer);
     }

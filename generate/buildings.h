@@ -1,5 +1,5 @@
-// Buildings: a footprint inside each lot, inset by the zone's setback (DESIGN.md rule 3),
-// exact; its height drawn between the zone's range, which falls with distance from the
+// Buildings: rectangular footprints in a row along each lot's street, checked exactly
+// inside the lot; each one's height drawn between the zone's range, which falls with distance from the
 // city centre, with a small chance near the centre of doubling (seed 003).
 #pragma once
 
@@ -30,8 +30,7 @@ inline constexpr int kTints = 4;
 struct Building {
   int lot = -1;  // index into the lots
   ZoneType zone = ZoneType::Residential;
-  geom::Cell footprint;    // exact; empty for placed models, whose polygon is on the grid
-  geom::Polygon polygon;   // rounded
+  geom::Polygon polygon;   // on the grid
   Placement placed;        // placed.model < 0: an extruded footprint
   double height = 0;       // m, to the top of the roof
   std::string roof = "flat";
@@ -47,11 +46,11 @@ struct Building {
 // footprint, falls back to flat.
 void choose_roof(Building& b, const ZoneParams& p);
 
-// Lot by lot in parallel: on each lot piece big enough, rows of models facing the road
-// where the library has buildings for the zone, else one extruded footprint; then the
+// Lot by lot in parallel: rows of models facing the road where the library has buildings
+// for the zone, else a row of extruded rectangles along the street; then the
 // library's street furniture and trees where they fit. Each stands on the terrain.
-std::vector<Building> place_buildings(const ZoneMap& zone_map, const std::vector<Lot>& lots, const Sketch& sketch,
-                                      const ModelLibrary* library, const Terrain* terrain);
+std::vector<Building> place_buildings(const std::vector<Lot>& lots, const Sketch& sketch, const ModelLibrary* library,
+                                      const Terrain* terrain);
 
 // Seed 003's height: uniform in the zone's range scaled by 1 - distance / radius (down to
 // half at the city's edge); the top doubles with a chance of 0.1 × that scale².

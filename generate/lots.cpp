@@ -7,6 +7,7 @@
 
 #include "generate/random.h"
 #include "geom/grid.h"
+#include "geom/measure.h"
 #include "geom/polygon_check.h"
 
 namespace exacity {
@@ -17,13 +18,91 @@ using geom::Vec2;
 Vec2 lerp(Vec2 a, Vec2 b, double t) { return {a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t}; }
 double length(Vec2 a, Vec2 b) { return std::hypot(b.x - a.x, b.y - a.y); }
 
-// The projection of p on the segment ab, when it falls on the segment.
-std::optional<Vec2> project(Vec2 p, Vec2 a, Vec2 b) {
-  double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
-  if (len2 == 0) return std::nullopt;
-  double t = ((p.x - a.x) * dx + (p.y - a.y) * dy) / len2;
-  if (t < 0 || t > 1) return std::nullopt;
-  return Vec2{a.x + t * dx, a.y + t * dy};
+Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
+Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
+Vec2 operator*(Vec2 a, double s) { return {a.x * s, a.y * s}; }
+double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
+double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+Vec2 unit(Vec2 a) {
+  double l = std::hypot(a.x, a.y);
+  return l > 0 ? a * (1 / l) : Vec2{0, 0};
+}
+Vec2 left_normal(Vec2 a, Vec2 b) {
+  Vec2 t = unit(b - a);
+  return {-t.y, t.x};
+}
+
+// How far a ray from p along the unit vector `dir` runs inside the block before it meets
+// a boundary edge (past a millimetre, so the edge it starts on does not count). A choice
+// of lot depth, made in doubles; the map decides the lots' topology exactly.
+double ray_distance(const std::vector<geom::KindedRing>& rings, Vec2 p, Vec2 dir, double limit) {
+  double best = limit;
+  for (const auto& r : rings)
+    for (std::size_t i = 0, n = r.points.size(); i < n; ++i) {
+      Vec2 a = r.points[i], e = r.points[(i + 1) % n] - a;
+      double den = cross(dir, e);
+      if (den == 0) continue;
+      double t = cross(a - p, e) / den, u = cross(a - p, dir) / den;
+      if (t > 1e-3 && u >= 0 && u <= 1) best = std::min(best, t);
+    }
+  return best;
+}
+
+// Where a run of street edges is broken: the kind changes between road and not, or the
+// boundary turns by more than this.
+constexpr double kRunTurn = 35 * M_PI / 180;
+constexpr double kFrontOverhang = 0.5;  // m: lots reach this far past the block's edge, so they meet it exactly
+
+// One lot boundary across the street side: from `at` on the block's edge, `depth` along `dir`.
+struct Cut {
+  Vec2 at, dir;
+  double depth = 0;
+};
+
+// The lots along one run of street edges: `points` from one end of the run to the other
+// (the block on the left), `normals` inward at each point, cut at equal steps near `width`.
+void run_lots(const std::vector<Vec2>& points, const std::vector<Vec2>& normals, Vec2 first_dir, Vec2 last_dir,
+              const std::vector<geom::KindedRing>& rings, double width, double depth, double min_edge,
+              std::vector<geom::Ring>& lots) {
+  std::vector<double> at_length{0};
+  for (std::size_t i = 1; i < points.size(); ++i) at_length.push_back(at_length.back() + length(points[i - 1], points[i]));
+  const double total = at_length.back();
+  if (total < min_edge) return;
+  const int count = std::max(1, static_cast<int>(std::lround(total / width)));
+  // The cuts: at the run's ends along the given directions (the corners' bisectors), between
+  // them square to the street.
+  std::vector<Cut> cuts;
+  std::vector<std::size_t> after;  // per cut: the index of the first point past it
+  std::size_t seg = 0;
+  for (int k = 0; k <= count; ++k) {
+    double s = total * k / count;
+    while (seg + 2 < points.size() && at_length[seg + 1] <= s) ++seg;
+    double span = at_length[seg + 1] - at_length[seg];
+    Vec2 at = k == count ? points.back() : k == 0 ? points.front() : lerp(points[seg], points[seg + 1], span > 0 ? (s - at_length[seg]) / span : 0);
+    Vec2 dir = k == 0 ? first_dir : k == count ? last_dir : at_length[seg] == s ? normals[seg] : left_normal(points[seg], points[seg + 1]);
+    double reach = depth / std::max(dot(dir, k == count ? normals.back() : normals[seg]), 0.5);
+    cuts.push_back({at, dir, std::min(reach, ray_distance(rings, at, dir, 4 * depth) / 2)});
+    after.push_back(k == count ? points.size() : at_length[seg] == s && k > 0 ? seg + 1 : seg + 1);
+  }
+  // Neighbouring cuts that would cross (inside a bend) stop short of where they meet.
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    Cut &a = cuts[k], &b = cuts[k + 1];
+    double den = cross(a.dir, b.dir);
+    if (den == 0) continue;
+    double ta = cross(b.at - a.at, b.dir) / den, tb = cross(b.at - a.at, a.dir) / den;
+    if (ta > 0 && tb > 0 && ta < a.depth && tb < b.depth) a.depth = std::min(a.depth, 0.9 * ta), b.depth = std::min(b.depth, 0.9 * tb);
+  }
+  for (int k = 0; k < count; ++k) {
+    const Cut &a = cuts[k], &b = cuts[k + 1];
+    if (std::min(a.depth, b.depth) < min_edge) continue;
+    geom::Ring ring{a.at - a.dir * kFrontOverhang};
+    for (std::size_t i = after[k]; i < after[k + 1] && i < points.size(); ++i)
+      if (!(points[i] == a.at) && !(points[i] == b.at)) ring.push_back(points[i] - normals[i] * kFrontOverhang);
+    ring.push_back(b.at - b.dir * kFrontOverhang);
+    ring.push_back(b.at + b.dir * b.depth);
+    ring.push_back(a.at + a.dir * a.depth);
+    lots.push_back(std::move(ring));
+  }
 }
 
 // The ring on the grid, counter-clockwise; empty when it is not a simple polygon.
@@ -86,119 +165,122 @@ std::vector<geom::Cell> split_lots(const geom::Cell& block, const ZoneParams& p,
 
 }  // namespace
 
-Vec2 weighted_centre(const std::vector<Vec2>& v) {
-  const std::size_t n = v.size();
-  double total = 0, x = 0, y = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    Vec2 a = v[(i + n - 1) % n], p = v[i], b = v[(i + 1) % n];
-    double ux = a.x - p.x, uy = a.y - p.y, wx = b.x - p.x, wy = b.y - p.y;
-    double lengths = std::hypot(ux, uy) * std::hypot(wx, wy);
-    if (lengths == 0) continue;
-    double w = 1 + (ux * wx + uy * wy) / lengths;
-    // Relative to the first corner, so large coordinates keep their precision.
-    total += w, x += w * (p.x - v[0].x), y += w * (p.y - v[0].y);
-  }
-  if (total <= 0) return v[0];
-  return geom::snap({v[0].x + x / total, v[0].y + y / total});
-}
-
-std::vector<geom::Ring> corner_lots(Vec2 v0, Vec2 v1, Vec2 v2, Vec2 c) {
-  auto toward = [&](Vec2 p, double t) { return lerp(p, c, t); };
-  Vec2 p0 = toward(v0, 0.1), p1 = toward(v1, 0.1), p2 = toward(v2, 0.1);
-  Vec2 p3 = toward(v2, 0.8), p4 = toward(v1, 0.8);
-  auto p4_01 = project(p4, p0, p1), p4_12 = project(p4, p1, p2), p3_12 = project(p3, p1, p2);
-  if (p4_01 && p4_12 && p3_12) return {{*p4_01, p1, *p4_12, p4}, {*p4_12, *p3_12, p3, p4}};
-  if (!p4_01 && p4_12 && p3_12) {
-    // The corner cannot be projected: two inside lots, the second from p5.
-    Vec2 p5 = toward(v0, 0.8);
-    std::vector<geom::Ring> lots;
-    if (auto p5_01 = project(p5, p0, p1)) lots.push_back({*p4_12, *p5_01, p5, p4});
-    lots.push_back({*p4_12, *p3_12, p3, p4});
-    return lots;
-  }
-  if (p4_01 && !p4_12) {
-    // The inside cannot be projected: p3 goes onto p0p1; an inside lot and a corner lot.
-    if (auto p3_01 = project(p3, p0, p1)) return {{*p4_01, *p3_01, p3, p4}, {*p3_01, p1, p2, p3}};
-  }
-  return {};
-}
-
-std::vector<geom::Ring> residential_lots(const std::vector<Vec2>& v, Vec2 c) {
+std::vector<geom::Ring> street_lots(const geom::Cell& block, const ZoneParams& p, Random& rng) {
   std::vector<geom::Ring> lots;
-  const std::size_t n = v.size();
-  for (std::size_t i = 0; i < n; ++i)
-    for (geom::Ring& r : corner_lots(v[(i + n - 1) % n], v[i], v[(i + 1) % n], c)) lots.push_back(std::move(r));
+  const std::vector<geom::KindedRing> rings = block.kinded_rings();
+  for (const geom::KindedRing& r : rings) {
+    const std::size_t n = r.points.size();
+    auto road = [&](std::size_t edge) { return r.kinds[edge % n] >= 0; };
+    auto normal = [&](std::size_t edge) { return left_normal(r.points[edge % n], r.points[(edge + 1) % n]); };
+    // At vertex i, between edge i - 1 and edge i.
+    auto turn = [&](std::size_t i) {
+      Vec2 u = r.points[i % n] - r.points[(i + n - 1) % n], v = r.points[(i + 1) % n] - r.points[i % n];
+      return std::atan2(cross(u, v), dot(u, v));
+    };
+    auto breaks = [&](std::size_t i) { return road(i + n - 1) != road(i) || std::abs(turn(i)) > kRunTurn; };
+    std::size_t start = n;
+    for (std::size_t i = 0; i < n; ++i)
+      if (breaks(i)) {
+        start = i;
+        break;
+      }
+    const bool closed = start == n;  // one smooth run all round
+    if (closed) {
+      if (!road(0)) continue;
+      start = 0;
+    }
+    // Runs from `start` on: [i, j) edges.
+    for (std::size_t i = start; i < start + n;) {
+      std::size_t j = i + 1;
+      while (j < start + n && !breaks(j)) ++j;
+      if (road(i)) {
+        std::vector<Vec2> pts, normals;
+        for (std::size_t k = i; k <= j; ++k) {
+          pts.push_back(r.points[k % n]);
+          normals.push_back(k == i ? normal(i) : k == j ? normal(j - 1) : unit(normal(k - 1) + normal(k)));
+        }
+        // At a corner, the cut runs along the bisector of the two edges' inward normals.
+        auto corner_dir = [&](std::size_t vertex, Vec2 own) {
+          if (closed) return unit(normal(vertex + n - 1) + normal(vertex));
+          Vec2 d = unit(normal(vertex + n - 1) + normal(vertex));
+          return dot(d, own) > 0.5 ? d : own;
+        };
+        run_lots(pts, normals, corner_dir(i, normals.front()), corner_dir(j, normals.back()), rings,
+                 rng.uniform(p.lot_width.min, p.lot_width.max), p.lot_depth, p.min_lot_edge, lots);
+      }
+      i = j;
+    }
+  }
   return lots;
 }
 
-std::vector<Lot> plan_lots(const std::vector<Block>& blocks, const Sketch& sketch) {
-  std::vector<std::vector<Lot>> per_block(blocks.size());
+std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch& sketch) {
+  std::vector<std::vector<PlannedLot>> per_block(blocks.size());
   const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Lots));
   tbb::parallel_for(std::size_t(0), blocks.size(), [&](std::size_t bi) {
     const Block& block = blocks[bi];
     if (block.green) return;
     const ZoneParams& p = sketch.zone_params.at(block.zone);
     Random rng(mix(stage, bi));
-    std::vector<Lot>& out = per_block[bi];
+    std::vector<PlannedLot>& out = per_block[bi];
     const int b = static_cast<int>(bi);
-    auto add_ring = [&](const geom::Ring& ring, bool check_edges) {
+    auto add_ring = [&](const geom::Ring& ring) {
       geom::Ring r = on_grid(ring);
-      if (!r.empty() && (!check_edges || edges_at_least(r, p.min_lot_edge))) out.push_back({b, block.zone, false, r, {}});
+      if (!r.empty() && edges_at_least(r, p.min_lot_edge)) out.push_back({b, block.zone, r, {}});
     };
     if (p.lots == "split") {
-      for (geom::Cell& c : split_lots(block.cell, p, rng)) out.push_back({b, block.zone, true, {}, std::move(c)});
+      for (geom::Cell& c : split_lots(block.cell, p, rng)) out.push_back({b, block.zone, {}, std::move(c)});
       return;
     }
-    std::vector<Vec2> corners = block.cell.corners();
-    if (corners.size() < 3) return;
-    Vec2 centre = weighted_centre(corners);
-    switch (block.zone) {
-      case ZoneType::Residential:
-        for (const geom::Ring& r : residential_lots(corners, centre)) add_ring(r, true);
-        break;
-      case ZoneType::Commercial: {
-        geom::Ring inset;
-        for (Vec2 v : corners) inset.push_back(lerp(centre, v, 0.8));
-        add_ring(inset, false);
-        break;
+    // Seed 000's industrial chance: a lot is kept with a chance that falls after a kept
+    // lot and rises after a dropped one, so some street frontage stays open yard.
+    double keep = 0.8;
+    for (const geom::Ring& ring : street_lots(block.cell, p, rng)) {
+      if (block.zone == ZoneType::Industrial) {
+        bool kept = rng.uniform() < keep;
+        keep = std::clamp(keep + (kept ? -0.25 : 0.25), 0.25, 1.0);
+        if (!kept) continue;
       }
-      default: {  // industrial
-        if (corners.size() != 4) {
-          out.push_back({b, block.zone, false, {}, block.cell});
-          break;
-        }
-        // Four quarters between the midlines, each kept with a chance that falls after a
-        // kept quarter and rises after a dropped one.
-        Vec2 q = lerp(lerp(corners[0], corners[2], 0.5), lerp(corners[1], corners[3], 0.5), 0.5);
-        double keep = 0.8;
-        for (int k = 0; k < 4; ++k) {
-          Vec2 prev = corners[(k + 3) % 4], v = corners[k], next = corners[(k + 1) % 4];
-          bool kept = rng.uniform() < keep;
-          keep = std::clamp(keep + (kept ? -0.25 : 0.25), 0.25, 1.0);
-          if (kept) add_ring({v, lerp(v, next, 0.5), q, lerp(prev, v, 0.5)}, true);
-        }
-      }
+      add_ring(ring);
     }
   });
-  std::vector<Lot> lots;
+  std::vector<PlannedLot> lots;
   for (auto& list : per_block)
     for (auto& lot : list) lots.push_back(std::move(lot));
   return lots;
 }
 
-void insert_lots(ZoneMap& zm, const std::vector<Block>& blocks, const std::vector<Lot>& lots, const Sketch& sketch) {
+std::vector<Lot> insert_lots(ZoneMap& zm, const std::vector<Block>& blocks, const std::vector<PlannedLot>& planned,
+                             const Sketch& sketch) {
   zm.block_base = zm.generated_base + static_cast<int>(zm.roads.size()) - zm.sketch_roads;
   zm.lot_base = zm.block_base + static_cast<int>(blocks.size());
   zm.lot_block.clear();
   for (std::size_t b = 0; b < blocks.size(); ++b) zm.map.add_cell(blocks[b].cell, zm.block_base + static_cast<int>(b));
-  for (std::size_t l = 0; l < lots.size(); ++l) {
+  for (std::size_t l = 0; l < planned.size(); ++l) {
     int counter = zm.lot_base + static_cast<int>(l);
-    if (lots[l].ring.empty()) zm.map.add_cell(lots[l].cell, counter);
-    else zm.map.add_ring(lots[l].ring, counter);
-    zm.lot_block.push_back(lots[l].block);
+    if (planned[l].ring.empty()) zm.map.add_cell(planned[l].cell, counter);
+    else zm.map.add_ring(planned[l].ring, counter);
+    zm.lot_block.push_back(planned[l].block);
   }
   zm.map.insert_batch();
   zm.label(sketch);
+
+  // Each planned lot's pieces; those off the street, or too small, are left to the block.
+  std::vector<int> group(zm.labels.size(), -1), kind(zm.labels.size(), 0), planned_of;
+  for (std::size_t l = 0; l < zm.labels.size(); ++l) {
+    group[l] = zm.labels[l].lot;
+    if (zm.labels[l].cover == Cover::Road || zm.labels[l].bridge) kind[l] = kLotRoadEdge;
+  }
+  std::vector<geom::Cell> pieces = zm.map.cells(group, kind, &planned_of);
+  std::vector<Lot> lots;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const PlannedLot& plan = planned[planned_of[i]];
+    auto kinds = pieces[i].edge_kinds();
+    if (kinds.empty() || kinds.back() != kLotRoadEdge) continue;
+    if (geom::area(pieces[i].to_plain()) < sketch.zone_params.at(plan.zone).min_lot_area) continue;
+    lots.push_back({plan.block, plan.zone, std::move(pieces[i])});
+  }
+  return lots;
 }
 
 }  // namespace exacity

@@ -7,35 +7,44 @@
 #include <vector>
 
 #include "generate/blocks.h"
+#include "generate/random.h"
 #include "generate/sketch.h"
 #include "generate/zone_map.h"
 
 namespace exacity {
 
+// A planned lot: a ring of grid points, counter-clockwise (allocated lots), or an exact part
+// of the block (split lots).
+struct PlannedLot {
+  int block = -1;
+  ZoneType zone = ZoneType::Residential;
+  geom::Ring ring;
+  geom::Cell cell;
+};
+
+// A lot as it ended up in the map: one piece of a planned lot, cut back at roads and at
+// the lots planned before it, that touches a road area and is at least the zone's
+// `min_lot_area`. Its index in the city's lots is its id.
 struct Lot {
   int block = -1;
   ZoneType zone = ZoneType::Residential;
-  bool frontage = false;  // must touch a road area (split lots)
-  geom::Ring ring;        // grid points, counter-clockwise (allocated lots) ...
-  geom::Cell cell;        // ... or an exact part of the block (split lots, whole-block lots)
+  geom::Cell cell;  // exact; edges along a road area have kind kLotRoadEdge, the others 0
 };
+inline constexpr int kLotRoadEdge = 1;
 
 // The lots of every block that is not green space, block by block in parallel.
-std::vector<Lot> plan_lots(const std::vector<Block>& blocks, const Sketch& sketch);
+std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch& sketch);
 
-// The lots and their blocks into the map in one batch; faces then know their lot.
-void insert_lots(ZoneMap& zone_map, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
-                 const Sketch& sketch);
+// Seed 000's lots measured from the street: along every run of road edges of the block
+// (edge kind >= 0), lots side by side, about `lot_width` wide and `lot_depth` deep (at most
+// half the way across the block), split at the run's corners along the corner's bisector;
+// the block's middle is left open. Rings in doubles, not yet on the grid; each reaches a
+// little past the block's edge, so the map cuts it back exactly there.
+std::vector<geom::Ring> street_lots(const geom::Cell& block, const ZoneParams& p, Random& rng);
 
-// Seed 000's weighted centre of a block's corners: each weighted by 1 + cos of its angle.
-geom::Vec2 weighted_centre(const std::vector<geom::Vec2>& corners);
-
-// Seed 000's residential lots at corner v1 (between v0 and v2) of a block with this
-// centre: a corner lot and an inside lot, or, where a projection misses, the seed's two
-// special cases; none where both miss. Not yet on the grid.
-std::vector<geom::Ring> corner_lots(geom::Vec2 v0, geom::Vec2 v1, geom::Vec2 v2, geom::Vec2 centre);
-
-// corner_lots at every corner of a block (corners counter-clockwise).
-std::vector<geom::Ring> residential_lots(const std::vector<geom::Vec2>& corners, geom::Vec2 centre);
+// The planned lots and their blocks into the map in one batch; faces then know their
+// planned lot. Returns the lots as they ended up.
+std::vector<Lot> insert_lots(ZoneMap& zone_map, const std::vector<Block>& blocks, const std::vector<PlannedLot>& lots,
+                             const Sketch& sketch);
 
 }  // namespace exacity

@@ -11,14 +11,32 @@ namespace {
 
 using geom::Vec2;
 
-// The edge rows run along: the longest road frontage (or longest edge, for a lot with
-// none, `on_road` false), its direction u, the inward normal n, and the piece's extent
-// along both.
-struct Frontage {
-  Vec2 a, u, n;
-  double t0 = 0, t1 = 0, depth = 0;
-  bool on_road = false;
-};
+int pick(const std::vector<int>& choices, const ModelLibrary& lib, Random& rng) {
+  double total = 0;
+  for (int c : choices) total += lib.models[c].weight;
+  double r = rng.uniform() * total;
+  for (int c : choices)
+    if ((r -= lib.models[c].weight) < 0) return c;
+  return choices.back();
+}
+
+// Centre-to-centre spacing along a row, in model widths (seed 002).
+std::pair<double, double> spacing(const std::string& density) {
+  if (density == "dense") return {1.25, 1.5};
+  if (density == "sparse") return {4, 5};
+  return {2, 3};
+}
+
+Building made(const Model& m, const Placement& p, geom::Ring ring) {
+  Building b;
+  b.placed = p;
+  b.polygon.outer = std::move(ring);
+  b.height = b.eaves = m.height * p.scale;
+  b.roof = "model";
+  return b;
+}
+
+}  // namespace
 
 Frontage principal_frontage(const geom::Cell& piece, int road_kind) {
   auto edges = piece.edges_of_kind(road_kind);
@@ -42,39 +60,12 @@ Frontage principal_frontage(const geom::Cell& piece, int road_kind) {
   return f;
 }
 
-int pick(const std::vector<int>& choices, const ModelLibrary& lib, Random& rng) {
-  double total = 0;
-  for (int c : choices) total += lib.models[c].weight;
-  double r = rng.uniform() * total;
-  for (int c : choices)
-    if ((r -= lib.models[c].weight) < 0) return c;
-  return choices.back();
-}
-
-// Centre-to-centre spacing along a row, in model widths (seed 002).
-std::pair<double, double> spacing(const std::string& density) {
-  if (density == "dense") return {1.25, 1.5};
-  if (density == "sparse") return {4, 5};
-  return {2, 3};
-}
-
 bool fits(const geom::Cell& piece, const geom::Ring& ring, const std::vector<geom::Ring>& taken) {
   if (geom::ring_orientation(ring) != 1 || !piece.holds(ring)) return false;
   for (const geom::Ring& t : taken)
     if (geom::rings_meet(ring, t)) return false;
   return true;
 }
-
-Building made(const Model& m, const Placement& p, geom::Ring ring) {
-  Building b;
-  b.placed = p;
-  b.polygon.outer = std::move(ring);
-  b.height = b.eaves = m.height * p.scale;
-  b.roof = "model";
-  return b;
-}
-
-}  // namespace
 
 geom::Ring placed_outline(const Model& m, const Placement& p) {
   const double c = std::cos(p.angle) * p.scale, s = std::sin(p.angle) * p.scale;
@@ -95,7 +86,7 @@ std::vector<Building> place_models(const geom::Cell& piece, int road_kind, std::
   const Frontage f = principal_frontage(piece, road_kind);
   if (!(f.t1 > f.t0)) return out;
   const double along = std::atan2(f.u.y, f.u.x);
-  auto at = [&](double t, double d) { return Vec2{f.a.x + f.u.x * t + f.n.x * d, f.a.y + f.u.y * t + f.n.y * d}; };
+  auto at = [&](double t, double d) { return f.at(t, d); };
   auto try_place = [&](int model, Placement p) {
     geom::Ring ring = placed_outline(lib.models[model], p);
     if (!fits(piece, ring, taken)) return false;

@@ -13,6 +13,7 @@
 #include "generate/mesh_export.h"
 #include "generate/model_library.h"
 #include "generate/road_network.h"
+#include "generate/statistics.h"
 #include "generate/svg_map.h"
 #include "generate/terrain.h"
 #include "generate/validate.h"
@@ -37,12 +38,10 @@ City build_city(const Sketch& sketch, StageClock& stages) {
   city.network = stages.run("road network", [&] { return grow_road_network(std::move(zone_map), sketch); });
   city.blocks = stages.run("blocks", [&] { return cut_blocks(city.network.map, sketch); });
   city.lots = stages.run("lots", [&] {
-    std::vector<Lot> planned = plan_lots(city.blocks, sketch);
-    insert_lots(city.network.map, city.blocks, planned, sketch);
-    return planned;
+    return insert_lots(city.network.map, city.blocks, plan_lots(city.blocks, sketch), sketch);
   });
   city.buildings = stages.run("buildings", [&] {
-    return place_buildings(city.network.map, city.lots, sketch, city.models(), city.ground());
+    return place_buildings(city.lots, sketch, city.models(), city.ground());
   });
   city.layers = stages.run("vector layers", [&] {
     return extract_layers(city.network.map, city.blocks, city.lots, city.buildings, sketch, city.models());
@@ -119,6 +118,8 @@ GenerateResult write_city(const City& city, const fs::path& dir, StageClock& sta
         {"segments", segments},
         {"junctions_by_degree", junctions},
         {"cells_without_access", network.stats.cells_without_access}}},
+      {"statistics", city_statistics({&layers.zones, &layers.water, &layers.road_areas, &layers.blocks, &layers.lots,
+                                      &layers.buildings, &layers.roads, &sketch})},
       {"validation",
        {{"ok", validation.ok()}, {"problems", validation.problems}, {"widest_sliver_m", validation.widest_sliver}}},
       {"timings_s", stages.seconds},

@@ -12,9 +12,11 @@
 namespace exacity {
 namespace {
 
-// Kinds of cell edges: a road grown in the same region, or anything else. A cell below the
-// top level must reach a road of its region, so every region's road graph is connected.
-constexpr int kEdge = 0, kRoad = 1;
+// Kinds of cell edges: a road grown in the same region, the surface of sketch road r
+// (kSketchRoad + r), or anything else. A cell below the top level must reach a road of its
+// region or a sketch road, so every region's road graph is connected and joins the
+// sketch's roads; a road that stops at a sketch road's surface runs on to its centre line.
+constexpr int kEdge = 0, kRoad = 1, kSketchRoad = 2;
 constexpr int kMaxLevels = 24;
 constexpr int kConnectorTries = 8;
 
@@ -44,8 +46,11 @@ geom::Vec2 ahead(geom::Vec2 p, double degrees, double distance) {
 
 // Grows `branches` roads from the seed. Returns whether one reached a road of the region
 // (always true at the top level, where there are none yet).
+// The centre lines of each sketch road, which grown roads run on to.
+using SketchLines = std::vector<std::vector<geom::Path>>;
+
 bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const ZoneParams& p, int level, double orientation,
-                   double reach, Random& rng, std::vector<geom::Path>& roads) {
+                   double reach, const SketchLines& sketch_lines, Random& rng, std::vector<geom::Path>& roads) {
   const double segment_deviation = std::max(p.segment_deviation - 2.0 * level, 0.0);
   const int max_steps = static_cast<int>(reach / (p.segment_length * std::cos(p.origin_deviation * M_PI / 180))) + 2;
   bool reached_road = level == 0;
@@ -72,7 +77,8 @@ bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const ZoneParams& p, i
     }
     geom::Path road = growth.end();
     if (road.empty()) continue;
-    reached_road |= met == kRoad;
+    reached_road |= met == kRoad || met >= kSketchRoad;
+    if (met >= kSketchRoad) road = geom::extend_to(road, sketch_lines[met - kSketchRoad], reach);
     roads.push_back(std::move(road));
   }
   return reached_road;
@@ -88,13 +94,13 @@ struct CellRoads {
 // are grown again from just inside one of its road edges, the first branch heading
 // straight back to it. Empty when that fails too.
 CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const ZoneParams& p, int level, double orientation,
-                    Random& rng) {
+                    const SketchLines& sketch_lines, Random& rng) {
   const geom::Box b = cell.bounds();
   const double reach = 2 * std::hypot(b.width(), b.height()) + 1;  // past the cell from anywhere in it
   {
     geom::Growth growth(cell, p.segment_length);
     CellRoads grown{seed, {}};
-    if (grow_branches(growth, seed, p, level, orientation, reach, rng, grown.roads)) return grown;
+    if (grow_branches(growth, seed, p, level, orientation, reach, sketch_lines, rng, grown.roads)) return grown;
   }
   auto edges = cell.edges_of_kind(kRoad);
   auto mid = [](const std::pair<geom::Vec2, geom::Vec2>& e) {
@@ -116,7 +122,7 @@ CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const ZoneParams& p
     geom::Growth growth(cell, p.segment_length);
     CellRoads grown{*start, {}};
     double back = std::atan2(m.y - start->y, m.x - start->x) * 180 / M_PI;
-    if (grow_branches(growth, *start, p, level, back, reach, rng, grown.roads)) return grown;
+    if (grow_branches(growth, *start, p, level, back, reach, sketch_lines, rng, grown.roads)) return grown;
   }
   return {seed, {}};
 }
@@ -135,7 +141,10 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
     ZoneType t = f.zone >= 0 ? sketch.zones[f.zone].type : ZoneType::Park;
     bool growable = f.zone >= 0 && grows_roads(t);
     if ((f.cover == Cover::Zone && growable) || (f.cover == Cover::Water && growable && params(t).bridges)) group[l] = 0;
+    if (f.road >= 0 && f.road < zm.sketch_roads && (f.cover == Cover::Road || f.bridge)) kind[l] = kSketchRoad + f.road;
   }
+  SketchLines sketch_lines;
+  for (int r = 0; r < zm.sketch_roads; ++r) sketch_lines.push_back(zm.roads[r].lines);
   std::vector<Work> level_work;
   const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Roads));
   for (geom::Cell& cell : zm.map.cells(group, kind)) {
@@ -176,7 +185,7 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
       const ZoneParams& p = params(g.type);
       if (w.cell.area() <= p.block_area) return;  // small enough to be one block
       Random rng(mix(w.id, 1));
-      CellRoads grown = grow_cell(w.cell, *g.seed, p, level, w.orientation, rng);
+      CellRoads grown = grow_cell(w.cell, *g.seed, p, level, w.orientation, sketch_lines, rng);
       g.seed = grown.seed;
       g.roads = std::move(grown.roads);
       if (g.roads.empty()) {

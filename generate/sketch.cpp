@@ -23,8 +23,18 @@ ZoneParams default_params(ZoneType type) {
     p.block_area = type == ZoneType::Commercial ? 15000 : 30000;
     p.lot_area = type == ZoneType::Commercial ? 1500 : 3000;
   }
-  if (type == ZoneType::Commercial) p.setback = 2, p.min_height = 12, p.max_height = 48;
-  if (type == ZoneType::Industrial) p.setback = 4, p.min_height = 5, p.max_height = 12;
+  if (type == ZoneType::Commercial) {
+    p.setback = 2, p.min_height = 12, p.max_height = 48;
+    p.lot_width = {20, 45}, p.lot_depth = 35;
+    p.building_gap = 3, p.footprint_width = {16, 40}, p.footprint_depth = {14, 28};
+    p.min_footprint_width = 10, p.max_footprint_area = 3000;
+  }
+  if (type == ZoneType::Industrial) {
+    p.setback = 4, p.min_height = 5, p.max_height = 12;
+    p.lot_width = {40, 90}, p.lot_depth = 60;
+    p.building_gap = 8, p.footprint_width = {25, 90}, p.footprint_depth = {20, 60};
+    p.min_footprint_width = 12, p.max_footprint_area = 20000;
+  }
   return p;
 }
 
@@ -272,7 +282,9 @@ class Parser {
     known_keys(j, w, {"block_area", "segment_length", "branches", "jitter", "segment_deviation",
                       "origin_deviation", "road_widths", "min_block_area", "min_block_width",
                       "bridges", "lots", "lot_area", "min_lot_edge", "min_lot_area", "setback", "heights",
-                      "min_footprint_area", "roof", "roof_pitch", "density"});
+                      "min_footprint_area", "roof", "roof_pitch", "density", "lot_width", "lot_depth",
+                      "building_gap", "footprint_width", "footprint_depth", "min_footprint_width",
+                      "max_footprint_area"});
     ZoneParams p = default_params(zt);
     auto set = [&](const char* key, double& field, double min, double max) {
       if (j.contains(key)) field = number(j[key], w + "." + key, min, max);
@@ -299,6 +311,21 @@ class Parser {
     set("min_lot_area", p.min_lot_area, 0, 1e8);
     set("setback", p.setback, 0, 1e3);
     set("min_footprint_area", p.min_footprint_area, 0, 1e8);
+    set("lot_depth", p.lot_depth, 2, 1e4);
+    set("building_gap", p.building_gap, 0, 1e3);
+    set("min_footprint_width", p.min_footprint_width, 1, 1e4);
+    set("max_footprint_area", p.max_footprint_area, 1, 1e8);
+    auto range = [&](const char* key, Range& r, double min, double max, const char* what) {
+      if (!j.contains(key)) return;
+      const json& v = j[key];
+      std::string where = w + "." + key;
+      if (!v.is_array() || v.size() != 2) fail(where, std::string("give [smallest, largest] ") + what);
+      r.min = number(v[0], where, min, max);
+      r.max = number(v[1], where, r.min, max);
+    };
+    range("lot_width", p.lot_width, 2, 1e4, "lot frontage in metres");
+    range("footprint_width", p.footprint_width, 1, 1e4, "footprint width along the street in metres");
+    range("footprint_depth", p.footprint_depth, 1, 1e4, "footprint depth back from the street in metres");
     set("roof_pitch", p.roof_pitch, 1, 75);
     if (j.contains("roof")) {
       const json& r = j["roof"];

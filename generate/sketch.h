@@ -16,6 +16,11 @@
 
 namespace exacity {
 
+struct Range {
+  double min = 0, max = 0;
+  friend bool operator==(const Range&, const Range&) = default;
+};
+
 // Road growth parameters of one zone type (used from the road-network stage on).
 struct ZoneParams {
   double block_area = 12000;        // m²: faces above this are subdivided again
@@ -28,13 +33,22 @@ struct ZoneParams {
   double min_block_area = 200;      // m²: smaller blocks become green space
   double min_block_width = 6;       // m: so do thinner ones (2 x area / perimeter)
   bool bridges = false;             // roads cross heightmap water in this zone, or stop at the shore
-  // Lots: "allocation" (seed 000: corner and inside lots, one inset lot, or four quarters)
-  // or "split" (seed 003: halve perpendicular to the longest edge down to lot_area).
+  // Lots: "allocation" (seed 000 measured from the street: lots side by side along every
+  // road edge of a block, corner lots at its corners, the block's middle left open; four
+  // quarters in industrial blocks) or "split" (seed 003: halve perpendicular to the longest
+  // edge down to lot_area).
   std::string lots = "allocation";
+  Range lot_width{14, 24};          // m: frontage of an allocated lot, drawn per street side
+  double lot_depth = 30;            // m: how far allocated lots reach back from the street
   double lot_area = 600;            // m²: split stops below this
   double min_lot_edge = 3;          // m: allocated lots with a shorter edge are dropped
   double min_lot_area = 20;         // m²: smaller pieces of lots are dropped
-  double setback = 3;               // m: footprints keep this far inside their lot's edges
+  double setback = 3;               // m: footprints stand this far behind the street
+  double building_gap = 4;          // m: between neighbouring footprints, and from the lot's other edges (half)
+  Range footprint_width{8, 14};     // m: along the street
+  Range footprint_depth{9, 14};     // m: back from the street
+  double min_footprint_width = 6;   // m: no footprint narrower than this either way
+  double max_footprint_area = 2000; // m²: no footprint larger
   double min_height = 4, max_height = 12;  // m: near the city centre; half that at its edge
   double min_footprint_area = 30;   // m²: smaller footprints get no building
   // "auto": gabled on near-rectangular residential footprints, hipped on the others, flat

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numeric>
+#include <set>
 #include <unordered_map>
 
 #include "generate/drawn_zones.h"
@@ -10,6 +11,7 @@
 #include "geom/measure.h"
 #include "geom/planar_map.h"
 #include "geom/polygon_check.h"
+#include "geom/segment_index.h"
 
 namespace exacity {
 namespace fs = std::filesystem;
@@ -34,8 +36,7 @@ struct PolygonRef {
   bool green = false;
   int id = -1;       // the feature's id
   int block = -1;    // for lots: the block it names
-  bool frontage = false;  // for lots: must touch a road area
-  int lot = -1;      // for lots: their lot; for buildings: the lot they stand on
+  int lot = -1;      // for lots: their id; for buildings: the lot they stand on
 };
 
 std::string near(geom::Vec2 p) { return " near (" + format_number(p.x) + ", " + format_number(p.y) + ")"; }
@@ -69,8 +70,9 @@ void check_polygons(Checker& c, const Layer& layer, std::vector<PolygonRef>& ref
                 : layer.name == "buildings" ? Kind::Building
                 : f.properties.value("bridge", false) ? Kind::Bridge
                                                       : Kind::Road;
-    refs.push_back({kind, name, zone, f.properties.value("green", false), f.properties.value("id", -1),
-                    f.properties.value("block", -1), f.properties.value("frontage", false), f.properties.value("lot", -1)});
+    const int id = f.properties.value("id", -1);
+    refs.push_back({kind, name, zone, f.properties.value("green", false), id, f.properties.value("block", -1),
+                    kind == Kind::Lot ? id : f.properties.value("lot", -1)});
     polygons.push_back(&f.polygon);
   }
 }
@@ -173,8 +175,8 @@ void check_tiling(Checker& c, const Sketch& sketch, const std::vector<PolygonRef
     c.problem(messages[m] + (map.point_near_label(static_cast<int>(m), at) ? near(at) : ""));
   }
 
-  // Two rings of one polygon may touch at a vertex but not run along each other. A lot
-  // that needs frontage shares an edge with a road area.
+  // Two rings of one polygon may touch at a vertex but not run along each other. Every lot
+  // shares an edge with a road area.
   std::vector<bool> fronts(P, false);
   map.for_each_edge([&](const std::vector<geom::CurveTag>& tags, geom::Vec2 a, geom::Vec2) {
     bool road = false;
@@ -189,86 +191,49 @@ void check_tiling(Checker& c, const Sketch& sketch, const std::vector<PolygonRef
     }
   });
   for (int p = 0; p < P; ++p)
-    if (refs[p].kind == Kind::Lot && refs[p].frontage && !fronts[p]) c.problem(refs[p].name + " needs road frontage and has none");
+    if (refs[p].kind == Kind::Lot && !fronts[p]) c.problem(refs[p].name + " touches no road area");
 }
 
-// Segments in buckets, each with an owner, to find those near a point.
-class SegmentIndex {
- public:
-  explicit SegmentIndex(double bucket) : bucket_(bucket) {}
-  void add(geom::Vec2 a, geom::Vec2 b, int owner = -1) {
-    std::size_t id = segments_.size();
-    segments_.push_back({a, b});
-    owners_.push_back(owner);
-    for (long j = key(std::min(a.y, b.y)); j <= key(std::max(a.y, b.y)); ++j)
-      for (long i = key(std::min(a.x, b.x)); i <= key(std::max(a.x, b.x)); ++i) buckets_[{i, j}].push_back(id);
-  }
-  void add_polygon(const geom::Polygon& p, int owner = -1) {
-    for (const geom::Ring* r : rings(p))
-      for (std::size_t i = 0; i < r->size(); ++i) add((*r)[i], (*r)[(i + 1) % r->size()], owner);
-  }
-  // Whether a segment not owned by `except` passes within `tolerance` of p.
-  bool near(geom::Vec2 p, double tolerance, int except = -2) const {
-    auto it = buckets_.find({key(p.x), key(p.y)});
-    if (it == buckets_.end()) return false;
-    for (std::size_t id : it->second) {
-      if (owners_[id] == except) continue;
-      auto [a, b] = segments_[id];
-      double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
-      double t = len2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0) : 0;
-      if (std::hypot(a.x + t * dx - p.x, a.y + t * dy - p.y) <= tolerance) return true;
-    }
-    return false;
-  }
-
- private:
-  long key(double v) const { return static_cast<long>(std::floor(v / bucket_)); }
-  struct PairHash {
-    std::size_t operator()(const std::pair<long, long>& k) const { return std::hash<long>()(k.first * 1000003 ^ k.second); }
-  };
-  static std::vector<const geom::Ring*> rings(const geom::Polygon& p) {
-    std::vector<const geom::Ring*> r{&p.outer};
-    for (const auto& h : p.holes) r.push_back(&h);
-    return r;
-  }
-  double bucket_;
-  std::vector<std::pair<geom::Vec2, geom::Vec2>> segments_;
-  std::vector<int> owners_;
-  std::unordered_map<std::pair<long, long>, std::vector<std::size_t>, PairHash> buckets_;
-};
-
-// Every grown road ends on another road (at one of its vertices, exactly) or on the
-// region's edge (a drawn zone ring, water, or another road's area); each region's grown
-// roads form one connected graph.
-void check_roads(Checker& c, const Sketch& sketch, const Layer& roads, const Layer& water, const Layer& road_areas) {
+// The centre lines are a noded network: two of them meet only at a vertex of both. Every
+// end of a grown road is a vertex of another centre line (a junction) or lies on the edge
+// of the built city (a drawn zone's ring or water). Each region's roads, with the sketch's
+// roads they meet, form one connected graph.
+void check_roads(Checker& c, const Sketch& sketch, const Layer& roads, const Layer& water) {
   struct PointHash {
     std::size_t operator()(const geom::Vec2& p) const { return std::hash<double>()(p.x) * 31 ^ std::hash<double>()(p.y); }
   };
-  std::unordered_map<geom::Vec2, std::vector<int>, PointHash> roads_at;  // vertex -> roads through it
-  std::map<int, std::vector<const VectorFeature*>> pieces;                // road -> its pieces in order
-  for (const auto& f : roads.features) {
-    int r = f.properties.value("road", -1);
-    pieces[r].push_back(&f);
-    for (auto p : f.line) roads_at[p].push_back(r);
-  }
-  // The region's edge: drawn zone rings, water, and road areas (each owned by its road).
-  SegmentIndex edges(16.0);
+  const auto& features = roads.features;
+  geom::PlanarMap map;
+  for (std::size_t i = 0; i < features.size(); ++i) map.add_polyline(features[i].line, static_cast<int>(i));
+  map.insert_batch();
+  for (const auto& [tag, pieces] : map.polyline_pieces())
+    if (pieces.size() != features[tag].line.size() - 1)
+      for (std::size_t k = 1; k < pieces.size(); ++k)
+        if (pieces[k].segment == pieces[k - 1].segment) {
+          c.problem("roads.geojson: road " + std::to_string(features[tag].properties.value("id", -1)) +
+                    " meets another centre line between its vertices" + near(pieces[k].from));
+          break;
+        }
+
+  std::unordered_map<geom::Vec2, std::vector<int>, PointHash> roads_at;  // vertex -> features through it
+  for (std::size_t i = 0; i < features.size(); ++i)
+    for (auto p : features[i].line) roads_at[p].push_back(static_cast<int>(i));
+  geom::SegmentIndex edges(16.0);
   for (const auto& z : sketch.zones)
     for (const auto& p : z.polygons) edges.add_polygon(p);
   for (const auto& f : water.features) edges.add_polygon(f.polygon);
-  for (const auto& f : road_areas.features) edges.add_polygon(f.polygon, f.properties.value("road", -1));
-
-  for (const auto& [r, list] : pieces) {
-    if (list.front()->properties["level"].is_null()) continue;  // drawn in the sketch
-    for (geom::Vec2 end : {list.front()->line.front(), list.back()->line.back()}) {
-      bool on_road = false;
-      for (int o : roads_at[end]) on_road |= o != r;
-      if (!on_road && !edges.near(end, kRounding, r))
-        c.problem("roads.geojson: road " + std::to_string(r) + " ends in the open" + near(end));
+  for (std::size_t i = 0; i < features.size(); ++i) {
+    const VectorFeature& f = features[i];
+    if (f.properties["level"].is_null()) continue;  // drawn in the sketch
+    for (geom::Vec2 end : {f.line.front(), f.line.back()}) {
+      bool junction = false;
+      for (int o : roads_at[end]) junction |= o != static_cast<int>(i);
+      if (!junction && !edges.near(end, kRounding))
+        c.problem("roads.geojson: road " + std::to_string(f.properties.value("id", -1)) + " ends in the open" + near(end));
     }
   }
 
-  // Connectivity: union-find over vertices, per region.
+  // Connectivity: union-find over vertices.
   std::unordered_map<geom::Vec2, int, PointHash> node;
   std::vector<int> parent;
   auto id = [&](geom::Vec2 p) {
@@ -278,21 +243,32 @@ void check_roads(Checker& c, const Sketch& sketch, const Layer& roads, const Lay
   };
   std::function<int(int)> find = [&](int x) { return parent[x] == x ? x : parent[x] = find(parent[x]); };
   std::map<int, std::vector<int>> region_nodes;
-  for (const auto& [r, list] : pieces) {
-    const auto& props = list.front()->properties;
-    if (props["region"].is_null()) continue;
-    for (const auto* f : list)
-      for (std::size_t i = 0; i < f->line.size(); ++i) {
-        int a = id(f->line[i]);
-        region_nodes[props["region"].get<int>()].push_back(a);
-        if (i > 0) parent[find(a)] = find(id(f->line[i - 1]));
-      }
-  }
+  for (const auto& f : features)
+    for (std::size_t i = 0; i < f.line.size(); ++i) {
+      int a = id(f.line[i]);
+      if (!f.properties["region"].is_null()) region_nodes[f.properties["region"].get<int>()].push_back(a);
+      if (i > 0) parent[find(a)] = find(id(f.line[i - 1]));
+    }
   for (const auto& [region, nodes] : region_nodes) {
     int root = find(nodes.front());
     for (int n : nodes)
       if (find(n) != root) {
         c.problem("roads.geojson: the roads of region " + std::to_string(region) + " are not connected");
+        break;
+      }
+  }
+}
+
+// Every reference names the id of a feature of the layer it refers to.
+void check_references(Checker& c, const Layer& from, const char* key, const Layer& to) {
+  std::set<int> ids;
+  for (const auto& f : to.features) ids.insert(f.properties.value("id", -1));
+  for (std::size_t i = 0; i < from.features.size(); ++i) {
+    const auto& value = from.features[i].properties.value(key, nlohmann::ordered_json());
+    for (const auto& v : value.is_array() ? value : nlohmann::ordered_json::array({value}))
+      if (!v.is_number_integer() || !ids.count(v.get<int>())) {
+        c.problem(from.name + ".geojson features[" + std::to_string(i) + "]: \"" + key + "\" " + v.dump() +
+                  " names no feature of " + to.name + ".geojson");
         break;
       }
   }
@@ -330,13 +306,23 @@ Validation validate_output(const fs::path& dir) {
   v.features["roads"] = static_cast<int>(roads.features.size());
   for (std::size_t i = 0; i < roads.features.size(); ++i) {
     const VectorFeature& f = roads.features[i];
-    for (const char* key : {"id", "road", "class", "width", "level", "region", "bridge"})
+    for (const char* key : {"id", "class", "width", "level", "region", "bridge"})
       if (!f.properties.contains(key)) c.problem("roads.geojson features[" + std::to_string(i) + "]: no \"" + key + "\"");
     if (f.line.size() < 2) c.problem("roads.geojson features[" + std::to_string(i) + "]: fewer than 2 positions");
   }
+  for (const Layer* l : {&zones, &water, &road_areas, &blocks, &lots, &buildings, &roads}) {
+    std::set<int> ids;
+    for (std::size_t i = 0; i < l->features.size(); ++i)
+      if (!ids.insert(l->features[i].properties.value("id", -1)).second)
+        c.problem(l->name + ".geojson features[" + std::to_string(i) + "]: its id is not unique");
+  }
+  check_references(c, lots, "block", blocks);
+  check_references(c, buildings, "lot", lots);
+  check_references(c, road_areas, "road", roads);
+  check_references(c, blocks, "roads", roads);
   if (!v.ok()) return v;
   check_tiling(c, sketch, refs, polygons);
-  check_roads(c, sketch, roads, water, road_areas);
+  check_roads(c, sketch, roads, water);
   return v;
 }
 

@@ -1,5 +1,7 @@
 #include "generate/vector_layers.h"
 
+#include <array>
+
 #include "geom/measure.h"
 
 namespace exacity {
@@ -41,46 +43,10 @@ CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, c
            [&](int, geom::Polygon p) { add_polygon(out.water, {}, std::move(p)); });
 
   const int roads = static_cast<int>(zm.roads.size());
-  dissolve(zm, 2 * roads,
-           [](const FaceLabel& l) { return l.road >= 0 && (l.cover == Cover::Road || l.bridge) ? 2 * l.road + l.bridge : -1; },
-           [&](int g, geom::Polygon p) {
-             add_polygon(out.road_areas, {{"road", g / 2}, {"bridge", g % 2 == 1}}, std::move(p));
-           });
-
-  // Blocks from the final map, so they share every vertex with the other layers (lots add
-  // vertices on block edges); before lots are in the map, from the blocks themselves.
-  auto block_properties = [&](const Block& b) {
-    return ordered_json{{"zone", name(b.zone)}, {"green", b.green}, {"roads", b.roads}};
-  };
-  if (zm.block_base >= 0) {
-    dissolve(zm, static_cast<int>(blocks.size()), [](const FaceLabel& l) { return l.block; },
-             [&](int g, geom::Polygon p) { add_polygon(out.blocks, block_properties(blocks[g]), std::move(p)); });
-  } else {
-    for (const Block& b : blocks) add_polygon(out.blocks, block_properties(b), b.polygon);
-  }
-
-  // Lots: each piece of a lot left on its block, but pieces under the zone's minimum.
-  dissolve(zm, static_cast<int>(lots.size()), [](const FaceLabel& l) { return l.lot; },
-           [&](int g, geom::Polygon p) {
-             const Lot& lot = lots[g];
-             if (geom::area(p) < sketch.zone_params.at(lot.zone).min_lot_area) return;
-             add_polygon(out.lots, {{"lot", g}, {"block", lot.block}, {"zone", name(lot.zone)}, {"frontage", lot.frontage}},
-                         std::move(p));
-           });
-
-  for (const Building& b : buildings) {
-    nlohmann::ordered_json model = nullptr, kind = "building";
-    if (b.placed.model >= 0) {
-      const Model& m = library->models[b.placed.model];
-      model = m.name;
-      kind = m.kind == ModelKind::Tree ? "tree" : m.kind == ModelKind::Street ? "street" : "building";
-    }
-    add_polygon(out.buildings,
-                {{"lot", b.lot}, {"zone", name(b.zone)}, {"height", b.height}, {"roof", b.roof}, {"model", model}, {"kind", kind}},
-                b.polygon);
-  }
-
   // Centre lines with every junction as a vertex, cut where they go on or off a bridge.
+  // A road's first centre-line feature on land and on a bridge: what its areas and the
+  // blocks along it name.
+  std::vector<std::array<int, 2>> first_feature(zm.roads.size(), {-1, -1});
   auto pieces_of = zm.map.polyline_pieces();
   for (int r = 0; r < roads; ++r) {
     const MapRoad& road = zm.roads[r];
@@ -89,8 +55,10 @@ CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, c
       bool run_bridge = false;
       auto flush = [&] {
         if (run.size() < 2) return;
-        ordered_json props{{"id", static_cast<int>(out.roads.features.size())}, {"road", r},
-                           {"class", name(road.road_class)}, {"width", road.width}, {"level", or_null(road.level)},
+        const int id = static_cast<int>(out.roads.features.size());
+        int& first = first_feature[r][run_bridge];
+        if (first < 0) first = id;
+        ordered_json props{{"id", id}, {"class", name(road.road_class)}, {"width", road.width}, {"level", or_null(road.level)},
                            {"region", or_null(road.region)}, {"bridge", run_bridge}};
         out.roads.features.push_back({std::move(props), {}, std::move(run)});
         run.clear();
@@ -105,6 +73,48 @@ CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, c
       flush();
     }
   }
+  auto road_id = [&](int r, bool bridge) {
+    const auto& f = first_feature[r];
+    return f[bridge] >= 0 ? f[bridge] : f[!bridge];
+  };
+  dissolve(zm, 2 * roads,
+           [](const FaceLabel& l) { return l.road >= 0 && (l.cover == Cover::Road || l.bridge) ? 2 * l.road + l.bridge : -1; },
+           [&](int g, geom::Polygon p) {
+             add_polygon(out.road_areas, {{"road", or_null(road_id(g / 2, g % 2))}, {"bridge", g % 2 == 1}}, std::move(p));
+           });
+
+  // Blocks from the final map, so they share every vertex with the other layers (lots add
+  // vertices on block edges); before lots are in the map, from the blocks themselves.
+  // A block's id is its index, which lots name.
+  auto block_properties = [&](int g) {
+    const Block& b = blocks[g];
+    ordered_json ids = ordered_json::array();
+    for (int r : b.roads) ids.push_back(or_null(road_id(r, false)));
+    return ordered_json{{"id", g}, {"zone", name(b.zone)}, {"green", b.green}, {"roads", ids}};
+  };
+  if (zm.block_base >= 0) {
+    dissolve(zm, static_cast<int>(blocks.size()), [](const FaceLabel& l) { return l.block; },
+             [&](int g, geom::Polygon p) { add_polygon(out.blocks, block_properties(g), std::move(p)); });
+  } else {
+    for (std::size_t g = 0; g < blocks.size(); ++g) add_polygon(out.blocks, block_properties(static_cast<int>(g)), blocks[g].polygon);
+  }
+
+  // Lots as they ended up in the map; a lot's id is its index, which buildings name.
+  for (const Lot& lot : lots)
+    add_polygon(out.lots, {{"block", lot.block}, {"zone", name(lot.zone)}}, lot.cell.to_plain());
+
+  for (const Building& b : buildings) {
+    nlohmann::ordered_json model = nullptr, kind = "building";
+    if (b.placed.model >= 0) {
+      const Model& m = library->models[b.placed.model];
+      model = m.name;
+      kind = m.kind == ModelKind::Tree ? "tree" : m.kind == ModelKind::Street ? "street" : "building";
+    }
+    add_polygon(out.buildings,
+                {{"lot", b.lot}, {"zone", name(b.zone)}, {"height", b.height}, {"roof", b.roof}, {"model", model}, {"kind", kind}},
+                b.polygon);
+  }
+
   return out;
 }
 

@@ -155,6 +155,27 @@ std::vector<std::pair<Vec2, Vec2>> Cell::edges_of_kind(int kind) const {
   return edges;
 }
 
+std::vector<KindedRing> Cell::kinded_rings() const {
+  std::vector<KindedRing> rings;
+  auto visit = [&](const KindRing& r) {
+    KindedRing out;
+    for (std::size_t i = 0; i < r.points.size(); ++i) {
+      Vec2 p = exact::to_plain(r.points[i]);
+      if (!out.points.empty() && out.points.back() == p) {
+        out.kinds.back() = r.kinds[i];  // the edge that rounded to nothing gives way to the next
+        continue;
+      }
+      out.points.push_back(p);
+      out.kinds.push_back(r.kinds[i]);
+    }
+    while (out.points.size() > 1 && out.points.front() == out.points.back()) out.points.pop_back(), out.kinds.pop_back();
+    if (out.points.size() >= 3) rings.push_back(std::move(out));
+  };
+  visit(impl_->outer);
+  for (const auto& h : impl_->holes) visit(h);
+  return rings;
+}
+
 Polygon Cell::to_plain() const {
   Polygon p{exact::round_ring(impl_->outer.points), {}};
   if (p.outer.empty()) return p;
@@ -179,6 +200,44 @@ std::vector<int> Cell::edge_kinds() const {
   std::sort(kinds.begin(), kinds.end());
   kinds.erase(std::unique(kinds.begin(), kinds.end()), kinds.end());
   return kinds;
+}
+
+Path extend_to(const Path& road, const std::vector<Path>& targets, double reach) {
+  const auto& pts = road.exact().points;
+  if (pts.size() < 2) return road;
+  const Point &p = pts[pts.size() - 2], &q = pts.back();
+  // The far end in doubles only bounds the search; the point found lies exactly on the line pq.
+  Vec2 a = exact::to_plain(p), b = exact::to_plain(q);
+  double len = std::hypot(b.x - a.x, b.y - a.y);
+  if (len == 0) return road;
+  const exact::Line line(p, q);
+  const Box ray_box = [&] {
+    Box box = Box::none();
+    box.add(b);
+    box.add(Vec2{b.x + (b.x - a.x) / len * reach, b.y + (b.y - a.y) / len * reach});
+    return box;
+  }();
+  std::optional<Point> best;
+  for (const Path& target : targets) {
+    const auto& t = target.exact().points;
+    for (std::size_t i = 0; i + 1 < t.size(); ++i) {
+      const Segment s(t[i], t[i + 1]);
+      CGAL::Bbox_2 sb = s.bbox();
+      if (sb.xmax() < ray_box.min_x - 1 || sb.xmin() > ray_box.max_x + 1 || sb.ymax() < ray_box.min_y - 1 ||
+          sb.ymin() > ray_box.max_y + 1)
+        continue;
+      auto meet = CGAL::intersection(line, s);
+      if (!meet) continue;
+      const Point* x = boost::get<Point>(&*meet);
+      if (!x || *x == q || CGAL::angle(p, q, *x) != CGAL::OBTUSE) continue;  // only ahead of q
+      if (CGAL::squared_distance(q, *x) > exact::FT(reach * reach)) continue;
+      if (!best || CGAL::has_smaller_distance_to_point(q, *x, *best)) best = *x;
+    }
+  }
+  if (!best) return road;
+  auto impl = std::make_shared<Path::Impl>(road.exact());
+  impl->points.push_back(*best);
+  return Path(std::move(impl));
 }
 
 // --- Growth -------------------------------------------------------------------------

@@ -32,6 +32,13 @@ class Path {
   std::shared_ptr<const Impl> impl_;
 };
 
+// A ring rounded to doubles, the interior on its left, with a kind per edge:
+// kinds[i] belongs to the edge points[i] -> points[i + 1].
+struct KindedRing {
+  Ring points;
+  std::vector<int> kinds;
+};
+
 class Cell {
  public:
   struct Impl;
@@ -54,6 +61,8 @@ class Cell {
   std::vector<Vec2> corners() const;
   // The kinds of the boundary's edges, each once, sorted.
   std::vector<int> edge_kinds() const;
+  // The outer ring, then the holes, rounded; edges that round to nothing are left out.
+  std::vector<KindedRing> kinded_rings() const;
   // Boundary edges of the given kind, rounded.
   std::vector<std::pair<Vec2, Vec2>> edges_of_kind(int kind) const;
   // Rounded as exact::round_ring does; an empty outer ring when it collapses.
@@ -91,6 +100,11 @@ class Growth {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// The road with its last segment carried on along its own line to the first point where it
+// meets one of `targets` within `reach` metres past its end (a grown road running on to the
+// centre line of the road whose surface it stopped at); unchanged when it meets none.
+Path extend_to(const Path& road, const std::vector<Path>& targets, double reach);
 
 // The cell less a band of width `setback` inside every boundary edge (DESIGN.md rule 3:
 // each band's inner side runs through two offset points rounded to the grid); the parts

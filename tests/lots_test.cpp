@@ -16,14 +16,6 @@ using geom::Vec2;
 
 namespace {
 
-void expect_ring(const geom::Ring& got, const geom::Ring& want) {
-  ASSERT_EQ(got.size(), want.size());
-  for (std::size_t i = 0; i < got.size(); ++i) {
-    EXPECT_NEAR(got[i].x, want[i].x, 1e-9) << "vertex " << i;
-    EXPECT_NEAR(got[i].y, want[i].y, 1e-9) << "vertex " << i;
-  }
-}
-
 Validation generate_and_validate(const std::string& name, const std::string& text, nlohmann::ordered_json* report = nullptr) {
   auto dir = testing_util::temp_dir("lots-" + name);
   std::ofstream(dir / "in.geojson") << text;
@@ -34,52 +26,6 @@ Validation generate_and_validate(const std::string& name, const std::string& tex
 }
 
 }  // namespace
-
-TEST(Lots, RegularCornerGivesACornerLotAndAnInsideLot) {
-  // Corner (100, 0) of the square (0,0)-(100,100), centre (50, 50).
-  auto lots = corner_lots({0, 0}, {100, 0}, {100, 100}, {50, 50});
-  ASSERT_EQ(lots.size(), 2u);
-  expect_ring(lots[0], {{60, 5}, {95, 5}, {95, 40}, {60, 40}});   // p4 on p0p1, p1, p4 on p1p2, p4
-  expect_ring(lots[1], {{95, 40}, {95, 60}, {60, 60}, {60, 40}});  // p4 on p1p2, p3 on p1p2, p3, p4
-}
-
-TEST(Lots, CornerThatCannotBeProjectedGivesTwoInsideLots) {
-  // p4 = (30, 28) falls beyond p0p1 = (93,3)-(30,21): seed 000's first special case.
-  auto lots = corner_lots({100, 0}, {30, 20}, {0, 100}, {30, 30});
-  ASSERT_EQ(lots.size(), 2u);
-  expect_ring(lots[0], {{27.698630136986303, 27.136986301369863}, {42.15094339622642, 17.528301886792452}, {44, 24}, {30, 28}});
-  expect_ring(lots[1], {{27.698630136986303, 27.136986301369863}, {21.698630136986303, 43.13698630136986}, {24, 44}, {30, 28}});
-}
-
-TEST(Lots, InsideThatCannotBeProjectedMovesP3OntoTheOtherEdge) {
-  // p4 = (54, 20) falls beyond p1p2 = (33,20)-(6,92): seed 000's second special case.
-  auto lots = corner_lots({100, 0}, {30, 20}, {0, 100}, {60, 20});
-  ASSERT_EQ(lots.size(), 2u);
-  expect_ring(lots[0], {{52.41509433962264, 14.452830188679245}, {42.64150943396226, 17.245283018867923}, {48, 36}, {54, 20}});
-  expect_ring(lots[1], {{42.64150943396226, 17.245283018867923}, {33, 20}, {6, 92}, {48, 36}});
-}
-
-TEST(Lots, NeighbouringCornersShareTheirLotEdges) {
-  std::vector<Vec2> square{{0, 0}, {100, 0}, {100, 100}, {0, 100}};
-  auto lots = residential_lots(square, weighted_centre(square));
-  ASSERT_EQ(lots.size(), 8u);
-  // The inside lot of one corner ends where the next corner lot begins.
-  EXPECT_EQ(lots[1][1], lots[2][0]);
-  EXPECT_EQ(lots[1][2], lots[2][3]);
-}
-
-TEST(Lots, WeightedCentreIgnoresVerticesInLine) {
-  // A 100 x 100 square with four extra vertices along its top edge (seed 000's figure 8):
-  // the plain mean is pulled up, the weighted centre of the corners is not.
-  geom::PlanarMap map;
-  map.add_ring({{0, 0}, {100, 0}, {100, 100}, {80, 100}, {60, 100}, {40, 100}, {20, 100}, {0, 100}}, 0);
-  map.insert_batch();
-  map.label_faces([](const geom::Windings& w) { return geom::winding_of(w, 0) ? 1 : 0; });
-  geom::Cell block = map.cells({-1, 0}, {0, 0})[0];
-  auto corners = block.corners();
-  ASSERT_EQ(corners.size(), 4u);
-  EXPECT_EQ(weighted_centre(corners), (Vec2{50, 50}));
-}
 
 TEST(Lots, CitiesWithEveryStrategyValidate) {
   auto zone = [](const std::string& type, double x0, double x1) {
