@@ -17,8 +17,10 @@ namespace {
 // region or a sketch road, so every region's road graph is connected and joins the
 // sketch's roads; a road that stops at a sketch road's surface runs on to its centre line.
 constexpr int kEdge = 0, kRoad = 1, kSketchRoad = 2;
-constexpr int kMaxLevels = 24;
+constexpr int kMaxLevels = 64;  // a long corridor is cut a block or so per level
 constexpr int kConnectorTries = 8;
+constexpr int kMaxStalls = 4;        // regrowths of a cell that the roads failed to divide
+constexpr int kSeedCandidates = 48;  // points tried for a cell's seed
 
 // A cell waiting to be grown.
 struct Work {
@@ -27,7 +29,36 @@ struct Work {
   double orientation;  // degrees
   int region;
   ZoneType type;       // the parent's, until the seed's face tells
+  int stalls = 0;      // times in a row its roads failed to divide it
 };
+
+// Where a cell's roads start: the deepest of some points inside it (the farthest from its
+// boundary), so a seed sits in the middle of a corridor or an arm rather than at the
+// centroid, which a U, a ring or a spiral leaves outside or against an edge.
+std::optional<geom::Vec2> seed_point(const geom::Cell& cell, Random& rng) {
+  const std::vector<geom::KindedRing> rings = cell.kinded_rings();
+  auto depth = [&](geom::Vec2 p) {
+    double d = INFINITY;
+    for (const auto& r : rings)
+      for (std::size_t i = 0, n = r.points.size(); i < n; ++i) {
+        geom::Vec2 a = r.points[i], b = r.points[(i + 1) % n];
+        double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
+        double t = len2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0) : 0;
+        d = std::min(d, std::hypot(a.x + t * dx - p.x, a.y + t * dy - p.y));
+      }
+    return d;
+  };
+  std::optional<geom::Vec2> best = cell.point_inside_near(cell.centroid());
+  double best_depth = best ? depth(*best) : -1;
+  const geom::Box b = cell.bounds();
+  for (int i = 0; i < kSeedCandidates; ++i) {
+    geom::Vec2 p = geom::snap(geom::Vec2{rng.uniform(b.min_x, b.max_x), rng.uniform(b.min_y, b.max_y)});
+    if (!cell.contains(p)) continue;
+    double d = depth(p);
+    if (d > best_depth) best = p, best_depth = d;
+  }
+  return best;
+}
 
 // What growing one cell gave.
 struct Grown {
@@ -165,7 +196,8 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
     std::vector<Grown> grown(level_work.size());
     std::vector<geom::Vec2> seed_points;
     for (std::size_t i = 0; i < level_work.size(); ++i) {
-      grown[i].seed = level_work[i].cell.point_inside_near(level_work[i].cell.centroid());
+      Random seed_rng(mix(level_work[i].id, 3 + level_work[i].stalls));
+      grown[i].seed = seed_point(level_work[i].cell, seed_rng);
       if (grown[i].seed) seed_points.push_back(*grown[i].seed);
     }
     // The zone type at each seed, all found in one sweep.
@@ -193,14 +225,20 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
         return;
       }
       std::vector<geom::Cell> parts = geom::split_cell(w.cell, g.roads, kRoad);
-      if (parts.size() < 2) return;  // the roads did not divide it: stop here
       for (std::size_t k = 0; k < parts.size(); ++k) {
-        // Small enough, or hardly smaller than the cell (the roads only shaved it): done.
-        if (parts[k].area() <= p.block_area || parts[k].area() > 0.95 * w.cell.area()) continue;
+        if (parts[k].area() <= p.block_area) continue;  // small enough to be one block
+        // Hardly smaller than the cell (the roads only shaved it): grown again from
+        // another seed, a few times at most. Cutting off a quarter block is progress, so a
+        // long corridor is grown on however little of it each cut takes.
+        const double taken = w.cell.area() - parts[k].area();
+        const bool shaved = taken < std::min(0.05 * w.cell.area(), 0.25 * p.block_area);
+        const int stalls = parts.size() < 2 || shaved ? w.stalls + 1 : 0;
+        if (stalls > kMaxStalls) continue;
         std::uint64_t id = mix(w.id, k + 2);
         Random part_rng(id);
         double jitter = p.jitter / (level + 1);
-        g.parts.push_back({std::move(parts[k]), id, w.orientation + part_rng.uniform(-jitter, jitter), w.region, g.type});
+        g.parts.push_back(
+            {std::move(parts[k]), id, w.orientation + part_rng.uniform(-jitter, jitter), w.region, g.type, stalls});
       }
     });
 
