@@ -30,6 +30,7 @@ struct Work {
   int region;
   ZoneType type;       // the parent's, until the seed's face tells
   int stalls = 0;      // times in a row its roads failed to divide it
+  bool top = true;     // a whole region, with no roads of its own yet to reach
 };
 
 // Where a cell's roads start: the deepest of some points inside it (the farthest from its
@@ -75,18 +76,22 @@ geom::Vec2 ahead(geom::Vec2 p, double degrees, double distance) {
   return geom::snap(geom::Vec2{p.x + distance * std::cos(t), p.y + distance * std::sin(t)});
 }
 
-// Grows `branches` roads from the seed. Returns whether one reached a road of the region
-// (always true at the top level, where there are none yet).
+// Grows `branches` roads from the seed. Returns whether one reached a road (of the region,
+// or of the sketch); always true when `free`, for a cell with no road to reach.
 // The centre lines of each sketch road, which grown roads run on to.
 using SketchLines = std::vector<std::vector<geom::Path>>;
 
-bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const ZoneParams& p, int level, double orientation,
-                   double reach, const SketchLines& sketch_lines, Random& rng, std::vector<geom::Path>& roads) {
+// `across_only`: only the branches within 45 degrees of `orientation` or its opposite.
+bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const ZoneParams& p, int level, bool free, double orientation,
+                   bool across_only, double reach, const SketchLines& sketch_lines, Random& rng,
+                   std::vector<geom::Path>& roads) {
   const double segment_deviation = std::max(p.segment_deviation - 2.0 * level, 0.0);
   const int max_steps = static_cast<int>(reach / (p.segment_length * std::cos(p.origin_deviation * M_PI / 180))) + 2;
-  bool reached_road = level == 0;
+  bool reached_road = free;
   for (int i = 0; i < p.branches; ++i) {
     const double alpha = orientation + 360.0 * i / p.branches;
+    const double off_axis = std::fmod(360.0 * i / p.branches, 180.0);
+    if (across_only && off_axis > 45 && off_axis < 135) continue;
     growth.begin(seed);
     int met;
     if (segment_deviation == 0) {
@@ -120,20 +125,60 @@ struct CellRoads {
   std::vector<geom::Path> roads;
 };
 
-// The roads of one cell, grown from its seed. Below the top level they must reach a road
-// of the region; when none does (a concave cell can hide its roads from the seed), they
-// are grown again from just inside one of its road edges, the first branch heading
-// straight back to it. Empty when that fails too.
-CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const ZoneParams& p, int level, double orientation,
+// A cell much longer than wide, and narrow for its zone: roads along it would only cut it
+// into slivers. Its long axis from the second moments of its outer ring (a choice, made
+// in doubles); nullopt for a cell that is no such strip.
+std::optional<double> strip_axis(const geom::Cell& cell, const ZoneParams& p) {
+  const geom::Ring ring = cell.to_plain().outer;
+  if (ring.size() < 3) return std::nullopt;
+  const geom::Vec2 o = ring[0];
+  double a = 0, cx = 0, cy = 0, xx = 0, yy = 0, xy = 0;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    geom::Vec2 u{ring[i].x - o.x, ring[i].y - o.y}, v{ring[(i + 1) % ring.size()].x - o.x, ring[(i + 1) % ring.size()].y - o.y};
+    double c = u.x * v.y - v.x * u.y;
+    a += c / 2, cx += (u.x + v.x) * c / 6, cy += (u.y + v.y) * c / 6;
+    xx += (u.x * u.x + u.x * v.x + v.x * v.x) * c / 12, yy += (u.y * u.y + u.y * v.y + v.y * v.y) * c / 12;
+    xy += (u.x * v.y + 2 * u.x * u.y + 2 * v.x * v.y + v.x * u.y) * c / 24;
+  }
+  if (a <= 0) return std::nullopt;
+  cx /= a, cy /= a;
+  xx = xx / a - cx * cx, yy = yy / a - cy * cy, xy = xy / a - cx * cy;
+  const double mean = (xx + yy) / 2, spread = std::hypot((xx - yy) / 2, xy);
+  const double length = std::sqrt(12 * (mean + spread)), width = std::sqrt(12 * std::max(mean - spread, 0.0));
+  if (width > 1.5 * std::sqrt(p.block_area) || length < 2 * width) return std::nullopt;
+  return std::atan2(mean + spread - xx, xy) * 180 / M_PI;  // the eigenvector of the larger moment
+}
+
+// The edges a cell's roads must reach: below the top level its region's roads, at the top
+// the sketch roads it borders (none: it need reach nothing).
+std::vector<std::pair<geom::Vec2, geom::Vec2>> edges_to_reach(const geom::Cell& cell, bool top) {
+  if (!top) return cell.edges_of_kind(kRoad);
+  std::vector<std::pair<geom::Vec2, geom::Vec2>> edges;
+  for (const geom::KindedRing& r : cell.kinded_rings())
+    for (std::size_t i = 0; i < r.points.size(); ++i)
+      if (r.kinds[i] >= kSketchRoad) edges.push_back({r.points[i], r.points[(i + 1) % r.points.size()]});
+  return edges;
+}
+
+// The roads of one cell, grown from its seed. They must reach one of edges_to_reach;
+// when none does (a concave cell can hide those edges from the seed), they are grown
+// again from just inside one of those edges, the first branch heading straight back to
+// it. Empty when that fails too.
+CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const ZoneParams& p, int level, bool top, double orientation,
                     const SketchLines& sketch_lines, Random& rng) {
   const geom::Box b = cell.bounds();
   const double reach = 2 * std::hypot(b.width(), b.height()) + 1;  // past the cell from anywhere in it
+  auto edges = edges_to_reach(cell, top);
+  const bool free = edges.empty();
   {
+    // A strip is cut across, never along.
+    const std::optional<double> axis = strip_axis(cell, p);
     geom::Growth growth(cell, p.segment_length);
     CellRoads grown{seed, {}};
-    if (grow_branches(growth, seed, p, level, orientation, reach, sketch_lines, rng, grown.roads)) return grown;
+    if (grow_branches(growth, seed, p, level, free, axis ? *axis + 90 : orientation, axis.has_value(), reach,
+                      sketch_lines, rng, grown.roads))
+      return grown;
   }
-  auto edges = cell.edges_of_kind(kRoad);
   auto mid = [](const std::pair<geom::Vec2, geom::Vec2>& e) {
     return geom::Vec2{(e.first.x + e.second.x) / 2, (e.first.y + e.second.y) / 2};
   };
@@ -153,7 +198,7 @@ CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const ZoneParams& p
     geom::Growth growth(cell, p.segment_length);
     CellRoads grown{*start, {}};
     double back = std::atan2(m.y - start->y, m.x - start->x) * 180 / M_PI;
-    if (grow_branches(growth, *start, p, level, back, reach, sketch_lines, rng, grown.roads)) return grown;
+    if (grow_branches(growth, *start, p, level, free, back, false, reach, sketch_lines, rng, grown.roads)) return grown;
   }
   return {seed, {}};
 }
@@ -216,29 +261,39 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
       if (!g.seed) return;
       const ZoneParams& p = params(g.type);
       if (w.cell.area() <= p.block_area) return;  // small enough to be one block
-      Random rng(mix(w.id, 1));
-      CellRoads grown = grow_cell(w.cell, *g.seed, p, level, w.orientation, sketch_lines, rng);
+      Random rng(mix(w.id, 1 + 16 * w.stalls));
+      // Roads that fail to divide the cell, or only shave a sliver off it, are dropped and
+      // the cell grown again from another seed, a few times at most: slivers make poor
+      // blocks. Cutting off a tenth of a block is progress, so a long corridor is grown on
+      // however little of it each cut takes.
+      auto again = [&] {
+        g.roads.clear();
+        if (w.stalls < kMaxStalls) {
+          Work retry = w;
+          ++retry.stalls;
+          g.parts.push_back(std::move(retry));
+        } else {
+          g.without_access = !w.top;
+        }
+      };
+      CellRoads grown = grow_cell(w.cell, *g.seed, p, level, w.top, w.orientation, sketch_lines, rng);
       g.seed = grown.seed;
       g.roads = std::move(grown.roads);
-      if (g.roads.empty()) {
-        g.without_access = level > 0;
-        return;
-      }
+      if (g.roads.empty()) return again();
       std::vector<geom::Cell> parts = geom::split_cell(w.cell, g.roads, kRoad);
+      double largest = 0;
+      for (const geom::Cell& part : parts) largest = std::max(largest, part.area());
+      const bool shaved =
+          parts.size() < 2 || w.cell.area() - largest < std::min(0.05 * w.cell.area(), 0.1 * p.block_area);
+      if (shaved && w.stalls < kMaxStalls) return again();
       for (std::size_t k = 0; k < parts.size(); ++k) {
         if (parts[k].area() <= p.block_area) continue;  // small enough to be one block
-        // Hardly smaller than the cell (the roads only shaved it): grown again from
-        // another seed, a few times at most. Cutting off a quarter block is progress, so a
-        // long corridor is grown on however little of it each cut takes.
-        const double taken = w.cell.area() - parts[k].area();
-        const bool shaved = taken < std::min(0.05 * w.cell.area(), 0.25 * p.block_area);
-        const int stalls = parts.size() < 2 || shaved ? w.stalls + 1 : 0;
-        if (stalls > kMaxStalls) continue;
+        if (shaved && parts[k].area() == largest) continue;  // out of tries: left as it is
         std::uint64_t id = mix(w.id, k + 2);
         Random part_rng(id);
         double jitter = p.jitter / (level + 1);
         g.parts.push_back(
-            {std::move(parts[k]), id, w.orientation + part_rng.uniform(-jitter, jitter), w.region, g.type, stalls});
+            {std::move(parts[k]), id, w.orientation + part_rng.uniform(-jitter, jitter), w.region, g.type, 0, false});
       }
     });
 
@@ -250,7 +305,7 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
       const ZoneParams& p = params(g.type);
       for (geom::Path& road : g.roads) {
         MapRoad r;
-        r.road_class = level == 0 ? RoadClass::Main : RoadClass::Local;
+        r.road_class = level_work[i].top ? RoadClass::Main : RoadClass::Local;
         r.width = road_width(p, level);
         r.level = level;
         r.region = level_work[i].region;

@@ -27,6 +27,43 @@ Validation generate_and_validate(const std::string& name, const std::string& tex
 
 }  // namespace
 
+TEST(Lots, StreetLotsLineEveryRoadEdgeAndLeaveTheMiddleOpen) {
+  // A 120 x 100 block with a road on every side; lots 20 m wide and 30 m deep.
+  geom::PlanarMap map;
+  map.add_ring({{0, 0}, {120, 0}, {120, 100}, {0, 100}}, 0);
+  map.insert_batch();
+  map.label_faces([](const geom::Windings& w) { return geom::winding_of(w, 0) ? 1 : 0; });
+  geom::Cell block = map.cells({-1, 0}, {0, 0})[0];
+  ZoneParams p = default_params(ZoneType::Residential);
+  p.lot_width = {20, 20}, p.lot_depth = 30;
+  Random rng(1);
+  std::vector<geom::Ring> lots = street_lots(block, p, rng);
+  EXPECT_EQ(lots.size(), 2 * 6 + 2 * 5u);  // 120 / 20 along two sides, 100 / 20 along the others
+  for (const geom::Ring& lot : lots) {
+    EXPECT_GT(geom::signed_area(lot), 0);
+    EXPECT_FALSE(geom::odd_crossings(lot, {60, 50}));  // the middle stays open
+    bool reaches_past_edge = false;  // so the map cuts it back exactly at the road
+    for (Vec2 v : lot) reaches_past_edge |= v.x < 0 || v.x > 120 || v.y < 0 || v.y > 100;
+    EXPECT_TRUE(reaches_past_edge);
+    for (Vec2 v : lot) EXPECT_LE(std::min({v.x + 0.5, 120.5 - v.x, v.y + 0.5, 100.5 - v.y}), 30 * std::sqrt(2.0) + 1e-9);
+  }
+  // Neighbours along a side share their cut exactly.
+  EXPECT_EQ(lots[1][0], lots[0][lots[0].size() - 3]);
+}
+
+TEST(Lots, StreetLotsSkipEdgesWithoutARoad) {
+  // Every edge faces a zone edge (kind -1), none a road.
+  geom::PlanarMap map;
+  map.add_ring({{0, 0}, {100, 0}, {100, 100}, {0, 100}}, 0);
+  map.insert_batch();
+  map.label_faces([](const geom::Windings& w) { return geom::winding_of(w, 0) ? 1 : 0; });
+  geom::Cell block = map.cells({-1, 0}, {-1, -1})[0];
+  ZoneParams p = default_params(ZoneType::Residential);
+  p.lot_width = {25, 25};
+  Random rng(1);
+  EXPECT_TRUE(street_lots(block, p, rng).empty());
+}
+
 TEST(Lots, CitiesWithEveryStrategyValidate) {
   auto zone = [](const std::string& type, double x0, double x1) {
     return R"({"type": "Feature", "properties": {"zone": ")" + type +
