@@ -68,6 +68,14 @@ void run_lots(const std::vector<Vec2>& points, const std::vector<Vec2>& normals,
   for (std::size_t i = 1; i < points.size(); ++i) at_length.push_back(at_length.back() + length(points[i - 1], points[i]));
   const double total = at_length.back();
   if (total < min_edge) return;
+  {
+    // Where the block is too thin for the full depth, lots are narrower too, so that
+    // none is much wider than deep.
+    std::size_t mid = 0;
+    while (mid + 2 < points.size() && at_length[mid + 1] < total / 2) ++mid;
+    Vec2 at = lerp(points[mid], points[mid + 1], 0.5);
+    width = std::min(width, std::max(2 * std::min(depth, ray_distance(rings, at, left_normal(points[mid], points[mid + 1]), 4 * depth) / 2), min_edge));
+  }
   const int count = std::max(1, static_cast<int>(std::lround(total / width)));
   // The cuts: at the run's ends along the given directions (the corners' bisectors), between
   // them square to the street.
@@ -265,7 +273,7 @@ std::vector<Lot> insert_lots(ZoneMap& zm, const std::vector<Block>& blocks, cons
   zm.map.insert_batch();
   zm.label(sketch);
 
-  // Each planned lot's pieces; those off the street, or too small, are left to the block.
+  // Each planned lot's pieces, those that make sensible lots.
   std::vector<int> group(zm.labels.size(), -1), kind(zm.labels.size(), 0), planned_of;
   for (std::size_t l = 0; l < zm.labels.size(); ++l) {
     group[l] = zm.labels[l].lot;
@@ -275,9 +283,15 @@ std::vector<Lot> insert_lots(ZoneMap& zm, const std::vector<Block>& blocks, cons
   std::vector<Lot> lots;
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const PlannedLot& plan = planned[planned_of[i]];
-    auto kinds = pieces[i].edge_kinds();
-    if (kinds.empty() || kinds.back() != kLotRoadEdge) continue;
-    if (geom::area(pieces[i].to_plain()) < sketch.zone_params.at(plan.zone).min_lot_area) continue;
+    // Off the street, too small, or too narrow or shallow for its frontage: left open.
+    const geom::Polygon shape = pieces[i].to_plain();
+    if (geom::area(shape) < sketch.zone_params.at(plan.zone).min_lot_area) continue;
+    double longest = 0, ratio = 0;
+    for (auto [a, b] : pieces[i].edges_of_kind(kLotRoadEdge)) {
+      double len = std::hypot(b.x - a.x, b.y - a.y);
+      if (len > longest) longest = len, ratio = geom::depth_over_width(shape.outer, a, b);
+    }
+    if (ratio < kLotShape.min || ratio > kLotShape.max) continue;
     lots.push_back({plan.block, plan.zone, std::move(pieces[i])});
   }
   return lots;

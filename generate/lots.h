@@ -23,14 +23,16 @@ struct PlannedLot {
 };
 
 // A lot as it ended up in the map: one piece of a planned lot, cut back at roads and at
-// the lots planned before it, that touches a road area and is at least the zone's
-// `min_lot_area`. Its index in the city's lots is its id.
+// the lots planned before it, that touches a road area, is at least the zone's
+// `min_lot_area` and keeps its depth over width within kLotShape. Its index in the city's
+// lots is its id.
 struct Lot {
   int block = -1;
   ZoneType zone = ZoneType::Residential;
   geom::Cell cell;  // exact; edges along a road area have kind kLotRoadEdge, the others 0
 };
 inline constexpr int kLotRoadEdge = 1;
+inline constexpr Range kLotShape{0.5, 5};  // a lot's depth over its width (across and along its street)
 
 // The lots of every block that is not green space, block by block in parallel.
 std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch& sketch);

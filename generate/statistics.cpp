@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "generate/errors.h"
+#include "generate/lots.h"
 #include "geom/measure.h"
 #include "geom/segment_index.h"
 
@@ -148,10 +149,18 @@ ordered_json city_statistics(const StatisticsInput& in) {
     for (const auto& h : f.polygon.holes)
       for (std::size_t i = 0; i < h.size(); ++i) road_edges[undirected(h[i], h[(i + 1) % h.size()])] = true;
   }
-  auto fronts_road = [&](const geom::Polygon& p) {
-    for (std::size_t i = 0; i < p.outer.size(); ++i)
-      if (road_edges.count(undirected(p.outer[i], p.outer[(i + 1) % p.outer.size()]))) return true;
-    return false;
+  // A lot's depth over its width: its extents across and along its longest edge on a road
+  // area; 0 for a lot with none.
+  auto depth_over_width = [&](const geom::Polygon& p) {
+    const auto& r = p.outer;
+    double longest = 0;
+    std::pair<Vec2, Vec2> frontage;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      Vec2 a = r[i], b = r[(i + 1) % r.size()];
+      double len = std::hypot(b.x - a.x, b.y - a.y);
+      if (len > longest && road_edges.count(undirected(a, b))) longest = len, frontage = {a, b};
+    }
+    return longest > 0 ? geom::depth_over_width(r, frontage.first, frontage.second) : 0.0;
   };
 
   ordered_json per_zone = ordered_json::object();
@@ -167,16 +176,27 @@ ordered_json city_statistics(const StatisticsInput& in) {
       auto type = parse_zone_type(f.properties.value("zone", ""));
       if (in.sketch && type && a > kOversized * in.sketch->zone_params.at(*type).block_area) oversized += a;
     }
-    std::size_t fronting = 0, lot_count = 0;
-    for (const auto& f : lots.features)
-      if (in_zone(f)) lot_areas.push_back(geom::area(f.polygon)), ++lot_count, fronting += fronts_road(f.polygon);
+    std::size_t fronting = 0, lot_count = 0, odd_shape = 0, sharp_lots = 0;
+    for (const auto& f : lots.features) {
+      if (!in_zone(f)) continue;
+      lot_areas.push_back(geom::area(f.polygon));
+      ++lot_count;
+      const double ratio = depth_over_width(f.polygon);
+      fronting += ratio > 0;
+      odd_shape += ratio > 0 && (ratio < kLotShape.min || ratio > kLotShape.max);
+      sharp_lots += sharpest_angle(f.polygon.outer) < kSharpAngle;
+    }
     std::vector<const geom::Polygon*> footprints;
     for (const auto& f : buildings.features)
       if (in_zone(f) && f.properties.value("kind", "building") == "building") footprints.push_back(&f.polygon);
     if (block_areas.empty() && lot_areas.empty() && footprints.empty()) continue;
     ordered_json z{{"blocks", {{"area_m2", summary(block_areas)},
                                {"share_area_over_4x_block_area", block_total > 0 ? std::round(1e4 * oversized / block_total) / 1e4 : 0}}},
-                   {"lots", {{"area_m2", summary(lot_areas)}, {"share_touching_road", share(fronting, lot_count)}}},
+                   {"lots",
+                    {{"area_m2", summary(lot_areas)},
+                     {"share_touching_road", share(fronting, lot_count)},
+                     {"share_depth_over_width_outside_0.5_5", share(odd_shape, lot_count)},
+                     {"share_sharp_angle", share(sharp_lots, lot_count)}}},
                    {"footprints", footprint_figures(footprints)}};
     per_zone[zone] = z;
   }
@@ -296,7 +316,9 @@ std::string format_statistics(const ordered_json& s) {
       }
       if (z.contains("lots") && z["lots"]["area_m2"].value("count", 0) > 0) {
         areas("lots", z["lots"]["area_m2"]);
-        out << "      share of lots touching a road area: " << z["lots"]["share_touching_road"] << "\n";
+        out << "      share of lots touching a road area: " << z["lots"]["share_touching_road"]
+            << ", with depth/width outside 0.5-5: " << z["lots"]["share_depth_over_width_outside_0.5_5"]
+            << ", with an angle under 30 degrees: " << z["lots"]["share_sharp_angle"] << "\n";
       }
       const auto& f = z["footprints"];
       areas("footprints", f["area_m2"]);

@@ -316,11 +316,12 @@ Validation validate_output(const fs::path& dir) {
       if (!ids.insert(l->features[i].properties.value("id", -1)).second)
         c.problem(l->name + ".geojson features[" + std::to_string(i) + "]: its id is not unique");
   }
+  const bool well_formed = v.ok();  // the checks below need simple rings and whole lines
   check_references(c, lots, "block", blocks);
   check_references(c, buildings, "lot", lots);
   check_references(c, road_areas, "road", roads);
   check_references(c, blocks, "roads", roads);
-  if (!v.ok()) return v;
+  if (!well_formed) return v;
   check_tiling(c, sketch, refs, polygons);
   check_roads(c, sketch, roads, water);
   return v;

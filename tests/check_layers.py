@@ -91,9 +91,13 @@ def main(out):
         if outside > AREA_TOLERANCE:
             problems.append(f"lots[{i}]: {outside} m² outside its block {f['properties']['block']}")
 
-    lots = {}
-    for f in load(out / "vector" / "lots.geojson"):
-        lots[f["properties"]["lot"]] = shape(f["geometry"]).union(lots.get(f["properties"]["lot"], Polygon()))
+    lots = {f["properties"]["id"]: shape(f["geometry"]) for f in load(out / "vector" / "lots.geojson")}
+    road_areas = [shape(f["geometry"]) for f in load(out / "vector" / "road_areas.geojson")]
+    tree = STRtree(road_areas)
+    for i, (lot_id, lot) in enumerate(lots.items()):
+        near = tree.query(lot)  # shapely 1.8: the geometries themselves
+        if not any(lot.boundary.intersection(r.boundary).length > 1e-6 for r in near):
+            problems.append(f"lot {lot_id}: shares no edge with a road area")
     for i, f in enumerate(load(out / "vector" / "buildings.geojson")):
         outside = shape(f["geometry"]).difference(lots[f["properties"]["lot"]]).area
         if outside > AREA_TOLERANCE:

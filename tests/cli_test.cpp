@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -171,23 +172,60 @@ TEST(Cli, ValidateCatchesARoadEndingInTheOpen) {
 
 TEST(Cli, ValidateCatchesADisconnectedRegion) {
   Result v = validate_tampered("region", "roads", [](nlohmann::json& doc) {
-    // Say the last grown road belongs to the first region, far from it.
-    int first_region = -1;
-    for (auto& f : doc["features"])
-      if (!f["properties"]["region"].is_null()) {
-        first_region = f["properties"]["region"];
-        break;
-      }
-    int moved = -1;
+    // Carry the last grown road far away from the rest of its region.
     for (auto it = doc["features"].rbegin(); it != doc["features"].rend(); ++it) {
-      auto& p = (*it)["properties"];
-      if (p["region"].is_null() || p["region"] == first_region) continue;
-      if (moved < 0) moved = p["road"];
-      if (p["road"] == moved) p["region"] = first_region;
+      if ((*it)["properties"]["region"].is_null()) continue;
+      for (auto& p : (*it)["geometry"]["coordinates"]) p[0] = p[0].get<double>() + 5000;
+      break;
     }
   });
   EXPECT_EQ(v.code, 1) << v.out;
   EXPECT_NE(v.out.find("are not connected"), std::string::npos) << v.out;
+}
+
+TEST(Cli, ValidateCatchesAReferenceToNoFeature) {
+  Result v = validate_tampered("reference", "buildings", [](nlohmann::json& doc) {
+    doc["features"][0]["properties"]["lot"] = 999999;
+  });
+  EXPECT_EQ(v.code, 1) << v.out;
+  EXPECT_NE(v.out.find("\"lot\" 999999 names no feature of lots.geojson"), std::string::npos) << v.out;
+}
+
+TEST(Cli, ValidateCatchesCentreLinesThatMeetBetweenVertices) {
+  Result v = validate_tampered("noded", "roads", [](nlohmann::json& doc) {
+    // Drop an inner vertex of a road where another road ends: that end now lies on a segment.
+    std::map<std::pair<double, double>, int> ends;
+    for (const auto& f : doc["features"])
+      for (const auto& p : {f["geometry"]["coordinates"].front(), f["geometry"]["coordinates"].back()})
+        ++ends[{p[0].get<double>(), p[1].get<double>()}];
+    for (auto& f : doc["features"]) {
+      auto& line = f["geometry"]["coordinates"];
+      for (std::size_t i = 1; i + 1 < line.size(); ++i)
+        if (ends.count({line[i][0].get<double>(), line[i][1].get<double>()})) {
+          line.erase(i);
+          return;
+        }
+    }
+  });
+  EXPECT_EQ(v.code, 1) << v.out;
+  EXPECT_NE(v.out.find("meets another centre line between its vertices"), std::string::npos) << v.out;
+}
+
+TEST(Cli, StatsMeasureTheCityAndRealData) {
+  fs::path dir = testing_util::temp_dir("cli-stats");
+  ASSERT_EQ(run("generate " + (kSource / "examples" / "town.geojson").string() + " -o " + (dir / "out").string() + " -q").code, 0);
+  // Real data in lon/lat: a 0.001 degree square footprint at 60 degrees north (about 55.6 x 111.2 m).
+  std::ofstream(dir / "real.geojson") << R"({"type": "FeatureCollection", "features": [
+    {"type": "Feature", "properties": {}, "geometry": {"type": "MultiPolygon", "coordinates":
+      [[[[25, 60], [25.001, 60], [25.001, 60.001], [25, 60.001], [25, 60]]]]}}]})";
+  Result s = run("stats " + (dir / "out").string() + " --real " + (dir / "real.geojson").string());
+  EXPECT_EQ(s.code, 0) << s.out;
+  EXPECT_NE(s.out.find("share of lots touching a road area: 1.0"), std::string::npos) << s.out;
+  EXPECT_NE(s.out.find("dead ends 0"), std::string::npos) << s.out;
+  EXPECT_NE(s.out.find("footprints: 1, area m2 median 6182"), std::string::npos) << s.out;
+  Result bad = run("stats " + (dir / "nowhere").string());
+  EXPECT_EQ(bad.code, 2) << bad.out;
+  EXPECT_NE(bad.out.find("not an output folder"), std::string::npos) << bad.out;
 }
 
 TEST(Cli, BadInputExitsTwoWithOneLineAndNoOutput) {
