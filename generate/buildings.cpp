@@ -61,9 +61,13 @@ std::vector<geom::Ring> street_footprints(const geom::Cell& lot, const ZoneParam
       const double s = std::sqrt(p.max_footprint_area / (w * d));
       w *= s, d *= s;
     }
+    // The drawn size, then smaller ones, down to the narrowest allowed.
+    const double m = p.min_footprint_width;
+    const std::pair<double, double> sizes[] = {{w, d}, {0.8 * w, 0.8 * d}, {0.64 * w, 0.64 * d}, {0.5 * w, 0.5 * d},
+                                               {m, 0.5 * d}, {m, m}};
     bool placed = false;
-    for (double scale : {1.0, 0.8, 0.64, 0.5}) {
-      const double ws = std::max(w * scale, p.min_footprint_width), ds = std::max(d * scale, p.min_footprint_width);
+    for (auto [ws, ds] : sizes) {
+      ws = std::max(ws, m), ds = std::max(ds, m);
       if (t + ws > f.t1 || ws * ds < p.min_footprint_area || ws * ds > p.max_footprint_area) continue;
       geom::Ring ring = rectangle(t, ws, ds, 0);
       if (!fits(lot, rectangle(t, ws, ds, clearance), {}) || !fits(lot, ring, taken)) continue;
@@ -73,7 +77,7 @@ std::vector<geom::Ring> street_footprints(const geom::Cell& lot, const ZoneParam
       placed = true;
       break;
     }
-    if (!placed) t += std::max(p.min_footprint_width / 2, 1.0);
+    if (!placed) t += std::max(m / 4, 1.0);
   }
   return out;
 }

@@ -51,6 +51,7 @@ double ray_distance(const std::vector<geom::KindedRing>& rings, Vec2 p, Vec2 dir
 // Where a run of street edges is broken: the kind changes between road and not, or the
 // boundary turns by more than this.
 constexpr double kRunTurn = 35 * M_PI / 180;
+constexpr Range kOwnedCorner{60 * M_PI / 180, 150 * M_PI / 180};  // turns at which a corner lot takes the corner
 constexpr double kFrontOverhang = 0.5;  // m: lots reach this far past the block's edge, so they meet it exactly
 
 // One lot boundary across the street side: from `at` on the block's edge, `depth` along `dir`.
@@ -59,38 +60,53 @@ struct Cut {
   double depth = 0;
 };
 
+// How a run of lots ends: the cut there, how much of the run is left to the lot across
+// the corner (at its start), and how far past its end its last lot reaches to take the
+// corner (at its end).
+struct RunEnd {
+  Vec2 dir;
+  double skip = 0, extend = 0;
+};
+
 // The lots along one run of street edges: `points` from one end of the run to the other
 // (the block on the left), `normals` inward at each point, cut at equal steps near `width`.
-void run_lots(const std::vector<Vec2>& points, const std::vector<Vec2>& normals, Vec2 first_dir, Vec2 last_dir,
+void run_lots(const std::vector<Vec2>& points, const std::vector<Vec2>& normals, const RunEnd& first, const RunEnd& last,
               const std::vector<geom::KindedRing>& rings, double width, double depth, double min_edge,
               std::vector<geom::Ring>& lots) {
   std::vector<double> at_length{0};
   for (std::size_t i = 1; i < points.size(); ++i) at_length.push_back(at_length.back() + length(points[i - 1], points[i]));
-  const double total = at_length.back();
-  if (total < min_edge) return;
+  const double total = at_length.back(), begin = first.skip;
+  if (total - begin < min_edge) return;
   {
     // Where the block is too thin for the full depth, lots are narrower too, so that
     // none is much wider than deep.
     std::size_t mid = 0;
-    while (mid + 2 < points.size() && at_length[mid + 1] < total / 2) ++mid;
+    while (mid + 2 < points.size() && at_length[mid + 1] < (begin + total) / 2) ++mid;
     Vec2 at = lerp(points[mid], points[mid + 1], 0.5);
-    width = std::min(width, std::max(2 * std::min(depth, ray_distance(rings, at, left_normal(points[mid], points[mid + 1]), 4 * depth) / 2), min_edge));
+    double across = ray_distance(rings, at, left_normal(points[mid], points[mid + 1]), 4 * depth);
+    width = std::min(width, std::max(2 * std::min(depth, across / 2), min_edge));
   }
-  const int count = std::max(1, static_cast<int>(std::lround(total / width)));
-  // The cuts: at the run's ends along the given directions (the corners' bisectors), between
-  // them square to the street.
+  const int count = std::max(1, static_cast<int>(std::lround((total - begin) / width)));
+  // The cuts: square to the street, but at the run's ends, where they are as given.
   std::vector<Cut> cuts;
   std::vector<std::size_t> after;  // per cut: the index of the first point past it
   std::size_t seg = 0;
   for (int k = 0; k <= count; ++k) {
-    double s = total * k / count;
+    const double s = begin + (total - begin) * k / count;
     while (seg + 2 < points.size() && at_length[seg + 1] <= s) ++seg;
-    double span = at_length[seg + 1] - at_length[seg];
-    Vec2 at = k == count ? points.back() : k == 0 ? points.front() : lerp(points[seg], points[seg + 1], span > 0 ? (s - at_length[seg]) / span : 0);
-    Vec2 dir = k == 0 ? first_dir : k == count ? last_dir : at_length[seg] == s ? normals[seg] : left_normal(points[seg], points[seg + 1]);
+    const double span = at_length[seg + 1] - at_length[seg];
+    Vec2 at = lerp(points[seg], points[seg + 1], span > 0 ? (s - at_length[seg]) / span : 0);
+    Vec2 dir = at_length[seg] == s ? normals[seg] : left_normal(points[seg], points[seg + 1]);
+    Vec2 depth_from = at;  // where the block's thickness is measured
+    if (k == 0 && begin == 0) at = points.front(), dir = first.dir;
+    if (k == count) {
+      depth_from = points.back();
+      at = points.back() + unit(points.back() - points[points.size() - 2]) * last.extend;
+      dir = last.dir;
+    }
     double reach = depth / std::max(dot(dir, k == count ? normals.back() : normals[seg]), 0.5);
-    cuts.push_back({at, dir, std::min(reach, ray_distance(rings, at, dir, 4 * depth) / 2)});
-    after.push_back(k == count ? points.size() : at_length[seg] == s && k > 0 ? seg + 1 : seg + 1);
+    cuts.push_back({at, dir, std::min(reach, ray_distance(rings, depth_from, dir, 4 * depth) / 2)});
+    after.push_back(k == count ? points.size() : seg + 1);
   }
   // Neighbouring cuts that would cross (inside a bend) stop short of where they meet.
   for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
@@ -121,12 +137,6 @@ geom::Ring on_grid(const geom::Ring& ring) {
   if (o == 0) return {};
   if (o < 0) std::reverse(r.begin(), r.end());
   return r;
-}
-
-bool edges_at_least(const geom::Ring& r, double min_edge) {
-  for (std::size_t i = 0; i < r.size(); ++i)
-    if (length(r[i], r[(i + 1) % r.size()]) < min_edge) return false;
-  return true;
 }
 
 constexpr int kCut = -2;  // edge kind of a split's cut (not a road)
@@ -207,14 +217,23 @@ std::vector<geom::Ring> street_lots(const geom::Cell& block, const ZoneParams& p
           pts.push_back(r.points[k % n]);
           normals.push_back(k == i ? normal(i) : k == j ? normal(j - 1) : unit(normal(k - 1) + normal(k)));
         }
-        // At a corner, the cut runs along the bisector of the two edges' inward normals.
+        // At a corner the cut runs along the bisector of the two edges' inward normals; a
+        // square-ish convex corner between two streets goes whole to the lot arriving there,
+        // and the run leaving it starts where that lot's back line meets it.
         auto corner_dir = [&](std::size_t vertex, Vec2 own) {
           if (closed) return unit(normal(vertex + n - 1) + normal(vertex));
           Vec2 d = unit(normal(vertex + n - 1) + normal(vertex));
           return dot(d, own) > 0.5 ? d : own;
         };
-        run_lots(pts, normals, corner_dir(i, normals.front()), corner_dir(j, normals.back()), rings,
-                 rng.uniform(p.lot_width.min, p.lot_width.max), p.lot_depth, p.min_lot_edge, lots);
+        auto owned = [&](std::size_t vertex) {
+          const double t = turn(vertex);
+          return !closed && road(vertex + n - 1) && road(vertex) && t >= kOwnedCorner.min && t <= kOwnedCorner.max;
+        };
+        RunEnd first{corner_dir(i, normals.front())}, last{corner_dir(j, normals.back())};
+        if (owned(i)) first = {normals.front(), p.lot_depth / std::sin(turn(i)), 0};
+        if (owned(j)) last = {normals.back(), 0, kFrontOverhang + std::max(0.0, p.lot_depth / std::tan(turn(j)))};
+        run_lots(pts, normals, first, last, rings, rng.uniform(p.lot_width.min, p.lot_width.max), p.lot_depth,
+                 p.min_lot_edge, lots);
       }
       i = j;
     }
@@ -234,7 +253,7 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch
     const int b = static_cast<int>(bi);
     auto add_ring = [&](const geom::Ring& ring) {
       geom::Ring r = on_grid(ring);
-      if (!r.empty() && edges_at_least(r, p.min_lot_edge)) out.push_back({b, block.zone, r, {}});
+      if (!r.empty()) out.push_back({b, block.zone, r, {}});
     };
     if (p.lots == "split") {
       for (geom::Cell& c : split_lots(block.cell, p, rng)) out.push_back({b, block.zone, {}, std::move(c)});

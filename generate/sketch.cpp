@@ -26,14 +26,14 @@ ZoneParams default_params(ZoneType type) {
   if (type == ZoneType::Commercial) {
     p.setback = 2, p.min_height = 12, p.max_height = 48;
     p.lot_width = {20, 45}, p.lot_depth = 35;
-    p.building_gap = 3, p.footprint_width = {16, 40}, p.footprint_depth = {14, 28};
-    p.min_footprint_width = 10, p.max_footprint_area = 3000;
+    p.building_gap = 3, p.footprint_width = {14, 36}, p.footprint_depth = {12, 28};
+    p.min_footprint_width = 8, p.max_footprint_area = 3000;
   }
   if (type == ZoneType::Industrial) {
     p.setback = 4, p.min_height = 5, p.max_height = 12;
     p.lot_width = {40, 90}, p.lot_depth = 60;
-    p.building_gap = 8, p.footprint_width = {25, 90}, p.footprint_depth = {20, 60};
-    p.min_footprint_width = 12, p.max_footprint_area = 20000;
+    p.building_gap = 6, p.footprint_width = {20, 80}, p.footprint_depth = {15, 50};
+    p.min_footprint_width = 10, p.max_footprint_area = 20000;
   }
   return p;
 }

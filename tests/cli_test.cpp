@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -193,19 +194,15 @@ TEST(Cli, ValidateCatchesAReferenceToNoFeature) {
 
 TEST(Cli, ValidateCatchesCentreLinesThatMeetBetweenVertices) {
   Result v = validate_tampered("noded", "roads", [](nlohmann::json& doc) {
-    // Drop an inner vertex of a road where another road ends: that end now lies on a segment.
-    std::map<std::pair<double, double>, int> ends;
-    for (const auto& f : doc["features"])
-      for (const auto& p : {f["geometry"]["coordinates"].front(), f["geometry"]["coordinates"].back()})
-        ++ends[{p[0].get<double>(), p[1].get<double>()}];
-    for (auto& f : doc["features"]) {
-      auto& line = f["geometry"]["coordinates"];
-      for (std::size_t i = 1; i + 1 < line.size(); ++i)
-        if (ends.count({line[i][0].get<double>(), line[i][1].get<double>()})) {
-          line.erase(i);
-          return;
-        }
-    }
+    // A new centre line across the middle of the first one's first segment, with no vertex there.
+    auto line = doc["features"][0]["geometry"]["coordinates"];
+    const double x0 = line[0][0], y0 = line[0][1], x1 = line[1][0], y1 = line[1][1];
+    const double mx = (x0 + x1) / 2, my = (y0 + y1) / 2, len = std::hypot(x1 - x0, y1 - y0);
+    const double nx = -(y1 - y0) / len * 5, ny = (x1 - x0) / len * 5;
+    nlohmann::json crossing = doc["features"][0];
+    crossing["properties"]["id"] = 999999;
+    crossing["geometry"]["coordinates"] = {{mx - nx, my - ny}, {mx + nx, my + ny}};
+    doc["features"].push_back(crossing);
   });
   EXPECT_EQ(v.code, 1) << v.out;
   EXPECT_NE(v.out.find("meets another centre line between its vertices"), std::string::npos) << v.out;

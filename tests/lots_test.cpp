@@ -38,7 +38,9 @@ TEST(Lots, StreetLotsLineEveryRoadEdgeAndLeaveTheMiddleOpen) {
   p.lot_width = {20, 20}, p.lot_depth = 30;
   Random rng(1);
   std::vector<geom::Ring> lots = street_lots(block, p, rng);
-  EXPECT_EQ(lots.size(), 2 * 6 + 2 * 5u);  // 120 / 20 along two sides, 100 / 20 along the others
+  // Each side leaves its first 30 m to the corner lot before it: (120 - 30) / 20 rounds to
+  // 5 lots along two sides, (100 - 30) / 20 to 4 along the others.
+  EXPECT_EQ(lots.size(), 2 * 5 + 2 * 4u);
   for (const geom::Ring& lot : lots) {
     EXPECT_GT(geom::signed_area(lot), 0);
     EXPECT_FALSE(geom::odd_crossings(lot, {60, 50}));  // the middle stays open
