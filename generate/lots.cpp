@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <tbb/parallel_for.h>
 
@@ -299,20 +300,23 @@ std::vector<Lot> insert_lots(ZoneMap& zm, const std::vector<Block>& blocks, cons
     if (zm.labels[l].cover == Cover::Road || zm.labels[l].bridge) kind[l] = kLotRoadEdge;
   }
   std::vector<geom::Cell> pieces = zm.map.cells(group, kind, &planned_of);
-  std::vector<Lot> lots;
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
+  std::vector<std::optional<Lot>> kept(pieces.size());
+  tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
     const PlannedLot& plan = planned[planned_of[i]];
     // Off the street, too small, or too narrow or shallow for its frontage: left open.
-    const geom::Polygon shape = pieces[i].to_plain();
-    if (geom::area(shape) < sketch.zone_params.at(plan.zone).min_lot_area) continue;
+    geom::Polygon shape = pieces[i].to_plain();
+    if (geom::area(shape) < sketch.zone_params.at(plan.zone).min_lot_area) return;
     double longest = 0, ratio = 0;
     for (auto [a, b] : pieces[i].edges_of_kind(kLotRoadEdge)) {
       double len = std::hypot(b.x - a.x, b.y - a.y);
       if (len > longest) longest = len, ratio = geom::depth_over_width(shape.outer, a, b);
     }
-    if (ratio < kLotShape.min || ratio > kLotShape.max) continue;
-    lots.push_back({plan.block, plan.zone, std::move(pieces[i])});
-  }
+    if (ratio < kLotShape.min || ratio > kLotShape.max) return;
+    kept[i] = Lot{plan.block, plan.zone, std::move(pieces[i]), std::move(shape)};
+  });
+  std::vector<Lot> lots;
+  for (auto& lot : kept)
+    if (lot) lots.push_back(std::move(*lot));
   return lots;
 }
 

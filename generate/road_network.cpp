@@ -54,9 +54,8 @@ std::optional<geom::Vec2> seed_point(const geom::Cell& cell, Random& rng) {
   const geom::Box b = cell.bounds();
   for (int i = 0; i < kSeedCandidates; ++i) {
     geom::Vec2 p = geom::snap(geom::Vec2{rng.uniform(b.min_x, b.max_x), rng.uniform(b.min_y, b.max_y)});
-    if (!cell.contains(p)) continue;
     double d = depth(p);
-    if (d > best_depth) best = p, best_depth = d;
+    if (d > best_depth && cell.contains(p)) best = p, best_depth = d;  // the exact test only when it would win
   }
   return best;
 }

@@ -101,7 +101,7 @@ CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, c
 
   // Lots as they ended up in the map; a lot's id is its index, which buildings name.
   for (const Lot& lot : lots)
-    add_polygon(out.lots, {{"block", lot.block}, {"zone", name(lot.zone)}}, lot.cell.to_plain());
+    add_polygon(out.lots, {{"block", lot.block}, {"zone", name(lot.zone)}}, lot.polygon);
 
   for (const Building& b : buildings) {
     nlohmann::ordered_json model = nullptr, kind = "building";

@@ -349,7 +349,9 @@ void RenderScene::add_ground(const exacity::City& city, const geom::Box& world, 
     return Style{palette.water, entity_id(Entity::Water, f.properties.value("id", 0)), 0.05};
   });
   draped(layers.road_areas, 0.30, [&](const exacity::VectorFeature& f) {
-    return Style{palette.asphalt, entity_id(Entity::Road, f.properties.value("road", 0)), 0.10};
+    // A road surface names the centre line it belongs to; its id is the road's entity.
+    const auto& road = f.properties.value("road", nlohmann::ordered_json());
+    return Style{palette.asphalt, entity_id(Entity::Road, road.is_number_integer() ? road.get<int>() : 0), 0.10};
   });
   // Centre stripes (solid yellow on highways, dashed white elsewhere) and dashed lane lines.
   {
@@ -364,7 +366,7 @@ void RenderScene::add_ground(const exacity::City& city, const geom::Box& world, 
       if (highway && width >= 14)
         for (double side : {-width / 4, width / 4}) ribbon(f.line, side, 0.12, 3, 6, terrain, lift, v, t, *this);
       info.material.resize(t.size(), palette.paint);
-      info.entity.resize(t.size(), entity_id(Entity::Road, f.properties.value("road", 0)));
+      info.entity.resize(t.size(), entity_id(Entity::Road, f.properties.value("id", 0)));
     }
     if (!t.empty()) add_triangles(v, t, std::move(info));
   }
