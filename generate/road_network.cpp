@@ -75,11 +75,15 @@ geom::Vec2 ahead(geom::Vec2 p, double degrees, double distance) {
   return geom::snap(geom::Vec2{p.x + distance * std::cos(t), p.y + distance * std::sin(t)});
 }
 
+// The sketch's roads, which grown roads run on to: centre lines and width.
+struct SketchRoad {
+  std::vector<geom::Path> lines;
+  double width = 0;
+};
+using SketchLines = std::vector<SketchRoad>;
+
 // Grows `branches` roads from the seed. Returns whether one reached a road (of the region,
 // or of the sketch); always true when `free`, for a cell with no road to reach.
-// The centre lines of each sketch road, which grown roads run on to.
-using SketchLines = std::vector<std::vector<geom::Path>>;
-
 // `across_only`: only the branches within 45 degrees of `orientation` or its opposite.
 bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const ZoneParams& p, int level, bool free, double orientation,
                    bool across_only, double reach, const SketchLines& sketch_lines, Random& rng,
@@ -113,7 +117,10 @@ bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const ZoneParams& p, i
     geom::Path road = growth.end();
     if (road.empty()) continue;
     reached_road |= met == kRoad || met >= kSketchRoad;
-    if (met >= kSketchRoad) road = geom::extend_to(road, sketch_lines[met - kSketchRoad], reach);
+    if (met >= kSketchRoad) {
+      const SketchRoad& target = sketch_lines[met - kSketchRoad];
+      road = geom::extend_to(road, target.lines, 4 * target.width);
+    }
     roads.push_back(std::move(road));
   }
   return reached_road;
@@ -219,7 +226,7 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
     if (f.road >= 0 && f.road < zm.sketch_roads && (f.cover == Cover::Road || f.bridge)) kind[l] = kSketchRoad + f.road;
   }
   SketchLines sketch_lines;
-  for (int r = 0; r < zm.sketch_roads; ++r) sketch_lines.push_back(zm.roads[r].lines);
+  for (int r = 0; r < zm.sketch_roads; ++r) sketch_lines.push_back({zm.roads[r].lines, zm.roads[r].width});
   std::vector<Work> level_work;
   const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Roads));
   for (geom::Cell& cell : zm.map.cells(group, kind)) {

@@ -234,6 +234,15 @@ Path extend_to(const Path& road, const std::vector<Path>& targets, double reach)
       if (!best || CGAL::has_smaller_distance_to_point(q, *x, *best)) best = *x;
     }
   }
+  if (!best) {
+    double nearest = reach;
+    for (const Path& target : targets)
+      for (std::size_t i = 0; i < target.size(); ++i) {
+        Vec2 v = target.point(i);
+        double d = std::hypot(v.x - b.x, v.y - b.y);
+        if (d < nearest && target.exact().points[i] != q) nearest = d, best = target.exact().points[i];
+      }
+  }
   if (!best) return road;
   auto impl = std::make_shared<Path::Impl>(road.exact());
   impl->points.push_back(*best);

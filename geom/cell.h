@@ -103,7 +103,9 @@ class Growth {
 
 // The road with its last segment carried on along its own line to the first point where it
 // meets one of `targets` within `reach` metres past its end (a grown road running on to the
-// centre line of the road whose surface it stopped at); unchanged when it meets none.
+// centre line of the road whose surface it stopped at). Where its line meets none there (it
+// stopped at a road's end cap), it runs straight on to the nearest vertex of the targets
+// within `reach` instead; unchanged when there is none.
 Path extend_to(const Path& road, const std::vector<Path>& targets, double reach);
 
 // The cell less a band of width `setback` inside every boundary edge (DESIGN.md rule 3:

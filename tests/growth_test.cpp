@@ -151,3 +151,25 @@ TEST(Inset, SquareAndLShapeLoseExactlyTheirSetbackBands) {
   // Too thin for its setback: nothing is left.
   EXPECT_TRUE(geom::inset_cell(cell_of({{0, 0}, {10, 0}, {10, 3}, {0, 3}}), 2).empty());
 }
+
+TEST(ExtendTo, ARoadStoppedAtASurfaceRunsOnAlongItsLineToTheCentreLine) {
+  // A road from (0, -30) heading up and to the right stopped at y = -10, the side of a
+  // road whose centre line is y = 0: it runs on, on its own line, to meet y = 0 exactly.
+  auto road = geom::Path::from({{0, -30}, {4, -10}});
+  auto centre = geom::Path::from({{-100, 0}, {100, 0}});
+  auto extended = geom::extend_to(road, {centre}, 40);
+  ASSERT_EQ(extended.size(), 3u);
+  EXPECT_EQ(extended.point(2), (Vec2{6, 0}));
+  EXPECT_TRUE(extended.is_straight());
+}
+
+TEST(ExtendTo, ARoadPastTheEndOfACentreLineJoinsItsEnd) {
+  // The centre line ends at x = 0; the road's line passes beyond that end, so the road
+  // joins the end instead. Out of reach, it is left as it is.
+  auto road = geom::Path::from({{10, -30}, {10, -10}});
+  auto centre = geom::Path::from({{-100, 0}, {0, 0}});
+  auto extended = geom::extend_to(road, {centre}, 40);
+  ASSERT_EQ(extended.size(), 3u);
+  EXPECT_EQ(extended.point(2), (Vec2{0, 0}));
+  EXPECT_EQ(geom::extend_to(road, {centre}, 5).size(), 2u);
+}
