@@ -94,6 +94,17 @@ TEST(Cli, EveryExampleGeneratesAndValidates) {
     auto report = nlohmann::json::parse(read(out / "report.json"));
     EXPECT_EQ(report["validation"]["ok"], true);
     EXPECT_GT(report["counts"]["zones"].get<int>(), 0);
+    // The plausibility targets (DESIGN.md, Plausibility).
+    for (const auto& [zone, z] : report["statistics"]["zones"].items()) {
+      EXPECT_EQ(z["blocks"]["share_area_over_4x_block_area"].get<double>(), 0.0) << sketch << " " << zone;
+      EXPECT_EQ(z["lots"]["share_touching_road"].get<double>(), 1.0) << sketch << " " << zone;
+      EXPECT_EQ(z["lots"]["share_depth_over_width_outside_0.5_5"].get<double>(), 0.0) << sketch << " " << zone;
+      EXPECT_LT(z["footprints"]["share_sharp_angle"].get<double>(), 0.01) << sketch << " " << zone;
+      if (zone != "residential") continue;
+      EXPECT_LT(z["footprints"]["share_under_5m_across"].get<double>(), 0.05) << sketch;
+      EXPECT_LE(z["footprints"]["area_m2"]["max"].get<double>(), 2000) << sketch;
+    }
+    EXPECT_EQ(report["statistics"]["streets"]["dead_ends"].get<int>(), 0) << sketch;
 
     Result v = run("validate " + out.string());
     EXPECT_EQ(v.code, 0) << v.out;
