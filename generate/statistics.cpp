@@ -234,10 +234,17 @@ ordered_json real_statistics(const std::filesystem::path& file) {
   std::vector<geom::Polygon> polygons;
   std::vector<geom::Polyline> lines;
   std::size_t skipped = 0;
-  auto points = [](const ordered_json& c) {
+  // Positions past a million kilometres are no place on Earth in any frame: their feature is skipped.
+  constexpr double kFarthest = 1e9;
+  auto points = [&](const ordered_json& c) {
     std::vector<Vec2> out;
-    for (const auto& p : c)
-      if (p.is_array() && p.size() >= 2 && p[0].is_number() && p[1].is_number()) out.push_back({p[0].get<double>(), p[1].get<double>()});
+    if (!c.is_array()) return out;
+    for (const auto& p : c) {
+      if (!p.is_array() || p.size() < 2 || !p[0].is_number() || !p[1].is_number()) continue;
+      Vec2 v{p[0].get<double>(), p[1].get<double>()};
+      if (!(std::abs(v.x) <= kFarthest && std::abs(v.y) <= kFarthest)) return std::vector<Vec2>{};
+      out.push_back(v);
+    }
     return out;
   };
   auto polygon = [&](const ordered_json& rings) {
@@ -247,6 +254,11 @@ ordered_json real_statistics(const std::filesystem::path& file) {
     if (p.outer.size() < 3) return ++skipped, void();
     for (std::size_t k = 1; k < rings.size(); ++k) p.holes.push_back(points(rings[k]));
     polygons.push_back(std::move(p));
+  };
+  auto line = [&](const ordered_json& c) {
+    std::vector<Vec2> l = points(c);
+    if (l.size() < 2) return ++skipped, void();
+    lines.push_back(std::move(l));
   };
   for (const auto& f : doc["features"]) {
     if (!f.is_object() || !f.contains("geometry") || !f["geometry"].is_object()) {
@@ -258,8 +270,8 @@ ordered_json real_statistics(const std::filesystem::path& file) {
     const auto& c = g.contains("coordinates") ? g["coordinates"] : ordered_json();
     if (type == "Polygon") polygon(c);
     else if (type == "MultiPolygon" && c.is_array()) for (const auto& p : c) polygon(p);
-    else if (type == "LineString") lines.push_back(points(c));
-    else if (type == "MultiLineString" && c.is_array()) for (const auto& l : c) lines.push_back(points(l));
+    else if (type == "LineString") line(c);
+    else if (type == "MultiLineString" && c.is_array()) for (const auto& l : c) line(l);
     else ++skipped;
   }
   // Lon/lat (every coordinate within range): projected about the centre, equirectangular,
@@ -267,7 +279,7 @@ ordered_json real_statistics(const std::filesystem::path& file) {
   geom::Box box = geom::Box::none();
   for (const auto& p : polygons) for (Vec2 v : p.outer) box.add(v);
   for (const auto& l : lines) for (Vec2 v : l) box.add(v);
-  if (box.holds_nothing()) throw UserError(file.string() + ": holds no Polygon or LineString; give footprints or streets");
+  if (box.holds_nothing()) throw UserError(file.string() + ": holds no usable Polygon or LineString; give footprints or streets");
   const bool lon_lat = box.min_x >= -180 && box.max_x <= 180 && box.min_y >= -90 && box.max_y <= 90;
   if (lon_lat) {
     const double lon0 = (box.min_x + box.max_x) / 2, lat0 = (box.min_y + box.max_y) / 2, r = 6371008.8 * M_PI / 180;
