@@ -6,6 +6,7 @@
 #include <cmath>
 #include <deque>
 #include <map>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -255,8 +256,38 @@ struct PlanarMap::Impl {
   LabelKeeper keeper{arr};
   std::vector<Curve> pending;
   std::map<int, std::vector<Point>> polylines;
+  // Edges given as doubles, kept aside until the batch: ends in left-to-right order.
+  struct PlainEdge {
+    Vec2 a, b;
+    CurveTag tag;
+  };
+  std::vector<PlainEdge> plain_pending;
 
   void add_edge(const Point& a, const Point& b, CurveTag tag) { add_curve(pending, a, b, tag); }
+
+  void add_plain_edge(Vec2 a, Vec2 b, CurveTag tag) {
+    if (a == b) return;
+    if (b.x < a.x || (b.x == a.x && b.y < a.y)) std::swap(a, b), tag.sign = -tag.sign;
+    plain_pending.push_back({a, b, tag});
+  }
+
+  // An edge given more than once (the edge two rings share) becomes one curve carrying
+  // every tag, in the order given, so the sweep has no overlap between them to resolve.
+  // Only edges given as doubles are compared: cheaply, and so exactly.
+  void merge_plain_edges() {
+    auto key = [](const PlainEdge& e) { return std::tuple(e.a.x, e.a.y, e.b.x, e.b.y); };
+    std::stable_sort(plain_pending.begin(), plain_pending.end(),
+                     [&](const PlainEdge& p, const PlainEdge& q) { return key(p) < key(q); });
+    for (std::size_t k = 0; k < plain_pending.size();) {
+      Tags tags;
+      std::size_t next = k;
+      for (; next < plain_pending.size() && key(plain_pending[next]) == key(plain_pending[k]); ++next)
+        tags.push_back(plain_pending[next].tag);
+      pending.emplace_back(exact::Segment(to_exact(plain_pending[k].a), to_exact(plain_pending[k].b)), std::move(tags));
+      k = next;
+    }
+    plain_pending.clear();
+  }
 
   void add_exact_ring(const exact::ExactRing& ring, int counter) {
     for (std::size_t i = 0; i < ring.size(); ++i) add_edge(ring[i], ring[(i + 1) % ring.size()], {counter, +1, 0});
@@ -281,11 +312,10 @@ PlanarMap::PlanarMap(PlanarMap&&) noexcept = default;
 PlanarMap& PlanarMap::operator=(PlanarMap&&) noexcept = default;
 
 void PlanarMap::add_ring(const Ring& ring, int counter, int aux) {
-  for (std::size_t i = 0; i < ring.size(); ++i)
-    impl_->add_edge(to_exact(ring[i]), to_exact(ring[(i + 1) % ring.size()]), {counter, +1, aux});
+  for (std::size_t i = 0; i < ring.size(); ++i) impl_->add_plain_edge(ring[i], ring[(i + 1) % ring.size()], {counter, +1, aux});
 }
 
-void PlanarMap::add_edge(Vec2 a, Vec2 b, int counter) { impl_->add_edge(to_exact(a), to_exact(b), {counter, +1, 0}); }
+void PlanarMap::add_edge(Vec2 a, Vec2 b, int counter) { impl_->add_plain_edge(a, b, {counter, +1, 0}); }
 
 void PlanarMap::add_stroke(const Polyline& line, double half_width, int counter) {
   for (const exact::ExactRing& piece : exact::stroke_pieces(line, half_width)) impl_->add_exact_ring(piece, counter);
@@ -317,6 +347,7 @@ void PlanarMap::add_path_stroke(const Path& path, double half_width, int counter
 }
 
 void PlanarMap::insert_batch() {
+  impl_->merge_plain_edges();
   CGAL::insert(impl_->arr, impl_->pending.begin(), impl_->pending.end());
   impl_->pending.clear();
 }
