@@ -20,10 +20,10 @@ using nlohmann::ordered_json;
 
 namespace {
 
-std::string ring_json(const std::vector<Vec2>& ring) {
+std::string positions(const std::vector<Vec2>& points, bool closed) {
   std::string s = "[";
-  for (std::size_t i = 0; i <= ring.size(); ++i) {
-    Vec2 p = ring[i % ring.size()];
+  for (std::size_t i = 0; i < points.size() + (closed ? 1 : 0); ++i) {
+    Vec2 p = points[i % points.size()];
     s += (i ? "," : "") + std::string("[") + format_number(p.x) + "," + format_number(p.y) + "]";
   }
   return s + "]";
@@ -31,16 +31,14 @@ std::string ring_json(const std::vector<Vec2>& ring) {
 
 std::string zone(const std::string& type, const std::vector<std::vector<Vec2>>& rings) {
   std::string coordinates;
-  for (const auto& r : rings) coordinates += (coordinates.empty() ? "" : ",") + ring_json(r);
+  for (const auto& r : rings) coordinates += (coordinates.empty() ? "" : ",") + positions(r, true);
   return R"({"type": "Feature", "properties": {"zone": ")" + type +
          R"("}, "geometry": {"type": "Polygon", "coordinates": [)" + coordinates + "]}}";
 }
 
 std::string road(const std::string& cls, double width, const std::vector<Vec2>& line) {
-  std::string coordinates = ring_json(line);
-  coordinates = coordinates.substr(0, coordinates.rfind(",[")) + "]";  // not closed
   return R"({"type": "Feature", "properties": {"road": ")" + cls + R"(", "width": )" + format_number(width) +
-         R"(}, "geometry": {"type": "LineString", "coordinates": )" + coordinates + "}}";
+         R"(}, "geometry": {"type": "LineString", "coordinates": )" + positions(line, false) + "}}";
 }
 
 std::vector<Vec2> circle(Vec2 c, double r, int n) {
