@@ -91,10 +91,8 @@ bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const ZoneParams& p, i
   const double segment_deviation = std::max(p.segment_deviation - 2.0 * level, 0.0);
   const int max_steps = static_cast<int>(reach / (p.segment_length * std::cos(p.origin_deviation * M_PI / 180))) + 2;
   bool reached_road = free;
-  for (int i = 0; i < p.branches; ++i) {
-    const double alpha = orientation + 360.0 * i / p.branches;
-    const double off_axis = std::fmod(360.0 * i / p.branches, 180.0);
-    if (across_only && off_axis > 45 && off_axis < 135) continue;
+  // Grows one road heading `alpha`; whether it has any length.
+  auto grow = [&](double alpha) {
     growth.begin(seed);
     int met;
     if (segment_deviation == 0) {
@@ -115,14 +113,24 @@ bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const ZoneParams& p, i
       } while (met == geom::Growth::kFree);
     }
     geom::Path road = growth.end();
-    if (road.empty()) continue;
+    if (road.empty()) return false;
     reached_road |= met == kRoad || met >= kSketchRoad;
     if (met >= kSketchRoad) {
       const SketchRoad& target = sketch_lines[met - kSketchRoad];
       road = geom::extend_to(road, target.lines, 4 * target.width);
     }
     roads.push_back(std::move(road));
+    return true;
+  };
+  std::vector<double> grown;
+  for (int i = 0; i < p.branches; ++i) {
+    const double off_axis = std::fmod(360.0 * i / p.branches, 180.0);
+    if (across_only && off_axis > 45 && off_axis < 135) continue;
+    const double alpha = orientation + 360.0 * i / p.branches;
+    if (grow(alpha)) grown.push_back(alpha);
   }
+  // A seed left with one road would be a dead end: that road runs on through it instead.
+  if (grown.size() == 1) grow(grown[0] + 180);
   return reached_road;
 }
 

@@ -50,6 +50,7 @@ std::vector<Vec2> circle(Vec2 c, double r, int n) {
 struct Shape {
   const char* name;
   std::vector<std::string> features;
+  std::string zone_settings = "{}";  // "exacity".zones
 };
 
 std::vector<Shape> shapes() {
@@ -78,6 +79,12 @@ std::vector<Shape> shapes() {
       {"cut", {zone("residential", {{{0, 0}, {1000, 0}, {1000, 400}, {400, 400}, {400, 1000}, {0, 1000}}}),
                zone("industrial", {{{400, 0}, {1000, 0}, {1000, 400}, {400, 400}}}),
                road("highway", 24, {{-100, 200}, {1100, 230}}), road("main", 12, {{200, -100}, {215, 1100}})}},
+      // One branch from each seed, and three (a strip's seed keeps only one of them across it):
+      // a seed left with a single road must not become a dead end.
+      {"few-branches",
+       {zone("residential", {{{0, 0}, {700, 0}, {700, 500}, {0, 500}}}),
+        zone("commercial", {{{700, 0}, {1000, 0}, {1000, 900}, {700, 900}}})},
+       R"({"residential": {"branches": 1}, "commercial": {"branches": 3}})"},
   };
 }
 
@@ -91,8 +98,8 @@ Generated generate(const Shape& shape) {
   auto dir = testing_util::temp_dir("plausible-" + std::string(shape.name));
   std::string features;
   for (const auto& f : shape.features) features += (features.empty() ? "" : ",") + f;
-  std::ofstream(dir / "in.geojson") << R"({"type": "FeatureCollection", "exacity": {"seed": 11}, "features": [)" << features
-                                    << "]}";
+  std::ofstream(dir / "in.geojson") << R"({"type": "FeatureCollection", "exacity": {"seed": 11, "zones": )"
+                                    << shape.zone_settings << R"(}, "features": [)" << features << "]}";
   std::filesystem::create_directories(dir / "out");
   auto result = generate_city(load_sketch(dir / "in.geojson"), dir / "out", nullptr);
   return {dir / "out", validate_output(dir / "out"), result.report["statistics"]};
