@@ -166,12 +166,9 @@ int stats(const fs::path& out, const std::vector<fs::path>& real) {
       throw UserError(out.string() + ": not an output folder of exacity generate (no sketch.geojson or vector/); run exacity generate first");
     Sketch sketch = load_sketch(out / "sketch.geojson");
     std::vector<std::string> problems;
-    auto read = [&](const char* name) { return read_geojson(out / "vector" / (std::string(name) + ".geojson"), problems); };
-    Layer zones = read("zones"), water = read("water"), road_areas = read("road_areas"), blocks = read("blocks"),
-          lots = read("lots"), buildings = read("buildings"), roads = read("roads");
+    const CityLayers layers = read_layers(out / "vector", problems);
     if (!problems.empty()) throw UserError(problems.front() + "; generate the city again");
-    std::printf("%s\n%s", out.string().c_str(),
-                format_statistics(city_statistics({&zones, &water, &road_areas, &blocks, &lots, &buildings, &roads, &sketch})).c_str());
+    std::printf("%s\n%s", out.string().c_str(), format_statistics(city_statistics(layers, &sketch)).c_str());
   }
   for (const fs::path& file : real) std::printf("%s (real)\n%s", file.string().c_str(), format_statistics(real_statistics(file)).c_str());
   return 0;

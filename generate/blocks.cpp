@@ -10,7 +10,7 @@ std::vector<Block> cut_blocks(const ZoneMap& zm, const Sketch& sketch) {
     const FaceLabel& f = zm.labels[l];
     if (f.cover == Cover::Zone && grows_roads(sketch.zones[f.zone].type))
       group[l] = static_cast<int>(sketch.zones[f.zone].type);
-    if (f.road >= 0 && (f.cover == Cover::Road || f.bridge)) road_across[l] = f.road;
+    if (f.road_surface()) road_across[l] = f.road;
   }
   std::vector<Block> blocks;
   std::vector<int> types;

@@ -25,12 +25,8 @@ void drape(const geom::Polygon& polygon, const Terrain* terrain, double lift, Gr
       double nearest = INFINITY;
       auto visit = [&](const geom::Ring& r) {
         in ^= geom::odd_crossings(r, p);
-        for (std::size_t i = 0, j = r.size() - 1; i < r.size(); j = i++) {
-          geom::Vec2 a = r[j], b = r[i];
-          double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
-          double t = len2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0) : 0;
-          nearest = std::min(nearest, std::hypot(a.x + t * dx - p.x, a.y + t * dy - p.y));
-        }
+        for (std::size_t i = 0, j = r.size() - 1; i < r.size(); j = i++)
+          nearest = std::min(nearest, geom::distance_to_segment(p, r[j], r[i]));
       };
       visit(polygon.outer);
       for (const auto& h : polygon.holes) visit(h);

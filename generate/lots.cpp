@@ -297,7 +297,7 @@ std::vector<Lot> insert_lots(ZoneMap& zm, const std::vector<Block>& blocks, cons
   std::vector<int> group(zm.labels.size(), -1), kind(zm.labels.size(), 0), planned_of;
   for (std::size_t l = 0; l < zm.labels.size(); ++l) {
     group[l] = zm.labels[l].lot;
-    if (zm.labels[l].cover == Cover::Road || zm.labels[l].bridge) kind[l] = kLotRoadEdge;
+    if (zm.labels[l].road_surface()) kind[l] = kLotRoadEdge;
   }
   std::vector<geom::Cell> pieces = zm.map.cells(group, kind, &planned_of);
   std::vector<std::optional<Lot>> kept(pieces.size());

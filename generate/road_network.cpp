@@ -8,6 +8,7 @@
 
 #include "generate/random.h"
 #include "geom/grid.h"
+#include "geom/measure.h"
 
 namespace exacity {
 namespace {
@@ -41,12 +42,8 @@ std::optional<geom::Vec2> seed_point(const geom::Cell& cell, Random& rng) {
   auto depth = [&](geom::Vec2 p) {
     double d = INFINITY;
     for (const auto& r : rings)
-      for (std::size_t i = 0, n = r.points.size(); i < n; ++i) {
-        geom::Vec2 a = r.points[i], b = r.points[(i + 1) % n];
-        double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
-        double t = len2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0) : 0;
-        d = std::min(d, std::hypot(a.x + t * dx - p.x, a.y + t * dy - p.y));
-      }
+      for (std::size_t i = 0, n = r.points.size(); i < n; ++i)
+        d = std::min(d, geom::distance_to_segment(p, r.points[i], r.points[(i + 1) % n]));
     return d;
   };
   std::optional<geom::Vec2> best = cell.point_inside_near(cell.centroid());
@@ -231,7 +228,7 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
     ZoneType t = f.zone >= 0 ? sketch.zones[f.zone].type : ZoneType::Park;
     bool growable = f.zone >= 0 && grows_roads(t);
     if ((f.cover == Cover::Zone && growable) || (f.cover == Cover::Water && growable && params(t).bridges)) group[l] = 0;
-    if (f.road >= 0 && f.road < zm.sketch_roads && (f.cover == Cover::Road || f.bridge)) kind[l] = kSketchRoad + f.road;
+    if (f.road_surface() && f.road < zm.sketch_roads) kind[l] = kSketchRoad + f.road;
   }
   SketchLines sketch_lines;
   for (int r = 0; r < zm.sketch_roads; ++r) sketch_lines.push_back({zm.roads[r].lines, zm.roads[r].width});

@@ -77,11 +77,8 @@ double least_width(const geom::Ring& ring) {
   return std::isfinite(best) ? best : 0;
 }
 
-struct PointHash {
-  std::size_t operator()(const Vec2& p) const { return std::hash<double>()(p.x) * 31 ^ std::hash<double>()(p.y); }
-};
 struct SegmentHash {
-  std::size_t operator()(const std::pair<Vec2, Vec2>& s) const { return PointHash()(s.first) * 17 ^ PointHash()(s.second); }
+  std::size_t operator()(const std::pair<Vec2, Vec2>& s) const { return geom::Vec2Hash()(s.first) * 17 ^ geom::Vec2Hash()(s.second); }
 };
 std::pair<Vec2, Vec2> undirected(Vec2 a, Vec2 b) {
   return (a.x < b.x || (a.x == b.x && a.y < b.y)) ? std::pair{a, b} : std::pair{b, a};
@@ -104,7 +101,7 @@ ordered_json footprint_figures(const std::vector<const geom::Polygon*>& footprin
 // length and densities per km2 of `area_m2`.
 ordered_json street_figures(const std::vector<const geom::Polyline*>& lines, double area_m2,
                             const std::function<bool(Vec2)>& on_edge) {
-  std::unordered_map<Vec2, int, PointHash> degree;
+  std::unordered_map<Vec2, int, geom::Vec2Hash> degree;
   double length = 0;
   for (const geom::Polyline* l : lines)
     for (std::size_t i = 0; i + 1 < l->size(); ++i) {
@@ -135,10 +132,8 @@ ordered_json street_figures(const std::vector<const geom::Polyline*>& lines, dou
 
 }  // namespace
 
-ordered_json city_statistics(const StatisticsInput& in) {
-  static const Layer empty;
-  const Layer &blocks = in.blocks ? *in.blocks : empty, &lots = in.lots ? *in.lots : empty,
-              &buildings = in.buildings ? *in.buildings : empty, &road_areas = in.road_areas ? *in.road_areas : empty;
+ordered_json city_statistics(const CityLayers& layers, const Sketch* sketch) {
+  const Layer &blocks = layers.blocks, &lots = layers.lots, &buildings = layers.buildings, &road_areas = layers.road_areas;
   std::set<std::string> zones{"all"};
   for (const Layer* l : {&blocks, &lots, &buildings})
     for (const auto& f : l->features) zones.insert(f.properties.value("zone", "all"));
@@ -174,7 +169,7 @@ ordered_json city_statistics(const StatisticsInput& in) {
       block_areas.push_back(a);
       block_total += a;
       auto type = parse_zone_type(f.properties.value("zone", ""));
-      if (in.sketch && type && a > kOversized * in.sketch->zone_params.at(*type).block_area) oversized += a;
+      if (sketch && type && a > kOversized * sketch->zone_params.at(*type).block_area) oversized += a;
     }
     std::size_t fronting = 0, lot_count = 0, odd_shape = 0, sharp_lots = 0;
     for (const auto& f : lots.features) {
@@ -203,16 +198,14 @@ ordered_json city_statistics(const StatisticsInput& in) {
 
   // Streets: the city's ground area, and its edge: drawn zone rings and water.
   double ground = 0;
-  for (const Layer* l : {in.zones, in.water, in.road_areas})
-    if (l)
-      for (const auto& f : l->features) ground += geom::area(f.polygon);
+  for (const Layer* l : {&layers.zones, &layers.water, &layers.road_areas})
+    for (const auto& f : l->features) ground += geom::area(f.polygon);
   geom::SegmentIndex edge(16.0);
   std::vector<const geom::Polygon*> drawn;
-  if (in.sketch)
-    for (const auto& z : in.sketch->zones)
+  if (sketch)
+    for (const auto& z : sketch->zones)
       for (const auto& p : z.polygons) edge.add_polygon(p), drawn.push_back(&p);
-  if (in.water)
-    for (const auto& f : in.water->features) edge.add_polygon(f.polygon);
+  for (const auto& f : layers.water.features) edge.add_polygon(f.polygon);
   auto on_edge = [&](Vec2 p) {
     if (edge.near(p, kOnEdge)) return true;
     for (const geom::Polygon* d : drawn)
@@ -220,8 +213,7 @@ ordered_json city_statistics(const StatisticsInput& in) {
     return true;  // outside every drawn zone: a sketch road's end past the city
   };
   std::vector<const geom::Polyline*> lines;
-  if (in.roads)
-    for (const auto& f : in.roads->features) lines.push_back(&f.line);
+  for (const auto& f : layers.roads.features) lines.push_back(&f.line);
   return {{"zones", per_zone}, {"streets", street_figures(lines, ground, on_edge)}};
 }
 

@@ -11,20 +11,9 @@
 
 #include "generate/geojson.h"
 #include "generate/sketch.h"
+#include "generate/vector_layers.h"
 
 namespace exacity {
-
-// The layers statistics read; any may be empty.
-struct StatisticsInput {
-  const Layer* zones = nullptr;
-  const Layer* water = nullptr;
-  const Layer* road_areas = nullptr;
-  const Layer* blocks = nullptr;
-  const Layer* lots = nullptr;
-  const Layer* buildings = nullptr;
-  const Layer* roads = nullptr;
-  const Sketch* sketch = nullptr;  // for the zones' block_area and the drawn city's edge
-};
 
 // Per zone (and "all"): block, lot and footprint areas (median, 95th percentile, largest),
 // the share of block area in blocks over 4x the zone's block_area, the share of lots that
@@ -32,7 +21,9 @@ struct StatisticsInput {
 // under 5 m across (the shorter side of the smallest enclosing rectangle). The streets:
 // junctions by degree, dead ends (ends that meet no other centre line inside the city's
 // edge), street length and junctions per km2.
-nlohmann::ordered_json city_statistics(const StatisticsInput& in);
+// Any layer may be empty; `sketch` (may be null) gives the zones' block_area and the drawn
+// city's edge.
+nlohmann::ordered_json city_statistics(const CityLayers& layers, const Sketch* sketch);
 
 // The same figures for real data: a GeoJSON file of footprints (Polygons, MultiPolygons)
 // and/or streets (LineStrings, MultiLineStrings), in metres or lon/lat (projected about its

@@ -8,6 +8,7 @@
 #include "generate/drawn_zones.h"
 #include "generate/errors.h"
 #include "generate/geojson.h"
+#include "generate/vector_layers.h"
 #include "geom/measure.h"
 #include "geom/planar_map.h"
 #include "geom/polygon_check.h"
@@ -199,9 +200,6 @@ void check_tiling(Checker& c, const Sketch& sketch, const std::vector<PolygonRef
 // of the built city (a drawn zone's ring or water). Each region's roads, with the sketch's
 // roads they meet, form one connected graph.
 void check_roads(Checker& c, const Sketch& sketch, const Layer& roads, const Layer& water) {
-  struct PointHash {
-    std::size_t operator()(const geom::Vec2& p) const { return std::hash<double>()(p.x) * 31 ^ std::hash<double>()(p.y); }
-  };
   const auto& features = roads.features;
   geom::PlanarMap map;
   for (std::size_t i = 0; i < features.size(); ++i) map.add_polyline(features[i].line, static_cast<int>(i));
@@ -215,7 +213,7 @@ void check_roads(Checker& c, const Sketch& sketch, const Layer& roads, const Lay
           break;
         }
 
-  std::unordered_map<geom::Vec2, std::vector<int>, PointHash> roads_at;  // vertex -> features through it
+  std::unordered_map<geom::Vec2, std::vector<int>, geom::Vec2Hash> roads_at;  // vertex -> features through it
   for (std::size_t i = 0; i < features.size(); ++i)
     for (auto p : features[i].line) roads_at[p].push_back(static_cast<int>(i));
   geom::SegmentIndex edges(16.0);
@@ -234,7 +232,7 @@ void check_roads(Checker& c, const Sketch& sketch, const Layer& roads, const Lay
   }
 
   // Connectivity: union-find over vertices.
-  std::unordered_map<geom::Vec2, int, PointHash> node;
+  std::unordered_map<geom::Vec2, int, geom::Vec2Hash> node;
   std::vector<int> parent;
   auto id = [&](geom::Vec2 p) {
     auto [it, added] = node.emplace(p, static_cast<int>(parent.size()));
@@ -287,9 +285,9 @@ Validation validate_output(const fs::path& dir) {
     return v;
   }
   std::vector<std::string> read_problems;
-  auto read = [&](const char* name) { return read_geojson(dir / "vector" / (std::string(name) + ".geojson"), read_problems); };
-  Layer zones = read("zones"), water = read("water"), road_areas = read("road_areas"), blocks = read("blocks"),
-        lots = read("lots"), buildings = read("buildings"), roads = read("roads");
+  const CityLayers layers = read_layers(dir / "vector", read_problems);
+  const Layer &zones = layers.zones, &water = layers.water, &road_areas = layers.road_areas, &blocks = layers.blocks,
+              &lots = layers.lots, &buildings = layers.buildings, &roads = layers.roads;
   for (auto& p : read_problems) c.problem(p);
 
   std::vector<PolygonRef> refs;

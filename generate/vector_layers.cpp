@@ -30,6 +30,14 @@ ordered_json or_null(int v) { return v >= 0 ? ordered_json(v) : ordered_json(nul
 
 }  // namespace
 
+CityLayers read_layers(const std::filesystem::path& vector_dir, std::vector<std::string>& problems) {
+  CityLayers layers;
+  for (Layer* l : {&layers.zones, &layers.water, &layers.roads, &layers.road_areas, &layers.blocks, &layers.lots,
+                   &layers.buildings})
+    *l = read_geojson(vector_dir / (l->name + ".geojson"), problems);
+  return layers;
+}
+
 CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
                           const std::vector<Building>& buildings, const Sketch& sketch, const ModelLibrary* library) {
   CityLayers out;
@@ -78,7 +86,7 @@ CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, c
     return f[bridge] >= 0 ? f[bridge] : f[!bridge];
   };
   dissolve(zm, 2 * roads,
-           [](const FaceLabel& l) { return l.road >= 0 && (l.cover == Cover::Road || l.bridge) ? 2 * l.road + l.bridge : -1; },
+           [](const FaceLabel& l) { return l.road_surface() ? 2 * l.road + l.bridge : -1; },
            [&](int g, geom::Polygon p) {
              add_polygon(out.road_areas, {{"road", or_null(road_id(g / 2, g % 2))}, {"bridge", g % 2 == 1}}, std::move(p));
            });

@@ -1,6 +1,10 @@
 // The planar map as the vector layers of DESIGN.md's Outputs table.
 #pragma once
 
+#include <filesystem>
+#include <string>
+#include <vector>
+
 #include "generate/blocks.h"
 #include "generate/buildings.h"
 #include "generate/geojson.h"
@@ -25,6 +29,10 @@ struct CityLayers {
     return box;
   }
 };
+
+// The layers as written into an output folder's `vector/` (what validate and stats read);
+// anything malformed is appended to `problems`, one line each.
+CityLayers read_layers(const std::filesystem::path& vector_dir, std::vector<std::string>& problems);
 
 CityLayers extract_layers(const ZoneMap& zone_map, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
                           const std::vector<Building>& buildings, const Sketch& sketch,

@@ -25,6 +25,8 @@ struct FaceLabel {
   bool bridge = false;  // a road surface over water
   int block = -1;       // index of the block it lies in, once blocks are in the map
   int lot = -1;         // index of the lot it lies in, once lots are in the map
+  // The surface of road `road`: on land, or a bridge's over water.
+  bool road_surface() const { return road >= 0 && (cover == Cover::Road || bridge); }
   friend auto operator<=>(const FaceLabel&, const FaceLabel&) = default;
 };
 

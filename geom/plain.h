@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -11,6 +12,11 @@ namespace geom {
 struct Vec2 {
   double x = 0, y = 0;
   friend bool operator==(const Vec2&, const Vec2&) = default;
+};
+
+// For hash maps keyed by exact double positions.
+struct Vec2Hash {
+  std::size_t operator()(const Vec2& p) const { return std::hash<double>()(p.x) * 31 ^ std::hash<double>()(p.y); }
 };
 
 // A closed ring written without repeating its first point.

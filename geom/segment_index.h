@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "geom/measure.h"
 #include "geom/plain.h"
 
 namespace geom {
@@ -33,9 +34,7 @@ class SegmentIndex {
     for (std::size_t id : it->second) {
       if (owners_[id] == except) continue;
       auto [a, b] = segments_[id];
-      double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
-      double t = len2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0) : 0;
-      if (std::hypot(a.x + t * dx - p.x, a.y + t * dy - p.y) <= tolerance) return true;
+      if (distance_to_segment(p, a, b) <= tolerance) return true;
     }
     return false;
   }

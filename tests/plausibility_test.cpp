@@ -154,7 +154,8 @@ INSTANTIATE_TEST_SUITE_P(Shapes, Plausibility, testing::ValuesIn(shapes()),
                          });
 
 TEST(Statistics, MeasureFootprintsAndStreetsByHand) {
-  Layer buildings{"buildings", false, {}}, roads{"roads", true, {}};
+  CityLayers layers;
+  Layer &buildings = layers.buildings, &roads = layers.roads;
   // A 10 x 4 rectangle (4 m across) and a triangle with a 20 degree corner.
   buildings.features.push_back({{{"zone", "residential"}}, {{{0, 0}, {10, 0}, {10, 4}, {0, 4}}, {}}, {}});
   const double t = std::tan(20 * M_PI / 180);
@@ -163,9 +164,7 @@ TEST(Statistics, MeasureFootprintsAndStreetsByHand) {
   roads.features.push_back({{}, {}, {{0, 0}, {100, 0}}});
   roads.features.push_back({{}, {}, {{100, 0}, {200, 0}}});
   roads.features.push_back({{}, {}, {{100, 0}, {100, 100}}});
-  StatisticsInput in;
-  in.buildings = &buildings, in.roads = &roads;
-  ordered_json s = city_statistics(in);
+  ordered_json s = city_statistics(layers, nullptr);
   const auto& f = s["zones"]["residential"]["footprints"];
   EXPECT_EQ(f["share_under_5m_across"].get<double>(), 0.5);
   EXPECT_EQ(f["share_sharp_angle"].get<double>(), 0.5);
