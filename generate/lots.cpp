@@ -208,6 +208,17 @@ std::vector<geom::Ring> street_lots(const geom::Cell& block, const ZoneParams& p
       if (!road(0)) continue;
       start = 0;
     }
+    // At a corner the cut runs along the bisector of the two edges' inward normals; a
+    // square-ish convex corner between two streets goes whole to the lot arriving there,
+    // and the run leaving it starts where that lot's back line meets it.
+    auto corner_dir = [&](std::size_t vertex, Vec2 own) {
+      Vec2 d = unit(normal(vertex + n - 1) + normal(vertex));
+      return closed || dot(d, own) > 0.5 ? d : own;
+    };
+    auto owned = [&](std::size_t vertex) {
+      const double t = turn(vertex);
+      return !closed && road(vertex + n - 1) && road(vertex) && t >= kOwnedCorner.min && t <= kOwnedCorner.max;
+    };
     // Runs from `start` on: [i, j) edges.
     for (std::size_t i = start; i < start + n;) {
       std::size_t j = i + 1;
@@ -218,18 +229,6 @@ std::vector<geom::Ring> street_lots(const geom::Cell& block, const ZoneParams& p
           pts.push_back(r.points[k % n]);
           normals.push_back(k == i ? normal(i) : k == j ? normal(j - 1) : unit(normal(k - 1) + normal(k)));
         }
-        // At a corner the cut runs along the bisector of the two edges' inward normals; a
-        // square-ish convex corner between two streets goes whole to the lot arriving there,
-        // and the run leaving it starts where that lot's back line meets it.
-        auto corner_dir = [&](std::size_t vertex, Vec2 own) {
-          if (closed) return unit(normal(vertex + n - 1) + normal(vertex));
-          Vec2 d = unit(normal(vertex + n - 1) + normal(vertex));
-          return dot(d, own) > 0.5 ? d : own;
-        };
-        auto owned = [&](std::size_t vertex) {
-          const double t = turn(vertex);
-          return !closed && road(vertex + n - 1) && road(vertex) && t >= kOwnedCorner.min && t <= kOwnedCorner.max;
-        };
         RunEnd first{corner_dir(i, normals.front())}, last{corner_dir(j, normals.back())};
         if (owned(i)) first = {normals.front(), p.lot_depth / std::sin(turn(i)), 0};
         if (owned(j)) last = {normals.back(), 0, kFrontOverhang + std::max(0.0, p.lot_depth / std::tan(turn(j)))};

@@ -5,6 +5,7 @@
 #include <set>
 #include <sstream>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "generate/errors.h"
 #include "generate/lots.h"
@@ -137,12 +138,13 @@ ordered_json city_statistics(const CityLayers& layers, const Sketch* sketch) {
   std::set<std::string> zones{"all"};
   for (const Layer* l : {&blocks, &lots, &buildings})
     for (const auto& f : l->features) zones.insert(f.properties.value("zone", "all"));
-  std::unordered_map<std::pair<Vec2, Vec2>, bool, SegmentHash> road_edges;
+  std::unordered_set<std::pair<Vec2, Vec2>, SegmentHash> road_edges;
+  auto add_edges = [&](const geom::Ring& r) {
+    for (std::size_t i = 0; i < r.size(); ++i) road_edges.insert(undirected(r[i], r[(i + 1) % r.size()]));
+  };
   for (const auto& f : road_areas.features) {
-    const auto& r = f.polygon.outer;
-    for (std::size_t i = 0; i < r.size(); ++i) road_edges[undirected(r[i], r[(i + 1) % r.size()])] = true;
-    for (const auto& h : f.polygon.holes)
-      for (std::size_t i = 0; i < h.size(); ++i) road_edges[undirected(h[i], h[(i + 1) % h.size()])] = true;
+    add_edges(f.polygon.outer);
+    for (const auto& h : f.polygon.holes) add_edges(h);
   }
   // A lot's depth over its width: its extents across and along its longest edge on a road
   // area; 0 for a lot with none.
