@@ -1,7 +1,7 @@
 // End-to-end scale run: one sketch through every stage, printing a table of seconds and
 // counts per stage and the peak memory. Measures; asserts nothing.
 //
-//   build/release/benchmarks/exacity_scale [SKETCH] [--threads N] [--until blocks] [--models LIBRARY]
+//   build/release/benchmarks/exacity_scale [SKETCH] [--threads N] [--until blocks|lots] [--models LIBRARY]
 #include <sys/resource.h>
 
 #include <chrono>
@@ -14,6 +14,7 @@
 #include <tbb/global_control.h>
 
 #include "generate/blocks.h"
+#include "generate/lots.h"
 #include "generate/pipeline.h"
 #include "generate/road_network.h"
 #include "generate/zone_map.h"
@@ -52,8 +53,8 @@ int main(int argc, char** argv) {
   std::printf("sketch %s%s%s, %d thread(s)\n\n", sketch_path.string().c_str(), sketch.models.empty() ? "" : ", models ",
               sketch.models.string().c_str(), threads);
 
-  if (until == "blocks") {
-    // The road-network target: roads and blocks alone.
+  if (until == "blocks" || until == "lots") {
+    // The road-network target: roads and blocks alone (and lots, to profile that stage).
     std::printf("| stage          |  seconds | counts\n|----------------|----------|-------\n");
     auto t = std::chrono::steady_clock::now();
     std::optional<Terrain> terrain;
@@ -70,6 +71,11 @@ int main(int argc, char** argv) {
     std::vector<Block> blocks = cut_blocks(net.map, sketch);
     double blocks_s = seconds_since(t);
     row("blocks", blocks_s, std::to_string(blocks.size()) + " blocks");
+    if (until == "lots") {
+      t = std::chrono::steady_clock::now();
+      std::vector<Lot> lots = insert_lots(net.map, plan_lots(blocks, sketch), sketch);
+      row("lots", seconds_since(t), std::to_string(lots.size()) + " lots");
+    }
     std::printf("\nroads and blocks: %.3f s; peak memory %.0f MiB\n", roads_s + blocks_s, peak());
     return 0;
   }

@@ -4,7 +4,7 @@
 
 namespace exacity {
 
-std::vector<Block> cut_blocks(const ZoneMap& zm, const Sketch& sketch) {
+std::vector<Block> cut_blocks(ZoneMap& zm, const Sketch& sketch) {
   std::vector<int> group(zm.labels.size(), -1), road_across(zm.labels.size(), -1);
   for (std::size_t l = 0; l < zm.labels.size(); ++l) {
     const FaceLabel& f = zm.labels[l];
@@ -13,13 +13,15 @@ std::vector<Block> cut_blocks(const ZoneMap& zm, const Sketch& sketch) {
     if (f.road_surface()) road_across[l] = f.road;
   }
   std::vector<Block> blocks;
-  std::vector<int> types;
-  std::vector<geom::Cell> cells = zm.map.cells(group, road_across, &types);
+  std::vector<int> types, components;
+  std::vector<geom::Cell> cells = zm.map.cells(group, road_across, &types, &components);
+  std::vector<int> block_of_component(components.empty() ? 0 : components.back() + 1, -1);
   for (std::size_t i = 0; i < cells.size(); ++i) {
     geom::Cell& cell = cells[i];
     Block b;
     b.polygon = cell.to_plain();
     if (b.polygon.outer.empty()) continue;
+    block_of_component[components[i]] = static_cast<int>(blocks.size());
     b.zone = static_cast<ZoneType>(types[i]);
     const ZoneParams& p = sketch.zone_params.at(b.zone);
     double a = geom::area(b.polygon);
@@ -32,6 +34,17 @@ std::vector<Block> cut_blocks(const ZoneMap& zm, const Sketch& sketch) {
     b.cell = std::move(cell);
     blocks.push_back(std::move(b));
   }
+  // Each face learns its block (an edge-connected component of faces bounds one cell).
+  std::pair<int, int> last{-1, -1};  // a component's faces mostly share one label
+  int last_component = -1;
+  zm.map.relabel_components(group, [&](int c, int label) {
+    if (c != last_component || label != last.first) {
+      FaceLabel l = zm.labels[label];
+      l.block = block_of_component[c];
+      last = {label, zm.label_index(l)}, last_component = c;
+    }
+    return last.second;
+  });
   return blocks;
 }
 

@@ -18,6 +18,7 @@ struct Block {
   std::vector<int> roads;  // indices into ZoneMap::roads of the roads it fronts
 };
 
-std::vector<Block> cut_blocks(const ZoneMap& zone_map, const Sketch& sketch);
+// The blocks, in the map's face order; every face of block b gets a label whose `block` is b.
+std::vector<Block> cut_blocks(ZoneMap& zone_map, const Sketch& sketch);
 
 }  // namespace exacity

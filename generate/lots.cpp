@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <chrono>
 #include <optional>
 
 #include <tbb/parallel_for.h>
@@ -277,20 +278,22 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch
   return lots;
 }
 
-std::vector<Lot> insert_lots(ZoneMap& zm, const std::vector<Block>& blocks, const std::vector<PlannedLot>& planned,
+std::vector<Lot> insert_lots(ZoneMap& zm, const std::vector<PlannedLot>& planned,
                              const Sketch& sketch) {
-  zm.block_base = zm.generated_base + static_cast<int>(zm.roads.size()) - zm.sketch_roads;
-  zm.lot_base = zm.block_base + static_cast<int>(blocks.size());
+  zm.lot_base = zm.generated_base + static_cast<int>(zm.roads.size()) - zm.sketch_roads;
   zm.lot_block.clear();
-  for (std::size_t b = 0; b < blocks.size(); ++b) zm.map.add_cell(blocks[b].cell, zm.block_base + static_cast<int>(b));
   for (std::size_t l = 0; l < planned.size(); ++l) {
     int counter = zm.lot_base + static_cast<int>(l);
     if (planned[l].ring.empty()) zm.map.add_cell(planned[l].cell, counter);
     else zm.map.add_ring(planned[l].ring, counter);
     zm.lot_block.push_back(planned[l].block);
   }
+  auto T0 = std::chrono::steady_clock::now();
+  auto lap = [&](const char* what) { auto t = std::chrono::steady_clock::now(); fprintf(stderr, "%s %.2f\n", what, std::chrono::duration<double>(t - T0).count()); T0 = t; };
   zm.map.insert_batch();
-  zm.label(sketch);
+  lap("insert");
+  zm.label_lots();
+  lap("label");
 
   // Each planned lot's pieces, those that make sensible lots.
   std::vector<int> group(zm.labels.size(), -1), kind(zm.labels.size(), 0), planned_of;
@@ -299,6 +302,7 @@ std::vector<Lot> insert_lots(ZoneMap& zm, const std::vector<Block>& blocks, cons
     if (zm.labels[l].road_surface()) kind[l] = kLotRoadEdge;
   }
   std::vector<geom::Cell> pieces = zm.map.cells(group, kind, &planned_of);
+  lap("cells");
   std::vector<std::optional<Lot>> kept(pieces.size());
   tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
     const PlannedLot& plan = planned[planned_of[i]];
@@ -313,6 +317,7 @@ std::vector<Lot> insert_lots(ZoneMap& zm, const std::vector<Block>& blocks, cons
     if (ratio < kLotShape.min || ratio > kLotShape.max) return;
     kept[i] = Lot{plan.block, plan.zone, std::move(pieces[i]), std::move(shape)};
   });
+  lap("filter");
   std::vector<Lot> lots;
   for (auto& lot : kept)
     if (lot) lots.push_back(std::move(*lot));

@@ -45,9 +45,9 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch
 // little past the block's edge, so the map cuts it back exactly there.
 std::vector<geom::Ring> street_lots(const geom::Cell& block, const ZoneParams& p, Random& rng);
 
-// The planned lots and their blocks into the map in one batch; faces then know their
-// planned lot. Returns the lots as they ended up.
-std::vector<Lot> insert_lots(ZoneMap& zone_map, const std::vector<Block>& blocks, const std::vector<PlannedLot>& lots,
+// The planned lots into the map in one batch; faces of a block then know the lot planned
+// there that they lie in. Returns the lots as they ended up.
+std::vector<Lot> insert_lots(ZoneMap& zone_map, const std::vector<PlannedLot>& lots,
                              const Sketch& sketch);
 
 }  // namespace exacity

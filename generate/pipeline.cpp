@@ -38,7 +38,7 @@ City build_city(const Sketch& sketch, StageClock& stages) {
   city.network = stages.run("road network", [&] { return grow_road_network(std::move(zone_map), sketch); });
   city.blocks = stages.run("blocks", [&] { return cut_blocks(city.network.map, sketch); });
   city.lots = stages.run("lots", [&] {
-    return insert_lots(city.network.map, city.blocks, plan_lots(city.blocks, sketch), sketch);
+    return insert_lots(city.network.map, plan_lots(city.blocks, sketch), sketch);
   });
   city.buildings = stages.run("buildings", [&] {
     return place_buildings(city.lots, sketch, city.models(), city.ground());

@@ -92,20 +92,15 @@ CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, c
            });
 
   // Blocks from the final map, so they share every vertex with the other layers (lots add
-  // vertices on block edges); before lots are in the map, from the blocks themselves.
-  // A block's id is its index, which lots name.
+  // vertices on block edges). A block's id is its index, which lots name.
   auto block_properties = [&](int g) {
     const Block& b = blocks[g];
     ordered_json ids = ordered_json::array();
     for (int r : b.roads) ids.push_back(or_null(road_id(r, false)));
     return ordered_json{{"id", g}, {"zone", name(b.zone)}, {"green", b.green}, {"roads", ids}};
   };
-  if (zm.block_base >= 0) {
-    dissolve(zm, static_cast<int>(blocks.size()), [](const FaceLabel& l) { return l.block; },
-             [&](int g, geom::Polygon p) { add_polygon(out.blocks, block_properties(g), std::move(p)); });
-  } else {
-    for (std::size_t g = 0; g < blocks.size(); ++g) add_polygon(out.blocks, block_properties(static_cast<int>(g)), blocks[g].polygon);
-  }
+  dissolve(zm, static_cast<int>(blocks.size()), [](const FaceLabel& l) { return l.block; },
+           [&](int g, geom::Polygon p) { add_polygon(out.blocks, block_properties(g), std::move(p)); });
 
   // Lots as they ended up in the map; a lot's id is its index, which buildings name.
   for (const Lot& lot : lots)

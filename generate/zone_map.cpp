@@ -47,8 +47,8 @@ int ZoneMap::road_of_counter(int counter) const {
 
 void ZoneMap::label(const Sketch& sketch) {
   constexpr int kWater = 0;
-  std::map<FaceLabel, int> index;
   labels.clear();
+  index_.clear();
   map.label_faces([&](const geom::Windings& w) {
     FaceLabel l;
     l.zone = drawn->top_zone(w);
@@ -65,16 +65,6 @@ void ZoneMap::label(const Sketch& sketch) {
         break;
       }
     }
-    if (block_base >= 0 && !water && l.road < 0) {
-      // Lots lie in their own block only: where one would cross a road it stops there.
-      for (auto [counter, winding] : w) {
-        if (counter >= block_base && counter < lot_base && l.block < 0) l.block = counter - block_base;
-        if (counter >= lot_base && l.block >= 0 && lot_block[counter - lot_base] == l.block) {
-          l.lot = counter - lot_base;
-          break;
-        }
-      }
-    }
     if (water) {
       l.cover = Cover::Water;
       l.bridge = l.road >= 0;
@@ -83,9 +73,26 @@ void ZoneMap::label(const Sketch& sketch) {
     } else if (l.zone >= 0) {
       l.cover = Cover::Zone;
     }
-    auto [it, added] = index.emplace(l, static_cast<int>(labels.size()));
-    if (added) labels.push_back(l);
-    return it->second;
+    return label_index(l);
+  });
+}
+
+int ZoneMap::label_index(const FaceLabel& l) {
+  auto [it, added] = index_.emplace(l, static_cast<int>(labels.size()));
+  if (added) labels.push_back(l);
+  return it->second;
+}
+
+void ZoneMap::label_lots() {
+  map.relabel_faces(lot_base, [&](const geom::Windings& w, int previous) {
+    if (previous < 0 || labels[previous].block < 0 || w.empty()) return previous;
+    FaceLabel l = labels[previous];
+    for (auto [counter, winding] : w)
+      if (lot_block[counter - lot_base] == l.block) {
+        l.lot = counter - lot_base;
+        return label_index(l);
+      }
+    return previous;
   });
 }
 

@@ -5,6 +5,7 @@
 
 #include <compare>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -56,14 +57,21 @@ struct ZoneMap {
   // generated roads from generated_base on.
   std::shared_ptr<DrawnZones> drawn;
   int generated_base = 0;
-  // Then, once the lots stage has run, block b winds around block_base + b and lot l
-  // around lot_base + l.
-  int block_base = -1, lot_base = -1;
+  // Then, once the lots stage has run, lot l winds around lot_base + l.
+  int lot_base = -1;
   std::vector<int> lot_block;  // per lot: its block
 
   int road_of_counter(int counter) const;
   // (Re)labels every face from its windings.
   void label(const Sketch& sketch);
+  // The index of this label in `labels`, added if new.
+  int label_index(const FaceLabel& l);
+  // After the lots' batch: a face of a block lies in the first lot around it planned in
+  // that block, so a lot that would cross a road or another block stops there.
+  void label_lots();
+
+ private:
+  std::map<FaceLabel, int> index_;
 };
 
 ZoneMap build_zone_map(const Sketch& sketch, const Terrain* terrain);

@@ -6,6 +6,7 @@
 
 #include "geom/cell_impl.h"
 #include "geom/grid.h"
+#include "geom/ring_cleanup.h"
 
 namespace geom {
 
@@ -38,18 +39,25 @@ bool Path::is_straight() const {
 
 Cell make_cell(KindRing outer, std::vector<KindRing> holes) {
   auto impl = std::make_shared<Cell::Impl>();
-  exact::FT twice_area = 0;
+  // Area and bounds of the rounded rings: choices, not topology.
+  double twice_area = 0;
   Box b = Box::none();
-  auto add = [&](const KindRing& r) {
-    for (std::size_t i = 0; i < r.points.size(); ++i) {
-      const Point &a = r.points[i], &c = r.points[(i + 1) % r.points.size()];
-      twice_area += a.x() * c.y() - a.y() * c.x();
-      b.add(exact::to_plain(a));
-    }
+  auto add = [&](KindRing& r) {
+    r.rounded.clear();
+    for (const Point& v : r.points) r.rounded.push_back(exact::to_plain(v)), b.add(r.rounded.back());
   };
   add(outer);
-  for (const auto& h : holes) add(h);
-  impl->area = CGAL::to_double(twice_area) / 2;
+  for (auto& h : holes) add(h);
+  const Vec2 o = outer.rounded.at(0);  // relative to a vertex, so large coordinates keep their precision
+  auto add_area = [&](const std::vector<Vec2>& p) {
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      Vec2 u = p[i], w = p[(i + 1) % p.size()];
+      twice_area += (u.x - o.x) * (w.y - o.y) - (u.y - o.y) * (w.x - o.x);
+    }
+  };
+  add_area(outer.rounded);
+  for (const auto& h : holes) add_area(h.rounded);
+  impl->area = twice_area / 2;
   impl->bounds = b;
   impl->outer = std::move(outer);
   impl->holes = std::move(holes);
@@ -61,11 +69,11 @@ Box Cell::bounds() const { return impl_->bounds; }
 
 Vec2 Cell::centroid() const {
   // Of the outer ring's area, in doubles relative to its first vertex: a choice, not topology.
-  const auto& pts = impl_->outer.points;
-  Vec2 o = exact::to_plain(pts[0]);
+  const auto& pts = impl_->outer.rounded;
+  Vec2 o = pts[0];
   double a = 0, cx = 0, cy = 0;
   for (std::size_t i = 0; i < pts.size(); ++i) {
-    Vec2 p = exact::to_plain(pts[i]), q = exact::to_plain(pts[(i + 1) % pts.size()]);
+    Vec2 p = pts[i], q = pts[(i + 1) % pts.size()];
     p = {p.x - o.x, p.y - o.y}, q = {q.x - o.x, q.y - o.y};
     double c = p.x * q.y - q.x * p.y;
     a += c, cx += (p.x + q.x) * c, cy += (p.y + q.y) * c;
@@ -121,7 +129,7 @@ std::optional<Vec2> Cell::point_inside_near(Vec2 wanted) const {
   std::vector<Candidate> candidates;
   auto visit = [&](const KindRing& r) {
     for (std::size_t i = 0; i < r.points.size(); ++i) {
-      Vec2 a = exact::to_plain(r.points[i]), b = exact::to_plain(r.points[(i + 1) % r.points.size()]);
+      Vec2 a = r.rounded[i], b = r.rounded[(i + 1) % r.points.size()];
       double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
       if (len2 == 0) continue;
       double t = std::clamp(((wanted.x - a.x) * dx + (wanted.y - a.y) * dy) / len2, 0.0, 1.0);
@@ -148,7 +156,7 @@ std::vector<std::pair<Vec2, Vec2>> Cell::edges_of_kind(int kind) const {
   std::vector<std::pair<Vec2, Vec2>> edges;
   auto visit = [&](const KindRing& r) {
     for (std::size_t i = 0; i < r.points.size(); ++i)
-      if (r.kinds[i] == kind) edges.push_back({exact::to_plain(r.points[i]), exact::to_plain(r.points[(i + 1) % r.points.size()])});
+      if (r.kinds[i] == kind) edges.push_back({r.rounded[i], r.rounded[(i + 1) % r.points.size()]});
   };
   visit(impl_->outer);
   for (const auto& h : impl_->holes) visit(h);
@@ -160,7 +168,7 @@ std::vector<KindedRing> Cell::kinded_rings() const {
   auto visit = [&](const KindRing& r) {
     KindedRing out;
     for (std::size_t i = 0; i < r.points.size(); ++i) {
-      Vec2 p = exact::to_plain(r.points[i]);
+      Vec2 p = r.rounded[i];
       if (!out.points.empty() && out.points.back() == p) {
         out.kinds.back() = r.kinds[i];  // the edge that rounded to nothing gives way to the next
         continue;
@@ -177,10 +185,15 @@ std::vector<KindedRing> Cell::kinded_rings() const {
 }
 
 Polygon Cell::to_plain() const {
-  Polygon p{exact::round_ring(impl_->outer.points), {}};
+  auto round = [](const KindRing& r) {
+    Ring ring = r.rounded;
+    drop_repeats_and_spikes(ring);
+    return ring;
+  };
+  Polygon p{round(impl_->outer), {}};
   if (p.outer.empty()) return p;
   for (const auto& h : impl_->holes) {
-    Ring r = exact::round_ring(h.points);
+    Ring r = round(h);
     if (!r.empty()) p.holes.push_back(std::move(r));
   }
   return p;

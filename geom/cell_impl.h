@@ -14,6 +14,7 @@ struct Path::Impl {
 struct KindRing {
   std::vector<exact::Point> points;
   std::vector<int> kinds;  // kinds[i]: the edge points[i] -> points[i + 1]
+  std::vector<Vec2> rounded;  // points rounded to doubles, by make_cell: rounding an exact vertex is costly
 };
 
 struct Cell::Impl {
@@ -23,7 +24,7 @@ struct Cell::Impl {
   Box bounds;
 };
 
-// Builds a cell, computing its area and bounds.
+// Builds a cell, rounding its vertices and computing its area and bounds.
 Cell make_cell(KindRing outer, std::vector<KindRing> holes);
 
 }  // namespace geom

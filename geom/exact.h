@@ -19,9 +19,13 @@ inline Point to_exact(Vec2 p) {
 }
 
 // Rounds the exact value, so the result does not depend on how far the lazy kernel
-// happened to evaluate it.
+// happened to evaluate it. A point whose interval is a single double is that double; any
+// other is evaluated exactly once, as a point (p.x() would add a lazy node each call).
 inline Vec2 to_plain(const Point& p) {
-  return {CGAL::to_double(CGAL::exact(p.x())), CGAL::to_double(CGAL::exact(p.y()))};
+  const auto& a = p.approx();
+  if (a.x().inf() == a.x().sup() && a.y().inf() == a.y().sup()) return {a.x().inf(), a.y().inf()};
+  const auto& e = CGAL::exact(p);
+  return {CGAL::to_double(e.x()), CGAL::to_double(e.y())};
 }
 
 // A ring of exact points (not closed: the last point is not repeated).

@@ -3,6 +3,7 @@
 #include "geom/planar_map.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <deque>
 #include <map>
@@ -85,29 +86,46 @@ void for_each_boundary_halfedge(Face face, F&& f) {
   for (auto c = face->inner_ccbs_begin(); c != face->inner_ccbs_end(); ++c) walk(*c);
 }
 
-// Gives every face label_of(its windings), walking out from the unbounded face.
-void label_all_faces(Arrangement& arr, const std::function<int(const Windings&)>& label_of) {
-  std::unordered_map<const void*, Windings> windings;
-  std::deque<Arrangement::Face_handle> queue{arr.unbounded_face()};
-  windings[&*arr.unbounded_face()] = {};
+// Gives every face label_of(its windings of counters >= from_counter, its label so far),
+// walking out from the unbounded face. Faces are numbered through their data while the
+// walk runs, so nothing is hashed.
+void label_all_faces(Arrangement& arr, int from_counter, const std::function<int(const Windings&, int)>& label_of) {
+  std::vector<int> previous;
+  std::vector<Arrangement::Face_handle> faces;
+  for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
+    previous.push_back(f->data());
+    f->set_data(static_cast<int>(faces.size()));
+    faces.push_back(f);
+  }
+  std::vector<Windings> windings(faces.size());
+  std::vector<char> reached(faces.size(), 0);
+  std::vector<int> labels(faces.size(), -1);
+  std::deque<int> queue{arr.unbounded_face()->data()};
+  reached[queue.front()] = 1;
   while (!queue.empty()) {
-    Arrangement::Face_handle f = queue.front();
+    const int i = queue.front();
     queue.pop_front();
-    const Windings wf = windings.at(&*f);
-    f->set_data(label_of(wf));
-    for_each_boundary_halfedge(f, [&](Halfedge h) {
-      Arrangement::Face_handle g = arr.non_const_handle(h->twin()->face());
-      if (windings.count(&*g)) return;
-      // h has f on its left: crossing h from right to left raises a counter by one
+    labels[i] = label_of(windings[i], previous[i]);
+    for_each_boundary_halfedge(faces[i], [&](Halfedge h) {
+      const int j = h->twin()->face()->data();
+      if (reached[j]) return;
+      reached[j] = 1;
+      // h has face i on its left: crossing h from right to left raises a counter by one
       // for every ring edge running the same way as h.
-      Windings wg = wf;
+      Windings wj = windings[i];
       bool left_to_right = h->direction() == CGAL::ARR_LEFT_TO_RIGHT;
       for (const CurveTag& t : h->curve().data())
-        if (t.sign != 0) add_winding(wg, t.counter, (t.sign > 0) == left_to_right ? -1 : +1);
-      windings.emplace(&*g, std::move(wg));
-      queue.push_back(g);
+        if (t.sign != 0 && t.counter >= from_counter) add_winding(wj, t.counter, (t.sign > 0) == left_to_right ? -1 : +1);
+      windings[j] = std::move(wj);
+      queue.push_back(j);
     });
+    Windings().swap(windings[i]);
   }
+  for (std::size_t i = 0; i < faces.size(); ++i) faces[i]->set_data(labels[i]);
+}
+
+void label_all_faces(Arrangement& arr, const std::function<int(const Windings&)>& label_of) {
+  label_all_faces(arr, INT_MIN, [&](const Windings& w, int) { return label_of(w); });
 }
 
 // Splits a closed walk that passes some vertex twice into loops that pass none twice.
@@ -152,32 +170,36 @@ struct LoopPolygon {
   std::vector<std::vector<Halfedge>> holes;
 };
 
+// Calls f(group, faces, boundary) for each edge-connected component of faces that share a
+// group (group_of(face) >= 0), in face order; boundary: the halfedges with the component on
+// their left and another group on their right.
+template <typename GroupOf, typename F>
+void for_each_component(const Arrangement& arr, GroupOf group_of, F f) {
+  std::unordered_set<const void*> seen;
+  for (auto start = arr.faces_begin(); start != arr.faces_end(); ++start) {
+    int g = group_of(Face(start));
+    if (g < 0 || seen.count(&*start)) continue;
+    std::vector<Face> faces{start};
+    std::vector<Halfedge> boundary;
+    seen.insert(&*start);
+    for (std::size_t i = 0; i < faces.size(); ++i)
+      for_each_boundary_halfedge(faces[i], [&](Halfedge h) {
+        Face t = h->twin()->face();
+        if (group_of(t) != g) boundary.push_back(h);
+        else if (seen.insert(&*t).second) faces.push_back(t);
+      });
+    f(g, faces, boundary);
+  }
+}
+
 // Calls emit(group, polygons, neighbour labels) for each edge-connected component of faces
 // that share a group (group_of(face) >= 0), in face order. Boundaries are walked with the
 // component on the left, turning as tightly as possible at each vertex, and cut where
 // they touch themselves, so every loop is simple; a hole may touch its outer loop.
 template <typename GroupOf, typename Emit>
 void trace_components(const Arrangement& arr, GroupOf group_of, Emit emit) {
-  std::unordered_set<const void*> seen_faces, used;
-  for (auto start = arr.faces_begin(); start != arr.faces_end(); ++start) {
-    int g = group_of(Face(start));
-    if (g < 0 || seen_faces.count(&*start)) continue;
-
-    std::vector<Halfedge> boundary;
-    std::deque<Face> queue{start};
-    seen_faces.insert(&*start);
-    while (!queue.empty()) {
-      Face f = queue.front();
-      queue.pop_front();
-      for_each_boundary_halfedge(f, [&](Halfedge h) {
-        Face t = h->twin()->face();
-        if (group_of(t) != g) {
-          boundary.push_back(h);
-        } else if (seen_faces.insert(&*t).second) {
-          queue.push_back(t);
-        }
-      });
-    }
+  std::unordered_set<const void*> used;
+  for_each_component(arr, group_of, [&](int g, const std::vector<Face>&, const std::vector<Halfedge>& boundary) {
 
     std::vector<std::vector<Halfedge>> outers, holes;
     std::vector<std::vector<Point>> outer_points;
@@ -224,7 +246,7 @@ void trace_components(const Arrangement& arr, GroupOf group_of, Emit emit) {
       if (!polygons.empty()) polygons[owner].holes.push_back(std::move(hole));
     }
     emit(g, polygons, neighbours);
-  }
+  });
 }
 
 Ring plain_ring(const std::vector<Halfedge>& loop) { return exact::round_ring(loop_points(loop)); }
@@ -356,6 +378,19 @@ void PlanarMap::label_faces(const std::function<int(const Windings&)>& label_of)
   label_all_faces(impl_->arr, label_of);
 }
 
+void PlanarMap::relabel_faces(int from_counter, const std::function<int(const Windings&, int)>& label_of) {
+  label_all_faces(impl_->arr, from_counter, label_of);
+}
+
+void PlanarMap::relabel_components(const std::vector<int>& group_of_label, const std::function<int(int, int)>& relabel) {
+  // Collected first: relabelled faces would change the groups the walk still reads.
+  std::vector<std::vector<Face>> components;
+  for_each_component(impl_->arr, impl_->group_function(group_of_label),
+                     [&](int, const std::vector<Face>& faces, const std::vector<Halfedge>&) { components.push_back(faces); });
+  for (std::size_t c = 0; c < components.size(); ++c)
+    for (Face f : components[c]) impl_->arr.non_const_handle(f)->set_data(relabel(static_cast<int>(c), f->data()));
+}
+
 std::vector<std::vector<Dissolved>> PlanarMap::dissolve(const std::vector<int>& group_of_label,
                                                         int group_count) const {
   std::vector<std::vector<Dissolved>> result(group_count);
@@ -375,16 +410,19 @@ std::vector<std::vector<Dissolved>> PlanarMap::dissolve(const std::vector<int>& 
 }
 
 std::vector<Cell> PlanarMap::cells(const std::vector<int>& group_of_label, const std::vector<int>& kind_of_label,
-                                   std::vector<int>* groups) const {
+                                   std::vector<int>* groups, std::vector<int>* components) const {
   std::vector<Cell> cells;
   auto kind_of = [&](Halfedge h) {
     int l = h->twin()->face()->data();
     return l >= 0 && l < static_cast<int>(kind_of_label.size()) ? kind_of_label[l] : 0;
   };
+  int component = 0;
   trace_components(impl_->arr, impl_->group_function(group_of_label),
                    [&](int g, const std::vector<LoopPolygon>& polygons, const std::vector<int>&) {
                      add_cells(polygons, kind_of, cells);
                      if (groups) groups->resize(cells.size(), g);
+                     if (components) components->resize(cells.size(), component);
+                     ++component;
                    });
   return cells;
 }

@@ -79,6 +79,9 @@ class PlanarMap {
 
   // Labels every face with label_of(its windings); the unbounded face included.
   void label_faces(const std::function<int(const Windings&)>& label_of);
+  // The same after a later batch, counting only counters >= from_counter, and knowing each
+  // face's label so far (faces split by the batch keep the label the face had).
+  void relabel_faces(int from_counter, const std::function<int(const Windings&, int)>& label_of);
 
   // Merges faces by group (group_of_label[label], -1 for none) into polygons with
   // holes: result[g] lists group g's polygons. Rings are simple; a hole may touch its
@@ -88,9 +91,14 @@ class PlanarMap {
 
   // Components of faces with group >= 0 as exact cells, in face order: each boundary
   // edge's kind is kind_of_label[label of the face across it].
-  // When `groups` is given, it receives each cell's group.
+  // When `groups` is given, it receives each cell's group; `components`, the index of the
+  // component of faces each cell came from.
   std::vector<Cell> cells(const std::vector<int>& group_of_label, const std::vector<int>& kind_of_label,
-                          std::vector<int>* groups = nullptr) const;
+                          std::vector<int>* groups = nullptr, std::vector<int>* components = nullptr) const;
+
+  // Gives each face of the components cells() would find the label relabel(component index,
+  // its label).
+  void relabel_components(const std::vector<int>& group_of_label, const std::function<int(int, int)>& relabel);
 
   // The pieces of every polyline, in order along each: result[tag].
   std::map<int, std::vector<PolylinePiece>> polyline_pieces() const;
