@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <chrono>
 #include <optional>
 
 #include <tbb/parallel_for.h>
@@ -288,12 +287,8 @@ std::vector<Lot> insert_lots(ZoneMap& zm, const std::vector<PlannedLot>& planned
     else zm.map.add_ring(planned[l].ring, counter);
     zm.lot_block.push_back(planned[l].block);
   }
-  auto T0 = std::chrono::steady_clock::now();
-  auto lap = [&](const char* what) { auto t = std::chrono::steady_clock::now(); fprintf(stderr, "%s %.2f\n", what, std::chrono::duration<double>(t - T0).count()); T0 = t; };
   zm.map.insert_batch();
-  lap("insert");
   zm.label_lots();
-  lap("label");
 
   // Each planned lot's pieces, those that make sensible lots.
   std::vector<int> group(zm.labels.size(), -1), kind(zm.labels.size(), 0), planned_of;
@@ -302,7 +297,6 @@ std::vector<Lot> insert_lots(ZoneMap& zm, const std::vector<PlannedLot>& planned
     if (zm.labels[l].road_surface()) kind[l] = kLotRoadEdge;
   }
   std::vector<geom::Cell> pieces = zm.map.cells(group, kind, &planned_of);
-  lap("cells");
   std::vector<std::optional<Lot>> kept(pieces.size());
   tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
     const PlannedLot& plan = planned[planned_of[i]];
@@ -317,7 +311,6 @@ std::vector<Lot> insert_lots(ZoneMap& zm, const std::vector<PlannedLot>& planned
     if (ratio < kLotShape.min || ratio > kLotShape.max) return;
     kept[i] = Lot{plan.block, plan.zone, std::move(pieces[i]), std::move(shape)};
   });
-  lap("filter");
   std::vector<Lot> lots;
   for (auto& lot : kept)
     if (lot) lots.push_back(std::move(*lot));

@@ -92,6 +92,36 @@ TEST(PlanarMap, SplitFaceKeepsItsLabel) {
   ASSERT_EQ(polys.size(), 1u);  // dissolved back into one square
 }
 
+TEST(PlanarMap, RelabelSeesOnlyLaterCountersAndEachFacesLabel) {
+  PlanarMap map;
+  map.add_ring(square(0, 0, 10), 0);
+  map.add_ring(square(20, 0, 10), 0);
+  map.insert_batch();
+  map.label_faces([](const Windings& w) { return geom::winding_of(w, 0) != 0 ? 1 : 0; });
+  // The two squares are two components of label 1: they become labels 2 and 3.
+  std::vector<int> seen;
+  map.relabel_components({-1, 0}, [&](int component, int label) {
+    EXPECT_EQ(label, 1);
+    seen.push_back(component);
+    return 2 + component;
+  });
+  EXPECT_EQ(seen, (std::vector<int>{0, 1}));
+  // A ring across both squares splits them; the pieces keep 2 and 3 and only counter 5 is seen.
+  map.add_ring({{5, 2}, {25, 2}, {25, 8}, {5, 8}}, 5);
+  map.insert_batch();
+  map.relabel_faces(5, [](const Windings& w, int previous) {
+    EXPECT_TRUE(previous >= 0 && previous <= 3) << previous;
+    for (auto [counter, winding] : w) EXPECT_EQ(counter, 5);
+    return geom::winding_of(w, 5) != 0 && previous >= 2 ? previous + 2 : previous;
+  });
+  auto a = group_areas(map, 6);
+  EXPECT_EQ(a[2], 100 - 30);  // the left square less the ring's 5 x 6
+  EXPECT_EQ(a[3], 100 - 30);
+  EXPECT_EQ(a[4], 30);
+  EXPECT_EQ(a[5], 30);
+  EXPECT_EQ(a[1], 0);
+}
+
 TEST(PlanarMap, DissolveSplitsARingThatTouchesItself) {
   PlanarMap map;
   map.add_ring(square(0, 0, 10), 0);
