@@ -177,6 +177,7 @@ int stats(const fs::path& out, const std::vector<fs::path>& real) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  clean_up_on_interrupt();
   CLI::App app{"Exacity: a city sketch to a whole city, exactly."};
   app.set_version_flag("--version", std::string("exacity ") + kVersion);
   app.require_subcommand(1);

@@ -51,6 +51,8 @@ Model normalise_model(TriangleMesh mesh, const std::string& up, const std::strin
   const double cx = (box.min_x + box.max_x) / 2, cy = (box.min_y + box.max_y) / 2;
   for (Vec3& v : mesh.vertices) v = {v[0] - cx, v[1] - cy, v[2] - bottom};
   m.width = box.width(), m.depth = box.height(), m.height = top - bottom;
+  if (!(m.height > 0))
+    throw UserError(where + ": the model is flat (every vertex at one height); a model needs height: check its \"up\" axis");
 
   std::vector<std::array<geom::Vec2, 3>> shadow;
   for (const auto& t : mesh.triangles) {

@@ -76,9 +76,12 @@ std::vector<std::array<int, 3>> triangulate_planar(const std::vector<Vec3>& v) {
 }
 
 TriangleMesh read_obj(const fs::path& file) {
+  if (fs::is_directory(file))
+    throw UserError(file.string() + ": is a folder, not a model file; name an .obj file in the model library");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw UserError(file.string() + ": cannot read this model file; check the path in the model library");
   std::vector<Vec3> positions;
+  long texture_coordinates = 0, normals = 0;
   std::vector<std::vector<int>> faces;
   std::vector<int> face_material;
   std::vector<std::string> material_names{"default"};
@@ -107,25 +110,37 @@ TriangleMesh read_obj(const fs::path& file) {
       if (!(words >> p[0] >> p[1] >> p[2]) || !std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
         fail("a vertex needs three finite coordinates; fix or remove the line");
       positions.push_back(p);
+    } else if (key == "vt" || key == "vn") {
+      ++(key == "vt" ? texture_coordinates : normals);
     } else if (key == "f") {
       std::vector<int> face;
       std::string corner;
       while (words >> corner) {
-        // "v", "v/vt", "v//vn" or "v/vt/vn": only v matters here.
-        long index = 0;
-        try {
-          index = std::stol(corner.substr(0, corner.find('/')));
-        } catch (const std::exception&) {
-          fail("\"" + corner + "\" is not a vertex index; fix the face");
-        }
-        long count = static_cast<long>(positions.size());
-        long resolved = index > 0 ? index - 1 : count + index;  // negative: counted back from the last vertex
-        if (index == 0 || resolved < 0 || resolved >= count)
-          fail("vertex index " + std::to_string(index) + " points to no vertex read so far (" + std::to_string(count) +
-               "); fix the face");
-        face.push_back(static_cast<int>(resolved));
+        // "v", "v/vt", "v//vn" or "v/vt/vn", each index 1-based, or negative: counted back
+        // from the last one read so far. An empty vt or vn ("2//", as some exporters write) is none.
+        auto resolve = [&](const std::string& text, long count, const char* what) {
+          std::size_t used = 0;
+          long index = 0;
+          try {
+            index = std::stol(text, &used);
+          } catch (const std::exception&) {
+          }
+          if (used == 0 || used != text.size())
+            fail("\"" + corner + "\" is not a face corner (v, v/vt, v//vn or v/vt/vn, whole numbers); fix the face");
+          long resolved = index > 0 ? index - 1 : count + index;
+          if (index == 0 || resolved < 0 || resolved >= count)
+            fail(std::string(what) + " index " + std::to_string(index) + " points to none of the " + std::to_string(count) +
+                 " read so far; fix the face");
+          return resolved;
+        };
+        std::vector<std::string> parts{""};
+        for (char c : corner) c == '/' ? parts.push_back("") : void(parts.back() += c);
+        if (parts.size() > 3) fail("\"" + corner + "\" is not a face corner (v, v/vt, v//vn or v/vt/vn); fix the face");
+        face.push_back(static_cast<int>(resolve(parts[0], static_cast<long>(positions.size()), "vertex")));
+        if (parts.size() >= 2 && !parts[1].empty()) resolve(parts[1], texture_coordinates, "texture coordinate");
+        if (parts.size() == 3 && !parts[2].empty()) resolve(parts[2], normals, "normal");
       }
-      if (face.size() < 3) continue;  // points and lines have no surface
+      if (face.size() < 3) fail("a face needs at least 3 corners; use \"l\" for a line or remove it");
       faces.push_back(std::move(face));
       face_material.push_back(current);
     } else if (key == "usemtl") {
@@ -139,7 +154,7 @@ TriangleMesh read_obj(const fs::path& file) {
       std::string name;
       while (words >> name) read_mtl(file.parent_path() / name, colours);
     }
-    // vt, vn, o, g, s, l, p and the rest carry nothing Exacity uses.
+    // o, g, s, l, p and the rest carry nothing Exacity uses.
   }
 
   TriangleMesh mesh;

@@ -6,10 +6,15 @@
 
 namespace exacity {
 
+// Call first in main, before any other thread starts: SIGINT and SIGTERM then remove the
+// staging folders of the runs under way and end the process with 128 + the signal.
+void clean_up_on_interrupt();
+
 class OutputFolder {
  public:
   // Throws UserError when `target` is a file, or a non-empty folder that no earlier
   // exacity run wrote (it holds no report.json): nothing of the user's is overwritten.
+  // Removes the staging folders that crashed or killed runs left beside `target`.
   explicit OutputFolder(std::filesystem::path target);
   ~OutputFolder();
   OutputFolder(const OutputFolder&) = delete;

@@ -40,8 +40,12 @@ std::vector<std::array<int, 3>> triangulate(const Polygon& polygon, const std::v
     for (std::size_t i = 0; i < vs.size(); ++i)
       if (vs[i] != vs[(i + 1) % vs.size()]) cdt.insert_constraint(vs[i], vs[(i + 1) % vs.size()]);
   };
-  ring(polygon.outer);
-  for (const Ring& h : polygon.holes) ring(h);
+  try {
+    ring(polygon.outer);
+    for (const Ring& h : polygon.holes) ring(h);
+  } catch (const Cdt::Intersection_of_constraints_exception&) {
+    return {};  // the rings cross: not a polygon this can cover
+  }
   for (Vec2 p : inside) {
     auto [it, added] = placed.emplace(std::make_pair(p.x, p.y), Cdt::Vertex_handle());
     if (added) {

@@ -3,7 +3,9 @@
 // line and no output folder.
 #include <gtest/gtest.h>
 
+#include <signal.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cmath>
@@ -248,8 +250,14 @@ TEST(Cli, BadInputExitsTwoWithOneLineAndNoOutput) {
       {"zone", R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"zone":"parc"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,0]]]}}]})", "did you mean \"park\""},
       {"heightmap", R"({"type":"FeatureCollection","exacity":{"terrain":{"heightmap":"missing.png","bounds":[0,0,10,10]}},"features":[)" + zone + "]}", "not found"},
       {"key", R"({"type":"FeatureCollection","exacity":{"colour":1},"features":[)" + zone + "]}", "unknown key \"colour\""},
+      {"typenull", R"({"type":null,"features":[]})", "GeoJSON FeatureCollection"},
+      {"typezero", R"({"type":0,"features":[]})", "GeoJSON FeatureCollection"},
+      {"typeobject", R"({"type":{},"features":[]})", "GeoJSON FeatureCollection"},
+      {"huge", R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"zone":"park"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[9,0],[9,-1e308],[0,0]]]}}]})", "beyond 1e10 m"},
+      {"far", R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"zone":"residential"},"geometry":{"type":"Polygon","coordinates":[[[4e12,4e12],[4.000000001e12,4e12],[4.000000001e12,4.000000001e12],[4e12,4e12]]]}}]})", "beyond 1e10 m"},
+      {"vast", R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"zone":"residential"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[1e6,0],[1e6,1e6],[0,0]]]}}]})", "more than the 50000 one run builds"},
       {"library", R"({"type":"FeatureCollection","exacity":{"models":"missing.json"},"features":[)" + zone + "]}", "cannot read the model library"},
-      {"model", R"({"type":"FeatureCollection","exacity":{"models":"bad-library.json"},"features":[)" + zone + "]}", "line 2: vertex index 2 points to no vertex"},
+      {"model", R"({"type":"FeatureCollection","exacity":{"models":"bad-library.json"},"features":[)" + zone + "]}", "line 2: vertex index 2 points to none"},
   };
   std::ofstream(dir / "bad-library.json") << R"({"models": [{"file": "bad.obj", "zones": ["residential"]}]})";
   std::ofstream(dir / "bad.obj") << "v 0 0 0\nf 1 2 5\n";
@@ -292,6 +300,37 @@ TEST(Cli, OutputPathsThatMustNotBeOverwritten) {
   std::ofstream(dir / "out" / "stale.txt") << "old";
   ASSERT_EQ(run("generate " + town + " -o " + (dir / "out").string() + " -q").code, 0);
   EXPECT_FALSE(fs::exists(dir / "out" / "stale.txt"));
+}
+
+TEST(Cli, StagingFoldersOfDeadRunsAreRemovedAndAnInterruptLeavesNoTrace) {
+  fs::path dir = testing_util::temp_dir("cli-staging");
+  std::string town = (kSource / "examples" / "town.geojson").string();
+  // What a crashed or killed run leaves: its process is gone (pids stop below 2^22 on Linux).
+  fs::create_directories(dir / ".out.partial-4999999" / "inside");
+  fs::create_directories(dir / ".out.old-4999998");
+  fs::create_directories(dir / ".other.partial-4999999");
+  ASSERT_EQ(run("generate " + town + " -o " + (dir / "out").string() + " -q").code, 0);
+  EXPECT_FALSE(fs::exists(dir / ".out.partial-4999999"));
+  EXPECT_FALSE(fs::exists(dir / ".out.old-4999998"));
+  EXPECT_TRUE(fs::exists(dir / ".other.partial-4999999")) << "another output's folder is not this run's to remove";
+  const std::string before = read(dir / "out" / "report.json");
+
+  // SIGTERM while a long run writes into the same place: the earlier output stays whole.
+  std::string big = (kSource / "benchmarks" / "city_10km.geojson").string();
+  std::string cmd = std::string(EXACITY_BINARY) + " generate " + big + " -o " + (dir / "out").string() +
+                    " -q > /dev/null 2>&1 & echo $!";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  int pid = 0;
+  ASSERT_EQ(fscanf(pipe, "%d", &pid), 1);
+  pclose(pipe);
+  const fs::path staging = dir / (".out.partial-" + std::to_string(pid));
+  for (int i = 0; i < 600 && !fs::exists(staging); ++i) usleep(100000);
+  ASSERT_TRUE(fs::exists(staging));
+  kill(pid, SIGTERM);
+  for (int i = 0; i < 600 && kill(pid, 0) == 0; ++i) usleep(100000);
+  EXPECT_NE(kill(pid, 0), 0) << "still running";
+  EXPECT_FALSE(fs::exists(staging));
+  EXPECT_EQ(read(dir / "out" / "report.json"), before);
 }
 
 TEST(Cli, HelpAndVersion) {

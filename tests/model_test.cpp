@@ -11,6 +11,7 @@
 #include "geom/cell.h"
 #include "geom/grid.h"
 #include "geom/planar_map.h"
+#include "geom/triangulate.h"
 #include "geom/polygon_check.h"
 #include "tests/test_util.h"
 
@@ -138,9 +139,9 @@ TEST(ModelLibrary, FrontTurnsToMinusY) {
 }
 
 TEST(ModelLibrary, OutlineIsTheExactShadowAndPiecesGetTheirHull) {
-  // An L-shaped prism: its outline is the L itself.
+  // An L-shaped roof, raised at its inner corner: its outline is the L itself.
   TriangleMesh l;
-  l.vertices = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}};
+  l.vertices = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 1}, {1, 2, 0}, {0, 2, 0}};
   l.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}};
   l.material.assign(4, 0);
   l.materials = {{"default", {}}};
@@ -149,7 +150,7 @@ TEST(ModelLibrary, OutlineIsTheExactShadowAndPiecesGetTheirHull) {
   EXPECT_EQ(geom::signed_area(m.outline), 3.0);
   // Two separate squares: the hull of both.
   TriangleMesh two;
-  two.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {3, 0, 0}, {4, 0, 0}, {4, 1, 0}, {3, 1, 0}};
+  two.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {3, 0, 0}, {4, 0, 0}, {4, 1, 1}, {3, 1, 0}};
   two.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};
   two.material.assign(4, 0);
   two.materials = {{"default", {}}};
@@ -248,4 +249,52 @@ TEST(ModelRows, DensityChangesHowManyFit) {
   EXPECT_LE(count["normal"], 13u);
   EXPECT_GE(count["sparse"], 5u);
   EXPECT_LE(count["sparse"], 7u);
+}
+
+TEST(ObjFile, MalformedFacesNameTheFileAndLine) {
+  fs::path dir = testing_util::temp_dir("obj-malformed");
+  const std::string corners = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n";
+  auto error = [&](const std::string& face) {
+    try {
+      read_obj(write(dir, "m.obj", corners + face + "\n"));
+    } catch (const UserError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  for (const char* face : {"f 1.5 2 3", "f 1/1/1/1 2 3", "f 1/x 2 3", "f x 2 3", "f 1 2 3e0"})
+    EXPECT_NE(error(face).find("m.obj line 6: \""), std::string::npos) << face << ": " << error(face);
+  EXPECT_NE(error("f 1/2 2 3").find("texture coordinate index 2 points to none of the 1"), std::string::npos);
+  EXPECT_NE(error("f 1//3 2 3").find("normal index 3"), std::string::npos);
+  EXPECT_NE(error("f 1 2").find("line 6: a face needs at least 3 corners"), std::string::npos);
+  EXPECT_EQ(error("f 1/1/1 2//1 -1/-1"), "no error");
+  EXPECT_EQ(error("f 1// 2/ 3"), "no error");
+  std::string folder = "no error";
+  try {
+    read_obj(dir);
+  } catch (const UserError& e) {
+    folder = e.what();
+  }
+  EXPECT_NE(folder.find("is a folder"), std::string::npos) << folder;
+}
+
+TEST(ObjFile, AFaceWhoseSidesCrossIsStillTriangulated) {
+  // A bow tie: a constrained triangulation of its outline would need the crossing as a
+  // vertex. The face comes out as a fan of triangles instead of an error.
+  fs::path dir = testing_util::temp_dir("obj-bowtie");
+  TriangleMesh m = read_obj(write(dir, "q.obj", "v 0 0 0\nv 10 6 0\nv 10 0 0\nv 0 5 0\nf 1 2 3 4\n"));
+  EXPECT_EQ(m.triangles.size(), 2u);
+  EXPECT_TRUE(geom::triangulate(geom::Polygon{{{0, 0}, {10, 6}, {10, 0}, {0, 5}}, {}}).empty());
+}
+
+TEST(ModelLibrary, AFlatModelIsRefused) {
+  fs::path dir = testing_util::temp_dir("library-flat");
+  write(dir, "flat.obj", "v 0 0 0\nv 4 0 0\nv 4 0 4\nv 0 0 4\nv 9 9 9\nf 1 2 3 4\n");  // y up: a horizontal square
+  write(dir, "library.json", R"({"models": [{"file": "flat.obj", "zones": ["residential"]}]})");
+  try {
+    load_model_library(dir / "library.json");
+    FAIL() << "accepted";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("models[0]: the model is flat"), std::string::npos) << e.what();
+  }
 }

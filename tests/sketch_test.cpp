@@ -53,6 +53,40 @@ TEST(SketchErrors, UnknownZoneTypeSuggestsTheNearest) {
                {"features[0]", "unknown road class"});
 }
 
+TEST(SketchErrors, SuggestionsIgnoreCase) {
+  expect_error(with_features(R"({"type": "Feature", "properties": {"zone": "WATER"}, "geometry": {"type": "Polygon", "coordinates": [[[0,0],[1,0],[1,1],[0,0]]]}})"),
+               {"features[0]", "did you mean \"water\""});
+}
+
+TEST(SketchErrors, TypeThatIsNotAString) {
+  for (const char* type : {"null", "0", "{}", "[]", "true"}) {
+    expect_error(R"({"type": )" + std::string(type) + R"(, "features": []})", {"top level", "FeatureCollection"});
+    expect_error(with_features(R"({"type": )" + std::string(type) + R"(, "properties": {"zone": "park"}, "geometry": {"type": "Polygon", "coordinates": [[[0,0],[1,0],[1,1],[0,0]]]}})"),
+                 {"features[0]", "not a GeoJSON Feature"});
+    expect_error(with_features(R"({"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": )" + std::string(type) + R"(, "coordinates": [[[0,0],[1,0],[1,1],[0,0]]]}})"),
+                 {"features[0]", "a zone must be a Polygon or MultiPolygon"});
+  }
+}
+
+TEST(SketchErrors, CoordinatesBeyondTheExactRange) {
+  const std::string far = R"({"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": "Polygon", "coordinates": [[[0,0],[1,0],[1,X],[0,0]]]}})";
+  for (const char* y : {"1.0000001e10", "-1e308", "4e12"}) {
+    std::string f = far;
+    f.replace(f.find('X'), 1, y);
+    expect_error(with_features(f), {"features[0] outer ring position 2", "beyond 1e10 m"});
+  }
+  std::string edge = far;
+  edge.replace(edge.find('X'), 1, "1e10");
+  EXPECT_EQ(error_of(with_features(edge)), "") << "1e10 itself is in range";
+}
+
+TEST(SketchErrors, MoreBlocksThanOneRunBuilds) {
+  const std::string big = R"({"type": "Feature", "properties": {"zone": "commercial"}, "geometry": {"type": "Polygon", "coordinates": [[[0,0],[30000,0],[30000,30000],[0,30000],[0,0]]]}})";
+  // 9e8 m2 over 15,000 m2 blocks: 60,000 blocks; with 20,000 m2 blocks, 45,000 fit.
+  expect_error(with_features(kSquare + "," + big), {"features[1]", "about 60000 blocks", "\"block_area\""});
+  EXPECT_EQ(error_of(with_features(big, R"({"zones": {"commercial": {"block_area": 20000}}})")), "");
+}
+
 TEST(SketchErrors, RingWithFewerThanThreeDistinctPoints) {
   expect_error(with_features(R"({"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": "Polygon", "coordinates": [[[0,0],[1,1],[0,0],[1,1],[0,0]]]}})"),
                {"features[0]", "2 distinct points", "at least 3"});
