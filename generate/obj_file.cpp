@@ -80,6 +80,10 @@ TriangleMesh read_obj(const fs::path& file) {
     throw UserError(file.string() + ": is a folder, not a model file; name an .obj file in the model library");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw UserError(file.string() + ": cannot read this model file; check the path in the model library");
+  return read_obj(in, file);
+}
+
+TriangleMesh read_obj(std::istream& in, const fs::path& file) {
   std::vector<Vec3> positions;
   long texture_coordinates = 0, normals = 0;
   std::vector<std::vector<int>> faces;

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <filesystem>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -34,5 +35,7 @@ std::vector<std::array<int, 3>> triangulate_planar(const std::vector<Vec3>& corn
 // repeat another (either winding) or have no area. Throws UserError naming the file and
 // line when the file cannot be read, an index points nowhere or nothing is left.
 TriangleMesh read_obj(const std::filesystem::path& file);
+// The same from a stream: `file` names it in messages, and .mtl files are found beside it.
+TriangleMesh read_obj(std::istream& in, const std::filesystem::path& file);
 
 }  // namespace exacity

@@ -1,0 +1,18 @@
+// The model library manifest on any bytes, its entries naming a small house that exists:
+// a library or one UserError.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "fuzz/fuzz_target.h"
+#include "generate/model_library.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const auto dir = exacity::fuzz::scratch();
+  exacity::fuzz::write(dir / "house.obj",
+                       "v 0 0 0\nv 6 0 0\nv 6 0 -8\nv 0 0 -8\nv 0 5 0\nv 6 5 0\nv 6 5 -8\nv 0 5 -8\n"
+                       "f 1 2 3 4\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n");
+  exacity::fuzz::write(dir / "library.json", std::string(reinterpret_cast<const char*>(data), size));
+  exacity::fuzz::expect_user_errors_only([&] { exacity::load_model_library(dir / "library.json"); });
+  return 0;
+}
