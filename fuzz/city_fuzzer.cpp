@@ -106,6 +106,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   FuzzedDataProvider in(data, size);
   const std::string text = sketch_from(in);
   const auto dir = exacity::fuzz::scratch();
+  exacity::fuzz::write(dir / "fuzz.geojson", text);  // the run copies it into its output
   exacity::fuzz::expect_user_errors_only([&] {
     exacity::Sketch sketch = exacity::parse_sketch(text, dir / "fuzz.geojson");
     std::filesystem::create_directories(dir / "out");
