@@ -55,6 +55,8 @@ std::vector<std::array<int, 3>> triangulate(const Polygon& polygon, const std::v
     ++index;
   }
 
+  if (cdt.dimension() < 2) return {};  // every vertex on one line: nothing to cover
+
   // Faces inside: an odd number of constrained edges away from the infinite face.
   for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info() = -1;
   std::vector<Cdt::Face_handle> queue{cdt.infinite_face()};

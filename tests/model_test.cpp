@@ -287,6 +287,15 @@ TEST(ObjFile, AFaceWhoseSidesCrossIsStillTriangulated) {
   EXPECT_TRUE(geom::triangulate(geom::Polygon{{{0, 0}, {10, 6}, {10, 0}, {0, 5}}, {}}).empty());
 }
 
+TEST(ObjFile, AFaceWithEveryCornerOnOneLineHasNoArea) {
+  // Found by the obj fuzz target: the triangulation of a face with no extent in two
+  // directions has no faces to walk.
+  fs::path dir = testing_util::temp_dir("obj-line");
+  EXPECT_THROW(read_obj(write(dir, "line.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\nf 1 2 3 4\n")), UserError);
+  EXPECT_THROW(read_obj(write(dir, "point.obj", "v 1 1 1\nv 1 1 1\nv 1 1 1\nv 1 1 1\nf 1 2 3 4\n")), UserError);
+  EXPECT_TRUE(geom::triangulate(geom::Polygon{{{0, 0}, {1, 1}, {2, 2}, {3, 3}}, {}}).empty());
+}
+
 TEST(ModelLibrary, AFlatModelIsRefused) {
   fs::path dir = testing_util::temp_dir("library-flat");
   write(dir, "flat.obj", "v 0 0 0\nv 4 0 0\nv 4 0 4\nv 0 0 4\nv 9 9 9\nf 1 2 3 4\n");  // y up: a horizontal square
