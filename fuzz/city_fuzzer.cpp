@@ -55,7 +55,7 @@ std::string sketch_from(FuzzedDataProvider& in) {
   };
 
   const char* zones[] = {"residential", "commercial", "industrial", "park", "water"};
-  const char* roads[] = {"highway", "arterial", "street"};
+  const char* roads[] = {"highway", "main", "local"};
   json features = json::array();
   const int zone_count = in.ConsumeIntegralInRange(1, 4);
   for (int z = 0; z < zone_count; ++z) {

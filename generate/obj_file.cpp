@@ -122,6 +122,9 @@ TriangleMesh read_obj(std::istream& in, const fs::path& file) {
       while (words >> corner) {
         // "v", "v/vt", "v//vn" or "v/vt/vn", each index 1-based, or negative: counted back
         // from the last one read so far. An empty vt or vn ("2//", as some exporters write) is none.
+        auto not_a_corner = [&] {
+          fail("\"" + corner + "\" is not a face corner (v, v/vt, v//vn or v/vt/vn, whole numbers); fix the face");
+        };
         auto resolve = [&](const std::string& text, long count, const char* what) {
           std::size_t used = 0;
           long index = 0;
@@ -129,8 +132,7 @@ TriangleMesh read_obj(std::istream& in, const fs::path& file) {
             index = std::stol(text, &used);
           } catch (const std::exception&) {
           }
-          if (used == 0 || used != text.size())
-            fail("\"" + corner + "\" is not a face corner (v, v/vt, v//vn or v/vt/vn, whole numbers); fix the face");
+          if (used == 0 || used != text.size()) not_a_corner();
           long resolved = index > 0 ? index - 1 : count + index;
           if (index == 0 || resolved < 0 || resolved >= count)
             fail(std::string(what) + " index " + std::to_string(index) + " points to none of the " + std::to_string(count) +
@@ -139,7 +141,7 @@ TriangleMesh read_obj(std::istream& in, const fs::path& file) {
         };
         std::vector<std::string> parts{""};
         for (char c : corner) c == '/' ? parts.push_back("") : void(parts.back() += c);
-        if (parts.size() > 3) fail("\"" + corner + "\" is not a face corner (v, v/vt, v//vn or v/vt/vn); fix the face");
+        if (parts.size() > 3) not_a_corner();
         face.push_back(static_cast<int>(resolve(parts[0], static_cast<long>(positions.size()), "vertex")));
         if (parts.size() >= 2 && !parts[1].empty()) resolve(parts[1], texture_coordinates, "texture coordinate");
         if (parts.size() == 3 && !parts[2].empty()) resolve(parts[2], normals, "normal");

@@ -249,7 +249,7 @@ class Parser {
     double blocks = 0, most = -1;
     const ZoneFeature* largest = nullptr;
     for (const ZoneFeature& z : sketch.zones) {
-      if (z.type != ZoneType::Residential && z.type != ZoneType::Commercial && z.type != ZoneType::Industrial) continue;
+      if (!grows_roads(z.type)) continue;
       double area = 0;
       for (const auto& p : z.polygons) area += std::abs(geom::area(p));
       const double n = area / sketch.zone_params.at(z.type).block_area;
@@ -259,7 +259,7 @@ class Parser {
     if (blocks > kMaxBlocks)
       fail("features[" + std::to_string(largest->index) + "]",
            "the zones would make about " + std::to_string(static_cast<long long>(blocks)) +
-               " blocks, more than the 50000 one run builds (this " + std::string(name(largest->type)) + " zone alone " +
+               " blocks, more than the " + std::to_string(static_cast<long long>(kMaxBlocks)) + " one run builds (this " + std::string(name(largest->type)) + " zone alone " +
                std::to_string(static_cast<long long>(most)) + "); draw smaller zones or raise their \"block_area\"");
   }
 

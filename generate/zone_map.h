@@ -31,11 +31,6 @@ struct FaceLabel {
   friend auto operator<=>(const FaceLabel&, const FaceLabel&) = default;
 };
 
-// The zone types roads grow in.
-inline bool grows_roads(ZoneType t) {
-  return t == ZoneType::Residential || t == ZoneType::Commercial || t == ZoneType::Industrial;
-}
-
 // A road in the map: a sketch road (level -1) or a generated one.
 struct MapRoad {
   RoadClass road_class = RoadClass::Highway;

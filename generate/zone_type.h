@@ -14,6 +14,11 @@ inline constexpr std::array<std::string_view, 5> kZoneTypeNames = {"residential"
 enum class RoadClass { Highway, Main, Local };
 inline constexpr std::array<std::string_view, 3> kRoadClassNames = {"highway", "main", "local"};
 
+// The zone types roads grow in.
+inline bool grows_roads(ZoneType t) {
+  return t == ZoneType::Residential || t == ZoneType::Commercial || t == ZoneType::Industrial;
+}
+
 inline std::string_view name(ZoneType t) { return kZoneTypeNames[static_cast<int>(t)]; }
 inline std::string_view name(RoadClass c) { return kRoadClassNames[static_cast<int>(c)]; }
 
