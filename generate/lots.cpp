@@ -289,6 +289,9 @@ std::vector<Lot> insert_lots(ZoneMap& zm, const std::vector<PlannedLot>& planned
   }
   zm.map.insert_batch();
   zm.label_lots();
+  // The last batch: the map is snap-rounded now, so every layer written from it, lots
+  // included, rounds without edges crossing.
+  zm.map.snap_round();
 
   // Each planned lot's pieces, those that make sensible lots.
   std::vector<int> group(zm.labels.size(), -1), kind(zm.labels.size(), 0), planned_of;
@@ -300,8 +303,11 @@ std::vector<Lot> insert_lots(ZoneMap& zm, const std::vector<PlannedLot>& planned
   std::vector<std::optional<Lot>> kept(pieces.size());
   tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
     const PlannedLot& plan = planned[planned_of[i]];
-    // Off the street, too small, or too narrow or shallow for its frontage: left open.
-    geom::Polygon shape = pieces[i].to_plain();
+    // Off the street, too small, too narrow or shallow for its frontage, or not one
+    // polygon once rounded: left open.
+    std::vector<geom::Polygon> shapes = pieces[i].rounded();
+    if (shapes.size() != 1) return;
+    geom::Polygon& shape = shapes[0];
     if (geom::area(shape) < sketch.zone_params.at(plan.zone).min_lot_area) return;
     double longest = 0, ratio = 0;
     for (auto [a, b] : pieces[i].edges_of_kind(kLotRoadEdge)) {

@@ -1,8 +1,11 @@
 #include "generate/vector_layers.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "geom/measure.h"
+#include "geom/polygon_check.h"
 
 namespace exacity {
 namespace {
@@ -72,6 +75,7 @@ CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, c
         run.clear();
       };
       for (const geom::PolylinePiece& piece : pieces_of[road.first_tag + k]) {
+        if (piece.from == piece.to) continue;  // shorter than a double's step: rounded away
         bool bridge = zm.labels[piece.left_label].cover == Cover::Water &&
                       zm.labels[piece.right_label].cover == Cover::Water;
         if (!run.empty() && (bridge != run_bridge || !(run.back() == piece.from))) flush();
@@ -99,12 +103,37 @@ CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, c
     for (int r : b.roads) ids.push_back(or_null(road_id(r, false)));
     return ordered_json{{"id", g}, {"zone", name(b.zone)}, {"green", b.green}, {"roads", ids}};
   };
+  // Rounding can pinch a block in two: its first polygon keeps the block's id, the others
+  // take ids after the last block's, and lots name the polygon they lie in.
+  std::vector<std::vector<geom::Polygon>> block_polygons(blocks.size());
   dissolve(zm, static_cast<int>(blocks.size()), [](const FaceLabel& l) { return l.block; },
-           [&](int g, geom::Polygon p) { add_polygon(out.blocks, block_properties(g), std::move(p)); });
+           [&](int g, geom::Polygon p) { block_polygons[g].push_back(std::move(p)); });
+  std::vector<std::vector<int>> block_ids(blocks.size());
+  int next_id = static_cast<int>(blocks.size());
+  for (std::size_t g = 0; g < blocks.size(); ++g)
+    for (std::size_t k = 0; k < block_polygons[g].size(); ++k) block_ids[g].push_back(k == 0 ? static_cast<int>(g) : next_id++);
+  for (std::size_t g = 0; g < blocks.size(); ++g)
+    for (std::size_t k = 0; k < block_polygons[g].size(); ++k) {
+      ordered_json props = block_properties(static_cast<int>(g));
+      props["id"] = block_ids[g][k];
+      out.blocks.features.push_back({std::move(props), std::move(block_polygons[g][k]), {}});
+    }
+  auto block_of = [&](const Lot& lot) {
+    const auto& ids = block_ids[lot.block];
+    if (ids.size() < 2) return lot.block;
+    // The smallest polygon around the lot: a piece can lie in another's hole.
+    int best = lot.block;
+    double best_area = INFINITY;
+    for (const VectorFeature& f : out.blocks.features)
+      if (std::find(ids.begin(), ids.end(), f.properties["id"].get<int>()) != ids.end() &&
+          geom::area(f.polygon) < best_area && geom::ring_within(lot.polygon.outer, f.polygon.outer))
+        best = f.properties["id"].get<int>(), best_area = geom::area(f.polygon);
+    return best;
+  };
 
   // Lots as they ended up in the map; a lot's id is its index, which buildings name.
   for (const Lot& lot : lots)
-    add_polygon(out.lots, {{"block", lot.block}, {"zone", name(lot.zone)}}, lot.polygon);
+    add_polygon(out.lots, {{"block", block_of(lot)}, {"zone", name(lot.zone)}}, lot.polygon);
 
   for (const Building& b : buildings) {
     nlohmann::ordered_json model = nullptr, kind = "building";

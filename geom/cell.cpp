@@ -6,7 +6,8 @@
 
 #include "geom/cell_impl.h"
 #include "geom/grid.h"
-#include "geom/ring_cleanup.h"
+#include "geom/measure.h"
+#include "geom/untangle.h"
 
 namespace geom {
 
@@ -184,19 +185,16 @@ std::vector<KindedRing> Cell::kinded_rings() const {
   return rings;
 }
 
+std::vector<Polygon> Cell::rounded() const {
+  std::vector<Ring> rings{impl_->outer.rounded};
+  for (const auto& h : impl_->holes) rings.push_back(h.rounded);
+  return untangle(rings);
+}
+
 Polygon Cell::to_plain() const {
-  auto round = [](const KindRing& r) {
-    Ring ring = r.rounded;
-    drop_repeats_and_spikes(ring);
-    return ring;
-  };
-  Polygon p{round(impl_->outer), {}};
-  if (p.outer.empty()) return p;
-  for (const auto& h : impl_->holes) {
-    Ring r = round(h);
-    if (!r.empty()) p.holes.push_back(std::move(r));
-  }
-  return p;
+  std::vector<Polygon> parts = rounded();
+  if (parts.empty()) return {};
+  return *std::max_element(parts.begin(), parts.end(), [](const Polygon& a, const Polygon& b) { return geom::area(a) < geom::area(b); });
 }
 
 std::vector<Vec2> Cell::corners() const {

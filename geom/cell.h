@@ -65,7 +65,10 @@ class Cell {
   std::vector<KindedRing> kinded_rings() const;
   // Boundary edges of the given kind, rounded.
   std::vector<std::pair<Vec2, Vec2>> edges_of_kind(int kind) const;
-  // Rounded as exact::round_ring does; an empty outer ring when it collapses.
+  // Rounded to doubles and untangled (geom/untangle.h): the simple polygons it becomes,
+  // none when it collapses.
+  std::vector<Polygon> rounded() const;
+  // The largest of them; an empty outer ring when it collapses.
   Polygon to_plain() const;
   const Impl& exact() const { return *impl_; }
 

@@ -1,6 +1,9 @@
 // The exact kernel and its basic types, named once. Included only by geom/*.cpp.
 #pragma once
 
+#include <bit>
+#include <cstdint>
+
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 
 #include "geom/plain.h"
@@ -18,14 +21,27 @@ inline Point to_exact(Vec2 p) {
   return Point(p.x, p.y);
 }
 
-// Rounds the exact value, so the result does not depend on how far the lazy kernel
-// happened to evaluate it. A point whose interval is a single double is that double; any
-// other is evaluated exactly once, as a point (p.x() would add a lazy node each call).
+// The nearest double, ties to even: what snap rounding's pixels assume. (CGAL::to_double
+// truncates GMP's rationals towards zero; to_interval gives the two doubles around.)
+template <typename Exact>
+double nearest_double(const Exact& v) {
+  const auto [below, above] = CGAL::to_interval(v);
+  if (below == above) return below;
+  const Exact halfway = (Exact(below) + Exact(above)) / 2;
+  if (v < halfway) return below;
+  if (halfway < v) return above;
+  return (std::bit_cast<std::uint64_t>(below) & 1) == 0 ? below : above;
+}
+
+// Rounds the exact value to the nearest doubles, so the result does not depend on how far
+// the lazy kernel happened to evaluate it. A point whose interval is a single double is
+// that double; any other is evaluated exactly once, as a point (p.x() would add a lazy
+// node each call).
 inline Vec2 to_plain(const Point& p) {
   const auto& a = p.approx();
   if (a.x().inf() == a.x().sup() && a.y().inf() == a.y().sup()) return {a.x().inf(), a.y().inf()};
   const auto& e = CGAL::exact(p);
-  return {CGAL::to_double(e.x()), CGAL::to_double(e.y())};
+  return {nearest_double(e.x()), nearest_double(e.y())};
 }
 
 // A ring of exact points (not closed: the last point is not repeated).

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <deque>
 #include <map>
+#include <optional>
 #include <tuple>
 #include <unordered_map>
 #include <unordered_set>
@@ -21,6 +22,7 @@
 
 #include "geom/cell_impl.h"
 #include "geom/grid.h"
+#include "geom/untangle.h"
 
 namespace geom {
 namespace {
@@ -249,7 +251,11 @@ void trace_components(const Arrangement& arr, GroupOf group_of, Emit emit) {
   });
 }
 
-Ring plain_ring(const std::vector<Halfedge>& loop) { return exact::round_ring(loop_points(loop)); }
+Ring plain_ring(const std::vector<Halfedge>& loop) {
+  Ring ring;
+  for (const Halfedge& h : loop) ring.push_back(to_plain(h->source()->point()));
+  return ring;
+}
 
 // Cells from traced polygons; kind_of(h) gives the kind of boundary halfedge h.
 template <typename KindOf>
@@ -374,6 +380,129 @@ void PlanarMap::insert_batch() {
   impl_->pending.clear();
 }
 
+namespace {
+
+// The closed box of points that round to g (to nearest, ties to even): its sides lie
+// halfway to the neighbouring doubles.
+Kernel::Iso_rectangle_2 pixel(Vec2 g) {
+  auto half = [](double a, double b) { return (exact::FT(a) + exact::FT(b)) / 2; };
+  const double inf = std::numeric_limits<double>::infinity();
+  return {Point(half(std::nextafter(g.x, -inf), g.x), half(std::nextafter(g.y, -inf), g.y)),
+          Point(half(g.x, std::nextafter(g.x, inf)), half(g.y, std::nextafter(g.y, inf)))};
+}
+
+// A point of the segment that rounds to g, if it has one.
+std::optional<Point> point_rounding_to(const exact::Segment& s, Vec2 g) {
+  auto meet = CGAL::intersection(s, pixel(g));
+  if (!meet) return std::nullopt;
+  Point m;
+  if (const Point* p = boost::get<Point>(&*meet)) m = *p;
+  else m = CGAL::midpoint(boost::get<exact::Segment>(&*meet)->source(), boost::get<exact::Segment>(&*meet)->target());
+  // The chord's midpoint lies inside the pixel unless the chord runs along a side whose
+  // points round to the neighbour; then no point of the segment rounds to g.
+  if (!(to_plain(m) == g)) return std::nullopt;
+  return m;
+}
+
+// Pairs (vertex, edge) where the rounded vertex lies within `reach` of the rounded edge,
+// found through a grid of buckets each edge is entered in along its length.
+template <typename F>
+void for_each_near_pair(const std::vector<Vec2>& vertices, const std::vector<std::pair<int, int>>& edges, double reach,
+                        F f) {
+  Box box = Box::none();
+  for (Vec2 v : vertices) box.add(v);
+  const double extent = std::max({box.width(), box.height(), reach});
+  const double bucket = std::max(extent / std::sqrt(static_cast<double>(vertices.size()) + 1), 16 * reach);
+  const long columns = static_cast<long>(box.width() / bucket) + 1, rows = static_cast<long>(box.height() / bucket) + 1;
+  auto column = [&](double x) { return std::clamp(static_cast<long>(std::floor((x - box.min_x) / bucket)), 0L, columns - 1); };
+  auto row = [&](double y) { return std::clamp(static_cast<long>(std::floor((y - box.min_y) / bucket)), 0L, rows - 1); };
+  std::vector<std::pair<long, int>> entries;  // (bucket, edge)
+  for (int e = 0; e < static_cast<int>(edges.size()); ++e) {
+    const Vec2 a = vertices[edges[e].first], b = vertices[edges[e].second];
+    const double x0 = std::min(a.x, b.x) - reach, x1 = std::max(a.x, b.x) + reach;
+    for (long i = column(x0); i <= column(x1); ++i) {
+      // The edge's y-range over this column (widened by `reach` both ways), or over all of
+      // it for an edge within one or two columns.
+      double y0 = std::min(a.y, b.y), y1 = std::max(a.y, b.y);
+      if (column(x1) - column(x0) > 1) {
+        const double lo = std::max(x0, box.min_x + static_cast<double>(i) * bucket - reach);
+        const double hi = std::min(x1, box.min_x + static_cast<double>(i + 1) * bucket + reach);
+        auto y_at = [&](double x) { return a.y + (b.y - a.y) * std::clamp((x - a.x) / (b.x - a.x), 0.0, 1.0); };
+        y0 = std::min(y_at(lo), y_at(hi)), y1 = std::max(y_at(lo), y_at(hi));
+      }
+      for (long j = row(y0 - reach); j <= row(y1 + reach); ++j) entries.push_back({i * rows + j, e});
+    }
+  }
+  std::sort(entries.begin(), entries.end());
+  for (int v = 0; v < static_cast<int>(vertices.size()); ++v) {
+    const Vec2 p = vertices[v];
+    const long key = column(p.x) * rows + row(p.y);
+    for (auto it = std::lower_bound(entries.begin(), entries.end(), std::pair<long, int>(key, INT_MIN));
+         it != entries.end() && it->first == key; ++it) {
+      const auto [ia, ib] = edges[it->second];
+      if (ia == v || ib == v) continue;
+      const Vec2 a = vertices[ia], b = vertices[ib];
+      if (p.x < std::min(a.x, b.x) - reach || p.x > std::max(a.x, b.x) + reach || p.y < std::min(a.y, b.y) - reach ||
+          p.y > std::max(a.y, b.y) + reach)
+        continue;
+      const double dx = b.x - a.x, dy = b.y - a.y;
+      if (std::abs(dx * (p.y - a.y) - dy * (p.x - a.x)) <= reach * std::hypot(dx, dy)) f(v, it->second);
+    }
+  }
+}
+
+}  // namespace
+
+std::size_t PlanarMap::snap_round() {
+  Arrangement& arr = impl_->arr;
+  std::vector<Arrangement::Vertex_handle> vertex_of;
+  std::vector<Vec2> rounded;
+  std::unordered_map<const void*, int> index;
+  double largest = 0;
+  for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
+    index.emplace(&*v, static_cast<int>(vertex_of.size()));
+    vertex_of.push_back(v);
+    rounded.push_back(to_plain(v->point()));
+    largest = std::max({largest, std::abs(rounded.back().x), std::abs(rounded.back().y)});
+  }
+  std::vector<Arrangement::Halfedge_handle> edge_of;  // each directed left to right
+  std::vector<std::pair<int, int>> ends;
+  for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
+    Arrangement::Halfedge_handle h = e->direction() == CGAL::ARR_LEFT_TO_RIGHT ? Arrangement::Halfedge_handle(e) : e->twin();
+    edge_of.push_back(h);
+    ends.push_back({index.at(&*h->source()), index.at(&*h->target())});
+  }
+  // An edge meets a vertex's pixel only within about two steps of a double at the largest
+  // coordinate of the rounded vertex; far more than that, and than the error of the test.
+  const double step = std::nextafter(largest, std::numeric_limits<double>::infinity()) - largest;
+  std::vector<std::pair<int, Point>> splits;  // (edge, point)
+  for_each_near_pair(rounded, ends, 16 * step, [&](int v, int e) {
+    const Vec2 g = rounded[v];
+    if (rounded[ends[e].first] == g || rounded[ends[e].second] == g) return;  // it has a vertex there
+    if (auto m = point_rounding_to(exact::Segment(edge_of[e]->source()->point(), edge_of[e]->target()->point()), g))
+      splits.push_back({e, *m});
+  });
+  std::sort(splits.begin(), splits.end(), [](const auto& p, const auto& q) {
+    return p.first != q.first ? p.first < q.first : CGAL::compare_xy(p.second, q.second) == CGAL::SMALLER;
+  });
+  std::size_t added = 0;
+  const auto split = arr.geometry_traits()->split_2_object();
+  for (std::size_t k = 0; k < splits.size();) {
+    Arrangement::Halfedge_handle h = edge_of[splits[k].first];
+    Vec2 last = rounded[ends[splits[k].first].first];
+    for (const int e = splits[k].first; k < splits.size() && splits[k].first == e; ++k) {
+      const Point& m = splits[k].second;
+      if (to_plain(m) == last) continue;  // one vertex per pixel is enough
+      last = to_plain(m);
+      Traits::X_monotone_curve_2 left, right;
+      split(h->curve(), m, left, right);
+      h = arr.split_edge(h, left, right)->next();
+      ++added;
+    }
+  }
+  return added;
+}
+
 void PlanarMap::label_faces(const std::function<int(const Windings&)>& label_of) {
   label_all_faces(impl_->arr, label_of);
 }
@@ -397,13 +526,9 @@ std::vector<std::vector<Dissolved>> PlanarMap::dissolve(const std::vector<int>& 
   trace_components(impl_->arr, impl_->group_function(group_of_label),
                    [&](int g, const std::vector<LoopPolygon>& polygons, const std::vector<int>& neighbours) {
                      for (const LoopPolygon& lp : polygons) {
-                       Dissolved d{{plain_ring(lp.outer), {}}, neighbours};
-                       if (d.polygon.outer.empty()) continue;
-                       for (const auto& h : lp.holes) {
-                         Ring ring = plain_ring(h);
-                         if (!ring.empty()) d.polygon.holes.push_back(std::move(ring));
-                       }
-                       result[g].push_back(std::move(d));
+                       std::vector<Ring> rings{plain_ring(lp.outer)};
+                       for (const auto& h : lp.holes) rings.push_back(plain_ring(h));
+                       for (Polygon& p : untangle(rings)) result[g].push_back({std::move(p), neighbours});
                      }
                    });
   return result;

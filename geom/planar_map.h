@@ -77,6 +77,14 @@ class PlanarMap {
   // Inserts everything queued in one sweep.
   void insert_batch();
 
+  // Snap rounding (Hobby; Guibas and Marimont) to the grid of doubles, after the last
+  // batch: a vertex's pixel is the box of points that round to the doubles it rounds to;
+  // where an edge passes through the pixel of a vertex not its own, it gets a vertex
+  // there. Rounding every vertex then moves each edge only through pixels it crossed:
+  // rounded edges cross nowhere, and a face keeps its shape or collapses (untangle() turns
+  // its collapsed rings back into simple polygons). Returns how many vertices it added.
+  std::size_t snap_round();
+
   // Labels every face with label_of(its windings); the unbounded face included.
   void label_faces(const std::function<int(const Windings&)>& label_of);
   // The same after a later batch, counting only counters >= from_counter, and knowing each

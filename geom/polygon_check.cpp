@@ -1,5 +1,6 @@
 #include "geom/polygon_check.h"
 
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_2_algorithms.h>
 #include <CGAL/convex_hull_2.h>
@@ -46,6 +47,24 @@ bool rings_meet(const Ring& a, const Ring& b) {
   // No edges meet: either one lies inside the other or they are apart.
   return CGAL::bounded_side_2(pb.begin(), pb.end(), pa[0], K()) != CGAL::ON_UNBOUNDED_SIDE ||
          CGAL::bounded_side_2(pa.begin(), pa.end(), pb[0], K()) != CGAL::ON_UNBOUNDED_SIDE;
+}
+
+bool ring_within(const Ring& ring, const Ring& outer) {
+  const auto o = points(outer);
+  for (Vec2 v : ring) {
+    auto side = CGAL::bounded_side_2(o.begin(), o.end(), K::Point_2(v.x, v.y), K());
+    if (side != CGAL::ON_BOUNDARY) return side == CGAL::ON_BOUNDED_SIDE;
+  }
+  // Every vertex on the outer ring: an edge's midpoint, constructed exactly, decides.
+  using E = CGAL::Exact_predicates_exact_constructions_kernel;
+  std::vector<E::Point_2> oe;
+  for (Vec2 v : outer) oe.emplace_back(v.x, v.y);
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Vec2 a = ring[i], b = ring[(i + 1) % ring.size()];
+    auto side = CGAL::bounded_side_2(oe.begin(), oe.end(), CGAL::midpoint(E::Point_2(a.x, a.y), E::Point_2(b.x, b.y)), E());
+    if (side != CGAL::ON_BOUNDARY) return side == CGAL::ON_BOUNDED_SIDE;
+  }
+  return true;  // the same ring
 }
 
 Ring convex_hull(const std::vector<Vec2>& points) {

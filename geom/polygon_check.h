@@ -14,6 +14,10 @@ bool ring_is_simple(const Ring& ring);
 // The closed regions the two simple rings bound meet (touching counts), decided exactly.
 bool rings_meet(const Ring& a, const Ring& b);
 
+// The simple ring lies in the closed region the simple ring `outer` bounds, given that
+// the two do not cross (they may touch, or share edges), decided exactly.
+bool ring_within(const Ring& ring, const Ring& outer);
+
 // The convex hull of the points, counter-clockwise, without collinear points; exact.
 Ring convex_hull(const std::vector<Vec2>& points);
 
