@@ -303,19 +303,20 @@ std::vector<Lot> insert_lots(ZoneMap& zm, const std::vector<PlannedLot>& planned
   std::vector<std::optional<Lot>> kept(pieces.size());
   tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
     const PlannedLot& plan = planned[planned_of[i]];
-    // Off the street, too small, too narrow or shallow for its frontage, or not one
-    // polygon once rounded: left open.
-    std::vector<geom::Polygon> shapes = pieces[i].rounded();
-    if (shapes.size() != 1) return;
-    geom::Polygon& shape = shapes[0];
+    // Collapsed by rounding, off the street, too small, or too narrow or shallow for its
+    // frontage: left open. A lot is its rounded cell, so the buildings placed in it lie
+    // inside the lot as written.
+    std::optional<geom::Cell> cell = pieces[i].as_written();
+    if (!cell) return;
+    geom::Polygon shape = cell->to_plain();
     if (geom::area(shape) < sketch.zone_params.at(plan.zone).min_lot_area) return;
     double longest = 0, ratio = 0;
-    for (auto [a, b] : pieces[i].edges_of_kind(kLotRoadEdge)) {
+    for (auto [a, b] : cell->edges_of_kind(kLotRoadEdge)) {
       double len = std::hypot(b.x - a.x, b.y - a.y);
       if (len > longest) longest = len, ratio = geom::depth_over_width(shape.outer, a, b);
     }
     if (ratio < kLotShape.min || ratio > kLotShape.max) return;
-    kept[i] = Lot{plan.block, plan.zone, std::move(pieces[i]), std::move(shape)};
+    kept[i] = Lot{plan.block, plan.zone, std::move(*cell), std::move(shape)};
   });
   std::vector<Lot> lots;
   for (auto& lot : kept)

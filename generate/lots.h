@@ -29,8 +29,8 @@ struct PlannedLot {
 struct Lot {
   int block = -1;
   ZoneType zone = ZoneType::Residential;
-  geom::Cell cell;         // exact; edges along a road area have kind kLotRoadEdge, the others 0
-  geom::Polygon polygon;   // the cell rounded, as written
+  geom::Cell cell;         // as written (doubles); edges along a road area have kind kLotRoadEdge, the others 0
+  geom::Polygon polygon;   // the same, as a plain polygon
 };
 inline constexpr int kLotRoadEdge = 1;
 inline constexpr Range kLotShape{0.5, 5};  // a lot's depth over its width (across and along its street)

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <unordered_set>
 
 #include <CGAL/Polygon_2_algorithms.h>
 
@@ -195,6 +196,27 @@ Polygon Cell::to_plain() const {
   std::vector<Polygon> parts = rounded();
   if (parts.empty()) return {};
   return *std::max_element(parts.begin(), parts.end(), [](const Polygon& a, const Polygon& b) { return geom::area(a) < geom::area(b); });
+}
+
+std::optional<Cell> Cell::as_written() const {
+  std::unordered_set<Vec2, Vec2Hash> seen;
+  auto written = [&](const KindRing& r) -> std::optional<KindRing> {
+    KindRing w{{}, r.kinds, r.rounded};
+    for (Vec2 v : r.rounded) {
+      if (!seen.insert(v).second) return std::nullopt;
+      w.points.push_back(to_exact(v));
+    }
+    return w;
+  };
+  auto outer = written(impl_->outer);
+  if (!outer) return std::nullopt;
+  std::vector<KindRing> holes;
+  for (const KindRing& h : impl_->holes) {
+    auto w = written(h);
+    if (!w) return std::nullopt;
+    holes.push_back(std::move(*w));
+  }
+  return make_cell(std::move(*outer), std::move(holes));
 }
 
 std::vector<Vec2> Cell::corners() const {

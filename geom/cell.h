@@ -70,6 +70,10 @@ class Cell {
   std::vector<Polygon> rounded() const;
   // The largest of them; an empty outer ring when it collapses.
   Polygon to_plain() const;
+  // The cell with its vertices rounded to doubles and its edge kinds kept, when rounding
+  // leaves every vertex apart (in a snap-rounded map its rings then stay simple); none
+  // when two land on one double pair.
+  std::optional<Cell> as_written() const;
   const Impl& exact() const { return *impl_; }
 
  private:

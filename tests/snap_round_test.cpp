@@ -1,0 +1,179 @@
+// Rounding the exact map to doubles: nearest rounding, snap rounding (no rounded edges
+// cross), and untangling the rings rounding collapsed.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+
+#include "geom/exact.h"
+#include "geom/planar_map.h"
+#include "geom/polygon_check.h"
+#include "geom/untangle.h"
+#include "tests/test_util.h"
+
+using geom::Polygon;
+using geom::Ring;
+using geom::Vec2;
+
+namespace {
+
+using E = CGAL::Exact_predicates_exact_constructions_kernel;
+
+// Two rounded edges meet only at an end both share, or are the same edge; no vertex (an
+// edge's end, or an edge rounding collapsed to a point) lies inside another edge.
+std::string crossing(const std::vector<std::pair<Vec2, Vec2>>& edges) {
+  auto segment = [](Vec2 a, Vec2 b) { return E::Segment_2(E::Point_2(a.x, a.y), E::Point_2(b.x, b.y)); };
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    for (std::size_t j = 0; j < edges.size(); ++j) {
+      auto [a, b] = edges[i];
+      auto [c, d] = edges[j];
+      if (i == j || (a == c && b == d) || (a == d && b == c) || c == d) continue;
+      const E::Segment_2 t = segment(c, d);
+      if (a == b) {
+        if (!(a == c) && !(a == d) && t.has_on(E::Point_2(a.x, a.y))) return "a collapsed edge lies inside edge " + std::to_string(j);
+        continue;
+      }
+      if (j < i) continue;
+      auto meet = CGAL::intersection(segment(a, b), t);
+      if (!meet) continue;
+      const E::Point_2* p = boost::get<E::Point_2>(&*meet);
+      auto shared_end = [&](Vec2 v) { return (v == c || v == d) && *p == E::Point_2(v.x, v.y); };
+      if (p && (shared_end(a) || shared_end(b))) continue;
+      return "edges " + std::to_string(i) + " and " + std::to_string(j) + " meet off a shared end";
+    }
+  return "";
+}
+
+// Rings and polylines near degeneracy, far from the origin and turned: vertices shared,
+// a few ulps apart, or on (or next to) an edge drawn before.
+geom::PlanarMap near_degenerate_map(std::mt19937_64& rng, Vec2 origin, double angle) {
+  std::uniform_real_distribution<double> coord(0, 300), unit(0, 1);
+  std::uniform_int_distribution<int> how(0, 3), ulps(-3, 3);
+  std::vector<Vec2> seen;
+  auto nudge = [&](double v) {
+    for (int k = ulps(rng); k != 0; k += k > 0 ? -1 : 1) v = std::nextafter(v, k > 0 ? INFINITY : -INFINITY);
+    return v;
+  };
+  auto vertex = [&]() {
+    Vec2 p{coord(rng), coord(rng)};
+    const int h = how(rng);
+    if (h > 0 && seen.size() >= 2) {
+      Vec2 a = seen[rng() % seen.size()], b = seen[rng() % seen.size()];
+      const double t = h == 1 ? 0 : unit(rng);
+      p = {nudge(a.x + t * (b.x - a.x)), nudge(a.y + t * (b.y - a.y))};
+    }
+    seen.push_back(p);
+    const double c = std::cos(angle), s = std::sin(angle);
+    return Vec2{origin.x + c * p.x - s * p.y, origin.y + s * p.x + c * p.y};
+  };
+  geom::PlanarMap map;
+  for (int r = 0; r < 4; ++r) {
+    Ring ring;
+    for (int i = 0; i < 3 + r; ++i) ring.push_back(vertex());
+    map.add_ring(ring, r);
+  }
+  for (int l = 0; l < 2; ++l) map.add_polyline({vertex(), vertex(), vertex()}, 10 + l);
+  map.insert_batch();
+  return map;
+}
+
+std::vector<std::pair<Vec2, Vec2>> rounded_edges(const geom::PlanarMap& map) {
+  std::vector<std::pair<Vec2, Vec2>> edges;
+  map.for_each_edge([&](const std::vector<geom::CurveTag>&, Vec2 a, Vec2 b) { edges.push_back({a, b}); });
+  return edges;
+}
+
+}  // namespace
+
+TEST(Rounding, ToTheNearestDoubleTiesToEven) {
+  using Q = std::decay_t<decltype(CGAL::exact(geom::exact::FT(0)))>;
+  std::mt19937_64 rng(7);
+  for (double base : {0.3, 131.13, 70.71067811865478, -3.5e6, 1e9, -7e9}) {
+    const double up = std::nextafter(base, INFINITY);
+    for (int k = 0; k <= 16; ++k) {
+      const Q v = Q(base) + (Q(up) - Q(base)) * Q(k) / Q(16);  // k/16 of the way to the next double
+      const bool base_is_even = (std::bit_cast<std::uint64_t>(base) & 1) == 0;  // a tie goes to the even one
+      const double nearest = k < 8 ? base : k > 8 ? up : base_is_even ? base : up;
+      EXPECT_EQ(geom::exact::nearest_double(v), nearest) << base << " + " << k << "/16 of a step";
+    }
+  }
+}
+
+TEST(Rounding, SnapRoundedEdgesNeverCross) {
+  // Without snap rounding these maps round into crossing edges; with it, none does.
+  std::mt19937_64 rng(20261123);
+  int crossed_without = 0, vertices_added = 0;
+  const Vec2 origins[] = {{1e5, 0}, {1e9, 3.5e6}, {-7e9, 1e9}, {0, 0}};
+  const double angles[] = {M_PI / 4, M_PI / 6, 1e-9};
+  for (int trial = 0; trial < 240; ++trial) {
+    const Vec2 origin = origins[trial % 4];
+    const double angle = angles[trial % 3];
+    std::mt19937_64 again = rng;
+    geom::PlanarMap plain = near_degenerate_map(rng, origin, angle);
+    crossed_without += !crossing(rounded_edges(plain)).empty();
+    geom::PlanarMap snapped = near_degenerate_map(again, origin, angle);
+    vertices_added += static_cast<int>(snapped.snap_round());
+    EXPECT_EQ(crossing(rounded_edges(snapped)), "") << "trial " << trial;
+  }
+  EXPECT_GT(crossed_without, 0) << "the maps are not near enough to degeneracy to test anything";
+  EXPECT_GT(vertices_added, 0);
+}
+
+TEST(Rounding, SnapRoundingLeavesAMapOfDoublesAlone) {
+  geom::PlanarMap map;
+  map.add_ring({{0, 0}, {10, 0}, {10, 10}, {0, 10}}, 0);
+  map.add_ring({{5, 5}, {15, 5}, {15, 15}, {5, 15}}, 1);
+  map.insert_batch();
+  const auto before = map.counts();
+  EXPECT_EQ(map.snap_round(), 0u);
+  EXPECT_EQ(map.counts().vertices, before.vertices);
+}
+
+TEST(Untangle, RingsWithoutRepeatsComeBackUnchanged) {
+  const Ring outer{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, hole{{2, 2}, {2, 8}, {8, 8}, {8, 2}};
+  auto out = geom::untangle({outer, hole});
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].outer, outer);
+  ASSERT_EQ(out[0].holes.size(), 1u);
+  EXPECT_EQ(out[0].holes[0], hole);
+}
+
+TEST(Untangle, APinchedRingBecomesTwoPolygons) {
+  auto out = geom::untangle({{{0, 0}, {2, 0}, {1, 1}, {2, 2}, {0, 2}, {1, 1}}});
+  ASSERT_EQ(out.size(), 2u);
+  for (const Polygon& p : out) {
+    EXPECT_EQ(geom::ring_orientation(p.outer), 1);
+    EXPECT_EQ(testing_util::area(p), 1);
+  }
+}
+
+TEST(Untangle, AnEdgeRunBothWaysCancels) {
+  auto out = geom::untangle({{{0, 0}, {4, 0}, {4, 4}, {2, 4}, {2, 6}, {2, 4}, {0, 4}}});
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(geom::ring_orientation(out[0].outer), 1);
+  EXPECT_EQ(out[0].outer.size(), 5u);  // (2, 4) stays: a vertex on a straight edge
+  EXPECT_EQ(testing_util::area(out[0]), 16);
+}
+
+TEST(Untangle, AHoleThatCameToShareAnEdgeWithTheOuterRingOpensIt) {
+  // The outer ring carries the hole's corners (snap rounding put them there).
+  auto out = geom::untangle({{{0, 0}, {10, 0}, {10, 10}, {0, 10}, {0, 8}, {0, 2}}, {{0, 2}, {0, 8}, {5, 8}, {5, 2}}});
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_TRUE(out[0].holes.empty());
+  EXPECT_EQ(geom::ring_orientation(out[0].outer), 1);
+  EXPECT_EQ(testing_util::area(out[0]), 70);
+}
+
+TEST(Untangle, AHoleTouchingTheOuterRingAtAVertexStaysAHole) {
+  auto out = geom::untangle({{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {{0, 0}, {5, 8}, {8, 5}}});
+  ASSERT_EQ(out.size(), 1u);
+  ASSERT_EQ(out[0].holes.size(), 1u);
+  EXPECT_EQ(geom::ring_orientation(out[0].holes[0]), -1);
+  EXPECT_EQ(testing_util::area(out[0]), 100 - 19.5);
+}
+
+TEST(Untangle, ARingThatCollapsedToALineIsGone) {
+  EXPECT_TRUE(geom::untangle({{{0, 0}, {1, 1}, {2, 2}, {1, 1}}}).empty());
+}
