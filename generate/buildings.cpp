@@ -6,6 +6,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include "generate/errors.h"
+#include "generate/geojson.h"
 #include "generate/model_placement.h"
 #include "geom/grid.h"
 #include "geom/measure.h"
@@ -150,6 +152,27 @@ std::vector<Building> place_buildings(const std::vector<Lot>& lots, const Sketch
   for (auto& here : placed)
     for (Building& b : here) buildings.push_back(std::move(b));
   return buildings;
+}
+
+void check_export_size(const std::vector<Building>& buildings, const ModelLibrary* library) {
+  if (!library) return;
+  std::vector<double> placed(library->models.size(), 0);
+  for (const Building& b : buildings)
+    if (b.placed.model >= 0) ++placed[b.placed.model];
+  double total = 0, heaviest = 0;
+  int worst = -1;
+  for (std::size_t m = 0; m < placed.size(); ++m) {
+    const double triangles = placed[m] * static_cast<double>(library->models[m].mesh.triangles.size());
+    total += triangles;
+    if (triangles > heaviest) heaviest = triangles, worst = static_cast<int>(m);
+  }
+  if (total <= kMaxExportTriangles) return;
+  const Model& m = library->models[worst];
+  auto millions = [](double n) { return format_number(std::round(n / 1e5) / 10) + " million"; };
+  throw UserError(library->file.string() + ": model \"" + m.name + "\" (" + std::to_string(m.mesh.triangles.size()) +
+                  " triangles) is placed " + std::to_string(static_cast<long>(placed[worst])) +
+                  " times, and the 3D exports would hold " + millions(total) + " triangles, over the " +
+                  millions(kMaxExportTriangles) + " one run writes; use a lighter model or list it for fewer zones");
 }
 
 }  // namespace exacity

@@ -52,6 +52,12 @@ void choose_roof(Building& b, const ZoneParams& p);
 std::vector<Building> place_buildings(const std::vector<Lot>& lots, const Sketch& sketch, const ModelLibrary* library,
                                       const Terrain* terrain);
 
+// The 3D exports write every placed model's triangles (OBJ, PLY and CityJSON have no
+// instances for buildings), about 0.75 kB of memory each while they are written: past
+// kMaxExportTriangles a run stops with one line naming the model that weighs most.
+inline constexpr double kMaxExportTriangles = 20e6;
+void check_export_size(const std::vector<Building>& buildings, const ModelLibrary* library);
+
 // Seed 003's height: uniform in the zone's range scaled by 1 - distance / radius (down to
 // half at the city's edge); the top doubles with a chance of 0.1 × that scale².
 double building_height(const ZoneParams& p, double distance, double radius, Random& rng);

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "generate/errors.h"
+#include "geom/grid.h"
 #include "geom/outline.h"
 #include "geom/polygon_check.h"
 
@@ -54,20 +55,27 @@ Model normalise_model(TriangleMesh mesh, const std::string& up, const std::strin
   if (!(m.height > 0))
     throw UserError(where + ": the model is flat (every vertex at one height); a model needs height: check its \"up\" axis");
 
-  std::vector<std::array<geom::Vec2, 3>> shadow;
-  for (const auto& t : mesh.triangles) {
-    std::array<geom::Vec2, 3> tri;
-    for (int k = 0; k < 3; ++k) tri[k] = {mesh.vertices[t[k]][0], mesh.vertices[t[k]][1]};
-    shadow.push_back(tri);
-  }
-  std::vector<geom::Polygon> pieces = geom::union_of_triangles(shadow);
-  if (pieces.size() == 1 && pieces[0].holes.empty()) {
-    m.outline = pieces[0].outer;
-  } else {
-    std::vector<geom::Vec2> all;
+  // The exact union of a heavy mesh's triangles costs seconds per 10,000 (real building
+  // models have a few thousand); past kExactOutlineTriangles the hull of its vertices
+  // stands in. Every placement tests the outline exactly, so it keeps at most
+  // kOutlineCorners corners: a longer one becomes the polygon of kOutlineCorners sides
+  // around it.
+  std::vector<geom::Vec2> all;
+  if (mesh.triangles.size() <= kExactOutlineTriangles) {
+    std::vector<std::array<geom::Vec2, 3>> shadow;
+    for (const auto& t : mesh.triangles) {
+      std::array<geom::Vec2, 3> tri;
+      for (int k = 0; k < 3; ++k) tri[k] = {mesh.vertices[t[k]][0], mesh.vertices[t[k]][1]};
+      shadow.push_back(tri);
+    }
+    std::vector<geom::Polygon> pieces = geom::union_of_triangles(shadow);
+    if (pieces.size() == 1 && pieces[0].holes.empty()) m.outline = pieces[0].outer;
     for (const auto& p : pieces) all.insert(all.end(), p.outer.begin(), p.outer.end());
-    m.outline = geom::convex_hull(all);
+  } else {
+    for (const Vec3& v : mesh.vertices) all.push_back(geom::snap(geom::Vec2{v[0], v[1]}));
   }
+  if (m.outline.empty()) m.outline = geom::convex_hull(all);
+  if (m.outline.size() > kOutlineCorners) m.outline = geom::polygon_around(m.outline, kOutlineCorners);
   if (m.outline.size() < 3)
     throw UserError(where + ": the model has no area seen from above; check its \"up\" axis and \"unit\"");
   m.mesh = std::move(mesh);

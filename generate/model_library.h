@@ -31,10 +31,15 @@ struct Model {
   // centred on the origin.
   TriangleMesh mesh;
   // The footprint: the mesh's outline on the ground, counter-clockwise, on the grid. A
-  // model whose outline falls apart in pieces, or has courtyards, gets the convex hull.
+  // model whose outline falls apart in pieces, or has courtyards, or whose mesh has more
+  // than kExactOutlineTriangles triangles, gets the convex hull; an outline of more than
+  // kOutlineCorners corners, a polygon of that many sides around it.
   geom::Ring outline;
   double width = 0, depth = 0, height = 0;  // along x, y and z
 };
+
+inline constexpr std::size_t kExactOutlineTriangles = 20000;
+inline constexpr std::size_t kOutlineCorners = 64;
 
 struct ModelLibrary {
   std::filesystem::path file;

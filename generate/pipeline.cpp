@@ -41,7 +41,9 @@ City build_city(const Sketch& sketch, StageClock& stages) {
     return insert_lots(city.network.map, plan_lots(city.blocks, sketch), sketch);
   });
   city.buildings = stages.run("buildings", [&] {
-    return place_buildings(city.lots, sketch, city.models(), city.ground());
+    auto buildings = place_buildings(city.lots, sketch, city.models(), city.ground());
+    check_export_size(buildings, city.models());
+    return buildings;
   });
   city.layers = stages.run("vector layers", [&] {
     return extract_layers(city.network.map, city.blocks, city.lots, city.buildings, sketch, city.models());

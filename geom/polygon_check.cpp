@@ -1,9 +1,13 @@
 #include "geom/polygon_check.h"
 
+#include <cmath>
+
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_2_algorithms.h>
 #include <CGAL/convex_hull_2.h>
+
+#include "geom/grid.h"
 
 namespace geom {
 namespace {
@@ -73,6 +77,27 @@ Ring convex_hull(const std::vector<Vec2>& points) {
   CGAL::convex_hull_2(pts.begin(), pts.end(), std::back_inserter(hull), K());
   Ring ring;
   for (const auto& p : hull) ring.push_back({p.x(), p.y()});
+  return ring;
+}
+
+Ring polygon_around(const std::vector<Vec2>& points, int sides) {
+  // Side k lies on {p : p . u_k = h_k}, u_k pointing out at angle 2 pi k / sides.
+  std::vector<Vec2> normal(sides);
+  std::vector<double> reach(sides, -INFINITY);
+  for (int k = 0; k < sides; ++k) {
+    const double a = 2 * M_PI * k / sides;
+    normal[k] = {std::cos(a), std::sin(a)};
+    for (Vec2 p : points) reach[k] = std::max(reach[k], p.x * normal[k].x + p.y * normal[k].y);
+    reach[k] += 2 * kGridStep;
+  }
+  Ring ring;
+  for (int k = 0; k < sides; ++k) {
+    const Vec2 u = normal[k], w = normal[(k + 1) % sides];
+    const double det = u.x * w.y - u.y * w.x, h = reach[k], g = reach[(k + 1) % sides];
+    const Vec2 corner = snap(Vec2{(h * w.y - g * u.y) / det, (u.x * g - w.x * h) / det});
+    if (ring.empty() || !(corner == ring.back())) ring.push_back(corner);
+  }
+  while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
   return ring;
 }
 

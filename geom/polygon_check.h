@@ -21,4 +21,9 @@ bool ring_within(const Ring& ring, const Ring& outer);
 // The convex hull of the points, counter-clockwise, without collinear points; exact.
 Ring convex_hull(const std::vector<Vec2>& points);
 
+// A convex polygon of `sides` sides (fewer where corners round to one) around the points,
+// on the grid: each side on a line no point lies beyond, moved out by a grid step so that
+// rounding its corners to the grid keeps every point inside.
+Ring polygon_around(const std::vector<Vec2>& points, int sides);
+
 }  // namespace geom

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "generate/buildings.h"
 #include "generate/errors.h"
 #include "generate/model_library.h"
 #include "generate/model_placement.h"
@@ -305,5 +306,45 @@ TEST(ModelLibrary, AFlatModelIsRefused) {
     FAIL() << "accepted";
   } catch (const UserError& e) {
     EXPECT_NE(std::string(e.what()).find("models[0]: the model is flat"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ModelLibrary, AFaceOfManyCornersGetsABoundedOutlineAroundIt) {
+  // One face of 2,000 corners round a star, with height: its outline is a convex polygon of
+  // kOutlineCorners sides that holds every corner.
+  fs::path dir = testing_util::temp_dir("library-star");
+  std::string obj;
+  const int n = 2000;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * M_PI * i / n, r = i % 2 ? 8 : 7.5;
+    obj += "v " + std::to_string(r * std::cos(a)) + " " + std::to_string(r * std::sin(a)) + " " + (i % 4 < 2 ? "10" : "0") + "\n";
+  }
+  obj += "f";
+  for (int i = 1; i <= n; ++i) obj += " " + std::to_string(i);
+  write(dir, "star.obj", obj + "\n");
+  write(dir, "library.json", R"({"models": [{"file": "star.obj", "zones": ["residential"], "up": "z"}]})");
+  const ModelLibrary lib = load_model_library(dir / "library.json");
+  const Model& m = lib.models[0];
+  ASSERT_LE(m.outline.size(), kOutlineCorners);
+  EXPECT_EQ(geom::ring_orientation(m.outline), 1);
+  for (const Vec3& v : m.mesh.vertices) EXPECT_TRUE(geom::ring_within({geom::Vec2{v[0], v[1]}}, m.outline));
+}
+
+TEST(ModelLibrary, ExportsPastTheirTriangleBudgetStopWithTheHeaviestModel) {
+  ModelLibrary lib;
+  lib.file = "library.json";
+  lib.models.resize(2);
+  lib.models[0].name = "heavy", lib.models[0].mesh.triangles.resize(1000000);
+  lib.models[1].name = "light", lib.models[1].mesh.triangles.resize(10);
+  std::vector<Building> buildings(20);
+  for (Building& b : buildings) b.placed.model = 0;
+  EXPECT_NO_THROW(check_export_size(buildings, &lib));  // 20 million triangles: the budget
+  buildings.push_back({});
+  buildings.back().placed.model = 1;
+  try {
+    check_export_size(buildings, &lib);
+    FAIL() << "accepted";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("model \"heavy\" (1000000 triangles) is placed 20 times"), std::string::npos) << e.what();
   }
 }
