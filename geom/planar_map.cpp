@@ -455,13 +455,11 @@ void for_each_near_pair(const std::vector<Vec2>& vertices, const std::vector<std
 
 std::size_t PlanarMap::snap_round() {
   Arrangement& arr = impl_->arr;
-  std::vector<Arrangement::Vertex_handle> vertex_of;
   std::vector<Vec2> rounded;
   std::unordered_map<const void*, int> index;
   double largest = 0;
   for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
-    index.emplace(&*v, static_cast<int>(vertex_of.size()));
-    vertex_of.push_back(v);
+    index.emplace(&*v, static_cast<int>(rounded.size()));
     rounded.push_back(to_plain(v->point()));
     largest = std::max({largest, std::abs(rounded.back().x), std::abs(rounded.back().y)});
   }
