@@ -455,14 +455,25 @@ void for_each_near_pair(const std::vector<Vec2>& vertices, const std::vector<std
 
 std::size_t PlanarMap::snap_round() {
   Arrangement& arr = impl_->arr;
-  std::vector<Vec2> rounded;
+  // Candidates come from the vertices' interval approximations (rounding every vertex
+  // exactly costs seconds on a large map); only a candidate's vertices are rounded exactly.
+  std::vector<Arrangement::Vertex_handle> vertex_of;
+  std::vector<Vec2> near;
   std::unordered_map<const void*, int> index;
-  double largest = 0;
+  double largest = 0, widest = 0;
   for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
-    index.emplace(&*v, static_cast<int>(rounded.size()));
-    rounded.push_back(to_plain(v->point()));
-    largest = std::max({largest, std::abs(rounded.back().x), std::abs(rounded.back().y)});
+    index.emplace(&*v, static_cast<int>(near.size()));
+    vertex_of.push_back(v);
+    const auto& a = v->point().approx();
+    near.push_back({(a.x().inf() + a.x().sup()) / 2, (a.y().inf() + a.y().sup()) / 2});
+    largest = std::max({largest, std::abs(a.x().inf()), std::abs(a.x().sup()), std::abs(a.y().inf()), std::abs(a.y().sup())});
+    widest = std::max({widest, a.x().sup() - a.x().inf(), a.y().sup() - a.y().inf()});
   }
+  std::vector<std::optional<Vec2>> rounded(near.size());
+  auto rounded_of = [&](int v) -> Vec2 {
+    if (!rounded[v]) rounded[v] = to_plain(vertex_of[v]->point());
+    return *rounded[v];
+  };
   std::vector<Arrangement::Halfedge_handle> edge_of;  // each directed left to right
   std::vector<std::pair<int, int>> ends;
   for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
@@ -471,12 +482,13 @@ std::size_t PlanarMap::snap_round() {
     ends.push_back({index.at(&*h->source()), index.at(&*h->target())});
   }
   // An edge meets a vertex's pixel only within about two steps of a double at the largest
-  // coordinate of the rounded vertex; far more than that, and than the error of the test.
+  // coordinate of the rounded vertex, plus what the approximations leave open; far more
+  // than that, and than the error of the test.
   const double step = std::nextafter(largest, std::numeric_limits<double>::infinity()) - largest;
   std::vector<std::pair<int, Point>> splits;  // (edge, point)
-  for_each_near_pair(rounded, ends, 16 * step, [&](int v, int e) {
-    const Vec2 g = rounded[v];
-    if (rounded[ends[e].first] == g || rounded[ends[e].second] == g) return;  // it has a vertex there
+  for_each_near_pair(near, ends, 16 * step + 2 * widest, [&](int v, int e) {
+    const Vec2 g = rounded_of(v);
+    if (rounded_of(ends[e].first) == g || rounded_of(ends[e].second) == g) return;  // it has a vertex there
     if (auto m = point_rounding_to(exact::Segment(edge_of[e]->source()->point(), edge_of[e]->target()->point()), g))
       splits.push_back({e, *m});
   });
@@ -487,7 +499,7 @@ std::size_t PlanarMap::snap_round() {
   const auto split = arr.geometry_traits()->split_2_object();
   for (std::size_t k = 0; k < splits.size();) {
     Arrangement::Halfedge_handle h = edge_of[splits[k].first];
-    Vec2 last = rounded[ends[splits[k].first].first];
+    Vec2 last = rounded_of(ends[splits[k].first].first);
     for (const int e = splits[k].first; k < splits.size() && splits[k].first == e; ++k) {
       const Point& m = splits[k].second;
       if (to_plain(m) == last) continue;  // one vertex per pixel is enough
