@@ -164,9 +164,10 @@ void check_tiling(Checker& c, const Sketch& sketch, const std::vector<PolygonRef
     }
     return 0;
   });
+  const std::vector<double> widths = map.widest_faces(static_cast<int>(messages.size()));
   for (std::size_t m = 1; m < messages.size(); ++m) {
     if (against_sketch[m]) {
-      double width = map.widest_face(static_cast<int>(m));
+      double width = widths[m];
       if (width <= kRounding) {
         c.v_.widest_sliver = std::max(c.v_.widest_sliver, width);
         continue;

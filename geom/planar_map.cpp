@@ -721,18 +721,20 @@ bool PlanarMap::point_near_label(int label, Vec2& out) const {
   return false;
 }
 
-double PlanarMap::widest_face(int label) const {
-  double widest = 0;
+std::vector<double> PlanarMap::widest_faces(int labels) const {
+  std::vector<double> widest(labels, 0.0);
   for (auto f = impl_->arr.faces_begin(); f != impl_->arr.faces_end(); ++f) {
-    if (f->data() != label || f->is_unbounded()) continue;
-    exact::FT twice_area = 0;
-    double perimeter = 0;
+    if (f->data() < 0 || f->data() >= labels || f->is_unbounded()) continue;
+    double twice_area = 0, perimeter = 0;
+    bool first = true;
+    Vec2 o;
     for_each_boundary_halfedge(f, [&](Halfedge h) {
-      const Point &a = h->source()->point(), &b = h->target()->point();
-      twice_area += a.x() * b.y() - a.y() * b.x();
-      perimeter += std::sqrt(CGAL::to_double(CGAL::squared_distance(a, b)));
+      const Vec2 a = to_plain(h->source()->point()), b = to_plain(h->target()->point());
+      if (first) o = a, first = false;
+      twice_area += (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+      perimeter += std::hypot(b.x - a.x, b.y - a.y);
     });
-    if (perimeter > 0) widest = std::max(widest, std::abs(CGAL::to_double(twice_area)) / perimeter);
+    if (perimeter > 0) widest[f->data()] = std::max(widest[f->data()], std::abs(twice_area) / perimeter);
   }
   return widest;
 }

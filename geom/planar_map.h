@@ -123,9 +123,10 @@ class PlanarMap {
   // A vertex on the boundary of some face with this label, to point a user at it.
   bool point_near_label(int label, Vec2& out) const;
 
-  // The largest 2·area/perimeter over the faces with this label: about the width of a
-  // thin face (area computed exactly), 0 when no face has the label.
-  double widest_face(int label) const;
+  // Per label in [0, labels): the largest 2·area/perimeter over the faces with it, about
+  // the width of a thin face (a measure in doubles, relative to a vertex of each face);
+  // 0 where no face has the label. One pass over the faces.
+  std::vector<double> widest_faces(int labels) const;
 
   PlanarMapCounts counts() const;
 
