@@ -1,6 +1,5 @@
 #include "generate/vector_layers.h"
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -108,26 +107,27 @@ CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, c
   std::vector<std::vector<geom::Polygon>> block_polygons(blocks.size());
   dissolve(zm, static_cast<int>(blocks.size()), [](const FaceLabel& l) { return l.block; },
            [&](int g, geom::Polygon p) { block_polygons[g].push_back(std::move(p)); });
-  std::vector<std::vector<int>> block_ids(blocks.size());
+  std::vector<std::vector<std::size_t>> block_features(blocks.size());  // each block's features
   int next_id = static_cast<int>(blocks.size());
-  for (std::size_t g = 0; g < blocks.size(); ++g)
-    for (std::size_t k = 0; k < block_polygons[g].size(); ++k) block_ids[g].push_back(k == 0 ? static_cast<int>(g) : next_id++);
   for (std::size_t g = 0; g < blocks.size(); ++g)
     for (std::size_t k = 0; k < block_polygons[g].size(); ++k) {
       ordered_json props = block_properties(static_cast<int>(g));
-      props["id"] = block_ids[g][k];
+      if (k > 0) props["id"] = next_id++;
+      block_features[g].push_back(out.blocks.features.size());
       out.blocks.features.push_back({std::move(props), std::move(block_polygons[g][k]), {}});
     }
   auto block_of = [&](const Lot& lot) {
-    const auto& ids = block_ids[lot.block];
-    if (ids.size() < 2) return lot.block;
+    const auto& features = block_features[lot.block];
+    if (features.size() < 2) return lot.block;
     // The smallest polygon around the lot: a piece can lie in another's hole.
     int best = lot.block;
     double best_area = INFINITY;
-    for (const VectorFeature& f : out.blocks.features)
-      if (std::find(ids.begin(), ids.end(), f.properties["id"].get<int>()) != ids.end() &&
-          geom::area(f.polygon) < best_area && geom::ring_within(lot.polygon.outer, f.polygon.outer))
-        best = f.properties["id"].get<int>(), best_area = geom::area(f.polygon);
+    for (std::size_t i : features) {
+      const VectorFeature& f = out.blocks.features[i];
+      const double area = geom::area(f.polygon);
+      if (area < best_area && geom::ring_within(lot.polygon.outer, f.polygon.outer))
+        best = f.properties["id"].get<int>(), best_area = area;
+    }
     return best;
   };
 

@@ -1,7 +1,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <unordered_set>
 
 #include <CGAL/Polygon_2_algorithms.h>
 
@@ -186,11 +185,17 @@ std::vector<KindedRing> Cell::kinded_rings() const {
   return rings;
 }
 
-std::vector<Polygon> Cell::rounded() const {
-  std::vector<Ring> rings{impl_->outer.rounded};
-  for (const auto& h : impl_->holes) rings.push_back(h.rounded);
-  return untangle(rings);
+namespace {
+
+std::vector<Ring> rounded_rings(const Cell::Impl& c) {
+  std::vector<Ring> rings{c.outer.rounded};
+  for (const auto& h : c.holes) rings.push_back(h.rounded);
+  return rings;
 }
+
+}  // namespace
+
+std::vector<Polygon> Cell::rounded() const { return untangle(rounded_rings(*impl_)); }
 
 Polygon Cell::to_plain() const {
   std::vector<Polygon> parts = rounded();
@@ -199,24 +204,15 @@ Polygon Cell::to_plain() const {
 }
 
 std::optional<Cell> Cell::as_written() const {
-  std::unordered_set<Vec2, Vec2Hash> seen;
-  auto written = [&](const KindRing& r) -> std::optional<KindRing> {
+  if (vertex_repeats(rounded_rings(*impl_))) return std::nullopt;
+  auto written = [](const KindRing& r) {
     KindRing w{{}, r.kinds, r.rounded};
-    for (Vec2 v : r.rounded) {
-      if (!seen.insert(v).second) return std::nullopt;
-      w.points.push_back(to_exact(v));
-    }
+    for (Vec2 v : r.rounded) w.points.push_back(to_exact(v));
     return w;
   };
-  auto outer = written(impl_->outer);
-  if (!outer) return std::nullopt;
   std::vector<KindRing> holes;
-  for (const KindRing& h : impl_->holes) {
-    auto w = written(h);
-    if (!w) return std::nullopt;
-    holes.push_back(std::move(*w));
-  }
-  return make_cell(std::move(*outer), std::move(holes));
+  for (const KindRing& h : impl_->holes) holes.push_back(written(h));
+  return make_cell(written(impl_->outer), std::move(holes));
 }
 
 std::vector<Vec2> Cell::corners() const {

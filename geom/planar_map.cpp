@@ -22,6 +22,7 @@
 
 #include "geom/cell_impl.h"
 #include "geom/grid.h"
+#include "geom/split_loops.h"
 #include "geom/untangle.h"
 
 namespace geom {
@@ -130,27 +131,6 @@ void label_all_faces(Arrangement& arr, const std::function<int(const Windings&)>
   label_all_faces(arr, INT_MIN, [&](const Windings& w, int) { return label_of(w); });
 }
 
-// Splits a closed walk that passes some vertex twice into loops that pass none twice.
-std::vector<std::vector<Halfedge>> split_at_repeated_vertices(const std::vector<Halfedge>& walk) {
-  std::vector<std::vector<Halfedge>> loops;
-  std::vector<Halfedge> stack;
-  std::unordered_map<const void*, std::size_t> position;  // vertex -> index in stack
-  for (const Halfedge& h : walk) {
-    const void* v = &*h->source();
-    auto it = position.find(v);
-    if (it != position.end()) {
-      std::size_t k = it->second;
-      loops.emplace_back(stack.begin() + k, stack.end());
-      for (std::size_t i = k; i < stack.size(); ++i) position.erase(&*stack[i]->source());
-      stack.resize(k);
-    }
-    position[v] = stack.size();
-    stack.push_back(h);
-  }
-  if (!stack.empty()) loops.push_back(std::move(stack));
-  return loops;
-}
-
 std::vector<Point> loop_points(const std::vector<Halfedge>& loop) {
   std::vector<Point> pts;
   pts.reserve(loop.size());
@@ -218,7 +198,7 @@ void trace_components(const Arrangement& arr, GroupOf group_of, Emit emit) {
         while (group_of(next->twin()->face()) == g) next = next->twin()->next();
         h = next;
       } while (h != first);
-      for (auto& loop : split_at_repeated_vertices(walk)) {
+      for (auto& loop : split_at_repeats<const void*>(walk, [](const Halfedge& h) -> const void* { return &*h->source(); })) {
         std::vector<Point> pts = loop_points(loop);
         if (loop_orientation(pts) == CGAL::COUNTERCLOCKWISE) {
           outers.push_back(std::move(loop));
@@ -502,8 +482,9 @@ std::size_t PlanarMap::snap_round() {
     Vec2 last = rounded_of(ends[splits[k].first].first);
     for (const int e = splits[k].first; k < splits.size() && splits[k].first == e; ++k) {
       const Point& m = splits[k].second;
-      if (to_plain(m) == last) continue;  // one vertex per pixel is enough
-      last = to_plain(m);
+      const Vec2 at = to_plain(m);
+      if (at == last) continue;  // one vertex per pixel is enough
+      last = at;
       Traits::X_monotone_curve_2 left, right;
       split(h->curve(), m, left, right);
       h = arr.split_edge(h, left, right)->next();

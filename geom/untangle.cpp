@@ -8,6 +8,7 @@
 
 #include "geom/measure.h"
 #include "geom/polygon_check.h"
+#include "geom/split_loops.h"
 
 namespace geom {
 namespace {
@@ -65,26 +66,6 @@ bool turns_tighter(Vec2 u, Vec2 v, Vec2 a, Vec2 b) {
   return ra % 2 == 0 && turn(v, a, b) == CGAL::RIGHT_TURN;  // same half-plane: b lies past a
 }
 
-// Splits a closed walk that passes some vertex twice into loops that pass none twice.
-std::vector<Ring> split_at_repeats(const Ring& walk) {
-  std::vector<Ring> loops;
-  Ring stack;
-  std::unordered_map<Vec2, std::size_t, Vec2Hash> position;
-  for (Vec2 v : walk) {
-    auto it = position.find(v);
-    if (it != position.end()) {
-      const std::size_t k = it->second;
-      loops.emplace_back(stack.begin() + static_cast<long>(k), stack.end());
-      for (std::size_t i = k; i < stack.size(); ++i) position.erase(stack[i]);
-      stack.resize(k);
-    }
-    position[v] = stack.size();
-    stack.push_back(v);
-  }
-  if (!stack.empty()) loops.push_back(std::move(stack));
-  return loops;
-}
-
 int orientation(const Ring& r) {
   if (r.size() < 3) return 0;
   auto lowest = std::min_element(r.begin(), r.end(), [](Vec2 a, Vec2 b) { return a.y < b.y || (a.y == b.y && a.x < b.x); });
@@ -94,14 +75,18 @@ int orientation(const Ring& r) {
 
 }  // namespace
 
-std::vector<Polygon> untangle(const std::vector<Ring>& rings) {
+bool vertex_repeats(const std::vector<Ring>& rings) {
   std::unordered_set<Vec2, Vec2Hash> seen;
-  bool repeats = false;
-  for (const Ring& r : rings) {
-    repeats |= r.size() < 3;
-    for (Vec2 v : r) repeats |= !seen.insert(v).second;
-  }
-  if (!repeats && !rings.empty()) return {Polygon{rings[0], std::vector<Ring>(rings.begin() + 1, rings.end())}};
+  for (const Ring& r : rings)
+    for (Vec2 v : r)
+      if (!seen.insert(v).second) return true;
+  return false;
+}
+
+std::vector<Polygon> untangle(const std::vector<Ring>& rings) {
+  bool short_ring = false;
+  for (const Ring& r : rings) short_ring |= r.size() < 3;
+  if (!short_ring && !rings.empty() && !vertex_repeats(rings)) return {Polygon{rings[0], std::vector<Ring>(rings.begin() + 1, rings.end())}};
 
   const std::vector<Edge> edges = net_edges(rings);
   std::unordered_map<Vec2, std::vector<std::size_t>, Vec2Hash> leaving;
@@ -120,7 +105,7 @@ std::vector<Polygon> untangle(const std::vector<Ring>& rings) {
         return turns_tighter(u, v, edges[a].to, edges[b].to);
       });
     }
-    for (Ring& loop : split_at_repeats(walk)) {
+    for (Ring& loop : split_at_repeats<Vec2, Vec2Hash>(walk, [](Vec2 v) { return v; })) {
       const int o = orientation(loop);
       if (o > 0) outers.push_back(std::move(loop));
       else if (o < 0) holes.push_back(std::move(loop));

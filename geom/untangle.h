@@ -19,4 +19,8 @@ namespace geom {
 // unchanged. Decided exactly on the doubles.
 std::vector<Polygon> untangle(const std::vector<Ring>& rings);
 
+// Some vertex occurs twice across the rings (rounding landed two on one double pair, or
+// the exact rings already touched there).
+bool vertex_repeats(const std::vector<Ring>& rings);
+
 }  // namespace geom
