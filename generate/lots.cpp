@@ -280,15 +280,12 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch
 std::vector<Lot> insert_lots(ZoneMap& zm, const std::vector<PlannedLot>& planned,
                              const Sketch& sketch) {
   zm.lot_base = zm.generated_base + static_cast<int>(zm.roads.size()) - zm.sketch_roads;
-  zm.lot_block.clear();
   for (std::size_t l = 0; l < planned.size(); ++l) {
-    int counter = zm.lot_base + static_cast<int>(l);
-    if (planned[l].ring.empty()) zm.map.add_cell(planned[l].cell, counter);
-    else zm.map.add_ring(planned[l].ring, counter);
-    zm.lot_block.push_back(planned[l].block);
+    const int counter = zm.lot_base + static_cast<int>(l);
+    if (planned[l].ring.empty()) zm.map.add_cell_within(planned[l].block, planned[l].cell, counter);
+    else zm.map.add_ring_within(planned[l].block, planned[l].ring, counter);
   }
-  zm.map.insert_batch();
-  zm.label_lots();
+  zm.insert_lots();
   // The last batch: the map is snap-rounded now, so every layer written from it, lots
   // included, rounds without edges crossing.
   zm.map.snap_round();

@@ -83,16 +83,14 @@ int ZoneMap::label_index(const FaceLabel& l) {
   return it->second;
 }
 
-void ZoneMap::label_lots() {
-  map.relabel_faces(lot_base, [&](const geom::Windings& w, int previous) {
-    if (previous < 0 || labels[previous].block < 0 || w.empty()) return previous;
+void ZoneMap::insert_lots() {
+  std::vector<int> block_of_label;
+  for (const FaceLabel& l : labels) block_of_label.push_back(l.lot < 0 ? l.block : -1);
+  map.insert_within(block_of_label, [&](const geom::Windings& w, int previous) {
+    if (w.empty()) return previous;
     FaceLabel l = labels[previous];
-    for (auto [counter, winding] : w)
-      if (lot_block[counter - lot_base] == l.block) {
-        l.lot = counter - lot_base;
-        return label_index(l);
-      }
-    return previous;
+    l.lot = w.front().first - lot_base;
+    return label_index(l);
   });
 }
 

@@ -54,16 +54,16 @@ struct ZoneMap {
   int generated_base = 0;
   // Then, once the lots stage has run, lot l winds around lot_base + l.
   int lot_base = -1;
-  std::vector<int> lot_block;  // per lot: its block
 
   int road_of_counter(int counter) const;
   // (Re)labels every face from its windings.
   void label(const Sketch& sketch);
   // The index of this label in `labels`, added if new.
   int label_index(const FaceLabel& l);
-  // After the lots' batch: a face of a block lies in the first lot around it planned in
+  // Inserts the lots queued with map.add_*_within(block, ring, lot_base + lot), each
+  // within its block's faces: a face of a block lies in the first lot around it planned in
   // that block, so a lot that would cross a road or another block stops there.
-  void label_lots();
+  void insert_lots();
 
  private:
   std::map<FaceLabel, int> index_;

@@ -77,6 +77,18 @@ class PlanarMap {
   // Inserts everything queued in one sweep.
   void insert_batch();
 
+  // Rings that each belong to one region, a set of faces (see insert_within); only what
+  // lies inside the region's faces reaches the map.
+  void add_ring_within(int region, const Ring& ring, int counter);
+  void add_cell_within(int region, const Cell& cell, int counter);
+  // Inserts what add_*_within queued, region by region: each region's rings are cut
+  // against its faces (region_of_label[label]) in a small arrangement of their own and
+  // then added to the map edge by edge, so the rest of the map is not swept again. Each
+  // face inside a region gets label_of(its windings of the region's rings, the label of
+  // the face it was cut from). The added edges bound nothing (they change no face's
+  // windings), and rings connected to no edge of their region are left out.
+  void insert_within(const std::vector<int>& region_of_label, const std::function<int(const Windings&, int)>& label_of);
+
   // Snap rounding (Hobby; Guibas and Marimont) to the grid of doubles, after the last
   // batch: a vertex's pixel is the box of points that round to the doubles it rounds to;
   // where an edge passes through the pixel of a vertex not its own, it gets a vertex

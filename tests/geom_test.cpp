@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 
 #include "geom/planar_map.h"
@@ -120,6 +121,47 @@ TEST(PlanarMap, RelabelSeesOnlyLaterCountersAndEachFacesLabel) {
   EXPECT_EQ(a[4], 30);
   EXPECT_EQ(a[5], 30);
   EXPECT_EQ(a[1], 0);
+}
+
+TEST(PlanarMap, InsertWithinKeepsEachRingToItsRegion) {
+  // Two squares sharing the edge x = 10, the left one cut in two faces by a polyline.
+  PlanarMap map;
+  map.add_ring(square(0, 0, 10), 0);
+  map.add_ring(square(10, 0, 10), 1);
+  map.add_polyline({{0, 5}, {10, 5}}, 0);
+  map.insert_batch();
+  map.label_faces([](const Windings& w) { return geom::winding_of(w, 0) != 0 ? 1 : geom::winding_of(w, 1) != 0 ? 2 : 0; });
+  ASSERT_EQ(map.counts().faces, 4u);
+  // Region 0 is the left square, region 1 the right one. Each ring crosses the shared edge
+  // and reaches into the other square; the small one in region 0 touches nothing.
+  map.add_ring_within(0, {{5, 2}, {15, 2}, {15, 8}, {5, 8}}, 10);
+  map.add_ring_within(1, {{8, 3}, {14, 3}, {14, 9}, {8, 9}}, 11);
+  map.add_ring_within(0, square(1, 6.5, 1), 12);
+  std::vector<int> previous_seen;
+  map.insert_within({-1, 0, 1}, [&](const Windings& w, int previous) {
+    previous_seen.push_back(previous);
+    if (w.empty()) return previous;
+    EXPECT_EQ(w.size(), 1u);
+    return 3 + w.front().first - 10;
+  });
+  for (int p : previous_seen) EXPECT_TRUE(p == 1 || p == 2) << p;
+  auto a = group_areas(map, 6);
+  EXPECT_EQ(a[3], 30);  // x 5..10, y 2..8: only the part inside the left square
+  EXPECT_EQ(a[4], 24);  // x 10..14, y 3..9
+  EXPECT_EQ(a[5], 0);   // left out
+  EXPECT_EQ(a[1], 70);
+  EXPECT_EQ(a[2], 76);
+  // The left square's ring is cut by the polyline (two faces), the right one's is one;
+  // nothing outside the squares was cut.
+  EXPECT_EQ(map.counts().faces, 7u);
+  auto lot = testing_util::polygons(map.dissolve({-1, -1, -1, 0}, 1)[0]);
+  ASSERT_EQ(lot.size(), 1u);
+  EXPECT_EQ(area(lot[0]), 30);
+  // The added edges bound nothing.
+  map.relabel_faces(INT_MIN, [](const Windings& w, int previous) {
+    for (auto [counter, winding] : w) EXPECT_LT(counter, 10);
+    return previous;
+  });
 }
 
 TEST(PlanarMap, DissolveSplitsARingThatTouchesItself) {
