@@ -420,8 +420,8 @@ class RegionInsertion {
       known[h->face()->data()] = 1;
       if (in_region(side)) owner_[h->face()->data()] = side, queue.push_back(h->face()->data());
     }
-    std::vector<Arrangement::Face_handle> local_faces;
-    for (auto f = local_.faces_begin(); f != local_.faces_end(); ++f) local_faces.push_back(f);
+    std::vector<Face> local_faces(windings_.size());  // by number
+    for (auto f = local_.faces_begin(); f != local_.faces_end(); ++f) local_faces[f->data()] = f;
     while (!queue.empty()) {
       const int i = queue.front();
       queue.pop_front();

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <random>
 
 #include "geom/planar_map.h"
 #include "geom/polygon_check.h"
@@ -137,23 +138,28 @@ TEST(PlanarMap, InsertWithinKeepsEachRingToItsRegion) {
   map.add_ring_within(0, {{5, 2}, {15, 2}, {15, 8}, {5, 8}}, 10);
   map.add_ring_within(1, {{8, 3}, {14, 3}, {14, 9}, {8, 9}}, 11);
   map.add_ring_within(0, square(1, 6.5, 1), 12);
+  // Two more in region 0: one across its left edge, one reaching it only through the
+  // first, with a face that only their edges bound.
+  map.add_ring_within(0, {{-1, 0.5}, {3, 0.5}, {3, 4}, {-1, 4}}, 13);
+  map.add_ring_within(0, {{2, 2}, {4, 2}, {4, 3}, {2, 3}}, 14);
   std::vector<int> previous_seen;
   map.insert_within({-1, 0, 1}, [&](const Windings& w, int previous) {
     previous_seen.push_back(previous);
     if (w.empty()) return previous;
-    EXPECT_EQ(w.size(), 1u);
     return 3 + w.front().first - 10;
   });
   for (int p : previous_seen) EXPECT_TRUE(p == 1 || p == 2) << p;
-  auto a = group_areas(map, 6);
+  auto a = group_areas(map, 8);
   EXPECT_EQ(a[3], 30);  // x 5..10, y 2..8: only the part inside the left square
   EXPECT_EQ(a[4], 24);  // x 10..14, y 3..9
   EXPECT_EQ(a[5], 0);   // left out
-  EXPECT_EQ(a[1], 70);
+  EXPECT_EQ(a[6], 10.5);  // x 0..3, y 0.5..4, the first ring around it winning
+  EXPECT_EQ(a[7], 1);     // x 3..4, y 2..3
+  EXPECT_EQ(a[1], 100 - 30 - 10.5 - 1);
   EXPECT_EQ(a[2], 76);
-  // The left square's ring is cut by the polyline (two faces), the right one's is one;
-  // nothing outside the squares was cut.
-  EXPECT_EQ(map.counts().faces, 7u);
+  // The left square's first ring is cut by the polyline (two faces), the right one's is
+  // one, the last two make three; nothing outside the squares was cut.
+  EXPECT_EQ(map.counts().faces, 10u);
   auto lot = testing_util::polygons(map.dissolve({-1, -1, -1, 0}, 1)[0]);
   ASSERT_EQ(lot.size(), 1u);
   EXPECT_EQ(area(lot[0]), 30);
@@ -162,6 +168,44 @@ TEST(PlanarMap, InsertWithinKeepsEachRingToItsRegion) {
     for (auto [counter, winding] : w) EXPECT_LT(counter, 10);
     return previous;
   });
+}
+
+TEST(PlanarMap, InsertWithinLabelsAsOneSweepWould) {
+  // Random rectangles across the edges of a square region cut in two by its diagonal:
+  // inserted region by region, every face gets the label a sweep of the whole map and
+  // relabelling would give it.
+  std::mt19937 rng(7);
+  for (int round = 0; round < 20; ++round) {
+    std::uniform_int_distribution<int> at(5, 95);
+    std::vector<Ring> rings;
+    for (int i = 0; i < 10; ++i) {
+      int a = at(rng), b = at(rng), c = at(rng);
+      int lo = std::min(b, c), hi = std::max(b, c) + 1;
+      rings.push_back(i % 2 ? Ring{{-5, double(lo)}, {double(a), double(lo)}, {double(a), double(hi)}, {-5, double(hi)}}
+                            : Ring{{double(lo), double(a)}, {double(hi), double(a)}, {double(hi), 105}, {double(lo), 105}});
+    }
+    auto label_of = [](const Windings& w, int previous) { return w.empty() || previous != 1 ? previous : 2 + w.front().first - 10; };
+    std::vector<double> areas[2];
+    for (int way = 0; way < 2; ++way) {
+      PlanarMap map;
+      map.add_ring(square(0, 0, 100), 0);
+      map.add_polyline({{0, 0}, {100, 100}}, 0);
+      map.insert_batch();
+      map.label_faces([](const Windings& w) { return geom::winding_of(w, 0) != 0 ? 1 : 0; });
+      for (std::size_t i = 0; i < rings.size(); ++i) {
+        if (way == 0) map.add_ring_within(0, rings[i], 10 + static_cast<int>(i));
+        else map.add_ring(rings[i], 10 + static_cast<int>(i));
+      }
+      if (way == 0) {
+        map.insert_within({-1, 0}, label_of);
+      } else {
+        map.insert_batch();
+        map.relabel_faces(10, label_of);
+      }
+      areas[way] = group_areas(map, 12);
+    }
+    for (int l = 1; l < 12; ++l) EXPECT_NEAR(areas[0][l], areas[1][l], 1e-9) << "round " << round << " label " << l;
+  }
 }
 
 TEST(PlanarMap, DissolveSplitsARingThatTouchesItself) {
