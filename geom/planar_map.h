@@ -1,6 +1,7 @@
 // One exact planar map (a CGAL arrangement on the exact kernel) behind a plain interface.
 //
-// Curves are inserted in batches. Each curve carries tags: a ring edge tagged
+// Curves are inserted in batches (or, for rings that each lie in a known set of faces,
+// region by region: insert_within). Each curve carries tags: a ring edge tagged
 // (counter, +1) raises `counter`'s winding number by one for the face on its left, so
 // after a batch every face knows, per counter, how often the tagged rings wind around it.
 // Callers turn those windings into face labels (small integers whose meaning is theirs);
