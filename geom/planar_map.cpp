@@ -475,6 +475,7 @@ class RegionInsertion {
     const auto split = map_.geometry_traits()->split_2_object();
     for (std::size_t k = 0; k < map_edges_.size(); ++k) {
       auto& p = pieces[k];
+      if (p.empty()) continue;
       std::unordered_map<const void*, LocalHalfedge> from;  // piece by its left vertex
       std::unordered_set<const void*> rights;
       for (LocalHalfedge h : p) from.emplace(&*h->source(), h), rights.insert(&*h->target());
