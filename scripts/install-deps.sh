@@ -10,7 +10,7 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libopenmesh-dev libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libtbb-dev
   nlohmann-json3-dev libcli11-dev libtinygltf-dev
-  libgtest-dev libgmock-dev libbenchmark-dev libgoogle-perftools-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libgoogle-perftools-dev libgeos-dev
   python3 python3-shapely
 )
 

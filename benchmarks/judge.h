@@ -1,0 +1,30 @@
+// The robustness benchmark's judge: an output folder checked with GEOS (its C API), apart
+// from Exacity's own exact validator, so that a bug in one is caught by the other.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace exacity::bench {
+
+// What a judge rejects, by kind: "unreadable" (a layer missing or not GeoJSON), "invalid"
+// (a polygon not valid by OGC rules), "overlap" (a tiling's parts cover more than their
+// union), "gap" (drawn zones left uncovered), "outside" (a lot outside its block, a building
+// outside its lot), "network" (centre lines that cross between vertices, overlap or fall
+// apart in several pieces).
+struct Verdict {
+  std::map<std::string, int> rejected;  // kind -> how many problems
+  std::vector<std::string> problems;    // one line each, the first few of every kind
+
+  bool passed() const { return rejected.empty(); }
+  void reject(const std::string& kind, const std::string& detail);
+};
+
+// Areas compare to 1e-9 of the areas involved, as the JTS/GEOS overlay tests do.
+constexpr double kRelativeArea = 1e-9;
+
+Verdict judge(const std::filesystem::path& out);
+
+}  // namespace exacity::bench
