@@ -68,6 +68,17 @@ void add_curve(std::vector<Curve>& curves, const Point& a, const Point& b, Curve
   curves.emplace_back(exact::Segment(a, b), Tags{tag});
 }
 
+// Queues the edges of a ring around `counter`.
+void add_ring_curves(std::vector<Curve>& curves, const std::vector<Point>& ring, int counter) {
+  for (std::size_t i = 0; i < ring.size(); ++i) add_curve(curves, ring[i], ring[(i + 1) % ring.size()], {counter, +1, 0});
+}
+
+// The halfedge of h's edge that runs left to right.
+template <typename Handle>
+Handle left_to_right(Handle h) {
+  return h->direction() == CGAL::ARR_LEFT_TO_RIGHT ? h : h->twin();
+}
+
 void add_winding(Windings& w, int counter, int delta) {
   auto it = std::lower_bound(w.begin(), w.end(), std::make_pair(counter, INT32_MIN));
   if (it != w.end() && it->first == counter) {
@@ -298,8 +309,11 @@ struct PlanarMap::Impl {
     plain_pending.clear();
   }
 
-  void add_exact_ring(const exact::ExactRing& ring, int counter) {
-    for (std::size_t i = 0; i < ring.size(); ++i) add_edge(ring[i], ring[(i + 1) % ring.size()], {counter, +1, 0});
+  void add_exact_ring(const exact::ExactRing& ring, int counter) { add_ring_curves(pending, ring, counter); }
+
+  std::vector<Curve>& within_region(int region) {
+    if (static_cast<int>(within.size()) <= region) within.resize(region + 1);
+    return within[region];
   }
 
   void add_polyline(std::vector<Point> pts, int tag) {
@@ -344,24 +358,16 @@ void PlanarMap::add_polyline(const Polyline& line, int tag) {
   impl_->add_polyline(std::move(pts), tag);
 }
 
-void PlanarMap::add_cell(const Cell& cell, int counter) {
-  impl_->add_exact_ring(cell.exact().outer.points, counter);
-  for (const KindRing& h : cell.exact().holes) impl_->add_exact_ring(h.points, counter);
-}
-
 void PlanarMap::add_ring_within(int region, const Ring& ring, int counter) {
-  if (static_cast<int>(impl_->within.size()) <= region) impl_->within.resize(region + 1);
-  for (std::size_t i = 0; i < ring.size(); ++i)
-    add_curve(impl_->within[region], to_exact(ring[i]), to_exact(ring[(i + 1) % ring.size()]), {counter, +1, 0});
+  std::vector<Point> points;
+  for (Vec2 v : ring) points.push_back(to_exact(v));
+  add_ring_curves(impl_->within_region(region), points, counter);
 }
 
 void PlanarMap::add_cell_within(int region, const Cell& cell, int counter) {
-  if (static_cast<int>(impl_->within.size()) <= region) impl_->within.resize(region + 1);
-  auto add = [&](const std::vector<Point>& r) {
-    for (std::size_t i = 0; i < r.size(); ++i) add_curve(impl_->within[region], r[i], r[(i + 1) % r.size()], {counter, +1, 0});
-  };
-  add(cell.exact().outer.points);
-  for (const KindRing& h : cell.exact().holes) add(h.points);
+  std::vector<Curve>& curves = impl_->within_region(region);
+  add_ring_curves(curves, cell.exact().outer.points, counter);
+  for (const KindRing& h : cell.exact().holes) add_ring_curves(curves, h.points, counter);
 }
 
 void PlanarMap::add_path(const Path& path, int tag) { impl_->add_polyline(path.exact().points, tag); }
@@ -394,7 +400,7 @@ class RegionInsertion {
     for (Arrangement::Face_handle f : faces) {
       for_each_boundary_halfedge(f, [&](Halfedge h) {
         if (!seen.insert(std::min<const void*>(&*h, &*h->twin())).second) return;
-        if (h->direction() != CGAL::ARR_LEFT_TO_RIGHT) h = h->twin();
+        h = left_to_right(h);
         // The map's own curve, so points found on it come from its supporting line (the
         // line of the segment first inserted), as the map's would: tight approximations.
         curves.emplace_back(h->curve(), Tags{{kMapEdge, 0, static_cast<int>(map_edges_.size())}});
@@ -469,7 +475,7 @@ class RegionInsertion {
   void split_map_edges() {
     std::vector<std::vector<LocalHalfedge>> pieces(map_edges_.size());
     for (auto e = local_.edges_begin(); e != local_.edges_end(); ++e) {
-      LocalHalfedge h = e->direction() == CGAL::ARR_LEFT_TO_RIGHT ? LocalHalfedge(e) : LocalHalfedge(e->twin());
+      LocalHalfedge h = left_to_right(LocalHalfedge(e));
       if (int k = map_edge_of(h); k >= 0) pieces[k].push_back(h);
     }
     const auto split = map_.geometry_traits()->split_2_object();
@@ -500,7 +506,7 @@ class RegionInsertion {
     std::unordered_map<const void*, std::vector<LocalHalfedge>> at;  // ring edges by vertex
     std::vector<LocalHalfedge> ready;
     for (auto e = local_.edges_begin(); e != local_.edges_end(); ++e) {
-      LocalHalfedge h = e->direction() == CGAL::ARR_LEFT_TO_RIGHT ? LocalHalfedge(e) : LocalHalfedge(e->twin());
+      LocalHalfedge h = left_to_right(LocalHalfedge(e));
       if (map_edge_of(h) >= 0 || !inside(h)) continue;
       at[&*h->source()].push_back(h), at[&*h->target()].push_back(h);
       if (vertex_of_.count(&*h->source()) || vertex_of_.count(&*h->target())) ready.push_back(h);
@@ -647,7 +653,7 @@ std::size_t PlanarMap::snap_round() {
   std::vector<Arrangement::Halfedge_handle> edge_of;  // each directed left to right
   std::vector<std::pair<int, int>> ends;
   for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
-    Arrangement::Halfedge_handle h = e->direction() == CGAL::ARR_LEFT_TO_RIGHT ? Arrangement::Halfedge_handle(e) : e->twin();
+    Arrangement::Halfedge_handle h = left_to_right(Arrangement::Halfedge_handle(e));
     edge_of.push_back(h);
     ends.push_back({index.at(&*h->source()), index.at(&*h->target())});
   }
@@ -686,10 +692,7 @@ std::size_t PlanarMap::snap_round() {
 
 void PlanarMap::insert_within(const std::vector<int>& region_of_label,
                                const std::function<int(const Windings&, int)>& label_of) {
-  auto region_of = [&](Face f) {
-    const int l = f->data();
-    return l >= 0 && l < static_cast<int>(region_of_label.size()) ? region_of_label[l] : -1;
-  };
+  auto region_of = impl_->group_function(region_of_label);
   std::vector<std::vector<Arrangement::Face_handle>> faces(impl_->within.size());
   for (auto f = impl_->arr.faces_begin(); f != impl_->arr.faces_end(); ++f)
     if (int r = region_of(f); r >= 0 && r < static_cast<int>(faces.size())) faces[r].push_back(f);

@@ -63,8 +63,6 @@ class PlanarMap {
   // A stroke of `half_width` around the polyline: flat ends, mitred joints (bevelled
   // past a mitre limit of 4), built by the grid-line rule; all pieces wind around `counter`.
   void add_stroke(const Polyline& line, double half_width, int counter);
-  // The rings of a cell (holes wind the other way), around `counter`.
-  void add_cell(const Cell& cell, int counter);
   // The joint a stroke would have at q on a path a -> q -> b, for two strokes that meet
   // end to end; and a 16-gon around a disc, for where several meet.
   void add_joint(Vec2 a, Vec2 q, Vec2 b, double half_width, int counter);
@@ -78,8 +76,8 @@ class PlanarMap {
   // Inserts everything queued in one sweep.
   void insert_batch();
 
-  // Rings that each belong to one region, a set of faces (see insert_within); only what
-  // lies inside the region's faces reaches the map.
+  // Rings (a cell's: holes wind the other way) that each belong to one region, a set of
+  // faces (see insert_within); only what lies inside the region's faces reaches the map.
   void add_ring_within(int region, const Ring& ring, int counter);
   void add_cell_within(int region, const Cell& cell, int counter);
   // Inserts what add_*_within queued, region by region: each region's rings are cut
