@@ -63,6 +63,7 @@ struct Grown {
   ZoneType type = ZoneType::Residential;
   std::vector<geom::Path> roads;
   std::vector<Work> parts;  // to grow at the next level
+  std::vector<int> joined;  // the sketch roads its roads run on to
   bool without_access = false;
 };
 
@@ -79,12 +80,18 @@ struct SketchRoad {
 };
 using SketchLines = std::vector<SketchRoad>;
 
+// The roads grown in one cell from its seed, and the sketch roads they run on to.
+struct CellRoads {
+  geom::Vec2 seed;
+  std::vector<geom::Path> roads;
+  std::vector<int> joined;
+};
+
 // Grows `branches` roads from the seed. Returns whether one reached a road (of the region,
 // or of the sketch); always true when `free`, for a cell with no road to reach.
 // `across_only`: only the branches within 45 degrees of `orientation` or its opposite.
 bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const ZoneParams& p, int level, bool free, double orientation,
-                   bool across_only, double reach, const SketchLines& sketch_lines, Random& rng,
-                   std::vector<geom::Path>& roads) {
+                   bool across_only, double reach, const SketchLines& sketch_lines, Random& rng, CellRoads& out) {
   const double segment_deviation = std::max(p.segment_deviation - 2.0 * level, 0.0);
   const int max_steps = static_cast<int>(reach / (p.segment_length * std::cos(p.origin_deviation * M_PI / 180))) + 2;
   bool reached_road = free;
@@ -114,9 +121,11 @@ bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const ZoneParams& p, i
     reached_road |= met == kRoad || met >= kSketchRoad;
     if (met >= kSketchRoad) {
       const SketchRoad& target = sketch_lines[met - kSketchRoad];
+      const std::size_t points = road.size();
       road = geom::extend_to(road, target.lines, 4 * target.width);
+      if (road.size() > points) out.joined.push_back(met - kSketchRoad);
     }
-    roads.push_back(std::move(road));
+    out.roads.push_back(std::move(road));
     return true;
   };
   std::vector<double> grown;
@@ -130,11 +139,6 @@ bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const ZoneParams& p, i
   if (grown.size() == 1) grow(grown[0] + 180);
   return reached_road;
 }
-
-struct CellRoads {
-  geom::Vec2 seed;
-  std::vector<geom::Path> roads;
-};
 
 // A cell much longer than wide, and narrow for its zone: roads along it would only cut it
 // into slivers. Its long axis from the second moments of its outer ring (a choice, made
@@ -185,9 +189,9 @@ CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const ZoneParams& p
     // A strip is cut across, never along.
     const std::optional<double> axis = strip_axis(cell, p);
     geom::Growth growth(cell, p.segment_length);
-    CellRoads grown{seed, {}};
+    CellRoads grown{seed, {}, {}};
     if (grow_branches(growth, seed, p, level, free, axis ? *axis + 90 : orientation, axis.has_value(), reach,
-                      sketch_lines, rng, grown.roads))
+                      sketch_lines, rng, grown))
       return grown;
   }
   auto mid = [](const std::pair<geom::Vec2, geom::Vec2>& e) {
@@ -207,11 +211,77 @@ CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const ZoneParams& p
     auto start = cell.point_inside_near({m.x + inward.x * d, m.y + inward.y * d});
     if (!start) continue;
     geom::Growth growth(cell, p.segment_length);
-    CellRoads grown{*start, {}};
+    CellRoads grown{*start, {}, {}};
     double back = std::atan2(m.y - start->y, m.x - start->x) * 180 / M_PI;
-    if (grow_branches(growth, *start, p, level, free, back, false, reach, sketch_lines, rng, grown.roads)) return grown;
+    if (grow_branches(growth, *start, p, level, free, back, false, reach, sketch_lines, rng, grown)) return grown;
   }
-  return {seed, {}};
+  return {seed, {}, {}};
+}
+
+// A disc of road where roads meet, to join them cleanly: at a seed, at a link's ends.
+struct Junction {
+  geom::Vec2 at;
+  int first_road;
+};
+
+// A region whose roads run on to no sketch road (a zone drawn a metre short of a highway,
+// a lobe touching one at a point, a sketch without roads) is an island of streets. Each
+// island is linked by the shortest straight road to the network joined so far, nearest
+// island first, so the city's streets are one network; the sketch's roads start it, or
+// the island with most roads when there are none. Returns the links added.
+int link_islands(ZoneMap& zm, const std::vector<char>& joined, std::vector<Junction>& junctions) {
+  std::vector<std::vector<geom::Path>> network(joined.size());
+  std::vector<double> width(joined.size());
+  for (int r = zm.sketch_roads; r < static_cast<int>(zm.roads.size()); ++r) {
+    const MapRoad& road = zm.roads[r];
+    if (network[road.region].empty()) width[road.region] = road.width;
+    network[road.region].push_back(road.lines[0]);
+  }
+  std::vector<geom::Path> linked;
+  for (int r = 0; r < zm.sketch_roads; ++r)
+    linked.insert(linked.end(), zm.roads[r].lines.begin(), zm.roads[r].lines.end());
+  std::vector<int> islands;
+  for (std::size_t r = 0; r < network.size(); ++r) {
+    if (network[r].empty()) continue;
+    if (joined[r]) linked.insert(linked.end(), network[r].begin(), network[r].end());
+    else islands.push_back(static_cast<int>(r));
+  }
+  if (linked.empty() && !islands.empty()) {
+    auto root = std::max_element(islands.begin(), islands.end(),
+                                 [&](int a, int b) { return network[a].size() < network[b].size(); });
+    linked = network[*root];
+    islands.erase(root);
+  }
+  std::vector<geom::Link> nearest;
+  for (int r : islands) nearest.push_back(*geom::shortest_link(network[r], linked));
+  int links = 0;
+  while (!islands.empty()) {
+    const std::size_t k = std::min_element(nearest.begin(), nearest.end(),
+                                           [](const auto& a, const auto& b) { return a.length < b.length; }) -
+                          nearest.begin();
+    const int region = islands[k];
+    std::vector<geom::Path> added = network[region];
+    if (!nearest[k].path.empty()) {
+      MapRoad road;
+      road.road_class = RoadClass::Main;
+      road.width = width[region];
+      road.level = 0;
+      road.region = region;
+      road.link = true;
+      road.lines.push_back(nearest[k].path);
+      for (std::size_t end : {0u, 1u}) junctions.push_back({nearest[k].path.point(end), static_cast<int>(zm.roads.size())});
+      zm.roads.push_back(std::move(road));
+      added.push_back(nearest[k].path);
+      ++links;
+    }
+    islands.erase(islands.begin() + k);
+    nearest.erase(nearest.begin() + k);
+    for (std::size_t i = 0; i < islands.size(); ++i) {
+      geom::Link l = *geom::shortest_link(network[islands[i]], added);
+      if (l.length < nearest[i].length) nearest[i] = std::move(l);
+    }
+  }
+  return links;
 }
 
 }  // namespace
@@ -242,11 +312,8 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
   }
   net.stats.regions = static_cast<int>(level_work.size());
 
-  struct Seed {
-    geom::Vec2 at;
-    int first_road;
-  };
-  std::vector<Seed> seeds;
+  std::vector<Junction> junctions;
+  std::vector<char> joined(level_work.size(), 0);  // per region: its roads run on to a sketch road
   for (int level = 0; !level_work.empty() && level < kMaxLevels; ++level) {
     net.stats.levels = level + 1;
     std::vector<Grown> grown(level_work.size());
@@ -279,6 +346,7 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
       // however little of it each cut takes.
       auto again = [&] {
         g.roads.clear();
+        g.joined.clear();
         if (w.stalls < kMaxStalls) {
           Work retry = w;
           ++retry.stalls;
@@ -290,6 +358,7 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
       CellRoads grown = grow_cell(w.cell, *g.seed, p, level, w.top, w.orientation, sketch_lines, rng);
       g.seed = grown.seed;
       g.roads = std::move(grown.roads);
+      g.joined = std::move(grown.joined);
       if (g.roads.empty()) return again();
       std::vector<geom::Cell> parts = geom::split_cell(w.cell, g.roads, kRoad);
       double largest = 0;
@@ -312,7 +381,8 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
     for (std::size_t i = 0; i < grown.size(); ++i) {
       Grown& g = grown[i];
       net.stats.cells_without_access += g.without_access;
-      if (!g.roads.empty()) seeds.push_back({*g.seed, static_cast<int>(zm.roads.size())});
+      if (!g.joined.empty()) joined[level_work[i].region] = 1;
+      if (!g.roads.empty()) junctions.push_back({*g.seed, static_cast<int>(zm.roads.size())});
       const ZoneParams& p = params(g.type);
       for (geom::Path& road : g.roads) {
         MapRoad r;
@@ -327,6 +397,7 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
     }
     level_work = std::move(next);
   }
+  net.stats.links = link_islands(zm, joined, junctions);
 
   // Every generated road into the map in one batch: centre line, area, and a disc where
   // the roads of a seed meet.
@@ -339,7 +410,7 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
     zm.map.add_path(road.lines[0], tag++);
     zm.map.add_path_stroke(road.lines[0], road.width / 2, counter_of(r));
   }
-  for (const Seed& s : seeds) zm.map.add_disc(s.at, zm.roads[s.first_road].width / 2, counter_of(s.first_road));
+  for (const Junction& s : junctions) zm.map.add_disc(s.at, zm.roads[s.first_road].width / 2, counter_of(s.first_road));
   zm.map.insert_batch();
   zm.label(sketch);
   net.map = std::move(zm);

@@ -12,6 +12,7 @@ struct RoadNetworkStats {
   int regions = 0;
   int levels = 0;
   int cells_without_access = 0;  // cells left whole: none of their roads could reach a road
+  int links = 0;                 // roads added to join a region's streets to the rest (link_islands)
 };
 
 struct RoadNetwork {

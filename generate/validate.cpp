@@ -198,8 +198,8 @@ void check_tiling(Checker& c, const Sketch& sketch, const std::vector<PolygonRef
 
 // The centre lines are a noded network: two of them meet only at a vertex of both. Every
 // end of a grown road is a vertex of another centre line (a junction) or lies on the edge
-// of the built city (a drawn zone's ring or water). Each region's roads, with the sketch's
-// roads they meet, form one connected graph.
+// of the built city (a drawn zone's ring or water). Each region's roads form one connected
+// graph, joined to the sketch's roads (in a sketch without roads, to every other region's).
 void check_roads(Checker& c, const Sketch& sketch, const Layer& roads, const Layer& water) {
   const auto& features = roads.features;
   geom::PlanarMap map;
@@ -213,6 +213,41 @@ void check_roads(Checker& c, const Sketch& sketch, const Layer& roads, const Lay
                     " meets another centre line between its vertices" + near(pieces[k].from));
           break;
         }
+
+  // Connectivity: union-find over vertices.
+  std::unordered_map<geom::Vec2, int, geom::Vec2Hash> node;
+  std::vector<int> parent;
+  std::vector<geom::Vec2> at;
+  auto id = [&](geom::Vec2 p) {
+    auto [it, added] = node.emplace(p, static_cast<int>(parent.size()));
+    if (added) parent.push_back(it->second), at.push_back(p);
+    return it->second;
+  };
+  std::function<int(int)> find = [&](int x) { return parent[x] == x ? x : parent[x] = find(parent[x]); };
+  std::map<int, std::vector<int>> region_nodes;
+  std::vector<int> sketch_nodes;
+  for (const auto& f : features)
+    for (std::size_t i = 0; i < f.line.size(); ++i) {
+      int a = id(f.line[i]);
+      if (f.properties["region"].is_null()) sketch_nodes.push_back(a);
+      else region_nodes[f.properties["region"].get<int>()].push_back(a);
+      if (i > 0) parent[find(a)] = find(id(f.line[i - 1]));
+    }
+  for (const auto& [region, nodes] : region_nodes) {
+    int root = find(nodes.front());
+    for (int n : nodes)
+      if (find(n) != root) {
+        c.problem("roads.geojson: the roads of region " + std::to_string(region) + " are not connected");
+        break;
+      }
+  }
+  std::set<int> reached;
+  for (int n : sketch_nodes) reached.insert(find(n));
+  if (reached.empty() && !region_nodes.empty()) reached.insert(find(region_nodes.begin()->second.front()));
+  for (const auto& [region, nodes] : region_nodes)
+    if (!reached.count(find(nodes.front())))
+      c.problem("roads.geojson: the roads of region " + std::to_string(region) + " reach no other road" +
+                near(at[nodes.front()]));
 
   std::unordered_map<geom::Vec2, std::vector<int>, geom::Vec2Hash> roads_at;  // vertex -> features through it
   for (std::size_t i = 0; i < features.size(); ++i)
@@ -230,31 +265,6 @@ void check_roads(Checker& c, const Sketch& sketch, const Layer& roads, const Lay
       if (!junction && !edges.near(end, kRounding))
         c.problem("roads.geojson: road " + std::to_string(f.properties.value("id", -1)) + " ends in the open" + near(end));
     }
-  }
-
-  // Connectivity: union-find over vertices.
-  std::unordered_map<geom::Vec2, int, geom::Vec2Hash> node;
-  std::vector<int> parent;
-  auto id = [&](geom::Vec2 p) {
-    auto [it, added] = node.emplace(p, static_cast<int>(parent.size()));
-    if (added) parent.push_back(it->second);
-    return it->second;
-  };
-  std::function<int(int)> find = [&](int x) { return parent[x] == x ? x : parent[x] = find(parent[x]); };
-  std::map<int, std::vector<int>> region_nodes;
-  for (const auto& f : features)
-    for (std::size_t i = 0; i < f.line.size(); ++i) {
-      int a = id(f.line[i]);
-      if (!f.properties["region"].is_null()) region_nodes[f.properties["region"].get<int>()].push_back(a);
-      if (i > 0) parent[find(a)] = find(id(f.line[i - 1]));
-    }
-  for (const auto& [region, nodes] : region_nodes) {
-    int root = find(nodes.front());
-    for (int n : nodes)
-      if (find(n) != root) {
-        c.problem("roads.geojson: the roads of region " + std::to_string(region) + " are not connected");
-        break;
-      }
   }
 }
 

@@ -54,13 +54,14 @@ void ZoneMap::label(const Sketch& sketch) {
     l.zone = drawn->top_zone(w);
     const ZoneType type = l.zone >= 0 ? sketch.zones[l.zone].type : ZoneType::Park;
     const bool water = geom::winding_of(w, kWater) != 0 || (l.zone >= 0 && type == ZoneType::Water);
-    // A grown road paves only where roads grow: its flat end stops at the region's edge.
+    // A grown road paves only where roads grow: its flat end stops at the region's edge. A
+    // link paves all its way, over open land, parks and water.
     const bool paved_by_growth = l.zone >= 0 && grows_roads(type) && (!water || sketch.zone_params.at(type).bridges);
     for (auto [counter, winding] : w) {
       // Counters grow with road index, so the first road found is the first listed:
       // it owns a crossing.
       int r = road_of_counter(counter);
-      if (r >= 0 && (r < sketch_roads || paved_by_growth)) {
+      if (r >= 0 && (r < sketch_roads || paved_by_growth || roads[r].link)) {
         l.road = r;
         break;
       }

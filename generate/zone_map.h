@@ -40,6 +40,7 @@ struct MapRoad {
   int feature = -1;  // its index in the sketch's features; -1 for generated roads
   std::vector<geom::Path> lines;
   int first_tag = 0;  // polyline tag of lines[0]; the others follow
+  bool link = false;  // joins a region's streets to the rest (road_network.cpp): paved wherever it runs
 };
 
 struct ZoneMap {

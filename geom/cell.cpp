@@ -278,6 +278,63 @@ Path extend_to(const Path& road, const std::vector<Path>& targets, double reach)
   return Path(std::move(impl));
 }
 
+std::optional<Link> shortest_link(const std::vector<Path>& from, const std::vector<Path>& to) {
+  struct Plain {
+    Polyline line;
+    Box box = Box::none();
+  };
+  auto plain = [](const std::vector<Path>& paths) {
+    std::vector<Plain> out;
+    for (const Path& p : paths) {
+      Plain q{p.to_plain()};
+      for (Vec2 v : q.line) q.box.add(v);
+      out.push_back(std::move(q));
+    }
+    return out;
+  };
+  const std::vector<Plain> a = plain(from), b = plain(to);
+  // The closest (vertex, segment) pair: which side the vertex is on, its path and index,
+  // the segment's path and first index.
+  struct Pair {
+    bool vertex_from = true;
+    std::size_t vertex_path = 0, vertex = 0, segment_path = 0, segment = 0;
+  };
+  std::optional<Pair> best;
+  double best_d = INFINITY;
+  auto search = [&](const std::vector<Plain>& vs, const std::vector<Plain>& ss, bool vertex_from) {
+    for (std::size_t i = 0; i < vs.size(); ++i)
+      for (std::size_t k = 0; k < vs[i].line.size(); ++k) {
+        const Vec2 v = vs[i].line[k];
+        for (std::size_t j = 0; j < ss.size(); ++j) {
+          const Box& box = ss[j].box;
+          const double dx = std::max({box.min_x - v.x, v.x - box.max_x, 0.0}),
+                       dy = std::max({box.min_y - v.y, v.y - box.max_y, 0.0});
+          if (std::hypot(dx, dy) >= best_d) continue;
+          const Polyline& s = ss[j].line;
+          for (std::size_t m = 0; m + 1 < s.size(); ++m) {
+            const double d = distance_to_segment(v, s[m], s[m + 1]);
+            if (d < best_d) best_d = d, best = Pair{vertex_from, i, k, j, m};
+          }
+        }
+      }
+  };
+  search(a, b, true);
+  search(b, a, false);
+  if (!best) return std::nullopt;
+  const std::vector<Path>& vertex_paths = best->vertex_from ? from : to;
+  const std::vector<Path>& segment_paths = best->vertex_from ? to : from;
+  const Point& v = vertex_paths[best->vertex_path].exact().points[best->vertex];
+  const auto& s = segment_paths[best->segment_path].exact().points;
+  const Point &p = s[best->segment], &q = s[best->segment + 1];
+  Point nearest = CGAL::angle(v, p, q) != CGAL::ACUTE   ? p
+                  : CGAL::angle(v, q, p) != CGAL::ACUTE ? q
+                                                        : exact::Line(p, q).projection(v);
+  if (nearest == v) return Link{};
+  auto impl = std::make_shared<Path::Impl>();
+  impl->points = best->vertex_from ? std::vector<Point>{v, nearest} : std::vector<Point>{nearest, v};
+  return Link{Path(std::move(impl)), best_d};
+}
+
 // --- Growth -------------------------------------------------------------------------
 
 struct Growth::Impl {

@@ -115,6 +115,16 @@ class Growth {
 // within `reach` instead; unchanged when there is none.
 Path extend_to(const Path& road, const std::vector<Path>& targets, double reach);
 
+// The shortest segment from one set of paths to another, as a path of two points lying
+// exactly on both (the closer pair is chosen in doubles, between a vertex of one set and
+// its nearest point on the other), with its length; nullopt when a set is empty. A link of
+// length zero, with an empty path, when the sets meet at a vertex.
+struct Link {
+  Path path;
+  double length = 0;
+};
+std::optional<Link> shortest_link(const std::vector<Path>& from, const std::vector<Path>& to);
+
 // The cell less a band of width `setback` inside every boundary edge (DESIGN.md rule 3:
 // each band's inner side runs through two offset points rounded to the grid); the parts
 // left, exact. Bands run `setback` past each edge's ends, so corners are cleared too.

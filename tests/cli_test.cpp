@@ -197,6 +197,19 @@ TEST(Cli, ValidateCatchesADisconnectedRegion) {
   EXPECT_NE(v.out.find("are not connected"), std::string::npos) << v.out;
 }
 
+TEST(Cli, ValidateCatchesARegionWhoseStreetsAreAnIsland) {
+  Result v = validate_tampered("island", "roads", [](nlohmann::json& doc) {
+    // Carry all the roads of one region far away, together: connected, but to nothing else.
+    const auto region = doc["features"].back()["properties"]["region"];
+    for (auto& f : doc["features"])
+      if (f["properties"]["region"] == region)
+        for (auto& p : f["geometry"]["coordinates"]) p[0] = p[0].get<double>() + 5000;
+  });
+  EXPECT_EQ(v.code, 1) << v.out;
+  EXPECT_NE(v.out.find("reach no other road"), std::string::npos) << v.out;
+  EXPECT_EQ(v.out.find("are not connected"), std::string::npos) << v.out;
+}
+
 TEST(Cli, ValidateCatchesAReferenceToNoFeature) {
   Result v = validate_tampered("reference", "buildings", [](nlohmann::json& doc) {
     doc["features"][0]["properties"]["lot"] = 999999;

@@ -173,3 +173,32 @@ TEST(ExtendTo, ARoadPastTheEndOfACentreLineJoinsItsEnd) {
   EXPECT_EQ(extended.point(2), (Vec2{0, 0}));
   EXPECT_EQ(geom::extend_to(road, {centre}, 5).size(), 2u);
 }
+
+TEST(ShortestLink, JoinsTheNearestVertexToItsNearestPointOnTheOtherSet) {
+  // The vertex (0, 2) of `from` is 2^0.5 from the slanted segment, whose nearest point
+  // (1, 1) lies inside it; the link runs from `from` to `to`.
+  auto from = geom::Path::from({{-10, 2}, {0, 2}});
+  auto to = geom::Path::from({{0, 0}, {4, 4}});
+  auto far = geom::Path::from({{50, 50}, {60, 50}});
+  auto link = geom::shortest_link({from}, {far, to});
+  ASSERT_TRUE(link);
+  ASSERT_EQ(link->path.size(), 2u);
+  EXPECT_EQ(link->path.point(0), (Vec2{0, 2}));
+  EXPECT_EQ(link->path.point(1), (Vec2{1, 1}));
+  EXPECT_DOUBLE_EQ(link->length, std::sqrt(2.0));
+  // The same pair the other way round: the nearest vertex is now on the `from` side's
+  // other set, and the link still starts on `from`.
+  auto back = geom::shortest_link({far, to}, {from});
+  EXPECT_EQ(back->path.point(0), (Vec2{1, 1}));
+  EXPECT_EQ(back->path.point(1), (Vec2{0, 2}));
+  // Past a segment's end the link goes to that end.
+  auto beyond = geom::shortest_link({geom::Path::from({{-3, -4}, {-3, -9}})}, {to});
+  EXPECT_EQ(beyond->path.point(1), (Vec2{0, 0}));
+  EXPECT_DOUBLE_EQ(beyond->length, 5);
+  // Sets that meet need no link; an empty set has none.
+  auto meeting = geom::shortest_link({geom::Path::from({{2, 2}, {2, 9}})}, {to});
+  ASSERT_TRUE(meeting);
+  EXPECT_TRUE(meeting->path.empty());
+  EXPECT_EQ(meeting->length, 0);
+  EXPECT_FALSE(geom::shortest_link({}, {to}));
+}

@@ -1,5 +1,6 @@
 // Cities that read as cities (DESIGN.md, Plausibility), on shapes growth used to stall in:
-// a U, a comb, a ring round a lake, a spiral, a corridor 60 m wide, zones cut by highways.
+// a U, a comb, a ring round a lake, a spiral, a corridor 60 m wide, zones cut by highways;
+// and regions whose streets would be islands, apart from every other road.
 // Each city validates exactly, and its statistics meet the targets: no block over 4x its
 // zone's block_area, every lot on a road area, no dead end inside the city, footprints
 // shaped like buildings; a join of buildings to lots on `id` puts each footprint in its lot.
@@ -79,6 +80,16 @@ std::vector<Shape> shapes() {
       {"cut", {zone("residential", {{{0, 0}, {1000, 0}, {1000, 400}, {400, 400}, {400, 1000}, {0, 1000}}}),
                zone("industrial", {{{400, 0}, {1000, 0}, {1000, 400}, {400, 400}}}),
                road("highway", 24, {{-100, 200}, {1100, 230}}), road("main", 12, {{200, -100}, {215, 1100}})}},
+      // Streets that would be islands: a zone drawn 5 m short of a highway's surface, a bow
+      // tie whose lobe meets a road only at its pinch, and zones with no road between them.
+      {"short-of-highway",
+       {zone("residential", {{{0, 0}, {800, 0}, {800, 600}, {0, 600}}}),
+        road("highway", 20, {{-100, 615}, {900, 615}})}},
+      {"pinch",
+       {zone("residential", {{{0, 0}, {600, 400}, {600, 0}, {0, 400}}}), road("main", 10, {{300, 200}, {900, 700}})}},
+      {"no-roads",
+       {zone("residential", {{{0, 0}, {500, 0}, {500, 500}, {0, 500}}}), zone("park", {{{500, 0}, {700, 0}, {700, 500}, {500, 500}}}),
+        zone("commercial", {{{700, 100}, {1200, 100}, {1200, 600}, {700, 600}}})}},
       // One branch from each seed, and three (a strip's seed keeps only one of them across it):
       // a seed left with a single road must not become a dead end.
       {"few-branches",

@@ -106,7 +106,7 @@ TEST(RoadNetwork, ParksAndWaterGetNoRoads) {
   EXPECT_TRUE(c.blocks.empty());
 }
 
-TEST(RoadNetwork, BridgesOnlyWhereTheZoneAllowsThem) {
+TEST(RoadNetwork, GrownRoadsBridgeOnlyWhereTheZoneAllowsThem) {
   auto bridged = [&](bool allow) {
     TerrainSpec spec;
     spec.bounds = {0, 0, 1000, 1000};
@@ -118,12 +118,17 @@ TEST(RoadNetwork, BridgesOnlyWhereTheZoneAllowsThem) {
                     std::string(R"({"zones": {"residential": {"bridges": )") + (allow ? "true" : "false") + "}}}"),
         "test.geojson");
     RoadNetwork n = grow_road_network(build_zone_map(s, &t), s);
-    int bridges = 0;
-    for (const FaceLabel& l : n.map.labels) bridges += l.bridge;
+    std::pair<int, int> bridges;  // faces bridged by grown roads, by links
+    for (const FaceLabel& l : n.map.labels)
+      if (l.bridge) ++(n.map.roads[l.road].link ? bridges.second : bridges.first);
+    EXPECT_EQ(n.stats.links, allow ? 0 : 1);
     return bridges;
   };
-  EXPECT_EQ(bridged(false), 0);
-  EXPECT_GT(bridged(true), 0);
+  // Without bridges the river parts two regions, and the one link joining them crosses it.
+  EXPECT_EQ(bridged(false).first, 0);
+  EXPECT_GT(bridged(false).second, 0);
+  EXPECT_GT(bridged(true).first, 0);
+  EXPECT_EQ(bridged(true).second, 0);
 }
 
 TEST(RoadNetwork, SameResultWithOneOrTwoThreads) {
