@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <numeric>
+#include <set>
 #include <sstream>
 #include <utility>
 
@@ -226,9 +227,23 @@ void check_network(const Geos& geos, const std::vector<Feature>& roads, Verdict&
       parent[root(i)] = root(j);
     }
   });
-  int pieces = 0;
-  for (std::size_t i = 0; i < lines.size(); ++i) pieces += root(static_cast<int>(i)) == static_cast<int>(i);
-  if (pieces > 1) verdict.reject("network", "the centre lines fall apart in " + std::to_string(pieces) + " pieces");
+  // One piece, or pieces that each hold a road the sketch drew (its `level` null): the
+  // sketch's own roads need not meet, but every grown street must reach one of them.
+  std::vector<int> roots;
+  std::set<int> drawn;
+  for (std::size_t i = 0; i < roads.size(); ++i) {
+    if (!roads[i].valid) continue;
+    const int r = root(static_cast<int>(roots.size()));
+    roots.push_back(r);
+    const auto level = roads[i].properties.find("level");
+    if (level != roads[i].properties.end() && level->is_null()) drawn.insert(r);
+  }
+  std::set<int> pieces(roots.begin(), roots.end());
+  int apart = 0;
+  for (int p : pieces) apart += !drawn.count(p);
+  if (pieces.size() > 1 && apart > 0)
+    verdict.reject("network", "the centre lines fall apart in " + std::to_string(pieces.size()) + " pieces, " +
+                                  std::to_string(apart) + " of them reaching no road of the sketch");
 }
 
 }  // namespace

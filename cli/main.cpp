@@ -11,6 +11,8 @@
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 
+#include "benchmarks/families.h"
+#include "benchmarks/robustness.h"
 #include "cli/progress.h"
 #include "generate/errors.h"
 #include "generate/output_folder.h"
@@ -18,6 +20,7 @@
 #include "generate/sketch.h"
 #include "generate/statistics.h"
 #include "generate/validate.h"
+#include "geom/planar_map.h"
 #include "render/render.h"
 
 namespace fs = std::filesystem;
@@ -174,12 +177,32 @@ int stats(const fs::path& out, const std::vector<fs::path>& real) {
   return 0;
 }
 
+// Runs the robustness benchmark with the builds beside this program, and prints its table.
+int robustness_benchmark(bench::RobustnessOptions o, const char* argv0) {
+  std::error_code ec;
+  fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  o.programs = (ec ? fs::absolute(argv0) : self).parent_path();
+  for (const std::string& f : o.families) {
+    bool known = false;
+    for (const bench::Family& k : bench::families()) known |= k.name == f;
+    if (!known) throw UserError("--family " + f + ": no such family; give one of those listed by exacity bench robustness --help");
+  }
+  try {
+    bench::run_robustness(o, std::cout);
+  } catch (const std::runtime_error& e) {
+    throw UserError(e.what());
+  }
+  std::ifstream table(o.out / "robustness.md");
+  std::cout << table.rdbuf();
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   clean_up_on_interrupt();
   CLI::App app{"Exacity: a city sketch to a whole city, exactly."};
-  app.set_version_flag("--version", std::string("exacity ") + kVersion);
+  app.set_version_flag("--version", std::string("exacity ") + kVersion + ", kernel " + geom::kernel_name());
   app.require_subcommand(1);
   bool quiet = false;
   app.add_flag("-q,--quiet", quiet, "Hide progress");
@@ -233,6 +256,25 @@ int main(int argc, char** argv) {
   sta->add_option("OUT", stats_dir, "An output folder of exacity generate");
   sta->add_option("--real", real_files, "GeoJSON of real footprints or streets (metres or lon/lat), measured the same way");
 
+  bench::RobustnessOptions robustness;
+  auto* ben = app.add_subcommand("bench", "Benchmarks");
+  ben->require_subcommand(1);
+  auto* rob = ben->add_subcommand(
+      "robustness", "The exact build against its floating-point builds on families of near-degenerate sketches");
+  std::string family_names;
+  for (const bench::Family& f : bench::families()) family_names += (family_names.empty() ? "" : ", ") + f.name;
+  rob->add_option("--family", robustness.families, "Only these families (default: all): " + family_names);
+  rob->add_option("--cases", robustness.cases, "Cases per family")->check(CLI::Range(1, 100000))->capture_default_str();
+  rob->add_option("--seed", robustness.seed, "Seed of the families' sketches")->capture_default_str();
+  rob->add_option("-o,--output", robustness.out, "Folder for robustness.json, .md, .svg and failed cases")
+      ->capture_default_str();
+  rob->add_option("--time-limit", robustness.time_limit, "Seconds a build may take on one case")
+      ->check(CLI::Range(1.0, 86400.0))
+      ->capture_default_str();
+  rob->add_option("--jobs", robustness.jobs, "Cases run at once (0: one per core)")->check(CLI::Range(0, 1024));
+  rob->add_option("--build", robustness.builds, "Only these builds: exact, float, float-simple (default: all built)");
+  rob->add_flag("--keep", robustness.keep_outputs, "Keep every output, not only those of failed cases");
+
   try {
     app.parse(argc, argv);
     if (*sta && stats_dir.empty() && real_files.empty()) throw CLI::ValidationError("stats", "give OUT, --real FILE or both");
@@ -249,6 +291,7 @@ int main(int argc, char** argv) {
     if (*ren) return render_folder(render_dir, render_options, render_file, quiet);
     if (*val) return validate(check_dir);
     if (*sta) return stats(stats_dir, real_files);
+    if (*rob) return robustness_benchmark(robustness, argv[0]);
   } catch (const UserError& e) {
     std::fprintf(stderr, "exacity: error: %s\n", e.what());
     return 2;

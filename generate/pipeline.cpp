@@ -97,6 +97,7 @@ GenerateResult write_city(const City& city, const fs::path& dir, StageClock& sta
   ordered_json report{
       {"generator", "exacity"},
       {"version", kVersion},
+      {"kernel", geom::kernel_name()},
       {"sketch", sketch.path.filename().string()},
       // Where the sketch's relative paths (heightmap, models) resolve, for `exacity render`.
       {"sketch_path", fs::absolute(sketch.path).lexically_normal().string()},

@@ -1,16 +1,41 @@
-// The exact kernel and its basic types, named once. Included only by geom/*.cpp.
+// The kernel and its basic types, named once. Included only by geom/*.cpp.
+//
+// Exacity is built on the exact kernel. The robustness benchmark (benchmarks/robustness.cpp)
+// builds the very same code on floating-point kernels instead, chosen here at compile time
+// by EXACITY_FLOAT_KERNEL: 1 for exact predicates with double constructions (Epick), 2 for
+// plain doubles (Simple_cartesian<double>). Nothing else differs between the builds.
 #pragma once
 
+#include <array>
 #include <bit>
 #include <cstdint>
 
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Interval_nt.h>
 
 #include "geom/plain.h"
 
+#if !defined(EXACITY_FLOAT_KERNEL)
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#elif EXACITY_FLOAT_KERNEL == 1
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#elif EXACITY_FLOAT_KERNEL == 2
+#include <CGAL/Simple_cartesian.h>
+#else
+#error "EXACITY_FLOAT_KERNEL: 1 (Epick) or 2 (Simple_cartesian<double>)"
+#endif
+
 namespace geom::exact {
 
+#if !defined(EXACITY_FLOAT_KERNEL)
 using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
+inline constexpr const char* kKernelName = "exact (Epeck)";
+#elif EXACITY_FLOAT_KERNEL == 1
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+inline constexpr const char* kKernelName = "float (Epick)";
+#else
+using Kernel = CGAL::Simple_cartesian<double>;
+inline constexpr const char* kKernelName = "float (Simple_cartesian<double>)";
+#endif
 using FT = Kernel::FT;
 using Point = Kernel::Point_2;
 using Segment = Kernel::Segment_2;
@@ -38,10 +63,24 @@ double nearest_double(const Exact& v) {
 // that double; any other is evaluated exactly once, as a point (p.x() would add a lazy
 // node each call).
 inline Vec2 to_plain(const Point& p) {
+#if !defined(EXACITY_FLOAT_KERNEL)
   const auto& a = p.approx();
   if (a.x().inf() == a.x().sup() && a.y().inf() == a.y().sup()) return {a.x().inf(), a.y().inf()};
   const auto& e = CGAL::exact(p);
   return {nearest_double(e.x()), nearest_double(e.y())};
+#else
+  return {p.x(), p.y()};
+#endif
+}
+
+// Intervals that hold the point's coordinates, known without evaluating it exactly.
+inline std::array<CGAL::Interval_nt<false>, 2> approx(const Point& p) {
+#if !defined(EXACITY_FLOAT_KERNEL)
+  const auto& a = p.approx();
+  return {a.x(), a.y()};
+#else
+  return {CGAL::Interval_nt<false>(p.x()), CGAL::Interval_nt<false>(p.y())};
+#endif
 }
 
 // A ring of exact points (not closed: the last point is not repeated).

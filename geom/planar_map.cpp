@@ -640,10 +640,10 @@ std::size_t PlanarMap::snap_round() {
   for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
     index.emplace(&*v, static_cast<int>(near.size()));
     vertex_of.push_back(v);
-    const auto& a = v->point().approx();
-    near.push_back({(a.x().inf() + a.x().sup()) / 2, (a.y().inf() + a.y().sup()) / 2});
-    largest = std::max({largest, std::abs(a.x().inf()), std::abs(a.x().sup()), std::abs(a.y().inf()), std::abs(a.y().sup())});
-    widest = std::max({widest, a.x().sup() - a.x().inf(), a.y().sup() - a.y().inf()});
+    const auto [x, y] = exact::approx(v->point());
+    near.push_back({(x.inf() + x.sup()) / 2, (y.inf() + y.sup()) / 2});
+    largest = std::max({largest, std::abs(x.inf()), std::abs(x.sup()), std::abs(y.inf()), std::abs(y.sup())});
+    widest = std::max({widest, x.sup() - x.inf(), y.sup() - y.inf()});
   }
   std::vector<std::optional<Vec2>> rounded(near.size());
   auto rounded_of = [&](int v) -> Vec2 {
@@ -935,5 +935,7 @@ PlanarMapCounts PlanarMap::counts() const {
   const Arrangement& arr = impl_->arr;
   return {arr.number_of_vertices(), arr.number_of_edges(), arr.number_of_faces()};
 }
+
+const char* kernel_name() { return exact::kKernelName; }
 
 }  // namespace geom

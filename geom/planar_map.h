@@ -32,6 +32,10 @@ using Windings = std::vector<std::pair<int, int>>;
 
 int winding_of(const Windings& w, int counter);
 
+// The kernel this build computes with (geom/exact.h): exact, or a floating-point one for
+// the robustness benchmark.
+const char* kernel_name();
+
 // A piece of a tagged polyline between two map vertices, with the labels on its sides.
 struct PolylinePiece {
   int segment = 0;  // index of the polyline segment it lies on

@@ -2,11 +2,11 @@
 
 #include <cmath>
 
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_2_algorithms.h>
 #include <CGAL/convex_hull_2.h>
 
+#include "geom/exact.h"
 #include "geom/grid.h"
 
 namespace geom {
@@ -60,7 +60,7 @@ bool ring_within(const Ring& ring, const Ring& outer) {
     if (side != CGAL::ON_BOUNDARY) return side == CGAL::ON_BOUNDED_SIDE;
   }
   // Every vertex on the outer ring: an edge's midpoint, constructed exactly, decides.
-  using E = CGAL::Exact_predicates_exact_constructions_kernel;
+  using E = exact::Kernel;
   std::vector<E::Point_2> oe;
   for (Vec2 v : outer) oe.emplace_back(v.x, v.y);
   for (std::size_t i = 0; i < ring.size(); ++i) {

@@ -84,6 +84,13 @@ TEST(Judge, RejectsABuildingOutsideItsLot) {
 TEST(Judge, RejectsADisconnectedOrCrossingNetwork) {
   EXPECT_EQ(judged("apart", [](auto& c) { c["roads"]["features"].push_back(feature(line({{10, 90}, {20, 90}}), {{"id", 2}})); }),
             (Kinds{{"network", 1}}));
+  // Roads the sketch drew need not meet: a second drawn road apart from the first is no fault.
+  EXPECT_EQ(judged("drawn-apart",
+                   [](auto& c) {
+                     for (auto& f : c["roads"]["features"]) f["properties"]["level"] = nullptr;
+                     c["roads"]["features"].push_back(feature(line({{10, 90}, {20, 90}}), {{"id", 2}, {"level", nullptr}}));
+                   }),
+            Kinds{});
   EXPECT_EQ(judged("cross", [](auto& c) { c["roads"]["features"].push_back(feature(line({{50, 50}, {60, 40}, {40, 30}}), {{"id", 2}})); }),
             (Kinds{{"network", 1}}));
 }

@@ -1,0 +1,43 @@
+// The geometric-robustness benchmark (issue 11): every build of Exacity (the exact one and
+// the floating-point ones, geom/exact.h) generates every case of every family in a child
+// process with a time limit; each output is judged by GEOS (benchmarks/judge.h) and by the
+// exact build's `exacity validate`. Writes robustness.json, robustness.md and robustness.svg.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace exacity::bench {
+
+struct RobustnessOptions {
+  std::vector<std::string> families;  // empty: all
+  int cases = 12;                     // per family
+  std::uint64_t seed = 1;
+  std::filesystem::path out = "robustness";
+  double time_limit = 60;  // seconds per run of a build on a case
+  int jobs = 0;            // cases run at once (0: one per core)
+  // Where exacity, exacity-float and exacity-float-simple are; builds not there are left out.
+  std::filesystem::path programs;
+  std::vector<std::string> builds;  // empty: every build found
+  bool keep_outputs = false;        // else only failed cases' outputs stay
+};
+
+struct Outcome {
+  int cases = 0, passed = 0, crash = 0, hang = 0, error = 0, rejected = 0;
+  std::vector<std::pair<std::string, int>> rejected_by_kind;
+  double median_s = 0;
+  int failures() const { return cases - passed; }
+};
+
+struct FamilyResult {
+  std::string family;
+  std::vector<std::pair<std::string, Outcome>> builds;  // in build order
+};
+
+// Runs the benchmark and writes its files into options.out; progress lines go to `log`.
+std::vector<FamilyResult> run_robustness(const RobustnessOptions& options, std::ostream& log);
+
+}  // namespace exacity::bench
