@@ -193,7 +193,8 @@ std::string markdown(const std::vector<FamilyResult>& results, const std::vector
     << "process limited to " << o.time_limit << " s, on one thread. A case passes when the build exits 0 and its output\n"
     << "passes the GEOS judge and the exact build's `exacity validate`. Failures: crash (a signal, or exit 3: a\n"
     << "failed CGAL precondition or internal check), hang (over the limit), error (another exit code), rejected\n"
-    << "(the judge's or the validator's kinds, in brackets).\n\n"
+    << "(the judge's or the validator's kinds, in brackets). The time ratio is the exact build's median time over\n"
+    << "the other's on the cases both passed (— where none did: a crash's time says nothing of the cost).\n\n"
     << "| family | cases |";
   for (const Build& b : builds) s << " " << b.name << " passed | " << b.name << " failures |";
   s << " median s (" << builds.front().name << ") |";
@@ -218,17 +219,13 @@ std::string markdown(const std::vector<FamilyResult>& results, const std::vector
       }
       s << " " << out.passed << " | " << out.failures() << (out.failures() ? " (" + why.str() + ")" : "") << " |";
     }
-    const double exact_s = f.builds.front().second.median_s;
-    s << " " << fixed(exact_s, 2) << " |";
-    for (std::size_t b = 1; b < f.builds.size(); ++b) {
-      const double other = f.builds[b].second.median_s;
-      s << " " << (other > 0 ? fixed(exact_s / other, 2) : "-") << " |";
-    }
+    s << " " << fixed(f.builds.front().second.median_s, 2) << " |";
+    for (double ratio : f.time_ratio) s << " " << (ratio > 0 ? fixed(ratio, 2) : "—") << " |";
     s << "\n";
   }
   s << "\n![failure rate by family](robustness.svg)\n\nReproduce (release preset, which builds the float programs too):\n\n"
     << "```\ncmake --workflow --preset release\nbuild/release/cli/exacity bench robustness --cases " << o.cases
-    << " --seed " << o.seed << " -o " << o.out.filename().string() << "\n```\n\nFamilies:\n\n";
+    << " --seed " << o.seed << "\n```\n\nFamilies:\n\n";
   for (const Family& f : families()) s << "- `" << f.name << "`: " << f.about << "\n";
   return s.str();
 }
@@ -284,7 +281,7 @@ std::vector<FamilyResult> run_robustness(const RobustnessOptions& o, std::ostrea
 
   std::vector<FamilyResult> out;
   for (std::size_t f = 0; f < names.size(); ++f) {
-    FamilyResult fr{names[f], {}};
+    FamilyResult fr{names[f], {}, {}};
     for (std::size_t b = 0; b < builds.size(); ++b) {
       Outcome oc;
       std::map<std::string, int> kinds;
@@ -301,6 +298,12 @@ std::vector<FamilyResult> run_robustness(const RobustnessOptions& o, std::ostrea
       oc.rejected_by_kind.assign(kinds.begin(), kinds.end());
       oc.median_s = median(times);
       fr.builds.push_back({builds[b].name, oc});
+      if (b == 0) continue;
+      std::vector<double> exact_s, other_s;
+      for (std::size_t j = 0; j < jobs.size(); ++j)
+        if (jobs[j].family == f && results[j][0].kind == Result::Passed && results[j][b].kind == Result::Passed)
+          exact_s.push_back(results[j][0].seconds), other_s.push_back(results[j][b].seconds);
+      fr.time_ratio.push_back(exact_s.empty() ? 0 : median(exact_s) / median(other_s));
     }
     out.push_back(std::move(fr));
   }
@@ -310,7 +313,10 @@ std::vector<FamilyResult> run_robustness(const RobustnessOptions& o, std::ostrea
   doc["families"] = nlohmann::ordered_json::array();
   for (const FamilyResult& f : out) {
     nlohmann::ordered_json entry = {{"family", f.family}, {"cases", f.builds.front().second.cases}};
-    for (const auto& [name, oc] : f.builds) entry[name] = to_json(oc);
+    for (std::size_t b = 0; b < f.builds.size(); ++b) {
+      entry[f.builds[b].first] = to_json(f.builds[b].second);
+      if (b > 0) entry[f.builds[b].first]["exact_over_this_time"] = f.time_ratio[b - 1] > 0 ? nlohmann::ordered_json(f.time_ratio[b - 1]) : nullptr;
+    }
     doc["families"].push_back(entry);
   }
   std::ofstream(o.out / "robustness.json", std::ios::binary) << doc.dump(2) << "\n";

@@ -14,9 +14,9 @@ namespace exacity::bench {
 
 struct RobustnessOptions {
   std::vector<std::string> families;  // empty: all
-  int cases = 12;                     // per family
+  int cases = 40;                     // per family
   std::uint64_t seed = 1;
-  std::filesystem::path out = "robustness";
+  std::filesystem::path out = "out/robustness";
   double time_limit = 60;  // seconds per run of a build on a case
   int jobs = 0;            // cases run at once (0: one per core)
   // Where exacity, exacity-float and exacity-float-simple are; builds not there are left out.
@@ -35,6 +35,9 @@ struct Outcome {
 struct FamilyResult {
   std::string family;
   std::vector<std::pair<std::string, Outcome>> builds;  // in build order
+  // Per build after the first: the exact build's median time over its own, on the cases
+  // both passed (0 when none did: a crash's time says nothing of the cost).
+  std::vector<double> time_ratio;
 };
 
 // Runs the benchmark and writes its files into options.out; progress lines go to `log`.

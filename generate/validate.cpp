@@ -198,8 +198,8 @@ void check_tiling(Checker& c, const Sketch& sketch, const std::vector<PolygonRef
 
 // The centre lines are a noded network: two of them meet only at a vertex of both. Every
 // end of a grown road is a vertex of another centre line (a junction) or lies on the edge
-// of the built city (a drawn zone's ring or water). Each region's roads form one connected
-// graph, joined to the sketch's roads (in a sketch without roads, to every other region's).
+// of the built city (a drawn zone's ring or water). Every piece of the network holding a
+// region's roads holds a road the sketch drew (in a sketch without roads, all are one).
 void check_roads(Checker& c, const Sketch& sketch, const Layer& roads, const Layer& water) {
   const auto& features = roads.features;
   geom::PlanarMap map;
@@ -233,21 +233,24 @@ void check_roads(Checker& c, const Sketch& sketch, const Layer& roads, const Lay
       else region_nodes[f.properties["region"].get<int>()].push_back(a);
       if (i > 0) parent[find(a)] = find(id(f.line[i - 1]));
     }
+  // Each piece of the network a region's roads lie in holds a road the sketch drew (the
+  // sketch's own roads need not meet each other); in a sketch without roads, all the
+  // regions' roads are one piece.
+  std::set<int> drawn;
+  for (int n : sketch_nodes) drawn.insert(find(n));
+  const int first = region_nodes.empty() ? -1 : find(region_nodes.begin()->second.front());
   for (const auto& [region, nodes] : region_nodes) {
-    int root = find(nodes.front());
-    for (int n : nodes)
-      if (find(n) != root) {
-        c.problem("roads.geojson: the roads of region " + std::to_string(region) + " are not connected");
-        break;
-      }
-  }
-  std::set<int> reached;
-  for (int n : sketch_nodes) reached.insert(find(n));
-  if (reached.empty() && !region_nodes.empty()) reached.insert(find(region_nodes.begin()->second.front()));
-  for (const auto& [region, nodes] : region_nodes)
-    if (!reached.count(find(nodes.front())))
+    std::set<int> pieces;
+    for (int n : nodes) pieces.insert(find(n));
+    bool cut_off = false;
+    for (int p : pieces) cut_off |= drawn.empty() ? p != first : !drawn.count(p);
+    if (!cut_off) continue;
+    if (pieces.size() > 1)
+      c.problem("roads.geojson: the roads of region " + std::to_string(region) + " are not connected");
+    else
       c.problem("roads.geojson: the roads of region " + std::to_string(region) + " reach no other road" +
                 near(at[nodes.front()]));
+  }
 
   std::unordered_map<geom::Vec2, std::vector<int>, geom::Vec2Hash> roads_at;  // vertex -> features through it
   for (std::size_t i = 0; i < features.size(); ++i)

@@ -264,13 +264,10 @@ Path extend_to(const Path& road, const std::vector<Path>& targets, double reach)
     }
   }
   if (!best) {
-    double nearest = reach;
-    for (const Path& target : targets)
-      for (std::size_t i = 0; i < target.size(); ++i) {
-        Vec2 v = target.point(i);
-        double d = std::hypot(v.x - b.x, v.y - b.y);
-        if (d < nearest && target.exact().points[i] != q) nearest = d, best = target.exact().points[i];
-      }
+    auto end = std::make_shared<Path::Impl>();
+    end->points.push_back(q);
+    const std::optional<Link> link = shortest_link({Path(std::move(end))}, targets);
+    if (link && !link->path.empty() && link->length <= reach) best = link->path.exact().points[1];
   }
   if (!best) return road;
   auto impl = std::make_shared<Path::Impl>(road.exact());

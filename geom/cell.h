@@ -108,13 +108,6 @@ class Growth {
   std::unique_ptr<Impl> impl_;
 };
 
-// The road with its last segment carried on along its own line to the first point where it
-// meets one of `targets` within `reach` metres past its end (a grown road running on to the
-// centre line of the road whose surface it stopped at). Where its line meets none there (it
-// stopped at a road's end cap), it runs straight on to the nearest vertex of the targets
-// within `reach` instead; unchanged when there is none.
-Path extend_to(const Path& road, const std::vector<Path>& targets, double reach);
-
 // The shortest segment from one set of paths to another, as a path of two points lying
 // exactly on both (the closer pair is chosen in doubles, between a vertex of one set and
 // its nearest point on the other), with its length; nullopt when a set is empty. A link of
@@ -124,6 +117,14 @@ struct Link {
   double length = 0;
 };
 std::optional<Link> shortest_link(const std::vector<Path>& from, const std::vector<Path>& to);
+
+// The road with its last segment carried on along its own line to the first point where it
+// meets one of `targets` within `reach` metres past its end (a grown road running on to the
+// centre line of the road whose surface it stopped at). Where its line meets none there (it
+// stopped at a road's end cap, or met the surface at so shallow an angle that the centre
+// line is beyond reach), it turns to the nearest point of the targets within `reach`
+// instead; unchanged when there is none.
+Path extend_to(const Path& road, const std::vector<Path>& targets, double reach);
 
 // The cell less a band of width `setback` inside every boundary edge (DESIGN.md rule 3:
 // each band's inner side runs through two offset points rounded to the grid); the parts

@@ -202,3 +202,13 @@ TEST(ShortestLink, JoinsTheNearestVertexToItsNearestPointOnTheOtherSet) {
   EXPECT_EQ(meeting->length, 0);
   EXPECT_FALSE(geom::shortest_link({}, {to}));
 }
+
+TEST(ExtendTo, ARoadMeetingASurfaceAtAShallowAngleTurnsToTheCentreLine) {
+  // The road's line meets y = 0 only 300 m on, beyond reach: it turns to the centre line's
+  // nearest point instead of ending on the surface, where no road would meet it.
+  auto road = geom::Path::from({{-50, -3.5}, {0, -3}});
+  auto centre = geom::Path::from({{-100, 0}, {100, 0}});
+  auto extended = geom::extend_to(road, {centre}, 24);
+  ASSERT_EQ(extended.size(), 3u);
+  EXPECT_EQ(extended.point(2), (Vec2{0, 0}));
+}
