@@ -21,7 +21,7 @@ struct RobustnessOptions {
   int jobs = 0;            // cases run at once (0: one per core)
   // Where exacity, exacity-float and exacity-float-simple are; builds not there are left out.
   std::filesystem::path programs;
-  std::vector<std::string> builds;  // empty: every build found
+  std::vector<std::string> builds;  // exact, float, float-simple; empty: every build found
   bool keep_outputs = false;        // else only failed cases' outputs stay
 };
 
