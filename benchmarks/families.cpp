@@ -221,9 +221,11 @@ const std::vector<Family>& families() {
 std::string family_sketch(const std::string& family, int index, std::uint64_t seed) {
   for (const Entry& e : entries()) {
     if (e.family.name != family) continue;
-    Random rng(mix(mix(seed, hash(family)), static_cast<std::uint64_t>(index)));
+    const std::uint64_t id = mix(mix(seed, hash(family)), static_cast<std::uint64_t>(index));
+    Random rng(id);
+    // The city's own seed: 53 bits, so any JSON reader keeps it exactly.
     json sketch = {{"type", "FeatureCollection"},
-                   {"exacity", {{"version", 1}, {"seed", seed % 1000000}}},
+                   {"exacity", {{"version", 1}, {"seed", mix(id) >> 11}}},
                    {"features", e.make(rng, index)}};
     return sketch.dump() + "\n";
   }
