@@ -153,10 +153,14 @@ std::string fixed(double v, int digits) {
 }
 
 nlohmann::ordered_json to_json(const Outcome& o) {
-  nlohmann::ordered_json kinds = nlohmann::ordered_json::object();
-  for (const auto& [k, n] : o.rejected_by_kind) kinds[k] = n;
-  return {{"passed", o.passed}, {"failures", o.failures()}, {"crash", o.crash},   {"hang", o.hang},
-          {"error", o.error},   {"rejected", o.rejected},   {"rejected_by_kind", kinds}, {"median_s", std::round(o.median_s * 1000) / 1000}};
+  return {{"passed", o.passed},
+          {"failures", o.failures()},
+          {"crash", o.crash},
+          {"hang", o.hang},
+          {"error", o.error},
+          {"rejected", o.rejected},
+          {"rejected_by_kind", o.rejected_by_kind},
+          {"median_s", std::round(o.median_s * 1000) / 1000}};
 }
 
 // A grouped bar chart of failure rate by family, one bar per build.
@@ -293,7 +297,6 @@ std::vector<FamilyResult> run_robustness(const RobustnessOptions& o, std::ostrea
     FamilyResult fr{names[f], {}, {}};
     for (std::size_t b = 0; b < builds.size(); ++b) {
       Outcome oc;
-      std::map<std::string, int> kinds;
       std::vector<double> times;
       for (std::size_t j = 0; j < jobs.size(); ++j) {
         if (jobs[j].family != f) continue;
@@ -301,10 +304,9 @@ std::vector<FamilyResult> run_robustness(const RobustnessOptions& o, std::ostrea
         ++oc.cases;
         oc.passed += r.kind == Result::Passed, oc.crash += r.kind == Result::Crash, oc.hang += r.kind == Result::Hang;
         oc.error += r.kind == Result::Error, oc.rejected += r.kind == Result::Rejected;
-        for (const std::string& k : r.rejected) ++kinds[k];
+        for (const std::string& k : r.rejected) ++oc.rejected_by_kind[k];
         if (r.kind != Result::Hang) times.push_back(r.seconds);
       }
-      oc.rejected_by_kind.assign(kinds.begin(), kinds.end());
       oc.median_s = median(times);
       fr.builds.push_back({builds[b].name, oc});
       if (b == 0) continue;

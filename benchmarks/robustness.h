@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <iosfwd>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -27,7 +28,7 @@ struct RobustnessOptions {
 
 struct Outcome {
   int cases = 0, passed = 0, crash = 0, hang = 0, error = 0, rejected = 0;
-  std::vector<std::pair<std::string, int>> rejected_by_kind;
+  std::map<std::string, int> rejected_by_kind;  // as the judge names them, and "validate"
   double median_s = 0;
   int failures() const { return cases - passed; }
 };
