@@ -90,6 +90,8 @@ GenerateResult write_city(const City& city, const fs::path& dir, StageClock& sta
   ordered_json junctions = ordered_json::object();
   for (auto [degree, count] : network.map.map.polyline_degrees())
     if (degree != 2) junctions[std::to_string(degree)] = count;
+  ordered_json dead_ends = ordered_json::array();
+  for (const DeadEnd& d : sketch.dead_ends) dead_ends.push_back({{"feature", d.feature}, {"at", {d.at.x, d.at.y}}});
   int green = 0;
   for (const Block& b : blocks) green += b.green;
 
@@ -121,7 +123,10 @@ GenerateResult write_city(const City& city, const fs::path& dir, StageClock& sta
         {"segments", segments},
         {"junctions_by_degree", junctions},
         {"cells_without_access", network.stats.cells_without_access},
-        {"links", network.stats.links}}},
+        {"links", network.stats.links},
+        {"sketch_junctions", {{"mitred", network.map.mitred_junctions}, {"discs", network.map.disc_junctions}}},
+        {"joined_ends", sketch.joined_ends},
+        {"dead_ends", dead_ends}}},
       {"statistics", city_statistics(layers, &sketch)},
       {"validation",
        {{"ok", validation.ok()}, {"problems", validation.problems}, {"widest_sliver_m", validation.widest_sliver}}},

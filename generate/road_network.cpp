@@ -291,12 +291,13 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
   auto params = [&](ZoneType t) -> const ZoneParams& { return sketch.zone_params.at(t); };
 
   // Regions: connected faces of zones roads grow in (and the water under them where the
-  // zone lets roads bridge it).
+  // zone lets roads bridge it). Zones laid out as "streets" grow none: the sketch's roads
+  // are their whole network.
   std::vector<int> group(zm.labels.size(), -1), kind(zm.labels.size(), kEdge);
   for (std::size_t l = 0; l < zm.labels.size(); ++l) {
     const FaceLabel& f = zm.labels[l];
     ZoneType t = f.zone >= 0 ? sketch.zones[f.zone].type : ZoneType::Park;
-    bool growable = f.zone >= 0 && grows_roads(t);
+    bool growable = f.zone >= 0 && grows_roads(t) && params(t).layout == "growth";
     if ((f.cover == Cover::Zone && growable) || (f.cover == Cover::Water && growable && params(t).bridges)) group[l] = 0;
     if (f.road_surface() && f.road < zm.sketch_roads) kind[l] = kSketchRoad + f.road;
   }

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "generate/errors.h"
+#include "generate/street_graph.h"
 #include "geom/measure.h"
 
 namespace exacity {
@@ -265,7 +266,7 @@ class Parser {
 
   void settings(const json& ex, Sketch& sketch) const {
     const std::string w = "\"exacity\"";
-    known_keys(ex, w, {"version", "seed", "terrain", "models", "zones", "camera"});
+    known_keys(ex, w, {"version", "seed", "terrain", "models", "zones", "roads", "camera"});
     if (ex.contains("version") && number(ex["version"], w + ".version", 1, 1) != 1) fail(w, "unsupported version");
     if (ex.contains("seed")) {
       const json& s = ex["seed"];
@@ -283,6 +284,7 @@ class Parser {
       sketch.camera = ex["camera"].get<std::string>();
     }
     if (ex.contains("terrain")) sketch.terrain = terrain(ex["terrain"], sketch.path);
+    if (ex.contains("roads")) sketch.streets = streets(ex["roads"]);
     if (ex.contains("zones")) {
       const json& zones = ex["zones"];
       known_keys(zones, w + ".zones", {kZoneTypeNames.begin(), kZoneTypeNames.end()});
@@ -290,6 +292,41 @@ class Parser {
         ZoneType zt = *parse_zone_type(zname);
         sketch.zone_params[zt] = zone_params(params, zt, w + ".zones." + zname);
       }
+    }
+  }
+
+  StreetSettings streets(const json& j) const {
+    const std::string w = "\"exacity\".roads";
+    std::set<std::string> keys{"snap", "dead_ends"};
+    keys.insert(kRoadClassNames.begin(), kRoadClassNames.end());
+    known_keys(j, w, keys);
+    StreetSettings s;
+    if (j.contains("snap")) s.snap = number(j["snap"], w + ".snap", 0, 100);
+    if (j.contains("dead_ends")) {
+      if (j["dead_ends"] != "report" && j["dead_ends"] != "error")
+        fail(w + ".dead_ends", "expected \"report\" (list them in report.json) or \"error\" (refuse the sketch)");
+      s.dead_ends_are_errors = j["dead_ends"] == "error";
+    }
+    for (std::string_view c : kRoadClassNames) {
+      const std::string cname(c), cw = w + "." + cname;
+      if (!j.contains(cname)) continue;
+      known_keys(j[cname], cw, {"sidewalk"});
+      if (j[cname].contains("sidewalk")) s.sidewalks[*parse_road_class(cname)] = number(j[cname]["sidewalk"], cw + ".sidewalk", 0, 50);
+    }
+    return s;
+  }
+
+  // Joins the roads' near ends and finds their dead ends (generate/street_graph.h).
+  void join_streets(Sketch& sketch) const {
+    sketch.joined_ends = join_near_ends(sketch.roads, sketch.streets.snap);
+    sketch.dead_ends = dead_ends(sketch.roads);
+    if (sketch.streets.dead_ends_are_errors && !sketch.dead_ends.empty()) {
+      const DeadEnd& d = sketch.dead_ends.front();
+      fail("features[" + std::to_string(d.feature) + "]",
+           "the road ends at " + json::array({d.at.x, d.at.y}).dump() + " meeting no other road (one of " +
+               std::to_string(sketch.dead_ends.size()) +
+               " dead ends; \"dead_ends\": \"error\" refuses them); draw it on to another road, or set "
+               "\"exacity\".roads.dead_ends to \"report\"");
     }
   }
 
@@ -320,7 +357,7 @@ class Parser {
   ZoneParams zone_params(const json& j, ZoneType zt, const std::string& w) const {
     known_keys(j, w, {"block_area", "segment_length", "branches", "jitter", "segment_deviation",
                       "origin_deviation", "road_widths", "min_block_area", "min_block_width",
-                      "bridges", "lots", "lot_area", "min_lot_edge", "min_lot_area", "setback", "heights",
+                      "bridges", "layout", "lots", "lot_area", "min_lot_edge", "min_lot_area", "setback", "heights",
                       "min_footprint_area", "roof", "roof_pitch", "density", "lot_width", "lot_depth",
                       "building_gap", "footprint_width", "footprint_depth", "min_footprint_width",
                       "max_footprint_area"});
@@ -383,6 +420,12 @@ class Parser {
       if (!h.is_array() || h.size() != 2) fail(w + ".heights", "give [lowest, highest] building heights in metres");
       p.min_height = number(h[0], w + ".heights", 0.5, 1000);
       p.max_height = number(h[1], w + ".heights", p.min_height, 1000);
+    }
+    if (j.contains("layout")) {
+      if (j["layout"] != "growth" && j["layout"] != "streets")
+        fail(w + ".layout", "expected \"growth\" (seed 000's growing roads) or \"streets\" (the sketch's roads only); "
+                            "\"grammar\" and \"voronoi\" are not built yet");
+      p.layout = j["layout"].get<std::string>();
     }
     if (j.contains("lots")) {
       if (!j["lots"].is_string() || (j["lots"] != "allocation" && j["lots"] != "split"))
@@ -452,6 +495,7 @@ Sketch parse_sketch(const std::string& text, const fs::path& path) {
     parser.fail("features", "the sketch has no zones and no roads; draw at least one zone polygon");
   parser.expect_metres(sketch);
   parser.expect_buildable(sketch);
+  parser.join_streets(sketch);
   return sketch;
 }
 

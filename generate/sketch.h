@@ -23,6 +23,9 @@ struct Range {
 
 // Road growth parameters of one zone type (used from the road-network stage on).
 struct ZoneParams {
+  // How the zone's roads are laid out: "growth" (seed 000's recursive growth) or "streets"
+  // (seed 004: none are generated; the sketch's roads are the whole network).
+  std::string layout = "growth";
   double block_area = 12000;        // m²: faces above this are subdivided again
   double segment_length = 40;       // m: one growth step
   int branches = 4;                 // roads grown from each seed point
@@ -79,6 +82,20 @@ struct RoadFeature {
   std::vector<geom::Polyline> lines;
 };
 
+// The sketch's own street graph (seed 004): how it is joined, what its streets carry.
+struct StreetSettings {
+  double snap = 0.5;                     // m: a line end this near another line is joined to it
+  bool dead_ends_are_errors = false;     // "dead_ends": "error"
+  std::map<RoadClass, double> sidewalks;  // m on each side, per class; none unless set
+  double sidewalk(RoadClass c) const { return sidewalks.count(c) ? sidewalks.at(c) : 0.0; }
+};
+
+// A road end that meets no other road.
+struct DeadEnd {
+  int feature = 0;  // its road's position in "features"
+  geom::Vec2 at;
+};
+
 struct Sketch {
   std::filesystem::path path;
   std::uint64_t seed = 1;
@@ -88,7 +105,10 @@ struct Sketch {
   std::string camera;               // the still's camera (exacity render's --camera syntax), or empty
   std::map<ZoneType, ZoneParams> zone_params;
   std::vector<ZoneFeature> zones;
-  std::vector<RoadFeature> roads;
+  std::vector<RoadFeature> roads;     // as joined by StreetSettings::snap
+  StreetSettings streets;
+  int joined_ends = 0;                // line ends moved by up to `snap` to meet another line
+  std::vector<DeadEnd> dead_ends;
 };
 
 ZoneParams default_params(ZoneType type);

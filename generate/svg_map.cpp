@@ -49,6 +49,11 @@ void write_legend(std::ostream& out, const CityLayers& layers, double w, double 
       keys.emplace_back("bridge", "#3a3a3a");
       break;
     }
+  for (const auto& f : layers.road_areas.features)
+    if (f.properties.value("surface", "") == "sidewalk") {
+      keys.emplace_back("sidewalk", "#c9c3b8");
+      break;
+    }
   auto n = [&](double pixels) { return format_number(pixels * px); };
   double line = 20, x = 10, y = h / px - 10 - line * (keys.size() + 1);
   out << "<g class=\"legend\" font-family=\"sans-serif\" font-size=\"" << n(13) << "\">\n"
@@ -104,8 +109,10 @@ void write_svg_map(const CityLayers& layers, const std::filesystem::path& file) 
   for (const auto& f : layers.buildings.features) out << "<path fill-rule=\"evenodd\" d=\"" << path_data(f.polygon, b) << "\"/>\n";
   out << "</g>\n";
   polygons(layers.water, "water", [](const VectorFeature&) { return "#5b9bd5"; });
-  polygons(layers.road_areas, "road_areas",
-           [](const VectorFeature& f) { return f.properties.value("bridge", false) ? "#3a3a3a" : "#6b6b6b"; });
+  polygons(layers.road_areas, "road_areas", [](const VectorFeature& f) {
+    if (f.properties.value("surface", "") == "sidewalk") return "#c9c3b8";
+    return f.properties.value("bridge", false) ? "#3a3a3a" : "#6b6b6b";
+  });
   out << "<g class=\"roads\" fill=\"none\" stroke=\"#ffffff\" stroke-width=\"" << format_number(stroke)
       << "\" stroke-dasharray=\"" << format_number(stroke * 6) << ',' << format_number(stroke * 4) << "\">\n";
   for (const auto& f : layers.roads.features) {

@@ -88,10 +88,21 @@ CityLayers extract_layers(const ZoneMap& zm, const std::vector<Block>& blocks, c
     const auto& f = first_feature[r];
     return f[bridge] >= 0 ? f[bridge] : f[!bridge];
   };
-  dissolve(zm, 2 * roads,
-           [](const FaceLabel& l) { return l.road_surface() ? 2 * l.road + l.bridge : -1; },
+  // Road areas by road, surface and bridge: carriageways and sidewalks per road (groups
+  // 4r + 2 sidewalk + bridge), then each junction (4 roads + 2j + bridge).
+  const int junctions = static_cast<int>(zm.junction_roads.size());
+  dissolve(zm, 4 * roads + 2 * junctions,
+           [&](const FaceLabel& l) {
+             if (!l.road_surface()) return -1;
+             if (l.surface == RoadSurface::Junction) return 4 * roads + 2 * l.junction + l.bridge;
+             return 4 * l.road + 2 * (l.surface == RoadSurface::Sidewalk) + l.bridge;
+           },
            [&](int g, geom::Polygon p) {
-             add_polygon(out.road_areas, {{"road", or_null(road_id(g / 2, g % 2))}, {"bridge", g % 2 == 1}}, std::move(p));
+             const bool junction = g >= 4 * roads, bridge = g % 2 == 1;
+             const int road = junction ? zm.junction_roads[(g - 4 * roads) / 2] : g / 4;
+             const RoadSurface surface = junction ? RoadSurface::Junction : g % 4 >= 2 ? RoadSurface::Sidewalk : RoadSurface::Carriageway;
+             add_polygon(out.road_areas, {{"road", or_null(road_id(road, bridge))}, {"bridge", bridge}, {"surface", name(surface)}},
+                         std::move(p));
            });
 
   // Blocks from the final map, so they share every vertex with the other layers (lots add

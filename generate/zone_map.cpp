@@ -3,35 +3,45 @@
 #include <map>
 
 #include "generate/drawn_zones.h"
+#include "generate/street_graph.h"
 
 namespace exacity {
 
 namespace {
 
-// Where road lines meet end to end (GIS editors and OpenStreetMap split roads into many
-// lines), their flat ends would leave a notch: two ends of equal width get the mitre a
-// single line would have, and other meetings a disc around the node.
-void add_end_joints(const Sketch& sketch, int road_base, geom::PlanarMap& map) {
-  struct End {
-    int road;
-    geom::Vec2 inner;  // the nearest other vertex along the line
-    double half_width;
-  };
-  std::map<std::pair<double, double>, std::vector<End>> ends;
-  for (int r = 0; r < static_cast<int>(sketch.roads.size()); ++r) {
-    for (const geom::Polyline& line : sketch.roads[r].lines) {
-      // Lines have at least two distinct points, and consecutive repeats are dropped.
-      const double hw = sketch.roads[r].width / 2;
-      ends[{line.front().x, line.front().y}].push_back({r, line[1], hw});
-      ends[{line.back().x, line.back().y}].push_back({r, line[line.size() - 2], hw});
+// Where sketch roads meet (generate/street_graph.h), one mitred junction polygon (seed
+// 004) instead of the notches their flat ends would leave; and, where the streets have
+// sidewalks, an outer one of their sidewalks' width. A meeting too sharp for a mitre gets
+// a disc of each road's width, as before junctions were mitred.
+void add_junctions(const Sketch& sketch, ZoneMap& zm) {
+  const int road_base = 1;
+  for (const StreetNode& node : street_nodes(sketch.roads)) {
+    std::vector<std::pair<geom::Vec2, double>> carriageway, outer;
+    bool sidewalks = false;
+    for (const StreetArm& arm : node.arms) {
+      const RoadFeature& r = sketch.roads[arm.road];
+      const double sidewalk = sketch.streets.sidewalk(r.road_class);
+      carriageway.push_back({arm.toward, r.width / 2});
+      outer.push_back({arm.toward, r.width / 2 + sidewalk});
+      sidewalks |= sidewalk > 0;
     }
-  }
-  for (const auto& [at, meeting] : ends) {
-    geom::Vec2 q{at.first, at.second};
-    if (meeting.size() == 2 && meeting[0].half_width == meeting[1].half_width) {
-      map.add_joint(meeting[0].inner, q, meeting[1].inner, meeting[0].half_width, road_base + meeting[0].road);
-    } else if (meeting.size() > 1) {
-      for (const End& e : meeting) map.add_disc(q, e.half_width, road_base + e.road);
+    const int first = node.arms.front().road;
+    const int junction = static_cast<int>(zm.junction_roads.size());
+    if (zm.map.add_junction(node.at, carriageway, zm.junction_base + junction)) {
+      zm.junction_roads.push_back(first);
+      ++zm.mitred_junctions;
+      if (sidewalks) zm.map.add_junction(node.at, outer, zm.sidewalk_base + first);
+      continue;
+    }
+    // Straight on (nothing needed) or too sharp.
+    if (node.arms.size() == 2 && carriageway[0].second == carriageway[1].second &&
+        outer[0].second == outer[1].second)
+      continue;
+    ++zm.disc_junctions;
+    for (const StreetArm& arm : node.arms) {
+      const RoadFeature& r = sketch.roads[arm.road];
+      zm.map.add_disc(node.at, r.width / 2, road_base + arm.road);
+      if (sidewalks) zm.map.add_disc(node.at, r.width / 2 + sketch.streets.sidewalk(r.road_class), zm.sidewalk_base + arm.road);
     }
   }
 }
@@ -56,15 +66,27 @@ void ZoneMap::label(const Sketch& sketch) {
     const bool water = geom::winding_of(w, kWater) != 0 || (l.zone >= 0 && type == ZoneType::Water);
     // A grown road paves only where roads grow: its flat end stops at the region's edge. A
     // link paves all its way, over open land, parks and water.
-    const bool paved_by_growth = l.zone >= 0 && grows_roads(type) && (!water || sketch.zone_params.at(type).bridges);
+    const ZoneParams& params = sketch.zone_params.at(type);
+    const bool paved_by_growth =
+        l.zone >= 0 && grows_roads(type) && params.layout == "growth" && (!water || params.bridges);
+    // Counters grow with road index, so the first road found is the first listed: it owns
+    // a crossing.
+    int carriageway = -1, sidewalk = -1, junction = -1;
     for (auto [counter, winding] : w) {
-      // Counters grow with road index, so the first road found is the first listed:
-      // it owns a crossing.
-      int r = road_of_counter(counter);
-      if (r >= 0 && (r < sketch_roads || paved_by_growth || roads[r].link)) {
-        l.road = r;
-        break;
+      if (counter >= junction_base && counter < generated_base) {
+        if (junction < 0) junction = counter - junction_base;
+      } else if (counter >= sidewalk_base && counter < junction_base) {
+        if (sidewalk < 0) sidewalk = counter - sidewalk_base;
+      } else if (int r = road_of_counter(counter); carriageway < 0 && r >= 0) {
+        if (r < sketch_roads || paved_by_growth || roads[r].link) carriageway = r;
       }
+    }
+    if (junction >= 0) {
+      l.road = junction_roads[junction], l.junction = junction, l.surface = RoadSurface::Junction;
+    } else if (carriageway >= 0) {
+      l.road = carriageway, l.surface = RoadSurface::Carriageway;
+    } else if (sidewalk >= 0) {
+      l.road = sidewalk, l.surface = RoadSurface::Sidewalk;
     }
     if (water) {
       l.cover = Cover::Water;
@@ -113,9 +135,16 @@ ZoneMap build_zone_map(const Sketch& sketch, const Terrain* terrain) {
     }
     zm.roads.push_back(std::move(road));
   }
-  add_end_joints(sketch, road_base, zm.map);
   zm.drawn = std::make_shared<DrawnZones>(sketch.zones, zm.map, road_base + zm.sketch_roads);
-  zm.generated_base = zm.drawn->end_counter();
+  zm.sidewalk_base = zm.drawn->end_counter();
+  zm.junction_base = zm.sidewalk_base + zm.sketch_roads;
+  for (int r = 0; r < zm.sketch_roads; ++r) {
+    const RoadFeature& f = sketch.roads[r];
+    if (const double sidewalk = sketch.streets.sidewalk(f.road_class); sidewalk > 0)
+      for (const geom::Polyline& line : f.lines) zm.map.add_stroke(line, f.width / 2 + sidewalk, zm.sidewalk_base + r);
+  }
+  add_junctions(sketch, zm);
+  zm.generated_base = zm.junction_base + static_cast<int>(zm.junction_roads.size());
   zm.map.insert_batch();
   zm.label(sketch);
   return zm;

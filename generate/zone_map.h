@@ -19,6 +19,13 @@ namespace exacity {
 // What the user sees at a face: water beats road beats drawn zone.
 enum class Cover : std::uint8_t { Outside, Zone, Water, Road };
 
+// Which part of a road a road face is (seed 004): its carriageway, a sidewalk beside it, or
+// the junction where streets meet. A junction beats a carriageway beats a sidewalk.
+enum class RoadSurface : std::uint8_t { None, Carriageway, Sidewalk, Junction };
+inline const char* name(RoadSurface s) {
+  return s == RoadSurface::Sidewalk ? "sidewalk" : s == RoadSurface::Junction ? "junction" : "carriageway";
+}
+
 struct FaceLabel {
   Cover cover = Cover::Outside;
   int zone = -1;        // index into Sketch::zones of the drawn zone on top, -1 if none
@@ -26,6 +33,8 @@ struct FaceLabel {
   bool bridge = false;  // a road surface over water
   int block = -1;       // index of the block it lies in, once blocks are in the map
   int lot = -1;         // index of the lot it lies in, once lots are in the map
+  RoadSurface surface = RoadSurface::None;  // on a road face
+  int junction = -1;    // index into ZoneMap::junction_roads of the junction it lies in
   // The surface of road `road`: on land, or a bridge's over water.
   bool road_surface() const { return road >= 0 && (cover == Cover::Road || bridge); }
   friend auto operator<=>(const FaceLabel&, const FaceLabel&) = default;
@@ -49,9 +58,14 @@ struct ZoneMap {
   std::vector<MapRoad> roads;     // sketch roads first, in sketch order
   int sketch_roads = 0;
 
-  // Counters: water is 0, sketch road r is 1 + r, then the drawn zones' rings, then
-  // generated roads from generated_base on.
+  // Counters: water is 0, sketch road r's carriageway is 1 + r, then the drawn zones'
+  // rings, then sketch road r's sidewalks at sidewalk_base + r, junction j (a polygon
+  // where sketch roads meet) at junction_base + j, then generated roads from
+  // generated_base on.
   std::shared_ptr<DrawnZones> drawn;
+  int sidewalk_base = 0, junction_base = 0;
+  std::vector<int> junction_roads;  // per junction, the road it belongs to: the first to meet there
+  int mitred_junctions = 0, disc_junctions = 0;  // how the sketch's road meetings were drawn
   int generated_base = 0;
   // Then, once the lots stage has run, lot l winds around lot_base + l.
   int lot_base = -1;

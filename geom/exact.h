@@ -103,4 +103,18 @@ ExactRing joint_piece(Vec2 a, Vec2 q, Vec2 b, double half_width);
 // A 16-gon around the disc of radius r at c, its corners on the grid.
 ExactRing disc_piece(Vec2 c, double r);
 
+// The mitred junction of streets meeting at q (seed 004's StreetBuilder): each street
+// leaves q towards `toward` with its half width. Around q, each pair of neighbouring
+// streets meets where their sides cross (a bevel where that mitre reaches past the mitre
+// limit on the outside of a bend), and each street is cut straight across where its last
+// corner lies, so the junction is one star-shaped ring whose sides lie on the streets'
+// stroke sides. Empty where no junction is needed (two streets running straight on) or
+// none can be drawn (two streets leaving q so close in angle that their sides part only
+// past their next vertex): the caller falls back to a disc.
+struct StreetArm {
+  Vec2 toward;
+  double half_width;
+};
+ExactRing junction_piece(Vec2 q, const std::vector<StreetArm>& arms);
+
 }  // namespace geom::exact

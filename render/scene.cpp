@@ -351,7 +351,8 @@ void RenderScene::add_ground(const exacity::City& city, const geom::Box& world, 
   draped(layers.road_areas, 0.30, [&](const exacity::VectorFeature& f) {
     // A road surface names the centre line it belongs to; its id is the road's entity.
     const auto& road = f.properties.value("road", nlohmann::ordered_json());
-    return Style{palette.asphalt, entity_id(Entity::Road, road.is_number_integer() ? road.get<int>() : 0), 0.10};
+    const int material = f.properties.value("surface", "") == "sidewalk" ? palette.sidewalk : palette.asphalt;
+    return Style{material, entity_id(Entity::Road, road.is_number_integer() ? road.get<int>() : 0), 0.10};
   });
   // Centre stripes (solid yellow on highways, dashed white elsewhere) and dashed lane lines.
   {

@@ -271,6 +271,7 @@ TEST(Cli, BadInputExitsTwoWithOneLineAndNoOutput) {
       {"vast", R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"zone":"residential"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[1e6,0],[1e6,1e6],[0,0]]]}}]})", "more than the 50000 one run builds"},
       {"library", R"({"type":"FeatureCollection","exacity":{"models":"missing.json"},"features":[)" + zone + "]}", "cannot read the model library"},
       {"model", R"({"type":"FeatureCollection","exacity":{"models":"bad-library.json"},"features":[)" + zone + "]}", "line 2: vertex index 2 points to none"},
+      {"deadend", R"({"type":"FeatureCollection","exacity":{"roads":{"dead_ends":"error"}},"features":[)" + zone + R"(,{"type":"Feature","properties":{"road":"local"},"geometry":{"type":"LineString","coordinates":[[0,0],[9,9]]}}]})", "meeting no other road"},
   };
   std::ofstream(dir / "bad-library.json") << R"({"models": [{"file": "bad.obj", "zones": ["residential"]}]})";
   std::ofstream(dir / "bad.obj") << "v 0 0 0\nf 1 2 5\n";

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 
+#include "geom/grid.h"
 #include "geom/planar_map.h"
 #include "geom/polygon_check.h"
 #include "tests/test_util.h"
@@ -303,4 +304,94 @@ TEST(PolygonCheck, SimpleAndOriented) {
   EXPECT_EQ(geom::ring_orientation({{0, 0}, {1, 1}, {2, 2}}), 0);
   // Two points a hair apart still count as distinct: the check is exact.
   EXPECT_TRUE(geom::ring_is_simple({{0, 0}, {1, 0}, {1, 1e-300}}));
+}
+
+namespace {
+
+// Streets of half width `hw` leaving q = (0, 0) at the given angles (degrees), `length` long.
+std::vector<std::pair<geom::Vec2, double>> arms_at(const std::vector<double>& degrees, double hw, double length = 400) {
+  std::vector<std::pair<geom::Vec2, double>> arms;
+  for (double d : degrees)
+    arms.push_back({geom::snap(geom::Vec2{length * std::cos(d * M_PI / 180), length * std::sin(d * M_PI / 180)}), hw});
+  return arms;
+}
+
+// The junction (counter 1) of those streets with their strokes (counter 0): the junction's
+// polygons, and the area of the junction outside every stroke.
+struct JunctionCut {
+  bool drawn = false;
+  std::vector<Polygon> junction;
+  double outside_strokes = 0;
+};
+
+JunctionCut junction_of(const std::vector<std::pair<geom::Vec2, double>>& arms) {
+  PlanarMap map;
+  JunctionCut cut;
+  cut.drawn = map.add_junction({0, 0}, arms, 1);
+  for (auto [toward, hw] : arms) map.add_stroke({{0, 0}, toward}, hw, 0);
+  map.insert_batch();
+  // 0: neither, 1: stroke only, 2: junction inside a stroke, 3: junction outside them.
+  map.label_faces([](const Windings& w) {
+    const bool stroke = geom::winding_of(w, 0) != 0, junction = geom::winding_of(w, 1) != 0;
+    return junction ? (stroke ? 2 : 3) : stroke ? 1 : 0;
+  });
+  auto groups = map.dissolve({-1, -1, 0, 0}, 1);
+  cut.junction = testing_util::polygons(groups[0]);
+  for (const Polygon& p : testing_util::polygons(map.dissolve({-1, -1, -1, 0}, 1)[0])) cut.outside_strokes += area(p);
+  return cut;
+}
+
+}  // namespace
+
+TEST(Junction, RightAngleTAndCrossAreTheSquareWhereTheStreetsMeet) {
+  for (const auto& degrees : std::vector<std::vector<double>>{{0, 90}, {0, 90, 180}, {0, 90, 180, 270}}) {
+    JunctionCut j = junction_of(arms_at(degrees, 5));
+    ASSERT_TRUE(j.drawn);
+    ASSERT_EQ(j.junction.size(), 1u);
+    EXPECT_EQ(area(j.junction[0]), 100) << degrees.size() << " streets";
+  }
+  // The L's outer corner is the mitre, outside both strokes: 5 x 5.
+  EXPECT_EQ(junction_of(arms_at({0, 90}, 5)).outside_strokes, 25);
+}
+
+TEST(Junction, TwoToSixStreetsAtAwkwardAnglesAreOneSimplePolygonAroundTheNode) {
+  const std::vector<std::vector<double>> cases = {
+      {0, 5}, {0, 175}, {0, 90}, {0, 5, 180}, {10, 185, 275}, {0, 5, 90, 175}, {0, 90, 95, 270},
+      {0, 5, 90, 175, 270}, {0, 60, 65, 180, 185, 300}, {0, 55, 175, 180, 260, 265}};
+  for (const auto& degrees : cases) {
+    for (double hw : {2.0, 6.0}) {
+      SCOPED_TRACE(::testing::Message() << degrees.size() << " streets, the second at " << degrees[1] << ", hw " << hw);
+      // Mixed widths: every other street half as wide.
+      auto arms = arms_at(degrees, hw);
+      for (std::size_t i = 1; i < arms.size(); i += 2) arms[i].second = hw / 2;
+      JunctionCut j = junction_of(arms);
+      ASSERT_TRUE(j.drawn);
+      ASSERT_EQ(j.junction.size(), 1u);
+      EXPECT_TRUE(j.junction[0].holes.empty());
+      EXPECT_TRUE(geom::ring_is_simple(j.junction[0].outer));
+      // The node is inside, or on a street's cut (a wide street's flat end, where a
+      // narrow one tapers on from it).
+      const geom::Ring& ring = j.junction[0].outer;
+      bool on_edge = false;
+      for (std::size_t i = 0; i < ring.size(); ++i)
+        on_edge |= geom::distance_to_segment({0, 0}, ring[i], ring[(i + 1) % ring.size()]) == 0;
+      EXPECT_TRUE(on_edge || geom::odd_crossings(ring, {0, 0}));
+      // Outside the strokes it fills only the outer corners of bends: each within the
+      // mitre limit of the node.
+      for (auto p : j.junction[0].outer) EXPECT_LE(std::hypot(p.x, p.y), 4 * hw + 1e-9 + hw / std::tan(2.5 * M_PI / 180));
+      EXPECT_LT(j.outside_strokes, degrees.size() * 16 * hw * hw);
+    }
+  }
+}
+
+TEST(Junction, StreetsRunningStraightOnNeedNone) {
+  PlanarMap map;
+  EXPECT_FALSE(map.add_junction({0, 0}, arms_at({0, 180}, 5), 1));
+  EXPECT_FALSE(map.add_junction({0, 0}, arms_at({30}, 5), 1));
+}
+
+TEST(Junction, SidesPartingPastTheNextVertexAreNotDrawn) {
+  // 5 degrees apart, 20 m long, 12 m wide: their sides part about 137 m out.
+  PlanarMap map;
+  EXPECT_FALSE(map.add_junction({0, 0}, arms_at({0, 5}, 6, 20), 1));
 }

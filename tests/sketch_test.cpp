@@ -3,6 +3,7 @@
 
 #include "generate/errors.h"
 #include "generate/sketch.h"
+#include "generate/street_graph.h"
 
 using namespace exacity;
 
@@ -179,4 +180,65 @@ TEST(Sketch, CameraAndDensityAndModelsAreRead) {
   EXPECT_EQ(s.zone_params.at(ZoneType::Residential).density, "sparse");
   expect_error(with_features(kSquare, R"({"camera": 3})"), {"camera", "orbit:"});
   expect_error(with_features(kSquare, R"({"zones": {"residential": {"density": "packed"}}})"), {"density", "\"dense\""});
+}
+
+namespace {
+
+std::string street(const std::string& coordinates, const std::string& cls = "local") {
+  return R"({"type": "Feature", "properties": {"road": ")" + cls +
+         R"("}, "geometry": {"type": "LineString", "coordinates": )" + coordinates + "}}";
+}
+
+}  // namespace
+
+TEST(SketchErrors, LayoutsAndStreetSettings) {
+  expect_error(with_features(kSquare, R"({"zones": {"residential": {"layout": "grid"}}})"),
+               {"zones.residential.layout", "\"growth\"", "\"streets\""});
+  expect_error(with_features(kSquare, R"({"roads": {"snap": -1}})"), {"roads.snap", "out of range"});
+  expect_error(with_features(kSquare, R"({"roads": {"dead_ends": "warn"}})"), {"roads.dead_ends", "\"error\""});
+  expect_error(with_features(kSquare, R"({"roads": {"local": {"sidewalks": 2}}})"), {"roads.local", "unknown key \"sidewalks\""});
+  expect_error(with_features(kSquare, R"({"roads": {"lane": {}}})"), {"unknown key \"lane\""});
+}
+
+TEST(SketchErrors, ADeadEndIsAnErrorWhenTheSketchSaysSo) {
+  const std::string streets = street("[[0,0],[100,0]]") + "," + street("[[100,0],[100,100],[0,100],[0,0]]") + "," +
+                              street("[[50,0],[50,100]]");
+  EXPECT_EQ(error_of(with_features(streets, R"({"roads": {"dead_ends": "error"}})")), "");  // (50, 0) is on a street
+  expect_error(with_features(streets + "," + street("[[50,100],[60,60]]"), R"({"roads": {"dead_ends": "error"}})"),
+               {"features[3]", "[60.0,60.0]", "dead end", "\"report\""});
+}
+
+TEST(StreetGraph, NearEndsAreJoinedAndFarOnesReportedAsDeadEnds) {
+  Sketch s = parse_sketch(with_features(street("[[0,0],[100,0]]") + "," +
+                                        street("[[100.3,0.2],[100,100]]") +  // 0.36 m from (100, 0): joined
+                                        "," + street("[[50,0.4],[50,-80]]") +  // 0.4 m above the first street's side
+                                        "," + street("[[0,100.6],[0,0]]")),    // 0.6 m short of (0, 100): a dead end
+                          "city.geojson");
+  EXPECT_EQ(s.joined_ends, 2);
+  EXPECT_EQ(s.roads[1].lines[0].front(), (geom::Vec2{100, 0}));
+  EXPECT_EQ(s.roads[2].lines[0].front(), (geom::Vec2{50, 0}));
+  EXPECT_EQ(s.roads[0].lines[0], (geom::Polyline{{0, 0}, {50, 0}, {100, 0}}));  // the T's node is a vertex of both
+  ASSERT_EQ(s.dead_ends.size(), 3u);
+  EXPECT_EQ(s.dead_ends[0].feature, 1);  // (100, 100)
+  EXPECT_EQ(s.dead_ends[1].feature, 2);  // (50, -80)
+  EXPECT_EQ(s.dead_ends[2].feature, 3);
+  EXPECT_EQ(s.dead_ends[2].at, (geom::Vec2{0, 100.6}));
+
+  Sketch exact = parse_sketch(with_features(street("[[0,0],[100,0]]") + "," + street("[[100.3,0.2],[100,100]]"),
+                                            R"({"roads": {"snap": 0}})"),
+                              "city.geojson");
+  EXPECT_EQ(exact.joined_ends, 0);
+  EXPECT_EQ(exact.dead_ends.size(), 4u);
+}
+
+TEST(StreetGraph, NodesAreWhereLinesMeetNotWhereOneBends) {
+  Sketch s = parse_sketch(with_features(street("[[0,0],[100,0],[200,50]]") + "," + street("[[100,0],[100,100]]") + "," +
+                                        street("[[200,50],[300,50]]")),
+                          "city.geojson");
+  auto nodes = street_nodes(s.roads);
+  ASSERT_EQ(nodes.size(), 2u);
+  EXPECT_EQ(nodes[0].at, (geom::Vec2{100, 0}));
+  EXPECT_EQ(nodes[0].arms.size(), 3u);
+  EXPECT_EQ(nodes[1].at, (geom::Vec2{200, 50}));
+  EXPECT_EQ(nodes[1].arms.size(), 2u);
 }

@@ -219,3 +219,22 @@ TEST(ZoneMap, CollinearEdgesAndAZoneDrawnTwice) {
                              zone("residential", "[[[0,0],[10,0],[10,10],[0,10],[0,0]]]")}));
   EXPECT_EQ(a.zone["residential"], 100);
 }
+
+TEST(ZoneMap, StreetsAreCarriagewaysSidewalksAndJunctions) {
+  // Two 10 m roads crossing at a node they share, 2 m sidewalks on highways.
+  std::string text = sketch_text({road(10, "[[-100,0],[0,0],[100,0]]"), road(10, "[[0,-100],[0,0],[0,100]]")});
+  text.insert(text.find("\"features\""), R"("exacity": {"roads": {"highway": {"sidewalk": 2}}}, )");
+  Sketch s = parse_sketch(text, "test.geojson");
+  CityLayers l = extract_layers(build_zone_map(s, nullptr), {}, {}, {}, s);
+  std::map<std::string, double> by_surface;
+  std::map<std::string, int> count;
+  for (const auto& f : l.road_areas.features) {
+    const std::string surface = f.properties["surface"];
+    by_surface[surface] += testing_util::area(f.polygon);
+    ++count[surface];
+  }
+  EXPECT_EQ(count["junction"], 1);
+  EXPECT_EQ(by_surface["junction"], 100);                          // the 10 x 10 square where they cross
+  EXPECT_EQ(by_surface["carriageway"], 2 * 10 * 200 - 2 * 100);   // the rest of both roads
+  EXPECT_EQ(by_surface["sidewalk"], (2 * 14 * 200 - 14 * 14) - (2 * 10 * 200 - 100));  // 14 m wide less 10 m wide
+}
