@@ -167,7 +167,7 @@ int stats(const fs::path& out, const std::vector<fs::path>& real) {
   if (!out.empty()) {
     if (!fs::is_regular_file(out / "sketch.geojson") || !fs::is_directory(out / "vector"))
       throw UserError(out.string() + ": not an output folder of exacity generate (no sketch.geojson or vector/); run exacity generate first");
-    Sketch sketch = load_sketch(out / "sketch.geojson");
+    Sketch sketch = load_sketch(out / "sketch.geojson", false);
     std::vector<std::string> problems;
     const CityLayers layers = read_layers(out / "vector", problems);
     if (!problems.empty()) throw UserError(problems.front() + "; generate the city again");

@@ -1,10 +1,26 @@
 #include "generate/blocks.h"
 
+#include <optional>
+
 #include "geom/measure.h"
 
 namespace exacity {
 
-std::vector<Block> cut_blocks(ZoneMap& zm, const Sketch& sketch) {
+namespace {
+
+// The use of the planned land holding a point inside the block, if any.
+const Terminal* use_of(const geom::Cell& cell, const std::vector<PlannedUse>& uses) {
+  if (uses.empty()) return nullptr;
+  const std::optional<geom::Vec2> inside = cell.point_inside_near(cell.centroid());
+  if (!inside) return nullptr;
+  for (const PlannedUse& u : uses)
+    if (geom::odd_crossings(u.ring, *inside)) return &u.use;
+  return nullptr;
+}
+
+}  // namespace
+
+std::vector<Block> cut_blocks(ZoneMap& zm, const Sketch& sketch, const std::vector<PlannedUse>& uses) {
   std::vector<int> group(zm.labels.size(), -1), road_across(zm.labels.size(), -1);
   for (std::size_t l = 0; l < zm.labels.size(); ++l) {
     const FaceLabel& f = zm.labels[l];
@@ -25,9 +41,13 @@ std::vector<Block> cut_blocks(ZoneMap& zm, const Sketch& sketch) {
     b.zone = static_cast<ZoneType>(types[i]);
     const ZoneParams& p = sketch.zone_params.at(b.zone);
     double a = geom::area(b.polygon);
-    if (a < p.min_block_area || 2 * a / geom::perimeter(b.polygon) < p.min_block_width) {
+    const Terminal* use = use_of(cell, uses);
+    if (a < p.min_block_area || 2 * a / geom::perimeter(b.polygon) < p.min_block_width ||
+        (use && use->kind == Terminal::Park)) {
       b.green = true;
       b.zone = ZoneType::Park;
+    } else if (use && use->kind == Terminal::Land) {
+      b.density = use->density;
     }
     for (int k : cell.edge_kinds())
       if (k >= 0) b.roads.push_back(k);

@@ -3,8 +3,10 @@
 // so the map still tiles the drawn zones.
 #pragma once
 
+#include <string>
 #include <vector>
 
+#include "generate/layout/road_layout.h"
 #include "generate/sketch.h"
 #include "generate/zone_map.h"
 
@@ -16,9 +18,12 @@ struct Block {
   geom::Cell cell;         // exact; an edge's kind is the index of the road across it, or -1
   geom::Polygon polygon;   // rounded
   std::vector<int> roads;  // indices into ZoneMap::roads of the roads it fronts
+  std::string density;     // a grammar's _Dense or _Sparse ("dense", "sparse"); "" for the zone's own
 };
 
 // The blocks, in the map's face order; every face of block b gets a label whose `block` is b.
-std::vector<Block> cut_blocks(ZoneMap& zone_map, const Sketch& sketch);
+// A block takes the use of the layout's land around a point inside it: a grammar's Park
+// makes it green space, its _Dense and _Sparse its density.
+std::vector<Block> cut_blocks(ZoneMap& zone_map, const Sketch& sketch, const std::vector<PlannedUse>& uses = {});
 
 }  // namespace exacity

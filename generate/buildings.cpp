@@ -117,7 +117,8 @@ std::vector<Building> place_buildings(const std::vector<Lot>& lots, const Sketch
   std::vector<std::vector<Building>> placed(lots.size());
   tbb::parallel_for(std::size_t(0), lots.size(), [&](std::size_t i) {
     const Lot& lot = lots[i];
-    const ZoneParams& p = sketch.zone_params.at(lot.zone);
+    ZoneParams p = sketch.zone_params.at(lot.zone);
+    if (!lot.density.empty()) p.density = lot.density;
     Random rng(mix(stage, i));
     std::vector<Building>& here = placed[i];
     std::vector<geom::Ring> taken;

@@ -313,7 +313,7 @@ std::vector<Lot> insert_lots(ZoneMap& zm, const std::vector<PlannedLot>& planned
       if (len > longest) longest = len, ratio = geom::depth_over_width(shape.outer, a, b);
     }
     if (ratio < kLotShape.min || ratio > kLotShape.max) return;
-    kept[i] = Lot{plan.block, plan.zone, std::move(*cell), std::move(shape)};
+    kept[i] = Lot{plan.block, plan.zone, {}, std::move(*cell), std::move(shape)};
   });
   std::vector<Lot> lots;
   for (auto& lot : kept)

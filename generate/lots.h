@@ -29,6 +29,7 @@ struct PlannedLot {
 struct Lot {
   int block = -1;
   ZoneType zone = ZoneType::Residential;
+  std::string density;     // its block's (a grammar's): "" for the zone's own
   geom::Cell cell;         // as written (doubles); edges along a road area have kind kLotRoadEdge, the others 0
   geom::Polygon polygon;   // the same, as a plain polygon
 };

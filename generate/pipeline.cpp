@@ -36,9 +36,11 @@ City build_city(const Sketch& sketch, StageClock& stages) {
   });
   ZoneMap zone_map = stages.run("zone map", [&] { return build_zone_map(sketch, city.ground()); });
   city.network = stages.run("road network", [&] { return grow_road_network(std::move(zone_map), sketch); });
-  city.blocks = stages.run("blocks", [&] { return cut_blocks(city.network.map, sketch); });
+  city.blocks = stages.run("blocks", [&] { return cut_blocks(city.network.map, sketch, city.network.uses); });
   city.lots = stages.run("lots", [&] {
-    return insert_lots(city.network.map, plan_lots(city.blocks, sketch), sketch);
+    std::vector<Lot> lots = insert_lots(city.network.map, plan_lots(city.blocks, sketch), sketch);
+    for (Lot& lot : lots) lot.density = city.blocks[lot.block].density;
+    return lots;
   });
   city.buildings = stages.run("buildings", [&] {
     auto buildings = place_buildings(city.lots, sketch, city.models(), city.ground());

@@ -2,11 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <map>
+#include <numeric>
 #include <optional>
 
 #include <tbb/parallel_for.h>
 
+#include "generate/layout/road_layout.h"
 #include "generate/random.h"
+#include "generate/street_graph.h"
 #include "geom/grid.h"
 #include "geom/measure.h"
 
@@ -284,6 +289,177 @@ int link_islands(ZoneMap& zm, const std::vector<char>& joined, std::vector<Junct
   return links;
 }
 
+
+// A layout's roads, settled into a network: ends that nearly meet joined (within the
+// widest road's width); an end left open runs on ahead to another of the roads, or to the
+// centre line of the sketch road whose surface it reaches, or to the region's edge; a road
+// with an end that reaches none of them is dropped, until none is. Roads that meet are one
+// piece.
+struct SettledRoad {
+  geom::Path path;
+  double width = 0;
+  RoadClass road_class = RoadClass::Local;
+  int piece = 0;                // roads of one piece meet, directly or through others
+  bool reaches_sketch = false;  // its piece runs on to a sketch road
+};
+
+std::vector<SettledRoad> settle(const std::vector<PlannedRoad>& planned, const geom::Cell& cell,
+                                const SketchLines& sketch_lines) {
+  std::vector<RoadFeature> roads;
+  double widest = 0, widest_sketch = 0;
+  for (const PlannedRoad& r : planned) {
+    roads.push_back({static_cast<int>(roads.size()), r.road_class, r.width, {r.line}});
+    widest = std::max(widest, r.width);
+  }
+  join_near_ends(roads, widest);
+  const double reach = std::max(3 * widest, 0.1 * std::sqrt(cell.area()));
+  std::vector<geom::Path> sketch_targets, edges;
+  for (const SketchRoad& s : sketch_lines) {
+    sketch_targets.insert(sketch_targets.end(), s.lines.begin(), s.lines.end());
+    widest_sketch = std::max(widest_sketch, s.width);
+  }
+  for (const geom::KindedRing& r : cell.kinded_rings()) {
+    geom::Polyline closed = r.points;
+    closed.push_back(r.points.front());
+    edges.push_back(geom::Path::from(closed));
+  }
+  std::vector<char> live(roads.size(), 1);
+  for (std::size_t i = 0; i < roads.size(); ++i) {
+    const geom::Polyline& l = roads[i].lines[0];
+    live[i] = l.size() >= 2 && !(l.front() == l.back());
+  }
+  std::vector<SettledRoad> settled;
+  std::vector<std::pair<int, int>> meetings;  // (road, road) met by running on
+  std::vector<int> index;                     // settled road -> road
+  for (bool dropped = true; dropped;) {
+    dropped = false;
+    std::map<std::pair<double, double>, int> uses;
+    std::vector<int> others;
+    for (std::size_t i = 0; i < roads.size(); ++i)
+      if (live[i]) {
+        others.push_back(static_cast<int>(i));
+        for (geom::Vec2 p : roads[i].lines[0]) ++uses[{p.x, p.y}];
+      }
+    settled.clear(), meetings.clear(), index.clear();
+    for (std::size_t i = 0; i < roads.size() && !dropped; ++i) {
+      if (!live[i]) continue;
+      const geom::Polyline& line = roads[i].lines[0];
+      std::vector<geom::Path> ahead;
+      std::vector<int> ahead_road;
+      for (int o : others)
+        if (o != static_cast<int>(i)) ahead.push_back(geom::Path::from(roads[o].lines[0])), ahead_road.push_back(o);
+      geom::Path path = geom::Path::from(line);
+      bool to_sketch = false;
+      for (bool back : {true, false}) {
+        const geom::Vec2 end = back ? line.back() : line.front();
+        if (!back) path = path.reversed();
+        if (uses[{end.x, end.y}] > 1) continue;
+        const std::size_t n = path.size();
+        geom::Path on = geom::extend_to(path, ahead, reach);
+        if (on.size() > n) {
+          // The road it ran on to: the one nearest its new end.
+          const geom::Vec2 p = on.point(on.size() - 1);
+          double best = INFINITY;
+          int met = -1;
+          for (std::size_t k = 0; k < ahead_road.size(); ++k) {
+            const geom::Polyline& l = roads[ahead_road[k]].lines[0];
+            for (std::size_t s = 0; s + 1 < l.size(); ++s)
+              if (const double d = geom::distance_to_segment(p, l[s], l[s + 1]); d < best) best = d, met = ahead_road[k];
+          }
+          meetings.push_back({static_cast<int>(i), met});
+          path = on;
+          continue;
+        }
+        on = geom::extend_to(path, sketch_targets, roads[i].width + widest_sketch);
+        if (on.size() > n) {
+          path = on, to_sketch = true;
+          continue;
+        }
+        on = geom::extend_to(path, edges, 2 * roads[i].width);
+        if (on.size() > n) {
+          path = on;
+          continue;
+        }
+        live[i] = 0, dropped = true;
+        break;
+      }
+      if (dropped) break;
+      index.push_back(static_cast<int>(i));
+      settled.push_back({path, roads[i].width, roads[i].road_class, 0, to_sketch});
+    }
+  }
+  // Pieces: roads sharing a vertex, or one running on to another.
+  std::vector<int> piece(roads.size());
+  std::iota(piece.begin(), piece.end(), 0);
+  std::function<int(int)> find = [&](int x) { return piece[x] == x ? x : piece[x] = find(piece[x]); };
+  std::map<std::pair<double, double>, int> first_at;
+  for (int i : index)
+    for (geom::Vec2 p : roads[i].lines[0])
+      if (auto [it, added] = first_at.emplace(std::make_pair(p.x, p.y), i); !added) piece[find(i)] = find(it->second);
+  for (auto [a, b] : meetings) piece[find(a)] = find(b);
+  std::map<int, bool> reaches;
+  for (std::size_t k = 0; k < settled.size(); ++k) reaches[find(index[k])] |= settled[k].reaches_sketch;
+  for (std::size_t k = 0; k < settled.size(); ++k) {
+    settled[k].piece = find(index[k]);
+    settled[k].reaches_sketch = reaches[settled[k].piece];
+  }
+  return settled;
+}
+
+// The regions of zones whose layout is not growth (generate/layout), each planned alone,
+// in parallel, then settled into the map's roads. Each connected piece of a region's roads
+// counts as a region of its own, so link_islands joins every piece to the rest.
+void lay_out_regions(ZoneMap& zm, const Sketch& sketch, const SketchLines& sketch_lines, std::vector<char>& joined,
+                     std::vector<Junction>& junctions, std::vector<PlannedUse>& uses, RoadNetworkStats& stats) {
+  std::map<ZoneType, std::unique_ptr<RoadLayout>> layouts;
+  for (const auto& [t, p] : sketch.zone_params)
+    if (grows_roads(t) && p.layout == "grammar") layouts[t] = make_road_layout(p, t);
+  if (layouts.empty()) return;
+  std::vector<int> group(zm.labels.size(), -1), kind(zm.labels.size(), kEdge);
+  for (std::size_t l = 0; l < zm.labels.size(); ++l) {
+    const FaceLabel& f = zm.labels[l];
+    if (f.cover == Cover::Zone && f.zone >= 0 && layouts.count(sketch.zones[f.zone].type))
+      group[l] = static_cast<int>(sketch.zones[f.zone].type);
+    if (f.road_surface() && f.road < zm.sketch_roads) kind[l] = kSketchRoad + f.road;
+  }
+  std::vector<int> types;
+  std::vector<geom::Cell> cells = zm.map.cells(group, kind, &types);
+  const std::uint64_t stage = mix(mix(sketch.seed, static_cast<std::uint64_t>(Stage::Roads)), 0x1a1047);
+  std::vector<std::vector<SettledRoad>> settled(cells.size());
+  std::vector<RoadPlan> plans(cells.size());
+  tbb::parallel_for(std::size_t(0), cells.size(), [&](std::size_t i) {
+    Random rng(mix(stage, i));
+    plans[i] = layouts.at(static_cast<ZoneType>(types[i]))->plan({cells[i], edges_to_reach(cells[i], true)}, rng);
+    settled[i] = settle(plans[i].roads, cells[i], sketch_lines);
+  });
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    for (PlannedUse& u : plans[i].uses) uses.push_back(std::move(u));
+    const std::vector<SettledRoad>& roads = settled[i];
+    std::map<int, int> region_of_piece;
+    for (const SettledRoad& r : roads) {
+      auto [it, added] = region_of_piece.emplace(r.piece, static_cast<int>(joined.size()));
+      if (added) joined.push_back(r.reaches_sketch), ++stats.regions;
+    }
+    std::map<std::pair<double, double>, std::vector<int>> at;  // where roads meet end to end or at a shared vertex
+    for (std::size_t r = 0; r < roads.size(); ++r)
+      for (std::size_t k = 0; k < roads[r].path.size(); ++k) {
+        const geom::Vec2 p = roads[r].path.point(k);
+        at[{p.x, p.y}].push_back(static_cast<int>(r));
+      }
+    const int first = static_cast<int>(zm.roads.size());
+    for (std::size_t r = 0; r < roads.size(); ++r) {
+      MapRoad m;
+      m.road_class = roads[r].road_class;
+      m.width = roads[r].width;
+      m.level = roads[r].road_class == RoadClass::Main ? 0 : 1;
+      m.region = region_of_piece[roads[r].piece];
+      m.lines.push_back(roads[r].path);
+      zm.roads.push_back(std::move(m));
+    }
+    for (const auto& [p, here] : at)
+      if (here.size() > 1) junctions.push_back({{p.first, p.second}, first + here.front()});
+  }
+}
 }  // namespace
 
 RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
@@ -398,6 +574,7 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
     }
     level_work = std::move(next);
   }
+  lay_out_regions(zm, sketch, sketch_lines, joined, junctions, net.uses, net.stats);
   net.stats.links = link_islands(zm, joined, junctions);
 
   // Every generated road into the map in one batch: centre line, area, and a disc where

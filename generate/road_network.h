@@ -3,6 +3,7 @@
 // region, and each part above its zone's block area is grown again, one level deeper.
 #pragma once
 
+#include "generate/layout/road_layout.h"
 #include "generate/sketch.h"
 #include "generate/zone_map.h"
 
@@ -18,6 +19,7 @@ struct RoadNetworkStats {
 struct RoadNetwork {
   ZoneMap map;  // the zone map with the grown roads' centre lines and areas, relabelled
   RoadNetworkStats stats;
+  std::vector<PlannedUse> uses;  // land a layout gave a use (a grammar's terminals)
 };
 
 RoadNetwork grow_road_network(ZoneMap zones, const Sketch& sketch);

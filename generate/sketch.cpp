@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "generate/errors.h"
+#include "generate/layout/grammar.h"
 #include "generate/street_graph.h"
 #include "geom/measure.h"
 
@@ -93,7 +94,7 @@ std::string list(const std::array<std::string_view, N>& names) {
 
 class Parser {
  public:
-  explicit Parser(const fs::path& path) : file_(path.string()) {}
+  Parser(const fs::path& path, bool read_grammars) : file_(path.string()), read_grammars_(read_grammars) {}
 
   [[noreturn]] void fail(const std::string& where, const std::string& what) const {
     throw UserError(file_ + ": " + where + ": " + what);
@@ -357,7 +358,7 @@ class Parser {
   ZoneParams zone_params(const json& j, ZoneType zt, const std::string& w) const {
     known_keys(j, w, {"block_area", "segment_length", "branches", "jitter", "segment_deviation",
                       "origin_deviation", "road_widths", "min_block_area", "min_block_width",
-                      "bridges", "layout", "lots", "lot_area", "min_lot_edge", "min_lot_area", "setback", "heights",
+                      "bridges", "layout", "grammar", "grammar_depth", "lots", "lot_area", "min_lot_edge", "min_lot_area", "setback", "heights",
                       "min_footprint_area", "roof", "roof_pitch", "density", "lot_width", "lot_depth",
                       "building_gap", "footprint_width", "footprint_depth", "min_footprint_width",
                       "max_footprint_area"});
@@ -422,11 +423,22 @@ class Parser {
       p.max_height = number(h[1], w + ".heights", p.min_height, 1000);
     }
     if (j.contains("layout")) {
-      if (j["layout"] != "growth" && j["layout"] != "streets")
-        fail(w + ".layout", "expected \"growth\" (seed 000's growing roads) or \"streets\" (the sketch's roads only); "
-                            "\"grammar\" and \"voronoi\" are not built yet");
+      if (j["layout"] != "growth" && j["layout"] != "grammar" && j["layout"] != "streets")
+        fail(w + ".layout", "expected \"growth\" (seed 000's growing roads), \"grammar\" (seed 002's split grammar, "
+                            "with \"grammar\": FILE) or \"streets\" (the sketch's roads only); \"voronoi\" is not "
+                            "built yet");
       p.layout = j["layout"].get<std::string>();
     }
+    if (j.contains("grammar_depth")) {
+      if (!j["grammar_depth"].is_number_integer()) fail(w + ".grammar_depth", "expected a whole number of rules, 1 to 32");
+      p.grammar_depth = static_cast<int>(number(j["grammar_depth"], w + ".grammar_depth", 1, 32));
+    }
+    if (j.contains("grammar")) {
+      if (!j["grammar"].is_string()) fail(w + ".grammar", "expected the path of a grammar file (a string), relative to the sketch");
+      const fs::path file = fs::path(file_).parent_path() / j["grammar"].get<std::string>();
+      p.grammar = std::make_shared<Grammar>(read_grammars_ ? load_grammar(file) : Grammar{file, {}});
+    }
+    if (p.layout == "grammar" && !p.grammar) fail(w + ".layout", "\"grammar\" needs \"grammar\": the path of a grammar file");
     if (j.contains("lots")) {
       if (!j["lots"].is_string() || (j["lots"] != "allocation" && j["lots"] != "split"))
         fail(w + ".lots", "expected \"allocation\" (seed 000) or \"split\" (seed 003)");
@@ -441,12 +453,13 @@ class Parser {
 
  private:
   std::string file_;
+  bool read_grammars_;
 };
 
 }  // namespace
 
-Sketch parse_sketch(const std::string& text, const fs::path& path) {
-  Parser parser(path);
+Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_grammars) {
+  Parser parser(path, read_grammars);
   json doc;
   std::string marked = text;
   try {
@@ -499,7 +512,7 @@ Sketch parse_sketch(const std::string& text, const fs::path& path) {
   return sketch;
 }
 
-Sketch load_sketch(const fs::path& path) {
+Sketch load_sketch(const fs::path& path, bool read_grammars) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw UserError(path.string() + ": cannot read the sketch (" +
@@ -508,7 +521,7 @@ Sketch load_sketch(const fs::path& path) {
   }
   std::stringstream ss;
   ss << in.rdbuf();
-  return parse_sketch(ss.str(), path);
+  return parse_sketch(ss.str(), path, read_grammars);
 }
 
 }  // namespace exacity

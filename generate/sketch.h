@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,8 @@
 
 namespace exacity {
 
+struct Grammar;
+
 struct Range {
   double min = 0, max = 0;
   friend bool operator==(const Range&, const Range&) = default;
@@ -23,9 +26,12 @@ struct Range {
 
 // Road growth parameters of one zone type (used from the road-network stage on).
 struct ZoneParams {
-  // How the zone's roads are laid out: "growth" (seed 000's recursive growth) or "streets"
-  // (seed 004: none are generated; the sketch's roads are the whole network).
+  // How the zone's roads are laid out: "growth" (seed 000's recursive growth), "grammar"
+  // (seed 002's split grammar from a file) or "streets" (seed 004: none are generated; the
+  // sketch's roads are the whole network).
   std::string layout = "growth";
+  std::shared_ptr<const Grammar> grammar;  // "grammar": the file, read with the sketch
+  int grammar_depth = 8;                   // rules applied at most, from a root down
   double block_area = 12000;        // m²: faces above this are subdivided again
   double segment_length = 40;       // m: one growth step
   int branches = 4;                 // roads grown from each seed point
@@ -115,8 +121,10 @@ ZoneParams default_params(ZoneType type);
 double road_width(const ZoneParams& p, int level);
 double default_width(RoadClass road_class);
 
-// Throws UserError with one line naming the file, the feature and the fix.
-Sketch load_sketch(const std::filesystem::path& path);
-Sketch parse_sketch(const std::string& text, const std::filesystem::path& path);
+// Throws UserError with one line naming the file, the feature and the fix. With
+// `read_grammars` false (for `exacity validate`, which reads a copy of the sketch away from
+// its files), grammar files are named but not read.
+Sketch load_sketch(const std::filesystem::path& path, bool read_grammars = true);
+Sketch parse_sketch(const std::string& text, const std::filesystem::path& path, bool read_grammars = true);
 
 }  // namespace exacity

@@ -293,7 +293,7 @@ Validation validate_output(const fs::path& dir) {
   Checker c(v);
   Sketch sketch;
   try {
-    sketch = load_sketch(dir / "sketch.geojson");
+    sketch = load_sketch(dir / "sketch.geojson", false);
   } catch (const UserError& e) {
     c.problem(std::string("sketch copy: ") + e.what());
     return v;

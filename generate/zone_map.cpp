@@ -64,11 +64,12 @@ void ZoneMap::label(const Sketch& sketch) {
     l.zone = drawn->top_zone(w);
     const ZoneType type = l.zone >= 0 ? sketch.zones[l.zone].type : ZoneType::Park;
     const bool water = geom::winding_of(w, kWater) != 0 || (l.zone >= 0 && type == ZoneType::Water);
-    // A grown road paves only where roads grow: its flat end stops at the region's edge. A
-    // link paves all its way, over open land, parks and water.
+    // A generated road paves only where roads are generated (not in a zone laid out as
+    // "streets"): its flat end stops at the region's edge. A link paves all its way, over
+    // open land, parks and water.
     const ZoneParams& params = sketch.zone_params.at(type);
     const bool paved_by_growth =
-        l.zone >= 0 && grows_roads(type) && params.layout == "growth" && (!water || params.bridges);
+        l.zone >= 0 && grows_roads(type) && params.layout != "streets" && (!water || params.bridges);
     // Counters grow with road index, so the first road found is the first listed: it owns
     // a crossing.
     int carriageway = -1, sidewalk = -1, junction = -1;

@@ -22,6 +22,12 @@ Path Path::from(const Polyline& line) {
   return Path(std::move(impl));
 }
 
+Path Path::reversed() const {
+  auto impl = std::make_shared<Impl>();
+  if (impl_) impl->points.assign(impl_->points.rbegin(), impl_->points.rend());
+  return Path(std::move(impl));
+}
+
 std::size_t Path::size() const { return impl_ ? impl_->points.size() : 0; }
 Vec2 Path::point(std::size_t i) const { return exact::to_plain(impl_->points[i]); }
 

@@ -19,6 +19,7 @@ class Path {
   Path() = default;
   explicit Path(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
   static Path from(const Polyline& line);  // the doubles as exact points
+  Path reversed() const;
 
   std::size_t size() const;
   bool empty() const { return size() < 2; }

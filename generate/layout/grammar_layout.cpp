@@ -1,0 +1,98 @@
+// Seed 002's layout: the region's triangles and near-square quads grow by a split grammar;
+// each road leaf becomes one road down its middle, and each land leaf a use.
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "generate/layout/road_layout.h"
+#include "geom/grid.h"
+#include "geom/measure.h"
+
+namespace exacity {
+namespace {
+
+geom::Vec2 mid(geom::Vec2 a, geom::Vec2 b) { return {(a.x + b.x) / 2, (a.y + b.y) / 2}; }
+double length(geom::Vec2 a, geom::Vec2 b) { return std::hypot(b.x - a.x, b.y - a.y); }
+
+// Whether segment a-b lies along p-q (both ends within a hair of it).
+bool lies_along(geom::Vec2 a, geom::Vec2 b, geom::Vec2 p, geom::Vec2 q) {
+  const double tolerance = 1e-7 * (length(p, q) + std::abs(p.x) + std::abs(p.y)) + 1e-9;
+  return geom::distance_to_segment(a, p, q) <= tolerance && geom::distance_to_segment(b, p, q) <= tolerance;
+}
+
+geom::Vec2 project(geom::Vec2 a, geom::Vec2 p, geom::Vec2 q) {
+  const double dx = q.x - p.x, dy = q.y - p.y;
+  const double t = std::clamp(((a.x - p.x) * dx + (a.y - p.y) * dy) / (dx * dx + dy * dy), 0.0, 1.0);
+  return {p.x + t * dx, p.y + t * dy};
+}
+
+class GrammarLayout : public RoadLayout {
+ public:
+  GrammarLayout(const ZoneParams& params, ZoneType type) : params_(params), type_(type) {}
+
+  RoadPlan plan(const Region& region, Random& random) const override {
+    std::vector<std::vector<geom::Vec2>> roots;
+    for (const geom::Polygon& p : region.cell.rounded())
+      for (auto& r : layout_roots(p)) roots.push_back(std::move(r));
+    // Root edges two roots share: a road along one is built once, centred on it (seed
+    // 002's tree puts one on each side).
+    std::map<std::pair<std::pair<double, double>, std::pair<double, double>>, int> edge_roots;
+    auto key = [](geom::Vec2 a, geom::Vec2 b) {
+      std::pair<double, double> x{a.x, a.y}, y{b.x, b.y};
+      return x < y ? std::make_pair(x, y) : std::make_pair(y, x);
+    };
+    for (const auto& r : roots)
+      for (std::size_t i = 0; i < r.size(); ++i) ++edge_roots[key(r[i], r[(i + 1) % r.size()])];
+    std::map<decltype(key({}, {})), bool> built;
+
+    RoadPlan plan;
+    for (GrammarLeaf& leaf : grow_layout(*params_.grammar, roots, params_.grammar_depth, params_.min_block_area, random.next())) {
+      Terminal t;
+      if (!parse_terminal(leaf.name, t)) t.type = type_;  // a symbol left at the depth bound
+      if (t.kind != Terminal::Road) {
+        plan.uses.push_back({std::move(leaf.corners), t});
+        continue;
+      }
+      const auto& c = leaf.corners;
+      const geom::Vec2 a = c[0], b = c[1];
+      if (length(a, b) == 0) continue;
+      bool along_sketch = false;
+      for (auto [p, q] : region.along_sketch_roads) along_sketch |= lies_along(a, b, p, q);
+      if (along_sketch) continue;  // the sketch's road runs there
+      // The grammar places a road; its width is the zone's, by level, as a grown road's.
+      PlannedRoad road;
+      road.road_class = leaf.depth <= 1 ? RoadClass::Main : RoadClass::Local;
+      road.width = road_width(params_, leaf.depth - 1);
+      bool on_shared_edge = false;
+      const auto& root = roots[leaf.root];
+      for (std::size_t i = 0; i < root.size() && !on_shared_edge; ++i) {
+        const geom::Vec2 p = root[i], q = root[(i + 1) % root.size()];
+        if (edge_roots[key(p, q)] < 2 || !lies_along(a, b, p, q)) continue;
+        on_shared_edge = true;
+        if (built[key(p, q)]) break;
+        built[key(p, q)] = true;
+        road.line = {geom::snap(project(a, p, q)), geom::snap(project(b, p, q))};
+      }
+      if (on_shared_edge && road.line.empty()) continue;  // built from the other side
+      if (!on_shared_edge) {
+        road.line = c.size() == 4 ? geom::Polyline{geom::snap(mid(c[3], a)), geom::snap(mid(b, c[2]))}
+                                  : geom::Polyline{geom::snap(mid(c[2], a)), geom::snap(mid(b, c[2]))};
+      }
+      if (road.line[0] == road.line[1]) continue;
+      plan.roads.push_back(std::move(road));
+    }
+    return plan;
+  }
+
+ private:
+  ZoneParams params_;
+  ZoneType type_;
+};
+
+}  // namespace
+
+std::unique_ptr<RoadLayout> make_grammar_layout(const ZoneParams& params, ZoneType type) {
+  return std::make_unique<GrammarLayout>(params, type);
+}
+
+}  // namespace exacity
