@@ -271,10 +271,12 @@ TEST(Cli, BadInputExitsTwoWithOneLineAndNoOutput) {
       {"vast", R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"zone":"residential"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[1e6,0],[1e6,1e6],[0,0]]]}}]})", "more than the 50000 one run builds"},
       {"library", R"({"type":"FeatureCollection","exacity":{"models":"missing.json"},"features":[)" + zone + "]}", "cannot read the model library"},
       {"model", R"({"type":"FeatureCollection","exacity":{"models":"bad-library.json"},"features":[)" + zone + "]}", "line 2: vertex index 2 points to none"},
+      {"grammar", R"({"type":"FeatureCollection","exacity":{"zones":{"park":{"layout":"grammar","grammar":"bad.grammar"}}},"features":[)" + zone + "]}", "bad.grammar:2: the corner count \"5\""},
       {"deadend", R"({"type":"FeatureCollection","exacity":{"roads":{"dead_ends":"error"}},"features":[)" + zone + R"(,{"type":"Feature","properties":{"road":"local"},"geometry":{"type":"LineString","coordinates":[[0,0],[9,9]]}}]})", "meeting no other road"},
   };
   std::ofstream(dir / "bad-library.json") << R"({"models": [{"file": "bad.obj", "zones": ["residential"]}]})";
   std::ofstream(dir / "bad.obj") << "v 0 0 0\nf 1 2 5\n";
+  std::ofstream(dir / "bad.grammar") << "1 Town 4 Park,0,0,1,0,1,1,0,1\n1 Park 5 Park,0,0,1,0,1,1,0,1\n";
   for (const Case& c : cases) {
     fs::path sketch = dir / (c.name + ".geojson");
     std::ofstream(sketch) << c.text;
@@ -285,6 +287,7 @@ TEST(Cli, BadInputExitsTwoWithOneLineAndNoOutput) {
     std::string file = c.name == "heightmap" ? (dir / "missing.png").string()
                        : c.name == "library" ? (dir / "missing.json").string()
                        : c.name == "model"   ? (dir / "bad.obj").string()
+                       : c.name == "grammar" ? (dir / "bad.grammar").string()
                                              : sketch.string();
     EXPECT_NE(r.out.find(file), std::string::npos) << "names the file: " << r.out;
     EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << "one line: " << r.out;
