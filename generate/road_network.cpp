@@ -6,6 +6,7 @@
 #include <map>
 #include <numeric>
 #include <optional>
+#include <set>
 
 #include <tbb/parallel_for.h>
 
@@ -303,6 +304,32 @@ struct SettledRoad {
   bool reaches_sketch = false;  // its piece runs on to a sketch road
 };
 
+// Joining ends can lay a short road along another's segment: each segment is kept in the
+// first road that has it, the roads cut where they repeat one.
+std::vector<RoadFeature> without_repeated_segments(const std::vector<RoadFeature>& roads) {
+  std::set<std::pair<std::pair<double, double>, std::pair<double, double>>> seen;
+  std::vector<RoadFeature> out;
+  for (const RoadFeature& r : roads) {
+    const geom::Polyline& line = r.lines[0];
+    geom::Polyline piece;
+    auto flush = [&] {
+      if (piece.size() >= 2) out.push_back({static_cast<int>(out.size()), r.road_class, r.width, {piece}});
+      piece.clear();
+    };
+    for (std::size_t k = 0; k + 1 < line.size(); ++k) {
+      std::pair<double, double> a{line[k].x, line[k].y}, b{line[k + 1].x, line[k + 1].y};
+      if (!seen.insert(a < b ? std::make_pair(a, b) : std::make_pair(b, a)).second) {
+        flush();
+        continue;
+      }
+      if (piece.empty()) piece.push_back(line[k]);
+      piece.push_back(line[k + 1]);
+    }
+    flush();
+  }
+  return out;
+}
+
 std::vector<SettledRoad> settle(const std::vector<PlannedRoad>& planned, const geom::Cell& cell,
                                 const SketchLines& sketch_lines) {
   std::vector<RoadFeature> roads;
@@ -312,6 +339,7 @@ std::vector<SettledRoad> settle(const std::vector<PlannedRoad>& planned, const g
     widest = std::max(widest, r.width);
   }
   join_near_ends(roads, widest);
+  roads = without_repeated_segments(roads);
   const double reach = std::max(3 * widest, 0.1 * std::sqrt(cell.area()));
   std::vector<geom::Path> sketch_targets, edges;
   for (const SketchRoad& s : sketch_lines) {
@@ -355,10 +383,28 @@ std::vector<SettledRoad> settle(const std::vector<PlannedRoad>& planned, const g
         if (!back) path = path.reversed();
         if (uses[{end.x, end.y}] > 1) continue;
         const std::size_t n = path.size();
-        geom::Path on = geom::extend_to(path, ahead, reach);
-        if (on.size() > n) {
+        // Straight on to another road; to a sketch road or the edge, turning if need be;
+        // else turning to the nearest other road.
+        std::optional<geom::Path> on;
+        bool to_road = false;
+        for (int step = 0; step < 4 && !on; ++step) {
+          geom::Path longer = step == 0   ? geom::extend_to(path, ahead, reach, false)
+                              : step == 1 ? geom::extend_to(path, sketch_targets, roads[i].width + widest_sketch)
+                              : step == 2 ? geom::extend_to(path, edges, 2 * roads[i].width)
+                                          : geom::extend_to(path, ahead, reach);
+          if (longer.size() == n) continue;
+          on = longer, to_road = step == 0 || step == 3, to_sketch |= step == 1;
+        }
+        if (!on) {
+          live[i] = 0, dropped = true;
+          break;
+        }
+        path = *on;
+        const geom::Vec2 p = path.point(path.size() - 1);
+        // An open end run on to is no longer open: the road there does not run back.
+        if (auto it = uses.find({p.x, p.y}); it != uses.end()) ++it->second;
+        if (to_road) {
           // The road it ran on to: the one nearest its new end.
-          const geom::Vec2 p = on.point(on.size() - 1);
           double best = INFINITY;
           int met = -1;
           for (std::size_t k = 0; k < ahead_road.size(); ++k) {
@@ -367,21 +413,7 @@ std::vector<SettledRoad> settle(const std::vector<PlannedRoad>& planned, const g
               if (const double d = geom::distance_to_segment(p, l[s], l[s + 1]); d < best) best = d, met = ahead_road[k];
           }
           meetings.push_back({static_cast<int>(i), met});
-          path = on;
-          continue;
         }
-        on = geom::extend_to(path, sketch_targets, roads[i].width + widest_sketch);
-        if (on.size() > n) {
-          path = on, to_sketch = true;
-          continue;
-        }
-        on = geom::extend_to(path, edges, 2 * roads[i].width);
-        if (on.size() > n) {
-          path = on;
-          continue;
-        }
-        live[i] = 0, dropped = true;
-        break;
       }
       if (dropped) break;
       index.push_back(static_cast<int>(i));
@@ -413,7 +445,7 @@ void lay_out_regions(ZoneMap& zm, const Sketch& sketch, const SketchLines& sketc
                      std::vector<Junction>& junctions, std::vector<PlannedUse>& uses, RoadNetworkStats& stats) {
   std::map<ZoneType, std::unique_ptr<RoadLayout>> layouts;
   for (const auto& [t, p] : sketch.zone_params)
-    if (grows_roads(t) && p.layout == "grammar") layouts[t] = make_road_layout(p, t);
+    if (grows_roads(t) && (p.layout == "grammar" || p.layout == "voronoi")) layouts[t] = make_road_layout(p, t);
   if (layouts.empty()) return;
   std::vector<int> group(zm.labels.size(), -1), kind(zm.labels.size(), kEdge);
   for (std::size_t l = 0; l < zm.labels.size(); ++l) {

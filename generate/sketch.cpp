@@ -358,7 +358,7 @@ class Parser {
   ZoneParams zone_params(const json& j, ZoneType zt, const std::string& w) const {
     known_keys(j, w, {"block_area", "segment_length", "branches", "jitter", "segment_deviation",
                       "origin_deviation", "road_widths", "min_block_area", "min_block_width",
-                      "bridges", "layout", "grammar", "grammar_depth", "lots", "lot_area", "min_lot_edge", "min_lot_area", "setback", "heights",
+                      "bridges", "layout", "grammar", "grammar_depth", "cell_size", "junction_spacing", "lots", "lot_area", "min_lot_edge", "min_lot_area", "setback", "heights",
                       "min_footprint_area", "roof", "roof_pitch", "density", "lot_width", "lot_depth",
                       "building_gap", "footprint_width", "footprint_depth", "min_footprint_width",
                       "max_footprint_area"});
@@ -423,12 +423,16 @@ class Parser {
       p.max_height = number(h[1], w + ".heights", p.min_height, 1000);
     }
     if (j.contains("layout")) {
-      if (j["layout"] != "growth" && j["layout"] != "grammar" && j["layout"] != "streets")
+      if (j["layout"] != "growth" && j["layout"] != "grammar" && j["layout"] != "voronoi" && j["layout"] != "streets")
         fail(w + ".layout", "expected \"growth\" (seed 000's growing roads), \"grammar\" (seed 002's split grammar, "
-                            "with \"grammar\": FILE) or \"streets\" (the sketch's roads only); \"voronoi\" is not "
-                            "built yet");
+                            "with \"grammar\": FILE), \"voronoi\" (seed 003's Voronoi streets) or \"streets\" (the "
+                            "sketch's roads only)");
       p.layout = j["layout"].get<std::string>();
+      // Seed 003 splits its plots into lots.
+      if (p.layout == "voronoi" && !j.contains("lots")) p.lots = "split";
     }
+    set("cell_size", p.cell_size, 20, 1e5);
+    set("junction_spacing", p.junction_spacing, 5, 1e5);
     if (j.contains("grammar_depth")) {
       if (!j["grammar_depth"].is_number_integer()) fail(w + ".grammar_depth", "expected a whole number of rules, 1 to 32");
       p.grammar_depth = static_cast<int>(number(j["grammar_depth"], w + ".grammar_depth", 1, 32));

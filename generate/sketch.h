@@ -27,11 +27,13 @@ struct Range {
 // Road growth parameters of one zone type (used from the road-network stage on).
 struct ZoneParams {
   // How the zone's roads are laid out: "growth" (seed 000's recursive growth), "grammar"
-  // (seed 002's split grammar from a file) or "streets" (seed 004: none are generated; the
-  // sketch's roads are the whole network).
+  // (seed 002's split grammar from a file), "voronoi" (seed 003's Voronoi streets) or
+  // "streets" (seed 004: none are generated; the sketch's roads are the whole network).
   std::string layout = "growth";
   std::shared_ptr<const Grammar> grammar;  // "grammar": the file, read with the sketch
   int grammar_depth = 8;                   // rules applied at most, from a root down
+  double cell_size = 180;                  // m: "voronoi": one point per square this size
+  double junction_spacing = 60;            // m: "voronoi": junctions at about this step along the cells' roads
   double block_area = 12000;        // m²: faces above this are subdivided again
   double segment_length = 40;       // m: one growth step
   int branches = 4;                 // roads grown from each seed point

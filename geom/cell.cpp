@@ -237,7 +237,7 @@ std::vector<int> Cell::edge_kinds() const {
   return kinds;
 }
 
-Path extend_to(const Path& road, const std::vector<Path>& targets, double reach) {
+Path extend_to(const Path& road, const std::vector<Path>& targets, double reach, bool may_turn) {
   const auto& pts = road.exact().points;
   if (pts.size() < 2) return road;
   const Point &p = pts[pts.size() - 2], &q = pts.back();
@@ -269,7 +269,7 @@ Path extend_to(const Path& road, const std::vector<Path>& targets, double reach)
       if (!best || CGAL::has_smaller_distance_to_point(q, *x, *best)) best = *x;
     }
   }
-  if (!best) {
+  if (!best && may_turn) {
     auto end = std::make_shared<Path::Impl>();
     end->points.push_back(q);
     const std::optional<Link> link = shortest_link({Path(std::move(end))}, targets);

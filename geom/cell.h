@@ -124,8 +124,8 @@ std::optional<Link> shortest_link(const std::vector<Path>& from, const std::vect
 // centre line of the road whose surface it stopped at). Where its line meets none there (it
 // stopped at a road's end cap, or met the surface at so shallow an angle that the centre
 // line is beyond reach), it turns to the nearest point of the targets within `reach`
-// instead; unchanged when there is none.
-Path extend_to(const Path& road, const std::vector<Path>& targets, double reach);
+// instead, unless `may_turn` is false; unchanged when there is none.
+Path extend_to(const Path& road, const std::vector<Path>& targets, double reach, bool may_turn = true);
 
 // The cell less a band of width `setback` inside every boundary edge (DESIGN.md rule 3:
 // each band's inner side runs through two offset points rounded to the grid); the parts

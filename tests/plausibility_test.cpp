@@ -96,6 +96,20 @@ std::vector<Shape> shapes() {
        {zone("residential", {{{0, 0}, {700, 0}, {700, 500}, {0, 500}}}),
         zone("commercial", {{{700, 0}, {1000, 0}, {1000, 900}, {700, 900}}})},
        R"({"residential": {"branches": 1}, "commercial": {"branches": 3}})"},
+      // The other layouts (issue 12) on shapes written to break them: a street graph drawn by
+      // hand (ends short of and past the streets they meet), Voronoi streets in a comb, a
+      // split grammar in a U.
+      {"streets",
+       {zone("residential", {{{0, 0}, {600, 0}, {600, 450}, {0, 450}}}),
+        road("main", 12, {{0, 0}, {600, 0}, {600, 450}, {0, 450}, {0, 0}}), road("local", 8, {{200, 0.3}, {190, 450}}),
+        road("local", 8, {{400, -0.2}, {420, 449.6}}), road("local", 8, {{0, 220}, {200 - 4.75, 220}}),
+        road("local", 8, {{195.25, 220}, {407.8, 160}, {600.4, 200}}), road("local", 8, {{100, 0}, {100, 450}}),
+        road("local", 8, {{500, 0}, {510, 450.3}}), road("local", 8, {{300, 0}, {300, 450}})},
+       R"({"residential": {"layout": "streets"}})"},
+      {"voronoi-comb", {zone("residential", {comb})}, R"({"residential": {"layout": "voronoi", "cell_size": 120}})"},
+      {"grammar-u",
+       {zone("residential", {{{0, 0}, {900, 0}, {900, 900}, {650, 900}, {650, 250}, {250, 250}, {250, 900}, {0, 900}}})},
+       R"({"residential": {"layout": "grammar", "grammar": ")" EXACITY_SOURCE_DIR R"(/examples/grammars/town.grammar"}})"},
   };
 }
 

@@ -44,11 +44,12 @@ class RoadLayout {
   virtual RoadPlan plan(const Region& region, Random& random) const = 0;
 };
 
-// The layout a zone type's settings name ("grammar" or "streets"; growth has none).
+// The layout a zone type's settings name ("grammar", "voronoi" or "streets"; growth has none).
 std::unique_ptr<RoadLayout> make_road_layout(const ZoneParams& params, ZoneType type);
 
 // One per file.
 std::unique_ptr<RoadLayout> make_grammar_layout(const ZoneParams& params, ZoneType type);
 std::unique_ptr<RoadLayout> make_streets_layout();
+std::unique_ptr<RoadLayout> make_voronoi_layout(const ZoneParams& params);
 
 }  // namespace exacity
