@@ -292,7 +292,7 @@ int link_islands(ZoneMap& zm, const std::vector<char>& joined, std::vector<Junct
 
 
 // A layout's roads, settled into a network: ends that nearly meet joined (within the
-// widest road's width); an end left open runs on ahead to another of the roads, or to the
+// plan's join distance); an end left open runs on ahead to another of the roads, or to the
 // centre line of the sketch road whose surface it reaches, or to the region's edge; a road
 // with an end that reaches none of them is dropped, until none is. Roads that meet are one
 // piece.
@@ -330,16 +330,44 @@ std::vector<RoadFeature> without_repeated_segments(const std::vector<RoadFeature
   return out;
 }
 
-std::vector<SettledRoad> settle(const std::vector<PlannedRoad>& planned, const geom::Cell& cell,
-                                const SketchLines& sketch_lines) {
+// A road that runs wholly inside the surface of roads before it (a grammar can lay thin
+// road pieces side by side) adds nothing but overlapping centre lines: it is left out.
+std::vector<RoadFeature> without_roads_inside_others(const std::vector<RoadFeature>& roads) {
+  std::vector<RoadFeature> kept;
+  std::vector<geom::Box> boxes;
+  for (const RoadFeature& r : roads) {
+    const geom::Polyline& line = r.lines[0];
+    std::vector<geom::Vec2> samples = line;
+    for (std::size_t k = 0; k + 1 < line.size(); ++k)
+      samples.push_back({(line[k].x + line[k + 1].x) / 2, (line[k].y + line[k + 1].y) / 2});
+    auto covered = [&](geom::Vec2 p) {
+      for (std::size_t j = 0; j < kept.size(); ++j) {
+        const double reach = std::max(r.width, kept[j].width) / 2;
+        const geom::Box& b = boxes[j];
+        if (p.x < b.min_x - reach || p.x > b.max_x + reach || p.y < b.min_y - reach || p.y > b.max_y + reach) continue;
+        const geom::Polyline& l = kept[j].lines[0];
+        for (std::size_t k = 0; k + 1 < l.size(); ++k)
+          if (geom::distance_to_segment(p, l[k], l[k + 1]) < reach) return true;
+      }
+      return false;
+    };
+    if (!kept.empty() && std::all_of(samples.begin(), samples.end(), covered)) continue;
+    geom::Box box = geom::Box::none();
+    for (geom::Vec2 p : line) box.add(p);
+    kept.push_back(r), boxes.push_back(box);
+  }
+  return kept;
+}
+
+std::vector<SettledRoad> settle(const RoadPlan& plan, const geom::Cell& cell, const SketchLines& sketch_lines) {
   std::vector<RoadFeature> roads;
   double widest = 0, widest_sketch = 0;
-  for (const PlannedRoad& r : planned) {
+  for (const PlannedRoad& r : plan.roads) {
     roads.push_back({static_cast<int>(roads.size()), r.road_class, r.width, {r.line}});
     widest = std::max(widest, r.width);
   }
-  join_near_ends(roads, widest);
-  roads = without_repeated_segments(roads);
+  join_near_ends(roads, plan.join);
+  roads = without_roads_inside_others(without_repeated_segments(roads));
   const double reach = std::max(3 * widest, 0.1 * std::sqrt(cell.area()));
   std::vector<geom::Path> sketch_targets, edges;
   for (const SketchRoad& s : sketch_lines) {
@@ -462,7 +490,7 @@ void lay_out_regions(ZoneMap& zm, const Sketch& sketch, const SketchLines& sketc
   tbb::parallel_for(std::size_t(0), cells.size(), [&](std::size_t i) {
     Random rng(mix(stage, i));
     plans[i] = layouts.at(static_cast<ZoneType>(types[i]))->plan({cells[i], edges_to_reach(cells[i], true)}, rng);
-    settled[i] = settle(plans[i].roads, cells[i], sketch_lines);
+    settled[i] = settle(plans[i], cells[i], sketch_lines);
   });
   for (std::size_t i = 0; i < cells.size(); ++i) {
     for (PlannedUse& u : plans[i].uses) uses.push_back(std::move(u));

@@ -432,6 +432,10 @@ class Parser {
       if (p.layout == "voronoi" && !j.contains("lots")) p.lots = "split";
     }
     set("cell_size", p.cell_size, 20, 1e5);
+    const double widest = *std::max_element(p.road_widths.begin(), p.road_widths.end());
+    if (p.layout == "voronoi" && p.cell_size < 4 * widest)
+      fail(w + ".cell_size", json(p.cell_size).dump() + " m is under 4 road widths (" + json(4 * widest).dump() +
+                                 " m): the cells would be all road; raise \"cell_size\" or narrow \"road_widths\"");
     set("junction_spacing", p.junction_spacing, 5, 1e5);
     if (j.contains("grammar_depth")) {
       if (!j["grammar_depth"].is_number_integer()) fail(w + ".grammar_depth", "expected a whole number of rules, 1 to 32");

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 #include <unordered_map>
 
 #include "geom/grid.h"
@@ -21,11 +22,31 @@ std::unordered_map<geom::Vec2, int, geom::Vec2Hash> vertex_counts(const std::vec
 
 double distance(geom::Vec2 a, geom::Vec2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
-// Moves a line's end to p unless that would leave the line a single point.
-bool move_end(geom::Polyline& line, bool back, geom::Vec2 p) {
+using Segments = std::set<std::pair<std::pair<double, double>, std::pair<double, double>>>;
+
+std::pair<std::pair<double, double>, std::pair<double, double>> segment_key(geom::Vec2 a, geom::Vec2 b) {
+  std::pair<double, double> x{a.x, a.y}, y{b.x, b.y};
+  return x < y ? std::make_pair(x, y) : std::make_pair(y, x);
+}
+
+Segments segments_of(const std::vector<RoadFeature>& roads) {
+  Segments out;
+  for (const RoadFeature& r : roads)
+    for (const geom::Polyline& line : r.lines)
+      for (std::size_t i = 0; i + 1 < line.size(); ++i) out.insert(segment_key(line[i], line[i + 1]));
+  return out;
+}
+
+// Moves a line's end to p unless that would leave the line a single point, or lay its end
+// segment along one another line already has (two lines drawn a few degrees apart from one
+// node would become one).
+bool move_end(geom::Polyline& line, bool back, geom::Vec2 p, Segments& segments) {
   geom::Vec2& end = back ? line.back() : line.front();
   if (end == p) return false;
   const geom::Vec2 next = back ? line[line.size() - 2] : line[1];
+  if (segments.count(segment_key(next, p))) return false;
+  segments.erase(segment_key(next, end));
+  segments.insert(segment_key(next, p));
   if (next == p) {
     if (line.size() < 3) return false;
     back ? line.pop_back() : static_cast<void>(line.erase(line.begin()));
@@ -50,13 +71,15 @@ int join_near_ends(std::vector<RoadFeature>& roads, double snap) {
     return e.back ? l.back() : l.front();
   };
   int moved = 0;
+  Segments segments = segments_of(roads);
   // Ends onto ends: each end joins the first earlier end of another line near it.
   for (std::size_t i = 0; i < ends.size(); ++i)
     for (std::size_t j = 0; j < i; ++j) {
       if (ends[j].road == ends[i].road && ends[j].line == ends[i].line) continue;
       const geom::Vec2 target = point(ends[j]);
       if (distance(point(ends[i]), target) > snap) continue;
-      if (!(point(ends[i]) == target)) moved += move_end(roads[ends[i].road].lines[ends[i].line], ends[i].back, target);
+      if (!(point(ends[i]) == target))
+        moved += move_end(roads[ends[i].road].lines[ends[i].line], ends[i].back, target, segments);
       break;
     }
   // Ends still meeting nothing onto the nearest side of another line.
@@ -88,10 +111,14 @@ int join_near_ends(std::vector<RoadFeature>& roads, double snap) {
     if (distance(at, a) <= snap && distance(p, a) <= snap) at = a;  // onto a vertex rather than beside it
     else if (distance(at, b) <= snap && distance(p, b) <= snap) at = b;
     if (!(at == p)) {
-      if (!move_end(own, e.back, at)) continue;
+      if (!move_end(own, e.back, at, segments)) continue;
       ++moved;
     }
-    if (!(at == a) && !(at == b)) target->insert(target->begin() + segment + 1, at);
+    if (!(at == a) && !(at == b)) {
+      target->insert(target->begin() + segment + 1, at);
+      segments.erase(segment_key(a, b));
+      segments.insert(segment_key(a, at)), segments.insert(segment_key(at, b));
+    }
     ++counts[at];
   }
   return moved;

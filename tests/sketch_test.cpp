@@ -198,6 +198,11 @@ TEST(SketchErrors, LayoutsAndStreetSettings) {
   expect_error(with_features(kSquare, R"({"roads": {"dead_ends": "warn"}})"), {"roads.dead_ends", "\"error\""});
   expect_error(with_features(kSquare, R"({"roads": {"local": {"sidewalks": 2}}})"), {"roads.local", "unknown key \"sidewalks\""});
   expect_error(with_features(kSquare, R"({"roads": {"lane": {}}})"), {"unknown key \"lane\""});
+  expect_error(with_features(kSquare, R"({"zones": {"residential": {"layout": "voronoi", "cell_size": 40}}})"),
+               {"zones.residential.cell_size", "under 4 road widths"});
+  expect_error(with_features(kSquare, R"({"zones": {"residential": {"layout": "grammar"}}})"),
+               {"zones.residential.layout", "needs \"grammar\""});
+  expect_error(with_features(kSquare, R"({"zones": {"residential": {"grammar_depth": 2.5}}})"), {"grammar_depth", "whole number"});
 }
 
 TEST(SketchErrors, ADeadEndIsAnErrorWhenTheSketchSaysSo) {

@@ -46,6 +46,8 @@ class GrammarLayout : public RoadLayout {
     std::map<decltype(key({}, {})), bool> built;
 
     RoadPlan plan;
+    // Road pieces meet only roughly (each is mapped from its own parent): join within a width.
+    plan.join = *std::max_element(params_.road_widths.begin(), params_.road_widths.end());
     for (GrammarLeaf& leaf : grow_layout(*params_.grammar, roots, params_.grammar_depth, params_.min_block_area, random.next())) {
       Terminal t;
       if (!parse_terminal(leaf.name, t)) t.type = type_;  // a symbol left at the depth bound

@@ -36,6 +36,7 @@ struct PlannedUse {
 struct RoadPlan {
   std::vector<PlannedRoad> roads;
   std::vector<PlannedUse> uses;
+  double join = 0;  // m: road ends this near another road are joined to it (generate/street_graph.h)
 };
 
 class RoadLayout {

@@ -99,9 +99,11 @@ std::vector<geom::Vec2> junctions_along(geom::Vec2 a, geom::Vec2 b, double spaci
 
 std::vector<std::pair<geom::Vec2, geom::Vec2>> inner_roads(const std::vector<CellRoad>& roads) {
   constexpr double kPerpendicular = 30, kParallel = 15;  // degrees of slack
+  constexpr double kAlongRoad = 10;                       // degrees: a connection this near a road's line runs along it
   std::vector<std::pair<geom::Vec2, geom::Vec2>> made;
   std::vector<std::vector<char>> used(roads.size());
   for (std::size_t r = 0; r < roads.size(); ++r) used[r].assign(roads[r].size(), 0);
+  auto along = [&](std::size_t r) { return direction(roads[r].front(), roads[r].back()); };
   auto free_junction = [&](std::size_t r, std::size_t k) { return k > 0 && k + 1 < roads[r].size() && !used[r][k]; };
   auto crosses_made = [&](geom::Vec2 p, geom::Vec2 q) {
     for (const auto& [a, b] : made)
@@ -120,6 +122,9 @@ std::vector<std::pair<geom::Vec2, geom::Vec2>> inner_roads(const std::vector<Cel
         if (!free_junction(o, m)) continue;
         const geom::Vec2 q = roads[o][m];
         if (p == q || crosses_made(p, q)) continue;
+        // Not along either road: two roads of a cell can run nearly in line.
+        const geom::Vec2 pq = direction(p, q);
+        if (angle_between(pq, along(r)) < kAlongRoad || angle_between(pq, along(o)) < kAlongRoad) continue;
         const double off = std::abs(angle_between(direction(p, q), reference) - wanted);
         if (off < best_off) best_off = off, best = {o, m};
       }
@@ -133,11 +138,10 @@ std::vector<std::pair<geom::Vec2, geom::Vec2>> inner_roads(const std::vector<Cel
   };
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return length(a) > length(b); });
   for (std::size_t r : order) {
-    const geom::Vec2 along = direction(roads[r].front(), roads[r].back());
     std::size_t k = 1;
     while (k + 1 < roads[r].size() && !free_junction(r, k)) ++k;
     if (k + 1 >= roads[r].size()) continue;
-    auto [o, m] = best_connection(r, k, along, 90, kPerpendicular);
+    auto [o, m] = best_connection(r, k, along(r), 90, kPerpendicular);
     if (o == roads.size()) continue;
     const geom::Vec2 first = direction(roads[r][k], roads[o][m]);
     made.push_back({roads[r][k], roads[o][m]});

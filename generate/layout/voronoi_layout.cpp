@@ -28,6 +28,8 @@ class VoronoiLayout : public RoadLayout {
         if (cell.contains(p)) sites.push_back(p);
       }
     RoadPlan plan;
+    // Roads meet at shared points; a corner two cells computed apart may differ by a grid step.
+    plan.join = 0.01;
     if (sites.size() < 2) return plan;
     geom::Box box{b.min_x - size, b.min_y - size, b.max_x + size, b.max_y + size};
     const std::vector<VoronoiCell> cells = voronoi_cells(sites, box, size);
