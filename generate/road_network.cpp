@@ -2,17 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <map>
-#include <numeric>
 #include <optional>
-#include <set>
 
 #include <tbb/parallel_for.h>
 
 #include "generate/layout/road_layout.h"
+#include "generate/layout/settle.h"
 #include "generate/random.h"
-#include "generate/street_graph.h"
 #include "geom/grid.h"
 #include "geom/measure.h"
 
@@ -291,181 +288,6 @@ int link_islands(ZoneMap& zm, const std::vector<char>& joined, std::vector<Junct
 }
 
 
-// A layout's roads, settled into a network: ends that nearly meet joined (within the
-// plan's join distance); an end left open runs on ahead to another of the roads, or to the
-// centre line of the sketch road whose surface it reaches, or to the region's edge; a road
-// with an end that reaches none of them is dropped, until none is. Roads that meet are one
-// piece.
-struct SettledRoad {
-  geom::Path path;
-  double width = 0;
-  RoadClass road_class = RoadClass::Local;
-  int piece = 0;                // roads of one piece meet, directly or through others
-  bool reaches_sketch = false;  // its piece runs on to a sketch road
-};
-
-// Joining ends can lay a short road along another's segment: each segment is kept in the
-// first road that has it, the roads cut where they repeat one.
-std::vector<RoadFeature> without_repeated_segments(const std::vector<RoadFeature>& roads) {
-  std::set<std::pair<std::pair<double, double>, std::pair<double, double>>> seen;
-  std::vector<RoadFeature> out;
-  for (const RoadFeature& r : roads) {
-    const geom::Polyline& line = r.lines[0];
-    geom::Polyline piece;
-    auto flush = [&] {
-      if (piece.size() >= 2) out.push_back({static_cast<int>(out.size()), r.road_class, r.width, {piece}});
-      piece.clear();
-    };
-    for (std::size_t k = 0; k + 1 < line.size(); ++k) {
-      std::pair<double, double> a{line[k].x, line[k].y}, b{line[k + 1].x, line[k + 1].y};
-      if (!seen.insert(a < b ? std::make_pair(a, b) : std::make_pair(b, a)).second) {
-        flush();
-        continue;
-      }
-      if (piece.empty()) piece.push_back(line[k]);
-      piece.push_back(line[k + 1]);
-    }
-    flush();
-  }
-  return out;
-}
-
-// A road that runs wholly inside the surface of roads before it (a grammar can lay thin
-// road pieces side by side) adds nothing but overlapping centre lines: it is left out.
-std::vector<RoadFeature> without_roads_inside_others(const std::vector<RoadFeature>& roads) {
-  std::vector<RoadFeature> kept;
-  std::vector<geom::Box> boxes;
-  for (const RoadFeature& r : roads) {
-    const geom::Polyline& line = r.lines[0];
-    std::vector<geom::Vec2> samples = line;
-    for (std::size_t k = 0; k + 1 < line.size(); ++k)
-      samples.push_back({(line[k].x + line[k + 1].x) / 2, (line[k].y + line[k + 1].y) / 2});
-    auto covered = [&](geom::Vec2 p) {
-      for (std::size_t j = 0; j < kept.size(); ++j) {
-        const double reach = std::max(r.width, kept[j].width) / 2;
-        const geom::Box& b = boxes[j];
-        if (p.x < b.min_x - reach || p.x > b.max_x + reach || p.y < b.min_y - reach || p.y > b.max_y + reach) continue;
-        const geom::Polyline& l = kept[j].lines[0];
-        for (std::size_t k = 0; k + 1 < l.size(); ++k)
-          if (geom::distance_to_segment(p, l[k], l[k + 1]) < reach) return true;
-      }
-      return false;
-    };
-    if (!kept.empty() && std::all_of(samples.begin(), samples.end(), covered)) continue;
-    geom::Box box = geom::Box::none();
-    for (geom::Vec2 p : line) box.add(p);
-    kept.push_back(r), boxes.push_back(box);
-  }
-  return kept;
-}
-
-std::vector<SettledRoad> settle(const RoadPlan& plan, const geom::Cell& cell, const SketchLines& sketch_lines) {
-  std::vector<RoadFeature> roads;
-  double widest = 0, widest_sketch = 0;
-  for (const PlannedRoad& r : plan.roads) {
-    roads.push_back({static_cast<int>(roads.size()), r.road_class, r.width, {r.line}});
-    widest = std::max(widest, r.width);
-  }
-  join_near_ends(roads, plan.join);
-  roads = without_roads_inside_others(without_repeated_segments(roads));
-  const double reach = std::max(3 * widest, 0.1 * std::sqrt(cell.area()));
-  std::vector<geom::Path> sketch_targets, edges;
-  for (const SketchRoad& s : sketch_lines) {
-    sketch_targets.insert(sketch_targets.end(), s.lines.begin(), s.lines.end());
-    widest_sketch = std::max(widest_sketch, s.width);
-  }
-  for (const geom::KindedRing& r : cell.kinded_rings()) {
-    geom::Polyline closed = r.points;
-    closed.push_back(r.points.front());
-    edges.push_back(geom::Path::from(closed));
-  }
-  std::vector<char> live(roads.size(), 1);
-  for (std::size_t i = 0; i < roads.size(); ++i) {
-    const geom::Polyline& l = roads[i].lines[0];
-    live[i] = l.size() >= 2 && !(l.front() == l.back());
-  }
-  std::vector<SettledRoad> settled;
-  std::vector<std::pair<int, int>> meetings;  // (road, road) met by running on
-  std::vector<int> index;                     // settled road -> road
-  for (bool dropped = true; dropped;) {
-    dropped = false;
-    std::map<std::pair<double, double>, int> uses;
-    std::vector<int> others;
-    for (std::size_t i = 0; i < roads.size(); ++i)
-      if (live[i]) {
-        others.push_back(static_cast<int>(i));
-        for (geom::Vec2 p : roads[i].lines[0]) ++uses[{p.x, p.y}];
-      }
-    settled.clear(), meetings.clear(), index.clear();
-    for (std::size_t i = 0; i < roads.size() && !dropped; ++i) {
-      if (!live[i]) continue;
-      const geom::Polyline& line = roads[i].lines[0];
-      std::vector<geom::Path> ahead;
-      std::vector<int> ahead_road;
-      for (int o : others)
-        if (o != static_cast<int>(i)) ahead.push_back(geom::Path::from(roads[o].lines[0])), ahead_road.push_back(o);
-      geom::Path path = geom::Path::from(line);
-      bool to_sketch = false;
-      for (bool back : {true, false}) {
-        const geom::Vec2 end = back ? line.back() : line.front();
-        if (!back) path = path.reversed();
-        if (uses[{end.x, end.y}] > 1) continue;
-        const std::size_t n = path.size();
-        // Straight on to another road; to a sketch road or the edge, turning if need be;
-        // else turning to the nearest other road.
-        std::optional<geom::Path> on;
-        bool to_road = false;
-        for (int step = 0; step < 4 && !on; ++step) {
-          geom::Path longer = step == 0   ? geom::extend_to(path, ahead, reach, false)
-                              : step == 1 ? geom::extend_to(path, sketch_targets, roads[i].width + widest_sketch)
-                              : step == 2 ? geom::extend_to(path, edges, 2 * roads[i].width)
-                                          : geom::extend_to(path, ahead, reach);
-          if (longer.size() == n) continue;
-          on = longer, to_road = step == 0 || step == 3, to_sketch |= step == 1;
-        }
-        if (!on) {
-          live[i] = 0, dropped = true;
-          break;
-        }
-        path = *on;
-        const geom::Vec2 p = path.point(path.size() - 1);
-        // An open end run on to is no longer open: the road there does not run back.
-        if (auto it = uses.find({p.x, p.y}); it != uses.end()) ++it->second;
-        if (to_road) {
-          // The road it ran on to: the one nearest its new end.
-          double best = INFINITY;
-          int met = -1;
-          for (std::size_t k = 0; k < ahead_road.size(); ++k) {
-            const geom::Polyline& l = roads[ahead_road[k]].lines[0];
-            for (std::size_t s = 0; s + 1 < l.size(); ++s)
-              if (const double d = geom::distance_to_segment(p, l[s], l[s + 1]); d < best) best = d, met = ahead_road[k];
-          }
-          meetings.push_back({static_cast<int>(i), met});
-        }
-      }
-      if (dropped) break;
-      index.push_back(static_cast<int>(i));
-      settled.push_back({path, roads[i].width, roads[i].road_class, 0, to_sketch});
-    }
-  }
-  // Pieces: roads sharing a vertex, or one running on to another.
-  std::vector<int> piece(roads.size());
-  std::iota(piece.begin(), piece.end(), 0);
-  std::function<int(int)> find = [&](int x) { return piece[x] == x ? x : piece[x] = find(piece[x]); };
-  std::map<std::pair<double, double>, int> first_at;
-  for (int i : index)
-    for (geom::Vec2 p : roads[i].lines[0])
-      if (auto [it, added] = first_at.emplace(std::make_pair(p.x, p.y), i); !added) piece[find(i)] = find(it->second);
-  for (auto [a, b] : meetings) piece[find(a)] = find(b);
-  std::map<int, bool> reaches;
-  for (std::size_t k = 0; k < settled.size(); ++k) reaches[find(index[k])] |= settled[k].reaches_sketch;
-  for (std::size_t k = 0; k < settled.size(); ++k) {
-    settled[k].piece = find(index[k]);
-    settled[k].reaches_sketch = reaches[settled[k].piece];
-  }
-  return settled;
-}
-
 // The regions of zones whose layout is not growth (generate/layout), each planned alone,
 // in parallel, then settled into the map's roads. Each connected piece of a region's roads
 // counts as a region of its own, so link_islands joins every piece to the rest.
@@ -485,12 +307,18 @@ void lay_out_regions(ZoneMap& zm, const Sketch& sketch, const SketchLines& sketc
   std::vector<int> types;
   std::vector<geom::Cell> cells = zm.map.cells(group, kind, &types);
   const std::uint64_t stage = mix(mix(sketch.seed, static_cast<std::uint64_t>(Stage::Roads)), 0x1a1047);
+  std::vector<geom::Path> sketch_roads;
+  double sketch_width = 0;
+  for (const SketchRoad& s : sketch_lines) {
+    sketch_roads.insert(sketch_roads.end(), s.lines.begin(), s.lines.end());
+    sketch_width = std::max(sketch_width, s.width);
+  }
   std::vector<std::vector<SettledRoad>> settled(cells.size());
   std::vector<RoadPlan> plans(cells.size());
   tbb::parallel_for(std::size_t(0), cells.size(), [&](std::size_t i) {
     Random rng(mix(stage, i));
     plans[i] = layouts.at(static_cast<ZoneType>(types[i]))->plan({cells[i], edges_to_reach(cells[i], true)}, rng);
-    settled[i] = settle(plans[i], cells[i], sketch_lines);
+    settled[i] = settle(plans[i], cells[i], sketch_roads, sketch_width);
   });
   for (std::size_t i = 0; i < cells.size(); ++i) {
     for (PlannedUse& u : plans[i].uses) uses.push_back(std::move(u));
