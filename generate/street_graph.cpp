@@ -131,13 +131,17 @@ std::vector<StreetNode> street_nodes(const std::vector<RoadFeature>& roads) {
   };
   std::map<std::pair<double, double>, Meeting> at;  // ordered: nodes come out in a fixed order
   for (std::size_t r = 0; r < roads.size(); ++r)
-    for (const geom::Polyline& line : roads[r].lines)
+    for (const geom::Polyline& line : roads[r].lines) {
+      // Length along the line up to each vertex.
+      std::vector<double> along{0};
+      for (std::size_t i = 1; i < line.size(); ++i) along.push_back(along.back() + distance(line[i - 1], line[i]));
       for (std::size_t i = 0; i < line.size(); ++i) {
         Meeting& m = at[{line[i].x, line[i].y}];
         ++m.lines;
-        if (i > 0) m.arms.push_back({static_cast<int>(r), line[i - 1]});
-        if (i + 1 < line.size()) m.arms.push_back({static_cast<int>(r), line[i + 1]});
+        if (i > 0) m.arms.push_back({static_cast<int>(r), line[i - 1], along[i]});
+        if (i + 1 < line.size()) m.arms.push_back({static_cast<int>(r), line[i + 1], along.back() - along[i]});
       }
+    }
   std::vector<StreetNode> nodes;
   for (auto& [p, m] : at)
     if (m.lines > 1 && m.arms.size() > 1) nodes.push_back({{p.first, p.second}, std::move(m.arms)});

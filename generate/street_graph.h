@@ -19,6 +19,7 @@ int join_near_ends(std::vector<RoadFeature>& roads, double snap);
 struct StreetArm {
   int road = 0;       // index into the roads
   geom::Vec2 toward;  // the next vertex along the line
+  double length = 0;  // m along the line to its end that way
 };
 
 // A point where two or more streets meet: line ends meeting end to end, or lines meeting

@@ -16,13 +16,13 @@ namespace {
 void add_junctions(const Sketch& sketch, ZoneMap& zm) {
   const int road_base = 1;
   for (const StreetNode& node : street_nodes(sketch.roads)) {
-    std::vector<std::pair<geom::Vec2, double>> carriageway, outer;
+    std::vector<geom::JunctionArm> carriageway, outer;
     bool sidewalks = false;
     for (const StreetArm& arm : node.arms) {
       const RoadFeature& r = sketch.roads[arm.road];
       const double sidewalk = sketch.streets.sidewalk(r.road_class);
-      carriageway.push_back({arm.toward, r.width / 2});
-      outer.push_back({arm.toward, r.width / 2 + sidewalk});
+      carriageway.push_back({arm.toward, r.width / 2, arm.length});
+      outer.push_back({arm.toward, r.width / 2 + sidewalk, arm.length});
       sidewalks |= sidewalk > 0;
     }
     const int first = node.arms.front().road;
@@ -34,8 +34,8 @@ void add_junctions(const Sketch& sketch, ZoneMap& zm) {
       continue;
     }
     // Straight on (nothing needed) or too sharp.
-    if (node.arms.size() == 2 && carriageway[0].second == carriageway[1].second &&
-        outer[0].second == outer[1].second)
+    if (node.arms.size() == 2 && carriageway[0].half_width == carriageway[1].half_width &&
+        outer[0].half_width == outer[1].half_width)
       continue;
     ++zm.disc_junctions;
     for (const StreetArm& arm : node.arms) {

@@ -110,11 +110,7 @@ ExactRing disc_piece(Vec2 c, double r);
 // corner lies, so the junction is one star-shaped ring whose sides lie on the streets'
 // stroke sides. Empty where no junction is needed (two streets running straight on) or
 // none can be drawn (two streets leaving q so close in angle that their sides part only
-// past their next vertex): the caller falls back to a disc.
-struct StreetArm {
-  Vec2 toward;
-  double half_width;
-};
-ExactRing junction_piece(Vec2 q, const std::vector<StreetArm>& arms);
+// past their length): the caller falls back to a disc.
+ExactRing junction_piece(Vec2 q, const std::vector<JunctionArm>& arms);
 
 }  // namespace geom::exact

@@ -19,6 +19,14 @@ struct Vec2Hash {
   std::size_t operator()(const Vec2& p) const { return std::hash<double>()(p.x) * 31 ^ std::hash<double>()(p.y); }
 };
 
+// A street leaving a junction's node: towards its next vertex, `length` metres along it
+// (0: just to that vertex), with its half width.
+struct JunctionArm {
+  Vec2 toward;
+  double half_width = 0;
+  double length = 0;
+};
+
 // A closed ring written without repeating its first point.
 using Ring = std::vector<Vec2>;
 using Polyline = std::vector<Vec2>;

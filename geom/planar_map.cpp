@@ -352,10 +352,8 @@ void PlanarMap::add_disc(Vec2 centre, double radius, int counter) {
   impl_->add_exact_ring(exact::disc_piece(centre, radius), counter);
 }
 
-bool PlanarMap::add_junction(Vec2 q, const std::vector<std::pair<Vec2, double>>& arms, int counter) {
-  std::vector<exact::StreetArm> streets;
-  for (auto [toward, half_width] : arms) streets.push_back({toward, half_width});
-  exact::ExactRing ring = exact::junction_piece(q, streets);
+bool PlanarMap::add_junction(Vec2 q, const std::vector<JunctionArm>& arms, int counter) {
+  exact::ExactRing ring = exact::junction_piece(q, arms);
   if (ring.empty()) return false;
   impl_->add_exact_ring(ring, counter);
   return true;

@@ -71,11 +71,10 @@ class PlanarMap {
   // end to end; and a 16-gon around a disc, for where several meet.
   void add_joint(Vec2 a, Vec2 q, Vec2 b, double half_width, int counter);
   void add_disc(Vec2 centre, double radius, int counter);
-  // The mitred junction of streets meeting at q, each leaving towards the point given with
-  // its half width (seed 004): one polygon whose sides lie on the streets' stroke sides.
-  // False, and nothing queued, where none is needed or none can be drawn (see
-  // exact::junction_piece).
-  bool add_junction(Vec2 q, const std::vector<std::pair<Vec2, double>>& arms, int counter);
+  // The mitred junction of streets meeting at q (seed 004): one polygon whose sides lie on
+  // the streets' stroke sides. False, and nothing queued, where none is needed or none can
+  // be drawn (see exact::junction_piece).
+  bool add_junction(Vec2 q, const std::vector<JunctionArm>& arms, int counter);
   // The polyline itself, bounding nothing, findable later with polyline_pieces(tag).
   void add_polyline(const Polyline& line, int tag);
   // The same for exact paths, and a path's stroke (its vertices rounded for the offsets).

@@ -97,7 +97,7 @@ std::vector<ExactRing> stroke_pieces(const Polyline& input, double hw) {
 
 namespace geom::exact {
 
-ExactRing junction_piece(Vec2 q, const std::vector<StreetArm>& input) {
+ExactRing junction_piece(Vec2 q, const std::vector<JunctionArm>& input) {
   struct Arm {
     double angle, half_width, length;
     Vec2 toward, d;
@@ -105,12 +105,13 @@ ExactRing junction_piece(Vec2 q, const std::vector<StreetArm>& input) {
     Point left_at_q, right_at_q;
   };
   std::vector<Arm> arms;
-  for (const StreetArm& a : input) {
-    const double dx = a.toward.x - q.x, dy = a.toward.y - q.y, length = std::hypot(dx, dy);
-    if (length == 0 || a.half_width <= 0) continue;
+  for (const JunctionArm& a : input) {
+    const double dx = a.toward.x - q.x, dy = a.toward.y - q.y, to_next = std::hypot(dx, dy);
+    if (to_next == 0 || a.half_width <= 0) continue;
+    const double length = std::max(to_next, a.length);
     auto [l0, l1] = side(q, a.toward, a.half_width);
     auto [r0, r1] = side(q, a.toward, -a.half_width);
-    arms.push_back({std::atan2(dy, dx), a.half_width, length, a.toward, {dx / length, dy / length}, Line(l0, l1),
+    arms.push_back({std::atan2(dy, dx), a.half_width, length, a.toward, {dx / to_next, dy / to_next}, Line(l0, l1),
                     Line(r0, r1), l0, r0});
   }
   std::sort(arms.begin(), arms.end(), [](const Arm& a, const Arm& b) { return a.angle < b.angle; });

@@ -309,8 +309,8 @@ TEST(PolygonCheck, SimpleAndOriented) {
 namespace {
 
 // Streets of half width `hw` leaving q = (0, 0) at the given angles (degrees), `length` long.
-std::vector<std::pair<geom::Vec2, double>> arms_at(const std::vector<double>& degrees, double hw, double length = 400) {
-  std::vector<std::pair<geom::Vec2, double>> arms;
+std::vector<geom::JunctionArm> arms_at(const std::vector<double>& degrees, double hw, double length = 400) {
+  std::vector<geom::JunctionArm> arms;
   for (double d : degrees)
     arms.push_back({geom::snap(geom::Vec2{length * std::cos(d * M_PI / 180), length * std::sin(d * M_PI / 180)}), hw});
   return arms;
@@ -324,11 +324,11 @@ struct JunctionCut {
   double outside_strokes = 0;
 };
 
-JunctionCut junction_of(const std::vector<std::pair<geom::Vec2, double>>& arms) {
+JunctionCut junction_of(const std::vector<geom::JunctionArm>& arms) {
   PlanarMap map;
   JunctionCut cut;
   cut.drawn = map.add_junction({0, 0}, arms, 1);
-  for (auto [toward, hw] : arms) map.add_stroke({{0, 0}, toward}, hw, 0);
+  for (const auto& arm : arms) map.add_stroke({{0, 0}, arm.toward}, arm.half_width, 0);
   map.insert_batch();
   // 0: neither, 1: stroke only, 2: junction inside a stroke, 3: junction outside them.
   map.label_faces([](const Windings& w) {
@@ -363,7 +363,7 @@ TEST(Junction, TwoToSixStreetsAtAwkwardAnglesAreOneSimplePolygonAroundTheNode) {
       SCOPED_TRACE(::testing::Message() << degrees.size() << " streets, the second at " << degrees[1] << ", hw " << hw);
       // Mixed widths: every other street half as wide.
       auto arms = arms_at(degrees, hw);
-      for (std::size_t i = 1; i < arms.size(); i += 2) arms[i].second = hw / 2;
+      for (std::size_t i = 1; i < arms.size(); i += 2) arms[i].half_width = hw / 2;
       JunctionCut j = junction_of(arms);
       ASSERT_TRUE(j.drawn);
       ASSERT_EQ(j.junction.size(), 1u);
@@ -390,8 +390,12 @@ TEST(Junction, StreetsRunningStraightOnNeedNone) {
   EXPECT_FALSE(map.add_junction({0, 0}, arms_at({30}, 5), 1));
 }
 
-TEST(Junction, SidesPartingPastTheNextVertexAreNotDrawn) {
+TEST(Junction, SidesPartingPastTheStreetsAreNotDrawn) {
   // 5 degrees apart, 20 m long, 12 m wide: their sides part about 137 m out.
   PlanarMap map;
   EXPECT_FALSE(map.add_junction({0, 0}, arms_at({0, 5}, 6, 20), 1));
+  // The same first segments on streets that run on 200 m beyond them.
+  auto longer = arms_at({0, 5}, 6, 20);
+  for (auto& arm : longer) arm.length = 220;
+  EXPECT_TRUE(map.add_junction({0, 0}, longer, 1));
 }
