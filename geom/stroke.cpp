@@ -145,11 +145,14 @@ ExactRing junction_piece(Vec2 q, const std::vector<JunctionArm>& input) {
     auto meet = CGAL::intersection(a.left, b.right);
     if (meet) m = boost::get<Point>(&*meet);
     if (gap < M_PI) {
-      // Inside a bend the streets part where their sides cross: that must be on both.
+      // Inside a bend the streets part where their sides cross: on both streets, or within
+      // the mitre limit of the node (a street shorter than the junction is wide, as
+      // OpenStreetMap splits ways at every node, is paved a little past its end).
       if (!m) return {};
       const Vec2 mp = to_plain(*m);
       c.along_left = along(a, mp), c.along_right = along(b, mp);
-      if (c.along_left > a.length || c.along_right > b.length) return {};
+      const double limit = kMitreLimit * std::max(a.half_width, b.half_width);
+      if (c.along_left > std::max(a.length, limit) || c.along_right > std::max(b.length, limit)) return {};
       c.points = {*m};
     } else if (m && std::hypot(to_plain(*m).x - q.x, to_plain(*m).y - q.y) <=
                         kMitreLimit * std::max(a.half_width, b.half_width)) {
