@@ -295,7 +295,8 @@ void lay_out_regions(ZoneMap& zm, const Sketch& sketch, const SketchLines& sketc
                      std::vector<Junction>& junctions, std::vector<PlannedUse>& uses, RoadNetworkStats& stats) {
   std::map<ZoneType, std::unique_ptr<RoadLayout>> layouts;
   for (const auto& [t, p] : sketch.zone_params)
-    if (grows_roads(t) && (p.layout == "grammar" || p.layout == "voronoi")) layouts[t] = make_road_layout(p, t);
+    if (grows_roads(t))
+      if (std::unique_ptr<RoadLayout> layout = make_road_layout(p, t)) layouts[t] = std::move(layout);
   if (layouts.empty()) return;
   std::vector<int> group(zm.labels.size(), -1), kind(zm.labels.size(), kEdge);
   for (std::size_t l = 0; l < zm.labels.size(); ++l) {
