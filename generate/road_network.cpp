@@ -291,19 +291,20 @@ int link_islands(ZoneMap& zm, const std::vector<char>& joined, std::vector<Junct
 // The regions of zones whose layout is not growth (generate/layout), each planned alone,
 // in parallel, then settled into the map's roads. Each connected piece of a region's roads
 // counts as a region of its own, so link_islands joins every piece to the rest.
-void lay_out_regions(ZoneMap& zm, const Sketch& sketch, const SketchLines& sketch_lines, std::vector<char>& joined,
-                     std::vector<Junction>& junctions, std::vector<PlannedUse>& uses, RoadNetworkStats& stats) {
+// `kind` is the growth's, by face label.
+void lay_out_regions(ZoneMap& zm, const Sketch& sketch, const SketchLines& sketch_lines, const std::vector<int>& kind,
+                     std::vector<char>& joined, std::vector<Junction>& junctions, std::vector<PlannedUse>& uses,
+                     RoadNetworkStats& stats) {
   std::map<ZoneType, std::unique_ptr<RoadLayout>> layouts;
   for (const auto& [t, p] : sketch.zone_params)
     if (grows_roads(t))
       if (std::unique_ptr<RoadLayout> layout = make_road_layout(p, t)) layouts[t] = std::move(layout);
   if (layouts.empty()) return;
-  std::vector<int> group(zm.labels.size(), -1), kind(zm.labels.size(), kEdge);
+  std::vector<int> group(zm.labels.size(), -1);
   for (std::size_t l = 0; l < zm.labels.size(); ++l) {
     const FaceLabel& f = zm.labels[l];
     if (f.cover == Cover::Zone && f.zone >= 0 && layouts.count(sketch.zones[f.zone].type))
       group[l] = static_cast<int>(sketch.zones[f.zone].type);
-    if (f.road_surface() && f.road < zm.sketch_roads) kind[l] = kSketchRoad + f.road;
   }
   std::vector<int> types;
   std::vector<geom::Cell> cells = zm.map.cells(group, kind, &types);
@@ -463,7 +464,7 @@ RoadNetwork grow_road_network(ZoneMap zm, const Sketch& sketch) {
     }
     level_work = std::move(next);
   }
-  lay_out_regions(zm, sketch, sketch_lines, joined, junctions, net.uses, net.stats);
+  lay_out_regions(zm, sketch, sketch_lines, kind, joined, junctions, net.uses, net.stats);
   net.stats.links = link_islands(zm, joined, junctions);
 
   // Every generated road into the map in one batch: centre line, area, and a disc where

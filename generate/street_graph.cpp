@@ -22,12 +22,8 @@ std::unordered_map<geom::Vec2, int, geom::Vec2Hash> vertex_counts(const std::vec
 
 double distance(geom::Vec2 a, geom::Vec2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
-using Segments = std::set<std::pair<std::pair<double, double>, std::pair<double, double>>>;
-
-std::pair<std::pair<double, double>, std::pair<double, double>> segment_key(geom::Vec2 a, geom::Vec2 b) {
-  std::pair<double, double> x{a.x, a.y}, y{b.x, b.y};
-  return x < y ? std::make_pair(x, y) : std::make_pair(y, x);
-}
+using geom::segment_key;
+using Segments = std::set<geom::SegmentKey>;
 
 Segments segments_of(const std::vector<RoadFeature>& roads) {
   Segments out;
@@ -44,14 +40,16 @@ bool move_end(geom::Polyline& line, bool back, geom::Vec2 p, Segments& segments)
   geom::Vec2& end = back ? line.back() : line.front();
   if (end == p) return false;
   const geom::Vec2 next = back ? line[line.size() - 2] : line[1];
-  if (segments.count(segment_key(next, p))) return false;
-  segments.erase(segment_key(next, end));
-  segments.insert(segment_key(next, p));
   if (next == p) {
+    // The end segment folds away; the one before it now ends the line.
     if (line.size() < 3) return false;
+    segments.erase(segment_key(next, end));
     back ? line.pop_back() : static_cast<void>(line.erase(line.begin()));
     return true;
   }
+  if (segments.count(segment_key(next, p))) return false;
+  segments.erase(segment_key(next, end));
+  segments.insert(segment_key(next, p));
   end = p;
   return true;
 }
@@ -105,9 +103,7 @@ int join_near_ends(std::vector<RoadFeature>& roads, double snap) {
         }
     if (!target) continue;
     const geom::Vec2 a = (*target)[segment], b = (*target)[segment + 1];
-    const double dx = b.x - a.x, dy = b.y - a.y;
-    const double t = std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / (dx * dx + dy * dy), 0.0, 1.0);
-    geom::Vec2 at = geom::snap(geom::Vec2{a.x + t * dx, a.y + t * dy});
+    geom::Vec2 at = geom::snap(geom::nearest_on_segment(p, a, b));
     if (distance(at, a) <= snap && distance(p, a) <= snap) at = a;  // onto a vertex rather than beside it
     else if (distance(at, b) <= snap && distance(p, b) <= snap) at = b;
     if (!(at == p)) {

@@ -139,8 +139,7 @@ std::optional<Vec2> Cell::point_inside_near(Vec2 wanted) const {
       Vec2 a = r.rounded[i], b = r.rounded[(i + 1) % r.points.size()];
       double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
       if (len2 == 0) continue;
-      double t = std::clamp(((wanted.x - a.x) * dx + (wanted.y - a.y) * dy) / len2, 0.0, 1.0);
-      Vec2 foot{a.x + t * dx, a.y + t * dy};
+      Vec2 foot = nearest_on_segment(wanted, a, b);
       double len = std::sqrt(len2);
       candidates.push_back({std::hypot(foot.x - wanted.x, foot.y - wanted.y), foot, {-dy / len, dx / len}});
     }

@@ -58,11 +58,17 @@ inline bool odd_crossings(const Ring& r, Vec2 p) {
   return in;
 }
 
-// The distance from p to the segment ab (to a, when the segment has no length).
-inline double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
+// The point of the segment ab nearest p (a, when the segment has no length).
+inline Vec2 nearest_on_segment(Vec2 p, Vec2 a, Vec2 b) {
   const double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
   const double t = len2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0) : 0;
-  return std::hypot(a.x + t * dx - p.x, a.y + t * dy - p.y);
+  return {a.x + t * dx, a.y + t * dy};
+}
+
+// The distance from p to the segment ab (to a, when the segment has no length).
+inline double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 n = nearest_on_segment(p, a, b);
+  return std::hypot(n.x - p.x, n.y - p.y);
 }
 
 // A lot's depth over its width: its extent across `frontage` (a, b: the edge it fronts the

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <functional>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace geom {
@@ -26,6 +27,14 @@ struct JunctionArm {
   double half_width = 0;
   double length = 0;
 };
+
+// An undirected segment as a key of exact double positions: its ends in order, so a-b and
+// b-a are one key.
+using SegmentKey = std::pair<std::pair<double, double>, std::pair<double, double>>;
+inline SegmentKey segment_key(Vec2 a, Vec2 b) {
+  const std::pair<double, double> x{a.x, a.y}, y{b.x, b.y};
+  return x < y ? SegmentKey{x, y} : SegmentKey{y, x};
+}
 
 // A closed ring written without repeating its first point.
 using Ring = std::vector<Vec2>;

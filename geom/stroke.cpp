@@ -93,10 +93,6 @@ std::vector<ExactRing> stroke_pieces(const Polyline& input, double hw) {
   return pieces;
 }
 
-}  // namespace geom::exact
-
-namespace geom::exact {
-
 ExactRing junction_piece(Vec2 q, const std::vector<JunctionArm>& input) {
   struct Arm {
     double angle, half_width, length;

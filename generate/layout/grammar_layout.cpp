@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "generate/layout/road_layout.h"
 #include "geom/grid.h"
@@ -20,12 +21,6 @@ bool lies_along(geom::Vec2 a, geom::Vec2 b, geom::Vec2 p, geom::Vec2 q) {
   return geom::distance_to_segment(a, p, q) <= tolerance && geom::distance_to_segment(b, p, q) <= tolerance;
 }
 
-geom::Vec2 project(geom::Vec2 a, geom::Vec2 p, geom::Vec2 q) {
-  const double dx = q.x - p.x, dy = q.y - p.y;
-  const double t = std::clamp(((a.x - p.x) * dx + (a.y - p.y) * dy) / (dx * dx + dy * dy), 0.0, 1.0);
-  return {p.x + t * dx, p.y + t * dy};
-}
-
 class GrammarLayout : public RoadLayout {
  public:
   GrammarLayout(const ZoneParams& params, ZoneType type) : params_(params), type_(type) {}
@@ -36,14 +31,11 @@ class GrammarLayout : public RoadLayout {
       for (auto& r : layout_roots(p)) roots.push_back(std::move(r));
     // Root edges two roots share: a road along one is built once, centred on it (seed
     // 002's tree puts one on each side).
-    std::map<std::pair<std::pair<double, double>, std::pair<double, double>>, int> edge_roots;
-    auto key = [](geom::Vec2 a, geom::Vec2 b) {
-      std::pair<double, double> x{a.x, a.y}, y{b.x, b.y};
-      return x < y ? std::make_pair(x, y) : std::make_pair(y, x);
-    };
+    using geom::segment_key;
+    std::map<geom::SegmentKey, int> edge_roots;
     for (const auto& r : roots)
-      for (std::size_t i = 0; i < r.size(); ++i) ++edge_roots[key(r[i], r[(i + 1) % r.size()])];
-    std::map<decltype(key({}, {})), bool> built;
+      for (std::size_t i = 0; i < r.size(); ++i) ++edge_roots[segment_key(r[i], r[(i + 1) % r.size()])];
+    std::set<geom::SegmentKey> built;
 
     RoadPlan plan;
     // Road pieces meet only roughly (each is mapped from its own parent): join within a width.
@@ -69,11 +61,10 @@ class GrammarLayout : public RoadLayout {
       const auto& root = roots[leaf.root];
       for (std::size_t i = 0; i < root.size() && !on_shared_edge; ++i) {
         const geom::Vec2 p = root[i], q = root[(i + 1) % root.size()];
-        if (edge_roots[key(p, q)] < 2 || !lies_along(a, b, p, q)) continue;
+        if (edge_roots[segment_key(p, q)] < 2 || !lies_along(a, b, p, q)) continue;
         on_shared_edge = true;
-        if (built[key(p, q)]) break;
-        built[key(p, q)] = true;
-        road.line = {geom::snap(project(a, p, q)), geom::snap(project(b, p, q))};
+        if (!built.insert(segment_key(p, q)).second) break;
+        road.line = {geom::snap(geom::nearest_on_segment(a, p, q)), geom::snap(geom::nearest_on_segment(b, p, q))};
       }
       if (on_shared_edge && road.line.empty()) continue;  // built from the other side
       if (!on_shared_edge) {

@@ -17,7 +17,7 @@ namespace {
 // Joining ends can lay a short road along another's segment: each segment is kept in the
 // first road that has it, the roads cut where they repeat one.
 std::vector<RoadFeature> without_repeated_segments(const std::vector<RoadFeature>& roads) {
-  std::set<std::pair<std::pair<double, double>, std::pair<double, double>>> seen;
+  std::set<geom::SegmentKey> seen;
   std::vector<RoadFeature> out;
   for (const RoadFeature& r : roads) {
     const geom::Polyline& line = r.lines[0];
@@ -27,8 +27,7 @@ std::vector<RoadFeature> without_repeated_segments(const std::vector<RoadFeature
       piece.clear();
     };
     for (std::size_t k = 0; k + 1 < line.size(); ++k) {
-      std::pair<double, double> a{line[k].x, line[k].y}, b{line[k + 1].x, line[k + 1].y};
-      if (!seen.insert(a < b ? std::make_pair(a, b) : std::make_pair(b, a)).second) {
+      if (!seen.insert(geom::segment_key(line[k], line[k + 1])).second) {
         flush();
         continue;
       }
