@@ -13,11 +13,11 @@
 
 #include <tbb/global_control.h>
 
-#include "generate/blocks.h"
-#include "generate/lots.h"
+#include "generate/parcels/blocks.h"
+#include "generate/parcels/lots.h"
 #include "generate/pipeline.h"
-#include "generate/road_network.h"
-#include "generate/zone_map.h"
+#include "generate/layout/road_network.h"
+#include "generate/city/city_map.h"
 
 using namespace exacity;
 namespace fs = std::filesystem;
@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
     auto t = std::chrono::steady_clock::now();
     std::optional<Terrain> terrain;
     if (sketch.terrain) terrain = Terrain::load(*sketch.terrain);
-    ZoneMap zones = build_zone_map(sketch, terrain ? &*terrain : nullptr);
+    CityMap zones = build_city_map(sketch, terrain ? &*terrain : nullptr);
     row("zone map", seconds_since(t), std::to_string(zones.map.counts().faces) + " faces");
     t = std::chrono::steady_clock::now();
     RoadNetwork net = grow_road_network(std::move(zones), sketch);

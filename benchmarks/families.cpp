@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "generate/random.h"
+#include "generate/city/random.h"
 
 namespace exacity::bench {
 namespace {

@@ -1,10 +1,10 @@
 // Google Benchmark kernels for the exact geometry: batch against one-by-one insertion
-// (DESIGN.md rule 4), growing roads in a cell, splitting a cell by them.
+// (docs/design.md, Exactness rule 4), growing roads in a cell, splitting a cell by them.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 
-#include "generate/random.h"
+#include "generate/city/random.h"
 #include "geom/cell.h"
 #include "geom/grid.h"
 #include "geom/planar_map.h"

@@ -14,7 +14,7 @@
 
 #include "fuzz/fuzz_target.h"
 #include "generate/pipeline.h"
-#include "generate/sketch.h"
+#include "generate/city/sketch.h"
 
 namespace {
 

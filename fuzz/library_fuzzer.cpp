@@ -5,7 +5,7 @@
 #include <string>
 
 #include "fuzz/fuzz_target.h"
-#include "generate/model_library.h"
+#include "generate/placement/model_library.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto dir = exacity::fuzz::scratch();

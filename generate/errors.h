@@ -1,4 +1,4 @@
-// The two kinds of failure the exacity command reports (DESIGN.md, Conventions).
+// The two kinds of failure the exacity command reports (docs/design.md, Conventions).
 #pragma once
 
 #include <stdexcept>

@@ -4,21 +4,21 @@
 #include <fstream>
 #include <optional>
 
-#include "generate/blocks.h"
-#include "generate/buildings.h"
-#include "generate/cityjson_export.h"
+#include "generate/parcels/blocks.h"
+#include "generate/placement/buildings.h"
+#include "generate/export/cityjson_export.h"
 #include "generate/errors.h"
-#include "generate/gltf_export.h"
-#include "generate/lots.h"
-#include "generate/mesh_export.h"
-#include "generate/model_library.h"
-#include "generate/road_network.h"
-#include "generate/statistics.h"
-#include "generate/svg_map.h"
-#include "generate/terrain.h"
-#include "generate/validate.h"
-#include "generate/vector_layers.h"
-#include "generate/zone_map.h"
+#include "generate/export/gltf_export.h"
+#include "generate/parcels/lots.h"
+#include "generate/export/mesh_export.h"
+#include "generate/placement/model_library.h"
+#include "generate/layout/road_network.h"
+#include "generate/export/statistics.h"
+#include "generate/export/svg_map.h"
+#include "generate/city/terrain.h"
+#include "generate/export/validate.h"
+#include "generate/export/vector_layers.h"
+#include "generate/city/city_map.h"
 
 namespace exacity {
 namespace fs = std::filesystem;
@@ -34,8 +34,8 @@ City build_city(const Sketch& sketch, StageClock& stages) {
     if (sketch.models.empty()) return std::nullopt;
     return load_model_library(sketch.models);
   });
-  ZoneMap zone_map = stages.run("zone map", [&] { return build_zone_map(sketch, city.ground()); });
-  city.network = stages.run("road network", [&] { return grow_road_network(std::move(zone_map), sketch); });
+  CityMap city_map = stages.run("zone map", [&] { return build_city_map(sketch, city.ground()); });
+  city.network = stages.run("road network", [&] { return grow_road_network(std::move(city_map), sketch); });
   city.blocks = stages.run("blocks", [&] { return cut_blocks(city.network.map, sketch, city.network.uses); });
   city.lots = stages.run("lots", [&] {
     std::vector<Lot> lots = insert_lots(city.network.map, plan_lots(city.blocks, sketch), sketch);

@@ -1,4 +1,4 @@
-// The generate job: sketch to every output, stage after stage (DESIGN.md, The pipeline).
+// The generate job: sketch to every output, stage after stage (docs/design.md, The pipeline).
 #pragma once
 
 #include <chrono>
@@ -9,14 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "generate/blocks.h"
-#include "generate/buildings.h"
-#include "generate/lots.h"
-#include "generate/model_library.h"
-#include "generate/road_network.h"
-#include "generate/sketch.h"
-#include "generate/terrain.h"
-#include "generate/vector_layers.h"
+#include "generate/city/city.h"
+#include "generate/version.h"
 
 namespace exacity {
 
@@ -48,22 +42,6 @@ class StageClock {
   int count_, index_ = 0;
 };
 
-// The city in memory, every stage up to the vector layers: what the exports and the
-// renderer read.
-struct City {
-  Sketch sketch;
-  std::optional<Terrain> terrain;
-  std::optional<ModelLibrary> library;
-  RoadNetwork network;
-  std::vector<Block> blocks;
-  std::vector<Lot> lots;
-  std::vector<Building> buildings;
-  CityLayers layers;
-
-  const Terrain* ground() const { return terrain ? &*terrain : nullptr; }
-  const ModelLibrary* models() const { return library ? &*library : nullptr; }
-};
-
 inline constexpr int kCityStages = 8;
 
 // Runs the city's stages on `clock` (kCityStages of them).
@@ -79,7 +57,5 @@ struct GenerateResult {
 GenerateResult generate_city(const Sketch& sketch, const std::filesystem::path& dir, const ProgressFn& progress);
 GenerateResult write_city(const City& city, const std::filesystem::path& dir, StageClock& clock);
 inline constexpr int kWriteStages = 3;
-
-inline constexpr const char* kVersion = "0.1.0";
 
 }  // namespace exacity

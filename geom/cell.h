@@ -127,7 +127,7 @@ std::optional<Link> shortest_link(const std::vector<Path>& from, const std::vect
 // instead, unless `may_turn` is false; unchanged when there is none.
 Path extend_to(const Path& road, const std::vector<Path>& targets, double reach, bool may_turn = true);
 
-// The cell less a band of width `setback` inside every boundary edge (DESIGN.md rule 3:
+// The cell less a band of width `setback` inside every boundary edge (docs/design.md, Exactness rule 3:
 // each band's inner side runs through two offset points rounded to the grid); the parts
 // left, exact. Bands run `setback` past each edge's ends, so corners are cleared too.
 std::vector<Cell> inset_cell(const Cell& cell, double setback);

@@ -1,4 +1,4 @@
-// The grid of DESIGN.md's grid-line rule: every line Exacity creates passes through two
+// The grid of docs/design.md's grid-line rule (Exactness rule 2): every line Exacity creates passes through two
 // points of this grid, so exact coordinates stay rationals of bounded size.
 #pragma once
 

@@ -1,5 +1,5 @@
 // Pitched roofs over a footprint, as planar faces in 3D (counter-clockwise seen from above
-// and outside). The straight skeleton is not exact (DESIGN.md rule 3): it is used here only
+// and outside). The straight skeleton is not exact (docs/design.md, Exactness rule 3): it is used here only
 // for roof shapes, never for the planar map, and checked.
 #pragma once
 

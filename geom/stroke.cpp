@@ -1,4 +1,4 @@
-// Road-area strokes by DESIGN.md rule 3: every offset line runs through two grid points
+// Road-area strokes by docs/design.md, Exactness rule 3: every offset line runs through two grid points
 // computed in doubles, and a mitre point is the exact meeting of two such lines.
 #include <cmath>
 

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "generate/pipeline.h"
+#include "generate/city/city.h"
 #include "render/camera.h"
 
 namespace render {

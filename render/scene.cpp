@@ -4,10 +4,10 @@
 #include <map>
 #include <stdexcept>
 
-#include "generate/building_mesh.h"
-#include "generate/ground_mesh.h"
-#include "generate/palette.h"
-#include "generate/random.h"
+#include "generate/export/building_mesh.h"
+#include "generate/export/ground_mesh.h"
+#include "generate/city/palette.h"
+#include "generate/city/random.h"
 #include "render/noise.h"
 
 namespace render {

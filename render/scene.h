@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "generate/pipeline.h"
+#include "generate/city/city.h"
 #include "render/camera.h"
 #include "render/material.h"
 

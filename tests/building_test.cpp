@@ -5,10 +5,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "generate/building_mesh.h"
-#include "generate/ground_mesh.h"
-#include "generate/mesh_export.h"
-#include "generate/terrain.h"
+#include "generate/export/building_mesh.h"
+#include "generate/export/ground_mesh.h"
+#include "generate/export/mesh_export.h"
+#include "generate/city/terrain.h"
 #include "geom/polygon_check.h"
 #include "tests/test_util.h"
 

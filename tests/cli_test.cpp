@@ -96,7 +96,7 @@ TEST(Cli, EveryExampleGeneratesAndValidates) {
     auto report = nlohmann::json::parse(read(out / "report.json"));
     EXPECT_EQ(report["validation"]["ok"], true);
     EXPECT_GT(report["counts"]["zones"].get<int>(), 0);
-    // The plausibility targets (DESIGN.md, Plausibility).
+    // The plausibility targets (docs/design.md, Plausibility).
     for (const auto& [zone, z] : report["statistics"]["zones"].items()) {
       EXPECT_EQ(z["blocks"]["share_area_over_4x_block_area"].get<double>(), 0.0) << sketch << " " << zone;
       EXPECT_EQ(z["lots"]["share_touching_road"].get<double>(), 1.0) << sketch << " " << zone;

@@ -6,10 +6,10 @@
 #include <fstream>
 
 #include "generate/errors.h"
-#include "generate/geojson.h"
+#include "generate/export/geojson.h"
 #include "generate/layout/grammar.h"
 #include "generate/pipeline.h"
-#include "generate/validate.h"
+#include "generate/export/validate.h"
 #include "tests/test_util.h"
 
 using namespace exacity;

@@ -4,10 +4,10 @@
 
 #include <fstream>
 
-#include "generate/buildings.h"
-#include "generate/lots.h"
+#include "generate/placement/buildings.h"
+#include "generate/parcels/lots.h"
 #include "generate/pipeline.h"
-#include "generate/validate.h"
+#include "generate/export/validate.h"
 #include "geom/cell.h"
 #include "tests/test_util.h"
 

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <fstream>
 
-#include "generate/buildings.h"
+#include "generate/placement/buildings.h"
 #include "generate/errors.h"
-#include "generate/model_library.h"
-#include "generate/model_placement.h"
+#include "generate/placement/model_library.h"
+#include "generate/placement/model_placement.h"
 #include "geom/cell.h"
 #include "geom/grid.h"
 #include "geom/planar_map.h"

@@ -1,4 +1,4 @@
-// Cities that read as cities (DESIGN.md, Plausibility), on shapes growth used to stall in:
+// Cities that read as cities (docs/design.md, Plausibility), on shapes growth used to stall in:
 // a U, a comb, a ring round a lake, a spiral, a corridor 60 m wide, zones cut by highways;
 // and regions whose streets would be islands, apart from every other road.
 // Each city validates exactly, and its statistics meet the targets: no block over 4x its
@@ -9,10 +9,10 @@
 #include <cmath>
 #include <fstream>
 
-#include "generate/geojson.h"
+#include "generate/export/geojson.h"
 #include "generate/pipeline.h"
-#include "generate/statistics.h"
-#include "generate/validate.h"
+#include "generate/export/statistics.h"
+#include "generate/export/validate.h"
 #include "tests/test_util.h"
 
 using namespace exacity;

@@ -3,10 +3,10 @@
 
 #include <tbb/global_control.h>
 
-#include "generate/blocks.h"
-#include "generate/road_network.h"
-#include "generate/vector_layers.h"
-#include "generate/zone_map.h"
+#include "generate/parcels/blocks.h"
+#include "generate/layout/road_network.h"
+#include "generate/export/vector_layers.h"
+#include "generate/city/city_map.h"
 #include "tests/test_util.h"
 
 using namespace exacity;
@@ -32,7 +32,7 @@ struct City {
 City grow(const std::string& text) {
   City c;
   c.sketch = parse_sketch(text, "test.geojson");
-  c.network = grow_road_network(build_zone_map(c.sketch, nullptr), c.sketch);
+  c.network = grow_road_network(build_city_map(c.sketch, nullptr), c.sketch);
   c.blocks = cut_blocks(c.network.map, c.sketch);
   return c;
 }
@@ -117,7 +117,7 @@ TEST(RoadNetwork, GrownRoadsBridgeOnlyWhereTheZoneAllowsThem) {
         sketch_with(zone("residential", 0, 0, 1000, 1000),
                     std::string(R"({"zones": {"residential": {"bridges": )") + (allow ? "true" : "false") + "}}}"),
         "test.geojson");
-    RoadNetwork n = grow_road_network(build_zone_map(s, &t), s);
+    RoadNetwork n = grow_road_network(build_city_map(s, &t), s);
     std::pair<int, int> bridges;  // faces bridged by grown roads, by links
     for (const FaceLabel& l : n.map.labels)
       if (l.bridge) ++(n.map.roads[l.road].link ? bridges.second : bridges.first);

@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "generate/pipeline.h"
-#include "generate/validate.h"
+#include "generate/export/validate.h"
 #include "tests/test_util.h"
 
 using namespace exacity;

@@ -2,8 +2,8 @@
 #include <gtest/gtest.h>
 
 #include "generate/errors.h"
-#include "generate/sketch.h"
-#include "generate/street_graph.h"
+#include "generate/city/sketch.h"
+#include "generate/layout/street_graph.h"
 
 using namespace exacity;
 

@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "generate/errors.h"
-#include "generate/terrain.h"
+#include "generate/city/terrain.h"
 #include "geom/planar_map.h"
 #include "geom/polygon_check.h"
 #include "tests/test_util.h"

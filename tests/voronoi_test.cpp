@@ -4,10 +4,10 @@
 
 #include <fstream>
 
-#include "generate/geojson.h"
+#include "generate/export/geojson.h"
 #include "generate/layout/voronoi.h"
 #include "generate/pipeline.h"
-#include "generate/validate.h"
+#include "generate/export/validate.h"
 #include "tests/test_util.h"
 
 using namespace exacity;

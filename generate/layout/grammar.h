@@ -12,8 +12,8 @@
 #include <utility>
 #include <vector>
 
-#include "generate/random.h"
-#include "generate/zone_type.h"
+#include "generate/city/random.h"
+#include "generate/city/zone_type.h"
 #include "geom/plain.h"
 
 namespace exacity {

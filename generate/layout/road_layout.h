@@ -1,4 +1,4 @@
-// Road layouts (ARCHITECTURE.md, A shape for the alternatives): a layout plans the roads of
+// Road layouts (docs/design.md, Road layouts): a layout plans the roads of
 // one region, a set of connected faces of zones laid out alike; the roads stage
 // (road_network.cpp) alone puts plans into the map. Seed 000's growth is the roads stage's
 // own: it grows every region a level at a time and looks each level's seeds up in the map.
@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "generate/layout/grammar.h"
-#include "generate/random.h"
-#include "generate/sketch.h"
+#include "generate/city/random.h"
+#include "generate/city/sketch.h"
 #include "geom/cell.h"
 
 namespace exacity {
@@ -36,7 +36,7 @@ struct PlannedUse {
 struct RoadPlan {
   std::vector<PlannedRoad> roads;
   std::vector<PlannedUse> uses;
-  double join = 0;  // m: road ends this near another road are joined to it (generate/street_graph.h)
+  double join = 0;  // m: road ends this near another road are joined to it (generate/layout/street_graph.h)
 };
 
 class RoadLayout {

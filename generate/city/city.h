@@ -1,0 +1,33 @@
+// The city in memory, every stage up to the vector layers: what the exports and the
+// renderer read (docs/design.md, The city model).
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "generate/city/sketch.h"
+#include "generate/city/terrain.h"
+#include "generate/export/vector_layers.h"
+#include "generate/layout/road_network.h"
+#include "generate/parcels/blocks.h"
+#include "generate/parcels/lots.h"
+#include "generate/placement/buildings.h"
+#include "generate/placement/model_library.h"
+
+namespace exacity {
+
+struct City {
+  Sketch sketch;
+  std::optional<Terrain> terrain;
+  std::optional<ModelLibrary> library;
+  RoadNetwork network;
+  std::vector<Block> blocks;
+  std::vector<Lot> lots;
+  std::vector<Building> buildings;
+  CityLayers layers;
+
+  const Terrain* ground() const { return terrain ? &*terrain : nullptr; }
+  const ModelLibrary* models() const { return library ? &*library : nullptr; }
+};
+
+}  // namespace exacity

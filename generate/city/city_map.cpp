@@ -1,0 +1,154 @@
+#include "generate/city/city_map.h"
+
+#include <map>
+
+#include "generate/city/drawn_zones.h"
+#include "generate/layout/street_graph.h"
+
+namespace exacity {
+
+namespace {
+
+// Where sketch roads meet (generate/layout/street_graph.h), one mitred junction polygon (seed
+// 004) instead of the notches their flat ends would leave; and, where the streets have
+// sidewalks, an outer one of their sidewalks' width. A meeting too sharp for a mitre gets
+// a disc of each road's width, as before junctions were mitred.
+void add_junctions(const Sketch& sketch, CityMap& zm) {
+  const int road_base = 1;
+  for (const StreetNode& node : street_nodes(sketch.roads)) {
+    std::vector<geom::JunctionArm> carriageway, outer;
+    bool sidewalks = false;
+    for (const StreetArm& arm : node.arms) {
+      const RoadFeature& r = sketch.roads[arm.road];
+      const double sidewalk = sketch.streets.sidewalk(r.road_class);
+      carriageway.push_back({arm.toward, r.width / 2, arm.length});
+      outer.push_back({arm.toward, r.width / 2 + sidewalk, arm.length});
+      sidewalks |= sidewalk > 0;
+    }
+    const int first = node.arms.front().road;
+    const int junction = static_cast<int>(zm.junction_roads.size());
+    if (zm.map.add_junction(node.at, carriageway, zm.junction_base + junction)) {
+      zm.junction_roads.push_back(first);
+      ++zm.mitred_junctions;
+      if (sidewalks) zm.map.add_junction(node.at, outer, zm.sidewalk_base + first);
+      continue;
+    }
+    // Straight on (nothing needed) or too sharp.
+    if (node.arms.size() == 2 && carriageway[0].half_width == carriageway[1].half_width &&
+        outer[0].half_width == outer[1].half_width)
+      continue;
+    ++zm.disc_junctions;
+    for (const StreetArm& arm : node.arms) {
+      const RoadFeature& r = sketch.roads[arm.road];
+      zm.map.add_disc(node.at, r.width / 2, road_base + arm.road);
+      if (sidewalks) zm.map.add_disc(node.at, r.width / 2 + sketch.streets.sidewalk(r.road_class), zm.sidewalk_base + arm.road);
+    }
+  }
+}
+
+}  // namespace
+
+int CityMap::road_of_counter(int counter) const {
+  if (counter >= 1 && counter <= sketch_roads) return counter - 1;
+  if (counter >= generated_base && counter < generated_base + static_cast<int>(roads.size()) - sketch_roads)
+    return sketch_roads + counter - generated_base;
+  return -1;
+}
+
+void CityMap::label(const Sketch& sketch) {
+  constexpr int kWater = 0;
+  labels.clear();
+  index_.clear();
+  map.label_faces([&](const geom::Windings& w) {
+    FaceLabel l;
+    l.zone = drawn->top_zone(w);
+    const ZoneType type = l.zone >= 0 ? sketch.zones[l.zone].type : ZoneType::Park;
+    const bool water = geom::winding_of(w, kWater) != 0 || (l.zone >= 0 && type == ZoneType::Water);
+    // A generated road paves only where roads are generated (not in a zone laid out as
+    // "streets"): its flat end stops at the region's edge. A link paves all its way, over
+    // open land, parks and water.
+    const ZoneParams& params = sketch.zone_params.at(type);
+    const bool paved_by_growth =
+        l.zone >= 0 && grows_roads(type) && params.layout != "streets" && (!water || params.bridges);
+    // Counters grow with road index, so the first road found is the first listed: it owns
+    // a crossing.
+    int carriageway = -1, sidewalk = -1, junction = -1;
+    for (auto [counter, winding] : w) {
+      if (counter >= junction_base && counter < generated_base) {
+        if (junction < 0) junction = counter - junction_base;
+      } else if (counter >= sidewalk_base && counter < junction_base) {
+        if (sidewalk < 0) sidewalk = counter - sidewalk_base;
+      } else if (int r = road_of_counter(counter); carriageway < 0 && r >= 0) {
+        if (r < sketch_roads || paved_by_growth || roads[r].link) carriageway = r;
+      }
+    }
+    if (junction >= 0) {
+      l.road = junction_roads[junction], l.junction = junction, l.surface = RoadSurface::Junction;
+    } else if (carriageway >= 0) {
+      l.road = carriageway, l.surface = RoadSurface::Carriageway;
+    } else if (sidewalk >= 0) {
+      l.road = sidewalk, l.surface = RoadSurface::Sidewalk;
+    }
+    if (water) {
+      l.cover = Cover::Water;
+      l.bridge = l.road >= 0;
+    } else if (l.road >= 0) {
+      l.cover = Cover::Road;
+    } else if (l.zone >= 0) {
+      l.cover = Cover::Zone;
+    }
+    return label_index(l);
+  });
+}
+
+int CityMap::label_index(const FaceLabel& l) {
+  auto [it, added] = index_.emplace(l, static_cast<int>(labels.size()));
+  if (added) labels.push_back(l);
+  return it->second;
+}
+
+void CityMap::insert_lots() {
+  std::vector<int> block_of_label;
+  for (const FaceLabel& l : labels) block_of_label.push_back(l.lot < 0 ? l.block : -1);
+  map.insert_within(block_of_label, [&](const geom::Windings& w, int previous) {
+    if (w.empty()) return previous;
+    FaceLabel l = labels[previous];
+    l.lot = w.front().first - lot_base;
+    return label_index(l);
+  });
+}
+
+CityMap build_city_map(const Sketch& sketch, const Terrain* terrain) {
+  CityMap zm;
+  const int road_base = 1;
+  zm.sketch_roads = static_cast<int>(sketch.roads.size());
+  if (terrain) {
+    for (auto [a, b] : terrain->water_boundary()) zm.map.add_edge(a, b, 0);
+  }
+  int tag = 0;
+  for (int r = 0; r < zm.sketch_roads; ++r) {
+    const RoadFeature& f = sketch.roads[r];
+    MapRoad road{f.road_class, f.width, -1, -1, f.index, {}, tag};
+    for (const geom::Polyline& line : f.lines) {
+      zm.map.add_stroke(line, f.width / 2, road_base + r);
+      road.lines.push_back(geom::Path::from(line));
+      zm.map.add_path(road.lines.back(), tag++);
+    }
+    zm.roads.push_back(std::move(road));
+  }
+  zm.drawn = std::make_shared<DrawnZones>(sketch.zones, zm.map, road_base + zm.sketch_roads);
+  zm.sidewalk_base = zm.drawn->end_counter();
+  zm.junction_base = zm.sidewalk_base + zm.sketch_roads;
+  for (int r = 0; r < zm.sketch_roads; ++r) {
+    const RoadFeature& f = sketch.roads[r];
+    if (const double sidewalk = sketch.streets.sidewalk(f.road_class); sidewalk > 0)
+      for (const geom::Polyline& line : f.lines) zm.map.add_stroke(line, f.width / 2 + sidewalk, zm.sidewalk_base + r);
+  }
+  add_junctions(sketch, zm);
+  zm.generated_base = zm.junction_base + static_cast<int>(zm.junction_roads.size());
+  zm.map.insert_batch();
+  zm.label(sketch);
+  return zm;
+}
+
+}  // namespace exacity

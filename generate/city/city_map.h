@@ -1,0 +1,89 @@
+// The city's planar map: drawn zones, heightmap water and road areas in one exact
+// arrangement, every face labelled with what covers it (seed 000, 3.1). The road-network
+// stage refines the same map.
+#pragma once
+
+#include <compare>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "generate/city/drawn_zones.h"
+#include "generate/city/sketch.h"
+#include "generate/city/terrain.h"
+#include "geom/planar_map.h"
+
+namespace exacity {
+
+// What the user sees at a face: water beats road beats drawn zone.
+enum class Cover : std::uint8_t { Outside, Zone, Water, Road };
+
+// Which part of a road a road face is (seed 004): its carriageway, a sidewalk beside it, or
+// the junction where streets meet. A junction beats a carriageway beats a sidewalk.
+enum class RoadSurface : std::uint8_t { None, Carriageway, Sidewalk, Junction };
+inline const char* name(RoadSurface s) {
+  return s == RoadSurface::Sidewalk ? "sidewalk" : s == RoadSurface::Junction ? "junction" : "carriageway";
+}
+
+struct FaceLabel {
+  Cover cover = Cover::Outside;
+  int zone = -1;        // index into Sketch::zones of the drawn zone on top, -1 if none
+  int road = -1;        // index into CityMap::roads of the road whose surface this is, -1 if none
+  bool bridge = false;  // a road surface over water
+  int block = -1;       // index of the block it lies in, once blocks are in the map
+  int lot = -1;         // index of the lot it lies in, once lots are in the map
+  RoadSurface surface = RoadSurface::None;  // on a road face
+  int junction = -1;    // index into CityMap::junction_roads of the junction it lies in
+  // The surface of road `road`: on land, or a bridge's over water.
+  bool road_surface() const { return road >= 0 && (cover == Cover::Road || bridge); }
+  friend auto operator<=>(const FaceLabel&, const FaceLabel&) = default;
+};
+
+// A road in the map: a sketch road (level -1) or a generated one.
+struct MapRoad {
+  RoadClass road_class = RoadClass::Highway;
+  double width = 0;
+  int level = -1;    // growth level; -1 for roads drawn in the sketch
+  int region = -1;   // the region it was grown in; -1 for roads drawn in the sketch
+  int feature = -1;  // its index in the sketch's features; -1 for generated roads
+  std::vector<geom::Path> lines;
+  int first_tag = 0;  // polyline tag of lines[0]; the others follow
+  bool link = false;  // joins a region's streets to the rest (road_network.cpp): paved wherever it runs
+};
+
+struct CityMap {
+  geom::PlanarMap map;
+  std::vector<FaceLabel> labels;  // indexed by face label
+  std::vector<MapRoad> roads;     // sketch roads first, in sketch order
+  int sketch_roads = 0;
+
+  // Counters: water is 0, sketch road r's carriageway is 1 + r, then the drawn zones'
+  // rings, then sketch road r's sidewalks at sidewalk_base + r, junction j (a polygon
+  // where sketch roads meet) at junction_base + j, then generated roads from
+  // generated_base on.
+  std::shared_ptr<DrawnZones> drawn;
+  int sidewalk_base = 0, junction_base = 0;
+  std::vector<int> junction_roads;  // per junction, the road it belongs to: the first to meet there
+  int mitred_junctions = 0, disc_junctions = 0;  // how the sketch's road meetings were drawn
+  int generated_base = 0;
+  // Then, once the lots stage has run, lot l winds around lot_base + l.
+  int lot_base = -1;
+
+  int road_of_counter(int counter) const;
+  // (Re)labels every face from its windings.
+  void label(const Sketch& sketch);
+  // The index of this label in `labels`, added if new.
+  int label_index(const FaceLabel& l);
+  // Inserts the lots queued with map.add_*_within(block, ring, lot_base + lot), each
+  // within its block's faces: a face of a block lies in the first lot around it planned in
+  // that block, so a lot that would cross a road or another block stops there.
+  void insert_lots();
+
+ private:
+  std::map<FaceLabel, int> index_;
+};
+
+CityMap build_city_map(const Sketch& sketch, const Terrain* terrain);
+
+}  // namespace exacity

@@ -1,0 +1,32 @@
+// Determinism (docs/design.md): every random choice draws from a generator seeded by a hash of
+// (seed, stage, stable id of the thing generated), never from one shared stream.
+#pragma once
+
+#include <cstdint>
+
+namespace exacity {
+
+// SplitMix64's finaliser: a strong 64-bit mix.
+constexpr std::uint64_t mix(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+constexpr std::uint64_t mix(std::uint64_t a, std::uint64_t b) { return mix(a ^ mix(b)); }
+
+enum class Stage : std::uint64_t { Roads = 1, Lots = 2, Buildings = 3 };
+
+class Random {
+ public:
+  explicit Random(std::uint64_t seed) : state_(seed) {}
+  std::uint64_t next() { return mix(state_++); }
+  // Uniform in [0, 1): the top 53 bits, so the same on every platform.
+  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+  double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
+
+ private:
+  std::uint64_t state_;
+};
+
+}  // namespace exacity

@@ -1,0 +1,535 @@
+#include "generate/city/sketch.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "generate/errors.h"
+#include "generate/layout/grammar.h"
+#include "generate/layout/street_graph.h"
+#include "geom/measure.h"
+
+namespace exacity {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+ZoneParams default_params(ZoneType type) {
+  ZoneParams p;
+  if (type == ZoneType::Commercial || type == ZoneType::Industrial) {
+    // Manhattan grid (seed 000): straight roads, smaller jitter.
+    p.jitter = 10;
+    p.segment_deviation = 0;
+    p.origin_deviation = 0;
+    p.block_area = type == ZoneType::Commercial ? 15000 : 30000;
+    p.lot_area = type == ZoneType::Commercial ? 1500 : 3000;
+  }
+  if (type == ZoneType::Commercial) {
+    p.setback = 2, p.min_height = 12, p.max_height = 48;
+    p.lot_width = {20, 45}, p.lot_depth = 35;
+    p.building_gap = 3, p.footprint_width = {14, 36}, p.footprint_depth = {12, 28};
+    p.min_footprint_width = 8, p.max_footprint_area = 3000;
+  }
+  if (type == ZoneType::Industrial) {
+    p.setback = 4, p.min_height = 5, p.max_height = 12;
+    p.lot_width = {40, 90}, p.lot_depth = 60;
+    p.building_gap = 6, p.footprint_width = {20, 80}, p.footprint_depth = {15, 50};
+    p.min_footprint_width = 10, p.max_footprint_area = 20000;
+  }
+  return p;
+}
+
+double road_width(const ZoneParams& p, int level) {
+  return p.road_widths[std::min<std::size_t>(level, p.road_widths.size() - 1)];
+}
+
+double default_width(RoadClass road_class) {
+  switch (road_class) {
+    case RoadClass::Highway: return 24;
+    case RoadClass::Main: return 12;
+    case RoadClass::Local: return 8;
+  }
+  return 8;
+}
+
+namespace {
+
+std::string quote(std::string_view s) { return "\"" + std::string(s) + "\""; }
+
+// nlohmann::json refuses numbers beyond a double's range (such as 1e999) outright. So
+// that the error can name the feature, parse_sketch re-reads the text with each such
+// literal replaced by a marker string, and the parser reports the marker where it finds it.
+constexpr std::string_view kOverflowMarker = "exacity-overflow:";
+
+// Coordinates Exacity computes exactly in: rounding its exact vertices to doubles moves them
+// by under 2e-6 m out here; at 1e12 m (0.1 mm steps) written rings stop being simple.
+constexpr double kMaxCoordinate = 1e10;
+
+// The most blocks one run builds (the zones' area over their block_area): the 10 km
+// benchmark city's 12,700 blocks peak at 4.1 GiB.
+constexpr double kMaxBlocks = 50000;
+
+// A member's text, or its JSON when it is not a string: what to compare and quote.
+std::string text_of(const json& obj, const char* key) {
+  auto it = obj.find(key);
+  if (it == obj.end()) return "";
+  return it->is_string() ? it->get<std::string>() : it->dump();
+}
+
+std::optional<std::string> overflowed_literal(const json& j) {
+  if (!j.is_string()) return std::nullopt;
+  const std::string& s = j.get_ref<const std::string&>();
+  if (s.rfind(kOverflowMarker, 0) != 0) return std::nullopt;
+  return s.substr(kOverflowMarker.size());
+}
+
+template <std::size_t N>
+std::string list(const std::array<std::string_view, N>& names) {
+  std::string r;
+  for (auto n : names) r += (r.empty() ? "" : ", ") + std::string(n);
+  return r;
+}
+
+class Parser {
+ public:
+  Parser(const fs::path& path, bool read_grammars) : file_(path.string()), read_grammars_(read_grammars) {}
+
+  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+    throw UserError(file_ + ": " + where + ": " + what);
+  }
+
+  double number(const json& j, const std::string& where, double min, double max) const {
+    if (auto literal = overflowed_literal(j)) fail(where, *literal + " is not a finite number; write a finite number");
+    if (!j.is_number()) fail(where, "expected a number, found " + std::string(j.type_name()));
+    double v = j.get<double>();
+    if (!std::isfinite(v)) fail(where, "the number is not finite; write a finite number");
+    if (v < min || v > max)
+      fail(where, "value " + json(v).dump() + " is out of range; use a value from " + json(min).dump() +
+                      " to " + json(max).dump());
+    return v;
+  }
+
+  void known_keys(const json& obj, const std::string& where, const std::set<std::string>& keys) const {
+    if (!obj.is_object()) fail(where, "expected an object, found " + std::string(obj.type_name()));
+    for (auto& [k, v] : obj.items()) {
+      if (keys.count(k)) continue;
+      std::string valid;
+      for (auto& key : keys) valid += (valid.empty() ? "" : ", ") + key;
+      fail(where, "unknown key " + quote(k) + "; remove it or use one of: " + valid);
+    }
+  }
+
+  geom::Vec2 position(const json& j, const std::string& where) const {
+    if (j.is_array() && j.size() >= 2)
+      for (const json& c : {j[0], j[1]})
+        if (auto literal = overflowed_literal(c))
+          fail(where, "coordinate " + *literal + " is not a finite number; use finite coordinates in metres");
+    if (!j.is_array() || j.size() < 2 || !j[0].is_number() || !j[1].is_number())
+      fail(where, "a position must be an array [x, y] of numbers");
+    double x = j[0].get<double>(), y = j[1].get<double>();
+    if (!std::isfinite(x) || !std::isfinite(y))
+      fail(where, "coordinate " + j.dump() + " is not a finite number; use finite coordinates in metres");
+    if (std::abs(x) > kMaxCoordinate || std::abs(y) > kMaxCoordinate)
+      fail(where, "coordinate " + j.dump() + " is beyond 1e10 m, outside the range Exacity computes exactly in; "
+                  "move the sketch nearer the origin (a false easting and northing)");
+    return {x, y};
+  }
+
+  std::vector<geom::Vec2> positions(const json& j, const std::string& where) const {
+    if (!j.is_array()) fail(where, "expected an array of positions");
+    std::vector<geom::Vec2> pts;
+    for (std::size_t i = 0; i < j.size(); ++i) {
+      geom::Vec2 p = position(j[i], where + " position " + std::to_string(i));
+      if (pts.empty() || !(pts.back() == p)) pts.push_back(p);  // repeated points are legal
+    }
+    return pts;
+  }
+
+  geom::Ring ring(const json& j, const std::string& where) const {
+    geom::Ring r = positions(j, where);
+    if (r.size() > 1 && r.front() == r.back()) r.pop_back();
+    std::set<std::pair<double, double>> distinct;
+    for (auto p : r) distinct.insert({p.x, p.y});
+    if (distinct.size() < 3)
+      fail(where, "ring has " + std::to_string(distinct.size()) +
+                      " distinct points; a ring needs at least 3, so add points or delete the ring");
+    return r;
+  }
+
+  geom::Polygon polygon(const json& j, const std::string& where) const {
+    if (!j.is_array() || j.empty()) fail(where, "a Polygon needs at least one ring");
+    geom::Polygon p;
+    p.outer = ring(j[0], where + " outer ring");
+    for (std::size_t i = 1; i < j.size(); ++i) p.holes.push_back(ring(j[i], where + " hole " + std::to_string(i)));
+    return p;
+  }
+
+  void feature(const json& f, int index, Sketch& sketch) const {
+    std::string where = "features[" + std::to_string(index) + "]";
+    if (!f.is_object() || text_of(f, "type") != "Feature") fail(where, "not a GeoJSON Feature");
+    if (!f.contains("geometry") || f["geometry"].is_null())
+      fail(where, "feature has no geometry; draw a Polygon for a zone or a LineString for a road, or delete it");
+    const json& g = f["geometry"];
+    if (!g.is_object() || !g.contains("coordinates")) fail(where, "geometry has no coordinates");
+    std::string type = text_of(g, "type");
+    const json& coords = g["coordinates"];
+    const json props = f.contains("properties") && f["properties"].is_object() ? f["properties"] : json::object();
+    bool is_zone = props.contains("zone"), is_road = props.contains("road");
+    if (is_zone == is_road)
+      fail(where, is_zone ? "feature has both \"zone\" and \"road\"; keep one"
+                          : "feature has neither a \"zone\" nor a \"road\" property; add one");
+
+    if (is_zone) {
+      const json& z = props["zone"];
+      std::string zname = z.is_string() ? z.get<std::string>() : z.dump();
+      auto zt = parse_zone_type(zname);
+      if (!zt)
+        fail(where, "unknown zone type " + quote(zname) + "; did you mean " + quote(nearest_zone_name(zname)) +
+                        "? (valid: " + list(kZoneTypeNames) + ")");
+      ZoneFeature zf{index, *zt, {}};
+      if (type == "Polygon") {
+        zf.polygons.push_back(polygon(coords, where));
+      } else if (type == "MultiPolygon" && coords.is_array()) {
+        for (std::size_t i = 0; i < coords.size(); ++i)
+          zf.polygons.push_back(polygon(coords[i], where + " polygon " + std::to_string(i)));
+      } else {
+        fail(where, "a zone must be a Polygon or MultiPolygon, not " + quote(type));
+      }
+      sketch.zones.push_back(std::move(zf));
+      return;
+    }
+
+    const json& r = props["road"];
+    std::string rname = r.is_string() ? r.get<std::string>() : r.dump();
+    auto rc = parse_road_class(rname);
+    if (!rc)
+      fail(where, "unknown road class " + quote(rname) + "; did you mean " +
+                      quote(nearest_road_class_name(rname)) + "? (valid: " + list(kRoadClassNames) + ")");
+    RoadFeature rf{index, *rc, default_width(*rc), {}};
+    if (props.contains("width") && !props["width"].is_null())
+      rf.width = number(props["width"], where + " width", 0.5, 500);
+    auto line = [&](const json& j, const std::string& w) {
+      geom::Polyline l = positions(j, w);
+      if (l.size() < 2) fail(w, "a road needs at least 2 distinct points");
+      rf.lines.push_back(std::move(l));
+    };
+    if (type == "LineString") {
+      line(coords, where);
+    } else if (type == "MultiLineString" && coords.is_array()) {
+      for (std::size_t i = 0; i < coords.size(); ++i) line(coords[i], where + " line " + std::to_string(i));
+    } else {
+      fail(where, "a road must be a LineString or MultiLineString, not " + quote(type));
+    }
+    sketch.roads.push_back(std::move(rf));
+  }
+
+  // Coordinates are metres. Longitude/latitude (the GeoJSON default) would make a city a
+  // fraction of a metre wide, so say so before anything is built.
+  void expect_metres(const Sketch& sketch) const {
+    std::string crs = sketch.crs.is_null() ? "" : sketch.crs.dump();
+    const std::string fix = "; Exacity needs metres: reproject the sketch first, e.g. "
+                            "ogr2ogr -t_srs EPSG:<UTM zone> metres.geojson sketch.geojson";
+    for (const char* geographic : {"4326", "CRS84", "4258", "4269"})
+      if (crs.find(geographic) != std::string::npos) fail("crs", "the sketch is in longitude/latitude (" + crs + ")" + fix);
+    geom::Box b = geom::Box::none();
+    for (const auto& z : sketch.zones)
+      for (const auto& p : z.polygons)
+        for (auto v : p.outer) b.add(v);
+    for (const auto& r : sketch.roads)
+      for (const auto& l : r.lines)
+        for (auto v : l) b.add(v);
+    bool degree_sized = b.width() < 1 && b.height() < 1 && b.min_x >= -180 && b.max_x <= 180 && b.min_y >= -90 && b.max_y <= 90;
+    if (degree_sized)
+      fail("features", "the whole sketch spans less than 1 x 1 unit, so its coordinates look like longitude/latitude" + fix);
+  }
+
+  // A sketch whose zones would need more blocks than one run can hold is refused before
+  // anything is built, naming the zone that needs the most.
+  void expect_buildable(const Sketch& sketch) const {
+    double blocks = 0, most = -1;
+    const ZoneFeature* largest = nullptr;
+    for (const ZoneFeature& z : sketch.zones) {
+      if (!grows_roads(z.type)) continue;
+      double area = 0;
+      for (const auto& p : z.polygons) area += std::abs(geom::area(p));
+      const double n = area / sketch.zone_params.at(z.type).block_area;
+      blocks += n;
+      if (n > most) most = n, largest = &z;
+    }
+    if (blocks > kMaxBlocks)
+      fail("features[" + std::to_string(largest->index) + "]",
+           "the zones would make about " + std::to_string(static_cast<long long>(blocks)) +
+               " blocks, more than the " + std::to_string(static_cast<long long>(kMaxBlocks)) + " one run builds (this " + std::string(name(largest->type)) + " zone alone " +
+               std::to_string(static_cast<long long>(most)) + "); draw smaller zones or raise their \"block_area\"");
+  }
+
+  void settings(const json& ex, Sketch& sketch) const {
+    const std::string w = "\"exacity\"";
+    known_keys(ex, w, {"version", "seed", "terrain", "models", "zones", "roads", "camera"});
+    if (ex.contains("version") && number(ex["version"], w + ".version", 1, 1) != 1) fail(w, "unsupported version");
+    if (ex.contains("seed")) {
+      const json& s = ex["seed"];
+      if (!s.is_number_integer() || s.get<std::int64_t>() < 0)
+        fail(w + ".seed", "the seed must be a non-negative integer");
+      sketch.seed = s.get<std::uint64_t>();
+    }
+    if (ex.contains("models")) {
+      if (!ex["models"].is_string()) fail(w + ".models", "expected the path of a model library (a string)");
+      sketch.models = sketch.path.parent_path() / ex["models"].get<std::string>();
+    }
+    if (ex.contains("camera")) {
+      if (!ex["camera"].is_string())
+        fail(w + ".camera", "expected a camera such as \"orbit:target=0,0,0,azimuth=225,elevation=35,distance=900\"");
+      sketch.camera = ex["camera"].get<std::string>();
+    }
+    if (ex.contains("terrain")) sketch.terrain = terrain(ex["terrain"], sketch.path);
+    if (ex.contains("roads")) sketch.streets = streets(ex["roads"]);
+    if (ex.contains("zones")) {
+      const json& zones = ex["zones"];
+      known_keys(zones, w + ".zones", {kZoneTypeNames.begin(), kZoneTypeNames.end()});
+      for (auto& [zname, params] : zones.items()) {
+        ZoneType zt = *parse_zone_type(zname);
+        sketch.zone_params[zt] = zone_params(params, zt, w + ".zones." + zname);
+      }
+    }
+  }
+
+  StreetSettings streets(const json& j) const {
+    const std::string w = "\"exacity\".roads";
+    std::set<std::string> keys{"snap", "dead_ends"};
+    keys.insert(kRoadClassNames.begin(), kRoadClassNames.end());
+    known_keys(j, w, keys);
+    StreetSettings s;
+    if (j.contains("snap")) s.snap = number(j["snap"], w + ".snap", 0, 100);
+    if (j.contains("dead_ends")) {
+      if (j["dead_ends"] != "report" && j["dead_ends"] != "error")
+        fail(w + ".dead_ends", "expected \"report\" (list them in report.json) or \"error\" (refuse the sketch)");
+      s.dead_ends_are_errors = j["dead_ends"] == "error";
+    }
+    for (std::string_view c : kRoadClassNames) {
+      const std::string cname(c), cw = w + "." + cname;
+      if (!j.contains(cname)) continue;
+      known_keys(j[cname], cw, {"sidewalk"});
+      if (j[cname].contains("sidewalk")) s.sidewalks[*parse_road_class(cname)] = number(j[cname]["sidewalk"], cw + ".sidewalk", 0, 50);
+    }
+    return s;
+  }
+
+  // Joins the roads' near ends and finds their dead ends (generate/layout/street_graph.h).
+  void join_streets(Sketch& sketch) const {
+    sketch.joined_ends = join_near_ends(sketch.roads, sketch.streets.snap);
+    sketch.dead_ends = dead_ends(sketch.roads);
+    if (sketch.streets.dead_ends_are_errors && !sketch.dead_ends.empty()) {
+      const DeadEnd& d = sketch.dead_ends.front();
+      fail("features[" + std::to_string(d.feature) + "]",
+           "the road ends at " + json::array({d.at.x, d.at.y}).dump() + " meeting no other road (one of " +
+               std::to_string(sketch.dead_ends.size()) +
+               " dead ends; \"dead_ends\": \"error\" refuses them); draw it on to another road, or set "
+               "\"exacity\".roads.dead_ends to \"report\"");
+    }
+  }
+
+  TerrainSpec terrain(const json& t, const fs::path& sketch_path) const {
+    const std::string w = "\"exacity\".terrain";
+    known_keys(t, w, {"heightmap", "bounds", "height"});
+    TerrainSpec spec;
+    if (!t.contains("heightmap") || !t["heightmap"].is_string())
+      fail(w, "\"heightmap\" must name an image file (PNG, TIFF or EXR)");
+    spec.heightmap = sketch_path.parent_path() / t["heightmap"].get<std::string>();
+    if (!t.contains("bounds") || !t["bounds"].is_array() || t["bounds"].size() != 4)
+      fail(w + ".bounds", "give the area the heightmap covers as [min_x, min_y, max_x, max_y]");
+    const json& b = t["bounds"];
+    double big = 1e9;
+    spec.bounds = {number(b[0], w + ".bounds", -big, big), number(b[1], w + ".bounds", -big, big),
+                   number(b[2], w + ".bounds", -big, big), number(b[3], w + ".bounds", -big, big)};
+    if (!(spec.bounds.max_x > spec.bounds.min_x) || !(spec.bounds.max_y > spec.bounds.min_y))
+      fail(w + ".bounds", "bounds " + b.dump() + " have zero area; give [min_x, min_y, max_x, max_y] with min < max");
+    if (t.contains("height")) {
+      const json& h = t["height"];
+      if (!h.is_array() || h.size() != 2) fail(w + ".height", "give [lowest, highest] in metres");
+      spec.low = number(h[0], w + ".height", -1e5, 1e5);
+      spec.high = number(h[1], w + ".height", -1e5, 1e5);
+    }
+    return spec;
+  }
+
+  ZoneParams zone_params(const json& j, ZoneType zt, const std::string& w) const {
+    known_keys(j, w, {"block_area", "segment_length", "branches", "jitter", "segment_deviation",
+                      "origin_deviation", "road_widths", "min_block_area", "min_block_width",
+                      "bridges", "layout", "grammar", "grammar_depth", "cell_size", "junction_spacing", "lots", "lot_area", "min_lot_edge", "min_lot_area", "setback", "heights",
+                      "min_footprint_area", "roof", "roof_pitch", "density", "lot_width", "lot_depth",
+                      "building_gap", "footprint_width", "footprint_depth", "min_footprint_width",
+                      "max_footprint_area"});
+    ZoneParams p = default_params(zt);
+    auto set = [&](const char* key, double& field, double min, double max) {
+      if (j.contains(key)) field = number(j[key], w + "." + key, min, max);
+    };
+    set("block_area", p.block_area, 100, 1e9);
+    set("segment_length", p.segment_length, 1, 10000);
+    double branches = p.branches;
+    set("branches", branches, 1, 16);
+    p.branches = static_cast<int>(branches);
+    set("jitter", p.jitter, 0, 180);
+    set("segment_deviation", p.segment_deviation, 0, 90);
+    set("origin_deviation", p.origin_deviation, 0, 80);  // below 90, so every road makes progress
+    if (j.contains("road_widths")) {
+      const json& widths = j["road_widths"];
+      if (!widths.is_array() || widths.empty()) fail(w + ".road_widths", "give a list of widths in metres, one per level");
+      p.road_widths.clear();
+      for (std::size_t i = 0; i < widths.size(); ++i)
+        p.road_widths.push_back(number(widths[i], w + ".road_widths[" + std::to_string(i) + "]", 0.5, 200));
+    }
+    set("min_block_area", p.min_block_area, 0, 1e9);
+    set("min_block_width", p.min_block_width, 0, 1e4);
+    set("lot_area", p.lot_area, 10, 1e8);
+    set("min_lot_edge", p.min_lot_edge, 0, 1e4);
+    set("min_lot_area", p.min_lot_area, 0, 1e8);
+    set("setback", p.setback, 0, 1e3);
+    set("min_footprint_area", p.min_footprint_area, 0, 1e8);
+    set("lot_depth", p.lot_depth, 2, 1e4);
+    set("building_gap", p.building_gap, 0, 1e3);
+    set("min_footprint_width", p.min_footprint_width, 1, 1e4);
+    set("max_footprint_area", p.max_footprint_area, 1, 1e8);
+    auto range = [&](const char* key, Range& r, double min, double max, const char* what) {
+      if (!j.contains(key)) return;
+      const json& v = j[key];
+      std::string where = w + "." + key;
+      if (!v.is_array() || v.size() != 2) fail(where, std::string("give [smallest, largest] ") + what);
+      r.min = number(v[0], where, min, max);
+      r.max = number(v[1], where, r.min, max);
+    };
+    range("lot_width", p.lot_width, 2, 1e4, "lot frontage in metres");
+    range("footprint_width", p.footprint_width, 1, 1e4, "footprint width along the street in metres");
+    range("footprint_depth", p.footprint_depth, 1, 1e4, "footprint depth back from the street in metres");
+    set("roof_pitch", p.roof_pitch, 1, 75);
+    if (j.contains("roof")) {
+      const json& r = j["roof"];
+      if (!r.is_string() || (r != "auto" && r != "flat" && r != "gabled" && r != "hipped"))
+        fail(w + ".roof", "expected \"auto\", \"flat\", \"gabled\" or \"hipped\"");
+      p.roof = r.get<std::string>();
+    }
+    if (j.contains("density")) {
+      const json& d = j["density"];
+      if (!d.is_string() || (d != "dense" && d != "normal" && d != "sparse"))
+        fail(w + ".density", "expected \"dense\", \"normal\" or \"sparse\" (how far apart placed models stand)");
+      p.density = d.get<std::string>();
+    }
+    if (j.contains("heights")) {
+      const json& h = j["heights"];
+      if (!h.is_array() || h.size() != 2) fail(w + ".heights", "give [lowest, highest] building heights in metres");
+      p.min_height = number(h[0], w + ".heights", 0.5, 1000);
+      p.max_height = number(h[1], w + ".heights", p.min_height, 1000);
+    }
+    if (j.contains("layout")) {
+      if (j["layout"] != "growth" && j["layout"] != "grammar" && j["layout"] != "voronoi" && j["layout"] != "streets")
+        fail(w + ".layout", "expected \"growth\" (seed 000's growing roads), \"grammar\" (seed 002's split grammar, "
+                            "with \"grammar\": FILE), \"voronoi\" (seed 003's Voronoi streets) or \"streets\" (the "
+                            "sketch's roads only)");
+      p.layout = j["layout"].get<std::string>();
+      // Seed 003 splits its plots into lots.
+      if (p.layout == "voronoi" && !j.contains("lots")) p.lots = "split";
+    }
+    set("cell_size", p.cell_size, 20, 1e5);
+    const double widest = *std::max_element(p.road_widths.begin(), p.road_widths.end());
+    if (p.layout == "voronoi" && p.cell_size < 4 * widest)
+      fail(w + ".cell_size", json(p.cell_size).dump() + " m is under 4 road widths (" + json(4 * widest).dump() +
+                                 " m): the cells would be all road; raise \"cell_size\" or narrow \"road_widths\"");
+    set("junction_spacing", p.junction_spacing, 5, 1e5);
+    if (j.contains("grammar_depth")) {
+      if (!j["grammar_depth"].is_number_integer()) fail(w + ".grammar_depth", "expected a whole number of rules, 1 to 32");
+      p.grammar_depth = static_cast<int>(number(j["grammar_depth"], w + ".grammar_depth", 1, 32));
+    }
+    if (j.contains("grammar")) {
+      if (!j["grammar"].is_string()) fail(w + ".grammar", "expected the path of a grammar file (a string), relative to the sketch");
+      const fs::path file = fs::path(file_).parent_path() / j["grammar"].get<std::string>();
+      p.grammar = std::make_shared<Grammar>(read_grammars_ ? load_grammar(file) : Grammar{file, {}});
+    }
+    if (p.layout == "grammar" && !p.grammar) fail(w + ".layout", "\"grammar\" needs \"grammar\": the path of a grammar file");
+    if (j.contains("lots")) {
+      if (!j["lots"].is_string() || (j["lots"] != "allocation" && j["lots"] != "split"))
+        fail(w + ".lots", "expected \"allocation\" (seed 000) or \"split\" (seed 003)");
+      p.lots = j["lots"].get<std::string>();
+    }
+    if (j.contains("bridges")) {
+      if (!j["bridges"].is_boolean()) fail(w + ".bridges", "expected true or false");
+      p.bridges = j["bridges"].get<bool>();
+    }
+    return p;
+  }
+
+ private:
+  std::string file_;
+  bool read_grammars_;
+};
+
+}  // namespace
+
+Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_grammars) {
+  Parser parser(path, read_grammars);
+  json doc;
+  std::string marked = text;
+  try {
+    for (;;) {
+      try {
+        doc = json::parse(marked);
+        break;
+      } catch (const json::out_of_range& e) {
+        // "number overflow parsing '1e999'": mark that literal and read again.
+        std::string what = e.what();
+        auto open = what.find('\''), close = what.rfind('\'');
+        if (e.id != 406 || open == std::string::npos || close <= open) throw;
+        std::string literal = what.substr(open + 1, close - open - 1);
+        auto at = marked.find(literal);
+        if (at == std::string::npos) throw;
+        marked.replace(at, literal.size(), "\"" + std::string(kOverflowMarker) + literal + "\"");
+      }
+    }
+  } catch (const json::parse_error& e) {
+    // e.byte is one past the offending character.
+    std::size_t line = 1, column = 1, end = std::min<std::size_t>(e.byte ? e.byte - 1 : 0, marked.size());
+    for (std::size_t i = 0; i < end; ++i) {
+      if (marked[i] == '\n') ++line, column = 1;
+      else ++column;
+    }
+    std::string what = e.what();
+    if (auto colon = what.find(": "); colon != std::string::npos) what = what.substr(colon + 2);
+    throw UserError(path.string() + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                    ": malformed JSON (" + what + "); fix the syntax there");
+  }
+  if (!doc.is_object() || text_of(doc, "type") != "FeatureCollection")
+    parser.fail("top level", "a sketch must be a GeoJSON FeatureCollection");
+  if (!doc.contains("features") || !doc["features"].is_array())
+    parser.fail("top level", "the FeatureCollection has no \"features\" array");
+
+  Sketch sketch;
+  sketch.path = path;
+  for (ZoneType t : {ZoneType::Residential, ZoneType::Commercial, ZoneType::Industrial, ZoneType::Park,
+                     ZoneType::Water})
+    sketch.zone_params[t] = default_params(t);
+  if (doc.contains("crs")) sketch.crs = nlohmann::ordered_json::parse(marked)["crs"];  // keeps key order
+  if (doc.contains("exacity")) parser.settings(doc["exacity"], sketch);
+  const json& features = doc["features"];
+  for (std::size_t i = 0; i < features.size(); ++i) parser.feature(features[i], static_cast<int>(i), sketch);
+  if (sketch.zones.empty() && sketch.roads.empty())
+    parser.fail("features", "the sketch has no zones and no roads; draw at least one zone polygon");
+  parser.expect_metres(sketch);
+  parser.expect_buildable(sketch);
+  parser.join_streets(sketch);
+  return sketch;
+}
+
+Sketch load_sketch(const fs::path& path, bool read_grammars) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw UserError(path.string() + ": cannot read the sketch (" +
+                    (fs::exists(path) ? "permission denied or not a file" : "no such file") +
+                    "); give the path of a GeoJSON sketch");
+  }
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_sketch(ss.str(), path, read_grammars);
+}
+
+}  // namespace exacity

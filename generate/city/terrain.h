@@ -1,0 +1,50 @@
+// The heightmap stretched over its bounds (seed 000, 3.1: value 0 marks water).
+#pragma once
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "generate/city/sketch.h"
+#include "geom/plain.h"
+
+namespace exacity {
+
+class Terrain {
+ public:
+  // Reads the image with OpenImageIO. Unsigned 8/16-bit images are scaled by their
+  // type's maximum; float and signed images by their largest value. Throws UserError.
+  static Terrain load(const TerrainSpec& spec);
+  // For tests: values already normalised to [0, 1], row 0 north.
+  Terrain(const TerrainSpec& spec, int width, int height, std::vector<float> values);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  const geom::Box& bounds() const { return spec_.bounds; }
+  bool is_water(int col, int row) const { return value(col, row) <= 0.0f; }
+  float value(int col, int row) const { return values_[static_cast<std::size_t>(row) * width_ + col]; }
+
+  // Bilinear height in metres at a point (clamped to the bounds).
+  double height_at(geom::Vec2 p) const;
+  // The lowest and highest terrain under a ring: sampled at its corners, along its edges
+  // and at the pixel centres inside, so no pixel under it is missed.
+  std::pair<double, double> range_under(const geom::Ring& ring) const;
+  // The centres of the pixels around the box (a pixel's margin included).
+  std::vector<geom::Vec2> pixel_centres(const geom::Box& box) const;
+  // The size of a pixel on the ground, the finer of its two sides, in metres.
+  double pixel_size() const;
+
+  // The corner between pixel columns col-1, col and rows row-1, row, on the grid.
+  geom::Vec2 corner(int col, int row) const;
+
+  // The water outline as oriented segments with water on their left, collinear pixel
+  // edges merged into one segment: together they wind once around every water pixel.
+  std::vector<std::pair<geom::Vec2, geom::Vec2>> water_boundary() const;
+
+ private:
+  TerrainSpec spec_;
+  int width_ = 0, height_ = 0;
+  std::vector<float> values_;
+};
+
+}  // namespace exacity

@@ -1,0 +1,154 @@
+#include "generate/export/building_mesh.h"
+
+#include <cmath>
+#include <map>
+
+#include <mutex>
+
+#include <OpenMesh/Core/System/omstream.hh>
+#include <tbb/parallel_for.h>
+
+#include "geom/triangulate.h"
+
+namespace exacity {
+
+namespace {
+
+// A gable: an upright triangle, all its points on one vertical plane (its footprint is a line).
+bool is_gable(const geom::Face3& f) {
+  if (f.size() != 3) return false;
+  double cross = (f[1][0] - f[0][0]) * (f[2][1] - f[0][1]) - (f[1][1] - f[0][1]) * (f[2][0] - f[0][0]);
+  double scale = std::hypot(f[1][0] - f[0][0], f[1][1] - f[0][1]) * std::hypot(f[2][0] - f[0][0], f[2][1] - f[0][1]);
+  return std::abs(cross) <= 1e-9 * scale;
+}
+
+// OpenMesh reports every face of a non-manifold model it cannot join on stderr; such faces
+// are handled here (they stand alone), so the reports are noise.
+void quiet_openmesh() {
+  static std::once_flag once;
+  std::call_once(once, [] { omerr().disable(); });
+}
+
+}  // namespace
+
+OpenMesh::FPropHandleT<int> surface_property(const Mesh& mesh) {
+  OpenMesh::FPropHandleT<int> surface;
+  if (!mesh.get_property_handle(surface, "surface")) throw std::logic_error("mesh has no surface property");
+  return surface;
+}
+
+std::vector<Mesh> building_meshes(const std::vector<Building>& buildings, const ModelLibrary* library) {
+  quiet_openmesh();
+  std::vector<Mesh> meshes(buildings.size());
+  tbb::parallel_for(std::size_t(0), buildings.size(),
+                    [&](std::size_t i) { meshes[i] = building_mesh(buildings[i], library); });
+  return meshes;
+}
+
+MeshTriangles mesh_triangles(const Mesh& mesh) {
+  MeshTriangles out;
+  auto surface = surface_property(mesh);
+  for (auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    out.vertices.push_back({p[0], p[1], p[2]});
+  }
+  for (auto f : mesh.faces()) {
+    std::vector<int> face;
+    std::vector<Vec3> corners;
+    for (auto v : mesh.fv_range(f)) face.push_back(v.idx()), corners.push_back(out.vertices[v.idx()]);
+    for (const auto& t : triangulate_planar(corners)) {
+      out.triangles.push_back({face[t[0]], face[t[1]], face[t[2]]});
+      out.surface.push_back(static_cast<Surface>(mesh.property(surface, f)));
+    }
+  }
+  return out;
+}
+
+Vec3 Placement::apply(Vec3 v, double floor) const {
+  const double c = std::cos(angle) * scale, s = std::sin(angle) * scale;
+  return {position.x + c * v[0] - s * v[1], position.y + s * v[0] + c * v[1], floor + scale * v[2]};
+}
+
+Mesh building_mesh(const Building& b, const ModelLibrary* library) {
+  quiet_openmesh();
+  Mesh mesh;
+  OpenMesh::FPropHandleT<int> surface;
+  mesh.add_property(surface, "surface");
+  // One vertex per distinct point, so faces share their edges and the mesh closes.
+  std::map<std::array<double, 3>, Mesh::VertexHandle> vertices;
+  auto vertex = [&](double x, double y, double z) {
+    auto [it, added] = vertices.emplace(std::array<double, 3>{x, y, z}, Mesh::VertexHandle());
+    if (added) it->second = mesh.add_vertex({x, y, z});
+    return it->second;
+  };
+  auto add = [&](const std::vector<Mesh::VertexHandle>& face, Surface s) {
+    Mesh::FaceHandle f = mesh.add_face(face);
+    if (!f.is_valid()) {
+      // A model's mesh need not be manifold: a face that cannot join its neighbours
+      // stands alone, so nothing of the model is lost.
+      std::vector<Mesh::VertexHandle> own;
+      for (auto v : face) own.push_back(mesh.add_vertex(mesh.point(v)));
+      f = mesh.add_face(own);
+    }
+    if (f.is_valid()) mesh.property(surface, f) = static_cast<int>(s);
+  };
+  // Walls from the base up to z: a quad per ring edge, outward (rings run with the
+  // inside on their left).
+  auto walls = [&](const geom::Ring& r, double z) {
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      geom::Vec2 a = r[i], c = r[(i + 1) % r.size()];
+      add({vertex(a.x, a.y, b.base), vertex(c.x, c.y, b.base), vertex(c.x, c.y, z), vertex(a.x, a.y, z)}, Surface::Wall);
+    }
+  };
+  // Flat faces over the footprint at height z, facing up or down.
+  auto cap = [&](double z, bool down, Surface s) {
+    std::vector<geom::Vec2> points(b.polygon.outer);
+    for (const auto& h : b.polygon.holes) points.insert(points.end(), h.begin(), h.end());
+    for (const auto& t : geom::triangulate(b.polygon)) {
+      const geom::Vec2 &p = points[t[0]], &q = points[t[1]], &r = points[t[2]];
+      if (down) add({vertex(p.x, p.y, z), vertex(r.x, r.y, z), vertex(q.x, q.y, z)}, s);
+      else add({vertex(p.x, p.y, z), vertex(q.x, q.y, z), vertex(r.x, r.y, z)}, s);
+    }
+  };
+
+  if (b.placed.model >= 0) {
+    // A foundation from the lowest terrain under the model up to where it stands.
+    if (b.floor > b.base) {
+      walls(b.polygon.outer, b.floor);
+      cap(b.base, true, Surface::Ground);
+      cap(b.floor, false, Surface::Roof);
+    }
+    if (!library) return mesh;
+    const TriangleMesh& m = library->models[b.placed.model].mesh;
+    std::vector<Mesh::VertexHandle> handles;
+    for (const Vec3& v : m.vertices) {
+      Vec3 w = b.placed.apply(v, b.floor);
+      handles.push_back(mesh.add_vertex({w[0], w[1], w[2]}));
+    }
+    for (const auto& t : m.triangles) {
+      const Vec3 &p = m.vertices[t[0]], &q = m.vertices[t[1]], &r = m.vertices[t[2]];
+      double nx = (q[1] - p[1]) * (r[2] - p[2]) - (q[2] - p[2]) * (r[1] - p[1]);
+      double ny = (q[2] - p[2]) * (r[0] - p[0]) - (q[0] - p[0]) * (r[2] - p[2]);
+      double nz = (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
+      double len = std::sqrt(nx * nx + ny * ny + nz * nz);
+      Surface s = nz > 0.5 * len ? Surface::Roof : nz < -0.5 * len ? Surface::Ground : Surface::Wall;
+      add({handles[t[0]], handles[t[1]], handles[t[2]]}, s);
+    }
+    return mesh;
+  }
+
+  const double eaves = b.floor + b.eaves;
+  walls(b.polygon.outer, eaves);
+  for (const auto& h : b.polygon.holes) walls(h, eaves);
+  cap(b.base, true, Surface::Ground);
+  if (b.roof_faces.empty()) cap(eaves, false, Surface::Roof);
+  // Pitched roofs: faces rising from the eaves (a gable's upright triangle counts as wall).
+  for (const geom::Face3& f : b.roof_faces) {
+    std::vector<Mesh::VertexHandle> face;
+    for (const geom::Vec3& v : f) face.push_back(vertex(v[0], v[1], v[2] + b.floor));
+    add(face, is_gable(f) ? Surface::Wall : Surface::Roof);
+  }
+  return mesh;
+}
+
+}  // namespace exacity

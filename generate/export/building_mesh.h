@@ -1,0 +1,42 @@
+// Building meshes (OpenMesh, double precision): a footprint extruded to its height, with
+// walls, a flat roof and a ground face kept as separate surface classes.
+#pragma once
+
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+
+#include "generate/placement/buildings.h"
+
+namespace exacity {
+
+struct MeshTraits : OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;  // city coordinates need doubles
+  using Normal = OpenMesh::Vec3d;
+};
+using Mesh = OpenMesh::PolyMesh_ArrayKernelT<MeshTraits>;
+
+// A foundation's top counts as roof: it is what the model stands on.
+enum class Surface : int { Ground = 0, Wall = 1, Roof = 2 };
+inline constexpr const char* kSurfaceNames[] = {"ground", "wall", "roof"};
+
+// The mesh of one building, z up, each face carrying a Surface in the mesh's "surface"
+// face property. An extruded building is closed and outward-facing, its walls reaching
+// down to the terrain's lowest point under it. A placed model is its library mesh moved
+// into place (faces classed by their slope) on a foundation where the ground slopes;
+// without a library, only the foundation.
+Mesh building_mesh(const Building& b, const ModelLibrary* library);
+
+// building_mesh of every building, in parallel; the exporters share them.
+std::vector<Mesh> building_meshes(const std::vector<Building>& buildings, const ModelLibrary* library);
+
+// The mesh as triangles (faces triangulated in their plane): one per entry of `surface`.
+struct MeshTriangles {
+  std::vector<Vec3> vertices;
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<Surface> surface;
+};
+MeshTriangles mesh_triangles(const Mesh& mesh);
+
+// The face property that says which surface a face belongs to.
+OpenMesh::FPropHandleT<int> surface_property(const Mesh& mesh);
+
+}  // namespace exacity

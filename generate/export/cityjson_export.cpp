@@ -1,0 +1,253 @@
+#include "generate/export/cityjson_export.h"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <regex>
+
+#include "generate/errors.h"
+#include "generate/export/ground_mesh.h"
+#include "geom/ring_cleanup.h"
+#include "geom/triangulate.h"
+
+namespace exacity {
+namespace {
+
+using nlohmann::json;
+
+constexpr double kScale = 0.001;  // millimetres
+
+// Quantised vertices, each stored once.
+class Vertices {
+ public:
+  explicit Vertices(geom::Vec2 origin) : origin_(origin) {}
+  int operator()(double x, double y, double z) {
+    std::array<long long, 3> q{std::llround((x - origin_.x) / kScale), std::llround((y - origin_.y) / kScale),
+                               std::llround(z / kScale)};
+    auto [it, added] = index_.emplace(q, static_cast<int>(list_.size()));
+    if (added) list_.push_back(q);
+    return it->second;
+  }
+  // The vertex straight below vertex i, at height z.
+  int below(int i, double z) {
+    auto q = list_[i];
+    q[2] = std::llround(z / kScale);
+    auto [it, added] = index_.emplace(q, static_cast<int>(list_.size()));
+    if (added) list_.push_back(q);
+    return it->second;
+  }
+  json to_json() const {
+    json v = json::array();
+    for (const auto& q : list_) v.push_back({q[0], q[1], q[2]});
+    return v;
+  }
+
+ private:
+  geom::Vec2 origin_;
+  std::map<std::array<long long, 3>, int> index_;
+  std::vector<std::array<long long, 3>> list_;
+};
+
+// A ring as quantised vertex indices at height z, with the repeats and spikes that
+// quantisation makes dropped; empty when fewer than 3 vertices are left.
+std::vector<int> quantised_ring(const geom::Ring& r, double z, Vertices& v) {
+  std::vector<int> q;
+  for (geom::Vec2 p : r) q.push_back(v(p.x, p.y, z));
+  geom::drop_repeats_and_spikes(q);
+  return q;
+}
+
+// A flat surface from a polygon at height z: outer ring then holes, each counter-clockwise
+// seen from the side the surface faces. Empty when the outer ring collapses.
+json surface(const geom::Polygon& p, double z, bool facing_down, Vertices& v) {
+  json s = json::array();
+  auto add = [&](const geom::Ring& r) {
+    std::vector<int> q = quantised_ring(r, z, v);
+    if (facing_down) std::reverse(q.begin(), q.end());
+    if (!q.empty()) s.push_back(q);
+    return !q.empty();
+  };
+  if (!add(p.outer)) return json::array();
+  for (const auto& h : p.holes) add(h);
+  return s;
+}
+
+// The closed shell of a prism: ground, a wall per edge, roof; with each surface's class.
+// Walls follow the same quantised rings as ground and roof, so the shell stays closed.
+bool prism(const Building& b, Vertices& v, json& shell, std::vector<int>& classes) {
+  json ground = surface(b.polygon, b.base, true, v), roof = surface(b.polygon, b.floor + b.height, false, v);
+  if (ground.empty() || roof.empty()) return false;
+  shell.push_back(ground);
+  classes.push_back(0);
+  for (const json& top : roof) {
+    std::vector<int> ring = top.get<std::vector<int>>();
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      // Roof and ground vertices differ only in z: quantised the same way, so look them up.
+      int a = ring[i], c = ring[(i + 1) % ring.size()];
+      shell.push_back(json::array({json::array({v.below(a, b.base), v.below(c, b.base), c, a})}));
+      classes.push_back(1);
+    }
+  }
+  shell.push_back(roof);
+  classes.push_back(2);
+  return true;
+}
+
+// The shell of the building's mesh, each face with its surface class; false when a face
+// collapses under quantisation, unless `skip_collapsed` (for surfaces that need not close).
+bool mesh_shell(const Mesh& mesh, Vertices& v, json& shell, std::vector<int>& classes, bool skip_collapsed = false) {
+  auto surface = surface_property(mesh);
+  for (auto f : mesh.faces()) {
+    std::vector<int> ring;
+    for (auto vh : mesh.fv_range(f)) {
+      const auto& p = mesh.point(vh);
+      ring.push_back(v(p[0], p[1], p[2]));
+    }
+    std::vector<int> distinct(ring);
+    std::sort(distinct.begin(), distinct.end());
+    if (std::unique(distinct.begin(), distinct.end()) != distinct.end()) {
+      if (skip_collapsed) continue;
+      return false;
+    }
+    shell.push_back(json::array({ring}));
+    classes.push_back(mesh.property(surface, f));
+  }
+  return true;
+}
+
+// Each triangle as a surface, those that quantisation collapses left out.
+void append_triangles(const GroundMesh& m, Vertices& v, json& out) {
+  for (const auto& t : m.triangles) {
+    std::array<int, 3> q;
+    for (int k = 0; k < 3; ++k) q[k] = v(m.vertices[t[k]][0], m.vertices[t[k]][1], m.vertices[t[k]][2]);
+    if (q[0] != q[1] && q[1] != q[2] && q[0] != q[2]) out.push_back(json::array({q}));
+  }
+}
+
+// Polygons smaller than the quantum vanish; null when all do. On terrain each polygon
+// becomes the triangles that drape it over the heightmap.
+json multisurface(const std::vector<const VectorFeature*>& features, const Terrain* terrain, Vertices& v) {
+  json boundaries = json::array();
+  for (const auto* f : features) {
+    if (!terrain) {
+      json s = surface(f->polygon, 0, false, v);
+      if (!s.empty()) boundaries.push_back(s);
+      continue;
+    }
+    GroundMesh m;
+    drape(f->polygon, terrain, 0, m);
+    append_triangles(m, v, boundaries);
+  }
+  if (boundaries.empty()) return nullptr;
+  return {{"type", "MultiSurface"}, {"lod", "1"}, {"boundaries", boundaries}};
+}
+
+// Each model of the library once, as a MultiSurface in its own frame (seed 004).
+json templates(const ModelLibrary& library) {
+  json list = json::array(), vertices = json::array();
+  for (const Model& m : library.models) {
+    const int first = static_cast<int>(vertices.size());
+    for (const Vec3& p : m.mesh.vertices) vertices.push_back({p[0], p[1], p[2]});
+    json faces = json::array();
+    for (const auto& t : m.mesh.triangles) faces.push_back(json::array({json::array({first + t[0], first + t[1], first + t[2]})}));
+    list.push_back({{"type", "MultiSurface"}, {"lod", "2"}, {"boundaries", faces}});
+  }
+  return {{"templates", list}, {"vertices-templates", vertices}};
+}
+
+}  // namespace
+
+void write_cityjson(const CityLayers& layers, const std::vector<Building>& buildings, const std::vector<Mesh>& meshes,
+                    const ModelLibrary* library, const Terrain* terrain, const Sketch& sketch,
+                    const std::filesystem::path& file) {
+  geom::Box box = layers.ground_bounds();
+  if (box.holds_nothing()) box = {0, 0, 1, 1};
+  const geom::Vec2 origin{std::floor(box.min_x), std::floor(box.min_y)};
+  Vertices v(origin);
+  json objects = json::object();
+
+  const json semantics_surfaces = json::array({{{"type", "GroundSurface"}}, {{"type", "WallSurface"}}, {{"type", "RoofSurface"}}});
+  for (std::size_t i = 0; i < buildings.size(); ++i) {
+    const Building& b = buildings[i];
+    json shell = json::array();
+    std::vector<int> classes;
+    if (!prism(b, v, shell, classes)) continue;
+    json lod1{{"type", "Solid"}, {"lod", "1"}, {"boundaries", json::array({shell})}};
+    json attributes{{"lot", b.lot}, {"zone", name(b.zone)}, {"measuredHeight", b.height}, {"roofType", b.roof}};
+    if (b.placed.model >= 0) {
+      const Model& m = library->models[b.placed.model];
+      attributes.erase("roofType");
+      attributes["model"] = m.name;
+      json placed;
+      if (m.kind == ModelKind::Building) {
+        // CityJSON lets no Building hold a GeometryInstance: its placed surfaces, as built.
+        json faces = json::array();
+        std::vector<int> face_classes;
+        mesh_shell(meshes[i], v, faces, face_classes, true);
+        placed = {{"type", "MultiSurface"}, {"lod", "2"}, {"boundaries", faces},
+                  {"semantics", {{"surfaces", semantics_surfaces}, {"values", face_classes}}}};
+      } else {
+        // Stored once among the templates, placed by a transform about its reference point.
+        const double c = std::cos(b.placed.angle) * b.placed.scale, s = std::sin(b.placed.angle) * b.placed.scale;
+        placed = {{"type", "GeometryInstance"},
+                  {"template", b.placed.model},
+                  {"boundaries", {v(b.placed.position.x, b.placed.position.y, b.floor)}},
+                  {"transformationMatrix", {c, -s, 0, 0, s, c, 0, 0, 0, 0, b.placed.scale, 0, 0, 0, 0, 1}}};
+      }
+      const char* type = m.kind == ModelKind::Tree     ? "SolitaryVegetationObject"
+                         : m.kind == ModelKind::Street ? "CityFurniture"
+                                                       : "Building";
+      objects["building-" + std::to_string(i)] = {
+          {"type", type}, {"attributes", attributes}, {"geometry", json::array({lod1, placed})}};
+      continue;
+    }
+    // LOD2 has the roof as built; where quantisation collapses a face of it, the prism.
+    json lod2_shell = json::array();
+    std::vector<int> lod2_classes;
+    if (!mesh_shell(meshes[i], v, lod2_shell, lod2_classes)) lod2_shell = shell, lod2_classes = classes;
+    json lod2{{"type", "Solid"}, {"lod", "2"}, {"boundaries", json::array({lod2_shell})},
+              {"semantics", {{"surfaces", semantics_surfaces}, {"values", json::array({lod2_classes})}}}};
+    objects["building-" + std::to_string(i)] = {
+        {"type", "Building"},
+        {"attributes", attributes},
+        {"geometry", json::array({lod1, lod2})}};
+  }
+  auto surfaces = [&](const Layer& layer, const std::string& prefix, const std::string& type, const std::string& key) {
+    std::map<std::string, std::vector<const VectorFeature*>> grouped;  // by `key`'s value
+    for (const auto& f : layer.features) grouped[key.empty() ? "" : f.properties[key].dump()].push_back(&f);
+    int n = 0;
+    for (const auto& [value, features] : grouped) {
+      json geometry = multisurface(features, terrain, v);
+      if (geometry.is_null()) continue;
+      json o{{"type", type}, {"geometry", json::array({geometry})}};
+      if (!key.empty()) o["attributes"] = {{key, json::parse(value)}};
+      objects[prefix + std::to_string(n++)] = o;
+    }
+  };
+  surfaces(layers.road_areas, "road-", "Road", "road");
+  surfaces(layers.zones, "landuse-", "LandUse", "zone");
+  surfaces(layers.water, "water-", "WaterBody", "");
+
+  // The ground under the city: the heightmap over the rectangle around it.
+  json tin = json::array();
+  append_triangles(terrain_tin(terrain, box, 512), v, tin);
+  objects["terrain"] = {{"type", "TINRelief"}, {"geometry", json::array({{{"type", "CompositeSurface"}, {"lod", "1"}, {"boundaries", tin}}})}};
+
+  json doc{{"type", "CityJSON"},
+           {"version", "2.0"},
+           {"transform", {{"scale", {kScale, kScale, kScale}}, {"translate", {origin.x, origin.y, 0.0}}}},
+           {"CityObjects", objects},
+           {"vertices", v.to_json()}};
+  if (library) doc["geometry-templates"] = templates(*library);
+  // An EPSG code in the sketch's crs becomes the reference system.
+  std::smatch m;
+  std::string crs = sketch.crs.is_null() ? "" : sketch.crs.dump();
+  if (std::regex_search(crs, m, std::regex("EPSG:+([0-9]+)")))
+    doc["metadata"] = {{"referenceSystem", "https://www.opengis.net/def/crs/EPSG/0/" + m[1].str()}};
+
+  std::ofstream out(file, std::ios::binary);
+  out << doc.dump() << '\n';
+  if (!out) throw UserError(file.string() + ": write failed (disk full?)");
+}
+
+}  // namespace exacity

@@ -1,0 +1,22 @@
+// OUT/city.city.json: CityJSON 2.0. Buildings as LOD1 and LOD2 solids (LOD2 with
+// GroundSurface, WallSurface and RoofSurface semantics), roads, land use and water as LOD1
+// surfaces, a TINRelief under the city; vertices quantised to millimetres by `transform`.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "generate/export/building_mesh.h"
+#include "generate/city/sketch.h"
+#include "generate/city/terrain.h"
+#include "generate/export/vector_layers.h"
+
+namespace exacity {
+
+// meshes[i] is building_mesh(buildings[i]). Placed models are instances of templates,
+// one per library model; on terrain, ground surfaces are draped over it.
+void write_cityjson(const CityLayers& layers, const std::vector<Building>& buildings, const std::vector<Mesh>& meshes,
+                    const ModelLibrary* library, const Terrain* terrain, const Sketch& sketch,
+                    const std::filesystem::path& file);
+
+}  // namespace exacity

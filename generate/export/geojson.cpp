@@ -1,0 +1,114 @@
+#include "generate/export/geojson.h"
+
+#include <charconv>
+#include <fstream>
+#include <sstream>
+
+#include "generate/errors.h"
+
+namespace exacity {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string format_number(double v) {
+  if (v == 0) v = 0;  // no "-0"
+  char buf[32];
+  auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, end);
+}
+
+namespace {
+
+void write_position(std::ostream& out, geom::Vec2 p) {
+  out << '[' << format_number(p.x) << ',' << format_number(p.y) << ']';
+}
+
+void write_ring(std::ostream& out, const geom::Ring& r) {
+  out << '[';
+  for (const geom::Vec2& p : r) write_position(out, p), out << ',';
+  write_position(out, r.front());
+  out << ']';
+}
+
+}  // namespace
+
+void write_geojson(const Layer& layer, const nlohmann::ordered_json& crs, const fs::path& file) {
+  std::ofstream out(file, std::ios::binary);
+  if (!out) throw UserError(file.string() + ": cannot write this file; check the output folder's permissions");
+  out << "{\"type\":\"FeatureCollection\",\"name\":" << json(layer.name).dump();
+  if (!crs.is_null()) out << ",\"crs\":" << crs.dump();
+  out << ",\"features\":[";
+  for (std::size_t i = 0; i < layer.features.size(); ++i) {
+    const VectorFeature& f = layer.features[i];
+    out << (i ? ",\n" : "\n") << "{\"type\":\"Feature\",\"properties\":" << f.properties.dump()
+        << ",\"geometry\":{\"type\":";
+    if (layer.lines) {
+      out << "\"LineString\",\"coordinates\":[";
+      for (std::size_t k = 0; k < f.line.size(); ++k) out << (k ? "," : ""), write_position(out, f.line[k]);
+    } else {
+      out << "\"Polygon\",\"coordinates\":[";
+      write_ring(out, f.polygon.outer);
+      for (const geom::Ring& h : f.polygon.holes) out << ',', write_ring(out, h);
+    }
+    out << "]}}";
+  }
+  out << "\n]}\n";
+  if (!out) throw UserError(file.string() + ": write failed (disk full?)");
+}
+
+Layer read_geojson(const fs::path& file, std::vector<std::string>& problems) {
+  Layer layer;
+  layer.name = file.stem().string();
+  std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    problems.push_back(file.string() + ": missing");
+    return layer;
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  json doc = json::parse(text.str(), nullptr, false);
+  if (doc.is_discarded() || !doc.is_object() || !doc.contains("features") || !doc["features"].is_array()) {
+    problems.push_back(file.string() + ": not a GeoJSON FeatureCollection");
+    return layer;
+  }
+  auto position = [](const json& p) { return geom::Vec2{p.at(0).get<double>(), p.at(1).get<double>()}; };
+  for (std::size_t i = 0; i < doc["features"].size(); ++i) {
+    const json& f = doc["features"][i];
+    std::string where = file.filename().string() + ": features[" + std::to_string(i) + "]";
+    try {
+      VectorFeature vf;
+      vf.properties = f.at("properties");
+      const json& g = f.at("geometry");
+      std::string type = g.at("type");
+      const json& c = g.at("coordinates");
+      if (type == "LineString") {
+        layer.lines = true;
+        for (const json& p : c) vf.line.push_back(position(p));
+      } else if (type == "Polygon") {
+        bool closed = true;
+        auto ring = [&](const json& r) {
+          geom::Ring ring;
+          for (const json& p : r) ring.push_back(position(p));
+          if (ring.size() < 4 || !(ring.front() == ring.back())) closed = false;
+          else ring.pop_back();
+          return ring;
+        };
+        vf.polygon.outer = ring(c.at(0));
+        for (std::size_t k = 1; k < c.size(); ++k) vf.polygon.holes.push_back(ring(c[k]));
+        if (!closed) {
+          problems.push_back(where + ": a ring is not closed or has fewer than 4 positions");
+          continue;
+        }
+      } else {
+        problems.push_back(where + ": unexpected geometry type " + type);
+        continue;
+      }
+      layer.features.push_back(std::move(vf));
+    } catch (const json::exception& e) {
+      problems.push_back(where + ": malformed feature (" + e.what() + ")");
+    }
+  }
+  return layer;
+}
+
+}  // namespace exacity

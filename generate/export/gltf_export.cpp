@@ -1,0 +1,247 @@
+#include "generate/export/gltf_export.h"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+
+#include <tiny_gltf.h>
+
+#include "generate/errors.h"
+#include "generate/export/ground_mesh.h"
+#include "generate/city/palette.h"
+#include "generate/version.h"
+
+namespace exacity {
+namespace {
+
+using Float3 = std::array<float, 3>;
+
+// Triangles in glTF's frame, ready to become one primitive.
+struct Triangles {
+  std::vector<Float3> positions;
+  std::vector<std::uint32_t> indices;
+};
+
+class Glb {
+ public:
+  Glb() {
+    model_.asset.generator = std::string("exacity ") + kVersion;
+    model_.buffers.emplace_back();
+  }
+
+  int material(const std::string& name, const Colour& c, double roughness = 0.9) {
+    tinygltf::Material m;
+    m.name = name;
+    m.pbrMetallicRoughness.baseColorFactor = {c[0], c[1], c[2], 1.0};
+    m.pbrMetallicRoughness.metallicFactor = 0;
+    m.pbrMetallicRoughness.roughnessFactor = roughness;
+    model_.materials.push_back(m);
+    return static_cast<int>(model_.materials.size()) - 1;
+  }
+
+  // POSITION and index accessors for the triangles; {-1, -1} when there are none.
+  std::pair<int, int> accessors(const Triangles& t) {
+    if (t.indices.empty()) return {-1, -1};
+    Float3 lo = t.positions[0], hi = t.positions[0];
+    for (const Float3& p : t.positions)
+      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+    int position = accessor(t.positions.data(), t.positions.size() * sizeof(Float3), TINYGLTF_TARGET_ARRAY_BUFFER,
+                            TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, t.positions.size());
+    model_.accessors[position].minValues = {lo[0], lo[1], lo[2]};
+    model_.accessors[position].maxValues = {hi[0], hi[1], hi[2]};
+    int index = accessor(t.indices.data(), t.indices.size() * sizeof(std::uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER,
+                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, t.indices.size());
+    return {position, index};
+  }
+
+  // A mesh of primitives (accessor pair, material); -1 when every primitive is empty.
+  int mesh(const std::string& name, const std::vector<std::pair<std::pair<int, int>, int>>& parts) {
+    tinygltf::Mesh m;
+    m.name = name;
+    for (const auto& [acc, mat] : parts) {
+      if (acc.first < 0) continue;
+      tinygltf::Primitive p;
+      p.attributes["POSITION"] = acc.first;
+      p.indices = acc.second;
+      p.material = mat;
+      p.mode = TINYGLTF_MODE_TRIANGLES;
+      m.primitives.push_back(p);
+      triangles_ += model_.accessors[acc.second].count / 3;
+    }
+    if (m.primitives.empty()) return -1;
+    model_.meshes.push_back(m);
+    return static_cast<int>(model_.meshes.size()) - 1;
+  }
+
+  int node(tinygltf::Node n) {
+    model_.nodes.push_back(std::move(n));
+    return static_cast<int>(model_.nodes.size()) - 1;
+  }
+  tinygltf::Node& node_at(int i) { return model_.nodes[i]; }
+
+  std::size_t triangles() const { return triangles_; }
+  std::size_t meshes() const { return model_.meshes.size(); }
+
+  void write(int root, const std::filesystem::path& file) {
+    tinygltf::Scene scene;
+    scene.nodes = {root};
+    model_.scenes.push_back(scene);
+    model_.defaultScene = 0;
+    std::ofstream out(file, std::ios::binary);
+    tinygltf::TinyGLTF writer;
+    if (!out || !writer.WriteGltfSceneToStream(&model_, out, false, true) || !out.flush())
+      throw UserError(file.string() + ": write failed (disk full?)");
+  }
+
+ private:
+  int accessor(const void* data, std::size_t bytes, int target, int component, int type, std::size_t count) {
+    auto& buffer = model_.buffers[0].data;
+    while (buffer.size() % 4) buffer.push_back(0);
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = buffer.size();
+    view.byteLength = bytes;
+    view.target = target;
+    const auto* p = static_cast<const unsigned char*>(data);
+    buffer.insert(buffer.end(), p, p + bytes);
+    model_.bufferViews.push_back(view);
+    tinygltf::Accessor a;
+    a.bufferView = static_cast<int>(model_.bufferViews.size()) - 1;
+    a.byteOffset = 0;
+    a.componentType = component;
+    a.type = type;
+    a.count = count;
+    model_.accessors.push_back(a);
+    return static_cast<int>(model_.accessors.size()) - 1;
+  }
+
+  tinygltf::Model model_;
+  std::size_t triangles_ = 0;
+};
+
+}  // namespace
+
+GltfCounts write_gltf(const CityLayers& layers, const std::vector<Building>& buildings, const std::vector<Mesh>& meshes,
+                      const ModelLibrary* library, const Terrain* terrain, const std::filesystem::path& file) {
+  geom::Box box = layers.ground_bounds();
+  if (box.holds_nothing()) box = {0, 0, 1, 1};
+  const geom::Vec2 origin{std::round((box.min_x + box.max_x) / 2), std::round((box.min_y + box.max_y) / 2)};
+  // Exacity's x east, y north, z up to glTF's x, y up, z south, about the origin.
+  auto local = [&](double x, double y, double z) {
+    return Float3{static_cast<float>(x - origin.x), static_cast<float>(z), static_cast<float>(origin.y - y)};
+  };
+  auto add_ground = [&](const GroundMesh& g, Triangles& t) {
+    const auto first = static_cast<std::uint32_t>(t.positions.size());
+    for (const Vec3& v : g.vertices) t.positions.push_back(local(v[0], v[1], v[2]));
+    for (const auto& tri : g.triangles)
+      for (int k : tri) t.indices.push_back(first + static_cast<std::uint32_t>(k));
+  };
+
+  Glb glb;
+  tinygltf::Node root;
+  root.name = "city";
+  root.translation = {origin.x, 0, -origin.y};
+
+  // The ground, layer over layer a few centimetres apart so none hides the next.
+  std::vector<std::pair<std::pair<int, int>, int>> ground;
+  {
+    Triangles t;
+    add_ground(terrain_tin(terrain, box, 512), t);
+    ground.push_back({glb.accessors(t), glb.material("terrain", kTerrainColour)});
+  }
+  std::map<std::string, Triangles> zones;
+  for (const auto& f : layers.zones.features) {
+    GroundMesh g;
+    drape(f.polygon, terrain, 0.05, g);
+    add_ground(g, zones[f.properties.value("zone", "")]);
+  }
+  for (const auto& [zone, t] : zones)
+    ground.push_back({glb.accessors(t), glb.material("ground_" + zone, ground_colour(*parse_zone_type(zone)))});
+  Triangles water, roads;
+  for (const auto& f : layers.water.features) {
+    GroundMesh g;
+    drape(f.polygon, terrain, 0.05, g);
+    add_ground(g, water);
+  }
+  for (const auto& f : layers.road_areas.features) {
+    GroundMesh g;
+    drape(f.polygon, terrain, f.properties.value("bridge", false) ? 0.3 : 0.1, g);
+    add_ground(g, roads);
+  }
+  ground.push_back({glb.accessors(water), glb.material("water", ground_colour(ZoneType::Water), 0.1)});
+  ground.push_back({glb.accessors(roads), glb.material("road", kRoadColour)});
+  tinygltf::Node ground_node;
+  ground_node.name = "ground";
+  ground_node.mesh = glb.mesh("ground", ground);
+  if (ground_node.mesh >= 0) root.children.push_back(glb.node(ground_node));
+
+  // Extruded buildings and the foundations of placed models, merged per material.
+  std::map<std::pair<ZoneType, int>, Triangles> merged;
+  for (std::size_t i = 0; i < buildings.size(); ++i) {
+    const Building& b = buildings[i];
+    if (b.placed.model >= 0 && !(b.floor > b.base)) continue;
+    const Mesh mesh = b.placed.model >= 0 ? building_mesh(b, nullptr) : Mesh();
+    const MeshTriangles tris = mesh_triangles(b.placed.model >= 0 ? mesh : meshes[i]);
+    for (std::size_t k = 0; k < tris.triangles.size(); ++k) {
+      Triangles& t = merged[{b.zone, static_cast<int>(tris.surface[k])}];
+      for (int v : tris.triangles[k]) {
+        const Vec3& p = tris.vertices[v];
+        t.indices.push_back(static_cast<std::uint32_t>(t.positions.size()));
+        t.positions.push_back(local(p[0], p[1], p[2]));
+      }
+    }
+  }
+  std::vector<std::pair<std::pair<int, int>, int>> parts;
+  for (const auto& [key, t] : merged)
+    parts.push_back({glb.accessors(t), glb.material(std::string(name(key.first)) + "_" + kSurfaceNames[key.second],
+                                                    surface_colour(key.first, static_cast<Surface>(key.second)))});
+  tinygltf::Node buildings_node;
+  buildings_node.name = "buildings";
+  buildings_node.mesh = glb.mesh("buildings", parts);
+  if (buildings_node.mesh >= 0) root.children.push_back(glb.node(buildings_node));
+
+  // Placed models: geometry once per model, a mesh per colour variant used, a node each.
+  GltfCounts counts;
+  std::map<int, std::vector<std::pair<int, int>>> geometry;  // model -> accessors per material
+  std::map<std::pair<int, int>, int> variant_mesh;          // (model, tint) -> mesh
+  for (const Building& b : buildings) {
+    const int mi = b.placed.model;
+    if (mi < 0) continue;
+    const Model& model = library->models[mi];
+    if (!geometry.count(mi)) {
+      std::vector<Triangles> by_material(model.mesh.materials.size());
+      for (std::size_t k = 0; k < model.mesh.triangles.size(); ++k) {
+        Triangles& t = by_material[model.mesh.material[k]];
+        for (int v : model.mesh.triangles[k]) {
+          const Vec3& p = model.mesh.vertices[v];
+          t.indices.push_back(static_cast<std::uint32_t>(t.positions.size()));
+          t.positions.push_back({static_cast<float>(p[0]), static_cast<float>(p[2]), static_cast<float>(-p[1])});
+        }
+      }
+      for (const Triangles& t : by_material) geometry[mi].push_back(glb.accessors(t));
+    }
+    auto [it, added] = variant_mesh.emplace(std::make_pair(mi, b.placed.tint), -1);
+    if (added) {
+      std::vector<std::pair<std::pair<int, int>, int>> prims;
+      for (std::size_t k = 0; k < model.mesh.materials.size(); ++k)
+        prims.push_back({geometry[mi][k], glb.material(model.name + "_" + model.mesh.materials[k].name + "_" + std::to_string(b.placed.tint),
+                                                       tinted(model.mesh.materials[k].colour, b.placed.tint))});
+      it->second = glb.mesh(model.name + "_" + std::to_string(b.placed.tint), prims);
+    }
+    tinygltf::Node n;
+    n.name = model.name;
+    n.mesh = it->second;
+    Float3 at = local(b.placed.position.x, b.placed.position.y, b.floor);
+    n.translation = {at[0], at[1], at[2]};
+    n.rotation = {0, std::sin(b.placed.angle / 2), 0, std::cos(b.placed.angle / 2)};
+    n.scale = {b.placed.scale, b.placed.scale, b.placed.scale};
+    root.children.push_back(glb.node(n));
+    ++counts.instances;
+  }
+  glb.write(glb.node(root), file);
+  counts.meshes = glb.meshes();
+  counts.triangles = glb.triangles();
+  return counts;
+}
+
+}  // namespace exacity

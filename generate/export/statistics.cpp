@@ -1,0 +1,344 @@
+#include "generate/export/statistics.h"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "generate/errors.h"
+#include "generate/parcels/lots.h"
+#include "geom/measure.h"
+#include "geom/segment_index.h"
+
+namespace exacity {
+namespace {
+
+using geom::Vec2;
+using nlohmann::ordered_json;
+
+constexpr double kSharpAngle = 30;   // degrees
+constexpr double kNarrow = 5;        // m
+constexpr double kOversized = 4;     // times the zone's block_area
+constexpr double kOnEdge = 1e-6;     // m: an end this close to the drawn city's edge lies on it
+
+ordered_json summary(std::vector<double> v) {
+  if (v.empty()) return {{"count", 0}};
+  std::sort(v.begin(), v.end());
+  auto at = [&](double q) { return v[static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size()))) - 1]; };
+  auto round = [](double x) { return std::round(x * 10) / 10; };
+  return {{"count", v.size()}, {"median", round(at(0.5))}, {"p95", round(at(0.95))}, {"max", round(v.back())}};
+}
+
+double share(std::size_t part, std::size_t whole) {
+  return whole ? std::round(1e4 * static_cast<double>(part) / static_cast<double>(whole)) / 1e4 : 0;
+}
+
+// The smallest interior angle of the outer ring, in degrees (vertices in line skipped).
+double sharpest_angle(const geom::Ring& ring) {
+  const std::size_t n = ring.size();
+  const double orientation = geom::signed_area(ring) < 0 ? -1 : 1;
+  double sharpest = 180;
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec2 a = ring[(i + n - 1) % n], o = ring[i], b = ring[(i + 1) % n];
+    double ux = o.x - a.x, uy = o.y - a.y, vx = b.x - o.x, vy = b.y - o.y;
+    double turn = std::atan2(ux * vy - uy * vx, ux * vx + uy * vy) * orientation;
+    if (std::abs(turn) < 1e-9) continue;
+    sharpest = std::min(sharpest, 180 - turn * 180 / M_PI);
+  }
+  return sharpest;
+}
+
+// The least width of the ring: the smallest extent across its convex hull, over the hull's
+// edge directions (rotating calipers).
+double least_width(const geom::Ring& ring) {
+  std::vector<Vec2> p = ring;
+  std::sort(p.begin(), p.end(), [](Vec2 a, Vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  auto cross = [](Vec2 o, Vec2 a, Vec2 b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); };
+  std::vector<Vec2> hull(2 * p.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
+    hull[k++] = p[i];
+  }
+  for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
+    hull[k++] = p[i];
+  }
+  hull.resize(k > 1 ? k - 1 : k);
+  double best = INFINITY;
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    Vec2 a = hull[i], b = hull[(i + 1) % hull.size()];
+    double len = std::hypot(b.x - a.x, b.y - a.y), widest = 0;
+    if (len == 0) continue;
+    for (Vec2 q : hull) widest = std::max(widest, std::abs(cross(a, b, q)) / len);
+    best = std::min(best, widest);
+  }
+  return std::isfinite(best) ? best : 0;
+}
+
+struct SegmentHash {
+  std::size_t operator()(const std::pair<Vec2, Vec2>& s) const { return geom::Vec2Hash()(s.first) * 17 ^ geom::Vec2Hash()(s.second); }
+};
+std::pair<Vec2, Vec2> undirected(Vec2 a, Vec2 b) {
+  return (a.x < b.x || (a.x == b.x && a.y < b.y)) ? std::pair{a, b} : std::pair{b, a};
+}
+
+ordered_json footprint_figures(const std::vector<const geom::Polygon*>& footprints) {
+  std::vector<double> areas;
+  std::size_t sharp = 0, narrow = 0;
+  for (const geom::Polygon* p : footprints) {
+    areas.push_back(geom::area(*p));
+    sharp += sharpest_angle(p->outer) < kSharpAngle;
+    narrow += least_width(p->outer) < kNarrow;
+  }
+  return {{"area_m2", summary(areas)},
+          {"share_sharp_angle", share(sharp, footprints.size())},
+          {"share_under_5m_across", share(narrow, footprints.size())}};
+}
+
+// Junctions by degree, dead ends (ends that meet nothing and are not on the city's edge),
+// length and densities per km2 of `area_m2`.
+ordered_json street_figures(const std::vector<const geom::Polyline*>& lines, double area_m2,
+                            const std::function<bool(Vec2)>& on_edge) {
+  std::unordered_map<Vec2, int, geom::Vec2Hash> degree;
+  double length = 0;
+  for (const geom::Polyline* l : lines)
+    for (std::size_t i = 0; i + 1 < l->size(); ++i) {
+      if ((*l)[i] == (*l)[i + 1]) continue;
+      length += std::hypot((*l)[i + 1].x - (*l)[i].x, (*l)[i + 1].y - (*l)[i].y);
+      ++degree[(*l)[i]], ++degree[(*l)[i + 1]];
+    }
+  std::map<int, int> by_degree;
+  int dead_ends = 0, edge_ends = 0, junctions = 0;
+  for (const auto& [p, d] : degree) {
+    if (d != 2) ++by_degree[d];
+    if (d >= 3) ++junctions;
+    if (d == 1) (on_edge(p) ? edge_ends : dead_ends)++;
+  }
+  ordered_json degrees = ordered_json::object();
+  for (auto [d, n] : by_degree) degrees[std::to_string(d)] = n;
+  const double km2 = area_m2 / 1e6;
+  auto per_km2 = [&](double v) { return km2 > 0 ? std::round(v / km2 * 10) / 10 : 0.0; };
+  return {{"centre_lines", lines.size()},
+          {"length_km", std::round(length / 100) / 10},
+          {"junctions_by_degree", degrees},
+          {"dead_ends", dead_ends},
+          {"ends_on_city_edge", edge_ends},
+          {"area_km2", std::round(km2 * 1000) / 1000},
+          {"street_km_per_km2", per_km2(length / 1000)},
+          {"junctions_per_km2", per_km2(junctions)}};
+}
+
+}  // namespace
+
+ordered_json city_statistics(const CityLayers& layers, const Sketch* sketch) {
+  const Layer &blocks = layers.blocks, &lots = layers.lots, &buildings = layers.buildings, &road_areas = layers.road_areas;
+  std::set<std::string> zones{"all"};
+  for (const Layer* l : {&blocks, &lots, &buildings})
+    for (const auto& f : l->features) zones.insert(f.properties.value("zone", "all"));
+  std::unordered_set<std::pair<Vec2, Vec2>, SegmentHash> road_edges;
+  auto add_edges = [&](const geom::Ring& r) {
+    for (std::size_t i = 0; i < r.size(); ++i) road_edges.insert(undirected(r[i], r[(i + 1) % r.size()]));
+  };
+  for (const auto& f : road_areas.features) {
+    add_edges(f.polygon.outer);
+    for (const auto& h : f.polygon.holes) add_edges(h);
+  }
+  // A lot's depth over its width: its extents across and along its longest edge on a road
+  // area; 0 for a lot with none.
+  auto depth_over_width = [&](const geom::Polygon& p) {
+    const auto& r = p.outer;
+    double longest = 0;
+    std::pair<Vec2, Vec2> frontage;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      Vec2 a = r[i], b = r[(i + 1) % r.size()];
+      double len = std::hypot(b.x - a.x, b.y - a.y);
+      if (len > longest && road_edges.count(undirected(a, b))) longest = len, frontage = {a, b};
+    }
+    return longest > 0 ? geom::depth_over_width(r, frontage.first, frontage.second) : 0.0;
+  };
+
+  ordered_json per_zone = ordered_json::object();
+  for (const std::string& zone : zones) {
+    auto in_zone = [&](const VectorFeature& f) { return zone == "all" || f.properties.value("zone", "") == zone; };
+    std::vector<double> block_areas, lot_areas;
+    double block_total = 0, oversized = 0;
+    for (const auto& f : blocks.features) {
+      if (!in_zone(f) || f.properties.value("green", false)) continue;
+      double a = geom::area(f.polygon);
+      block_areas.push_back(a);
+      block_total += a;
+      auto type = parse_zone_type(f.properties.value("zone", ""));
+      if (sketch && type && a > kOversized * sketch->zone_params.at(*type).block_area) oversized += a;
+    }
+    std::size_t fronting = 0, lot_count = 0, odd_shape = 0, sharp_lots = 0;
+    for (const auto& f : lots.features) {
+      if (!in_zone(f)) continue;
+      lot_areas.push_back(geom::area(f.polygon));
+      ++lot_count;
+      const double ratio = depth_over_width(f.polygon);
+      fronting += ratio > 0;
+      odd_shape += ratio > 0 && (ratio < kLotShape.min || ratio > kLotShape.max);
+      sharp_lots += sharpest_angle(f.polygon.outer) < kSharpAngle;
+    }
+    std::vector<const geom::Polygon*> footprints;
+    for (const auto& f : buildings.features)
+      if (in_zone(f) && f.properties.value("kind", "building") == "building") footprints.push_back(&f.polygon);
+    if (block_areas.empty() && lot_areas.empty() && footprints.empty()) continue;
+    ordered_json z{{"blocks", {{"area_m2", summary(block_areas)},
+                               {"share_area_over_4x_block_area", block_total > 0 ? std::round(1e4 * oversized / block_total) / 1e4 : 0}}},
+                   {"lots",
+                    {{"area_m2", summary(lot_areas)},
+                     {"share_touching_road", share(fronting, lot_count)},
+                     {"share_depth_over_width_outside_0.5_5", share(odd_shape, lot_count)},
+                     {"share_sharp_angle", share(sharp_lots, lot_count)}}},
+                   {"footprints", footprint_figures(footprints)}};
+    per_zone[zone] = z;
+  }
+
+  // Streets: the city's ground area, and its edge: drawn zone rings and water.
+  double ground = 0;
+  for (const Layer* l : {&layers.zones, &layers.water, &layers.road_areas})
+    for (const auto& f : l->features) ground += geom::area(f.polygon);
+  geom::SegmentIndex edge(16.0);
+  std::vector<const geom::Polygon*> drawn;
+  if (sketch)
+    for (const auto& z : sketch->zones)
+      for (const auto& p : z.polygons) edge.add_polygon(p), drawn.push_back(&p);
+  for (const auto& f : layers.water.features) edge.add_polygon(f.polygon);
+  auto on_edge = [&](Vec2 p) {
+    if (edge.near(p, kOnEdge)) return true;
+    for (const geom::Polygon* d : drawn)
+      if (geom::odd_crossings(d->outer, p)) return false;
+    return true;  // outside every drawn zone: a sketch road's end past the city
+  };
+  std::vector<const geom::Polyline*> lines;
+  for (const auto& f : layers.roads.features) lines.push_back(&f.line);
+  return {{"zones", per_zone}, {"streets", street_figures(lines, ground, on_edge)}};
+}
+
+ordered_json real_statistics(const std::filesystem::path& file) {
+  std::ifstream stream(file, std::ios::binary);
+  if (!stream) throw UserError(file.string() + ": cannot be read; give a GeoJSON file of footprints or streets");
+  ordered_json doc = ordered_json::parse(stream, nullptr, false);
+  if (doc.is_discarded() || !doc.is_object() || !doc.contains("features") || !doc["features"].is_array())
+    throw UserError(file.string() + ": not a GeoJSON FeatureCollection; give footprints (Polygons) or streets (LineStrings)");
+  std::vector<geom::Polygon> polygons;
+  std::vector<geom::Polyline> lines;
+  std::size_t skipped = 0;
+  // Positions past a million kilometres are no place on Earth in any frame: their feature is skipped.
+  constexpr double kFarthest = 1e9;
+  auto points = [&](const ordered_json& c) {
+    std::vector<Vec2> out;
+    if (!c.is_array()) return out;
+    for (const auto& p : c) {
+      if (!p.is_array() || p.size() < 2 || !p[0].is_number() || !p[1].is_number()) continue;
+      Vec2 v{p[0].get<double>(), p[1].get<double>()};
+      if (!(std::abs(v.x) <= kFarthest && std::abs(v.y) <= kFarthest)) return std::vector<Vec2>{};
+      out.push_back(v);
+    }
+    return out;
+  };
+  auto polygon = [&](const ordered_json& rings) {
+    if (!rings.is_array() || rings.empty()) return ++skipped, void();
+    geom::Polygon p{points(rings[0]), {}};
+    if (p.outer.size() > 1 && p.outer.front() == p.outer.back()) p.outer.pop_back();
+    if (p.outer.size() < 3) return ++skipped, void();
+    for (std::size_t k = 1; k < rings.size(); ++k) p.holes.push_back(points(rings[k]));
+    polygons.push_back(std::move(p));
+  };
+  auto line = [&](const ordered_json& c) {
+    std::vector<Vec2> l = points(c);
+    if (l.size() < 2) return ++skipped, void();
+    lines.push_back(std::move(l));
+  };
+  for (const auto& f : doc["features"]) {
+    if (!f.is_object() || !f.contains("geometry") || !f["geometry"].is_object()) {
+      ++skipped;
+      continue;
+    }
+    const auto& g = f["geometry"];
+    const std::string type = g.value("type", "");
+    const auto& c = g.contains("coordinates") ? g["coordinates"] : ordered_json();
+    if (type == "Polygon") polygon(c);
+    else if (type == "MultiPolygon" && c.is_array()) for (const auto& p : c) polygon(p);
+    else if (type == "LineString") line(c);
+    else if (type == "MultiLineString" && c.is_array()) for (const auto& l : c) line(l);
+    else ++skipped;
+  }
+  // Lon/lat (every coordinate within range): projected about the centre, equirectangular,
+  // ample for areas and lengths over a few kilometres.
+  geom::Box box = geom::Box::none();
+  for (const auto& p : polygons) for (Vec2 v : p.outer) box.add(v);
+  for (const auto& l : lines) for (Vec2 v : l) box.add(v);
+  if (box.holds_nothing()) throw UserError(file.string() + ": holds no usable Polygon or LineString; give footprints or streets");
+  const bool lon_lat = box.min_x >= -180 && box.max_x <= 180 && box.min_y >= -90 && box.max_y <= 90;
+  if (lon_lat) {
+    const double lon0 = (box.min_x + box.max_x) / 2, lat0 = (box.min_y + box.max_y) / 2, r = 6371008.8 * M_PI / 180;
+    auto project = [&](Vec2& v) { v = {(v.x - lon0) * r * std::cos(lat0 * M_PI / 180), (v.y - lat0) * r}; };
+    for (auto& p : polygons) {
+      for (Vec2& v : p.outer) project(v);
+      for (auto& h : p.holes) for (Vec2& v : h) project(v);
+    }
+    for (auto& l : lines) for (Vec2& v : l) project(v);
+    box = geom::Box::none();
+    for (const auto& p : polygons) for (Vec2 v : p.outer) box.add(v);
+    for (const auto& l : lines) for (Vec2 v : l) box.add(v);
+  }
+  ordered_json out{{"file", file.filename().string()}, {"lon_lat", lon_lat}, {"features_skipped", skipped}};
+  if (!polygons.empty()) {
+    std::vector<const geom::Polygon*> footprints;
+    for (const auto& p : polygons) footprints.push_back(&p);
+    out["zones"] = {{"all", {{"footprints", footprint_figures(footprints)}}}};
+  }
+  if (!lines.empty()) {
+    std::vector<const geom::Polyline*> ptrs;
+    for (const auto& l : lines) ptrs.push_back(&l);
+    // The extract's box stands for the city's edge: streets cut there end on it.
+    const double margin = 20;
+    auto on_edge = [&](Vec2 p) {
+      return p.x - box.min_x < margin || box.max_x - p.x < margin || p.y - box.min_y < margin || box.max_y - p.y < margin;
+    };
+    out["streets"] = street_figures(ptrs, box.width() * box.height(), on_edge);
+  }
+  return out;
+}
+
+std::string format_statistics(const ordered_json& s) {
+  std::ostringstream out;
+  auto areas = [&](const char* what, const ordered_json& a) {
+    if (a.value("count", 0) == 0) return;
+    out << "    " << what << ": " << a["count"] << ", area m2 median " << a["median"] << ", p95 " << a["p95"] << ", largest "
+        << a["max"] << "\n";
+  };
+  if (s.contains("zones"))
+    for (const auto& [zone, z] : s["zones"].items()) {
+      out << zone << "\n";
+      if (z.contains("blocks") && z["blocks"]["area_m2"].value("count", 0) > 0) {
+        areas("blocks", z["blocks"]["area_m2"]);
+        out << "      share of block area in blocks over 4x block_area: " << z["blocks"]["share_area_over_4x_block_area"] << "\n";
+      }
+      if (z.contains("lots") && z["lots"]["area_m2"].value("count", 0) > 0) {
+        areas("lots", z["lots"]["area_m2"]);
+        out << "      share of lots touching a road area: " << z["lots"]["share_touching_road"]
+            << ", with depth/width outside 0.5-5: " << z["lots"]["share_depth_over_width_outside_0.5_5"]
+            << ", with an angle under 30 degrees: " << z["lots"]["share_sharp_angle"] << "\n";
+      }
+      const auto& f = z["footprints"];
+      areas("footprints", f["area_m2"]);
+      out << "      share with an angle under 30 degrees: " << f["share_sharp_angle"] << ", under 5 m across: "
+          << f["share_under_5m_across"] << "\n";
+    }
+  if (s.contains("streets")) {
+    const auto& t = s["streets"];
+    out << "streets\n    " << t["centre_lines"] << " centre lines, " << t["length_km"] << " km over " << t["area_km2"]
+        << " km2: " << t["street_km_per_km2"] << " km/km2, " << t["junctions_per_km2"] << " junctions/km2\n";
+    out << "    junctions by degree " << t["junctions_by_degree"].dump() << ", dead ends " << t["dead_ends"]
+        << ", ends on the city's edge " << t["ends_on_city_edge"] << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace exacity

@@ -1,0 +1,342 @@
+#include "generate/export/validate.h"
+
+#include <cmath>
+#include <numeric>
+#include <set>
+#include <unordered_map>
+
+#include "generate/city/drawn_zones.h"
+#include "generate/errors.h"
+#include "generate/export/geojson.h"
+#include "generate/export/vector_layers.h"
+#include "geom/measure.h"
+#include "geom/planar_map.h"
+#include "geom/polygon_check.h"
+#include "geom/segment_index.h"
+
+namespace exacity {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::size_t kMaxProblems = 20;
+
+// Written coordinates are the exact vertices rounded to doubles, so where a constructed
+// vertex lies on a drawn edge, the written edge and the drawn edge bound a sliver about
+// 1e-13 m wide (1e-9 m at UTM-sized coordinates), and a road's end written on a drawn
+// edge lies that far from it. Comparisons with the drawn sketch accept this much; every
+// other check is exact without tolerance.
+constexpr double kRounding = 1e-6;
+
+enum class Kind { Zone, Park, Water, Road, Bridge, Block, Lot, Building };
+
+struct PolygonRef {
+  Kind kind;
+  std::string name;  // "zones.geojson features[3]"
+  std::string zone;  // for zones, blocks and lots
+  bool green = false;
+  int id = -1;       // the feature's id
+  int block = -1;    // for lots: the block it names
+  int lot = -1;      // for lots: their id; for buildings: the lot they stand on
+};
+
+std::string near(geom::Vec2 p) { return " near (" + format_number(p.x) + ", " + format_number(p.y) + ")"; }
+
+class Checker {
+ public:
+  explicit Checker(Validation& v) : v_(v) {}
+  void problem(const std::string& p) {
+    if (v_.problems.size() < kMaxProblems) v_.problems.push_back(p);
+  }
+  Validation& v_;
+};
+
+// Simple rings, outer counter-clockwise, holes clockwise; records each polygon.
+void check_polygons(Checker& c, const Layer& layer, std::vector<PolygonRef>& refs,
+                    std::vector<const geom::Polygon*>& polygons) {
+  c.v_.features[layer.name] = static_cast<int>(layer.features.size());
+  for (std::size_t i = 0; i < layer.features.size(); ++i) {
+    const VectorFeature& f = layer.features[i];
+    std::string name = layer.name + ".geojson features[" + std::to_string(i) + "]";
+    if (!f.properties.contains("id")) c.problem(name + ": no \"id\"");
+    if (geom::ring_orientation(f.polygon.outer) != 1)
+      c.problem(name + ": outer ring is not simple and counter-clockwise" + near(f.polygon.outer[0]));
+    for (const auto& h : f.polygon.holes)
+      if (geom::ring_orientation(h) != -1) c.problem(name + ": a hole is not simple and clockwise" + near(h[0]));
+    std::string zone = f.properties.value("zone", "");
+    Kind kind = layer.name == "zones"   ? (zone == "park" ? Kind::Park : Kind::Zone)
+                : layer.name == "water" ? Kind::Water
+                : layer.name == "blocks" ? Kind::Block
+                : layer.name == "lots"   ? Kind::Lot
+                : layer.name == "buildings" ? Kind::Building
+                : f.properties.value("bridge", false) ? Kind::Bridge
+                                                      : Kind::Road;
+    const int id = f.properties.value("id", -1);
+    refs.push_back({kind, name, zone, f.properties.value("green", false), id, f.properties.value("block", -1),
+                    kind == Kind::Lot ? id : f.properties.value("lot", -1)});
+    polygons.push_back(&f.polygon);
+  }
+}
+
+// All polygons and the drawn zones in one exact map. Polygon p's outer ring winds around
+// counter 2p and its holes around 2p + 1. Over the drawn zones, zones + water + road
+// areas cover every point once, and so do blocks + parks + water + road areas; a block
+// lies where a zone of its type does (or is green space).
+void check_tiling(Checker& c, const Sketch& sketch, const std::vector<PolygonRef>& refs,
+                  const std::vector<const geom::Polygon*>& polygons) {
+  geom::PlanarMap map;
+  const int P = static_cast<int>(polygons.size());
+  for (int p = 0; p < P; ++p) {
+    map.add_ring(polygons[p]->outer, 2 * p, 0);
+    for (std::size_t h = 0; h < polygons[p]->holes.size(); ++h)
+      map.add_ring(polygons[p]->holes[h], 2 * p + 1, static_cast<int>(h) + 1);
+  }
+  DrawnZones drawn(sketch.zones, map, 2 * P);
+  map.insert_batch();
+
+  // A face's label is the index of what is wrong there; 0 where nothing is.
+  std::vector<std::string> messages{""};
+  std::vector<bool> against_sketch{false};
+  std::map<std::string, int> message_index{{"", 0}};
+  auto wrong = [&](const std::string& m, bool sketch_check = false) {
+    auto [it, added] = message_index.emplace(m, static_cast<int>(messages.size()));
+    if (added) messages.push_back(m), against_sketch.push_back(sketch_check);
+    return it->second;
+  };
+  map.label_faces([&](const geom::Windings& w) -> int {
+    std::vector<int> inside;
+    for (std::size_t i = 0; i < w.size() && w[i].first < 2 * P;) {
+      int p = w[i].first / 2, outer = 0, holes = 0;
+      for (; i < w.size() && w[i].first < 2 * P && w[i].first / 2 == p; ++i)
+        (w[i].first % 2 == 0 ? outer : holes) = w[i].second;
+      if (outer != 0 && outer != 1) return wrong(refs[p].name + ": outer ring winds " + std::to_string(outer) + " times");
+      if (holes != 0 && (holes != -1 || outer != 1)) return wrong(refs[p].name + ": holes overlap or leave the outer ring");
+      if (outer == 1 && holes == 0) inside.push_back(p);
+    }
+    std::map<Kind, std::vector<int>> here;
+    for (int p : inside) here[refs[p].kind].push_back(p);
+    auto count = [&](std::initializer_list<Kind> kinds) {
+      std::size_t n = 0;
+      for (Kind k : kinds) n += here[k].size();
+      return n;
+    };
+    auto names = [&](std::initializer_list<Kind> kinds) {
+      std::string s;
+      for (Kind k : kinds)
+        for (int p : here[k]) s += (s.empty() ? "" : " and ") + refs[p].name;
+      return s;
+    };
+    const auto zoning = {Kind::Zone, Kind::Park, Kind::Water, Kind::Road};
+    const auto blocking = {Kind::Block, Kind::Park, Kind::Water, Kind::Road};
+    if (count(zoning) > 1) return wrong(names(zoning) + " overlap");
+    if (count(blocking) > 1) return wrong(names(blocking) + " overlap");
+    if (count({Kind::Bridge}) > 1) return wrong("two bridges overlap");
+    if (count({Kind::Bridge}) == 1 && count({Kind::Water}) == 0) return wrong("a bridge lies outside the water");
+    if (count({Kind::Zone}) != count({Kind::Block}))
+      return wrong((count({Kind::Zone}) ? names({Kind::Zone}) + " holds no block" : names({Kind::Block}) + " lies outside the zones"));
+    if (count({Kind::Lot}) > 1) return wrong(names({Kind::Lot}) + " overlap");
+    if (count({Kind::Lot}) == 1) {
+      const PolygonRef& lot = refs[here[Kind::Lot][0]];
+      if (count({Kind::Block}) == 0 || refs[here[Kind::Block][0]].id != lot.block)
+        return wrong(lot.name + " leaves its block " + std::to_string(lot.block));
+    }
+    if (count({Kind::Building}) > 1) return wrong(names({Kind::Building}) + " overlap");
+    if (count({Kind::Building}) == 1) {
+      const PolygonRef& b = refs[here[Kind::Building][0]];
+      if (count({Kind::Lot}) == 0 || refs[here[Kind::Lot][0]].lot != b.lot)
+        return wrong(b.name + " leaves its lot " + std::to_string(b.lot));
+    }
+    if (count({Kind::Block}) == 1) {
+      const PolygonRef &b = refs[here[Kind::Block][0]], &z = refs[here[Kind::Zone][0]];
+      if (!b.green && b.zone != z.zone) return wrong(b.name + " says \"" + b.zone + "\" inside " + z.name + " (\"" + z.zone + "\")");
+    }
+    int top = drawn.top_zone(w);
+    std::size_t surfaces = count(zoning);
+    if (top >= 0 && surfaces == 0)
+      return wrong("the drawn zone features[" + std::to_string(sketch.zones[top].index) +
+                       "] is not covered by a zone, water or road area", true);
+    if (top < 0 && count({Kind::Zone, Kind::Park}) > 0) return wrong(names({Kind::Zone, Kind::Park}) + " lies outside every drawn zone", true);
+    if (top >= 0 && count({Kind::Zone, Kind::Park}) == 1) {
+      const PolygonRef& z = refs[here[Kind::Zone].empty() ? here[Kind::Park][0] : here[Kind::Zone][0]];
+      if (z.zone != name(sketch.zones[top].type))
+        return wrong(z.name + " says zone \"" + z.zone + "\" where the sketch draws \"" +
+                         std::string(name(sketch.zones[top].type)) + "\"", true);
+    }
+    return 0;
+  });
+  const std::vector<double> widths = map.widest_faces(static_cast<int>(messages.size()));
+  for (std::size_t m = 1; m < messages.size(); ++m) {
+    if (against_sketch[m]) {
+      double width = widths[m];
+      if (width <= kRounding) {
+        c.v_.widest_sliver = std::max(c.v_.widest_sliver, width);
+        continue;
+      }
+    }
+    geom::Vec2 at;
+    c.problem(messages[m] + (map.point_near_label(static_cast<int>(m), at) ? near(at) : ""));
+  }
+
+  // Two rings of one polygon may touch at a vertex but not run along each other. Every lot
+  // shares an edge with a road area.
+  std::vector<bool> fronts(P, false);
+  map.for_each_edge([&](const std::vector<geom::CurveTag>& tags, geom::Vec2 a, geom::Vec2) {
+    bool road = false;
+    for (const auto& t : tags)
+      if (t.counter < 2 * P && (refs[t.counter / 2].kind == Kind::Road || refs[t.counter / 2].kind == Kind::Bridge)) road = true;
+    for (std::size_t i = 0; i < tags.size(); ++i) {
+      if (tags[i].counter >= 2 * P) continue;
+      if (road) fronts[tags[i].counter / 2] = true;
+      for (std::size_t j = i + 1; j < tags.size(); ++j)
+        if (tags[j].counter < 2 * P && tags[i].counter / 2 == tags[j].counter / 2)
+          c.problem(refs[tags[i].counter / 2].name + ": two of its rings share an edge" + near(a));
+    }
+  });
+  for (int p = 0; p < P; ++p)
+    if (refs[p].kind == Kind::Lot && !fronts[p]) c.problem(refs[p].name + " touches no road area");
+}
+
+// The centre lines are a noded network: two of them meet only at a vertex of both. Every
+// end of a grown road is a vertex of another centre line (a junction) or lies on the edge
+// of the built city (a drawn zone's ring or water). Every piece of the network holding a
+// region's roads holds a road the sketch drew (in a sketch without roads, all are one).
+void check_roads(Checker& c, const Sketch& sketch, const Layer& roads, const Layer& water) {
+  const auto& features = roads.features;
+  geom::PlanarMap map;
+  for (std::size_t i = 0; i < features.size(); ++i) map.add_polyline(features[i].line, static_cast<int>(i));
+  map.insert_batch();
+  for (const auto& [tag, pieces] : map.polyline_pieces())
+    if (pieces.size() != features[tag].line.size() - 1)
+      for (std::size_t k = 1; k < pieces.size(); ++k)
+        if (pieces[k].segment == pieces[k - 1].segment) {
+          c.problem("roads.geojson: road " + std::to_string(features[tag].properties.value("id", -1)) +
+                    " meets another centre line between its vertices" + near(pieces[k].from));
+          break;
+        }
+
+  // Connectivity: union-find over vertices.
+  std::unordered_map<geom::Vec2, int, geom::Vec2Hash> node;
+  std::vector<int> parent;
+  std::vector<geom::Vec2> at;
+  auto id = [&](geom::Vec2 p) {
+    auto [it, added] = node.emplace(p, static_cast<int>(parent.size()));
+    if (added) parent.push_back(it->second), at.push_back(p);
+    return it->second;
+  };
+  std::function<int(int)> find = [&](int x) { return parent[x] == x ? x : parent[x] = find(parent[x]); };
+  std::map<int, std::vector<int>> region_nodes;
+  std::vector<int> sketch_nodes;
+  for (const auto& f : features)
+    for (std::size_t i = 0; i < f.line.size(); ++i) {
+      int a = id(f.line[i]);
+      if (f.properties["region"].is_null()) sketch_nodes.push_back(a);
+      else region_nodes[f.properties["region"].get<int>()].push_back(a);
+      if (i > 0) parent[find(a)] = find(id(f.line[i - 1]));
+    }
+  // Each piece of the network a region's roads lie in holds a road the sketch drew (the
+  // sketch's own roads need not meet each other); in a sketch without roads, all the
+  // regions' roads are one piece.
+  std::set<int> drawn;
+  for (int n : sketch_nodes) drawn.insert(find(n));
+  const int first = region_nodes.empty() ? -1 : find(region_nodes.begin()->second.front());
+  for (const auto& [region, nodes] : region_nodes) {
+    std::set<int> pieces;
+    for (int n : nodes) pieces.insert(find(n));
+    bool cut_off = false;
+    for (int p : pieces) cut_off |= drawn.empty() ? p != first : !drawn.count(p);
+    if (!cut_off) continue;
+    if (pieces.size() > 1)
+      c.problem("roads.geojson: the roads of region " + std::to_string(region) + " are not connected");
+    else
+      c.problem("roads.geojson: the roads of region " + std::to_string(region) + " reach no other road" +
+                near(at[nodes.front()]));
+  }
+
+  std::unordered_map<geom::Vec2, std::vector<int>, geom::Vec2Hash> roads_at;  // vertex -> features through it
+  for (std::size_t i = 0; i < features.size(); ++i)
+    for (auto p : features[i].line) roads_at[p].push_back(static_cast<int>(i));
+  geom::SegmentIndex edges(16.0);
+  for (const auto& z : sketch.zones)
+    for (const auto& p : z.polygons) edges.add_polygon(p);
+  for (const auto& f : water.features) edges.add_polygon(f.polygon);
+  for (std::size_t i = 0; i < features.size(); ++i) {
+    const VectorFeature& f = features[i];
+    if (f.properties["level"].is_null()) continue;  // drawn in the sketch
+    for (geom::Vec2 end : {f.line.front(), f.line.back()}) {
+      bool junction = false;
+      for (int o : roads_at[end]) junction |= o != static_cast<int>(i);
+      if (!junction && !edges.near(end, kRounding))
+        c.problem("roads.geojson: road " + std::to_string(f.properties.value("id", -1)) + " ends in the open" + near(end));
+    }
+  }
+}
+
+// Every reference names the id of a feature of the layer it refers to.
+void check_references(Checker& c, const Layer& from, const char* key, const Layer& to) {
+  std::set<int> ids;
+  for (const auto& f : to.features) ids.insert(f.properties.value("id", -1));
+  for (std::size_t i = 0; i < from.features.size(); ++i) {
+    const auto& value = from.features[i].properties.value(key, nlohmann::ordered_json());
+    for (const auto& v : value.is_array() ? value : nlohmann::ordered_json::array({value}))
+      if (!v.is_number_integer() || !ids.count(v.get<int>())) {
+        c.problem(from.name + ".geojson features[" + std::to_string(i) + "]: \"" + key + "\" " + v.dump() +
+                  " names no feature of " + to.name + ".geojson");
+        break;
+      }
+  }
+}
+
+}  // namespace
+
+Validation validate_output(const fs::path& dir) {
+  Validation v;
+  Checker c(v);
+  Sketch sketch;
+  try {
+    sketch = load_sketch(dir / "sketch.geojson", false);
+  } catch (const UserError& e) {
+    c.problem(std::string("sketch copy: ") + e.what());
+    return v;
+  }
+  std::vector<std::string> read_problems;
+  const CityLayers layers = read_layers(dir / "vector", read_problems);
+  const Layer &zones = layers.zones, &water = layers.water, &road_areas = layers.road_areas, &blocks = layers.blocks,
+              &lots = layers.lots, &buildings = layers.buildings, &roads = layers.roads;
+  for (auto& p : read_problems) c.problem(p);
+
+  std::vector<PolygonRef> refs;
+  std::vector<const geom::Polygon*> polygons;
+  for (const Layer* l : {&zones, &water, &road_areas, &blocks, &lots, &buildings}) check_polygons(c, *l, refs, polygons);
+  for (const auto& f : buildings.features)
+    if (!(f.properties.value("height", 0.0) > 0))
+      c.problem("buildings.geojson: building " + std::to_string(f.properties.value("id", -1)) + " has no height");
+  for (const auto& f : lots.features) {
+    auto zt = parse_zone_type(f.properties.value("zone", ""));
+    if (zt && geom::area(f.polygon) < sketch.zone_params.at(*zt).min_lot_area)
+      c.problem("lots.geojson: lot " + std::to_string(f.properties.value("id", -1)) + " is under its zone's min_lot_area");
+  }
+  v.features["roads"] = static_cast<int>(roads.features.size());
+  for (std::size_t i = 0; i < roads.features.size(); ++i) {
+    const VectorFeature& f = roads.features[i];
+    for (const char* key : {"id", "class", "width", "level", "region", "bridge"})
+      if (!f.properties.contains(key)) c.problem("roads.geojson features[" + std::to_string(i) + "]: no \"" + key + "\"");
+    if (f.line.size() < 2) c.problem("roads.geojson features[" + std::to_string(i) + "]: fewer than 2 positions");
+  }
+  for (const Layer* l : {&zones, &water, &road_areas, &blocks, &lots, &buildings, &roads}) {
+    std::set<int> ids;
+    for (std::size_t i = 0; i < l->features.size(); ++i)
+      if (!ids.insert(l->features[i].properties.value("id", -1)).second)
+        c.problem(l->name + ".geojson features[" + std::to_string(i) + "]: its id is not unique");
+  }
+  const bool well_formed = v.ok();  // the checks below need simple rings and whole lines
+  check_references(c, lots, "block", blocks);
+  check_references(c, buildings, "lot", lots);
+  check_references(c, road_areas, "road", roads);
+  check_references(c, blocks, "roads", roads);
+  if (!well_formed) return v;
+  check_tiling(c, sketch, refs, polygons);
+  check_roads(c, sketch, roads, water);
+  return v;
+}
+
+}  // namespace exacity

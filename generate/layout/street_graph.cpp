@@ -1,0 +1,157 @@
+#include "generate/layout/street_graph.h"
+
+#include <cmath>
+#include <map>
+#include <set>
+#include <unordered_map>
+
+#include "geom/grid.h"
+#include "geom/measure.h"
+
+namespace exacity {
+namespace {
+
+// How many times each point is a vertex of a line (a closed line's end counts twice).
+std::unordered_map<geom::Vec2, int, geom::Vec2Hash> vertex_counts(const std::vector<RoadFeature>& roads) {
+  std::unordered_map<geom::Vec2, int, geom::Vec2Hash> count;
+  for (const RoadFeature& r : roads)
+    for (const geom::Polyline& line : r.lines)
+      for (geom::Vec2 p : line) ++count[p];
+  return count;
+}
+
+double distance(geom::Vec2 a, geom::Vec2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+using geom::segment_key;
+using Segments = std::set<geom::SegmentKey>;
+
+Segments segments_of(const std::vector<RoadFeature>& roads) {
+  Segments out;
+  for (const RoadFeature& r : roads)
+    for (const geom::Polyline& line : r.lines)
+      for (std::size_t i = 0; i + 1 < line.size(); ++i) out.insert(segment_key(line[i], line[i + 1]));
+  return out;
+}
+
+// Moves a line's end to p unless that would leave the line a single point, or lay its end
+// segment along one another line already has (two lines drawn a few degrees apart from one
+// node would become one).
+bool move_end(geom::Polyline& line, bool back, geom::Vec2 p, Segments& segments) {
+  geom::Vec2& end = back ? line.back() : line.front();
+  if (end == p) return false;
+  const geom::Vec2 next = back ? line[line.size() - 2] : line[1];
+  if (next == p) {
+    // The end segment folds away; the one before it now ends the line.
+    if (line.size() < 3) return false;
+    segments.erase(segment_key(next, end));
+    back ? line.pop_back() : static_cast<void>(line.erase(line.begin()));
+    return true;
+  }
+  if (segments.count(segment_key(next, p))) return false;
+  segments.erase(segment_key(next, end));
+  segments.insert(segment_key(next, p));
+  end = p;
+  return true;
+}
+
+}  // namespace
+
+int join_near_ends(std::vector<RoadFeature>& roads, double snap) {
+  struct End {
+    std::size_t road, line;
+    bool back;
+  };
+  std::vector<End> ends;
+  for (std::size_t r = 0; r < roads.size(); ++r)
+    for (std::size_t k = 0; k < roads[r].lines.size(); ++k) ends.push_back({r, k, false}), ends.push_back({r, k, true});
+  auto point = [&](const End& e) -> geom::Vec2& {
+    geom::Polyline& l = roads[e.road].lines[e.line];
+    return e.back ? l.back() : l.front();
+  };
+  int moved = 0;
+  Segments segments = segments_of(roads);
+  // Ends onto ends: each end joins the first earlier end of another line near it.
+  for (std::size_t i = 0; i < ends.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j) {
+      if (ends[j].road == ends[i].road && ends[j].line == ends[i].line) continue;
+      const geom::Vec2 target = point(ends[j]);
+      if (distance(point(ends[i]), target) > snap) continue;
+      if (!(point(ends[i]) == target))
+        moved += move_end(roads[ends[i].road].lines[ends[i].line], ends[i].back, target, segments);
+      break;
+    }
+  // Ends still meeting nothing onto the nearest side of another line.
+  auto counts = vertex_counts(roads);
+  for (const End& e : ends) {
+    geom::Polyline& own = roads[e.road].lines[e.line];
+    const geom::Vec2 p = point(e);
+    if (counts[p] > 1) continue;
+    double best = snap;
+    geom::Polyline* target = nullptr;
+    std::size_t segment = 0;
+    for (RoadFeature& r : roads)
+      for (geom::Polyline& line : r.lines)
+        for (std::size_t s = 0; s + 1 < line.size(); ++s) {
+          // Not the end's own segment: it already touches it.
+          if (&line == &own && (e.back ? s + 2 == line.size() : s == 0)) continue;
+          const geom::Vec2 a = line[s], b = line[s + 1];
+          if (std::min(a.x, b.x) - snap > p.x || std::max(a.x, b.x) + snap < p.x ||
+              std::min(a.y, b.y) - snap > p.y || std::max(a.y, b.y) + snap < p.y)
+            continue;
+          const double d = geom::distance_to_segment(p, a, b);
+          if (d <= best) best = d, target = &line, segment = s;
+        }
+    if (!target) continue;
+    const geom::Vec2 a = (*target)[segment], b = (*target)[segment + 1];
+    geom::Vec2 at = geom::snap(geom::nearest_on_segment(p, a, b));
+    if (distance(at, a) <= snap && distance(p, a) <= snap) at = a;  // onto a vertex rather than beside it
+    else if (distance(at, b) <= snap && distance(p, b) <= snap) at = b;
+    if (!(at == p)) {
+      if (!move_end(own, e.back, at, segments)) continue;
+      ++moved;
+    }
+    if (!(at == a) && !(at == b)) {
+      target->insert(target->begin() + segment + 1, at);
+      segments.erase(segment_key(a, b));
+      segments.insert(segment_key(a, at)), segments.insert(segment_key(at, b));
+    }
+    ++counts[at];
+  }
+  return moved;
+}
+
+std::vector<StreetNode> street_nodes(const std::vector<RoadFeature>& roads) {
+  struct Meeting {
+    std::vector<StreetArm> arms;
+    int lines = 0;  // vertices of lines at the point (a line's two ends count twice)
+  };
+  std::map<std::pair<double, double>, Meeting> at;  // ordered: nodes come out in a fixed order
+  for (std::size_t r = 0; r < roads.size(); ++r)
+    for (const geom::Polyline& line : roads[r].lines) {
+      // Length along the line up to each vertex.
+      std::vector<double> along{0};
+      for (std::size_t i = 1; i < line.size(); ++i) along.push_back(along.back() + distance(line[i - 1], line[i]));
+      for (std::size_t i = 0; i < line.size(); ++i) {
+        Meeting& m = at[{line[i].x, line[i].y}];
+        ++m.lines;
+        if (i > 0) m.arms.push_back({static_cast<int>(r), line[i - 1], along[i]});
+        if (i + 1 < line.size()) m.arms.push_back({static_cast<int>(r), line[i + 1], along.back() - along[i]});
+      }
+    }
+  std::vector<StreetNode> nodes;
+  for (auto& [p, m] : at)
+    if (m.lines > 1 && m.arms.size() > 1) nodes.push_back({{p.first, p.second}, std::move(m.arms)});
+  return nodes;
+}
+
+std::vector<DeadEnd> dead_ends(const std::vector<RoadFeature>& roads) {
+  auto counts = vertex_counts(roads);
+  std::vector<DeadEnd> out;
+  for (const RoadFeature& r : roads)
+    for (const geom::Polyline& line : r.lines)
+      for (geom::Vec2 end : {line.front(), line.back()})
+        if (counts[end] == 1) out.push_back({r.index, end});
+  return out;
+}
+
+}  // namespace exacity

@@ -1,0 +1,71 @@
+#include "generate/parcels/blocks.h"
+
+#include <optional>
+
+#include "geom/measure.h"
+
+namespace exacity {
+
+namespace {
+
+// The use of the planned land holding a point inside the block, if any.
+const Terminal* use_of(const geom::Cell& cell, const std::vector<PlannedUse>& uses) {
+  if (uses.empty()) return nullptr;
+  const std::optional<geom::Vec2> inside = cell.point_inside_near(cell.centroid());
+  if (!inside) return nullptr;
+  for (const PlannedUse& u : uses)
+    if (geom::odd_crossings(u.ring, *inside)) return &u.use;
+  return nullptr;
+}
+
+}  // namespace
+
+std::vector<Block> cut_blocks(CityMap& zm, const Sketch& sketch, const std::vector<PlannedUse>& uses) {
+  std::vector<int> group(zm.labels.size(), -1), road_across(zm.labels.size(), -1);
+  for (std::size_t l = 0; l < zm.labels.size(); ++l) {
+    const FaceLabel& f = zm.labels[l];
+    if (f.cover == Cover::Zone && grows_roads(sketch.zones[f.zone].type))
+      group[l] = static_cast<int>(sketch.zones[f.zone].type);
+    if (f.road_surface()) road_across[l] = f.road;
+  }
+  std::vector<Block> blocks;
+  std::vector<int> types, components;
+  std::vector<geom::Cell> cells = zm.map.cells(group, road_across, &types, &components);
+  std::vector<int> block_of_component(components.empty() ? 0 : components.back() + 1, -1);
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    geom::Cell& cell = cells[i];
+    Block b;
+    b.polygon = cell.to_plain();
+    if (b.polygon.outer.empty()) continue;
+    block_of_component[components[i]] = static_cast<int>(blocks.size());
+    b.zone = static_cast<ZoneType>(types[i]);
+    const ZoneParams& p = sketch.zone_params.at(b.zone);
+    double a = geom::area(b.polygon);
+    const Terminal* use = use_of(cell, uses);
+    if (a < p.min_block_area || 2 * a / geom::perimeter(b.polygon) < p.min_block_width ||
+        (use && use->kind == Terminal::Park)) {
+      b.green = true;
+      b.zone = ZoneType::Park;
+    } else if (use && use->kind == Terminal::Land) {
+      b.density = use->density;
+    }
+    for (int k : cell.edge_kinds())
+      if (k >= 0) b.roads.push_back(k);
+    b.cell = std::move(cell);
+    blocks.push_back(std::move(b));
+  }
+  // Each face learns its block (an edge-connected component of faces bounds one cell).
+  std::pair<int, int> last{-1, -1};  // a component's faces mostly share one label
+  int last_component = -1;
+  zm.map.relabel_components(group, [&](int c, int label) {
+    if (c != last_component || label != last.first) {
+      FaceLabel l = zm.labels[label];
+      l.block = block_of_component[c];
+      last = {label, zm.label_index(l)}, last_component = c;
+    }
+    return last.second;
+  });
+  return blocks;
+}
+
+}  // namespace exacity

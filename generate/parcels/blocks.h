@@ -1,0 +1,29 @@
+// Blocks: the faces left once road areas, water and parks are taken out, one per zone
+// type where zones touch. Blocks too small or too thin to build on become green space,
+// so the map still tiles the drawn zones.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "generate/layout/road_layout.h"
+#include "generate/city/sketch.h"
+#include "generate/city/city_map.h"
+
+namespace exacity {
+
+struct Block {
+  ZoneType zone = ZoneType::Residential;  // the drawn zone's type; Park for green space
+  bool green = false;
+  geom::Cell cell;         // exact; an edge's kind is the index of the road across it, or -1
+  geom::Polygon polygon;   // rounded
+  std::vector<int> roads;  // indices into CityMap::roads of the roads it fronts
+  std::string density;     // a grammar's _Dense or _Sparse ("dense", "sparse"); "" for the zone's own
+};
+
+// The blocks, in the map's face order; every face of block b gets a label whose `block` is b.
+// A block takes the use of the layout's land around a point inside it: a grammar's Park
+// makes it green space, its _Dense and _Sparse its density.
+std::vector<Block> cut_blocks(CityMap& city_map, const Sketch& sketch, const std::vector<PlannedUse>& uses = {});
+
+}  // namespace exacity

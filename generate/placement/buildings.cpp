@@ -1,0 +1,179 @@
+#include "generate/placement/buildings.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include <tbb/parallel_for.h>
+
+#include "generate/errors.h"
+#include "generate/export/geojson.h"
+#include "generate/placement/model_placement.h"
+#include "geom/grid.h"
+#include "geom/measure.h"
+
+namespace exacity {
+
+double building_height(const ZoneParams& p, double distance, double radius, Random& rng) {
+  double near_centre = radius > 0 ? 1 - std::min(distance / radius, 1.0) : 1;
+  double scale = 0.5 + 0.5 * near_centre;
+  double top = p.max_height * scale;
+  if (rng.uniform() < 0.1 * near_centre * near_centre) top *= 2;  // a rare tower near the centre
+  double h = rng.uniform(p.min_height * scale, std::max(top, p.min_height * scale));
+  return std::round(h * 100) / 100;  // centimetres
+}
+
+namespace {
+
+// Four corners, each within 10 degrees of square.
+bool near_rectangle(const geom::Polygon& p) {
+  if (p.outer.size() != 4 || !p.holes.empty()) return false;
+  for (int i = 0; i < 4; ++i) {
+    geom::Vec2 a = p.outer[(i + 3) % 4], o = p.outer[i], c = p.outer[(i + 1) % 4];
+    double ux = a.x - o.x, uy = a.y - o.y, wx = c.x - o.x, wy = c.y - o.y;
+    double cosine = (ux * wx + uy * wy) / (std::hypot(ux, uy) * std::hypot(wx, wy));
+    if (std::abs(cosine) > std::sin(10 * M_PI / 180)) return false;
+  }
+  return true;
+}
+
+// Rectangles in a row along the lot's street frontage, fronts `setback` behind the street
+// (seed 002's rows facing the road), each `footprint_width` by `footprint_depth` and no
+// larger than `max_footprint_area`, `building_gap` apart and half that inside the lot's
+// other edges; where one does not fit, a smaller one is tried, down to
+// `min_footprint_width`. Each is checked exactly against the lot and the footprints taken.
+std::vector<geom::Ring> street_footprints(const geom::Cell& lot, const ZoneParams& p, std::vector<geom::Ring>& taken,
+                                          Random& rng) {
+  std::vector<geom::Ring> out;
+  const Frontage f = principal_frontage(lot, kLotRoadEdge);
+  if (!f.on_road || !(f.t1 > f.t0)) return out;
+  const double clearance = std::max(p.building_gap / 2, 0.05), front = std::max(p.setback, 0.1);
+  auto rectangle = [&](double t, double w, double d, double grow) {
+    const double ahead = std::min(grow, front / 2);
+    geom::Ring r;
+    for (auto [along, across] : {std::pair{t - grow, front - ahead}, {t + w + grow, front - ahead},
+                                 {t + w + grow, front + d + grow}, {t - grow, front + d + grow}})
+      r.push_back(geom::snap(f.at(along, across)));
+    return r;
+  };
+  for (double t = f.t0 + clearance; t + p.min_footprint_width <= f.t1;) {
+    double w = rng.uniform(p.footprint_width.min, p.footprint_width.max);
+    double d = rng.uniform(p.footprint_depth.min, p.footprint_depth.max);
+    if (w * d > p.max_footprint_area) {
+      const double s = std::sqrt(p.max_footprint_area / (w * d));
+      w *= s, d *= s;
+    }
+    // The drawn size, then smaller ones, down to the narrowest allowed.
+    const double m = p.min_footprint_width;
+    const std::pair<double, double> sizes[] = {{w, d}, {0.8 * w, 0.8 * d}, {0.64 * w, 0.64 * d}, {0.5 * w, 0.5 * d},
+                                               {m, 0.5 * d}, {m, m}};
+    bool placed = false;
+    for (auto [ws, ds] : sizes) {
+      ws = std::max(ws, m), ds = std::max(ds, m);
+      if (t + ws > f.t1 || ws * ds < p.min_footprint_area || ws * ds > p.max_footprint_area) continue;
+      geom::Ring ring = rectangle(t, ws, ds, 0);
+      if (!fits(lot, rectangle(t, ws, ds, clearance), {}) || !fits(lot, ring, taken)) continue;
+      taken.push_back(ring);
+      out.push_back(std::move(ring));
+      t += ws + p.building_gap;
+      placed = true;
+      break;
+    }
+    if (!placed) t += std::max(m / 4, 1.0);
+  }
+  return out;
+}
+
+}  // namespace
+
+void choose_roof(Building& b, const ZoneParams& p) {
+  b.roof = "flat";
+  b.eaves = b.height;
+  b.roof_faces.clear();
+  std::string want = p.roof;
+  if (want == "auto") want = b.zone != ZoneType::Residential ? "flat" : near_rectangle(b.polygon) ? "gabled" : "hipped";
+  if (want == "flat") return;
+  const double slope = std::tan(p.roof_pitch * M_PI / 180);
+  std::vector<geom::Face3> faces;
+  if (want == "gabled") faces = geom::gabled_roof(b.polygon, 0, slope);
+  if (faces.empty()) want = "hipped", faces = geom::hipped_roof(b.polygon, 0, slope);
+  double rise = geom::roof_top(faces);
+  if (faces.empty() || rise <= 0 || rise > b.height / 2) return;
+  b.roof = want;
+  b.eaves = b.height - rise;
+  for (geom::Face3& f : faces)
+    for (geom::Vec3& v : f) v[2] += b.eaves;
+  b.roof_faces = std::move(faces);
+}
+
+std::vector<Building> place_buildings(const std::vector<Lot>& lots, const Sketch& sketch, const ModelLibrary* library,
+                                      const Terrain* terrain) {
+  geom::Box city = geom::Box::none();
+  for (const Lot& lot : lots) city.add(lot.cell.bounds());
+  const geom::Vec2 centre{(city.min_x + city.max_x) / 2, (city.min_y + city.max_y) / 2};
+  const double radius = std::hypot(city.width(), city.height()) / 2;
+  const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Buildings));
+
+  std::vector<std::vector<Building>> placed(lots.size());
+  tbb::parallel_for(std::size_t(0), lots.size(), [&](std::size_t i) {
+    const Lot& lot = lots[i];
+    ZoneParams p = sketch.zone_params.at(lot.zone);
+    if (!lot.density.empty()) p.density = lot.density;
+    Random rng(mix(stage, i));
+    std::vector<Building>& here = placed[i];
+    std::vector<geom::Ring> taken;
+    auto models = [&](ModelKind k) {
+      if (!library) return;
+      for (Building& b : place_models(lot.cell, kLotRoadEdge, taken, library->choices(lot.zone, k), k, *library, p, rng))
+        here.push_back(std::move(b));
+    };
+    if (library && !library->choices(lot.zone, ModelKind::Building).empty()) {
+      models(ModelKind::Building);
+    } else {
+      for (geom::Ring& ring : street_footprints(lot.cell, p, taken, rng)) {
+        Building b;
+        b.polygon.outer = std::move(ring);
+        geom::Vec2 c{0, 0};
+        for (geom::Vec2 v : b.polygon.outer) c.x += v.x / 4, c.y += v.y / 4;  // a rectangle's centre
+        b.height = building_height(p, std::hypot(c.x - centre.x, c.y - centre.y), radius, rng);
+        b.zone = lot.zone;
+        choose_roof(b, p);
+        here.push_back(std::move(b));
+      }
+    }
+    models(ModelKind::Street);
+    models(ModelKind::Tree);
+    for (Building& b : here) {
+      b.lot = static_cast<int>(i);
+      b.zone = lot.zone;
+      if (terrain) std::tie(b.base, b.floor) = terrain->range_under(b.polygon.outer);
+    }
+  });
+  std::vector<Building> buildings;
+  for (auto& here : placed)
+    for (Building& b : here) buildings.push_back(std::move(b));
+  return buildings;
+}
+
+void check_export_size(const std::vector<Building>& buildings, const ModelLibrary* library) {
+  if (!library) return;
+  std::vector<double> placed(library->models.size(), 0);
+  for (const Building& b : buildings)
+    if (b.placed.model >= 0) ++placed[b.placed.model];
+  double total = 0, heaviest = 0;
+  int worst = -1;
+  for (std::size_t m = 0; m < placed.size(); ++m) {
+    const double triangles = placed[m] * static_cast<double>(library->models[m].mesh.triangles.size());
+    total += triangles;
+    if (triangles > heaviest) heaviest = triangles, worst = static_cast<int>(m);
+  }
+  if (total <= kMaxExportTriangles) return;
+  const Model& m = library->models[worst];
+  auto millions = [](double n) { return format_number(std::round(n / 1e5) / 10) + " million"; };
+  throw UserError(library->file.string() + ": model \"" + m.name + "\" (" + std::to_string(m.mesh.triangles.size()) +
+                  " triangles) is placed " + std::to_string(static_cast<long>(placed[worst])) +
+                  " times, and the 3D exports would hold " + millions(total) + " triangles, over the " +
+                  millions(kMaxExportTriangles) + " one run writes; use a lighter model or list it for fewer zones");
+}
+
+}  // namespace exacity

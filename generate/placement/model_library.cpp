@@ -1,0 +1,155 @@
+#include "generate/placement/model_library.h"
+
+#include <cmath>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "generate/errors.h"
+#include "geom/grid.h"
+#include "geom/outline.h"
+#include "geom/polygon_check.h"
+
+namespace exacity {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::vector<int> ModelLibrary::choices(ZoneType zone, ModelKind kind) const {
+  std::vector<int> out;
+  for (std::size_t i = 0; i < models.size(); ++i)
+    if (models[i].kind == kind && std::find(models[i].zones.begin(), models[i].zones.end(), zone) != models[i].zones.end())
+      out.push_back(static_cast<int>(i));
+  return out;
+}
+
+namespace {
+
+// The file's axis as a vector in the file's own axes.
+Vec3 axis(const std::string& name) {
+  Vec3 v{0, 0, 0};
+  v[name[1] - 'x'] = name[0] == '-' ? -1 : 1;
+  return v;
+}
+
+}  // namespace
+
+Model normalise_model(TriangleMesh mesh, const std::string& up, const std::string& front, double unit,
+                      const std::string& where) {
+  // Y-up files turn to z up by (x, y, z) -> (x, -z, y), which keeps handedness.
+  auto to_z_up = [&](Vec3 v) { return up == "y" ? Vec3{v[0], -v[2], v[1]} : v; };
+  Vec3 f = to_z_up(axis(front));
+  if (f[2] != 0) throw UserError(where + ": \"front\" " + front + " points up or down; give a horizontal axis");
+  // Turn the front to -y: (fx, fy) -> (0, -1).
+  const double c = -f[1], s = -f[0];  // cos and sin of the turn
+  Model m;
+  for (Vec3& v : mesh.vertices) {
+    Vec3 p = to_z_up(v);
+    v = {(c * p[0] - s * p[1]) * unit, (s * p[0] + c * p[1]) * unit, p[2] * unit};
+  }
+  geom::Box box = geom::Box::none();
+  double bottom = INFINITY, top = -INFINITY;
+  for (const Vec3& v : mesh.vertices) box.add(geom::Vec2{v[0], v[1]}), bottom = std::min(bottom, v[2]), top = std::max(top, v[2]);
+  const double cx = (box.min_x + box.max_x) / 2, cy = (box.min_y + box.max_y) / 2;
+  for (Vec3& v : mesh.vertices) v = {v[0] - cx, v[1] - cy, v[2] - bottom};
+  m.width = box.width(), m.depth = box.height(), m.height = top - bottom;
+  if (!(m.height > 0))
+    throw UserError(where + ": the model is flat (every vertex at one height); a model needs height: check its \"up\" axis");
+
+  // The exact union of a heavy mesh's triangles costs seconds per 10,000 (real building
+  // models have a few thousand); past kExactOutlineTriangles the hull of its vertices
+  // stands in. Every placement tests the outline exactly, so it keeps at most
+  // kOutlineCorners corners: a longer one becomes the polygon of kOutlineCorners sides
+  // around it.
+  std::vector<geom::Vec2> all;
+  if (mesh.triangles.size() <= kExactOutlineTriangles) {
+    std::vector<std::array<geom::Vec2, 3>> shadow;
+    for (const auto& t : mesh.triangles) {
+      std::array<geom::Vec2, 3> tri;
+      for (int k = 0; k < 3; ++k) tri[k] = {mesh.vertices[t[k]][0], mesh.vertices[t[k]][1]};
+      shadow.push_back(tri);
+    }
+    std::vector<geom::Polygon> pieces = geom::union_of_triangles(shadow);
+    if (pieces.size() == 1 && pieces[0].holes.empty()) m.outline = pieces[0].outer;
+    for (const auto& p : pieces) all.insert(all.end(), p.outer.begin(), p.outer.end());
+  } else {
+    for (const Vec3& v : mesh.vertices) all.push_back(geom::snap(geom::Vec2{v[0], v[1]}));
+  }
+  if (m.outline.empty()) m.outline = geom::convex_hull(all);
+  if (m.outline.size() > kOutlineCorners) m.outline = geom::polygon_around(m.outline, kOutlineCorners);
+  if (m.outline.size() < 3)
+    throw UserError(where + ": the model has no area seen from above; check its \"up\" axis and \"unit\"");
+  m.mesh = std::move(mesh);
+  return m;
+}
+
+ModelLibrary load_model_library(const fs::path& manifest) {
+  std::ifstream in(manifest, std::ios::binary);
+  if (!in) throw UserError(manifest.string() + ": cannot read the model library; check the \"models\" path in the sketch");
+  json doc = json::parse(in, nullptr, false);
+  if (doc.is_discarded() || !doc.is_object() || !doc.contains("models") || !doc["models"].is_array())
+    throw UserError(manifest.string() + ": not a model library; it must be JSON like {\"models\": [{\"file\": ..., \"zones\": [...]}]}");
+  ModelLibrary lib;
+  lib.file = manifest;
+  for (std::size_t i = 0; i < doc["models"].size(); ++i) {
+    const json& e = doc["models"][i];
+    const std::string where = manifest.string() + " models[" + std::to_string(i) + "]";
+    auto fail = [&](const std::string& what) { throw UserError(where + ": " + what); };
+    try {
+    if (!e.is_object()) fail("expected an object with \"file\" and \"zones\"");
+    for (const auto& [key, value] : e.items())
+      if (key != "name" && key != "file" && key != "zones" && key != "kind" && key != "up" && key != "unit" &&
+          key != "front" && key != "weight" && key != "scale" && key != "spacing")
+        fail("unknown key \"" + key + "\"; known: name, file, zones, kind, up, unit, front, weight, scale, spacing");
+    if (!e.contains("file") || !e["file"].is_string()) fail("\"file\" must name an OBJ file");
+    const fs::path file = manifest.parent_path() / e["file"].get<std::string>();
+    const std::string up = e.value("up", "y");
+    if (up != "y" && up != "z") fail("\"up\" must be \"y\" or \"z\"");
+    const std::string front = e.value("front", up == "y" ? "+z" : "-y");
+    if (front.size() != 2 || (front[0] != '+' && front[0] != '-') || front[1] < 'x' || front[1] > 'z')
+      fail("\"front\" must be an axis such as \"+z\" or \"-y\"");
+    double unit = 1;
+    if (e.contains("unit")) {
+      const json& u = e["unit"];
+      if (u == "m") unit = 1;
+      else if (u == "cm") unit = 0.01;
+      else if (u == "mm") unit = 0.001;
+      else if (u.is_number() && u.get<double>() > 0 && std::isfinite(u.get<double>())) unit = u.get<double>();
+      else fail("\"unit\" must be \"m\", \"cm\", \"mm\" or metres per file unit (a positive number)");
+    }
+    Model m = normalise_model(read_obj(file), up, front, unit, where);
+    m.name = e.value("name", file.stem().string());
+    const std::string kind = e.value("kind", "building");
+    if (kind == "building") m.kind = ModelKind::Building;
+    else if (kind == "street") m.kind = ModelKind::Street;
+    else if (kind == "tree") m.kind = ModelKind::Tree;
+    else fail("\"kind\" must be \"building\", \"street\" or \"tree\"");
+    if (!e.contains("zones") || !e["zones"].is_array() || e["zones"].empty()) fail("\"zones\" must list zone types");
+    for (const json& z : e["zones"]) {
+      auto t = z.is_string() ? parse_zone_type(z.get<std::string>()) : std::nullopt;
+      if (!t || *t == ZoneType::Park || *t == ZoneType::Water)
+        fail("\"zones\" lists " + z.dump() + "; models stand in residential, commercial or industrial zones");
+      m.zones.push_back(*t);
+    }
+    m.weight = e.value("weight", 1.0);
+    if (!(m.weight > 0) || !std::isfinite(m.weight)) fail("\"weight\" must be a positive number");
+    if (e.contains("scale")) {
+      const json& s = e["scale"];
+      if (!s.is_array() || s.size() != 2 || !s[0].is_number() || !s[1].is_number() || !(s[0].get<double>() > 0) ||
+          s[1].get<double>() < s[0].get<double>() || s[1].get<double>() > 100)
+        fail("\"scale\" must be [min, max] with 0 < min <= max");
+      m.min_scale = s[0], m.max_scale = s[1];
+    }
+    m.spacing = e.value("spacing", 30.0);
+    if (!(m.spacing > 0) || !std::isfinite(m.spacing)) fail("\"spacing\" must be a positive distance in metres");
+    if (m.width * m.max_scale > 1000 || m.depth * m.max_scale > 1000 || m.height * m.max_scale > 2000)
+      fail("the model is " + std::to_string(static_cast<long>(m.width)) + " m wide; check \"unit\" (\"mm\" for millimetres)");
+    lib.models.push_back(std::move(m));
+    } catch (const json::exception& x) {
+      fail(std::string("a value has the wrong type (") + x.what() + "); see the README's model library section");
+    }
+  }
+  if (lib.models.empty()) throw UserError(manifest.string() + ": the library lists no models");
+  return lib;
+}
+
+}  // namespace exacity
