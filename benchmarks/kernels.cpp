@@ -61,12 +61,12 @@ std::vector<geom::Path> grow_four(const geom::Cell& cell) {
     double theta = i * M_PI / 2;
     geom::Vec2 at{500, 500};
     g.begin(at);
-    int met;
+    geom::Growth::Met met;
     do {
       theta += rng.uniform(-0.1, 0.1);
       at = geom::snap({at.x + 40 * std::cos(theta), at.y + 40 * std::sin(theta)});
       met = g.extend(at);
-    } while (met == geom::Growth::kFree);
+    } while (met.what == geom::Growth::Met::Nothing);
     roads.push_back(g.end());
   }
   return roads;

@@ -192,102 +192,149 @@ int robustness_benchmark(bench::RobustnessOptions o, const char* argv0) {
   return 0;
 }
 
-}  // namespace
+// Options more than one subcommand takes, each bound once.
+struct SharedOptions {
+  bool quiet = false;
+  int threads = 0;
+  RenderOptions render;  // generate --render takes the render subcommand's image options
+};
 
-int main(int argc, char** argv) {
-  clean_up_on_interrupt();
-  CLI::App app{"Exacity: a city sketch to a whole city, exactly."};
+struct GenerateCommand {
+  CLI::App* app = nullptr;
+  fs::path sketch, out = "out";
+  bool render = false;
+};
+
+struct RenderCommand {
+  CLI::App* app = nullptr;
+  fs::path folder, file;
+};
+
+struct ValidateCommand {
+  CLI::App* app = nullptr;
+  fs::path folder;
+};
+
+struct StatsCommand {
+  CLI::App* app = nullptr;
+  fs::path folder;
+  std::vector<fs::path> real;
+};
+
+struct RobustnessCommand {
+  CLI::App* app = nullptr;
+  bench::RobustnessOptions options;
+};
+
+void add_program_options(CLI::App& app, SharedOptions& shared) {
   app.set_version_flag("--version", std::string("exacity ") + kVersion + ", kernel " + geom::kernel_name());
   app.require_subcommand(1);
-  bool quiet = false;
-  app.add_flag("-q,--quiet", quiet, "Hide progress");
+  app.add_flag("-q,--quiet", shared.quiet, "Hide progress");
+}
 
-  fs::path sketch_path, out = "out";
-  auto* gen = app.add_subcommand("generate", "Generate a city from a GeoJSON sketch");
-  gen->add_option("SKETCH", sketch_path, "The sketch (GeoJSON FeatureCollection)")->required();
-  gen->add_option("-o,--output", out, "Output folder (replaced if an earlier exacity run wrote it)")
+void add_image_options(CLI::App* c, RenderOptions& o) {
+  c->add_option("--fov", o.fov, "Vertical field of view, degrees")
+      ->check(CLI::Range(5.0, 150.0))
       ->capture_default_str();
-  gen->add_flag("-q,--quiet", quiet, "Hide progress");
-  int threads = 0;
-  gen->add_option("--threads", threads, "Worker threads (0: one per core); the output does not depend on it")
+  c->add_option("--size", o.size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  c->add_option("--spp", o.spp, "Samples per pixel")->check(CLI::Range(1, 65536))->capture_default_str();
+  c->add_option("--haze", o.haze,
+                "Haze for aerial perspective and light shafts: the visibility in metres (0: clear air)")
+      ->check(CLI::Range(0.0, 1e7))
+      ->capture_default_str();
+}
+
+void add_generate(CLI::App& app, GenerateCommand& c, SharedOptions& shared) {
+  c.app = app.add_subcommand("generate", "Generate a city from a GeoJSON sketch");
+  c.app->add_option("SKETCH", c.sketch, "The sketch (GeoJSON FeatureCollection)")->required();
+  c.app->add_option("-o,--output", c.out, "Output folder (replaced if an earlier exacity run wrote it)")
+      ->capture_default_str();
+  c.app->add_flag("-q,--quiet", shared.quiet, "Hide progress");
+  c.app->add_option("--threads", shared.threads, "Worker threads (0: one per core); the output does not depend on it")
       ->check(CLI::Range(0, 1024));
+  c.app->add_flag("--render", c.render, "Also render the default still, the overview and the minimap into OUT/render");
+  add_image_options(c.app, shared.render);
+}
 
-  bool render_too = false;
-  RenderOptions render_options;
-  gen->add_flag("--render", render_too, "Also render the default still, the overview and the minimap into OUT/render");
-  auto add_render_options = [&](CLI::App* c) {
-    c->add_option("--fov", render_options.fov, "Vertical field of view, degrees")->check(CLI::Range(5.0, 150.0))->capture_default_str();
-    c->add_option("--size", render_options.size, "Image size WIDTHxHEIGHT")->capture_default_str();
-    c->add_option("--spp", render_options.spp, "Samples per pixel")->check(CLI::Range(1, 65536))->capture_default_str();
-    c->add_option("--haze", render_options.haze,
-                  "Haze for aerial perspective and light shafts: the visibility in metres (0: clear air)")
-        ->check(CLI::Range(0.0, 1e7))
-        ->capture_default_str();
-  };
-  add_render_options(gen);
-
-  fs::path render_dir, render_file;
-  auto* ren = app.add_subcommand("render", "Render a generated city: a still, and the overview and minimap if asked");
-  ren->add_option("OUT", render_dir, "An output folder of exacity generate")->required();
-  ren->add_option("--camera", render_options.camera,
-                  "orbit:target=X,Y,Z,azimuth=DEG,elevation=DEG,distance=M or look:from=X,Y,Z,to=X,Y,Z "
-                  "(default: the sketch's camera, else from the south-west)");
-  add_render_options(ren);
-  ren->add_flag("--overview", render_options.overview, "Also render the whole city from straight above (overview.png)");
-  ren->add_flag("--orthographic", render_options.orthographic, "Make the overview orthographic");
-  ren->add_flag("--minimap", render_options.minimap, "Also draw the minimap (minimap.png) and set it into the still");
-  ren->add_option("-o,--output", render_file, "The still, a .png (default OUT/render/still.png); the .exr goes beside it");
-  ren->add_flag("-q,--quiet", quiet, "Hide progress");
-  ren->add_option("--threads", threads, "Worker threads (0: one per core); the image does not depend on it")
+void add_render(CLI::App& app, RenderCommand& c, SharedOptions& shared) {
+  RenderOptions& o = shared.render;
+  c.app = app.add_subcommand("render", "Render a generated city: a still, and the overview and minimap if asked");
+  c.app->add_option("OUT", c.folder, "An output folder of exacity generate")->required();
+  c.app->add_option("--camera", o.camera,
+                    "orbit:target=X,Y,Z,azimuth=DEG,elevation=DEG,distance=M or look:from=X,Y,Z,to=X,Y,Z "
+                    "(default: the sketch's camera, else from the south-west)");
+  add_image_options(c.app, o);
+  c.app->add_flag("--overview", o.overview, "Also render the whole city from straight above (overview.png)");
+  c.app->add_flag("--orthographic", o.orthographic, "Make the overview orthographic");
+  c.app->add_flag("--minimap", o.minimap, "Also draw the minimap (minimap.png) and set it into the still");
+  c.app->add_option("-o,--output", c.file, "The still, a .png (default OUT/render/still.png); the .exr goes beside it");
+  c.app->add_flag("-q,--quiet", shared.quiet, "Hide progress");
+  c.app->add_option("--threads", shared.threads, "Worker threads (0: one per core); the image does not depend on it")
       ->check(CLI::Range(0, 1024));
+}
 
-  fs::path check_dir;
-  auto* val = app.add_subcommand("validate", "Re-check every invariant of an output folder exactly");
-  val->add_option("OUT", check_dir, "An output folder of exacity generate")->required();
+void add_validate(CLI::App& app, ValidateCommand& c) {
+  c.app = app.add_subcommand("validate", "Re-check every invariant of an output folder exactly");
+  c.app->add_option("OUT", c.folder, "An output folder of exacity generate")->required();
+}
 
-  fs::path stats_dir;
-  std::vector<fs::path> real_files;
-  auto* sta = app.add_subcommand("stats", "Print a city's statistics (block, lot and footprint sizes, streets), and real data's");
-  sta->add_option("OUT", stats_dir, "An output folder of exacity generate");
-  sta->add_option("--real", real_files, "GeoJSON of real footprints or streets (metres or lon/lat), measured the same way");
+void add_stats(CLI::App& app, StatsCommand& c) {
+  c.app = app.add_subcommand("stats",
+                             "Print a city's statistics (block, lot and footprint sizes, streets), and real data's");
+  c.app->add_option("OUT", c.folder, "An output folder of exacity generate");
+  c.app->add_option("--real", c.real,
+                    "GeoJSON of real footprints or streets (metres or lon/lat), measured the same way");
+}
 
-  bench::RobustnessOptions robustness;
-  auto* ben = app.add_subcommand("bench", "Benchmarks");
-  ben->require_subcommand(1);
-  auto* rob = ben->add_subcommand(
+void add_bench_robustness(CLI::App& app, RobustnessCommand& c) {
+  bench::RobustnessOptions& o = c.options;
+  auto* benchmarks = app.add_subcommand("bench", "Benchmarks");
+  benchmarks->require_subcommand(1);
+  c.app = benchmarks->add_subcommand(
       "robustness", "The exact build against its floating-point builds on families of near-degenerate sketches");
   std::vector<std::string> family_names;
   for (const bench::Family& f : bench::families()) family_names.push_back(f.name);
-  rob->add_option("--family", robustness.families, "Only these families (default: all)")->check(CLI::IsMember(family_names));
-  rob->add_option("--cases", robustness.cases, "Cases per family")->check(CLI::Range(1, 100000))->capture_default_str();
-  rob->add_option("--seed", robustness.seed, "Seed of the families' sketches")->capture_default_str();
-  rob->add_option("-o,--output", robustness.out, "Folder for robustness.json, .md, .svg and failed cases")
+  c.app->add_option("--family", o.families, "Only these families (default: all)")->check(CLI::IsMember(family_names));
+  c.app->add_option("--cases", o.cases, "Cases per family")->check(CLI::Range(1, 100000))->capture_default_str();
+  c.app->add_option("--seed", o.seed, "Seed of the families' sketches")->capture_default_str();
+  c.app->add_option("-o,--output", o.out, "Folder for robustness.json, .md, .svg and failed cases")
       ->capture_default_str();
-  rob->add_option("--time-limit", robustness.time_limit, "Seconds a build may take on one case")
+  c.app->add_option("--time-limit", o.time_limit, "Seconds a build may take on one case")
       ->check(CLI::Range(1.0, 86400.0))
       ->capture_default_str();
-  rob->add_option("--jobs", robustness.jobs, "Cases run at once (0: one per core)")->check(CLI::Range(0, 1024));
-  rob->add_option("--build", robustness.builds, "Only these builds, exact among them (default: every one built)")
+  c.app->add_option("--jobs", o.jobs, "Cases run at once (0: one per core)")->check(CLI::Range(0, 1024));
+  c.app->add_option("--build", o.builds, "Only these builds, exact among them (default: every one built)")
       ->check(CLI::IsMember({"exact", "float", "float-simple"}));
-  rob->add_flag("--keep", robustness.keep_outputs, "Keep every output, not only those of failed cases");
+  c.app->add_flag("--keep", o.keep_outputs, "Keep every output, not only those of failed cases");
+}
 
+// Parses the command line; the exit code when it is wrong or only asked for help or the
+// version, nullopt when there is work to do.
+std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv, const StatsCommand& stats) {
   try {
     app.parse(argc, argv);
-    if (*sta && stats_dir.empty() && real_files.empty()) throw CLI::ValidationError("stats", "give OUT, --real FILE or both");
+    if (*stats.app && stats.folder.empty() && stats.real.empty())
+      throw CLI::ValidationError("stats", "give OUT, --real FILE or both");
   } catch (const CLI::ParseError& e) {
     int code = app.exit(e);
     return code == 0 ? 0 : 2;
   }
+  return std::nullopt;
+}
 
+// TBB's worker threads capped while it lives; none for 0 (one per core).
+std::unique_ptr<tbb::global_control> thread_limit(int threads) {
+  std::unique_ptr<tbb::global_control> limit;
+  if (threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+  return limit;
+}
+
+// Runs the subcommand given, with exit codes for what it throws: 2 for the user's
+// mistakes, 3 for ours.
+template <class Run>
+int exit_code_of(const Run& run) {
   try {
-    std::unique_ptr<tbb::global_control> limit;
-    if (threads > 0)
-      limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
-    if (*gen) return generate(sketch_path, out, quiet, render_too ? &render_options : nullptr);
-    if (*ren) return render_folder(render_dir, render_options, render_file, quiet);
-    if (*val) return validate(check_dir);
-    if (*sta) return stats(stats_dir, real_files);
-    if (*rob) return robustness_benchmark(robustness, argv[0]);
+    return run();
   } catch (const UserError& e) {
     std::fprintf(stderr, "exacity: error: %s\n", e.what());
     return 2;
@@ -298,5 +345,35 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "exacity: internal error: %s\n", e.what());
     return 3;
   }
-  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  clean_up_on_interrupt();
+  CLI::App app{"Exacity: a city sketch to a whole city, exactly."};
+  SharedOptions shared;
+  GenerateCommand gen;
+  RenderCommand ren;
+  ValidateCommand val;
+  StatsCommand sta;
+  RobustnessCommand rob;
+  // In this order --help lists them.
+  add_program_options(app, shared);
+  add_generate(app, gen, shared);
+  add_render(app, ren, shared);
+  add_validate(app, val);
+  add_stats(app, sta);
+  add_bench_robustness(app, rob);
+  if (const std::optional<int> code = parse_command_line(app, argc, argv, sta)) return *code;
+
+  return exit_code_of([&] {
+    const std::unique_ptr<tbb::global_control> limit = thread_limit(shared.threads);
+    if (*gen.app) return generate(gen.sketch, gen.out, shared.quiet, gen.render ? &shared.render : nullptr);
+    if (*ren.app) return render_folder(ren.folder, shared.render, ren.file, shared.quiet);
+    if (*val.app) return validate(val.folder);
+    if (*sta.app) return stats(sta.folder, sta.real);
+    if (*rob.app) return robustness_benchmark(rob.options, argv[0]);
+    return 0;
+  });
 }

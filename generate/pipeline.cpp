@@ -25,7 +25,8 @@ namespace fs = std::filesystem;
 using nlohmann::ordered_json;
 
 City build_city(const Sketch& sketch, StageClock& stages) {
-  City city{sketch, std::nullopt, std::nullopt, {}, {}, {}, {}, {}};
+  City city;
+  city.sketch = sketch;
   city.terrain = stages.run("terrain", [&]() -> std::optional<Terrain> {
     if (!sketch.terrain) return std::nullopt;
     return Terrain::load(*sketch.terrain);
@@ -34,7 +35,7 @@ City build_city(const Sketch& sketch, StageClock& stages) {
     if (sketch.models.empty()) return std::nullopt;
     return load_model_library(sketch.models);
   });
-  CityMap city_map = stages.run("zone map", [&] { return build_city_map(sketch, city.ground()); });
+  CityMap city_map = stages.run("zone map", [&] { return build_city_map(sketch, city.heightmap()); });
   city.network = stages.run("road network", [&] { return grow_road_network(std::move(city_map), sketch); });
   city.blocks = stages.run("blocks", [&] { return cut_blocks(city.network.map, sketch, city.network.uses); });
   city.lots = stages.run("lots", [&] {
@@ -42,13 +43,16 @@ City build_city(const Sketch& sketch, StageClock& stages) {
     for (Lot& lot : lots) lot.density = city.blocks[lot.block].density;
     return lots;
   });
-  city.buildings = stages.run("buildings", [&] {
-    auto buildings = place_buildings(city.lots, sketch, city.models(), city.ground());
-    check_export_size(buildings, city.models());
-    return buildings;
+  Structures raised = stages.run("buildings", [&] {
+    Structures s = place_buildings(city.lots, sketch, city.model_library(), city.heightmap());
+    check_export_size(s.models, city.model_library());
+    return s;
   });
-  city.layers = stages.run("vector layers", [&] {
-    return extract_layers(city.network.map, city.blocks, city.lots, city.buildings, sketch, city.models());
+  city.buildings = std::move(raised.buildings);
+  city.models = std::move(raised.models);
+  stages.run("vector layers", [&] {
+    city.ground = extract_ground(city.network.map, city.blocks, city.lots, sketch);
+    city.layers = layers_of(city.ground, city.buildings, city.models, city.model_library());
   });
   return city;
 }
@@ -71,14 +75,15 @@ GenerateResult write_city(const City& city, const fs::path& dir, StageClock& sta
     for (const Layer* l : {&layers.zones, &layers.water, &layers.roads, &layers.road_areas, &layers.blocks, &layers.lots,
                              &layers.buildings})
       write_geojson(*l, sketch.crs, dir / "vector" / (l->name + ".geojson"));
-    write_svg_map(layers, dir / "map.svg");
+    write_svg_map(city.ground, buildings, city.models, dir / "map.svg");
   });
   GltfCounts gltf;
   MeshCounts mesh = stages.run("3d export", [&] {
-    std::vector<Mesh> meshes = building_meshes(buildings, city.models());
-    write_cityjson(layers, buildings, meshes, city.models(), city.ground(), sketch, dir / "city.city.json");
-    gltf = write_gltf(layers, buildings, meshes, city.models(), city.ground(), dir / "city.glb");
-    return write_meshes(buildings, meshes, dir / "city.obj", dir / "city.ply");
+    const ModelLibrary* library = city.model_library();
+    std::vector<Mesh> meshes = structure_meshes(buildings, city.models, library);
+    write_cityjson(city.ground, buildings, city.models, meshes, library, city.heightmap(), sketch, dir / "city.city.json");
+    gltf = write_gltf(city.ground, buildings, city.models, meshes, library, city.heightmap(), dir / "city.glb");
+    return write_meshes(buildings, city.models, meshes, dir / "city.obj", dir / "city.ply");
   });
   Validation validation = stages.run("validation", [&] { return validate_output(dir); });
 

@@ -140,8 +140,7 @@ std::optional<Vec2> Cell::point_inside_near(Vec2 wanted) const {
       double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
       if (len2 == 0) continue;
       Vec2 foot = nearest_on_segment(wanted, a, b);
-      double len = std::sqrt(len2);
-      candidates.push_back({std::hypot(foot.x - wanted.x, foot.y - wanted.y), foot, {-dy / len, dx / len}});
+      candidates.push_back({std::hypot(foot.x - wanted.x, foot.y - wanted.y), foot, left_normal(a, b)});
     }
   };
   visit(impl_->outer);
@@ -343,7 +342,7 @@ struct Growth::Impl {
   struct Obstacle {
     Segment segment;
     Box box;
-    int kind;
+    Met met;  // what a step that stops here met
   };
   Box bounds;
   double bucket = 1;
@@ -367,11 +366,11 @@ struct Growth::Impl {
       for (int i = cx(b.min_x); i <= cx(b.max_x); ++i) f(j * nx + i);
   }
 
-  void add(const Point& a, const Point& b, int kind) {
+  void add(const Point& a, const Point& b, Met met) {
     if (a == b) return;
     Box box = box_of(exact::to_plain(a), exact::to_plain(b));
     int id = static_cast<int>(obstacles.size());
-    obstacles.push_back({Segment(a, b), box, kind});
+    obstacles.push_back({Segment(a, b), box, met});
     stamp.push_back(-1);
     for_each_bucket(box, [&](int k) { buckets[k].push_back(id); });
   }
@@ -387,7 +386,7 @@ Growth::Growth(const Cell& cell, double step) : impl_(std::make_unique<Impl>()) 
   g.ny = std::max(1, static_cast<int>(std::ceil(g.bounds.height() / g.bucket)) + 1);
   g.buckets.resize(static_cast<std::size_t>(g.nx) * g.ny);
   auto add_ring = [&](const KindRing& r) {
-    for (std::size_t i = 0; i < r.points.size(); ++i) g.add(r.points[i], r.points[(i + 1) % r.points.size()], r.kinds[i]);
+    for (std::size_t i = 0; i < r.points.size(); ++i) g.add(r.points[i], r.points[(i + 1) % r.points.size()], {Met::Edge, r.kinds[i]});
   };
   add_ring(cell.exact().outer);
   for (const auto& h : cell.exact().holes) add_ring(h);
@@ -400,15 +399,18 @@ void Growth::begin(Vec2 start) {
   impl_->ended = false;
 }
 
-int Growth::extend(Vec2 next) {
+Growth::Met Growth::extend(Vec2 next) {
   Impl& g = *impl_;
-  if (g.ended) return kFree;
+  if (g.ended) return {};
   const Point p = g.road.back(), q = to_exact(next);
-  if (p == q) return kFree;
+  if (p == q) return {};
   const Segment step(p, q);
   ++g.query;
   std::optional<Point> best;
-  int best_kind = kFree;
+  Met best_met;
+  auto beats = [](const Met& a, const Met& b) {
+    return a.what == Met::Edge && (b.what != Met::Edge || a.kind > b.kind);
+  };
   g.for_each_bucket(Impl::box_of(exact::to_plain(p), next), [&](int k) {
     for (int id : g.buckets[k]) {
       if (g.stamp[id] == g.query) continue;
@@ -426,24 +428,24 @@ int Growth::extend(Vec2 next) {
                  ? overlap.source() : overlap.target();
       }
       if (!best || CGAL::compare_distance_to_point(p, at, *best) == CGAL::SMALLER ||
-          (at == *best && o.kind > best_kind)) {
+          (at == *best && beats(o.met, best_met))) {
         best = at;
-        best_kind = o.kind;
+        best_met = o.met;
       }
     }
   });
   const Point stop = best ? *best : q;
   if (stop != p) {
-    g.add(p, stop, kOwnRoad);
+    g.add(p, stop, {Met::OwnRoad, 0});
     g.road.push_back(stop);
   }
   if (best) g.ended = true;
-  return best ? best_kind : kFree;
+  return best ? best_met : Met{};
 }
 
 void Growth::add_obstacle(const Path& road) {
   const auto& p = road.exact().points;
-  for (std::size_t i = 0; i + 1 < p.size(); ++i) impl_->add(p[i], p[i + 1], kOwnRoad);
+  for (std::size_t i = 0; i + 1 < p.size(); ++i) impl_->add(p[i], p[i + 1], {Met::OwnRoad, 0});
 }
 
 Path Growth::end() {

@@ -5,6 +5,7 @@
 // earlier road ends exactly where it first meets it.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -84,8 +85,13 @@ class Cell {
 // Roads growing inside one cell.
 class Growth {
  public:
-  static constexpr int kFree = -2;     // the step met nothing
-  static constexpr int kOwnRoad = -1;  // the step met a road grown here
+  // What a step met: nothing, a road grown in this cell, or a boundary edge of `kind`.
+  struct Met {
+    enum What : std::uint8_t { Nothing, OwnRoad, Edge } what = Nothing;
+    int kind = 0;  // the edge's kind, for Edge
+    bool edge_of_kind(int k) const { return what == Edge && kind == k; }
+    friend bool operator==(const Met&, const Met&) = default;
+  };
 
   // `step` is the usual step length, to size the search index.
   Growth(const Cell& cell, double step);
@@ -95,10 +101,10 @@ class Growth {
 
   // Starts a road at a grid point strictly inside the cell.
   void begin(Vec2 start);
-  // Extends the road towards the grid point `next`. Returns kFree when the segment met
-  // nothing; otherwise the road now ends at the first point the segment met, and the
-  // result is the kind of what it met (a boundary kind, or kOwnRoad).
-  int extend(Vec2 next);
+  // Extends the road towards the grid point `next`. Where the segment met something, the
+  // road now ends at the first point it met; where two things meet there, a boundary edge
+  // beats a road grown here, and the larger kind beats the smaller.
+  Met extend(Vec2 next);
   // The road begun last (empty when it has no length); later roads stop where they meet it.
   Path end();
   // A road grown before, which later roads stop at.

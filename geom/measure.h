@@ -74,9 +74,8 @@ inline double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
 // A lot's depth over its width: its extent across `frontage` (a, b: the edge it fronts the
 // street by) over its extent along it; 0 for a zero-length frontage.
 inline double depth_over_width(const Ring& r, Vec2 a, Vec2 b) {
-  const double len = std::hypot(b.x - a.x, b.y - a.y);
-  if (len == 0) return 0;
-  const Vec2 u{(b.x - a.x) / len, (b.y - a.y) / len};
+  if (a == b) return 0;
+  const Vec2 u = unit_along(a, b);
   Box box = Box::none();
   for (Vec2 v : r) box.add(Vec2{v.x * u.x + v.y * u.y, -v.x * u.y + v.y * u.x});
   return box.width() > 0 ? box.height() / box.width() : 0;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <utility>
@@ -14,6 +15,30 @@ struct Vec2 {
   double x = 0, y = 0;
   friend bool operator==(const Vec2&, const Vec2&) = default;
 };
+
+// The few vector operations choices in doubles need (exact work is CGAL's, geom/exact.h).
+inline Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
+inline Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
+inline Vec2 operator*(Vec2 a, double s) { return {a.x * s, a.y * s}; }
+inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
+inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+// `a` scaled to unit length; zero for zero.
+inline Vec2 unit(Vec2 a) {
+  const double l = std::hypot(a.x, a.y);
+  return l > 0 ? a * (1 / l) : Vec2{0, 0};
+}
+// The unit vector along the edge a -> b, and the edge's left normal: into a ring's inside,
+// for rings that run with the inside on their left. Zero for an edge of no length. The
+// one divides by the length and the other scales by its reciprocal, which round apart in
+// the last bit: each is what its callers always computed, and their outputs depend on it.
+inline Vec2 unit_along(Vec2 a, Vec2 b) {
+  const double len = std::hypot(b.x - a.x, b.y - a.y);
+  return len > 0 ? Vec2{(b.x - a.x) / len, (b.y - a.y) / len} : Vec2{0, 0};
+}
+inline Vec2 left_normal(Vec2 a, Vec2 b) {
+  const Vec2 u = unit(b - a);
+  return {-u.y, u.x};
+}
 
 // For hash maps keyed by exact double positions.
 struct Vec2Hash {

@@ -56,100 +56,152 @@ float transmittance(const Haze& h, V3 o, V3 d) {
   return std::exp(-h.density * (h.top - o.z) / d.z);
 }
 
-}  // namespace
+// What a path is traced through, and where its rays are counted.
+struct Tracing {
+  const RenderScene& scene;
+  const Sky& sky;
+  const Haze& haze;
+  float sun_pdf;  // of uniform_cone over the sun's disk
+  Sampler& rng;
+  RayCounts& counts;
+};
 
-V3 radiance(const RenderScene& scene, const Sky& sky, V3 o, V3 d, Sampler& rng, int max_depth, RayCounts& counts,
-            Surface* first, const Haze& haze) {
+// A path between two vertices: the light gathered so far, the weight of what comes next,
+// and how the direction it follows was chosen, which multiple importance sampling weighs
+// against next-event estimation.
+struct Path {
+  V3 o, d;
   V3 L{0, 0, 0}, beta{1, 1, 1};
   float prev_pdf = 0;        // of the sampling that chose d; 0 for a camera ray
   bool prev_surface = true;  // d was chosen at a surface (sky next-event estimation ran there)
   V3 prev_normal{0, 0, 1};
+};
+
+// Free flight through the haze: true, with the distance ts, when the light scatters
+// before it reaches the surface at tmax (its one draw is taken either way).
+bool scatters_in_haze(const Haze& haze, V3 o, V3 d, float tmax, Sampler& rng, float& ts) {
+  auto [t0, t1] = in_haze(haze, o, d, tmax);
+  ts = t0 - std::log(1 - rng.next()) / haze.density;
+  return t1 > t0 && ts < t1;
+}
+
+// The light turns in the haze, ts along the path (no absorption: the weight stays): next
+// event towards the sun, then a new direction from the phase function.
+void scatter_in_haze(const Tracing& t, float ts, Path& path) {
+  const V3 p = path.o + path.d * ts;
+  if (t.sky.sun_up()) {
+    const V3 wi = t.sky.sun_frame().to_world(uniform_cone(t.rng.next(), t.rng.next(), t.sky.sun_cos_max()));
+    const float phase = henyey_greenstein(dot(path.d, wi), t.haze.g);
+    ++t.counts.shadow;
+    if (!t.scene.occluded(p, wi, INFINITY))
+      path.L += path.beta * t.sky.sun_radiance() *
+                (phase * transmittance(t.haze, p, wi) * power_heuristic(t.sun_pdf, phase) / t.sun_pdf);
+  }
+  const V3 next = sample_henyey_greenstein(path.d, t.haze.g, t.rng.next(), t.rng.next());
+  path.prev_pdf = henyey_greenstein(dot(path.d, next), t.haze.g);
+  path.prev_surface = false;
+  path.o = p, path.d = next;
+}
+
+// The sky, and the sun where d meets its disk, weighted against the next-event estimation
+// that could have found them.
+void add_sky_seen(const Tracing& t, Path& path) {
+  const float sky_pdf = path.prev_surface ? std::max(0.0f, dot(path.d, path.prev_normal)) / kPi : 0.0f;
+  path.L += path.beta * t.sky.radiance(path.d) *
+            (path.prev_pdf > 0 && sky_pdf > 0 ? power_heuristic(path.prev_pdf, sky_pdf) : 1.0f);
+  if (t.sky.sun_up() && dot(path.d, t.sky.sun_direction()) >= t.sky.sun_cos_max())
+    path.L += path.beta * t.sky.sun_radiance() * (path.prev_pdf > 0 ? power_heuristic(path.prev_pdf, t.sun_pdf) : 1.0f);
+}
+
+// Next event: the sun's disk, seen from p.
+void add_sun_next_event(const Tracing& t, const Material& m, const Frame& frame, V3 wo, V3 p, Path& path) {
+  if (!t.sky.sun_up()) return;
+  const V3 wi = t.sky.sun_frame().to_world(uniform_cone(t.rng.next(), t.rng.next(), t.sky.sun_cos_max()));
+  const V3 li = frame.to_local(wi);
+  const V3 f = eval(m, wo, li);
+  if (max_component(f) > 0) {
+    ++t.counts.shadow;
+    if (!t.scene.occluded(p, wi, INFINITY))
+      path.L += path.beta * f * t.sky.sun_radiance() *
+                (transmittance(t.haze, p, wi) * power_heuristic(t.sun_pdf, pdf(m, wo, li)) / t.sun_pdf);
+  }
+}
+
+// Next event: the sky, cosine-weighted about the normal.
+void add_sky_next_event(const Tracing& t, const Material& m, const Frame& frame, V3 wo, V3 p, Path& path) {
+  const V3 li = cosine_hemisphere(t.rng.next(), t.rng.next());
+  const V3 wi = frame.to_world(li);
+  const float sky_pdf = li.z / kPi;
+  const V3 f = eval(m, wo, li);
+  if (wi.z > 0 && sky_pdf > 0 && max_component(f) > 0) {
+    ++t.counts.shadow;
+    if (!t.scene.occluded(p, wi, INFINITY))
+      path.L += path.beta * f * t.sky.radiance(wi) *
+                (transmittance(t.haze, p, wi) * power_heuristic(sky_pdf, pdf(m, wo, li)) / sky_pdf);
+  }
+}
+
+// The surface chooses the next direction, from p; false when it draws none.
+bool follow_surface_sample(const Tracing& t, const Surface& s, const Frame& frame, V3 wo, V3 p, Path& path) {
+  BsdfSample bs;
+  if (!sample(s.material, wo, t.rng.next(), t.rng.next(), t.rng.next(), bs)) return false;
+  path.beta *= bs.weight;
+  path.prev_pdf = bs.pdf;
+  path.prev_surface = true;
+  path.prev_normal = s.normal;
+  path.o = p;
+  path.d = frame.to_world(bs.wi);
+  return true;
+}
+
+// Russian roulette: a path that carries little ends more often, and one that survives
+// carries more, so the estimate stays unbiased.
+bool survives_roulette(Sampler& rng, Path& path) {
+  const float survive = std::min(0.95f, max_component(path.beta));
+  if (rng.next() >= survive) return false;
+  path.beta = path.beta / survive;
+  return true;
+}
+
+// At a surface, after its emission: next events towards the sun and the sky, then the
+// bounce; false when the path ends there.
+bool scatter_at_surface(const Tracing& t, const Surface& s, int depth, Path& path) {
+  const Frame frame(s.normal);
+  const V3 wo = frame.to_local(path.d * -1);
+  const V3 p = s.position + s.normal * kEpsilon;
+  add_sun_next_event(t, s.material, frame, wo, p, path);
+  add_sky_next_event(t, s.material, frame, wo, p, path);
+  if (!follow_surface_sample(t, s, frame, wo, p, path)) return false;
+  return depth < 3 || survives_roulette(t.rng, path);
+}
+
+}  // namespace
+
+V3 radiance(const RenderScene& scene, const Sky& sky, V3 o, V3 d, Sampler& rng, int max_depth, RayCounts& counts,
+            Surface* first, const Haze& haze) {
   const float sun_pdf = 1 / (2 * kPi * (1 - sky.sun_cos_max()));
+  const Tracing t{scene, sky, haze, sun_pdf, rng, counts};
+  Path path{o, d};
   for (int depth = 0;; ++depth) {
     Surface s;
     ++(depth == 0 ? counts.camera : counts.bounce);
-    const bool hit = scene.intersect(o, d, INFINITY, s);
+    const bool hit = scene.intersect(path.o, path.d, INFINITY, s);
     if (depth == 0 && first && hit) *first = s;
-
-    // The haze: a distance drawn by free flight; scattering before the surface means the
-    // light turns there (no absorption: the weight stays).
-    if (haze.density > 0) {
-      auto [t0, t1] = in_haze(haze, o, d, hit ? s.distance : INFINITY);
-      const float ts = t0 - std::log(1 - rng.next()) / haze.density;
-      if (t1 > t0 && ts < t1) {
-        if (depth >= max_depth) break;
-        const V3 p = o + d * ts;
-        if (sky.sun_up()) {
-          const V3 wi = sky.sun_frame().to_world(uniform_cone(rng.next(), rng.next(), sky.sun_cos_max()));
-          const float phase = henyey_greenstein(dot(d, wi), haze.g);
-          ++counts.shadow;
-          if (!scene.occluded(p, wi, INFINITY))
-            L += beta * sky.sun_radiance() *
-                 (phase * transmittance(haze, p, wi) * power_heuristic(sun_pdf, phase) / sun_pdf);
-        }
-        const V3 next = sample_henyey_greenstein(d, haze.g, rng.next(), rng.next());
-        prev_pdf = henyey_greenstein(dot(d, next), haze.g);
-        prev_surface = false;
-        o = p, d = next;
-        continue;
-      }
+    float ts = 0;
+    if (haze.density > 0 && scatters_in_haze(haze, path.o, path.d, hit ? s.distance : INFINITY, rng, ts)) {
+      if (depth >= max_depth) break;
+      scatter_in_haze(t, ts, path);
+      continue;
     }
-
     if (!hit) {
-      // The sky, and the sun where d meets its disk, weighted against next-event estimation.
-      const float sky_pdf = prev_surface ? std::max(0.0f, dot(d, prev_normal)) / kPi : 0.0f;
-      L += beta * sky.radiance(d) * (prev_pdf > 0 && sky_pdf > 0 ? power_heuristic(prev_pdf, sky_pdf) : 1.0f);
-      if (sky.sun_up() && dot(d, sky.sun_direction()) >= sky.sun_cos_max())
-        L += beta * sky.sun_radiance() * (prev_pdf > 0 ? power_heuristic(prev_pdf, sun_pdf) : 1.0f);
+      add_sky_seen(t, path);
       break;
     }
-    L += beta * s.material.emission;
+    path.L += path.beta * s.material.emission;
     if (depth >= max_depth) break;
-    const Frame frame(s.normal);
-    const V3 wo = frame.to_local(d * -1);
-    const V3 p = s.position + s.normal * kEpsilon;
-
-    // Next event: the sun's disk.
-    if (sky.sun_up()) {
-      const V3 wi = sky.sun_frame().to_world(uniform_cone(rng.next(), rng.next(), sky.sun_cos_max()));
-      const V3 li = frame.to_local(wi);
-      const V3 f = eval(s.material, wo, li);
-      if (max_component(f) > 0) {
-        ++counts.shadow;
-        if (!scene.occluded(p, wi, INFINITY))
-          L += beta * f * sky.sun_radiance() *
-               (transmittance(haze, p, wi) * power_heuristic(sun_pdf, pdf(s.material, wo, li)) / sun_pdf);
-      }
-    }
-    // Next event: the sky, cosine-weighted about the normal.
-    {
-      const V3 li = cosine_hemisphere(rng.next(), rng.next());
-      const V3 wi = frame.to_world(li);
-      const float sky_pdf = li.z / kPi;
-      const V3 f = eval(s.material, wo, li);
-      if (wi.z > 0 && sky_pdf > 0 && max_component(f) > 0) {
-        ++counts.shadow;
-        if (!scene.occluded(p, wi, INFINITY))
-          L += beta * f * sky.radiance(wi) *
-               (transmittance(haze, p, wi) * power_heuristic(sky_pdf, pdf(s.material, wo, li)) / sky_pdf);
-      }
-    }
-    // The surface chooses the next direction.
-    BsdfSample bs;
-    if (!sample(s.material, wo, rng.next(), rng.next(), rng.next(), bs)) break;
-    beta *= bs.weight;
-    prev_pdf = bs.pdf;
-    prev_surface = true;
-    prev_normal = s.normal;
-    o = p;
-    d = frame.to_world(bs.wi);
-    if (depth >= 3) {
-      const float survive = std::min(0.95f, max_component(beta));
-      if (rng.next() >= survive) break;
-      beta = beta / survive;
-    }
+    if (!scatter_at_surface(t, s, depth, path)) break;
   }
-  return L;
+  return path.L;
 }
 
 Image trace(const RenderScene& scene, const Sky& sky, const Camera& camera, const TraceSettings& t, RayCounts* counts,

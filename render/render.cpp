@@ -33,49 +33,68 @@ void disc(Rgb8& img, V3 colour, float cx, float cy, float r) {
       if ((x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r) img.set(x, y, colour);
 }
 
-}  // namespace
-
-Camera default_camera(const exacity::City& city) {
-  geom::Box box = city.layers.ground_bounds();
-  if (box.holds_nothing()) box = {0, 0, 100, 100};
-  const double cx = (box.min_x + box.max_x) / 2, cy = (box.min_y + box.max_y) / 2;
-  const double z = city.ground() ? city.ground()->height_at({cx, cy}) : 0;
-  const float distance = static_cast<float>(0.5 * std::hypot(box.width(), box.height()));
-  return Camera::orbit({static_cast<float>(cx), static_cast<float>(cy), static_cast<float>(z)}, 235, 30, distance, 45);
-}
-
-nlohmann::ordered_json render_city(const exacity::City& city, const RenderRequest& request,
-                                   const RenderProgress& progress) {
-  auto t = std::chrono::steady_clock::now();
-  const Sky sky(request.sun_azimuth, request.sun_elevation, request.turbidity);
-  const float aspect = static_cast<float>(request.width) / static_cast<float>(request.height);
+// The still's scene: culled and simplified outside what its camera sees close up.
+SceneOptions culled_to_view(const RenderRequest& request) {
   SceneOptions options;
   options.view = &request.camera;
-  options.aspect = aspect;
-  if (progress) progress("scene", 0);
-  RenderScene scene(city, sky.sun_direction(), options);
-  const double scene_s = seconds_since(t);
-  const Camera camera = scene.to_scene(request.camera);
+  options.aspect = static_cast<float>(request.width) / static_cast<float>(request.height);
+  return options;
+}
 
-  TraceSettings settings{request.width, request.height, request.spp};
+// The overview's and the minimap's scene: the whole city, nothing culled.
+SceneOptions whole_city() {
+  SceneOptions all;
+  all.aspect = 1;
+  return all;
+}
+
+// Clear air unless a visibility is asked for; the haze fills the 500 m over the lowest ground.
+Haze haze_layer(const RenderRequest& request, const RenderScene& scene) {
   Haze haze;
   if (request.haze_visibility > 0)
     haze = {Haze::density_for_visibility(request.haze_visibility), scene.ground + 500, 0.7f};
-  settings.haze = haze;
+  return haze;
+}
+
+struct Still {
+  Image image;
+  Rgb8 png;  // tone-mapped; the minimap is set into it before it is written
   RayCounts rays;
-  t = std::chrono::steady_clock::now();
-  Image still = trace(scene, sky, camera, settings, &rays, [&](int done, int all) {
+  double seconds = 0;  // tracing alone
+};
+
+Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camera, const RenderRequest& request,
+                   const Haze& haze, const RenderProgress& progress) {
+  Still still;
+  TraceSettings settings{request.width, request.height, request.spp};
+  settings.haze = haze;
+  const auto start = std::chrono::steady_clock::now();
+  still.image = trace(scene, sky, camera, settings, &still.rays, [&](int done, int all) {
     if (progress) progress("still", static_cast<double>(done) / all);
   });
-  const double still_s = seconds_since(t);
-  Rgb8 still_png = tone_map(still, request.exposure);
+  still.seconds = seconds_since(start);
+  still.png = tone_map(still.image, request.exposure);
+  return still;
+}
 
+// How each city tile was drawn: counted by level, then tile by tile.
+nlohmann::ordered_json tiles_report(const RenderScene& scene) {
   nlohmann::ordered_json levels = nlohmann::ordered_json::object();
   int culled = 0;
   for (const auto& tl : scene.tiles) {
     levels[tl.level] = levels.value(tl.level, 0) + 1;
     culled += tl.level == "culled";
   }
+  nlohmann::ordered_json tiles{{"count", scene.tiles.size()}, {"culled", culled}, {"by_level", levels}};
+  nlohmann::ordered_json tile_levels = nlohmann::ordered_json::array();
+  for (const auto& tl : scene.tiles) tile_levels.push_back({tl.tile, tl.level});
+  tiles["levels"] = tile_levels;
+  return tiles;
+}
+
+nlohmann::ordered_json still_report(const RenderRequest& request, const RenderScene& scene, double scene_s,
+                                    const Still& still) {
+  const RayCounts& rays = still.rays;
   nlohmann::ordered_json report{
       {"size", {request.width, request.height}},
       {"samples_per_pixel", request.spp},
@@ -84,89 +103,136 @@ nlohmann::ordered_json render_city(const exacity::City& city, const RenderReques
        {{"from", {request.camera.from.x, request.camera.from.y, request.camera.from.z}},
         {"to", {request.camera.to.x, request.camera.to.y, request.camera.to.z}},
         {"fov_y", request.camera.fov_y}}},
-      {"tiles", {{"count", scene.tiles.size()}, {"culled", culled}, {"by_level", levels}}},
+      {"tiles", tiles_report(scene)},
       {"scene",
        {{"triangles", scene.triangles},
         {"instances", scene.instances},
         {"build_s", scene_s},
         {"embree_peak_mib", static_cast<double>(scene.embree_peak_bytes()) / (1 << 20)}}},
       {"still",
-       {{"seconds", still_s},
+       {{"seconds", still.seconds},
         {"camera_rays", rays.camera},
         {"bounce_rays", rays.bounce},
         {"shadow_rays", rays.shadow},
-        {"rays_per_s", static_cast<double>(rays.camera + rays.bounce + rays.shadow) / still_s}}},
+        {"rays_per_s", static_cast<double>(rays.camera + rays.bounce + rays.shadow) / still.seconds}}},
   };
-  nlohmann::ordered_json tile_levels = nlohmann::ordered_json::array();
-  for (const auto& tl : scene.tiles) tile_levels.push_back({tl.tile, tl.level});
-  report["tiles"]["levels"] = tile_levels;
+  return report;
+}
 
-  if (request.overview || request.minimap) {
-    // The whole city from above, in a scene without culling.
-    SceneOptions all;
-    all.aspect = 1;
-    RenderScene whole(city, sky.sun_direction(), all);
-    const int size_overview = std::max(request.width, request.height);
-    if (request.overview) {
-      const float top = whole.top;
-      Camera over = overview_camera(whole.bounds, top, request.camera.fov_y, 1, request.orthographic_overview);
-      TraceSettings s{size_overview, size_overview, request.spp, 8, haze};
-      Image img = trace(whole, sky, over, s, nullptr, [&](int done, int n) {
-        if (progress) progress("overview", static_cast<double>(done) / n);
-      });
-      write_png(tone_map(img, request.exposure), request.overview_file);
-      report["overview"] = {{"height_m", over.from.z - top}, {"orthographic", request.orthographic_overview}};
-    }
-    if (request.minimap) {
-      const int m = 256;
-      Camera top_down = overview_camera(whole.bounds, whole.top, 45, 1, true);
-      Image img = trace(whole, sky, top_down, TraceSettings{m, m, std::max(1, request.spp / 4)});
-      Rgb8 map = tone_map(img, request.exposure);
-      // Scene coordinates to minimap pixels (the orthographic top-down view, north up).
-      const float span = top_down.ortho_height;
-      auto px = [&](geom::Vec2 p) {
-        return std::pair<float, float>{(static_cast<float>(p.x) - top_down.from.x) / span * m + m / 2.0f,
-                                       m / 2.0f - (static_cast<float>(p.y) - top_down.from.y) / span * m};
-      };
-      const geom::Box& b = whole.bounds;
-      // The still's view, from its own scene (the same origin: both centre on the city).
-      std::vector<geom::Vec2> seen = ground_footprint(camera, request.width, request.height, whole.ground, b);
-      for (int i = 0; i < 4; ++i) {
-        auto [x0, y0] = px(seen[i]);
-        auto [x1, y1] = px(seen[(i + 1) % 4]);
-        line(map, {1.0f, 0.85f, 0.1f}, x0, y0, x1, y1, 2);
-      }
-      auto [cx, cy] = px({camera.from.x, camera.from.y});
-      const V3 heading = camera.forward();
-      const float hl = std::hypot(heading.x, heading.y);
-      if (hl > 1e-4f) line(map, {0.9f, 0.1f, 0.1f}, cx, cy, cx + heading.x / hl * 18, cy - heading.y / hl * 18, 2);
-      disc(map, {0.9f, 0.1f, 0.1f}, cx, cy, 4);
-      write_png(map, request.minimap_file);
-      // Set into the still's top-right corner, a third of its height, with a frame.
-      const int size = std::max(32, request.height / 3), x0 = request.width - size - 8, y0 = 8;
-      for (int y = -2; y < size + 2; ++y)
-        for (int x = -2; x < size + 2; ++x) {
-          const bool frame = x < 0 || y < 0 || x >= size || y >= size;
-          const std::uint8_t* p = &map.pixels[(static_cast<std::size_t>(std::clamp(y * m / size, 0, m - 1)) * m +
-                                               std::clamp(x * m / size, 0, m - 1)) *
-                                              3];
-          std::uint8_t* q = nullptr;
-          if (x0 + x >= 0 && y0 + y >= 0 && x0 + x < request.width && y0 + y < request.height)
-            q = &still_png.pixels[(static_cast<std::size_t>(y0 + y) * request.width + (x0 + x)) * 3];
-          if (!q) continue;
-          for (int c = 0; c < 3; ++c) q[c] = frame ? 255 : p[c];
-        }
-      report["minimap"] = {{"visible_ground",
-                            {{seen[0].x + scene.origin_x, seen[0].y + scene.origin_y},
-                             {seen[1].x + scene.origin_x, seen[1].y + scene.origin_y},
-                             {seen[2].x + scene.origin_x, seen[2].y + scene.origin_y},
-                             {seen[3].x + scene.origin_x, seen[3].y + scene.origin_y}}}};
-    }
+// The whole city from straight above, into its own file; returns what the report records.
+nlohmann::ordered_json render_overview(const RenderScene& whole, const Sky& sky, const RenderRequest& request,
+                                       const Haze& haze, const RenderProgress& progress) {
+  const int size = std::max(request.width, request.height);
+  const float top = whole.top;
+  Camera over = overview_camera(whole.bounds, top, request.camera.fov_y, 1, request.orthographic_overview);
+  TraceSettings s{size, size, request.spp, 8, haze};
+  Image img = trace(whole, sky, over, s, nullptr, [&](int done, int n) {
+    if (progress) progress("overview", static_cast<double>(done) / n);
+  });
+  write_png(tone_map(img, request.exposure), request.overview_file);
+  return {{"height_m", over.from.z - top}, {"orthographic", request.orthographic_overview}};
+}
+
+constexpr int kMinimapSize = 256;  // pixels, square
+
+// Scene coordinates to minimap pixels (the orthographic top-down view, north up).
+std::pair<float, float> minimap_pixel(const Camera& top_down, geom::Vec2 p) {
+  const int m = kMinimapSize;
+  const float span = top_down.ortho_height;
+  return std::pair<float, float>{(static_cast<float>(p.x) - top_down.from.x) / span * m + m / 2.0f,
+                                 m / 2.0f - (static_cast<float>(p.y) - top_down.from.y) / span * m};
+}
+
+// The still's camera on the minimap: the ground it sees, where it stands and where it looks.
+void draw_still_camera(Rgb8& map, const Camera& top_down, const Camera& camera, const std::vector<geom::Vec2>& seen) {
+  for (int i = 0; i < 4; ++i) {
+    auto [x0, y0] = minimap_pixel(top_down, seen[i]);
+    auto [x1, y1] = minimap_pixel(top_down, seen[(i + 1) % 4]);
+    line(map, {1.0f, 0.85f, 0.1f}, x0, y0, x1, y1, 2);
   }
-  fs::path exr = request.still;
+  auto [cx, cy] = minimap_pixel(top_down, {camera.from.x, camera.from.y});
+  const V3 heading = camera.forward();
+  const float hl = std::hypot(heading.x, heading.y);
+  if (hl > 1e-4f) line(map, {0.9f, 0.1f, 0.1f}, cx, cy, cx + heading.x / hl * 18, cy - heading.y / hl * 18, 2);
+  disc(map, {0.9f, 0.1f, 0.1f}, cx, cy, 4);
+}
+
+// Set into the still's top-right corner, a third of its height, with a frame.
+void inset_minimap(Rgb8& still_png, const Rgb8& map, const RenderRequest& request) {
+  const int m = kMinimapSize;
+  const int size = std::max(32, request.height / 3), x0 = request.width - size - 8, y0 = 8;
+  for (int y = -2; y < size + 2; ++y)
+    for (int x = -2; x < size + 2; ++x) {
+      const bool frame = x < 0 || y < 0 || x >= size || y >= size;
+      const std::uint8_t* p = &map.pixels[(static_cast<std::size_t>(std::clamp(y * m / size, 0, m - 1)) * m +
+                                           std::clamp(x * m / size, 0, m - 1)) *
+                                          3];
+      std::uint8_t* q = nullptr;
+      if (x0 + x >= 0 && y0 + y >= 0 && x0 + x < request.width && y0 + y < request.height)
+        q = &still_png.pixels[(static_cast<std::size_t>(y0 + y) * request.width + (x0 + x)) * 3];
+      if (!q) continue;
+      for (int c = 0; c < 3; ++c) q[c] = frame ? 255 : p[c];
+    }
+}
+
+// The minimap, into its own file and into the still's corner; returns the ground the
+// still sees, in city coordinates, for the report.
+nlohmann::ordered_json render_minimap(const RenderScene& whole, const RenderScene& scene, const Sky& sky,
+                                      const Camera& camera, const RenderRequest& request, Rgb8& still_png) {
+  const int m = kMinimapSize;
+  Camera top_down = overview_camera(whole.bounds, whole.top, 45, 1, true);
+  Image img = trace(whole, sky, top_down, TraceSettings{m, m, std::max(1, request.spp / 4)});
+  Rgb8 map = tone_map(img, request.exposure);
+  // The still's view, from its own scene (the same origin: both centre on the city).
+  std::vector<geom::Vec2> seen = ground_footprint(camera, request.width, request.height, whole.ground, whole.bounds);
+  draw_still_camera(map, top_down, camera, seen);
+  write_png(map, request.minimap_file);
+  inset_minimap(still_png, map, request);
+  return {{"visible_ground",
+           {{seen[0].x + scene.origin_x, seen[0].y + scene.origin_y},
+            {seen[1].x + scene.origin_x, seen[1].y + scene.origin_y},
+            {seen[2].x + scene.origin_x, seen[2].y + scene.origin_y},
+            {seen[3].x + scene.origin_x, seen[3].y + scene.origin_y}}}};
+}
+
+// The EXR beside the PNG, under the same name.
+void write_still(const Still& still, const fs::path& png) {
+  fs::path exr = png;
   exr.replace_extension(".exr");
-  write_exr(still, exr);
-  write_png(still_png, request.still);
+  write_exr(still.image, exr);
+  write_png(still.png, png);
+}
+
+}  // namespace
+
+Camera default_camera(const exacity::City& city) {
+  geom::Box box = city.ground.bounds();
+  if (box.holds_nothing()) box = {0, 0, 100, 100};
+  const double cx = (box.min_x + box.max_x) / 2, cy = (box.min_y + box.max_y) / 2;
+  const double z = city.heightmap() ? city.heightmap()->height_at({cx, cy}) : 0;
+  const float distance = static_cast<float>(0.5 * std::hypot(box.width(), box.height()));
+  return Camera::orbit({static_cast<float>(cx), static_cast<float>(cy), static_cast<float>(z)}, 235, 30, distance, 45);
+}
+
+nlohmann::ordered_json render_city(const exacity::City& city, const RenderRequest& request,
+                                   const RenderProgress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const Sky sky(request.sun_azimuth, request.sun_elevation, request.turbidity);
+  const SceneOptions options = culled_to_view(request);
+  if (progress) progress("scene", 0);
+  RenderScene scene(city, sky.sun_direction(), options);
+  const double scene_s = seconds_since(start);
+  const Camera camera = scene.to_scene(request.camera);
+  const Haze haze = haze_layer(request, scene);
+
+  Still still = render_still(scene, sky, camera, request, haze, progress);
+  nlohmann::ordered_json report = still_report(request, scene, scene_s, still);
+  if (request.overview || request.minimap) {
+    const RenderScene whole(city, sky.sun_direction(), whole_city());
+    if (request.overview) report["overview"] = render_overview(whole, sky, request, haze, progress);
+    if (request.minimap) report["minimap"] = render_minimap(whole, scene, sky, camera, request, still.png);
+  }
+  write_still(still, request.still);
   return report;
 }
 

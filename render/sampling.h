@@ -4,23 +4,19 @@
 
 #include <cstdint>
 
+#include "generate/city/random.h"
 #include "render/vec.h"
 
 namespace render {
 
 class Sampler {
  public:
-  Sampler(std::uint64_t pixel, std::uint64_t sample) : state_(mix(mix(pixel) ^ (sample * 0x9e3779b97f4a7c15ull))) {}
-  float next() { return static_cast<float>(mix(state_++) >> 40) * 0x1.0p-24f; }  // [0, 1)
+  Sampler(std::uint64_t pixel, std::uint64_t sample)
+      : stream_(exacity::mix(exacity::mix(pixel) ^ (sample * 0x9e3779b97f4a7c15ull))) {}
+  float next() { return static_cast<float>(stream_.next() >> 40) * 0x1.0p-24f; }  // [0, 1)
 
  private:
-  static std::uint64_t mix(std::uint64_t x) {
-    x += 0x9e3779b97f4a7c15ull;
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-    return x ^ (x >> 31);
-  }
-  std::uint64_t state_;
+  exacity::Random stream_;  // the city's generator; next() keeps the top 24 bits, a float's mantissa
 };
 
 // Cosine-weighted direction about +z; pdf cos/pi.

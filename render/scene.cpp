@@ -11,6 +11,26 @@
 #include "render/noise.h"
 
 namespace render {
+
+struct Plane {
+  V3 n;
+  float d;  // inside where dot(n, p) + d >= 0
+};
+
+// A box in scene coordinates.
+struct Box3 {
+  V3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  void add(V3 p) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)},
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  void add(const Box3& b) { add(b.lo), add(b.hi); }
+  bool outside(const Plane& p) const {
+    V3 far{p.n.x >= 0 ? hi.x : lo.x, p.n.y >= 0 ? hi.y : lo.y, p.n.z >= 0 ? hi.z : lo.z};
+    return dot(p.n, far) + p.d < 0;
+  }
+};
+
 namespace {
 
 using exacity::ZoneType;
@@ -19,20 +39,7 @@ V3 colour(const exacity::Colour& c) {
   return {static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2])};
 }
 
-// Facade and roof palettes per zone type; each building picks one of each (seed 000).
-const std::vector<V3>& facades(ZoneType z) {
-  static const std::vector<V3> residential{
-      {0.80f, 0.72f, 0.60f}, {0.72f, 0.48f, 0.36f}, {0.86f, 0.82f, 0.66f}, {0.70f, 0.70f, 0.68f}};
-  static const std::vector<V3> commercial{
-      {0.62f, 0.64f, 0.66f}, {0.50f, 0.56f, 0.62f}, {0.76f, 0.72f, 0.64f}, {0.84f, 0.84f, 0.82f}};
-  static const std::vector<V3> industrial{{0.55f, 0.56f, 0.56f}, {0.56f, 0.40f, 0.30f}, {0.58f, 0.62f, 0.56f}};
-  return z == ZoneType::Commercial ? commercial : z == ZoneType::Industrial ? industrial : residential;
-}
-const std::vector<V3>& roofs(ZoneType z) {
-  static const std::vector<V3> residential{{0.45f, 0.18f, 0.12f}, {0.22f, 0.22f, 0.25f}, {0.38f, 0.28f, 0.20f}};
-  static const std::vector<V3> flat{{0.30f, 0.30f, 0.30f}, {0.42f, 0.41f, 0.39f}};
-  return z == ZoneType::Residential ? residential : flat;
-}
+V3 colour(const exacity::Albedo& a) { return {a[0], a[1], a[2]}; }
 
 // A ribbon of `width` along a ground path, its corners draped over the terrain, in pieces
 // no longer than half a pixel; dashes where `dash` > 0 (dash on, gap off, metres).
@@ -45,7 +52,8 @@ void ribbon(const geom::Polyline& line, double offset, double width, double dash
     geom::Vec2 a = line[i], b = line[i + 1];
     const double len = std::hypot(b.x - a.x, b.y - a.y);
     if (len == 0) continue;
-    const double ux = (b.x - a.x) / len, uy = (b.y - a.y) / len, nx = -uy, ny = ux;
+    const geom::Vec2 u = geom::unit_along(a, b), n = geom::left_normal(a, b);
+    const double ux = u.x, uy = u.y, nx = n.x, ny = n.y;
     double t = 0;
     while (t < len) {
       double end = len;
@@ -74,10 +82,6 @@ void ribbon(const geom::Polyline& line, double offset, double width, double dash
   }
 }
 
-struct Plane {
-  V3 n;
-  float d;  // inside where dot(n, p) + d >= 0
-};
 
 // The four side planes of the camera's view, facing in.
 std::vector<Plane> frustum(const Camera& c, float aspect) {
@@ -96,19 +100,6 @@ std::vector<Plane> frustum(const Camera& c, float aspect) {
   add(normalize(cross(tl, tr)), c.from), add(normalize(cross(br, bl)), c.from);
   return planes;
 }
-
-struct Box3 {
-  V3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-  void add(V3 p) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)},
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-  void add(const Box3& b) { add(b.lo), add(b.hi); }
-  bool outside(const Plane& p) const {
-    V3 far{p.n.x >= 0 ? hi.x : lo.x, p.n.y >= 0 ? hi.y : lo.y, p.n.z >= 0 ? hi.z : lo.z};
-    return dot(p.n, far) + p.d < 0;
-  }
-};
 
 // A bounding volume hierarchy over tile boxes, for the tiles a frustum can see.
 class TileBvh {
@@ -244,7 +235,7 @@ RenderScene::RenderScene(const std::vector<TriangleSoup>& soups, bool ground_pla
     for (V3 p : s.vertices) bounds.add(geom::Vec2{p.x, p.y}), top = std::max(top, p.z);
     add_triangles(s.vertices, s.triangles, std::move(info));
   }
-  materials_.push_back({Material::Diffuse, {0.3f, 0.45f, 0.2f}});
+  materials_.push_back({Material::Diffuse, colour(exacity::kGrassAlbedo)});
   patterns_.push_back(Pattern::Grass);
   grass_material_ = static_cast<int>(materials_.size()) - 1;
   rtcCommitScene(scene_);
@@ -266,10 +257,10 @@ RenderScene::~RenderScene() {
 }
 
 void RenderScene::build(const exacity::City& city, V3 sun, const SceneOptions& options) {
-  const auto& layers = city.layers;
-  geom::Box world = layers.ground_bounds();
+  geom::Box world = city.ground.bounds();
   if (world.holds_nothing()) world = {0, 0, 1, 1};
-  origin_x = std::round((world.min_x + world.max_x) / 2), origin_y = std::round((world.min_y + world.max_y) / 2);
+  const geom::Vec2 origin = exacity::local_origin(world);
+  origin_x = origin.x, origin_y = origin.y;
   bounds = {world.min_x - origin_x, world.min_y - origin_y, world.max_x - origin_x, world.max_y - origin_y};
 
   Palette palette;
@@ -285,27 +276,27 @@ int RenderScene::add_material(Material m, Pattern p) {
 }
 
 void RenderScene::make_palette(Palette& p) {
-  grass_material_ = add_material({Material::Diffuse, {0.30f, 0.45f, 0.20f}}, Pattern::Grass);
-  p.sidewalk = add_material({Material::Diffuse, {0.40f, 0.39f, 0.37f}});
-  p.asphalt = add_material({Material::Diffuse, {0.09f, 0.09f, 0.10f}});
-  p.paint = add_material({Material::Diffuse, {0.85f, 0.85f, 0.80f}});
-  p.yellow = add_material({Material::Diffuse, {0.80f, 0.62f, 0.12f}});
-  p.water = add_material({Material::Glossy, {0.02f, 0.06f, 0.08f}, 0.02f, 1.33f});
+  grass_material_ = add_material({Material::Diffuse, colour(exacity::kGrassAlbedo)}, Pattern::Grass);
+  p.sidewalk = add_material({Material::Diffuse, colour(exacity::kSidewalkAlbedo)});
+  p.asphalt = add_material({Material::Diffuse, colour(exacity::kAsphaltAlbedo)});
+  p.paint = add_material({Material::Diffuse, colour(exacity::kPaintAlbedo)});
+  p.yellow = add_material({Material::Diffuse, colour(exacity::kYellowPaintAlbedo)});
+  p.water = add_material({Material::Glossy, colour(exacity::kWaterAlbedo), 0.02f, 1.33f});
   p.lot_ground = {{ZoneType::Residential, grass_material_},
-                  {ZoneType::Commercial, add_material({Material::Diffuse, {0.50f, 0.49f, 0.46f}})},
-                  {ZoneType::Industrial, add_material({Material::Diffuse, {0.42f, 0.40f, 0.37f}})}};
+                  {ZoneType::Commercial, add_material({Material::Diffuse, colour(exacity::kCommercialLotAlbedo)})},
+                  {ZoneType::Industrial, add_material({Material::Diffuse, colour(exacity::kIndustrialLotAlbedo)})}};
   for (ZoneType z : {ZoneType::Residential, ZoneType::Commercial, ZoneType::Industrial}) {
-    for (int i = 0; i < static_cast<int>(facades(z).size()); ++i)
-      p.facade[{z, i}] = add_material({Material::Diffuse, facades(z)[i]}, Pattern::Windows);
-    for (int i = 0; i < static_cast<int>(roofs(z).size()); ++i)
-      p.roof[{z, i}] = add_material({Material::Diffuse, roofs(z)[i]});
+    for (int i = 0; i < static_cast<int>(exacity::facade_albedos(z).size()); ++i)
+      p.facade[{z, i}] = add_material({Material::Diffuse, colour(exacity::facade_albedos(z)[i])}, Pattern::Windows);
+    for (int i = 0; i < static_cast<int>(exacity::roof_albedos(z).size()); ++i)
+      p.roof[{z, i}] = add_material({Material::Diffuse, colour(exacity::roof_albedos(z)[i])});
   }
 }
 
 // The ground: terrain, then layers a few centimetres above each other.
 void RenderScene::add_ground(const exacity::City& city, const geom::Box& world, const Palette& palette) {
-  const auto& layers = city.layers;
-  const exacity::Terrain* terrain = city.ground();
+  const exacity::Ground& ground_layers = city.ground;
+  const exacity::Terrain* terrain = city.heightmap();
   {
     // The heightmap reaches a city's size past it on every side (its edge values carried
     // on), so the plane beyond, at the lowest height, meets no cliff in view.
@@ -321,13 +312,15 @@ void RenderScene::add_ground(const exacity::City& city, const geom::Box& world, 
     ground = INFINITY;
     for (const V3& p : v) ground = std::min(ground, p.z);
   }
-  auto draped = [&](const exacity::Layer& layer, double lift_of_bridge, auto style) {
+  // Each feature's material, entity and lift (for a bridge's road area, that of bridges).
+  auto draped = [&](const auto& features, double lift_of_bridge, auto polygon_of, auto bridge_of, auto style) {
     exacity::GroundMesh g;
     Geometry info;
-    for (const auto& f : layer.features) {
-      const auto [m, entity, lift] = style(f);
+    for (std::size_t id = 0; id < features.size(); ++id) {
+      const auto& f = features[id];
+      const auto [m, entity, lift] = style(f, id);
       if (m < 0) continue;
-      exacity::drape(f.polygon, terrain, f.properties.value("bridge", false) ? lift_of_bridge : lift, g);
+      exacity::drape(polygon_of(f), terrain, bridge_of(f) ? lift_of_bridge : lift, g);
       info.material.resize(g.triangles.size(), m);
       info.entity.resize(g.triangles.size(), entity);
     }
@@ -336,181 +329,239 @@ void RenderScene::add_ground(const exacity::City& city, const geom::Box& world, 
     if (!g.triangles.empty()) add_triangles(v, g.triangles, std::move(info));
   };
   using Style = std::tuple<int, std::uint32_t, double>;
-  draped(layers.zones, 0.03, [&](const exacity::VectorFeature& f) {
-    const bool park = f.properties.value("zone", "") == "park";
-    return Style{park ? grass_material_ : palette.sidewalk, entity_id(Entity::Zone, f.properties.value("id", 0)), 0.03};
+  auto polygon = [](const auto& f) -> const geom::Polygon& { return f.polygon; };
+  auto on_land = [](const auto&) { return false; };
+  draped(ground_layers.zones, 0.03, polygon, on_land, [&](const exacity::ZoneArea& z, std::size_t id) {
+    const bool park = z.type == ZoneType::Park;
+    return Style{park ? grass_material_ : palette.sidewalk, entity_id(Entity::Zone, id), 0.03};
   });
-  draped(layers.lots, 0.06, [&](const exacity::VectorFeature& f) {
-    auto z = exacity::parse_zone_type(f.properties.value("zone", "residential"));
-    const int m = palette.lot_ground.count(*z) ? palette.lot_ground.at(*z) : palette.sidewalk;
-    return Style{m, entity_id(Entity::Lot, f.properties.value("id", 0)), 0.06};
+  draped(ground_layers.lots, 0.06, polygon, on_land, [&](const exacity::LotArea& lot, std::size_t id) {
+    const int m = palette.lot_ground.count(lot.zone) ? palette.lot_ground.at(lot.zone) : palette.sidewalk;
+    return Style{m, entity_id(Entity::Lot, id), 0.06};
   });
-  draped(layers.water, 0.05, [&](const exacity::VectorFeature& f) {
-    return Style{palette.water, entity_id(Entity::Water, f.properties.value("id", 0)), 0.05};
-  });
-  draped(layers.road_areas, 0.30, [&](const exacity::VectorFeature& f) {
-    // A road surface names the centre line it belongs to; its id is the road's entity.
-    const auto& road = f.properties.value("road", nlohmann::ordered_json());
-    const int material = f.properties.value("surface", "") == "sidewalk" ? palette.sidewalk : palette.asphalt;
-    return Style{material, entity_id(Entity::Road, road.is_number_integer() ? road.get<int>() : 0), 0.10};
-  });
+  draped(
+      ground_layers.water, 0.05, [](const geom::Polygon& p) -> const geom::Polygon& { return p; }, on_land,
+      [&](const geom::Polygon&, std::size_t id) { return Style{palette.water, entity_id(Entity::Water, id), 0.05}; });
+  draped(ground_layers.road_areas, 0.30, polygon, [](const exacity::RoadArea& a) { return a.bridge; },
+         [&](const exacity::RoadArea& a, std::size_t) {
+           // A road surface names the centre line it belongs to; its id is the road's entity.
+           const int material = a.surface == exacity::RoadSurface::Sidewalk ? palette.sidewalk : palette.asphalt;
+           return Style{material, entity_id(Entity::Road, a.road >= 0 ? static_cast<std::size_t>(a.road) : 0), 0.10};
+         });
   // Centre stripes (solid yellow on highways, dashed white elsewhere) and dashed lane lines.
   {
     std::vector<V3> v;
     std::vector<std::array<int, 3>> t;
     Geometry info;
-    for (const auto& f : layers.roads.features) {
-      const bool highway = f.properties.value("class", "") == "highway";
-      const double width = f.properties.value("width", 8.0), lift = f.properties.value("bridge", false) ? 0.32 : 0.12;
-      ribbon(f.line, 0, 0.15, highway ? 0 : 3, 5, terrain, lift, v, t, *this);
+    for (std::size_t id = 0; id < ground_layers.roads.size(); ++id) {
+      const exacity::RoadLine& r = ground_layers.roads[id];
+      const bool highway = r.road_class == exacity::RoadClass::Highway;
+      const double width = r.width, lift = r.bridge ? 0.32 : 0.12;
+      ribbon(r.line, 0, 0.15, highway ? 0 : 3, 5, terrain, lift, v, t, *this);
       info.material.resize(t.size(), highway ? palette.yellow : palette.paint);
       if (highway && width >= 14)
-        for (double side : {-width / 4, width / 4}) ribbon(f.line, side, 0.12, 3, 6, terrain, lift, v, t, *this);
+        for (double side : {-width / 4, width / 4}) ribbon(r.line, side, 0.12, 3, 6, terrain, lift, v, t, *this);
       info.material.resize(t.size(), palette.paint);
-      info.entity.resize(t.size(), entity_id(Entity::Road, f.properties.value("id", 0)));
+      info.entity.resize(t.size(), entity_id(Entity::Road, id));
     }
     if (!t.empty()) add_triangles(v, t, std::move(info));
   }
 }
 
-// Buildings by tile, culled and given their level.
-void RenderScene::add_buildings(const exacity::City& city, const geom::Box& world, V3 sun, const SceneOptions& options,
-                                const Palette& palette) {
-  const auto& buildings = city.buildings;
-  const int nx = std::max(1, static_cast<int>(std::ceil(world.width() / options.tile_size)));
-  const int ny = std::max(1, static_cast<int>(std::ceil(world.height() / options.tile_size)));
-  std::vector<int> tile_of(buildings.size());
-  std::vector<Box3> boxes(static_cast<std::size_t>(nx * ny));
-  for (std::size_t i = 0; i < buildings.size(); ++i) {
-    const auto& b = buildings[i];
-    geom::Box fb = geom::Box::none();
-    for (auto p : b.polygon.outer) fb.add(p);
-    const double cx = (fb.min_x + fb.max_x) / 2, cy = (fb.min_y + fb.max_y) / 2;
-    const int tx = std::clamp(static_cast<int>((cx - world.min_x) / options.tile_size), 0, nx - 1);
-    const int ty = std::clamp(static_cast<int>((cy - world.min_y) / options.tile_size), 0, ny - 1);
-    tile_of[i] = ty * nx + tx;
-    boxes[tile_of[i]].add(to_scene(fb.min_x, fb.min_y, b.base));
-    boxes[tile_of[i]].add(to_scene(fb.max_x, fb.max_y, b.floor + b.height));
-    top = std::max(top, static_cast<float>(b.floor + b.height));
-  }
-  // Shadows reach in from outside the view: grow each box towards the sun by its shadow.
+// Building and model tiles: each structure's tile (by id) and each tile's box.
+struct RenderScene::StructureTiles {
+  int nx = 1, ny = 1;
+  std::vector<int> tile_of;
+  std::vector<Box3> boxes;
+};
+
+// Each tile's state in one view.
+struct RenderScene::TileView {
+  std::vector<bool> seen, detailed;
+};
+
+// Per library model: the first of its materials (its tints follow each other) and its
+// triangles' material indices.
+struct RenderScene::ModelMaterials {
+  std::vector<int> base;
+  std::vector<std::vector<int>> local;
+};
+
+namespace {
+
+// Triangles gathered per tile before they become one Embree geometry each.
+struct TileMeshes {
+  std::vector<std::vector<V3>> vertices;
+  std::vector<std::vector<std::array<int, 3>>> triangles;
+};
+
+// Shadows reach in from outside the view: grows each box towards the sun by its shadow.
+void grow_towards_sun(std::vector<Box3>& boxes, V3 sun) {
   const float sun_run = sun.z > 0.05f ? std::min(600.0f, 1.0f / std::tan(std::asin(sun.z))) : 600.0f;
   for (Box3& b : boxes)
     if (b.lo.x <= b.hi.x) {
       const float reach = (b.hi.z - b.lo.z) * sun_run;
       b.add(b.lo + V3{sun.x, sun.y, 0} * reach), b.add(b.hi + V3{sun.x, sun.y, 0} * reach);
     }
-  std::vector<bool> seen(boxes.size(), options.view == nullptr);
+}
+
+}  // namespace
+
+// Buildings by tile, culled and given their level.
+void RenderScene::add_buildings(const exacity::City& city, const geom::Box& world, V3 sun, const SceneOptions& options,
+                                const Palette& palette) {
+  StructureTiles tiles = tile_structures(city, world, options.tile_size);
+  grow_towards_sun(tiles.boxes, sun);
+  const TileView view = view_tiles(tiles.boxes, options);
+  const ModelMaterials model_materials = add_model_materials(city.model_library());
+
+  TileMeshes meshes{std::vector<std::vector<V3>>(tiles.boxes.size()),
+                    std::vector<std::vector<std::array<int, 3>>>(tiles.boxes.size())};
+  std::vector<Geometry> tile_info(tiles.boxes.size());
+  auto add_mesh = [&](int id, exacity::ZoneType zone, const exacity::Mesh& mesh) {
+    const int k = tiles.tile_of[id];
+    exacity::Random pick(exacity::mix(city.sketch.seed, static_cast<std::uint64_t>(id)));
+    const int f = palette.facade.at({zone, static_cast<int>(pick.next() % exacity::facade_albedos(zone).size())});
+    const int r = palette.roof.at({zone, static_cast<int>(pick.next() % exacity::roof_albedos(zone).size())});
+    const exacity::MeshTriangles tris = exacity::mesh_triangles(mesh);
+    const int first = static_cast<int>(meshes.vertices[k].size());
+    for (const auto& p : tris.vertices) meshes.vertices[k].push_back(to_scene(p[0], p[1], p[2]));
+    for (std::size_t j = 0; j < tris.triangles.size(); ++j) {
+      const auto& t = tris.triangles[j];
+      meshes.triangles[k].push_back({first + t[0], first + t[1], first + t[2]});
+      tile_info[k].material.push_back(tris.surface[j] == exacity::Surface::Roof   ? r
+                                      : tris.surface[j] == exacity::Surface::Wall ? f
+                                                                                  : palette.sidewalk);
+      tile_info[k].entity.push_back(entity_id(Entity::Building, static_cast<std::size_t>(id)));
+    }
+  };
+  exacity::for_each_by_id(
+      city.buildings, city.models,
+      [&](const exacity::Building& b) {
+        const int k = tiles.tile_of[b.id];
+        if (!view.seen[k]) return;
+        if (view.detailed[k]) return add_mesh(b.id, b.zone, exacity::building_mesh(b));
+        exacity::Building box = b;  // the simple level: the footprint extruded, no roof
+        box.roof_faces.clear();
+        box.eaves = box.height;
+        add_mesh(b.id, b.zone, exacity::building_mesh(box));
+      },
+      [&](const exacity::ModelInstance& m) {
+        const int k = tiles.tile_of[m.id];
+        if (!view.seen[k]) return;
+        if (!view.detailed[k] && m.kind != exacity::ModelKind::Building) return;
+        add_instance(m, *city.model_library(), model_materials);
+        if (m.floor > m.base) add_mesh(m.id, m.zone, exacity::model_mesh(m, nullptr));  // its foundation
+      });
+  for (std::size_t k = 0; k < tiles.boxes.size(); ++k)
+    if (!meshes.triangles[k].empty()) add_triangles(meshes.vertices[k], meshes.triangles[k], std::move(tile_info[k]));
+}
+
+RenderScene::StructureTiles RenderScene::tile_structures(const exacity::City& city, const geom::Box& world, float tile_size) {
+  StructureTiles tiles;
+  tiles.nx = std::max(1, static_cast<int>(std::ceil(world.width() / tile_size)));
+  tiles.ny = std::max(1, static_cast<int>(std::ceil(world.height() / tile_size)));
+  tiles.tile_of.resize(city.buildings.size() + city.models.size());
+  tiles.boxes.resize(static_cast<std::size_t>(tiles.nx * tiles.ny));
+  auto place = [&](int id, const geom::Polygon& polygon, double base, double top_z) {
+    geom::Box fb = geom::Box::none();
+    for (auto p : polygon.outer) fb.add(p);
+    const double cx = (fb.min_x + fb.max_x) / 2, cy = (fb.min_y + fb.max_y) / 2;
+    const int tx = std::clamp(static_cast<int>((cx - world.min_x) / tile_size), 0, tiles.nx - 1);
+    const int ty = std::clamp(static_cast<int>((cy - world.min_y) / tile_size), 0, tiles.ny - 1);
+    tiles.tile_of[id] = ty * tiles.nx + tx;
+    tiles.boxes[tiles.tile_of[id]].add(to_scene(fb.min_x, fb.min_y, base));
+    tiles.boxes[tiles.tile_of[id]].add(to_scene(fb.max_x, fb.max_y, top_z));
+    top = std::max(top, static_cast<float>(top_z));
+  };
+  exacity::for_each_by_id(
+      city.buildings, city.models, [&](const exacity::Building& b) { place(b.id, b.polygon, b.base, b.floor + b.height); },
+      [&](const exacity::ModelInstance& m) { place(m.id, m.polygon, m.base, m.floor + m.height); });
+  return tiles;
+}
+
+// Which tiles the view sees and which are near enough to be detailed; each non-empty
+// tile's level is recorded in `tiles`.
+RenderScene::TileView RenderScene::view_tiles(const std::vector<Box3>& boxes, const SceneOptions& options) {
+  TileView v{std::vector<bool>(boxes.size(), options.view == nullptr), std::vector<bool>(boxes.size(), true)};
   Camera view;
   if (options.view) {
     view = to_scene(*options.view);
-    TileBvh(boxes).visible(frustum(view, options.aspect), seen);
+    TileBvh(boxes).visible(frustum(view, options.aspect), v.seen);
   }
-  std::vector<bool> detailed(boxes.size(), true);
   for (std::size_t k = 0; k < boxes.size(); ++k) {
     if (boxes[k].lo.x > boxes[k].hi.x) continue;  // empty
     if (options.view) {
       const V3 c = (boxes[k].lo + boxes[k].hi) * 0.5f;
-      detailed[k] = length(c - view.from) <= options.detail_distance;
+      v.detailed[k] = length(c - view.from) <= options.detail_distance;
     }
-    tiles.push_back({static_cast<int>(k), !seen[k] ? "culled" : detailed[k] ? "detailed" : "simple"});
+    tiles.push_back({static_cast<int>(k), !v.seen[k] ? "culled" : v.detailed[k] ? "detailed" : "simple"});
   }
+  return v;
+}
 
-  const exacity::ModelLibrary* library = city.models();
-  std::vector<int> model_material_base;       // per (model, tint): first global material
-  std::vector<std::vector<int>> model_local;  // per model: its triangles' materials
-  if (library) {
-    model_scenes_.assign(library->models.size(), nullptr);
-    for (const auto& m : library->models) {
-      model_material_base.push_back(static_cast<int>(materials_.size()));
-      for (int tint = 0; tint < exacity::kTints; ++tint)
-        for (const auto& mat : m.mesh.materials) {
-          const bool glass =
-              mat.name.find("glass") != std::string::npos || mat.name.find("window") != std::string::npos;
-          add_material(
-              {glass ? Material::Glossy : Material::Diffuse, colour(exacity::tinted(mat.colour, tint)), 0.05f, 1.5f});
-        }
-      model_local.push_back(m.mesh.material);
-    }
-  }
-  std::vector<std::vector<V3>> tile_vertices(boxes.size());
-  std::vector<std::vector<std::array<int, 3>>> tile_triangles(boxes.size());
-  std::vector<Geometry> tile_info(boxes.size());
-  for (std::size_t i = 0; i < buildings.size(); ++i) {
-    const int k = tile_of[i];
-    if (!seen[k]) continue;
-    const auto& b = buildings[i];
-    exacity::Mesh mesh;
-    if (b.placed.model >= 0) {
-      const exacity::Model& model = library->models[b.placed.model];
-      if (!detailed[k] && model.kind != exacity::ModelKind::Building) continue;
-      if (!model_scenes_[b.placed.model]) {
-        RTCScene ms = rtcNewScene(device_);
-        RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                              3 * sizeof(float), model.mesh.vertices.size()));
-        for (std::size_t j = 0; j < model.mesh.vertices.size(); ++j)
-          for (int c = 0; c < 3; ++c) v[3 * j + c] = static_cast<float>(model.mesh.vertices[j][c]);
-        auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                 3 * sizeof(unsigned), model.mesh.triangles.size()));
-        for (std::size_t j = 0; j < model.mesh.triangles.size(); ++j)
-          for (int c = 0; c < 3; ++c) t[3 * j + c] = static_cast<unsigned>(model.mesh.triangles[j][c]);
-        rtcCommitGeometry(g);
-        rtcAttachGeometry(ms, g);
-        rtcReleaseGeometry(g);
-        rtcCommitScene(ms);
-        model_scenes_[b.placed.model] = ms;
+RenderScene::ModelMaterials RenderScene::add_model_materials(const exacity::ModelLibrary* library) {
+  ModelMaterials out;
+  if (!library) return out;
+  model_scenes_.assign(library->models.size(), nullptr);
+  for (const auto& m : library->models) {
+    out.base.push_back(static_cast<int>(materials_.size()));
+    for (int tint = 0; tint < exacity::kTints; ++tint)
+      for (const auto& mat : m.mesh.materials) {
+        const bool glass = mat.name.find("glass") != std::string::npos || mat.name.find("window") != std::string::npos;
+        add_material({glass ? Material::Glossy : Material::Diffuse, colour(exacity::tinted(mat.colour, tint)), 0.05f, 1.5f});
       }
-      RTCGeometry inst = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
-      rtcSetGeometryInstancedScene(inst, model_scenes_[b.placed.model]);
-      const float c = std::cos(static_cast<float>(b.placed.angle)) * static_cast<float>(b.placed.scale);
-      const float s = std::sin(static_cast<float>(b.placed.angle)) * static_cast<float>(b.placed.scale);
-      const V3 at = to_scene(b.placed.position.x, b.placed.position.y, b.floor);
-      const float sc = static_cast<float>(b.placed.scale);
-      // Column-major 3x4: the turn and scale, then the translation.
-      const float xfm[12] = {c, s, 0, -s, c, 0, 0, 0, sc, at.x, at.y, at.z};
-      rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
-      rtcCommitGeometry(inst);
-      unsigned id = rtcAttachGeometry(scene_, inst);
-      rtcReleaseGeometry(inst);
-      Geometry info;
-      info.instance = true;
-      info.instance_entity = entity_id(Entity::Model, i);
-      info.material_base =
-          model_material_base[b.placed.model] + b.placed.tint * static_cast<int>(model.mesh.materials.size());
-      info.material = model_local[b.placed.model];
-      info.cos_turn = std::cos(static_cast<float>(b.placed.angle)),
-      info.sin_turn = std::sin(static_cast<float>(b.placed.angle));
-      if (geometries_.size() <= id) geometries_.resize(id + 1);
-      geometries_[id] = std::move(info);
-      ++instances;
-      if (!(b.floor > b.base)) continue;
-      mesh = exacity::building_mesh(b, nullptr);  // its foundation
-    } else if (detailed[k]) {
-      mesh = exacity::building_mesh(b, library);
-    } else {
-      exacity::Building box = b;  // the simple level: the footprint extruded, no roof
-      box.roof_faces.clear();
-      box.eaves = box.height;
-      mesh = exacity::building_mesh(box, library);
-    }
-    exacity::Random pick(exacity::mix(city.sketch.seed, i));
-    const int f = palette.facade.at({b.zone, static_cast<int>(pick.next() % facades(b.zone).size())});
-    const int r = palette.roof.at({b.zone, static_cast<int>(pick.next() % roofs(b.zone).size())});
-    const exacity::MeshTriangles tris = exacity::mesh_triangles(mesh);
-    const int first = static_cast<int>(tile_vertices[k].size());
-    for (const auto& p : tris.vertices) tile_vertices[k].push_back(to_scene(p[0], p[1], p[2]));
-    for (std::size_t j = 0; j < tris.triangles.size(); ++j) {
-      const auto& t = tris.triangles[j];
-      tile_triangles[k].push_back({first + t[0], first + t[1], first + t[2]});
-      tile_info[k].material.push_back(tris.surface[j] == exacity::Surface::Roof   ? r
-                                      : tris.surface[j] == exacity::Surface::Wall ? f
-                                                                                  : palette.sidewalk);
-      tile_info[k].entity.push_back(entity_id(Entity::Building, i));
-    }
+    out.local.push_back(m.mesh.material);
   }
-  for (std::size_t k = 0; k < boxes.size(); ++k)
-    if (!tile_triangles[k].empty()) add_triangles(tile_vertices[k], tile_triangles[k], std::move(tile_info[k]));
+  return out;
+}
+
+// The model's own scene, made the first time it is placed.
+RTCScene RenderScene::model_scene(const exacity::ModelLibrary& library, int model) {
+  if (model_scenes_[model]) return model_scenes_[model];
+  const exacity::TriangleMesh& mesh = library.models[model].mesh;
+  RTCScene ms = rtcNewScene(device_);
+  RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* v = static_cast<float*>(
+      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.size()));
+  for (std::size_t j = 0; j < mesh.vertices.size(); ++j)
+    for (int c = 0; c < 3; ++c) v[3 * j + c] = static_cast<float>(mesh.vertices[j][c]);
+  auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                           3 * sizeof(unsigned), mesh.triangles.size()));
+  for (std::size_t j = 0; j < mesh.triangles.size(); ++j)
+    for (int c = 0; c < 3; ++c) t[3 * j + c] = static_cast<unsigned>(mesh.triangles[j][c]);
+  rtcCommitGeometry(g);
+  rtcAttachGeometry(ms, g);
+  rtcReleaseGeometry(g);
+  rtcCommitScene(ms);
+  return model_scenes_[model] = ms;
+}
+
+// An instance of the model's scene in the top scene, turned, scaled and moved into place.
+void RenderScene::add_instance(const exacity::ModelInstance& m, const exacity::ModelLibrary& library,
+                               const ModelMaterials& materials) {
+  const exacity::Model& model = library.models[m.placed.model];
+  RTCGeometry inst = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+  rtcSetGeometryInstancedScene(inst, model_scene(library, m.placed.model));
+  const float c = std::cos(static_cast<float>(m.placed.angle)) * static_cast<float>(m.placed.scale);
+  const float s = std::sin(static_cast<float>(m.placed.angle)) * static_cast<float>(m.placed.scale);
+  const V3 at = to_scene(m.placed.position.x, m.placed.position.y, m.floor);
+  const float sc = static_cast<float>(m.placed.scale);
+  // Column-major 3x4: the turn and scale, then the translation.
+  const float xfm[12] = {c, s, 0, -s, c, 0, 0, 0, sc, at.x, at.y, at.z};
+  rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+  rtcCommitGeometry(inst);
+  unsigned id = rtcAttachGeometry(scene_, inst);
+  rtcReleaseGeometry(inst);
+  Geometry info;
+  info.instance = true;
+  info.instance_entity = entity_id(Entity::Model, static_cast<std::size_t>(m.id));
+  info.material_base = materials.base[m.placed.model] + m.placed.tint * static_cast<int>(model.mesh.materials.size());
+  info.material = materials.local[m.placed.model];
+  info.cos_turn = std::cos(static_cast<float>(m.placed.angle)), info.sin_turn = std::sin(static_cast<float>(m.placed.angle));
+  if (geometries_.size() <= id) geometries_.resize(id + 1);
+  geometries_[id] = std::move(info);
+  ++instances;
 }
 
 bool RenderScene::raw_intersect(V3 o, V3 d) const {
@@ -563,13 +614,13 @@ bool RenderScene::intersect(V3 o, V3 d, float tmax, Surface& s) const {
         const float floor = s.position.z / 3.3f - std::floor(s.position.z / 3.3f);
         const float bay = along / 3.0f - std::floor(along / 3.0f);
         if (floor > 0.3f && floor < 0.78f && bay > 0.2f && bay < 0.8f)
-          s.material = {Material::Glossy, {0.04f, 0.05f, 0.06f}, 0.05f, 1.5f};
+          s.material = {Material::Glossy, colour(exacity::kWindowAlbedo), 0.05f, 1.5f};
       }
       break;
     case Pattern::Grass: {
       const float coarse = noise().fractal(s.position.x * 0.02f, s.position.y * 0.02f, 2);
       const float fine = noise()(s.position.x * 0.9f, s.position.y * 0.9f);
-      const V3 lush{0.20f, 0.40f, 0.12f}, dry{0.42f, 0.45f, 0.22f};
+      const V3 lush = colour(exacity::kLushGrassAlbedo), dry = colour(exacity::kDryGrassAlbedo);
       const float t = std::clamp(0.5f + coarse * 1.2f, 0.0f, 1.0f);
       s.material.albedo = (lush * (1 - t) + dry * t) * (0.85f + 0.3f * fine);
       break;

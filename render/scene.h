@@ -36,6 +36,9 @@ inline std::uint32_t entity_id(Entity kind, std::size_t index) {
   return static_cast<std::uint32_t>(kind) << 24 | static_cast<std::uint32_t>(index & 0xffffff);
 }
 
+struct Box3;
+struct Plane;
+
 // A surface's look before its pattern: window grids on facades, grass on open ground.
 enum class Pattern : std::uint8_t { None, Windows, Grass };
 
@@ -114,6 +117,15 @@ class RenderScene {
   void add_ground(const exacity::City& city, const geom::Box& world, const Palette& palette);
   void add_buildings(const exacity::City& city, const geom::Box& world, V3 sun, const SceneOptions& options,
                      const Palette& palette);
+  struct StructureTiles;
+  struct TileView;
+  struct ModelMaterials;
+  StructureTiles tile_structures(const exacity::City& city, const geom::Box& world, float tile_size);
+  TileView view_tiles(const std::vector<Box3>& boxes, const SceneOptions& options);
+  ModelMaterials add_model_materials(const exacity::ModelLibrary* library);
+  RTCScene model_scene(const exacity::ModelLibrary& library, int model);
+  void add_instance(const exacity::ModelInstance& m, const exacity::ModelLibrary& library,
+                    const ModelMaterials& materials);
 
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;

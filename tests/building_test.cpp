@@ -42,7 +42,7 @@ void expect_closed(const Mesh& mesh) {
 }  // namespace
 
 TEST(BuildingMesh, BoxIsClosedWithItsVolume) {
-  Mesh m = building_mesh(prism({{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {}}, 5), nullptr);
+  Mesh m = building_mesh(prism({{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {}}, 5));
   expect_closed(m);
   EXPECT_DOUBLE_EQ(volume(m), 500);  // positive: faces point outwards
   EXPECT_EQ(m.n_faces(), 4u + 2u + 2u);
@@ -54,10 +54,10 @@ TEST(BuildingMesh, BoxIsClosedWithItsVolume) {
 
 TEST(BuildingMesh, CourtyardAndLShapeAreClosed) {
   geom::Polygon courtyard{{{0, 0}, {20, 0}, {20, 20}, {0, 20}}, {{{5, 5}, {5, 15}, {15, 15}, {15, 5}}}};
-  Mesh c = building_mesh(prism(courtyard, 9), nullptr);
+  Mesh c = building_mesh(prism(courtyard, 9));
   expect_closed(c);
   EXPECT_NEAR(volume(c), (400 - 100) * 9, 1e-9);
-  Mesh l = building_mesh(prism({{{0, 0}, {10, 0}, {10, 4}, {4, 4}, {4, 10}, {0, 10}}, {}}, 3), nullptr);
+  Mesh l = building_mesh(prism({{{0, 0}, {10, 0}, {10, 4}, {4, 4}, {4, 10}, {0, 10}}, {}}, 3));
   expect_closed(l);
   EXPECT_NEAR(volume(l), 64 * 3, 1e-9);
 }
@@ -66,7 +66,8 @@ TEST(BuildingMesh, ObjHoldsEveryBuildingAtFullPrecision) {
   auto dir = testing_util::temp_dir("obj");
   std::vector<Building> buildings{prism({{{0.1, 0.2}, {10, 0}, {10, 10}, {0, 10}}, {}}, 5),
                                   prism({{{500000.123456789, 5000000.5}, {500010, 5000000.5}, {500010, 5000010}}, {}}, 7.25)};
-  MeshCounts counts = write_meshes(buildings, building_meshes(buildings, nullptr), dir / "city.obj", dir / "city.ply");
+  buildings[0].id = 0, buildings[1].id = 1;
+  MeshCounts counts = write_meshes(buildings, {}, structure_meshes(buildings, {}, nullptr), dir / "city.obj", dir / "city.ply");
   EXPECT_EQ(counts.vertices, 8u + 6u);
   EXPECT_EQ(counts.faces, 8u + 3u + 1u + 1u);
   std::ifstream in(dir / "city.obj");
@@ -124,7 +125,7 @@ TEST(BuildingMesh, HippedRoofsOnLAndUShapesAreClosedAndSimple) {
     Building b = roofed(footprint, 12, "hipped");
     ASSERT_EQ(b.roof, "hipped");
     EXPECT_NEAR(b.eaves, 12 - 4 * std::tan(M_PI / 6), 1e-9);  // arms 8 wide: the ridge 4 in
-    Mesh m = building_mesh(b, nullptr);
+    Mesh m = building_mesh(b);
     expect_closed(m);
     expect_simple_roof_faces(m);
     EXPECT_GT(volume(m), area * b.eaves);
@@ -137,7 +138,7 @@ TEST(BuildingMesh, GabledRoofHasItsPrismVolume) {
   ASSERT_EQ(b.roof, "gabled");
   double rise = 3 * std::tan(M_PI / 6);
   EXPECT_NEAR(b.eaves, 9 - rise, 1e-12);
-  Mesh m = building_mesh(b, nullptr);
+  Mesh m = building_mesh(b);
   expect_closed(m);
   EXPECT_NEAR(volume(m), 60 * b.eaves + 0.5 * 6 * rise * 10, 1e-9);
   auto surface = surface_property(m);
@@ -164,7 +165,7 @@ TEST(BuildingMesh, OnASlopeTheWallsReachTheLowestGroundAndTheHeightCountsFromThe
   EXPECT_EQ(b.base, ramp.height_at({30, 30}));
   EXPECT_EQ(b.floor, ramp.height_at({50, 30}));
   EXPECT_NEAR(b.floor - b.base, 20.0 * 20 / 90, 1e-6);  // 20 m across, 20 m per 90 m between the outer centres
-  Mesh m = building_mesh(b, nullptr);
+  Mesh m = building_mesh(b);
   expect_closed(m);
   double low = INFINITY, high = -INFINITY;
   for (auto v : m.vertices()) low = std::min(low, m.point(v)[2]), high = std::max(high, m.point(v)[2]);

@@ -33,8 +33,8 @@ const geom::Ring kSquare{{0, 0}, {10, 0}, {10, 10}, {0, 10}};
 TEST(Growth, StopsExactlyAtTheEdgeItMeets) {
   Growth g(cell_of(kSquare), 1);
   g.begin({5, 5});
-  EXPECT_EQ(g.extend({7, 6}), Growth::kFree);
-  EXPECT_EQ(g.extend({13, 7.5}), kEdge);
+  EXPECT_EQ(g.extend({7, 6}), Growth::Met{});
+  EXPECT_EQ(g.extend({13, 7.5}), (Growth::Met{Growth::Met::Edge, kEdge}));
   geom::Path road = g.end();
   ASSERT_EQ(road.size(), 3u);
   EXPECT_EQ(road.point(2), (Vec2{10, 6.75}));  // on x = 10, on the line through (7,6) and (13,7.5)
@@ -43,7 +43,7 @@ TEST(Growth, StopsExactlyAtTheEdgeItMeets) {
 TEST(Growth, ReachingAnEdgeExactlyAtAVertex) {
   Growth g(cell_of(kSquare), 1);
   g.begin({5, 5});
-  EXPECT_EQ(g.extend({20, 20}), kEdge);
+  EXPECT_EQ(g.extend({20, 20}), (Growth::Met{Growth::Met::Edge, kEdge}));
   geom::Path road = g.end();
   EXPECT_EQ(road.point(1), (Vec2{10, 10}));
 }
@@ -53,7 +53,7 @@ TEST(Growth, RunningOntoAnEdgeStopsWhereTheyFirstTouch) {
   // along the edge (5,5)-(10,5).
   Growth g(cell_of({{0, 0}, {10, 0}, {10, 5}, {5, 5}, {5, 10}, {0, 10}}), 1);
   g.begin({1, 5});
-  EXPECT_EQ(g.extend({20, 5}), kEdge);
+  EXPECT_EQ(g.extend({20, 5}), (Growth::Met{Growth::Met::Edge, kEdge}));
   geom::Path road = g.end();
   ASSERT_EQ(road.size(), 2u);
   EXPECT_EQ(road.point(1), (Vec2{5, 5}));
@@ -69,17 +69,17 @@ TEST(Growth, LaterRoadsStopAtEarlierOnesAndAtTheirJunctions) {
   geom::Path north = g.end();
   // Through the junction (5, 5) itself.
   g.begin({2, 2});
-  EXPECT_EQ(g.extend({8, 8}), Growth::kOwnRoad);
+  EXPECT_EQ(g.extend({8, 8}), (Growth::Met{Growth::Met::OwnRoad, 0}));
   EXPECT_EQ(g.end().point(1), (Vec2{5, 5}));
   // Onto a road, running along it: stops where it first touches it.
   g.begin({1, 5});
-  EXPECT_EQ(g.extend({9, 5}), Growth::kOwnRoad);
+  EXPECT_EQ(g.extend({9, 5}), (Growth::Met{Growth::Met::OwnRoad, 0}));
   EXPECT_EQ(g.end().point(1), (Vec2{5, 5}));
   // Its own earlier segment stops it too.
   g.begin({8, 2});
-  EXPECT_EQ(g.extend({9, 3}), Growth::kFree);
-  EXPECT_EQ(g.extend({7, 3}), Growth::kFree);
-  EXPECT_EQ(g.extend({9, 1.5}), Growth::kOwnRoad);
+  EXPECT_EQ(g.extend({9, 3}), Growth::Met{});
+  EXPECT_EQ(g.extend({7, 3}), Growth::Met{});
+  EXPECT_EQ(g.extend({9, 1.5}), (Growth::Met{Growth::Met::OwnRoad, 0}));
   EXPECT_EQ(east.point(1), (Vec2{10, 5}));
   EXPECT_EQ(north.point(1), (Vec2{5, 10}));
 }

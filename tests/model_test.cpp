@@ -211,9 +211,9 @@ TEST(ModelRows, ModelsStandInsideTheLotApartAndFacingTheRoad) {
   for (const char* density : {"dense", "normal", "sparse"}) {
     params.density = density;
     Random rng(7);
-    std::vector<geom::Ring> taken;
-    auto placed = place_models(cell, 1, taken, lib.choices(ZoneType::Residential, ModelKind::Building),
-                               ModelKind::Building, lib, params, rng);
+    Occupancy occupancy(cell, 1);
+    auto placed = place_models(occupancy, lib.choices(ZoneType::Residential, ModelKind::Building), ModelKind::Building,
+                               lib, params, rng);
     ASSERT_FALSE(placed.empty()) << density;
     for (std::size_t i = 0; i < placed.size(); ++i) {
       EXPECT_TRUE(cell.holds(placed[i].polygon.outer));
@@ -240,8 +240,8 @@ TEST(ModelRows, DensityChangesHowManyFit) {
   for (const char* density : {"dense", "normal", "sparse"}) {
     params.density = density;
     Random rng(3);
-    std::vector<geom::Ring> taken;
-    count[density] = place_models(cell, 1, taken, {0}, ModelKind::Building, lib, params, rng).size();
+    Occupancy occupancy(cell, 1);
+    count[density] = place_models(occupancy, {0}, ModelKind::Building, lib, params, rng).size();
   }
   // One row of 8 m houses along 200 m: spacing 1.25–1.5, 2–3 and 4–5 widths.
   EXPECT_GE(count["dense"], 16u);
@@ -336,13 +336,13 @@ TEST(ModelLibrary, ExportsPastTheirTriangleBudgetStopWithTheHeaviestModel) {
   lib.models.resize(2);
   lib.models[0].name = "heavy", lib.models[0].mesh.triangles.resize(1000000);
   lib.models[1].name = "light", lib.models[1].mesh.triangles.resize(10);
-  std::vector<Building> buildings(20);
-  for (Building& b : buildings) b.placed.model = 0;
-  EXPECT_NO_THROW(check_export_size(buildings, &lib));  // 20 million triangles: the budget
-  buildings.push_back({});
-  buildings.back().placed.model = 1;
+  std::vector<ModelInstance> models(20);
+  for (ModelInstance& m : models) m.placed.model = 0;
+  EXPECT_NO_THROW(check_export_size(models, &lib));  // 20 million triangles: the budget
+  models.push_back({});
+  models.back().placed.model = 1;
   try {
-    check_export_size(buildings, &lib);
+    check_export_size(models, &lib);
     FAIL() << "accepted";
   } catch (const UserError& e) {
     EXPECT_NE(std::string(e.what()).find("model \"heavy\" (1000000 triangles) is placed 20 times"), std::string::npos) << e.what();

@@ -69,7 +69,7 @@ TEST(RoadNetwork, ResidentialRoadsBendAndStraightenWithDepth) {
 
 TEST(RoadNetwork, BlocksTileTheZoneWithTheRoads) {
   City c = grow(sketch_with(zone("residential", 0, 0, 600, 400)));
-  CityLayers l = extract_layers(c.network.map, c.blocks, {}, {}, c.sketch);
+  CityLayers l = extract_layers(c.network.map, c.blocks, {}, {}, {}, c.sketch);
   double blocks = 0, roads_inside = 0;
   for (const auto& f : l.blocks.features) blocks += testing_util::area(f.polygon);
   for (const auto& f : l.zones.features) roads_inside -= testing_util::area(f.polygon);
@@ -135,7 +135,7 @@ TEST(RoadNetwork, SameResultWithOneOrTwoThreads) {
   auto layers = [](int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     City c = grow(sketch_with(zone("residential", 0, 0, 1500, 1000) + "," + zone("commercial", 1500, 0, 2500, 1000)));
-    CityLayers l = extract_layers(c.network.map, c.blocks, {}, {}, c.sketch);
+    CityLayers l = extract_layers(c.network.map, c.blocks, {}, {}, {}, c.sketch);
     std::string all;
     for (const Layer* layer : {&l.roads, &l.road_areas, &l.blocks})
       for (const auto& f : layer->features) {

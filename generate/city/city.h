@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "generate/city/ground.h"
 #include "generate/city/sketch.h"
 #include "generate/city/terrain.h"
 #include "generate/export/vector_layers.h"
@@ -23,11 +24,13 @@ struct City {
   RoadNetwork network;
   std::vector<Block> blocks;
   std::vector<Lot> lots;
-  std::vector<Building> buildings;
-  CityLayers layers;
+  std::vector<Building> buildings;  // extruded
+  std::vector<ModelInstance> models;  // placed from the library
+  Ground ground;
+  CityLayers layers;  // as written into vector/
 
-  const Terrain* ground() const { return terrain ? &*terrain : nullptr; }
-  const ModelLibrary* models() const { return library ? &*library : nullptr; }
+  const Terrain* heightmap() const { return terrain ? &*terrain : nullptr; }  // null without one
+  const ModelLibrary* model_library() const { return library ? &*library : nullptr; }
 };
 
 }  // namespace exacity

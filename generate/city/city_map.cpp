@@ -14,7 +14,6 @@ namespace {
 // sidewalks, an outer one of their sidewalks' width. A meeting too sharp for a mitre gets
 // a disc of each road's width, as before junctions were mitred.
 void add_junctions(const Sketch& sketch, CityMap& zm) {
-  const int road_base = 1;
   for (const StreetNode& node : street_nodes(sketch.roads)) {
     std::vector<geom::JunctionArm> carriageway, outer;
     bool sidewalks = false;
@@ -27,10 +26,11 @@ void add_junctions(const Sketch& sketch, CityMap& zm) {
     }
     const int first = node.arms.front().road;
     const int junction = static_cast<int>(zm.junction_roads.size());
-    if (zm.map.add_junction(node.at, carriageway, zm.junction_base + junction)) {
+    if (zm.map.add_junction(node.at, carriageway, zm.junctions.at(junction))) {
       zm.junction_roads.push_back(first);
+      ++zm.junctions.size;
       ++zm.mitred_junctions;
-      if (sidewalks) zm.map.add_junction(node.at, outer, zm.sidewalk_base + first);
+      if (sidewalks) zm.map.add_junction(node.at, outer, zm.sidewalks.at(first));
       continue;
     }
     // Straight on (nothing needed) or too sharp.
@@ -40,8 +40,9 @@ void add_junctions(const Sketch& sketch, CityMap& zm) {
     ++zm.disc_junctions;
     for (const StreetArm& arm : node.arms) {
       const RoadFeature& r = sketch.roads[arm.road];
-      zm.map.add_disc(node.at, r.width / 2, road_base + arm.road);
-      if (sidewalks) zm.map.add_disc(node.at, r.width / 2 + sketch.streets.sidewalk(r.road_class), zm.sidewalk_base + arm.road);
+      zm.map.add_disc(node.at, r.width / 2, zm.sketch_carriageways.at(arm.road));
+      if (sidewalks)
+        zm.map.add_disc(node.at, r.width / 2 + sketch.streets.sidewalk(r.road_class), zm.sidewalks.at(arm.road));
     }
   }
 }
@@ -49,21 +50,19 @@ void add_junctions(const Sketch& sketch, CityMap& zm) {
 }  // namespace
 
 int CityMap::road_of_counter(int counter) const {
-  if (counter >= 1 && counter <= sketch_roads) return counter - 1;
-  if (counter >= generated_base && counter < generated_base + static_cast<int>(roads.size()) - sketch_roads)
-    return sketch_roads + counter - generated_base;
+  if (sketch_carriageways.holds(counter)) return sketch_carriageways.index_of(counter);
+  if (generated_roads.holds(counter)) return sketch_roads + generated_roads.index_of(counter);
   return -1;
 }
 
 void CityMap::label(const Sketch& sketch) {
-  constexpr int kWater = 0;
   labels.clear();
   index_.clear();
   map.label_faces([&](const geom::Windings& w) {
     FaceLabel l;
     l.zone = drawn->top_zone(w);
     const ZoneType type = l.zone >= 0 ? sketch.zones[l.zone].type : ZoneType::Park;
-    const bool water = geom::winding_of(w, kWater) != 0 || (l.zone >= 0 && type == ZoneType::Water);
+    const bool water = geom::winding_of(w, heightmap_water.first) != 0 || (l.zone >= 0 && type == ZoneType::Water);
     // A generated road paves only where roads are generated (not in a zone laid out as
     // "streets"): its flat end stops at the region's edge. A link paves all its way, over
     // open land, parks and water.
@@ -74,10 +73,10 @@ void CityMap::label(const Sketch& sketch) {
     // a crossing.
     int carriageway = -1, sidewalk = -1, junction = -1;
     for (auto [counter, winding] : w) {
-      if (counter >= junction_base && counter < generated_base) {
-        if (junction < 0) junction = counter - junction_base;
-      } else if (counter >= sidewalk_base && counter < junction_base) {
-        if (sidewalk < 0) sidewalk = counter - sidewalk_base;
+      if (junctions.holds(counter)) {
+        if (junction < 0) junction = junctions.index_of(counter);
+      } else if (sidewalks.holds(counter)) {
+        if (sidewalk < 0) sidewalk = sidewalks.index_of(counter);
       } else if (int r = road_of_counter(counter); carriageway < 0 && r >= 0) {
         if (r < sketch_roads || paved_by_growth || roads[r].link) carriageway = r;
       }
@@ -113,39 +112,39 @@ void CityMap::insert_lots() {
   map.insert_within(block_of_label, [&](const geom::Windings& w, int previous) {
     if (w.empty()) return previous;
     FaceLabel l = labels[previous];
-    l.lot = w.front().first - lot_base;
+    l.lot = lots.index_of(w.front().first);
     return label_index(l);
   });
 }
 
 CityMap build_city_map(const Sketch& sketch, const Terrain* terrain) {
   CityMap zm;
-  const int road_base = 1;
   zm.sketch_roads = static_cast<int>(sketch.roads.size());
+  zm.sketch_carriageways = {zm.heightmap_water.end(), zm.sketch_roads};
   if (terrain) {
-    for (auto [a, b] : terrain->water_boundary()) zm.map.add_edge(a, b, 0);
+    for (auto [a, b] : terrain->water_boundary()) zm.map.add_edge(a, b, zm.heightmap_water.first);
   }
   int tag = 0;
   for (int r = 0; r < zm.sketch_roads; ++r) {
     const RoadFeature& f = sketch.roads[r];
     MapRoad road{f.road_class, f.width, -1, -1, f.index, {}, tag};
     for (const geom::Polyline& line : f.lines) {
-      zm.map.add_stroke(line, f.width / 2, road_base + r);
+      zm.map.add_stroke(line, f.width / 2, zm.sketch_carriageways.at(r));
       road.lines.push_back(geom::Path::from(line));
       zm.map.add_path(road.lines.back(), tag++);
     }
     zm.roads.push_back(std::move(road));
   }
-  zm.drawn = std::make_shared<DrawnZones>(sketch.zones, zm.map, road_base + zm.sketch_roads);
-  zm.sidewalk_base = zm.drawn->end_counter();
-  zm.junction_base = zm.sidewalk_base + zm.sketch_roads;
+  zm.drawn = std::make_shared<DrawnZones>(sketch.zones, zm.map, zm.sketch_carriageways.end());
+  zm.sidewalks = {zm.drawn->end_counter(), zm.sketch_roads};
+  zm.junctions = {zm.sidewalks.end(), 0};
   for (int r = 0; r < zm.sketch_roads; ++r) {
     const RoadFeature& f = sketch.roads[r];
     if (const double sidewalk = sketch.streets.sidewalk(f.road_class); sidewalk > 0)
-      for (const geom::Polyline& line : f.lines) zm.map.add_stroke(line, f.width / 2 + sidewalk, zm.sidewalk_base + r);
+      for (const geom::Polyline& line : f.lines) zm.map.add_stroke(line, f.width / 2 + sidewalk, zm.sidewalks.at(r));
   }
   add_junctions(sketch, zm);
-  zm.generated_base = zm.junction_base + static_cast<int>(zm.junction_roads.size());
+  zm.generated_roads = {zm.junctions.end(), 0};
   zm.map.insert_batch();
   zm.label(sketch);
   return zm;

@@ -52,30 +52,54 @@ struct MapRoad {
   bool link = false;  // joins a region's streets to the rest (road_network.cpp): paved wherever it runs
 };
 
+// A run of the map's winding counters that one kind of thing winds around: thing i
+// around first + i.
+struct CounterRange {
+  int first = 0, size = 0;
+  int at(int i) const { return first + i; }
+  bool holds(int counter) const { return counter >= first && counter < first + size; }
+  int index_of(int counter) const { return counter - first; }
+  int end() const { return first + size; }
+};
+
 struct CityMap {
   geom::PlanarMap map;
   std::vector<FaceLabel> labels;  // indexed by face label
   std::vector<MapRoad> roads;     // sketch roads first, in sketch order
   int sketch_roads = 0;
 
-  // Counters: water is 0, sketch road r's carriageway is 1 + r, then the drawn zones'
-  // rings, then sketch road r's sidewalks at sidewalk_base + r, junction j (a polygon
-  // where sketch roads meet) at junction_base + j, then generated roads from
-  // generated_base on.
-  std::shared_ptr<DrawnZones> drawn;
-  int sidewalk_base = 0, junction_base = 0;
+  // The map's counters, range after range; each range is sized before the next opens.
+  // The map owns them: every stage takes its counters from here.
+  CounterRange heightmap_water{0, 1};  // the heightmap's water edges
+  CounterRange sketch_carriageways;  // sketch road r's carriageway
+  std::shared_ptr<DrawnZones> drawn;  // the drawn zones' rings come next (DrawnZones)
+  CounterRange sidewalks;             // sketch road r's sidewalks
+  CounterRange junctions;             // junction j, a polygon where sketch roads meet
+  CounterRange generated_roads;       // road sketch_roads + i, grown or laid out, with its discs
+  CounterRange lots;                  // lot l, once the lots stage has run
   std::vector<int> junction_roads;  // per junction, the road it belongs to: the first to meet there
   int mitred_junctions = 0, disc_junctions = 0;  // how the sketch's road meetings were drawn
-  int generated_base = 0;
-  // Then, once the lots stage has run, lot l winds around lot_base + l.
-  int lot_base = -1;
 
+  // The carriageway counter of road r (sketch or generated).
+  int road_counter(int r) const {
+    return r < sketch_roads ? sketch_carriageways.at(r) : generated_roads.at(r - sketch_roads);
+  }
+  // The road whose carriageway winds around `counter`, or -1.
   int road_of_counter(int counter) const;
   // (Re)labels every face from its windings.
   void label(const Sketch& sketch);
   // The index of this label in `labels`, added if new.
   int label_index(const FaceLabel& l);
-  // Inserts the lots queued with map.add_*_within(block, ring, lot_base + lot), each
+  // f(label) for every face label: how a stage picks faces (a group, -1 for none) and
+  // names the edges between them (a kind) for geom::PlanarMap's cells and dissolve.
+  template <typename F>
+  std::vector<int> per_label(F&& f) const {
+    std::vector<int> out;
+    out.reserve(labels.size());
+    for (const FaceLabel& l : labels) out.push_back(f(l));
+    return out;
+  }
+  // Inserts the lots queued with map.add_*_within(block, ring, lots.at(lot)), each
   // within its block's faces: a face of a block lies in the first lot around it planned in
   // that block, so a lot that would cross a road or another block stops there.
   void insert_lots();

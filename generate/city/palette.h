@@ -1,7 +1,11 @@
-// Base colours of the city's surfaces (linear RGB in [0, 1]), one place for every export.
+// The city's colours, one place for every output: base colours of the 3D exports (linear
+// RGB in [0, 1]), the renderer's albedos, and the SVG map's colours.
 #pragma once
 
 #include <array>
+#include <map>
+#include <string>
+#include <vector>
 
 #include "generate/export/building_mesh.h"
 #include "generate/city/zone_type.h"
@@ -41,5 +45,47 @@ inline Colour tinted(const Colour& c, int tint) {
   const Colour& t = kTint[static_cast<std::size_t>(tint) % kTint.size()];
   return {std::min(1.0, c[0] * t[0]), std::min(1.0, c[1] * t[1]), std::min(1.0, c[2] * t[2])};
 }
+
+// The renderer's albedos (linear RGB, as floats: what its materials hold).
+using Albedo = std::array<float, 3>;
+inline constexpr Albedo kGrassAlbedo{0.30f, 0.45f, 0.20f};  // grass, before its pattern
+inline constexpr Albedo kLushGrassAlbedo{0.20f, 0.40f, 0.12f}, kDryGrassAlbedo{0.42f, 0.45f, 0.22f};  // the pattern
+inline constexpr Albedo kSidewalkAlbedo{0.40f, 0.39f, 0.37f}, kAsphaltAlbedo{0.09f, 0.09f, 0.10f};
+inline constexpr Albedo kPaintAlbedo{0.85f, 0.85f, 0.80f}, kYellowPaintAlbedo{0.80f, 0.62f, 0.12f};
+inline constexpr Albedo kWaterAlbedo{0.02f, 0.06f, 0.08f}, kWindowAlbedo{0.04f, 0.05f, 0.06f};
+inline constexpr Albedo kCommercialLotAlbedo{0.50f, 0.49f, 0.46f}, kIndustrialLotAlbedo{0.42f, 0.40f, 0.37f};
+
+// Facade and roof albedos per zone type; each building picks one of each (seed 000).
+inline const std::vector<Albedo>& facade_albedos(ZoneType z) {
+  static const std::vector<Albedo> residential{
+      {0.80f, 0.72f, 0.60f}, {0.72f, 0.48f, 0.36f}, {0.86f, 0.82f, 0.66f}, {0.70f, 0.70f, 0.68f}};
+  static const std::vector<Albedo> commercial{
+      {0.62f, 0.64f, 0.66f}, {0.50f, 0.56f, 0.62f}, {0.76f, 0.72f, 0.64f}, {0.84f, 0.84f, 0.82f}};
+  static const std::vector<Albedo> industrial{{0.55f, 0.56f, 0.56f}, {0.56f, 0.40f, 0.30f}, {0.58f, 0.62f, 0.56f}};
+  return z == ZoneType::Commercial ? commercial : z == ZoneType::Industrial ? industrial : residential;
+}
+inline const std::vector<Albedo>& roof_albedos(ZoneType z) {
+  static const std::vector<Albedo> residential{{0.45f, 0.18f, 0.12f}, {0.22f, 0.22f, 0.25f}, {0.38f, 0.28f, 0.20f}};
+  static const std::vector<Albedo> flat{{0.30f, 0.30f, 0.30f}, {0.42f, 0.41f, 0.39f}};
+  return z == ZoneType::Residential ? residential : flat;
+}
+
+// The SVG map's colours (sRGB hex): a map's, lighter than the ground's own.
+inline const std::map<std::string, const char*>& map_zone_colours() {  // by zone name, the legend's order
+  static const std::map<std::string, const char*> colours{
+      {"residential", "#f2c9a0"}, {"commercial", "#a9c8ec"}, {"industrial", "#cdb89a"}, {"park", "#a8d38d"}};
+  return colours;
+}
+inline constexpr const char* kMapBackground = "#f4f4f0";
+inline constexpr const char* kMapWater = "#5b9bd5";
+inline constexpr const char* kMapLot = "#f7ecdc";  // in the legend; lots are drawn in kMapLotFill, half opaque
+inline constexpr const char* kMapLotFill = "#fbf3e6";
+inline constexpr const char* kMapLotEdge = "#8a6d4b";
+inline constexpr const char* kMapBuilding = "#9a8672";
+inline constexpr const char* kMapBuildingEdge = "#5e4f40";
+inline constexpr const char* kMapRoad = "#6b6b6b";
+inline constexpr const char* kMapBridge = "#3a3a3a";
+inline constexpr const char* kMapSidewalk = "#c9c3b8";
+inline constexpr const char* kMapCentreLine = "#ffffff";
 
 }  // namespace exacity

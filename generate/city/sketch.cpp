@@ -355,25 +355,66 @@ class Parser {
     return spec;
   }
 
+  // One zone type's settings over its defaults, its keys listed by the reader that reads
+  // them. Of two bad settings the one read first is reported, so the readers keep this order.
   ZoneParams zone_params(const json& j, ZoneType zt, const std::string& w) const {
-    known_keys(j, w, {"block_area", "segment_length", "branches", "jitter", "segment_deviation",
-                      "origin_deviation", "road_widths", "min_block_area", "min_block_width",
-                      "bridges", "layout", "grammar", "grammar_depth", "cell_size", "junction_spacing", "lots", "lot_area", "min_lot_edge", "min_lot_area", "setback", "heights",
-                      "min_footprint_area", "roof", "roof_pitch", "density", "lot_width", "lot_depth",
-                      "building_gap", "footprint_width", "footprint_depth", "min_footprint_width",
-                      "max_footprint_area"});
+    known_keys(j, w, {"block_area", "segment_length", "branches", "jitter", "segment_deviation", "origin_deviation",
+                      "road_widths",
+                      "min_block_area", "min_block_width",
+                      "lot_area", "min_lot_edge", "min_lot_area", "setback", "min_footprint_area", "lot_depth",
+                      "building_gap", "min_footprint_width", "max_footprint_area", "lot_width", "footprint_width",
+                      "footprint_depth",
+                      "roof_pitch", "roof",
+                      "density",
+                      "heights",
+                      "layout",
+                      "cell_size", "junction_spacing",
+                      "grammar_depth", "grammar",
+                      "lots",
+                      "bridges"});
     ZoneParams p = default_params(zt);
-    auto set = [&](const char* key, double& field, double min, double max) {
-      if (j.contains(key)) field = number(j[key], w + "." + key, min, max);
-    };
-    set("block_area", p.block_area, 100, 1e9);
-    set("segment_length", p.segment_length, 1, 10000);
+    read_growth(j, w, p);
+    read_block_limits(j, w, p);
+    read_lot_and_footprint_sizes(j, w, p);
+    read_roof(j, w, p);
+    read_density(j, w, p);
+    read_heights(j, w, p);
+    read_layout(j, w, p);
+    read_voronoi_cells(j, w, p);
+    read_grammar(j, w, p);
+    read_lot_method(j, w, p);
+    read_bridges(j, w, p);
+    return p;
+  }
+
+ private:
+  // A number setting left at its default when the key is absent.
+  void read_number(const json& j, const std::string& w, const char* key, double& field, double min,
+                   double max) const {
+    if (j.contains(key)) field = number(j[key], w + "." + key, min, max);
+  }
+
+  // A [smallest, largest] setting; `what` says what the two numbers measure.
+  void read_range(const json& j, const std::string& w, const char* key, Range& r, double min, double max,
+                  const char* what) const {
+    if (!j.contains(key)) return;
+    const json& v = j[key];
+    std::string where = w + "." + key;
+    if (!v.is_array() || v.size() != 2) fail(where, std::string("give [smallest, largest] ") + what);
+    r.min = number(v[0], where, min, max);
+    r.max = number(v[1], where, r.min, max);
+  }
+
+  // Seed 000's growing roads, and the road widths every layout uses.
+  void read_growth(const json& j, const std::string& w, ZoneParams& p) const {
+    read_number(j, w, "block_area", p.block_area, 100, 1e9);
+    read_number(j, w, "segment_length", p.segment_length, 1, 10000);
     double branches = p.branches;
-    set("branches", branches, 1, 16);
+    read_number(j, w, "branches", branches, 1, 16);
     p.branches = static_cast<int>(branches);
-    set("jitter", p.jitter, 0, 180);
-    set("segment_deviation", p.segment_deviation, 0, 90);
-    set("origin_deviation", p.origin_deviation, 0, 80);  // below 90, so every road makes progress
+    read_number(j, w, "jitter", p.jitter, 0, 180);
+    read_number(j, w, "segment_deviation", p.segment_deviation, 0, 90);
+    read_number(j, w, "origin_deviation", p.origin_deviation, 0, 80);  // below 90, so every road makes progress
     if (j.contains("road_widths")) {
       const json& widths = j["road_widths"];
       if (!widths.is_array() || widths.empty()) fail(w + ".road_widths", "give a list of widths in metres, one per level");
@@ -381,47 +422,59 @@ class Parser {
       for (std::size_t i = 0; i < widths.size(); ++i)
         p.road_widths.push_back(number(widths[i], w + ".road_widths[" + std::to_string(i) + "]", 0.5, 200));
     }
-    set("min_block_area", p.min_block_area, 0, 1e9);
-    set("min_block_width", p.min_block_width, 0, 1e4);
-    set("lot_area", p.lot_area, 10, 1e8);
-    set("min_lot_edge", p.min_lot_edge, 0, 1e4);
-    set("min_lot_area", p.min_lot_area, 0, 1e8);
-    set("setback", p.setback, 0, 1e3);
-    set("min_footprint_area", p.min_footprint_area, 0, 1e8);
-    set("lot_depth", p.lot_depth, 2, 1e4);
-    set("building_gap", p.building_gap, 0, 1e3);
-    set("min_footprint_width", p.min_footprint_width, 1, 1e4);
-    set("max_footprint_area", p.max_footprint_area, 1, 1e8);
-    auto range = [&](const char* key, Range& r, double min, double max, const char* what) {
-      if (!j.contains(key)) return;
-      const json& v = j[key];
-      std::string where = w + "." + key;
-      if (!v.is_array() || v.size() != 2) fail(where, std::string("give [smallest, largest] ") + what);
-      r.min = number(v[0], where, min, max);
-      r.max = number(v[1], where, r.min, max);
-    };
-    range("lot_width", p.lot_width, 2, 1e4, "lot frontage in metres");
-    range("footprint_width", p.footprint_width, 1, 1e4, "footprint width along the street in metres");
-    range("footprint_depth", p.footprint_depth, 1, 1e4, "footprint depth back from the street in metres");
-    set("roof_pitch", p.roof_pitch, 1, 75);
+  }
+
+  void read_block_limits(const json& j, const std::string& w, ZoneParams& p) const {
+    read_number(j, w, "min_block_area", p.min_block_area, 0, 1e9);
+    read_number(j, w, "min_block_width", p.min_block_width, 0, 1e4);
+  }
+
+  // Lot and footprint sizes are read interleaved: this order is the order bad sizes are
+  // reported in.
+  void read_lot_and_footprint_sizes(const json& j, const std::string& w, ZoneParams& p) const {
+    read_number(j, w, "lot_area", p.lot_area, 10, 1e8);
+    read_number(j, w, "min_lot_edge", p.min_lot_edge, 0, 1e4);
+    read_number(j, w, "min_lot_area", p.min_lot_area, 0, 1e8);
+    read_number(j, w, "setback", p.setback, 0, 1e3);
+    read_number(j, w, "min_footprint_area", p.min_footprint_area, 0, 1e8);
+    read_number(j, w, "lot_depth", p.lot_depth, 2, 1e4);
+    read_number(j, w, "building_gap", p.building_gap, 0, 1e3);
+    read_number(j, w, "min_footprint_width", p.min_footprint_width, 1, 1e4);
+    read_number(j, w, "max_footprint_area", p.max_footprint_area, 1, 1e8);
+    read_range(j, w, "lot_width", p.lot_width, 2, 1e4, "lot frontage in metres");
+    read_range(j, w, "footprint_width", p.footprint_width, 1, 1e4, "footprint width along the street in metres");
+    read_range(j, w, "footprint_depth", p.footprint_depth, 1, 1e4, "footprint depth back from the street in metres");
+  }
+
+  void read_roof(const json& j, const std::string& w, ZoneParams& p) const {
+    read_number(j, w, "roof_pitch", p.roof_pitch, 1, 75);
     if (j.contains("roof")) {
       const json& r = j["roof"];
       if (!r.is_string() || (r != "auto" && r != "flat" && r != "gabled" && r != "hipped"))
         fail(w + ".roof", "expected \"auto\", \"flat\", \"gabled\" or \"hipped\"");
       p.roof = r.get<std::string>();
     }
+  }
+
+  void read_density(const json& j, const std::string& w, ZoneParams& p) const {
     if (j.contains("density")) {
       const json& d = j["density"];
       if (!d.is_string() || (d != "dense" && d != "normal" && d != "sparse"))
         fail(w + ".density", "expected \"dense\", \"normal\" or \"sparse\" (how far apart placed models stand)");
       p.density = d.get<std::string>();
     }
+  }
+
+  void read_heights(const json& j, const std::string& w, ZoneParams& p) const {
     if (j.contains("heights")) {
       const json& h = j["heights"];
       if (!h.is_array() || h.size() != 2) fail(w + ".heights", "give [lowest, highest] building heights in metres");
       p.min_height = number(h[0], w + ".heights", 0.5, 1000);
       p.max_height = number(h[1], w + ".heights", p.min_height, 1000);
     }
+  }
+
+  void read_layout(const json& j, const std::string& w, ZoneParams& p) const {
     if (j.contains("layout")) {
       if (j["layout"] != "growth" && j["layout"] != "grammar" && j["layout"] != "voronoi" && j["layout"] != "streets")
         fail(w + ".layout", "expected \"growth\" (seed 000's growing roads), \"grammar\" (seed 002's split grammar, "
@@ -431,12 +484,19 @@ class Parser {
       // Seed 003 splits its plots into lots.
       if (p.layout == "voronoi" && !j.contains("lots")) p.lots = "split";
     }
-    set("cell_size", p.cell_size, 20, 1e5);
+  }
+
+  // Seed 003's cells. "cell_size" is checked against the road widths, so it is read after them.
+  void read_voronoi_cells(const json& j, const std::string& w, ZoneParams& p) const {
+    read_number(j, w, "cell_size", p.cell_size, 20, 1e5);
     const double widest = *std::max_element(p.road_widths.begin(), p.road_widths.end());
     if (p.layout == "voronoi" && p.cell_size < 4 * widest)
       fail(w + ".cell_size", json(p.cell_size).dump() + " m is under 4 road widths (" + json(4 * widest).dump() +
                                  " m): the cells would be all road; raise \"cell_size\" or narrow \"road_widths\"");
-    set("junction_spacing", p.junction_spacing, 5, 1e5);
+    read_number(j, w, "junction_spacing", p.junction_spacing, 5, 1e5);
+  }
+
+  void read_grammar(const json& j, const std::string& w, ZoneParams& p) const {
     if (j.contains("grammar_depth")) {
       if (!j["grammar_depth"].is_number_integer()) fail(w + ".grammar_depth", "expected a whole number of rules, 1 to 32");
       p.grammar_depth = static_cast<int>(number(j["grammar_depth"], w + ".grammar_depth", 1, 32));
@@ -447,19 +507,24 @@ class Parser {
       p.grammar = std::make_shared<Grammar>(read_grammars_ ? load_grammar(file) : Grammar{file, {}});
     }
     if (p.layout == "grammar" && !p.grammar) fail(w + ".layout", "\"grammar\" needs \"grammar\": the path of a grammar file");
+  }
+
+  // How blocks are cut into lots ("allocation" or "split"), over the layout's default.
+  void read_lot_method(const json& j, const std::string& w, ZoneParams& p) const {
     if (j.contains("lots")) {
       if (!j["lots"].is_string() || (j["lots"] != "allocation" && j["lots"] != "split"))
         fail(w + ".lots", "expected \"allocation\" (seed 000) or \"split\" (seed 003)");
       p.lots = j["lots"].get<std::string>();
     }
+  }
+
+  void read_bridges(const json& j, const std::string& w, ZoneParams& p) const {
     if (j.contains("bridges")) {
       if (!j["bridges"].is_boolean()) fail(w + ".bridges", "expected true or false");
       p.bridges = j["bridges"].get<bool>();
     }
-    return p;
   }
 
- private:
   std::string file_;
   bool read_grammars_;
 };

@@ -37,11 +37,14 @@ OpenMesh::FPropHandleT<int> surface_property(const Mesh& mesh) {
   return surface;
 }
 
-std::vector<Mesh> building_meshes(const std::vector<Building>& buildings, const ModelLibrary* library) {
+std::vector<Mesh> structure_meshes(const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
+                                   const ModelLibrary* library) {
   quiet_openmesh();
-  std::vector<Mesh> meshes(buildings.size());
+  std::vector<Mesh> meshes(buildings.size() + models.size());
   tbb::parallel_for(std::size_t(0), buildings.size(),
-                    [&](std::size_t i) { meshes[i] = building_mesh(buildings[i], library); });
+                    [&](std::size_t i) { meshes[buildings[i].id] = building_mesh(buildings[i]); });
+  tbb::parallel_for(std::size_t(0), models.size(),
+                    [&](std::size_t i) { meshes[models[i].id] = model_mesh(models[i], library); });
   return meshes;
 }
 
@@ -69,86 +72,103 @@ Vec3 Placement::apply(Vec3 v, double floor) const {
   return {position.x + c * v[0] - s * v[1], position.y + s * v[0] + c * v[1], floor + scale * v[2]};
 }
 
-Mesh building_mesh(const Building& b, const ModelLibrary* library) {
-  quiet_openmesh();
-  Mesh mesh;
-  OpenMesh::FPropHandleT<int> surface;
-  mesh.add_property(surface, "surface");
-  // One vertex per distinct point, so faces share their edges and the mesh closes.
-  std::map<std::array<double, 3>, Mesh::VertexHandle> vertices;
-  auto vertex = [&](double x, double y, double z) {
-    auto [it, added] = vertices.emplace(std::array<double, 3>{x, y, z}, Mesh::VertexHandle());
-    if (added) it->second = mesh.add_vertex({x, y, z});
+namespace {
+
+// Builds a mesh face by face: one vertex per distinct point, so faces share their edges
+// and the mesh closes.
+class MeshBuilder {
+ public:
+  MeshBuilder() {
+    quiet_openmesh();
+    mesh_.add_property(surface_, "surface");
+  }
+  Mesh::VertexHandle vertex(double x, double y, double z) {
+    auto [it, added] = vertices_.emplace(std::array<double, 3>{x, y, z}, Mesh::VertexHandle());
+    if (added) it->second = mesh_.add_vertex({x, y, z});
     return it->second;
-  };
-  auto add = [&](const std::vector<Mesh::VertexHandle>& face, Surface s) {
-    Mesh::FaceHandle f = mesh.add_face(face);
+  }
+  // A vertex of its own, joined to no other face.
+  Mesh::VertexHandle loose_vertex(const Vec3& p) { return mesh_.add_vertex({p[0], p[1], p[2]}); }
+  void add(const std::vector<Mesh::VertexHandle>& face, Surface s) {
+    Mesh::FaceHandle f = mesh_.add_face(face);
     if (!f.is_valid()) {
       // A model's mesh need not be manifold: a face that cannot join its neighbours
       // stands alone, so nothing of the model is lost.
       std::vector<Mesh::VertexHandle> own;
-      for (auto v : face) own.push_back(mesh.add_vertex(mesh.point(v)));
-      f = mesh.add_face(own);
+      for (auto v : face) own.push_back(mesh_.add_vertex(mesh_.point(v)));
+      f = mesh_.add_face(own);
     }
-    if (f.is_valid()) mesh.property(surface, f) = static_cast<int>(s);
-  };
-  // Walls from the base up to z: a quad per ring edge, outward (rings run with the
-  // inside on their left).
-  auto walls = [&](const geom::Ring& r, double z) {
+    if (f.is_valid()) mesh_.property(surface_, f) = static_cast<int>(s);
+  }
+  // Walls from `base` up to z: a quad per ring edge, outward (rings run with the inside on
+  // their left).
+  void walls(const geom::Ring& r, double base, double z) {
     for (std::size_t i = 0; i < r.size(); ++i) {
       geom::Vec2 a = r[i], c = r[(i + 1) % r.size()];
-      add({vertex(a.x, a.y, b.base), vertex(c.x, c.y, b.base), vertex(c.x, c.y, z), vertex(a.x, a.y, z)}, Surface::Wall);
+      add({vertex(a.x, a.y, base), vertex(c.x, c.y, base), vertex(c.x, c.y, z), vertex(a.x, a.y, z)}, Surface::Wall);
     }
-  };
+  }
   // Flat faces over the footprint at height z, facing up or down.
-  auto cap = [&](double z, bool down, Surface s) {
-    std::vector<geom::Vec2> points(b.polygon.outer);
-    for (const auto& h : b.polygon.holes) points.insert(points.end(), h.begin(), h.end());
-    for (const auto& t : geom::triangulate(b.polygon)) {
+  void cap(const geom::Polygon& footprint, double z, bool down, Surface s) {
+    std::vector<geom::Vec2> points(footprint.outer);
+    for (const auto& h : footprint.holes) points.insert(points.end(), h.begin(), h.end());
+    for (const auto& t : geom::triangulate(footprint)) {
       const geom::Vec2 &p = points[t[0]], &q = points[t[1]], &r = points[t[2]];
       if (down) add({vertex(p.x, p.y, z), vertex(r.x, r.y, z), vertex(q.x, q.y, z)}, s);
       else add({vertex(p.x, p.y, z), vertex(q.x, q.y, z), vertex(r.x, r.y, z)}, s);
     }
-  };
-
-  if (b.placed.model >= 0) {
-    // A foundation from the lowest terrain under the model up to where it stands.
-    if (b.floor > b.base) {
-      walls(b.polygon.outer, b.floor);
-      cap(b.base, true, Surface::Ground);
-      cap(b.floor, false, Surface::Roof);
-    }
-    if (!library) return mesh;
-    const TriangleMesh& m = library->models[b.placed.model].mesh;
-    std::vector<Mesh::VertexHandle> handles;
-    for (const Vec3& v : m.vertices) {
-      Vec3 w = b.placed.apply(v, b.floor);
-      handles.push_back(mesh.add_vertex({w[0], w[1], w[2]}));
-    }
-    for (const auto& t : m.triangles) {
-      const Vec3 &p = m.vertices[t[0]], &q = m.vertices[t[1]], &r = m.vertices[t[2]];
-      double nx = (q[1] - p[1]) * (r[2] - p[2]) - (q[2] - p[2]) * (r[1] - p[1]);
-      double ny = (q[2] - p[2]) * (r[0] - p[0]) - (q[0] - p[0]) * (r[2] - p[2]);
-      double nz = (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
-      double len = std::sqrt(nx * nx + ny * ny + nz * nz);
-      Surface s = nz > 0.5 * len ? Surface::Roof : nz < -0.5 * len ? Surface::Ground : Surface::Wall;
-      add({handles[t[0]], handles[t[1]], handles[t[2]]}, s);
-    }
-    return mesh;
   }
+  Mesh take() { return std::move(mesh_); }
 
+ private:
+  Mesh mesh_;
+  OpenMesh::FPropHandleT<int> surface_;
+  std::map<std::array<double, 3>, Mesh::VertexHandle> vertices_;
+};
+
+// A slope's surface class: facing up a roof, facing down a ground, else a wall.
+Surface slope_class(const Vec3& p, const Vec3& q, const Vec3& r) {
+  double nx = (q[1] - p[1]) * (r[2] - p[2]) - (q[2] - p[2]) * (r[1] - p[1]);
+  double ny = (q[2] - p[2]) * (r[0] - p[0]) - (q[0] - p[0]) * (r[2] - p[2]);
+  double nz = (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
+  double len = std::sqrt(nx * nx + ny * ny + nz * nz);
+  return nz > 0.5 * len ? Surface::Roof : nz < -0.5 * len ? Surface::Ground : Surface::Wall;
+}
+
+}  // namespace
+
+Mesh model_mesh(const ModelInstance& m, const ModelLibrary* library) {
+  MeshBuilder mesh;
+  // A foundation from the lowest terrain under the model up to where it stands.
+  if (m.floor > m.base) {
+    mesh.walls(m.polygon.outer, m.base, m.floor);
+    mesh.cap(m.polygon, m.base, true, Surface::Ground);
+    mesh.cap(m.polygon, m.floor, false, Surface::Roof);
+  }
+  if (!library) return mesh.take();
+  const TriangleMesh& model = library->models[m.placed.model].mesh;
+  std::vector<Mesh::VertexHandle> handles;
+  for (const Vec3& v : model.vertices) handles.push_back(mesh.loose_vertex(m.placed.apply(v, m.floor)));
+  for (const auto& t : model.triangles)
+    mesh.add({handles[t[0]], handles[t[1]], handles[t[2]]},
+             slope_class(model.vertices[t[0]], model.vertices[t[1]], model.vertices[t[2]]));
+  return mesh.take();
+}
+
+Mesh building_mesh(const Building& b) {
+  MeshBuilder mesh;
   const double eaves = b.floor + b.eaves;
-  walls(b.polygon.outer, eaves);
-  for (const auto& h : b.polygon.holes) walls(h, eaves);
-  cap(b.base, true, Surface::Ground);
-  if (b.roof_faces.empty()) cap(eaves, false, Surface::Roof);
+  mesh.walls(b.polygon.outer, b.base, eaves);
+  for (const auto& h : b.polygon.holes) mesh.walls(h, b.base, eaves);
+  mesh.cap(b.polygon, b.base, true, Surface::Ground);
+  if (b.roof_faces.empty()) mesh.cap(b.polygon, eaves, false, Surface::Roof);
   // Pitched roofs: faces rising from the eaves (a gable's upright triangle counts as wall).
   for (const geom::Face3& f : b.roof_faces) {
     std::vector<Mesh::VertexHandle> face;
-    for (const geom::Vec3& v : f) face.push_back(vertex(v[0], v[1], v[2] + b.floor));
-    add(face, is_gable(f) ? Surface::Wall : Surface::Roof);
+    for (const geom::Vec3& v : f) face.push_back(mesh.vertex(v[0], v[1], v[2] + b.floor));
+    mesh.add(face, is_gable(f) ? Surface::Wall : Surface::Roof);
   }
-  return mesh;
+  return mesh.take();
 }
 
 }  // namespace exacity

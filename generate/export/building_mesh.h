@@ -18,15 +18,17 @@ using Mesh = OpenMesh::PolyMesh_ArrayKernelT<MeshTraits>;
 enum class Surface : int { Ground = 0, Wall = 1, Roof = 2 };
 inline constexpr const char* kSurfaceNames[] = {"ground", "wall", "roof"};
 
-// The mesh of one building, z up, each face carrying a Surface in the mesh's "surface"
-// face property. An extruded building is closed and outward-facing, its walls reaching
-// down to the terrain's lowest point under it. A placed model is its library mesh moved
-// into place (faces classed by their slope) on a foundation where the ground slopes;
-// without a library, only the foundation.
-Mesh building_mesh(const Building& b, const ModelLibrary* library);
+// Meshes are z up, each face carrying a Surface in the mesh's "surface" face property.
+// An extruded building's is closed and outward-facing, its walls reaching down to the
+// terrain's lowest point under it.
+Mesh building_mesh(const Building& b);
+// A placed model's: its library mesh moved into place (faces classed by their slope) on a
+// foundation where the ground slopes; without a library, only the foundation.
+Mesh model_mesh(const ModelInstance& m, const ModelLibrary* library);
 
-// building_mesh of every building, in parallel; the exporters share them.
-std::vector<Mesh> building_meshes(const std::vector<Building>& buildings, const ModelLibrary* library);
+// The mesh of every building and model, by id, in parallel; the exporters share them.
+std::vector<Mesh> structure_meshes(const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
+                                   const ModelLibrary* library);
 
 // The mesh as triangles (faces triangulated in their plane): one per entry of `surface`.
 struct MeshTriangles {

@@ -72,10 +72,11 @@ json surface(const geom::Polygon& p, double z, bool facing_down, Vertices& v) {
   return s;
 }
 
-// The closed shell of a prism: ground, a wall per edge, roof; with each surface's class.
-// Walls follow the same quantised rings as ground and roof, so the shell stays closed.
-bool prism(const Building& b, Vertices& v, json& shell, std::vector<int>& classes) {
-  json ground = surface(b.polygon, b.base, true, v), roof = surface(b.polygon, b.floor + b.height, false, v);
+// The closed shell of a footprint's prism from `base` to `top`: ground, a wall per edge,
+// roof; with each surface's class. Walls follow the same quantised rings as ground and
+// roof, so the shell stays closed.
+bool prism(const geom::Polygon& footprint, double base, double top, Vertices& v, json& shell, std::vector<int>& classes) {
+  json ground = surface(footprint, base, true, v), roof = surface(footprint, top, false, v);
   if (ground.empty() || roof.empty()) return false;
   shell.push_back(ground);
   classes.push_back(0);
@@ -84,7 +85,7 @@ bool prism(const Building& b, Vertices& v, json& shell, std::vector<int>& classe
     for (std::size_t i = 0; i < ring.size(); ++i) {
       // Roof and ground vertices differ only in z: quantised the same way, so look them up.
       int a = ring[i], c = ring[(i + 1) % ring.size()];
-      shell.push_back(json::array({json::array({v.below(a, b.base), v.below(c, b.base), c, a})}));
+      shell.push_back(json::array({json::array({v.below(a, base), v.below(c, base), c, a})}));
       classes.push_back(1);
     }
   }
@@ -126,16 +127,16 @@ void append_triangles(const GroundMesh& m, Vertices& v, json& out) {
 
 // Polygons smaller than the quantum vanish; null when all do. On terrain each polygon
 // becomes the triangles that drape it over the heightmap.
-json multisurface(const std::vector<const VectorFeature*>& features, const Terrain* terrain, Vertices& v) {
+json multisurface(const std::vector<const geom::Polygon*>& polygons, const Terrain* terrain, Vertices& v) {
   json boundaries = json::array();
-  for (const auto* f : features) {
+  for (const geom::Polygon* p : polygons) {
     if (!terrain) {
-      json s = surface(f->polygon, 0, false, v);
+      json s = surface(*p, 0, false, v);
       if (!s.empty()) boundaries.push_back(s);
       continue;
     }
     GroundMesh m;
-    drape(f->polygon, terrain, 0, m);
+    drape(*p, terrain, 0, m);
     append_triangles(m, v, boundaries);
   }
   if (boundaries.empty()) return nullptr;
@@ -155,78 +156,106 @@ json templates(const ModelLibrary& library) {
   return {{"templates", list}, {"vertices-templates", vertices}};
 }
 
+const json kSemanticSurfaces = json::array({{{"type", "GroundSurface"}}, {{"type", "WallSurface"}}, {{"type", "RoofSurface"}}});
+
+// An extruded building: LOD1 its prism, LOD2 its roof as built (where quantisation
+// collapses a face of it, the prism). Null when the prism collapses.
+json building_object(const Building& b, const Mesh& mesh, Vertices& v) {
+  json shell = json::array();
+  std::vector<int> classes;
+  if (!prism(b.polygon, b.base, b.floor + b.height, v, shell, classes)) return nullptr;
+  json lod1{{"type", "Solid"}, {"lod", "1"}, {"boundaries", json::array({shell})}};
+  json lod2_shell = json::array();
+  std::vector<int> lod2_classes;
+  if (!mesh_shell(mesh, v, lod2_shell, lod2_classes)) lod2_shell = shell, lod2_classes = classes;
+  json lod2{{"type", "Solid"}, {"lod", "2"}, {"boundaries", json::array({lod2_shell})},
+            {"semantics", {{"surfaces", kSemanticSurfaces}, {"values", json::array({lod2_classes})}}}};
+  return {{"type", "Building"},
+          {"attributes", {{"lot", b.lot}, {"zone", name(b.zone)}, {"measuredHeight", b.height}, {"roofType", b.roof}}},
+          {"geometry", json::array({lod1, lod2})}};
+}
+
+// A placed model: LOD1 the prism of its outline; then a library building's surfaces as
+// placed (CityJSON lets no Building hold a GeometryInstance), or for furniture and trees
+// the template stored once, placed by a transform about its reference point. Null when
+// the prism collapses.
+json model_object(const ModelInstance& m, const Mesh& mesh, const ModelLibrary& library, Vertices& v) {
+  json shell = json::array();
+  std::vector<int> classes;
+  if (!prism(m.polygon, m.base, m.floor + m.height, v, shell, classes)) return nullptr;
+  json lod1{{"type", "Solid"}, {"lod", "1"}, {"boundaries", json::array({shell})}};
+  json placed;
+  if (m.kind == ModelKind::Building) {
+    json faces = json::array();
+    std::vector<int> face_classes;
+    mesh_shell(mesh, v, faces, face_classes, true);
+    placed = {{"type", "MultiSurface"}, {"lod", "2"}, {"boundaries", faces},
+              {"semantics", {{"surfaces", kSemanticSurfaces}, {"values", face_classes}}}};
+  } else {
+    const double c = std::cos(m.placed.angle) * m.placed.scale, s = std::sin(m.placed.angle) * m.placed.scale;
+    placed = {{"type", "GeometryInstance"},
+              {"template", m.placed.model},
+              {"boundaries", {v(m.placed.position.x, m.placed.position.y, m.floor)}},
+              {"transformationMatrix", {c, -s, 0, 0, s, c, 0, 0, 0, 0, m.placed.scale, 0, 0, 0, 0, 1}}};
+  }
+  const char* type = m.kind == ModelKind::Tree     ? "SolitaryVegetationObject"
+                     : m.kind == ModelKind::Street ? "CityFurniture"
+                                                   : "Building";
+  return {{"type", type},
+          {"attributes",
+           {{"lot", m.lot}, {"zone", name(m.zone)}, {"measuredHeight", m.height}, {"model", library.models[m.placed.model].name}}},
+          {"geometry", json::array({lod1, placed})}};
+}
+
 }  // namespace
 
-void write_cityjson(const CityLayers& layers, const std::vector<Building>& buildings, const std::vector<Mesh>& meshes,
+void write_cityjson(const Ground& ground, const std::vector<Building>& buildings,
+                    const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
                     const ModelLibrary* library, const Terrain* terrain, const Sketch& sketch,
                     const std::filesystem::path& file) {
-  geom::Box box = layers.ground_bounds();
+  geom::Box box = ground.bounds();
   if (box.holds_nothing()) box = {0, 0, 1, 1};
   const geom::Vec2 origin{std::floor(box.min_x), std::floor(box.min_y)};
   Vertices v(origin);
   json objects = json::object();
 
-  const json semantics_surfaces = json::array({{{"type", "GroundSurface"}}, {{"type", "WallSurface"}}, {{"type", "RoofSurface"}}});
-  for (std::size_t i = 0; i < buildings.size(); ++i) {
-    const Building& b = buildings[i];
-    json shell = json::array();
-    std::vector<int> classes;
-    if (!prism(b, v, shell, classes)) continue;
-    json lod1{{"type", "Solid"}, {"lod", "1"}, {"boundaries", json::array({shell})}};
-    json attributes{{"lot", b.lot}, {"zone", name(b.zone)}, {"measuredHeight", b.height}, {"roofType", b.roof}};
-    if (b.placed.model >= 0) {
-      const Model& m = library->models[b.placed.model];
-      attributes.erase("roofType");
-      attributes["model"] = m.name;
-      json placed;
-      if (m.kind == ModelKind::Building) {
-        // CityJSON lets no Building hold a GeometryInstance: its placed surfaces, as built.
-        json faces = json::array();
-        std::vector<int> face_classes;
-        mesh_shell(meshes[i], v, faces, face_classes, true);
-        placed = {{"type", "MultiSurface"}, {"lod", "2"}, {"boundaries", faces},
-                  {"semantics", {{"surfaces", semantics_surfaces}, {"values", face_classes}}}};
-      } else {
-        // Stored once among the templates, placed by a transform about its reference point.
-        const double c = std::cos(b.placed.angle) * b.placed.scale, s = std::sin(b.placed.angle) * b.placed.scale;
-        placed = {{"type", "GeometryInstance"},
-                  {"template", b.placed.model},
-                  {"boundaries", {v(b.placed.position.x, b.placed.position.y, b.floor)}},
-                  {"transformationMatrix", {c, -s, 0, 0, s, c, 0, 0, 0, 0, b.placed.scale, 0, 0, 0, 0, 1}}};
-      }
-      const char* type = m.kind == ModelKind::Tree     ? "SolitaryVegetationObject"
-                         : m.kind == ModelKind::Street ? "CityFurniture"
-                                                       : "Building";
-      objects["building-" + std::to_string(i)] = {
-          {"type", type}, {"attributes", attributes}, {"geometry", json::array({lod1, placed})}};
-      continue;
-    }
-    // LOD2 has the roof as built; where quantisation collapses a face of it, the prism.
-    json lod2_shell = json::array();
-    std::vector<int> lod2_classes;
-    if (!mesh_shell(meshes[i], v, lod2_shell, lod2_classes)) lod2_shell = shell, lod2_classes = classes;
-    json lod2{{"type", "Solid"}, {"lod", "2"}, {"boundaries", json::array({lod2_shell})},
-              {"semantics", {{"surfaces", semantics_surfaces}, {"values", json::array({lod2_classes})}}}};
-    objects["building-" + std::to_string(i)] = {
-        {"type", "Building"},
-        {"attributes", attributes},
-        {"geometry", json::array({lod1, lod2})}};
-  }
-  auto surfaces = [&](const Layer& layer, const std::string& prefix, const std::string& type, const std::string& key) {
-    std::map<std::string, std::vector<const VectorFeature*>> grouped;  // by `key`'s value
-    for (const auto& f : layer.features) grouped[key.empty() ? "" : f.properties[key].dump()].push_back(&f);
+  for_each_by_id(
+      buildings, models,
+      [&](const Building& b) {
+        if (json o = building_object(b, meshes[b.id], v); !o.is_null()) objects["building-" + std::to_string(b.id)] = o;
+      },
+      [&](const ModelInstance& m) {
+        if (json o = model_object(m, meshes[m.id], *library, v); !o.is_null())
+          objects["building-" + std::to_string(m.id)] = o;
+      });
+  // One object per group of surfaces, groups in the order of their key's text (kept from
+  // when they were grouped by their GeoJSON property), named prefix + n.
+  using Groups = std::map<std::string, std::pair<json, std::vector<const geom::Polygon*>>>;
+  auto surfaces = [&](const Groups& groups, const std::string& prefix, const std::string& type, const char* key) {
     int n = 0;
-    for (const auto& [value, features] : grouped) {
-      json geometry = multisurface(features, terrain, v);
+    for (const auto& [text, group] : groups) {
+      json geometry = multisurface(group.second, terrain, v);
       if (geometry.is_null()) continue;
       json o{{"type", type}, {"geometry", json::array({geometry})}};
-      if (!key.empty()) o["attributes"] = {{key, json::parse(value)}};
+      if (key) o["attributes"] = {{key, group.first}};
       objects[prefix + std::to_string(n++)] = o;
     }
   };
-  surfaces(layers.road_areas, "road-", "Road", "road");
-  surfaces(layers.zones, "landuse-", "LandUse", "zone");
-  surfaces(layers.water, "water-", "WaterBody", "");
+  Groups roads, zones, water;
+  for (const RoadArea& a : ground.road_areas) {
+    auto& [road, polygons] = roads[a.road >= 0 ? std::to_string(a.road) : "null"];
+    road = a.road >= 0 ? json(a.road) : json(nullptr);
+    polygons.push_back(&a.polygon);
+  }
+  for (const ZoneArea& z : ground.zones) {
+    auto& [zone, polygons] = zones[std::string(name(z.type))];
+    zone = name(z.type);
+    polygons.push_back(&z.polygon);
+  }
+  for (const geom::Polygon& w : ground.water) water[""].second.push_back(&w);
+  surfaces(roads, "road-", "Road", "road");
+  surfaces(zones, "landuse-", "LandUse", "zone");
+  surfaces(water, "water-", "WaterBody", nullptr);
 
   // The ground under the city: the heightmap over the rectangle around it.
   json tin = json::array();

@@ -7,15 +7,16 @@
 #include <vector>
 
 #include "generate/export/building_mesh.h"
+#include "generate/city/ground.h"
 #include "generate/city/sketch.h"
 #include "generate/city/terrain.h"
-#include "generate/export/vector_layers.h"
 
 namespace exacity {
 
-// meshes[i] is building_mesh(buildings[i]). Placed models are instances of templates,
+// meshes are structure_meshes(buildings, models, ...), by id. Placed models are instances of templates,
 // one per library model; on terrain, ground surfaces are draped over it.
-void write_cityjson(const CityLayers& layers, const std::vector<Building>& buildings, const std::vector<Mesh>& meshes,
+void write_cityjson(const Ground& ground, const std::vector<Building>& buildings,
+                    const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
                     const ModelLibrary* library, const Terrain* terrain, const Sketch& sketch,
                     const std::filesystem::path& file);
 

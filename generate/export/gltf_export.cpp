@@ -119,94 +119,94 @@ class Glb {
   std::size_t triangles_ = 0;
 };
 
-}  // namespace
-
-GltfCounts write_gltf(const CityLayers& layers, const std::vector<Building>& buildings, const std::vector<Mesh>& meshes,
-                      const ModelLibrary* library, const Terrain* terrain, const std::filesystem::path& file) {
-  geom::Box box = layers.ground_bounds();
-  if (box.holds_nothing()) box = {0, 0, 1, 1};
-  const geom::Vec2 origin{std::round((box.min_x + box.max_x) / 2), std::round((box.min_y + box.max_y) / 2)};
-  // Exacity's x east, y north, z up to glTF's x, y up, z south, about the origin.
-  auto local = [&](double x, double y, double z) {
+// Exacity's x east, y north, z up to glTF's x, y up, z south, about the local origin.
+struct Frame {
+  geom::Vec2 origin;
+  Float3 operator()(double x, double y, double z) const {
     return Float3{static_cast<float>(x - origin.x), static_cast<float>(z), static_cast<float>(origin.y - y)};
-  };
-  auto add_ground = [&](const GroundMesh& g, Triangles& t) {
-    const auto first = static_cast<std::uint32_t>(t.positions.size());
-    for (const Vec3& v : g.vertices) t.positions.push_back(local(v[0], v[1], v[2]));
-    for (const auto& tri : g.triangles)
-      for (int k : tri) t.indices.push_back(first + static_cast<std::uint32_t>(k));
-  };
+  }
+};
 
-  Glb glb;
-  tinygltf::Node root;
-  root.name = "city";
-  root.translation = {origin.x, 0, -origin.y};
+using Primitives = std::vector<std::pair<std::pair<int, int>, int>>;  // (accessors, material) each
 
-  // The ground, layer over layer a few centimetres apart so none hides the next.
-  std::vector<std::pair<std::pair<int, int>, int>> ground;
+void add_ground_mesh(const GroundMesh& g, const Frame& local, Triangles& t) {
+  const auto first = static_cast<std::uint32_t>(t.positions.size());
+  for (const Vec3& v : g.vertices) t.positions.push_back(local(v[0], v[1], v[2]));
+  for (const auto& tri : g.triangles)
+    for (int k : tri) t.indices.push_back(first + static_cast<std::uint32_t>(k));
+}
+
+// The ground, layer over layer a few centimetres apart so none hides the next: terrain,
+// zones (a material per zone type), water, roads.
+Primitives ground_primitives(const Ground& ground, const Terrain* terrain, const geom::Box& box, const Frame& local,
+                             Glb& glb) {
+  Primitives out;
   {
     Triangles t;
-    add_ground(terrain_tin(terrain, box, 512), t);
-    ground.push_back({glb.accessors(t), glb.material("terrain", kTerrainColour)});
+    add_ground_mesh(terrain_tin(terrain, box, 512), local, t);
+    out.push_back({glb.accessors(t), glb.material("terrain", kTerrainColour)});
   }
-  std::map<std::string, Triangles> zones;
-  for (const auto& f : layers.zones.features) {
+  std::map<std::string, std::pair<ZoneType, Triangles>> zones;  // by name: the materials' order
+  for (const ZoneArea& z : ground.zones) {
     GroundMesh g;
-    drape(f.polygon, terrain, 0.05, g);
-    add_ground(g, zones[f.properties.value("zone", "")]);
+    drape(z.polygon, terrain, 0.05, g);
+    auto& [type, t] = zones[std::string(name(z.type))];
+    type = z.type;
+    add_ground_mesh(g, local, t);
   }
   for (const auto& [zone, t] : zones)
-    ground.push_back({glb.accessors(t), glb.material("ground_" + zone, ground_colour(*parse_zone_type(zone)))});
+    out.push_back({glb.accessors(t.second), glb.material("ground_" + zone, ground_colour(t.first))});
   Triangles water, roads;
-  for (const auto& f : layers.water.features) {
+  for (const geom::Polygon& w : ground.water) {
     GroundMesh g;
-    drape(f.polygon, terrain, 0.05, g);
-    add_ground(g, water);
+    drape(w, terrain, 0.05, g);
+    add_ground_mesh(g, local, water);
   }
-  for (const auto& f : layers.road_areas.features) {
+  for (const RoadArea& a : ground.road_areas) {
     GroundMesh g;
-    drape(f.polygon, terrain, f.properties.value("bridge", false) ? 0.3 : 0.1, g);
-    add_ground(g, roads);
+    drape(a.polygon, terrain, a.bridge ? 0.3 : 0.1, g);
+    add_ground_mesh(g, local, roads);
   }
-  ground.push_back({glb.accessors(water), glb.material("water", ground_colour(ZoneType::Water), 0.1)});
-  ground.push_back({glb.accessors(roads), glb.material("road", kRoadColour)});
-  tinygltf::Node ground_node;
-  ground_node.name = "ground";
-  ground_node.mesh = glb.mesh("ground", ground);
-  if (ground_node.mesh >= 0) root.children.push_back(glb.node(ground_node));
+  out.push_back({glb.accessors(water), glb.material("water", ground_colour(ZoneType::Water), 0.1)});
+  out.push_back({glb.accessors(roads), glb.material("road", kRoadColour)});
+  return out;
+}
 
-  // Extruded buildings and the foundations of placed models, merged per material.
+// Extruded buildings and the foundations of placed models, merged per zone and surface.
+Primitives building_primitives(const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
+                               const std::vector<Mesh>& meshes, const Frame& local, Glb& glb) {
   std::map<std::pair<ZoneType, int>, Triangles> merged;
-  for (std::size_t i = 0; i < buildings.size(); ++i) {
-    const Building& b = buildings[i];
-    if (b.placed.model >= 0 && !(b.floor > b.base)) continue;
-    const Mesh mesh = b.placed.model >= 0 ? building_mesh(b, nullptr) : Mesh();
-    const MeshTriangles tris = mesh_triangles(b.placed.model >= 0 ? mesh : meshes[i]);
+  auto merge = [&](ZoneType zone, const Mesh& mesh) {
+    const MeshTriangles tris = mesh_triangles(mesh);
     for (std::size_t k = 0; k < tris.triangles.size(); ++k) {
-      Triangles& t = merged[{b.zone, static_cast<int>(tris.surface[k])}];
+      Triangles& t = merged[{zone, static_cast<int>(tris.surface[k])}];
       for (int v : tris.triangles[k]) {
         const Vec3& p = tris.vertices[v];
         t.indices.push_back(static_cast<std::uint32_t>(t.positions.size()));
         t.positions.push_back(local(p[0], p[1], p[2]));
       }
     }
-  }
-  std::vector<std::pair<std::pair<int, int>, int>> parts;
+  };
+  for_each_by_id(
+      buildings, models, [&](const Building& b) { merge(b.zone, meshes[b.id]); },
+      [&](const ModelInstance& m) {
+        if (m.floor > m.base) merge(m.zone, model_mesh(m, nullptr));
+      });
+  Primitives out;
   for (const auto& [key, t] : merged)
-    parts.push_back({glb.accessors(t), glb.material(std::string(name(key.first)) + "_" + kSurfaceNames[key.second],
-                                                    surface_colour(key.first, static_cast<Surface>(key.second)))});
-  tinygltf::Node buildings_node;
-  buildings_node.name = "buildings";
-  buildings_node.mesh = glb.mesh("buildings", parts);
-  if (buildings_node.mesh >= 0) root.children.push_back(glb.node(buildings_node));
+    out.push_back({glb.accessors(t), glb.material(std::string(name(key.first)) + "_" + kSurfaceNames[key.second],
+                                                  surface_colour(key.first, static_cast<Surface>(key.second)))});
+  return out;
+}
 
-  // Placed models: geometry once per model, a mesh per colour variant used, a node each.
-  GltfCounts counts;
+// Placed models: geometry once per model, a mesh per colour variant used, a node each
+// (children of `root`). Returns the nodes added.
+std::size_t add_model_nodes(const std::vector<ModelInstance>& models, const ModelLibrary* library, const Frame& local,
+                            Glb& glb, tinygltf::Node& root) {
   std::map<int, std::vector<std::pair<int, int>>> geometry;  // model -> accessors per material
   std::map<std::pair<int, int>, int> variant_mesh;          // (model, tint) -> mesh
-  for (const Building& b : buildings) {
+  for (const ModelInstance& b : models) {
     const int mi = b.placed.model;
-    if (mi < 0) continue;
     const Model& model = library->models[mi];
     if (!geometry.count(mi)) {
       std::vector<Triangles> by_material(model.mesh.materials.size());
@@ -222,7 +222,7 @@ GltfCounts write_gltf(const CityLayers& layers, const std::vector<Building>& bui
     }
     auto [it, added] = variant_mesh.emplace(std::make_pair(mi, b.placed.tint), -1);
     if (added) {
-      std::vector<std::pair<std::pair<int, int>, int>> prims;
+      Primitives prims;
       for (std::size_t k = 0; k < model.mesh.materials.size(); ++k)
         prims.push_back({geometry[mi][k], glb.material(model.name + "_" + model.mesh.materials[k].name + "_" + std::to_string(b.placed.tint),
                                                        tinted(model.mesh.materials[k].colour, b.placed.tint))});
@@ -236,8 +236,34 @@ GltfCounts write_gltf(const CityLayers& layers, const std::vector<Building>& bui
     n.rotation = {0, std::sin(b.placed.angle / 2), 0, std::cos(b.placed.angle / 2)};
     n.scale = {b.placed.scale, b.placed.scale, b.placed.scale};
     root.children.push_back(glb.node(n));
-    ++counts.instances;
   }
+  return models.size();
+}
+
+// A node holding one mesh of the primitives, under `root`; none when they are all empty.
+void add_mesh_node(const std::string& name, const Primitives& primitives, Glb& glb, tinygltf::Node& root) {
+  tinygltf::Node node;
+  node.name = name;
+  node.mesh = glb.mesh(name, primitives);
+  if (node.mesh >= 0) root.children.push_back(glb.node(node));
+}
+
+}  // namespace
+
+GltfCounts write_gltf(const Ground& ground, const std::vector<Building>& buildings,
+                      const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
+                      const ModelLibrary* library, const Terrain* terrain, const std::filesystem::path& file) {
+  geom::Box box = ground.bounds();
+  if (box.holds_nothing()) box = {0, 0, 1, 1};
+  const Frame local{local_origin(box)};
+  Glb glb;
+  tinygltf::Node root;
+  root.name = "city";
+  root.translation = {local.origin.x, 0, -local.origin.y};
+  add_mesh_node("ground", ground_primitives(ground, terrain, box, local, glb), glb, root);
+  add_mesh_node("buildings", building_primitives(buildings, models, meshes, local, glb), glb, root);
+  GltfCounts counts;
+  counts.instances = add_model_nodes(models, library, local, glb, root);
   glb.write(glb.node(root), file);
   counts.meshes = glb.meshes();
   counts.triangles = glb.triangles();

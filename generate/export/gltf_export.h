@@ -12,7 +12,8 @@
 #include "generate/export/building_mesh.h"
 #include "generate/placement/model_library.h"
 #include "generate/city/terrain.h"
-#include "generate/export/vector_layers.h"
+#include "generate/city/ground.h"
+#include "generate/placement/buildings.h"
 
 namespace exacity {
 
@@ -20,8 +21,9 @@ struct GltfCounts {
   std::size_t meshes = 0, instances = 0, triangles = 0;
 };
 
-// meshes[i] is building_mesh(buildings[i], library).
-GltfCounts write_gltf(const CityLayers& layers, const std::vector<Building>& buildings, const std::vector<Mesh>& meshes,
+// meshes are structure_meshes(buildings, models, library), by id.
+GltfCounts write_gltf(const Ground& ground, const std::vector<Building>& buildings,
+                      const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
                       const ModelLibrary* library, const Terrain* terrain, const std::filesystem::path& file);
 
 }  // namespace exacity

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "generate/placement/obj_file.h"
@@ -12,6 +13,13 @@
 #include "geom/plain.h"
 
 namespace exacity {
+
+// The origin the 3D outputs and the renderer count from, so single floats keep
+// millimetres across a large city: the whole metre nearest the centre of the city's
+// ground (CityJSON's integer frame is its own: the `transform` the format defines).
+inline geom::Vec2 local_origin(const geom::Box& ground) {
+  return {std::round((ground.min_x + ground.max_x) / 2), std::round((ground.min_y + ground.max_y) / 2)};
+}
 
 struct GroundMesh {
   std::vector<Vec3> vertices;

@@ -9,8 +9,9 @@
 #include "generate/city/palette.h"
 
 namespace exacity {
-MeshCounts write_meshes(const std::vector<Building>& buildings, const std::vector<Mesh>& meshes,
-                        const std::filesystem::path& obj_file, const std::filesystem::path& ply_file) {
+MeshCounts write_meshes(const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
+                        const std::vector<Mesh>& meshes, const std::filesystem::path& obj_file,
+                        const std::filesystem::path& ply_file) {
   std::filesystem::path mtl_file = obj_file;
   mtl_file.replace_extension(".mtl");
   std::ofstream obj(obj_file, std::ios::binary), mtl(mtl_file, std::ios::binary);
@@ -26,8 +27,10 @@ MeshCounts write_meshes(const std::vector<Building>& buildings, const std::vecto
   obj << "# Exacity city: x east, y north, z up, metres\nmtllib " << mtl_file.filename().string() << '\n';
   MeshCounts counts;
   std::ostringstream ply_vertices, ply_faces;
-  for (std::size_t i = 0; i < buildings.size(); ++i) {
-    const Building& b = buildings[i];
+  std::vector<ZoneType> zone_of;
+  for_each_by_id(buildings, models, [&](const Building& b) { zone_of.push_back(b.zone); },
+                 [&](const ModelInstance& m) { zone_of.push_back(m.zone); });
+  for (std::size_t i = 0; i < meshes.size(); ++i) {
     const Mesh& mesh = meshes[i];
     auto surface = surface_property(mesh);
     for (auto v : mesh.vertices()) {
@@ -46,7 +49,7 @@ MeshCounts write_meshes(const std::vector<Building>& buildings, const std::vecto
     }
     // Faces grouped by material; OBJ indices count from 1 across the file.
     for (Surface s : {Surface::Ground, Surface::Wall, Surface::Roof}) {
-      obj << "usemtl " << name(b.zone) << '_' << kSurfaceNames[static_cast<int>(s)] << '\n';
+      obj << "usemtl " << name(zone_of[i]) << '_' << kSurfaceNames[static_cast<int>(s)] << '\n';
       for (auto f : mesh.faces()) {
         if (mesh.property(surface, f) != static_cast<int>(s)) continue;
         obj << 'f';

@@ -14,8 +14,10 @@ struct MeshCounts {
   std::size_t vertices = 0, faces = 0;
 };
 
-// Writes both files; meshes[i] is building_mesh(buildings[i]). The counts are of the whole city.
-MeshCounts write_meshes(const std::vector<Building>& buildings, const std::vector<Mesh>& meshes,
-                        const std::filesystem::path& obj_file, const std::filesystem::path& ply_file);
+// Writes both files; meshes are structure_meshes(buildings, models, ...), by id. The counts
+// are of the whole city.
+MeshCounts write_meshes(const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
+                        const std::vector<Mesh>& meshes, const std::filesystem::path& obj_file,
+                        const std::filesystem::path& ply_file);
 
 }  // namespace exacity

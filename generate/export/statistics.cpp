@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <unordered_map>
@@ -131,14 +132,27 @@ ordered_json street_figures(const std::vector<const geom::Polyline*>& lines, dou
           {"junctions_per_km2", per_km2(junctions)}};
 }
 
-}  // namespace
+using RoadEdges = std::unordered_set<std::pair<Vec2, Vec2>, SegmentHash>;
 
-ordered_json city_statistics(const CityLayers& layers, const Sketch* sketch) {
-  const Layer &blocks = layers.blocks, &lots = layers.lots, &buildings = layers.buildings, &road_areas = layers.road_areas;
+template <class T>
+std::vector<const T*> pointers(const std::vector<T>& items) {
+  std::vector<const T*> out;
+  for (const auto& item : items) out.push_back(&item);
+  return out;
+}
+
+// "all" and every zone a block, lot or building says it lies in.
+std::set<std::string> zone_names(const CityLayers& layers) {
   std::set<std::string> zones{"all"};
-  for (const Layer* l : {&blocks, &lots, &buildings})
+  for (const Layer* l : {&layers.blocks, &layers.lots, &layers.buildings})
     for (const auto& f : l->features) zones.insert(f.properties.value("zone", "all"));
-  std::unordered_set<std::pair<Vec2, Vec2>, SegmentHash> road_edges;
+  return zones;
+}
+
+// Every edge of the road areas' rings, either way round: a lot fronts a road where one of
+// its edges is one of these.
+RoadEdges road_area_edges(const Layer& road_areas) {
+  RoadEdges road_edges;
   auto add_edges = [&](const geom::Ring& r) {
     for (std::size_t i = 0; i < r.size(); ++i) road_edges.insert(undirected(r[i], r[(i + 1) % r.size()]));
   };
@@ -146,163 +160,257 @@ ordered_json city_statistics(const CityLayers& layers, const Sketch* sketch) {
     add_edges(f.polygon.outer);
     for (const auto& h : f.polygon.holes) add_edges(h);
   }
-  // A lot's depth over its width: its extents across and along its longest edge on a road
-  // area; 0 for a lot with none.
-  auto depth_over_width = [&](const geom::Polygon& p) {
-    const auto& r = p.outer;
-    double longest = 0;
-    std::pair<Vec2, Vec2> frontage;
-    for (std::size_t i = 0; i < r.size(); ++i) {
-      Vec2 a = r[i], b = r[(i + 1) % r.size()];
-      double len = std::hypot(b.x - a.x, b.y - a.y);
-      if (len > longest && road_edges.count(undirected(a, b))) longest = len, frontage = {a, b};
-    }
-    return longest > 0 ? geom::depth_over_width(r, frontage.first, frontage.second) : 0.0;
-  };
+  return road_edges;
+}
 
-  ordered_json per_zone = ordered_json::object();
-  for (const std::string& zone : zones) {
-    auto in_zone = [&](const VectorFeature& f) { return zone == "all" || f.properties.value("zone", "") == zone; };
-    std::vector<double> block_areas, lot_areas;
-    double block_total = 0, oversized = 0;
-    for (const auto& f : blocks.features) {
-      if (!in_zone(f) || f.properties.value("green", false)) continue;
-      double a = geom::area(f.polygon);
-      block_areas.push_back(a);
-      block_total += a;
-      auto type = parse_zone_type(f.properties.value("zone", ""));
-      if (sketch && type && a > kOversized * sketch->zone_params.at(*type).block_area) oversized += a;
-    }
-    std::size_t fronting = 0, lot_count = 0, odd_shape = 0, sharp_lots = 0;
-    for (const auto& f : lots.features) {
-      if (!in_zone(f)) continue;
-      lot_areas.push_back(geom::area(f.polygon));
-      ++lot_count;
-      const double ratio = depth_over_width(f.polygon);
-      fronting += ratio > 0;
-      odd_shape += ratio > 0 && (ratio < kLotShape.min || ratio > kLotShape.max);
-      sharp_lots += sharpest_angle(f.polygon.outer) < kSharpAngle;
-    }
-    std::vector<const geom::Polygon*> footprints;
-    for (const auto& f : buildings.features)
-      if (in_zone(f) && f.properties.value("kind", "building") == "building") footprints.push_back(&f.polygon);
-    if (block_areas.empty() && lot_areas.empty() && footprints.empty()) continue;
-    ordered_json z{{"blocks", {{"area_m2", summary(block_areas)},
-                               {"share_area_over_4x_block_area", block_total > 0 ? std::round(1e4 * oversized / block_total) / 1e4 : 0}}},
-                   {"lots",
-                    {{"area_m2", summary(lot_areas)},
-                     {"share_touching_road", share(fronting, lot_count)},
-                     {"share_depth_over_width_outside_0.5_5", share(odd_shape, lot_count)},
-                     {"share_sharp_angle", share(sharp_lots, lot_count)}}},
-                   {"footprints", footprint_figures(footprints)}};
-    per_zone[zone] = z;
+bool in_zone(const VectorFeature& f, const std::string& zone) {
+  return zone == "all" || f.properties.value("zone", "") == zone;
+}
+
+// A lot's depth over its width: its extents across and along its longest edge on a road
+// area; 0 for a lot with none.
+double lot_depth_over_width(const geom::Polygon& p, const RoadEdges& road_edges) {
+  const auto& r = p.outer;
+  double longest = 0;
+  std::pair<Vec2, Vec2> frontage;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    Vec2 a = r[i], b = r[(i + 1) % r.size()];
+    double len = std::hypot(b.x - a.x, b.y - a.y);
+    if (len > longest && road_edges.count(undirected(a, b))) longest = len, frontage = {a, b};
   }
+  return longest > 0 ? geom::depth_over_width(r, frontage.first, frontage.second) : 0.0;
+}
 
-  // Streets: the city's ground area, and its edge: drawn zone rings and water.
+// A zone's built blocks (green space is left out), and how much of their area lies in
+// blocks over kOversized times their zone's block_area (none without the sketch to say).
+struct BlockTally {
+  std::vector<double> areas;
+  double total = 0, oversized = 0;
+};
+
+BlockTally tally_blocks(const Layer& blocks, const std::string& zone, const Sketch* sketch) {
+  BlockTally t;
+  for (const auto& f : blocks.features) {
+    if (!in_zone(f, zone) || f.properties.value("green", false)) continue;
+    double a = geom::area(f.polygon);
+    t.areas.push_back(a);
+    t.total += a;
+    auto type = parse_zone_type(f.properties.value("zone", ""));
+    if (sketch && type && a > kOversized * sketch->zone_params.at(*type).block_area) t.oversized += a;
+  }
+  return t;
+}
+
+ordered_json block_figures(const BlockTally& t) {
+  return {{"area_m2", summary(t.areas)},
+          {"share_area_over_4x_block_area", t.total > 0 ? std::round(1e4 * t.oversized / t.total) / 1e4 : 0}};
+}
+
+struct LotTally {
+  std::vector<double> areas;
+  std::size_t fronting = 0, count = 0, odd_shape = 0, sharp = 0;
+};
+
+LotTally tally_lots(const Layer& lots, const std::string& zone, const RoadEdges& road_edges) {
+  LotTally t;
+  for (const auto& f : lots.features) {
+    if (!in_zone(f, zone)) continue;
+    t.areas.push_back(geom::area(f.polygon));
+    ++t.count;
+    const double ratio = lot_depth_over_width(f.polygon, road_edges);
+    t.fronting += ratio > 0;
+    t.odd_shape += ratio > 0 && (ratio < kLotShape.min || ratio > kLotShape.max);
+    t.sharp += sharpest_angle(f.polygon.outer) < kSharpAngle;
+  }
+  return t;
+}
+
+ordered_json lot_figures(const LotTally& t) {
+  return {{"area_m2", summary(t.areas)},
+          {"share_touching_road", share(t.fronting, t.count)},
+          {"share_depth_over_width_outside_0.5_5", share(t.odd_shape, t.count)},
+          {"share_sharp_angle", share(t.sharp, t.count)}};
+}
+
+// Buildings only: a layer's other kinds of feature have no footprint to measure.
+std::vector<const geom::Polygon*> zone_footprints(const Layer& buildings, const std::string& zone) {
+  std::vector<const geom::Polygon*> footprints;
+  for (const auto& f : buildings.features)
+    if (in_zone(f, zone) && f.properties.value("kind", "building") == "building") footprints.push_back(&f.polygon);
+  return footprints;
+}
+
+// One zone's (or "all"'s) blocks, lots and footprints; none for a zone with none of them.
+std::optional<ordered_json> zone_figures(const CityLayers& layers, const std::string& zone, const RoadEdges& road_edges,
+                                         const Sketch* sketch) {
+  const BlockTally blocks = tally_blocks(layers.blocks, zone, sketch);
+  const LotTally lots = tally_lots(layers.lots, zone, road_edges);
+  const std::vector<const geom::Polygon*> footprints = zone_footprints(layers.buildings, zone);
+  if (blocks.areas.empty() && lots.areas.empty() && footprints.empty()) return std::nullopt;
+  return ordered_json{{"blocks", block_figures(blocks)},
+                      {"lots", lot_figures(lots)},
+                      {"footprints", footprint_figures(footprints)}};
+}
+
+// The city's ground: what zones, water and road areas cover.
+double ground_area(const CityLayers& layers) {
   double ground = 0;
   for (const Layer* l : {&layers.zones, &layers.water, &layers.road_areas})
     for (const auto& f : l->features) ground += geom::area(f.polygon);
-  geom::SegmentIndex edge(16.0);
-  std::vector<const geom::Polygon*> drawn;
-  if (sketch)
-    for (const auto& z : sketch->zones)
-      for (const auto& p : z.polygons) edge.add_polygon(p), drawn.push_back(&p);
-  for (const auto& f : layers.water.features) edge.add_polygon(f.polygon);
-  auto on_edge = [&](Vec2 p) {
-    if (edge.near(p, kOnEdge)) return true;
-    for (const geom::Polygon* d : drawn)
-      if (geom::odd_crossings(d->outer, p)) return false;
-    return true;  // outside every drawn zone: a sketch road's end past the city
-  };
-  std::vector<const geom::Polyline*> lines;
-  for (const auto& f : layers.roads.features) lines.push_back(&f.line);
-  return {{"zones", per_zone}, {"streets", street_figures(lines, ground, on_edge)}};
+  return ground;
 }
 
-ordered_json real_statistics(const std::filesystem::path& file) {
+// The city's edge: the drawn zones' rings and the water's, and whatever lies outside every
+// drawn zone.
+class CityEdge {
+ public:
+  CityEdge(const CityLayers& layers, const Sketch* sketch) {
+    if (sketch)
+      for (const auto& z : sketch->zones)
+        for (const auto& p : z.polygons) rings_.add_polygon(p), drawn_.push_back(&p);
+    for (const auto& f : layers.water.features) rings_.add_polygon(f.polygon);
+  }
+
+  bool lies_on(Vec2 p) const {
+    if (rings_.near(p, kOnEdge)) return true;
+    for (const geom::Polygon* d : drawn_)
+      if (geom::odd_crossings(d->outer, p)) return false;
+    return true;  // outside every drawn zone: a sketch road's end past the city
+  }
+
+ private:
+  geom::SegmentIndex rings_{16.0};
+  std::vector<const geom::Polygon*> drawn_;
+};
+
+std::vector<const geom::Polyline*> centre_lines(const Layer& roads) {
+  std::vector<const geom::Polyline*> lines;
+  for (const auto& f : roads.features) lines.push_back(&f.line);
+  return lines;
+}
+
+// Positions past a million kilometres are no place on Earth in any frame: their feature is skipped.
+constexpr double kFarthest = 1e9;
+
+// The footprints and streets of a file of real data.
+struct RealFeatures {
+  std::vector<geom::Polygon> polygons;
+  std::vector<geom::Polyline> lines;
+  std::size_t skipped = 0;  // features that are neither, or unusable
+};
+
+ordered_json read_feature_collection(const std::filesystem::path& file) {
   std::ifstream stream(file, std::ios::binary);
   if (!stream) throw UserError(file.string() + ": cannot be read; give a GeoJSON file of footprints or streets");
   ordered_json doc = ordered_json::parse(stream, nullptr, false);
   if (doc.is_discarded() || !doc.is_object() || !doc.contains("features") || !doc["features"].is_array())
     throw UserError(file.string() + ": not a GeoJSON FeatureCollection; give footprints (Polygons) or streets (LineStrings)");
-  std::vector<geom::Polygon> polygons;
-  std::vector<geom::Polyline> lines;
-  std::size_t skipped = 0;
-  // Positions past a million kilometres are no place on Earth in any frame: their feature is skipped.
-  constexpr double kFarthest = 1e9;
-  auto points = [&](const ordered_json& c) {
-    std::vector<Vec2> out;
-    if (!c.is_array()) return out;
-    for (const auto& p : c) {
-      if (!p.is_array() || p.size() < 2 || !p[0].is_number() || !p[1].is_number()) continue;
-      Vec2 v{p[0].get<double>(), p[1].get<double>()};
-      if (!(std::abs(v.x) <= kFarthest && std::abs(v.y) <= kFarthest)) return std::vector<Vec2>{};
-      out.push_back(v);
-    }
-    return out;
-  };
-  auto polygon = [&](const ordered_json& rings) {
-    if (!rings.is_array() || rings.empty()) return ++skipped, void();
-    geom::Polygon p{points(rings[0]), {}};
-    if (p.outer.size() > 1 && p.outer.front() == p.outer.back()) p.outer.pop_back();
-    if (p.outer.size() < 3) return ++skipped, void();
-    for (std::size_t k = 1; k < rings.size(); ++k) p.holes.push_back(points(rings[k]));
-    polygons.push_back(std::move(p));
-  };
-  auto line = [&](const ordered_json& c) {
-    std::vector<Vec2> l = points(c);
-    if (l.size() < 2) return ++skipped, void();
-    lines.push_back(std::move(l));
-  };
-  for (const auto& f : doc["features"]) {
+  return doc;
+}
+
+// Malformed positions are passed over; a position past kFarthest empties the whole list.
+std::vector<Vec2> real_positions(const ordered_json& c) {
+  std::vector<Vec2> out;
+  if (!c.is_array()) return out;
+  for (const auto& p : c) {
+    if (!p.is_array() || p.size() < 2 || !p[0].is_number() || !p[1].is_number()) continue;
+    Vec2 v{p[0].get<double>(), p[1].get<double>()};
+    if (!(std::abs(v.x) <= kFarthest && std::abs(v.y) <= kFarthest)) return std::vector<Vec2>{};
+    out.push_back(v);
+  }
+  return out;
+}
+
+void add_polygon(const ordered_json& rings, RealFeatures& real) {
+  if (!rings.is_array() || rings.empty()) return ++real.skipped, void();
+  geom::Polygon p{real_positions(rings[0]), {}};
+  if (p.outer.size() > 1 && p.outer.front() == p.outer.back()) p.outer.pop_back();
+  if (p.outer.size() < 3) return ++real.skipped, void();
+  for (std::size_t k = 1; k < rings.size(); ++k) p.holes.push_back(real_positions(rings[k]));
+  real.polygons.push_back(std::move(p));
+}
+
+void add_line(const ordered_json& c, RealFeatures& real) {
+  std::vector<Vec2> l = real_positions(c);
+  if (l.size() < 2) return ++real.skipped, void();
+  real.lines.push_back(std::move(l));
+}
+
+RealFeatures read_features(const ordered_json& features) {
+  RealFeatures real;
+  for (const auto& f : features) {
     if (!f.is_object() || !f.contains("geometry") || !f["geometry"].is_object()) {
-      ++skipped;
+      ++real.skipped;
       continue;
     }
     const auto& g = f["geometry"];
     const std::string type = g.value("type", "");
     const auto& c = g.contains("coordinates") ? g["coordinates"] : ordered_json();
-    if (type == "Polygon") polygon(c);
-    else if (type == "MultiPolygon" && c.is_array()) for (const auto& p : c) polygon(p);
-    else if (type == "LineString") line(c);
-    else if (type == "MultiLineString" && c.is_array()) for (const auto& l : c) line(l);
-    else ++skipped;
+    if (type == "Polygon") add_polygon(c, real);
+    else if (type == "MultiPolygon" && c.is_array()) for (const auto& p : c) add_polygon(p, real);
+    else if (type == "LineString") add_line(c, real);
+    else if (type == "MultiLineString" && c.is_array()) for (const auto& l : c) add_line(l, real);
+    else ++real.skipped;
   }
-  // Lon/lat (every coordinate within range): projected about the centre, equirectangular,
-  // ample for areas and lengths over a few kilometres.
+  return real;
+}
+
+geom::Box bounds(const RealFeatures& real) {
   geom::Box box = geom::Box::none();
-  for (const auto& p : polygons) for (Vec2 v : p.outer) box.add(v);
-  for (const auto& l : lines) for (Vec2 v : l) box.add(v);
+  for (const auto& p : real.polygons) for (Vec2 v : p.outer) box.add(v);
+  for (const auto& l : real.lines) for (Vec2 v : l) box.add(v);
+  return box;
+}
+
+// Projected about the box's centre, equirectangular: ample for areas and lengths over a
+// few kilometres.
+void project_lon_lat(RealFeatures& real, const geom::Box& box) {
+  const double lon0 = (box.min_x + box.max_x) / 2, lat0 = (box.min_y + box.max_y) / 2, r = 6371008.8 * M_PI / 180;
+  auto project = [&](Vec2& v) { v = {(v.x - lon0) * r * std::cos(lat0 * M_PI / 180), (v.y - lat0) * r}; };
+  for (auto& p : real.polygons) {
+    for (Vec2& v : p.outer) project(v);
+    for (auto& h : p.holes) for (Vec2& v : h) project(v);
+  }
+  for (auto& l : real.lines) for (Vec2& v : l) project(v);
+}
+
+// The extract's box stands for the city's edge: streets cut there end on it.
+ordered_json real_street_figures(const std::vector<geom::Polyline>& lines, const geom::Box& box) {
+  const double margin = 20;
+  auto on_edge = [&](Vec2 p) {
+    return p.x - box.min_x < margin || box.max_x - p.x < margin || p.y - box.min_y < margin || box.max_y - p.y < margin;
+  };
+  return street_figures(pointers(lines), box.width() * box.height(), on_edge);
+}
+
+}  // namespace
+
+ordered_json city_statistics(const CityLayers& layers, const Sketch* sketch) {
+  const std::set<std::string> zones = zone_names(layers);
+  const RoadEdges road_edges = road_area_edges(layers.road_areas);
+  ordered_json per_zone = ordered_json::object();
+  for (const std::string& zone : zones)
+    if (std::optional<ordered_json> z = zone_figures(layers, zone, road_edges, sketch)) per_zone[zone] = *z;
+  const double ground = ground_area(layers);
+  const CityEdge edge(layers, sketch);
+  auto on_edge = [&](Vec2 p) { return edge.lies_on(p); };
+  return {{"zones", per_zone}, {"streets", street_figures(centre_lines(layers.roads), ground, on_edge)}};
+}
+
+ordered_json real_statistics(const std::filesystem::path& file) {
+  ordered_json doc = read_feature_collection(file);
+  RealFeatures real = read_features(doc["features"]);
+  geom::Box box = bounds(real);
   if (box.holds_nothing()) throw UserError(file.string() + ": holds no usable Polygon or LineString; give footprints or streets");
+  // Lon/lat when every coordinate is within range.
   const bool lon_lat = box.min_x >= -180 && box.max_x <= 180 && box.min_y >= -90 && box.max_y <= 90;
   if (lon_lat) {
-    const double lon0 = (box.min_x + box.max_x) / 2, lat0 = (box.min_y + box.max_y) / 2, r = 6371008.8 * M_PI / 180;
-    auto project = [&](Vec2& v) { v = {(v.x - lon0) * r * std::cos(lat0 * M_PI / 180), (v.y - lat0) * r}; };
-    for (auto& p : polygons) {
-      for (Vec2& v : p.outer) project(v);
-      for (auto& h : p.holes) for (Vec2& v : h) project(v);
-    }
-    for (auto& l : lines) for (Vec2& v : l) project(v);
-    box = geom::Box::none();
-    for (const auto& p : polygons) for (Vec2 v : p.outer) box.add(v);
-    for (const auto& l : lines) for (Vec2 v : l) box.add(v);
+    project_lon_lat(real, box);
+    box = bounds(real);
   }
-  ordered_json out{{"file", file.filename().string()}, {"lon_lat", lon_lat}, {"features_skipped", skipped}};
-  if (!polygons.empty()) {
-    std::vector<const geom::Polygon*> footprints;
-    for (const auto& p : polygons) footprints.push_back(&p);
-    out["zones"] = {{"all", {{"footprints", footprint_figures(footprints)}}}};
-  }
-  if (!lines.empty()) {
-    std::vector<const geom::Polyline*> ptrs;
-    for (const auto& l : lines) ptrs.push_back(&l);
-    // The extract's box stands for the city's edge: streets cut there end on it.
-    const double margin = 20;
-    auto on_edge = [&](Vec2 p) {
-      return p.x - box.min_x < margin || box.max_x - p.x < margin || p.y - box.min_y < margin || box.max_y - p.y < margin;
-    };
-    out["streets"] = street_figures(ptrs, box.width() * box.height(), on_edge);
-  }
+  ordered_json out{{"file", file.filename().string()}, {"lon_lat", lon_lat}, {"features_skipped", real.skipped}};
+  if (!real.polygons.empty()) out["zones"] = {{"all", {{"footprints", footprint_figures(pointers(real.polygons))}}}};
+  if (!real.lines.empty()) out["streets"] = real_street_figures(real.lines, box);
   return out;
 }
 

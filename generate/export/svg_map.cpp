@@ -7,13 +7,12 @@
 #include <ostream>
 #include <vector>
 
+#include "generate/city/palette.h"
 #include "generate/errors.h"
+#include "generate/export/geojson.h"
 
 namespace exacity {
 namespace {
-
-const std::map<std::string, const char*> kZoneColours = {
-    {"residential", "#f2c9a0"}, {"commercial", "#a9c8ec"}, {"industrial", "#cdb89a"}, {"park", "#a8d38d"}};
 
 // y flips so north is up; coordinates stay exact relative to the frame's corner.
 std::string point(geom::Vec2 p, const geom::Box& b) {
@@ -32,28 +31,19 @@ std::string path_data(const geom::Polygon& poly, const geom::Box& b) {
 }
 
 // A key to the colours and a scale bar, sized in screen pixels (px world units each).
-void write_legend(std::ostream& out, const CityLayers& layers, double w, double h, double px) {
+void write_legend(std::ostream& out, const Ground& ground, bool structures, double w, double h, double px) {
   std::vector<std::pair<std::string, std::string>> keys;
-  for (const auto& [zone, colour] : kZoneColours)
-    for (const auto& f : layers.zones.features)
-      if (f.properties.value("zone", "") == zone) {
-        keys.emplace_back(zone, colour);
-        break;
-      }
-  if (!layers.water.features.empty()) keys.emplace_back("water", "#5b9bd5");
-  if (!layers.lots.features.empty()) keys.emplace_back("lot", "#f7ecdc");
-  if (!layers.buildings.features.empty()) keys.emplace_back("building", "#9a8672");
-  if (!layers.road_areas.features.empty()) keys.emplace_back("road", "#6b6b6b");
-  for (const auto& f : layers.road_areas.features)
-    if (f.properties.value("bridge", false)) {
-      keys.emplace_back("bridge", "#3a3a3a");
-      break;
-    }
-  for (const auto& f : layers.road_areas.features)
-    if (f.properties.value("surface", "") == "sidewalk") {
-      keys.emplace_back("sidewalk", "#c9c3b8");
-      break;
-    }
+  for (const auto& [zone, colour] : map_zone_colours())
+    if (std::any_of(ground.zones.begin(), ground.zones.end(), [&](const ZoneArea& z) { return name(z.type) == zone; }))
+      keys.emplace_back(zone, colour);
+  if (!ground.water.empty()) keys.emplace_back("water", kMapWater);
+  if (!ground.lots.empty()) keys.emplace_back("lot", kMapLot);
+  if (structures) keys.emplace_back("building", kMapBuilding);
+  if (!ground.road_areas.empty()) keys.emplace_back("road", kMapRoad);
+  auto any_area = [&](auto test) { return std::any_of(ground.road_areas.begin(), ground.road_areas.end(), test); };
+  if (any_area([](const RoadArea& a) { return a.bridge; })) keys.emplace_back("bridge", kMapBridge);
+  if (any_area([](const RoadArea& a) { return a.surface == RoadSurface::Sidewalk; }))
+    keys.emplace_back("sidewalk", kMapSidewalk);
   auto n = [&](double pixels) { return format_number(pixels * px); };
   double line = 20, x = 10, y = h / px - 10 - line * (keys.size() + 1);
   out << "<g class=\"legend\" font-family=\"sans-serif\" font-size=\"" << n(13) << "\">\n"
@@ -75,10 +65,11 @@ void write_legend(std::ostream& out, const CityLayers& layers, double w, double 
 
 }  // namespace
 
-void write_svg_map(const CityLayers& layers, const std::filesystem::path& file) {
-  geom::Box b = layers.ground_bounds();
-  for (const auto& f : layers.roads.features)
-    for (auto p : f.line) b.add(p);
+void write_svg_map(const Ground& ground, const std::vector<Building>& buildings,
+                   const std::vector<ModelInstance>& models, const std::filesystem::path& file) {
+  geom::Box b = ground.bounds();
+  for (const RoadLine& r : ground.roads)
+    for (auto p : r.line) b.add(p);
   if (!(b.max_x > b.min_x)) b = {0, 0, 1, 1};
   double w = b.width(), h = std::max(b.height(), 1e-9);
   double px_w = 1200, px_h = std::max(1.0, std::round(px_w * h / w));
@@ -88,40 +79,47 @@ void write_svg_map(const CityLayers& layers, const std::filesystem::path& file) 
   if (!out) throw UserError(file.string() + ": cannot write this file; check the output folder's permissions");
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << px_w << "\" height=\"" << px_h
       << "\" viewBox=\"0 0 " << format_number(w) << ' ' << format_number(h) << "\">\n"
-      << "<rect width=\"100%\" height=\"100%\" fill=\"#f4f4f0\"/>\n";
-  auto polygons = [&](const Layer& layer, const char* cls, auto fill_of) {
+      << "<rect width=\"100%\" height=\"100%\" fill=\"" << kMapBackground << "\"/>\n";
+  auto polygons = [&](const auto& features, const char* cls, auto polygon_of, auto fill_of) {
     out << "<g class=\"" << cls << "\" stroke-width=\"" << format_number(stroke * 0.5) << "\">\n";
-    for (const auto& f : layer.features)
+    for (const auto& f : features)
       out << "<path fill-rule=\"evenodd\" fill=\"" << fill_of(f) << "\" stroke=\"" << fill_of(f) << "\" d=\""
-          << path_data(f.polygon, b) << "\"/>\n";
+          << path_data(polygon_of(f), b) << "\"/>\n";
     out << "</g>\n";
   };
-  polygons(layers.zones, "zones", [](const VectorFeature& f) {
-    auto it = kZoneColours.find(f.properties.value("zone", ""));
-    return it == kZoneColours.end() ? "#dddddd" : it->second;
-  });
-  out << "<g class=\"lots\" fill=\"#fbf3e6\" fill-opacity=\"0.55\" stroke=\"#8a6d4b\" stroke-width=\""
+  polygons(
+      ground.zones, "zones", [](const ZoneArea& z) -> const geom::Polygon& { return z.polygon; },
+      [](const ZoneArea& z) {
+        auto it = map_zone_colours().find(std::string(name(z.type)));
+        return it == map_zone_colours().end() ? "#dddddd" : it->second;
+      });
+  out << "<g class=\"lots\" fill=\"" << kMapLotFill << "\" fill-opacity=\"0.55\" stroke=\"" << kMapLotEdge << "\" stroke-width=\""
       << format_number(stroke * 0.5) << "\">\n";
-  for (const auto& f : layers.lots.features) out << "<path fill-rule=\"evenodd\" d=\"" << path_data(f.polygon, b) << "\"/>\n";
+  for (const LotArea& lot : ground.lots) out << "<path fill-rule=\"evenodd\" d=\"" << path_data(lot.polygon, b) << "\"/>\n";
   out << "</g>\n";
-  out << "<g class=\"buildings\" fill=\"#9a8672\" stroke=\"#5e4f40\" stroke-width=\"" << format_number(stroke * 0.5)
+  out << "<g class=\"buildings\" fill=\"" << kMapBuilding << "\" stroke=\"" << kMapBuildingEdge << "\" stroke-width=\"" << format_number(stroke * 0.5)
       << "\">\n";
-  for (const auto& f : layers.buildings.features) out << "<path fill-rule=\"evenodd\" d=\"" << path_data(f.polygon, b) << "\"/>\n";
+  auto footprint = [&](const auto& s) { out << "<path fill-rule=\"evenodd\" d=\"" << path_data(s.polygon, b) << "\"/>\n"; };
+  for_each_by_id(buildings, models, footprint, footprint);
   out << "</g>\n";
-  polygons(layers.water, "water", [](const VectorFeature&) { return "#5b9bd5"; });
-  polygons(layers.road_areas, "road_areas", [](const VectorFeature& f) {
-    if (f.properties.value("surface", "") == "sidewalk") return "#c9c3b8";
-    return f.properties.value("bridge", false) ? "#3a3a3a" : "#6b6b6b";
-  });
-  out << "<g class=\"roads\" fill=\"none\" stroke=\"#ffffff\" stroke-width=\"" << format_number(stroke)
+  polygons(
+      ground.water, "water", [](const geom::Polygon& p) -> const geom::Polygon& { return p; },
+      [](const geom::Polygon&) { return kMapWater; });
+  polygons(
+      ground.road_areas, "road_areas", [](const RoadArea& a) -> const geom::Polygon& { return a.polygon; },
+      [](const RoadArea& a) {
+        if (a.surface == RoadSurface::Sidewalk) return kMapSidewalk;
+        return a.bridge ? kMapBridge : kMapRoad;
+      });
+  out << "<g class=\"roads\" fill=\"none\" stroke=\"" << kMapCentreLine << "\" stroke-width=\"" << format_number(stroke)
       << "\" stroke-dasharray=\"" << format_number(stroke * 6) << ',' << format_number(stroke * 4) << "\">\n";
-  for (const auto& f : layers.roads.features) {
+  for (const RoadLine& r : ground.roads) {
     out << "<polyline points=\"";
-    for (std::size_t i = 0; i < f.line.size(); ++i) out << (i ? " " : "") << point(f.line[i], b);
+    for (std::size_t i = 0; i < r.line.size(); ++i) out << (i ? " " : "") << point(r.line[i], b);
     out << "\"/>\n";
   }
   out << "</g>\n";
-  write_legend(out, layers, w, h, stroke);
+  write_legend(out, ground, !buildings.empty() || !models.empty(), w, h, stroke);
   out << "</svg>\n";
 }
 

@@ -1,12 +1,15 @@
-// OUT/map.svg: the vector layers drawn at their exact coordinates, to open in a browser.
+// OUT/map.svg: the ground and the footprints drawn at their exact coordinates, to open in a
+// browser.
 #pragma once
 
 #include <filesystem>
 
-#include "generate/export/vector_layers.h"
+#include "generate/city/ground.h"
+#include "generate/placement/buildings.h"
 
 namespace exacity {
 
-void write_svg_map(const CityLayers& layers, const std::filesystem::path& file);
+void write_svg_map(const Ground& ground, const std::vector<Building>& buildings,
+                   const std::vector<ModelInstance>& models, const std::filesystem::path& file);
 
 }  // namespace exacity

@@ -78,95 +78,156 @@ void check_polygons(Checker& c, const Layer& layer, std::vector<PolygonRef>& ref
   }
 }
 
-// All polygons and the drawn zones in one exact map. Polygon p's outer ring winds around
-// counter 2p and its holes around 2p + 1. Over the drawn zones, zones + water + road
-// areas cover every point once, and so do blocks + parks + water + road areas; a block
-// lies where a zone of its type does (or is green space).
-void check_tiling(Checker& c, const Sketch& sketch, const std::vector<PolygonRef>& refs,
-                  const std::vector<const geom::Polygon*>& polygons) {
-  geom::PlanarMap map;
+// Zones and parks, water and road areas cover the drawn zones once; so do blocks, parks,
+// water and road areas.
+constexpr std::initializer_list<Kind> kZoning{Kind::Zone, Kind::Park, Kind::Water, Kind::Road};
+constexpr std::initializer_list<Kind> kBlocking{Kind::Block, Kind::Park, Kind::Water, Kind::Road};
+
+// The polygons one face of the tiling map lies in, by kind.
+class FaceCover {
+ public:
+  FaceCover(const std::vector<PolygonRef>& refs, const std::vector<int>& inside) : refs_(refs) {
+    for (int p : inside) here_[refs[p].kind].push_back(p);
+  }
+
+  std::size_t count(std::initializer_list<Kind> kinds) const {
+    std::size_t n = 0;
+    for (Kind k : kinds)
+      if (auto it = here_.find(k); it != here_.end()) n += it->second.size();
+    return n;
+  }
+
+  std::string names(std::initializer_list<Kind> kinds) const {
+    std::string s;
+    for (Kind k : kinds)
+      if (auto it = here_.find(k); it != here_.end())
+        for (int p : it->second) s += (s.empty() ? "" : " and ") + refs_[p].name;
+    return s;
+  }
+
+  // The first polygon of that kind; there must be one.
+  const PolygonRef& first(Kind k) const { return refs_[here_.at(k)[0]]; }
+
+ private:
+  const std::vector<PolygonRef>& refs_;
+  std::map<Kind, std::vector<int>> here_;
+};
+
+// Labels each face of the tiling map with the index of what is wrong there, 0 where
+// nothing is; each problem is stated once however many faces have it.
+class FaceLabels {
+ public:
+  FaceLabels(const Sketch& sketch, const std::vector<PolygonRef>& refs, const DrawnZones& drawn, int polygons)
+      : sketch_(sketch), refs_(refs), drawn_(drawn), polygons_(polygons) {}
+
+  int of(const geom::Windings& w) {
+    std::vector<int> inside;
+    if (int label = ring_windings(w, inside)) return label;
+    const FaceCover here(refs_, inside);
+    if (int label = overlaps(here)) return label;
+    if (int label = nesting(here)) return label;
+    return against_sketch(here, w);
+  }
+
+  std::vector<std::string> messages{""};
+  // Problems found against the drawn sketch, where a rounding sliver is no problem.
+  std::vector<bool> sketch_checks{false};
+
+ private:
+  int wrong(const std::string& m, bool sketch_check = false) {
+    auto [it, added] = message_index_.emplace(m, static_cast<int>(messages.size()));
+    if (added) messages.push_back(m), sketch_checks.push_back(sketch_check);
+    return it->second;
+  }
+
+  // Each polygon's outer ring winds once around the face or not at all, and its holes
+  // wind once around it only inside the outer ring. `inside` gets the polygons the face
+  // lies in.
+  int ring_windings(const geom::Windings& w, std::vector<int>& inside) {
+    for (std::size_t i = 0; i < w.size() && w[i].first < 2 * polygons_;) {
+      int p = w[i].first / 2, outer = 0, holes = 0;
+      for (; i < w.size() && w[i].first < 2 * polygons_ && w[i].first / 2 == p; ++i)
+        (w[i].first % 2 == 0 ? outer : holes) = w[i].second;
+      if (outer != 0 && outer != 1) return wrong(refs_[p].name + ": outer ring winds " + std::to_string(outer) + " times");
+      if (holes != 0 && (holes != -1 || outer != 1)) return wrong(refs_[p].name + ": holes overlap or leave the outer ring");
+      if (outer == 1 && holes == 0) inside.push_back(p);
+    }
+    return 0;
+  }
+
+  int overlaps(const FaceCover& here) {
+    if (here.count(kZoning) > 1) return wrong(here.names(kZoning) + " overlap");
+    if (here.count(kBlocking) > 1) return wrong(here.names(kBlocking) + " overlap");
+    if (here.count({Kind::Bridge}) > 1) return wrong("two bridges overlap");
+    if (here.count({Kind::Bridge}) == 1 && here.count({Kind::Water}) == 0) return wrong("a bridge lies outside the water");
+    if (here.count({Kind::Zone}) != here.count({Kind::Block}))
+      return wrong((here.count({Kind::Zone}) ? here.names({Kind::Zone}) + " holds no block"
+                                             : here.names({Kind::Block}) + " lies outside the zones"));
+    return 0;
+  }
+
+  // A lot lies in the block it names, a building on the lot it names, a block in a zone
+  // of its type unless it is green space.
+  int nesting(const FaceCover& here) {
+    if (here.count({Kind::Lot}) > 1) return wrong(here.names({Kind::Lot}) + " overlap");
+    if (here.count({Kind::Lot}) == 1) {
+      const PolygonRef& lot = here.first(Kind::Lot);
+      if (here.count({Kind::Block}) == 0 || here.first(Kind::Block).id != lot.block)
+        return wrong(lot.name + " leaves its block " + std::to_string(lot.block));
+    }
+    if (here.count({Kind::Building}) > 1) return wrong(here.names({Kind::Building}) + " overlap");
+    if (here.count({Kind::Building}) == 1) {
+      const PolygonRef& b = here.first(Kind::Building);
+      if (here.count({Kind::Lot}) == 0 || here.first(Kind::Lot).lot != b.lot)
+        return wrong(b.name + " leaves its lot " + std::to_string(b.lot));
+    }
+    if (here.count({Kind::Block}) == 1) {
+      const PolygonRef &b = here.first(Kind::Block), &z = here.first(Kind::Zone);
+      if (!b.green && b.zone != z.zone) return wrong(b.name + " says \"" + b.zone + "\" inside " + z.name + " (\"" + z.zone + "\")");
+    }
+    return 0;
+  }
+
+  // The drawn zones are covered, by zones of the type drawn, and nothing else is zoned.
+  int against_sketch(const FaceCover& here, const geom::Windings& w) {
+    int top = drawn_.top_zone(w);
+    std::size_t surfaces = here.count(kZoning);
+    if (top >= 0 && surfaces == 0)
+      return wrong("the drawn zone features[" + std::to_string(sketch_.zones[top].index) +
+                       "] is not covered by a zone, water or road area", true);
+    if (top < 0 && here.count({Kind::Zone, Kind::Park}) > 0) return wrong(here.names({Kind::Zone, Kind::Park}) + " lies outside every drawn zone", true);
+    if (top >= 0 && here.count({Kind::Zone, Kind::Park}) == 1) {
+      const PolygonRef& z = here.count({Kind::Zone}) == 0 ? here.first(Kind::Park) : here.first(Kind::Zone);
+      if (z.zone != name(sketch_.zones[top].type))
+        return wrong(z.name + " says zone \"" + z.zone + "\" where the sketch draws \"" +
+                         std::string(name(sketch_.zones[top].type)) + "\"", true);
+    }
+    return 0;
+  }
+
+  const Sketch& sketch_;
+  const std::vector<PolygonRef>& refs_;
+  const DrawnZones& drawn_;
+  const int polygons_;
+  std::map<std::string, int> message_index_{{"", 0}};
+};
+
+// Polygon p's outer ring winds around counter 2p and its holes around 2p + 1.
+void add_polygon_rings(geom::PlanarMap& map, const std::vector<const geom::Polygon*>& polygons) {
   const int P = static_cast<int>(polygons.size());
   for (int p = 0; p < P; ++p) {
     map.add_ring(polygons[p]->outer, 2 * p, 0);
     for (std::size_t h = 0; h < polygons[p]->holes.size(); ++h)
       map.add_ring(polygons[p]->holes[h], 2 * p + 1, static_cast<int>(h) + 1);
   }
-  DrawnZones drawn(sketch.zones, map, 2 * P);
-  map.insert_batch();
+}
 
-  // A face's label is the index of what is wrong there; 0 where nothing is.
-  std::vector<std::string> messages{""};
-  std::vector<bool> against_sketch{false};
-  std::map<std::string, int> message_index{{"", 0}};
-  auto wrong = [&](const std::string& m, bool sketch_check = false) {
-    auto [it, added] = message_index.emplace(m, static_cast<int>(messages.size()));
-    if (added) messages.push_back(m), against_sketch.push_back(sketch_check);
-    return it->second;
-  };
-  map.label_faces([&](const geom::Windings& w) -> int {
-    std::vector<int> inside;
-    for (std::size_t i = 0; i < w.size() && w[i].first < 2 * P;) {
-      int p = w[i].first / 2, outer = 0, holes = 0;
-      for (; i < w.size() && w[i].first < 2 * P && w[i].first / 2 == p; ++i)
-        (w[i].first % 2 == 0 ? outer : holes) = w[i].second;
-      if (outer != 0 && outer != 1) return wrong(refs[p].name + ": outer ring winds " + std::to_string(outer) + " times");
-      if (holes != 0 && (holes != -1 || outer != 1)) return wrong(refs[p].name + ": holes overlap or leave the outer ring");
-      if (outer == 1 && holes == 0) inside.push_back(p);
-    }
-    std::map<Kind, std::vector<int>> here;
-    for (int p : inside) here[refs[p].kind].push_back(p);
-    auto count = [&](std::initializer_list<Kind> kinds) {
-      std::size_t n = 0;
-      for (Kind k : kinds) n += here[k].size();
-      return n;
-    };
-    auto names = [&](std::initializer_list<Kind> kinds) {
-      std::string s;
-      for (Kind k : kinds)
-        for (int p : here[k]) s += (s.empty() ? "" : " and ") + refs[p].name;
-      return s;
-    };
-    const auto zoning = {Kind::Zone, Kind::Park, Kind::Water, Kind::Road};
-    const auto blocking = {Kind::Block, Kind::Park, Kind::Water, Kind::Road};
-    if (count(zoning) > 1) return wrong(names(zoning) + " overlap");
-    if (count(blocking) > 1) return wrong(names(blocking) + " overlap");
-    if (count({Kind::Bridge}) > 1) return wrong("two bridges overlap");
-    if (count({Kind::Bridge}) == 1 && count({Kind::Water}) == 0) return wrong("a bridge lies outside the water");
-    if (count({Kind::Zone}) != count({Kind::Block}))
-      return wrong((count({Kind::Zone}) ? names({Kind::Zone}) + " holds no block" : names({Kind::Block}) + " lies outside the zones"));
-    if (count({Kind::Lot}) > 1) return wrong(names({Kind::Lot}) + " overlap");
-    if (count({Kind::Lot}) == 1) {
-      const PolygonRef& lot = refs[here[Kind::Lot][0]];
-      if (count({Kind::Block}) == 0 || refs[here[Kind::Block][0]].id != lot.block)
-        return wrong(lot.name + " leaves its block " + std::to_string(lot.block));
-    }
-    if (count({Kind::Building}) > 1) return wrong(names({Kind::Building}) + " overlap");
-    if (count({Kind::Building}) == 1) {
-      const PolygonRef& b = refs[here[Kind::Building][0]];
-      if (count({Kind::Lot}) == 0 || refs[here[Kind::Lot][0]].lot != b.lot)
-        return wrong(b.name + " leaves its lot " + std::to_string(b.lot));
-    }
-    if (count({Kind::Block}) == 1) {
-      const PolygonRef &b = refs[here[Kind::Block][0]], &z = refs[here[Kind::Zone][0]];
-      if (!b.green && b.zone != z.zone) return wrong(b.name + " says \"" + b.zone + "\" inside " + z.name + " (\"" + z.zone + "\")");
-    }
-    int top = drawn.top_zone(w);
-    std::size_t surfaces = count(zoning);
-    if (top >= 0 && surfaces == 0)
-      return wrong("the drawn zone features[" + std::to_string(sketch.zones[top].index) +
-                       "] is not covered by a zone, water or road area", true);
-    if (top < 0 && count({Kind::Zone, Kind::Park}) > 0) return wrong(names({Kind::Zone, Kind::Park}) + " lies outside every drawn zone", true);
-    if (top >= 0 && count({Kind::Zone, Kind::Park}) == 1) {
-      const PolygonRef& z = refs[here[Kind::Zone].empty() ? here[Kind::Park][0] : here[Kind::Zone][0]];
-      if (z.zone != name(sketch.zones[top].type))
-        return wrong(z.name + " says zone \"" + z.zone + "\" where the sketch draws \"" +
-                         std::string(name(sketch.zones[top].type)) + "\"", true);
-    }
-    return 0;
-  });
-  const std::vector<double> widths = map.widest_faces(static_cast<int>(messages.size()));
-  for (std::size_t m = 1; m < messages.size(); ++m) {
-    if (against_sketch[m]) {
+// Each face problem once, near a face that has it. Faces found wrong only against the
+// sketch and no wider than kRounding are rounding slivers, not problems.
+void report_face_problems(Checker& c, const geom::PlanarMap& map, const FaceLabels& labels) {
+  const std::vector<double> widths = map.widest_faces(static_cast<int>(labels.messages.size()));
+  for (std::size_t m = 1; m < labels.messages.size(); ++m) {
+    if (labels.sketch_checks[m]) {
       double width = widths[m];
       if (width <= kRounding) {
         c.v_.widest_sliver = std::max(c.v_.widest_sliver, width);
@@ -174,11 +235,13 @@ void check_tiling(Checker& c, const Sketch& sketch, const std::vector<PolygonRef
       }
     }
     geom::Vec2 at;
-    c.problem(messages[m] + (map.point_near_label(static_cast<int>(m), at) ? near(at) : ""));
+    c.problem(labels.messages[m] + (map.point_near_label(static_cast<int>(m), at) ? near(at) : ""));
   }
+}
 
-  // Two rings of one polygon may touch at a vertex but not run along each other. Every lot
-  // shares an edge with a road area.
+// Two rings of one polygon may touch at a vertex but not run along each other. One pass
+// over the edges also finds which polygons share an edge with a road area or bridge.
+std::vector<bool> check_shared_edges(Checker& c, const geom::PlanarMap& map, const std::vector<PolygonRef>& refs, int P) {
   std::vector<bool> fronts(P, false);
   map.for_each_edge([&](const std::vector<geom::CurveTag>& tags, geom::Vec2 a, geom::Vec2) {
     bool road = false;
@@ -192,6 +255,22 @@ void check_tiling(Checker& c, const Sketch& sketch, const std::vector<PolygonRef
           c.problem(refs[tags[i].counter / 2].name + ": two of its rings share an edge" + near(a));
     }
   });
+  return fronts;
+}
+
+// All polygons and the drawn zones in one exact map, each face labelled with what is
+// wrong there; then the map's edges. Every lot shares an edge with a road area.
+void check_tiling(Checker& c, const Sketch& sketch, const std::vector<PolygonRef>& refs,
+                  const std::vector<const geom::Polygon*>& polygons) {
+  geom::PlanarMap map;
+  const int P = static_cast<int>(polygons.size());
+  add_polygon_rings(map, polygons);
+  DrawnZones drawn(sketch.zones, map, 2 * P);
+  map.insert_batch();
+  FaceLabels labels(sketch, refs, drawn, P);
+  map.label_faces([&](const geom::Windings& w) { return labels.of(w); });
+  report_face_problems(c, map, labels);
+  const std::vector<bool> fronts = check_shared_edges(c, map, refs, P);
   for (int p = 0; p < P; ++p)
     if (refs[p].kind == Kind::Lot && !fronts[p]) c.problem(refs[p].name + " touches no road area");
 }

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 
 #include "geom/measure.h"
 #include "geom/polygon_check.h"
@@ -15,20 +16,16 @@ using nlohmann::ordered_json;
 // add(group, polygon) receives them in a stable order.
 template <typename GroupOf, typename Add>
 void dissolve(const CityMap& zm, int group_count, GroupOf group_of, Add add) {
-  std::vector<int> groups;
-  for (const FaceLabel& l : zm.labels) groups.push_back(group_of(l));
-  auto polygons = zm.map.dissolve(groups, group_count);
+  auto polygons = zm.map.dissolve(zm.per_label(group_of), group_count);
   for (int g = 0; g < group_count; ++g)
     for (geom::Dissolved& d : polygons[g]) add(g, std::move(d.polygon));
 }
 
-void add_polygon(Layer& layer, const ordered_json& props, geom::Polygon p) {
+void add_polygon(Layer& layer, const ordered_json& props, const geom::Polygon& p) {
   ordered_json full{{"id", static_cast<int>(layer.features.size())}};
   if (props.is_object()) full.update(props);
-  layer.features.push_back({std::move(full), std::move(p), {}});
+  layer.features.push_back({std::move(full), p, {}});
 }
-
-ordered_json or_null(int v) { return v >= 0 ? ordered_json(v) : ordered_json(nullptr); }
 
 }  // namespace
 
@@ -40,37 +37,34 @@ CityLayers read_layers(const std::filesystem::path& vector_dir, std::vector<std:
   return layers;
 }
 
-CityLayers extract_layers(const CityMap& zm, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
-                          const std::vector<Building>& buildings, const Sketch& sketch, const ModelLibrary* library) {
-  CityLayers out;
+namespace {
+
+// The drawn zones by type, then the water.
+void extract_zones_and_water(const CityMap& zm, const Sketch& sketch, Ground& out) {
   const int zone_types = static_cast<int>(ZoneType::Water);  // water has its own layer
   dissolve(zm, zone_types,
            [&](const FaceLabel& l) { return l.cover == Cover::Zone ? static_cast<int>(sketch.zones[l.zone].type) : -1; },
-           [&](int g, geom::Polygon p) {
-             add_polygon(out.zones, {{"zone", name(static_cast<ZoneType>(g))}}, std::move(p));
-           });
+           [&](int g, geom::Polygon p) { out.zones.push_back({static_cast<ZoneType>(g), std::move(p)}); });
   dissolve(zm, 1, [](const FaceLabel& l) { return l.cover == Cover::Water ? 0 : -1; },
-           [&](int, geom::Polygon p) { add_polygon(out.water, {}, std::move(p)); });
+           [&](int, geom::Polygon p) { out.water.push_back(std::move(p)); });
+}
 
-  const int roads = static_cast<int>(zm.roads.size());
-  // Centre lines with every junction as a vertex, cut where they go on or off a bridge.
-  // A road's first centre-line feature on land and on a bridge: what its areas and the
-  // blocks along it name.
-  std::vector<std::array<int, 2>> first_feature(zm.roads.size(), {-1, -1});
+// Centre lines with every junction as a vertex, cut where they go on or off a bridge.
+// Returns each map road's first centre line on land and on a bridge: what its areas and
+// the blocks along it name.
+std::vector<std::array<int, 2>> extract_centre_lines(const CityMap& zm, Ground& out) {
+  std::vector<std::array<int, 2>> first_line(zm.roads.size(), {-1, -1});
   auto pieces_of = zm.map.polyline_pieces();
-  for (int r = 0; r < roads; ++r) {
+  for (std::size_t r = 0; r < zm.roads.size(); ++r) {
     const MapRoad& road = zm.roads[r];
     for (int k = 0; k < static_cast<int>(road.lines.size()); ++k) {
       geom::Polyline run;
       bool run_bridge = false;
       auto flush = [&] {
         if (run.size() < 2) return;
-        const int id = static_cast<int>(out.roads.features.size());
-        int& first = first_feature[r][run_bridge];
-        if (first < 0) first = id;
-        ordered_json props{{"id", id}, {"class", name(road.road_class)}, {"width", road.width}, {"level", or_null(road.level)},
-                           {"region", or_null(road.region)}, {"bridge", run_bridge}};
-        out.roads.features.push_back({std::move(props), {}, std::move(run)});
+        int& first = first_line[r][run_bridge];
+        if (first < 0) first = static_cast<int>(out.roads.size());
+        out.roads.push_back({road.road_class, road.width, road.level, road.region, run_bridge, std::move(run)});
         run.clear();
       };
       for (const geom::PolylinePiece& piece : pieces_of[road.first_tag + k]) {
@@ -84,12 +78,13 @@ CityLayers extract_layers(const CityMap& zm, const std::vector<Block>& blocks, c
       flush();
     }
   }
-  auto road_id = [&](int r, bool bridge) {
-    const auto& f = first_feature[r];
-    return f[bridge] >= 0 ? f[bridge] : f[!bridge];
-  };
-  // Road areas by road, surface and bridge: carriageways and sidewalks per road (groups
-  // 4r + 2 sidewalk + bridge), then each junction (4 roads + 2j + bridge).
+  return first_line;
+}
+
+// Road areas by road, surface and bridge: carriageways and sidewalks per road (groups
+// 4r + 2 sidewalk + bridge), then each junction (4 roads + 2j + bridge).
+void extract_road_areas(const CityMap& zm, const std::function<int(int, bool)>& road_id, Ground& out) {
+  const int roads = static_cast<int>(zm.roads.size());
   const int junctions = static_cast<int>(zm.junction_roads.size());
   dissolve(zm, 4 * roads + 2 * junctions,
            [&](const FaceLabel& l) {
@@ -101,64 +96,109 @@ CityLayers extract_layers(const CityMap& zm, const std::vector<Block>& blocks, c
              const bool junction = g >= 4 * roads, bridge = g % 2 == 1;
              const int road = junction ? zm.junction_roads[(g - 4 * roads) / 2] : g / 4;
              const RoadSurface surface = junction ? RoadSurface::Junction : g % 4 >= 2 ? RoadSurface::Sidewalk : RoadSurface::Carriageway;
-             add_polygon(out.road_areas, {{"road", or_null(road_id(road, bridge))}, {"bridge", bridge}, {"surface", name(surface)}},
-                         std::move(p));
+             out.road_areas.push_back({road_id(road, bridge), bridge, surface, std::move(p)});
            });
+}
 
-  // Blocks from the final map, so they share every vertex with the other layers (lots add
-  // vertices on block edges). A block's id is its index, which lots name.
-  auto block_properties = [&](int g) {
-    const Block& b = blocks[g];
-    ordered_json ids = ordered_json::array();
-    for (int r : b.roads) ids.push_back(or_null(road_id(r, false)));
-    return ordered_json{{"id", g}, {"zone", name(b.zone)}, {"green", b.green}, {"roads", ids}};
-  };
-  // Rounding can pinch a block in two: its first polygon keeps the block's id, the others
-  // take ids after the last block's, and lots name the polygon they lie in.
+// Blocks from the final map, so they share every vertex with the other layers (lots add
+// vertices on block edges). Rounding can pinch a block in two: its first polygon keeps
+// the block's id, the others take ids after the last block's, and lots name the polygon
+// they lie in. Returns each block's pieces, as indices into out.blocks.
+std::vector<std::vector<std::size_t>> extract_blocks(const CityMap& zm, const std::vector<Block>& blocks,
+                                                     const std::function<int(int, bool)>& road_id, Ground& out) {
   std::vector<std::vector<geom::Polygon>> block_polygons(blocks.size());
   dissolve(zm, static_cast<int>(blocks.size()), [](const FaceLabel& l) { return l.block; },
            [&](int g, geom::Polygon p) { block_polygons[g].push_back(std::move(p)); });
-  std::vector<std::vector<std::size_t>> block_features(blocks.size());  // each block's features
+  std::vector<std::vector<std::size_t>> pieces(blocks.size());
   int next_id = static_cast<int>(blocks.size());
   for (std::size_t g = 0; g < blocks.size(); ++g)
     for (std::size_t k = 0; k < block_polygons[g].size(); ++k) {
-      ordered_json props = block_properties(static_cast<int>(g));
-      if (k > 0) props["id"] = next_id++;
-      block_features[g].push_back(out.blocks.features.size());
-      out.blocks.features.push_back({std::move(props), std::move(block_polygons[g][k]), {}});
+      const Block& b = blocks[g];
+      BlockArea area{k > 0 ? next_id++ : static_cast<int>(g), static_cast<int>(g), b.zone, b.green, {},
+                     std::move(block_polygons[g][k])};
+      for (int r : b.roads) area.roads.push_back(road_id(r, false));
+      pieces[g].push_back(out.blocks.size());
+      out.blocks.push_back(std::move(area));
     }
-  auto block_of = [&](const Lot& lot) {
-    const auto& features = block_features[lot.block];
-    if (features.size() < 2) return lot.block;
-    // The smallest polygon around the lot: a piece can lie in another's hole.
-    int best = lot.block;
-    double best_area = INFINITY;
-    for (std::size_t i : features) {
-      const VectorFeature& f = out.blocks.features[i];
-      const double area = geom::area(f.polygon);
-      if (area < best_area && geom::ring_within(lot.polygon.outer, f.polygon.outer))
-        best = f.properties["id"].get<int>(), best_area = area;
-    }
-    return best;
-  };
+  return pieces;
+}
 
-  // Lots as they ended up in the map; a lot's id is its index, which buildings name.
-  for (const Lot& lot : lots)
-    add_polygon(out.lots, {{"block", block_of(lot)}, {"zone", name(lot.zone)}}, lot.polygon);
-
-  for (const Building& b : buildings) {
-    nlohmann::ordered_json model = nullptr, kind = "building";
-    if (b.placed.model >= 0) {
-      const Model& m = library->models[b.placed.model];
-      model = m.name;
-      kind = m.kind == ModelKind::Tree ? "tree" : m.kind == ModelKind::Street ? "street" : "building";
-    }
-    add_polygon(out.buildings,
-                {{"lot", b.lot}, {"zone", name(b.zone)}, {"height", b.height}, {"roof", b.roof}, {"model", model}, {"kind", kind}},
-                b.polygon);
+// The block piece a lot lies in: the smallest polygon around it, since a piece can lie
+// in another's hole.
+int block_piece_of(const Lot& lot, const std::vector<std::size_t>& pieces, const Ground& ground) {
+  if (pieces.size() < 2) return lot.block;
+  int best = lot.block;
+  double best_area = INFINITY;
+  for (std::size_t i : pieces) {
+    const BlockArea& b = ground.blocks[i];
+    const double area = geom::area(b.polygon);
+    if (area < best_area && geom::ring_within(lot.polygon.outer, b.polygon.outer)) best = b.id, best_area = area;
   }
+  return best;
+}
 
+ordered_json id_or_null(int id) { return id >= 0 ? ordered_json(id) : ordered_json(nullptr); }
+
+}  // namespace
+
+Ground extract_ground(const CityMap& zm, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
+                      const Sketch& sketch) {
+  Ground out;
+  extract_zones_and_water(zm, sketch, out);
+  const std::vector<std::array<int, 2>> first_line = extract_centre_lines(zm, out);
+  const std::function<int(int, bool)> road_id = [&](int r, bool bridge) {
+    const auto& f = first_line[r];
+    return f[bridge] >= 0 ? f[bridge] : f[!bridge];
+  };
+  extract_road_areas(zm, road_id, out);
+  const std::vector<std::vector<std::size_t>> pieces = extract_blocks(zm, blocks, road_id, out);
+  // Lots as they ended up in the map; a lot's id is its index, which buildings name.
+  for (const Lot& lot : lots) out.lots.push_back({block_piece_of(lot, pieces[lot.block], out), lot.zone, lot.polygon});
   return out;
+}
+
+CityLayers layers_of(const Ground& ground, const std::vector<Building>& buildings,
+                     const std::vector<ModelInstance>& models, const ModelLibrary* library) {
+  CityLayers out;
+  for (const ZoneArea& z : ground.zones) add_polygon(out.zones, {{"zone", name(z.type)}}, z.polygon);
+  for (const geom::Polygon& w : ground.water) add_polygon(out.water, {}, w);
+  for (const RoadLine& r : ground.roads) {
+    ordered_json props{{"id", static_cast<int>(out.roads.features.size())}, {"class", name(r.road_class)},
+                       {"width", r.width},  {"level", id_or_null(r.level)},
+                       {"region", id_or_null(r.region)}, {"bridge", r.bridge}};
+    out.roads.features.push_back({std::move(props), {}, r.line});
+  }
+  for (const RoadArea& a : ground.road_areas)
+    add_polygon(out.road_areas, {{"road", id_or_null(a.road)}, {"bridge", a.bridge}, {"surface", name(a.surface)}},
+                a.polygon);
+  for (const BlockArea& b : ground.blocks) {
+    ordered_json roads = ordered_json::array();
+    for (int r : b.roads) roads.push_back(id_or_null(r));
+    out.blocks.features.push_back(
+        {ordered_json{{"id", b.id}, {"zone", name(b.zone)}, {"green", b.green}, {"roads", roads}}, b.polygon, {}});
+  }
+  for (const LotArea& lot : ground.lots) add_polygon(out.lots, {{"block", lot.block}, {"zone", name(lot.zone)}}, lot.polygon);
+  for_each_by_id(
+      buildings, models,
+      [&](const Building& b) {
+        add_polygon(out.buildings,
+                    {{"lot", b.lot}, {"zone", name(b.zone)}, {"height", b.height}, {"roof", b.roof}, {"model", nullptr},
+                     {"kind", "building"}},
+                    b.polygon);
+      },
+      [&](const ModelInstance& m) {
+        add_polygon(out.buildings,
+                    {{"lot", m.lot}, {"zone", name(m.zone)}, {"height", m.height}, {"roof", "model"},
+                     {"model", library->models[m.placed.model].name}, {"kind", name(m.kind)}},
+                    m.polygon);
+      });
+  return out;
+}
+
+CityLayers extract_layers(const CityMap& zm, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
+                          const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
+                          const Sketch& sketch, const ModelLibrary* library) {
+  return layers_of(extract_ground(zm, blocks, lots, sketch), buildings, models, library);
 }
 
 }  // namespace exacity

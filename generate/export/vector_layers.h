@@ -1,4 +1,4 @@
-// The planar map as the vector layers of docs/design.md's Outputs table.
+// The planar map as the typed ground, and the city as the vector layers of docs/design.md's Outputs table.
 #pragma once
 
 #include <filesystem>
@@ -7,6 +7,7 @@
 
 #include "generate/parcels/blocks.h"
 #include "generate/placement/buildings.h"
+#include "generate/city/ground.h"
 #include "generate/export/geojson.h"
 #include "generate/parcels/lots.h"
 #include "generate/city/sketch.h"
@@ -18,24 +19,23 @@ struct CityLayers {
   Layer zones{"zones", false, {}}, water{"water", false, {}};
   Layer roads{"roads", true, {}}, road_areas{"road_areas", false, {}};
   Layer blocks{"blocks", false, {}}, lots{"lots", false, {}}, buildings{"buildings", false, {}};
-
-  // The box around zones, water and road areas (what covers the ground); holds nothing
-  // for an empty city.
-  geom::Box ground_bounds() const {
-    geom::Box box = geom::Box::none();
-    for (const Layer* l : {&zones, &water, &road_areas})
-      for (const auto& f : l->features)
-        for (geom::Vec2 p : f.polygon.outer) box.add(p);
-    return box;
-  }
 };
 
 // The layers as written into an output folder's `vector/` (what validate and stats read);
 // anything malformed is appended to `problems`, one line each.
 CityLayers read_layers(const std::filesystem::path& vector_dir, std::vector<std::string>& problems);
 
+// The ground as the map leaves it: ids and properties as the layers write them.
+Ground extract_ground(const CityMap& city_map, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
+                      const Sketch& sketch);
+
+// The layers written into `vector/`.
+CityLayers layers_of(const Ground& ground, const std::vector<Building>& buildings,
+                     const std::vector<ModelInstance>& models, const ModelLibrary* library);
+
+// extract_ground, then layers_of.
 CityLayers extract_layers(const CityMap& city_map, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
-                          const std::vector<Building>& buildings, const Sketch& sketch,
-                          const ModelLibrary* library = nullptr);
+                          const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
+                          const Sketch& sketch, const ModelLibrary* library = nullptr);
 
 }  // namespace exacity

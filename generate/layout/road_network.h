@@ -1,6 +1,7 @@
-// Road growth (seed 000, 3.2.1) in exact vector form: from a seed point in each region,
-// roads grow step by step until they meet a road or the region's edge; they split the
-// region, and each part above its zone's block area is grown again, one level deeper.
+// The roads stage: seed 000's growth (generate/layout/growth.h) in zones laid out by
+// growth, the other road layouts (generate/layout/road_layout.h) in theirs, links that
+// join islands of streets to the rest, then every generated road into the city map in one
+// batch.
 #pragma once
 
 #include "generate/layout/road_layout.h"

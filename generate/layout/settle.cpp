@@ -68,113 +68,185 @@ std::vector<RoadFeature> without_roads_inside_others(const std::vector<RoadFeatu
   return kept;
 }
 
-}  // namespace
-
-std::vector<SettledRoad> settle(const RoadPlan& plan, const geom::Cell& cell, const std::vector<geom::Path>& sketch_roads,
-                                double sketch_width) {
+std::vector<RoadFeature> planned_roads(const RoadPlan& plan) {
   std::vector<RoadFeature> roads;
+  for (const PlannedRoad& r : plan.roads) roads.push_back({static_cast<int>(roads.size()), r.road_class, r.width, {r.line}});
+  return roads;
+}
+
+double widest_planned(const RoadPlan& plan) {
   double widest = 0;
-  for (const PlannedRoad& r : plan.roads) {
-    roads.push_back({static_cast<int>(roads.size()), r.road_class, r.width, {r.line}});
-    widest = std::max(widest, r.width);
-  }
-  join_near_ends(roads, plan.join);
-  roads = without_roads_inside_others(without_repeated_segments(roads));
-  const double reach = std::max(3 * widest, 0.1 * std::sqrt(cell.area()));
+  for (const PlannedRoad& r : plan.roads) widest = std::max(widest, r.width);
+  return widest;
+}
+
+// The region's rings, closed: an open end may run on to the region's edge.
+std::vector<geom::Path> region_edges(const geom::Cell& cell) {
   std::vector<geom::Path> edges;
   for (const geom::KindedRing& r : cell.kinded_rings()) {
     geom::Polyline closed = r.points;
     closed.push_back(r.points.front());
     edges.push_back(geom::Path::from(closed));
   }
+  return edges;
+}
+
+// Roads of fewer than two points, or closed on themselves, take no part.
+std::vector<char> roads_with_ends(const std::vector<RoadFeature>& roads) {
   std::vector<char> live(roads.size(), 1);
   for (std::size_t i = 0; i < roads.size(); ++i) {
     const geom::Polyline& l = roads[i].lines[0];
     live[i] = l.size() >= 2 && !(l.front() == l.back());
   }
-  std::vector<SettledRoad> settled;
-  std::vector<std::pair<int, int>> meetings;  // (road, road) met by running on
-  std::vector<int> index;                     // settled road -> road
-  for (bool dropped = true; dropped;) {
-    dropped = false;
-    std::map<std::pair<double, double>, int> uses;
-    std::vector<int> others;
-    std::vector<geom::Path> paths;  // of the live roads, in `others` order
-    for (std::size_t i = 0; i < roads.size(); ++i)
-      if (live[i]) {
-        others.push_back(static_cast<int>(i));
-        paths.push_back(geom::Path::from(roads[i].lines[0]));
-        for (geom::Vec2 p : roads[i].lines[0]) ++uses[{p.x, p.y}];
-      }
-    settled.clear(), meetings.clear(), index.clear();
-    for (std::size_t i = 0; i < roads.size() && !dropped; ++i) {
-      if (!live[i]) continue;
-      const geom::Polyline& line = roads[i].lines[0];
-      std::vector<geom::Path> ahead;
-      std::vector<int> ahead_road;
-      geom::Path path;
-      for (std::size_t k = 0; k < others.size(); ++k)
-        if (others[k] != static_cast<int>(i)) ahead.push_back(paths[k]), ahead_road.push_back(others[k]);
-        else path = paths[k];
-      bool to_sketch = false;
-      for (bool back : {true, false}) {
-        const geom::Vec2 end = back ? line.back() : line.front();
-        if (!back) path = path.reversed();
-        if (uses[{end.x, end.y}] > 1) continue;
-        const std::size_t n = path.size();
-        // Straight on to another road; to a sketch road or the edge, turning if need be;
-        // else turning to the nearest other road.
-        std::optional<geom::Path> on;
-        bool to_road = false;
-        for (int step = 0; step < 4 && !on; ++step) {
-          geom::Path longer = step == 0   ? geom::extend_to(path, ahead, reach, false)
-                              : step == 1 ? geom::extend_to(path, sketch_roads, roads[i].width + sketch_width)
-                              : step == 2 ? geom::extend_to(path, edges, 2 * roads[i].width)
-                                          : geom::extend_to(path, ahead, reach);
-          if (longer.size() == n) continue;
-          on = longer, to_road = step == 0 || step == 3, to_sketch |= step == 1;
-        }
-        if (!on) {
-          live[i] = 0, dropped = true;
-          break;
-        }
-        path = *on;
-        const geom::Vec2 p = path.point(path.size() - 1);
-        // An open end run on to is no longer open: the road there does not run back.
-        if (auto it = uses.find({p.x, p.y}); it != uses.end()) ++it->second;
-        if (to_road) {
-          // The road it ran on to: the one nearest its new end.
-          double best = INFINITY;
-          int met = -1;
-          for (std::size_t k = 0; k < ahead_road.size(); ++k) {
-            const geom::Polyline& l = roads[ahead_road[k]].lines[0];
-            for (std::size_t s = 0; s + 1 < l.size(); ++s)
-              if (const double d = geom::distance_to_segment(p, l[s], l[s + 1]); d < best) best = d, met = ahead_road[k];
-          }
-          meetings.push_back({static_cast<int>(i), met});
-        }
-      }
-      if (dropped) break;
-      index.push_back(static_cast<int>(i));
-      settled.push_back({path, roads[i].width, roads[i].road_class, 0, to_sketch});
+  return live;
+}
+
+// What an open end may run on to, and how far.
+struct Targets {
+  const std::vector<geom::Path>& sketch_roads;
+  double sketch_width;
+  const std::vector<geom::Path>& edges;
+  double reach;  // to another road
+};
+
+// The live roads as one round of settling starts.
+struct Round {
+  std::map<std::pair<double, double>, int> uses;  // road vertices at each point; an end used once is open
+  std::vector<int> others;                        // the live roads
+  std::vector<geom::Path> paths;                  // of the live roads, in `others` order
+};
+
+Round start_round(const std::vector<RoadFeature>& roads, const std::vector<char>& live) {
+  Round round;
+  for (std::size_t i = 0; i < roads.size(); ++i)
+    if (live[i]) {
+      round.others.push_back(static_cast<int>(i));
+      round.paths.push_back(geom::Path::from(roads[i].lines[0]));
+      for (geom::Vec2 p : roads[i].lines[0]) ++round.uses[{p.x, p.y}];
     }
+  return round;
+}
+
+struct RunOn {
+  geom::Path path;
+  bool to_road = false, to_sketch = false;
+};
+
+// Straight on to another road; to a sketch road or the edge, turning if need be; else
+// turning to the nearest other road. None when the end reaches none of them.
+std::optional<RunOn> run_on(const geom::Path& path, const std::vector<geom::Path>& ahead, double width,
+                            const Targets& targets) {
+  const std::size_t n = path.size();
+  for (int step = 0; step < 4; ++step) {
+    geom::Path longer = step == 0   ? geom::extend_to(path, ahead, targets.reach, false)
+                        : step == 1 ? geom::extend_to(path, targets.sketch_roads, width + targets.sketch_width)
+                        : step == 2 ? geom::extend_to(path, targets.edges, 2 * width)
+                                    : geom::extend_to(path, ahead, targets.reach);
+    if (longer.size() == n) continue;
+    return RunOn{longer, step == 0 || step == 3, step == 1};
   }
-  // Pieces: roads sharing a vertex, or one running on to another.
+  return std::nullopt;
+}
+
+// The road an end ran on to: the one nearest its new end.
+int nearest_road(geom::Vec2 p, const std::vector<int>& candidates, const std::vector<RoadFeature>& roads) {
+  double best = INFINITY;
+  int met = -1;
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    const geom::Polyline& l = roads[candidates[k]].lines[0];
+    for (std::size_t s = 0; s + 1 < l.size(); ++s)
+      if (const double d = geom::distance_to_segment(p, l[s], l[s + 1]); d < best) best = d, met = candidates[k];
+  }
+  return met;
+}
+
+// Road i with its open ends run on, each road it ran on to added to `meetings`; none when
+// an end reaches nothing, and the road must be dropped.
+std::optional<SettledRoad> settle_road(int i, const std::vector<RoadFeature>& roads, Round& round, const Targets& targets,
+                                       std::vector<std::pair<int, int>>& meetings) {
+  const geom::Polyline& line = roads[i].lines[0];
+  std::vector<geom::Path> ahead;
+  std::vector<int> ahead_road;
+  geom::Path path;
+  for (std::size_t k = 0; k < round.others.size(); ++k)
+    if (round.others[k] != i) ahead.push_back(round.paths[k]), ahead_road.push_back(round.others[k]);
+    else path = round.paths[k];
+  bool to_sketch = false;
+  for (bool back : {true, false}) {
+    const geom::Vec2 end = back ? line.back() : line.front();
+    if (!back) path = path.reversed();
+    if (round.uses[{end.x, end.y}] > 1) continue;
+    std::optional<RunOn> on = run_on(path, ahead, roads[i].width, targets);
+    if (!on) return std::nullopt;
+    path = on->path;
+    to_sketch |= on->to_sketch;
+    const geom::Vec2 p = path.point(path.size() - 1);
+    // An open end run on to is no longer open: the road there does not run back.
+    if (auto it = round.uses.find({p.x, p.y}); it != round.uses.end()) ++it->second;
+    if (on->to_road) meetings.push_back({i, nearest_road(p, ahead_road, roads)});
+  }
+  return SettledRoad{path, roads[i].width, roads[i].road_class, 0, to_sketch};
+}
+
+struct Settlement {
+  std::vector<SettledRoad> settled;
+  std::vector<int> index;                     // settled road -> road
+  std::vector<std::pair<int, int>> meetings;  // (road, road) met by running on
+};
+
+// Every live road settled in order. A road that cannot be is dropped and the round starts
+// again without it, as the ends it used may now be open.
+Settlement settle_live_roads(const std::vector<RoadFeature>& roads, std::vector<char> live, const Targets& targets) {
+  for (;;) {
+    Round round = start_round(roads, live);
+    Settlement s;
+    bool dropped = false;
+    for (std::size_t i = 0; i < roads.size(); ++i) {
+      if (!live[i]) continue;
+      std::optional<SettledRoad> road = settle_road(static_cast<int>(i), roads, round, targets, s.meetings);
+      if (!road) {
+        live[i] = 0, dropped = true;
+        break;
+      }
+      s.index.push_back(static_cast<int>(i));
+      s.settled.push_back(*road);
+    }
+    if (!dropped) return s;
+  }
+}
+
+// Pieces: roads sharing a vertex, or one running on to another. A piece reaches the sketch
+// when one of its roads does.
+void join_pieces(Settlement& s, const std::vector<RoadFeature>& roads) {
   std::vector<int> piece(roads.size());
   std::iota(piece.begin(), piece.end(), 0);
   std::function<int(int)> find = [&](int x) { return piece[x] == x ? x : piece[x] = find(piece[x]); };
   std::map<std::pair<double, double>, int> first_at;
-  for (int i : index)
+  for (int i : s.index)
     for (geom::Vec2 p : roads[i].lines[0])
       if (auto [it, added] = first_at.emplace(std::make_pair(p.x, p.y), i); !added) piece[find(i)] = find(it->second);
-  for (auto [a, b] : meetings) piece[find(a)] = find(b);
+  for (auto [a, b] : s.meetings) piece[find(a)] = find(b);
   std::map<int, bool> reaches;
-  for (std::size_t k = 0; k < settled.size(); ++k) reaches[find(index[k])] |= settled[k].reaches_sketch;
-  for (std::size_t k = 0; k < settled.size(); ++k) {
-    settled[k].piece = find(index[k]);
-    settled[k].reaches_sketch = reaches[settled[k].piece];
+  for (std::size_t k = 0; k < s.settled.size(); ++k) reaches[find(s.index[k])] |= s.settled[k].reaches_sketch;
+  for (std::size_t k = 0; k < s.settled.size(); ++k) {
+    s.settled[k].piece = find(s.index[k]);
+    s.settled[k].reaches_sketch = reaches[s.settled[k].piece];
   }
-  return settled;
+}
+
+}  // namespace
+
+std::vector<SettledRoad> settle(const RoadPlan& plan, const geom::Cell& cell, const std::vector<geom::Path>& sketch_roads,
+                                double sketch_width) {
+  std::vector<RoadFeature> roads = planned_roads(plan);
+  const double widest = widest_planned(plan);
+  join_near_ends(roads, plan.join);
+  roads = without_roads_inside_others(without_repeated_segments(roads));
+  const double reach = std::max(3 * widest, 0.1 * std::sqrt(cell.area()));
+  const std::vector<geom::Path> edges = region_edges(cell);
+  Settlement s = settle_live_roads(roads, roads_with_ends(roads), {sketch_roads, sketch_width, edges, reach});
+  join_pieces(s, roads);
+  return std::move(s.settled);
 }
 
 }  // namespace exacity

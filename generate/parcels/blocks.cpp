@@ -21,13 +21,12 @@ const Terminal* use_of(const geom::Cell& cell, const std::vector<PlannedUse>& us
 }  // namespace
 
 std::vector<Block> cut_blocks(CityMap& zm, const Sketch& sketch, const std::vector<PlannedUse>& uses) {
-  std::vector<int> group(zm.labels.size(), -1), road_across(zm.labels.size(), -1);
-  for (std::size_t l = 0; l < zm.labels.size(); ++l) {
-    const FaceLabel& f = zm.labels[l];
-    if (f.cover == Cover::Zone && grows_roads(sketch.zones[f.zone].type))
-      group[l] = static_cast<int>(sketch.zones[f.zone].type);
-    if (f.road_surface()) road_across[l] = f.road;
-  }
+  const std::vector<int> group = zm.per_label([&](const FaceLabel& f) {
+    return f.cover == Cover::Zone && grows_roads(sketch.zones[f.zone].type) ? static_cast<int>(sketch.zones[f.zone].type)
+                                                                             : -1;
+  });
+  const std::vector<int> road_across =
+      zm.per_label([](const FaceLabel& f) { return f.road_surface() ? f.road : BlockEdge::kNoRoad; });
   std::vector<Block> blocks;
   std::vector<int> types, components;
   std::vector<geom::Cell> cells = zm.map.cells(group, road_across, &types, &components);
@@ -50,7 +49,7 @@ std::vector<Block> cut_blocks(CityMap& zm, const Sketch& sketch, const std::vect
       b.density = use->density;
     }
     for (int k : cell.edge_kinds())
-      if (k >= 0) b.roads.push_back(k);
+      if (BlockEdge::is_road(k)) b.roads.push_back(k);
     b.cell = std::move(cell);
     blocks.push_back(std::move(b));
   }

@@ -12,10 +12,18 @@
 
 namespace exacity {
 
+// The kind of a block cell's edge (its geom::Cell edge tag): the index of the road across
+// it, or one of these.
+struct BlockEdge {
+  static constexpr int kNoRoad = -1;  // water, a park or another zone across
+  static constexpr int kLotCut = -2;  // a cut between two of the block's split lots (parcels/lots.cpp)
+  static constexpr bool is_road(int kind) { return kind >= 0; }
+};
+
 struct Block {
   ZoneType zone = ZoneType::Residential;  // the drawn zone's type; Park for green space
   bool green = false;
-  geom::Cell cell;         // exact; an edge's kind is the index of the road across it, or -1
+  geom::Cell cell;         // exact; edge kinds are BlockEdge's
   geom::Polygon polygon;   // rounded
   std::vector<int> roads;  // indices into CityMap::roads of the roads it fronts
   std::string density;     // a grammar's _Dense or _Sparse ("dense", "sparse"); "" for the zone's own

@@ -1,275 +1,26 @@
 #include "generate/parcels/lots.h"
 
-#include <algorithm>
-#include <cmath>
+#include <map>
 #include <optional>
 
 #include <tbb/parallel_for.h>
 
 #include "generate/city/random.h"
-#include "geom/grid.h"
+#include "generate/parcels/lot_layout.h"
 #include "geom/measure.h"
-#include "geom/polygon_check.h"
 
 namespace exacity {
-namespace {
-
-using geom::Vec2;
-
-Vec2 lerp(Vec2 a, Vec2 b, double t) { return {a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t}; }
-double length(Vec2 a, Vec2 b) { return std::hypot(b.x - a.x, b.y - a.y); }
-
-Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
-Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
-Vec2 operator*(Vec2 a, double s) { return {a.x * s, a.y * s}; }
-double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
-double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
-Vec2 unit(Vec2 a) {
-  double l = std::hypot(a.x, a.y);
-  return l > 0 ? a * (1 / l) : Vec2{0, 0};
-}
-Vec2 left_normal(Vec2 a, Vec2 b) {
-  Vec2 t = unit(b - a);
-  return {-t.y, t.x};
-}
-
-// How far a ray from p along the unit vector `dir` runs inside the block before it meets
-// a boundary edge (past a millimetre, so the edge it starts on does not count). A choice
-// of lot depth, made in doubles; the map decides the lots' topology exactly.
-double ray_distance(const std::vector<geom::KindedRing>& rings, Vec2 p, Vec2 dir, double limit) {
-  double best = limit;
-  for (const auto& r : rings)
-    for (std::size_t i = 0, n = r.points.size(); i < n; ++i) {
-      Vec2 a = r.points[i], e = r.points[(i + 1) % n] - a;
-      double den = cross(dir, e);
-      if (den == 0) continue;
-      double t = cross(a - p, e) / den, u = cross(a - p, dir) / den;
-      if (t > 1e-3 && u >= 0 && u <= 1) best = std::min(best, t);
-    }
-  return best;
-}
-
-// Where a run of street edges is broken: the kind changes between road and not, or the
-// boundary turns by more than this.
-constexpr double kRunTurn = 35 * M_PI / 180;
-constexpr Range kOwnedCorner{60 * M_PI / 180, 150 * M_PI / 180};  // turns at which a corner lot takes the corner
-constexpr double kFrontOverhang = 0.5;  // m: lots reach this far past the block's edge, so they meet it exactly
-
-// One lot boundary across the street side: from `at` on the block's edge, `depth` along `dir`.
-struct Cut {
-  Vec2 at, dir;
-  double depth = 0;
-};
-
-// How a run of lots ends: the cut there, how much of the run is left to the lot across
-// the corner (at its start), and how far past its end its last lot reaches to take the
-// corner (at its end).
-struct RunEnd {
-  Vec2 dir;
-  double skip = 0, extend = 0;
-};
-
-// The lots along one run of street edges: `points` from one end of the run to the other
-// (the block on the left), `normals` inward at each point, cut at equal steps near `width`.
-void run_lots(const std::vector<Vec2>& points, const std::vector<Vec2>& normals, const RunEnd& first, const RunEnd& last,
-              const std::vector<geom::KindedRing>& rings, double width, double depth, double min_edge,
-              std::vector<geom::Ring>& lots) {
-  std::vector<double> at_length{0};
-  for (std::size_t i = 1; i < points.size(); ++i) at_length.push_back(at_length.back() + length(points[i - 1], points[i]));
-  const double total = at_length.back(), begin = first.skip;
-  if (total - begin < min_edge) return;
-  {
-    // Where the block is too thin for the full depth, lots are narrower too, so that
-    // none is much wider than deep.
-    std::size_t mid = 0;
-    while (mid + 2 < points.size() && at_length[mid + 1] < (begin + total) / 2) ++mid;
-    Vec2 at = lerp(points[mid], points[mid + 1], 0.5);
-    double across = ray_distance(rings, at, left_normal(points[mid], points[mid + 1]), 4 * depth);
-    width = std::min(width, std::max(2 * std::min(depth, across / 2), min_edge));
-  }
-  const int count = std::max(1, static_cast<int>(std::lround((total - begin) / width)));
-  // The cuts: square to the street, but at the run's ends, where they are as given.
-  std::vector<Cut> cuts;
-  std::vector<std::size_t> after;  // per cut: the index of the first point past it
-  std::size_t seg = 0;
-  for (int k = 0; k <= count; ++k) {
-    const double s = begin + (total - begin) * k / count;
-    while (seg + 2 < points.size() && at_length[seg + 1] <= s) ++seg;
-    const double span = at_length[seg + 1] - at_length[seg];
-    Vec2 at = lerp(points[seg], points[seg + 1], span > 0 ? (s - at_length[seg]) / span : 0);
-    Vec2 dir = at_length[seg] == s ? normals[seg] : left_normal(points[seg], points[seg + 1]);
-    Vec2 depth_from = at;  // where the block's thickness is measured
-    if (k == 0 && begin == 0) at = points.front(), dir = first.dir;
-    if (k == count) {
-      depth_from = points.back();
-      at = points.back() + unit(points.back() - points[points.size() - 2]) * last.extend;
-      dir = last.dir;
-    }
-    double reach = depth / std::max(dot(dir, k == count ? normals.back() : normals[seg]), 0.5);
-    cuts.push_back({at, dir, std::min(reach, ray_distance(rings, depth_from, dir, 4 * depth) / 2)});
-    after.push_back(k == count ? points.size() : seg + 1);
-  }
-  // Neighbouring cuts that would cross (inside a bend) stop short of where they meet.
-  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
-    Cut &a = cuts[k], &b = cuts[k + 1];
-    double den = cross(a.dir, b.dir);
-    if (den == 0) continue;
-    double ta = cross(b.at - a.at, b.dir) / den, tb = cross(b.at - a.at, a.dir) / den;
-    if (ta > 0 && tb > 0 && ta < a.depth && tb < b.depth) a.depth = std::min(a.depth, 0.9 * ta), b.depth = std::min(b.depth, 0.9 * tb);
-  }
-  for (int k = 0; k < count; ++k) {
-    const Cut &a = cuts[k], &b = cuts[k + 1];
-    if (std::min(a.depth, b.depth) < min_edge) continue;
-    geom::Ring ring{a.at - a.dir * kFrontOverhang};
-    for (std::size_t i = after[k]; i < after[k + 1] && i < points.size(); ++i)
-      if (!(points[i] == a.at) && !(points[i] == b.at)) ring.push_back(points[i] - normals[i] * kFrontOverhang);
-    ring.push_back(b.at - b.dir * kFrontOverhang);
-    ring.push_back(b.at + b.dir * b.depth);
-    ring.push_back(a.at + a.dir * a.depth);
-    lots.push_back(std::move(ring));
-  }
-}
-
-// The ring on the grid, counter-clockwise; empty when it is not a simple polygon.
-geom::Ring on_grid(const geom::Ring& ring) {
-  geom::Ring r;
-  for (Vec2 p : ring) r.push_back(geom::snap(p));
-  int o = geom::ring_orientation(r);
-  if (o == 0) return {};
-  if (o < 0) std::reverse(r.begin(), r.end());
-  return r;
-}
-
-constexpr int kCut = -2;  // edge kind of a split's cut (not a road)
-
-// Seed 003: halve perpendicular to the longest edge near its middle until below lot_area;
-// a split that would leave a part with no road edge (seed 004: frontage) is not made.
-std::vector<geom::Cell> split_lots(const geom::Cell& block, const ZoneParams& p, Random& rng) {
-  std::vector<geom::Cell> done, todo{block};
-  while (!todo.empty()) {
-    geom::Cell cell = std::move(todo.back());
-    todo.pop_back();
-    if (cell.area() <= p.lot_area) {
-      done.push_back(std::move(cell));
-      continue;
-    }
-    geom::Polygon shape = cell.to_plain();
-    std::vector<std::pair<double, std::size_t>> edges;
-    for (std::size_t i = 0; i < shape.outer.size(); ++i)
-      edges.push_back({length(shape.outer[i], shape.outer[(i + 1) % shape.outer.size()]), i});
-    std::sort(edges.rbegin(), edges.rend());
-    const geom::Box b = cell.bounds();
-    const double reach = 2 * std::hypot(b.width(), b.height()) + 1;
-    bool split = false;
-    for (std::size_t k = 0; k < std::min<std::size_t>(edges.size(), 2) && !split; ++k) {
-      Vec2 a = shape.outer[edges[k].second], c = shape.outer[(edges[k].second + 1) % shape.outer.size()];
-      Vec2 m = lerp(a, c, 0.5 + rng.uniform(-0.1, 0.1));
-      Vec2 n{-(c.y - a.y) / edges[k].first, (c.x - a.x) / edges[k].first};
-      auto cut = geom::Path::from({geom::snap({m.x - n.x * reach, m.y - n.y * reach}),
-                                   geom::snap({m.x + n.x * reach, m.y + n.y * reach})});
-      auto parts = geom::split_cell(cell, {cut}, kCut);
-      bool fronted = parts.size() >= 2;
-      for (const geom::Cell& part : parts) {
-        auto kinds = part.edge_kinds();
-        fronted &= !kinds.empty() && kinds.back() >= 0;
-      }
-      if (!fronted) continue;
-      for (auto& part : parts) todo.push_back(std::move(part));
-      split = true;
-    }
-    if (!split) done.push_back(std::move(cell));
-  }
-  return done;
-}
-
-}  // namespace
-
-std::vector<geom::Ring> street_lots(const geom::Cell& block, const ZoneParams& p, Random& rng) {
-  std::vector<geom::Ring> lots;
-  const std::vector<geom::KindedRing> rings = block.kinded_rings();
-  for (const geom::KindedRing& r : rings) {
-    const std::size_t n = r.points.size();
-    auto road = [&](std::size_t edge) { return r.kinds[edge % n] >= 0; };
-    auto normal = [&](std::size_t edge) { return left_normal(r.points[edge % n], r.points[(edge + 1) % n]); };
-    // At vertex i, between edge i - 1 and edge i.
-    auto turn = [&](std::size_t i) {
-      Vec2 u = r.points[i % n] - r.points[(i + n - 1) % n], v = r.points[(i + 1) % n] - r.points[i % n];
-      return std::atan2(cross(u, v), dot(u, v));
-    };
-    auto breaks = [&](std::size_t i) { return road(i + n - 1) != road(i) || std::abs(turn(i)) > kRunTurn; };
-    std::size_t start = n;
-    for (std::size_t i = 0; i < n; ++i)
-      if (breaks(i)) {
-        start = i;
-        break;
-      }
-    const bool closed = start == n;  // one smooth run all round
-    if (closed) {
-      if (!road(0)) continue;
-      start = 0;
-    }
-    // At a corner the cut runs along the bisector of the two edges' inward normals; a
-    // square-ish convex corner between two streets goes whole to the lot arriving there,
-    // and the run leaving it starts where that lot's back line meets it.
-    auto corner_dir = [&](std::size_t vertex, Vec2 own) {
-      Vec2 d = unit(normal(vertex + n - 1) + normal(vertex));
-      return closed || dot(d, own) > 0.5 ? d : own;
-    };
-    auto owned = [&](std::size_t vertex) {
-      const double t = turn(vertex);
-      return !closed && road(vertex + n - 1) && road(vertex) && t >= kOwnedCorner.min && t <= kOwnedCorner.max;
-    };
-    // Runs from `start` on: [i, j) edges.
-    for (std::size_t i = start; i < start + n;) {
-      std::size_t j = i + 1;
-      while (j < start + n && !breaks(j)) ++j;
-      if (road(i)) {
-        std::vector<Vec2> pts, normals;
-        for (std::size_t k = i; k <= j; ++k) {
-          pts.push_back(r.points[k % n]);
-          normals.push_back(k == i ? normal(i) : k == j ? normal(j - 1) : unit(normal(k - 1) + normal(k)));
-        }
-        RunEnd first{corner_dir(i, normals.front())}, last{corner_dir(j, normals.back())};
-        if (owned(i)) first = {normals.front(), p.lot_depth / std::sin(turn(i)), 0};
-        if (owned(j)) last = {normals.back(), 0, kFrontOverhang + std::max(0.0, p.lot_depth / std::tan(turn(j)))};
-        run_lots(pts, normals, first, last, rings, rng.uniform(p.lot_width.min, p.lot_width.max), p.lot_depth,
-                 p.min_lot_edge, lots);
-      }
-      i = j;
-    }
-  }
-  return lots;
-}
 
 std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch& sketch) {
+  std::map<ZoneType, std::unique_ptr<LotLayout>> layouts;
+  for (const auto& [zone, params] : sketch.zone_params) layouts[zone] = make_lot_layout(params);
   std::vector<std::vector<PlannedLot>> per_block(blocks.size());
   const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Lots));
   tbb::parallel_for(std::size_t(0), blocks.size(), [&](std::size_t bi) {
     const Block& block = blocks[bi];
     if (block.green) return;
-    const ZoneParams& p = sketch.zone_params.at(block.zone);
     Random rng(mix(stage, bi));
-    std::vector<PlannedLot>& out = per_block[bi];
-    const int b = static_cast<int>(bi);
-    auto add_ring = [&](const geom::Ring& ring) {
-      geom::Ring r = on_grid(ring);
-      if (!r.empty()) out.push_back({b, block.zone, r, {}});
-    };
-    if (p.lots == "split") {
-      for (geom::Cell& c : split_lots(block.cell, p, rng)) out.push_back({b, block.zone, {}, std::move(c)});
-      return;
-    }
-    // Seed 000's industrial chance: a lot is kept with a chance that falls after a kept
-    // lot and rises after a dropped one, so some street frontage stays open yard.
-    double keep = 0.8;
-    for (const geom::Ring& ring : street_lots(block.cell, p, rng)) {
-      if (block.zone == ZoneType::Industrial) {
-        bool kept = rng.uniform() < keep;
-        keep = std::clamp(keep + (kept ? -0.25 : 0.25), 0.25, 1.0);
-        if (!kept) continue;
-      }
-      add_ring(ring);
-    }
+    per_block[bi] = layouts.at(block.zone)->plan(block, static_cast<int>(bi), rng);
   });
   std::vector<PlannedLot> lots;
   for (auto& list : per_block)
@@ -277,11 +28,15 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch
   return lots;
 }
 
+std::unique_ptr<LotLayout> make_lot_layout(const ZoneParams& params) {
+  return params.lots == "split" ? make_split(params) : make_allocation(params);
+}
+
 std::vector<Lot> insert_lots(CityMap& zm, const std::vector<PlannedLot>& planned,
                              const Sketch& sketch) {
-  zm.lot_base = zm.generated_base + static_cast<int>(zm.roads.size()) - zm.sketch_roads;
+  zm.lots = {zm.generated_roads.end(), static_cast<int>(planned.size())};
   for (std::size_t l = 0; l < planned.size(); ++l) {
-    const int counter = zm.lot_base + static_cast<int>(l);
+    const int counter = zm.lots.at(static_cast<int>(l));
     if (planned[l].ring.empty()) zm.map.add_cell_within(planned[l].block, planned[l].cell, counter);
     else zm.map.add_ring_within(planned[l].block, planned[l].ring, counter);
   }
@@ -291,11 +46,10 @@ std::vector<Lot> insert_lots(CityMap& zm, const std::vector<PlannedLot>& planned
   zm.map.snap_round();
 
   // Each planned lot's pieces, those that make sensible lots.
-  std::vector<int> group(zm.labels.size(), -1), kind(zm.labels.size(), 0), planned_of;
-  for (std::size_t l = 0; l < zm.labels.size(); ++l) {
-    group[l] = zm.labels[l].lot;
-    if (zm.labels[l].road_surface()) kind[l] = kLotRoadEdge;
-  }
+  const std::vector<int> group = zm.per_label([](const FaceLabel& f) { return f.lot; });
+  const std::vector<int> kind =
+      zm.per_label([](const FaceLabel& f) { return f.road_surface() ? LotEdge::kStreet : LotEdge::kInner; });
+  std::vector<int> planned_of;
   std::vector<geom::Cell> pieces = zm.map.cells(group, kind, &planned_of);
   std::vector<std::optional<Lot>> kept(pieces.size());
   tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
@@ -308,7 +62,7 @@ std::vector<Lot> insert_lots(CityMap& zm, const std::vector<PlannedLot>& planned
     geom::Polygon shape = cell->to_plain();
     if (geom::area(shape) < sketch.zone_params.at(plan.zone).min_lot_area) return;
     double longest = 0, ratio = 0;
-    for (auto [a, b] : cell->edges_of_kind(kLotRoadEdge)) {
+    for (auto [a, b] : cell->edges_of_kind(LotEdge::kStreet)) {
       double len = std::hypot(b.x - a.x, b.y - a.y);
       if (len > longest) longest = len, ratio = geom::depth_over_width(shape.outer, a, b);
     }

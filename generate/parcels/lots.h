@@ -6,21 +6,12 @@
 
 #include <vector>
 
-#include "generate/parcels/blocks.h"
-#include "generate/city/random.h"
-#include "generate/city/sketch.h"
 #include "generate/city/city_map.h"
+#include "generate/city/sketch.h"
+#include "generate/parcels/blocks.h"
+#include "generate/parcels/lot_layout.h"
 
 namespace exacity {
-
-// A planned lot: a ring of grid points, counter-clockwise (allocated lots), or an exact part
-// of the block (split lots).
-struct PlannedLot {
-  int block = -1;
-  ZoneType zone = ZoneType::Residential;
-  geom::Ring ring;
-  geom::Cell cell;
-};
 
 // A lot as it ended up in the map: one piece of a planned lot, cut back at roads and at
 // the lots planned before it, that touches a road area, is at least the zone's
@@ -30,21 +21,19 @@ struct Lot {
   int block = -1;
   ZoneType zone = ZoneType::Residential;
   std::string density;     // its block's (a grammar's): "" for the zone's own
-  geom::Cell cell;         // as written (doubles); edges along a road area have kind kLotRoadEdge, the others 0
+  geom::Cell cell;         // as written (doubles); edge kinds are LotEdge's
   geom::Polygon polygon;   // the same, as a plain polygon
 };
-inline constexpr int kLotRoadEdge = 1;
+// The kind of a lot cell's edge (its geom::Cell edge tag).
+struct LotEdge {
+  static constexpr int kInner = 0;   // another lot, the block's open middle, or no road
+  static constexpr int kStreet = 1;  // along a road area: the lot's frontage
+};
 inline constexpr Range kLotShape{0.5, 5};  // a lot's depth over its width (across and along its street)
 
-// The lots of every block that is not green space, block by block in parallel.
+// The lots of every block that is not green space, block by block in parallel, each by its
+// zone's LotLayout.
 std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch& sketch);
-
-// Seed 000's lots measured from the street: along every run of road edges of the block
-// (edge kind >= 0), lots side by side, about `lot_width` wide and `lot_depth` deep (at most
-// half the way across the block), split at the run's corners along the corner's bisector;
-// the block's middle is left open. Rings in doubles, not yet on the grid; each reaches a
-// little past the block's edge, so the map cuts it back exactly there.
-std::vector<geom::Ring> street_lots(const geom::Cell& block, const ZoneParams& p, Random& rng);
 
 // The planned lots into the map in one batch; faces of a block then know the lot planned
 // there that they lie in. Returns the lots as they ended up.

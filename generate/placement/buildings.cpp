@@ -1,6 +1,7 @@
 #include "generate/placement/buildings.h"
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <optional>
 
@@ -9,6 +10,7 @@
 #include "generate/errors.h"
 #include "generate/export/geojson.h"
 #include "generate/placement/model_placement.h"
+#include "generate/placement/placer.h"
 #include "geom/grid.h"
 #include "geom/measure.h"
 
@@ -42,10 +44,9 @@ bool near_rectangle(const geom::Polygon& p) {
 // larger than `max_footprint_area`, `building_gap` apart and half that inside the lot's
 // other edges; where one does not fit, a smaller one is tried, down to
 // `min_footprint_width`. Each is checked exactly against the lot and the footprints taken.
-std::vector<geom::Ring> street_footprints(const geom::Cell& lot, const ZoneParams& p, std::vector<geom::Ring>& taken,
-                                          Random& rng) {
+std::vector<geom::Ring> street_footprints(Occupancy& occupancy, const ZoneParams& p, Random& rng) {
   std::vector<geom::Ring> out;
-  const Frontage f = principal_frontage(lot, kLotRoadEdge);
+  const Frontage& f = occupancy.frontage();
   if (!f.on_road || !(f.t1 > f.t0)) return out;
   const double clearance = std::max(p.building_gap / 2, 0.05), front = std::max(p.setback, 0.1);
   auto rectangle = [&](double t, double w, double d, double grow) {
@@ -72,8 +73,7 @@ std::vector<geom::Ring> street_footprints(const geom::Cell& lot, const ZoneParam
       ws = std::max(ws, m), ds = std::max(ds, m);
       if (t + ws > f.t1 || ws * ds < p.min_footprint_area || ws * ds > p.max_footprint_area) continue;
       geom::Ring ring = rectangle(t, ws, ds, 0);
-      if (!fits(lot, rectangle(t, ws, ds, clearance), {}) || !fits(lot, ring, taken)) continue;
-      taken.push_back(ring);
+      if (!occupancy.inside(rectangle(t, ws, ds, clearance)) || !occupancy.take(ring)) continue;
       out.push_back(std::move(ring));
       t += ws + p.building_gap;
       placed = true;
@@ -106,60 +106,87 @@ void choose_roof(Building& b, const ZoneParams& p) {
   b.roof_faces = std::move(faces);
 }
 
-std::vector<Building> place_buildings(const std::vector<Lot>& lots, const Sketch& sketch, const ModelLibrary* library,
-                                      const Terrain* terrain) {
+namespace {
+
+// Seed 003's buildings: rectangles in a row along the street, raised to a height that falls
+// with distance from the city's centre, under a roof.
+class Extrusion : public Placer {
+ public:
+  Extrusion(geom::Vec2 centre, double radius) : centre_(centre), radius_(radius) {}
+  void place(const Lot& lot, const ZoneParams& p, Occupancy& occupancy, Random& rng, Structures& out) const override {
+    for (geom::Ring& ring : street_footprints(occupancy, p, rng)) {
+      Building b;
+      b.polygon.outer = std::move(ring);
+      geom::Vec2 c{0, 0};
+      for (geom::Vec2 v : b.polygon.outer) c.x += v.x / 4, c.y += v.y / 4;  // a rectangle's centre
+      b.height = building_height(p, std::hypot(c.x - centre_.x, c.y - centre_.y), radius_, rng);
+      b.zone = lot.zone;
+      choose_roof(b, p);
+      out.buildings.push_back(std::move(b));
+    }
+  }
+
+ private:
+  geom::Vec2 centre_;
+  double radius_;
+};
+
+// Each zone type's placers, in the order they fill a lot: its buildings (the library's,
+// where it has some for the zone, else extruded), then street furniture, then trees.
+std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> zone_placers(const Sketch& sketch, const ModelLibrary* library,
+                                                                      const std::vector<Lot>& lots) {
   geom::Box city = geom::Box::none();
   for (const Lot& lot : lots) city.add(lot.cell.bounds());
   const geom::Vec2 centre{(city.min_x + city.max_x) / 2, (city.min_y + city.max_y) / 2};
   const double radius = std::hypot(city.width(), city.height()) / 2;
-  const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Buildings));
+  std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> placers;
+  for (const auto& [zone, params] : sketch.zone_params) {
+    auto& list = placers[zone];
+    std::unique_ptr<Placer> models = library ? make_model_placer(*library, zone, ModelKind::Building) : nullptr;
+    list.push_back(models ? std::move(models) : std::make_unique<Extrusion>(centre, radius));
+    if (!library) continue;
+    for (ModelKind kind : {ModelKind::Street, ModelKind::Tree})
+      if (std::unique_ptr<Placer> p = make_model_placer(*library, zone, kind)) list.push_back(std::move(p));
+  }
+  return placers;
+}
 
-  std::vector<std::vector<Building>> placed(lots.size());
+}  // namespace
+
+Structures place_buildings(const std::vector<Lot>& lots, const Sketch& sketch, const ModelLibrary* library,
+                           const Terrain* terrain) {
+  const auto placers = zone_placers(sketch, library, lots);
+  const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Buildings));
+  std::vector<Structures> placed(lots.size());
   tbb::parallel_for(std::size_t(0), lots.size(), [&](std::size_t i) {
     const Lot& lot = lots[i];
     ZoneParams p = sketch.zone_params.at(lot.zone);
     if (!lot.density.empty()) p.density = lot.density;
     Random rng(mix(stage, i));
-    std::vector<Building>& here = placed[i];
-    std::vector<geom::Ring> taken;
-    auto models = [&](ModelKind k) {
-      if (!library) return;
-      for (Building& b : place_models(lot.cell, kLotRoadEdge, taken, library->choices(lot.zone, k), k, *library, p, rng))
-        here.push_back(std::move(b));
+    Occupancy occupancy(lot.cell, LotEdge::kStreet);
+    Structures& here = placed[i];
+    for (const auto& placer : placers.at(lot.zone)) placer->place(lot, p, occupancy, rng, here);
+    auto stand = [&](auto& s) {
+      s.lot = static_cast<int>(i);
+      s.zone = lot.zone;
+      if (terrain) std::tie(s.base, s.floor) = terrain->range_under(s.polygon.outer);
     };
-    if (library && !library->choices(lot.zone, ModelKind::Building).empty()) {
-      models(ModelKind::Building);
-    } else {
-      for (geom::Ring& ring : street_footprints(lot.cell, p, taken, rng)) {
-        Building b;
-        b.polygon.outer = std::move(ring);
-        geom::Vec2 c{0, 0};
-        for (geom::Vec2 v : b.polygon.outer) c.x += v.x / 4, c.y += v.y / 4;  // a rectangle's centre
-        b.height = building_height(p, std::hypot(c.x - centre.x, c.y - centre.y), radius, rng);
-        b.zone = lot.zone;
-        choose_roof(b, p);
-        here.push_back(std::move(b));
-      }
-    }
-    models(ModelKind::Street);
-    models(ModelKind::Tree);
-    for (Building& b : here) {
-      b.lot = static_cast<int>(i);
-      b.zone = lot.zone;
-      if (terrain) std::tie(b.base, b.floor) = terrain->range_under(b.polygon.outer);
-    }
+    for (Building& b : here.buildings) stand(b);
+    for (ModelInstance& m : here.models) stand(m);
   });
-  std::vector<Building> buildings;
-  for (auto& here : placed)
-    for (Building& b : here) buildings.push_back(std::move(b));
-  return buildings;
+  Structures all;
+  int id = 0;
+  for (Structures& here : placed) {
+    for (Building& b : here.buildings) b.id = id++, all.buildings.push_back(std::move(b));
+    for (ModelInstance& m : here.models) m.id = id++, all.models.push_back(std::move(m));
+  }
+  return all;
 }
 
-void check_export_size(const std::vector<Building>& buildings, const ModelLibrary* library) {
+void check_export_size(const std::vector<ModelInstance>& models, const ModelLibrary* library) {
   if (!library) return;
   std::vector<double> placed(library->models.size(), 0);
-  for (const Building& b : buildings)
-    if (b.placed.model >= 0) ++placed[b.placed.model];
+  for (const ModelInstance& m : models) ++placed[m.placed.model];
   double total = 0, heaviest = 0;
   int worst = -1;
   for (std::size_t m = 0; m < placed.size(); ++m) {

@@ -27,19 +27,52 @@ struct Placement {
 };
 inline constexpr int kTints = 4;
 
+// Buildings and placed models share one numbering, their ids in the buildings layer: lot
+// by lot, a lot's extruded buildings before its models. Terrain under a footprint: it
+// stands on `floor` (the highest point), its walls or foundation reach down to `base` (the
+// lowest); heights count from floor.
+
+// An extruded building: a footprint raised to its height under a roof.
 struct Building {
+  int id = -1;
   int lot = -1;  // index into the lots
   ZoneType zone = ZoneType::Residential;
   geom::Polygon polygon;   // on the grid
-  Placement placed;        // placed.model < 0: an extruded footprint
   double height = 0;       // m, to the top of the roof
   std::string roof = "flat";
   double eaves = 0;        // m: where walls meet a pitched roof (the height, for flat roofs)
   std::vector<geom::Face3> roof_faces;  // pitched roofs only, in place
-  // Terrain under the footprint: the building stands on `floor` (the highest point), its
-  // walls or foundation reach down to `base` (the lowest). Heights above count from floor.
   double base = 0, floor = 0;
 };
+
+// A library model placed on a lot: a building, street furniture or a tree.
+struct ModelInstance {
+  int id = -1;
+  int lot = -1;
+  ZoneType zone = ZoneType::Residential;
+  ModelKind kind = ModelKind::Building;
+  geom::Polygon polygon;   // its outline, on the grid
+  Placement placed;
+  double height = 0;       // m, the model's top
+  double base = 0, floor = 0;
+};
+
+// What the buildings stage raises on the lots.
+struct Structures {
+  std::vector<Building> buildings;
+  std::vector<ModelInstance> models;
+};
+
+// Visits buildings and models in id order.
+template <typename OnBuilding, typename OnModel>
+void for_each_by_id(const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
+                    OnBuilding&& on_building, OnModel&& on_model) {
+  std::size_t i = 0, j = 0;
+  while (i < buildings.size() || j < models.size()) {
+    if (j == models.size() || (i < buildings.size() && buildings[i].id < models[j].id)) on_building(buildings[i++]);
+    else on_model(models[j++]);
+  }
+}
 
 // The roof a footprint gets: its kind, its faces (none for flat) and the eaves height.
 // A pitched roof rising over half the building's height, or whose skeleton leaves the
@@ -49,14 +82,14 @@ void choose_roof(Building& b, const ZoneParams& p);
 // Lot by lot in parallel: rows of models facing the road where the library has buildings
 // for the zone, else a row of extruded rectangles along the street; then the
 // library's street furniture and trees where they fit. Each stands on the terrain.
-std::vector<Building> place_buildings(const std::vector<Lot>& lots, const Sketch& sketch, const ModelLibrary* library,
-                                      const Terrain* terrain);
+Structures place_buildings(const std::vector<Lot>& lots, const Sketch& sketch, const ModelLibrary* library,
+                           const Terrain* terrain);
 
 // The 3D exports write every placed model's triangles (OBJ, PLY and CityJSON have no
 // instances for buildings), about 0.75 kB of memory each while they are written: past
 // kMaxExportTriangles a run stops with one line naming the model that weighs most.
 inline constexpr double kMaxExportTriangles = 20e6;
-void check_export_size(const std::vector<Building>& buildings, const ModelLibrary* library);
+void check_export_size(const std::vector<ModelInstance>& models, const ModelLibrary* library);
 
 // Seed 003's height: uniform in the zone's range scaled by 1 - distance / radius (down to
 // half at the city's edge); the top doubles with a chance of 0.1 × that scale².

@@ -19,6 +19,9 @@ namespace exacity {
 // Buildings stand in rows along a lot's road frontage; street furniture stands along the
 // frontage inside the setback; trees fill space left in lots.
 enum class ModelKind { Building, Street, Tree };
+inline const char* name(ModelKind k) {
+  return k == ModelKind::Tree ? "tree" : k == ModelKind::Street ? "street" : "building";
+}
 
 struct Model {
   std::string name;

@@ -1,5 +1,7 @@
 #include "generate/placement/model_placement.h"
 
+#include "generate/placement/placer.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -27,45 +29,16 @@ std::pair<double, double> spacing(const std::string& density) {
   return {2, 3};
 }
 
-Building made(const Model& m, const Placement& p, geom::Ring ring) {
-  Building b;
-  b.placed = p;
-  b.polygon.outer = std::move(ring);
-  b.height = b.eaves = m.height * p.scale;
-  b.roof = "model";
-  return b;
+ModelInstance made(const Model& m, const Placement& p, geom::Ring ring) {
+  ModelInstance placed;
+  placed.kind = m.kind;
+  placed.placed = p;
+  placed.polygon.outer = std::move(ring);
+  placed.height = m.height * p.scale;
+  return placed;
 }
 
 }  // namespace
-
-Frontage principal_frontage(const geom::Cell& piece, int road_kind) {
-  auto edges = piece.edges_of_kind(road_kind);
-  std::vector<Vec2> corners = piece.corners();
-  Frontage f;
-  f.on_road = !edges.empty();
-  if (edges.empty())
-    for (std::size_t i = 0; i < corners.size(); ++i) edges.push_back({corners[i], corners[(i + 1) % corners.size()]});
-  double longest = 0;
-  for (auto [a, b] : edges) {
-    double len = std::hypot(b.x - a.x, b.y - a.y);
-    if (len > longest) longest = len, f.a = a, f.u = {(b.x - a.x) / len, (b.y - a.y) / len};
-  }
-  if (longest == 0) return f;
-  f.n = {-f.u.y, f.u.x};  // the piece lies on each boundary edge's left
-  f.t0 = INFINITY, f.t1 = -INFINITY;
-  for (Vec2 c : corners) {
-    double t = (c.x - f.a.x) * f.u.x + (c.y - f.a.y) * f.u.y, d = (c.x - f.a.x) * f.n.x + (c.y - f.a.y) * f.n.y;
-    f.t0 = std::min(f.t0, t), f.t1 = std::max(f.t1, t), f.depth = std::max(f.depth, d);
-  }
-  return f;
-}
-
-bool fits(const geom::Cell& piece, const geom::Ring& ring, const std::vector<geom::Ring>& taken) {
-  if (geom::ring_orientation(ring) != 1 || !piece.holds(ring)) return false;
-  for (const geom::Ring& t : taken)
-    if (geom::rings_meet(ring, t)) return false;
-  return true;
-}
 
 geom::Ring placed_outline(const Model& m, const Placement& p) {
   const double c = std::cos(p.angle) * p.scale, s = std::sin(p.angle) * p.scale;
@@ -78,19 +51,18 @@ geom::Ring placed_outline(const Model& m, const Placement& p) {
   return ring;
 }
 
-std::vector<Building> place_models(const geom::Cell& piece, int road_kind, std::vector<geom::Ring>& taken,
-                                   const std::vector<int>& choices, ModelKind kind, const ModelLibrary& lib,
-                                   const ZoneParams& params, Random& rng) {
-  std::vector<Building> out;
+std::vector<ModelInstance> place_models(Occupancy& occupancy, const std::vector<int>& choices, ModelKind kind,
+                                        const ModelLibrary& lib, const ZoneParams& params, Random& rng) {
+  std::vector<ModelInstance> out;
   if (choices.empty()) return out;
-  const Frontage f = principal_frontage(piece, road_kind);
+  const geom::Cell& piece = occupancy.piece();
+  const Frontage& f = occupancy.frontage();
   if (!(f.t1 > f.t0)) return out;
   const double along = std::atan2(f.u.y, f.u.x);
   auto at = [&](double t, double d) { return f.at(t, d); };
   auto try_place = [&](int model, Placement p) {
     geom::Ring ring = placed_outline(lib.models[model], p);
-    if (!fits(piece, ring, taken)) return false;
-    taken.push_back(ring);
+    if (!occupancy.take(ring)) return false;
     out.push_back(made(lib.models[model], p, std::move(ring)));
     return true;
   };
@@ -175,6 +147,31 @@ std::vector<Building> place_models(const geom::Cell& piece, int road_kind, std::
     }
   }
   return out;
+}
+
+namespace {
+
+class ModelPlacer : public Placer {
+ public:
+  ModelPlacer(const ModelLibrary& library, std::vector<int> choices, ModelKind kind)
+      : library_(library), choices_(std::move(choices)), kind_(kind) {}
+  void place(const Lot&, const ZoneParams& params, Occupancy& occupancy, Random& rng, Structures& out) const override {
+    for (ModelInstance& m : place_models(occupancy, choices_, kind_, library_, params, rng))
+      out.models.push_back(std::move(m));
+  }
+
+ private:
+  const ModelLibrary& library_;
+  std::vector<int> choices_;
+  ModelKind kind_;
+};
+
+}  // namespace
+
+std::unique_ptr<Placer> make_model_placer(const ModelLibrary& library, ZoneType zone, ModelKind kind) {
+  std::vector<int> choices = library.choices(zone, kind);
+  if (choices.empty()) return nullptr;
+  return std::make_unique<ModelPlacer>(library, std::move(choices), kind);
 }
 
 }  // namespace exacity

@@ -1,0 +1,76 @@
+// The ground as the city map leaves it, typed: zones, water, roads and their surfaces,
+// blocks and lots, each as the vector layers write it (docs/design.md, The city model).
+// The exports and the renderer read these, never the layers' GeoJSON properties. A
+// feature's id is its index in its list, but for blocks, which carry their own.
+#pragma once
+
+#include <vector>
+
+#include "generate/city/city_map.h"
+#include "generate/city/zone_type.h"
+#include "geom/plain.h"
+
+namespace exacity {
+
+struct ZoneArea {
+  ZoneType type = ZoneType::Residential;
+  geom::Polygon polygon;
+};
+
+// A centre line, cut where it goes on or off a bridge.
+struct RoadLine {
+  RoadClass road_class = RoadClass::Highway;
+  double width = 0;
+  int level = -1;   // growth level; -1 for roads drawn in the sketch
+  int region = -1;  // the region it was laid out in; -1 for roads drawn in the sketch
+  bool bridge = false;
+  geom::Polyline line;
+};
+
+// A piece of a road's surface: carriageway, sidewalk or junction.
+struct RoadArea {
+  int road = -1;  // the id of the first centre line of its road, -1 if it has none
+  bool bridge = false;
+  RoadSurface surface = RoadSurface::Carriageway;
+  geom::Polygon polygon;
+};
+
+// A block as written: rounding can pinch a block in two, and each piece is a feature.
+struct BlockArea {
+  int id = 0;     // the block's index for its first piece, ids after the last block's for others
+  int block = 0;  // the Block it is a piece of
+  ZoneType zone = ZoneType::Residential;
+  bool green = false;
+  std::vector<int> roads;  // the ids of the centre lines it fronts, -1 for a road with none
+  geom::Polygon polygon;
+};
+
+struct LotArea {
+  int block = 0;  // the id of the block piece it lies in
+  ZoneType zone = ZoneType::Residential;
+  geom::Polygon polygon;
+};
+
+struct Ground {
+  std::vector<ZoneArea> zones;
+  std::vector<geom::Polygon> water;
+  std::vector<RoadLine> roads;
+  std::vector<RoadArea> road_areas;
+  std::vector<BlockArea> blocks;
+  std::vector<LotArea> lots;
+
+  // The box around zones, water and road areas (what covers the ground); holds nothing
+  // for an empty city.
+  geom::Box bounds() const {
+    geom::Box box = geom::Box::none();
+    for (const auto& z : zones)
+      for (geom::Vec2 p : z.polygon.outer) box.add(p);
+    for (const auto& w : water)
+      for (geom::Vec2 p : w.outer) box.add(p);
+    for (const auto& r : road_areas)
+      for (geom::Vec2 p : r.polygon.outer) box.add(p);
+    return box;
+  }
+};
+
+}  // namespace exacity

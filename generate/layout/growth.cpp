@@ -1,0 +1,324 @@
+#include "generate/layout/growth.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include <tbb/parallel_for.h>
+
+#include "generate/city/random.h"
+#include "geom/grid.h"
+#include "geom/measure.h"
+
+namespace exacity {
+namespace {
+
+constexpr int kMaxLevels = 64;  // a long corridor is cut a block or so per level
+constexpr int kConnectorTries = 8;
+constexpr int kMaxStalls = 4;        // regrowths of a cell that the roads failed to divide
+constexpr int kSeedCandidates = 48;  // points tried for a cell's seed
+
+// A cell waiting to be grown.
+struct Work {
+  geom::Cell cell;
+  std::uint64_t id;    // stable: the region's index, then each split's part index
+  double orientation;  // degrees
+  int region;
+  ZoneType type;       // the parent's, until the seed's face tells
+  int stalls = 0;      // times in a row its roads failed to divide it
+  bool top = true;     // a whole region, with no roads of its own yet to reach
+};
+
+// Where a cell's roads start: the deepest of some points inside it (the farthest from its
+// boundary), so a seed sits in the middle of a corridor or an arm rather than at the
+// centroid, which a U, a ring or a spiral leaves outside or against an edge.
+std::optional<geom::Vec2> seed_point(const geom::Cell& cell, Random& rng) {
+  const std::vector<geom::KindedRing> rings = cell.kinded_rings();
+  auto depth = [&](geom::Vec2 p) {
+    double d = INFINITY;
+    for (const auto& r : rings)
+      for (std::size_t i = 0, n = r.points.size(); i < n; ++i)
+        d = std::min(d, geom::distance_to_segment(p, r.points[i], r.points[(i + 1) % n]));
+    return d;
+  };
+  std::optional<geom::Vec2> best = cell.point_inside_near(cell.centroid());
+  double best_depth = best ? depth(*best) : -1;
+  const geom::Box b = cell.bounds();
+  for (int i = 0; i < kSeedCandidates; ++i) {
+    geom::Vec2 p = geom::snap(geom::Vec2{rng.uniform(b.min_x, b.max_x), rng.uniform(b.min_y, b.max_y)});
+    double d = depth(p);
+    if (d > best_depth && cell.contains(p)) best = p, best_depth = d;  // the exact test only when it would win
+  }
+  return best;
+}
+
+// What growing one cell gave.
+struct Grown {
+  std::optional<geom::Vec2> seed;  // where its roads start
+  ZoneType type = ZoneType::Residential;
+  std::vector<geom::Path> roads;
+  std::vector<Work> parts;  // to grow at the next level
+  std::vector<int> joined;  // the sketch roads its roads run on to
+  bool without_access = false;
+};
+
+// The grid point `distance` from p at `degrees`.
+geom::Vec2 ahead(geom::Vec2 p, double degrees, double distance) {
+  double t = degrees * M_PI / 180;
+  return geom::snap(geom::Vec2{p.x + distance * std::cos(t), p.y + distance * std::sin(t)});
+}
+
+
+// The roads grown in one cell from its seed, and the sketch roads they run on to.
+struct CellRoads {
+  geom::Vec2 seed;
+  std::vector<geom::Path> roads;
+  std::vector<int> joined;
+};
+
+// Grows `branches` roads from the seed. Returns whether one reached a road (of the region,
+// or of the sketch); always true when `free`, for a cell with no road to reach.
+// `across_only`: only the branches within 45 degrees of `orientation` or its opposite.
+bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const ZoneParams& p, int level, bool free, double orientation,
+                   bool across_only, double reach, const SketchLines& sketch_lines, Random& rng, CellRoads& out) {
+  const double segment_deviation = std::max(p.segment_deviation - 2.0 * level, 0.0);
+  const int max_steps = static_cast<int>(reach / (p.segment_length * std::cos(p.origin_deviation * M_PI / 180))) + 2;
+  bool reached_road = free;
+  // Grows one road heading `alpha`; whether it has any length.
+  auto grow = [&](double alpha) {
+    growth.begin(seed);
+    geom::Growth::Met met;
+    if (segment_deviation == 0) {
+      // Straight: one segment on the line through the seed and a far grid point, so every
+      // piece of the road lies exactly on one line.
+      met = growth.extend(ahead(seed, alpha, reach));
+    } else {
+      double theta = alpha;
+      geom::Vec2 at = seed;
+      int steps = 0;
+      do {
+        double lo = std::max(theta - segment_deviation, alpha - p.origin_deviation);
+        double hi = std::min(theta + segment_deviation, alpha + p.origin_deviation);
+        theta = rng.uniform(lo, hi);
+        at = ahead(at, theta, p.segment_length);
+        met = growth.extend(at);
+        if (met.what == geom::Growth::Met::Nothing && ++steps > max_steps) met = growth.extend(ahead(at, theta, reach));
+      } while (met.what == geom::Growth::Met::Nothing);
+    }
+    geom::Path road = growth.end();
+    if (road.empty()) return false;
+    const int sketch_road = met.what == geom::Growth::Met::Edge ? GrowthEdge::sketch_road_of(met.kind) : -1;
+    reached_road |= met.edge_of_kind(GrowthEdge::kGrownRoad) || sketch_road >= 0;
+    if (sketch_road >= 0) {
+      const SketchRoad& target = sketch_lines[sketch_road];
+      const std::size_t points = road.size();
+      road = geom::extend_to(road, target.lines, 4 * target.width);
+      if (road.size() > points) out.joined.push_back(sketch_road);
+    }
+    out.roads.push_back(std::move(road));
+    return true;
+  };
+  std::vector<double> grown;
+  for (int i = 0; i < p.branches; ++i) {
+    const double off_axis = std::fmod(360.0 * i / p.branches, 180.0);
+    if (across_only && off_axis > 45 && off_axis < 135) continue;
+    const double alpha = orientation + 360.0 * i / p.branches;
+    if (grow(alpha)) grown.push_back(alpha);
+  }
+  // A seed left with one road would be a dead end: that road runs on through it instead.
+  if (grown.size() == 1) grow(grown[0] + 180);
+  return reached_road;
+}
+
+// A cell much longer than wide, and narrow for its zone: roads along it would only cut it
+// into slivers. Its long axis from the second moments of its outer ring (a choice, made
+// in doubles); nullopt for a cell that is no such strip.
+std::optional<double> strip_axis(const geom::Cell& cell, const ZoneParams& p) {
+  const geom::Ring ring = cell.to_plain().outer;
+  if (ring.size() < 3) return std::nullopt;
+  const geom::Vec2 o = ring[0];
+  double a = 0, cx = 0, cy = 0, xx = 0, yy = 0, xy = 0;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    geom::Vec2 u{ring[i].x - o.x, ring[i].y - o.y}, v{ring[(i + 1) % ring.size()].x - o.x, ring[(i + 1) % ring.size()].y - o.y};
+    double c = u.x * v.y - v.x * u.y;
+    a += c / 2, cx += (u.x + v.x) * c / 6, cy += (u.y + v.y) * c / 6;
+    xx += (u.x * u.x + u.x * v.x + v.x * v.x) * c / 12, yy += (u.y * u.y + u.y * v.y + v.y * v.y) * c / 12;
+    xy += (u.x * v.y + 2 * u.x * u.y + 2 * v.x * v.y + v.x * u.y) * c / 24;
+  }
+  if (a <= 0) return std::nullopt;
+  cx /= a, cy /= a;
+  xx = xx / a - cx * cx, yy = yy / a - cy * cy, xy = xy / a - cx * cy;
+  const double mean = (xx + yy) / 2, spread = std::hypot((xx - yy) / 2, xy);
+  const double length = std::sqrt(12 * (mean + spread)), width = std::sqrt(12 * std::max(mean - spread, 0.0));
+  if (width > 1.5 * std::sqrt(p.block_area) || length < 2 * width) return std::nullopt;
+  return std::atan2(mean + spread - xx, xy) * 180 / M_PI;  // the eigenvector of the larger moment
+}
+
+
+// The roads of one cell, grown from its seed. They must reach one of edges_to_reach;
+// when none does (a concave cell can hide those edges from the seed), they are grown
+// again from just inside one of those edges, the first branch heading straight back to
+// it. Empty when that fails too.
+CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const ZoneParams& p, int level, bool top, double orientation,
+                    const SketchLines& sketch_lines, Random& rng) {
+  const geom::Box b = cell.bounds();
+  const double reach = 2 * std::hypot(b.width(), b.height()) + 1;  // past the cell from anywhere in it
+  auto edges = edges_to_reach(cell, top);
+  const bool free = edges.empty();
+  {
+    // A strip is cut across, never along.
+    const std::optional<double> axis = strip_axis(cell, p);
+    geom::Growth growth(cell, p.segment_length);
+    CellRoads grown{seed, {}, {}};
+    if (grow_branches(growth, seed, p, level, free, axis ? *axis + 90 : orientation, axis.has_value(), reach,
+                      sketch_lines, rng, grown))
+      return grown;
+  }
+  auto mid = [](const std::pair<geom::Vec2, geom::Vec2>& e) {
+    return geom::Vec2{(e.first.x + e.second.x) / 2, (e.first.y + e.second.y) / 2};
+  };
+  auto length = [](const std::pair<geom::Vec2, geom::Vec2>& e) {
+    return std::hypot(e.second.x - e.first.x, e.second.y - e.first.y);
+  };
+  std::stable_sort(edges.begin(), edges.end(), [&](const auto& x, const auto& y) { return length(x) > length(y); });
+  for (std::size_t k = 0; k < std::min<std::size_t>(edges.size(), kConnectorTries); ++k) {
+    const auto& [a, c] = edges[k];
+    double len = length(edges[k]);
+    if (len == 0) continue;
+    geom::Vec2 m = mid(edges[k]), inward = geom::left_normal(a, c);  // the cell is on the left
+    // Half a block deep: the side branches then run one block behind this road.
+    double d = std::sqrt(p.block_area) / 2;
+    auto start = cell.point_inside_near({m.x + inward.x * d, m.y + inward.y * d});
+    if (!start) continue;
+    geom::Growth growth(cell, p.segment_length);
+    CellRoads grown{*start, {}, {}};
+    double back = std::atan2(m.y - start->y, m.x - start->x) * 180 / M_PI;
+    if (grow_branches(growth, *start, p, level, free, back, false, reach, sketch_lines, rng, grown)) return grown;
+  }
+  return {seed, {}, {}};
+}
+
+}  // namespace
+
+// The edges a cell's roads must reach: below the top level its region's roads, at the top
+// the sketch roads it borders (none: it need reach nothing).
+std::vector<std::pair<geom::Vec2, geom::Vec2>> edges_to_reach(const geom::Cell& cell, bool top) {
+  if (!top) return cell.edges_of_kind(GrowthEdge::kGrownRoad);
+  std::vector<std::pair<geom::Vec2, geom::Vec2>> edges;
+  for (const geom::KindedRing& r : cell.kinded_rings())
+    for (std::size_t i = 0; i < r.points.size(); ++i)
+      if (GrowthEdge::sketch_road_of(r.kinds[i]) >= 0) edges.push_back({r.points[i], r.points[(i + 1) % r.points.size()]});
+  return edges;
+}
+
+GrownRegions grow_regions(CityMap& zm, const Sketch& sketch, const SketchLines& sketch_lines,
+                          const std::vector<int>& kind) {
+  GrownRegions out;
+  auto params = [&](ZoneType t) -> const ZoneParams& { return sketch.zone_params.at(t); };
+
+  // Regions: connected faces of zones roads grow in (and the water under them where the
+  // zone lets roads bridge it). Zones laid out as "streets" grow none: the sketch's roads
+  // are their whole network.
+  const std::vector<int> group = zm.per_label([&](const FaceLabel& f) {
+    ZoneType t = f.zone >= 0 ? sketch.zones[f.zone].type : ZoneType::Park;
+    bool growable = f.zone >= 0 && grows_roads(t) && params(t).layout == "growth";
+    return (f.cover == Cover::Zone && growable) || (f.cover == Cover::Water && growable && params(t).bridges) ? 0 : -1;
+  });
+  std::vector<Work> level_work;
+  const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Roads));
+  for (geom::Cell& cell : zm.map.cells(group, kind)) {
+    std::uint64_t id = mix(stage, level_work.size());
+    Random rng(id);
+    level_work.push_back({std::move(cell), id, rng.uniform(0, 360), static_cast<int>(level_work.size()),
+                          ZoneType::Residential});
+  }
+  out.regions = static_cast<int>(level_work.size());
+
+  out.joined.assign(level_work.size(), 0);
+  for (int level = 0; !level_work.empty() && level < kMaxLevels; ++level) {
+    out.levels = level + 1;
+    std::vector<Grown> grown(level_work.size());
+    std::vector<geom::Vec2> seed_points;
+    for (std::size_t i = 0; i < level_work.size(); ++i) {
+      Random seed_rng(mix(level_work[i].id, 3 + level_work[i].stalls));
+      grown[i].seed = seed_point(level_work[i].cell, seed_rng);
+      if (grown[i].seed) seed_points.push_back(*grown[i].seed);
+    }
+    // The zone type at each seed, all found in one sweep.
+    std::vector<int> seed_labels = zm.map.labels_at(seed_points);
+    for (std::size_t i = 0, k = 0; i < level_work.size(); ++i) {
+      grown[i].type = level_work[i].type;
+      if (!grown[i].seed) continue;
+      int l = seed_labels[k++];
+      if (l >= 0 && zm.labels[l].zone >= 0 && grows_roads(sketch.zones[zm.labels[l].zone].type))
+        grown[i].type = sketch.zones[zm.labels[l].zone].type;
+    }
+
+    tbb::parallel_for(std::size_t(0), level_work.size(), [&](std::size_t i) {
+      const Work& w = level_work[i];
+      Grown& g = grown[i];
+      if (!g.seed) return;
+      const ZoneParams& p = params(g.type);
+      if (w.cell.area() <= p.block_area) return;  // small enough to be one block
+      Random rng(mix(w.id, 1 + 16 * w.stalls));
+      // Roads that fail to divide the cell, or only shave a sliver off it, are dropped and
+      // the cell grown again from another seed, a few times at most: slivers make poor
+      // blocks. Cutting off a tenth of a block is progress, so a long corridor is grown on
+      // however little of it each cut takes.
+      auto again = [&] {
+        g.roads.clear();
+        g.joined.clear();
+        if (w.stalls < kMaxStalls) {
+          Work retry = w;
+          ++retry.stalls;
+          g.parts.push_back(std::move(retry));
+        } else {
+          g.without_access = !w.top;
+        }
+      };
+      CellRoads grown = grow_cell(w.cell, *g.seed, p, level, w.top, w.orientation, sketch_lines, rng);
+      g.seed = grown.seed;
+      g.roads = std::move(grown.roads);
+      g.joined = std::move(grown.joined);
+      if (g.roads.empty()) return again();
+      std::vector<geom::Cell> parts = geom::split_cell(w.cell, g.roads, GrowthEdge::kGrownRoad);
+      double largest = 0;
+      for (const geom::Cell& part : parts) largest = std::max(largest, part.area());
+      const bool shaved =
+          parts.size() < 2 || w.cell.area() - largest < std::min(0.05 * w.cell.area(), 0.1 * p.block_area);
+      if (shaved && w.stalls < kMaxStalls) return again();
+      for (std::size_t k = 0; k < parts.size(); ++k) {
+        if (parts[k].area() <= p.block_area) continue;  // small enough to be one block
+        if (shaved && parts[k].area() == largest) continue;  // out of tries: left as it is
+        std::uint64_t id = mix(w.id, k + 2);
+        Random part_rng(id);
+        double jitter = p.jitter / (level + 1);
+        g.parts.push_back(
+            {std::move(parts[k]), id, w.orientation + part_rng.uniform(-jitter, jitter), w.region, g.type, 0, false});
+      }
+    });
+
+    std::vector<Work> next;
+    for (std::size_t i = 0; i < grown.size(); ++i) {
+      Grown& g = grown[i];
+      out.cells_without_access += g.without_access;
+      if (!g.joined.empty()) out.joined[level_work[i].region] = 1;
+      if (!g.roads.empty()) out.junctions.push_back({*g.seed, static_cast<int>(zm.roads.size())});
+      const ZoneParams& p = params(g.type);
+      for (geom::Path& road : g.roads) {
+        MapRoad r;
+        r.road_class = level_work[i].top ? RoadClass::Main : RoadClass::Local;
+        r.width = road_width(p, level);
+        r.level = level;
+        r.region = level_work[i].region;
+        r.lines.push_back(std::move(road));
+        zm.roads.push_back(std::move(r));
+      }
+      for (Work& w : g.parts) next.push_back(std::move(w));
+    }
+    level_work = std::move(next);
+  }
+  return out;
+}
+
+}  // namespace exacity

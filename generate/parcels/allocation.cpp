@@ -1,0 +1,217 @@
+// Seed 000's lots, measured from the street (3.2.2): along every run of road edges of a
+// block, lots side by side, corner lots at its corners, the block's middle left open.
+#include "generate/parcels/lot_layout.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "geom/grid.h"
+#include "geom/measure.h"
+#include "geom/polygon_check.h"
+
+namespace exacity {
+namespace {
+
+using geom::Vec2;
+
+Vec2 lerp(Vec2 a, Vec2 b, double t) { return {a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t}; }
+double length(Vec2 a, Vec2 b) { return std::hypot(b.x - a.x, b.y - a.y); }
+
+using geom::cross;
+using geom::dot;
+using geom::left_normal;
+using geom::unit;
+
+// How far a ray from p along the unit vector `dir` runs inside the block before it meets
+// a boundary edge (past a millimetre, so the edge it starts on does not count). A choice
+// of lot depth, made in doubles; the map decides the lots' topology exactly.
+double ray_distance(const std::vector<geom::KindedRing>& rings, Vec2 p, Vec2 dir, double limit) {
+  double best = limit;
+  for (const auto& r : rings)
+    for (std::size_t i = 0, n = r.points.size(); i < n; ++i) {
+      Vec2 a = r.points[i], e = r.points[(i + 1) % n] - a;
+      double den = cross(dir, e);
+      if (den == 0) continue;
+      double t = cross(a - p, e) / den, u = cross(a - p, dir) / den;
+      if (t > 1e-3 && u >= 0 && u <= 1) best = std::min(best, t);
+    }
+  return best;
+}
+
+// Where a run of street edges is broken: the kind changes between road and not, or the
+// boundary turns by more than this.
+constexpr double kRunTurn = 35 * M_PI / 180;
+constexpr Range kOwnedCorner{60 * M_PI / 180, 150 * M_PI / 180};  // turns at which a corner lot takes the corner
+constexpr double kFrontOverhang = 0.5;  // m: lots reach this far past the block's edge, so they meet it exactly
+
+// One lot boundary across the street side: from `at` on the block's edge, `depth` along `dir`.
+struct Cut {
+  Vec2 at, dir;
+  double depth = 0;
+};
+
+// How a run of lots ends: the cut there, how much of the run is left to the lot across
+// the corner (at its start), and how far past its end its last lot reaches to take the
+// corner (at its end).
+struct RunEnd {
+  Vec2 dir;
+  double skip = 0, extend = 0;
+};
+
+// The lots along one run of street edges: `points` from one end of the run to the other
+// (the block on the left), `normals` inward at each point, cut at equal steps near `width`.
+void run_lots(const std::vector<Vec2>& points, const std::vector<Vec2>& normals, const RunEnd& first, const RunEnd& last,
+              const std::vector<geom::KindedRing>& rings, double width, double depth, double min_edge,
+              std::vector<geom::Ring>& lots) {
+  std::vector<double> at_length{0};
+  for (std::size_t i = 1; i < points.size(); ++i) at_length.push_back(at_length.back() + length(points[i - 1], points[i]));
+  const double total = at_length.back(), begin = first.skip;
+  if (total - begin < min_edge) return;
+  {
+    // Where the block is too thin for the full depth, lots are narrower too, so that
+    // none is much wider than deep.
+    std::size_t mid = 0;
+    while (mid + 2 < points.size() && at_length[mid + 1] < (begin + total) / 2) ++mid;
+    Vec2 at = lerp(points[mid], points[mid + 1], 0.5);
+    double across = ray_distance(rings, at, left_normal(points[mid], points[mid + 1]), 4 * depth);
+    width = std::min(width, std::max(2 * std::min(depth, across / 2), min_edge));
+  }
+  const int count = std::max(1, static_cast<int>(std::lround((total - begin) / width)));
+  // The cuts: square to the street, but at the run's ends, where they are as given.
+  std::vector<Cut> cuts;
+  std::vector<std::size_t> after;  // per cut: the index of the first point past it
+  std::size_t seg = 0;
+  for (int k = 0; k <= count; ++k) {
+    const double s = begin + (total - begin) * k / count;
+    while (seg + 2 < points.size() && at_length[seg + 1] <= s) ++seg;
+    const double span = at_length[seg + 1] - at_length[seg];
+    Vec2 at = lerp(points[seg], points[seg + 1], span > 0 ? (s - at_length[seg]) / span : 0);
+    Vec2 dir = at_length[seg] == s ? normals[seg] : left_normal(points[seg], points[seg + 1]);
+    Vec2 depth_from = at;  // where the block's thickness is measured
+    if (k == 0 && begin == 0) at = points.front(), dir = first.dir;
+    if (k == count) {
+      depth_from = points.back();
+      at = points.back() + unit(points.back() - points[points.size() - 2]) * last.extend;
+      dir = last.dir;
+    }
+    double reach = depth / std::max(dot(dir, k == count ? normals.back() : normals[seg]), 0.5);
+    cuts.push_back({at, dir, std::min(reach, ray_distance(rings, depth_from, dir, 4 * depth) / 2)});
+    after.push_back(k == count ? points.size() : seg + 1);
+  }
+  // Neighbouring cuts that would cross (inside a bend) stop short of where they meet.
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    Cut &a = cuts[k], &b = cuts[k + 1];
+    double den = cross(a.dir, b.dir);
+    if (den == 0) continue;
+    double ta = cross(b.at - a.at, b.dir) / den, tb = cross(b.at - a.at, a.dir) / den;
+    if (ta > 0 && tb > 0 && ta < a.depth && tb < b.depth) a.depth = std::min(a.depth, 0.9 * ta), b.depth = std::min(b.depth, 0.9 * tb);
+  }
+  for (int k = 0; k < count; ++k) {
+    const Cut &a = cuts[k], &b = cuts[k + 1];
+    if (std::min(a.depth, b.depth) < min_edge) continue;
+    geom::Ring ring{a.at - a.dir * kFrontOverhang};
+    for (std::size_t i = after[k]; i < after[k + 1] && i < points.size(); ++i)
+      if (!(points[i] == a.at) && !(points[i] == b.at)) ring.push_back(points[i] - normals[i] * kFrontOverhang);
+    ring.push_back(b.at - b.dir * kFrontOverhang);
+    ring.push_back(b.at + b.dir * b.depth);
+    ring.push_back(a.at + a.dir * a.depth);
+    lots.push_back(std::move(ring));
+  }
+}
+
+// The ring on the grid, counter-clockwise; empty when it is not a simple polygon.
+geom::Ring on_grid(const geom::Ring& ring) {
+  geom::Ring r;
+  for (Vec2 p : ring) r.push_back(geom::snap(p));
+  int o = geom::ring_orientation(r);
+  if (o == 0) return {};
+  if (o < 0) std::reverse(r.begin(), r.end());
+  return r;
+}
+
+// Seed 000's industrial chance: a lot is kept with a chance that falls after a kept lot and
+// rises after a dropped one, so some street frontage stays open yard.
+class Allocation : public LotLayout {
+ public:
+  explicit Allocation(const ZoneParams& params) : params_(params) {}
+  std::vector<PlannedLot> plan(const Block& block, int index, Random& rng) const override {
+    std::vector<PlannedLot> out;
+    double keep = 0.8;
+    for (const geom::Ring& ring : street_lots(block.cell, params_, rng)) {
+      if (block.zone == ZoneType::Industrial) {
+        bool kept = rng.uniform() < keep;
+        keep = std::clamp(keep + (kept ? -0.25 : 0.25), 0.25, 1.0);
+        if (!kept) continue;
+      }
+      geom::Ring r = on_grid(ring);
+      if (!r.empty()) out.push_back({index, block.zone, r, {}});
+    }
+    return out;
+  }
+
+ private:
+  ZoneParams params_;
+};
+
+}  // namespace
+
+std::vector<geom::Ring> street_lots(const geom::Cell& block, const ZoneParams& p, Random& rng) {
+  std::vector<geom::Ring> lots;
+  const std::vector<geom::KindedRing> rings = block.kinded_rings();
+  for (const geom::KindedRing& r : rings) {
+    const std::size_t n = r.points.size();
+    auto road = [&](std::size_t edge) { return BlockEdge::is_road(r.kinds[edge % n]); };
+    auto normal = [&](std::size_t edge) { return left_normal(r.points[edge % n], r.points[(edge + 1) % n]); };
+    // At vertex i, between edge i - 1 and edge i.
+    auto turn = [&](std::size_t i) {
+      Vec2 u = r.points[i % n] - r.points[(i + n - 1) % n], v = r.points[(i + 1) % n] - r.points[i % n];
+      return std::atan2(cross(u, v), dot(u, v));
+    };
+    auto breaks = [&](std::size_t i) { return road(i + n - 1) != road(i) || std::abs(turn(i)) > kRunTurn; };
+    std::size_t start = n;
+    for (std::size_t i = 0; i < n; ++i)
+      if (breaks(i)) {
+        start = i;
+        break;
+      }
+    const bool closed = start == n;  // one smooth run all round
+    if (closed) {
+      if (!road(0)) continue;
+      start = 0;
+    }
+    // At a corner the cut runs along the bisector of the two edges' inward normals; a
+    // square-ish convex corner between two streets goes whole to the lot arriving there,
+    // and the run leaving it starts where that lot's back line meets it.
+    auto corner_dir = [&](std::size_t vertex, Vec2 own) {
+      Vec2 d = unit(normal(vertex + n - 1) + normal(vertex));
+      return closed || dot(d, own) > 0.5 ? d : own;
+    };
+    auto owned = [&](std::size_t vertex) {
+      const double t = turn(vertex);
+      return !closed && road(vertex + n - 1) && road(vertex) && t >= kOwnedCorner.min && t <= kOwnedCorner.max;
+    };
+    // Runs from `start` on: [i, j) edges.
+    for (std::size_t i = start; i < start + n;) {
+      std::size_t j = i + 1;
+      while (j < start + n && !breaks(j)) ++j;
+      if (road(i)) {
+        std::vector<Vec2> pts, normals;
+        for (std::size_t k = i; k <= j; ++k) {
+          pts.push_back(r.points[k % n]);
+          normals.push_back(k == i ? normal(i) : k == j ? normal(j - 1) : unit(normal(k - 1) + normal(k)));
+        }
+        RunEnd first{corner_dir(i, normals.front())}, last{corner_dir(j, normals.back())};
+        if (owned(i)) first = {normals.front(), p.lot_depth / std::sin(turn(i)), 0};
+        if (owned(j)) last = {normals.back(), 0, kFrontOverhang + std::max(0.0, p.lot_depth / std::tan(turn(j)))};
+        run_lots(pts, normals, first, last, rings, rng.uniform(p.lot_width.min, p.lot_width.max), p.lot_depth,
+                 p.min_lot_edge, lots);
+      }
+      i = j;
+    }
+  }
+  return lots;
+}
+
+std::unique_ptr<LotLayout> make_allocation(const ZoneParams& params) { return std::make_unique<Allocation>(params); }
+
+}  // namespace exacity

@@ -1,0 +1,43 @@
+// Lot layouts (docs/design.md, Lots): how a block is cut into lots, one layout per zone
+// type from its "lots" setting: seed 000's allocation measured from the street
+// (generate/parcels/allocation.cpp) or seed 003's split (generate/parcels/split.cpp). A
+// layout plans from the block alone; the lots stage puts every plan into the map at once.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "generate/city/random.h"
+#include "generate/city/sketch.h"
+#include "generate/parcels/blocks.h"
+
+namespace exacity {
+
+// A planned lot: a ring of grid points, counter-clockwise (allocated lots), or an exact part
+// of the block (split lots).
+struct PlannedLot {
+  int block = -1;
+  ZoneType zone = ZoneType::Residential;
+  geom::Ring ring;
+  geom::Cell cell;
+};
+
+class LotLayout {
+ public:
+  virtual ~LotLayout() = default;
+  // The lots of `block` (its index in the city's blocks: `index`).
+  virtual std::vector<PlannedLot> plan(const Block& block, int index, Random& rng) const = 0;
+};
+
+std::unique_ptr<LotLayout> make_lot_layout(const ZoneParams& params);
+std::unique_ptr<LotLayout> make_allocation(const ZoneParams& params);
+std::unique_ptr<LotLayout> make_split(const ZoneParams& params);
+
+// Seed 000's lots measured from the street: along every run of road edges of the block
+// (BlockEdge::is_road), lots side by side, about `lot_width` wide and `lot_depth` deep (at most
+// half the way across the block), split at the run's corners along the corner's bisector;
+// the block's middle is left open. Rings in doubles, not yet on the grid; each reaches a
+// little past the block's edge, so the map cuts it back exactly there.
+std::vector<geom::Ring> street_lots(const geom::Cell& block, const ZoneParams& p, Random& rng);
+
+}  // namespace exacity

@@ -1,0 +1,47 @@
+#include "generate/placement/occupancy.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "geom/polygon_check.h"
+
+namespace exacity {
+
+Frontage principal_frontage(const geom::Cell& piece, int road_kind) {
+  auto edges = piece.edges_of_kind(road_kind);
+  std::vector<geom::Vec2> corners = piece.corners();
+  Frontage f;
+  f.on_road = !edges.empty();
+  if (edges.empty())
+    for (std::size_t i = 0; i < corners.size(); ++i) edges.push_back({corners[i], corners[(i + 1) % corners.size()]});
+  double longest = 0;
+  for (auto [a, b] : edges) {
+    double len = std::hypot(b.x - a.x, b.y - a.y);
+    if (len > longest) longest = len, f.a = a, f.u = geom::unit_along(a, b);
+  }
+  if (longest == 0) return f;
+  f.n = {-f.u.y, f.u.x};  // the piece lies on each boundary edge's left
+  f.t0 = INFINITY, f.t1 = -INFINITY;
+  for (geom::Vec2 c : corners) {
+    double t = (c.x - f.a.x) * f.u.x + (c.y - f.a.y) * f.u.y, d = (c.x - f.a.x) * f.n.x + (c.y - f.a.y) * f.n.y;
+    f.t0 = std::min(f.t0, t), f.t1 = std::max(f.t1, t), f.depth = std::max(f.depth, d);
+  }
+  return f;
+}
+
+bool Occupancy::inside(const geom::Ring& ring) const {
+  return geom::ring_orientation(ring) == 1 && piece_.holds(ring);
+}
+
+bool Occupancy::free(const geom::Ring& ring) const {
+  if (!inside(ring)) return false;
+  return std::none_of(taken_.begin(), taken_.end(), [&](const geom::Ring& t) { return geom::rings_meet(ring, t); });
+}
+
+bool Occupancy::take(const geom::Ring& ring) {
+  if (!free(ring)) return false;
+  taken_.push_back(ring);
+  return true;
+}
+
+}  // namespace exacity
