@@ -63,31 +63,11 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
   return write_city(city, dir, stages);
 }
 
-GenerateResult write_city(const City& city, const fs::path& dir, StageClock& stages) {
-  const Sketch& sketch = city.sketch;
-  const CityLayers& layers = city.layers;
-  const auto& buildings = city.buildings;
-  const RoadNetwork& network = city.network;
-  const auto& blocks = city.blocks;
-  stages.run("export", [&] {
-    fs::create_directories(dir / "vector");
-    fs::copy_file(sketch.path, dir / "sketch.geojson");
-    for (const Layer* l : {&layers.zones, &layers.water, &layers.roads, &layers.road_areas, &layers.blocks, &layers.lots,
-                             &layers.buildings})
-      write_geojson(*l, sketch.crs, dir / "vector" / (l->name + ".geojson"));
-    write_svg_map(city.ground, buildings, city.models, dir / "map.svg");
-  });
-  GltfCounts gltf;
-  MeshCounts mesh = stages.run("3d export", [&] {
-    const ModelLibrary* library = city.model_library();
-    std::vector<Mesh> meshes = structure_meshes(buildings, city.models, library);
-    write_cityjson(city.ground, buildings, city.models, meshes, library, city.heightmap(), sketch, dir / "city.city.json");
-    gltf = write_gltf(city.ground, buildings, city.models, meshes, library, city.heightmap(), dir / "city.glb");
-    return write_meshes(buildings, city.models, meshes, dir / "city.obj", dir / "city.ply");
-  });
-  Validation validation = stages.run("validation", [&] { return validate_output(dir); });
+namespace {
 
-  // Road segments per class, junctions per degree (1: a dead end at a region's edge).
+// report.json's road_network: regions and levels grown, roads and segments per class,
+// junctions per degree (1: a dead end at a region's edge), how the sketch's roads met.
+ordered_json road_network_report(const RoadNetwork& network, const Sketch& sketch) {
   ordered_json segments = ordered_json::object(), roads_by_class = ordered_json::object();
   for (const MapRoad& r : network.map.roads) {
     std::string c(name(r.road_class));
@@ -99,10 +79,66 @@ GenerateResult write_city(const City& city, const fs::path& dir, StageClock& sta
     if (degree != 2) junctions[std::to_string(degree)] = count;
   ordered_json dead_ends = ordered_json::array();
   for (const DeadEnd& d : sketch.dead_ends) dead_ends.push_back({{"feature", d.feature}, {"at", {d.at.x, d.at.y}}});
-  int green = 0;
-  for (const Block& b : blocks) green += b.green;
+  return {{"regions", network.stats.regions},
+          {"levels", network.stats.levels},
+          {"roads", roads_by_class},
+          {"segments", segments},
+          {"junctions_by_degree", junctions},
+          {"cells_without_access", network.stats.cells_without_access},
+          {"links", network.stats.links},
+          {"sketch_junctions", {{"mitred", network.map.mitred_junctions}, {"discs", network.map.disc_junctions}}},
+          {"joined_ends", sketch.joined_ends},
+          {"dead_ends", dead_ends}};
+}
 
-  auto counts = network.map.map.counts();
+// report.json's counts: features per layer, the map's size and the 3D exports'.
+ordered_json counts_report(const City& city, const MeshCounts& mesh, const GltfCounts& gltf) {
+  const CityLayers& layers = city.layers;
+  int green = 0;
+  for (const Block& b : city.blocks) green += b.green;
+  auto counts = city.network.map.map.counts();
+  return {{"zones", layers.zones.features.size()},
+          {"water", layers.water.features.size()},
+          {"roads", layers.roads.features.size()},
+          {"road_areas", layers.road_areas.features.size()},
+          {"blocks", city.blocks.size() - green},
+          {"green_spaces", green},
+          {"lots", layers.lots.features.size()},
+          {"buildings", layers.buildings.features.size()},
+          {"map", {{"vertices", counts.vertices}, {"edges", counts.edges}, {"faces", counts.faces}}},
+          {"mesh", {{"vertices", mesh.vertices}, {"faces", mesh.faces}}},
+          {"gltf", {{"meshes", gltf.meshes}, {"instances", gltf.instances}, {"triangles", gltf.triangles}}}};
+}
+
+// The vector layers, a copy of the sketch and the SVG map.
+void export_vectors(const City& city, const fs::path& dir) {
+  const CityLayers& layers = city.layers;
+  fs::create_directories(dir / "vector");
+  fs::copy_file(city.sketch.path, dir / "sketch.geojson");
+  for (const Layer* l : {&layers.zones, &layers.water, &layers.roads, &layers.road_areas, &layers.blocks, &layers.lots,
+                         &layers.buildings})
+    write_geojson(*l, city.sketch.crs, dir / "vector" / (l->name + ".geojson"));
+  write_svg_map(city.ground, city.buildings, city.models, dir / "map.svg");
+}
+
+// CityJSON, glTF, OBJ and PLY, from one set of building meshes.
+MeshCounts export_3d(const City& city, const fs::path& dir, GltfCounts& gltf) {
+  const ModelLibrary* library = city.model_library();
+  std::vector<Mesh> meshes = structure_meshes(city.buildings, city.models, library);
+  write_cityjson(city.ground, city.buildings, city.models, meshes, library, city.heightmap(), city.sketch,
+                 dir / "city.city.json");
+  gltf = write_gltf(city.ground, city.buildings, city.models, meshes, library, city.heightmap(), dir / "city.glb");
+  return write_meshes(city.buildings, city.models, meshes, dir / "city.obj", dir / "city.ply");
+}
+
+}  // namespace
+
+GenerateResult write_city(const City& city, const fs::path& dir, StageClock& stages) {
+  const Sketch& sketch = city.sketch;
+  stages.run("export", [&] { export_vectors(city, dir); });
+  GltfCounts gltf;
+  MeshCounts mesh = stages.run("3d export", [&] { return export_3d(city, dir, gltf); });
+  Validation validation = stages.run("validation", [&] { return validate_output(dir); });
   ordered_json report{
       {"generator", "exacity"},
       {"version", kVersion},
@@ -111,30 +147,9 @@ GenerateResult write_city(const City& city, const fs::path& dir, StageClock& sta
       // Where the sketch's relative paths (heightmap, models) resolve, for `exacity render`.
       {"sketch_path", fs::absolute(sketch.path).lexically_normal().string()},
       {"seed", sketch.seed},
-      {"counts",
-       {{"zones", layers.zones.features.size()},
-        {"water", layers.water.features.size()},
-        {"roads", layers.roads.features.size()},
-        {"road_areas", layers.road_areas.features.size()},
-        {"blocks", blocks.size() - green},
-        {"green_spaces", green},
-        {"lots", layers.lots.features.size()},
-        {"buildings", layers.buildings.features.size()},
-        {"map", {{"vertices", counts.vertices}, {"edges", counts.edges}, {"faces", counts.faces}}},
-        {"mesh", {{"vertices", mesh.vertices}, {"faces", mesh.faces}}},
-        {"gltf", {{"meshes", gltf.meshes}, {"instances", gltf.instances}, {"triangles", gltf.triangles}}}}},
-      {"road_network",
-       {{"regions", network.stats.regions},
-        {"levels", network.stats.levels},
-        {"roads", roads_by_class},
-        {"segments", segments},
-        {"junctions_by_degree", junctions},
-        {"cells_without_access", network.stats.cells_without_access},
-        {"links", network.stats.links},
-        {"sketch_junctions", {{"mitred", network.map.mitred_junctions}, {"discs", network.map.disc_junctions}}},
-        {"joined_ends", sketch.joined_ends},
-        {"dead_ends", dead_ends}}},
-      {"statistics", city_statistics(layers, &sketch)},
+      {"counts", counts_report(city, mesh, gltf)},
+      {"road_network", road_network_report(city.network, sketch)},
+      {"statistics", city_statistics(city.layers, &sketch)},
       {"validation",
        {{"ok", validation.ok()}, {"problems", validation.problems}, {"widest_sliver_m", validation.widest_sliver}}},
       {"timings_s", stages.seconds},

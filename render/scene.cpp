@@ -295,77 +295,79 @@ void RenderScene::make_palette(Palette& p) {
 
 // The ground: terrain, then layers a few centimetres above each other.
 void RenderScene::add_ground(const exacity::City& city, const geom::Box& world, const Palette& palette) {
-  const exacity::Ground& ground_layers = city.ground;
+  const exacity::Ground& g = city.ground;
   const exacity::Terrain* terrain = city.heightmap();
-  {
-    // The heightmap reaches a city's size past it on every side (its edge values carried
-    // on), so the plane beyond, at the lowest height, meets no cliff in view.
-    const geom::Box wide{world.min_x - world.width(), world.min_y - world.height(), world.max_x + world.width(),
-                         world.max_y + world.height()};
-    exacity::GroundMesh g = exacity::terrain_tin(terrain, terrain ? wide : world, 768);
-    std::vector<V3> v;
-    for (const auto& p : g.vertices) v.push_back(to_scene(p[0], p[1], p[2]));
-    Geometry info;
-    info.material.assign(g.triangles.size(), grass_material_);
-    info.entity.assign(g.triangles.size(), entity_id(Entity::Terrain, 0));
-    add_triangles(v, g.triangles, std::move(info));
-    ground = INFINITY;
-    for (const V3& p : v) ground = std::min(ground, p.z);
+  add_terrain(terrain, world);
+  std::vector<DrapedPiece> zones, lots, water, road_areas;
+  for (std::size_t id = 0; id < g.zones.size(); ++id) {
+    const bool park = g.zones[id].type == ZoneType::Park;
+    zones.push_back({&g.zones[id].polygon, park ? grass_material_ : palette.sidewalk, entity_id(Entity::Zone, id), 0.03});
   }
-  // Each feature's material, entity and lift (for a bridge's road area, that of bridges).
-  auto draped = [&](const auto& features, double lift_of_bridge, auto polygon_of, auto bridge_of, auto style) {
-    exacity::GroundMesh g;
-    Geometry info;
-    for (std::size_t id = 0; id < features.size(); ++id) {
-      const auto& f = features[id];
-      const auto [m, entity, lift] = style(f, id);
-      if (m < 0) continue;
-      exacity::drape(polygon_of(f), terrain, bridge_of(f) ? lift_of_bridge : lift, g);
-      info.material.resize(g.triangles.size(), m);
-      info.entity.resize(g.triangles.size(), entity);
-    }
-    std::vector<V3> v;
-    for (const auto& p : g.vertices) v.push_back(to_scene(p[0], p[1], p[2]));
-    if (!g.triangles.empty()) add_triangles(v, g.triangles, std::move(info));
-  };
-  using Style = std::tuple<int, std::uint32_t, double>;
-  auto polygon = [](const auto& f) -> const geom::Polygon& { return f.polygon; };
-  auto on_land = [](const auto&) { return false; };
-  draped(ground_layers.zones, 0.03, polygon, on_land, [&](const exacity::ZoneArea& z, std::size_t id) {
-    const bool park = z.type == ZoneType::Park;
-    return Style{park ? grass_material_ : palette.sidewalk, entity_id(Entity::Zone, id), 0.03};
-  });
-  draped(ground_layers.lots, 0.06, polygon, on_land, [&](const exacity::LotArea& lot, std::size_t id) {
-    const int m = palette.lot_ground.count(lot.zone) ? palette.lot_ground.at(lot.zone) : palette.sidewalk;
-    return Style{m, entity_id(Entity::Lot, id), 0.06};
-  });
-  draped(
-      ground_layers.water, 0.05, [](const geom::Polygon& p) -> const geom::Polygon& { return p; }, on_land,
-      [&](const geom::Polygon&, std::size_t id) { return Style{palette.water, entity_id(Entity::Water, id), 0.05}; });
-  draped(ground_layers.road_areas, 0.30, polygon, [](const exacity::RoadArea& a) { return a.bridge; },
-         [&](const exacity::RoadArea& a, std::size_t) {
-           // A road surface names the centre line it belongs to; its id is the road's entity.
-           const int material = a.surface == exacity::RoadSurface::Sidewalk ? palette.sidewalk : palette.asphalt;
-           return Style{material, entity_id(Entity::Road, a.road >= 0 ? static_cast<std::size_t>(a.road) : 0), 0.10};
-         });
-  // Centre stripes (solid yellow on highways, dashed white elsewhere) and dashed lane lines.
-  {
-    std::vector<V3> v;
-    std::vector<std::array<int, 3>> t;
-    Geometry info;
-    for (std::size_t id = 0; id < ground_layers.roads.size(); ++id) {
-      const exacity::RoadLine& r = ground_layers.roads[id];
-      const bool highway = r.road_class == exacity::RoadClass::Highway;
-      const double width = r.width, lift = r.bridge ? 0.32 : 0.12;
-      ribbon(r.line, 0, 0.15, highway ? 0 : 3, 5, terrain, lift, v, t, *this);
-      info.material.resize(t.size(), highway ? palette.yellow : palette.paint);
-      if (highway && width >= 14)
-        for (double side : {-width / 4, width / 4}) ribbon(r.line, side, 0.12, 3, 6, terrain, lift, v, t, *this);
-      info.material.resize(t.size(), palette.paint);
-      info.entity.resize(t.size(), entity_id(Entity::Road, id));
-    }
-    if (!t.empty()) add_triangles(v, t, std::move(info));
+  for (std::size_t id = 0; id < g.lots.size(); ++id) {
+    const ZoneType zone = g.lots[id].zone;
+    const int m = palette.lot_ground.count(zone) ? palette.lot_ground.at(zone) : palette.sidewalk;
+    lots.push_back({&g.lots[id].polygon, m, entity_id(Entity::Lot, id), 0.06});
   }
+  for (std::size_t id = 0; id < g.water.size(); ++id)
+    water.push_back({&g.water[id], palette.water, entity_id(Entity::Water, id), 0.05});
+  for (const exacity::RoadArea& a : g.road_areas) {
+    // A road surface names the centre line it belongs to; its id is the road's entity.
+    const int material = a.surface == exacity::RoadSurface::Sidewalk ? palette.sidewalk : palette.asphalt;
+    road_areas.push_back({&a.polygon, material, entity_id(Entity::Road, a.road >= 0 ? static_cast<std::size_t>(a.road) : 0),
+                          a.bridge ? 0.30 : 0.10});
+  }
+  for (const auto* pieces : {&zones, &lots, &water, &road_areas}) add_draped(*pieces, terrain);
+  add_road_markings(g.roads, terrain, palette);
+}
+
+// The heightmap reaches a city's size past it on every side (its edge values carried on),
+// so the plane beyond, at the lowest height, meets no cliff in view.
+void RenderScene::add_terrain(const exacity::Terrain* terrain, const geom::Box& world) {
+  const geom::Box wide{world.min_x - world.width(), world.min_y - world.height(), world.max_x + world.width(),
+                       world.max_y + world.height()};
+  exacity::GroundMesh g = exacity::terrain_tin(terrain, terrain ? wide : world, 768);
+  std::vector<V3> v;
+  for (const auto& p : g.vertices) v.push_back(to_scene(p[0], p[1], p[2]));
+  Geometry info;
+  info.material.assign(g.triangles.size(), grass_material_);
+  info.entity.assign(g.triangles.size(), entity_id(Entity::Terrain, 0));
+  add_triangles(v, g.triangles, std::move(info));
+  ground = INFINITY;
+  for (const V3& p : v) ground = std::min(ground, p.z);
+}
+
+// The pieces draped over the terrain, as one geometry.
+void RenderScene::add_draped(const std::vector<DrapedPiece>& pieces, const exacity::Terrain* terrain) {
+  exacity::GroundMesh g;
+  Geometry info;
+  for (const DrapedPiece& piece : pieces) {
+    exacity::drape(*piece.polygon, terrain, piece.lift, g);
+    info.material.resize(g.triangles.size(), piece.material);
+    info.entity.resize(g.triangles.size(), piece.entity);
+  }
+  std::vector<V3> v;
+  for (const auto& p : g.vertices) v.push_back(to_scene(p[0], p[1], p[2]));
+  if (!g.triangles.empty()) add_triangles(v, g.triangles, std::move(info));
+}
+
+// Centre stripes (solid yellow on highways, dashed white elsewhere) and dashed lane lines.
+void RenderScene::add_road_markings(const std::vector<exacity::RoadLine>& roads, const exacity::Terrain* terrain,
+                                    const Palette& palette) {
+  std::vector<V3> v;
+  std::vector<std::array<int, 3>> t;
+  Geometry info;
+  for (std::size_t id = 0; id < roads.size(); ++id) {
+    const exacity::RoadLine& r = roads[id];
+    const bool highway = r.road_class == exacity::RoadClass::Highway;
+    const double width = r.width, lift = r.bridge ? 0.32 : 0.12;
+    ribbon(r.line, 0, 0.15, highway ? 0 : 3, 5, terrain, lift, v, t, *this);
+    info.material.resize(t.size(), highway ? palette.yellow : palette.paint);
+    if (highway && width >= 14)
+      for (double side : {-width / 4, width / 4}) ribbon(r.line, side, 0.12, 3, 6, terrain, lift, v, t, *this);
+    info.material.resize(t.size(), palette.paint);
+    info.entity.resize(t.size(), entity_id(Entity::Road, id));
+  }
+  if (!t.empty()) add_triangles(v, t, std::move(info));
 }
 
 // Building and model tiles: each structure's tile (by id) and each tile's box.

@@ -115,6 +115,16 @@ class RenderScene {
   void build(const exacity::City& city, V3 sun, const SceneOptions& options);
   void make_palette(Palette& p);
   void add_ground(const exacity::City& city, const geom::Box& world, const Palette& palette);
+  struct DrapedPiece {
+    const geom::Polygon* polygon;
+    int material;
+    std::uint32_t entity;
+    double lift;  // m above the terrain
+  };
+  void add_terrain(const exacity::Terrain* terrain, const geom::Box& world);
+  void add_draped(const std::vector<DrapedPiece>& pieces, const exacity::Terrain* terrain);
+  void add_road_markings(const std::vector<exacity::RoadLine>& roads, const exacity::Terrain* terrain,
+                         const Palette& palette);
   void add_buildings(const exacity::City& city, const geom::Box& world, V3 sun, const SceneOptions& options,
                      const Palette& palette);
   struct StructureTiles;

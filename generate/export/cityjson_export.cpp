@@ -207,29 +207,10 @@ json model_object(const ModelInstance& m, const Mesh& mesh, const ModelLibrary& 
           {"geometry", json::array({lod1, placed})}};
 }
 
-}  // namespace
-
-void write_cityjson(const Ground& ground, const std::vector<Building>& buildings,
-                    const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
-                    const ModelLibrary* library, const Terrain* terrain, const Sketch& sketch,
-                    const std::filesystem::path& file) {
-  geom::Box box = ground.bounds();
-  if (box.holds_nothing()) box = {0, 0, 1, 1};
-  const geom::Vec2 origin{std::floor(box.min_x), std::floor(box.min_y)};
-  Vertices v(origin);
-  json objects = json::object();
-
-  for_each_by_id(
-      buildings, models,
-      [&](const Building& b) {
-        if (json o = building_object(b, meshes[b.id], v); !o.is_null()) objects["building-" + std::to_string(b.id)] = o;
-      },
-      [&](const ModelInstance& m) {
-        if (json o = model_object(m, meshes[m.id], *library, v); !o.is_null())
-          objects["building-" + std::to_string(m.id)] = o;
-      });
-  // One object per group of surfaces, groups in the order of their key's text (kept from
-  // when they were grouped by their GeoJSON property), named prefix + n.
+// Roads, land use and water as LOD1 surfaces: an object per road (its areas), per zone
+// type and one for the water, in the order of their key's text (kept from when they were
+// grouped by their GeoJSON property), each named prefix + n.
+void add_ground_objects(const Ground& ground, const Terrain* terrain, Vertices& v, json& objects) {
   using Groups = std::map<std::string, std::pair<json, std::vector<const geom::Polygon*>>>;
   auto surfaces = [&](const Groups& groups, const std::string& prefix, const std::string& type, const char* key) {
     int n = 0;
@@ -256,6 +237,30 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
   surfaces(roads, "road-", "Road", "road");
   surfaces(zones, "landuse-", "LandUse", "zone");
   surfaces(water, "water-", "WaterBody", nullptr);
+}
+
+}  // namespace
+
+void write_cityjson(const Ground& ground, const std::vector<Building>& buildings,
+                    const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
+                    const ModelLibrary* library, const Terrain* terrain, const Sketch& sketch,
+                    const std::filesystem::path& file) {
+  geom::Box box = ground.bounds();
+  if (box.holds_nothing()) box = {0, 0, 1, 1};
+  const geom::Vec2 origin{std::floor(box.min_x), std::floor(box.min_y)};
+  Vertices v(origin);
+  json objects = json::object();
+
+  for_each_by_id(
+      buildings, models,
+      [&](const Building& b) {
+        if (json o = building_object(b, meshes[b.id], v); !o.is_null()) objects["building-" + std::to_string(b.id)] = o;
+      },
+      [&](const ModelInstance& m) {
+        if (json o = model_object(m, meshes[m.id], *library, v); !o.is_null())
+          objects["building-" + std::to_string(m.id)] = o;
+      });
+  add_ground_objects(ground, terrain, v, objects);
 
   // The ground under the city: the heightmap over the rectangle around it.
   json tin = json::array();

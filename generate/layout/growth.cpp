@@ -211,112 +211,129 @@ std::vector<std::pair<geom::Vec2, geom::Vec2>> edges_to_reach(const geom::Cell& 
   return edges;
 }
 
-GrownRegions grow_regions(CityMap& zm, const Sketch& sketch, const SketchLines& sketch_lines,
-                          const std::vector<int>& kind) {
-  GrownRegions out;
-  auto params = [&](ZoneType t) -> const ZoneParams& { return sketch.zone_params.at(t); };
+namespace {
 
-  // Regions: connected faces of zones roads grow in (and the water under them where the
-  // zone lets roads bridge it). Zones laid out as "streets" grow none: the sketch's roads
-  // are their whole network.
+// Regions: connected faces of zones roads grow in (and the water under them where the
+// zone lets roads bridge it), each with its own stream and a random orientation. Zones
+// laid out otherwise grow none.
+std::vector<Work> regions(const CityMap& zm, const Sketch& sketch, const std::vector<int>& kind) {
+  auto params = [&](ZoneType t) -> const ZoneParams& { return sketch.zone_params.at(t); };
   const std::vector<int> group = zm.per_label([&](const FaceLabel& f) {
     ZoneType t = f.zone >= 0 ? sketch.zones[f.zone].type : ZoneType::Park;
     bool growable = f.zone >= 0 && grows_roads(t) && params(t).layout == "growth";
     return (f.cover == Cover::Zone && growable) || (f.cover == Cover::Water && growable && params(t).bridges) ? 0 : -1;
   });
-  std::vector<Work> level_work;
+  std::vector<Work> work;
   const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Roads));
   for (geom::Cell& cell : zm.map.cells(group, kind)) {
-    std::uint64_t id = mix(stage, level_work.size());
+    std::uint64_t id = mix(stage, work.size());
     Random rng(id);
-    level_work.push_back({std::move(cell), id, rng.uniform(0, 360), static_cast<int>(level_work.size()),
-                          ZoneType::Residential});
+    work.push_back({std::move(cell), id, rng.uniform(0, 360), static_cast<int>(work.size()), ZoneType::Residential});
   }
-  out.regions = static_cast<int>(level_work.size());
+  return work;
+}
 
-  out.joined.assign(level_work.size(), 0);
-  for (int level = 0; !level_work.empty() && level < kMaxLevels; ++level) {
+// Each cell's seed, and the zone type it grows as: the type at its seed, all found in one
+// sweep of the map (a cell keeps its parent's type where the seed lies on none).
+std::vector<Grown> seeds(const std::vector<Work>& work, const CityMap& zm, const Sketch& sketch) {
+  std::vector<Grown> grown(work.size());
+  std::vector<geom::Vec2> seed_points;
+  for (std::size_t i = 0; i < work.size(); ++i) {
+    Random seed_rng(mix(work[i].id, 3 + work[i].stalls));
+    grown[i].seed = seed_point(work[i].cell, seed_rng);
+    if (grown[i].seed) seed_points.push_back(*grown[i].seed);
+  }
+  std::vector<int> seed_labels = zm.map.labels_at(seed_points);
+  for (std::size_t i = 0, k = 0; i < work.size(); ++i) {
+    grown[i].type = work[i].type;
+    if (!grown[i].seed) continue;
+    int l = seed_labels[k++];
+    if (l >= 0 && zm.labels[l].zone >= 0 && grows_roads(sketch.zones[zm.labels[l].zone].type))
+      grown[i].type = sketch.zones[zm.labels[l].zone].type;
+  }
+  return grown;
+}
+
+// Grows one cell's roads and splits it by them; the parts above the block area are
+// grown again at the next level. Roads that fail to divide the cell, or only shave a
+// sliver off it, are dropped and the cell grown again from another seed, a few times at
+// most: slivers make poor blocks. Cutting off a tenth of a block is progress, so a long
+// corridor is grown on however little of it each cut takes.
+void grow_one(const Work& w, Grown& g, const ZoneParams& p, int level, const SketchLines& sketch_lines) {
+  if (!g.seed) return;
+  if (w.cell.area() <= p.block_area) return;  // small enough to be one block
+  Random rng(mix(w.id, 1 + 16 * w.stalls));
+  auto again = [&] {
+    g.roads.clear();
+    g.joined.clear();
+    if (w.stalls < kMaxStalls) {
+      Work retry = w;
+      ++retry.stalls;
+      g.parts.push_back(std::move(retry));
+    } else {
+      g.without_access = !w.top;
+    }
+  };
+  CellRoads grown = grow_cell(w.cell, *g.seed, p, level, w.top, w.orientation, sketch_lines, rng);
+  g.seed = grown.seed;
+  g.roads = std::move(grown.roads);
+  g.joined = std::move(grown.joined);
+  if (g.roads.empty()) return again();
+  std::vector<geom::Cell> parts = geom::split_cell(w.cell, g.roads, GrowthEdge::kGrownRoad);
+  double largest = 0;
+  for (const geom::Cell& part : parts) largest = std::max(largest, part.area());
+  const bool shaved = parts.size() < 2 || w.cell.area() - largest < std::min(0.05 * w.cell.area(), 0.1 * p.block_area);
+  if (shaved && w.stalls < kMaxStalls) return again();
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    if (parts[k].area() <= p.block_area) continue;       // small enough to be one block
+    if (shaved && parts[k].area() == largest) continue;  // out of tries: left as it is
+    std::uint64_t id = mix(w.id, k + 2);
+    Random part_rng(id);
+    double jitter = p.jitter / (level + 1);
+    g.parts.push_back({std::move(parts[k]), id, w.orientation + part_rng.uniform(-jitter, jitter), w.region, g.type, 0,
+                       false});
+  }
+}
+
+// The level's roads onto the map's list, in cell order; returns the next level's work.
+std::vector<Work> collect(std::vector<Grown>& grown, const std::vector<Work>& work, int level, const Sketch& sketch,
+                          CityMap& zm, GrownRegions& out) {
+  std::vector<Work> next;
+  for (std::size_t i = 0; i < grown.size(); ++i) {
+    Grown& g = grown[i];
+    out.cells_without_access += g.without_access;
+    if (!g.joined.empty()) out.joined[work[i].region] = 1;
+    if (!g.roads.empty()) out.junctions.push_back({*g.seed, static_cast<int>(zm.roads.size())});
+    const ZoneParams& p = sketch.zone_params.at(g.type);
+    for (geom::Path& road : g.roads) {
+      MapRoad r;
+      r.road_class = work[i].top ? RoadClass::Main : RoadClass::Local;
+      r.width = road_width(p, level);
+      r.level = level;
+      r.region = work[i].region;
+      r.lines.push_back(std::move(road));
+      zm.roads.push_back(std::move(r));
+    }
+    for (Work& w : g.parts) next.push_back(std::move(w));
+  }
+  return next;
+}
+
+}  // namespace
+
+GrownRegions grow_regions(CityMap& zm, const Sketch& sketch, const SketchLines& sketch_lines,
+                          const std::vector<int>& kind) {
+  GrownRegions out;
+  std::vector<Work> work = regions(zm, sketch, kind);
+  out.regions = static_cast<int>(work.size());
+  out.joined.assign(work.size(), 0);
+  for (int level = 0; !work.empty() && level < kMaxLevels; ++level) {
     out.levels = level + 1;
-    std::vector<Grown> grown(level_work.size());
-    std::vector<geom::Vec2> seed_points;
-    for (std::size_t i = 0; i < level_work.size(); ++i) {
-      Random seed_rng(mix(level_work[i].id, 3 + level_work[i].stalls));
-      grown[i].seed = seed_point(level_work[i].cell, seed_rng);
-      if (grown[i].seed) seed_points.push_back(*grown[i].seed);
-    }
-    // The zone type at each seed, all found in one sweep.
-    std::vector<int> seed_labels = zm.map.labels_at(seed_points);
-    for (std::size_t i = 0, k = 0; i < level_work.size(); ++i) {
-      grown[i].type = level_work[i].type;
-      if (!grown[i].seed) continue;
-      int l = seed_labels[k++];
-      if (l >= 0 && zm.labels[l].zone >= 0 && grows_roads(sketch.zones[zm.labels[l].zone].type))
-        grown[i].type = sketch.zones[zm.labels[l].zone].type;
-    }
-
-    tbb::parallel_for(std::size_t(0), level_work.size(), [&](std::size_t i) {
-      const Work& w = level_work[i];
-      Grown& g = grown[i];
-      if (!g.seed) return;
-      const ZoneParams& p = params(g.type);
-      if (w.cell.area() <= p.block_area) return;  // small enough to be one block
-      Random rng(mix(w.id, 1 + 16 * w.stalls));
-      // Roads that fail to divide the cell, or only shave a sliver off it, are dropped and
-      // the cell grown again from another seed, a few times at most: slivers make poor
-      // blocks. Cutting off a tenth of a block is progress, so a long corridor is grown on
-      // however little of it each cut takes.
-      auto again = [&] {
-        g.roads.clear();
-        g.joined.clear();
-        if (w.stalls < kMaxStalls) {
-          Work retry = w;
-          ++retry.stalls;
-          g.parts.push_back(std::move(retry));
-        } else {
-          g.without_access = !w.top;
-        }
-      };
-      CellRoads grown = grow_cell(w.cell, *g.seed, p, level, w.top, w.orientation, sketch_lines, rng);
-      g.seed = grown.seed;
-      g.roads = std::move(grown.roads);
-      g.joined = std::move(grown.joined);
-      if (g.roads.empty()) return again();
-      std::vector<geom::Cell> parts = geom::split_cell(w.cell, g.roads, GrowthEdge::kGrownRoad);
-      double largest = 0;
-      for (const geom::Cell& part : parts) largest = std::max(largest, part.area());
-      const bool shaved =
-          parts.size() < 2 || w.cell.area() - largest < std::min(0.05 * w.cell.area(), 0.1 * p.block_area);
-      if (shaved && w.stalls < kMaxStalls) return again();
-      for (std::size_t k = 0; k < parts.size(); ++k) {
-        if (parts[k].area() <= p.block_area) continue;  // small enough to be one block
-        if (shaved && parts[k].area() == largest) continue;  // out of tries: left as it is
-        std::uint64_t id = mix(w.id, k + 2);
-        Random part_rng(id);
-        double jitter = p.jitter / (level + 1);
-        g.parts.push_back(
-            {std::move(parts[k]), id, w.orientation + part_rng.uniform(-jitter, jitter), w.region, g.type, 0, false});
-      }
+    std::vector<Grown> grown = seeds(work, zm, sketch);
+    tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
+      grow_one(work[i], grown[i], sketch.zone_params.at(grown[i].type), level, sketch_lines);
     });
-
-    std::vector<Work> next;
-    for (std::size_t i = 0; i < grown.size(); ++i) {
-      Grown& g = grown[i];
-      out.cells_without_access += g.without_access;
-      if (!g.joined.empty()) out.joined[level_work[i].region] = 1;
-      if (!g.roads.empty()) out.junctions.push_back({*g.seed, static_cast<int>(zm.roads.size())});
-      const ZoneParams& p = params(g.type);
-      for (geom::Path& road : g.roads) {
-        MapRoad r;
-        r.road_class = level_work[i].top ? RoadClass::Main : RoadClass::Local;
-        r.width = road_width(p, level);
-        r.level = level;
-        r.region = level_work[i].region;
-        r.lines.push_back(std::move(road));
-        zm.roads.push_back(std::move(r));
-      }
-      for (Work& w : g.parts) next.push_back(std::move(w));
-    }
-    level_work = std::move(next);
+    work = collect(grown, work, level, sketch, zm, out);
   }
   return out;
 }

@@ -51,101 +51,141 @@ geom::Ring placed_outline(const Model& m, const Placement& p) {
   return ring;
 }
 
-std::vector<ModelInstance> place_models(Occupancy& occupancy, const std::vector<int>& choices, ModelKind kind,
-                                        const ModelLibrary& lib, const ZoneParams& params, Random& rng) {
-  std::vector<ModelInstance> out;
-  if (choices.empty()) return out;
-  const geom::Cell& piece = occupancy.piece();
-  const Frontage& f = occupancy.frontage();
-  if (!(f.t1 > f.t0)) return out;
-  const double along = std::atan2(f.u.y, f.u.x);
-  auto at = [&](double t, double d) { return f.at(t, d); };
-  auto try_place = [&](int model, Placement p) {
+namespace {
+
+// What the placers of one lot piece share: the piece, its frontage, the library and the
+// models placed so far.
+struct Placing {
+  Occupancy& occupancy;
+  const ModelLibrary& lib;
+  const Frontage& f;
+  double along;  // the frontage's heading, radians
+  std::vector<ModelInstance>& out;
+
+  // Places the model there when its outline is free; whether it did.
+  bool try_place(int model, const Placement& p) {
     geom::Ring ring = placed_outline(lib.models[model], p);
     if (!occupancy.take(ring)) return false;
     out.push_back(made(lib.models[model], p, std::move(ring)));
     return true;
-  };
-
-  if (kind == ModelKind::Street) {
-    // One every `spacing` metres along the road frontage, in the middle of the setback strip.
-    if (!f.on_road) return out;
-    for (double t = f.t0 + lib.models[choices[0]].spacing / 2; t < f.t1;) {
-      int m = pick(choices, lib, rng);
-      double scale = rng.uniform(lib.models[m].min_scale, lib.models[m].max_scale);
-      int tint = static_cast<int>(rng.next() % kTints);
-      try_place(m, {m, at(t, params.setback / 2), along, scale, tint});
-      t += lib.models[m].spacing;
-    }
-    return out;
   }
-  if (kind == ModelKind::Tree) {
-    const geom::Box box = piece.bounds();
-    const int attempts = static_cast<int>(std::clamp(piece.area() / 150, 1.0, 24.0));
-    for (int i = 0; i < attempts; ++i) {
-      int m = pick(choices, lib, rng);
-      Placement p{m, {rng.uniform(box.min_x, box.max_x), rng.uniform(box.min_y, box.max_y)}, rng.uniform(0, 2 * M_PI),
-                  rng.uniform(lib.models[m].min_scale, lib.models[m].max_scale), static_cast<int>(rng.next() % kTints)};
-      try_place(m, p);
-    }
-    return out;
-  }
+};
 
-  // Buildings: draw enough candidates to fill the piece, then place the largest first,
-  // each at the first free place along the first row with room.
-  struct Candidate {
-    int model;
-    double scale, spacing, area;
-    int tint;
-  };
+// One every `spacing` metres along the road frontage, in the middle of the setback strip.
+void place_street_furniture(Placing& s, const std::vector<int>& choices, const ZoneParams& params, Random& rng) {
+  if (!s.f.on_road) return;
+  for (double t = s.f.t0 + s.lib.models[choices[0]].spacing / 2; t < s.f.t1;) {
+    int m = pick(choices, s.lib, rng);
+    double scale = rng.uniform(s.lib.models[m].min_scale, s.lib.models[m].max_scale);
+    int tint = static_cast<int>(rng.next() % kTints);
+    s.try_place(m, {m, s.f.at(t, params.setback / 2), s.along, scale, tint});
+    t += s.lib.models[m].spacing;
+  }
+}
+
+// Trees at random places and headings, a try per 150 m² of the piece (1 to 24).
+void place_trees(Placing& s, const std::vector<int>& choices, Random& rng) {
+  const geom::Cell& piece = s.occupancy.piece();
+  const geom::Box box = piece.bounds();
+  const int attempts = static_cast<int>(std::clamp(piece.area() / 150, 1.0, 24.0));
+  for (int i = 0; i < attempts; ++i) {
+    int m = pick(choices, s.lib, rng);
+    Placement p{m, {rng.uniform(box.min_x, box.max_x), rng.uniform(box.min_y, box.max_y)}, rng.uniform(0, 2 * M_PI),
+                rng.uniform(s.lib.models[m].min_scale, s.lib.models[m].max_scale), static_cast<int>(rng.next() % kTints)};
+    s.try_place(m, p);
+  }
+}
+
+// A building drawn for the rows, before it has a place.
+struct Candidate {
+  int model;
+  double scale, spacing, area;
+  int tint;
+};
+
+// Enough candidates to fill the piece at the zone's density, largest first; and the depth
+// of a row that holds the deepest.
+std::vector<Candidate> draw_candidates(const Placing& s, const std::vector<int>& choices, const ZoneParams& params,
+                                       Random& rng, double& row_depth) {
   const auto [lo, hi] = spacing(params.density);
   double mean_area = 0;
-  for (int c : choices) mean_area += lib.models[c].width * lib.models[c].depth;
+  for (int c : choices) mean_area += s.lib.models[c].width * s.lib.models[c].depth;
   mean_area /= static_cast<double>(choices.size());
-  const int count = static_cast<int>(std::clamp(std::ceil(piece.area() / (mean_area * (lo + hi) / 2)), 1.0, 48.0));
+  const double area = s.occupancy.piece().area();
+  const int count = static_cast<int>(std::clamp(std::ceil(area / (mean_area * (lo + hi) / 2)), 1.0, 48.0));
   std::vector<Candidate> candidates;
-  double row_depth = 0;
+  row_depth = 0;
   for (int i = 0; i < count; ++i) {
-    int m = pick(choices, lib, rng);
-    double scale = rng.uniform(lib.models[m].min_scale, lib.models[m].max_scale);
-    const Model& model = lib.models[m];
+    int m = pick(choices, s.lib, rng);
+    double scale = rng.uniform(s.lib.models[m].min_scale, s.lib.models[m].max_scale);
+    const Model& model = s.lib.models[m];
     candidates.push_back({m, scale, rng.uniform(lo, hi), model.width * model.depth * scale * scale,
                           static_cast<int>(rng.next() % kTints)});
     row_depth = std::max(row_depth, model.depth * scale);
   }
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const Candidate& a, const Candidate& b) { return a.area > b.area; });
+  return candidates;
+}
+
+// Taken intervals along one row, gaps included.
+using Row = std::vector<std::pair<double, double>>;
+
+// The candidate at the first free place along row k, `offset` back from the street;
+// whether it found one.
+bool place_in_row(Placing& s, const Candidate& c, Row& row, double offset) {
+  const Model& m = s.lib.models[c.model];
+  const double w = m.width * c.scale, d = m.depth * c.scale, gap = (c.spacing - 1) * w;
+  int tries = 0;
+  for (double t = s.f.t0; t + w <= s.f.t1 && tries < 48;) {
+    auto busy = std::find_if(row.begin(), row.end(), [&](const auto& iv) {
+      return iv.first < t + w + gap / 2 && t - gap / 2 < iv.second;
+    });
+    if (busy != row.end()) {
+      // Past it; by a centimetre when rounding leaves t where it was.
+      const double next = busy->second + gap / 2;
+      t = next > t ? next : t + 0.01;
+      continue;
+    }
+    ++tries;
+    if (s.try_place(c.model, {c.model, s.f.at(t + w / 2, offset + d / 2), s.along, c.scale, c.tint})) {
+      row.push_back({t - gap / 2, t + w + gap / 2});
+      return true;
+    }
+    t += std::max(w / 4, 0.5);
+  }
+  return false;
+}
+
+// Seed 002's rows: the candidates largest first, each in the first row with room.
+void place_building_rows(Placing& s, const std::vector<int>& choices, const ZoneParams& params, Random& rng) {
+  double row_depth = 0;
+  const std::vector<Candidate> candidates = draw_candidates(s, choices, params, rng, row_depth);
   const double row_pitch = row_depth + 2 * params.setback;
-  std::vector<std::vector<std::pair<double, double>>> rows;  // taken intervals along each row, gaps included
+  std::vector<Row> rows;
   for (const Candidate& c : candidates) {
-    const Model& m = lib.models[c.model];
-    const double w = m.width * c.scale, d = m.depth * c.scale, gap = (c.spacing - 1) * w;
-    bool placed = false;
-    for (std::size_t k = 0; !placed; ++k) {
+    const double d = s.lib.models[c.model].depth * c.scale;
+    for (std::size_t k = 0;; ++k) {
       const double offset = params.setback + static_cast<double>(k) * row_pitch;
-      if (offset + d > f.depth) break;
+      if (offset + d > s.f.depth) break;
       if (rows.size() <= k) rows.resize(k + 1);
-      int tries = 0;
-      for (double t = f.t0; t + w <= f.t1 && tries < 48;) {
-        auto busy = std::find_if(rows[k].begin(), rows[k].end(), [&](const auto& iv) {
-          return iv.first < t + w + gap / 2 && t - gap / 2 < iv.second;
-        });
-        if (busy != rows[k].end()) {
-          // Past it; by a centimetre when rounding leaves t where it was.
-          const double next = busy->second + gap / 2;
-          t = next > t ? next : t + 0.01;
-          continue;
-        }
-        ++tries;
-        if (try_place(c.model, {c.model, at(t + w / 2, offset + d / 2), along, c.scale, c.tint})) {
-          rows[k].push_back({t - gap / 2, t + w + gap / 2});
-          placed = true;
-          break;
-        }
-        t += std::max(w / 4, 0.5);
-      }
+      if (place_in_row(s, c, rows[k], offset)) break;
     }
   }
+}
+
+}  // namespace
+
+std::vector<ModelInstance> place_models(Occupancy& occupancy, const std::vector<int>& choices, ModelKind kind,
+                                        const ModelLibrary& lib, const ZoneParams& params, Random& rng) {
+  std::vector<ModelInstance> out;
+  if (choices.empty()) return out;
+  const Frontage& f = occupancy.frontage();
+  if (!(f.t1 > f.t0)) return out;
+  Placing placing{occupancy, lib, f, std::atan2(f.u.y, f.u.x), out};
+  if (kind == ModelKind::Street) place_street_furniture(placing, choices, params, rng);
+  else if (kind == ModelKind::Tree) place_trees(placing, choices, rng);
+  else place_building_rows(placing, choices, params, rng);
   return out;
 }
 
