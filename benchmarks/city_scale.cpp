@@ -30,57 +30,75 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 
 void row(const char* stage, double s, const std::string& counts) { std::printf("| %-14s | %8.3f | %s\n", stage, s, counts.c_str()); }
 
-}  // namespace
+double peak_mib() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;
+}
 
-int main(int argc, char** argv) {
+struct ScaleOptions {
   fs::path sketch_path = fs::path(EXACITY_SOURCE_DIR) / "benchmarks" / "city_10km.geojson", models;
   int threads = 1;
   std::string until;
+};
+
+ScaleOptions parse_options(int argc, char** argv) {
+  ScaleOptions o;
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--until") && i + 1 < argc) until = argv[++i];
-    else if (!std::strcmp(argv[i], "--models") && i + 1 < argc) models = argv[++i];
-    else sketch_path = argv[i];
+    if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) o.threads = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--until") && i + 1 < argc) o.until = argv[++i];
+    else if (!std::strcmp(argv[i], "--models") && i + 1 < argc) o.models = argv[++i];
+    else o.sketch_path = argv[i];
   }
-  auto peak = [] {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    return usage.ru_maxrss / 1024.0;
-  };
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-  Sketch sketch = load_sketch(sketch_path);
-  if (!models.empty()) sketch.models = fs::absolute(models);
-  std::printf("sketch %s%s%s, %d thread(s)\n\n", sketch_path.string().c_str(), sketch.models.empty() ? "" : ", models ",
-              sketch.models.string().c_str(), threads);
+  return o;
+}
 
-  if (until == "blocks" || until == "lots") {
-    // The road-network target: roads and blocks alone (and lots, to profile that stage).
-    std::printf("| stage          |  seconds | counts\n|----------------|----------|-------\n");
-    auto t = std::chrono::steady_clock::now();
-    std::optional<Terrain> terrain;
-    if (sketch.terrain) terrain = Terrain::load(*sketch.terrain);
-    CityMap zones = build_city_map(sketch, terrain ? &*terrain : nullptr);
-    row("zone map", seconds_since(t), std::to_string(zones.map.counts().faces) + " faces");
+// The road-network target: roads and blocks alone (and lots, to profile that stage).
+void run_road_stages(const Sketch& sketch, bool with_lots) {
+  std::printf("| stage          |  seconds | counts\n|----------------|----------|-------\n");
+  auto t = std::chrono::steady_clock::now();
+  std::optional<Terrain> terrain;
+  if (sketch.terrain) terrain = Terrain::load(*sketch.terrain);
+  CityMap zones = build_city_map(sketch, terrain ? &*terrain : nullptr);
+  row("zone map", seconds_since(t), std::to_string(zones.map.counts().faces) + " faces");
+  t = std::chrono::steady_clock::now();
+  RoadNetwork net = grow_road_network(std::move(zones), sketch);
+  double roads_s = seconds_since(t);
+  row("road network", roads_s,
+      std::to_string(net.map.roads.size()) + " roads, " + std::to_string(net.stats.levels) + " levels, " +
+          std::to_string(net.map.map.counts().edges) + " map edges");
+  t = std::chrono::steady_clock::now();
+  std::vector<Block> blocks = cut_blocks(net.map, sketch);
+  double blocks_s = seconds_since(t);
+  row("blocks", blocks_s, std::to_string(blocks.size()) + " blocks");
+  if (with_lots) {
     t = std::chrono::steady_clock::now();
-    RoadNetwork net = grow_road_network(std::move(zones), sketch);
-    double roads_s = seconds_since(t);
-    row("road network", roads_s,
-        std::to_string(net.map.roads.size()) + " roads, " + std::to_string(net.stats.levels) + " levels, " +
-            std::to_string(net.map.map.counts().edges) + " map edges");
-    t = std::chrono::steady_clock::now();
-    std::vector<Block> blocks = cut_blocks(net.map, sketch);
-    double blocks_s = seconds_since(t);
-    row("blocks", blocks_s, std::to_string(blocks.size()) + " blocks");
-    if (until == "lots") {
-      t = std::chrono::steady_clock::now();
-      std::vector<Lot> lots = insert_lots(net.map, plan_lots(blocks, sketch), sketch);
-      row("lots", seconds_since(t), std::to_string(lots.size()) + " lots");
-    }
-    std::printf("\nroads and blocks: %.3f s; peak memory %.0f MiB\n", roads_s + blocks_s, peak());
-    return 0;
+    std::vector<Lot> lots = insert_lots(net.map, plan_lots(blocks, sketch), sketch);
+    row("lots", seconds_since(t), std::to_string(lots.size()) + " lots");
   }
+  std::printf("\nroads and blocks: %.3f s; peak memory %.0f MiB\n", roads_s + blocks_s, peak_mib());
+}
 
-  // Everything, as `exacity generate` runs it.
+// The counts column of the full run's row for one stage.
+std::string stage_counts(const std::string& stage, double seconds, const GenerateResult& result) {
+  const auto& report = result.report;
+  const auto& c = report["counts"];
+  return stage == "road network" ? std::to_string(c["roads"].get<int>()) + " roads"
+         : stage == "blocks"      ? std::to_string(c["blocks"].get<int>()) + " blocks"
+         : stage == "lots"        ? std::to_string(c["lots"].get<int>()) + " lots, " +
+                                 std::to_string(static_cast<long>(c["lots"].get<double>() / seconds)) + " lots/s"
+         : stage == "buildings" ? std::to_string(c["buildings"].get<int>()) + " buildings, " +
+                                      std::to_string(static_cast<long>(c["buildings"].get<double>() / seconds)) +
+                                      " buildings/s"
+         : stage == "3d export" ? std::to_string(c["mesh"]["faces"].get<long>()) + " mesh faces; glTF " +
+                                      std::to_string(c["gltf"]["triangles"].get<long>()) + " triangles, " +
+                                      std::to_string(c["gltf"]["instances"].get<long>()) + " instances"
+         : stage == "validation" ? (result.valid ? "valid" : "INVALID: " + report["validation"]["problems"][0].get<std::string>())
+                                 : "";
+}
+
+// Everything, as `exacity generate` runs it.
+void run_every_stage(const Sketch& sketch) {
   fs::path out = fs::temp_directory_path() / "exacity-scale";
   fs::remove_all(out);
   fs::create_directories(out);
@@ -89,25 +107,26 @@ int main(int argc, char** argv) {
   const double total = seconds_since(t);
   const auto& report = result.report;
   const auto& s = report["timings_s"];
-  const auto& c = report["counts"];
   std::printf("| stage          |  seconds | counts\n|----------------|----------|-------\n");
   for (const auto& [stage, seconds] : s.items()) {
-    std::string counts = stage == "road network" ? std::to_string(c["roads"].get<int>()) + " roads"
-                         : stage == "blocks"      ? std::to_string(c["blocks"].get<int>()) + " blocks"
-                         : stage == "lots"        ? std::to_string(c["lots"].get<int>()) + " lots, " +
-                                                 std::to_string(static_cast<long>(c["lots"].get<double>() / seconds.get<double>())) + " lots/s"
-                         : stage == "buildings" ? std::to_string(c["buildings"].get<int>()) + " buildings, " +
-                                                      std::to_string(static_cast<long>(c["buildings"].get<double>() / seconds.get<double>())) +
-                                                      " buildings/s"
-                         : stage == "3d export" ? std::to_string(c["mesh"]["faces"].get<long>()) + " mesh faces; glTF " +
-                                                      std::to_string(c["gltf"]["triangles"].get<long>()) + " triangles, " +
-                                                      std::to_string(c["gltf"]["instances"].get<long>()) + " instances"
-                         : stage == "validation" ? (result.valid ? "valid" : "INVALID: " + report["validation"]["problems"][0].get<std::string>())
-                                                 : "";
+    std::string counts = stage_counts(stage, seconds.get<double>(), result);
     row(stage.c_str(), seconds.get<double>(), counts);
   }
   const double validation = s["validation"].get<double>();
   std::printf("\nsketch to every export: %.3f s (+ validation %.3f s); peak memory %.0f MiB; outputs in %s\n",
-              total - validation, validation, peak(), out.string().c_str());
+              total - validation, validation, peak_mib(), out.string().c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const ScaleOptions o = parse_options(argc, argv);
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, o.threads);
+  Sketch sketch = load_sketch(o.sketch_path);
+  if (!o.models.empty()) sketch.models = fs::absolute(o.models);
+  std::printf("sketch %s%s%s, %d thread(s)\n\n", o.sketch_path.string().c_str(), sketch.models.empty() ? "" : ", models ",
+              sketch.models.string().c_str(), o.threads);
+  if (o.until == "blocks" || o.until == "lots") run_road_stages(sketch, o.until == "lots");
+  else run_every_stage(sketch);
   return 0;
 }

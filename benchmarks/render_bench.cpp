@@ -34,65 +34,75 @@ double rss_mib() {
   return usage.ru_maxrss / 1024.0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct BenchOptions {
   fs::path sketch_path = fs::path(EXACITY_SOURCE_DIR) / "benchmarks" / "city_10km.geojson", models;
   int width = 1920, height = 1080, spp = 64, threads = 0;
+};
+
+BenchOptions parse_options(int argc, char** argv) {
+  BenchOptions o;
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--size") && i + 1 < argc) std::sscanf(argv[++i], "%dx%d", &width, &height);
-    else if (!std::strcmp(argv[i], "--spp") && i + 1 < argc) spp = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--models") && i + 1 < argc) models = argv[++i];
-    else sketch_path = argv[i];
+    if (!std::strcmp(argv[i], "--size") && i + 1 < argc) std::sscanf(argv[++i], "%dx%d", &o.width, &o.height);
+    else if (!std::strcmp(argv[i], "--spp") && i + 1 < argc) o.spp = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) o.threads = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--models") && i + 1 < argc) o.models = argv[++i];
+    else o.sketch_path = argv[i];
   }
-  std::unique_ptr<tbb::global_control> limit;
-  if (threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
-  exacity::Sketch sketch = exacity::load_sketch(sketch_path);
-  if (!models.empty()) sketch.models = fs::absolute(models);
+  return o;
+}
+
+exacity::City load_and_build_city(const BenchOptions& o) {
+  exacity::Sketch sketch = exacity::load_sketch(o.sketch_path);
+  if (!o.models.empty()) sketch.models = fs::absolute(o.models);
 
   auto t = std::chrono::steady_clock::now();
   exacity::StageClock clock(nullptr, exacity::kCityStages);
   exacity::City city = exacity::build_city(sketch, clock);
-  std::printf("city %s: %zu buildings, built in %.1f s; peak memory %.0f MiB\n", sketch_path.filename().c_str(),
+  std::printf("city %s: %zu buildings, built in %.1f s; peak memory %.0f MiB\n", o.sketch_path.filename().c_str(),
               city.buildings.size(), seconds_since(t), rss_mib());
+  return city;
+}
 
-  const Sky sky(200, 40);
-  Camera camera = default_camera(city);
-  SceneOptions options;
-  options.view = &camera;
-  options.aspect = static_cast<float>(width) / static_cast<float>(height);
-  const double before = rss_mib();
-  t = std::chrono::steady_clock::now();
-  RenderScene scene(city, sky.sun_direction(), options);
-  const double build_s = seconds_since(t);
+void report_scene(const RenderScene& scene, double build_s, double rss_before) {
   int culled = 0, simple = 0;
   for (const auto& tl : scene.tiles) culled += tl.level == "culled", simple += tl.level == "simple";
   std::printf("scene: %.2f s, %zu triangles, %zu instances, %zu tiles (%d culled, %d simple); Embree held %.0f MiB at "
               "most; process peak %.0f MiB (%.0f before the scene)\n",
               build_s, scene.triangles, scene.instances, scene.tiles.size(), culled, simple,
-              static_cast<double>(scene.embree_peak_bytes()) / (1 << 20), rss_mib(), before);
-  camera = scene.to_scene(camera);
+              static_cast<double>(scene.embree_peak_bytes()) / (1 << 20), rss_mib(), rss_before);
+}
 
-  // Raw Embree: one camera ray and one random upward bounce ray per pixel, the same kinds
-  // of rays the path tracer casts, through rtcIntersect1 alone.
+struct Rays {
   std::vector<V3> origins, directions;
+};
+
+// One camera ray and one random upward bounce ray per pixel, the same kinds of rays the
+// path tracer casts.
+Rays camera_and_bounce_rays(const RenderScene& scene, const Camera& camera, int width, int height) {
+  Rays rays;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       V3 o, d;
       camera.ray(x + 0.5f, y + 0.5f, width, height, o, d);
-      origins.push_back(o), directions.push_back(d);
+      rays.origins.push_back(o), rays.directions.push_back(d);
       Surface s;
       if (scene.intersect(o, d, INFINITY, s)) {
         Sampler rng(static_cast<std::uint64_t>(y) * width + x, 0);
-        origins.push_back(s.position + s.normal * 1e-3f);
-        directions.push_back(Frame(s.normal).to_world(cosine_hemisphere(rng.next(), rng.next())));
+        rays.origins.push_back(s.position + s.normal * 1e-3f);
+        rays.directions.push_back(Frame(s.normal).to_world(cosine_hemisphere(rng.next(), rng.next())));
       }
     }
-  // Passes over the set until a second has gone, so thread start-up does not count.
+  return rays;
+}
+
+// Raw Embree, rtcIntersect1 alone: passes over the set until a second has gone, so thread
+// start-up does not count. Returns rays per second.
+double raw_ray_rate(const RenderScene& scene, const Rays& rays) {
+  const std::vector<V3>& origins = rays.origins;
+  const std::vector<V3>& directions = rays.directions;
   std::atomic<std::size_t> hits{0};
   std::size_t cast = 0;
-  t = std::chrono::steady_clock::now();
+  auto t = std::chrono::steady_clock::now();
   while (seconds_since(t) < 1.0) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, origins.size(), 4096), [&](const auto& r) {
       std::size_t h = 0;
@@ -105,9 +115,13 @@ int main(int argc, char** argv) {
   const double raw_rate = static_cast<double>(cast) / raw_s;
   std::printf("raw rtcIntersect1: %zu rays (camera rays and one bounce each) in %.2f s: %.2f M rays/s\n", cast, raw_s,
               raw_rate / 1e6);
+  return raw_rate;
+}
 
+void time_still(const RenderScene& scene, const Sky& sky, const Camera& camera, const BenchOptions& o, double raw_rate) {
+  const int width = o.width, height = o.height, spp = o.spp;
   RayCounts rays;
-  t = std::chrono::steady_clock::now();
+  auto t = std::chrono::steady_clock::now();
   Image img = trace(scene, sky, camera, TraceSettings{width, height, spp}, &rays);
   const double still_s = seconds_since(t);
   const double all = static_cast<double>(rays.camera + rays.bounce + rays.shadow);
@@ -117,6 +131,29 @@ int main(int argc, char** argv) {
               width, height, spp, still_s, all / 1e6, static_cast<double>(rays.camera) / 1e6,
               static_cast<double>(rays.bounce) / 1e6, static_cast<double>(rays.shadow) / 1e6, all / still_s / 1e6,
               100 * all / still_s / raw_rate, traced / still_s / 1e6, 100 * traced / still_s / raw_rate);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const BenchOptions o = parse_options(argc, argv);
+  std::unique_ptr<tbb::global_control> limit;
+  if (o.threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
+  exacity::City city = load_and_build_city(o);
+
+  const Sky sky(200, 40);
+  Camera camera = default_camera(city);
+  SceneOptions options;
+  options.view = &camera;
+  options.aspect = static_cast<float>(o.width) / static_cast<float>(o.height);
+  const double before = rss_mib();
+  auto t = std::chrono::steady_clock::now();
+  RenderScene scene(city, sky.sun_direction(), options);
+  report_scene(scene, seconds_since(t), before);
+  camera = scene.to_scene(camera);
+
+  const double raw_rate = raw_ray_rate(scene, camera_and_bounce_rays(scene, camera, o.width, o.height));
+  time_still(scene, sky, camera, o, raw_rate);
   std::printf("peak memory %.0f MiB\n", rss_mib());
   return 0;
 }

@@ -243,82 +243,118 @@ std::string markdown(const std::vector<FamilyResult>& results, const std::vector
   return s.str();
 }
 
-}  // namespace
-
-std::vector<FamilyResult> run_robustness(const RobustnessOptions& o, std::ostream& log) {
-  const std::vector<Build> builds = builds_in(o, log);
+// The families asked for (all by default); an unknown one stops us before any run.
+std::vector<std::string> family_names(const RobustnessOptions& o) {
   std::vector<std::string> names = o.families;
   if (names.empty())
     for (const Family& f : families()) names.push_back(f.name);
-  for (const std::string& n : names) (void)family_sketch(n, 0, o.seed);  // an unknown family stops us first
+  for (const std::string& n : names) (void)family_sketch(n, 0, o.seed);
+  return names;
+}
 
-  // Every (family, case, build) run, in a fixed order; results land by index.
-  struct Job {
-    std::size_t family;
-    int index;
-  };
+struct Job {
+  std::size_t family;
+  int index;
+};
+
+// Every (family, case) in a fixed order; results land by index, whatever order they finish in.
+std::vector<Job> case_jobs(std::size_t families, int cases) {
   std::vector<Job> jobs;
-  for (std::size_t f = 0; f < names.size(); ++f)
-    for (int i = 0; i < o.cases; ++i) jobs.push_back({f, i});
+  for (std::size_t f = 0; f < families; ++f)
+    for (int i = 0; i < cases; ++i) jobs.push_back({f, i});
+  return jobs;
+}
+
+// Every build on one case; returns its progress line. Passed outputs are removed unless kept.
+std::string run_job(const RobustnessOptions& o, const std::string& family, int index, const std::vector<Build>& builds,
+                    std::vector<Result>& results) {
+  const fs::path dir = o.out / "cases" / family / std::to_string(index);
+  fs::create_directories(dir);
+  const fs::path sketch = dir / "sketch.geojson";
+  std::ofstream(sketch, std::ios::binary) << family_sketch(family, index, o.seed);
+  bool all_passed = true;
+  std::ostringstream line;
+  line << family << " " << index << ":";
+  for (std::size_t b = 0; b < builds.size(); ++b) {
+    Result r = run_case(builds[b], o.programs / "exacity", sketch, dir, o.time_limit);
+    static const char* words[] = {"passed", "crash", "hang", "error", "rejected"};
+    line << " " << builds[b].name << " " << words[r.kind];
+    for (const std::string& k : r.rejected) line << " " << k;
+    all_passed &= r.kind == Result::Passed;
+    if (r.kind == Result::Passed && !o.keep_outputs) fs::remove_all(dir / builds[b].name);
+    results[b] = std::move(r);
+  }
+  if (all_passed && !o.keep_outputs) fs::remove_all(dir);
+  return line.str();
+}
+
+// Runs the jobs on o.jobs threads (one per core by default); results[job][build].
+std::vector<std::vector<Result>> run_jobs(const RobustnessOptions& o, const std::vector<std::string>& names,
+                                          const std::vector<Job>& jobs, const std::vector<Build>& builds,
+                                          std::ostream& log) {
   std::vector<std::vector<Result>> results(jobs.size(), std::vector<Result>(builds.size()));
   fs::create_directories(o.out);
   std::atomic<std::size_t> next{0};
   std::mutex log_mutex;
   auto work = [&] {
     for (std::size_t j; (j = next++) < jobs.size();) {
-      const fs::path dir = o.out / "cases" / names[jobs[j].family] / std::to_string(jobs[j].index);
-      fs::create_directories(dir);
-      const fs::path sketch = dir / "sketch.geojson";
-      std::ofstream(sketch, std::ios::binary) << family_sketch(names[jobs[j].family], jobs[j].index, o.seed);
-      bool all_passed = true;
-      std::ostringstream line;
-      line << names[jobs[j].family] << " " << jobs[j].index << ":";
-      for (std::size_t b = 0; b < builds.size(); ++b) {
-        Result r = run_case(builds[b], o.programs / "exacity", sketch, dir, o.time_limit);
-        static const char* words[] = {"passed", "crash", "hang", "error", "rejected"};
-        line << " " << builds[b].name << " " << words[r.kind];
-        for (const std::string& k : r.rejected) line << " " << k;
-        all_passed &= r.kind == Result::Passed;
-        if (r.kind == Result::Passed && !o.keep_outputs) fs::remove_all(dir / builds[b].name);
-        results[j][b] = std::move(r);
-      }
-      if (all_passed && !o.keep_outputs) fs::remove_all(dir);
+      const std::string line = run_job(o, names[jobs[j].family], jobs[j].index, builds, results[j]);
       std::lock_guard<std::mutex> lock(log_mutex);
-      log << line.str() << "\n" << std::flush;
+      log << line << "\n" << std::flush;
     }
   };
   const int threads = o.jobs > 0 ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
   std::vector<std::thread> pool;
   for (int t = 0; t < threads; ++t) pool.emplace_back(work);
   for (std::thread& t : pool) t.join();
+  return results;
+}
 
+// Build b's results on family f's cases.
+Outcome outcome_of(const std::vector<Job>& jobs, const std::vector<std::vector<Result>>& results, std::size_t f,
+                   std::size_t b) {
+  Outcome oc;
+  std::vector<double> times;
+  for (std::size_t j = 0; j < jobs.size(); ++j) {
+    if (jobs[j].family != f) continue;
+    const Result& r = results[j][b];
+    ++oc.cases;
+    oc.passed += r.kind == Result::Passed, oc.crash += r.kind == Result::Crash, oc.hang += r.kind == Result::Hang;
+    oc.error += r.kind == Result::Error, oc.rejected += r.kind == Result::Rejected;
+    for (const std::string& k : r.rejected) ++oc.rejected_by_kind[k];
+    if (r.kind != Result::Hang) times.push_back(r.seconds);
+  }
+  oc.median_s = median(times);
+  return oc;
+}
+
+// The exact build's median time over build b's, on family f's cases both passed; 0 if none.
+double time_ratio(const std::vector<Job>& jobs, const std::vector<std::vector<Result>>& results, std::size_t f,
+                  std::size_t b) {
+  std::vector<double> exact_s, other_s;
+  for (std::size_t j = 0; j < jobs.size(); ++j)
+    if (jobs[j].family == f && results[j][0].kind == Result::Passed && results[j][b].kind == Result::Passed)
+      exact_s.push_back(results[j][0].seconds), other_s.push_back(results[j][b].seconds);
+  return exact_s.empty() ? 0 : median(exact_s) / median(other_s);
+}
+
+std::vector<FamilyResult> summarise(const std::vector<std::string>& names, const std::vector<Job>& jobs,
+                                    const std::vector<Build>& builds, const std::vector<std::vector<Result>>& results) {
   std::vector<FamilyResult> out;
   for (std::size_t f = 0; f < names.size(); ++f) {
     FamilyResult fr{names[f], {}, {}};
     for (std::size_t b = 0; b < builds.size(); ++b) {
-      Outcome oc;
-      std::vector<double> times;
-      for (std::size_t j = 0; j < jobs.size(); ++j) {
-        if (jobs[j].family != f) continue;
-        const Result& r = results[j][b];
-        ++oc.cases;
-        oc.passed += r.kind == Result::Passed, oc.crash += r.kind == Result::Crash, oc.hang += r.kind == Result::Hang;
-        oc.error += r.kind == Result::Error, oc.rejected += r.kind == Result::Rejected;
-        for (const std::string& k : r.rejected) ++oc.rejected_by_kind[k];
-        if (r.kind != Result::Hang) times.push_back(r.seconds);
-      }
-      oc.median_s = median(times);
-      fr.builds.push_back({builds[b].name, oc});
+      fr.builds.push_back({builds[b].name, outcome_of(jobs, results, f, b)});
       if (b == 0) continue;
-      std::vector<double> exact_s, other_s;
-      for (std::size_t j = 0; j < jobs.size(); ++j)
-        if (jobs[j].family == f && results[j][0].kind == Result::Passed && results[j][b].kind == Result::Passed)
-          exact_s.push_back(results[j][0].seconds), other_s.push_back(results[j][b].seconds);
-      fr.time_ratio.push_back(exact_s.empty() ? 0 : median(exact_s) / median(other_s));
+      fr.time_ratio.push_back(time_ratio(jobs, results, f, b));
     }
     out.push_back(std::move(fr));
   }
+  return out;
+}
 
+nlohmann::ordered_json robustness_json(const RobustnessOptions& o, const std::vector<Build>& builds,
+                                       const std::vector<FamilyResult>& out) {
   nlohmann::ordered_json doc = {{"seed", o.seed}, {"cases_per_family", o.cases}, {"time_limit_s", o.time_limit}};
   for (const Build& b : builds) doc["builds"][b.name] = b.program.filename().string();
   doc["families"] = nlohmann::ordered_json::array();
@@ -330,9 +366,25 @@ std::vector<FamilyResult> run_robustness(const RobustnessOptions& o, std::ostrea
     }
     doc["families"].push_back(entry);
   }
+  return doc;
+}
+
+void write_reports(const RobustnessOptions& o, const std::vector<Build>& builds, const std::vector<FamilyResult>& out) {
+  const nlohmann::ordered_json doc = robustness_json(o, builds, out);
   std::ofstream(o.out / "robustness.json", std::ios::binary) << doc.dump(2) << "\n";
   std::ofstream(o.out / "robustness.md", std::ios::binary) << markdown(out, builds, o);
   std::ofstream(o.out / "robustness.svg", std::ios::binary) << svg_chart(out, builds);
+}
+
+}  // namespace
+
+std::vector<FamilyResult> run_robustness(const RobustnessOptions& o, std::ostream& log) {
+  const std::vector<Build> builds = builds_in(o, log);
+  const std::vector<std::string> names = family_names(o);
+  const std::vector<Job> jobs = case_jobs(names.size(), o.cases);
+  const std::vector<std::vector<Result>> results = run_jobs(o, names, jobs, builds, log);
+  std::vector<FamilyResult> out = summarise(names, jobs, builds, results);
+  write_reports(o, builds, out);
   return out;
 }
 

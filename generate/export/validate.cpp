@@ -279,8 +279,8 @@ void check_tiling(Checker& c, const Sketch& sketch, const std::vector<PolygonRef
 // end of a grown road is a vertex of another centre line (a junction) or lies on the edge
 // of the built city (a drawn zone's ring or water). Every piece of the network holding a
 // region's roads holds a road the sketch drew (in a sketch without roads, all are one).
-void check_roads(Checker& c, const Sketch& sketch, const Layer& roads, const Layer& water) {
-  const auto& features = roads.features;
+// A road's centre line meets another only at its vertices.
+void check_road_meetings(Checker& c, const std::vector<VectorFeature>& features) {
   geom::PlanarMap map;
   for (std::size_t i = 0; i < features.size(); ++i) map.add_polyline(features[i].line, static_cast<int>(i));
   map.insert_batch();
@@ -292,8 +292,10 @@ void check_roads(Checker& c, const Sketch& sketch, const Layer& roads, const Lay
                     " meets another centre line between its vertices" + near(pieces[k].from));
           break;
         }
+}
 
-  // Connectivity: union-find over vertices.
+void check_road_connectivity(Checker& c, const std::vector<VectorFeature>& features) {
+  // Union-find over vertices.
   std::unordered_map<geom::Vec2, int, geom::Vec2Hash> node;
   std::vector<int> parent;
   std::vector<geom::Vec2> at;
@@ -330,7 +332,10 @@ void check_roads(Checker& c, const Sketch& sketch, const Layer& roads, const Lay
       c.problem("roads.geojson: the roads of region " + std::to_string(region) + " reach no other road" +
                 near(at[nodes.front()]));
   }
+}
 
+// A generated road ends at another road or on a drawn edge (a zone's or the water's).
+void check_road_ends(Checker& c, const Sketch& sketch, const std::vector<VectorFeature>& features, const Layer& water) {
   std::unordered_map<geom::Vec2, std::vector<int>, geom::Vec2Hash> roads_at;  // vertex -> features through it
   for (std::size_t i = 0; i < features.size(); ++i)
     for (auto p : features[i].line) roads_at[p].push_back(static_cast<int>(i));
@@ -348,6 +353,12 @@ void check_roads(Checker& c, const Sketch& sketch, const Layer& roads, const Lay
         c.problem("roads.geojson: road " + std::to_string(f.properties.value("id", -1)) + " ends in the open" + near(end));
     }
   }
+}
+
+void check_roads(Checker& c, const Sketch& sketch, const Layer& roads, const Layer& water) {
+  check_road_meetings(c, roads.features);
+  check_road_connectivity(c, roads.features);
+  check_road_ends(c, sketch, roads.features, water);
 }
 
 // Every reference names the id of a feature of the layer it refers to.

@@ -45,52 +45,59 @@ bool parse_terminal(const std::string& name, Terminal& out) {
   return true;
 }
 
-Grammar parse_grammar(const std::string& text, const std::filesystem::path& file) {
-  Grammar g;
-  g.file = file;
-  std::istringstream in(text);
-  std::string raw;
-  std::vector<std::pair<GrammarChild, int>> used;  // every child, with its line
-  for (int line = 1; std::getline(in, raw); ++line) {
-    if (auto hash = raw.find('#'); hash != std::string::npos) raw.resize(hash);
-    std::istringstream words(raw);
-    std::vector<std::string> tokens;
-    for (std::string t; words >> t;) tokens.push_back(t);
-    if (tokens.empty()) continue;
-    if (tokens.size() < 4)
-      fail(file, line, "expected WEIGHT LEFT N CHILD..., e.g. \"1.0 Town 4 Inner,0.1,0.1,0.9,0.1,0.9,0.9,0.1,0.9\"");
-    GrammarRule rule;
-    rule.line = line;
-    if (!read_number(tokens[0], rule.weight) || rule.weight < 0)
-      fail(file, line, "the weight \"" + tokens[0] + "\" is not a number of 0 or more");
-    const std::string& left = tokens[1];
-    if (tokens[2] != "3" && tokens[2] != "4")
-      fail(file, line, "the corner count \"" + tokens[2] + "\" of " + left + " must be 3 (a triangle) or 4 (a quad)");
-    const int n = tokens[2][0] - '0';
-    for (std::size_t t = 3; t < tokens.size(); ++t) {
-      std::vector<std::string> parts;
-      std::istringstream child(tokens[t]);
-      for (std::string p; std::getline(child, p, ',');) parts.push_back(p);
-      if (parts.empty() || parts[0].empty()) fail(file, line, "child " + std::to_string(t - 2) + " has no name");
-      GrammarChild c{parts[0], {}};
-      const std::size_t values = parts.size() - 1;
-      if (values != 6 && values != 8)
-        fail(file, line, "child " + c.name + " has " + std::to_string(values) +
-                             " values; a triangle has 6 (u1,v1,u2,v2,u3,v3), a quad 8");
-      for (std::size_t k = 1; k < parts.size(); k += 2) {
-        geom::Vec2 uv;
-        if (!read_number(parts[k], uv.x) || !read_number(parts[k + 1], uv.y))
-          fail(file, line, "child " + c.name + ": \"" + parts[k] + "," + parts[k + 1] + "\" is not a pair of numbers");
-        if (uv.x < 0 || uv.x > 1 || uv.y < 0 || uv.y > 1)
-          fail(file, line, "child " + c.name + ": corner (" + parts[k] + ", " + parts[k + 1] +
-                               ") lies outside the parent's parameter space [0, 1] x [0, 1]");
-        c.corners.push_back(uv);
-      }
-      used.push_back({c, line});
-      rule.children.push_back(std::move(c));
-    }
-    g.rules[{left, n}].push_back(std::move(rule));
+namespace {
+
+// The words of a line, without its comment.
+std::vector<std::string> tokens_of(std::string raw) {
+  if (auto hash = raw.find('#'); hash != std::string::npos) raw.resize(hash);
+  std::istringstream words(raw);
+  std::vector<std::string> tokens;
+  for (std::string t; words >> t;) tokens.push_back(t);
+  return tokens;
+}
+
+// One child token, NAME,u1,v1,...; `t` is its position on the line, for messages.
+GrammarChild parse_child(const std::string& token, std::size_t t, const std::filesystem::path& file, int line) {
+  std::vector<std::string> parts;
+  std::istringstream child(token);
+  for (std::string p; std::getline(child, p, ',');) parts.push_back(p);
+  if (parts.empty() || parts[0].empty()) fail(file, line, "child " + std::to_string(t - 2) + " has no name");
+  GrammarChild c{parts[0], {}};
+  const std::size_t values = parts.size() - 1;
+  if (values != 6 && values != 8)
+    fail(file, line, "child " + c.name + " has " + std::to_string(values) +
+                         " values; a triangle has 6 (u1,v1,u2,v2,u3,v3), a quad 8");
+  for (std::size_t k = 1; k < parts.size(); k += 2) {
+    geom::Vec2 uv;
+    if (!read_number(parts[k], uv.x) || !read_number(parts[k + 1], uv.y))
+      fail(file, line, "child " + c.name + ": \"" + parts[k] + "," + parts[k + 1] + "\" is not a pair of numbers");
+    if (uv.x < 0 || uv.x > 1 || uv.y < 0 || uv.y > 1)
+      fail(file, line, "child " + c.name + ": corner (" + parts[k] + ", " + parts[k + 1] +
+                           ") lies outside the parent's parameter space [0, 1] x [0, 1]");
+    c.corners.push_back(uv);
   }
+  return c;
+}
+
+// A line WEIGHT LEFT N CHILD..., as the rule and the (left symbol, corner count) it rewrites.
+std::pair<std::pair<std::string, int>, GrammarRule> parse_rule(const std::vector<std::string>& tokens,
+                                                               const std::filesystem::path& file, int line) {
+  if (tokens.size() < 4)
+    fail(file, line, "expected WEIGHT LEFT N CHILD..., e.g. \"1.0 Town 4 Inner,0.1,0.1,0.9,0.1,0.9,0.9,0.1,0.9\"");
+  GrammarRule rule;
+  rule.line = line;
+  if (!read_number(tokens[0], rule.weight) || rule.weight < 0)
+    fail(file, line, "the weight \"" + tokens[0] + "\" is not a number of 0 or more");
+  const std::string& left = tokens[1];
+  if (tokens[2] != "3" && tokens[2] != "4")
+    fail(file, line, "the corner count \"" + tokens[2] + "\" of " + left + " must be 3 (a triangle) or 4 (a quad)");
+  const int n = tokens[2][0] - '0';
+  for (std::size_t t = 3; t < tokens.size(); ++t) rule.children.push_back(parse_child(tokens[t], t, file, line));
+  return {{left, n}, std::move(rule)};
+}
+
+// Growing picks a rule by weight, so each symbol needs some weight to pick by.
+void check_weights(const Grammar& g, const std::filesystem::path& file) {
   for (const auto& [key, rules] : g.rules) {
     double sum = 0;
     for (const GrammarRule& r : rules) sum += r.weight;
@@ -98,6 +105,11 @@ Grammar parse_grammar(const std::string& text, const std::filesystem::path& file
       fail(file, rules.front().line, "the rules for " + key.first + " (" + std::to_string(key.second) +
                                          " corners) have weights summing to 0; give one a positive weight");
   }
+}
+
+// Every child must be a terminal or a symbol with a rule for its corner count.
+void check_children(const Grammar& g, const std::vector<std::pair<GrammarChild, int>>& used,
+                    const std::filesystem::path& file) {
   std::set<std::string> left_symbols;
   for (const auto& [key, rules] : g.rules) left_symbols.insert(key.first);
   if (!left_symbols.count("Town")) fail(file, 1, "no rule for Town, the symbol every root starts as; add one");
@@ -112,6 +124,25 @@ Grammar parse_grammar(const std::string& text, const std::filesystem::path& file
       fail(file, line, "child " + child.name + " has " + std::to_string(n) + " corners, but the rules for " + child.name +
                            " are for " + std::to_string(7 - n) + "; add a rule for " + std::to_string(n));
   }
+}
+
+}  // namespace
+
+Grammar parse_grammar(const std::string& text, const std::filesystem::path& file) {
+  Grammar g;
+  g.file = file;
+  std::istringstream in(text);
+  std::string raw;
+  std::vector<std::pair<GrammarChild, int>> used;  // every child, with its line
+  for (int line = 1; std::getline(in, raw); ++line) {
+    const std::vector<std::string> tokens = tokens_of(raw);
+    if (tokens.empty()) continue;
+    auto [key, rule] = parse_rule(tokens, file, line);
+    for (const GrammarChild& c : rule.children) used.push_back({c, line});
+    g.rules[key].push_back(std::move(rule));
+  }
+  check_weights(g, file);
+  check_children(g, used, file);
   return g;
 }
 

@@ -54,69 +54,110 @@ bool move_end(geom::Polyline& line, bool back, geom::Vec2 p, Segments& segments)
   return true;
 }
 
-}  // namespace
+struct LineEnd {
+  std::size_t road, line;
+  bool back;
+};
 
-int join_near_ends(std::vector<RoadFeature>& roads, double snap) {
-  struct End {
-    std::size_t road, line;
-    bool back;
-  };
-  std::vector<End> ends;
+// Both ends of every line, in order of road, then line.
+std::vector<LineEnd> line_ends(const std::vector<RoadFeature>& roads) {
+  std::vector<LineEnd> ends;
   for (std::size_t r = 0; r < roads.size(); ++r)
     for (std::size_t k = 0; k < roads[r].lines.size(); ++k) ends.push_back({r, k, false}), ends.push_back({r, k, true});
-  auto point = [&](const End& e) -> geom::Vec2& {
-    geom::Polyline& l = roads[e.road].lines[e.line];
-    return e.back ? l.back() : l.front();
-  };
+  return ends;
+}
+
+geom::Vec2& point_of(std::vector<RoadFeature>& roads, const LineEnd& e) {
+  geom::Polyline& l = roads[e.road].lines[e.line];
+  return e.back ? l.back() : l.front();
+}
+
+// Each end joins the first earlier end of another line near it.
+int join_ends_to_ends(std::vector<RoadFeature>& roads, const std::vector<LineEnd>& ends, double snap,
+                      Segments& segments) {
   int moved = 0;
-  Segments segments = segments_of(roads);
-  // Ends onto ends: each end joins the first earlier end of another line near it.
   for (std::size_t i = 0; i < ends.size(); ++i)
     for (std::size_t j = 0; j < i; ++j) {
       if (ends[j].road == ends[i].road && ends[j].line == ends[i].line) continue;
-      const geom::Vec2 target = point(ends[j]);
-      if (distance(point(ends[i]), target) > snap) continue;
-      if (!(point(ends[i]) == target))
+      const geom::Vec2 target = point_of(roads, ends[j]);
+      if (distance(point_of(roads, ends[i]), target) > snap) continue;
+      if (!(point_of(roads, ends[i]) == target))
         moved += move_end(roads[ends[i].road].lines[ends[i].line], ends[i].back, target, segments);
       break;
     }
-  // Ends still meeting nothing onto the nearest side of another line.
-  auto counts = vertex_counts(roads);
-  for (const End& e : ends) {
-    geom::Polyline& own = roads[e.road].lines[e.line];
-    const geom::Vec2 p = point(e);
-    if (counts[p] > 1) continue;
-    double best = snap;
-    geom::Polyline* target = nullptr;
-    std::size_t segment = 0;
-    for (RoadFeature& r : roads)
-      for (geom::Polyline& line : r.lines)
-        for (std::size_t s = 0; s + 1 < line.size(); ++s) {
-          // Not the end's own segment: it already touches it.
-          if (&line == &own && (e.back ? s + 2 == line.size() : s == 0)) continue;
-          const geom::Vec2 a = line[s], b = line[s + 1];
-          if (std::min(a.x, b.x) - snap > p.x || std::max(a.x, b.x) + snap < p.x ||
-              std::min(a.y, b.y) - snap > p.y || std::max(a.y, b.y) + snap < p.y)
-            continue;
-          const double d = geom::distance_to_segment(p, a, b);
-          if (d <= best) best = d, target = &line, segment = s;
-        }
-    if (!target) continue;
-    const geom::Vec2 a = (*target)[segment], b = (*target)[segment + 1];
-    geom::Vec2 at = geom::snap(geom::nearest_on_segment(p, a, b));
-    if (distance(at, a) <= snap && distance(p, a) <= snap) at = a;  // onto a vertex rather than beside it
-    else if (distance(at, b) <= snap && distance(p, b) <= snap) at = b;
-    if (!(at == p)) {
-      if (!move_end(own, e.back, at, segments)) continue;
-      ++moved;
-    }
-    if (!(at == a) && !(at == b)) {
-      target->insert(target->begin() + segment + 1, at);
-      segments.erase(segment_key(a, b));
-      segments.insert(segment_key(a, at)), segments.insert(segment_key(at, b));
-    }
-    ++counts[at];
+  return moved;
+}
+
+struct Side {
+  geom::Polyline* line = nullptr;
+  std::size_t segment = 0;
+};
+
+// The segment nearest p within snap, not counting the end's own segment, which already
+// touches it; on a tie, the last found.
+Side nearest_side(std::vector<RoadFeature>& roads, const geom::Polyline& own, bool back, geom::Vec2 p, double snap) {
+  double best = snap;
+  Side side;
+  for (RoadFeature& r : roads)
+    for (geom::Polyline& line : r.lines)
+      for (std::size_t s = 0; s + 1 < line.size(); ++s) {
+        if (&line == &own && (back ? s + 2 == line.size() : s == 0)) continue;
+        const geom::Vec2 a = line[s], b = line[s + 1];
+        if (std::min(a.x, b.x) - snap > p.x || std::max(a.x, b.x) + snap < p.x ||
+            std::min(a.y, b.y) - snap > p.y || std::max(a.y, b.y) + snap < p.y)
+          continue;
+        const double d = geom::distance_to_segment(p, a, b);
+        if (d <= best) best = d, side = {&line, s};
+      }
+  return side;
+}
+
+// Moves the end at p onto the side (onto one of its vertices if both are near it),
+// splitting the side there; returns how many ends moved.
+int join_end_to_side(geom::Polyline& own, bool back, geom::Vec2 p, Side side, double snap, Segments& segments,
+                     std::unordered_map<geom::Vec2, int, geom::Vec2Hash>& counts) {
+  geom::Polyline& target = *side.line;
+  const geom::Vec2 a = target[side.segment], b = target[side.segment + 1];
+  geom::Vec2 at = geom::snap(geom::nearest_on_segment(p, a, b));
+  if (distance(at, a) <= snap && distance(p, a) <= snap) at = a;  // onto a vertex rather than beside it
+  else if (distance(at, b) <= snap && distance(p, b) <= snap) at = b;
+  int moved = 0;
+  if (!(at == p)) {
+    if (!move_end(own, back, at, segments)) return 0;
+    ++moved;
   }
+  if (!(at == a) && !(at == b)) {
+    target.insert(target.begin() + side.segment + 1, at);
+    segments.erase(segment_key(a, b));
+    segments.insert(segment_key(a, at)), segments.insert(segment_key(at, b));
+  }
+  ++counts[at];
+  return moved;
+}
+
+// Ends still meeting nothing join the nearest side of another line.
+int join_ends_to_sides(std::vector<RoadFeature>& roads, const std::vector<LineEnd>& ends, double snap,
+                       Segments& segments) {
+  int moved = 0;
+  auto counts = vertex_counts(roads);
+  for (const LineEnd& e : ends) {
+    geom::Polyline& own = roads[e.road].lines[e.line];
+    const geom::Vec2 p = point_of(roads, e);
+    if (counts[p] > 1) continue;
+    const Side side = nearest_side(roads, own, e.back, p, snap);
+    if (!side.line) continue;
+    moved += join_end_to_side(own, e.back, p, side, snap, segments, counts);
+  }
+  return moved;
+}
+
+}  // namespace
+
+int join_near_ends(std::vector<RoadFeature>& roads, double snap) {
+  const std::vector<LineEnd> ends = line_ends(roads);
+  Segments segments = segments_of(roads);
+  int moved = join_ends_to_ends(roads, ends, snap, segments);
+  moved += join_ends_to_sides(roads, ends, snap, segments);
   return moved;
 }
 

@@ -82,70 +82,108 @@ Model normalise_model(TriangleMesh mesh, const std::string& up, const std::strin
   return m;
 }
 
-ModelLibrary load_model_library(const fs::path& manifest) {
+namespace {
+
+[[noreturn]] void fail(const std::string& where, const std::string& what) { throw UserError(where + ": " + what); }
+
+json read_manifest(const fs::path& manifest) {
   std::ifstream in(manifest, std::ios::binary);
   if (!in) throw UserError(manifest.string() + ": cannot read the model library; check the \"models\" path in the sketch");
   json doc = json::parse(in, nullptr, false);
   if (doc.is_discarded() || !doc.is_object() || !doc.contains("models") || !doc["models"].is_array())
     throw UserError(manifest.string() + ": not a model library; it must be JSON like {\"models\": [{\"file\": ..., \"zones\": [...]}]}");
+  return doc;
+}
+
+void check_keys(const json& e, const std::string& where) {
+  if (!e.is_object()) fail(where, "expected an object with \"file\" and \"zones\"");
+  for (const auto& [key, value] : e.items())
+    if (key != "name" && key != "file" && key != "zones" && key != "kind" && key != "up" && key != "unit" &&
+        key != "front" && key != "weight" && key != "scale" && key != "spacing")
+      fail(where, "unknown key \"" + key + "\"; known: name, file, zones, kind, up, unit, front, weight, scale, spacing");
+}
+
+// Metres per file unit.
+double read_unit(const json& e, const std::string& where) {
+  double unit = 1;
+  if (e.contains("unit")) {
+    const json& u = e["unit"];
+    if (u == "m") unit = 1;
+    else if (u == "cm") unit = 0.01;
+    else if (u == "mm") unit = 0.001;
+    else if (u.is_number() && u.get<double>() > 0 && std::isfinite(u.get<double>())) unit = u.get<double>();
+    else fail(where, "\"unit\" must be \"m\", \"cm\", \"mm\" or metres per file unit (a positive number)");
+  }
+  return unit;
+}
+
+ModelKind read_kind(const json& e, const std::string& where) {
+  const std::string kind = e.value("kind", "building");
+  if (kind == "building") return ModelKind::Building;
+  if (kind == "street") return ModelKind::Street;
+  if (kind == "tree") return ModelKind::Tree;
+  fail(where, "\"kind\" must be \"building\", \"street\" or \"tree\"");
+}
+
+void read_zones(const json& e, const std::string& where, Model& m) {
+  if (!e.contains("zones") || !e["zones"].is_array() || e["zones"].empty()) fail(where, "\"zones\" must list zone types");
+  for (const json& z : e["zones"]) {
+    auto t = z.is_string() ? parse_zone_type(z.get<std::string>()) : std::nullopt;
+    if (!t || *t == ZoneType::Park || *t == ZoneType::Water)
+      fail(where, "\"zones\" lists " + z.dump() + "; models stand in residential, commercial or industrial zones");
+    m.zones.push_back(*t);
+  }
+}
+
+// Weight, scale range and spacing, and a size check that catches a wrong unit.
+void read_placement(const json& e, const std::string& where, Model& m) {
+  m.weight = e.value("weight", 1.0);
+  if (!(m.weight > 0) || !std::isfinite(m.weight)) fail(where, "\"weight\" must be a positive number");
+  if (e.contains("scale")) {
+    const json& s = e["scale"];
+    if (!s.is_array() || s.size() != 2 || !s[0].is_number() || !s[1].is_number() || !(s[0].get<double>() > 0) ||
+        s[1].get<double>() < s[0].get<double>() || s[1].get<double>() > 100)
+      fail(where, "\"scale\" must be [min, max] with 0 < min <= max");
+    m.min_scale = s[0], m.max_scale = s[1];
+  }
+  m.spacing = e.value("spacing", 30.0);
+  if (!(m.spacing > 0) || !std::isfinite(m.spacing)) fail(where, "\"spacing\" must be a positive distance in metres");
+  if (m.width * m.max_scale > 1000 || m.depth * m.max_scale > 1000 || m.height * m.max_scale > 2000)
+    fail(where, "the model is " + std::to_string(static_cast<long>(m.width)) + " m wide; check \"unit\" (\"mm\" for millimetres)");
+}
+
+// One entry of the manifest. The checks run in the order their errors are reported: the
+// axes and unit before the OBJ file is read, the kind, zones and placement after.
+Model read_model(const json& e, const fs::path& manifest, const std::string& where) {
+  check_keys(e, where);
+  if (!e.contains("file") || !e["file"].is_string()) fail(where, "\"file\" must name an OBJ file");
+  const fs::path file = manifest.parent_path() / e["file"].get<std::string>();
+  const std::string up = e.value("up", "y");
+  if (up != "y" && up != "z") fail(where, "\"up\" must be \"y\" or \"z\"");
+  const std::string front = e.value("front", up == "y" ? "+z" : "-y");
+  if (front.size() != 2 || (front[0] != '+' && front[0] != '-') || front[1] < 'x' || front[1] > 'z')
+    fail(where, "\"front\" must be an axis such as \"+z\" or \"-y\"");
+  const double unit = read_unit(e, where);
+  Model m = normalise_model(read_obj(file), up, front, unit, where);
+  m.name = e.value("name", file.stem().string());
+  m.kind = read_kind(e, where);
+  read_zones(e, where, m);
+  read_placement(e, where, m);
+  return m;
+}
+
+}  // namespace
+
+ModelLibrary load_model_library(const fs::path& manifest) {
+  json doc = read_manifest(manifest);
   ModelLibrary lib;
   lib.file = manifest;
   for (std::size_t i = 0; i < doc["models"].size(); ++i) {
-    const json& e = doc["models"][i];
     const std::string where = manifest.string() + " models[" + std::to_string(i) + "]";
-    auto fail = [&](const std::string& what) { throw UserError(where + ": " + what); };
     try {
-    if (!e.is_object()) fail("expected an object with \"file\" and \"zones\"");
-    for (const auto& [key, value] : e.items())
-      if (key != "name" && key != "file" && key != "zones" && key != "kind" && key != "up" && key != "unit" &&
-          key != "front" && key != "weight" && key != "scale" && key != "spacing")
-        fail("unknown key \"" + key + "\"; known: name, file, zones, kind, up, unit, front, weight, scale, spacing");
-    if (!e.contains("file") || !e["file"].is_string()) fail("\"file\" must name an OBJ file");
-    const fs::path file = manifest.parent_path() / e["file"].get<std::string>();
-    const std::string up = e.value("up", "y");
-    if (up != "y" && up != "z") fail("\"up\" must be \"y\" or \"z\"");
-    const std::string front = e.value("front", up == "y" ? "+z" : "-y");
-    if (front.size() != 2 || (front[0] != '+' && front[0] != '-') || front[1] < 'x' || front[1] > 'z')
-      fail("\"front\" must be an axis such as \"+z\" or \"-y\"");
-    double unit = 1;
-    if (e.contains("unit")) {
-      const json& u = e["unit"];
-      if (u == "m") unit = 1;
-      else if (u == "cm") unit = 0.01;
-      else if (u == "mm") unit = 0.001;
-      else if (u.is_number() && u.get<double>() > 0 && std::isfinite(u.get<double>())) unit = u.get<double>();
-      else fail("\"unit\" must be \"m\", \"cm\", \"mm\" or metres per file unit (a positive number)");
-    }
-    Model m = normalise_model(read_obj(file), up, front, unit, where);
-    m.name = e.value("name", file.stem().string());
-    const std::string kind = e.value("kind", "building");
-    if (kind == "building") m.kind = ModelKind::Building;
-    else if (kind == "street") m.kind = ModelKind::Street;
-    else if (kind == "tree") m.kind = ModelKind::Tree;
-    else fail("\"kind\" must be \"building\", \"street\" or \"tree\"");
-    if (!e.contains("zones") || !e["zones"].is_array() || e["zones"].empty()) fail("\"zones\" must list zone types");
-    for (const json& z : e["zones"]) {
-      auto t = z.is_string() ? parse_zone_type(z.get<std::string>()) : std::nullopt;
-      if (!t || *t == ZoneType::Park || *t == ZoneType::Water)
-        fail("\"zones\" lists " + z.dump() + "; models stand in residential, commercial or industrial zones");
-      m.zones.push_back(*t);
-    }
-    m.weight = e.value("weight", 1.0);
-    if (!(m.weight > 0) || !std::isfinite(m.weight)) fail("\"weight\" must be a positive number");
-    if (e.contains("scale")) {
-      const json& s = e["scale"];
-      if (!s.is_array() || s.size() != 2 || !s[0].is_number() || !s[1].is_number() || !(s[0].get<double>() > 0) ||
-          s[1].get<double>() < s[0].get<double>() || s[1].get<double>() > 100)
-        fail("\"scale\" must be [min, max] with 0 < min <= max");
-      m.min_scale = s[0], m.max_scale = s[1];
-    }
-    m.spacing = e.value("spacing", 30.0);
-    if (!(m.spacing > 0) || !std::isfinite(m.spacing)) fail("\"spacing\" must be a positive distance in metres");
-    if (m.width * m.max_scale > 1000 || m.depth * m.max_scale > 1000 || m.height * m.max_scale > 2000)
-      fail("the model is " + std::to_string(static_cast<long>(m.width)) + " m wide; check \"unit\" (\"mm\" for millimetres)");
-    lib.models.push_back(std::move(m));
+      lib.models.push_back(read_model(doc["models"][i], manifest, where));
     } catch (const json::exception& x) {
-      fail(std::string("a value has the wrong type (") + x.what() + "); see the README's model library section");
+      fail(where, std::string("a value has the wrong type (") + x.what() + "); see the README's model library section");
     }
   }
   if (lib.models.empty()) throw UserError(manifest.string() + ": the library lists no models");
