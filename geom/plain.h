@@ -22,6 +22,8 @@ inline Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
 inline Vec2 operator*(Vec2 a, double s) { return {a.x * s, a.y * s}; }
 inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
 inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+inline double distance(Vec2 a, Vec2 b) { return std::hypot(b.x - a.x, b.y - a.y); }
+inline Vec2 lerp(Vec2 a, Vec2 b, double t) { return {a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t}; }
 // `a` scaled to unit length; zero for zero.
 inline Vec2 unit(Vec2 a) {
   const double l = std::hypot(a.x, a.y);
@@ -29,8 +31,11 @@ inline Vec2 unit(Vec2 a) {
 }
 // The unit vector along the edge a -> b, and the edge's left normal: into a ring's inside,
 // for rings that run with the inside on their left. Zero for an edge of no length. The
-// one divides by the length and the other scales by its reciprocal, which round apart in
-// the last bit: each is what its callers always computed, and their outputs depend on it.
+// one divides by the length and the other scales by its reciprocal, which can round apart
+// in the last bit: unit_along is what model rows and lot shapes always divided by, the
+// normal what lot allocation always scaled by (both choices in doubles, then snapped to
+// the grid; the other users of the normal, which used to divide, gave the same outputs on
+// every example and shape).
 inline Vec2 unit_along(Vec2 a, Vec2 b) {
   const double len = std::hypot(b.x - a.x, b.y - a.y);
   return len > 0 ? Vec2{(b.x - a.x) / len, (b.y - a.y) / len} : Vec2{0, 0};

@@ -13,7 +13,7 @@ namespace {
 // 004) instead of the notches their flat ends would leave; and, where the streets have
 // sidewalks, an outer one of their sidewalks' width. A meeting too sharp for a mitre gets
 // a disc of each road's width, as before junctions were mitred.
-void add_junctions(const Sketch& sketch, CityMap& zm) {
+void add_junctions(const Sketch& sketch, CityMap& city_map) {
   for (const StreetNode& node : street_nodes(sketch.roads)) {
     std::vector<geom::JunctionArm> carriageway, outer;
     bool sidewalks = false;
@@ -25,24 +25,24 @@ void add_junctions(const Sketch& sketch, CityMap& zm) {
       sidewalks |= sidewalk > 0;
     }
     const int first = node.arms.front().road;
-    const int junction = static_cast<int>(zm.junction_roads.size());
-    if (zm.map.add_junction(node.at, carriageway, zm.junctions.at(junction))) {
-      zm.junction_roads.push_back(first);
-      ++zm.junctions.size;
-      ++zm.mitred_junctions;
-      if (sidewalks) zm.map.add_junction(node.at, outer, zm.sidewalks.at(first));
+    const int junction = static_cast<int>(city_map.junction_roads.size());
+    if (city_map.map.add_junction(node.at, carriageway, city_map.junctions.at(junction))) {
+      city_map.junction_roads.push_back(first);
+      ++city_map.junctions.size;
+      ++city_map.mitred_junctions;
+      if (sidewalks) city_map.map.add_junction(node.at, outer, city_map.sidewalks.at(first));
       continue;
     }
     // Straight on (nothing needed) or too sharp.
     if (node.arms.size() == 2 && carriageway[0].half_width == carriageway[1].half_width &&
         outer[0].half_width == outer[1].half_width)
       continue;
-    ++zm.disc_junctions;
+    ++city_map.disc_junctions;
     for (const StreetArm& arm : node.arms) {
       const RoadFeature& r = sketch.roads[arm.road];
-      zm.map.add_disc(node.at, r.width / 2, zm.sketch_carriageways.at(arm.road));
+      city_map.map.add_disc(node.at, r.width / 2, city_map.sketch_carriageways.at(arm.road));
       if (sidewalks)
-        zm.map.add_disc(node.at, r.width / 2 + sketch.streets.sidewalk(r.road_class), zm.sidewalks.at(arm.road));
+        city_map.map.add_disc(node.at, r.width / 2 + sketch.streets.sidewalk(r.road_class), city_map.sidewalks.at(arm.road));
     }
   }
 }
@@ -118,36 +118,36 @@ void CityMap::insert_lots() {
 }
 
 CityMap build_city_map(const Sketch& sketch, const Terrain* terrain) {
-  CityMap zm;
-  zm.sketch_roads = static_cast<int>(sketch.roads.size());
-  zm.sketch_carriageways = {zm.heightmap_water.end(), zm.sketch_roads};
+  CityMap city_map;
+  city_map.sketch_roads = static_cast<int>(sketch.roads.size());
+  city_map.sketch_carriageways = {city_map.heightmap_water.end(), city_map.sketch_roads};
   if (terrain) {
-    for (auto [a, b] : terrain->water_boundary()) zm.map.add_edge(a, b, zm.heightmap_water.first);
+    for (auto [a, b] : terrain->water_boundary()) city_map.map.add_edge(a, b, city_map.heightmap_water.first);
   }
   int tag = 0;
-  for (int r = 0; r < zm.sketch_roads; ++r) {
+  for (int r = 0; r < city_map.sketch_roads; ++r) {
     const RoadFeature& f = sketch.roads[r];
     MapRoad road{f.road_class, f.width, -1, -1, f.index, {}, tag};
     for (const geom::Polyline& line : f.lines) {
-      zm.map.add_stroke(line, f.width / 2, zm.sketch_carriageways.at(r));
+      city_map.map.add_stroke(line, f.width / 2, city_map.sketch_carriageways.at(r));
       road.lines.push_back(geom::Path::from(line));
-      zm.map.add_path(road.lines.back(), tag++);
+      city_map.map.add_path(road.lines.back(), tag++);
     }
-    zm.roads.push_back(std::move(road));
+    city_map.roads.push_back(std::move(road));
   }
-  zm.drawn = std::make_shared<DrawnZones>(sketch.zones, zm.map, zm.sketch_carriageways.end());
-  zm.sidewalks = {zm.drawn->end_counter(), zm.sketch_roads};
-  zm.junctions = {zm.sidewalks.end(), 0};
-  for (int r = 0; r < zm.sketch_roads; ++r) {
+  city_map.drawn = std::make_shared<DrawnZones>(sketch.zones, city_map.map, city_map.sketch_carriageways.end());
+  city_map.sidewalks = {city_map.drawn->end_counter(), city_map.sketch_roads};
+  city_map.junctions = {city_map.sidewalks.end(), 0};
+  for (int r = 0; r < city_map.sketch_roads; ++r) {
     const RoadFeature& f = sketch.roads[r];
     if (const double sidewalk = sketch.streets.sidewalk(f.road_class); sidewalk > 0)
-      for (const geom::Polyline& line : f.lines) zm.map.add_stroke(line, f.width / 2 + sidewalk, zm.sidewalks.at(r));
+      for (const geom::Polyline& line : f.lines) city_map.map.add_stroke(line, f.width / 2 + sidewalk, city_map.sidewalks.at(r));
   }
-  add_junctions(sketch, zm);
-  zm.generated_roads = {zm.junctions.end(), 0};
-  zm.map.insert_batch();
-  zm.label(sketch);
-  return zm;
+  add_junctions(sketch, city_map);
+  city_map.generated_roads = {city_map.junctions.end(), 0};
+  city_map.map.insert_batch();
+  city_map.label(sketch);
+  return city_map;
 }
 
 }  // namespace exacity

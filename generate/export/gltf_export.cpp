@@ -77,7 +77,6 @@ class Glb {
     model_.nodes.push_back(std::move(n));
     return static_cast<int>(model_.nodes.size()) - 1;
   }
-  tinygltf::Node& node_at(int i) { return model_.nodes[i]; }
 
   std::size_t triangles() const { return triangles_; }
   std::size_t meshes() const { return model_.meshes.size(); }
@@ -205,8 +204,8 @@ std::size_t add_model_nodes(const std::vector<ModelInstance>& models, const Mode
                             Glb& glb, tinygltf::Node& root) {
   std::map<int, std::vector<std::pair<int, int>>> geometry;  // model -> accessors per material
   std::map<std::pair<int, int>, int> variant_mesh;          // (model, tint) -> mesh
-  for (const ModelInstance& b : models) {
-    const int mi = b.placed.model;
+  for (const ModelInstance& m : models) {
+    const int mi = m.placed.model;
     const Model& model = library->models[mi];
     if (!geometry.count(mi)) {
       std::vector<Triangles> by_material(model.mesh.materials.size());
@@ -220,21 +219,21 @@ std::size_t add_model_nodes(const std::vector<ModelInstance>& models, const Mode
       }
       for (const Triangles& t : by_material) geometry[mi].push_back(glb.accessors(t));
     }
-    auto [it, added] = variant_mesh.emplace(std::make_pair(mi, b.placed.tint), -1);
+    auto [it, added] = variant_mesh.emplace(std::make_pair(mi, m.placed.tint), -1);
     if (added) {
       Primitives prims;
       for (std::size_t k = 0; k < model.mesh.materials.size(); ++k)
-        prims.push_back({geometry[mi][k], glb.material(model.name + "_" + model.mesh.materials[k].name + "_" + std::to_string(b.placed.tint),
-                                                       tinted(model.mesh.materials[k].colour, b.placed.tint))});
-      it->second = glb.mesh(model.name + "_" + std::to_string(b.placed.tint), prims);
+        prims.push_back({geometry[mi][k], glb.material(model.name + "_" + model.mesh.materials[k].name + "_" + std::to_string(m.placed.tint),
+                                                       tinted(model.mesh.materials[k].colour, m.placed.tint))});
+      it->second = glb.mesh(model.name + "_" + std::to_string(m.placed.tint), prims);
     }
     tinygltf::Node n;
     n.name = model.name;
     n.mesh = it->second;
-    Float3 at = local(b.placed.position.x, b.placed.position.y, b.floor);
+    Float3 at = local(m.placed.position.x, m.placed.position.y, m.floor);
     n.translation = {at[0], at[1], at[2]};
-    n.rotation = {0, std::sin(b.placed.angle / 2), 0, std::cos(b.placed.angle / 2)};
-    n.scale = {b.placed.scale, b.placed.scale, b.placed.scale};
+    n.rotation = {0, std::sin(m.placed.angle / 2), 0, std::cos(m.placed.angle / 2)};
+    n.scale = {m.placed.scale, m.placed.scale, m.placed.scale};
     root.children.push_back(glb.node(n));
   }
   return models.size();

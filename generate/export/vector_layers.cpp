@@ -15,8 +15,8 @@ using nlohmann::ordered_json;
 // Dissolves faces into polygons: group_of(label) picks each face's group (-1: none);
 // add(group, polygon) receives them in a stable order.
 template <typename GroupOf, typename Add>
-void dissolve(const CityMap& zm, int group_count, GroupOf group_of, Add add) {
-  auto polygons = zm.map.dissolve(zm.per_label(group_of), group_count);
+void dissolve(const CityMap& city_map, int group_count, GroupOf group_of, Add add) {
+  auto polygons = city_map.map.dissolve(city_map.per_label(group_of), group_count);
   for (int g = 0; g < group_count; ++g)
     for (geom::Dissolved& d : polygons[g]) add(g, std::move(d.polygon));
 }
@@ -40,23 +40,23 @@ CityLayers read_layers(const std::filesystem::path& vector_dir, std::vector<std:
 namespace {
 
 // The drawn zones by type, then the water.
-void extract_zones_and_water(const CityMap& zm, const Sketch& sketch, Ground& out) {
+void extract_zones_and_water(const CityMap& city_map, const Sketch& sketch, Ground& out) {
   const int zone_types = static_cast<int>(ZoneType::Water);  // water has its own layer
-  dissolve(zm, zone_types,
+  dissolve(city_map, zone_types,
            [&](const FaceLabel& l) { return l.cover == Cover::Zone ? static_cast<int>(sketch.zones[l.zone].type) : -1; },
            [&](int g, geom::Polygon p) { out.zones.push_back({static_cast<ZoneType>(g), std::move(p)}); });
-  dissolve(zm, 1, [](const FaceLabel& l) { return l.cover == Cover::Water ? 0 : -1; },
+  dissolve(city_map, 1, [](const FaceLabel& l) { return l.cover == Cover::Water ? 0 : -1; },
            [&](int, geom::Polygon p) { out.water.push_back(std::move(p)); });
 }
 
 // Centre lines with every junction as a vertex, cut where they go on or off a bridge.
 // Returns each map road's first centre line on land and on a bridge: what its areas and
 // the blocks along it name.
-std::vector<std::array<int, 2>> extract_centre_lines(const CityMap& zm, Ground& out) {
-  std::vector<std::array<int, 2>> first_line(zm.roads.size(), {-1, -1});
-  auto pieces_of = zm.map.polyline_pieces();
-  for (std::size_t r = 0; r < zm.roads.size(); ++r) {
-    const MapRoad& road = zm.roads[r];
+std::vector<std::array<int, 2>> extract_centre_lines(const CityMap& city_map, Ground& out) {
+  std::vector<std::array<int, 2>> first_line(city_map.roads.size(), {-1, -1});
+  auto pieces_of = city_map.map.polyline_pieces();
+  for (std::size_t r = 0; r < city_map.roads.size(); ++r) {
+    const MapRoad& road = city_map.roads[r];
     for (int k = 0; k < static_cast<int>(road.lines.size()); ++k) {
       geom::Polyline run;
       bool run_bridge = false;
@@ -69,8 +69,8 @@ std::vector<std::array<int, 2>> extract_centre_lines(const CityMap& zm, Ground& 
       };
       for (const geom::PolylinePiece& piece : pieces_of[road.first_tag + k]) {
         if (piece.from == piece.to) continue;  // shorter than a double's step: rounded away
-        bool bridge = zm.labels[piece.left_label].cover == Cover::Water &&
-                      zm.labels[piece.right_label].cover == Cover::Water;
+        bool bridge = city_map.labels[piece.left_label].cover == Cover::Water &&
+                      city_map.labels[piece.right_label].cover == Cover::Water;
         if (!run.empty() && (bridge != run_bridge || !(run.back() == piece.from))) flush();
         if (run.empty()) run.push_back(piece.from), run_bridge = bridge;
         run.push_back(piece.to);
@@ -83,10 +83,10 @@ std::vector<std::array<int, 2>> extract_centre_lines(const CityMap& zm, Ground& 
 
 // Road areas by road, surface and bridge: carriageways and sidewalks per road (groups
 // 4r + 2 sidewalk + bridge), then each junction (4 roads + 2j + bridge).
-void extract_road_areas(const CityMap& zm, const std::function<int(int, bool)>& road_id, Ground& out) {
-  const int roads = static_cast<int>(zm.roads.size());
-  const int junctions = static_cast<int>(zm.junction_roads.size());
-  dissolve(zm, 4 * roads + 2 * junctions,
+void extract_road_areas(const CityMap& city_map, const std::function<int(int, bool)>& road_id, Ground& out) {
+  const int roads = static_cast<int>(city_map.roads.size());
+  const int junctions = static_cast<int>(city_map.junction_roads.size());
+  dissolve(city_map, 4 * roads + 2 * junctions,
            [&](const FaceLabel& l) {
              if (!l.road_surface()) return -1;
              if (l.surface == RoadSurface::Junction) return 4 * roads + 2 * l.junction + l.bridge;
@@ -94,7 +94,7 @@ void extract_road_areas(const CityMap& zm, const std::function<int(int, bool)>& 
            },
            [&](int g, geom::Polygon p) {
              const bool junction = g >= 4 * roads, bridge = g % 2 == 1;
-             const int road = junction ? zm.junction_roads[(g - 4 * roads) / 2] : g / 4;
+             const int road = junction ? city_map.junction_roads[(g - 4 * roads) / 2] : g / 4;
              const RoadSurface surface = junction ? RoadSurface::Junction : g % 4 >= 2 ? RoadSurface::Sidewalk : RoadSurface::Carriageway;
              out.road_areas.push_back({road_id(road, bridge), bridge, surface, std::move(p)});
            });
@@ -104,10 +104,10 @@ void extract_road_areas(const CityMap& zm, const std::function<int(int, bool)>& 
 // vertices on block edges). Rounding can pinch a block in two: its first polygon keeps
 // the block's id, the others take ids after the last block's, and lots name the polygon
 // they lie in. Returns each block's pieces, as indices into out.blocks.
-std::vector<std::vector<std::size_t>> extract_blocks(const CityMap& zm, const std::vector<Block>& blocks,
+std::vector<std::vector<std::size_t>> extract_blocks(const CityMap& city_map, const std::vector<Block>& blocks,
                                                      const std::function<int(int, bool)>& road_id, Ground& out) {
   std::vector<std::vector<geom::Polygon>> block_polygons(blocks.size());
-  dissolve(zm, static_cast<int>(blocks.size()), [](const FaceLabel& l) { return l.block; },
+  dissolve(city_map, static_cast<int>(blocks.size()), [](const FaceLabel& l) { return l.block; },
            [&](int g, geom::Polygon p) { block_polygons[g].push_back(std::move(p)); });
   std::vector<std::vector<std::size_t>> pieces(blocks.size());
   int next_id = static_cast<int>(blocks.size());
@@ -141,17 +141,17 @@ ordered_json id_or_null(int id) { return id >= 0 ? ordered_json(id) : ordered_js
 
 }  // namespace
 
-Ground extract_ground(const CityMap& zm, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
+Ground extract_ground(const CityMap& city_map, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
                       const Sketch& sketch) {
   Ground out;
-  extract_zones_and_water(zm, sketch, out);
-  const std::vector<std::array<int, 2>> first_line = extract_centre_lines(zm, out);
+  extract_zones_and_water(city_map, sketch, out);
+  const std::vector<std::array<int, 2>> first_line = extract_centre_lines(city_map, out);
   const std::function<int(int, bool)> road_id = [&](int r, bool bridge) {
     const auto& f = first_line[r];
     return f[bridge] >= 0 ? f[bridge] : f[!bridge];
   };
-  extract_road_areas(zm, road_id, out);
-  const std::vector<std::vector<std::size_t>> pieces = extract_blocks(zm, blocks, road_id, out);
+  extract_road_areas(city_map, road_id, out);
+  const std::vector<std::vector<std::size_t>> pieces = extract_blocks(city_map, blocks, road_id, out);
   // Lots as they ended up in the map; a lot's id is its index, which buildings name.
   for (const Lot& lot : lots) out.lots.push_back({block_piece_of(lot, pieces[lot.block], out), lot.zone, lot.polygon});
   return out;
@@ -195,10 +195,10 @@ CityLayers layers_of(const Ground& ground, const std::vector<Building>& building
   return out;
 }
 
-CityLayers extract_layers(const CityMap& zm, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
+CityLayers extract_layers(const CityMap& city_map, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
                           const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
                           const Sketch& sketch, const ModelLibrary* library) {
-  return layers_of(extract_ground(zm, blocks, lots, sketch), buildings, models, library);
+  return layers_of(extract_ground(city_map, blocks, lots, sketch), buildings, models, library);
 }
 
 }  // namespace exacity

@@ -13,11 +13,10 @@ namespace exacity {
 namespace {
 
 geom::Vec2 mid(geom::Vec2 a, geom::Vec2 b) { return {(a.x + b.x) / 2, (a.y + b.y) / 2}; }
-double length(geom::Vec2 a, geom::Vec2 b) { return std::hypot(b.x - a.x, b.y - a.y); }
 
 // Whether segment a-b lies along p-q (both ends within a hair of it).
 bool lies_along(geom::Vec2 a, geom::Vec2 b, geom::Vec2 p, geom::Vec2 q) {
-  const double tolerance = 1e-7 * (length(p, q) + std::abs(p.x) + std::abs(p.y)) + 1e-9;
+  const double tolerance = 1e-7 * (geom::distance(p, q) + std::abs(p.x) + std::abs(p.y)) + 1e-9;
   return geom::distance_to_segment(a, p, q) <= tolerance && geom::distance_to_segment(b, p, q) <= tolerance;
 }
 
@@ -49,7 +48,7 @@ class GrammarLayout : public RoadLayout {
       }
       const auto& c = leaf.corners;
       const geom::Vec2 a = c[0], b = c[1];
-      if (length(a, b) == 0) continue;
+      if (geom::distance(a, b) == 0) continue;
       bool along_sketch = false;
       for (auto [p, q] : region.along_sketch_roads) along_sketch |= lies_along(a, b, p, q);
       if (along_sketch) continue;  // the sketch's road runs there

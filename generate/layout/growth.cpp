@@ -216,16 +216,16 @@ namespace {
 // Regions: connected faces of zones roads grow in (and the water under them where the
 // zone lets roads bridge it), each with its own stream and a random orientation. Zones
 // laid out otherwise grow none.
-std::vector<Work> regions(const CityMap& zm, const Sketch& sketch, const std::vector<int>& kind) {
+std::vector<Work> regions(const CityMap& city_map, const Sketch& sketch, const std::vector<int>& kind) {
   auto params = [&](ZoneType t) -> const ZoneParams& { return sketch.zone_params.at(t); };
-  const std::vector<int> group = zm.per_label([&](const FaceLabel& f) {
+  const std::vector<int> group = city_map.per_label([&](const FaceLabel& f) {
     ZoneType t = f.zone >= 0 ? sketch.zones[f.zone].type : ZoneType::Park;
     bool growable = f.zone >= 0 && grows_roads(t) && params(t).layout == "growth";
     return (f.cover == Cover::Zone && growable) || (f.cover == Cover::Water && growable && params(t).bridges) ? 0 : -1;
   });
   std::vector<Work> work;
   const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Roads));
-  for (geom::Cell& cell : zm.map.cells(group, kind)) {
+  for (geom::Cell& cell : city_map.map.cells(group, kind)) {
     std::uint64_t id = mix(stage, work.size());
     Random rng(id);
     work.push_back({std::move(cell), id, rng.uniform(0, 360), static_cast<int>(work.size()), ZoneType::Residential});
@@ -235,7 +235,7 @@ std::vector<Work> regions(const CityMap& zm, const Sketch& sketch, const std::ve
 
 // Each cell's seed, and the zone type it grows as: the type at its seed, all found in one
 // sweep of the map (a cell keeps its parent's type where the seed lies on none).
-std::vector<Grown> seeds(const std::vector<Work>& work, const CityMap& zm, const Sketch& sketch) {
+std::vector<Grown> seeds(const std::vector<Work>& work, const CityMap& city_map, const Sketch& sketch) {
   std::vector<Grown> grown(work.size());
   std::vector<geom::Vec2> seed_points;
   for (std::size_t i = 0; i < work.size(); ++i) {
@@ -243,13 +243,13 @@ std::vector<Grown> seeds(const std::vector<Work>& work, const CityMap& zm, const
     grown[i].seed = seed_point(work[i].cell, seed_rng);
     if (grown[i].seed) seed_points.push_back(*grown[i].seed);
   }
-  std::vector<int> seed_labels = zm.map.labels_at(seed_points);
+  std::vector<int> seed_labels = city_map.map.labels_at(seed_points);
   for (std::size_t i = 0, k = 0; i < work.size(); ++i) {
     grown[i].type = work[i].type;
     if (!grown[i].seed) continue;
     int l = seed_labels[k++];
-    if (l >= 0 && zm.labels[l].zone >= 0 && grows_roads(sketch.zones[zm.labels[l].zone].type))
-      grown[i].type = sketch.zones[zm.labels[l].zone].type;
+    if (l >= 0 && city_map.labels[l].zone >= 0 && grows_roads(sketch.zones[city_map.labels[l].zone].type))
+      grown[i].type = sketch.zones[city_map.labels[l].zone].type;
   }
   return grown;
 }
@@ -297,13 +297,13 @@ void grow_one(const Work& w, Grown& g, const ZoneParams& p, int level, const Ske
 
 // The level's roads onto the map's list, in cell order; returns the next level's work.
 std::vector<Work> collect(std::vector<Grown>& grown, const std::vector<Work>& work, int level, const Sketch& sketch,
-                          CityMap& zm, GrownRegions& out) {
+                          CityMap& city_map, GrownRegions& out) {
   std::vector<Work> next;
   for (std::size_t i = 0; i < grown.size(); ++i) {
     Grown& g = grown[i];
     out.cells_without_access += g.without_access;
     if (!g.joined.empty()) out.joined[work[i].region] = 1;
-    if (!g.roads.empty()) out.junctions.push_back({*g.seed, static_cast<int>(zm.roads.size())});
+    if (!g.roads.empty()) out.junctions.push_back({*g.seed, static_cast<int>(city_map.roads.size())});
     const ZoneParams& p = sketch.zone_params.at(g.type);
     for (geom::Path& road : g.roads) {
       MapRoad r;
@@ -312,7 +312,7 @@ std::vector<Work> collect(std::vector<Grown>& grown, const std::vector<Work>& wo
       r.level = level;
       r.region = work[i].region;
       r.lines.push_back(std::move(road));
-      zm.roads.push_back(std::move(r));
+      city_map.roads.push_back(std::move(r));
     }
     for (Work& w : g.parts) next.push_back(std::move(w));
   }
@@ -321,19 +321,19 @@ std::vector<Work> collect(std::vector<Grown>& grown, const std::vector<Work>& wo
 
 }  // namespace
 
-GrownRegions grow_regions(CityMap& zm, const Sketch& sketch, const SketchLines& sketch_lines,
+GrownRegions grow_regions(CityMap& city_map, const Sketch& sketch, const SketchLines& sketch_lines,
                           const std::vector<int>& kind) {
   GrownRegions out;
-  std::vector<Work> work = regions(zm, sketch, kind);
+  std::vector<Work> work = regions(city_map, sketch, kind);
   out.regions = static_cast<int>(work.size());
   out.joined.assign(work.size(), 0);
   for (int level = 0; !work.empty() && level < kMaxLevels; ++level) {
     out.levels = level + 1;
-    std::vector<Grown> grown = seeds(work, zm, sketch);
+    std::vector<Grown> grown = seeds(work, city_map, sketch);
     tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
       grow_one(work[i], grown[i], sketch.zone_params.at(grown[i].type), level, sketch_lines);
     });
-    work = collect(grown, work, level, sketch, zm, out);
+    work = collect(grown, work, level, sketch, city_map, out);
   }
   return out;
 }

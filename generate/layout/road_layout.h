@@ -1,7 +1,8 @@
 // Road layouts (docs/design.md, Road layouts): a layout plans the roads of
 // one region, a set of connected faces of zones laid out alike; the roads stage
-// (road_network.cpp) alone puts plans into the map. Seed 000's growth is the roads stage's
-// own: it grows every region a level at a time and looks each level's seeds up in the map.
+// (road_network.cpp) alone puts plans into the map. Seed 000's growth (growth.h) is not a
+// RoadLayout yet: it grows every region a level at a time and looks each level's seeds up in
+// the map.
 #pragma once
 
 #include <memory>

@@ -22,17 +22,17 @@ namespace {
 // island is linked by the shortest straight road to the network joined so far, nearest
 // island first, so the city's streets are one network; the sketch's roads start it, or
 // the island with most roads when there are none. Returns the links added.
-int link_islands(CityMap& zm, const std::vector<char>& joined, std::vector<Junction>& junctions) {
+int link_islands(CityMap& city_map, const std::vector<char>& joined, std::vector<Junction>& junctions) {
   std::vector<std::vector<geom::Path>> network(joined.size());
   std::vector<double> width(joined.size());
-  for (int r = zm.sketch_roads; r < static_cast<int>(zm.roads.size()); ++r) {
-    const MapRoad& road = zm.roads[r];
+  for (int r = city_map.sketch_roads; r < static_cast<int>(city_map.roads.size()); ++r) {
+    const MapRoad& road = city_map.roads[r];
     if (network[road.region].empty()) width[road.region] = road.width;
     network[road.region].push_back(road.lines[0]);
   }
   std::vector<geom::Path> linked;
-  for (int r = 0; r < zm.sketch_roads; ++r)
-    linked.insert(linked.end(), zm.roads[r].lines.begin(), zm.roads[r].lines.end());
+  for (int r = 0; r < city_map.sketch_roads; ++r)
+    linked.insert(linked.end(), city_map.roads[r].lines.begin(), city_map.roads[r].lines.end());
   std::vector<int> islands;
   for (std::size_t r = 0; r < network.size(); ++r) {
     if (network[r].empty()) continue;
@@ -62,8 +62,8 @@ int link_islands(CityMap& zm, const std::vector<char>& joined, std::vector<Junct
       road.region = region;
       road.link = true;
       road.lines.push_back(nearest[k].path);
-      for (std::size_t end : {0u, 1u}) junctions.push_back({nearest[k].path.point(end), static_cast<int>(zm.roads.size())});
-      zm.roads.push_back(std::move(road));
+      for (std::size_t end : {0u, 1u}) junctions.push_back({nearest[k].path.point(end), static_cast<int>(city_map.roads.size())});
+      city_map.roads.push_back(std::move(road));
       added.push_back(nearest[k].path);
       ++links;
     }
@@ -82,7 +82,7 @@ int link_islands(CityMap& zm, const std::vector<char>& joined, std::vector<Junct
 // in parallel, then settled into the map's roads. Each connected piece of a region's roads
 // counts as a region of its own, so link_islands joins every piece to the rest.
 // `kind` is the growth's, by face label.
-void lay_out_regions(CityMap& zm, const Sketch& sketch, const SketchLines& sketch_lines, const std::vector<int>& kind,
+void lay_out_regions(CityMap& city_map, const Sketch& sketch, const SketchLines& sketch_lines, const std::vector<int>& kind,
                      std::vector<char>& joined, std::vector<Junction>& junctions, std::vector<PlannedUse>& uses,
                      RoadNetworkStats& stats) {
   std::map<ZoneType, std::unique_ptr<RoadLayout>> layouts;
@@ -90,13 +90,13 @@ void lay_out_regions(CityMap& zm, const Sketch& sketch, const SketchLines& sketc
     if (grows_roads(t))
       if (std::unique_ptr<RoadLayout> layout = make_road_layout(p, t)) layouts[t] = std::move(layout);
   if (layouts.empty()) return;
-  const std::vector<int> group = zm.per_label([&](const FaceLabel& f) {
+  const std::vector<int> group = city_map.per_label([&](const FaceLabel& f) {
     return f.cover == Cover::Zone && f.zone >= 0 && layouts.count(sketch.zones[f.zone].type)
                ? static_cast<int>(sketch.zones[f.zone].type)
                : -1;
   });
   std::vector<int> types;
-  std::vector<geom::Cell> cells = zm.map.cells(group, kind, &types);
+  std::vector<geom::Cell> cells = city_map.map.cells(group, kind, &types);
   const std::uint64_t stage = mix(mix(sketch.seed, static_cast<std::uint64_t>(Stage::Roads)), 0x1a1047);
   std::vector<geom::Path> sketch_roads;
   double sketch_width = 0;
@@ -125,7 +125,7 @@ void lay_out_regions(CityMap& zm, const Sketch& sketch, const SketchLines& sketc
         const geom::Vec2 p = roads[r].path.point(k);
         at[{p.x, p.y}].push_back(static_cast<int>(r));
       }
-    const int first = static_cast<int>(zm.roads.size());
+    const int first = static_cast<int>(city_map.roads.size());
     for (std::size_t r = 0; r < roads.size(); ++r) {
       MapRoad m;
       m.road_class = roads[r].road_class;
@@ -133,7 +133,7 @@ void lay_out_regions(CityMap& zm, const Sketch& sketch, const SketchLines& sketc
       m.level = roads[r].road_class == RoadClass::Main ? 0 : 1;
       m.region = region_of_piece[roads[r].piece];
       m.lines.push_back(roads[r].path);
-      zm.roads.push_back(std::move(m));
+      city_map.roads.push_back(std::move(m));
     }
     for (const auto& [p, here] : at)
       if (here.size() > 1) junctions.push_back({{p.first, p.second}, first + here.front()});
@@ -142,39 +142,39 @@ void lay_out_regions(CityMap& zm, const Sketch& sketch, const SketchLines& sketc
 
 // Every generated road into the map in one batch: centre line, area, and a disc where
 // roads meet; then the map is labelled again.
-void insert_generated_roads(CityMap& zm, const std::vector<Junction>& junctions, const Sketch& sketch) {
+void insert_generated_roads(CityMap& city_map, const std::vector<Junction>& junctions, const Sketch& sketch) {
   int tag = 0;
-  for (const MapRoad& r : zm.roads) tag = std::max(tag, r.first_tag + static_cast<int>(r.lines.size()));
-  zm.generated_roads.size = static_cast<int>(zm.roads.size()) - zm.sketch_roads;
-  for (int r = zm.sketch_roads; r < static_cast<int>(zm.roads.size()); ++r) {
-    MapRoad& road = zm.roads[r];
+  for (const MapRoad& r : city_map.roads) tag = std::max(tag, r.first_tag + static_cast<int>(r.lines.size()));
+  city_map.generated_roads.size = static_cast<int>(city_map.roads.size()) - city_map.sketch_roads;
+  for (int r = city_map.sketch_roads; r < static_cast<int>(city_map.roads.size()); ++r) {
+    MapRoad& road = city_map.roads[r];
     road.first_tag = tag;
-    zm.map.add_path(road.lines[0], tag++);
-    zm.map.add_path_stroke(road.lines[0], road.width / 2, zm.road_counter(r));
+    city_map.map.add_path(road.lines[0], tag++);
+    city_map.map.add_path_stroke(road.lines[0], road.width / 2, city_map.road_counter(r));
   }
-  for (const Junction& s : junctions) zm.map.add_disc(s.at, zm.roads[s.first_road].width / 2, zm.road_counter(s.first_road));
-  zm.map.insert_batch();
-  zm.label(sketch);
+  for (const Junction& s : junctions) city_map.map.add_disc(s.at, city_map.roads[s.first_road].width / 2, city_map.road_counter(s.first_road));
+  city_map.map.insert_batch();
+  city_map.label(sketch);
 }
 
 }  // namespace
 
-RoadNetwork grow_road_network(CityMap zm, const Sketch& sketch) {
+RoadNetwork grow_road_network(CityMap city_map, const Sketch& sketch) {
   RoadNetwork net;
-  const std::vector<int> kind = zm.per_label([&](const FaceLabel& f) {
-    return f.road_surface() && f.road < zm.sketch_roads ? GrowthEdge::sketch_road(f.road) : GrowthEdge::kRegionEdge;
+  const std::vector<int> kind = city_map.per_label([&](const FaceLabel& f) {
+    return f.road_surface() && f.road < city_map.sketch_roads ? GrowthEdge::sketch_road(f.road) : GrowthEdge::kRegionEdge;
   });
   SketchLines sketch_lines;
-  for (int r = 0; r < zm.sketch_roads; ++r) sketch_lines.push_back({zm.roads[r].lines, zm.roads[r].width});
+  for (int r = 0; r < city_map.sketch_roads; ++r) sketch_lines.push_back({city_map.roads[r].lines, city_map.roads[r].width});
 
-  GrownRegions grown = grow_regions(zm, sketch, sketch_lines, kind);
+  GrownRegions grown = grow_regions(city_map, sketch, sketch_lines, kind);
   net.stats.regions = grown.regions;
   net.stats.levels = grown.levels;
   net.stats.cells_without_access = grown.cells_without_access;
-  lay_out_regions(zm, sketch, sketch_lines, kind, grown.joined, grown.junctions, net.uses, net.stats);
-  net.stats.links = link_islands(zm, grown.joined, grown.junctions);
-  insert_generated_roads(zm, grown.junctions, sketch);
-  net.map = std::move(zm);
+  lay_out_regions(city_map, sketch, sketch_lines, kind, grown.joined, grown.junctions, net.uses, net.stats);
+  net.stats.links = link_islands(city_map, grown.joined, grown.junctions);
+  insert_generated_roads(city_map, grown.junctions, sketch);
+  net.map = std::move(city_map);
   return net;
 }
 

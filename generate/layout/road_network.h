@@ -18,7 +18,7 @@ struct RoadNetworkStats {
 };
 
 struct RoadNetwork {
-  CityMap map;  // the zone map with the grown roads' centre lines and areas, relabelled
+  CityMap map;  // the city map with the generated roads' centre lines and areas, relabelled
   RoadNetworkStats stats;
   std::vector<PlannedUse> uses;  // land a layout gave a use (a grammar's terminals)
 };

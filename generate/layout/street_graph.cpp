@@ -20,7 +20,6 @@ std::unordered_map<geom::Vec2, int, geom::Vec2Hash> vertex_counts(const std::vec
   return count;
 }
 
-double distance(geom::Vec2 a, geom::Vec2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
 using geom::segment_key;
 using Segments = std::set<geom::SegmentKey>;
@@ -80,7 +79,7 @@ int join_ends_to_ends(std::vector<RoadFeature>& roads, const std::vector<LineEnd
     for (std::size_t j = 0; j < i; ++j) {
       if (ends[j].road == ends[i].road && ends[j].line == ends[i].line) continue;
       const geom::Vec2 target = point_of(roads, ends[j]);
-      if (distance(point_of(roads, ends[i]), target) > snap) continue;
+      if (geom::distance(point_of(roads, ends[i]), target) > snap) continue;
       if (!(point_of(roads, ends[i]) == target))
         moved += move_end(roads[ends[i].road].lines[ends[i].line], ends[i].back, target, segments);
       break;
@@ -119,8 +118,8 @@ int join_end_to_side(geom::Polyline& own, bool back, geom::Vec2 p, Side side, do
   geom::Polyline& target = *side.line;
   const geom::Vec2 a = target[side.segment], b = target[side.segment + 1];
   geom::Vec2 at = geom::snap(geom::nearest_on_segment(p, a, b));
-  if (distance(at, a) <= snap && distance(p, a) <= snap) at = a;  // onto a vertex rather than beside it
-  else if (distance(at, b) <= snap && distance(p, b) <= snap) at = b;
+  if (geom::distance(at, a) <= snap && geom::distance(p, a) <= snap) at = a;  // onto a vertex rather than beside it
+  else if (geom::distance(at, b) <= snap && geom::distance(p, b) <= snap) at = b;
   int moved = 0;
   if (!(at == p)) {
     if (!move_end(own, back, at, segments)) return 0;
@@ -171,7 +170,7 @@ std::vector<StreetNode> street_nodes(const std::vector<RoadFeature>& roads) {
     for (const geom::Polyline& line : roads[r].lines) {
       // Length along the line up to each vertex.
       std::vector<double> along{0};
-      for (std::size_t i = 1; i < line.size(); ++i) along.push_back(along.back() + distance(line[i - 1], line[i]));
+      for (std::size_t i = 1; i < line.size(); ++i) along.push_back(along.back() + geom::distance(line[i - 1], line[i]));
       for (std::size_t i = 0; i < line.size(); ++i) {
         Meeting& m = at[{line[i].x, line[i].y}];
         ++m.lines;

@@ -14,8 +14,7 @@ namespace {
 
 using geom::Vec2;
 
-Vec2 lerp(Vec2 a, Vec2 b, double t) { return {a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t}; }
-double length(Vec2 a, Vec2 b) { return std::hypot(b.x - a.x, b.y - a.y); }
+using geom::lerp;
 
 using geom::cross;
 using geom::dot;
@@ -64,7 +63,7 @@ void run_lots(const std::vector<Vec2>& points, const std::vector<Vec2>& normals,
               const std::vector<geom::KindedRing>& rings, double width, double depth, double min_edge,
               std::vector<geom::Ring>& lots) {
   std::vector<double> at_length{0};
-  for (std::size_t i = 1; i < points.size(); ++i) at_length.push_back(at_length.back() + length(points[i - 1], points[i]));
+  for (std::size_t i = 1; i < points.size(); ++i) at_length.push_back(at_length.back() + geom::distance(points[i - 1], points[i]));
   const double total = at_length.back(), begin = first.skip;
   if (total - begin < min_edge) return;
   {

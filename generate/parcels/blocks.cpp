@@ -20,16 +20,16 @@ const Terminal* use_of(const geom::Cell& cell, const std::vector<PlannedUse>& us
 
 }  // namespace
 
-std::vector<Block> cut_blocks(CityMap& zm, const Sketch& sketch, const std::vector<PlannedUse>& uses) {
-  const std::vector<int> group = zm.per_label([&](const FaceLabel& f) {
+std::vector<Block> cut_blocks(CityMap& city_map, const Sketch& sketch, const std::vector<PlannedUse>& uses) {
+  const std::vector<int> group = city_map.per_label([&](const FaceLabel& f) {
     return f.cover == Cover::Zone && grows_roads(sketch.zones[f.zone].type) ? static_cast<int>(sketch.zones[f.zone].type)
                                                                              : -1;
   });
   const std::vector<int> road_across =
-      zm.per_label([](const FaceLabel& f) { return f.road_surface() ? f.road : BlockEdge::kNoRoad; });
+      city_map.per_label([](const FaceLabel& f) { return f.road_surface() ? f.road : BlockEdge::kNoRoad; });
   std::vector<Block> blocks;
   std::vector<int> types, components;
-  std::vector<geom::Cell> cells = zm.map.cells(group, road_across, &types, &components);
+  std::vector<geom::Cell> cells = city_map.map.cells(group, road_across, &types, &components);
   std::vector<int> block_of_component(components.empty() ? 0 : components.back() + 1, -1);
   for (std::size_t i = 0; i < cells.size(); ++i) {
     geom::Cell& cell = cells[i];
@@ -56,11 +56,11 @@ std::vector<Block> cut_blocks(CityMap& zm, const Sketch& sketch, const std::vect
   // Each face learns its block (an edge-connected component of faces bounds one cell).
   std::pair<int, int> last{-1, -1};  // a component's faces mostly share one label
   int last_component = -1;
-  zm.map.relabel_components(group, [&](int c, int label) {
+  city_map.map.relabel_components(group, [&](int c, int label) {
     if (c != last_component || label != last.first) {
-      FaceLabel l = zm.labels[label];
+      FaceLabel l = city_map.labels[label];
       l.block = block_of_component[c];
-      last = {label, zm.label_index(l)}, last_component = c;
+      last = {label, city_map.label_index(l)}, last_component = c;
     }
     return last.second;
   });

@@ -16,7 +16,7 @@ namespace exacity {
 // it, or one of these.
 struct BlockEdge {
   static constexpr int kNoRoad = -1;  // water, a park or another zone across
-  static constexpr int kLotCut = -2;  // a cut between two of the block's split lots (parcels/lots.cpp)
+  static constexpr int kLotCut = -2;  // a cut between two of the block's split lots (parcels/split.cpp)
   static constexpr bool is_road(int kind) { return kind >= 0; }
 };
 

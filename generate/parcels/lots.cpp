@@ -32,25 +32,25 @@ std::unique_ptr<LotLayout> make_lot_layout(const ZoneParams& params) {
   return params.lots == "split" ? make_split(params) : make_allocation(params);
 }
 
-std::vector<Lot> insert_lots(CityMap& zm, const std::vector<PlannedLot>& planned,
+std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
                              const Sketch& sketch) {
-  zm.lots = {zm.generated_roads.end(), static_cast<int>(planned.size())};
+  city_map.lots = {city_map.generated_roads.end(), static_cast<int>(planned.size())};
   for (std::size_t l = 0; l < planned.size(); ++l) {
-    const int counter = zm.lots.at(static_cast<int>(l));
-    if (planned[l].ring.empty()) zm.map.add_cell_within(planned[l].block, planned[l].cell, counter);
-    else zm.map.add_ring_within(planned[l].block, planned[l].ring, counter);
+    const int counter = city_map.lots.at(static_cast<int>(l));
+    if (planned[l].ring.empty()) city_map.map.add_cell_within(planned[l].block, planned[l].cell, counter);
+    else city_map.map.add_ring_within(planned[l].block, planned[l].ring, counter);
   }
-  zm.insert_lots();
+  city_map.insert_lots();
   // The last batch: the map is snap-rounded now, so every layer written from it, lots
   // included, rounds without edges crossing.
-  zm.map.snap_round();
+  city_map.map.snap_round();
 
   // Each planned lot's pieces, those that make sensible lots.
-  const std::vector<int> group = zm.per_label([](const FaceLabel& f) { return f.lot; });
+  const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
   const std::vector<int> kind =
-      zm.per_label([](const FaceLabel& f) { return f.road_surface() ? LotEdge::kStreet : LotEdge::kInner; });
+      city_map.per_label([](const FaceLabel& f) { return f.road_surface() ? LotEdge::kStreet : LotEdge::kInner; });
   std::vector<int> planned_of;
-  std::vector<geom::Cell> pieces = zm.map.cells(group, kind, &planned_of);
+  std::vector<geom::Cell> pieces = city_map.map.cells(group, kind, &planned_of);
   std::vector<std::optional<Lot>> kept(pieces.size());
   tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
     const PlannedLot& plan = planned[planned_of[i]];

@@ -11,8 +11,7 @@ namespace {
 
 using geom::Vec2;
 
-Vec2 lerp(Vec2 a, Vec2 b, double t) { return {a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t}; }
-double length(Vec2 a, Vec2 b) { return std::hypot(b.x - a.x, b.y - a.y); }
+using geom::lerp;
 
 // Seed 003: halve perpendicular to the longest edge near its middle until below lot_area;
 // a split that would leave a part with no road edge (seed 004: frontage) is not made.
@@ -28,7 +27,7 @@ std::vector<geom::Cell> split_lots(const geom::Cell& block, const ZoneParams& p,
     geom::Polygon shape = cell.to_plain();
     std::vector<std::pair<double, std::size_t>> edges;
     for (std::size_t i = 0; i < shape.outer.size(); ++i)
-      edges.push_back({length(shape.outer[i], shape.outer[(i + 1) % shape.outer.size()]), i});
+      edges.push_back({geom::distance(shape.outer[i], shape.outer[(i + 1) % shape.outer.size()]), i});
     std::sort(edges.rbegin(), edges.rend());
     const geom::Box b = cell.bounds();
     const double reach = 2 * std::hypot(b.width(), b.height()) + 1;

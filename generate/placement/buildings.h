@@ -1,6 +1,8 @@
-// Buildings: rectangular footprints in a row along each lot's street, checked exactly
-// inside the lot; each one's height drawn between the zone's range, which falls with distance from the
-// city centre, with a small chance near the centre of doubling (seed 003).
+// The buildings stage: each zone's placers (generate/placement/placer.h) fill every lot.
+// Extruded buildings are rectangular footprints in a row along the lot's street, checked
+// exactly inside the lot; each one's height drawn between the zone's range, which falls
+// with distance from the city centre, with a small chance near the centre of doubling
+// (seed 003).
 #pragma once
 
 #include <vector>
@@ -63,7 +65,7 @@ struct Structures {
   std::vector<ModelInstance> models;
 };
 
-// Visits buildings and models in id order.
+// Visits buildings and models in id order; each list must be sorted by id.
 template <typename OnBuilding, typename OnModel>
 void for_each_by_id(const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
                     OnBuilding&& on_building, OnModel&& on_model) {
