@@ -27,24 +27,8 @@ fs::path write(const fs::path& dir, const std::string& name, const std::string& 
   return dir / name;
 }
 
-// A cell from a ring: edges along `road_edges` (by index) have kind 1, the rest 0.
 geom::Cell lot(const geom::Ring& ring, std::vector<int> road_edges) {
-  geom::PlanarMap map;
-  map.add_ring(ring, 0);
-  // Thin road strips outside the chosen edges give those edges kind 1.
-  for (int e : road_edges) {
-    Vec2 a = ring[e], b = ring[(e + 1) % ring.size()];
-    double dx = b.x - a.x, dy = b.y - a.y, len = std::hypot(dx, dy);
-    Vec2 out{dy / len * 5, -dx / len * 5};
-    map.add_ring({a, {a.x + out.x, a.y + out.y}, {b.x + out.x, b.y + out.y}, b}, 1);
-  }
-  map.insert_batch();
-  map.label_faces([](const geom::Windings& w) {
-    return geom::winding_of(w, 0) != 0 ? 1 : geom::winding_of(w, 1) != 0 ? 2 : 0;
-  });
-  auto cells = map.cells({-1, 0, -1}, {0, 0, 1});
-  EXPECT_EQ(cells.size(), 1u);
-  return cells.at(0);
+  return testing_util::fronted_cell(ring, std::move(road_edges));
 }
 
 // A unit-less box model: w x d x h in file units, Z-up, base at z0.

@@ -1,8 +1,12 @@
 // Small helpers shared by the test suites.
 #pragma once
 
+#include <cmath>
 #include <filesystem>
 #include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
 
 #include "geom/measure.h"
 #include "geom/planar_map.h"
@@ -25,6 +29,26 @@ inline std::filesystem::path temp_dir(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+// A cell from a ring: edges along `road_edges` (by index) have kind 1, the rest 0.
+inline geom::Cell fronted_cell(const geom::Ring& ring, std::vector<int> road_edges) {
+  geom::PlanarMap map;
+  map.add_ring(ring, 0);
+  // Thin road strips outside the chosen edges give those edges kind 1.
+  for (int e : road_edges) {
+    geom::Vec2 a = ring[e], b = ring[(e + 1) % ring.size()];
+    double dx = b.x - a.x, dy = b.y - a.y, len = std::hypot(dx, dy);
+    geom::Vec2 out{dy / len * 5, -dx / len * 5};
+    map.add_ring({a, {a.x + out.x, a.y + out.y}, {b.x + out.x, b.y + out.y}, b}, 1);
+  }
+  map.insert_batch();
+  map.label_faces([](const geom::Windings& w) {
+    return geom::winding_of(w, 0) != 0 ? 1 : geom::winding_of(w, 1) != 0 ? 2 : 0;
+  });
+  auto cells = map.cells({-1, 0, -1}, {0, 0, 1});
+  EXPECT_EQ(cells.size(), 1u);
+  return cells.at(0);
 }
 
 }  // namespace testing_util

@@ -4,24 +4,13 @@
 
 #include <gtest/gtest.h>
 
-#include "geom/planar_map.h"
+#include "tests/test_util.h"
 
 namespace exacity {
 namespace {
 
 // A 40 x 20 lot whose south edge (edge 0) fronts a road: kind 1 there, 0 elsewhere.
-geom::Cell fronted_lot() {
-  geom::PlanarMap map;
-  map.add_ring({{0, 0}, {40, 0}, {40, 20}, {0, 20}}, 0);
-  map.add_ring({{0, -5}, {40, -5}, {40, 0}, {0, 0}}, 1);  // the road strip
-  map.insert_batch();
-  map.label_faces([](const geom::Windings& w) {
-    return geom::winding_of(w, 0) != 0 ? 1 : geom::winding_of(w, 1) != 0 ? 2 : 0;
-  });
-  auto cells = map.cells({-1, 0, -1}, {0, 0, 1});
-  EXPECT_EQ(cells.size(), 1u);
-  return cells.at(0);
-}
+geom::Cell fronted_lot() { return testing_util::fronted_cell({{0, 0}, {40, 0}, {40, 20}, {0, 20}}, {0}); }
 
 geom::Ring square(double x, double y, double side) { return {{x, y}, {x + side, y}, {x + side, y + side}, {x, y + side}}; }
 
