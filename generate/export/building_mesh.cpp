@@ -67,11 +67,6 @@ MeshTriangles mesh_triangles(const Mesh& mesh) {
   return out;
 }
 
-Vec3 Placement::apply(Vec3 v, double floor) const {
-  const double c = std::cos(angle) * scale, s = std::sin(angle) * scale;
-  return {position.x + c * v[0] - s * v[1], position.y + s * v[0] + c * v[1], floor + scale * v[2]};
-}
-
 namespace {
 
 // Builds a mesh face by face: one vertex per distinct point, so faces share their edges

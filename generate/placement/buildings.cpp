@@ -16,6 +16,11 @@
 
 namespace exacity {
 
+Vec3 Placement::apply(Vec3 v, double floor) const {
+  const double c = std::cos(angle) * scale, s = std::sin(angle) * scale;
+  return {position.x + c * v[0] - s * v[1], position.y + s * v[0] + c * v[1], floor + scale * v[2]};
+}
+
 double building_height(const ZoneParams& p, double distance, double radius, Random& rng) {
   double near_centre = radius > 0 ? 1 - std::min(distance / radius, 1.0) : 1;
   double scale = 0.5 + 0.5 * near_centre;
