@@ -12,11 +12,11 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include <CGAL/Arr_batched_point_location.h>
 #include <CGAL/Arr_curve_data_traits_2.h>
 #include <CGAL/Arr_extended_dcel.h>
 #include <CGAL/Arr_observer.h>
 #include <CGAL/Arr_segment_traits_2.h>
+#include <CGAL/Arr_walk_along_line_point_location.h>
 #include <CGAL/Arrangement_2.h>
 #include <CGAL/Polygon_2_algorithms.h>
 
@@ -867,21 +867,11 @@ std::map<int, std::vector<PolylinePiece>> PlanarMap::polyline_pieces() const {
   return result;
 }
 
-std::vector<int> PlanarMap::labels_at(const std::vector<Vec2>& points) const {
-  using Result = CGAL::Arr_point_location_result<Arrangement>;
-  std::vector<Point> query;
-  for (Vec2 p : points) query.push_back(to_exact(p));
-  std::vector<std::pair<Point, Result::Type>> found;
-  CGAL::locate(impl_->arr, query.begin(), query.end(), std::back_inserter(found));
-  // The sweep reports points in its own order: match them back exactly.
-  std::map<Point, int, decltype([](const Point& a, const Point& b) { return CGAL::compare_xy(a, b) == CGAL::SMALLER; })> label;
-  for (const auto& [p, where] : found) {
-    const Face* f = boost::get<Face>(&where);
-    label[p] = f ? (*f)->data() : -1;
-  }
-  std::vector<int> labels;
-  for (const Point& p : query) labels.push_back(label.at(p));
-  return labels;
+int PlanarMap::label_at(Vec2 point) const {
+  const CGAL::Arr_walk_along_line_point_location<Arrangement> walk(impl_->arr);
+  const auto where = walk.locate(to_exact(point));
+  const Face* f = boost::get<Face>(&where);
+  return f ? (*f)->data() : -1;
 }
 
 std::map<int, int> PlanarMap::polyline_degrees() const {

@@ -5,7 +5,9 @@
 #include <map>
 #include <set>
 
+#include "generate/city/random.h"
 #include "generate/layout/road_layout.h"
+#include "generate/layout/settle.h"
 #include "geom/grid.h"
 #include "geom/measure.h"
 
@@ -22,9 +24,12 @@ bool lies_along(geom::Vec2 a, geom::Vec2 b, geom::Vec2 p, geom::Vec2 q) {
 
 class GrammarLayout : public RoadLayout {
  public:
-  GrammarLayout(const ZoneParams& params, ZoneType type) : params_(params), type_(type) {}
+  GrammarLayout(const ZoneParams& params, ZoneType type, const SketchLines& sketch)
+      : params_(params), type_(type), sketch_(sketch) {}
 
-  RoadPlan plan(const Region& region, Random& random) const override {
+  RoadPlan plan(const Region& region) const override {
+    Random random(region.stream);
+    const std::vector<std::pair<geom::Vec2, geom::Vec2>> along_sketch_roads = edges_to_reach(region.cell, true);
     std::vector<std::vector<geom::Vec2>> roots;
     for (const geom::Polygon& p : region.cell.rounded())
       for (auto& r : layout_roots(p)) roots.push_back(std::move(r));
@@ -36,7 +41,7 @@ class GrammarLayout : public RoadLayout {
       for (std::size_t i = 0; i < r.size(); ++i) ++edge_roots[segment_key(r[i], r[(i + 1) % r.size()])];
     std::set<geom::SegmentKey> built;
 
-    RoadPlan plan;
+    LinePlan plan;
     // Road pieces meet only roughly (each is mapped from its own parent): join within a width.
     plan.join = *std::max_element(params_.road_widths.begin(), params_.road_widths.end());
     for (GrammarLeaf& leaf : grow_layout(*params_.grammar, roots, params_.grammar_depth, params_.min_block_area, random.next())) {
@@ -50,7 +55,7 @@ class GrammarLayout : public RoadLayout {
       const geom::Vec2 a = c[0], b = c[1];
       if (geom::distance(a, b) == 0) continue;
       bool along_sketch = false;
-      for (auto [p, q] : region.along_sketch_roads) along_sketch |= lies_along(a, b, p, q);
+      for (auto [p, q] : along_sketch_roads) along_sketch |= lies_along(a, b, p, q);
       if (along_sketch) continue;  // the sketch's road runs there
       // The grammar places a road; its width is the zone's, by level, as a grown road's.
       PlannedRoad road;
@@ -73,18 +78,19 @@ class GrammarLayout : public RoadLayout {
       if (road.line[0] == road.line[1]) continue;
       plan.roads.push_back(std::move(road));
     }
-    return plan;
+    return settle(std::move(plan), region.cell, sketch_);
   }
 
  private:
   ZoneParams params_;
   ZoneType type_;
+  const SketchLines& sketch_;
 };
 
 }  // namespace
 
-std::unique_ptr<RoadLayout> make_grammar_layout(const ZoneParams& params, ZoneType type) {
-  return std::make_unique<GrammarLayout>(params, type);
+std::unique_ptr<RoadLayout> make_grammar_layout(const ZoneParams& params, ZoneType type, const SketchLines& sketch) {
+  return std::make_unique<GrammarLayout>(params, type, sketch);
 }
 
 }  // namespace exacity

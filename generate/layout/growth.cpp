@@ -21,9 +21,8 @@ constexpr int kSeedCandidates = 48;  // points tried for a cell's seed
 // A cell waiting to be grown.
 struct Work {
   geom::Cell cell;
-  std::uint64_t id;    // stable: the region's index, then each split's part index
+  std::uint64_t id;    // stable: the region's stream, then each split's part index
   double orientation;  // degrees
-  int region;
   ZoneType type;       // the parent's, until the seed's face tells
   int stalls = 0;      // times in a row its roads failed to divide it
   bool top = true;     // a whole region, with no roads of its own yet to reach
@@ -198,60 +197,16 @@ CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const ZoneParams& p
   return {seed, {}, {}};
 }
 
-}  // namespace
-
-// The edges a cell's roads must reach: below the top level its region's roads, at the top
-// the sketch roads it borders (none: it need reach nothing).
-std::vector<std::pair<geom::Vec2, geom::Vec2>> edges_to_reach(const geom::Cell& cell, bool top) {
-  if (!top) return cell.edges_of_kind(GrowthEdge::kGrownRoad);
-  std::vector<std::pair<geom::Vec2, geom::Vec2>> edges;
-  for (const geom::KindedRing& r : cell.kinded_rings())
-    for (std::size_t i = 0; i < r.points.size(); ++i)
-      if (GrowthEdge::sketch_road_of(r.kinds[i]) >= 0) edges.push_back({r.points[i], r.points[(i + 1) % r.points.size()]});
-  return edges;
-}
-
-namespace {
-
-// Regions: connected faces of zones roads grow in (and the water under them where the
-// zone lets roads bridge it), each with its own stream and a random orientation. Zones
-// laid out otherwise grow none.
-std::vector<Work> regions(const CityMap& city_map, const Sketch& sketch, const std::vector<int>& kind) {
-  auto params = [&](ZoneType t) -> const ZoneParams& { return sketch.zone_params.at(t); };
-  const std::vector<int> group = city_map.per_label([&](const FaceLabel& f) {
-    ZoneType t = f.zone >= 0 ? sketch.zones[f.zone].type : ZoneType::Park;
-    bool growable = f.zone >= 0 && grows_roads(t) && params(t).layout == "growth";
-    return (f.cover == Cover::Zone && growable) || (f.cover == Cover::Water && growable && params(t).bridges) ? 0 : -1;
-  });
-  std::vector<Work> work;
-  const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Roads));
-  for (geom::Cell& cell : city_map.map.cells(group, kind)) {
-    std::uint64_t id = mix(stage, work.size());
-    Random rng(id);
-    work.push_back({std::move(cell), id, rng.uniform(0, 360), static_cast<int>(work.size()), ZoneType::Residential});
-  }
-  return work;
-}
-
-// Each cell's seed, and the zone type it grows as: the type at its seed, all found in one
-// sweep of the map (a cell keeps its parent's type where the seed lies on none).
-std::vector<Grown> seeds(const std::vector<Work>& work, const CityMap& city_map, const Sketch& sketch) {
-  std::vector<Grown> grown(work.size());
-  std::vector<geom::Vec2> seed_points;
-  for (std::size_t i = 0; i < work.size(); ++i) {
-    Random seed_rng(mix(work[i].id, 3 + work[i].stalls));
-    grown[i].seed = seed_point(work[i].cell, seed_rng);
-    if (grown[i].seed) seed_points.push_back(*grown[i].seed);
-  }
-  std::vector<int> seed_labels = city_map.map.labels_at(seed_points);
-  for (std::size_t i = 0, k = 0; i < work.size(); ++i) {
-    grown[i].type = work[i].type;
-    if (!grown[i].seed) continue;
-    int l = seed_labels[k++];
-    if (l >= 0 && city_map.labels[l].zone >= 0 && grows_roads(sketch.zones[city_map.labels[l].zone].type))
-      grown[i].type = sketch.zones[city_map.labels[l].zone].type;
-  }
-  return grown;
+// A cell's seed, and the zone type it grows as: the type at its seed (a cell keeps its
+// parent's type where the seed lies on none).
+Grown seed(const Work& w, const ZoneAt& zone_at) {
+  Grown g;
+  Random seed_rng(mix(w.id, 3 + w.stalls));
+  g.seed = seed_point(w.cell, seed_rng);
+  g.type = w.type;
+  if (g.seed)
+    if (std::optional<ZoneType> t = zone_at(*g.seed)) g.type = *t;
+  return g;
 }
 
 // Grows one cell's roads and splits it by them; the parts above the block area are
@@ -290,52 +245,61 @@ void grow_one(const Work& w, Grown& g, const ZoneParams& p, int level, const Ske
     std::uint64_t id = mix(w.id, k + 2);
     Random part_rng(id);
     double jitter = p.jitter / (level + 1);
-    g.parts.push_back({std::move(parts[k]), id, w.orientation + part_rng.uniform(-jitter, jitter), w.region, g.type, 0,
-                       false});
+    g.parts.push_back({std::move(parts[k]), id, w.orientation + part_rng.uniform(-jitter, jitter), g.type, 0, false});
   }
 }
 
-// The level's roads onto the map's list, in cell order; returns the next level's work.
+// The level's roads onto the plan, in cell order; returns the next level's work.
 std::vector<Work> collect(std::vector<Grown>& grown, const std::vector<Work>& work, int level, const Sketch& sketch,
-                          CityMap& city_map, GrownRegions& out) {
+                          RoadPlan& plan) {
   std::vector<Work> next;
   for (std::size_t i = 0; i < grown.size(); ++i) {
     Grown& g = grown[i];
-    out.cells_without_access += g.without_access;
-    if (!g.joined.empty()) out.joined[work[i].region] = 1;
-    if (!g.roads.empty()) out.junctions.push_back({*g.seed, static_cast<int>(city_map.roads.size())});
+    plan.cells_without_access += g.without_access;
+    if (!g.joined.empty()) plan.piece_reaches_sketch[0] = 1;
+    if (!g.roads.empty()) plan.junctions.push_back({*g.seed, static_cast<int>(plan.roads.size())});
     const ZoneParams& p = sketch.zone_params.at(g.type);
-    for (geom::Path& road : g.roads) {
-      MapRoad r;
-      r.road_class = work[i].top ? RoadClass::Main : RoadClass::Local;
-      r.width = road_width(p, level);
-      r.level = level;
-      r.region = work[i].region;
-      r.lines.push_back(std::move(road));
-      city_map.roads.push_back(std::move(r));
-    }
+    for (geom::Path& road : g.roads)
+      plan.roads.push_back({std::move(road), road_width(p, level), work[i].top ? RoadClass::Main : RoadClass::Local, level, 0});
     for (Work& w : g.parts) next.push_back(std::move(w));
   }
   return next;
 }
 
+class GrowthLayout : public RoadLayout {
+ public:
+  GrowthLayout(const Sketch& sketch, const SketchLines& sketch_lines, ZoneAt zone_at)
+      : sketch_(sketch), sketch_lines_(sketch_lines), zone_at_(std::move(zone_at)) {}
+
+  // The region's roads are one piece, grown a level at a time; each level's cells grow in
+  // parallel.
+  RoadPlan plan(const Region& region) const override {
+    RoadPlan plan;
+    plan.piece_reaches_sketch = {0};
+    Random rng(region.stream);
+    std::vector<Work> work{{region.cell, region.stream, rng.uniform(0, 360), ZoneType::Residential}};
+    for (int level = 0; !work.empty() && level < kMaxLevels; ++level) {
+      plan.levels = level + 1;
+      std::vector<Grown> grown(work.size());
+      tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
+        grown[i] = seed(work[i], zone_at_);
+        grow_one(work[i], grown[i], sketch_.zone_params.at(grown[i].type), level, sketch_lines_);
+      });
+      work = collect(grown, work, level, sketch_, plan);
+    }
+    return plan;
+  }
+
+ private:
+  const Sketch& sketch_;
+  const SketchLines& sketch_lines_;
+  ZoneAt zone_at_;
+};
+
 }  // namespace
 
-GrownRegions grow_regions(CityMap& city_map, const Sketch& sketch, const SketchLines& sketch_lines,
-                          const std::vector<int>& kind) {
-  GrownRegions out;
-  std::vector<Work> work = regions(city_map, sketch, kind);
-  out.regions = static_cast<int>(work.size());
-  out.joined.assign(work.size(), 0);
-  for (int level = 0; !work.empty() && level < kMaxLevels; ++level) {
-    out.levels = level + 1;
-    std::vector<Grown> grown = seeds(work, city_map, sketch);
-    tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
-      grow_one(work[i], grown[i], sketch.zone_params.at(grown[i].type), level, sketch_lines);
-    });
-    work = collect(grown, work, level, sketch, city_map, out);
-  }
-  return out;
+std::unique_ptr<RoadLayout> make_growth_layout(const Sketch& sketch, const SketchLines& sketch_lines, ZoneAt zone_at) {
+  return std::make_unique<GrowthLayout>(sketch, sketch_lines, std::move(zone_at));
 }
 
 }  // namespace exacity

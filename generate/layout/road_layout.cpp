@@ -2,9 +2,18 @@
 
 namespace exacity {
 
-std::unique_ptr<RoadLayout> make_road_layout(const ZoneParams& params, ZoneType type) {
-  if (params.layout == "grammar") return make_grammar_layout(params, type);
-  if (params.layout == "voronoi") return make_voronoi_layout(params);
+std::vector<std::pair<geom::Vec2, geom::Vec2>> edges_to_reach(const geom::Cell& cell, bool top) {
+  if (!top) return cell.edges_of_kind(GrowthEdge::kGrownRoad);
+  std::vector<std::pair<geom::Vec2, geom::Vec2>> edges;
+  for (const geom::KindedRing& r : cell.kinded_rings())
+    for (std::size_t i = 0; i < r.points.size(); ++i)
+      if (GrowthEdge::sketch_road_of(r.kinds[i]) >= 0) edges.push_back({r.points[i], r.points[(i + 1) % r.points.size()]});
+  return edges;
+}
+
+std::unique_ptr<RoadLayout> make_road_layout(const ZoneParams& params, ZoneType type, const SketchLines& sketch) {
+  if (params.layout == "grammar") return make_grammar_layout(params, type, sketch);
+  if (params.layout == "voronoi") return make_voronoi_layout(params, sketch);
   if (params.layout == "streets") return make_streets_layout();
   return nullptr;
 }

@@ -1,31 +1,57 @@
-// Road layouts (docs/design.md, Road layouts): a layout plans the roads of
-// one region, a set of connected faces of zones laid out alike; the roads stage
-// (road_network.cpp) alone puts plans into the map. Seed 000's growth (growth.h) is not a
-// RoadLayout yet: it grows every region a level at a time and looks each level's seeds up in
-// the map.
+// Road layouts (docs/design.md, Road layouts): a layout plans the roads of one region, a set
+// of connected faces of zones laid out alike, as exact centre lines on the grid; the roads
+// stage (road_network.cpp) alone puts plans into the map. Growth (growth.cpp) grows its
+// roads exactly; the other layouts draw lines in doubles that settle.h makes a network.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <utility>
 #include <vector>
 
 #include "generate/layout/grammar.h"
-#include "generate/city/random.h"
 #include "generate/city/sketch.h"
 #include "geom/cell.h"
 
 namespace exacity {
 
-struct Region {
-  geom::Cell cell;
-  // Its boundary edges along a sketch road's surface: the road there is the sketch's.
-  std::vector<std::pair<geom::Vec2, geom::Vec2>> along_sketch_roads;
+// The kind of a region's edge (its geom::Cell edge tag): the region's edge, a road grown in
+// the same region, or the surface of a sketch road. A road that stops at a sketch road's
+// surface runs on to its centre line.
+struct GrowthEdge {
+  static constexpr int kRegionEdge = 0, kGrownRoad = 1;
+  static constexpr int sketch_road(int r) { return 2 + r; }
+  // The sketch road whose surface an edge of this kind is, or -1.
+  static constexpr int sketch_road_of(int kind) { return kind >= 2 ? kind - 2 : -1; }
 };
 
-struct PlannedRoad {
-  geom::Polyline line;  // centre line, in doubles on the grid
+// The sketch's roads, which planned roads run on to: centre lines and width.
+struct SketchRoad {
+  std::vector<geom::Path> lines;
+  double width = 0;
+};
+using SketchLines = std::vector<SketchRoad>;
+
+struct Region {
+  geom::Cell cell;        // edges tagged by GrowthEdge kind
+  std::uint64_t stream;   // the region's random stream
+};
+
+// A road of a plan, exact on the grid.
+struct LaidRoad {
+  geom::Path path;
   double width = 0;
   RoadClass road_class = RoadClass::Local;
+  int level = 0;  // growth's level (0 for a region's first roads); main roads 0, others 1
+  int piece = 0;  // roads of one piece meet, directly or through others
+};
+
+// A disc of road where roads meet, to join them cleanly: at a seed, where a layout's
+// roads share a point, at a link's ends. `first_road` indexes the plan's (then the map's)
+// roads: the disc takes that road's width and counter.
+struct Junction {
+  geom::Vec2 at;
+  int first_road;
 };
 
 // Land a layout gave a use: a grammar's terminals.
@@ -35,23 +61,32 @@ struct PlannedUse {
 };
 
 struct RoadPlan {
-  std::vector<PlannedRoad> roads;
+  std::vector<LaidRoad> roads;
+  std::vector<char> piece_reaches_sketch;  // per piece: its roads run on to a sketch road
+  std::vector<Junction> junctions;
   std::vector<PlannedUse> uses;
-  double join = 0;  // m: road ends this near another road are joined to it (generate/layout/street_graph.h)
+  int levels = 0;                // growth's levels
+  int cells_without_access = 0;  // growth's cells left whole: none of their roads could reach a road
 };
 
 class RoadLayout {
  public:
   virtual ~RoadLayout() = default;
-  virtual RoadPlan plan(const Region& region, Random& random) const = 0;
+  virtual RoadPlan plan(const Region& region) const = 0;
 };
 
-// The layout a zone type's settings name ("grammar", "voronoi" or "streets"; growth has none).
-std::unique_ptr<RoadLayout> make_road_layout(const ZoneParams& params, ZoneType type);
+// The edges of a region, or of a cell of one, that its roads must reach: below the top
+// level the region's grown roads, at the top the sketch roads it borders (none: it need
+// reach nothing).
+std::vector<std::pair<geom::Vec2, geom::Vec2>> edges_to_reach(const geom::Cell& cell, bool top);
+
+// The layout a zone type's settings name ("grammar", "voronoi" or "streets"); growth is
+// made apart (growth.h), as one growth region may span zone types.
+std::unique_ptr<RoadLayout> make_road_layout(const ZoneParams& params, ZoneType type, const SketchLines& sketch);
 
 // One per file.
-std::unique_ptr<RoadLayout> make_grammar_layout(const ZoneParams& params, ZoneType type);
+std::unique_ptr<RoadLayout> make_grammar_layout(const ZoneParams& params, ZoneType type, const SketchLines& sketch);
 std::unique_ptr<RoadLayout> make_streets_layout();
-std::unique_ptr<RoadLayout> make_voronoi_layout(const ZoneParams& params);
+std::unique_ptr<RoadLayout> make_voronoi_layout(const ZoneParams& params, const SketchLines& sketch);
 
 }  // namespace exacity

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <optional>
 
@@ -9,7 +10,6 @@
 
 #include "generate/layout/growth.h"
 #include "generate/layout/road_layout.h"
-#include "generate/layout/settle.h"
 #include "generate/city/random.h"
 #include "geom/grid.h"
 #include "geom/measure.h"
@@ -78,17 +78,81 @@ int link_islands(CityMap& city_map, const std::vector<char>& joined, std::vector
 }
 
 
-// The regions of zones whose layout is not growth (generate/layout), each planned alone,
-// in parallel, then settled into the map's roads. Each connected piece of a region's roads
-// counts as a region of its own, so link_islands joins every piece to the rest.
-// `kind` is the growth's, by face label.
+// What the layouts laid so far, besides the map's roads.
+struct Laid {
+  std::vector<char> joined;  // per region: its roads run on to a sketch road
+  std::vector<Junction> junctions;
+};
+
+void add_road(CityMap& city_map, const LaidRoad& road, int region) {
+  MapRoad m;
+  m.road_class = road.road_class;
+  m.width = road.width;
+  m.level = road.level;
+  m.region = region;
+  m.lines.push_back(road.path);
+  city_map.roads.push_back(std::move(m));
+}
+
+// Each region's plan, in parallel: region i takes the stream mix(stage, i).
+std::vector<RoadPlan> plan_regions(const std::vector<geom::Cell>& cells, std::uint64_t stage,
+                                   const std::function<const RoadLayout&(std::size_t)>& layout_of) {
+  std::vector<RoadPlan> plans(cells.size());
+  tbb::parallel_for(std::size_t(0), cells.size(),
+                    [&](std::size_t i) { plans[i] = layout_of(i).plan({cells[i], mix(stage, i)}); });
+  return plans;
+}
+
+// The type of the zone at a point, where roads grow in it.
+ZoneAt zone_at(const CityMap& city_map, const Sketch& sketch) {
+  return [&](geom::Vec2 p) -> std::optional<ZoneType> {
+    const int l = city_map.map.label_at(p);
+    if (l < 0 || city_map.labels[l].zone < 0) return std::nullopt;
+    const ZoneType t = sketch.zones[city_map.labels[l].zone].type;
+    return grows_roads(t) ? std::optional<ZoneType>(t) : std::nullopt;
+  };
+}
+
+// Growth's regions: connected faces of zones laid out by growth (and the water under them
+// where the zone lets roads bridge it), one piece each. Their roads take ids a level at a
+// time across regions, every region's main roads first.
+void lay_out_growth(CityMap& city_map, const Sketch& sketch, const SketchLines& sketch_lines, const std::vector<int>& kind,
+                    Laid& laid, RoadNetworkStats& stats) {
+  auto params = [&](ZoneType t) -> const ZoneParams& { return sketch.zone_params.at(t); };
+  const std::vector<int> group = city_map.per_label([&](const FaceLabel& f) {
+    ZoneType t = f.zone >= 0 ? sketch.zones[f.zone].type : ZoneType::Park;
+    bool growable = f.zone >= 0 && grows_roads(t) && params(t).layout == "growth";
+    return (f.cover == Cover::Zone && growable) || (f.cover == Cover::Water && growable && params(t).bridges) ? 0 : -1;
+  });
+  const std::unique_ptr<RoadLayout> growth = make_growth_layout(sketch, sketch_lines, zone_at(city_map, sketch));
+  const std::vector<RoadPlan> plans = plan_regions(city_map.map.cells(group, kind), mix(sketch.seed, static_cast<std::uint64_t>(Stage::Roads)),
+                                                   [&](std::size_t) -> const RoadLayout& { return *growth; });
+  const int first_region = static_cast<int>(laid.joined.size());
+  for (const RoadPlan& plan : plans) {
+    laid.joined.push_back(plan.piece_reaches_sketch[0]);
+    stats.levels = std::max(stats.levels, plan.levels);
+    stats.cells_without_access += plan.cells_without_access;
+  }
+  stats.regions += static_cast<int>(plans.size());
+  std::vector<std::size_t> road(plans.size(), 0), junction(plans.size(), 0);  // each plan's next
+  for (int level = 0; level < stats.levels; ++level)
+    for (std::size_t i = 0; i < plans.size(); ++i)
+      for (const auto& roads = plans[i].roads; road[i] < roads.size() && roads[road[i]].level == level; ++road[i]) {
+        for (const auto& js = plans[i].junctions; junction[i] < js.size() && js[junction[i]].first_road == static_cast<int>(road[i]); ++junction[i])
+          laid.junctions.push_back({js[junction[i]].at, static_cast<int>(city_map.roads.size())});
+        add_road(city_map, roads[road[i]], first_region + static_cast<int>(i));
+      }
+}
+
+// The regions of zones laid out otherwise, a region per connected set of faces of one zone
+// type; each plan's pieces count as regions of their own, so link_islands joins every piece
+// to the rest.
 void lay_out_regions(CityMap& city_map, const Sketch& sketch, const SketchLines& sketch_lines, const std::vector<int>& kind,
-                     std::vector<char>& joined, std::vector<Junction>& junctions, std::vector<PlannedUse>& uses,
-                     RoadNetworkStats& stats) {
+                     Laid& laid, std::vector<PlannedUse>& uses, RoadNetworkStats& stats) {
   std::map<ZoneType, std::unique_ptr<RoadLayout>> layouts;
   for (const auto& [t, p] : sketch.zone_params)
     if (grows_roads(t))
-      if (std::unique_ptr<RoadLayout> layout = make_road_layout(p, t)) layouts[t] = std::move(layout);
+      if (std::unique_ptr<RoadLayout> layout = make_road_layout(p, t, sketch_lines)) layouts[t] = std::move(layout);
   if (layouts.empty()) return;
   const std::vector<int> group = city_map.per_label([&](const FaceLabel& f) {
     return f.cover == Cover::Zone && f.zone >= 0 && layouts.count(sketch.zones[f.zone].type)
@@ -96,47 +160,19 @@ void lay_out_regions(CityMap& city_map, const Sketch& sketch, const SketchLines&
                : -1;
   });
   std::vector<int> types;
-  std::vector<geom::Cell> cells = city_map.map.cells(group, kind, &types);
+  const std::vector<geom::Cell> cells = city_map.map.cells(group, kind, &types);
   const std::uint64_t stage = mix(mix(sketch.seed, static_cast<std::uint64_t>(Stage::Roads)), 0x1a1047);
-  std::vector<geom::Path> sketch_roads;
-  double sketch_width = 0;
-  for (const SketchRoad& s : sketch_lines) {
-    sketch_roads.insert(sketch_roads.end(), s.lines.begin(), s.lines.end());
-    sketch_width = std::max(sketch_width, s.width);
-  }
-  std::vector<std::vector<SettledRoad>> settled(cells.size());
-  std::vector<RoadPlan> plans(cells.size());
-  tbb::parallel_for(std::size_t(0), cells.size(), [&](std::size_t i) {
-    Random rng(mix(stage, i));
-    plans[i] = layouts.at(static_cast<ZoneType>(types[i]))->plan({cells[i], edges_to_reach(cells[i], true)}, rng);
-    settled[i] = settle(plans[i], cells[i], sketch_roads, sketch_width);
+  std::vector<RoadPlan> plans = plan_regions(cells, stage, [&](std::size_t i) -> const RoadLayout& {
+    return *layouts.at(static_cast<ZoneType>(types[i]));
   });
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    for (PlannedUse& u : plans[i].uses) uses.push_back(std::move(u));
-    const std::vector<SettledRoad>& roads = settled[i];
-    std::map<int, int> region_of_piece;
-    for (const SettledRoad& r : roads) {
-      auto [it, added] = region_of_piece.emplace(r.piece, static_cast<int>(joined.size()));
-      if (added) joined.push_back(r.reaches_sketch), ++stats.regions;
-    }
-    std::map<std::pair<double, double>, std::vector<int>> at;  // where roads meet end to end or at a shared vertex
-    for (std::size_t r = 0; r < roads.size(); ++r)
-      for (std::size_t k = 0; k < roads[r].path.size(); ++k) {
-        const geom::Vec2 p = roads[r].path.point(k);
-        at[{p.x, p.y}].push_back(static_cast<int>(r));
-      }
+  for (RoadPlan& plan : plans) {
+    for (PlannedUse& u : plan.uses) uses.push_back(std::move(u));
+    const int first_region = static_cast<int>(laid.joined.size());
+    laid.joined.insert(laid.joined.end(), plan.piece_reaches_sketch.begin(), plan.piece_reaches_sketch.end());
+    stats.regions += static_cast<int>(plan.piece_reaches_sketch.size());
     const int first = static_cast<int>(city_map.roads.size());
-    for (std::size_t r = 0; r < roads.size(); ++r) {
-      MapRoad m;
-      m.road_class = roads[r].road_class;
-      m.width = roads[r].width;
-      m.level = roads[r].road_class == RoadClass::Main ? 0 : 1;
-      m.region = region_of_piece[roads[r].piece];
-      m.lines.push_back(roads[r].path);
-      city_map.roads.push_back(std::move(m));
-    }
-    for (const auto& [p, here] : at)
-      if (here.size() > 1) junctions.push_back({{p.first, p.second}, first + here.front()});
+    for (const LaidRoad& r : plan.roads) add_road(city_map, r, first_region + r.piece);
+    for (const Junction& j : plan.junctions) laid.junctions.push_back({j.at, first + j.first_road});
   }
 }
 
@@ -167,13 +203,11 @@ RoadNetwork grow_road_network(CityMap city_map, const Sketch& sketch) {
   SketchLines sketch_lines;
   for (int r = 0; r < city_map.sketch_roads; ++r) sketch_lines.push_back({city_map.roads[r].lines, city_map.roads[r].width});
 
-  GrownRegions grown = grow_regions(city_map, sketch, sketch_lines, kind);
-  net.stats.regions = grown.regions;
-  net.stats.levels = grown.levels;
-  net.stats.cells_without_access = grown.cells_without_access;
-  lay_out_regions(city_map, sketch, sketch_lines, kind, grown.joined, grown.junctions, net.uses, net.stats);
-  net.stats.links = link_islands(city_map, grown.joined, grown.junctions);
-  insert_generated_roads(city_map, grown.junctions, sketch);
+  Laid laid;
+  lay_out_growth(city_map, sketch, sketch_lines, kind, laid, net.stats);
+  lay_out_regions(city_map, sketch, sketch_lines, kind, laid, net.uses, net.stats);
+  net.stats.links = link_islands(city_map, laid.joined, laid.junctions);
+  insert_generated_roads(city_map, laid.junctions, sketch);
   net.map = std::move(city_map);
   return net;
 }

@@ -1,7 +1,6 @@
-// The roads stage: seed 000's growth (generate/layout/growth.h) in zones laid out by
-// growth, the other road layouts (generate/layout/road_layout.h) in theirs, links that
-// join islands of streets to the rest, then every generated road into the city map in one
-// batch.
+// The roads stage: every region's roads planned by its zone's RoadLayout
+// (generate/layout/road_layout.h; seed 000's growth in growth.h), links that join islands
+// of streets to the rest, then every generated road into the city map in one batch.
 #pragma once
 
 #include "generate/layout/road_layout.h"

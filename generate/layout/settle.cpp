@@ -68,13 +68,13 @@ std::vector<RoadFeature> without_roads_inside_others(const std::vector<RoadFeatu
   return kept;
 }
 
-std::vector<RoadFeature> planned_roads(const RoadPlan& plan) {
+std::vector<RoadFeature> planned_roads(const LinePlan& plan) {
   std::vector<RoadFeature> roads;
   for (const PlannedRoad& r : plan.roads) roads.push_back({static_cast<int>(roads.size()), r.road_class, r.width, {r.line}});
   return roads;
 }
 
-double widest_planned(const RoadPlan& plan) {
+double widest_planned(const LinePlan& plan) {
   double widest = 0;
   for (const PlannedRoad& r : plan.roads) widest = std::max(widest, r.width);
   return widest;
@@ -100,6 +100,14 @@ std::vector<char> roads_with_ends(const std::vector<RoadFeature>& roads) {
   }
   return live;
 }
+
+struct SettledRoad {
+  geom::Path path;
+  double width = 0;
+  RoadClass road_class = RoadClass::Local;
+  int piece = 0;
+  bool reaches_sketch = false;  // its piece runs on to a sketch road
+};
 
 // What an open end may run on to, and how far.
 struct Targets {
@@ -234,10 +242,35 @@ void join_pieces(Settlement& s, const std::vector<RoadFeature>& roads) {
   }
 }
 
+// The settled roads as a plan: pieces numbered in the order they first appear; a junction
+// where roads share a vertex, in the order of the points.
+RoadPlan plan_of(const std::vector<SettledRoad>& settled) {
+  RoadPlan plan;
+  std::map<int, int> piece_number;
+  std::map<std::pair<double, double>, std::vector<int>> at;
+  for (const SettledRoad& r : settled) {
+    auto [it, added] = piece_number.emplace(r.piece, static_cast<int>(plan.piece_reaches_sketch.size()));
+    if (added) plan.piece_reaches_sketch.push_back(r.reaches_sketch);
+    for (std::size_t k = 0; k < r.path.size(); ++k) {
+      const geom::Vec2 p = r.path.point(k);
+      at[{p.x, p.y}].push_back(static_cast<int>(plan.roads.size()));
+    }
+    plan.roads.push_back({r.path, r.width, r.road_class, r.road_class == RoadClass::Main ? 0 : 1, it->second});
+  }
+  for (const auto& [p, here] : at)
+    if (here.size() > 1) plan.junctions.push_back({{p.first, p.second}, here.front()});
+  return plan;
+}
+
 }  // namespace
 
-std::vector<SettledRoad> settle(const RoadPlan& plan, const geom::Cell& cell, const std::vector<geom::Path>& sketch_roads,
-                                double sketch_width) {
+RoadPlan settle(LinePlan plan, const geom::Cell& cell, const SketchLines& sketch) {
+  std::vector<geom::Path> sketch_roads;
+  double sketch_width = 0;
+  for (const SketchRoad& s : sketch) {
+    sketch_roads.insert(sketch_roads.end(), s.lines.begin(), s.lines.end());
+    sketch_width = std::max(sketch_width, s.width);
+  }
   std::vector<RoadFeature> roads = planned_roads(plan);
   const double widest = widest_planned(plan);
   join_near_ends(roads, plan.join);
@@ -246,7 +279,9 @@ std::vector<SettledRoad> settle(const RoadPlan& plan, const geom::Cell& cell, co
   const std::vector<geom::Path> edges = region_edges(cell);
   Settlement s = settle_live_roads(roads, roads_with_ends(roads), {sketch_roads, sketch_width, edges, reach});
   join_pieces(s, roads);
-  return std::move(s.settled);
+  RoadPlan settled = plan_of(s.settled);
+  settled.uses = std::move(plan.uses);
+  return settled;
 }
 
 }  // namespace exacity

@@ -5,7 +5,7 @@ namespace exacity {
 
 class StreetsLayout : public RoadLayout {
  public:
-  RoadPlan plan(const Region&, Random&) const override { return {}; }
+  RoadPlan plan(const Region&) const override { return {}; }
 };
 
 std::unique_ptr<RoadLayout> make_streets_layout() { return std::make_unique<StreetsLayout>(); }

@@ -5,7 +5,9 @@
 #include <map>
 #include <optional>
 
+#include "generate/city/random.h"
 #include "generate/layout/road_layout.h"
+#include "generate/layout/settle.h"
 #include "generate/layout/voronoi.h"
 #include "geom/grid.h"
 
@@ -14,9 +16,10 @@ namespace {
 
 class VoronoiLayout : public RoadLayout {
  public:
-  explicit VoronoiLayout(const ZoneParams& params) : params_(params) {}
+  VoronoiLayout(const ZoneParams& params, const SketchLines& sketch) : params_(params), sketch_(sketch) {}
 
-  RoadPlan plan(const Region& region, Random& random) const override {
+  RoadPlan plan(const Region& region) const override {
+    Random random(region.stream);
     const geom::Cell& cell = region.cell;
     const geom::Box b = cell.bounds();
     const double size = params_.cell_size;
@@ -27,10 +30,10 @@ class VoronoiLayout : public RoadLayout {
         const geom::Vec2 p = geom::snap(geom::Vec2{x + random.uniform(0.15, 0.85) * size, y + random.uniform(0.15, 0.85) * size});
         if (cell.contains(p)) sites.push_back(p);
       }
-    RoadPlan plan;
+    LinePlan plan;
     // Roads meet at shared points; a corner two cells computed apart may differ by a grid step.
     plan.join = 0.01;
-    if (sites.size() < 2) return plan;
+    if (sites.size() < 2) return {};
     geom::Box box{b.min_x - size, b.min_y - size, b.max_x + size, b.max_y + size};
     const std::vector<VoronoiCell> cells = voronoi_cells(sites, box, size);
     // Each edge between two sites once, junctions along it.
@@ -63,13 +66,13 @@ class VoronoiLayout : public RoadLayout {
       }
       for (auto [p, q] : inner_roads(around)) add(plan, {p, q}, road_width(params_, 1), RoadClass::Local, cell);
     }
-    return plan;
+    return settle(std::move(plan), cell, sketch_);
   }
 
  private:
   // The pieces of `line` inside the region: a segment leaving it stops at its last grid point
   // inside (the roads stage runs it on to the edge exactly).
-  static void add(RoadPlan& plan, const geom::Polyline& line, double width, RoadClass c, const geom::Cell& cell) {
+  static void add(LinePlan& plan, const geom::Polyline& line, double width, RoadClass c, const geom::Cell& cell) {
     geom::Polyline piece;
     auto flush = [&] {
       if (piece.size() >= 2) plan.roads.push_back({piece, width, c});
@@ -108,10 +111,13 @@ class VoronoiLayout : public RoadLayout {
   }
 
   ZoneParams params_;
+  const SketchLines& sketch_;
 };
 
 }  // namespace
 
-std::unique_ptr<RoadLayout> make_voronoi_layout(const ZoneParams& params) { return std::make_unique<VoronoiLayout>(params); }
+std::unique_ptr<RoadLayout> make_voronoi_layout(const ZoneParams& params, const SketchLines& sketch) {
+  return std::make_unique<VoronoiLayout>(params, sketch);
+}
 
 }  // namespace exacity
