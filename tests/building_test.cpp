@@ -99,7 +99,7 @@ namespace {
 
 Building roofed(geom::Polygon footprint, double height, const std::string& roof) {
   Building b = prism(std::move(footprint), height);
-  ZoneParams p = default_params(ZoneType::Residential);
+  BuildingSettings p = default_building_settings(ZoneType::Residential);
   p.roof = roof;
   choose_roof(b, p);
   return b;

@@ -34,7 +34,7 @@ TEST(Lots, StreetLotsLineEveryRoadEdgeAndLeaveTheMiddleOpen) {
   map.insert_batch();
   map.label_faces([](const geom::Windings& w) { return geom::winding_of(w, 0) ? 1 : 0; });
   geom::Cell block = map.cells({-1, 0}, {0, 0})[0];
-  ZoneParams p = default_params(ZoneType::Residential);
+  LotSettings p = default_lot_settings(ZoneType::Residential);
   p.lot_width = {20, 20}, p.lot_depth = 30;
   Random rng(1);
   std::vector<geom::Ring> lots = street_lots(block, p, rng);
@@ -60,7 +60,7 @@ TEST(Lots, StreetLotsSkipEdgesWithoutARoad) {
   map.insert_batch();
   map.label_faces([](const geom::Windings& w) { return geom::winding_of(w, 0) ? 1 : 0; });
   geom::Cell block = map.cells({-1, 0}, {-1, -1})[0];
-  ZoneParams p = default_params(ZoneType::Residential);
+  LotSettings p = default_lot_settings(ZoneType::Residential);
   p.lot_width = {25, 25};
   Random rng(1);
   EXPECT_TRUE(street_lots(block, p, rng).empty());
@@ -88,7 +88,7 @@ TEST(Lots, CitiesWithEveryStrategyValidate) {
 }
 
 TEST(Buildings, HeightsFallWithDistanceFromTheCentre) {
-  ZoneParams p = default_params(ZoneType::Commercial);  // 12 to 48 m
+  BuildingSettings p = default_building_settings(ZoneType::Commercial);  // 12 to 48 m
   Random rng(3);
   double tallest_centre = 0, tallest_edge = 0;
   for (int i = 0; i < 2000; ++i) {

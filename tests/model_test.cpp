@@ -191,7 +191,7 @@ TEST(ModelRows, ModelsStandInsideTheLotApartAndFacingTheRoad) {
   geom::Ring ring{turn(0, 0), turn(80, 0), turn(80, 40), turn(0, 40)};
   geom::Cell cell = lot(ring, {0});
   const double road = std::atan2(ring[1].y - ring[0].y, ring[1].x - ring[0].x);  // on the grid, near 30 degrees
-  ZoneParams params = default_params(ZoneType::Residential);
+  BuildingSettings params = default_building_settings(ZoneType::Residential);
   for (const char* density : {"dense", "normal", "sparse"}) {
     params.density = density;
     Random rng(7);
@@ -219,7 +219,7 @@ TEST(ModelRows, DensityChangesHowManyFit) {
   write(dir, "library.json", R"({"models": [{"file": "house.obj", "zones": ["residential"], "up": "z", "scale": [1, 1]}]})");
   ModelLibrary lib = load_model_library(dir / "library.json");
   geom::Cell cell = lot({{0, 0}, {200, 0}, {200, 16}, {0, 16}}, {0});
-  ZoneParams params = default_params(ZoneType::Residential);
+  BuildingSettings params = default_building_settings(ZoneType::Residential);
   std::map<std::string, std::size_t> count;
   for (const char* density : {"dense", "normal", "sparse"}) {
     params.density = density;

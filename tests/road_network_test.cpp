@@ -80,7 +80,7 @@ TEST(RoadNetwork, BlocksTileTheZoneWithTheRoads) {
   for (const Block& b : c.blocks) EXPECT_FALSE(b.roads.empty() && !b.green) << "a block fronting no road";
   for (const Block& b : c.blocks)
     if (!b.green) {
-      EXPECT_GE(testing_util::area(b.polygon), c.sketch.zone_params.at(ZoneType::Residential).min_block_area);
+      EXPECT_GE(testing_util::area(b.polygon), c.sketch.zone_settings.at(ZoneType::Residential).blocks.min_block_area);
     }
 }
 

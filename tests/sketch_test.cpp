@@ -141,11 +141,11 @@ TEST(SketchParse, DegenerateButLegalInput) {
   ASSERT_EQ(s.zones.size(), 3u);
   EXPECT_EQ(s.zones[2].polygons[0].outer.size(), 4u);  // the repeated point dropped
   EXPECT_EQ(s.zones[2].type, ZoneType::Commercial);
-  EXPECT_EQ(s.zone_params.at(ZoneType::Commercial).branches, 6);
-  EXPECT_EQ(road_width(s.zone_params.at(ZoneType::Commercial), 0), 14);
-  EXPECT_EQ(road_width(s.zone_params.at(ZoneType::Commercial), 2), 6);
-  EXPECT_EQ(road_width(s.zone_params.at(ZoneType::Commercial), 7), 6);
-  EXPECT_EQ(road_width(s.zone_params.at(ZoneType::Residential), 3), 8);
+  EXPECT_EQ(s.zone_settings.at(ZoneType::Commercial).roads.growth.branches, 6);
+  EXPECT_EQ(road_width(s.zone_settings.at(ZoneType::Commercial).roads, 0), 14);
+  EXPECT_EQ(road_width(s.zone_settings.at(ZoneType::Commercial).roads, 2), 6);
+  EXPECT_EQ(road_width(s.zone_settings.at(ZoneType::Commercial).roads, 7), 6);
+  EXPECT_EQ(road_width(s.zone_settings.at(ZoneType::Residential).roads, 3), 8);
   ASSERT_EQ(s.roads.size(), 1u);
   EXPECT_EQ(s.roads[0].width, 24);  // a highway's default width
   EXPECT_EQ(s.roads[0].lines[0].size(), 2u);
@@ -177,7 +177,7 @@ TEST(Sketch, CameraAndDensityAndModelsAreRead) {
                           "dir/city.geojson");
   EXPECT_EQ(s.camera, "look:from=0,-50,30,to=5,5,0");
   EXPECT_EQ(s.models, std::filesystem::path("dir/lib/models.json"));
-  EXPECT_EQ(s.zone_params.at(ZoneType::Residential).density, "sparse");
+  EXPECT_EQ(s.zone_settings.at(ZoneType::Residential).buildings.density, "sparse");
   expect_error(with_features(kSquare, R"({"camera": 3})"), {"camera", "orbit:"});
   expect_error(with_features(kSquare, R"({"zones": {"residential": {"density": "packed"}}})"), {"density", "\"dense\""});
 }

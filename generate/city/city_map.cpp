@@ -66,7 +66,7 @@ void CityMap::label(const Sketch& sketch) {
     // A generated road paves only where roads are generated (not in a zone laid out as
     // "streets"): its flat end stops at the region's edge. A link paves all its way, over
     // open land, parks and water.
-    const ZoneParams& params = sketch.zone_params.at(type);
+    const RoadSettings& params = sketch.zone_settings.at(type).roads;
     const bool paved_by_growth =
         l.zone >= 0 && grows_roads(type) && params.layout != "streets" && (!water || params.bridges);
     // Counters grow with road index, so the first road found is the first listed: it owns

@@ -8,7 +8,6 @@
 #include <sstream>
 
 #include "generate/errors.h"
-#include "generate/layout/grammar.h"
 #include "generate/layout/street_graph.h"
 #include "geom/measure.h"
 
@@ -16,33 +15,8 @@ namespace exacity {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-ZoneParams default_params(ZoneType type) {
-  ZoneParams p;
-  if (type == ZoneType::Commercial || type == ZoneType::Industrial) {
-    // Manhattan grid (seed 000): straight roads, smaller jitter.
-    p.jitter = 10;
-    p.segment_deviation = 0;
-    p.origin_deviation = 0;
-    p.block_area = type == ZoneType::Commercial ? 15000 : 30000;
-    p.lot_area = type == ZoneType::Commercial ? 1500 : 3000;
-  }
-  if (type == ZoneType::Commercial) {
-    p.setback = 2, p.min_height = 12, p.max_height = 48;
-    p.lot_width = {20, 45}, p.lot_depth = 35;
-    p.building_gap = 3, p.footprint_width = {14, 36}, p.footprint_depth = {12, 28};
-    p.min_footprint_width = 8, p.max_footprint_area = 3000;
-  }
-  if (type == ZoneType::Industrial) {
-    p.setback = 4, p.min_height = 5, p.max_height = 12;
-    p.lot_width = {40, 90}, p.lot_depth = 60;
-    p.building_gap = 6, p.footprint_width = {20, 80}, p.footprint_depth = {15, 50};
-    p.min_footprint_width = 10, p.max_footprint_area = 20000;
-  }
-  return p;
-}
-
-double road_width(const ZoneParams& p, int level) {
-  return p.road_widths[std::min<std::size_t>(level, p.road_widths.size() - 1)];
+ZoneSettings default_zone_settings(ZoneType type) {
+  return {default_road_settings(type), {}, default_lot_settings(type), default_building_settings(type)};
 }
 
 double default_width(RoadClass road_class) {
@@ -58,11 +32,6 @@ namespace {
 
 std::string quote(std::string_view s) { return "\"" + std::string(s) + "\""; }
 
-// nlohmann::json refuses numbers beyond a double's range (such as 1e999) outright. So
-// that the error can name the feature, parse_sketch re-reads the text with each such
-// literal replaced by a marker string, and the parser reports the marker where it finds it.
-constexpr std::string_view kOverflowMarker = "exacity-overflow:";
-
 // Coordinates Exacity computes exactly in: rounding its exact vertices to doubles moves them
 // by under 2e-6 m out here; at 1e12 m (0.1 mm steps) written rings stop being simple.
 constexpr double kMaxCoordinate = 1e10;
@@ -76,13 +45,6 @@ std::string text_of(const json& obj, const char* key) {
   auto it = obj.find(key);
   if (it == obj.end()) return "";
   return it->is_string() ? it->get<std::string>() : it->dump();
-}
-
-std::optional<std::string> overflowed_literal(const json& j) {
-  if (!j.is_string()) return std::nullopt;
-  const std::string& s = j.get_ref<const std::string&>();
-  if (s.rfind(kOverflowMarker, 0) != 0) return std::nullopt;
-  return s.substr(kOverflowMarker.size());
 }
 
 template <std::size_t N>
@@ -101,25 +63,13 @@ class Parser {
   }
 
   double number(const json& j, const std::string& where, double min, double max) const {
-    if (auto literal = overflowed_literal(j)) fail(where, *literal + " is not a finite number; write a finite number");
-    if (!j.is_number()) fail(where, "expected a number, found " + std::string(j.type_name()));
-    double v = j.get<double>();
-    if (!std::isfinite(v)) fail(where, "the number is not finite; write a finite number");
-    if (v < min || v > max)
-      fail(where, "value " + json(v).dump() + " is out of range; use a value from " + json(min).dump() +
-                      " to " + json(max).dump());
-    return v;
+    return read_number(j, file_, where, min, max);
   }
 
   void known_keys(const json& obj, const std::string& where, const std::set<std::string>& keys) const {
-    if (!obj.is_object()) fail(where, "expected an object, found " + std::string(obj.type_name()));
-    for (auto& [k, v] : obj.items()) {
-      if (keys.count(k)) continue;
-      std::string valid;
-      for (auto& key : keys) valid += (valid.empty() ? "" : ", ") + key;
-      fail(where, "unknown key " + quote(k) + "; remove it or use one of: " + valid);
-    }
+    SettingsReader(obj, file_, where).expect_keys(keys);
   }
+
 
   geom::Vec2 position(const json& j, const std::string& where) const {
     if (j.is_array() && j.size() >= 2)
@@ -254,7 +204,7 @@ class Parser {
       if (!grows_roads(z.type)) continue;
       double area = 0;
       for (const auto& p : z.polygons) area += std::abs(geom::area(p));
-      const double n = area / sketch.zone_params.at(z.type).block_area;
+      const double n = area / sketch.zone_settings.at(z.type).roads.growth.block_area;
       blocks += n;
       if (n > most) most = n, largest = &z;
     }
@@ -291,7 +241,7 @@ class Parser {
       known_keys(zones, w + ".zones", {kZoneTypeNames.begin(), kZoneTypeNames.end()});
       for (auto& [zname, params] : zones.items()) {
         ZoneType zt = *parse_zone_type(zname);
-        sketch.zone_params[zt] = zone_params(params, zt, w + ".zones." + zname);
+        sketch.zone_settings[zt] = zone_settings(params, zt, w + ".zones." + zname);
       }
     }
   }
@@ -355,176 +305,23 @@ class Parser {
     return spec;
   }
 
-  // One zone type's settings over its defaults, its keys listed by the reader that reads
-  // them. Of two bad settings the one read first is reported, so the readers keep this order.
-  ZoneParams zone_params(const json& j, ZoneType zt, const std::string& w) const {
-    known_keys(j, w, {"block_area", "segment_length", "branches", "jitter", "segment_deviation", "origin_deviation",
-                      "road_widths",
-                      "min_block_area", "min_block_width",
-                      "lot_area", "min_lot_edge", "min_lot_area", "setback", "min_footprint_area", "lot_depth",
-                      "building_gap", "min_footprint_width", "max_footprint_area", "lot_width", "footprint_width",
-                      "footprint_depth",
-                      "roof_pitch", "roof",
-                      "density",
-                      "heights",
-                      "layout",
-                      "cell_size", "junction_spacing",
-                      "grammar_depth", "grammar",
-                      "lots",
-                      "bridges"});
-    ZoneParams p = default_params(zt);
-    read_growth(j, w, p);
-    read_block_limits(j, w, p);
-    read_lot_and_footprint_sizes(j, w, p);
-    read_roof(j, w, p);
-    read_density(j, w, p);
-    read_heights(j, w, p);
-    read_layout(j, w, p);
-    read_voronoi_cells(j, w, p);
-    read_grammar(j, w, p);
-    read_lot_method(j, w, p);
-    read_bridges(j, w, p);
-    return p;
+  // One zone type's settings over its defaults, each step's read by that step; a key no
+  // step reads is refused before any value is read.
+  ZoneSettings zone_settings(const json& j, ZoneType zt, const std::string& w) const {
+    const SettingsReader settings(j, file_, w);
+    std::set<std::string> keys = road_setting_keys();
+    for (const auto* more : {&parcel_setting_keys(), &building_setting_keys()}) keys.insert(more->begin(), more->end());
+    settings.expect_keys(keys);
+    const ZoneSettings defaults = default_zone_settings(zt);
+    ZoneSettings z;
+    z.roads = read_road_settings(settings, defaults.roads, read_grammars_);
+    z.blocks = read_block_settings(settings, defaults.blocks);
+    z.lots = read_lot_settings(settings, defaults.lots, z.roads.layout);
+    z.buildings = read_building_settings(settings, defaults.buildings);
+    return z;
   }
 
  private:
-  // A number setting left at its default when the key is absent.
-  void read_number(const json& j, const std::string& w, const char* key, double& field, double min,
-                   double max) const {
-    if (j.contains(key)) field = number(j[key], w + "." + key, min, max);
-  }
-
-  // A [smallest, largest] setting; `what` says what the two numbers measure.
-  void read_range(const json& j, const std::string& w, const char* key, Range& r, double min, double max,
-                  const char* what) const {
-    if (!j.contains(key)) return;
-    const json& v = j[key];
-    std::string where = w + "." + key;
-    if (!v.is_array() || v.size() != 2) fail(where, std::string("give [smallest, largest] ") + what);
-    r.min = number(v[0], where, min, max);
-    r.max = number(v[1], where, r.min, max);
-  }
-
-  // Seed 000's growing roads, and the road widths every layout uses.
-  void read_growth(const json& j, const std::string& w, ZoneParams& p) const {
-    read_number(j, w, "block_area", p.block_area, 100, 1e9);
-    read_number(j, w, "segment_length", p.segment_length, 1, 10000);
-    double branches = p.branches;
-    read_number(j, w, "branches", branches, 1, 16);
-    p.branches = static_cast<int>(branches);
-    read_number(j, w, "jitter", p.jitter, 0, 180);
-    read_number(j, w, "segment_deviation", p.segment_deviation, 0, 90);
-    read_number(j, w, "origin_deviation", p.origin_deviation, 0, 80);  // below 90, so every road makes progress
-    if (j.contains("road_widths")) {
-      const json& widths = j["road_widths"];
-      if (!widths.is_array() || widths.empty()) fail(w + ".road_widths", "give a list of widths in metres, one per level");
-      p.road_widths.clear();
-      for (std::size_t i = 0; i < widths.size(); ++i)
-        p.road_widths.push_back(number(widths[i], w + ".road_widths[" + std::to_string(i) + "]", 0.5, 200));
-    }
-  }
-
-  void read_block_limits(const json& j, const std::string& w, ZoneParams& p) const {
-    read_number(j, w, "min_block_area", p.min_block_area, 0, 1e9);
-    read_number(j, w, "min_block_width", p.min_block_width, 0, 1e4);
-  }
-
-  // Lot and footprint sizes are read interleaved: this order is the order bad sizes are
-  // reported in.
-  void read_lot_and_footprint_sizes(const json& j, const std::string& w, ZoneParams& p) const {
-    read_number(j, w, "lot_area", p.lot_area, 10, 1e8);
-    read_number(j, w, "min_lot_edge", p.min_lot_edge, 0, 1e4);
-    read_number(j, w, "min_lot_area", p.min_lot_area, 0, 1e8);
-    read_number(j, w, "setback", p.setback, 0, 1e3);
-    read_number(j, w, "min_footprint_area", p.min_footprint_area, 0, 1e8);
-    read_number(j, w, "lot_depth", p.lot_depth, 2, 1e4);
-    read_number(j, w, "building_gap", p.building_gap, 0, 1e3);
-    read_number(j, w, "min_footprint_width", p.min_footprint_width, 1, 1e4);
-    read_number(j, w, "max_footprint_area", p.max_footprint_area, 1, 1e8);
-    read_range(j, w, "lot_width", p.lot_width, 2, 1e4, "lot frontage in metres");
-    read_range(j, w, "footprint_width", p.footprint_width, 1, 1e4, "footprint width along the street in metres");
-    read_range(j, w, "footprint_depth", p.footprint_depth, 1, 1e4, "footprint depth back from the street in metres");
-  }
-
-  void read_roof(const json& j, const std::string& w, ZoneParams& p) const {
-    read_number(j, w, "roof_pitch", p.roof_pitch, 1, 75);
-    if (j.contains("roof")) {
-      const json& r = j["roof"];
-      if (!r.is_string() || (r != "auto" && r != "flat" && r != "gabled" && r != "hipped"))
-        fail(w + ".roof", "expected \"auto\", \"flat\", \"gabled\" or \"hipped\"");
-      p.roof = r.get<std::string>();
-    }
-  }
-
-  void read_density(const json& j, const std::string& w, ZoneParams& p) const {
-    if (j.contains("density")) {
-      const json& d = j["density"];
-      if (!d.is_string() || (d != "dense" && d != "normal" && d != "sparse"))
-        fail(w + ".density", "expected \"dense\", \"normal\" or \"sparse\" (how far apart placed models stand)");
-      p.density = d.get<std::string>();
-    }
-  }
-
-  void read_heights(const json& j, const std::string& w, ZoneParams& p) const {
-    if (j.contains("heights")) {
-      const json& h = j["heights"];
-      if (!h.is_array() || h.size() != 2) fail(w + ".heights", "give [lowest, highest] building heights in metres");
-      p.min_height = number(h[0], w + ".heights", 0.5, 1000);
-      p.max_height = number(h[1], w + ".heights", p.min_height, 1000);
-    }
-  }
-
-  void read_layout(const json& j, const std::string& w, ZoneParams& p) const {
-    if (j.contains("layout")) {
-      if (j["layout"] != "growth" && j["layout"] != "grammar" && j["layout"] != "voronoi" && j["layout"] != "streets")
-        fail(w + ".layout", "expected \"growth\" (seed 000's growing roads), \"grammar\" (seed 002's split grammar, "
-                            "with \"grammar\": FILE), \"voronoi\" (seed 003's Voronoi streets) or \"streets\" (the "
-                            "sketch's roads only)");
-      p.layout = j["layout"].get<std::string>();
-      // Seed 003 splits its plots into lots.
-      if (p.layout == "voronoi" && !j.contains("lots")) p.lots = "split";
-    }
-  }
-
-  // Seed 003's cells. "cell_size" is checked against the road widths, so it is read after them.
-  void read_voronoi_cells(const json& j, const std::string& w, ZoneParams& p) const {
-    read_number(j, w, "cell_size", p.cell_size, 20, 1e5);
-    const double widest = *std::max_element(p.road_widths.begin(), p.road_widths.end());
-    if (p.layout == "voronoi" && p.cell_size < 4 * widest)
-      fail(w + ".cell_size", json(p.cell_size).dump() + " m is under 4 road widths (" + json(4 * widest).dump() +
-                                 " m): the cells would be all road; raise \"cell_size\" or narrow \"road_widths\"");
-    read_number(j, w, "junction_spacing", p.junction_spacing, 5, 1e5);
-  }
-
-  void read_grammar(const json& j, const std::string& w, ZoneParams& p) const {
-    if (j.contains("grammar_depth")) {
-      if (!j["grammar_depth"].is_number_integer()) fail(w + ".grammar_depth", "expected a whole number of rules, 1 to 32");
-      p.grammar_depth = static_cast<int>(number(j["grammar_depth"], w + ".grammar_depth", 1, 32));
-    }
-    if (j.contains("grammar")) {
-      if (!j["grammar"].is_string()) fail(w + ".grammar", "expected the path of a grammar file (a string), relative to the sketch");
-      const fs::path file = fs::path(file_).parent_path() / j["grammar"].get<std::string>();
-      p.grammar = std::make_shared<Grammar>(read_grammars_ ? load_grammar(file) : Grammar{file, {}});
-    }
-    if (p.layout == "grammar" && !p.grammar) fail(w + ".layout", "\"grammar\" needs \"grammar\": the path of a grammar file");
-  }
-
-  // How blocks are cut into lots ("allocation" or "split"), over the layout's default.
-  void read_lot_method(const json& j, const std::string& w, ZoneParams& p) const {
-    if (j.contains("lots")) {
-      if (!j["lots"].is_string() || (j["lots"] != "allocation" && j["lots"] != "split"))
-        fail(w + ".lots", "expected \"allocation\" (seed 000) or \"split\" (seed 003)");
-      p.lots = j["lots"].get<std::string>();
-    }
-  }
-
-  void read_bridges(const json& j, const std::string& w, ZoneParams& p) const {
-    if (j.contains("bridges")) {
-      if (!j["bridges"].is_boolean()) fail(w + ".bridges", "expected true or false");
-      p.bridges = j["bridges"].get<bool>();
-    }
-  }
-
   std::string file_;
   bool read_grammars_;
 };
@@ -572,7 +369,7 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
   sketch.path = path;
   for (ZoneType t : {ZoneType::Residential, ZoneType::Commercial, ZoneType::Industrial, ZoneType::Park,
                      ZoneType::Water})
-    sketch.zone_params[t] = default_params(t);
+    sketch.zone_settings[t] = default_zone_settings(t);
   if (doc.contains("crs")) sketch.crs = nlohmann::ordered_json::parse(marked)["crs"];  // keeps key order
   if (doc.contains("exacity")) parser.settings(doc["exacity"], sketch);
   const json& features = doc["features"];

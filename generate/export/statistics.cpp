@@ -196,7 +196,7 @@ BlockTally tally_blocks(const Layer& blocks, const std::string& zone, const Sket
     t.areas.push_back(a);
     t.total += a;
     auto type = parse_zone_type(f.properties.value("zone", ""));
-    if (sketch && type && a > kOversized * sketch->zone_params.at(*type).block_area) t.oversized += a;
+    if (sketch && type && a > kOversized * sketch->zone_settings.at(*type).roads.growth.block_area) t.oversized += a;
   }
   return t;
 }

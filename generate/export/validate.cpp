@@ -402,7 +402,7 @@ Validation validate_output(const fs::path& dir) {
       c.problem("buildings.geojson: building " + std::to_string(f.properties.value("id", -1)) + " has no height");
   for (const auto& f : lots.features) {
     auto zt = parse_zone_type(f.properties.value("zone", ""));
-    if (zt && geom::area(f.polygon) < sketch.zone_params.at(*zt).min_lot_area)
+    if (zt && geom::area(f.polygon) < sketch.zone_settings.at(*zt).lots.min_lot_area)
       c.problem("lots.geojson: lot " + std::to_string(f.properties.value("id", -1)) + " is under its zone's min_lot_area");
   }
   v.features["roads"] = static_cast<int>(roads.features.size());

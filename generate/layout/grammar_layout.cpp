@@ -24,8 +24,8 @@ bool lies_along(geom::Vec2 a, geom::Vec2 b, geom::Vec2 p, geom::Vec2 q) {
 
 class GrammarLayout : public RoadLayout {
  public:
-  GrammarLayout(const ZoneParams& params, ZoneType type, const SketchLines& sketch)
-      : params_(params), type_(type), sketch_(sketch) {}
+  GrammarLayout(const RoadSettings& roads, double min_block_area, ZoneType type, const SketchLines& sketch)
+      : roads_(roads), min_block_area_(min_block_area), type_(type), sketch_(sketch) {}
 
   RoadPlan plan(const Region& region) const override {
     Random random(region.stream);
@@ -43,8 +43,8 @@ class GrammarLayout : public RoadLayout {
 
     LinePlan plan;
     // Road pieces meet only roughly (each is mapped from its own parent): join within a width.
-    plan.join = *std::max_element(params_.road_widths.begin(), params_.road_widths.end());
-    for (GrammarLeaf& leaf : grow_layout(*params_.grammar, roots, params_.grammar_depth, params_.min_block_area, random.next())) {
+    plan.join = *std::max_element(roads_.road_widths.begin(), roads_.road_widths.end());
+    for (GrammarLeaf& leaf : grow_layout(*roads_.grammar.file, roots, roads_.grammar.depth, min_block_area_, random.next())) {
       Terminal t;
       if (!parse_terminal(leaf.name, t)) t.type = type_;  // a symbol left at the depth bound
       if (t.kind != Terminal::Road) {
@@ -60,7 +60,7 @@ class GrammarLayout : public RoadLayout {
       // The grammar places a road; its width is the zone's, by level, as a grown road's.
       PlannedRoad road;
       road.road_class = leaf.depth <= 1 ? RoadClass::Main : RoadClass::Local;
-      road.width = road_width(params_, leaf.depth - 1);
+      road.width = road_width(roads_, leaf.depth - 1);
       bool on_shared_edge = false;
       const auto& root = roots[leaf.root];
       for (std::size_t i = 0; i < root.size() && !on_shared_edge; ++i) {
@@ -82,15 +82,16 @@ class GrammarLayout : public RoadLayout {
   }
 
  private:
-  ZoneParams params_;
+  RoadSettings roads_;
+  double min_block_area_;  // the grammar's land leaves stop above it
   ZoneType type_;
   const SketchLines& sketch_;
 };
 
 }  // namespace
 
-std::unique_ptr<RoadLayout> make_grammar_layout(const ZoneParams& params, ZoneType type, const SketchLines& sketch) {
-  return std::make_unique<GrammarLayout>(params, type, sketch);
+std::unique_ptr<RoadLayout> make_grammar_layout(const ZoneSettings& settings, ZoneType type, const SketchLines& sketch) {
+  return std::make_unique<GrammarLayout>(settings.roads, settings.blocks.min_block_area, type, sketch);
 }
 
 }  // namespace exacity

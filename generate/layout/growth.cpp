@@ -78,7 +78,7 @@ struct CellRoads {
 // Grows `branches` roads from the seed. Returns whether one reached a road (of the region,
 // or of the sketch); always true when `free`, for a cell with no road to reach.
 // `across_only`: only the branches within 45 degrees of `orientation` or its opposite.
-bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const ZoneParams& p, int level, bool free, double orientation,
+bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const GrowthSettings& p, int level, bool free, double orientation,
                    bool across_only, double reach, const SketchLines& sketch_lines, Random& rng, CellRoads& out) {
   const double segment_deviation = std::max(p.segment_deviation - 2.0 * level, 0.0);
   const int max_steps = static_cast<int>(reach / (p.segment_length * std::cos(p.origin_deviation * M_PI / 180))) + 2;
@@ -132,7 +132,7 @@ bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const ZoneParams& p, i
 // A cell much longer than wide, and narrow for its zone: roads along it would only cut it
 // into slivers. Its long axis from the second moments of its outer ring (a choice, made
 // in doubles); nullopt for a cell that is no such strip.
-std::optional<double> strip_axis(const geom::Cell& cell, const ZoneParams& p) {
+std::optional<double> strip_axis(const geom::Cell& cell, const GrowthSettings& p) {
   const geom::Ring ring = cell.to_plain().outer;
   if (ring.size() < 3) return std::nullopt;
   const geom::Vec2 o = ring[0];
@@ -158,7 +158,7 @@ std::optional<double> strip_axis(const geom::Cell& cell, const ZoneParams& p) {
 // when none does (a concave cell can hide those edges from the seed), they are grown
 // again from just inside one of those edges, the first branch heading straight back to
 // it. Empty when that fails too.
-CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const ZoneParams& p, int level, bool top, double orientation,
+CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const GrowthSettings& p, int level, bool top, double orientation,
                     const SketchLines& sketch_lines, Random& rng) {
   const geom::Box b = cell.bounds();
   const double reach = 2 * std::hypot(b.width(), b.height()) + 1;  // past the cell from anywhere in it
@@ -214,7 +214,7 @@ Grown seed(const Work& w, const ZoneAt& zone_at) {
 // sliver off it, are dropped and the cell grown again from another seed, a few times at
 // most: slivers make poor blocks. Cutting off a tenth of a block is progress, so a long
 // corridor is grown on however little of it each cut takes.
-void grow_one(const Work& w, Grown& g, const ZoneParams& p, int level, const SketchLines& sketch_lines) {
+void grow_one(const Work& w, Grown& g, const GrowthSettings& p, int level, const SketchLines& sketch_lines) {
   if (!g.seed) return;
   if (w.cell.area() <= p.block_area) return;  // small enough to be one block
   Random rng(mix(w.id, 1 + 16 * w.stalls));
@@ -258,7 +258,7 @@ std::vector<Work> collect(std::vector<Grown>& grown, const std::vector<Work>& wo
     plan.cells_without_access += g.without_access;
     if (!g.joined.empty()) plan.piece_reaches_sketch[0] = 1;
     if (!g.roads.empty()) plan.junctions.push_back({*g.seed, static_cast<int>(plan.roads.size())});
-    const ZoneParams& p = sketch.zone_params.at(g.type);
+    const RoadSettings& p = sketch.zone_settings.at(g.type).roads;
     for (geom::Path& road : g.roads)
       plan.roads.push_back({std::move(road), road_width(p, level), work[i].top ? RoadClass::Main : RoadClass::Local, level, 0});
     for (Work& w : g.parts) next.push_back(std::move(w));
@@ -283,7 +283,7 @@ class GrowthLayout : public RoadLayout {
       std::vector<Grown> grown(work.size());
       tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
         grown[i] = seed(work[i], zone_at_);
-        grow_one(work[i], grown[i], sketch_.zone_params.at(grown[i].type), level, sketch_lines_);
+        grow_one(work[i], grown[i], sketch_.zone_settings.at(grown[i].type).roads.growth, level, sketch_lines_);
       });
       work = collect(grown, work, level, sketch_, plan);
     }

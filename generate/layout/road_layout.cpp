@@ -11,10 +11,11 @@ std::vector<std::pair<geom::Vec2, geom::Vec2>> edges_to_reach(const geom::Cell& 
   return edges;
 }
 
-std::unique_ptr<RoadLayout> make_road_layout(const ZoneParams& params, ZoneType type, const SketchLines& sketch) {
-  if (params.layout == "grammar") return make_grammar_layout(params, type, sketch);
-  if (params.layout == "voronoi") return make_voronoi_layout(params, sketch);
-  if (params.layout == "streets") return make_streets_layout();
+std::unique_ptr<RoadLayout> make_road_layout(const ZoneSettings& settings, ZoneType type, const SketchLines& sketch) {
+  const std::string& layout = settings.roads.layout;
+  if (layout == "grammar") return make_grammar_layout(settings, type, sketch);
+  if (layout == "voronoi") return make_voronoi_layout(settings.roads, sketch);
+  if (layout == "streets") return make_streets_layout();
   return nullptr;
 }
 

@@ -118,7 +118,7 @@ ZoneAt zone_at(const CityMap& city_map, const Sketch& sketch) {
 // time across regions, every region's main roads first.
 void lay_out_growth(CityMap& city_map, const Sketch& sketch, const SketchLines& sketch_lines, const std::vector<int>& kind,
                     Laid& laid, RoadNetworkStats& stats) {
-  auto params = [&](ZoneType t) -> const ZoneParams& { return sketch.zone_params.at(t); };
+  auto params = [&](ZoneType t) -> const RoadSettings& { return sketch.zone_settings.at(t).roads; };
   const std::vector<int> group = city_map.per_label([&](const FaceLabel& f) {
     ZoneType t = f.zone >= 0 ? sketch.zones[f.zone].type : ZoneType::Park;
     bool growable = f.zone >= 0 && grows_roads(t) && params(t).layout == "growth";
@@ -150,7 +150,7 @@ void lay_out_growth(CityMap& city_map, const Sketch& sketch, const SketchLines& 
 void lay_out_regions(CityMap& city_map, const Sketch& sketch, const SketchLines& sketch_lines, const std::vector<int>& kind,
                      Laid& laid, std::vector<PlannedUse>& uses, RoadNetworkStats& stats) {
   std::map<ZoneType, std::unique_ptr<RoadLayout>> layouts;
-  for (const auto& [t, p] : sketch.zone_params)
+  for (const auto& [t, p] : sketch.zone_settings)
     if (grows_roads(t))
       if (std::unique_ptr<RoadLayout> layout = make_road_layout(p, t, sketch_lines)) layouts[t] = std::move(layout);
   if (layouts.empty()) return;

@@ -16,13 +16,13 @@ namespace {
 
 class VoronoiLayout : public RoadLayout {
  public:
-  VoronoiLayout(const ZoneParams& params, const SketchLines& sketch) : params_(params), sketch_(sketch) {}
+  VoronoiLayout(const RoadSettings& roads, const SketchLines& sketch) : roads_(roads), sketch_(sketch) {}
 
   RoadPlan plan(const Region& region) const override {
     Random random(region.stream);
     const geom::Cell& cell = region.cell;
     const geom::Box b = cell.bounds();
-    const double size = params_.cell_size;
+    const double size = roads_.voronoi.cell_size;
     // One point in each square of a grid of cell_size, jittered, where it falls inside.
     std::vector<geom::Vec2> sites;
     for (double y = b.min_y; y < b.max_y; y += size)
@@ -46,12 +46,12 @@ class VoronoiLayout : public RoadLayout {
         const geom::Vec2 p = geom::snap(ring[k]), q = geom::snap(ring[(k + 1) % ring.size()]);
         if (p == q) continue;
         CellRoad road{p};
-        for (geom::Vec2 v : junctions_along(p, q, params_.junction_spacing)) road.push_back(v);
+        for (geom::Vec2 v : junctions_along(p, q, roads_.voronoi.junction_spacing)) road.push_back(v);
         road.push_back(q);
         edges[{static_cast<int>(i), j}] = std::move(road);
       }
     }
-    for (auto& [key, road] : edges) add(plan, road, params_.road_widths.front(), RoadClass::Main, cell);
+    for (auto& [key, road] : edges) add(plan, road, roads_.road_widths.front(), RoadClass::Main, cell);
     // Inner roads, cell by cell, from the roads around it.
     for (std::size_t i = 0; i < cells.size(); ++i) {
       std::vector<CellRoad> around;
@@ -64,7 +64,7 @@ class VoronoiLayout : public RoadLayout {
         if (j < me) std::reverse(road.begin(), road.end());
         around.push_back(std::move(road));
       }
-      for (auto [p, q] : inner_roads(around)) add(plan, {p, q}, road_width(params_, 1), RoadClass::Local, cell);
+      for (auto [p, q] : inner_roads(around)) add(plan, {p, q}, road_width(roads_, 1), RoadClass::Local, cell);
     }
     return settle(std::move(plan), cell, sketch_);
   }
@@ -110,14 +110,14 @@ class VoronoiLayout : public RoadLayout {
     flush();
   }
 
-  ZoneParams params_;
+  RoadSettings roads_;
   const SketchLines& sketch_;
 };
 
 }  // namespace
 
-std::unique_ptr<RoadLayout> make_voronoi_layout(const ZoneParams& params, const SketchLines& sketch) {
-  return std::make_unique<VoronoiLayout>(params, sketch);
+std::unique_ptr<RoadLayout> make_voronoi_layout(const RoadSettings& roads, const SketchLines& sketch) {
+  return std::make_unique<VoronoiLayout>(roads, sketch);
 }
 
 }  // namespace exacity

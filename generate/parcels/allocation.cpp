@@ -132,11 +132,11 @@ geom::Ring on_grid(const geom::Ring& ring) {
 // rises after a dropped one, so some street frontage stays open yard.
 class Allocation : public LotLayout {
  public:
-  explicit Allocation(const ZoneParams& params) : params_(params) {}
+  explicit Allocation(const LotSettings& settings) : settings_(settings) {}
   std::vector<PlannedLot> plan(const Block& block, int index, Random& rng) const override {
     std::vector<PlannedLot> out;
     double keep = 0.8;
-    for (const geom::Ring& ring : street_lots(block.cell, params_, rng)) {
+    for (const geom::Ring& ring : street_lots(block.cell, settings_, rng)) {
       if (block.zone == ZoneType::Industrial) {
         bool kept = rng.uniform() < keep;
         keep = std::clamp(keep + (kept ? -0.25 : 0.25), 0.25, 1.0);
@@ -149,12 +149,12 @@ class Allocation : public LotLayout {
   }
 
  private:
-  ZoneParams params_;
+  LotSettings settings_;
 };
 
 }  // namespace
 
-std::vector<geom::Ring> street_lots(const geom::Cell& block, const ZoneParams& p, Random& rng) {
+std::vector<geom::Ring> street_lots(const geom::Cell& block, const LotSettings& p, Random& rng) {
   std::vector<geom::Ring> lots;
   const std::vector<geom::KindedRing> rings = block.kinded_rings();
   for (const geom::KindedRing& r : rings) {
@@ -211,6 +211,6 @@ std::vector<geom::Ring> street_lots(const geom::Cell& block, const ZoneParams& p
   return lots;
 }
 
-std::unique_ptr<LotLayout> make_allocation(const ZoneParams& params) { return std::make_unique<Allocation>(params); }
+std::unique_ptr<LotLayout> make_allocation(const LotSettings& settings) { return std::make_unique<Allocation>(settings); }
 
 }  // namespace exacity

@@ -38,7 +38,7 @@ std::vector<Block> cut_blocks(CityMap& city_map, const Sketch& sketch, const std
     if (b.polygon.outer.empty()) continue;
     block_of_component[components[i]] = static_cast<int>(blocks.size());
     b.zone = static_cast<ZoneType>(types[i]);
-    const ZoneParams& p = sketch.zone_params.at(b.zone);
+    const BlockSettings& p = sketch.zone_settings.at(b.zone).blocks;
     double a = geom::area(b.polygon);
     const Terminal* use = use_of(cell, uses);
     if (a < p.min_block_area || 2 * a / geom::perimeter(b.polygon) < p.min_block_width ||

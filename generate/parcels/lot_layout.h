@@ -29,15 +29,15 @@ class LotLayout {
   virtual std::vector<PlannedLot> plan(const Block& block, int index, Random& rng) const = 0;
 };
 
-std::unique_ptr<LotLayout> make_lot_layout(const ZoneParams& params);
-std::unique_ptr<LotLayout> make_allocation(const ZoneParams& params);
-std::unique_ptr<LotLayout> make_split(const ZoneParams& params);
+std::unique_ptr<LotLayout> make_lot_layout(const LotSettings& settings);
+std::unique_ptr<LotLayout> make_allocation(const LotSettings& settings);
+std::unique_ptr<LotLayout> make_split(const LotSettings& settings);
 
 // Seed 000's lots measured from the street: along every run of road edges of the block
 // (BlockEdge::is_road), lots side by side, about `lot_width` wide and `lot_depth` deep (at most
 // half the way across the block), split at the run's corners along the corner's bisector;
 // the block's middle is left open. Rings in doubles, not yet on the grid; each reaches a
 // little past the block's edge, so the map cuts it back exactly there.
-std::vector<geom::Ring> street_lots(const geom::Cell& block, const ZoneParams& p, Random& rng);
+std::vector<geom::Ring> street_lots(const geom::Cell& block, const LotSettings& p, Random& rng);
 
 }  // namespace exacity

@@ -13,7 +13,7 @@ namespace exacity {
 
 std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch& sketch) {
   std::map<ZoneType, std::unique_ptr<LotLayout>> layouts;
-  for (const auto& [zone, params] : sketch.zone_params) layouts[zone] = make_lot_layout(params);
+  for (const auto& [zone, settings] : sketch.zone_settings) layouts[zone] = make_lot_layout(settings.lots);
   std::vector<std::vector<PlannedLot>> per_block(blocks.size());
   const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Lots));
   tbb::parallel_for(std::size_t(0), blocks.size(), [&](std::size_t bi) {
@@ -28,8 +28,8 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch
   return lots;
 }
 
-std::unique_ptr<LotLayout> make_lot_layout(const ZoneParams& params) {
-  return params.lots == "split" ? make_split(params) : make_allocation(params);
+std::unique_ptr<LotLayout> make_lot_layout(const LotSettings& settings) {
+  return settings.layout == "split" ? make_split(settings) : make_allocation(settings);
 }
 
 std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
@@ -60,7 +60,7 @@ std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& p
     std::optional<geom::Cell> cell = pieces[i].as_written();
     if (!cell) return;
     geom::Polygon shape = cell->to_plain();
-    if (geom::area(shape) < sketch.zone_params.at(plan.zone).min_lot_area) return;
+    if (geom::area(shape) < sketch.zone_settings.at(plan.zone).lots.min_lot_area) return;
     double longest = 0, ratio = 0;
     for (auto [a, b] : cell->edges_of_kind(LotEdge::kStreet)) {
       double len = std::hypot(b.x - a.x, b.y - a.y);

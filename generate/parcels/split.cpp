@@ -15,7 +15,7 @@ using geom::lerp;
 
 // Seed 003: halve perpendicular to the longest edge near its middle until below lot_area;
 // a split that would leave a part with no road edge (seed 004: frontage) is not made.
-std::vector<geom::Cell> split_lots(const geom::Cell& block, const ZoneParams& p, Random& rng) {
+std::vector<geom::Cell> split_lots(const geom::Cell& block, const LotSettings& p, Random& rng) {
   std::vector<geom::Cell> done, todo{block};
   while (!todo.empty()) {
     geom::Cell cell = std::move(todo.back());
@@ -55,19 +55,19 @@ std::vector<geom::Cell> split_lots(const geom::Cell& block, const ZoneParams& p,
 
 class Split : public LotLayout {
  public:
-  explicit Split(const ZoneParams& params) : params_(params) {}
+  explicit Split(const LotSettings& settings) : settings_(settings) {}
   std::vector<PlannedLot> plan(const Block& block, int index, Random& rng) const override {
     std::vector<PlannedLot> out;
-    for (geom::Cell& c : split_lots(block.cell, params_, rng)) out.push_back({index, block.zone, {}, std::move(c)});
+    for (geom::Cell& c : split_lots(block.cell, settings_, rng)) out.push_back({index, block.zone, {}, std::move(c)});
     return out;
   }
 
  private:
-  ZoneParams params_;
+  LotSettings settings_;
 };
 
 }  // namespace
 
-std::unique_ptr<LotLayout> make_split(const ZoneParams& params) { return std::make_unique<Split>(params); }
+std::unique_ptr<LotLayout> make_split(const LotSettings& settings) { return std::make_unique<Split>(settings); }
 
 }  // namespace exacity

@@ -21,7 +21,7 @@ Vec3 Placement::apply(Vec3 v, double floor) const {
   return {position.x + c * v[0] - s * v[1], position.y + s * v[0] + c * v[1], floor + scale * v[2]};
 }
 
-double building_height(const ZoneParams& p, double distance, double radius, Random& rng) {
+double building_height(const BuildingSettings& p, double distance, double radius, Random& rng) {
   double near_centre = radius > 0 ? 1 - std::min(distance / radius, 1.0) : 1;
   double scale = 0.5 + 0.5 * near_centre;
   double top = p.max_height * scale;
@@ -49,7 +49,7 @@ bool near_rectangle(const geom::Polygon& p) {
 // larger than `max_footprint_area`, `building_gap` apart and half that inside the lot's
 // other edges; where one does not fit, a smaller one is tried, down to
 // `min_footprint_width`. Each is checked exactly against the lot and the footprints taken.
-std::vector<geom::Ring> street_footprints(Occupancy& occupancy, const ZoneParams& p, Random& rng) {
+std::vector<geom::Ring> street_footprints(Occupancy& occupancy, const BuildingSettings& p, Random& rng) {
   std::vector<geom::Ring> out;
   const Frontage& f = occupancy.frontage();
   if (!f.on_road || !(f.t1 > f.t0)) return out;
@@ -91,7 +91,7 @@ std::vector<geom::Ring> street_footprints(Occupancy& occupancy, const ZoneParams
 
 }  // namespace
 
-void choose_roof(Building& b, const ZoneParams& p) {
+void choose_roof(Building& b, const BuildingSettings& p) {
   b.roof = "flat";
   b.eaves = b.height;
   b.roof_faces.clear();
@@ -118,7 +118,7 @@ namespace {
 class Extrusion : public Placer {
  public:
   Extrusion(geom::Vec2 centre, double radius) : centre_(centre), radius_(radius) {}
-  void place(const Lot& lot, const ZoneParams& p, Occupancy& occupancy, Random& rng, Structures& out) const override {
+  void place(const Lot& lot, const BuildingSettings& p, Occupancy& occupancy, Random& rng, Structures& out) const override {
     for (geom::Ring& ring : street_footprints(occupancy, p, rng)) {
       Building b;
       b.polygon.outer = std::move(ring);
@@ -145,7 +145,7 @@ std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> zone_placers(const Sket
   const geom::Vec2 centre{(city.min_x + city.max_x) / 2, (city.min_y + city.max_y) / 2};
   const double radius = std::hypot(city.width(), city.height()) / 2;
   std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> placers;
-  for (const auto& [zone, params] : sketch.zone_params) {
+  for (const auto& [zone, settings] : sketch.zone_settings) {
     auto& list = placers[zone];
     std::unique_ptr<Placer> models = library ? make_model_placer(*library, zone, ModelKind::Building) : nullptr;
     list.push_back(models ? std::move(models) : std::make_unique<Extrusion>(centre, radius));
@@ -165,7 +165,7 @@ Structures place_buildings(const std::vector<Lot>& lots, const Sketch& sketch, c
   std::vector<Structures> placed(lots.size());
   tbb::parallel_for(std::size_t(0), lots.size(), [&](std::size_t i) {
     const Lot& lot = lots[i];
-    ZoneParams p = sketch.zone_params.at(lot.zone);
+    BuildingSettings p = sketch.zone_settings.at(lot.zone).buildings;
     if (!lot.density.empty()) p.density = lot.density;
     Random rng(mix(stage, i));
     Occupancy occupancy(lot.cell, LotEdge::kStreet);

@@ -79,7 +79,7 @@ void for_each_by_id(const std::vector<Building>& buildings, const std::vector<Mo
 // The roof a footprint gets: its kind, its faces (none for flat) and the eaves height.
 // A pitched roof rising over half the building's height, or whose skeleton leaves the
 // footprint, falls back to flat.
-void choose_roof(Building& b, const ZoneParams& p);
+void choose_roof(Building& b, const BuildingSettings& p);
 
 // Lot by lot in parallel: rows of models facing the road where the library has buildings
 // for the zone, else a row of extruded rectangles along the street; then the
@@ -95,6 +95,6 @@ void check_export_size(const std::vector<ModelInstance>& models, const ModelLibr
 
 // Seed 003's height: uniform in the zone's range scaled by 1 - distance / radius (down to
 // half at the city's edge); the top doubles with a chance of 0.1 × that scale².
-double building_height(const ZoneParams& p, double distance, double radius, Random& rng);
+double building_height(const BuildingSettings& p, double distance, double radius, Random& rng);
 
 }  // namespace exacity

@@ -72,7 +72,7 @@ struct Placing {
 };
 
 // One every `spacing` metres along the road frontage, in the middle of the setback strip.
-void place_street_furniture(Placing& s, const std::vector<int>& choices, const ZoneParams& params, Random& rng) {
+void place_street_furniture(Placing& s, const std::vector<int>& choices, const BuildingSettings& params, Random& rng) {
   if (!s.f.on_road) return;
   for (double t = s.f.t0 + s.lib.models[choices[0]].spacing / 2; t < s.f.t1;) {
     int m = pick(choices, s.lib, rng);
@@ -105,7 +105,7 @@ struct Candidate {
 
 // Enough candidates to fill the piece at the zone's density, largest first; and the depth
 // of a row that holds the deepest.
-std::vector<Candidate> draw_candidates(const Placing& s, const std::vector<int>& choices, const ZoneParams& params,
+std::vector<Candidate> draw_candidates(const Placing& s, const std::vector<int>& choices, const BuildingSettings& params,
                                        Random& rng, double& row_depth) {
   const auto [lo, hi] = spacing(params.density);
   double mean_area = 0;
@@ -158,7 +158,7 @@ bool place_in_row(Placing& s, const Candidate& c, Row& row, double offset) {
 }
 
 // Seed 002's rows: the candidates largest first, each in the first row with room.
-void place_building_rows(Placing& s, const std::vector<int>& choices, const ZoneParams& params, Random& rng) {
+void place_building_rows(Placing& s, const std::vector<int>& choices, const BuildingSettings& params, Random& rng) {
   double row_depth = 0;
   const std::vector<Candidate> candidates = draw_candidates(s, choices, params, rng, row_depth);
   const double row_pitch = row_depth + 2 * params.setback;
@@ -177,7 +177,7 @@ void place_building_rows(Placing& s, const std::vector<int>& choices, const Zone
 }  // namespace
 
 std::vector<ModelInstance> place_models(Occupancy& occupancy, const std::vector<int>& choices, ModelKind kind,
-                                        const ModelLibrary& lib, const ZoneParams& params, Random& rng) {
+                                        const ModelLibrary& lib, const BuildingSettings& params, Random& rng) {
   std::vector<ModelInstance> out;
   if (choices.empty()) return out;
   const Frontage& f = occupancy.frontage();
@@ -195,7 +195,7 @@ class ModelPlacer : public Placer {
  public:
   ModelPlacer(const ModelLibrary& library, std::vector<int> choices, ModelKind kind)
       : library_(library), choices_(std::move(choices)), kind_(kind) {}
-  void place(const Lot&, const ZoneParams& params, Occupancy& occupancy, Random& rng, Structures& out) const override {
+  void place(const Lot&, const BuildingSettings& params, Occupancy& occupancy, Random& rng, Structures& out) const override {
     for (ModelInstance& m : place_models(occupancy, choices_, kind_, library_, params, rng))
       out.models.push_back(std::move(m));
   }

@@ -14,7 +14,7 @@ namespace exacity {
 
 // Models of `kind` drawn from `choices` on the occupancy's piece.
 std::vector<ModelInstance> place_models(Occupancy& occupancy, const std::vector<int>& choices, ModelKind kind,
-                                        const ModelLibrary& library, const ZoneParams& params, Random& rng);
+                                        const ModelLibrary& library, const BuildingSettings& params, Random& rng);
 
 // The model's outline turned by `angle`, scaled and moved to `position`, on the grid.
 geom::Ring placed_outline(const Model& model, const Placement& p);

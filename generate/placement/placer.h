@@ -21,7 +21,7 @@ class Placer {
  public:
   virtual ~Placer() = default;
   // Adds what it places on the lot to `out`.
-  virtual void place(const Lot& lot, const ZoneParams& params, Occupancy& occupancy, Random& rng,
+  virtual void place(const Lot& lot, const BuildingSettings& params, Occupancy& occupancy, Random& rng,
                      Structures& out) const = 0;
 };
 

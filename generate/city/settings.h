@@ -1,0 +1,62 @@
+// Reading the sketch's settings (docs/design.md, The sketch): each step declares and reads
+// its own settings of a zone type (generate/layout/road_settings.h,
+// generate/parcels/parcel_settings.h, generate/placement/building_settings.h) through a
+// SettingsReader, which checks each value as it is read and names the key in its error.
+#pragma once
+
+#include <initializer_list>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+namespace exacity {
+
+struct Range {
+  double min = 0, max = 0;
+  friend bool operator==(const Range&, const Range&) = default;
+};
+
+// nlohmann::json refuses numbers beyond a double's range (such as 1e999) outright. So that
+// the error can name the feature, the sketch reader re-reads the text with each such
+// literal replaced by a string with this marker; the literal, when `j` is such a string.
+inline constexpr std::string_view kOverflowMarker = "exacity-overflow:";
+std::optional<std::string> overflowed_literal(const nlohmann::json& j);
+
+// A number the sketch wrote, finite and in [min, max]; else a UserError naming `file` and
+// `where`.
+double read_number(const nlohmann::json& j, const std::string& file, const std::string& where, double min, double max);
+
+// One JSON object of settings. Every getter leaves the field as it is when the key is absent.
+class SettingsReader {
+ public:
+  SettingsReader(const nlohmann::json& object, std::string file, std::string where)
+      : object_(object), file_(std::move(file)), where_(std::move(where)) {}
+
+  // Refuses the object when it is not one, or when it has a key not in `keys`, listing them.
+  void expect_keys(const std::set<std::string>& keys) const;
+
+  bool has(const char* key) const { return object_.contains(key); }
+  const nlohmann::json& at(const char* key) const { return object_.at(key); }
+  const std::string& file() const { return file_; }
+  // How errors name a key: "exacity".zones.residential.block_area.
+  std::string where(const char* key) const { return where_ + "." + key; }
+
+  void number(const char* key, double& field, double min, double max) const;
+  // [smallest, largest]; `what` says what the two numbers measure.
+  void range(const char* key, Range& field, double min, double max, const char* what) const;
+  // One of `values`; `what` is the error's text when it is none of them.
+  void choice(const char* key, std::string& field, std::initializer_list<std::string_view> values,
+              const std::string& what) const;
+  void boolean(const char* key, bool& field) const;
+
+  [[noreturn]] void fail(const char* key, const std::string& what) const;
+
+ private:
+  const nlohmann::json& object_;
+  std::string file_, where_;
+};
+
+}  // namespace exacity
