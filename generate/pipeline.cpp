@@ -1,5 +1,6 @@
 #include "generate/pipeline.h"
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <optional>
@@ -24,6 +25,33 @@ namespace exacity {
 namespace fs = std::filesystem;
 using nlohmann::ordered_json;
 
+namespace {
+
+// Lots take their block's density (a grammar's).
+std::vector<Lot> with_density(std::vector<Lot> lots, const std::vector<Block>& blocks) {
+  for (Lot& lot : lots) lot.density = blocks[lot.block].density;
+  return lots;
+}
+
+// Buildings on every lot. Lots no placer could build on are merged into a neighbour or,
+// the last time, left open (merge_unbuilt_lots), and every lot is placed again, twice at
+// most: with lot ids renumbered, every lot draws from its new stream.
+Structures build_on_lots(City& city, const std::vector<PlannedLot>& planned) {
+  constexpr int kMerges = 2;
+  for (int merges = 0;; ++merges) {
+    Structures s = place_buildings(city.lots, city.sketch, city.model_library(), city.heightmap());
+    std::vector<char> built(city.lots.size(), 0);
+    for (const Building& b : s.buildings) built[b.lot] = 1;
+    for (const ModelInstance& m : s.models) built[m.lot] |= m.kind == ModelKind::Building;
+    if (merges == kMerges || std::count(built.begin(), built.end(), 0) == 0) return s;
+    city.lots = with_density(merge_unbuilt_lots(city.network.map, planned, city.lots, built, merges + 1 == kMerges,
+                                                city.sketch, city.unbuilt_lots),
+                             city.blocks);
+  }
+}
+
+}  // namespace
+
 City build_city(const Sketch& sketch, StageClock& stages) {
   City city;
   city.sketch = sketch;
@@ -38,13 +66,13 @@ City build_city(const Sketch& sketch, StageClock& stages) {
   CityMap city_map = stages.run("zone map", [&] { return build_city_map(sketch, city.heightmap()); });
   city.network = stages.run("road network", [&] { return grow_road_network(std::move(city_map), sketch); });
   city.blocks = stages.run("blocks", [&] { return cut_blocks(city.network.map, sketch, city.network.uses); });
+  std::vector<PlannedLot> planned;
   city.lots = stages.run("lots", [&] {
-    std::vector<Lot> lots = insert_lots(city.network.map, plan_lots(city.blocks, sketch), sketch);
-    for (Lot& lot : lots) lot.density = city.blocks[lot.block].density;
-    return lots;
+    planned = plan_lots(city.blocks, sketch);
+    return with_density(insert_lots(city.network.map, planned, sketch), city.blocks);
   });
   Structures raised = stages.run("buildings", [&] {
-    Structures s = place_buildings(city.lots, sketch, city.model_library(), city.heightmap());
+    Structures s = build_on_lots(city, planned);
     check_export_size(s.models, city.model_library());
     return s;
   });
@@ -149,6 +177,7 @@ GenerateResult write_city(const City& city, const fs::path& dir, StageClock& sta
       {"seed", sketch.seed},
       {"counts", counts_report(city, mesh, gltf)},
       {"road_network", road_network_report(city.network, sketch)},
+      {"unbuilt_lots", {{"merged", city.unbuilt_lots.merged}, {"left_open", city.unbuilt_lots.left_open}}},
       {"statistics", city_statistics(city.layers, &sketch)},
       {"validation",
        {{"ok", validation.ok()}, {"problems", validation.problems}, {"widest_sliver_m", validation.widest_sliver}}},

@@ -94,6 +94,10 @@ struct Box {
     if (b.holds_nothing()) return;
     add(Vec2{b.min_x, b.min_y}), add(Vec2{b.max_x, b.max_y});
   }
+  // Whether the boxes share a point (touching counts).
+  bool meets(const Box& b) const {
+    return min_x <= b.max_x && b.min_x <= max_x && min_y <= b.max_y && b.min_y <= max_y;
+  }
 };
 
 }  // namespace geom

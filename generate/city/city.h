@@ -24,6 +24,7 @@ struct City {
   RoadNetwork network;
   std::vector<Block> blocks;
   std::vector<Lot> lots;
+  UnbuiltLots unbuilt_lots;  // lots merged into a neighbour or left open: no placer could build on them
   std::vector<Building> buildings;  // extruded
   std::vector<ModelInstance> models;  // placed from the library
   Ground ground;

@@ -1,7 +1,10 @@
 #include "generate/parcels/lots.h"
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
+#include <set>
 
 #include <tbb/parallel_for.h>
 
@@ -32,25 +35,18 @@ std::unique_ptr<LotLayout> make_lot_layout(const LotSettings& settings) {
   return settings.layout == "split" ? make_split(settings) : make_allocation(settings);
 }
 
-std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
-                             const Sketch& sketch) {
-  city_map.lots = {city_map.generated_roads.end(), static_cast<int>(planned.size())};
-  for (std::size_t l = 0; l < planned.size(); ++l) {
-    const int counter = city_map.lots.at(static_cast<int>(l));
-    if (planned[l].ring.empty()) city_map.map.add_cell_within(planned[l].block, planned[l].cell, counter);
-    else city_map.map.add_ring_within(planned[l].block, planned[l].ring, counter);
-  }
-  city_map.insert_lots();
-  // The last batch: the map is snap-rounded now, so every layer written from it, lots
-  // included, rounds without edges crossing.
-  city_map.map.snap_round();
+namespace {
 
-  // Each planned lot's pieces, those that make sensible lots.
+// Each planned lot's pieces in the map, those that make sensible lots: on the street, at
+// least min_lot_area, and within kLotShape, unless `joined` (a lot that took in an unbuilt
+// neighbour keeps the shape it has).
+std::vector<Lot> kept_lots(const CityMap& city_map, const std::vector<PlannedLot>& planned, const Sketch& sketch,
+                           const std::set<int>& joined) {
   const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
   const std::vector<int> kind =
       city_map.per_label([](const FaceLabel& f) { return f.road_surface() ? LotEdge::kStreet : LotEdge::kInner; });
-  std::vector<int> planned_of;
-  std::vector<geom::Cell> pieces = city_map.map.cells(group, kind, &planned_of);
+  std::vector<int> planned_of, component;
+  std::vector<geom::Cell> pieces = city_map.map.cells(group, kind, &planned_of, &component);
   std::vector<std::optional<Lot>> kept(pieces.size());
   tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
     const PlannedLot& plan = planned[planned_of[i]];
@@ -66,13 +62,96 @@ std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& p
       double len = std::hypot(b.x - a.x, b.y - a.y);
       if (len > longest) longest = len, ratio = geom::depth_over_width(shape.outer, a, b);
     }
-    if (ratio < kLotShape.min || ratio > kLotShape.max) return;
-    kept[i] = Lot{plan.block, plan.zone, {}, std::move(*cell), std::move(shape)};
+    if (longest == 0) return;
+    if (!joined.count(planned_of[i]) && (ratio < kLotShape.min || ratio > kLotShape.max)) return;
+    kept[i] = Lot{plan.block, plan.zone, {}, std::move(*cell), std::move(shape), planned_of[i], component[i]};
   });
   std::vector<Lot> lots;
   for (auto& lot : kept)
     if (lot) lots.push_back(std::move(*lot));
   return lots;
+}
+
+// How long two rings run side by side: the overlap of their collinear edges (both come
+// from one map, so a shared edge is the same grid segment in each, or split by a vertex
+// of a third lot; within a micrometre).
+double shared_length(const geom::Ring& a, const geom::Ring& b) {
+  double shared = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const geom::Vec2 p = a[i], q = a[(i + 1) % a.size()];
+    const double len = geom::distance(p, q);
+    if (len == 0) continue;
+    const geom::Vec2 u = geom::unit_along(p, q);
+    for (std::size_t k = 0; k < b.size(); ++k) {
+      const geom::Vec2 r = b[k], s = b[(k + 1) % b.size()];
+      if (std::abs(geom::cross(u, r - p)) > 1e-6 || std::abs(geom::cross(u, s - p)) > 1e-6) continue;
+      const double t0 = geom::dot(u, r - p), t1 = geom::dot(u, s - p);
+      shared += std::max(0.0, std::min(len, std::max(t0, t1)) - std::max(0.0, std::min(t0, t1)));
+    }
+  }
+  return shared;
+}
+
+// The lot of lots[i]'s block that `may_join` allows and that shares the longest edge with
+// it, or -1.
+template <typename MayJoin>
+int neighbour(const std::vector<Lot>& lots, std::size_t i, MayJoin&& may_join) {
+  int best = -1;
+  double longest = 0;
+  const geom::Box box = lots[i].cell.bounds();
+  for (std::size_t k = 0; k < lots.size(); ++k) {
+    if (k == i || !may_join(k) || lots[k].block != lots[i].block || !box.meets(lots[k].cell.bounds())) continue;
+    if (const double d = shared_length(lots[i].polygon.outer, lots[k].polygon.outer); d > longest)
+      longest = d, best = static_cast<int>(k);
+  }
+  return best;
+}
+
+}  // namespace
+
+std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
+                             const Sketch& sketch) {
+  city_map.lots = {city_map.generated_roads.end(), static_cast<int>(planned.size())};
+  for (std::size_t l = 0; l < planned.size(); ++l) {
+    const int counter = city_map.lots.at(static_cast<int>(l));
+    if (planned[l].ring.empty()) city_map.map.add_cell_within(planned[l].block, planned[l].cell, counter);
+    else city_map.map.add_ring_within(planned[l].block, planned[l].ring, counter);
+  }
+  city_map.insert_lots();
+  // The last batch: the map is snap-rounded now, so every layer written from it, lots
+  // included, rounds without edges crossing.
+  city_map.map.snap_round();
+
+  return kept_lots(city_map, planned, sketch, {});
+}
+
+std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
+                                    const std::vector<Lot>& lots, const std::vector<char>& built,
+                                    bool last, const Sketch& sketch, UnbuiltLots& tally) {
+  std::map<int, int> lot_of_piece;  // an unbuilt lot's piece -> the planned lot it joins, or -1
+  std::set<int> joined;             // planned lots that took one in
+  std::vector<char> settled(lots.size(), 0);  // unbuilt lots joined, or kept for another to join
+  for (std::size_t i = 0; i < lots.size(); ++i) {
+    if (built[i] || settled[i]) continue;
+    settled[i] = 1;
+    int next = neighbour(lots, i, [&](std::size_t k) { return built[k]; });
+    // Two unbuilt lots together may hold a building (two shallow rows back to back).
+    if (next < 0 && !last) next = neighbour(lots, i, [&](std::size_t k) { return !built[k] && !settled[k]; });
+    if (next >= 0 && !built[next]) settled[next] = 1;
+    if (next < 0 && !last) continue;
+    lot_of_piece[lots[i].piece] = next >= 0 ? lots[next].planned : -1;
+    if (next >= 0) joined.insert(lots[next].planned), ++tally.merged;
+    else ++tally.left_open;
+  }
+  const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
+  city_map.map.relabel_components(group, [&](int c, int label) {
+    auto it = lot_of_piece.find(c);
+    if (it == lot_of_piece.end()) return label;
+    FaceLabel l = city_map.labels[label];
+    l.lot = it->second;
+    return city_map.label_index(l);
+  });
+  return kept_lots(city_map, planned, sketch, joined);
 }
 
 }  // namespace exacity

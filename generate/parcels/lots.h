@@ -23,6 +23,8 @@ struct Lot {
   std::string density;     // its block's (a grammar's): "" for the zone's own
   geom::Cell cell;         // as written (doubles); edge kinds are LotEdge's
   geom::Polygon polygon;   // the same, as a plain polygon
+  int planned = -1;        // the planned lot it is a piece of (its faces' FaceLabel::lot)
+  int piece = -1;          // its component among the map's lot faces (geom::PlanarMap::cells)
 };
 // The kind of a lot cell's edge (its geom::Cell edge tag).
 struct LotEdge {
@@ -39,5 +41,20 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch
 // there that they lie in. Returns the lots as they ended up.
 std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& lots,
                              const Sketch& sketch);
+
+// What merge_unbuilt_lots did, for report.json.
+struct UnbuiltLots {
+  int merged = 0;     // lots joined to a neighbour
+  int left_open = 0;  // lots with no built neighbour, given back to their block's open land
+};
+
+// Lots no placer could build on (built[i] is 0), too small or too sharp for the zone's
+// smallest building: each is joined, in the map, to the built lot of its block it shares
+// the longest edge with (its neighbour along the street, mostly); else, unless `last`, to
+// such an unbuilt lot, since the two may hold a building together; else, when `last`, it
+// is no lot and its land is open. Returns the lots as they now are, in the map's order.
+std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
+                                    const std::vector<Lot>& lots, const std::vector<char>& built, bool last,
+                                    const Sketch& sketch, UnbuiltLots& tally);
 
 }  // namespace exacity
