@@ -114,10 +114,13 @@ TEST(ModelLibrary, FrontTurnsToMinusY) {
   wedge.material.assign(wedge.triangles.size(), 0);
   wedge.materials = {{"default", {0.5, 0.5, 0.5}}};
   Model m = normalise_model(wedge, "z", "+x", 1, "test");
+  int tall = 0;
   for (const Vec3& v : m.mesh.vertices)
     if (v[2] == 3) {
+      ++tall;
       EXPECT_EQ(v[1], -m.depth / 2);  // the tall edge is at the front
     }
+  EXPECT_EQ(tall, 2);  // both ends of the tall edge, still 3 high
   EXPECT_EQ(m.width, 1.0);
   EXPECT_EQ(m.depth, 2.0);
   EXPECT_THROW(normalise_model(wedge, "z", "+z", 1, "test"), UserError);

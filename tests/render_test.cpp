@@ -1,8 +1,10 @@
 // The renderer against analytic answers: a white furnace, energy conservation, a sun-lit
 // plane; cameras, the overview height and the minimap's ground footprint by hand; images
-// independent of the thread count; the EXR's data layers read back exactly.
+// independent of the thread count; the EXR's data layers read back exactly; what the
+// overview and the minimap show.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include <OpenImageIO/imageio.h>
@@ -13,6 +15,7 @@
 #include "render/image_io.h"
 #include "render/material.h"
 #include "render/path_tracer.h"
+#include "render/render.h"
 #include "render/sampling.h"
 #include "render/scene.h"
 #include "render/sky.h"
@@ -253,5 +256,113 @@ TEST(Render, ExrKeepsItsDataLayersExactly) {
   for (int i = 0; i < 6; ++i) {
     EXPECT_EQ(ids[i], img.id[i]);
     EXPECT_EQ(depth[i], img.depth[i]);
+  }
+}
+
+namespace {
+
+struct Png {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;
+  std::array<int, 3> at(int x, int y) const {
+    const std::uint8_t* p = &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
+    return {p[0], p[1], p[2]};
+  }
+  // The mean colour of the square of side 2r + 1 around (x, y).
+  std::array<double, 3> mean(int x, int y, int r) const {
+    std::array<double, 3> sum{0, 0, 0};
+    for (int j = y - r; j <= y + r; ++j)
+      for (int i = x - r; i <= x + r; ++i)
+        for (int c = 0; c < 3; ++c) sum[c] += at(i, j)[c];
+    for (double& s : sum) s /= (2 * r + 1) * (2 * r + 1);
+    return sum;
+  }
+};
+
+Png read_png(const std::filesystem::path& file) {
+  Png png;
+  auto in = OIIO::ImageInput::open(file.string());
+  EXPECT_TRUE(in) << file;
+  if (!in) return png;
+  png.width = in->spec().width, png.height = in->spec().height;
+  png.rgb.resize(static_cast<std::size_t>(png.width) * png.height * 3);
+  EXPECT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, png.rgb.data())) << file;
+  return png;
+}
+
+}  // namespace
+
+// A park 400 m square with water in its north-east quarter, its still seen straight down
+// from 60 m over (150, 150) with a 90 degree view: by hand, the still (96 x 64) sees
+// x 60..240 m, y 90..210 m. The overview and the minimap show the whole city north up (the
+// water top right); the minimap (256 px over the 400 m) outlines that ground in yellow,
+// marks the camera in red, and sits in the still's top-right corner.
+TEST(Render, OverviewAndMinimapShowTheCityNorthUpWithTheStillsGroundAndCamera) {
+  const std::string text = R"({"type": "FeatureCollection", "features": [
+    {"type": "Feature", "properties": {"zone": "park"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [400, 0], [400, 400], [0, 400], [0, 0]]]}},
+    {"type": "Feature", "properties": {"zone": "water"},
+     "geometry": {"type": "Polygon", "coordinates": [[[200, 200], [400, 200], [400, 400], [200, 400], [200, 200]]]}}]})";
+  exacity::StageClock clock(nullptr, exacity::kCityStages);
+  const exacity::City city = exacity::build_city(exacity::parse_sketch(text, "quarters.geojson"), clock);
+  auto dir = testing_util::temp_dir("render-minimap");
+  RenderRequest request;
+  request.camera = Camera::look({150, 150, 60}, {150, 150, 0}, 90);
+  request.width = 96, request.height = 64, request.spp = 4;
+  request.overview = request.minimap = true;
+  request.still = dir / "still.png", request.overview_file = dir / "overview.png", request.minimap_file = dir / "minimap.png";
+  const nlohmann::ordered_json report = render_city(city, request);
+
+  const std::vector<std::array<double, 2>> seen{{60, 90}, {240, 90}, {240, 210}, {60, 210}};
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(report["minimap"]["visible_ground"][i][0].get<double>(), seen[i][0], 1e-3) << i;
+    EXPECT_NEAR(report["minimap"]["visible_ground"][i][1].get<double>(), seen[i][1], 1e-3) << i;
+  }
+
+  // Water blue, park green: quarter by quarter, north up and east right.
+  auto water = [](std::array<double, 3> c) { return c[2] > c[1]; };
+  const Png overview = read_png(dir / "overview.png"), minimap = read_png(dir / "minimap.png");
+  ASSERT_EQ(overview.width, 96);
+  ASSERT_EQ(overview.height, 96);
+  EXPECT_TRUE(water(overview.mean(72, 24, 6)));
+  EXPECT_FALSE(water(overview.mean(24, 24, 6)));
+  EXPECT_FALSE(water(overview.mean(24, 72, 6)));
+  EXPECT_FALSE(water(overview.mean(72, 72, 6)));
+  ASSERT_EQ(minimap.width, 256);
+  ASSERT_EQ(minimap.height, 256);
+  EXPECT_TRUE(water(minimap.mean(192, 64, 8)));
+  EXPECT_FALSE(water(minimap.mean(64, 64, 8)));
+  EXPECT_FALSE(water(minimap.mean(64, 176, 8)));
+  EXPECT_FALSE(water(minimap.mean(192, 192, 8)));
+
+  // The visible ground at 0.64 px a metre from the centre (128, 128): rows 121.6 and 198.4,
+  // columns 38.4 and 153.6; lines 3 px wide.
+  const std::array<int, 3> yellow{255, 237, 89}, red{243, 89, 89};  // (1, 0.85, 0.1) and (0.9, 0.1, 0.1) in sRGB
+  for (int x = 42; x <= 150; ++x) {
+    EXPECT_EQ(minimap.at(x, 122), yellow) << x;
+    EXPECT_EQ(minimap.at(x, 198), yellow) << x;
+    EXPECT_NE(minimap.at(x, 112), yellow) << x;
+    EXPECT_NE(minimap.at(x, 208), yellow) << x;
+  }
+  for (int y = 126; y <= 194; ++y) {
+    EXPECT_EQ(minimap.at(38, y), yellow) << y;
+    EXPECT_EQ(minimap.at(154, y), yellow) << y;
+    EXPECT_NE(minimap.at(28, y), yellow) << y;
+    EXPECT_NE(minimap.at(164, y), yellow) << y;
+  }
+  // The camera, straight down over (150, 150): a red disc of radius 4 at (96, 160), no heading.
+  EXPECT_EQ(minimap.at(96, 160), red);
+  EXPECT_EQ(minimap.at(99, 160), red);
+  EXPECT_NE(minimap.at(96, 166), red);
+
+  // In the still's top-right corner: 32 px (a third of its height, at least 32), 8 px in,
+  // framed in white.
+  const Png still = read_png(dir / "still.png");
+  ASSERT_EQ(still.width, 96);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) ASSERT_EQ(still.at(56 + x, 8 + y), minimap.at(x * 8, y * 8)) << x << ", " << y;
+  for (int k = -2; k < 34; ++k) {
+    EXPECT_EQ(still.at(56 + k, 7), (std::array<int, 3>{255, 255, 255})) << k;
+    EXPECT_EQ(still.at(55, 8 + k), (std::array<int, 3>{255, 255, 255})) << k;
   }
 }

@@ -1,0 +1,147 @@
+// The test suite's external checkers are shown to refuse what they exist to catch: the
+// GEOS layer check (tests/check_layers.py), the Khronos glTF validator
+// (tests/js/check_glb.mjs) and the CityJSON content checks (tests/js/check_cityjson.mjs),
+// each on a small city that passes, then on a copy broken one way.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <functional>
+
+#include "generate/pipeline.h"
+#include "tests/cli_util.h"
+#include "tests/test_util.h"
+
+namespace fs = std::filesystem;
+using namespace cli_util;
+using nlohmann::json;
+
+namespace {
+
+class Checkers : public testing::Test {
+ protected:
+  // One small city, generated once: a residential square, so it has roads, lots and buildings.
+  static void SetUpTestSuite() {
+    fs::path dir = testing_util::temp_dir("checkers");
+    std::ofstream(dir / "in.geojson") << R"({"type": "FeatureCollection", "exacity": {"seed": 2}, "features": [
+      {"type": "Feature", "properties": {"zone": "residential"},
+       "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [240, 0], [240, 200], [0, 200], [0, 0]]]}}]})";
+    good_ = new fs::path(dir / "out");
+    fs::create_directories(*good_);
+    exacity::generate_city(exacity::load_sketch(dir / "in.geojson"), *good_, nullptr);
+  }
+  static void TearDownTestSuite() { delete good_; }
+
+  // A fresh copy of the good city.
+  static fs::path copy(const std::string& name) {
+    fs::path out = testing_util::temp_dir("checkers-" + name) / "out";
+    fs::copy(*good_, out, fs::copy_options::recursive);
+    return out;
+  }
+
+  static void edit_json(const fs::path& file, const std::function<void(json&)>& edit) {
+    json doc = json::parse(read(file));
+    edit(doc);
+    std::ofstream(file) << doc.dump();
+  }
+
+  static fs::path* good_;
+};
+
+fs::path* Checkers::good_ = nullptr;
+
+// Rewrites a .glb's JSON chunk: padded with spaces to four bytes, the lengths set again.
+void edit_glb_json(const fs::path& file, const std::function<void(json&)>& edit) {
+  const std::string glb = read(file);
+  std::uint32_t json_length;
+  std::memcpy(&json_length, glb.data() + 12, 4);
+  json doc = json::parse(glb.substr(20, json_length));
+  edit(doc);
+  std::string text = doc.dump();
+  while (text.size() % 4) text += ' ';
+  const std::string bin = glb.substr(20 + json_length);
+  auto u32 = [](std::size_t n) {
+    const auto v = static_cast<std::uint32_t>(n);
+    return std::string(reinterpret_cast<const char*>(&v), 4);
+  };
+  std::ofstream(file, std::ios::binary) << glb.substr(0, 8) << u32(20 + text.size() + bin.size()) << u32(text.size())
+                                        << glb.substr(16, 4) << text << bin;
+}
+
+}  // namespace
+
+TEST_F(Checkers, GeosRefusesOverlappingZonesAndAWronglyTurnedRing) {
+  Result good = shell(geos_check(copy("geos-good")));
+  EXPECT_EQ(good.code, 0) << good.out;
+
+  fs::path out = copy("geos-overlap");
+  edit_json(out / "vector" / "zones.geojson", [](json& doc) {
+    json twin = doc["features"][0];
+    twin["properties"]["id"] = 999999;
+    doc["features"].push_back(twin);
+  });
+  Result overlap = shell(geos_check(out));
+  EXPECT_EQ(overlap.code, 1) << overlap.out;
+  EXPECT_NE(overlap.out.find("zones[0] and zones["), std::string::npos) << overlap.out;
+  EXPECT_NE(overlap.out.find(" overlap by "), std::string::npos) << overlap.out;
+
+  out = copy("geos-orientation");
+  edit_json(out / "vector" / "lots.geojson", [](json& doc) {
+    auto& ring = doc["features"][0]["geometry"]["coordinates"][0];
+    std::reverse(ring.begin(), ring.end());
+  });
+  Result turned = shell(geos_check(out));
+  EXPECT_EQ(turned.code, 1) << turned.out;
+  EXPECT_NE(turned.out.find("lots[0]: ring 0 has the wrong orientation"), std::string::npos) << turned.out;
+}
+
+TEST_F(Checkers, GltfValidatorRefusesAnAccessorLongerThanItsData) {
+  const std::string check = node_tool("check_glb.mjs") + " ";
+  Result good = shell(check + (copy("glb-good") / "city.glb").string());
+  EXPECT_EQ(good.code, 0) << good.out;
+
+  fs::path out = copy("glb-long");
+  edit_glb_json(out / "city.glb", [](json& doc) {
+    auto& a = doc["accessors"][0];
+    a["count"] = a["count"].get<int>() * 2;
+  });
+  Result broken = shell(check + (out / "city.glb").string());
+  EXPECT_EQ(broken.code, 1) << broken.out;
+  EXPECT_NE(broken.out.find("error: ACCESSOR_TOO_LONG"), std::string::npos) << broken.out;
+}
+
+TEST_F(Checkers, CityJsonContentChecksRefuseAnOpenSolidABadIndexAndAMissingTemplate) {
+  const std::string check = node_tool("check_cityjson.mjs") + " ";
+  Result good = shell(check + (copy("cityjson-good") / "city.city.json").string());
+  EXPECT_EQ(good.code, 0) << good.out;
+  EXPECT_NE(good.out.find("content only, no schemas"), std::string::npos) << good.out;
+
+  // The first Solid, from the first city object that has one.
+  auto first_solid = [](json& doc) -> json& {
+    for (auto& [id, object] : doc["CityObjects"].items())
+      for (auto& g : object["geometry"])
+        if (g["type"] == "Solid") return g;
+    throw std::runtime_error("no Solid in the city");
+  };
+  struct Case {
+    std::string name, expect;
+    std::function<void(json&)> tamper;
+  };
+  const std::vector<Case> cases = {
+      {"open", "shell is not closed", [&](json& doc) { first_solid(doc)["boundaries"][0].erase(0); }},
+      {"index", "vertex index out of range",
+       [&](json& doc) { first_solid(doc)["boundaries"][0][0][0][0] = doc["vertices"].size(); }},
+      {"template", "no template 99",
+       [](json& doc) {
+         auto& object = doc["CityObjects"].begin().value();
+         object["geometry"].push_back({{"type", "GeometryInstance"}, {"template", 99}, {"boundaries", {0}},
+                                       {"transformationMatrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}}});
+       }},
+  };
+  for (const Case& c : cases) {
+    fs::path out = copy("cityjson-" + c.name);
+    edit_json(out / "city.city.json", c.tamper);
+    Result broken = shell(check + (out / "city.city.json").string());
+    EXPECT_EQ(broken.code, 1) << c.name << ": " << broken.out;
+    EXPECT_NE(broken.out.find(c.expect), std::string::npos) << c.name << ": " << broken.out;
+  }
+}
