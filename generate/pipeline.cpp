@@ -114,6 +114,7 @@ ordered_json road_network_report(const RoadNetwork& network, const Sketch& sketc
           {"junctions_by_degree", junctions},
           {"cells_without_access", network.stats.cells_without_access},
           {"links", network.stats.links},
+          {"dropped_roads", network.stats.dropped_roads},
           {"sketch_junctions", {{"mitred", network.map.mitred_junctions}, {"discs", network.map.disc_junctions}}},
           {"joined_ends", sketch.joined_ends},
           {"dead_ends", dead_ends}};

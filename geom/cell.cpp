@@ -279,6 +279,18 @@ Path extend_to(const Path& road, const std::vector<Path>& targets, double reach,
   return Path(std::move(impl));
 }
 
+bool ends_on(const Path& road, const std::vector<Path>& targets) {
+  const auto& pts = road.exact().points;
+  if (pts.empty()) return false;
+  const Point& q = pts.back();
+  for (const Path& target : targets) {
+    const auto& t = target.exact().points;
+    for (std::size_t i = 0; i + 1 < t.size(); ++i)
+      if (Segment(t[i], t[i + 1]).has_on(q)) return true;
+  }
+  return false;
+}
+
 std::optional<Link> shortest_link(const std::vector<Path>& from, const std::vector<Path>& to) {
   struct Plain {
     Polyline line;

@@ -133,6 +133,9 @@ std::optional<Link> shortest_link(const std::vector<Path>& from, const std::vect
 // instead, unless `may_turn` is false; unchanged when there is none.
 Path extend_to(const Path& road, const std::vector<Path>& targets, double reach, bool may_turn = true);
 
+// Whether the road's last point lies exactly on one of `targets`: it meets it already.
+bool ends_on(const Path& road, const std::vector<Path>& targets);
+
 // The cell less a band of width `setback` inside every boundary edge (docs/design.md, Exactness rule 3:
 // each band's inner side runs through two offset points rounded to the grid); the parts
 // left, exact. Bands run `setback` past each edge's ends, so corners are cleared too.

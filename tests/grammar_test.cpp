@@ -2,6 +2,7 @@
 // layout tree, and the grammar layout end to end (no two roads side by side on a border).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -222,4 +223,40 @@ TEST(GrammarLayout, AwkwardZonesValidateWithEveryLotOnAStreet) {
     Validation v = validate_output(out);
     EXPECT_TRUE(v.ok()) << (v.problems.empty() ? "" : v.problems[0]);
   }
+}
+
+TEST(GrammarLayout, ARoadWrittenShortEdgeFirstRunsAlongItsLongAxis) {
+  // Quarters with a road across and two half-roads; the park quarter must stay a green
+  // block. The second grammar writes the half-roads from a short edge.
+  const std::string quarters =
+      "1 Town 4 Residential,0,0,0.48,0,0.48,0.48,0,0.48 Residential,0.52,0,1,0,1,0.48,0.52,0.48 "
+      "Residential,0.52,0.52,1,0.52,1,1,0.52,1 Park,0,0.52,0.48,0.52,0.48,1,0,1 Road,0,0.48,1,0.48,1,0.52,0,0.52 ";
+  const std::string long_first = quarters + "Road,0.48,0,0.48,0.48,0.52,0.48,0.52,0 Road,0.48,0.52,0.48,1,0.52,1,0.52,0.52\n";
+  const std::string short_first = quarters + "Road,0.48,0,0.52,0,0.52,0.48,0.48,0.48 Road,0.52,1,0.48,1,0.48,0.52,0.52,0.52\n";
+  const std::string square = zone("residential", "[[0,0],[600,0],[600,600],[0,600],[0,0]]");
+  auto read = [](const std::filesystem::path& out, const char* layer) {
+    std::vector<std::string> problems;
+    Layer l = read_geojson(out / "vector" / (std::string(layer) + ".geojson"), problems);
+    EXPECT_TRUE(problems.empty());
+    return l;
+  };
+  const auto a = generate_with_grammar("long-first", square, long_first);
+  const auto b = generate_with_grammar("short-first", square, short_first);
+  // The same centre lines, whichever way each runs.
+  auto lines = [&](const std::filesystem::path& out) {
+    std::vector<std::vector<std::pair<double, double>>> all;
+    for (const auto& f : read(out, "roads").features) {
+      std::vector<std::pair<double, double>> line;
+      for (Vec2 p : f.line) line.push_back({p.x, p.y});
+      if (line.back() < line.front()) std::reverse(line.begin(), line.end());
+      all.push_back(line);
+    }
+    std::sort(all.begin(), all.end());
+    return all;
+  };
+  ASSERT_EQ(lines(a).size(), 3u);
+  EXPECT_EQ(lines(b), lines(a));
+  int parks = 0;
+  for (const auto& f : read(b, "blocks").features) parks += f.properties["zone"] == "park";
+  EXPECT_EQ(parks, 1);
 }

@@ -208,15 +208,26 @@ ordered_json block_figures(const BlockTally& t) {
 
 struct LotTally {
   std::vector<double> areas;
-  std::size_t fronting = 0, count = 0, odd_shape = 0, sharp = 0;
+  std::size_t fronting = 0, count = 0, odd_shape = 0, sharp = 0, unbuilt = 0;
 };
 
-LotTally tally_lots(const Layer& lots, const std::string& zone, const RoadEdges& road_edges) {
+// The ids of the lots a building stands on: an extruded one or a placed building model
+// (street furniture and trees build nothing).
+std::set<int> built_lots(const Layer& buildings) {
+  std::set<int> built;
+  for (const auto& f : buildings.features)
+    if (f.properties.value("kind", "building") == "building" && f.properties.contains("lot") && f.properties["lot"].is_number_integer())
+      built.insert(f.properties["lot"].get<int>());
+  return built;
+}
+
+LotTally tally_lots(const Layer& lots, const std::string& zone, const RoadEdges& road_edges, const std::set<int>& built) {
   LotTally t;
   for (const auto& f : lots.features) {
     if (!in_zone(f, zone)) continue;
     t.areas.push_back(geom::area(f.polygon));
     ++t.count;
+    t.unbuilt += !f.properties.contains("id") || !built.count(f.properties["id"].get<int>());
     const double ratio = lot_depth_over_width(f.polygon, road_edges);
     t.fronting += ratio > 0;
     t.odd_shape += ratio > 0 && (ratio < kLotShape.min || ratio > kLotShape.max);
@@ -229,7 +240,8 @@ ordered_json lot_figures(const LotTally& t) {
   return {{"area_m2", summary(t.areas)},
           {"share_touching_road", share(t.fronting, t.count)},
           {"share_depth_over_width_outside_0.5_5", share(t.odd_shape, t.count)},
-          {"share_sharp_angle", share(t.sharp, t.count)}};
+          {"share_sharp_angle", share(t.sharp, t.count)},
+          {"share_without_building", share(t.unbuilt, t.count)}};
 }
 
 // Buildings only: a layer's other kinds of feature have no footprint to measure.
@@ -244,7 +256,7 @@ std::vector<const geom::Polygon*> zone_footprints(const Layer& buildings, const 
 std::optional<ordered_json> zone_figures(const CityLayers& layers, const std::string& zone, const RoadEdges& road_edges,
                                          const Sketch* sketch) {
   const BlockTally blocks = tally_blocks(layers.blocks, zone, sketch);
-  const LotTally lots = tally_lots(layers.lots, zone, road_edges);
+  const LotTally lots = tally_lots(layers.lots, zone, road_edges, built_lots(layers.buildings));
   const std::vector<const geom::Polygon*> footprints = zone_footprints(layers.buildings, zone);
   if (blocks.areas.empty() && lots.areas.empty() && footprints.empty()) return std::nullopt;
   return ordered_json{{"blocks", block_figures(blocks)},
@@ -432,7 +444,8 @@ std::string format_statistics(const ordered_json& s) {
         areas("lots", z["lots"]["area_m2"]);
         out << "      share of lots touching a road area: " << z["lots"]["share_touching_road"]
             << ", with depth/width outside 0.5-5: " << z["lots"]["share_depth_over_width_outside_0.5_5"]
-            << ", with an angle under 30 degrees: " << z["lots"]["share_sharp_angle"] << "\n";
+            << ", with an angle under 30 degrees: " << z["lots"]["share_sharp_angle"]
+            << ", without a building: " << z["lots"]["share_without_building"] << "\n";
       }
       const auto& f = z["footprints"];
       areas("footprints", f["area_m2"]);

@@ -22,6 +22,23 @@ bool lies_along(geom::Vec2 a, geom::Vec2 b, geom::Vec2 p, geom::Vec2 q) {
   return geom::distance_to_segment(a, p, q) <= tolerance && geom::distance_to_segment(b, p, q) <= tolerance;
 }
 
+// A road leaf's corners from the start of its long side: a road runs along its longer
+// axis, whichever edge the grammar wrote first (seed 002 writes the long one first; a road
+// read across would be a stub of its own width, which nothing joins).
+std::vector<geom::Vec2> long_side_first(std::vector<geom::Vec2> c) {
+  if (c.size() == 4) {
+    const double along = geom::distance(mid(c[3], c[0]), mid(c[1], c[2]));
+    const double across = geom::distance(mid(c[0], c[1]), mid(c[2], c[3]));
+    if (across > along) std::rotate(c.begin(), c.begin() + 1, c.end());
+  } else {
+    std::size_t longest = 0;
+    for (std::size_t i = 1; i < c.size(); ++i)
+      if (geom::distance(c[i], c[(i + 1) % c.size()]) > geom::distance(c[longest], c[(longest + 1) % c.size()])) longest = i;
+    std::rotate(c.begin(), c.begin() + static_cast<std::ptrdiff_t>(longest), c.end());
+  }
+  return c;
+}
+
 class GrammarLayout : public RoadLayout {
  public:
   GrammarLayout(const RoadSettings& roads, double min_block_area, ZoneType type, const SketchLines& sketch)
@@ -51,7 +68,7 @@ class GrammarLayout : public RoadLayout {
         plan.uses.push_back({std::move(leaf.corners), t});
         continue;
       }
-      const auto& c = leaf.corners;
+      const std::vector<geom::Vec2> c = long_side_first(leaf.corners);
       const geom::Vec2 a = c[0], b = c[1];
       if (geom::distance(a, b) == 0) continue;
       bool along_sketch = false;

@@ -67,6 +67,7 @@ struct RoadPlan {
   std::vector<PlannedUse> uses;
   int levels = 0;                // growth's levels
   int cells_without_access = 0;  // growth's cells left whole: none of their roads could reach a road
+  int dropped_roads = 0;         // drawn roads left out: an end reached no road, sketch road or edge
 };
 
 class RoadLayout {

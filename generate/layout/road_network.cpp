@@ -170,6 +170,7 @@ void lay_out_regions(CityMap& city_map, const Sketch& sketch, const SketchLines&
     const int first_region = static_cast<int>(laid.joined.size());
     laid.joined.insert(laid.joined.end(), plan.piece_reaches_sketch.begin(), plan.piece_reaches_sketch.end());
     stats.regions += static_cast<int>(plan.piece_reaches_sketch.size());
+    stats.dropped_roads += plan.dropped_roads;
     const int first = static_cast<int>(city_map.roads.size());
     for (const LaidRoad& r : plan.roads) add_road(city_map, r, first_region + r.piece);
     for (const Junction& j : plan.junctions) laid.junctions.push_back({j.at, first + j.first_road});

@@ -14,6 +14,7 @@ struct RoadNetworkStats {
   int levels = 0;
   int cells_without_access = 0;  // cells left whole: none of their roads could reach a road
   int links = 0;                 // roads added to join a region's streets to the rest (link_islands)
+  int dropped_roads = 0;         // a layout's drawn roads that reached nothing (RoadPlan::dropped_roads)
 };
 
 struct RoadNetwork {

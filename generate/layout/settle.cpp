@@ -144,6 +144,11 @@ struct RunOn {
 // turning to the nearest other road. None when the end reaches none of them.
 std::optional<RunOn> run_on(const geom::Path& path, const std::vector<geom::Path>& ahead, double width,
                             const Targets& targets) {
+  // An end drawn exactly onto a road or the edge (a grammar's road across its whole piece)
+  // meets it already.
+  if (geom::ends_on(path, ahead)) return RunOn{path, true, false};
+  if (geom::ends_on(path, targets.sketch_roads)) return RunOn{path, false, true};
+  if (geom::ends_on(path, targets.edges)) return RunOn{path, false, false};
   const std::size_t n = path.size();
   for (int step = 0; step < 4; ++step) {
     geom::Path longer = step == 0   ? geom::extend_to(path, ahead, targets.reach, false)
@@ -281,6 +286,7 @@ RoadPlan settle(LinePlan plan, const geom::Cell& cell, const SketchLines& sketch
   join_pieces(s, roads);
   RoadPlan settled = plan_of(s.settled);
   settled.uses = std::move(plan.uses);
+  settled.dropped_roads = static_cast<int>(roads.size() - s.settled.size());
   return settled;
 }
 

@@ -37,11 +37,27 @@ std::unique_ptr<LotLayout> make_lot_layout(const LotSettings& settings) {
 
 namespace {
 
+// A lot's depth over its width (geom::depth_over_width) across and along its longest
+// street edge, over the corners of `rings` (one lot, or two about to be one: the extents
+// of a union are those of its parts); 0 without a street edge.
+double lot_shape(const std::vector<const geom::Cell*>& cells, const std::vector<const geom::Ring*>& rings) {
+  double longest = 0;
+  std::pair<geom::Vec2, geom::Vec2> front;
+  for (const geom::Cell* cell : cells)
+    for (auto [a, b] : cell->edges_of_kind(LotEdge::kStreet))
+      if (const double len = geom::distance(a, b); len > longest) longest = len, front = {a, b};
+  if (longest == 0) return 0;
+  geom::Ring corners;
+  for (const geom::Ring* r : rings) corners.insert(corners.end(), r->begin(), r->end());
+  return geom::depth_over_width(corners, front.first, front.second);
+}
+
+bool good_shape(double ratio) { return ratio >= kLotShape.min && ratio <= kLotShape.max; }
+
 // Each planned lot's pieces in the map, those that make sensible lots: on the street, at
-// least min_lot_area, and within kLotShape, unless `joined` (a lot that took in an unbuilt
-// neighbour keeps the shape it has).
-std::vector<Lot> kept_lots(const CityMap& city_map, const std::vector<PlannedLot>& planned, const Sketch& sketch,
-                           const std::set<int>& joined) {
+// least min_lot_area, and within kLotShape. A lot's rank orders the kept pieces of its
+// planned lot.
+std::vector<Lot> kept_lots(const CityMap& city_map, const std::vector<PlannedLot>& planned, const Sketch& sketch) {
   const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
   const std::vector<int> kind =
       city_map.per_label([](const FaceLabel& f) { return f.road_surface() ? LotEdge::kStreet : LotEdge::kInner; });
@@ -57,18 +73,13 @@ std::vector<Lot> kept_lots(const CityMap& city_map, const std::vector<PlannedLot
     if (!cell) return;
     geom::Polygon shape = cell->to_plain();
     if (geom::area(shape) < sketch.zone_settings.at(plan.zone).lots.min_lot_area) return;
-    double longest = 0, ratio = 0;
-    for (auto [a, b] : cell->edges_of_kind(LotEdge::kStreet)) {
-      double len = std::hypot(b.x - a.x, b.y - a.y);
-      if (len > longest) longest = len, ratio = geom::depth_over_width(shape.outer, a, b);
-    }
-    if (longest == 0) return;
-    if (!joined.count(planned_of[i]) && (ratio < kLotShape.min || ratio > kLotShape.max)) return;
-    kept[i] = Lot{plan.block, plan.zone, {}, std::move(*cell), std::move(shape), planned_of[i], component[i]};
+    if (!good_shape(lot_shape({&*cell}, {&shape.outer}))) return;
+    kept[i] = Lot{plan.block, plan.zone, {}, std::move(*cell), std::move(shape), planned_of[i], 0, component[i]};
   });
   std::vector<Lot> lots;
+  std::map<int, int> pieces_of_planned;
   for (auto& lot : kept)
-    if (lot) lots.push_back(std::move(*lot));
+    if (lot) lot->rank = pieces_of_planned[lot->planned]++, lots.push_back(std::move(*lot));
   return lots;
 }
 
@@ -93,7 +104,7 @@ double shared_length(const geom::Ring& a, const geom::Ring& b) {
 }
 
 // The lot of lots[i]'s block that `may_join` allows and that shares the longest edge with
-// it, or -1.
+// it, of those it would make a lot of good shape with; or -1.
 template <typename MayJoin>
 int neighbour(const std::vector<Lot>& lots, std::size_t i, MayJoin&& may_join) {
   int best = -1;
@@ -101,6 +112,7 @@ int neighbour(const std::vector<Lot>& lots, std::size_t i, MayJoin&& may_join) {
   const geom::Box box = lots[i].cell.bounds();
   for (std::size_t k = 0; k < lots.size(); ++k) {
     if (k == i || !may_join(k) || lots[k].block != lots[i].block || !box.meets(lots[k].cell.bounds())) continue;
+    if (!good_shape(lot_shape({&lots[i].cell, &lots[k].cell}, {&lots[i].polygon.outer, &lots[k].polygon.outer}))) continue;
     if (const double d = shared_length(lots[i].polygon.outer, lots[k].polygon.outer); d > longest)
       longest = d, best = static_cast<int>(k);
   }
@@ -122,14 +134,13 @@ std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& p
   // included, rounds without edges crossing.
   city_map.map.snap_round();
 
-  return kept_lots(city_map, planned, sketch, {});
+  return kept_lots(city_map, planned, sketch);
 }
 
 std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
                                     const std::vector<Lot>& lots, const std::vector<char>& built,
                                     bool last, const Sketch& sketch, UnbuiltLots& tally) {
   std::map<int, int> lot_of_piece;  // an unbuilt lot's piece -> the planned lot it joins, or -1
-  std::set<int> joined;             // planned lots that took one in
   std::vector<char> settled(lots.size(), 0);  // unbuilt lots joined, or kept for another to join
   for (std::size_t i = 0; i < lots.size(); ++i) {
     if (built[i] || settled[i]) continue;
@@ -140,7 +151,7 @@ std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<Planned
     if (next >= 0 && !built[next]) settled[next] = 1;
     if (next < 0 && !last) continue;
     lot_of_piece[lots[i].piece] = next >= 0 ? lots[next].planned : -1;
-    if (next >= 0) joined.insert(lots[next].planned), ++tally.merged;
+    if (next >= 0) ++tally.merged;
     else ++tally.left_open;
   }
   const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
@@ -151,7 +162,7 @@ std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<Planned
     l.lot = it->second;
     return city_map.label_index(l);
   });
-  return kept_lots(city_map, planned, sketch, joined);
+  return kept_lots(city_map, planned, sketch);
 }
 
 }  // namespace exacity

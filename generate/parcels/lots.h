@@ -24,6 +24,7 @@ struct Lot {
   geom::Cell cell;         // as written (doubles); edge kinds are LotEdge's
   geom::Polygon polygon;   // the same, as a plain polygon
   int planned = -1;        // the planned lot it is a piece of (its faces' FaceLabel::lot)
+  int rank = 0;            // its order among the planned lot's pieces kept as lots
   int piece = -1;          // its component among the map's lot faces (geom::PlanarMap::cells)
 };
 // The kind of a lot cell's edge (its geom::Cell edge tag).

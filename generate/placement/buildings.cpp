@@ -167,7 +167,8 @@ Structures place_buildings(const std::vector<Lot>& lots, const Sketch& sketch, c
     const Lot& lot = lots[i];
     BuildingSettings p = sketch.zone_settings.at(lot.zone).buildings;
     if (!lot.density.empty()) p.density = lot.density;
-    Random rng(mix(stage, i));
+    // By the lot's planned lot, not its index, so merging lots around it leaves it as it was.
+    Random rng(mix(mix(stage, static_cast<std::uint64_t>(lot.planned)), static_cast<std::uint64_t>(lot.rank)));
     Occupancy occupancy(lot.cell, LotEdge::kStreet);
     Structures& here = placed[i];
     for (const auto& placer : placers.at(lot.zone)) placer->place(lot, p, occupancy, rng, here);
