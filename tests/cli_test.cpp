@@ -192,6 +192,7 @@ TEST(Cli, EveryExampleGeneratesAndValidates) {
       EXPECT_EQ(z["blocks"]["share_area_over_4x_block_area"].get<double>(), 0.0) << sketch << " " << zone;
       EXPECT_EQ(z["lots"]["share_touching_road"].get<double>(), 1.0) << sketch << " " << zone;
       EXPECT_EQ(z["lots"]["share_depth_over_width_outside_0.5_5"].get<double>(), 0.0) << sketch << " " << zone;
+      EXPECT_LE(z["lots"]["share_without_building"].get<double>(), 0.03) << sketch << " " << zone;
       EXPECT_LT(z["footprints"]["share_sharp_angle"].get<double>(), 0.01) << sketch << " " << zone;
       if (zone != "residential") continue;
       EXPECT_LT(z["footprints"]["share_under_5m_across"].get<double>(), 0.05) << sketch;

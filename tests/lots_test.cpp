@@ -87,6 +87,25 @@ TEST(Lots, CitiesWithEveryStrategyValidate) {
   }
 }
 
+TEST(Lots, ShallowStripsBetweenRoadsAreBuiltOn) {
+  // Blocks 28 m deep between main roads: lots from both sides would be 14 m deep, too
+  // shallow for a house behind its setback; joined back to back they hold one.
+  std::string features = R"({"type": "Feature", "properties": {"zone": "residential"}, "geometry": {"type": "Polygon",
+      "coordinates": [[[0,-30],[600,-30],[600,110],[0,110],[0,-30]]]}})";
+  for (int y : {0, 40, 80})
+    features += R"(, {"type": "Feature", "properties": {"road": "main"}, "geometry": {"type": "LineString",
+        "coordinates": [[-20,)" + std::to_string(y) + "],[620," + std::to_string(y) + "]]}}";
+  nlohmann::ordered_json report;
+  Validation v = generate_and_validate("strips", R"({"type": "FeatureCollection", "exacity": {"seed": 2, "zones":
+      {"residential": {"layout": "streets"}}}, "features": [)" + features + "]}",
+                                       &report);
+  ASSERT_TRUE(v.ok()) << v.problems[0];
+  const auto& lots = report["statistics"]["zones"]["residential"]["lots"];
+  EXPECT_GT(lots["area_m2"]["count"].get<int>(), 20);
+  EXPECT_LE(lots["share_without_building"].get<double>(), 0.03);
+  EXPECT_GT(report["unbuilt_lots"]["merged"].get<int>(), 0);
+}
+
 TEST(Buildings, HeightsFallWithDistanceFromTheCentre) {
   BuildingSettings p = default_building_settings(ZoneType::Commercial);  // 12 to 48 m
   Random rng(3);

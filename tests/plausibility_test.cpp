@@ -144,6 +144,7 @@ TEST_P(Plausibility, CityMeetsEveryTarget) {
     EXPECT_EQ(z["blocks"]["share_area_over_4x_block_area"].get<double>(), 0.0);
     EXPECT_EQ(z["lots"]["share_touching_road"].get<double>(), 1.0);
     EXPECT_EQ(z["lots"]["share_depth_over_width_outside_0.5_5"].get<double>(), 0.0);
+    EXPECT_LE(z["lots"]["share_without_building"].get<double>(), 0.03);
     EXPECT_LT(z["footprints"]["share_sharp_angle"].get<double>(), 0.01);
     if (name == "residential") {
       EXPECT_LT(z["footprints"]["share_under_5m_across"].get<double>(), 0.05);
