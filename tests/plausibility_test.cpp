@@ -1,5 +1,5 @@
 // Cities that read as cities (docs/design.md, Plausibility), on shapes growth used to stall in:
-// a U, a comb, a ring round a lake, a spiral, a corridor 60 m wide, zones cut by highways;
+// a U, a comb, a ring round a lake, a spiral, corridors, a narrow ring, zones cut by highways;
 // and regions whose streets would be islands, apart from every other road.
 // Each city validates exactly, and its statistics meet the targets: no block over 4x its
 // zone's block_area, every lot on a road area, no dead end inside the city, footprints
@@ -77,6 +77,10 @@ std::vector<Shape> shapes() {
       {"park-ring", {zone("residential", {circle({0, 0}, 550, 32), circle({0, 0}, 300, 32)}), zone("park", {circle({0, 0}, 300, 32)})}},
       {"spiral", {zone("commercial", {spiral})}},
       {"corridor", {zone("residential", {{{0, 0}, {1200, 0}, {1200, 60}, {60, 60}, {60, 900}, {0, 900}}})}},
+      // A long L 80 m wide, whose far arm growth once left whole, and a narrow industrial ring
+      // (70 m) its straight roads could only shave.
+      {"long-l", {zone("residential", {{{0, 0}, {2000, 0}, {2000, 80}, {80, 80}, {80, 1500}, {0, 1500}}})}},
+      {"narrow-ring", {zone("industrial", {circle({0, 0}, 800, 64), circle({0, 0}, 730, 64)})}},
       {"cut", {zone("residential", {{{0, 0}, {1000, 0}, {1000, 400}, {400, 400}, {400, 1000}, {0, 1000}}}),
                zone("industrial", {{{400, 0}, {1000, 0}, {1000, 400}, {400, 400}}}),
                road("highway", 24, {{-100, 200}, {1100, 230}}), road("main", 12, {{200, -100}, {215, 1100}})}},

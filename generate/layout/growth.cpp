@@ -159,14 +159,14 @@ std::optional<double> strip_axis(const geom::Cell& cell, const GrowthSettings& p
 // again from just inside one of those edges, the first branch heading straight back to
 // it. Empty when that fails too.
 CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const GrowthSettings& p, int level, bool top, double orientation,
-                    const SketchLines& sketch_lines, Random& rng) {
+                    int stalls, const SketchLines& sketch_lines, Random& rng) {
   const geom::Box b = cell.bounds();
   const double reach = 2 * std::hypot(b.width(), b.height()) + 1;  // past the cell from anywhere in it
   auto edges = edges_to_reach(cell, top);
   const bool free = edges.empty();
+  // A strip is cut across, never along.
+  const std::optional<double> axis = strip_axis(cell, p);
   {
-    // A strip is cut across, never along.
-    const std::optional<double> axis = strip_axis(cell, p);
     geom::Growth growth(cell, p.segment_length);
     CellRoads grown{seed, {}, {}};
     if (grow_branches(growth, seed, p, level, free, axis ? *axis + 90 : orientation, axis.has_value(), reach,
@@ -184,9 +184,27 @@ CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const GrowthSetting
     const auto& [a, c] = edges[k];
     double len = length(edges[k]);
     if (len == 0) continue;
-    geom::Vec2 m = mid(edges[k]), inward = geom::left_normal(a, c);  // the cell is on the left
-    // Half a block deep: the side branches then run one block behind this road.
+    const geom::Vec2 m = mid(edges[k]);
+    // Half a block deep: the side branches then run one block behind this road. In a
+    // corridor narrower than a block (its width about 2 area / perimeter), a block's length
+    // on: the road back runs down the corridor and the branches cut it a block along. A
+    // retry reaches further in.
     double d = std::sqrt(p.block_area) / 2;
+    if (const double width = 2 * cell.area() / geom::perimeter(cell.to_plain()); width < std::sqrt(p.block_area))
+      d = std::max(d, p.block_area / width);
+    d *= 1 + stalls;
+    // Into the cell square to the edge (the cell is on its left); into a strip along it,
+    // where that lands inside, whichever way its road edge lies.
+    geom::Vec2 inward = geom::left_normal(a, c);
+    if (axis) {
+      geom::Vec2 along{std::cos(*axis * M_PI / 180), std::sin(*axis * M_PI / 180)};
+      if (geom::dot(along, inward) < 0) along = {-along.x, -along.y};
+      for (geom::Vec2 way : {along, geom::Vec2{-along.x, -along.y}})
+        if (cell.contains(geom::snap(geom::Vec2{m.x + way.x * d, m.y + way.y * d}))) {
+          inward = way;
+          break;
+        }
+    }
     auto start = cell.point_inside_near({m.x + inward.x * d, m.y + inward.y * d});
     if (!start) continue;
     geom::Growth growth(cell, p.segment_length);
@@ -229,7 +247,7 @@ void grow_one(const Work& w, Grown& g, const GrowthSettings& p, int level, const
       g.without_access = !w.top;
     }
   };
-  CellRoads grown = grow_cell(w.cell, *g.seed, p, level, w.top, w.orientation, sketch_lines, rng);
+  CellRoads grown = grow_cell(w.cell, *g.seed, p, level, w.top, w.orientation, w.stalls, sketch_lines, rng);
   g.seed = grown.seed;
   g.roads = std::move(grown.roads);
   g.joined = std::move(grown.joined);
@@ -237,7 +255,10 @@ void grow_one(const Work& w, Grown& g, const GrowthSettings& p, int level, const
   std::vector<geom::Cell> parts = geom::split_cell(w.cell, g.roads, GrowthEdge::kGrownRoad);
   double largest = 0;
   for (const geom::Cell& part : parts) largest = std::max(largest, part.area());
-  const bool shaved = parts.size() < 2 || w.cell.area() - largest < std::min(0.05 * w.cell.area(), 0.1 * p.block_area);
+  // Cutting through a ring (a zone around a hole) leaves one part, but one the next cut divides.
+  const bool opened = parts.size() == 1 && parts[0].kinded_rings().size() < w.cell.kinded_rings().size();
+  const bool shaved =
+      !opened && (parts.size() < 2 || w.cell.area() - largest < std::min(0.05 * w.cell.area(), 0.1 * p.block_area));
   if (shaved && w.stalls < kMaxStalls) return again();
   for (std::size_t k = 0; k < parts.size(); ++k) {
     if (parts[k].area() <= p.block_area) continue;       // small enough to be one block
