@@ -102,6 +102,9 @@ int generate(const fs::path& sketch_path, const fs::path& out, bool quiet, const
   std::printf("exacity: wrote %s (roads %d, blocks %d, lots %d, buildings %d); open %s\n", out.string().c_str(),
               counts["roads"].get<int>(), counts["blocks"].get<int>(), counts["lots"].get<int>(),
               counts["buildings"].get<int>(), (out / "map.svg").string().c_str());
+  for (const auto& z : result.report["empty_zones"])
+    std::fprintf(stderr, "exacity: note: %s: features[%d] (%s) got no lots: %s\n", sketch.path.string().c_str(),
+                 z["feature"].get<int>(), z["zone"].get<std::string>().c_str(), z["why"].get<std::string>().c_str());
   if (!result.valid) {
     for (const auto& p : result.report["validation"]["problems"])
       std::fprintf(stderr, "exacity: invalid output: %s\n", p.get<std::string>().c_str());

@@ -20,6 +20,7 @@
 #include "generate/export/validate.h"
 #include "generate/export/vector_layers.h"
 #include "generate/city/city_map.h"
+#include "geom/measure.h"
 
 namespace exacity {
 namespace fs = std::filesystem;
@@ -120,6 +121,48 @@ ordered_json road_network_report(const RoadNetwork& network, const Sketch& sketc
           {"dead_ends", dead_ends}};
 }
 
+// Whether a drawn zone holds p as the sketch reads it: its outer ring winds around p and no
+// hole does.
+bool zone_holds(const ZoneFeature& zone, geom::Vec2 p) {
+  for (const geom::Polygon& polygon : zone.polygons) {
+    if (geom::winding_number(polygon.outer, p) == 0) continue;
+    if (std::none_of(polygon.holes.begin(), polygon.holes.end(), [&](const geom::Ring& h) { return geom::winding_number(h, p) != 0; }))
+      return true;
+  }
+  return false;
+}
+
+// The drawn zone a cell lies in (the later of two zones drawn over each other), or -1.
+int zone_feature_of(const geom::Cell& cell, const Sketch& sketch) {
+  const std::optional<geom::Vec2> p = cell.point_inside_near(cell.centroid());
+  if (!p) return -1;
+  for (int z = static_cast<int>(sketch.zones.size()) - 1; z >= 0; --z)
+    if (zone_holds(sketch.zones[z], *p)) return z;
+  return -1;
+}
+
+// report.json's empty_zones: each drawn residential, commercial or industrial zone that got
+// no lot, and why, so a zone never stays empty without a word.
+ordered_json empty_zones_report(const City& city) {
+  const Sketch& sketch = city.sketch;
+  std::vector<char> has_lot(sketch.zones.size(), 0), has_street(sketch.zones.size(), 0);
+  for (const Lot& lot : city.lots)
+    if (const int z = zone_feature_of(lot.cell, sketch); z >= 0) has_lot[z] = 1;
+  for (const Block& block : city.blocks)
+    if (!block.green && !block.roads.empty())
+      if (const int z = zone_feature_of(block.cell, sketch); z >= 0) has_street[z] = 1;
+  ordered_json empty = ordered_json::array();
+  for (std::size_t z = 0; z < sketch.zones.size(); ++z) {
+    const ZoneFeature& zone = sketch.zones[z];
+    if (has_lot[z] || !grows_roads(zone.type)) continue;
+    empty.push_back({{"feature", zone.index},
+                     {"zone", name(zone.type)},
+                     {"why", has_street[z] ? "its blocks along streets are too small or narrow for a lot"
+                                           : "no street reaches its land: draw a road to it, or lay it out by growth"}});
+  }
+  return empty;
+}
+
 // report.json's counts: features per layer, the map's size and the 3D exports'.
 ordered_json counts_report(const City& city, const MeshCounts& mesh, const GltfCounts& gltf) {
   const CityLayers& layers = city.layers;
@@ -179,6 +222,7 @@ GenerateResult write_city(const City& city, const fs::path& dir, StageClock& sta
       {"counts", counts_report(city, mesh, gltf)},
       {"road_network", road_network_report(city.network, sketch)},
       {"unbuilt_lots", {{"merged", city.unbuilt_lots.merged}, {"left_open", city.unbuilt_lots.left_open}}},
+      {"empty_zones", empty_zones_report(city)},
       {"statistics", city_statistics(city.layers, &sketch)},
       {"validation",
        {{"ok", validation.ok()}, {"problems", validation.problems}, {"widest_sliver_m", validation.widest_sliver}}},

@@ -81,4 +81,17 @@ inline double depth_over_width(const Ring& r, Vec2 a, Vec2 b) {
   return box.width() > 0 ? box.height() / box.width() : 0;
 }
 
+// How many times the ring winds around p, counter-clockwise positive (in doubles; a point on
+// the ring may count either way).
+inline int winding_number(const Ring& r, Vec2 p) {
+  int w = 0;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    const Vec2 a = r[i], b = r[(i + 1) % r.size()];
+    const double side = (b.x - a.x) * (p.y - a.y) - (p.x - a.x) * (b.y - a.y);
+    if (a.y <= p.y && b.y > p.y && side > 0) ++w;
+    if (a.y > p.y && b.y <= p.y && side < 0) --w;
+  }
+  return w;
+}
+
 }  // namespace geom

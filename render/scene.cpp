@@ -299,10 +299,10 @@ void RenderScene::add_ground(const exacity::City& city, const geom::Box& world, 
   const exacity::Terrain* terrain = city.heightmap();
   add_terrain(terrain, world);
   std::vector<DrapedPiece> zones, lots, water, road_areas;
-  for (std::size_t id = 0; id < g.zones.size(); ++id) {
-    const bool park = g.zones[id].type == ZoneType::Park;
-    zones.push_back({&g.zones[id].polygon, park ? grass_material_ : palette.sidewalk, entity_id(Entity::Zone, id), 0.03});
-  }
+  // Zone land no lot covers is gardens, verges and parks: grass. Paving is where people
+  // walk, the sidewalks of the road areas.
+  for (std::size_t id = 0; id < g.zones.size(); ++id)
+    zones.push_back({&g.zones[id].polygon, grass_material_, entity_id(Entity::Zone, id), 0.03});
   for (std::size_t id = 0; id < g.lots.size(); ++id) {
     const ZoneType zone = g.lots[id].zone;
     const int m = palette.lot_ground.count(zone) ? palette.lot_ground.at(zone) : palette.sidewalk;

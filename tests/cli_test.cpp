@@ -62,9 +62,11 @@ std::vector<std::pair<std::string, std::vector<std::string>>> expected_svg_group
     return exacity::format_number(p[0].get<double>() - min_x) + "," + exacity::format_number(max_y - p[1].get<double>());
   };
   std::vector<std::pair<std::string, std::vector<std::string>>> groups;
-  for (const char* name : {"zones", "lots", "buildings", "water", "road_areas"}) {
+  for (const char* name : {"zones", "parks", "lots", "buildings", "water", "road_areas"}) {
     groups.push_back({name, {}});
-    for (const auto& f : layer(out, name)) {
+    // Parks: the green blocks.
+    for (const auto& f : layer(out, std::string(name) == "parks" ? "blocks" : name)) {
+      if (std::string(name) == "parks" && !f["properties"]["green"].get<bool>()) continue;
       std::string d;
       for (const auto& ring : f["geometry"]["coordinates"]) {
         for (std::size_t i = 0; i + 1 < ring.size(); ++i) d += (i ? "L" : "M") + point(ring[i]);  // rings close with Z

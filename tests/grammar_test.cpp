@@ -260,3 +260,16 @@ TEST(GrammarLayout, ARoadWrittenShortEdgeFirstRunsAlongItsLongAxis) {
   for (const auto& f : read(b, "blocks").features) parks += f.properties["zone"] == "park";
   EXPECT_EQ(parks, 1);
 }
+
+TEST(GrammarLayout, AZoneTheGrammarGivesNoRoadIsReportedEmpty) {
+  // Every root becomes Residential at once: no road of its own, none beside it.
+  const auto out = generate_with_grammar("no-road", zone("residential", "[[0,0],[500,0],[650,300],[250,520],[-150,300],[0,0]]"),
+                                         "1 Town 3 Residential,0,0,1,0,0,1\n1 Town 4 Residential,0,0,1,0,1,1,0,1\n");
+  std::ifstream in(out / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["counts"]["lots"].get<int>(), 0);
+  ASSERT_EQ(report["empty_zones"].size(), 1u);
+  EXPECT_EQ(report["empty_zones"][0]["feature"].get<int>(), 0);
+  EXPECT_EQ(report["empty_zones"][0]["zone"].get<std::string>(), "residential");
+  EXPECT_NE(report["empty_zones"][0]["why"].get<std::string>().find("no street reaches"), std::string::npos);
+}

@@ -366,3 +366,26 @@ TEST(Render, OverviewAndMinimapShowTheCityNorthUpWithTheStillsGroundAndCamera) {
     EXPECT_EQ(still.at(55, 8 + k), (std::array<int, 3>{255, 255, 255})) << k;
   }
 }
+
+// Zone land no lot covers (gardens, verges, a zone with no street yet) is grass from
+// straight above, not paving.
+TEST(Render, ZoneLandWithoutLotsIsGreenFromAbove) {
+  const std::string text = R"({"type": "FeatureCollection", "exacity": {"zones": {"residential": {"layout": "streets"}}},
+    "features": [{"type": "Feature", "properties": {"zone": "residential"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [400, 0], [400, 400], [0, 400], [0, 0]]]}}]})";
+  exacity::StageClock clock(nullptr, exacity::kCityStages);
+  const exacity::City city = exacity::build_city(exacity::parse_sketch(text, "garden.geojson"), clock);
+  ASSERT_TRUE(city.lots.empty());
+  auto dir = testing_util::temp_dir("render-garden");
+  RenderRequest request;
+  request.camera = Camera::look({200, 200, 300}, {200, 200, 0}, 60);
+  request.width = 64, request.height = 64, request.spp = 4;
+  request.overview = true;
+  request.still = dir / "still.png", request.overview_file = dir / "overview.png";
+  render_city(city, request);
+  for (const Png& image : {read_png(dir / "still.png"), read_png(dir / "overview.png")}) {
+    const std::array<double, 3> c = image.mean(image.width / 2, image.height / 2, 6);
+    EXPECT_GT(c[1], c[0]);
+    EXPECT_GT(c[1], c[2]);
+  }
+}

@@ -33,8 +33,10 @@ std::string path_data(const geom::Polygon& poly, const geom::Box& b) {
 // A key to the colours and a scale bar, sized in screen pixels (px world units each).
 void write_legend(std::ostream& out, const Ground& ground, bool structures, double w, double h, double px) {
   std::vector<std::pair<std::string, std::string>> keys;
+  const bool green_blocks = std::any_of(ground.blocks.begin(), ground.blocks.end(), [](const BlockArea& b) { return b.green; });
   for (const auto& [zone, colour] : map_zone_colours())
-    if (std::any_of(ground.zones.begin(), ground.zones.end(), [&](const ZoneArea& z) { return name(z.type) == zone; }))
+    if (std::any_of(ground.zones.begin(), ground.zones.end(), [&](const ZoneArea& z) { return name(z.type) == zone; }) ||
+        (zone == "park" && green_blocks))
       keys.emplace_back(zone, colour);
   if (!ground.water.empty()) keys.emplace_back("water", kMapWater);
   if (!ground.lots.empty()) keys.emplace_back("lot", kMapLot);
@@ -93,6 +95,13 @@ void write_svg_map(const Ground& ground, const std::vector<Building>& buildings,
         auto it = map_zone_colours().find(std::string(name(z.type)));
         return it == map_zone_colours().end() ? "#dddddd" : it->second;
       });
+  // Green space inside zones (a grammar's parks, blocks too small or thin to build on).
+  std::vector<const BlockArea*> green;
+  for (const BlockArea& block : ground.blocks)
+    if (block.green) green.push_back(&block);
+  polygons(
+      green, "parks", [](const BlockArea* block) -> const geom::Polygon& { return block->polygon; },
+      [](const BlockArea*) { return map_zone_colours().at("park"); });
   out << "<g class=\"lots\" fill=\"" << kMapLotFill << "\" fill-opacity=\"0.55\" stroke=\"" << kMapLotEdge << "\" stroke-width=\""
       << format_number(stroke * 0.5) << "\">\n";
   for (const LotArea& lot : ground.lots) out << "<path fill-rule=\"evenodd\" d=\"" << path_data(lot.polygon, b) << "\"/>\n";
