@@ -322,18 +322,15 @@ TEST(Render, OverviewAndMinimapShowTheCityNorthUpWithTheStillsGroundAndCamera) {
   // Water blue, park green: quarter by quarter, north up and east right.
   auto water = [](std::array<double, 3> c) { return c[2] > c[1]; };
   const Png overview = read_png(dir / "overview.png"), minimap = read_png(dir / "minimap.png");
-  ASSERT_EQ(overview.width, 96);
-  ASSERT_EQ(overview.height, 96);
-  EXPECT_TRUE(water(overview.mean(72, 24, 6)));
-  EXPECT_FALSE(water(overview.mean(24, 24, 6)));
-  EXPECT_FALSE(water(overview.mean(24, 72, 6)));
-  EXPECT_FALSE(water(overview.mean(72, 72, 6)));
-  ASSERT_EQ(minimap.width, 256);
-  ASSERT_EQ(minimap.height, 256);
-  EXPECT_TRUE(water(minimap.mean(192, 64, 8)));
-  EXPECT_FALSE(water(minimap.mean(64, 64, 8)));
-  EXPECT_FALSE(water(minimap.mean(64, 176, 8)));
-  EXPECT_FALSE(water(minimap.mean(192, 192, 8)));
+  for (const auto& [image, size] : {std::pair{&overview, 96}, std::pair{&minimap, 256}}) {
+    ASSERT_EQ(image->width, size);
+    ASSERT_EQ(image->height, size);
+    const int q = size / 4;  // a quarter's centre is q or 3q in
+    EXPECT_TRUE(water(image->mean(3 * q, q, 6))) << size;
+    EXPECT_FALSE(water(image->mean(q, q, 6))) << size;
+    EXPECT_FALSE(water(image->mean(q, 3 * q, 6))) << size;
+    EXPECT_FALSE(water(image->mean(3 * q, 3 * q, 6))) << size;
+  }
 
   // The visible ground at 0.64 px a metre from the centre (128, 128): rows 121.6 and 198.4,
   // columns 38.4 and 153.6; lines 3 px wide.
