@@ -3,6 +3,7 @@
 // (tests/js/check_glb.mjs) and the CityJSON content checks (tests/js/check_cityjson.mjs),
 // each on a small city that passes, then on a copy broken one way.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstring>
 #include <functional>
@@ -20,8 +21,11 @@ namespace {
 class Checkers : public testing::Test {
  protected:
   // One small city, generated once: a residential square, so it has roads, lots and buildings.
+  // ctest runs each test in a process of its own, two at a time: each process works in its
+  // own folder, or one would remove the city another is reading.
   static void SetUpTestSuite() {
-    fs::path dir = testing_util::temp_dir("checkers");
+    root_ = new fs::path(testing_util::temp_dir("checkers-" + std::to_string(::getpid())));
+    const fs::path& dir = *root_;
     std::ofstream(dir / "in.geojson") << R"({"type": "FeatureCollection", "exacity": {"seed": 2}, "features": [
       {"type": "Feature", "properties": {"zone": "residential"},
        "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [240, 0], [240, 200], [0, 200], [0, 0]]]}}]})";
@@ -29,11 +33,16 @@ class Checkers : public testing::Test {
     fs::create_directories(*good_);
     exacity::generate_city(exacity::load_sketch(dir / "in.geojson"), *good_, nullptr);
   }
-  static void TearDownTestSuite() { delete good_; }
+  static void TearDownTestSuite() {
+    fs::remove_all(*root_);
+    delete good_;
+    delete root_;
+  }
 
   // A fresh copy of the good city.
   static fs::path copy(const std::string& name) {
-    fs::path out = testing_util::temp_dir("checkers-" + name) / "out";
+    fs::path out = *root_ / name / "out";
+    fs::create_directories(out.parent_path());
     fs::copy(*good_, out, fs::copy_options::recursive);
     return out;
   }
@@ -45,9 +54,11 @@ class Checkers : public testing::Test {
   }
 
   static fs::path* good_;
+  static fs::path* root_;
 };
 
 fs::path* Checkers::good_ = nullptr;
+fs::path* Checkers::root_ = nullptr;
 
 // Rewrites a .glb's JSON chunk: padded with spaces to four bytes, the lengths set again.
 void edit_glb_json(const fs::path& file, const std::function<void(json&)>& edit) {
