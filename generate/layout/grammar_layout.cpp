@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "generate/city/random.h"
+#include "generate/layout/growth.h"
 #include "generate/layout/road_layout.h"
 #include "generate/layout/settle.h"
 #include "geom/grid.h"
@@ -39,10 +41,63 @@ std::vector<geom::Vec2> long_side_first(std::vector<geom::Vec2> c) {
   return c;
 }
 
+// The use of the land leaf that holds p, if any.
+std::optional<Terminal> use_at(const std::vector<PlannedUse>& uses, geom::Vec2 p) {
+  for (const PlannedUse& u : uses)
+    if (geom::winding_number(u.ring, p) != 0) return u.use;
+  return std::nullopt;
+}
+
+// The grown roads into the plan, in the piece of the grammar's roads they run on to (a
+// piece of their own when they reach none).
+void add_grown(RoadPlan& plan, RoadPlan grown, const std::vector<std::vector<geom::Path>>& piece_lines) {
+  int piece = -1;
+  for (std::size_t k = 0; k < piece_lines.size() && piece < 0; ++k)
+    for (const LaidRoad& r : grown.roads)
+      if (geom::ends_on(r.path, piece_lines[k])) {
+        piece = static_cast<int>(k);
+        break;
+      }
+  if (piece < 0) piece = static_cast<int>(plan.piece_reaches_sketch.size()), plan.piece_reaches_sketch.push_back(grown.piece_reaches_sketch[0]);
+  const int first = static_cast<int>(plan.roads.size());
+  for (LaidRoad& r : grown.roads) r.piece = piece, plan.roads.push_back(std::move(r));
+  for (const Junction& j : grown.junctions) plan.junctions.push_back({j.at, first + j.first_road});
+  plan.levels = std::max(plan.levels, grown.levels);
+  plan.cells_without_access += grown.cells_without_access;
+}
+
+// Land between the grammar's roads over 4 times its use's block_area, where seed 002 would
+// fill one piece all the way in: the region is cut along the roads' centre lines and each
+// such piece grown by seed 000's growth as a region of its own, its roads running on to the
+// grammar's (an Exacity extension; "grow_large_pieces": false keeps the pieces whole).
+void grow_large_pieces(RoadPlan& plan, const Region& region, const Sketch& sketch, const SketchLines& sketch_roads) {
+  SketchLines lines = sketch_roads;  // the grammar's roads are one more sketch road to growth
+  lines.push_back({});
+  std::vector<std::vector<geom::Path>> piece_lines(plan.piece_reaches_sketch.size());
+  for (const LaidRoad& r : plan.roads) {
+    lines.back().lines.push_back(r.path);
+    lines.back().width = std::max(lines.back().width, r.width);
+    piece_lines[r.piece].push_back(r.path);
+  }
+  const int grammar_road = GrowthEdge::sketch_road(static_cast<int>(lines.size()) - 1);
+  const std::vector<geom::Cell> pieces =
+      lines.back().lines.empty() ? std::vector<geom::Cell>{region.cell} : geom::split_cell(region.cell, lines.back().lines, grammar_road);
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    const std::optional<geom::Vec2> inside = pieces[k].point_inside_near(pieces[k].centroid());
+    const std::optional<Terminal> use = inside ? use_at(plan.uses, *inside) : std::nullopt;
+    if (!use || use->kind != Terminal::Land) continue;
+    if (pieces[k].area() <= 4 * sketch.zone_settings.at(use->type).roads.growth.block_area) continue;
+    const ZoneType type = use->type;
+    const auto growth = make_growth_layout(sketch, lines, [type](geom::Vec2) { return std::optional<ZoneType>(type); });
+    add_grown(plan, growth->plan({pieces[k], mix(region.stream, 0x9e0000 + k)}), piece_lines);
+  }
+}
+
 class GrammarLayout : public RoadLayout {
  public:
-  GrammarLayout(const RoadSettings& roads, double min_block_area, ZoneType type, const SketchLines& sketch)
-      : roads_(roads), min_block_area_(min_block_area), type_(type), sketch_(sketch) {}
+  GrammarLayout(const Sketch& sketch, ZoneType type, const SketchLines& sketch_roads)
+      : sketch_(sketch), roads_(sketch.zone_settings.at(type).roads),
+        min_block_area_(sketch.zone_settings.at(type).blocks.min_block_area), type_(type), sketch_roads_(sketch_roads) {}
 
   RoadPlan plan(const Region& region) const override {
     Random random(region.stream);
@@ -95,20 +150,23 @@ class GrammarLayout : public RoadLayout {
       if (road.line[0] == road.line[1]) continue;
       plan.roads.push_back(std::move(road));
     }
-    return settle(std::move(plan), region.cell, sketch_);
+    RoadPlan settled = settle(std::move(plan), region.cell, sketch_roads_);
+    if (roads_.grammar.grow_large_pieces) grow_large_pieces(settled, region, sketch_, sketch_roads_);
+    return settled;
   }
 
  private:
+  const Sketch& sketch_;
   RoadSettings roads_;
   double min_block_area_;  // the grammar's land leaves stop above it
   ZoneType type_;
-  const SketchLines& sketch_;
+  const SketchLines& sketch_roads_;
 };
 
 }  // namespace
 
-std::unique_ptr<RoadLayout> make_grammar_layout(const ZoneSettings& settings, ZoneType type, const SketchLines& sketch) {
-  return std::make_unique<GrammarLayout>(settings.roads, settings.blocks.min_block_area, type, sketch);
+std::unique_ptr<RoadLayout> make_grammar_layout(const Sketch& sketch, ZoneType type, const SketchLines& sketch_roads) {
+  return std::make_unique<GrammarLayout>(sketch, type, sketch_roads);
 }
 
 }  // namespace exacity

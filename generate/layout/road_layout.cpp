@@ -11,11 +11,11 @@ std::vector<std::pair<geom::Vec2, geom::Vec2>> edges_to_reach(const geom::Cell& 
   return edges;
 }
 
-std::unique_ptr<RoadLayout> make_road_layout(const ZoneSettings& settings, ZoneType type, const SketchLines& sketch) {
-  const std::string& layout = settings.roads.layout;
-  if (layout == "grammar") return make_grammar_layout(settings, type, sketch);
-  if (layout == "voronoi") return make_voronoi_layout(settings.roads, sketch);
-  if (layout == "streets") return make_streets_layout();
+std::unique_ptr<RoadLayout> make_road_layout(const Sketch& sketch, ZoneType type, const SketchLines& sketch_roads) {
+  const RoadSettings& settings = sketch.zone_settings.at(type).roads;
+  if (settings.layout == "grammar") return make_grammar_layout(sketch, type, sketch_roads);
+  if (settings.layout == "voronoi") return make_voronoi_layout(settings, sketch_roads);
+  if (settings.layout == "streets") return make_streets_layout();
   return nullptr;
 }
 

@@ -83,10 +83,10 @@ std::vector<std::pair<geom::Vec2, geom::Vec2>> edges_to_reach(const geom::Cell& 
 
 // The layout a zone type's settings name ("grammar", "voronoi" or "streets"); growth is
 // made apart (growth.h), as one growth region may span zone types.
-std::unique_ptr<RoadLayout> make_road_layout(const ZoneSettings& settings, ZoneType type, const SketchLines& sketch);
+std::unique_ptr<RoadLayout> make_road_layout(const Sketch& sketch, ZoneType type, const SketchLines& sketch_roads);
 
 // One per file.
-std::unique_ptr<RoadLayout> make_grammar_layout(const ZoneSettings& settings, ZoneType type, const SketchLines& sketch);
+std::unique_ptr<RoadLayout> make_grammar_layout(const Sketch& sketch, ZoneType type, const SketchLines& sketch_roads);
 std::unique_ptr<RoadLayout> make_streets_layout();
 std::unique_ptr<RoadLayout> make_voronoi_layout(const RoadSettings& settings, const SketchLines& sketch);
 

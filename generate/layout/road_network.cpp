@@ -152,7 +152,7 @@ void lay_out_regions(CityMap& city_map, const Sketch& sketch, const SketchLines&
   std::map<ZoneType, std::unique_ptr<RoadLayout>> layouts;
   for (const auto& [t, p] : sketch.zone_settings)
     if (grows_roads(t))
-      if (std::unique_ptr<RoadLayout> layout = make_road_layout(p, t, sketch_lines)) layouts[t] = std::move(layout);
+      if (std::unique_ptr<RoadLayout> layout = make_road_layout(sketch, t, sketch_lines)) layouts[t] = std::move(layout);
   if (layouts.empty()) return;
   const std::vector<int> group = city_map.per_label([&](const FaceLabel& f) {
     return f.cover == Cover::Zone && f.zone >= 0 && layouts.count(sketch.zones[f.zone].type)

@@ -54,6 +54,7 @@ void read_grammar(const SettingsReader& s, const std::string& layout, bool read_
     g.file = std::make_shared<Grammar>(read_grammars ? load_grammar(file) : Grammar{file, {}});
   }
   if (layout == "grammar" && !g.file) s.fail("layout", "\"grammar\" needs \"grammar\": the path of a grammar file");
+  s.boolean("grow_large_pieces", g.grow_large_pieces);
 }
 
 }  // namespace
@@ -78,7 +79,7 @@ const std::set<std::string>& road_setting_keys() {
   static const std::set<std::string> keys{"layout",        "road_widths",      "bridges",          "block_area",
                                           "segment_length", "branches",        "jitter",           "segment_deviation",
                                           "origin_deviation", "cell_size",     "junction_spacing", "grammar_depth",
-                                          "grammar"};
+                                          "grammar",        "grow_large_pieces"};
   return keys;
 }
 

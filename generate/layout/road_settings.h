@@ -28,6 +28,7 @@ struct GrowthSettings {
 struct GrammarSettings {
   std::shared_ptr<const Grammar> file;  // read with the sketch
   int depth = 8;                        // rules applied at most, from a root down
+  bool grow_large_pieces = true;        // land over 4 x block_area is grown by seed 000's growth
 };
 
 // Seed 003's Voronoi streets.
