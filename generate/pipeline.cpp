@@ -145,7 +145,9 @@ int zone_feature_of(const geom::Cell& cell, const Sketch& sketch) {
 // no lot, and why, so a zone never stays empty without a word.
 ordered_json empty_zones_report(const City& city) {
   const Sketch& sketch = city.sketch;
-  std::vector<char> has_lot(sketch.zones.size(), 0), has_street(sketch.zones.size(), 0);
+  std::vector<char> has_land(sketch.zones.size(), 0), has_lot(sketch.zones.size(), 0), has_street(sketch.zones.size(), 0);
+  for (const FaceLabel& label : city.network.map.labels)
+    if (label.cover == Cover::Zone && label.zone >= 0) has_land[label.zone] = 1;
   for (const Lot& lot : city.lots)
     if (const int z = zone_feature_of(lot.cell, sketch); z >= 0) has_lot[z] = 1;
   for (const Block& block : city.blocks)
@@ -157,8 +159,9 @@ ordered_json empty_zones_report(const City& city) {
     if (has_lot[z] || !grows_roads(zone.type)) continue;
     empty.push_back({{"feature", zone.index},
                      {"zone", name(zone.type)},
-                     {"why", has_street[z] ? "its blocks along streets are too small or narrow for a lot"
-                                           : "no street reaches its land: draw a road to it, or lay it out by growth"}});
+                     {"why", !has_land[z]    ? "no land of its own: zones drawn later, water or roads cover all of it"
+                             : has_street[z] ? "its blocks along streets are too small or narrow for a lot"
+                                             : "no street reaches its land: draw a road to it, or lay it out by growth"}});
   }
   return empty;
 }

@@ -154,6 +154,9 @@ std::filesystem::path generate_with_grammar(const std::string& name, const std::
   return dir / "out";
 }
 
+// A strict seed 002 run: the grammar's pieces are kept whole, however large.
+const std::string kKeptWhole = R"("layout": "grammar", "grammar": "g.grammar", "grow_large_pieces": false)";
+
 std::string zone(const std::string& type, const std::string& ring) {
   return R"({"type": "Feature", "properties": {"zone": ")" + type + R"("}, "geometry": {"type": "Polygon", "coordinates": [)" +
          ring + "]}}";
@@ -240,8 +243,9 @@ TEST(GrammarLayout, ARoadWrittenShortEdgeFirstRunsAlongItsLongAxis) {
     EXPECT_TRUE(problems.empty());
     return l;
   };
-  const auto a = generate_with_grammar("long-first", square, long_first);
-  const auto b = generate_with_grammar("short-first", square, short_first);
+  // The grammar's roads alone: its quarters are kept whole.
+  const auto a = generate_with_grammar("long-first", square, long_first, kKeptWhole);
+  const auto b = generate_with_grammar("short-first", square, short_first, kKeptWhole);
   // The same centre lines, whichever way each runs.
   auto lines = [&](const std::filesystem::path& out) {
     std::vector<std::vector<std::pair<double, double>>> all;
@@ -261,15 +265,46 @@ TEST(GrammarLayout, ARoadWrittenShortEdgeFirstRunsAlongItsLongAxis) {
   EXPECT_EQ(parks, 1);
 }
 
-TEST(GrammarLayout, AZoneTheGrammarGivesNoRoadIsReportedEmpty) {
-  // Every root becomes Residential at once: no road of its own, none beside it.
-  const auto out = generate_with_grammar("no-road", zone("residential", "[[0,0],[500,0],[650,300],[250,520],[-150,300],[0,0]]"),
-                                         "1 Town 3 Residential,0,0,1,0,0,1\n1 Town 4 Residential,0,0,1,0,1,1,0,1\n");
+nlohmann::json report_of(const std::filesystem::path& out) {
   std::ifstream in(out / "report.json");
-  const nlohmann::json report = nlohmann::json::parse(in);
-  EXPECT_EQ(report["counts"]["lots"].get<int>(), 0);
-  ASSERT_EQ(report["empty_zones"].size(), 1u);
-  EXPECT_EQ(report["empty_zones"][0]["feature"].get<int>(), 0);
-  EXPECT_EQ(report["empty_zones"][0]["zone"].get<std::string>(), "residential");
-  EXPECT_NE(report["empty_zones"][0]["why"].get<std::string>().find("no street reaches"), std::string::npos);
+  return nlohmann::json::parse(in);
+}
+
+// Land between the grammar's roads over 4 times block_area is grown by seed 000's growth;
+// "grow_large_pieces": false keeps seed 002's pieces whole.
+TEST(GrammarLayout, PiecesOverFourBlocksAreGrownUnlessKeptWhole) {
+  const std::string ring_road =
+      "1 Town 4 Inner,0.03,0.03,0.97,0.03,0.97,0.97,0.03,0.97 Road,0,0,1,0,0.97,0.03,0.03,0.03 Road,1,0,1,1,0.97,0.97,0.97,0.03 "
+      "Road,1,1,0,1,0.03,0.97,0.97,0.97 Road,0,1,0,0,0.03,0.03,0.03,0.97\n"
+      "1 Town 3 Inner,0.06,0.06,0.88,0.06,0.06,0.88 Road,0,0,1,0,0.88,0.06,0.06,0.06 Road,1,0,0,1,0.06,0.88,0.88,0.06 "
+      "Road,0,1,0,0,0.06,0.06,0.06,0.88\n"
+      "1 Inner 4 Residential,0,0,1,0,1,1,0,1\n1 Inner 3 Residential,0,0,1,0,0,1\n";
+  const std::string pentagon = zone("residential", "[[0,0],[500,0],[650,300],[250,520],[-150,300],[0,0]]");
+  const auto grown = generate_with_grammar("pieces", pentagon, ring_road);
+  EXPECT_TRUE(validate_output(grown).ok());
+  const auto lots = report_of(grown)["statistics"]["zones"]["residential"];
+  EXPECT_EQ(lots["blocks"]["share_area_over_4x_block_area"].get<double>(), 0.0);
+  EXPECT_LE(lots["lots"]["share_without_building"].get<double>(), 0.03);
+  EXPECT_EQ(lots["lots"]["share_touching_road"].get<double>(), 1.0);
+
+  const auto kept = generate_with_grammar("pieces-whole", pentagon, ring_road, kKeptWhole);
+  EXPECT_TRUE(validate_output(kept).ok());
+  EXPECT_GT(report_of(kept)["statistics"]["zones"]["residential"]["blocks"]["share_area_over_4x_block_area"].get<double>(), 0.5);
+}
+
+// A zone whose every root becomes Residential at once gets no road from the grammar: growth
+// lays its streets; kept whole, it is reported empty, with the reason.
+TEST(GrammarLayout, AZoneTheGrammarGivesNoRoadIsGrownOrReportedEmpty) {
+  const std::string zone_only = zone("residential", "[[0,0],[500,0],[650,300],[250,520],[-150,300],[0,0]]");
+  const std::string no_road = "1 Town 3 Residential,0,0,1,0,0,1\n1 Town 4 Residential,0,0,1,0,1,1,0,1\n";
+  const auto report = report_of(generate_with_grammar("no-road", zone_only, no_road));
+  EXPECT_GT(report["counts"]["lots"].get<int>(), 50);
+  EXPECT_TRUE(report["empty_zones"].empty()) << report["empty_zones"];
+
+  const auto strict = report_of(generate_with_grammar("no-road-whole", zone_only, no_road, kKeptWhole));
+  EXPECT_EQ(strict["counts"]["lots"].get<int>(), 0);
+  ASSERT_EQ(strict["empty_zones"].size(), 1u);
+  EXPECT_EQ(strict["empty_zones"][0]["feature"].get<int>(), 0);
+  EXPECT_EQ(strict["empty_zones"][0]["zone"].get<std::string>(), "residential");
+  EXPECT_NE(strict["empty_zones"][0]["why"].get<std::string>().find("no street reaches"), std::string::npos);
 }

@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "generate/city/sketch.h"
+#include "generate/layout/growth.h"
 #include "geom/cell.h"
 #include "geom/planar_map.h"
 #include "tests/test_util.h"
@@ -211,4 +213,28 @@ TEST(ExtendTo, ARoadMeetingASurfaceAtAShallowAngleTurnsToTheCentreLine) {
   auto extended = geom::extend_to(road, {centre}, 24);
   ASSERT_EQ(extended.size(), 3u);
   EXPECT_EQ(extended.point(2), (Vec2{0, 0}));
+}
+
+// A cell cut from a larger one along a road's centre line (as a grammar's piece is) has that
+// line as its edge: a grown road reaching it is on the line already, and must not run on to
+// the next line ahead, across the neighbouring land.
+TEST(GrowthLayout, ARoadMeetingACentreLineEdgeStopsOnIt) {
+  using namespace exacity;
+  Sketch sketch;
+  sketch.zone_settings[ZoneType::Residential] = default_zone_settings(ZoneType::Residential);
+  const Cell whole = cell_of({{0, 0}, {600, 0}, {600, 300}, {0, 300}});
+  const geom::Path centre = geom::Path::from({{300, -1}, {300, 301}}), next = geom::Path::from({{320, -1}, {320, 301}});
+  SketchLines lines{{{centre, next}, 12}};
+  std::vector<Cell> halves = geom::split_cell(whole, {centre}, GrowthEdge::sketch_road(0));
+  ASSERT_EQ(halves.size(), 2u);
+  const Cell& west = halves[0].centroid().x < 300 ? halves[0] : halves[1];
+  const auto layout = make_growth_layout(sketch, lines, [](Vec2) { return std::optional<ZoneType>(ZoneType::Residential); });
+  const RoadPlan plan = layout->plan({west, 7});
+  int on_centre = 0;
+  for (const LaidRoad& r : plan.roads) {
+    for (Vec2 v : r.path.to_plain()) EXPECT_LE(v.x, 300) << "a road crosses the centre line";
+    on_centre += geom::ends_on(r.path, {centre});
+  }
+  EXPECT_GT(on_centre, 0) << "no road reached the centre line: the test saw nothing";
+  EXPECT_EQ(plan.piece_reaches_sketch, std::vector<char>{1});
 }

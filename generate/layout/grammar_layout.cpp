@@ -41,11 +41,24 @@ std::vector<geom::Vec2> long_side_first(std::vector<geom::Vec2> c) {
   return c;
 }
 
-// The use of the land leaf that holds p, if any.
+// The use of the leaf that holds p, if any.
 std::optional<Terminal> use_at(const std::vector<PlannedUse>& uses, geom::Vec2 p) {
   for (const PlannedUse& u : uses)
     if (geom::winding_number(u.ring, p) != 0) return u.use;
   return std::nullopt;
+}
+
+// Whether a use other than land (a park) lies in the piece: growth's roads would cross it.
+bool holds_other_use(const geom::Cell& piece, const std::vector<PlannedUse>& uses) {
+  const geom::Polygon plain = piece.to_plain();
+  for (const PlannedUse& u : uses) {
+    if (u.use.kind == Terminal::Land || u.ring.empty()) continue;
+    geom::Vec2 c{0, 0};
+    for (geom::Vec2 v : u.ring) c = c + v;
+    c = c * (1.0 / u.ring.size());
+    if (geom::winding_number(plain.outer, c) != 0) return true;
+  }
+  return false;
 }
 
 // The grown roads into the plan, in the piece of the grammar's roads they run on to (a
@@ -66,11 +79,13 @@ void add_grown(RoadPlan& plan, RoadPlan grown, const std::vector<std::vector<geo
   plan.cells_without_access += grown.cells_without_access;
 }
 
-// Land between the grammar's roads over 4 times its use's block_area, where seed 002 would
-// fill one piece all the way in: the region is cut along the roads' centre lines and each
-// such piece grown by seed 000's growth as a region of its own, its roads running on to the
-// grammar's (an Exacity extension; "grow_large_pieces": false keeps the pieces whole).
-void grow_large_pieces(RoadPlan& plan, const Region& region, const Sketch& sketch, const SketchLines& sketch_roads) {
+// Land between the grammar's roads over 4 times the zone's block_area (as the statistics
+// measure blocks), where seed 002 would fill one piece all the way in: the region is cut
+// along the roads' centre lines and each such piece grown by seed 000's growth as a region
+// of its own, its roads running on to the grammar's (an Exacity extension;
+// "grow_large_pieces": false keeps the pieces whole). A piece holding a park is kept whole:
+// growth's roads would cross it.
+void grow_large_pieces(RoadPlan& plan, const Region& region, const Sketch& sketch, ZoneType zone, const SketchLines& sketch_roads) {
   SketchLines lines = sketch_roads;  // the grammar's roads are one more sketch road to growth
   lines.push_back({});
   std::vector<std::vector<geom::Path>> piece_lines(plan.piece_reaches_sketch.size());
@@ -86,9 +101,13 @@ void grow_large_pieces(RoadPlan& plan, const Region& region, const Sketch& sketc
     const std::optional<geom::Vec2> inside = pieces[k].point_inside_near(pieces[k].centroid());
     const std::optional<Terminal> use = inside ? use_at(plan.uses, *inside) : std::nullopt;
     if (!use || use->kind != Terminal::Land) continue;
-    if (pieces[k].area() <= 4 * sketch.zone_settings.at(use->type).roads.growth.block_area) continue;
-    const ZoneType type = use->type;
-    const auto growth = make_growth_layout(sketch, lines, [type](geom::Vec2) { return std::optional<ZoneType>(type); });
+    if (pieces[k].area() <= 4 * sketch.zone_settings.at(zone).roads.growth.block_area) continue;
+    if (holds_other_use(pieces[k], plan.uses)) continue;
+    // Each cell grows as the land use at its seed, as a growth region follows its zones.
+    const auto growth = make_growth_layout(sketch, lines, [&uses = plan.uses, piece_type = use->type](geom::Vec2 p) {
+      const std::optional<Terminal> u = use_at(uses, p);
+      return std::optional<ZoneType>(u && u->kind == Terminal::Land ? u->type : piece_type);
+    });
     add_grown(plan, growth->plan({pieces[k], mix(region.stream, 0x9e0000 + k)}), piece_lines);
   }
 }
@@ -151,7 +170,7 @@ class GrammarLayout : public RoadLayout {
       plan.roads.push_back(std::move(road));
     }
     RoadPlan settled = settle(std::move(plan), region.cell, sketch_roads_);
-    if (roads_.grammar.grow_large_pieces) grow_large_pieces(settled, region, sketch_, sketch_roads_);
+    if (roads_.grammar.grow_large_pieces) grow_large_pieces(settled, region, sketch_, type_, sketch_roads_);
     return settled;
   }
 

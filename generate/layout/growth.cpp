@@ -109,10 +109,13 @@ bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const GrowthSettings& 
     const int sketch_road = met.what == geom::Growth::Met::Edge ? GrowthEdge::sketch_road_of(met.kind) : -1;
     reached_road |= met.edge_of_kind(GrowthEdge::kGrownRoad) || sketch_road >= 0;
     if (sketch_road >= 0) {
+      // A road whose edge is the centre line itself (a grammar's road around a piece it
+      // grows) is there already; extended, it would cross to the next line ahead.
       const SketchRoad& target = sketch_lines[sketch_road];
       const std::size_t points = road.size();
-      road = geom::extend_to(road, target.lines, 4 * target.width);
-      if (road.size() > points) out.joined.push_back(sketch_road);
+      const bool on_line = geom::ends_on(road, target.lines);
+      if (!on_line) road = geom::extend_to(road, target.lines, 4 * target.width);
+      if (on_line || road.size() > points) out.joined.push_back(sketch_road);
     }
     out.roads.push_back(std::move(road));
     return true;
