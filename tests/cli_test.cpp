@@ -127,6 +127,30 @@ TEST(Cli, ValidateCatchesCentreLinesThatMeetBetweenVertices) {
   EXPECT_NE(v.out.find("meets another centre line between its vertices"), std::string::npos) << v.out;
 }
 
+// A zone the run leaves without a lot is named, with the reason, in report.json and in a
+// note: here one drawn twice (the later copy takes all its land) and one no street reaches.
+TEST(Cli, ZonesLeftEmptyAreNamedWithTheReason) {
+  fs::path dir = testing_util::temp_dir("cli-empty");
+  std::ofstream(dir / "in.geojson") << R"({"type": "FeatureCollection", "exacity": {"seed": 3, "zones":
+    {"commercial": {"layout": "streets"}}}, "features": [
+    {"type": "Feature", "properties": {"zone": "residential"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [300, 200], [0, 200], [0, 0]]]}},
+    {"type": "Feature", "properties": {"zone": "residential"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [300, 200], [0, 200], [0, 0]]]}},
+    {"type": "Feature", "properties": {"zone": "commercial"},
+     "geometry": {"type": "Polygon", "coordinates": [[[500, 0], [700, 0], [700, 200], [500, 200], [500, 0]]]}}]})";
+  Result g = run("generate " + (dir / "in.geojson").string() + " -o " + (dir / "out").string() + " -q");
+  ASSERT_EQ(g.code, 0) << g.out;
+  auto empty = nlohmann::json::parse(read(dir / "out" / "report.json"))["empty_zones"];
+  ASSERT_EQ(empty.size(), 2u) << empty;
+  EXPECT_EQ(empty[0]["feature"], 0);
+  EXPECT_NE(empty[0]["why"].get<std::string>().find("no land of its own"), std::string::npos) << empty[0];
+  EXPECT_EQ(empty[1]["feature"], 2);
+  EXPECT_NE(empty[1]["why"].get<std::string>().find("no street reaches"), std::string::npos) << empty[1];
+  EXPECT_NE(g.out.find("features[0] (residential) got no lots: no land of its own"), std::string::npos) << g.out;
+  EXPECT_NE(g.out.find("features[2] (commercial) got no lots: no street reaches"), std::string::npos) << g.out;
+}
+
 TEST(Cli, StatsMeasureTheCityAndRealData) {
   fs::path dir = testing_util::temp_dir("cli-stats");
   ASSERT_EQ(run("generate " + small_sketch(dir).string() + " -o " + (dir / "out").string() + " -q").code, 0);
