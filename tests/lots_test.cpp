@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <set>
 
 #include "generate/placement/buildings.h"
 #include "generate/parcels/lots.h"
@@ -104,6 +105,33 @@ TEST(Lots, ShallowStripsBetweenRoadsAreBuiltOn) {
   EXPECT_GT(lots["area_m2"]["count"].get<int>(), 20);
   EXPECT_LE(lots["share_without_building"].get<double>(), 0.03);
   EXPECT_GT(report["unbuilt_lots"]["merged"].get<int>(), 0);
+}
+
+TEST(Lots, BlocksTooSmallToCutAreOneLot) {
+  // A grid of streets 40 m apart: blocks about 30 m across, where lots 30 m deep from every
+  // side would be corners and slivers. Each block is one lot and holds a building.
+  std::string features = R"({"type": "Feature", "properties": {"zone": "residential"}, "geometry": {"type": "Polygon",
+      "coordinates": [[[-20,-20],[180,-20],[180,180],[-20,180],[-20,-20]]]}})";
+  for (int at = 0; at <= 160; at += 40)
+    features += R"(, {"type": "Feature", "properties": {"road": "local"}, "geometry": {"type": "LineString", "coordinates": [[-40,)" +
+                std::to_string(at) + "],[200," + std::to_string(at) + R"(]]}}, {"type": "Feature", "properties": {"road": "local"},
+        "geometry": {"type": "LineString", "coordinates": [[)" + std::to_string(at) + ",-40],[" + std::to_string(at) + ",200]]}}";
+  nlohmann::ordered_json report;
+  Validation v = generate_and_validate("small-blocks", R"({"type": "FeatureCollection", "exacity": {"seed": 2, "zones":
+      {"residential": {"layout": "streets"}}}, "features": [)" + features + "]}",
+                                       &report);
+  ASSERT_TRUE(v.ok()) << v.problems[0];
+  const auto layer = [](const char* name) {
+    std::ifstream in(std::filesystem::temp_directory_path() / "exacity-test-lots-small-blocks" / "out" / "vector" / name);
+    return nlohmann::json::parse(in)["features"];
+  };
+  std::set<int> built_blocks, blocks;
+  for (const auto& lot : layer("lots.geojson")) built_blocks.insert(lot["properties"]["block"].get<int>());
+  for (const auto& block : layer("blocks.geojson"))
+    if (!block["properties"]["green"].get<bool>()) blocks.insert(block["properties"]["id"].get<int>());
+  EXPECT_GE(blocks.size(), 16u);
+  EXPECT_EQ(built_blocks, blocks);
+  EXPECT_EQ(report["statistics"]["zones"]["residential"]["lots"]["share_without_building"].get<double>(), 0.0);
 }
 
 TEST(Buildings, HeightsFallWithDistanceFromTheCentre) {

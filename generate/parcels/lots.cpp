@@ -24,6 +24,8 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch
     if (block.green) return;
     Random rng(mix(stage, bi));
     per_block[bi] = layouts.at(block.zone)->plan(block, static_cast<int>(bi), rng);
+    // A block too small for the layout to cut is one lot, if it makes one (kept_lots).
+    if (per_block[bi].empty()) per_block[bi].push_back({static_cast<int>(bi), block.zone, {}, block.cell});
   });
   std::vector<PlannedLot> lots;
   for (auto& list : per_block)
@@ -119,6 +121,33 @@ int neighbour(const std::vector<Lot>& lots, std::size_t i, MayJoin&& may_join) {
   return best;
 }
 
+// Makes each block of `lot_of_block` one lot, the planned lot it maps to: every face of
+// land in it, the gardens between its lots included.
+void make_blocks_whole(CityMap& city_map, const std::map<int, int>& lot_of_block) {
+  if (lot_of_block.empty()) return;
+  const std::vector<int> group =
+      city_map.per_label([&](const FaceLabel& f) { return f.block >= 0 && lot_of_block.count(f.block) ? f.block : -1; });
+  city_map.map.relabel_components(group, [&](int, int label) {
+    FaceLabel l = city_map.labels[label];
+    l.lot = lot_of_block.at(l.block);
+    return city_map.label_index(l);
+  });
+}
+
+// A block none of whose planned lots made a sensible lot (a block a little larger than a
+// lot, cut into corners and slivers) is tried whole, as one lot, rather than left empty.
+std::vector<Lot> with_refused_blocks_whole(CityMap& city_map, const std::vector<PlannedLot>& planned,
+                                           std::vector<Lot> lots, const Sketch& sketch) {
+  std::set<int> kept_in;
+  for (const Lot& lot : lots) kept_in.insert(lot.block);
+  std::map<int, int> lot_of_block;
+  for (std::size_t l = 0; l < planned.size(); ++l)
+    if (!kept_in.count(planned[l].block)) lot_of_block.emplace(planned[l].block, static_cast<int>(l));
+  if (lot_of_block.empty()) return lots;
+  make_blocks_whole(city_map, lot_of_block);
+  return kept_lots(city_map, planned, sketch);
+}
+
 }  // namespace
 
 std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
@@ -134,7 +163,7 @@ std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& p
   // included, rounds without edges crossing.
   city_map.map.snap_round();
 
-  return kept_lots(city_map, planned, sketch);
+  return with_refused_blocks_whole(city_map, planned, kept_lots(city_map, planned, sketch), sketch);
 }
 
 std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
@@ -142,6 +171,19 @@ std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<Planned
                                     bool last, const Sketch& sketch, UnbuiltLots& tally) {
   std::map<int, int> lot_of_piece;  // an unbuilt lot's piece -> the planned lot it joins, or -1
   std::vector<char> settled(lots.size(), 0);  // unbuilt lots joined, or kept for another to join
+  // The last time, a block still without a building (a small one, cut into lots too small
+  // each, which pairs did not mend) is tried whole, as one lot, rather than left open.
+  std::map<int, int> lot_of_block;
+  if (last) {
+    std::set<int> built_on;
+    for (std::size_t i = 0; i < lots.size(); ++i)
+      if (built[i]) built_on.insert(lots[i].block);
+    for (std::size_t i = 0; i < lots.size(); ++i) {
+      if (built_on.count(lots[i].block)) continue;
+      settled[i] = 1;
+      if (!lot_of_block.emplace(lots[i].block, lots[i].planned).second) ++tally.merged;
+    }
+  }
   for (std::size_t i = 0; i < lots.size(); ++i) {
     if (built[i] || settled[i]) continue;
     settled[i] = 1;
@@ -162,6 +204,7 @@ std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<Planned
     l.lot = it->second;
     return city_map.label_index(l);
   });
+  make_blocks_whole(city_map, lot_of_block);
   return kept_lots(city_map, planned, sketch);
 }
 
