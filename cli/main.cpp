@@ -105,6 +105,9 @@ int generate(const fs::path& sketch_path, const fs::path& out, bool quiet, const
   for (const auto& z : result.report["empty_zones"])
     std::fprintf(stderr, "exacity: note: %s: features[%d] (%s) got no lots: %s\n", sketch.path.string().c_str(),
                  z["feature"].get<int>(), z["zone"].get<std::string>().c_str(), z["why"].get<std::string>().c_str());
+  for (const auto& z : result.report["placement_fallbacks"])
+    std::fprintf(stderr, "exacity: note: %s: %s lots are filled on the grid only with library models: %s; they get extruded footprints in rows\n",
+                 sketch.path.string().c_str(), z["zone"].get<std::string>().c_str(), z["why"].get<std::string>().c_str());
   if (!result.valid) {
     for (const auto& p : result.report["validation"]["problems"])
       std::fprintf(stderr, "exacity: invalid output: %s\n", p.get<std::string>().c_str());

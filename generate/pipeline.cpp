@@ -166,6 +166,21 @@ ordered_json empty_zones_report(const City& city) {
   return empty;
 }
 
+// report.json's placement_fallbacks: zone types whose lots ask for grid filling but whose
+// lots are built with extruded footprints in rows, as the library has no building for them.
+ordered_json placement_fallbacks_report(const City& city) {
+  ordered_json fallbacks = ordered_json::array();
+  for (const auto& [zone, settings] : city.sketch.zone_settings) {
+    if (settings.buildings.placement != "grid" || !grows_roads(zone)) continue;
+    const ModelLibrary* library = city.model_library();
+    if (library && !library->choices(zone, ModelKind::Building).empty()) continue;
+    fallbacks.push_back({{"zone", name(zone)},
+                         {"why", library ? "the model library has no building for this zone type"
+                                         : "the sketch names no model library (\"exacity\".models, or --models)"}});
+  }
+  return fallbacks;
+}
+
 // report.json's counts: features per layer, the map's size and the 3D exports'.
 ordered_json counts_report(const City& city, const MeshCounts& mesh, const GltfCounts& gltf) {
   const CityLayers& layers = city.layers;
@@ -226,6 +241,7 @@ GenerateResult write_city(const City& city, const fs::path& dir, StageClock& sta
       {"road_network", road_network_report(city.network, sketch)},
       {"unbuilt_lots", {{"merged", city.unbuilt_lots.merged}, {"left_open", city.unbuilt_lots.left_open}}},
       {"empty_zones", empty_zones_report(city)},
+      {"placement_fallbacks", placement_fallbacks_report(city)},
       {"statistics", city_statistics(city.layers, &sketch)},
       {"validation",
        {{"ok", validation.ok()}, {"problems", validation.problems}, {"widest_sliver_m", validation.widest_sliver}}},

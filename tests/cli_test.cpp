@@ -151,6 +151,25 @@ TEST(Cli, ZonesLeftEmptyAreNamedWithTheReason) {
   EXPECT_NE(g.out.find("features[2] (commercial) got no lots: no street reaches"), std::string::npos) << g.out;
 }
 
+// Grid filling places library models: a zone that asks for it without any is built in
+// rows, and the run says so.
+TEST(Cli, GridFillingWithoutModelsIsNamedNotSilent) {
+  fs::path dir = testing_util::temp_dir("cli-grid-fallback");
+  std::ofstream(dir / "in.geojson") << R"({"type": "FeatureCollection", "exacity": {"seed": 3, "zones":
+    {"residential": {"placement": "grid"}}}, "features": [
+    {"type": "Feature", "properties": {"zone": "residential"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [300, 200], [0, 200], [0, 0]]]}}]})";
+  Result g = run("generate " + (dir / "in.geojson").string() + " -o " + (dir / "out").string() + " -q");
+  ASSERT_EQ(g.code, 0) << g.out;
+  auto report = nlohmann::json::parse(read(dir / "out" / "report.json"));
+  ASSERT_EQ(report["placement_fallbacks"].size(), 1u) << report["placement_fallbacks"];
+  EXPECT_EQ(report["placement_fallbacks"][0]["zone"], "residential");
+  EXPECT_GT(report["counts"]["buildings"].get<int>(), 0);
+  EXPECT_NE(g.out.find("note: " + (dir / "in.geojson").string() + ": residential lots are filled on the grid only with library models"),
+            std::string::npos)
+      << g.out;
+}
+
 TEST(Cli, StatsMeasureTheCityAndRealData) {
   fs::path dir = testing_util::temp_dir("cli-stats");
   ASSERT_EQ(run("generate " + small_sketch(dir).string() + " -o " + (dir / "out").string() + " -q").code, 0);

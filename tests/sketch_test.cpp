@@ -171,6 +171,21 @@ TEST(SketchParse, MissingFileIsAUserError) {
   EXPECT_THROW(load_sketch("/nonexistent/city.geojson"), UserError);
 }
 
+TEST(Sketch, GridFillingSettingsAreReadAndChecked) {
+  Sketch s = parse_sketch(with_features(kSquare, R"({"zones": {"commercial": {"placement": "grid", "grid_cell": 0.5,
+                                                   "grid_passes": 3}}})"),
+                          "city.geojson");
+  const BuildingSettings& b = s.zone_settings.at(ZoneType::Commercial).buildings;
+  EXPECT_EQ(b.placement, "grid");
+  EXPECT_EQ(b.grid_cell, 0.5);
+  EXPECT_EQ(b.grid_passes, 3);
+  EXPECT_EQ(s.zone_settings.at(ZoneType::Residential).buildings.placement, "rows");
+  expect_error(with_features(kSquare, R"({"zones": {"residential": {"placement": "hex"}}})"), {"placement", "\"grid\""});
+  expect_error(with_features(kSquare, R"({"zones": {"residential": {"grid_cell": 0}}})"), {"grid_cell"});
+  expect_error(with_features(kSquare, R"({"zones": {"residential": {"grid_passes": 1.5}}})"), {"grid_passes", "whole"});
+  expect_error(with_features(kSquare, R"({"zones": {"residential": {"grid_passes": 17}}})"), {"grid_passes"});
+}
+
 TEST(Sketch, CameraAndDensityAndModelsAreRead) {
   Sketch s = parse_sketch(with_features(kSquare, R"({"camera": "look:from=0,-50,30,to=5,5,0", "models": "lib/models.json",
                                                    "zones": {"residential": {"density": "sparse"}}})"),

@@ -1,5 +1,7 @@
 #include "generate/placement/building_settings.h"
 
+#include <cmath>
+
 namespace exacity {
 namespace {
 
@@ -42,7 +44,8 @@ const std::set<std::string>& building_setting_keys() {
   static const std::set<std::string> keys{"setback",         "building_gap",       "footprint_width",
                                           "footprint_depth", "min_footprint_width", "max_footprint_area",
                                           "min_footprint_area", "heights",          "roof",
-                                          "roof_pitch",      "density"};
+                                          "roof_pitch",      "density",            "placement",
+                                          "grid_cell",       "grid_passes"};
   return keys;
 }
 
@@ -53,6 +56,13 @@ BuildingSettings read_building_settings(const SettingsReader& s, BuildingSetting
   s.choice("density", b.density, {"dense", "normal", "sparse"},
            "expected \"dense\", \"normal\" or \"sparse\" (how far apart placed models stand)");
   read_heights(s, b);
+  s.choice("placement", b.placement, {"rows", "grid"},
+           "expected \"rows\" (along the street) or \"grid\" (seed 001's grid filling)");
+  s.number("grid_cell", b.grid_cell, 0.1, 100);
+  double passes = b.grid_passes;
+  s.number("grid_passes", passes, 1, 16);
+  if (passes != std::floor(passes)) s.fail("grid_passes", "expected a whole number of passes (1 to 16)");
+  b.grid_passes = static_cast<int>(passes);
   return b;
 }
 

@@ -27,6 +27,11 @@ struct BuildingSettings {
   // How far apart placed models stand in their rows, centre to centre (seed 002's
   // _Dense/_Sparse): "dense" 1.25–1.5 model widths, "normal" 2–3, "sparse" 4–5.
   std::string density = "normal";
+  // How placed models fill a lot: "rows" along the street (seed 002) or "grid", seed 001's
+  // grid filling, on cells of `grid_cell` metres, filled `grid_passes` times.
+  std::string placement = "rows";
+  double grid_cell = 1;
+  int grid_passes = 1;
 };
 
 BuildingSettings default_building_settings(ZoneType type);

@@ -9,6 +9,7 @@
 
 #include "generate/errors.h"
 #include "generate/export/geojson.h"
+#include "generate/placement/grid_filling.h"
 #include "generate/placement/model_placement.h"
 #include "generate/placement/placer.h"
 #include "geom/grid.h"
@@ -147,7 +148,10 @@ std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> zone_placers(const Sket
   std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> placers;
   for (const auto& [zone, settings] : sketch.zone_settings) {
     auto& list = placers[zone];
-    std::unique_ptr<Placer> models = library ? make_model_placer(*library, zone, ModelKind::Building) : nullptr;
+    std::unique_ptr<Placer> models;
+    if (library)
+      models = settings.buildings.placement == "grid" ? make_grid_filler(*library, zone)
+                                                       : make_model_placer(*library, zone, ModelKind::Building);
     list.push_back(models ? std::move(models) : std::make_unique<Extrusion>(centre, radius));
     if (!library) continue;
     for (ModelKind kind : {ModelKind::Street, ModelKind::Tree})

@@ -13,6 +13,15 @@ namespace {
 
 using geom::Vec2;
 
+// Centre-to-centre spacing along a row, in model widths (seed 002).
+std::pair<double, double> spacing(const std::string& density) {
+  if (density == "dense") return {1.25, 1.5};
+  if (density == "sparse") return {4, 5};
+  return {2, 3};
+}
+
+}  // namespace
+
 int pick(const std::vector<int>& choices, const ModelLibrary& lib, Random& rng) {
   double total = 0;
   for (int c : choices) total += lib.models[c].weight;
@@ -20,13 +29,6 @@ int pick(const std::vector<int>& choices, const ModelLibrary& lib, Random& rng) 
   for (int c : choices)
     if ((r -= lib.models[c].weight) < 0) return c;
   return choices.back();
-}
-
-// Centre-to-centre spacing along a row, in model widths (seed 002).
-std::pair<double, double> spacing(const std::string& density) {
-  if (density == "dense") return {1.25, 1.5};
-  if (density == "sparse") return {4, 5};
-  return {2, 3};
 }
 
 ModelInstance made(const Model& m, const Placement& p, geom::Ring ring) {
@@ -37,8 +39,6 @@ ModelInstance made(const Model& m, const Placement& p, geom::Ring ring) {
   placed.height = m.height * p.scale;
   return placed;
 }
-
-}  // namespace
 
 geom::Ring placed_outline(const Model& m, const Placement& p) {
   const double c = std::cos(p.angle) * p.scale, s = std::sin(p.angle) * p.scale;

@@ -7,7 +7,9 @@
 
 #include <vector>
 
+#include "generate/city/random.h"
 #include "generate/placement/buildings.h"
+#include "generate/placement/model_library.h"
 #include "generate/placement/occupancy.h"
 
 namespace exacity {
@@ -18,5 +20,11 @@ std::vector<ModelInstance> place_models(Occupancy& occupancy, const std::vector<
 
 // The model's outline turned by `angle`, scaled and moved to `position`, on the grid.
 geom::Ring placed_outline(const Model& model, const Placement& p);
+
+// One of `choices`, drawn by the models' weights.
+int pick(const std::vector<int>& choices, const ModelLibrary& library, Random& rng);
+
+// The model standing there, its footprint `ring` (placed_outline's).
+ModelInstance made(const Model& model, const Placement& p, geom::Ring ring);
 
 }  // namespace exacity

@@ -1,0 +1,327 @@
+#include "generate/placement/grid_filling.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "generate/placement/model_placement.h"
+#include "geom/measure.h"
+
+namespace exacity {
+namespace {
+
+using geom::Vec2;
+
+// Whether the segment pq enters the closed box [x0, x1] x [y0, y1] (Liang-Barsky).
+bool segment_meets_box(Vec2 p, Vec2 q, double x0, double y0, double x1, double y1) {
+  double lo = 0, hi = 1;
+  const double d[2] = {q.x - p.x, q.y - p.y}, from[2] = {p.x, p.y}, min[2] = {x0, y0}, max[2] = {x1, y1};
+  for (int a = 0; a < 2; ++a) {
+    if (d[a] == 0) {
+      if (from[a] < min[a] || from[a] > max[a]) return false;
+      continue;
+    }
+    double t0 = (min[a] - from[a]) / d[a], t1 = (max[a] - from[a]) / d[a];
+    if (t0 > t1) std::swap(t0, t1);
+    lo = std::max(lo, t0), hi = std::min(hi, t1);
+    if (lo > hi) return false;
+  }
+  return true;
+}
+
+// A quarter turn `r` times, counter-clockwise.
+Vec2 turned(Vec2 v, int r) {
+  for (int k = 0; k < r; ++k) v = {-v.y, v.x};
+  return v;
+}
+
+// The lot piece over a grid in its frontage's frame: cell (i, j) is the square from
+// (t0 + i cell, j cell) in (along the street, back from it).
+struct LotGrid {
+  Frontage f;
+  double cell = 1;
+  int width = 0, height = 0;
+  std::vector<char> blocked;
+  std::vector<int> facing;      // per cell: the quarter turn that faces the nearest street
+  std::vector<int> row_prefix;  // per row, blocked cells before each column (width + 1 each)
+
+  Vec2 world(double t, double d) const { return f.at(f.t0 + t, d); }
+  std::size_t index(int i, int j) const { return static_cast<std::size_t>(j) * width + i; }
+  void count_row(int j) {
+    int* p = &row_prefix[static_cast<std::size_t>(j) * (width + 1)];
+    p[0] = 0;
+    for (int i = 0; i < width; ++i) p[i + 1] = p[i] + blocked[index(i, j)];
+  }
+  // Whether cells [i0, i1) of row j, all on the grid, are free.
+  bool run_free(int j, int i0, int i1) const {
+    const int* p = &row_prefix[static_cast<std::size_t>(j) * (width + 1)];
+    return p[i1] - p[i0] == 0;
+  }
+};
+
+// The largest a lot's grid may be: a coarser cell for larger lots keeps the fill quick.
+constexpr double kMaxCells = 1 << 20;
+
+LotGrid lay_grid(const Occupancy& occupancy, const BuildingSettings& params, double cell) {
+  LotGrid g;
+  g.f = occupancy.frontage();
+  const double length = g.f.t1 - g.f.t0, depth = g.f.depth;
+  cell = std::max(cell, std::sqrt(length * depth / kMaxCells));
+  g.cell = cell;
+  g.width = static_cast<int>(std::ceil(length / cell)), g.height = static_cast<int>(std::ceil(depth / cell));
+  g.blocked.assign(static_cast<std::size_t>(g.width) * g.height, 0);
+  g.facing.assign(g.blocked.size(), 0);
+  // A cell is free when its square lies inside the piece, `setback` from the street and
+  // half the building gap from the piece's other edges: inside by the crossings of its
+  // row's middle line, then each edge blocks the cells near it.
+  const std::vector<geom::KindedRing> rings = occupancy.piece().kinded_rings();
+  auto frame = [&](Vec2 p) {
+    const Vec2 d = p - g.f.a;
+    return Vec2{d.x * g.f.u.x + d.y * g.f.u.y - g.f.t0, d.x * g.f.n.x + d.y * g.f.n.y};
+  };
+  std::fill(g.blocked.begin(), g.blocked.end(), 1);
+  for (int j = 0; j < g.height; ++j) {
+    const double y = (j + 0.5) * cell;
+    std::vector<double> crossings;
+    for (const geom::KindedRing& r : rings)
+      for (std::size_t e = 0; e < r.points.size(); ++e) {
+        const Vec2 a = frame(r.points[e]), b = frame(r.points[(e + 1) % r.points.size()]);
+        if ((a.y <= y) != (b.y <= y)) crossings.push_back(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
+      }
+    std::sort(crossings.begin(), crossings.end());
+    for (std::size_t k = 0; k + 1 < crossings.size(); k += 2)
+      for (int i = std::max(0, static_cast<int>(std::ceil(crossings[k] / cell - 0.5)));
+           i < g.width && (i + 0.5) * cell < crossings[k + 1]; ++i)
+        g.blocked[g.index(i, j)] = 0;
+  }
+  const double half_diagonal = cell * M_SQRT1_2;
+  std::vector<std::pair<Vec2, Vec2>> streets;
+  for (const geom::KindedRing& r : rings)
+    for (std::size_t e = 0; e < r.points.size(); ++e) {
+      const Vec2 a = r.points[e], b = r.points[(e + 1) % r.points.size()];
+      const bool street = r.kinds[e] == LotEdge::kStreet;
+      if (street) streets.push_back({a, b});
+      const double reach = (street ? params.setback : params.building_gap / 2) + half_diagonal;
+      const Vec2 fa = frame(a), fb = frame(b);
+      const int i0 = std::max(0, static_cast<int>(std::floor((std::min(fa.x, fb.x) - reach) / cell)));
+      const int i1 = std::min(g.width - 1, static_cast<int>(std::floor((std::max(fa.x, fb.x) + reach) / cell)));
+      const int j0 = std::max(0, static_cast<int>(std::floor((std::min(fa.y, fb.y) - reach) / cell)));
+      const int j1 = std::min(g.height - 1, static_cast<int>(std::floor((std::max(fa.y, fb.y) + reach) / cell)));
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i)
+          if (geom::distance_to_segment({(i + 0.5) * cell, (j + 0.5) * cell}, fa, fb) < reach) g.blocked[g.index(i, j)] = 1;
+    }
+  // Each free cell faces the street nearest it: the quarter turn whose front (the model's
+  // -y) points most nearly that way. The piece lies left of its edges, the street right.
+  for (int j = 0; j < g.height; ++j)
+    for (int i = 0; i < g.width; ++i) {
+      if (g.blocked[g.index(i, j)] || streets.empty()) continue;
+      const Vec2 c = g.world((i + 0.5) * cell, (j + 0.5) * cell);
+      double nearest = INFINITY;
+      Vec2 towards{0, -1};
+      for (auto [a, b] : streets)
+        if (const double d = geom::distance_to_segment(c, a, b); d < nearest) {
+          nearest = d;
+          const Vec2 n = geom::left_normal(a, b);
+          towards = {-(n.x * g.f.u.x + n.y * g.f.u.y), -(n.x * g.f.n.x + n.y * g.f.n.y)};
+        }
+      int best = 0;
+      double best_dot = -INFINITY;
+      for (int r = 0; r < 4; ++r) {
+        const Vec2 front = turned({0, -1}, r);
+        if (const double dot = front.x * towards.x + front.y * towards.y; dot > best_dot + 1e-9) best_dot = dot, best = r;
+      }
+      g.facing[g.index(i, j)] = best;
+    }
+  g.row_prefix.assign(static_cast<std::size_t>(g.height) * (g.width + 1), 0);
+  for (int j = 0; j < g.height; ++j) g.count_row(j);
+  return g;
+}
+
+FootprintGrid grown(const FootprintGrid& f, int k) {
+  FootprintGrid g;
+  g.width = f.width + 2 * k, g.height = f.height + 2 * k;
+  g.covered.assign(static_cast<std::size_t>(g.width) * g.height, 0);
+  for (int j = 0; j < f.height; ++j)
+    for (int i = 0; i < f.width; ++i)
+      if (f.at(i, j))
+        for (int b = 0; b <= 2 * k; ++b)
+          for (int a = 0; a <= 2 * k; ++a) g.covered[static_cast<std::size_t>(j + b) * g.width + i + a] = 1;
+  for (char c : g.covered) g.cells += c;
+  return g;
+}
+
+// A model drawn for the lot, before it has a place: its footprint grid for each quarter
+// turn, and the same grown by the building gap (the cells it takes from later models),
+// each made when first asked for.
+class Candidate {
+ public:
+  Candidate(const Model& model, int index, double scale, int tint, double cell, int gap_cells)
+      : model_(&model), index_(index), scale_(scale), tint_(tint), cell_(cell), gap_cells_(gap_cells) {}
+
+  int index() const { return index_; }
+  double scale() const { return scale_; }
+  int tint() const { return tint_; }
+  int gap_cells() const { return gap_cells_; }
+  double area() const { return model_->width * model_->depth * scale_ * scale_; }
+  const FootprintGrid& footprint(int r) const {
+    if (!turns_[r]) {
+      geom::Ring outline;
+      for (Vec2 v : model_->outline) outline.push_back(turned({v.x * scale_, v.y * scale_}, r));
+      turns_[r] = footprint_grid(outline, cell_);
+    }
+    return *turns_[r];
+  }
+  const FootprintGrid& taken(int r) const {
+    if (!taken_[r]) taken_[r] = grown(footprint(r), gap_cells_);
+    return *taken_[r];
+  }
+
+ private:
+  const Model* model_;
+  int index_;
+  double scale_;
+  int tint_;
+  double cell_;
+  int gap_cells_;  // how far `taken` reaches past the footprint, in cells each way
+  mutable std::optional<FootprintGrid> turns_[4], taken_[4];
+};
+
+// A random model of the choices, of a random size and colour (seed 001's alteration).
+Candidate draw(const std::vector<int>& choices, const ModelLibrary& lib, const BuildingSettings& params, double cell,
+               Random& rng) {
+  const int model = pick(choices, lib, rng);
+  const Model& m = lib.models[model];
+  const double scale = rng.uniform(m.min_scale, m.max_scale);
+  const int tint = static_cast<int>(rng.next() % kTints);
+  // The lot's edges keep half the gap already (lay_grid); between models, the whole gap,
+  // and a cell at least: footprints that touch are not apart (Occupancy).
+  return {m, model, scale, tint, cell, std::max(1, static_cast<int>(std::ceil(params.building_gap / cell - 1e-9)))};
+}
+
+// Whether the candidate, turned r times, fits with its footprint's lower-left cell at (i, j).
+bool fits(const LotGrid& g, const Candidate& c, int r, int i, int j) {
+  const FootprintGrid& own = c.footprint(r);
+  if (i + own.width > g.width || j + own.height > g.height) return false;
+  for (int b = 0; b < own.height; ++b)
+    for (int a = 0; a < own.width;) {
+      if (!own.at(a, b)) {
+        ++a;
+        continue;
+      }
+      int end = a;
+      while (end < own.width && own.at(end, b)) ++end;
+      if (!g.run_free(j + b, i + a, i + end)) return false;
+      a = end;
+    }
+  return true;
+}
+
+// Blocks the cells the footprint's lower-left cell at (i, j) takes (off the grid: nothing).
+void mark(LotGrid& g, const FootprintGrid& f, int i, int j) {
+  for (int b = 0; b < f.height; ++b) {
+    if (j + b < 0 || j + b >= g.height) continue;
+    for (int a = 0; a < f.width; ++a)
+      if (f.at(a, b) && i + a >= 0 && i + a < g.width) g.blocked[g.index(i + a, j + b)] = 1;
+    g.count_row(j + b);
+  }
+}
+
+// Places one candidate at the first place along the serpentine where its footprint grid
+// is free and the exact check agrees; whether it found one.
+bool place_first_free(LotGrid& g, const std::vector<std::pair<int, int>>& order, const Candidate& c,
+                      const ModelLibrary& lib, Occupancy& occupancy, std::vector<ModelInstance>& out) {
+  constexpr int kRefusals = 16;  // exact refusals (rounding at an edge) before giving up
+  int refused = 0;
+  for (auto [i, j] : order) {
+    const int r = g.facing[g.index(i, j)];
+    if (!fits(g, c, r, i, j)) continue;
+    const FootprintGrid& own = c.footprint(r);
+    // The model's origin, in the frame: the footprint's lower-left cell corner less the
+    // outline's lower-left bounding corner.
+    const Vec2 origin = g.world(i * g.cell - own.corner.x, j * g.cell - own.corner.y);
+    const Placement p{c.index(), origin, std::atan2(g.f.u.y, g.f.u.x) + r * M_PI / 2, c.scale(), c.tint()};
+    geom::Ring ring = placed_outline(lib.models[c.index()], p);
+    if (!occupancy.take(ring)) {
+      if (++refused == kRefusals) return false;
+      continue;
+    }
+    mark(g, c.taken(r), i - c.gap_cells(), j - c.gap_cells());
+    out.push_back(made(lib.models[c.index()], p, std::move(ring)));
+    return true;
+  }
+  return false;
+}
+
+class GridFiller : public Placer {
+ public:
+  GridFiller(const ModelLibrary& library, std::vector<int> choices) : library_(library), choices_(std::move(choices)) {}
+
+  void place(const Lot&, const BuildingSettings& params, Occupancy& occupancy, Random& rng, Structures& out) const override {
+    const Frontage& f = occupancy.frontage();
+    if (!(f.t1 > f.t0) || !(f.depth > 0)) return;
+    LotGrid g = lay_grid(occupancy, params, params.grid_cell);
+    const std::vector<std::pair<int, int>> order = serpentine(g.width, g.height);
+    double mean_cells = 0;
+    for (int c : choices_) mean_cells += library_.models[c].width * library_.models[c].depth;
+    mean_cells = std::max(mean_cells / static_cast<double>(choices_.size()) / (g.cell * g.cell), 1.0);
+    for (int pass = 0; pass < params.grid_passes; ++pass) {
+      const int free = static_cast<int>(std::count(g.blocked.begin(), g.blocked.end(), 0));
+      if (free == 0) return;
+      // Enough for the free cells to fill, largest first (seed 001), each a random size and colour.
+      const int count = static_cast<int>(std::clamp(std::ceil(1.5 * free / mean_cells), 1.0, 256.0));
+      std::vector<Candidate> candidates;
+      for (int n = 0; n < count; ++n) candidates.push_back(draw(choices_, library_, params, g.cell, rng));
+      std::stable_sort(candidates.begin(), candidates.end(),
+                       [](const Candidate& a, const Candidate& b) { return a.area() > b.area(); });
+      for (const Candidate& c : candidates) place_first_free(g, order, c, library_, occupancy, out.models);
+    }
+  }
+
+ private:
+  const ModelLibrary& library_;
+  std::vector<int> choices_;
+};
+
+}  // namespace
+
+FootprintGrid footprint_grid(const geom::Ring& outline, double cell) {
+  FootprintGrid f;
+  if (outline.size() < 3) return f;
+  geom::Box box = geom::Box::none();
+  for (Vec2 v : outline) box.add(v);
+  f.corner = {box.min_x, box.min_y};
+  // A hair under a whole cell stays one cell: outlines on the grid would otherwise spill.
+  f.width = std::max(1, static_cast<int>(std::ceil(box.width() / cell - 1e-9)));
+  f.height = std::max(1, static_cast<int>(std::ceil(box.height() / cell - 1e-9)));
+  f.covered.assign(static_cast<std::size_t>(f.width) * f.height, 0);
+  for (int j = 0; j < f.height; ++j)
+    for (int i = 0; i < f.width; ++i) {
+      const double x0 = box.min_x + i * cell, y0 = box.min_y + j * cell, x1 = x0 + cell, y1 = y0 + cell;
+      // The open square: an edge along its side only touches it, and the cell beyond
+      // stays free.
+      const double in = 1e-9 * cell;
+      bool meets = geom::odd_crossings(outline, {(x0 + x1) / 2, (y0 + y1) / 2});
+      for (std::size_t e = 0; e < outline.size() && !meets; ++e)
+        meets = segment_meets_box(outline[e], outline[(e + 1) % outline.size()], x0 + in, y0 + in, x1 - in, y1 - in);
+      f.covered[static_cast<std::size_t>(j) * f.width + i] = meets;
+      f.cells += meets;
+    }
+  return f;
+}
+
+std::vector<std::pair<int, int>> serpentine(int width, int height) {
+  std::vector<std::pair<int, int>> order;
+  order.reserve(static_cast<std::size_t>(std::max(width, 0)) * std::max(height, 0));
+  for (int j = 0; j < height; ++j)
+    for (int k = 0; k < width; ++k) order.push_back({j % 2 == 0 ? k : width - 1 - k, j});
+  return order;
+}
+
+std::unique_ptr<Placer> make_grid_filler(const ModelLibrary& library, ZoneType zone) {
+  std::vector<int> choices = library.choices(zone, ModelKind::Building);
+  if (choices.empty()) return nullptr;
+  return std::make_unique<GridFiller>(library, std::move(choices));
+}
+
+}  // namespace exacity

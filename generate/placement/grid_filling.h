@@ -1,0 +1,36 @@
+// Seed 001's grid filling (docs/design.md, Placement): a lot piece laid over a grid of
+// square cells in its frontage's frame, free or blocked; each model's footprint grid (the
+// cells its real outline covers, so an L leaves its notch free); models placed largest
+// first, each at the first free place along a serpentine curve (one row along the street,
+// the next back), facing the road edge nearest that place. The grid only proposes: the
+// lot's Occupancy, exact, has the last word.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "generate/placement/placer.h"
+
+namespace exacity {
+
+// The cells a footprint covers, row by row from its lower-left cell.
+struct FootprintGrid {
+  int width = 0, height = 0;  // cells
+  std::vector<char> covered;  // width * height
+  geom::Vec2 corner;          // the outline's lower-left bounding corner, in its own frame
+  int cells = 0;              // covered cells
+  bool at(int i, int j) const { return covered[static_cast<std::size_t>(j) * width + i] != 0; }
+};
+
+// The cells of side `cell` that the ring (in its own frame) overlaps, its bounding box's
+// lower-left at a cell corner: a cell counts when the ring enters its square at all, so a
+// footprint standing on free cells stands on free ground.
+FootprintGrid footprint_grid(const geom::Ring& outline, double cell);
+
+// The serpentine order of a grid's cells: row 0 left to right, row 1 right to left, ...
+std::vector<std::pair<int, int>> serpentine(int width, int height);
+
+// Grid filling with the library's building models for the zone (none when it has none).
+std::unique_ptr<Placer> make_grid_filler(const ModelLibrary& library, ZoneType zone);
+
+}  // namespace exacity
