@@ -163,7 +163,6 @@ class Candidate {
   double scale() const { return scale_; }
   int tint() const { return tint_; }
   int gap_cells() const { return gap_cells_; }
-  double area() const { return model_->width * model_->depth * scale_ * scale_; }
   const FootprintGrid& footprint(int r) const {
     if (!turns_[r]) {
       geom::Ring outline;
@@ -273,7 +272,7 @@ class GridFiller : public Placer {
       std::vector<Candidate> candidates;
       for (int n = 0; n < count; ++n) candidates.push_back(draw(choices_, library_, params, g.cell, rng));
       std::stable_sort(candidates.begin(), candidates.end(),
-                       [](const Candidate& a, const Candidate& b) { return a.area() > b.area(); });
+                       [](const Candidate& a, const Candidate& b) { return a.footprint(0).cells > b.footprint(0).cells; });
       for (const Candidate& c : candidates) place_first_free(g, order, c, library_, occupancy, out.models);
     }
   }
