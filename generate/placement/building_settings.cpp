@@ -58,7 +58,7 @@ BuildingSettings read_building_settings(const SettingsReader& s, BuildingSetting
   read_heights(s, b);
   s.choice("placement", b.placement, {"rows", "grid"},
            "expected \"rows\" (along the street) or \"grid\" (seed 001's grid filling)");
-  s.number("grid_cell", b.grid_cell, 0.1, 100);
+  s.number("grid_cell", b.grid_cell, 0.1, 10);
   double passes = b.grid_passes;
   s.number("grid_passes", passes, 1, 16);
   if (passes != std::floor(passes)) s.fail("grid_passes", "expected a whole number of passes (1 to 16)");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 
 #include "generate/placement/model_placement.h"
@@ -43,24 +44,30 @@ struct LotGrid {
   int width = 0, height = 0;
   std::vector<char> blocked;
   std::vector<int> facing;      // per cell: the quarter turn that faces the nearest street
-  std::vector<int> row_prefix;  // per row, blocked cells before each column (width + 1 each)
+  std::vector<int> sums;        // blocked cells below and left of each cell corner ((width + 1) * (height + 1))
 
   Vec2 world(double t, double d) const { return f.at(f.t0 + t, d); }
   std::size_t index(int i, int j) const { return static_cast<std::size_t>(j) * width + i; }
-  void count_row(int j) {
-    int* p = &row_prefix[static_cast<std::size_t>(j) * (width + 1)];
-    p[0] = 0;
-    for (int i = 0; i < width; ++i) p[i + 1] = p[i] + blocked[index(i, j)];
+  void count_blocked() {
+    sums.assign(static_cast<std::size_t>(width + 1) * (height + 1), 0);
+    for (int j = 0; j < height; ++j)
+      for (int i = 0; i < width; ++i)
+        sums[corner(i + 1, j + 1)] = blocked[index(i, j)] + sums[corner(i, j + 1)] + sums[corner(i + 1, j)] - sums[corner(i, j)];
   }
-  // Whether cells [i0, i1) of row j, all on the grid, are free.
-  bool run_free(int j, int i0, int i1) const {
-    const int* p = &row_prefix[static_cast<std::size_t>(j) * (width + 1)];
-    return p[i1] - p[i0] == 0;
+  // Whether the cells of r, moved by (i, j), all on the grid, are free.
+  bool free(const FootprintGrid::Rect& r, int i, int j) const {
+    return sums[corner(i + r.i1, j + r.j1)] - sums[corner(i + r.i0, j + r.j1)] - sums[corner(i + r.i1, j + r.j0)] +
+               sums[corner(i + r.i0, j + r.j0)] ==
+           0;
   }
+
+ private:
+  std::size_t corner(int i, int j) const { return static_cast<std::size_t>(j) * (width + 1) + i; }
 };
 
-// The largest a lot's grid may be: a coarser cell for larger lots keeps the fill quick.
-constexpr double kMaxCells = 1 << 20;
+// The largest a lot's grid may be (256 x 256 one-metre cells): a coarser cell for larger
+// lots keeps the fill quick.
+constexpr double kMaxCells = 1 << 16;
 
 LotGrid lay_grid(const Occupancy& occupancy, const BuildingSettings& params, double cell) {
   LotGrid g;
@@ -133,21 +140,58 @@ LotGrid lay_grid(const Occupancy& occupancy, const BuildingSettings& params, dou
       }
       g.facing[g.index(i, j)] = best;
     }
-  g.row_prefix.assign(static_cast<std::size_t>(g.height) * (g.width + 1), 0);
-  for (int j = 0; j < g.height; ++j) g.count_row(j);
+  g.count_blocked();
   return g;
 }
 
+// The covered cells as rectangles: each row's runs, a run carried up while the rows above
+// have the same one.
+std::vector<FootprintGrid::Rect> rectangles(const FootprintGrid& f) {
+  std::vector<FootprintGrid::Rect> done, open;
+  for (int j = 0; j <= f.height; ++j) {
+    std::vector<FootprintGrid::Rect> runs;
+    for (int i = 0; j < f.height && i < f.width;) {
+      if (!f.at(i, j)) {
+        ++i;
+        continue;
+      }
+      int end = i;
+      while (end < f.width && f.at(end, j)) ++end;
+      runs.push_back({i, j, end, j + 1});
+      i = end;
+    }
+    std::vector<FootprintGrid::Rect> next;
+    for (FootprintGrid::Rect run : runs) {
+      auto same = std::find_if(open.begin(), open.end(), [&](const auto& o) { return o.i0 == run.i0 && o.i1 == run.i1; });
+      if (same != open.end()) run.j0 = same->j0, open.erase(same);
+      next.push_back(run);
+    }
+    done.insert(done.end(), open.begin(), open.end());
+    open = std::move(next);
+  }
+  return done;
+}
+
+// The footprint grown by k cells each way (a square's reach): along rows, then columns.
 FootprintGrid grown(const FootprintGrid& f, int k) {
   FootprintGrid g;
   g.width = f.width + 2 * k, g.height = f.height + 2 * k;
-  g.covered.assign(static_cast<std::size_t>(g.width) * g.height, 0);
+  std::vector<char> rows(static_cast<std::size_t>(g.width) * f.height, 0);
   for (int j = 0; j < f.height; ++j)
-    for (int i = 0; i < f.width; ++i)
-      if (f.at(i, j))
-        for (int b = 0; b <= 2 * k; ++b)
-          for (int a = 0; a <= 2 * k; ++a) g.covered[static_cast<std::size_t>(j + b) * g.width + i + a] = 1;
+    for (int i = 0, last = -1; i < g.width; ++i) {
+      // The nearest covered cell at or before column i + k of f's row j, within 2k.
+      const int src = i;  // g's column i spans f's columns [i - 2k, i]
+      if (src < f.width && f.at(src, j)) last = src;
+      rows[static_cast<std::size_t>(j) * g.width + i] = last >= 0 && src - last <= 2 * k;
+    }
+  g.covered.assign(static_cast<std::size_t>(g.width) * g.height, 0);
+  for (int i = 0; i < g.width; ++i)
+    for (int j = 0, last = -1; j < g.height; ++j) {
+      if (j < f.height && rows[static_cast<std::size_t>(j) * g.width + i]) last = j;
+      g.covered[static_cast<std::size_t>(j) * g.width + i] = last >= 0 && j - last <= 2 * k;
+    }
   for (char c : g.covered) g.cells += c;
+  g.rects = rectangles(g);
   return g;
 }
 
@@ -202,28 +246,15 @@ Candidate draw(const std::vector<int>& choices, const ModelLibrary& lib, const B
 bool fits(const LotGrid& g, const Candidate& c, int r, int i, int j) {
   const FootprintGrid& own = c.footprint(r);
   if (i + own.width > g.width || j + own.height > g.height) return false;
-  for (int b = 0; b < own.height; ++b)
-    for (int a = 0; a < own.width;) {
-      if (!own.at(a, b)) {
-        ++a;
-        continue;
-      }
-      int end = a;
-      while (end < own.width && own.at(end, b)) ++end;
-      if (!g.run_free(j + b, i + a, i + end)) return false;
-      a = end;
-    }
-  return true;
+  return std::all_of(own.rects.begin(), own.rects.end(), [&](const FootprintGrid::Rect& rect) { return g.free(rect, i, j); });
 }
 
 // Blocks the cells the footprint's lower-left cell at (i, j) takes (off the grid: nothing).
 void mark(LotGrid& g, const FootprintGrid& f, int i, int j) {
-  for (int b = 0; b < f.height; ++b) {
-    if (j + b < 0 || j + b >= g.height) continue;
+  for (int b = 0; b < f.height; ++b)
     for (int a = 0; a < f.width; ++a)
-      if (f.at(a, b) && i + a >= 0 && i + a < g.width) g.blocked[g.index(i + a, j + b)] = 1;
-    g.count_row(j + b);
-  }
+      if (f.at(a, b) && i + a >= 0 && i + a < g.width && j + b >= 0 && j + b < g.height) g.blocked[g.index(i + a, j + b)] = 1;
+  g.count_blocked();
 }
 
 // Places one candidate at the first place along the serpentine where its footprint grid
@@ -273,7 +304,17 @@ class GridFiller : public Placer {
       for (int n = 0; n < count; ++n) candidates.push_back(draw(choices_, library_, params, g.cell, rng));
       std::stable_sort(candidates.begin(), candidates.end(),
                        [](const Candidate& a, const Candidate& b) { return a.footprint(0).cells > b.footprint(0).cells; });
-      for (const Candidate& c : candidates) place_first_free(g, order, c, library_, occupancy, out.models);
+      // A model that found no place three times in a pass (at sizes no larger each time)
+      // is not tried again in it; a pass that places nothing ends the filling.
+      constexpr int kMisses = 3;
+      std::map<int, int> misses;
+      int placed = 0;
+      for (const Candidate& c : candidates) {
+        if (misses[c.index()] == kMisses) continue;
+        if (place_first_free(g, order, c, library_, occupancy, out.models)) ++placed;
+        else ++misses[c.index()];
+      }
+      if (placed == 0) return;
     }
   }
 
@@ -294,18 +335,38 @@ FootprintGrid footprint_grid(const geom::Ring& outline, double cell) {
   f.width = std::max(1, static_cast<int>(std::ceil(box.width() / cell - 1e-9)));
   f.height = std::max(1, static_cast<int>(std::ceil(box.height() / cell - 1e-9)));
   f.covered.assign(static_cast<std::size_t>(f.width) * f.height, 0);
-  for (int j = 0; j < f.height; ++j)
-    for (int i = 0; i < f.width; ++i) {
-      const double x0 = box.min_x + i * cell, y0 = box.min_y + j * cell, x1 = x0 + cell, y1 = y0 + cell;
-      // The open square: an edge along its side only touches it, and the cell beyond
-      // stays free.
-      const double in = 1e-9 * cell;
-      bool meets = geom::odd_crossings(outline, {(x0 + x1) / 2, (y0 + y1) / 2});
-      for (std::size_t e = 0; e < outline.size() && !meets; ++e)
-        meets = segment_meets_box(outline[e], outline[(e + 1) % outline.size()], x0 + in, y0 + in, x1 - in, y1 - in);
-      f.covered[static_cast<std::size_t>(j) * f.width + i] = meets;
-      f.cells += meets;
+  // Cells whose centre is inside, by the crossings of each row's middle line...
+  for (int j = 0; j < f.height; ++j) {
+    const double y = box.min_y + (j + 0.5) * cell;
+    std::vector<double> crossings;
+    for (std::size_t e = 0; e < outline.size(); ++e) {
+      const Vec2 a = outline[e], b = outline[(e + 1) % outline.size()];
+      if ((a.y <= y) != (b.y <= y)) crossings.push_back(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
     }
+    std::sort(crossings.begin(), crossings.end());
+    for (std::size_t k = 0; k + 1 < crossings.size(); k += 2)
+      for (int i = std::max(0, static_cast<int>(std::ceil((crossings[k] - box.min_x) / cell - 0.5)));
+           i < f.width && box.min_x + (i + 0.5) * cell < crossings[k + 1]; ++i)
+        f.covered[static_cast<std::size_t>(j) * f.width + i] = 1;
+  }
+  // ... and those an edge enters: the open square, so an edge along a side of the square
+  // only touches it and the cell beyond stays free.
+  const double in = 1e-9 * cell;
+  for (std::size_t e = 0; e < outline.size(); ++e) {
+    const Vec2 a = outline[e], b = outline[(e + 1) % outline.size()];
+    const int i0 = std::max(0, static_cast<int>(std::floor((std::min(a.x, b.x) - box.min_x) / cell)) - 1);
+    const int i1 = std::min(f.width - 1, static_cast<int>(std::floor((std::max(a.x, b.x) - box.min_x) / cell)) + 1);
+    const int j0 = std::max(0, static_cast<int>(std::floor((std::min(a.y, b.y) - box.min_y) / cell)) - 1);
+    const int j1 = std::min(f.height - 1, static_cast<int>(std::floor((std::max(a.y, b.y) - box.min_y) / cell)) + 1);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        char& c = f.covered[static_cast<std::size_t>(j) * f.width + i];
+        const double x = box.min_x + i * cell, y = box.min_y + j * cell;
+        if (!c && segment_meets_box(a, b, x + in, y + in, x + cell - in, y + cell - in)) c = 1;
+      }
+  }
+  for (char c : f.covered) f.cells += c;
+  f.rects = rectangles(f);
   return f;
 }
 

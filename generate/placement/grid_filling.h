@@ -15,10 +15,14 @@ namespace exacity {
 
 // The cells a footprint covers, row by row from its lower-left cell.
 struct FootprintGrid {
+  struct Rect {
+    int i0, j0, i1, j1;  // cells [i0, i1) x [j0, j1)
+  };
   int width = 0, height = 0;  // cells
   std::vector<char> covered;  // width * height
   geom::Vec2 corner;          // the outline's lower-left bounding corner, in its own frame
   int cells = 0;              // covered cells
+  std::vector<Rect> rects;    // the covered cells as rectangles: runs of rows alike
   bool at(int i, int j) const { return covered[static_cast<std::size_t>(j) * width + i] != 0; }
 };
 
