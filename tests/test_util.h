@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -23,9 +24,17 @@ inline std::vector<geom::Polygon> polygons(const std::vector<geom::Dissolved>& g
   return out;
 }
 
-// A fresh empty folder under the system's temporary folder.
+// Where a test's files go: a folder of this build's under the system's temporary folder,
+// so two builds' test runs on one machine (a CI clone beside a working copy) never write
+// into each other's folders.
+inline std::filesystem::path test_root() {
+  return std::filesystem::temp_directory_path() /
+         ("exacity-test-" + std::to_string(std::hash<std::string>{}(EXACITY_BUILD_DIR) % 1000000007));
+}
+
+// A fresh empty folder of this build's tests.
 inline std::filesystem::path temp_dir(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() / ("exacity-test-" + name);
+  auto dir = test_root() / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
