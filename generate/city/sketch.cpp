@@ -32,14 +32,6 @@ namespace {
 
 std::string quote(std::string_view s) { return "\"" + std::string(s) + "\""; }
 
-// Coordinates Exacity computes exactly in: rounding its exact vertices to doubles moves them
-// by under 2e-6 m out here; at 1e12 m (0.1 mm steps) written rings stop being simple.
-constexpr double kMaxCoordinate = 1e10;
-
-// The most blocks one run builds (the zones' area over their block_area): the 10 km
-// benchmark city's 12,700 blocks peak at 4.1 GiB.
-constexpr double kMaxBlocks = 50000;
-
 // A member's text, or its JSON when it is not a string: what to compare and quote.
 std::string text_of(const json& obj, const char* key) {
   auto it = obj.find(key);
@@ -159,7 +151,7 @@ class Parser {
                       quote(nearest_road_class_name(rname)) + "? (valid: " + list(kRoadClassNames) + ")");
     RoadFeature rf{index, *rc, default_width(*rc), {}};
     if (props.contains("width") && !props["width"].is_null())
-      rf.width = number(props["width"], where + " width", 0.5, 500);
+      rf.width = number(props["width"], where + " width", kMinRoadWidth, kMaxRoadWidth);
     auto line = [&](const json& j, const std::string& w) {
       geom::Polyline l = positions(j, w);
       if (l.size() < 2) fail(w, "a road needs at least 2 distinct points");
