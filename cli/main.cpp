@@ -102,9 +102,15 @@ int generate(const fs::path& sketch_path, const fs::path& out, bool quiet, const
   std::printf("exacity: wrote %s (roads %d, blocks %d, lots %d, buildings %d); open %s\n", out.string().c_str(),
               counts["roads"].get<int>(), counts["blocks"].get<int>(), counts["lots"].get<int>(),
               counts["buildings"].get<int>(), (out / "map.svg").string().c_str());
-  for (const auto& z : result.report["empty_zones"])
-    std::fprintf(stderr, "exacity: note: %s: features[%d] (%s) got no lots: %s\n", sketch.path.string().c_str(),
-                 z["feature"].get<int>(), z["zone"].get<std::string>().c_str(), z["why"].get<std::string>().c_str());
+  for (const auto& z : result.report["empty_zones"]) {
+    const std::string zone = z["zone"].get<std::string>(), why = z["why"].get<std::string>();
+    if (z.contains("grid_cell"))
+      std::fprintf(stderr, "exacity: note: %s: the %s region there got no lots: %s\n",
+                   z["grid_cell"].get<std::string>().c_str(), zone.c_str(), why.c_str());
+    else
+      std::fprintf(stderr, "exacity: note: %s: features[%d] (%s) got no lots: %s\n", sketch.path.string().c_str(),
+                   z["feature"].get<int>(), zone.c_str(), why.c_str());
+  }
   if (!result.valid) {
     for (const auto& p : result.report["validation"]["problems"])
       std::fprintf(stderr, "exacity: invalid output: %s\n", p.get<std::string>().c_str());
@@ -249,7 +255,8 @@ void add_image_options(CLI::App* c, RenderOptions& o) {
 
 void add_generate(CLI::App& app, GenerateCommand& c, SharedOptions& shared) {
   c.app = app.add_subcommand("generate", "Generate a city from a GeoJSON sketch");
-  c.app->add_option("SKETCH", c.sketch, "The sketch (GeoJSON FeatureCollection)")->required();
+  c.app->add_option("SKETCH", c.sketch, "The sketch (GeoJSON FeatureCollection), or a grid map (a .grid file)")
+      ->required();
   c.app->add_option("-o,--output", c.out, "Output folder (replaced if an earlier exacity run wrote it)")
       ->capture_default_str();
   c.app->add_flag("-q,--quiet", shared.quiet, "Hide progress");

@@ -14,6 +14,8 @@
 
 #include "generate/city/sketch.h"
 #include "generate/errors.h"
+#include "generate/export/validate.h"
+#include "generate/pipeline.h"
 #include "geom/measure.h"
 #include "geom/polygon_check.h"
 #include "tests/test_util.h"
@@ -134,6 +136,77 @@ void expect_error(const std::string& text, const std::string& at, std::initializ
   ASSERT_FALSE(m.empty()) << "accepted:\n" << text;
   EXPECT_EQ(m.rfind("city.grid:" + at + ": ", 0), 0u) << "names city.grid:" << at << " first: " << m;
   for (const char* p : parts) EXPECT_NE(m.find(p), std::string::npos) << "'" << p << "' missing in: " << m;
+}
+
+// ---- Whole cities ----------------------------------------------------------------------
+
+std::vector<geom::Polygon> layer_polygons(const fs::path& file) {
+  std::ifstream in(file);
+  const auto layer = ordered_json::parse(in);
+  std::vector<geom::Polygon> out;
+  for (const auto& f : layer["features"]) out.push_back(polygon_of(f["geometry"]));
+  return out;
+}
+
+bool inside(const std::vector<geom::Polygon>& polygons, geom::Vec2 p) {
+  for (const auto& poly : polygons) {
+    if (geom::winding_number(poly.outer, p) == 0) continue;
+    if (std::none_of(poly.holes.begin(), poly.holes.end(),
+                     [&](const geom::Ring& h) { return geom::winding_number(h, p) != 0; }))
+      return true;
+  }
+  return false;
+}
+
+// Every cell but X is covered by what the city wrote: zones, water or road areas (a road
+// cell by a road area), checked at points spread over each cell, its corners' neighbourhoods
+// included. `rows` are the map's rows, north first; its south-west corner at `origin`.
+void expect_no_gaps(const fs::path& out, const std::vector<std::string>& rows, double cell, geom::Vec2 origin = {}) {
+  const auto zones = layer_polygons(out / "vector" / "zones.geojson");
+  const auto water = layer_polygons(out / "vector" / "water.geojson");
+  const auto roads = layer_polygons(out / "vector" / "road_areas.geojson");
+  const int h = static_cast<int>(rows.size());
+  int gaps = 0;
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < static_cast<int>(rows[r].size()); ++c) {
+      const char status = rows[r][c];
+      if (status == 'X') continue;
+      for (double fx : {0.01, 0.25, 0.5, 0.75, 0.99})
+        for (double fy : {0.01, 0.25, 0.5, 0.75, 0.99}) {
+          const geom::Vec2 p{origin.x + (c + fx) * cell, origin.y + (h - r - 1 + fy) * cell};
+          const bool covered =
+              status == '=' ? inside(roads, p) : inside(zones, p) || inside(water, p) || inside(roads, p);
+          if (!covered && ++gaps < 5)
+            ADD_FAILURE() << "row " << r << " column " << c << " ('" << status << "') uncovered at " << p.x << ", "
+                          << p.y;
+        }
+    }
+  EXPECT_EQ(gaps, 0);
+}
+
+struct Generated {
+  nlohmann::ordered_json report;
+  Validation validation;
+};
+
+// Writes the map to a fresh folder, generates its city into out/ and validates it again.
+Generated generate(const std::string& name, const std::string& text, const fs::path& models = {}) {
+  const fs::path dir = testing_util::temp_dir("grid-" + name);
+  std::ofstream(dir / "city.grid") << text;
+  fs::create_directories(dir / "out");
+  GenerateResult result = generate_city(load_sketch(dir / "city.grid", true, models), dir / "out", nullptr);
+  return {result.report, validate_output(dir / "out")};
+}
+
+fs::path out_of(const std::string& name) { return fs::temp_directory_path() / ("exacity-test-grid-" + name) / "out"; }
+
+std::vector<std::string> rows_of(const std::string& text) {
+  std::vector<std::string> rows;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty() && line[0] != ';' && line.rfind("cell", 0) != 0 && line.rfind("origin", 0) != 0)
+      rows.push_back(line);
+  return rows;
 }
 
 }  // namespace
@@ -429,4 +502,156 @@ TEST(GridMapErrors, NoRowsOrNothingButBlockedCells) {
   expect_error("cell 10", "2:1", {"no rows"});
   expect_error("cell 10\n; nothing\n", "3:1", {"no rows"});
   expect_error("cell 10\nXXX\nXXX\n", "2:1", {"every cell is X"});
+}
+
+TEST(GridMapErrors, AMissingFileOrGridIsOneLine) {
+  const fs::path dir = testing_util::temp_dir("grid-missing");
+  try {
+    load_sketch(dir / "none.grid");
+    ADD_FAILURE() << "read a missing file";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("no such file"), std::string::npos) << e.what();
+  }
+  std::ofstream(dir / "sketch.geojson")
+      << R"({"type": "FeatureCollection", "exacity": {"grid": "none.grid"}, "features": []})";
+  try {
+    load_sketch(dir / "sketch.geojson");
+    ADD_FAILURE() << "read a missing grid map";
+  } catch (const UserError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("\"exacity\".grid"), std::string::npos) << m;
+    EXPECT_NE(m.find("no such file"), std::string::npos) << m;
+  }
+}
+
+// ---- Whole cities ----------------------------------------------------------------------
+
+namespace {
+
+// 20 x 20 cells of 10 m: a two-cell avenue, streets, a park, a pond, blocked cells.
+const std::string kSmallTown =
+    "cell 10\n"
+    "XXXrrrr=rrrrrr=\"\"\"\"\"\n"
+    "XXrrrrr=rrrrrr=\"\"~~\"\n"
+    "rrrrrrr=rrrrrr=\"\"~~\"\n"
+    "rrrrrrr=rrrrrr=\"\"\"\"\"\n"
+    "====================\n"
+    "ccccccc=cccccc=rrrrr\n"
+    "ccccccc=cccccc=rrrrr\n"
+    "ccccccc=cccccc=rrrrr\n"
+    "ccccccc=cccccc=rrrrr\n"
+    "====================\n"
+    "====================\n"
+    "iiiiiii=cccccc=rrrrr\n"
+    "iiiiiii=cccccc=rrrrr\n"
+    "iiiiiii=cccccc=rrrrr\n"
+    "iiiiiii=cccccc=rrrrr\n"
+    "iiiiiii=============\n"
+    "iiiiiii=......=rrrrr\n"
+    "iiiiiii=......=rrrrX\n"
+    "iiiiiii=......=rrrXX\n"
+    "iiiiiii=......=rrXXX\n";
+
+}  // namespace
+
+TEST(GridMapCity, ASmallTownGeneratesValidatesAndLeavesNoGaps) {
+  const Generated g = generate("town", kSmallTown);
+  EXPECT_TRUE(g.report["validation"]["ok"].get<bool>()) << g.report["validation"];
+  EXPECT_TRUE(g.validation.ok()) << (g.validation.problems.empty() ? "" : g.validation.problems[0]);
+  EXPECT_TRUE(g.report["empty_zones"].empty()) << g.report["empty_zones"];
+  EXPECT_GT(g.report["counts"]["lots"].get<int>(), 20);
+  EXPECT_EQ(g.report["road_network"]["regions"], 0) << "streets only: no grown roads";
+  expect_no_gaps(out_of("town"), rows_of(kSmallTown), 10);
+  // OUT/sketch.geojson holds the sketch read, so validate and render read it too.
+  const Sketch copy = load_sketch(out_of("town") / "sketch.geojson", false);
+  EXPECT_EQ(copy.zones.size(), load_sketch(out_of("town").parent_path() / "city.grid").zones.size());
+  EXPECT_EQ(copy.zone_settings.at(ZoneType::Residential).roads.layout, "streets");
+}
+
+TEST(GridMapCity, AMapAllOfRoad) {
+  const std::string map = "cell 10\n======\n======\n======\n======\n";
+  const Generated g = generate("all-road", map);
+  EXPECT_TRUE(g.validation.ok()) << (g.validation.problems.empty() ? "" : g.validation.problems[0]);
+  EXPECT_EQ(g.report["counts"]["roads"], 1);
+  expect_no_gaps(out_of("all-road"), rows_of(map), 10);
+}
+
+TEST(GridMapCity, MapsOfOneCell) {
+  const Generated zone = generate("one-zone", "cell 10\nr\n");
+  EXPECT_TRUE(zone.validation.ok());
+  ASSERT_EQ(zone.report["empty_zones"].size(), 1u) << "no street reaches it";
+  EXPECT_EQ(zone.report["empty_zones"][0]["grid_cell"],
+            (fs::temp_directory_path() / "exacity-test-grid-one-zone" / "city.grid").string() + ":2:1");
+  const Generated road = generate("one-road", "cell 10\n=\n");
+  EXPECT_TRUE(road.validation.ok());
+  EXPECT_EQ(road.report["counts"]["roads"], 1);
+  expect_no_gaps(out_of("one-road"), {"="}, 10);
+  const Generated dot = generate("single-road", "cell 10\nrrr\nr=r\nrrr\n");
+  EXPECT_TRUE(dot.validation.ok());
+  expect_no_gaps(out_of("single-road"), {"rrr", "r=r", "rrr"}, 10);
+}
+
+TEST(GridMapCity, TinyAndLargeCellsAndANegativeOrigin) {
+  const std::string map = "rrr=rrr\nrrr=rrr\n=======\nccc=ccc\n";
+  for (const char* header : {"cell 1\norigin -12345.5 -678\n", "cell 3.3\norigin -1e6 2e6\n", "cell 120\n"}) {
+    const std::string text = header + map;
+    const std::string name = "cells-" + std::to_string(std::hash<std::string>()(header) % 1000);
+    const Generated g = generate(name, text);
+    EXPECT_TRUE(g.validation.ok()) << header << (g.validation.problems.empty() ? "" : g.validation.problems[0]);
+    const Sketch s = load_sketch(out_of(name).parent_path() / "city.grid");
+    const double cell = s.roads[0].width;  // one cell, as rounded to 1/512 m
+    double west = 1e300, south = 1e300;
+    for (const auto& z : s.zones)
+      for (const auto& v : z.polygons[0].outer) west = std::min(west, v.x), south = std::min(south, v.y);
+    expect_no_gaps(out_of(name), rows_of(map), cell, {west, south});
+  }
+}
+
+TEST(GridMapCity, ASketchNamingAGridMapAddsItsOwnZonesOverIt) {
+  const fs::path dir = testing_util::temp_dir("grid-in-sketch");
+  std::ofstream(dir / "town.grid") << kSmallTown;
+  // A park drawn over the north-east blocks: it wins there, as a later zone does.
+  std::ofstream(dir / "sketch.geojson") << R"({"type": "FeatureCollection",
+    "exacity": {"seed": 3, "grid": "town.grid", "zones": {"commercial": {"lot_width": [15, 30]}}},
+    "features": [
+      {"type": "Feature", "properties": {"zone": "park"},
+       "geometry": {"type": "Polygon", "coordinates": [[[150, 140], [200, 140], [200, 200], [150, 200], [150, 140]]]}}]})";
+  const Sketch sketch = load_sketch(dir / "sketch.geojson");
+  const Sketch grid = load_sketch(dir / "town.grid");
+  ASSERT_EQ(sketch.zones.size(), grid.zones.size() + 1);
+  EXPECT_EQ(sketch.zones.back().type, ZoneType::Park);
+  EXPECT_EQ(sketch.zones.back().index, static_cast<int>(grid.zones.size() + grid.roads.size()));
+  EXPECT_EQ(sketch.roads.size(), grid.roads.size());
+  EXPECT_EQ(sketch.seed, 3u);
+  EXPECT_EQ(sketch.zone_settings.at(ZoneType::Residential).roads.layout, "streets");
+  EXPECT_EQ(sketch.zone_settings.at(ZoneType::Commercial).roads.layout, "streets")
+      << "set where the sketch says nothing of it";
+  EXPECT_EQ(sketch.zone_settings.at(ZoneType::Commercial).lots.lot_width.max, 30);
+  fs::create_directories(dir / "out");
+  const GenerateResult result = generate_city(sketch, dir / "out", nullptr);
+  EXPECT_TRUE(result.valid) << result.report["validation"];
+  EXPECT_TRUE(validate_output(dir / "out").ok());
+  // The park covers the north-east corner in the written zones.
+  const auto parks = [&] {
+    std::vector<geom::Polygon> out;
+    const auto layer = ordered_json::parse(std::ifstream(dir / "out" / "vector" / "zones.geojson"));
+    for (const auto& f : layer["features"])
+      if (f["properties"]["zone"] == "park") out.push_back(polygon_of(f["geometry"]));
+    return out;
+  }();
+  EXPECT_TRUE(inside(parks, {190, 145})) << "drawn over residential cells";
+  // A mistake in the sketch's own features names them as the user wrote them.
+  std::ofstream(dir / "bad.geojson") << R"({"type": "FeatureCollection", "exacity": {"grid": "town.grid"},
+    "features": [{"type": "Feature", "properties": {"zone": "parkk"},
+                  "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [1, 0], [1, 1], [0, 0]]]}}]})";
+  try {
+    load_sketch(dir / "bad.geojson");
+    ADD_FAILURE() << "read a bad zone type";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("features[0]"), std::string::npos) << e.what();
+  }
+  // A layout the sketch sets stands.
+  std::ofstream(dir / "growth.geojson") << R"({"type": "FeatureCollection",
+    "exacity": {"grid": "town.grid", "zones": {"residential": {"layout": "growth"}}}, "features": []})";
+  EXPECT_EQ(load_sketch(dir / "growth.geojson").zone_settings.at(ZoneType::Residential).roads.layout, "growth");
 }
