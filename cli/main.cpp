@@ -74,8 +74,9 @@ nlohmann::ordered_json render_with_progress(const City& city, render::RenderRequ
   return render::render_city(city, r, [&](const std::string& stage, double f) { progress.fraction("render " + stage, f); });
 }
 
-int generate(const fs::path& sketch_path, const fs::path& out, bool quiet, const RenderOptions* rendering) {
-  Sketch sketch = load_sketch(sketch_path);
+int generate(const fs::path& sketch_path, const fs::path& models, const fs::path& out, bool quiet,
+             const RenderOptions* rendering) {
+  Sketch sketch = load_sketch(sketch_path, true, models);
   if (rendering) given_camera(sketch, *rendering, sketch_path.string());  // a bad camera stops us before any work
   OutputFolder folder(out);
   GenerateResult result;
@@ -210,7 +211,7 @@ struct SharedOptions {
 
 struct GenerateCommand {
   CLI::App* app = nullptr;
-  fs::path sketch, out = "out";
+  fs::path sketch, models, out = "out";
   bool render = false;
 };
 
@@ -257,6 +258,8 @@ void add_generate(CLI::App& app, GenerateCommand& c, SharedOptions& shared) {
   c.app = app.add_subcommand("generate", "Generate a city from a GeoJSON sketch");
   c.app->add_option("SKETCH", c.sketch, "The sketch (GeoJSON FeatureCollection), or a grid map (a .grid file)")
       ->required();
+  c.app->add_option("--models", c.models,
+                    "A model library (JSON manifest) in place of the sketch's own \"models\"");
   c.app->add_option("-o,--output", c.out, "Output folder (replaced if an earlier exacity run wrote it)")
       ->capture_default_str();
   c.app->add_flag("-q,--quiet", shared.quiet, "Hide progress");
@@ -379,7 +382,7 @@ int main(int argc, char** argv) {
 
   return exit_code_of([&] {
     const std::unique_ptr<tbb::global_control> limit = thread_limit(shared.threads);
-    if (*gen.app) return generate(gen.sketch, gen.out, shared.quiet, gen.render ? &shared.render : nullptr);
+    if (*gen.app) return generate(gen.sketch, gen.models, gen.out, shared.quiet, gen.render ? &shared.render : nullptr);
     if (*ren.app) return render_folder(ren.folder, shared.render, ren.file, shared.quiet);
     if (*val.app) return validate(val.folder);
     if (*sta.app) return stats(sta.folder, sta.real);

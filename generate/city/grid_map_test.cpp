@@ -655,3 +655,18 @@ TEST(GridMapCity, ASketchNamingAGridMapAddsItsOwnZonesOverIt) {
     "exacity": {"grid": "town.grid", "zones": {"residential": {"layout": "growth"}}}, "features": []})";
   EXPECT_EQ(load_sketch(dir / "growth.geojson").zone_settings.at(ZoneType::Residential).roads.layout, "growth");
 }
+
+TEST(GridMapCity, ModelsGivenInPlaceOfTheSketchsOwn) {
+  const fs::path library = fs::path(EXACITY_SOURCE_DIR) / "examples" / "models" / "library.json";
+  const fs::path dir = testing_util::temp_dir("grid-models");
+  std::ofstream(dir / "city.grid") << "cell 10\nrrr\n===\nccc\n";
+  const Sketch sketch = load_sketch(dir / "city.grid", true, library);
+  EXPECT_EQ(sketch.models, fs::absolute(library).lexically_normal());
+  EXPECT_NE(sketch.geojson.find("library.json"), std::string::npos) << "the copy names it, for render";
+  // On a GeoJSON sketch it replaces the sketch's own.
+  std::ofstream(dir / "sketch.geojson") << R"({"type": "FeatureCollection", "exacity": {"models": "elsewhere.json"},
+    "features": [{"type": "Feature", "properties": {"zone": "park"},
+                  "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [10, 0], [10, 10], [0, 0]]]}}]})";
+  EXPECT_EQ(load_sketch(dir / "sketch.geojson", true, library).models, fs::absolute(library).lexically_normal());
+  EXPECT_EQ(load_sketch(dir / "sketch.geojson").models, dir / "elsewhere.json");
+}
