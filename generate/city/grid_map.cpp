@@ -53,6 +53,10 @@ constexpr const char* kCellCharacters = ". r c i = ~ \" X";
 // at most kMaxRoadWidth wide; below a metre a map is no city (and would pass for lon/lat).
 constexpr double kMinCell = 1;
 
+// The most cells a map may have (2000 x 2000): reading one takes some 25 bytes a cell, and a
+// 300 x 300 map's city takes 5 s to generate.
+constexpr long long kMaxCells = 4'000'000;
+
 // A character as a message shows it.
 std::string shown(char c) {
   switch (c) {
@@ -104,7 +108,6 @@ struct GridMap {
   std::vector<Status> cells;  // row after row, the northernmost first
   std::vector<int> lines;     // each row's line in the file, 1-based
 
-  Status at(int row, int column) const { return cells[static_cast<std::size_t>(row) * width + column]; }
   // A point `hx` half cells east and `hy` half cells north of the south-west corner:
   // every one a point of the grid, computed one way, so equal points are equal doubles.
   geom::Vec2 point(long long hx, long long hy) const {
@@ -170,7 +173,7 @@ class Reader {
                "write a space after \"" + word + "\", e.g. \"" + known + "\"");
       }
       fail(n, t[0].column,
-           "unknown header \"" + key + "\"; a grid map's headers are \"cell METRES\" and \"origin X Y\", then the rows");
+           "unknown header \"" + key + "\"; the headers are \"cell METRES\" and \"origin X Y\", then come the rows");
     }
     int& seen = is_cell ? cell_line_ : origin_line_;
     if (first_row_line_)
@@ -226,6 +229,9 @@ class Reader {
       fail(n, std::min(length, map.width) + 1,
            "this row is " + std::to_string(length) + " cells long, the first (line " + std::to_string(first_row_line_) +
                ") " + std::to_string(map.width) + "; make every row " + std::to_string(map.width) + " cells long");
+    if (static_cast<long long>(map.cells.size()) + length > kMaxCells)
+      fail(n, 1, "the map has over " + std::to_string(kMaxCells) + " cells here, more than one run reads (2000 x 2000); "
+                 "use fewer, larger cells");
     map.width = length;
     for (char c : line) map.cells.push_back(*status_of(c));
     map.lines.push_back(n);
@@ -238,8 +244,8 @@ class Reader {
     for (double v : {map.origin.x, map.origin.y, far.x, far.y})
       if (std::abs(v) > kMaxCoordinate)
         fail(origin_line_ ? origin_line_ : cell_line_, 1,
-             "the map reaches " + std::to_string(v) + " m, beyond the 1e10 m Exacity computes exactly in; "
-                                                    "move its origin nearer 0 0, or use fewer or smaller cells");
+             "the map reaches " + nlohmann::json(v).dump() + " m, beyond the 1e10 m Exacity computes exactly in; "
+                                                              "move its origin nearer 0 0, or use fewer or smaller cells");
   }
 
   // The sketch reader's limit on blocks (the zones' area over their block_area), said in the
@@ -423,10 +429,112 @@ std::vector<Band> stack_runs(const GridMap& map, bool east_west, std::vector<int
   return out;
 }
 
-struct RoadLine {
-  Band band;
-  int from = 0, to = 0;    // half cells along: where it starts and ends
-  std::vector<int> stops;  // half cells along: where other roads meet or cross it
+// A point in half cells: x east from the map's west edge, y south from its north edge (rows
+// count from the north).
+struct Half {
+  int x = 0, y = 0;
+  friend auto operator<=>(const Half&, const Half&) = default;
+};
+
+// A road on the map: a polyline of axis-parallel segments through half-cell points, its
+// width in cells, and the cell that names it.
+struct RoadPath {
+  std::vector<Half> points;
+  int cells_across = 1;
+  int row = 0, column = 0;
+  bool straight = true;  // a band's road, along one line; false for a connector
+};
+
+// Each of the points that lies on the path made a vertex of it. A band's road is straight,
+// so its points sort along it; a connector has a few segments, each searched.
+void insert_vertices(RoadPath& path, std::vector<Half> points) {
+  const Half front = path.points.front(), back = path.points.back();
+  if (path.straight) {
+    points.insert(points.end(), path.points.begin(), path.points.end());
+    const bool east_west = front.y == back.y;
+    const int sign = (east_west ? back.x - front.x : back.y - front.y) > 0 ? 1 : -1;
+    auto along = [&](Half h) { return sign * (east_west ? h.x : h.y); };
+    std::sort(points.begin(), points.end(), [&](Half p, Half q) { return along(p) < along(q); });
+    points.erase(std::unique(points.begin(), points.end()), points.end());
+    path.points = std::move(points);
+    return;
+  }
+  std::vector<Half> out{front};
+  for (std::size_t i = 0; i + 1 < path.points.size(); ++i) {
+    const Half a = path.points[i], b = path.points[i + 1];
+    std::vector<Half> on;
+    for (Half p : points)
+      if (p != a && p != b && std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= p.y &&
+          p.y <= std::max(a.y, b.y))
+        on.push_back(p);
+    auto from_a = [&](Half p) { return std::abs(p.x - a.x) + std::abs(p.y - a.y); };
+    std::sort(on.begin(), on.end(), [&](Half p, Half q) { return from_a(p) < from_a(q); });
+    on.erase(std::unique(on.begin(), on.end()), on.end());
+    out.insert(out.end(), on.begin(), on.end());
+    out.push_back(b);
+  }
+  path.points = std::move(out);
+}
+
+// Where two roads meet or cross, a vertex of both, so that the sketch reader makes a
+// junction there (it joins streets that share a vertex). Every half-cell point each road
+// passes through, sorted, brings the roads at one point together: linear in the roads'
+// length, where testing every pair of roads would be quadratic in their number.
+void node(std::vector<RoadPath>& paths) {
+  std::vector<std::pair<Half, int>> passes;
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    const std::vector<Half>& p = paths[i].points;
+    for (std::size_t s = 0; s + 1 < p.size(); ++s) {
+      const Half a = p[s], b = p[s + 1];
+      const int dx = (b.x > a.x) - (b.x < a.x), dy = (b.y > a.y) - (b.y < a.y);
+      for (Half h = a;; h = {h.x + dx, h.y + dy}) {
+        passes.push_back({h, static_cast<int>(i)});
+        if (h == b) break;
+      }
+    }
+  }
+  std::sort(passes.begin(), passes.end());
+  passes.erase(std::unique(passes.begin(), passes.end()), passes.end());
+  std::vector<std::vector<Half>> at(paths.size());
+  for (std::size_t k = 0; k < passes.size();) {
+    std::size_t end = k;
+    while (end < passes.size() && passes[end].first == passes[k].first) ++end;
+    if (end - k > 1)
+      for (std::size_t j = k; j < end; ++j) at[passes[j].second].push_back(passes[k].first);
+    k = end;
+  }
+  for (std::size_t i = 0; i < paths.size(); ++i) insert_vertices(paths[i], std::move(at[i]));
+}
+
+// The points without repeats, nor corners where the path goes straight on.
+std::vector<Half> simplified(const std::vector<Half>& points) {
+  std::vector<Half> out;
+  for (Half p : points) {
+    if (!out.empty() && out.back() == p) continue;
+    if (out.size() >= 2) {
+      const Half a = out[out.size() - 2], b = out.back();
+      if ((a.x == b.x && b.x == p.x) || (a.y == b.y && b.y == p.y)) out.pop_back();
+    }
+    out.push_back(p);
+  }
+  return out;
+}
+
+// Which roads are joined, as pieces grow.
+class Pieces {
+ public:
+  int add() {
+    parent_.push_back(static_cast<int>(parent_.size()));
+    return parent_.back();
+  }
+  int find(int i) {
+    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
+    return i;
+  }
+  void join(int a, int b) { parent_[find(a)] = find(b); }
+
+ private:
+  std::vector<int> parent_;
 };
 
 class RoadBands {
@@ -443,27 +551,91 @@ class RoadBands {
     choose();
   }
 
-  std::vector<RoadLine> lines() const {
-    std::vector<RoadLine> out;
+  // A road down each band kept, its ends run on to the centre line of the road across
+  // them; the roads made vertices of each other where they meet; and where road cells
+  // join two pieces of roads that do not meet (a blob of road cells, a road changing
+  // width), a connector one cell wide between them through those cells.
+  std::vector<RoadPath> paths() {
+    std::vector<RoadPath> out;
+    path_of_.assign(bands_.size(), -1);
+    band_of_.clear();
     for (std::size_t b = 0; b < bands_.size(); ++b) {
       if (!kept_[b]) continue;
       const Band& band = bands_[b];
-      RoadLine line{band, end_at(band, band.along0, 2 * band.along0), end_at(band, band.along1 - 1, 2 * band.along1),
-                    {}};
-      if (line.from >= line.to) line.from = 2 * band.along0, line.to = 2 * band.along1;
-      out.push_back(line);
+      int from = end_at(band, band.along0, 2 * band.along0), to = end_at(band, band.along1 - 1, 2 * band.along1);
+      if (from >= to) from = 2 * band.along0, to = 2 * band.along1;
+      path_of_[b] = static_cast<int>(out.size());
+      band_of_.push_back(static_cast<int>(b));
+      const int row = band.east_west ? band.across0 : band.along0;
+      const int column = band.east_west ? band.along0 : band.across0;
+      out.push_back({{on_axis(band, from), on_axis(band, to)}, band.thickness(), row, column});
     }
-    // Where an east-west and a north-south road meet or cross, a vertex of both, so the
-    // sketch reader finds a junction there.
-    for (RoadLine& a : out)
-      for (RoadLine& b : out)
-        if (a.band.east_west && !b.band.east_west && a.from <= b.band.centre() && b.band.centre() <= a.to &&
-            b.from <= a.band.centre() && a.band.centre() <= b.to)
-          a.stops.push_back(b.band.centre()), b.stops.push_back(a.band.centre());
+    node(out);
+    join_pieces(out);
+    node(out);
     return out;
   }
 
  private:
+  Half on_axis(const Band& band, int along) const {
+    return band.east_west ? Half{along, band.centre()} : Half{band.centre(), along};
+  }
+
+  // The roads kept over a road cell: one or two.
+  std::vector<int> paths_at(int cell) const {
+    std::vector<int> out;
+    for (int b : {band_at_[cell].first, band_at_[cell].second})
+      if (kept_[b]) out.push_back(path_of_[b]);
+    return out;
+  }
+
+  // From the band's road to the centre of one of its cells: across from the road at the
+  // cell, the road run on along its line first where its end stops short of the cell.
+  std::vector<Half> to_cell(const RoadPath& road, int band, int cell) const {
+    const Band& b = bands_[band];
+    const int row = cell / map_.width, column = cell % map_.width;
+    const Half centre{2 * column + 1, 2 * row + 1};
+    const Half front = road.points.front(), back = road.points.back();
+    const int along = b.east_west ? centre.x : centre.y;
+    const int lo = std::min(b.east_west ? front.x : front.y, b.east_west ? back.x : back.y);
+    const int hi = std::max(b.east_west ? front.x : front.y, b.east_west ? back.x : back.y);
+    return {on_axis(b, std::clamp(along, lo, hi)), on_axis(b, along), centre};
+  }
+
+  void join_pieces(std::vector<RoadPath>& roads) {
+    Pieces pieces;
+    std::map<Half, int> first_at;
+    for (std::size_t r = 0; r < roads.size(); ++r) {
+      pieces.add();
+      for (Half p : roads[r].points)
+        if (auto [it, fresh] = first_at.emplace(p, static_cast<int>(r)); !fresh)
+          pieces.join(it->second, static_cast<int>(r));
+    }
+    auto connect = [&](int a, int p, int b, int q) {
+      std::vector<Half> points = to_cell(roads[a], band_of_[a], p);
+      std::vector<Half> back = to_cell(roads[b], band_of_[b], q);
+      points.insert(points.end(), back.rbegin(), back.rend());
+      points = simplified(points);
+      if (points.size() < 2) return;
+      roads.push_back({points, 1, p / map_.width, p % map_.width, false});
+      const int c = pieces.add();
+      pieces.join(c, a), pieces.join(c, b);
+    };
+    const int w = map_.width, h = map_.height;
+    for (int cell = 0; cell < w * h; ++cell) {
+      if (map_.cells[cell] != Status::Road) continue;
+      const std::vector<int> here = paths_at(cell);
+      if (here.size() == 2 && pieces.find(here[0]) != pieces.find(here[1])) connect(here[0], cell, here[1], cell);
+      const int row = cell / w, column = cell % w;
+      for (int next : {column + 1 < w ? cell + 1 : -1, row + 1 < h ? cell + w : -1}) {
+        if (next < 0 || map_.cells[next] != Status::Road) continue;
+        for (int a : here)
+          for (int b : paths_at(next))
+            if (pieces.find(a) != pieces.find(b)) connect(a, cell, b, next);
+      }
+    }
+  }
+
   // Every band longer than it is wide is a road; a cell in no such band (a square of road
   // cells) takes its east-west band, a square road. Then a band lying wholly in one road
   // across it (a stub of a wider road) is dropped, the thinnest and shortest first; a band
@@ -517,6 +689,7 @@ class RoadBands {
   std::vector<Band> bands_;                    // east-west first, then north-south
   std::vector<std::pair<int, int>> band_at_;   // each road cell's east-west and north-south band
   std::vector<char> kept_;
+  std::vector<int> path_of_, band_of_;         // each kept band's road, each band's road's band
 };
 
 // A road's class from its width: the widest whose default width it reaches (local below 12 m,
@@ -546,19 +719,11 @@ ordered_json zone_feature(const GridMap& map, const Region& region, const std::s
   return {{"type", "Feature"}, {"properties", std::move(properties)}, {"geometry", std::move(geometry)}};
 }
 
-ordered_json road_feature(const GridMap& map, RoadLine line, const std::string& where) {
-  std::vector<int> along = line.stops;
-  along.push_back(line.from), along.push_back(line.to);
-  std::sort(along.begin(), along.end());
-  along.erase(std::unique(along.begin(), along.end()), along.end());
+ordered_json road_feature(const GridMap& map, const RoadPath& road, const std::string& where) {
   ordered_json positions = ordered_json::array();
-  const long long across = line.band.east_west ? 2LL * map.height - line.band.centre() : line.band.centre();
-  for (int a : along) {
-    if (a < line.from || a > line.to) continue;
-    // Rows count from the north, y from the south.
-    positions.push_back(position(line.band.east_west ? map.point(a, across) : map.point(across, 2LL * map.height - a)));
-  }
-  const double width = line.band.thickness() * map.cell;
+  // Half cells down from the north edge, y up from the south.
+  for (Half h : road.points) positions.push_back(position(map.point(h.x, 2LL * map.height - h.y)));
+  const double width = road.cells_across * map.cell;
   ordered_json properties = ordered_json::object();
   properties["road"] = std::string(name(class_of(width)));
   properties["width"] = width;
@@ -577,15 +742,13 @@ ordered_json grid_map_features(const std::string& text, const fs::path& path) {
   ordered_json features = ordered_json::array();
   for (const Region& region : zone_regions(map))
     features.push_back(zone_feature(map, region, reader.where(map, region.row, region.column)));
-  for (const RoadLine& line : RoadBands(map).lines()) {
-    const Band& b = line.band;
-    const int row = b.east_west ? b.across0 : b.along0, column = b.east_west ? b.along0 : b.across0;
-    if (b.thickness() * map.cell > kMaxRoadWidth)
-      reader.fail(map.lines[row], column + 1,
-                  "the road here is " + std::to_string(b.thickness()) + " cells across, wider than the " +
+  for (const RoadPath& road : RoadBands(map).paths()) {
+    if (road.cells_across * map.cell > kMaxRoadWidth)
+      reader.fail(map.lines[road.row], road.column + 1,
+                  "the road here is " + std::to_string(road.cells_across) + " cells across, wider than the " +
                       std::to_string(static_cast<int>(kMaxRoadWidth)) + " m a road may be; use a smaller cell or a "
                       "narrower band of =");
-    features.push_back(road_feature(map, line, reader.where(map, row, column)));
+    features.push_back(road_feature(map, road, reader.where(map, road.row, road.column)));
   }
   return features;
 }

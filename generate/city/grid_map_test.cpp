@@ -401,6 +401,53 @@ TEST(GridMap, ASquareOfRoadCellsIsARoadAndAStubInAWideRoadIsNone) {
   EXPECT_EQ(pieces(plus), 1);
 }
 
+// The pieces road cells make, joined side to side.
+int road_cell_pieces(const std::vector<std::string>& rows) {
+  std::set<std::pair<int, int>> seen;
+  int pieces = 0;
+  for (int r = 0; r < static_cast<int>(rows.size()); ++r)
+    for (int c = 0; c < static_cast<int>(rows[r].size()); ++c) {
+      if (rows[r][c] != '=' || seen.count({r, c})) continue;
+      ++pieces;
+      std::vector<std::pair<int, int>> stack{{r, c}};
+      seen.insert({r, c});
+      while (!stack.empty()) {
+        auto [a, b] = stack.back();
+        stack.pop_back();
+        for (auto [x, y] : {std::pair{a + 1, b}, std::pair{a - 1, b}, std::pair{a, b + 1}, std::pair{a, b - 1}})
+          if (x >= 0 && x < static_cast<int>(rows.size()) && y >= 0 && y < static_cast<int>(rows[x].size()) &&
+              rows[x][y] == '=' && seen.insert({x, y}).second)
+            stack.push_back({x, y});
+      }
+    }
+  return pieces;
+}
+
+TEST(GridMap, RoadCellsJoinedSideBySideMakeOnePieceOfRoads) {
+  // An avenue narrowing from two cells to one: two bands side by side, joined by a
+  // connector one cell wide.
+  const auto narrowing = roads_of(features_of("cell 10\nrrrrrrrrrr\n==========\n=====rrrrr\nrrrrrrrrrr\n"));
+  EXPECT_EQ(pieces(narrowing), 1);
+  // A blob of road cells, and a street leaving it off its middle.
+  EXPECT_EQ(pieces(roads_of(features_of("cell 10\nr\"crc\nr====\nr====\n.====\nr====\nc===X\nc===r\n====c\n"))), 1);
+  // Random maps: as many pieces of roads as of road cells, whatever the cells.
+  std::uint64_t state = 99;
+  auto next = [&] { return (state = state * 6364136223846793005ULL + 1442695040888963407ULL) >> 33; };
+  for (int map = 0; map < 60; ++map) {
+    const int w = 3 + static_cast<int>(next() % 15), h = 3 + static_cast<int>(next() % 15);
+    const int roads = static_cast<int>(next() % 70);
+    std::vector<std::string> rows(h, std::string(w, 'r'));
+    for (auto& row : rows)
+      for (char& c : row) c = static_cast<int>(next() % 100) < roads ? '=' : "rci~\".X"[next() % 7];
+    std::string text = "cell 10\n";
+    for (const auto& row : rows) text += row + "\n";
+    if (text.find_first_not_of("X\n", 8) == std::string::npos) continue;  // all blocked: refused
+    const auto got = roads_of(features_of(text));
+    EXPECT_EQ(pieces(got), road_cell_pieces(rows)) << text;
+    for (const Road& r : got) EXPECT_GE(r.line.size(), 2u);
+  }
+}
+
 TEST(GridMap, OriginShiftsEverything) {
   const std::string map = "rr=rr\n=====\nc~=\"i\n";
   const ordered_json at_zero = features_of("cell 10\n" + map);
@@ -493,6 +540,9 @@ TEST(GridMapErrors, BadNumbers) {
   std::string huge = "cell 500\n";
   for (int r = 0; r < 60; ++r) huge += std::string(60, 'r') + "\n";
   expect_error(huge, "1:6", {"75000 blocks", "smaller"});
+  std::string vast = "cell 1\n";
+  for (int r = 0; r < 2001; ++r) vast += std::string(2000, r % 7 ? 'r' : '=') + "\n";
+  expect_error(vast, "2002:1", {"over 4000000 cells", "fewer, larger cells"});
 }
 
 TEST(GridMapErrors, NoRowsOrNothingButBlockedCells) {
@@ -615,7 +665,7 @@ TEST(GridMapCity, ASketchNamingAGridMapAddsItsOwnZonesOverIt) {
     "exacity": {"seed": 3, "grid": "town.grid", "zones": {"commercial": {"lot_width": [15, 30]}}},
     "features": [
       {"type": "Feature", "properties": {"zone": "park"},
-       "geometry": {"type": "Polygon", "coordinates": [[[150, 140], [200, 140], [200, 200], [150, 200], [150, 140]]]}}]})";
+       "geometry": {"type": "Polygon", "coordinates": [[[150, 140], [200, 140], [200, 200], [150, 200]]]}}]})";
   const Sketch sketch = load_sketch(dir / "sketch.geojson");
   const Sketch grid = load_sketch(dir / "town.grid");
   ASSERT_EQ(sketch.zones.size(), grid.zones.size() + 1);
