@@ -255,7 +255,7 @@ void add_image_options(CLI::App* c, RenderOptions& o) {
 }
 
 void add_generate(CLI::App& app, GenerateCommand& c, SharedOptions& shared) {
-  c.app = app.add_subcommand("generate", "Generate a city from a GeoJSON sketch");
+  c.app = app.add_subcommand("generate", "Generate a city from a GeoJSON sketch or a grid map");
   c.app->add_option("SKETCH", c.sketch, "The sketch (GeoJSON FeatureCollection), or a grid map (a .grid file)")
       ->required();
   c.app->add_option("--models", c.models,

@@ -562,6 +562,13 @@ TEST(GridMapErrors, AMissingFileOrGridIsOneLine) {
   } catch (const UserError& e) {
     EXPECT_NE(std::string(e.what()).find("no such file"), std::string::npos) << e.what();
   }
+  fs::create_directories(dir / "folder.grid");
+  try {
+    load_sketch(dir / "folder.grid");
+    ADD_FAILURE() << "read a folder";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("not a file"), std::string::npos) << e.what();
+  }
   std::ofstream(dir / "sketch.geojson")
       << R"({"type": "FeatureCollection", "exacity": {"grid": "none.grid"}, "features": []})";
   try {

@@ -338,7 +338,7 @@ class Parser {
     if (!ex["grid"].is_string()) fail(w, "expected the path of a grid map (a string), relative to the sketch");
     const fs::path file = sketch_path.parent_path() / ex["grid"].get<std::string>();
     std::ifstream in(file, std::ios::binary);
-    if (!in)
+    if (!in || fs::is_directory(file))
       fail(w, "cannot read the grid map " + file.string() + " (" +
                   (fs::exists(file) ? "permission denied or not a file" : "no such file") +
                   "); give the path of a grid map, relative to the sketch");
@@ -458,7 +458,7 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
 
 Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& models) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  if (!in || fs::is_directory(path)) {  // a folder opens, and reads as nothing
     throw UserError(path.string() + ": cannot read the sketch (" +
                     (fs::exists(path) ? "permission denied or not a file" : "no such file") +
                     "); give the path of a GeoJSON sketch or a grid map (.grid)");
