@@ -506,16 +506,13 @@ void node(std::vector<RoadPath>& paths) {
   for (std::size_t i = 0; i < paths.size(); ++i) insert_vertices(paths[i], std::move(at[i]));
 }
 
-// The points without repeats, nor corners where the path goes straight on.
+// The points without repeats, nor corners where the path goes straight on or back.
 std::vector<Half> simplified(const std::vector<Half>& points) {
   std::vector<Half> out;
+  auto in_line = [](Half a, Half b, Half c) { return (a.x == b.x && b.x == c.x) || (a.y == b.y && b.y == c.y); };
   for (Half p : points) {
-    if (!out.empty() && out.back() == p) continue;
-    if (out.size() >= 2) {
-      const Half a = out[out.size() - 2], b = out.back();
-      if ((a.x == b.x && b.x == p.x) || (a.y == b.y && b.y == p.y)) out.pop_back();
-    }
-    out.push_back(p);
+    while (out.size() >= 2 && in_line(out[out.size() - 2], out.back(), p)) out.pop_back();
+    if (out.empty() || out.back() != p) out.push_back(p);
   }
   return out;
 }
