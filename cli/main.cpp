@@ -74,8 +74,9 @@ nlohmann::ordered_json render_with_progress(const City& city, render::RenderRequ
   return render::render_city(city, r, [&](const std::string& stage, double f) { progress.fraction("render " + stage, f); });
 }
 
-int generate(const fs::path& sketch_path, const fs::path& out, bool quiet, const RenderOptions* rendering) {
-  Sketch sketch = load_sketch(sketch_path);
+int generate(const fs::path& sketch_path, const fs::path& models, const fs::path& out, bool quiet,
+             const RenderOptions* rendering) {
+  Sketch sketch = load_sketch(sketch_path, true, models);
   if (rendering) given_camera(sketch, *rendering, sketch_path.string());  // a bad camera stops us before any work
   OutputFolder folder(out);
   GenerateResult result;
@@ -102,9 +103,15 @@ int generate(const fs::path& sketch_path, const fs::path& out, bool quiet, const
   std::printf("exacity: wrote %s (roads %d, blocks %d, lots %d, buildings %d); open %s\n", out.string().c_str(),
               counts["roads"].get<int>(), counts["blocks"].get<int>(), counts["lots"].get<int>(),
               counts["buildings"].get<int>(), (out / "map.svg").string().c_str());
-  for (const auto& z : result.report["empty_zones"])
-    std::fprintf(stderr, "exacity: note: %s: features[%d] (%s) got no lots: %s\n", sketch.path.string().c_str(),
-                 z["feature"].get<int>(), z["zone"].get<std::string>().c_str(), z["why"].get<std::string>().c_str());
+  for (const auto& z : result.report["empty_zones"]) {
+    const std::string zone = z["zone"].get<std::string>(), why = z["why"].get<std::string>();
+    if (z.contains("grid_cell"))
+      std::fprintf(stderr, "exacity: note: %s: the %s region there got no lots: %s\n",
+                   z["grid_cell"].get<std::string>().c_str(), zone.c_str(), why.c_str());
+    else
+      std::fprintf(stderr, "exacity: note: %s: features[%d] (%s) got no lots: %s\n", sketch.path.string().c_str(),
+                   z["feature"].get<int>(), zone.c_str(), why.c_str());
+  }
   for (const auto& z : result.report["placement_fallbacks"])
     std::fprintf(stderr, "exacity: note: %s: %s lots are filled on the grid only with library models: %s; they get extruded footprints in rows\n",
                  sketch.path.string().c_str(), z["zone"].get<std::string>().c_str(), z["why"].get<std::string>().c_str());
@@ -207,7 +214,7 @@ struct SharedOptions {
 
 struct GenerateCommand {
   CLI::App* app = nullptr;
-  fs::path sketch, out = "out";
+  fs::path sketch, models, out = "out";
   bool render = false;
 };
 
@@ -251,8 +258,11 @@ void add_image_options(CLI::App* c, RenderOptions& o) {
 }
 
 void add_generate(CLI::App& app, GenerateCommand& c, SharedOptions& shared) {
-  c.app = app.add_subcommand("generate", "Generate a city from a GeoJSON sketch");
-  c.app->add_option("SKETCH", c.sketch, "The sketch (GeoJSON FeatureCollection)")->required();
+  c.app = app.add_subcommand("generate", "Generate a city from a GeoJSON sketch or a grid map");
+  c.app->add_option("SKETCH", c.sketch, "The sketch (GeoJSON FeatureCollection), or a grid map (a .grid file)")
+      ->required();
+  c.app->add_option("--models", c.models,
+                    "A model library (JSON manifest) in place of the sketch's own \"models\"");
   c.app->add_option("-o,--output", c.out, "Output folder (replaced if an earlier exacity run wrote it)")
       ->capture_default_str();
   c.app->add_flag("-q,--quiet", shared.quiet, "Hide progress");
@@ -375,7 +385,7 @@ int main(int argc, char** argv) {
 
   return exit_code_of([&] {
     const std::unique_ptr<tbb::global_control> limit = thread_limit(shared.threads);
-    if (*gen.app) return generate(gen.sketch, gen.out, shared.quiet, gen.render ? &shared.render : nullptr);
+    if (*gen.app) return generate(gen.sketch, gen.models, gen.out, shared.quiet, gen.render ? &shared.render : nullptr);
     if (*ren.app) return render_folder(ren.folder, shared.render, ren.file, shared.quiet);
     if (*val.app) return validate(val.folder);
     if (*sta.app) return stats(sta.folder, sta.real);

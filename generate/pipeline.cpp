@@ -157,11 +157,13 @@ ordered_json empty_zones_report(const City& city) {
   for (std::size_t z = 0; z < sketch.zones.size(); ++z) {
     const ZoneFeature& zone = sketch.zones[z];
     if (has_lot[z] || !grows_roads(zone.type)) continue;
-    empty.push_back({{"feature", zone.index},
-                     {"zone", name(zone.type)},
-                     {"why", !has_land[z]    ? "no land of its own: zones drawn later, water or roads cover all of it"
-                             : has_street[z] ? "its blocks along streets are too small or narrow for a lot"
-                                             : "no street reaches its land: draw a road to it, or lay it out by growth"}});
+    ordered_json entry{{"feature", zone.index},
+                       {"zone", name(zone.type)},
+                       {"why", !has_land[z]    ? "no land of its own: zones drawn later, water or roads cover all of it"
+                               : has_street[z] ? "its blocks along streets are too small or narrow for a lot"
+                                               : "no street reaches its land: draw a road to it, or lay it out by growth"}};
+    if (!zone.grid_cell.empty()) entry["grid_cell"] = zone.grid_cell;  // where a grid map's region begins
+    empty.push_back(std::move(entry));
   }
   return empty;
 }
@@ -204,7 +206,13 @@ ordered_json counts_report(const City& city, const MeshCounts& mesh, const GltfC
 void export_vectors(const City& city, const fs::path& dir) {
   const CityLayers& layers = city.layers;
   fs::create_directories(dir / "vector");
-  fs::copy_file(city.sketch.path, dir / "sketch.geojson");
+  if (city.sketch.geojson.empty()) {
+    fs::copy_file(city.sketch.path, dir / "sketch.geojson");
+  } else {
+    std::ofstream copy(dir / "sketch.geojson", std::ios::binary);
+    copy << city.sketch.geojson;
+    if (!copy) throw UserError((dir / "sketch.geojson").string() + ": write failed (disk full?)");
+  }
   for (const Layer* l : {&layers.zones, &layers.water, &layers.roads, &layers.road_areas, &layers.blocks, &layers.lots,
                          &layers.buildings})
     write_geojson(*l, city.sketch.crs, dir / "vector" / (l->name + ".geojson"));

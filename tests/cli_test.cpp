@@ -299,3 +299,43 @@ TEST(Cli, HelpAndVersion) {
   EXPECT_EQ(run("generate").code, 2);  // no sketch
 }
 
+
+TEST(Cli, AGridMapWithModelsGeneratesValidatesAndRendersTheSameCity) {
+  fs::path dir = testing_util::temp_dir("cli-grid");
+  std::ofstream(dir / "city.grid") << "; a few blocks\ncell 10\n"
+                                      "rrrrr=ccccc\n"
+                                      "rrrrr=ccccc\n"
+                                      "rrrrr=ccccc\n"
+                                      "rrrrr=ccccc\n"
+                                      "===========\n"
+                                      "rrrrr=\"\"\"\"\"\n"
+                                      "rrrrr=\"~~~\"\n"
+                                      "rrrrr=\"\"\"\"\"\n";
+  const fs::path out = dir / "out", library = kSource / "examples" / "models" / "library.json";
+  Result r = run("generate " + (dir / "city.grid").string() + " -o " + out.string() + " -q --models " + library.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(run("validate " + out.string()).code, 0);
+  const auto report = nlohmann::json::parse(read(out / "report.json"));
+  EXPECT_TRUE(report["validation"]["ok"].get<bool>());
+  EXPECT_GT(report["counts"]["gltf"]["instances"].get<int>(), 0) << "the library's models stand in the city";
+  EXPECT_NE(read(out / "sketch.geojson").find(library.filename().string()), std::string::npos);
+  // render rebuilds the city from the copy: the same models.
+  r = run("render " + out.string() + " --size 48x32 --spp 1 -q");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto still = nlohmann::json::parse(read(out / "render" / "still.json"));
+  EXPECT_GT(still["scene"]["instances"].get<int>(), 0) << still["scene"];
+
+  // A mistake in the map: one line naming the file, line and column; no output.
+  std::ofstream(dir / "bad.grid") << "cell 10\nrrr\nrqr\n";
+  r = run("generate " + (dir / "bad.grid").string() + " -o " + (dir / "bad-out").string() + " -q");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find((dir / "bad.grid").string() + ":3:2: 'q' is not a cell"), std::string::npos) << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  EXPECT_FALSE(fs::exists(dir / "bad-out"));
+  r = run("generate " + (dir / "city.grid").string() + " -o " + (dir / "bad-out").string() + " -q --models " +
+          (dir / "none.json").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find((dir / "none.json").string() + ": cannot read the model library"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--models"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir / "bad-out"));
+}

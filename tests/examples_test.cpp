@@ -200,7 +200,7 @@ TEST(Cli, EveryExampleGeneratesAndValidates) {
   ASSERT_GE(list.size(), 3u);
   GlbCounts in_glb;
   for (const fs::path& sketch : list) {
-    fs::path out = testing_util::temp_dir("cli-" + sketch.stem().string()) / "out";
+    fs::path out = testing_util::temp_dir("cli-" + sketch.filename().string()) / "out";
     Result g = run("generate " + sketch.string() + " -o " + out.string() + " --quiet");
     ASSERT_EQ(g.code, 0) << sketch << "\n" << g.out;
     for (const char* f : {"vector/zones.geojson", "vector/water.geojson", "vector/roads.geojson",

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "generate/city/grid_map.h"
 #include "generate/errors.h"
 #include "generate/layout/street_graph.h"
 #include "geom/measure.h"
@@ -31,14 +32,6 @@ double default_width(RoadClass road_class) {
 namespace {
 
 std::string quote(std::string_view s) { return "\"" + std::string(s) + "\""; }
-
-// Coordinates Exacity computes exactly in: rounding its exact vertices to doubles moves them
-// by under 2e-6 m out here; at 1e12 m (0.1 mm steps) written rings stop being simple.
-constexpr double kMaxCoordinate = 1e10;
-
-// The most blocks one run builds (the zones' area over their block_area): the 10 km
-// benchmark city's 12,700 blocks peak at 4.1 GiB.
-constexpr double kMaxBlocks = 50000;
 
 // A member's text, or its JSON when it is not a string: what to compare and quote.
 std::string text_of(const json& obj, const char* key) {
@@ -116,8 +109,21 @@ class Parser {
     return p;
   }
 
-  void feature(const json& f, int index, Sketch& sketch) const {
-    std::string where = "features[" + std::to_string(index) + "]";
+  // How messages name a feature: a grid map's by the file, line and column where its region
+  // or road begins; the sketch's own by its place among the features the user wrote (a
+  // "grid" map's features come before them).
+  std::string feature_name(const json& f, int index) const {
+    if (f.is_object() && f.contains("properties") && f.at("properties").is_object()) {
+      const json& props = f.at("properties");
+      if (props.contains("grid_cell") && props.at("grid_cell").is_string())
+        return "grid map cell " + props.at("grid_cell").get<std::string>();
+    }
+    return "features[" + std::to_string(index - grid_features_) + "]";
+  }
+
+  void feature(const json& f, int index, Sketch& sketch) {
+    const std::string where = feature_name(f, index);
+    names_.push_back(where);
     if (!f.is_object() || text_of(f, "type") != "Feature") fail(where, "not a GeoJSON Feature");
     if (!f.contains("geometry") || f["geometry"].is_null())
       fail(where, "feature has no geometry; draw a Polygon for a zone or a LineString for a road, or delete it");
@@ -138,7 +144,8 @@ class Parser {
       if (!zt)
         fail(where, "unknown zone type " + quote(zname) + "; did you mean " + quote(nearest_zone_name(zname)) +
                         "? (valid: " + list(kZoneTypeNames) + ")");
-      ZoneFeature zf{index, *zt, {}};
+      ZoneFeature zf{index, *zt, {}, {}};
+      if (where.rfind("grid map cell ", 0) == 0) zf.grid_cell = where.substr(std::string("grid map cell ").size());
       if (type == "Polygon") {
         zf.polygons.push_back(polygon(coords, where));
       } else if (type == "MultiPolygon" && coords.is_array()) {
@@ -159,7 +166,7 @@ class Parser {
                       quote(nearest_road_class_name(rname)) + "? (valid: " + list(kRoadClassNames) + ")");
     RoadFeature rf{index, *rc, default_width(*rc), {}};
     if (props.contains("width") && !props["width"].is_null())
-      rf.width = number(props["width"], where + " width", 0.5, 500);
+      rf.width = number(props["width"], where + " width", kMinRoadWidth, kMaxRoadWidth);
     auto line = [&](const json& j, const std::string& w) {
       geom::Polyline l = positions(j, w);
       if (l.size() < 2) fail(w, "a road needs at least 2 distinct points");
@@ -209,7 +216,7 @@ class Parser {
       if (n > most) most = n, largest = &z;
     }
     if (blocks > kMaxBlocks)
-      fail("features[" + std::to_string(largest->index) + "]",
+      fail(names_[largest->index],
            "the zones would make about " + std::to_string(static_cast<long long>(blocks)) +
                " blocks, more than the " + std::to_string(static_cast<long long>(kMaxBlocks)) + " one run builds (this " + std::string(name(largest->type)) + " zone alone " +
                std::to_string(static_cast<long long>(most)) + "); draw smaller zones or raise their \"block_area\"");
@@ -273,7 +280,7 @@ class Parser {
     sketch.dead_ends = dead_ends(sketch.roads);
     if (sketch.streets.dead_ends_are_errors && !sketch.dead_ends.empty()) {
       const DeadEnd& d = sketch.dead_ends.front();
-      fail("features[" + std::to_string(d.feature) + "]",
+      fail(names_[d.feature],
            "the road ends at " + json::array({d.at.x, d.at.y}).dump() + " meeting no other road (one of " +
                std::to_string(sketch.dead_ends.size()) +
                " dead ends; \"dead_ends\": \"error\" refuses them); draw it on to another road, or set "
@@ -321,17 +328,65 @@ class Parser {
     return z;
   }
 
+  // The grid map the sketch's "exacity".grid names, relative to the sketch: its features go
+  // before the sketch's own, so that zones the sketch draws win where they overlap it (the
+  // later zone wins), and the zone types that get roads are laid out by "streets" and filled
+  // by seed 001's grid filling unless the sketch says otherwise (a planned city). The key is gone from `doc` after.
+  void add_grid(nlohmann::ordered_json& doc, const fs::path& sketch_path) {
+    nlohmann::ordered_json& ex = doc["exacity"];
+    const std::string w = "\"exacity\".grid";
+    if (!ex["grid"].is_string()) fail(w, "expected the path of a grid map (a string), relative to the sketch");
+    const fs::path file = sketch_path.parent_path() / ex["grid"].get<std::string>();
+    std::ifstream in(file, std::ios::binary);
+    if (!in || fs::is_directory(file))
+      fail(w, "cannot read the grid map " + file.string() + " (" +
+                  (fs::exists(file) ? "permission denied or not a file" : "no such file") +
+                  "); give the path of a grid map, relative to the sketch");
+    std::stringstream text;
+    text << in.rdbuf();
+    nlohmann::ordered_json features = grid_map_features(text.str(), file);
+    grid_features_ = static_cast<int>(features.size());
+    for (auto& f : doc["features"]) features.push_back(std::move(f));
+    doc["features"] = std::move(features);
+    ex.erase("grid");
+    if (!ex.contains("zones")) ex["zones"] = nlohmann::ordered_json::object();
+    if (!ex["zones"].is_object()) return;  // refused when the settings are read
+    for (const char* type : kGridMapStreetZones) {
+      nlohmann::ordered_json& zone = ex["zones"][type];
+      if (zone.is_null()) zone = nlohmann::ordered_json::object();
+      if (!zone.is_object()) continue;
+      if (!zone.contains("layout")) zone["layout"] = "streets";
+      if (!zone.contains("placement")) zone["placement"] = "grid";
+    }
+  }
+
  private:
   std::string file_;
   bool read_grammars_;
+  int grid_features_ = 0;          // features a "grid" map put before the sketch's own
+  std::vector<std::string> names_;  // each feature as messages name it
 };
 
-}  // namespace
+// A document Exacity made (a grid map's; a sketch with its "grid" or --models applied) as
+// text: JSON, each feature on a line of its own.
+std::string document_text(const nlohmann::ordered_json& doc) {
+  std::string out = "{";
+  for (auto it = doc.begin(); it != doc.end(); ++it) {
+    out += (it == doc.begin() ? "\n " : ",\n ") + json(it.key()).dump() + ": ";
+    if (it.key() != "features" || !it->is_array() || it->empty()) {
+      out += it->dump();
+      continue;
+    }
+    for (std::size_t i = 0; i < it->size(); ++i) out += (i ? ",\n  " : "[\n  ") + (*it)[i].dump();
+    out += "\n ]";
+  }
+  return out + "\n}\n";
+}
 
-Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_grammars) {
-  Parser parser(path, read_grammars);
+// The sketch's JSON; `marked` is the text, its numbers beyond a double's range marked
+// (settings.h, kOverflowMarker).
+json read_json(std::string& marked, const fs::path& path) {
   json doc;
-  std::string marked = text;
   try {
     for (;;) {
       try {
@@ -360,6 +415,15 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
     throw UserError(path.string() + ":" + std::to_string(line) + ":" + std::to_string(column) +
                     ": malformed JSON (" + what + "); fix the syntax there");
   }
+  return doc;
+}
+
+}  // namespace
+
+Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_grammars, const fs::path& models) {
+  Parser parser(path, read_grammars);
+  std::string marked = text;
+  json doc = read_json(marked, path);
   if (!doc.is_object() || text_of(doc, "type") != "FeatureCollection")
     parser.fail("top level", "a sketch must be a GeoJSON FeatureCollection");
   if (!doc.contains("features") || !doc["features"].is_array())
@@ -367,6 +431,18 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
 
   Sketch sketch;
   sketch.path = path;
+  // A grid map the sketch names, or a model library given in place of its own, make a new
+  // document: the one read, and the one OUT/sketch.geojson keeps.
+  const bool settings_object = !doc.contains("exacity") || doc["exacity"].is_object();
+  const bool grid = doc.contains("exacity") && doc["exacity"].is_object() && doc["exacity"].contains("grid");
+  if (settings_object && (grid || !models.empty())) {
+    nlohmann::ordered_json made = nlohmann::ordered_json::parse(marked);
+    if (grid) parser.add_grid(made, path);
+    if (!models.empty()) made["exacity"]["models"] = fs::absolute(models).lexically_normal().string();
+    sketch.geojson = document_text(made);
+    marked = sketch.geojson;
+    doc = json::parse(marked);
+  }
   for (ZoneType t : {ZoneType::Residential, ZoneType::Commercial, ZoneType::Industrial, ZoneType::Park,
                      ZoneType::Water})
     sketch.zone_settings[t] = default_zone_settings(t);
@@ -382,16 +458,21 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
   return sketch;
 }
 
-Sketch load_sketch(const fs::path& path, bool read_grammars) {
+Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& models) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  if (!in || fs::is_directory(path)) {  // a folder opens, and reads as nothing
     throw UserError(path.string() + ": cannot read the sketch (" +
                     (fs::exists(path) ? "permission denied or not a file" : "no such file") +
-                    "); give the path of a GeoJSON sketch");
+                    "); give the path of a GeoJSON sketch or a grid map (.grid)");
   }
   std::stringstream ss;
   ss << in.rdbuf();
-  return parse_sketch(ss.str(), path, read_grammars);
+  if (path.extension() != ".grid") return parse_sketch(ss.str(), path, read_grammars, models);
+  // A grid map is read as the sketch of its features; errors in it name its lines.
+  const std::string made = document_text(grid_map_sketch(ss.str(), path));
+  Sketch sketch = parse_sketch(made, path, read_grammars, models);
+  if (sketch.geojson.empty()) sketch.geojson = made;
+  return sketch;
 }
 
 }  // namespace exacity

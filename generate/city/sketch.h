@@ -38,6 +38,7 @@ struct ZoneFeature {
   int index = 0;                    // position in "features"
   ZoneType type = ZoneType::Residential;
   std::vector<geom::Polygon> polygons;  // rings as drawn: any orientation, maybe self-intersecting
+  std::string grid_cell;            // a grid map's region: FILE:LINE:COLUMN of its first cell; else empty
 };
 
 struct RoadFeature {
@@ -74,15 +75,34 @@ struct Sketch {
   StreetSettings streets;
   int joined_ends = 0;                // line ends moved by up to `snap` to meet another line
   std::vector<DeadEnd> dead_ends;
+  // The document read when it is not the file at `path` (a grid map; a sketch naming one in
+  // "grid", whose features it holds; `generate --models`), else empty. OUT/sketch.geojson
+  // holds it, so that validate and render read the sketch generate read.
+  std::string geojson;
 };
+
+// The sketch reader's limits (README, The sketch). Coordinates Exacity computes exactly in:
+// rounding its exact vertices to doubles moves them by under 2e-6 m out here; at 1e12 m
+// (0.1 mm steps) written rings stop being simple.
+inline constexpr double kMaxCoordinate = 1e10;
+// The most blocks one run builds (the zones' area over their block_area): the 10 km
+// benchmark city's 12,700 blocks peak at 4.1 GiB.
+inline constexpr double kMaxBlocks = 50000;
+// A road's width, m.
+inline constexpr double kMinRoadWidth = 0.5, kMaxRoadWidth = 500;
 
 ZoneSettings default_zone_settings(ZoneType type);
 double default_width(RoadClass road_class);
 
 // Throws UserError with one line naming the file, the feature and the fix. With
 // `read_grammars` false (for `exacity validate`, which reads a copy of the sketch away from
-// its files), grammar files are named but not read.
-Sketch load_sketch(const std::filesystem::path& path, bool read_grammars = true);
-Sketch parse_sketch(const std::string& text, const std::filesystem::path& path, bool read_grammars = true);
+// its files), grammar files are named but not read. A path ending in .grid is a grid map
+// (generate/city/grid_map.h); a sketch's "exacity".grid names one, whose features come
+// before the sketch's own. A non-empty `models` is a model library in place of the
+// sketch's "models" (`generate --models`).
+Sketch load_sketch(const std::filesystem::path& path, bool read_grammars = true,
+                   const std::filesystem::path& models = {});
+Sketch parse_sketch(const std::string& text, const std::filesystem::path& path, bool read_grammars = true,
+                    const std::filesystem::path& models = {});
 
 }  // namespace exacity

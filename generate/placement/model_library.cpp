@@ -88,7 +88,9 @@ namespace {
 
 json read_manifest(const fs::path& manifest) {
   std::ifstream in(manifest, std::ios::binary);
-  if (!in) throw UserError(manifest.string() + ": cannot read the model library; check the \"models\" path in the sketch");
+  if (!in)
+    throw UserError(manifest.string() +
+                    ": cannot read the model library; check the sketch's \"models\" path, or generate's --models");
   json doc = json::parse(in, nullptr, false);
   if (doc.is_discarded() || !doc.is_object() || !doc.contains("models") || !doc["models"].is_array())
     throw UserError(manifest.string() + ": not a model library; it must be JSON like {\"models\": [{\"file\": ..., \"zones\": [...]}]}");
