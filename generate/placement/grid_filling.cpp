@@ -36,6 +36,23 @@ Vec2 turned(Vec2 v, int r) {
   return v;
 }
 
+// Calls mark(i) for each cell i of a row of `width` cells of side `cell`, the first from
+// x0, whose centre lies inside the rings (even-odd) on the row's middle line y.
+template <typename Mark>
+void mark_inside(const std::vector<geom::Ring>& rings, double x0, double y, double cell, int width, Mark&& mark) {
+  std::vector<double> crossings;
+  for (const geom::Ring& r : rings)
+    for (std::size_t e = 0; e < r.size(); ++e) {
+      const Vec2 a = r[e], b = r[(e + 1) % r.size()];
+      if ((a.y <= y) != (b.y <= y)) crossings.push_back(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
+    }
+  std::sort(crossings.begin(), crossings.end());
+  for (std::size_t k = 0; k + 1 < crossings.size(); k += 2)
+    for (int i = std::max(0, static_cast<int>(std::ceil((crossings[k] - x0) / cell - 0.5)));
+         i < width && x0 + (i + 0.5) * cell < crossings[k + 1]; ++i)
+      mark(i);
+}
+
 // The lot piece over a grid in its frontage's frame: cell (i, j) is the square from
 // (t0 + i cell, j cell) in (along the street, back from it).
 struct LotGrid {
@@ -86,21 +103,14 @@ LotGrid lay_grid(const Occupancy& occupancy, const BuildingSettings& params, dou
     const Vec2 d = p - g.f.a;
     return Vec2{d.x * g.f.u.x + d.y * g.f.u.y - g.f.t0, d.x * g.f.n.x + d.y * g.f.n.y};
   };
-  std::fill(g.blocked.begin(), g.blocked.end(), 1);
-  for (int j = 0; j < g.height; ++j) {
-    const double y = (j + 0.5) * cell;
-    std::vector<double> crossings;
-    for (const geom::KindedRing& r : rings)
-      for (std::size_t e = 0; e < r.points.size(); ++e) {
-        const Vec2 a = frame(r.points[e]), b = frame(r.points[(e + 1) % r.points.size()]);
-        if ((a.y <= y) != (b.y <= y)) crossings.push_back(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
-      }
-    std::sort(crossings.begin(), crossings.end());
-    for (std::size_t k = 0; k + 1 < crossings.size(); k += 2)
-      for (int i = std::max(0, static_cast<int>(std::ceil(crossings[k] / cell - 0.5)));
-           i < g.width && (i + 0.5) * cell < crossings[k + 1]; ++i)
-        g.blocked[g.index(i, j)] = 0;
+  std::vector<geom::Ring> in_frame;
+  for (const geom::KindedRing& r : rings) {
+    in_frame.emplace_back();
+    for (Vec2 p : r.points) in_frame.back().push_back(frame(p));
   }
+  std::fill(g.blocked.begin(), g.blocked.end(), 1);
+  for (int j = 0; j < g.height; ++j)
+    mark_inside(in_frame, 0, (j + 0.5) * cell, cell, g.width, [&](int i) { g.blocked[g.index(i, j)] = 0; });
   const double half_diagonal = cell * M_SQRT1_2;
   std::vector<std::pair<Vec2, Vec2>> streets;
   for (const geom::KindedRing& r : rings)
@@ -336,19 +346,9 @@ FootprintGrid footprint_grid(const geom::Ring& outline, double cell) {
   f.height = std::max(1, static_cast<int>(std::ceil(box.height() / cell - 1e-9)));
   f.covered.assign(static_cast<std::size_t>(f.width) * f.height, 0);
   // Cells whose centre is inside, by the crossings of each row's middle line...
-  for (int j = 0; j < f.height; ++j) {
-    const double y = box.min_y + (j + 0.5) * cell;
-    std::vector<double> crossings;
-    for (std::size_t e = 0; e < outline.size(); ++e) {
-      const Vec2 a = outline[e], b = outline[(e + 1) % outline.size()];
-      if ((a.y <= y) != (b.y <= y)) crossings.push_back(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
-    }
-    std::sort(crossings.begin(), crossings.end());
-    for (std::size_t k = 0; k + 1 < crossings.size(); k += 2)
-      for (int i = std::max(0, static_cast<int>(std::ceil((crossings[k] - box.min_x) / cell - 0.5)));
-           i < f.width && box.min_x + (i + 0.5) * cell < crossings[k + 1]; ++i)
-        f.covered[static_cast<std::size_t>(j) * f.width + i] = 1;
-  }
+  for (int j = 0; j < f.height; ++j)
+    mark_inside({outline}, box.min_x, box.min_y + (j + 0.5) * cell, cell, f.width,
+                [&](int i) { f.covered[static_cast<std::size_t>(j) * f.width + i] = 1; });
   // ... and those an edge enters: the open square, so an edge along a side of the square
   // only touches it and the cell beyond stays free.
   const double in = 1e-9 * cell;
