@@ -40,6 +40,13 @@ void SettingsReader::number(const char* key, double& field, double min, double m
   if (has(key)) field = read_number(object_[key], file_, where(key), min, max);
 }
 
+void SettingsReader::whole_number(const char* key, int& field, int min, int max, const char* what) const {
+  if (!has(key)) return;
+  if (!object_[key].is_number_integer())
+    fail(key, std::string("expected a whole number of ") + what + ", " + std::to_string(min) + " to " + std::to_string(max));
+  field = static_cast<int>(read_number(object_[key], file_, where(key), min, max));
+}
+
 void SettingsReader::range(const char* key, Range& field, double min, double max, const char* what) const {
   if (!has(key)) return;
   const json& v = object_[key];

@@ -51,6 +51,8 @@ class SettingsReader {
   void choice(const char* key, std::string& field, std::initializer_list<std::string_view> values,
               const std::string& what) const;
   void boolean(const char* key, bool& field) const;
+  // A whole number in [min, max]; `what` names what it counts ("rules").
+  void whole_number(const char* key, int& field, int min, int max, const char* what) const;
 
   [[noreturn]] void fail(const char* key, const std::string& what) const;
 

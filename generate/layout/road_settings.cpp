@@ -41,12 +41,7 @@ void read_voronoi(const SettingsReader& s, const RoadSettings& r, VoronoiSetting
 }
 
 void read_grammar(const SettingsReader& s, const std::string& layout, bool read_grammars, GrammarSettings& g) {
-  if (s.has("grammar_depth")) {
-    if (!s.at("grammar_depth").is_number_integer()) s.fail("grammar_depth", "expected a whole number of rules, 1 to 32");
-    double depth = 0;
-    s.number("grammar_depth", depth, 1, 32);
-    g.depth = static_cast<int>(depth);
-  }
+  s.whole_number("grammar_depth", g.depth, 1, 32, "rules");
   if (s.has("grammar")) {
     if (!s.at("grammar").is_string())
       s.fail("grammar", "expected the path of a grammar file (a string), relative to the sketch");

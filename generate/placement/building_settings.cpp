@@ -1,7 +1,5 @@
 #include "generate/placement/building_settings.h"
 
-#include <cmath>
-
 namespace exacity {
 namespace {
 
@@ -59,10 +57,7 @@ BuildingSettings read_building_settings(const SettingsReader& s, BuildingSetting
   s.choice("placement", b.placement, {"rows", "grid"},
            "expected \"rows\" (along the street) or \"grid\" (seed 001's grid filling)");
   s.number("grid_cell", b.grid_cell, 0.1, 10);
-  double passes = b.grid_passes;
-  s.number("grid_passes", passes, 1, 16);
-  if (passes != std::floor(passes)) s.fail("grid_passes", "expected a whole number of passes (1 to 16)");
-  b.grid_passes = static_cast<int>(passes);
+  s.whole_number("grid_passes", b.grid_passes, 1, 16, "passes");
   return b;
 }
 
