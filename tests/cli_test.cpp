@@ -32,6 +32,12 @@ fs::path small_sketch(const fs::path& dir) {
   return dir / "small.geojson";
 }
 
+// Writes the sketch into `dir` and generates it into dir/out.
+Result generate_in(const fs::path& dir, const std::string& sketch) {
+  std::ofstream(dir / "in.geojson") << sketch;
+  return run("generate " + (dir / "in.geojson").string() + " -o " + (dir / "out").string() + " -q");
+}
+
 }  // namespace
 
 // Generates the small sketch, lets `tamper` edit one layer, and returns what validate says.
@@ -130,16 +136,15 @@ TEST(Cli, ValidateCatchesCentreLinesThatMeetBetweenVertices) {
 // A zone the run leaves without a lot is named, with the reason, in report.json and in a
 // note: here one drawn twice (the later copy takes all its land) and one no street reaches.
 TEST(Cli, ZonesLeftEmptyAreNamedWithTheReason) {
-  fs::path dir = testing_util::temp_dir("cli-empty");
-  std::ofstream(dir / "in.geojson") << R"({"type": "FeatureCollection", "exacity": {"seed": 3, "zones":
+  const fs::path dir = testing_util::temp_dir("cli-empty");
+  Result g = generate_in(dir, R"({"type": "FeatureCollection", "exacity": {"seed": 3, "zones":
     {"commercial": {"layout": "streets"}}}, "features": [
     {"type": "Feature", "properties": {"zone": "residential"},
      "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [300, 200], [0, 200], [0, 0]]]}},
     {"type": "Feature", "properties": {"zone": "residential"},
      "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [300, 200], [0, 200], [0, 0]]]}},
     {"type": "Feature", "properties": {"zone": "commercial"},
-     "geometry": {"type": "Polygon", "coordinates": [[[500, 0], [700, 0], [700, 200], [500, 200], [500, 0]]]}}]})";
-  Result g = run("generate " + (dir / "in.geojson").string() + " -o " + (dir / "out").string() + " -q");
+     "geometry": {"type": "Polygon", "coordinates": [[[500, 0], [700, 0], [700, 200], [500, 200], [500, 0]]]}}]})");
   ASSERT_EQ(g.code, 0) << g.out;
   auto empty = nlohmann::json::parse(read(dir / "out" / "report.json"))["empty_zones"];
   ASSERT_EQ(empty.size(), 2u) << empty;
@@ -154,12 +159,11 @@ TEST(Cli, ZonesLeftEmptyAreNamedWithTheReason) {
 // Grid filling places library models: a zone that asks for it without any is built in
 // rows, and the run says so.
 TEST(Cli, GridFillingWithoutModelsIsNamedNotSilent) {
-  fs::path dir = testing_util::temp_dir("cli-grid-fallback");
-  std::ofstream(dir / "in.geojson") << R"({"type": "FeatureCollection", "exacity": {"seed": 3, "zones":
+  const fs::path dir = testing_util::temp_dir("cli-grid-fallback");
+  Result g = generate_in(dir, R"({"type": "FeatureCollection", "exacity": {"seed": 3, "zones":
     {"residential": {"placement": "grid"}}}, "features": [
     {"type": "Feature", "properties": {"zone": "residential"},
-     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [300, 200], [0, 200], [0, 0]]]}}]})";
-  Result g = run("generate " + (dir / "in.geojson").string() + " -o " + (dir / "out").string() + " -q");
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [300, 200], [0, 200], [0, 0]]]}}]})");
   ASSERT_EQ(g.code, 0) << g.out;
   auto report = nlohmann::json::parse(read(dir / "out" / "report.json"));
   ASSERT_EQ(report["placement_fallbacks"].size(), 1u) << report["placement_fallbacks"];
