@@ -40,7 +40,7 @@ std::vector<Lot> with_density(std::vector<Lot> lots, const std::vector<Block>& b
 Structures build_on_lots(City& city, const std::vector<PlannedLot>& planned) {
   constexpr int kMerges = 2;
   for (int merges = 0;; ++merges) {
-    Structures s = place_buildings(city.lots, city.sketch, city.model_library(), city.heightmap());
+    Structures s = place_buildings(city.lots, city.sketch, city.model_library(), city.channels, city.heightmap());
     std::vector<char> built(city.lots.size(), 0);
     for (const Building& b : s.buildings) built[b.lot] = 1;
     for (const ModelInstance& m : s.models) built[m.lot] |= m.kind == ModelKind::Building;
@@ -56,13 +56,17 @@ Structures build_on_lots(City& city, const std::vector<PlannedLot>& planned) {
 City build_city(const Sketch& sketch, StageClock& stages) {
   City city;
   city.sketch = sketch;
+  // The stage reads the sketch's images: the heightmap and the channels.
   city.terrain = stages.run("terrain", [&]() -> std::optional<Terrain> {
+    city.channels = Channels::load(sketch.channels, sketch.channel_sharpness);
     if (!sketch.terrain) return std::nullopt;
     return Terrain::load(*sketch.terrain);
   });
   city.library = stages.run("model library", [&]() -> std::optional<ModelLibrary> {
     if (sketch.models.empty()) return std::nullopt;
-    return load_model_library(sketch.models);
+    ModelLibrary library = load_model_library(sketch.models);
+    library.check_channels(sketch.channels);
+    return library;
   });
   CityMap city_map = stages.run("zone map", [&] { return build_city_map(sketch, city.heightmap()); });
   city.network = stages.run("road network", [&] { return grow_road_network(std::move(city_map), sketch); });

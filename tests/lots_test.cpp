@@ -139,7 +139,7 @@ TEST(Buildings, HeightsFallWithDistanceFromTheCentre) {
   Random rng(3);
   double tallest_centre = 0, tallest_edge = 0;
   for (int i = 0; i < 2000; ++i) {
-    double at_centre = building_height(p, 0, 1000, rng), at_edge = building_height(p, 1500, 1000, rng);
+    double at_centre = building_height(p, 1, rng), at_edge = building_height(p, 0, rng);
     EXPECT_GE(at_centre, p.min_height);
     EXPECT_LE(at_centre, 2 * p.max_height);
     EXPECT_GE(at_edge, p.min_height / 2);

@@ -199,7 +199,7 @@ TEST(ModelRows, ModelsStandInsideTheLotApartAndFacingTheRoad) {
     params.density = density;
     Random rng(7);
     Occupancy occupancy(cell, 1);
-    auto placed = place_models(occupancy, lib.choices(ZoneType::Residential, ModelKind::Building), ModelKind::Building,
+    auto placed = place_models(occupancy, choices_at(lib.choices(ZoneType::Residential, ModelKind::Building), lib, nullptr, geom::Vec2{}), ModelKind::Building,
                                lib, params, rng);
     ASSERT_FALSE(placed.empty()) << density;
     for (std::size_t i = 0; i < placed.size(); ++i) {
@@ -228,7 +228,7 @@ TEST(ModelRows, DensityChangesHowManyFit) {
     params.density = density;
     Random rng(3);
     Occupancy occupancy(cell, 1);
-    count[density] = place_models(occupancy, {0}, ModelKind::Building, lib, params, rng).size();
+    count[density] = place_models(occupancy, choices_at({0}, lib, nullptr, geom::Vec2{}), ModelKind::Building, lib, params, rng).size();
   }
   // One row of 8 m houses along 200 m: spacing 1.25–1.5, 2–3 and 4–5 widths.
   EXPECT_GE(count["dense"], 16u);

@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "generate/city/channels.h"
 #include "generate/city/ground.h"
 #include "generate/city/sketch.h"
 #include "generate/city/terrain.h"
@@ -20,6 +21,7 @@ namespace exacity {
 struct City {
   Sketch sketch;
   std::optional<Terrain> terrain;
+  Channels channels;  // seed 004's, empty when the sketch has none
   std::optional<ModelLibrary> library;
   RoadNetwork network;
   std::vector<Block> blocks;

@@ -224,7 +224,7 @@ class Parser {
 
   void settings(const json& ex, Sketch& sketch) const {
     const std::string w = "\"exacity\"";
-    known_keys(ex, w, {"version", "seed", "terrain", "models", "zones", "roads", "camera"});
+    known_keys(ex, w, {"version", "seed", "terrain", "models", "zones", "roads", "camera", "channels", "channel_sharpness"});
     if (ex.contains("version") && number(ex["version"], w + ".version", 1, 1) != 1) fail(w, "unsupported version");
     if (ex.contains("seed")) {
       const json& s = ex["seed"];
@@ -242,6 +242,9 @@ class Parser {
       sketch.camera = ex["camera"].get<std::string>();
     }
     if (ex.contains("terrain")) sketch.terrain = terrain(ex["terrain"], sketch.path);
+    if (ex.contains("channels")) sketch.channels = channels(ex["channels"], sketch.path);
+    if (ex.contains("channel_sharpness"))
+      sketch.channel_sharpness = number(ex["channel_sharpness"], w + ".channel_sharpness", 0, 1000);
     if (ex.contains("roads")) sketch.streets = streets(ex["roads"]);
     if (ex.contains("zones")) {
       const json& zones = ex["zones"];
@@ -249,8 +252,47 @@ class Parser {
       for (auto& [zname, params] : zones.items()) {
         ZoneType zt = *parse_zone_type(zname);
         sketch.zone_settings[zt] = zone_settings(params, zt, w + ".zones." + zname);
+        const std::string& height_channel = sketch.zone_settings[zt].buildings.height_channel;
+        if (!height_channel.empty() && std::none_of(sketch.channels.begin(), sketch.channels.end(),
+                                                    [&](const ChannelSpec& c) { return c.name == height_channel; }))
+          fail(w + ".zones." + zname + ".height_channel",
+               quote(height_channel) + " is not a channel; define it in \"exacity\".channels, or remove the key");
       }
     }
+  }
+
+  // Seed 004's channels, {"NAME": {"image": FILE, "bounds": [min_x, min_y, max_x, max_y]}}.
+  std::vector<ChannelSpec> channels(const json& j, const fs::path& sketch_path) const {
+    const std::string w = "\"exacity\".channels";
+    if (!j.is_object())
+      fail(w, "expected channels by name, like {\"downtown\": {\"image\": \"downtown.png\", \"bounds\": [0, 0, 2000, 1500]}}");
+    std::vector<ChannelSpec> out;
+    for (const auto& [cname, c] : j.items()) {
+      const std::string cw = w + "." + cname;
+      if (cname.empty()) fail(w, "a channel has an empty name; name it");
+      known_keys(c, cw, {"image", "bounds"});
+      ChannelSpec spec;
+      spec.name = cname;
+      if (!c.contains("image") || !c["image"].is_string() || c["image"].get<std::string>().empty())
+        fail(cw + ".image", "name a greyscale image file (PNG, TIFF or EXR)");
+      spec.image = sketch_path.parent_path() / c["image"].get<std::string>();
+      spec.bounds = box(c, cw, "the area the channel's image covers");
+      out.push_back(std::move(spec));
+    }
+    return out;
+  }
+
+  // "bounds": [min_x, min_y, max_x, max_y] of an image stretched over the city.
+  geom::Box box(const json& j, const std::string& w, const std::string& what) const {
+    if (!j.contains("bounds") || !j["bounds"].is_array() || j["bounds"].size() != 4)
+      fail(w + ".bounds", "give " + what + " as [min_x, min_y, max_x, max_y]");
+    const json& b = j["bounds"];
+    const double big = 1e9;
+    geom::Box out{number(b[0], w + ".bounds", -big, big), number(b[1], w + ".bounds", -big, big),
+                  number(b[2], w + ".bounds", -big, big), number(b[3], w + ".bounds", -big, big)};
+    if (!(out.max_x > out.min_x) || !(out.max_y > out.min_y))
+      fail(w + ".bounds", "bounds " + b.dump() + " have zero area; give [min_x, min_y, max_x, max_y] with min < max");
+    return out;
   }
 
   StreetSettings streets(const json& j) const {
@@ -295,14 +337,7 @@ class Parser {
     if (!t.contains("heightmap") || !t["heightmap"].is_string())
       fail(w, "\"heightmap\" must name an image file (PNG, TIFF or EXR)");
     spec.heightmap = sketch_path.parent_path() / t["heightmap"].get<std::string>();
-    if (!t.contains("bounds") || !t["bounds"].is_array() || t["bounds"].size() != 4)
-      fail(w + ".bounds", "give the area the heightmap covers as [min_x, min_y, max_x, max_y]");
-    const json& b = t["bounds"];
-    double big = 1e9;
-    spec.bounds = {number(b[0], w + ".bounds", -big, big), number(b[1], w + ".bounds", -big, big),
-                   number(b[2], w + ".bounds", -big, big), number(b[3], w + ".bounds", -big, big)};
-    if (!(spec.bounds.max_x > spec.bounds.min_x) || !(spec.bounds.max_y > spec.bounds.min_y))
-      fail(w + ".bounds", "bounds " + b.dump() + " have zero area; give [min_x, min_y, max_x, max_y] with min < max");
+    spec.bounds = box(t, w, "the area the heightmap covers");
     if (t.contains("height")) {
       const json& h = t["height"];
       if (!h.is_array() || h.size() != 2) fail(w + ".height", "give [lowest, highest] in metres");

@@ -34,6 +34,13 @@ struct TerrainSpec {
   double low = 0, high = 100;       // heights of the image's lowest and highest values
 };
 
+// Seed 004's channel: a greyscale image stretched over `bounds` (generate/city/channels.h).
+struct ChannelSpec {
+  std::string name;
+  std::filesystem::path image;  // resolved against the sketch's folder
+  geom::Box bounds;
+};
+
 struct ZoneFeature {
   int index = 0;                    // position in "features"
   ZoneType type = ZoneType::Residential;
@@ -69,6 +76,8 @@ struct Sketch {
   std::optional<TerrainSpec> terrain;
   std::filesystem::path models;     // empty when the sketch names no model library
   std::string camera;               // the still's camera (exacity render's --camera syntax), or empty
+  std::vector<ChannelSpec> channels;  // in name order
+  double channel_sharpness = 4;     // the exponent of a model's channel affinity
   std::map<ZoneType, ZoneSettings> zone_settings;
   std::vector<ZoneFeature> zones;
   std::vector<RoadFeature> roads;     // as joined by StreetSettings::snap

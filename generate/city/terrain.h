@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "generate/city/grey_image.h"
 #include "generate/city/sketch.h"
 #include "geom/plain.h"
 
@@ -12,17 +13,16 @@ namespace exacity {
 
 class Terrain {
  public:
-  // Reads the image with OpenImageIO. Unsigned 8/16-bit images are scaled by their
-  // type's maximum; float and signed images by their largest value. Throws UserError.
+  // Reads the image (read_grey_image). Throws UserError.
   static Terrain load(const TerrainSpec& spec);
   // For tests: values already normalised to [0, 1], row 0 north.
   Terrain(const TerrainSpec& spec, int width, int height, std::vector<float> values);
 
-  int width() const { return width_; }
-  int height() const { return height_; }
+  int width() const { return image_.width; }
+  int height() const { return image_.height; }
   const geom::Box& bounds() const { return spec_.bounds; }
   bool is_water(int col, int row) const { return value(col, row) <= 0.0f; }
-  float value(int col, int row) const { return values_[static_cast<std::size_t>(row) * width_ + col]; }
+  float value(int col, int row) const { return image_.at(col, row); }
 
   // Bilinear height in metres at a point (clamped to the bounds).
   double height_at(geom::Vec2 p) const;
@@ -43,8 +43,7 @@ class Terrain {
 
  private:
   TerrainSpec spec_;
-  int width_ = 0, height_ = 0;
-  std::vector<float> values_;
+  GreyImage image_;
 };
 
 }  // namespace exacity

@@ -198,9 +198,9 @@ json model_object(const ModelInstance& m, const Mesh& mesh, const ModelLibrary& 
               {"boundaries", {v(m.placed.position.x, m.placed.position.y, m.floor)}},
               {"transformationMatrix", {c, -s, 0, 0, s, c, 0, 0, 0, 0, m.placed.scale, 0, 0, 0, 0, 1}}};
   }
-  const char* type = m.kind == ModelKind::Tree     ? "SolitaryVegetationObject"
-                     : m.kind == ModelKind::Street ? "CityFurniture"
-                                                   : "Building";
+  const char* type = m.kind == ModelKind::Tree       ? "SolitaryVegetationObject"
+                     : m.kind == ModelKind::Building ? "Building"
+                                                     : "CityFurniture";
   return {{"type", type},
           {"attributes",
            {{"lot", m.lot}, {"zone", name(m.zone)}, {"measuredHeight", m.height}, {"model", library.models[m.placed.model].name}}},

@@ -43,7 +43,8 @@ const std::set<std::string>& building_setting_keys() {
                                           "footprint_depth", "min_footprint_width", "max_footprint_area",
                                           "min_footprint_area", "heights",          "roof",
                                           "roof_pitch",      "density",            "placement",
-                                          "grid_cell",       "grid_passes"};
+                                          "grid_cell",       "grid_passes",        "nesting",
+                                          "height_channel"};
   return keys;
 }
 
@@ -58,6 +59,12 @@ BuildingSettings read_building_settings(const SettingsReader& s, BuildingSetting
            "expected \"rows\" (along the street) or \"grid\" (seed 001's grid filling)");
   s.number("grid_cell", b.grid_cell, 0.1, 10);
   s.whole_number("grid_passes", b.grid_passes, 1, 16, "passes");
+  s.boolean("nesting", b.nesting);
+  if (s.has("height_channel")) {
+    if (!s.at("height_channel").is_string() || s.at("height_channel").get<std::string>().empty())
+      s.fail("height_channel", "expected the name of a channel (\"exacity\".channels)");
+    b.height_channel = s.at("height_channel").get<std::string>();
+  }
   return b;
 }
 

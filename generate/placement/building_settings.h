@@ -32,6 +32,11 @@ struct BuildingSettings {
   std::string placement = "rows";
   double grid_cell = 1;
   int grid_passes = 1;
+  // Seed 001's 3D bounding grid: grid filling lets a model stand under another's overhang.
+  bool nesting = false;
+  // Seed 004: a channel whose value takes the place of nearness to the city's centre in the
+  // extruded buildings' heights (building_height); empty for none.
+  std::string height_channel;
 };
 
 BuildingSettings default_building_settings(ZoneType type);

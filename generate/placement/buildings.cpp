@@ -22,8 +22,7 @@ Vec3 Placement::apply(Vec3 v, double floor) const {
   return {position.x + c * v[0] - s * v[1], position.y + s * v[0] + c * v[1], floor + scale * v[2]};
 }
 
-double building_height(const BuildingSettings& p, double distance, double radius, Random& rng) {
-  double near_centre = radius > 0 ? 1 - std::min(distance / radius, 1.0) : 1;
+double building_height(const BuildingSettings& p, double near_centre, Random& rng) {
   double scale = 0.5 + 0.5 * near_centre;
   double top = p.max_height * scale;
   if (rng.uniform() < 0.1 * near_centre * near_centre) top *= 2;  // a rare tower near the centre
@@ -115,17 +114,23 @@ void choose_roof(Building& b, const BuildingSettings& p) {
 namespace {
 
 // Seed 003's buildings: rectangles in a row along the street, raised to a height that falls
-// with distance from the city's centre, under a roof.
+// with distance from the city's centre (or rises with the zone's height channel), under a
+// roof.
 class Extrusion : public Placer {
  public:
-  Extrusion(geom::Vec2 centre, double radius) : centre_(centre), radius_(radius) {}
+  Extrusion(geom::Vec2 centre, double radius, const Channels& channels)
+      : centre_(centre), radius_(radius), channels_(channels) {}
   void place(const Lot& lot, const BuildingSettings& p, Occupancy& occupancy, Random& rng, Structures& out) const override {
+    const int height_channel = p.height_channel.empty() ? -1 : channels_.index(p.height_channel);
     for (geom::Ring& ring : street_footprints(occupancy, p, rng)) {
       Building b;
       b.polygon.outer = std::move(ring);
       geom::Vec2 c{0, 0};
       for (geom::Vec2 v : b.polygon.outer) c.x += v.x / 4, c.y += v.y / 4;  // a rectangle's centre
-      b.height = building_height(p, std::hypot(c.x - centre_.x, c.y - centre_.y), radius_, rng);
+      const double near_centre = height_channel >= 0 ? channels_.value(height_channel, c)
+                                 : radius_ > 0 ? 1 - std::min(std::hypot(c.x - centre_.x, c.y - centre_.y) / radius_, 1.0)
+                                               : 1;
+      b.height = building_height(p, near_centre, rng);
       b.zone = lot.zone;
       choose_roof(b, p);
       out.buildings.push_back(std::move(b));
@@ -135,11 +140,13 @@ class Extrusion : public Placer {
  private:
   geom::Vec2 centre_;
   double radius_;
+  const Channels& channels_;
 };
 
 // Each zone type's placers, in the order they fill a lot: its buildings (the library's,
 // where it has some for the zone, else extruded), then street furniture, then trees.
 std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> zone_placers(const Sketch& sketch, const ModelLibrary* library,
+                                                                      const Channels& channels,
                                                                       const std::vector<Lot>& lots) {
   geom::Box city = geom::Box::none();
   for (const Lot& lot : lots) city.add(lot.cell.bounds());
@@ -150,12 +157,12 @@ std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> zone_placers(const Sket
     auto& list = placers[zone];
     std::unique_ptr<Placer> models;
     if (library)
-      models = settings.buildings.placement == "grid" ? make_grid_filler(*library, zone)
-                                                       : make_model_placer(*library, zone, ModelKind::Building);
-    list.push_back(models ? std::move(models) : std::make_unique<Extrusion>(centre, radius));
+      models = settings.buildings.placement == "grid" ? make_grid_filler(*library, zone, channels)
+                                                       : make_model_placer(*library, zone, ModelKind::Building, channels);
+    list.push_back(models ? std::move(models) : std::make_unique<Extrusion>(centre, radius, channels));
     if (!library) continue;
     for (ModelKind kind : {ModelKind::Street, ModelKind::Tree})
-      if (std::unique_ptr<Placer> p = make_model_placer(*library, zone, kind)) list.push_back(std::move(p));
+      if (std::unique_ptr<Placer> p = make_model_placer(*library, zone, kind, channels)) list.push_back(std::move(p));
   }
   return placers;
 }
@@ -163,8 +170,8 @@ std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> zone_placers(const Sket
 }  // namespace
 
 Structures place_buildings(const std::vector<Lot>& lots, const Sketch& sketch, const ModelLibrary* library,
-                           const Terrain* terrain) {
-  const auto placers = zone_placers(sketch, library, lots);
+                           const Channels& channels, const Terrain* terrain) {
+  const auto placers = zone_placers(sketch, library, channels, lots);
   const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Buildings));
   std::vector<Structures> placed(lots.size());
   tbb::parallel_for(std::size_t(0), lots.size(), [&](std::size_t i) {

@@ -9,6 +9,7 @@
 
 #include "generate/parcels/lots.h"
 #include "generate/placement/model_library.h"
+#include "generate/city/channels.h"
 #include "generate/city/random.h"
 #include "generate/city/sketch.h"
 #include "generate/city/terrain.h"
@@ -83,9 +84,10 @@ void choose_roof(Building& b, const BuildingSettings& p);
 
 // Lot by lot in parallel: rows of models facing the road where the library has buildings
 // for the zone, else a row of extruded rectangles along the street; then the
-// library's street furniture and trees where they fit. Each stands on the terrain.
+// library's street furniture and trees where they fit, each drawn by its weight and
+// channels. Each stands on the terrain.
 Structures place_buildings(const std::vector<Lot>& lots, const Sketch& sketch, const ModelLibrary* library,
-                           const Terrain* terrain);
+                           const Channels& channels, const Terrain* terrain);
 
 // The 3D exports write every placed model's triangles (OBJ, PLY and CityJSON have no
 // instances for buildings), about 0.75 kB of memory each while they are written: past
@@ -93,8 +95,9 @@ Structures place_buildings(const std::vector<Lot>& lots, const Sketch& sketch, c
 inline constexpr double kMaxExportTriangles = 20e6;
 void check_export_size(const std::vector<ModelInstance>& models, const ModelLibrary* library);
 
-// Seed 003's height: uniform in the zone's range scaled by 1 - distance / radius (down to
-// half at the city's edge); the top doubles with a chance of 0.1 × that scale².
-double building_height(const BuildingSettings& p, double distance, double radius, Random& rng);
+// Seed 003's height: uniform in the zone's range scaled by 0.5 + 0.5 near_centre (in [0, 1]:
+// 1 - distance / radius from the city's centre, or the zone's height channel), so down to
+// half at the city's edge; the top doubles with a chance of 0.1 × near_centre².
+double building_height(const BuildingSettings& p, double near_centre, Random& rng);
 
 }  // namespace exacity

@@ -240,16 +240,18 @@ class Candidate {
   mutable std::optional<FootprintGrid> turns_[4], taken_[4];
 };
 
-// A random model of the choices, of a random size and colour (seed 001's alteration).
-Candidate draw(const std::vector<int>& choices, const ModelLibrary& lib, const BuildingSettings& params, double cell,
-               Random& rng) {
-  const int model = pick(choices, lib, rng);
+// A random model of the choices, of a random size and colour (seed 001's alteration); none
+// when no choice has weight here.
+std::optional<Candidate> draw(const Choices& choices, const ModelLibrary& lib, const BuildingSettings& params,
+                              double cell, Random& rng) {
+  const int model = pick(choices, rng);
+  if (model < 0) return std::nullopt;
   const Model& m = lib.models[model];
   const double scale = rng.uniform(m.min_scale, m.max_scale);
   const int tint = static_cast<int>(rng.next() % kTints);
   // The lot's edges keep half the gap already (lay_grid); between models, the whole gap,
   // and a cell at least: footprints that touch are not apart (Occupancy).
-  return {m, model, scale, tint, cell, std::max(1, static_cast<int>(std::ceil(params.building_gap / cell - 1e-9)))};
+  return Candidate{m, model, scale, tint, cell, std::max(1, static_cast<int>(std::ceil(params.building_gap / cell - 1e-9)))};
 }
 
 // Whether the candidate, turned r times, fits with its footprint's lower-left cell at (i, j).
@@ -295,23 +297,27 @@ bool place_first_free(LotGrid& g, const std::vector<std::pair<int, int>>& order,
 
 class GridFiller : public Placer {
  public:
-  GridFiller(const ModelLibrary& library, std::vector<int> choices) : library_(library), choices_(std::move(choices)) {}
+  GridFiller(const ModelLibrary& library, std::vector<int> models, const Channels& channels)
+      : library_(library), models_(std::move(models)), channels_(channels) {}
 
-  void place(const Lot&, const BuildingSettings& params, Occupancy& occupancy, Random& rng, Structures& out) const override {
+  void place(const Lot&, const BuildingSettings& params, Occupancy& occupancy, Random& rng,
+             Structures& out) const override {
     const Frontage& f = occupancy.frontage();
     if (!(f.t1 > f.t0) || !(f.depth > 0)) return;
     LotGrid g = lay_grid(occupancy, params, params.grid_cell);
     const std::vector<std::pair<int, int>> order = serpentine(g.width, g.height);
     double mean_cells = 0;
-    for (int c : choices_) mean_cells += library_.models[c].width * library_.models[c].depth;
-    mean_cells = std::max(mean_cells / static_cast<double>(choices_.size()) / (g.cell * g.cell), 1.0);
+    for (int c : models_) mean_cells += library_.models[c].width * library_.models[c].depth;
+    mean_cells = std::max(mean_cells / static_cast<double>(models_.size()) / (g.cell * g.cell), 1.0);
+    const Choices choices = choices_at(models_, library_, &channels_, occupancy.piece());
     for (int pass = 0; pass < params.grid_passes; ++pass) {
       const int free = static_cast<int>(std::count(g.blocked.begin(), g.blocked.end(), 0));
       if (free == 0) return;
       // Enough for the free cells to fill, largest first (seed 001), each a random size and colour.
       const int count = static_cast<int>(std::clamp(std::ceil(1.5 * free / mean_cells), 1.0, 256.0));
       std::vector<Candidate> candidates;
-      for (int n = 0; n < count; ++n) candidates.push_back(draw(choices_, library_, params, g.cell, rng));
+      for (int n = 0; n < count; ++n)
+        if (std::optional<Candidate> c = draw(choices, library_, params, g.cell, rng)) candidates.push_back(std::move(*c));
       std::stable_sort(candidates.begin(), candidates.end(),
                        [](const Candidate& a, const Candidate& b) { return a.footprint(0).cells > b.footprint(0).cells; });
       // A model that found no place three times in a pass (at sizes no larger each time)
@@ -330,7 +336,8 @@ class GridFiller : public Placer {
 
  private:
   const ModelLibrary& library_;
-  std::vector<int> choices_;
+  std::vector<int> models_;
+  const Channels& channels_;
 };
 
 }  // namespace
@@ -378,10 +385,10 @@ std::vector<std::pair<int, int>> serpentine(int width, int height) {
   return order;
 }
 
-std::unique_ptr<Placer> make_grid_filler(const ModelLibrary& library, ZoneType zone) {
-  std::vector<int> choices = library.choices(zone, ModelKind::Building);
-  if (choices.empty()) return nullptr;
-  return std::make_unique<GridFiller>(library, std::move(choices));
+std::unique_ptr<Placer> make_grid_filler(const ModelLibrary& library, ZoneType zone, const Channels& channels) {
+  std::vector<int> models = library.choices(zone, ModelKind::Building);
+  if (models.empty()) return nullptr;
+  return std::make_unique<GridFiller>(library, std::move(models), channels);
 }
 
 }  // namespace exacity

@@ -34,7 +34,8 @@ FootprintGrid footprint_grid(const geom::Ring& outline, double cell);
 // The serpentine order of a grid's cells: row 0 left to right, row 1 right to left, ...
 std::vector<std::pair<int, int>> serpentine(int width, int height);
 
-// Grid filling with the library's building models for the zone (none when it has none).
-std::unique_ptr<Placer> make_grid_filler(const ModelLibrary& library, ZoneType zone);
+// Grid filling with the library's building models for the zone (none when it has none),
+// drawn by their weights and channels where the lot stands.
+std::unique_ptr<Placer> make_grid_filler(const ModelLibrary& library, ZoneType zone, const Channels& channels);
 
 }  // namespace exacity

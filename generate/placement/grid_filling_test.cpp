@@ -51,7 +51,8 @@ BuildingSettings tight() {
 }
 
 std::vector<ModelInstance> fill(const geom::Cell& lot, const ModelLibrary& lib, const BuildingSettings& p, std::uint64_t seed) {
-  const auto filler = make_grid_filler(lib, ZoneType::Residential);
+  const Channels none;
+  const auto filler = make_grid_filler(lib, ZoneType::Residential, none);
   EXPECT_NE(filler, nullptr);
   Occupancy occupancy(lot, LotEdge::kStreet);
   Random rng(seed);

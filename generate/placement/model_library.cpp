@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "generate/errors.h"
+#include "generate/export/geojson.h"
 #include "geom/grid.h"
 #include "geom/outline.h"
 #include "geom/polygon_check.h"
@@ -14,12 +15,37 @@ namespace exacity {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+namespace {
+
+constexpr std::string_view kKindNames[] = {"building", "street", "tree", "lamp", "sign", "traffic_light", "bench", "hydrant"};
+
+}  // namespace
+
+const char* name(ModelKind k) { return kKindNames[static_cast<int>(k)].data(); }
+
+bool is_clutter(ModelKind k) { return k != ModelKind::Building && k != ModelKind::Street; }
+
 std::vector<int> ModelLibrary::choices(ZoneType zone, ModelKind kind) const {
   std::vector<int> out;
   for (std::size_t i = 0; i < models.size(); ++i)
     if (models[i].kind == kind && std::find(models[i].zones.begin(), models[i].zones.end(), zone) != models[i].zones.end())
       out.push_back(static_cast<int>(i));
   return out;
+}
+
+std::vector<int> ModelLibrary::lot_choices(ZoneType zone) const {
+  std::vector<int> out;
+  for (int i : choices(zone, ModelKind::Building))
+    if (models[i].has_lot()) out.push_back(i);
+  return out;
+}
+
+void ModelLibrary::check_channels(const std::vector<ChannelSpec>& channels) const {
+  for (std::size_t i = 0; i < models.size(); ++i)
+    for (const auto& [channel, value] : models[i].channels)
+      if (std::none_of(channels.begin(), channels.end(), [&](const ChannelSpec& c) { return c.name == channel; }))
+        throw UserError(file.string() + " models[" + std::to_string(i) + "]: channels names \"" + channel +
+                        "\", which the sketch does not define; define it in the sketch's \"exacity\".channels, or remove it");
 }
 
 namespace {
@@ -99,10 +125,14 @@ json read_manifest(const fs::path& manifest) {
 
 void check_keys(const json& e, const std::string& where) {
   if (!e.is_object()) fail(where, "expected an object with \"file\" and \"zones\"");
+  static const std::vector<std::string> known{"name",  "file",  "zones",   "kind",   "up",   "unit",     "front",
+                                              "weight", "scale", "spacing", "offset", "side", "channels", "lot"};
   for (const auto& [key, value] : e.items())
-    if (key != "name" && key != "file" && key != "zones" && key != "kind" && key != "up" && key != "unit" &&
-        key != "front" && key != "weight" && key != "scale" && key != "spacing")
-      fail(where, "unknown key \"" + key + "\"; known: name, file, zones, kind, up, unit, front, weight, scale, spacing");
+    if (std::find(known.begin(), known.end(), key) == known.end()) {
+      std::string list;
+      for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+      fail(where, "unknown key \"" + key + "\"; known: " + list);
+    }
 }
 
 // Metres per file unit.
@@ -120,20 +150,68 @@ double read_unit(const json& e, const std::string& where) {
 }
 
 ModelKind read_kind(const json& e, const std::string& where) {
-  const std::string kind = e.value("kind", "building");
-  if (kind == "building") return ModelKind::Building;
-  if (kind == "street") return ModelKind::Street;
-  if (kind == "tree") return ModelKind::Tree;
-  fail(where, "\"kind\" must be \"building\", \"street\" or \"tree\"");
+  const json& kind = e.contains("kind") ? e["kind"] : json("building");
+  for (ModelKind k : kModelKinds)
+    if (kind == name(k)) return k;
+  std::string list;
+  for (ModelKind k : kModelKinds) list += std::string(list.empty() ? "" : ", ") + "\"" + name(k) + "\"";
+  fail(where, "\"kind\" is " + kind.dump() + "; expected one of " + list);
 }
 
+// Buildings and lot furniture stand in the zones listed; clutter and trees dress the streets
+// of the zones listed, parks included, every zone but water when a clutter entry lists none.
 void read_zones(const json& e, const std::string& where, Model& m) {
+  const bool street_side = is_clutter(m.kind);
+  if (!e.contains("zones") && street_side && m.kind != ModelKind::Tree) {
+    m.zones = {ZoneType::Residential, ZoneType::Commercial, ZoneType::Industrial, ZoneType::Park};
+    return;
+  }
   if (!e.contains("zones") || !e["zones"].is_array() || e["zones"].empty()) fail(where, "\"zones\" must list zone types");
   for (const json& z : e["zones"]) {
     auto t = z.is_string() ? parse_zone_type(z.get<std::string>()) : std::nullopt;
-    if (!t || *t == ZoneType::Park || *t == ZoneType::Water)
-      fail(where, "\"zones\" lists " + z.dump() + "; models stand in residential, commercial or industrial zones");
+    if (!t || *t == ZoneType::Water || (*t == ZoneType::Park && !street_side))
+      fail(where, "\"zones\" lists " + z.dump() + "; " + name(m.kind) + " models stand in residential, commercial " +
+                      (street_side ? "industrial or park zones" : "or industrial zones"));
     m.zones.push_back(*t);
+  }
+}
+
+// The spacing along a street a clutter model of the kind keeps unless its entry gives one.
+double default_spacing(ModelKind k) {
+  switch (k) {
+    case ModelKind::Tree: return 12;
+    case ModelKind::Bench: return 60;
+    case ModelKind::Hydrant: return 100;
+    default: return 30;
+  }
+}
+
+// Seed 004's clutter rules and channel values, and its lot.
+void read_street_rules(const json& e, const std::string& where, Model& m) {
+  m.offset = e.value("offset", m.kind == ModelKind::Tree || m.kind == ModelKind::Bench ? 1.5 : 0.5);
+  if (!(m.offset >= 0) || m.offset > 50) fail(where, "\"offset\" must be metres from the kerb, 0 to 50");
+  const json& side = e.contains("side") ? e["side"] : json("both");
+  if (side != "both" && side != "alternate") fail(where, "\"side\" must be \"both\" or \"alternate\"");
+  m.side = side == "both" ? StreetSide::Both : StreetSide::Alternate;
+  if (e.contains("channels")) {
+    if (!e["channels"].is_object()) fail(where, "\"channels\" must map channel names to values, like {\"downtown\": 0.8}");
+    for (const auto& [channel, value] : e["channels"].items()) {
+      if (!value.is_number() || !(value.get<double>() >= 0) || value.get<double>() > 1)
+        fail(where, "channels." + channel + " is " + value.dump() + "; a channel value is a number from 0 to 1");
+      m.channels.push_back({channel, value.get<double>()});
+    }
+  }
+  if (e.contains("lot")) {
+    const json& lot = e["lot"];
+    if (m.kind != ModelKind::Building) fail(where, "\"lot\" is for building models; a " + std::string(name(m.kind)) + " has none");
+    if (!lot.is_array() || lot.size() != 2 || !lot[0].is_number() || !lot[1].is_number() || !(lot[0].get<double>() >= 1) ||
+        !(lot[1].get<double>() >= 1) || lot[0].get<double>() > 1000 || lot[1].get<double>() > 1000)
+      fail(where, "\"lot\" must be [width along the street, depth] in metres, each 1 to 1000");
+    m.lot_width = lot[0], m.lot_depth = lot[1];
+    if (m.width * m.min_scale > m.lot_width || m.depth * m.min_scale > m.lot_depth)
+      fail(where, "the model (" + format_number(m.width * m.min_scale) + " x " + format_number(m.depth * m.min_scale) +
+                      " m at its smallest scale) does not fit its lot (" + format_number(m.lot_width) + " x " +
+                      format_number(m.lot_depth) + " m); give a larger \"lot\" or a smaller \"scale\"");
   }
 }
 
@@ -148,7 +226,7 @@ void read_placement(const json& e, const std::string& where, Model& m) {
       fail(where, "\"scale\" must be [min, max] with 0 < min <= max");
     m.min_scale = s[0], m.max_scale = s[1];
   }
-  m.spacing = e.value("spacing", 30.0);
+  m.spacing = e.value("spacing", default_spacing(m.kind));
   if (!(m.spacing > 0) || !std::isfinite(m.spacing)) fail(where, "\"spacing\" must be a positive distance in metres");
   if (m.width * m.max_scale > 1000 || m.depth * m.max_scale > 1000 || m.height * m.max_scale > 2000)
     fail(where, "the model is " + std::to_string(static_cast<long>(m.width)) + " m wide; check \"unit\" (\"mm\" for millimetres)");
@@ -171,6 +249,7 @@ Model read_model(const json& e, const fs::path& manifest, const std::string& whe
   m.kind = read_kind(e, where);
   read_zones(e, where, m);
   read_placement(e, where, m);
+  read_street_rules(e, where, m);
   return m;
 }
 

@@ -3,7 +3,9 @@
 // loaded once, brought to Exacity's frame, and placed many times by transforms.
 //
 //   {"models": [{"file": "house.obj", "zones": ["residential"], "kind": "building",
-//                "up": "y", "unit": "m", "front": "+z", "weight": 2, "scale": [0.9, 1.1]}]}
+//                "up": "y", "unit": "m", "front": "+z", "weight": 2, "scale": [0.9, 1.1],
+//                "channels": {"downtown": 0.2}, "lot": [14, 30]},
+//               {"file": "lamp.obj", "kind": "lamp", "spacing": 25, "offset": 0.5, "side": "both"}]}
 #pragma once
 
 #include <filesystem>
@@ -11,17 +13,26 @@
 #include <vector>
 
 #include "generate/placement/obj_file.h"
+#include "generate/city/sketch.h"
 #include "generate/city/zone_type.h"
 #include "geom/plain.h"
 
 namespace exacity {
 
-// Buildings stand in rows along a lot's road frontage; street furniture stands along the
-// frontage inside the setback; trees fill space left in lots.
-enum class ModelKind { Building, Street, Tree };
-inline const char* name(ModelKind k) {
-  return k == ModelKind::Tree ? "tree" : k == ModelKind::Street ? "street" : "building";
-}
+// Buildings fill lots; "street" furniture stands along a lot's frontage inside the setback;
+// trees fill space left in lots and line residential streets. The rest are seed 004's street
+// clutter, which dresses the streets' sidewalks: lamps, stop signs, traffic lights,
+// benches and hydrants.
+enum class ModelKind { Building, Street, Tree, Lamp, Sign, TrafficLight, Bench, Hydrant };
+inline constexpr ModelKind kModelKinds[] = {ModelKind::Building,     ModelKind::Street, ModelKind::Tree,
+                                            ModelKind::Lamp,         ModelKind::Sign,   ModelKind::TrafficLight,
+                                            ModelKind::Bench,        ModelKind::Hydrant};
+const char* name(ModelKind k);
+// Whether models of the kind dress streets (seed 004's clutter): trees and the clutter kinds.
+bool is_clutter(ModelKind k);
+
+// Which sides of a street a clutter model stands on: both, or each in turn.
+enum class StreetSide { Both, Alternate };
 
 struct Model {
   std::string name;
@@ -29,7 +40,16 @@ struct Model {
   std::vector<ZoneType> zones;
   double weight = 1;
   double min_scale = 0.9, max_scale = 1.1;  // random size variation (seed 001)
-  double spacing = 30;                      // m between street furniture along a frontage
+  double spacing = 30;                      // m between street furniture or clutter along a street
+  double offset = 0.5;                      // m: clutter stands this far in from the kerb
+  StreetSide side = StreetSide::Both;       // clutter: which sides of a street
+  // Seed 004's channel values ("channels": {"NAME": value in [0, 1]}), in the manifest's
+  // order; the sketch's channels weigh the model by how near these are to theirs.
+  std::vector<std::pair<std::string, double>> channels;
+  // Seed 004's lot ("lot": [width along the street, depth]), m: the lot the model needs in a
+  // zone whose lots come from the library; 0 x 0 when the entry gives none.
+  double lot_width = 0, lot_depth = 0;
+  bool has_lot() const { return lot_width > 0; }
   // In metres, z up, its front facing -y, standing on z = 0, its outline's bounding box
   // centred on the origin.
   TriangleMesh mesh;
@@ -49,6 +69,11 @@ struct ModelLibrary {
   std::vector<Model> models;
   // The models for a zone type and kind, as indices.
   std::vector<int> choices(ZoneType zone, ModelKind kind) const;
+  // The building models for a zone type that carry a "lot", as indices.
+  std::vector<int> lot_choices(ZoneType zone) const;
+  // Throws UserError naming the manifest and the entry when a model names a channel the
+  // sketch does not define.
+  void check_channels(const std::vector<ChannelSpec>& channels) const;
 };
 
 // Throws UserError naming the manifest, the entry and the fix.

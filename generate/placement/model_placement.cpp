@@ -22,13 +22,31 @@ std::pair<double, double> spacing(const std::string& density) {
 
 }  // namespace
 
-int pick(const std::vector<int>& choices, const ModelLibrary& lib, Random& rng) {
+Choices choices_at(const std::vector<int>& models, const ModelLibrary& lib, const Channels* channels, geom::Vec2 p) {
+  Choices out{models, {}};
+  for (int m : models)
+    out.weights.push_back(lib.models[m].weight * (channels ? channels->affinity(lib.models[m].channels, p) : 1.0));
+  return out;
+}
+
+Choices choices_at(const std::vector<int>& models, const ModelLibrary& lib, const Channels* channels,
+                   const geom::Cell& piece) {
+  if (!channels || channels->empty()) return choices_at(models, lib, nullptr, geom::Vec2{});
+  return choices_at(models, lib, channels, piece.centroid());
+}
+
+int pick(const Choices& choices, Random& rng) {
   double total = 0;
-  for (int c : choices) total += lib.models[c].weight;
+  for (double w : choices.weights) total += w;
   double r = rng.uniform() * total;
-  for (int c : choices)
-    if ((r -= lib.models[c].weight) < 0) return c;
-  return choices.back();
+  if (!(total > 0)) return -1;
+  int last = -1;
+  for (std::size_t i = 0; i < choices.models.size(); ++i) {
+    if (choices.weights[i] <= 0) continue;
+    last = choices.models[i];
+    if ((r -= choices.weights[i]) < 0) return last;
+  }
+  return last;
 }
 
 ModelInstance made(const Model& m, const Placement& p, geom::Ring ring) {
@@ -72,10 +90,11 @@ struct Placing {
 };
 
 // One every `spacing` metres along the road frontage, in the middle of the setback strip.
-void place_street_furniture(Placing& s, const std::vector<int>& choices, const BuildingSettings& params, Random& rng) {
+void place_street_furniture(Placing& s, const Choices& choices, const BuildingSettings& params, Random& rng) {
   if (!s.f.on_road) return;
-  for (double t = s.f.t0 + s.lib.models[choices[0]].spacing / 2; t < s.f.t1;) {
-    int m = pick(choices, s.lib, rng);
+  for (double t = s.f.t0 + s.lib.models[choices.models[0]].spacing / 2; t < s.f.t1;) {
+    int m = pick(choices, rng);
+    if (m < 0) return;
     double scale = rng.uniform(s.lib.models[m].min_scale, s.lib.models[m].max_scale);
     int tint = static_cast<int>(rng.next() % kTints);
     s.try_place(m, {m, s.f.at(t, params.setback / 2), s.along, scale, tint});
@@ -84,12 +103,13 @@ void place_street_furniture(Placing& s, const std::vector<int>& choices, const B
 }
 
 // Trees at random places and headings, a try per 150 m² of the piece (1 to 24).
-void place_trees(Placing& s, const std::vector<int>& choices, Random& rng) {
+void place_trees(Placing& s, const Choices& choices, Random& rng) {
   const geom::Cell& piece = s.occupancy.piece();
   const geom::Box box = piece.bounds();
   const int attempts = static_cast<int>(std::clamp(piece.area() / 150, 1.0, 24.0));
   for (int i = 0; i < attempts; ++i) {
-    int m = pick(choices, s.lib, rng);
+    int m = pick(choices, rng);
+    if (m < 0) return;
     Placement p{m, {rng.uniform(box.min_x, box.max_x), rng.uniform(box.min_y, box.max_y)}, rng.uniform(0, 2 * M_PI),
                 rng.uniform(s.lib.models[m].min_scale, s.lib.models[m].max_scale), static_cast<int>(rng.next() % kTints)};
     s.try_place(m, p);
@@ -105,18 +125,19 @@ struct Candidate {
 
 // Enough candidates to fill the piece at the zone's density, largest first; and the depth
 // of a row that holds the deepest.
-std::vector<Candidate> draw_candidates(const Placing& s, const std::vector<int>& choices, const BuildingSettings& params,
+std::vector<Candidate> draw_candidates(const Placing& s, const Choices& choices, const BuildingSettings& params,
                                        Random& rng, double& row_depth) {
   const auto [lo, hi] = spacing(params.density);
   double mean_area = 0;
-  for (int c : choices) mean_area += s.lib.models[c].width * s.lib.models[c].depth;
-  mean_area /= static_cast<double>(choices.size());
+  for (int c : choices.models) mean_area += s.lib.models[c].width * s.lib.models[c].depth;
+  mean_area /= static_cast<double>(choices.models.size());
   const double area = s.occupancy.piece().area();
   const int count = static_cast<int>(std::clamp(std::ceil(area / (mean_area * (lo + hi) / 2)), 1.0, 48.0));
   std::vector<Candidate> candidates;
   row_depth = 0;
   for (int i = 0; i < count; ++i) {
-    int m = pick(choices, s.lib, rng);
+    int m = pick(choices, rng);
+    if (m < 0) break;
     double scale = rng.uniform(s.lib.models[m].min_scale, s.lib.models[m].max_scale);
     const Model& model = s.lib.models[m];
     candidates.push_back({m, scale, rng.uniform(lo, hi), model.width * model.depth * scale * scale,
@@ -158,7 +179,7 @@ bool place_in_row(Placing& s, const Candidate& c, Row& row, double offset) {
 }
 
 // Seed 002's rows: the candidates largest first, each in the first row with room.
-void place_building_rows(Placing& s, const std::vector<int>& choices, const BuildingSettings& params, Random& rng) {
+void place_building_rows(Placing& s, const Choices& choices, const BuildingSettings& params, Random& rng) {
   double row_depth = 0;
   const std::vector<Candidate> candidates = draw_candidates(s, choices, params, rng, row_depth);
   const double row_pitch = row_depth + 2 * params.setback;
@@ -176,7 +197,7 @@ void place_building_rows(Placing& s, const std::vector<int>& choices, const Buil
 
 }  // namespace
 
-std::vector<ModelInstance> place_models(Occupancy& occupancy, const std::vector<int>& choices, ModelKind kind,
+std::vector<ModelInstance> place_models(Occupancy& occupancy, const Choices& choices, ModelKind kind,
                                         const ModelLibrary& lib, const BuildingSettings& params, Random& rng) {
   std::vector<ModelInstance> out;
   if (choices.empty()) return out;
@@ -193,25 +214,29 @@ namespace {
 
 class ModelPlacer : public Placer {
  public:
-  ModelPlacer(const ModelLibrary& library, std::vector<int> choices, ModelKind kind)
-      : library_(library), choices_(std::move(choices)), kind_(kind) {}
-  void place(const Lot&, const BuildingSettings& params, Occupancy& occupancy, Random& rng, Structures& out) const override {
-    for (ModelInstance& m : place_models(occupancy, choices_, kind_, library_, params, rng))
+  ModelPlacer(const ModelLibrary& library, std::vector<int> models, ModelKind kind, const Channels& channels)
+      : library_(library), models_(std::move(models)), kind_(kind), channels_(channels) {}
+  void place(const Lot&, const BuildingSettings& params, Occupancy& occupancy, Random& rng,
+             Structures& out) const override {
+    const Choices choices = choices_at(models_, library_, &channels_, occupancy.piece());
+    for (ModelInstance& m : place_models(occupancy, choices, kind_, library_, params, rng))
       out.models.push_back(std::move(m));
   }
 
  private:
   const ModelLibrary& library_;
-  std::vector<int> choices_;
+  std::vector<int> models_;
   ModelKind kind_;
+  const Channels& channels_;
 };
 
 }  // namespace
 
-std::unique_ptr<Placer> make_model_placer(const ModelLibrary& library, ZoneType zone, ModelKind kind) {
-  std::vector<int> choices = library.choices(zone, kind);
-  if (choices.empty()) return nullptr;
-  return std::make_unique<ModelPlacer>(library, std::move(choices), kind);
+std::unique_ptr<Placer> make_model_placer(const ModelLibrary& library, ZoneType zone, ModelKind kind,
+                                          const Channels& channels) {
+  std::vector<int> models = library.choices(zone, kind);
+  if (models.empty()) return nullptr;
+  return std::make_unique<ModelPlacer>(library, std::move(models), kind, channels);
 }
 
 }  // namespace exacity

@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "generate/city/channels.h"
 #include "generate/city/random.h"
 #include "generate/city/sketch.h"
 #include "generate/parcels/lots.h"
@@ -25,7 +26,9 @@ class Placer {
                      Structures& out) const = 0;
 };
 
-// Rows of the library's models of `kind` for the zone (none when it has none).
-std::unique_ptr<Placer> make_model_placer(const ModelLibrary& library, ZoneType zone, ModelKind kind);
+// Rows of the library's models of `kind` for the zone (none when it has none), drawn by
+// their weights and channels where the lot stands.
+std::unique_ptr<Placer> make_model_placer(const ModelLibrary& library, ZoneType zone, ModelKind kind,
+                                          const Channels& channels);
 
 }  // namespace exacity
