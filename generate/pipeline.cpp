@@ -63,9 +63,9 @@ City build_city(const Sketch& sketch, StageClock& stages) {
     return Terrain::load(*sketch.terrain);
   });
   city.library = stages.run("model library", [&]() -> std::optional<ModelLibrary> {
-    if (sketch.models.empty()) return std::nullopt;
-    ModelLibrary library = load_model_library(sketch.models);
-    library.check_channels(sketch.channels);
+    std::optional<ModelLibrary> library;
+    if (!sketch.models.empty()) library = load_model_library(sketch.models), library->check_channels(sketch.channels);
+    check_lot_library(sketch, library ? &*library : nullptr);
     return library;
   });
   CityMap city_map = stages.run("zone map", [&] { return build_city_map(sketch, city.heightmap()); });
@@ -73,7 +73,7 @@ City build_city(const Sketch& sketch, StageClock& stages) {
   city.blocks = stages.run("blocks", [&] { return cut_blocks(city.network.map, sketch, city.network.uses); });
   std::vector<PlannedLot> planned;
   city.lots = stages.run("lots", [&] {
-    planned = plan_lots(city.blocks, sketch);
+    planned = plan_lots(city.blocks, sketch, city.model_library(), city.channels);
     return with_density(insert_lots(city.network.map, planned, sketch), city.blocks);
   });
   Structures raised = stages.run("buildings", [&] {

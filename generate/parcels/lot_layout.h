@@ -1,7 +1,8 @@
 // Lot layouts (docs/design.md, Lots): how a block is cut into lots, one layout per zone
 // type from its "lots" setting: seed 000's allocation measured from the street
-// (generate/parcels/allocation.cpp) or seed 003's split (generate/parcels/split.cpp). A
-// layout plans from the block alone; the lots stage puts every plan into the map at once.
+// (generate/parcels/allocation.cpp), seed 003's split (generate/parcels/split.cpp) or seed
+// 004's lot library (generate/parcels/library_lots.cpp). A layout plans from the block
+// alone; the lots stage puts every plan into the map at once.
 #pragma once
 
 #include <memory>
@@ -10,6 +11,7 @@
 #include "generate/city/random.h"
 #include "generate/city/sketch.h"
 #include "generate/parcels/blocks.h"
+#include "generate/placement/model_library.h"
 
 namespace exacity {
 
@@ -20,6 +22,7 @@ struct PlannedLot {
   ZoneType zone = ZoneType::Residential;
   geom::Ring ring;
   geom::Cell cell;
+  int model = -1;  // a library lot's model (seed 004), else -1
 };
 
 class LotLayout {
@@ -29,9 +32,13 @@ class LotLayout {
   virtual std::vector<PlannedLot> plan(const Block& block, int index, Random& rng) const = 0;
 };
 
-std::unique_ptr<LotLayout> make_lot_layout(const LotSettings& settings);
+// `library` may be null, except for the "library" layout (check_lot_library).
+std::unique_ptr<LotLayout> make_lot_layout(const LotSettings& settings, ZoneType zone, const ModelLibrary* library,
+                                           const Channels& channels);
 std::unique_ptr<LotLayout> make_allocation(const LotSettings& settings);
 std::unique_ptr<LotLayout> make_split(const LotSettings& settings);
+// The library's lots for the zone's building entries that carry one; none when it has none.
+std::unique_ptr<LotLayout> make_library_lots(const ModelLibrary& library, ZoneType zone, const Channels& channels);
 
 // Seed 000's lots measured from the street: along every run of road edges of the block
 // (BlockEdge::is_road), lots side by side, about `lot_width` wide and `lot_depth` deep (at most

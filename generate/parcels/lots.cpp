@@ -9,14 +9,18 @@
 #include <tbb/parallel_for.h>
 
 #include "generate/city/random.h"
+#include "generate/errors.h"
+#include "generate/export/geojson.h"
 #include "generate/parcels/lot_layout.h"
 #include "geom/measure.h"
 
 namespace exacity {
 
-std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch& sketch) {
+std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch& sketch, const ModelLibrary* library,
+                                  const Channels& channels) {
   std::map<ZoneType, std::unique_ptr<LotLayout>> layouts;
-  for (const auto& [zone, settings] : sketch.zone_settings) layouts[zone] = make_lot_layout(settings.lots);
+  for (const auto& [zone, settings] : sketch.zone_settings)
+    layouts[zone] = make_lot_layout(settings.lots, zone, library, channels);
   std::vector<std::vector<PlannedLot>> per_block(blocks.size());
   const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Lots));
   tbb::parallel_for(std::size_t(0), blocks.size(), [&](std::size_t bi) {
@@ -24,8 +28,10 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch
     if (block.green) return;
     Random rng(mix(stage, bi));
     per_block[bi] = layouts.at(block.zone)->plan(block, static_cast<int>(bi), rng);
-    // A block too small for the layout to cut is one lot, if it makes one (kept_lots).
-    if (per_block[bi].empty()) per_block[bi].push_back({static_cast<int>(bi), block.zone, {}, block.cell});
+    // A block too small for the layout to cut is one lot, if it makes one (kept_lots); not
+    // for the lot library, whose lots are the models' own.
+    if (per_block[bi].empty() && sketch.zone_settings.at(block.zone).lots.layout != "library")
+      per_block[bi].push_back({static_cast<int>(bi), block.zone, {}, block.cell});
   });
   std::vector<PlannedLot> lots;
   for (auto& list : per_block)
@@ -33,7 +39,31 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch
   return lots;
 }
 
-std::unique_ptr<LotLayout> make_lot_layout(const LotSettings& settings) {
+void check_lot_library(const Sketch& sketch, const ModelLibrary* library) {
+  for (const auto& [zone, settings] : sketch.zone_settings) {
+    if (settings.lots.layout != "library") continue;
+    const std::string setting = sketch.path.string() + ": \"exacity\".zones." + std::string(name(zone)) + ".lots is \"library\"";
+    if (!library)
+      throw UserError(setting + ", but the sketch names no model library; name one in \"exacity\".models or with --models");
+    const std::vector<int> models = library->lot_choices(zone);
+    if (models.empty())
+      throw UserError(setting + ", but " + library->file.string() + " has no building entry with a \"lot\" for " +
+                      std::string(name(zone)) + " zones; add \"lot\": [width, depth] to one, or use \"allocation\"");
+    for (int m : models) {
+      const Model& model = library->models[m];
+      const double shape = model.lot_depth / model.lot_width;
+      if (shape < kLotShape.min || shape > kLotShape.max)
+        throw UserError(library->file.string() + " models[" + std::to_string(m) + "]: \"lot\" [" +
+                        format_number(model.lot_width) + ", " + format_number(model.lot_depth) +
+                        "] is " + format_number(std::round(shape * 100) / 100) +
+                        " times as deep as wide; a lot keeps its depth within 0.5 to 5 times its width");
+    }
+  }
+}
+
+std::unique_ptr<LotLayout> make_lot_layout(const LotSettings& settings, ZoneType zone, const ModelLibrary* library,
+                                           const Channels& channels) {
+  if (settings.layout == "library") return make_library_lots(*library, zone, channels);
   return settings.layout == "split" ? make_split(settings) : make_allocation(settings);
 }
 
@@ -76,7 +106,7 @@ std::vector<Lot> kept_lots(const CityMap& city_map, const std::vector<PlannedLot
     geom::Polygon shape = cell->to_plain();
     if (geom::area(shape) < sketch.zone_settings.at(plan.zone).lots.min_lot_area) return;
     if (!good_shape(lot_shape({&*cell}, {&shape.outer}))) return;
-    kept[i] = Lot{plan.block, plan.zone, {}, std::move(*cell), std::move(shape), planned_of[i], 0, component[i]};
+    kept[i] = Lot{plan.block, plan.zone, {}, std::move(*cell), std::move(shape), planned_of[i], 0, component[i], plan.model};
   });
   std::vector<Lot> lots;
   std::map<int, int> pieces_of_planned;

@@ -26,6 +26,7 @@ struct Lot {
   int planned = -1;        // the planned lot it is a piece of (its faces' FaceLabel::lot)
   int rank = 0;            // its order among the planned lot's pieces kept as lots
   int piece = -1;          // its component among the map's lot faces (geom::PlanarMap::cells)
+  int model = -1;          // a library lot's model (seed 004), else -1
 };
 // The kind of a lot cell's edge (its geom::Cell edge tag).
 struct LotEdge {
@@ -35,8 +36,14 @@ struct LotEdge {
 inline constexpr Range kLotShape{0.5, 5};  // a lot's depth over its width (across and along its street)
 
 // The lots of every block that is not green space, block by block in parallel, each by its
-// zone's LotLayout.
-std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch& sketch);
+// zone's LotLayout. `library` may be null unless a zone's lots come from it.
+std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch& sketch, const ModelLibrary* library,
+                                  const Channels& channels);
+
+// Refuses a zone type whose "lots" is "library" when the library holds no building entry
+// with a "lot" for it, or one whose lot is of a shape no lot keeps (kLotShape): UserError
+// naming the sketch's setting or the library's entry.
+void check_lot_library(const Sketch& sketch, const ModelLibrary* library);
 
 // The planned lots into the map in one batch; faces of a block then know the lot planned
 // there that they lie in. Returns the lots as they ended up.

@@ -28,7 +28,8 @@ LotSettings read_lot_settings(const SettingsReader& s, LotSettings l, const std:
   s.number("lot_depth", l.lot_depth, 2, 1e4);
   s.range("lot_width", l.lot_width, 2, 1e4, "lot frontage in metres");
   if (road_layout == "voronoi") l.layout = "split";
-  s.choice("lots", l.layout, {"allocation", "split"}, "expected \"allocation\" (seed 000) or \"split\" (seed 003)");
+  s.choice("lots", l.layout, {"allocation", "split", "library"},
+           "expected \"allocation\" (seed 000), \"split\" (seed 003) or \"library\" (seed 004: the model library's lots)");
   return l;
 }
 

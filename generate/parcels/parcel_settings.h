@@ -18,8 +18,9 @@ struct BlockSettings {
 struct LotSettings {
   // "allocation" (seed 000 measured from the street: lots side by side along every road
   // edge of a block, corner lots at its corners, the block's middle left open; four quarters
-  // in industrial blocks) or "split" (seed 003: halve perpendicular to the longest edge
-  // down to lot_area).
+  // in industrial blocks), "split" (seed 003: halve perpendicular to the longest edge
+  // down to lot_area) or "library" (seed 004: the lots the model library's entries ask for,
+  // along the streets).
   std::string layout = "allocation";
   Range lot_width{14, 24};   // m: frontage of an allocated lot, drawn per street side
   double lot_depth = 30;     // m: how far allocated lots reach back from the street

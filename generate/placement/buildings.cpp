@@ -156,7 +156,8 @@ std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> zone_placers(const Sket
   for (const auto& [zone, settings] : sketch.zone_settings) {
     auto& list = placers[zone];
     std::unique_ptr<Placer> models;
-    if (library)
+    if (library && settings.lots.layout == "library") models = make_own_lot_placer(*library);
+    else if (library)
       models = settings.buildings.placement == "grid" ? make_grid_filler(*library, zone, channels)
                                                        : make_model_placer(*library, zone, ModelKind::Building, channels);
     list.push_back(models ? std::move(models) : std::make_unique<Extrusion>(centre, radius, channels));

@@ -40,6 +40,27 @@ std::vector<int> ModelLibrary::lot_choices(ZoneType zone) const {
   return out;
 }
 
+Choices choices_at(const std::vector<int>& models, const ModelLibrary& lib, const Channels* channels, geom::Vec2 p) {
+  Choices out{models, {}};
+  for (int m : models)
+    out.weights.push_back(lib.models[m].weight * (channels ? channels->affinity(lib.models[m].channels, p) : 1.0));
+  return out;
+}
+
+int pick(const Choices& choices, Random& rng) {
+  double total = 0;
+  for (double w : choices.weights) total += w;
+  double r = rng.uniform() * total;
+  if (!(total > 0)) return -1;
+  int last = -1;
+  for (std::size_t i = 0; i < choices.models.size(); ++i) {
+    if (choices.weights[i] <= 0) continue;
+    last = choices.models[i];
+    if ((r -= choices.weights[i]) < 0) return last;
+  }
+  return last;
+}
+
 void ModelLibrary::check_channels(const std::vector<ChannelSpec>& channels) const {
   for (std::size_t i = 0; i < models.size(); ++i)
     for (const auto& [channel, value] : models[i].channels)
@@ -208,10 +229,11 @@ void read_street_rules(const json& e, const std::string& where, Model& m) {
         !(lot[1].get<double>() >= 1) || lot[0].get<double>() > 1000 || lot[1].get<double>() > 1000)
       fail(where, "\"lot\" must be [width along the street, depth] in metres, each 1 to 1000");
     m.lot_width = lot[0], m.lot_depth = lot[1];
-    if (m.width * m.min_scale > m.lot_width || m.depth * m.min_scale > m.lot_depth)
+    // Half a metre each side keeps the model strictly inside its lot (Occupancy).
+    if (m.width * m.min_scale + 2 * kLotMargin > m.lot_width || m.depth * m.min_scale + 2 * kLotMargin > m.lot_depth)
       fail(where, "the model (" + format_number(m.width * m.min_scale) + " x " + format_number(m.depth * m.min_scale) +
                       " m at its smallest scale) does not fit its lot (" + format_number(m.lot_width) + " x " +
-                      format_number(m.lot_depth) + " m); give a larger \"lot\" or a smaller \"scale\"");
+                      format_number(m.lot_depth) + " m) with half a metre each side; give a larger \"lot\" or a smaller \"scale\"");
   }
 }
 

@@ -13,6 +13,8 @@
 #include <vector>
 
 #include "generate/placement/obj_file.h"
+#include "generate/city/channels.h"
+#include "generate/city/random.h"
 #include "generate/city/sketch.h"
 #include "generate/city/zone_type.h"
 #include "geom/plain.h"
@@ -62,6 +64,7 @@ struct Model {
 };
 
 inline constexpr std::size_t kExactOutlineTriangles = 20000;
+inline constexpr double kLotMargin = 0.5;  // m: a library lot's room around its model at its smallest, each side
 inline constexpr std::size_t kOutlineCorners = 64;
 
 struct ModelLibrary {
@@ -75,6 +78,19 @@ struct ModelLibrary {
   // sketch does not define.
   void check_channels(const std::vector<ChannelSpec>& channels) const;
 };
+
+// The models a placer or lot layout draws from, each with its weight where it draws: the
+// library's weight times its channel affinity there (seed 004).
+struct Choices {
+  std::vector<int> models;
+  std::vector<double> weights;
+  bool empty() const { return models.empty(); }
+};
+// `channels` may be null (no channels: the library's weights).
+Choices choices_at(const std::vector<int>& models, const ModelLibrary& library, const Channels* channels, geom::Vec2 p);
+
+// One of the choices, drawn by weight; -1 when every weight is 0.
+int pick(const Choices& choices, Random& rng);
 
 // Throws UserError naming the manifest, the entry and the fix.
 ModelLibrary load_model_library(const std::filesystem::path& manifest);

@@ -22,31 +22,10 @@ std::pair<double, double> spacing(const std::string& density) {
 
 }  // namespace
 
-Choices choices_at(const std::vector<int>& models, const ModelLibrary& lib, const Channels* channels, geom::Vec2 p) {
-  Choices out{models, {}};
-  for (int m : models)
-    out.weights.push_back(lib.models[m].weight * (channels ? channels->affinity(lib.models[m].channels, p) : 1.0));
-  return out;
-}
-
 Choices choices_at(const std::vector<int>& models, const ModelLibrary& lib, const Channels* channels,
                    const geom::Cell& piece) {
   if (!channels || channels->empty()) return choices_at(models, lib, nullptr, geom::Vec2{});
   return choices_at(models, lib, channels, piece.centroid());
-}
-
-int pick(const Choices& choices, Random& rng) {
-  double total = 0;
-  for (double w : choices.weights) total += w;
-  double r = rng.uniform() * total;
-  if (!(total > 0)) return -1;
-  int last = -1;
-  for (std::size_t i = 0; i < choices.models.size(); ++i) {
-    if (choices.weights[i] <= 0) continue;
-    last = choices.models[i];
-    if ((r -= choices.weights[i]) < 0) return last;
-  }
-  return last;
 }
 
 ModelInstance made(const Model& m, const Placement& p, geom::Ring ring) {
@@ -231,6 +210,39 @@ class ModelPlacer : public Placer {
 };
 
 }  // namespace
+
+namespace {
+
+// Seed 004's lot library: the lot's own model in the middle of the lot, its front to the
+// street, at a random size within its range, smaller where the lot is (down to the
+// smallest; the library made sure that fits a lot of the entry's size).
+class OwnLotPlacer : public Placer {
+ public:
+  explicit OwnLotPlacer(const ModelLibrary& library) : library_(library) {}
+  void place(const Lot& lot, const BuildingSettings&, Occupancy& occupancy, Random& rng, Structures& out) const override {
+    if (lot.model < 0) return;
+    const Model& m = library_.models[lot.model];
+    const Frontage& f = occupancy.frontage();
+    if (!(f.t1 > f.t0)) return;
+    const double room = std::min((f.t1 - f.t0 - 2 * kLotMargin) / m.width, (f.depth - 2 * kLotMargin) / m.depth);
+    const double drawn = rng.uniform(m.min_scale, m.max_scale);
+    const int tint = static_cast<int>(rng.next() % kTints);
+    for (double scale : {std::max(std::min(drawn, room), m.min_scale), m.min_scale}) {
+      const Placement p{lot.model, f.at((f.t0 + f.t1) / 2, f.depth / 2), std::atan2(f.u.y, f.u.x), scale, tint};
+      geom::Ring ring = placed_outline(m, p);
+      if (!occupancy.take(ring)) continue;
+      out.models.push_back(made(m, p, std::move(ring)));
+      return;
+    }
+  }
+
+ private:
+  const ModelLibrary& library_;
+};
+
+}  // namespace
+
+std::unique_ptr<Placer> make_own_lot_placer(const ModelLibrary& library) { return std::make_unique<OwnLotPlacer>(library); }
 
 std::unique_ptr<Placer> make_model_placer(const ModelLibrary& library, ZoneType zone, ModelKind kind,
                                           const Channels& channels) {

@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "generate/city/channels.h"
+#include "geom/cell.h"
 #include "generate/city/random.h"
 #include "generate/placement/buildings.h"
 #include "generate/placement/model_library.h"
@@ -15,21 +15,10 @@
 
 namespace exacity {
 
-// The models a placer draws from, each with its weight where it draws: the library's weight
-// times its channel affinity there (seed 004).
-struct Choices {
-  std::vector<int> models;
-  std::vector<double> weights;
-  bool empty() const { return models.empty(); }
-};
-// `channels` may be null (no channels: the library's weights).
-Choices choices_at(const std::vector<int>& models, const ModelLibrary& library, const Channels* channels, geom::Vec2 p);
-// The same where a lot piece stands: at its centroid.
+// The same as choices_at(models, library, channels, point) where a lot piece stands: at its
+// centroid.
 Choices choices_at(const std::vector<int>& models, const ModelLibrary& library, const Channels* channels,
                    const geom::Cell& piece);
-
-// One of the choices, drawn by weight; -1 when every weight is 0.
-int pick(const Choices& choices, Random& rng);
 
 // Models of `kind` drawn from `choices` on the occupancy's piece.
 std::vector<ModelInstance> place_models(Occupancy& occupancy, const Choices& choices, ModelKind kind,

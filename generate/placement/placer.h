@@ -31,4 +31,8 @@ class Placer {
 std::unique_ptr<Placer> make_model_placer(const ModelLibrary& library, ZoneType zone, ModelKind kind,
                                           const Channels& channels);
 
+// Seed 004's lot library: each lot's own model (Lot::model) in the middle of it, facing the
+// street.
+std::unique_ptr<Placer> make_own_lot_placer(const ModelLibrary& library);
+
 }  // namespace exacity
