@@ -15,6 +15,9 @@
 #include "geom/triangulate.h"
 #include "geom/polygon_check.h"
 #include "tests/test_util.h"
+#include "generate/pipeline.h"
+
+#include <OpenImageIO/imageio.h>
 
 using namespace exacity;
 namespace fs = std::filesystem;
@@ -164,6 +167,92 @@ TEST(ModelLibrary, BadEntriesAreNamed) {
   EXPECT_NE(error(R"({"file": "box.obj", "zones": ["residential"], "weight": "heavy"})").find("models[0]"), std::string::npos);
   EXPECT_NE(error(R"({"file": "none.obj", "zones": ["residential"]})").find("none.obj"), std::string::npos);
   EXPECT_NE(error(R"({"file": "box.obj", "zones": ["residential"], "colour": 1})").find("unknown key"), std::string::npos);
+  // Seed 004's keys: kinds, clutter rules, channel values and lots.
+  EXPECT_NE(error(R"({"file": "box.obj", "kind": "kiosk"})").find("\"kind\" is \"kiosk\"; expected one of"), std::string::npos);
+  EXPECT_NE(error(R"({"file": "box.obj", "kind": "lamp", "side": "left"})").find("\"side\""), std::string::npos);
+  EXPECT_NE(error(R"({"file": "box.obj", "kind": "bench", "offset": -1})").find("\"offset\""), std::string::npos);
+  EXPECT_NE(error(R"({"file": "box.obj", "zones": ["residential"], "channels": {"wealth": 1.5}})").find("channels.wealth is 1.5"),
+            std::string::npos);
+  EXPECT_NE(error(R"({"file": "box.obj", "zones": ["residential"], "channels": [0.5]})").find("\"channels\" must map"),
+            std::string::npos);
+  EXPECT_NE(error(R"({"file": "box.obj", "kind": "lamp", "lot": [10, 10]})").find("\"lot\" is for building models"),
+            std::string::npos);
+  EXPECT_NE(error(R"({"file": "box.obj", "zones": ["residential"], "lot": [10]})").find("\"lot\" must be"), std::string::npos);
+  EXPECT_NE(error(R"({"file": "box.obj", "zones": ["residential"], "lot": [4.5, 20]})").find("does not fit its lot"),
+            std::string::npos);
+  EXPECT_NE(error(R"({"file": "box.obj", "zones": ["park"], "kind": "building"})").find("models[0]: \"zones\""), std::string::npos);
+  // Clutter may dress park streets, and an entry without zones dresses every zone's.
+  EXPECT_EQ(error(R"({"file": "box.obj", "kind": "bench", "zones": ["park"]})"), "no error");
+  EXPECT_EQ(error(R"({"file": "box.obj", "kind": "hydrant"})"), "no error");
+}
+
+namespace {
+
+// A city on a 600 x 200 residential zone with a street down its middle, its library's
+// two box houses tagged for opposite ends of a "downtown" channel (0 west, 1 east).
+City two_ended_city(const std::string& name, const std::string& zone_settings) {
+  const fs::path dir = testing_util::temp_dir(name);
+  write(dir, "small.obj", box_obj(8, 8, 6));
+  write(dir, "large.obj", box_obj(10, 10, 20));
+  write(dir, "library.json", R"({"models": [
+      {"file": "small.obj", "zones": ["residential"], "up": "z", "channels": {"downtown": 0}, "lot": [14, 20]},
+      {"file": "large.obj", "zones": ["residential"], "up": "z", "channels": {"downtown": 1}, "lot": [16, 22]}]})");
+  // Two pixels, 0 and 255: pixel centres at x = 150 and 450.
+  const std::vector<unsigned char> pixels{0, 255};
+  auto out = OIIO::ImageOutput::create((dir / "downtown.png").string());
+  out->open((dir / "downtown.png").string(), OIIO::ImageSpec(2, 1, 1, OIIO::TypeDesc::UINT8));
+  out->write_image(OIIO::TypeDesc::UINT8, pixels.data());
+  out->close();
+  write(dir, "sketch.geojson", R"({"type": "FeatureCollection", "exacity": {"seed": 4, "models": "library.json",
+      "channels": {"downtown": {"image": "downtown.png", "bounds": [0, 0, 600, 200]}}, "channel_sharpness": 12,
+      "zones": {"residential": )" + zone_settings + R"(}},
+    "features": [
+      {"type": "Feature", "properties": {"zone": "residential"},
+       "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [600, 0], [600, 200], [0, 200], [0, 0]]]}},
+      {"type": "Feature", "properties": {"road": "main"},
+       "geometry": {"type": "LineString", "coordinates": [[-10, 100], [610, 100]]}}]})");
+  StageClock stages(nullptr, kCityStages);
+  return build_city(load_sketch(dir / "sketch.geojson"), stages);
+}
+
+}  // namespace
+
+TEST(Channels, ASharpChannelKeepsEachModelToItsEndOfTheCity) {
+  for (const char* settings : {R"({"block_area": 8000})", R"({"block_area": 8000, "placement": "grid"})",
+                               R"({"block_area": 8000, "lots": "library"})"}) {
+    const City city = two_ended_city("channels-two-ended", settings);
+    int west = 0, east = 0;
+    for (const ModelInstance& m : city.models) {
+      if (m.kind != ModelKind::Building) continue;
+      const double x = m.placed.position.x;
+      if (x < 150) {
+        EXPECT_EQ(m.placed.model, 0) << settings << " at x = " << x;
+        ++west;
+      }
+      if (x > 450) {
+        EXPECT_EQ(m.placed.model, 1) << settings << " at x = " << x;
+        ++east;
+      }
+    }
+    EXPECT_GE(west, 5) << settings;
+    EXPECT_GE(east, 5) << settings;
+  }
+}
+
+TEST(LibraryLots, EachLotHoldsItsOwnModelFacingTheStreet) {
+  const City city = two_ended_city("library-lots-city", R"({"block_area": 8000, "lots": "library"})");
+  ASSERT_GE(city.lots.size(), 10u);
+  std::vector<int> held(city.lots.size(), 0);
+  for (const ModelInstance& m : city.models) {
+    if (m.kind != ModelKind::Building) continue;
+    ++held[m.lot];
+    EXPECT_EQ(m.placed.model, city.lots[m.lot].model);
+  }
+  for (std::size_t i = 0; i < city.lots.size(); ++i) {
+    EXPECT_GE(city.lots[i].model, 0);
+    EXPECT_EQ(held[i], 1) << "lot " << i;
+  }
+  EXPECT_EQ(city.unbuilt_lots.merged + city.unbuilt_lots.left_open, 0);
 }
 
 TEST(FootprintChecks, TouchingCountsAndHolesAreSeen) {
