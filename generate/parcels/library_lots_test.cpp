@@ -147,6 +147,9 @@ TEST(LibraryLots, AZoneAskingForLibraryLotsNeedsEntriesWithLotsOfAGoodShape) {
   EXPECT_NE(message(&lib).find("has no building entry with a \"lot\" for residential"), std::string::npos) << message(&lib);
   lib.models[0] = lot_model(10, 80);
   EXPECT_NE(message(&lib).find("models[0]: \"lot\" [10, 80] is 8 times as deep as wide"), std::string::npos) << message(&lib);
+  lib.models[0] = lot_model(4, 4);
+  EXPECT_NE(message(&lib).find("models[0]: \"lot\" [4, 4] is under residential zones' min_lot_area (20 m²)"),
+            std::string::npos) << message(&lib);
   lib.models[0] = lot_model(20, 25);
   EXPECT_EQ(message(&lib), "");
 }

@@ -52,6 +52,12 @@ void check_lot_library(const Sketch& sketch, const ModelLibrary* library) {
     for (int m : models) {
       const Model& model = library->models[m];
       const double shape = model.lot_depth / model.lot_width;
+      const double smallest = settings.lots.min_lot_area;
+      if (model.lot_width * model.lot_depth < smallest)
+        throw UserError(library->file.string() + " models[" + std::to_string(m) + "]: \"lot\" [" +
+                        format_number(model.lot_width) + ", " + format_number(model.lot_depth) + "] is under " +
+                        std::string(name(zone)) + " zones' min_lot_area (" + format_number(smallest) +
+                        " m²); give a larger lot, or lower \"exacity\".zones." + std::string(name(zone)) + ".min_lot_area");
       if (shape < kLotShape.min || shape > kLotShape.max)
         throw UserError(library->file.string() + " models[" + std::to_string(m) + "]: \"lot\" [" +
                         format_number(model.lot_width) + ", " + format_number(model.lot_depth) +

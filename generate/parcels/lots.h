@@ -41,7 +41,8 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch
                                   const Channels& channels);
 
 // Refuses a zone type whose "lots" is "library" when the library holds no building entry
-// with a "lot" for it, or one whose lot is of a shape no lot keeps (kLotShape): UserError
+// with a "lot" for it, or one whose lot no lot of the zone may be (under its min_lot_area,
+// or of a shape outside kLotShape): UserError
 // naming the sketch's setting or the library's entry.
 void check_lot_library(const Sketch& sketch, const ModelLibrary* library);
 
