@@ -16,6 +16,7 @@
 #include "cli/progress.h"
 #include "generate/errors.h"
 #include "generate/export/output_folder.h"
+#include "generate/export/gis_export.h"
 #include "generate/pipeline.h"
 #include "generate/city/sketch.h"
 #include "generate/export/statistics.h"
@@ -75,7 +76,7 @@ nlohmann::ordered_json render_with_progress(const City& city, render::RenderRequ
 }
 
 int generate(const fs::path& sketch_path, const fs::path& models, const fs::path& out, bool quiet,
-             const RenderOptions* rendering) {
+             const RenderOptions* rendering, const ExportOptions& exports) {
   Sketch sketch = load_sketch(sketch_path, true, models);
   if (rendering) given_camera(sketch, *rendering, sketch_path.string());  // a bad camera stops us before any work
   OutputFolder folder(out);
@@ -85,7 +86,7 @@ int generate(const fs::path& sketch_path, const fs::path& models, const fs::path
     StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); },
                      kCityStages + kWriteStages + (rendering ? 1 : 0));
     City city = build_city(sketch, clock);
-    result = write_city(city, folder.staging(), clock);
+    result = write_city(city, folder.staging(), clock, exports);
     if (rendering) {
       // The default still, the overview and the minimap, into OUT/render.
       const fs::path dir = folder.staging() / "render";
@@ -108,6 +109,9 @@ int generate(const fs::path& sketch_path, const fs::path& models, const fs::path
     if (z.contains("grid_cell"))
       std::fprintf(stderr, "exacity: note: %s: the %s region there got no lots: %s\n",
                    z["grid_cell"].get<std::string>().c_str(), zone.c_str(), why.c_str());
+    else if (z.contains("source"))
+      std::fprintf(stderr, "exacity: note: %s (%s) got no lots: %s\n", z["source"].get<std::string>().c_str(),
+                   zone.c_str(), why.c_str());
     else
       std::fprintf(stderr, "exacity: note: %s: features[%d] (%s) got no lots: %s\n", sketch.path.string().c_str(),
                    z["feature"].get<int>(), zone.c_str(), why.c_str());
@@ -216,6 +220,7 @@ struct GenerateCommand {
   CLI::App* app = nullptr;
   fs::path sketch, models, out = "out";
   bool render = false;
+  ExportOptions exports;
 };
 
 struct RenderCommand {
@@ -258,9 +263,16 @@ void add_image_options(CLI::App* c, RenderOptions& o) {
 }
 
 void add_generate(CLI::App& app, GenerateCommand& c, SharedOptions& shared) {
-  c.app = app.add_subcommand("generate", "Generate a city from a GeoJSON sketch or a grid map");
-  c.app->add_option("SKETCH", c.sketch, "The sketch (GeoJSON FeatureCollection), or a grid map (a .grid file)")
+  c.app = app.add_subcommand("generate", "Generate a city from a sketch: GeoJSON, a grid map, any vector file OGR reads, or an OSM extract");
+  c.app->add_option("SKETCH", c.sketch,
+                    "The sketch: GeoJSON (metres, or lon/lat projected to its UTM zone), a grid map (.grid), a vector "
+                    "file OGR reads (.gpkg, .shp, .kml, .fgb, .gml; settings in NAME.exacity.json beside it), or an "
+                    "OpenStreetMap extract (.osm, .osm.pbf)")
       ->required();
+  c.app->add_option("--vector-format", c.exports.vector_formats,
+                    "Also write the vector layers as gpkg (OUT/city.gpkg), fgb (OUT/vector/*.fgb), shp "
+                    "(OUT/vector/shp/) or dxf (OUT/city.dxf); repeatable; GeoJSON is always written")
+      ->check(CLI::IsMember(std::vector<std::string>(std::begin(kVectorFormats), std::end(kVectorFormats))));
   c.app->add_option("--models", c.models,
                     "A model library (JSON manifest) in place of the sketch's own \"models\"");
   c.app->add_option("-o,--output", c.out, "Output folder (replaced if an earlier exacity run wrote it)")
@@ -385,7 +397,8 @@ int main(int argc, char** argv) {
 
   return exit_code_of([&] {
     const std::unique_ptr<tbb::global_control> limit = thread_limit(shared.threads);
-    if (*gen.app) return generate(gen.sketch, gen.models, gen.out, shared.quiet, gen.render ? &shared.render : nullptr);
+    if (*gen.app) return generate(gen.sketch, gen.models, gen.out, shared.quiet, gen.render ? &shared.render : nullptr,
+                                   gen.exports);
     if (*ren.app) return render_folder(ren.folder, shared.render, ren.file, shared.quiet);
     if (*val.app) return validate(val.folder);
     if (*sta.app) return stats(sta.folder, sta.real);

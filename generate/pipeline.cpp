@@ -9,6 +9,7 @@
 #include "generate/placement/buildings.h"
 #include "generate/export/cityjson_export.h"
 #include "generate/errors.h"
+#include "generate/export/gis_export.h"
 #include "generate/export/gltf_export.h"
 #include "generate/parcels/lots.h"
 #include "generate/export/mesh_export.h"
@@ -167,6 +168,7 @@ ordered_json empty_zones_report(const City& city) {
                                : has_street[z] ? "its blocks along streets are too small or narrow for a lot"
                                                : "no street reaches its land: draw a road to it, or lay it out by growth"}};
     if (!zone.grid_cell.empty()) entry["grid_cell"] = zone.grid_cell;  // where a grid map's region begins
+    if (!zone.source.empty()) entry["source"] = zone.source;  // a feature read from another format
     empty.push_back(std::move(entry));
   }
   return empty;
@@ -235,9 +237,14 @@ MeshCounts export_3d(const City& city, const fs::path& dir, GltfCounts& gltf) {
 
 }  // namespace
 
-GenerateResult write_city(const City& city, const fs::path& dir, StageClock& stages) {
+GenerateResult write_city(const City& city, const fs::path& dir, StageClock& stages, const ExportOptions& options) {
   const Sketch& sketch = city.sketch;
-  stages.run("export", [&] { export_vectors(city, dir); });
+  bool city_osm = false;
+  stages.run("export", [&] {
+    export_vectors(city, dir);
+    write_vector_formats(dir, options.vector_formats, sketch.crs);
+    city_osm = write_city_osm(city, dir / "city.osm");
+  });
   GltfCounts gltf;
   MeshCounts mesh = stages.run("3d export", [&] { return export_3d(city, dir, gltf); });
   Validation validation = stages.run("validation", [&] { return validate_output(dir); });
@@ -250,6 +257,9 @@ GenerateResult write_city(const City& city, const fs::path& dir, StageClock& sta
       {"sketch_path", fs::absolute(sketch.path).lexically_normal().string()},
       {"seed", sketch.seed},
       {"counts", counts_report(city, mesh, gltf)},
+      {"exports",
+       {{"vector_formats", options.vector_formats.empty() ? std::vector<std::string>{"geojson"} : options.vector_formats},
+        {"city_osm", city_osm ? "city.osm" : "not written: the sketch has no CRS (EPSG) to place it on Earth"}}},
       {"road_network", road_network_report(city.network, sketch)},
       {"unbuilt_lots", {{"merged", city.unbuilt_lots.merged}, {"left_open", city.unbuilt_lots.left_open}}},
       {"empty_zones", empty_zones_report(city)},

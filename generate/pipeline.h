@@ -55,7 +55,13 @@ struct GenerateResult {
 // Writes every output into `dir`, which must exist and be empty. `extra_stages` more
 // stages follow on the same clock (the caller's), counted in the progress total.
 GenerateResult generate_city(const Sketch& sketch, const std::filesystem::path& dir, const ProgressFn& progress);
-GenerateResult write_city(const City& city, const std::filesystem::path& dir, StageClock& clock);
+// What write_city writes besides what it always writes: vector formats other than GeoJSON
+// (generate/export/gis_export.h).
+struct ExportOptions {
+  std::vector<std::string> vector_formats;
+};
+GenerateResult write_city(const City& city, const std::filesystem::path& dir, StageClock& clock,
+                          const ExportOptions& options = {});
 inline constexpr int kWriteStages = 3;
 
 }  // namespace exacity

@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include "generate/city/grid_map.h"
+#include "generate/gis/projection.h"
+#include "generate/gis/sketch_sources.h"
 #include "generate/errors.h"
 #include "generate/layout/street_graph.h"
 #include "geom/measure.h"
@@ -117,6 +119,9 @@ class Parser {
       const json& props = f.at("properties");
       if (props.contains("grid_cell") && props.at("grid_cell").is_string())
         return "grid map cell " + props.at("grid_cell").get<std::string>();
+      // A feature read from another format (generate/gis/sketch_sources.h): FILE layer L
+      // feature N, or FILE way N.
+      if (props.contains("source") && props.at("source").is_string()) return props.at("source").get<std::string>();
     }
     return "features[" + std::to_string(index - grid_features_) + "]";
   }
@@ -144,8 +149,9 @@ class Parser {
       if (!zt)
         fail(where, "unknown zone type " + quote(zname) + "; did you mean " + quote(nearest_zone_name(zname)) +
                         "? (valid: " + list(kZoneTypeNames) + ")");
-      ZoneFeature zf{index, *zt, {}, {}};
+      ZoneFeature zf{index, *zt, {}, {}, {}};
       if (where.rfind("grid map cell ", 0) == 0) zf.grid_cell = where.substr(std::string("grid map cell ").size());
+      else if (props.contains("source") && props["source"].is_string()) zf.source = where;
       if (type == "Polygon") {
         zf.polygons.push_back(polygon(coords, where));
       } else if (type == "MultiPolygon" && coords.is_array()) {
@@ -493,21 +499,58 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
   return sketch;
 }
 
+// Gives zone types without a layout the streets layout: a real place's (or a planned
+// map's) roads are its streets already.
+void lay_out_by_streets(nlohmann::ordered_json& doc) {
+  nlohmann::ordered_json& ex = doc["exacity"];
+  if (ex.is_null()) ex = nlohmann::ordered_json::object();
+  if (!ex.is_object()) return;  // refused when the settings are read
+  if (!ex.contains("zones")) ex["zones"] = nlohmann::ordered_json::object();
+  if (!ex["zones"].is_object()) return;
+  for (const char* type : kGridMapStreetZones) {
+    nlohmann::ordered_json& zone = ex["zones"][type];
+    if (zone.is_null()) zone = nlohmann::ordered_json::object();
+    if (zone.is_object() && !zone.contains("layout")) zone["layout"] = "streets";
+  }
+}
+
 Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& models) {
   std::ifstream in(path, std::ios::binary);
   if (!in || fs::is_directory(path)) {  // a folder opens, and reads as nothing
     throw UserError(path.string() + ": cannot read the sketch (" +
                     (fs::exists(path) ? "permission denied or not a file" : "no such file") +
-                    "); give the path of a GeoJSON sketch or a grid map (.grid)");
+                    "); give the path of a GeoJSON sketch, a grid map (.grid), a vector file OGR reads or an OSM extract");
+  }
+  // Sketches of other formats, and GeoJSON in lon/lat, become a document in metres first
+  // (docs/design.md, The sketch, GIS and OSM); OUT/sketch.geojson keeps it.
+  auto made_sketch = [&](nlohmann::ordered_json doc) {
+    const std::string made = document_text(doc);
+    Sketch sketch = parse_sketch(made, path, read_grammars, models);
+    if (sketch.geojson.empty()) sketch.geojson = made;
+    return sketch;
+  };
+  const SketchSource source = sketch_source(path);
+  if (source == SketchSource::Osm || source == SketchSource::Ogr) {
+    in.close();
+    nlohmann::ordered_json doc = source == SketchSource::Osm ? osm_sketch_document(path) : ogr_sketch_document(path);
+    add_settings_beside(doc, path);
+    if (source == SketchSource::Osm) lay_out_by_streets(doc);
+    project_to_metres(doc, path);
+    return made_sketch(std::move(doc));
   }
   std::stringstream ss;
   ss << in.rdbuf();
-  if (path.extension() != ".grid") return parse_sketch(ss.str(), path, read_grammars, models);
-  // A grid map is read as the sketch of its features; errors in it name its lines.
-  const std::string made = document_text(grid_map_sketch(ss.str(), path));
-  Sketch sketch = parse_sketch(made, path, read_grammars, models);
-  if (sketch.geojson.empty()) sketch.geojson = made;
-  return sketch;
+  if (source == SketchSource::GridMap) {
+    // A grid map is read as the sketch of its features; errors in it name its lines.
+    return made_sketch(grid_map_sketch(ss.str(), path));
+  }
+  const bool beside = fs::is_regular_file(settings_beside(path));
+  nlohmann::ordered_json doc = nlohmann::ordered_json::parse(ss.str(), nullptr, false);
+  if (doc.is_discarded() || !doc.is_object()) return parse_sketch(ss.str(), path, read_grammars, models);  // it says what is wrong
+  const bool projected = project_to_metres(doc, path);
+  if (beside) add_settings_beside(doc, path);
+  if (!projected && !beside) return parse_sketch(ss.str(), path, read_grammars, models);
+  return made_sketch(std::move(doc));
 }
 
 }  // namespace exacity

@@ -46,6 +46,7 @@ struct ZoneFeature {
   ZoneType type = ZoneType::Residential;
   std::vector<geom::Polygon> polygons;  // rings as drawn: any orientation, maybe self-intersecting
   std::string grid_cell;            // a grid map's region: FILE:LINE:COLUMN of its first cell; else empty
+  std::string source;               // a feature read from another format: FILE layer L feature N, FILE way N
 };
 
 struct RoadFeature {

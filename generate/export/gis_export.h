@@ -1,0 +1,29 @@
+// The vector layers in the GIS and CAD formats users open them in (docs/design.md, Outputs),
+// written through OGR from the GeoJSON layers (so every format holds the same doubles), and
+// the street network and buildings as an OpenStreetMap file.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "generate/city/city.h"
+
+namespace exacity {
+
+// "geojson" (always written: validate reads it), "gpkg" (OUT/city.gpkg, every layer),
+// "fgb" (OUT/vector/NAME.fgb), "shp" (OUT/vector/shp/NAME.shp), "dxf" (OUT/city.dxf, a CAD
+// layer per layer).
+inline constexpr const char* kVectorFormats[] = {"geojson", "gpkg", "fgb", "shp", "dxf"};
+
+// Writes `formats` (of kVectorFormats) from OUT/vector/*.geojson, in the sketch's CRS.
+void write_vector_formats(const std::filesystem::path& dir, const std::vector<std::string>& formats,
+                          const nlohmann::ordered_json& crs);
+
+// OUT/city.osm: the roads layer's centre lines as ways (highway from the class: motorway,
+// primary, residential; width; bridge and layer), sharing a node wherever they meet, and
+// every building footprint as a closed way (building, height), in lon/lat. Whether it was
+// written: a sketch without a CRS (EPSG) has no place on Earth.
+bool write_city_osm(const City& city, const std::filesystem::path& file);
+
+}  // namespace exacity

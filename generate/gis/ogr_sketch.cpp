@@ -1,0 +1,133 @@
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <memory>
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include "generate/errors.h"
+#include "generate/gis/projection.h"
+#include "generate/gis/sketch_sources.h"
+
+namespace exacity {
+namespace fs = std::filesystem;
+using nlohmann::ordered_json;
+
+namespace {
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+// The EPSG code of a layer's CRS, if PROJ can name one.
+std::optional<int> epsg_of(const OGRSpatialReference& srs) {
+  OGRSpatialReference copy(srs);
+  const char* code = copy.GetAuthorityCode(nullptr);
+  if (!code && copy.AutoIdentifyEPSG() == OGRERR_NONE) code = copy.GetAuthorityCode(nullptr);
+  const char* authority = copy.GetAuthorityName(nullptr);
+  if (!code || !authority || lower(authority) != "epsg") return std::nullopt;
+  return std::atoi(code);
+}
+
+// A field's value as JSON, or null when the feature has no such field or it is unset.
+ordered_json field(OGRFeature& f, const char* name) {
+  const int i = f.GetFieldIndex(name);
+  if (i < 0 || !f.IsFieldSetAndNotNull(i)) return nullptr;
+  switch (f.GetFieldDefnRef(i)->GetType()) {
+    case OFTInteger:
+    case OFTInteger64: return f.GetFieldAsInteger64(i);
+    case OFTReal: return f.GetFieldAsDouble(i);
+    default: return f.GetFieldAsString(i);
+  }
+}
+
+}  // namespace
+
+SketchSource sketch_source(const fs::path& path) {
+  const std::string ext = lower(path.extension().string());
+  if (ext == ".geojson" || ext == ".json") return SketchSource::GeoJson;
+  if (ext == ".grid") return SketchSource::GridMap;
+  if (ext == ".osm" || ext == ".pbf") return SketchSource::Osm;
+  return SketchSource::Ogr;
+}
+
+fs::path settings_beside(const fs::path& path) {
+  fs::path stem = path.stem();
+  if (lower(path.extension().string()) == ".pbf" && lower(stem.extension().string()) == ".osm") stem = stem.stem();
+  return path.parent_path() / (stem.string() + ".exacity.json");
+}
+
+bool add_settings_beside(ordered_json& doc, const fs::path& path) {
+  const fs::path file = settings_beside(path);
+  if (!fs::is_regular_file(file)) return false;
+  if (doc.contains("exacity"))
+    throw UserError(file.string() + ": the sketch " + path.filename().string() +
+                    " has settings of its own (\"exacity\"); keep one of the two");
+  std::ifstream in(file, std::ios::binary);
+  ordered_json settings = ordered_json::parse(in, nullptr, false);
+  if (settings.is_discarded() || !settings.is_object())
+    throw UserError(file.string() + ": not a JSON object of settings; write it as the \"exacity\" member of a sketch is written");
+  doc["exacity"] = std::move(settings);
+  return true;
+}
+
+ordered_json ogr_sketch_document(const fs::path& path) {
+  start_gdal();
+  CPLErrorReset();
+  GDALDatasetUniquePtr ds(GDALDataset::Open(path.string().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  if (!ds)
+    throw UserError(path.string() + ": OGR cannot read it as a vector file (" +
+                    (CPLGetLastErrorMsg()[0] ? std::string(CPLGetLastErrorMsg()) : "no driver recognises it") +
+                    "); give GeoJSON, GeoPackage, Shapefile, KML, FlatGeobuf, GML or an OSM extract");
+  ordered_json doc = {{"type", "FeatureCollection"}, {"features", ordered_json::array()}};
+  std::unique_ptr<OGRSpatialReference> crs;  // the first spatial layer's; the others are brought to it
+  for (OGRLayer* layer : ds->GetLayers()) {
+    if (layer->GetGeomType() == wkbNone) continue;  // a table without geometry (QGIS's styles, say)
+    const std::string where = path.string() + " layer " + layer->GetName();
+    OGRFeatureDefn* defn = layer->GetLayerDefn();
+    if (defn->GetFieldIndex("zone") < 0 && defn->GetFieldIndex("road") < 0)
+      throw UserError(where + ": has neither a \"zone\" nor a \"road\" field; add one (zones: residential, commercial, "
+                      "industrial, park, water; roads: highway, main, local), or remove the layer");
+    std::unique_ptr<OGRCoordinateTransformation> to_crs;
+    if (const OGRSpatialReference* srs = layer->GetSpatialRef()) {
+      if (!crs) {
+        crs = std::make_unique<OGRSpatialReference>(*srs);
+        crs->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+        const std::optional<int> epsg = epsg_of(*crs);
+        if (!epsg)
+          throw UserError(where + ": its CRS (" + std::string(crs->GetName() ? crs->GetName() : "unnamed") +
+                          ") has no EPSG code; reproject the file to an EPSG CRS, e.g. ogr2ogr -t_srs EPSG:<code>");
+        doc["crs"] = crs_member(*epsg);
+      } else if (!srs->IsSame(crs.get())) {
+        OGRSpatialReference from(*srs);
+        from.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+        to_crs.reset(OGRCreateCoordinateTransformation(&from, crs.get()));
+        if (!to_crs) throw UserError(where + ": PROJ cannot bring its CRS to the first layer's; reproject it");
+      }
+    }
+    layer->ResetReading();
+    for (OGRFeatureUniquePtr f(layer->GetNextFeature()); f; f.reset(layer->GetNextFeature())) {
+      const std::string source = where + " feature " + std::to_string(f->GetFID());
+      ordered_json properties = ordered_json::object();
+      for (const char* name : {"zone", "road", "width", "name"})
+        if (ordered_json v = field(*f, name); !v.is_null()) properties[name] = std::move(v);
+      properties["source"] = source;
+      ordered_json geometry = nullptr;
+      if (const OGRGeometry* g = f->GetGeometryRef()) {
+        std::unique_ptr<OGRGeometry> linear(g->hasCurveGeometry() ? g->getLinearGeometry() : g->clone());
+        linear->flattenTo2D();
+        if (to_crs && linear->transform(to_crs.get()) != OGRERR_NONE)
+          throw UserError(source + ": could not be brought to the first layer's CRS; check its coordinates");
+        char* text = linear->exportToJson();
+        geometry = ordered_json::parse(text ? text : "null", nullptr, false);
+        CPLFree(text);
+      }
+      doc["features"].push_back({{"type", "Feature"}, {"properties", std::move(properties)}, {"geometry", std::move(geometry)}});
+    }
+  }
+  return doc;
+}
+
+}  // namespace exacity

@@ -1,0 +1,37 @@
+// Sketches from the GIS and OSM ecosystems (docs/design.md, The sketch, GIS and OSM): a
+// vector file in any format OGR reads, or an OpenStreetMap extract, made into a GeoJSON
+// sketch document that the sketch reader then reads like any other, so every check of a
+// drawn sketch applies to them.
+#pragma once
+
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+namespace exacity {
+
+enum class SketchSource { GeoJson, GridMap, Osm, Ogr };
+// By the file's extension: .geojson and .json are GeoJSON, .grid a grid map, .osm and .pbf
+// OpenStreetMap, anything else a vector file for OGR.
+SketchSource sketch_source(const std::filesystem::path& path);
+
+// The settings file beside a sketch: its name with ".exacity.json" in place of its extension
+// (town.gpkg -> town.exacity.json, town.osm.pbf -> town.exacity.json).
+std::filesystem::path settings_beside(const std::filesystem::path& path);
+
+// Every feature of every layer with a geometry: its geometry (2D, linear, in the first such
+// layer's CRS) and its "zone", "road", "width" and "name" fields; "source" names it for
+// messages (FILE layer NAME feature FID). The document's crs is that layer's, by EPSG code.
+// Throws UserError naming the file (and the layer) when OGR cannot read it.
+nlohmann::ordered_json ogr_sketch_document(const std::filesystem::path& path);
+
+// An OpenStreetMap extract (.osm or .osm.pbf, read with libosmium) in its UTM zone:
+// highways as roads (class and width from highway, lanes and width), land use as zones,
+// water areas and rivers (as wide as their width tag, or 10 m) as water. Throws UserError.
+nlohmann::ordered_json osm_sketch_document(const std::filesystem::path& path);
+
+// The settings beside the sketch into the document's "exacity" member (a GeoJSON's own
+// member and such a file both: UserError). Whether there was one.
+bool add_settings_beside(nlohmann::ordered_json& doc, const std::filesystem::path& path);
+
+}  // namespace exacity
