@@ -66,6 +66,12 @@ City build_city(const Sketch& sketch, StageClock& stages) {
     if (sketch.models.empty()) return std::nullopt;
     ModelLibrary library = load_model_library(sketch.models);
     library.check_channels(sketch.channels);
+    // Seed 001's nesting compares models slab by slab (docs/design.md, Placement: nesting).
+    for (const auto& [zone, settings] : sketch.zone_settings)
+      if (settings.buildings.nesting) {
+        cut_slabs(library);
+        break;
+      }
     return library;
   });
   CityMap city_map = stages.run("zone map", [&] { return build_city_map(sketch, city.heightmap()); });

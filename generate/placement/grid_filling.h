@@ -31,6 +31,10 @@ struct FootprintGrid {
 // footprint standing on free cells stands on free ground.
 FootprintGrid footprint_grid(const geom::Ring& outline, double cell);
 
+// The same test for several rings (a slab's pieces, seed 001's 3D bounding grid) on the
+// cells of another footprint grid: its corner and size.
+FootprintGrid footprint_grid_within(const std::vector<geom::Ring>& rings, const FootprintGrid& frame, double cell);
+
 // The serpentine order of a grid's cells: row 0 left to right, row 1 right to left, ...
 std::vector<std::pair<int, int>> serpentine(int width, int height);
 
