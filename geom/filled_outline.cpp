@@ -1,9 +1,9 @@
 #include "geom/filled_outline.h"
 
-#include <map>
-
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_2_algorithms.h>
+
+#include <map>
 
 #include "geom/grid.h"
 #include "geom/planar_map.h"

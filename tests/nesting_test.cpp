@@ -115,7 +115,8 @@ TEST_F(Nesting, BothValidatorsRefuseANestedModelMadeTallerThanTheRoomAboveIt) {
   EXPECT_NE(geos.out.find("overlap in plan"), std::string::npos) << geos.out;
 
   // Taller without its slabs: they no longer say what it holds.
-  const fs::path height_only = tampered("height-only", [&](json& f) { f[under]["properties"]["height"] = clearance + 1; });
+  const fs::path height_only =
+      tampered("height-only", [&](json& f) { f[under]["properties"]["height"] = clearance + 1; });
   v = run("validate " + height_only.string());
   EXPECT_EQ(v.code, 1) << v.out;
   EXPECT_NE(v.out.find("do not reach its height"), std::string::npos) << v.out;

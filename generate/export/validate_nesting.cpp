@@ -24,12 +24,14 @@ bool is_number(const ordered_json& j, const char* key) { return j.contains(key) 
 
 // The building's slabs as written, or why they cannot be read.
 std::optional<Stack> read_stack(const ordered_json& props, std::string& why) {
-  if (!props.contains("slabs") || !is_number(props, "floor")) return why = "carries no \"slabs\" and \"floor\"", std::nullopt;
+  if (!props.contains("slabs") || !is_number(props, "floor"))
+    return why = "carries no \"slabs\" and \"floor\"", std::nullopt;
   const ordered_json& slabs = props["slabs"];
   if (!slabs.is_array() || slabs.empty()) return why = "has no slabs", std::nullopt;
   Stack stack{props["floor"].get<double>(), {}};
   for (const ordered_json& s : slabs) {
-    if (!s.is_object() || !is_number(s, "bottom") || !is_number(s, "top") || !s.contains("outline") || !s["outline"].is_array())
+    if (!s.is_object() || !is_number(s, "bottom") || !is_number(s, "top") || !s.contains("outline") ||
+        !s["outline"].is_array())
       return why = "has a slab without \"bottom\", \"top\" and \"outline\"", std::nullopt;
     WrittenSlab w{s["bottom"].get<double>(), s["top"].get<double>(), {}};
     if (!(w.bottom < w.top)) return why = "has a slab whose top is not above its bottom", std::nullopt;
@@ -44,7 +46,8 @@ std::optional<Stack> read_stack(const ordered_json& props, std::string& why) {
           return why = "has a slab outline position that is not [x, y]", std::nullopt;
         r.push_back({ring[k][0].get<double>(), ring[k][1].get<double>()});
       }
-      if (geom::ring_orientation(r) != 1) return why = "has a slab outline ring not simple and counter-clockwise", std::nullopt;
+      if (geom::ring_orientation(r) != 1)
+        return why = "has a slab outline ring not simple and counter-clockwise", std::nullopt;
       w.outline.push_back(std::move(r));
     }
     if (w.outline.empty()) return why = "has a slab with no outline", std::nullopt;

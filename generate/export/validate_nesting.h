@@ -4,10 +4,9 @@
 // other wherever they share the plan. Decided exactly on the written doubles.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 namespace exacity {
 

@@ -430,29 +430,29 @@ namespace {
 // Marks the cells of `f` (its corner and size set) that the rings overlap: a cell counts
 // when a ring enters its square at all.
 void cover(FootprintGrid& f, const std::vector<geom::Ring>& rings, double cell) {
-  const geom::Box box{f.corner.x, f.corner.y, 0, 0};  // only the corner is read
+  const double x0 = f.corner.x, y0 = f.corner.y;
   f.covered.assign(static_cast<std::size_t>(f.width) * f.height, 0);
   // Cells whose centre is inside, by the crossings of each row's middle line...
   for (int j = 0; j < f.height; ++j)
-    mark_inside(rings, box.min_x, box.min_y + (j + 0.5) * cell, cell, f.width,
+    mark_inside(rings, x0, y0 + (j + 0.5) * cell, cell, f.width,
                 [&](int i) { f.covered[static_cast<std::size_t>(j) * f.width + i] = 1; });
   // ... and those an edge enters: the open square, so an edge along a side of the square
   // only touches it and the cell beyond stays free.
   const double in = 1e-9 * cell;
   for (const geom::Ring& outline : rings)
-  for (std::size_t e = 0; e < outline.size(); ++e) {
-    const Vec2 a = outline[e], b = outline[(e + 1) % outline.size()];
-    const int i0 = std::max(0, static_cast<int>(std::floor((std::min(a.x, b.x) - box.min_x) / cell)) - 1);
-    const int i1 = std::min(f.width - 1, static_cast<int>(std::floor((std::max(a.x, b.x) - box.min_x) / cell)) + 1);
-    const int j0 = std::max(0, static_cast<int>(std::floor((std::min(a.y, b.y) - box.min_y) / cell)) - 1);
-    const int j1 = std::min(f.height - 1, static_cast<int>(std::floor((std::max(a.y, b.y) - box.min_y) / cell)) + 1);
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) {
-        char& c = f.covered[static_cast<std::size_t>(j) * f.width + i];
-        const double x = box.min_x + i * cell, y = box.min_y + j * cell;
-        if (!c && segment_meets_box(a, b, x + in, y + in, x + cell - in, y + cell - in)) c = 1;
-      }
-  }
+    for (std::size_t e = 0; e < outline.size(); ++e) {
+      const Vec2 a = outline[e], b = outline[(e + 1) % outline.size()];
+      const int i0 = std::max(0, static_cast<int>(std::floor((std::min(a.x, b.x) - x0) / cell)) - 1);
+      const int i1 = std::min(f.width - 1, static_cast<int>(std::floor((std::max(a.x, b.x) - x0) / cell)) + 1);
+      const int j0 = std::max(0, static_cast<int>(std::floor((std::min(a.y, b.y) - y0) / cell)) - 1);
+      const int j1 = std::min(f.height - 1, static_cast<int>(std::floor((std::max(a.y, b.y) - y0) / cell)) + 1);
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
+          char& c = f.covered[static_cast<std::size_t>(j) * f.width + i];
+          const double x = x0 + i * cell, y = y0 + j * cell;
+          if (!c && segment_meets_box(a, b, x + in, y + in, x + cell - in, y + cell - in)) c = 1;
+        }
+    }
   for (char c : f.covered) f.cells += c;
   f.rects = rectangles(f);
 }

@@ -2,8 +2,10 @@
 // square cells in its frontage's frame, free or blocked; each model's footprint grid (the
 // cells its real outline covers, so an L leaves its notch free); models placed largest
 // first, each at the first free place along a serpentine curve (one row along the street,
-// the next back), facing the road edge nearest that place. The grid only proposes: the
-// lot's Occupancy, exact, has the last word.
+// the next back), facing the road edge nearest that place. With nesting, seed 001's 3D
+// bounding grid: a stack of footprint grids, one per slab (slabs.h) over its units of
+// height, so a smaller model may stand under another's overhang. The grid only proposes:
+// the lot's Occupancy, exact, has the last word.
 #pragma once
 
 #include <memory>

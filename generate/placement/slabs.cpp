@@ -77,10 +77,11 @@ std::optional<std::vector<geom::Ring>> slab_outline(const TriangleMesh& mesh, do
     const bool flat = tri[0][2] == tri[1][2] && tri[1][2] == tri[2][2];
     // A flat triangle belongs to the slab its height is in (an underside at a cut to the
     // slab above it); the others are clipped to the slab.
-    const std::vector<Vec3> part = flat ? (within(tri[0][2]) ? tri : std::vector<Vec3>{})
-                                        : clip(clip(tri, z0, true), z1, false);
+    const std::vector<Vec3> part =
+        flat ? (within(tri[0][2]) ? tri : std::vector<Vec3>{}) : clip(clip(tri, z0, true), z1, false);
     for (std::size_t k = 1; k + 1 < part.size(); ++k)
-      shadows.push_back({Vec2{part[0][0], part[0][1]}, Vec2{part[k][0], part[k][1]}, Vec2{part[k + 1][0], part[k + 1][1]}});
+      shadows.push_back(
+          {Vec2{part[0][0], part[0][1]}, Vec2{part[k][0], part[k][1]}, Vec2{part[k + 1][0], part[k + 1][1]}});
     if (flat) continue;
     // The cross-section at mid-height, the solid on each segment's left: walls have no
     // shadow, but their section bounds what they enclose.
@@ -95,8 +96,10 @@ std::optional<std::vector<geom::Ring>> slab_outline(const TriangleMesh& mesh, do
     const Vec2 d = ends[1] - ends[0];
     // Inside on the left: the left normal points against the outward normal.
     const double side = -d.y * n[0] + d.x * n[1];
-    if (side < 0) section.push_back({ends[0], ends[1]});
-    else if (side > 0) section.push_back({ends[1], ends[0]});
+    if (side < 0)
+      section.push_back({ends[0], ends[1]});
+    else if (side > 0)
+      section.push_back({ends[1], ends[0]});
   }
   return geom::filled_outline(shadows, section, must_cover);
 }
@@ -127,10 +130,13 @@ std::vector<Slab> model_slabs(const TriangleMesh& mesh, const geom::Ring& outlin
   for (std::size_t k = 0; k + 1 < levels.size(); ++k) {
     std::optional<std::vector<geom::Ring>> rings;
     if (levels.size() > 2) rings = slab_outline(mesh, levels[k], levels[k + 1], k + 2 == levels.size());
-    Slab s{levels[k], levels[k + 1], rings && !rings->empty() ? bounded(std::move(*rings)) : std::vector<geom::Ring>{outline}};
+    Slab s{levels[k], levels[k + 1],
+           rings && !rings->empty() ? bounded(std::move(*rings)) : std::vector<geom::Ring>{outline}};
     // Two slabs alike are one (a fallback on both sides of a cut).
-    if (!slabs.empty() && slabs.back().outline == s.outline) slabs.back().top = s.top;
-    else slabs.push_back(std::move(s));
+    if (!slabs.empty() && slabs.back().outline == s.outline)
+      slabs.back().top = s.top;
+    else
+      slabs.push_back(std::move(s));
   }
   return slabs;
 }

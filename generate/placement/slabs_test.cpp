@@ -26,7 +26,7 @@ void add_box(TriangleMesh& mesh, double x0, double y0, double z0, double x1, dou
     mesh.triangles.push_back({o + a, o + b, o + c});
     mesh.triangles.push_back({o + a, o + c, o + d});
   };
-  if (caps) quad(0, 2, 3, 1), quad(4, 5, 7, 6);  // underside, top
+  if (caps) quad(0, 2, 3, 1), quad(4, 5, 7, 6);                            // underside, top
   quad(0, 1, 5, 4), quad(3, 2, 6, 7), quad(2, 0, 4, 6), quad(1, 3, 7, 5);  // -y, +y, -x, +x
   mesh.material.assign(mesh.triangles.size(), 0);
   mesh.materials.resize(1);
@@ -99,7 +99,8 @@ TEST(Slabs, ATOnAPillarLeavesRoomAroundThePillar) {
 // The arch and a kiosk placed at `at` on floors: their slabs meet or not, exactly.
 bool meet(const Model& a, const Model& k, Vec2 at, double kiosk_floor = 0) {
   const Placement pa{0, {0, 0}, 0, 1, 0}, pk{1, at, 0, 1, 0};
-  return slabs_meet(placed_slabs(a, pa, placed_outline(a, pa)), 0, placed_slabs(k, pk, placed_outline(k, pk)), kiosk_floor);
+  return slabs_meet(placed_slabs(a, pa, placed_outline(a, pa)), 0, placed_slabs(k, pk, placed_outline(k, pk)),
+                    kiosk_floor);
 }
 
 TEST(Slabs, AKioskUnderTheBeamMeetsItOnlyWhenItReachesTheUnderside) {
@@ -183,7 +184,8 @@ TEST(GridNesting, NoTwoModelsMeetIn3D) {
       ASSERT_FALSE(placed[a].slabs.empty());
       EXPECT_EQ(placed[a].slabs.back().top, placed[a].height);
       for (std::size_t b = a + 1; b < placed.size(); ++b)
-        EXPECT_FALSE(slabs_meet(placed[a].slabs, 0, placed[b].slabs, 0)) << "seed " << seed << ": " << a << " and " << b;
+        EXPECT_FALSE(slabs_meet(placed[a].slabs, 0, placed[b].slabs, 0))
+            << "seed " << seed << ": " << a << " and " << b;
     }
     // Two kiosks never share the plan; only a kiosk and an arch do.
     for (std::size_t a = 0; a < placed.size(); ++a)
