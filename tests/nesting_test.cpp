@@ -88,6 +88,47 @@ TEST_F(Nesting, SmallModelsStandUnderTheOverhangsAndBothValidatorsAgree) {
   EXPECT_EQ(cityjson.code, 0) << cityjson.out;
 }
 
+// A written building's slabs: heights from the ground datum, and outlines.
+struct Written {
+  double bottom, top;
+  std::vector<geom::Ring> outline;
+};
+std::vector<Written> written_slabs(const json& feature) {
+  std::vector<Written> out;
+  const double floor = feature["properties"]["floor"].get<double>();
+  for (const json& s : feature["properties"]["slabs"]) {
+    Written w{floor, floor, {}};
+    // On flat ground every floor is 0, so the sums are the slabs' own heights, exactly.
+    w.bottom += s["bottom"].get<double>(), w.top += s["top"].get<double>();
+    for (const json& ring : s["outline"]) {
+      w.outline.emplace_back();
+      for (std::size_t k = 0; k + 1 < ring.size(); ++k)
+        w.outline.back().push_back({ring[k][0].get<double>(), ring[k][1].get<double>()});
+    }
+    out.push_back(std::move(w));
+  }
+  return out;
+}
+
+TEST_F(Nesting, NoTwoModelsMeetIn3DAnywhere) {
+  const json features = json::parse(read(out() / "vector" / "buildings.geojson"))["features"];
+  std::vector<std::vector<Written>> stacks;
+  for (const json& f : features) {
+    ASSERT_TRUE(f["properties"].contains("slabs")) << f["properties"].dump();
+    EXPECT_EQ(f["properties"]["floor"], 0);
+    stacks.push_back(written_slabs(f));
+  }
+  for (std::size_t a = 0; a < stacks.size(); ++a)
+    for (std::size_t b = a + 1; b < stacks.size(); ++b)
+      for (const Written& s : stacks[a])
+        for (const Written& t : stacks[b])
+          if (s.bottom <= t.top && t.bottom <= s.top) {
+            for (const geom::Ring& p : s.outline)
+              for (const geom::Ring& q : t.outline)
+                EXPECT_FALSE(geom::rings_meet(p, q)) << "buildings " << a << " and " << b;
+          }
+}
+
 TEST_F(Nesting, OneThreadOrTwoWriteTheSameBytes) {
   for (const auto& e : fs::recursive_directory_iterator(out())) {
     if (!e.is_regular_file() || e.path().filename() == "report.json") continue;
@@ -130,6 +171,30 @@ TEST_F(Nesting, BothValidatorsRefuseANestedModelMadeTallerThanTheRoomAboveIt) {
   EXPECT_NE(v.out.find("carries no \"slabs\""), std::string::npos) << v.out;
   geos = shell(geos_check(bare));
   EXPECT_EQ(geos.code, 1) << geos.out;
+}
+
+// On a heightmap each model's heights count from its own floor: the city still validates,
+// with models nested on ground lower or higher than the model above them.
+TEST_F(Nesting, OnAHeightmapBothValidatorsAcceptIt) {
+  const fs::path dir = *root_ / "terrain";
+  fs::create_directories(dir);
+  json sketch = json::parse(read(kSource / "examples" / "nesting" / "nesting.geojson"));
+  sketch["exacity"]["models"] = (kSource / "examples" / "nesting" / "library.json").string();
+  sketch["exacity"]["terrain"] = {{"heightmap", (kSource / "examples" / "valley.png").string()},
+                                  {"bounds", {0, 0, 2000, 1500}},
+                                  {"height", {0, 120}}};
+  sketch["features"][0]["geometry"]["coordinates"] = {{{200, 300}, {500, 300}, {500, 600}, {200, 600}, {200, 300}}};
+  std::ofstream(dir / "in.geojson") << sketch.dump();
+  const Result r = run("generate " + (dir / "in.geojson").string() + " -o " + (dir / "out").string() + " -q");
+  ASSERT_EQ(r.code, 0) << r.out;  // generate validates what it wrote
+  const json features = json::parse(read(dir / "out" / "vector" / "buildings.geojson"))["features"];
+  int uneven = 0;
+  const auto pairs = nested_pairs(features);
+  for (auto [above, under] : pairs)
+    uneven += features[above]["properties"]["floor"] != features[under]["properties"]["floor"];
+  EXPECT_GT(uneven, 10) << "of " << pairs.size() << " nested pairs";
+  const Result geos = shell(geos_check(dir / "out"));
+  EXPECT_EQ(geos.code, 0) << geos.out;
 }
 
 TEST_F(Nesting, WithoutNestingNothingStandsUnderAnother) {
