@@ -432,10 +432,12 @@ namespace {
 void cover(FootprintGrid& f, const std::vector<geom::Ring>& rings, double cell) {
   const double x0 = f.corner.x, y0 = f.corner.y;
   f.covered.assign(static_cast<std::size_t>(f.width) * f.height, 0);
-  // Cells whose centre is inside, by the crossings of each row's middle line...
-  for (int j = 0; j < f.height; ++j)
-    mark_inside(rings, x0, y0 + (j + 0.5) * cell, cell, f.width,
-                [&](int i) { f.covered[static_cast<std::size_t>(j) * f.width + i] = 1; });
+  // Cells whose centre is inside a ring (each on its own: a slab's pieces may lie one in
+  // another), by the crossings of each row's middle line...
+  for (const geom::Ring& ring : rings)
+    for (int j = 0; j < f.height; ++j)
+      mark_inside({ring}, x0, y0 + (j + 0.5) * cell, cell, f.width,
+                  [&](int i) { f.covered[static_cast<std::size_t>(j) * f.width + i] = 1; });
   // ... and those an edge enters: the open square, so an edge along a side of the square
   // only touches it and the cell beyond stays free.
   const double in = 1e-9 * cell;
