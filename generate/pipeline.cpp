@@ -65,7 +65,14 @@ City build_city(const Sketch& sketch, StageClock& stages) {
   });
   city.library = stages.run("model library", [&]() -> std::optional<ModelLibrary> {
     std::optional<ModelLibrary> library;
-    if (!sketch.models.empty()) library = load_model_library(sketch.models), library->check_channels(sketch.channels);
+    if (!sketch.models.empty()) {
+      library = load_model_library(sketch.models);
+      library->check_channels(sketch.channels);
+      // Seed 001's nesting compares models slab by slab (docs/design.md, Placement: nesting).
+      if (std::any_of(sketch.zone_settings.begin(), sketch.zone_settings.end(),
+                      [](const auto& z) { return z.second.buildings.nesting; }))
+        cut_slabs(*library);
+    }
     check_lot_library(sketch, library ? &*library : nullptr);
     return library;
   });

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Exact_rational.h>
 #include <CGAL/Polygon_2_algorithms.h>
 #include <CGAL/convex_hull_2.h>
 
@@ -69,6 +70,12 @@ bool ring_within(const Ring& ring, const Ring& outer) {
     if (side != CGAL::ON_BOUNDARY) return side == CGAL::ON_BOUNDED_SIDE;
   }
   return true;  // the same ring
+}
+
+int compare_sums(double a, double b, double c, double d) {
+  using Q = CGAL::Exact_rational;
+  const Q x = Q(a) + Q(b), y = Q(c) + Q(d);
+  return x < y ? -1 : y < x ? 1 : 0;
 }
 
 Ring convex_hull(const std::vector<Vec2>& points) {

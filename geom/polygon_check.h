@@ -18,6 +18,9 @@ bool rings_meet(const Ring& a, const Ring& b);
 // the two do not cross (they may touch, or share edges), decided exactly.
 bool ring_within(const Ring& ring, const Ring& outer);
 
+// The sign of (a + b) - (c + d), exact: heights counted from different floors compared.
+int compare_sums(double a, double b, double c, double d);
+
 // The convex hull of the points, counter-clockwise, without collinear points; exact.
 Ring convex_hull(const std::vector<Vec2>& points);
 

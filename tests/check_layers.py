@@ -4,7 +4,8 @@
 Written apart from exacity's own exact validator so that a bug in one is caught by the
 other: every polygon valid in the OGC sense, outer rings counter-clockwise and holes
 clockwise, rings closed; zones, water and non-bridge road areas pairwise disjoint (their
-overlaps have no area); bridges over water.
+overlaps have no area); bridges over water; buildings apart, or, nested (seed 001), apart in
+3D by the slabs they write.
 
 Usage: check_layers.py OUT_DIR   (exit 0 when every check holds, 1 otherwise)
 """
@@ -15,6 +16,7 @@ from fractions import Fraction as F
 from pathlib import Path
 
 from shapely.geometry import LineString, Polygon, shape
+from shapely.ops import unary_union
 from shapely.strtree import STRtree
 
 warnings.filterwarnings("ignore", message="STRtree will be changed")  # shapely 1.8 on Debian 12
@@ -33,9 +35,33 @@ def signed_area(ring):
     return sum(F(x0) * F(y1) - F(x1) * F(y0) for (x0, y0), (x1, y1) in zip(ring, ring[1:])) / 2
 
 
+def nested_overlap(a, b):
+    """Why two buildings whose footprints overlap may not (seed 001's nesting); None when the
+    slabs both write (heights from their floors, exact as fractions) prove that wherever
+    they share the plan one lies wholly below the other."""
+    stacks = []
+    for props in (a, b):
+        slabs, floor = props.get("slabs"), props.get("floor")
+        if not slabs or floor is None:
+            return "no slabs"
+        if any(s["bottom"] >= s["top"] for s in slabs) or any(
+                s["bottom"] != below["top"] for below, s in zip(slabs, slabs[1:])):
+            return "slabs not stacked bottom to top"
+        if slabs[0]["bottom"] > 0 or slabs[-1]["top"] != props.get("height"):
+            return "slabs do not span its height"
+        stacks.append([(F(floor) + F(s["bottom"]), F(floor) + F(s["top"]),
+                        unary_union([Polygon(r) for r in s["outline"]])) for s in slabs])
+    for lo, hi, plan in stacks[0]:
+        for lo2, hi2, plan2 in stacks[1]:
+            if lo <= hi2 and lo2 <= hi and plan.intersection(plan2).area > AREA_TOLERANCE:
+                return f"slabs at {float(lo)}-{float(hi)} m and {float(lo2)}-{float(hi2)} m overlap in plan"
+    return None
+
+
 def main(out):
     problems = []
     polygons = []  # (name, kind, shapely polygon)
+    properties = {}  # name -> the feature's properties
     for layer in ("zones", "water", "road_areas", "blocks", "lots", "buildings"):
         for i, f in enumerate(load(out / "vector" / f"{layer}.geojson")):
             name = f"{layer}[{i}]"
@@ -58,6 +84,7 @@ def main(out):
             if layer == "zones" and f["properties"].get("zone") == "park":
                 kind = "park"
             polygons.append((name, kind, poly))
+            properties[name] = f["properties"]
     for i, f in enumerate(load(out / "vector" / "roads.geojson")):
         line = LineString(f["geometry"]["coordinates"])
         if not line.is_valid or line.length <= 0:
@@ -76,8 +103,15 @@ def main(out):
                 if j <= i:
                     continue
                 overlap = poly.intersection(other).area
-                if overlap > AREA_TOLERANCE:
-                    problems.append(f"{name} and {surfaces[j][0]} overlap by {overlap} m²")
+                if overlap <= AREA_TOLERANCE:
+                    continue
+                other_name = surfaces[j][0]
+                if name.startswith("buildings") and other_name.startswith("buildings"):
+                    why = nested_overlap(properties[name], properties[other_name])
+                    if why:
+                        problems.append(f"{name} and {other_name} overlap by {overlap} m² ({why})")
+                    continue
+                problems.append(f"{name} and {other_name} overlap by {overlap} m²")
     water = [p for _, k, p in polygons if k == "water" and p.is_valid]
     for name, kind, poly in polygons:
         if kind == "bridge" and poly.is_valid:

@@ -27,6 +27,23 @@ void add_polygon(Layer& layer, const ordered_json& props, const geom::Polygon& p
   layer.features.push_back({std::move(full), p, {}});
 }
 
+// A nested model's slabs as the buildings layer writes them (docs/design.md, Outputs):
+// heights from its floor, each piece a closed ring, counter-clockwise, as GeoJSON writes one.
+ordered_json slabs_json(const std::vector<Slab>& slabs) {
+  ordered_json out = ordered_json::array();
+  for (const Slab& s : slabs) {
+    ordered_json rings = ordered_json::array();
+    for (const geom::Ring& r : s.outline) {
+      ordered_json ring = ordered_json::array();
+      for (geom::Vec2 v : r) ring.push_back({v.x, v.y});
+      ring.push_back({r.front().x, r.front().y});
+      rings.push_back(std::move(ring));
+    }
+    out.push_back({{"bottom", s.bottom}, {"top", s.top}, {"outline", std::move(rings)}});
+  }
+  return out;
+}
+
 }  // namespace
 
 CityLayers read_layers(const std::filesystem::path& vector_dir, std::vector<std::string>& problems) {
@@ -187,10 +204,10 @@ CityLayers layers_of(const Ground& ground, const std::vector<Building>& building
                     b.polygon);
       },
       [&](const ModelInstance& m) {
-        add_polygon(out.buildings,
-                    {{"lot", m.lot}, {"zone", name(m.zone)}, {"height", m.height}, {"roof", "model"},
-                     {"model", library->models[m.placed.model].name}, {"kind", name(m.kind)}},
-                    m.polygon);
+        ordered_json props{{"lot", m.lot}, {"zone", name(m.zone)}, {"height", m.height}, {"roof", "model"},
+                           {"model", library->models[m.placed.model].name}, {"kind", name(m.kind)}};
+        if (!m.slabs.empty()) props["floor"] = m.floor, props["slabs"] = slabs_json(m.slabs);
+        add_polygon(out.buildings, std::move(props), m.polygon);
       });
   return out;
 }

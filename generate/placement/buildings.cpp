@@ -181,7 +181,7 @@ Structures place_buildings(const std::vector<Lot>& lots, const Sketch& sketch, c
     if (!lot.density.empty()) p.density = lot.density;
     // By the lot's planned lot, not its index, so merging lots around it leaves it as it was.
     Random rng(mix(mix(stage, static_cast<std::uint64_t>(lot.planned)), static_cast<std::uint64_t>(lot.rank)));
-    Occupancy occupancy(lot.cell, LotEdge::kStreet);
+    Occupancy occupancy(lot.cell, LotEdge::kStreet, terrain);
     Structures& here = placed[i];
     for (const auto& placer : placers.at(lot.zone)) placer->place(lot, p, occupancy, rng, here);
     auto stand = [&](auto& s) {

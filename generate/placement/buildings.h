@@ -58,6 +58,9 @@ struct ModelInstance {
   Placement placed;
   double height = 0;       // m, the model's top
   double base = 0, floor = 0;
+  // Seed 001's nesting (docs/design.md, Placement: nesting): the model's slabs in place,
+  // heights from its floor, the lowest from its base; empty where the zone does not nest.
+  std::vector<Slab> slabs;
 };
 
 // What the buildings stage raises on the lots.

@@ -1,7 +1,9 @@
 #include "generate/placement/grid_filling.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <optional>
 
@@ -62,6 +64,9 @@ struct LotGrid {
   std::vector<char> blocked;
   std::vector<int> facing;      // per cell: the quarter turn that faces the nearest street
   std::vector<int> sums;        // blocked cells below and left of each cell corner ((width + 1) * (height + 1))
+  // With nesting (seed 001's 3D bounding grid): per cell, the levels taken (Levels); a
+  // cell the lot blocks has them all. `blocked` then holds what stands on the ground.
+  std::vector<std::uint64_t> levels;
 
   Vec2 world(double t, double d) const { return f.at(f.t0 + t, d); }
   std::size_t index(int i, int j) const { return static_cast<std::size_t>(j) * width + i; }
@@ -150,8 +155,20 @@ LotGrid lay_grid(const Occupancy& occupancy, const BuildingSettings& params, dou
       }
       g.facing[g.index(i, j)] = best;
     }
+  if (params.nesting)
+    for (char b : g.blocked) g.levels.push_back(b ? ~std::uint64_t{0} : 0);
   g.count_blocked();
   return g;
+}
+
+// Seed 001's 3D bounding grid stacks footprint grids, one per unit of height (a cell's
+// side): a bit per level from the floor up, the last standing for every level above it.
+using Levels = std::uint64_t;
+constexpr int kLevels = 64;
+Levels levels_between(double bottom, double top, double cell) {
+  const int lo = std::clamp(static_cast<int>(std::floor(bottom / cell)), 0, kLevels - 1);
+  const int hi = std::clamp(static_cast<int>(std::ceil(top / cell)) - 1, lo, kLevels - 1);
+  return (hi == kLevels - 1 ? ~Levels{0} : (Levels{1} << (hi + 1)) - 1) & ~((Levels{1} << lo) - 1);
 }
 
 // The covered cells as rectangles: each row's runs, a run carried up while the rows above
@@ -205,13 +222,21 @@ FootprintGrid grown(const FootprintGrid& f, int k) {
   return g;
 }
 
+// One slab of a candidate on the grid: the levels it spans, the cells it covers in its
+// footprint grid's frame, and the same grown by the building gap.
+struct SlabGrid {
+  Levels levels = 0;
+  FootprintGrid own, taken;
+};
+
 // A model drawn for the lot, before it has a place: its footprint grid for each quarter
 // turn, and the same grown by the building gap (the cells it takes from later models),
-// each made when first asked for.
+// each made when first asked for; with nesting, its slabs' grids as well.
 class Candidate {
  public:
-  Candidate(const Model& model, int index, double scale, int tint, double cell, int gap_cells)
-      : model_(&model), index_(index), scale_(scale), tint_(tint), cell_(cell), gap_cells_(gap_cells) {}
+  Candidate(const Model& model, int index, double scale, int tint, double cell, int gap_cells, bool nesting)
+      : model_(&model), index_(index), scale_(scale), tint_(tint), cell_(cell), gap_cells_(gap_cells),
+        nesting_(nesting) {}
 
   int index() const { return index_; }
   double scale() const { return scale_; }
@@ -229,6 +254,31 @@ class Candidate {
     if (!taken_[r]) taken_[r] = grown(footprint(r), gap_cells_);
     return *taken_[r];
   }
+  bool nesting() const { return nesting_; }
+  // Seed 001's 3D bounding grid: each slab's cells in the footprint grid's frame, bottom to top.
+  const std::vector<SlabGrid>& slabs(int r) const {
+    if (!slabs_[r]) {
+      slabs_[r].emplace();
+      for (const Slab& s : slabs_of(*model_)) {
+        std::vector<geom::Ring> rings;
+        for (const geom::Ring& ring : s.outline) {
+          rings.emplace_back();
+          for (Vec2 v : ring) rings.back().push_back(turned({v.x * scale_, v.y * scale_}, r));
+        }
+        SlabGrid g{levels_between(s.bottom * scale_, s.top * scale_, cell_), footprint_grid_within(rings, footprint(r), cell_), {}};
+        g.taken = grown(g.own, gap_cells_);
+        slabs_[r]->push_back(std::move(g));
+      }
+    }
+    return *slabs_[r];
+  }
+  // Seed 001's size: the cells of its bounding grid, counted per level with nesting.
+  int size() const {
+    if (!nesting_) return footprint(0).cells;
+    int cells = 0;
+    for (const SlabGrid& s : slabs(0)) cells += s.own.cells * std::popcount(s.levels);
+    return cells;
+  }
 
  private:
   const Model* model_;
@@ -237,7 +287,9 @@ class Candidate {
   int tint_;
   double cell_;
   int gap_cells_;  // how far `taken` reaches past the footprint, in cells each way
+  bool nesting_;
   mutable std::optional<FootprintGrid> turns_[4], taken_[4];
+  mutable std::optional<std::vector<SlabGrid>> slabs_[4];
 };
 
 // A random model of the choices, of a random size and colour (seed 001's alteration); none
@@ -251,14 +303,26 @@ std::optional<Candidate> draw(const Choices& choices, const ModelLibrary& lib, c
   const int tint = static_cast<int>(rng.next() % kTints);
   // The lot's edges keep half the gap already (lay_grid); between models, the whole gap,
   // and a cell at least: footprints that touch are not apart (Occupancy).
-  return Candidate{m, model, scale, tint, cell, std::max(1, static_cast<int>(std::ceil(params.building_gap / cell - 1e-9)))};
+  return Candidate{m, model, scale, tint, cell, std::max(1, static_cast<int>(std::ceil(params.building_gap / cell - 1e-9))),
+                   params.nesting};
 }
 
-// Whether the candidate, turned r times, fits with its footprint's lower-left cell at (i, j).
+// Whether the candidate, turned r times, fits with its footprint's lower-left cell at (i, j):
+// its footprint on free cells, or with nesting, its lowest slab on free ground and each
+// slab's cells free at its levels.
 bool fits(const LotGrid& g, const Candidate& c, int r, int i, int j) {
   const FootprintGrid& own = c.footprint(r);
   if (i + own.width > g.width || j + own.height > g.height) return false;
-  return std::all_of(own.rects.begin(), own.rects.end(), [&](const FootprintGrid::Rect& rect) { return g.free(rect, i, j); });
+  const FootprintGrid& ground = c.nesting() ? c.slabs(r).front().own : own;
+  if (!std::all_of(ground.rects.begin(), ground.rects.end(), [&](const FootprintGrid::Rect& rect) { return g.free(rect, i, j); }))
+    return false;
+  if (!c.nesting()) return true;
+  for (const SlabGrid& s : c.slabs(r))
+    for (const FootprintGrid::Rect& rect : s.own.rects)
+      for (int b = rect.j0; b < rect.j1; ++b)
+        for (int a = rect.i0; a < rect.i1; ++a)
+          if (g.levels[g.index(i + a, j + b)] & s.levels) return false;
+  return true;
 }
 
 // Blocks the cells the footprint's lower-left cell at (i, j) takes (off the grid: nothing).
@@ -267,6 +331,17 @@ void mark(LotGrid& g, const FootprintGrid& f, int i, int j) {
     for (int a = 0; a < f.width; ++a)
       if (f.at(a, b) && i + a >= 0 && i + a < g.width && j + b >= 0 && j + b < g.height) g.blocked[g.index(i + a, j + b)] = 1;
   g.count_blocked();
+}
+
+// With nesting: each slab takes its levels over its cells grown by the gap, and the lowest
+// slab's cells the ground (off the grid: nothing).
+void mark_slabs(LotGrid& g, const Candidate& c, int r, int i, int j) {
+  for (const SlabGrid& s : c.slabs(r))
+    for (int b = 0; b < s.taken.height; ++b)
+      for (int a = 0; a < s.taken.width; ++a)
+        if (s.taken.at(a, b) && i + a >= 0 && i + a < g.width && j + b >= 0 && j + b < g.height)
+          g.levels[g.index(i + a, j + b)] |= s.levels;
+  mark(g, c.slabs(r).front().taken, i, j);
 }
 
 // Places one candidate at the first place along the serpentine where its footprint grid
@@ -284,12 +359,20 @@ bool place_first_free(LotGrid& g, const std::vector<std::pair<int, int>>& order,
     const Vec2 origin = g.world(i * g.cell - own.corner.x, j * g.cell - own.corner.y);
     const Placement p{c.index(), origin, std::atan2(g.f.u.y, g.f.u.x) + r * M_PI / 2, c.scale(), c.tint()};
     geom::Ring ring = placed_outline(lib.models[c.index()], p);
-    if (!occupancy.take(ring)) {
+    std::vector<Slab> slabs;
+    if (c.nesting()) {
+      slabs = placed_slabs(lib.models[c.index()], p, ring);
+      const auto [base, floor] = occupancy.ground_under(ring);
+      slabs.front().bottom = base - floor;  // its foundation reaches down to the lowest ground
+    }
+    if (!occupancy.take(ring, c.nesting() ? &slabs : nullptr)) {
       if (++refused == kRefusals) return false;
       continue;
     }
-    mark(g, c.taken(r), i - c.gap_cells(), j - c.gap_cells());
+    if (c.nesting()) mark_slabs(g, c, r, i - c.gap_cells(), j - c.gap_cells());
+    else mark(g, c.taken(r), i - c.gap_cells(), j - c.gap_cells());
     out.push_back(made(lib.models[c.index()], p, std::move(ring)));
+    out.back().slabs = std::move(slabs);
     return true;
   }
   return false;
@@ -319,7 +402,7 @@ class GridFiller : public Placer {
       for (int n = 0; n < count; ++n)
         if (std::optional<Candidate> c = draw(choices, library_, params, g.cell, rng)) candidates.push_back(std::move(*c));
       std::stable_sort(candidates.begin(), candidates.end(),
-                       [](const Candidate& a, const Candidate& b) { return a.footprint(0).cells > b.footprint(0).cells; });
+                       [](const Candidate& a, const Candidate& b) { return a.size() > b.size(); });
       // A model that found no place three times in a pass (at sizes no larger each time)
       // is not tried again in it; a pass that places nothing ends the filling.
       constexpr int kMisses = 3;
@@ -342,6 +425,42 @@ class GridFiller : public Placer {
 
 }  // namespace
 
+namespace {
+
+// Marks the cells of `f` (its corner and size set) that the rings overlap: a cell counts
+// when a ring enters its square at all.
+void cover(FootprintGrid& f, const std::vector<geom::Ring>& rings, double cell) {
+  const double x0 = f.corner.x, y0 = f.corner.y;
+  f.covered.assign(static_cast<std::size_t>(f.width) * f.height, 0);
+  // Cells whose centre is inside a ring (each on its own: a slab's pieces may lie one in
+  // another), by the crossings of each row's middle line...
+  for (const geom::Ring& ring : rings)
+    for (int j = 0; j < f.height; ++j)
+      mark_inside({ring}, x0, y0 + (j + 0.5) * cell, cell, f.width,
+                  [&](int i) { f.covered[static_cast<std::size_t>(j) * f.width + i] = 1; });
+  // ... and those an edge enters: the open square, so an edge along a side of the square
+  // only touches it and the cell beyond stays free.
+  const double in = 1e-9 * cell;
+  for (const geom::Ring& outline : rings)
+    for (std::size_t e = 0; e < outline.size(); ++e) {
+      const Vec2 a = outline[e], b = outline[(e + 1) % outline.size()];
+      const int i0 = std::max(0, static_cast<int>(std::floor((std::min(a.x, b.x) - x0) / cell)) - 1);
+      const int i1 = std::min(f.width - 1, static_cast<int>(std::floor((std::max(a.x, b.x) - x0) / cell)) + 1);
+      const int j0 = std::max(0, static_cast<int>(std::floor((std::min(a.y, b.y) - y0) / cell)) - 1);
+      const int j1 = std::min(f.height - 1, static_cast<int>(std::floor((std::max(a.y, b.y) - y0) / cell)) + 1);
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
+          char& c = f.covered[static_cast<std::size_t>(j) * f.width + i];
+          const double x = x0 + i * cell, y = y0 + j * cell;
+          if (!c && segment_meets_box(a, b, x + in, y + in, x + cell - in, y + cell - in)) c = 1;
+        }
+    }
+  for (char c : f.covered) f.cells += c;
+  f.rects = rectangles(f);
+}
+
+}  // namespace
+
 FootprintGrid footprint_grid(const geom::Ring& outline, double cell) {
   FootprintGrid f;
   if (outline.size() < 3) return f;
@@ -351,29 +470,14 @@ FootprintGrid footprint_grid(const geom::Ring& outline, double cell) {
   // A hair under a whole cell stays one cell: outlines on the grid would otherwise spill.
   f.width = std::max(1, static_cast<int>(std::ceil(box.width() / cell - 1e-9)));
   f.height = std::max(1, static_cast<int>(std::ceil(box.height() / cell - 1e-9)));
-  f.covered.assign(static_cast<std::size_t>(f.width) * f.height, 0);
-  // Cells whose centre is inside, by the crossings of each row's middle line...
-  for (int j = 0; j < f.height; ++j)
-    mark_inside({outline}, box.min_x, box.min_y + (j + 0.5) * cell, cell, f.width,
-                [&](int i) { f.covered[static_cast<std::size_t>(j) * f.width + i] = 1; });
-  // ... and those an edge enters: the open square, so an edge along a side of the square
-  // only touches it and the cell beyond stays free.
-  const double in = 1e-9 * cell;
-  for (std::size_t e = 0; e < outline.size(); ++e) {
-    const Vec2 a = outline[e], b = outline[(e + 1) % outline.size()];
-    const int i0 = std::max(0, static_cast<int>(std::floor((std::min(a.x, b.x) - box.min_x) / cell)) - 1);
-    const int i1 = std::min(f.width - 1, static_cast<int>(std::floor((std::max(a.x, b.x) - box.min_x) / cell)) + 1);
-    const int j0 = std::max(0, static_cast<int>(std::floor((std::min(a.y, b.y) - box.min_y) / cell)) - 1);
-    const int j1 = std::min(f.height - 1, static_cast<int>(std::floor((std::max(a.y, b.y) - box.min_y) / cell)) + 1);
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) {
-        char& c = f.covered[static_cast<std::size_t>(j) * f.width + i];
-        const double x = box.min_x + i * cell, y = box.min_y + j * cell;
-        if (!c && segment_meets_box(a, b, x + in, y + in, x + cell - in, y + cell - in)) c = 1;
-      }
-  }
-  for (char c : f.covered) f.cells += c;
-  f.rects = rectangles(f);
+  cover(f, {outline}, cell);
+  return f;
+}
+
+FootprintGrid footprint_grid_within(const std::vector<geom::Ring>& rings, const FootprintGrid& frame, double cell) {
+  FootprintGrid f;
+  f.corner = frame.corner, f.width = frame.width, f.height = frame.height;
+  cover(f, rings, cell);
   return f;
 }
 

@@ -2,8 +2,10 @@
 // square cells in its frontage's frame, free or blocked; each model's footprint grid (the
 // cells its real outline covers, so an L leaves its notch free); models placed largest
 // first, each at the first free place along a serpentine curve (one row along the street,
-// the next back), facing the road edge nearest that place. The grid only proposes: the
-// lot's Occupancy, exact, has the last word.
+// the next back), facing the road edge nearest that place. With nesting, seed 001's 3D
+// bounding grid: a stack of footprint grids, one per slab (slabs.h) over its units of
+// height, so a smaller model may stand under another's overhang. The grid only proposes:
+// the lot's Occupancy, exact, has the last word.
 #pragma once
 
 #include <memory>
@@ -30,6 +32,10 @@ struct FootprintGrid {
 // lower-left at a cell corner: a cell counts when the ring enters its square at all, so a
 // footprint standing on free cells stands on free ground.
 FootprintGrid footprint_grid(const geom::Ring& outline, double cell);
+
+// The same test for several rings (a slab's pieces, seed 001's 3D bounding grid) on the
+// cells of another footprint grid: its corner and size.
+FootprintGrid footprint_grid_within(const std::vector<geom::Ring>& rings, const FootprintGrid& frame, double cell);
 
 // The serpentine order of a grid's cells: row 0 left to right, row 1 right to left, ...
 std::vector<std::pair<int, int>> serpentine(int width, int height);

@@ -129,6 +129,11 @@ Model normalise_model(TriangleMesh mesh, const std::string& up, const std::strin
   return m;
 }
 
+void cut_slabs(ModelLibrary& library) {
+  for (Model& m : library.models)
+    if (m.kind == ModelKind::Building && m.slabs.empty()) m.slabs = model_slabs(m.mesh, m.outline, m.height);
+}
+
 namespace {
 
 [[noreturn]] void fail(const std::string& where, const std::string& what) { throw UserError(where + ": " + what); }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "generate/placement/obj_file.h"
+#include "generate/placement/slabs.h"
 #include "generate/city/channels.h"
 #include "generate/city/random.h"
 #include "generate/city/sketch.h"
@@ -61,7 +62,15 @@ struct Model {
   // kOutlineCorners corners, a polygon of that many sides around it.
   geom::Ring outline;
   double width = 0, depth = 0, height = 0;  // along x, y and z
+  // Seed 001's 3D bounding grid, exactly (slabs.h): made by cut_slabs only when a zone type
+  // asks for nesting; empty otherwise.
+  std::vector<Slab> slabs;
 };
+
+// The model's slabs, or one slab of its whole outline where it has none.
+inline std::vector<Slab> slabs_of(const Model& m) {
+  return m.slabs.empty() ? std::vector<Slab>{{0, m.height, {m.outline}}} : m.slabs;
+}
 
 inline constexpr std::size_t kExactOutlineTriangles = 20000;
 inline constexpr double kLotMargin = 0.5;  // m: a library lot's room around its model at its smallest, each side
@@ -78,6 +87,9 @@ struct ModelLibrary {
   // sketch does not define.
   void check_channels(const std::vector<ChannelSpec>& channels) const;
 };
+
+// Cuts every building model into slabs (model_slabs), for grid filling with nesting.
+void cut_slabs(ModelLibrary& library);
 
 // The models a placer or lot layout draws from, each with its weight where it draws: the
 // library's weight times its channel affinity there (seed 004).

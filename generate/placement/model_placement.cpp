@@ -37,15 +37,33 @@ ModelInstance made(const Model& m, const Placement& p, geom::Ring ring) {
   return placed;
 }
 
-geom::Ring placed_outline(const Model& m, const Placement& p) {
+namespace {
+
+// A ring of the model's frame turned by the placement's angle, scaled, moved and rounded.
+geom::Ring placed_ring(const geom::Ring& model_ring, const Placement& p) {
   const double c = std::cos(p.angle) * p.scale, s = std::sin(p.angle) * p.scale;
   geom::Ring ring;
-  for (Vec2 v : m.outline) {
+  for (Vec2 v : model_ring) {
     Vec2 w = geom::snap(Vec2{p.position.x + c * v.x - s * v.y, p.position.y + s * v.x + c * v.y});
     if (ring.empty() || !(w == ring.back())) ring.push_back(w);
   }
   while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
   return ring;
+}
+
+}  // namespace
+
+geom::Ring placed_outline(const Model& m, const Placement& p) { return placed_ring(m.outline, p); }
+
+std::vector<Slab> placed_slabs(const Model& m, const Placement& p, const geom::Ring& footprint) {
+  std::vector<Slab> slabs = slabs_of(m);
+  for (Slab& s : slabs) {
+    s.bottom *= p.scale, s.top *= p.scale;
+    for (geom::Ring& r : s.outline) r = placed_ring(r, p);
+    if (std::any_of(s.outline.begin(), s.outline.end(), [](const geom::Ring& r) { return geom::ring_orientation(r) != 1; }))
+      s.outline = {footprint};
+  }
+  return slabs;
 }
 
 namespace {

@@ -27,6 +27,11 @@ std::vector<ModelInstance> place_models(Occupancy& occupancy, const Choices& cho
 // The model's outline turned by `angle`, scaled and moved to `position`, on the grid.
 geom::Ring placed_outline(const Model& model, const Placement& p);
 
+// The model's slabs (slabs_of) in place: outlines turned, scaled, moved and rounded as
+// placed_outline's (a ring that rounds to no simple counter-clockwise one gives way to the
+// whole `footprint`), heights scaled; the lowest from 0.
+std::vector<Slab> placed_slabs(const Model& model, const Placement& p, const geom::Ring& footprint);
+
 // The model standing there, its footprint `ring` (placed_outline's).
 ModelInstance made(const Model& model, const Placement& p, geom::Ring ring);
 

@@ -33,15 +33,23 @@ bool Occupancy::inside(const geom::Ring& ring) const {
   return geom::ring_orientation(ring) == 1 && piece_.holds(ring);
 }
 
-bool Occupancy::free(const geom::Ring& ring) const {
+bool Occupancy::free(const geom::Ring& ring, const std::vector<Slab>* slabs) const {
   if (!inside(ring)) return false;
-  return std::none_of(taken_.begin(), taken_.end(), [&](const geom::Ring& t) { return geom::rings_meet(ring, t); });
+  const double floor = slabs && !taken_.empty() ? ground_under(ring).second : 0;
+  return std::none_of(taken_.begin(), taken_.end(), [&](const Taken& t) {
+    if (!geom::rings_meet(ring, t.ring)) return false;
+    return !slabs || t.slabs.empty() || slabs_meet(*slabs, floor, t.slabs, t.floor);
+  });
 }
 
-bool Occupancy::take(const geom::Ring& ring) {
-  if (!free(ring)) return false;
-  taken_.push_back(ring);
+bool Occupancy::take(const geom::Ring& ring, const std::vector<Slab>* slabs) {
+  if (!free(ring, slabs)) return false;
+  taken_.push_back({ring, slabs ? *slabs : std::vector<Slab>{}, slabs ? ground_under(ring).second : 0});
   return true;
+}
+
+std::pair<double, double> Occupancy::ground_under(const geom::Ring& ring) const {
+  return terrain_ ? terrain_->range_under(ring) : std::pair<double, double>{0, 0};
 }
 
 }  // namespace exacity
