@@ -184,6 +184,30 @@ TEST(Sketch, GridFillingSettingsAreReadAndChecked) {
   expect_error(with_features(kSquare, R"({"zones": {"residential": {"grid_cell": 0}}})"), {"grid_cell"});
   expect_error(with_features(kSquare, R"({"zones": {"residential": {"grid_passes": 1.5}}})"), {"grid_passes", "whole"});
   expect_error(with_features(kSquare, R"({"zones": {"residential": {"grid_passes": 17}}})"), {"grid_passes"});
+  expect_error(with_features(kSquare, R"({"zones": {"residential": {"nesting": true}}})"), {"nesting", "\"placement\": \"grid\""});
+}
+
+TEST(Sketch, ChannelsAreReadAndChecked) {
+  Sketch s = parse_sketch(with_features(kSquare, R"({"channels": {"wealth": {"image": "w.png", "bounds": [0, 0, 10, 20]},
+      "downtown": {"image": "maps/d.png", "bounds": [-5, -5, 5, 5]}}, "channel_sharpness": 2,
+      "zones": {"commercial": {"height_channel": "downtown"}}})"),
+                          "dir/city.geojson");
+  ASSERT_EQ(s.channels.size(), 2u);
+  EXPECT_EQ(s.channels[0].name, "downtown");  // by name
+  EXPECT_EQ(s.channels[0].image, std::filesystem::path("dir/maps/d.png"));
+  EXPECT_EQ(s.channels[1].bounds.max_y, 20);
+  EXPECT_EQ(s.channel_sharpness, 2);
+  EXPECT_EQ(s.zone_settings.at(ZoneType::Commercial).buildings.height_channel, "downtown");
+  expect_error(with_features(kSquare, R"({"channels": [1]})"), {"\"exacity\".channels", "by name"});
+  expect_error(with_features(kSquare, R"({"channels": {"w": {"image": "w.png"}}})"), {"channels.w.bounds"});
+  expect_error(with_features(kSquare, R"({"channels": {"w": {"image": "w.png", "bounds": [0, 0, 0, 5]}}})"),
+               {"channels.w.bounds", "zero area"});
+  expect_error(with_features(kSquare, R"({"channels": {"w": {"bounds": [0, 0, 1, 1]}}})"), {"channels.w.image"});
+  expect_error(with_features(kSquare, R"({"channels": {"w": {"image": "w.png", "bounds": [0, 0, 1, 1], "gamma": 2}}})"),
+               {"unknown key \"gamma\""});
+  expect_error(with_features(kSquare, R"({"channel_sharpness": -1})"), {"channel_sharpness"});
+  expect_error(with_features(kSquare, R"({"zones": {"residential": {"height_channel": "wealth"}}})"),
+               {"height_channel", "\"wealth\" is not a channel"});
 }
 
 TEST(Sketch, CameraAndDensityAndModelsAreRead) {

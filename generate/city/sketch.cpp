@@ -515,8 +515,10 @@ void lay_out_by_streets(nlohmann::ordered_json& doc) {
 }
 
 Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& models) {
+  const SketchSource source = sketch_source(path);
   std::ifstream in(path, std::ios::binary);
-  if (!in || fs::is_directory(path)) {  // a folder opens, and reads as nothing
+  // A folder opens, and reads as nothing; but OGR reads a folder of shapefiles as one.
+  if (!in || (fs::is_directory(path) && source != SketchSource::Ogr)) {
     throw UserError(path.string() + ": cannot read the sketch (" +
                     (fs::exists(path) ? "permission denied or not a file" : "no such file") +
                     "); give the path of a GeoJSON sketch, a grid map (.grid), a vector file OGR reads or an OSM extract");
@@ -529,7 +531,6 @@ Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& mod
     if (sketch.geojson.empty()) sketch.geojson = made;
     return sketch;
   };
-  const SketchSource source = sketch_source(path);
   if (source == SketchSource::Osm || source == SketchSource::Ogr) {
     in.close();
     nlohmann::ordered_json doc = source == SketchSource::Osm ? osm_sketch_document(path) : ogr_sketch_document(path);

@@ -12,7 +12,7 @@ namespace exacity {
 
 enum class SketchSource { GeoJson, GridMap, Osm, Ogr };
 // By the file's extension: .geojson and .json are GeoJSON, .grid a grid map, .osm and .pbf
-// OpenStreetMap, anything else a vector file for OGR.
+// OpenStreetMap, anything else (a folder of shapefiles included) a vector file for OGR.
 SketchSource sketch_source(const std::filesystem::path& path);
 
 // The settings file beside a sketch: its name with ".exacity.json" in place of its extension

@@ -60,6 +60,8 @@ BuildingSettings read_building_settings(const SettingsReader& s, BuildingSetting
   s.number("grid_cell", b.grid_cell, 0.1, 10);
   s.whole_number("grid_passes", b.grid_passes, 1, 16, "passes");
   s.boolean("nesting", b.nesting);
+  if (b.nesting && b.placement != "grid")
+    s.fail("nesting", "nesting stands models under others' overhangs in grid filling; set \"placement\": \"grid\" too, or remove it");
   if (s.has("height_channel")) {
     if (!s.at("height_channel").is_string() || s.at("height_channel").get<std::string>().empty())
       s.fail("height_channel", "expected the name of a channel (\"exacity\".channels)");

@@ -1,0 +1,316 @@
+// In and out of the GIS and OSM ecosystems (README, GIS and OpenStreetMap): sketches read
+// through OGR and libosmium, lon/lat projected through PROJ, the layers written through OGR
+// and the city as an OSM file, each read back with the library made for it.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+
+#include <gdal_priv.h>
+#include <gdal_utils.h>
+#include <ogrsf_frmts.h>
+#include <osmium/handler.hpp>
+#include <osmium/io/any_input.hpp>
+#include <osmium/visitor.hpp>
+
+#include "generate/city/sketch.h"
+#include "generate/errors.h"
+#include "generate/export/gis_export.h"
+#include "generate/gis/projection.h"
+#include "generate/pipeline.h"
+#include "tests/cli_util.h"
+#include "tests/test_util.h"
+
+using namespace exacity;
+namespace fs = std::filesystem;
+using nlohmann::ordered_json;
+
+namespace {
+
+const fs::path kVillage = cli_util::kSource / "examples" / "osm" / "village.osm";
+
+// A small town in metres in UTM zone 35N (Helsinki): a residential zone, a park, a highway.
+ordered_json town_in_metres() {
+  return ordered_json::parse(R"({"type": "FeatureCollection",
+    "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32635"}},
+    "features": [
+      {"type": "Feature", "properties": {"zone": "residential", "name": "Kallio"},
+       "geometry": {"type": "Polygon", "coordinates": [[[385000, 6672000], [385600, 6672000], [385600, 6672500], [385000, 6672500], [385000, 6672000]]]}},
+      {"type": "Feature", "properties": {"zone": "park"},
+       "geometry": {"type": "Polygon", "coordinates": [[[385100, 6672300], [385200, 6672300], [385200, 6672400], [385100, 6672400], [385100, 6672300]]]}},
+      {"type": "Feature", "properties": {"road": "highway", "width": 20},
+       "geometry": {"type": "LineString", "coordinates": [[384950, 6671990], [385650, 6672010]]}}]})");
+}
+
+const ordered_json kSettings = ordered_json::parse(R"({"seed": 3, "zones": {"residential": {"block_area": 9000}}})");
+
+void write(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::binary) << text; }
+
+// Generates the sketch into `out` with the given extra vector formats; the city.
+GenerateResult generate(const fs::path& sketch, const fs::path& out, std::vector<std::string> formats = {}) {
+  fs::remove_all(out);
+  fs::create_directories(out);
+  StageClock clock(nullptr, kCityStages + kWriteStages);
+  City city = build_city(load_sketch(sketch), clock);
+  return write_city(city, out, clock, {std::move(formats)});
+}
+
+// The vector layers of two output folders are the same files.
+void expect_same_layers(const fs::path& a, const fs::path& b) {
+  for (const char* layer : {"zones", "water", "roads", "road_areas", "blocks", "lots", "buildings"}) {
+    const fs::path file = fs::path("vector") / (std::string(layer) + ".geojson");
+    EXPECT_EQ(cli_util::read(a / file), cli_util::read(b / file)) << file;
+  }
+}
+
+// Converts a GeoJSON file with OGR (ogr2ogr's library call).
+void translate(const fs::path& from, const fs::path& to, const char* driver) {
+  start_gdal();
+  GDALDatasetH source = GDALOpenEx(from.string().c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr);
+  ASSERT_NE(source, nullptr);
+  char* args[] = {const_cast<char*>("-f"), const_cast<char*>(driver), nullptr};
+  GDALVectorTranslateOptions* options = GDALVectorTranslateOptionsNew(args, nullptr);
+  int error = 0;
+  GDALDatasetH made = GDALVectorTranslate(to.string().c_str(), nullptr, 1, &source, options, &error);
+  GDALVectorTranslateOptionsFree(options);
+  ASSERT_NE(made, nullptr);
+  GDALClose(made);
+  GDALClose(source);
+}
+
+std::string error_of(const fs::path& sketch) {
+  try {
+    load_sketch(sketch);
+  } catch (const UserError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(Gis, ALonLatSketchIsTheCityOfItsProjectionByHand) {
+  const fs::path dir = testing_util::temp_dir("gis-lonlat");
+  // By hand: every position to WGS 84 lon/lat, the same as a QGIS user's layer.
+  ordered_json metres = town_in_metres();
+  metres["exacity"] = kSettings;
+  ordered_json lonlat = metres;
+  lonlat.erase("crs");
+  OGRSpatialReference utm, wgs84;
+  utm.importFromEPSG(32635), wgs84.importFromEPSG(4326);
+  utm.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER), wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  std::unique_ptr<OGRCoordinateTransformation> to_lonlat(OGRCreateCoordinateTransformation(&utm, &wgs84));
+  std::unique_ptr<OGRCoordinateTransformation> to_utm(OGRCreateCoordinateTransformation(&wgs84, &utm));
+  std::function<void(ordered_json&, ordered_json&)> each = [&](ordered_json& c, ordered_json& back) {
+    if (c[0].is_number()) {
+      double x = c[0], y = c[1];
+      to_lonlat->Transform(1, &x, &y);
+      c = {x, y};
+      double bx = x, by = y;
+      to_utm->Transform(1, &bx, &by);  // what Exacity's projection gives, done by hand
+      back = {bx, by};
+      return;
+    }
+    for (std::size_t i = 0; i < c.size(); ++i) each(c[i], back[i]);
+  };
+  for (std::size_t f = 0; f < lonlat["features"].size(); ++f)
+    each(lonlat["features"][f]["geometry"]["coordinates"], metres["features"][f]["geometry"]["coordinates"]);
+  write(dir / "lonlat.geojson", lonlat.dump());
+  write(dir / "metres.geojson", metres.dump());
+
+  const Sketch sketch = load_sketch(dir / "lonlat.geojson");
+  EXPECT_EQ(epsg_of(sketch.crs), 32635);
+  EXPECT_EQ(sketch.zones[0].polygons[0].outer[0].x, metres["features"][0]["geometry"]["coordinates"][0][0][0].get<double>());
+  EXPECT_NEAR(sketch.zones[0].polygons[0].outer[0].x, 385000, 1e-6);
+  const GenerateResult a = generate(dir / "lonlat.geojson", dir / "a"), b = generate(dir / "metres.geojson", dir / "b");
+  EXPECT_TRUE(a.valid);
+  EXPECT_GT(a.report["counts"]["lots"].get<int>(), 20);
+  expect_same_layers(dir / "a", dir / "b");
+  // The outputs carry the CRS, CityJSON's reference system too.
+  EXPECT_NE(cli_util::read(dir / "a" / "vector" / "lots.geojson").find("EPSG::32635"), std::string::npos);
+  EXPECT_NE(cli_util::read(dir / "a" / "city.city.json").find("EPSG/0/32635"), std::string::npos);
+}
+
+TEST(Gis, GeoPackageAndShapefileSketchesGiveTheSameCity) {
+  const fs::path dir = testing_util::temp_dir("gis-formats");
+  ordered_json town = town_in_metres();
+  write(dir / "town.geojson", town.dump());
+  write(dir / "town.exacity.json", kSettings.dump());  // settings beside, for every format
+  translate(dir / "town.geojson", dir / "town.gpkg", "GPKG");
+  // A shapefile holds one kind of geometry: zones and roads in two, a folder OGR reads as one.
+  ordered_json zones = town, roads = town;
+  zones["features"].erase(2);
+  roads["features"].erase(0), roads["features"].erase(0);
+  write(dir / "zones.geojson", zones.dump());
+  write(dir / "roads.geojson", roads.dump());
+  fs::create_directories(dir / "shp");
+  translate(dir / "zones.geojson", dir / "shp" / "zones.shp", "ESRI Shapefile");
+  translate(dir / "roads.geojson", dir / "shp" / "roads.shp", "ESRI Shapefile");
+  write(dir / "shp.exacity.json", kSettings.dump());
+  const GenerateResult geojson = generate(dir / "town.geojson", dir / "from-geojson");
+  EXPECT_TRUE(geojson.valid);
+  EXPECT_EQ(geojson.report["seed"], 3);  // the settings beside were read
+  generate(dir / "town.gpkg", dir / "from-gpkg");
+  generate(dir / "shp", dir / "from-shp");
+  expect_same_layers(dir / "from-geojson", dir / "from-gpkg");
+  expect_same_layers(dir / "from-geojson", dir / "from-shp");
+}
+
+TEST(Gis, AnOsmExtractBecomesZonesRoadsAndWater) {
+  const Sketch sketch = load_sketch(kVillage);
+  EXPECT_EQ(epsg_of(sketch.crs), 32632);  // lon 10: UTM zone 32N
+  std::multiset<ZoneType> zones;
+  for (const ZoneFeature& z : sketch.zones) zones.insert(z.type);
+  EXPECT_EQ(zones, (std::multiset<ZoneType>{ZoneType::Residential, ZoneType::Commercial, ZoneType::Park,
+                                            ZoneType::Water, ZoneType::Water}));  // the pond and the river
+  for (const ZoneFeature& z : sketch.zones)
+    if (z.type == ZoneType::Commercial) {  // the multipolygon relation, its courtyard a hole
+      ASSERT_EQ(z.polygons.size(), 1u);
+      EXPECT_EQ(z.polygons[0].holes.size(), 1u);
+      EXPECT_NE(z.source.find("relation 900"), std::string::npos) << z.source;
+    }
+  std::map<RoadClass, int> roads;
+  for (const RoadFeature& r : sketch.roads) {
+    ++roads[r.road_class];
+    if (r.road_class == RoadClass::Highway) {
+      EXPECT_EQ(r.width, 14);  // lanes=4
+    }
+  }
+  EXPECT_EQ(roads[RoadClass::Highway], 1);
+  EXPECT_EQ(roads[RoadClass::Local], 5);  // the footway and the tunnel left out
+  EXPECT_EQ(sketch.zone_settings.at(ZoneType::Residential).roads.layout, "streets");
+  EXPECT_EQ(sketch.seed, 11u);  // village.exacity.json
+  const ordered_json doc = ordered_json::parse(sketch.geojson);
+  EXPECT_EQ(doc["osm"]["skipped"], ordered_json::parse(R"({"highway=footway": 1, "tunnel": 1})"));
+
+  const fs::path out = testing_util::temp_dir("gis-village") / "out";
+  const GenerateResult result = generate(kVillage, out);
+  EXPECT_TRUE(result.valid);
+  EXPECT_GT(result.report["counts"]["lots"].get<int>(), 50);
+  EXPECT_EQ(result.report["counts"]["water"].get<int>(), 2);
+}
+
+TEST(Gis, EveryVectorFormatReadsBackWithOgr) {
+  const fs::path out = testing_util::temp_dir("gis-out") / "out";
+  const GenerateResult result = generate(kVillage, out, {"gpkg", "fgb", "shp", "dxf"});
+  ASSERT_TRUE(result.valid);
+  start_gdal();
+  auto open = [](const fs::path& file) {
+    return GDALDatasetUniquePtr(GDALDataset::Open(file.string().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  };
+  const std::vector<std::string> layers{"blocks", "buildings", "lots", "road_areas", "roads", "water", "zones"};
+  std::map<std::string, std::size_t> counts;
+  for (const std::string& name : layers) {
+    std::vector<std::string> problems;
+    counts[name] = read_geojson(out / "vector" / (name + ".geojson"), problems).features.size();
+  }
+  auto expect_layer = [&](OGRLayer* layer, const std::string& name, const std::string& where) {
+    ASSERT_NE(layer, nullptr) << where << " " << name;
+    EXPECT_EQ(static_cast<std::size_t>(layer->GetFeatureCount()), counts[name]) << where << " " << name;
+    const OGRSpatialReference* srs = layer->GetSpatialRef();
+    ASSERT_NE(srs, nullptr) << where << " " << name;
+    EXPECT_STREQ(srs->GetAuthorityCode(nullptr), "32632") << where << " " << name;
+    EXPECT_GE(layer->GetLayerDefn()->GetFieldIndex("id"), 0) << where << " " << name;
+  };
+  GDALDatasetUniquePtr gpkg = open(out / "city.gpkg");
+  ASSERT_TRUE(gpkg);
+  EXPECT_EQ(gpkg->GetLayerCount(), static_cast<int>(layers.size()));
+  for (const std::string& name : layers) {
+    expect_layer(gpkg->GetLayerByName(name.c_str()), name, "city.gpkg");
+    GDALDatasetUniquePtr fgb = open(out / "vector" / (name + ".fgb"));
+    ASSERT_TRUE(fgb) << name;
+    expect_layer(fgb->GetLayer(0), name, name + ".fgb");
+    GDALDatasetUniquePtr shp = open(out / "vector" / "shp" / (name + ".shp"));
+    ASSERT_TRUE(shp) << name;
+    expect_layer(shp->GetLayer(0), name, name + ".shp");
+  }
+  // Attributes as the GeoJSON has them: a lot's block, a building's height.
+  OGRLayer* buildings = gpkg->GetLayerByName("buildings");
+  OGRFeatureUniquePtr first(buildings->GetNextFeature());
+  ASSERT_TRUE(first);
+  EXPECT_GT(first->GetFieldAsDouble("height"), 0);
+  EXPECT_STREQ(first->GetFieldAsString("kind"), "building");
+  // DXF: every layer's entities on a CAD layer of its name.
+  GDALDatasetUniquePtr dxf = open(out / "city.dxf");
+  ASSERT_TRUE(dxf);
+  std::map<std::string, std::size_t> cad;
+  OGRLayer* entities = dxf->GetLayer(0);
+  for (OGRFeatureUniquePtr f(entities->GetNextFeature()); f; f.reset(entities->GetNextFeature())) ++cad[f->GetFieldAsString("Layer")];
+  for (const std::string& name : layers)
+    EXPECT_EQ(cad[name], counts[name]) << name;
+}
+
+TEST(Gis, CityOsmReadsBackWithOsmiumAsOneNetworkAndClosedBuildings) {
+  const fs::path out = testing_util::temp_dir("gis-osm") / "out";
+  const GenerateResult result = generate(kVillage, out);
+  ASSERT_TRUE(result.valid);
+  EXPECT_EQ(result.report["exports"]["city_osm"], "city.osm");
+  struct Reader : osmium::handler::Handler {
+    std::map<osmium::object_id_type, osmium::object_id_type> parent;  // union-find over nodes
+    osmium::object_id_type find(osmium::object_id_type n) {
+      while (parent.count(n) && parent[n] != n) n = parent[n] = parent.count(parent[n]) ? parent[parent[n]] : parent[n];
+      return n;
+    }
+    int highways = 0, buildings = 0, open_buildings = 0;
+    std::set<osmium::object_id_type> street_nodes;
+    bool in_place = true;
+    void node(const osmium::Node& n) {
+      in_place &= std::abs(n.location().lon() - 10.003) < 0.02 && std::abs(n.location().lat() - 48.0015) < 0.02;
+    }
+    void way(const osmium::Way& w) {
+      if (w.tags().has_key("highway")) {
+        ++highways;
+        for (const auto& ref : w.nodes()) {
+          street_nodes.insert(ref.ref());
+          parent.try_emplace(ref.ref(), ref.ref());
+          parent[find(ref.ref())] = find(w.nodes().front().ref());
+        }
+      }
+      if (w.tags().has_tag("building", "yes")) ++buildings, open_buildings += !w.is_closed();
+    }
+  } reader;
+  osmium::io::Reader file{(out / "city.osm").string()};
+  osmium::apply(file, reader);
+  file.close();
+  EXPECT_TRUE(reader.in_place);
+  EXPECT_EQ(reader.highways, result.report["counts"]["roads"].get<int>());
+  EXPECT_GT(reader.buildings, 50);
+  EXPECT_EQ(reader.open_buildings, 0);
+  std::set<osmium::object_id_type> components;
+  for (osmium::object_id_type n : reader.street_nodes) components.insert(reader.find(n));
+  EXPECT_EQ(components.size(), 1u);  // one street network: junctions share their nodes
+}
+
+TEST(Gis, BadInputsAreOneLineNamingTheFile) {
+  const fs::path dir = testing_util::temp_dir("gis-bad");
+  write(dir / "junk.gpkg", "not a database");
+  EXPECT_NE(error_of(dir / "junk.gpkg").find("junk.gpkg: OGR cannot read it"), std::string::npos) << error_of(dir / "junk.gpkg");
+  // A layer without zone or road fields.
+  const std::string crs = R"("crs": {"type": "name", "properties": {"name": "EPSG:32635"}}, )";
+  write(dir / "plain.geojson", R"({"type": "FeatureCollection", )" + crs + R"("features": [{"type": "Feature", "properties": {"kind": "x"},
+      "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [100, 0], [100, 100], [0, 0]]]}}]})");
+  translate(dir / "plain.geojson", dir / "plain.gpkg", "GPKG");
+  EXPECT_NE(error_of(dir / "plain.gpkg").find("layer plain: has neither a \"zone\" nor a \"road\" field"), std::string::npos)
+      << error_of(dir / "plain.gpkg");
+  // A feature's mistake names the layer and the feature.
+  write(dir / "bad.geojson", R"({"type": "FeatureCollection", )" + crs + R"("features": [{"type": "Feature", "properties": {"zone": "residental"},
+      "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [100, 0], [100, 100], [0, 0]]]}}]})");
+  translate(dir / "bad.geojson", dir / "bad.gpkg", "GPKG");
+  EXPECT_NE(error_of(dir / "bad.gpkg").find("bad.gpkg layer bad feature 1: unknown zone type \"residental\""), std::string::npos)
+      << error_of(dir / "bad.gpkg");
+  // Settings both in the sketch and beside it.
+  write(dir / "both.geojson", R"({"type": "FeatureCollection", "exacity": {"seed": 1}, "features": []})");
+  write(dir / "both.exacity.json", "{}");
+  EXPECT_NE(error_of(dir / "both.geojson").find("both.exacity.json: the sketch both.geojson has settings of its own"),
+            std::string::npos) << error_of(dir / "both.geojson");
+  // An extract with nothing Exacity reads, and one that is not OSM at all.
+  write(dir / "empty.osm", R"(<?xml version="1.0"?><osm version="0.6"><node id="1" lat="48" lon="10"/></osm>)");
+  EXPECT_NE(error_of(dir / "empty.osm").find("has no highways, land use or water"), std::string::npos) << error_of(dir / "empty.osm");
+  write(dir / "junk.osm", "{not xml");
+  EXPECT_NE(error_of(dir / "junk.osm").find("junk.osm: not a readable OpenStreetMap extract"), std::string::npos)
+      << error_of(dir / "junk.osm");
+  // A crs PROJ does not know.
+  write(dir / "crs.geojson", R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "EPSG:999999"}},
+      "features": [{"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [100, 0], [100, 100], [0, 0]]]}}]})");
+  EXPECT_NE(error_of(dir / "crs.geojson").find("is not a CRS PROJ knows"), std::string::npos) << error_of(dir / "crs.geojson");
+}
