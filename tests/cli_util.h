@@ -59,13 +59,15 @@ inline std::string geos_check(const fs::path& out) {
   return "/usr/bin/python3 " + (kSource / "tests" / "check_layers.py").string() + " " + out.string();
 }
 
-// Every example sketch, and the grid maps in examples/grid.
+// Every example sketch, the grid maps in examples/grid and the extracts in examples/osm.
 inline std::vector<fs::path> examples() {
   std::vector<fs::path> v;
   for (const auto& e : fs::directory_iterator(kSource / "examples"))
     if (e.path().extension() == ".geojson") v.push_back(e.path());
   for (const auto& e : fs::directory_iterator(kSource / "examples" / "grid"))
     if (e.path().extension() == ".grid") v.push_back(e.path());
+  for (const auto& e : fs::directory_iterator(kSource / "examples" / "osm"))
+    if (e.path().extension() == ".osm") v.push_back(e.path());
   std::sort(v.begin(), v.end());
   return v;
 }

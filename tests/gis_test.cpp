@@ -177,7 +177,7 @@ TEST(Gis, AnOsmExtractBecomesZonesRoadsAndWater) {
     }
   }
   EXPECT_EQ(roads[RoadClass::Highway], 1);
-  EXPECT_EQ(roads[RoadClass::Local], 5);  // the footway and the tunnel left out
+  EXPECT_EQ(roads[RoadClass::Local], 6);  // the footway and the tunnel left out
   EXPECT_EQ(sketch.zone_settings.at(ZoneType::Residential).roads.layout, "streets");
   EXPECT_EQ(sketch.seed, 11u);  // village.exacity.json
   const ordered_json doc = ordered_json::parse(sketch.geojson);

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes village.osm: a small OpenStreetMap extract made up for Exacity (no real place).
 
-A primary road with a river south of it, a grid of residential streets, a residential area
+A primary road with a river south of it, a grid of residential streets 200 m apart, a residential area
 (a closed way) with a park and a pond inside, a retail area (a multipolygon relation with a
 courtyard), and what Exacity leaves out: a footway and a road in a tunnel. Drawn in metres
 around lon 10, lat 48 and written in lon/lat, as OSM is.
@@ -30,15 +30,16 @@ def way(points, tags, closed=False):
 
 
 # Streets share their junction nodes, as mapped streets do.
-grid = {(x, y): node(x, y) for x in (0, 200, 400, 600) for y in (0, 400)}
+grid = {(x, y): node(x, y) for x in (0, 200, 400, 600) for y in (0, 200, 400)}
 west, east = node(-60, 0), node(660, 0)
 ways.append((100 + len(ways), [west, grid[0, 0], grid[200, 0], grid[400, 0], grid[600, 0], east],
              {"highway": "primary", "lanes": "4", "name": "Hauptstrasse"}))
 for x in (0, 200, 400, 600):
-    ways.append((100 + len(ways), [grid[x, 0], grid[x, 400]], {"highway": "residential", "width": "7 m"}))
-ways.append((100 + len(ways), [grid[0, 400], grid[200, 400], grid[400, 400], grid[600, 400]],
-             {"highway": "residential", "name": "Waldweg"}))
-way([(0, 200), (200, 200)], {"highway": "footway"})
+    ways.append((100 + len(ways), [grid[x, 0], grid[x, 200], grid[x, 400]], {"highway": "residential", "width": "7 m"}))
+for y, name in ((200, "Mittelweg"), (400, "Waldweg")):
+    ways.append((100 + len(ways), [grid[0, y], grid[200, y], grid[400, y], grid[600, y]],
+                 {"highway": "residential", "name": name}))
+way([(0, 100), (200, 100)], {"highway": "footway"})
 way([(200, 300), (400, 300)], {"highway": "residential", "tunnel": "yes"})
 way([(-80, -120), (300, -110), (700, -130)], {"waterway": "river", "width": "14"})
 way([(0, 0), (400, 0), (400, 400), (0, 400)], {"landuse": "residential"}, closed=True)
