@@ -126,6 +126,14 @@ TEST(Gis, ALonLatSketchIsTheCityOfItsProjectionByHand) {
   EXPECT_TRUE(a.valid);
   EXPECT_GT(a.report["counts"]["lots"].get<int>(), 20);
   expect_same_layers(dir / "a", dir / "b");
+  // The same drawn in a GeoPackage in EPSG:4326, its settings beside it.
+  ordered_json features = lonlat;
+  features.erase("exacity");
+  write(dir / "drawn.geojson", features.dump());
+  translate(dir / "drawn.geojson", dir / "drawn.gpkg", "GPKG");
+  write(dir / "drawn.exacity.json", kSettings.dump());
+  generate(dir / "drawn.gpkg", dir / "c");
+  expect_same_layers(dir / "a", dir / "c");
   // The outputs carry the CRS, CityJSON's reference system too.
   EXPECT_NE(cli_util::read(dir / "a" / "vector" / "lots.geojson").find("EPSG::32635"), std::string::npos);
   EXPECT_NE(cli_util::read(dir / "a" / "city.city.json").find("EPSG/0/32635"), std::string::npos);
@@ -279,6 +287,17 @@ TEST(Gis, CityOsmReadsBackWithOsmiumAsOneNetworkAndClosedBuildings) {
   std::set<osmium::object_id_type> components;
   for (osmium::object_id_type n : reader.street_nodes) components.insert(reader.find(n));
   EXPECT_EQ(components.size(), 1u);  // one street network: junctions share their nodes
+}
+
+TEST(Gis, ARealExtractGeneratesAndValidates) {
+  const fs::path extract = cli_util::kSource / ".." / "shared" / "data" / "osm" / "kotka_pyrosm_test.osm";
+  if (!fs::exists(extract)) GTEST_SKIP() << extract << " is not here (../shared/data holds real data beside the repository)";
+  const fs::path out = testing_util::temp_dir("gis-kotka") / "out";
+  const GenerateResult result = generate(extract, out);
+  EXPECT_TRUE(result.valid) << result.report["validation"].dump();
+  EXPECT_GT(result.report["counts"]["buildings"].get<int>(), 500);
+  EXPECT_EQ(result.report["exports"]["city_osm"], "city.osm");
+  EXPECT_EQ(cli_util::shell(cli_util::geos_check(out)).code, 0);
 }
 
 TEST(Gis, BadInputsAreOneLineNamingTheFile) {
