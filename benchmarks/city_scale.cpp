@@ -13,6 +13,7 @@
 
 #include <tbb/global_control.h>
 
+#include "generate/errors.h"
 #include "generate/parcels/blocks.h"
 #include "generate/parcels/lots.h"
 #include "generate/pipeline.h"
@@ -119,8 +120,27 @@ void run_every_stage(const Sketch& sketch) {
 
 }  // namespace
 
+void run(const ScaleOptions& o);
+
+constexpr const char* kUsage =
+    "usage: exacity_scale [SKETCH] [--threads N] [--until blocks|lots] [--models LIBRARY]\n"
+    "  runs SKETCH (default benchmarks/city_10km.geojson) through every stage, or until the blocks or lots,\n"
+    "  and prints each stage's seconds and counts and the peak memory\n";
+
 int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return std::printf("%s", kUsage), 0;
   const ScaleOptions o = parse_options(argc, argv);
+  try {
+    run(o);
+  } catch (const UserError& e) {
+    std::fprintf(stderr, "exacity_scale: error: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}
+
+void run(const ScaleOptions& o) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, o.threads);
   Sketch sketch = load_sketch(o.sketch_path);
   if (!o.models.empty()) sketch.models = fs::absolute(o.models);
@@ -128,5 +148,4 @@ int main(int argc, char** argv) {
               sketch.models.string().c_str(), o.threads);
   if (o.until == "blocks" || o.until == "lots") run_road_stages(sketch, o.until == "lots");
   else run_every_stage(sketch);
-  return 0;
 }
