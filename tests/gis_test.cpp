@@ -89,6 +89,15 @@ std::string error_of(const fs::path& sketch) {
 
 }  // namespace
 
+TEST(Gis, UtmZonesFromLonLat) {
+  EXPECT_EQ(utm_epsg(10, 48), 32632);
+  EXPECT_EQ(utm_epsg(151.2, -33.87), 32756);  // south: 327xx
+  EXPECT_EQ(utm_epsg(-0.12, 51.5), 32630);
+  EXPECT_EQ(utm_epsg(-180, 0), 32601);
+  EXPECT_EQ(utm_epsg(179.99, 0), 32660);
+  EXPECT_EQ(utm_epsg(180.002, 0.5), 32601);  // drawn across the antimeridian
+}
+
 TEST(Gis, ALonLatSketchIsTheCityOfItsProjectionByHand) {
   const fs::path dir = testing_util::temp_dir("gis-lonlat");
   // By hand: every position to WGS 84 lon/lat, the same as a QGIS user's layer.

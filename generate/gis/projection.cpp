@@ -86,6 +86,7 @@ std::optional<int> epsg_of(const ordered_json& crs) {
 }
 
 int utm_epsg(double lon, double lat) {
+  lon = std::fmod(std::fmod(lon + 180, 360) + 360, 360) - 180;  // into [-180, 180)
   const int zone = std::clamp(static_cast<int>(std::floor((lon + 180) / 6)) + 1, 1, 60);
   return (lat >= 0 ? 32600 : 32700) + zone;
 }
@@ -108,8 +109,9 @@ bool project_to_metres(ordered_json& doc, const std::filesystem::path& path) {
                       " is not a CRS PROJ knows; name one like {\"type\": \"name\", \"properties\": {\"name\": \"EPSG:32633\"}}");
     geographic = srs.IsGeographic();
   } else {
-    // GeoJSON's default is lon/lat; a sketch in metres spans more than a metre.
-    geographic = box.width() < 1 && box.height() < 1 && box.min_x >= -180 && box.max_x <= 180 && box.min_y >= -90 &&
+    // GeoJSON's default is lon/lat; a sketch in metres spans more than a metre. Longitudes
+    // past ±180 come from tools that draw across the antimeridian without splitting.
+    geographic = box.width() < 1 && box.height() < 1 && box.min_x >= -360 && box.max_x <= 360 && box.min_y >= -90 &&
                  box.max_y <= 90;
   }
   if (!geographic) return false;
