@@ -8,6 +8,7 @@
 #include "generate/parcels/blocks.h"
 #include "generate/placement/buildings.h"
 #include "generate/export/cityjson_export.h"
+#include "generate/export/clutter_layer.h"
 #include "generate/errors.h"
 #include "generate/export/gltf_export.h"
 #include "generate/parcels/lots.h"
@@ -86,6 +87,11 @@ City build_city(const Sketch& sketch, StageClock& stages) {
   stages.run("vector layers", [&] {
     city.ground = extract_ground(city.network.map, city.blocks, city.lots, sketch);
     city.layers = layers_of(city.ground, city.buildings, city.models, city.model_library());
+  });
+  // After the ground, whose centre lines the clutter dresses and names (docs/design.md, Placement).
+  city.clutter = stages.run("clutter", [&] {
+    return place_clutter({city.network.map, city.ground, city.lots, city.buildings, city.models}, city.model_library(),
+                         city.channels, sketch, city.heightmap());
   });
   return city;
 }
@@ -201,9 +207,19 @@ ordered_json counts_report(const City& city, const MeshCounts& mesh, const GltfC
           {"green_spaces", green},
           {"lots", layers.lots.features.size()},
           {"buildings", layers.buildings.features.size()},
+          {"clutter", city.clutter.items.size()},
           {"map", {{"vertices", counts.vertices}, {"edges", counts.edges}, {"faces", counts.faces}}},
           {"mesh", {{"vertices", mesh.vertices}, {"faces", mesh.faces}}},
           {"gltf", {{"meshes", gltf.meshes}, {"instances", gltf.instances}, {"triangles", gltf.triangles}}}};
+}
+
+// report.json's clutter: what stands by kind, and the spots that found no place by kind and
+// why, so no spot is dropped without a word (docs/design.md, Placement).
+ordered_json clutter_report(const ClutterTally& tally) {
+  ordered_json placed = ordered_json::object(), missed = ordered_json::array();
+  for (const auto& [kind, n] : tally.placed) placed[kind] = n;
+  for (const auto& [key, n] : tally.missed) missed.push_back({{"kind", key.first}, {"why", key.second}, {"spots", n}});
+  return {{"placed", placed}, {"not_placed", missed}};
 }
 
 // The vector layers, a copy of the sketch and the SVG map.
@@ -220,6 +236,8 @@ void export_vectors(const City& city, const fs::path& dir) {
   for (const Layer* l : {&layers.zones, &layers.water, &layers.roads, &layers.road_areas, &layers.blocks, &layers.lots,
                          &layers.buildings})
     write_geojson(*l, city.sketch.crs, dir / "vector" / (l->name + ".geojson"));
+  write_point_geojson(clutter_layer(city.clutter.items, city.model_library()), city.sketch.crs,
+                      dir / "vector" / "clutter.geojson");
   write_svg_map(city.ground, city.buildings, city.models, dir / "map.svg");
 }
 
@@ -254,6 +272,7 @@ GenerateResult write_city(const City& city, const fs::path& dir, StageClock& sta
       {"unbuilt_lots", {{"merged", city.unbuilt_lots.merged}, {"left_open", city.unbuilt_lots.left_open}}},
       {"empty_zones", empty_zones_report(city)},
       {"placement_fallbacks", placement_fallbacks_report(city)},
+      {"clutter", clutter_report(city.clutter.tally)},
       {"statistics", city_statistics(city.layers, &sketch)},
       {"validation",
        {{"ok", validation.ok()}, {"problems", validation.problems}, {"widest_sliver_m", validation.widest_sliver}}},
