@@ -246,8 +246,11 @@ MeshCounts export_3d(const City& city, const fs::path& dir, GltfCounts& gltf) {
   const ModelLibrary* library = city.model_library();
   std::vector<Mesh> meshes = structure_meshes(city.buildings, city.models, library);
   write_cityjson(city.ground, city.buildings, city.models, meshes, library, city.heightmap(), city.sketch,
-                 dir / "city.city.json");
-  gltf = write_gltf(city.ground, city.buildings, city.models, meshes, library, city.heightmap(), dir / "city.glb");
+                 dir / "city.city.json", city.clutter.items);
+  std::vector<ModelInstance> clutter;
+  for (const Clutter& c : city.clutter.items) clutter.push_back(c.instance);
+  gltf = write_gltf(city.ground, city.buildings, city.models, meshes, library, city.heightmap(), dir / "city.glb",
+                    clutter);
   return write_meshes(city.buildings, city.models, meshes, dir / "city.obj", dir / "city.ply");
 }
 

@@ -18,6 +18,13 @@ bool rings_meet(const Ring& a, const Ring& b);
 // the two do not cross (they may touch, or share edges), decided exactly.
 bool ring_within(const Ring& ring, const Ring& outer);
 
+// Where p lies against the simple ring, decided exactly: +1 inside, 0 on it, -1 outside.
+int point_side(const Ring& ring, Vec2 p);
+
+// The same against a polygon of simple rings (inside: inside its outer ring and outside
+// every hole).
+int point_side(const Polygon& polygon, Vec2 p);
+
 // The convex hull of the points, counter-clockwise, without collinear points; exact.
 Ring convex_hull(const std::vector<Vec2>& points);
 
