@@ -101,7 +101,7 @@ std::vector<std::pair<double, double>> mesh_points(const tinygltf::Model& model,
 }
 
 struct GlbCounts {
-  int buildings = 0, models = 0;
+  int buildings = 0, models = 0, clutter = 0;
 };
 
 // Every extruded building of buildings.geojson stands in city.glb's building mesh (a vertex
@@ -118,9 +118,14 @@ GlbCounts check_glb_holds_every_building(const fs::path& out) {
   EXPECT_EQ(root.name, "city");
   std::map<std::pair<long, long>, std::vector<std::pair<double, double>>> building_points;  // by metre square
   std::vector<const tinygltf::Node*> model_nodes;
+  const tinygltf::Node* clutter = nullptr;
   for (int child : root.children) {
     const tinygltf::Node& n = model.nodes.at(child);
     if (n.name == "ground") continue;
+    if (n.name == "clutter") {
+      clutter = &n;
+      continue;
+    }
     if (n.name == "buildings") {
       for (auto [x, y] : mesh_points(model, n.mesh, root))
         building_points[{std::lround(std::floor(x)), std::lround(std::floor(y))}].push_back({x, y});
@@ -162,6 +167,18 @@ GlbCounts check_glb_holds_every_building(const fs::path& out) {
         << "building " << f["properties"]["id"] << ": its node stands at " << x << ", " << y << ", off its footprint";
   }
   EXPECT_EQ(model_nodes.size(), next_model) << "city.glb places more models than buildings.geojson lists";
+  // Street clutter: a node each under "clutter", in id order, its origin within a few metres
+  // of where clutter.geojson says it stands (the origin is the model's, the point its base's).
+  const json pieces = layer(out, "clutter");
+  EXPECT_EQ(clutter ? clutter->children.size() : 0, pieces.size()) << "city.glb's clutter nodes";
+  for (std::size_t i = 0; clutter && i < std::min(pieces.size(), clutter->children.size()); ++i) {
+    const tinygltf::Node& n = model.nodes.at(clutter->children[i]);
+    const double x = root.translation[0] + n.translation.at(0), y = -(root.translation[2] + n.translation.at(2));
+    const json& at = pieces[i]["geometry"]["coordinates"];
+    EXPECT_LT(std::hypot(x - at[0].get<double>(), y - at[1].get<double>()), 3) << "clutter " << i;
+    EXPECT_EQ(n.name, pieces[i]["properties"]["model"].get<std::string>()) << "clutter " << i;
+    ++counts.clutter;
+  }
   return counts;
 }
 
@@ -241,10 +258,11 @@ TEST(Cli, EveryExampleGeneratesAndValidates) {
 
     EXPECT_EQ(svg_groups(read(out / "map.svg")), expected_svg_groups(out)) << sketch << ": map.svg";
     GlbCounts counts = check_glb_holds_every_building(out);
-    in_glb.buildings += counts.buildings, in_glb.models += counts.models;
+    in_glb.buildings += counts.buildings, in_glb.models += counts.models, in_glb.clutter += counts.clutter;
   }
   EXPECT_GT(in_glb.buildings, 0) << "no example has an extruded building to find in city.glb";
   EXPECT_GT(in_glb.models, 0) << "no example has a placed model to find in city.glb";
+  EXPECT_GT(in_glb.clutter, 0) << "no example has street clutter to find in city.glb (the hillside should)";
 }
 
 // Schemas only: cli_test checks every example's solids, indices and templates without them.

@@ -271,7 +271,13 @@ GltfCounts write_gltf(const Ground& ground, const std::vector<Building>& buildin
   GltfCounts counts;
   StoredModels stored;
   counts.instances = add_model_nodes(models, library, local, glb, root, stored);
-  counts.instances += add_model_nodes(clutter, library, local, glb, root, stored);
+  if (!clutter.empty()) {
+    // The street clutter under a node of its own, in clutter.geojson's order.
+    tinygltf::Node group;
+    group.name = "clutter";
+    counts.instances += add_model_nodes(clutter, library, local, glb, group, stored);
+    root.children.push_back(glb.node(group));
+  }
   glb.write(glb.node(root), file);
   counts.meshes = glb.meshes();
   counts.triangles = glb.triangles();

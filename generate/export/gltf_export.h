@@ -22,7 +22,8 @@ struct GltfCounts {
 };
 
 // meshes are structure_meshes(buildings, models, library), by id. The street clutter's
-// models are instanced like the lots' (a node each, after them), sharing their geometry.
+// models are instanced like the lots', sharing their geometry: a node each, in id order,
+// under the root's child "clutter".
 GltfCounts write_gltf(const Ground& ground, const std::vector<Building>& buildings,
                       const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
                       const ModelLibrary* library, const Terrain* terrain, const std::filesystem::path& file,

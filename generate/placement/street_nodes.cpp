@@ -36,7 +36,7 @@ std::vector<StreetJunction> street_junctions(const std::vector<RoadLine>& roads)
   std::vector<StreetJunction> junctions;
   for (StreetJunction& n : nodes) {
     if (n.arms.size() < 3) continue;
-    // Counter-clockwise from east; ties (two arms along one direction) keep their order.
+    // Counter-clockwise by angle (atan2, from just past west); ties keep their order.
     std::stable_sort(n.arms.begin(), n.arms.end(), [](const StreetArm& a, const StreetArm& b) {
       return std::atan2(a.toward.y, a.toward.x) < std::atan2(b.toward.y, b.toward.x);
     });
