@@ -223,7 +223,7 @@ TEST(Cli, EveryExampleGeneratesAndValidates) {
     for (const char* f : {"vector/zones.geojson", "vector/water.geojson", "vector/roads.geojson",
                           "vector/road_areas.geojson", "vector/blocks.geojson", "vector/lots.geojson",
                           "vector/buildings.geojson", "map.svg", "city.obj", "city.mtl", "city.ply", "city.city.json",
-                          "city.glb", "report.json"})
+                          "city.glb", "report.json", "vector/clutter.geojson"})
       EXPECT_TRUE(fs::exists(out / f)) << f;
     auto report = nlohmann::json::parse(read(out / "report.json"));
     EXPECT_EQ(report["validation"]["ok"], true);
