@@ -36,33 +36,41 @@ const StreetJunction& nearest(const std::vector<StreetJunction>& junctions, geom
   });
 }
 
+// Every piece of clutter stands strictly inside a sidewalk face or a lot, by the exact map,
+// its base held by the lot and apart from its buildings. Returns (on sidewalks, in lots).
+std::pair<int, int> expect_on_sidewalks_or_lots(const City& city) {
+  int on_sidewalk = 0, in_lot = 0;
+  for (const Clutter& c : city.clutter.items) {
+    const int label = city.network.map.map.label_at(c.spot);
+    EXPECT_GE(label, 0) << "clutter " << c.instance.id << " lies on an edge of the map";
+    if (label < 0) continue;
+    const FaceLabel& l = city.network.map.labels[label];
+    EXPECT_NE(l.cover, Cover::Water) << c.instance.id;
+    EXPECT_FALSE(l.bridge) << c.instance.id;
+    if (l.cover == Cover::Road) {
+      EXPECT_EQ(l.surface, RoadSurface::Sidewalk) << "clutter " << c.instance.id << " stands on a " << name(l.surface);
+      EXPECT_EQ(c.instance.lot, -1);
+      ++on_sidewalk;
+      continue;
+    }
+    EXPECT_GE(c.instance.lot, 0) << "clutter " << c.instance.id << " stands on open land";
+    if (c.instance.lot < 0) continue;
+    EXPECT_TRUE(city.lots[c.instance.lot].cell.contains(c.spot)) << c.instance.id;
+    EXPECT_TRUE(city.lots[c.instance.lot].cell.holds(c.instance.polygon.outer)) << c.instance.id;
+    for (const Building& b : city.buildings)
+      EXPECT_FALSE(geom::rings_meet(b.polygon.outer, c.instance.polygon.outer)) << c.instance.id;
+    ++in_lot;
+  }
+  return {on_sidewalk, in_lot};
+}
+
 }  // namespace
 
 TEST(Clutter, StandsOnASidewalkOrInALotNeverOnACarriagewayJunctionOrWaterCheckedOnTheMap) {
   for (const std::string sidewalks : {"", R"(, "roads": {"local": {"sidewalk": 2.5}, "main": {"sidewalk": 3}})"}) {
     const City city = built(four_streets("stands", sidewalks, all_of_the_library()));
-    const auto& items = city.clutter.items;
-    ASSERT_GT(items.size(), 20u) << sidewalks;
-    int on_sidewalk = 0, in_lot = 0;
-    for (const Clutter& c : items) {
-      const int label = city.network.map.map.label_at(c.spot);
-      ASSERT_GE(label, 0) << "clutter " << c.instance.id << " lies on an edge of the map";
-      const FaceLabel& l = city.network.map.labels[label];
-      EXPECT_NE(l.cover, Cover::Water) << c.instance.id;
-      EXPECT_FALSE(l.bridge) << c.instance.id;
-      if (l.cover == Cover::Road) {
-        EXPECT_EQ(l.surface, RoadSurface::Sidewalk) << "clutter " << c.instance.id << " stands on a " << name(l.surface);
-        ++on_sidewalk;
-        EXPECT_EQ(c.instance.lot, -1);
-        continue;
-      }
-      ASSERT_GE(c.instance.lot, 0) << "clutter " << c.instance.id << " stands on open land";
-      EXPECT_TRUE(city.lots[c.instance.lot].cell.contains(c.spot)) << c.instance.id;
-      EXPECT_TRUE(city.lots[c.instance.lot].cell.holds(c.instance.polygon.outer)) << c.instance.id;
-      for (const Building& b : city.buildings)
-        EXPECT_FALSE(geom::rings_meet(b.polygon.outer, c.instance.polygon.outer)) << c.instance.id;
-      ++in_lot;
-    }
+    ASSERT_GT(city.clutter.items.size(), 20u) << sidewalks;
+    const auto [on_sidewalk, in_lot] = expect_on_sidewalks_or_lots(city);
     if (sidewalks.empty()) {
       EXPECT_EQ(on_sidewalk, 0);
       EXPECT_GT(in_lot, 20) << "without sidewalks, clutter stands in the lots' setback";
@@ -70,6 +78,25 @@ TEST(Clutter, StandsOnASidewalkOrInALotNeverOnACarriagewayJunctionOrWaterChecked
       EXPECT_GT(on_sidewalk, 20) << "with sidewalks, clutter stands on them";
     }
   }
+}
+
+TEST(Clutter, ASpotOnAnotherRoadsCarriagewayIsRefusedAndCounted) {
+  // A local road 10.2 m north of the main road's centre line: its kerb is 0.2 m from the main
+  // road's, so its south side's lamps, half a metre past its kerb, would stand on the main road.
+  const fs::path sketch = four_streets("carriageway", "", all_of_the_library());
+  std::ifstream in(sketch);
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  text.insert(text.find(R"({"type": "Feature", "properties": {"road": "main"})"),
+              R"({"type": "Feature", "properties": {"road": "local"},
+                  "geometry": {"type": "LineString", "coordinates": [[-180, 10.2], [-120, 10.2]]}},
+      )");
+  write(sketch, text);
+  const City city = built(sketch);
+  expect_on_sidewalks_or_lots(city);
+  int refused = 0;
+  for (const auto& [key, n] : city.clutter.tally.missed)
+    if (key.first == "lamp" && key.second == "on a carriageway or in a junction") refused += n;
+  EXPECT_GE(refused, 2) << "60 m of road, a lamp every 20 m on its south side";
 }
 
 TEST(Clutter, TrafficLightsStandOnlyAtJunctionsOfMajorRoadsAndStopSignsOnlyOnLocalApproaches) {
