@@ -238,7 +238,7 @@ void export_vectors(const City& city, const fs::path& dir) {
     write_geojson(*l, city.sketch.crs, dir / "vector" / (l->name + ".geojson"));
   write_point_geojson(clutter_layer(city.clutter.items, city.model_library()), city.sketch.crs,
                       dir / "vector" / "clutter.geojson");
-  write_svg_map(city.ground, city.buildings, city.models, dir / "map.svg");
+  write_svg_map(city.ground, city.buildings, city.models, dir / "map.svg", city.clutter.items);
 }
 
 // CityJSON, glTF, OBJ and PLY, from one set of building meshes.

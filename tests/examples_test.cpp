@@ -25,7 +25,8 @@ json layer(const fs::path& out, const std::string& name) {
   return json::parse(read(out / "vector" / (name + ".geojson")))["features"];
 }
 
-// map.svg's shapes, group by group in drawing order: each path's d, each polyline's points.
+// map.svg's shapes, group by group in drawing order: each path's d, each polyline's points,
+// each circle's centre.
 std::vector<std::pair<std::string, std::vector<std::string>>> svg_groups(const std::string& svg) {
   auto attribute = [](const std::string& line, const std::string& name) {
     std::size_t at = line.find(" " + name + "=\"");
@@ -40,6 +41,7 @@ std::vector<std::pair<std::string, std::vector<std::string>>> svg_groups(const s
     else if (groups.empty()) continue;
     else if (line.rfind("<path ", 0) == 0) groups.back().second.push_back(attribute(line, "d"));
     else if (line.rfind("<polyline ", 0) == 0) groups.back().second.push_back(attribute(line, "points"));
+    else if (line.rfind("<circle ", 0) == 0) groups.back().second.push_back(attribute(line, "cx") + "," + attribute(line, "cy"));
   }
   return groups;
 }
@@ -78,6 +80,8 @@ std::vector<std::pair<std::string, std::vector<std::string>>> expected_svg_group
     for (const auto& p : f["geometry"]["coordinates"]) points += (points.empty() ? "" : " ") + point(p);
     groups.back().second.push_back(points);
   }
+  groups.push_back({"clutter", {}});
+  for (const auto& f : layer(out, "clutter")) groups.back().second.push_back(point(f["geometry"]["coordinates"]));
   groups.push_back({"legend", {}});
   return groups;
 }
