@@ -11,7 +11,8 @@ using namespace cli_util;
 using namespace clutter_sketch;
 
 TEST(ClutterCli, SameBytesWithOneThreadOrTwo) {
-  const fs::path sketch = four_streets("cli-threads", R"(, "roads": {"local": {"sidewalk": 2.5}})", all_of_the_library());
+  const fs::path sketch =
+      four_streets("cli-threads", R"(, "roads": {"local": {"sidewalk": 2.5}})", all_of_the_library());
   const fs::path dir = sketch.parent_path();
   ASSERT_EQ(run("generate " + sketch.string() + " -o " + (dir / "a").string() + " -q --threads 1").code, 0);
   ASSERT_EQ(run("generate " + sketch.string() + " -o " + (dir / "b").string() + " -q --threads 2").code, 0);

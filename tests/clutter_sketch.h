@@ -34,7 +34,8 @@ inline fs::path four_streets(const std::string& name, const std::string& exacity
   write(dir / "house.obj", box_obj(8, 8, 6));
   write(dir / "library.json", R"({"models": [)" + library + "]}");
   write(dir / "sketch.geojson", R"({"type": "FeatureCollection",
-    "exacity": {"seed": 3, "models": "library.json", "zones": {"residential": {"layout": "streets"}})" + exacity + R"(},
+    "exacity": {"seed": 3, "models": "library.json", "zones": {"residential": {"layout": "streets"}})" +
+                                    exacity + R"(},
     "features": [
       {"type": "Feature", "properties": {"zone": "residential"},
        "geometry": {"type": "Polygon", "coordinates": [[[-200, -150], [200, -150], [200, 150], [-200, 150], [-200, -150]]]}},

@@ -3,11 +3,10 @@
 // ones). Where clutter may stand, checked against the exact map; which junctions get traffic
 // lights and stop signs; alternate sides; channels steering the model; a library of clutter
 // alone; and validate catching clutter where it must not stand.
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <fstream>
-
-#include <OpenImageIO/imageio.h>
 
 #include "generate/errors.h"
 #include "generate/export/validate.h"
@@ -132,7 +131,8 @@ TEST(Clutter, AnAlternateEntryStandsOnEachSideInTurn) {
     const geom::Vec2 a = line.front(), u = geom::unit_along(line.front(), line.back());
     std::vector<std::pair<double, int>> lamps;
     for (const Clutter& c : city.clutter.items)
-      if (c.road == static_cast<int>(r)) lamps.push_back({geom::dot(c.spot - a, u), geom::cross(u, c.spot - a) > 0 ? 1 : -1});
+      if (c.road == static_cast<int>(r))
+        lamps.push_back({geom::dot(c.spot - a, u), geom::cross(u, c.spot - a) > 0 ? 1 : -1});
     std::sort(lamps.begin(), lamps.end());
     for (std::size_t k = 1; k < lamps.size(); ++k) {
       const double gap = lamps[k].first - lamps[k - 1].first;
@@ -148,13 +148,15 @@ TEST(Clutter, AnAlternateEntryStandsOnEachSideInTurn) {
 TEST(Clutter, ChannelsSteerWhichEntryStandsWhere) {
   // A channel 0 on the west half and 1 on the east half; two lamps asking for 0 and 1.
   const fs::path sketch = four_streets(
-      "channels", R"(, "channels": {"east": {"image": "east.png", "bounds": [-200, -150, 200, 150]}}, "channel_sharpness": 40)",
+      "channels",
+      R"(, "channels": {"east": {"image": "east.png", "bounds": [-200, -150, 200, 150]}}, "channel_sharpness": 40)",
       std::string(kHouse) + R"(,
       {"name": "west_lamp", "file": "lamp.obj", "kind": "lamp", "up": "z", "spacing": 20, "channels": {"east": 0}},
       {"name": "east_lamp", "file": "lamp.obj", "kind": "lamp", "up": "z", "spacing": 20, "channels": {"east": 1}})");
   const std::vector<unsigned char> pixels{0, 0, 255, 255};
   auto out = OIIO::ImageOutput::create((sketch.parent_path() / "east.png").string());
-  ASSERT_TRUE(out && out->open((sketch.parent_path() / "east.png").string(), OIIO::ImageSpec(4, 1, 1, OIIO::TypeDesc::UINT8)));
+  ASSERT_TRUE(out &&
+              out->open((sketch.parent_path() / "east.png").string(), OIIO::ImageSpec(4, 1, 1, OIIO::TypeDesc::UINT8)));
   ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels.data()));
   out->close();
   const City city = built(sketch);
@@ -222,13 +224,18 @@ TEST(Clutter, ValidateFindsClutterWhereItMustNotStand) {
   };
   EXPECT_EQ(broken([](auto&) {}), "");
   // On the east-west road's centre line, in its carriageway; then at the crossing.
-  EXPECT_NE(broken([](auto& f) { f[0]["geometry"]["coordinates"] = {-150.5, 0.25}; }).find("(carriageway)"),
+  EXPECT_NE(broken([](auto& f) {
+              f[0]["geometry"]["coordinates"] = {-150.5, 0.25};
+            }).find("(carriageway)"),
             std::string::npos);
-  EXPECT_NE(broken([](auto& f) { f[0]["geometry"]["coordinates"] = {0.5, 0.5}; }).find("clutter.geojson features[0]"),
+  EXPECT_NE(broken([](auto& f) {
+              f[0]["geometry"]["coordinates"] = {0.5, 0.5};
+            }).find("clutter.geojson features[0]"),
             std::string::npos);
   EXPECT_NE(broken([](auto& f) { f[1]["properties"]["id"] = f[0]["properties"]["id"]; }).find("not unique"),
             std::string::npos);
   EXPECT_NE(broken([](auto& f) { f[0]["properties"]["road"] = 9999; }).find("names no feature of roads.geojson"),
             std::string::npos);
-  EXPECT_NE(broken([](auto& f) { f[0]["properties"]["kind"] = "building"; }).find("no clutter kind"), std::string::npos);
+  EXPECT_NE(broken([](auto& f) { f[0]["properties"]["kind"] = "building"; }).find("no clutter kind"),
+            std::string::npos);
 }

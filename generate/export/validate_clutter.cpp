@@ -65,18 +65,26 @@ void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers
     for (std::size_t i = 0; i < layer.features.size(); ++i) {
       const VectorFeature& f = layer.features[i];
       cells.add(static_cast<int>(areas.size()), f.polygon);
-      areas.push_back({&f.polygon, layer.name + ".geojson features[" + std::to_string(i) + "]" + what(f), stands_on(f)});
+      areas.push_back(
+          {&f.polygon, layer.name + ".geojson features[" + std::to_string(i) + "]" + what(f), stands_on(f)});
     }
   };
   const auto no_note = [](const VectorFeature&) { return std::string(); };
-  add(layers.road_areas,
-      [](const VectorFeature& f) { return f.properties.value("surface", "") == "sidewalk" && !f.properties.value("bridge", false); },
+  add(
+      layers.road_areas,
       [](const VectorFeature& f) {
-        return " (" + f.properties.value("surface", std::string("?")) + (f.properties.value("bridge", false) ? " of a bridge)" : ")");
+        return f.properties.value("surface", "") == "sidewalk" && !f.properties.value("bridge", false);
+      },
+      [](const VectorFeature& f) {
+        return " (" + f.properties.value("surface", std::string("?")) +
+               (f.properties.value("bridge", false) ? " of a bridge)" : ")");
       });
-  add(layers.lots, [](const VectorFeature&) { return true; }, no_note);
-  add(layers.water, [](const VectorFeature&) { return false; }, no_note);
-  add(layers.buildings, [](const VectorFeature&) { return false; }, no_note);
+  add(
+      layers.lots, [](const VectorFeature&) { return true; }, no_note);
+  add(
+      layers.water, [](const VectorFeature&) { return false; }, no_note);
+  add(
+      layers.buildings, [](const VectorFeature&) { return false; }, no_note);
 
   std::set<int> roads, ids;
   for (const VectorFeature& f : layers.roads.features) roads.insert(f.properties.value("id", -1));
@@ -96,14 +104,18 @@ void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers
       problem(name + ": \"kind\" is " + props.value("kind", nlohmann::ordered_json()).dump() + ", no clutter kind");
     if (!props.contains("model") || !props["model"].is_string()) problem(name + ": no \"model\"");
     if (!props.contains("road") || !props["road"].is_number_integer() || !roads.count(props["road"].get<int>()))
-      problem(name + ": \"road\" " + props.value("road", nlohmann::ordered_json()).dump() + " names no feature of roads.geojson");
-    const double heading = props.contains("heading") && props["heading"].is_number() ? props["heading"].get<double>() : -1;
+      problem(name + ": \"road\" " + props.value("road", nlohmann::ordered_json()).dump() +
+              " names no feature of roads.geojson");
+    const double heading =
+        props.contains("heading") && props["heading"].is_number() ? props["heading"].get<double>() : -1;
     if (!(heading >= 0 && heading < 360)) problem(name + ": \"heading\" is not degrees in [0, 360)");
     bool stands = false;
     for (int a : cells.at(p)) {
       const int side = geom::point_side(*areas[a].polygon, p);
-      if (areas[a].stands_on) stands |= side > 0;
-      else if (side >= 0) problem(name + at + (side > 0 ? " stands in " : " stands on the edge of ") + areas[a].name);
+      if (areas[a].stands_on)
+        stands |= side > 0;
+      else if (side >= 0)
+        problem(name + at + (side > 0 ? " stands in " : " stands on the edge of ") + areas[a].name);
     }
     if (!stands) problem(name + at + " stands strictly inside no sidewalk and no lot");
   }

@@ -1,12 +1,12 @@
 #include "generate/placement/clutter.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
 #include <unordered_map>
 #include <unordered_set>
-
-#include <tbb/parallel_for.h>
 
 #include "generate/placement/model_placement.h"
 #include "generate/placement/street_nodes.h"
@@ -77,8 +77,10 @@ class RingBuckets {
  private:
   template <typename F>
   void for_cells(const geom::Box& b, F&& f) const {
-    const auto lo_x = static_cast<std::int64_t>(std::floor(b.min_x / cell_)), hi_x = static_cast<std::int64_t>(std::floor(b.max_x / cell_));
-    const auto lo_y = static_cast<std::int64_t>(std::floor(b.min_y / cell_)), hi_y = static_cast<std::int64_t>(std::floor(b.max_y / cell_));
+    const auto lo_x = static_cast<std::int64_t>(std::floor(b.min_x / cell_)),
+               hi_x = static_cast<std::int64_t>(std::floor(b.max_x / cell_));
+    const auto lo_y = static_cast<std::int64_t>(std::floor(b.min_y / cell_)),
+               hi_y = static_cast<std::int64_t>(std::floor(b.max_y / cell_));
     for (auto x = lo_x; x <= hi_x; ++x)
       for (auto y = lo_y; y <= hi_y; ++y) f(x * 0x100000 + y);
   }
@@ -122,7 +124,8 @@ struct Where {
 // The city the clutter stands in, with indices to find lots and footprints near a spot.
 class StandingGround {
  public:
-  StandingGround(const ClutterGround& g, const Sketch& sketch) : g_(g), sketch_(sketch), lot_rings_(32), footprints_(8) {
+  StandingGround(const ClutterGround& g, const Sketch& sketch)
+      : g_(g), sketch_(sketch), lot_rings_(32), footprints_(8) {
     for (std::size_t i = 0; i < g.lots.size(); ++i) lot_rings_.add(g.lots[i].polygon.outer, static_cast<int>(i));
     auto add = [&](const geom::Polygon& p) {
       footprints_.add(p.outer, static_cast<int>(footprint_rings_.size()));
@@ -140,10 +143,14 @@ class StandingGround {
     const FaceLabel& l = g_.map.labels[label];
     Where w;
     if (l.zone >= 0) w.zone = sketch_.zones[l.zone].type;
-    if (l.bridge || l.cover == Cover::Water) w.blocked = kOnWater;
-    else if (l.cover == Cover::Road && l.surface == RoadSurface::Sidewalk) w.sidewalk = true;
-    else if (l.cover == Cover::Road) w.blocked = kOnRoad;
-    else w.blocked = kNoGround;
+    if (l.bridge || l.cover == Cover::Water)
+      w.blocked = kOnWater;
+    else if (l.cover == Cover::Road && l.surface == RoadSurface::Sidewalk)
+      w.sidewalk = true;
+    else if (l.cover == Cover::Road)
+      w.blocked = kOnRoad;
+    else
+      w.blocked = kNoGround;
     return w;
   }
 
@@ -201,8 +208,10 @@ class Dresser {
     double later = 0;  // the spacing of an entry that stands here at another station
     for (int m : kind_models) {
       const Fit fit = fits(lib_.models[m], *probe.zone);
-      if (fit == kHere) models.push_back(m);
-      else if (fit == kNotNow && later == 0) later = lib_.models[m].spacing;
+      if (fit == kHere)
+        models.push_back(m);
+      else if (fit == kNotNow && later == 0)
+        later = lib_.models[m].spacing;
     }
     if (models.empty()) return later;
     const Vec2 nominal = geom::snap(from + out * lib_.models[models[0]].offset);
@@ -258,8 +267,11 @@ class Dresser {
   Clutter made_at(int m, Vec2 spot, Vec2 front, double scale, int tint, int road) const {
     const Base& b = bases_[m];
     const double angle = std::atan2(front.x, -front.y), c = std::cos(angle) * scale, s = std::sin(angle) * scale;
-    Placement p{m, {spot.x - (c * b.centre.x - s * b.centre.y), spot.y - (s * b.centre.x + c * b.centre.y)}, angle,
-                scale, tint};
+    Placement p{m,
+                {spot.x - (c * b.centre.x - s * b.centre.y), spot.y - (s * b.centre.x + c * b.centre.y)},
+                angle,
+                scale,
+                tint};
     geom::Ring ring;
     for (Vec2 v : b.ring) {
       const Vec2 w = geom::snap(Vec2{p.position.x + c * v.x - s * v.y, p.position.y + s * v.x + c * v.y});
@@ -286,7 +298,9 @@ class Dresser {
   TakenBases taken_;
 };
 
-bool stands_in(const Model& m, ZoneType zone) { return std::find(m.zones.begin(), m.zones.end(), zone) != m.zones.end(); }
+bool stands_in(const Model& m, ZoneType zone) {
+  return std::find(m.zones.begin(), m.zones.end(), zone) != m.zones.end();
+}
 
 // Along one centre line, each side: lamps, benches and hydrants every `spacing`, trees along
 // residential streets; none within a junction's reach of a node where three or more lines
@@ -311,7 +325,8 @@ void dress_street(const RoadLine& road, int id, const std::unordered_map<Vec2, d
     for (int side : {1, -1}) {
       int station = 0;
       for (double t = first; t < length;) {
-        auto clear = std::find_if(kept_clear.begin(), kept_clear.end(), [&](auto iv) { return iv.first <= t && t < iv.second; });
+        auto clear =
+            std::find_if(kept_clear.begin(), kept_clear.end(), [&](auto iv) { return iv.first <= t && t < iv.second; });
         if (clear != kept_clear.end()) {
           t = clear->second;
           continue;
@@ -319,14 +334,17 @@ void dress_street(const RoadLine& road, int id, const std::unordered_map<Vec2, d
         std::size_t k = 1;
         while (k + 1 < line.size() && at[k] < t) ++k;
         const Vec2 u = geom::unit_along(line[k - 1], line[k]);
-        const Vec2 centre = geom::lerp(line[k - 1], line[k], at[k] > at[k - 1] ? (t - at[k - 1]) / (at[k] - at[k - 1]) : 0);
+        const Vec2 centre =
+            geom::lerp(line[k - 1], line[k], at[k] > at[k - 1] ? (t - at[k - 1]) / (at[k] - at[k - 1]) : 0);
         const Vec2 out = Vec2{-u.y, u.x} * side;
         const bool left = side > 0, even = station % 2 == 0;
-        const double spacing = dresser.dress(
-            kind, centre + out * (road.width / 2), out, u, {0, 1, -1, 2, -2}, out * -1, id, [&](const Model& m, ZoneType z) {
-              if (!stands_in(m, z) || (kind == ModelKind::Tree && z != ZoneType::Residential)) return kNotHere;
-              return m.side == StreetSide::Both || even == left ? kHere : kNotNow;
-            });
+        const double spacing =
+            dresser.dress(kind, centre + out * (road.width / 2), out, u, {0, 1, -1, 2, -2}, out * -1, id,
+                          [&](const Model& m, ZoneType z) {
+                            if (!stands_in(m, z) || (kind == ModelKind::Tree && z != ZoneType::Residential))
+                              return kNotHere;
+                            return m.side == StreetSide::Both || even == left ? kHere : kNotNow;
+                          });
         // No entry for the zone here: look again a little further on.
         t += spacing > 0 ? spacing : 10;
         ++station;
@@ -380,7 +398,8 @@ void dress_junction(const StreetJunction& j, Dresser& dresser) {
 StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* library, const Channels& channels,
                             const Sketch& sketch, const Terrain* terrain) {
   StreetClutter out;
-  if (!library || std::none_of(library->models.begin(), library->models.end(), [](const Model& m) { return is_clutter(m.kind); }))
+  if (!library ||
+      std::none_of(library->models.begin(), library->models.end(), [](const Model& m) { return is_clutter(m.kind); }))
     return out;
   std::vector<Base> bases;
   for (const Model& m : library->models) bases.push_back(base_of(m));

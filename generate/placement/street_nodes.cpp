@@ -7,7 +7,8 @@
 namespace exacity {
 
 int StreetJunction::major_arms() const {
-  return static_cast<int>(std::count_if(arms.begin(), arms.end(), [](const StreetArm& a) { return is_major(a.road_class); }));
+  return static_cast<int>(
+      std::count_if(arms.begin(), arms.end(), [](const StreetArm& a) { return is_major(a.road_class); }));
 }
 
 double StreetJunction::reach() const {

@@ -32,7 +32,9 @@ struct StreetJunction {
   // Major roads meet here (three or more major arms: not a major road passing a local one).
   bool of_major_roads() const { return major_arms() >= 3; }
   // Local roads meet a major road here without major roads meeting each other.
-  bool local_meets_major() const { return major_arms() > 0 && !of_major_roads() && major_arms() < static_cast<int>(arms.size()); }
+  bool local_meets_major() const {
+    return major_arms() > 0 && !of_major_roads() && major_arms() < static_cast<int>(arms.size());
+  }
   // How far from `at` the junction's surface reaches along any arm, about: its widest arm.
   double reach() const;
 };

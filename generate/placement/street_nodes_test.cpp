@@ -1,13 +1,15 @@
 // The junctions of the noded centre lines: which nodes are junctions, their arms in order,
 // and which junctions get traffic lights and which stop signs.
-#include <gtest/gtest.h>
-
 #include "generate/placement/street_nodes.h"
+
+#include <gtest/gtest.h>
 
 namespace exacity {
 namespace {
 
-RoadLine line(RoadClass c, geom::Polyline points) { return {c, c == RoadClass::Local ? 8.0 : 12.0, -1, -1, false, std::move(points)}; }
+RoadLine line(RoadClass c, geom::Polyline points) {
+  return {c, c == RoadClass::Local ? 8.0 : 12.0, -1, -1, false, std::move(points)};
+}
 
 TEST(StreetNodes, ACrossingOfMainRoadsHasLightsAndALocalRoadMeetingOneHasSigns) {
   const std::vector<RoadLine> roads{
@@ -37,7 +39,8 @@ TEST(StreetNodes, ACrossingOfMainRoadsHasLightsAndALocalRoadMeetingOneHasSigns) 
 }
 
 TEST(StreetNodes, LocalRoadsMeetingEachOtherGetNeither) {
-  const std::vector<RoadLine> roads{line(RoadClass::Local, {{-50, 0}, {0, 0}, {50, 0}}), line(RoadClass::Local, {{0, 0}, {0, 40}})};
+  const std::vector<RoadLine> roads{line(RoadClass::Local, {{-50, 0}, {0, 0}, {50, 0}}),
+                                    line(RoadClass::Local, {{0, 0}, {0, 40}})};
   const std::vector<StreetJunction> junctions = street_junctions(roads);
   ASSERT_EQ(junctions.size(), 1u);
   EXPECT_FALSE(junctions[0].of_major_roads());
