@@ -194,8 +194,8 @@ class Dresser {
 
   // A model of `kind` for the spot: the spot is `from` plus `out` times (the model's offset
   // from the kerb), tried again moved by each of `shifts` along `shift`; its front faces
-  // `front`. `fits(model, zone)` says whether an entry stands in the zone there (kNotHere),
-  // does but not at this station (kNotNow: the other side's turn) or may stand (kHere).
+  // `front`. `fits(model, zone)` says whether an entry may stand here (kHere), stands in the
+  // zone there but not at this station (kNotNow: the other side's turn), or not (kNotHere).
   // Returns the spacing the chosen model keeps; 0 when no entry stands in the zone there.
   template <typename Fits>
   double dress(ModelKind kind, Vec2 from, Vec2 out, Vec2 shift, std::initializer_list<double> shifts, Vec2 front,
