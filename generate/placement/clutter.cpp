@@ -202,7 +202,8 @@ class Dresser {
                int road, Fits&& fits) {
     const std::vector<int> kind_models = of_kind(kind);
     if (kind_models.empty()) return 0;
-    const Where probe = side_.at(geom::snap(from + out * lib_.models[kind_models[0]].offset));
+    const Vec2 probed = geom::snap(from + out * lib_.models[kind_models[0]].offset);
+    const Where probe = side_.at(probed);
     if (!probe.zone) return 0;
     std::vector<int> models;
     double later = 0;  // the spacing of an entry that stands here at another station
@@ -226,9 +227,13 @@ class Dresser {
     const int tint = static_cast<int>(rng_.next() % kTints);
     for (double s : shifts) {
       const Vec2 spot = geom::snap(from + out * model.offset + shift * s);
-      const Where w = side_.at(spot);
+      // The probe's answer where the spot is the probe: a point location less per spot.
+      const Where w = spot == probed ? probe : side_.at(spot);
       if (!w.ok()) {
         why = why ? why : w.blocked;
+        // Open land or water a metre or two on is open land or water still, mostly: move on
+        // without more point locations (each a walk through the map).
+        if (w.blocked == kNoGround || w.blocked == kOnWater) break;
         continue;
       }
       Clutter c = made_at(m, spot, front, scale, tint, road);
@@ -345,8 +350,8 @@ void dress_street(const RoadLine& road, int id, const std::unordered_map<Vec2, d
                               return kNotHere;
                             return m.side == StreetSide::Both || even == left ? kHere : kNotNow;
                           });
-        // No entry for the zone here: look again a little further on.
-        t += spacing > 0 ? spacing : 10;
+        // No entry for the zone here: look again a station further on.
+        t += spacing > 0 ? spacing : first * 2;
         ++station;
       }
     }
