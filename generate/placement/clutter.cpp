@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <tuple>
 #include <unordered_map>
-#include <unordered_set>
 
 #include "generate/placement/model_placement.h"
 #include "generate/placement/street_nodes.h"
@@ -156,6 +156,7 @@ class StandingGround {
 
   // Why the base cannot stand where `w` says its spot is; null when it can.
   const char* refuse(const geom::Ring& base, const Where& w) const {
+    if (geom::ring_orientation(base) != 1) return kBaseLeaves;  // too small to stay a ring on the grid
     if (w.sidewalk) {
       for (Vec2 p : base) {
         const Where c = at(p);
@@ -287,9 +288,10 @@ class Dresser {
     out.instance = made(lib_.models[m], p, std::move(ring));
     out.spot = spot;
     out.road = road;
-    double heading = std::atan2(front.y, front.x) * 180 / M_PI;
-    if (heading < 0) heading += 360;
-    out.heading = std::round(heading * 100) / 100;
+    // To a hundredth of a degree in [-180, 180], then into [0, 360) (at most 359.99; + 0.0
+    // turns a -0 into 0).
+    const double heading = std::round(std::atan2(front.y, front.x) * 18000 / M_PI) / 100;
+    out.heading = (heading < 0 ? heading + 360 : heading) + 0.0;
     return out;
   }
 
