@@ -376,7 +376,7 @@ void dress_junction(const StreetJunction& j, Dresser& dresser) {
   const auto any_zone = [](const Model& m, ZoneType z) { return stands_in(m, z) ? kHere : kNotHere; };
   if (j.of_major_roads()) {
     for (std::size_t i = 0; i < j.arms.size(); ++i) {
-      const StreetArm &a = j.arms[i], &b = j.arms[(i + 1) % j.arms.size()];
+      const RoadArm &a = j.arms[i], &b = j.arms[(i + 1) % j.arms.size()];
       const auto [bisector, turn] = halfway(a.toward, b.toward);
       Vec2 corner = j.at + bisector * std::max(a.half_width, b.half_width);
       if (turn > 0.2 && turn < M_PI - 0.2) {
@@ -392,7 +392,7 @@ void dress_junction(const StreetJunction& j, Dresser& dresser) {
     return;
   }
   if (!j.local_meets_major()) return;
-  for (const StreetArm& a : j.arms) {
+  for (const RoadArm& a : j.arms) {
     if (is_major(a.road_class)) continue;
     const Vec2 right_of_incoming{-a.toward.y, a.toward.x};
     dresser.dress(ModelKind::Sign, j.at + a.toward * (reach + 2) + right_of_incoming * a.half_width, right_of_incoming,

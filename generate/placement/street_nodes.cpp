@@ -8,12 +8,12 @@ namespace exacity {
 
 int StreetJunction::major_arms() const {
   return static_cast<int>(
-      std::count_if(arms.begin(), arms.end(), [](const StreetArm& a) { return is_major(a.road_class); }));
+      std::count_if(arms.begin(), arms.end(), [](const RoadArm& a) { return is_major(a.road_class); }));
 }
 
 double StreetJunction::reach() const {
   double widest = 0;
-  for (const StreetArm& a : arms) widest = std::max(widest, a.half_width);
+  for (const RoadArm& a : arms) widest = std::max(widest, a.half_width);
   return widest;
 }
 
@@ -38,7 +38,7 @@ std::vector<StreetJunction> street_junctions(const std::vector<RoadLine>& roads)
   for (StreetJunction& n : nodes) {
     if (n.arms.size() < 3) continue;
     // Counter-clockwise by angle (atan2, from just past west); ties keep their order.
-    std::stable_sort(n.arms.begin(), n.arms.end(), [](const StreetArm& a, const StreetArm& b) {
+    std::stable_sort(n.arms.begin(), n.arms.end(), [](const RoadArm& a, const RoadArm& b) {
       return std::atan2(a.toward.y, a.toward.x) < std::atan2(b.toward.y, b.toward.x);
     });
     junctions.push_back(std::move(n));

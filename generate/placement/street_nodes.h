@@ -16,8 +16,9 @@ namespace exacity {
 inline bool is_major(RoadClass c) { return c != RoadClass::Local; }
 
 // A centre line leaving a node: the road (its id in the roads layer), the unit direction
-// towards its next vertex, its class and half width.
-struct StreetArm {
+// towards its next vertex, its class and half width. (Not the sketch reader's StreetArm,
+// generate/layout/street_graph.h: one name, one type, in the whole program.)
+struct RoadArm {
   int road = -1;
   geom::Vec2 toward;
   RoadClass road_class = RoadClass::Local;
@@ -27,7 +28,7 @@ struct StreetArm {
 // A node of the network where three or more arms leave, its arms counter-clockwise by angle.
 struct StreetJunction {
   geom::Vec2 at;
-  std::vector<StreetArm> arms;
+  std::vector<RoadArm> arms;
   int major_arms() const;
   // Major roads meet here (three or more major arms: not a major road passing a local one).
   bool of_major_roads() const { return major_arms() >= 3; }
