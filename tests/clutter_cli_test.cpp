@@ -59,3 +59,16 @@ TEST(ClutterCli, TheIndependentCheckersPassTheClutterAndGeosCatchesItMisplaced) 
   EXPECT_EQ(v.code, 1) << v.out;
   EXPECT_NE(v.out.find("clutter.geojson features[0]"), std::string::npos) << v.out;
 }
+
+TEST(ClutterCli, TheRendersDrawEachPieceAsAnInstance) {
+  // No building in the library: the lots get extruded buildings, so every instance in the
+  // scene is a piece of clutter.
+  const fs::path sketch = four_streets("cli-render", "", std::string(kLamp) + "," + kSign + "," + kLight);
+  const fs::path out = sketch.parent_path() / "out";
+  Result g = run("generate " + sketch.string() + " -o " + out.string() + " -q --render --size 32x20 --spp 1");
+  ASSERT_EQ(g.code, 0) << g.out;
+  const auto report = nlohmann::json::parse(read(out / "report.json"));
+  const int clutter = report["counts"]["clutter"].get<int>();
+  EXPECT_GT(clutter, 20);
+  EXPECT_EQ(report["render"]["scene"]["instances"].get<int>(), clutter) << report["render"]["scene"];
+}
