@@ -8,6 +8,7 @@
 #include "generate/parcels/blocks.h"
 #include "generate/placement/buildings.h"
 #include "generate/export/cityjson_export.h"
+#include "generate/export/clutter_layer.h"
 #include "generate/errors.h"
 #include "generate/export/gis_export.h"
 #include "generate/export/gltf_export.h"
@@ -94,6 +95,11 @@ City build_city(const Sketch& sketch, StageClock& stages) {
   stages.run("vector layers", [&] {
     city.ground = extract_ground(city.network.map, city.blocks, city.lots, sketch);
     city.layers = layers_of(city.ground, city.buildings, city.models, city.model_library());
+  });
+  // After the ground, whose centre lines the clutter dresses and names (docs/design.md, Placement).
+  city.clutter = stages.run("clutter", [&] {
+    return place_clutter({city.network.map, city.ground, city.lots, city.buildings, city.models}, city.model_library(),
+                         city.channels, sketch, city.heightmap());
   });
   return city;
 }
@@ -210,9 +216,19 @@ ordered_json counts_report(const City& city, const MeshCounts& mesh, const GltfC
           {"green_spaces", green},
           {"lots", layers.lots.features.size()},
           {"buildings", layers.buildings.features.size()},
+          {"clutter", city.clutter.items.size()},
           {"map", {{"vertices", counts.vertices}, {"edges", counts.edges}, {"faces", counts.faces}}},
           {"mesh", {{"vertices", mesh.vertices}, {"faces", mesh.faces}}},
           {"gltf", {{"meshes", gltf.meshes}, {"instances", gltf.instances}, {"triangles", gltf.triangles}}}};
+}
+
+// report.json's clutter: what stands by kind, and the spots that found no place by kind and
+// why, so no spot is dropped without a word (docs/design.md, Placement).
+ordered_json clutter_report(const ClutterTally& tally) {
+  ordered_json placed = ordered_json::object(), missed = ordered_json::array();
+  for (const auto& [kind, n] : tally.placed) placed[kind] = n;
+  for (const auto& [key, n] : tally.missed) missed.push_back({{"kind", key.first}, {"why", key.second}, {"spots", n}});
+  return {{"placed", placed}, {"not_placed", missed}};
 }
 
 // The vector layers, a copy of the sketch and the SVG map.
@@ -229,7 +245,9 @@ void export_vectors(const City& city, const fs::path& dir) {
   for (const Layer* l : {&layers.zones, &layers.water, &layers.roads, &layers.road_areas, &layers.blocks, &layers.lots,
                          &layers.buildings})
     write_geojson(*l, city.sketch.crs, dir / "vector" / (l->name + ".geojson"));
-  write_svg_map(city.ground, city.buildings, city.models, dir / "map.svg");
+  write_point_geojson(clutter_layer(city.clutter.items, city.model_library()), city.sketch.crs,
+                      dir / "vector" / "clutter.geojson");
+  write_svg_map(city.ground, city.buildings, city.models, dir / "map.svg", city.clutter.items);
 }
 
 // CityJSON, glTF, OBJ and PLY, from one set of building meshes.
@@ -237,8 +255,11 @@ MeshCounts export_3d(const City& city, const fs::path& dir, GltfCounts& gltf) {
   const ModelLibrary* library = city.model_library();
   std::vector<Mesh> meshes = structure_meshes(city.buildings, city.models, library);
   write_cityjson(city.ground, city.buildings, city.models, meshes, library, city.heightmap(), city.sketch,
-                 dir / "city.city.json");
-  gltf = write_gltf(city.ground, city.buildings, city.models, meshes, library, city.heightmap(), dir / "city.glb");
+                 dir / "city.city.json", city.clutter.items);
+  std::vector<ModelInstance> clutter;
+  for (const Clutter& c : city.clutter.items) clutter.push_back(c.instance);
+  gltf = write_gltf(city.ground, city.buildings, city.models, meshes, library, city.heightmap(), dir / "city.glb",
+                    clutter);
   return write_meshes(city.buildings, city.models, meshes, dir / "city.obj", dir / "city.ply");
 }
 
@@ -271,6 +292,7 @@ GenerateResult write_city(const City& city, const fs::path& dir, StageClock& sta
       {"unbuilt_lots", {{"merged", city.unbuilt_lots.merged}, {"left_open", city.unbuilt_lots.left_open}}},
       {"empty_zones", empty_zones_report(city)},
       {"placement_fallbacks", placement_fallbacks_report(city)},
+      {"clutter", clutter_report(city.clutter.tally)},
       {"statistics", city_statistics(city.layers, &sketch)},
       {"validation",
        {{"ok", validation.ok()}, {"problems", validation.problems}, {"widest_sliver_m", validation.widest_sliver}}},

@@ -42,7 +42,7 @@ class StageClock {
   int count_, index_ = 0;
 };
 
-inline constexpr int kCityStages = 8;
+inline constexpr int kCityStages = 9;
 
 // Runs the city's stages on `clock` (kCityStages of them).
 City build_city(const Sketch& sketch, StageClock& clock);

@@ -1,5 +1,6 @@
 #include "geom/polygon_check.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -35,6 +36,25 @@ bool ring_is_simple(const Ring& ring) {
   if (ring.size() < 3) return false;
   auto pts = points(ring);
   return CGAL::is_simple_2(pts.begin(), pts.end(), K());
+}
+
+int point_side(const Ring& ring, Vec2 p) {
+  if (ring.size() < 3) return -1;
+  const auto pts = points(ring);
+  switch (CGAL::bounded_side_2(pts.begin(), pts.end(), K::Point_2(p.x, p.y), K())) {
+    case CGAL::ON_BOUNDED_SIDE: return 1;
+    case CGAL::ON_BOUNDARY: return 0;
+    default: return -1;
+  }
+}
+
+int point_side(const Polygon& polygon, Vec2 p) {
+  int side = point_side(polygon.outer, p);
+  for (const Ring& hole : polygon.holes) {
+    if (side <= 0) break;
+    side = std::min(side, -point_side(hole, p));
+  }
+  return side;
 }
 
 bool rings_meet(const Ring& a, const Ring& b) {

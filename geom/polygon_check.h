@@ -21,6 +21,13 @@ bool ring_within(const Ring& ring, const Ring& outer);
 // The sign of (a + b) - (c + d), exact: heights counted from different floors compared.
 int compare_sums(double a, double b, double c, double d);
 
+// Where p lies against the simple ring, decided exactly: +1 inside, 0 on it, -1 outside.
+int point_side(const Ring& ring, Vec2 p);
+
+// The same against a polygon of simple rings (inside: inside its outer ring and outside
+// every hole).
+int point_side(const Polygon& polygon, Vec2 p);
+
 // The convex hull of the points, counter-clockwise, without collinear points; exact.
 Ring convex_hull(const std::vector<Vec2>& points);
 

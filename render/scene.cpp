@@ -374,6 +374,7 @@ void RenderScene::add_road_markings(const std::vector<exacity::RoadLine>& roads,
 struct RenderScene::StructureTiles {
   int nx = 1, ny = 1;
   std::vector<int> tile_of;
+  std::vector<int> clutter_tile;  // by clutter id
   std::vector<Box3> boxes;
 };
 
@@ -455,6 +456,12 @@ void RenderScene::add_buildings(const exacity::City& city, const geom::Box& worl
         add_instance(m, *city.model_library(), model_materials);
         if (m.floor > m.base) add_mesh(m.id, m.zone, exacity::model_mesh(m, nullptr));  // its foundation
       });
+  // Street clutter, like lot furniture: an instance each in the detailed tiles seen.
+  for (std::size_t i = 0; i < city.clutter.items.size(); ++i) {
+    const int k = tiles.clutter_tile[i];
+    if (view.seen[k] && view.detailed[k])
+      add_instance(city.clutter.items[i].instance, *city.model_library(), model_materials, Entity::Clutter);
+  }
   for (std::size_t k = 0; k < tiles.boxes.size(); ++k)
     if (!meshes.triangles[k].empty()) add_triangles(meshes.vertices[k], meshes.triangles[k], std::move(tile_info[k]));
 }
@@ -465,20 +472,25 @@ RenderScene::StructureTiles RenderScene::tile_structures(const exacity::City& ci
   tiles.ny = std::max(1, static_cast<int>(std::ceil(world.height() / tile_size)));
   tiles.tile_of.resize(city.buildings.size() + city.models.size());
   tiles.boxes.resize(static_cast<std::size_t>(tiles.nx * tiles.ny));
-  auto place = [&](int id, const geom::Polygon& polygon, double base, double top_z) {
+  // The tile of a structure's polygon, which grows to hold it from base to top_z.
+  auto place = [&](const geom::Polygon& polygon, double base, double top_z) {
     geom::Box fb = geom::Box::none();
     for (auto p : polygon.outer) fb.add(p);
     const double cx = (fb.min_x + fb.max_x) / 2, cy = (fb.min_y + fb.max_y) / 2;
     const int tx = std::clamp(static_cast<int>((cx - world.min_x) / tile_size), 0, tiles.nx - 1);
     const int ty = std::clamp(static_cast<int>((cy - world.min_y) / tile_size), 0, tiles.ny - 1);
-    tiles.tile_of[id] = ty * tiles.nx + tx;
-    tiles.boxes[tiles.tile_of[id]].add(to_scene(fb.min_x, fb.min_y, base));
-    tiles.boxes[tiles.tile_of[id]].add(to_scene(fb.max_x, fb.max_y, top_z));
+    const int k = ty * tiles.nx + tx;
+    tiles.boxes[k].add(to_scene(fb.min_x, fb.min_y, base));
+    tiles.boxes[k].add(to_scene(fb.max_x, fb.max_y, top_z));
     top = std::max(top, static_cast<float>(top_z));
+    return k;
   };
   exacity::for_each_by_id(
-      city.buildings, city.models, [&](const exacity::Building& b) { place(b.id, b.polygon, b.base, b.floor + b.height); },
-      [&](const exacity::ModelInstance& m) { place(m.id, m.polygon, m.base, m.floor + m.height); });
+      city.buildings, city.models,
+      [&](const exacity::Building& b) { tiles.tile_of[b.id] = place(b.polygon, b.base, b.floor + b.height); },
+      [&](const exacity::ModelInstance& m) { tiles.tile_of[m.id] = place(m.polygon, m.base, m.floor + m.height); });
+  for (const exacity::Clutter& c : city.clutter.items)
+    tiles.clutter_tile.push_back(place(c.instance.polygon, c.instance.base, c.instance.floor + c.instance.height));
   return tiles;
 }
 
@@ -541,7 +553,7 @@ RTCScene RenderScene::model_scene(const exacity::ModelLibrary& library, int mode
 
 // An instance of the model's scene in the top scene, turned, scaled and moved into place.
 void RenderScene::add_instance(const exacity::ModelInstance& m, const exacity::ModelLibrary& library,
-                               const ModelMaterials& materials) {
+                               const ModelMaterials& materials, Entity entity) {
   const exacity::Model& model = library.models[m.placed.model];
   RTCGeometry inst = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
   rtcSetGeometryInstancedScene(inst, model_scene(library, m.placed.model));
@@ -557,7 +569,7 @@ void RenderScene::add_instance(const exacity::ModelInstance& m, const exacity::M
   rtcReleaseGeometry(inst);
   Geometry info;
   info.instance = true;
-  info.instance_entity = entity_id(Entity::Model, static_cast<std::size_t>(m.id));
+  info.instance_entity = entity_id(entity, static_cast<std::size_t>(m.id));
   info.material_base = materials.base[m.placed.model] + m.placed.tint * static_cast<int>(model.mesh.materials.size());
   info.material = materials.local[m.placed.model];
   info.cos_turn = std::cos(static_cast<float>(m.placed.angle)), info.sin_turn = std::sin(static_cast<float>(m.placed.angle));

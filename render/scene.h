@@ -30,7 +30,8 @@ enum class Entity : std::uint32_t {
   Road = 4,
   Zone = 5,
   Water = 6,
-  Terrain = 7
+  Terrain = 7,
+  Clutter = 8  // seed 004's street clutter, by its id in vector/clutter.geojson
 };
 inline std::uint32_t entity_id(Entity kind, std::size_t index) {
   return static_cast<std::uint32_t>(kind) << 24 | static_cast<std::uint32_t>(index & 0xffffff);
@@ -135,7 +136,7 @@ class RenderScene {
   ModelMaterials add_model_materials(const exacity::ModelLibrary* library);
   RTCScene model_scene(const exacity::ModelLibrary& library, int model);
   void add_instance(const exacity::ModelInstance& m, const exacity::ModelLibrary& library,
-                    const ModelMaterials& materials);
+                    const ModelMaterials& materials, Entity entity = Entity::Model);
 
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;

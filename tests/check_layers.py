@@ -5,7 +5,8 @@ Written apart from exacity's own exact validator so that a bug in one is caught 
 other: every polygon valid in the OGC sense, outer rings counter-clockwise and holes
 clockwise, rings closed; zones, water and non-bridge road areas pairwise disjoint (their
 overlaps have no area); bridges over water; buildings apart, or, nested (seed 001), apart in
-3D by the slabs they write.
+3D by the slabs they write; each piece of street clutter strictly inside a sidewalk or a lot
+and in no carriageway, junction, water or building.
 
 Usage: check_layers.py OUT_DIR   (exit 0 when every check holds, 1 otherwise)
 """
@@ -15,7 +16,7 @@ import warnings
 from fractions import Fraction as F
 from pathlib import Path
 
-from shapely.geometry import LineString, Polygon, shape
+from shapely.geometry import LineString, Point, Polygon, shape
 from shapely.ops import unary_union
 from shapely.strtree import STRtree
 
@@ -56,6 +57,46 @@ def nested_overlap(a, b):
             if lo <= hi2 and lo2 <= hi and plan.intersection(plan2).area > AREA_TOLERANCE:
                 return f"slabs at {float(lo)}-{float(hi)} m and {float(lo2)}-{float(hi2)} m overlap in plan"
     return None
+
+
+CLUTTER_KINDS = {"lamp", "sign", "traffic_light", "bench", "hydrant", "tree"}
+
+
+def check_clutter(out):
+    """vector/clutter.geojson: Points with unique ids and known kinds, each naming a road of
+    roads.geojson, each strictly inside a sidewalk (not a bridge's) or a lot, and touching no
+    carriageway, junction, water or building."""
+    problems = []
+    roads = {f["properties"]["id"] for f in load(out / "vector" / "roads.geojson")}
+    stands_on, keeps_off = [], []
+    for f in load(out / "vector" / "road_areas.geojson"):
+        on_sidewalk = f["properties"]["surface"] == "sidewalk" and not f["properties"]["bridge"]
+        (stands_on if on_sidewalk else keeps_off).append(shape(f["geometry"]))
+    stands_on += [shape(f["geometry"]) for f in load(out / "vector" / "lots.geojson")]
+    for layer in ("water", "buildings"):
+        keeps_off += [shape(f["geometry"]) for f in load(out / "vector" / f"{layer}.geojson")]
+    on_tree, off_tree = STRtree(stands_on), STRtree(keeps_off)
+    ids = set()
+    for i, f in enumerate(load(out / "vector" / "clutter.geojson")):
+        name, props, g = f"clutter[{i}]", f["properties"], f["geometry"]
+        if g["type"] != "Point":
+            problems.append(f"{name}: geometry is {g['type']}, expected Point")
+            continue
+        if props.get("id") in ids:
+            problems.append(f"{name}: id {props.get('id')} is not unique")
+        ids.add(props.get("id"))
+        if props.get("kind") not in CLUTTER_KINDS:
+            problems.append(f"{name}: kind {props.get('kind')!r} is no clutter kind")
+        if props.get("road") not in roads:
+            problems.append(f"{name}: road {props.get('road')} names no centre line")
+        if not 0 <= props.get("heading", -1) < 360:
+            problems.append(f"{name}: heading {props.get('heading')} is not in [0, 360)")
+        point = Point(g["coordinates"])
+        if not any(p.contains(point) for p in on_tree.query(point)):
+            problems.append(f"{name}: at {g['coordinates']}, not strictly inside a sidewalk or a lot")
+        if any(p.intersects(point) for p in off_tree.query(point)):
+            problems.append(f"{name}: at {g['coordinates']}, on a carriageway, junction, water or building")
+    return problems
 
 
 def main(out):
@@ -137,6 +178,7 @@ def main(out):
         if outside > AREA_TOLERANCE:
             problems.append(f"buildings[{i}]: {outside} m² outside its lot {f['properties']['lot']}")
 
+    problems += check_clutter(out)
     for p in problems:
         print("problem:", p)
     print(f"{out}: {len(polygons)} polygons, {'ok' if not problems else f'{len(problems)} problems'}")

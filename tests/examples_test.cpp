@@ -25,7 +25,8 @@ json layer(const fs::path& out, const std::string& name) {
   return json::parse(read(out / "vector" / (name + ".geojson")))["features"];
 }
 
-// map.svg's shapes, group by group in drawing order: each path's d, each polyline's points.
+// map.svg's shapes, group by group in drawing order: each path's d, each polyline's points,
+// each circle's centre.
 std::vector<std::pair<std::string, std::vector<std::string>>> svg_groups(const std::string& svg) {
   auto attribute = [](const std::string& line, const std::string& name) {
     std::size_t at = line.find(" " + name + "=\"");
@@ -40,6 +41,7 @@ std::vector<std::pair<std::string, std::vector<std::string>>> svg_groups(const s
     else if (groups.empty()) continue;
     else if (line.rfind("<path ", 0) == 0) groups.back().second.push_back(attribute(line, "d"));
     else if (line.rfind("<polyline ", 0) == 0) groups.back().second.push_back(attribute(line, "points"));
+    else if (line.rfind("<circle ", 0) == 0) groups.back().second.push_back(attribute(line, "cx") + "," + attribute(line, "cy"));
   }
   return groups;
 }
@@ -78,6 +80,8 @@ std::vector<std::pair<std::string, std::vector<std::string>>> expected_svg_group
     for (const auto& p : f["geometry"]["coordinates"]) points += (points.empty() ? "" : " ") + point(p);
     groups.back().second.push_back(points);
   }
+  groups.push_back({"clutter", {}});
+  for (const auto& f : layer(out, "clutter")) groups.back().second.push_back(point(f["geometry"]["coordinates"]));
   groups.push_back({"legend", {}});
   return groups;
 }
@@ -101,7 +105,7 @@ std::vector<std::pair<double, double>> mesh_points(const tinygltf::Model& model,
 }
 
 struct GlbCounts {
-  int buildings = 0, models = 0;
+  int buildings = 0, models = 0, clutter = 0;
 };
 
 // Every extruded building of buildings.geojson stands in city.glb's building mesh (a vertex
@@ -118,9 +122,14 @@ GlbCounts check_glb_holds_every_building(const fs::path& out) {
   EXPECT_EQ(root.name, "city");
   std::map<std::pair<long, long>, std::vector<std::pair<double, double>>> building_points;  // by metre square
   std::vector<const tinygltf::Node*> model_nodes;
+  const tinygltf::Node* clutter = nullptr;
   for (int child : root.children) {
     const tinygltf::Node& n = model.nodes.at(child);
     if (n.name == "ground") continue;
+    if (n.name == "clutter") {
+      clutter = &n;
+      continue;
+    }
     if (n.name == "buildings") {
       for (auto [x, y] : mesh_points(model, n.mesh, root))
         building_points[{std::lround(std::floor(x)), std::lround(std::floor(y))}].push_back({x, y});
@@ -162,6 +171,18 @@ GlbCounts check_glb_holds_every_building(const fs::path& out) {
         << "building " << f["properties"]["id"] << ": its node stands at " << x << ", " << y << ", off its footprint";
   }
   EXPECT_EQ(model_nodes.size(), next_model) << "city.glb places more models than buildings.geojson lists";
+  // Street clutter: a node each under "clutter", in id order, its origin within a few metres
+  // of where clutter.geojson says it stands (the origin is the model's, the point its base's).
+  const json pieces = layer(out, "clutter");
+  EXPECT_EQ(clutter ? clutter->children.size() : 0, pieces.size()) << "city.glb's clutter nodes";
+  for (std::size_t i = 0; clutter && i < std::min(pieces.size(), clutter->children.size()); ++i) {
+    const tinygltf::Node& n = model.nodes.at(clutter->children[i]);
+    const double x = root.translation[0] + n.translation.at(0), y = -(root.translation[2] + n.translation.at(2));
+    const json& at = pieces[i]["geometry"]["coordinates"];
+    EXPECT_LT(std::hypot(x - at[0].get<double>(), y - at[1].get<double>()), 3) << "clutter " << i;
+    EXPECT_EQ(n.name, pieces[i]["properties"]["model"].get<std::string>()) << "clutter " << i;
+    ++counts.clutter;
+  }
   return counts;
 }
 
@@ -206,7 +227,7 @@ TEST(Cli, EveryExampleGeneratesAndValidates) {
     for (const char* f : {"vector/zones.geojson", "vector/water.geojson", "vector/roads.geojson",
                           "vector/road_areas.geojson", "vector/blocks.geojson", "vector/lots.geojson",
                           "vector/buildings.geojson", "map.svg", "city.obj", "city.mtl", "city.ply", "city.city.json",
-                          "city.glb", "report.json"})
+                          "city.glb", "report.json", "vector/clutter.geojson"})
       EXPECT_TRUE(fs::exists(out / f)) << f;
     auto report = nlohmann::json::parse(read(out / "report.json"));
     EXPECT_EQ(report["validation"]["ok"], true);
@@ -241,10 +262,11 @@ TEST(Cli, EveryExampleGeneratesAndValidates) {
 
     EXPECT_EQ(svg_groups(read(out / "map.svg")), expected_svg_groups(out)) << sketch << ": map.svg";
     GlbCounts counts = check_glb_holds_every_building(out);
-    in_glb.buildings += counts.buildings, in_glb.models += counts.models;
+    in_glb.buildings += counts.buildings, in_glb.models += counts.models, in_glb.clutter += counts.clutter;
   }
   EXPECT_GT(in_glb.buildings, 0) << "no example has an extruded building to find in city.glb";
   EXPECT_GT(in_glb.models, 0) << "no example has a placed model to find in city.glb";
+  EXPECT_GT(in_glb.clutter, 0) << "no example has street clutter to find in city.glb (the hillside should)";
 }
 
 // Schemas only: cli_test checks every example's solids, indices and templates without them.

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
-"""Writes the example model library: a few buildings, a tree and a street lamp, as OBJ files
-with the quirks real model files have (Y-up and Z-up, millimetres, n-gons, negative
-indices, groups, doubled faces, bases below zero), and library.json describing them.
+"""Writes the example model library: a few buildings, a tree and street clutter (a lamp, a stop
+sign, a traffic light, a bench, a hydrant), as OBJ files with the quirks real model files
+have (Y-up and Z-up, centimetres and millimetres, n-gons, negative indices, groups, doubled
+faces, bases below zero, a front along +x), and library.json describing them.
 
 Run from anywhere: python3 examples/models/make_models.py
 """
@@ -15,6 +16,9 @@ MTL = {
     "slate": (0.25, 0.26, 0.30), "glass": (0.35, 0.50, 0.62), "concrete": (0.66, 0.66, 0.64),
     "steel": (0.55, 0.58, 0.60), "door": (0.35, 0.22, 0.12), "bark": (0.30, 0.22, 0.15),
     "leaves": (0.22, 0.45, 0.18), "lamp": (0.95, 0.92, 0.75),
+    "sign_red": (0.75, 0.08, 0.08), "sign_white": (0.92, 0.92, 0.90), "signal_red": (0.90, 0.10, 0.05),
+    "signal_amber": (0.95, 0.65, 0.05), "signal_green": (0.10, 0.80, 0.30), "wood": (0.55, 0.38, 0.22),
+    "hydrant": (0.80, 0.12, 0.10),
 }
 
 
@@ -177,6 +181,67 @@ def street_lamp():
     return o
 
 
+def prism(o, corners, z0, z1):
+    """A closed upright prism over a counter-clockwise polygon (x, y), sides as quads."""
+    o.face([(x, y, z0) for x, y in reversed(corners)])
+    o.face([(x, y, z1) for x, y in corners])
+    for (ax, ay), (bx, by) in zip(corners, corners[1:] + corners[:1]):
+        o.face([(ax, ay, z0), (bx, by, z0), (bx, by, z1), (ax, ay, z1)])
+
+
+def stop_sign():
+    o = Obj("stop_sign: a pole and an octagonal plate facing the traffic (-y), in millimetres, Z-up", up="z",
+            unit=0.001)
+    o.material("steel")
+    box(o, -0.03, -0.03, 0, 0.03, 0.03, 2.3)
+    # The plate: an octagon 0.75 m across standing in the x-z plane, as a thin slab.
+    r = 0.375 / math.cos(math.pi / 8)
+    octagon = [(r * math.cos(math.pi / 8 + i * math.pi / 4), 1.95 + r * math.sin(math.pi / 8 + i * math.pi / 4))
+               for i in range(8)]
+    o.material("sign_red")
+    o.face([(x, -0.05, z) for x, z in reversed(octagon)])  # front, one n-gon
+    o.material("sign_white")
+    o.face([(x, -0.03, z) for x, z in octagon])  # back
+    for (ax, az), (bx, bz) in zip(octagon, octagon[1:] + octagon[:1]):
+        o.face([(ax, -0.05, az), (bx, -0.05, bz), (bx, -0.03, bz), (ax, -0.03, az)])
+    return o
+
+
+def traffic_light():
+    o = Obj("traffic_light: a pole and a signal head facing -y, Y-up", up="y")
+    o.material("steel")
+    box(o, -0.07, -0.07, 0, 0.07, 0.07, 2.6)
+    o.material("slate")
+    box(o, -0.18, -0.2, 2.6, 0.18, 0.12, 3.6)
+    for k, colour in enumerate(["signal_green", "signal_amber", "signal_red"]):
+        o.material(colour)
+        z = 2.7 + 0.3 * k
+        box(o, -0.1, -0.26, z, 0.1, -0.2, z + 0.2)
+    return o
+
+
+def bench():
+    o = Obj("bench: legs, seat and back, its front along +x (the library says so), Z-up", up="z", relative=True)
+    o.material("steel")
+    for x in (-0.2, 0.15):
+        for y in (-0.8, 0.75):
+            box(o, x, y, 0, x + 0.05, y + 0.05, 0.45)
+    o.material("wood")
+    box(o, -0.22, -0.85, 0.45, 0.22, 0.85, 0.5)
+    box(o, -0.25, -0.85, 0.5, -0.2, 0.85, 0.9)
+    return o
+
+
+def hydrant():
+    o = Obj("hydrant: a red octagonal post with a cap, in centimetres, Y-up", up="y", unit=0.01)
+    o.material("hydrant")
+    ring = [(0.12 * math.cos(i * math.pi / 4), 0.12 * math.sin(i * math.pi / 4)) for i in range(8)]
+    prism(o, ring, 0, 0.6)
+    prism(o, [(0.7 * x, 0.7 * y) for x, y in ring], 0.6, 0.75)
+    box(o, -0.05, -0.2, 0.35, 0.05, -0.12, 0.45)  # the outlet, to the front
+    return o
+
+
 def main():
     models = [
         ("house_gabled.obj", gabled_house("house_gabled", 9, 8, 5.5, 8.5, "y", False),
@@ -189,8 +254,15 @@ def main():
         ("warehouse.obj", warehouse(), {"zones": ["industrial"], "up": "y", "weight": 1, "scale": [0.8, 1.3]}),
         ("tree.obj", tree(), {"zones": ["residential", "commercial", "industrial"], "kind": "tree", "up": "y",
                               "scale": [0.7, 1.3]}),
-        ("street_lamp.obj", street_lamp(), {"zones": ["residential", "commercial"], "kind": "street", "up": "z",
-                                            "unit": "cm", "spacing": 25, "scale": [1, 1]}),
+        # Street clutter (seed 004): without "zones" it dresses every zone's streets but water.
+        ("street_lamp.obj", street_lamp(), {"kind": "lamp", "up": "z", "unit": "cm", "spacing": 30, "offset": 0.6,
+                                            "scale": [1, 1]}),
+        ("stop_sign.obj", stop_sign(), {"kind": "sign", "up": "z", "unit": "mm", "offset": 0.5, "scale": [1, 1]}),
+        ("traffic_light.obj", traffic_light(), {"kind": "traffic_light", "up": "y", "offset": 0.6, "scale": [1, 1]}),
+        ("bench.obj", bench(), {"kind": "bench", "zones": ["residential", "commercial", "park"], "up": "z",
+                                "front": "+x", "spacing": 60, "offset": 1.2, "side": "alternate", "scale": [1, 1]}),
+        ("hydrant.obj", hydrant(), {"kind": "hydrant", "up": "y", "unit": "cm", "spacing": 90, "offset": 0.4,
+                                    "side": "alternate", "scale": [1, 1]}),
     ]
     entries = []
     for file, obj, props in models:

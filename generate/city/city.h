@@ -14,6 +14,7 @@
 #include "generate/parcels/blocks.h"
 #include "generate/parcels/lots.h"
 #include "generate/placement/buildings.h"
+#include "generate/placement/clutter.h"
 #include "generate/placement/model_library.h"
 
 namespace exacity {
@@ -29,6 +30,7 @@ struct City {
   UnbuiltLots unbuilt_lots;  // lots merged into a neighbour or left open: no placer could build on them
   std::vector<Building> buildings;  // extruded
   std::vector<ModelInstance> models;  // placed from the library
+  StreetClutter clutter;  // seed 004's, along the streets; written as vector/clutter.geojson
   Ground ground;
   CityLayers layers;  // as written into vector/
 

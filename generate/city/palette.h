@@ -87,5 +87,6 @@ inline constexpr const char* kMapRoad = "#6b6b6b";
 inline constexpr const char* kMapBridge = "#3a3a3a";
 inline constexpr const char* kMapSidewalk = "#c9c3b8";
 inline constexpr const char* kMapCentreLine = "#ffffff";
+inline constexpr const char* kMapClutter = "#7b3294";  // street clutter's dots
 
 }  // namespace exacity

@@ -15,7 +15,7 @@ constexpr std::uint64_t mix(std::uint64_t x) {
 }
 constexpr std::uint64_t mix(std::uint64_t a, std::uint64_t b) { return mix(a ^ mix(b)); }
 
-enum class Stage : std::uint64_t { Roads = 1, Lots = 2, Buildings = 3 };
+enum class Stage : std::uint64_t { Roads = 1, Lots = 2, Buildings = 3, Clutter = 4 };
 
 class Random {
  public:

@@ -156,6 +156,15 @@ json templates(const ModelLibrary& library) {
   return {{"templates", list}, {"vertices-templates", vertices}};
 }
 
+// A model's template placed by a transform about its reference point, standing on `floor`.
+json geometry_instance(const Placement& p, double floor, Vertices& v) {
+  const double c = std::cos(p.angle) * p.scale, s = std::sin(p.angle) * p.scale;
+  return {{"type", "GeometryInstance"},
+          {"template", p.model},
+          {"boundaries", {v(p.position.x, p.position.y, floor)}},
+          {"transformationMatrix", {c, -s, 0, 0, s, c, 0, 0, 0, 0, p.scale, 0, 0, 0, 0, 1}}};
+}
+
 const json kSemanticSurfaces = json::array({{{"type", "GroundSurface"}}, {{"type", "WallSurface"}}, {{"type", "RoofSurface"}}});
 
 // An extruded building: LOD1 its prism, LOD2 its roof as built (where quantisation
@@ -192,11 +201,7 @@ json model_object(const ModelInstance& m, const Mesh& mesh, const ModelLibrary& 
     placed = {{"type", "MultiSurface"}, {"lod", "2"}, {"boundaries", faces},
               {"semantics", {{"surfaces", kSemanticSurfaces}, {"values", face_classes}}}};
   } else {
-    const double c = std::cos(m.placed.angle) * m.placed.scale, s = std::sin(m.placed.angle) * m.placed.scale;
-    placed = {{"type", "GeometryInstance"},
-              {"template", m.placed.model},
-              {"boundaries", {v(m.placed.position.x, m.placed.position.y, m.floor)}},
-              {"transformationMatrix", {c, -s, 0, 0, s, c, 0, 0, 0, 0, m.placed.scale, 0, 0, 0, 0, 1}}};
+    placed = geometry_instance(m.placed, m.floor, v);
   }
   const char* type = m.kind == ModelKind::Tree       ? "SolitaryVegetationObject"
                      : m.kind == ModelKind::Building ? "Building"
@@ -205,6 +210,18 @@ json model_object(const ModelInstance& m, const Mesh& mesh, const ModelLibrary& 
           {"attributes",
            {{"lot", m.lot}, {"zone", name(m.zone)}, {"measuredHeight", m.height}, {"model", library.models[m.placed.model].name}}},
           {"geometry", json::array({lod1, placed})}};
+}
+
+// Street clutter (seed 004): CityFurniture, or SolitaryVegetationObject for a tree, whose one
+// geometry is its model's template placed; its attributes name the road it dresses.
+json clutter_object(const Clutter& c, const ModelLibrary& library, Vertices& v) {
+  const ModelInstance& m = c.instance;
+  json attributes{{"kind", name(m.kind)}, {"road", c.road}, {"heading", c.heading}, {"measuredHeight", m.height},
+                  {"model", library.models[m.placed.model].name}};
+  if (m.lot >= 0) attributes["lot"] = m.lot;
+  return {{"type", m.kind == ModelKind::Tree ? "SolitaryVegetationObject" : "CityFurniture"},
+          {"attributes", attributes},
+          {"geometry", json::array({geometry_instance(m.placed, m.floor, v)})}};
 }
 
 // Roads, land use and water as LOD1 surfaces: an object per road (its areas), per zone
@@ -244,7 +261,7 @@ void add_ground_objects(const Ground& ground, const Terrain* terrain, Vertices& 
 void write_cityjson(const Ground& ground, const std::vector<Building>& buildings,
                     const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
                     const ModelLibrary* library, const Terrain* terrain, const Sketch& sketch,
-                    const std::filesystem::path& file) {
+                    const std::filesystem::path& file, const std::vector<Clutter>& clutter) {
   geom::Box box = ground.bounds();
   if (box.holds_nothing()) box = {0, 0, 1, 1};
   const geom::Vec2 origin{std::floor(box.min_x), std::floor(box.min_y)};
@@ -260,6 +277,7 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
         if (json o = model_object(m, meshes[m.id], *library, v); !o.is_null())
           objects["building-" + std::to_string(m.id)] = o;
       });
+  for (const Clutter& c : clutter) objects["clutter-" + std::to_string(c.instance.id)] = clutter_object(c, *library, v);
   add_ground_objects(ground, terrain, v, objects);
 
   // The ground under the city: the heightmap over the rectangle around it.

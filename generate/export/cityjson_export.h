@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "generate/export/building_mesh.h"
+#include "generate/placement/clutter.h"
 #include "generate/city/ground.h"
 #include "generate/city/sketch.h"
 #include "generate/city/terrain.h"
@@ -18,6 +19,6 @@ namespace exacity {
 void write_cityjson(const Ground& ground, const std::vector<Building>& buildings,
                     const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
                     const ModelLibrary* library, const Terrain* terrain, const Sketch& sketch,
-                    const std::filesystem::path& file);
+                    const std::filesystem::path& file, const std::vector<Clutter>& clutter = {});
 
 }  // namespace exacity

@@ -32,7 +32,9 @@ void write_ring(std::ostream& out, const geom::Ring& r) {
 
 }  // namespace
 
-void write_geojson(const Layer& layer, const nlohmann::ordered_json& crs, const fs::path& file) {
+namespace {
+
+void write_layer(const Layer& layer, const nlohmann::ordered_json& crs, const fs::path& file, bool points) {
   std::ofstream out(file, std::ios::binary);
   if (!out) throw UserError(file.string() + ": cannot write this file; check the output folder's permissions");
   out << "{\"type\":\"FeatureCollection\",\"name\":" << json(layer.name).dump();
@@ -42,6 +44,12 @@ void write_geojson(const Layer& layer, const nlohmann::ordered_json& crs, const 
     const VectorFeature& f = layer.features[i];
     out << (i ? ",\n" : "\n") << "{\"type\":\"Feature\",\"properties\":" << f.properties.dump()
         << ",\"geometry\":{\"type\":";
+    if (points) {
+      out << "\"Point\",\"coordinates\":";
+      write_position(out, f.line.at(0));
+      out << "}}";
+      continue;
+    }
     if (layer.lines) {
       out << "\"LineString\",\"coordinates\":[";
       for (std::size_t k = 0; k < f.line.size(); ++k) out << (k ? "," : ""), write_position(out, f.line[k]);
@@ -54,6 +62,16 @@ void write_geojson(const Layer& layer, const nlohmann::ordered_json& crs, const 
   }
   out << "\n]}\n";
   if (!out) throw UserError(file.string() + ": write failed (disk full?)");
+}
+
+}  // namespace
+
+void write_geojson(const Layer& layer, const nlohmann::ordered_json& crs, const fs::path& file) {
+  write_layer(layer, crs, file, false);
+}
+
+void write_point_geojson(const Layer& layer, const nlohmann::ordered_json& crs, const fs::path& file) {
+  write_layer(layer, crs, file, true);
 }
 
 Layer read_geojson(const fs::path& file, std::vector<std::string>& problems) {
@@ -81,7 +99,9 @@ Layer read_geojson(const fs::path& file, std::vector<std::string>& problems) {
       const json& g = f.at("geometry");
       std::string type = g.at("type");
       const json& c = g.at("coordinates");
-      if (type == "LineString") {
+      if (type == "Point") {
+        vf.line = {position(c)};
+      } else if (type == "LineString") {
         layer.lines = true;
         for (const json& p : c) vf.line.push_back(position(p));
       } else if (type == "Polygon") {

@@ -15,7 +15,7 @@ namespace exacity {
 struct VectorFeature {
   nlohmann::ordered_json properties;
   geom::Polygon polygon;  // for polygon layers
-  geom::Polyline line;    // for line layers
+  geom::Polyline line;    // for line layers; for point layers, the one point
 };
 
 struct Layer {
@@ -26,7 +26,11 @@ struct Layer {
 
 void write_geojson(const Layer& layer, const nlohmann::ordered_json& crs, const std::filesystem::path& file);
 
-// Reads a layer written by write_geojson (or any GeoJSON of Polygons or LineStrings).
+// A layer of Points, each feature's line holding its one point.
+void write_point_geojson(const Layer& layer, const nlohmann::ordered_json& crs, const std::filesystem::path& file);
+
+// Reads a layer written by write_geojson or write_point_geojson (or any GeoJSON of
+// Polygons, LineStrings or Points).
 // Anything malformed is appended to `problems`, one line each, and skipped.
 Layer read_geojson(const std::filesystem::path& file, std::vector<std::string>& problems);
 

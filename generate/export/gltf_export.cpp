@@ -198,12 +198,18 @@ Primitives building_primitives(const std::vector<Building>& buildings, const std
   return out;
 }
 
+// Each library model's geometry and colour variants, stored the first time one is placed.
+struct StoredModels {
+  std::map<int, std::vector<std::pair<int, int>>> geometry;  // model -> accessors per material
+  std::map<std::pair<int, int>, int> variant_mesh;          // (model, tint) -> mesh
+};
+
 // Placed models: geometry once per model, a mesh per colour variant used, a node each
 // (children of `root`). Returns the nodes added.
 std::size_t add_model_nodes(const std::vector<ModelInstance>& models, const ModelLibrary* library, const Frame& local,
-                            Glb& glb, tinygltf::Node& root) {
-  std::map<int, std::vector<std::pair<int, int>>> geometry;  // model -> accessors per material
-  std::map<std::pair<int, int>, int> variant_mesh;          // (model, tint) -> mesh
+                            Glb& glb, tinygltf::Node& root, StoredModels& stored) {
+  auto& geometry = stored.geometry;
+  auto& variant_mesh = stored.variant_mesh;
   for (const ModelInstance& m : models) {
     const int mi = m.placed.model;
     const Model& model = library->models[mi];
@@ -251,7 +257,8 @@ void add_mesh_node(const std::string& name, const Primitives& primitives, Glb& g
 
 GltfCounts write_gltf(const Ground& ground, const std::vector<Building>& buildings,
                       const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
-                      const ModelLibrary* library, const Terrain* terrain, const std::filesystem::path& file) {
+                      const ModelLibrary* library, const Terrain* terrain, const std::filesystem::path& file,
+                      const std::vector<ModelInstance>& clutter) {
   geom::Box box = ground.bounds();
   if (box.holds_nothing()) box = {0, 0, 1, 1};
   const Frame local{local_origin(box)};
@@ -262,7 +269,15 @@ GltfCounts write_gltf(const Ground& ground, const std::vector<Building>& buildin
   add_mesh_node("ground", ground_primitives(ground, terrain, box, local, glb), glb, root);
   add_mesh_node("buildings", building_primitives(buildings, models, meshes, local, glb), glb, root);
   GltfCounts counts;
-  counts.instances = add_model_nodes(models, library, local, glb, root);
+  StoredModels stored;
+  counts.instances = add_model_nodes(models, library, local, glb, root, stored);
+  if (!clutter.empty()) {
+    // The street clutter under a node of its own, in clutter.geojson's order.
+    tinygltf::Node group;
+    group.name = "clutter";
+    counts.instances += add_model_nodes(clutter, library, local, glb, group, stored);
+    root.children.push_back(glb.node(group));
+  }
   glb.write(glb.node(root), file);
   counts.meshes = glb.meshes();
   counts.triangles = glb.triangles();

@@ -21,9 +21,12 @@ struct GltfCounts {
   std::size_t meshes = 0, instances = 0, triangles = 0;
 };
 
-// meshes are structure_meshes(buildings, models, library), by id.
+// meshes are structure_meshes(buildings, models, library), by id. The street clutter's
+// models are instanced like the lots', sharing their geometry: a node each, in id order,
+// under the root's child "clutter".
 GltfCounts write_gltf(const Ground& ground, const std::vector<Building>& buildings,
                       const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
-                      const ModelLibrary* library, const Terrain* terrain, const std::filesystem::path& file);
+                      const ModelLibrary* library, const Terrain* terrain, const std::filesystem::path& file,
+                      const std::vector<ModelInstance>& clutter = {});
 
 }  // namespace exacity

@@ -31,7 +31,8 @@ std::string path_data(const geom::Polygon& poly, const geom::Box& b) {
 }
 
 // A key to the colours and a scale bar, sized in screen pixels (px world units each).
-void write_legend(std::ostream& out, const Ground& ground, bool structures, double w, double h, double px) {
+void write_legend(std::ostream& out, const Ground& ground, bool structures, bool clutter, double w, double h,
+                  double px) {
   std::vector<std::pair<std::string, std::string>> keys;
   const bool green_blocks = std::any_of(ground.blocks.begin(), ground.blocks.end(), [](const BlockArea& b) { return b.green; });
   for (const auto& [zone, colour] : map_zone_colours())
@@ -46,6 +47,7 @@ void write_legend(std::ostream& out, const Ground& ground, bool structures, doub
   if (any_area([](const RoadArea& a) { return a.bridge; })) keys.emplace_back("bridge", kMapBridge);
   if (any_area([](const RoadArea& a) { return a.surface == RoadSurface::Sidewalk; }))
     keys.emplace_back("sidewalk", kMapSidewalk);
+  if (clutter) keys.emplace_back("street clutter", kMapClutter);
   auto n = [&](double pixels) { return format_number(pixels * px); };
   double line = 20, x = 10, y = h / px - 10 - line * (keys.size() + 1);
   out << "<g class=\"legend\" font-family=\"sans-serif\" font-size=\"" << n(13) << "\">\n"
@@ -68,7 +70,8 @@ void write_legend(std::ostream& out, const Ground& ground, bool structures, doub
 }  // namespace
 
 void write_svg_map(const Ground& ground, const std::vector<Building>& buildings,
-                   const std::vector<ModelInstance>& models, const std::filesystem::path& file) {
+                   const std::vector<ModelInstance>& models, const std::filesystem::path& file,
+                   const std::vector<Clutter>& clutter) {
   geom::Box b = ground.bounds();
   for (const RoadLine& r : ground.roads)
     for (auto p : r.line) b.add(p);
@@ -128,7 +131,15 @@ void write_svg_map(const Ground& ground, const std::vector<Building>& buildings,
     out << "\"/>\n";
   }
   out << "</g>\n";
-  write_legend(out, ground, !buildings.empty() || !models.empty(), w, h, stroke);
+  out << "<g class=\"clutter\" fill=\"" << kMapClutter << "\">\n";
+  for (const Clutter& c : clutter) {
+    const std::string at = point(c.spot, b);
+    const std::size_t comma = at.find(',');
+    out << "<circle cx=\"" << at.substr(0, comma) << "\" cy=\"" << at.substr(comma + 1) << "\" r=\""
+        << format_number(stroke * 1.5) << "\"/>\n";
+  }
+  out << "</g>\n";
+  write_legend(out, ground, !buildings.empty() || !models.empty(), !clutter.empty(), w, h, stroke);
   out << "</svg>\n";
 }
 

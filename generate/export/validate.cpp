@@ -9,6 +9,7 @@
 #include "generate/errors.h"
 #include "generate/export/geojson.h"
 #include "generate/export/validate_nesting.h"
+#include "generate/export/validate_clutter.h"
 #include "generate/export/vector_layers.h"
 #include "geom/measure.h"
 #include "geom/planar_map.h"
@@ -441,6 +442,7 @@ Validation validate_output(const fs::path& dir) {
   if (!well_formed) return v;
   check_tiling(c, sketch, refs, polygons);
   check_roads(c, sketch, roads, water);
+  validate_clutter(dir, layers, v);
   return v;
 }
 

@@ -1,0 +1,18 @@
+#include "generate/export/clutter_layer.h"
+
+namespace exacity {
+
+Layer clutter_layer(const std::vector<Clutter>& clutter, const ModelLibrary* library) {
+  Layer layer{"clutter", false, {}};
+  for (const Clutter& c : clutter) {
+    nlohmann::ordered_json props{{"id", c.instance.id},
+                                 {"kind", name(c.instance.kind)},
+                                 {"model", library->models[c.instance.placed.model].name},
+                                 {"road", c.road},
+                                 {"heading", c.heading}};
+    layer.features.push_back({std::move(props), {}, {c.spot}});
+  }
+  return layer;
+}
+
+}  // namespace exacity

@@ -1,0 +1,124 @@
+#include "generate/export/validate_clutter.h"
+
+#include <cmath>
+#include <set>
+#include <unordered_map>
+
+#include "generate/placement/model_library.h"
+#include "geom/polygon_check.h"
+
+namespace exacity {
+namespace {
+
+// As many problems as validate.cpp keeps in all.
+constexpr std::size_t kMaxProblems = 20;
+
+// A polygon of another layer a point is checked against.
+struct Area {
+  const geom::Polygon* polygon;
+  std::string name;  // "road_areas.geojson features[3] (carriageway)"
+  bool stands_on;    // a sidewalk or a lot; else clutter keeps off it
+};
+
+// The areas by the cells of a square grid their boxes meet.
+class AreaCells {
+ public:
+  static constexpr double kCell = 32;
+  void add(int area, const geom::Polygon& p) {
+    geom::Box b = geom::Box::none();
+    for (geom::Vec2 q : p.outer) b.add(q);
+    for (auto x = cell(b.min_x); x <= cell(b.max_x); ++x)
+      for (auto y = cell(b.min_y); y <= cell(b.max_y); ++y) cells_[key(x, y)].push_back(area);
+  }
+  const std::vector<int>& at(geom::Vec2 p) const {
+    static const std::vector<int> none;
+    auto it = cells_.find(key(cell(p.x), cell(p.y)));
+    return it == cells_.end() ? none : it->second;
+  }
+
+ private:
+  static std::int64_t cell(double v) { return static_cast<std::int64_t>(std::floor(v / kCell)); }
+  static std::int64_t key(std::int64_t x, std::int64_t y) { return x * 0x1000000 + y; }
+  std::unordered_map<std::int64_t, std::vector<int>> cells_;
+};
+
+bool is_clutter_kind(const std::string& kind) {
+  for (ModelKind k : kModelKinds)
+    if (is_clutter(k) && kind == name(k)) return true;
+  return false;
+}
+
+}  // namespace
+
+void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers, Validation& v) {
+  auto problem = [&](const std::string& p) {
+    if (v.problems.size() < kMaxProblems) v.problems.push_back(p);
+  };
+  std::vector<std::string> read_problems;
+  const Layer clutter = read_geojson(dir / "vector" / "clutter.geojson", read_problems);
+  for (const std::string& p : read_problems) problem(p);
+  v.features["clutter"] = static_cast<int>(clutter.features.size());
+
+  std::vector<Area> areas;
+  AreaCells cells;
+  auto add = [&](const Layer& layer, auto&& stands_on, auto&& what) {
+    for (std::size_t i = 0; i < layer.features.size(); ++i) {
+      const VectorFeature& f = layer.features[i];
+      cells.add(static_cast<int>(areas.size()), f.polygon);
+      areas.push_back(
+          {&f.polygon, layer.name + ".geojson features[" + std::to_string(i) + "]" + what(f), stands_on(f)});
+    }
+  };
+  const auto no_note = [](const VectorFeature&) { return std::string(); };
+  add(
+      layers.road_areas,
+      [](const VectorFeature& f) {
+        return f.properties.value("surface", "") == "sidewalk" && !f.properties.value("bridge", false);
+      },
+      [](const VectorFeature& f) {
+        return " (" + f.properties.value("surface", std::string("?")) +
+               (f.properties.value("bridge", false) ? " of a bridge)" : ")");
+      });
+  add(
+      layers.lots, [](const VectorFeature&) { return true; }, no_note);
+  add(
+      layers.water, [](const VectorFeature&) { return false; }, no_note);
+  add(
+      layers.buildings, [](const VectorFeature&) { return false; }, no_note);
+
+  std::set<int> roads, ids;
+  for (const VectorFeature& f : layers.roads.features) roads.insert(f.properties.value("id", -1));
+  for (std::size_t i = 0; i < clutter.features.size(); ++i) {
+    const VectorFeature& f = clutter.features[i];
+    const std::string name = "clutter.geojson features[" + std::to_string(i) + "]";
+    if (f.line.size() != 1 || !f.polygon.outer.empty()) {
+      problem(name + ": not a Point");
+      continue;
+    }
+    const geom::Vec2 p = f.line[0];
+    const std::string at = " at (" + format_number(p.x) + ", " + format_number(p.y) + ")";
+    const auto& props = f.properties;
+    if (!props.contains("id") || !props["id"].is_number_integer() || !ids.insert(props["id"].get<int>()).second)
+      problem(name + ": its id is missing or not unique");
+    if (!props.contains("kind") || !props["kind"].is_string() || !is_clutter_kind(props["kind"].get<std::string>()))
+      problem(name + ": \"kind\" is " + props.value("kind", nlohmann::ordered_json()).dump() + ", no clutter kind");
+    if (!props.contains("model") || !props["model"].is_string()) problem(name + ": no \"model\"");
+    if (!props.contains("road") || !props["road"].is_number_integer() || !roads.count(props["road"].get<int>()))
+      problem(name + ": \"road\" " + props.value("road", nlohmann::ordered_json()).dump() +
+              " names no feature of roads.geojson");
+    const double heading =
+        props.contains("heading") && props["heading"].is_number() ? props["heading"].get<double>() : -1;
+    if (!(heading >= 0 && heading < 360)) problem(name + ": \"heading\" is not degrees in [0, 360)");
+    bool stands = false;
+    for (int a : cells.at(p)) {
+      const int side = geom::point_side(*areas[a].polygon, p);
+      if (areas[a].stands_on)
+        stands |= side > 0;
+      else if (side >= 0)
+        problem(name + at + (side > 0 ? " stands in " : " stands on the edge of ") + areas[a].name);
+    }
+    if (!stands) problem(name + at + " stands strictly inside no sidewalk and no lot");
+  }
+}
+
+}  // namespace exacity

@@ -1,0 +1,18 @@
+// `exacity validate`'s checks of vector/clutter.geojson (seed 004's street clutter), on the
+// coordinates as written and exactly (docs/design.md, Exactness rule 7).
+#pragma once
+
+#include <filesystem>
+
+#include "generate/export/validate.h"
+#include "generate/export/vector_layers.h"
+
+namespace exacity {
+
+// Each piece of clutter a Point with a unique id, a clutter kind and a heading, naming a
+// centre line of roads.geojson; standing strictly inside a sidewalk that is no bridge's or a
+// lot, and in (or on the edge of) no carriageway, junction, water or building. Appends
+// problems to `v`.
+void validate_clutter(const std::filesystem::path& out_dir, const CityLayers& layers, Validation& v);
+
+}  // namespace exacity

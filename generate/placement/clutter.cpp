@@ -1,0 +1,456 @@
+#include "generate/placement/clutter.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <tuple>
+#include <unordered_map>
+
+#include "generate/placement/model_placement.h"
+#include "generate/placement/street_nodes.h"
+#include "geom/grid.h"
+#include "geom/planar_map.h"
+#include "geom/polygon_check.h"
+
+namespace exacity {
+namespace {
+
+using geom::Vec2;
+
+// Why a spot found no place (report.json's clutter.not_placed).
+constexpr const char* kOnRoad = "on a carriageway or in a junction";
+constexpr const char* kOnWater = "on water or a bridge";
+constexpr const char* kNoGround = "no sidewalk or lot there (a park, green space or open land)";
+constexpr const char* kOnEdge = "on an edge between two faces of the map";
+constexpr const char* kBaseLeaves = "its base leaves the sidewalk or lot";
+constexpr const char* kBuilding = "a building or lot furniture stands there";
+constexpr const char* kOtherClutter = "other clutter stands there";
+constexpr const char* kChannels = "no entry of the kind suits the channels there";
+
+// A model's base: its outline where it meets the ground (the convex hull of its vertices in
+// the lowest 30 cm, or quarter of its height), so a lamp's arm or a tree's crown may reach
+// over the kerb or a garden while its pole or trunk stands on the sidewalk or in the lot.
+struct Base {
+  geom::Ring ring;  // in the model's frame, counter-clockwise
+  Vec2 centre;      // its bounding box's centre: where the model stands
+};
+
+Base base_of(const Model& m) {
+  const double top = std::min(0.3, m.height / 4);
+  std::vector<Vec2> low;
+  for (const Vec3& v : m.mesh.vertices)
+    if (v[2] <= top) low.push_back({v[0], v[1]});
+  Base b;
+  b.ring = low.size() >= 3 ? geom::convex_hull(low) : geom::Ring{};
+  if (b.ring.size() < 3) b.ring = {{-0.1, -0.1}, {0.1, -0.1}, {0.1, 0.1}, {-0.1, 0.1}};
+  geom::Box box = geom::Box::none();
+  for (Vec2 p : b.ring) box.add(p);
+  b.centre = {(box.min_x + box.max_x) / 2, (box.min_y + box.max_y) / 2};
+  return b;
+}
+
+// Rings by the cells of a square grid their boxes meet, to find the few near a point or ring.
+class RingBuckets {
+ public:
+  explicit RingBuckets(double cell) : cell_(cell) {}
+  void add(const geom::Ring& ring, int value) {
+    for_cells(box_of(ring), [&](std::int64_t key) { cells_[key].push_back(value); });
+  }
+  // Values whose rings' boxes share a cell with the box, each once, in ascending order.
+  std::vector<int> near(const geom::Box& box) const {
+    std::vector<int> out;
+    for_cells(box, [&](std::int64_t key) {
+      if (auto it = cells_.find(key); it != cells_.end()) out.insert(out.end(), it->second.begin(), it->second.end());
+    });
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+  static geom::Box box_of(const geom::Ring& ring) {
+    geom::Box b = geom::Box::none();
+    for (Vec2 p : ring) b.add(p);
+    return b;
+  }
+
+ private:
+  template <typename F>
+  void for_cells(const geom::Box& b, F&& f) const {
+    const auto lo_x = static_cast<std::int64_t>(std::floor(b.min_x / cell_)),
+               hi_x = static_cast<std::int64_t>(std::floor(b.max_x / cell_));
+    const auto lo_y = static_cast<std::int64_t>(std::floor(b.min_y / cell_)),
+               hi_y = static_cast<std::int64_t>(std::floor(b.max_y / cell_));
+    for (auto x = lo_x; x <= hi_x; ++x)
+      for (auto y = lo_y; y <= hi_y; ++y) f(x * 0x100000 + y);
+  }
+  double cell_;
+  std::unordered_map<std::int64_t, std::vector<int>> cells_;
+};
+
+bool meets_any(const geom::Ring& ring, const std::vector<int>& near, const std::vector<const geom::Ring*>& rings) {
+  return std::any_of(near.begin(), near.end(), [&](int i) { return geom::rings_meet(ring, *rings[i]); });
+}
+
+// The bases of the clutter kept so far, each held here.
+class TakenBases {
+ public:
+  bool meet(const geom::Ring& ring) const {
+    const std::vector<int> near = buckets_.near(RingBuckets::box_of(ring));
+    return std::any_of(near.begin(), near.end(), [&](int i) { return geom::rings_meet(ring, rings_[i]); });
+  }
+  void add(const geom::Ring& ring) {
+    buckets_.add(ring, static_cast<int>(rings_.size()));
+    rings_.push_back(ring);
+  }
+
+ private:
+  RingBuckets buckets_{8};
+  std::vector<geom::Ring> rings_;
+};
+
+// Whether an entry stands at a station (Dresser::dress).
+enum Fit { kNotHere, kNotNow, kHere };
+
+// What lies at a spot, decided exactly: a lot (its index), a sidewalk, or why neither.
+struct Where {
+  int lot = -1;
+  bool sidewalk = false;
+  const char* blocked = nullptr;  // why it is no place for clutter
+  std::optional<ZoneType> zone;   // the zone there, where the map knows one
+  bool ok() const { return !blocked; }
+};
+
+// The city the clutter stands in, with indices to find lots and footprints near a spot.
+class StandingGround {
+ public:
+  StandingGround(const ClutterGround& g, const Sketch& sketch)
+      : g_(g), sketch_(sketch), lot_rings_(32), footprints_(8) {
+    for (std::size_t i = 0; i < g.lots.size(); ++i) lot_rings_.add(g.lots[i].polygon.outer, static_cast<int>(i));
+    auto add = [&](const geom::Polygon& p) {
+      footprints_.add(p.outer, static_cast<int>(footprint_rings_.size()));
+      footprint_rings_.push_back(&p.outer);
+    };
+    for (const Building& b : g.buildings) add(b.polygon);
+    for (const ModelInstance& m : g.models) add(m.polygon);
+  }
+
+  Where at(Vec2 p) const {
+    for (int i : lot_rings_.near({p.x, p.y, p.x, p.y}))
+      if (g_.lots[i].cell.contains(p)) return {i, false, nullptr, g_.lots[i].zone};
+    const int label = g_.map.map.label_at(p);
+    if (label < 0) return {-1, false, kOnEdge, std::nullopt};
+    const FaceLabel& l = g_.map.labels[label];
+    Where w;
+    if (l.zone >= 0) w.zone = sketch_.zones[l.zone].type;
+    if (l.bridge || l.cover == Cover::Water)
+      w.blocked = kOnWater;
+    else if (l.cover == Cover::Road && l.surface == RoadSurface::Sidewalk)
+      w.sidewalk = true;
+    else if (l.cover == Cover::Road)
+      w.blocked = kOnRoad;
+    else
+      w.blocked = kNoGround;
+    return w;
+  }
+
+  // Why the base cannot stand where `w` says its spot is; null when it can.
+  const char* refuse(const geom::Ring& base, const Where& w) const {
+    if (geom::ring_orientation(base) != 1) return kBaseLeaves;  // too small to stay a ring on the grid
+    if (w.sidewalk) {
+      for (Vec2 p : base) {
+        const Where c = at(p);
+        if (!c.sidewalk) return kBaseLeaves;
+      }
+      return nullptr;
+    }
+    if (!g_.lots[w.lot].cell.holds(base)) return kBaseLeaves;
+    if (meets_any(base, footprints_.near(RingBuckets::box_of(base)), footprint_rings_)) return kBuilding;
+    return nullptr;
+  }
+
+ private:
+  const ClutterGround& g_;
+  const Sketch& sketch_;
+  RingBuckets lot_rings_, footprints_;
+  std::vector<const geom::Ring*> footprint_rings_;
+};
+
+// The clutter one street or junction proposes, before it is checked against the others'.
+struct Proposals {
+  std::vector<Clutter> items;
+  ClutterTally tally;
+};
+
+// Places clutter for one street or junction: picks each spot's model, tries the spot and a
+// few shifted ones, checks each exactly, and counts the spots that find no place.
+class Dresser {
+ public:
+  Dresser(const StandingGround& side, const ModelLibrary& lib, const std::vector<Base>& bases, const Channels& channels,
+          const Terrain* terrain, Random& rng, Proposals& out)
+      : side_(side), lib_(lib), bases_(bases), channels_(channels), terrain_(terrain), rng_(rng), out_(out) {}
+
+  // Whether the library has entries of the kind.
+  bool has(ModelKind kind) const { return !of_kind(kind).empty(); }
+
+  // A model of `kind` for the spot: the spot is `from` plus `out` times (the model's offset
+  // from the kerb), tried again moved by each of `shifts` along `shift`; its front faces
+  // `front`. `fits(model, zone)` says whether an entry may stand here (kHere), stands in the
+  // zone there but not at this station (kNotNow: the other side's turn), or not (kNotHere).
+  // Returns the spacing the chosen model keeps; 0 when no entry stands in the zone there.
+  template <typename Fits>
+  double dress(ModelKind kind, Vec2 from, Vec2 out, Vec2 shift, std::initializer_list<double> shifts, Vec2 front,
+               int road, Fits&& fits) {
+    const std::vector<int> kind_models = of_kind(kind);
+    if (kind_models.empty()) return 0;
+    const Vec2 probed = geom::snap(from + out * lib_.models[kind_models[0]].offset);
+    const Where probe = side_.at(probed);
+    if (!probe.zone) return 0;
+    std::vector<int> models;
+    double later = 0;  // the spacing of an entry that stands here at another station
+    for (int m : kind_models) {
+      const Fit fit = fits(lib_.models[m], *probe.zone);
+      if (fit == kHere)
+        models.push_back(m);
+      else if (fit == kNotNow && later == 0)
+        later = lib_.models[m].spacing;
+    }
+    if (models.empty()) return later;
+    const Vec2 nominal = geom::snap(from + out * lib_.models[models[0]].offset);
+    const int m = pick(choices_at(models, lib_, &channels_, nominal), rng_);
+    const char* why = nullptr;
+    if (m < 0) {
+      miss(kind, kChannels);
+      return lib_.models[models[0]].spacing;
+    }
+    const Model& model = lib_.models[m];
+    const double scale = rng_.uniform(model.min_scale, model.max_scale);
+    const int tint = static_cast<int>(rng_.next() % kTints);
+    for (double s : shifts) {
+      const Vec2 spot = geom::snap(from + out * model.offset + shift * s);
+      // The probe's answer where the spot is the probe: a point location less per spot.
+      const Where w = spot == probed ? probe : side_.at(spot);
+      if (!w.ok()) {
+        why = why ? why : w.blocked;
+        // Open land or water a metre or two on is open land or water still, mostly: move on
+        // without more point locations (each a walk through the map).
+        if (w.blocked == kNoGround || w.blocked == kOnWater) break;
+        continue;
+      }
+      Clutter c = made_at(m, spot, front, scale, tint, road);
+      c.instance.lot = w.lot;
+      if (const char* refused = side_.refuse(c.instance.polygon.outer, w)) {
+        why = why ? why : refused;
+        continue;
+      }
+      if (taken_.meet(c.instance.polygon.outer)) {
+        why = why ? why : kOtherClutter;
+        continue;
+      }
+      if (w.zone) c.instance.zone = *w.zone;
+      if (terrain_) std::tie(c.instance.base, c.instance.floor) = terrain_->range_under(c.instance.polygon.outer);
+      taken_.add(c.instance.polygon.outer);
+      out_.items.push_back(std::move(c));
+      ++out_.tally.placed[name(kind)];
+      return model.spacing;
+    }
+    miss(kind, why);
+    return model.spacing;
+  }
+
+ private:
+  std::vector<int> of_kind(ModelKind kind) const {
+    std::vector<int> out;
+    for (std::size_t i = 0; i < lib_.models.size(); ++i)
+      if (lib_.models[i].kind == kind) out.push_back(static_cast<int>(i));
+    return out;
+  }
+
+  void miss(ModelKind kind, const char* why) { ++out_.tally.missed[{name(kind), why}]; }
+
+  // Model m standing at the spot, its front towards `front`: the turn that takes the
+  // model's front (-y) there, its origin placed so that its base's centre is on the spot.
+  Clutter made_at(int m, Vec2 spot, Vec2 front, double scale, int tint, int road) const {
+    const Base& b = bases_[m];
+    const double angle = std::atan2(front.x, -front.y), c = std::cos(angle) * scale, s = std::sin(angle) * scale;
+    Placement p{m,
+                {spot.x - (c * b.centre.x - s * b.centre.y), spot.y - (s * b.centre.x + c * b.centre.y)},
+                angle,
+                scale,
+                tint};
+    geom::Ring ring;
+    for (Vec2 v : b.ring) {
+      const Vec2 w = geom::snap(Vec2{p.position.x + c * v.x - s * v.y, p.position.y + s * v.x + c * v.y});
+      if (ring.empty() || !(w == ring.back())) ring.push_back(w);
+    }
+    while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
+    Clutter out;
+    out.instance = made(lib_.models[m], p, std::move(ring));
+    out.spot = spot;
+    out.road = road;
+    // To a hundredth of a degree in [-180, 180], then into [0, 360) (at most 359.99; + 0.0
+    // turns a -0 into 0).
+    const double heading = std::round(std::atan2(front.y, front.x) * 18000 / M_PI) / 100;
+    out.heading = (heading < 0 ? heading + 360 : heading) + 0.0;
+    return out;
+  }
+
+  const StandingGround& side_;
+  const ModelLibrary& lib_;
+  const std::vector<Base>& bases_;
+  const Channels& channels_;
+  const Terrain* terrain_;
+  Random& rng_;
+  Proposals& out_;
+  TakenBases taken_;
+};
+
+bool stands_in(const Model& m, ZoneType zone) {
+  return std::find(m.zones.begin(), m.zones.end(), zone) != m.zones.end();
+}
+
+// Along one centre line, each side: lamps, benches and hydrants every `spacing`, trees along
+// residential streets; none within a junction's reach of a node where three or more lines
+// meet, where traffic lights and signs stand. Each side counts its stations from half a
+// spacing in; a model whose `side` is alternate stands on the left at even stations and on
+// the right at odd ones, so along the street it stands on each side in turn.
+void dress_street(const RoadLine& road, int id, const std::unordered_map<Vec2, double, geom::Vec2Hash>& junction_reach,
+                  const ModelLibrary& lib, Dresser& dresser) {
+  const geom::Polyline& line = road.line;
+  std::vector<double> at(line.size(), 0);  // distance along the line to each vertex
+  for (std::size_t i = 1; i < line.size(); ++i) at[i] = at[i - 1] + geom::distance(line[i - 1], line[i]);
+  std::vector<std::pair<double, double>> kept_clear;  // (from, to) along the line
+  for (std::size_t i = 0; i < line.size(); ++i)
+    if (auto it = junction_reach.find(line[i]); it != junction_reach.end())
+      kept_clear.push_back({at[i] - it->second, at[i] + it->second});
+  const double length = at.back();
+  for (ModelKind kind : {ModelKind::Lamp, ModelKind::Bench, ModelKind::Hydrant, ModelKind::Tree}) {
+    if (!dresser.has(kind)) continue;
+    double first = 0;
+    for (const Model& m : lib.models)
+      if (m.kind == kind) first = first > 0 ? std::min(first, m.spacing / 2) : m.spacing / 2;
+    for (int side : {1, -1}) {
+      int station = 0;
+      for (double t = first; t < length;) {
+        auto clear =
+            std::find_if(kept_clear.begin(), kept_clear.end(), [&](auto iv) { return iv.first <= t && t < iv.second; });
+        if (clear != kept_clear.end()) {
+          t = clear->second;
+          continue;
+        }
+        std::size_t k = 1;
+        while (k + 1 < line.size() && at[k] < t) ++k;
+        const Vec2 u = geom::unit_along(line[k - 1], line[k]);
+        const Vec2 centre =
+            geom::lerp(line[k - 1], line[k], at[k] > at[k - 1] ? (t - at[k - 1]) / (at[k] - at[k - 1]) : 0);
+        const Vec2 out = Vec2{-u.y, u.x} * side;
+        const bool left = side > 0, even = station % 2 == 0;
+        const double spacing =
+            dresser.dress(kind, centre + out * (road.width / 2), out, u, {0, 1, -1, 2, -2}, out * -1, id,
+                          [&](const Model& m, ZoneType z) {
+                            if (!stands_in(m, z) || (kind == ModelKind::Tree && z != ZoneType::Residential))
+                              return kNotHere;
+                            return m.side == StreetSide::Both || even == left ? kHere : kNotNow;
+                          });
+        // No entry for the zone here: look again a station further on.
+        t += spacing > 0 ? spacing : first * 2;
+        ++station;
+      }
+    }
+  }
+}
+
+// The direction halfway round from a to b, counter-clockwise, and the angle between them.
+std::pair<Vec2, double> halfway(Vec2 a, Vec2 b) {
+  double turn = std::atan2(geom::cross(a, b), geom::dot(a, b));
+  if (turn <= 0) turn += 2 * M_PI;
+  const double mid = std::atan2(a.y, a.x) + turn / 2;
+  return {{std::cos(mid), std::sin(mid)}, turn};
+}
+
+// A junction of major roads gets a traffic light at each corner between neighbouring arms,
+// facing the junction; a local road meeting a major one gets a stop sign on its approach, on
+// the right of the traffic coming in, facing it.
+void dress_junction(const StreetJunction& j, Dresser& dresser) {
+  const double reach = j.reach();
+  const auto any_zone = [](const Model& m, ZoneType z) { return stands_in(m, z) ? kHere : kNotHere; };
+  if (j.of_major_roads()) {
+    for (std::size_t i = 0; i < j.arms.size(); ++i) {
+      const RoadArm &a = j.arms[i], &b = j.arms[(i + 1) % j.arms.size()];
+      const auto [bisector, turn] = halfway(a.toward, b.toward);
+      Vec2 corner = j.at + bisector * std::max(a.half_width, b.half_width);
+      if (turn > 0.2 && turn < M_PI - 0.2) {
+        // A real corner: where the kerbs on its two sides meet, which is where a mitred
+        // junction's surface turns (docs/design.md, Exactness rule 3).
+        const Vec2 p = j.at + Vec2{-a.toward.y, a.toward.x} * a.half_width;
+        const Vec2 q = j.at + Vec2{b.toward.y, -b.toward.x} * b.half_width;
+        corner = p + a.toward * (geom::cross(q - p, b.toward) / geom::cross(a.toward, b.toward));
+      }
+      dresser.dress(ModelKind::TrafficLight, corner, bisector * std::sqrt(2.0), bisector, {0, 0.5, 1, 1.5, 2.5},
+                    bisector * -1, a.road, any_zone);
+    }
+    return;
+  }
+  if (!j.local_meets_major()) return;
+  for (const RoadArm& a : j.arms) {
+    if (is_major(a.road_class)) continue;
+    const Vec2 right_of_incoming{-a.toward.y, a.toward.x};
+    dresser.dress(ModelKind::Sign, j.at + a.toward * (reach + 2) + right_of_incoming * a.half_width, right_of_incoming,
+                  a.toward, {0, 1, 2, 3, 4}, a.toward, a.road, any_zone);
+  }
+}
+
+}  // namespace
+
+StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* library, const Channels& channels,
+                            const Sketch& sketch, const Terrain* terrain) {
+  StreetClutter out;
+  if (!library ||
+      std::none_of(library->models.begin(), library->models.end(), [](const Model& m) { return is_clutter(m.kind); }))
+    return out;
+  std::vector<Base> bases;
+  for (const Model& m : library->models) bases.push_back(base_of(m));
+  const StandingGround side(ground, sketch);
+  const std::vector<RoadLine>& roads = ground.ground.roads;
+  const std::vector<StreetJunction> junctions = street_junctions(roads);
+  // Streets keep clear of a junction's surface and of the clutter at its corners.
+  std::unordered_map<Vec2, double, geom::Vec2Hash> junction_reach;
+  for (const StreetJunction& j : junctions) junction_reach[j.at] = j.reach() + 3;
+
+  // Each street, then each junction, proposes its own clutter in parallel, checked against
+  // the ground and its own; then in that order each is checked against the clutter kept.
+  const std::size_t groups = roads.size() + junctions.size();
+  std::vector<Proposals> proposed(groups);
+  const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Clutter));
+  tbb::parallel_for(std::size_t(0), groups, [&](std::size_t g) {
+    Random rng(mix(stage, g));
+    Dresser dresser(side, *library, bases, channels, terrain, rng, proposed[g]);
+    if (g < roads.size()) {
+      if (!roads[g].bridge) dress_street(roads[g], static_cast<int>(g), junction_reach, *library, dresser);
+    } else {
+      dress_junction(junctions[g - roads.size()], dresser);
+    }
+  });
+  TakenBases kept;
+  for (Proposals& p : proposed) {
+    for (auto& [kind, n] : p.tally.placed) out.tally.placed[kind] += n;
+    for (auto& [why, n] : p.tally.missed) out.tally.missed[why] += n;
+    for (Clutter& c : p.items) {
+      const geom::Ring& ring = c.instance.polygon.outer;
+      if (kept.meet(ring)) {
+        const std::string kind(name(c.instance.kind));
+        --out.tally.placed[kind];
+        ++out.tally.missed[{kind, kOtherClutter}];
+        continue;
+      }
+      c.instance.id = static_cast<int>(out.items.size());
+      kept.add(ring);
+      out.items.push_back(std::move(c));
+    }
+  }
+  for (auto it = out.tally.placed.begin(); it != out.tally.placed.end();)
+    it = it->second == 0 ? out.tally.placed.erase(it) : std::next(it);
+  return out;
+}
+
+}  // namespace exacity

@@ -1,0 +1,64 @@
+// Seed 004's street clutter: the library's lamps, signs, traffic lights, benches, hydrants and
+// trees dress the streets by the rules each entry sets (spacing along the street, offset in from
+// the kerb, both sides or alternate ones), after the buildings stand (docs/design.md,
+// Placement). Lamps, benches and hydrants line every street, trees residential ones; traffic
+// lights stand at the corners of junctions of major roads, stop signs on local roads'
+// approaches to major ones. Which entry of a kind stands at a spot is drawn by its weight
+// times its channel affinity there.
+//
+// A piece of clutter stands on a sidewalk or in a lot (the setback strip between the street
+// and the buildings), decided exactly: its spot strictly inside a sidewalk face of the map
+// (PlanarMap::label_at) or a lot's exact cell, its base (the model's outline at ground level)
+// on sidewalk faces or strictly inside that lot, meeting no footprint and no other clutter.
+// Spots that find no such place are counted by why (report.json's clutter.not_placed).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "generate/city/channels.h"
+#include "generate/city/city_map.h"
+#include "generate/city/ground.h"
+#include "generate/city/sketch.h"
+#include "generate/city/terrain.h"
+#include "generate/parcels/lots.h"
+#include "generate/placement/buildings.h"
+#include "generate/placement/model_library.h"
+
+namespace exacity {
+
+// One piece of clutter; its id is its index in the clutter layer.
+struct Clutter {
+  ModelInstance instance;  // kind, model, placement; polygon: its base on the grid; lot -1 on a sidewalk
+  geom::Vec2 spot;         // where it stands: its base's centre, on the grid (the layer's point)
+  int road = -1;           // the id of the centre line it dresses (roads layer)
+  double heading = 0;      // degrees counter-clockwise from east: where its front faces
+};
+
+// Why spots found no place, for report.json.
+struct ClutterTally {
+  std::map<std::string, int> placed;                          // by kind
+  std::map<std::pair<std::string, std::string>, int> missed;  // (kind, why) -> spots
+};
+
+struct StreetClutter {
+  std::vector<Clutter> items;
+  ClutterTally tally;
+};
+
+// What the clutter stands among: the final map, its ground and lots, what stands on them.
+struct ClutterGround {
+  const CityMap& map;
+  const Ground& ground;
+  const std::vector<Lot>& lots;
+  const std::vector<Building>& buildings;
+  const std::vector<ModelInstance>& models;
+};
+
+// Every street's clutter, road by road in parallel, gathered in road order; none without a
+// library or clutter entries.
+StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* library, const Channels& channels,
+                            const Sketch& sketch, const Terrain* terrain);
+
+}  // namespace exacity

@@ -1,0 +1,241 @@
+// Seed 004's street clutter on a small city of four streets: two main roads crossing (a
+// junction of major roads), two local roads meeting them (approaches of minor roads to major
+// ones). Where clutter may stand, checked against the exact map; which junctions get traffic
+// lights and stop signs; alternate sides; channels steering the model; a library of clutter
+// alone; and validate catching clutter where it must not stand.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "generate/errors.h"
+#include "generate/export/validate.h"
+#include "generate/pipeline.h"
+#include "generate/placement/street_nodes.h"
+#include "geom/planar_map.h"
+#include "geom/polygon_check.h"
+#include "tests/clutter_sketch.h"
+#include "tests/test_util.h"
+
+namespace fs = std::filesystem;
+using namespace exacity;
+using namespace clutter_sketch;
+
+namespace {
+
+City built(const fs::path& sketch) {
+  StageClock clock(nullptr, kCityStages);
+  return build_city(load_sketch(sketch), clock);
+}
+
+// The junction whose node is nearest p.
+const StreetJunction& nearest(const std::vector<StreetJunction>& junctions, geom::Vec2 p) {
+  return *std::min_element(junctions.begin(), junctions.end(), [&](const auto& a, const auto& b) {
+    return geom::distance(a.at, p) < geom::distance(b.at, p);
+  });
+}
+
+// Every piece of clutter stands strictly inside a sidewalk face or a lot, by the exact map,
+// its base held by the lot and apart from its buildings. Returns (on sidewalks, in lots).
+std::pair<int, int> expect_on_sidewalks_or_lots(const City& city) {
+  int on_sidewalk = 0, in_lot = 0;
+  for (const Clutter& c : city.clutter.items) {
+    const int label = city.network.map.map.label_at(c.spot);
+    EXPECT_GE(label, 0) << "clutter " << c.instance.id << " lies on an edge of the map";
+    if (label < 0) continue;
+    const FaceLabel& l = city.network.map.labels[label];
+    EXPECT_NE(l.cover, Cover::Water) << c.instance.id;
+    EXPECT_FALSE(l.bridge) << c.instance.id;
+    if (l.cover == Cover::Road) {
+      EXPECT_EQ(l.surface, RoadSurface::Sidewalk) << "clutter " << c.instance.id << " stands on a " << name(l.surface);
+      EXPECT_EQ(c.instance.lot, -1);
+      ++on_sidewalk;
+      continue;
+    }
+    EXPECT_GE(c.instance.lot, 0) << "clutter " << c.instance.id << " stands on open land";
+    if (c.instance.lot < 0) continue;
+    EXPECT_TRUE(city.lots[c.instance.lot].cell.contains(c.spot)) << c.instance.id;
+    EXPECT_TRUE(city.lots[c.instance.lot].cell.holds(c.instance.polygon.outer)) << c.instance.id;
+    for (const Building& b : city.buildings)
+      EXPECT_FALSE(geom::rings_meet(b.polygon.outer, c.instance.polygon.outer)) << c.instance.id;
+    ++in_lot;
+  }
+  return {on_sidewalk, in_lot};
+}
+
+}  // namespace
+
+TEST(Clutter, StandsOnASidewalkOrInALotNeverOnACarriagewayJunctionOrWaterCheckedOnTheMap) {
+  for (const std::string sidewalks : {"", R"(, "roads": {"local": {"sidewalk": 2.5}, "main": {"sidewalk": 3}})"}) {
+    const City city = built(four_streets("stands", sidewalks, all_of_the_library()));
+    ASSERT_GT(city.clutter.items.size(), 20u) << sidewalks;
+    const auto [on_sidewalk, in_lot] = expect_on_sidewalks_or_lots(city);
+    if (sidewalks.empty()) {
+      EXPECT_EQ(on_sidewalk, 0);
+      EXPECT_GT(in_lot, 20) << "without sidewalks, clutter stands in the lots' setback";
+    } else {
+      EXPECT_GT(on_sidewalk, 20) << "with sidewalks, clutter stands on them";
+    }
+  }
+}
+
+TEST(Clutter, ASpotOnAnotherRoadsCarriagewayIsRefusedAndCounted) {
+  // A local road 10.2 m north of the main road's centre line: its kerb is 0.2 m from the main
+  // road's, so its south side's lamps, half a metre past its kerb, would stand on the main road.
+  const fs::path sketch = four_streets("carriageway", "", all_of_the_library());
+  std::ifstream in(sketch);
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  text.insert(text.find(R"({"type": "Feature", "properties": {"road": "main"})"),
+              R"({"type": "Feature", "properties": {"road": "local"},
+                  "geometry": {"type": "LineString", "coordinates": [[-180, 10.2], [-120, 10.2]]}},
+      )");
+  write(sketch, text);
+  const City city = built(sketch);
+  expect_on_sidewalks_or_lots(city);
+  int refused = 0;
+  for (const auto& [key, n] : city.clutter.tally.missed)
+    if (key.first == "lamp" && key.second == "on a carriageway or in a junction") refused += n;
+  EXPECT_GE(refused, 2) << "60 m of road, a lamp every 20 m on its south side";
+}
+
+TEST(Clutter, TrafficLightsStandOnlyAtJunctionsOfMajorRoadsAndStopSignsOnlyOnLocalApproaches) {
+  const City city = built(four_streets("junctions", "", all_of_the_library()));
+  const std::vector<StreetJunction> junctions = street_junctions(city.ground.roads);
+  int lights = 0, signs = 0;
+  for (const Clutter& c : city.clutter.items) {
+    if (c.instance.kind != ModelKind::TrafficLight && c.instance.kind != ModelKind::Sign) continue;
+    const StreetJunction& j = nearest(junctions, c.spot);
+    EXPECT_LT(geom::distance(j.at, c.spot), 25) << "clutter " << c.instance.id << " stands far from any junction";
+    if (c.instance.kind == ModelKind::TrafficLight) {
+      ++lights;
+      EXPECT_TRUE(j.of_major_roads()) << "a traffic light at a junction that is no junction of major roads";
+      EXPECT_LT(geom::distance(j.at, {0, 0}), 1) << "the only junction of major roads is the crossing at (0, 0)";
+    } else {
+      ++signs;
+      EXPECT_TRUE(j.local_meets_major()) << "a stop sign where no local road meets a major one";
+      EXPECT_EQ(city.ground.roads[c.road].road_class, RoadClass::Local) << "a stop sign on a major road's approach";
+    }
+  }
+  EXPECT_EQ(lights, 4) << "one at each corner of the crossing";
+  EXPECT_EQ(signs, 2) << "one on each local road where it meets the main road";
+}
+
+TEST(Clutter, AnAlternateEntryStandsOnEachSideInTurn) {
+  const City city = built(four_streets(
+      "alternate", "", std::string(kHouse) + R"(, {"file": "lamp.obj", "kind": "lamp", "up": "z", "scale": [1, 1],
+                                                   "spacing": 20, "side": "alternate"})"));
+  int pairs = 0;
+  for (std::size_t r = 0; r < city.ground.roads.size(); ++r) {
+    const geom::Polyline& line = city.ground.roads[r].line;
+    // The streets are straight: its lamps by distance along it, and the side each stands on.
+    const geom::Vec2 a = line.front(), u = geom::unit_along(line.front(), line.back());
+    std::vector<std::pair<double, int>> lamps;
+    for (const Clutter& c : city.clutter.items)
+      if (c.road == static_cast<int>(r))
+        lamps.push_back({geom::dot(c.spot - a, u), geom::cross(u, c.spot - a) > 0 ? 1 : -1});
+    std::sort(lamps.begin(), lamps.end());
+    for (std::size_t k = 1; k < lamps.size(); ++k) {
+      const double gap = lamps[k].first - lamps[k - 1].first;
+      EXPECT_GT(gap, 10) << "road " << r << ": two lamps of one station (both sides) at " << lamps[k].first;
+      if (gap >= 25) continue;  // a spot between them found no place
+      ++pairs;
+      EXPECT_NE(lamps[k].second, lamps[k - 1].second) << "road " << r << " at " << lamps[k].first;
+    }
+  }
+  EXPECT_GT(pairs, 30) << "neighbouring lamps to compare";
+}
+
+TEST(Clutter, ChannelsSteerWhichEntryStandsWhere) {
+  // A channel 0 on the west half and 1 on the east half; two lamps asking for 0 and 1.
+  const fs::path sketch = four_streets(
+      "channels",
+      R"(, "channels": {"east": {"image": "east.png", "bounds": [-200, -150, 200, 150]}}, "channel_sharpness": 40)",
+      std::string(kHouse) + R"(,
+      {"name": "west_lamp", "file": "lamp.obj", "kind": "lamp", "up": "z", "spacing": 20, "channels": {"east": 0}},
+      {"name": "east_lamp", "file": "lamp.obj", "kind": "lamp", "up": "z", "spacing": 20, "channels": {"east": 1}})");
+  const std::vector<unsigned char> pixels{0, 0, 255, 255};
+  auto out = OIIO::ImageOutput::create((sketch.parent_path() / "east.png").string());
+  ASSERT_TRUE(out &&
+              out->open((sketch.parent_path() / "east.png").string(), OIIO::ImageSpec(4, 1, 1, OIIO::TypeDesc::UINT8)));
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels.data()));
+  out->close();
+  const City city = built(sketch);
+  int west = 0, east = 0;
+  for (const Clutter& c : city.clutter.items) {
+    const std::string& model = city.library->models[c.instance.placed.model].name;
+    if (model == "west_lamp") {
+      ++west;
+      EXPECT_LT(c.spot.x, 5) << "a west lamp on the east half";
+    } else {
+      ++east;
+      EXPECT_GT(c.spot.x, -5) << "an east lamp on the west half";
+    }
+  }
+  EXPECT_GT(west, 10);
+  EXPECT_GT(east, 10);
+}
+
+TEST(Clutter, ALibraryOfClutterAloneLeavesTheLotsToExtrudedBuildings) {
+  const City city = built(four_streets("alone", "", std::string(kLamp) + "," + kSign));
+  EXPECT_GT(city.buildings.size(), 10u) << "extruded buildings fill the lots";
+  EXPECT_TRUE(city.models.empty());
+  EXPECT_GT(city.clutter.items.size(), 10u);
+  for (const Clutter& c : city.clutter.items)
+    for (const Building& b : city.buildings)
+      EXPECT_FALSE(geom::rings_meet(b.polygon.outer, c.instance.polygon.outer)) << c.instance.id;
+}
+
+TEST(Clutter, SpotsWithoutGroundAreCountedNotDropped) {
+  // A park along the east of the east-west road: lamps may stand in parks, but a park has
+  // neither sidewalk nor lot, so its spots are counted in the tally.
+  const fs::path sketch = four_streets("park", "", all_of_the_library());
+  std::ifstream in(sketch);
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  const std::string park = R"({"type": "Feature", "properties": {"zone": "park"},
+       "geometry": {"type": "Polygon", "coordinates": [[[110, 1], [200, 1], [200, 60], [110, 60], [110, 1]]]}},
+      )";
+  text.insert(text.find(R"({"type": "Feature", "properties": {"road": "main"})"), park);
+  write(sketch, text);
+  const City city = built(sketch);
+  int no_ground = 0;
+  for (const auto& [key, n] : city.clutter.tally.missed)
+    if (key.first == "lamp" && key.second.find("no sidewalk or lot") != std::string::npos) no_ground += n;
+  EXPECT_GE(no_ground, 3) << "about 90 m of park along the road, a lamp every 20 m";
+  for (const Clutter& c : city.clutter.items)
+    EXPECT_FALSE(c.spot.x > 110 && c.spot.x < 200 && c.spot.y > 1 && c.spot.y < 60) << "clutter in the park";
+}
+
+TEST(Clutter, ValidateFindsClutterWhereItMustNotStand) {
+  const fs::path sketch = four_streets("validate", "", all_of_the_library());
+  const fs::path out = sketch.parent_path() / "out";
+  ASSERT_TRUE(generate_city(load_sketch(sketch), out, nullptr).valid);
+  const fs::path layer = out / "vector" / "clutter.geojson";
+  std::ifstream in(layer);
+  const std::string good((std::istreambuf_iterator<char>(in)), {});
+  auto broken = [&](const std::function<void(nlohmann::ordered_json&)>& edit) {
+    nlohmann::ordered_json doc = nlohmann::ordered_json::parse(good);
+    edit(doc["features"]);
+    write(layer, doc.dump());
+    const Validation v = validate_output(out);
+    write(layer, good);
+    std::string all;
+    for (const std::string& p : v.problems) all += p + "\n";
+    return all;
+  };
+  EXPECT_EQ(broken([](auto&) {}), "");
+  // On the east-west road's centre line, in its carriageway; then at the crossing.
+  EXPECT_NE(broken([](auto& f) {
+              f[0]["geometry"]["coordinates"] = {-150.5, 0.25};
+            }).find("(carriageway)"),
+            std::string::npos);
+  EXPECT_NE(broken([](auto& f) {
+              f[0]["geometry"]["coordinates"] = {0.5, 0.5};
+            }).find("clutter.geojson features[0]"),
+            std::string::npos);
+  EXPECT_NE(broken([](auto& f) { f[1]["properties"]["id"] = f[0]["properties"]["id"]; }).find("not unique"),
+            std::string::npos);
+  EXPECT_NE(broken([](auto& f) { f[0]["properties"]["road"] = 9999; }).find("names no feature of roads.geojson"),
+            std::string::npos);
+  EXPECT_NE(broken([](auto& f) { f[0]["properties"]["kind"] = "building"; }).find("no clutter kind"),
+            std::string::npos);
+}
