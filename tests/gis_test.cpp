@@ -28,6 +28,7 @@ using nlohmann::ordered_json;
 namespace {
 
 const fs::path kVillage = cli_util::kSource / "examples" / "osm" / "village.osm";
+const fs::path kLibrary = cli_util::kSource / "examples" / "models" / "library.json";
 
 // A small town in metres in UTM zone 35N (Helsinki): a residential zone, a park, a highway.
 ordered_json town_in_metres() {
@@ -47,11 +48,12 @@ const ordered_json kSettings = ordered_json::parse(R"({"seed": 3, "zones": {"res
 void write(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::binary) << text; }
 
 // Generates the sketch into `out` with the given extra vector formats; the city.
-GenerateResult generate(const fs::path& sketch, const fs::path& out, std::vector<std::string> formats = {}) {
+GenerateResult generate(const fs::path& sketch, const fs::path& out, std::vector<std::string> formats = {},
+                        const fs::path& models = {}) {
   fs::remove_all(out);
   fs::create_directories(out);
   StageClock clock(nullptr, kCityStages + kWriteStages);
-  City city = build_city(load_sketch(sketch), clock);
+  City city = build_city(load_sketch(sketch, true, models), clock);
   return write_city(city, out, clock, {std::move(formats)});
 }
 
@@ -209,18 +211,16 @@ TEST(Gis, AnOsmExtractBecomesZonesRoadsAndWater) {
 
 TEST(Gis, EveryVectorFormatReadsBackWithOgr) {
   const fs::path out = testing_util::temp_dir("gis-out") / "out";
-  const GenerateResult result = generate(kVillage, out, {"gpkg", "fgb", "shp", "dxf"});
+  const GenerateResult result = generate(kVillage, out, {"gpkg", "fgb", "shp", "dxf"}, kLibrary);
   ASSERT_TRUE(result.valid);
   start_gdal();
   auto open = [](const fs::path& file) {
     return GDALDatasetUniquePtr(GDALDataset::Open(file.string().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
   };
-  const std::vector<std::string> layers{"blocks", "buildings", "lots", "road_areas", "roads", "water", "zones"};
+  const std::vector<std::string> layers{"blocks", "buildings", "clutter", "lots", "road_areas", "roads", "water", "zones"};
   std::map<std::string, std::size_t> counts;
-  for (const std::string& name : layers) {
-    std::vector<std::string> problems;
-    counts[name] = read_geojson(out / "vector" / (name + ".geojson"), problems).features.size();
-  }
+  for (const std::string& name : layers)
+    counts[name] = nlohmann::json::parse(cli_util::read(out / "vector" / (name + ".geojson")))["features"].size();
   auto expect_layer = [&](OGRLayer* layer, const std::string& name, const std::string& where) {
     ASSERT_NE(layer, nullptr) << where << " " << name;
     EXPECT_EQ(static_cast<std::size_t>(layer->GetFeatureCount()), counts[name]) << where << " " << name;
@@ -259,7 +259,7 @@ TEST(Gis, EveryVectorFormatReadsBackWithOgr) {
 
 TEST(Gis, CityOsmReadsBackWithOsmiumAsOneNetworkAndClosedBuildings) {
   const fs::path out = testing_util::temp_dir("gis-osm") / "out";
-  const GenerateResult result = generate(kVillage, out);
+  const GenerateResult result = generate(kVillage, out, {}, kLibrary);
   ASSERT_TRUE(result.valid);
   EXPECT_EQ(result.report["exports"]["city_osm"], "city.osm");
   struct Reader : osmium::handler::Handler {
@@ -268,11 +268,12 @@ TEST(Gis, CityOsmReadsBackWithOsmiumAsOneNetworkAndClosedBuildings) {
       while (parent.count(n) && parent[n] != n) n = parent[n] = parent.count(parent[n]) ? parent[parent[n]] : parent[n];
       return n;
     }
-    int highways = 0, buildings = 0, open_buildings = 0;
+    int highways = 0, buildings = 0, open_buildings = 0, lamps = 0;
     std::set<osmium::object_id_type> street_nodes;
     bool in_place = true;
     void node(const osmium::Node& n) {
       in_place &= std::abs(n.location().lon() - 10.003) < 0.02 && std::abs(n.location().lat() - 48.0015) < 0.02;
+      lamps += n.tags().has_tag("highway", "street_lamp");
     }
     void way(const osmium::Way& w) {
       if (w.tags().has_key("highway")) {
@@ -293,6 +294,8 @@ TEST(Gis, CityOsmReadsBackWithOsmiumAsOneNetworkAndClosedBuildings) {
   EXPECT_EQ(reader.highways, result.report["counts"]["roads"].get<int>());
   EXPECT_GT(reader.buildings, 50);
   EXPECT_EQ(reader.open_buildings, 0);
+  EXPECT_EQ(reader.lamps, result.report["clutter"]["placed"]["lamp"].get<int>());
+  EXPECT_GT(reader.lamps, 10);
   std::set<osmium::object_id_type> components;
   for (osmium::object_id_type n : reader.street_nodes) components.insert(reader.find(n));
   EXPECT_EQ(components.size(), 1u);  // one street network: junctions share their nodes

@@ -154,6 +154,7 @@ class OsmNodes {
     }
     buffer.commit();
   }
+  std::int64_t count() const { return static_cast<std::int64_t>(order_.size()); }
 
  private:
   const ToLonLat& to_lon_lat_;
@@ -162,6 +163,17 @@ class OsmNodes {
 };
 
 std::string osm_number(double v) { return format_number(std::round(v * 100) / 100); }
+
+std::pair<const char*, const char*> osm_clutter_tag(ModelKind kind) {
+  switch (kind) {
+    case ModelKind::Lamp: return {"highway", "street_lamp"};
+    case ModelKind::TrafficLight: return {"highway", "traffic_signals"};
+    case ModelKind::Sign: return {"highway", "stop"};
+    case ModelKind::Bench: return {"amenity", "bench"};
+    case ModelKind::Hydrant: return {"emergency", "fire_hydrant"};
+    default: return {"natural", "tree"};
+  }
+}
 
 const char* osm_highway(const std::string& road_class) {
   return road_class == "highway" ? "motorway" : road_class == "main" ? "primary" : "residential";
@@ -211,6 +223,21 @@ bool write_city_osm(const City& city, const fs::path& file) {
   }
   osmium::memory::Buffer node_buffer{1024 * 1024, osmium::memory::Buffer::auto_grow::yes};
   nodes.write(node_buffer);
+  // Street clutter as the tagged nodes mappers use for it.
+  std::int64_t node_id = nodes.count();
+  for (const Clutter& c : city.clutter.items) {
+    const geom::Vec2 ll = to_lon_lat(c.spot);
+    {
+      osmium::builder::NodeBuilder node{node_buffer};
+      node.set_id(++node_id).set_version(1).set_visible(true);
+      node.set_location(osmium::Location{ll.x, ll.y});
+      node.set_user("exacity");
+      osmium::builder::TagListBuilder tags{node};
+      const auto [key, value] = osm_clutter_tag(c.instance.kind);
+      tags.add_tag(key, value);
+    }
+    node_buffer.commit();
+  }
   try {
     osmium::io::Header header;
     header.set("generator", "exacity");

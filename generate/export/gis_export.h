@@ -21,8 +21,9 @@ void write_vector_formats(const std::filesystem::path& dir, const std::vector<st
                           const nlohmann::ordered_json& crs);
 
 // OUT/city.osm: the roads layer's centre lines as ways (highway from the class: motorway,
-// primary, residential; width; bridge and layer), sharing a node wherever they meet, and
-// every building footprint as a closed way (building, height), in lon/lat. Whether it was
+// primary, residential; width; bridge and layer), sharing a node wherever they meet, every
+// building footprint as a closed way (building, height), and the street clutter as tagged
+// nodes (street lamps, traffic signals, stops, benches, fire hydrants, trees), in lon/lat. Whether it was
 // written: a sketch without a CRS (EPSG) has no place on Earth.
 bool write_city_osm(const City& city, const std::filesystem::path& file);
 
