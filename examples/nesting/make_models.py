@@ -91,7 +91,14 @@ def main():
     entries = [{"name": "gateway", "file": "gateway.obj", "zones": ["commercial"], "up": "z", "weight": 1},
                {"name": "tee", "file": "tee.obj", "zones": ["commercial"], "up": "z", "weight": 1},
                {"name": "kiosk", "file": "kiosk.obj", "zones": ["commercial"], "up": "z", "weight": 3},
-               {"name": "hut", "file": "hut.obj", "zones": ["commercial"], "up": "z", "weight": 2}]
+               {"name": "hut", "file": "hut.obj", "zones": ["commercial"], "up": "z", "weight": 2},
+               # The street dressed with the example library's clutter (seed 004).
+               {"name": "street_lamp", "file": "../models/street_lamp.obj", "kind": "lamp", "up": "z", "unit": "cm",
+                "spacing": 20, "offset": 0.6, "scale": [1, 1]},
+               {"name": "bench", "file": "../models/bench.obj", "kind": "bench", "up": "z", "front": "+x",
+                "spacing": 25, "offset": 1.2, "side": "alternate", "scale": [1, 1]},
+               {"name": "hydrant", "file": "../models/hydrant.obj", "kind": "hydrant", "up": "y", "unit": "cm",
+                "spacing": 45, "offset": 0.4, "side": "alternate", "scale": [1, 1]}]
     (HERE / "library.json").write_text(json.dumps({"models": entries}, indent=2) + "\n")
 
 
