@@ -91,6 +91,15 @@ std::string error_of(const fs::path& sketch) {
 
 }  // namespace
 
+TEST(Gis, CrsMembersNameTheirEpsgCode) {
+  EXPECT_EQ(epsg_of(crs_member(32635)), 32635);
+  EXPECT_EQ(epsg_of(ordered_json::parse(R"({"type": "name", "properties": {"name": "EPSG:28992"}})")), 28992);
+  EXPECT_EQ(epsg_of(ordered_json::parse(R"({"type": "EPSG", "properties": {"code": 3067}})")), 3067);  // GeoJSON 2008
+  EXPECT_EQ(epsg_of(ordered_json::parse(R"({"type": "name", "properties": {"name": "urn:ogc:def:crs:OGC:1.3:CRS84"}})")),
+            std::nullopt);
+  EXPECT_EQ(epsg_of(nullptr), std::nullopt);
+}
+
 TEST(Gis, UtmZonesFromLonLat) {
   EXPECT_EQ(utm_epsg(10, 48), 32632);
   EXPECT_EQ(utm_epsg(151.2, -33.87), 32756);  // south: 327xx

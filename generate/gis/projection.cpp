@@ -62,6 +62,17 @@ void project_bounds(ordered_json& owner, OGRCoordinateTransformation& t) {
        *std::max_element(ys, ys + 4)};
 }
 
+// The CRS a GeoJSON "crs" member names: {"type": "name", "properties": {"name": N}}, or the
+// 2008 form {"type": "EPSG", "properties": {"code": C}}; empty for anything else.
+std::string crs_name(const ordered_json& crs) {
+  if (!crs.is_object() || !crs.contains("properties") || !crs["properties"].is_object()) return "";
+  const ordered_json& p = crs["properties"];
+  if (p.contains("name") && p["name"].is_string()) return p["name"].get<std::string>();
+  if (crs.value("type", "") == "EPSG" && p.contains("code") && p["code"].is_number_integer())
+    return "EPSG:" + std::to_string(p["code"].get<int>());
+  return "";
+}
+
 }  // namespace
 
 void start_gdal() {
@@ -80,7 +91,7 @@ ordered_json crs_member(int epsg) {
 std::optional<int> epsg_of(const ordered_json& crs) {
   if (crs.is_null()) return std::nullopt;
   std::smatch m;
-  const std::string text = crs.dump();
+  const std::string text = crs_name(crs);
   if (std::regex_search(text, m, std::regex("EPSG:+([0-9]+)"))) return std::stoi(m[1].str());
   return std::nullopt;
 }
@@ -99,10 +110,7 @@ bool project_to_metres(ordered_json& doc, const std::filesystem::path& path) {
   bool geographic = false;
   if (doc.contains("crs") && !doc["crs"].is_null()) {
     const ordered_json& crs = doc["crs"];
-    std::string name = crs.is_object() && crs.contains("properties") && crs["properties"].is_object() &&
-                               crs["properties"].contains("name") && crs["properties"]["name"].is_string()
-                           ? crs["properties"]["name"].get<std::string>()
-                           : "";
+    const std::string name = crs_name(crs);
     OGRSpatialReference srs;
     if (name.empty() || srs.SetFromUserInput(name.c_str()) != OGRERR_NONE)
       throw UserError(path.string() + ": crs: " + crs.dump() +
@@ -119,14 +127,13 @@ bool project_to_metres(ordered_json& doc, const std::filesystem::path& path) {
     throw UserError(path.string() + ": the sketch lies in lon/lat beyond 80°S–84°N, where UTM does not reach; "
                     "project it to a polar CRS in metres first");
   OGRSpatialReference source;
-  const std::string crs_name =
-      doc.contains("crs") && !doc["crs"].is_null() ? doc["crs"]["properties"]["name"].get<std::string>() : "EPSG:4326";
-  source.SetFromUserInput(crs_name.c_str());
+  const std::string source_name = doc.contains("crs") && !doc["crs"].is_null() ? crs_name(doc["crs"]) : "EPSG:4326";
+  source.SetFromUserInput(source_name.c_str());
   source.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   const int epsg = utm_epsg((box.min_x + box.max_x) / 2, (box.min_y + box.max_y) / 2);
   OGRSpatialReference target = from_epsg(epsg);
   std::unique_ptr<OGRCoordinateTransformation> t(OGRCreateCoordinateTransformation(&source, &target));
-  if (!t) throw UserError(path.string() + ": PROJ cannot project " + crs_name + " to EPSG:" + std::to_string(epsg));
+  if (!t) throw UserError(path.string() + ": PROJ cannot project " + source_name + " to EPSG:" + std::to_string(epsg));
   bool failed = false;
   for_each_point(doc, [&](ordered_json& p) {
     double x = p[0], y = p[1];
