@@ -3,10 +3,10 @@
 #include <cmath>
 #include <fstream>
 #include <map>
-#include <regex>
 
 #include "generate/errors.h"
 #include "generate/export/ground_mesh.h"
+#include "generate/gis/projection.h"
 #include "geom/ring_cleanup.h"
 #include "geom/triangulate.h"
 
@@ -292,10 +292,8 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
            {"vertices", v.to_json()}};
   if (library) doc["geometry-templates"] = templates(*library);
   // An EPSG code in the sketch's crs becomes the reference system.
-  std::smatch m;
-  std::string crs = sketch.crs.is_null() ? "" : sketch.crs.dump();
-  if (std::regex_search(crs, m, std::regex("EPSG:+([0-9]+)")))
-    doc["metadata"] = {{"referenceSystem", "https://www.opengis.net/def/crs/EPSG/0/" + m[1].str()}};
+  if (const std::optional<int> epsg = epsg_of(sketch.crs))
+    doc["metadata"] = {{"referenceSystem", "https://www.opengis.net/def/crs/EPSG/0/" + std::to_string(*epsg)}};
 
   std::ofstream out(file, std::ios::binary);
   out << doc.dump() << '\n';
