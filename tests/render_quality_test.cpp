@@ -11,6 +11,7 @@
 #include "generate/pipeline.h"
 #include "render/camera_path.h"
 #include "render/denoise.h"
+#include "render/image_error.h"
 #include "render/image_io.h"
 #include "render/path_tracer.h"
 #include "render/render.h"
@@ -32,18 +33,6 @@ exacity::City small_city() {
   exacity::Sketch sketch = exacity::parse_sketch(text, "quality.geojson");
   exacity::StageClock clock(nullptr, exacity::kCityStages);
   return exacity::build_city(sketch, clock);
-}
-
-// The root mean square difference of two images as a person sees them: tone-mapped 8-bit
-// sRGB, over 255.
-double display_rmse(const Image& a, const Image& b) {
-  const Rgb8 x = tone_map(a, 0.25f), y = tone_map(b, 0.25f);
-  double sum = 0;
-  for (std::size_t i = 0; i < x.pixels.size(); ++i) {
-    const double d = (static_cast<double>(x.pixels[i]) - y.pixels[i]) / 255;
-    sum += d * d;
-  }
-  return std::sqrt(sum / static_cast<double>(x.pixels.size()));
 }
 
 // A plane with two blocks on it, one lifted on a post so the ground under it is lit by
