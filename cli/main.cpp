@@ -45,6 +45,7 @@ struct RenderOptions {
   double time_s = 0;
   fs::path path;       // a camera path file: frames, not a still
   std::string frames;  // A:B, of the path's frames
+  std::string shard;   // I/N: the I-th of N shares of those frames (a job array's task)
 };
 
 // The camera the user gave (option first, then the sketch's), parsed; nullopt for none.
@@ -160,7 +161,19 @@ int render_path_folder(const fs::path& out, const Sketch& sketch, const RenderOp
   } catch (const std::invalid_argument& e) {
     throw UserError(e.what());
   }
-  const auto [first, last] = frame_range(o.frames, path.frame_count());
+  auto [first, last] = frame_range(o.frames, path.frame_count());
+  if (!o.shard.empty()) {
+    int part = 0, parts = 0;
+    char slash = 0;
+    std::istringstream in(o.shard);
+    if (!(in >> part >> slash >> parts) || slash != '/' || !in.eof() || parts < 1 || part < 0 || part >= parts)
+      throw UserError("--shard " + o.shard + ": expected I/N with 0 <= I < N, such as 3/8");
+    std::tie(first, last) = render::frame_share(first, last, part, parts);
+    if (first > last) {
+      std::printf("exacity: --shard %s: no frames left for this part (more parts than frames)\n", o.shard.c_str());
+      return 0;
+    }
+  }
   const fs::path dir = dir_given.empty() ? out / "render" / "frames" : dir_given;
   if (dir.extension() == ".png") throw UserError(dir.string() + ": with --path, -o is the folder for the frames");
   fs::create_directories(dir);
@@ -366,6 +379,9 @@ void add_render(CLI::App& app, RenderCommand& c, SharedOptions& shared) {
                     "A camera path (JSON: {\"fps\": N, \"keys\": [{\"t\": SECONDS, \"camera\": SPEC}, ...]}): "
                     "renders its frames as DIR/frame_NNNN.png");
   c.app->add_option("--frames", o.frames, "With --path, only frames A:B (inclusive, from 0)")->needs(path);
+  c.app->add_option("--shard", o.shard,
+                    "With --path, only the I-th of N near-equal runs of those frames (I/N, from 0): a job array's task")
+      ->needs(path);
   c.app->add_option("-o,--output", c.file,
                     "The still, a .png (default OUT/render/still.png; the .exr goes beside it); with --path, the "
                     "frames' folder (default OUT/render/frames)");

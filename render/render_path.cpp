@@ -1,9 +1,16 @@
 #include "render/render_path.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 
 namespace render {
+
+std::pair<int, int> frame_share(int first, int last, int part, int parts) {
+  const int count = last - first + 1, base = count / parts, longer = count % parts;
+  const int begin = first + part * base + std::min(part, longer);
+  return {begin, begin + base + (part < longer ? 1 : 0) - 1};
+}
 
 std::string frame_file_name(int n) {
   char name[32];

@@ -12,6 +12,12 @@
 
 namespace render {
 
+// Part `part` (0 to parts - 1) of frames first..last cut into `parts` runs of consecutive
+// frames, their lengths differing by one at most, the longer first: a Slurm job array's
+// task's share (scripts/render_path.sbatch). Empty (first > last) when there are more
+// parts than frames.
+std::pair<int, int> frame_share(int first, int last, int part, int parts);
+
 // "frame_0042.png"
 std::string frame_file_name(int n);
 

@@ -362,6 +362,9 @@ TEST(Cli, CameraPathFramesInRangesEqualOneRunAndBadPathsAreOneLine) {
                              " --size 32x24 --spp 2 -q -o ";
   r = run(common + (dir / "whole").string());
   ASSERT_EQ(r.code, 0) << r.out;
+  // As scripts/render_path.sbatch's tasks would: three shares, then a range.
+  for (const char* shard : {"0/3", "2/3", "1/3"})
+    ASSERT_EQ(run(common + (dir / "shards").string() + " --shard " + shard).code, 0) << shard;
   ASSERT_EQ(run(common + (dir / "parts").string() + " --frames 2:3").code, 0);
   ASSERT_EQ(run(common + (dir / "parts").string() + " --frames 0:1").code, 0);
   for (int n = 0; n < 4; ++n) {
@@ -370,6 +373,7 @@ TEST(Cli, CameraPathFramesInRangesEqualOneRunAndBadPathsAreOneLine) {
     const std::string whole = read(dir / "whole" / name);
     ASSERT_FALSE(whole.empty()) << name;
     EXPECT_TRUE(whole == read(dir / "parts" / name)) << name;
+    EXPECT_TRUE(whole == read(dir / "shards" / name)) << name;
   }
   EXPECT_FALSE(fs::exists(dir / "whole" / "frame_0004.png")) << "1.5 s at 2 fps is frames 0 to 3";
 

@@ -220,3 +220,23 @@ TEST(CameraPath, AFrameIsTheSameBytesWhicheverRangeRenderedIt) {
     }
   EXPECT_NE(cli_util::read(whole / "frame_0000.png"), cli_util::read(whole / "frame_0002.png")) << "the camera moves";
 }
+
+TEST(CameraPath, SharesCoverTheFramesOnceInOrder) {
+  for (int parts : {1, 3, 7, 12, 20})
+    for (auto [first, last] : {std::pair{0, 11}, std::pair{5, 5}, std::pair{3, 40}}) {
+      int next = first;
+      for (int part = 0; part < parts; ++part) {
+        const auto [a, b] = frame_share(first, last, part, parts);
+        if (a > b) {
+          EXPECT_EQ(a, next) << parts;
+          continue;  // an empty share, where the frames ran out
+        }
+        EXPECT_EQ(a, next) << parts << " " << part;
+        const int count = last - first + 1;
+        EXPECT_LE(b - a + 1, (count + parts - 1) / parts) << parts << " " << part;
+        EXPECT_GE(b - a + 1, count / parts) << parts << " " << part;
+        next = b + 1;
+      }
+      EXPECT_EQ(next, last + 1) << parts;
+    }
+}
