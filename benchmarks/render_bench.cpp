@@ -3,6 +3,7 @@
 // figure), and the time of a still. Measures; asserts nothing.
 //
 //   build/release/benchmarks/exacity_render_bench [SKETCH] [--size WxH] [--spp N] [--threads N] [--models LIBRARY]
+//                                                 [--camera SPEC]
 //
 // With --denoise-figure, the denoiser's figure instead (render/README.md, Denoising): the
 // default view at --spp (16) raw and denoised, and raw at 4x and 16x the samples, each
@@ -45,6 +46,7 @@ struct BenchOptions {
   fs::path sketch_path = fs::path(EXACITY_SOURCE_DIR) / "benchmarks" / "city_10km.geojson", models;
   int width = 1920, height = 1080, spp = 64, threads = 0;
   bool denoise_figure = false;
+  std::string camera;  // --camera SPEC (render/camera.h), city coordinates; default: default_camera
   int reference_spp = 1024;
 };
 
@@ -56,6 +58,7 @@ BenchOptions parse_options(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) o.threads = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--models") && i + 1 < argc) o.models = argv[++i];
     else if (!std::strcmp(argv[i], "--denoise-figure")) o.denoise_figure = true;
+    else if (!std::strcmp(argv[i], "--camera") && i + 1 < argc) o.camera = argv[++i];
     else if (!std::strcmp(argv[i], "--reference") && i + 1 < argc) o.reference_spp = std::atoi(argv[++i]);
     else o.sketch_path = argv[i];
   }
@@ -156,9 +159,16 @@ void denoise_figure(const RenderScene& scene, const Sky& sky, const Camera& came
     std::printf("%4d spp raw:      RMSE %.4f (%.2f s)\n", spp, display_rmse(raw, reference), trace_s);
     if (spp != o.spp) continue;
     t = std::chrono::steady_clock::now();
-    const Image filtered = denoise(raw);
+    const Image filtered = denoise_render(raw, scene, camera);
     std::printf("%4d spp denoised: RMSE %.4f (%.2f s + %.2f s denoising)\n", spp, display_rmse(filtered, reference),
                 trace_s, seconds_since(t));
+    if (getenv("SWEEP"))
+      for (float ls : {1.0f, 2.0f, 4.0f, 8.0f})
+        for (int lv : {3, 5}) {
+          DenoiseSettings st;
+          st.luminance_sigma = ls, st.levels = lv;
+          std::printf("  sigma %g levels %d: %.4f\n", ls, lv, display_rmse(denoise_render(raw, scene, camera, st), reference));
+        }
   }
 }
 
@@ -171,7 +181,7 @@ int main(int argc, char** argv) {
   exacity::City city = load_and_build_city(o);
 
   const Sky sky(200, 40);
-  Camera camera = default_camera(city);
+  Camera camera = o.camera.empty() ? default_camera(city) : Camera::parse(o.camera, 45);
   SceneOptions options;
   options.view = &camera;
   options.aspect = static_cast<float>(o.width) / static_cast<float>(o.height);

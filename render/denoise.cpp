@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "render/albedo_layer.h"
+
 namespace render {
 namespace {
 
@@ -132,6 +134,11 @@ Image denoise(const Image& img, const DenoiseSettings& s) {
     out.variance[i] = level.variance[i] * la * la;
   }
   return out;
+}
+
+Image denoise_render(Image image, const RenderScene& scene, const Camera& camera, const DenoiseSettings& settings) {
+  image.mean_albedo = albedo_layer(scene, camera, image.width, image.height, kAlbedoGrid);
+  return denoise(image, settings);
 }
 
 }  // namespace render

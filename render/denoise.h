@@ -24,4 +24,9 @@ struct DenoiseSettings {
 // variance becomes the filtered estimate's.
 Image denoise(const Image& image, const DenoiseSettings& settings = {});
 
+// What exacity render does: denoise() with the albedo layer of kAlbedoGrid^2 camera rays a
+// pixel (render/albedo_layer.h) in place of the path samples' own; `camera` in scene
+// coordinates, the one `image` was traced with.
+Image denoise_render(Image image, const RenderScene& scene, const Camera& camera, const DenoiseSettings& settings = {});
+
 }  // namespace render

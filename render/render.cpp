@@ -66,7 +66,9 @@ Rgb8 tone_mapped(const Image& image, const RenderRequest& request) {
 }
 
 // The filter when asked for (render/README.md, Denoising).
-Image finished(Image image, const RenderRequest& request) { return request.denoise ? denoise(image) : image; }
+Image finished(Image image, const RenderScene& scene, const Camera& camera, const RenderRequest& request) {
+  return request.denoise ? denoise_render(std::move(image), scene, camera) : image;
+}
 
 struct Still {
   Image image;
@@ -98,7 +100,7 @@ Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camer
            seconds_since(start) * (still.passes + 1) / still.passes <= request.time_budget_s);
   still.seconds = seconds_since(start);
   const auto filtering = std::chrono::steady_clock::now();
-  still.image = finished(film.image(), request);
+  still.image = finished(film.image(), scene, camera, request);
   still.denoise_seconds = seconds_since(filtering);
   still.png = tone_mapped(still.image, request);
   return still;
@@ -162,7 +164,7 @@ nlohmann::ordered_json render_overview(const RenderScene& whole, const Sky& sky,
   TraceSettings s{size, size, request.spp, 8, haze};
   Image img = finished(trace(whole, sky, over, s, nullptr, [&](int done, int n) {
     if (progress) progress("overview", static_cast<double>(done) / n);
-  }), request);
+  }), whole, over, request);
   write_png(tone_mapped(img, request), request.overview_file);
   return {{"height_m", over.from.z - top}, {"orthographic", request.orthographic_overview}};
 }
@@ -215,7 +217,8 @@ nlohmann::ordered_json render_minimap(const RenderScene& whole, const RenderScen
                                       const Camera& camera, const RenderRequest& request, Rgb8& still_png) {
   const int m = kMinimapSize;
   Camera top_down = overview_camera(whole.bounds, whole.top, 45, 1, true);
-  Image img = finished(trace(whole, sky, top_down, TraceSettings{m, m, std::max(1, request.spp / 4)}), request);
+  Image img = finished(trace(whole, sky, top_down, TraceSettings{m, m, std::max(1, request.spp / 4)}), whole, top_down,
+                       request);
   Rgb8 map = tone_mapped(img, request);
   // The still's view, from its own scene (the same origin: both centre on the city).
   std::vector<geom::Vec2> seen = ground_footprint(camera, request.width, request.height, whole.ground, whole.bounds);

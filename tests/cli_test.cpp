@@ -344,27 +344,34 @@ TEST(Cli, AGridMapWithModelsGeneratesValidatesAndRendersTheSameCity) {
   EXPECT_FALSE(fs::exists(dir / "bad-out"));
 }
 
-// Issue 25: a camera path's frames, rendered whole and in ranges as a job array would,
-// are the same files; a bad path file is one line naming it and its key; --time records
+// Issue 25: a camera path's frames, rendered whole, in ranges, in shares and through
+// scripts/render_path.sbatch's tasks (Slurm's environment by hand), are the same files; a bad path file is one line naming it and its key; --time records
 // its passes; --denoise, --exposure and --white-balance are taken and recorded.
 TEST(Cli, CameraPathFramesInRangesEqualOneRunAndBadPathsAreOneLine) {
   fs::path dir = testing_util::temp_dir("cli-path");
   std::ofstream(dir / "city.geojson") << R"({"type": "FeatureCollection", "exacity": {"seed": 5}, "features": [
     {"type": "Feature", "properties": {"zone": "residential"},
-     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [300, 200], [0, 200], [0, 0]]]}}]})";
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [160, 0], [160, 120], [0, 120], [0, 0]]]}}]})";
   const fs::path out = dir / "out";
   Result r = run("generate " + (dir / "city.geojson").string() + " -o " + out.string() + " -q");
   ASSERT_EQ(r.code, 0) << r.out;
   std::ofstream(dir / "path.json") << R"({"fps": 2, "keys": [
-    {"t": 0, "camera": "orbit:target=150,100,0,azimuth=200,elevation=35,distance=300"},
-    {"t": 1.5, "camera": "look:from=-50,-80,60,to=150,100,0"}]})";
+    {"t": 0, "camera": "orbit:target=80,60,0,azimuth=200,elevation=35,distance=200"},
+    {"t": 1.5, "camera": "look:from=-50,-80,60,to=80,60,0"}]})";
   const std::string common = "render " + out.string() + " --path " + (dir / "path.json").string() +
                              " --size 32x24 --spp 2 -q -o ";
   r = run(common + (dir / "whole").string());
   ASSERT_EQ(r.code, 0) << r.out;
-  // As scripts/render_path.sbatch's tasks would: three shares, then a range.
-  for (const char* shard : {"0/3", "2/3", "1/3"})
-    ASSERT_EQ(run(common + (dir / "shards").string() + " --shard " + shard).code, 0) << shard;
+  // scripts/render_path.sbatch's two tasks of an array begun at 4, without Slurm: its
+  // environment by hand.
+  for (int task : {4, 5}) {
+    const Result job = shell("SLURM_ARRAY_TASK_ID=" + std::to_string(task) +
+                             " SLURM_ARRAY_TASK_MIN=4 SLURM_ARRAY_TASK_MAX=5 SLURM_CPUS_PER_TASK=1 EXACITY=" +
+                             EXACITY_BINARY + " bash " + (kSource / "scripts" / "render_path.sbatch").string() + " " +
+                             out.string() + " " + (dir / "path.json").string() + " " + (dir / "array").string() +
+                             " --size 32x24 --spp 2");
+    ASSERT_EQ(job.code, 0) << job.out;
+  }
   ASSERT_EQ(run(common + (dir / "parts").string() + " --frames 2:3").code, 0);
   ASSERT_EQ(run(common + (dir / "parts").string() + " --frames 0:1").code, 0);
   for (int n = 0; n < 4; ++n) {
@@ -373,7 +380,7 @@ TEST(Cli, CameraPathFramesInRangesEqualOneRunAndBadPathsAreOneLine) {
     const std::string whole = read(dir / "whole" / name);
     ASSERT_FALSE(whole.empty()) << name;
     EXPECT_TRUE(whole == read(dir / "parts" / name)) << name;
-    EXPECT_TRUE(whole == read(dir / "shards" / name)) << name;
+    EXPECT_TRUE(whole == read(dir / "array" / name)) << name;
   }
   EXPECT_FALSE(fs::exists(dir / "whole" / "frame_0004.png")) << "1.5 s at 2 fps is frames 0 to 3";
 
