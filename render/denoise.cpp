@@ -98,7 +98,7 @@ Level filter_level(const Image& img, const Level& in, const std::vector<float>& 
           if (!sky && j != i) {
             const float facing = std::max(0.0f, dot(img.normal[i], img.normal[j]));
             const float distance = static_cast<float>(step) * std::sqrt(static_cast<float>(u * u + v * v));
-            const float depth_scale = s.depth_sigma * gradients[i] * distance + 1e-3f * img.depth[i];
+            const float depth_scale = s.depth_sigma * gradients[i] * distance + 1e-3f * img.depth[i] + 1e-6f;
             const V3 da = img.albedo[i] - img.albedo[j];
             w *= std::pow(facing, s.normal_power) * std::exp(-std::abs(img.depth[i] - img.depth[j]) / depth_scale) *
                  std::exp(-(std::abs(da.x) + std::abs(da.y) + std::abs(da.z)) / s.albedo_sigma);
