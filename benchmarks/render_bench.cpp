@@ -162,13 +162,6 @@ void denoise_figure(const RenderScene& scene, const Sky& sky, const Camera& came
     const Image filtered = denoise_render(raw, scene, camera);
     std::printf("%4d spp denoised: RMSE %.4f (%.2f s + %.2f s denoising)\n", spp, display_rmse(filtered, reference),
                 trace_s, seconds_since(t));
-    if (getenv("SWEEP"))
-      for (float ls : {1.0f, 2.0f, 4.0f, 8.0f})
-        for (int lv : {3, 5}) {
-          DenoiseSettings st;
-          st.luminance_sigma = ls, st.levels = lv;
-          std::printf("  sigma %g levels %d: %.4f\n", ls, lv, display_rmse(denoise_render(raw, scene, camera, st), reference));
-        }
   }
 }
 
