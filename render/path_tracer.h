@@ -23,7 +23,8 @@ struct Image {
   std::vector<std::uint32_t> id;   // the first hit's entity (see Entity)
   // For the denoiser (render/denoise.h): the variance of the mean's luminance (the
   // samples' over their count), and the first hits' albedo over all samples, the sky's
-  // as white, so that a texture finer than a pixel is divided out as the beauty saw it.
+  // as white, so that a texture finer than a pixel is divided out as the beauty saw it
+  // (exacity render puts render/albedo_layer.h's denser one in its place).
   std::vector<float> variance;
   std::vector<V3> mean_albedo;
 };
