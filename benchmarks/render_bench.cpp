@@ -3,6 +3,12 @@
 // figure), and the time of a still. Measures; asserts nothing.
 //
 //   build/release/benchmarks/exacity_render_bench [SKETCH] [--size WxH] [--spp N] [--threads N] [--models LIBRARY]
+//                                                 [--camera SPEC]
+//
+// With --denoise-figure, the denoiser's figure instead (render/README.md, Denoising): the
+// default view at --spp (16) raw and denoised, and raw at 4x and 16x the samples, each
+// against a --reference (1024) sample render of the same view, as display_rmse and the
+// seconds each took.
 #include <sys/resource.h>
 
 #include <chrono>
@@ -14,6 +20,8 @@
 #include <tbb/parallel_for.h>
 
 #include "generate/pipeline.h"
+#include "render/denoise.h"
+#include "render/image_error.h"
 #include "render/path_tracer.h"
 #include "render/render.h"
 #include "render/sampling.h"
@@ -37,6 +45,9 @@ double rss_mib() {
 struct BenchOptions {
   fs::path sketch_path = fs::path(EXACITY_SOURCE_DIR) / "benchmarks" / "city_10km.geojson", models;
   int width = 1920, height = 1080, spp = 64, threads = 0;
+  bool denoise_figure = false;
+  std::string camera;  // --camera SPEC (render/camera.h), city coordinates; default: default_camera
+  int reference_spp = 1024;
 };
 
 BenchOptions parse_options(int argc, char** argv) {
@@ -46,6 +57,9 @@ BenchOptions parse_options(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--spp") && i + 1 < argc) o.spp = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) o.threads = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--models") && i + 1 < argc) o.models = argv[++i];
+    else if (!std::strcmp(argv[i], "--denoise-figure")) o.denoise_figure = true;
+    else if (!std::strcmp(argv[i], "--camera") && i + 1 < argc) o.camera = argv[++i];
+    else if (!std::strcmp(argv[i], "--reference") && i + 1 < argc) o.reference_spp = std::atoi(argv[++i]);
     else o.sketch_path = argv[i];
   }
   return o;
@@ -133,6 +147,24 @@ void time_still(const RenderScene& scene, const Sky& sky, const Camera& camera, 
               100 * all / still_s / raw_rate, traced / still_s / 1e6, 100 * traced / still_s / raw_rate);
 }
 
+// RMSE against the reference of raw and denoised renders (render/image_error.h).
+void denoise_figure(const RenderScene& scene, const Sky& sky, const Camera& camera, const BenchOptions& o) {
+  auto t = std::chrono::steady_clock::now();
+  const Image reference = trace(scene, sky, camera, TraceSettings{o.width, o.height, o.reference_spp});
+  std::printf("reference: %dx%d at %d spp, %.1f s\n", o.width, o.height, o.reference_spp, seconds_since(t));
+  for (int spp : {o.spp, 4 * o.spp, 16 * o.spp}) {
+    t = std::chrono::steady_clock::now();
+    const Image raw = trace(scene, sky, camera, TraceSettings{o.width, o.height, spp});
+    const double trace_s = seconds_since(t);
+    std::printf("%4d spp raw:      RMSE %.4f (%.2f s)\n", spp, display_rmse(raw, reference), trace_s);
+    if (spp != o.spp) continue;
+    t = std::chrono::steady_clock::now();
+    const Image filtered = denoise_render(raw, scene, camera);
+    std::printf("%4d spp denoised: RMSE %.4f (%.2f s + %.2f s denoising)\n", spp, display_rmse(filtered, reference),
+                trace_s, seconds_since(t));
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -142,7 +174,7 @@ int main(int argc, char** argv) {
   exacity::City city = load_and_build_city(o);
 
   const Sky sky(200, 40);
-  Camera camera = default_camera(city);
+  Camera camera = o.camera.empty() ? default_camera(city) : Camera::parse(o.camera, 45);
   SceneOptions options;
   options.view = &camera;
   options.aspect = static_cast<float>(o.width) / static_cast<float>(o.height);
@@ -152,6 +184,10 @@ int main(int argc, char** argv) {
   report_scene(scene, seconds_since(t), before);
   camera = scene.to_scene(camera);
 
+  if (o.denoise_figure) {
+    denoise_figure(scene, sky, camera, o);
+    return 0;
+  }
   const double raw_rate = raw_ray_rate(scene, camera_and_bounce_rays(scene, camera, o.width, o.height));
   time_still(scene, sky, camera, o, raw_rate);
   std::printf("peak memory %.0f MiB\n", rss_mib());

@@ -22,7 +22,10 @@
 #include "generate/export/statistics.h"
 #include "generate/export/validate.h"
 #include "geom/planar_map.h"
+#include "render/camera_path.h"
 #include "render/render.h"
+#include "render/render_path.h"
+#include "render/white_balance.h"
 
 namespace fs = std::filesystem;
 using namespace exacity;
@@ -37,6 +40,12 @@ struct RenderOptions {
   int spp = 16;
   float haze = 0;
   bool overview = false, minimap = false, orthographic = false;
+  std::string denoise = "on";
+  float exposure_ev = 0, white_balance_k = render::kNeutralKelvin;
+  double time_s = 0;
+  fs::path path;       // a camera path file: frames, not a still
+  std::string frames;  // A:B, of the path's frames
+  std::string shard;   // I/N: the I-th of N shares of those frames (a job array's task)
 };
 
 // The camera the user gave (option first, then the sketch's), parsed; nullopt for none.
@@ -68,6 +77,9 @@ render::RenderRequest request_for(const City& city, const RenderOptions& o, cons
   }
   r.overview = o.overview, r.minimap = o.minimap, r.orthographic_overview = o.orthographic;
   r.haze_visibility = o.haze;
+  r.denoise = o.denoise == "on";
+  r.exposure_ev = o.exposure_ev, r.white_balance_k = o.white_balance_k;
+  r.time_budget_s = o.time_s;
   return r;
 }
 
@@ -127,6 +139,59 @@ int generate(const fs::path& sketch_path, const fs::path& models, const fs::path
   return 0;
 }
 
+// "A:B" (inclusive) within the path's frames; all of them when empty.
+std::pair<int, int> frame_range(const std::string& spec, int count) {
+  if (spec.empty()) return {0, count - 1};
+  int a = 0, b = 0;
+  char colon = 0;
+  std::istringstream in(spec);
+  if (!(in >> a >> colon >> b) || colon != ':' || !in.eof() || a < 0 || b < a || b >= count)
+    throw UserError("--frames " + spec + ": expected A:B with 0 <= A <= B <= " + std::to_string(count - 1) +
+                    " (the path has " + std::to_string(count) + " frames)");
+  return {a, b};
+}
+
+// The frames of a camera path into a folder (-o, default OUT/render/frames):
+// frame_NNNN.png with its .exr and .json, one independent still each.
+int render_path_folder(const fs::path& out, const Sketch& sketch, const RenderOptions& o, const fs::path& dir_given,
+                       bool quiet) {
+  render::CameraPath path;
+  try {
+    path = render::load_camera_path(o.path, o.fov);
+  } catch (const std::invalid_argument& e) {
+    throw UserError(e.what());
+  }
+  auto [first, last] = frame_range(o.frames, path.frame_count());
+  if (!o.shard.empty()) {
+    int part = 0, parts = 0;
+    char slash = 0;
+    std::istringstream in(o.shard);
+    if (!(in >> part >> slash >> parts) || slash != '/' || !in.eof() || parts < 1 || part < 0 || part >= parts)
+      throw UserError("--shard " + o.shard + ": expected I/N with 0 <= I < N, such as 3/8");
+    std::tie(first, last) = render::frame_share(first, last, part, parts);
+    if (first > last) {
+      std::printf("exacity: --shard %s: no frames left for this part (more parts than frames)\n", o.shard.c_str());
+      return 0;
+    }
+  }
+  const fs::path dir = dir_given.empty() ? out / "render" / "frames" : dir_given;
+  if (dir.extension() == ".png") throw UserError(dir.string() + ": with --path, -o is the folder for the frames");
+  fs::create_directories(dir);
+  ProgressReport progress(quiet);
+  StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); }, kCityStages + 1);
+  City city = build_city(sketch, clock);
+  render::RenderRequest r = request_for(city, o, (out / "sketch.geojson").string());
+  clock.run("render", [&] {
+    return render::render_path_frames(city, path, first, last, r, dir, [&](const std::string& stage, double f) {
+      progress.fraction("frames " + stage, f);
+    });
+  });
+  progress.finish();
+  std::printf("exacity: wrote %s to %s in %s\n", render::frame_file_name(first).c_str(),
+              render::frame_file_name(last).c_str(), dir.string().c_str());
+  return 0;
+}
+
 // Rebuilds the city of an output folder in memory (same sketch, same seed: the same city)
 // and renders it.
 int render_folder(const fs::path& out, const RenderOptions& o, const fs::path& file, bool quiet) {
@@ -141,6 +206,7 @@ int render_folder(const fs::path& out, const RenderOptions& o, const fs::path& f
   text << in.rdbuf();
   Sketch sketch = parse_sketch(text.str(), report["sketch_path"].get<std::string>());
   given_camera(sketch, o, (out / "sketch.geojson").string());  // a bad camera stops us before any work
+  if (!o.path.empty()) return render_path_folder(out, sketch, o, file, quiet);
   ProgressReport progress(quiet);
   StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); }, kCityStages + 1);
   City city = build_city(sketch, clock);
@@ -260,6 +326,20 @@ void add_image_options(CLI::App* c, RenderOptions& o) {
                 "Haze for aerial perspective and light shafts: the visibility in metres (0: clear air)")
       ->check(CLI::Range(0.0, 1e7))
       ->capture_default_str();
+  c->add_option("--denoise", o.denoise, "The edge-aware denoiser, on or off")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  c->add_option("--exposure", o.exposure_ev, "Exposure in stops (EV) over the default")
+      ->check(CLI::Range(-20.0, 20.0))
+      ->capture_default_str();
+  c->add_option("--white-balance", o.white_balance_k,
+                "The light's colour temperature in kelvin to make neutral (6500: none; lower: cooler image)")
+      ->check(CLI::Range(static_cast<double>(render::kLeastKelvin), static_cast<double>(render::kMostKelvin)))
+      ->capture_default_str();
+  c->add_option("--time", o.time_s,
+                "Progressive: passes of --spp samples until this many seconds are spent (still.json records the "
+                "passes)")
+      ->check(CLI::Range(0.0, 1e6));
 }
 
 void add_generate(CLI::App& app, GenerateCommand& c, SharedOptions& shared) {
@@ -295,7 +375,16 @@ void add_render(CLI::App& app, RenderCommand& c, SharedOptions& shared) {
   c.app->add_flag("--overview", o.overview, "Also render the whole city from straight above (overview.png)");
   c.app->add_flag("--orthographic", o.orthographic, "Make the overview orthographic");
   c.app->add_flag("--minimap", o.minimap, "Also draw the minimap (minimap.png) and set it into the still");
-  c.app->add_option("-o,--output", c.file, "The still, a .png (default OUT/render/still.png); the .exr goes beside it");
+  auto* path = c.app->add_option("--path", o.path,
+                    "A camera path (JSON: {\"fps\": N, \"keys\": [{\"t\": SECONDS, \"camera\": SPEC}, ...]}): "
+                    "renders its frames as DIR/frame_NNNN.png");
+  c.app->add_option("--frames", o.frames, "With --path, only frames A:B (inclusive, from 0)")->needs(path);
+  c.app->add_option("--shard", o.shard,
+                    "With --path, only the I-th of N near-equal runs of those frames (I/N, from 0): a job array's task")
+      ->needs(path);
+  c.app->add_option("-o,--output", c.file,
+                    "The still, a .png (default OUT/render/still.png; the .exr goes beside it); with --path, the "
+                    "frames' folder (default OUT/render/frames)");
   c.app->add_flag("-q,--quiet", shared.quiet, "Hide progress");
   c.app->add_option("--threads", shared.threads, "Worker threads (0: one per core); the image does not depend on it")
       ->check(CLI::Range(0, 1024));

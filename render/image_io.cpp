@@ -64,11 +64,11 @@ void write_exr(const Image& img, const fs::path& file) {
   write(file, spec, data.data());
 }
 
-Rgb8 tone_map(const Image& img, float exposure) {
+Rgb8 tone_map(const Image& img, float exposure, V3 gains) {
   Rgb8 out{img.width, img.height, std::vector<std::uint8_t>(img.beauty.size() * 3)};
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
-      V3 c = img.beauty[static_cast<std::size_t>(y) * img.width + x] * exposure;
+      V3 c = img.beauty[static_cast<std::size_t>(y) * img.width + x] * gains * exposure;
       auto aces = [](float v) { return v * (2.51f * v + 0.03f) / (v * (2.43f * v + 0.59f) + 0.14f); };
       out.set(x, y, {aces(c.x), aces(c.y), aces(c.z)});
     }

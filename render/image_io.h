@@ -18,8 +18,9 @@ struct Rgb8 {
 };
 
 void write_exr(const Image& image, const std::filesystem::path& file);
-// ACES filmic curve (Narkowicz's fit) after `exposure`, then the sRGB transfer function.
-Rgb8 tone_map(const Image& image, float exposure);
+// ACES filmic curve (Narkowicz's fit) after `exposure` and the white balance's per-channel
+// `gains`, then the sRGB transfer function.
+Rgb8 tone_map(const Image& image, float exposure, V3 gains = {1, 1, 1});
 void write_png(const Rgb8& image, const std::filesystem::path& file);
 
 }  // namespace render

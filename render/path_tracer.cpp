@@ -204,16 +204,35 @@ V3 radiance(const RenderScene& scene, const Sky& sky, V3 o, V3 d, Sampler& rng, 
   return path.L;
 }
 
-Image trace(const RenderScene& scene, const Sky& sky, const Camera& camera, const TraceSettings& t, RayCounts* counts,
-            const TileProgress& progress) {
-  Image img;
-  img.width = t.width, img.height = t.height;
-  const std::size_t n = static_cast<std::size_t>(t.width) * t.height;
-  img.beauty.assign(n, {}), img.normal.assign(n, {}), img.albedo.assign(n, {});
-  img.depth.assign(n, INFINITY), img.id.assign(n, 0);
-  const int tiles_x = (t.width + kTile - 1) / kTile, tiles_y = (t.height + kTile - 1) / kTile,
-            tiles = tiles_x * tiles_y;
-  const Lens lens(camera, t.width, t.height);
+Film::Film(int width, int height) {
+  layers.width = width, layers.height = height;
+  const std::size_t n = static_cast<std::size_t>(width) * height;
+  layers.normal.assign(n, {}), layers.albedo.assign(n, {});
+  layers.depth.assign(n, INFINITY), layers.id.assign(n, 0);
+  sum.assign(n, {}), albedo_sum.assign(n, {}), luminance_squares.assign(n, 0);
+}
+
+Image Film::image() const {
+  Image img = layers;
+  const std::size_t n = sum.size();
+  img.beauty.assign(n, {}), img.variance.assign(n, 0), img.mean_albedo.assign(n, {});
+  if (samples == 0) return img;
+  const float count = static_cast<float>(samples);
+  for (std::size_t i = 0; i < n; ++i) {
+    img.beauty[i] = sum[i] / count, img.mean_albedo[i] = albedo_sum[i] / count;
+    const double mean = luminance(img.beauty[i]);
+    img.variance[i] = static_cast<float>(std::max(0.0, luminance_squares[i] / samples - mean * mean) / samples);
+  }
+  return img;
+}
+
+void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Camera& camera, const TraceSettings& t,
+                 RayCounts* counts, const TileProgress& progress) {
+  const int width = film.layers.width, height = film.layers.height;
+  const int tiles_x = (width + kTile - 1) / kTile, tiles_y = (height + kTile - 1) / kTile, tiles = tiles_x * tiles_y;
+  const int first = film.samples;
+  Image& img = film.layers;
+  const Lens lens(camera, width, height);
   std::atomic<int> done{0};
   std::mutex report;
   const auto caller = std::this_thread::get_id();
@@ -223,35 +242,45 @@ Image trace(const RenderScene& scene, const Sky& sky, const Camera& camera, cons
     _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
     const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
     RayCounts tile_counts;
-    for (int y = y0; y < std::min(y0 + kTile, t.height); ++y)
-      for (int x = x0; x < std::min(x0 + kTile, t.width); ++x) {
-        const std::size_t i = static_cast<std::size_t>(y) * t.width + x;
-        V3 sum{0, 0, 0};
-        for (int k = 0; k < t.spp; ++k) {
+    for (int y = y0; y < std::min(y0 + kTile, height); ++y)
+      for (int x = x0; x < std::min(x0 + kTile, width); ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * width + x;
+        V3 sum = film.sum[i], albedo = film.albedo_sum[i];
+        double squares = film.luminance_squares[i];
+        for (int k = first; k < first + t.spp; ++k) {
           Sampler rng(i, static_cast<std::uint64_t>(k));
           // The first sample goes through the pixel's centre, for clean data layers.
           const float jx = k == 0 ? 0.5f : rng.next(), jy = k == 0 ? 0.5f : rng.next();
           V3 o, d;
           lens.ray(static_cast<float>(x) + jx, static_cast<float>(y) + jy, o, d);
-          Surface first;
-          first.distance = -1;
-          V3 l = radiance(scene, sky, o, d, rng, t.max_depth, tile_counts, k == 0 ? &first : nullptr, t.haze);
+          Surface first_hit;
+          first_hit.distance = -1;
+          V3 l = radiance(scene, sky, o, d, rng, t.max_depth, tile_counts, &first_hit, t.haze);
           if (!std::isfinite(l.x + l.y + l.z)) l = {0, 0, 0};
           sum += l;
-          if (k == 0 && first.distance >= 0) {
-            img.depth[i] = first.distance, img.normal[i] = first.normal, img.albedo[i] = first.material.albedo;
-            img.id[i] = first.entity;
+          albedo += first_hit.distance >= 0 ? first_hit.material.albedo : V3{1, 1, 1};
+          squares += static_cast<double>(luminance(l)) * luminance(l);
+          if (k == 0 && first_hit.distance >= 0) {
+            img.depth[i] = first_hit.distance, img.normal[i] = first_hit.normal;
+            img.albedo[i] = first_hit.material.albedo, img.id[i] = first_hit.entity;
           }
         }
-        img.beauty[i] = sum / static_cast<float>(t.spp);
+        film.sum[i] = sum, film.albedo_sum[i] = albedo, film.luminance_squares[i] = squares;
       }
     const int finished = ++done;
     std::lock_guard<std::mutex> lock(report);
     if (counts) *counts += tile_counts;
     if (progress && std::this_thread::get_id() == caller) progress(finished, tiles);
   });
+  film.samples += t.spp;
   if (progress) progress(tiles, tiles);
-  return img;
+}
+
+Image trace(const RenderScene& scene, const Sky& sky, const Camera& camera, const TraceSettings& t, RayCounts* counts,
+            const TileProgress& progress) {
+  Film film(t.width, t.height);
+  add_samples(film, scene, sky, camera, t, counts, progress);
+  return film.image();
 }
 
 }  // namespace render

@@ -21,6 +21,12 @@ struct Image {
   std::vector<float> depth;        // distance to the first hit (infinity: sky)
   std::vector<V3> normal, albedo;  // of the first hit, world space
   std::vector<std::uint32_t> id;   // the first hit's entity (see Entity)
+  // For the denoiser (render/denoise.h): the variance of the mean's luminance (the
+  // samples' over their count), and the first hits' albedo over all samples, the sky's
+  // as white, so that a texture finer than a pixel is divided out as the beauty saw it
+  // (exacity render puts render/albedo_layer.h's denser one in its place).
+  std::vector<float> variance;
+  std::vector<V3> mean_albedo;
 };
 
 // A homogeneous layer of haze from the ground up to `top` (scene z): light scatters in it
@@ -53,6 +59,23 @@ struct RayCounts {
 
 // Called with the tiles done and the tile count, from the calling thread only.
 using TileProgress = std::function<void(int, int)>;
+
+// A pixel's samples summed as they come, so that passes of samples can follow one another
+// (progressive rendering, render/README.md): after passes of n1, n2, ... samples the image
+// is the same bytes as one trace of n1 + n2 + ... samples, whatever the pass sizes.
+struct Film {
+  Film(int width, int height);
+  Image layers;  // the size and the data layers (depth, normal, albedo, id), from sample 0
+  std::vector<V3> sum, albedo_sum;
+  std::vector<double> luminance_squares;
+  int samples = 0;
+  // The mean of the samples so far and its variance, with the data layers.
+  Image image() const;
+};
+
+// Adds settings.spp samples a pixel to `film`, numbered on from those it holds.
+void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Camera& camera,
+                 const TraceSettings& settings, RayCounts* counts = nullptr, const TileProgress& progress = nullptr);
 
 // `camera` in scene coordinates.
 Image trace(const RenderScene& scene, const Sky& sky, const Camera& camera, const TraceSettings& settings,

@@ -3,9 +3,11 @@
 #include <chrono>
 #include <cmath>
 
+#include "render/denoise.h"
 #include "render/image_io.h"
 #include "render/path_tracer.h"
 #include "render/scene.h"
+#include "render/white_balance.h"
 
 namespace render {
 namespace fs = std::filesystem;
@@ -56,24 +58,51 @@ Haze haze_layer(const RenderRequest& request, const RenderScene& scene) {
   return haze;
 }
 
+// The exposure and white balance asked for, applied on the way to the 8-bit images only:
+// the EXR keeps linear radiance (render/README.md, Tone mapping).
+Rgb8 tone_mapped(const Image& image, const RenderRequest& request) {
+  return tone_map(image, request.exposure * std::exp2(request.exposure_ev),
+                  white_balance_gains(request.white_balance_k));
+}
+
+// The filter when asked for (render/README.md, Denoising).
+Image finished(Image image, const RenderScene& scene, const Camera& camera, const RenderRequest& request) {
+  return request.denoise ? denoise_render(std::move(image), scene, camera) : image;
+}
+
 struct Still {
   Image image;
   Rgb8 png;  // tone-mapped; the minimap is set into it before it is written
   RayCounts rays;
-  double seconds = 0;  // tracing alone
+  int passes = 0;
+  double seconds = 0, denoise_seconds = 0;  // tracing, filtering
 };
 
+// Passes of request.spp samples: one, or as many as the time budget holds. A pass is not
+// begun when the passes so far, on average, say it would end past the budget; the image
+// depends only on the number of passes done (Film), and the report records it.
 Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camera, const RenderRequest& request,
                    const Haze& haze, const RenderProgress& progress) {
   Still still;
   TraceSettings settings{request.width, request.height, request.spp};
   settings.haze = haze;
   const auto start = std::chrono::steady_clock::now();
-  still.image = trace(scene, sky, camera, settings, &still.rays, [&](int done, int all) {
-    if (progress) progress("still", static_cast<double>(done) / all);
-  });
+  Film film(request.width, request.height);
+  const int most_passes = std::max(1, 65536 / request.spp);
+  do {
+    add_samples(film, scene, sky, camera, settings, &still.rays, [&](int done, int all) {
+      if (!progress) return;
+      if (request.time_budget_s <= 0) return progress("still", static_cast<double>(done) / all);
+      progress("still", std::min(1.0, seconds_since(start) / request.time_budget_s));
+    });
+    ++still.passes;
+  } while (request.time_budget_s > 0 && still.passes < most_passes &&
+           seconds_since(start) * (still.passes + 1) / still.passes <= request.time_budget_s);
   still.seconds = seconds_since(start);
-  still.png = tone_map(still.image, request.exposure);
+  const auto filtering = std::chrono::steady_clock::now();
+  still.image = finished(film.image(), scene, camera, request);
+  still.denoise_seconds = seconds_since(filtering);
+  still.png = tone_mapped(still.image, request);
   return still;
 }
 
@@ -97,7 +126,13 @@ nlohmann::ordered_json still_report(const RenderRequest& request, const RenderSc
   const RayCounts& rays = still.rays;
   nlohmann::ordered_json report{
       {"size", {request.width, request.height}},
-      {"samples_per_pixel", request.spp},
+      {"samples_per_pixel", request.spp * still.passes},
+      {"passes", still.passes},
+      {"samples_per_pass", request.spp},
+      {"time_budget_s", request.time_budget_s},
+      {"denoised", request.denoise},
+      {"exposure_ev", request.exposure_ev},
+      {"white_balance_k", request.white_balance_k},
       {"haze_visibility_m", request.haze_visibility},
       {"camera",
        {{"from", {request.camera.from.x, request.camera.from.y, request.camera.from.z}},
@@ -114,7 +149,8 @@ nlohmann::ordered_json still_report(const RenderRequest& request, const RenderSc
         {"camera_rays", rays.camera},
         {"bounce_rays", rays.bounce},
         {"shadow_rays", rays.shadow},
-        {"rays_per_s", static_cast<double>(rays.camera + rays.bounce + rays.shadow) / still.seconds}}},
+        {"rays_per_s", static_cast<double>(rays.camera + rays.bounce + rays.shadow) / still.seconds},
+        {"denoise_s", still.denoise_seconds}}},
   };
   return report;
 }
@@ -126,10 +162,10 @@ nlohmann::ordered_json render_overview(const RenderScene& whole, const Sky& sky,
   const float top = whole.top;
   Camera over = overview_camera(whole.bounds, top, request.camera.fov_y, 1, request.orthographic_overview);
   TraceSettings s{size, size, request.spp, 8, haze};
-  Image img = trace(whole, sky, over, s, nullptr, [&](int done, int n) {
+  Image img = finished(trace(whole, sky, over, s, nullptr, [&](int done, int n) {
     if (progress) progress("overview", static_cast<double>(done) / n);
-  });
-  write_png(tone_map(img, request.exposure), request.overview_file);
+  }), whole, over, request);
+  write_png(tone_mapped(img, request), request.overview_file);
   return {{"height_m", over.from.z - top}, {"orthographic", request.orthographic_overview}};
 }
 
@@ -181,8 +217,9 @@ nlohmann::ordered_json render_minimap(const RenderScene& whole, const RenderScen
                                       const Camera& camera, const RenderRequest& request, Rgb8& still_png) {
   const int m = kMinimapSize;
   Camera top_down = overview_camera(whole.bounds, whole.top, 45, 1, true);
-  Image img = trace(whole, sky, top_down, TraceSettings{m, m, std::max(1, request.spp / 4)});
-  Rgb8 map = tone_map(img, request.exposure);
+  Image img = finished(trace(whole, sky, top_down, TraceSettings{m, m, std::max(1, request.spp / 4)}), whole, top_down,
+                       request);
+  Rgb8 map = tone_mapped(img, request);
   // The still's view, from its own scene (the same origin: both centre on the city).
   std::vector<geom::Vec2> seen = ground_footprint(camera, request.width, request.height, whole.ground, whole.bounds);
   draw_still_camera(map, top_down, camera, seen);

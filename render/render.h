@@ -18,6 +18,12 @@ struct RenderRequest {
   bool overview = false, orthographic_overview = false, minimap = false;
   float sun_azimuth = 200, sun_elevation = 40, turbidity = 3, exposure = 0.25f;
   float haze_visibility = 0;    // m; 0: clear air. Haze fills the 500 m over the lowest ground.
+  float exposure_ev = 0;        // stops over `exposure`
+  float white_balance_k = 6500; // the light's colour temperature made neutral (6500: none)
+  bool denoise = true;          // the edge-aware filter (render/denoise.h) before tone mapping
+  // Progressive: passes of `spp` samples until this many seconds of tracing are spent (at
+  // least one pass); 0: one pass. The report records the passes, which fix the image.
+  double time_budget_s = 0;
   std::filesystem::path still;  // PNG; the EXR goes beside it
   std::filesystem::path overview_file, minimap_file;
 };

@@ -343,3 +343,66 @@ TEST(Cli, AGridMapWithModelsGeneratesValidatesAndRendersTheSameCity) {
   EXPECT_NE(r.out.find("--models"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(dir / "bad-out"));
 }
+
+// Issue 25: a camera path's frames, rendered whole, in ranges, in shares and through
+// scripts/render_path.sbatch's tasks (Slurm's environment by hand), are the same files; a bad path file is one line naming it and its key; --time records
+// its passes; --denoise, --exposure and --white-balance are taken and recorded.
+TEST(Cli, CameraPathFramesInRangesEqualOneRunAndBadPathsAreOneLine) {
+  fs::path dir = testing_util::temp_dir("cli-path");
+  std::ofstream(dir / "city.geojson") << R"({"type": "FeatureCollection", "exacity": {"seed": 5}, "features": [
+    {"type": "Feature", "properties": {"zone": "residential"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [160, 0], [160, 120], [0, 120], [0, 0]]]}}]})";
+  const fs::path out = dir / "out";
+  Result r = run("generate " + (dir / "city.geojson").string() + " -o " + out.string() + " -q");
+  ASSERT_EQ(r.code, 0) << r.out;
+  std::ofstream(dir / "path.json") << R"({"fps": 2, "keys": [
+    {"t": 0, "camera": "orbit:target=80,60,0,azimuth=200,elevation=35,distance=200"},
+    {"t": 1.5, "camera": "look:from=-50,-80,60,to=80,60,0"}]})";
+  const std::string common = "render " + out.string() + " --path " + (dir / "path.json").string() +
+                             " --size 32x24 --spp 2 -q -o ";
+  r = run(common + (dir / "whole").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  // scripts/render_path.sbatch's two tasks of an array begun at 4, without Slurm: its
+  // environment by hand.
+  for (int task : {4, 5}) {
+    const Result job = shell("SLURM_ARRAY_TASK_ID=" + std::to_string(task) +
+                             " SLURM_ARRAY_TASK_MIN=4 SLURM_ARRAY_TASK_MAX=5 SLURM_CPUS_PER_TASK=1 EXACITY=" +
+                             EXACITY_BINARY + " bash " + (kSource / "scripts" / "render_path.sbatch").string() + " " +
+                             out.string() + " " + (dir / "path.json").string() + " " + (dir / "array").string() +
+                             " --size 32x24 --spp 2");
+    ASSERT_EQ(job.code, 0) << job.out;
+  }
+  ASSERT_EQ(run(common + (dir / "parts").string() + " --frames 2:3").code, 0);
+  ASSERT_EQ(run(common + (dir / "parts").string() + " --frames 0:1").code, 0);
+  for (int n = 0; n < 4; ++n) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04d.png", n);
+    const std::string whole = read(dir / "whole" / name);
+    ASSERT_FALSE(whole.empty()) << name;
+    EXPECT_TRUE(whole == read(dir / "parts" / name)) << name;
+    EXPECT_TRUE(whole == read(dir / "array" / name)) << name;
+  }
+  EXPECT_FALSE(fs::exists(dir / "whole" / "frame_0004.png")) << "1.5 s at 2 fps is frames 0 to 3";
+
+  r = run(common + (dir / "bad").string() + " --frames 3:9");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("--frames 3:9"), std::string::npos) << r.out;
+  std::ofstream(dir / "bad.json") << R"({"fps": 2, "keys": [{"t": 0, "camera": "look:from=0,0,50,to=1,1,0"},
+    {"t": 1, "camera": "orbit:target=0,0,0,azimuth=20"}]})";
+  r = run("render " + out.string() + " --path " + (dir / "bad.json").string() + " -q -o " + (dir / "bad").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find((dir / "bad.json").string() + ": keys[1]: camera"), std::string::npos) << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  EXPECT_FALSE(fs::exists(dir / "bad" / "frame_0000.png"));
+
+  r = run("render " + out.string() + " --size 32x24 --spp 1 --time 0.3 --denoise off --exposure 1 --white-balance 4000 -q -o " +
+          (dir / "still.png").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto still = nlohmann::json::parse(read(dir / "still.json"));
+  EXPECT_GE(still["passes"].get<int>(), 1);
+  EXPECT_EQ(still["samples_per_pixel"].get<int>(), still["passes"].get<int>());
+  EXPECT_FALSE(still["denoised"].get<bool>());
+  EXPECT_EQ(still["exposure_ev"].get<double>(), 1);
+  EXPECT_EQ(still["white_balance_k"].get<double>(), 4000);
+  EXPECT_EQ(run("render " + out.string() + " --denoise maybe -q").code, 2);
+}

@@ -1,0 +1,98 @@
+#include "render/camera_path.h"
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+namespace render {
+namespace {
+
+V3 eye(const CameraKey& k) { return k.camera.from; }
+V3 target(const CameraKey& k) { return k.camera.to; }
+
+// The velocity at key i of a point the keys carry: its neighbours' difference over their
+// time apart (one-sided at the ends).
+V3 velocity(const std::vector<CameraKey>& keys, std::size_t i, V3 (*point)(const CameraKey&)) {
+  const std::size_t a = i == 0 ? 0 : i - 1, b = std::min(i + 1, keys.size() - 1);
+  return (point(keys[b]) - point(keys[a])) / static_cast<float>(keys[b].t - keys[a].t);
+}
+
+// The point at time t between keys i and i + 1.
+V3 hermite(const std::vector<CameraKey>& keys, std::size_t i, double t, V3 (*point)(const CameraKey&)) {
+  const double h = keys[i + 1].t - keys[i].t, s = (t - keys[i].t) / h, s2 = s * s, s3 = s2 * s;
+  const float h00 = static_cast<float>(2 * s3 - 3 * s2 + 1), h10 = static_cast<float>(s3 - 2 * s2 + s),
+              h01 = static_cast<float>(-2 * s3 + 3 * s2), h11 = static_cast<float>(s3 - s2);
+  const float hf = static_cast<float>(h);
+  return point(keys[i]) * h00 + velocity(keys, i, point) * (h10 * hf) + point(keys[i + 1]) * h01 +
+         velocity(keys, i + 1, point) * (h11 * hf);
+}
+
+[[noreturn]] void fail(const std::string& file, const std::string& where, const std::string& what) {
+  throw std::invalid_argument(file + ": " + where + (where.empty() ? "" : ": ") + what +
+                              "; expected {\"fps\": 24, \"keys\": [{\"t\": 0, \"camera\": \"orbit:...\"}, ...]}");
+}
+
+}  // namespace
+
+int CameraPath::frame_count() const {
+  const double span = keys.back().t - keys.front().t;
+  return static_cast<int>(std::floor(span * fps + 1e-9)) + 1;
+}
+
+Camera CameraPath::frame(int n) const { return at(keys.front().t + n / fps); }
+
+Camera CameraPath::at(double t) const {
+  if (keys.size() == 1 || t <= keys.front().t) return keys.front().camera;
+  if (t >= keys.back().t) return keys.back().camera;
+  std::size_t i = 0;
+  while (keys[i + 1].t < t) ++i;
+  Camera c = keys[i].camera;
+  c.from = hermite(keys, i, t, eye), c.to = hermite(keys, i, t, target);
+  const float s = static_cast<float>((t - keys[i].t) / (keys[i + 1].t - keys[i].t));
+  c.fov_y = keys[i].camera.fov_y + (keys[i + 1].camera.fov_y - keys[i].camera.fov_y) * s;
+  return c;
+}
+
+CameraPath parse_camera_path(const std::string& text, const std::string& file, float fov_y) {
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) fail(file, "", "not a JSON object");
+  CameraPath path;
+  if (!j.contains("fps") || !j["fps"].is_number() || !(j["fps"].get<double>() > 0) || j["fps"].get<double>() > 1000)
+    fail(file, "\"fps\"", "missing or not a number in (0, 1000]");
+  path.fps = j["fps"].get<double>();
+  if (!j.contains("keys") || !j["keys"].is_array() || j["keys"].empty())
+    fail(file, "\"keys\"", "missing or not a non-empty array");
+  const nlohmann::json& keys = j["keys"];
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const std::string where = "keys[" + std::to_string(i) + "]";
+    const nlohmann::json& k = keys[i];
+    if (!k.is_object() || !k.contains("t") || !k["t"].is_number() || !std::isfinite(k["t"].get<double>()))
+      fail(file, where, "no \"t\" number (seconds)");
+    if (!k.contains("camera") || !k["camera"].is_string()) fail(file, where, "no \"camera\" string");
+    CameraKey key;
+    key.t = k["t"].get<double>();
+    if (!path.keys.empty() && key.t <= path.keys.back().t)
+      fail(file, where, "t " + k["t"].dump() + " is not after the key before's");
+    try {
+      key.camera = Camera::parse(k["camera"].get<std::string>(), fov_y);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(file + ": " + where + ": camera \"" + k["camera"].get<std::string>() +
+                                  "\": " + e.what());
+    }
+    path.keys.push_back(key);
+  }
+  if (path.frame_count() > 1000000) fail(file, "", "more than a million frames");
+  return path;
+}
+
+CameraPath load_camera_path(const std::filesystem::path& file, float fov_y) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw std::invalid_argument(file.string() + ": cannot read the camera path");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_camera_path(text.str(), file.string(), fov_y);
+}
+
+}  // namespace render

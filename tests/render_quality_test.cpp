@@ -1,0 +1,259 @@
+// Renders a person would keep (render/README.md: Denoising, Tone mapping, Progressive
+// rendering, Camera paths): the denoiser brings a few samples nearer a many-sample
+// reference and keeps a normal's edge; passes of samples add up to one trace bit for bit;
+// white balance by hand; camera paths through their keys, their bad files in one line,
+// and a frame the same bytes whichever range rendered it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "generate/pipeline.h"
+#include "render/albedo_layer.h"
+#include "render/camera_path.h"
+#include "render/denoise.h"
+#include "render/image_error.h"
+#include "render/image_io.h"
+#include "render/path_tracer.h"
+#include "render/render.h"
+#include "render/render_path.h"
+#include "render/scene.h"
+#include "render/white_balance.h"
+#include "tests/cli_util.h"
+#include "tests/test_util.h"
+
+using namespace render;
+namespace fs = std::filesystem;
+
+namespace {
+
+exacity::City small_city() {
+  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 3}, "features": [
+    {"type": "Feature", "properties": {"zone": "residential"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [400, 0], [400, 300], [0, 300], [0, 0]]]}}]})";
+  exacity::Sketch sketch = exacity::parse_sketch(text, "quality.geojson");
+  exacity::StageClock clock(nullptr, exacity::kCityStages);
+  return exacity::build_city(sketch, clock);
+}
+
+// A plane with two blocks on it, one lifted on a post so the ground under it is lit by
+// the sky alone.
+std::vector<TriangleSoup> blocks_on_a_plane() {
+  TriangleSoup plane;
+  plane.vertices = {{-500, -500, 0}, {500, -500, 0}, {500, 500, 0}, {-500, 500, 0}};
+  plane.triangles = {{0, 1, 2}, {0, 2, 3}};
+  plane.material = {Material::Diffuse, {0.5f, 0.4f, 0.3f}};
+  auto block = [](V3 lo, V3 hi, V3 albedo) {
+    TriangleSoup b;
+    for (int i = 0; i < 8; ++i) b.vertices.push_back({i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z});
+    b.triangles = {{0, 1, 3}, {0, 3, 2}, {4, 6, 7}, {4, 7, 5}, {0, 4, 5}, {0, 5, 1},
+                   {2, 3, 7}, {2, 7, 6}, {0, 2, 6}, {0, 6, 4}, {1, 5, 7}, {1, 7, 3}};
+    b.material = {Material::Diffuse, albedo};
+    return b;
+  };
+  return {plane, block({-5, -5, 0}, {5, 5, 10}, {0.8f, 0.8f, 0.8f}), block({8, -4, 4}, {16, 4, 6}, {0.7f, 0.3f, 0.2f}),
+          block({11, -1, 0}, {13, 1, 4}, {0.3f, 0.3f, 0.3f})};
+}
+
+}  // namespace
+
+TEST(Denoise, BringsAFewSamplesNearerAManySampleReference) {
+  // Blocks on a plane in sun and sky light: shadows, sky light under overhangs, and the
+  // noise of a few samples; the filter must bring 4 samples nearer 256 as a person sees
+  // them (tone-mapped), edges and shadows included.
+  RenderScene scene(blocks_on_a_plane());
+  const Sky sky(200, 40);
+  const Camera c = Camera::look({-30, -40, 25}, {0, 0, 3}, 50);
+  const Image raw = trace(scene, sky, c, TraceSettings{64, 48, 4});
+  const Image reference = trace(scene, sky, c, TraceSettings{64, 48, 256});
+  const double before = display_rmse(raw, reference), after = display_rmse(denoise(raw), reference);
+  EXPECT_LT(after, 0.7 * before) << "raw " << before << ", denoised " << after;
+}
+
+TEST(Denoise, BringsACitysFewSamplesNearerWithItsAlbedoLayer) {
+  // Facades' window grids and grass are finer than a pixel here: the albedo layer's 6x6
+  // camera rays a pixel, divided out and multiplied back, carry them; the path samples'
+  // own albedo (denoise() alone) leaves their sampling error in.
+  const exacity::City city = small_city();
+  const Sky sky(200, 40);
+  RenderScene scene(city, sky.sun_direction(), SceneOptions{});
+  const Camera c = scene.to_scene(Camera::orbit({200, 150, 0}, 235, 25, 120, 45));
+  const Image raw = trace(scene, sky, c, TraceSettings{64, 48, 4});
+  const Image reference = trace(scene, sky, c, TraceSettings{64, 48, 256});
+  const double before = display_rmse(raw, reference), alone = display_rmse(denoise(raw), reference),
+               after = display_rmse(denoise_render(raw, scene, c), reference);
+  EXPECT_LT(after, 0.85 * before) << "raw " << before << ", denoised " << after;
+  EXPECT_LT(after, alone) << "the albedo layer must help";
+}
+
+TEST(Denoise, FlattensNoiseButKeepsANormalsEdge) {
+  // Left half faces up and has radiance 1, the right half faces east and has 0.2; each
+  // pixel's value is off by up to +-30% (a fixed pseudo-random pattern), its variance set
+  // to match. The filter must flatten each half and leave the step where it is.
+  Image img;
+  img.width = 32, img.height = 24;
+  std::uint64_t state = 12345;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const bool left = x < 16;
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      const float u = static_cast<float>(state >> 40) * 0x1.0p-24f * 2 - 1;  // [-1, 1)
+      const float truth = left ? 1.0f : 0.2f, v = truth * (1 + 0.3f * u);
+      img.beauty.push_back({v, v, v});
+      img.variance.push_back(truth * truth * 0.09f / 3);
+      img.depth.push_back(50);
+      img.normal.push_back(left ? V3{0, 0, 1} : V3{1, 0, 0});
+      img.albedo.push_back({0.5f, 0.5f, 0.5f});
+      img.id.push_back(0);
+    }
+  const Image out = denoise(img);
+  for (int half = 0; half < 2; ++half) {
+    const float truth = half == 0 ? 1.0f : 0.2f;
+    double before = 0, after = 0;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = half * 16; x < half * 16 + 16; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * img.width + x;
+        before += std::pow(img.beauty[i].x - truth, 2), after += std::pow(out.beauty[i].x - truth, 2);
+        // Beside the step too, each side keeps its own level.
+        EXPECT_NEAR(out.beauty[i].x, truth, 0.12 * truth) << x << "," << y;
+      }
+    EXPECT_LT(after, before / 9) << "half " << half;
+  }
+}
+
+TEST(Film, PassesOfSamplesAddUpToOneTraceBitForBit) {
+  RenderScene scene(blocks_on_a_plane());
+  const Sky sky(200, 40);
+  const Camera c = Camera::look({-30, -40, 25}, {0, 0, 3}, 50);
+  const Image whole = trace(scene, sky, c, TraceSettings{24, 16, 5});
+  Film film(24, 16);
+  for (int spp : {2, 1, 2}) add_samples(film, scene, sky, c, TraceSettings{24, 16, spp});
+  const Image passes = film.image();
+  ASSERT_EQ(film.samples, 5);
+  for (std::size_t i = 0; i < whole.beauty.size(); ++i) {
+    EXPECT_EQ(whole.beauty[i].x, passes.beauty[i].x) << i;
+    EXPECT_EQ(whole.beauty[i].z, passes.beauty[i].z) << i;
+    EXPECT_EQ(whole.variance[i], passes.variance[i]) << i;
+    EXPECT_EQ(whole.depth[i], passes.depth[i]) << i;
+  }
+  // And more passes are a different, less noisy image: the passes count.
+  add_samples(film, scene, sky, c, TraceSettings{24, 16, 3});
+  double variance_5 = 0, variance_8 = 0;
+  const Image more = film.image();
+  for (std::size_t i = 0; i < whole.beauty.size(); ++i) variance_5 += whole.variance[i], variance_8 += more.variance[i];
+  EXPECT_LT(variance_8, variance_5);
+}
+
+TEST(ToneMap, WhiteBalanceMakesItsBlackBodyNeutral) {
+  const V3 one = white_balance_gains(kNeutralKelvin);
+  EXPECT_EQ(one.x, 1);
+  EXPECT_EQ(one.y, 1);
+  EXPECT_EQ(one.z, 1);
+  // The sRGB white is near the 6500 K black body (D65 lies just off the Planckian locus).
+  const V3 d65ish = black_body_rgb(6500);
+  EXPECT_NEAR(d65ish.x, d65ish.z, 0.1);
+  for (float k : {2500.0f, 3200.0f, 4500.0f, 9000.0f, 15000.0f}) {
+    const V3 light = black_body_rgb(k), g = white_balance_gains(k), seen = light * g;
+    EXPECT_NEAR(seen.x / seen.y, d65ish.x / d65ish.y, 1e-3) << k;
+    EXPECT_NEAR(seen.z / seen.y, d65ish.z / d65ish.y, 1e-3) << k;
+    EXPECT_NEAR(luminance(g), 1, 1e-5) << k;
+  }
+  // Warm light is neutralised with blue; cool light with red.
+  EXPECT_GT(white_balance_gains(3200).z, white_balance_gains(3200).x);
+  EXPECT_LT(white_balance_gains(10000).z, white_balance_gains(10000).x);
+  EXPECT_GT(black_body_rgb(2000).x, black_body_rgb(2000).z);
+}
+
+TEST(CameraPath, PassesThroughItsKeysSmoothlyAndFramesAtItsRate) {
+  // Eyes on a straight line at an even speed: the spline must keep to it exactly.
+  const CameraPath line = parse_camera_path(R"({"fps": 10, "keys": [
+      {"t": 0, "camera": "look:from=0,0,100,to=0,100,0"},
+      {"t": 1, "camera": "look:from=10,0,100,to=0,100,0"},
+      {"t": 3, "camera": "look:from=30,0,100,to=0,100,0"}]})", "line.json", 40);
+  EXPECT_EQ(line.frame_count(), 31);
+  for (int n : {0, 5, 10, 17, 30}) {
+    const Camera c = line.frame(n);
+    EXPECT_NEAR(c.from.x, n, 1e-4) << n;
+    EXPECT_NEAR(c.from.z, 100, 1e-4) << n;
+    EXPECT_NEAR(c.to.y, 100, 1e-4) << n;
+    EXPECT_EQ(c.fov_y, 40);
+  }
+  // A turn: through the keys, and its velocity the same either side of the middle one.
+  const CameraPath turn = parse_camera_path(R"({"fps": 24, "keys": [
+      {"t": 0, "camera": "orbit:target=0,0,0,azimuth=0,elevation=30,distance=200"},
+      {"t": 2, "camera": "orbit:target=0,0,0,azimuth=90,elevation=30,distance=200"},
+      {"t": 3, "camera": "look:from=-150,50,80,to=10,10,0"}]})", "turn.json", 45);
+  const Camera middle = Camera::orbit({0, 0, 0}, 90, 30, 200, 45);
+  EXPECT_NEAR(turn.at(2).from.x, middle.from.x, 1e-3);
+  EXPECT_NEAR(turn.at(2).from.y, middle.from.y, 1e-3);
+  const double h = 1e-3;
+  const V3 before = (turn.at(2).from - turn.at(2 - h).from) / static_cast<float>(h),
+           after = (turn.at(2 + h).from - turn.at(2).from) / static_cast<float>(h);
+  EXPECT_NEAR(length(before - after), 0, 0.02 * length(before));
+  EXPECT_NEAR(turn.at(3).from.x, -150, 1e-4);
+}
+
+TEST(CameraPath, BadFilesSayWhichFileAndKeyInOneLine) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"[1, 2]", "path.json: not a JSON object"},
+      {R"({"keys": [{"t": 0, "camera": "look:from=0,0,1,to=1,0,0"}]})", "path.json: \"fps\""},
+      {R"({"fps": 24, "keys": []})", "path.json: \"keys\""},
+      {R"({"fps": 24, "keys": [{"t": 0, "camera": "look:from=0,0,1,to=1,0,0"}, {"camera": "look:from=0,0,1,to=1,0,0"}]})",
+       "path.json: keys[1]: no \"t\""},
+      {R"({"fps": 24, "keys": [{"t": 1, "camera": "look:from=0,0,1,to=1,0,0"}, {"t": 1, "camera": "look:from=0,0,1,to=1,0,0"}]})",
+       "path.json: keys[1]: t 1 is not after"},
+      {R"({"fps": 24, "keys": [{"t": 0, "camera": "pan:x=1"}]})", "path.json: keys[0]: camera \"pan:x=1\""},
+  };
+  for (const auto& [text, expected] : cases) {
+    try {
+      parse_camera_path(text, "path.json", 45);
+      ADD_FAILURE() << text << " parsed";
+    } catch (const std::invalid_argument& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind(expected, 0), 0u) << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+  }
+}
+
+TEST(CameraPath, AFrameIsTheSameBytesWhicheverRangeRenderedIt) {
+  const exacity::City city = small_city();
+  const CameraPath path = parse_camera_path(R"({"fps": 2, "keys": [
+      {"t": 0, "camera": "orbit:target=200,150,0,azimuth=200,elevation=35,distance=350"},
+      {"t": 1, "camera": "orbit:target=200,150,0,azimuth=250,elevation=30,distance=300"}]})", "bytes.json", 45);
+  ASSERT_EQ(path.frame_count(), 3);
+  RenderRequest request;
+  request.width = 32, request.height = 24, request.spp = 2;
+  const fs::path whole = testing_util::temp_dir("frames-whole"), parts = testing_util::temp_dir("frames-parts");
+  render_path_frames(city, path, 0, 2, request, whole);
+  render_path_frames(city, path, 2, 2, request, parts);
+  render_path_frames(city, path, 0, 1, request, parts);
+  for (int n = 0; n < 3; ++n)
+    for (const char* ext : {".png", ".exr"}) {
+      const std::string name = fs::path(frame_file_name(n)).replace_extension(ext).string();
+      const std::string a = cli_util::read(whole / name), b = cli_util::read(parts / name);
+      ASSERT_FALSE(a.empty()) << name;
+      EXPECT_TRUE(a == b) << name;
+    }
+  EXPECT_NE(cli_util::read(whole / "frame_0000.png"), cli_util::read(whole / "frame_0002.png")) << "the camera moves";
+}
+
+TEST(CameraPath, SharesCoverTheFramesOnceInOrder) {
+  for (int parts : {1, 3, 7, 12, 20})
+    for (auto [first, last] : {std::pair{0, 11}, std::pair{5, 5}, std::pair{3, 40}}) {
+      int next = first;
+      for (int part = 0; part < parts; ++part) {
+        const auto [a, b] = frame_share(first, last, part, parts);
+        if (a > b) {
+          EXPECT_EQ(a, next) << parts;
+          continue;  // an empty share, where the frames ran out
+        }
+        EXPECT_EQ(a, next) << parts << " " << part;
+        const int count = last - first + 1;
+        EXPECT_LE(b - a + 1, (count + parts - 1) / parts) << parts << " " << part;
+        EXPECT_GE(b - a + 1, count / parts) << parts << " " << part;
+        next = b + 1;
+      }
+      EXPECT_EQ(next, last + 1) << parts;
+    }
+}
