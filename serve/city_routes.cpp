@@ -160,9 +160,17 @@ void add_city_routes(ServerState& s) {
     res.status = 202;
     res.set_content(s.jobs.status().to_json().dump(), "application/json");
   });
+  // The job's status, and whether a city and a render are there to fetch (the page asks
+  // before fetching, so it never asks for what is not there).
   s.http.Get("/api/status", [&s](const httplib::Request&, httplib::Response& res) {
+    nlohmann::json status = s.jobs.status().to_json();
+    {
+      std::shared_lock lock(s.outputs);
+      status["city"] = fs::is_regular_file(s.city_folder() / "report.json");
+      status["render"] = fs::is_regular_file(s.render_folder() / "still.png");
+    }
     res.set_header("Cache-Control", "no-store");
-    res.set_content(s.jobs.status().to_json().dump(), "application/json");
+    res.set_content(status.dump(), "application/json");
   });
   s.http.Get("/api/events", [&s](const httplib::Request&, httplib::Response& res) { stream_events(s, res); });
   s.http.Get("/api/map.svg", [&s](const httplib::Request&, httplib::Response& res) {

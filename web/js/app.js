@@ -49,6 +49,7 @@ const panel = new SettingsPanel({
 
 function recordEdit() {
   const doc = map.sketch();
+  document.body.dataset.features = doc.features.length;
   history.push(JSON.stringify(doc));
   updateButtons();
   // An empty sketch is one the CLI refuses too: say so, without sending.
@@ -60,6 +61,7 @@ function restore(text) {
   if (text === null) return;
   const doc = JSON.parse(text);
   map.load(doc, false);
+  document.body.dataset.features = doc.features.length;
   panel.show(doc.exacity);
   updateButtons();
   if (doc.features.length) send(doc);
@@ -226,10 +228,11 @@ $('render-view').addEventListener('click', async () => {
 (async () => {
   const doc = await api.getSketch();
   map.load(doc, true);
+  document.body.dataset.features = doc.features.length;
   panel.show(doc.exacity);
   history.push(JSON.stringify(map.sketch()));
   updateButtons();
-  if (await api.getJson('/api/report')) {
+  if ((await api.getJson('/api/status')).city) {
     await showCity();
     document.body.dataset.city = 'shown';
   }
