@@ -51,7 +51,9 @@ try {
   page.on('console', m => { if (m.type() === 'error') errors.push(m.text()); });
   page.on('pageerror', e => errors.push(String(e)));
   page.on('response', r => { if (r.status() >= 400) errors.push(`HTTP ${r.status()}: ${r.url()}`); });
-  page.on('requestfailed', r => { if (!r.url().includes('/api/events')) errors.push(`request failed: ${r.url()}`); });
+  page.on('requestfailed', r => {
+    if (!r.url().includes('/api/events')) errors.push(`request failed: ${r.url()} (${r.failure()?.errorText})`);
+  });
   const sketch = async () => (await fetch(base + 'api/sketch')).json();
   const ready = () => page.waitForSelector('body[data-ready="yes"]', {timeout: 30000});
   const features = n => page.waitForSelector(`body[data-features="${n}"]`, {timeout: 10000});
@@ -122,6 +124,34 @@ try {
   await saved(2);
   check(true, 'undo brought the road back');
 
+  // The road's width, edited in the side panel.
+  await page.mouse.click(...at(200, 9));
+  await page.waitForSelector('#feature-panel:not([hidden]) #width-row:not([hidden])', {timeout: 5000});
+  await page.$eval('#road-width', i => { i.value = '16'; i.dispatchEvent(new Event('change')); });
+  for (let i = 0; i < 50 && (await sketch()).features[1].properties.width !== 16; ++i) await new Promise(r => setTimeout(r, 100));
+  check((await sketch()).features[1].properties.width === 16,
+        `the road's width edited in the panel (${JSON.stringify((await sketch()).features[1].properties)}, ${await page.$eval('#message', m => m.textContent)})`);
+
+  // A setting the CLI refuses is refused with its message, and the sketch stays as it was.
+  // The browser logs the refusal's 400 as a console error: that one is expected.
+  const kept = JSON.stringify(await sketch());
+  await page.$eval('textarea[data-zone="residential"]', t => { t.value = '{"block_area": -5}'; });
+  await page.click('#apply-settings');
+  await page.waitForSelector('#message.error', {timeout: 5000});
+  const refusal = await page.$eval('#message', m => m.textContent);
+  check(/block_area/.test(refusal) && refusal.includes('sketch.geojson'), `the settings refused with the CLI's message: ${refusal}`);
+  check(JSON.stringify(await sketch()) === kept, 'the refused settings left the sketch as it was');
+  const expected = errors.filter(e => /400/.test(e));
+  check(expected.length >= 1 && expected.length === errors.length, `only the refusal was an error (${errors.join(' | ')})`);
+  errors.length = 0;
+  check(await page.$eval('textarea[data-zone="residential"]', t => t.value) === '', 'the panel shows the kept settings again');
+
+  // A heightmap loaded from a file: the sketch points at it, and the map shows it.
+  const [chooser] = await Promise.all([page.waitForFileChooser(), page.click('#heightmap')]);
+  await chooser.accept([path.join(path.dirname(new URL(import.meta.url).pathname), '..', '..', 'examples', 'valley.png')]);
+  for (let i = 0; i < 50 && !(await sketch()).exacity?.terrain; ++i) await new Promise(r => setTimeout(r, 100));
+  check((await sketch()).exacity.terrain.heightmap === 'heightmap.png', 'the loaded heightmap is the sketch\'s terrain');
+
   // Reload: the page shows the sketch the server kept.
   await page.reload({waitUntil: 'load'});
   await ready();
@@ -149,6 +179,20 @@ try {
   await page.mouse.up();
   const second = await spec();
   check(first !== second && /azimuth=/.test(second), `orbiting moved the camera (${first} to ${second})`);
+  // Dragging far down stops at the top of the upper hemisphere (seed 000, 3.3.2).
+  await page.mouse.move(view.x + view.width / 2, view.y + view.height / 4);
+  await page.mouse.down();
+  for (let i = 1; i <= 10; ++i) await page.mouse.move(view.x + view.width / 2, view.y + view.height / 4 + 40 * i);
+  await page.mouse.up();
+  check(/elevation=90,/.test(await spec()), `the camera stops straight above: ${await spec()}`);
+  // Back down to a view of the city from the side, zoomed in with the wheel.
+  await page.mouse.move(view.x + view.width / 2, view.y + view.height / 2);
+  await page.mouse.down();
+  for (let i = 1; i <= 10; ++i) await page.mouse.move(view.x + view.width / 2, view.y + view.height / 2 - 18 * i);
+  await page.mouse.up();
+  await page.mouse.wheel({deltaY: -200});
+  const third = await spec();
+  check(/elevation=(3\d|4\d)/.test(third), `orbited back down: ${third}`);
   await page.click('#render-view');
   await page.waitForFunction(() => {
     const img = document.getElementById('render-image');

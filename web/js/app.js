@@ -34,6 +34,7 @@ const map = new SketchMap('map', {
   edited: () => recordEdit(),
   selected: f => panel.select(f),
 });
+window.exacityMap = map;  // for the browser test
 const panel = new SettingsPanel({
   apply: async exacity => {
     const doc = map.sketch();
@@ -174,13 +175,19 @@ async function loadExplore() {
 }
 
 let stageEvent = {index: 0, count: 1, stage: ''};
+// Each (re)connection of the event stream starts with the status as it is; only a job seen
+// running and then ending changes the page.
+let lastState = null;
 api.listen({
   stage: e => { stageEvent = e; showProgress(e); },
   progress: e => showProgress({...stageEvent, fraction: e.fraction, stage: e.stage}),
   state: async s => {
+    const ended = lastState === 'running' && s.state !== 'running';
+    lastState = s.state;
     document.body.dataset.job = s.state;
     $('generate').disabled = s.state === 'running';
     $('render-view').disabled = s.state === 'running';
+    if (!ended) return;
     if (s.state === 'failed') say(`${s.job} failed: ${s.error}`, true);
     if (s.state !== 'done') return;
     $('progress').value = 1;

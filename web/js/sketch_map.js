@@ -75,7 +75,9 @@ export class SketchMap {
     });
     this.map.on('moveend', () => this.drawGrid());
 
-    this.select = new ol.interaction.Select({layers: [this.layer], hitTolerance: 5,
+    // Every click selects (double clicks mean nothing in this mode), without waiting to see
+    // whether a second click follows.
+    this.select = new ol.interaction.Select({layers: [this.layer], hitTolerance: 5, condition: ol.events.condition.click,
                                              style: (f, r) => sketchStyle(f, r, true)});
     this.select.on('select', () => this.onSelected(this.selectedFeature()));
     this.modify = new ol.interaction.Modify({features: this.select.getFeatures()});
@@ -160,6 +162,8 @@ export class SketchMap {
     this.source.addFeatures(features);
     this.showHeightmap();
     if (fit && features.length) this.map.getView().fit(this.source.getExtent(), {padding: [40, 40, 40, 40]});
+    // Clicks find features in the last frame drawn: draw these now, not at the next frame.
+    this.map.renderSync();
   }
 
   settings() { return this.doc.exacity || {}; }
