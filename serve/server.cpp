@@ -1,5 +1,7 @@
 #include "serve/server.h"
 
+#include <sys/socket.h>
+
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -71,6 +73,12 @@ CityServer::CityServer(ServeOptions options) {
   }
   ServerState& s = *state_;
   s.http.new_task_queue = [] { return new httplib::ThreadPool(kRequestThreads); };
+  // SO_REUSEADDR only: httplib's default adds SO_REUSEPORT, which would let a second server
+  // (or another program of this user) bind the same port and take some of its connections.
+  s.http.set_socket_options([](socket_t sock) {
+    int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
   s.http.set_payload_max_length(s.options.max_body);
   s.http.set_keep_alive_timeout(2);
   s.http.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr e) {

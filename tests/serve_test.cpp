@@ -3,6 +3,9 @@
 #include <httplib.h>
 
 #include <OpenImageIO/imageio.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
@@ -19,6 +22,7 @@
 #include "generate/errors.h"
 #include "serve/job_runner.h"
 #include "serve/server.h"
+#include "tests/cli_util.h"
 #include "tests/test_util.h"
 
 namespace fs = std::filesystem;
@@ -394,6 +398,76 @@ TEST_F(ServeTest, StopCancelsTheRunningJob) {
   EXPECT_FALSE(fs::exists(work() / "city"));
   for (const auto& entry : fs::directory_iterator(work()))
     EXPECT_EQ(entry.path().filename().string().find(".city.partial"), std::string::npos) << entry.path();
+}
+
+// `exacity serve ARGS` as a child process, its stdout and stderr into `log`.
+pid_t start_program(const std::vector<std::string>& args, const fs::path& log) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    FILE* out = std::freopen(log.c_str(), "w", stdout);
+    dup2(fileno(out), STDERR_FILENO);
+    std::vector<char*> argv{const_cast<char*>(EXACITY_BINARY)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(EXACITY_BINARY, argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+// The port the program says it serves on; 0 when it has not said so within 30 s.
+int served_port(const fs::path& log) {
+  for (int i = 0; i < 300; ++i) {
+    const std::string text = read(log);
+    const auto at = text.find("serving http://127.0.0.1:");
+    if (at != std::string::npos) return std::atoi(text.c_str() + at + 25);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return 0;
+}
+
+int exit_code(pid_t pid) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(ServeCommandTest, ImportsTheSketchWithItsHeightmapAndStopsOnSigterm) {
+  const fs::path dir = testing_util::temp_dir("serve_command");
+  fs::copy_file(cli_util::kSource / "examples" / "valley.png", dir / "hills.png");
+  write(dir / "in.geojson", sketch_with(R"({"seed": 3, "terrain": {"heightmap": "hills.png", "bounds": [0, 0, 600, 300],
+                                            "height": [0, 40]}})"));
+  const pid_t pid = start_program({"serve", (dir / "in.geojson").string(), "--port", "0", "--work", (dir / "work").string()},
+                                  dir / "log.txt");
+  const int port = served_port(dir / "log.txt");
+  ASSERT_GT(port, 0) << read(dir / "log.txt");
+  httplib::Client c("127.0.0.1", port);
+  const json sketch = json::parse(c.Get("/api/sketch")->body);
+  EXPECT_EQ(sketch["exacity"]["terrain"]["heightmap"], "heightmap.png");
+  EXPECT_EQ(read(dir / "work" / "heightmap.png"), read(dir / "hills.png"));
+  EXPECT_EQ(c.Get("/api/heightmap.png")->status, 200);
+  kill(pid, SIGTERM);
+  EXPECT_EQ(exit_code(pid), 128 + SIGTERM) << read(dir / "log.txt");
+}
+
+TEST(ServeCommandTest, RefusesABadSketchAndABusyPort) {
+  const fs::path dir = testing_util::temp_dir("serve_command_bad");
+  write(dir / "bad.geojson", R"({"type": "FeatureCollection", "features": []})");
+  auto bad = cli_util::run("serve " + (dir / "bad.geojson").string() + " --port 0 --work " + (dir / "work").string());
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.out.find("exacity: error: " + cli_message(read(dir / "bad.geojson"), dir / "bad.geojson")),
+            std::string::npos) << bad.out;
+  // A port in use is named, and the program stops.
+  const pid_t first = start_program({"serve", "--port", "0", "--work", (dir / "work").string()}, dir / "log.txt");
+  const int port = served_port(dir / "log.txt");
+  ASSERT_GT(port, 0) << read(dir / "log.txt");
+  // Bounded: a server that took the port anyway would otherwise serve on.
+  auto busy = cli_util::shell("timeout 30 " + std::string(EXACITY_BINARY) + " serve --port " + std::to_string(port) +
+                              " --work " + (dir / "work2").string());
+  EXPECT_EQ(busy.code, 2) << busy.out;
+  EXPECT_NE(busy.out.find("cannot listen on 127.0.0.1:" + std::to_string(port)), std::string::npos) << busy.out;
+  kill(first, SIGTERM);
+  EXPECT_EQ(exit_code(first), 128 + SIGTERM);
 }
 
 TEST(JobRunnerTest, OneJobAtATimeReportedAndCancellable) {
