@@ -80,6 +80,10 @@ CityServer::CityServer(ServeOptions options) {
     setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
   });
   s.http.set_payload_max_length(s.options.max_body);
+  // A page load is some thirty requests: httplib's default of closing a connection after five
+  // makes the browser open new ones mid-load (and report a large response cut short as
+  // aborted when the close comes with it).
+  s.http.set_keep_alive_max_count(1000);
   s.http.set_keep_alive_timeout(2);
   s.http.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr e) {
     try {

@@ -16,6 +16,7 @@ if (!binary || !out) {
 fs.rmSync(out, {recursive: true, force: true});
 fs.mkdirSync(out, {recursive: true});
 
+const started = Date.now();
 function check(ok, what) {
   if (!ok) throw new Error(`check failed: ${what}`);
   console.log(`ok: ${what}`);
@@ -54,6 +55,9 @@ try {
   page.on('requestfailed', r => {
     if (!r.url().includes('/api/events')) errors.push(`request failed: ${r.url()} (${r.failure()?.errorText})`);
   });
+  page.on('request', r => { if (process.env.DEBUG_PAGE) console.log(Date.now() - started, 'request', r.url()); });
+  page.on('requestfinished', r => { if (process.env.DEBUG_PAGE) console.log(Date.now() - started, 'finished', r.url()); });
+  page.on('requestfailed', r => { if (process.env.DEBUG_PAGE) console.log(Date.now() - started, 'failed', r.url(), r.failure()?.errorText, r.response()?.status(), JSON.stringify(r.response()?.headers())); });
   const sketch = async () => (await fetch(base + 'api/sketch')).json();
   const ready = () => page.waitForSelector('body[data-ready="yes"]', {timeout: 30000});
   const features = n => page.waitForSelector(`body[data-features="${n}"]`, {timeout: 10000});

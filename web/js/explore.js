@@ -41,9 +41,17 @@ export class ExploreView {
     this.city = gltf.scene;
     this.scene.add(this.city);
     const [x0, y0, x1, y1] = bounds;
-    this.orbit = {target: [(x0 + x1) / 2, (y0 + y1) / 2, 0], azimuth: 225, elevation: 35,
+    const [cx, cy] = [(x0 + x1) / 2, (y0 + y1) / 2];
+    this.orbit = {target: [cx, cy, this.groundHeight(cx, cy)], azimuth: 225, elevation: 35,
                   distance: 0.75 * Math.hypot(x1 - x0, y1 - y0)};
     this.update();
+  }
+
+  // The city's surface under (x, y), so the target stands on a heightmap's ground, not under it.
+  groundHeight(x, y) {
+    const down = new THREE.Raycaster(toThree(x, y, 1e5), new THREE.Vector3(0, -1, 0));
+    const hit = down.intersectObject(this.city, true)[0];
+    return hit ? Math.round(hit.point.y * 100) / 100 : 0;
   }
 
   // Seed 000, 3.3.2: azimuth any way round, elevation kept in the upper hemisphere.
@@ -102,7 +110,14 @@ export class ExploreView {
       last = {x: e.clientX, y: e.clientY, pan: e.button === 2 || e.shiftKey};
       el.setPointerCapture(e.pointerId);
     });
-    el.addEventListener('pointerup', () => { last = null; });
+    // A pan ends with the target set on the ground there (one ray into the city, not one per move).
+    el.addEventListener('pointerup', () => {
+      if (last && last.pan && this.city) {
+        const [x, y] = this.orbit.target;
+        this.setOrbit({target: [x, y, this.groundHeight(x, y)]});
+      }
+      last = null;
+    });
     el.addEventListener('pointermove', e => {
       if (!last) return;
       const dx = e.clientX - last.x, dy = e.clientY - last.y;
