@@ -186,14 +186,15 @@ Sketch WorkSketch::put_heightmap(const std::string& bytes, const std::string& bo
   // Read as the terrain stage reads it before anything is replaced.
   const fs::path upload = work_.root() / (".heightmap-upload" + extension);
   write_file(upload, bytes);
+  const std::string text = doc.dump(1) + "\n";
+  Sketch sketch;
   try {
     read_grey_image(upload, "heightmap", "the upload");
+    sketch = check(text);
   } catch (...) {
     fs::remove(upload);
     throw;
   }
-  const std::string text = doc.dump(1) + "\n";
-  Sketch sketch = check(text);
   std::lock_guard lock(mutex_);
   for (const char* other : {".png", ".tif", ".exr"}) fs::remove(work_.root() / (std::string("heightmap") + other));
   fs::rename(upload, work_.root() / ("heightmap" + extension));

@@ -2,7 +2,8 @@
 // draw a zone and a road with the mouse, move the zone with Ctrl-drag, delete the road with
 // Del, undo, reload, generate, find the generated layers, orbit the 3D view and render it;
 // no console error throughout. Usage: node check_page.mjs EXACITY_BINARY OUT_DIR
-// (screenshots go to OUT_DIR). Exits 1 on the first failed check.
+// (screenshots go to OUT_DIR). Exits 1 on the first failed check. DEBUG_PAGE=1 logs every
+// request the page makes, with its time.
 import {spawn} from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
@@ -204,6 +205,26 @@ try {
   }, {timeout: 600000});
   check(true, 'the rendered still is on the page');
   await page.screenshot({path: path.join(out, 'explore.png')});
+
+  // Save downloads the sketch; Open reads one from a file and shows what the server took.
+  await page.click('[data-view="map"]');
+  const cdp = await page.createCDPSession();
+  await cdp.send('Browser.setDownloadBehavior', {behavior: 'allow', downloadPath: path.resolve(out)});
+  await page.click('#save');
+  const downloaded = path.join(out, 'sketch.geojson');
+  for (let i = 0; i < 50 && !fs.existsSync(downloaded); ++i) await new Promise(r => setTimeout(r, 100));
+  const saved_doc = JSON.parse(fs.readFileSync(downloaded, 'utf8'));
+  check(JSON.stringify(saved_doc.features) === JSON.stringify((await sketch()).features), 'Save downloaded the sketch');
+  const opened = path.join(out, 'opened.geojson');
+  fs.writeFileSync(opened, JSON.stringify({type: 'FeatureCollection', exacity: {seed: 5}, features: [
+    {type: 'Feature', properties: {zone: 'industrial'},
+     geometry: {type: 'Polygon', coordinates: [[[0, 0], [300, 0], [300, 200], [0, 200], [0, 0]]]}}]}));
+  const [openChooser] = await Promise.all([page.waitForFileChooser(), page.click('#open')]);
+  await openChooser.accept([opened]);
+  await features(1);
+  s = await sketch();
+  check(s.exacity.seed === 5 && s.features[0].properties.zone === 'industrial', 'Open read a sketch from a file');
+  check(await page.$eval('#seed', i => i.value) === '5', 'the panel shows the opened sketch\'s seed');
   check(errors.length === 0, `no console errors${errors.length ? ': ' + errors.join(' | ') : ''}`);
 } catch (e) {
   console.error(String(e.stack || e));

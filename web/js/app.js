@@ -109,6 +109,7 @@ $('open-file').addEventListener('change', async e => {
   }
   if (!(await send(doc))) return;
   map.load(lastGood, true);
+  document.body.dataset.features = lastGood.features.length;
   panel.show(lastGood.exacity);
   history.push(JSON.stringify(map.sketch()));
   updateButtons();
