@@ -92,6 +92,11 @@ void render_job(ServerState& s, const RenderAsk& ask, JobRunner::Progress& progr
 
 // GET /api/events: each job event as a server-sent event; the status first, then what follows.
 void stream_events(ServerState& s, httplib::Response& res) {
+  if (++s.event_streams > ServerState::kMaxEventStreams) {
+    --s.event_streams;
+    return refuse(res, 503, "too many event streams open (" + std::to_string(ServerState::kMaxEventStreams) +
+                                "); close other pages of this server");
+  }
   res.set_header("Cache-Control", "no-cache");
   struct Cursor {
     bool started = false;
@@ -99,7 +104,9 @@ void stream_events(ServerState& s, httplib::Response& res) {
     int quiet = 0;
   };
   auto cursor = std::make_shared<Cursor>();
-  res.set_chunked_content_provider("text/event-stream", [&s, cursor](std::size_t, httplib::DataSink& sink) {
+  // The provider's last copy goes when the stream ends, however it ends.
+  std::shared_ptr<void> open_stream(nullptr, [&s](void*) { --s.event_streams; });
+  res.set_chunked_content_provider("text/event-stream", [&s, cursor, open_stream](std::size_t, httplib::DataSink& sink) {
     auto send = [&](const std::string& text) { return sink.write(text.data(), text.size()); };
     if (!cursor->started) {
       cursor->started = true;

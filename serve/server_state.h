@@ -3,6 +3,7 @@
 
 #include <httplib.h>
 
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <shared_mutex>
@@ -27,6 +28,10 @@ struct ServerState {
   httplib::Server http;
   // Readers of the outputs share it; a job takes it alone only to swap a finished folder in.
   std::shared_mutex outputs;
+  // Event streams open now: each holds a request thread, so they are capped below the pool
+  // (serve/server.cpp) and the API keeps answering however many pages are open.
+  std::atomic<int> event_streams{0};
+  static constexpr int kMaxEventStreams = 16;
   // The last city generated, kept for renders.
   std::mutex city_mutex;
   std::shared_ptr<const City> city;

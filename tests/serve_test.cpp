@@ -371,6 +371,31 @@ TEST_F(ServeTest, EightClientsDuringAGeneration) {
   EXPECT_EQ(wait_for_job(*client)["state"], "done");
 }
 
+// Event streams hold a request thread each; past the cap they are refused and the API answers.
+TEST_F(ServeTest, EventStreamsAreCapped) {
+  std::atomic<int> open{0}, refused{0};
+  std::vector<std::unique_ptr<httplib::Client>> clients;
+  std::vector<std::thread> streams;
+  for (int i = 0; i < 18; ++i) {
+    clients.push_back(std::make_unique<httplib::Client>("127.0.0.1", port));
+    streams.emplace_back([&, c = clients.back().get()] {
+      c->Get(
+          "/api/events",
+          [&](const httplib::Response& r) {
+            ++(r.status == 200 ? open : refused);
+            return true;
+          },
+          [](const char*, std::size_t) { return true; });
+    });
+  }
+  for (int i = 0; i < 500 && open + refused < 18; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  EXPECT_EQ(open, 16);
+  EXPECT_EQ(refused, 2);
+  EXPECT_EQ(client->Get("/api/status")->status, 200);
+  for (auto& c : clients) c->stop();
+  for (std::thread& t : streams) t.join();
+}
+
 TEST_F(ServeTest, HeightmapUploadPointsTheSketchAtIt) {
   ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
   EXPECT_EQ(client->Get("/api/heightmap.png")->status, 404);
