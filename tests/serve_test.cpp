@@ -3,6 +3,7 @@
 #include <httplib.h>
 
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -427,13 +428,17 @@ TEST_F(ServeTest, StopCancelsTheRunningJob) {
 
 // `exacity serve ARGS` as a child process, its stdout and stderr into `log`.
 pid_t start_program(const std::vector<std::string>& args, const fs::path& log) {
+  // Everything the child needs is made before fork: between fork and exec a child of a
+  // threaded process may only make async-signal-safe calls (no malloc, no stdio).
+  std::vector<char*> argv{const_cast<char*>(EXACITY_BINARY)};
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  const std::string log_file = log.string();
   const pid_t pid = fork();
   if (pid == 0) {
-    FILE* out = std::freopen(log.c_str(), "w", stdout);
-    dup2(fileno(out), STDERR_FILENO);
-    std::vector<char*> argv{const_cast<char*>(EXACITY_BINARY)};
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
+    const int out = open(log_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(out, STDOUT_FILENO);
+    dup2(out, STDERR_FILENO);
     execv(EXACITY_BINARY, argv.data());
     _exit(127);
   }

@@ -157,6 +157,7 @@ function showProgress(event) {
 async function showCity() {
   cityLayers = cityLayers || new CityLayers(map.city);
   const report = await cityLayers.load();
+  map.layer.setOpacity(0.5);  // the sketch stays editable over the city, without hiding its streets
   if (explore) await loadExplore();
   return report;
 }
