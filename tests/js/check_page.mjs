@@ -142,6 +142,13 @@ try {
   check((await sketch()).features[1].properties.width === 16,
         `the road's width edited in the panel (${JSON.stringify((await sketch()).features[1].properties)}, ${await page.$eval('#message', m => m.textContent)})`);
 
+  // The zone's type, edited in the side panel.
+  await page.mouse.click(...at(-60, -60));
+  await page.waitForSelector('#feature-panel:not([hidden]) #zone-row:not([hidden])', {timeout: 5000});
+  await page.select('#zone-type', 'commercial');
+  for (let i = 0; i < 50 && (await sketch()).features[0].properties.zone !== 'commercial'; ++i) await new Promise(r => setTimeout(r, 100));
+  check((await sketch()).features[0].properties.zone === 'commercial', 'the zone\'s type edited in the panel');
+
   // A setting the CLI refuses is refused with its message, and the sketch stays as it was.
   // The browser logs the refusal's 400 as a console error: that one is expected.
   const kept = JSON.stringify(await sketch());

@@ -67,5 +67,18 @@ export class CityLayers {
       dd.textContent = typeof v === 'number' ? v.toLocaleString('en') : v;
       box.append(dt, dd);
     }
+    // The notes the CLI prints after a generation (README, Outputs: report.json).
+    const notes = document.getElementById('report-notes');
+    notes.innerHTML = '';
+    for (const z of report.empty_zones || []) {
+      const li = document.createElement('li');
+      li.textContent = `${z.grid_cell || `features[${z.feature}]`} (${z.zone}) got no lots: ${z.why}`;
+      notes.appendChild(li);
+    }
+    for (const p of report.validation?.problems || []) {
+      const li = document.createElement('li');
+      li.textContent = `invalid output: ${p}`;
+      notes.appendChild(li);
+    }
   }
 }
