@@ -44,6 +44,7 @@ int run_serve(const ServeCommand& c) {
                 "generations and renders, and read what the work folder holds\n", c.host.c_str());
   std::fflush(stdout);
   server.run();
+  on_interrupt(nullptr);  // the handler holds this function's locals
   std::fprintf(stderr, "exacity: stopping; a running job stops at its next stage\n");
   server.finish_jobs();
   return signal ? 128 + signal : 0;
