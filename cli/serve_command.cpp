@@ -14,9 +14,10 @@ void add_serve(CLI::App& app, ServeCommand& c) {
   c.app->add_option("--port", c.port, "The port to listen on (0: any free one)")
       ->check(CLI::Range(0, 65535))
       ->capture_default_str();
-  c.app->add_option("--host", c.host,
-                    "The address to listen on; anything but 127.0.0.1 lets others on the network use the server "
-                    "(README, exacity serve)")
+  c.app
+      ->add_option("--host", c.host,
+                   "The address to listen on; anything but 127.0.0.1 lets others on the network use the server "
+                   "(README, exacity serve)")
       ->capture_default_str();
   c.app->add_option("--work", c.work, "The work folder: the sketch, its heightmap, the city and the renders")
       ->capture_default_str();
@@ -40,8 +41,10 @@ int run_serve(const ServeCommand& c) {
               c.host.find(':') != std::string::npos ? ("[" + c.host + "]").c_str() : c.host.c_str(), port,
               server.work_folder().string().c_str());
   if (!local)
-    std::printf("exacity: note: listening on %s: anyone who can reach this machine can replace the sketch, run "
-                "generations and renders, and read what the work folder holds\n", c.host.c_str());
+    std::printf(
+        "exacity: note: listening on %s: anyone who can reach this machine can replace the sketch, run "
+        "generations and renders, and read what the work folder holds\n",
+        c.host.c_str());
   std::fflush(stdout);
   server.run();
   on_interrupt(nullptr);  // the handler holds this function's locals

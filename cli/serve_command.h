@@ -1,10 +1,9 @@
 // exacity serve: the sketch editor and viewer in a browser (README, exacity serve).
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <filesystem>
 #include <string>
-
-#include <CLI/CLI.hpp>
 
 namespace exacity {
 

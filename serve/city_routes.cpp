@@ -44,7 +44,8 @@ void generate_job(ServerState& s, const Sketch& sketch, JobRunner::Progress& pro
     std::lock_guard lock(s.city_mutex);
     s.city = std::move(city);
   }
-  if (!result.valid) throw InternalError("the generated city failed validation (see report.json); please report this sketch");
+  if (!result.valid)
+    throw InternalError("the generated city failed validation (see report.json); please report this sketch");
 }
 
 // The city to render: the one generated in this run, else work/city's rebuilt (same sketch,
@@ -82,8 +83,8 @@ void render_job(ServerState& s, const RenderAsk& ask, JobRunner::Progress& progr
   fs::create_directories(aside);
   r.still = aside / "still.png", r.overview_file = aside / "overview.png", r.minimap_file = aside / "minimap.png";
   progress.stage(stages, stages, "render");
-  const nlohmann::ordered_json stats =
-      render::render_city(*city, r, [&](const std::string& stage, double f) { progress.fraction("render " + stage, f); });
+  const nlohmann::ordered_json stats = render::render_city(
+      *city, r, [&](const std::string& stage, double f) { progress.fraction("render " + stage, f); });
   std::ofstream(aside / "still.json", std::ios::binary) << stats.dump(2) << "\n";
   std::unique_lock lock(s.outputs);
   fs::remove_all(s.render_folder());
@@ -94,8 +95,9 @@ void render_job(ServerState& s, const RenderAsk& ask, JobRunner::Progress& progr
 void stream_events(ServerState& s, httplib::Response& res) {
   if (++s.event_streams > ServerState::kMaxEventStreams) {
     --s.event_streams;
-    return refuse(res, 503, "too many event streams open (" + std::to_string(ServerState::kMaxEventStreams) +
-                                "); close other pages of this server");
+    return refuse(res, 503,
+                  "too many event streams open (" + std::to_string(ServerState::kMaxEventStreams) +
+                      "); close other pages of this server");
   }
   res.set_header("Cache-Control", "no-cache");
   struct Cursor {
@@ -106,24 +108,26 @@ void stream_events(ServerState& s, httplib::Response& res) {
   auto cursor = std::make_shared<Cursor>();
   // The provider's last copy goes when the stream ends, however it ends.
   std::shared_ptr<void> open_stream(nullptr, [&s](void*) { --s.event_streams; });
-  res.set_chunked_content_provider("text/event-stream", [&s, cursor, open_stream](std::size_t, httplib::DataSink& sink) {
-    auto send = [&](const std::string& text) { return sink.write(text.data(), text.size()); };
-    if (!cursor->started) {
-      cursor->started = true;
-      cursor->after = s.jobs.last_event();
-      return send("retry: 1000\nevent: state\ndata: " + s.jobs.status().to_json().dump() + "\n\n");
-    }
-    // Waits a second at most, so a stopping server is not held (httplib stops calling
-    // once it shuts down).
-    const std::vector<JobEvent> events = s.jobs.events_after(cursor->after, std::chrono::milliseconds(1000));
-    for (const JobEvent& e : events) {
-      cursor->after = e.id;
-      if (!send("id: " + std::to_string(e.id) + "\nevent: " + e.name + "\ndata: " + e.data.dump() + "\n\n")) return false;
-    }
-    // A comment every few quiet seconds finds a closed page, whose thread is then freed.
-    if (events.empty() && ++cursor->quiet % 5 == 0) return send(": waiting\n\n");
-    return true;
-  });
+  res.set_chunked_content_provider(
+      "text/event-stream", [&s, cursor, open_stream](std::size_t, httplib::DataSink& sink) {
+        auto send = [&](const std::string& text) { return sink.write(text.data(), text.size()); };
+        if (!cursor->started) {
+          cursor->started = true;
+          cursor->after = s.jobs.last_event();
+          return send("retry: 1000\nevent: state\ndata: " + s.jobs.status().to_json().dump() + "\n\n");
+        }
+        // Waits a second at most, so a stopping server is not held (httplib stops calling
+        // once it shuts down).
+        const std::vector<JobEvent> events = s.jobs.events_after(cursor->after, std::chrono::milliseconds(1000));
+        for (const JobEvent& e : events) {
+          cursor->after = e.id;
+          if (!send("id: " + std::to_string(e.id) + "\nevent: " + e.name + "\ndata: " + e.data.dump() + "\n\n"))
+            return false;
+        }
+        // A comment every few quiet seconds finds a closed page, whose thread is then freed.
+        if (events.empty() && ++cursor->quiet % 5 == 0) return send(": waiting\n\n");
+        return true;
+      });
 }
 
 const std::set<std::string>& layer_names() {
@@ -192,13 +196,16 @@ void add_city_routes(ServerState& s) {
   s.http.Get(R"(/api/layers/([^/]*)\.geojson)", [&s](const httplib::Request& req, httplib::Response& res) {
     const std::string name = req.matches[1];
     if (!layer_names().count(name))
-      return refuse(res, 404, "no layer \"" + name + "\"; the layers are zones, water, roads, road_areas, blocks, lots, buildings");
+      return refuse(
+          res, 404,
+          "no layer \"" + name + "\"; the layers are zones, water, roads, road_areas, blocks, lots, buildings");
     send_file(s, s.city_folder() / "vector" / (name + ".geojson"), "application/geo+json", res, kNoCity);
   });
   s.http.Get(R"(/api/render/(still|overview|minimap)\.png)", [&s](const httplib::Request& req, httplib::Response& res) {
     const std::string name = req.matches[1];
-    send_file(s, s.render_folder() / (name + ".png"), "image/png", res,
-              "no " + name + " rendered yet: POST /api/render" + (name == "still" ? "" : " with \"" + name + "\": true"));
+    send_file(
+        s, s.render_folder() / (name + ".png"), "image/png", res,
+        "no " + name + " rendered yet: POST /api/render" + (name == "still" ? "" : " with \"" + name + "\": true"));
   });
   s.http.Get("/api/render/still.json", [&s](const httplib::Request&, httplib::Response& res) {
     send_file(s, s.render_folder() / "still.json", "application/json", res, "nothing rendered yet: POST /api/render");

@@ -6,10 +6,14 @@ namespace exacity::serve {
 
 const char* state_name(JobState state) {
   switch (state) {
-    case JobState::Idle: return "idle";
-    case JobState::Running: return "running";
-    case JobState::Done: return "done";
-    case JobState::Failed: return "failed";
+    case JobState::Idle:
+      return "idle";
+    case JobState::Running:
+      return "running";
+    case JobState::Done:
+      return "done";
+    case JobState::Failed:
+      return "failed";
   }
   return "idle";
 }

@@ -9,11 +9,10 @@
 #include <deque>
 #include <functional>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace exacity::serve {
 
@@ -21,8 +20,8 @@ enum class JobState { Idle, Running, Done, Failed };
 
 struct JobStatus {
   JobState state = JobState::Idle;
-  std::string job;    // "generate" or "render"; empty while idle
-  std::string stage;  // the stage under way, or the last one
+  std::string job;           // "generate" or "render"; empty while idle
+  std::string stage;         // the stage under way, or the last one
   int index = 0, count = 0;  // the stage's position (1-based) and the stage count, as the CLI prints them
   double fraction = 0;       // within a long stage (rendering)
   std::string error;         // for Failed: the one-line message

@@ -17,8 +17,9 @@ constexpr int kMaxSide = 4096, kMaxSamples = 4096;
 RenderAsk parse_render_ask(const std::string& body) {
   const nlohmann::json j = nlohmann::json::parse(body.empty() ? "{}" : body, nullptr, false);
   if (j.is_discarded() || !j.is_object())
-    throw UserError("the render request is not a JSON object; send e.g. {\"camera\": \"orbit:target=0,0,0,azimuth=225,"
-                    "elevation=35,distance=900\", \"size\": \"640x360\", \"spp\": 16}");
+    throw UserError(
+        "the render request is not a JSON object; send e.g. {\"camera\": \"orbit:target=0,0,0,azimuth=225,"
+        "elevation=35,distance=900\", \"size\": \"640x360\", \"spp\": 16}");
   for (const auto& [key, value] : j.items())
     if (key != "camera" && key != "size" && key != "spp" && key != "fov" && key != "overview" && key != "minimap")
       throw UserError("render request: unknown key \"" + key + "\"; known: camera, size, spp, fov, overview, minimap");
@@ -57,8 +58,9 @@ RenderAsk parse_render_ask(const std::string& body) {
     try {
       render::Camera::parse(ask.camera, ask.fov);
     } catch (const std::invalid_argument& e) {
-      throw UserError("render request: \"camera\" \"" + ask.camera + "\": " + e.what() +
-                      "; e.g. orbit:target=0,0,0,azimuth=225,elevation=35,distance=900 or look:from=0,-500,200,to=0,0,0");
+      throw UserError(
+          "render request: \"camera\" \"" + ask.camera + "\": " + e.what() +
+          "; e.g. orbit:target=0,0,0,azimuth=225,elevation=35,distance=900 or look:from=0,-500,200,to=0,0,0");
     }
   }
   return ask;

@@ -19,12 +19,18 @@ namespace {
 constexpr std::size_t kRequestThreads = 32;
 
 const std::map<std::string, std::string>& content_types() {
-  static const std::map<std::string, std::string> types{
-      {".html", "text/html; charset=utf-8"}, {".js", "text/javascript; charset=utf-8"},
-      {".mjs", "text/javascript; charset=utf-8"}, {".css", "text/css; charset=utf-8"},
-      {".json", "application/json"}, {".map", "application/json"}, {".png", "image/png"},
-      {".svg", "image/svg+xml"}, {".ico", "image/x-icon"}, {".glb", "model/gltf-binary"},
-      {".geojson", "application/geo+json"}, {".txt", "text/plain; charset=utf-8"}};
+  static const std::map<std::string, std::string> types{{".html", "text/html; charset=utf-8"},
+                                                        {".js", "text/javascript; charset=utf-8"},
+                                                        {".mjs", "text/javascript; charset=utf-8"},
+                                                        {".css", "text/css; charset=utf-8"},
+                                                        {".json", "application/json"},
+                                                        {".map", "application/json"},
+                                                        {".png", "image/png"},
+                                                        {".svg", "image/svg+xml"},
+                                                        {".ico", "image/x-icon"},
+                                                        {".glb", "model/gltf-binary"},
+                                                        {".geojson", "application/geo+json"},
+                                                        {".txt", "text/plain; charset=utf-8"}};
   return types;
 }
 
@@ -39,8 +45,7 @@ void send_static(ServerState& s, const httplib::Request& req, httplib::Response&
     return refuse(res, 400, std::string("path refused: ") + e.what());
   }
   const auto type = content_types().find(file.extension().string());
-  if (!fs::is_regular_file(file) || type == content_types().end())
-    return refuse(res, 404, "not found: " + req.path);
+  if (!fs::is_regular_file(file) || type == content_types().end()) return refuse(res, 404, "not found: " + req.path);
   std::ifstream in(file, std::ios::binary);
   std::stringstream bytes;
   bytes << in.rdbuf();
@@ -97,17 +102,18 @@ CityServer::CityServer(ServeOptions options) {
     }
   });
   // httplib's own refusals (no route, body too large, bad request line) get a message too.
-  s.http.set_error_handler(httplib::Server::HandlerWithResponse([max = s.options.max_body](const httplib::Request& req,
-                                                                                      httplib::Response& res) {
-    if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
-    if (res.status == 404)
-      refuse(res, 404, "no such route: " + req.method + " " + req.path + "; the API is listed in the README (exacity serve)");
-    else if (res.status == 413)
-      refuse(res, 413, "request body too large: at most " + std::to_string(max) + " bytes");
-    else
-      refuse(res, res.status, "bad request (HTTP " + std::to_string(res.status) + ")");
-    return httplib::Server::HandlerResponse::Handled;
-  }));
+  s.http.set_error_handler(httplib::Server::HandlerWithResponse(
+      [max = s.options.max_body](const httplib::Request& req, httplib::Response& res) {
+        if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
+        if (res.status == 404)
+          refuse(res, 404,
+                 "no such route: " + req.method + " " + req.path + "; the API is listed in the README (exacity serve)");
+        else if (res.status == 413)
+          refuse(res, 413, "request body too large: at most " + std::to_string(max) + " bytes");
+        else
+          refuse(res, res.status, "bad request (HTTP " + std::to_string(res.status) + ")");
+        return httplib::Server::HandlerResponse::Handled;
+      }));
   add_sketch_routes(s);
   add_city_routes(s);
   s.http.Get(R"(/(.*))", [&s](const httplib::Request& req, httplib::Response& res) {
@@ -127,7 +133,8 @@ void CityServer::import_sketch(const fs::path& sketch) { state_->sketch.import(s
 int CityServer::bind() {
   ServerState& s = *state_;
   const bool any = s.options.port == 0;
-  const int port = any ? s.http.bind_to_any_port(s.options.host) : (s.http.bind_to_port(s.options.host, s.options.port) ? s.options.port : -1);
+  const int port = any ? s.http.bind_to_any_port(s.options.host)
+                       : (s.http.bind_to_port(s.options.host, s.options.port) ? s.options.port : -1);
   if (port <= 0)
     throw UserError("exacity serve: cannot listen on " + s.options.host + ":" + std::to_string(s.options.port) +
                     " (in use, or not an address of this machine); choose another --port or --host");

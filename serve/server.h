@@ -13,7 +13,7 @@ struct ServeOptions {
   std::filesystem::path work;  // created when missing; the server reads and writes only here
   std::filesystem::path web;   // the page's static files (web/ with its node_modules)
   std::string host = "127.0.0.1";
-  int port = 8080;                           // 0: any free port
+  int port = 8080;                               // 0: any free port
   std::size_t max_body = std::size_t(64) << 20;  // bytes; a larger request body is refused (413)
 };
 

@@ -107,7 +107,8 @@ std::vector<double> features_extent(const json& doc) {
   std::function<void(const json&)> visit = [&](const json& c) {
     if (c.is_array() && c.size() >= 2 && c[0].is_number() && c[1].is_number()) {
       const double x = c[0].get<double>(), y = c[1].get<double>();
-      box[0] = std::min(box[0], x), box[1] = std::min(box[1], y), box[2] = std::max(box[2], x), box[3] = std::max(box[3], y);
+      box[0] = std::min(box[0], x), box[1] = std::min(box[1], y), box[2] = std::max(box[2], x),
+      box[3] = std::max(box[3], y);
       any = true;
     } else if (c.is_array()) {
       for (const json& inner : c) visit(inner);
@@ -145,7 +146,8 @@ Sketch WorkSketch::check(const std::string& text) const {
     const json& ex = doc["exacity"];
     // A model library's OBJ files name further files (mtllib) anywhere; the server reads none.
     if (ex.contains("models"))
-      throw UserError(file().string() + ": \"exacity\".models: exacity serve takes no model library; remove the key, "
+      throw UserError(file().string() +
+                      ": \"exacity\".models: exacity serve takes no model library; remove the key, "
                       "or generate the sketch with exacity generate");
     for (const auto& [where, name] : named_files(ex)) {
       std::string why;
@@ -178,7 +180,8 @@ Sketch WorkSketch::put_heightmap(const std::string& bytes, const std::string& bo
   if (box.empty()) box = features_extent(json::parse(doc.dump()));
   if (box.empty())
     throw UserError("the heightmap needs bounds: draw the city's zones first, or give ?bounds=MIN_X,MIN_Y,MAX_X,MAX_Y");
-  if (range.empty()) range = terrain.contains("height") ? terrain["height"].get<std::vector<double>>() : std::vector<double>{0, 100};
+  if (range.empty())
+    range = terrain.contains("height") ? terrain["height"].get<std::vector<double>>() : std::vector<double>{0, 100};
   terrain["heightmap"] = "heightmap" + extension;
   terrain["bounds"] = box;
   terrain["height"] = range;
@@ -212,7 +215,8 @@ std::optional<std::string> WorkSketch::heightmap_preview() const {
   for (std::size_t i = 0; i < image.values.size(); ++i) {
     const float v = image.values[i];
     unsigned char* p = &pixels[i * 4];
-    for (int c = 0; c < 3; ++c) p[c] = v == 0 ? static_cast<unsigned char>(water[c]) : static_cast<unsigned char>(40 + 215 * v);
+    for (int c = 0; c < 3; ++c)
+      p[c] = v == 0 ? static_cast<unsigned char>(water[c]) : static_cast<unsigned char>(40 + 215 * v);
     p[3] = 255;
   }
   static std::mutex preview_mutex;  // one preview file, written by one request at a time
@@ -228,7 +232,8 @@ std::optional<std::string> WorkSketch::heightmap_preview() const {
 void WorkSketch::import(const fs::path& path) {
   const Sketch original = load_sketch(path);
   if (!original.models.empty())
-    throw UserError(path.string() + ": \"exacity\".models: exacity serve takes no model library; remove the key, or "
+    throw UserError(path.string() +
+                    ": \"exacity\".models: exacity serve takes no model library; remove the key, or "
                     "generate the sketch with exacity generate");
   nlohmann::ordered_json doc =
       nlohmann::ordered_json::parse(original.geojson.empty() ? read_file(path) : original.geojson);
@@ -241,10 +246,12 @@ void WorkSketch::import(const fs::path& path) {
     return name;
   };
   if (original.terrain)
-    ex["terrain"]["heightmap"] = bring(original.terrain->heightmap, "heightmap" + original.terrain->heightmap.extension().string());
+    ex["terrain"]["heightmap"] =
+        bring(original.terrain->heightmap, "heightmap" + original.terrain->heightmap.extension().string());
   int channel = 0;  // numbered: a channel's name may hold any character
   for (const ChannelSpec& c : original.channels)
-    ex["channels"][c.name]["image"] = bring(c.image, "channel-" + std::to_string(++channel) + c.image.extension().string());
+    ex["channels"][c.name]["image"] =
+        bring(c.image, "channel-" + std::to_string(++channel) + c.image.extension().string());
   if (ex.contains("zones") && ex["zones"].is_object())
     for (auto& [name, zone] : ex["zones"].items())
       if (zone.is_object() && zone.contains("grammar") && zone["grammar"].is_string())

@@ -1,9 +1,9 @@
 // exacity serve's API through httplib's client, against a server in this process
 // (README, exacity serve; docs/design.md, Serving).
-#include <httplib.h>
-
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
+#include <httplib.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -12,12 +12,10 @@
 #include <chrono>
 #include <fstream>
 #include <future>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <thread>
-
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include "generate/city/sketch.h"
 #include "generate/errors.h"
@@ -85,7 +83,8 @@ void write_heightmap(const fs::path& file) {
 class ServeTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = testing_util::temp_dir(std::string("serve_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir =
+        testing_util::temp_dir(std::string("serve_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
     // A page folder with links out of it, and a secret beside it that no URL may reach.
     fs::create_directories(dir / "web" / "lib");
     write(dir / "web" / "index.html", "<!doctype html><title>exacity</title>");
@@ -222,7 +221,8 @@ TEST_F(ServeTest, SketchPathsThatLeaveTheWorkFolderAreRefused) {
   write(dir / "town.grid", "RRR\n");
   const std::string terrain = R"(, "terrain": {"bounds": [0, 0, 600, 300], "height": [0, 50], "heightmap": )";
   for (const std::string& settings :
-       {R"({"seed": 3)" + terrain + R"("../outside.png"}})", R"({"seed": 3)" + terrain + "\"" + (dir / "outside.png").string() + "\"}}",
+       {R"({"seed": 3)" + terrain + R"("../outside.png"}})",
+        R"({"seed": 3)" + terrain + "\"" + (dir / "outside.png").string() + "\"}}",
         R"({"seed": 3)" + terrain + R"("link.png"}})", R"({"seed": 3)" + terrain + R"("sub/../../outside.png"}})",
         std::string(R"({"seed": 3, "grid": "../town.grid"})"),
         std::string(R"({"seed": 3, "zones": {"residential": {"layout": "grammar", "grammar": "/etc/passwd"}}})"),
@@ -236,7 +236,8 @@ TEST_F(ServeTest, SketchPathsThatLeaveTheWorkFolderAreRefused) {
   EXPECT_FALSE(fs::exists(sketch_file()));
   // Inside the work folder the same heightmap is taken.
   fs::copy_file(dir / "outside.png", work() / "valley.png");
-  auto ok = client->Put("/api/sketch", sketch_with(R"({"seed": 3)" + terrain + R"("valley.png"}})"), "application/geo+json");
+  auto ok =
+      client->Put("/api/sketch", sketch_with(R"({"seed": 3)" + terrain + R"("valley.png"}})"), "application/geo+json");
   EXPECT_EQ(ok->status, 200) << ok->body;
 }
 
@@ -257,7 +258,8 @@ TEST_F(ServeTest, RenderBeforeAnyGenerationIsRefused) {
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 409);
   EXPECT_NE(r->body.find("POST /api/generate first"), std::string::npos) << r->body;
-  for (const char* path : {"/api/render/still.png", "/api/map.svg", "/api/report", "/api/city.glb", "/api/layers/roads.geojson"})
+  for (const char* path :
+       {"/api/render/still.png", "/api/map.svg", "/api/report", "/api/city.glb", "/api/layers/roads.geojson"})
     EXPECT_EQ(client->Get(path)->status, 404) << path;
   EXPECT_EQ(json::parse(client->Get("/api/status")->body)["state"], "idle");
 }
@@ -326,9 +328,11 @@ TEST_F(ServeTest, GenerateStreamsStagesThenServesOutputsAndRenders) {
     EXPECT_EQ(json::parse(r->body)["type"], "FeatureCollection") << layer;
   }
 
-  auto render = client->Post("/api/render",
-                             R"({"camera": "orbit:target=300,150,0,azimuth=225,elevation=35,distance=600", "size": "32x24",
-                                 "spp": 1, "overview": true, "minimap": true})", "application/json");
+  auto render =
+      client->Post("/api/render",
+                   R"({"camera": "orbit:target=300,150,0,azimuth=225,elevation=35,distance=600", "size": "32x24",
+                                 "spp": 1, "overview": true, "minimap": true})",
+                   "application/json");
   ASSERT_EQ(render->status, 202) << render->body;
   const json rendered = wait_for_job(*client);
   ASSERT_EQ(rendered["state"], "done") << rendered.dump();
@@ -361,7 +365,8 @@ TEST_F(ServeTest, EightClientsDuringAGeneration) {
         }
         const json status = json::parse(s->body, nullptr, false);
         // The same sketch and seed give the same layer, byte for byte (docs/design.md, Determinism).
-        if (status.is_discarded() || (status["state"] != "running" && status["state"] != "done") || l->body != roads) ++wrong;
+        if (status.is_discarded() || (status["state"] != "running" && status["state"] != "done") || l->body != roads)
+          ++wrong;
         if (status["state"] != "running") return;
         ++while_running;
       }
@@ -467,8 +472,8 @@ TEST(ServeCommandTest, ImportsTheSketchWithItsHeightmapAndStopsOnSigterm) {
   fs::copy_file(cli_util::kSource / "examples" / "valley.png", dir / "hills.png");
   write(dir / "in.geojson", sketch_with(R"({"seed": 3, "terrain": {"heightmap": "hills.png", "bounds": [0, 0, 600, 300],
                                             "height": [0, 40]}})"));
-  const pid_t pid = start_program({"serve", (dir / "in.geojson").string(), "--port", "0", "--work", (dir / "work").string()},
-                                  dir / "log.txt");
+  const pid_t pid = start_program(
+      {"serve", (dir / "in.geojson").string(), "--port", "0", "--work", (dir / "work").string()}, dir / "log.txt");
   const int port = served_port(dir / "log.txt");
   ASSERT_GT(port, 0) << read(dir / "log.txt");
   httplib::Client c("127.0.0.1", port);
@@ -486,7 +491,8 @@ TEST(ServeCommandTest, RefusesABadSketchAndABusyPort) {
   auto bad = cli_util::run("serve " + (dir / "bad.geojson").string() + " --port 0 --work " + (dir / "work").string());
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.out.find("exacity: error: " + cli_message(read(dir / "bad.geojson"), dir / "bad.geojson")),
-            std::string::npos) << bad.out;
+            std::string::npos)
+      << bad.out;
   // A port in use is named, and the program stops.
   const pid_t first = start_program({"serve", "--port", "0", "--work", (dir / "work").string()}, dir / "log.txt");
   const int port = served_port(dir / "log.txt");
