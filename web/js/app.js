@@ -18,8 +18,16 @@ function say(text, error = false) {
   $('message').className = error ? 'error' : '';
 }
 
-// Sends the sketch; on refusal, says why. Resolves to whether the server took it.
-async function send(doc) {
+// Sends the sketch; on refusal, says why. Resolves to whether the server took it. One at a
+// time, in order: two edits in flight on two connections could otherwise land the older last.
+let sending = Promise.resolve();
+function send(doc) {
+  const sent = sending.then(() => sendNow(doc));
+  sending = sent.catch(() => {});
+  return sent;
+}
+
+async function sendNow(doc) {
   const r = await api.putSketch(doc);
   if (!r.ok) {
     say(r.message, true);
@@ -34,7 +42,6 @@ const map = new SketchMap('map', {
   edited: () => recordEdit(),
   selected: f => panel.select(f),
 });
-window.exacityMap = map;  // for the browser test
 const panel = new SettingsPanel({
   apply: async exacity => {
     const doc = map.sketch();
