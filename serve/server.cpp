@@ -111,7 +111,9 @@ CityServer::CityServer(ServeOptions options) {
         else if (res.status == 413)
           refuse(res, 413, "request body too large: at most " + std::to_string(max) + " bytes");
         else
-          refuse(res, res.status, "bad request (HTTP " + std::to_string(res.status) + ")");
+          refuse(res, res.status,
+             "bad request (HTTP " + std::to_string(res.status) +
+                 "): a malformed request line or header, or a POST or PUT without a Content-Length");
         return httplib::Server::HandlerResponse::Handled;
       }));
   add_sketch_routes(s);

@@ -75,6 +75,19 @@ std::vector<std::pair<std::string, std::string>> named_files(const json& ex) {
   return files;
 }
 
+// The .mtl files an OBJ file names (its "mtllib" lines), as written.
+std::vector<std::string> material_files(const fs::path& obj) {
+  std::vector<std::string> names;
+  std::ifstream in(obj);
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line);
+    std::string key, name;
+    if (words >> key && key == "mtllib")
+      while (words >> name) names.push_back(name);
+  }
+  return names;
+}
+
 // The file type an upload's first bytes say, as the extension it is stored under.
 std::string image_extension(const std::string& bytes) {
   if (bytes.rfind("\x89PNG\r\n\x1a\n", 0) == 0) return ".png";
@@ -144,17 +157,32 @@ Sketch WorkSketch::check(const std::string& text) const {
   const json doc = json_for_check(text);
   if (doc.is_object() && doc.contains("exacity") && doc["exacity"].is_object()) {
     const json& ex = doc["exacity"];
-    // A model library's OBJ files name further files (mtllib) anywhere; the server reads none.
-    if (ex.contains("models"))
-      throw UserError(file().string() +
-                      ": \"exacity\".models: exacity serve takes no model library; remove the key, "
-                      "or generate the sketch with exacity generate");
     for (const auto& [where, name] : named_files(ex)) {
       std::string why;
       if (!work_.holds(name, why)) throw UserError(file().string() + ": " + where + " " + why);
     }
+    if (ex.contains("models") && ex["models"].is_string()) check_library(ex["models"].get<std::string>());
   }
   return parse_sketch(text, file());
+}
+
+void WorkSketch::check_library(const std::string& manifest) const {
+  const std::string where = file().string() + ": \"exacity\".models ";
+  std::string why;
+  if (!work_.holds(manifest, why)) throw UserError(where + why);
+  // The manifest names OBJ files, and each OBJ its .mtl files: all must be in the work folder
+  // too (the model library stage reads them; a file missing here is named there).
+  const json doc = json::parse(read_file(work_.root() / manifest), nullptr, false);
+  if (!doc.is_object() || !doc.contains("models") || !doc["models"].is_array()) return;
+  for (std::size_t i = 0; i < doc["models"].size(); ++i) {
+    const json& entry = doc["models"][i];
+    if (!entry.is_object() || !entry.contains("file") || !entry["file"].is_string()) continue;
+    const fs::path obj = fs::path(manifest).parent_path() / entry["file"].get<std::string>();
+    if (!work_.holds(obj, why)) throw UserError(where + manifest + ": models[" + std::to_string(i) + "].file " + why);
+    for (const std::string& mtl : material_files(work_.root() / obj))
+      if (!work_.holds(obj.parent_path() / mtl, why))
+        throw UserError(where + obj.generic_string() + ": mtllib " + why);
+  }
 }
 
 Sketch WorkSketch::put(const std::string& text) {
@@ -229,12 +257,33 @@ std::optional<std::string> WorkSketch::heightmap_preview() const {
   return read_file(preview);
 }
 
+std::string WorkSketch::import_library(const fs::path& manifest) {
+  // Into work/models, each file at its place relative to the manifest; one that is not below
+  // the manifest's folder has no such place.
+  const fs::path from = manifest.parent_path(), to = work_.root() / "models";
+  auto bring = [&](const fs::path& relative, const std::string& named_by) {
+    const fs::path clean = relative.lexically_normal();
+    if (relative.is_absolute() || clean.empty() || *clean.begin() == "..")
+      throw UserError(named_by + " \"" + relative.generic_string() +
+                      "\": exacity serve copies a model library's files below its manifest's folder only; move it there");
+    std::error_code ec;
+    fs::create_directories((to / clean).parent_path(), ec);
+    fs::copy_file(from / clean, to / clean, fs::copy_options::overwrite_existing, ec);
+    if (ec) throw UserError((from / clean).string() + ": cannot copy into the work folder (" + ec.message() + ")");
+  };
+  bring(manifest.filename(), manifest.string());
+  const json doc = json::parse(read_file(manifest), nullptr, false);
+  for (const json& entry : doc.is_object() && doc.contains("models") && doc["models"].is_array() ? doc["models"] : json::array())
+    if (entry.is_object() && entry.contains("file") && entry["file"].is_string()) {
+      const fs::path obj = entry["file"].get<std::string>();
+      bring(obj, manifest.string() + ": file");
+      for (const std::string& mtl : material_files(from / obj)) bring(obj.parent_path() / mtl, (from / obj).string() + ": mtllib");
+    }
+  return "models/" + manifest.filename().string();
+}
+
 void WorkSketch::import(const fs::path& path) {
   const Sketch original = load_sketch(path);
-  if (!original.models.empty())
-    throw UserError(path.string() +
-                    ": \"exacity\".models: exacity serve takes no model library; remove the key, or "
-                    "generate the sketch with exacity generate");
   nlohmann::ordered_json doc =
       nlohmann::ordered_json::parse(original.geojson.empty() ? read_file(path) : original.geojson);
   nlohmann::ordered_json& ex = doc["exacity"];
@@ -256,6 +305,7 @@ void WorkSketch::import(const fs::path& path) {
     for (auto& [name, zone] : ex["zones"].items())
       if (zone.is_object() && zone.contains("grammar") && zone["grammar"].is_string())
         zone["grammar"] = bring(path.parent_path() / zone["grammar"].get<std::string>(), name + ".grammar");
+  if (!original.models.empty()) ex["models"] = import_library(original.models);
   if (ex.is_null()) doc.erase("exacity");
   put(doc.dump(1) + "\n");
 }

@@ -32,12 +32,17 @@ class WorkSketch {
   // An 8-bit picture of the heightmap for the page: grey by height, its water (value 0) in
   // the map's water colour; nullopt when the sketch has none.
   std::optional<std::string> heightmap_preview() const;
-  // Copies a sketch from elsewhere into the work folder (exacity serve SKETCH): its heightmap
-  // and channel images come along, renamed, and the copy names them. Throws UserError.
+  // Copies a sketch from elsewhere into the work folder (exacity serve SKETCH): its heightmap,
+  // channel images, grammars and model library come along, and the copy names them. Throws
+  // UserError.
   void import(const std::filesystem::path& sketch);
 
  private:
   Sketch check(const std::string& text) const;
+  // Refuses a model library whose manifest, OBJ or .mtl files are not all in the work folder.
+  void check_library(const std::string& manifest) const;
+  // Copies a model library into work/models; returns the manifest's name there.
+  std::string import_library(const std::filesystem::path& manifest);
   void store(const std::string& text);
   const ConfinedFolder& work_;
   mutable std::mutex mutex_;

@@ -226,7 +226,7 @@ TEST_F(ServeTest, SketchPathsThatLeaveTheWorkFolderAreRefused) {
         R"({"seed": 3)" + terrain + R"("link.png"}})", R"({"seed": 3)" + terrain + R"("sub/../../outside.png"}})",
         std::string(R"({"seed": 3, "grid": "../town.grid"})"),
         std::string(R"({"seed": 3, "zones": {"residential": {"layout": "grammar", "grammar": "/etc/passwd"}}})"),
-        std::string(R"({"seed": 3, "models": "library.json"})")}) {
+        std::string(R"({"seed": 3, "models": "../library.json"})")}) {
     auto r = client->Put("/api/sketch", sketch_with(settings), "application/geo+json");
     ASSERT_TRUE(r);
     EXPECT_EQ(r->status, 400) << settings;
@@ -239,6 +239,27 @@ TEST_F(ServeTest, SketchPathsThatLeaveTheWorkFolderAreRefused) {
   auto ok =
       client->Put("/api/sketch", sketch_with(R"({"seed": 3)" + terrain + R"("valley.png"}})"), "application/geo+json");
   EXPECT_EQ(ok->status, 200) << ok->body;
+}
+
+// A model library in the work folder is taken when its OBJ and .mtl files are there too.
+TEST_F(ServeTest, ModelLibraryFilesMustStayInTheWorkFolder) {
+  write(dir / "secret.mtl", "newmtl SECRET\n");
+  fs::create_directories(work() / "models");
+  for (const char* name : {"library.json", "house_gabled.obj", "library.mtl"})
+    fs::copy_file(cli_util::kSource / "examples" / "models" / name, work() / "models" / name);
+  write(work() / "models" / "one.json", R"({"models": [{"file": "house_gabled.obj", "zones": ["residential"], "up": "y"}]})");
+  EXPECT_EQ(client->Put("/api/sketch", sketch_with(R"({"seed": 3, "models": "models/one.json"})"), "application/geo+json")->status,
+            200);
+  write(work() / "models" / "out.json", R"({"models": [{"file": "/etc/hostname", "zones": ["residential"]}]})");
+  write(work() / "models" / "leaky.obj", "mtllib ../../secret.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  write(work() / "models" / "leaky.json", R"({"models": [{"file": "leaky.obj", "zones": ["residential"]}]})");
+  for (const char* manifest : {"models/out.json", "models/leaky.json"}) {
+    auto r = client->Put("/api/sketch", sketch_with(std::string(R"({"seed": 3, "models": ")") + manifest + "\"}"),
+                         "application/geo+json");
+    EXPECT_EQ(r->status, 400) << manifest;
+    EXPECT_NE(r->body.find("\"exacity\".models"), std::string::npos) << r->body;
+    EXPECT_EQ(r->body.find('\n'), std::string::npos) << r->body;
+  }
 }
 
 TEST_F(ServeTest, OversizedBodyIsRefused) {
@@ -481,6 +502,21 @@ TEST(ServeCommandTest, ImportsTheSketchWithItsHeightmapAndStopsOnSigterm) {
   EXPECT_EQ(sketch["exacity"]["terrain"]["heightmap"], "heightmap.png");
   EXPECT_EQ(read(dir / "work" / "heightmap.png"), read(dir / "hills.png"));
   EXPECT_EQ(c.Get("/api/heightmap.png")->status, 200);
+  kill(pid, SIGTERM);
+  EXPECT_EQ(exit_code(pid), 128 + SIGTERM) << read(dir / "log.txt");
+}
+
+TEST(ServeCommandTest, ImportsAModelLibrary) {
+  const fs::path dir = testing_util::temp_dir("serve_command_models");
+  const pid_t pid = start_program({"serve", (cli_util::kSource / "examples" / "hillside.geojson").string(), "--port", "0",
+                                   "--work", (dir / "work").string()},
+                                  dir / "log.txt");
+  const int port = served_port(dir / "log.txt");
+  ASSERT_GT(port, 0) << read(dir / "log.txt");
+  httplib::Client c("127.0.0.1", port);
+  EXPECT_EQ(json::parse(c.Get("/api/sketch")->body)["exacity"]["models"], "models/library.json");
+  for (const char* name : {"library.json", "house_gabled.obj", "library.mtl", "street_lamp.obj"})
+    EXPECT_TRUE(fs::is_regular_file(dir / "work" / "models" / name)) << name;
   kill(pid, SIGTERM);
   EXPECT_EQ(exit_code(pid), 128 + SIGTERM) << read(dir / "log.txt");
 }
