@@ -112,8 +112,8 @@ CityServer::CityServer(ServeOptions options) {
           refuse(res, 413, "request body too large: at most " + std::to_string(max) + " bytes");
         else
           refuse(res, res.status,
-             "bad request (HTTP " + std::to_string(res.status) +
-                 "): a malformed request line or header, or a POST or PUT without a Content-Length");
+                 "bad request (HTTP " + std::to_string(res.status) +
+                     "): a malformed request line or header, or a POST or PUT without a Content-Length");
         return httplib::Server::HandlerResponse::Handled;
       }));
   add_sketch_routes(s);

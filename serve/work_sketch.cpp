@@ -180,8 +180,7 @@ void WorkSketch::check_library(const std::string& manifest) const {
     const fs::path obj = fs::path(manifest).parent_path() / entry["file"].get<std::string>();
     if (!work_.holds(obj, why)) throw UserError(where + manifest + ": models[" + std::to_string(i) + "].file " + why);
     for (const std::string& mtl : material_files(work_.root() / obj))
-      if (!work_.holds(obj.parent_path() / mtl, why))
-        throw UserError(where + obj.generic_string() + ": mtllib " + why);
+      if (!work_.holds(obj.parent_path() / mtl, why)) throw UserError(where + obj.generic_string() + ": mtllib " + why);
   }
 }
 
@@ -264,8 +263,9 @@ std::string WorkSketch::import_library(const fs::path& manifest) {
   auto bring = [&](const fs::path& relative, const std::string& named_by) {
     const fs::path clean = relative.lexically_normal();
     if (relative.is_absolute() || clean.empty() || *clean.begin() == "..")
-      throw UserError(named_by + " \"" + relative.generic_string() +
-                      "\": exacity serve copies a model library's files below its manifest's folder only; move it there");
+      throw UserError(
+          named_by + " \"" + relative.generic_string() +
+          "\": exacity serve copies a model library's files below its manifest's folder only; move it there");
     std::error_code ec;
     fs::create_directories((to / clean).parent_path(), ec);
     fs::copy_file(from / clean, to / clean, fs::copy_options::overwrite_existing, ec);
@@ -273,11 +273,13 @@ std::string WorkSketch::import_library(const fs::path& manifest) {
   };
   bring(manifest.filename(), manifest.string());
   const json doc = json::parse(read_file(manifest), nullptr, false);
-  for (const json& entry : doc.is_object() && doc.contains("models") && doc["models"].is_array() ? doc["models"] : json::array())
+  for (const json& entry :
+       doc.is_object() && doc.contains("models") && doc["models"].is_array() ? doc["models"] : json::array())
     if (entry.is_object() && entry.contains("file") && entry["file"].is_string()) {
       const fs::path obj = entry["file"].get<std::string>();
       bring(obj, manifest.string() + ": file");
-      for (const std::string& mtl : material_files(from / obj)) bring(obj.parent_path() / mtl, (from / obj).string() + ": mtllib");
+      for (const std::string& mtl : material_files(from / obj))
+        bring(obj.parent_path() / mtl, (from / obj).string() + ": mtllib");
     }
   return "models/" + manifest.filename().string();
 }

@@ -247,9 +247,12 @@ TEST_F(ServeTest, ModelLibraryFilesMustStayInTheWorkFolder) {
   fs::create_directories(work() / "models");
   for (const char* name : {"library.json", "house_gabled.obj", "library.mtl"})
     fs::copy_file(cli_util::kSource / "examples" / "models" / name, work() / "models" / name);
-  write(work() / "models" / "one.json", R"({"models": [{"file": "house_gabled.obj", "zones": ["residential"], "up": "y"}]})");
-  EXPECT_EQ(client->Put("/api/sketch", sketch_with(R"({"seed": 3, "models": "models/one.json"})"), "application/geo+json")->status,
-            200);
+  write(work() / "models" / "one.json",
+        R"({"models": [{"file": "house_gabled.obj", "zones": ["residential"], "up": "y"}]})");
+  EXPECT_EQ(
+      client->Put("/api/sketch", sketch_with(R"({"seed": 3, "models": "models/one.json"})"), "application/geo+json")
+          ->status,
+      200);
   write(work() / "models" / "out.json", R"({"models": [{"file": "/etc/hostname", "zones": ["residential"]}]})");
   write(work() / "models" / "leaky.obj", "mtllib ../../secret.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   write(work() / "models" / "leaky.json", R"({"models": [{"file": "leaky.obj", "zones": ["residential"]}]})");
@@ -508,8 +511,8 @@ TEST(ServeCommandTest, ImportsTheSketchWithItsHeightmapAndStopsOnSigterm) {
 
 TEST(ServeCommandTest, ImportsAModelLibrary) {
   const fs::path dir = testing_util::temp_dir("serve_command_models");
-  const pid_t pid = start_program({"serve", (cli_util::kSource / "examples" / "hillside.geojson").string(), "--port", "0",
-                                   "--work", (dir / "work").string()},
+  const pid_t pid = start_program({"serve", (cli_util::kSource / "examples" / "hillside.geojson").string(), "--port",
+                                   "0", "--work", (dir / "work").string()},
                                   dir / "log.txt");
   const int port = served_port(dir / "log.txt");
   ASSERT_GT(port, 0) << read(dir / "log.txt");
