@@ -14,6 +14,7 @@
 #include "benchmarks/families.h"
 #include "benchmarks/robustness.h"
 #include "cli/progress.h"
+#include "cli/serve_command.h"
 #include "generate/errors.h"
 #include "generate/export/output_folder.h"
 #include "generate/export/gis_export.h"
@@ -475,12 +476,14 @@ int main(int argc, char** argv) {
   ValidateCommand val;
   StatsCommand sta;
   RobustnessCommand rob;
+  ServeCommand srv;
   // In this order --help lists them.
   add_program_options(app, shared);
   add_generate(app, gen, shared);
   add_render(app, ren, shared);
   add_validate(app, val);
   add_stats(app, sta);
+  add_serve(app, srv);
   add_bench_robustness(app, rob);
   if (const std::optional<int> code = parse_command_line(app, argc, argv, sta)) return *code;
 
@@ -491,6 +494,7 @@ int main(int argc, char** argv) {
     if (*ren.app) return render_folder(ren.folder, shared.render, ren.file, shared.quiet);
     if (*val.app) return validate(val.folder);
     if (*sta.app) return stats(sta.folder, sta.real);
+    if (*srv.app) return run_serve(srv);
     if (*rob.app) return robustness_benchmark(rob.options, argv[0]);
     return 0;
   });

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages that Exacity builds, runs and tests with, and the npm
-# validators the tests run (tests/js, pinned by its package-lock.json); only what is
-# missing, so a second run costs nothing.
+# Installs the Debian 12 packages that Exacity builds, runs and tests with, the npm
+# validators and browser driver the tests run (tests/js), and the libraries exacity serve's
+# page loads (web/), each pinned by its package-lock.json; only what is missing, so a second
+# run costs nothing.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -9,10 +10,10 @@ packages=(
   g++ cmake ninja-build ccache pkg-config
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libopenmesh-dev libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libtbb-dev
-  nlohmann-json3-dev libcli11-dev libtinygltf-dev
+  nlohmann-json3-dev libcli11-dev libtinygltf-dev libcpp-httplib-dev
   libgtest-dev libgmock-dev libbenchmark-dev libgoogle-perftools-dev libgeos-dev
   libgdal-dev libosmium2-dev libexpat1-dev libbz2-dev zlib1g-dev
-  python3 python3-shapely
+  python3 python3-shapely chromium
 )
 
 missing=()
@@ -30,9 +31,13 @@ if ((${#missing[@]} > 0)); then
   DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
 
-# The glTF and CityJSON validators the tests run, at the versions package-lock.json names.
-if ! cmp -s tests/js/package-lock.json tests/js/node_modules/.installed-lock.json 2>/dev/null; then
-  echo "exacity: installing the test validators (npm ci in tests/js)" >&2
-  npm ci --prefix tests/js --no-audit --no-fund --loglevel=error >/dev/null
-  cp tests/js/package-lock.json tests/js/node_modules/.installed-lock.json
-fi
+# The glTF and CityJSON validators and puppeteer-core (which drives Debian's chromium, so
+# it downloads no browser) for the tests, and OpenLayers and three.js for exacity serve's
+# page, at the versions each package-lock.json names.
+for folder in tests/js web; do
+  if ! cmp -s $folder/package-lock.json $folder/node_modules/.installed-lock.json 2>/dev/null; then
+    echo "exacity: installing $folder's npm packages (npm ci)" >&2
+    PUPPETEER_SKIP_DOWNLOAD=1 npm ci --prefix $folder --no-audit --no-fund --loglevel=error >/dev/null
+    cp $folder/package-lock.json $folder/node_modules/.installed-lock.json
+  fi
+done

@@ -11,6 +11,7 @@
 #include <string>
 #include <system_error>
 #include <thread>
+#include <utility>
 
 #include "generate/errors.h"
 
@@ -22,6 +23,7 @@ namespace {
 // Staging folders of runs under way in this process, for the interrupt watcher.
 std::mutex staging_mutex;
 std::set<fs::path> staging_folders;
+std::function<void(int)> interrupt_stop;  // under staging_mutex
 
 void remove_tree(const fs::path& p) {
   std::error_code ec;
@@ -57,12 +59,26 @@ void clean_up_on_interrupt() {
   std::thread([signals] {
     int signal = 0;
     sigwait(&signals, &signal);
+    std::function<void(int)> stop;
+    {
+      std::lock_guard lock(staging_mutex);
+      stop = std::exchange(interrupt_stop, nullptr);
+    }
+    if (stop) {
+      stop(signal);
+      sigwait(&signals, &signal);
+    }
     std::lock_guard lock(staging_mutex);
     for (const fs::path& p : staging_folders) remove_tree(p);
     const char message[] = "exacity: interrupted; the output folder is as it was before this run\n";
     [[maybe_unused]] auto written = write(STDERR_FILENO, message, sizeof message - 1);
     std::_Exit(128 + signal);
   }).detach();
+}
+
+void on_interrupt(std::function<void(int)> stop) {
+  std::lock_guard lock(staging_mutex);
+  interrupt_stop = std::move(stop);
 }
 
 OutputFolder::OutputFolder(fs::path target) : target_(fs::absolute(std::move(target)).lexically_normal()) {

@@ -3,12 +3,18 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 
 namespace exacity {
 
 // Call first in main, before any other thread starts: SIGINT and SIGTERM then remove the
 // staging folders of the runs under way and end the process with 128 + the signal.
 void clean_up_on_interrupt();
+
+// From then on the first SIGINT or SIGTERM calls `stop` (on the watcher's thread) instead,
+// for a program that stops cleanly by itself (exacity serve); a second one still removes the
+// staging folders and ends the process at once.
+void on_interrupt(std::function<void(int)> stop);
 
 class OutputFolder {
  public:

@@ -1,0 +1,215 @@
+// The generate and render jobs, their status and events, and the outputs they leave.
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "generate/errors.h"
+#include "generate/export/output_folder.h"
+#include "generate/pipeline.h"
+#include "serve/render_request.h"
+#include "serve/server_state.h"
+
+namespace exacity::serve {
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kNoCity = "no city yet: POST /api/generate first";
+
+std::string read_file(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void refuse_busy(ServerState& s, httplib::Response& res) {
+  const JobStatus now = s.jobs.status();
+  refuse(res, 409, "a " + now.job + " job is running (" + now.stage + "); wait for it to finish (GET /api/status)");
+}
+
+// Sketch to every output into work/city, as exacity generate does (docs/design.md, The pipeline).
+void generate_job(ServerState& s, const Sketch& sketch, JobRunner::Progress& progress) {
+  OutputFolder folder(s.city_folder());
+  StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); },
+                   kCityStages + kWriteStages);
+  auto city = std::make_shared<City>(build_city(sketch, clock));
+  const GenerateResult result = write_city(*city, folder.staging(), clock);
+  {
+    std::unique_lock lock(s.outputs);
+    folder.commit();
+    fs::remove_all(s.render_folder());  // it showed the city before this one
+  }
+  {
+    std::lock_guard lock(s.city_mutex);
+    s.city = std::move(city);
+  }
+  if (!result.valid)
+    throw InternalError("the generated city failed validation (see report.json); please report this sketch");
+}
+
+// The city to render: the one generated in this run, else work/city's rebuilt (same sketch,
+// same seed: the same city), as exacity render does.
+std::shared_ptr<const City> city_to_render(ServerState& s, JobRunner::Progress& progress, int stages) {
+  {
+    std::lock_guard lock(s.city_mutex);
+    if (s.city) return s.city;
+  }
+  std::string text;
+  {
+    std::shared_lock lock(s.outputs);
+    text = read_file(s.city_folder() / "sketch.geojson");
+  }
+  const Sketch sketch = parse_sketch(text, s.sketch.file());
+  StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); }, stages);
+  auto city = std::make_shared<const City>(build_city(sketch, clock));
+  std::lock_guard lock(s.city_mutex);
+  if (!s.city) s.city = city;
+  return city;
+}
+
+// The still (and overview and minimap) into work/render, written aside and swapped in.
+void render_job(ServerState& s, const RenderAsk& ask, JobRunner::Progress& progress) {
+  bool rebuilt = false;
+  {
+    std::lock_guard lock(s.city_mutex);
+    rebuilt = !s.city;
+  }
+  const int stages = rebuilt ? kCityStages + 1 : 1;
+  const std::shared_ptr<const City> city = city_to_render(s, progress, stages);
+  render::RenderRequest r = render_request(*city, ask);
+  const fs::path aside = s.work.root() / ".render.partial";
+  fs::remove_all(aside);
+  fs::create_directories(aside);
+  r.still = aside / "still.png", r.overview_file = aside / "overview.png", r.minimap_file = aside / "minimap.png";
+  progress.stage(stages, stages, "render");
+  const nlohmann::ordered_json stats = render::render_city(
+      *city, r, [&](const std::string& stage, double f) { progress.fraction("render " + stage, f); });
+  std::ofstream(aside / "still.json", std::ios::binary) << stats.dump(2) << "\n";
+  std::unique_lock lock(s.outputs);
+  fs::remove_all(s.render_folder());
+  fs::rename(aside, s.render_folder());
+}
+
+// GET /api/events: each job event as a server-sent event; the status first, then what follows.
+void stream_events(ServerState& s, httplib::Response& res) {
+  if (++s.event_streams > ServerState::kMaxEventStreams) {
+    --s.event_streams;
+    return refuse(res, 503,
+                  "too many event streams open (" + std::to_string(ServerState::kMaxEventStreams) +
+                      "); close other pages of this server");
+  }
+  res.set_header("Cache-Control", "no-cache");
+  struct Cursor {
+    bool started = false;
+    std::uint64_t after = 0;
+    int quiet = 0;
+  };
+  auto cursor = std::make_shared<Cursor>();
+  // The provider's last copy goes when the stream ends, however it ends.
+  std::shared_ptr<void> open_stream(nullptr, [&s](void*) { --s.event_streams; });
+  res.set_chunked_content_provider(
+      "text/event-stream", [&s, cursor, open_stream](std::size_t, httplib::DataSink& sink) {
+        auto send = [&](const std::string& text) { return sink.write(text.data(), text.size()); };
+        if (!cursor->started) {
+          cursor->started = true;
+          cursor->after = s.jobs.last_event();
+          return send("retry: 1000\nevent: state\ndata: " + s.jobs.status().to_json().dump() + "\n\n");
+        }
+        // Waits a second at most, so a stopping server is not held (httplib stops calling
+        // once it shuts down).
+        const std::vector<JobEvent> events = s.jobs.events_after(cursor->after, std::chrono::milliseconds(1000));
+        for (const JobEvent& e : events) {
+          cursor->after = e.id;
+          if (!send("id: " + std::to_string(e.id) + "\nevent: " + e.name + "\ndata: " + e.data.dump() + "\n\n"))
+            return false;
+        }
+        // A comment every few quiet seconds finds a closed page, whose thread is then freed.
+        if (events.empty() && ++cursor->quiet % 5 == 0) return send(": waiting\n\n");
+        return true;
+      });
+}
+
+const std::set<std::string>& layer_names() {
+  static const std::set<std::string> names{"zones", "water", "roads", "road_areas", "blocks", "lots", "buildings"};
+  return names;
+}
+
+}  // namespace
+
+void add_city_routes(ServerState& s) {
+  s.http.Post("/api/generate", [&s](const httplib::Request&, httplib::Response& res) {
+    if (s.jobs.status().state == JobState::Running) return refuse_busy(s, res);
+    Sketch sketch;
+    try {
+      sketch = s.sketch.load();
+    } catch (const UserError& e) {
+      return refuse(res, 400, e.what());
+    }
+    auto shared = std::make_shared<Sketch>(std::move(sketch));
+    if (!s.jobs.start("generate", [&s, shared](JobRunner::Progress& p) { generate_job(s, *shared, p); }))
+      return refuse_busy(s, res);
+    res.status = 202;
+    res.set_content(s.jobs.status().to_json().dump(), "application/json");
+  });
+  s.http.Post("/api/render", [&s](const httplib::Request& req, httplib::Response& res) {
+    RenderAsk ask;
+    try {
+      ask = parse_render_ask(req.body);
+    } catch (const UserError& e) {
+      return refuse(res, 400, e.what());
+    }
+    if (s.jobs.status().state == JobState::Running) return refuse_busy(s, res);
+    bool have_city = false;
+    {
+      std::lock_guard lock(s.city_mutex);
+      have_city = s.city != nullptr;
+    }
+    if (!have_city && !fs::is_regular_file(s.city_folder() / "sketch.geojson")) return refuse(res, 409, kNoCity);
+    if (!s.jobs.start("render", [&s, ask](JobRunner::Progress& p) { render_job(s, ask, p); }))
+      return refuse_busy(s, res);
+    res.status = 202;
+    res.set_content(s.jobs.status().to_json().dump(), "application/json");
+  });
+  // The job's status, and whether a city and a render are there to fetch (the page asks
+  // before fetching, so it never asks for what is not there).
+  s.http.Get("/api/status", [&s](const httplib::Request&, httplib::Response& res) {
+    nlohmann::json status = s.jobs.status().to_json();
+    {
+      std::shared_lock lock(s.outputs);
+      status["city"] = fs::is_regular_file(s.city_folder() / "report.json");
+      status["render"] = fs::is_regular_file(s.render_folder() / "still.png");
+    }
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(status.dump(), "application/json");
+  });
+  s.http.Get("/api/events", [&s](const httplib::Request&, httplib::Response& res) { stream_events(s, res); });
+  s.http.Get("/api/map.svg", [&s](const httplib::Request&, httplib::Response& res) {
+    send_file(s, s.city_folder() / "map.svg", "image/svg+xml", res, kNoCity);
+  });
+  s.http.Get("/api/report", [&s](const httplib::Request&, httplib::Response& res) {
+    send_file(s, s.city_folder() / "report.json", "application/json", res, kNoCity);
+  });
+  s.http.Get("/api/city.glb", [&s](const httplib::Request&, httplib::Response& res) {
+    send_file(s, s.city_folder() / "city.glb", "model/gltf-binary", res, kNoCity);
+  });
+  s.http.Get(R"(/api/layers/([^/]*)\.geojson)", [&s](const httplib::Request& req, httplib::Response& res) {
+    const std::string name = req.matches[1];
+    if (!layer_names().count(name))
+      return refuse(
+          res, 404,
+          "no layer \"" + name + "\"; the layers are zones, water, roads, road_areas, blocks, lots, buildings");
+    send_file(s, s.city_folder() / "vector" / (name + ".geojson"), "application/geo+json", res, kNoCity);
+  });
+  s.http.Get(R"(/api/render/(still|overview|minimap)\.png)", [&s](const httplib::Request& req, httplib::Response& res) {
+    const std::string name = req.matches[1];
+    send_file(
+        s, s.render_folder() / (name + ".png"), "image/png", res,
+        "no " + name + " rendered yet: POST /api/render" + (name == "still" ? "" : " with \"" + name + "\": true"));
+  });
+  s.http.Get("/api/render/still.json", [&s](const httplib::Request&, httplib::Response& res) {
+    send_file(s, s.render_folder() / "still.json", "application/json", res, "nothing rendered yet: POST /api/render");
+  });
+}
+
+}  // namespace exacity::serve

@@ -1,0 +1,94 @@
+// The server's worker: one generation or render at a time, off the threads that answer
+// requests, its stages told as events and cancellable (docs/design.md, Serving).
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace exacity::serve {
+
+enum class JobState { Idle, Running, Done, Failed };
+
+struct JobStatus {
+  JobState state = JobState::Idle;
+  std::string job;           // "generate" or "render"; empty while idle
+  std::string stage;         // the stage under way, or the last one
+  int index = 0, count = 0;  // the stage's position (1-based) and the stage count, as the CLI prints them
+  double fraction = 0;       // within a long stage (rendering)
+  std::string error;         // for Failed: the one-line message
+  nlohmann::json to_json() const;
+};
+
+// One thing that happened, for GET /api/events: "stage", "progress" or "state".
+struct JobEvent {
+  std::uint64_t id = 0;
+  std::string name;
+  nlohmann::json data;
+};
+
+// Thrown inside a job at its next progress report once it is cancelled.
+struct JobCancelled : std::runtime_error {
+  JobCancelled() : std::runtime_error("cancelled") {}
+};
+
+class JobRunner {
+ public:
+  // What a job reports through; each call throws JobCancelled once the job is cancelled.
+  class Progress {
+   public:
+    void stage(int index, int count, const std::string& name);
+    void fraction(const std::string& name, double done);
+
+   private:
+    friend class JobRunner;
+    explicit Progress(JobRunner& runner) : runner_(runner) {}
+    JobRunner& runner_;
+    int percent_ = -1;
+  };
+  using Job = std::function<void(Progress&)>;
+
+  JobRunner() = default;
+  ~JobRunner() { stop(); }
+  JobRunner(const JobRunner&) = delete;
+  JobRunner& operator=(const JobRunner&) = delete;
+
+  // Starts `job` on the worker; false while another runs or after stop(). A job that throws
+  // fails with the exception's message.
+  bool start(const std::string& name, Job job);
+  JobStatus status() const;
+  // The running job stops at its next progress report.
+  void cancel();
+  // Cancels the running job, waits for it, and starts no more.
+  void stop();
+
+  // The events after `after`, waiting up to `wait` for one; the id of the last event so far.
+  std::vector<JobEvent> events_after(std::uint64_t after, std::chrono::milliseconds wait) const;
+  std::uint64_t last_event() const;
+
+ private:
+  void publish(const std::string& name, nlohmann::json data);  // with mutex_ held
+  void check_cancelled() const;
+
+  mutable std::mutex mutex_;
+  mutable std::condition_variable changed_;
+  std::thread worker_;
+  std::atomic<bool> cancelled_{false};
+  bool stopped_ = false;
+  JobStatus status_;
+  std::deque<JobEvent> events_;  // the most recent kKeptEvents
+  std::uint64_t last_id_ = 0;
+  static constexpr std::size_t kKeptEvents = 256;
+};
+
+const char* state_name(JobState state);
+
+}  // namespace exacity::serve

@@ -1,0 +1,27 @@
+// POST /api/render's body as a render request, checked as `exacity render` checks its
+// options, with the CLI's messages (README, Rendering).
+#pragma once
+
+#include <string>
+
+#include "generate/city/city.h"
+#include "render/render.h"
+
+namespace exacity::serve {
+
+// What the page asked for, checked before a job starts; the camera needs the city.
+struct RenderAsk {
+  std::string camera;  // empty: the sketch's, else the default
+  float fov = 45;
+  int width = 640, height = 360, spp = 16;
+  bool overview = false, minimap = false;
+};
+
+// {"camera": "orbit:..."|"look:...", "size": "WxH", "spp": N, "fov": DEG, "overview": bool,
+// "minimap": bool}, every key optional. Throws UserError naming the key.
+RenderAsk parse_render_ask(const std::string& body);
+
+// The request for `city`, files not yet named. Throws UserError for a bad camera.
+render::RenderRequest render_request(const City& city, const RenderAsk& ask);
+
+}  // namespace exacity::serve

@@ -1,0 +1,52 @@
+// What the server's routes share (serve/server.cpp sets them up).
+#pragma once
+
+#include <httplib.h>
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <shared_mutex>
+#include <string>
+
+#include "generate/city/city.h"
+#include "serve/confined_folder.h"
+#include "serve/job_runner.h"
+#include "serve/server.h"
+#include "serve/work_sketch.h"
+
+namespace exacity::serve {
+
+struct ServerState {
+  explicit ServerState(ServeOptions o)
+      : options(std::move(o)), work(options.work, true), web(options.web), sketch(work) {}
+
+  ServeOptions options;
+  ConfinedFolder work, web;
+  WorkSketch sketch;
+  JobRunner jobs;
+  httplib::Server http;
+  // Readers of the outputs share it; a job takes it alone only to swap a finished folder in.
+  std::shared_mutex outputs;
+  // Event streams open now: each holds a request thread, so they are capped below the pool
+  // (serve/server.cpp) and the API keeps answering however many pages are open.
+  std::atomic<int> event_streams{0};
+  static constexpr int kMaxEventStreams = 16;
+  // The last city generated, kept for renders.
+  std::mutex city_mutex;
+  std::shared_ptr<const City> city;
+
+  std::filesystem::path city_folder() const { return work.root() / "city"; }
+  std::filesystem::path render_folder() const { return work.root() / "render"; }
+};
+
+// A refusal: the status and a one-line message as the body.
+void refuse(httplib::Response& res, int status, const std::string& message);
+// Sends a file of the work folder, or 404 with `missing` when it is not there.
+void send_file(ServerState& s, const std::filesystem::path& file, const std::string& type, httplib::Response& res,
+               const std::string& missing);
+
+void add_sketch_routes(ServerState& s);
+void add_city_routes(ServerState& s);
+
+}  // namespace exacity::serve

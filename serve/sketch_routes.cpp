@@ -1,0 +1,43 @@
+// GET and PUT /api/sketch, PUT /api/heightmap, GET /api/heightmap.png.
+#include "generate/errors.h"
+#include "serve/server_state.h"
+
+namespace exacity::serve {
+
+void add_sketch_routes(ServerState& s) {
+  s.http.Get("/api/sketch", [&s](const httplib::Request&, httplib::Response& res) {
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(s.sketch.text(), "application/geo+json");
+  });
+  // Checked exactly as the CLI checks a sketch: a bad one is a 400 with the CLI's message,
+  // and the stored sketch stays as it was.
+  s.http.Put("/api/sketch", [&s](const httplib::Request& req, httplib::Response& res) {
+    try {
+      s.sketch.put(req.body);
+    } catch (const UserError& e) {
+      return refuse(res, 400, e.what());
+    }
+    res.set_content(s.sketch.text(), "application/geo+json");
+  });
+  s.http.Put("/api/heightmap", [&s](const httplib::Request& req, httplib::Response& res) {
+    try {
+      s.sketch.put_heightmap(req.body, req.get_param_value("bounds"), req.get_param_value("height"));
+    } catch (const UserError& e) {
+      return refuse(res, 400, e.what());
+    }
+    res.set_content(s.sketch.text(), "application/geo+json");
+  });
+  s.http.Get("/api/heightmap.png", [&s](const httplib::Request&, httplib::Response& res) {
+    std::optional<std::string> png;
+    try {
+      png = s.sketch.heightmap_preview();
+    } catch (const UserError& e) {
+      return refuse(res, 404, e.what());
+    }
+    if (!png) return refuse(res, 404, "the sketch has no heightmap; load one (PUT /api/heightmap)");
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(*png, "image/png");
+  });
+}
+
+}  // namespace exacity::serve

@@ -1,0 +1,51 @@
+// The sketch the server holds: work/sketch.geojson and the heightmap beside it, checked as
+// the CLI checks a sketch before anything is stored (docs/design.md, Serving).
+#pragma once
+
+#include <filesystem>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "generate/city/sketch.h"
+#include "serve/confined_folder.h"
+
+namespace exacity::serve {
+
+class WorkSketch {
+ public:
+  explicit WorkSketch(const ConfinedFolder& work) : work_(work) {}
+
+  std::filesystem::path file() const { return work_.root() / "sketch.geojson"; }
+  // The stored sketch's text; without one, an empty sketch (which PUT would refuse).
+  std::string text() const;
+  bool stored() const;
+  // Reads the stored sketch as generate does. Throws UserError.
+  Sketch load() const;
+  // Checks `text` (parse_sketch, and every file it names is inside the work folder), then
+  // stores it. Throws UserError with the CLI's one-line message.
+  Sketch put(const std::string& text);
+  // Stores an uploaded heightmap (PNG, TIFF or EXR, read as the terrain stage reads it) and
+  // points the sketch's terrain at it; `bounds` and `height` ("A,B,C,D", "LOW,HIGH") default to
+  // the sketch's own, else the drawn features' extent and 0..100 m. Throws UserError.
+  Sketch put_heightmap(const std::string& bytes, const std::string& bounds, const std::string& height);
+  // An 8-bit picture of the heightmap for the page: grey by height, its water (value 0) in
+  // the map's water colour; nullopt when the sketch has none.
+  std::optional<std::string> heightmap_preview() const;
+  // Copies a sketch from elsewhere into the work folder (exacity serve SKETCH): its heightmap,
+  // channel images, grammars and model library come along, and the copy names them. Throws
+  // UserError.
+  void import(const std::filesystem::path& sketch);
+
+ private:
+  Sketch check(const std::string& text) const;
+  // Refuses a model library whose manifest, OBJ or .mtl files are not all in the work folder.
+  void check_library(const std::string& manifest) const;
+  // Copies a model library into work/models; returns the manifest's name there.
+  std::string import_library(const std::filesystem::path& manifest);
+  void store(const std::string& text);
+  const ConfinedFolder& work_;
+  mutable std::mutex mutex_;
+};
+
+}  // namespace exacity::serve

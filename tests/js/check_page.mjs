@@ -1,0 +1,254 @@
+// The page of exacity serve in a real browser (Debian's chromium driven by puppeteer-core):
+// draw a zone and a road with the mouse, move the zone with Ctrl-drag, delete the road with
+// Del, undo, reload, generate, find the generated layers, orbit the 3D view and render it;
+// no console error throughout. Usage: node check_page.mjs EXACITY_BINARY OUT_DIR
+// (screenshots go to OUT_DIR). Exits 1 on the first failed check. DEBUG_PAGE=1 logs every
+// request the page makes, with its time.
+import {spawn} from 'node:child_process';
+import fs from 'node:fs';
+import path from 'node:path';
+import puppeteer from 'puppeteer-core';
+
+const [binary, out] = process.argv.slice(2);
+if (!binary || !out) {
+  console.error('usage: node check_page.mjs EXACITY_BINARY OUT_DIR');
+  process.exit(2);
+}
+fs.rmSync(out, {recursive: true, force: true});
+fs.mkdirSync(out, {recursive: true});
+
+const started = Date.now();
+function check(ok, what) {
+  if (!ok) throw new Error(`check failed: ${what}`);
+  console.log(`ok: ${what}`);
+}
+
+// The server, on a free port of 127.0.0.1, with a work folder of its own.
+const server = spawn(binary, ['serve', '--port', '0', '--work', path.join(out, 'work')], {stdio: ['ignore', 'pipe', 'pipe']});
+let serverLog = '';
+server.stderr.on('data', d => { serverLog += d; });
+const base = await new Promise((resolve, reject) => {
+  let text = '';
+  server.stdout.on('data', d => {
+    text += d;
+    const m = text.match(/serving (http:\/\/127\.0\.0\.1:\d+\/)/);
+    if (m) resolve(m[1]);
+  });
+  server.on('exit', code => reject(new Error(`exacity serve exited with ${code}: ${serverLog}`)));
+  setTimeout(() => reject(new Error('exacity serve did not start in 30 s')), 30000);
+});
+const serverExit = new Promise(resolve => server.on('exit', (code, signal) => resolve({code, signal})));
+
+const browser = await puppeteer.launch({
+  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+  headless: true,
+  // --no-sandbox: CI runs as root; SwiftShader gives the headless browser WebGL for three.js.
+  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--window-size=1280,800'],
+});
+const errors = [];
+let failed = false;
+try {
+  const page = await browser.newPage();
+  await page.setViewport({width: 1280, height: 800});
+  page.on('console', m => { if (m.type() === 'error') errors.push(m.text()); });
+  page.on('pageerror', e => errors.push(String(e)));
+  page.on('response', r => { if (r.status() >= 400) errors.push(`HTTP ${r.status()}: ${r.url()}`); });
+  // A request that failed is an error, but for two: the event stream, which the page holds
+  // open until it closes, and a whole answer (200, its headers in) that chromium reports as
+  // aborted when the page's stream reader (three.js's FileLoader) finished the body first;
+  // that body was whole, since the 3D view below is built from it.
+  page.on('requestfailed', r => {
+    const whole = r.failure()?.errorText === 'net::ERR_ABORTED' && r.response()?.status() === 200;
+    if (!r.url().includes('/api/events') && !whole) errors.push(`request failed: ${r.url()} (${r.failure()?.errorText})`);
+  });
+  page.on('request', r => { if (process.env.DEBUG_PAGE) console.log(Date.now() - started, 'request', r.url()); });
+  page.on('requestfinished', r => { if (process.env.DEBUG_PAGE) console.log(Date.now() - started, 'finished', r.url()); });
+  page.on('requestfailed', r => { if (process.env.DEBUG_PAGE) console.log(Date.now() - started, 'failed', r.url(), r.failure()?.errorText, r.response()?.status(), JSON.stringify(r.response()?.headers())); });
+  const sketch = async () => (await fetch(base + 'api/sketch')).json();
+  const ready = () => page.waitForSelector('body[data-ready="yes"]', {timeout: 30000});
+  const features = n => page.waitForSelector(`body[data-features="${n}"]`, {timeout: 10000});
+  // The server has taken the page's latest edit.
+  const saved = async n => {
+    for (let i = 0; i < 100; ++i) {
+      if ((await sketch()).features.length === n) return;
+      await new Promise(r => setTimeout(r, 100));
+    }
+    throw new Error(`the server's sketch never had ${n} features`);
+  };
+
+  await page.goto(base, {waitUntil: 'load'});
+  await ready();
+  const box = await (await page.$('#map')).boundingBox();
+  const at = (dx, dy) => [box.x + box.width / 2 + dx, box.y + box.height / 2 + dy];
+
+  // A residential zone: four clicks and a double-click on the last corner.
+  await page.click('[data-tool="residential"]');
+  for (const [dx, dy] of [[-150, -100], [150, -100], [150, 100]]) {
+    await page.mouse.click(...at(dx, dy));
+    await new Promise(r => setTimeout(r, 150));
+  }
+  await page.mouse.click(...at(-150, 100), {count: 2});
+  await features(1);
+  await saved(1);
+  let s = await sketch();
+  check(s.features[0].properties.zone === 'residential' && s.features[0].geometry.type === 'Polygon',
+        'a residential zone drawn by clicking reaches the server');
+
+  // A highway across it, closed with Enter.
+  await page.click('[data-tool="highway"]');
+  await page.mouse.click(...at(-220, 0));
+  await new Promise(r => setTimeout(r, 150));
+  await page.mouse.click(...at(220, 10));
+  await page.keyboard.press('Enter');
+  await features(2);
+  await saved(2);
+  s = await sketch();
+  check(s.features[1].properties.road === 'highway' && s.features[1].properties.width === 24, 'a highway drawn');
+
+  // Ctrl-drag moves the zone (seed 000, 3.1.1).
+  await page.click('[data-tool="select"]');
+  const before = s.features[0].geometry.coordinates[0][0];
+  await page.keyboard.down('Control');
+  await page.mouse.move(...at(-100, -60));
+  await page.mouse.down();
+  for (let i = 1; i <= 10; ++i) await page.mouse.move(...at(-100 + 4 * i, -60));
+  await page.mouse.up();
+  await page.keyboard.up('Control');
+  await new Promise(r => setTimeout(r, 500));
+  s = await sketch();
+  const after = s.features[0].geometry.coordinates[0][0];
+  check(Math.abs(after[0] - before[0] - 80) < 8 && Math.abs(after[1] - before[1]) < 2,
+        `Ctrl-drag moved the zone by 40 px east (${before} to ${after})`);
+
+  // Click the road, Del deletes it; Ctrl-Z brings it back.
+  await page.mouse.click(...at(200, 9));
+  await page.waitForSelector('#feature-panel:not([hidden])', {timeout: 5000});
+  await page.keyboard.press('Delete');
+  await features(1);
+  await saved(1);
+  check((await sketch()).features[0].properties.zone === 'residential', 'Del deleted the selected road');
+  await page.keyboard.down('Control');
+  await page.keyboard.press('z');
+  await page.keyboard.up('Control');
+  await features(2);
+  await saved(2);
+  check(true, 'undo brought the road back');
+
+  // The road's width, edited in the side panel.
+  await page.mouse.click(...at(200, 9));
+  await page.waitForSelector('#feature-panel:not([hidden]) #width-row:not([hidden])', {timeout: 5000});
+  await page.$eval('#road-width', i => { i.value = '16'; i.dispatchEvent(new Event('change')); });
+  for (let i = 0; i < 50 && (await sketch()).features[1].properties.width !== 16; ++i) await new Promise(r => setTimeout(r, 100));
+  check((await sketch()).features[1].properties.width === 16,
+        `the road's width edited in the panel (${JSON.stringify((await sketch()).features[1].properties)}, ${await page.$eval('#message', m => m.textContent)})`);
+
+  // The zone's type, edited in the side panel.
+  await page.mouse.click(...at(-60, -60));
+  await page.waitForSelector('#feature-panel:not([hidden]) #zone-row:not([hidden])', {timeout: 5000});
+  await page.select('#zone-type', 'commercial');
+  for (let i = 0; i < 50 && (await sketch()).features[0].properties.zone !== 'commercial'; ++i) await new Promise(r => setTimeout(r, 100));
+  check((await sketch()).features[0].properties.zone === 'commercial', 'the zone\'s type edited in the panel');
+
+  // A setting the CLI refuses is refused with its message, and the sketch stays as it was.
+  // The browser logs the refusal's 400 as a console error: that one is expected.
+  const kept = JSON.stringify(await sketch());
+  await page.$eval('textarea[data-zone="residential"]', t => { t.value = '{"block_area": -5}'; });
+  await page.click('#apply-settings');
+  await page.waitForSelector('#message.error', {timeout: 5000});
+  const refusal = await page.$eval('#message', m => m.textContent);
+  check(/block_area/.test(refusal) && refusal.includes('sketch.geojson'), `the settings refused with the CLI's message: ${refusal}`);
+  check(JSON.stringify(await sketch()) === kept, 'the refused settings left the sketch as it was');
+  const expected = errors.filter(e => /400/.test(e));
+  check(expected.length >= 1 && expected.length === errors.length, `only the refusal was an error (${errors.join(' | ')})`);
+  errors.length = 0;
+  check(await page.$eval('textarea[data-zone="residential"]', t => t.value) === '', 'the panel shows the kept settings again');
+
+  // A heightmap loaded from a file: the sketch points at it, and the map shows it.
+  const [chooser] = await Promise.all([page.waitForFileChooser(), page.click('#heightmap')]);
+  await chooser.accept([path.join(path.dirname(new URL(import.meta.url).pathname), '..', '..', 'examples', 'valley.png')]);
+  for (let i = 0; i < 50 && !(await sketch()).exacity?.terrain; ++i) await new Promise(r => setTimeout(r, 100));
+  check((await sketch()).exacity.terrain.heightmap === 'heightmap.png', 'the loaded heightmap is the sketch\'s terrain');
+
+  // Reload: the page shows the sketch the server kept.
+  await page.reload({waitUntil: 'load'});
+  await ready();
+  check(await page.$eval('body', b => b.dataset.features) === '2', 'after a reload the page shows both features');
+
+  // Generate: the progress bar moves through the stages, then the layers and the report.
+  await page.click('#generate');
+  await page.waitForSelector('body[data-city="shown"]', {timeout: 600000});
+  const layers = await page.$$eval('#layer-toggles input', inputs => inputs.map(i => i.dataset.layer));
+  check(['zones', 'blocks', 'lots', 'roads', 'buildings'].every(l => layers.includes(l)), `generated layers shown: ${layers}`);
+  const figures = await page.$$eval('#report dt', dts => dts.map(d => d.textContent));
+  check(figures.includes('lots') && figures.includes('buildings'), 'the report\'s figures beside the map');
+  check(await page.$eval('#progress', p => p.value) === 1, 'the progress bar is full');
+  await page.screenshot({path: path.join(out, 'map.png')});
+
+  // Explore: the 3D view, orbited with the mouse, then rendered.
+  await page.click('[data-view="explore"]');
+  await page.waitForFunction(() => window.exacityExplore && window.exacityExplore.city, {timeout: 60000});
+  const spec = async () => page.$eval('#camera-spec', e => e.textContent);
+  const first = await spec();
+  const view = await (await page.$('#three')).boundingBox();
+  await page.mouse.move(view.x + view.width / 2, view.y + view.height / 2);
+  await page.mouse.down();
+  for (let i = 1; i <= 10; ++i) await page.mouse.move(view.x + view.width / 2 + 10 * i, view.y + view.height / 2 - 3 * i);
+  await page.mouse.up();
+  const second = await spec();
+  check(first !== second && /azimuth=/.test(second), `orbiting moved the camera (${first} to ${second})`);
+  // Dragging far down stops at the top of the upper hemisphere (seed 000, 3.3.2).
+  await page.mouse.move(view.x + view.width / 2, view.y + view.height / 4);
+  await page.mouse.down();
+  for (let i = 1; i <= 10; ++i) await page.mouse.move(view.x + view.width / 2, view.y + view.height / 4 + 40 * i);
+  await page.mouse.up();
+  check(/elevation=90,/.test(await spec()), `the camera stops straight above: ${await spec()}`);
+  // Back down to a view of the city from the side, zoomed in with the wheel.
+  await page.mouse.move(view.x + view.width / 2, view.y + view.height / 2);
+  await page.mouse.down();
+  for (let i = 1; i <= 10; ++i) await page.mouse.move(view.x + view.width / 2, view.y + view.height / 2 - 18 * i);
+  await page.mouse.up();
+  await page.mouse.wheel({deltaY: -200});
+  const third = await spec();
+  check(/elevation=(3\d|4\d)/.test(third), `orbited back down: ${third}`);
+  await page.click('#render-view');
+  await page.waitForFunction(() => {
+    const img = document.getElementById('render-image');
+    return !document.getElementById('render-result').hidden && img.complete && img.naturalWidth > 0;
+  }, {timeout: 600000});
+  check(true, 'the rendered still is on the page');
+  await page.screenshot({path: path.join(out, 'explore.png')});
+
+  // Save downloads the sketch; Open reads one from a file and shows what the server took.
+  await page.click('[data-view="map"]');
+  const cdp = await page.createCDPSession();
+  await cdp.send('Browser.setDownloadBehavior', {behavior: 'allow', downloadPath: path.resolve(out)});
+  await page.click('#save');
+  const downloaded = path.join(out, 'sketch.geojson');
+  for (let i = 0; i < 50 && !fs.existsSync(downloaded); ++i) await new Promise(r => setTimeout(r, 100));
+  const saved_doc = JSON.parse(fs.readFileSync(downloaded, 'utf8'));
+  check(JSON.stringify(saved_doc.features) === JSON.stringify((await sketch()).features), 'Save downloaded the sketch');
+  const opened = path.join(out, 'opened.geojson');
+  fs.writeFileSync(opened, JSON.stringify({type: 'FeatureCollection', exacity: {seed: 5}, features: [
+    {type: 'Feature', properties: {zone: 'industrial'},
+     geometry: {type: 'Polygon', coordinates: [[[0, 0], [300, 0], [300, 200], [0, 200], [0, 0]]]}}]}));
+  const [openChooser] = await Promise.all([page.waitForFileChooser(), page.click('#open')]);
+  await openChooser.accept([opened]);
+  await features(1);
+  s = await sketch();
+  check(s.exacity.seed === 5 && s.features[0].properties.zone === 'industrial', 'Open read a sketch from a file');
+  check(await page.$eval('#seed', i => i.value) === '5', 'the panel shows the opened sketch\'s seed');
+  check(errors.length === 0, `no console errors${errors.length ? ': ' + errors.join(' | ') : ''}`);
+} catch (e) {
+  console.error(String(e.stack || e));
+  if (errors.length) console.error('console errors:', errors.join(' | '));
+  failed = true;
+} finally {
+  await browser.close();
+  server.kill('SIGTERM');
+  const {code} = await serverExit;
+  if (code !== 128 + 15) {
+    console.error(`exacity serve exited with ${code} on SIGTERM, not 143: ${serverLog}`);
+    failed = true;
+  }
+}
+process.exit(failed ? 1 : 0);

@@ -1,0 +1,45 @@
+// The README's pictures of exacity serve: serves SKETCH, generates it, and saves the map
+// with the generated city and the 3D view with its path-traced still (no checks: see
+// check_page.mjs). Usage: node screenshot_page.mjs EXACITY_BINARY SKETCH OUT_DIR
+import {spawn} from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import puppeteer from 'puppeteer-core';
+
+const [binary, sketch, out] = process.argv.slice(2);
+fs.mkdirSync(out, {recursive: true});
+const work = fs.mkdtempSync(path.join(os.tmpdir(), 'exacity-screenshots-'));
+const server = spawn(binary, ['serve', sketch, '--port', '0', '--work', work], {stdio: ['ignore', 'pipe', 'inherit']});
+const base = await new Promise(resolve => {
+  let text = '';
+  server.stdout.on('data', d => {
+    text += d;
+    const m = text.match(/serving (http:\/\/127\.0\.0\.1:\d+\/)/);
+    if (m) resolve(m[1]);
+  });
+});
+const browser = await puppeteer.launch({executablePath: process.env.CHROMIUM || '/usr/bin/chromium', headless: true,
+                                        args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader']});
+try {
+  const page = await browser.newPage();
+  await page.setViewport({width: 1400, height: 860});
+  await page.goto(base + '?spp=32');
+  await page.waitForSelector('body[data-ready="yes"]');
+  await page.click('#generate');
+  await page.waitForSelector('body[data-city="shown"]', {timeout: 600000});
+  await page.screenshot({path: path.join(out, 'serve-map.png')});
+  await page.click('[data-view="explore"]');
+  await page.waitForFunction(() => window.exacityExplore && window.exacityExplore.city, {timeout: 60000});
+  await page.evaluate(() => window.exacityExplore.setOrbit({azimuth: 235, elevation: 28}));
+  await page.click('#render-view');
+  await page.waitForFunction(() => {
+    const img = document.getElementById('render-image');
+    return !document.getElementById('render-result').hidden && img.complete && img.naturalWidth > 0;
+  }, {timeout: 600000});
+  await page.screenshot({path: path.join(out, 'serve-explore.png')});
+} finally {
+  await browser.close();
+  server.kill('SIGTERM');
+  fs.rmSync(work, {recursive: true, force: true});
+}

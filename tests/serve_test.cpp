@@ -1,0 +1,583 @@
+// exacity serve's API through httplib's client, against a server in this process
+// (README, exacity serve; docs/design.md, Serving).
+#include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <httplib.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <fstream>
+#include <future>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "generate/city/sketch.h"
+#include "generate/errors.h"
+#include "serve/job_runner.h"
+#include "serve/server.h"
+#include "tests/cli_util.h"
+#include "tests/test_util.h"
+
+namespace fs = std::filesystem;
+using exacity::serve::CityServer;
+using exacity::serve::JobRunner;
+using exacity::serve::JobState;
+using json = nlohmann::json;
+
+namespace {
+
+// Two zones across a highway: a city of a few streets (tests/cli_test.cpp's small sketch).
+const std::string kSmallSketch = R"({"type": "FeatureCollection", "exacity": {"seed": 3}, "features": [
+  {"type": "Feature", "properties": {"zone": "residential"},
+   "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [400, 0], [400, 300], [0, 300], [0, 0]]]}},
+  {"type": "Feature", "properties": {"zone": "commercial"},
+   "geometry": {"type": "Polygon", "coordinates": [[[400, 0], [600, 0], [600, 300], [400, 300], [400, 0]]]}},
+  {"type": "Feature", "properties": {"road": "highway", "width": 16},
+   "geometry": {"type": "LineString", "coordinates": [[-50, 150], [650, 150]]}}]}
+)";
+
+// The small sketch with `settings` as its "exacity" member.
+std::string sketch_with(const std::string& settings) {
+  json doc = json::parse(kSmallSketch);
+  doc["exacity"] = json::parse(settings);
+  return doc.dump();
+}
+
+// The message the CLI gives for `text` read from `file`; empty when the sketch is good.
+std::string cli_message(const std::string& text, const fs::path& file) {
+  try {
+    exacity::parse_sketch(text, file);
+  } catch (const exacity::UserError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void write(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::binary) << text; }
+
+std::string read(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A greyscale PNG: a ramp with a pond of value 0 in one corner.
+void write_heightmap(const fs::path& file) {
+  const int n = 16;
+  std::vector<unsigned char> pixels(n * n);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) pixels[y * n + x] = (x < 4 && y < 4) ? 0 : static_cast<unsigned char>(40 + 10 * x);
+  auto out = OIIO::ImageOutput::create(file.string());
+  ASSERT_TRUE(out && out->open(file.string(), OIIO::ImageSpec(n, n, 1, OIIO::TypeDesc::UINT8)));
+  out->write_image(OIIO::TypeDesc::UINT8, pixels.data());
+  out->close();
+}
+
+class ServeTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir =
+        testing_util::temp_dir(std::string("serve_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    // A page folder with links out of it, and a secret beside it that no URL may reach.
+    fs::create_directories(dir / "web" / "lib");
+    write(dir / "web" / "index.html", "<!doctype html><title>exacity</title>");
+    write(dir / "web" / "lib" / "app.js", "export const ok = 1;");
+    write(dir / "secret.txt", "SECRET");
+    fs::create_symlink(dir / "secret.txt", dir / "web" / "leak.txt");
+    fs::create_symlink(dir, dir / "web" / "up");
+    exacity::serve::ServeOptions o;
+    o.work = dir / "work", o.web = dir / "web", o.port = 0, o.max_body = 64 * 1024;
+    server = std::make_unique<CityServer>(o);
+    port = server->bind();
+    serving = std::thread([this] { server->run(); });
+    client = std::make_unique<httplib::Client>("127.0.0.1", port);
+    client->set_read_timeout(60);
+  }
+  void TearDown() override {
+    server->stop();
+    serving.join();
+    server->finish_jobs();
+  }
+
+  fs::path work() const { return server->work_folder(); }
+  fs::path sketch_file() const { return work() / "sketch.geojson"; }
+
+  // Polls the status until no job runs; the last status. Bounded: 20 minutes under the sanitizers.
+  json wait_for_job(httplib::Client& c) {
+    json status;
+    for (int i = 0; i < 12000; ++i) {
+      auto r = c.Get("/api/status");
+      if (!r) break;
+      status = json::parse(r->body);
+      if (status["state"] != "running") return status;
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    ADD_FAILURE() << "the job did not end: " << status.dump();
+    return status;
+  }
+
+  void put_small_and_generate() {
+    ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+    auto r = client->Post("/api/generate", "", "application/json");
+    ASSERT_TRUE(r);
+    ASSERT_EQ(r->status, 202) << r->body;
+    const json done = wait_for_job(*client);
+    ASSERT_EQ(done["state"], "done") << done.dump();
+  }
+
+  fs::path dir;
+  std::unique_ptr<CityServer> server;
+  int port = 0;
+  std::thread serving;
+  std::unique_ptr<httplib::Client> client;
+};
+
+TEST_F(ServeTest, SketchRoundTrip) {
+  auto empty = client->Get("/api/sketch");
+  ASSERT_TRUE(empty);
+  EXPECT_EQ(empty->status, 200);
+  EXPECT_TRUE(json::parse(empty->body)["features"].empty());
+  auto put = client->Put("/api/sketch", kSmallSketch, "application/geo+json");
+  ASSERT_TRUE(put);
+  EXPECT_EQ(put->status, 200) << put->body;
+  auto got = client->Get("/api/sketch");
+  EXPECT_EQ(got->body, kSmallSketch);
+  EXPECT_EQ(read(sketch_file()), kSmallSketch);
+}
+
+TEST_F(ServeTest, BadJsonIsRefusedWithTheCliMessage) {
+  const std::string bad = "{\"type\": \"FeatureCollection\",\n \"features\": [}";
+  auto r = client->Put("/api/sketch", bad, "application/geo+json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(r->body, cli_message(bad, sketch_file()));
+  EXPECT_NE(r->body.find("malformed JSON"), std::string::npos) << r->body;
+  EXPECT_FALSE(fs::exists(sketch_file()));
+}
+
+TEST_F(ServeTest, BadSketchIsRefusedWithTheCliMessageAndTheOldOneKept) {
+  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+  for (const std::string& bad :
+       {sketch_with(R"({"seed": 3, "zones": {"residential": {"block_area": -5}}})"),
+        sketch_with(R"({"seed": 3, "zones": {"residential": {"layout": "spiral"}}})"),
+        std::string(R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {"zone": "parc"},
+          "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [1, 0], [1, 1], [0, 0]]]}}]})"),
+        std::string(R"({"type": "FeatureCollection", "features": []})")}) {
+    auto r = client->Put("/api/sketch", bad, "application/geo+json");
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 400);
+    const std::string expected = cli_message(bad, sketch_file());
+    EXPECT_FALSE(expected.empty());
+    EXPECT_EQ(r->body, expected);
+    EXPECT_EQ(r->body.find('\n'), std::string::npos) << "one line: " << r->body;
+  }
+  EXPECT_EQ(client->Get("/api/sketch")->body, kSmallSketch);
+}
+
+TEST_F(ServeTest, UnknownRoutesAreRefusedWithAMessage) {
+  for (const char* path : {"/api/nothing", "/api/layers/streets.geojson", "/api/render/sky.png", "/nothing.html"}) {
+    auto r = client->Get(path);
+    ASSERT_TRUE(r) << path;
+    EXPECT_EQ(r->status, 404) << path;
+    EXPECT_FALSE(r->body.empty()) << path;
+  }
+  auto post = client->Post("/api/nothing", "{}", "application/json");
+  EXPECT_EQ(post->status, 404);
+  EXPECT_NE(post->body.find("no such route"), std::string::npos) << post->body;
+  auto del = client->Delete("/api/sketch");
+  EXPECT_EQ(del->status, 404);
+  EXPECT_NE(del->body.find("no such route"), std::string::npos) << del->body;
+  auto page = client->Get("/");
+  EXPECT_EQ(page->status, 200);
+  EXPECT_NE(page->body.find("exacity"), std::string::npos);
+  EXPECT_EQ(client->Get("/lib/app.js")->status, 200);
+}
+
+TEST_F(ServeTest, UrlsThatTryToLeaveTheFoldersAreRefused) {
+  for (const char* path :
+       {"/../secret.txt", "/%2e%2e/secret.txt", "/%2E%2E%2Fsecret.txt", "/..%2fsecret.txt", "/lib/..%2f..%2fsecret.txt",
+        "/%252e%252e/secret.txt", "/.%2e/secret.txt", "/leak.txt", "/up/secret.txt", "/%2fetc%2fpasswd", "//etc/passwd",
+        "/lib/%2e%2e/%2e%2e/secret.txt", "/..%5csecret.txt", "/%00index.html", "/api/layers/..%2f..%2fsecret.geojson",
+        "/api/render/..%2f..%2fsecret.png"}) {
+    auto r = client->Get(path);
+    ASSERT_TRUE(r) << path;
+    EXPECT_GE(r->status, 400) << path;
+    EXPECT_LT(r->status, 500) << path;
+    EXPECT_EQ(r->body.find("SECRET"), std::string::npos) << path;
+    EXPECT_EQ(r->body.find("root:"), std::string::npos) << path;
+  }
+}
+
+TEST_F(ServeTest, SketchPathsThatLeaveTheWorkFolderAreRefused) {
+  write_heightmap(dir / "outside.png");
+  fs::create_symlink(dir / "outside.png", work() / "link.png");
+  write(dir / "town.grid", "RRR\n");
+  const std::string terrain = R"(, "terrain": {"bounds": [0, 0, 600, 300], "height": [0, 50], "heightmap": )";
+  for (const std::string& settings :
+       {R"({"seed": 3)" + terrain + R"("../outside.png"}})",
+        R"({"seed": 3)" + terrain + "\"" + (dir / "outside.png").string() + "\"}}",
+        R"({"seed": 3)" + terrain + R"("link.png"}})", R"({"seed": 3)" + terrain + R"("sub/../../outside.png"}})",
+        std::string(R"({"seed": 3, "grid": "../town.grid"})"),
+        std::string(R"({"seed": 3, "zones": {"residential": {"layout": "grammar", "grammar": "/etc/passwd"}}})"),
+        std::string(R"({"seed": 3, "models": "../library.json"})")}) {
+    auto r = client->Put("/api/sketch", sketch_with(settings), "application/geo+json");
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 400) << settings;
+    EXPECT_EQ(r->body.find('\n'), std::string::npos) << r->body;
+    EXPECT_NE(r->body.find("\"exacity\"."), std::string::npos) << "names the key: " << r->body;
+  }
+  EXPECT_FALSE(fs::exists(sketch_file()));
+  // Inside the work folder the same heightmap is taken.
+  fs::copy_file(dir / "outside.png", work() / "valley.png");
+  auto ok =
+      client->Put("/api/sketch", sketch_with(R"({"seed": 3)" + terrain + R"("valley.png"}})"), "application/geo+json");
+  EXPECT_EQ(ok->status, 200) << ok->body;
+}
+
+// A model library in the work folder is taken when its OBJ and .mtl files are there too.
+TEST_F(ServeTest, ModelLibraryFilesMustStayInTheWorkFolder) {
+  write(dir / "secret.mtl", "newmtl SECRET\n");
+  fs::create_directories(work() / "models");
+  for (const char* name : {"library.json", "house_gabled.obj", "library.mtl"})
+    fs::copy_file(cli_util::kSource / "examples" / "models" / name, work() / "models" / name);
+  write(work() / "models" / "one.json",
+        R"({"models": [{"file": "house_gabled.obj", "zones": ["residential"], "up": "y"}]})");
+  EXPECT_EQ(
+      client->Put("/api/sketch", sketch_with(R"({"seed": 3, "models": "models/one.json"})"), "application/geo+json")
+          ->status,
+      200);
+  write(work() / "models" / "out.json", R"({"models": [{"file": "/etc/hostname", "zones": ["residential"]}]})");
+  write(work() / "models" / "leaky.obj", "mtllib ../../secret.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  write(work() / "models" / "leaky.json", R"({"models": [{"file": "leaky.obj", "zones": ["residential"]}]})");
+  for (const char* manifest : {"models/out.json", "models/leaky.json"}) {
+    auto r = client->Put("/api/sketch", sketch_with(std::string(R"({"seed": 3, "models": ")") + manifest + "\"}"),
+                         "application/geo+json");
+    EXPECT_EQ(r->status, 400) << manifest;
+    EXPECT_NE(r->body.find("\"exacity\".models"), std::string::npos) << r->body;
+    EXPECT_EQ(r->body.find('\n'), std::string::npos) << r->body;
+  }
+}
+
+TEST_F(ServeTest, OversizedBodyIsRefused) {
+  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+  std::string big = kSmallSketch;
+  big.insert(big.size() - 2, std::string(100 * 1024, ' '));
+  auto r = client->Put("/api/sketch", big, "application/geo+json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 413);
+  EXPECT_NE(r->body.find("too large"), std::string::npos) << r->body;
+  EXPECT_EQ(read(sketch_file()), kSmallSketch);
+}
+
+TEST_F(ServeTest, RenderBeforeAnyGenerationIsRefused) {
+  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+  auto r = client->Post("/api/render", R"({"size": "32x24", "spp": 1})", "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 409);
+  EXPECT_NE(r->body.find("POST /api/generate first"), std::string::npos) << r->body;
+  for (const char* path :
+       {"/api/render/still.png", "/api/map.svg", "/api/report", "/api/city.glb", "/api/layers/roads.geojson"})
+    EXPECT_EQ(client->Get(path)->status, 404) << path;
+  EXPECT_EQ(json::parse(client->Get("/api/status")->body)["state"], "idle");
+}
+
+TEST_F(ServeTest, BadRenderRequestsAreRefused) {
+  for (const char* body : {"not json", R"({"size": "0x0"})", R"({"spp": 0})", R"({"spp": 1.5})", R"({"zoom": 2})",
+                           R"({"camera": "orbit:target=0,0"})", R"({"overview": "yes"})"}) {
+    auto r = client->Post("/api/render", body, "application/json");
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 400) << body;
+    EXPECT_EQ(r->body.find('\n'), std::string::npos) << r->body;
+  }
+}
+
+// A generation with its events, then its outputs, a second generation refused while it runs,
+// and a render.
+TEST_F(ServeTest, GenerateStreamsStagesThenServesOutputsAndRenders) {
+  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+  std::promise<void> listening;
+  std::vector<std::string> stages;
+  std::string ended;
+  std::thread events([&] {
+    httplib::Client c("127.0.0.1", port);
+    c.set_read_timeout(600);
+    std::string buffer;
+    bool told = false;
+    c.Get("/api/events", [&](const char* data, std::size_t n) {
+      buffer.append(data, n);
+      for (std::size_t end; (end = buffer.find("\n\n")) != std::string::npos; buffer.erase(0, end + 2)) {
+        const std::string event = buffer.substr(0, end);
+        if (!told) told = true, listening.set_value();
+        const auto name = event.find("event: "), data_at = event.find("data: ");
+        if (name == std::string::npos || data_at == std::string::npos) continue;
+        const std::string kind = event.substr(name + 7, event.find('\n', name) - name - 7);
+        const json payload = json::parse(event.substr(data_at + 6));
+        if (kind == "stage") stages.push_back(payload["stage"]);
+        if (kind == "state" && payload["state"] != "running" && payload["job"] == "generate") {
+          ended = payload["state"];
+          return false;
+        }
+      }
+      return true;
+    });
+  });
+  listening.get_future().wait();
+  auto first = client->Post("/api/generate", "", "application/json");
+  ASSERT_EQ(first->status, 202) << first->body;
+  EXPECT_EQ(json::parse(first->body)["state"], "running");
+  auto second = client->Post("/api/generate", "", "application/json");
+  EXPECT_EQ(second->status, 409) << second->body;
+  EXPECT_NE(second->body.find("running"), std::string::npos) << second->body;
+  events.join();
+  EXPECT_EQ(ended, "done");
+  // The CLI's stage names, in its order.
+  EXPECT_EQ(stages, (std::vector<std::string>{"terrain", "model library", "zone map", "road network", "blocks", "lots",
+                                              "buildings", "vector layers", "export", "3d export", "validation"}));
+  EXPECT_EQ(json::parse(client->Get("/api/status")->body)["state"], "done");
+
+  EXPECT_EQ(client->Get("/api/map.svg")->body.find("<svg") != std::string::npos, true);
+  const json report = json::parse(client->Get("/api/report")->body);
+  EXPECT_GT(report["counts"]["lots"].get<int>(), 0);
+  EXPECT_EQ(client->Get("/api/city.glb")->body.substr(0, 4), "glTF");
+  for (const char* layer : {"zones", "water", "roads", "road_areas", "blocks", "lots", "buildings"}) {
+    auto r = client->Get(std::string("/api/layers/") + layer + ".geojson");
+    ASSERT_EQ(r->status, 200) << layer;
+    EXPECT_EQ(json::parse(r->body)["type"], "FeatureCollection") << layer;
+  }
+
+  auto render =
+      client->Post("/api/render",
+                   R"({"camera": "orbit:target=300,150,0,azimuth=225,elevation=35,distance=600", "size": "32x24",
+                                 "spp": 1, "overview": true, "minimap": true})",
+                   "application/json");
+  ASSERT_EQ(render->status, 202) << render->body;
+  const json rendered = wait_for_job(*client);
+  ASSERT_EQ(rendered["state"], "done") << rendered.dump();
+  for (const char* image : {"still", "overview", "minimap"}) {
+    auto r = client->Get(std::string("/api/render/") + image + ".png");
+    ASSERT_EQ(r->status, 200) << image;
+    EXPECT_EQ(r->body.substr(1, 3), "PNG") << image;
+  }
+}
+
+// Eight clients poll the status and fetch a layer while the city is generated again; every
+// answer must be whole and right.
+TEST_F(ServeTest, EightClientsDuringAGeneration) {
+  put_small_and_generate();
+  const std::string roads = client->Get("/api/layers/roads.geojson")->body;
+  ASSERT_EQ(client->Post("/api/generate", "", "application/json")->status, 202);
+  std::atomic<int> answers{0}, wrong{0}, while_running{0};
+  std::vector<std::thread> clients;
+  for (int i = 0; i < 8; ++i)
+    clients.emplace_back([&] {
+      httplib::Client c("127.0.0.1", port);
+      c.set_read_timeout(60);
+      for (int round = 0; round < 2000; ++round) {
+        auto s = c.Get("/api/status");
+        auto l = c.Get("/api/layers/roads.geojson");
+        answers += 2;
+        if (!s || s->status != 200 || !l || l->status != 200) {
+          ++wrong;
+          return;
+        }
+        const json status = json::parse(s->body, nullptr, false);
+        // The same sketch and seed give the same layer, byte for byte (docs/design.md, Determinism).
+        if (status.is_discarded() || (status["state"] != "running" && status["state"] != "done") || l->body != roads)
+          ++wrong;
+        if (status["state"] != "running") return;
+        ++while_running;
+      }
+    });
+  for (std::thread& t : clients) t.join();
+  EXPECT_EQ(wrong, 0) << "of " << answers << " answers";
+  EXPECT_GT(while_running, 0);
+  EXPECT_EQ(wait_for_job(*client)["state"], "done");
+}
+
+// Event streams hold a request thread each; past the cap they are refused and the API answers.
+TEST_F(ServeTest, EventStreamsAreCapped) {
+  std::atomic<int> open{0}, refused{0};
+  std::vector<std::unique_ptr<httplib::Client>> clients;
+  std::vector<std::thread> streams;
+  for (int i = 0; i < 18; ++i) {
+    clients.push_back(std::make_unique<httplib::Client>("127.0.0.1", port));
+    streams.emplace_back([&, c = clients.back().get()] {
+      c->Get(
+          "/api/events",
+          [&](const httplib::Response& r) {
+            ++(r.status == 200 ? open : refused);
+            return true;
+          },
+          [](const char*, std::size_t) { return true; });
+    });
+  }
+  for (int i = 0; i < 500 && open + refused < 18; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  EXPECT_EQ(open, 16);
+  EXPECT_EQ(refused, 2);
+  EXPECT_EQ(client->Get("/api/status")->status, 200);
+  for (auto& c : clients) c->stop();
+  for (std::thread& t : streams) t.join();
+}
+
+TEST_F(ServeTest, HeightmapUploadPointsTheSketchAtIt) {
+  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+  EXPECT_EQ(client->Get("/api/heightmap.png")->status, 404);
+  auto junk = client->Put("/api/heightmap", "not an image", "image/png");
+  EXPECT_EQ(junk->status, 400);
+  write_heightmap(dir / "upload.png");
+  auto r = client->Put("/api/heightmap?height=0,40", read(dir / "upload.png"), "image/png");
+  ASSERT_EQ(r->status, 200) << r->body;
+  const json sketch = json::parse(client->Get("/api/sketch")->body);
+  EXPECT_EQ(sketch["exacity"]["terrain"]["heightmap"], "heightmap.png");
+  EXPECT_EQ(sketch["exacity"]["terrain"]["bounds"], json::parse("[-50, 0, 650, 300]"));
+  EXPECT_EQ(sketch["exacity"]["terrain"]["height"], json::parse("[0, 40]"));
+  EXPECT_EQ(read(work() / "heightmap.png"), read(dir / "upload.png"));
+  auto preview = client->Get("/api/heightmap.png");
+  ASSERT_EQ(preview->status, 200);
+  EXPECT_EQ(preview->body.substr(1, 3), "PNG");
+}
+
+// Stopping the server cancels its generation at the next stage and leaves no half-written city.
+TEST_F(ServeTest, StopCancelsTheRunningJob) {
+  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+  ASSERT_EQ(client->Post("/api/generate", "", "application/json")->status, 202);
+  server->stop();
+  server->finish_jobs();
+  EXPECT_FALSE(fs::exists(work() / "city"));
+  for (const auto& entry : fs::directory_iterator(work()))
+    EXPECT_EQ(entry.path().filename().string().find(".city.partial"), std::string::npos) << entry.path();
+}
+
+// `exacity serve ARGS` as a child process, its stdout and stderr into `log`.
+pid_t start_program(const std::vector<std::string>& args, const fs::path& log) {
+  // Everything the child needs is made before fork: between fork and exec a child of a
+  // threaded process may only make async-signal-safe calls (no malloc, no stdio).
+  std::vector<char*> argv{const_cast<char*>(EXACITY_BINARY)};
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  const std::string log_file = log.string();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int out = open(log_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(out, STDOUT_FILENO);
+    dup2(out, STDERR_FILENO);
+    execv(EXACITY_BINARY, argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+// The port the program says it serves on; 0 when it has not said so within 30 s.
+int served_port(const fs::path& log) {
+  for (int i = 0; i < 300; ++i) {
+    const std::string text = read(log);
+    const auto at = text.find("serving http://127.0.0.1:");
+    if (at != std::string::npos) return std::atoi(text.c_str() + at + 25);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return 0;
+}
+
+int exit_code(pid_t pid) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(ServeCommandTest, ImportsTheSketchWithItsHeightmapAndStopsOnSigterm) {
+  const fs::path dir = testing_util::temp_dir("serve_command");
+  fs::copy_file(cli_util::kSource / "examples" / "valley.png", dir / "hills.png");
+  write(dir / "in.geojson", sketch_with(R"({"seed": 3, "terrain": {"heightmap": "hills.png", "bounds": [0, 0, 600, 300],
+                                            "height": [0, 40]}})"));
+  const pid_t pid = start_program(
+      {"serve", (dir / "in.geojson").string(), "--port", "0", "--work", (dir / "work").string()}, dir / "log.txt");
+  const int port = served_port(dir / "log.txt");
+  ASSERT_GT(port, 0) << read(dir / "log.txt");
+  httplib::Client c("127.0.0.1", port);
+  const json sketch = json::parse(c.Get("/api/sketch")->body);
+  EXPECT_EQ(sketch["exacity"]["terrain"]["heightmap"], "heightmap.png");
+  EXPECT_EQ(read(dir / "work" / "heightmap.png"), read(dir / "hills.png"));
+  EXPECT_EQ(c.Get("/api/heightmap.png")->status, 200);
+  kill(pid, SIGTERM);
+  EXPECT_EQ(exit_code(pid), 128 + SIGTERM) << read(dir / "log.txt");
+}
+
+TEST(ServeCommandTest, ImportsAModelLibrary) {
+  const fs::path dir = testing_util::temp_dir("serve_command_models");
+  const pid_t pid = start_program({"serve", (cli_util::kSource / "examples" / "hillside.geojson").string(), "--port",
+                                   "0", "--work", (dir / "work").string()},
+                                  dir / "log.txt");
+  const int port = served_port(dir / "log.txt");
+  ASSERT_GT(port, 0) << read(dir / "log.txt");
+  httplib::Client c("127.0.0.1", port);
+  EXPECT_EQ(json::parse(c.Get("/api/sketch")->body)["exacity"]["models"], "models/library.json");
+  for (const char* name : {"library.json", "house_gabled.obj", "library.mtl", "street_lamp.obj"})
+    EXPECT_TRUE(fs::is_regular_file(dir / "work" / "models" / name)) << name;
+  kill(pid, SIGTERM);
+  EXPECT_EQ(exit_code(pid), 128 + SIGTERM) << read(dir / "log.txt");
+}
+
+TEST(ServeCommandTest, RefusesABadSketchAndABusyPort) {
+  const fs::path dir = testing_util::temp_dir("serve_command_bad");
+  write(dir / "bad.geojson", R"({"type": "FeatureCollection", "features": []})");
+  auto bad = cli_util::run("serve " + (dir / "bad.geojson").string() + " --port 0 --work " + (dir / "work").string());
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.out.find("exacity: error: " + cli_message(read(dir / "bad.geojson"), dir / "bad.geojson")),
+            std::string::npos)
+      << bad.out;
+  // A port in use is named, and the program stops.
+  const pid_t first = start_program({"serve", "--port", "0", "--work", (dir / "work").string()}, dir / "log.txt");
+  const int port = served_port(dir / "log.txt");
+  ASSERT_GT(port, 0) << read(dir / "log.txt");
+  // Bounded: a server that took the port anyway would otherwise serve on.
+  auto busy = cli_util::shell("timeout 30 " + std::string(EXACITY_BINARY) + " serve --port " + std::to_string(port) +
+                              " --work " + (dir / "work2").string());
+  EXPECT_EQ(busy.code, 2) << busy.out;
+  EXPECT_NE(busy.out.find("cannot listen on 127.0.0.1:" + std::to_string(port)), std::string::npos) << busy.out;
+  kill(first, SIGTERM);
+  EXPECT_EQ(exit_code(first), 128 + SIGTERM);
+}
+
+TEST(JobRunnerTest, OneJobAtATimeReportedAndCancellable) {
+  JobRunner runner;
+  std::promise<void> go;
+  std::shared_future<void> released = go.get_future().share();
+  ASSERT_TRUE(runner.start("generate", [released](JobRunner::Progress& p) {
+    p.stage(1, 2, "terrain");
+    released.wait();
+    for (int i = 0; i < 100000; ++i) {
+      p.stage(2, 2, "roads");
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+  }));
+  EXPECT_FALSE(runner.start("render", [](JobRunner::Progress&) {}));
+  EXPECT_EQ(runner.status().state, JobState::Running);
+  EXPECT_EQ(runner.status().job, "generate");
+  for (int i = 0; i < 1000 && runner.status().stage != "terrain"; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  runner.cancel();
+  go.set_value();
+  for (int i = 0; i < 1000 && runner.status().state == JobState::Running; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_EQ(runner.status().state, JobState::Failed);
+  EXPECT_EQ(runner.status().error, "cancelled");
+  bool saw_stage = false;
+  for (const auto& e : runner.events_after(0, std::chrono::milliseconds(0)))
+    saw_stage |= e.name == "stage" && e.data["stage"] == "terrain";
+  EXPECT_TRUE(saw_stage);
+  // A job that throws fails with its message; the next one may start.
+  ASSERT_TRUE(runner.start("render", [](JobRunner::Progress&) { throw exacity::UserError("bad camera"); }));
+  for (int i = 0; i < 1000 && runner.status().state == JobState::Running; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_EQ(runner.status().state, JobState::Failed);
+  EXPECT_EQ(runner.status().to_json()["error"], "bad camera");
+}
+
+}  // namespace

@@ -1,0 +1,44 @@
+// The server's JSON API (README, exacity serve). Refusals come back as {ok: false, message}
+// holding the server's one-line message, which is the CLI's for a sketch.
+
+async function answer(response) {
+  const text = await response.text();
+  if (!response.ok) return {ok: false, status: response.status, message: text};
+  return {ok: true, status: response.status, text};
+}
+
+export async function getSketch() {
+  const r = await answer(await fetch('/api/sketch', {cache: 'no-store'}));
+  return r.ok ? JSON.parse(r.text) : null;
+}
+
+export async function putSketch(doc) {
+  return answer(await fetch('/api/sketch', {method: 'PUT', headers: {'Content-Type': 'application/geo+json'},
+                                            body: JSON.stringify(doc, null, 1)}));
+}
+
+export async function putHeightmap(file) {
+  return answer(await fetch('/api/heightmap', {method: 'PUT', body: await file.arrayBuffer()}));
+}
+
+export async function startGenerate() {
+  return answer(await fetch('/api/generate', {method: 'POST'}));
+}
+
+export async function startRender(request) {
+  return answer(await fetch('/api/render', {method: 'POST', headers: {'Content-Type': 'application/json'},
+                                            body: JSON.stringify(request)}));
+}
+
+export async function getJson(url) {
+  const r = await answer(await fetch(url, {cache: 'no-store'}));
+  return r.ok ? JSON.parse(r.text) : null;
+}
+
+// The job events (stage, progress, state) as server-sent events.
+export function listen(handlers) {
+  const events = new EventSource('/api/events');
+  for (const name of ['stage', 'progress', 'state'])
+    events.addEventListener(name, e => handlers[name] && handlers[name](JSON.parse(e.data)));
+  return events;
+}

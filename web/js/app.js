@@ -1,0 +1,256 @@
+// exacity serve's page: the sketch editor, generation with its progress, the generated layers
+// and the 3D view (README, exacity serve). Every sketch edit is sent to the server, which
+// checks it as the CLI does; a refusal shows the CLI's message and keeps the last good sketch.
+import * as api from './api.js';
+import {SketchHistory} from './history.js';
+import {SketchMap} from './sketch_map.js';
+import {SettingsPanel} from './settings_panel.js';
+import {CityLayers} from './city_layers.js';
+
+const $ = id => document.getElementById(id);
+const history = new SketchHistory();
+let explore = null;  // made when first shown: three.js loads only then
+let cityLayers = null;
+let lastGood = null;
+
+function say(text, error = false) {
+  $('message').textContent = text;
+  $('message').className = error ? 'error' : '';
+}
+
+// Sends the sketch; on refusal, says why. Resolves to whether the server took it. One at a
+// time, in order: two edits in flight on two connections could otherwise land the older last.
+let sending = Promise.resolve();
+function send(doc) {
+  const sent = sending.then(() => sendNow(doc));
+  sending = sent.catch(() => {});
+  return sent;
+}
+
+async function sendNow(doc) {
+  const r = await api.putSketch(doc);
+  if (!r.ok) {
+    say(r.message, true);
+    return false;
+  }
+  lastGood = JSON.parse(r.text);
+  say('Saved.');
+  return true;
+}
+
+const map = new SketchMap('map', {
+  edited: () => recordEdit(),
+  selected: f => panel.select(f),
+});
+const panel = new SettingsPanel({
+  apply: async exacity => {
+    const doc = map.sketch();
+    doc.exacity = exacity;
+    if (!(await send(doc))) return false;
+    map.setSettings(exacity);
+    history.push(JSON.stringify(map.sketch()));
+    panel.show(exacity);
+    return true;
+  },
+  featureEdited: () => recordEdit(),
+});
+
+function recordEdit() {
+  const doc = map.sketch();
+  document.body.dataset.features = doc.features.length;
+  history.push(JSON.stringify(doc));
+  updateButtons();
+  // An empty sketch is one the CLI refuses too: say so, without sending.
+  if (!doc.features.length) return say('Draw a zone to start.');
+  send(doc);
+}
+
+function restore(text) {
+  if (text === null) return;
+  const doc = JSON.parse(text);
+  map.load(doc, false);
+  document.body.dataset.features = doc.features.length;
+  panel.show(doc.exacity);
+  updateButtons();
+  if (doc.features.length) send(doc);
+}
+
+function updateButtons() {
+  $('undo').disabled = !history.canUndo();
+  $('redo').disabled = !history.canRedo();
+}
+
+function setTool(tool) {
+  for (const b of document.querySelectorAll('[data-tool]')) b.classList.toggle('active', b.dataset.tool === tool);
+  map.setTool(tool);
+}
+
+for (const b of document.querySelectorAll('[data-tool]')) b.addEventListener('click', () => setTool(b.dataset.tool));
+$('undo').addEventListener('click', () => restore(history.undo()));
+$('redo').addEventListener('click', () => restore(history.redo()));
+$('delete').addEventListener('click', () => map.deleteSelected());
+
+document.addEventListener('keydown', e => {
+  if (e.target.closest('input, textarea, select')) return;
+  const ctrl = e.ctrlKey || e.metaKey;
+  if (e.key === 'Enter') map.finishDrawing();
+  else if (e.key === 'Escape') map.abortDrawing();
+  else if (e.key === 'Delete' || e.key === 'Backspace') map.deleteSelected() && e.preventDefault();
+  else if (ctrl && e.key.toLowerCase() === 'z' && !e.shiftKey) restore(history.undo());
+  else if (ctrl && (e.key.toLowerCase() === 'y' || (e.key.toLowerCase() === 'z' && e.shiftKey))) restore(history.redo());
+  else return;
+  e.preventDefault();
+});
+
+// Open: a GeoJSON sketch from this computer, shown once the server has taken it.
+$('open').addEventListener('click', () => $('open-file').click());
+$('open-file').addEventListener('change', async e => {
+  const file = e.target.files[0];
+  e.target.value = '';
+  if (!file) return;
+  let doc;
+  try {
+    doc = JSON.parse(await file.text());
+  } catch (x) {
+    return say(`${file.name}: not JSON (${x.message})`, true);
+  }
+  if (!(await send(doc))) return;
+  map.load(lastGood, true);
+  document.body.dataset.features = lastGood.features.length;
+  panel.show(lastGood.exacity);
+  history.push(JSON.stringify(map.sketch()));
+  updateButtons();
+});
+
+// Save: the sketch as the server holds it, downloaded.
+$('save').addEventListener('click', async () => {
+  const doc = map.sketch();
+  if (doc.features.length && !(await send(doc))) return;
+  const link = document.createElement('a');
+  link.href = URL.createObjectURL(new Blob([JSON.stringify(doc, null, 1)], {type: 'application/geo+json'}));
+  link.download = 'sketch.geojson';
+  link.click();
+  URL.revokeObjectURL(link.href);
+});
+
+$('heightmap').addEventListener('click', () => $('heightmap-file').click());
+$('heightmap-file').addEventListener('change', async e => {
+  const file = e.target.files[0];
+  e.target.value = '';
+  if (!file) return;
+  const r = await api.putHeightmap(file);
+  if (!r.ok) return say(r.message, true);
+  lastGood = JSON.parse(r.text);
+  map.setSettings(lastGood.exacity);
+  map.showHeightmap();
+  panel.show(lastGood.exacity);
+  history.push(JSON.stringify(map.sketch()));
+  updateButtons();
+  say(`Heightmap ${file.name} loaded.`);
+});
+
+// Generate, with a progress bar driven by the server's stage events.
+$('generate').addEventListener('click', async () => {
+  const r = await api.startGenerate();
+  if (!r.ok) return say(r.message, true);
+  say('Generating…');
+});
+
+function showProgress(event) {
+  if (event.count) $('progress').value = (event.index - 1 + (event.fraction || 0)) / event.count;
+  $('stage').textContent = `${event.index}/${event.count} ${event.stage}`;
+}
+
+async function showCity() {
+  cityLayers = cityLayers || new CityLayers(map.city);
+  const report = await cityLayers.load();
+  map.layer.setOpacity(0.5);  // the sketch stays editable over the city, without hiding its streets
+  if (explore) await loadExplore();
+  return report;
+}
+
+function cityBounds() {
+  const zones = cityLayers?.data.zones;
+  const box = [Infinity, Infinity, -Infinity, -Infinity];
+  const grow = c => (typeof c[0] === 'number' ? (box[0] = Math.min(box[0], c[0]), box[1] = Math.min(box[1], c[1]),
+                     box[2] = Math.max(box[2], c[0]), box[3] = Math.max(box[3], c[1])) : c.forEach(grow));
+  for (const f of zones?.features || []) grow(f.geometry.coordinates);
+  return Number.isFinite(box[0]) ? box : [0, 0, 100, 100];
+}
+
+async function loadExplore() {
+  if (!cityLayers) return;
+  await explore.load(cityBounds(), cityLayers.data);
+}
+
+let stageEvent = {index: 0, count: 1, stage: ''};
+// Each (re)connection of the event stream starts with the status as it is; only a job seen
+// running and then ending changes the page.
+let lastState = null;
+api.listen({
+  stage: e => { stageEvent = e; showProgress(e); },
+  progress: e => showProgress({...stageEvent, fraction: e.fraction, stage: e.stage}),
+  state: async s => {
+    const ended = lastState === 'running' && s.state !== 'running';
+    lastState = s.state;
+    document.body.dataset.job = s.state;
+    $('generate').disabled = s.state === 'running';
+    $('render-view').disabled = s.state === 'running';
+    if (!ended) return;
+    if (s.state === 'failed') say(`${s.job} failed: ${s.error}`, true);
+    if (s.state !== 'done') return;
+    $('progress').value = 1;
+    $('stage').textContent = `${s.job} done`;
+    if (s.job === 'generate') {
+      await showCity();
+      say('City generated.');
+      document.body.dataset.city = 'shown';
+    } else if (s.job === 'render') {
+      $('render-image').src = '/api/render/still.png?v=' + Date.now();
+      $('render-result').hidden = false;
+      say('Rendered.');
+    }
+  },
+});
+
+// Map and Explore.
+for (const b of document.querySelectorAll('[data-view]'))
+  b.addEventListener('click', async () => {
+    const view = b.dataset.view;
+    for (const o of document.querySelectorAll('[data-view]')) o.classList.toggle('active', o === b);
+    $('map-view').hidden = view !== 'map';
+    $('explore-view').hidden = view !== 'explore';
+    if (view === 'map') return map.map.updateSize();
+    if (!explore) {
+      const {ExploreView} = await import('./explore.js');
+      explore = new ExploreView($('three'), $('minimap'));
+      window.exacityExplore = explore;  // for the browser test, which orbits it
+      await loadExplore();
+    }
+    explore.resize();
+  });
+
+$('render-view').addEventListener('click', async () => {
+  if (!explore) return;
+  const w = explore.container.clientWidth, h = explore.container.clientHeight;
+  const scale = Math.min(1, 480 / w);
+  const r = await api.startRender({camera: explore.spec(), size: `${Math.max(8, Math.round(w * scale))}x${Math.max(8, Math.round(h * scale))}`,
+                                   spp: Number(new URLSearchParams(location.search).get('spp') || 8), fov: 45, minimap: true});
+  if (!r.ok) return say(r.message, true);
+  say('Rendering…');
+});
+
+// Start: the server's sketch, and its city if one is there.
+(async () => {
+  const doc = await api.getSketch();
+  map.load(doc, true);
+  document.body.dataset.features = doc.features.length;
+  panel.show(doc.exacity);
+  history.push(JSON.stringify(map.sketch()));
+  updateButtons();
+  if ((await api.getJson('/api/status')).city) {
+    await showCity();
+    document.body.dataset.city = 'shown';
+  }
+  document.body.dataset.ready = 'yes';
+})();

@@ -1,0 +1,84 @@
+// The generated city's layers drawn as vector layers over the sketch, and the report's
+// figures beside them (README, Outputs).
+import {zoneColours, rgba} from './colours.js';
+import {metres} from './sketch_map.js';
+
+const ol = window.ol;
+const geojson = new ol.format.GeoJSON({dataProjection: metres, featureProjection: metres});
+
+const fill = c => new ol.style.Fill({color: c});
+const stroke = (c, width) => new ol.style.Stroke({color: c, width});
+// In drawing order, bottom first; colours as on the SVG map (generate/city/palette.h).
+const layerStyles = {
+  zones: f => new ol.style.Style({fill: fill(rgba(zoneColours[f.get('zone')] || [200, 200, 200], 0.35))}),
+  water: () => new ol.style.Style({fill: fill('#5b9bd5')}),
+  blocks: f => new ol.style.Style({fill: f.get('green') ? fill('#a8d38d') : undefined, stroke: stroke('#0004', 1)}),
+  lots: () => new ol.style.Style({fill: fill('#fbf3e680'), stroke: stroke('#8a6d4b', 0.5)}),
+  road_areas: f => new ol.style.Style({fill: fill(f.get('surface') === 'sidewalk' ? '#c9c3b8' : '#6b6b6b')}),
+  roads: () => new ol.style.Style({stroke: new ol.style.Stroke({color: '#fff', width: 1, lineDash: [4, 4]})}),
+  buildings: () => new ol.style.Style({fill: fill('#9a8672'), stroke: stroke('#5e4f40', 0.5)}),
+};
+
+export class CityLayers {
+  constructor(group) {
+    this.group = group;
+    this.layers = {};
+    this.data = {};
+  }
+
+  // Fetches every layer and the report; resolves to the report.
+  async load() {
+    const names = Object.keys(layerStyles);
+    const docs = await Promise.all(names.map(n => fetch(`/api/layers/${n}.geojson`, {cache: 'no-store'})
+                                                 .then(r => (r.ok ? r.json() : null))));
+    this.group.getLayers().clear();
+    const toggles = document.getElementById('layer-toggles');
+    toggles.innerHTML = '';
+    names.forEach((name, i) => {
+      if (!docs[i]) return;
+      this.data[name] = docs[i];
+      const layer = new ol.layer.Vector({source: new ol.source.Vector({features: geojson.readFeatures(docs[i])}),
+                                         style: layerStyles[name], properties: {name}});
+      this.layers[name] = layer;
+      this.group.getLayers().push(layer);
+      const label = document.createElement('label');
+      label.innerHTML = `<input type="checkbox" checked data-layer="${name}"> ${name.replace('_', ' ')} ` +
+                        `(${docs[i].features.length})`;
+      label.querySelector('input').addEventListener('change', e => layer.setVisible(e.target.checked));
+      toggles.appendChild(label);
+    });
+    const report = await fetch('/api/report', {cache: 'no-store'}).then(r => (r.ok ? r.json() : null));
+    this.showReport(report);
+    document.getElementById('layers-panel').hidden = false;
+    return report;
+  }
+
+  showReport(report) {
+    const box = document.getElementById('report');
+    box.innerHTML = '';
+    if (!report) return;
+    const rows = Object.entries(report.counts || {}).filter(([, v]) => typeof v === "number").map(([k, v]) => [k.replace(/_/g, ' '), v]);
+    const seconds = Object.values(report.timings_s || {}).reduce((a, b) => a + (typeof b === 'number' ? b : 0), 0);
+    rows.push(['seconds', seconds.toFixed(1)]);
+    if (report.validation) rows.push(['valid', String(report.validation.valid ?? report.validation.ok ?? '')]);
+    for (const [k, v] of rows) {
+      const dt = document.createElement('dt'), dd = document.createElement('dd');
+      dt.textContent = k;
+      dd.textContent = typeof v === 'number' ? v.toLocaleString('en') : v;
+      box.append(dt, dd);
+    }
+    // The notes the CLI prints after a generation (README, Outputs: report.json).
+    const notes = document.getElementById('report-notes');
+    notes.innerHTML = '';
+    for (const z of report.empty_zones || []) {
+      const li = document.createElement('li');
+      li.textContent = `${z.grid_cell || `features[${z.feature}]`} (${z.zone}) got no lots: ${z.why}`;
+      notes.appendChild(li);
+    }
+    for (const p of report.validation?.problems || []) {
+      const li = document.createElement('li');
+      li.textContent = `invalid output: ${p}`;
+      notes.appendChild(li);
+    }
+  }
+}

@@ -1,0 +1,204 @@
+// Explore: city.glb in three.js under seed 000's camera (3.3.2), a spherical camera bound to
+// the upper hemisphere around a target that pans over the ground, with a minimap of the
+// camera and the ground it sees (3.3.4); "Render this view" path-traces the same camera.
+import * as THREE from 'three';
+import {GLTFLoader} from 'three/addons/loaders/GLTFLoader.js';
+import {zoneColours, rgba} from './colours.js';
+
+const degree = Math.PI / 180;
+// glTF is y up with z south (generate/export/gltf_export.cpp); the city is x east, y north, z up.
+const toThree = (x, y, z) => new THREE.Vector3(x, z, -y);
+
+export class ExploreView {
+  constructor(container, minimap) {
+    this.container = container;
+    this.minimap = minimap;
+    this.renderer = new THREE.WebGLRenderer({antialias: true});
+    this.renderer.setPixelRatio(window.devicePixelRatio);
+    container.appendChild(this.renderer.domElement);
+    this.scene = new THREE.Scene();
+    this.scene.background = new THREE.Color(0xb8d4ee);
+    this.scene.add(new THREE.HemisphereLight(0xdfefff, 0x807060, 1.6));
+    const sun = new THREE.DirectionalLight(0xffffff, 2.2);
+    sun.position.set(-0.6, 0.7, 0.4);
+    this.scene.add(sun);
+    this.camera = new THREE.PerspectiveCamera(45, 1, 1, 200000);
+    // The orbit, in the city's coordinates (README, Rendering: orbit:target=..,azimuth=..).
+    this.orbit = {target: [0, 0, 0], azimuth: 225, elevation: 35, distance: 800};
+    this.bounds = [0, 0, 1, 1];
+    this.city = null;
+    this.layers = null;
+    this.bindPointer();
+    new ResizeObserver(() => this.resize()).observe(container);
+  }
+
+  // Loads city.glb and puts the camera over the city's `bounds` ([min_x, min_y, max_x, max_y]).
+  async load(bounds, layers) {
+    this.bounds = bounds;
+    this.layers = layers;
+    const gltf = await new GLTFLoader().loadAsync('/api/city.glb?v=' + Date.now());
+    if (this.city) this.scene.remove(this.city);
+    this.city = gltf.scene;
+    this.scene.add(this.city);
+    const [x0, y0, x1, y1] = bounds;
+    const [cx, cy] = [(x0 + x1) / 2, (y0 + y1) / 2];
+    this.orbit = {target: [cx, cy, this.groundHeight(cx, cy)], azimuth: 225, elevation: 35,
+                  distance: 0.75 * Math.hypot(x1 - x0, y1 - y0)};
+    this.update();
+  }
+
+  // The city's surface under (x, y), so the target stands on a heightmap's ground, not under it.
+  groundHeight(x, y) {
+    const down = new THREE.Raycaster(toThree(x, y, 1e5), new THREE.Vector3(0, -1, 0));
+    const hit = down.intersectObject(this.city, true)[0];
+    return hit ? Math.round(hit.point.y * 100) / 100 : 0;
+  }
+
+  // Seed 000, 3.3.2: azimuth any way round, elevation kept in the upper hemisphere.
+  setOrbit(change) {
+    const o = {...this.orbit, ...change};
+    o.elevation = Math.min(90, Math.max(1, o.elevation));
+    o.azimuth = ((o.azimuth % 360) + 360) % 360;
+    o.distance = Math.min(1e5, Math.max(5, o.distance));
+    this.orbit = o;
+    this.update();
+  }
+
+  spec() {
+    const f = v => Number(v.toFixed(2));
+    const [x, y, z] = this.orbit.target;
+    return `orbit:target=${f(x)},${f(y)},${f(z)},azimuth=${f(this.orbit.azimuth)},` +
+           `elevation=${f(this.orbit.elevation)},distance=${f(this.orbit.distance)}`;
+  }
+
+  // The camera's place, as Exacity's renderer puts it (render/camera.cpp, Camera::orbit).
+  from() {
+    const {target: [x, y, z], azimuth, elevation, distance} = this.orbit;
+    const az = azimuth * degree, el = elevation * degree;
+    return [x + distance * Math.cos(el) * Math.cos(az), y + distance * Math.cos(el) * Math.sin(az),
+            z + distance * Math.sin(el)];
+  }
+
+  update() {
+    const [fx, fy, fz] = this.from(), [tx, ty, tz] = this.orbit.target;
+    this.camera.position.copy(toThree(fx, fy, fz));
+    // Looking straight down, north stays up the screen.
+    this.camera.up.set(0, 1, 0);
+    if (this.orbit.elevation > 89.9) this.camera.up.set(0, 0, -1);
+    this.camera.lookAt(toThree(tx, ty, tz));
+    this.camera.near = Math.max(0.5, this.orbit.distance / 1000);
+    this.camera.far = this.orbit.distance * 50 + 10000;
+    this.camera.updateProjectionMatrix();
+    this.renderer.render(this.scene, this.camera);
+    this.drawMinimap();
+    document.getElementById('camera-spec').textContent = this.spec();
+  }
+
+  resize() {
+    const w = this.container.clientWidth, h = this.container.clientHeight;
+    if (!w || !h) return;
+    this.renderer.setSize(w, h);
+    this.camera.aspect = w / h;
+    this.update();
+  }
+
+  bindPointer() {
+    const el = this.renderer.domElement;
+    el.addEventListener('contextmenu', e => e.preventDefault());
+    let last = null;
+    el.addEventListener('pointerdown', e => {
+      last = {x: e.clientX, y: e.clientY, pan: e.button === 2 || e.shiftKey};
+      el.setPointerCapture(e.pointerId);
+    });
+    // A pan ends with the target set on the ground there (one ray into the city, not one per move).
+    el.addEventListener('pointerup', () => {
+      if (last && last.pan && this.city) {
+        const [x, y] = this.orbit.target;
+        this.setOrbit({target: [x, y, this.groundHeight(x, y)]});
+      }
+      last = null;
+    });
+    el.addEventListener('pointermove', e => {
+      if (!last) return;
+      const dx = e.clientX - last.x, dy = e.clientY - last.y;
+      last.x = e.clientX, last.y = e.clientY;
+      if (!last.pan) return this.setOrbit({azimuth: this.orbit.azimuth - dx * 0.4, elevation: this.orbit.elevation + dy * 0.3});
+      // Pan: the target slides over the ground, as far as the pointer moved at its distance.
+      const scale = this.orbit.distance * 2 * Math.tan(this.camera.fov * degree / 2) / el.clientHeight;
+      const az = this.orbit.azimuth * degree;
+      const right = [-Math.sin(az), Math.cos(az)], back = [Math.cos(az), Math.sin(az)];
+      const [x, y, z] = this.orbit.target;
+      this.setOrbit({target: [x - (dx * right[0] + dy * back[0]) * scale, y - (dx * right[1] + dy * back[1]) * scale, z]});
+    });
+    el.addEventListener('wheel', e => {
+      e.preventDefault();
+      this.setOrbit({distance: this.orbit.distance * Math.pow(1.0015, e.deltaY)});
+    }, {passive: false});
+  }
+
+  // Where the view's corner rays meet the ground (z = 0), for the minimap; an upper ray at or
+  // above the horizon is replaced by the lower ray on its side followed to the city's edge
+  // (seed 000, 3.3.2's special case; render/camera.h, ground_footprint).
+  groundFootprint() {
+    const corners = [[-1, -1], [1, -1], [1, 1], [-1, 1]];
+    const origin = this.camera.position;
+    const hits = corners.map(([sx, sy]) => {
+      const d = new THREE.Vector3(sx, sy, 0.5).unproject(this.camera).sub(origin).normalize();
+      return d.y < -1e-6 ? origin.clone().addScaledVector(d, -origin.y / d.y) : null;
+    });
+    const [x0, y0, x1, y1] = this.bounds;
+    const reach = 2 * Math.hypot(x1 - x0, y1 - y0) + this.orbit.distance;
+    for (const [upper, lower] of [[3, 0], [2, 1]]) {
+      if (hits[upper] || !hits[lower]) continue;
+      const away = hits[lower].clone().sub(new THREE.Vector3(origin.x, 0, origin.z)).setY(0).normalize();
+      hits[upper] = hits[lower].clone().addScaledVector(away, reach);
+    }
+    return hits.filter(Boolean).map(p => [p.x, -p.z]);
+  }
+
+  drawMinimap() {
+    const c = this.minimap.getContext('2d');
+    const [x0, y0, x1, y1] = this.bounds;
+    const size = this.minimap.width, pad = 8;
+    const s = (size - 2 * pad) / Math.max(x1 - x0, y1 - y0);
+    const px = ([x, y]) => [pad + (x - x0) * s, size - pad - (y - y0) * s];
+    c.fillStyle = '#f4f4f0';
+    c.fillRect(0, 0, size, size);
+    for (const [name, colour] of [['zones', null], ['water', '#5b9bd5'], ['road_areas', '#6b6b6b']]) {
+      const doc = this.layers?.[name];
+      if (!doc) continue;
+      for (const f of doc.features) {
+        c.fillStyle = colour || rgba(zoneColours[f.properties.zone] || [200, 200, 200], 0.6);
+        const polys = f.geometry.type === 'Polygon' ? [f.geometry.coordinates] :
+                      f.geometry.type === 'MultiPolygon' ? f.geometry.coordinates : [];
+        for (const poly of polys) {
+          c.beginPath();
+          for (const ring of poly) ring.forEach((p, i) => (i ? c.lineTo(...px(p)) : c.moveTo(...px(p))));
+          c.fill('evenodd');
+        }
+      }
+    }
+    const ground = this.groundFootprint();
+    if (ground.length >= 3) {
+      c.beginPath();
+      ground.forEach((p, i) => (i ? c.lineTo(...px(p)) : c.moveTo(...px(p))));
+      c.closePath();
+      c.fillStyle = '#ffd40055';
+      c.strokeStyle = '#e0b000';
+      c.lineWidth = 2;
+      c.fill();
+      c.stroke();
+    }
+    const [fx, fy] = this.from(), [tx, ty] = this.orbit.target;
+    const [cx, cy] = px([fx, fy]), [ax, ay] = px([tx, ty]);
+    c.strokeStyle = '#d00';
+    c.beginPath();
+    c.moveTo(cx, cy);
+    c.lineTo(cx + (ax - cx) * 0.25, cy + (ay - cy) * 0.25);
+    c.stroke();
+    c.fillStyle = '#d00';
+    c.beginPath();
+    c.arc(cx, cy, 4, 0, 2 * Math.PI);
+    c.fill();
+  }
+}

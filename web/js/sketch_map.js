@@ -1,0 +1,184 @@
+// The sketch on a 2D map in metres (seed 000, 3.1.1): zones drawn by clicking vertices, roads
+// as polylines with a width, selected by click, moved by Ctrl-drag, deleted with Del; the
+// heightmap under them in grey with its water in blue, a grid and a scale bar.
+import {zoneColours, roadColours, defaultWidths, rgba} from './colours.js';
+
+const ol = window.ol;
+
+// Sketch coordinates are metres, x east and y north (README, The sketch): a plain metric plane.
+export const metres = new ol.proj.Projection({code: 'exacity-metres', units: 'm', extent: [-1e7, -1e7, 1e7, 1e7]});
+const geojson = new ol.format.GeoJSON({dataProjection: metres, featureProjection: metres});
+const zoneTypes = Object.keys(zoneColours);
+const roadClasses = Object.keys(roadColours);
+const defaults = (ns) => (typeof ns === 'function' ? ns : ns.defaults);
+
+function sketchStyle(feature, resolution, selected) {
+  const zone = feature.get('zone'), road = feature.get('road');
+  const styles = [];
+  if (zone) {
+    const c = zoneColours[zone] || [128, 128, 128];
+    styles.push(new ol.style.Style({fill: new ol.style.Fill({color: rgba(c, 0.4)}),
+                                    stroke: new ol.style.Stroke({color: rgba(c, 0.95), width: 2})}));
+  } else if (road) {
+    const width = Math.max(2, (feature.get('width') || defaultWidths[road] || 8) / resolution);
+    styles.push(new ol.style.Style({stroke: new ol.style.Stroke({color: roadColours[road] || '#000', width,
+                                                                 lineCap: 'round', lineJoin: 'round'})}));
+  }
+  if (selected) {
+    styles.unshift(new ol.style.Style({stroke: new ol.style.Stroke({color: '#ffd400', width: zone ? 6 : 10})}));
+    styles.push(new ol.style.Style({
+      image: new ol.style.Circle({radius: 4, fill: new ol.style.Fill({color: '#ffd400'}),
+                                  stroke: new ol.style.Stroke({color: '#000', width: 1})}),
+      geometry: f => {
+        const g = f.getGeometry();
+        const coords = g.getType() === 'Polygon' ? g.getCoordinates().flat() :
+                       g.getType() === 'LineString' ? g.getCoordinates() : [];
+        return new ol.geom.MultiPoint(coords);
+      }}));
+  }
+  return styles;
+}
+
+// Grid lines about a hundred pixels apart, at a round number of metres.
+function gridLines(extent, resolution) {
+  const step = Math.pow(10, Math.ceil(Math.log10(resolution * 100)));
+  const lines = [];
+  const [x0, y0, x1, y1] = extent;
+  for (let x = Math.floor(x0 / step) * step; x <= x1 && lines.length < 400; x += step)
+    lines.push(new ol.Feature(new ol.geom.LineString([[x, y0], [x, y1]])));
+  for (let y = Math.floor(y0 / step) * step; y <= y1 && lines.length < 800; y += step)
+    lines.push(new ol.Feature(new ol.geom.LineString([[x0, y], [x1, y]])));
+  return lines;
+}
+
+export class SketchMap {
+  // `edited` is called after every edit of the drawing; `selected` with the selected feature or null.
+  constructor(target, {edited, selected}) {
+    this.edited = edited;
+    this.onSelected = selected;
+    this.order = 0;
+    this.doc = {type: 'FeatureCollection', features: []};
+    this.source = new ol.source.Vector();
+    this.layer = new ol.layer.Vector({source: this.source, style: (f, r) => sketchStyle(f, r, false)});
+    this.gridSource = new ol.source.Vector();
+    this.grid = new ol.layer.Vector({source: this.gridSource,
+                                     style: new ol.style.Style({stroke: new ol.style.Stroke({color: '#0002', width: 1})})});
+    this.heightmap = new ol.layer.Image({opacity: 0.85});
+    this.city = new ol.layer.Group({layers: []});
+    this.map = new ol.Map({
+      target,
+      layers: [this.heightmap, this.grid, this.city, this.layer],
+      view: new ol.View({projection: metres, center: [0, 0], resolution: 2}),
+      controls: defaults(ol.control.defaults)().extend([new ol.control.ScaleLine({units: 'metric'})]),
+      // A double click closes a zone; it must not zoom too.
+      interactions: defaults(ol.interaction.defaults)({doubleClickZoom: false}),
+    });
+    this.map.on('moveend', () => this.drawGrid());
+
+    // Every click selects (double clicks mean nothing in this mode), without waiting to see
+    // whether a second click follows.
+    this.select = new ol.interaction.Select({layers: [this.layer], hitTolerance: 5, condition: ol.events.condition.click,
+                                             style: (f, r) => sketchStyle(f, r, true)});
+    this.select.on('select', () => this.onSelected(this.selectedFeature()));
+    this.modify = new ol.interaction.Modify({features: this.select.getFeatures()});
+    this.modify.on('modifyend', () => this.edited());
+    // Seed 000, 3.1.1: elements are moved by holding Ctrl and dragging them.
+    this.translate = new ol.interaction.Translate({layers: [this.layer], hitTolerance: 5,
+                                                   condition: e => ol.events.condition.platformModifierKeyOnly(e)});
+    this.translate.on('translateend', () => this.edited());
+    for (const i of [this.select, this.modify, this.translate]) this.map.addInteraction(i);
+    this.snap = new ol.interaction.Snap({source: this.source});
+    this.map.addInteraction(this.snap);
+    this.draw = null;
+    this.setTool('select');
+  }
+
+  // 'select', a zone type or a road class.
+  setTool(tool) {
+    if (this.draw) this.map.removeInteraction(this.draw);
+    this.draw = null;
+    this.tool = tool;
+    const drawing = tool !== 'select';
+    this.select.setActive(!drawing);
+    this.modify.setActive(!drawing);
+    if (drawing) {
+      this.select.getFeatures().clear();
+      this.onSelected(null);
+      const zone = zoneTypes.includes(tool);
+      this.draw = new ol.interaction.Draw({source: this.source, type: zone ? 'Polygon' : 'LineString'});
+      this.draw.on('drawend', e => {
+        const f = e.feature;
+        if (zone) f.set('zone', tool);
+        else f.setProperties({road: tool, width: defaultWidths[tool]});
+        f.exacityOrder = ++this.order;
+        setTimeout(() => this.edited());  // once the feature is in the source
+      });
+      this.map.addInteraction(this.draw);
+      // Snap after Draw, so it sees the pointer first.
+      this.map.removeInteraction(this.snap);
+      this.map.addInteraction(this.snap);
+    }
+  }
+
+  // Enter closes the zone or road being drawn.
+  finishDrawing() { if (this.draw) this.draw.finishDrawing(); }
+  abortDrawing() { if (this.draw) this.draw.abortDrawing(); }
+
+  selectedFeature() {
+    const features = this.select.getFeatures();
+    return features.getLength() === 1 ? features.item(0) : null;
+  }
+
+  deleteSelected() {
+    const features = this.select.getFeatures().getArray().slice();
+    if (!features.length) return false;
+    this.select.getFeatures().clear();
+    for (const f of features) this.source.removeFeature(f);
+    this.onSelected(null);
+    this.edited();
+    return true;
+  }
+
+  // The sketch as GeoJSON: the document's other members kept, features in drawing order
+  // (where zones overlap, the later one wins: README, The sketch).
+  sketch() {
+    const features = this.source.getFeatures().slice().sort((a, b) => a.exacityOrder - b.exacityOrder);
+    const doc = {...this.doc};
+    doc.type = 'FeatureCollection';
+    doc.features = features.map(f => geojson.writeFeatureObject(f, {decimals: 3}));
+    for (const f of doc.features) delete f.id;
+    return doc;
+  }
+
+  // Shows `doc`; `fit` moves the view onto its features.
+  load(doc, fit) {
+    this.select.getFeatures().clear();
+    this.onSelected(null);
+    this.doc = {...doc};
+    delete this.doc.features;
+    this.source.clear();
+    const features = geojson.readFeatures({type: 'FeatureCollection', features: doc.features || []});
+    for (const f of features) f.exacityOrder = ++this.order;
+    this.source.addFeatures(features);
+    this.showHeightmap();
+    if (fit && features.length) this.map.getView().fit(this.source.getExtent(), {padding: [40, 40, 40, 40]});
+    // Clicks find features in the last frame drawn: draw these now, not at the next frame.
+    this.map.renderSync();
+  }
+
+  settings() { return this.doc.exacity || {}; }
+  setSettings(exacity) { this.doc = {...this.doc, exacity}; }
+
+  showHeightmap() {
+    const terrain = this.settings().terrain;
+    if (!terrain || !terrain.bounds) return this.heightmap.setSource(null);
+    this.heightmap.setSource(new ol.source.ImageStatic({
+      url: '/api/heightmap.png?v=' + Date.now(), imageExtent: terrain.bounds, projection: metres}));
+  }
+
+  drawGrid() {
+    const view = this.map.getView();
+    this.gridSource.clear();
+    this.gridSource.addFeatures(gridLines(view.calculateExtent(this.map.getSize()), view.getResolution()));
+  }
+}
