@@ -310,17 +310,6 @@ TEST(Gis, CityOsmReadsBackWithOsmiumAsOneNetworkAndClosedBuildings) {
   EXPECT_EQ(components.size(), 1u);  // one street network: junctions share their nodes
 }
 
-TEST(Gis, ARealExtractGeneratesAndValidates) {
-  const fs::path extract = cli_util::kSource / ".." / "shared" / "data" / "osm" / "kotka_pyrosm_test.osm";
-  if (!fs::exists(extract)) GTEST_SKIP() << extract << " is not here (../shared/data holds real data beside the repository)";
-  const fs::path out = testing_util::temp_dir("gis-kotka") / "out";
-  const GenerateResult result = generate(extract, out);
-  EXPECT_TRUE(result.valid) << result.report["validation"].dump();
-  EXPECT_GT(result.report["counts"]["buildings"].get<int>(), 500);
-  EXPECT_EQ(result.report["exports"]["city_osm"], "city.osm");
-  EXPECT_EQ(cli_util::shell(cli_util::geos_check(out)).code, 0);
-}
-
 TEST(Gis, BadInputsAreOneLineNamingTheFile) {
   const fs::path dir = testing_util::temp_dir("gis-bad");
   write(dir / "junk.gpkg", "not a database");

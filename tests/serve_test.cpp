@@ -339,7 +339,8 @@ TEST_F(ServeTest, GenerateStreamsStagesThenServesOutputsAndRenders) {
   EXPECT_EQ(ended, "done");
   // The CLI's stage names, in its order.
   EXPECT_EQ(stages, (std::vector<std::string>{"terrain", "model library", "zone map", "road network", "blocks", "lots",
-                                              "buildings", "vector layers", "export", "3d export", "validation"}));
+                                              "buildings", "vector layers", "clutter", "export", "3d export",
+                                              "validation"}));
   EXPECT_EQ(json::parse(client->Get("/api/status")->body)["state"], "done");
 
   EXPECT_EQ(client->Get("/api/map.svg")->body.find("<svg") != std::string::npos, true);
