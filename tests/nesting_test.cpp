@@ -22,15 +22,20 @@ class Nesting : public testing::Test {
   static void SetUpTestSuite() {
     root_ = new fs::path(testing_util::temp_dir("nesting-" + std::to_string(::getpid())));
     const std::string sketch = (kSource / "examples" / "nesting" / "nesting.geojson").string();
+    // A failure here fails every test (SetUp): an assertion in SetUpTestSuite would only
+    // mark them skipped.
+    setup_error_ = new std::string;
     for (int threads : {1, 2}) {
       const Result r = run("generate " + sketch + " -o " + (*root_ / ("t" + std::to_string(threads))).string() +
                            " -q --threads " + std::to_string(threads));
-      ASSERT_EQ(r.code, 0) << r.out;
+      if (r.code != 0) *setup_error_ += "generate --threads " + std::to_string(threads) + " exited " + std::to_string(r.code) + ":\n" + r.out;
     }
   }
+  void SetUp() override { ASSERT_TRUE(setup_error_->empty()) << *setup_error_; }
   static void TearDownTestSuite() {
     fs::remove_all(*root_);
     delete root_;
+    delete setup_error_;
   }
   static fs::path out() { return *root_ / "t1"; }
 
@@ -45,9 +50,11 @@ class Nesting : public testing::Test {
   }
 
   static fs::path* root_;
+  static std::string* setup_error_;
 };
 
 fs::path* Nesting::root_ = nullptr;
+std::string* Nesting::setup_error_ = nullptr;
 
 geom::Ring outer_ring(const json& feature) {
   geom::Ring r;

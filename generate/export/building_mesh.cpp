@@ -90,7 +90,10 @@ class MeshBuilder {
       // A model's mesh need not be manifold: a face that cannot join its neighbours
       // stands alone, so nothing of the model is lost.
       std::vector<Mesh::VertexHandle> own;
-      for (auto v : face) own.push_back(mesh_.add_vertex(mesh_.point(v)));
+      for (auto v : face) {
+        const Mesh::Point p = mesh_.point(v);  // a copy: adding a vertex may move the points
+        own.push_back(mesh_.add_vertex(p));
+      }
       f = mesh_.add_face(own);
     }
     if (f.is_valid()) mesh_.property(surface_, f) = static_cast<int>(s);
