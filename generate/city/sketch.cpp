@@ -49,6 +49,21 @@ std::string list(const std::array<std::string_view, N>& names) {
   return r;
 }
 
+// Gives the zone types that get roads each of `defaults` they do not set themselves: a
+// planned map's or a real place's roads are its streets already.
+void default_street_zones(nlohmann::ordered_json& ex, const nlohmann::ordered_json& defaults) {
+  if (!ex.is_object()) return;  // refused when the settings are read
+  if (!ex.contains("zones")) ex["zones"] = nlohmann::ordered_json::object();
+  if (!ex["zones"].is_object()) return;
+  for (const char* type : kGridMapStreetZones) {
+    nlohmann::ordered_json& zone = ex["zones"][type];
+    if (zone.is_null()) zone = nlohmann::ordered_json::object();
+    if (!zone.is_object()) continue;
+    for (const auto& [key, value] : defaults.items())
+      if (!zone.contains(key)) zone[key] = value;
+  }
+}
+
 class Parser {
  public:
   Parser(const fs::path& path, bool read_grammars) : file_(path.string()), read_grammars_(read_grammars) {}
@@ -390,15 +405,7 @@ class Parser {
     for (auto& f : doc["features"]) features.push_back(std::move(f));
     doc["features"] = std::move(features);
     ex.erase("grid");
-    if (!ex.contains("zones")) ex["zones"] = nlohmann::ordered_json::object();
-    if (!ex["zones"].is_object()) return;  // refused when the settings are read
-    for (const char* type : kGridMapStreetZones) {
-      nlohmann::ordered_json& zone = ex["zones"][type];
-      if (zone.is_null()) zone = nlohmann::ordered_json::object();
-      if (!zone.is_object()) continue;
-      if (!zone.contains("layout")) zone["layout"] = "streets";
-      if (!zone.contains("placement")) zone["placement"] = "grid";
-    }
+    default_street_zones(ex, {{"layout", "streets"}, {"placement", "grid"}});
   }
 
  private:
@@ -499,21 +506,6 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
   return sketch;
 }
 
-// Gives zone types without a layout the streets layout: a real place's (or a planned
-// map's) roads are its streets already.
-void lay_out_by_streets(nlohmann::ordered_json& doc) {
-  nlohmann::ordered_json& ex = doc["exacity"];
-  if (ex.is_null()) ex = nlohmann::ordered_json::object();
-  if (!ex.is_object()) return;  // refused when the settings are read
-  if (!ex.contains("zones")) ex["zones"] = nlohmann::ordered_json::object();
-  if (!ex["zones"].is_object()) return;
-  for (const char* type : kGridMapStreetZones) {
-    nlohmann::ordered_json& zone = ex["zones"][type];
-    if (zone.is_null()) zone = nlohmann::ordered_json::object();
-    if (zone.is_object() && !zone.contains("layout")) zone["layout"] = "streets";
-  }
-}
-
 Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& models) {
   const SketchSource source = sketch_source(path);
   std::ifstream in(path, std::ios::binary);
@@ -535,7 +527,10 @@ Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& mod
     in.close();
     nlohmann::ordered_json doc = source == SketchSource::Osm ? osm_sketch_document(path) : ogr_sketch_document(path);
     add_settings_beside(doc, path);
-    if (source == SketchSource::Osm) lay_out_by_streets(doc);
+    if (source == SketchSource::Osm) {
+      if (doc["exacity"].is_null()) doc["exacity"] = nlohmann::ordered_json::object();
+      default_street_zones(doc["exacity"], {{"layout", "streets"}});
+    }
     project_to_metres(doc, path);
     return made_sketch(std::move(doc));
   }
