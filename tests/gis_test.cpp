@@ -159,6 +159,43 @@ TEST(Gis, ALonLatSketchIsTheCityOfItsProjectionByHand) {
   EXPECT_NE(cli_util::read(dir / "a" / "city.city.json").find("EPSG/0/32635"), std::string::npos);
 }
 
+TEST(Gis, TheSettingsBesideALonLatSketchHaveTheirBoundsProjectedToo) {
+  const fs::path dir = testing_util::temp_dir("gis-bounds");
+  // Image bounds in lon/lat around the village (lon 10, lat 48), as its sketch's CRS has them.
+  const std::string settings =
+      R"({"terrain": {"heightmap": "h.png", "bounds": [9.99, 47.99, 10.02, 48.01]},
+          "channels": {"d": {"image": "d.png", "bounds": [9.99, 47.99, 10.02, 48.01]}}})";
+  fs::copy_file(kVillage, dir / "village.osm");
+  write(dir / "village.exacity.json", settings);
+  ordered_json lonlat = ordered_json::parse(R"({"type": "FeatureCollection", "features": [
+      {"type": "Feature", "properties": {"zone": "residential"},
+       "geometry": {"type": "Polygon", "coordinates": [[[10, 48], [10.005, 48], [10.005, 48.004], [10, 48]]]}}]})");
+  write(dir / "drawn.geojson", lonlat.dump());
+  write(dir / "drawn.exacity.json", settings);
+  // By hand: the box around the four corners in UTM zone 32N.
+  OGRSpatialReference utm, wgs84;
+  utm.importFromEPSG(32632), wgs84.importFromEPSG(4326);
+  utm.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER), wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  std::unique_ptr<OGRCoordinateTransformation> to_utm(OGRCreateCoordinateTransformation(&wgs84, &utm));
+  double xs[4] = {9.99, 10.02, 10.02, 9.99}, ys[4] = {47.99, 47.99, 48.01, 48.01};
+  ASSERT_TRUE(to_utm->Transform(4, xs, ys));
+  const geom::Box expected{*std::min_element(xs, xs + 4), *std::min_element(ys, ys + 4), *std::max_element(xs, xs + 4),
+                           *std::max_element(ys, ys + 4)};
+  EXPECT_GT(expected.width(), 2000);  // metres, not degrees
+  for (const char* name : {"village.osm", "drawn.geojson"}) {
+    const Sketch sketch = load_sketch(dir / name, false);
+    EXPECT_EQ(epsg_of(sketch.crs), 32632) << name;
+    ASSERT_TRUE(sketch.terrain) << name;
+    ASSERT_EQ(sketch.channels.size(), 1u) << name;
+    for (const geom::Box& b : {sketch.terrain->bounds, sketch.channels[0].bounds}) {
+      EXPECT_EQ(b.min_x, expected.min_x) << name;
+      EXPECT_EQ(b.max_x, expected.max_x) << name;
+      EXPECT_EQ(b.min_y, expected.min_y) << name;
+      EXPECT_EQ(b.max_y, expected.max_y) << name;
+    }
+  }
+}
+
 TEST(Gis, GeoPackageAndShapefileSketchesGiveTheSameCity) {
   const fs::path dir = testing_util::temp_dir("gis-formats");
   ordered_json town = town_in_metres();

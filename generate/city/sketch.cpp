@@ -540,11 +540,11 @@ Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& mod
     // A grid map is read as the sketch of its features; errors in it name its lines.
     return made_sketch(grid_map_sketch(ss.str(), path));
   }
-  const bool beside = fs::is_regular_file(settings_beside(path));
   nlohmann::ordered_json doc = nlohmann::ordered_json::parse(ss.str(), nullptr, false);
   if (doc.is_discarded() || !doc.is_object()) return parse_sketch(ss.str(), path, read_grammars, models);  // it says what is wrong
+  // The settings first: their terrain and channel bounds are in the sketch's CRS too.
+  const bool beside = add_settings_beside(doc, path);
   const bool projected = project_to_metres(doc, path);
-  if (beside) add_settings_beside(doc, path);
   if (!projected && !beside) return parse_sketch(ss.str(), path, read_grammars, models);
   return made_sketch(std::move(doc));
 }

@@ -174,25 +174,6 @@ ordered_json osm_sketch_document(const fs::path& path) {
   if (collector.zones_.empty() && collector.roads_.empty() && collector.rivers_.empty())
     throw UserError(file + ": the extract has no highways, land use or water Exacity reads; see the README's OpenStreetMap section");
 
-  // Its UTM zone, from the middle of what it holds.
-  double lon0 = INFINITY, lon1 = -INFINITY, lat0 = INFINITY, lat1 = -INFINITY;
-  auto extend = [&](const LonLat& pts) {
-    for (auto [lon, lat] : pts) lon0 = std::min(lon0, lon), lon1 = std::max(lon1, lon), lat0 = std::min(lat0, lat), lat1 = std::max(lat1, lat);
-  };
-  for (const auto* list : {&collector.zones_, &collector.roads_, &collector.rivers_})
-    for (const OsmFeature& f : *list) {
-      extend(f.line);
-      for (const auto& [outer, holes] : f.polygons) extend(outer);
-    }
-  const int epsg = utm_epsg((lon0 + lon1) / 2, (lat0 + lat1) / 2);
-  OGRSpatialReference wgs84, utm;
-  wgs84.importFromEPSG(4326), utm.importFromEPSG(epsg);
-  wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER), utm.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  std::unique_ptr<OGRCoordinateTransformation> to_utm(OGRCreateCoordinateTransformation(&wgs84, &utm));
-  auto project = [&](LonLat& pts) {
-    for (auto& [x, y] : pts) to_utm->Transform(1, &x, &y);
-  };
-
   ordered_json features = ordered_json::array();
   auto properties = [](const OsmFeature& f) {
     ordered_json p = {{f.kind, f.type}};
@@ -210,35 +191,43 @@ ordered_json osm_sketch_document(const fs::path& path) {
   for (OsmFeature& f : collector.zones_) {
     ordered_json polygons = ordered_json::array();
     for (auto& [outer, holes] : f.polygons) {
-      project(outer);
       ordered_json rings = ordered_json::array({ring_json(outer)});
-      for (LonLat& h : holes) project(h), rings.push_back(ring_json(h));
+      for (const LonLat& h : holes) rings.push_back(ring_json(h));
       polygons.push_back(std::move(rings));
     }
     features.push_back({{"type", "Feature"}, {"properties", properties(f)},
                         {"geometry", {{"type", "MultiPolygon"}, {"coordinates", std::move(polygons)}}}});
   }
-  // A river is its centre line made as wide as it is (GEOS, through OGR).
+  // A river is its centre line made as wide as it is (GEOS, through OGR), in metres: in
+  // the UTM zone of its middle, and back.
   for (OsmFeature& f : collector.rivers_) {
-    project(f.line);
     OGRLineString line;
-    for (auto [x, y] : f.line) line.addPoint(x, y);
-    std::unique_ptr<OGRGeometry> water(line.Buffer(f.width / 2, 4));
-    if (!water || water->IsEmpty()) continue;
+    for (auto [lon, lat] : f.line) line.addPoint(lon, lat);
+    OGREnvelope box;
+    line.getEnvelope(&box);
+    OGRSpatialReference wgs84, utm;
+    wgs84.importFromEPSG(4326), utm.importFromEPSG(utm_epsg((box.MinX + box.MaxX) / 2, (box.MinY + box.MaxY) / 2));
+    wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER), utm.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    std::unique_ptr<OGRCoordinateTransformation> to_utm(OGRCreateCoordinateTransformation(&wgs84, &utm));
+    std::unique_ptr<OGRCoordinateTransformation> back(OGRCreateCoordinateTransformation(&utm, &wgs84));
+    std::unique_ptr<OGRGeometry> water;
+    if (to_utm && back && line.transform(to_utm.get()) == OGRERR_NONE) water.reset(line.Buffer(f.width / 2, 4));
+    if (!water || water->IsEmpty() || water->transform(back.get()) != OGRERR_NONE) {
+      ++collector.skipped_["rivers PROJ or GEOS could not widen"];
+      continue;
+    }
     char* text = water->exportToJson();
     features.push_back({{"type", "Feature"}, {"properties", properties(f)}, {"geometry", ordered_json::parse(text)}});
     CPLFree(text);
   }
-  for (OsmFeature& f : collector.roads_) {
-    project(f.line);
+  for (const OsmFeature& f : collector.roads_)
     features.push_back({{"type", "Feature"}, {"properties", properties(f)},
                         {"geometry", {{"type", "LineString"}, {"coordinates", ring_json(f.line)}}}});
-  }
   ordered_json taken = {{"zones", collector.zones_.size()}, {"roads", collector.roads_.size()}, {"rivers", collector.rivers_.size()}};
   ordered_json skipped = ordered_json::object();
   for (const auto& [what, count] : collector.skipped_) skipped[what] = count;
   return {{"type", "FeatureCollection"},
-          {"crs", crs_member(epsg)},
+          {"crs", crs_member(4326)},
           {"osm", {{"file", file}, {"taken", taken}, {"skipped", skipped}}},
           {"features", std::move(features)}};
 }

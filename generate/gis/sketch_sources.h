@@ -25,9 +25,10 @@ std::filesystem::path settings_beside(const std::filesystem::path& path);
 // Throws UserError naming the file (and the layer) when OGR cannot read it.
 nlohmann::ordered_json ogr_sketch_document(const std::filesystem::path& path);
 
-// An OpenStreetMap extract (.osm or .osm.pbf, read with libosmium) in its UTM zone:
-// highways as roads (class and width from highway, lanes and width), land use as zones,
-// water areas and rivers (as wide as their width tag, or 10 m) as water. Throws UserError.
+// An OpenStreetMap extract (.osm or .osm.pbf, read with libosmium) in lon/lat, as OSM is
+// (EPSG:4326; project_to_metres then projects it with its settings' bounds): highways as
+// roads (class and width from highway, lanes and width), land use as zones, water areas
+// and rivers (as wide as their width tag, or 10 m) as water. Throws UserError.
 nlohmann::ordered_json osm_sketch_document(const std::filesystem::path& path);
 
 // The settings beside the sketch into the document's "exacity" member (a GeoJSON's own
