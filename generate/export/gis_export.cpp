@@ -31,26 +31,39 @@ GDALDatasetUniquePtr create(const char* driver_name, const fs::path& file) {
   return ds;
 }
 
+// A GeoJSON layer of OUT/vector, opened once for every format written from it.
+struct SourceLayer {
+  std::string name;
+  GDALDatasetUniquePtr dataset;
+  OGRLayer* layer = nullptr;
+};
+
 // The GeoJSON layers in OUT/vector, by name.
-std::vector<fs::path> geojson_layers(const fs::path& dir) {
-  std::vector<fs::path> out;
+std::vector<SourceLayer> geojson_layers(const fs::path& dir) {
+  std::vector<fs::path> files;
   for (const auto& entry : fs::directory_iterator(dir / "vector"))
-    if (entry.path().extension() == ".geojson") out.push_back(entry.path());
-  std::sort(out.begin(), out.end());
+    if (entry.path().extension() == ".geojson") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  std::vector<SourceLayer> out;
+  for (const fs::path& file : files) {
+    GDALDatasetUniquePtr dataset(GDALDataset::Open(file.string().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+    if (!dataset || dataset->GetLayerCount() != 1) fail(file, "cannot be read back");
+    OGRLayer* layer = dataset->GetLayer(0);
+    out.push_back({file.stem().string(), std::move(dataset), layer});
+  }
   return out;
 }
 
 // Copies every GeoJSON layer into `target`, one layer each (GeoPackage, FlatGeobuf and
 // Shapefile keep geometry and attributes; CRS set from the sketch's).
-void copy_layers(const std::vector<fs::path>& layers, GDALDataset& target, OGRSpatialReference* srs,
+void copy_layers(const std::vector<const SourceLayer*>& layers, GDALDataset& target, OGRSpatialReference* srs,
                  const fs::path& file) {
   // One transaction where the format has them (GeoPackage): a feature each is far slower.
   const bool transaction = target.StartTransaction() == OGRERR_NONE;
-  for (const fs::path& layer_file : layers) {
-    GDALDatasetUniquePtr source(GDALDataset::Open(layer_file.string().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
-    if (!source || source->GetLayerCount() != 1) fail(layer_file, "cannot be read back");
-    OGRLayer* from = source->GetLayer(0);
-    const std::string name = layer_file.stem().string();
+  for (const SourceLayer* source : layers) {
+    OGRLayer* from = source->layer;
+    from->ResetReading();
+    const std::string& name = source->name;
     OGRLayer* to = target.CreateLayer(name.c_str(), srs, from->GetGeomType(), nullptr);
     if (!to) fail(file, "cannot hold layer " + name);
     // A list (a block's roads) is written as its JSON text: no format here stores lists.
@@ -84,17 +97,16 @@ void copy_layers(const std::vector<fs::path>& layers, GDALDataset& target, OGRSp
 }
 
 // A DXF file's entities carry their CAD layer in the "Layer" field.
-void write_dxf(const std::vector<fs::path>& layers, const fs::path& file) {
+void write_dxf(const std::vector<SourceLayer>& layers, const fs::path& file) {
   GDALDatasetUniquePtr ds = create("DXF", file);
   OGRLayer* entities = ds->CreateLayer("entities", nullptr, wkbUnknown, nullptr);
   if (!entities) fail(file, "cannot hold entities");
-  for (const fs::path& layer_file : layers) {
-    GDALDatasetUniquePtr source(GDALDataset::Open(layer_file.string().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
-    if (!source) fail(layer_file, "cannot be read back");
-    OGRLayer* from = source->GetLayer(0);
+  for (const SourceLayer& source : layers) {
+    OGRLayer* from = source.layer;
+    from->ResetReading();
     for (OGRFeatureUniquePtr f(from->GetNextFeature()); f; f.reset(from->GetNextFeature())) {
       OGRFeatureUniquePtr entity(OGRFeature::CreateFeature(entities->GetLayerDefn()));
-      entity->SetField("Layer", layer_file.stem().string().c_str());
+      entity->SetField("Layer", source.name.c_str());
       entity->SetGeometry(f->GetGeometryRef());
       if (entities->CreateFeature(entity.get()) != OGRERR_NONE) fail(file, "cannot take an entity");
     }
@@ -112,21 +124,23 @@ void write_vector_formats(const fs::path& dir, const std::vector<std::string>& f
     if (srs->importFromEPSG(*epsg) != OGRERR_NONE) srs.reset();
     else srs->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   }
-  const std::vector<fs::path> layers = geojson_layers(dir);
+  const std::vector<SourceLayer> layers = geojson_layers(dir);
+  std::vector<const SourceLayer*> all;
+  for (const SourceLayer& l : layers) all.push_back(&l);
   for (const std::string& format : formats) {
     if (format == "gpkg") {
       GDALDatasetUniquePtr ds = create("GPKG", dir / "city.gpkg");
-      copy_layers(layers, *ds, srs.get(), dir / "city.gpkg");
+      copy_layers(all, *ds, srs.get(), dir / "city.gpkg");
     } else if (format == "fgb") {
-      for (const fs::path& layer : layers) {
-        const fs::path file = dir / "vector" / (layer.stem().string() + ".fgb");
+      for (const SourceLayer& layer : layers) {
+        const fs::path file = dir / "vector" / (layer.name + ".fgb");
         GDALDatasetUniquePtr ds = create("FlatGeobuf", file);
-        copy_layers({layer}, *ds, srs.get(), file);
+        copy_layers({&layer}, *ds, srs.get(), file);
       }
     } else if (format == "shp") {
       fs::create_directories(dir / "vector" / "shp");
       GDALDatasetUniquePtr ds = create("ESRI Shapefile", dir / "vector" / "shp");
-      copy_layers(layers, *ds, srs.get(), dir / "vector" / "shp");
+      copy_layers(all, *ds, srs.get(), dir / "vector" / "shp");
     } else if (format == "dxf") {
       write_dxf(layers, dir / "city.dxf");
     }
