@@ -293,6 +293,11 @@ TEST(Gis, EveryVectorFormatReadsBackWithOgr) {
   ASSERT_TRUE(first);
   EXPECT_GT(first->GetFieldAsDouble("height"), 0);
   EXPECT_STREQ(first->GetFieldAsString("kind"), "building");
+  // Same sketch, same bytes, in every format: GeoPackage and DBF would stamp the time.
+  const fs::path again = testing_util::temp_dir("gis-out-again") / "out";
+  generate(kVillage, again, {"gpkg", "fgb", "shp", "dxf"}, kLibrary);
+  for (const fs::path file : {"city.gpkg", "city.dxf", "city.osm", "vector/roads.fgb", "vector/shp/lots.dbf"})
+    EXPECT_EQ(cli_util::read(out / file), cli_util::read(again / file)) << file;
   // DXF: every layer's entities on a CAD layer of its name.
   GDALDatasetUniquePtr dxf = open(out / "city.dxf");
   ASSERT_TRUE(dxf);

@@ -57,14 +57,14 @@ std::vector<SourceLayer> geojson_layers(const fs::path& dir) {
 // Copies every GeoJSON layer into `target`, one layer each (GeoPackage, FlatGeobuf and
 // Shapefile keep geometry and attributes; CRS set from the sketch's).
 void copy_layers(const std::vector<const SourceLayer*>& layers, GDALDataset& target, OGRSpatialReference* srs,
-                 const fs::path& file) {
+                 const fs::path& file, CSLConstList layer_options = nullptr) {
   // One transaction where the format has them (GeoPackage): a feature each is far slower.
   const bool transaction = target.StartTransaction() == OGRERR_NONE;
   for (const SourceLayer* source : layers) {
     OGRLayer* from = source->layer;
     from->ResetReading();
     const std::string& name = source->name;
-    OGRLayer* to = target.CreateLayer(name.c_str(), srs, from->GetGeomType(), nullptr);
+    OGRLayer* to = target.CreateLayer(name.c_str(), srs, from->GetGeomType(), const_cast<char**>(layer_options));
     if (!to) fail(file, "cannot hold layer " + name);
     // A list (a block's roads) is written as its JSON text: no format here stores lists.
     OGRFeatureDefn* defn = from->GetLayerDefn();
@@ -118,6 +118,10 @@ void write_dxf(const std::vector<SourceLayer>& layers, const fs::path& file) {
 void write_vector_formats(const fs::path& dir, const std::vector<std::string>& formats, const nlohmann::ordered_json& crs) {
   if (std::all_of(formats.begin(), formats.end(), [](const std::string& f) { return f == "geojson"; })) return;
   start_gdal();
+  // Same sketch, same bytes (docs/design.md, Determinism): GeoPackage stamps its tables and
+  // DBF its header with the date of writing, unless told which.
+  const CPLConfigOptionSetter date("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z", false);
+  const char* const dbf_date[] = {"DBF_DATE_LAST_UPDATE=2000-01-01", nullptr};
   std::unique_ptr<OGRSpatialReference> srs;
   if (const std::optional<int> epsg = epsg_of(crs)) {
     srs = std::make_unique<OGRSpatialReference>();
@@ -140,7 +144,7 @@ void write_vector_formats(const fs::path& dir, const std::vector<std::string>& f
     } else if (format == "shp") {
       fs::create_directories(dir / "vector" / "shp");
       GDALDatasetUniquePtr ds = create("ESRI Shapefile", dir / "vector" / "shp");
-      copy_layers(all, *ds, srs.get(), dir / "vector" / "shp");
+      copy_layers(all, *ds, srs.get(), dir / "vector" / "shp", dbf_date);
     } else if (format == "dxf") {
       write_dxf(layers, dir / "city.dxf");
     }
