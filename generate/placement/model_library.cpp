@@ -196,8 +196,8 @@ void read_zones(const json& e, const std::string& where, Model& m) {
   for (const json& z : e["zones"]) {
     auto t = z.is_string() ? parse_zone_type(z.get<std::string>()) : std::nullopt;
     if (!t || *t == ZoneType::Water || (*t == ZoneType::Park && !street_side))
-      fail(where, "\"zones\" lists " + z.dump() + "; " + name(m.kind) + " models stand in residential, commercial " +
-                      (street_side ? "industrial or park zones" : "or industrial zones"));
+      fail(where, "\"zones\" lists " + z.dump() + "; " + name(m.kind) + " models stand in residential, commercial" +
+                      (street_side ? ", industrial or park zones" : " or industrial zones"));
     m.zones.push_back(*t);
   }
 }
