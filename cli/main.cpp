@@ -88,10 +88,10 @@ nlohmann::ordered_json render_with_progress(const City& city, render::RenderRequ
   return render::render_city(city, r, [&](const std::string& stage, double f) { progress.fraction("render " + stage, f); });
 }
 
-int generate(const fs::path& sketch_path, const fs::path& models, const fs::path& out, bool quiet,
+int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, const fs::path& out, bool quiet,
              const RenderOptions* rendering, const ExportOptions& exports) {
-  Sketch sketch = load_sketch(sketch_path, true, models);
-  if (rendering) given_camera(sketch, *rendering, sketch_path.string());  // a bad camera stops us before any work
+  Sketch sketch = load_sketch(sketch_paths, true, models);
+  if (rendering) given_camera(sketch, *rendering, sketch.path.string());  // a bad camera stops us before any work
   OutputFolder folder(out);
   GenerateResult result;
   {
@@ -117,6 +117,19 @@ int generate(const fs::path& sketch_path, const fs::path& models, const fs::path
   std::printf("exacity: wrote %s (roads %d, blocks %d, lots %d, buildings %d); open %s\n", out.string().c_str(),
               counts["roads"].get<int>(), counts["blocks"].get<int>(), counts["lots"].get<int>(),
               counts["buildings"].get<int>(), (out / "map.svg").string().c_str());
+  if (!sketch.osm_left_out.empty()) {
+    int total = 0;
+    std::string tags;
+    for (const auto& [why, count] : sketch.osm_left_out) total += count;
+    std::vector<std::pair<std::string, int>> most(sketch.osm_left_out.begin(), sketch.osm_left_out.end());
+    std::stable_sort(most.begin(), most.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    for (std::size_t i = 0; i < most.size() && i < 4; ++i)
+      tags += (i ? ", " : "") + most[i].first + " " + std::to_string(most[i].second);
+    std::fprintf(stderr,
+                 "exacity: note: %s: left out %d OpenStreetMap features whose tags make no zone or road (%s%s); "
+                 "sketch.geojson's \"osm\" member counts them all\n",
+                 sketch.path.string().c_str(), total, tags.c_str(), most.size() > 4 ? ", ..." : "");
+  }
   for (const auto& z : result.report["empty_zones"]) {
     const std::string zone = z["zone"].get<std::string>(), why = z["why"].get<std::string>();
     if (z.contains("grid_cell"))
@@ -285,7 +298,8 @@ struct SharedOptions {
 
 struct GenerateCommand {
   CLI::App* app = nullptr;
-  fs::path sketch, models, out = "out";
+  std::vector<fs::path> sketch;
+  fs::path models, out = "out";
   bool render = false;
   ExportOptions exports;
 };
@@ -348,7 +362,8 @@ void add_generate(CLI::App& app, GenerateCommand& c, SharedOptions& shared) {
   c.app->add_option("SKETCH", c.sketch,
                     "The sketch: GeoJSON (metres, or lon/lat projected to its UTM zone), a grid map (.grid), a vector "
                     "file OGR reads (.gpkg, .shp, .kml, .fgb, .gml; settings in NAME.exacity.json beside it), or an "
-                    "OpenStreetMap extract (.osm, .osm.pbf)")
+                    "OpenStreetMap extract (.osm, .osm.pbf); several read as one (land use and streets, say), "
+                    "sharing a CRS, with the first one's settings")
       ->required();
   c.app->add_option("--vector-format", c.exports.vector_formats,
                     "Also write the vector layers as gpkg (OUT/city.gpkg), fgb (OUT/vector/*.fgb), shp "

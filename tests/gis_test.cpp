@@ -385,3 +385,140 @@ TEST(Gis, BadInputsAreOneLineNamingTheFile) {
       "features": [{"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [100, 0], [100, 100], [0, 0]]]}}]})");
   EXPECT_NE(error_of(dir / "crs.geojson").find("is not a CRS PROJ knows"), std::string::npos) << error_of(dir / "crs.geojson");
 }
+
+namespace {
+
+// OpenStreetMap's land use and streets as GIS tools export them (README, GIS and
+// OpenStreetMap): tags as columns, the rest in GDAL's "other_tags".
+ordered_json osm_tagged_town() {
+  return ordered_json::parse(R"({"type": "FeatureCollection",
+    "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32635"}},
+    "features": [
+      {"type": "Feature", "properties": {"landuse": "residential"},
+       "geometry": {"type": "Polygon", "coordinates": [[[385000, 6672000], [385600, 6672000], [385600, 6672500], [385000, 6672500], [385000, 6672000]]]}},
+      {"type": "Feature", "properties": {"leisure": "park"},
+       "geometry": {"type": "Polygon", "coordinates": [[[385100, 6672300], [385200, 6672300], [385200, 6672400], [385100, 6672400], [385100, 6672300]]]}},
+      {"type": "Feature", "properties": {"highway": "residential", "other_tags": "\"lanes\"=>\"2\",\"surface\"=>\"asphalt\""},
+       "geometry": {"type": "LineString", "coordinates": [[384950, 6672250], [385650, 6672250]]}},
+      {"type": "Feature", "properties": {"highway": "footway"},
+       "geometry": {"type": "LineString", "coordinates": [[385300, 6672000], [385300, 6672500]]}},
+      {"type": "Feature", "properties": {"landuse": "farmland"},
+       "geometry": {"type": "Polygon", "coordinates": [[[386000, 6672000], [386100, 6672000], [386100, 6672100], [386000, 6672000]]]}},
+      {"type": "Feature", "properties": {"landuse": "residential"},
+       "geometry": {"type": "Polygon", "coordinates": [[[385000, 6671000], [385010, 6671000], [385000, 6671000]]]}},
+      {"type": "Feature", "properties": {"waterway": "river", "width": 20},
+       "geometry": {"type": "LineString", "coordinates": [[384900, 6672600], [385700, 6672600]]}},
+      {"type": "Feature", "properties": {"zone": "commercial"},
+       "geometry": {"type": "Polygon", "coordinates": [[[385600, 6672000], [385800, 6672000], [385800, 6672200], [385600, 6672200], [385600, 6672000]]]}}]})");
+}
+
+geom::Box box_of(const ZoneFeature& zone) {
+  geom::Box box = geom::Box::none();
+  for (const geom::Polygon& p : zone.polygons)
+    for (geom::Vec2 v : p.outer) box.add(v);
+  return box;
+}
+
+}  // namespace
+
+TEST(Gis, OsmTaggedFeaturesBecomeZonesAndRoads) {
+  const fs::path dir = testing_util::temp_dir("gis-osm-tags");
+  write(dir / "town.geojson", osm_tagged_town().dump());
+  translate(dir / "town.geojson", dir / "town.gpkg", "GPKG");
+  for (const char* name : {"town.geojson", "town.gpkg"}) {
+    SCOPED_TRACE(name);
+    const Sketch sketch = load_sketch(dir / name);
+    std::vector<ZoneType> zones;
+    for (const ZoneFeature& z : sketch.zones) zones.push_back(z.type);
+    // The tagged zones in their places, land use before parks before water; the user's own
+    // commercial zone where it was.
+    EXPECT_EQ(zones, (std::vector<ZoneType>{ZoneType::Residential, ZoneType::Park, ZoneType::Water, ZoneType::Commercial}));
+    // Land use coming with streets reaches 8 m further, to meet them; the park does not.
+    EXPECT_NEAR(box_of(sketch.zones[0]).min_x, 385000 - 8, 1e-6);
+    EXPECT_NEAR(box_of(sketch.zones[0]).max_y, 6672500 + 8, 1e-6);
+    EXPECT_NEAR(box_of(sketch.zones[1]).min_x, 385100, 1e-6);
+    // The river, 20 m wide.
+    EXPECT_NEAR(box_of(sketch.zones[2]).min_y, 6672600 - 10, 1e-6);
+    EXPECT_NEAR(box_of(sketch.zones[2]).max_y, 6672600 + 10, 1e-6);
+    ASSERT_EQ(sketch.roads.size(), 1u);
+    EXPECT_EQ(sketch.roads[0].road_class, RoadClass::Local);
+    EXPECT_EQ(sketch.roads[0].width, 7);  // lanes=2 in other_tags
+    EXPECT_EQ(sketch.osm_left_out, (std::map<std::string, int>{
+                                       {"highway=footway", 1}, {"landuse=farmland", 1}, {"areas of fewer than 3 distinct points", 1}}));
+    EXPECT_EQ(sketch.zone_settings.at(ZoneType::Residential).roads.layout, "streets");
+  }
+  // Features taken out do not move the others' names: the user's zone is still features[7].
+  const Sketch sketch = load_sketch(dir / "town.geojson");
+  EXPECT_EQ(sketch.zones[3].source, (dir / "town.geojson").string() + " features[7]");
+  EXPECT_TRUE(generate(dir / "town.geojson", dir / "out").valid);
+
+  // Tags that make nothing at all are one line.
+  ordered_json paths = osm_tagged_town();
+  paths["features"] = ordered_json::array({paths["features"][3], paths["features"][3], paths["features"][4]});
+  write(dir / "paths.geojson", paths.dump());
+  EXPECT_NE(error_of(dir / "paths.geojson")
+                .find("paths.geojson: no feature's OpenStreetMap tags make a zone or a road (highway=footway 2, landuse=farmland 1)"),
+            std::string::npos)
+      << error_of(dir / "paths.geojson");
+}
+
+TEST(Gis, SeveralSketchFilesAreReadAsOne) {
+  const fs::path dir = testing_util::temp_dir("gis-several");
+  ordered_json town = osm_tagged_town(), land = town, streets = town;
+  land["features"] = ordered_json::array();
+  streets["features"] = ordered_json::array();
+  streets.erase("crs");  // taken to be in the land use's
+  for (const ordered_json& f : town["features"])
+    (f["geometry"]["type"] == "LineString" ? streets : land)["features"].push_back(f);
+  write(dir / "town.geojson", town.dump());
+  write(dir / "land.geojson", land.dump());
+  write(dir / "streets.geojson", streets.dump());
+  const Sketch one = load_sketch(dir / "town.geojson");
+  const Sketch two = load_sketch(std::vector<fs::path>{dir / "land.geojson", dir / "streets.geojson"});
+  // The same zones and roads, but for their order: each file's features in turn.
+  using Ring = std::vector<std::pair<double, double>>;
+  std::multiset<std::pair<int, Ring>> rings_one, rings_two;
+  for (const auto& [sketch, rings] : {std::pair{&one, &rings_one}, std::pair{&two, &rings_two}})
+    for (const ZoneFeature& z : sketch->zones)
+      for (const geom::Polygon& p : z.polygons) {
+        Ring ring;
+        for (geom::Vec2 v : p.outer) ring.push_back({v.x, v.y});
+        rings->insert({static_cast<int>(z.type), ring});
+      }
+  EXPECT_EQ(rings_one, rings_two);
+  ASSERT_EQ(two.roads.size(), 1u);
+  EXPECT_EQ(two.roads[0].lines, one.roads[0].lines);
+  EXPECT_EQ(two.osm_left_out, one.osm_left_out);
+  EXPECT_EQ(epsg_of(two.crs), 32635);
+
+  auto error_of_both = [&](const fs::path& a, const fs::path& b) -> std::string {
+    try {
+      load_sketch(std::vector<fs::path>{a, b});
+    } catch (const UserError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  // A mistake in the second file is named by that file.
+  ordered_json bad = streets;
+  bad["features"].push_back({{"type", "Feature"}, {"properties", {{"road", "motorway"}}},
+                             {"geometry", {{"type", "LineString"}, {"coordinates", {{385000, 6672100}, {385500, 6672100}}}}}});
+  write(dir / "bad.geojson", bad.dump());
+  EXPECT_EQ(error_of_both(dir / "land.geojson", dir / "bad.geojson").rfind((dir / "bad.geojson").string() + " features[3]: unknown road class", 0),
+            0u)
+      << error_of_both(dir / "land.geojson", dir / "bad.geojson");
+  // Another CRS, settings in both, a grid map: refused, naming the file.
+  ordered_json elsewhere = streets;
+  elsewhere["crs"] = crs_member(32634);
+  write(dir / "elsewhere.geojson", elsewhere.dump());
+  EXPECT_NE(error_of_both(dir / "land.geojson", dir / "elsewhere.geojson").find("elsewhere.geojson: its crs"), std::string::npos);
+  write(dir / "streets.exacity.json", R"({"seed": 2})");
+  write(dir / "land.exacity.json", R"({"seed": 3})");
+  EXPECT_NE(error_of_both(dir / "land.geojson", dir / "streets.geojson").find("streets.geojson: has settings, and so has"),
+            std::string::npos);
+  fs::remove(dir / "streets.exacity.json");
+  EXPECT_EQ(load_sketch(std::vector<fs::path>{dir / "land.geojson", dir / "streets.geojson"}).seed, 3u);
+  EXPECT_NE(error_of_both(dir / "land.geojson", cli_util::kSource / "examples" / "grid" / "town.grid")
+                .find("a grid map is a whole sketch"),
+            std::string::npos);
+}

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "generate/city/grid_map.h"
+#include "generate/gis/osm_tags.h"
 #include "generate/gis/projection.h"
 #include "generate/gis/sketch_sources.h"
 #include "generate/errors.h"
@@ -68,8 +69,11 @@ class Parser {
  public:
   Parser(const fs::path& path, bool read_grammars) : file_(path.string()), read_grammars_(read_grammars) {}
 
+  // A feature named by its "source" is named with its file already.
   [[noreturn]] void fail(const std::string& where, const std::string& what) const {
-    throw UserError(file_ + ": " + where + ": " + what);
+    const bool sourced = std::any_of(sources_.begin(), sources_.end(),
+                                     [&](const std::string& s) { return where.compare(0, s.size(), s) == 0; });
+    throw UserError((sourced ? "" : file_ + ": ") + where + ": " + what);
   }
 
   double number(const json& j, const std::string& where, double min, double max) const {
@@ -136,7 +140,8 @@ class Parser {
         return "grid map cell " + props.at("grid_cell").get<std::string>();
       // A feature read from another format (generate/gis/sketch_sources.h): FILE layer L
       // feature N, or FILE way N.
-      if (props.contains("source") && props.at("source").is_string()) return props.at("source").get<std::string>();
+      if (props.contains("source") && props.at("source").is_string())
+        return *sources_.insert(props.at("source").get<std::string>()).first;
     }
     return "features[" + std::to_string(index - grid_features_) + "]";
   }
@@ -410,6 +415,7 @@ class Parser {
 
  private:
   std::string file_;
+  mutable std::set<std::string> sources_;  // the names features have by their "source"
   bool read_grammars_;
   int grid_features_ = 0;          // features a "grid" map put before the sketch's own
   std::vector<std::string> names_;  // each feature as messages name it
@@ -495,6 +501,9 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
                      ZoneType::Water})
     sketch.zone_settings[t] = default_zone_settings(t);
   if (doc.contains("crs")) sketch.crs = nlohmann::ordered_json::parse(marked)["crs"];  // keeps key order
+  if (doc.contains("osm") && doc["osm"].is_object() && doc["osm"].contains("skipped") && doc["osm"]["skipped"].is_object())
+    for (const auto& [why, count] : doc["osm"]["skipped"].items())
+      if (count.is_number_integer()) sketch.osm_left_out[why] = count.get<int>();
   if (doc.contains("exacity")) parser.settings(doc["exacity"], sketch);
   const json& features = doc["features"];
   for (std::size_t i = 0; i < features.size(); ++i) parser.feature(features[i], static_cast<int>(i), sketch);
@@ -506,47 +515,141 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
   return sketch;
 }
 
-Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& models) {
-  const SketchSource source = sketch_source(path);
-  std::ifstream in(path, std::ios::binary);
+namespace {
+
+void expect_readable(const fs::path& path, SketchSource source) {
   // A folder opens, and reads as nothing; but OGR reads a folder of shapefiles as one.
-  if (!in || (fs::is_directory(path) && source != SketchSource::Ogr)) {
+  if (!fs::exists(path) || (fs::is_directory(path) && source != SketchSource::Ogr) || !std::ifstream(path, std::ios::binary)) {
     throw UserError(path.string() + ": cannot read the sketch (" +
                     (fs::exists(path) ? "permission denied or not a file" : "no such file") +
                     "); give the path of a GeoJSON sketch, a grid map (.grid), a vector file OGR reads or an OSM extract");
   }
-  // Sketches of other formats, and GeoJSON in lon/lat, become a document in metres first
-  // (docs/design.md, The sketch, GIS and OSM); OUT/sketch.geojson keeps it.
-  auto made_sketch = [&](nlohmann::ordered_json doc) {
-    const std::string made = document_text(doc);
-    Sketch sketch = parse_sketch(made, path, read_grammars, models);
-    if (sketch.geojson.empty()) sketch.geojson = made;
-    return sketch;
-  };
-  if (source == SketchSource::Osm || source == SketchSource::Ogr) {
-    in.close();
-    nlohmann::ordered_json doc = source == SketchSource::Osm ? osm_sketch_document(path) : ogr_sketch_document(path);
-    add_settings_beside(doc, path);
-    if (source == SketchSource::Osm) {
-      if (doc["exacity"].is_null()) doc["exacity"] = nlohmann::ordered_json::object();
-      default_street_zones(doc["exacity"], {{"layout", "streets"}});
-    }
-    project_to_metres(doc, path);
-    return made_sketch(std::move(doc));
-  }
+}
+
+std::string file_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
   std::stringstream ss;
   ss << in.rdbuf();
-  if (source == SketchSource::GridMap) {
-    // A grid map is read as the sketch of its features; errors in it name its lines.
-    return made_sketch(grid_map_sketch(ss.str(), path));
+  return ss.str();
+}
+
+// An OSM extract's or another vector file's features as a GeoJSON document, with its own
+// settings beside it (docs/design.md, The sketch, GIS and OSM).
+nlohmann::ordered_json gis_document(const fs::path& path, SketchSource source) {
+  nlohmann::ordered_json doc = source == SketchSource::Osm ? osm_sketch_document(path) : ogr_sketch_document(path);
+  add_settings_beside(doc, path);
+  return doc;
+}
+
+// Gives OSM-tagged features their zones and roads (generate/gis/osm_tags.h); land use
+// that came with OSM's streets is laid out by them, unless the settings say otherwise.
+bool apply_osm_tags_and_layout(nlohmann::ordered_json& doc, const fs::path& path) {
+  if (!apply_osm_tags(doc, path)) return false;
+  if (doc["features"].empty()) {
+    std::string tags;
+    for (const auto& [why, count] : doc["osm"]["skipped"].items()) tags += (tags.empty() ? "" : ", ") + why + " " + count.dump();
+    throw UserError(path.string() + ": no feature's OpenStreetMap tags make a zone or a road (" + tags +
+                    "); see the README's OpenStreetMap section for the tags Exacity reads");
   }
-  nlohmann::ordered_json doc = nlohmann::ordered_json::parse(ss.str(), nullptr, false);
-  if (doc.is_discarded() || !doc.is_object()) return parse_sketch(ss.str(), path, read_grammars, models);  // it says what is wrong
+  if (doc["osm"]["taken"].value("roads", 0) > 0) {
+    if (!doc.contains("exacity") || doc["exacity"].is_null()) doc["exacity"] = nlohmann::ordered_json::object();
+    default_street_zones(doc["exacity"], {{"layout", "streets"}});
+  }
+  return true;
+}
+
+// Sketches of other formats, several files, and GeoJSON in lon/lat become a document in
+// metres first (docs/design.md, The sketch, GIS and OSM); OUT/sketch.geojson keeps it.
+Sketch made_sketch(const nlohmann::ordered_json& doc, const fs::path& path, bool read_grammars, const fs::path& models) {
+  const std::string made = document_text(doc);
+  Sketch sketch = parse_sketch(made, path, read_grammars, models);
+  if (sketch.geojson.empty()) sketch.geojson = made;
+  return sketch;
+}
+
+// Adds the counts of `part` (an "osm" member's "skipped") to `sum`.
+void add_counts(nlohmann::ordered_json& sum, const nlohmann::ordered_json& part) {
+  if (!part.is_object()) return;
+  if (!sum.is_object()) sum = nlohmann::ordered_json::object();
+  for (const auto& [what, count] : part.items())
+    if (count.is_number_integer()) sum[what] = sum.value(what, 0) + count.get<int>();
+}
+
+}  // namespace
+
+Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& models) {
+  const SketchSource source = sketch_source(path);
+  expect_readable(path, source);
+  if (source == SketchSource::Osm || source == SketchSource::Ogr) {
+    nlohmann::ordered_json doc = gis_document(path, source);
+    project_to_metres(doc, path);
+    apply_osm_tags_and_layout(doc, path);
+    return made_sketch(doc, path, read_grammars, models);
+  }
+  const std::string text = file_text(path);
+  // A grid map is read as the sketch of its features; errors in it name its lines.
+  if (source == SketchSource::GridMap) return made_sketch(grid_map_sketch(text, path), path, read_grammars, models);
+  nlohmann::ordered_json doc = nlohmann::ordered_json::parse(text, nullptr, false);
+  if (doc.is_discarded() || !doc.is_object()) return parse_sketch(text, path, read_grammars, models);  // it says what is wrong
   // The settings first: their terrain and channel bounds are in the sketch's CRS too.
   const bool beside = add_settings_beside(doc, path);
   const bool projected = project_to_metres(doc, path);
-  if (!projected && !beside) return parse_sketch(ss.str(), path, read_grammars, models);
-  return made_sketch(std::move(doc));
+  const bool tagged = apply_osm_tags_and_layout(doc, path);
+  if (!projected && !beside && !tagged) return parse_sketch(text, path, read_grammars, models);
+  return made_sketch(doc, path, read_grammars, models);
+}
+
+Sketch load_sketch(const std::vector<fs::path>& paths, bool read_grammars, const fs::path& models) {
+  if (paths.empty()) throw UserError("no sketch given; give a GeoJSON sketch, a grid map, a vector file or an OSM extract");
+  if (paths.size() == 1) return load_sketch(paths[0], read_grammars, models);
+  nlohmann::ordered_json doc = {{"type", "FeatureCollection"}, {"features", nlohmann::ordered_json::array()}};
+  fs::path crs_from, settings_from;
+  for (const fs::path& path : paths) {
+    const SketchSource source = sketch_source(path);
+    expect_readable(path, source);
+    if (source == SketchSource::GridMap)
+      throw UserError(path.string() + ": a grid map is a whole sketch and cannot be given with others; give it alone, "
+                      "or name it in a sketch's \"exacity\".grid");
+    nlohmann::ordered_json part;
+    if (source == SketchSource::GeoJson) {
+      const std::string text = file_text(path);
+      part = nlohmann::ordered_json::parse(text, nullptr, false);
+      if (part.is_discarded() || !part.is_object() || !part.contains("features") || !part["features"].is_array()) {
+        parse_sketch(text, path, false);  // says what is wrong with it
+        throw UserError(path.string() + ": not a GeoJSON FeatureCollection; give one");
+      }
+      add_settings_beside(part, path);
+    } else {
+      part = gis_document(path, source);
+    }
+    // Every feature is named by its own file in messages.
+    for (std::size_t i = 0; i < part["features"].size(); ++i) {
+      nlohmann::ordered_json& f = part["features"][i];
+      if (f.is_object() && f.contains("properties") && f["properties"].is_object() && !f["properties"].contains("source"))
+        f["properties"]["source"] = path.string() + " features[" + std::to_string(i) + "]";
+    }
+    // A file without a crs is taken to be in the others'.
+    if (part.contains("crs") && !part["crs"].is_null()) {
+      if (!doc.contains("crs")) doc["crs"] = part["crs"], crs_from = path;
+      else if (epsg_of(doc["crs"]) ? epsg_of(doc["crs"]) != epsg_of(part["crs"]) : doc["crs"] != part["crs"])
+        throw UserError(path.string() + ": its crs " + part["crs"].dump() + " is not " + crs_from.string() + "'s " +
+                        doc["crs"].dump() + "; sketches given together share one CRS (reproject with ogr2ogr -t_srs)");
+    }
+    if (part.contains("exacity")) {
+      if (doc.contains("exacity"))
+        throw UserError(path.string() + ": has settings, and so has " + settings_from.string() +
+                        "; sketches given together take their settings from one of them");
+      doc["exacity"] = std::move(part["exacity"]), settings_from = path;
+    }
+    if (part.contains("osm") && part["osm"].is_object()) {
+      if (!doc.contains("osm")) doc["osm"] = {{"file", part["osm"].value("file", path.string())}};
+      add_counts(doc["osm"]["skipped"], part["osm"].value("skipped", nlohmann::ordered_json()));
+    }
+    for (nlohmann::ordered_json& f : part["features"]) doc["features"].push_back(std::move(f));
+  }
+  project_to_metres(doc, paths[0]);
+  apply_osm_tags_and_layout(doc, paths[0]);
+  return made_sketch(doc, paths[0], read_grammars, models);
 }
 
 }  // namespace exacity

@@ -85,6 +85,9 @@ struct Sketch {
   StreetSettings streets;
   int joined_ends = 0;                // line ends moved by up to `snap` to meet another line
   std::vector<DeadEnd> dead_ends;
+  // OpenStreetMap features whose tags make no zone or road, by tag ("highway=footway"):
+  // the document's "osm" member (generate/gis/osm_tags.h).
+  std::map<std::string, int> osm_left_out;
   // The document read when it is not the file at `path` (a grid map; a sketch naming one in
   // "grid", whose features it holds; `generate --models`), else empty. OUT/sketch.geojson
   // holds it, so that validate and render read the sketch generate read.
@@ -111,6 +114,12 @@ double default_width(RoadClass road_class);
 // before the sketch's own. A non-empty `models` is a model library in place of the
 // sketch's "models" (`generate --models`).
 Sketch load_sketch(const std::filesystem::path& path, bool read_grammars = true,
+                   const std::filesystem::path& models = {});
+// Several sketch files read as one (a land use layer and a streets layer, say): their
+// features in the order given, each named by its file; they share one CRS (a file without
+// one is taken to be in the others') and at most one of them has settings. Messages and
+// relative paths are the first file's.
+Sketch load_sketch(const std::vector<std::filesystem::path>& paths, bool read_grammars = true,
                    const std::filesystem::path& models = {});
 Sketch parse_sketch(const std::string& text, const std::filesystem::path& path, bool read_grammars = true,
                     const std::filesystem::path& models = {});

@@ -7,6 +7,7 @@
 #include <ogrsf_frmts.h>
 
 #include "generate/errors.h"
+#include "generate/gis/osm_tags.h"
 #include "generate/gis/projection.h"
 #include "generate/gis/sketch_sources.h"
 
@@ -87,9 +88,12 @@ ordered_json ogr_sketch_document(const fs::path& path) {
     if (layer->GetGeomType() == wkbNone) continue;  // a table without geometry (QGIS's styles, say)
     const std::string where = path.string() + " layer " + layer->GetName();
     OGRFeatureDefn* defn = layer->GetLayerDefn();
-    if (defn->GetFieldIndex("zone") < 0 && defn->GetFieldIndex("road") < 0)
-      throw UserError(where + ": has neither a \"zone\" nor a \"road\" field; add one (zones: residential, commercial, "
-                      "industrial, park, water; roads: highway, main, local), or remove the layer");
+    const bool osm_tagged = std::any_of(osm_keys().begin(), osm_keys().end(),
+                                        [&](const std::string& key) { return defn->GetFieldIndex(key.c_str()) >= 0; });
+    if (defn->GetFieldIndex("zone") < 0 && defn->GetFieldIndex("road") < 0 && !osm_tagged)
+      throw UserError(where + ": has neither a \"zone\" nor a \"road\" field, nor OpenStreetMap's landuse or highway; add "
+                      "one (zones: residential, commercial, industrial, park, water; roads: highway, main, local), or remove "
+                      "the layer");
     std::unique_ptr<OGRCoordinateTransformation> to_crs;
     if (const OGRSpatialReference* srs = layer->GetSpatialRef()) {
       if (!crs) {
@@ -113,6 +117,8 @@ ordered_json ogr_sketch_document(const fs::path& path) {
       ordered_json properties = ordered_json::object();
       for (const char* name : {"zone", "road", "width", "name"})
         if (ordered_json v = field(*f, name); !v.is_null()) properties[name] = std::move(v);
+      for (const std::string& key : osm_keys())
+        if (ordered_json v = field(*f, key.c_str()); !v.is_null() && !properties.contains(key)) properties[key] = std::move(v);
       properties["source"] = source;
       ordered_json geometry = nullptr;
       if (const OGRGeometry* g = f->GetGeometryRef()) {

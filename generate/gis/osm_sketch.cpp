@@ -7,8 +7,6 @@
 #include <memory>
 #include <optional>
 
-#include <ogr_geometry.h>
-#include <ogr_spatialref.h>
 #include <osmium/area/assembler.hpp>
 #include <osmium/area/multipolygon_manager.hpp>
 #include <osmium/handler.hpp>
@@ -20,6 +18,7 @@
 #include <osmium/visitor.hpp>
 
 #include "generate/errors.h"
+#include "generate/gis/osm_tags.h"
 #include "generate/gis/projection.h"
 #include "generate/gis/sketch_sources.h"
 
@@ -31,53 +30,19 @@ namespace {
 
 using LonLat = std::vector<std::pair<double, double>>;
 
-// What a highway tag makes: a road class, or nothing (paths, tracks, planned roads).
-std::optional<std::string> road_class(const std::string& highway) {
-  static const std::map<std::string, std::string> classes{
-      {"motorway", "highway"},  {"motorway_link", "highway"}, {"trunk", "highway"},      {"trunk_link", "highway"},
-      {"primary", "highway"},   {"primary_link", "highway"},  {"secondary", "main"},     {"secondary_link", "main"},
-      {"tertiary", "main"},     {"tertiary_link", "main"},    {"unclassified", "local"}, {"residential", "local"},
-      {"living_street", "local"}, {"service", "local"},       {"road", "local"}};
-  auto it = classes.find(highway);
-  if (it == classes.end()) return std::nullopt;
-  return it->second;
+OsmTags lookup(const osmium::TagList& tags) {
+  return [&tags](const std::string& key) -> std::optional<std::string> {
+    const char* v = tags[key.c_str()];
+    return v ? std::optional<std::string>(v) : std::nullopt;
+  };
 }
 
-// A zone type from an area's tags, or nothing.
-std::optional<std::string> zone_type(const osmium::TagList& tags) {
-  const char* landuse = tags["landuse"];
-  const std::string l = landuse ? landuse : "";
-  if (l == "residential") return "residential";
-  if (l == "commercial" || l == "retail") return "commercial";
-  if (l == "industrial") return "industrial";
-  if (l == "reservoir" || l == "basin" || tags.has_tag("natural", "water") || tags.has_key("water") ||
-      tags.has_tag("waterway", "riverbank"))
-    return "water";
-  if (l == "grass" || l == "meadow" || l == "forest" || l == "recreation_ground" || l == "village_green" ||
-      tags.has_tag("leisure", "park") || tags.has_tag("leisure", "garden") || tags.has_tag("natural", "wood"))
-    return "park";
-  return std::nullopt;
-}
-
-// Metres from a width tag ("7", "7.5 m", "7m"); nothing for other units or junk.
-std::optional<double> metres(const char* tag) {
-  if (!tag) return std::nullopt;
-  char* end = nullptr;
-  const double v = std::strtod(tag, &end);
-  while (end && *end == ' ') ++end;
-  if (end == tag || !std::isfinite(v) || v <= 0 || (*end && std::string(end) != "m")) return std::nullopt;
-  return v;
-}
-
-double default_width(const std::string& road) { return road == "highway" ? 20 : road == "main" ? 12 : 8; }
-
+// A feature as OSM has it: its tags among osm_keys(), its name and where it came from;
+// apply_osm_tags makes zones and roads of them, as of any OSM-tagged feature.
 struct OsmFeature {
-  std::string kind;   // "zone" or "road"
-  std::string type;   // the zone type or road class
-  double width = 0;   // roads, and rivers before buffering
-  std::string name, source;
-  std::vector<std::pair<LonLat, std::vector<LonLat>>> polygons;  // zones: outer ring, holes
-  LonLat line;                                                    // roads and rivers
+  ordered_json properties;
+  std::vector<std::pair<LonLat, std::vector<LonLat>>> polygons;  // areas: outer ring, holes
+  LonLat line;                                                    // ways
 };
 
 // What the extract makes, and what it leaves out and why (the document's "osm" member).
@@ -87,34 +52,23 @@ class Collector : public osmium::handler::Handler {
 
   void way(const osmium::Way& way) {
     const osmium::TagList& tags = way.tags();
-    if (const char* waterway = tags["waterway"]; waterway && (std::string(waterway) == "river" || std::string(waterway) == "canal")) {
-      OsmFeature f{"zone", "water", metres(tags["width"]).value_or(10), name(tags), file_ + " way " + std::to_string(way.id()), {}, line(way)};
-      if (f.line.size() >= 2) rivers_.push_back(std::move(f));
-      return;
-    }
-    const char* highway = tags["highway"];
-    if (!highway) return;
-    const std::optional<std::string> road = road_class(highway);
-    if (!road) return ++skipped_[std::string("highway=") + highway], void();
-    if (tags.has_tag("tunnel", "yes")) return ++skipped_["tunnel"], void();
-    if (*road == "local" && std::string(highway) == "service" && tags.has_key("service"))
-      return ++skipped_[std::string("service=") + tags["service"]], void();
-    double width = default_width(*road);
-    if (std::optional<double> w = metres(tags["width"])) width = *w;
-    else if (const char* lanes = tags["lanes"]; lanes && std::atoi(lanes) > 0) width = 3.5 * std::atoi(lanes);
-    OsmFeature f{"road", *road, std::clamp(width, 1.0, 100.0), name(tags), file_ + " way " + std::to_string(way.id()), {}, line(way)};
+    // A closed way tagged only as an area (waterway=riverbank) is the area handler's.
+    if (!tags["highway"] && !(tags["waterway"] && !way.is_closed())) return;
+    const OsmMeaning meaning = osm_line_meaning(lookup(tags));
+    if (meaning.kind == OsmMeaning::LeftOut) return ++skipped_[meaning.why], void();
+    OsmFeature f{properties(tags, " way " + std::to_string(way.id())), {}, points(way.nodes())};
     if (f.line.size() < 2) return ++skipped_["ways without located nodes"], void();
-    roads_.push_back(std::move(f));
+    (meaning.kind == OsmMeaning::River ? rivers_ : roads_).push_back(std::move(f));
   }
 
   void area(const osmium::Area& area) {
-    const std::optional<std::string> zone = zone_type(area.tags());
-    if (!zone) return;
-    OsmFeature f{"zone", *zone, 0, name(area.tags()),
-                 file_ + (area.from_way() ? " way " : " relation ") + std::to_string(area.orig_id()), {}, {}};
+    const OsmMeaning meaning = osm_area_meaning(lookup(area.tags()));
+    if (meaning.kind == OsmMeaning::LeftOut) return ++skipped_[meaning.why], void();
+    if (meaning.kind != OsmMeaning::Zone) return;
+    OsmFeature f{properties(area.tags(), (area.from_way() ? " way " : " relation ") + std::to_string(area.orig_id())), {}, {}};
     for (const osmium::OuterRing& outer : area.outer_rings()) {
-      f.polygons.push_back({ring(outer), {}});
-      for (const osmium::InnerRing& inner : area.inner_rings(outer)) f.polygons.back().second.push_back(ring(inner));
+      f.polygons.push_back({points(outer), {}});
+      for (const osmium::InnerRing& inner : area.inner_rings(outer)) f.polygons.back().second.push_back(points(inner));
     }
     if (!f.polygons.empty()) zones_.push_back(std::move(f));
   }
@@ -123,7 +77,14 @@ class Collector : public osmium::handler::Handler {
   std::map<std::string, int> skipped_;
 
  private:
-  static std::string name(const osmium::TagList& tags) { return tags["name"] ? tags["name"] : ""; }
+  ordered_json properties(const osmium::TagList& tags, const std::string& what) const {
+    ordered_json p = ordered_json::object();
+    for (const std::string& key : osm_keys())
+      if (const char* v = tags[key.c_str()]) p[key] = v;
+    if (const char* name = tags["name"]) p["name"] = name;
+    p["source"] = file_ + what;
+    return p;
+  }
   template <typename Nodes>
   static LonLat points(const Nodes& nodes) {
     LonLat out;
@@ -131,9 +92,6 @@ class Collector : public osmium::handler::Handler {
       if (n.location().valid()) out.push_back({n.location().lon(), n.location().lat()});
     return out;
   }
-  static LonLat line(const osmium::Way& way) { return points(way.nodes()); }
-  template <typename Ring>
-  static LonLat ring(const Ring& r) { return points(r); }
 
   std::string file_;
 };
@@ -175,19 +133,6 @@ ordered_json osm_sketch_document(const fs::path& path) {
     throw UserError(file + ": the extract has no highways, land use or water Exacity reads; see the README's OpenStreetMap section");
 
   ordered_json features = ordered_json::array();
-  auto properties = [](const OsmFeature& f) {
-    ordered_json p = {{f.kind, f.type}};
-    if (f.kind == "road") p["width"] = f.width;
-    if (!f.name.empty()) p["name"] = f.name;
-    p["source"] = f.source;
-    return p;
-  };
-  // Land use first, then parks, then water: where areas overlap the later wins, so water
-  // keeps its banks and a park inside a residential area stays a park.
-  std::stable_sort(collector.zones_.begin(), collector.zones_.end(), [](const OsmFeature& a, const OsmFeature& b) {
-    auto rank = [](const std::string& t) { return t == "water" ? 2 : t == "park" ? 1 : 0; };
-    return rank(a.type) < rank(b.type);
-  });
   for (OsmFeature& f : collector.zones_) {
     ordered_json polygons = ordered_json::array();
     for (auto& [outer, holes] : f.polygons) {
@@ -195,40 +140,18 @@ ordered_json osm_sketch_document(const fs::path& path) {
       for (const LonLat& h : holes) rings.push_back(ring_json(h));
       polygons.push_back(std::move(rings));
     }
-    features.push_back({{"type", "Feature"}, {"properties", properties(f)},
+    features.push_back({{"type", "Feature"}, {"properties", std::move(f.properties)},
                         {"geometry", {{"type", "MultiPolygon"}, {"coordinates", std::move(polygons)}}}});
   }
-  // A river is its centre line made as wide as it is (GEOS, through OGR), in metres: in
-  // the UTM zone of its middle, and back.
-  for (OsmFeature& f : collector.rivers_) {
-    OGRLineString line;
-    for (auto [lon, lat] : f.line) line.addPoint(lon, lat);
-    OGREnvelope box;
-    line.getEnvelope(&box);
-    OGRSpatialReference wgs84, utm;
-    wgs84.importFromEPSG(4326), utm.importFromEPSG(utm_epsg((box.MinX + box.MaxX) / 2, (box.MinY + box.MaxY) / 2));
-    wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER), utm.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-    std::unique_ptr<OGRCoordinateTransformation> to_utm(OGRCreateCoordinateTransformation(&wgs84, &utm));
-    std::unique_ptr<OGRCoordinateTransformation> back(OGRCreateCoordinateTransformation(&utm, &wgs84));
-    std::unique_ptr<OGRGeometry> water;
-    if (to_utm && back && line.transform(to_utm.get()) == OGRERR_NONE) water.reset(line.Buffer(f.width / 2, 4));
-    if (!water || water->IsEmpty() || water->transform(back.get()) != OGRERR_NONE) {
-      ++collector.skipped_["rivers PROJ or GEOS could not widen"];
-      continue;
-    }
-    char* text = water->exportToJson();
-    features.push_back({{"type", "Feature"}, {"properties", properties(f)}, {"geometry", ordered_json::parse(text)}});
-    CPLFree(text);
-  }
-  for (const OsmFeature& f : collector.roads_)
-    features.push_back({{"type", "Feature"}, {"properties", properties(f)},
-                        {"geometry", {{"type", "LineString"}, {"coordinates", ring_json(f.line)}}}});
-  ordered_json taken = {{"zones", collector.zones_.size()}, {"roads", collector.roads_.size()}, {"rivers", collector.rivers_.size()}};
+  for (auto* lines : {&collector.rivers_, &collector.roads_})
+    for (OsmFeature& f : *lines)
+      features.push_back({{"type", "Feature"}, {"properties", std::move(f.properties)},
+                          {"geometry", {{"type", "LineString"}, {"coordinates", ring_json(f.line)}}}});
   ordered_json skipped = ordered_json::object();
   for (const auto& [what, count] : collector.skipped_) skipped[what] = count;
   return {{"type", "FeatureCollection"},
           {"crs", crs_member(4326)},
-          {"osm", {{"file", file}, {"taken", taken}, {"skipped", skipped}}},
+          {"osm", {{"file", file}, {"skipped", skipped}}},
           {"features", std::move(features)}};
 }
 

@@ -20,15 +20,16 @@ SketchSource sketch_source(const std::filesystem::path& path);
 std::filesystem::path settings_beside(const std::filesystem::path& path);
 
 // Every feature of every layer with a geometry: its geometry (2D, linear, in the first such
-// layer's CRS) and its "zone", "road", "width" and "name" fields; "source" names it for
+// layer's CRS) and its "zone", "road", "width" and "name" fields, and OSM's tags (osm_keys); "source" names it for
 // messages (FILE layer NAME feature FID). The document's crs is that layer's, by EPSG code.
 // Throws UserError naming the file (and the layer) when OGR cannot read it.
 nlohmann::ordered_json ogr_sketch_document(const std::filesystem::path& path);
 
 // An OpenStreetMap extract (.osm or .osm.pbf, read with libosmium) in lon/lat, as OSM is
-// (EPSG:4326; project_to_metres then projects it with its settings' bounds): highways as
-// roads (class and width from highway, lanes and width), land use as zones, water areas
-// and rivers (as wide as their width tag, or 10 m) as water. Throws UserError.
+// (EPSG:4326; project_to_metres then projects it with its settings' bounds): its highways,
+// rivers and canals as lines and its land use and water as areas, each with the tags
+// apply_osm_tags (generate/gis/osm_tags.h) makes zones and roads of; what they make
+// nothing of is counted in the "osm" member. Throws UserError.
 nlohmann::ordered_json osm_sketch_document(const std::filesystem::path& path);
 
 // The settings beside the sketch into the document's "exacity" member (a GeoJSON's own

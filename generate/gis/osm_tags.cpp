@@ -1,0 +1,257 @@
+#include "generate/gis/osm_tags.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+
+#include <ogr_geometry.h>
+
+namespace exacity {
+using nlohmann::ordered_json;
+
+namespace {
+
+// What a highway tag makes: a road class, or nothing (paths, tracks, planned roads).
+std::optional<std::string> road_class(const std::string& highway) {
+  static const std::map<std::string, std::string> classes{
+      {"motorway", "highway"},  {"motorway_link", "highway"}, {"trunk", "highway"},      {"trunk_link", "highway"},
+      {"primary", "highway"},   {"primary_link", "highway"},  {"secondary", "main"},     {"secondary_link", "main"},
+      {"tertiary", "main"},     {"tertiary_link", "main"},    {"unclassified", "local"}, {"residential", "local"},
+      {"living_street", "local"}, {"service", "local"},       {"road", "local"}};
+  auto it = classes.find(highway);
+  if (it == classes.end()) return std::nullopt;
+  return it->second;
+}
+
+// Metres from a width tag ("7", "7.5 m", "7m"); nothing for other units or junk.
+std::optional<double> metres(const std::optional<std::string>& tag) {
+  if (!tag) return std::nullopt;
+  const char* text = tag->c_str();
+  char* end = nullptr;
+  const double v = std::strtod(text, &end);
+  while (end && *end == ' ') ++end;
+  if (end == text || !std::isfinite(v) || v <= 0 || (*end && std::string(end) != "m")) return std::nullopt;
+  return v;
+}
+
+double default_width(const std::string& road) { return road == "highway" ? 20 : road == "main" ? 12 : 8; }
+
+OsmMeaning left_out(const std::string& why) { return {OsmMeaning::LeftOut, "", 0, why}; }
+
+// The first of `keys` that is tagged, as "key=value".
+std::optional<std::string> first_tag(const OsmTags& tags, std::initializer_list<const char*> keys) {
+  for (const char* key : keys)
+    if (std::optional<std::string> v = tags(key)) return std::string(key) + "=" + *v;
+  return std::nullopt;
+}
+
+// GDAL's OSM driver keeps the tags it has no column for as one hstore text:
+// "lanes"=>"2","tunnel"=>"yes".
+std::map<std::string, std::string> hstore(const std::string& text) {
+  std::map<std::string, std::string> out;
+  std::size_t i = 0;
+  auto quoted = [&](std::string& s) {
+    while (i < text.size() && text[i] != '"') ++i;
+    if (i++ >= text.size()) return false;
+    for (; i < text.size() && text[i] != '"'; ++i) s += text[i] == '\\' && i + 1 < text.size() ? text[++i] : text[i];
+    return i++ < text.size();
+  };
+  for (std::string k, v; quoted(k) && text.compare(i, 2, "=>") == 0 && quoted(v); k.clear(), v.clear()) out[k] = v;
+  return out;
+}
+
+std::optional<std::string> text_value(const ordered_json& v) {
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_number() || v.is_boolean()) return v.dump();
+  return std::nullopt;
+}
+
+bool is_polygonal(const std::string& type) { return type == "Polygon" || type == "MultiPolygon"; }
+bool is_linear(const std::string& type) { return type == "LineString" || type == "MultiLineString"; }
+
+// Land use mapped to the block's edge leaves the pavement between it and the street to no
+// zone, and a block no street reaches gets no lots (docs/design.md, The sketch, GIS and OSM):
+// a built-up zone is widened by this much where OSM's streets come with it.
+constexpr double kLandUseReach = 8;
+
+// `geometry` grown by `distance` (GEOS, through OGR), in the document's metres.
+std::optional<ordered_json> buffered(const ordered_json& geometry, double distance) {
+  std::unique_ptr<OGRGeometry> g(OGRGeometryFactory::createFromGeoJson(geometry.dump().c_str()));
+  if (!g) return std::nullopt;
+  std::unique_ptr<OGRGeometry> area(g->Buffer(distance, 4));
+  if (!area || area->IsEmpty()) return std::nullopt;
+  char* text = area->exportToJson();
+  ordered_json out = ordered_json::parse(text ? text : "null", nullptr, false);
+  CPLFree(text);
+  if (out.is_discarded() || out.is_null()) return std::nullopt;
+  return out;
+}
+
+// An area without its rings of fewer than 3 distinct points (OSM exports hold closed ways of
+// two nodes), a polygon whose outer ring is one dropped whole; whether any polygon is left.
+bool drop_degenerate_rings(ordered_json& geometry) {
+  auto distinct = [](const ordered_json& ring) {
+    std::vector<std::pair<double, double>> points;
+    if (ring.is_array())
+      for (const ordered_json& p : ring)
+        if (p.is_array() && p.size() >= 2 && p[0].is_number() && p[1].is_number()) points.push_back({p[0], p[1]});
+    std::sort(points.begin(), points.end());
+    return std::unique(points.begin(), points.end()) - points.begin();
+  };
+  auto clean = [&](ordered_json& polygon) {
+    if (!polygon.is_array() || polygon.empty() || distinct(polygon[0]) < 3) return false;
+    ordered_json rings = ordered_json::array({polygon[0]});
+    for (std::size_t i = 1; i < polygon.size(); ++i)
+      if (distinct(polygon[i]) >= 3) rings.push_back(polygon[i]);
+    polygon = std::move(rings);
+    return true;
+  };
+  ordered_json& coords = geometry["coordinates"];
+  if (geometry["type"] == "Polygon") return clean(coords);
+  if (!coords.is_array()) return false;
+  ordered_json kept = ordered_json::array();
+  for (ordered_json& polygon : coords)
+    if (clean(polygon)) kept.push_back(std::move(polygon));
+  coords = std::move(kept);
+  return !coords.empty();
+}
+
+}  // namespace
+
+const std::vector<std::string>& osm_keys() {
+  static const std::vector<std::string> keys{"highway", "waterway", "landuse", "natural", "leisure", "water",
+                                             "width",   "lanes",    "tunnel",  "service", "other_tags"};
+  return keys;
+}
+
+OsmMeaning osm_line_meaning(const OsmTags& tags) {
+  if (std::optional<std::string> waterway = tags("waterway")) {
+    if (*waterway == "river" || *waterway == "canal") return {OsmMeaning::River, "water", metres(tags("width")).value_or(10), ""};
+    return left_out("waterway=" + *waterway);
+  }
+  const std::optional<std::string> highway = tags("highway");
+  if (!highway) {
+    if (std::optional<std::string> area_tag = first_tag(tags, {"landuse", "natural", "leisure", "water"}))
+      return left_out(*area_tag + " drawn as a line");
+    return {};
+  }
+  const std::optional<std::string> road = road_class(*highway);
+  if (!road) return left_out("highway=" + *highway);
+  if (tags("tunnel") == std::optional<std::string>("yes")) return left_out("tunnel");
+  if (*highway == "service")
+    if (std::optional<std::string> service = tags("service")) return left_out("service=" + *service);
+  double width = default_width(*road);
+  if (std::optional<double> w = metres(tags("width"))) width = *w;
+  else if (std::optional<std::string> lanes = tags("lanes"); lanes && std::atoi(lanes->c_str()) > 0)
+    width = 3.5 * std::atoi(lanes->c_str());
+  return {OsmMeaning::Road, *road, std::clamp(width, 1.0, 100.0), ""};
+}
+
+OsmMeaning osm_area_meaning(const OsmTags& tags) {
+  auto is = [&](const char* key, const char* value) { return tags(key) == std::optional<std::string>(value); };
+  const std::string l = tags("landuse").value_or("");
+  auto zone = [](const char* type) { return OsmMeaning{OsmMeaning::Zone, type, 0, ""}; };
+  if (l == "residential") return zone("residential");
+  if (l == "commercial" || l == "retail") return zone("commercial");
+  if (l == "industrial") return zone("industrial");
+  if (l == "reservoir" || l == "basin" || is("natural", "water") || tags("water") || is("waterway", "riverbank"))
+    return zone("water");
+  if (l == "grass" || l == "meadow" || l == "forest" || l == "recreation_ground" || l == "village_green" ||
+      is("leisure", "park") || is("leisure", "garden") || is("natural", "wood"))
+    return zone("park");
+  if (std::optional<std::string> tag = first_tag(tags, {"landuse", "leisure", "natural", "waterway", "highway"}))
+    return left_out(*tag);
+  return {};
+}
+
+bool apply_osm_tags(ordered_json& doc, const std::filesystem::path& path) {
+  if (!doc.is_object() || !doc.contains("features") || !doc["features"].is_array()) return false;
+  ordered_json& features = doc["features"];
+  std::vector<OsmMeaning> meanings;
+  for (ordered_json& f : features) {
+    meanings.emplace_back();
+    if (!f.is_object() || !f.contains("properties") || !f["properties"].is_object() || !f.contains("geometry") ||
+        !f["geometry"].is_object())
+      continue;
+    const ordered_json& p = f["properties"];
+    if (p.contains("zone") || p.contains("road")) continue;
+    std::map<std::string, std::string> other;
+    if (p.contains("other_tags") && p["other_tags"].is_string()) other = hstore(p["other_tags"].get<std::string>());
+    const OsmTags tags = [&](const std::string& key) -> std::optional<std::string> {
+      if (p.contains(key))
+        if (std::optional<std::string> v = text_value(p[key])) return v;
+      if (auto it = other.find(key); it != other.end()) return it->second;
+      return std::nullopt;
+    };
+    const std::string type = f["geometry"].value("type", "");
+    if (is_polygonal(type)) meanings.back() = osm_area_meaning(tags);
+    else if (is_linear(type)) meanings.back() = osm_line_meaning(tags);
+  }
+  if (std::all_of(meanings.begin(), meanings.end(), [](const OsmMeaning& m) { return m.kind == OsmMeaning::Untagged; }))
+    return false;
+
+  std::map<std::string, int> taken{{"zones", 0}, {"roads", 0}, {"rivers", 0}}, skipped;
+  std::vector<std::size_t> zones;  // places of the features whose tags made zones
+  ordered_json kept = ordered_json::array();
+  for (std::size_t i = 0; i < features.size(); ++i) {
+    ordered_json& f = features[i];
+    const OsmMeaning& meaning = meanings[i];
+    // Features are taken out below: each keeps its place in the user's file for messages.
+    if (f.is_object() && f.contains("properties") && f["properties"].is_object() && !f["properties"].contains("source"))
+      f["properties"]["source"] = path.string() + " features[" + std::to_string(i) + "]";
+    if (meaning.kind == OsmMeaning::LeftOut) {
+      ++skipped[meaning.why];
+      continue;
+    }
+    if (meaning.kind == OsmMeaning::River) {
+      std::optional<ordered_json> water = buffered(f["geometry"], meaning.width / 2);
+      if (!water) {
+        ++skipped["rivers GEOS could not widen"];
+        continue;
+      }
+      f["geometry"] = std::move(*water);
+    }
+    if (meaning.kind == OsmMeaning::Zone && !drop_degenerate_rings(f["geometry"])) {
+      ++skipped["areas of fewer than 3 distinct points"];
+      continue;
+    }
+    if (meaning.kind != OsmMeaning::Untagged) {
+      ++taken[meaning.kind == OsmMeaning::Zone ? "zones" : meaning.kind == OsmMeaning::Road ? "roads" : "rivers"];
+      const bool zone = meaning.kind != OsmMeaning::Road;
+      ordered_json& p = f["properties"];
+      p[zone ? "zone" : "road"] = meaning.type;
+      if (!zone) p["width"] = meaning.width;
+      if (zone) zones.push_back(kept.size());
+    }
+    kept.push_back(std::move(f));
+  }
+  if (taken["roads"] > 0)
+    for (std::size_t z : zones) {
+      ordered_json& f = kept[z];
+      const std::string type = f["properties"]["zone"];
+      if (type == "water" || type == "park") continue;
+      if (std::optional<ordered_json> wide = buffered(f["geometry"], kLandUseReach)) f["geometry"] = std::move(*wide);
+    }
+  // Land use first, then parks, then water, in the places the tagged zones had: where areas
+  // overlap the later wins, so water keeps its banks and a park inside a residential area
+  // stays a park. The user's own zones keep their places.
+  auto rank = [](const ordered_json& f) {
+    const std::string t = f["properties"]["zone"];
+    return t == "water" ? 2 : t == "park" ? 1 : 0;
+  };
+  std::vector<ordered_json> ordered;
+  for (std::size_t z : zones) ordered.push_back(kept[z]);
+  std::stable_sort(ordered.begin(), ordered.end(), [&](const auto& a, const auto& b) { return rank(a) < rank(b); });
+  for (std::size_t k = 0; k < zones.size(); ++k) kept[zones[k]] = std::move(ordered[k]);
+  features = std::move(kept);
+
+  ordered_json& osm = doc["osm"];
+  if (!osm.is_object()) osm = {{"file", path.string()}};
+  osm["taken"] = taken;
+  if (!osm.contains("skipped") || !osm["skipped"].is_object()) osm["skipped"] = ordered_json::object();
+  for (const auto& [why, count] : skipped) osm["skipped"][why] = osm["skipped"].value(why, 0) + count;
+  return true;
+}
+
+}  // namespace exacity

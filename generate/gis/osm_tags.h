@@ -1,0 +1,43 @@
+// What OpenStreetMap's tags make of a feature (docs/design.md, The sketch, GIS and OSM): the
+// one table behind an OSM extract and behind GeoJSON or OGR features exported from OSM
+// (their "landuse", "highway" ... columns, and GDAL's "other_tags").
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace exacity {
+
+// A tag's value by key, or nothing.
+using OsmTags = std::function<std::optional<std::string>(const std::string& key)>;
+
+struct OsmMeaning {
+  enum Kind { Untagged, Zone, Road, River, LeftOut } kind = Untagged;
+  std::string type;  // the zone type or road class
+  double width = 0;  // roads and rivers, metres
+  std::string why;   // LeftOut: the tag that says what it is ("highway=footway")
+};
+
+// A way or line: a highway, or a river or canal.
+OsmMeaning osm_line_meaning(const OsmTags& tags);
+// An area: land use, parks, water.
+OsmMeaning osm_area_meaning(const OsmTags& tags);
+
+// The keys read, in the order they are looked at; an OGR layer with any of them as a field
+// is read for them.
+const std::vector<std::string>& osm_keys();
+
+// Gives every feature of a sketch document in metres that has OSM tags but no "zone" or
+// "road" the zone or road its tags make (a river its centre line widened to water by GEOS;
+// an area without its rings of fewer than 3 distinct points, as OSM exports have them);
+// features the tags make nothing of are taken out and counted by tag in the document's
+// "osm" member ({"skipped": {"highway=footway": N, ...}}), and every feature keeps its
+// place in the user's file as its "source" for messages. Features with neither OSM tags
+// nor a zone or road are left for the sketch reader to refuse. Whether anything changed.
+bool apply_osm_tags(nlohmann::ordered_json& doc, const std::filesystem::path& path);
+
+}  // namespace exacity
