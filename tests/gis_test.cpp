@@ -409,7 +409,8 @@ ordered_json osm_tagged_town() {
       {"type": "Feature", "properties": {"waterway": "river", "width": 20},
        "geometry": {"type": "LineString", "coordinates": [[384900, 6672600], [385700, 6672600]]}},
       {"type": "Feature", "properties": {"zone": "commercial"},
-       "geometry": {"type": "Polygon", "coordinates": [[[385600, 6672000], [385800, 6672000], [385800, 6672200], [385600, 6672200], [385600, 6672000]]]}}]})");
+       "geometry": {"type": "Polygon", "coordinates": [[[385600, 6672000], [385800, 6672000], [385800, 6672200], [385600, 6672200], [385600, 6672000]]]}},
+      {"type": "Feature", "properties": {"highway": "crossing"}, "geometry": {"type": "Point", "coordinates": [385300, 6672250]}}]})");
 }
 
 geom::Box box_of(const ZoneFeature& zone) {
@@ -444,7 +445,8 @@ TEST(Gis, OsmTaggedFeaturesBecomeZonesAndRoads) {
     EXPECT_EQ(sketch.roads[0].road_class, RoadClass::Local);
     EXPECT_EQ(sketch.roads[0].width, 7);  // lanes=2 in other_tags
     EXPECT_EQ(sketch.osm_left_out, (std::map<std::string, int>{
-                                       {"highway=footway", 1}, {"landuse=farmland", 1}, {"areas of fewer than 3 distinct points", 1}}));
+                                       {"highway=footway", 1}, {"landuse=farmland", 1}, {"areas of fewer than 3 distinct points", 1},
+                                       {"highway=crossing as a point", 1}}));
     EXPECT_EQ(sketch.zone_settings.at(ZoneType::Residential).roads.layout, "streets");
   }
   // Features taken out do not move the others' names: the user's zone is still features[7].
@@ -469,7 +471,7 @@ TEST(Gis, SeveralSketchFilesAreReadAsOne) {
   streets["features"] = ordered_json::array();
   streets.erase("crs");  // taken to be in the land use's
   for (const ordered_json& f : town["features"])
-    (f["geometry"]["type"] == "LineString" ? streets : land)["features"].push_back(f);
+    (f["geometry"]["type"] == "Polygon" ? land : streets)["features"].push_back(f);
   write(dir / "town.geojson", town.dump());
   write(dir / "land.geojson", land.dump());
   write(dir / "streets.geojson", streets.dump());
@@ -504,7 +506,7 @@ TEST(Gis, SeveralSketchFilesAreReadAsOne) {
   bad["features"].push_back({{"type", "Feature"}, {"properties", {{"road", "motorway"}}},
                              {"geometry", {{"type", "LineString"}, {"coordinates", {{385000, 6672100}, {385500, 6672100}}}}}});
   write(dir / "bad.geojson", bad.dump());
-  EXPECT_EQ(error_of_both(dir / "land.geojson", dir / "bad.geojson").rfind((dir / "bad.geojson").string() + " features[3]: unknown road class", 0),
+  EXPECT_EQ(error_of_both(dir / "land.geojson", dir / "bad.geojson").rfind((dir / "bad.geojson").string() + " features[4]: unknown road class", 0),
             0u)
       << error_of_both(dir / "land.geojson", dir / "bad.geojson");
   // Another CRS, settings in both, a grid map: refused, naming the file.

@@ -127,7 +127,7 @@ const std::vector<std::string>& osm_keys() {
 
 OsmMeaning osm_line_meaning(const OsmTags& tags) {
   if (std::optional<std::string> waterway = tags("waterway")) {
-    if (*waterway == "river" || *waterway == "canal") return {OsmMeaning::River, "water", metres(tags("width")).value_or(10), ""};
+    if (*waterway == "river" || *waterway == "canal") return {OsmMeaning::River, "water", std::clamp(metres(tags("width")).value_or(10), 1.0, 5000.0), ""};
     return left_out("waterway=" + *waterway);
   }
   const std::optional<std::string> highway = tags("highway");
@@ -187,6 +187,8 @@ bool apply_osm_tags(ordered_json& doc, const std::filesystem::path& path) {
     const std::string type = f["geometry"].value("type", "");
     if (is_polygonal(type)) meanings.back() = osm_area_meaning(tags);
     else if (is_linear(type)) meanings.back() = osm_line_meaning(tags);
+    else if (std::optional<std::string> tag = first_tag(tags, {"highway", "waterway", "landuse", "natural", "leisure", "water"}))
+      meanings.back() = left_out(*tag + " as a point");  // a crossing, a bus stop, a tree
   }
   if (std::all_of(meanings.begin(), meanings.end(), [](const OsmMeaning& m) { return m.kind == OsmMeaning::Untagged; }))
     return false;
