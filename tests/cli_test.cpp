@@ -448,6 +448,14 @@ TEST(Cli, PedestrianAndFlyerCamerasAndTheirMistakes) {
     EXPECT_EQ(r.code, 2) << args << ": " << r.out;
     EXPECT_FALSE(fs::exists(dir / "bad")) << args;
   }
+  // A walk in a path file: every frame's eye 1.7 m over the flat ground.
+  std::ofstream(dir / "stroll.json") << R"({"fps": 2, "keys": [{"t": 0, "camera": "pedestrian:road=0,along=0"},
+    {"t": 1, "camera": "pedestrian:road=0,along=30"}]})";
+  r = run(render + "--path " + (dir / "stroll.json").string() + " -o " + (dir / "stroll").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  for (const char* frame : {"frame_0000.json", "frame_0001.json", "frame_0002.json"})
+    EXPECT_NEAR(nlohmann::json::parse(read(dir / "stroll" / frame))["camera"]["from"][2].get<double>(), 1.7, 1e-5)
+        << frame;
   // In a path: the key that names a road the city lacks, before any frame is written.
   std::ofstream(dir / "walk.json") << R"({"fps": 2, "keys": [{"t": 0, "camera": "pedestrian:road=0,along=0"},
     {"t": 1, "camera": "pedestrian:road=4000,along=30"}]})";
