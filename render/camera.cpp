@@ -53,7 +53,8 @@ bool CameraSpecText::has(const std::string& key) const {
 std::vector<float> CameraSpecText::get(const std::string& key, std::size_t n) const {
   for (const auto& [k, v] : keys)
     if (k == key) {
-      if (v.size() != n) throw std::invalid_argument(key + " needs " + std::to_string(n) + " number" + (n > 1 ? "s" : ""));
+      if (v.size() != n)
+        throw std::invalid_argument(key + " needs " + std::to_string(n) + " number" + (n > 1 ? "s" : ""));
       return v;
     }
   throw std::invalid_argument("missing " + key + "=");
@@ -76,8 +77,8 @@ Camera Camera::parse(const std::string& spec, float fov_y) {
   const CameraSpecText text = CameraSpecText::split(spec);
   if (text.kind == "orbit") {
     auto t = text.get("target", 3);
-    return orbit({t[0], t[1], t[2]}, text.get("azimuth", 1)[0], text.get("elevation", 1)[0],
-                 text.get("distance", 1)[0], fov_y);
+    return orbit({t[0], t[1], t[2]}, text.get("azimuth", 1)[0], text.get("elevation", 1)[0], text.get("distance", 1)[0],
+                 fov_y);
   }
   if (text.kind == "look") {
     auto f = text.get("from", 3), t = text.get("to", 3);

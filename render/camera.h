@@ -72,8 +72,8 @@ class Lens {
   V3 from_, forward_, right_, up_;
   float width_, height_, half_x_, half_y_;
   bool orthographic_;
-  float radius_ = 0;            // m, half the aperture
-  V3 focus_normal_{0, 0, 1};    // the plane in focus: dot(focus_normal_, p - from_) = focus_offset_
+  float radius_ = 0;          // m, half the aperture
+  V3 focus_normal_{0, 0, 1};  // the plane in focus: dot(focus_normal_, p - from_) = focus_offset_
   float focus_offset_ = 0;
 };
 

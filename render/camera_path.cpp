@@ -75,9 +75,7 @@ Camera CameraPath::at(double t) const {
   c.fov_y = fov;
   if (city && a.spec.on_ground() && b.spec.on_ground()) {
     auto over_ground = [&](V3 p) { return p.z - ground_height(*city, p.x, p.y); };
-    auto onto_ground = [&](V3& p, double height) {
-      p.z = static_cast<float>(ground_height(*city, p.x, p.y) + height);
-    };
+    auto onto_ground = [&](V3& p, double height) { p.z = static_cast<float>(ground_height(*city, p.x, p.y) + height); };
     onto_ground(c.from, mix(over_ground(a.camera.from), over_ground(b.camera.from)));
     onto_ground(c.to, mix(over_ground(a.camera.to), over_ground(b.camera.to)));
   }

@@ -22,7 +22,7 @@ struct CameraKey {
 
 struct CameraPath {
   double fps = 24;
-  std::vector<CameraKey> keys;  // times strictly increasing, at least one
+  std::vector<CameraKey> keys;          // times strictly increasing, at least one
   const exacity::City* city = nullptr;  // the ground the keys stand on, once placed
 
   // Places the pedestrian and flyer keys on the city's ground; throws

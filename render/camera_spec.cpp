@@ -33,7 +33,8 @@ geom::Vec2 point_along(const geom::Polyline& line, double s) {
 
 double line_length(const geom::Polyline& line) {
   double len = 0;
-  for (std::size_t i = 0; i + 1 < line.size(); ++i) len += std::hypot(line[i + 1].x - line[i].x, line[i + 1].y - line[i].y);
+  for (std::size_t i = 0; i + 1 < line.size(); ++i)
+    len += std::hypot(line[i + 1].x - line[i].x, line[i + 1].y - line[i].y);
   return len;
 }
 

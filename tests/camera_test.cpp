@@ -1,9 +1,9 @@
 // Issue 25: depth of field (a thin lens, its plane in focus tilted or not) and the cameras
 // that stand on the city's ground (render/README.md, Cameras): a pedestrian walking a road
 // at eye height over a heightmap, a flyer at a height over it, and their bad specs.
-#include <gtest/gtest.h>
-
 #include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <cmath>
 #include <fstream>
@@ -74,7 +74,8 @@ double distance_to_line(const geom::Polyline& line, double x, double y) {
 
 double length_of(const geom::Polyline& line) {
   double len = 0;
-  for (std::size_t i = 0; i + 1 < line.size(); ++i) len += std::hypot(line[i + 1].x - line[i].x, line[i + 1].y - line[i].y);
+  for (std::size_t i = 0; i + 1 < line.size(); ++i)
+    len += std::hypot(line[i + 1].x - line[i].x, line[i + 1].y - line[i].y);
   return len;
 }
 
@@ -144,12 +145,14 @@ TEST(DepthOfField, AnEdgeInFocusStaysSharpWhileOneNearerBlursAsTheLensPredicts) 
   // sample of a pixel lands in its own footprint, so only the edge's pixels may be grey; at
   // 5 m the blur's diameter is 0.6 m x |1 - 5/10| = 0.3 m, 4 pixels of the 3.64 m the
   // image spans there.
-  const RenderScene scene({wall(10, -100, 0, 0, 100, 1), wall(5, -100, 0, -100, -0.01f, 1),
-                           wall(1000, -4000, 4000, -4000, 4000, 0)});
+  const RenderScene scene(
+      {wall(10, -100, 0, 0, 100, 1), wall(5, -100, 0, -100, -0.01f, 1), wall(1000, -4000, 4000, -4000, 4000, 0)});
   const Sky sky(200, 40, 3);
   const int w = 64, h = 48;
   Camera c = Camera::look({0, 0, 0}, {0, 10, 0}, 40);
-  auto albedo_at = [&](const Image& img, int x, int y) { return img.mean_albedo[static_cast<std::size_t>(y) * w + x].x; };
+  auto albedo_at = [&](const Image& img, int x, int y) {
+    return img.mean_albedo[static_cast<std::size_t>(y) * w + x].x;
+  };
   for (float aperture : {0.0f, 0.6f}) {
     c.depth_of_field.aperture = aperture;
     const Image img = trace(scene, sky, c, TraceSettings{w, h, 64, 1});
@@ -174,6 +177,19 @@ TEST(DepthOfField, AnEdgeInFocusStaysSharpWhileOneNearerBlursAsTheLensPredicts) 
   }
 }
 
+TEST(DepthOfField, ImagesAreTheSameBytesWhateverTheThreadCount) {
+  const RenderScene scene({wall(10, -100, 0, -100, 100, 0.8f), wall(30, -400, 400, -400, 400, 0.3f)});
+  const Sky sky(200, 40, 3);
+  Camera c = Camera::look({0, 0, 0}, {0, 10, 0}, 40);
+  c.depth_of_field = {0.5f, 0, 15};
+  auto bytes = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    const Image img = trace(scene, sky, c, TraceSettings{40, 30, 8});
+    return std::string(reinterpret_cast<const char*>(img.beauty.data()), img.beauty.size() * sizeof(V3));
+  };
+  EXPECT_TRUE(bytes(1) == bytes(2));
+}
+
 TEST(GroundCameras, APedestrianWalksItsRoadAtEyeHeightOverTheTerrainEveryFrame) {
   const exacity::City city = hill_city();
   ASSERT_NE(city.heightmap(), nullptr);
@@ -186,9 +202,12 @@ TEST(GroundCameras, APedestrianWalksItsRoadAtEyeHeightOverTheTerrainEveryFrame) 
   ASSERT_GT(length, 100);
   const std::string r = std::to_string(road), end = std::to_string(length);
   CameraPath path = parse_camera_path(R"({"fps": 4, "keys": [
-      {"t": 0, "camera": "pedestrian:road=)" + r + R"(,along=0"},
-      {"t": 3, "camera": "pedestrian:road=)" + r + R"(,along=)" + end + R"(,ahead=15,eye=1.75"},
-      {"t": 5, "camera": "pedestrian:at=240,120,heading=30"}]})", "walk.json", 50);
+      {"t": 0, "camera": "pedestrian:road=)" +
+                                          r + R"(,along=0"},
+      {"t": 3, "camera": "pedestrian:road=)" +
+                                          r + R"(,along=)" + end + R"(,ahead=15,eye=1.75"},
+      {"t": 5, "camera": "pedestrian:at=240,120,heading=30"}]})",
+                                      "walk.json", 50);
   path.place(city, "walk.json");
   const SceneOptions whole;
   const RenderScene scene(city, Sky(200, 40, 3).sun_direction(), whole);
@@ -228,7 +247,8 @@ TEST(GroundCameras, AFlyerKeepsItsHeightOverTheTerrainAndItsHeading) {
   // Flown between two flyer keys over the hill, it stays 40 m up all the way.
   CameraPath path = parse_camera_path(R"({"fps": 10, "keys": [
       {"t": 0, "camera": "flyer:at=20,180,height=40,heading=0"},
-      {"t": 2, "camera": "flyer:at=460,180,height=40,heading=0"}]})", "fly.json", 45);
+      {"t": 2, "camera": "flyer:at=460,180,height=40,heading=0"}]})",
+                                      "fly.json", 45);
   path.place(city, "fly.json");
   for (int n = 0; n < path.frame_count(); ++n) {
     const Camera f = path.frame(n);

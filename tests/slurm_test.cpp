@@ -31,7 +31,8 @@ int free_port() {
   a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   socklen_t size = sizeof a;
   int port = 0;
-  if (bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0 && getsockname(s, reinterpret_cast<sockaddr*>(&a), &size) == 0)
+  if (bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0 &&
+      getsockname(s, reinterpret_cast<sockaddr*>(&a), &size) == 0)
     port = ntohs(a.sin_port);
   close(s);
   return port;
@@ -80,9 +81,7 @@ class OneNodeSlurm {
     }
     return false;
   }
-  std::string logs() const {
-    return read(dir_ / "slurmctld.log") + read(dir_ / "slurmd.log");
-  }
+  std::string logs() const { return read(dir_ / "slurmctld.log") + read(dir_ / "slurmd.log"); }
 
  private:
   int start(const std::string& command) const {
@@ -120,16 +119,16 @@ TEST(Slurm, AJobArrayRendersAPathsFramesAsOneProcessAndFfmpegJoinsThem) {
   // README.md, Rendering: the array, then the join waiting for it. --cpus-per-task=1 over
   // the script's 4: the node may have fewer CPUs than that.
   const std::string env = slurm.env() + "EXACITY=" + EXACITY_BINARY + " ";
-  const Result array = shell(env + "sbatch --parsable --array=0-2 --cpus-per-task=1 --output=" +
-                             (dir / "task-%a.log").string() + " " + (kSource / "scripts" / "render_path.sbatch").string() +
-                             " " + out.string() + " " + (dir / "path.json").string() + " " + (dir / "frames").string() +
-                             image);
+  const Result array =
+      shell(env + "sbatch --parsable --array=0-2 --cpus-per-task=1 --output=" + (dir / "task-%a.log").string() + " " +
+            (kSource / "scripts" / "render_path.sbatch").string() + " " + out.string() + " " +
+            (dir / "path.json").string() + " " + (dir / "frames").string() + image);
   ASSERT_EQ(array.code, 0) << array.out;
   const std::string job = array.out.substr(0, array.out.find_first_of(";\n"));
-  const Result join = shell(env + "timeout 180 sbatch --wait --dependency=afterok:" + job + " --output=" +
-                            (dir / "join.log").string() + " --wrap 'bash " +
-                            (kSource / "scripts" / "join_frames.sh").string() + " " + (dir / "frames").string() + " 2 " +
-                            (dir / "city.mp4").string() + "'");
+  const Result join =
+      shell(env + "timeout 180 sbatch --wait --dependency=afterok:" + job + " --output=" + (dir / "join.log").string() +
+            " --wrap 'bash " + (kSource / "scripts" / "join_frames.sh").string() + " " + (dir / "frames").string() +
+            " 2 " + (dir / "city.mp4").string() + "'");
   ASSERT_EQ(join.code, 0) << join.out << read(dir / "join.log") << read(dir / "task-0.log") << slurm.logs();
 
   // Each task rendered its share (2 frames of 6), the same bytes as the one process.
@@ -147,9 +146,10 @@ TEST(Slurm, AJobArrayRendersAPathsFramesAsOneProcessAndFfmpegJoinsThem) {
       ASSERT_FALSE(a.empty()) << name;
       EXPECT_TRUE(a == read(dir / "frames" / name)) << name;
     }
-  const Result frames = shell("ffprobe -v error -count_frames -select_streams v:0 -show_entries "
-                              "stream=nb_read_frames,width,height,codec_name,pix_fmt -of default=nw=1 " +
-                              (dir / "city.mp4").string());
+  const Result frames = shell(
+      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+      "stream=nb_read_frames,width,height,codec_name,pix_fmt -of default=nw=1 " +
+      (dir / "city.mp4").string());
   ASSERT_EQ(frames.code, 0) << frames.out;
   EXPECT_NE(frames.out.find("nb_read_frames=6\n"), std::string::npos) << frames.out;
   EXPECT_NE(frames.out.find("codec_name=h264\n"), std::string::npos) << frames.out;
