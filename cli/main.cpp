@@ -24,6 +24,7 @@
 #include "generate/export/validate.h"
 #include "geom/planar_map.h"
 #include "render/camera_path.h"
+#include "render/camera_spec.h"
 #include "render/render.h"
 #include "render/render_path.h"
 #include "render/white_balance.h"
@@ -44,21 +45,30 @@ struct RenderOptions {
   std::string denoise = "on";
   float exposure_ev = 0, white_balance_k = render::kNeutralKelvin;
   double time_s = 0;
+  float aperture = 0, focus_distance = 0, focus_tilt = 0;  // depth of field (render/camera.h)
   fs::path path;       // a camera path file: frames, not a still
   std::string frames;  // A:B, of the path's frames
   std::string shard;   // I/N: the I-th of N shares of those frames (a job array's task)
 };
 
+// Where a camera spec came from, for messages: --camera, or the sketch's "exacity".camera.
+std::string camera_origin(const RenderOptions& o, const std::string& camera_source) {
+  return !o.camera.empty() ? std::string("--camera") : camera_source + " \"exacity\".camera";
+}
+
+constexpr const char* kCameraExamples =
+    "; e.g. orbit:target=0,0,0,azimuth=225,elevation=35,distance=900, look:from=0,-500,200,to=0,0,0, "
+    "pedestrian:road=3,along=40, pedestrian:at=120,80,heading=90 or flyer:at=0,0,height=60,heading=45,pitch=-20";
+
 // The camera the user gave (option first, then the sketch's), parsed; nullopt for none.
-std::optional<render::Camera> given_camera(const Sketch& sketch, const RenderOptions& o, const std::string& camera_source) {
+std::optional<render::CameraSpec> given_camera(const Sketch& sketch, const RenderOptions& o,
+                                               const std::string& camera_source) {
   const std::string spec = !o.camera.empty() ? o.camera : sketch.camera;
   if (spec.empty()) return std::nullopt;
   try {
-    return render::Camera::parse(spec, o.fov);
+    return render::parse_camera_spec(spec, o.fov);
   } catch (const std::invalid_argument& e) {
-    throw UserError((!o.camera.empty() ? std::string("--camera") : camera_source + " \"exacity\".camera") + " \"" + spec +
-                    "\": " + e.what() + "; e.g. orbit:target=0,0,0,azimuth=225,elevation=35,distance=900 or "
-                    "look:from=0,-500,200,to=0,0,0");
+    throw UserError(camera_origin(o, camera_source) + " \"" + spec + "\": " + e.what() + kCameraExamples);
   }
 }
 
@@ -71,7 +81,11 @@ render::RenderRequest request_for(const City& city, const RenderOptions& o, cons
     throw UserError("--size " + o.size + ": expected WIDTHxHEIGHT such as 1920x1080 (8 to 16384 each)");
   r.width = w, r.height = h, r.spp = o.spp;
   if (auto given = given_camera(city.sketch, o, camera_source)) {
-    r.camera = *given;
+    try {
+      r.camera = render::place_camera(*given, city);
+    } catch (const std::invalid_argument& e) {
+      throw UserError(camera_origin(o, camera_source) + " \"" + given->text + "\": " + e.what());
+    }
   } else {
     r.camera = render::default_camera(city);
     r.camera.fov_y = o.fov;
@@ -81,6 +95,7 @@ render::RenderRequest request_for(const City& city, const RenderOptions& o, cons
   r.denoise = o.denoise == "on";
   r.exposure_ev = o.exposure_ev, r.white_balance_k = o.white_balance_k;
   r.time_budget_s = o.time_s;
+  r.camera.depth_of_field = {o.aperture, o.focus_distance, o.focus_tilt};
   return r;
 }
 
@@ -190,11 +205,16 @@ int render_path_folder(const fs::path& out, const Sketch& sketch, const RenderOp
   }
   const fs::path dir = dir_given.empty() ? out / "render" / "frames" : dir_given;
   if (dir.extension() == ".png") throw UserError(dir.string() + ": with --path, -o is the folder for the frames");
-  fs::create_directories(dir);
   ProgressReport progress(quiet);
   StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); }, kCityStages + 1);
   City city = build_city(sketch, clock);
   render::RenderRequest r = request_for(city, o, (out / "sketch.geojson").string());
+  try {
+    path.place(city, o.path.string());  // pedestrians and flyers on the ground; a road it has not stops us here
+  } catch (const std::invalid_argument& e) {
+    throw UserError(e.what());
+  }
+  fs::create_directories(dir);
   clock.run("render", [&] {
     return render::render_path_frames(city, path, first, last, r, dir, [&](const std::string& stage, double f) {
       progress.fraction("frames " + stage, f);
@@ -355,6 +375,20 @@ void add_image_options(CLI::App* c, RenderOptions& o) {
                 "Progressive: passes of --spp samples until this many seconds are spent (still.json records the "
                 "passes)")
       ->check(CLI::Range(0.0, 1e6));
+  c->add_option("--aperture", o.aperture,
+                "Depth of field: the thin lens's diameter in metres (0: a pinhole, all sharp; a few metres over "
+                "a city for a miniature look)")
+      ->check(CLI::Range(0.0, 1e4))
+      ->capture_default_str();
+  c->add_option("--focus-distance", o.focus_distance,
+                "With --aperture: metres ahead to the plane in focus (0: the camera's target)")
+      ->check(CLI::Range(0.0, 1e7))
+      ->capture_default_str();
+  c->add_option("--focus-tilt", o.focus_tilt,
+                "With --aperture: the plane in focus turned by DEG about the image's horizontal axis (tilt-shift; "
+                "90 less the view's angle below the horizon lays it on flat ground)")
+      ->check(CLI::Range(-89.0, 89.0))
+      ->capture_default_str();
 }
 
 void add_generate(CLI::App& app, GenerateCommand& c, SharedOptions& shared) {
@@ -385,8 +419,10 @@ void add_render(CLI::App& app, RenderCommand& c, SharedOptions& shared) {
   c.app = app.add_subcommand("render", "Render a generated city: a still, and the overview and minimap if asked");
   c.app->add_option("OUT", c.folder, "An output folder of exacity generate")->required();
   c.app->add_option("--camera", o.camera,
-                    "orbit:target=X,Y,Z,azimuth=DEG,elevation=DEG,distance=M or look:from=X,Y,Z,to=X,Y,Z "
-                    "(default: the sketch's camera, else from the south-west)");
+                    "orbit:target=X,Y,Z,azimuth=DEG,elevation=DEG,distance=M, look:from=X,Y,Z,to=X,Y,Z, "
+                    "pedestrian:road=ID,along=M[,ahead=M][,eye=M], pedestrian:at=X,Y,heading=DEG[,pitch=DEG][,eye=M] "
+                    "or flyer:at=X,Y,height=M,heading=DEG[,pitch=DEG] (default: the sketch's camera, else from the "
+                    "south-west)");
   add_image_options(c.app, o);
   c.app->add_flag("--overview", o.overview, "Also render the whole city from straight above (overview.png)");
   c.app->add_flag("--orthographic", o.orthographic, "Make the overview orthographic");

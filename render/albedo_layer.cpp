@@ -16,8 +16,13 @@ std::vector<V3> albedo_layer(const RenderScene& scene, const Camera& camera, int
       for (int j = 0; j < grid; ++j)
         for (int i = 0; i < grid; ++i) {
           V3 o, d;
+          // A thin lens's points from the R2 sequence (Roberts), so that they do not line
+          // up with the grid's: the albedo blurs as the beauty does out of focus.
+          const float k = static_cast<float>(j * grid + i) + 0.5f;
+          const float lu = k * 0.7548776662f - std::floor(k * 0.7548776662f),
+                      lv = k * 0.5698402910f - std::floor(k * 0.5698402910f);
           lens.ray(static_cast<float>(x) + (static_cast<float>(i) + 0.5f) * cell,
-                   static_cast<float>(y) + (static_cast<float>(j) + 0.5f) * cell, o, d);
+                   static_cast<float>(y) + (static_cast<float>(j) + 0.5f) * cell, lu, lv, o, d);
           Surface hit;
           sum += scene.intersect(o, d, INFINITY, hit) ? hit.material.albedo : V3{1, 1, 1};
         }

@@ -1,5 +1,6 @@
 #include "render/camera.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -19,45 +20,72 @@ Camera Camera::orbit(V3 target, float azimuth_deg, float elevation_deg, float di
 
 Camera Camera::look(V3 from, V3 to, float fov_y) { return {from, to, fov_y}; }
 
-Camera Camera::parse(const std::string& spec, float fov_y) {
+CameraSpecText CameraSpecText::split(const std::string& spec) {
   auto colon = spec.find(':');
-  if (colon == std::string::npos) throw std::invalid_argument("expected orbit:... or look:...");
-  const std::string kind = spec.substr(0, colon);
-  std::vector<std::pair<std::string, std::vector<float>>> keys;
+  if (colon == std::string::npos) throw std::invalid_argument("expected KIND:KEY=VALUE,...");
+  CameraSpecText text;
+  text.kind = spec.substr(0, colon);
   std::stringstream rest(spec.substr(colon + 1));
   std::string item;
-  // key=a,b,c,key=d: a number after a comma continues the previous key's list.
   while (std::getline(rest, item, ',')) {
     auto eq = item.find('=');
     std::string value = item;
-    if (eq != std::string::npos) keys.push_back({item.substr(0, eq), {}}), value = item.substr(eq + 1);
-    if (keys.empty()) throw std::invalid_argument("\"" + item + "\" has no key");
+    if (eq != std::string::npos) text.keys.push_back({item.substr(0, eq), {}}), value = item.substr(eq + 1);
+    if (text.keys.empty()) throw std::invalid_argument("\"" + item + "\" has no key");
     try {
       std::size_t used = 0;
-      keys.back().second.push_back(std::stof(value, &used));
-      if (used != value.size()) throw std::invalid_argument("");
+      const float number = std::stof(value, &used);
+      if (used != value.size() || !std::isfinite(number)) throw std::invalid_argument("");
+      text.keys.back().second.push_back(number);
     } catch (const std::exception&) {
       throw std::invalid_argument("\"" + value + "\" is not a number");
     }
   }
-  auto get = [&](const std::string& key, std::size_t n) {
-    for (const auto& [k, v] : keys)
-      if (k == key) {
-        if (v.size() != n) throw std::invalid_argument(key + " needs " + std::to_string(n) + " numbers");
-        return v;
-      }
-    throw std::invalid_argument("missing " + key + "=");
-  };
-  if (kind == "orbit") {
-    auto t = get("target", 3);
-    return orbit({t[0], t[1], t[2]}, get("azimuth", 1)[0], get("elevation", 1)[0], get("distance", 1)[0], fov_y);
+  return text;
+}
+
+bool CameraSpecText::has(const std::string& key) const {
+  for (const auto& [k, v] : keys)
+    if (k == key) return true;
+  return false;
+}
+
+std::vector<float> CameraSpecText::get(const std::string& key, std::size_t n) const {
+  for (const auto& [k, v] : keys)
+    if (k == key) {
+      if (v.size() != n)
+        throw std::invalid_argument(key + " needs " + std::to_string(n) + " number" + (n > 1 ? "s" : ""));
+      return v;
+    }
+  throw std::invalid_argument("missing " + key + "=");
+}
+
+float CameraSpecText::get_or(const std::string& key, float otherwise) const {
+  return has(key) ? get(key, 1)[0] : otherwise;
+}
+
+void CameraSpecText::only(const std::vector<std::string>& known) const {
+  for (const auto& [k, v] : keys)
+    if (std::find(known.begin(), known.end(), k) == known.end()) {
+      std::string list;
+      for (const std::string& key : known) list += (list.empty() ? "" : ", ") + key + "=";
+      throw std::invalid_argument("unknown key " + k + "= for " + kind + " (it takes " + list + ")");
+    }
+}
+
+Camera Camera::parse(const std::string& spec, float fov_y) {
+  const CameraSpecText text = CameraSpecText::split(spec);
+  if (text.kind == "orbit") {
+    auto t = text.get("target", 3);
+    return orbit({t[0], t[1], t[2]}, text.get("azimuth", 1)[0], text.get("elevation", 1)[0], text.get("distance", 1)[0],
+                 fov_y);
   }
-  if (kind == "look") {
-    auto f = get("from", 3), t = get("to", 3);
+  if (text.kind == "look") {
+    auto f = text.get("from", 3), t = text.get("to", 3);
     if (f == t) throw std::invalid_argument("from and to are the same point");
     return look({f[0], f[1], f[2]}, {t[0], t[1], t[2]}, fov_y);
   }
-  throw std::invalid_argument("unknown camera \"" + kind + "\"; use orbit or look");
+  throw std::invalid_argument("unknown camera \"" + text.kind + "\"; use orbit or look");
 }
 
 V3 Camera::right() const {
@@ -82,6 +110,16 @@ Lens::Lens(const Camera& c, int width, int height)
   // Half the image's extent: in metres (orthographic) or as the tangent of half the view.
   half_y_ = orthographic_ ? c.ortho_height / 2 : std::tan(c.fov_y * kDegree / 2);
   half_x_ = half_y_ * aspect;
+  const DepthOfField& dof = c.depth_of_field;
+  if (dof.aperture > 0 && !orthographic_) {
+    radius_ = dof.aperture / 2;
+    const float distance = dof.focus_distance > 0 ? dof.focus_distance : length(c.to - c.from);
+    const float tilt = dof.focus_tilt * kDegree;
+    // The plane through the point `distance` ahead, its normal turned from the view
+    // towards the image's bottom by the tilt.
+    focus_normal_ = normalize(forward_ * std::cos(tilt) - up_ * std::sin(tilt));
+    focus_offset_ = distance * std::cos(tilt);
+  }
 }
 
 void Lens::ray(float px, float py, V3& origin, V3& direction) const {
@@ -93,6 +131,26 @@ void Lens::ray(float px, float py, V3& origin, V3& direction) const {
   }
   origin = from_;
   direction = normalize(forward_ + right_ * (sx * half_x_) + up_ * (sy * half_y_));
+}
+
+void Lens::ray(float px, float py, float u, float v, V3& origin, V3& direction) const {
+  ray(px, py, origin, direction);
+  if (radius_ <= 0 || orthographic_) return;
+  // Shirley and Chiu's concentric map of the square onto the disk keeps strata apart.
+  const float a = 2 * u - 1, b = 2 * v - 1;
+  float r = 0, phi = 0;
+  if (a != 0 || b != 0) {
+    if (std::abs(a) > std::abs(b))
+      r = a, phi = kPi / 4 * (b / a);
+    else
+      r = b, phi = kPi / 2 - kPi / 4 * (a / b);
+  }
+  const V3 on_lens = right_ * (radius_ * r * std::cos(phi)) + up_ * (radius_ * r * std::sin(phi));
+  // Every ray of the pixel passes through the point where the centre's ray meets the plane
+  // in focus; a ray parallel to the plane, or meeting it behind, is focused at infinity.
+  const float along = dot(focus_normal_, direction);
+  origin = from_ + on_lens;
+  if (along > 1e-6f * focus_offset_) direction = normalize(direction * (focus_offset_ / along) - on_lens);
 }
 
 float overview_height(const geom::Box& city, float fov_y, float aspect) {

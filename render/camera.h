@@ -11,11 +11,21 @@
 
 namespace render {
 
+// Depth of field (render/README.md, Depth of field): a thin lens `aperture` metres across
+// (0: a pinhole, everything sharp) focused on a plane `focus_distance` metres ahead (0: the
+// distance to the camera's target), turned by `focus_tilt` degrees about the image's
+// horizontal axis (tilt-shift: 90 less the view's angle below the horizon lays it on flat
+// ground). Perspective cameras only.
+struct DepthOfField {
+  float aperture = 0, focus_distance = 0, focus_tilt = 0;
+};
+
 struct Camera {
   V3 from, to;
   float fov_y = 50;  // degrees, vertical
   bool orthographic = false;
   float ortho_height = 100;  // m the image spans vertically, orthographic only
+  DepthOfField depth_of_field = {};
 
   // From `target`: azimuth counter-clockwise from east, elevation above the horizon
   // (kept within 1..90 degrees, the upper hemisphere), distance in metres.
@@ -32,16 +42,39 @@ struct Camera {
   void ray(float px, float py, int width, int height, V3& origin, V3& direction) const;
 };
 
+// A camera spec's text, "kind:key=a,b,c,key=d" (a number after a comma continues the
+// previous key's list), split into its kind and keys; throws std::invalid_argument.
+struct CameraSpecText {
+  std::string kind;
+  std::vector<std::pair<std::string, std::vector<float>>> keys;
+  static CameraSpecText split(const std::string& spec);
+  bool has(const std::string& key) const;
+  // The key's numbers, which must be n; throws when it is missing or has another count.
+  std::vector<float> get(const std::string& key, std::size_t n) const;
+  // The key's one number, or `otherwise` when it is not given.
+  float get_or(const std::string& key, float otherwise) const;
+  // Throws for a key not among `known`.
+  void only(const std::vector<std::string>& known) const;
+};
+
 // A camera's rays for one image size, its frame worked out once.
 class Lens {
  public:
   Lens(const Camera& camera, int width, int height);
+  // Through the lens's centre (a pinhole's ray).
   void ray(float px, float py, V3& origin, V3& direction) const;
+  // Through the lens point that (u, v) in [0, 1)^2 maps to (concentric disk), towards where
+  // the centre's ray meets the plane in focus; the centre's ray when there is no aperture.
+  void ray(float px, float py, float u, float v, V3& origin, V3& direction) const;
+  bool thin_lens() const { return radius_ > 0; }
 
  private:
   V3 from_, forward_, right_, up_;
   float width_, height_, half_x_, half_y_;
   bool orthographic_;
+  float radius_ = 0;          // m, half the aperture
+  V3 focus_normal_{0, 0, 1};  // the plane in focus: dot(focus_normal_, p - from_) = focus_offset_
+  float focus_offset_ = 0;
 };
 
 // Seed 000, 3.3.4: straight down over the city's centre, at the height where the whole map

@@ -43,15 +43,42 @@ int CameraPath::frame_count() const {
 
 Camera CameraPath::frame(int n) const { return at(keys.front().t + n / fps); }
 
+void CameraPath::place(const exacity::City& on, const std::string& file) {
+  for (std::size_t i = 0; i < keys.size(); ++i) try {
+      keys[i].camera = place_camera(keys[i].spec, on);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(file + ": keys[" + std::to_string(i) + "]: camera \"" + keys[i].spec.text +
+                                  "\": " + e.what());
+    }
+  city = &on;
+}
+
 Camera CameraPath::at(double t) const {
   if (keys.size() == 1 || t <= keys.front().t) return keys.front().camera;
   if (t >= keys.back().t) return keys.back().camera;
   std::size_t i = 0;
   while (keys[i + 1].t < t) ++i;
-  Camera c = keys[i].camera;
+  const CameraKey &a = keys[i], &b = keys[i + 1];
+  const double s = (t - a.t) / (b.t - a.t);
+  auto mix = [s](double from, double to) { return from + (to - from) * s; };
+  const float fov = static_cast<float>(mix(a.camera.fov_y, b.camera.fov_y));
+  if (city && a.spec.road >= 0 && a.spec.road == b.spec.road) {
+    CameraSpec walk = a.spec;
+    walk.along = mix(a.spec.along, b.spec.along), walk.ahead = mix(a.spec.ahead, b.spec.ahead);
+    walk.height = mix(a.spec.height, b.spec.height), walk.fov_y = fov;
+    Camera c = place_camera(walk, *city);
+    c.depth_of_field = a.camera.depth_of_field;
+    return c;
+  }
+  Camera c = a.camera;
   c.from = hermite(keys, i, t, eye), c.to = hermite(keys, i, t, target);
-  const float s = static_cast<float>((t - keys[i].t) / (keys[i + 1].t - keys[i].t));
-  c.fov_y = keys[i].camera.fov_y + (keys[i + 1].camera.fov_y - keys[i].camera.fov_y) * s;
+  c.fov_y = fov;
+  if (city && a.spec.on_ground() && b.spec.on_ground()) {
+    auto over_ground = [&](V3 p) { return p.z - ground_height(*city, p.x, p.y); };
+    auto onto_ground = [&](V3& p, double height) { p.z = static_cast<float>(ground_height(*city, p.x, p.y) + height); };
+    onto_ground(c.from, mix(over_ground(a.camera.from), over_ground(b.camera.from)));
+    onto_ground(c.to, mix(over_ground(a.camera.to), over_ground(b.camera.to)));
+  }
   return c;
 }
 
@@ -76,7 +103,8 @@ CameraPath parse_camera_path(const std::string& text, const std::string& file, f
     if (!path.keys.empty() && key.t <= path.keys.back().t)
       fail(file, where, "t " + k["t"].dump() + " is not after the key before's");
     try {
-      key.camera = Camera::parse(k["camera"].get<std::string>(), fov_y);
+      key.spec = parse_camera_spec(k["camera"].get<std::string>(), fov_y);
+      key.camera = key.spec.fixed;
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(file + ": " + where + ": camera \"" + k["camera"].get<std::string>() +
                                   "\": " + e.what());

@@ -252,7 +252,11 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
           // The first sample goes through the pixel's centre, for clean data layers.
           const float jx = k == 0 ? 0.5f : rng.next(), jy = k == 0 ? 0.5f : rng.next();
           V3 o, d;
-          lens.ray(static_cast<float>(x) + jx, static_cast<float>(y) + jy, o, d);
+          // A thin lens draws its point after the pixel's (and the first sample takes the
+          // lens's centre too); a pinhole draws nothing, so its images stay as they were.
+          float lu = 0.5f, lv = 0.5f;
+          if (lens.thin_lens() && k > 0) lu = rng.next(), lv = rng.next();
+          lens.ray(static_cast<float>(x) + jx, static_cast<float>(y) + jy, lu, lv, o, d);
           Surface first_hit;
           first_hit.distance = -1;
           V3 l = radiance(scene, sky, o, d, rng, t.max_depth, tile_counts, &first_hit, t.haze);

@@ -22,9 +22,12 @@ nlohmann::ordered_json render_path_frames(const exacity::City& city, const Camer
                                           const RenderRequest& request, const std::filesystem::path& dir,
                                           const RenderProgress& progress) {
   nlohmann::ordered_json frames = nlohmann::ordered_json::array();
+  CameraPath placed = path;
+  if (placed.city != &city) placed.place(city, "the camera path");
   for (int n = first; n <= last; ++n) {
     RenderRequest r = request;
-    r.camera = path.frame(n);
+    r.camera = placed.frame(n);
+    r.camera.depth_of_field = request.camera.depth_of_field;
     r.overview = r.minimap = false;
     r.still = dir / frame_file_name(n);
     nlohmann::ordered_json report = render_city(city, r, [&](const std::string& stage, double f) {

@@ -21,8 +21,9 @@ std::pair<int, int> frame_share(int first, int last, int part, int parts);
 // "frame_0042.png"
 std::string frame_file_name(int n);
 
-// Frames first..last (inclusive) of `path`, each with `request`'s image settings and the
-// path's camera (city coordinates); no overview or minimap. Returns the frames' reports.
+// Frames first..last (inclusive) of `path` (placed on `city` here unless it was already),
+// each with `request`'s image settings and depth of field and the path's camera (city
+// coordinates); no overview or minimap. Returns the frames' reports.
 nlohmann::ordered_json render_path_frames(const exacity::City& city, const CameraPath& path, int first, int last,
                                           const RenderRequest& request, const std::filesystem::path& dir,
                                           const RenderProgress& progress = nullptr);

@@ -14,6 +14,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libgoogle-perftools-dev libgeos-dev
   libgdal-dev libosmium2-dev libexpat1-dev libbz2-dev zlib1g-dev
   python3 python3-shapely chromium
+  slurm-wlm ffmpeg
 )
 
 missing=()

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "generate/errors.h"
+#include "render/camera_spec.h"
 
 namespace exacity::serve {
 
@@ -56,7 +57,7 @@ RenderAsk parse_render_ask(const std::string& body) {
   // Checked now, so a bad camera is a 400 rather than a failed job.
   if (!ask.camera.empty()) {
     try {
-      render::Camera::parse(ask.camera, ask.fov);
+      render::parse_camera_spec(ask.camera, ask.fov);
     } catch (const std::invalid_argument& e) {
       throw UserError(
           "render request: \"camera\" \"" + ask.camera + "\": " + e.what() +
@@ -71,9 +72,12 @@ render::RenderRequest render_request(const City& city, const RenderAsk& ask) {
   r.width = ask.width, r.height = ask.height, r.spp = ask.spp;
   const std::string spec = !ask.camera.empty() ? ask.camera : city.sketch.camera;
   try {
-    r.camera = spec.empty() ? render::default_camera(city) : render::Camera::parse(spec, ask.fov);
+    r.camera = spec.empty() ? render::default_camera(city)
+                            : render::place_camera(render::parse_camera_spec(spec, ask.fov), city);
   } catch (const std::invalid_argument& e) {
-    throw UserError(city.sketch.path.string() + ": \"exacity\".camera \"" + spec + "\": " + e.what());
+    throw UserError((!ask.camera.empty() ? std::string("render request: \"camera\"")
+                                          : city.sketch.path.string() + ": \"exacity\".camera") +
+                    " \"" + spec + "\": " + e.what());
   }
   if (spec.empty()) r.camera.fov_y = ask.fov;
   r.overview = ask.overview, r.minimap = ask.minimap;

@@ -406,3 +406,72 @@ TEST(Cli, CameraPathFramesInRangesEqualOneRunAndBadPathsAreOneLine) {
   EXPECT_EQ(still["white_balance_k"].get<double>(), 4000);
   EXPECT_EQ(run("render " + out.string() + " --denoise maybe -q").code, 2);
 }
+
+// Issue 25: the pedestrian and the flyer as stills and in a path, depth of field's flags
+// recorded; a bad camera (its syntax, or a road the city does not have) is one line and
+// exit 2, with nothing written.
+TEST(Cli, PedestrianAndFlyerCamerasAndTheirMistakes) {
+  fs::path dir = testing_util::temp_dir("cli-cameras");
+  std::ofstream(dir / "city.geojson") << R"({"type": "FeatureCollection", "exacity": {"seed": 5}, "features": [
+    {"type": "Feature", "properties": {"zone": "residential"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [160, 0], [160, 120], [0, 120], [0, 0]]]}}]})";
+  const fs::path out = dir / "out";
+  Result r = run("generate " + (dir / "city.geojson").string() + " -o " + out.string() + " -q");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const std::string render = "render " + out.string() + " --size 32x24 --spp 1 -q ";
+  r = run(render + "--camera pedestrian:road=0,along=10 --aperture 0.05 --focus-tilt 10 -o " + (dir / "walk.png").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  auto walk = nlohmann::json::parse(read(dir / "walk.json"));
+  EXPECT_NEAR(walk["camera"]["from"][2].get<double>(), 1.7, 1e-5) << "flat: the eye 1.7 m over z = 0";
+  EXPECT_NEAR(walk["camera"]["aperture"].get<double>(), 0.05, 1e-6);
+  EXPECT_EQ(walk["camera"]["focus_tilt"].get<double>(), 10);
+  r = run(render + "--camera flyer:at=80,60,height=50,heading=45,pitch=-30 -o " + (dir / "fly.png").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  auto fly = nlohmann::json::parse(read(dir / "fly.json"));
+  EXPECT_NEAR(fly["camera"]["from"][2].get<double>(), 50, 1e-5);
+  EXPECT_NEAR(fly["camera"]["from"][0].get<double>(), 80, 1e-5);
+
+  const std::pair<std::string, std::string> bad[] = {
+      {"--camera pedestrian:road=999,along=0", "--camera \"pedestrian:road=999,along=0\": the city has no road 999"},
+      {"--camera flyer:at=0,0,height=10", "--camera \"flyer:at=0,0,height=10\": missing heading="},
+      {"--camera pedestrian:at=0,0,heading=0,eye=-1", "eye=-1 is outside 0.1 to 100"},
+  };
+  for (const auto& [args, expected] : bad) {
+    r = run(render + args + " -o " + (dir / "bad" / "still.png").string());
+    EXPECT_EQ(r.code, 2) << args << ": " << r.out;
+    EXPECT_NE(r.out.find(expected), std::string::npos) << args << ": " << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+    EXPECT_FALSE(fs::exists(dir / "bad")) << args;
+  }
+  for (const char* args : {"--aperture -1", "--focus-tilt 90"}) {  // CLI11's own checks
+    r = run(render + args + " -o " + (dir / "bad" / "still.png").string());
+    EXPECT_EQ(r.code, 2) << args << ": " << r.out;
+    EXPECT_FALSE(fs::exists(dir / "bad")) << args;
+  }
+  // A walk in a path file: every frame's eye 1.7 m over the flat ground.
+  std::ofstream(dir / "stroll.json") << R"({"fps": 2, "keys": [{"t": 0, "camera": "pedestrian:road=0,along=0"},
+    {"t": 1, "camera": "pedestrian:road=0,along=30"}]})";
+  r = run(render + "--path " + (dir / "stroll.json").string() + " -o " + (dir / "stroll").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  for (const char* frame : {"frame_0000.json", "frame_0001.json", "frame_0002.json"})
+    EXPECT_NEAR(nlohmann::json::parse(read(dir / "stroll" / frame))["camera"]["from"][2].get<double>(), 1.7, 1e-5)
+        << frame;
+  // In a path: the key that names a road the city lacks, before any frame is written.
+  std::ofstream(dir / "walk.json") << R"({"fps": 2, "keys": [{"t": 0, "camera": "pedestrian:road=0,along=0"},
+    {"t": 1, "camera": "pedestrian:road=4000,along=30"}]})";
+  r = run(render + "--path " + (dir / "walk.json").string() + " -o " + (dir / "frames").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find((dir / "walk.json").string() + ": keys[1]: camera \"pedestrian:road=4000,along=30\": the city has no road 4000"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  EXPECT_FALSE(fs::exists(dir / "frames"));
+  // A sketch's own camera is checked before any work.
+  std::ofstream(dir / "flyer.geojson") << R"({"type": "FeatureCollection", "exacity": {"camera": "flyer:at=1,2"},
+    "features": [{"type": "Feature", "properties": {"zone": "park"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [50, 0], [50, 50], [0, 0]]]}}]})";
+  r = run("generate " + (dir / "flyer.geojson").string() + " --render -q -o " + (dir / "flyer-out").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("\"exacity\".camera \"flyer:at=1,2\": missing heading="), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir / "flyer-out"));
+}
