@@ -135,8 +135,10 @@ bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const GrowthSettings& 
       if (!joined) road = geom::extend_to(road, target.lines, 4 * target.width);
       if (!joined && road.size() == points) road = geom::extend_to(road, run_on.every_line, 4 * run_on.widest);
       joined |= road.size() > points;
-      if (joined) out.joined.push_back(sketch_road);
-      else out.open_end = true;
+      if (joined)
+        out.joined.push_back(sketch_road);
+      else
+        out.open_end = true;
     }
     reached_road |= met.edge_of_kind(GrowthEdge::kGrownRoad) || joined;
     out.roads.push_back(std::move(road));
