@@ -276,4 +276,13 @@ TEST(GrowthLayout, ARoadMeetingASurfaceNamedForAFarRoadRunsOnToTheNearestCentreL
   }
   EXPECT_GT(on_near, 0) << "no road reached the surface: the test saw nothing";
   EXPECT_EQ(plan.piece_reaches_sketch, std::vector<char>{1});
+
+  // With no centre line in reach at all, no road may stop on that edge: the region's roads
+  // can reach no sketch road, so it gets none.
+  SketchLines far_only{{{named}, 8}};
+  const auto stranded = make_growth_layout(sketch, far_only, [](Vec2) { return std::optional<ZoneType>(ZoneType::Residential); });
+  const RoadPlan none = stranded->plan({west, 7});
+  EXPECT_TRUE(none.roads.empty()) << none.roads.size() << " roads, one ending at (" << none.roads[0].path.point(1).x << ", "
+                                  << none.roads[0].path.point(1).y << ")";
+  EXPECT_EQ(none.piece_reaches_sketch, std::vector<char>{0});
 }
