@@ -238,3 +238,28 @@ TEST(CityMap, StreetsAreCarriagewaysSidewalksAndJunctions) {
   EXPECT_EQ(by_surface["carriageway"], 2 * 10 * 200 - 2 * 100);   // the rest of both roads
   EXPECT_EQ(by_surface["sidewalk"], (2 * 14 * 200 - 14 * 14) - (2 * 10 * 200 - 100));  // 14 m wide less 10 m wide
 }
+
+// Kotka's Muuralankuja, made small: a 7 m street runs almost straight on into a 12 m one
+// where an 8 m street, drawn first, leaves. Their mitred junction is named for the 8 m
+// street (docs/design.md, Ids) but runs some 250 m down the 7 m one, whose sides meet the
+// 12 m one's that far off. Roads grown in the zone either side stop at that surface, far
+// beyond 4 widths of the 8 m street's centre line: they must run on to the 7 m street's,
+// or they end in the open and their region reaches no sketch road (exit 3).
+TEST(CityMap, GrownRoadsStoppedAtAJunctionNamedForAFarStreetValidate) {
+  auto street = [](const std::string& kind, double width, const std::string& coords) {
+    return R"({"type": "Feature", "properties": {"road": ")" + kind + R"(", "width": )" + std::to_string(width) +
+           R"(}, "geometry": {"type": "LineString", "coordinates": )" + coords + "}}";
+  };
+  const std::vector<std::string> features = {street("local", 8, "[[0,0],[-15,130]]"), street("main", 7, "[[-300,-3],[0,0]]"),
+                                             street("main", 12, "[[0,0],[300,0]]"),
+                                             zone("residential", "[[[-280,-150],[-30,-150],[-30,150],[-280,150],[-280,-150]]]")};
+  // The case itself: the junction, named for road 0, reaches past 4 of its widths from it.
+  double reach_west = 0;
+  for (const auto& f : layers_of(features).road_areas.features)
+    if (f.properties["surface"] == "junction" && f.properties["road"] == 0)
+      for (geom::Vec2 p : f.polygon.outer) reach_west = std::min(reach_west, p.x);
+  EXPECT_LT(reach_west, -4 * 8) << "the junction no longer runs down the 7 m street: this sketch shows the case no more";
+
+  Validation v = generate_and_validate("long-junction", sketch_text(features));
+  EXPECT_TRUE(v.ok()) << (v.problems.empty() ? "" : v.problems[0]);
+}

@@ -238,3 +238,51 @@ TEST(GrowthLayout, ARoadMeetingACentreLineEdgeStopsOnIt) {
   EXPECT_GT(on_centre, 0) << "no road reached the centre line: the test saw nothing";
   EXPECT_EQ(plan.piece_reaches_sketch, std::vector<char>{1});
 }
+
+// A road surface is tagged with one sketch road, but the centre line beyond it may be
+// another's: a junction's surface names the first road that meets there (docs/design.md,
+// Ids), and a mitred junction between two streets of unlike widths meeting almost straight
+// on runs a long way down the narrower one (Kotka's Muuralankuja, 200 m from the street it
+// names). Here the region's east edge is tagged road 0, whose line is 700 m off, while road
+// 1's line runs 4 m beyond it. A road reaching that edge must run on to road 1's line; left
+// on the edge it would end in the open, and its piece reach no sketch road.
+TEST(GrowthLayout, ARoadMeetingASurfaceNamedForAFarRoadRunsOnToTheNearestCentreLine) {
+  using namespace exacity;
+  Sketch sketch;
+  sketch.zone_settings[ZoneType::Residential] = default_zone_settings(ZoneType::Residential);
+  const Cell whole = cell_of({{0, 0}, {600, 0}, {600, 300}, {0, 300}});
+  const geom::Path surface = geom::Path::from({{300, -1}, {300, 301}});
+  const geom::Path named = geom::Path::from({{1000, -1}, {1000, 301}}), near = geom::Path::from({{304, -1}, {304, 301}});
+  SketchLines lines{{{named}, 8}, {{near}, 7}};
+  std::vector<Cell> halves = geom::split_cell(whole, {surface}, GrowthEdge::sketch_road(0));
+  ASSERT_EQ(halves.size(), 2u);
+  const Cell& west = halves[0].centroid().x < 300 ? halves[0] : halves[1];
+  const auto layout = make_growth_layout(sketch, lines, [](Vec2) { return std::optional<ZoneType>(ZoneType::Residential); });
+  const RoadPlan plan = layout->plan({west, 7});
+  ASSERT_GT(plan.roads.size(), 1u);
+  int on_near = 0;
+  for (std::size_t i = 0; i < plan.roads.size(); ++i) {
+    // Each road grows from its cell's seed, which its sibling roads share; where it stopped
+    // is its last point.
+    const geom::Path& road = plan.roads[i].path;
+    std::vector<geom::Path> others;
+    for (std::size_t j = 0; j < plan.roads.size(); ++j)
+      if (j != i) others.push_back(plan.roads[j].path);
+    const Vec2 end = road.point(road.size() - 1);
+    const bool on_region_edge = end.x == 0 || end.y == 0 || end.y == 300;
+    on_near += geom::ends_on(road, {near});
+    EXPECT_TRUE(on_region_edge || geom::ends_on(road, {near}) || geom::ends_on(road, others))
+        << "road " << i << " ends in the open at (" << end.x << ", " << end.y << ")";
+  }
+  EXPECT_GT(on_near, 0) << "no road reached the surface: the test saw nothing";
+  EXPECT_EQ(plan.piece_reaches_sketch, std::vector<char>{1});
+
+  // With no centre line in reach at all, no road may stop on that edge: the region's roads
+  // can reach no sketch road, so it gets none.
+  SketchLines far_only{{{named}, 8}};
+  const auto stranded = make_growth_layout(sketch, far_only, [](Vec2) { return std::optional<ZoneType>(ZoneType::Residential); });
+  const RoadPlan none = stranded->plan({west, 7});
+  EXPECT_TRUE(none.roads.empty()) << none.roads.size() << " roads, one ending at (" << none.roads[0].path.point(1).x << ", "
+                                  << none.roads[0].path.point(1).y << ")";
+  EXPECT_EQ(none.piece_reaches_sketch, std::vector<char>{0});
+}

@@ -73,13 +73,31 @@ struct CellRoads {
   geom::Vec2 seed;
   std::vector<geom::Path> roads;
   std::vector<int> joined;
+  bool open_end = false;  // a road stopped at a sketch road's surface and reached no centre line
+};
+
+// The centre lines a road stopped at a sketch road's surface runs on to: the lines of the
+// road the surface is tagged with, else every sketch road's. A junction's surface is tagged
+// with the first road that meets there (docs/design.md, Ids), and a mitred junction of two
+// streets of unlike widths meeting almost straight on runs far down the narrower one, out of
+// reach of the tagged road's line.
+struct RunOnLines {
+  explicit RunOnLines(const SketchLines& roads) : roads(roads) {
+    for (const SketchRoad& r : roads) {
+      every_line.insert(every_line.end(), r.lines.begin(), r.lines.end());
+      widest = std::max(widest, r.width);
+    }
+  }
+  const SketchLines& roads;
+  std::vector<geom::Path> every_line;
+  double widest = 0;
 };
 
 // Grows `branches` roads from the seed. Returns whether one reached a road (of the region,
 // or of the sketch); always true when `free`, for a cell with no road to reach.
 // `across_only`: only the branches within 45 degrees of `orientation` or its opposite.
 bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const GrowthSettings& p, int level, bool free, double orientation,
-                   bool across_only, double reach, const SketchLines& sketch_lines, Random& rng, CellRoads& out) {
+                   bool across_only, double reach, const RunOnLines& run_on, Random& rng, CellRoads& out) {
   const double segment_deviation = std::max(p.segment_deviation - 2.0 * level, 0.0);
   const int max_steps = static_cast<int>(reach / (p.segment_length * std::cos(p.origin_deviation * M_PI / 180))) + 2;
   bool reached_road = free;
@@ -107,16 +125,22 @@ bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const GrowthSettings& 
     geom::Path road = growth.end();
     if (road.empty()) return false;
     const int sketch_road = met.what == geom::Growth::Met::Edge ? GrowthEdge::sketch_road_of(met.kind) : -1;
-    reached_road |= met.edge_of_kind(GrowthEdge::kGrownRoad) || sketch_road >= 0;
+    bool joined = false;
     if (sketch_road >= 0) {
       // A road whose edge is the centre line itself (a grammar's road around a piece it
       // grows) is there already; extended, it would cross to the next line ahead.
-      const SketchRoad& target = sketch_lines[sketch_road];
+      const SketchRoad& target = run_on.roads[sketch_road];
       const std::size_t points = road.size();
-      const bool on_line = geom::ends_on(road, target.lines);
-      if (!on_line) road = geom::extend_to(road, target.lines, 4 * target.width);
-      if (on_line || road.size() > points) out.joined.push_back(sketch_road);
+      joined = geom::ends_on(road, target.lines);
+      if (!joined) road = geom::extend_to(road, target.lines, 4 * target.width);
+      if (!joined && road.size() == points) road = geom::extend_to(road, run_on.every_line, 4 * run_on.widest);
+      joined |= road.size() > points;
+      if (joined)
+        out.joined.push_back(sketch_road);
+      else
+        out.open_end = true;
     }
+    reached_road |= met.edge_of_kind(GrowthEdge::kGrownRoad) || joined;
     out.roads.push_back(std::move(road));
     return true;
   };
@@ -157,12 +181,13 @@ std::optional<double> strip_axis(const geom::Cell& cell, const GrowthSettings& p
 }
 
 
-// The roads of one cell, grown from its seed. They must reach one of edges_to_reach;
-// when none does (a concave cell can hide those edges from the seed), they are grown
+// The roads of one cell, grown from its seed. They must reach one of edges_to_reach, and
+// none may stop at a sketch road's surface short of a centre line (it would end in the open);
+// when they fail (a concave cell can hide those edges from the seed), they are grown
 // again from just inside one of those edges, the first branch heading straight back to
 // it. Empty when that fails too.
 CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const GrowthSettings& p, int level, bool top, double orientation,
-                    int stalls, const SketchLines& sketch_lines, Random& rng) {
+                    int stalls, const RunOnLines& run_on, Random& rng) {
   const geom::Box b = cell.bounds();
   const double reach = 2 * std::hypot(b.width(), b.height()) + 1;  // past the cell from anywhere in it
   auto edges = edges_to_reach(cell, top);
@@ -173,7 +198,8 @@ CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const GrowthSetting
     geom::Growth growth(cell, p.segment_length);
     CellRoads grown{seed, {}, {}};
     if (grow_branches(growth, seed, p, level, free, axis ? *axis + 90 : orientation, axis.has_value(), reach,
-                      sketch_lines, rng, grown))
+                      run_on, rng, grown) &&
+        !grown.open_end)
       return grown;
   }
   auto mid = [](const std::pair<geom::Vec2, geom::Vec2>& e) {
@@ -213,7 +239,8 @@ CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const GrowthSetting
     geom::Growth growth(cell, p.segment_length);
     CellRoads grown{*start, {}, {}};
     double back = std::atan2(m.y - start->y, m.x - start->x) * 180 / M_PI;
-    if (grow_branches(growth, *start, p, level, free, back, false, reach, sketch_lines, rng, grown)) return grown;
+    if (grow_branches(growth, *start, p, level, free, back, false, reach, run_on, rng, grown) && !grown.open_end)
+      return grown;
   }
   return {seed, {}, {}};
 }
@@ -235,7 +262,7 @@ Grown seed(const Work& w, const ZoneAt& zone_at) {
 // sliver off it, are dropped and the cell grown again from another seed, a few times at
 // most: slivers make poor blocks. Cutting off a tenth of a block is progress, so a long
 // corridor is grown on however little of it each cut takes.
-void grow_one(const Work& w, Grown& g, const GrowthSettings& p, int level, const SketchLines& sketch_lines) {
+void grow_one(const Work& w, Grown& g, const GrowthSettings& p, int level, const RunOnLines& run_on) {
   if (!g.seed) return;
   if (w.cell.area() <= p.block_area) return;  // small enough to be one block
   Random rng(mix(w.id, 1 + 16 * w.stalls));
@@ -250,7 +277,7 @@ void grow_one(const Work& w, Grown& g, const GrowthSettings& p, int level, const
       g.without_access = !w.top;
     }
   };
-  CellRoads grown = grow_cell(w.cell, *g.seed, p, level, w.top, w.orientation, w.stalls, sketch_lines, rng);
+  CellRoads grown = grow_cell(w.cell, *g.seed, p, level, w.top, w.orientation, w.stalls, run_on, rng);
   g.seed = grown.seed;
   g.roads = std::move(grown.roads);
   g.joined = std::move(grown.joined);
@@ -293,7 +320,7 @@ std::vector<Work> collect(std::vector<Grown>& grown, const std::vector<Work>& wo
 class GrowthLayout : public RoadLayout {
  public:
   GrowthLayout(const Sketch& sketch, const SketchLines& sketch_lines, ZoneAt zone_at)
-      : sketch_(sketch), sketch_lines_(sketch_lines), zone_at_(std::move(zone_at)) {}
+      : sketch_(sketch), run_on_(sketch_lines), zone_at_(std::move(zone_at)) {}
 
   // The region's roads are one piece, grown a level at a time; each level's cells grow in
   // parallel.
@@ -307,7 +334,7 @@ class GrowthLayout : public RoadLayout {
       std::vector<Grown> grown(work.size());
       tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
         grown[i] = seed(work[i], zone_at_);
-        grow_one(work[i], grown[i], sketch_.zone_settings.at(grown[i].type).roads.growth, level, sketch_lines_);
+        grow_one(work[i], grown[i], sketch_.zone_settings.at(grown[i].type).roads.growth, level, run_on_);
       });
       work = collect(grown, work, level, sketch_, plan);
     }
@@ -316,7 +343,7 @@ class GrowthLayout : public RoadLayout {
 
  private:
   const Sketch& sketch_;
-  const SketchLines& sketch_lines_;
+  RunOnLines run_on_;
   ZoneAt zone_at_;
 };
 
