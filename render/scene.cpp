@@ -525,8 +525,8 @@ RenderScene::ModelMaterials RenderScene::add_model_materials(const exacity::Mode
     for (int tint = 0; tint < exacity::kTints; ++tint)
       for (const auto& mat : m.mesh.materials) {
         const bool glass = mat.name.find("glass") != std::string::npos || mat.name.find("window") != std::string::npos;
-        const int index =
-            add_material({glass ? Material::Glossy : Material::Diffuse, colour(exacity::tinted(mat.colour, tint)), 0.05f, 1.5f});
+        const int index = add_material(
+            {glass ? Material::Glossy : Material::Diffuse, colour(exacity::tinted(mat.colour, tint)), 0.05f, 1.5f});
         if (!mat.texture) continue;
         // The texture times the material's colour, as the MTL's map_Kd and Kd combine.
         std::unique_ptr<Texture>& texture = textures_[mat.texture.get()];
@@ -603,7 +603,7 @@ bool RenderScene::intersect(V3 o, V3 d, float tmax, Surface& s) const {
   rtcIntersect1(scene_, &context, &rh);
   int m;
   const std::array<exacity::Uv, 3>* textured = nullptr;  // the hit triangle's texture coordinates
-  float hit_u = 0, hit_v = 0;                          // and its barycentric place in it
+  float hit_u = 0, hit_v = 0;                            // and its barycentric place in it
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
     // The ground plane beyond the city.
     if (!ground_plane_ || d.z >= 0 || o.z <= ground) return false;

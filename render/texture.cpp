@@ -26,8 +26,10 @@ Texture::Texture(const exacity::TextureImage& image) : width_(image.width), heig
 
 V3 Texture::sample(float u, float v, bool clamp) const {
   if (!std::isfinite(u) || !std::isfinite(v)) u = v = 0;
-  if (clamp) u = std::clamp(u, 0.0f, 1.0f), v = std::clamp(v, 0.0f, 1.0f);
-  else u -= std::floor(u), v -= std::floor(v);  // the image repeats every unit
+  if (clamp)
+    u = std::clamp(u, 0.0f, 1.0f), v = std::clamp(v, 0.0f, 1.0f);
+  else
+    u -= std::floor(u), v -= std::floor(v);  // the image repeats every unit
   // Texel centres sit at half steps; v runs up the image, rows down it.
   const float x = u * static_cast<float>(width_) - 0.5f, y = (1 - v) * static_cast<float>(height_) - 0.5f;
   const float fx = std::floor(x), fy = std::floor(y);
@@ -40,7 +42,8 @@ V3 Texture::sample(float u, float v, bool clamp) const {
     return static_cast<int>(m < 0 ? m + size : m);
   };
   const int x0 = index(fx, width_), x1 = index(fx + 1, width_), y0 = index(fy, height_), y1 = index(fy + 1, height_);
-  return (texel(x0, y0) * (1 - ax) + texel(x1, y0) * ax) * (1 - ay) + (texel(x0, y1) * (1 - ax) + texel(x1, y1) * ax) * ay;
+  return (texel(x0, y0) * (1 - ax) + texel(x1, y0) * ax) * (1 - ay) +
+         (texel(x0, y1) * (1 - ax) + texel(x1, y1) * ax) * ay;
 }
 
 }  // namespace render

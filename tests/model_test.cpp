@@ -477,6 +477,7 @@ TEST(ObjFile, KeepsTextureCoordinatesPerCornerAndTheTextureOnce) {
   write(dir, "other.obj", std::string(kTexturedQuad).replace(7, 8, "other.mtl"));
   TriangleMesh other = read_obj(dir / "other.obj", &images);
   EXPECT_EQ(other.materials[other.material[0]].texture.get(), skin.texture.get());
+  EXPECT_EQ(other.materials[other.material[0]].colour, (Vec3{1, 1, 1})) << "no Kd: the texture as it is";
 }
 
 TEST(ObjFile, AMissingOrUnreadableTextureIsOneLineNamingTheMtlAndTheFile) {
@@ -497,8 +498,8 @@ TEST(ObjFile, AMissingOrUnreadableTextureIsOneLineNamingTheMtlAndTheFile) {
             mtl + " line 3: map_Kd " + (dir / "gone.png").string() +
                 " does not exist; put the image there or fix the map_Kd line");
   write(dir, "broken.png", "\x89PNG\r\n\x1a\nnot really");
-  EXPECT_NE(message("newmtl skin\nmap_Kd broken.png\n").find(mtl + " line 2: map_Kd " + (dir / "broken.png").string() +
-                                                              " cannot be decoded"),
+  EXPECT_NE(message("newmtl skin\nmap_Kd broken.png\n")
+                .find(mtl + " line 2: map_Kd " + (dir / "broken.png").string() + " cannot be decoded"),
             std::string::npos);
   write(dir, "picture.bmp", "BM not a png");
   EXPECT_EQ(message("newmtl skin\nmap_Kd picture.bmp\n"),
@@ -506,7 +507,8 @@ TEST(ObjFile, AMissingOrUnreadableTextureIsOneLineNamingTheMtlAndTheFile) {
                 " is not a PNG or JPEG file, the formats glTF embeds; convert it to PNG");
   EXPECT_EQ(message("newmtl skin\nmap_Kd -mm 0 1 picture.png\n"),
             mtl + " line 2: map_Kd option -mm is not read by Exacity (only -s, -o and -clamp); remove it");
-  EXPECT_EQ(message("newmtl skin\nmap_Kd -s 2\n"), mtl + " line 2: map_Kd names no file; give the image's name after map_Kd");
+  EXPECT_EQ(message("newmtl skin\nmap_Kd -s 2\n"),
+            mtl + " line 2: map_Kd names no file; give the image's name after map_Kd");
   // A model without map_Kd keeps no texture coordinates.
   write(dir, "quad.mtl", "newmtl skin\nKd 1 0 0\n");
   EXPECT_FALSE(read_obj(dir / "quad.obj").textured());

@@ -1,12 +1,11 @@
 // Textured models end to end (docs/design.md, Textured models): a library of boxes whose
 // sides carry a 2 x 2 checker through map_Kd, generated into a small city; city.glb holds the
-// image once with the corners' texture coordinates, a render shows the checker's colours
+// image once with the corners' texture coordinates, CityJSON's appearance names it, a
+// render shows the checker's colours
 // where the boxes are seen, and a missing or unreadable texture stops the run with one line.
-#include <gtest/gtest.h>
-
-#include <tiny_gltf.h>
-
 #include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
 #include "tests/cli_util.h"
 #include "tests/test_util.h"
@@ -111,7 +110,8 @@ TEST(Textures, GoIntoTheGlbOnceWithTheirCoordinatesAndIntoTheRender) {
       }
       ++textured;
       EXPECT_EQ(material.pbrMetallicRoughness.baseColorTexture.index, 0) << material.name;
-      const std::vector<float> position = floats(p.attributes.at("POSITION")), uv = floats(p.attributes.at("TEXCOORD_0"));
+      const std::vector<float> position = floats(p.attributes.at("POSITION")),
+                               uv = floats(p.attributes.at("TEXCOORD_0"));
       ASSERT_EQ(position.size() / 3, uv.size() / 2);
       // Positions are per corner, in order: three a triangle.
       for (std::size_t t = 0; t < position.size() / 9; ++t) {
@@ -131,6 +131,44 @@ TEST(Textures, GoIntoTheGlbOnceWithTheirCoordinatesAndIntoTheRender) {
   EXPECT_GT(textured, 0);
   EXPECT_EQ(untextured, textured);
   EXPECT_EQ(shell(node_tool("check_glb.mjs") + " " + (out / "city.glb").string()).code, 0);
+
+  // CityJSON: the image written once beside it, box_a's template (the first) with each
+  // corner's texture vertex as the OBJ gives it (v up); its bottom untextured.
+  const auto city = nlohmann::json::parse(read(out / "city.city.json"));
+  const auto& appearance = city["appearance"];
+  ASSERT_EQ(appearance["textures"].size(), 1u) << appearance;
+  EXPECT_EQ(appearance["textures"][0]["image"], "textures/checker.png");
+  EXPECT_EQ(read(out / "textures" / "checker.png"), read(dir / "checker.png"));
+  const auto& box_a = city["geometry-templates"]["templates"][0];
+  const auto& corners = city["geometry-templates"]["vertices-templates"];
+  const auto& faces = box_a["boundaries"];
+  const auto& values = box_a["texture"]["exacity"]["values"];
+  ASSERT_EQ(values.size(), faces.size());
+  int untextured_faces = 0;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const auto& value = values[f][0];
+    if (value[0].is_null()) {
+      ++untextured_faces;
+      continue;
+    }
+    EXPECT_EQ(value[0], 0);
+    bool top = true;
+    for (int k = 0; k < 3; ++k) top = top && corners[faces[f][0][k].get<int>()][2] == 8.0;
+    for (int k = 0; k < 3; ++k) {
+      const double z = corners[faces[f][0][k].get<int>()][2];
+      const auto& uv = appearance["vertices-texture"][value[k + 1].get<int>()];
+      if (top) {
+        EXPECT_EQ(uv, nlohmann::json::array({0.75, 0.75}));
+      } else {
+        EXPECT_EQ(uv[1].get<double>(), z == 0 ? 0.0 : 0.5) << uv;
+      }
+    }
+  }
+  EXPECT_EQ(untextured_faces, 2) << "the bottom's two triangles";
+  const fs::path schemas = cityjson_schemas();
+  const Result cityjson = shell(node_tool("check_cityjson.mjs") + " " + (out / "city.city.json").string() +
+                                (fs::exists(schemas / "cityjson.schema.json") ? " " + schemas.string() : ""));
+  EXPECT_EQ(cityjson.code, 0) << cityjson.out;
 
   // A render looking at a box: where a box is seen, its colour is the checker's (red or
   // blue, no green), in the beauty and in the albedo the denoiser divides out.
@@ -182,7 +220,8 @@ TEST(Textures, AMissingOrUnreadableTextureStopsTheRunWithOneLine) {
   fs::remove(dir / "checker.png");
   Result r = run(generate);
   EXPECT_EQ(r.code, 2) << r.out;
-  EXPECT_EQ(r.out, "exacity: error: " + (dir / "box.mtl").string() + " line 3: map_Kd " + (dir / "checker.png").string() +
+  EXPECT_EQ(r.out, "exacity: error: " + (dir / "box.mtl").string() + " line 3: map_Kd " +
+                       (dir / "checker.png").string() +
                        " does not exist; put the image there or fix the map_Kd line\n");
   EXPECT_FALSE(fs::exists(out));
   write(dir / "checker.png", "\x89PNG\r\n\x1a\ncut short");

@@ -172,7 +172,7 @@ class Glb {
   tinygltf::Model model_;
   std::size_t triangles_ = 0;
   std::map<const TextureImage*, int> images_;
-  std::map<bool, int> samplers_;                   // by clamp
+  std::map<bool, int> samplers_;                 // by clamp
   std::map<std::pair<int, int>, int> textures_;  // by (image, sampler)
 };
 
@@ -258,7 +258,7 @@ Primitives building_primitives(const std::vector<Building>& buildings, const std
 
 // Each library model's geometry and colour variants, stored the first time one is placed.
 struct StoredModels {
-  std::map<int, std::vector<Accessors>> geometry;  // model -> accessors per material
+  std::map<int, std::vector<Accessors>> geometry;           // model -> accessors per material
   std::map<std::pair<int, int>, int> variant_mesh;          // (model, tint) -> mesh
 };
 

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cstdlib>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -71,7 +71,8 @@ TextureMap parse_texture_map(const std::string& rest) {
       if (v != "on" && v != "off") throw std::invalid_argument("map_Kd -clamp takes on or off");
       map.clamp = v == "on";
     } else {
-      throw std::invalid_argument("map_Kd option " + option + " is not read by Exacity (only -s, -o and -clamp); remove it");
+      throw std::invalid_argument("map_Kd option " + option +
+                                  " is not read by Exacity (only -s, -o and -clamp); remove it");
     }
   }
   while (at < rest.size() && std::isspace(static_cast<unsigned char>(rest[at]))) ++at;
@@ -105,7 +106,9 @@ void read_mtl(const fs::path& file, TextureImages& textures, std::map<std::strin
       while (!current.empty() && std::isspace(static_cast<unsigned char>(current.back()))) current.pop_back();
     } else if (key == "Kd" && !current.empty()) {
       Vec3 c;
-      if (words >> c[0] >> c[1] >> c[2]) entries[current].colour = Vec3{std::clamp(c[0], 0.0, 1.0), std::clamp(c[1], 0.0, 1.0), std::clamp(c[2], 0.0, 1.0)};
+      if (words >> c[0] >> c[1] >> c[2])
+        entries[current].colour =
+            Vec3{std::clamp(c[0], 0.0, 1.0), std::clamp(c[1], 0.0, 1.0), std::clamp(c[2], 0.0, 1.0)};
     } else if (key == "map_Kd" && !current.empty()) {
       const std::string where = file.string() + " line " + std::to_string(number);
       std::string rest;
@@ -168,8 +171,8 @@ class ObjLines {
 struct ObjContents {
   std::vector<Vec3> positions;
   std::vector<Uv> texture_coordinates;
-  long normals = 0;                     // only counted: face corners may point at them
-  std::vector<std::vector<int>> faces;  // into positions
+  long normals = 0;                       // only counted: face corners may point at them
+  std::vector<std::vector<int>> faces;    // into positions
   std::vector<std::vector<int>> face_uv;  // per face corner, into texture_coordinates; -1 for none
   std::vector<int> face_material;         // per face, into material_names
   std::vector<std::string> material_names{"default"};
@@ -209,7 +212,8 @@ long resolve_index(const std::string& text, long count, const char* what, const 
 
 void parse_texture_coordinate(std::istringstream& words, ObjContents& obj, const ObjLines& lines) {
   Uv uv{0, 0};
-  if (!(words >> uv[0]) || !std::isfinite(uv[0])) lines.fail("a texture coordinate needs a finite u; fix or remove the line");
+  if (!(words >> uv[0]) || !std::isfinite(uv[0]))
+    lines.fail("a texture coordinate needs a finite u; fix or remove the line");
   if (!(words >> uv[1])) uv[1] = 0;  // "vt u" alone: v is 0
   if (!std::isfinite(uv[1])) lines.fail("a texture coordinate needs a finite v; fix or remove the line");
   obj.texture_coordinates.push_back(uv);
@@ -330,9 +334,15 @@ int mesh_material(const ObjContents& obj, int material, bool has_uv, std::vector
     m = static_cast<int>(mesh.materials.size());
     MeshMaterial mat{obj.material_names[material], {}, nullptr, false};
     if (auto e = obj.mtl.find(mat.name); e != obj.mtl.end()) {
-      if (e->second.colour) mat.colour = *e->second.colour;
-      if (e->second.texture && has_uv) mat.texture = e->second.texture, mat.clamp = e->second.map.clamp;
-      else if (e->second.texture) mat.name += "_untextured";
+      // Without Kd a texture shows as it is; an untextured material keeps the grey default.
+      if (e->second.colour)
+        mat.colour = *e->second.colour;
+      else if (e->second.texture)
+        mat.colour = {1, 1, 1};
+      if (e->second.texture && has_uv)
+        mat.texture = e->second.texture, mat.clamp = e->second.map.clamp;
+      else if (e->second.texture)
+        mat.name += "_untextured";
     }
     mesh.materials.push_back(mat);
   }

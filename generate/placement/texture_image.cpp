@@ -1,9 +1,9 @@
 #include "generate/placement/texture_image.h"
 
+#include <OpenImageIO/imageio.h>
+
 #include <fstream>
 #include <iterator>
-
-#include <OpenImageIO/imageio.h>
 
 #include "generate/errors.h"
 
