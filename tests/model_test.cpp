@@ -513,3 +513,11 @@ TEST(ObjFile, AMissingOrUnreadableTextureIsOneLineNamingTheMtlAndTheFile) {
   write(dir, "quad.mtl", "newmtl skin\nKd 1 0 0\n");
   EXPECT_FALSE(read_obj(dir / "quad.obj").textured());
 }
+
+TEST(ObjFile, AnMtllibNameWithSpacesIsReadWhole) {
+  fs::path dir = testing_util::temp_dir("obj-mtllib-spaces");
+  write(dir, "my materials.mtl", "newmtl red\nKd 0.8 0.1 0.1\n");
+  TriangleMesh m =
+      read_obj(write(dir, "t.obj", "mtllib my materials.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n"));
+  EXPECT_EQ(m.materials[0].colour, (Vec3{0.8, 0.1, 0.1}));
+}
