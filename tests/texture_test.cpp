@@ -74,6 +74,12 @@ TEST(Textures, GoIntoTheGlbOnceWithTheirCoordinatesAndIntoTheRender) {
   Result r = run("generate " + (dir / "city.grid").string() + " -o " + out.string() + " -q --models " +
                  (dir / "library.json").string());
   ASSERT_EQ(r.code, 0) << r.out;
+  // The same bytes whatever the thread count, images included.
+  r = run("generate " + (dir / "city.grid").string() + " -o " + (dir / "again").string() + " -q --threads 1 --models " +
+          (dir / "library.json").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  for (const char* file : {"city.glb", "city.city.json", "textures/checker.png"})
+    EXPECT_TRUE(read(out / file) == read(dir / "again" / file)) << file;
 
   tinygltf::Model glb;
   tinygltf::TinyGLTF loader;
