@@ -183,6 +183,8 @@ struct RenderScene::Geometry {
   std::uint32_t instance_entity = 0;
   int material_base = 0;
   float cos_turn = 1, sin_turn = 0;
+  // Instances of a textured model: its corners' texture coordinates, per model triangle.
+  const std::vector<std::array<exacity::Uv, 3>>* uv = nullptr;
 };
 
 unsigned RenderScene::add_triangles(const std::vector<V3>& vertices, const std::vector<std::array<int, 3>>& tris,
@@ -523,7 +525,14 @@ RenderScene::ModelMaterials RenderScene::add_model_materials(const exacity::Mode
     for (int tint = 0; tint < exacity::kTints; ++tint)
       for (const auto& mat : m.mesh.materials) {
         const bool glass = mat.name.find("glass") != std::string::npos || mat.name.find("window") != std::string::npos;
-        add_material({glass ? Material::Glossy : Material::Diffuse, colour(exacity::tinted(mat.colour, tint)), 0.05f, 1.5f});
+        const int index = add_material(
+            {glass ? Material::Glossy : Material::Diffuse, colour(exacity::tinted(mat.colour, tint)), 0.05f, 1.5f});
+        if (!mat.texture) continue;
+        // The texture times the material's colour, as the MTL's map_Kd and Kd combine.
+        std::unique_ptr<Texture>& texture = textures_[mat.texture.get()];
+        if (!texture) texture = std::make_unique<Texture>(*mat.texture);
+        material_textures_.resize(materials_.size());
+        material_textures_[index] = {texture.get(), mat.clamp};
       }
     out.local.push_back(m.mesh.material);
   }
@@ -573,6 +582,7 @@ void RenderScene::add_instance(const exacity::ModelInstance& m, const exacity::M
   info.material_base = materials.base[m.placed.model] + m.placed.tint * static_cast<int>(model.mesh.materials.size());
   info.material = materials.local[m.placed.model];
   info.cos_turn = std::cos(static_cast<float>(m.placed.angle)), info.sin_turn = std::sin(static_cast<float>(m.placed.angle));
+  if (model.mesh.textured()) info.uv = &model.mesh.uv;
   if (geometries_.size() <= id) geometries_.resize(id + 1);
   geometries_[id] = std::move(info);
   ++instances;
@@ -592,6 +602,8 @@ bool RenderScene::intersect(V3 o, V3 d, float tmax, Surface& s) const {
   rtcInitIntersectContext(&context);
   rtcIntersect1(scene_, &context, &rh);
   int m;
+  const std::array<exacity::Uv, 3>* textured = nullptr;  // the hit triangle's texture coordinates
+  float hit_u = 0, hit_v = 0;                            // and its barycentric place in it
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
     // The ground plane beyond the city.
     if (!ground_plane_ || d.z >= 0 || o.z <= ground) return false;
@@ -611,6 +623,7 @@ bool RenderScene::intersect(V3 o, V3 d, float tmax, Surface& s) const {
       n = {g.cos_turn * n.x - g.sin_turn * n.y, g.sin_turn * n.x + g.cos_turn * n.y, n.z};
       m = g.material_base + g.material[rh.hit.primID];
       s.entity = g.instance_entity;
+      if (g.uv) textured = &(*g.uv)[rh.hit.primID], hit_u = rh.hit.u, hit_v = rh.hit.v;
     } else {
       const Geometry& g = geometries_[rh.hit.geomID];
       m = g.material[rh.hit.primID];
@@ -620,6 +633,16 @@ bool RenderScene::intersect(V3 o, V3 d, float tmax, Surface& s) const {
     if (dot(s.normal, d) > 0) s.normal = s.normal * -1;
   }
   s.material = materials_[m];
+  if (textured && static_cast<std::size_t>(m) < material_textures_.size() && material_textures_[m].texture) {
+    // Embree's u and v weigh the triangle's second and third corners.
+    const exacity::Uv& a = (*textured)[0];
+    const exacity::Uv& b = (*textured)[1];
+    const exacity::Uv& c = (*textured)[2];
+    const float w = 1 - hit_u - hit_v;
+    const float u = static_cast<float>(w * a[0] + hit_u * b[0] + hit_v * c[0]);
+    const float v = static_cast<float>(w * a[1] + hit_u * b[1] + hit_v * c[1]);
+    s.material.albedo = s.material.albedo * material_textures_[m].texture->sample(u, v, material_textures_[m].clamp);
+  }
   switch (patterns_[m]) {
     case Pattern::Windows:
       // A grid of windows on walls: 3.3 m floors, 3 m bays.

@@ -10,6 +10,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "generate/city/city.h"
 #include "render/camera.h"
 #include "render/material.h"
+#include "render/texture.h"
 
 namespace render {
 
@@ -144,6 +146,14 @@ class RenderScene {
   std::vector<Geometry> geometries_;  // by top-level geomID
   std::vector<Material> materials_;
   std::vector<Pattern> patterns_;  // by material
+  // Model textures, one per image, and each textured material's (by material index; a
+  // null texture where the material has none).
+  struct MaterialTexture {
+    const Texture* texture = nullptr;
+    bool clamp = false;
+  };
+  std::map<const exacity::TextureImage*, std::unique_ptr<Texture>> textures_;
+  std::vector<MaterialTexture> material_textures_;
   bool ground_plane_ = true;
   int grass_material_ = -1;
 };

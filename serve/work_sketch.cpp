@@ -12,6 +12,7 @@
 #include "generate/city/grey_image.h"
 #include "generate/city/palette.h"
 #include "generate/errors.h"
+#include "generate/placement/obj_file.h"
 
 namespace exacity::serve {
 namespace fs = std::filesystem;
@@ -179,8 +180,13 @@ void WorkSketch::check_library(const std::string& manifest) const {
     if (!entry.is_object() || !entry.contains("file") || !entry["file"].is_string()) continue;
     const fs::path obj = fs::path(manifest).parent_path() / entry["file"].get<std::string>();
     if (!work_.holds(obj, why)) throw UserError(where + manifest + ": models[" + std::to_string(i) + "].file " + why);
-    for (const std::string& mtl : material_files(work_.root() / obj))
-      if (!work_.holds(obj.parent_path() / mtl, why)) throw UserError(where + obj.generic_string() + ": mtllib " + why);
+    for (const std::string& mtl : material_files(work_.root() / obj)) {
+      const fs::path material = obj.parent_path() / mtl;
+      if (!work_.holds(material, why)) throw UserError(where + obj.generic_string() + ": mtllib " + why);
+      for (const std::string& image : texture_files(work_.root() / material))
+        if (!work_.holds(material.parent_path() / image, why))
+          throw UserError(where + material.generic_string() + ": map_Kd " + why);
+    }
   }
 }
 
@@ -278,8 +284,12 @@ std::string WorkSketch::import_library(const fs::path& manifest) {
     if (entry.is_object() && entry.contains("file") && entry["file"].is_string()) {
       const fs::path obj = entry["file"].get<std::string>();
       bring(obj, manifest.string() + ": file");
-      for (const std::string& mtl : material_files(from / obj))
-        bring(obj.parent_path() / mtl, (from / obj).string() + ": mtllib");
+      for (const std::string& mtl : material_files(from / obj)) {
+        const fs::path material = obj.parent_path() / mtl;
+        bring(material, (from / obj).string() + ": mtllib");
+        for (const std::string& image : texture_files(from / material))
+          bring(material.parent_path() / image, (from / material).string() + ": map_Kd");
+      }
     }
   return "models/" + manifest.filename().string();
 }

@@ -424,3 +424,100 @@ TEST(ModelLibrary, ExportsPastTheirTriangleBudgetStopWithTheHeaviestModel) {
     EXPECT_NE(std::string(e.what()).find("model \"heavy\" (1000000 triangles) is placed 20 times"), std::string::npos) << e.what();
   }
 }
+
+namespace {
+
+// A PNG of w x h RGBA pixels (row 0 at the top).
+void write_png(const fs::path& file, int w, int h, const std::vector<std::uint8_t>& rgba) {
+  auto out = OIIO::ImageOutput::create(file.string());
+  ASSERT_TRUE(out);
+  ASSERT_TRUE(out->open(file.string(), OIIO::ImageSpec(w, h, 4, OIIO::TypeDesc::UINT8)));
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, rgba.data()));
+  out->close();
+}
+
+// A quad textured corner to corner, and a triangle of the same material without vt.
+const char* kTexturedQuad =
+    "mtllib quad.mtl\nv 0 0 0\nv 2 0 0\nv 2 0 3\nv 0 0 3\nv 5 0 0\nv 6 0 0\nv 5 0 1\n"
+    "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl skin\nf 1/1 2/2 3/3 4/4\nf 5 6 7\n";
+
+}  // namespace
+
+TEST(ObjFile, KeepsTextureCoordinatesPerCornerAndTheTextureOnce) {
+  fs::path dir = testing_util::temp_dir("obj-texture");
+  fs::create_directories(dir / "my textures");
+  write_png(dir / "my textures" / "check er.png", 2, 2, {255, 0, 0, 255, 0, 0, 255, 128, 0, 0, 255, 255, 255, 0, 0, 0});
+  // Options before a name with spaces, a backslash between folders, -s and -o applied.
+  write(dir, "quad.mtl", "newmtl skin\nKd 0.5 1 1\nmap_Kd -s 2 3 1 -o 0.5 0.25 -clamp on my textures\\check er.png\n");
+  write(dir, "quad.obj", kTexturedQuad);
+  TextureImages images;
+  TriangleMesh m = read_obj(dir / "quad.obj", &images);
+  ASSERT_EQ(m.triangles.size(), 3u);
+  ASSERT_TRUE(m.textured());
+  ASSERT_EQ(m.uv.size(), 3u);
+  // The quad's material has the texture; the face without vt has an untextured copy.
+  ASSERT_EQ(m.materials.size(), 2u);
+  const MeshMaterial& skin = m.materials[m.material[0]];
+  ASSERT_TRUE(skin.texture);
+  EXPECT_TRUE(skin.clamp);
+  EXPECT_EQ(skin.colour, (Vec3{0.5, 1, 1}));
+  EXPECT_EQ(skin.texture->width, 2);
+  EXPECT_EQ(skin.texture->mime_type, "image/png");
+  EXPECT_EQ(skin.texture->rgb, (std::vector<std::uint8_t>{255, 0, 0, 0, 0, 255, 0, 0, 255, 255, 0, 0}));
+  const MeshMaterial& bare = m.materials[m.material[2]];
+  EXPECT_FALSE(bare.texture);
+  EXPECT_EQ(bare.name, "skin_untextured");
+  EXPECT_EQ(bare.colour, (Vec3{0.5, 1, 1}));
+  // Each corner of the quad's triangles carries its own vt, scaled by (2, 3), moved by (0.5, 0.25).
+  auto expected = [](const Vec3& p) { return Uv{p[0] / 2 * 2 + 0.5, p[2] / 3 * 3 + 0.25}; };
+  for (int t = 0; t < 2; ++t)
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(m.uv[t][k], expected(m.vertices[m.triangles[t][k]])) << t << " " << k;
+  // Another model naming the same file shares the image.
+  write(dir, "other.mtl", "newmtl skin\nmap_Kd my textures/../my textures/check er.png\n");
+  write(dir, "other.obj", std::string(kTexturedQuad).replace(7, 8, "other.mtl"));
+  TriangleMesh other = read_obj(dir / "other.obj", &images);
+  EXPECT_EQ(other.materials[other.material[0]].texture.get(), skin.texture.get());
+  EXPECT_EQ(other.materials[other.material[0]].colour, (Vec3{1, 1, 1})) << "no Kd: the texture as it is";
+}
+
+TEST(ObjFile, AMissingOrUnreadableTextureIsOneLineNamingTheMtlAndTheFile) {
+  fs::path dir = testing_util::temp_dir("obj-texture-bad");
+  write(dir, "quad.obj", kTexturedQuad);
+  auto message = [&](const std::string& mtl) {
+    write(dir, "quad.mtl", mtl);
+    try {
+      read_obj(dir / "quad.obj");
+    } catch (const UserError& e) {
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const std::string mtl = (dir / "quad.mtl").string();
+  EXPECT_EQ(message("newmtl skin\nKd 1 1 1\nmap_Kd gone.png\n"),
+            mtl + " line 3: map_Kd " + (dir / "gone.png").string() +
+                " does not exist; put the image there or fix the map_Kd line");
+  write(dir, "broken.png", "\x89PNG\r\n\x1a\nnot really");
+  EXPECT_NE(message("newmtl skin\nmap_Kd broken.png\n")
+                .find(mtl + " line 2: map_Kd " + (dir / "broken.png").string() + " cannot be decoded"),
+            std::string::npos);
+  write(dir, "picture.bmp", "BM not a png");
+  EXPECT_EQ(message("newmtl skin\nmap_Kd picture.bmp\n"),
+            mtl + " line 2: map_Kd " + (dir / "picture.bmp").string() +
+                " is not a PNG or JPEG file, the formats glTF embeds; convert it to PNG");
+  EXPECT_EQ(message("newmtl skin\nmap_Kd -mm 0 1 picture.png\n"),
+            mtl + " line 2: map_Kd option -mm is not read by Exacity (only -s, -o and -clamp); remove it");
+  EXPECT_EQ(message("newmtl skin\nmap_Kd -s 2\n"),
+            mtl + " line 2: map_Kd names no file; give the image's name after map_Kd");
+  // A model without map_Kd keeps no texture coordinates.
+  write(dir, "quad.mtl", "newmtl skin\nKd 1 0 0\n");
+  EXPECT_FALSE(read_obj(dir / "quad.obj").textured());
+}
+
+TEST(ObjFile, AnMtllibNameWithSpacesIsReadWhole) {
+  fs::path dir = testing_util::temp_dir("obj-mtllib-spaces");
+  write(dir, "my materials.mtl", "newmtl red\nKd 0.8 0.1 0.1\n");
+  TriangleMesh m =
+      read_obj(write(dir, "t.obj", "mtllib my materials.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n"));
+  EXPECT_EQ(m.materials[0].colour, (Vec3{0.8, 0.1, 0.1}));
+}

@@ -386,3 +386,33 @@ TEST(Render, ZoneLandWithoutLotsIsGreenFromAbove) {
     EXPECT_GT(c[1], c[2]);
   }
 }
+
+TEST(Texture, SamplesLinearTexelsBilinearlyRepeatingOrClamped) {
+  // A 2 x 2 image: red, blue on the top row; black, white below (sRGB 8-bit).
+  exacity::TextureImage image;
+  image.width = image.height = 2;
+  image.rgb = {255, 0, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255};
+  const Texture t(image);
+  EXPECT_EQ(srgb_to_linear(255), 1.0f);
+  EXPECT_EQ(srgb_to_linear(0), 0.0f);
+  EXPECT_NEAR(srgb_to_linear(128), 0.2158605f, 1e-6);  // sRGB's curve, not value / 255
+  auto expect = [&](float u, float v, bool clamp, V3 want) {
+    const V3 got = t.sample(u, v, clamp);
+    EXPECT_NEAR(got.x, want.x, 1e-6) << u << "," << v;
+    EXPECT_NEAR(got.y, want.y, 1e-6) << u << "," << v;
+    EXPECT_NEAR(got.z, want.z, 1e-6) << u << "," << v;
+  };
+  // Texel centres: v runs up, so the top row is at v = 0.75.
+  expect(0.25f, 0.75f, false, {1, 0, 0});
+  expect(0.75f, 0.75f, false, {0, 0, 1});
+  expect(0.25f, 0.25f, false, {0, 0, 0});
+  expect(0.75f, 0.25f, false, {1, 1, 1});
+  // Halfway between red and blue: their linear mean.
+  expect(0.5f, 0.75f, false, {0.5f, 0, 0.5f});
+  // Outside 0..1 the image repeats; at the seam, the first column mixes with the last.
+  expect(1.25f, -0.25f, false, {1, 0, 0});
+  expect(0.0f, 0.75f, false, {0.5f, 0, 0.5f});
+  // Clamped, the edge texel carries on.
+  expect(0.0f, 0.75f, true, {1, 0, 0});
+  expect(-3.0f, 7.0f, true, {1, 0, 0});
+}

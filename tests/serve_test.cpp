@@ -525,6 +525,30 @@ TEST(ServeCommandTest, ImportsAModelLibrary) {
   EXPECT_EQ(exit_code(pid), 128 + SIGTERM) << read(dir / "log.txt");
 }
 
+TEST(ServeCommandTest, ImportsAModelLibrarysTextures) {
+  // The texture an .mtl names comes along with it, at its place below the manifest.
+  const fs::path dir = testing_util::temp_dir("serve_command_textures");
+  fs::create_directories(dir / "lib" / "textures");
+  write(dir / "lib" / "library.json", R"({"models": [{"file": "box.obj", "zones": ["residential"], "up": "z"}]})");
+  write(dir / "lib" / "box.obj",
+        "mtllib box.mtl\nv 0 0 0\nv 8 0 0\nv 0 8 0\nv 0 0 6\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl skin\n"
+        "f 1/1 3/3 2/2\nf 1/1 2/2 4/3\nf 1/1 4/3 3/2\nf 2/1 3/2 4/3\n");
+  write(dir / "lib" / "box.mtl", "newmtl skin\nmap_Kd textures/skin.png\n");
+  fs::copy_file(cli_util::kSource / "examples" / "valley.png", dir / "lib" / "textures" / "skin.png");
+  write(dir / "sketch.geojson",
+        R"({"type": "FeatureCollection", "exacity": {"models": "lib/library.json"}, "features": [
+    {"type": "Feature", "properties": {"zone": "residential"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [300, 300], [0, 300], [0, 0]]]}}]})");
+  const pid_t pid = start_program(
+      {"serve", (dir / "sketch.geojson").string(), "--port", "0", "--work", (dir / "work").string()}, dir / "log.txt");
+  const int port = served_port(dir / "log.txt");
+  ASSERT_GT(port, 0) << read(dir / "log.txt");
+  ASSERT_TRUE(fs::is_regular_file(dir / "work" / "models" / "textures" / "skin.png"));
+  EXPECT_TRUE(read(dir / "work" / "models" / "textures" / "skin.png") == read(dir / "lib" / "textures" / "skin.png"));
+  kill(pid, SIGTERM);
+  EXPECT_EQ(exit_code(pid), 128 + SIGTERM) << read(dir / "log.txt");
+}
+
 TEST(ServeCommandTest, RefusesABadSketchAndABusyPort) {
   const fs::path dir = testing_util::temp_dir("serve_command_bad");
   write(dir / "bad.geojson", R"({"type": "FeatureCollection", "features": []})");

@@ -143,15 +143,77 @@ json multisurface(const std::vector<const geom::Polygon*>& polygons, const Terra
   return {{"type", "MultiSurface"}, {"lod", "1"}, {"boundaries", boundaries}};
 }
 
-// Each model of the library once, as a MultiSurface in its own frame (seed 004).
-json templates(const ModelLibrary& library) {
+// Model textures as CityJSON's appearance (docs/design.md, Textured models): CityJSON names
+// images by path, so each image is written once into `folder`; a texture per image and wrap
+// mode; each textured triangle's corners as texture vertices, u and v as the OBJ gives them
+// (both count from the image's bottom left).
+class Appearance {
+ public:
+  explicit Appearance(std::filesystem::path folder) : folder_(std::move(folder)) {}
+
+  // The triangle's texture value: [texture, three texture vertices], or [null].
+  json ring(const MeshMaterial& material, const std::array<Uv, 3>& uv) {
+    if (!material.texture) return json::array({nullptr});
+    json value = json::array({texture(*material.texture, material.clamp)});
+    for (const Uv& c : uv) {
+      value.push_back(vertices_.size());
+      vertices_.push_back({c[0], c[1]});
+    }
+    return value;
+  }
+
+  bool empty() const { return textures_.empty(); }
+  json to_json() const {
+    return {{"default-theme-texture", "exacity"}, {"textures", textures_}, {"vertices-texture", vertices_}};
+  }
+
+ private:
+  int texture(const TextureImage& image, bool clamp) {
+    auto [it, added] = index_.emplace(std::make_pair(&image, clamp), static_cast<int>(textures_.size()));
+    if (added)
+      textures_.push_back({{"type", image.mime_type == "image/png" ? "PNG" : "JPG"},
+                           {"image", "textures/" + image_name(image)},
+                           {"wrapMode", clamp ? "clamp" : "wrap"}});
+    return it->second;
+  }
+
+  // The image's name in the folder, written the first time: its own, or numbered when
+  // another image took it.
+  std::string image_name(const TextureImage& image) {
+    auto [it, added] = names_.emplace(&image, image.file.filename().string());
+    if (!added) return it->second;
+    for (const auto& [other, name] : names_)
+      if (other != &image && name == it->second) it->second = std::to_string(names_.size()) + "_" + it->second;
+    std::filesystem::create_directories(folder_);
+    std::ofstream out(folder_ / it->second, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(image.bytes.data()), static_cast<std::streamsize>(image.bytes.size()));
+    if (!out) throw UserError((folder_ / it->second).string() + ": write failed (disk full?)");
+    return it->second;
+  }
+
+  std::filesystem::path folder_;
+  json textures_ = json::array(), vertices_ = json::array();
+  std::map<std::pair<const TextureImage*, bool>, int> index_;
+  std::map<const TextureImage*, std::string> names_;
+};
+
+// Each model of the library once, as a MultiSurface in its own frame (seed 004), its
+// textured triangles with their texture coordinates.
+json templates(const ModelLibrary& library, Appearance& appearance) {
   json list = json::array(), vertices = json::array();
   for (const Model& m : library.models) {
     const int first = static_cast<int>(vertices.size());
     for (const Vec3& p : m.mesh.vertices) vertices.push_back({p[0], p[1], p[2]});
-    json faces = json::array();
-    for (const auto& t : m.mesh.triangles) faces.push_back(json::array({json::array({first + t[0], first + t[1], first + t[2]})}));
-    list.push_back({{"type", "MultiSurface"}, {"lod", "2"}, {"boundaries", faces}});
+    json faces = json::array(), texture = json::array();
+    for (std::size_t k = 0; k < m.mesh.triangles.size(); ++k) {
+      const auto& t = m.mesh.triangles[k];
+      faces.push_back(json::array({json::array({first + t[0], first + t[1], first + t[2]})}));
+      if (m.mesh.textured())
+        texture.push_back(json::array({appearance.ring(m.mesh.materials[m.mesh.material[k]], m.mesh.uv[k])}));
+    }
+    json geometry{{"type", "MultiSurface"}, {"lod", "2"}, {"boundaries", faces}};
+    if (m.mesh.textured()) geometry["texture"] = {{"exacity", {{"values", texture}}}};
+    list.push_back(geometry);
   }
   return {{"templates", list}, {"vertices-templates", vertices}};
 }
@@ -290,7 +352,9 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
            {"transform", {{"scale", {kScale, kScale, kScale}}, {"translate", {origin.x, origin.y, 0.0}}}},
            {"CityObjects", objects},
            {"vertices", v.to_json()}};
-  if (library) doc["geometry-templates"] = templates(*library);
+  Appearance appearance(file.parent_path() / "textures");
+  if (library) doc["geometry-templates"] = templates(*library, appearance);
+  if (!appearance.empty()) doc["appearance"] = appearance.to_json();
   // An EPSG code in the sketch's crs becomes the reference system.
   if (const std::optional<int> epsg = epsg_of(sketch.crs))
     doc["metadata"] = {{"referenceSystem", "https://www.opengis.net/def/crs/EPSG/0/" + std::to_string(*epsg)}};

@@ -15,7 +15,8 @@
 namespace exacity {
 
 // meshes are structure_meshes(buildings, models, ...), by id. Placed models are instances of templates,
-// one per library model; on terrain, ground surfaces are draped over it.
+// one per library model; on terrain, ground surfaces are draped over it. Models' textures
+// are written once each into `textures/` beside the file, which the appearance names.
 void write_cityjson(const Ground& ground, const std::vector<Building>& buildings,
                     const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
                     const ModelLibrary* library, const Terrain* terrain, const Sketch& sketch,

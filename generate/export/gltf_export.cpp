@@ -15,11 +15,18 @@ namespace exacity {
 namespace {
 
 using Float3 = std::array<float, 3>;
+using Float2 = std::array<float, 2>;
 
 // Triangles in glTF's frame, ready to become one primitive.
 struct Triangles {
   std::vector<Float3> positions;
   std::vector<std::uint32_t> indices;
+  std::vector<Float2> uvs;  // TEXCOORD_0 per position, or none
+};
+
+// A primitive's accessors; position -1 when it has no triangles, uv -1 without TEXCOORD_0.
+struct Accessors {
+  int position = -1, index = -1, uv = -1;
 };
 
 class Glb {
@@ -39,9 +46,17 @@ class Glb {
     return static_cast<int>(model_.materials.size()) - 1;
   }
 
-  // POSITION and index accessors for the triangles; {-1, -1} when there are none.
-  std::pair<int, int> accessors(const Triangles& t) {
-    if (t.indices.empty()) return {-1, -1};
+  // A material whose base colour is the image times the colour.
+  int textured_material(const std::string& name, const Colour& c, const TextureImage& image, bool clamp) {
+    const int m = material(name, c);
+    model_.materials[m].pbrMetallicRoughness.baseColorTexture.index = texture(image, clamp);
+    return m;
+  }
+
+  // POSITION, index and (with uvs) TEXCOORD_0 accessors for the triangles; position -1
+  // when there are none.
+  Accessors accessors(const Triangles& t) {
+    if (t.indices.empty()) return {};
     Float3 lo = t.positions[0], hi = t.positions[0];
     for (const Float3& p : t.positions)
       for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
@@ -51,22 +66,27 @@ class Glb {
     model_.accessors[position].maxValues = {hi[0], hi[1], hi[2]};
     int index = accessor(t.indices.data(), t.indices.size() * sizeof(std::uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER,
                          TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, t.indices.size());
-    return {position, index};
+    int uv = -1;
+    if (!t.uvs.empty())
+      uv = accessor(t.uvs.data(), t.uvs.size() * sizeof(Float2), TINYGLTF_TARGET_ARRAY_BUFFER,
+                    TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, t.uvs.size());
+    return {position, index, uv};
   }
 
-  // A mesh of primitives (accessor pair, material); -1 when every primitive is empty.
-  int mesh(const std::string& name, const std::vector<std::pair<std::pair<int, int>, int>>& parts) {
+  // A mesh of primitives (accessors, material); -1 when every primitive is empty.
+  int mesh(const std::string& name, const std::vector<std::pair<Accessors, int>>& parts) {
     tinygltf::Mesh m;
     m.name = name;
     for (const auto& [acc, mat] : parts) {
-      if (acc.first < 0) continue;
+      if (acc.position < 0) continue;
       tinygltf::Primitive p;
-      p.attributes["POSITION"] = acc.first;
-      p.indices = acc.second;
+      p.attributes["POSITION"] = acc.position;
+      if (acc.uv >= 0) p.attributes["TEXCOORD_0"] = acc.uv;
+      p.indices = acc.index;
       p.material = mat;
       p.mode = TINYGLTF_MODE_TRIANGLES;
       m.primitives.push_back(p);
-      triangles_ += model_.accessors[acc.second].count / 3;
+      triangles_ += model_.accessors[acc.index].count / 3;
     }
     if (m.primitives.empty()) return -1;
     model_.meshes.push_back(m);
@@ -93,7 +113,7 @@ class Glb {
   }
 
  private:
-  int accessor(const void* data, std::size_t bytes, int target, int component, int type, std::size_t count) {
+  int buffer_view(const void* data, std::size_t bytes, int target) {
     auto& buffer = model_.buffers[0].data;
     while (buffer.size() % 4) buffer.push_back(0);
     tinygltf::BufferView view;
@@ -104,8 +124,43 @@ class Glb {
     const auto* p = static_cast<const unsigned char*>(data);
     buffer.insert(buffer.end(), p, p + bytes);
     model_.bufferViews.push_back(view);
+    return static_cast<int>(model_.bufferViews.size()) - 1;
+  }
+
+  // The image's file embedded in the buffer the first time a material uses it (its bytes
+  // as read: glTF takes PNG and JPEG as they are), with a sampler that repeats it or
+  // clamps it to its edge.
+  int texture(const TextureImage& image, bool clamp) {
+    auto [stored, added] = images_.emplace(&image, static_cast<int>(model_.images.size()));
+    if (added) {
+      tinygltf::Image i;
+      i.name = image.file.filename().string();
+      i.mimeType = image.mime_type;
+      i.bufferView = buffer_view(image.bytes.data(), image.bytes.size(), 0);
+      model_.images.push_back(i);
+    }
+    auto [sampler, new_sampler] = samplers_.emplace(clamp, static_cast<int>(model_.samplers.size()));
+    if (new_sampler) {
+      tinygltf::Sampler s;
+      s.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+      s.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+      s.wrapS = s.wrapT = clamp ? TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE : TINYGLTF_TEXTURE_WRAP_REPEAT;
+      model_.samplers.push_back(s);
+    }
+    auto [texture, new_texture] =
+        textures_.emplace(std::make_pair(stored->second, sampler->second), static_cast<int>(model_.textures.size()));
+    if (new_texture) {
+      tinygltf::Texture t;
+      t.source = stored->second;
+      t.sampler = sampler->second;
+      model_.textures.push_back(t);
+    }
+    return texture->second;
+  }
+
+  int accessor(const void* data, std::size_t bytes, int target, int component, int type, std::size_t count) {
     tinygltf::Accessor a;
-    a.bufferView = static_cast<int>(model_.bufferViews.size()) - 1;
+    a.bufferView = buffer_view(data, bytes, target);
     a.byteOffset = 0;
     a.componentType = component;
     a.type = type;
@@ -116,6 +171,9 @@ class Glb {
 
   tinygltf::Model model_;
   std::size_t triangles_ = 0;
+  std::map<const TextureImage*, int> images_;
+  std::map<bool, int> samplers_;                 // by clamp
+  std::map<std::pair<int, int>, int> textures_;  // by (image, sampler)
 };
 
 // Exacity's x east, y north, z up to glTF's x, y up, z south, about the local origin.
@@ -126,7 +184,7 @@ struct Frame {
   }
 };
 
-using Primitives = std::vector<std::pair<std::pair<int, int>, int>>;  // (accessors, material) each
+using Primitives = std::vector<std::pair<Accessors, int>>;  // (accessors, material) each
 
 void add_ground_mesh(const GroundMesh& g, const Frame& local, Triangles& t) {
   const auto first = static_cast<std::uint32_t>(t.positions.size());
@@ -200,7 +258,7 @@ Primitives building_primitives(const std::vector<Building>& buildings, const std
 
 // Each library model's geometry and colour variants, stored the first time one is placed.
 struct StoredModels {
-  std::map<int, std::vector<std::pair<int, int>>> geometry;  // model -> accessors per material
+  std::map<int, std::vector<Accessors>> geometry;           // model -> accessors per material
   std::map<std::pair<int, int>, int> variant_mesh;          // (model, tint) -> mesh
 };
 
@@ -216,11 +274,17 @@ std::size_t add_model_nodes(const std::vector<ModelInstance>& models, const Mode
     if (!geometry.count(mi)) {
       std::vector<Triangles> by_material(model.mesh.materials.size());
       for (std::size_t k = 0; k < model.mesh.triangles.size(); ++k) {
-        Triangles& t = by_material[model.mesh.material[k]];
-        for (int v : model.mesh.triangles[k]) {
-          const Vec3& p = model.mesh.vertices[v];
+        const int material = model.mesh.material[k];
+        Triangles& t = by_material[material];
+        for (int c = 0; c < 3; ++c) {
+          const Vec3& p = model.mesh.vertices[model.mesh.triangles[k][c]];
           t.indices.push_back(static_cast<std::uint32_t>(t.positions.size()));
           t.positions.push_back({static_cast<float>(p[0]), static_cast<float>(p[2]), static_cast<float>(-p[1])});
+          // glTF's v runs down the image, OBJ's up.
+          if (model.mesh.materials[material].texture) {
+            const Uv& uv = model.mesh.uv[k][c];
+            t.uvs.push_back({static_cast<float>(uv[0]), static_cast<float>(1 - uv[1])});
+          }
         }
       }
       for (const Triangles& t : by_material) geometry[mi].push_back(glb.accessors(t));
@@ -228,9 +292,14 @@ std::size_t add_model_nodes(const std::vector<ModelInstance>& models, const Mode
     auto [it, added] = variant_mesh.emplace(std::make_pair(mi, m.placed.tint), -1);
     if (added) {
       Primitives prims;
-      for (std::size_t k = 0; k < model.mesh.materials.size(); ++k)
-        prims.push_back({geometry[mi][k], glb.material(model.name + "_" + model.mesh.materials[k].name + "_" + std::to_string(m.placed.tint),
-                                                       tinted(model.mesh.materials[k].colour, m.placed.tint))});
+      for (std::size_t k = 0; k < model.mesh.materials.size(); ++k) {
+        const MeshMaterial& material = model.mesh.materials[k];
+        const std::string name = model.name + "_" + material.name + "_" + std::to_string(m.placed.tint);
+        const Colour colour = tinted(material.colour, m.placed.tint);
+        prims.push_back({geometry[mi][k], material.texture
+                                              ? glb.textured_material(name, colour, *material.texture, material.clamp)
+                                              : glb.material(name, colour)});
+      }
       it->second = glb.mesh(model.name + "_" + std::to_string(m.placed.tint), prims);
     }
     tinygltf::Node n;

@@ -261,7 +261,7 @@ void read_placement(const json& e, const std::string& where, Model& m) {
 
 // One entry of the manifest. The checks run in the order their errors are reported: the
 // axes and unit before the OBJ file is read, the kind, zones and placement after.
-Model read_model(const json& e, const fs::path& manifest, const std::string& where) {
+Model read_model(const json& e, const fs::path& manifest, const std::string& where, TextureImages& textures) {
   check_keys(e, where);
   if (!e.contains("file") || !e["file"].is_string()) fail(where, "\"file\" must name an OBJ file");
   const fs::path file = manifest.parent_path() / e["file"].get<std::string>();
@@ -271,7 +271,7 @@ Model read_model(const json& e, const fs::path& manifest, const std::string& whe
   if (front.size() != 2 || (front[0] != '+' && front[0] != '-') || front[1] < 'x' || front[1] > 'z')
     fail(where, "\"front\" must be an axis such as \"+z\" or \"-y\"");
   const double unit = read_unit(e, where);
-  Model m = normalise_model(read_obj(file), up, front, unit, where);
+  Model m = normalise_model(read_obj(file, &textures), up, front, unit, where);
   m.name = e.value("name", file.stem().string());
   m.kind = read_kind(e, where);
   read_zones(e, where, m);
@@ -286,10 +286,11 @@ ModelLibrary load_model_library(const fs::path& manifest) {
   json doc = read_manifest(manifest);
   ModelLibrary lib;
   lib.file = manifest;
+  TextureImages textures;  // an image several models name is read once, and shared
   for (std::size_t i = 0; i < doc["models"].size(); ++i) {
     const std::string where = manifest.string() + " models[" + std::to_string(i) + "]";
     try {
-      lib.models.push_back(read_model(doc["models"][i], manifest, where));
+      lib.models.push_back(read_model(doc["models"][i], manifest, where, textures));
     } catch (const json::exception& x) {
       fail(where, std::string("a value has the wrong type (") + x.what() + "); see the README's model library section");
     }
