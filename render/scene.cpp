@@ -289,7 +289,7 @@ void RenderScene::make_palette(Palette& p) {
     for (int i = 0; i < static_cast<int>(exacity::facade_albedos(z).size()); ++i)
       p.facade[{z, i}] = add_material({Material::Diffuse, colour(exacity::facade_albedos(z)[i])}, Pattern::Windows);
     for (int i = 0; i < static_cast<int>(exacity::roof_albedos(z).size()); ++i)
-      p.roof[{z, i}] = add_material({Material::Diffuse, colour(exacity::roof_albedos(z)[i])});
+      p.roof[{z, i}] = add_material({Material::Diffuse, colour(exacity::roof_albedos(z)[i])}, Pattern::Roof);
   }
 }
 
@@ -421,7 +421,10 @@ void RenderScene::add_buildings(const exacity::City& city, const geom::Box& worl
   TileMeshes meshes{std::vector<std::vector<V3>>(tiles.boxes.size()),
                     std::vector<std::vector<std::array<int, 3>>>(tiles.boxes.size())};
   std::vector<Geometry> tile_info(tiles.boxes.size());
-  auto add_mesh = [&](int id, exacity::ZoneType zone, const exacity::Mesh& mesh) {
+  facades_.assign(city.buildings.size() + city.models.size(), FacadeStyle{});
+  // `eaves`: where the walls end, from the ground (their windows end below).
+  auto add_mesh = [&](int id, exacity::ZoneType zone, const exacity::Mesh& mesh, double floor, double eaves) {
+    facades_[id] = facade_style(zone, city.sketch.seed, id, static_cast<float>(floor), static_cast<float>(eaves));
     const int k = tiles.tile_of[id];
     exacity::Random pick(exacity::mix(city.sketch.seed, static_cast<std::uint64_t>(id)));
     const int f = palette.facade.at({zone, static_cast<int>(pick.next() % exacity::facade_albedos(zone).size())});
@@ -443,18 +446,19 @@ void RenderScene::add_buildings(const exacity::City& city, const geom::Box& worl
       [&](const exacity::Building& b) {
         const int k = tiles.tile_of[b.id];
         if (!view.seen[k]) return;
-        if (view.detailed[k]) return add_mesh(b.id, b.zone, exacity::building_mesh(b));
+        if (view.detailed[k]) return add_mesh(b.id, b.zone, exacity::building_mesh(b), b.floor, b.floor + b.eaves);
         exacity::Building box = b;  // the simple level: the footprint extruded, no roof
         box.roof_faces.clear();
         box.eaves = box.height;
-        add_mesh(b.id, b.zone, exacity::building_mesh(box));
+        add_mesh(b.id, b.zone, exacity::building_mesh(box), b.floor, b.floor + b.height);
       },
       [&](const exacity::ModelInstance& m) {
         const int k = tiles.tile_of[m.id];
         if (!view.seen[k]) return;
         if (!view.detailed[k] && m.kind != exacity::ModelKind::Building) return;
         add_instance(m, *city.model_library(), model_materials);
-        if (m.floor > m.base) add_mesh(m.id, m.zone, exacity::model_mesh(m, nullptr));  // its foundation
+        // Its foundation, below its floor: no windows.
+        if (m.floor > m.base) add_mesh(m.id, m.zone, exacity::model_mesh(m, nullptr), m.floor, m.floor);
       });
   // Street clutter, like lot furniture: an instance each in the detailed tiles seen.
   for (std::size_t i = 0; i < city.clutter.items.size(); ++i) {
@@ -621,15 +625,15 @@ bool RenderScene::intersect(V3 o, V3 d, float tmax, Surface& s) const {
   }
   s.material = materials_[m];
   switch (patterns_[m]) {
-    case Pattern::Windows:
-      // A grid of windows on walls: 3.3 m floors, 3 m bays.
-      if (std::abs(s.normal.z) < 0.3f) {
-        const float along = s.position.x * -s.normal.y + s.position.y * s.normal.x;
-        const float floor = s.position.z / 3.3f - std::floor(s.position.z / 3.3f);
-        const float bay = along / 3.0f - std::floor(along / 3.0f);
-        if (floor > 0.3f && floor < 0.78f && bay > 0.2f && bay < 0.8f)
-          s.material = {Material::Glossy, colour(exacity::kWindowAlbedo), 0.05f, 1.5f};
-      }
+    case Pattern::Windows: {
+      // The building's own rows and bays (render/facade.h); a soup's walls keep the default.
+      const std::size_t id = s.entity & 0xffffff;
+      const FacadeStyle style = id < facades_.size() ? facades_[id] : FacadeStyle{};
+      s.material = facade_material(style, s.material, s.position, s.normal);
+      break;
+    }
+    case Pattern::Roof:
+      s.material = roof_material(s.material, s.position, s.normal);
       break;
     case Pattern::Grass: {
       const float coarse = noise().fractal(s.position.x * 0.02f, s.position.y * 0.02f, 2);

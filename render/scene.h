@@ -16,6 +16,7 @@
 
 #include "generate/city/city.h"
 #include "render/camera.h"
+#include "render/facade.h"
 #include "render/material.h"
 
 namespace render {
@@ -40,8 +41,9 @@ inline std::uint32_t entity_id(Entity kind, std::size_t index) {
 struct Box3;
 struct Plane;
 
-// A surface's look before its pattern: window grids on facades, grass on open ground.
-enum class Pattern : std::uint8_t { None, Windows, Grass };
+// A surface's look before its pattern: windows on facades (render/facade.h), tiles or
+// gravel on roofs, grass on open ground.
+enum class Pattern : std::uint8_t { None, Windows, Roof, Grass };
 
 struct Surface {
   V3 position, normal;  // the normal faces the incoming ray
@@ -144,6 +146,7 @@ class RenderScene {
   std::vector<Geometry> geometries_;  // by top-level geomID
   std::vector<Material> materials_;
   std::vector<Pattern> patterns_;  // by material
+  std::vector<FacadeStyle> facades_;  // by building id: its windows' rows and bays
   bool ground_plane_ = true;
   int grass_material_ = -1;
 };
