@@ -9,6 +9,7 @@
 #include "generate/city/palette.h"
 #include "generate/city/random.h"
 #include "render/noise.h"
+#include "render/paving.h"
 
 namespace render {
 
@@ -277,13 +278,14 @@ int RenderScene::add_material(Material m, Pattern p) {
 
 void RenderScene::make_palette(Palette& p) {
   grass_material_ = add_material({Material::Diffuse, colour(exacity::kGrassAlbedo)}, Pattern::Grass);
-  p.sidewalk = add_material({Material::Diffuse, colour(exacity::kSidewalkAlbedo)});
+  p.sidewalk = add_material({Material::Diffuse, colour(exacity::kSidewalkAlbedo)}, Pattern::Paving);
   p.asphalt = add_material({Material::Diffuse, colour(exacity::kAsphaltAlbedo)});
   p.paint = add_material({Material::Diffuse, colour(exacity::kPaintAlbedo)});
   p.yellow = add_material({Material::Diffuse, colour(exacity::kYellowPaintAlbedo)});
   p.water = add_material({Material::Glossy, colour(exacity::kWaterAlbedo), 0.02f, 1.33f});
   p.lot_ground = {{ZoneType::Residential, grass_material_},
-                  {ZoneType::Commercial, add_material({Material::Diffuse, colour(exacity::kCommercialLotAlbedo)})},
+                  {ZoneType::Commercial,
+                   add_material({Material::Diffuse, colour(exacity::kCommercialLotAlbedo)}, Pattern::Paving)},
                   {ZoneType::Industrial, add_material({Material::Diffuse, colour(exacity::kIndustrialLotAlbedo)})}};
   for (ZoneType z : {ZoneType::Residential, ZoneType::Commercial, ZoneType::Industrial}) {
     for (int i = 0; i < static_cast<int>(exacity::facade_albedos(z).size()); ++i)
@@ -634,6 +636,9 @@ bool RenderScene::intersect(V3 o, V3 d, float tmax, Surface& s) const {
     }
     case Pattern::Roof:
       s.material = roof_material(s.material, s.position, s.normal);
+      break;
+    case Pattern::Paving:
+      s.material = paving_material(s.material, s.position);
       break;
     case Pattern::Grass: {
       const float coarse = noise().fractal(s.position.x * 0.02f, s.position.y * 0.02f, 2);

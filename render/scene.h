@@ -42,8 +42,8 @@ struct Box3;
 struct Plane;
 
 // A surface's look before its pattern: windows on facades (render/facade.h), tiles or
-// gravel on roofs, grass on open ground.
-enum class Pattern : std::uint8_t { None, Windows, Roof, Grass };
+// gravel on roofs, slabs where people walk (render/paving.h), grass on open ground.
+enum class Pattern : std::uint8_t { None, Windows, Roof, Paving, Grass };
 
 struct Surface {
   V3 position, normal;  // the normal faces the incoming ray

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <set>
 
 #include "generate/errors.h"
 #include "generate/export/validate.h"
@@ -17,6 +18,7 @@
 #include "geom/measure.h"
 #include "geom/polygon_check.h"
 #include "render/facade.h"
+#include "render/paving.h"
 #include "render/scene.h"
 #include "render/sky.h"
 #include "tests/test_util.h"
@@ -258,4 +260,18 @@ TEST(Facade, RenderedWallsHaveDarkWindowRowsAtTheirStoreysAndParkTreesAreSeen) {
       seen |= hit.entity == render::entity_id(render::Entity::Clutter, static_cast<std::size_t>(k.instance.id));
   }
   EXPECT_TRUE(seen);
+}
+
+TEST(Paving, SlabsHaveDarkerJointsAndShadesOfTheirOwn) {
+  const render::Material grey{render::Material::Diffuse, {0.4f, 0.4f, 0.4f}};
+  // Slab centres, and joints beside them, 0.6 m apart.
+  std::set<float> shades;
+  for (int i = 0; i < 20; ++i) {
+    const float x = 0.6f * static_cast<float>(i);
+    const float centre = render::paving_material(grey, {x + 0.3f, 0.3f, 0}).albedo.x;
+    const float joint = render::paving_material(grey, {x + 0.01f, 0.3f, 0}).albedo.x;
+    EXPECT_LT(joint, 0.8f * centre) << i;
+    shades.insert(centre);
+  }
+  EXPECT_GT(shades.size(), 10u);
 }
