@@ -145,7 +145,7 @@ class RenderScene {
   std::vector<RTCScene> model_scenes_;
   std::vector<Geometry> geometries_;  // by top-level geomID
   std::vector<Material> materials_;
-  std::vector<Pattern> patterns_;  // by material
+  std::vector<Pattern> patterns_;     // by material
   std::vector<FacadeStyle> facades_;  // by building id: its windows' rows and bays
   bool ground_plane_ = true;
   int grass_material_ = -1;

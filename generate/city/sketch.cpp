@@ -245,8 +245,9 @@ class Parser {
 
   void settings(const json& ex, Sketch& sketch) const {
     const std::string w = "\"exacity\"";
-    known_keys(ex, w, {"version", "seed", "terrain", "models", "zones", "roads", "camera", "channels", "channel_sharpness",
-                         "builtin_models"});
+    known_keys(ex, w,
+               {"version", "seed", "terrain", "models", "zones", "roads", "camera", "channels", "channel_sharpness",
+                "builtin_models"});
     if (ex.contains("version") && number(ex["version"], w + ".version", 1, 1) != 1) fail(w, "unsupported version");
     if (ex.contains("seed")) {
       const json& s = ex["seed"];

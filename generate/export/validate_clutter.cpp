@@ -16,8 +16,8 @@ constexpr std::size_t kMaxProblems = 20;
 // A polygon of another layer a point is checked against.
 struct Area {
   const geom::Polygon* polygon;
-  std::string name;  // "road_areas.geojson features[3] (carriageway)"
-  bool stands_on;    // a sidewalk or a lot; else clutter keeps off it
+  std::string name;   // "road_areas.geojson features[3] (carriageway)"
+  bool stands_on;     // a sidewalk or a lot; else clutter keeps off it
   bool park = false;  // a park zone: a tree stands in it, other clutter keeps off it
 };
 
@@ -125,8 +125,10 @@ void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers
     for (int a : cells.at(p)) {
       const int side = geom::point_side(*areas[a].polygon, p);
       if (areas[a].park) {
-        if (park_tree) stands |= side > 0;
-        else if (side > 0 && tree) problem(name + at + " stands in " + areas[a].name + ", a park, but names a road");
+        if (park_tree)
+          stands |= side > 0;
+        else if (side > 0 && tree)
+          problem(name + at + " stands in " + areas[a].name + ", a park, but names a road");
         continue;
       }
       if (areas[a].stands_on)
@@ -135,8 +137,9 @@ void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers
         problem(name + at + (side > 0 ? " stands in " : " stands on the edge of ") + areas[a].name);
     }
     if (!stands)
-      problem(name + at + (park_tree ? " is a park's tree but stands strictly inside no park"
-                                     : " stands strictly inside no sidewalk and no lot"));
+      problem(name + at +
+              (park_tree ? " is a park's tree but stands strictly inside no park"
+                         : " stands strictly inside no sidewalk and no lot"));
   }
 }
 

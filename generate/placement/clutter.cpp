@@ -119,7 +119,7 @@ struct Where {
   bool sidewalk = false;
   const char* blocked = nullptr;  // why it is no place for clutter
   std::optional<ZoneType> zone;   // the zone there, where the map knows one
-  bool park = false;  // open land of a park zone: no ground for street clutter, but for park trees
+  bool park = false;              // open land of a park zone: no ground for street clutter, but for park trees
   bool ok() const { return !blocked; }
 };
 
