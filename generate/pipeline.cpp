@@ -7,6 +7,7 @@
 
 #include "generate/parcels/blocks.h"
 #include "generate/placement/buildings.h"
+#include "generate/placement/builtin_models.h"
 #include "generate/export/cityjson_export.h"
 #include "generate/export/clutter_layer.h"
 #include "generate/errors.h"
@@ -75,6 +76,7 @@ City build_city(const Sketch& sketch, StageClock& stages) {
         cut_slabs(*library);
     }
     check_lot_library(sketch, library ? &*library : nullptr);
+    add_builtin_models(library, sketch);
     return library;
   });
   CityMap city_map = stages.run("zone map", [&] { return build_city_map(sketch, city.heightmap()); });
@@ -196,7 +198,7 @@ ordered_json placement_fallbacks_report(const City& city) {
     const ModelLibrary* library = city.model_library();
     if (library && !library->choices(zone, ModelKind::Building).empty()) continue;
     fallbacks.push_back({{"zone", name(zone)},
-                         {"why", library ? "the model library has no building for this zone type"
+                         {"why", library && !library->file.empty() ? "the model library has no building for this zone type"
                                          : "the sketch names no model library (\"exacity\".models, or --models)"}});
   }
   return fallbacks;

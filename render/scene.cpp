@@ -9,6 +9,7 @@
 #include "generate/city/palette.h"
 #include "generate/city/random.h"
 #include "render/noise.h"
+#include "render/paving.h"
 
 namespace render {
 
@@ -279,19 +280,20 @@ int RenderScene::add_material(Material m, Pattern p) {
 
 void RenderScene::make_palette(Palette& p) {
   grass_material_ = add_material({Material::Diffuse, colour(exacity::kGrassAlbedo)}, Pattern::Grass);
-  p.sidewalk = add_material({Material::Diffuse, colour(exacity::kSidewalkAlbedo)});
+  p.sidewalk = add_material({Material::Diffuse, colour(exacity::kSidewalkAlbedo)}, Pattern::Paving);
   p.asphalt = add_material({Material::Diffuse, colour(exacity::kAsphaltAlbedo)});
   p.paint = add_material({Material::Diffuse, colour(exacity::kPaintAlbedo)});
   p.yellow = add_material({Material::Diffuse, colour(exacity::kYellowPaintAlbedo)});
   p.water = add_material({Material::Glossy, colour(exacity::kWaterAlbedo), 0.02f, 1.33f});
   p.lot_ground = {{ZoneType::Residential, grass_material_},
-                  {ZoneType::Commercial, add_material({Material::Diffuse, colour(exacity::kCommercialLotAlbedo)})},
+                  {ZoneType::Commercial,
+                   add_material({Material::Diffuse, colour(exacity::kCommercialLotAlbedo)}, Pattern::Paving)},
                   {ZoneType::Industrial, add_material({Material::Diffuse, colour(exacity::kIndustrialLotAlbedo)})}};
   for (ZoneType z : {ZoneType::Residential, ZoneType::Commercial, ZoneType::Industrial}) {
     for (int i = 0; i < static_cast<int>(exacity::facade_albedos(z).size()); ++i)
       p.facade[{z, i}] = add_material({Material::Diffuse, colour(exacity::facade_albedos(z)[i])}, Pattern::Windows);
     for (int i = 0; i < static_cast<int>(exacity::roof_albedos(z).size()); ++i)
-      p.roof[{z, i}] = add_material({Material::Diffuse, colour(exacity::roof_albedos(z)[i])});
+      p.roof[{z, i}] = add_material({Material::Diffuse, colour(exacity::roof_albedos(z)[i])}, Pattern::Roof);
   }
 }
 
@@ -423,7 +425,10 @@ void RenderScene::add_buildings(const exacity::City& city, const geom::Box& worl
   TileMeshes meshes{std::vector<std::vector<V3>>(tiles.boxes.size()),
                     std::vector<std::vector<std::array<int, 3>>>(tiles.boxes.size())};
   std::vector<Geometry> tile_info(tiles.boxes.size());
-  auto add_mesh = [&](int id, exacity::ZoneType zone, const exacity::Mesh& mesh) {
+  facades_.assign(city.buildings.size() + city.models.size(), FacadeStyle{});
+  // `eaves`: where the walls end, from the ground (their windows end below).
+  auto add_mesh = [&](int id, exacity::ZoneType zone, const exacity::Mesh& mesh, double floor, double eaves) {
+    facades_[id] = facade_style(zone, city.sketch.seed, id, static_cast<float>(floor), static_cast<float>(eaves));
     const int k = tiles.tile_of[id];
     exacity::Random pick(exacity::mix(city.sketch.seed, static_cast<std::uint64_t>(id)));
     const int f = palette.facade.at({zone, static_cast<int>(pick.next() % exacity::facade_albedos(zone).size())});
@@ -445,18 +450,19 @@ void RenderScene::add_buildings(const exacity::City& city, const geom::Box& worl
       [&](const exacity::Building& b) {
         const int k = tiles.tile_of[b.id];
         if (!view.seen[k]) return;
-        if (view.detailed[k]) return add_mesh(b.id, b.zone, exacity::building_mesh(b));
+        if (view.detailed[k]) return add_mesh(b.id, b.zone, exacity::building_mesh(b), b.floor, b.floor + b.eaves);
         exacity::Building box = b;  // the simple level: the footprint extruded, no roof
         box.roof_faces.clear();
         box.eaves = box.height;
-        add_mesh(b.id, b.zone, exacity::building_mesh(box));
+        add_mesh(b.id, b.zone, exacity::building_mesh(box), b.floor, b.floor + b.height);
       },
       [&](const exacity::ModelInstance& m) {
         const int k = tiles.tile_of[m.id];
         if (!view.seen[k]) return;
         if (!view.detailed[k] && m.kind != exacity::ModelKind::Building) return;
         add_instance(m, *city.model_library(), model_materials);
-        if (m.floor > m.base) add_mesh(m.id, m.zone, exacity::model_mesh(m, nullptr));  // its foundation
+        // Its foundation, below its floor: no windows.
+        if (m.floor > m.base) add_mesh(m.id, m.zone, exacity::model_mesh(m, nullptr), m.floor, m.floor);
       });
   // Street clutter, like lot furniture: an instance each in the detailed tiles seen.
   for (std::size_t i = 0; i < city.clutter.items.size(); ++i) {
@@ -644,15 +650,18 @@ bool RenderScene::intersect(V3 o, V3 d, float tmax, Surface& s) const {
     s.material.albedo = s.material.albedo * material_textures_[m].texture->sample(u, v, material_textures_[m].clamp);
   }
   switch (patterns_[m]) {
-    case Pattern::Windows:
-      // A grid of windows on walls: 3.3 m floors, 3 m bays.
-      if (std::abs(s.normal.z) < 0.3f) {
-        const float along = s.position.x * -s.normal.y + s.position.y * s.normal.x;
-        const float floor = s.position.z / 3.3f - std::floor(s.position.z / 3.3f);
-        const float bay = along / 3.0f - std::floor(along / 3.0f);
-        if (floor > 0.3f && floor < 0.78f && bay > 0.2f && bay < 0.8f)
-          s.material = {Material::Glossy, colour(exacity::kWindowAlbedo), 0.05f, 1.5f};
-      }
+    case Pattern::Windows: {
+      // The building's own rows and bays (render/facade.h); a soup's walls keep the default.
+      const std::size_t id = s.entity & 0xffffff;
+      const FacadeStyle style = id < facades_.size() ? facades_[id] : FacadeStyle{};
+      s.material = facade_material(style, s.material, s.position, s.normal);
+      break;
+    }
+    case Pattern::Roof:
+      s.material = roof_material(s.material, s.position, s.normal);
+      break;
+    case Pattern::Paving:
+      s.material = paving_material(s.material, s.position);
       break;
     case Pattern::Grass: {
       const float coarse = noise().fractal(s.position.x * 0.02f, s.position.y * 0.02f, 2);

@@ -17,6 +17,7 @@
 
 #include "generate/city/city.h"
 #include "render/camera.h"
+#include "render/facade.h"
 #include "render/material.h"
 #include "render/texture.h"
 
@@ -42,8 +43,9 @@ inline std::uint32_t entity_id(Entity kind, std::size_t index) {
 struct Box3;
 struct Plane;
 
-// A surface's look before its pattern: window grids on facades, grass on open ground.
-enum class Pattern : std::uint8_t { None, Windows, Grass };
+// A surface's look before its pattern: windows on facades (render/facade.h), tiles or
+// gravel on roofs, slabs where people walk (render/paving.h), grass on open ground.
+enum class Pattern : std::uint8_t { None, Windows, Roof, Paving, Grass };
 
 struct Surface {
   V3 position, normal;  // the normal faces the incoming ray
@@ -154,6 +156,7 @@ class RenderScene {
   };
   std::map<const exacity::TextureImage*, std::unique_ptr<Texture>> textures_;
   std::vector<MaterialTexture> material_textures_;
+  std::vector<FacadeStyle> facades_;  // by building id: its windows' rows and bays
   bool ground_plane_ = true;
   int grass_material_ = -1;
 };

@@ -65,7 +65,8 @@ CLUTTER_KINDS = {"lamp", "sign", "traffic_light", "bench", "hydrant", "tree"}
 def check_clutter(out):
     """vector/clutter.geojson: Points with unique ids and known kinds, each naming a road of
     roads.geojson, each strictly inside a sidewalk (not a bridge's) or a lot, and touching no
-    carriageway, junction, water or building."""
+    carriageway, junction, water or building; a park's tree names no road and stands strictly
+    inside a park zone."""
     problems = []
     roads = {f["properties"]["id"] for f in load(out / "vector" / "roads.geojson")}
     stands_on, keeps_off = [], []
@@ -75,7 +76,8 @@ def check_clutter(out):
     stands_on += [shape(f["geometry"]) for f in load(out / "vector" / "lots.geojson")]
     for layer in ("water", "buildings"):
         keeps_off += [shape(f["geometry"]) for f in load(out / "vector" / f"{layer}.geojson")]
-    on_tree, off_tree = STRtree(stands_on), STRtree(keeps_off)
+    parks = [shape(f["geometry"]) for f in load(out / "vector" / "zones.geojson") if f["properties"]["zone"] == "park"]
+    on_tree, off_tree, park_tree = STRtree(stands_on), STRtree(keeps_off), STRtree(parks)
     ids = set()
     for i, f in enumerate(load(out / "vector" / "clutter.geojson")):
         name, props, g = f"clutter[{i}]", f["properties"], f["geometry"]
@@ -87,12 +89,16 @@ def check_clutter(out):
         ids.add(props.get("id"))
         if props.get("kind") not in CLUTTER_KINDS:
             problems.append(f"{name}: kind {props.get('kind')!r} is no clutter kind")
-        if props.get("road") not in roads:
+        in_park = props.get("kind") == "tree" and props.get("road") is None
+        if not in_park and props.get("road") not in roads:
             problems.append(f"{name}: road {props.get('road')} names no centre line")
         if not 0 <= props.get("heading", -1) < 360:
             problems.append(f"{name}: heading {props.get('heading')} is not in [0, 360)")
         point = Point(g["coordinates"])
-        if not any(p.contains(point) for p in on_tree.query(point)):
+        if in_park:
+            if not any(p.contains(point) for p in park_tree.query(point)):
+                problems.append(f"{name}: at {g['coordinates']}, a park's tree not strictly inside a park")
+        elif not any(p.contains(point) for p in on_tree.query(point)):
             problems.append(f"{name}: at {g['coordinates']}, not strictly inside a sidewalk or a lot")
         if any(p.intersects(point) for p in off_tree.query(point)):
             problems.append(f"{name}: at {g['coordinates']}, on a carriageway, junction, water or building")

@@ -1,7 +1,10 @@
 // Seed 004's street clutter through the exacity program: the same bytes whatever the thread
 // count, and the outputs that hold it pass the independent checks (GEOS on clutter.geojson,
-// the Khronos glTF validator, the CityJSON checker), which also catch clutter misplaced.
+// the Khronos glTF validator, the CityJSON checker), which also catch clutter misplaced;
+// Exacity's own trees and lamps pass them too, and a bad "builtin_models" is refused.
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 #include "tests/cli_util.h"
 #include "tests/clutter_sketch.h"
@@ -71,4 +74,39 @@ TEST(ClutterCli, TheRendersDrawEachPieceAsAnInstance) {
   const int clutter = report["counts"]["clutter"].get<int>();
   EXPECT_GT(clutter, 20);
   EXPECT_EQ(report["render"]["scene"]["instances"].get<int>(), clutter) << report["render"]["scene"];
+}
+
+TEST(ClutterCli, ExacitysOwnTreesAndLampsPassTheCheckersAndABadChoiceIsOneLine) {
+  // No library: a residential square with a park, Exacity's own trees and lamps by default.
+  const fs::path dir = testing_util::temp_dir("clutter-cli-builtin");
+  const std::string features = R"("features": [
+      {"type": "Feature", "properties": {"zone": "residential"},
+       "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [300, 260], [0, 260], [0, 0]]]}},
+      {"type": "Feature", "properties": {"zone": "park"},
+       "geometry": {"type": "Polygon", "coordinates": [[[100, 80], [190, 80], [190, 170], [100, 170], [100, 80]]]}}]})";
+  write(dir / "park.geojson", R"({"type": "FeatureCollection", "exacity": {"seed": 4}, )" + features);
+  Result g = run("generate " + (dir / "park.geojson").string() + " -o " + (dir / "out").string() + " -q");
+  ASSERT_EQ(g.code, 0) << g.out;
+  const auto clutter = nlohmann::json::parse(read(dir / "out" / "vector" / "clutter.geojson"))["features"];
+  int park_trees = 0, lamps = 0;
+  for (const auto& f : clutter) {
+    park_trees += f["properties"]["road"].is_null();
+    lamps += f["properties"]["kind"] == "lamp";
+  }
+  EXPECT_GT(park_trees, 5);
+  EXPECT_GT(lamps, 5);
+  const Result geos = shell(geos_check(dir / "out"));
+  EXPECT_EQ(geos.code, 0) << geos.out;
+  const Result glb = shell(node_tool("check_glb.mjs") + " " + (dir / "out" / "city.glb").string());
+  EXPECT_EQ(glb.code, 0) << glb.out;
+
+  // A kind Exacity has no model of: one line, exit 2, nothing written.
+  write(dir / "bad.geojson",
+        R"({"type": "FeatureCollection", "exacity": {"seed": 4, "builtin_models": ["tree", "bench"]}, )" + features);
+  Result bad = run("generate " + (dir / "bad.geojson").string() + " -o " + (dir / "bad").string() + " -q");
+  EXPECT_EQ(bad.code, 2) << bad.out;
+  EXPECT_EQ(std::count(bad.out.begin(), bad.out.end(), '\n'), 1) << bad.out;
+  EXPECT_NE(bad.out.find("\"exacity\".builtin_models: \"bench\" is not a built-in model"), std::string::npos)
+      << bad.out;
+  EXPECT_FALSE(fs::exists(dir / "bad"));
 }

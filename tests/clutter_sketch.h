@@ -25,7 +25,8 @@ inline std::string box_obj(double w, double d, double h) {
 inline void write(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::binary) << text; }
 
 // The four streets in a residential square 400 x 300 m; `exacity` is the sketch's settings
-// after "seed", `library` the manifest's "models" list.
+// after "seed" (Exacity's own trees and lamps off, so only the library's stand), `library` the
+// manifest's "models" list.
 inline fs::path four_streets(const std::string& name, const std::string& exacity, const std::string& library) {
   const fs::path dir = testing_util::temp_dir("clutter-" + name);
   write(dir / "lamp.obj", box_obj(0.2, 0.2, 5));
@@ -34,7 +35,8 @@ inline fs::path four_streets(const std::string& name, const std::string& exacity
   write(dir / "house.obj", box_obj(8, 8, 6));
   write(dir / "library.json", R"({"models": [)" + library + "]}");
   write(dir / "sketch.geojson", R"({"type": "FeatureCollection",
-    "exacity": {"seed": 3, "models": "library.json", "zones": {"residential": {"layout": "streets"}})" +
+    "exacity": {"seed": 3, "models": "library.json", "builtin_models": [],
+                "zones": {"residential": {"layout": "streets"}})" +
                                     exacity + R"(},
     "features": [
       {"type": "Feature", "properties": {"zone": "residential"},

@@ -250,7 +250,9 @@ class Parser {
 
   void settings(const json& ex, Sketch& sketch) const {
     const std::string w = "\"exacity\"";
-    known_keys(ex, w, {"version", "seed", "terrain", "models", "zones", "roads", "camera", "channels", "channel_sharpness"});
+    known_keys(ex, w,
+               {"version", "seed", "terrain", "models", "zones", "roads", "camera", "channels", "channel_sharpness",
+                "builtin_models"});
     if (ex.contains("version") && number(ex["version"], w + ".version", 1, 1) != 1) fail(w, "unsupported version");
     if (ex.contains("seed")) {
       const json& s = ex["seed"];
@@ -267,6 +269,7 @@ class Parser {
         fail(w + ".camera", "expected a camera such as \"orbit:target=0,0,0,azimuth=225,elevation=35,distance=900\"");
       sketch.camera = ex["camera"].get<std::string>();
     }
+    if (ex.contains("builtin_models")) builtin_models(ex["builtin_models"], sketch);
     if (ex.contains("terrain")) sketch.terrain = terrain(ex["terrain"], sketch.path);
     if (ex.contains("channels")) sketch.channels = channels(ex["channels"], sketch.path);
     if (ex.contains("channel_sharpness"))
@@ -284,6 +287,22 @@ class Parser {
           fail(w + ".zones." + zname + ".height_channel",
                quote(height_channel) + " is not a channel; define it in \"exacity\".channels, or remove the key");
       }
+    }
+  }
+
+  // Exacity's own trees and lamps (docs/design.md, Placement: built-in models): a list of
+  // the kinds wanted, each once; [] turns them off.
+  void builtin_models(const json& j, Sketch& sketch) const {
+    const std::string w = "\"exacity\".builtin_models";
+    const std::string fix = "give a list of \"tree\" and \"lamp\" (the default is both; [] turns them off)";
+    if (!j.is_array()) fail(w, "expected a list; " + fix);
+    sketch.builtin_trees = sketch.builtin_lamps = false;
+    for (const json& kind : j) {
+      const std::string k = kind.is_string() ? kind.get<std::string>() : kind.dump();
+      bool& wanted = k == "tree" ? sketch.builtin_trees : sketch.builtin_lamps;
+      if (!kind.is_string() || (k != "tree" && k != "lamp")) fail(w, quote(k) + " is not a built-in model; " + fix);
+      if (wanted) fail(w, quote(k) + " is listed twice; list each kind once");
+      wanted = true;
     }
   }
 

@@ -79,6 +79,8 @@ struct Sketch {
   std::string camera;               // the still's camera (exacity render's --camera syntax), or empty
   std::vector<ChannelSpec> channels;  // in name order
   double channel_sharpness = 4;     // the exponent of a model's channel affinity
+  // Exacity's own trees and lamps ("builtin_models"), for the kinds the library lacks.
+  bool builtin_trees = true, builtin_lamps = true;
   std::map<ZoneType, ZoneSettings> zone_settings;
   std::vector<ZoneFeature> zones;
   std::vector<RoadFeature> roads;     // as joined by StreetSettings::snap

@@ -275,10 +275,14 @@ json model_object(const ModelInstance& m, const Mesh& mesh, const ModelLibrary& 
 }
 
 // Street clutter (seed 004): CityFurniture, or SolitaryVegetationObject for a tree, whose one
-// geometry is its model's template placed; its attributes name the road it dresses.
+// geometry is its model's template placed; its attributes name the road it dresses (null for
+// a park's tree).
 json clutter_object(const Clutter& c, const ModelLibrary& library, Vertices& v) {
   const ModelInstance& m = c.instance;
-  json attributes{{"kind", name(m.kind)}, {"road", c.road}, {"heading", c.heading}, {"measuredHeight", m.height},
+  json attributes{{"kind", name(m.kind)},
+                  {"road", c.road >= 0 ? json(c.road) : json(nullptr)},
+                  {"heading", c.heading},
+                  {"measuredHeight", m.height},
                   {"model", library.models[m.placed.model].name}};
   if (m.lot >= 0) attributes["lot"] = m.lot;
   return {{"type", m.kind == ModelKind::Tree ? "SolitaryVegetationObject" : "CityFurniture"},

@@ -8,7 +8,8 @@ Layer clutter_layer(const std::vector<Clutter>& clutter, const ModelLibrary* lib
     nlohmann::ordered_json props{{"id", c.instance.id},
                                  {"kind", name(c.instance.kind)},
                                  {"model", library->models[c.instance.placed.model].name},
-                                 {"road", c.road},
+                                 // A park's tree dresses no street.
+                                 {"road", c.road >= 0 ? nlohmann::ordered_json(c.road) : nlohmann::ordered_json()},
                                  {"heading", c.heading}};
     layer.features.push_back({std::move(props), {}, {c.spot}});
   }

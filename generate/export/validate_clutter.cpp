@@ -16,8 +16,9 @@ constexpr std::size_t kMaxProblems = 20;
 // A polygon of another layer a point is checked against.
 struct Area {
   const geom::Polygon* polygon;
-  std::string name;  // "road_areas.geojson features[3] (carriageway)"
-  bool stands_on;    // a sidewalk or a lot; else clutter keeps off it
+  std::string name;   // "road_areas.geojson features[3] (carriageway)"
+  bool stands_on;     // a sidewalk or a lot; else clutter keeps off it
+  bool park = false;  // a park zone: a tree stands in it, other clutter keeps off it
 };
 
 // The areas by the cells of a square grid their boxes meet.
@@ -83,6 +84,13 @@ void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers
       layers.lots, [](const VectorFeature&) { return true; }, no_note);
   add(
       layers.water, [](const VectorFeature&) { return false; }, no_note);
+  // Parks, where only a park's trees stand (zones lie under sidewalks and lots too).
+  for (std::size_t i = 0; i < layers.zones.features.size(); ++i) {
+    const VectorFeature& f = layers.zones.features[i];
+    if (f.properties.value("zone", "") != "park") continue;
+    cells.add(static_cast<int>(areas.size()), f.polygon);
+    areas.push_back({&f.polygon, "zones.geojson features[" + std::to_string(i) + "]", false, true});
+  }
   add(
       layers.buildings, [](const VectorFeature&) { return false; }, no_note);
 
@@ -103,7 +111,11 @@ void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers
     if (!props.contains("kind") || !props["kind"].is_string() || !is_clutter_kind(props["kind"].get<std::string>()))
       problem(name + ": \"kind\" is " + props.value("kind", nlohmann::ordered_json()).dump() + ", no clutter kind");
     if (!props.contains("model") || !props["model"].is_string()) problem(name + ": no \"model\"");
-    if (!props.contains("road") || !props["road"].is_number_integer() || !roads.count(props["road"].get<int>()))
+    const bool tree = props.value("kind", nlohmann::ordered_json()) == "tree";
+    // A park's tree dresses no street: its road is null.
+    const bool park_tree = tree && props.contains("road") && props["road"].is_null();
+    if (!park_tree &&
+        (!props.contains("road") || !props["road"].is_number_integer() || !roads.count(props["road"].get<int>())))
       problem(name + ": \"road\" " + props.value("road", nlohmann::ordered_json()).dump() +
               " names no feature of roads.geojson");
     const double heading =
@@ -112,12 +124,22 @@ void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers
     bool stands = false;
     for (int a : cells.at(p)) {
       const int side = geom::point_side(*areas[a].polygon, p);
+      if (areas[a].park) {
+        if (park_tree)
+          stands |= side > 0;
+        else if (side > 0 && tree)
+          problem(name + at + " stands in " + areas[a].name + ", a park, but names a road");
+        continue;
+      }
       if (areas[a].stands_on)
         stands |= side > 0;
       else if (side >= 0)
         problem(name + at + (side > 0 ? " stands in " : " stands on the edge of ") + areas[a].name);
     }
-    if (!stands) problem(name + at + " stands strictly inside no sidewalk and no lot");
+    if (!stands)
+      problem(name + at +
+              (park_tree ? " is a park's tree but stands strictly inside no park"
+                         : " stands strictly inside no sidewalk and no lot"));
   }
 }
 

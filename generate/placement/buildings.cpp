@@ -215,7 +215,9 @@ void check_export_size(const std::vector<ModelInstance>& models, const ModelLibr
   if (total <= kMaxExportTriangles) return;
   const Model& m = library->models[worst];
   auto millions = [](double n) { return format_number(std::round(n / 1e5) / 10) + " million"; };
-  throw UserError(library->file.string() + ": model \"" + m.name + "\" (" + std::to_string(m.mesh.triangles.size()) +
+  // A library of built-in models only has no file (builtin_models.h).
+  const std::string where = library->file.empty() ? "\"exacity\".builtin_models" : library->file.string();
+  throw UserError(where + ": model \"" + m.name + "\" (" + std::to_string(m.mesh.triangles.size()) +
                   " triangles) is placed " + std::to_string(static_cast<long>(placed[worst])) +
                   " times, and the 3D exports would hold " + millions(total) + " triangles, over the " +
                   millions(kMaxExportTriangles) + " one run writes; use a lighter model or list it for fewer zones");

@@ -11,6 +11,7 @@
 #include "generate/placement/model_placement.h"
 #include "generate/placement/street_nodes.h"
 #include "geom/grid.h"
+#include "geom/measure.h"
 #include "geom/planar_map.h"
 #include "geom/polygon_check.h"
 
@@ -118,6 +119,7 @@ struct Where {
   bool sidewalk = false;
   const char* blocked = nullptr;  // why it is no place for clutter
   std::optional<ZoneType> zone;   // the zone there, where the map knows one
+  bool park = false;              // open land of a park zone: no ground for street clutter, but for park trees
   bool ok() const { return !blocked; }
 };
 
@@ -150,17 +152,17 @@ class StandingGround {
     else if (l.cover == Cover::Road)
       w.blocked = kOnRoad;
     else
-      w.blocked = kNoGround;
+      w.blocked = kNoGround, w.park = l.cover == Cover::Zone && w.zone == ZoneType::Park;
     return w;
   }
 
   // Why the base cannot stand where `w` says its spot is; null when it can.
   const char* refuse(const geom::Ring& base, const Where& w) const {
     if (geom::ring_orientation(base) != 1) return kBaseLeaves;  // too small to stay a ring on the grid
-    if (w.sidewalk) {
+    if (w.sidewalk || w.park) {
       for (Vec2 p : base) {
         const Where c = at(p);
-        if (!c.sidewalk) return kBaseLeaves;
+        if (w.sidewalk ? !c.sidewalk : !c.park) return kBaseLeaves;
       }
       return nullptr;
     }
@@ -189,6 +191,9 @@ class Dresser {
   Dresser(const StandingGround& side, const ModelLibrary& lib, const std::vector<Base>& bases, const Channels& channels,
           const Terrain* terrain, Random& rng, Proposals& out)
       : side_(side), lib_(lib), bases_(bases), channels_(channels), terrain_(terrain), rng_(rng), out_(out) {}
+
+  // Park trees stand on a park's open land, where street clutter finds no ground.
+  void in_parks() { parks_ = true; }
 
   // Whether the library has entries of the kind.
   bool has(ModelKind kind) const { return !of_kind(kind).empty(); }
@@ -230,7 +235,7 @@ class Dresser {
       const Vec2 spot = geom::snap(from + out * model.offset + shift * s);
       // The probe's answer where the spot is the probe: a point location less per spot.
       const Where w = spot == probed ? probe : side_.at(spot);
-      if (!w.ok()) {
+      if (!w.ok() && !(parks_ && w.park)) {
         why = why ? why : w.blocked;
         // Open land or water a metre or two on is open land or water still, mostly: move on
         // without more point locations (each a walk through the map).
@@ -303,6 +308,7 @@ class Dresser {
   Random& rng_;
   Proposals& out_;
   TakenBases taken_;
+  bool parks_ = false;
 };
 
 bool stands_in(const Model& m, ZoneType zone) {
@@ -400,6 +406,31 @@ void dress_junction(const StreetJunction& j, Dresser& dresser) {
   }
 }
 
+// Trees over a park's open land: one per square of 1.5 tree spacings, at a random place in
+// it (so they stand apart but in no rows), each turned at random; a spot that is not on
+// the park's open land (a road, water, a pond's hole) is tried a metre or two away.
+void dress_park(const ZoneArea& park, const ModelLibrary& lib, Random& rng, Dresser& dresser) {
+  double spacing = 0;
+  for (const Model& m : lib.models)
+    if (m.kind == ModelKind::Tree && stands_in(m, ZoneType::Park)) spacing = std::max(spacing, m.spacing);
+  if (spacing <= 0) return;
+  const double step = 1.5 * spacing;
+  geom::Box box = geom::Box::none();
+  for (Vec2 p : park.polygon.outer) box.add(p);
+  const auto in_park = [](const Model& m, ZoneType z) {
+    return stands_in(m, ZoneType::Park) && z == ZoneType::Park ? kHere : kNotHere;
+  };
+  for (double y = box.min_y; y < box.max_y; y += step)
+    for (double x = box.min_x; x < box.max_x; x += step) {
+      const Vec2 spot{x + rng.uniform(0.15, 0.85) * step, y + rng.uniform(0.15, 0.85) * step};
+      const double turn = rng.uniform(0, 2 * M_PI);
+      // Doubles choose the spots worth a walk through the map; the map decides (Where).
+      if (geom::winding_number(park.polygon.outer, spot) == 0) continue;
+      const Vec2 front{std::cos(turn), std::sin(turn)};
+      dresser.dress(ModelKind::Tree, spot, {0, 0}, front, {0, 1, -1, 2, -2}, front, -1, in_park);
+    }
+}
+
 }  // namespace
 
 StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* library, const Channels& channels,
@@ -417,9 +448,15 @@ StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* lib
   std::unordered_map<Vec2, double, geom::Vec2Hash> junction_reach;
   for (const StreetJunction& j : junctions) junction_reach[j.at] = j.reach() + 3;
 
-  // Each street, then each junction, proposes its own clutter in parallel, checked against
-  // the ground and its own; then in that order each is checked against the clutter kept.
-  const std::size_t groups = roads.size() + junctions.size();
+  std::vector<const ZoneArea*> parks;
+  for (const ZoneArea& z : ground.ground.zones)
+    if (z.type == ZoneType::Park) parks.push_back(&z);
+
+  // Each street, then each junction, then each park proposes its own clutter in parallel,
+  // checked against the ground and its own; then in that order each is checked against the
+  // clutter kept.
+  const std::size_t streets_and_junctions = roads.size() + junctions.size();
+  const std::size_t groups = streets_and_junctions + parks.size();
   std::vector<Proposals> proposed(groups);
   const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Clutter));
   tbb::parallel_for(std::size_t(0), groups, [&](std::size_t g) {
@@ -427,8 +464,11 @@ StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* lib
     Dresser dresser(side, *library, bases, channels, terrain, rng, proposed[g]);
     if (g < roads.size()) {
       if (!roads[g].bridge) dress_street(roads[g], static_cast<int>(g), junction_reach, *library, dresser);
-    } else {
+    } else if (g < streets_and_junctions) {
       dress_junction(junctions[g - roads.size()], dresser);
+    } else {
+      dresser.in_parks();
+      dress_park(*parks[g - streets_and_junctions], *library, rng, dresser);
     }
   });
   TakenBases kept;

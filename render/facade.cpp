@@ -1,0 +1,112 @@
+#include "render/facade.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "generate/city/palette.h"
+#include "generate/city/random.h"
+#include "render/noise.h"
+
+namespace render {
+namespace {
+
+const Noise& noise() {
+  static const Noise n;
+  return n;
+}
+
+// A hash of two integers to [0, 1), for a tile's own shade.
+float hash01(int a, int b) {
+  std::uint64_t h = exacity::mix(static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)),
+                                 static_cast<std::uint64_t>(static_cast<std::uint32_t>(b)));
+  return static_cast<float>(h >> 40) / static_cast<float>(1 << 24);
+}
+
+float fraction(float x) { return x - std::floor(x); }
+
+}  // namespace
+
+FacadeStyle facade_style(exacity::ZoneType zone, std::uint64_t seed, int id, float floor, float eaves) {
+  exacity::Random rng(exacity::mix(exacity::mix(seed, 0xfacade), static_cast<std::uint64_t>(id)));
+  FacadeStyle s;
+  s.floor = floor, s.eaves = eaves;
+  switch (zone) {
+    case exacity::ZoneType::Commercial:
+      s.storey = static_cast<float>(rng.uniform(3.4, 4.2));
+      s.bay = static_cast<float>(rng.uniform(2.2, 3.4));
+      s.window = static_cast<float>(rng.uniform(0.55, 0.8));
+      s.sill = 0.22f, s.head = static_cast<float>(rng.uniform(0.78, 0.88));
+      s.shopfront = true;
+      break;
+    case exacity::ZoneType::Industrial:
+      s.storey = static_cast<float>(rng.uniform(4.5, 6.0));
+      s.bay = static_cast<float>(rng.uniform(4.0, 6.0));
+      s.window = static_cast<float>(rng.uniform(0.5, 0.75));
+      s.sill = 0.55f, s.head = 0.85f;
+      break;
+    default:
+      s.storey = static_cast<float>(rng.uniform(2.8, 3.2));
+      s.bay = static_cast<float>(rng.uniform(2.6, 3.6));
+      s.window = static_cast<float>(rng.uniform(0.35, 0.5));
+      s.sill = static_cast<float>(rng.uniform(0.3, 0.36)), s.head = static_cast<float>(rng.uniform(0.74, 0.8));
+      break;
+  }
+  s.phase = static_cast<float>(rng.uniform(0, s.bay));
+  return s;
+}
+
+bool in_window(const FacadeStyle& s, float along, float z) {
+  const float h = z - s.floor;
+  if (h < 0 || z > s.eaves - 0.4f) return false;
+  // A shop floor 4.5 m tall: glass from 0.4 m to 3.4 m, bays 0.9 of their width, a fascia above.
+  constexpr float kShopFloor = 4.5f;
+  if (s.shopfront && h < kShopFloor) {
+    const float bay = fraction((along - s.phase) / (2 * s.bay));
+    return h > 0.4f && h < 3.4f && bay > 0.05f && bay < 0.95f;
+  }
+  const float above = s.shopfront ? h - kShopFloor : h;
+  const float storey = fraction(above / s.storey);
+  // No window cut by the eaves: the storey's top must be below them.
+  if (s.floor + (s.shopfront ? kShopFloor : 0) + (std::floor(above / s.storey) + s.head) * s.storey > s.eaves - 0.4f)
+    return false;
+  const float bay = fraction((along - s.phase) / s.bay);
+  return storey > s.sill && storey < s.head && std::abs(bay - 0.5f) < s.window / 2;
+}
+
+Material facade_material(const FacadeStyle& s, const Material& wall, V3 p, V3 n) {
+  if (std::abs(n.z) < 0.3f && in_window(s, along_wall(p, n), p.z))
+    return {Material::Glossy,
+            {exacity::kWindowAlbedo[0], exacity::kWindowAlbedo[1], exacity::kWindowAlbedo[2]},
+            0.05f,
+            1.5f};
+  Material m = wall;
+  const float plaster = noise().fractal(p.x * 0.7f + p.y * 0.7f, p.z * 0.7f, 3);
+  m.albedo = m.albedo * (0.93f + 0.14f * plaster);
+  return m;
+}
+
+Material roof_material(const Material& roof, V3 p, V3 n) {
+  Material m = roof;
+  if (std::abs(n.z) > 0.98f) {
+    // Gravel: fine grains over broad stains.
+    const float grain = noise()(p.x * 9.0f, p.y * 9.0f), stain = noise().fractal(p.x * 0.15f, p.y * 0.15f, 3);
+    m.albedo = m.albedo * std::clamp(0.9f + 0.25f * grain + 0.3f * stain, 0.5f, 1.3f);
+    return m;
+  }
+  // Tiles: rows 0.3 m apart down the slope, 0.25 m wide, each row shifted half a tile; the
+  // lower edge of each row in the shadow of the row above.
+  const float len = std::hypot(n.x, n.y);
+  const float dx = n.x / len, dy = n.y / len;
+  const float down = (p.x * dx + p.y * dy) / 0.3f, across = (p.x * -dy + p.y * dx) / 0.25f;
+  const int row = static_cast<int>(std::floor(down));
+  const float shifted = across + (row % 2 ? 0.5f : 0.0f);
+  const int column = static_cast<int>(std::floor(shifted));
+  const float in_row = fraction(down), in_tile = fraction(shifted);
+  float shade = 0.88f + 0.24f * hash01(row, column);
+  if (in_row > 0.8f) shade *= 0.6f;     // the row above's shadow
+  if (in_tile < 0.06f) shade *= 0.75f;  // the joint between two tiles
+  m.albedo = m.albedo * shade;
+  return m;
+}
+
+}  // namespace render

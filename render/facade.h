@@ -1,0 +1,45 @@
+// Procedural facades and roofs (docs/design.md, Rendering: facades and roofs): what a
+// building's wall or roof looks like at a hit, from the hit's position and the building's
+// zone, floor and id, with no texture file. Walls get windows in rows, one row a storey,
+// bays along the wall; commercial buildings a ground floor of shop windows under a fascia;
+// each building its own storey height, bay width, window size and a phase along its walls.
+// Pitched roofs get rows of tiles down their slope, flat ones gravel (Perlin fBm, as grass
+// has, seed 003).
+#pragma once
+
+#include <cstdint>
+
+#include "generate/city/zone_type.h"
+#include "render/material.h"
+
+namespace render {
+
+struct FacadeStyle {
+  float floor = 0;                  // height of the ground floor, scene coordinates
+  float eaves = 1e9f;               // walls above this (a gable) get no windows
+  float storey = 3.2f;              // m from floor to floor
+  float bay = 3.0f;                 // m between window centres along a wall
+  float window = 0.5f;              // a window's width, as a share of its bay
+  float sill = 0.3f, head = 0.78f;  // a window's bottom and top, as shares of its storey
+  float phase = 0;                  // m: where the bays start along a wall
+  bool shopfront = false;           // commercial: shop windows on the ground floor
+};
+
+// A building's style: storeys and windows by its zone (residential 2.8-3.2 m storeys,
+// commercial 3.4-4.2 m over a 4.5 m shop floor, industrial 4.5-6 m with wide high
+// windows), varied per building by a stream seeded by the city's seed and its id.
+FacadeStyle facade_style(exacity::ZoneType zone, std::uint64_t seed, int id, float floor, float eaves);
+
+// What the wall is at a point: glass in a window, else the wall's albedo with a little
+// plaster noise; `along` is the distance along the wall's horizontal direction.
+Material facade_material(const FacadeStyle& style, const Material& wall, V3 position, V3 normal);
+
+// Whether a wall point lies in a window of the style (the facade test's oracle too).
+bool in_window(const FacadeStyle& style, float along, float z);
+// The distance along a wall, for a wall whose outward normal is `normal`.
+inline float along_wall(V3 position, V3 normal) { return position.x * -normal.y + position.y * normal.x; }
+
+// A roof at a point: tiles in rows down a pitched roof's slope, gravel on a flat one.
+Material roof_material(const Material& roof, V3 position, V3 normal);
+
+}  // namespace render
