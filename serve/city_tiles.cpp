@@ -77,8 +77,10 @@ json write_city_tiles(const City& city, const fs::path& dir) {
   const ModelLibrary* library = city.model_library();
   const std::vector<Mesh> meshes = structure_meshes(city.buildings, city.models, library);
   std::map<std::pair<int, int>, Tile> tiles;  // by column and row: the index's order
-  auto place = [&](int id, int lot, ZoneType zone) -> Tile& {
-    const Bounds3 b = mesh_bounds(meshes[id]);
+  auto place = [&](int id, int lot, ZoneType zone, const geom::Polygon& outline, double floor, double height) -> Tile& {
+    Bounds3 b = mesh_bounds(meshes[id]);
+    if (b.box.holds_nothing())  // no mesh to bound: its outline from its floor up to its height
+      for (const geom::Vec2& p : outline.outer) b.add(p.x, p.y, floor), b.add(p.x, p.y, floor + height);
     Tile& t = tiles[tile_of((b.box.min_x + b.box.max_x) / 2, (b.box.min_y + b.box.max_y) / 2)];
     t.bounds.add(b);
     t.boxes.push_back({b.box, b.bottom, b.top, zone});
@@ -89,8 +91,10 @@ json write_city_tiles(const City& city, const fs::path& dir) {
     part.area += area, part.area_times_top += area * b.top;
     return t;
   };
-  for (const Building& b : city.buildings) place(b.id, b.lot, b.zone).buildings.push_back(b);
-  for (const ModelInstance& m : city.models) place(m.id, m.lot, m.zone).models.push_back(m);
+  for (const Building& b : city.buildings)
+    place(b.id, b.lot, b.zone, b.polygon, b.floor, b.height).buildings.push_back(b);
+  for (const ModelInstance& m : city.models)
+    place(m.id, m.lot, m.zone, m.polygon, m.floor, m.height).models.push_back(m);
   for (const Clutter& c : city.clutter.items) {
     Tile& t = tiles[tile_of(c.spot.x, c.spot.y)];
     t.clutter.push_back(c.instance);
