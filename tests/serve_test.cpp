@@ -293,10 +293,14 @@ TEST_F(ServeTest, UploadedModelLibraryIsUsedByTheGeneration) {
     if (f["properties"]["model"].is_string()) models.insert(f["properties"]["model"].get<std::string>());
   EXPECT_TRUE(models.count("house_gabled") || models.count("house_wide") || models.count("house_l"))
       << buildings["features"].size();
+  // Every placed model and piece of clutter in one tile, as city.glb has one node each.
   const json index = json::parse(client->Get("/api/tiles.json")->body);
-  std::size_t placed = 0;
-  for (const json& tile : index["tiles"]) placed += tile["models"].get<std::size_t>();
+  const json report = json::parse(client->Get("/api/report")->body);
+  std::size_t placed = 0, clutter = 0;
+  for (const json& tile : index["tiles"])
+    placed += tile["models"].get<std::size_t>(), clutter += tile["clutter"].get<std::size_t>();
   EXPECT_GT(placed, 0u);
+  EXPECT_EQ(placed + clutter, report["counts"]["gltf"]["instances"].get<std::size_t>());
 }
 
 // A bad library is refused with the message the CLI gives for it; the library and sketch
@@ -706,6 +710,34 @@ TEST(ServeCommandTest, ImportsAModelLibrary) {
     EXPECT_TRUE(fs::is_regular_file(dir / "work" / "models" / name)) << name;
   kill(pid, SIGTERM);
   EXPECT_EQ(exit_code(pid), 128 + SIGTERM) << read(dir / "log.txt");
+}
+
+// Ctrl-C during a large city's lots stage ends the program within seconds, not at the end
+// of the stage, with 130 and no city or staging folder left.
+TEST(ServeCommandTest, InterruptStopsAGenerationWithinItsStage) {
+  const fs::path dir = testing_util::temp_dir("serve_command_interrupt");
+  const pid_t pid = start_program({"serve", "--port", "0", "--work", (dir / "work").string()}, dir / "log.txt");
+  const int port = served_port(dir / "log.txt");
+  ASSERT_GT(port, 0) << read(dir / "log.txt");
+  httplib::Client c("127.0.0.1", port);
+  ASSERT_EQ(c.Put("/api/sketch", kLargeSketch, "application/geo+json")->status, 200);
+  ASSERT_EQ(c.Post("/api/generate", "", "application/json")->status, 202);
+  json status;
+  for (int i = 0; i < 6000; ++i) {  // bounded: 10 minutes under the sanitizers
+    status = json::parse(c.Get("/api/status")->body);
+    if (status["stage"] == "lots" || status["state"] != "running") break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  ASSERT_EQ(status["stage"], "lots") << status.dump();
+  const auto asked = std::chrono::steady_clock::now();
+  kill(pid, SIGINT);
+  EXPECT_EQ(exit_code(pid), 128 + SIGINT) << read(dir / "log.txt");
+  // As for POST /api/cancel (CancelStopsAGenerationWithinItsStage): the stage alone takes
+  // longer than this.
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count(), 5.0);
+  EXPECT_FALSE(fs::exists(dir / "work" / "city"));
+  for (const auto& entry : fs::directory_iterator(dir / "work"))
+    EXPECT_EQ(entry.path().filename().string().find(".city.partial"), std::string::npos) << entry.path();
 }
 
 TEST(ServeCommandTest, RefusesABadSketchAndABusyPort) {
