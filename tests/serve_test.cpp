@@ -589,7 +589,7 @@ TEST_F(ServeTest, HeightmapUploadPointsTheSketchAtIt) {
   EXPECT_EQ(preview->body.substr(1, 3), "PNG");
 }
 
-// Stopping the server cancels its generation at the next stage and leaves no half-written city.
+// Stopping the server cancels its generation and leaves no half-written city.
 TEST_F(ServeTest, StopCancelsTheRunningJob) {
   ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
   ASSERT_EQ(client->Post("/api/generate", "", "application/json")->status, 202);
