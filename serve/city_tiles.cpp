@@ -18,7 +18,7 @@ namespace {
 
 // Levels switch by the camera's distance to a tile's box, in tile sides: close enough to
 // tell one building from its box, and to tell a box from its block's.
-constexpr double kFullUntil = 1.5, kBoxesUntil = 5;
+constexpr double kFullUntil = 3, kBoxesUntil = 8;
 
 struct Bounds3 {
   geom::Box box = geom::Box::none();
