@@ -222,6 +222,11 @@ try {
   const far = await tiles();
   check(far.tiles >= 2 && far.inView === far.tiles && far.shown[2] === far.tiles && far.shown[0] === 0 &&
         far.shown[1] === 0, `far away, every tile at its coarsest level: ${JSON.stringify(far)}`);
+  // Between 3 and 8 tile sides (250 m) from every tile of this city (under 1 km across): boxes.
+  await page.evaluate(o => window.exacityExplore.setOrbit({...o, elevation: 60, distance: 1400}), kept_orbit);
+  const middle = await tiles();
+  check(middle.inView > 0 && middle.shown[1] === middle.inView && middle.loaded[1] === middle.inView,
+        `halfway, the tiles in view at their boxes: ${JSON.stringify(middle)}`);
   await page.evaluate(() => {
     const view = window.exacityExplore, box = view.tiles[0].box;
     view.setOrbit({target: [(box.min.x + box.max.x) / 2, -(box.min.z + box.max.z) / 2, box.min.y], elevation: 45, distance: 60});
