@@ -48,7 +48,7 @@ int run_serve(const ServeCommand& c) {
   std::fflush(stdout);
   server.run();
   on_interrupt(nullptr);  // the handler holds this function's locals
-  std::fprintf(stderr, "exacity: stopping; a running job stops at its next stage\n");
+  std::fprintf(stderr, "exacity: stopping; a running job stops within its stage\n");
   server.finish_jobs();
   return signal ? 128 + signal : 0;
 }

@@ -6,6 +6,7 @@
 #include "generate/errors.h"
 #include "generate/export/output_folder.h"
 #include "generate/pipeline.h"
+#include "serve/city_tiles.h"
 #include "serve/render_request.h"
 #include "serve/server_state.h"
 
@@ -28,13 +29,15 @@ void refuse_busy(ServerState& s, httplib::Response& res) {
   refuse(res, 409, "a " + now.job + " job is running (" + now.stage + "); wait for it to finish (GET /api/status)");
 }
 
-// Sketch to every output into work/city, as exacity generate does (docs/design.md, The pipeline).
+// Sketch to every output into work/city, as exacity generate does (docs/design.md, The
+// pipeline), then the 3D view's tiles (docs/design.md, Serving: tiles).
 void generate_job(ServerState& s, const Sketch& sketch, JobRunner::Progress& progress) {
   OutputFolder folder(s.city_folder());
   StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); },
-                   kCityStages + kWriteStages);
+                   kCityStages + kWriteStages + 1);
   auto city = std::make_shared<City>(build_city(sketch, clock));
   const GenerateResult result = write_city(*city, folder.staging(), clock);
+  clock.run("tiles", [&] { write_city_tiles(*city, folder.staging() / "tiles"); });
   {
     std::unique_lock lock(s.outputs);
     folder.commit();
@@ -171,6 +174,13 @@ void add_city_routes(ServerState& s) {
     res.status = 202;
     res.set_content(s.jobs.status().to_json().dump(), "application/json");
   });
+  // Stops the running job within its stage (docs/design.md, Serving: cancelling); the status
+  // turns "cancelled" once it has stopped.
+  s.http.Post("/api/cancel", [&s](const httplib::Request&, httplib::Response& res) {
+    if (!s.jobs.cancel()) return refuse(res, 409, "no job is running: nothing to cancel");
+    res.status = 202;
+    res.set_content(s.jobs.status().to_json().dump(), "application/json");
+  });
   // The job's status, and whether a city and a render are there to fetch (the page asks
   // before fetching, so it never asks for what is not there).
   s.http.Get("/api/status", [&s](const httplib::Request&, httplib::Response& res) {
@@ -192,6 +202,19 @@ void add_city_routes(ServerState& s) {
   });
   s.http.Get("/api/city.glb", [&s](const httplib::Request&, httplib::Response& res) {
     send_file(s, s.city_folder() / "city.glb", "model/gltf-binary", res, kNoCity);
+  });
+  s.http.Get("/api/tiles.json", [&s](const httplib::Request&, httplib::Response& res) {
+    send_file(s, s.city_folder() / "tiles" / "index.json", "application/json", res, kNoCity);
+  });
+  s.http.Get("/api/tiles/ground.glb", [&s](const httplib::Request&, httplib::Response& res) {
+    send_file(s, s.city_folder() / "tiles" / "ground.glb", "model/gltf-binary", res, kNoCity);
+  });
+  // Digits only: a tile's name cannot leave the tiles folder.
+  s.http.Get(R"(/api/tiles/([0-9]{1,4})_([0-9]{1,4})/([012])\.glb)", [&s](const httplib::Request& req,
+                                                                          httplib::Response& res) {
+    const std::string tile = std::string(req.matches[1]) + "_" + std::string(req.matches[2]);
+    send_file(s, s.city_folder() / "tiles" / tile / (std::string(req.matches[3]) + ".glb"), "model/gltf-binary", res,
+              "no tile " + tile + " at level " + std::string(req.matches[3]) + ": GET /api/tiles.json lists the tiles");
   });
   s.http.Get(R"(/api/layers/([^/]*)\.geojson)", [&s](const httplib::Request& req, httplib::Response& res) {
     const std::string name = req.matches[1];

@@ -14,6 +14,8 @@ const char* state_name(JobState state) {
       return "done";
     case JobState::Failed:
       return "failed";
+    case JobState::Cancelled:
+      return "cancelled";
   }
   return "idle";
 }
@@ -26,7 +28,7 @@ nlohmann::json JobStatus::to_json() const {
   j["index"] = index;
   j["count"] = count;
   j["fraction"] = fraction;
-  j["error"] = state == JobState::Failed ? nlohmann::json(error) : nlohmann::json();
+  j["error"] = state == JobState::Failed || state == JobState::Cancelled ? nlohmann::json(error) : nlohmann::json();
   return j;
 }
 
@@ -70,10 +72,17 @@ bool JobRunner::start(const std::string& name, Job job) {
   publish("state", status_.to_json());
   worker_ = std::thread([this, job = std::move(job)] {
     Progress progress(*this);
+    // The stages' loops check the flag too (docs/design.md, Serving: cancelling).
+    const CancelScope scope(cancelled_);
     JobState end = JobState::Done;
     std::string error;
     try {
       job(progress);
+    } catch (const Cancelled&) {
+      std::lock_guard lock(mutex_);
+      end = JobState::Cancelled;
+      error = "cancelled" + (status_.stage.empty() ? std::string() : " during the " + status_.stage + " stage") +
+              " (POST /api/cancel, or the server stopping); the outputs from before stay as they were";
     } catch (const std::exception& e) {
       end = JobState::Failed, error = e.what();
     } catch (...) {
@@ -91,7 +100,12 @@ JobStatus JobRunner::status() const {
   return status_;
 }
 
-void JobRunner::cancel() { cancelled_ = true; }
+bool JobRunner::cancel() {
+  std::lock_guard lock(mutex_);
+  if (status_.state != JobState::Running) return false;
+  cancelled_ = true;
+  return true;
+}
 
 void JobRunner::stop() {
   std::thread worker;

@@ -14,9 +14,11 @@
 #include <thread>
 #include <vector>
 
+#include "generate/cancel.h"
+
 namespace exacity::serve {
 
-enum class JobState { Idle, Running, Done, Failed };
+enum class JobState { Idle, Running, Done, Failed, Cancelled };
 
 struct JobStatus {
   JobState state = JobState::Idle;
@@ -24,7 +26,7 @@ struct JobStatus {
   std::string stage;         // the stage under way, or the last one
   int index = 0, count = 0;  // the stage's position (1-based) and the stage count, as the CLI prints them
   double fraction = 0;       // within a long stage (rendering)
-  std::string error;         // for Failed: the one-line message
+  std::string error;         // for Failed and Cancelled: the one-line message
   nlohmann::json to_json() const;
 };
 
@@ -35,10 +37,9 @@ struct JobEvent {
   nlohmann::json data;
 };
 
-// Thrown inside a job at its next progress report once it is cancelled.
-struct JobCancelled : std::runtime_error {
-  JobCancelled() : std::runtime_error("cancelled") {}
-};
+// Thrown inside a job at its next progress report, or inside a stage's loop, once it is
+// cancelled (generate/cancel.h).
+using JobCancelled = Cancelled;
 
 class JobRunner {
  public:
@@ -62,11 +63,12 @@ class JobRunner {
   JobRunner& operator=(const JobRunner&) = delete;
 
   // Starts `job` on the worker; false while another runs or after stop(). A job that throws
-  // fails with the exception's message.
+  // fails with the exception's message; one cancelled ends Cancelled.
   bool start(const std::string& name, Job job);
   JobStatus status() const;
-  // The running job stops at its next progress report.
-  void cancel();
+  // The running job stops within its stage: at its next progress report or its stage's next
+  // loop step (generate/cancel.h). False when no job runs.
+  bool cancel();
   // Cancels the running job, waits for it, and starts no more.
   void stop();
 

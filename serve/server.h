@@ -35,7 +35,7 @@ class CityServer {
   void run();
   // Callable from any thread: stops listening and cancels a running job.
   void stop();
-  // Waits for the running job to end (after stop(), it ends at its next stage).
+  // Waits for the running job to end (after stop(), it ends within its stage).
   void finish_jobs();
   const std::filesystem::path& work_folder() const;
 

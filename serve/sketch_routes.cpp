@@ -1,4 +1,4 @@
-// GET and PUT /api/sketch, PUT /api/heightmap, GET /api/heightmap.png.
+// GET and PUT /api/sketch, PUT /api/heightmap, GET /api/heightmap.png, POST /api/models.
 #include "generate/errors.h"
 #include "serve/server_state.h"
 
@@ -22,6 +22,24 @@ void add_sketch_routes(ServerState& s) {
   s.http.Put("/api/heightmap", [&s](const httplib::Request& req, httplib::Response& res) {
     try {
       s.sketch.put_heightmap(req.body, req.get_param_value("bounds"), req.get_param_value("height"));
+    } catch (const UserError& e) {
+      return refuse(res, 400, e.what());
+    }
+    res.set_content(s.sketch.text(), "application/geo+json");
+  });
+  // A model library's files in one multipart form, each part's file name its path below the
+  // library's folder. Refused while a job runs: a generation reads the library it started with.
+  s.http.Post("/api/models", [&s](const httplib::Request& req, httplib::Response& res) {
+    if (!req.is_multipart_form_data())
+      return refuse(res, 400,
+                    "send the model library as multipart/form-data: the .json manifest and its OBJ and .mtl files, "
+                    "each part's file name its path below the library's folder");
+    if (s.jobs.status().state == JobState::Running)
+      return refuse(res, 409, "a " + s.jobs.status().job + " job is running; upload the library when it ends");
+    std::vector<std::pair<std::string, std::string>> files;
+    for (const auto& [field, part] : req.files) files.emplace_back(part.filename, part.content);
+    try {
+      s.sketch.put_library(files);
     } catch (const UserError& e) {
       return refuse(res, 400, e.what());
     }

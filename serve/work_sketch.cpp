@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <functional>
+#include <set>
 #include <sstream>
 #include <system_error>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "generate/city/palette.h"
 #include "generate/errors.h"
 #include "generate/placement/obj_file.h"
+#include "generate/placement/model_library.h"
 
 namespace exacity::serve {
 namespace fs = std::filesystem;
@@ -234,6 +236,81 @@ Sketch WorkSketch::put_heightmap(const std::string& bytes, const std::string& bo
   std::lock_guard lock(mutex_);
   for (const char* other : {".png", ".tif", ".exr"}) fs::remove(work_.root() / (std::string("heightmap") + other));
   fs::rename(upload, work_.root() / ("heightmap" + extension));
+  write_file(file(), text);
+  return sketch;
+}
+
+namespace {
+
+// Why an uploaded file's name cannot be a path below the library's folder; empty when it can.
+std::string upload_name_problem(const std::string& name) {
+  if (name.empty()) return "has no name";
+  if (name.size() > 255) return "is longer than 255 characters";
+  if (name.find('\\') != std::string::npos || name.find('\0') != std::string::npos) return "has a backslash or NUL";
+  if (name.front() == '/') return "is absolute";
+  std::stringstream parts(name);
+  for (std::string part; std::getline(parts, part, '/');) {
+    if (part.empty()) return "has an empty part";
+    if (part == "..") return "has a \"..\" part";
+    if (part.front() == '.') return "has a hidden (.name) part";
+  }
+  if (name.back() == '/') return "has an empty part";
+  return "";
+}
+
+}  // namespace
+
+Sketch WorkSketch::put_library(const std::vector<std::pair<std::string, std::string>>& files) {
+  const std::string upload = "the model library upload";
+  if (files.empty())
+    throw UserError(upload + " holds no files; choose the library's .json file with its OBJ and .mtl files");
+  std::string manifest;
+  std::set<std::string> names;
+  for (const auto& [name, bytes] : files) {
+    if (const std::string why = upload_name_problem(name); !why.empty())
+      throw UserError(upload + ": the file name \"" + name + "\" " + why +
+                      "; upload files by their paths below the library's folder");
+    if (!names.insert(name).second) throw UserError(upload + ": \"" + name + "\" comes twice; send it once");
+    if (fs::path(name).extension() != ".json") continue;
+    if (!manifest.empty())
+      throw UserError(upload + " has two .json files (\"" + manifest + "\", \"" + name +
+                      "\"); upload one library, its manifest the one .json file");
+    manifest = name;
+  }
+  if (manifest.empty())
+    throw UserError(upload + " has no .json manifest; choose the library's .json file with its OBJ and .mtl files");
+
+  std::lock_guard lock(mutex_);
+  const fs::path root = work_.root(), models = root / "models", incoming = root / ".models-upload",
+                 previous = root / ".models-previous";
+  fs::remove_all(incoming);
+  for (const auto& [name, bytes] : files) {
+    fs::create_directories((incoming / name).parent_path());
+    std::ofstream out(incoming / name, std::ios::binary);
+    out << bytes;
+    if (!out) throw UserError((incoming / name).string() + ": write failed (disk full?)");
+  }
+  // Checked where it will stay, so a bad library's message names its files as a generation
+  // would; the library there before waits aside until the new one is taken.
+  fs::remove_all(previous);
+  if (fs::exists(models)) fs::rename(models, previous);
+  fs::rename(incoming, models);
+  nlohmann::ordered_json doc = nlohmann::ordered_json::parse(
+      fs::is_regular_file(file()) ? read_file(file()) : std::string(kEmptySketch), nullptr, false);
+  if (doc.is_discarded() || !doc.is_object()) doc = nlohmann::ordered_json::parse(kEmptySketch);
+  doc["exacity"]["models"] = "models/" + manifest;
+  const std::string text = doc.dump(1) + "\n";
+  Sketch sketch;
+  try {
+    check_library("models/" + manifest);  // before the library stage reads any file it names
+    load_model_library(models / manifest);
+    sketch = check(text);
+  } catch (...) {
+    fs::remove_all(models);
+    if (fs::exists(previous)) fs::rename(previous, models);
+    throw;
+  }
+  fs::remove_all(previous);
   write_file(file(), text);
   return sketch;
 }

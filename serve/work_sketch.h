@@ -6,6 +6,8 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "generate/city/sketch.h"
 #include "serve/confined_folder.h"
@@ -29,6 +31,12 @@ class WorkSketch {
   // points the sketch's terrain at it; `bounds` and `height` ("A,B,C,D", "LOW,HIGH") default to
   // the sketch's own, else the drawn features' extent and 0..100 m. Throws UserError.
   Sketch put_heightmap(const std::string& bytes, const std::string& bounds, const std::string& height);
+  // A model library uploaded as files, each named by its path below the library's folder
+  // (the manifest, the one .json file; OBJ, .mtl and texture files): stored as work/models in
+  // place of the library there, read as the model library stage reads it, and named by the
+  // sketch's "models". Throws UserError (a bad library's message is the CLI's); then the work
+  // folder and the sketch stay as they were.
+  Sketch put_library(const std::vector<std::pair<std::string, std::string>>& files);
   // An 8-bit picture of the heightmap for the page: grey by height, its water (value 0) in
   // the map's water colour; nullopt when the sketch has none.
   std::optional<std::string> heightmap_preview() const;

@@ -19,6 +19,7 @@
 
 #include "generate/city/sketch.h"
 #include "generate/errors.h"
+#include "generate/placement/model_library.h"
 #include "serve/job_runner.h"
 #include "serve/server.h"
 #include "tests/cli_util.h"
@@ -265,6 +266,106 @@ TEST_F(ServeTest, ModelLibraryFilesMustStayInTheWorkFolder) {
   }
 }
 
+// The example library's files as a multipart form, each part named by its file name.
+httplib::MultipartFormDataItems example_library() {
+  httplib::MultipartFormDataItems items;
+  for (const auto& entry : fs::directory_iterator(cli_util::kSource / "examples" / "models"))
+    if (entry.path().extension() != ".py")
+      items.push_back({"file", read(entry.path()), entry.path().filename().string(), "application/octet-stream"});
+  return items;
+}
+
+// A library uploaded from the page: stored in work/models, named by the sketch, and used by
+// the generation (models stand on the lots).
+TEST_F(ServeTest, UploadedModelLibraryIsUsedByTheGeneration) {
+  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+  auto r = client->Post("/api/models", example_library());
+  ASSERT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(json::parse(r->body)["exacity"]["models"], "models/library.json");
+  EXPECT_EQ(json::parse(client->Get("/api/sketch")->body)["exacity"]["models"], "models/library.json");
+  EXPECT_EQ(read(work() / "models" / "house_l.obj"), read(cli_util::kSource / "examples" / "models" / "house_l.obj"));
+  ASSERT_EQ(client->Post("/api/generate", "", "application/json")->status, 202);
+  const json done = wait_for_job(*client);
+  ASSERT_EQ(done["state"], "done") << done.dump();
+  const json buildings = json::parse(client->Get("/api/layers/buildings.geojson")->body);
+  std::set<std::string> models;
+  for (const json& f : buildings["features"])
+    if (f["properties"]["model"].is_string()) models.insert(f["properties"]["model"].get<std::string>());
+  EXPECT_TRUE(models.count("house_gabled") || models.count("house_wide") || models.count("house_l"))
+      << buildings["features"].size();
+  // Every placed model and piece of clutter in one tile, as city.glb has one node each.
+  const json index = json::parse(client->Get("/api/tiles.json")->body);
+  const json report = json::parse(client->Get("/api/report")->body);
+  std::size_t placed = 0, clutter = 0;
+  for (const json& tile : index["tiles"])
+    placed += tile["models"].get<std::size_t>(), clutter += tile["clutter"].get<std::size_t>();
+  EXPECT_GT(placed, 0u);
+  EXPECT_EQ(placed + clutter, report["counts"]["gltf"]["instances"].get<std::size_t>());
+}
+
+// A bad library is refused with the message the CLI gives for it; the library and sketch
+// from before stay.
+TEST_F(ServeTest, BadModelLibraryIsRefusedWithTheCliMessage) {
+  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+  ASSERT_EQ(client->Post("/api/models", example_library())->status, 200);
+  const std::string sketch_before = client->Get("/api/sketch")->body;
+  const std::string bad_manifest = R"({"models": [{"file": "missing.obj", "zones": ["residential"]}]})";
+  auto r = client->Post("/api/models", httplib::MultipartFormDataItems{
+                                           {"file", bad_manifest, "bad.json", "application/json"},
+                                           {"file", read(cli_util::kSource / "examples" / "models" / "house_l.obj"),
+                                            "house_l.obj", "application/octet-stream"}});
+  ASSERT_EQ(r->status, 400);
+  EXPECT_EQ(r->body.find('\n'), std::string::npos) << r->body;
+  EXPECT_EQ(client->Get("/api/sketch")->body, sketch_before);
+  EXPECT_TRUE(fs::is_regular_file(work() / "models" / "library.json"));
+  EXPECT_FALSE(fs::exists(work() / "models" / "bad.json"));
+  // The CLI's message for the same files in the same place.
+  write(work() / "models" / "bad.json", bad_manifest);
+  std::string cli;
+  try {
+    exacity::load_model_library(work() / "models" / "bad.json");
+  } catch (const exacity::UserError& e) {
+    cli = e.what();
+  }
+  EXPECT_FALSE(cli.empty());
+  EXPECT_EQ(r->body, cli);
+  // Not a form, no manifest, two manifests.
+  EXPECT_EQ(client->Post("/api/models", "{}", "application/json")->status, 400);
+  auto none = client->Post("/api/models", httplib::MultipartFormDataItems{{"file", "v 0 0 0\n", "a.obj", ""}});
+  EXPECT_EQ(none->status, 400);
+  EXPECT_NE(none->body.find("no .json manifest"), std::string::npos) << none->body;
+  auto two = client->Post("/api/models",
+                          httplib::MultipartFormDataItems{{"file", "{}", "a.json", ""}, {"file", "{}", "b.json", ""}});
+  EXPECT_EQ(two->status, 400);
+  EXPECT_NE(two->body.find("two .json files"), std::string::npos) << two->body;
+}
+
+// No uploaded file lands outside work/models, however it is named, and a manifest naming
+// files outside the work folder is refused as a sketch naming them would be.
+TEST_F(ServeTest, ModelUploadNamesThatTryToLeaveAreRefused) {
+  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+  const std::string manifest = R"({"models": [{"file": "house_l.obj", "zones": ["residential"], "up": "z"}]})";
+  const std::string obj = read(cli_util::kSource / "examples" / "models" / "house_l.obj");
+  for (const char* name : {"../escape.obj", "/tmp/escape.obj", "sub/../../escape.obj", ".hidden.obj",
+                           "sub/.hidden/escape.obj", "a\\escape.obj", "sub//escape.obj", ""}) {
+    auto r = client->Post("/api/models",
+                          httplib::MultipartFormDataItems{{"file", manifest, "lib.json", ""}, {"file", obj, name, ""}});
+    EXPECT_EQ(r->status, 400) << name;
+    EXPECT_NE(r->body.find("the model library upload"), std::string::npos) << name << ": " << r->body;
+  }
+  EXPECT_FALSE(fs::exists(dir / "escape.obj"));
+  EXPECT_FALSE(fs::exists(work() / "escape.obj"));
+  EXPECT_FALSE(fs::exists("/tmp/escape.obj"));
+  write(dir / "secret.obj", obj);
+  auto out = client->Post(
+      "/api/models", httplib::MultipartFormDataItems{
+                         {"file", R"({"models": [{"file": "../../secret.obj", "zones": ["residential"], "up": "z"}]})",
+                          "lib.json", ""}});
+  EXPECT_EQ(out->status, 400);
+  EXPECT_NE(out->body.find("\"exacity\".models"), std::string::npos) << out->body;
+  EXPECT_FALSE(fs::exists(work() / "models"));
+}
+
 TEST_F(ServeTest, OversizedBodyIsRefused) {
   ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
   std::string big = kSmallSketch;
@@ -340,7 +441,7 @@ TEST_F(ServeTest, GenerateStreamsStagesThenServesOutputsAndRenders) {
   // The CLI's stage names, in its order.
   EXPECT_EQ(stages, (std::vector<std::string>{"terrain", "model library", "zone map", "road network", "blocks", "lots",
                                               "buildings", "vector layers", "clutter", "export", "3d export",
-                                              "validation"}));
+                                              "validation", "tiles"}));
   EXPECT_EQ(json::parse(client->Get("/api/status")->body)["state"], "done");
 
   EXPECT_EQ(client->Get("/api/map.svg")->body.find("<svg") != std::string::npos, true);
@@ -366,6 +467,49 @@ TEST_F(ServeTest, GenerateStreamsStagesThenServesOutputsAndRenders) {
     ASSERT_EQ(r->status, 200) << image;
     EXPECT_EQ(r->body.substr(1, 3), "PNG") << image;
   }
+}
+
+// The 3D view's tiles: every structure in one tile, at full level exactly city.glb's
+// triangles (a city without models, whose meshes city.glb shares between tiles), a box (a
+// roof and four walls: 10 triangles) per structure at the next level and fewer at the last.
+TEST_F(ServeTest, TilesHoldTheCityAtThreeLevels) {
+  EXPECT_EQ(client->Get("/api/tiles.json")->status, 404);
+  put_small_and_generate();
+  auto r = client->Get("/api/tiles.json");
+  ASSERT_EQ(r->status, 200);
+  const json index = json::parse(r->body);
+  const json report = json::parse(client->Get("/api/report")->body);
+  ASSERT_EQ(index["levels"].size(), 3u);
+  EXPECT_EQ(index["levels"][2]["until"], nullptr);
+  EXPECT_LT(index["levels"][0]["until"].get<double>(), index["levels"][1]["until"].get<double>());
+  // 600 m by 300 m (and the highway's ends): two tiles of 250 m at least.
+  ASSERT_GE(index["tiles"].size(), 2u) << index.dump();
+  EXPECT_EQ(client->Get("/api/tiles/ground.glb")->body.substr(0, 4), "glTF");
+  std::size_t structures = 0, clutter = 0, triangles = index["ground_triangles"].get<std::size_t>();
+  std::set<std::string> names;
+  for (const json& tile : index["tiles"]) {
+    EXPECT_TRUE(names.insert(tile["name"].get<std::string>()).second);
+    const std::size_t here = tile["buildings"].get<std::size_t>() + tile["models"].get<std::size_t>();
+    structures += here, clutter += tile["clutter"].get<std::size_t>();
+    triangles += tile["triangles"][0].get<std::size_t>();
+    EXPECT_EQ(tile["triangles"][1], 10 * here) << tile.dump();
+    EXPECT_LE(tile["triangles"][2].get<std::size_t>(), tile["triangles"][1].get<std::size_t>()) << tile.dump();
+    EXPECT_GT(tile["triangles"][2].get<std::size_t>(), 0u) << tile.dump();
+    const json& box = tile["box"];
+    EXPECT_LT(box[0].get<double>(), box[3].get<double>());
+    EXPECT_LT(box[2].get<double>(), box[5].get<double>());
+    for (const json& url : tile["levels"]) {
+      auto glb = client->Get(url.get<std::string>());
+      ASSERT_EQ(glb->status, 200) << url;
+      EXPECT_EQ(glb->body.substr(0, 4), "glTF") << url;
+    }
+  }
+  EXPECT_EQ(structures, report["counts"]["buildings"].get<std::size_t>());
+  EXPECT_EQ(clutter, report["counts"]["clutter"].get<std::size_t>());
+  EXPECT_EQ(triangles, report["counts"]["gltf"]["triangles"].get<std::size_t>());
+  for (const char* url : {"/api/tiles/99_99/0.glb", "/api/tiles/0_0/3.glb", "/api/tiles/..%2F..%2Fsketch.geojson",
+                          "/api/tiles/0_0/..%2F..%2Freport.json"})
+    EXPECT_EQ(client->Get(url)->status, 404) << url;
 }
 
 // Eight clients poll the status and fetch a layer while the city is generated again; every
@@ -445,7 +589,7 @@ TEST_F(ServeTest, HeightmapUploadPointsTheSketchAtIt) {
   EXPECT_EQ(preview->body.substr(1, 3), "PNG");
 }
 
-// Stopping the server cancels its generation at the next stage and leaves no half-written city.
+// Stopping the server cancels its generation and leaves no half-written city.
 TEST_F(ServeTest, StopCancelsTheRunningJob) {
   ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
   ASSERT_EQ(client->Post("/api/generate", "", "application/json")->status, 202);
@@ -454,6 +598,55 @@ TEST_F(ServeTest, StopCancelsTheRunningJob) {
   EXPECT_FALSE(fs::exists(work() / "city"));
   for (const auto& entry : fs::directory_iterator(work()))
     EXPECT_EQ(entry.path().filename().string().find(".city.partial"), std::string::npos) << entry.path();
+}
+
+// A city some kilometres across: its lots stage takes seconds, long enough to cancel in
+// (4.9 s uncancelled in the test build, where a cancel stops it in about 1 s; the
+// sanitizers slow both about threefold).
+#ifdef __SANITIZE_ADDRESS__
+constexpr double kStopSeconds = 7.5;
+#else
+constexpr double kStopSeconds = 2.5;
+#endif
+const std::string kLargeSketch = R"({"type": "FeatureCollection", "exacity": {"seed": 5}, "features": [
+  {"type": "Feature", "properties": {"zone": "residential"},
+   "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [3000, 0], [3000, 2000], [0, 2000], [0, 0]]]}},
+  {"type": "Feature", "properties": {"zone": "commercial"},
+   "geometry": {"type": "Polygon", "coordinates": [[[3000, 0], [4000, 0], [4000, 2000], [3000, 2000], [3000, 0]]]}},
+  {"type": "Feature", "properties": {"road": "highway", "width": 16},
+   "geometry": {"type": "LineString", "coordinates": [[-50, 1000], [4050, 1000]]}}]}
+)";
+
+// POST /api/cancel stops a generation inside its long stage, not at the next one: within a
+// few seconds of a stage that takes far longer, its status "cancelled" with the stage named,
+// and no city or staging folder left. With no job running it is refused.
+TEST_F(ServeTest, CancelStopsAGenerationWithinItsStage) {
+  auto idle = client->Post("/api/cancel", "", "application/json");
+  EXPECT_EQ(idle->status, 409);
+  EXPECT_EQ(idle->body, "no job is running: nothing to cancel");
+  ASSERT_EQ(client->Put("/api/sketch", kLargeSketch, "application/geo+json")->status, 200);
+  ASSERT_EQ(client->Post("/api/generate", "", "application/json")->status, 202);
+  json status;
+  for (int i = 0; i < 6000; ++i) {  // bounded: 10 minutes under the sanitizers
+    status = json::parse(client->Get("/api/status")->body);
+    if (status["stage"] == "lots" || status["state"] != "running") break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  ASSERT_EQ(status["stage"], "lots") << status.dump();
+  const auto asked = std::chrono::steady_clock::now();
+  auto cancel = client->Post("/api/cancel", "", "application/json");
+  ASSERT_EQ(cancel->status, 202) << cancel->body;
+  const json ended = wait_for_job(*client);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count();
+  EXPECT_EQ(ended["state"], "cancelled") << ended.dump();
+  EXPECT_EQ(ended["stage"], "lots");
+  EXPECT_EQ(ended["error"].get<std::string>().rfind("cancelled during the lots stage", 0), 0) << ended.dump();
+  // Uncancelled, the stage alone takes about twice the bound (kLargeSketch).
+  EXPECT_LT(seconds, kStopSeconds);
+  EXPECT_FALSE(fs::exists(work() / "city"));
+  for (const auto& entry : fs::directory_iterator(work()))
+    EXPECT_EQ(entry.path().filename().string().find(".city.partial"), std::string::npos) << entry.path();
+  EXPECT_EQ(client->Post("/api/cancel", "", "application/json")->status, 409);
 }
 
 // `exacity serve ARGS` as a child process, its stdout and stderr into `log`.
@@ -549,6 +742,33 @@ TEST(ServeCommandTest, ImportsAModelLibrarysTextures) {
   EXPECT_EQ(exit_code(pid), 128 + SIGTERM) << read(dir / "log.txt");
 }
 
+// Ctrl-C during a large city's lots stage ends the program within seconds, not at the end
+// of the stage, with 130 and no city or staging folder left.
+TEST(ServeCommandTest, InterruptStopsAGenerationWithinItsStage) {
+  const fs::path dir = testing_util::temp_dir("serve_command_interrupt");
+  const pid_t pid = start_program({"serve", "--port", "0", "--work", (dir / "work").string()}, dir / "log.txt");
+  const int port = served_port(dir / "log.txt");
+  ASSERT_GT(port, 0) << read(dir / "log.txt");
+  httplib::Client c("127.0.0.1", port);
+  ASSERT_EQ(c.Put("/api/sketch", kLargeSketch, "application/geo+json")->status, 200);
+  ASSERT_EQ(c.Post("/api/generate", "", "application/json")->status, 202);
+  json status;
+  for (int i = 0; i < 6000; ++i) {  // bounded: 10 minutes under the sanitizers
+    status = json::parse(c.Get("/api/status")->body);
+    if (status["stage"] == "lots" || status["state"] != "running") break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  ASSERT_EQ(status["stage"], "lots") << status.dump();
+  const auto asked = std::chrono::steady_clock::now();
+  kill(pid, SIGINT);
+  EXPECT_EQ(exit_code(pid), 128 + SIGINT) << read(dir / "log.txt");
+  // As for POST /api/cancel (CancelStopsAGenerationWithinItsStage).
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count(), kStopSeconds);
+  EXPECT_FALSE(fs::exists(dir / "work" / "city"));
+  for (const auto& entry : fs::directory_iterator(dir / "work"))
+    EXPECT_EQ(entry.path().filename().string().find(".city.partial"), std::string::npos) << entry.path();
+}
+
 TEST(ServeCommandTest, RefusesABadSketchAndABusyPort) {
   const fs::path dir = testing_util::temp_dir("serve_command_bad");
   write(dir / "bad.geojson", R"({"type": "FeatureCollection", "features": []})");
@@ -591,8 +811,10 @@ TEST(JobRunnerTest, OneJobAtATimeReportedAndCancellable) {
   go.set_value();
   for (int i = 0; i < 1000 && runner.status().state == JobState::Running; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  EXPECT_EQ(runner.status().state, JobState::Failed);
-  EXPECT_EQ(runner.status().error, "cancelled");
+  EXPECT_EQ(runner.status().state, JobState::Cancelled);
+  EXPECT_EQ(runner.status().to_json()["state"], "cancelled");
+  EXPECT_EQ(runner.status().error.rfind("cancelled during the terrain stage", 0), 0) << runner.status().error;
+  EXPECT_FALSE(runner.cancel());  // nothing runs now
   bool saw_stage = false;
   for (const auto& e : runner.events_after(0, std::chrono::milliseconds(0)))
     saw_stage |= e.name == "stage" && e.data["stage"] == "terrain";

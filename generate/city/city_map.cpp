@@ -2,6 +2,7 @@
 
 #include <map>
 
+#include "generate/cancel.h"
 #include "generate/city/drawn_zones.h"
 #include "generate/layout/street_graph.h"
 
@@ -109,7 +110,11 @@ int CityMap::label_index(const FaceLabel& l) {
 void CityMap::insert_lots() {
   std::vector<int> block_of_label;
   for (const FaceLabel& l : labels) block_of_label.push_back(l.lot < 0 ? l.block : -1);
+  // Every face inserted is labelled here: the one place a cancel reaches inside the insertion
+  // (docs/design.md, Serving: cancelling); the map is dropped with the build.
+  const CancelCheck cancel;
   map.insert_within(block_of_label, [&](const geom::Windings& w, int previous) {
+    cancel.check();
     if (w.empty()) return previous;
     FaceLabel l = labels[previous];
     l.lot = lots.index_of(w.front().first);

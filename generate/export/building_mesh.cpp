@@ -8,6 +8,7 @@
 #include <OpenMesh/Core/System/omstream.hh>
 #include <tbb/parallel_for.h>
 
+#include "generate/cancel.h"
 #include "geom/triangulate.h"
 
 namespace exacity {
@@ -41,10 +42,15 @@ std::vector<Mesh> structure_meshes(const std::vector<Building>& buildings, const
                                    const ModelLibrary* library) {
   quiet_openmesh();
   std::vector<Mesh> meshes(buildings.size() + models.size());
-  tbb::parallel_for(std::size_t(0), buildings.size(),
-                    [&](std::size_t i) { meshes[buildings[i].id] = building_mesh(buildings[i]); });
-  tbb::parallel_for(std::size_t(0), models.size(),
-                    [&](std::size_t i) { meshes[models[i].id] = model_mesh(models[i], library); });
+  const CancelCheck cancel;
+  tbb::parallel_for(std::size_t(0), buildings.size(), [&](std::size_t i) {
+    cancel.check();
+    meshes[buildings[i].id] = building_mesh(buildings[i]);
+  });
+  tbb::parallel_for(std::size_t(0), models.size(), [&](std::size_t i) {
+    cancel.check();
+    meshes[models[i].id] = model_mesh(models[i], library);
+  });
   return meshes;
 }
 

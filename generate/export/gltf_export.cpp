@@ -322,20 +322,24 @@ void add_mesh_node(const std::string& name, const Primitives& primitives, Glb& g
   if (node.mesh >= 0) root.children.push_back(glb.node(node));
 }
 
-}  // namespace
-
-GltfCounts write_gltf(const Ground& ground, const std::vector<Building>& buildings,
-                      const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
-                      const ModelLibrary* library, const Terrain* terrain, const std::filesystem::path& file,
-                      const std::vector<ModelInstance>& clutter) {
+// The city's box, as write_gltf frames the city.
+geom::Box city_box(const Ground& ground) {
   geom::Box box = ground.bounds();
   if (box.holds_nothing()) box = {0, 0, 1, 1};
+  return box;
+}
+
+// write_gltf's body; without the ground when `ground` is null (a tile's structures).
+GltfCounts write_city_part(const Ground* ground, const geom::Box& box, const std::vector<Building>& buildings,
+                           const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
+                           const ModelLibrary* library, const Terrain* terrain, const std::filesystem::path& file,
+                           const std::vector<ModelInstance>& clutter) {
   const Frame local{local_origin(box)};
   Glb glb;
   tinygltf::Node root;
   root.name = "city";
   root.translation = {local.origin.x, 0, -local.origin.y};
-  add_mesh_node("ground", ground_primitives(ground, terrain, box, local, glb), glb, root);
+  if (ground) add_mesh_node("ground", ground_primitives(*ground, terrain, box, local, glb), glb, root);
   add_mesh_node("buildings", building_primitives(buildings, models, meshes, local, glb), glb, root);
   GltfCounts counts;
   StoredModels stored;
@@ -348,6 +352,57 @@ GltfCounts write_gltf(const Ground& ground, const std::vector<Building>& buildin
     root.children.push_back(glb.node(group));
   }
   glb.write(glb.node(root), file);
+  counts.meshes = glb.meshes();
+  counts.triangles = glb.triangles();
+  return counts;
+}
+
+}  // namespace
+
+GltfCounts write_gltf(const Ground& ground, const std::vector<Building>& buildings,
+                      const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
+                      const ModelLibrary* library, const Terrain* terrain, const std::filesystem::path& file,
+                      const std::vector<ModelInstance>& clutter) {
+  return write_city_part(&ground, city_box(ground), buildings, models, meshes, library, terrain, file, clutter);
+}
+
+GltfCounts write_gltf_structures(const Ground& ground, const std::vector<Building>& buildings,
+                                 const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
+                                 const ModelLibrary* library, const std::filesystem::path& file,
+                                 const std::vector<ModelInstance>& clutter) {
+  return write_city_part(nullptr, city_box(ground), buildings, models, meshes, library, nullptr, file, clutter);
+}
+
+GltfCounts write_gltf_boxes(const Ground& ground, const std::vector<StructureBox>& boxes,
+                            const std::filesystem::path& file) {
+  const Frame local{local_origin(city_box(ground))};
+  std::map<std::pair<ZoneType, int>, Triangles> merged;
+  for (const StructureBox& b : boxes) {
+    const double x[2] = {b.box.min_x, b.box.max_x}, y[2] = {b.box.min_y, b.box.max_y}, z[2] = {b.bottom, b.top};
+    auto quad = [&](Surface surface, std::array<std::array<int, 3>, 4> corners) {
+      Triangles& t = merged[{b.zone, static_cast<int>(surface)}];
+      const auto first = static_cast<std::uint32_t>(t.positions.size());
+      for (const auto& c : corners) t.positions.push_back(local(x[c[0]], y[c[1]], z[c[2]]));
+      for (std::uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) t.indices.push_back(first + k);
+    };
+    // Counter-clockwise seen from outside (glTF's front faces).
+    quad(Surface::Roof, {{{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}});
+    quad(Surface::Wall, {{{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}});
+    quad(Surface::Wall, {{{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}}});
+    quad(Surface::Wall, {{{1, 1, 0}, {0, 1, 0}, {0, 1, 1}, {1, 1, 1}}});
+    quad(Surface::Wall, {{{0, 1, 0}, {0, 0, 0}, {0, 0, 1}, {0, 1, 1}}});
+  }
+  Glb glb;
+  tinygltf::Node root;
+  root.name = "city";
+  root.translation = {local.origin.x, 0, -local.origin.y};
+  Primitives prims;
+  for (const auto& [key, t] : merged)
+    prims.push_back({glb.accessors(t), glb.material(std::string(name(key.first)) + "_" + kSurfaceNames[key.second],
+                                                    surface_colour(key.first, static_cast<Surface>(key.second)))});
+  add_mesh_node("boxes", prims, glb, root);
+  glb.write(glb.node(root), file);
+  GltfCounts counts;
   counts.meshes = glb.meshes();
   counts.triangles = glb.triangles();
   return counts;

@@ -29,4 +29,21 @@ GltfCounts write_gltf(const Ground& ground, const std::vector<Building>& buildin
                       const ModelLibrary* library, const Terrain* terrain, const std::filesystem::path& file,
                       const std::vector<ModelInstance>& clutter = {});
 
+// exacity serve's tiles (docs/design.md, Serving: tiles), in write_gltf's frame for the same
+// ground, so a tile's structures are city.glb's to the float.
+// The structures given and their clutter, as write_gltf writes them, without the ground.
+GltfCounts write_gltf_structures(const Ground& ground, const std::vector<Building>& buildings,
+                                 const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
+                                 const ModelLibrary* library, const std::filesystem::path& file,
+                                 const std::vector<ModelInstance>& clutter = {});
+// Boxes standing for structures far away: a roof and four walls each, coloured as an
+// extruded building of their zone.
+struct StructureBox {
+  geom::Box box;
+  double bottom = 0, top = 0;
+  ZoneType zone = ZoneType::Residential;
+};
+GltfCounts write_gltf_boxes(const Ground& ground, const std::vector<StructureBox>& boxes,
+                            const std::filesystem::path& file);
+
 }  // namespace exacity

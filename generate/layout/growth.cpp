@@ -6,6 +6,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "generate/cancel.h"
 #include "generate/city/random.h"
 #include "geom/grid.h"
 #include "geom/measure.h"
@@ -329,10 +330,12 @@ class GrowthLayout : public RoadLayout {
     plan.piece_reaches_sketch = {0};
     Random rng(region.stream);
     std::vector<Work> work{{region.cell, region.stream, rng.uniform(0, 360), ZoneType::Residential}};
+    const CancelCheck cancel;
     for (int level = 0; !work.empty() && level < kMaxLevels; ++level) {
       plan.levels = level + 1;
       std::vector<Grown> grown(work.size());
       tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
+        cancel.check();
         grown[i] = seed(work[i], zone_at_);
         grow_one(work[i], grown[i], sketch_.zone_settings.at(grown[i].type).roads.growth, level, run_on_);
       });

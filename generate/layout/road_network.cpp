@@ -8,6 +8,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "generate/cancel.h"
 #include "generate/layout/growth.h"
 #include "generate/layout/road_layout.h"
 #include "generate/city/random.h"
@@ -98,8 +99,11 @@ void add_road(CityMap& city_map, const LaidRoad& road, int region) {
 std::vector<RoadPlan> plan_regions(const std::vector<geom::Cell>& cells, std::uint64_t stage,
                                    const std::function<const RoadLayout&(std::size_t)>& layout_of) {
   std::vector<RoadPlan> plans(cells.size());
-  tbb::parallel_for(std::size_t(0), cells.size(),
-                    [&](std::size_t i) { plans[i] = layout_of(i).plan({cells[i], mix(stage, i)}); });
+  const CancelCheck cancel;
+  tbb::parallel_for(std::size_t(0), cells.size(), [&](std::size_t i) {
+    cancel.check();
+    plans[i] = layout_of(i).plan({cells[i], mix(stage, i)});
+  });
   return plans;
 }
 

@@ -8,6 +8,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "generate/cancel.h"
 #include "generate/city/random.h"
 #include "generate/errors.h"
 #include "generate/export/geojson.h"
@@ -23,7 +24,9 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch
     layouts[zone] = make_lot_layout(settings.lots, zone, library, channels);
   std::vector<std::vector<PlannedLot>> per_block(blocks.size());
   const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Lots));
+  const CancelCheck cancel;
   tbb::parallel_for(std::size_t(0), blocks.size(), [&](std::size_t bi) {
+    cancel.check();
     const Block& block = blocks[bi];
     if (block.green) return;
     Random rng(mix(stage, bi));
@@ -102,7 +105,9 @@ std::vector<Lot> kept_lots(const CityMap& city_map, const std::vector<PlannedLot
   std::vector<int> planned_of, component;
   std::vector<geom::Cell> pieces = city_map.map.cells(group, kind, &planned_of, &component);
   std::vector<std::optional<Lot>> kept(pieces.size());
+  const CancelCheck cancel;
   tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
+    cancel.check();
     const PlannedLot& plan = planned[planned_of[i]];
     // Collapsed by rounding, off the street, too small, or too narrow or shallow for its
     // frontage: left open. A lot is its rounded cell, so the buildings placed in it lie

@@ -7,6 +7,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "generate/cancel.h"
 #include "generate/errors.h"
 #include "generate/export/geojson.h"
 #include "generate/placement/grid_filling.h"
@@ -175,7 +176,9 @@ Structures place_buildings(const std::vector<Lot>& lots, const Sketch& sketch, c
   const auto placers = zone_placers(sketch, library, channels, lots);
   const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Buildings));
   std::vector<Structures> placed(lots.size());
+  const CancelCheck cancel;
   tbb::parallel_for(std::size_t(0), lots.size(), [&](std::size_t i) {
+    cancel.check();
     const Lot& lot = lots[i];
     BuildingSettings p = sketch.zone_settings.at(lot.zone).buildings;
     if (!lot.density.empty()) p.density = lot.density;

@@ -8,6 +8,7 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "generate/cancel.h"
 #include "generate/placement/model_placement.h"
 #include "generate/placement/street_nodes.h"
 #include "geom/grid.h"
@@ -459,7 +460,9 @@ StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* lib
   const std::size_t groups = streets_and_junctions + parks.size();
   std::vector<Proposals> proposed(groups);
   const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Clutter));
+  const CancelCheck cancel;
   tbb::parallel_for(std::size_t(0), groups, [&](std::size_t g) {
+    cancel.check();
     Random rng(mix(stage, g));
     Dresser dresser(side, *library, bases, channels, terrain, rng, proposed[g]);
     if (g < roads.size()) {

@@ -1,7 +1,8 @@
 // The page of exacity serve in a real browser (Debian's chromium driven by puppeteer-core):
 // draw a zone and a road with the mouse, move the zone with Ctrl-drag, delete the road with
-// Del, undo, reload, generate, find the generated layers, orbit the 3D view and render it;
-// no console error throughout. Usage: node check_page.mjs EXACITY_BINARY OUT_DIR
+// Del, undo, reload, generate, find the generated layers, orbit the 3D view, see its tiles'
+// levels switch from far to near, render it, upload a model library; no console error
+// throughout. Usage: node check_page.mjs EXACITY_BINARY OUT_DIR
 // (screenshots go to OUT_DIR). Exits 1 on the first failed check. DEBUG_PAGE=1 logs every
 // request the page makes, with its time.
 import {spawn} from 'node:child_process';
@@ -210,6 +211,30 @@ try {
   await page.mouse.wheel({deltaY: -200});
   const third = await spec();
   check(/elevation=(3\d|4\d)/.test(third), `orbited back down: ${third}`);
+  // Levels of detail: from far away every tile in view shows its coarsest level; close over a
+  // tile, that one shows its full level; each level loaded when first wanted.
+  const tiles = async () => {
+    await page.waitForFunction(() => window.exacityExplore.tileCounts().pending === 0, {timeout: 30000});
+    return page.evaluate(() => window.exacityExplore.tileCounts());
+  };
+  const kept_orbit = await page.evaluate(() => ({...window.exacityExplore.orbit}));
+  await page.evaluate(() => window.exacityExplore.setOrbit({elevation: 60, distance: 20000}));
+  const far = await tiles();
+  check(far.tiles >= 2 && far.inView === far.tiles && far.shown[2] === far.tiles && far.shown[0] === 0 &&
+        far.shown[1] === 0, `far away, every tile at its coarsest level: ${JSON.stringify(far)}`);
+  // Between 3 and 8 tile sides (250 m) from every tile of this city (under 1 km across): boxes.
+  await page.evaluate(o => window.exacityExplore.setOrbit({...o, elevation: 60, distance: 1400}), kept_orbit);
+  const middle = await tiles();
+  check(middle.inView > 0 && middle.shown[1] === middle.inView && middle.loaded[1] === middle.inView,
+        `halfway, the tiles in view at their boxes: ${JSON.stringify(middle)}`);
+  await page.evaluate(() => {
+    const view = window.exacityExplore, box = view.tiles[0].box;
+    view.setOrbit({target: [(box.min.x + box.max.x) / 2, -(box.min.z + box.max.z) / 2, box.min.y], elevation: 45, distance: 60});
+  });
+  const near = await tiles();
+  check(near.shown[0] >= 1 && near.loaded[0] >= 1,
+        `close over a tile, it shows its full level: ${JSON.stringify(near)}`);
+  await page.evaluate(o => window.exacityExplore.setOrbit(o), kept_orbit);
   await page.click('#render-view');
   await page.waitForFunction(() => {
     const img = document.getElementById('render-image');
@@ -218,8 +243,17 @@ try {
   check(true, 'the rendered still is on the page');
   await page.screenshot({path: path.join(out, 'explore.png')});
 
-  // Save downloads the sketch; Open reads one from a file and shows what the server took.
+  // Models…: the example library's files uploaded together; the sketch then names it.
   await page.click('[data-view="map"]');
+  const library = path.join(path.dirname(new URL(import.meta.url).pathname), '..', '..', 'examples', 'models');
+  const [modelsChooser] = await Promise.all([page.waitForFileChooser(), page.click('#models')]);
+  await modelsChooser.accept(fs.readdirSync(library).filter(f => !f.endsWith('.py')).map(f => path.join(library, f)));
+  for (let i = 0; i < 50 && !(await sketch()).exacity?.models; ++i) await new Promise(r => setTimeout(r, 100));
+  check((await sketch()).exacity.models === 'models/library.json', 'the uploaded model library is the sketch\'s');
+  check(/Model library models\/library.json loaded/.test(await page.$eval('#message', m => m.textContent)),
+        'the page says the library loaded');
+
+  // Save downloads the sketch; Open reads one from a file and shows what the server took.
   const cdp = await page.createCDPSession();
   await cdp.send('Browser.setDownloadBehavior', {behavior: 'allow', downloadPath: path.resolve(out)});
   await page.click('#save');

@@ -37,6 +37,8 @@ try {
     const img = document.getElementById('render-image');
     return !document.getElementById('render-result').hidden && img.complete && img.naturalWidth > 0;
   }, {timeout: 600000});
+  // Every tile in view at the level it asked for.
+  await page.waitForFunction(() => window.exacityExplore.tileCounts().pending === 0, {timeout: 60000});
   await page.screenshot({path: path.join(out, 'serve-explore.png')});
 } finally {
   await browser.close();

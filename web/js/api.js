@@ -21,6 +21,18 @@ export async function putHeightmap(file) {
   return answer(await fetch('/api/heightmap', {method: 'PUT', body: await file.arrayBuffer()}));
 }
 
+// A model library's files in one form, each named by its path below the library's folder
+// (a folder chosen whole gives paths starting with the folder's own name, dropped here).
+export async function postModels(files) {
+  const form = new FormData();
+  for (const f of files) form.append('file', f, f.webkitRelativePath ? f.webkitRelativePath.split('/').slice(1).join('/') : f.name);
+  return answer(await fetch('/api/models', {method: 'POST', body: form}));
+}
+
+export async function cancelJob() {
+  return answer(await fetch('/api/cancel', {method: 'POST'}));
+}
+
 export async function startGenerate() {
   return answer(await fetch('/api/generate', {method: 'POST'}));
 }

@@ -149,6 +149,28 @@ $('heightmap-file').addEventListener('change', async e => {
   say(`Heightmap ${file.name} loaded.`);
 });
 
+// Models…: a model library's files, which the server checks as the CLI does; the sketch
+// then names it.
+$('models').addEventListener('click', () => $('models-file').click());
+$('models-file').addEventListener('change', async e => {
+  const files = [...e.target.files];
+  e.target.value = '';
+  if (!files.length) return;
+  const r = await api.postModels(files);
+  if (!r.ok) return say(r.message, true);
+  lastGood = JSON.parse(r.text);
+  map.setSettings(lastGood.exacity);
+  panel.show(lastGood.exacity);
+  history.push(JSON.stringify(map.sketch()));
+  updateButtons();
+  say(`Model library ${lastGood.exacity.models} loaded (${files.length} files).`);
+});
+
+$('cancel').addEventListener('click', async () => {
+  const r = await api.cancelJob();
+  if (!r.ok) say(r.message, true);
+});
+
 // Generate, with a progress bar driven by the server's stage events.
 $('generate').addEventListener('click', async () => {
   const r = await api.startGenerate();
@@ -196,8 +218,10 @@ api.listen({
     document.body.dataset.job = s.state;
     $('generate').disabled = s.state === 'running';
     $('render-view').disabled = s.state === 'running';
+    $('cancel').disabled = s.state !== 'running';
     if (!ended) return;
     if (s.state === 'failed') say(`${s.job} failed: ${s.error}`, true);
+    if (s.state === 'cancelled') say(`${s.job} ${s.error}`);
     if (s.state !== 'done') return;
     $('progress').value = 1;
     $('stage').textContent = `${s.job} done`;

@@ -1,6 +1,9 @@
-// Explore: city.glb in three.js under seed 000's camera (3.3.2), a spherical camera bound to
+// Explore: the city in three.js under seed 000's camera (3.3.2), a spherical camera bound to
 // the upper hemisphere around a target that pans over the ground, with a minimap of the
 // camera and the ground it sees (3.3.4); "Render this view" path-traces the same camera.
+// The city comes as its ground and its tiles (GET /api/tiles.json), each tile drawn at the
+// level of detail its distance asks for, loaded when first needed, and left out when outside
+// the view (docs/design.md, Serving: tiles); city.glb is the fallback for a city without.
 import * as THREE from 'three';
 import {GLTFLoader} from 'three/addons/loaders/GLTFLoader.js';
 import {zoneColours, rgba} from './colours.js';
@@ -27,19 +30,35 @@ export class ExploreView {
     this.orbit = {target: [0, 0, 0], azimuth: 225, elevation: 35, distance: 800};
     this.bounds = [0, 0, 1, 1];
     this.city = null;
+    this.tiles = [];
+    this.levels = [];
     this.layers = null;
     this.bindPointer();
     new ResizeObserver(() => this.resize()).observe(container);
   }
 
-  // Loads city.glb and puts the camera over the city's `bounds` ([min_x, min_y, max_x, max_y]).
+  // Loads the city's ground and tile index (city.glb where there is none) and puts the camera
+  // over the city's `bounds` ([min_x, min_y, max_x, max_y]).
   async load(bounds, layers) {
     this.bounds = bounds;
     this.layers = layers;
-    const gltf = await new GLTFLoader().loadAsync('/api/city.glb?v=' + Date.now());
+    this.version = Date.now();
+    const loader = new GLTFLoader();
+    const index = await fetch('/api/tiles.json', {cache: 'no-store'}).then(r => (r.ok ? r.json() : null));
     if (this.city) this.scene.remove(this.city);
-    this.city = gltf.scene;
+    for (const t of this.tiles) this.scene.remove(t.group);
+    this.tiles = [];
+    this.levels = index ? index.levels : [];
+    this.city = (await loader.loadAsync((index ? index.ground : '/api/city.glb') + '?v=' + this.version)).scene;
     this.scene.add(this.city);
+    for (const tile of index?.tiles || []) {
+      const [x0, y0, z0, x1, y1, z1] = tile.box;
+      const group = new THREE.Group();
+      group.name = 'tile ' + tile.name;
+      this.scene.add(group);
+      this.tiles.push({name: tile.name, urls: tile.levels, group, loaded: [], loading: [], shown: -1,
+                       box: new THREE.Box3().setFromPoints([toThree(x0, y0, z0), toThree(x1, y1, z1)])});
+    }
     const [x0, y0, x1, y1] = bounds;
     const [cx, cy] = [(x0 + x1) / 2, (y0 + y1) / 2];
     this.orbit = {target: [cx, cy, this.groundHeight(cx, cy)], azimuth: 225, elevation: 35,
@@ -89,9 +108,66 @@ export class ExploreView {
     this.camera.near = Math.max(0.5, this.orbit.distance / 1000);
     this.camera.far = this.orbit.distance * 50 + 10000;
     this.camera.updateProjectionMatrix();
-    this.renderer.render(this.scene, this.camera);
+    this.camera.updateMatrixWorld();
+    this.chooseLevels();
+    this.draw();
     this.drawMinimap();
     document.getElementById('camera-spec').textContent = this.spec();
+  }
+
+  // Draws once per frame however often the camera moved or a tile came in since the last one.
+  draw() {
+    if (this.drawing) return;
+    this.drawing = requestAnimationFrame(() => {
+      this.drawing = null;
+      this.renderer.render(this.scene, this.camera);
+    });
+  }
+
+  // Each tile in the view frustum shows the level its distance asks for, loading it when first
+  // asked; until it comes, the tile shows a level it has (or nothing). Tiles outside the
+  // frustum are hidden and load nothing.
+  chooseLevels() {
+    const frustum = new THREE.Frustum().setFromProjectionMatrix(
+        new THREE.Matrix4().multiplyMatrices(this.camera.projectionMatrix, this.camera.matrixWorldInverse));
+    for (const tile of this.tiles) {
+      tile.inView = frustum.intersectsBox(tile.box);
+      if (!tile.inView) {
+        tile.group.visible = false;
+        tile.shown = -1;
+        continue;
+      }
+      const distance = tile.box.distanceToPoint(this.camera.position);
+      const wanted = Math.max(0, this.levels.findIndex(l => l.until === null || distance < l.until));
+      if (!tile.loaded[wanted]) this.loadLevel(tile, wanted);
+      // The wanted level, else the nearest level loaded, finer first.
+      const order = [...tile.urls.keys()].sort((a, b) => Math.abs(a - wanted) - Math.abs(b - wanted) || a - b);
+      const shown = order.find(l => tile.loaded[l]) ?? -1;
+      tile.loaded.forEach((scene, l) => scene && (scene.visible = l === shown));
+      tile.group.visible = shown >= 0;
+      tile.shown = shown;
+    }
+  }
+
+  loadLevel(tile, level) {
+    if (tile.loading[level]) return;
+    tile.loading[level] = new GLTFLoader().loadAsync(tile.urls[level] + '?v=' + this.version).then(gltf => {
+      if (!this.tiles.includes(tile)) return;  // a newer city came meanwhile
+      tile.loaded[level] = gltf.scene;
+      tile.group.add(gltf.scene);
+      this.update();
+    }, error => {
+      console.error(`tile ${tile.name} level ${level}: ${error.message || error}`);
+    });
+  }
+
+  // For the browser test and the curious: tiles per level loaded and shown, tiles in view,
+  // and loads under way.
+  tileCounts() {
+    const loaded = this.levels.map((_, l) => this.tiles.filter(t => t.loaded[l]).length);
+    const shown = this.levels.map((_, l) => this.tiles.filter(t => t.shown === l).length);
+    const pending = this.tiles.reduce((n, t) => n + t.loading.filter((p, l) => p && !t.loaded[l]).length, 0);
+    return {tiles: this.tiles.length, inView: this.tiles.filter(t => t.inView).length, loaded, shown, pending};
   }
 
   resize() {

@@ -1,0 +1,86 @@
+// A cancelled build stops inside the stage under way (generate/cancel.h): the flag is set as a
+// stage begins, and the build throws Cancelled before that stage returns.
+#include "generate/cancel.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <thread>
+
+#include "generate/pipeline.h"
+#include "tests/test_util.h"
+
+namespace exacity {
+namespace {
+
+// Two zones across a highway (tests/serve_test.cpp's small sketch).
+const char* kSketch = R"({"type": "FeatureCollection", "exacity": {"seed": 3}, "features": [
+  {"type": "Feature", "properties": {"zone": "residential"},
+   "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [400, 0], [400, 300], [0, 300], [0, 0]]]}},
+  {"type": "Feature", "properties": {"zone": "commercial"},
+   "geometry": {"type": "Polygon", "coordinates": [[[400, 0], [600, 0], [600, 300], [400, 300], [400, 0]]]}},
+  {"type": "Feature", "properties": {"road": "highway", "width": 16},
+   "geometry": {"type": "LineString", "coordinates": [[-50, 150], [650, 150]]}}]})";
+
+// Builds and writes the city, setting the flag as `stage` begins; the last stage begun when
+// the build ended, and whether it ended by Cancelled.
+std::pair<std::string, bool> cancel_at(const std::string& stage) {
+  const std::filesystem::path dir = testing_util::temp_dir("cancel_" + std::to_string(std::hash<std::string>()(stage)));
+  std::ofstream(dir / "sketch.geojson") << kSketch;
+  const Sketch sketch = load_sketch(dir / "sketch.geojson");
+  std::atomic<bool> flag{false};
+  const CancelScope scope(flag);
+  std::string last;
+  StageClock clock(
+      [&](int, int, const std::string& name) {
+        last = name;
+        if (name == stage) flag = true;
+      },
+      kCityStages + kWriteStages);
+  try {
+    const City city = build_city(sketch, clock);
+    std::filesystem::create_directory(dir / "out");
+    write_city(city, dir / "out", clock);
+  } catch (const Cancelled&) {
+    return {last, true};
+  }
+  return {last, false};
+}
+
+TEST(Cancel, TheLongStagesStopWithinThemselves) {
+  for (const char* stage : {"road network", "lots", "buildings", "3d export"}) {
+    const auto [last, cancelled] = cancel_at(stage);
+    EXPECT_TRUE(cancelled) << stage;
+    EXPECT_EQ(last, stage);
+  }
+}
+
+TEST(Cancel, NothingStopsWithoutAScopeOrWithTheFlagDown) {
+  EXPECT_NO_THROW(CancelCheck().check());
+  std::atomic<bool> flag{false};
+  {
+    const CancelScope scope(flag);
+    EXPECT_NO_THROW(CancelCheck().check());
+    flag = true;
+    EXPECT_THROW(CancelCheck().check(), Cancelled);
+  }
+  EXPECT_NO_THROW(CancelCheck().check());  // the scope ended: this thread checks no flag
+}
+
+TEST(Cancel, ACheckTakesItsThreadsFlagToOtherThreads) {
+  std::atomic<bool> flag{true};
+  const CancelScope scope(flag);
+  const CancelCheck check;
+  bool thrown = false;
+  std::thread([&] {
+    try {
+      check.check();
+    } catch (const Cancelled&) {
+      thrown = true;
+    }
+  }).join();
+  EXPECT_TRUE(thrown);
+}
+
+}  // namespace
+}  // namespace exacity

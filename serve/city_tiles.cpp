@@ -1,0 +1,150 @@
+#include "serve/city_tiles.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+
+#include "generate/cancel.h"
+#include "generate/errors.h"
+#include "generate/export/building_mesh.h"
+#include "generate/export/gltf_export.h"
+
+namespace exacity::serve {
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+// Levels switch by the camera's distance to a tile's box, in tile sides: close enough to
+// tell one building from its box, and to tell a box from its block's.
+constexpr double kFullUntil = 3, kBoxesUntil = 8;
+
+struct Bounds3 {
+  geom::Box box = geom::Box::none();
+  double bottom = INFINITY, top = -INFINITY;
+  void add(double x, double y, double z) {
+    box.add(geom::Vec2{x, y});
+    bottom = std::min(bottom, z), top = std::max(top, z);
+  }
+  void add(const Bounds3& b) {
+    box.add(b.box);
+    bottom = std::min(bottom, b.bottom), top = std::max(top, b.top);
+  }
+};
+
+Bounds3 mesh_bounds(const Mesh& mesh) {
+  Bounds3 b;
+  for (const auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    b.add(p[0], p[1], p[2]);
+  }
+  return b;
+}
+
+// A block's structures of one zone in a tile: their box, and their tops weighed by footprint.
+struct BlockPart {
+  Bounds3 bounds;
+  double area = 0, area_times_top = 0;
+};
+
+struct Tile {
+  std::vector<Building> buildings;
+  std::vector<ModelInstance> models, clutter;
+  std::vector<StructureBox> boxes;
+  std::map<std::pair<int, ZoneType>, BlockPart> blocks;
+  Bounds3 bounds;
+};
+
+}  // namespace
+
+double tile_size(const geom::Box& city) {
+  const double extent = std::max(city.width(), city.height());
+  return std::max(250.0, std::ceil(extent / 16 / 50) * 50);
+}
+
+json write_city_tiles(const City& city, const fs::path& dir) {
+  geom::Box box = city.ground.bounds();
+  if (box.holds_nothing()) box = {0, 0, 1, 1};
+  const double size = tile_size(box);
+  const int columns = std::max(1, static_cast<int>(std::ceil(box.width() / size)));
+  const int rows = std::max(1, static_cast<int>(std::ceil(box.height() / size)));
+  auto tile_of = [&](double x, double y) {
+    const int i = std::clamp(static_cast<int>(std::floor((x - box.min_x) / size)), 0, columns - 1);
+    const int j = std::clamp(static_cast<int>(std::floor((y - box.min_y) / size)), 0, rows - 1);
+    return std::make_pair(i, j);
+  };
+  const ModelLibrary* library = city.model_library();
+  const std::vector<Mesh> meshes = structure_meshes(city.buildings, city.models, library);
+  std::map<std::pair<int, int>, Tile> tiles;  // by column and row: the index's order
+  auto place = [&](int id, int lot, ZoneType zone, const geom::Polygon& outline, double floor, double height) -> Tile& {
+    Bounds3 b = mesh_bounds(meshes[id]);
+    if (b.box.holds_nothing())  // no mesh to bound: its outline from its floor up to its height
+      for (const geom::Vec2& p : outline.outer) b.add(p.x, p.y, floor), b.add(p.x, p.y, floor + height);
+    Tile& t = tiles[tile_of((b.box.min_x + b.box.max_x) / 2, (b.box.min_y + b.box.max_y) / 2)];
+    t.bounds.add(b);
+    t.boxes.push_back({b.box, b.bottom, b.top, zone});
+    const int block = lot >= 0 ? city.lots[lot].block : -1;
+    BlockPart& part = t.blocks[{block, zone}];
+    part.bounds.add(b);
+    const double area = b.box.width() * b.box.height();
+    part.area += area, part.area_times_top += area * b.top;
+    return t;
+  };
+  for (const Building& b : city.buildings)
+    place(b.id, b.lot, b.zone, b.polygon, b.floor, b.height).buildings.push_back(b);
+  for (const ModelInstance& m : city.models)
+    place(m.id, m.lot, m.zone, m.polygon, m.floor, m.height).models.push_back(m);
+  for (const Clutter& c : city.clutter.items) {
+    Tile& t = tiles[tile_of(c.spot.x, c.spot.y)];
+    t.clutter.push_back(c.instance);
+    t.bounds.add(c.spot.x, c.spot.y, c.instance.floor);
+    t.bounds.add(c.spot.x, c.spot.y, c.instance.floor + c.instance.height);
+  }
+
+  fs::create_directories(dir);
+  const GltfCounts ground = write_gltf(city.ground, {}, {}, {}, nullptr, city.heightmap(), dir / "ground.glb");
+  json index{{"tile_size", size},
+             {"bounds", {box.min_x, box.min_y, box.max_x, box.max_y}},
+             {"ground", "/api/tiles/ground.glb"},
+             {"ground_triangles", ground.triangles},
+             {"levels",
+              {{{"name", "full"}, {"until", kFullUntil * size}},
+               {{"name", "boxes"}, {"until", kBoxesUntil * size}},
+               {{"name", "blocks"}, {"until", nullptr}}}},
+             {"tiles", json::array()}};
+  const CancelCheck cancel;
+  for (auto& [at, t] : tiles) {
+    cancel.check();
+    const std::string name = std::to_string(at.first) + "_" + std::to_string(at.second);
+    fs::create_directories(dir / name);
+    // Blocks: the box of a block's structures, as high as their tops weighed by footprint.
+    std::vector<StructureBox> blocks;
+    for (const auto& [key, part] : t.blocks) {
+      const Bounds3& b = part.bounds;
+      blocks.push_back({b.box, b.bottom, part.area > 0 ? part.area_times_top / part.area : b.top, key.second});
+    }
+    const GltfCounts full =
+        write_gltf_structures(city.ground, t.buildings, t.models, meshes, library, dir / name / "0.glb", t.clutter);
+    const GltfCounts boxes = write_gltf_boxes(city.ground, t.boxes, dir / name / "1.glb");
+    const GltfCounts far = write_gltf_boxes(city.ground, blocks, dir / name / "2.glb");
+    json levels = json::array();
+    for (int level = 0; level < 3; ++level)
+      levels.push_back("/api/tiles/" + name + "/" + std::to_string(level) + ".glb");
+    index["tiles"].push_back({{"name", name},
+                              {"box",
+                               {t.bounds.box.min_x, t.bounds.box.min_y, t.bounds.bottom, t.bounds.box.max_x,
+                                t.bounds.box.max_y, t.bounds.top}},
+                              {"buildings", t.buildings.size()},
+                              {"models", t.models.size()},
+                              {"clutter", t.clutter.size()},
+                              {"levels", levels},
+                              {"triangles", {full.triangles, boxes.triangles, far.triangles}}});
+  }
+  std::ofstream out(dir / "index.json", std::ios::binary);
+  out << index.dump(1) << "\n";
+  if (!out) throw UserError((dir / "index.json").string() + ": write failed (disk full?)");
+  return index;
+}
+
+}  // namespace exacity::serve
