@@ -188,6 +188,19 @@ try {
   // Explore: the 3D view, orbited with the mouse, then rendered.
   await page.click('[data-view="explore"]');
   await page.waitForFunction(() => window.exacityExplore && window.exacityExplore.city, {timeout: 60000});
+  // The minimap's background is an overview of the city taken from above (seed 000, 3.3.4):
+  // not one colour, and the minimap shows it.
+  await page.waitForFunction(() => window.exacityExplore.overview, {timeout: 60000});
+  const overview = await page.evaluate(() => {
+    const data = window.exacityExplore.overview.canvas.getContext('2d').getImageData(0, 0, 256, 256).data;
+    const colours = new Set();
+    for (let i = 0; i < data.length; i += 4 * 97) colours.add(`${data[i]},${data[i + 1]},${data[i + 2]}`);
+    const map = document.getElementById('minimap');
+    const middle = map.getContext('2d').getImageData(map.width / 2, map.height / 2, 1, 1).data;
+    return {colours: colours.size, minimapMiddle: [...middle.slice(0, 3)]};
+  });
+  check(overview.colours > 20 && overview.minimapMiddle.join() !== '244,244,240',
+        `the minimap shows an overview of the city: ${JSON.stringify(overview)}`);
   const spec = async () => page.$eval('#camera-spec', e => e.textContent);
   const first = await spec();
   const view = await (await page.$('#three')).boundingBox();

@@ -1,6 +1,7 @@
 // Explore: the city in three.js under seed 000's camera (3.3.2), a spherical camera bound to
 // the upper hemisphere around a target that pans over the ground, with a minimap of the
-// camera and the ground it sees (3.3.4); "Render this view" path-traces the same camera.
+// camera and the ground it sees over an overview of the city (3.3.4); "Render this view"
+// path-traces the same camera.
 // The city comes as its ground and its tiles (GET /api/tiles.json), each tile drawn at the
 // level of detail its distance asks for, loaded when first needed, and left out when outside
 // the view (docs/design.md, Serving: tiles); city.glb is the fallback for a city without.
@@ -63,7 +64,51 @@ export class ExploreView {
     const [cx, cy] = [(x0 + x1) / 2, (y0 + y1) / 2];
     this.orbit = {target: [cx, cy, this.groundHeight(cx, cy)], azimuth: 225, elevation: 35,
                   distance: 0.75 * Math.hypot(x1 - x0, y1 - y0)};
+    this.overview = null;
     this.update();
+    this.captureOverview();
+  }
+
+  // Seed 000, 3.3.4: an air photo of the whole city, taken once from straight above at the
+  // height that sees all of it, is the minimap's background: every tile at its coarsest level
+  // over the ground. Until it is taken the minimap draws the zones, water and roads.
+  async captureOverview() {
+    const coarsest = this.levels.length - 1, tiles = this.tiles;
+    for (const tile of tiles) this.loadLevel(tile, coarsest);
+    await Promise.all(tiles.map(t => t.loading[coarsest]));
+    if (this.tiles !== tiles) return;  // a newer city came meanwhile
+    const [x0, y0, x1, y1] = this.bounds;
+    const half = Math.max(x1 - x0, y1 - y0) / 2, cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
+    const above = new THREE.OrthographicCamera(-half, half, half, -half, 1, 2e5);
+    above.position.copy(toThree(cx, cy, 1e5));
+    above.up.set(0, 0, -1);  // north up
+    above.lookAt(toThree(cx, cy, 0));
+    const shown = tiles.map(t => [t.group.visible, t.loaded.map(scene => scene && scene.visible)]);
+    for (const t of tiles) {
+      t.group.visible = Boolean(t.loaded[coarsest]);
+      t.loaded.forEach((scene, l) => scene && (scene.visible = l === coarsest));
+    }
+    const size = 256;
+    const target = new THREE.WebGLRenderTarget(size, size);
+    target.texture.colorSpace = THREE.SRGBColorSpace;
+    this.renderer.setRenderTarget(target);
+    this.renderer.render(this.scene, above);
+    this.renderer.setRenderTarget(null);
+    const pixels = new Uint8Array(size * size * 4);
+    this.renderer.readRenderTargetPixels(target, 0, 0, size, size, pixels);
+    target.dispose();
+    tiles.forEach((t, i) => {
+      t.group.visible = shown[i][0];
+      t.loaded.forEach((scene, l) => scene && (scene.visible = shown[i][1][l]));
+    });
+    const canvas = document.createElement('canvas');
+    canvas.width = canvas.height = size;
+    const image = canvas.getContext('2d').createImageData(size, size);
+    for (let row = 0; row < size; ++row)  // WebGL's rows run bottom up
+      image.data.set(pixels.subarray((size - 1 - row) * size * 4, (size - row) * size * 4), row * size * 4);
+    canvas.getContext('2d').putImageData(image, 0, 0);
+    this.overview = {canvas, box: [cx - half, cy - half, cx + half, cy + half]};
+    this.drawMinimap();
   }
 
   // The city's surface under (x, y), so the target stands on a heightmap's ground, not under it.
@@ -240,7 +285,12 @@ export class ExploreView {
     const px = ([x, y]) => [pad + (x - x0) * s, size - pad - (y - y0) * s];
     c.fillStyle = '#f4f4f0';
     c.fillRect(0, 0, size, size);
-    for (const [name, colour] of [['zones', null], ['water', '#5b9bd5'], ['road_areas', '#6b6b6b']]) {
+    if (this.overview) {
+      const [ox0, , ox1, oy1] = this.overview.box;
+      const [left, top] = px([ox0, oy1]);
+      c.drawImage(this.overview.canvas, left, top, (ox1 - ox0) * s, (ox1 - ox0) * s);
+    }
+    for (const [name, colour] of this.overview ? [] : [['zones', null], ['water', '#5b9bd5'], ['road_areas', '#6b6b6b']]) {
       const doc = this.layers?.[name];
       if (!doc) continue;
       for (const f of doc.features) {
