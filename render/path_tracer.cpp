@@ -250,7 +250,8 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
         for (int k = first; k < first + t.spp; ++k) {
           Sampler rng(i, static_cast<std::uint64_t>(k));
           // The first sample goes through the pixel's centre, for clean data layers.
-          const float jx = k == 0 ? 0.5f : rng.next(), jy = k == 0 ? 0.5f : rng.next();
+          float jx, jy;
+          pixel_jitter(static_cast<std::uint64_t>(k), jx, jy);
           V3 o, d;
           lens.ray(static_cast<float>(x) + jx, static_cast<float>(y) + jy, o, d);
           Surface first_hit;
