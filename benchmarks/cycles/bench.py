@@ -49,6 +49,8 @@ def main():
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--camera", help="exacity's --camera SPEC; default: exacity render's default view")
     p.add_argument("--build", default=os.path.join(ROOT, "build", "release"))
+    p.add_argument("--reuse-cycles", action="store_true",
+                   help="keep WORK/cycles from an earlier run with the same options (Cycles' images and times)")
     a = p.parse_args()
 
     blender = shutil.which("blender")
@@ -65,9 +67,13 @@ def main():
     spps = [int(v) for v in a.spp.split(",")]
     work = os.path.abspath(a.work)
     city = os.path.join(work, "city")
-    shutil.rmtree(work, ignore_errors=True)
+    reuse = a.reuse_cycles and os.path.exists(os.path.join(work, "cycles", "times.json"))
+    for folder in ("city", "exacity") if reuse else ("",):
+        shutil.rmtree(os.path.join(work, folder), ignore_errors=True)
     os.makedirs(os.path.join(work, "exacity"))
-    os.makedirs(os.path.join(work, "cycles"))
+    os.makedirs(os.path.join(work, "cycles"), exist_ok=True)
+    # Other jobs on the machine stretch every wall-clock time: the load is printed with the table.
+    load_before = os.getloadavg()[0]
     run([exacity, "generate", a.sketch, "-o", city, "--quiet", "--threads", str(a.threads)])
 
     # The runs: (name, spp, denoise); the reference first, untimed in the table.
@@ -109,9 +115,13 @@ def main():
     config = {"glb": os.path.join(city, "city.glb"), "camera": camera, "sky_map": os.path.join(work, "sky.exr"),
               "sun": sun, "grass_albedo": GRASS_ALBEDO, "max_bounces": MAX_BOUNCES, "threads": a.threads,
               "size": [width, height], "runs": cycles_runs, "times": os.path.join(work, "cycles", "times.json")}
-    json.dump(config, open(os.path.join(work, "cycles", "config.json"), "w"), indent=1)
-    run([blender, "-b", "--factory-startup", "-noaudio", "--python-exit-code", "1", "-P", os.path.join(ROOT, "benchmarks", "cycles", "cycles_scene.py"),
-         "--", os.path.join(work, "cycles", "config.json")])
+    if reuse:
+        print("cycles: reusing the earlier run's images and times", flush=True)
+    else:
+        json.dump(config, open(os.path.join(work, "cycles", "config.json"), "w"), indent=1)
+        run([blender, "-b", "--factory-startup", "-noaudio", "--python-exit-code", "1", "-P",
+             os.path.join(ROOT, "benchmarks", "cycles", "cycles_scene.py"),
+             "--", os.path.join(work, "cycles", "config.json")])
     raw = json.load(open(config["times"]))
     cycles_times = {}
     for name, _, _ in runs:
@@ -130,6 +140,7 @@ def main():
     cycles_errors = errors("cycles", [n for n, _, _ in runs[2:] if n in cycles_times])
 
     print(f"\n{width}x{height}, {MAX_BOUNCES} bounces at most, {a.threads} threads, references {a.reference} spp; "
+          f"load average {load_before:.1f} at the start, {os.getloadavg()[0]:.1f} at the end; "
           f"Cycles' denoiser {'OpenImageDenoise' if denoiser else 'absent from this Blender (built without OpenImageDenoise)'}\n")
     print("| renderer | spp | denoiser | seconds | RMSE | efficiency 1/(s·RMSE²) | ratio to Cycles |")
     print("|---|---|---|---|---|---|---|")
