@@ -398,7 +398,7 @@ TEST(Render, PixelSamplesStartAtTheCentreAndCoverThePixelEvenly) {
   int cells[8][8] = {};
   for (std::uint64_t k = 0; k < 256; ++k) {
     pixel_jitter(k, x, y);
-    ASSERT_GE(x, 0.0f), ASSERT_LT(x, 1.0f), ASSERT_GE(y, 0.0f), ASSERT_LT(y, 1.0f);
+    ASSERT_TRUE(x >= 0 && x < 1 && y >= 0 && y < 1) << "sample " << k << ": " << x << ", " << y;
     ++cells[static_cast<int>(y * 8)][static_cast<int>(x * 8)];
   }
   for (const auto& row : cells)
