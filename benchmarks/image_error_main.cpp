@@ -46,8 +46,10 @@ int main(int argc, char** argv) {
   std::vector<std::string> paths;
   bool png = false;
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--png")) png = true;
-    else paths.push_back(argv[i]);
+    if (!std::strcmp(argv[i], "--png"))
+      png = true;
+    else
+      paths.push_back(argv[i]);
   }
   if (paths.size() < 2) {
     std::fprintf(stderr, "usage: exacity_image_error REFERENCE.exr IMAGE.exr... [--png]\n");

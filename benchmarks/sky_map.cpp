@@ -25,14 +25,21 @@ int main(int argc, char** argv) {
   float azimuth = 200, elevation = 40, turbidity = 3;  // exacity render's defaults (render/render.h)
   int width = 1024;
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--sun-azimuth") && i + 1 < argc) azimuth = std::stof(argv[++i]);
-    else if (!std::strcmp(argv[i], "--sun-elevation") && i + 1 < argc) elevation = std::stof(argv[++i]);
-    else if (!std::strcmp(argv[i], "--turbidity") && i + 1 < argc) turbidity = std::stof(argv[++i]);
-    else if (!std::strcmp(argv[i], "--width") && i + 1 < argc) width = std::stoi(argv[++i]);
-    else out = argv[i];
+    if (!std::strcmp(argv[i], "--sun-azimuth") && i + 1 < argc)
+      azimuth = std::stof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--sun-elevation") && i + 1 < argc)
+      elevation = std::stof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--turbidity") && i + 1 < argc)
+      turbidity = std::stof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--width") && i + 1 < argc)
+      width = std::stoi(argv[++i]);
+    else
+      out = argv[i];
   }
   if (out.empty() || width < 4) {
-    std::fprintf(stderr, "usage: exacity_sky_map OUT.exr [--sun-azimuth DEG] [--sun-elevation DEG] [--turbidity T] [--width N]\n");
+    std::fprintf(
+        stderr,
+        "usage: exacity_sky_map OUT.exr [--sun-azimuth DEG] [--sun-elevation DEG] [--turbidity T] [--width N]\n");
     return 2;
   }
   const Sky sky(azimuth, elevation, turbidity);
@@ -61,7 +68,8 @@ int main(int argc, char** argv) {
   }
   const V3 d = sky.sun_direction(), e = sky.sun_irradiance();
   const double diameter = 2 * std::acos(static_cast<double>(sky.sun_cos_max())) * 180 / kPi;
-  std::printf("{\"sun_direction\": [%.6f, %.6f, %.6f], \"sun_irradiance\": [%.6f, %.6f, %.6f], \"sun_diameter_deg\": %.6f}\n",
-              d.x, d.y, d.z, e.x, e.y, e.z, diameter);
+  std::printf(
+      "{\"sun_direction\": [%.6f, %.6f, %.6f], \"sun_irradiance\": [%.6f, %.6f, %.6f], \"sun_diameter_deg\": %.6f}\n",
+      d.x, d.y, d.z, e.x, e.y, e.z, diameter);
   return 0;
 }
