@@ -68,7 +68,8 @@ def main():
     work = os.path.abspath(a.work)
     city = os.path.join(work, "city")
     reuse = a.reuse_cycles and os.path.exists(os.path.join(work, "cycles", "times.json"))
-    for folder in ("city", "exacity") if reuse else ("",):
+    # Only what an earlier run wrote is removed, never WORK itself.
+    for folder in ("city", "exacity") if reuse else ("city", "exacity", "cycles"):
         shutil.rmtree(os.path.join(work, folder), ignore_errors=True)
     os.makedirs(os.path.join(work, "exacity"))
     os.makedirs(os.path.join(work, "cycles"), exist_ok=True)
