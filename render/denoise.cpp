@@ -94,15 +94,22 @@ Level filter_level(const Image& img, const Level& in, const std::vector<float>& 
           if (px < 0 || py < 0 || px >= img.width || py >= img.height) continue;
           const std::size_t j = static_cast<std::size_t>(py) * img.width + px;
           if (sky != is_sky(img, j)) continue;  // never across the skyline
-          float w = kB3[u + 2] * kB3[v + 2] * std::exp(-std::abs(lp - luminance(in.light[j])) / noise);
+          // The stopping functions multiply, so their exponents add: one exp a tap, the
+          // normals' cos^p as p log cos, in place of a pow and three exps.
+          float exponent = -std::abs(lp - luminance(in.light[j])) / noise;
           if (!sky && j != i) {
-            const float facing = std::max(0.0f, dot(img.normal[i], img.normal[j]));
+            const float facing = dot(img.normal[i], img.normal[j]);
+            if (facing <= 0) continue;
             const float distance = static_cast<float>(step) * std::sqrt(static_cast<float>(u * u + v * v));
             const float depth_scale = s.depth_sigma * gradients[i] * distance + 1e-3f * img.depth[i] + 1e-6f;
             const V3 da = img.albedo[i] - img.albedo[j];
-            w *= std::pow(facing, s.normal_power) * std::exp(-std::abs(img.depth[i] - img.depth[j]) / depth_scale) *
-                 std::exp(-(std::abs(da.x) + std::abs(da.y) + std::abs(da.z)) / s.albedo_sigma);
+            exponent += s.normal_power * std::log(facing) - std::abs(img.depth[i] - img.depth[j]) / depth_scale -
+                        (std::abs(da.x) + std::abs(da.y) + std::abs(da.z)) / s.albedo_sigma;
           }
+          // Below e^-30 a tap weighs nothing next to the centre's (e^0), and exp's underflow
+          // path is slow.
+          if (exponent < -30) continue;
+          const float w = kB3[u + 2] * kB3[v + 2] * std::exp(exponent);
           sum += in.light[j] * w, weights += w, var += w * w * in.variance[j];
         }
       // The centre's own weight is never zero, so neither is the sum.

@@ -250,7 +250,8 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
         for (int k = first; k < first + t.spp; ++k) {
           Sampler rng(i, static_cast<std::uint64_t>(k));
           // The first sample goes through the pixel's centre, for clean data layers.
-          const float jx = k == 0 ? 0.5f : rng.next(), jy = k == 0 ? 0.5f : rng.next();
+          float jx, jy;
+          pixel_jitter(static_cast<std::uint64_t>(k), jx, jy);
           V3 o, d;
           // A thin lens draws its point after the pixel's (and the first sample takes the
           // lens's centre too); a pinhole draws nothing, so its images stay as they were.

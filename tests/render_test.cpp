@@ -416,3 +416,21 @@ TEST(Texture, SamplesLinearTexelsBilinearlyRepeatingOrClamped) {
   expect(0.0f, 0.75f, true, {1, 0, 0});
   expect(-3.0f, 7.0f, true, {1, 0, 0});
 }
+
+// The pixel samples cover the pixel evenly (render/sampling.h): sample 0 at the centre, and
+// the first 256 put 4 ± 1 in each cell of an 8 x 8 grid over the pixel, where independent
+// uniform jitter would leave some cells with 0 or 1 and others with 8 or more.
+TEST(Render, PixelSamplesStartAtTheCentreAndCoverThePixelEvenly) {
+  float x, y;
+  pixel_jitter(0, x, y);
+  EXPECT_EQ(x, 0.5f);
+  EXPECT_EQ(y, 0.5f);
+  int cells[8][8] = {};
+  for (std::uint64_t k = 0; k < 256; ++k) {
+    pixel_jitter(k, x, y);
+    ASSERT_TRUE(x >= 0 && x < 1 && y >= 0 && y < 1) << "sample " << k << ": " << x << ", " << y;
+    ++cells[static_cast<int>(y * 8)][static_cast<int>(x * 8)];
+  }
+  for (const auto& row : cells)
+    for (int count : row) EXPECT_NEAR(count, 4, 1);
+}
