@@ -346,14 +346,16 @@ void RenderScene::add_ground(const exacity::City& city, const geom::Box& world, 
 // meets the plane beyond, at that height, without a step.
 void RenderScene::add_terrain(const exacity::Terrain* terrain, const geom::Box& world,
                               const std::vector<geom::Polygon>& water) {
-  geom::Box wide{world.min_x - world.width(), world.min_y - world.height(), world.max_x + world.width(),
-                 world.max_y + world.height()};
+  const geom::Box near{world.min_x - world.width(), world.min_y - world.height(), world.max_x + world.width(),
+                       world.max_y + world.height()};
+  geom::Box wide = near;
   if (terrain) {
     const geom::Box& b = terrain->bounds();
     const double f = terrain->fade();
     wide.add(geom::Box{b.min_x - f, b.min_y - f, b.max_x + f, b.max_y + f});
   }
-  exacity::GroundMesh g = exacity::terrain_mesh(terrain, terrain ? wide : world, water, 768);
+  // Pixel-sized cells near the city, coarser past it.
+  exacity::GroundMesh g = exacity::terrain_mesh(terrain, terrain ? wide : world, near, water, 768);
   std::vector<V3> v;
   for (const auto& p : g.vertices) v.push_back(to_scene(p[0], p[1], p[2]));
   Geometry info;

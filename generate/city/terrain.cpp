@@ -12,7 +12,9 @@
 namespace exacity {
 
 Terrain::Terrain(const TerrainSpec& spec, int width, int height, std::vector<float> values)
-    : spec_(spec), image_{width, height, std::move(values)} {}
+    : spec_(spec), image_{width, height, std::move(values)} {
+  lowest_ = spec_.low + *std::min_element(image_.values.begin(), image_.values.end()) * (spec_.high - spec_.low);
+}
 
 Terrain Terrain::load(const TerrainSpec& spec) {
   GreyImage image = read_grey_image(spec.heightmap, "heightmap", "\"exacity\".terrain.heightmap");
@@ -52,9 +54,6 @@ double Terrain::inside_height(geom::Vec2 p) const {
   return spec_.low + value * (spec_.high - spec_.low);
 }
 
-double Terrain::lowest() const {
-  return spec_.low + *std::min_element(image_.values.begin(), image_.values.end()) * (spec_.high - spec_.low);
-}
 
 double Terrain::fade() const { return std::max(spec_.bounds.width(), spec_.bounds.height()) / 2; }
 

@@ -29,7 +29,7 @@ class Terrain {
   // lowest() over fade() metres and level there.
   double height_at(geom::Vec2 p) const;
   // The lowest height of the map.
-  double lowest() const;
+  double lowest() const { return lowest_; }
   // How far past the bounds the ground sinks to lowest(): half the map's longer side.
   double fade() const;
   // The lowest and highest terrain under a ring: sampled at its corners, along its edges
@@ -51,6 +51,7 @@ class Terrain {
   double inside_height(geom::Vec2 p) const;
   TerrainSpec spec_;
   GreyImage image_;
+  double lowest_ = 0;
 };
 
 }  // namespace exacity

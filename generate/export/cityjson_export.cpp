@@ -306,7 +306,7 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
 
   // The ground under the city: the heightmap over the rectangle around it.
   json tin = json::array();
-  append_triangles(terrain_mesh(terrain, box, ground.water, 512), v, tin);
+  append_triangles(terrain_mesh(terrain, box, box, ground.water, 512), v, tin);
   objects["terrain"] = {{"type", "TINRelief"}, {"geometry", json::array({{{"type", "CompositeSurface"}, {"lod", "1"}, {"boundaries", tin}}})}};
 
   json doc{{"type", "CityJSON"},

@@ -143,7 +143,7 @@ Primitives ground_primitives(const Ground& ground, const Terrain* terrain, const
   Primitives out;
   {
     Triangles t;
-    add_ground_mesh(terrain_mesh(terrain, box, ground.water, 512), local, t);
+    add_ground_mesh(terrain_mesh(terrain, box, box, ground.water, 512), local, t);
     out.push_back({glb.accessors(t), glb.material("terrain", kTerrainColour)});
   }
   std::map<std::string, std::pair<ZoneType, Triangles>> zones;  // by name: the materials' order

@@ -99,28 +99,36 @@ double bed_height(const Terrain* terrain, geom::Vec2 p, double level) {
   return std::min(terrain ? terrain->height_at(p) : level, level - kBedDepth);
 }
 
-GroundMesh terrain_mesh(const Terrain* terrain, const geom::Box& box_in, const std::vector<geom::Polygon>& water,
-                        int max_cells) {
+GroundMesh terrain_mesh(const Terrain* terrain, const geom::Box& box_in, const geom::Box& detail,
+                        const std::vector<geom::Polygon>& water, int max_cells) {
   if (!terrain) return terrain_tin(nullptr, box_in, max_cells);
   // Grid lines through the pixel centres (extended past the map), or coarser ones; the box's
   // own edges, one cell out, close the grid.
   const geom::Box& map = terrain->bounds();
   const double pw = map.width() / terrain->width(), ph = map.height() / terrain->height();
-  const double sx = std::max(pw, box_in.width() / max_cells), sy = std::max(ph, box_in.height() / max_cells);
+  const double sx = std::max(pw, detail.width() / max_cells), sy = std::max(ph, detail.height() / max_cells);
   const double step = std::min(sx, sy);
   const geom::Box box{box_in.min_x - sx, box_in.min_y - sy, box_in.max_x + sx, box_in.max_y + sy};
-  auto lines = [](double lo, double hi, double first, double s) {
-    std::vector<double> at{lo};
-    for (double k = std::ceil((lo + s / 4 - first) / s);; ++k) {
-      const double x = first + k * s;
-      if (x >= hi - s / 4) break;
-      at.push_back(x);
-    }
-    at.push_back(hi);
-    return at;
+  // Lines every `fine` over [dlo, dhi], every `coarse` (a multiple of it) elsewhere, all
+  // through the pixel centres' lines; none nearer than a quarter of `fine` to the next.
+  auto lines = [](double lo, double hi, double dlo, double dhi, double first, double fine, double coarse) {
+    std::vector<double> at;
+    for (double k = std::ceil((lo - first) / coarse); first + k * coarse < hi; ++k) at.push_back(first + k * coarse);
+    for (double k = std::ceil((std::max(lo, dlo) - first) / fine); first + k * fine < std::min(hi, dhi); ++k)
+      at.push_back(first + k * fine);
+    std::sort(at.begin(), at.end());
+    std::vector<double> kept{lo};
+    for (double x : at)
+      if (x - kept.back() >= fine / 4 && x <= hi - fine / 4) kept.push_back(x);
+    kept.push_back(hi);
+    return kept;
   };
-  const std::vector<double> xs = lines(box.min_x, box.max_x, map.min_x + pw / 2, sx);
-  const std::vector<double> ys = lines(box.min_y, box.max_y, map.min_y + ph / 2, sy);
+  // Past the detailed box the cells grow so that about 128 more span the rest.
+  auto coarse = [](double fine, double span) { return fine * std::max(1.0, std::ceil(span / 128 / fine)); };
+  const std::vector<double> xs = lines(box.min_x, box.max_x, detail.min_x, detail.max_x, map.min_x + pw / 2, sx,
+                                       coarse(sx, box.width() - detail.width()));
+  const std::vector<double> ys = lines(box.min_y, box.max_y, detail.min_y, detail.max_y, map.min_y + ph / 2, sy,
+                                       coarse(sy, box.height() - detail.height()));
   const int nx = static_cast<int>(xs.size()) - 1, ny = static_cast<int>(ys.size()) - 1;
   auto grid = [&](int i, int j) { return geom::Vec2{xs[i], ys[j]}; };
 

@@ -48,10 +48,11 @@ double bed_height(const Terrain* terrain, geom::Vec2 p, double level);
 // The ground over `box` (grown by a cell, so water on its edge stays inside), conforming
 // to the water outlines: the land, triangulated along every water ring so a bank follows
 // the water's outline exactly; each bank as a wall from the land down to the bed, kBedDepth
-// under the water's level; the bed under the water. Cells are the heightmap's pixels, or
-// coarser so that at most `max_cells` span a side. Without terrain: flat, two triangles
-// over the box.
-GroundMesh terrain_mesh(const Terrain* terrain, const geom::Box& box, const std::vector<geom::Polygon>& water,
-                        int max_cells);
+// under the water's level; the bed under the water. Over `detail` the cells are the
+// heightmap's pixels, or coarser so that at most `max_cells` span its side; past it,
+// coarser so that about 128 more span the rest of the box. Without terrain: flat, two
+// triangles over the box.
+GroundMesh terrain_mesh(const Terrain* terrain, const geom::Box& box, const geom::Box& detail,
+                        const std::vector<geom::Polygon>& water, int max_cells);
 
 }  // namespace exacity
