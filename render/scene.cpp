@@ -325,18 +325,17 @@ void RenderScene::add_ground(const exacity::City& city, const geom::Box& world, 
   add_road_markings(g, decks, terrain, palette);
   // The decks' sides and undersides and their piers, in the road's asphalt grey.
   exacity::GroundMesh structure;
-  exacity::bridge_structure(g, terrain, decks, structure);
+  std::vector<int> area;
+  exacity::bridge_structure(g, terrain, decks, structure, &area);
   if (!structure.triangles.empty()) {
     std::vector<V3> v;
     for (const auto& p : structure.vertices) v.push_back(to_scene(p[0], p[1], p[2]));
     Geometry info;
     info.material.assign(structure.triangles.size(), palette.sidewalk);
-    info.entity.assign(structure.triangles.size(), entity_id(Entity::Road, 0));
-    for (std::size_t i = 0; i < g.road_areas.size(); ++i)
-      if (g.road_areas[i].bridge && g.road_areas[i].road >= 0) {
-        info.entity.assign(structure.triangles.size(), entity_id(Entity::Road, static_cast<std::size_t>(g.road_areas[i].road)));
-        break;
-      }
+    for (int a : area) {
+      const int road = g.road_areas[a].road;
+      info.entity.push_back(entity_id(Entity::Road, road >= 0 ? static_cast<std::size_t>(road) : 0));
+    }
     add_triangles(v, structure.triangles, std::move(info));
   }
 }

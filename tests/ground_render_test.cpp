@@ -193,6 +193,10 @@ TEST(GroundRender, BridgeDeckIsLevelFromAbutmentToAbutmentOnPiers) {
   Surface hit;
   const double under = bank - 3;
   ASSERT_TRUE(scene.intersect(scene.to_scene(100, 50, under), {0, 1, 0}, 100, hit));
-  EXPECT_EQ(kind(hit.entity), Entity::Road);
+  int road = -1;
+  for (const auto& r : city.ground.road_areas)
+    if (r.bridge) road = r.road;
+  ASSERT_GE(road, 0);
+  EXPECT_EQ(hit.entity, entity_id(Entity::Road, static_cast<std::size_t>(road)));  // the pier is its bridge's
   EXPECT_NEAR(hit.position.y + scene.origin_y, 100 - exacity::kPierWidth / 2, 0.01);
 }

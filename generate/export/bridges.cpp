@@ -70,13 +70,22 @@ BridgeDecks bridge_decks(const Ground& ground, const Terrain* terrain) {
   return decks;
 }
 
-double BridgeDecks::at(const Ground& ground, geom::Vec2 p) const {
+int BridgeDecks::area_at(const Ground& ground, geom::Vec2 p) const {
   for (std::size_t i = 0; i < ground.road_areas.size(); ++i)
-    if (ground.road_areas[i].bridge && inside(ground.road_areas[i].polygon, p)) return height[i];
-  return NAN;
+    if (ground.road_areas[i].bridge && inside(ground.road_areas[i].polygon, p)) return static_cast<int>(i);
+  return -1;
 }
 
-void bridge_structure(const Ground& ground, const Terrain* terrain, const BridgeDecks& decks, GroundMesh& out) {
+double BridgeDecks::at(const Ground& ground, geom::Vec2 p) const {
+  const int i = area_at(ground, p);
+  return i >= 0 ? height[i] : NAN;
+}
+
+void bridge_structure(const Ground& ground, const Terrain* terrain, const BridgeDecks& decks, GroundMesh& out,
+                      std::vector<int>* area) {
+  auto belongs = [&](int i) {
+    if (area) area->resize(out.triangles.size(), i);
+  };
   for (std::size_t i = 0; i < ground.road_areas.size(); ++i) {
     if (!ground.road_areas[i].bridge) continue;
     const geom::Polygon& p = ground.road_areas[i].polygon;
@@ -95,6 +104,7 @@ void bridge_structure(const Ground& ground, const Terrain* terrain, const Bridge
     };
     sides(p.outer);
     for (const auto& h : p.holes) sides(h);
+    belongs(static_cast<int>(i));
   }
   std::vector<double> levels;
   for (const geom::Polygon& w : ground.water) levels.push_back(water_level(w, terrain));
@@ -112,12 +122,14 @@ void bridge_structure(const Ground& ground, const Terrain* terrain, const Bridge
         left -= geom::distance(r.line[k - 1], r.line[k]), ++k;
       const geom::Vec2 along = geom::unit_along(r.line[k - 1], r.line[k]);
       const geom::Vec2 c = r.line[k - 1] + along * left;
-      const double deck = decks.at(ground, c);
-      if (!std::isfinite(deck)) continue;
+      const int under = decks.area_at(ground, c);
+      if (under < 0) continue;
+      const double deck = decks.height[under];
       double bed = terrain ? terrain->height_at(c) : 0;
       for (std::size_t w = 0; w < ground.water.size(); ++w)
         if (inside(ground.water[w], c)) bed = bed_height(terrain, c, levels[w]);
       if (bed < deck - kDeckThickness) add_pier(c, along, half, bed, deck - kDeckThickness, out);
+      belongs(under);
     }
   }
 }

@@ -24,6 +24,8 @@ struct BridgeDecks {
 
   // The deck of the bridge surface under p, NaN where none is.
   double at(const Ground& ground, geom::Vec2 p) const;
+  // The road area of the bridge surface under p, -1 where none is.
+  int area_at(const Ground& ground, geom::Vec2 p) const;
 };
 
 BridgeDecks bridge_decks(const Ground& ground, const Terrain* terrain);
@@ -31,7 +33,8 @@ BridgeDecks bridge_decks(const Ground& ground, const Terrain* terrain);
 // Each deck's sides and underside, kDeckThickness under its top, and piers along each
 // bridge's centre line every kPierSpacing metres (none at its ends, which rest on the
 // banks) from the deck's underside down to the bed of the water under them (bed_height).
-// Appended to `out`.
-void bridge_structure(const Ground& ground, const Terrain* terrain, const BridgeDecks& decks, GroundMesh& out);
+// Appended to `out`; `area`, when given, gets the road area each new triangle belongs to.
+void bridge_structure(const Ground& ground, const Terrain* terrain, const BridgeDecks& decks, GroundMesh& out,
+                      std::vector<int>* area = nullptr);
 
 }  // namespace exacity
