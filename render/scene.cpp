@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "generate/export/building_mesh.h"
+#include "generate/export/bridges.h"
 #include "generate/export/ground_mesh.h"
 #include "generate/city/palette.h"
 #include "generate/city/random.h"
@@ -297,11 +298,13 @@ void RenderScene::make_palette(Palette& p) {
   }
 }
 
-// The ground: terrain, then layers a few centimetres above each other.
+// The ground: terrain, then layers a few centimetres above each other; water level at its
+// shore height, bridges level between their ends (docs/design.md, Ground meshes).
 void RenderScene::add_ground(const exacity::City& city, const geom::Box& world, const Palette& palette) {
   const exacity::Ground& g = city.ground;
   const exacity::Terrain* terrain = city.heightmap();
-  add_terrain(terrain, world);
+  add_terrain(terrain, world, g.water);
+  const exacity::BridgeDecks decks = exacity::bridge_decks(g, terrain);
   std::vector<DrapedPiece> zones, lots, water, road_areas;
   // Zone land no lot covers is gardens, verges and parks: grass. Paving is where people
   // walk, the sidewalks of the road areas.
@@ -313,23 +316,49 @@ void RenderScene::add_ground(const exacity::City& city, const geom::Box& world, 
     lots.push_back({&g.lots[id].polygon, m, entity_id(Entity::Lot, id), 0.06});
   }
   for (std::size_t id = 0; id < g.water.size(); ++id)
-    water.push_back({&g.water[id], palette.water, entity_id(Entity::Water, id), 0.05});
-  for (const exacity::RoadArea& a : g.road_areas) {
+    water.push_back({&g.water[id], palette.water, entity_id(Entity::Water, id), 0.05,
+                     exacity::water_level(g.water[id], terrain) + 0.05});
+  for (std::size_t i = 0; i < g.road_areas.size(); ++i) {
+    const exacity::RoadArea& a = g.road_areas[i];
     // A road surface names the centre line it belongs to; its id is the road's entity.
     const int material = a.surface == exacity::RoadSurface::Sidewalk ? palette.sidewalk : palette.asphalt;
     road_areas.push_back({&a.polygon, material, entity_id(Entity::Road, a.road >= 0 ? static_cast<std::size_t>(a.road) : 0),
-                          a.bridge ? 0.30 : 0.10});
+                          0.10, a.bridge ? decks.height[i] + 0.30 : NAN});
   }
   for (const auto* pieces : {&zones, &lots, &water, &road_areas}) add_draped(*pieces, terrain);
-  add_road_markings(g.roads, terrain, palette);
+  add_road_markings(g, decks, terrain, palette);
+  // The decks' sides and undersides and their piers, in the road's asphalt grey.
+  exacity::GroundMesh structure;
+  std::vector<int> area;
+  exacity::bridge_structure(g, terrain, decks, structure, &area);
+  if (!structure.triangles.empty()) {
+    std::vector<V3> v;
+    for (const auto& p : structure.vertices) v.push_back(to_scene(p[0], p[1], p[2]));
+    Geometry info;
+    info.material.assign(structure.triangles.size(), palette.sidewalk);
+    for (int a : area) {
+      const int road = g.road_areas[a].road;
+      info.entity.push_back(entity_id(Entity::Road, road >= 0 ? static_cast<std::size_t>(road) : 0));
+    }
+    add_triangles(v, structure.triangles, std::move(info));
+  }
 }
 
-// The heightmap reaches a city's size past it on every side (its edge values carried on),
-// so the plane beyond, at the lowest height, meets no cliff in view.
-void RenderScene::add_terrain(const exacity::Terrain* terrain, const geom::Box& world) {
-  const geom::Box wide{world.min_x - world.width(), world.min_y - world.height(), world.max_x + world.width(),
+// The ground reaches a city's size past the city on every side, and past the heightmap
+// as far as the terrain takes to sink to its lowest height (Terrain::height_at), so it
+// meets the plane beyond, at that height, without a step.
+void RenderScene::add_terrain(const exacity::Terrain* terrain, const geom::Box& world,
+                              const std::vector<geom::Polygon>& water) {
+  const geom::Box near{world.min_x - world.width(), world.min_y - world.height(), world.max_x + world.width(),
                        world.max_y + world.height()};
-  exacity::GroundMesh g = exacity::terrain_tin(terrain, terrain ? wide : world, 768);
+  geom::Box wide = near;
+  if (terrain) {
+    const geom::Box& b = terrain->bounds();
+    const double f = terrain->fade();
+    wide.add(geom::Box{b.min_x - f, b.min_y - f, b.max_x + f, b.max_y + f});
+  }
+  // Pixel-sized cells near the city, coarser past it.
+  exacity::GroundMesh g = exacity::terrain_mesh(terrain, terrain ? wide : world, near, water, 768);
   std::vector<V3> v;
   for (const auto& p : g.vertices) v.push_back(to_scene(p[0], p[1], p[2]));
   Geometry info;
@@ -338,6 +367,7 @@ void RenderScene::add_terrain(const exacity::Terrain* terrain, const geom::Box& 
   add_triangles(v, g.triangles, std::move(info));
   ground = INFINITY;
   for (const V3& p : v) ground = std::min(ground, p.z);
+  if (terrain) ground = static_cast<float>(terrain->lowest());  // the beds under water lie lower, unseen
 }
 
 // The pieces draped over the terrain, as one geometry.
@@ -345,7 +375,10 @@ void RenderScene::add_draped(const std::vector<DrapedPiece>& pieces, const exaci
   exacity::GroundMesh g;
   Geometry info;
   for (const DrapedPiece& piece : pieces) {
-    exacity::drape(*piece.polygon, terrain, piece.lift, g);
+    if (std::isfinite(piece.level))
+      exacity::drape_flat(*piece.polygon, piece.level, g);
+    else
+      exacity::drape(*piece.polygon, terrain, piece.lift, g);
     info.material.resize(g.triangles.size(), piece.material);
     info.entity.resize(g.triangles.size(), piece.entity);
   }
@@ -355,19 +388,27 @@ void RenderScene::add_draped(const std::vector<DrapedPiece>& pieces, const exaci
 }
 
 // Centre stripes (solid yellow on highways, dashed white elsewhere) and dashed lane lines.
-void RenderScene::add_road_markings(const std::vector<exacity::RoadLine>& roads, const exacity::Terrain* terrain,
-                                    const Palette& palette) {
+void RenderScene::add_road_markings(const exacity::Ground& ground, const exacity::BridgeDecks& decks,
+                                    const exacity::Terrain* terrain, const Palette& palette) {
+  const std::vector<exacity::RoadLine>& roads = ground.roads;
   std::vector<V3> v;
   std::vector<std::array<int, 3>> t;
   Geometry info;
   for (std::size_t id = 0; id < roads.size(); ++id) {
     const exacity::RoadLine& r = roads[id];
     const bool highway = r.road_class == exacity::RoadClass::Highway;
-    const double width = r.width, lift = r.bridge ? 0.32 : 0.12;
-    ribbon(r.line, 0, 0.15, highway ? 0 : 3, 5, terrain, lift, v, t, *this);
+    const double width = r.width;
+    double lift = 0.12;
+    const exacity::Terrain* under = terrain;
+    if (r.bridge && r.line.size() >= 2) {
+      // On its deck: flat, just over the deck's surface.
+      const double deck = decks.at(ground, geom::lerp(r.line[0], r.line[1], 0.5));
+      if (std::isfinite(deck)) under = nullptr, lift = deck + 0.32;
+    }
+    ribbon(r.line, 0, 0.15, highway ? 0 : 3, 5, under, lift, v, t, *this);
     info.material.resize(t.size(), highway ? palette.yellow : palette.paint);
     if (highway && width >= 14)
-      for (double side : {-width / 4, width / 4}) ribbon(r.line, side, 0.12, 3, 6, terrain, lift, v, t, *this);
+      for (double side : {-width / 4, width / 4}) ribbon(r.line, side, 0.12, 3, 6, under, lift, v, t, *this);
     info.material.resize(t.size(), palette.paint);
     info.entity.resize(t.size(), entity_id(Entity::Road, id));
   }

@@ -9,6 +9,7 @@
 #include <embree3/rtcore.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "generate/city/city.h"
+#include "generate/export/bridges.h"
 #include "render/camera.h"
 #include "render/facade.h"
 #include "render/material.h"
@@ -124,12 +126,13 @@ class RenderScene {
     const geom::Polygon* polygon;
     int material;
     std::uint32_t entity;
-    double lift;  // m above the terrain
+    double lift;          // m above the terrain
+    double level = NAN;   // flat at this height instead, where finite (water, bridge decks)
   };
-  void add_terrain(const exacity::Terrain* terrain, const geom::Box& world);
+  void add_terrain(const exacity::Terrain* terrain, const geom::Box& world, const std::vector<geom::Polygon>& water);
   void add_draped(const std::vector<DrapedPiece>& pieces, const exacity::Terrain* terrain);
-  void add_road_markings(const std::vector<exacity::RoadLine>& roads, const exacity::Terrain* terrain,
-                         const Palette& palette);
+  void add_road_markings(const exacity::Ground& ground, const exacity::BridgeDecks& decks,
+                         const exacity::Terrain* terrain, const Palette& palette);
   void add_buildings(const exacity::City& city, const geom::Box& world, V3 sun, const SceneOptions& options,
                      const Palette& palette);
   struct StructureTiles;

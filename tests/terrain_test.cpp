@@ -91,12 +91,37 @@ TEST(Water, PixelCornersLieOnTheGridAndTheBounds) {
   EXPECT_EQ(testing_util::area(polys[0]), 700000);
 }
 
-TEST(Terrain, HeightsAreBilinearBetweenPixelCentres) {
+TEST(Terrain, HeightsAreBicubicBetweenPixelCentresHeldWithinTheFourAround) {
   Terrain t(spec(2, 1), 2, 1, {0.5f, 1.0f});
   EXPECT_DOUBLE_EQ(t.height_at({0.5, 0.5}), 50);
   EXPECT_DOUBLE_EQ(t.height_at({1.5, 0.5}), 100);
   EXPECT_DOUBLE_EQ(t.height_at({1.0, 0.5}), 75);
-  EXPECT_DOUBLE_EQ(t.height_at({-10, 0.5}), 50);  // clamped
+  // Catmull-Rom halfway between 25 and 100 with 0 and 100 beyond: 9/16 (25 + 100) - 1/16
+  // (0 + 100) = 64.0625, where bilinear gave 62.5.
+  Terrain curve(spec(4, 1), 4, 1, {0.0f, 0.25f, 1.0f, 1.0f});
+  EXPECT_DOUBLE_EQ(curve.height_at({2.0, 0.5}), 64.0625);
+  // A groove a pixel wide between high ground: the cubic dips below 0 between the two low
+  // pixels, and is held at 0.
+  Terrain groove(spec(4, 1), 4, 1, {1.0f, 0.0f, 0.0f, 1.0f});
+  EXPECT_DOUBLE_EQ(groove.height_at({2.0, 0.5}), 0);
+  EXPECT_DOUBLE_EQ(groove.lowest(), 0);
+}
+
+// Past the bounds the map is mirrored at its edge and sinks smoothly (smoothstep) to its
+// lowest height over half its longer side.
+TEST(Terrain, PastTheBoundsTheMapIsMirroredAndSinksToItsLowest) {
+  Terrain t(spec(4, 2), 4, 2, {0.25f, 0.5f, 0.75f, 1.0f, 0.25f, 0.5f, 0.75f, 1.0f});
+  EXPECT_DOUBLE_EQ(t.fade(), 2);
+  EXPECT_DOUBLE_EQ(t.lowest(), 25);
+  EXPECT_DOUBLE_EQ(t.height_at({4, 1}), 100);  // the edge
+  // 0.5 past the east edge: the mirror of x 3.5 (100), a quarter of the way down:
+  // smoothstep(1/4) = 5/32 of the way to 25.
+  EXPECT_DOUBLE_EQ(t.height_at({4.5, 1}), 100 - 75 * 5.0 / 32);
+  // 1 past: the mirror of x 3, between the centres at 2.5 (75) and 3.5 (100), halfway down.
+  EXPECT_DOUBLE_EQ(t.height_at({5, 1}), t.height_at({3, 1}) + (25 - t.height_at({3, 1})) / 2);
+  EXPECT_GT(t.height_at({3, 1}), 75);
+  EXPECT_DOUBLE_EQ(t.height_at({6, 1}), 25);
+  EXPECT_DOUBLE_EQ(t.height_at({-100, 50}), 25);
 }
 
 TEST(Terrain, LoadsEightAndSixteenBitFloatAndGreyRgb) {

@@ -1,6 +1,7 @@
 #include "generate/city/terrain.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 
@@ -11,15 +12,68 @@
 namespace exacity {
 
 Terrain::Terrain(const TerrainSpec& spec, int width, int height, std::vector<float> values)
-    : spec_(spec), image_{width, height, std::move(values)} {}
+    : spec_(spec), image_{width, height, std::move(values)} {
+  lowest_ = spec_.low + *std::min_element(image_.values.begin(), image_.values.end()) * (spec_.high - spec_.low);
+}
 
 Terrain Terrain::load(const TerrainSpec& spec) {
   GreyImage image = read_grey_image(spec.heightmap, "heightmap", "\"exacity\".terrain.heightmap");
   return Terrain(spec, image.width, image.height, std::move(image.values));
 }
 
+namespace {
+
+// Catmull-Rom weights of the four samples around a point at fraction t past the second.
+std::array<double, 4> catmull_rom(double t) {
+  const double t2 = t * t, t3 = t2 * t;
+  return {(-t3 + 2 * t2 - t) / 2, (3 * t3 - 5 * t2 + 2) / 2, (-3 * t3 + 4 * t2 + t) / 2, (t3 - t2) / 2};
+}
+
+}  // namespace
+
+// Bicubic (Catmull-Rom) between pixel centres, so slopes run on smoothly across pixels
+// where bilinear creases the ground at every row and column of centres (docs/design.md,
+// Terrain). The value is held within the four pixels around the point: no ripple below a
+// riverbed or above a crest, and the extremes stay at pixel centres, which range_under
+// samples.
+double Terrain::inside_height(geom::Vec2 p) const {
+  const geom::Box& b = spec_.bounds;
+  const int w = image_.width, h = image_.height;
+  const double u = std::clamp((p.x - b.min_x) / b.width() * w - 0.5, 0.0, w - 1.0);
+  const double v = std::clamp((b.max_y - p.y) / b.height() * h - 0.5, 0.0, h - 1.0);
+  const int c = std::min(static_cast<int>(u), std::max(w - 2, 0));
+  const int r = std::min(static_cast<int>(v), std::max(h - 2, 0));
+  const std::array<double, 4> wu = catmull_rom(u - c), wv = catmull_rom(v - r);
+  auto at = [&](int col, int row) { return image_.at(std::clamp(col, 0, w - 1), std::clamp(row, 0, h - 1)); };
+  double value = 0;
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) value += wu[i] * wv[j] * at(c - 1 + i, r - 1 + j);
+  const std::array<float, 4> around{at(c, r), at(c + 1, r), at(c, r + 1), at(c + 1, r + 1)};
+  value = std::clamp(value, static_cast<double>(*std::min_element(around.begin(), around.end())),
+                     static_cast<double>(*std::max_element(around.begin(), around.end())));
+  return spec_.low + value * (spec_.high - spec_.low);
+}
+
+
+double Terrain::fade() const { return std::max(spec_.bounds.width(), spec_.bounds.height()) / 2; }
+
+// Past the bounds the map is mirrored at its edges, so hills run on as hills rather than
+// as its edge pixels drawn out into walls and grooves, and it sinks smoothly to its lowest
+// height, which the renderer's plane beyond has (docs/design.md, Terrain).
 double Terrain::height_at(geom::Vec2 p) const {
-  return spec_.low + image_.sample(spec_.bounds, p) * (spec_.high - spec_.low);
+  const geom::Box& b = spec_.bounds;
+  const double dx = std::max({b.min_x - p.x, p.x - b.max_x, 0.0}), dy = std::max({b.min_y - p.y, p.y - b.max_y, 0.0});
+  if (dx == 0 && dy == 0) return inside_height(p);
+  const double s = std::hypot(dx, dy) / fade();
+  if (s >= 1) return lowest();
+  auto mirror = [](double x, double lo, double hi) {
+    const double span = hi - lo;
+    double t = std::fmod(x - lo, 2 * span);
+    if (t < 0) t += 2 * span;
+    return lo + (t > span ? 2 * span - t : t);
+  };
+  const double h = inside_height({mirror(p.x, b.min_x, b.max_x), mirror(p.y, b.min_y, b.max_y)});
+  return h + (lowest() - h) * s * s * (3 - 2 * s);
 }
 
 double Terrain::pixel_size() const {

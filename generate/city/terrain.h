@@ -24,8 +24,14 @@ class Terrain {
   bool is_water(int col, int row) const { return value(col, row) <= 0.0f; }
   float value(int col, int row) const { return image_.at(col, row); }
 
-  // Bilinear height in metres at a point (clamped to the bounds).
+  // The height in metres at a point: bicubic between pixel centres, held within the four
+  // pixels around it; past the bounds the map mirrored at its edges, sinking smoothly to
+  // lowest() over fade() metres and level there.
   double height_at(geom::Vec2 p) const;
+  // The lowest height of the map.
+  double lowest() const { return lowest_; }
+  // How far past the bounds the ground sinks to lowest(): half the map's longer side.
+  double fade() const;
   // The lowest and highest terrain under a ring: sampled at its corners, along its edges
   // and at the pixel centres inside, so no pixel under it is missed.
   std::pair<double, double> range_under(const geom::Ring& ring) const;
@@ -42,8 +48,10 @@ class Terrain {
   std::vector<std::pair<geom::Vec2, geom::Vec2>> water_boundary() const;
 
  private:
+  double inside_height(geom::Vec2 p) const;
   TerrainSpec spec_;
   GreyImage image_;
+  double lowest_ = 0;
 };
 
 }  // namespace exacity

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "generate/errors.h"
+#include "generate/export/bridges.h"
 #include "generate/export/ground_mesh.h"
 #include "generate/gis/projection.h"
 #include "geom/ring_cleanup.h"
@@ -125,11 +126,20 @@ void append_triangles(const GroundMesh& m, Vertices& v, json& out) {
   }
 }
 
+// A polygon, and the height it lies level at (water, bridge decks) or NaN to drape it.
+using LevelPolygon = std::pair<const geom::Polygon*, double>;
+
 // Polygons smaller than the quantum vanish; null when all do. On terrain each polygon
-// becomes the triangles that drape it over the heightmap.
-json multisurface(const std::vector<const geom::Polygon*>& polygons, const Terrain* terrain, Vertices& v) {
+// becomes the triangles that drape it over the heightmap, or lay it level.
+json multisurface(const std::vector<LevelPolygon>& polygons, const Terrain* terrain, Vertices& v) {
   json boundaries = json::array();
-  for (const geom::Polygon* p : polygons) {
+  for (const auto& [p, level] : polygons) {
+    if (terrain && std::isfinite(level)) {
+      GroundMesh m;
+      drape_flat(*p, level, m);
+      append_triangles(m, v, boundaries);
+      continue;
+    }
     if (!terrain) {
       json s = surface(*p, 0, false, v);
       if (!s.empty()) boundaries.push_back(s);
@@ -294,7 +304,7 @@ json clutter_object(const Clutter& c, const ModelLibrary& library, Vertices& v) 
 // type and one for the water, in the order of their key's text (kept from when they were
 // grouped by their GeoJSON property), each named prefix + n.
 void add_ground_objects(const Ground& ground, const Terrain* terrain, Vertices& v, json& objects) {
-  using Groups = std::map<std::string, std::pair<json, std::vector<const geom::Polygon*>>>;
+  using Groups = std::map<std::string, std::pair<json, std::vector<LevelPolygon>>>;
   auto surfaces = [&](const Groups& groups, const std::string& prefix, const std::string& type, const char* key) {
     int n = 0;
     for (const auto& [text, group] : groups) {
@@ -306,20 +316,34 @@ void add_ground_objects(const Ground& ground, const Terrain* terrain, Vertices& 
     }
   };
   Groups roads, zones, water;
-  for (const RoadArea& a : ground.road_areas) {
+  // Water level at its shore height, bridge decks level between their ends
+  // (docs/design.md, Ground meshes).
+  const BridgeDecks decks = bridge_decks(ground, terrain);
+  for (std::size_t i = 0; i < ground.road_areas.size(); ++i) {
+    const RoadArea& a = ground.road_areas[i];
     auto& [road, polygons] = roads[a.road >= 0 ? std::to_string(a.road) : "null"];
     road = a.road >= 0 ? json(a.road) : json(nullptr);
-    polygons.push_back(&a.polygon);
+    polygons.push_back({&a.polygon, decks.height[i]});
   }
   for (const ZoneArea& z : ground.zones) {
     auto& [zone, polygons] = zones[std::string(name(z.type))];
     zone = name(z.type);
-    polygons.push_back(&z.polygon);
+    polygons.push_back({&z.polygon, NAN});
   }
-  for (const geom::Polygon& w : ground.water) water[""].second.push_back(&w);
+  for (const geom::Polygon& w : ground.water) water[""].second.push_back({&w, water_level(w, terrain)});
   surfaces(roads, "road-", "Road", "road");
   surfaces(zones, "landuse-", "LandUse", "zone");
   surfaces(water, "water-", "WaterBody", nullptr);
+  // The decks' sides and undersides and the piers, one Bridge object for every bridge.
+  if (terrain) {
+    GroundMesh m;
+    bridge_structure(ground, terrain, decks, m);
+    json boundaries = json::array();
+    append_triangles(m, v, boundaries);
+    if (!boundaries.empty())
+      objects["bridges"] = {{"type", "Bridge"},
+                            {"geometry", json::array({{{"type", "MultiSurface"}, {"lod", "1"}, {"boundaries", boundaries}}})}};
+  }
 }
 
 }  // namespace
@@ -348,7 +372,7 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
 
   // The ground under the city: the heightmap over the rectangle around it.
   json tin = json::array();
-  append_triangles(terrain_tin(terrain, box, 512), v, tin);
+  append_triangles(terrain_mesh(terrain, box, box, ground.water, 512), v, tin);
   objects["terrain"] = {{"type", "TINRelief"}, {"geometry", json::array({{{"type", "CompositeSurface"}, {"lod", "1"}, {"boundaries", tin}}})}};
 
   json doc{{"type", "CityJSON"},

@@ -7,6 +7,7 @@
 #include <tiny_gltf.h>
 
 #include "generate/errors.h"
+#include "generate/export/bridges.h"
 #include "generate/export/ground_mesh.h"
 #include "generate/city/palette.h"
 #include "generate/version.h"
@@ -200,7 +201,7 @@ Primitives ground_primitives(const Ground& ground, const Terrain* terrain, const
   Primitives out;
   {
     Triangles t;
-    add_ground_mesh(terrain_tin(terrain, box, 512), local, t);
+    add_ground_mesh(terrain_mesh(terrain, box, box, ground.water, 512), local, t);
     out.push_back({glb.accessors(t), glb.material("terrain", kTerrainColour)});
   }
   std::map<std::string, std::pair<ZoneType, Triangles>> zones;  // by name: the materials' order
@@ -214,14 +215,26 @@ Primitives ground_primitives(const Ground& ground, const Terrain* terrain, const
   for (const auto& [zone, t] : zones)
     out.push_back({glb.accessors(t.second), glb.material("ground_" + zone, ground_colour(t.first))});
   Triangles water, roads;
+  // Water level at its shore height, bridges level between their ends, on piers
+  // (docs/design.md, Ground meshes).
   for (const geom::Polygon& w : ground.water) {
     GroundMesh g;
-    drape(w, terrain, 0.05, g);
+    drape_flat(w, water_level(w, terrain) + 0.05, g);
     add_ground_mesh(g, local, water);
   }
-  for (const RoadArea& a : ground.road_areas) {
+  const BridgeDecks decks = bridge_decks(ground, terrain);
+  for (std::size_t i = 0; i < ground.road_areas.size(); ++i) {
+    const RoadArea& a = ground.road_areas[i];
     GroundMesh g;
-    drape(a.polygon, terrain, a.bridge ? 0.3 : 0.1, g);
+    if (a.bridge)
+      drape_flat(a.polygon, decks.height[i] + 0.3, g);
+    else
+      drape(a.polygon, terrain, 0.1, g);
+    add_ground_mesh(g, local, roads);
+  }
+  {
+    GroundMesh g;
+    bridge_structure(ground, terrain, decks, g);
     add_ground_mesh(g, local, roads);
   }
   out.push_back({glb.accessors(water), glb.material("water", ground_colour(ZoneType::Water), 0.1)});

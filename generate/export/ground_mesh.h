@@ -29,9 +29,30 @@ struct GroundMesh {
 // The polygon triangulated at terrain height + lift; flat at `lift` without terrain.
 // Appends to `out`.
 void drape(const geom::Polygon& polygon, const Terrain* terrain, double lift, GroundMesh& out);
+// The polygon triangulated flat at height z (its corners only). Appends to `out`.
+void drape_flat(const geom::Polygon& polygon, double z, GroundMesh& out);
 
 // The terrain over `box` as a regular grid of at most `max_cells` cells a side (flat:
 // two triangles).
 GroundMesh terrain_tin(const Terrain* terrain, const geom::Box& box, int max_cells);
+
+// Water lies level at its shore height: the lowest terrain along its outline (0 without
+// terrain), so it neither climbs its banks nor spills over them (docs/design.md, Ground
+// meshes).
+double water_level(const geom::Polygon& water, const Terrain* terrain);
+// How far a riverbed lies at least under its water's surface, in metres.
+constexpr double kBedDepth = 0.5;
+// The bed under water of level `level` at p: the terrain, at least kBedDepth under it.
+double bed_height(const Terrain* terrain, geom::Vec2 p, double level);
+
+// The ground over `box` (grown by a cell, so water on its edge stays inside), conforming
+// to the water outlines: the land, triangulated along every water ring so a bank follows
+// the water's outline exactly; each bank as a wall from the land down to the bed, kBedDepth
+// under the water's level; the bed under the water. Over `detail` the cells are the
+// heightmap's pixels, or coarser so that at most `max_cells` span its side; past it,
+// coarser so that about 128 more span the rest of the box. Without terrain: flat, two
+// triangles over the box.
+GroundMesh terrain_mesh(const Terrain* terrain, const geom::Box& box, const geom::Box& detail,
+                        const std::vector<geom::Polygon>& water, int max_cells);
 
 }  // namespace exacity

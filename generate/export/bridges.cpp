@@ -1,0 +1,137 @@
+#include "generate/export/bridges.h"
+
+#include <cmath>
+#include <map>
+#include <numeric>
+
+#include "geom/measure.h"
+
+namespace exacity {
+
+namespace {
+
+bool inside(const geom::Polygon& p, geom::Vec2 q) {
+  bool in = geom::odd_crossings(p.outer, q);
+  for (const auto& h : p.holes) in ^= geom::odd_crossings(h, q);
+  return in;
+}
+
+int find(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+// A box from z0 up to z1 around c, its sides `half` from c, turned to run along `along`.
+void add_pier(geom::Vec2 c, geom::Vec2 along, double half, double z0, double z1, GroundMesh& out) {
+  const geom::Vec2 across = geom::left_normal({0, 0}, along);
+  const geom::Vec2 corners[4] = {c + (along + across) * half, c + (across - along) * half, c - (along + across) * half,
+                                 c + (along - across) * half};
+  const int first = static_cast<int>(out.vertices.size());
+  for (double z : {z0, z1})
+    for (geom::Vec2 p : corners) out.vertices.push_back({p.x, p.y, z});
+  for (int k = 0; k < 4; ++k) {
+    const int a = first + k, b = first + (k + 1) % 4;
+    out.triangles.push_back({a, b, b + 4});
+    out.triangles.push_back({a, b + 4, a + 4});
+  }
+}
+
+}  // namespace
+
+BridgeDecks bridge_decks(const Ground& ground, const Terrain* terrain) {
+  const auto& areas = ground.road_areas;
+  BridgeDecks decks;
+  decks.height.assign(areas.size(), NAN);
+  // Bridge surfaces that share a corner are one bridge (carriageway, sidewalks, junctions).
+  std::vector<int> parent(areas.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  std::map<std::pair<double, double>, int> corner_of;
+  for (std::size_t i = 0; i < areas.size(); ++i) {
+    if (!areas[i].bridge) continue;
+    auto visit = [&](const geom::Ring& r) {
+      for (geom::Vec2 p : r) {
+        auto [it, added] = corner_of.emplace(std::make_pair(p.x, p.y), static_cast<int>(i));
+        if (!added) parent[find(parent, static_cast<int>(i))] = find(parent, it->second);
+      }
+    };
+    visit(areas[i].polygon.outer);
+    for (const auto& h : areas[i].polygon.holes) visit(h);
+  }
+  std::vector<double> highest(areas.size(), terrain ? -INFINITY : 0);
+  if (terrain)
+    for (std::size_t i = 0; i < areas.size(); ++i) {
+      if (!areas[i].bridge) continue;
+      double& h = highest[find(parent, static_cast<int>(i))];
+      for (geom::Vec2 p : geom::densified(areas[i].polygon.outer, terrain->pixel_size() / 2))
+        h = std::max(h, terrain->height_at(p));
+    }
+  for (std::size_t i = 0; i < areas.size(); ++i)
+    if (areas[i].bridge) decks.height[i] = highest[find(parent, static_cast<int>(i))];
+  return decks;
+}
+
+int BridgeDecks::area_at(const Ground& ground, geom::Vec2 p) const {
+  for (std::size_t i = 0; i < ground.road_areas.size(); ++i)
+    if (ground.road_areas[i].bridge && inside(ground.road_areas[i].polygon, p)) return static_cast<int>(i);
+  return -1;
+}
+
+double BridgeDecks::at(const Ground& ground, geom::Vec2 p) const {
+  const int i = area_at(ground, p);
+  return i >= 0 ? height[i] : NAN;
+}
+
+void bridge_structure(const Ground& ground, const Terrain* terrain, const BridgeDecks& decks, GroundMesh& out,
+                      std::vector<int>* area) {
+  auto belongs = [&](int i) {
+    if (area) area->resize(out.triangles.size(), i);
+  };
+  for (std::size_t i = 0; i < ground.road_areas.size(); ++i) {
+    if (!ground.road_areas[i].bridge) continue;
+    const geom::Polygon& p = ground.road_areas[i].polygon;
+    const double top = decks.height[i], bottom = top - kDeckThickness;
+    drape_flat(p, bottom, out);
+    auto sides = [&](const geom::Ring& r) {
+      for (std::size_t k = 0, l = r.size() - 1; k < r.size(); l = k++) {
+        const int first = static_cast<int>(out.vertices.size());
+        out.vertices.push_back({r[l].x, r[l].y, bottom});
+        out.vertices.push_back({r[k].x, r[k].y, bottom});
+        out.vertices.push_back({r[k].x, r[k].y, top});
+        out.vertices.push_back({r[l].x, r[l].y, top});
+        out.triangles.push_back({first, first + 1, first + 2});
+        out.triangles.push_back({first, first + 2, first + 3});
+      }
+    };
+    sides(p.outer);
+    for (const auto& h : p.holes) sides(h);
+    belongs(static_cast<int>(i));
+  }
+  std::vector<double> levels;
+  for (const geom::Polygon& w : ground.water) levels.push_back(water_level(w, terrain));
+  for (const RoadLine& r : ground.roads) {
+    if (!r.bridge || r.line.size() < 2) continue;
+    double length = 0;
+    for (std::size_t k = 1; k < r.line.size(); ++k) length += geom::distance(r.line[k - 1], r.line[k]);
+    const int piers = static_cast<int>(std::floor(length / kPierSpacing));
+    const double half = std::min(kPierWidth, r.width / 4) / 2;
+    for (int n = 1; n <= piers; ++n) {
+      // The point n/(piers + 1) of the way along the line, and the line's direction there.
+      double left = length * n / (piers + 1);
+      std::size_t k = 1;
+      while (k + 1 < r.line.size() && left > geom::distance(r.line[k - 1], r.line[k]))
+        left -= geom::distance(r.line[k - 1], r.line[k]), ++k;
+      const geom::Vec2 along = geom::unit_along(r.line[k - 1], r.line[k]);
+      const geom::Vec2 c = r.line[k - 1] + along * left;
+      const int under = decks.area_at(ground, c);
+      if (under < 0) continue;
+      const double deck = decks.height[under];
+      double bed = terrain ? terrain->height_at(c) : 0;
+      for (std::size_t w = 0; w < ground.water.size(); ++w)
+        if (inside(ground.water[w], c)) bed = bed_height(terrain, c, levels[w]);
+      if (bed < deck - kDeckThickness) add_pier(c, along, half, bed, deck - kDeckThickness, out);
+      belongs(under);
+    }
+  }
+}
+
+}  // namespace exacity

@@ -1,0 +1,202 @@
+// Terrain, water and bridges as the renderer draws them (issue 25): small cities on small
+// heightmaps written here, rendered straight down through an orthographic camera, read back
+// from the image's depth and id layers (each from the ray through its pixel's centre).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+
+#include "generate/export/bridges.h"
+#include "generate/pipeline.h"
+#include "geom/measure.h"
+#include "render/camera.h"
+#include "render/path_tracer.h"
+#include "render/scene.h"
+#include "render/sky.h"
+#include "tests/test_util.h"
+
+using namespace render;
+
+namespace {
+
+// A 20 x 20 pixel 16-bit heightmap over 200 m x 200 m, heights 0 to 50 m, value(col, row),
+// row 0 north; then a city of `features` on it.
+exacity::City city_on(const std::string& name, double (*value)(int, int), const std::string& features) {
+  const auto dir = testing_util::temp_dir("ground-" + name);
+  std::vector<std::uint16_t> pixels;
+  for (int row = 0; row < 20; ++row)
+    for (int col = 0; col < 20; ++col) pixels.push_back(static_cast<std::uint16_t>(std::lround(value(col, row) * 65535)));
+  auto out = OIIO::ImageOutput::create((dir / "h.png").string());
+  EXPECT_TRUE(out->open((dir / "h.png").string(), OIIO::ImageSpec(20, 20, 1, OIIO::TypeDesc::UINT16)));
+  EXPECT_TRUE(out->write_image(OIIO::TypeDesc::UINT16, pixels.data()));
+  out->close();
+  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 5,
+    "terrain": {"heightmap": "h.png", "bounds": [0, 0, 200, 200], "height": [0, 50]}},
+    "features": [)" + features + "]}";
+  exacity::StageClock clock(nullptr, exacity::kCityStages);
+  return exacity::build_city(exacity::parse_sketch(text, dir / "sketch.geojson"), clock);
+}
+
+const std::string kPark = R"({"type": "Feature", "properties": {"zone": "park"},
+  "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [200, 0], [200, 200], [0, 200], [0, 0]]]}})";
+
+// What the ray through each pixel's centre met, straight down from 1 km over the box.
+struct TopView {
+  int width = 0, height = 0;
+  std::vector<geom::Vec2> at;  // city coordinates of the pixel's centre
+  std::vector<double> z;       // NAN where the ray met nothing
+  std::vector<std::uint32_t> id;
+};
+
+TopView look_down(const RenderScene& scene, const geom::Box& box, int width, int height) {
+  Camera c = Camera::look({static_cast<float>((box.min_x + box.max_x) / 2), static_cast<float>((box.min_y + box.max_y) / 2), 1000},
+                          {static_cast<float>((box.min_x + box.max_x) / 2), static_cast<float>((box.min_y + box.max_y) / 2), 0});
+  c.orthographic = true;
+  c.ortho_height = static_cast<float>(box.height());
+  const Camera view = scene.to_scene(c);
+  Sky sky(200, 40);
+  const Image img = trace(scene, sky, view, TraceSettings{width, height, 1, 1});
+  TopView t;
+  t.width = width, t.height = height;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      V3 o, d;
+      view.ray(x + 0.5f, y + 0.5f, width, height, o, d);
+      const std::size_t i = static_cast<std::size_t>(y) * width + x;
+      t.at.push_back({o.x + scene.origin_x, o.y + scene.origin_y});
+      t.z.push_back(std::isfinite(img.depth[i]) ? o.z + d.z * img.depth[i] : NAN);
+      t.id.push_back(img.id[i]);
+    }
+  return t;
+}
+
+Entity kind(std::uint32_t id) { return static_cast<Entity>(id >> 24); }
+
+bool in_water(const exacity::City& city, geom::Vec2 p) {
+  for (const geom::Polygon& w : city.ground.water) {
+    bool in = geom::odd_crossings(w.outer, p);
+    for (const auto& h : w.holes) in ^= geom::odd_crossings(h, p);
+    if (in) return true;
+  }
+  return false;
+}
+
+double distance_to_water_outline(const exacity::City& city, geom::Vec2 p) {
+  double d = INFINITY;
+  for (const geom::Polygon& w : city.ground.water)
+    for (const geom::Ring* r : {&w.outer})
+      for (std::size_t i = 0, j = r->size() - 1; i < r->size(); j = i++)
+        d = std::min(d, geom::distance_to_segment(p, (*r)[j], (*r)[i]));
+  return d;
+}
+
+// Hills rising east, with ridges and grooves a pixel apart running east-west: carried on
+// past the map's east edge, they made walls to the horizon.
+double ridged_ramp(int col, int row) { return 0.2 + 0.6 * col / 19.0 + (row % 2 ? 0.15 : 0.0); }
+
+// A river two to three pixels wide running south-west to north-east in pixel steps, in
+// land rising steeply from it.
+double river_value(int col, int row) {
+  const double off = std::abs(col - (19 - row) * 0.5 - 4.0);
+  return off < 1.5 ? 0.0 : std::min(1.0, 0.4 + 0.08 * off);
+}
+
+// A straight river, pixel columns 8 to 11 (x 80 to 120 m), banks 20 m up.
+double straight_river(int col, int) { return col >= 8 && col <= 11 ? 0.0 : 0.4 + 0.01 * std::abs(col - 9.5); }
+
+}  // namespace
+
+// Past the map's east edge (x 200) the ground sinks smoothly to the map's lowest height
+// (the plane's) within half the map's side (100 m) and stays there: no ridge carried on,
+// and no step where the drawn ground gives way to the plane (it ended at 400 m, the city's
+// size past it, at the map's edge heights, 30 to 37.5 m over the plane).
+TEST(GroundRender, PastTheMapTheGroundSinksToThePlaneWithoutWallsOrAStep) {
+  const exacity::City city = city_on("edge", ridged_ramp, kPark);
+  ASSERT_TRUE(city.heightmap());
+  const double lowest = city.heightmap()->lowest();
+  EXPECT_NEAR(lowest, 0.2 * 50, 1e-3);
+  Sky sky(200, 40);
+  RenderScene scene(city, sky.sun_direction(), SceneOptions{});
+  // x 150 to 750 m (the ground drawn before reached 400), y 25 to 175 m; 1.5625 m a pixel.
+  const TopView t = look_down(scene, {150, 25, 750, 175}, 384, 96);
+  double steepest = 0;
+  int flat = 0;
+  for (int y = 0; y < t.height; ++y)
+    for (int x = 0; x < t.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * t.width + x;
+      ASSERT_TRUE(std::isfinite(t.z[i])) << "sky straight down at " << t.at[i].x;
+      if (x > 0) steepest = std::max(steepest, std::abs(t.z[i] - t.z[i - 1]));
+      if (t.at[i].x > 200 + 100 + 10) {  // past the fade and the ground's last 10 m cell across it
+        EXPECT_NEAR(t.z[i], lowest, 1e-3) << "at " << t.at[i].x << ", " << t.at[i].y;
+        ++flat;
+      }
+    }
+  EXPECT_GT(flat, t.width * t.height / 2);
+  // The map's own slope rises under 0.3 m over a pixel; its fall past the edge, at most
+  // 37.5 m over 100 m smoothstepped, 1.5 times its mean slope at steepest: 0.9 m a pixel.
+  // A step would be tens of metres.
+  EXPECT_LT(steepest, 2.0);
+}
+
+// Seen from above, water covers exactly its outline (a staircase of pixel edges, exact in
+// the city map), and the water is level: the ground no longer pokes through it along the
+// banks in pixel-sized teeth.
+TEST(GroundRender, BanksFollowTheWaterOutlineAndWaterIsLevel) {
+  const exacity::City city = city_on("river", river_value, kPark);
+  ASSERT_FALSE(city.ground.water.empty());
+  Sky sky(200, 40);
+  RenderScene scene(city, sky.sun_direction(), SceneOptions{});
+  const TopView t = look_down(scene, {0, 0, 200, 200}, 128, 128);  // 1.5625 m a pixel
+  double low = INFINITY, high = -INFINITY;
+  int water = 0, wrong = 0;
+  for (std::size_t i = 0; i < t.id.size(); ++i) {
+    if (distance_to_water_outline(city, t.at[i]) < 1.0) continue;  // pixels on the outline
+    const bool wet = in_water(city, t.at[i]);
+    if (wet != (kind(t.id[i]) == Entity::Water)) ++wrong;
+    if (wet && kind(t.id[i]) == Entity::Water) {
+      ++water;
+      low = std::min(low, t.z[i]), high = std::max(high, t.z[i]);
+    }
+  }
+  EXPECT_GT(water, 1000);
+  EXPECT_EQ(wrong, 0) << "pixels whose water or land disagrees with the outline";
+  EXPECT_LT(high - low, 1e-3) << "the water's surface is not level";
+}
+
+// A highway over a river on a heightmap: its bridge's deck is level from bank to bank,
+// at the banks' height, and a pier under its middle stands on the riverbed.
+TEST(GroundRender, BridgeDeckIsLevelFromAbutmentToAbutmentOnPiers) {
+  const exacity::City city = city_on("bridge", straight_river, kPark + R"(, {"type": "Feature",
+    "properties": {"road": "highway", "width": 12},
+    "geometry": {"type": "LineString", "coordinates": [[-20, 100], [220, 100]]}})");
+  bool bridge = false;
+  for (const auto& r : city.ground.road_areas) bridge |= r.bridge;
+  ASSERT_TRUE(bridge);
+  Sky sky(200, 40);
+  RenderScene scene(city, sky.sun_direction(), SceneOptions{});
+  // Along the centre line from bank to bank: x 70 to 130 m, one metre a pixel.
+  const TopView t = look_down(scene, {70, 99, 130, 101}, 60, 2);
+  double low = INFINITY, high = -INFINITY;
+  for (int x = 0; x < t.width; ++x) {
+    const std::size_t i = x;  // the top row, y 100.5
+    EXPECT_EQ(kind(t.id[i]), Entity::Road) << t.at[i].x;
+    if (t.at[i].x > 81 && t.at[i].x < 119) low = std::min(low, t.z[i]), high = std::max(high, t.z[i]);
+  }
+  const double bank = city.heightmap()->height_at({80, 100});
+  EXPECT_LT(high - low, 0.01) << "the deck is not level";
+  EXPECT_GE(low, bank) << "the deck sinks below its bank";
+  // A level ray from the south, under the deck and over the water, meets the pier at x 100.
+  Surface hit;
+  const double under = bank - 3;
+  ASSERT_TRUE(scene.intersect(scene.to_scene(100, 50, under), {0, 1, 0}, 100, hit));
+  int road = -1;
+  for (const auto& r : city.ground.road_areas)
+    if (r.bridge) road = r.road;
+  ASSERT_GE(road, 0);
+  EXPECT_EQ(hit.entity, entity_id(Entity::Road, static_cast<std::size_t>(road)));  // the pier is its bridge's
+  EXPECT_NEAR(hit.position.y + scene.origin_y, 100 - exacity::kPierWidth / 2, 0.01);
+}
