@@ -34,7 +34,7 @@ exacity::City city_on(const std::string& name, double (*value)(int, int), const 
   EXPECT_TRUE(out->open((dir / "h.png").string(), OIIO::ImageSpec(20, 20, 1, OIIO::TypeDesc::UINT16)));
   EXPECT_TRUE(out->write_image(OIIO::TypeDesc::UINT16, pixels.data()));
   out->close();
-  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 5,
+  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 5, "builtin_models": [],
     "terrain": {"heightmap": "h.png", "bounds": [0, 0, 200, 200], "height": [0, 50]}},
     "features": [)" + features + "]}";
   exacity::StageClock clock(nullptr, exacity::kCityStages);

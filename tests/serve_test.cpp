@@ -34,7 +34,7 @@ using json = nlohmann::json;
 namespace {
 
 // Two zones across a highway: a city of a few streets (tests/cli_test.cpp's small sketch).
-const std::string kSmallSketch = R"({"type": "FeatureCollection", "exacity": {"seed": 3}, "features": [
+const std::string kSmallSketch = R"({"type": "FeatureCollection", "exacity": {"seed": 3, "builtin_models": []}, "features": [
   {"type": "Feature", "properties": {"zone": "residential"},
    "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [400, 0], [400, 300], [0, 300], [0, 0]]]}},
   {"type": "Feature", "properties": {"zone": "commercial"},
