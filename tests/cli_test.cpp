@@ -344,16 +344,25 @@ TEST(Cli, AGridMapWithModelsGeneratesValidatesAndRendersTheSameCity) {
   EXPECT_FALSE(fs::exists(dir / "bad-out"));
 }
 
+namespace {
+
+// A residential block of 160 m by 120 m generated into `out`, for the render tests.
+Result generate_one_street_block(const fs::path& dir, const fs::path& out) {
+  std::ofstream(dir / "city.geojson") << R"({"type": "FeatureCollection", "exacity": {"seed": 5}, "features": [
+    {"type": "Feature", "properties": {"zone": "residential"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [160, 0], [160, 120], [0, 120], [0, 0]]]}}]})";
+  return run("generate " + (dir / "city.geojson").string() + " -o " + out.string() + " -q");
+}
+
+}  // namespace
+
 // Issue 25: a camera path's frames, rendered whole, in ranges, in shares and through
 // scripts/render_path.sbatch's tasks (Slurm's environment by hand), are the same files; a bad path file is one line naming it and its key; --time records
 // its passes; --denoise, --exposure and --white-balance are taken and recorded.
 TEST(Cli, CameraPathFramesInRangesEqualOneRunAndBadPathsAreOneLine) {
   fs::path dir = testing_util::temp_dir("cli-path");
-  std::ofstream(dir / "city.geojson") << R"({"type": "FeatureCollection", "exacity": {"seed": 5}, "features": [
-    {"type": "Feature", "properties": {"zone": "residential"},
-     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [160, 0], [160, 120], [0, 120], [0, 0]]]}}]})";
   const fs::path out = dir / "out";
-  Result r = run("generate " + (dir / "city.geojson").string() + " -o " + out.string() + " -q");
+  Result r = generate_one_street_block(dir, out);
   ASSERT_EQ(r.code, 0) << r.out;
   std::ofstream(dir / "path.json") << R"({"fps": 2, "keys": [
     {"t": 0, "camera": "orbit:target=80,60,0,azimuth=200,elevation=35,distance=200"},
@@ -412,11 +421,8 @@ TEST(Cli, CameraPathFramesInRangesEqualOneRunAndBadPathsAreOneLine) {
 // exit 2, with nothing written.
 TEST(Cli, PedestrianAndFlyerCamerasAndTheirMistakes) {
   fs::path dir = testing_util::temp_dir("cli-cameras");
-  std::ofstream(dir / "city.geojson") << R"({"type": "FeatureCollection", "exacity": {"seed": 5}, "features": [
-    {"type": "Feature", "properties": {"zone": "residential"},
-     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [160, 0], [160, 120], [0, 120], [0, 0]]]}}]})";
   const fs::path out = dir / "out";
-  Result r = run("generate " + (dir / "city.geojson").string() + " -o " + out.string() + " -q");
+  Result r = generate_one_street_block(dir, out);
   ASSERT_EQ(r.code, 0) << r.out;
   const std::string render = "render " + out.string() + " --size 32x24 --spp 1 -q ";
   r = run(render + "--camera pedestrian:road=0,along=10 --aperture 0.05 --focus-tilt 10 -o " + (dir / "walk.png").string());
