@@ -263,8 +263,11 @@ try {
   await modelsChooser.accept(fs.readdirSync(library).filter(f => !f.endsWith('.py')).map(f => path.join(library, f)));
   for (let i = 0; i < 50 && !(await sketch()).exacity?.models; ++i) await new Promise(r => setTimeout(r, 100));
   check((await sketch()).exacity.models === 'models/library.json', 'the uploaded model library is the sketch\'s');
-  check(/Model library models\/library.json loaded/.test(await page.$eval('#message', m => m.textContent)),
-        'the page says the library loaded');
+  // The server holds the new sketch a moment before the page has read its answer and said so.
+  const said = await page.waitForFunction(
+      () => /Model library models\/library.json loaded/.test(document.getElementById('message').textContent),
+      {timeout: 10000}).then(() => true, () => false);
+  check(said, 'the page says the library loaded');
 
   // Save downloads the sketch; Open reads one from a file and shows what the server took.
   const cdp = await page.createCDPSession();
