@@ -78,19 +78,6 @@ std::vector<std::pair<std::string, std::string>> named_files(const json& ex) {
   return files;
 }
 
-// The .mtl files an OBJ file names (its "mtllib" lines), as written.
-std::vector<std::string> material_files(const fs::path& obj) {
-  std::vector<std::string> names;
-  std::ifstream in(obj);
-  for (std::string line; std::getline(in, line);) {
-    std::istringstream words(line);
-    std::string key, name;
-    if (words >> key && key == "mtllib")
-      while (words >> name) names.push_back(name);
-  }
-  return names;
-}
-
 // The file type an upload's first bytes say, as the extension it is stored under.
 std::string image_extension(const std::string& bytes) {
   if (bytes.rfind("\x89PNG\r\n\x1a\n", 0) == 0) return ".png";

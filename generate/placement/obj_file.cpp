@@ -450,6 +450,19 @@ std::vector<std::string> texture_files(const fs::path& mtl) {
   return names;
 }
 
+std::vector<std::string> material_files(const fs::path& obj) {
+  std::vector<std::string> names;
+  std::ifstream in(obj);
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line);
+    std::string key, rest;
+    if (!(words >> key) || key != "mtllib") continue;
+    std::getline(words, rest);
+    for (std::string& name : mtllib_names(rest, obj.parent_path())) names.push_back(std::move(name));
+  }
+  return names;
+}
+
 TriangleMesh read_obj(const fs::path& file, TextureImages* textures) {
   if (fs::is_directory(file))
     throw UserError(file.string() + ": is a folder, not a model file; name an .obj file in the model library");

@@ -49,6 +49,9 @@ std::vector<std::array<int, 3>> triangulate_planar(const std::vector<Vec3>& corn
 // The files an .mtl's map_Kd lines name, as written (relative to the .mtl's folder, "/"
 // between parts); a line that does not parse is left out (read_obj reports it).
 std::vector<std::string> texture_files(const std::filesystem::path& mtl);
+// The .mtl files an OBJ file's mtllib lines name, as read_obj reads them (a name with spaces
+// whole when a file has it), relative to the OBJ's folder.
+std::vector<std::string> material_files(const std::filesystem::path& obj);
 
 // Reads the file, merging vertices at the same position and dropping triangles that
 // repeat another (either winding) or have no area. Throws UserError naming the file and
