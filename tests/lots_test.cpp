@@ -122,7 +122,7 @@ TEST(Lots, BlocksTooSmallToCutAreOneLot) {
                                        &report);
   ASSERT_TRUE(v.ok()) << v.problems[0];
   const auto layer = [](const char* name) {
-    std::ifstream in(testing_util::test_root() / "lots-small-blocks" / "out" / "vector" / name);
+    std::ifstream in(testing_util::test_dir("lots-small-blocks") / "out" / "vector" / name);
     return nlohmann::json::parse(in)["features"];
   };
   std::set<int> built_blocks, blocks;

@@ -32,9 +32,21 @@ inline std::filesystem::path test_root() {
          ("exacity-test-" + std::to_string(std::hash<std::string>{}(EXACITY_BUILD_DIR) % 1000000007));
 }
 
-// A fresh empty folder of this build's tests.
+// The folder `name` of the running test. The test's own name is part of it: ctest runs each
+// test in its own process, two at a time, so two tests calling one helper (one fixture city)
+// must not share, and clear, one folder.
+inline std::filesystem::path test_dir(const std::string& name) {
+  const auto* test = testing::UnitTest::GetInstance()->current_test_info();
+  if (!test) return test_root() / name;
+  // A hash, not the test's name: Slurm's sockets live in a test's folder, and a Unix socket's
+  // path holds at most 108 bytes.
+  const std::string test_name = std::string(test->test_suite_name()) + "." + test->name();
+  return test_root() / ("t" + std::to_string(std::hash<std::string>{}(test_name) % 1000000007)) / name;
+}
+
+// A fresh empty folder of the running test's.
 inline std::filesystem::path temp_dir(const std::string& name) {
-  auto dir = test_root() / name;
+  auto dir = test_dir(name);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

@@ -198,7 +198,7 @@ Generated generate(const std::string& name, const std::string& text, const fs::p
   return {result.report, validate_output(dir / "out")};
 }
 
-fs::path out_of(const std::string& name) { return testing_util::test_root() / ("grid-" + name) / "out"; }
+fs::path out_of(const std::string& name) { return testing_util::test_dir("grid-" + name) / "out"; }
 
 std::vector<std::string> rows_of(const std::string& text) {
   std::vector<std::string> rows;
@@ -638,7 +638,7 @@ TEST(GridMapCity, MapsOfOneCell) {
   EXPECT_TRUE(zone.validation.ok());
   ASSERT_EQ(zone.report["empty_zones"].size(), 1u) << "no street reaches it";
   EXPECT_EQ(zone.report["empty_zones"][0]["grid_cell"],
-            (testing_util::test_root() / "grid-one-zone" / "city.grid").string() + ":2:1");
+            (testing_util::test_dir("grid-one-zone") / "city.grid").string() + ":2:1");
   const Generated road = generate("one-road", "cell 10\n=\n");
   EXPECT_TRUE(road.validation.ok());
   EXPECT_EQ(road.report["counts"]["roads"], 1);
