@@ -73,11 +73,17 @@ Camera CameraPath::at(double t) const {
   Camera c = a.camera;
   c.from = hermite(keys, i, t, eye), c.to = hermite(keys, i, t, target);
   c.fov_y = fov;
-  if (city && a.spec.on_ground() && b.spec.on_ground()) {
+  // Next to a key on the ground the eye keeps over the terrain: its height over it goes from
+  // one key's to the other's, where a curve through the two eyes could run into a hill.
+  // Between the air and the ground it eases in and out, so the walk starts at a standstill.
+  if (city && (a.spec.on_ground() || b.spec.on_ground())) {
+    const double w = a.spec.on_ground() && b.spec.on_ground() ? s : s * s * (3 - 2 * s);
     auto over_ground = [&](V3 p) { return p.z - ground_height(*city, p.x, p.y); };
-    auto onto_ground = [&](V3& p, double height) { p.z = static_cast<float>(ground_height(*city, p.x, p.y) + height); };
-    onto_ground(c.from, mix(over_ground(a.camera.from), over_ground(b.camera.from)));
-    onto_ground(c.to, mix(over_ground(a.camera.to), over_ground(b.camera.to)));
+    auto onto_ground = [&](V3& p, double from, double to) {
+      p.z = static_cast<float>(ground_height(*city, p.x, p.y) + from + (to - from) * w);
+    };
+    onto_ground(c.from, over_ground(a.camera.from), over_ground(b.camera.from));
+    onto_ground(c.to, over_ground(a.camera.to), over_ground(b.camera.to));
   }
   return c;
 }

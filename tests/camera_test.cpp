@@ -256,6 +256,38 @@ TEST(GroundCameras, AFlyerKeepsItsHeightOverTheTerrainAndItsHeading) {
   }
 }
 
+TEST(GroundCameras, BetweenAnAirKeyAndAGroundKeyTheEyeKeepsOverTheTerrain) {
+  // From low in the air west of the hill, straight up its slope to a pedestrian by the
+  // bump: a line between the two eyes runs through the hill. The eye's height over the
+  // terrain goes from the one key's to the other's instead, never under either.
+  const exacity::City city = hill_city();
+  const exacity::Terrain& terrain = *city.heightmap();
+  CameraPath path = parse_camera_path(R"({"fps": 10, "keys": [
+      {"t": 0, "camera": "look:from=0,150,30,to=300,150,60"},
+      {"t": 4, "camera": "pedestrian:at=300,150,heading=0"},
+      {"t": 6, "camera": "look:from=470,150,120,to=300,150,60"}]})",
+                                      "descend.json", 45);
+  path.place(city, "descend.json");
+  auto over = [&](const Camera& c) { return c.from.z - terrain.height_at({c.from.x, c.from.y}); };
+  const double first = over(path.frame(0)), last = over(path.frame(60));
+  ASSERT_GT(first, 1.7);
+  ASSERT_GT(last, 1.7);
+  double before = first;
+  for (int n = 1; n <= 40; ++n) {  // down to the pedestrian: ever lower over the ground
+    const double h = over(path.frame(n));
+    EXPECT_LE(h, before + 1e-3) << n;
+    EXPECT_GE(h, 1.7 - 1e-3) << n;
+    before = h;
+  }
+  EXPECT_NEAR(before, 1.7, 1e-3);
+  for (int n = 41; n <= 60; ++n) {  // and up again
+    const double h = over(path.frame(n));
+    EXPECT_GE(h, before - 1e-3) << n;
+    EXPECT_LE(h, last + 1e-3) << n;
+    before = h;
+  }
+}
+
 TEST(GroundCameras, BadSpecsSayWhatIsWrong) {
   const std::pair<const char*, const char*> cases[] = {
       {"pedestrian:road=-1,along=0", "road=-1"},
