@@ -117,7 +117,9 @@ CameraPath parse_camera_path(const std::string& text, const std::string& file, f
     }
     path.keys.push_back(key);
   }
-  if (path.frame_count() > 1000000) fail(file, "", "more than a million frames");
+  // In doubles: a span of 1e300 s would overflow frame_count's int.
+  if ((path.keys.back().t - path.keys.front().t) * path.fps >= 1000000)
+    fail(file, "", "more than a million frames (the keys' span in seconds times \"fps\")");
   return path;
 }
 

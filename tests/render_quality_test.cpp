@@ -203,6 +203,11 @@ TEST(CameraPath, BadFilesSayWhichFileAndKeyInOneLine) {
       {R"({"fps": 24, "keys": [{"t": 1, "camera": "look:from=0,0,1,to=1,0,0"}, {"t": 1, "camera": "look:from=0,0,1,to=1,0,0"}]})",
        "path.json: keys[1]: t 1 is not after"},
       {R"({"fps": 24, "keys": [{"t": 0, "camera": "pan:x=1"}]})", "path.json: keys[0]: camera \"pan:x=1\""},
+      // Spans whose frame count overflows an int said they had minus two billion frames.
+      {R"({"fps": 1, "keys": [{"t": 0, "camera": "look:from=0,0,1,to=1,0,0"}, {"t": 1e300, "camera": "look:from=0,0,1,to=1,0,0"}]})",
+       "path.json: more than a million frames"},
+      {R"({"fps": 1000, "keys": [{"t": -1e6, "camera": "look:from=0,0,1,to=1,0,0"}, {"t": 1e6, "camera": "look:from=0,0,1,to=1,0,0"}]})",
+       "path.json: more than a million frames"},
   };
   for (const auto& [text, expected] : cases) {
     try {
