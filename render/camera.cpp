@@ -9,6 +9,7 @@ namespace render {
 namespace {
 
 constexpr float kDegree = kPi / 180;
+constexpr float kLargestCameraNumber = 1e9f;
 
 }  // namespace
 
@@ -40,6 +41,10 @@ CameraSpecText CameraSpecText::split(const std::string& spec) {
     } catch (const std::exception&) {
       throw std::invalid_argument("\"" + value + "\" is not a number");
     }
+    // Embree refuses rays from past about 1.8e18 (it aborts); a kilometre's million is room
+    // enough for any city and any distance to it.
+    if (std::abs(text.keys.back().second.back()) > kLargestCameraNumber)
+      throw std::invalid_argument(text.keys.back().first + "=" + value + " is outside -1e9 to 1e9");
   }
   return text;
 }
@@ -77,13 +82,17 @@ Camera Camera::parse(const std::string& spec, float fov_y) {
   const CameraSpecText text = CameraSpecText::split(spec);
   if (text.kind == "orbit") {
     auto t = text.get("target", 3);
+    if (!(text.get("distance", 1)[0] >= kNearestTarget))
+      throw std::invalid_argument("distance= must be at least 0.01 (m)");
     return orbit({t[0], t[1], t[2]}, text.get("azimuth", 1)[0], text.get("elevation", 1)[0], text.get("distance", 1)[0],
                  fov_y);
   }
   if (text.kind == "look") {
     auto f = text.get("from", 3), t = text.get("to", 3);
-    if (f == t) throw std::invalid_argument("from and to are the same point");
-    return look({f[0], f[1], f[2]}, {t[0], t[1], t[2]}, fov_y);
+    const V3 from{f[0], f[1], f[2]}, to{t[0], t[1], t[2]};
+    if (!(length(to - from) >= kNearestTarget))
+      throw std::invalid_argument("from and to are the same point, or under 0.01 m apart");
+    return look(from, to, fov_y);
   }
   throw std::invalid_argument("unknown camera \"" + text.kind + "\"; use orbit or look");
 }

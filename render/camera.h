@@ -20,6 +20,10 @@ struct DepthOfField {
   float aperture = 0, focus_distance = 0, focus_tilt = 0;
 };
 
+// The least distance from a camera's eye to its target: closer, the view's direction is
+// rounding noise (a NaN ray, which Embree aborts on).
+constexpr float kNearestTarget = 0.01f;  // m
+
 struct Camera {
   V3 from, to;
   float fov_y = 50;  // degrees, vertical

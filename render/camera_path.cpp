@@ -1,5 +1,6 @@
 #include "render/camera_path.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -27,6 +28,19 @@ V3 hermite(const std::vector<CameraKey>& keys, std::size_t i, double t, V3 (*poi
   const float hf = static_cast<float>(h);
   return point(keys[i]) * h00 + velocity(keys, i, point) * (h10 * hf) + point(keys[i + 1]) * h01 +
          velocity(keys, i + 1, point) * (h11 * hf);
+}
+
+// The view's direction at s between two keys' directions: the heading the shorter way round,
+// the pitch linearly. For where the eye's and the target's curves meet (two keys looking at
+// each other's eyes cross half-way), which leaves the view no direction.
+V3 turned_between(V3 a, V3 b, double s) {
+  const double heading_a = std::atan2(a.y, a.x), pitch_a = std::asin(std::clamp(a.z, -1.0f, 1.0f));
+  double turn = std::atan2(b.y, b.x) - heading_a;
+  turn -= 2 * M_PI * std::round(turn / (2 * M_PI));
+  const double heading = heading_a + turn * s,
+               pitch = pitch_a + (std::asin(std::clamp(b.z, -1.0f, 1.0f)) - pitch_a) * s;
+  return {static_cast<float>(std::cos(pitch) * std::cos(heading)), static_cast<float>(std::cos(pitch) * std::sin(heading)),
+          static_cast<float>(std::sin(pitch))};
 }
 
 [[noreturn]] void fail(const std::string& file, const std::string& where, const std::string& what) {
@@ -85,6 +99,7 @@ Camera CameraPath::at(double t) const {
     onto_ground(c.from, over_ground(a.camera.from), over_ground(b.camera.from));
     onto_ground(c.to, over_ground(a.camera.to), over_ground(b.camera.to));
   }
+  if (!(length(c.to - c.from) >= kNearestTarget)) c.to = c.from + turned_between(a.camera.forward(), b.camera.forward(), s);
   return c;
 }
 

@@ -301,6 +301,10 @@ TEST(GroundCameras, BadSpecsSayWhatIsWrong) {
       {"flyer:at=0,0,height=10,heading=0,pitch=95", "pitch="},
       {"flyer:at=0,0,height=-5,heading=0", "height="},
       {"orbit:target=nan,0,0,azimuth=0,elevation=30,distance=10", "\"nan\" is not a number"},
+      // Each made a ray Embree aborts on (exit 134).
+      {"orbit:target=0,0,0,azimuth=0,elevation=30,distance=1e30", "distance=1e30 is outside -1e9 to 1e9"},
+      {"orbit:target=0,0,0,azimuth=0,elevation=30,distance=1e-30", "distance= must be at least 0.01"},
+      {"look:from=0,0,1e-30,to=0,0,0", "under 0.01 m apart"},
       {"walker:at=0,0", "unknown camera \"walker\""},
       {"pedestrian", "expected KIND:KEY=VALUE"},
   };

@@ -193,6 +193,21 @@ TEST(CameraPath, PassesThroughItsKeysSmoothlyAndFramesAtItsRate) {
   EXPECT_NEAR(turn.at(3).from.x, -150, 1e-4);
 }
 
+TEST(CameraPath, TwoKeysLookingAtEachOthersEyesStillLookSomewhereHalfWay) {
+  // The eye and the target cross at t = 0.5: the view turns about the vertical instead of
+  // having no direction (a NaN ray, which Embree aborted the render on).
+  const CameraPath swap = parse_camera_path(R"({"fps": 10, "keys": [
+      {"t": 0, "camera": "look:from=0,0,10,to=10,0,10"},
+      {"t": 1, "camera": "look:from=10,0,10,to=0,0,10"}]})", "swap.json", 40);
+  for (int n = 0; n < swap.frame_count(); ++n) {
+    const V3 f = swap.frame(n).forward();
+    EXPECT_TRUE(std::isfinite(f.x) && std::isfinite(f.y) && std::isfinite(f.z)) << n;
+    EXPECT_NEAR(length(f), 1, 1e-4) << n;
+    EXPECT_NEAR(f.z, 0, 1e-4) << n;  // both keys look level: so does every frame
+  }
+  EXPECT_NEAR(swap.at(0.5).forward().x, 0, 1e-4);  // half-way round from east to west
+}
+
 TEST(CameraPath, BadFilesSayWhichFileAndKeyInOneLine) {
   const std::pair<const char*, const char*> cases[] = {
       {"[1, 2]", "path.json: not a JSON object"},
