@@ -45,7 +45,8 @@ std::string number(double x) {
 }
 
 void check_range(const char* key, double value, double low, double high) {
-  if (!(value >= low && value <= high))
+  // The spec's numbers are floats: the bounds are too, or "pitch=89.9" would be outside 89.9.
+  if (!(value >= static_cast<float>(low) && value <= static_cast<float>(high)))
     throw std::invalid_argument(std::string(key) + "=" + number(value) + " is outside " + number(low) + " to " +
                                 number(high));
 }

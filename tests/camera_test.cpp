@@ -316,6 +316,9 @@ TEST(GroundCameras, BadSpecsSayWhatIsWrong) {
       EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << text << ": " << e.what();
     }
   }
+  // The bounds themselves are in range, though the spec's numbers are floats.
+  for (const char* text : {"pedestrian:at=0,0,heading=0,pitch=89.9,eye=0.1", "flyer:at=0,0,height=0.1,heading=0,pitch=-89.9"})
+    EXPECT_NO_THROW(parse_camera_spec(text, 45)) << text;
   const exacity::City city = hill_city();
   try {
     place_camera(parse_camera_spec("pedestrian:road=99999,along=0", 45), city);
