@@ -103,7 +103,8 @@ json write_city_tiles(const City& city, const fs::path& dir) {
   }
 
   fs::create_directories(dir);
-  const GltfCounts ground = write_gltf(city.ground, {}, {}, {}, nullptr, city.heightmap(), dir / "ground.glb");
+  const GltfCounts ground =
+      write_gltf(city.ground, ground_layers(city.ground, city.heightmap()), {}, {}, {}, nullptr, dir / "ground.glb");
   json index{{"tile_size", size},
              {"bounds", {box.min_x, box.min_y, box.max_x, box.max_y}},
              {"ground", "/api/tiles/ground.glb"},

@@ -6,7 +6,7 @@
 
 #include "generate/errors.h"
 #include "generate/export/bridges.h"
-#include "generate/export/ground_mesh.h"
+#include "generate/export/ground_layers.h"
 #include "generate/gis/projection.h"
 #include "geom/ring_cleanup.h"
 #include "geom/triangulate.h"
@@ -352,8 +352,7 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
                     const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
                     const ModelLibrary* library, const Terrain* terrain, const Sketch& sketch,
                     const std::filesystem::path& file, const std::vector<Clutter>& clutter) {
-  geom::Box box = ground.bounds();
-  if (box.holds_nothing()) box = {0, 0, 1, 1};
+  const geom::Box box = city_box(ground);
   const geom::Vec2 origin{std::floor(box.min_x), std::floor(box.min_y)};
   Vertices v(origin);
   json objects = json::object();

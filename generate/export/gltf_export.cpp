@@ -7,8 +7,7 @@
 #include <tiny_gltf.h>
 
 #include "generate/errors.h"
-#include "generate/export/bridges.h"
-#include "generate/export/ground_mesh.h"
+#include "generate/export/ground_layers.h"
 #include "generate/city/palette.h"
 #include "generate/version.h"
 
@@ -194,51 +193,14 @@ void add_ground_mesh(const GroundMesh& g, const Frame& local, Triangles& t) {
     for (int k : tri) t.indices.push_back(first + static_cast<std::uint32_t>(k));
 }
 
-// The ground, layer over layer a few centimetres apart so none hides the next: terrain,
-// zones (a material per zone type), water, roads.
-Primitives ground_primitives(const Ground& ground, const Terrain* terrain, const geom::Box& box, const Frame& local,
-                             Glb& glb) {
+// The ground's layers, a primitive each.
+Primitives ground_primitives(const std::vector<GroundLayer>& layers, const Frame& local, Glb& glb) {
   Primitives out;
-  {
+  for (const GroundLayer& layer : layers) {
     Triangles t;
-    add_ground_mesh(terrain_mesh(terrain, box, box, ground.water, 512), local, t);
-    out.push_back({glb.accessors(t), glb.material("terrain", kTerrainColour)});
+    add_ground_mesh(layer.mesh, local, t);
+    out.push_back({glb.accessors(t), glb.material(layer.name, layer.colour, layer.roughness)});
   }
-  std::map<std::string, std::pair<ZoneType, Triangles>> zones;  // by name: the materials' order
-  for (const ZoneArea& z : ground.zones) {
-    GroundMesh g;
-    drape(z.polygon, terrain, 0.05, g);
-    auto& [type, t] = zones[std::string(name(z.type))];
-    type = z.type;
-    add_ground_mesh(g, local, t);
-  }
-  for (const auto& [zone, t] : zones)
-    out.push_back({glb.accessors(t.second), glb.material("ground_" + zone, ground_colour(t.first))});
-  Triangles water, roads;
-  // Water level at its shore height, bridges level between their ends, on piers
-  // (docs/design.md, Ground meshes).
-  for (const geom::Polygon& w : ground.water) {
-    GroundMesh g;
-    drape_flat(w, water_level(w, terrain) + 0.05, g);
-    add_ground_mesh(g, local, water);
-  }
-  const BridgeDecks decks = bridge_decks(ground, terrain);
-  for (std::size_t i = 0; i < ground.road_areas.size(); ++i) {
-    const RoadArea& a = ground.road_areas[i];
-    GroundMesh g;
-    if (a.bridge)
-      drape_flat(a.polygon, decks.height[i] + 0.3, g);
-    else
-      drape(a.polygon, terrain, 0.1, g);
-    add_ground_mesh(g, local, roads);
-  }
-  {
-    GroundMesh g;
-    bridge_structure(ground, terrain, decks, g);
-    add_ground_mesh(g, local, roads);
-  }
-  out.push_back({glb.accessors(water), glb.material("water", ground_colour(ZoneType::Water), 0.1)});
-  out.push_back({glb.accessors(roads), glb.material("road", kRoadColour)});
   return out;
 }
 
@@ -335,24 +297,17 @@ void add_mesh_node(const std::string& name, const Primitives& primitives, Glb& g
   if (node.mesh >= 0) root.children.push_back(glb.node(node));
 }
 
-// The city's box, as write_gltf frames the city.
-geom::Box city_box(const Ground& ground) {
-  geom::Box box = ground.bounds();
-  if (box.holds_nothing()) box = {0, 0, 1, 1};
-  return box;
-}
-
-// write_gltf's body; without the ground when `ground` is null (a tile's structures).
-GltfCounts write_city_part(const Ground* ground, const geom::Box& box, const std::vector<Building>& buildings,
-                           const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
-                           const ModelLibrary* library, const Terrain* terrain, const std::filesystem::path& file,
-                           const std::vector<ModelInstance>& clutter) {
+// write_gltf's body; without the ground when `ground_layers` is null (a tile's structures).
+GltfCounts write_city_part(const std::vector<GroundLayer>* ground_layers, const geom::Box& box,
+                           const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
+                           const std::vector<Mesh>& meshes, const ModelLibrary* library,
+                           const std::filesystem::path& file, const std::vector<ModelInstance>& clutter) {
   const Frame local{local_origin(box)};
   Glb glb;
   tinygltf::Node root;
   root.name = "city";
   root.translation = {local.origin.x, 0, -local.origin.y};
-  if (ground) add_mesh_node("ground", ground_primitives(*ground, terrain, box, local, glb), glb, root);
+  if (ground_layers) add_mesh_node("ground", ground_primitives(*ground_layers, local, glb), glb, root);
   add_mesh_node("buildings", building_primitives(buildings, models, meshes, local, glb), glb, root);
   GltfCounts counts;
   StoredModels stored;
@@ -372,18 +327,18 @@ GltfCounts write_city_part(const Ground* ground, const geom::Box& box, const std
 
 }  // namespace
 
-GltfCounts write_gltf(const Ground& ground, const std::vector<Building>& buildings,
-                      const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
-                      const ModelLibrary* library, const Terrain* terrain, const std::filesystem::path& file,
+GltfCounts write_gltf(const Ground& ground, const std::vector<GroundLayer>& ground_layers,
+                      const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
+                      const std::vector<Mesh>& meshes, const ModelLibrary* library, const std::filesystem::path& file,
                       const std::vector<ModelInstance>& clutter) {
-  return write_city_part(&ground, city_box(ground), buildings, models, meshes, library, terrain, file, clutter);
+  return write_city_part(&ground_layers, city_box(ground), buildings, models, meshes, library, file, clutter);
 }
 
 GltfCounts write_gltf_structures(const Ground& ground, const std::vector<Building>& buildings,
                                  const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
                                  const ModelLibrary* library, const std::filesystem::path& file,
                                  const std::vector<ModelInstance>& clutter) {
-  return write_city_part(nullptr, city_box(ground), buildings, models, meshes, library, nullptr, file, clutter);
+  return write_city_part(nullptr, city_box(ground), buildings, models, meshes, library, file, clutter);
 }
 
 GltfCounts write_gltf_boxes(const Ground& ground, const std::vector<StructureBox>& boxes,

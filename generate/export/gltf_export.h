@@ -1,7 +1,8 @@
 // OUT/city.glb: glTF 2.0 binary, y up, metres. Positions are floats relative to a local
 // origin near the city's centre, held in the root node's translation, so they keep
-// millimetres across a large city. The ground (terrain, zones, water, roads) follows the
-// terrain; extruded buildings are merged per material; each library model is stored once
+// millimetres across a large city. The ground is ground_layers' (terrain, zones, water,
+// roads, bridges), as in city.obj and city.ply; extruded buildings are merged per
+// material; each library model is stored once
 // and every placement is a node referring to it (seed 004), one mesh per colour variant
 // sharing the same geometry.
 #pragma once
@@ -10,8 +11,8 @@
 #include <vector>
 
 #include "generate/export/building_mesh.h"
+#include "generate/export/ground_layers.h"
 #include "generate/placement/model_library.h"
-#include "generate/city/terrain.h"
 #include "generate/city/ground.h"
 #include "generate/placement/buildings.h"
 
@@ -21,12 +22,13 @@ struct GltfCounts {
   std::size_t meshes = 0, instances = 0, triangles = 0;
 };
 
+// ground_layers are ground_layers(ground, terrain), a primitive each of the mesh "ground";
 // meshes are structure_meshes(buildings, models, library), by id. The street clutter's
 // models are instanced like the lots', sharing their geometry: a node each, in id order,
 // under the root's child "clutter".
-GltfCounts write_gltf(const Ground& ground, const std::vector<Building>& buildings,
-                      const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
-                      const ModelLibrary* library, const Terrain* terrain, const std::filesystem::path& file,
+GltfCounts write_gltf(const Ground& ground, const std::vector<GroundLayer>& ground_layers,
+                      const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
+                      const std::vector<Mesh>& meshes, const ModelLibrary* library, const std::filesystem::path& file,
                       const std::vector<ModelInstance>& clutter = {});
 
 // exacity serve's tiles (docs/design.md, Serving: tiles), in write_gltf's frame for the same
