@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "generate/export/building_mesh.h"
@@ -67,7 +68,8 @@ TEST(BuildingMesh, ObjHoldsEveryBuildingAtFullPrecision) {
   std::vector<Building> buildings{prism({{{0.1, 0.2}, {10, 0}, {10, 10}, {0, 10}}, {}}, 5),
                                   prism({{{500000.123456789, 5000000.5}, {500010, 5000000.5}, {500010, 5000010}}, {}}, 7.25)};
   buildings[0].id = 0, buildings[1].id = 1;
-  MeshCounts counts = write_meshes(buildings, {}, structure_meshes(buildings, {}, nullptr), dir / "city.obj", dir / "city.ply");
+  MeshCounts counts =
+      write_meshes(buildings, {}, structure_meshes(buildings, {}, nullptr), {}, dir / "city.obj", dir / "city.ply");
   EXPECT_EQ(counts.vertices, 8u + 6u);
   EXPECT_EQ(counts.faces, 8u + 3u + 1u + 1u);
   std::ifstream in(dir / "city.obj");
@@ -93,6 +95,69 @@ TEST(BuildingMesh, ObjHoldsEveryBuildingAtFullPrecision) {
   EXPECT_NE(ply_text.find("element vertex " + std::to_string(counts.vertices) + "\n"), std::string::npos);
   EXPECT_NE(ply_text.find("element face " + std::to_string(counts.faces) + "\n"), std::string::npos);
   EXPECT_NE(ply_text.find("\n500000.123456789 5000000.5 7.25\n"), std::string::npos);
+}
+
+// The ground's layers follow the buildings in both files: in the OBJ an object and a
+// material each, named as city.glb names its materials; in the PLY each triangle with its
+// layer's surface class.
+TEST(BuildingMesh, ObjAndPlyCarryTheGroundLayers) {
+  auto dir = testing_util::temp_dir("obj-ground");
+  Ground ground;
+  ground.zones.push_back({ZoneType::Park, {{{0, 0}, {100, 0}, {100, 100}, {0, 100}}, {}}});
+  ground.water.push_back({{{40, 0}, {60, 0}, {60, 100}, {40, 100}}, {}});
+  ground.road_areas.push_back({0, true, RoadSurface::Carriageway, {{{40, 45}, {60, 45}, {60, 55}, {40, 55}}, {}}});
+  const std::vector<GroundLayer> layers = ground_layers(ground, nullptr);
+  std::vector<std::string> names;
+  std::size_t layer_vertices = 0, layer_triangles = 0;
+  for (const GroundLayer& l : layers) {
+    names.push_back(l.name);
+    layer_vertices += l.mesh.vertices.size(), layer_triangles += l.mesh.triangles.size();
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"terrain", "ground_park", "water", "road", "bridge"}));
+  std::vector<Building> buildings{prism({{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {}}, 5)};
+  buildings[0].id = 0;
+  MeshCounts counts = write_meshes(buildings, {}, structure_meshes(buildings, {}, nullptr), layers, dir / "city.obj",
+                                   dir / "city.ply");
+  EXPECT_EQ(counts.vertices, 8u + layer_vertices);
+  EXPECT_EQ(counts.faces, 8u + layer_triangles);
+
+  std::ifstream obj(dir / "city.obj");
+  std::vector<std::string> objects, materials;
+  for (std::string line; std::getline(obj, line);) {
+    if (line.rfind("o ", 0) == 0) objects.push_back(line.substr(2));
+    if (line.rfind("usemtl ", 0) == 0) materials.push_back(line.substr(7));
+  }
+  EXPECT_EQ(objects, (std::vector<std::string>{"building_0", "terrain", "ground_park", "water", "road", "bridge"}));
+  EXPECT_EQ(std::vector<std::string>(materials.end() - 5, materials.end()), names);
+  std::ifstream mtl_file(dir / "city.mtl");
+  const std::string mtl((std::istreambuf_iterator<char>(mtl_file)), std::istreambuf_iterator<char>());
+  for (const std::string& n : names) EXPECT_NE(mtl.find("newmtl " + n + "\nKd "), std::string::npos) << n;
+
+  // PLY faces: vertex count, indices, surface class.
+  std::ifstream ply(dir / "city.ply");
+  std::string line;
+  while (std::getline(ply, line) && line != "end_header") {
+  }
+  for (std::size_t v = 0; v < counts.vertices; ++v) std::getline(ply, line);
+  std::map<int, std::size_t> by_surface;
+  for (std::size_t f = 0; f < counts.faces; ++f) {
+    ASSERT_TRUE(std::getline(ply, line));
+    std::istringstream s(line);
+    int n = 0, surface = -1;
+    std::size_t index;
+    s >> n;
+    for (int k = 0; k < n; ++k) {
+      s >> index;
+      EXPECT_LT(index, counts.vertices);
+    }
+    s >> surface;
+    ASSERT_TRUE(s) << line;
+    ++by_surface[surface];
+  }
+  EXPECT_FALSE(std::getline(ply, line));
+  std::map<int, std::size_t> expected{{0, 2}, {1, 4}, {2, 2}};  // the building: ground, walls, roof
+  for (const GroundLayer& l : layers) expected[3 + static_cast<int>(l.kind)] += l.mesh.triangles.size();
+  EXPECT_EQ(by_surface, expected);
 }
 
 namespace {

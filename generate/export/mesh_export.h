@@ -1,12 +1,16 @@
-// Building meshes to files at full double precision, x east, y north, z up, in metres:
-// OUT/city.obj with city.mtl (shortest round-trip decimals; one material per zone and
-// surface class) and OUT/city.ply (doubles, with each face's surface class).
+// The city's meshes to files at full double precision, x east, y north, z up, in metres:
+// OUT/city.obj with city.mtl (shortest round-trip decimals) and OUT/city.ply (doubles, with
+// each face's surface class). Buildings and models first, an object each with a
+// material per zone and surface class; then the ground's layers as city.glb has them
+// (ground_layers: terrain, zones, water, roads, bridges), an object and a material each,
+// named as city.glb names its materials.
 #pragma once
 
 #include <filesystem>
 #include <vector>
 
 #include "generate/export/building_mesh.h"
+#include "generate/export/ground_layers.h"
 
 namespace exacity {
 
@@ -14,10 +18,10 @@ struct MeshCounts {
   std::size_t vertices = 0, faces = 0;
 };
 
-// Writes both files; meshes are structure_meshes(buildings, models, ...), by id. The counts
-// are of the whole city.
+// Writes both files; meshes are structure_meshes(buildings, models, ...), by id; ground is
+// ground_layers(...) or none. The counts are of the whole city, ground included.
 MeshCounts write_meshes(const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
-                        const std::vector<Mesh>& meshes, const std::filesystem::path& obj_file,
-                        const std::filesystem::path& ply_file);
+                        const std::vector<Mesh>& meshes, const std::vector<GroundLayer>& ground,
+                        const std::filesystem::path& obj_file, const std::filesystem::path& ply_file);
 
 }  // namespace exacity
