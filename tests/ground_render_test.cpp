@@ -8,8 +8,6 @@
 #include <string>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
-
 #include "generate/export/bridges.h"
 #include "generate/pipeline.h"
 #include "geom/measure.h"
@@ -17,32 +15,22 @@
 #include "render/path_tracer.h"
 #include "render/scene.h"
 #include "render/sky.h"
+#include "tests/river_sketch.h"
 #include "tests/test_util.h"
 
 using namespace render;
+using river_sketch::kPark;
+using river_sketch::straight_river;
 
 namespace {
 
-// A 20 x 20 pixel 16-bit heightmap over 200 m x 200 m, heights 0 to 50 m, value(col, row),
-// row 0 north; then a city of `features` on it.
+// A city of `features` on a heightmap of value(col, row) (tests/river_sketch.h).
 exacity::City city_on(const std::string& name, double (*value)(int, int), const std::string& features) {
   const auto dir = testing_util::temp_dir("ground-" + name);
-  std::vector<std::uint16_t> pixels;
-  for (int row = 0; row < 20; ++row)
-    for (int col = 0; col < 20; ++col) pixels.push_back(static_cast<std::uint16_t>(std::lround(value(col, row) * 65535)));
-  auto out = OIIO::ImageOutput::create((dir / "h.png").string());
-  EXPECT_TRUE(out->open((dir / "h.png").string(), OIIO::ImageSpec(20, 20, 1, OIIO::TypeDesc::UINT16)));
-  EXPECT_TRUE(out->write_image(OIIO::TypeDesc::UINT16, pixels.data()));
-  out->close();
-  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 5, "builtin_models": [],
-    "terrain": {"heightmap": "h.png", "bounds": [0, 0, 200, 200], "height": [0, 50]}},
-    "features": [)" + features + "]}";
+  const std::string text = river_sketch::write(dir, value, features);
   exacity::StageClock clock(nullptr, exacity::kCityStages);
   return exacity::build_city(exacity::parse_sketch(text, dir / "sketch.geojson"), clock);
 }
-
-const std::string kPark = R"({"type": "Feature", "properties": {"zone": "park"},
-  "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [200, 0], [200, 200], [0, 200], [0, 0]]]}})";
 
 // What the ray through each pixel's centre met, straight down from 1 km over the box.
 struct TopView {
@@ -104,9 +92,6 @@ double river_value(int col, int row) {
   const double off = std::abs(col - (19 - row) * 0.5 - 4.0);
   return off < 1.5 ? 0.0 : std::min(1.0, 0.4 + 0.08 * off);
 }
-
-// A straight river, pixel columns 8 to 11 (x 80 to 120 m), banks 20 m up.
-double straight_river(int col, int) { return col >= 8 && col <= 11 ? 0.0 : 0.4 + 0.01 * std::abs(col - 9.5); }
 
 }  // namespace
 
@@ -170,9 +155,8 @@ TEST(GroundRender, BanksFollowTheWaterOutlineAndWaterIsLevel) {
 // A highway over a river on a heightmap: its bridge's deck is level from bank to bank,
 // at the banks' height, and a pier under its middle stands on the riverbed.
 TEST(GroundRender, BridgeDeckIsLevelFromAbutmentToAbutmentOnPiers) {
-  const exacity::City city = city_on("bridge", straight_river, kPark + R"(, {"type": "Feature",
-    "properties": {"road": "highway", "width": 12},
-    "geometry": {"type": "LineString", "coordinates": [[-20, 100], [220, 100]]}})");
+  const exacity::City city =
+      city_on("bridge", straight_river, kPark + ", " + river_sketch::highway("[-20, 100], [220, 100]"));
   bool bridge = false;
   for (const auto& r : city.ground.road_areas) bridge |= r.bridge;
   ASSERT_TRUE(bridge);
