@@ -323,7 +323,7 @@ void RenderScene::add_ground(const exacity::City& city, const geom::Box& world, 
     // A road surface names the centre line it belongs to; its id is the road's entity.
     const int material = a.surface == exacity::RoadSurface::Sidewalk ? palette.sidewalk : palette.asphalt;
     road_areas.push_back({&a.polygon, material, entity_id(Entity::Road, a.road >= 0 ? static_cast<std::size_t>(a.road) : 0),
-                          0.10, a.bridge ? decks.height[i] + 0.30 : NAN});
+                          exacity::kRoadOverTerrain, a.bridge ? decks.height[i] : NAN});
   }
   for (const auto* pieces : {&zones, &lots, &water, &road_areas}) add_draped(*pieces, terrain);
   add_road_markings(g, decks, terrain, palette);
@@ -403,7 +403,7 @@ void RenderScene::add_road_markings(const exacity::Ground& ground, const exacity
     if (r.bridge && r.line.size() >= 2) {
       // On its deck: flat, just over the deck's surface.
       const double deck = decks.at(ground, geom::lerp(r.line[0], r.line[1], 0.5));
-      if (std::isfinite(deck)) under = nullptr, lift = deck + 0.32;
+      if (std::isfinite(deck)) under = nullptr, lift = deck + 0.02;
     }
     ribbon(r.line, 0, 0.15, highway ? 0 : 3, 5, under, lift, v, t, *this);
     info.material.resize(t.size(), highway ? palette.yellow : palette.paint);

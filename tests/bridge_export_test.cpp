@@ -30,7 +30,6 @@ struct Ground3d {
   std::vector<Triangle> road;     // road surfaces, the bridges' decks among them
   std::vector<Triangle> bridge;   // the decks' sides and undersides, and the piers
   std::vector<Triangle> terrain;  // the terrain, the banks and the beds under water
-  double lift = 0;                // how far the road surface on a deck lies over the deck's top
   double precision = 0;           // how far apart two heights the format holds may be and mean one
 };
 
@@ -40,7 +39,7 @@ Ground3d read_glb(const fs::path& out) {
   tinygltf::TinyGLTF loader;
   std::string error, warning;
   EXPECT_TRUE(loader.LoadBinaryFromFile(&model, &error, &warning, (out / "city.glb").string())) << error;
-  Ground3d g{"city.glb", {}, {}, {}, 0.3, 1e-5};
+  Ground3d g{"city.glb", {}, {}, {}, 1e-5};
   if (model.scenes.empty()) return g;
   const tinygltf::Node& root = model.nodes.at(model.scenes.at(0).nodes.at(0));
   const auto& t = root.translation;
@@ -77,7 +76,7 @@ Ground3d read_glb(const fs::path& out) {
 
 // city.obj: the objects road, bridge and terrain.
 Ground3d read_obj(const fs::path& out) {
-  Ground3d g{"city.obj", {}, {}, {}, 0.3, 0};
+  Ground3d g{"city.obj", {}, {}, {}, 0};
   std::ifstream in(out / "city.obj");
   std::vector<Point> vertices;
   std::vector<Triangle>* into = nullptr;
@@ -107,7 +106,7 @@ Ground3d read_obj(const fs::path& out) {
 // CityJSON: the Road objects, the Bridge object and the TINRelief, every surface a triangle.
 Ground3d read_cityjson(const fs::path& out) {
   const json doc = json::parse(read(out / "city.city.json"));
-  Ground3d g{"city.city.json", {}, {}, {}, 0, 1e-3};
+  Ground3d g{"city.city.json", {}, {}, {}, 1e-3};
   const json& scale = doc["transform"]["scale"];
   const json& translate = doc["transform"]["translate"];
   auto vertex = [&](int i) {
@@ -216,7 +215,7 @@ struct Bridge3d {
 };
 
 // Each bridge road area's deck in one export: the road triangles over it all at one height,
-// the structure around it at that height less the lift (the deck's sides) or a deck's
+// the structure around it at that height (the deck's sides' tops) or a deck's
 // thickness lower (its underside, the piers' tops), or lower still on the riverbed (the
 // piers' feet, each under a pier top), and no bank rising over the deck's ends. Every point
 // of the bridges' centre lines and carriageways over water lies under a deck. By area.
@@ -238,7 +237,7 @@ std::vector<Bridge3d> check_decks(const Ground3d& g, const Crossings& c) {
       continue;
     }
     Bridge3d bridge{*tops.begin()};
-    const double side_top = bridge.top - g.lift, underside = side_top - exacity::kDeckThickness;
+    const double side_top = bridge.top, underside = side_top - exacity::kDeckThickness;
     std::set<std::pair<double, double>> pier_tops;
     std::vector<Point> feet;
     for (const Triangle& t : g.bridge)
@@ -325,7 +324,7 @@ TEST(BridgeExport, DeckIsLevelFromAbutmentToAbutmentOverTheWholeCrossingOnPiersI
     std::size_t pier_corners = 0;
     for (const Bridge3d& b : bridges) pier_corners += b.pier_corners;
     EXPECT_EQ(pier_corners, 4u) << g.format << ": one pier in the middle";
-    top[g.format] = bridges[0].top - g.lift;
+    top[g.format] = bridges[0].top;
   }
   // The same deck in each, metres over the riverbed.
   EXPECT_NEAR(top["city.glb"], top["city.obj"], 1e-5);

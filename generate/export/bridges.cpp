@@ -66,7 +66,7 @@ BridgeDecks bridge_decks(const Ground& ground, const Terrain* terrain) {
         h = std::max(h, terrain->height_at(p));
     }
   for (std::size_t i = 0; i < areas.size(); ++i)
-    if (areas[i].bridge) decks.height[i] = highest[find(parent, static_cast<int>(i))];
+    if (areas[i].bridge) decks.height[i] = highest[find(parent, static_cast<int>(i))] + kRoadOverTerrain;
   return decks;
 }
 

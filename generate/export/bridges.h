@@ -15,11 +15,14 @@ namespace exacity {
 constexpr double kDeckThickness = 1.0;
 constexpr double kPierWidth = 2.0;
 constexpr double kPierSpacing = 30.0;
+// Draped roads lie this far over the terrain; a deck's top, which is its road, as far over
+// its higher end, so the road runs on to the deck level there.
+constexpr double kRoadOverTerrain = 0.1;
 
 struct BridgeDecks {
-  // Per road area: the top of its bridge's deck (the highest terrain along the outlines of
-  // the bridge surfaces that touch it: its ends on the banks), NaN off bridges; 0 for
-  // every bridge without terrain.
+  // Per road area: the top of its bridge's deck, its road surface (kRoadOverTerrain over the
+  // highest terrain along the outlines of the bridge surfaces that touch it: its ends on the
+  // banks), NaN off bridges; kRoadOverTerrain for every bridge without terrain.
   std::vector<double> height;
 
   // The deck of the bridge surface under p, NaN where none is.

@@ -35,9 +35,9 @@ std::vector<GroundLayer> ground_layers(const Ground& ground, const Terrain* terr
   for (std::size_t i = 0; i < ground.road_areas.size(); ++i) {
     const RoadArea& a = ground.road_areas[i];
     if (a.bridge)
-      drape_flat(a.polygon, decks.height[i] + 0.3, roads.mesh);
+      drape_flat(a.polygon, decks.height[i], roads.mesh);
     else
-      drape(a.polygon, terrain, 0.1, roads.mesh);
+      drape(a.polygon, terrain, kRoadOverTerrain, roads.mesh);
   }
   layers.push_back(std::move(roads));
   GroundLayer bridges{GroundKind::Bridge, "bridge", kRoadColour, 0.9, {}};
