@@ -154,7 +154,9 @@ void filter_level(const Image& img, std::vector<Estimate>& estimates, const std:
   for (int v = -2; v <= 2; ++v)
     for (int u = -2; u <= 2; ++u)
       distance[v + 2][u + 2] = static_cast<float>(step) * std::sqrt(static_cast<float>(u * u + v * v));
-  std::vector<Estimate> out = estimates;
+  // The level's light and variance; the rest of each estimate stays as it is.
+  std::vector<std::vector<V3>> light(count, std::vector<V3>(img.beauty.size()));
+  std::vector<std::vector<float>> variances(count, std::vector<float>(img.beauty.size()));
   tbb::parallel_for(0, img.height, [&](int y) {
     for (int x = 0; x < img.width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * img.width + x;
@@ -193,10 +195,10 @@ void filter_level(const Image& img, std::vector<Estimate>& estimates, const std:
         }
       // The centre's own weight is never zero, so neither is the sum.
       for (std::size_t e = 0; e < count; ++e)
-        out[e].light[i] = sum[e] / weights[e], out[e].variance[i] = variance[e] / (weights[e] * weights[e]);
+        light[e][i] = sum[e] / weights[e], variances[e][i] = variance[e] / (weights[e] * weights[e]);
     }
   });
-  estimates = std::move(out);
+  for (std::size_t e = 0; e < count; ++e) estimates[e].light.swap(light[e]), estimates[e].variance.swap(variances[e]);
 }
 
 // The mean of `values` over (2r+1)^2 pixels (fewer at the borders): a box filter, its
@@ -234,15 +236,15 @@ float squared(V3 d) { return dot(d, d); }
 // same at every level, told by cross-validation: each half filtered against the other
 // half unfiltered, which is independent of it, less the filtered halves' own spread,
 // smoothed over the pixel's neighbourhood.
-std::vector<float> level_error(const std::vector<Estimate>& filtered, const std::vector<Estimate>& raw, bool finer,
-                               int width, int height, int radius) {
-  std::vector<float> error(filtered[0].light.size());
+std::vector<float> level_error(const Image& img, const std::vector<Estimate>& filtered, bool finer, int radius) {
+  std::vector<float> error(img.beauty.size());
+  const std::vector<V3>& raw_a = img.halves[0].beauty;
+  const std::vector<V3>& raw_b = img.halves[1].beauty;
   tbb::parallel_for(std::size_t{0}, error.size(), [&](std::size_t i) {
     const V3 a = beauty_of(filtered[0], i, finer), b = beauty_of(filtered[1], i, finer);
-    error[i] = (squared(a - beauty_of(raw[1], i, false)) + squared(b - beauty_of(raw[0], i, false))) / 2 -
-               squared(a - b) / 4;
+    error[i] = (squared(a - raw_b[i]) + squared(b - raw_a[i])) / 2 - squared(a - b) / 4;
   });
-  return box_mean(error, width, height, radius);
+  return box_mean(error, img.width, img.height, radius);
 }
 
 }  // namespace
@@ -265,19 +267,18 @@ Image denoise(const Image& img, const DenoiseSettings& s) {
   // Two halves: each pixel takes the level, and the remodulation, whose error the halves
   // tell is least, the unfiltered image (level 0) included, so a converged pixel stays as
   // it is.
-  const std::vector<Estimate> raw = level;
   const int all = img.halves[0].samples + img.halves[1].samples;
   std::vector<V3> finer_albedo, finer_sun;
   if (img.extra.samples > 0) {
     finer_albedo = dividable(with_extra(img.mean_albedo, all, img.extra.albedo, img.extra.samples));
     finer_sun = with_extra(img.first_sun, all, img.extra.sun, img.extra.samples);
   }
-  std::vector<float> least = level_error(level, raw, false, img.width, img.height, s.selection_radius);
+  std::vector<float> least = level_error(img, level, false, s.selection_radius);
   for (int l = 0; l <= s.levels; ++l) {
     if (l > 0) filter_level(img, level, gradients, 1 << (l - 1), s);
     for (const bool finer : {false, true}) {
       if ((l == 0 && !finer) || (finer && finer_albedo.empty())) continue;
-      const std::vector<float> error = level_error(level, raw, finer, img.width, img.height, s.selection_radius);
+      const std::vector<float> error = level_error(img, level, finer, s.selection_radius);
       for (std::size_t i = 0; i < n; ++i) {
         if (!(error[i] < least[i])) continue;
         least[i] = error[i];
