@@ -159,7 +159,7 @@ void denoise_figure(const RenderScene& scene, const Sky& sky, const Camera& came
     std::printf("%4d spp raw:      RMSE %.4f (%.2f s)\n", spp, display_rmse(raw, reference), trace_s);
     if (spp != o.spp) continue;
     t = std::chrono::steady_clock::now();
-    const Image filtered = denoise_render(raw, scene, camera);
+    const Image filtered = denoise_render(raw, scene, sky, camera, Haze{});
     std::printf("%4d spp denoised: RMSE %.4f (%.2f s + %.2f s denoising)\n", spp, display_rmse(filtered, reference),
                 trace_s, seconds_since(t));
   }

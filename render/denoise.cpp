@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "render/albedo_layer.h"
+#include "render/primary_layer.h"
 
 namespace render {
 namespace {
@@ -16,13 +16,72 @@ constexpr float kLeastAlbedo = 0.01f;
 
 bool is_sky(const Image& img, std::size_t i) { return !std::isfinite(img.depth[i]); }
 
-// What the filter smooths: the light arriving at the first hits, with their texture
-// divided out, so a texture's detail is put back unblurred afterwards; the sky as it is.
-// The albedo over all the pixel's samples where the path tracer kept it, else the centre's.
-V3 albedo_divided_out(const Image& img, std::size_t i) {
-  if (img.mean_albedo.empty() && is_sky(img, i)) return {1, 1, 1};
-  const V3 a = img.mean_albedo.empty() ? img.albedo[i] : img.mean_albedo[i];
-  return {std::max(a.x, kLeastAlbedo), std::max(a.y, kLeastAlbedo), std::max(a.z, kLeastAlbedo)};
+V3 dividable(V3 a) { return {std::max(a.x, kLeastAlbedo), std::max(a.y, kLeastAlbedo), std::max(a.z, kLeastAlbedo)}; }
+
+// One estimate of the image: the light arriving at the first hits, less the sun's next
+// event there, with the albedo divided out (so a texture's detail and the sun's shadows
+// are put back unblurred afterwards; the sky's albedo is white), the variance of its
+// luminance, and what puts the beauty back together: the albedo and the sun's part, the
+// estimate's own, and finer ones that add the primary layer's rays where there are some.
+struct Estimate {
+  std::vector<V3> light, albedo, sun;
+  std::vector<V3> finer_albedo, finer_sun;
+  std::vector<float> variance;
+  float share = 1;  // of the image's samples
+};
+
+// `sun` may be empty (none split off).
+Estimate estimate_of(const std::vector<V3>& beauty, const std::vector<V3>& albedo, const std::vector<V3>& sun,
+                     const std::vector<float>& variance, float share) {
+  const std::size_t n = beauty.size();
+  Estimate e{std::vector<V3>(n), std::vector<V3>(n), sun.empty() ? std::vector<V3>(n) : sun, {}, {},
+             std::vector<float>(n, 0), share};
+  for (std::size_t i = 0; i < n; ++i) {
+    const V3 a = dividable(albedo[i]), rest = beauty[i] - e.sun[i];
+    e.light[i] = {rest.x / a.x, rest.y / a.y, rest.z / a.z}, e.albedo[i] = a;
+    const float la = luminance(a);
+    // A part of the samples is noisier than all of them by their ratio.
+    if (!variance.empty()) e.variance[i] = variance[i] / share / (la * la);
+  }
+  return e;
+}
+
+// The mean over `samples` path samples (their mean `own`) and the primary layer's rays
+// (their sum `extra`).
+std::vector<V3> with_extra(const std::vector<V3>& own, int samples, const std::vector<V3>& extra, int extra_samples) {
+  std::vector<V3> mean(own.size());
+  const float all = static_cast<float>(samples + extra_samples);
+  for (std::size_t i = 0; i < mean.size(); ++i) mean[i] = (own[i] * static_cast<float>(samples) + extra[i]) / all;
+  return mean;
+}
+
+std::vector<V3> dividable(std::vector<V3> albedo) {
+  for (V3& a : albedo) a = dividable(a);
+  return albedo;
+}
+
+// The estimates the filter works on: the two halves of the samples where the image has
+// them (Image::halves), else the image alone (from elsewhere, or one sample), divided by
+// the path samples' own mean albedo, or the centre's.
+std::vector<Estimate> estimates(const Image& img) {
+  const int all = img.halves[0].samples + img.halves[1].samples;
+  if (img.halves[0].samples > 0 && img.halves[1].samples > 0) {
+    std::vector<Estimate> halves;
+    for (const Image::Half& h : img.halves) {
+      Estimate e = estimate_of(h.beauty, h.albedo, h.sun, img.variance, static_cast<float>(h.samples) / all);
+      if (img.extra.samples > 0) {
+        e.finer_albedo = dividable(with_extra(h.albedo, h.samples, img.extra.albedo, img.extra.samples));
+        e.finer_sun = with_extra(h.sun, h.samples, img.extra.sun, img.extra.samples);
+      }
+      halves.push_back(std::move(e));
+    }
+    return halves;
+  }
+  std::vector<V3> albedo = img.mean_albedo.empty() ? img.albedo : img.mean_albedo;
+  if (img.mean_albedo.empty())
+    for (std::size_t i = 0; i < albedo.size(); ++i)
+      if (is_sky(img, i)) albedo[i] = {1, 1, 1};
+  return {estimate_of(img.beauty, albedo, img.first_sun, img.variance, 1)};
 }
 
 // How fast depth changes around a pixel, in metres a pixel: the larger of its neighbours'
@@ -51,7 +110,7 @@ std::vector<float> depth_gradients(const Image& img) {
 std::vector<float> smoothed_variance(const Image& img, const std::vector<float>& variance) {
   std::vector<float> out(variance.size(), 0);
   const float k[3] = {0.25f, 0.5f, 0.25f};
-  for (int y = 0; y < img.height; ++y)
+  tbb::parallel_for(0, img.height, [&](int y) {
     for (int x = 0; x < img.width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * img.width + x;
       float sum = 0, weights = 0;
@@ -65,86 +124,183 @@ std::vector<float> smoothed_variance(const Image& img, const std::vector<float>&
         }
       out[i] = sum / weights;
     }
+  });
   return out;
 }
 
-struct Level {
-  std::vector<V3> light;
-  std::vector<float> variance;
-};
+float power_128(float c) {
+  for (int k = 0; k < 7; ++k) c *= c;
+  return c;
+}
 
-// One à-trous level: the 5x5 B3 kernel with holes of `step` pixels, each tap weighed by
-// how alike its pixel is to the centre's.
-Level filter_level(const Image& img, const Level& in, const std::vector<float>& gradients, int step,
-                   const DenoiseSettings& s) {
-  Level out{std::vector<V3>(in.light.size()), std::vector<float>(in.variance.size())};
-  const std::vector<float> variance = img.variance.empty() ? std::vector<float>{} : smoothed_variance(img, in.variance);
+// One à-trous level of every estimate: the 5x5 B3 kernel with holes of `step` pixels,
+// each tap weighed by how alike its pixel is to the centre's, in the guides (shared) and
+// in the estimate's own luminance (each its own).
+void filter_level(const Image& img, std::vector<Estimate>& estimates, const std::vector<float>& gradients, int step,
+                  const DenoiseSettings& s) {
+  const std::size_t count = estimates.size();
+  // Each estimate's luminance, and one over the difference in it that stops a tap.
+  std::vector<std::vector<float>> lum(count), inverse_noise(count);
+  for (std::size_t e = 0; e < count; ++e) {
+    lum[e].resize(img.beauty.size());
+    for (std::size_t i = 0; i < lum[e].size(); ++i) lum[e][i] = luminance(estimates[e].light[i]);
+    // Without a variance (an image from elsewhere) luminance stops nothing.
+    inverse_noise[e].assign(img.beauty.size(), 0);
+    if (img.variance.empty()) continue;
+    const std::vector<float> v = smoothed_variance(img, estimates[e].variance);
+    for (std::size_t i = 0; i < v.size(); ++i) inverse_noise[e][i] = 1 / (s.luminance_sigma * std::sqrt(v[i]) + 1e-6f);
+  }
+  float distance[5][5];
+  for (int v = -2; v <= 2; ++v)
+    for (int u = -2; u <= 2; ++u)
+      distance[v + 2][u + 2] = static_cast<float>(step) * std::sqrt(static_cast<float>(u * u + v * v));
+  // The level's light and variance; the rest of each estimate stays as it is.
+  std::vector<std::vector<V3>> light(count, std::vector<V3>(img.beauty.size()));
+  std::vector<std::vector<float>> variances(count, std::vector<float>(img.beauty.size()));
   tbb::parallel_for(0, img.height, [&](int y) {
     for (int x = 0; x < img.width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * img.width + x;
       const bool sky = is_sky(img, i);
-      const float lp = luminance(in.light[i]);
-      // Without a variance (an image from elsewhere) luminance stops nothing.
-      const float noise = variance.empty() ? INFINITY : s.luminance_sigma * std::sqrt(variance[i]) + 1e-6f;
-      V3 sum{0, 0, 0};
-      float weights = 0, var = 0;
+      V3 sum[2] = {};
+      float weights[2] = {}, variance[2] = {};
       for (int v = -2; v <= 2; ++v)
         for (int u = -2; u <= 2; ++u) {
           const int px = x + u * step, py = y + v * step;
           if (px < 0 || py < 0 || px >= img.width || py >= img.height) continue;
           const std::size_t j = static_cast<std::size_t>(py) * img.width + px;
           if (sky != is_sky(img, j)) continue;  // never across the skyline
-          // The stopping functions multiply, so their exponents add: one exp a tap, the
-          // normals' cos^p as p log cos, in place of a pow and three exps.
-          float exponent = -std::abs(lp - luminance(in.light[j])) / noise;
+          // The stopping functions multiply: the guides' (normals, depth, albedo), shared
+          // by the estimates, then each estimate's luminance; one exp each.
+          float guides = kB3[u + 2] * kB3[v + 2], exponent = 0;
           if (!sky && j != i) {
             const float facing = dot(img.normal[i], img.normal[j]);
             if (facing <= 0) continue;
-            const float distance = static_cast<float>(step) * std::sqrt(static_cast<float>(u * u + v * v));
-            const float depth_scale = s.depth_sigma * gradients[i] * distance + 1e-3f * img.depth[i] + 1e-6f;
+            const float depth_scale =
+                s.depth_sigma * gradients[i] * distance[v + 2][u + 2] + 1e-3f * img.depth[i] + 1e-6f;
             const V3 da = img.albedo[i] - img.albedo[j];
-            exponent += s.normal_power * std::log(facing) - std::abs(img.depth[i] - img.depth[j]) / depth_scale -
-                        (std::abs(da.x) + std::abs(da.y) + std::abs(da.z)) / s.albedo_sigma;
+            exponent = -std::abs(img.depth[i] - img.depth[j]) / depth_scale -
+                       (std::abs(da.x) + std::abs(da.y) + std::abs(da.z)) / s.albedo_sigma;
+            // cos^128 by squaring; other powers through pow.
+            guides *= s.normal_power == 128 ? power_128(facing) : std::pow(facing, s.normal_power);
           }
-          // Below e^-30 a tap weighs nothing next to the centre's (e^0), and exp's underflow
-          // path is slow.
-          if (exponent < -30) continue;
-          const float w = kB3[u + 2] * kB3[v + 2] * std::exp(exponent);
-          sum += in.light[j] * w, weights += w, var += w * w * in.variance[j];
+          for (std::size_t e = 0; e < count; ++e) {
+            const float stop = exponent - std::abs(lum[e][i] - lum[e][j]) * inverse_noise[e][i];
+            // Below e^-30 a tap weighs nothing next to the centre's (e^0), and exp's
+            // underflow path is slow.
+            if (stop < -30) continue;
+            const float w = guides * std::exp(stop);
+            const Estimate& in = estimates[e];
+            sum[e] += in.light[j] * w, weights[e] += w, variance[e] += w * w * in.variance[j];
+          }
         }
       // The centre's own weight is never zero, so neither is the sum.
-      out.light[i] = sum / weights, out.variance[i] = var / (weights * weights);
+      for (std::size_t e = 0; e < count; ++e)
+        light[e][i] = sum[e] / weights[e], variances[e][i] = variance[e] / (weights[e] * weights[e]);
+    }
+  });
+  for (std::size_t e = 0; e < count; ++e) estimates[e].light.swap(light[e]), estimates[e].variance.swap(variances[e]);
+}
+
+// The mean of `values` over (2r+1)^2 pixels (fewer at the borders): a box filter, its
+// rows then its columns.
+std::vector<float> box_mean(const std::vector<float>& values, int width, int height, int r) {
+  std::vector<float> rows(values.size()), out(values.size());
+  tbb::parallel_for(0, height, [&](int y) {
+    for (int x = 0; x < width; ++x) {
+      float sum = 0;
+      const int x0 = std::max(0, x - r), x1 = std::min(width - 1, x + r);
+      for (int u = x0; u <= x1; ++u) sum += values[static_cast<std::size_t>(y) * width + u];
+      rows[static_cast<std::size_t>(y) * width + x] = sum / static_cast<float>(x1 - x0 + 1);
+    }
+  });
+  tbb::parallel_for(0, height, [&](int y) {
+    const int y0 = std::max(0, y - r), y1 = std::min(height - 1, y + r);
+    for (int x = 0; x < width; ++x) {
+      float sum = 0;
+      for (int v = y0; v <= y1; ++v) sum += rows[static_cast<std::size_t>(v) * width + x];
+      out[static_cast<std::size_t>(y) * width + x] = sum / static_cast<float>(y1 - y0 + 1);
     }
   });
   return out;
+}
+
+// The beauty an estimate gives at pixel i: its light times its own albedo plus its own
+// sun, or the finer ones.
+V3 beauty_of(const Estimate& e, std::size_t i, bool finer) {
+  return finer ? e.light[i] * e.finer_albedo[i] + e.finer_sun[i] : e.light[i] * e.albedo[i] + e.sun[i];
+}
+
+float squared(V3 d) { return dot(d, d); }
+
+// The error each pixel of the halves' filtered estimates would have, up to a term the
+// same at every level, told by cross-validation: each half filtered against the other
+// half unfiltered, which is independent of it, less the filtered halves' own spread,
+// smoothed over the pixel's neighbourhood.
+std::vector<float> level_error(const Image& img, const std::vector<Estimate>& filtered, bool finer, int radius) {
+  std::vector<float> error(img.beauty.size());
+  const std::vector<V3>& raw_a = img.halves[0].beauty;
+  const std::vector<V3>& raw_b = img.halves[1].beauty;
+  tbb::parallel_for(std::size_t{0}, error.size(), [&](std::size_t i) {
+    const V3 a = beauty_of(filtered[0], i, finer), b = beauty_of(filtered[1], i, finer);
+    error[i] = (squared(a - raw_b[i]) + squared(b - raw_a[i])) / 2 - squared(a - b) / 4;
+  });
+  return box_mean(error, img.width, img.height, radius);
 }
 
 }  // namespace
 
 Image denoise(const Image& img, const DenoiseSettings& s) {
   const std::size_t n = img.beauty.size();
-  Level level{std::vector<V3>(n), std::vector<float>(n, 0)};
-  for (std::size_t i = 0; i < n; ++i) {
-    const V3 a = albedo_divided_out(img, i);
-    level.light[i] = {img.beauty[i].x / a.x, img.beauty[i].y / a.y, img.beauty[i].z / a.z};
-    const float la = luminance(a);
-    if (!img.variance.empty()) level.variance[i] = img.variance[i] / (la * la);
-  }
+  std::vector<Estimate> level = estimates(img);
   const std::vector<float> gradients = depth_gradients(img);
-  for (int l = 0; l < s.levels; ++l) level = filter_level(img, level, gradients, 1 << l, s);
   Image out = img;
-  for (std::size_t i = 0; i < n; ++i) {
-    const V3 a = albedo_divided_out(img, i);
-    out.beauty[i] = level.light[i] * a;
-    const float la = luminance(a);
-    out.variance.resize(n);
-    out.variance[i] = level.variance[i] * la * la;
+  out.variance.resize(n);
+  if (level.size() == 1) {
+    // One estimate: nothing to tell the levels apart by; the last.
+    for (int l = 0; l < s.levels; ++l) filter_level(img, level, gradients, 1 << l, s);
+    for (std::size_t i = 0; i < n; ++i) {
+      const float la = luminance(level[0].albedo[i]);
+      out.beauty[i] = beauty_of(level[0], i, false), out.variance[i] = level[0].variance[i] * la * la;
+    }
+    return out;
+  }
+  // Two halves: each pixel takes the level, and the remodulation, whose error the halves
+  // tell is least, the unfiltered image (level 0) included, so a converged pixel stays as
+  // it is.
+  const int all = img.halves[0].samples + img.halves[1].samples;
+  std::vector<V3> finer_albedo, finer_sun;
+  if (img.extra.samples > 0) {
+    finer_albedo = dividable(with_extra(img.mean_albedo, all, img.extra.albedo, img.extra.samples));
+    finer_sun = with_extra(img.first_sun, all, img.extra.sun, img.extra.samples);
+  }
+  std::vector<float> least = level_error(img, level, false, s.selection_radius);
+  for (int l = 0; l <= s.levels; ++l) {
+    if (l > 0) filter_level(img, level, gradients, 1 << (l - 1), s);
+    for (const bool finer : {false, true}) {
+      if ((l == 0 && !finer) || (finer && finer_albedo.empty())) continue;
+      const std::vector<float> error = level_error(img, level, finer, s.selection_radius);
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!(error[i] < least[i])) continue;
+        least[i] = error[i];
+        V3 light{0, 0, 0}, own{0, 0, 0};
+        float variance = 0;
+        for (const Estimate& e : level) {
+          const float la = luminance(e.albedo[i]);
+          light += e.light[i] * e.share, own += beauty_of(e, i, false) * e.share;
+          variance += e.share * e.share * e.variance[i] * la * la;
+        }
+        out.beauty[i] = finer ? light * finer_albedo[i] + finer_sun[i] : own, out.variance[i] = variance;
+      }
+    }
   }
   return out;
 }
 
-Image denoise_render(Image image, const RenderScene& scene, const Camera& camera, const DenoiseSettings& settings) {
-  image.mean_albedo = albedo_layer(scene, camera, image.width, image.height, kAlbedoGrid);
+Image denoise_render(Image image, const RenderScene& scene, const Sky& sky, const Camera& camera, const Haze& haze,
+                     const DenoiseSettings& settings) {
+  const int samples = image.halves[0].samples + image.halves[1].samples;
+  if (settings.primary_rays > 0 && samples >= 2 && haze.density <= 0)
+    image.extra = primary_layer(scene, sky, camera, image.width, image.height, samples, settings.primary_rays);
   return denoise(image, settings);
 }
 

@@ -1,8 +1,11 @@
-// The edge-aware denoiser (render/README.md, Denoising): an à-trous wavelet filter
-// (Dammertz et al. 2010) over the demodulated irradiance, its edges stopped by the data
-// layers the path tracer already keeps (normal, depth, albedo) and by the luminance
-// relative to each pixel's own noise (the variance of its mean, as in SVGF, Schied et
-// al. 2017). Deterministic: each pixel of each level is a fixed sum, whatever the threads.
+// The denoiser (render/README.md, Denoising): an à-trous wavelet filter (Dammertz et al.
+// 2010) over the light with the first hit's albedo divided out and the sun's next event
+// there split off, its edges stopped by the data layers the path tracer keeps (normal,
+// depth, albedo) and by the luminance relative to each pixel's own noise (as in SVGF,
+// Schied et al. 2017). It filters the even- and the odd-numbered samples apart, and each
+// pixel takes the level, the unfiltered image included, whose error the two halves tell
+// by cross-validation is least, so where the image has converged it stays as it is.
+// Deterministic: each pixel of each level is a fixed sum, whatever the threads.
 #pragma once
 
 #include "render/path_tracer.h"
@@ -18,15 +21,24 @@ struct DenoiseSettings {
   // tests/render_quality_test.cpp's blocks (4 spp against 256), where 4 and 8 blur the
   // shadows' edges and 1 leaves noise.
   float luminance_sigma = 2;
+  // The neighbourhood, (2r+1)^2 pixels, over which the halves' cross-validation error is
+  // averaged before each pixel picks its level: the Cycles comparison's view measured
+  // 3 a little worse, 2 worse again (one pixel's error is too noisy to choose by).
+  int selection_radius = 5;
+  // denoise_render's camera rays a pixel beyond the path samples (render/primary_layer.h):
+  // on the Cycles comparison's view 16 cut the error at 16 samples from 0.0219 to 0.0149,
+  // 32 to 0.0129, 64 to 0.0112 at nearly twice 32's cost; 32 gave the most for the time.
+  int primary_rays = 32;
 };
 
 // The image with its beauty filtered; the data layers are kept as they are, and the
-// variance becomes the filtered estimate's.
+// variance becomes the filtered estimate's. Uses the image's halves (Image::halves) and
+// its primary layer (Image::extra) where it has them.
 Image denoise(const Image& image, const DenoiseSettings& settings = {});
 
-// What exacity render does: denoise() with the albedo layer of kAlbedoGrid^2 camera rays a
-// pixel (render/albedo_layer.h) in place of the path samples' own; `camera` in scene
-// coordinates, the one `image` was traced with.
-Image denoise_render(Image image, const RenderScene& scene, const Camera& camera, const DenoiseSettings& settings = {});
+// What exacity render does: the primary layer's rays (none in haze), then denoise();
+// the scene, sky, camera (in scene coordinates) and haze `image` was traced with.
+Image denoise_render(Image image, const RenderScene& scene, const Sky& sky, const Camera& camera, const Haze& haze,
+                     const DenoiseSettings& settings = {});
 
 }  // namespace render

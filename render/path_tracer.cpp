@@ -113,18 +113,17 @@ void add_sky_seen(const Tracing& t, Path& path) {
     path.L += path.beta * t.sky.sun_radiance() * (path.prev_pdf > 0 ? power_heuristic(path.prev_pdf, t.sun_pdf) : 1.0f);
 }
 
-// Next event: the sun's disk, seen from p.
-void add_sun_next_event(const Tracing& t, const Material& m, const Frame& frame, V3 wo, V3 p, Path& path) {
-  if (!t.sky.sun_up()) return;
+// Next event: the sun's disk, seen from p; returns the light it adds.
+V3 sun_next_event(const Tracing& t, const Material& m, const Frame& frame, V3 wo, V3 p, const Path& path) {
+  if (!t.sky.sun_up()) return {0, 0, 0};
   const V3 wi = t.sky.sun_frame().to_world(uniform_cone(t.rng.next(), t.rng.next(), t.sky.sun_cos_max()));
   const V3 li = frame.to_local(wi);
   const V3 f = eval(m, wo, li);
-  if (max_component(f) > 0) {
-    ++t.counts.shadow;
-    if (!t.scene.occluded(p, wi, INFINITY))
-      path.L += path.beta * f * t.sky.sun_radiance() *
-                (transmittance(t.haze, p, wi) * power_heuristic(t.sun_pdf, pdf(m, wo, li)) / t.sun_pdf);
-  }
+  if (max_component(f) <= 0) return {0, 0, 0};
+  ++t.counts.shadow;
+  if (t.scene.occluded(p, wi, INFINITY)) return {0, 0, 0};
+  return path.beta * f * t.sky.sun_radiance() *
+         (transmittance(t.haze, p, wi) * power_heuristic(t.sun_pdf, pdf(m, wo, li)) / t.sun_pdf);
 }
 
 // Next event: the sky, cosine-weighted about the normal.
@@ -163,13 +162,18 @@ bool survives_roulette(Sampler& rng, Path& path) {
   return true;
 }
 
+// Where a surface's rays leave from, and the direction the light leaves it by, in its frame.
+V3 leaving_point(const Surface& s) { return s.position + s.normal * kEpsilon; }
+
 // At a surface, after its emission: next events towards the sun and the sky, then the
-// bounce; false when the path ends there.
-bool scatter_at_surface(const Tracing& t, const Surface& s, int depth, Path& path) {
+// bounce; false when the path ends there. The sun's share is added to `sun` too where given.
+bool scatter_at_surface(const Tracing& t, const Surface& s, int depth, Path& path, V3* sun = nullptr) {
   const Frame frame(s.normal);
   const V3 wo = frame.to_local(path.d * -1);
-  const V3 p = s.position + s.normal * kEpsilon;
-  add_sun_next_event(t, s.material, frame, wo, p, path);
+  const V3 p = leaving_point(s);
+  const V3 from_sun = sun_next_event(t, s.material, frame, wo, p, path);
+  path.L += from_sun;
+  if (sun) *sun += from_sun;
   add_sky_next_event(t, s.material, frame, wo, p, path);
   if (!follow_surface_sample(t, s, frame, wo, p, path)) return false;
   return depth < 3 || survives_roulette(t.rng, path);
@@ -178,7 +182,7 @@ bool scatter_at_surface(const Tracing& t, const Surface& s, int depth, Path& pat
 }  // namespace
 
 V3 radiance(const RenderScene& scene, const Sky& sky, V3 o, V3 d, Sampler& rng, int max_depth, RayCounts& counts,
-            Surface* first, const Haze& haze) {
+            Surface* first, const Haze& haze, V3* first_sun) {
   const float sun_pdf = 1 / (2 * kPi * (1 - sky.sun_cos_max()));
   const Tracing t{scene, sky, haze, sun_pdf, rng, counts};
   Path path{o, d};
@@ -199,9 +203,17 @@ V3 radiance(const RenderScene& scene, const Sky& sky, V3 o, V3 d, Sampler& rng, 
     }
     path.L += path.beta * s.material.emission;
     if (depth >= max_depth) break;
-    if (!scatter_at_surface(t, s, depth, path)) break;
+    if (!scatter_at_surface(t, s, depth, path, depth == 0 ? first_sun : nullptr)) break;
   }
   return path.L;
+}
+
+V3 first_hit_sun(const RenderScene& scene, const Sky& sky, V3 d, const Surface& s, Sampler& rng, RayCounts& counts) {
+  const float sun_pdf = 1 / (2 * kPi * (1 - sky.sun_cos_max()));
+  const Haze clear;
+  const Tracing t{scene, sky, clear, sun_pdf, rng, counts};
+  const Frame frame(s.normal);
+  return sun_next_event(t, s.material, frame, frame.to_local(d * -1), leaving_point(s), Path{s.position, d});
 }
 
 Film::Film(int width, int height) {
@@ -210,18 +222,31 @@ Film::Film(int width, int height) {
   layers.normal.assign(n, {}), layers.albedo.assign(n, {});
   layers.depth.assign(n, INFINITY), layers.id.assign(n, 0);
   sum.assign(n, {}), albedo_sum.assign(n, {}), luminance_squares.assign(n, 0);
+  sun_sum.assign(n, {}), even_sum.assign(n, {}), even_albedo_sum.assign(n, {}), even_sun_sum.assign(n, {});
 }
 
 Image Film::image() const {
   Image img = layers;
   const std::size_t n = sum.size();
-  img.beauty.assign(n, {}), img.variance.assign(n, 0), img.mean_albedo.assign(n, {});
+  img.beauty.assign(n, {}), img.variance.assign(n, 0), img.mean_albedo.assign(n, {}), img.first_sun.assign(n, {});
   if (samples == 0) return img;
   const float count = static_cast<float>(samples);
   for (std::size_t i = 0; i < n; ++i) {
-    img.beauty[i] = sum[i] / count, img.mean_albedo[i] = albedo_sum[i] / count;
+    img.beauty[i] = sum[i] / count, img.mean_albedo[i] = albedo_sum[i] / count, img.first_sun[i] = sun_sum[i] / count;
     const double mean = luminance(img.beauty[i]);
     img.variance[i] = static_cast<float>(std::max(0.0, luminance_squares[i] / samples - mean * mean) / samples);
+  }
+  if (samples < 2) return img;
+  const int even = (samples + 1) / 2, odd = samples / 2;
+  Image::Half& e = img.halves[0];
+  Image::Half& o = img.halves[1];
+  e.samples = even, o.samples = odd;
+  for (Image::Half* h : {&e, &o}) h->beauty.resize(n), h->albedo.resize(n), h->sun.resize(n);
+  const float ne = static_cast<float>(even), no = static_cast<float>(odd);
+  for (std::size_t i = 0; i < n; ++i) {
+    e.beauty[i] = even_sum[i] / ne, e.albedo[i] = even_albedo_sum[i] / ne, e.sun[i] = even_sun_sum[i] / ne;
+    o.beauty[i] = (sum[i] - even_sum[i]) / no, o.albedo[i] = (albedo_sum[i] - even_albedo_sum[i]) / no;
+    o.sun[i] = (sun_sum[i] - even_sun_sum[i]) / no;
   }
   return img;
 }
@@ -246,6 +271,8 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
       for (int x = x0; x < std::min(x0 + kTile, width); ++x) {
         const std::size_t i = static_cast<std::size_t>(y) * width + x;
         V3 sum = film.sum[i], albedo = film.albedo_sum[i];
+        V3 sun = film.sun_sum[i], even_sum = film.even_sum[i], even_albedo = film.even_albedo_sum[i],
+           even_sun = film.even_sun_sum[i];
         double squares = film.luminance_squares[i];
         for (int k = first; k < first + t.spp; ++k) {
           Sampler rng(i, static_cast<std::uint64_t>(k));
@@ -260,10 +287,12 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
           lens.ray(static_cast<float>(x) + jx, static_cast<float>(y) + jy, lu, lv, o, d);
           Surface first_hit;
           first_hit.distance = -1;
-          V3 l = radiance(scene, sky, o, d, rng, t.max_depth, tile_counts, &first_hit, t.haze);
-          if (!std::isfinite(l.x + l.y + l.z)) l = {0, 0, 0};
-          sum += l;
-          albedo += first_hit.distance >= 0 ? first_hit.material.albedo : V3{1, 1, 1};
+          V3 from_sun{0, 0, 0};
+          V3 l = radiance(scene, sky, o, d, rng, t.max_depth, tile_counts, &first_hit, t.haze, &from_sun);
+          if (!std::isfinite(l.x + l.y + l.z)) l = from_sun = {0, 0, 0};
+          const V3 a = first_hit.distance >= 0 ? first_hit.material.albedo : V3{1, 1, 1};
+          sum += l, albedo += a, sun += from_sun;
+          if (k % 2 == 0) even_sum += l, even_albedo += a, even_sun += from_sun;
           squares += static_cast<double>(luminance(l)) * luminance(l);
           if (k == 0 && first_hit.distance >= 0) {
             img.depth[i] = first_hit.distance, img.normal[i] = first_hit.normal;
@@ -271,6 +300,8 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
           }
         }
         film.sum[i] = sum, film.albedo_sum[i] = albedo, film.luminance_squares[i] = squares;
+        film.sun_sum[i] = sun, film.even_sum[i] = even_sum, film.even_albedo_sum[i] = even_albedo;
+        film.even_sun_sum[i] = even_sun;
       }
     const int finished = ++done;
     std::lock_guard<std::mutex> lock(report);

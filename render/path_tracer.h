@@ -4,6 +4,7 @@
 // three bounces.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -23,10 +24,26 @@ struct Image {
   std::vector<std::uint32_t> id;   // the first hit's entity (see Entity)
   // For the denoiser (render/denoise.h): the variance of the mean's luminance (the
   // samples' over their count), and the first hits' albedo over all samples, the sky's
-  // as white, so that a texture finer than a pixel is divided out as the beauty saw it
-  // (exacity render puts render/albedo_layer.h's denser one in its place).
+  // as white, so that a texture finer than a pixel is divided out as the beauty saw it.
   std::vector<float> variance;
   std::vector<V3> mean_albedo;
+  // The samples in two halves, even- and odd-numbered, each with its mean beauty, first-hit
+  // albedo and sun's next event at the first hit (part of the beauty): two independent
+  // estimates of the image, whose differences tell the denoiser how far it may smooth
+  // each pixel. Empty where the image did not come from a Film of two samples or more.
+  struct Half {
+    std::vector<V3> beauty, albedo, sun;
+    int samples = 0;
+  };
+  std::array<Half, 2> halves;
+  std::vector<V3> first_sun;  // over all samples
+  // Camera rays beyond the path samples (render/primary_layer.h): the sums of their first
+  // hits' albedo and sun next event, which the denoiser adds to the path samples' own.
+  struct Primaries {
+    std::vector<V3> albedo, sun;
+    int samples = 0;
+  };
+  Primaries extra;
 };
 
 // A homogeneous layer of haze from the ground up to `top` (scene z): light scatters in it
@@ -67,6 +84,8 @@ struct Film {
   Film(int width, int height);
   Image layers;  // the size and the data layers (depth, normal, albedo, id), from sample 0
   std::vector<V3> sum, albedo_sum;
+  std::vector<V3> sun_sum;                                  // Image::first_sun's
+  std::vector<V3> even_sum, even_albedo_sum, even_sun_sum;  // the even-numbered samples' (Image::halves)
   std::vector<double> luminance_squares;
   int samples = 0;
   // The mean of the samples so far and its variance, with the data layers.
@@ -81,9 +100,15 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
 Image trace(const RenderScene& scene, const Sky& sky, const Camera& camera, const TraceSettings& settings,
             RayCounts* counts = nullptr, const TileProgress& progress = nullptr);
 
-// One path's radiance along a ray (exposed for tests); the rays it casts are added to `counts`.
+// One path's radiance along a ray (exposed for tests); the rays it casts are added to
+// `counts`. The sun's next event at the first surface, part of the radiance, is also
+// added to `first_sun` where given.
 V3 radiance(const RenderScene& scene, const Sky& sky, V3 origin, V3 direction, Sampler& rng, int max_depth,
-            RayCounts& counts, Surface* first = nullptr, const Haze& haze = {});
+            RayCounts& counts, Surface* first = nullptr, const Haze& haze = {}, V3* first_sun = nullptr);
+
+// That next event alone, at the surface `s` a camera ray of direction d met in clear air:
+// what radiance() adds to `first_sun` there (render/primary_layer.h).
+V3 first_hit_sun(const RenderScene& scene, const Sky& sky, V3 d, const Surface& s, Sampler& rng, RayCounts& counts);
 
 // Henyey–Greenstein's phase function for the angle between the light's old and new
 // directions, and a new direction drawn from it.

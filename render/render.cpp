@@ -65,9 +65,11 @@ Rgb8 tone_mapped(const Image& image, const RenderRequest& request) {
                   white_balance_gains(request.white_balance_k));
 }
 
-// The filter when asked for (render/README.md, Denoising).
-Image finished(Image image, const RenderScene& scene, const Camera& camera, const RenderRequest& request) {
-  return request.denoise ? denoise_render(std::move(image), scene, camera) : image;
+// The filter when asked for (render/README.md, Denoising), with the primary layer's rays
+// through the same scene, camera and air the image was traced with.
+Image finished(Image image, const RenderScene& scene, const Sky& sky, const Camera& camera, const Haze& haze,
+               const RenderRequest& request) {
+  return request.denoise ? denoise_render(std::move(image), scene, sky, camera, haze) : image;
 }
 
 struct Still {
@@ -100,7 +102,7 @@ Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camer
            seconds_since(start) * (still.passes + 1) / still.passes <= request.time_budget_s);
   still.seconds = seconds_since(start);
   const auto filtering = std::chrono::steady_clock::now();
-  still.image = finished(film.image(), scene, camera, request);
+  still.image = finished(film.image(), scene, sky, camera, haze, request);
   still.denoise_seconds = seconds_since(filtering);
   still.png = tone_mapped(still.image, request);
   return still;
@@ -167,7 +169,7 @@ nlohmann::ordered_json render_overview(const RenderScene& whole, const Sky& sky,
   TraceSettings s{size, size, request.spp, 8, haze};
   Image img = finished(trace(whole, sky, over, s, nullptr, [&](int done, int n) {
     if (progress) progress("overview", static_cast<double>(done) / n);
-  }), whole, over, request);
+  }), whole, sky, over, haze, request);
   write_png(tone_mapped(img, request), request.overview_file);
   return {{"height_m", over.from.z - top}, {"orthographic", request.orthographic_overview}};
 }
@@ -220,8 +222,8 @@ nlohmann::ordered_json render_minimap(const RenderScene& whole, const RenderScen
                                       const Camera& camera, const RenderRequest& request, Rgb8& still_png) {
   const int m = kMinimapSize;
   Camera top_down = overview_camera(whole.bounds, whole.top, 45, 1, true);
-  Image img = finished(trace(whole, sky, top_down, TraceSettings{m, m, std::max(1, request.spp / 4)}), whole, top_down,
-                       request);
+  Image img = finished(trace(whole, sky, top_down, TraceSettings{m, m, std::max(1, request.spp / 4)}), whole, sky,
+                       top_down, Haze{}, request);
   Rgb8 map = tone_mapped(img, request);
   // The still's view, from its own scene (the same origin: both centre on the city).
   std::vector<geom::Vec2> seen = ground_footprint(camera, request.width, request.height, whole.ground, whole.bounds);
