@@ -12,6 +12,7 @@
 
 #include "generate/errors.h"
 #include "generate/city/terrain.h"
+#include "generate/pipeline.h"
 #include "geom/grid.h"
 #include "geom/planar_map.h"
 #include "geom/polygon_check.h"
@@ -262,6 +263,27 @@ TEST(Water, ARectangleOfPixelsStaysARectangle) {
     EXPECT_LT(d, 0.65);
   }
   EXPECT_NEAR(water_area(polys) / (12 * 6), 1, 0.04);
+}
+
+// Whole cities on maps of 1e6 m and of 1 m, their water crossing a park diagonally:
+// validation indexed the boxes of such long diagonal edges bucket by bucket and ran out of
+// memory.
+TEST(Water, HugeAndTinyMapsGenerateAndValidate) {
+  const fs::path png = write_image<std::uint8_t>("diagonal.png", 4, 4, 1, OIIO::TypeDesc::UINT8,
+                                                 {0, 255, 255, 255, 255, 0, 255, 255, 255, 255, 0, 255, 255, 255, 255, 0});
+  for (double size : {1e6, 1.0}) {
+    const fs::path dir = testing_util::temp_dir("water-size-" + std::to_string(static_cast<int>(size)));
+    const double lo = size * 0.4, hi = size * 0.6;
+    std::ofstream(dir / "in.geojson") << R"({"type": "FeatureCollection", "exacity": {"builtin_models": [],
+      "terrain": {"heightmap": ")" << png.string() << R"(", "bounds": [0, 0, )" << size << ", " << size << R"(]}},
+      "features": [{"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": "Polygon",
+      "coordinates": [[[)" << lo << "," << lo << "],[" << hi << "," << lo << "],[" << hi << "," << hi << "],[" << lo << ","
+                                        << hi << "],[" << lo << "," << lo << "]]]}}]}";
+    fs::create_directories(dir / "out");
+    const GenerateResult result = generate_city(load_sketch(dir / "in.geojson"), dir / "out", nullptr);
+    EXPECT_TRUE(result.valid) << size << ": " << result.report["validation"].dump();
+    EXPECT_EQ(result.report["counts"]["water"], 1) << size;
+  }
 }
 
 TEST(Terrain, HeightsAreBicubicBetweenPixelCentresHeldWithinTheFourAround) {
