@@ -136,6 +136,7 @@ std::vector<geom::Ring> water_outline(const std::vector<char>& water, int width,
     const int i = static_cast<int>(e % stride), k = static_cast<int>(e / stride);
     const int ib = along_x ? i + 1 : i, kb = along_x ? k : k + 1;
     const BlockMask::Filtered a = filtered(i, k), b = filtered(ib, kb);
+    // Beside a lifted block the filter says nothing: the crossing stays on the pixel edge.
     const double t = a.lifted || b.lifted ? 0.5 : (a.value - 0.5) / (a.value - b.value);
     const double lo = along_x ? x.at[i] : y.at[k], hi = along_x ? x.at[i + 1] : y.at[k + 1];
     const double v =
