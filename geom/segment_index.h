@@ -20,8 +20,17 @@ class SegmentIndex {
     std::size_t id = segments_.size();
     segments_.push_back({a, b});
     owners_.push_back(owner);
-    for (long j = key(std::min(a.y, b.y)); j <= key(std::max(a.y, b.y)); ++j)
-      for (long i = key(std::min(a.x, b.x)); i <= key(std::max(a.x, b.x)); ++i) buckets_[{i, j}].push_back(id);
+    // The buckets within one of those the segment passes through, in its box: the whole box
+    // of a long diagonal edge (water over a map of 1e6 m) held buckets past counting.
+    const double y0 = std::min(a.y, b.y), y1 = std::max(a.y, b.y);
+    auto x_at = [&](double y) { return a.y == b.y ? a.x : a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y); };
+    const long i0 = key(std::min(a.x, b.x)), i1 = key(std::max(a.x, b.x));
+    for (long j = key(y0); j <= key(y1); ++j) {
+      const double xa = x_at(std::max(y0, (j - 1) * bucket_)), xb = x_at(std::min(y1, (j + 2) * bucket_));
+      const double x0 = a.y == b.y ? std::min(a.x, b.x) : std::min(xa, xb),
+                   x1 = a.y == b.y ? std::max(a.x, b.x) : std::max(xa, xb);
+      for (long i = std::max(i0, key(x0) - 1); i <= std::min(i1, key(x1) + 1); ++i) buckets_[{i, j}].push_back(id);
+    }
   }
   void add_polygon(const Polygon& p, int owner = -1) {
     for (const Ring* r : rings(p))

@@ -127,9 +127,9 @@ TEST(GroundRender, PastTheMapTheGroundSinksToThePlaneWithoutWallsOrAStep) {
   EXPECT_LT(steepest, 2.0);
 }
 
-// Seen from above, water covers exactly its outline (a staircase of pixel edges, exact in
-// the city map), and the water is level: the ground no longer pokes through it along the
-// banks in pixel-sized teeth.
+// Seen from above, water covers exactly its outline (the smooth contour of its pixels,
+// exact in the city map), and the water is level: the ground no longer pokes through it
+// along the banks in pixel-sized teeth.
 TEST(GroundRender, BanksFollowTheWaterOutlineAndWaterIsLevel) {
   const exacity::City city = city_on("river", river_value, kPark);
   ASSERT_FALSE(city.ground.water.empty());

@@ -127,7 +127,7 @@ CityMap build_city_map(const Sketch& sketch, const Terrain* terrain) {
   city_map.sketch_roads = static_cast<int>(sketch.roads.size());
   city_map.sketch_carriageways = {city_map.heightmap_water.end(), city_map.sketch_roads};
   if (terrain) {
-    for (auto [a, b] : terrain->water_boundary()) city_map.map.add_edge(a, b, city_map.heightmap_water.first);
+    for (const geom::Ring& r : terrain->water_boundary()) city_map.map.add_ring(r, city_map.heightmap_water.first);
   }
   int tag = 0;
   for (int r = 0; r < city_map.sketch_roads; ++r) {

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include "generate/city/water_outline.h"
 #include "generate/errors.h"
-#include "geom/grid.h"
 #include "geom/measure.h"
 
 namespace exacity {
@@ -53,7 +53,6 @@ double Terrain::inside_height(geom::Vec2 p) const {
                      static_cast<double>(*std::max_element(around.begin(), around.end())));
   return spec_.low + value * (spec_.high - spec_.low);
 }
-
 
 double Terrain::fade() const { return std::max(spec_.bounds.width(), spec_.bounds.height()) / 2; }
 
@@ -107,39 +106,11 @@ std::pair<double, double> Terrain::range_under(const geom::Ring& ring) const {
   return {low, high};
 }
 
-geom::Vec2 Terrain::corner(int col, int row) const {
-  const geom::Box& b = spec_.bounds;
-  // The outer corners are the bounds themselves, so the water outline meets them exactly.
-  double x = col == image_.width ? b.max_x : b.min_x + b.width() * col / image_.width;
-  double y = row == image_.height ? b.min_y : b.max_y - b.height() * row / image_.height;
-  return geom::snap(geom::Vec2{x, y});
-}
-
-std::vector<std::pair<geom::Vec2, geom::Vec2>> Terrain::water_boundary() const {
-  auto water = [&](int c, int r) { return c >= 0 && r >= 0 && c < image_.width && r < image_.height && is_water(c, r); };
-  std::vector<std::pair<geom::Vec2, geom::Vec2>> segments;
-  // dir: +1 where the edge runs with the axis, -1 against it, 0 where it is no boundary.
-  auto runs = [&](int count, auto dir, auto from, auto to) {
-    int start = 0, current = 0;
-    for (int i = 0; i <= count; ++i) {
-      int d = i < count ? dir(i) : 0;
-      if (d == current) continue;
-      if (current > 0) segments.push_back({from(start), to(i)});
-      if (current < 0) segments.push_back({to(i), from(start)});
-      start = i, current = d;
-    }
-  };
-  // Vertical lines x = corner(col): water west of an upward (northward) edge.
-  for (int col = 0; col <= image_.width; ++col) {
-    runs(image_.height, [&](int row) { return water(col - 1, row) == water(col, row) ? 0 : water(col - 1, row) ? -1 : 1; },
-         [&](int row) { return corner(col, row); }, [&](int row) { return corner(col, row); });
-  }
-  // Horizontal lines y = corner(row): water north of an eastward edge.
-  for (int row = 0; row <= image_.height; ++row) {
-    runs(image_.width, [&](int col) { return water(col, row - 1) == water(col, row) ? 0 : water(col, row - 1) ? 1 : -1; },
-         [&](int col) { return corner(col, row); }, [&](int col) { return corner(col, row); });
-  }
-  return segments;
+std::vector<geom::Ring> Terrain::water_boundary() const {
+  std::vector<char> water;
+  for (int row = 0; row < height(); ++row)
+    for (int col = 0; col < width(); ++col) water.push_back(is_water(col, row));
+  return water_outline(water, image_.width, image_.height, spec_.bounds);
 }
 
 }  // namespace exacity

@@ -40,12 +40,9 @@ class Terrain {
   // The size of a pixel on the ground, the finer of its two sides, in metres.
   double pixel_size() const;
 
-  // The corner between pixel columns col-1, col and rows row-1, row, on the grid.
-  geom::Vec2 corner(int col, int row) const;
-
-  // The water outline as oriented segments with water on their left, collinear pixel
-  // edges merged into one segment: together they wind once around every water pixel.
-  std::vector<std::pair<geom::Vec2, geom::Vec2>> water_boundary() const;
+  // The water outline: closed rings on the grid with water on their left, simple and apart,
+  // smooth where the pixels step (water_outline, generate/city/water_outline.h).
+  std::vector<geom::Ring> water_boundary() const;
 
  private:
   double inside_height(geom::Vec2 p) const;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <set>
 #include <unordered_map>
+#include <utility>
 
 #include "generate/placement/model_library.h"
 #include "geom/polygon_check.h"
@@ -21,15 +22,28 @@ struct Area {
   bool park = false;  // a park zone: a tree stands in it, other clutter keeps off it
 };
 
-// The areas by the cells of a square grid their boxes meet.
+// The areas by the cells of a square grid their boxes meet, kept for the cells that hold a
+// point to check only: the cells of a box are past counting where water covers a map of
+// 1e6 m, and listing them all ran out of memory.
 class AreaCells {
  public:
   static constexpr double kCell = 32;
+  explicit AreaCells(const std::vector<geom::Vec2>& points) {
+    for (geom::Vec2 p : points)
+      if (cells_.try_emplace(key(cell(p.x), cell(p.y))).second) held_.push_back({cell(p.x), cell(p.y)});
+  }
   void add(int area, const geom::Polygon& p) {
     geom::Box b = geom::Box::none();
     for (geom::Vec2 q : p.outer) b.add(q);
-    for (auto x = cell(b.min_x); x <= cell(b.max_x); ++x)
-      for (auto y = cell(b.min_y); y <= cell(b.max_y); ++y) cells_[key(x, y)].push_back(area);
+    const std::int64_t x0 = cell(b.min_x), x1 = cell(b.max_x), y0 = cell(b.min_y), y1 = cell(b.max_y);
+    if (static_cast<double>(x1 - x0 + 1) * static_cast<double>(y1 - y0 + 1) <= static_cast<double>(held_.size())) {
+      for (auto x = x0; x <= x1; ++x)
+        for (auto y = y0; y <= y1; ++y)
+          if (auto it = cells_.find(key(x, y)); it != cells_.end()) it->second.push_back(area);
+    } else {
+      for (auto [x, y] : held_)
+        if (x >= x0 && x <= x1 && y >= y0 && y <= y1) cells_[key(x, y)].push_back(area);
+    }
   }
   const std::vector<int>& at(geom::Vec2 p) const {
     static const std::vector<int> none;
@@ -41,6 +55,7 @@ class AreaCells {
   static std::int64_t cell(double v) { return static_cast<std::int64_t>(std::floor(v / kCell)); }
   static std::int64_t key(std::int64_t x, std::int64_t y) { return x * 0x1000000 + y; }
   std::unordered_map<std::int64_t, std::vector<int>> cells_;
+  std::vector<std::pair<std::int64_t, std::int64_t>> held_;  // the cells holding points
 };
 
 bool is_clutter_kind(const std::string& kind) {
@@ -61,7 +76,10 @@ void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers
   v.features["clutter"] = static_cast<int>(clutter.features.size());
 
   std::vector<Area> areas;
-  AreaCells cells;
+  std::vector<geom::Vec2> points;
+  for (const VectorFeature& f : clutter.features)
+    if (f.line.size() == 1) points.push_back(f.line[0]);
+  AreaCells cells(points);
   auto add = [&](const Layer& layer, auto&& stands_on, auto&& what) {
     for (std::size_t i = 0; i < layer.features.size(); ++i) {
       const VectorFeature& f = layer.features[i];
