@@ -397,6 +397,20 @@ void drop_unused_vertices(TriangleMesh& mesh) {
   mesh.vertices = std::move(used);
 }
 
+// What follows `key` on each line of `file` that starts with it.
+std::vector<std::string> rests_after(const fs::path& file, const std::string& key) {
+  std::vector<std::string> rests;
+  std::ifstream in(file);
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line);
+    std::string first, rest;
+    if (!(words >> first) || first != key) continue;
+    std::getline(words, rest);
+    rests.push_back(std::move(rest));
+  }
+  return rests;
+}
+
 }  // namespace
 
 std::vector<std::array<int, 3>> triangulate_planar(const std::vector<Vec3>& v) {
@@ -436,30 +450,17 @@ std::vector<std::array<int, 3>> triangulate_planar(const std::vector<Vec3>& v) {
 
 std::vector<std::string> texture_files(const fs::path& mtl) {
   std::vector<std::string> names;
-  std::ifstream in(mtl);
-  for (std::string line; std::getline(in, line);) {
-    std::istringstream words(line);
-    std::string key, rest;
-    if (!(words >> key) || key != "map_Kd") continue;
-    std::getline(words, rest);
-    try {
+  for (const std::string& rest : rests_after(mtl, "map_Kd")) try {
       names.push_back(parse_texture_map(rest).file);
     } catch (const std::invalid_argument&) {
     }
-  }
   return names;
 }
 
 std::vector<std::string> material_files(const fs::path& obj) {
   std::vector<std::string> names;
-  std::ifstream in(obj);
-  for (std::string line; std::getline(in, line);) {
-    std::istringstream words(line);
-    std::string key, rest;
-    if (!(words >> key) || key != "mtllib") continue;
-    std::getline(words, rest);
+  for (const std::string& rest : rests_after(obj, "mtllib"))
     for (std::string& name : mtllib_names(rest, obj.parent_path())) names.push_back(std::move(name));
-  }
   return names;
 }
 
