@@ -58,6 +58,13 @@ inline bool odd_crossings(const Ring& r, Vec2 p) {
   return in;
 }
 
+// Whether p lies inside the polygon by the even-odd rule over all its rings.
+inline bool odd_crossings(const Polygon& polygon, Vec2 p) {
+  bool in = odd_crossings(polygon.outer, p);
+  for (const Ring& h : polygon.holes) in ^= odd_crossings(h, p);
+  return in;
+}
+
 // The point of the segment ab nearest p (a, when the segment has no length).
 inline Vec2 nearest_on_segment(Vec2 p, Vec2 a, Vec2 b) {
   const double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;

@@ -148,12 +148,6 @@ geom::Polygon polygon(const json& coordinates) {
   return p;
 }
 
-bool inside(const geom::Polygon& p, geom::Vec2 q) {
-  bool in = geom::odd_crossings(p.outer, q);
-  for (const auto& h : p.holes) in ^= geom::odd_crossings(h, q);
-  return in;
-}
-
 double distance_to_outline(const geom::Polygon& p, geom::Vec2 q) {
   double d = INFINITY;
   auto visit = [&](const geom::Ring& r) {
@@ -226,7 +220,7 @@ std::vector<Bridge3d> check_decks(const Ground3d& g, const Crossings& c) {
   for (const geom::Polygon& area : c.decks) {
     std::set<double> tops;
     for (const Triangle& t : g.road)
-      if (inside(area, centroid(t))) {
+      if (geom::odd_crossings(area, centroid(t))) {
         decks.push_back(t);
         for (const Point& p : t) tops.insert(p[2]);
       }
@@ -242,7 +236,7 @@ std::vector<Bridge3d> check_decks(const Ground3d& g, const Crossings& c) {
     std::vector<Point> feet;
     for (const Triangle& t : g.bridge)
       for (const Point& p : t) {
-        if (!inside(area, plan(p)) && distance_to_outline(area, plan(p)) > kOnOutline) continue;
+        if (!geom::odd_crossings(area, plan(p)) && distance_to_outline(area, plan(p)) > kOnOutline) continue;
         if (std::abs(p[2] - side_top) <= g.precision) continue;
         if (std::abs(p[2] - underside) <= g.precision) {
           pier_tops.insert({p[0], p[1]});
@@ -283,7 +277,7 @@ std::vector<Bridge3d> check_decks(const Ground3d& g, const Crossings& c) {
       for (double s = 0; s <= geom::distance(a, b); s += 0.5)
         for (double off : {-(line.width / 2 - 0.25), 0.0, line.width / 2 - 0.25}) {
           const geom::Vec2 q = a + along * s + across * off;
-          if (std::none_of(c.water.begin(), c.water.end(), [&](const geom::Polygon& w) { return inside(w, q); }))
+          if (std::none_of(c.water.begin(), c.water.end(), [&](const geom::Polygon& w) { return geom::odd_crossings(w, q); }))
             continue;
           ++over_water;
           if (std::none_of(decks.begin(), decks.end(),

@@ -10,12 +10,6 @@ namespace exacity {
 
 namespace {
 
-bool inside(const geom::Polygon& p, geom::Vec2 q) {
-  bool in = geom::odd_crossings(p.outer, q);
-  for (const auto& h : p.holes) in ^= geom::odd_crossings(h, q);
-  return in;
-}
-
 int find(std::vector<int>& parent, int i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
   return i;
@@ -72,7 +66,7 @@ BridgeDecks bridge_decks(const Ground& ground, const Terrain* terrain) {
 
 int BridgeDecks::area_at(const Ground& ground, geom::Vec2 p) const {
   for (std::size_t i = 0; i < ground.road_areas.size(); ++i)
-    if (ground.road_areas[i].bridge && inside(ground.road_areas[i].polygon, p)) return static_cast<int>(i);
+    if (ground.road_areas[i].bridge && geom::odd_crossings(ground.road_areas[i].polygon, p)) return static_cast<int>(i);
   return -1;
 }
 
@@ -91,19 +85,9 @@ void bridge_structure(const Ground& ground, const Terrain* terrain, const Bridge
     const geom::Polygon& p = ground.road_areas[i].polygon;
     const double top = decks.height[i], bottom = top - kDeckThickness;
     drape_flat(p, bottom, out);
-    auto sides = [&](const geom::Ring& r) {
-      for (std::size_t k = 0, l = r.size() - 1; k < r.size(); l = k++) {
-        const int first = static_cast<int>(out.vertices.size());
-        out.vertices.push_back({r[l].x, r[l].y, bottom});
-        out.vertices.push_back({r[k].x, r[k].y, bottom});
-        out.vertices.push_back({r[k].x, r[k].y, top});
-        out.vertices.push_back({r[l].x, r[l].y, top});
-        out.triangles.push_back({first, first + 1, first + 2});
-        out.triangles.push_back({first, first + 2, first + 3});
-      }
-    };
-    sides(p.outer);
-    for (const auto& h : p.holes) sides(h);
+    auto at = [](double z) { return [z](geom::Vec2) { return z; }; };
+    add_wall(p.outer, at(bottom), at(top), out);
+    for (const auto& h : p.holes) add_wall(h, at(bottom), at(top), out);
     belongs(static_cast<int>(i));
   }
   std::vector<double> levels;
@@ -127,7 +111,7 @@ void bridge_structure(const Ground& ground, const Terrain* terrain, const Bridge
       const double deck = decks.height[under];
       double bed = terrain ? terrain->height_at(c) : 0;
       for (std::size_t w = 0; w < ground.water.size(); ++w)
-        if (inside(ground.water[w], c)) bed = bed_height(terrain, c, levels[w]);
+        if (geom::odd_crossings(ground.water[w], c)) bed = bed_height(terrain, c, levels[w]);
       if (bed < deck - kDeckThickness) add_pier(c, along, half, bed, deck - kDeckThickness, out);
       belongs(under);
     }

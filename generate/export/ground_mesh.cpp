@@ -80,10 +80,6 @@ GroundMesh terrain_tin(const Terrain* terrain, const geom::Box& box, int max_cel
   return m;
 }
 
-}  // namespace exacity
-
-namespace exacity {
-
 double water_level(const geom::Polygon& water, const Terrain* terrain) {
   if (!terrain) return 0;
   double level = INFINITY;
@@ -202,15 +198,7 @@ GroundMesh terrain_mesh(const Terrain* terrain, const geom::Box& box_in, const g
     const double bottom = levels[w] - kBedDepth;
     for (std::size_t k = 0; k < ring_of_water[w].second; ++k) {
       const geom::Ring& r = land.holes[ring_of_water[w].first + k];
-      for (std::size_t i = 0, j = r.size() - 1; i < r.size(); j = i++) {
-        const int first = static_cast<int>(m.vertices.size());
-        m.vertices.push_back({r[j].x, r[j].y, height(r[j])});
-        m.vertices.push_back({r[i].x, r[i].y, height(r[i])});
-        m.vertices.push_back({r[i].x, r[i].y, bottom});
-        m.vertices.push_back({r[j].x, r[j].y, bottom});
-        m.triangles.push_back({first, first + 1, first + 2});
-        m.triangles.push_back({first, first + 2, first + 3});
-      }
+      add_wall(r, height, [&](geom::Vec2) { return bottom; }, m);
     }
     drape_with(water[w], terrain, [&](geom::Vec2 p) { return bed_height(terrain, p, levels[w]); }, m);
   }

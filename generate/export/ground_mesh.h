@@ -32,6 +32,22 @@ void drape(const geom::Polygon& polygon, const Terrain* terrain, double lift, Gr
 // The polygon triangulated flat at height z (its corners only). Appends to `out`.
 void drape_flat(const geom::Polygon& polygon, double z, GroundMesh& out);
 
+// A wall along each edge of the ring, from height from(p) to height to(p) at its corners:
+// a bank from the land down to a bed, a deck's side. Appends to `out`.
+template <typename From, typename To>
+void add_wall(const geom::Ring& ring, const From& from, const To& to, GroundMesh& out) {
+  for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+    const geom::Vec2 a = ring[j], b = ring[i];
+    const int first = static_cast<int>(out.vertices.size());
+    out.vertices.push_back({a.x, a.y, from(a)});
+    out.vertices.push_back({b.x, b.y, from(b)});
+    out.vertices.push_back({b.x, b.y, to(b)});
+    out.vertices.push_back({a.x, a.y, to(a)});
+    out.triangles.push_back({first, first + 1, first + 2});
+    out.triangles.push_back({first, first + 2, first + 3});
+  }
+}
+
 // The terrain over `box` as a regular grid of at most `max_cells` cells a side (flat:
 // two triangles).
 GroundMesh terrain_tin(const Terrain* terrain, const geom::Box& box, int max_cells);
