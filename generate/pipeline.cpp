@@ -252,16 +252,15 @@ void export_vectors(const City& city, const fs::path& dir) {
   write_svg_map(city.ground, city.buildings, city.models, dir / "map.svg", city.clutter.items);
 }
 
-// CityJSON, glTF, OBJ and PLY, from one set of building meshes; glTF, OBJ and PLY from one
-// set of ground layers.
+// CityJSON, glTF, OBJ and PLY, from one set of building meshes and one set of ground layers.
 MeshCounts export_3d(const City& city, const fs::path& dir, GltfCounts& gltf) {
   const ModelLibrary* library = city.model_library();
   std::vector<Mesh> meshes = structure_meshes(city.buildings, city.models, library);
-  write_cityjson(city.ground, city.buildings, city.models, meshes, library, city.heightmap(), city.sketch,
+  const std::vector<GroundLayer> ground = ground_layers(city.ground, city.heightmap());
+  write_cityjson(city.ground, city.buildings, city.models, meshes, library, city.heightmap(), ground, city.sketch,
                  dir / "city.city.json", city.clutter.items);
   std::vector<ModelInstance> clutter;
   for (const Clutter& c : city.clutter.items) clutter.push_back(c.instance);
-  const std::vector<GroundLayer> ground = ground_layers(city.ground, city.heightmap());
   gltf = write_gltf(city.ground, ground, city.buildings, city.models, meshes, library, dir / "city.glb", clutter);
   return write_meshes(city.buildings, city.models, meshes, ground, dir / "city.obj", dir / "city.ply");
 }

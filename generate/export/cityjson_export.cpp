@@ -303,7 +303,8 @@ json clutter_object(const Clutter& c, const ModelLibrary& library, Vertices& v) 
 // Roads, land use and water as LOD1 surfaces: an object per road (its areas), per zone
 // type and one for the water, in the order of their key's text (kept from when they were
 // grouped by their GeoJSON property), each named prefix + n.
-void add_ground_objects(const Ground& ground, const Terrain* terrain, Vertices& v, json& objects) {
+void add_ground_objects(const Ground& ground, const std::vector<GroundLayer>& layers, const Terrain* terrain,
+                        Vertices& v, json& objects) {
   using Groups = std::map<std::string, std::pair<json, std::vector<LevelPolygon>>>;
   auto surfaces = [&](const Groups& groups, const std::string& prefix, const std::string& type, const char* key) {
     int n = 0;
@@ -335,11 +336,9 @@ void add_ground_objects(const Ground& ground, const Terrain* terrain, Vertices& 
   surfaces(zones, "landuse-", "LandUse", "zone");
   surfaces(water, "water-", "WaterBody", nullptr);
   // The decks' sides and undersides and the piers, one Bridge object for every bridge.
-  if (terrain) {
-    GroundMesh m;
-    bridge_structure(ground, terrain, decks, m);
+  if (const GroundMesh* bridges = layer_mesh(layers, GroundKind::Bridge); terrain && bridges) {
     json boundaries = json::array();
-    append_triangles(m, v, boundaries);
+    append_triangles(*bridges, v, boundaries);
     if (!boundaries.empty())
       objects["bridges"] = {{"type", "Bridge"},
                             {"geometry", json::array({{{"type", "MultiSurface"}, {"lod", "1"}, {"boundaries", boundaries}}})}};
@@ -350,8 +349,8 @@ void add_ground_objects(const Ground& ground, const Terrain* terrain, Vertices& 
 
 void write_cityjson(const Ground& ground, const std::vector<Building>& buildings,
                     const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
-                    const ModelLibrary* library, const Terrain* terrain, const Sketch& sketch,
-                    const std::filesystem::path& file, const std::vector<Clutter>& clutter) {
+                    const ModelLibrary* library, const Terrain* terrain, const std::vector<GroundLayer>& ground_layers,
+                    const Sketch& sketch, const std::filesystem::path& file, const std::vector<Clutter>& clutter) {
   const geom::Box box = city_box(ground);
   const geom::Vec2 origin{std::floor(box.min_x), std::floor(box.min_y)};
   Vertices v(origin);
@@ -367,11 +366,11 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
           objects["building-" + std::to_string(m.id)] = o;
       });
   for (const Clutter& c : clutter) objects["clutter-" + std::to_string(c.instance.id)] = clutter_object(c, *library, v);
-  add_ground_objects(ground, terrain, v, objects);
+  add_ground_objects(ground, ground_layers, terrain, v, objects);
 
   // The ground under the city: the heightmap over the rectangle around it.
   json tin = json::array();
-  append_triangles(terrain_mesh(terrain, box, box, ground.water, 512), v, tin);
+  append_triangles(*layer_mesh(ground_layers, GroundKind::Terrain), v, tin);
   objects["terrain"] = {{"type", "TINRelief"}, {"geometry", json::array({{{"type", "CompositeSurface"}, {"lod", "1"}, {"boundaries", tin}}})}};
 
   json doc{{"type", "CityJSON"},

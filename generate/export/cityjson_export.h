@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "generate/export/building_mesh.h"
+#include "generate/export/ground_layers.h"
 #include "generate/placement/clutter.h"
 #include "generate/city/ground.h"
 #include "generate/city/sketch.h"
@@ -14,12 +15,13 @@
 
 namespace exacity {
 
-// meshes are structure_meshes(buildings, models, ...), by id. Placed models are instances of templates,
+// meshes are structure_meshes(buildings, models, ...), by id; ground_layers are
+// ground_layers(ground, terrain), whose terrain and bridges CityJSON writes as they are. Placed models are instances of templates,
 // one per library model; on terrain, ground surfaces are draped over it. Models' textures
 // are written once each into `textures/` beside the file, which the appearance names.
 void write_cityjson(const Ground& ground, const std::vector<Building>& buildings,
                     const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
-                    const ModelLibrary* library, const Terrain* terrain, const Sketch& sketch,
-                    const std::filesystem::path& file, const std::vector<Clutter>& clutter = {});
+                    const ModelLibrary* library, const Terrain* terrain, const std::vector<GroundLayer>& ground_layers,
+                    const Sketch& sketch, const std::filesystem::path& file, const std::vector<Clutter>& clutter = {});
 
 }  // namespace exacity

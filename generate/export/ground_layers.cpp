@@ -47,4 +47,10 @@ std::vector<GroundLayer> ground_layers(const Ground& ground, const Terrain* terr
   return layers;
 }
 
+const GroundMesh* layer_mesh(const std::vector<GroundLayer>& layers, GroundKind kind) {
+  for (const GroundLayer& l : layers)
+    if (l.kind == kind) return &l.mesh;
+  return nullptr;
+}
+
 }  // namespace exacity

@@ -33,4 +33,7 @@ geom::Box city_box(const Ground& ground);
 // without a triangle are left out.
 std::vector<GroundLayer> ground_layers(const Ground& ground, const Terrain* terrain);
 
+// The mesh of the layer of that kind (the first), null where there is none.
+const GroundMesh* layer_mesh(const std::vector<GroundLayer>& layers, GroundKind kind);
+
 }  // namespace exacity
