@@ -162,6 +162,9 @@ bool survives_roulette(Sampler& rng, Path& path) {
   return true;
 }
 
+// The density of a direction drawn uniformly in the sun's cone.
+float sun_cone_pdf(const Sky& sky) { return 1 / (2 * kPi * (1 - sky.sun_cos_max())); }
+
 // Where a surface's rays leave from, and the direction the light leaves it by, in its frame.
 V3 leaving_point(const Surface& s) { return s.position + s.normal * kEpsilon; }
 
@@ -183,8 +186,7 @@ bool scatter_at_surface(const Tracing& t, const Surface& s, int depth, Path& pat
 
 V3 radiance(const RenderScene& scene, const Sky& sky, V3 o, V3 d, Sampler& rng, int max_depth, RayCounts& counts,
             Surface* first, const Haze& haze, V3* first_sun) {
-  const float sun_pdf = 1 / (2 * kPi * (1 - sky.sun_cos_max()));
-  const Tracing t{scene, sky, haze, sun_pdf, rng, counts};
+  const Tracing t{scene, sky, haze, sun_cone_pdf(sky), rng, counts};
   Path path{o, d};
   for (int depth = 0;; ++depth) {
     Surface s;
@@ -209,9 +211,8 @@ V3 radiance(const RenderScene& scene, const Sky& sky, V3 o, V3 d, Sampler& rng, 
 }
 
 V3 first_hit_sun(const RenderScene& scene, const Sky& sky, V3 d, const Surface& s, Sampler& rng, RayCounts& counts) {
-  const float sun_pdf = 1 / (2 * kPi * (1 - sky.sun_cos_max()));
   const Haze clear;
-  const Tracing t{scene, sky, clear, sun_pdf, rng, counts};
+  const Tracing t{scene, sky, clear, sun_cone_pdf(sky), rng, counts};
   const Frame frame(s.normal);
   return sun_next_event(t, s.material, frame, frame.to_local(d * -1), leaving_point(s), Path{s.position, d});
 }
