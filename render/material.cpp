@@ -61,8 +61,8 @@ bool sample(const Material& m, V3 wo, float u1, float u2, float u3, BsdfSample& 
     // A microfacet normal from D(h)·cos(h), reflected.
     float a2 = m.roughness * m.roughness;
     float cos_h = std::sqrt((1 - u1) / (1 + (a2 - 1) * u1)), sin_h = std::sqrt(std::max(0.0f, 1 - cos_h * cos_h));
-    float phi = 2 * kPi * u2;
-    V3 h{sin_h * std::cos(phi), sin_h * std::sin(phi), cos_h};
+    const CirclePoint p = circle_point(u2);
+    V3 h{sin_h * p.c, sin_h * p.s, cos_h};
     s.wi = h * (2 * dot(wo, h)) - wo;
   } else {
     s.wi = cosine_hemisphere(u1, u2);

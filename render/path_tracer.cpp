@@ -7,6 +7,7 @@
 #include <cmath>
 #include <mutex>
 #include <thread>
+#include <tuple>
 
 #include "render/sampling.h"
 
@@ -31,8 +32,9 @@ V3 sample_henyey_greenstein(V3 direction, float g, float u1, float u2) {
     const float s = (1 - g * g) / (1 - g + 2 * g * u1);
     cos_theta = (1 + g * g - s * s) / (2 * g);
   }
-  const float sin_theta = std::sqrt(std::max(0.0f, 1 - cos_theta * cos_theta)), phi = 2 * kPi * u2;
-  return Frame(direction).to_world({sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta});
+  const float sin_theta = std::sqrt(std::max(0.0f, 1 - cos_theta * cos_theta));
+  const CirclePoint p = circle_point(u2);
+  return Frame(direction).to_world({sin_theta * p.c, sin_theta * p.s, cos_theta});
 }
 
 namespace {
@@ -90,14 +92,16 @@ bool scatters_in_haze(const Haze& haze, V3 o, V3 d, float tmax, Sampler& rng, fl
 void scatter_in_haze(const Tracing& t, float ts, Path& path) {
   const V3 p = path.o + path.d * ts;
   if (t.sky.sun_up()) {
-    const V3 wi = t.sky.sun_frame().to_world(uniform_cone(t.rng.next(), t.rng.next(), t.sky.sun_cos_max()));
+    const auto [u1, u2] = t.rng.next2();
+    const V3 wi = t.sky.sun_frame().to_world(uniform_cone(u1, u2, t.sky.sun_cos_max()));
     const float phase = henyey_greenstein(dot(path.d, wi), t.haze.g);
     ++t.counts.shadow;
     if (!t.scene.occluded(p, wi, INFINITY))
       path.L += path.beta * t.sky.sun_radiance() *
                 (phase * transmittance(t.haze, p, wi) * power_heuristic(t.sun_pdf, phase) / t.sun_pdf);
   }
-  const V3 next = sample_henyey_greenstein(path.d, t.haze.g, t.rng.next(), t.rng.next());
+  const auto [u1, u2] = t.rng.next2();
+  const V3 next = sample_henyey_greenstein(path.d, t.haze.g, u1, u2);
   path.prev_pdf = henyey_greenstein(dot(path.d, next), t.haze.g);
   path.prev_surface = false;
   path.o = p, path.d = next;
@@ -116,7 +120,8 @@ void add_sky_seen(const Tracing& t, Path& path) {
 // Next event: the sun's disk, seen from p; returns the light it adds.
 V3 sun_next_event(const Tracing& t, const Material& m, const Frame& frame, V3 wo, V3 p, const Path& path) {
   if (!t.sky.sun_up()) return {0, 0, 0};
-  const V3 wi = t.sky.sun_frame().to_world(uniform_cone(t.rng.next(), t.rng.next(), t.sky.sun_cos_max()));
+  const auto [u1, u2] = t.rng.next2();
+  const V3 wi = t.sky.sun_frame().to_world(uniform_cone(u1, u2, t.sky.sun_cos_max()));
   const V3 li = frame.to_local(wi);
   const V3 f = eval(m, wo, li);
   if (max_component(f) <= 0) return {0, 0, 0};
@@ -128,7 +133,8 @@ V3 sun_next_event(const Tracing& t, const Material& m, const Frame& frame, V3 wo
 
 // Next event: the sky, cosine-weighted about the normal.
 void add_sky_next_event(const Tracing& t, const Material& m, const Frame& frame, V3 wo, V3 p, Path& path) {
-  const V3 li = cosine_hemisphere(t.rng.next(), t.rng.next());
+  const auto [u1, u2] = t.rng.next2();
+  const V3 li = cosine_hemisphere(u1, u2);
   const V3 wi = frame.to_world(li);
   const float sky_pdf = li.z / kPi;
   const V3 f = eval(m, wo, li);
@@ -143,7 +149,8 @@ void add_sky_next_event(const Tracing& t, const Material& m, const Frame& frame,
 // The surface chooses the next direction, from p; false when it draws none.
 bool follow_surface_sample(const Tracing& t, const Surface& s, const Frame& frame, V3 wo, V3 p, Path& path) {
   BsdfSample bs;
-  if (!sample(s.material, wo, t.rng.next(), t.rng.next(), t.rng.next(), bs)) return false;
+  const auto [u1, u2] = t.rng.next2();
+  if (!sample(s.material, wo, u1, u2, t.rng.next(), bs)) return false;
   path.beta *= bs.weight;
   path.prev_pdf = bs.pdf;
   path.prev_surface = true;
@@ -284,7 +291,7 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
           // A thin lens draws its point after the pixel's (and the first sample takes the
           // lens's centre too); a pinhole draws nothing, so its images stay as they were.
           float lu = 0.5f, lv = 0.5f;
-          if (lens.thin_lens() && k > 0) lu = rng.next(), lv = rng.next();
+          if (lens.thin_lens() && k > 0) std::tie(lu, lv) = rng.next2();
           lens.ray(static_cast<float>(x) + jx, static_cast<float>(y) + jy, lu, lv, o, d);
           Surface first_hit;
           first_hit.distance = -1;

@@ -2,6 +2,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include <tuple>
+
 #include "render/sampling.h"
 
 namespace render {
@@ -22,7 +24,7 @@ Image::Primaries primary_layer(const RenderScene& scene, const Sky& sky, const C
         float jx, jy;
         pixel_jitter(static_cast<std::uint64_t>(k), jx, jy);
         float lu = 0.5f, lv = 0.5f;
-        if (lens.thin_lens()) lu = rng.next(), lv = rng.next();
+        if (lens.thin_lens()) std::tie(lu, lv) = rng.next2();
         V3 o, d;
         lens.ray(static_cast<float>(x) + jx, static_cast<float>(y) + jy, lu, lv, o, d);
         Surface hit;

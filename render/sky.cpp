@@ -13,6 +13,18 @@ constexpr float kLuminanceToRadiance = 0.1f;
 // times the clear sky's, as on a sunny day.
 constexpr float kSunIrradiance = 8.0f;
 
+// atan2 to within 2e-6 rad (an odd polynomial fitted to atan over [0, 1], folded to the
+// octant), a 25,000th of the table's columns: libm's took 3.5% of a render.
+float azimuth(float y, float x) {
+  const float ax = std::abs(x), ay = std::abs(y), hi = std::max(ax, ay);
+  if (hi == 0) return 0;
+  const float t = std::min(ax, ay) / hi, t2 = t * t;
+  float a = t * (0.99997723f + t2 * (-0.33262314f + t2 * (0.19354242f + t2 * (-0.11643181f + t2 * (0.05265333f - 0.01172154f * t2)))));
+  if (ay > ax) a = kPi / 2 - a;
+  if (x < 0) a = kPi - a;
+  return y < 0 ? -a : a;
+}
+
 }  // namespace
 
 Sky::Sky(float sun_azimuth, float sun_elevation, float turbidity, float sky_scale, float sun_scale)
@@ -72,7 +84,7 @@ V3 Sky::radiance(V3 dir) const {
   if (scale_ == 0) return {0, 0, 0};
   // Rows by sqrt(1 - z), about even in the angle from the zenith down.
   const float u = std::sqrt(1 - std::clamp(dir.z, 0.0f, 1.0f)) * (kRows - 1);
-  const float v = (std::atan2(dir.y, dir.x) / (2 * kPi) + 0.5f) * kColumns;
+  const float v = (azimuth(dir.y, dir.x) / (2 * kPi) + 0.5f) * kColumns;
   const int r0 = std::min(static_cast<int>(u), kRows - 2), c0 = static_cast<int>(v) % kColumns,
             c1 = (c0 + 1) % kColumns;
   const float fu = u - static_cast<float>(r0), fv = v - std::floor(v);
