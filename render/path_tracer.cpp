@@ -8,6 +8,7 @@
 #include <mutex>
 #include <thread>
 #include <tuple>
+#include <vector>
 
 #include "render/sampling.h"
 
@@ -117,18 +118,28 @@ void add_sky_seen(const Tracing& t, Path& path) {
     path.L += path.beta * t.sky.sun_radiance() * (path.prev_pdf > 0 ? power_heuristic(path.prev_pdf, t.sun_pdf) : 1.0f);
 }
 
-// Next event: the sun's disk, seen from p; returns the light it adds.
-V3 sun_next_event(const Tracing& t, const Material& m, const Frame& frame, V3 wo, V3 p, const Path& path) {
-  if (!t.sky.sun_up()) return {0, 0, 0};
+// The sun's next event from p up to its shadow ray: the direction drawn in the sun's disk
+// and the light it adds if nothing is in the way (zero: no shadow ray to cast).
+struct SunEvent {
+  V3 direction, light;
+};
+SunEvent sun_event(const Tracing& t, const Material& m, const Frame& frame, V3 wo, V3 p, V3 beta) {
+  if (!t.sky.sun_up()) return {{0, 0, 1}, {0, 0, 0}};
   const auto [u1, u2] = t.rng.next2();
   const V3 wi = t.sky.sun_frame().to_world(uniform_cone(u1, u2, t.sky.sun_cos_max()));
   const V3 li = frame.to_local(wi);
   const V3 f = eval(m, wo, li);
-  if (max_component(f) <= 0) return {0, 0, 0};
+  if (max_component(f) <= 0) return {wi, {0, 0, 0}};
+  return {wi, beta * f * t.sky.sun_radiance() *
+                  (transmittance(t.haze, p, wi) * power_heuristic(t.sun_pdf, pdf(m, wo, li)) / t.sun_pdf)};
+}
+
+// Next event: the sun's disk, seen from p; returns the light it adds.
+V3 sun_next_event(const Tracing& t, const Material& m, const Frame& frame, V3 wo, V3 p, const Path& path) {
+  const SunEvent e = sun_event(t, m, frame, wo, p, path.beta);
+  if (max_component(e.light) <= 0) return {0, 0, 0};
   ++t.counts.shadow;
-  if (t.scene.occluded(p, wi, INFINITY)) return {0, 0, 0};
-  return path.beta * f * t.sky.sun_radiance() *
-         (transmittance(t.haze, p, wi) * power_heuristic(t.sun_pdf, pdf(m, wo, li)) / t.sun_pdf);
+  return t.scene.occluded(p, e.direction, INFINITY) ? V3{0, 0, 0} : e.light;
 }
 
 // Next event: the sky, cosine-weighted about the normal.
@@ -176,12 +187,14 @@ float sun_cone_pdf(const Sky& sky) { return 1 / (2 * kPi * (1 - sky.sun_cos_max(
 V3 leaving_point(const Surface& s) { return s.position + s.normal * kEpsilon; }
 
 // At a surface, after its emission: next events towards the sun and the sky, then the
-// bounce; false when the path ends there. The sun's share is added to `sun` too where given.
-bool scatter_at_surface(const Tracing& t, const Surface& s, int depth, Path& path, V3* sun = nullptr) {
+// bounce; false when the path ends there. The sun's share is added to `sun` too where given;
+// `known_sun` is that share where it was found already (a packet's shadow rays).
+bool scatter_at_surface(const Tracing& t, const Surface& s, int depth, Path& path, V3* sun = nullptr,
+                        const V3* known_sun = nullptr) {
   const Frame frame(s.normal);
   const V3 wo = frame.to_local(path.d * -1);
   const V3 p = leaving_point(s);
-  const V3 from_sun = sun_next_event(t, s.material, frame, wo, p, path);
+  const V3 from_sun = known_sun ? *known_sun : sun_next_event(t, s.material, frame, wo, p, path);
   path.L += from_sun;
   if (sun) *sun += from_sun;
   add_sky_next_event(t, s.material, frame, wo, p, path);
@@ -191,15 +204,23 @@ bool scatter_at_surface(const Tracing& t, const Surface& s, int depth, Path& pat
 
 }  // namespace
 
-V3 radiance(const RenderScene& scene, const Sky& sky, V3 o, V3 d, Sampler& rng, int max_depth, RayCounts& counts,
-            Surface* first, const Haze& haze, V3* first_sun) {
+namespace {
+
+// A path's radiance from its camera ray (o, d), whose nearest surface `hit` and `s`
+// tell (found by one ray or in a packet); as radiance(). `known_sun`: the sun's next event
+// at that surface where it was found already (in clear air).
+V3 radiance_after_camera_ray(const RenderScene& scene, const Sky& sky, V3 o, V3 d, bool hit, Surface s, Sampler& rng,
+                             int max_depth, RayCounts& counts, Surface* first, const Haze& haze, V3* first_sun,
+                             const V3* known_sun = nullptr) {
   const Tracing t{scene, sky, haze, sun_cone_pdf(sky), rng, counts};
   Path path{o, d};
+  ++counts.camera;
+  if (first && hit) *first = s;
   for (int depth = 0;; ++depth) {
-    Surface s;
-    ++(depth == 0 ? counts.camera : counts.bounce);
-    const bool hit = scene.intersect(path.o, path.d, INFINITY, s);
-    if (depth == 0 && first && hit) *first = s;
+    if (depth > 0) {
+      ++counts.bounce;
+      hit = scene.intersect(path.o, path.d, INFINITY, s);
+    }
     float ts = 0;
     if (haze.density > 0 && scatters_in_haze(haze, path.o, path.d, hit ? s.distance : INFINITY, rng, ts)) {
       if (depth >= max_depth) break;
@@ -212,16 +233,66 @@ V3 radiance(const RenderScene& scene, const Sky& sky, V3 o, V3 d, Sampler& rng, 
     }
     path.L += path.beta * s.material.emission;
     if (depth >= max_depth) break;
-    if (!scatter_at_surface(t, s, depth, path, depth == 0 ? first_sun : nullptr)) break;
+    if (!scatter_at_surface(t, s, depth, path, depth == 0 ? first_sun : nullptr, depth == 0 ? known_sun : nullptr))
+      break;
   }
   return path.L;
 }
 
-V3 first_hit_sun(const RenderScene& scene, const Sky& sky, V3 d, const Surface& s, Sampler& rng, RayCounts& counts) {
+}  // namespace
+
+V3 radiance(const RenderScene& scene, const Sky& sky, V3 o, V3 d, Sampler& rng, int max_depth, RayCounts& counts,
+            Surface* first, const Haze& haze, V3* first_sun) {
+  Surface s;
+  const bool hit = scene.intersect(o, d, INFINITY, s);
+  return radiance_after_camera_ray(scene, sky, o, d, hit, s, rng, max_depth, counts, first, haze, first_sun);
+}
+
+SunShadowRay first_hit_sun(const RenderScene& scene, const Sky& sky, V3 d, const Surface& s, Sampler& rng) {
   const Haze clear;
-  const Tracing t{scene, sky, clear, sun_cone_pdf(sky), rng, counts};
+  RayCounts uncounted;
+  const Tracing t{scene, sky, clear, sun_cone_pdf(sky), rng, uncounted};
   const Frame frame(s.normal);
-  return sun_next_event(t, s.material, frame, frame.to_local(d * -1), leaving_point(s), Path{s.position, d});
+  const V3 p = leaving_point(s);
+  const SunEvent e = sun_event(t, s.material, frame, frame.to_local(d * -1), p, {1, 1, 1});
+  return {p, e.direction, e.light};
+}
+
+void first_surfaces_sun(const RenderScene& scene, const Sky& sky, const V3* d, const Surface* hits, const bool* found,
+                        int n, std::vector<Sampler>& rngs, V3* sun, RayCounts& counts) {
+  constexpr int kPacket = RenderScene::kPacket;
+  V3 from[kPacket], towards[kPacket];
+  int ray_of[kPacket], rays = 0;
+  for (int j = 0; j < n; ++j) {
+    sun[j] = {0, 0, 0};
+    if (!found[j]) continue;
+    const SunShadowRay r = first_hit_sun(scene, sky, d[j], hits[j], rngs[j]);
+    sun[j] = r.light;
+    if (max_component(r.light) <= 0) continue;
+    from[rays] = r.origin, towards[rays] = r.direction, ray_of[rays++] = j;
+  }
+  bool blocked[kPacket];
+  scene.occluded_packet(from, towards, rays, blocked);
+  counts.shadow += static_cast<std::uint64_t>(rays);
+  for (int q = 0; q < rays; ++q)
+    if (blocked[q]) sun[ray_of[q]] = {0, 0, 0};
+}
+
+void camera_rays(const Lens& lens, int x, int y, std::size_t pixel, int k0, int n, std::vector<Sampler>& rngs, V3* o,
+                 V3* d) {
+  rngs.clear();
+  for (int j = 0; j < n; ++j) {
+    const auto k = static_cast<std::uint64_t>(k0 + j);
+    Sampler& rng = rngs.emplace_back(pixel, k);
+    // The first sample goes through the pixel's centre, for clean data layers.
+    float jx, jy;
+    pixel_jitter(k, jx, jy);
+    // A thin lens draws its point after the pixel's (and the first sample takes the
+    // lens's centre too); a pinhole draws nothing, so its images stay as they were.
+    float lu = 0.5f, lv = 0.5f;
+    if (lens.thin_lens() && k > 0) std::tie(lu, lv) = rng.next2();
+    lens.ray(static_cast<float>(x) + jx, static_cast<float>(y) + jy, lu, lv, o[j], d[j]);
+  }
 }
 
 Film::Film(int width, int height) {
@@ -275,6 +346,9 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
     _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
     const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
     RayCounts tile_counts;
+    constexpr int kPacket = RenderScene::kPacket;
+    std::vector<Sampler> rngs;
+    rngs.reserve(kPacket);
     for (int y = y0; y < std::min(y0 + kTile, height); ++y)
       for (int x = x0; x < std::min(x0 + kTile, width); ++x) {
         const std::size_t i = static_cast<std::size_t>(y) * width + x;
@@ -282,29 +356,34 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
         V3 sun = film.sun_sum[i], even_sum = film.even_sum[i], even_albedo = film.even_albedo_sum[i],
            even_sun = film.even_sun_sum[i];
         double squares = film.luminance_squares[i];
-        for (int k = first; k < first + t.spp; ++k) {
-          Sampler rng(i, static_cast<std::uint64_t>(k));
-          // The first sample goes through the pixel's centre, for clean data layers.
-          float jx, jy;
-          pixel_jitter(static_cast<std::uint64_t>(k), jx, jy);
-          V3 o, d;
-          // A thin lens draws its point after the pixel's (and the first sample takes the
-          // lens's centre too); a pinhole draws nothing, so its images stay as they were.
-          float lu = 0.5f, lv = 0.5f;
-          if (lens.thin_lens() && k > 0) std::tie(lu, lv) = rng.next2();
-          lens.ray(static_cast<float>(x) + jx, static_cast<float>(y) + jy, lu, lv, o, d);
-          Surface first_hit;
-          first_hit.distance = -1;
-          V3 from_sun{0, 0, 0};
-          V3 l = radiance(scene, sky, o, d, rng, t.max_depth, tile_counts, &first_hit, t.haze, &from_sun);
-          if (!std::isfinite(l.x + l.y + l.z)) l = from_sun = {0, 0, 0};
-          const V3 a = first_hit.distance >= 0 ? first_hit.material.albedo : V3{1, 1, 1};
-          sum += l, albedo += a, sun += from_sun;
-          if (k % 2 == 0) even_sum += l, even_albedo += a, even_sun += from_sun;
-          squares += static_cast<double>(luminance(l)) * luminance(l);
-          if (k == 0 && first_hit.distance >= 0) {
-            img.depth[i] = first_hit.distance, img.normal[i] = first_hit.normal;
-            img.albedo[i] = first_hit.material.albedo, img.id[i] = first_hit.entity;
+        // The camera rays in packets, each path on alone from its first surface.
+        for (int k0 = first; k0 < first + t.spp; k0 += kPacket) {
+          const int n = std::min(kPacket, first + t.spp - k0);
+          V3 o[kPacket], d[kPacket];
+          camera_rays(lens, x, y, i, k0, n, rngs, o, d);
+          Surface hits[kPacket];
+          bool found[kPacket];
+          scene.intersect_packet(o, d, n, hits, found);
+          V3 known_sun[kPacket];
+          const bool clear_air = t.haze.density <= 0;
+          if (clear_air) first_surfaces_sun(scene, sky, d, hits, found, n, rngs, known_sun, tile_counts);
+          for (int j = 0; j < n; ++j) {
+            const int k = k0 + j;
+            Surface first_hit;
+            first_hit.distance = -1;
+            V3 from_sun{0, 0, 0};
+            V3 l = radiance_after_camera_ray(scene, sky, o[j], d[j], found[j], hits[j], rngs[j], t.max_depth,
+                                             tile_counts, &first_hit, t.haze, &from_sun,
+                                             clear_air ? &known_sun[j] : nullptr);
+            if (!std::isfinite(l.x + l.y + l.z)) l = from_sun = {0, 0, 0};
+            const V3 a = first_hit.distance >= 0 ? first_hit.material.albedo : V3{1, 1, 1};
+            sum += l, albedo += a, sun += from_sun;
+            if (k % 2 == 0) even_sum += l, even_albedo += a, even_sun += from_sun;
+            squares += static_cast<double>(luminance(l)) * luminance(l);
+            if (k == 0 && first_hit.distance >= 0) {
+              img.depth[i] = first_hit.distance, img.normal[i] = first_hit.normal;
+              img.albedo[i] = first_hit.material.albedo, img.id[i] = first_hit.entity;
+            }
           }
         }
         film.sum[i] = sum, film.albedo_sum[i] = albedo, film.luminance_squares[i] = squares;

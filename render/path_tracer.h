@@ -106,9 +106,25 @@ Image trace(const RenderScene& scene, const Sky& sky, const Camera& camera, cons
 V3 radiance(const RenderScene& scene, const Sky& sky, V3 origin, V3 direction, Sampler& rng, int max_depth,
             RayCounts& counts, Surface* first = nullptr, const Haze& haze = {}, V3* first_sun = nullptr);
 
-// That next event alone, at the surface `s` a camera ray of direction d met in clear air:
-// what radiance() adds to `first_sun` there (render/primary_layer.h).
-V3 first_hit_sun(const RenderScene& scene, const Sky& sky, V3 d, const Surface& s, Sampler& rng, RayCounts& counts);
+// Camera rays k0 .. k0 + n - 1 of pixel (x, y), numbered `pixel` (n at most
+// RenderScene::kPacket), into o and d, with each sample's sampler, past its lens draw, in
+// `rngs`: as add_samples draws them.
+void camera_rays(const Lens& lens, int x, int y, std::size_t pixel, int k0, int n, std::vector<Sampler>& rngs, V3* o,
+                 V3* d);
+
+// The sun's next events at the first surfaces of n camera rays of directions d (n at most
+// RenderScene::kPacket; clear air), their shadow rays cast as one packet: into `sun`, zero
+// where a ray met nothing, drew no ray or was blocked. Each draws from its sampler in `rngs`.
+void first_surfaces_sun(const RenderScene& scene, const Sky& sky, const V3* d, const Surface* hits, const bool* found,
+                        int n, std::vector<Sampler>& rngs, V3* sun, RayCounts& counts);
+
+// That next event alone, at the surface `s` a camera ray of direction d met in clear air,
+// up to its shadow ray (render/primary_layer.h casts them in packets): what radiance()
+// adds to `first_sun` there when the ray from `origin` along `direction` is unblocked.
+struct SunShadowRay {
+  V3 origin, direction, light;  // light zero: no ray to cast
+};
+SunShadowRay first_hit_sun(const RenderScene& scene, const Sky& sky, V3 d, const Surface& s, Sampler& rng);
 
 // Henyey–Greenstein's phase function for the angle between the light's old and new
 // directions, and a new direction drawn from it.

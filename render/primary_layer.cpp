@@ -2,7 +2,9 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <tuple>
+#include <vector>
 
 #include "render/sampling.h"
 
@@ -14,26 +16,24 @@ Image::Primaries primary_layer(const RenderScene& scene, const Sky& sky, const C
   Image::Primaries sums{std::vector<V3>(n), std::vector<V3>(n), count};
   const Lens lens(camera, width, height);
   tbb::parallel_for(0, height, [&](int y) {
-    RayCounts counts;
+    constexpr int kPacket = RenderScene::kPacket;
+    std::vector<Sampler> rngs;
+    rngs.reserve(kPacket);
+    RayCounts uncounted;
     for (int x = 0; x < width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * width + x;
       V3 albedo{0, 0, 0}, sun{0, 0, 0};
-      for (int k = first; k < first + count; ++k) {
-        // Sample k's pixel point and lens point, as the path tracer would draw them.
-        Sampler rng(i, static_cast<std::uint64_t>(k));
-        float jx, jy;
-        pixel_jitter(static_cast<std::uint64_t>(k), jx, jy);
-        float lu = 0.5f, lv = 0.5f;
-        if (lens.thin_lens()) std::tie(lu, lv) = rng.next2();
-        V3 o, d;
-        lens.ray(static_cast<float>(x) + jx, static_cast<float>(y) + jy, lu, lv, o, d);
-        Surface hit;
-        if (!scene.intersect(o, d, INFINITY, hit)) {
-          albedo += V3{1, 1, 1};
-          continue;
-        }
-        albedo += hit.material.albedo;
-        sun += first_hit_sun(scene, sky, d, hit, rng, counts);
+      // A pixel's rays in packets: their camera rays, then their shadow rays to the sun.
+      for (int k0 = first; k0 < first + count; k0 += kPacket) {
+        const int rays = std::min(kPacket, first + count - k0);
+        V3 o[kPacket], d[kPacket];
+        camera_rays(lens, x, y, i, k0, rays, rngs, o, d);
+        Surface hits[kPacket];
+        bool found[kPacket];
+        scene.intersect_packet(o, d, rays, hits, found);
+        V3 light[kPacket];
+        first_surfaces_sun(scene, sky, d, hits, found, rays, rngs, light, uncounted);
+        for (int j = 0; j < rays; ++j) albedo += found[j] ? hits[j].material.albedo : V3{1, 1, 1}, sun += light[j];
       }
       sums.albedo[i] = albedo, sums.sun[i] = sun;
     }

@@ -643,15 +643,50 @@ bool RenderScene::raw_intersect(V3 o, V3 d) const {
   return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
 }
 
+// What Embree reports of a ray's nearest hit; geom is RTC_INVALID_GEOMETRY_ID on a miss.
+struct RenderScene::Hit {
+  unsigned geom, prim, inst;
+  float t, u, v;
+  V3 ng;
+};
+
 bool RenderScene::intersect(V3 o, V3 d, float tmax, Surface& s) const {
   RTCRayHit rh = ray_hit(o, d, tmax);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   rtcIntersect1(scene_, &context, &rh);
+  const Hit hit{rh.hit.geomID, rh.hit.primID, rh.hit.instID[0], rh.ray.tfar, rh.hit.u, rh.hit.v,
+                {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z}};
+  return surface(o, d, tmax, hit, s);
+}
+
+void RenderScene::intersect_packet(const V3* o, const V3* d, int count, Surface* hits, bool* found) const {
+  alignas(64) int valid[kPacket];
+  alignas(64) RTCRayHit16 rh{};
+  for (int i = 0; i < kPacket; ++i) {
+    valid[i] = i < count ? -1 : 0;
+    const V3 oi = o[i < count ? i : 0], di = d[i < count ? i : 0];
+    rh.ray.org_x[i] = oi.x, rh.ray.org_y[i] = oi.y, rh.ray.org_z[i] = oi.z;
+    rh.ray.dir_x[i] = di.x, rh.ray.dir_y[i] = di.y, rh.ray.dir_z[i] = di.z;
+    rh.ray.tnear[i] = 0, rh.ray.tfar[i] = INFINITY, rh.ray.mask[i] = 0xffffffff;
+    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  rtcIntersect16(valid, scene_, &context, &rh);
+  for (int i = 0; i < count; ++i) {
+    const Hit hit{rh.hit.geomID[i], rh.hit.primID[i], rh.hit.instID[0][i], rh.ray.tfar[i], rh.hit.u[i], rh.hit.v[i],
+                  {rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]}};
+    found[i] = surface(o[i], d[i], INFINITY, hit, hits[i]);
+  }
+}
+
+// The surface a ray met, from Embree's hit, or the ground plane past the city.
+bool RenderScene::surface(V3 o, V3 d, float tmax, const Hit& hit, Surface& s) const {
   int m;
   const std::array<exacity::Uv, 3>* textured = nullptr;  // the hit triangle's texture coordinates
   float hit_u = 0, hit_v = 0;                            // and its barycentric place in it
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+  if (hit.geom == RTC_INVALID_GEOMETRY_ID) {
     // The ground plane beyond the city.
     if (!ground_plane_ || d.z >= 0 || o.z <= ground) return false;
     const float t = (ground - o.z) / d.z;
@@ -662,19 +697,19 @@ bool RenderScene::intersect(V3 o, V3 d, float tmax, Surface& s) const {
     s.entity = entity_id(Entity::Terrain, 0);
     m = grass_material_;
   } else {
-    s.distance = rh.ray.tfar;
-    s.position = o + d * rh.ray.tfar;
-    V3 n{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
-    if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
-      const Geometry& g = geometries_[rh.hit.instID[0]];
+    s.distance = hit.t;
+    s.position = o + d * hit.t;
+    V3 n = hit.ng;
+    if (hit.inst != RTC_INVALID_GEOMETRY_ID) {
+      const Geometry& g = geometries_[hit.inst];
       n = {g.cos_turn * n.x - g.sin_turn * n.y, g.sin_turn * n.x + g.cos_turn * n.y, n.z};
-      m = g.material_base + g.material[rh.hit.primID];
+      m = g.material_base + g.material[hit.prim];
       s.entity = g.instance_entity;
-      if (g.uv) textured = &(*g.uv)[rh.hit.primID], hit_u = rh.hit.u, hit_v = rh.hit.v;
+      if (g.uv) textured = &(*g.uv)[hit.prim], hit_u = hit.u, hit_v = hit.v;
     } else {
-      const Geometry& g = geometries_[rh.hit.geomID];
-      m = g.material[rh.hit.primID];
-      s.entity = g.entity[rh.hit.primID];
+      const Geometry& g = geometries_[hit.geom];
+      m = g.material[hit.prim];
+      s.entity = g.entity[hit.prim];
     }
     s.normal = normalize(n);
     if (dot(s.normal, d) > 0) s.normal = s.normal * -1;
@@ -718,8 +753,30 @@ bool RenderScene::intersect(V3 o, V3 d, float tmax, Surface& s) const {
   return true;
 }
 
+// The ground plane past the city blocks a ray that goes down to it within tmax.
+bool RenderScene::meets_ground_plane(V3 o, V3 d, float tmax) const {
+  return ground_plane_ && d.z < 0 && o.z > ground && (ground - o.z) / d.z < tmax;
+}
+
+void RenderScene::occluded_packet(const V3* o, const V3* d, int count, bool* blocked) const {
+  alignas(64) int valid[kPacket];
+  alignas(64) RTCRay16 r{};
+  for (int i = 0; i < kPacket; ++i) {
+    const bool traced = i < count && !meets_ground_plane(o[i], d[i], INFINITY);
+    valid[i] = traced ? -1 : 0;
+    const V3 oi = o[i < count ? i : 0], di = d[i < count ? i : 0];
+    r.org_x[i] = oi.x, r.org_y[i] = oi.y, r.org_z[i] = oi.z;
+    r.dir_x[i] = di.x, r.dir_y[i] = di.y, r.dir_z[i] = di.z;
+    r.tnear[i] = 0, r.tfar[i] = traced ? INFINITY : -INFINITY, r.mask[i] = 0xffffffff;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  rtcOccluded16(valid, scene_, &context, &r);
+  for (int i = 0; i < count; ++i) blocked[i] = r.tfar[i] < 0;  // Embree sets tfar to -inf on a hit
+}
+
 bool RenderScene::occluded(V3 o, V3 d, float tmax) const {
-  if (ground_plane_ && d.z < 0 && o.z > ground && (ground - o.z) / d.z < tmax) return true;
+  if (meets_ground_plane(o, d, tmax)) return true;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay r{};

@@ -1,6 +1,6 @@
 // The renderer against analytic answers: a white furnace, energy conservation, a sun-lit
 // plane; cameras, the overview height and the minimap's ground footprint by hand; images
-// independent of the thread count; the EXR's data layers read back exactly; what the
+// independent of the thread count; packets of rays as single rays; the EXR's data layers read back exactly; what the
 // overview and the minimap show.
 #include <gtest/gtest.h>
 
@@ -221,6 +221,59 @@ TEST(Render, CityImagesAreTheSameWhateverTheThreadCountAndHitsNameTheirEntity) {
   ASSERT_TRUE(scene.intersect(scene.to_scene(inside.x, inside.y, 500), {0, 0, -1}, INFINITY, hit));
   EXPECT_EQ(hit.entity, entity_id(Entity::Building, 0));
   EXPECT_NEAR(hit.position.z, b.floor + b.height, 1e-3);  // flat or the ridge's height at most
+}
+
+TEST(Render, PacketsFindWhatSingleRaysFind) {
+  // Camera rays over a city and past it onto the ground plane, in packets of every size
+  // from 1 to 16: each finds the surface intersect() finds, and each shadow ray from those
+  // surfaces is blocked exactly when occluded() says so.
+  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 5}, "features": [
+    {"type": "Feature", "properties": {"zone": "commercial"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [300, 200], [0, 200], [0, 0]]]}}]})";
+  exacity::Sketch sketch = exacity::parse_sketch(text, "packets.geojson");
+  exacity::StageClock clock(nullptr, exacity::kCityStages);
+  exacity::City city = exacity::build_city(sketch, clock);
+  Sky sky(150, 25);
+  RenderScene scene(city, sky.sun_direction(), SceneOptions{});
+  const Camera c = scene.to_scene(Camera::orbit({150, 100, 0}, 200, 35, 350, 60));
+  const Lens lens(c, 64, 48);
+  Sampler rng(1, 1);
+  int hits = 0, blocked_rays = 0, plane = 0;
+  for (int count = 1; count <= RenderScene::kPacket; ++count)
+    for (int round = 0; round < 20; ++round) {
+      V3 o[RenderScene::kPacket], d[RenderScene::kPacket];
+      for (int j = 0; j < count; ++j) lens.ray(64 * rng.next(), 48 * rng.next(), 0.5f, 0.5f, o[j], d[j]);
+      Surface found[RenderScene::kPacket];
+      bool hit[RenderScene::kPacket];
+      scene.intersect_packet(o, d, count, found, hit);
+      V3 from[RenderScene::kPacket], towards[RenderScene::kPacket];
+      int shadow_rays = 0;
+      for (int j = 0; j < count; ++j) {
+        Surface one;
+        ASSERT_EQ(hit[j], scene.intersect(o[j], d[j], INFINITY, one)) << count << " " << j;
+        if (!hit[j]) continue;
+        ++hits;
+        if (found[j].entity == entity_id(Entity::Terrain, 0)) ++plane;
+        EXPECT_EQ(found[j].entity, one.entity);
+        EXPECT_NEAR(found[j].distance, one.distance, 1e-4f * one.distance);
+        EXPECT_NEAR(dot(found[j].normal, one.normal), 1.0f, 1e-5f);
+        EXPECT_EQ(found[j].material.albedo.x, one.material.albedo.x);
+        // Towards the sun, or down through the ground (blocked by the plane or the city).
+        from[shadow_rays] = found[j].position + found[j].normal * 1e-3f;
+        towards[shadow_rays++] = j % 3 == 2 ? normalize(V3{0.3f, -0.2f, -1}) : sky.sun_direction();
+      }
+      bool blocked[RenderScene::kPacket];
+      scene.occluded_packet(from, towards, shadow_rays, blocked);
+      for (int q = 0; q < shadow_rays; ++q) {
+        EXPECT_EQ(blocked[q], scene.occluded(from[q], towards[q], INFINITY)) << count << " " << q;
+        blocked_rays += blocked[q];
+      }
+    }
+  // The rays met the city and the plane, and some shadow rays were blocked, some not.
+  EXPECT_GT(hits - plane, 200);
+  EXPECT_GT(plane, 20);
+  EXPECT_GT(blocked_rays, 50);
+  EXPECT_LT(blocked_rays, hits);
 }
 
 TEST(Render, ExrKeepsItsDataLayersExactly) {
