@@ -84,6 +84,16 @@ std::vector<Estimate> estimates(const Image& img) {
   return {estimate_of(img.beauty, albedo, img.first_sun, img.variance, 1)};
 }
 
+// The albedo the filter's taps are compared by: the mean over all the pixel's rays where
+// it has several (the primary layer's too), so that pixels straddling one edge alike match
+// one another, where sample 0's albedo, one side's, told them apart (on the Cycles
+// comparison's view, 3% less squared error at 64 samples than sample 0's); else sample 0's.
+std::vector<V3> guide_albedo(const Image& img) {
+  if (img.mean_albedo.empty()) return img.albedo;
+  if (img.extra.samples == 0) return img.mean_albedo;
+  return with_extra(img.mean_albedo, img.halves[0].samples + img.halves[1].samples, img.extra.albedo, img.extra.samples);
+}
+
 // How fast depth changes around a pixel, in metres a pixel: the larger of its neighbours'
 // differences, so a ground plane seen at a grazing angle is still one surface.
 std::vector<float> depth_gradients(const Image& img) {
@@ -136,8 +146,8 @@ float power_128(float c) {
 // One à-trous level of every estimate: the 5x5 B3 kernel with holes of `step` pixels,
 // each tap weighed by how alike its pixel is to the centre's, in the guides (shared) and
 // in the estimate's own luminance (each its own).
-void filter_level(const Image& img, std::vector<Estimate>& estimates, const std::vector<float>& gradients, int step,
-                  const DenoiseSettings& s) {
+void filter_level(const Image& img, std::vector<Estimate>& estimates, const std::vector<float>& gradients,
+                  const std::vector<V3>& albedo, int step, const DenoiseSettings& s) {
   const std::size_t count = estimates.size();
   // Each estimate's luminance, and one over the difference in it that stops a tap.
   std::vector<std::vector<float>> lum(count), inverse_noise(count);
@@ -177,7 +187,7 @@ void filter_level(const Image& img, std::vector<Estimate>& estimates, const std:
             if (facing <= 0) continue;
             const float depth_scale =
                 s.depth_sigma * gradients[i] * distance[v + 2][u + 2] + 1e-3f * img.depth[i] + 1e-6f;
-            const V3 da = img.albedo[i] - img.albedo[j];
+            const V3 da = albedo[i] - albedo[j];
             exponent = -std::abs(img.depth[i] - img.depth[j]) / depth_scale -
                        (std::abs(da.x) + std::abs(da.y) + std::abs(da.z)) / s.albedo_sigma;
             // cos^128 by squaring; other powers through pow.
@@ -253,11 +263,12 @@ Image denoise(const Image& img, const DenoiseSettings& s) {
   const std::size_t n = img.beauty.size();
   std::vector<Estimate> level = estimates(img);
   const std::vector<float> gradients = depth_gradients(img);
+  const std::vector<V3> albedo = guide_albedo(img);
   Image out = img;
   out.variance.resize(n);
   if (level.size() == 1) {
     // One estimate: nothing to tell the levels apart by; the last.
-    for (int l = 0; l < s.levels; ++l) filter_level(img, level, gradients, 1 << l, s);
+    for (int l = 0; l < s.levels; ++l) filter_level(img, level, gradients, albedo, 1 << l, s);
     for (std::size_t i = 0; i < n; ++i) {
       const float la = luminance(level[0].albedo[i]);
       out.beauty[i] = beauty_of(level[0], i, false), out.variance[i] = level[0].variance[i] * la * la;
@@ -275,7 +286,7 @@ Image denoise(const Image& img, const DenoiseSettings& s) {
   }
   std::vector<float> least = level_error(img, level, false, s.selection_radius);
   for (int l = 0; l <= s.levels; ++l) {
-    if (l > 0) filter_level(img, level, gradients, 1 << (l - 1), s);
+    if (l > 0) filter_level(img, level, gradients, albedo, 1 << (l - 1), s);
     for (const bool finer : {false, true}) {
       if ((l == 0 && !finer) || (finer && finer_albedo.empty())) continue;
       const std::vector<float> error = level_error(img, level, finer, s.selection_radius);
