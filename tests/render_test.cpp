@@ -276,6 +276,33 @@ TEST(Render, PacketsFindWhatSingleRaysFind) {
   EXPECT_LT(blocked_rays, hits);
 }
 
+TEST(Render, PassesAddUpToOneTraceOnACityWithInstances) {
+  // As Film.PassesOfSamplesAddUpToOneTraceBitForBit, through Embree's instances (the
+  // residential zone's trees and lamps) with packets cut differently by the passes.
+  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 2}, "features": [
+    {"type": "Feature", "properties": {"zone": "residential"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [250, 0], [250, 200], [0, 200], [0, 0]]]}}]})";
+  exacity::Sketch sketch = exacity::parse_sketch(text, "passes.geojson");
+  exacity::StageClock clock(nullptr, exacity::kCityStages);
+  exacity::City city = exacity::build_city(sketch, clock);
+  Sky sky(200, 35);
+  RenderScene scene(city, sky.sun_direction(), SceneOptions{});
+  ASSERT_GT(scene.instances, 10u);
+  const Camera c = scene.to_scene(Camera::orbit({125, 100, 0}, 210, 30, 120, 50));
+  const Image whole = trace(scene, sky, c, TraceSettings{48, 32, 37});
+  Film film(48, 32);
+  for (int spp : {16, 5, 16}) add_samples(film, scene, sky, c, TraceSettings{48, 32, spp});
+  const Image passes = film.image();
+  std::size_t models = 0;
+  for (std::size_t i = 0; i < whole.beauty.size(); ++i) {
+    ASSERT_EQ(whole.beauty[i].x, passes.beauty[i].x) << i;
+    ASSERT_EQ(whole.beauty[i].y, passes.beauty[i].y) << i;
+    const std::uint32_t kind = whole.id[i] >> 24;
+    models += kind == static_cast<std::uint32_t>(Entity::Model) || kind == static_cast<std::uint32_t>(Entity::Clutter);
+  }
+  EXPECT_GT(models, 30u);  // the view sees the instances (trees, lamps, clutter)
+}
+
 TEST(Render, ExrKeepsItsDataLayersExactly) {
   Image img;
   img.width = 3, img.height = 2;
