@@ -248,6 +248,14 @@ V3 radiance(const RenderScene& scene, const Sky& sky, V3 o, V3 d, Sampler& rng, 
   return radiance_after_camera_ray(scene, sky, o, d, hit, s, rng, max_depth, counts, first, haze, first_sun);
 }
 
+namespace {
+
+// The sun's next event at the surface `s` a camera ray of direction d met in clear air, up
+// to its shadow ray: what radiance() adds to `first_sun` there when the ray from `origin`
+// along `direction` is unblocked.
+struct SunShadowRay {
+  V3 origin, direction, light;  // light zero: no ray to cast
+};
 SunShadowRay first_hit_sun(const RenderScene& scene, const Sky& sky, V3 d, const Surface& s, Sampler& rng) {
   const Haze clear;
   RayCounts uncounted;
@@ -258,28 +266,11 @@ SunShadowRay first_hit_sun(const RenderScene& scene, const Sky& sky, V3 d, const
   return {p, e.direction, e.light};
 }
 
-void first_surfaces_sun(const RenderScene& scene, const Sky& sky, const V3* d, const Surface* hits, const bool* found,
-                        int n, std::vector<Sampler>& rngs, V3* sun, RayCounts& counts) {
-  constexpr int kPacket = RenderScene::kPacket;
-  V3 from[kPacket], towards[kPacket];
-  int ray_of[kPacket], rays = 0;
-  for (int j = 0; j < n; ++j) {
-    sun[j] = {0, 0, 0};
-    if (!found[j]) continue;
-    const SunShadowRay r = first_hit_sun(scene, sky, d[j], hits[j], rngs[j]);
-    sun[j] = r.light;
-    if (max_component(r.light) <= 0) continue;
-    from[rays] = r.origin, towards[rays] = r.direction, ray_of[rays++] = j;
-  }
-  bool blocked[kPacket];
-  scene.occluded_packet(from, towards, rays, blocked);
-  counts.shadow += static_cast<std::uint64_t>(rays);
-  for (int q = 0; q < rays; ++q)
-    if (blocked[q]) sun[ray_of[q]] = {0, 0, 0};
-}
+}  // namespace
 
-void camera_rays(const Lens& lens, int x, int y, std::size_t pixel, int k0, int n, std::vector<Sampler>& rngs, V3* o,
-                 V3* d) {
+void trace_camera_packet(const RenderScene& scene, const Sky& sky, const Lens& lens, int x, int y, std::size_t pixel,
+                         int k0, int n, bool with_sun, std::vector<Sampler>& rngs, CameraPacket& p, RayCounts& counts) {
+  p.n = n;
   rngs.clear();
   for (int j = 0; j < n; ++j) {
     const auto k = static_cast<std::uint64_t>(k0 + j);
@@ -291,8 +282,25 @@ void camera_rays(const Lens& lens, int x, int y, std::size_t pixel, int k0, int 
     // lens's centre too); a pinhole draws nothing, so its images stay as they were.
     float lu = 0.5f, lv = 0.5f;
     if (lens.thin_lens() && k > 0) std::tie(lu, lv) = rng.next2();
-    lens.ray(static_cast<float>(x) + jx, static_cast<float>(y) + jy, lu, lv, o[j], d[j]);
+    lens.ray(static_cast<float>(x) + jx, static_cast<float>(y) + jy, lu, lv, p.o[j], p.d[j]);
   }
+  scene.intersect_packet(p.o, p.d, n, p.hits, p.found);
+  if (!with_sun) return;
+  V3 from[CameraPacket::kSize], towards[CameraPacket::kSize];
+  int ray_of[CameraPacket::kSize], rays = 0;
+  for (int j = 0; j < n; ++j) {
+    p.sun[j] = {0, 0, 0};
+    if (!p.found[j]) continue;
+    const SunShadowRay r = first_hit_sun(scene, sky, p.d[j], p.hits[j], rngs[j]);
+    p.sun[j] = r.light;
+    if (max_component(r.light) <= 0) continue;
+    from[rays] = r.origin, towards[rays] = r.direction, ray_of[rays++] = j;
+  }
+  bool blocked[CameraPacket::kSize];
+  scene.occluded_packet(from, towards, rays, blocked);
+  counts.shadow += static_cast<std::uint64_t>(rays);
+  for (int q = 0; q < rays; ++q)
+    if (blocked[q]) p.sun[ray_of[q]] = {0, 0, 0};
 }
 
 Film::Film(int width, int height) {
@@ -346,9 +354,10 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
     _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
     const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
     RayCounts tile_counts;
-    constexpr int kPacket = RenderScene::kPacket;
     std::vector<Sampler> rngs;
-    rngs.reserve(kPacket);
+    rngs.reserve(CameraPacket::kSize);
+    CameraPacket packet;
+    const bool clear_air = t.haze.density <= 0;  // where a camera ray's first event is its surface
     for (int y = y0; y < std::min(y0 + kTile, height); ++y)
       for (int x = x0; x < std::min(x0 + kTile, width); ++x) {
         const std::size_t i = static_cast<std::size_t>(y) * width + x;
@@ -357,24 +366,17 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
            even_sun = film.even_sun_sum[i];
         double squares = film.luminance_squares[i];
         // The camera rays in packets, each path on alone from its first surface.
-        for (int k0 = first; k0 < first + t.spp; k0 += kPacket) {
-          const int n = std::min(kPacket, first + t.spp - k0);
-          V3 o[kPacket], d[kPacket];
-          camera_rays(lens, x, y, i, k0, n, rngs, o, d);
-          Surface hits[kPacket];
-          bool found[kPacket];
-          scene.intersect_packet(o, d, n, hits, found);
-          V3 known_sun[kPacket];
-          const bool clear_air = t.haze.density <= 0;
-          if (clear_air) first_surfaces_sun(scene, sky, d, hits, found, n, rngs, known_sun, tile_counts);
+        for (int k0 = first; k0 < first + t.spp; k0 += CameraPacket::kSize) {
+          const int n = std::min(CameraPacket::kSize, first + t.spp - k0);
+          trace_camera_packet(scene, sky, lens, x, y, i, k0, n, clear_air, rngs, packet, tile_counts);
           for (int j = 0; j < n; ++j) {
             const int k = k0 + j;
             Surface first_hit;
             first_hit.distance = -1;
             V3 from_sun{0, 0, 0};
-            V3 l = radiance_after_camera_ray(scene, sky, o[j], d[j], found[j], hits[j], rngs[j], t.max_depth,
-                                             tile_counts, &first_hit, t.haze, &from_sun,
-                                             clear_air ? &known_sun[j] : nullptr);
+            V3 l = radiance_after_camera_ray(scene, sky, packet.o[j], packet.d[j], packet.found[j], packet.hits[j],
+                                             rngs[j], t.max_depth, tile_counts, &first_hit, t.haze, &from_sun,
+                                             clear_air ? &packet.sun[j] : nullptr);
             if (!std::isfinite(l.x + l.y + l.z)) l = from_sun = {0, 0, 0};
             const V3 a = first_hit.distance >= 0 ? first_hit.material.albedo : V3{1, 1, 1};
             sum += l, albedo += a, sun += from_sun;

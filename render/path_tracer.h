@@ -106,25 +106,24 @@ Image trace(const RenderScene& scene, const Sky& sky, const Camera& camera, cons
 V3 radiance(const RenderScene& scene, const Sky& sky, V3 origin, V3 direction, Sampler& rng, int max_depth,
             RayCounts& counts, Surface* first = nullptr, const Haze& haze = {}, V3* first_sun = nullptr);
 
-// Camera rays k0 .. k0 + n - 1 of pixel (x, y), numbered `pixel` (n at most
-// RenderScene::kPacket), into o and d, with each sample's sampler, past its lens draw, in
-// `rngs`: as add_samples draws them.
-void camera_rays(const Lens& lens, int x, int y, std::size_t pixel, int k0, int n, std::vector<Sampler>& rngs, V3* o,
-                 V3* d);
-
-// The sun's next events at the first surfaces of n camera rays of directions d (n at most
-// RenderScene::kPacket; clear air), their shadow rays cast as one packet: into `sun`, zero
-// where a ray met nothing, drew no ray or was blocked. Each draws from its sampler in `rngs`.
-void first_surfaces_sun(const RenderScene& scene, const Sky& sky, const V3* d, const Surface* hits, const bool* found,
-                        int n, std::vector<Sampler>& rngs, V3* sun, RayCounts& counts);
-
-// That next event alone, at the surface `s` a camera ray of direction d met in clear air,
-// up to its shadow ray (render/primary_layer.h casts them in packets): what radiance()
-// adds to `first_sun` there when the ray from `origin` along `direction` is unblocked.
-struct SunShadowRay {
-  V3 origin, direction, light;  // light zero: no ray to cast
+// A pixel's camera rays traced as one Embree packet (RenderScene::intersect_packet), with
+// the sun's next events at their first surfaces where asked, whose shadow rays make one more.
+struct CameraPacket {
+  static constexpr int kSize = RenderScene::kPacket;
+  int n = 0;
+  V3 o[kSize], d[kSize];
+  Surface hits[kSize];
+  bool found[kSize];
+  V3 sun[kSize];  // the sun at each first surface: zero where the ray met nothing or it was blocked
 };
-SunShadowRay first_hit_sun(const RenderScene& scene, const Sky& sky, V3 d, const Surface& s, Sampler& rng);
+
+// Camera rays k0 .. k0 + n - 1 (n at most CameraPacket::kSize) of pixel (x, y), numbered
+// `pixel`, as add_samples draws them; with `with_sun` (clear air only), their first
+// surfaces' sun next events too, as radiance() adds them to `first_sun`. Each sample's
+// sampler, past the draws made here, is left in `rngs` for its path.
+void trace_camera_packet(const RenderScene& scene, const Sky& sky, const Lens& lens, int x, int y, std::size_t pixel,
+                         int k0, int n, bool with_sun, std::vector<Sampler>& rngs, CameraPacket& packet,
+                         RayCounts& counts);
 
 // Henyey–Greenstein's phase function for the angle between the light's old and new
 // directions, and a new direction drawn from it.

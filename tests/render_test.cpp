@@ -52,6 +52,17 @@ double furnace(Haze haze) {
   return mean_luminance(trace(scene, off, c, TraceSettings{16, 16, 256, 100000, haze}));
 }
 
+// A city of one zone: a width x height rectangle at the origin.
+exacity::City one_zone_city(const std::string& zone, int width, int height, int seed) {
+  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": )" + std::to_string(seed) +
+                           R"(}, "features": [{"type": "Feature", "properties": {"zone": ")" + zone +
+                           R"("}, "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [)" + std::to_string(width) +
+                           ", 0], [" + std::to_string(width) + ", " + std::to_string(height) + "], [0, " +
+                           std::to_string(height) + "], [0, 0]]]}}]}";
+  exacity::StageClock clock(nullptr, exacity::kCityStages);
+  return exacity::build_city(exacity::parse_sketch(text, zone + ".geojson"), clock);
+}
+
 }  // namespace
 
 TEST(Render, WhiteFurnaceGivesEmissionOverOneMinusAlbedo) { EXPECT_NEAR(furnace({}), 5.0, 5.0 * 0.02); }
@@ -192,12 +203,7 @@ TEST(Camera, OrbitStaysAboveTheGroundAndSpecsParse) {
 }
 
 TEST(Render, CityImagesAreTheSameWhateverTheThreadCountAndHitsNameTheirEntity) {
-  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 3}, "features": [
-    {"type": "Feature", "properties": {"zone": "residential"},
-     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [400, 0], [400, 300], [0, 300], [0, 0]]]}}]})";
-  exacity::Sketch sketch = exacity::parse_sketch(text, "threads.geojson");
-  exacity::StageClock clock(nullptr, exacity::kCityStages);
-  exacity::City city = exacity::build_city(sketch, clock);
+  const exacity::City city = one_zone_city("residential", 400, 300, 3);
   ASSERT_FALSE(city.buildings.empty());
   Sky sky(200, 40);
   RenderScene scene(city, sky.sun_direction(), SceneOptions{});
@@ -227,12 +233,7 @@ TEST(Render, PacketsFindWhatSingleRaysFind) {
   // Camera rays over a city and past it onto the ground plane, in packets of every size
   // from 1 to 16: each finds the surface intersect() finds, and each shadow ray from those
   // surfaces is blocked exactly when occluded() says so.
-  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 5}, "features": [
-    {"type": "Feature", "properties": {"zone": "commercial"},
-     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [300, 200], [0, 200], [0, 0]]]}}]})";
-  exacity::Sketch sketch = exacity::parse_sketch(text, "packets.geojson");
-  exacity::StageClock clock(nullptr, exacity::kCityStages);
-  exacity::City city = exacity::build_city(sketch, clock);
+  const exacity::City city = one_zone_city("commercial", 300, 200, 5);
   Sky sky(150, 25);
   RenderScene scene(city, sky.sun_direction(), SceneOptions{});
   const Camera c = scene.to_scene(Camera::orbit({150, 100, 0}, 200, 35, 350, 60));
@@ -279,12 +280,7 @@ TEST(Render, PacketsFindWhatSingleRaysFind) {
 TEST(Render, PassesAddUpToOneTraceOnACityWithInstances) {
   // As Film.PassesOfSamplesAddUpToOneTraceBitForBit, through Embree's instances (the
   // residential zone's trees and lamps) with packets cut differently by the passes.
-  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 2}, "features": [
-    {"type": "Feature", "properties": {"zone": "residential"},
-     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [250, 0], [250, 200], [0, 200], [0, 0]]]}}]})";
-  exacity::Sketch sketch = exacity::parse_sketch(text, "passes.geojson");
-  exacity::StageClock clock(nullptr, exacity::kCityStages);
-  exacity::City city = exacity::build_city(sketch, clock);
+  const exacity::City city = one_zone_city("residential", 250, 200, 2);
   Sky sky(200, 35);
   RenderScene scene(city, sky.sun_direction(), SceneOptions{});
   ASSERT_GT(scene.instances, 10u);
