@@ -202,10 +202,6 @@ bool scatter_at_surface(const Tracing& t, const Surface& s, int depth, Path& pat
   return depth < 3 || survives_roulette(t.rng, path);
 }
 
-}  // namespace
-
-namespace {
-
 // A path's radiance from its camera ray (o, d), whose nearest surface `hit` and `s`
 // tell (found by one ray or in a packet); as radiance(). `known_sun`: the sun's next event
 // at that surface where it was found already (in clear air).
@@ -239,20 +235,9 @@ V3 radiance_after_camera_ray(const RenderScene& scene, const Sky& sky, V3 o, V3 
   return path.L;
 }
 
-}  // namespace
-
-V3 radiance(const RenderScene& scene, const Sky& sky, V3 o, V3 d, Sampler& rng, int max_depth, RayCounts& counts,
-            Surface* first, const Haze& haze, V3* first_sun) {
-  Surface s;
-  const bool hit = scene.intersect(o, d, INFINITY, s);
-  return radiance_after_camera_ray(scene, sky, o, d, hit, s, rng, max_depth, counts, first, haze, first_sun);
-}
-
-namespace {
-
 // The sun's next event at the surface `s` a camera ray of direction d met in clear air, up
-// to its shadow ray: what radiance() adds to `first_sun` there when the ray from `origin`
-// along `direction` is unblocked.
+// to its shadow ray: the light radiance() adds to `first_sun` there when that ray is
+// unblocked.
 struct SunShadowRay {
   V3 origin, direction, light;  // light zero: no ray to cast
 };
@@ -267,6 +252,13 @@ SunShadowRay first_hit_sun(const RenderScene& scene, const Sky& sky, V3 d, const
 }
 
 }  // namespace
+
+V3 radiance(const RenderScene& scene, const Sky& sky, V3 o, V3 d, Sampler& rng, int max_depth, RayCounts& counts,
+            Surface* first, const Haze& haze, V3* first_sun) {
+  Surface s;
+  const bool hit = scene.intersect(o, d, INFINITY, s);
+  return radiance_after_camera_ray(scene, sky, o, d, hit, s, rng, max_depth, counts, first, haze, first_sun);
+}
 
 void trace_camera_packet(const RenderScene& scene, const Sky& sky, const Lens& lens, int x, int y, std::size_t pixel,
                          int k0, int n, bool with_sun, std::vector<Sampler>& rngs, CameraPacket& p, RayCounts& counts) {
