@@ -272,8 +272,13 @@ void trace_camera_packet(const RenderScene& scene, const Sky& sky, const Lens& l
     pixel_jitter(k, jx, jy);
     // A thin lens draws its point after the pixel's (and the first sample takes the
     // lens's centre too); a pinhole draws nothing, so its images stay as they were.
+    // It draws its slot all the same, so that the slots after it stay the same for every
+    // sample and each remains one stratified sequence (render/sampling.h).
     float lu = 0.5f, lv = 0.5f;
-    if (lens.thin_lens() && k > 0) std::tie(lu, lv) = rng.next2();
+    if (lens.thin_lens()) {
+      const auto [u, v] = rng.next2();
+      if (k > 0) lu = u, lv = v;
+    }
     lens.ray(static_cast<float>(x) + jx, static_cast<float>(y) + jy, lu, lv, p.o[j], p.d[j]);
   }
   scene.intersect_packet(p.o, p.d, n, p.hits, p.found);
@@ -349,7 +354,9 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
     std::vector<Sampler> rngs;
     rngs.reserve(CameraPacket::kSize);
     CameraPacket packet;
-    const bool clear_air = t.haze.density <= 0;  // where a camera ray's first event is its surface
+    // The first surfaces' sun in the packet, where a camera ray's first event is its surface
+    // (clear air) and the path goes on from it.
+    const bool sun_first = t.haze.density <= 0 && t.max_depth > 0;
     for (int y = y0; y < std::min(y0 + kTile, height); ++y)
       for (int x = x0; x < std::min(x0 + kTile, width); ++x) {
         const std::size_t i = static_cast<std::size_t>(y) * width + x;
@@ -358,9 +365,9 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
            even_sun = film.even_sun_sum[i];
         double squares = film.luminance_squares[i];
         // The camera rays in packets, each path on alone from its first surface.
-        for (int k0 = first; k0 < first + t.spp; k0 += CameraPacket::kSize) {
-          const int n = std::min(CameraPacket::kSize, first + t.spp - k0);
-          trace_camera_packet(scene, sky, lens, x, y, i, k0, n, clear_air, rngs, packet, tile_counts);
+        for (int k0 = first, n = 0; k0 < first + t.spp; k0 += n) {
+          n = CameraPacket::size_from(k0, first + t.spp);
+          trace_camera_packet(scene, sky, lens, x, y, i, k0, n, sun_first, rngs, packet, tile_counts);
           for (int j = 0; j < n; ++j) {
             const int k = k0 + j;
             Surface first_hit;
@@ -368,7 +375,7 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
             V3 from_sun{0, 0, 0};
             V3 l = radiance_after_camera_ray(scene, sky, packet.o[j], packet.d[j], packet.found[j], packet.hits[j],
                                              rngs[j], t.max_depth, tile_counts, &first_hit, t.haze, &from_sun,
-                                             clear_air ? &packet.sun[j] : nullptr);
+                                             sun_first ? &packet.sun[j] : nullptr);
             if (!std::isfinite(l.x + l.y + l.z)) l = from_sun = {0, 0, 0};
             const V3 a = first_hit.distance >= 0 ? first_hit.material.albedo : V3{1, 1, 1};
             sum += l, albedo += a, sun += from_sun;

@@ -4,6 +4,7 @@
 // three bounces.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -110,6 +111,10 @@ V3 radiance(const RenderScene& scene, const Sky& sky, V3 origin, V3 direction, S
 // the sun's next events at their first surfaces where asked, whose shadow rays make one more.
 struct CameraPacket {
   static constexpr int kSize = RenderScene::kPacket;
+  // How many samples from k0 (before `end`) make its packet: packets run between multiples
+  // of kSize, by sample number alone, so passes of samples that are multiples of kSize
+  // trace the very packets one trace of them all would.
+  static int size_from(int k0, int end) { return std::min(end, (k0 / kSize + 1) * kSize) - k0; }
   int n = 0;
   V3 o[kSize], d[kSize];
   Surface hits[kSize];

@@ -23,8 +23,8 @@ Image::Primaries primary_layer(const RenderScene& scene, const Sky& sky, const C
     for (int x = 0; x < width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * width + x;
       V3 albedo{0, 0, 0}, sun{0, 0, 0};
-      for (int k0 = first; k0 < first + count; k0 += CameraPacket::kSize) {
-        const int rays = std::min(CameraPacket::kSize, first + count - k0);
+      for (int k0 = first, rays = 0; k0 < first + count; k0 += rays) {
+        rays = CameraPacket::size_from(k0, first + count);
         trace_camera_packet(scene, sky, lens, x, y, i, k0, rays, true, rngs, packet, uncounted);
         for (int j = 0; j < rays; ++j)
           albedo += packet.found[j] ? packet.hits[j].material.albedo : V3{1, 1, 1}, sun += packet.sun[j];

@@ -12,12 +12,13 @@
 namespace render {
 
 // Sample k of a pixel draws its numbers in slots, a 1D or a 2D draw each, in the order the
-// path tracer makes them. The first kStratifiedSlots (for a pinhole camera, the first
-// surface's sun, sky, bounce direction and lobe) come from Sobol's first two dimensions,
-// shuffled and Owen scrambled per pixel and slot (Burley 2020, "Practical Hash-based Owen
-// Scrambling"): a pixel's samples cover each of those domains evenly at every power of
-// two, and its direct light and first bounce converge faster than with independent
-// numbers (on the Cycles comparison's view, 30% less squared error at 64 samples; deeper
+// path tracer makes them. The first kStratifiedSlots (for a pinhole camera in clear air
+// with the sun up, the first surface's sun, sky, bounce direction and lobe; a thin lens
+// takes the first slot, haze its free flights, and with the sun down the others move up)
+// come from Sobol's first two dimensions, shuffled and Owen scrambled per pixel and slot
+// (Burley 2020, "Practical Hash-based Owen Scrambling"): the first 2^m samples of each half
+// (below) cover each of those domains evenly, and the direct light and first bounce
+// converge faster than with independent numbers (on the Cycles comparison's view, 30% less squared error at 64 samples; deeper
 // slots measured no better). The rest are independent. The even- and the odd-numbered
 // samples are two sequences with their own scrambles, so the denoiser's two halves
 // (Image::halves) stay independent estimates.

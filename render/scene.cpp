@@ -1,5 +1,6 @@
 #include "render/scene.h"
 
+#include <cassert>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -212,6 +213,9 @@ unsigned RenderScene::add_triangles(const std::vector<V3>& vertices, const std::
 void RenderScene::start_device() {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("Embree: no device");
+  // Embree 3 builds ray packets and streams together (EMBREE_RAY_PACKETS); this property
+  // tells whether it was.
+  packets_ = rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_RAY_STREAM_SUPPORTED) != 0;
   rtcSetDeviceMemoryMonitorFunction(
       device_,
       [](void* user, ssize_t bytes, bool) {
@@ -661,6 +665,11 @@ bool RenderScene::intersect(V3 o, V3 d, float tmax, Surface& s) const {
 }
 
 void RenderScene::intersect_packet(const V3* o, const V3* d, int count, Surface* hits, bool* found) const {
+  assert(count >= 0 && count <= kPacket);
+  if (!packets_) {
+    for (int i = 0; i < count; ++i) found[i] = intersect(o[i], d[i], INFINITY, hits[i]);
+    return;
+  }
   alignas(64) int valid[kPacket];
   alignas(64) RTCRayHit16 rh{};
   for (int i = 0; i < kPacket; ++i) {
@@ -759,6 +768,11 @@ bool RenderScene::meets_ground_plane(V3 o, V3 d, float tmax) const {
 }
 
 void RenderScene::occluded_packet(const V3* o, const V3* d, int count, bool* blocked) const {
+  assert(count >= 0 && count <= kPacket);
+  if (!packets_) {
+    for (int i = 0; i < count; ++i) blocked[i] = occluded(o[i], d[i], INFINITY);
+    return;
+  }
   alignas(64) int valid[kPacket];
   alignas(64) RTCRay16 r{};
   for (int i = 0; i < kPacket; ++i) {

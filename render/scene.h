@@ -89,8 +89,9 @@ class RenderScene {
   bool intersect(V3 origin, V3 direction, float tmax, Surface& hit) const;
   bool occluded(V3 origin, V3 direction, float tmax) const;
   // Up to kPacket rays at once, each as intersect() and occluded() (tmax infinite) would
-  // find it: Embree traces them as one packet, several times faster where they are
-  // coherent, as a pixel's camera rays and their shadow rays to the sun are.
+  // find it: Embree traces them as one packet, faster where they are coherent, as a
+  // pixel's camera rays and their shadow rays to the sun are (one by one where this
+  // Embree was built without packets).
   static constexpr int kPacket = 16;
   void intersect_packet(const V3* origins, const V3* directions, int count, Surface* hits, bool* found) const;
   void occluded_packet(const V3* origins, const V3* directions, int count, bool* blocked) const;
@@ -155,6 +156,7 @@ class RenderScene {
                     const ModelMaterials& materials, Entity entity = Entity::Model);
 
   RTCDevice device_ = nullptr;
+  bool packets_ = false;  // the device traces packets of kPacket rays
   RTCScene scene_ = nullptr;
   std::vector<RTCScene> model_scenes_;
   std::vector<Geometry> geometries_;  // by top-level geomID

@@ -243,7 +243,10 @@ TEST(Render, PacketsFindWhatSingleRaysFind) {
   for (int count = 1; count <= RenderScene::kPacket; ++count)
     for (int round = 0; round < 20; ++round) {
       V3 o[RenderScene::kPacket], d[RenderScene::kPacket];
-      for (int j = 0; j < count; ++j) lens.ray(64 * rng.next(), 48 * rng.next(), 0.5f, 0.5f, o[j], d[j]);
+      for (int j = 0; j < count; ++j) {
+        const auto [u, v] = rng.next2();
+        lens.ray(64 * u, 48 * v, 0.5f, 0.5f, o[j], d[j]);
+      }
       Surface found[RenderScene::kPacket];
       bool hit[RenderScene::kPacket];
       scene.intersect_packet(o, d, count, found, hit);
@@ -293,6 +296,10 @@ TEST(Render, PassesAddUpToOneTraceOnACityWithInstances) {
   for (std::size_t i = 0; i < whole.beauty.size(); ++i) {
     ASSERT_EQ(whole.beauty[i].x, passes.beauty[i].x) << i;
     ASSERT_EQ(whole.beauty[i].y, passes.beauty[i].y) << i;
+    ASSERT_EQ(whole.beauty[i].z, passes.beauty[i].z) << i;
+    ASSERT_EQ(whole.variance[i], passes.variance[i]) << i;
+    ASSERT_EQ(whole.first_sun[i].x, passes.first_sun[i].x) << i;
+    ASSERT_EQ(whole.halves[1].beauty[i].y, passes.halves[1].beauty[i].y) << i;
     const std::uint32_t kind = whole.id[i] >> 24;
     models += kind == static_cast<std::uint32_t>(Entity::Model) || kind == static_cast<std::uint32_t>(Entity::Clutter);
   }
