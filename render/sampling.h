@@ -1,5 +1,5 @@
-// Random numbers and the directions drawn from them. Each pixel sample draws from its own
-// stream, seeded by (pixel, sample), so an image does not depend on the thread count.
+// Random numbers and the directions drawn from them. Each pixel sample draws its own
+// numbers, seeded by (pixel, sample), so an image does not depend on the thread count.
 #pragma once
 
 #include <cmath>
@@ -18,8 +18,8 @@ namespace render {
 // come from Sobol's first two dimensions, shuffled and Owen scrambled per pixel and slot
 // (Burley 2020, "Practical Hash-based Owen Scrambling"): the first 2^m samples of each half
 // (below) cover each of those domains evenly, and the direct light and first bounce
-// converge faster than with independent numbers (on the Cycles comparison's view, 30% less squared error at 64 samples; deeper
-// slots measured no better). The rest are independent. The even- and the odd-numbered
+// converge faster than with independent numbers (on the Cycles comparison's view, 30% less
+// squared error at 64 samples; deeper slots measured no better). The rest are independent. The even- and the odd-numbered
 // samples are two sequences with their own scrambles, so the denoiser's two halves
 // (Image::halves) stay independent estimates.
 class Sampler {
@@ -39,6 +39,7 @@ class Sampler {
   }
 
  private:
+  // The pixel's hash, taken once for both seeds.
   Sampler(std::uint64_t pixel_hash, std::uint64_t sample, int)
       : half_seed_(exacity::mix(pixel_hash ^ ((sample & 1) + 1))),
         reversed_index_(reverse_bits(static_cast<std::uint32_t>(sample >> 1))),
