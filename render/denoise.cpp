@@ -283,7 +283,7 @@ Image denoise(const Image& img, const DenoiseSettings& s) {
   const int all = img.halves[0].samples + img.halves[1].samples;
   std::vector<V3> finer_albedo, finer_sun;
   if (img.extra.samples > 0) {
-    finer_albedo = dividable(with_extra(img.mean_albedo, all, img.extra.albedo, img.extra.samples));
+    finer_albedo = dividable(albedo);  // the guide's: the mean over all the rays
     finer_sun = with_extra(img.first_sun, all, img.extra.sun, img.extra.samples);
   }
   std::vector<float> least = level_error(img, level, false, s.selection_radius);
