@@ -78,6 +78,17 @@ inline double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
   return std::hypot(n.x - p.x, n.y - p.y);
 }
 
+// The distance from p to the nearest edge of any of the polygon's rings.
+inline double distance_to_outline(const Polygon& polygon, Vec2 p) {
+  double d = INFINITY;
+  auto visit = [&](const Ring& r) {
+    for (std::size_t i = 0, j = r.size() - 1; i < r.size(); j = i++) d = std::min(d, distance_to_segment(p, r[j], r[i]));
+  };
+  visit(polygon.outer);
+  for (const Ring& h : polygon.holes) visit(h);
+  return d;
+}
+
 // A lot's depth over its width: its extent across `frontage` (a, b: the edge it fronts the
 // street by) over its extent along it; 0 for a zero-length frontage.
 inline double depth_over_width(const Ring& r, Vec2 a, Vec2 b) {

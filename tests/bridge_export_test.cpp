@@ -148,17 +148,6 @@ geom::Polygon polygon(const json& coordinates) {
   return p;
 }
 
-double distance_to_outline(const geom::Polygon& p, geom::Vec2 q) {
-  double d = INFINITY;
-  auto visit = [&](const geom::Ring& r) {
-    for (std::size_t i = 0, j = r.size() - 1; i < r.size(); j = i++)
-      d = std::min(d, geom::distance_to_segment(q, r[j], r[i]));
-  };
-  visit(p.outer);
-  for (const auto& h : p.holes) visit(h);
-  return d;
-}
-
 // Near an outline: within a centimetre of it.
 constexpr double kOnOutline = 0.01;
 
@@ -236,7 +225,7 @@ std::vector<Bridge3d> check_decks(const Ground3d& g, const Crossings& c) {
     std::vector<Point> feet;
     for (const Triangle& t : g.bridge)
       for (const Point& p : t) {
-        if (!geom::odd_crossings(area, plan(p)) && distance_to_outline(area, plan(p)) > kOnOutline) continue;
+        if (!geom::odd_crossings(area, plan(p)) && geom::distance_to_outline(area, plan(p)) > kOnOutline) continue;
         if (std::abs(p[2] - side_top) <= g.precision) continue;
         if (std::abs(p[2] - underside) <= g.precision) {
           pier_tops.insert({p[0], p[1]});

@@ -25,20 +25,8 @@ void drape_with(const geom::Polygon& polygon, const Terrain* terrain, const Heig
     // Pixel centres inside, kept a quarter pixel clear of the edges so no sliver forms.
     geom::Box box = geom::Box::none();
     for (geom::Vec2 p : polygon.outer) box.add(p);
-    auto clear_inside = [&](geom::Vec2 p) {
-      bool in = false;
-      double nearest = INFINITY;
-      auto visit = [&](const geom::Ring& r) {
-        in ^= geom::odd_crossings(r, p);
-        for (std::size_t i = 0, j = r.size() - 1; i < r.size(); j = i++)
-          nearest = std::min(nearest, geom::distance_to_segment(p, r[j], r[i]));
-      };
-      visit(polygon.outer);
-      for (const auto& h : polygon.holes) visit(h);
-      return in && nearest > step / 2;
-    };
     for (geom::Vec2 p : terrain->pixel_centres(box))
-      if (clear_inside(p)) inside.push_back(p);
+      if (geom::odd_crossings(polygon, p) && geom::distance_to_outline(polygon, p) > step / 2) inside.push_back(p);
   }
   std::vector<geom::Vec2> points(dense.outer);
   for (const auto& h : dense.holes) points.insert(points.end(), h.begin(), h.end());
