@@ -769,6 +769,7 @@ bool RenderScene::meets_ground_plane(V3 o, V3 d, float tmax) const {
 
 void RenderScene::occluded_packet(const V3* o, const V3* d, int count, bool* blocked) const {
   assert(count >= 0 && count <= kPacket);
+  if (count == 0) return;  // camera rays that met no surface the sun lights: no call to make
   if (!packets_) {
     for (int i = 0; i < count; ++i) blocked[i] = occluded(o[i], d[i], INFINITY);
     return;
