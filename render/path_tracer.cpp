@@ -206,12 +206,11 @@ bool scatter_at_surface(const Tracing& t, const Surface& s, int depth, Path& pat
 // tell (found by one ray or in a packet); as radiance(). `known_sun`: the sun's next event
 // at that surface where it was found already (in clear air).
 V3 radiance_after_camera_ray(const RenderScene& scene, const Sky& sky, V3 o, V3 d, bool hit, Surface s, Sampler& rng,
-                             int max_depth, RayCounts& counts, Surface* first, const Haze& haze, V3* first_sun,
+                             int max_depth, RayCounts& counts, const Haze& haze, V3* first_sun,
                              const V3* known_sun = nullptr) {
   const Tracing t{scene, sky, haze, sun_cone_pdf(sky), rng, counts};
   Path path{o, d};
   ++counts.camera;
-  if (first && hit) *first = s;
   for (int depth = 0;; ++depth) {
     if (depth > 0) {
       ++counts.bounce;
@@ -257,7 +256,8 @@ V3 radiance(const RenderScene& scene, const Sky& sky, V3 o, V3 d, Sampler& rng, 
             Surface* first, const Haze& haze, V3* first_sun) {
   Surface s;
   const bool hit = scene.intersect(o, d, INFINITY, s);
-  return radiance_after_camera_ray(scene, sky, o, d, hit, s, rng, max_depth, counts, first, haze, first_sun);
+  if (first && hit) *first = s;
+  return radiance_after_camera_ray(scene, sky, o, d, hit, s, rng, max_depth, counts, haze, first_sun);
 }
 
 void trace_camera_packet(const RenderScene& scene, const Sky& sky, const Lens& lens, int x, int y, std::size_t pixel,
@@ -370,20 +370,19 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
           trace_camera_packet(scene, sky, lens, x, y, i, k0, n, sun_first, rngs, packet, tile_counts);
           for (int j = 0; j < n; ++j) {
             const int k = k0 + j;
-            Surface first_hit;
-            first_hit.distance = -1;
+            const Surface* first_hit = packet.found[j] ? &packet.hits[j] : nullptr;
             V3 from_sun{0, 0, 0};
             V3 l = radiance_after_camera_ray(scene, sky, packet.o[j], packet.d[j], packet.found[j], packet.hits[j],
-                                             rngs[j], t.max_depth, tile_counts, &first_hit, t.haze, &from_sun,
+                                             rngs[j], t.max_depth, tile_counts, t.haze, &from_sun,
                                              sun_first ? &packet.sun[j] : nullptr);
             if (!std::isfinite(l.x + l.y + l.z)) l = from_sun = {0, 0, 0};
-            const V3 a = first_hit.distance >= 0 ? first_hit.material.albedo : V3{1, 1, 1};
+            const V3 a = first_hit ? first_hit->material.albedo : V3{1, 1, 1};
             sum += l, albedo += a, sun += from_sun;
             if (k % 2 == 0) even_sum += l, even_albedo += a, even_sun += from_sun;
             squares += static_cast<double>(luminance(l)) * luminance(l);
-            if (k == 0 && first_hit.distance >= 0) {
-              img.depth[i] = first_hit.distance, img.normal[i] = first_hit.normal;
-              img.albedo[i] = first_hit.material.albedo, img.id[i] = first_hit.entity;
+            if (k == 0 && first_hit) {
+              img.depth[i] = first_hit->distance, img.normal[i] = first_hit->normal;
+              img.albedo[i] = first_hit->material.albedo, img.id[i] = first_hit->entity;
             }
           }
         }
