@@ -9,7 +9,6 @@ namespace render {
 namespace {
 
 constexpr float kDegree = kPi / 180;
-constexpr float kLargestCameraNumber = 1e9f;
 
 }  // namespace
 
@@ -41,8 +40,6 @@ CameraSpecText CameraSpecText::split(const std::string& spec) {
     } catch (const std::exception&) {
       throw std::invalid_argument("\"" + value + "\" is not a number");
     }
-    // Embree refuses rays from past about 1.8e18 (it aborts); a kilometre's million is room
-    // enough for any city and any distance to it.
     if (std::abs(text.keys.back().second.back()) > kLargestCameraNumber)
       throw std::invalid_argument(text.keys.back().first + "=" + value + " is outside -1e9 to 1e9");
   }

@@ -23,6 +23,9 @@ struct DepthOfField {
 // The least distance from a camera's eye to its target: closer, the view's direction is
 // rounding noise (a NaN ray, which Embree aborts on).
 constexpr float kNearestTarget = 0.01f;  // m
+// The farthest a camera's coordinates may be from the origin: Embree refuses rays from past
+// about 1.8e18 (it aborts); a kilometre's million is room enough for any city.
+constexpr float kLargestCameraNumber = 1e9f;  // m
 
 struct Camera {
   V3 from, to;

@@ -110,11 +110,34 @@ double ground_height(const exacity::City& city, double x, double y) {
   return city.heightmap() ? city.heightmap()->height_at({x, y}) : 0.0;
 }
 
+namespace {
+
+std::string point_text(double x, double y, double z) { return "(" + number(x) + ", " + number(y) + ", " + number(z) + ")"; }
+
+// A camera on the ground stands where the city is, which may be farther out than a spec's
+// numbers may say: the renderer's rays are floats, and Embree aborts on a ray from past
+// about 1e18 or with no direction (an eye and a target that round to one float point).
+Camera within_reach(double x, double y, double z, V3 to, float fov_y) {
+  if (!(std::abs(x) <= kLargestCameraNumber && std::abs(y) <= kLargestCameraNumber &&
+        std::abs(z) <= kLargestCameraNumber))
+    throw std::invalid_argument("the eye at " + point_text(x, y, z) +
+                                " lies outside -1e9 to 1e9, where the renderer can place a camera; generate the city "
+                                "nearer the origin");
+  const V3 from{static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)};
+  if (!(length(to - from) >= kNearestTarget))
+    throw std::invalid_argument("the eye at " + point_text(x, y, z) +
+                                " and the point it looks at are one point in the renderer's floats (the city is too "
+                                "far from the origin for them); generate the city nearer the origin");
+  return Camera::look(from, to, fov_y);
+}
+
+}  // namespace
+
 Camera place_camera(const CameraSpec& spec, const exacity::City& city) {
   if (spec.kind == CameraSpec::Kind::Fixed) return spec.fixed;
+  auto height_at = [&](geom::Vec2 p) { return ground_height(city, p.x, p.y) + spec.height; };
   auto eye_at = [&](geom::Vec2 p) {
-    return V3{static_cast<float>(p.x), static_cast<float>(p.y),
-              static_cast<float>(ground_height(city, p.x, p.y) + spec.height)};
+    return V3{static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(height_at(p))};
   };
   if (spec.road >= 0) {
     const auto& roads = city.ground.roads;
@@ -127,14 +150,16 @@ Camera place_camera(const CameraSpec& spec, const exacity::City& city) {
     if (!(length > 0)) throw std::invalid_argument("road " + std::to_string(spec.road) + " has no length to walk");
     const double along = std::min(spec.along, length);
     // Ahead: as far on along the road (or past its end, the way it went), at eye height there.
-    return Camera::look(eye_at(point_along(line, along)), eye_at(point_along(line, along + spec.ahead)), spec.fov_y);
+    const geom::Vec2 eye = point_along(line, along);
+    return within_reach(eye.x, eye.y, height_at(eye), eye_at(point_along(line, along + spec.ahead)), spec.fov_y);
   }
   const V3 eye = eye_at({spec.x, spec.y});
   const double h = spec.heading * kDegree, p = spec.pitch * kDegree;
   const V3 direction{static_cast<float>(std::cos(p) * std::cos(h)), static_cast<float>(std::cos(p) * std::sin(h)),
                      static_cast<float>(std::sin(p))};
   const double look = spec.kind == CameraSpec::Kind::Flyer ? kFlyerLook : 20;
-  return Camera::look(eye, eye + direction * static_cast<float>(look), spec.fov_y);
+  return within_reach(spec.x, spec.y, height_at({spec.x, spec.y}), eye + direction * static_cast<float>(look),
+                      spec.fov_y);
 }
 
 }  // namespace render

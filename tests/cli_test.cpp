@@ -481,3 +481,23 @@ TEST(Cli, PedestrianAndFlyerCamerasAndTheirMistakes) {
   EXPECT_NE(r.out.find("\"exacity\".camera \"flyer:at=1,2\": missing heading="), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(dir / "flyer-out"));
 }
+
+// A grid map 1e10 m from the origin generates and validates, but its floats there are a
+// kilometre apart: a pedestrian's eye and the point 20 m ahead are one point, a ray with no
+// direction that Embree aborts on. The camera is refused with one line instead.
+TEST(Cli, AGroundCameraTooFarFromTheOriginForTheRenderersFloatsIsOneLine) {
+  fs::path dir = testing_util::temp_dir("cli-far-camera");
+  std::ofstream(dir / "far.grid") << "cell 10\norigin -1e10 -1e10\nrr=rr\n=====\nrr=rr\n";
+  const fs::path out = dir / "out";
+  Result r = run("generate " + (dir / "far.grid").string() + " -o " + out.string() + " -q --threads 1");
+  ASSERT_EQ(r.code, 0) << r.out;
+  for (const char* camera : {"pedestrian:road=0,along=0", "pedestrian:road=1,along=5,ahead=-30"}) {
+    r = run("render " + out.string() + " --size 32x24 --spp 1 -q --camera " + camera + " -o " +
+            (dir / "bad" / "still.png").string());
+    EXPECT_EQ(r.code, 2) << camera << ": " << r.out;
+    EXPECT_NE(r.out.find("--camera \"" + std::string(camera) + "\": the eye at (-1e+10"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("generate the city nearer the origin"), std::string::npos) << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+    EXPECT_FALSE(fs::exists(dir / "bad")) << camera;
+  }
+}
