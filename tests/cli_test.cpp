@@ -501,3 +501,38 @@ TEST(Cli, AGroundCameraTooFarFromTheOriginForTheRenderersFloatsIsOneLine) {
     EXPECT_FALSE(fs::exists(dir / "bad")) << camera;
   }
 }
+
+// A highway from -1e10 to 1e10 m, the whole coordinate range, through a small town: its
+// clutter was sought a station every few metres all the way, a run of years. Where no zone
+// is near the road there is nothing to dress, and the stations there are passed over.
+TEST(Cli, AHighwayAcrossTheWholeCoordinateRangeIsDressedOnlyWhereZonesAre) {
+  fs::path dir = testing_util::temp_dir("cli-long-highway");
+  std::ofstream(dir / "alone.geojson") << R"({"type": "FeatureCollection", "features": [
+    {"type": "Feature", "properties": {"road": "highway"},
+     "geometry": {"type": "LineString", "coordinates": [[-1e10, 0], [1e10, 0]]}}]})";
+  std::ofstream(dir / "town.geojson") << R"({"type": "FeatureCollection", "features": [
+    {"type": "Feature", "properties": {"zone": "residential"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, -100], [200, -100], [200, 100], [0, 100], [0, -100]]]}},
+    {"type": "Feature", "properties": {"road": "highway"},
+     "geometry": {"type": "LineString", "coordinates": [[-1e10, 0], [1e10, 0]]}}]})";
+  for (const char* sketch : {"alone", "town"}) {
+    const fs::path out = dir / (std::string(sketch) + "-out");
+    Result r = shell("timeout 60 " + std::string(EXACITY_BINARY) + " generate " + (dir / (std::string(sketch) + ".geojson")).string() +
+                     " -o " + out.string() + " -q --threads 1");
+    ASSERT_EQ(r.code, 0) << sketch << ": " << r.out;
+    const auto clutter = nlohmann::json::parse(read(out / "vector" / "clutter.geojson"))["features"];
+    if (std::string(sketch) == "alone") {
+      EXPECT_TRUE(clutter.empty());
+      continue;
+    }
+    // The town's stretch of the highway has its lamps, and only there.
+    int lamps = 0;
+    for (const auto& f : clutter) {
+      const auto& p = f["geometry"]["coordinates"];
+      EXPECT_GT(p[0].get<double>(), -20) << f.dump();
+      EXPECT_LT(p[0].get<double>(), 220) << f.dump();
+      lamps += f["properties"]["kind"] == "lamp";
+    }
+    EXPECT_GE(lamps, 4);
+  }
+}

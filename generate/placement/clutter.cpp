@@ -321,8 +321,42 @@ bool stands_in(const Model& m, ZoneType zone) {
 // meet, where traffic lights and signs stand. Each side counts its stations from half a
 // spacing in; a model whose `side` is alternate stands on the left at even stations and on
 // the right at odd ones, so along the street it stands on each side in turn.
+// Where along a centre line (from, to) a spot a street's clutter probes, up to `reach` off
+// the line, may lie in one of the boxes: elsewhere no zone is there and no station can
+// dress. A highway runs on far past the zones (up to 2e10 m), and walking it a station at a
+// time would take as long as it is long. Sorted and disjoint.
+std::vector<std::pair<double, double>> stretches_near(const geom::Polyline& line, const std::vector<double>& at,
+                                                      const std::vector<geom::Box>& boxes, double reach) {
+  std::vector<std::pair<double, double>> near;
+  for (std::size_t k = 1; k < line.size(); ++k) {
+    const Vec2 a = line[k - 1], d = line[k] - line[k - 1];
+    const double len = at[k] - at[k - 1];
+    for (const geom::Box& b : boxes) {
+      // The segment's part within the box grown by `reach` (Liang and Barsky's clipping).
+      double lo = 0, hi = 1;
+      auto clip = [&](double p, double q) {  // keep p * s <= q
+        if (p == 0) return q >= 0;
+        const double s = q / p;
+        if (p < 0) lo = std::max(lo, s); else hi = std::min(hi, s);
+        return lo <= hi;
+      };
+      if (clip(-d.x, a.x - (b.min_x - reach)) && clip(d.x, b.max_x + reach - a.x) &&
+          clip(-d.y, a.y - (b.min_y - reach)) && clip(d.y, b.max_y + reach - a.y))
+        near.push_back({at[k - 1] + lo * len - reach, at[k - 1] + hi * len + reach});
+    }
+  }
+  std::sort(near.begin(), near.end());
+  std::vector<std::pair<double, double>> merged;
+  for (const auto& iv : near)
+    if (!merged.empty() && iv.first <= merged.back().second)
+      merged.back().second = std::max(merged.back().second, iv.second);
+    else
+      merged.push_back(iv);
+  return merged;
+}
+
 void dress_street(const RoadLine& road, int id, const std::unordered_map<Vec2, double, geom::Vec2Hash>& junction_reach,
-                  const ModelLibrary& lib, Dresser& dresser) {
+                  const std::vector<geom::Box>& zone_boxes, const ModelLibrary& lib, Dresser& dresser) {
   const geom::Polyline& line = road.line;
   std::vector<double> at(line.size(), 0);  // distance along the line to each vertex
   for (std::size_t i = 1; i < line.size(); ++i) at[i] = at[i - 1] + geom::distance(line[i - 1], line[i]);
@@ -331,6 +365,10 @@ void dress_street(const RoadLine& road, int id, const std::unordered_map<Vec2, d
     if (auto it = junction_reach.find(line[i]); it != junction_reach.end())
       kept_clear.push_back({at[i] - it->second, at[i] + it->second});
   const double length = at.back();
+  double offset = 0;
+  for (const Model& m : lib.models) offset = std::max(offset, std::abs(m.offset));
+  const std::vector<std::pair<double, double>> near_zones =
+      stretches_near(line, at, zone_boxes, road.width / 2 + offset + 1);
   for (ModelKind kind : {ModelKind::Lamp, ModelKind::Bench, ModelKind::Hydrant, ModelKind::Tree}) {
     if (!dresser.has(kind)) continue;
     double first = 0;
@@ -343,6 +381,18 @@ void dress_street(const RoadLine& road, int id, const std::unordered_map<Vec2, d
             std::find_if(kept_clear.begin(), kept_clear.end(), [&](auto iv) { return iv.first <= t && t < iv.second; });
         if (clear != kept_clear.end()) {
           t = clear->second;
+          continue;
+        }
+        // Far from every zone: on to the first station by one, or in a stretch kept clear, in
+        // the steps the stations between would have taken (each finds no zone: two halves).
+        auto zone = std::find_if(near_zones.begin(), near_zones.end(), [&](auto iv) { return t < iv.second; });
+        if (zone == near_zones.end()) break;
+        if (t < zone->first && first > 0) {
+          double to = zone->first;
+          for (const auto& iv : kept_clear)
+            if (iv.first > t) to = std::min(to, iv.first);
+          const double stations = std::ceil((to - t) / (first * 2));
+          t += stations * first * 2, station += static_cast<int>(std::fmod(stations, 2));
           continue;
         }
         std::size_t k = 1;
@@ -449,6 +499,11 @@ StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* lib
   std::unordered_map<Vec2, double, geom::Vec2Hash> junction_reach;
   for (const StreetJunction& j : junctions) junction_reach[j.at] = j.reach() + 3;
 
+  // What a street's stations probe stands in a drawn zone, or none is there.
+  std::vector<geom::Box> zone_boxes;
+  for (const ZoneFeature& z : sketch.zones)
+    for (const geom::Polygon& p : z.polygons) zone_boxes.push_back(RingBuckets::box_of(p.outer));
+
   std::vector<const ZoneArea*> parks;
   for (const ZoneArea& z : ground.ground.zones)
     if (z.type == ZoneType::Park) parks.push_back(&z);
@@ -466,7 +521,7 @@ StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* lib
     Random rng(mix(stage, g));
     Dresser dresser(side, *library, bases, channels, terrain, rng, proposed[g]);
     if (g < roads.size()) {
-      if (!roads[g].bridge) dress_street(roads[g], static_cast<int>(g), junction_reach, *library, dresser);
+      if (!roads[g].bridge) dress_street(roads[g], static_cast<int>(g), junction_reach, zone_boxes, *library, dresser);
     } else if (g < streets_and_junctions) {
       dress_junction(junctions[g - roads.size()], dresser);
     } else {
