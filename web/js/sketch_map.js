@@ -1,6 +1,7 @@
 // The sketch on a 2D map in metres (seed 000, 3.1.1): zones drawn by clicking vertices, roads
 // as polylines with a width, selected by click, moved by Ctrl-drag, deleted with Del; the
-// heightmap under them in grey with its water in blue, a grid and a scale bar.
+// heightmap under them in grey with its water in blue, a grid, a scale bar and the pointer's
+// coordinates.
 import {zoneColours, roadColours, defaultWidths, rgba} from './colours.js';
 
 const ol = window.ol;
@@ -69,7 +70,12 @@ export class SketchMap {
       target,
       layers: [this.heightmap, this.grid, this.city, this.layer],
       view: new ol.View({projection: metres, center: [0, 0], resolution: 2}),
-      controls: defaults(ol.control.defaults)().extend([new ol.control.ScaleLine({units: 'metric'})]),
+      controls: defaults(ol.control.defaults)().extend([
+        new ol.control.ScaleLine({units: 'metric'}),
+        // The pointer's place in the sketch's own coordinates, to the decimetre.
+        new ol.control.MousePosition({projection: metres, placeholder: '',
+                                      coordinateFormat: c => `x ${c[0].toFixed(1)} m, y ${c[1].toFixed(1)} m`}),
+      ]),
       // A double click closes a zone; it must not zoom too.
       interactions: defaults(ol.interaction.defaults)({doubleClickZoom: false}),
     });
