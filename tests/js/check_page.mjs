@@ -233,8 +233,8 @@ try {
   await page.$eval('textarea[data-zone="commercial"]', t => { t.value = '{"block_area" 5000}'; });
   await page.click('#apply-settings');
   page.off('request', onRequest);
-  const typo = await message();
-  check(/^commercial parameters are not JSON: .*position 14/.test(typo) && !requests.some(r => r.startsWith('PUT')),
+  const typo = await message() + ' / ' + await page.$eval('#message-note', n => n.textContent);
+  check(/^commercial parameters are not JSON \/ .*position 14/.test(typo) && !requests.some(r => r.startsWith('PUT')),
         `broken JSON is named with its place, and not sent: ${typo}`);
   check(await page.$eval('textarea[data-zone="commercial"]', t => document.activeElement === t && t.selectionStart === 14),
         'the cursor is where the JSON broke');

@@ -87,7 +87,7 @@ const panel = new SettingsPanel({
     return true;
   },
   featureEdited: () => recordEdit(),
-  typo: message => say(message, true, 'Not applied: fix the box and apply again.'),
+  typo: (what, why) => say(what, true, `${why}. Not applied: fix the box and apply again.`),
 });
 
 function recordEdit() {

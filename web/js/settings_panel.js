@@ -6,7 +6,7 @@ const settingZones = ['residential', 'commercial', 'industrial'];
 
 export class SettingsPanel {
   // `apply(exacity)` sends the new settings; it resolves to true when the server took them.
-  // `typo(message)` tells of a parameter box that is not JSON.
+  // `typo(what, why)` tells of a parameter box that is not JSON, and the parser's message.
   constructor({apply, featureEdited, typo}) {
     this.apply = apply;
     this.featureEdited = featureEdited;
@@ -71,7 +71,7 @@ export class SettingsPanel {
           const at = Number(/position (\d+)/.exec(x.message)?.[1] ?? -1) + box.value.indexOf(text);
           box.focus();
           if (at >= box.value.indexOf(text)) box.setSelectionRange(at, at + 1);
-          this.typo(`${zone} parameters are not JSON: ${x.message}`);
+          this.typo(`${zone} parameters are not JSON`, x.message);
           return null;
         }
       }
