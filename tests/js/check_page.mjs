@@ -30,12 +30,14 @@ function check(ok, what) {
 const server = spawn(binary, ['serve', '--port', '0', '--work', path.join(out, 'work')], {stdio: ['ignore', 'pipe', 'pipe']});
 let serverLog = '';
 server.stderr.on('data', d => { serverLog += d; });
-const base = await new Promise((resolve, reject) => {
+// The address it prints may carry a token (?token=...), which the page's first load turns
+// into a cookie; the test's own requests send it as a bearer token.
+const [base, token] = await new Promise((resolve, reject) => {
   let text = '';
   server.stdout.on('data', d => {
     text += d;
-    const m = text.match(/serving (http:\/\/127\.0\.0\.1:\d+\/)/);
-    if (m) resolve(m[1]);
+    const m = text.match(/serving (http:\/\/127\.0\.0\.1:\d+\/)(\?token=(\w+))?/);
+    if (m) resolve([m[1], m[3]]);
   });
   server.on('exit', code => reject(new Error(`exacity serve exited with ${code}: ${serverLog}`)));
   setTimeout(() => reject(new Error('exacity serve did not start in 30 s')), 30000);
@@ -67,7 +69,8 @@ try {
   page.on('request', r => { if (process.env.DEBUG_PAGE) console.log(Date.now() - started, 'request', r.url()); });
   page.on('requestfinished', r => { if (process.env.DEBUG_PAGE) console.log(Date.now() - started, 'finished', r.url()); });
   page.on('requestfailed', r => { if (process.env.DEBUG_PAGE) console.log(Date.now() - started, 'failed', r.url(), r.failure()?.errorText, r.response()?.status(), JSON.stringify(r.response()?.headers())); });
-  const sketch = async () => (await fetch(base + 'api/sketch')).json();
+  const get = url => fetch(new URL(url, base), {headers: token ? {Authorization: `Bearer ${token}`} : {}});
+  const sketch = async () => (await get('/api/sketch')).json();
   const ready = () => page.waitForSelector('body[data-ready="yes"]', {timeout: 30000});
   const features = n => page.waitForSelector(`body[data-features="${n}"]`, {timeout: 10000});
   // The page's features as it would send them, and the server's, to the millimetre.
@@ -84,7 +87,7 @@ try {
     throw new Error(`the server's sketch never had ${n} features`);
   };
 
-  await page.goto(base, {waitUntil: 'load'});
+  await page.goto(base + (token ? `?token=${token}` : ''), {waitUntil: 'load'});
   await ready();
   const box = await (await page.$('#map')).boundingBox();
   const at = (dx, dy) => [box.x + box.width / 2 + dx, box.y + box.height / 2 + dy];
@@ -269,7 +272,7 @@ try {
   check(['sketch.geojson', 'city.glb', 'map.svg', 'report.json', 'zones.geojson', 'buildings.geojson'].every(n => names.includes(n)) &&
         !names.includes('still.png'), `the city's outputs listed to download: ${names}`);
   for (const [href, name] of listed) {
-    const r = await fetch(new URL(href, base));
+    const r = await get(href);
     check(r.status === 200 && (await r.arrayBuffer()).byteLength > 0, `${name} downloads (${href})`);
   }
   await page.screenshot({path: path.join(out, 'map.png')});
