@@ -75,7 +75,7 @@ try {
   const features = n => page.waitForSelector(`body[data-features="${n}"]`, {timeout: 10000});
   // The page's features as it would send them, and the server's, to the millimetre.
   const rounded = features => JSON.stringify(features, (k, v) => (typeof v === 'number' ? Math.round(v * 1000) : v));
-  const pageFeatures = async () => rounded((await page.evaluate(() => window.exacitySketch())).features);
+  const pageFeatures = async () => rounded((await page.evaluate(() => window.exacityPage.sketch())).features);
   const serverFeatures = async () => rounded((await sketch()).features);
   const message = () => page.$eval('#message', m => m.textContent);
   // The server has taken the page's latest edit.
@@ -262,6 +262,8 @@ try {
   await page.waitForSelector('body[data-city="shown"]', {timeout: 600000});
   const layers = await page.$$eval('#layer-toggles input', inputs => inputs.map(i => i.dataset.layer));
   check(['zones', 'blocks', 'lots', 'roads', 'buildings'].every(l => layers.includes(l)), `generated layers shown: ${layers}`);
+  const legend = await page.$$eval('#layer-toggles label', labels => labels.map(l => l.querySelector('.swatch')?.style.background));
+  check(legend.length === layers.length && legend.every(b => b && b !== 'none'), `each of the ${layers.length} layers' toggles has its swatch`);
   const figures = await page.$$eval('#report dt', dts => dts.map(d => d.textContent));
   check(figures.includes('lots') && figures.includes('buildings'), 'the report\'s figures beside the map');
   check(await page.$eval('#progress', p => p.value) === 1, 'the progress bar is full');
@@ -396,6 +398,14 @@ try {
   const [largeChooser] = await Promise.all([page.waitForFileChooser(), page.click('#open')]);
   await largeChooser.accept([large]);
   await features(3);
+  // The grid's labels: each kilometre of this city, x along the top, y along the left.
+  const gridLabelled = await page.waitForFunction(() => {
+    const labels = window.exacityPage.gridLabels();
+    const on = axis => labels.filter(l => l.axis === axis).map(l => l.label);
+    return ['0 m', '1000 m', '2000 m', '3000 m', '4000 m'].every(t => on('x').includes(t)) &&
+           ['0 m', '1000 m', '2000 m'].every(t => on('y').includes(t));
+  }, {timeout: 5000}).then(() => true, () => false);
+  check(gridLabelled, `the grid is labelled: ${JSON.stringify(await page.evaluate(() => window.exacityPage.gridLabels()))}`);
   await page.click('#generate');
   await page.waitForFunction(() => / lots$/.test(document.getElementById('stage').textContent), {timeout: 120000});
   check(await page.$eval('#progress', p => p.value) > 0, 'the generation under way fills the bar');

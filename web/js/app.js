@@ -75,7 +75,9 @@ const map = new SketchMap('map', {
   edited: () => recordEdit(),
   selected: f => panel.select(f),
 });
-window.exacitySketch = () => map.sketch();  // for the browser test, which compares it with the server's
+// For the browser test: the sketch as the page would send it, and the grid's labels.
+window.exacityPage = {sketch: () => map.sketch(),
+                      gridLabels: () => map.gridLabels.getSource().getFeatures().map(f => ({label: f.get('label'), axis: f.get('axis')}))};
 const panel = new SettingsPanel({
   apply: async exacity => {
     const doc = map.sketch();
