@@ -1,8 +1,10 @@
 // The page of exacity serve in a real browser (Debian's chromium driven by puppeteer-core):
-// draw a zone and a road with the mouse, move the zone with Ctrl-drag, delete the road with
-// Del, undo, reload, generate, find the generated layers, orbit the 3D view, see its tiles'
-// levels switch from far to near, render it, upload a model library; no console error
-// throughout. Usage: node check_page.mjs EXACITY_BINARY OUT_DIR
+// the first-use hint, draw a zone and a road with the mouse, read the pointer's coordinates,
+// move the zone with Ctrl-drag, delete the road with Del, undo, have edits and settings
+// refused (the page back at the server's sketch, the message on one line), reload, generate,
+// find the generated layers and the downloads, orbit the 3D view, see its tiles' levels
+// switch from far to near, render it, upload a model library, cancel a generation; no
+// console error throughout but the refusals asked for. Usage: node check_page.mjs EXACITY_BINARY OUT_DIR
 // (screenshots go to OUT_DIR). Exits 1 on the first failed check. DEBUG_PAGE=1 logs every
 // request the page makes, with its time.
 import {spawn} from 'node:child_process';
@@ -28,12 +30,14 @@ function check(ok, what) {
 const server = spawn(binary, ['serve', '--port', '0', '--work', path.join(out, 'work')], {stdio: ['ignore', 'pipe', 'pipe']});
 let serverLog = '';
 server.stderr.on('data', d => { serverLog += d; });
-const base = await new Promise((resolve, reject) => {
+// The address it prints may carry a token (?token=...), which the page's first load turns
+// into a cookie; the test's own requests send it as a bearer token.
+const [base, token] = await new Promise((resolve, reject) => {
   let text = '';
   server.stdout.on('data', d => {
     text += d;
-    const m = text.match(/serving (http:\/\/127\.0\.0\.1:\d+\/)/);
-    if (m) resolve(m[1]);
+    const m = text.match(/serving (http:\/\/127\.0\.0\.1:\d+\/)(\?token=(\w+))?/);
+    if (m) resolve([m[1], m[3]]);
   });
   server.on('exit', code => reject(new Error(`exacity serve exited with ${code}: ${serverLog}`)));
   setTimeout(() => reject(new Error('exacity serve did not start in 30 s')), 30000);
@@ -65,9 +69,15 @@ try {
   page.on('request', r => { if (process.env.DEBUG_PAGE) console.log(Date.now() - started, 'request', r.url()); });
   page.on('requestfinished', r => { if (process.env.DEBUG_PAGE) console.log(Date.now() - started, 'finished', r.url()); });
   page.on('requestfailed', r => { if (process.env.DEBUG_PAGE) console.log(Date.now() - started, 'failed', r.url(), r.failure()?.errorText, r.response()?.status(), JSON.stringify(r.response()?.headers())); });
-  const sketch = async () => (await fetch(base + 'api/sketch')).json();
+  const get = url => fetch(new URL(url, base), {headers: token ? {Authorization: `Bearer ${token}`} : {}});
+  const sketch = async () => (await get('/api/sketch')).json();
   const ready = () => page.waitForSelector('body[data-ready="yes"]', {timeout: 30000});
   const features = n => page.waitForSelector(`body[data-features="${n}"]`, {timeout: 10000});
+  // The page's features as it would send them, and the server's, to the millimetre.
+  const rounded = features => JSON.stringify(features, (k, v) => (typeof v === 'number' ? Math.round(v * 1000) : v));
+  const pageFeatures = async () => rounded((await page.evaluate(() => window.exacityPage.sketch())).features);
+  const serverFeatures = async () => rounded((await sketch()).features);
+  const message = () => page.$eval('#message', m => m.textContent);
   // The server has taken the page's latest edit.
   const saved = async n => {
     for (let i = 0; i < 100; ++i) {
@@ -77,10 +87,13 @@ try {
     throw new Error(`the server's sketch never had ${n} features`);
   };
 
-  await page.goto(base, {waitUntil: 'load'});
+  await page.goto(base + (token ? `?token=${token}` : ''), {waitUntil: 'load'});
   await ready();
   const box = await (await page.$('#map')).boundingBox();
   const at = (dx, dy) => [box.x + box.width / 2 + dx, box.y + box.height / 2 + dy];
+  const visible = selector => page.$eval(selector, e => e.checkVisibility());
+  check(await visible('#hint') && /Residential/.test(await page.$eval('#hint', h => h.textContent)),
+        'the empty page says what to click first');
 
   // A residential zone: four clicks and a double-click on the last corner.
   await page.click('[data-tool="residential"]');
@@ -94,6 +107,15 @@ try {
   let s = await sketch();
   check(s.features[0].properties.zone === 'residential' && s.features[0].geometry.type === 'Polygon',
         'a residential zone drawn by clicking reaches the server');
+  check(!(await visible('#hint')), 'the hint goes once there is a feature');
+  // The map's corner shows the pointer's coordinates: over the first corner clicked, that
+  // corner's as the server has it.
+  await page.mouse.move(...at(-150, -100));
+  const pointer = await page.$eval('.ol-mouse-position', e => e.textContent);
+  const [px, py] = (/^x (-?[\d.]+) m, y (-?[\d.]+) m$/.exec(pointer) || []).slice(1).map(Number);
+  const corner = s.features[0].geometry.coordinates[0][0];
+  check(Math.abs(px - corner[0]) <= 0.05 && Math.abs(py - corner[1]) <= 0.05,
+        `the pointer's coordinates shown (${pointer}) are the corner's (${corner})`);
 
   // A highway across it, closed with Enter.
   await page.click('[data-tool="highway"]');
@@ -142,6 +164,36 @@ try {
   for (let i = 0; i < 50 && (await sketch()).features[1].properties.width !== 16; ++i) await new Promise(r => setTimeout(r, 100));
   check((await sketch()).features[1].properties.width === 16,
         `the road's width edited in the panel (${JSON.stringify((await sketch()).features[1].properties)}, ${await page.$eval('#message', m => m.textContent)})`);
+  // A road has no zone type to set (the server refuses a feature with both).
+  check(!(await visible('#zone-row')) && await visible('#road-row'), 'a selected road offers no Zone field');
+
+  // A refused edit (a width the CLI refuses): the message is shown, and the page goes back to
+  // the server's sketch, so later edits are taken (they were all refused, silently lost).
+  await page.$eval('#road-width', i => { i.value = '900'; i.dispatchEvent(new Event('change')); });
+  await page.waitForSelector('#message.error', {timeout: 5000});
+  check(/width/.test(await message()) && /server/.test(await page.$eval('#message-note', n => n.textContent)),
+        `the refused width's message is shown: ${await message()}`);
+  check(await pageFeatures() === await serverFeatures(), 'after the refusal the page shows the server\'s sketch');
+  check((await sketch()).features[1].properties.width === 16, 'the refused width is not the server\'s');
+  await page.click('[data-tool="park"]');
+  for (const [dx, dy] of [[-300, 120], [-200, 120], [-200, 180]]) {
+    await page.mouse.click(...at(dx, dy));
+    await new Promise(r => setTimeout(r, 150));
+  }
+  await page.mouse.click(...at(-300, 180), {count: 2});
+  await features(3);
+  await saved(3);
+  check((await sketch()).features[2].properties.zone === 'park', 'a zone drawn after the refusal reaches the server');
+  check(await pageFeatures() === await serverFeatures() && await message() === 'Saved.',
+        'the page and the server agree again');
+  await page.keyboard.down('Control');
+  await page.keyboard.press('z');
+  await page.keyboard.up('Control');
+  await features(2);
+  await saved(2);
+  check(await pageFeatures() === await serverFeatures() && (await sketch()).features[1].properties.width === 16,
+        'undo takes the park away, not back to the refused width');
+  await page.click('[data-tool="select"]');
 
   // The zone's type, edited in the side panel.
   await page.mouse.click(...at(-60, -60));
@@ -151,18 +203,48 @@ try {
   check((await sketch()).features[0].properties.zone === 'commercial', 'the zone\'s type edited in the panel');
 
   // A setting the CLI refuses is refused with its message, and the sketch stays as it was.
-  // The browser logs the refusal's 400 as a console error: that one is expected.
+  // The browser logs the refusals' 400s as console errors: those are expected.
   const kept = JSON.stringify(await sketch());
   await page.$eval('textarea[data-zone="residential"]', t => { t.value = '{"block_area": -5}'; });
   await page.click('#apply-settings');
-  await page.waitForSelector('#message.error', {timeout: 5000});
-  const refusal = await page.$eval('#message', m => m.textContent);
+  await page.waitForFunction(() => /block_area/.test(document.getElementById('message').textContent), {timeout: 5000});
+  const refusal = await message();
   check(/block_area/.test(refusal) && refusal.includes('sketch.geojson'), `the settings refused with the CLI's message: ${refusal}`);
   check(JSON.stringify(await sketch()) === kept, 'the refused settings left the sketch as it was');
-  const expected = errors.filter(e => /400/.test(e));
-  check(expected.length >= 1 && expected.length === errors.length, `only the refusal was an error (${errors.join(' | ')})`);
+  check(await page.$eval('textarea[data-zone="residential"]', t => t.value) === '{"block_area": -5}' &&
+        await page.$eval('#settings-note', n => n.textContent) === 'not applied',
+        'the typed settings stay in their box, marked not applied');
+  check(await pageFeatures() === await serverFeatures(), 'the page still shows the server\'s sketch');
+  // A key the CLI does not know: its message names every key there is, on one line here, the
+  // whole of it on hover and unfolded by a click.
+  await page.$eval('textarea[data-zone="residential"]', t => { t.value = '{"block_aera": 5000}'; });
+  await page.click('#apply-settings');
+  await page.waitForFunction(() => /block_aera/.test(document.getElementById('message').textContent), {timeout: 5000});
+  const folded = await page.$eval('#message', m => ({height: m.clientHeight, line: parseFloat(getComputedStyle(m).lineHeight) ||
+                                                     1.2 * parseFloat(getComputedStyle(m).fontSize), title: m.title,
+                                                     text: m.textContent, cut: m.scrollWidth > m.clientWidth}));
+  check(folded.height < 1.5 * folded.line && folded.title === folded.text && folded.cut,
+        `the long refusal takes one line, all of it on hover (${folded.height} px, ${folded.text.length} characters)`);
+  await page.click('#message');
+  const unfolded = await page.$eval('#message', m => m.clientHeight);
+  check(unfolded > 2 * folded.line, `a click unfolds it (${unfolded} px)`);
+  await page.click('#message');
+  // Broken JSON in a parameter box: the page says where, and sends nothing.
+  const requests = [];
+  const onRequest = r => requests.push(r.method() + ' ' + r.url());
+  page.on('request', onRequest);
+  await page.$eval('textarea[data-zone="commercial"]', t => { t.value = '{"block_area" 5000}'; });
+  await page.click('#apply-settings');
+  page.off('request', onRequest);
+  const typo = await message() + ' / ' + await page.$eval('#message-note', n => n.textContent);
+  check(/^commercial parameters are not JSON \/ .*position 14/.test(typo) && !requests.some(r => r.startsWith('PUT')),
+        `broken JSON is named with its place, and not sent: ${typo}`);
+  check(await page.$eval('textarea[data-zone="commercial"]', t => document.activeElement === t && t.selectionStart === 14),
+        'the cursor is where the JSON broke');
+  check(JSON.stringify(await sketch()) === kept, 'the sketch is still as it was');
+  check(errors.filter(e => e.startsWith('HTTP 400: ')).length === 3 && errors.every(e => /400/.test(e)),
+        `only the three refusals were errors (${errors.join(' | ')})`);
   errors.length = 0;
-  check(await page.$eval('textarea[data-zone="residential"]', t => t.value) === '', 'the panel shows the kept settings again');
 
   // A heightmap loaded from a file: the sketch points at it, and the map shows it.
   const [chooser] = await Promise.all([page.waitForFileChooser(), page.click('#heightmap')]);
@@ -180,9 +262,21 @@ try {
   await page.waitForSelector('body[data-city="shown"]', {timeout: 600000});
   const layers = await page.$$eval('#layer-toggles input', inputs => inputs.map(i => i.dataset.layer));
   check(['zones', 'blocks', 'lots', 'roads', 'buildings'].every(l => layers.includes(l)), `generated layers shown: ${layers}`);
+  const legend = await page.$$eval('#layer-toggles label', labels => labels.map(l => l.querySelector('.swatch')?.style.background));
+  check(legend.length === layers.length && legend.every(b => b && b !== 'none'), `each of the ${layers.length} layers' toggles has its swatch`);
   const figures = await page.$$eval('#report dt', dts => dts.map(d => d.textContent));
   check(figures.includes('lots') && figures.includes('buildings'), 'the report\'s figures beside the map');
   check(await page.$eval('#progress', p => p.value) === 1, 'the progress bar is full');
+  // Every output the server has, listed to download, each one there.
+  const downloads = async () => page.$$eval('#downloads a', links => links.map(a => [a.getAttribute('href'), a.download]));
+  let listed = await downloads();
+  const names = listed.map(([, name]) => name);
+  check(['sketch.geojson', 'city.glb', 'map.svg', 'report.json', 'zones.geojson', 'buildings.geojson'].every(n => names.includes(n)) &&
+        !names.includes('still.png'), `the city's outputs listed to download: ${names}`);
+  for (const [href, name] of listed) {
+    const r = await get(href);
+    check(r.status === 200 && (await r.arrayBuffer()).byteLength > 0, `${name} downloads (${href})`);
+  }
   await page.screenshot({path: path.join(out, 'map.png')});
 
   // Explore: the 3D view, orbited with the mouse, then rendered.
@@ -254,6 +348,9 @@ try {
     return !document.getElementById('render-result').hidden && img.complete && img.naturalWidth > 0;
   }, {timeout: 600000});
   check(true, 'the rendered still is on the page');
+  listed = await downloads();
+  check(listed.some(([href, name]) => href === '/api/render/still.png' && name === 'still.png') &&
+        listed.some(([, name]) => name === 'still.json'), 'the still listed to download');
   await page.screenshot({path: path.join(out, 'explore.png')});
 
   // Models…: the example library's files uploaded together; the sketch then names it.
@@ -287,6 +384,36 @@ try {
   s = await sketch();
   check(s.exacity.seed === 5 && s.features[0].properties.zone === 'industrial', 'Open read a sketch from a file');
   check(await page.$eval('#seed', i => i.value) === '5', 'the panel shows the opened sketch\'s seed');
+
+  // Cancel: a city some kilometres across (as serve_test's), cancelled in its lots stage; the
+  // progress bar empties and says so.
+  const large = path.join(out, 'large.geojson');
+  fs.writeFileSync(large, JSON.stringify({type: 'FeatureCollection', exacity: {seed: 5}, features: [
+    {type: 'Feature', properties: {zone: 'residential'},
+     geometry: {type: 'Polygon', coordinates: [[[0, 0], [3000, 0], [3000, 2000], [0, 2000], [0, 0]]]}},
+    {type: 'Feature', properties: {zone: 'commercial'},
+     geometry: {type: 'Polygon', coordinates: [[[3000, 0], [4000, 0], [4000, 2000], [3000, 2000], [3000, 0]]]}},
+    {type: 'Feature', properties: {road: 'highway', width: 16},
+     geometry: {type: 'LineString', coordinates: [[-50, 1000], [4050, 1000]]}}]}));
+  const [largeChooser] = await Promise.all([page.waitForFileChooser(), page.click('#open')]);
+  await largeChooser.accept([large]);
+  await features(3);
+  // The grid's labels: each kilometre of this city, x along the top, y along the left.
+  const gridLabelled = await page.waitForFunction(() => {
+    const labels = window.exacityPage.gridLabels();
+    const on = axis => labels.filter(l => l.axis === axis).map(l => l.label);
+    return ['0 m', '1000 m', '2000 m', '3000 m', '4000 m'].every(t => on('x').includes(t)) &&
+           ['0 m', '1000 m', '2000 m'].every(t => on('y').includes(t));
+  }, {timeout: 5000}).then(() => true, () => false);
+  check(gridLabelled, `the grid is labelled: ${JSON.stringify(await page.evaluate(() => window.exacityPage.gridLabels()))}`);
+  await page.click('#generate');
+  await page.waitForFunction(() => / lots$/.test(document.getElementById('stage').textContent), {timeout: 120000});
+  check(await page.$eval('#progress', p => p.value) > 0, 'the generation under way fills the bar');
+  await page.click('#cancel');
+  await page.waitForSelector('body[data-job="cancelled"]', {timeout: 60000});
+  check(await page.$eval('#progress', p => p.value) === 0 && await page.$eval('#stage', e => e.textContent) === 'generate cancelled',
+        `after Cancel the bar is empty and says so: ${await page.$eval('#stage', e => e.textContent)}`);
+  check(/cancelled during the lots stage/.test(await message()), `the page says where it stopped: ${await message()}`);
   check(errors.length === 0, `no console errors${errors.length ? ': ' + errors.join(' | ') : ''}`);
 } catch (e) {
   console.error(String(e.stack || e));

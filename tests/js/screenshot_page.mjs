@@ -11,12 +11,13 @@ const [binary, sketch, out] = process.argv.slice(2);
 fs.mkdirSync(out, {recursive: true});
 const work = fs.mkdtempSync(path.join(os.tmpdir(), 'exacity-screenshots-'));
 const server = spawn(binary, ['serve', sketch, '--port', '0', '--work', work], {stdio: ['ignore', 'pipe', 'inherit']});
-const base = await new Promise(resolve => {
+// The address as printed, with its token when it has one.
+const address = await new Promise(resolve => {
   let text = '';
   server.stdout.on('data', d => {
     text += d;
-    const m = text.match(/serving (http:\/\/127\.0\.0\.1:\d+\/)/);
-    if (m) resolve(m[1]);
+    const m = text.match(/serving (http:\/\/127\.0\.0\.1:\d+\/(\?token=\w+)?)/);
+    if (m) resolve(new URL(m[1]));
   });
 });
 const browser = await puppeteer.launch({executablePath: process.env.CHROMIUM || '/usr/bin/chromium', headless: true,
@@ -24,7 +25,8 @@ const browser = await puppeteer.launch({executablePath: process.env.CHROMIUM || 
 try {
   const page = await browser.newPage();
   await page.setViewport({width: 1400, height: 860});
-  await page.goto(base + '?spp=32');
+  address.searchParams.set('spp', '32');
+  await page.goto(address.href);
   await page.waitForSelector('body[data-ready="yes"]');
   await page.click('#generate');
   await page.waitForSelector('body[data-city="shown"]', {timeout: 600000});

@@ -18,7 +18,8 @@ export async function putSketch(doc) {
 }
 
 export async function putHeightmap(file) {
-  return answer(await fetch('/api/heightmap', {method: 'PUT', body: await file.arrayBuffer()}));
+  return answer(await fetch('/api/heightmap', {method: 'PUT', headers: {'Content-Type': 'application/octet-stream'},
+                                               body: await file.arrayBuffer()}));
 }
 
 // A model library's files in one form, each named by its path below the library's folder
@@ -29,12 +30,15 @@ export async function postModels(files) {
   return answer(await fetch('/api/models', {method: 'POST', body: form}));
 }
 
+// The server may require a JSON content type on its JSON routes: these send an empty object.
+const emptyJson = {method: 'POST', headers: {'Content-Type': 'application/json'}, body: '{}'};
+
 export async function cancelJob() {
-  return answer(await fetch('/api/cancel', {method: 'POST'}));
+  return answer(await fetch('/api/cancel', emptyJson));
 }
 
 export async function startGenerate() {
-  return answer(await fetch('/api/generate', {method: 'POST'}));
+  return answer(await fetch('/api/generate', emptyJson));
 }
 
 export async function startRender(request) {

@@ -1,6 +1,7 @@
 // exacity serve's page: the sketch editor, generation with its progress, the generated layers
 // and the 3D view (README, exacity serve). Every sketch edit is sent to the server, which
-// checks it as the CLI does; a refusal shows the CLI's message and keeps the last good sketch.
+// checks it as the CLI does; a refusal shows the CLI's message and the page goes back to the
+// server's sketch, so what is drawn is always what a generation uses.
 import * as api from './api.js';
 import {SketchHistory} from './history.js';
 import {SketchMap} from './sketch_map.js';
@@ -13,16 +14,32 @@ let explore = null;  // made when first shown: three.js loads only then
 let cityLayers = null;
 let lastGood = null;
 
-function say(text, error = false) {
+// The message line (one line, the whole text on hover or unfolded by a click), and under it
+// what the page did about it.
+function say(text, error = false, note = '') {
   $('message').textContent = text;
+  $('message').title = text;
   $('message').className = error ? 'error' : '';
+  $('message-note').textContent = note;
+}
+$('message').addEventListener('click', () => $('message').classList.toggle('unfolded'));
+$('message').addEventListener('keydown', e => e.key === 'Enter' && $('message').classList.toggle('unfolded'));
+
+// The sketch's feature count, for the browser test, and the first-use hint while there are none.
+function showCount(doc) {
+  document.body.dataset.features = doc.features.length;
+  $('hint').hidden = doc.features.length > 0;
 }
 
-// Sends the sketch; on refusal, says why. Resolves to whether the server took it. One at a
-// time, in order: two edits in flight on two connections could otherwise land the older last.
+// Sends the sketch; on refusal, says why and goes back to the server's sketch. Resolves to
+// whether the server took it. One at a time, in order: two edits in flight on two connections
+// could otherwise land the older last. An edit made on top of a refused one is not sent: the
+// page has gone back to the server's sketch since.
 let sending = Promise.resolve();
+let refusals = 0;
 function send(doc) {
-  const sent = sending.then(() => sendNow(doc));
+  const after = refusals;
+  const sent = sending.then(() => (after === refusals ? sendNow(doc) : false));
   sending = sent.catch(() => {});
   return sent;
 }
@@ -30,7 +47,8 @@ function send(doc) {
 async function sendNow(doc) {
   const r = await api.putSketch(doc);
   if (!r.ok) {
-    say(r.message, true);
+    ++refusals;
+    await backToServer(r.message);
     return false;
   }
   lastGood = JSON.parse(r.text);
@@ -38,10 +56,28 @@ async function sendNow(doc) {
   return true;
 }
 
+// After a refusal the map shows the sketch the server holds, and the refused edit leaves the
+// undo history; the settings form keeps what was typed there, to be fixed and applied again.
+async function backToServer(message) {
+  const doc = await api.getSketch();
+  if (doc) {
+    lastGood = doc;
+    map.load(doc, false);
+    showCount(doc);
+    panel.keep(doc.exacity);
+    history.replaceLast(JSON.stringify(map.sketch()));
+    updateButtons();
+  }
+  say(message, true, 'Not saved: the map shows the sketch the server has.');
+}
+
 const map = new SketchMap('map', {
   edited: () => recordEdit(),
   selected: f => panel.select(f),
 });
+// For the browser test: the sketch as the page would send it, and the grid's labels.
+window.exacityPage = {sketch: () => map.sketch(),
+                      gridLabels: () => map.gridLabels.getSource().getFeatures().map(f => ({label: f.get('label'), axis: f.get('axis')}))};
 const panel = new SettingsPanel({
   apply: async exacity => {
     const doc = map.sketch();
@@ -53,11 +89,12 @@ const panel = new SettingsPanel({
     return true;
   },
   featureEdited: () => recordEdit(),
+  typo: (what, why) => say(what, true, `${why}. Not applied: fix the box and apply again.`),
 });
 
 function recordEdit() {
   const doc = map.sketch();
-  document.body.dataset.features = doc.features.length;
+  showCount(doc);
   history.push(JSON.stringify(doc));
   updateButtons();
   // An empty sketch is one the CLI refuses too: say so, without sending.
@@ -69,7 +106,7 @@ function restore(text) {
   if (text === null) return;
   const doc = JSON.parse(text);
   map.load(doc, false);
-  document.body.dataset.features = doc.features.length;
+  showCount(doc);
   panel.show(doc.exacity);
   updateButtons();
   if (doc.features.length) send(doc);
@@ -116,7 +153,7 @@ $('open-file').addEventListener('change', async e => {
   }
   if (!(await send(doc))) return;
   map.load(lastGood, true);
-  document.body.dataset.features = lastGood.features.length;
+  showCount(lastGood);
   panel.show(lastGood.exacity);
   history.push(JSON.stringify(map.sketch()));
   updateButtons();
@@ -205,6 +242,24 @@ async function loadExplore() {
   await explore.load(cityBounds(), cityLayers.data);
 }
 
+// Every output the server has, to download: the city's files once generated, the still once
+// rendered (README, exacity serve: the API).
+let rendered = false;
+function showDownloads() {
+  const files = [['/api/sketch', 'sketch.geojson'], ['/api/city.glb', 'city.glb'], ['/api/map.svg', 'map.svg'],
+                 ['/api/report', 'report.json'],
+                 ...Object.keys(cityLayers?.data || {}).map(n => [`/api/layers/${n}.geojson`, `${n}.geojson`])];
+  if (rendered) files.push(['/api/render/still.png', 'still.png'], ['/api/render/still.json', 'still.json']);
+  $('downloads').replaceChildren(...files.map(([url, name]) => {
+    const item = document.createElement('li'), link = document.createElement('a');
+    link.href = url;
+    link.download = name;
+    link.textContent = name;
+    item.append(link);
+    return item;
+  }));
+}
+
 let stageEvent = {index: 0, count: 1, stage: ''};
 // Each (re)connection of the event stream starts with the status as it is; only a job seen
 // running and then ending changes the page.
@@ -222,16 +277,23 @@ api.listen({
     if (!ended) return;
     if (s.state === 'failed') say(`${s.job} failed: ${s.error}`, true);
     if (s.state === 'cancelled') say(`${s.job} ${s.error}`);
-    if (s.state !== 'done') return;
+    if (s.state !== 'done') {
+      $('progress').value = 0;
+      $('stage').textContent = `${s.job} ${s.state}`;
+      return;
+    }
     $('progress').value = 1;
     $('stage').textContent = `${s.job} done`;
     if (s.job === 'generate') {
       await showCity();
+      showDownloads();
       say('City generated.');
       document.body.dataset.city = 'shown';
     } else if (s.job === 'render') {
       $('render-image').src = '/api/render/still.png?v=' + Date.now();
       $('render-result').hidden = false;
+      rendered = true;
+      showDownloads();
       say('Rendered.');
     }
   },
@@ -268,12 +330,15 @@ $('render-view').addEventListener('click', async () => {
 (async () => {
   const doc = await api.getSketch();
   map.load(doc, true);
-  document.body.dataset.features = doc.features.length;
+  showCount(doc);
   panel.show(doc.exacity);
   history.push(JSON.stringify(map.sketch()));
   updateButtons();
-  if ((await api.getJson('/api/status')).city) {
+  const status = await api.getJson('/api/status');
+  rendered = status.render;
+  if (status.city) {
     await showCity();
+    showDownloads();
     document.body.dataset.city = 'shown';
   }
   document.body.dataset.ready = 'yes';

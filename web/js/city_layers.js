@@ -8,15 +8,29 @@ const geojson = new ol.format.GeoJSON({dataProjection: metres, featureProjection
 
 const fill = c => new ol.style.Fill({color: c});
 const stroke = (c, width) => new ol.style.Stroke({color: c, width});
+const colours = {water: '#5b9bd5', green: '#a8d38d', lot: '#fbf3e680', lotEdge: '#8a6d4b', sidewalk: '#c9c3b8',
+                 carriageway: '#6b6b6b', building: '#9a8672', buildingEdge: '#5e4f40'};
 // In drawing order, bottom first; colours as on the SVG map (generate/city/palette.h).
 const layerStyles = {
   zones: f => new ol.style.Style({fill: fill(rgba(zoneColours[f.get('zone')] || [200, 200, 200], 0.35))}),
-  water: () => new ol.style.Style({fill: fill('#5b9bd5')}),
-  blocks: f => new ol.style.Style({fill: f.get('green') ? fill('#a8d38d') : undefined, stroke: stroke('#0004', 1)}),
-  lots: () => new ol.style.Style({fill: fill('#fbf3e680'), stroke: stroke('#8a6d4b', 0.5)}),
-  road_areas: f => new ol.style.Style({fill: fill(f.get('surface') === 'sidewalk' ? '#c9c3b8' : '#6b6b6b')}),
+  water: () => new ol.style.Style({fill: fill(colours.water)}),
+  blocks: f => new ol.style.Style({fill: f.get('green') ? fill(colours.green) : undefined, stroke: stroke('#0004', 1)}),
+  lots: () => new ol.style.Style({fill: fill(colours.lot), stroke: stroke(colours.lotEdge, 0.5)}),
+  road_areas: f => new ol.style.Style({fill: fill(f.get('surface') === 'sidewalk' ? colours.sidewalk : colours.carriageway)}),
   roads: () => new ol.style.Style({stroke: new ol.style.Stroke({color: '#fff', width: 1, lineDash: [4, 4]})}),
-  buildings: () => new ol.style.Style({fill: fill('#9a8672'), stroke: stroke('#5e4f40', 0.5)}),
+  buildings: () => new ol.style.Style({fill: fill(colours.building), stroke: stroke(colours.buildingEdge, 0.5)}),
+};
+// The legend: each layer's swatch beside its toggle, in the colours above (zones in the
+// zone types' colours side by side; green blocks are parks).
+const stripes = list => `linear-gradient(to right, ${list.map((c, i) => `${c} ${i * 100 / list.length}% ${(i + 1) * 100 / list.length}%`).join(', ')})`;
+const swatches = {
+  zones: stripes(Object.values(zoneColours).map(c => rgba(c, 0.6))),
+  water: colours.water,
+  blocks: stripes(['#fff0', colours.green]),
+  lots: colours.lot,
+  road_areas: stripes([colours.sidewalk, colours.carriageway, colours.sidewalk]),
+  roads: `repeating-linear-gradient(to right, #fff 0 4px, ${colours.carriageway} 4px 8px)`,
+  buildings: colours.building,
 };
 
 export class CityLayers {
@@ -42,8 +56,9 @@ export class CityLayers {
       this.layers[name] = layer;
       this.group.getLayers().push(layer);
       const label = document.createElement('label');
-      label.innerHTML = `<input type="checkbox" checked data-layer="${name}"> ${name.replace('_', ' ')} ` +
-                        `(${docs[i].features.length})`;
+      label.innerHTML = `<input type="checkbox" checked data-layer="${name}"> <span class="swatch"></span> ` +
+                        `${name.replace('_', ' ')} (${docs[i].features.length})`;
+      label.querySelector('.swatch').style.background = swatches[name];
       label.querySelector('input').addEventListener('change', e => layer.setVisible(e.target.checked));
       toggles.appendChild(label);
     });

@@ -7,6 +7,12 @@ export class SketchHistory {
     this.done.push(text);
     this.undone = [];
   }
+  // The sketch as it is instead of the last edit, which was refused.
+  replaceLast(text) {
+    if (!this.done.length) return this.push(text);
+    this.done[this.done.length - 1] = text;
+    if (this.done.length > 1 && this.done[this.done.length - 2] === text) this.done.pop();
+  }
   canUndo() { return this.done.length > 1; }
   canRedo() { return this.undone.length > 0; }
   undo() {

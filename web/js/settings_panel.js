@@ -6,9 +6,12 @@ const settingZones = ['residential', 'commercial', 'industrial'];
 
 export class SettingsPanel {
   // `apply(exacity)` sends the new settings; it resolves to true when the server took them.
-  constructor({apply, featureEdited}) {
+  // `typo(what, why)` tells of a parameter box that is not JSON, and the parser's message.
+  constructor({apply, featureEdited, typo}) {
     this.apply = apply;
     this.featureEdited = featureEdited;
+    this.typo = typo;
+    this.note = document.getElementById('settings-note');
     this.feature = null;
     this.zoneBox = document.getElementById('zone-settings');
     this.rows = {};
@@ -35,6 +38,7 @@ export class SettingsPanel {
   // Shows the sketch's "exacity" member.
   show(exacity) {
     this.current = exacity || {};
+    this.note.textContent = '';
     this.seed.value = this.current.seed ?? 1;
     const zones = this.current.zones || {};
     for (const zone of settingZones) {
@@ -44,16 +48,32 @@ export class SettingsPanel {
     }
   }
 
-  // The settings as the form says; a parameter box that is not JSON is sent as written, so
-  // the refusal names it.
+  // The sketch's settings kept as the base of the next Apply, the form left as typed: after
+  // a refusal the typed text stays to be fixed.
+  keep(exacity) {
+    this.current = exacity || {};
+  }
+
+  // The settings as the form says, or null when a parameter box is not JSON: that one is
+  // named with the place the parser stopped, and the cursor put there. JSON that is not an
+  // object is sent as written, so the server's refusal names it.
   read() {
     const exacity = {...this.current, seed: this.seed.value === '' ? this.seed.value : Number(this.seed.value)};
     const zones = {...(this.current.zones || {})};
     for (const zone of settingZones) {
-      const text = this.rows[zone].params.value.trim();
+      const box = this.rows[zone].params;
+      const text = box.value.trim();
       let params = {};
       if (text) {
-        try { params = JSON.parse(text); } catch { params = text; }
+        try {
+          params = JSON.parse(text);
+        } catch (x) {
+          const at = Number(/position (\d+)/.exec(x.message)?.[1] ?? -1) + box.value.indexOf(text);
+          box.focus();
+          if (at >= box.value.indexOf(text)) box.setSelectionRange(at, at + 1);
+          this.typo(`${zone} parameters are not JSON`, x.message);
+          return null;
+        }
       }
       const layout = this.rows[zone].layout.value;
       if (typeof params !== 'object' || Array.isArray(params) || params === null) zones[zone] = params;
@@ -65,7 +85,8 @@ export class SettingsPanel {
   }
 
   async applySettings() {
-    if (!(await this.apply(this.read()))) this.show(this.current);
+    const exacity = this.read();
+    this.note.textContent = exacity && (await this.apply(exacity)) ? '' : 'not applied';
   }
 
   // The selected feature's properties, or none.

@@ -1,6 +1,7 @@
 // The sketch on a 2D map in metres (seed 000, 3.1.1): zones drawn by clicking vertices, roads
 // as polylines with a width, selected by click, moved by Ctrl-drag, deleted with Del; the
-// heightmap under them in grey with its water in blue, a grid and a scale bar.
+// heightmap under them in grey with its water in blue, a labelled grid, a scale bar and the
+// pointer's coordinates.
 import {zoneColours, roadColours, defaultWidths, rgba} from './colours.js';
 
 const ol = window.ol;
@@ -39,17 +40,34 @@ function sketchStyle(feature, resolution, selected) {
   return styles;
 }
 
-// Grid lines about a hundred pixels apart, at a round number of metres.
+// Grid lines about a hundred pixels apart, at a round number of metres, and their labels:
+// each x along the top edge, each y along the left one.
 function gridLines(extent, resolution) {
   const step = Math.pow(10, Math.ceil(Math.log10(resolution * 100)));
-  const lines = [];
+  const digits = Math.max(0, -Math.round(Math.log10(step)));
+  const lines = [], labels = [];
   const [x0, y0, x1, y1] = extent;
-  for (let x = Math.floor(x0 / step) * step; x <= x1 && lines.length < 400; x += step)
-    lines.push(new ol.Feature(new ol.geom.LineString([[x, y0], [x, y1]])));
-  for (let y = Math.floor(y0 / step) * step; y <= y1 && lines.length < 800; y += step)
-    lines.push(new ol.Feature(new ol.geom.LineString([[x0, y], [x1, y]])));
-  return lines;
+  const label = (at, text, axis) => {
+    const f = new ol.Feature(new ol.geom.Point(at));
+    f.setProperties({label: text, axis});
+    labels.push(f);
+  };
+  // Multiples of the step counted, not summed, so a label reads 0.3 and not 0.30000000000000004.
+  for (let i = Math.floor(x0 / step); i * step <= x1 && lines.length < 400; ++i) {
+    lines.push(new ol.Feature(new ol.geom.LineString([[i * step, y0], [i * step, y1]])));
+    label([i * step, y1], `${(i * step).toFixed(digits)} m`, 'x');
+  }
+  for (let i = Math.floor(y0 / step); i * step <= y1 && lines.length < 800; ++i) {
+    lines.push(new ol.Feature(new ol.geom.LineString([[x0, i * step], [x1, i * step]])));
+    label([x0, i * step], `${(i * step).toFixed(digits)} m`, 'y');
+  }
+  return {lines, labels};
 }
+
+const gridLabelStyle = f => new ol.style.Style({text: new ol.style.Text({
+  text: f.get('label'), font: '10px system-ui, sans-serif', fill: new ol.style.Fill({color: '#555'}),
+  stroke: new ol.style.Stroke({color: '#fff', width: 3}), textAlign: 'left',
+  textBaseline: f.get('axis') === 'x' ? 'top' : 'bottom', offsetX: 3, offsetY: f.get('axis') === 'x' ? 3 : -2})});
 
 export class SketchMap {
   // `edited` is called after every edit of the drawing; `selected` with the selected feature or null.
@@ -63,13 +81,21 @@ export class SketchMap {
     this.gridSource = new ol.source.Vector();
     this.grid = new ol.layer.Vector({source: this.gridSource,
                                      style: new ol.style.Style({stroke: new ol.style.Stroke({color: '#0002', width: 1})})});
+    // The labels above everything, the city included; the lines under it.
+    this.gridLabels = new ol.layer.Vector({source: new ol.source.Vector(), style: gridLabelStyle,
+                                           declutter: true});
     this.heightmap = new ol.layer.Image({opacity: 0.85});
     this.city = new ol.layer.Group({layers: []});
     this.map = new ol.Map({
       target,
-      layers: [this.heightmap, this.grid, this.city, this.layer],
+      layers: [this.heightmap, this.grid, this.city, this.layer, this.gridLabels],
       view: new ol.View({projection: metres, center: [0, 0], resolution: 2}),
-      controls: defaults(ol.control.defaults)().extend([new ol.control.ScaleLine({units: 'metric'})]),
+      controls: defaults(ol.control.defaults)().extend([
+        new ol.control.ScaleLine({units: 'metric'}),
+        // The pointer's place in the sketch's own coordinates, to the decimetre.
+        new ol.control.MousePosition({projection: metres, placeholder: '',
+                                      coordinateFormat: c => `x ${c[0].toFixed(1)} m, y ${c[1].toFixed(1)} m`}),
+      ]),
       // A double click closes a zone; it must not zoom too.
       interactions: defaults(ol.interaction.defaults)({doubleClickZoom: false}),
     });
@@ -178,7 +204,10 @@ export class SketchMap {
 
   drawGrid() {
     const view = this.map.getView();
+    const {lines, labels} = gridLines(view.calculateExtent(this.map.getSize()), view.getResolution());
     this.gridSource.clear();
-    this.gridSource.addFeatures(gridLines(view.calculateExtent(this.map.getSize()), view.getResolution()));
+    this.gridSource.addFeatures(lines);
+    this.gridLabels.getSource().clear();
+    this.gridLabels.getSource().addFeatures(labels);
   }
 }
