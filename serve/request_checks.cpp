@@ -29,8 +29,11 @@ bool names_this_server(const ServerState& s, const httplib::Request& req) {
   const std::string name = has_port ? host.substr(0, colon) : host;
   const std::string port = has_port ? host.substr(colon + 1) : "80";
   if (port != std::to_string(s.port)) return false;
+  // An IPv4 connection to a server listening on "::" arrives at an IPv4-mapped address.
+  std::string arrived_at = lower(req.local_addr);
+  if (arrived_at.rfind("::ffff:", 0) == 0 && arrived_at.find('.') != std::string::npos) arrived_at.erase(0, 7);
   return name == "localhost" || name == "127.0.0.1" || name == "[::1]" || name == lower(bracketed(s.options.host)) ||
-         (!req.local_addr.empty() && name == lower(bracketed(req.local_addr)));
+         (!arrived_at.empty() && name == bracketed(arrived_at));
 }
 
 std::string cookie_name(const ServerState& s) { return "exacity_token_" + std::to_string(s.port); }
