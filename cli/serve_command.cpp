@@ -21,11 +21,18 @@ void add_serve(CLI::App& app, ServeCommand& c) {
       ->capture_default_str();
   c.app->add_option("--work", c.work, "The work folder: the sketch, its heightmap, the city and the renders")
       ->capture_default_str();
+  c.app
+      ->add_option("--max-render", c.max_render,
+                   "The most samples one render may trace (width x height x samples per pixel, the overview's "
+                   "included); a larger one is refused")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
 }
 
 int run_serve(const ServeCommand& c) {
   serve::ServeOptions options;
   options.work = c.work, options.web = EXACITY_WEB_DIR, options.host = c.host, options.port = c.port;
+  options.max_render = c.max_render;
   serve::CityServer server(options);
   if (!c.sketch.empty()) server.import_sketch(c.sketch);
   const int port = server.bind();
@@ -37,13 +44,15 @@ int run_serve(const ServeCommand& c) {
     server.stop();
   });
   const bool local = c.host == "127.0.0.1" || c.host == "localhost" || c.host == "::1";
-  std::printf("exacity: serving http://%s:%d/ (work folder %s); Ctrl-C stops\n",
+  // The token in the address: whoever opens it (the user, who sees it here) may drive the
+  // server; other pages, and other users of this machine, may not.
+  std::printf("exacity: serving http://%s:%d/?token=%s (work folder %s); Ctrl-C stops\n",
               c.host.find(':') != std::string::npos ? ("[" + c.host + "]").c_str() : c.host.c_str(), port,
-              server.work_folder().string().c_str());
+              server.token().c_str(), server.work_folder().string().c_str());
   if (!local)
     std::printf(
-        "exacity: note: listening on %s: anyone who can reach this machine can replace the sketch, run "
-        "generations and renders, and read what the work folder holds\n",
+        "exacity: note: listening on %s: the traffic is not encrypted, so anyone on the network who sees the "
+        "address above can replace the sketch, run generations and renders, and read what the work folder holds\n",
         c.host.c_str());
   std::fflush(stdout);
   server.run();

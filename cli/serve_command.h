@@ -2,6 +2,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -12,6 +13,7 @@ struct ServeCommand {
   std::filesystem::path sketch, work = "exacity-work";
   std::string host = "127.0.0.1";
   int port = 8080;
+  std::uint64_t max_render = std::uint64_t(1) << 28;  // serve::ServeOptions::max_render
 };
 
 void add_serve(CLI::App& app, ServeCommand& c);

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "generate/cancel.h"
 #include "render/primary_layer.h"
 
 namespace render {
@@ -122,7 +123,9 @@ std::vector<float> depth_gradients(const Image& img) {
 std::vector<float> smoothed_variance(const Image& img, const std::vector<float>& variance) {
   std::vector<float> out(variance.size(), 0);
   const float k[3] = {0.25f, 0.5f, 0.25f};
+  const exacity::CancelCheck cancel;
   tbb::parallel_for(0, img.height, [&](int y) {
+    cancel.check();
     for (int x = 0; x < img.width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * img.width + x;
       float sum = 0, weights = 0;
@@ -169,7 +172,10 @@ void filter_level(const Image& img, std::vector<Estimate>& estimates, const std:
   // The level's light and variance; the rest of each estimate stays as it is.
   std::vector<std::vector<V3>> light(count, std::vector<V3>(img.beauty.size()));
   std::vector<std::vector<float>> variances(count, std::vector<float>(img.beauty.size()));
+  // Row by row: a large image's level takes seconds (generate/cancel.h).
+  const exacity::CancelCheck cancel;
   tbb::parallel_for(0, img.height, [&](int y) {
+    cancel.check();
     for (int x = 0; x < img.width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * img.width + x;
       const bool sky = is_sky(img, i);
@@ -217,7 +223,9 @@ void filter_level(const Image& img, std::vector<Estimate>& estimates, const std:
 // rows then its columns.
 std::vector<float> box_mean(const std::vector<float>& values, int width, int height, int r) {
   std::vector<float> rows(values.size()), out(values.size());
+  const exacity::CancelCheck cancel;
   tbb::parallel_for(0, height, [&](int y) {
+    cancel.check();
     for (int x = 0; x < width; ++x) {
       float sum = 0;
       const int x0 = std::max(0, x - r), x1 = std::min(width - 1, x + r);

@@ -10,6 +10,7 @@
 #include <tuple>
 #include <vector>
 
+#include "generate/cancel.h"
 #include "render/sampling.h"
 
 namespace render {
@@ -345,6 +346,9 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
   std::atomic<int> done{0};
   std::mutex report;
   const auto caller = std::this_thread::get_id();
+  // Checked at every pixel: a tile of many samples a pixel takes seconds, and a job must
+  // stop within one of being cancelled (generate/cancel.h).
+  const exacity::CancelCheck cancel;
   tbb::parallel_for(0, tiles, [&](int tile) {
     // Denormals only slow the traversal down.
     _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
@@ -359,6 +363,7 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
     const bool sun_first = t.haze.density <= 0 && t.max_depth > 0;
     for (int y = y0; y < std::min(y0 + kTile, height); ++y)
       for (int x = x0; x < std::min(x0 + kTile, width); ++x) {
+        cancel.check();
         const std::size_t i = static_cast<std::size_t>(y) * width + x;
         V3 sum = film.sum[i], albedo = film.albedo_sum[i];
         V3 sun = film.sun_sum[i], even_sum = film.even_sum[i], even_albedo = film.even_albedo_sum[i],

@@ -6,6 +6,7 @@
 #include <tuple>
 #include <vector>
 
+#include "generate/cancel.h"
 #include "render/sampling.h"
 
 namespace render {
@@ -15,7 +16,9 @@ Image::Primaries primary_layer(const RenderScene& scene, const Sky& sky, const C
   const std::size_t n = static_cast<std::size_t>(width) * height;
   Image::Primaries sums{std::vector<V3>(n), std::vector<V3>(n), count};
   const Lens lens(camera, width, height);
+  const exacity::CancelCheck cancel;  // row by row (generate/cancel.h)
   tbb::parallel_for(0, height, [&](int y) {
+    cancel.check();
     std::vector<Sampler> rngs;
     rngs.reserve(CameraPacket::kSize);
     CameraPacket packet;

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "generate/cancel.h"
 #include "render/denoise.h"
 #include "render/image_io.h"
 #include "render/path_tracer.h"
@@ -269,11 +270,15 @@ nlohmann::ordered_json render_city(const exacity::City& city, const RenderReques
 
   Still still = render_still(scene, sky, camera, request, haze, progress);
   nlohmann::ordered_json report = still_report(request, scene, scene_s, still);
+  // Between the steps too: writing a large image takes a while (generate/cancel.h).
+  const exacity::CancelCheck cancel;
+  cancel.check();
   if (request.overview || request.minimap) {
     const RenderScene whole(city, sky.sun_direction(), whole_city());
     if (request.overview) report["overview"] = render_overview(whole, sky, request, haze, progress);
     if (request.minimap) report["minimap"] = render_minimap(whole, scene, sky, camera, request, still.png);
   }
+  cancel.check();
   write_still(still, request.still);
   return report;
 }

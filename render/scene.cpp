@@ -5,6 +5,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "generate/cancel.h"
 #include "generate/export/building_mesh.h"
 #include "generate/export/bridges.h"
 #include "generate/export/ground_mesh.h"
@@ -249,19 +250,51 @@ RenderScene::RenderScene(const std::vector<TriangleSoup>& soups, bool ground_pla
   rtcCommitScene(scene_);
 }
 
+namespace {
+
+// Embree's build of a large city's scene takes a while: its progress monitor stops it once
+// the job is cancelled (generate/cancel.h), and the cancel is then thrown here.
+void commit_cancellable(RTCScene scene) {
+  exacity::CancelCheck cancel;
+  rtcSetSceneProgressMonitorFunction(
+      scene,
+      [](void* check, double) {
+        try {
+          static_cast<const exacity::CancelCheck*>(check)->check();
+          return true;
+        } catch (const exacity::Cancelled&) {
+          return false;
+        }
+      },
+      &cancel);
+  rtcCommitScene(scene);
+  rtcSetSceneProgressMonitorFunction(scene, nullptr, nullptr);
+  cancel.check();
+}
+
+}  // namespace
+
 RenderScene::RenderScene(const exacity::City& city, V3 sun, const SceneOptions& options)
     : ground_plane_(options.ground_plane) {
   start_device();
-  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
-  build(city, sun, options);
-  rtcCommitScene(scene_);
+  try {
+    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
+    build(city, sun, options);
+    commit_cancellable(scene_);
+  } catch (...) {
+    release();  // no destructor runs for a constructor that throws
+    throw;
+  }
 }
 
-RenderScene::~RenderScene() {
+RenderScene::~RenderScene() { release(); }
+
+void RenderScene::release() {
   if (scene_) rtcReleaseScene(scene_);
   for (RTCScene s : model_scenes_)
     if (s) rtcReleaseScene(s);
   if (device_) rtcReleaseDevice(device_);
+  scene_ = nullptr, model_scenes_.clear(), device_ = nullptr;
 }
 
 void RenderScene::build(const exacity::City& city, V3 sun, const SceneOptions& options) {
@@ -378,7 +411,9 @@ void RenderScene::add_terrain(const exacity::Terrain* terrain, const geom::Box& 
 void RenderScene::add_draped(const std::vector<DrapedPiece>& pieces, const exacity::Terrain* terrain) {
   exacity::GroundMesh g;
   Geometry info;
+  const exacity::CancelCheck cancel;
   for (const DrapedPiece& piece : pieces) {
+    cancel.check();
     if (std::isfinite(piece.level))
       exacity::drape_flat(*piece.polygon, piece.level, g);
     else
@@ -490,9 +525,11 @@ void RenderScene::add_buildings(const exacity::City& city, const geom::Box& worl
       tile_info[k].entity.push_back(entity_id(Entity::Building, static_cast<std::size_t>(id)));
     }
   };
+  const exacity::CancelCheck cancel;
   exacity::for_each_by_id(
       city.buildings, city.models,
       [&](const exacity::Building& b) {
+        cancel.check();
         const int k = tiles.tile_of[b.id];
         if (!view.seen[k]) return;
         if (view.detailed[k]) return add_mesh(b.id, b.zone, exacity::building_mesh(b), b.floor, b.floor + b.eaves);
@@ -502,6 +539,7 @@ void RenderScene::add_buildings(const exacity::City& city, const geom::Box& worl
         add_mesh(b.id, b.zone, exacity::building_mesh(box), b.floor, b.floor + b.height);
       },
       [&](const exacity::ModelInstance& m) {
+        cancel.check();
         const int k = tiles.tile_of[m.id];
         if (!view.seen[k]) return;
         if (!view.detailed[k] && m.kind != exacity::ModelKind::Building) return;

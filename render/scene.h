@@ -121,6 +121,7 @@ class RenderScene {
     std::atomic<std::size_t> peak{0};
   };
   void start_device();
+  void release();
   struct Hit;
   bool surface(V3 origin, V3 direction, float tmax, const Hit& hit, Surface& s) const;
   bool meets_ground_plane(V3 origin, V3 direction, float tmax) const;

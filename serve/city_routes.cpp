@@ -85,13 +85,34 @@ void render_job(ServerState& s, const RenderAsk& ask, JobRunner::Progress& progr
   fs::remove_all(aside);
   fs::create_directories(aside);
   r.still = aside / "still.png", r.overview_file = aside / "overview.png", r.minimap_file = aside / "minimap.png";
-  progress.stage(stages, stages, "render");
-  const nlohmann::ordered_json stats = render::render_city(
-      *city, r, [&](const std::string& stage, double f) { progress.fraction("render " + stage, f); });
-  std::ofstream(aside / "still.json", std::ios::binary) << stats.dump(2) << "\n";
+  // A render cancelled or failed leaves the previous still as it was, and nothing aside.
+  try {
+    progress.stage(stages, stages, "render");
+    const nlohmann::ordered_json stats = render::render_city(
+        *city, r, [&](const std::string& stage, double f) { progress.fraction("render " + stage, f); });
+    std::ofstream(aside / "still.json", std::ios::binary) << stats.dump(2) << "\n";
+  } catch (...) {
+    fs::remove_all(aside);
+    throw;
+  }
   std::unique_lock lock(s.outputs);
   fs::remove_all(s.render_folder());
   fs::rename(aside, s.render_folder());
+}
+
+// `job` with its failure's message naming paths in the work folder as the refusals do.
+JobRunner::Job in_work_folder(ServerState& s, JobRunner::Job job) {
+  return [&s, job = std::move(job)](JobRunner::Progress& progress) {
+    try {
+      job(progress);
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const UserError& e) {
+      throw UserError(s.in_work(e.what()));
+    } catch (const std::exception& e) {
+      throw std::runtime_error(s.in_work(e.what()));
+    }
+  };
 }
 
 // GET /api/events: each job event as a server-sent event; the status first, then what follows.
@@ -147,10 +168,10 @@ void add_city_routes(ServerState& s) {
     try {
       sketch = s.sketch.load();
     } catch (const UserError& e) {
-      return refuse(res, 400, e.what());
+      return refuse(res, 400, s.in_work(e.what()));
     }
     auto shared = std::make_shared<Sketch>(std::move(sketch));
-    if (!s.jobs.start("generate", [&s, shared](JobRunner::Progress& p) { generate_job(s, *shared, p); }))
+    if (!s.jobs.start("generate", in_work_folder(s, [&s, shared](JobRunner::Progress& p) { generate_job(s, *shared, p); })))
       return refuse_busy(s, res);
     res.status = 202;
     res.set_content(s.jobs.status().to_json().dump(), "application/json");
@@ -158,9 +179,9 @@ void add_city_routes(ServerState& s) {
   s.http.Post("/api/render", [&s](const httplib::Request& req, httplib::Response& res) {
     RenderAsk ask;
     try {
-      ask = parse_render_ask(req.body);
+      ask = parse_render_ask(req.body, s.options.max_render);
     } catch (const UserError& e) {
-      return refuse(res, 400, e.what());
+      return refuse(res, 400, s.in_work(e.what()));
     }
     if (s.jobs.status().state == JobState::Running) return refuse_busy(s, res);
     bool have_city = false;
@@ -169,7 +190,7 @@ void add_city_routes(ServerState& s) {
       have_city = s.city != nullptr;
     }
     if (!have_city && !fs::is_regular_file(s.city_folder() / "sketch.geojson")) return refuse(res, 409, kNoCity);
-    if (!s.jobs.start("render", [&s, ask](JobRunner::Progress& p) { render_job(s, ask, p); }))
+    if (!s.jobs.start("render", in_work_folder(s, [&s, ask](JobRunner::Progress& p) { render_job(s, ask, p); })))
       return refuse_busy(s, res);
     res.status = 202;
     res.set_content(s.jobs.status().to_json().dump(), "application/json");

@@ -16,10 +16,9 @@ class ConfinedFolder {
   const std::filesystem::path& root() const { return root_; }
 
   // The file `relative` names inside the root, with '/' between its parts. Throws PathRefused
-  // for an empty, absolute or parent ("..") part, a hidden part (".name", so the staging
-  // folders stay private), a backslash or NUL, or a part that is a symbolic link: nothing
-  // reached through a name may be outside the root, whatever the name's encoding was (the
-  // caller decodes once; what is checked is what is opened).
+  // when name_problem finds one, or for a part that is a symbolic link: nothing reached
+  // through a name may be outside the root, whatever the name's encoding was (the caller
+  // decodes once; what is checked is what is opened).
   std::filesystem::path resolve(std::string_view relative) const;
 
   // Whether `file` (absolute, or relative to the root) lies inside the root by the same rules,
@@ -29,6 +28,15 @@ class ConfinedFolder {
  private:
   std::filesystem::path root_;
 };
+
+// Why `relative` cannot name a file inside a folder, by its spelling alone; empty when it
+// can. Refused: an empty name or part ("//", a trailing "/"), an absolute name, a ".." or
+// hidden (".name", so the staging folders stay private) part, a backslash, a control
+// character (NUL among them) and a percent-encoded character ("%2e"): a name is given as
+// it is, never encoded.
+std::string name_problem(std::string_view relative);
+// `name` with its control characters as \xNN, for a message.
+std::string printable(const std::string& name);
 
 struct PathRefused : std::runtime_error {
   using std::runtime_error::runtime_error;

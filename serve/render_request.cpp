@@ -1,5 +1,6 @@
 #include "serve/render_request.h"
 
+#include <algorithm>
 #include <sstream>
 
 #include "generate/errors.h"
@@ -15,7 +16,15 @@ constexpr int kMaxSide = 4096, kMaxSamples = 4096;
 
 }  // namespace
 
-RenderAsk parse_render_ask(const std::string& body) {
+std::uint64_t render_samples(const RenderAsk& ask) {
+  const std::uint64_t spp = static_cast<std::uint64_t>(ask.spp), side = std::max(ask.width, ask.height);
+  std::uint64_t samples = static_cast<std::uint64_t>(ask.width) * ask.height * spp;
+  if (ask.overview) samples += side * side * spp;
+  if (ask.minimap) samples += std::uint64_t{256} * 256 * std::max<std::uint64_t>(1, spp / 4);
+  return samples;
+}
+
+RenderAsk parse_render_ask(const std::string& body, std::uint64_t max_samples) {
   const nlohmann::json j = nlohmann::json::parse(body.empty() ? "{}" : body, nullptr, false);
   if (j.is_discarded() || !j.is_object())
     throw UserError(
@@ -54,6 +63,12 @@ RenderAsk parse_render_ask(const std::string& body) {
       throw UserError(std::string("render request: \"") + flag + "\" must be true or false");
   ask.overview = j.value("overview", false);
   ask.minimap = j.value("minimap", false);
+  if (const std::uint64_t samples = render_samples(ask); samples > max_samples)
+    throw UserError("render request: " + std::to_string(ask.width) + "x" + std::to_string(ask.height) + " at " +
+                    std::to_string(ask.spp) + " samples per pixel" + (ask.overview ? " with the overview" : "") +
+                    " is " + std::to_string(samples) + " samples; this server renders at most " +
+                    std::to_string(max_samples) +
+                    " (exacity serve --max-render); ask for a smaller size or fewer samples");
   // Checked now, so a bad camera is a 400 rather than a failed job.
   if (!ask.camera.empty()) {
     try {

@@ -2,6 +2,7 @@
 // options, with the CLI's messages (README, Rendering).
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "generate/city/city.h"
@@ -18,8 +19,13 @@ struct RenderAsk {
 };
 
 // {"camera": "orbit:..."|"look:...", "size": "WxH", "spp": N, "fov": DEG, "overview": bool,
-// "minimap": bool}, every key optional. Throws UserError naming the key.
-RenderAsk parse_render_ask(const std::string& body);
+// "minimap": bool}, every key optional. Throws UserError naming the key, or saying the
+// render's samples (render_samples) are more than `max_samples`.
+RenderAsk parse_render_ask(const std::string& body, std::uint64_t max_samples);
+
+// The samples a render traces, its cost: the still's pixels times its samples per pixel,
+// and the overview's and the minimap's when asked for (render/render.cpp sizes them).
+std::uint64_t render_samples(const RenderAsk& ask);
 
 // The request for `city`, files not yet named. Throws UserError for a bad camera.
 render::RenderRequest render_request(const City& city, const RenderAsk& ask);

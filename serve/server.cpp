@@ -2,8 +2,10 @@
 
 #include <sys/socket.h>
 
+#include <cstdio>
 #include <fstream>
 #include <map>
+#include <random>
 #include <sstream>
 
 #include "generate/errors.h"
@@ -14,9 +16,17 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Answers at once for many: the page's event stream holds a thread for as long as it is open,
-// and each keep-alive connection one while it idles (docs/design.md, Serving).
-constexpr std::size_t kRequestThreads = 32;
+// 128 random bits in hex.
+std::string random_token() {
+  std::random_device random;
+  std::string token;
+  for (int i = 0; i < 4; ++i) {
+    char part[9];
+    std::snprintf(part, sizeof part, "%08x", static_cast<unsigned>(random()));
+    token += part;
+  }
+  return token;
+}
 
 const std::map<std::string, std::string>& content_types() {
   static const std::map<std::string, std::string> types{{".html", "text/html; charset=utf-8"},
@@ -54,6 +64,12 @@ void send_static(ServerState& s, const httplib::Request& req, httplib::Response&
 
 }  // namespace
 
+std::string ServerState::in_work(std::string message) const {
+  const std::string prefix = work.root().string() + "/";
+  for (std::size_t at; (at = message.find(prefix)) != std::string::npos;) message.erase(at, prefix.size());
+  return message;
+}
+
 void refuse(httplib::Response& res, int status, const std::string& message) {
   res.status = status;
   res.set_content(message, "text/plain; charset=utf-8");
@@ -77,7 +93,7 @@ CityServer::CityServer(ServeOptions options) {
     throw UserError(std::string("exacity serve: ") + e.what() + "; check --work, or the web folder");
   }
   ServerState& s = *state_;
-  s.http.new_task_queue = [] { return new httplib::ThreadPool(kRequestThreads); };
+  s.token = s.options.token.empty() ? random_token() : s.options.token;
   // SO_REUSEADDR only: httplib's default adds SO_REUSEPORT, which would let a second server
   // (or another program of this user) bind the same port and take some of its connections.
   s.http.set_socket_options([](socket_t sock) {
@@ -90,13 +106,13 @@ CityServer::CityServer(ServeOptions options) {
   // aborted when the close comes with it).
   s.http.set_keep_alive_max_count(1000);
   s.http.set_keep_alive_timeout(2);
-  s.http.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr e) {
+  s.http.set_exception_handler([&s](const httplib::Request&, httplib::Response& res, std::exception_ptr e) {
     try {
       std::rethrow_exception(e);
     } catch (const UserError& u) {
-      refuse(res, 400, u.what());
+      refuse(res, 400, s.in_work(u.what()));
     } catch (const std::exception& x) {
-      refuse(res, 500, std::string("internal error: ") + x.what());
+      refuse(res, 500, std::string("internal error: ") + s.in_work(x.what()));
     } catch (...) {
       refuse(res, 500, "internal error");
     }
@@ -116,6 +132,8 @@ CityServer::CityServer(ServeOptions options) {
                      "): a malformed request line or header, or a POST or PUT without a Content-Length");
         return httplib::Server::HandlerResponse::Handled;
       }));
+  s.http.set_pre_routing_handler(
+      [&s](const httplib::Request& req, httplib::Response& res) { return check_request(s, req, res); });
   add_sketch_routes(s);
   add_city_routes(s);
   s.http.Get(R"(/(.*))", [&s](const httplib::Request& req, httplib::Response& res) {
@@ -140,6 +158,7 @@ int CityServer::bind() {
   if (port <= 0)
     throw UserError("exacity serve: cannot listen on " + s.options.host + ":" + std::to_string(s.options.port) +
                     " (in use, or not an address of this machine); choose another --port or --host");
+  s.port = port;
   return port;
 }
 
@@ -148,7 +167,10 @@ void CityServer::run() { state_->http.listen_after_bind(); }
 void CityServer::stop() {
   state_->jobs.cancel();
   state_->http.stop();
+  state_->http.drop_connections();
 }
+
+const std::string& CityServer::token() const { return state_->token; }
 
 void CityServer::finish_jobs() { state_->jobs.stop(); }
 

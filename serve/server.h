@@ -3,9 +3,12 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
+
+#include "serve/connections.h"
 
 namespace exacity::serve {
 
@@ -15,6 +18,13 @@ struct ServeOptions {
   std::string host = "127.0.0.1";
   int port = 8080;                               // 0: any free port
   std::size_t max_body = std::size_t(64) << 20;  // bytes; a larger request body is refused (413)
+  // The most samples one render may trace (pixels x samples per pixel, render_samples); a
+  // larger render is refused. 1920x1080 at 128 samples a pixel fits.
+  std::uint64_t max_render = std::uint64_t(1) << 28;
+  // What every request must carry (?token=, the cookie the page gets with it, or
+  // "Authorization: Bearer"); empty: a random one made at start.
+  std::string token;
+  ConnectionLimits connections;
 };
 
 struct ServerState;
@@ -31,6 +41,8 @@ class CityServer {
   void import_sketch(const std::filesystem::path& sketch);
   // Binds the port; returns it. Throws UserError when it cannot.
   int bind();
+  // The token requests must carry (ServeOptions::token).
+  const std::string& token() const;
   // Answers requests until stop().
   void run();
   // Callable from any thread: stops listening and cancels a running job.

@@ -19,13 +19,15 @@ namespace exacity::serve {
 
 struct ServerState {
   explicit ServerState(ServeOptions o)
-      : options(std::move(o)), work(options.work, true), web(options.web), sketch(work) {}
+      : options(std::move(o)), work(options.work, true), web(options.web), sketch(work), http(options.connections) {}
 
   ServeOptions options;
   ConfinedFolder work, web;
   WorkSketch sketch;
   JobRunner jobs;
-  httplib::Server http;
+  HttpServer http;
+  int port = 0;  // bound
+  std::string token;
   // Readers of the outputs share it; a job takes it alone only to swap a finished folder in.
   std::shared_mutex outputs;
   // Event streams open now: each holds a request thread, so they are capped below the pool
@@ -36,6 +38,10 @@ struct ServerState {
   std::mutex city_mutex;
   std::shared_ptr<const City> city;
 
+  // `message` naming files by their paths in the work folder, as the user knows them,
+  // rather than by the server's absolute path to it.
+  std::string in_work(std::string message) const;
+
   std::filesystem::path city_folder() const { return work.root() / "city"; }
   std::filesystem::path render_folder() const { return work.root() / "render"; }
 };
@@ -45,6 +51,11 @@ void refuse(httplib::Response& res, int status, const std::string& message);
 // Sends a file of the work folder, or 404 with `missing` when it is not there.
 void send_file(ServerState& s, const std::filesystem::path& file, const std::string& type, httplib::Response& res,
                const std::string& missing);
+
+// Refuses a request this server must not take: a Host that is not one of its addresses
+// (DNS rebinding), no token, a write from another origin, a body of the wrong type
+// (docs/design.md, Serving: who may drive it).
+httplib::Server::HandlerResponse check_request(ServerState& s, const httplib::Request& req, httplib::Response& res);
 
 void add_sketch_routes(ServerState& s);
 void add_city_routes(ServerState& s);

@@ -15,7 +15,7 @@ void add_sketch_routes(ServerState& s) {
     try {
       s.sketch.put(req.body);
     } catch (const UserError& e) {
-      return refuse(res, 400, e.what());
+      return refuse(res, 400, s.in_work(e.what()));
     }
     res.set_content(s.sketch.text(), "application/geo+json");
   });
@@ -23,17 +23,13 @@ void add_sketch_routes(ServerState& s) {
     try {
       s.sketch.put_heightmap(req.body, req.get_param_value("bounds"), req.get_param_value("height"));
     } catch (const UserError& e) {
-      return refuse(res, 400, e.what());
+      return refuse(res, 400, s.in_work(e.what()));
     }
     res.set_content(s.sketch.text(), "application/geo+json");
   });
-  // A model library's files in one multipart form, each part's file name its path below the
-  // library's folder. Refused while a job runs: a generation reads the library it started with.
+  // A model library's files in one multipart form (check_request refuses any other body),
+  // each part's file name its path below the library's folder. Refused while a job runs: a generation reads the library it started with.
   s.http.Post("/api/models", [&s](const httplib::Request& req, httplib::Response& res) {
-    if (!req.is_multipart_form_data())
-      return refuse(res, 400,
-                    "send the model library as multipart/form-data: the .json manifest and its OBJ and .mtl files, "
-                    "each part's file name its path below the library's folder");
     if (s.jobs.status().state == JobState::Running)
       return refuse(res, 409, "a " + s.jobs.status().job + " job is running; upload the library when it ends");
     std::vector<std::pair<std::string, std::string>> files;
@@ -41,7 +37,7 @@ void add_sketch_routes(ServerState& s) {
     try {
       s.sketch.put_library(files);
     } catch (const UserError& e) {
-      return refuse(res, 400, e.what());
+      return refuse(res, 400, s.in_work(e.what()));
     }
     res.set_content(s.sketch.text(), "application/geo+json");
   });
@@ -50,7 +46,7 @@ void add_sketch_routes(ServerState& s) {
     try {
       png = s.sketch.heightmap_preview();
     } catch (const UserError& e) {
-      return refuse(res, 404, e.what());
+      return refuse(res, 404, s.in_work(e.what()));
     }
     if (!png) return refuse(res, 404, "the sketch has no heightmap; load one (PUT /api/heightmap)");
     res.set_header("Cache-Control", "no-store");

@@ -229,20 +229,13 @@ Sketch WorkSketch::put_heightmap(const std::string& bytes, const std::string& bo
 
 namespace {
 
-// Why an uploaded file's name cannot be a path below the library's folder; empty when it can.
+// Why an uploaded file's name cannot be a path below the library's folder; empty when it
+// can.
 std::string upload_name_problem(const std::string& name) {
   if (name.empty()) return "has no name";
   if (name.size() > 255) return "is longer than 255 characters";
-  if (name.find('\\') != std::string::npos || name.find('\0') != std::string::npos) return "has a backslash or NUL";
-  if (name.front() == '/') return "is absolute";
-  std::stringstream parts(name);
-  for (std::string part; std::getline(parts, part, '/');) {
-    if (part.empty()) return "has an empty part";
-    if (part == "..") return "has a \"..\" part";
-    if (part.front() == '.') return "has a hidden (.name) part";
-  }
-  if (name.back() == '/') return "has an empty part";
-  return "";
+  const std::string why = name_problem(name);
+  return why.empty() ? "" : "has " + why;
 }
 
 }  // namespace
@@ -255,7 +248,7 @@ Sketch WorkSketch::put_library(const std::vector<std::pair<std::string, std::str
   std::set<std::string> names;
   for (const auto& [name, bytes] : files) {
     if (const std::string why = upload_name_problem(name); !why.empty())
-      throw UserError(upload + ": the file name \"" + name + "\" " + why +
+      throw UserError(upload + ": the file name \"" + printable(name) + "\" " + why +
                       "; upload files by their paths below the library's folder");
     if (!names.insert(name).second) throw UserError(upload + ": \"" + name + "\" comes twice; send it once");
     if (fs::path(name).extension() != ".json") continue;

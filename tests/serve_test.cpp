@@ -1,10 +1,13 @@
 // exacity serve's API through httplib's client, against a server in this process
 // (README, exacity serve; docs/design.md, Serving).
 #include <OpenImageIO/imageio.h>
+#include <arpa/inet.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <httplib.h>
+#include <netinet/in.h>
 #include <signal.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -20,6 +23,7 @@
 #include "generate/city/sketch.h"
 #include "generate/errors.h"
 #include "generate/placement/model_library.h"
+#include "serve/connections.h"
 #include "serve/job_runner.h"
 #include "serve/server.h"
 #include "tests/cli_util.h"
@@ -81,6 +85,9 @@ void write_heightmap(const fs::path& file) {
   out->close();
 }
 
+// The token the in-process servers are given; every request carries it.
+const std::string kToken = "test-token-0123456789abcdef";
+
 class ServeTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -94,12 +101,15 @@ class ServeTest : public ::testing::Test {
     fs::create_symlink(dir / "secret.txt", dir / "web" / "leak.txt");
     fs::create_symlink(dir, dir / "web" / "up");
     exacity::serve::ServeOptions o;
-    o.work = dir / "work", o.web = dir / "web", o.port = 0, o.max_body = 64 * 1024;
+    o.work = dir / "work", o.web = dir / "web", o.port = 0, o.max_body = 64 * 1024, o.token = kToken;
+    // Short, so the tests of slow clients are: a request on loopback takes milliseconds.
+    o.connections.headers = o.connections.body = std::chrono::milliseconds(2000);
     server = std::make_unique<CityServer>(o);
     port = server->bind();
     serving = std::thread([this] { server->run(); });
     client = std::make_unique<httplib::Client>("127.0.0.1", port);
     client->set_read_timeout(60);
+    client->set_bearer_token_auth(kToken.c_str());
   }
   void TearDown() override {
     server->stop();
@@ -109,6 +119,12 @@ class ServeTest : public ::testing::Test {
 
   fs::path work() const { return server->work_folder(); }
   fs::path sketch_file() const { return work() / "sketch.geojson"; }
+  // A message as the server gives it: paths in the work folder named from it.
+  std::string in_work(std::string message) const {
+    const std::string prefix = work().string() + "/";
+    for (std::size_t at; (at = message.find(prefix)) != std::string::npos;) message.erase(at, prefix.size());
+    return message;
+  }
 
   // Polls the status until no job runs; the last status. Bounded: 20 minutes under the sanitizers.
   json wait_for_job(httplib::Client& c) {
@@ -158,7 +174,7 @@ TEST_F(ServeTest, BadJsonIsRefusedWithTheCliMessage) {
   auto r = client->Put("/api/sketch", bad, "application/geo+json");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 400);
-  EXPECT_EQ(r->body, cli_message(bad, sketch_file()));
+  EXPECT_EQ(r->body, in_work(cli_message(bad, sketch_file())));
   EXPECT_NE(r->body.find("malformed JSON"), std::string::npos) << r->body;
   EXPECT_FALSE(fs::exists(sketch_file()));
 }
@@ -174,7 +190,7 @@ TEST_F(ServeTest, BadSketchIsRefusedWithTheCliMessageAndTheOldOneKept) {
     auto r = client->Put("/api/sketch", bad, "application/geo+json");
     ASSERT_TRUE(r);
     EXPECT_EQ(r->status, 400);
-    const std::string expected = cli_message(bad, sketch_file());
+    const std::string expected = in_work(cli_message(bad, sketch_file()));
     EXPECT_FALSE(expected.empty());
     EXPECT_EQ(r->body, expected);
     EXPECT_EQ(r->body.find('\n'), std::string::npos) << "one line: " << r->body;
@@ -328,9 +344,9 @@ TEST_F(ServeTest, BadModelLibraryIsRefusedWithTheCliMessage) {
     cli = e.what();
   }
   EXPECT_FALSE(cli.empty());
-  EXPECT_EQ(r->body, cli);
+  EXPECT_EQ(r->body, in_work(cli));
   // Not a form, no manifest, two manifests.
-  EXPECT_EQ(client->Post("/api/models", "{}", "application/json")->status, 400);
+  EXPECT_EQ(client->Post("/api/models", "{}", "application/json")->status, 415);
   auto none = client->Post("/api/models", httplib::MultipartFormDataItems{{"file", "v 0 0 0\n", "a.obj", ""}});
   EXPECT_EQ(none->status, 400);
   EXPECT_NE(none->body.find("no .json manifest"), std::string::npos) << none->body;
@@ -409,6 +425,7 @@ TEST_F(ServeTest, GenerateStreamsStagesThenServesOutputsAndRenders) {
   std::thread events([&] {
     httplib::Client c("127.0.0.1", port);
     c.set_read_timeout(600);
+    c.set_bearer_token_auth(kToken.c_str());
     std::string buffer;
     bool told = false;
     c.Get("/api/events", [&](const char* data, std::size_t n) {
@@ -524,6 +541,7 @@ TEST_F(ServeTest, EightClientsDuringAGeneration) {
     clients.emplace_back([&] {
       httplib::Client c("127.0.0.1", port);
       c.set_read_timeout(60);
+      c.set_bearer_token_auth(kToken.c_str());
       for (int round = 0; round < 2000; ++round) {
         auto s = c.Get("/api/status");
         auto l = c.Get("/api/layers/roads.geojson");
@@ -553,6 +571,7 @@ TEST_F(ServeTest, EventStreamsAreCapped) {
   std::vector<std::thread> streams;
   for (int i = 0; i < 18; ++i) {
     clients.push_back(std::make_unique<httplib::Client>("127.0.0.1", port));
+    clients.back()->set_bearer_token_auth(kToken.c_str());
     streams.emplace_back([&, c = clients.back().get()] {
       c->Get(
           "/api/events",
@@ -649,6 +668,264 @@ TEST_F(ServeTest, CancelStopsAGenerationWithinItsStage) {
   EXPECT_EQ(client->Post("/api/cancel", "", "application/json")->status, 409);
 }
 
+// A render far too long to wait for, cancelled: the job ends "cancelled" within the bound
+// a generation's stage has (the tracer checks the flag at every pixel, the denoiser at every
+// row), the still from before stays, and nothing is left aside. A render past the server's
+// cap is refused, saying so; stopping the server stops a render as quickly.
+TEST_F(ServeTest, CancelStopsARenderAndKeepsThePreviousStill) {
+  put_small_and_generate();
+  ASSERT_EQ(client->Post("/api/render", R"({"size": "32x24", "spp": 1})", "application/json")->status, 202);
+  ASSERT_EQ(wait_for_job(*client)["state"], "done");
+  const std::string still = client->Get("/api/render/still.png")->body;
+  ASSERT_EQ(still.substr(1, 3), "PNG");
+
+  auto refused = client->Post("/api/render", R"({"size": "4096x4096", "spp": 4096})", "application/json");
+  EXPECT_EQ(refused->status, 400);
+  EXPECT_NE(refused->body.find("is 68719476736 samples; this server renders at most 268435456 (exacity serve "
+                               "--max-render)"),
+            std::string::npos)
+      << refused->body;
+  EXPECT_EQ(json::parse(client->Get("/api/status")->body)["job"], "render");  // the one before: none started
+
+  // At the cap: a tile of 16x16 pixels is a million samples.
+  const std::string big = R"({"size": "256x256", "spp": 4096})";
+  auto wait_for_tracing = [&] {
+    json status;
+    for (int i = 0; i < 600; ++i) {  // bounded: a minute
+      status = json::parse(client->Get("/api/status")->body);
+      if (status["stage"] == "render" || status["state"] != "running") break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    // A moment into the tracing, past the scene.
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    return status;
+  };
+  ASSERT_EQ(client->Post("/api/render", big, "application/json")->status, 202);
+  ASSERT_EQ(wait_for_tracing()["stage"], "render");
+  auto asked = std::chrono::steady_clock::now();
+  ASSERT_EQ(client->Post("/api/cancel", "", "application/json")->status, 202);
+  const json ended = wait_for_job(*client);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count(), kStopSeconds);
+  EXPECT_EQ(ended["state"], "cancelled") << ended.dump();
+  EXPECT_EQ(ended["error"].get<std::string>().rfind("cancelled during the render stage", 0), 0) << ended.dump();
+  EXPECT_EQ(client->Get("/api/render/still.png")->body, still);
+  EXPECT_FALSE(fs::exists(work() / ".render.partial"));
+  // The event stream says so too: its first event is the status as it is.
+  std::string first;
+  httplib::Client events("127.0.0.1", port);
+  events.set_bearer_token_auth(kToken.c_str());
+  events.Get("/api/events", [&](const char* data, std::size_t n) {
+    first.append(data, n);
+    return first.find("\n\n") == std::string::npos;
+  });
+  EXPECT_NE(first.find("event: state\n"), std::string::npos) << first;
+  EXPECT_NE(first.find("\"state\":\"cancelled\""), std::string::npos) << first;
+
+  ASSERT_EQ(client->Post("/api/render", big, "application/json")->status, 202);
+  ASSERT_EQ(wait_for_tracing()["stage"], "render");
+  asked = std::chrono::steady_clock::now();
+  server->stop();
+  server->finish_jobs();
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count(), kStopSeconds);
+  EXPECT_EQ(read(work() / "render" / "still.png"), still);
+}
+
+// A connection to the server's port as a slow client makes one; -1 when none.
+int connect_raw(int port) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<std::uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) return close(fd), -1;
+  return fd;
+}
+
+// Whether the server ends the connection within 10 s (an end or a reset, not a timeout).
+bool closed_by_server(int fd) {
+  timeval wait{10, 0};
+  setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &wait, sizeof wait);
+  char bytes[512];
+  ssize_t n;
+  while ((n = recv(fd, bytes, sizeof bytes, 0)) > 0) {
+  }
+  return n == 0 || errno == ECONNRESET;
+}
+
+// Thirty-two connections sending a header line every half second, and one sending its body
+// as slowly: the API answers meanwhile, and each is closed by its deadline (2 s in these
+// tests), which a read timeout alone, restarting with every line, never reaches.
+TEST_F(ServeTest, SlowClientsDoNotHoldTheServer) {
+  std::vector<int> slow;
+  for (int i = 0; i < 32; ++i) {
+    const int fd = connect_raw(port);
+    ASSERT_GE(fd, 0);
+    const std::string start = "GET /api/status HTTP/1.1\r\n";
+    send(fd, start.data(), start.size(), MSG_NOSIGNAL);
+    slow.push_back(fd);
+  }
+  const int body = connect_raw(port);
+  ASSERT_GE(body, 0);
+  const std::string headers = "PUT /api/sketch HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) +
+                              "\r\nAuthorization: Bearer " + kToken +
+                              "\r\nContent-Type: application/geo+json\r\nContent-Length: 100000\r\n\r\n{";
+  send(body, headers.data(), headers.size(), MSG_NOSIGNAL);
+  std::atomic<bool> done{false};
+  std::thread trickle([&] {
+    for (int round = 0; round < 60 && !done; ++round) {  // 30 s at most
+      for (int fd : slow) send(fd, "X-Slow: 1\r\n", 11, MSG_NOSIGNAL);
+      send(body, " ", 1, MSG_NOSIGNAL);
+      std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    }
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // every thread taken
+  httplib::Client c("127.0.0.1", port);
+  c.set_bearer_token_auth(kToken.c_str());
+  c.set_connection_timeout(5);
+  c.set_read_timeout(5);
+  auto r = c.Get("/api/status");
+  EXPECT_TRUE(r && r->status == 200) << (r ? r->body : httplib::to_string(r.error()));
+  for (int fd : slow) EXPECT_TRUE(closed_by_server(fd));
+  EXPECT_TRUE(closed_by_server(body));
+  done = true;
+  trickle.join();
+  for (int fd : slow) close(fd);
+  close(body);
+  EXPECT_FALSE(fs::exists(sketch_file()));  // nothing was stored from the half-sent sketch
+}
+
+// A client address holds a bounded number of connections: past it, its connection waiting
+// longest for a request is closed, or the new one is not taken when all are being
+// answered; others are not held back. With every thread taken, the connection waiting
+// longest anywhere goes.
+TEST(ConnectionTableTest, CapsClientsAndDropsTheLongestWaiting) {
+  auto pair = [] {
+    int fds[2];
+    EXPECT_EQ(socketpair(AF_UNIX, SOCK_STREAM, 0, fds), 0);
+    return std::pair<int, int>{fds[0], fds[1]};
+  };
+  auto ended = [](int fd) {
+    char byte;
+    return recv(fd, &byte, 1, MSG_DONTWAIT) == 0;
+  };
+  exacity::serve::ConnectionTable table(2);
+  const auto a = pair(), b = pair(), c = pair(), d = pair();
+  ASSERT_TRUE(table.open(a.first, "10.0.0.1"));
+  table.answering(a.first);
+  ASSERT_TRUE(table.open(b.first, "10.0.0.1"));
+  EXPECT_FALSE(ended(b.second));
+  ASSERT_TRUE(table.open(c.first, "10.0.0.1"));  // b, waiting, is dropped for it
+  EXPECT_TRUE(ended(b.second));
+  EXPECT_FALSE(ended(a.second));
+  table.close(b.first);
+  table.answering(c.first);
+  EXPECT_FALSE(table.open(d.first, "10.0.0.1"));  // both answering
+  EXPECT_TRUE(table.open(d.first, "10.0.0.2"));
+  table.waiting(a.first);  // after d began waiting: d has waited longest
+  EXPECT_TRUE(table.drop_one());
+  EXPECT_TRUE(ended(d.second));
+  EXPECT_FALSE(ended(a.second));
+  EXPECT_TRUE(table.drop_one());
+  EXPECT_TRUE(ended(a.second));
+  EXPECT_FALSE(table.drop_one());  // c is being answered
+  for (const auto& p : {a, b, c, d}) close(p.first), close(p.second);
+}
+
+// Only this server's own page drives it: another Host (DNS rebinding), no token, a write
+// from another origin and a body of the wrong type are refused before anything happens.
+TEST_F(ServeTest, OnlyThisServersOwnPageMayDriveIt) {
+  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+  const std::string here = "127.0.0.1:" + std::to_string(port);
+  for (const std::string& host : {std::string("attacker.example:") + std::to_string(port),
+                                  std::string("attacker.example"), std::string("127.0.0.1:1"),
+                                  std::string("127.0.0.2:") + std::to_string(port)}) {
+    auto r = client->Get("/api/sketch", {{"Host", host}});
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 403) << host;
+    EXPECT_NE(r->body.find("is not this server's"), std::string::npos) << r->body;
+    EXPECT_EQ(client->Post("/api/generate", {{"Host", host}}, "", "application/json")->status, 403) << host;
+  }
+  for (const std::string& host : {"localhost:" + std::to_string(port), here, "[::1]:" + std::to_string(port)})
+    EXPECT_EQ(client->Get("/api/status", {{"Host", host}})->status, 200) << host;
+
+  httplib::Client stranger("127.0.0.1", port);
+  for (const char* path : {"/", "/api/sketch", "/api/status", "/lib/app.js"})
+    EXPECT_EQ(stranger.Get(path)->status, 403) << path;
+  EXPECT_EQ(stranger.Get("/api/status", {{"Authorization", "Bearer wrong"}})->status, 403);
+  EXPECT_EQ(stranger.Get("/api/status?token=wrong")->status, 403);
+  // The page's address: its token becomes a cookie for this port's pages only, which is
+  // then enough.
+  auto page = stranger.Get(("/?token=" + kToken).c_str());
+  ASSERT_EQ(page->status, 200);
+  EXPECT_EQ(page->get_header_value("Set-Cookie"),
+            "exacity_token_" + std::to_string(port) + "=" + kToken + "; Path=/; SameSite=Strict; HttpOnly");
+  EXPECT_EQ(
+      stranger.Get("/api/status", {{"Cookie", "other=1; exacity_token_" + std::to_string(port) + "=" + kToken}})
+          ->status,
+      200);
+
+  // Cross-origin simple requests: a text/plain render, a form generate; Sec-Fetch-Site.
+  const httplib::Headers evil{{"Origin", "http://evil"}};
+  EXPECT_EQ(client->Post("/api/render", evil, R"({"size": "32x24", "spp": 1})", "text/plain")->status, 403);
+  EXPECT_EQ(client->Post("/api/generate", evil, "a=1", "application/x-www-form-urlencoded")->status, 403);
+  EXPECT_EQ(client->Post("/api/generate", evil, "", "application/json")->status, 403);
+  EXPECT_EQ(client->Post("/api/generate", {{"Sec-Fetch-Site", "cross-site"}}, "", "application/json")->status, 403);
+  EXPECT_EQ(client->Put("/api/sketch", {{"Origin", "http://" + here + ".evil"}}, kSmallSketch, "application/geo+json")
+                ->status,
+            403);
+  // From the page itself, as a browser says it: taken.
+  const httplib::Headers own{{"Origin", "http://" + here}, {"Sec-Fetch-Site", "same-origin"}};
+  EXPECT_EQ(client->Post("/api/cancel", own, "", "application/json")->status, 409);  // nothing runs
+  EXPECT_EQ(client->Put("/api/sketch", own, kSmallSketch, "application/geo+json")->status, 200);
+
+  // JSON routes take JSON: a sketch of 8.4 KB sent as a form is refused for its type.
+  std::string padded = kSmallSketch;
+  padded.insert(padded.size() - 2, std::string(8600 - padded.size(), ' '));
+  auto form = client->Put("/api/sketch", padded, "application/x-www-form-urlencoded");
+  EXPECT_EQ(form->status, 415);
+  EXPECT_NE(form->body.find("Content-Type: application/geo+json"), std::string::npos) << form->body;
+  EXPECT_EQ(client->Put("/api/sketch", padded, "text/plain")->status, 415);
+  EXPECT_EQ(client->Put("/api/sketch", padded, "application/geo+json; charset=utf-8")->status, 200);
+  EXPECT_EQ(client->Post("/api/render", R"({"size": "32x24", "spp": 1})", "text/plain")->status, 415);
+  EXPECT_EQ(client->Post("/api/generate", "a=1", "application/x-www-form-urlencoded")->status, 415);
+  EXPECT_EQ(client->Put("/api/heightmap", "x", "text/plain")->status, 415);
+  EXPECT_EQ(json::parse(client->Get("/api/status")->body)["state"], "idle");
+}
+
+// Names are given as they are: a percent-encoded one (in a sketch's heightmap, in an
+// upload) or one with a control character is refused, not taken literally; messages name
+// files from the work folder, not by the server's path to it.
+TEST_F(ServeTest, EncodedAndControlCharacterNamesAreRefused) {
+  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+  fs::create_directories(work() / "%2e%2e");
+  write_heightmap(work() / "%2e%2e" / "valley.png");
+  auto encoded = client->Put(
+      "/api/sketch",
+      sketch_with(R"({"seed": 3, "terrain": {"bounds": [0, 0, 600, 300], "height": [0, 50], "heightmap": "%2e%2e/valley.png"}})"),
+      "application/geo+json");
+  EXPECT_EQ(encoded->status, 400);
+  EXPECT_NE(encoded->body.find("percent-encoded"), std::string::npos) << encoded->body;
+  EXPECT_EQ(encoded->body.rfind("sketch.geojson: ", 0), 0) << encoded->body;
+  const std::string manifest = R"({"models": [{"file": "house_l.obj", "zones": ["residential"], "up": "z"}]})";
+  const std::string obj = read(cli_util::kSource / "examples" / "models" / "house_l.obj");
+  for (const std::string& name : {std::string("%2e%2e/evil5.obj"), std::string("sub/%2E%2e/evil5.obj"),
+                                 std::string("evil\x01.obj"), std::string("evil\x7f.obj")}) {
+    // A good library, and one more file under that name.
+    auto r = client->Post("/api/models", httplib::MultipartFormDataItems{{"file", manifest, "lib.json", ""},
+                                                                         {"file", obj, "house_l.obj", ""},
+                                                                         {"file", obj, name, ""}});
+    EXPECT_EQ(r->status, 400) << name;
+    EXPECT_NE(r->body.find("the model library upload: the file name"), std::string::npos) << r->body;
+    EXPECT_EQ(r->body.find('\n'), std::string::npos) << r->body;
+  }
+  EXPECT_FALSE(fs::exists(work() / "models"));
+  auto bad = client->Put("/api/sketch", sketch_with(R"({"seed": 3, "zones": {"residential": {"layout": "spiral"}}})"),
+                         "application/geo+json");
+  EXPECT_EQ(bad->status, 400);
+  EXPECT_EQ(bad->body.rfind("sketch.geojson: ", 0), 0) << bad->body;
+  EXPECT_EQ(bad->body.find(work().string()), std::string::npos) << bad->body;
+}
+
 // `exacity serve ARGS` as a child process, its stdout and stderr into `log`.
 pid_t start_program(const std::vector<std::string>& args, const fs::path& log) {
   // Everything the child needs is made before fork: between fork and exec a child of a
@@ -666,6 +943,13 @@ pid_t start_program(const std::vector<std::string>& args, const fs::path& log) {
     _exit(127);
   }
   return pid;
+}
+
+// The token in the address the program printed (served_port has waited for it).
+std::string served_token(const fs::path& log) {
+  const std::string text = read(log);
+  const auto at = text.find("?token=");
+  return at == std::string::npos ? "" : text.substr(at + 7, text.find(' ', at) - at - 7);
 }
 
 // The port the program says it serves on; 0 when it has not said so within 30 s.
@@ -695,6 +979,7 @@ TEST(ServeCommandTest, ImportsTheSketchWithItsHeightmapAndStopsOnSigterm) {
   const int port = served_port(dir / "log.txt");
   ASSERT_GT(port, 0) << read(dir / "log.txt");
   httplib::Client c("127.0.0.1", port);
+  c.set_bearer_token_auth(served_token(dir / "log.txt").c_str());
   const json sketch = json::parse(c.Get("/api/sketch")->body);
   EXPECT_EQ(sketch["exacity"]["terrain"]["heightmap"], "heightmap.png");
   EXPECT_EQ(read(dir / "work" / "heightmap.png"), read(dir / "hills.png"));
@@ -711,6 +996,7 @@ TEST(ServeCommandTest, ImportsAModelLibrary) {
   const int port = served_port(dir / "log.txt");
   ASSERT_GT(port, 0) << read(dir / "log.txt");
   httplib::Client c("127.0.0.1", port);
+  c.set_bearer_token_auth(served_token(dir / "log.txt").c_str());
   EXPECT_EQ(json::parse(c.Get("/api/sketch")->body)["exacity"]["models"], "models/library.json");
   for (const char* name : {"library.json", "house_gabled.obj", "library.mtl", "street_lamp.obj"})
     EXPECT_TRUE(fs::is_regular_file(dir / "work" / "models" / name)) << name;
@@ -750,6 +1036,7 @@ TEST(ServeCommandTest, InterruptStopsAGenerationWithinItsStage) {
   const int port = served_port(dir / "log.txt");
   ASSERT_GT(port, 0) << read(dir / "log.txt");
   httplib::Client c("127.0.0.1", port);
+  c.set_bearer_token_auth(served_token(dir / "log.txt").c_str());
   ASSERT_EQ(c.Put("/api/sketch", kLargeSketch, "application/geo+json")->status, 200);
   ASSERT_EQ(c.Post("/api/generate", "", "application/json")->status, 202);
   json status;
