@@ -20,9 +20,14 @@
 #include <sstream>
 #include <thread>
 
+#include "generate/cancel.h"
 #include "generate/city/sketch.h"
 #include "generate/errors.h"
+#include "generate/pipeline.h"
 #include "generate/placement/model_library.h"
+#include "render/denoise.h"
+#include "render/primary_layer.h"
+#include "render/render.h"
 #include "serve/connections.h"
 #include "serve/job_runner.h"
 #include "serve/server.h"
@@ -728,6 +733,27 @@ TEST_F(ServeTest, CancelStopsARenderAndKeepsThePreviousStill) {
   server->finish_jobs();
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count(), kStopSeconds);
   EXPECT_EQ(read(work() / "render" / "still.png"), still);
+}
+
+// Each step of a render stops once its job is cancelled rather than running to its end:
+// the scene's build (Embree's commit included), the tracer, the primary layer and the
+// denoiser throw Cancelled when the flag is set (generate/cancel.h).
+TEST(RenderCancelTest, EveryStepStopsOnceCancelled) {
+  const exacity::Sketch sketch = exacity::parse_sketch(kSmallSketch, "small.geojson");
+  exacity::StageClock clock([](int, int, const std::string&) {}, exacity::kCityStages);
+  const exacity::City city = exacity::build_city(sketch, clock);
+  const render::Sky sky(200, 40, 3);
+  const render::SceneOptions options;
+  const render::RenderScene scene(city, sky.sun_direction(), options);
+  const render::Camera camera = scene.to_scene(render::default_camera(city));
+  const render::TraceSettings settings{32, 24, 2};
+  const render::Image image = render::trace(scene, sky, camera, settings);
+  std::atomic<bool> cancelled{true};
+  const exacity::CancelScope scope(cancelled);
+  EXPECT_THROW({ const render::RenderScene again(city, sky.sun_direction(), options); }, exacity::Cancelled);
+  EXPECT_THROW(render::trace(scene, sky, camera, settings), exacity::Cancelled);
+  EXPECT_THROW(render::primary_layer(scene, sky, camera, 32, 24, 2, 4), exacity::Cancelled);
+  EXPECT_THROW(render::denoise(image), exacity::Cancelled);
 }
 
 // A connection to the server's port as a slow client makes one; -1 when none.
