@@ -244,13 +244,23 @@ TEST(Textures, AMissingOrUnreadableTextureStopsTheRunWithOneLine) {
   write(dir / "checker.png", "\x89PNG\r\n\x1a\ncut short");
   r = run(generate);
   EXPECT_EQ(r.code, 2) << r.out;
-  // Exacity's one line (libpng may print its own before it: not ours to silence).
-  const std::string line = r.out.substr(r.out.find("exacity: "));
-  EXPECT_EQ(std::count(line.begin(), line.end(), '\n'), 1) << r.out;
-  EXPECT_EQ(line.rfind("exacity: error: " + (dir / "box.mtl").string() + " line 3: map_Kd " +
-                           (dir / "checker.png").string() + " cannot be decoded (",
-                       0),
+  // Exacity's one line, libpng's reason in it ("libpng error: ..." printed on its own before).
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  EXPECT_EQ(r.out.rfind("exacity: error: " + (dir / "box.mtl").string() + " line 3: map_Kd " +
+                            (dir / "checker.png").string() + " cannot be decoded (",
+                        0),
             0u)
       << r.out;
   EXPECT_FALSE(fs::exists(out));
+  // Cut inside its pixels, and with a checksum wrong: the same.
+  write_checker(dir / "whole.png");
+  const std::string whole = read(dir / "whole.png");
+  for (const std::string& broken : {whole.substr(0, whole.size() / 2), whole.substr(0, 40) + "x" + whole.substr(41)}) {
+    write(dir / "checker.png", broken);
+    r = run(generate);
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+    EXPECT_EQ(r.out.rfind("exacity: error: ", 0), 0u) << r.out;
+    EXPECT_FALSE(fs::exists(out));
+  }
 }
