@@ -25,7 +25,7 @@ void on_warning(png_structp, png_const_charp) {}
 
 void on_read(png_structp png, png_bytep out, png_size_t length) {
   Reading& r = *static_cast<Reading*>(png_get_io_ptr(png));
-  if (length > r.bytes.size() - r.at) png_error(png, "the file ends too soon (cut short?)");
+  if (length > r.bytes.size() - r.at) png_error(png, "the file ends before the image does");
   std::memcpy(out, r.bytes.data() + r.at, length);
   r.at += length;
 }

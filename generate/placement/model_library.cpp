@@ -106,7 +106,7 @@ Model normalise_model(TriangleMesh mesh, const std::string& up, const std::strin
   if (!finite || !(box.width() <= kMaxModelSize && box.height() <= kMaxModelSize && top - bottom <= kMaxModelSize))
     throw UserError(where + ": the model is " + format_number(box.width()) + " x " + format_number(box.height()) + " x " +
                     format_number(top - bottom) + " m at \"unit\" " + format_number(unit) + ", more than the " +
-                    format_number(kMaxModelSize) + " m a side a model may be; check \"unit\" (\"mm\" for millimetres) " +
+                    std::to_string(static_cast<long>(kMaxModelSize)) + " m a side a model may be; check \"unit\" (\"mm\" for millimetres) " +
                     "and vertices far from the rest");
   const double cx = (box.min_x + box.max_x) / 2, cy = (box.min_y + box.max_y) / 2;
   for (Vec3& v : mesh.vertices) v = {v[0] - cx, v[1] - cy, v[2] - bottom};
