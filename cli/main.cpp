@@ -16,6 +16,7 @@
 #include "cli/progress.h"
 #include "cli/serve_command.h"
 #include "generate/errors.h"
+#include "generate/input_file.h"
 #include "generate/export/output_folder.h"
 #include "generate/export/gis_export.h"
 #include "generate/pipeline.h"
@@ -72,14 +73,20 @@ std::optional<render::CameraSpec> given_camera(const Sketch& sketch, const Rende
   }
 }
 
-render::RenderRequest request_for(const City& city, const RenderOptions& o, const std::string& camera_source) {
-  render::RenderRequest r;
+// --size as width and height; checked before any work.
+std::pair<int, int> image_size(const RenderOptions& o) {
   int w = 0, h = 0;
   char x = 0;
   std::istringstream size(o.size);
   if (!(size >> w >> x >> h) || x != 'x' || w < 8 || h < 8 || w > 16384 || h > 16384 || !size.eof())
     throw UserError("--size " + o.size + ": expected WIDTHxHEIGHT such as 1920x1080 (8 to 16384 each)");
-  r.width = w, r.height = h, r.spp = o.spp;
+  return {w, h};
+}
+
+render::RenderRequest request_for(const City& city, const RenderOptions& o, const std::string& camera_source) {
+  render::RenderRequest r;
+  std::tie(r.width, r.height) = image_size(o);
+  r.spp = o.spp;
   if (auto given = given_camera(city.sketch, o, camera_source)) {
     try {
       r.camera = render::place_camera(*given, city);
@@ -106,7 +113,10 @@ nlohmann::ordered_json render_with_progress(const City& city, render::RenderRequ
 int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, const fs::path& out, bool quiet,
              const RenderOptions* rendering, const ExportOptions& exports) {
   Sketch sketch = load_sketch(sketch_paths, true, models);
-  if (rendering) given_camera(sketch, *rendering, sketch.path.string());  // a bad camera stops us before any work
+  if (rendering) {  // a bad camera or size stops us before any work
+    given_camera(sketch, *rendering, sketch.path.string());
+    image_size(*rendering);
+  }
   OutputFolder folder(out);
   GenerateResult result;
   {
@@ -180,6 +190,34 @@ std::pair<int, int> frame_range(const std::string& spec, int count) {
   return {a, b};
 }
 
+// Refuses, before any work, a folder a render could not write into: `dir` is a folder or does
+// not exist yet, and the nearest of its parents that exists is a folder, not a file.
+void expect_output_folder(const fs::path& dir, const std::string& what) {
+  for (fs::path p = dir; !p.empty(); p = p.parent_path()) {
+    std::error_code ec;
+    const fs::file_status status = fs::status(p, ec);
+    if (fs::exists(status)) {
+      if (!fs::is_directory(status))
+        throw UserError(p.string() + ": is a file, so " + what + " cannot be written there; choose a folder path with -o");
+      return;
+    }
+    if (p == p.parent_path()) return;
+  }
+}
+
+// Creates the folder a render writes into; a path the user cannot write is theirs to fix.
+void create_output_folder(const fs::path& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw UserError(dir.string() + ": cannot create the folder (" + ec.message() + "); check the path and permissions");
+}
+
+// An output folder's file that exacity wrote (report.json, sketch.geojson).
+std::string output_file(const fs::path& file) {
+  return read_input(file, kMaxDataFileBytes, "the output folder's " + file.filename().string(),
+                    "generate the city again");
+}
+
 // The frames of a camera path into a folder (-o, default OUT/render/frames):
 // frame_NNNN.png with its .exr and .json, one independent still each.
 int render_path_folder(const fs::path& out, const Sketch& sketch, const RenderOptions& o, const fs::path& dir_given,
@@ -205,6 +243,7 @@ int render_path_folder(const fs::path& out, const Sketch& sketch, const RenderOp
   }
   const fs::path dir = dir_given.empty() ? out / "render" / "frames" : dir_given;
   if (dir.extension() == ".png") throw UserError(dir.string() + ": with --path, -o is the folder for the frames");
+  expect_output_folder(dir, "the frames");
   ProgressReport progress(quiet);
   StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); }, kCityStages + 1);
   City city = build_city(sketch, clock);
@@ -214,7 +253,7 @@ int render_path_folder(const fs::path& out, const Sketch& sketch, const RenderOp
   } catch (const std::invalid_argument& e) {
     throw UserError(e.what());
   }
-  fs::create_directories(dir);
+  create_output_folder(dir);
   clock.run("render", [&] {
     return render::render_path_frames(city, path, first, last, r, dir, [&](const std::string& stage, double f) {
       progress.fraction("frames " + stage, f);
@@ -231,24 +270,25 @@ int render_path_folder(const fs::path& out, const Sketch& sketch, const RenderOp
 int render_folder(const fs::path& out, const RenderOptions& o, const fs::path& file, bool quiet) {
   if (!fs::is_regular_file(out / "report.json") || !fs::is_regular_file(out / "sketch.geojson"))
     throw UserError(out.string() + ": not an output folder of exacity generate (no report.json or sketch.geojson); run exacity generate first");
-  nlohmann::json report = nlohmann::json::parse(std::ifstream(out / "report.json"), nullptr, false);
+  nlohmann::json report = nlohmann::json::parse(output_file(out / "report.json"), nullptr, false);
   if (report.is_discarded() || !report.contains("sketch_path"))
     throw UserError((out / "report.json").string() + ": unreadable or from an older exacity; generate the city again");
   // The copy's relative paths (heightmap, models) resolve where the original sketch was.
-  std::ifstream in(out / "sketch.geojson", std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  Sketch sketch = parse_sketch(text.str(), report["sketch_path"].get<std::string>());
-  given_camera(sketch, o, (out / "sketch.geojson").string());  // a bad camera stops us before any work
+  Sketch sketch = parse_sketch(output_file(out / "sketch.geojson"), report["sketch_path"].get<std::string>());
+  given_camera(sketch, o, (out / "sketch.geojson").string());  // a bad camera or size stops us before any work
+  image_size(o);
   if (!o.path.empty()) return render_path_folder(out, sketch, o, file, quiet);
+  const fs::path still = file.empty() ? out / "render" / "still.png" : file;
+  if (still.extension() != ".png") throw UserError(still.string() + ": the still is written as PNG; give a file ending in .png");
+  if (fs::is_directory(still)) throw UserError(still.string() + ": is a folder; give the still's file name with -o");
+  const fs::path dir = still.parent_path().empty() ? fs::path(".") : still.parent_path();
+  expect_output_folder(dir, "the still");
   ProgressReport progress(quiet);
   StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); }, kCityStages + 1);
   City city = build_city(sketch, clock);
   render::RenderRequest r = request_for(city, o, (out / "sketch.geojson").string());
-  r.still = file.empty() ? out / "render" / "still.png" : file;
-  if (r.still.extension() != ".png") throw UserError(r.still.string() + ": the still is written as PNG; give a file ending in .png");
-  const fs::path dir = r.still.parent_path().empty() ? fs::path(".") : r.still.parent_path();
-  fs::create_directories(dir);
+  r.still = still;
+  create_output_folder(dir);
   r.overview_file = dir / "overview.png", r.minimap_file = dir / "minimap.png";
   nlohmann::ordered_json stats = clock.run("render", [&] { return render_with_progress(city, r, progress); });
   fs::path json = r.still;
@@ -256,7 +296,7 @@ int render_folder(const fs::path& out, const RenderOptions& o, const fs::path& f
   std::ofstream(json, std::ios::binary) << stats.dump(2) << "\n";
   if (file.empty()) {
     // The folder's own render: report.json records it too (written aside, then renamed).
-    nlohmann::ordered_json full = nlohmann::ordered_json::parse(std::ifstream(out / "report.json"), nullptr, false);
+    nlohmann::ordered_json full = nlohmann::ordered_json::parse(output_file(out / "report.json"), nullptr, false);
     if (!full.is_discarded()) {
       full["render"] = stats;
       std::ofstream(out / ".report.json.partial", std::ios::binary) << full.dump(2) << "\n";

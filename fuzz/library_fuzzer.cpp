@@ -1,5 +1,7 @@
-// The model library manifest on any bytes, its entries naming a small house that exists:
-// a library or one UserError.
+// The model library manifest on any bytes, its entries naming a small house and a lamp that
+// exist: a library or one UserError. Seed 004's keys (lots, channels, clutter kinds and
+// their spacing) are read too, and the channels checked against a sketch's one, as
+// generate does.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -12,7 +14,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   exacity::fuzz::write(dir / "house.obj",
                        "v 0 0 0\nv 6 0 0\nv 6 0 -8\nv 0 0 -8\nv 0 5 0\nv 6 5 0\nv 6 5 -8\nv 0 5 -8\n"
                        "f 1 2 3 4\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n");
+  exacity::fuzz::write(dir / "lamp.obj",
+                       "v 0 0 0\nv 0.2 0 0\nv 0.2 0.2 0\nv 0 0.2 0\nv 0 0 5\nv 0.2 0 5\nv 0.2 0.2 5\nv 0 0.2 5\n"
+                       "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n");
   exacity::fuzz::write(dir / "library.json", std::string(reinterpret_cast<const char*>(data), size));
-  exacity::fuzz::expect_user_errors_only([&] { exacity::load_model_library(dir / "library.json"); });
+  exacity::fuzz::expect_user_errors_only([&] {
+    exacity::ModelLibrary library = exacity::load_model_library(dir / "library.json");
+    library.check_channels({{"downtown", dir / "downtown.png", {0, 0, 100, 100}}});
+    for (exacity::ZoneType zone : {exacity::ZoneType::Residential, exacity::ZoneType::Commercial})
+      library.lot_choices(zone);
+  });
   return 0;
 }

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <stdexcept>
+
+#include "generate/input_file.h"
 
 namespace render {
 namespace {
@@ -139,11 +139,10 @@ CameraPath parse_camera_path(const std::string& text, const std::string& file, f
 }
 
 CameraPath load_camera_path(const std::filesystem::path& file, float fov_y) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw std::invalid_argument(file.string() + ": cannot read the camera path");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_camera_path(text.str(), file.string(), fov_y);
+  std::string text, why;
+  if (!exacity::read_input(file, exacity::kMaxSettingsFileBytes, text, why))
+    throw std::invalid_argument(file.string() + ": cannot read the camera path (" + why + "); give a camera path's JSON file to --path");
+  return parse_camera_path(text, file.string(), fov_y);
 }
 
 }  // namespace render

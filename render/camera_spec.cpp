@@ -141,6 +141,8 @@ Camera place_camera(const CameraSpec& spec, const exacity::City& city) {
   };
   if (spec.road >= 0) {
     const auto& roads = city.ground.roads;
+    if (roads.empty())
+      throw std::invalid_argument("the city has no roads to stand on; use pedestrian:at=X,Y,heading=DEG instead");
     if (spec.road >= static_cast<int>(roads.size()))
       throw std::invalid_argument("the city has no road " + std::to_string(spec.road) + " (its roads are 0 to " +
                                   std::to_string(static_cast<int>(roads.size()) - 1) +

@@ -5,13 +5,13 @@
 # rerun it with build/fuzz/fuzz/TARGET_fuzzer FILE.
 #
 #   bash scripts/fuzz.sh [SECONDS per target, default 300] [TARGET ...]
-#   targets: sketch obj library real city (default: all)
+#   targets: sketch obj library real city grid grammar camera_path (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-300}
 shift || true
 targets=("$@")
-((${#targets[@]})) || targets=(sketch obj library real city)
+((${#targets[@]})) || targets=(sketch obj library real city grid grammar camera_path)
 
 bash scripts/install-deps.sh
 if ! command -v clang++ >/dev/null; then

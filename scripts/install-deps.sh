@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 packages=(
   g++ cmake ninja-build ccache pkg-config
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
-  libopenmesh-dev libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libtbb-dev
+  libopenmesh-dev libembree-dev libopenimageio-dev libpng-dev openimageio-tools libopenexr-dev libtbb-dev
   nlohmann-json3-dev libcli11-dev libtinygltf-dev libcpp-httplib-dev
   libgtest-dev libgmock-dev libbenchmark-dev libgoogle-perftools-dev libgeos-dev
   libgdal-dev libosmium2-dev libexpat1-dev libbz2-dev zlib1g-dev

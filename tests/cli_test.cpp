@@ -536,3 +536,112 @@ TEST(Cli, AHighwayAcrossTheWholeCoordinateRangeIsDressedOnlyWhereZonesAre) {
     EXPECT_GE(lamps, 4);
   }
 }
+
+namespace {
+
+// The program under a time limit: a hang fails the test (exit 124) instead of stalling it.
+Result run_within_a_minute(const std::string& args) { return shell("timeout 60 " + std::string(EXACITY_BINARY) + " " + args); }
+
+}  // namespace
+
+// Every file a sketch names is read only when it is a regular file: a device such as
+// /dev/zero hung the run or took memory without end, and a folder read as an empty file.
+TEST(Cli, InputsThatAreNotRegularFilesAreOneLineAndExitTwo) {
+  fs::path dir = testing_util::temp_dir("cli-not-files");
+  const std::string zone =
+      R"({"type":"Feature","properties":{"zone":"residential"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[300,0],[300,200],[0,200],[0,0]]]}})";
+  const std::string device = " (it is not a regular file but a device, pipe or socket); ";
+  struct Case {
+    std::string name, settings, expect;
+  };
+  const std::vector<Case> cases = {
+      {"heightmap", R"({"terrain":{"heightmap":"/dev/zero","bounds":[0,0,300,200]}})",
+       "/dev/zero: heightmap cannot be read" + device},
+      {"grammar", R"({"zones":{"residential":{"layout":"grammar","grammar":"/dev/zero"}}})",
+       "/dev/zero: cannot read the grammar" + device},
+      {"grammar-folder", R"({"zones":{"residential":{"layout":"grammar","grammar":"."}}})",
+       (dir / ".").string() + ": cannot read the grammar (it is a folder); "},
+      {"grid", R"({"grid":"/dev/zero"})", "cannot read the grid map /dev/zero" + device},
+      {"models", R"({"models":"/dev/zero"})", "/dev/zero: cannot read the model library" + device},
+  };
+  for (const Case& c : cases) {
+    const fs::path sketch = dir / (c.name + ".geojson"), out = dir / ("out-" + c.name);
+    std::ofstream(sketch) << R"({"type":"FeatureCollection","exacity":)" + c.settings + R"(,"features":[)" + zone + "]}";
+    const Result r = run_within_a_minute("generate " + sketch.string() + " -o " + out.string() + " -q --threads 1");
+    EXPECT_EQ(r.code, 2) << c.name << ": " << r.out;
+    EXPECT_EQ(r.out.rfind("exacity: error: ", 0), 0u) << c.name << ": " << r.out;
+    EXPECT_NE(r.out.find(c.expect), std::string::npos) << c.name << ": " << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << c.name << ": " << r.out;
+    EXPECT_FALSE(fs::exists(out)) << c.name;
+  }
+  // A model library's OBJ file that is a device: outside the library's folder, so never opened.
+  std::ofstream(dir / "library.json") << R"({"models": [{"file": "/dev/zero", "zones": ["residential"]}]})";
+  Result r = run_within_a_minute("generate " + small_sketch(dir).string() + " --models " + (dir / "library.json").string() +
+                                 " -o " + (dir / "out-obj").string() + " -q --threads 1");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_EQ(r.out, "exacity: error: " + (dir / "library.json").string() + " models[0]: \"file\" /dev/zero lies outside " +
+                       dir.string() + "; keep a model library's OBJ, MTL and texture files in its manifest's folder or below\n");
+  r = run_within_a_minute("generate /dev/zero -o " + (dir / "out-sketch").string() + " -q");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_EQ(r.out.rfind("exacity: error: /dev/zero: cannot read the sketch" + device, 0), 0u) << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+}
+
+// A render's -o that is a file, where a folder must go, is the user's to fix (exit 2, one
+// line, before the city is built), as generate's is; so is a camera path that is a device.
+TEST(Cli, RenderOutputsThatAreFilesAndPathsThatAreDevicesAreOneLine) {
+  fs::path dir = testing_util::temp_dir("cli-render-paths");
+  const fs::path out = dir / "out";
+  Result r = generate_one_street_block(dir, out);
+  ASSERT_EQ(r.code, 0) << r.out;
+  std::ofstream(dir / "path.json") << R"({"fps": 1, "keys": [{"t": 0, "camera": "look:from=-50,-80,60,to=80,60,0"},
+    {"t": 1, "camera": "look:from=-40,-80,60,to=80,60,0"}]})";
+  std::ofstream(dir / "a-file") << "mine";
+  const std::string render = "render " + out.string() + " --size 16x16 --spp 1 -q ";
+  r = run_within_a_minute(render + "--path " + (dir / "path.json").string() + " --frames 0:0 -o " + (dir / "a-file").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_EQ(r.out, "exacity: error: " + (dir / "a-file").string() +
+                       ": is a file, so the frames cannot be written there; choose a folder path with -o\n");
+  r = run_within_a_minute(render + "-o " + (dir / "a-file" / "still.png").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_EQ(r.out, "exacity: error: " + (dir / "a-file").string() +
+                       ": is a file, so the still cannot be written there; choose a folder path with -o\n");
+  fs::create_directories(dir / "folder.png");
+  r = run_within_a_minute(render + "-o " + (dir / "folder.png").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  EXPECT_EQ(read(dir / "a-file"), "mine");
+  r = run_within_a_minute(render + "--path /dev/zero -o " + (dir / "frames").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_EQ(r.out, "exacity: error: /dev/zero: cannot read the camera path (it is not a regular file but a device, pipe or "
+                   "socket); give a camera path's JSON file to --path\n");
+  EXPECT_FALSE(fs::exists(dir / "frames"));
+}
+
+// A city without roads has no road to stand on: said so, not "its roads are 0 to -1".
+TEST(Cli, APedestrianOnARoadOfACityWithoutRoadsIsOneLine) {
+  fs::path dir = testing_util::temp_dir("cli-no-roads");
+  std::ofstream(dir / "park.geojson") << R"({"type": "FeatureCollection", "features": [
+    {"type": "Feature", "properties": {"zone": "park"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [50, 0], [50, 50], [0, 0]]]}}]})";
+  Result r = run("generate " + (dir / "park.geojson").string() + " -q -o " + (dir / "out").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  r = run("render " + (dir / "out").string() + " --camera pedestrian:road=0,along=0 --size 16x16 --spp 1 -q");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_EQ(r.out, "exacity: error: --camera \"pedestrian:road=0,along=0\": the city has no roads to stand on; use "
+                   "pedestrian:at=X,Y,heading=DEG instead\n");
+}
+
+// PROJ's own complaint ("ERROR 1: PROJ: proj_create_from_database: crs not found") went to
+// stderr before Exacity's line: a CRS PROJ does not know is one line.
+TEST(Cli, AnUnknownCrsIsOneLineWithoutProjsOwn) {
+  fs::path dir = testing_util::temp_dir("cli-unknown-crs");
+  std::ofstream(dir / "crs.geojson") << R"({"type": "FeatureCollection",
+    "crs": {"type": "name", "properties": {"name": "EPSG:999999"}}, "features": [
+    {"type": "Feature", "properties": {"zone": "park"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [50, 0], [50, 50], [0, 0]]]}}]})";
+  const Result r = run("generate " + (dir / "crs.geojson").string() + " -q -o " + (dir / "out").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_EQ(r.out.rfind("exacity: error: " + (dir / "crs.geojson").string() + ": crs: ", 0), 0u) << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+}

@@ -43,6 +43,18 @@ std::string box_obj(double w, double d, double h, double z0 = 0) {
   return s + "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
 }
 
+// What load_model_library says of a manifest of `entries` (JSON objects, comma-separated)
+// written into `dir`: its error, or "no error".
+std::string library_error(const fs::path& dir, const std::string& entries) {
+  write(dir, "library.json", R"({"models": [)" + entries + "]}");
+  try {
+    load_model_library(dir / "library.json");
+  } catch (const UserError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
 }  // namespace
 
 TEST(ObjFile, ReadsTheQuirksOfRealFiles) {
@@ -153,15 +165,7 @@ TEST(ModelLibrary, OutlineIsTheExactShadowAndPiecesGetTheirHull) {
 TEST(ModelLibrary, BadEntriesAreNamed) {
   fs::path dir = testing_util::temp_dir("library-bad");
   write(dir, "box.obj", box_obj(4, 4, 4));
-  auto error = [&](const std::string& entry) {
-    write(dir, "library.json", R"({"models": [)" + entry + "]}");
-    try {
-      load_model_library(dir / "library.json");
-    } catch (const UserError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  auto error = [&](const std::string& entry) { return library_error(dir, entry); };
   EXPECT_NE(error(R"({"file": "box.obj", "zones": ["park"]})").find("models[0]: \"zones\""), std::string::npos);
   EXPECT_NE(error(R"({"file": "box.obj", "zones": ["residential"], "up": "x"})").find("\"up\""), std::string::npos);
   EXPECT_NE(error(R"({"file": "box.obj", "zones": ["residential"], "weight": "heavy"})").find("models[0]"), std::string::npos);
@@ -520,4 +524,93 @@ TEST(ObjFile, AnMtllibNameWithSpacesIsReadWhole) {
   TriangleMesh m =
       read_obj(write(dir, "t.obj", "mtllib my materials.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n"));
   EXPECT_EQ(m.materials[0].colour, (Vec3{0.8, 0.1, 0.1}));
+}
+
+TEST(ModelLibrary, AHugeUnitOrAFarVertexIsRefusedBeforeTheOutlineIsComputed) {
+  // The exact union of a model's shadow overflowed at these sizes (a crash in the surface
+  // sweep): the size is checked first, and said as a number, not a long that overflowed.
+  fs::path dir = testing_util::temp_dir("library-huge");
+  write(dir, "box.obj", box_obj(4, 4, 4));
+  write(dir, "far.obj", box_obj(4, 4, 4) + "v 1e308 0 0\nf 1 2 9\n");
+  auto message = [&](const std::string& entry) { return library_error(dir, entry); };
+  for (const char* unit : {"1e300", "1e200", "1e20"}) {
+    const std::string m = message(R"({"file": "box.obj", "zones": ["residential"], "up": "z", "unit": )" + std::string(unit) + "}");
+    EXPECT_NE(m.find("models[0]: the model is "), std::string::npos) << m;
+    EXPECT_NE(m.find("more than the 100000 m a side a model may be; check \"unit\""), std::string::npos) << m;
+    EXPECT_EQ(m.find("-9223372036854775808"), std::string::npos) << m;
+  }
+  EXPECT_EQ(message(R"({"file": "box.obj", "zones": ["residential"], "up": "z", "unit": 1e20})"),
+            (dir / "library.json").string() +
+                " models[0]: the model is 4e+20 x 4e+20 x 4e+20 m at \"unit\" 1e+20, more than the 100000 m a side a "
+                "model may be; check \"unit\" (\"mm\" for millimetres) and vertices far from the rest");
+  EXPECT_NE(message(R"({"file": "far.obj", "zones": ["residential"], "up": "z"})").find("the model is 1e+308 x "),
+            std::string::npos);
+  // Within that, a placed model's own bound (1000 m wide at its largest scale) names its size.
+  EXPECT_NE(message(R"({"file": "box.obj", "zones": ["residential"], "up": "z", "unit": 300, "scale": [1, 1]})")
+                .find("the model is 1200 x 1200 x 1200 m at its largest \"scale\""),
+            std::string::npos);
+}
+
+TEST(ModelLibrary, ClutterSpacingHasAFloor) {
+  // Stations along a street number its length over the spacing: 1e-9 m ran for hours.
+  fs::path dir = testing_util::temp_dir("library-spacing");
+  write(dir, "lamp.obj", box_obj(0.3, 0.3, 5));
+  auto message = [&](const std::string& spacing) {
+    return library_error(dir, R"({"file": "lamp.obj", "kind": "lamp", "up": "z", "spacing": )" + spacing + "}");
+  };
+  EXPECT_EQ(message("1e-9"), (dir / "library.json").string() +
+                                 " models[0]: \"spacing\" is 1e-09; it must be metres between models along a street, "
+                                 "at least 1");
+  EXPECT_NE(message("0.5").find("\"spacing\" is 0.5"), std::string::npos);
+  EXPECT_EQ(message("1"), "no error");
+}
+
+TEST(ObjFile, OnlyRegularFilesAreRead) {
+  // A device reads forever: an OBJ, and an .mtl it names, must be regular files.
+  fs::path dir = testing_util::temp_dir("obj-devices");
+  auto message = [&](const fs::path& file) {
+    try {
+      read_obj(file);
+    } catch (const UserError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(message("/dev/zero"), "/dev/zero: cannot read the model file (it is not a regular file but a device, pipe or "
+                                  "socket); name an .obj file in the model library");
+  EXPECT_EQ(message(dir), dir.string() + ": cannot read the model file (it is a folder); name an .obj file in the model library");
+  const fs::path obj = write(dir, "m.obj", "mtllib /dev/zero\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_EQ(message(obj), "/dev/zero: cannot read the material library " + obj.string() +
+                              " line 1 names (it is not a regular file but a device, pipe or socket); name an .mtl "
+                              "file in the mtllib line");
+}
+
+TEST(ModelLibrary, ItsFilesStayInTheManifestsFolder) {
+  // As the server keeps a sketch's files in its work folder, a library's OBJ, MTL and
+  // texture files lie in its manifest's folder or below: "mtllib ../../etc/passwd" is not read.
+  fs::path dir = testing_util::temp_dir("library-confined"), lib = dir / "lib";
+  fs::create_directories(lib / "sub");
+  write(dir, "outside.obj", box_obj(4, 4, 4));
+  write(dir, "outside.mtl", "newmtl red\nKd 1 0 0\n");
+  write(lib, "inside.mtl", "newmtl red\nKd 1 0 0\n");
+  write(lib / "sub", "deeper.mtl", "newmtl red\nKd 1 0 0\nmap_Kd ../../outside.png\n");
+  auto message = [&](const std::string& file, const std::string& obj_head) {
+    write(lib, "m.obj", obj_head + box_obj(4, 4, 4));
+    return library_error(lib, R"({"file": ")" + file + R"(", "zones": ["residential"], "up": "z"})");
+  };
+  const std::string keep = "; keep a model library's OBJ, MTL and texture files in its manifest's folder or below";
+  EXPECT_EQ(message("m.obj", "mtllib inside.mtl\nmtllib sub/../inside.mtl\n"), "no error");
+  EXPECT_EQ(message("../outside.obj", ""), (lib / "library.json").string() + " models[0]: \"file\" ../outside.obj lies outside " +
+                                               lib.string() + keep);
+  EXPECT_EQ(message("m.obj", "mtllib ../../../../etc/passwd\n"),
+            (lib / "m.obj").string() + " line 1: mtllib ../../../../etc/passwd lies outside " + lib.string() + keep);
+  EXPECT_EQ(message("m.obj", "mtllib ../outside.mtl\n"),
+            (lib / "m.obj").string() + " line 1: mtllib ../outside.mtl lies outside " + lib.string() + keep);
+  EXPECT_EQ(message("m.obj", "mtllib sub/deeper.mtl\n"),
+            (lib / "sub" / "deeper.mtl").string() + " line 3: map_Kd ../../outside.png lies outside " + lib.string() + keep);
+  // A symbolic link out of the folder is outside too.
+  fs::remove(lib / "link.mtl");
+  fs::create_symlink(dir / "outside.mtl", lib / "link.mtl");
+  EXPECT_EQ(message("m.obj", "mtllib link.mtl\n"),
+            (lib / "m.obj").string() + " line 1: mtllib link.mtl lies outside " + lib.string() + keep);
 }

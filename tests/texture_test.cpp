@@ -244,13 +244,26 @@ TEST(Textures, AMissingOrUnreadableTextureStopsTheRunWithOneLine) {
   write(dir / "checker.png", "\x89PNG\r\n\x1a\ncut short");
   r = run(generate);
   EXPECT_EQ(r.code, 2) << r.out;
-  // Exacity's one line (libpng may print its own before it: not ours to silence).
-  const std::string line = r.out.substr(r.out.find("exacity: "));
-  EXPECT_EQ(std::count(line.begin(), line.end(), '\n'), 1) << r.out;
-  EXPECT_EQ(line.rfind("exacity: error: " + (dir / "box.mtl").string() + " line 3: map_Kd " +
-                           (dir / "checker.png").string() + " cannot be decoded (",
-                       0),
+  // Exacity's one line, libpng's reason in it ("libpng error: ..." printed on its own before).
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  EXPECT_EQ(r.out.rfind("exacity: error: " + (dir / "box.mtl").string() + " line 3: map_Kd " +
+                            (dir / "checker.png").string() + " cannot be decoded (",
+                        0),
             0u)
       << r.out;
   EXPECT_FALSE(fs::exists(out));
+  // Cut short inside its pixels, and a byte of its pixels changed (its checksum then wrong): the same.
+  write_checker(dir / "whole.png");
+  const std::string whole = read(dir / "whole.png");
+  const std::size_t pixels = whole.find("IDAT") + 6;
+  std::string changed = whole;
+  changed[pixels] = static_cast<char>(changed[pixels] ^ 0x55);
+  for (const std::string& broken : {whole.substr(0, pixels), changed}) {
+    write(dir / "checker.png", broken);
+    r = run(generate);
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+    EXPECT_EQ(r.out.rfind("exacity: error: ", 0), 0u) << r.out;
+    EXPECT_FALSE(fs::exists(out));
+  }
 }

@@ -6,6 +6,8 @@
 #include <OpenImageIO/imageio.h>
 
 #include "generate/errors.h"
+#include "generate/input_file.h"
+#include "generate/png_check.h"
 
 namespace exacity {
 
@@ -25,11 +27,20 @@ GreyImage read_grey_image(const std::filesystem::path& path, const std::string& 
   if (!std::filesystem::exists(path))
     fail("not found; fix " + named_by + " (it is read relative to the sketch's folder)");
   if (std::filesystem::is_directory(path)) fail("is a folder; name an image file");
+  std::string bytes, why;
+  if (!read_input(path, kMaxDataFileBytes, bytes, why)) fail("cannot be read (" + why + "); name an image file in " + named_by);
+  if (is_png(bytes))
+    if (const std::string problem = png_problem(bytes); !problem.empty())
+      fail("is unreadable (" + problem + "); save it as an 8/16-bit PNG, TIFF or EXR");
   auto in = OIIO::ImageInput::open(file);
   if (!in) fail("is unreadable (" + OIIO::geterror() + "); save it as an 8/16-bit PNG, TIFF or EXR");
   const OIIO::ImageSpec& is = in->spec();
-  const int w = is.width, h = is.height, channels = is.nchannels;
+  // Grey, or grey saved as RGB: the first three channels say all (alpha is not read).
+  const int w = is.width, h = is.height, channels = std::min(is.nchannels, 3);
   if (w < 1 || h < 1 || channels < 1) fail("has no pixels");
+  if (static_cast<double>(w) * h > kMaxGreyImagePixels)
+    fail("is " + std::to_string(w) + " x " + std::to_string(h) + " pixels, more than the " +
+         std::to_string(kMaxGreyImagePixels) + " an image may have; scale it down");
   std::vector<float> pixels(static_cast<std::size_t>(w) * h * channels);
   if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
     fail("is unreadable (" + in->geterror() + ")");

@@ -19,6 +19,10 @@ struct GreyImage {
   double sample(const geom::Box& bounds, geom::Vec2 p) const;
 };
 
+// The most pixels a heightmap or channel image may have (8192 x 4096; a 1-arc-second
+// elevation tile has 3601 x 3601): read as floats, the image takes 12 bytes a pixel.
+inline constexpr long kMaxGreyImagePixels = 8192L * 4096;
+
 // Reads the image with OpenImageIO: unsigned 8/16/32-bit images scaled by their type's
 // maximum, float and signed ones by their largest value; grey saved as RGB is accepted, a
 // colour image is not. Throws UserError "FILE: ROLE ...", `role` naming what the image is

@@ -567,7 +567,7 @@ TEST(GridMapErrors, AMissingFileOrGridIsOneLine) {
     load_sketch(dir / "folder.grid");
     ADD_FAILURE() << "read a folder";
   } catch (const UserError& e) {
-    EXPECT_NE(std::string(e.what()).find("not a file"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("(it is a folder)"), std::string::npos) << e.what();
   }
   std::ofstream(dir / "sketch.geojson")
       << R"({"type": "FeatureCollection", "exacity": {"grid": "none.grid"}, "features": []})";

@@ -2,16 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <optional>
 #include <set>
-#include <sstream>
 
 #include "generate/city/grid_map.h"
 #include "generate/gis/osm_tags.h"
 #include "generate/gis/projection.h"
 #include "generate/gis/sketch_sources.h"
 #include "generate/errors.h"
+#include "generate/input_file.h"
 #include "generate/layout/street_graph.h"
 #include "geom/measure.h"
 
@@ -417,14 +416,10 @@ class Parser {
     const std::string w = "\"exacity\".grid";
     if (!ex["grid"].is_string()) fail(w, "expected the path of a grid map (a string), relative to the sketch");
     const fs::path file = sketch_path.parent_path() / ex["grid"].get<std::string>();
-    std::ifstream in(file, std::ios::binary);
-    if (!in || fs::is_directory(file))
-      fail(w, "cannot read the grid map " + file.string() + " (" +
-                  (fs::exists(file) ? "permission denied or not a file" : "no such file") +
-                  "); give the path of a grid map, relative to the sketch");
-    std::stringstream text;
-    text << in.rdbuf();
-    nlohmann::ordered_json features = grid_map_features(text.str(), file);
+    std::string text, why;
+    if (!read_input(file, kMaxDataFileBytes, text, why))
+      fail(w, "cannot read the grid map " + file.string() + " (" + why + "); give the path of a grid map, relative to the sketch");
+    nlohmann::ordered_json features = grid_map_features(text, file);
     grid_features_ = static_cast<int>(features.size());
     for (auto& f : doc["features"]) features.push_back(std::move(f));
     doc["features"] = std::move(features);
@@ -536,20 +531,22 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
 
 namespace {
 
+constexpr const char* kSketchFix =
+    "give the path of a GeoJSON sketch, a grid map (.grid), a vector file OGR reads or an OSM extract";
+
 void expect_readable(const fs::path& path, SketchSource source) {
-  // A folder opens, and reads as nothing; but OGR reads a folder of shapefiles as one.
-  if (!fs::exists(path) || (fs::is_directory(path) && source != SketchSource::Ogr) || !std::ifstream(path, std::ios::binary)) {
-    throw UserError(path.string() + ": cannot read the sketch (" +
-                    (fs::exists(path) ? "permission denied or not a file" : "no such file") +
-                    "); give the path of a GeoJSON sketch, a grid map (.grid), a vector file OGR reads or an OSM extract");
-  }
+  // OGR reads a folder of shapefiles as one sketch.
+  if (source == SketchSource::Ogr && fs::is_directory(path)) return;
+  expect_input(path, kMaxDataFileBytes, "the sketch", kSketchFix);
 }
 
-std::string file_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+std::string file_text(const fs::path& path) { return read_input(path, kMaxDataFileBytes, "the sketch", kSketchFix); }
+
+// project_to_metres, with GDAL's error handler quiet first: PROJ's complaints ("ERROR 1:
+// PROJ: ... crs not found") would print beside the one line the UserError says.
+bool in_metres(nlohmann::ordered_json& doc, const fs::path& path) {
+  start_gdal();
+  return project_to_metres(doc, path);
 }
 
 // An OSM extract's or another vector file's features as a GeoJSON document, with its own
@@ -601,7 +598,7 @@ Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& mod
   expect_readable(path, source);
   if (source == SketchSource::Osm || source == SketchSource::Ogr) {
     nlohmann::ordered_json doc = gis_document(path, source);
-    project_to_metres(doc, path);
+    in_metres(doc, path);
     apply_osm_tags_and_layout(doc, path);
     return made_sketch(doc, path, read_grammars, models);
   }
@@ -612,7 +609,7 @@ Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& mod
   if (doc.is_discarded() || !doc.is_object()) return parse_sketch(text, path, read_grammars, models);  // it says what is wrong
   // The settings first: their terrain and channel bounds are in the sketch's CRS too.
   const bool beside = add_settings_beside(doc, path);
-  const bool projected = project_to_metres(doc, path);
+  const bool projected = in_metres(doc, path);
   const bool tagged = apply_osm_tags_and_layout(doc, path);
   if (!projected && !beside && !tagged) return parse_sketch(text, path, read_grammars, models);
   return made_sketch(doc, path, read_grammars, models);
@@ -666,7 +663,7 @@ Sketch load_sketch(const std::vector<fs::path>& paths, bool read_grammars, const
     }
     for (nlohmann::ordered_json& f : part["features"]) doc["features"].push_back(std::move(f));
   }
-  project_to_metres(doc, paths[0]);
+  in_metres(doc, paths[0]);
   apply_osm_tags_and_layout(doc, paths[0]);
   return made_sketch(doc, paths[0], read_grammars, models);
 }

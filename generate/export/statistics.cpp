@@ -1,7 +1,6 @@
 #include "generate/export/statistics.h"
 
 #include <cmath>
-#include <fstream>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -9,6 +8,7 @@
 #include <unordered_set>
 
 #include "generate/errors.h"
+#include "generate/input_file.h"
 #include "generate/parcels/lots.h"
 #include "geom/measure.h"
 #include "geom/segment_index.h"
@@ -312,9 +312,8 @@ struct RealFeatures {
 };
 
 ordered_json read_feature_collection(const std::filesystem::path& file) {
-  std::ifstream stream(file, std::ios::binary);
-  if (!stream) throw UserError(file.string() + ": cannot be read; give a GeoJSON file of footprints or streets");
-  ordered_json doc = ordered_json::parse(stream, nullptr, false);
+  ordered_json doc = ordered_json::parse(
+      read_input(file, kMaxDataFileBytes, "real data", "give a GeoJSON file of footprints or streets"), nullptr, false);
   if (doc.is_discarded() || !doc.is_object() || !doc.contains("features") || !doc["features"].is_array())
     throw UserError(file.string() + ": not a GeoJSON FeatureCollection; give footprints (Polygons) or streets (LineStrings)");
   return doc;

@@ -1,12 +1,12 @@
 #include <algorithm>
 #include <cctype>
-#include <fstream>
 #include <memory>
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
 #include "generate/errors.h"
+#include "generate/input_file.h"
 #include "generate/gis/osm_tags.h"
 #include "generate/gis/projection.h"
 #include "generate/gis/sketch_sources.h"
@@ -66,8 +66,8 @@ bool add_settings_beside(ordered_json& doc, const fs::path& path) {
   if (doc.contains("exacity"))
     throw UserError(file.string() + ": the sketch " + path.filename().string() +
                     " has settings of its own (\"exacity\"); keep one of the two");
-  std::ifstream in(file, std::ios::binary);
-  ordered_json settings = ordered_json::parse(in, nullptr, false);
+  ordered_json settings =
+      ordered_json::parse(read_input(file, kMaxSettingsFileBytes, "the settings", "write them as a JSON object"), nullptr, false);
   if (settings.is_discarded() || !settings.is_object())
     throw UserError(file.string() + ": not a JSON object of settings; write it as the \"exacity\" member of a sketch is written");
   doc["exacity"] = std::move(settings);

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <set>
 #include <sstream>
 
 #include "generate/errors.h"
+#include "generate/input_file.h"
 #include "geom/measure.h"
 #include "geom/triangulate.h"
 
@@ -147,14 +147,9 @@ Grammar parse_grammar(const std::string& text, const std::filesystem::path& file
 }
 
 Grammar load_grammar(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in)
-    throw UserError(file.string() + ": cannot read the grammar (" +
-                    (std::filesystem::exists(file) ? "permission denied or not a file" : "no such file") +
-                    "); give the path of a grammar file, relative to the sketch");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_grammar(ss.str(), file);
+  return parse_grammar(read_input(file, kMaxSettingsFileBytes, "the grammar",
+                                  "give the path of a grammar file, relative to the sketch"),
+                       file);
 }
 
 geom::Vec2 map_corner(const std::vector<geom::Vec2>& p, geom::Vec2 uv) {

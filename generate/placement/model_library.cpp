@@ -1,11 +1,11 @@
 #include "generate/placement/model_library.h"
 
 #include <cmath>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
 #include "generate/errors.h"
+#include "generate/input_file.h"
 #include "generate/export/geojson.h"
 #include "geom/grid.h"
 #include "geom/outline.h"
@@ -89,13 +89,25 @@ Model normalise_model(TriangleMesh mesh, const std::string& up, const std::strin
   // Turn the front to -y: (fx, fy) -> (0, -1).
   const double c = -f[1], s = -f[0];  // cos and sin of the turn
   Model m;
+  // Turned by a quarter turn at most: each coordinate is one of the file's, times the unit.
   for (Vec3& v : mesh.vertices) {
     Vec3 p = to_z_up(v);
     v = {(c * p[0] - s * p[1]) * unit, (s * p[0] + c * p[1]) * unit, p[2] * unit};
   }
   geom::Box box = geom::Box::none();
   double bottom = INFINITY, top = -INFINITY;
-  for (const Vec3& v : mesh.vertices) box.add(geom::Vec2{v[0], v[1]}), bottom = std::min(bottom, v[2]), top = std::max(top, v[2]);
+  bool finite = true;
+  for (const Vec3& v : mesh.vertices) {
+    finite = finite && std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+    box.add(geom::Vec2{v[0], v[1]}), bottom = std::min(bottom, v[2]), top = std::max(top, v[2]);
+  }
+  // The exact outline below works in the model's own coordinates: a wrong unit (or a stray
+  // vertex far out) would overflow it, so the size is checked first.
+  if (!finite || !(box.width() <= kMaxModelSize && box.height() <= kMaxModelSize && top - bottom <= kMaxModelSize))
+    throw UserError(where + ": the model is " + format_number(box.width()) + " x " + format_number(box.height()) + " x " +
+                    format_number(top - bottom) + " m at \"unit\" " + format_number(unit) + ", more than the " +
+                    std::to_string(static_cast<long>(kMaxModelSize)) + " m a side a model may be; check \"unit\" (\"mm\" for millimetres) " +
+                    "and vertices far from the rest");
   const double cx = (box.min_x + box.max_x) / 2, cy = (box.min_y + box.max_y) / 2;
   for (Vec3& v : mesh.vertices) v = {v[0] - cx, v[1] - cy, v[2] - bottom};
   m.width = box.width(), m.depth = box.height(), m.height = top - bottom;
@@ -139,11 +151,9 @@ namespace {
 [[noreturn]] void fail(const std::string& where, const std::string& what) { throw UserError(where + ": " + what); }
 
 json read_manifest(const fs::path& manifest) {
-  std::ifstream in(manifest, std::ios::binary);
-  if (!in)
-    throw UserError(manifest.string() +
-                    ": cannot read the model library; check the sketch's \"models\" path, or generate's --models");
-  json doc = json::parse(in, nullptr, false);
+  json doc = json::parse(read_input(manifest, kMaxSettingsFileBytes, "the model library",
+                                    "check the sketch's \"models\" path, or generate's --models"),
+                         nullptr, false);
   if (doc.is_discarded() || !doc.is_object() || !doc.contains("models") || !doc["models"].is_array())
     throw UserError(manifest.string() + ": not a model library; it must be JSON like {\"models\": [{\"file\": ..., \"zones\": [...]}]}");
   return doc;
@@ -254,9 +264,16 @@ void read_placement(const json& e, const std::string& where, Model& m) {
     m.min_scale = s[0], m.max_scale = s[1];
   }
   m.spacing = e.value("spacing", default_spacing(m.kind));
-  if (!(m.spacing > 0) || !std::isfinite(m.spacing)) fail(where, "\"spacing\" must be a positive distance in metres");
+  // Stations along every street, and a park's tree spots, number length / spacing and
+  // area / spacing²: the smallest spacing bounds that work.
+  if (!(m.spacing >= kMinSpacing) || !std::isfinite(m.spacing))
+    fail(where, "\"spacing\" is " + (e.contains("spacing") ? e["spacing"].dump() : format_number(m.spacing)) +
+                    "; it must be metres between models along a street, at least " + format_number(kMinSpacing));
   if (m.width * m.max_scale > 1000 || m.depth * m.max_scale > 1000 || m.height * m.max_scale > 2000)
-    fail(where, "the model is " + std::to_string(static_cast<long>(m.width)) + " m wide; check \"unit\" (\"mm\" for millimetres)");
+    fail(where, "the model is " + format_number(m.width * m.max_scale) + " x " + format_number(m.depth * m.max_scale) +
+                    " x " + format_number(m.height * m.max_scale) +
+                    " m at its largest \"scale\", more than a placed model's 1000 x 1000 x 2000 m; check \"unit\" "
+                    "(\"mm\" for millimetres) and \"scale\"");
 }
 
 // One entry of the manifest. The checks run in the order their errors are reported: the
@@ -265,13 +282,17 @@ Model read_model(const json& e, const fs::path& manifest, const std::string& whe
   check_keys(e, where);
   if (!e.contains("file") || !e["file"].is_string()) fail(where, "\"file\" must name an OBJ file");
   const fs::path file = manifest.parent_path() / e["file"].get<std::string>();
+  const fs::path folder = fs::absolute(manifest).parent_path();
+  if (!lies_within(file, folder))
+    fail(where, "\"file\" " + e["file"].get<std::string>() + " lies outside " + folder.string() +
+                    "; keep a model library's OBJ, MTL and texture files in its manifest's folder or below");
   const std::string up = e.value("up", "y");
   if (up != "y" && up != "z") fail(where, "\"up\" must be \"y\" or \"z\"");
   const std::string front = e.value("front", up == "y" ? "+z" : "-y");
   if (front.size() != 2 || (front[0] != '+' && front[0] != '-') || front[1] < 'x' || front[1] > 'z')
     fail(where, "\"front\" must be an axis such as \"+z\" or \"-y\"");
   const double unit = read_unit(e, where);
-  Model m = normalise_model(read_obj(file, &textures), up, front, unit, where);
+  Model m = normalise_model(read_obj(file, &textures, folder), up, front, unit, where);
   m.name = e.value("name", file.stem().string());
   m.kind = read_kind(e, where);
   read_zones(e, where, m);

@@ -75,6 +75,12 @@ inline std::vector<Slab> slabs_of(const Model& m) {
 inline constexpr std::size_t kExactOutlineTriangles = 20000;
 inline constexpr double kLotMargin = 0.5;  // m: a library lot's room around its model at its smallest, each side
 inline constexpr std::size_t kOutlineCorners = 64;
+// m: a model's largest width, depth or height in the library's frame (its "unit" applied),
+// checked before its outline is computed; placing checks the tighter 1000 x 1000 x 2000 m at
+// its largest "scale".
+inline constexpr double kMaxModelSize = 100000;
+// m: the least "spacing" between street furniture or clutter along a street.
+inline constexpr double kMinSpacing = 1;
 
 struct ModelLibrary {
   std::filesystem::path file;

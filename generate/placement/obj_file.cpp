@@ -4,7 +4,6 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <set>
@@ -12,6 +11,7 @@
 #include <stdexcept>
 
 #include "generate/errors.h"
+#include "generate/input_file.h"
 #include "geom/triangulate.h"
 
 namespace exacity {
@@ -90,10 +90,18 @@ struct MtlEntry {
   TextureMap map;
 };
 
-// Diffuse colours and textures by material name; a missing or unreadable library leaves the
-// defaults, a texture that is missing or unreadable is refused.
-void read_mtl(const fs::path& file, TextureImages& textures, std::map<std::string, MtlEntry>& entries) {
-  std::ifstream in(file);
+constexpr const char* kOutsideFix =
+    "; keep a model library's OBJ, MTL and texture files in its manifest's folder or below";
+
+// Diffuse colours and textures by material name; a missing library leaves the defaults, one
+// that is not a regular file or is too large, and a texture that is missing or unreadable,
+// are refused. Textures must lie in `within` unless it is empty.
+void read_mtl(const fs::path& file, const std::string& named_by, TextureImages& textures,
+              std::map<std::string, MtlEntry>& entries, const fs::path& within) {
+  std::error_code ec;
+  if (!fs::exists(file, ec)) return;
+  std::istringstream in(read_input(file, kMaxSettingsFileBytes, "the material library " + named_by + " names",
+                                   "name an .mtl file in the mtllib line"));
   std::string line, current;
   int number = 0;
   while (std::getline(in, line)) {
@@ -119,7 +127,10 @@ void read_mtl(const fs::path& file, TextureImages& textures, std::map<std::strin
       } catch (const std::invalid_argument& why) {
         throw UserError(where + ": " + why.what());
       }
-      e.texture = textures.read(file.parent_path() / e.map.file, where);
+      const fs::path image = file.parent_path() / e.map.file;
+      if (!within.empty() && !lies_within(image, within))
+        throw UserError(where + ": map_Kd " + e.map.file + " lies outside " + within.string() + kOutsideFix);
+      e.texture = textures.read(image, where);
     }
   }
 }
@@ -156,9 +167,8 @@ class ObjLines {
     return true;
   }
 
-  [[noreturn]] void fail(const std::string& what) const {
-    throw UserError(file_.string() + " line " + std::to_string(number_) + ": " + what);
-  }
+  std::string where() const { return file_.string() + " line " + std::to_string(number_); }
+  [[noreturn]] void fail(const std::string& what) const { throw UserError(where() + ": " + what); }
 
  private:
   std::istream& in_;
@@ -258,7 +268,7 @@ void parse_usemtl(std::istringstream& words, ObjContents& obj) {
   obj.current_material = it->second;
 }
 
-ObjContents parse_obj(std::istream& in, const fs::path& file, TextureImages& textures) {
+ObjContents parse_obj(std::istream& in, const fs::path& file, TextureImages& textures, const fs::path& within) {
   ObjContents obj;
   ObjLines lines(in, file);
   std::string line;
@@ -279,8 +289,12 @@ ObjContents parse_obj(std::istream& in, const fs::path& file, TextureImages& tex
     } else if (key == "mtllib") {
       std::string rest;
       std::getline(words, rest);
-      for (const std::string& name : mtllib_names(rest, file.parent_path()))
-        read_mtl(file.parent_path() / name, textures, obj.mtl);
+      for (const std::string& name : mtllib_names(rest, file.parent_path())) {
+        const fs::path mtl = file.parent_path() / name;
+        if (!within.empty() && !lies_within(mtl, within))
+          lines.fail("mtllib " + name + " lies outside " + within.string() + kOutsideFix);
+        read_mtl(mtl, lines.where(), textures, obj.mtl, within);
+      }
     }
     // o, g, s, l, p and the rest carry nothing Exacity uses.
   }
@@ -397,10 +411,13 @@ void drop_unused_vertices(TriangleMesh& mesh) {
   mesh.vertices = std::move(used);
 }
 
-// What follows `key` on each line of `file` that starts with it.
+// What follows `key` on each line of `file` that starts with it; none when the file cannot
+// be read (its reader says why).
 std::vector<std::string> rests_after(const fs::path& file, const std::string& key) {
   std::vector<std::string> rests;
-  std::ifstream in(file);
+  std::string text, why;
+  if (!read_input(file, kMaxDataFileBytes, text, why)) return rests;
+  std::istringstream in(std::move(text));
   for (std::string line; std::getline(in, line);) {
     std::istringstream words(line);
     std::string first, rest;
@@ -464,17 +481,15 @@ std::vector<std::string> material_files(const fs::path& obj) {
   return names;
 }
 
-TriangleMesh read_obj(const fs::path& file, TextureImages* textures) {
-  if (fs::is_directory(file))
-    throw UserError(file.string() + ": is a folder, not a model file; name an .obj file in the model library");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw UserError(file.string() + ": cannot read this model file; check the path in the model library");
-  return read_obj(in, file, textures);
+TriangleMesh read_obj(const fs::path& file, TextureImages* textures, const fs::path& within) {
+  std::istringstream in(read_input(file, kMaxDataFileBytes, "the model file",
+                                   "name an .obj file in the model library"));
+  return read_obj(in, file, textures, within);
 }
 
-TriangleMesh read_obj(std::istream& in, const fs::path& file, TextureImages* textures) {
+TriangleMesh read_obj(std::istream& in, const fs::path& file, TextureImages* textures, const fs::path& within) {
   TextureImages own;
-  const ObjContents obj = parse_obj(in, file, textures ? *textures : own);
+  const ObjContents obj = parse_obj(in, file, textures ? *textures : own, within);
   TriangleMesh mesh;
   const std::vector<int> vertex_of = weld_positions(obj.positions, mesh.vertices);
   add_triangles(obj, vertex_of, mesh);

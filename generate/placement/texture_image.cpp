@@ -2,10 +2,11 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include <fstream>
 #include <iterator>
 
 #include "generate/errors.h"
+#include "generate/input_file.h"
+#include "generate/png_check.h"
 
 namespace exacity {
 namespace fs = std::filesystem;
@@ -29,12 +30,15 @@ std::string one_line(std::string message) {
 TextureImage decode(const fs::path& file, const std::string& named_by) {
   const std::string where = named_by + ": map_Kd " + file.string();
   if (!fs::exists(file)) throw UserError(where + " does not exist; put the image there or fix the map_Kd line");
-  if (!fs::is_regular_file(file)) throw UserError(where + " is not a file; name an image file in the map_Kd line");
   TextureImage image;
   image.file = file;
-  std::ifstream in(file, std::ios::binary);
-  image.bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  if (!in && !in.eof()) throw UserError(where + " cannot be read; check its permissions");
+  std::string bytes, why;
+  if (!read_input(file, kMaxDataFileBytes, bytes, why))
+    throw UserError(where + " cannot be read (" + why + "); name a PNG or JPEG file in the map_Kd line");
+  image.bytes.assign(bytes.begin(), bytes.end());
+  if (is_png(bytes))
+    if (const std::string problem = png_problem(bytes); !problem.empty())
+      throw UserError(where + " cannot be decoded (" + problem + "); save it again as PNG");
   image.mime_type = mime_type_of(image.bytes);
   if (image.mime_type.empty())
     throw UserError(where + " is not a PNG or JPEG file, the formats glTF embeds; convert it to PNG");
