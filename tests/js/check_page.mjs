@@ -251,6 +251,8 @@ try {
   await chooser.accept([path.join(path.dirname(new URL(import.meta.url).pathname), '..', '..', 'examples', 'valley.png')]);
   for (let i = 0; i < 50 && !(await sketch()).exacity?.terrain; ++i) await new Promise(r => setTimeout(r, 100));
   check((await sketch()).exacity.terrain.heightmap === 'heightmap.png', 'the loaded heightmap is the sketch\'s terrain');
+  await page.waitForFunction(() => document.getElementById('heightmap-in-use').textContent === 'heightmap.png', {timeout: 5000});
+  check(await page.$eval('#models-in-use', e => e.textContent.startsWith('none')), 'the panel names the heightmap, and no model library');
 
   // Reload: the page shows the sketch the server kept.
   await page.reload({waitUntil: 'load'});
@@ -348,6 +350,14 @@ try {
     return !document.getElementById('render-result').hidden && img.complete && img.naturalWidth > 0;
   }, {timeout: 600000});
   check(true, 'the rendered still is on the page');
+  // A click enlarges the still to the view's size, another brings it back.
+  const stillWidth = () => page.$eval('#render-image', i => i.getBoundingClientRect().width);
+  const small = await stillWidth();
+  await page.click('#render-image');
+  const enlarged = await stillWidth();
+  await page.screenshot({path: path.join(out, 'still-large.png')});
+  await page.click('#render-image');
+  check(small <= 480 && enlarged > 1.5 * small && await stillWidth() === small, `a click enlarges the still (${small} to ${enlarged} px) and another shrinks it`);
   listed = await downloads();
   check(listed.some(([href, name]) => href === '/api/render/still.png' && name === 'still.png') &&
         listed.some(([, name]) => name === 'still.json'), 'the still listed to download');
@@ -365,6 +375,7 @@ try {
       () => /Model library models\/library.json loaded/.test(document.getElementById('message').textContent),
       {timeout: 10000}).then(() => true, () => false);
   check(said, 'the page says the library loaded');
+  check(await page.$eval('#models-in-use', e => e.textContent) === 'models/library.json', 'the panel names the model library');
 
   // Save downloads the sketch; Open reads one from a file and shows what the server took.
   const cdp = await page.createCDPSession();

@@ -316,6 +316,8 @@ for (const b of document.querySelectorAll('[data-view]'))
     explore.resize();
   });
 
+$('render-image').addEventListener('click', () => $('render-result').classList.toggle('large'));
+
 $('render-view').addEventListener('click', async () => {
   if (!explore) return;
   const w = explore.container.clientWidth, h = explore.container.clientHeight;
