@@ -94,6 +94,10 @@ try {
   const visible = selector => page.$eval(selector, e => e.checkVisibility());
   check(await visible('#hint') && /Residential/.test(await page.$eval('#hint', h => h.textContent)),
         'the empty page says what to click first');
+  check(await page.$eval('#hint', h => {
+    const r = h.getBoundingClientRect();
+    return document.elementFromPoint(r.x + r.width / 2, r.y + r.height / 2).closest('#map') !== null;
+  }), 'a click on the hint reaches the map under it');
 
   // A residential zone: four clicks and a double-click on the last corner.
   await page.click('[data-tool="residential"]');
