@@ -94,6 +94,10 @@ try {
   const visible = selector => page.$eval(selector, e => e.checkVisibility());
   check(await visible('#hint') && /Residential/.test(await page.$eval('#hint', h => h.textContent)),
         'the empty page says what to click first');
+  check(await page.$eval('#hint', h => {
+    const r = h.getBoundingClientRect();
+    return document.elementFromPoint(r.x + r.width / 2, r.y + r.height / 2).closest('#map') !== null;
+  }), 'a click on the hint reaches the map under it');
 
   // A residential zone: four clicks and a double-click on the last corner.
   await page.click('[data-tool="residential"]');
@@ -175,6 +179,20 @@ try {
         `the refused width's message is shown: ${await message()}`);
   check(await pageFeatures() === await serverFeatures(), 'after the refusal the page shows the server\'s sketch');
   check((await sketch()).features[1].properties.width === 16, 'the refused width is not the server\'s');
+  // Two edits at once, the first refused: the second, made on top of it, is not sent, and
+  // neither stays in the undo history.
+  await page.mouse.click(...at(200, 9));
+  await page.waitForSelector('#feature-panel:not([hidden]) #width-row:not([hidden])', {timeout: 5000});
+  await page.$eval('#road-width', i => {
+    for (const width of ['900', '20']) {
+      i.value = width;
+      i.dispatchEvent(new Event('change'));
+    }
+  });
+  await page.waitForFunction(() => /width/.test(document.getElementById('message').textContent), {timeout: 5000});
+  await new Promise(r => setTimeout(r, 500));
+  check((await sketch()).features[1].properties.width === 16 && await pageFeatures() === await serverFeatures(),
+        'the edit made on top of a refused one is dropped: the page shows the server\'s sketch');
   await page.click('[data-tool="park"]');
   for (const [dx, dy] of [[-300, 120], [-200, 120], [-200, 180]]) {
     await page.mouse.click(...at(dx, dy));
@@ -193,6 +211,19 @@ try {
   await saved(2);
   check(await pageFeatures() === await serverFeatures() && (await sketch()).features[1].properties.width === 16,
         'undo takes the park away, not back to the refused width');
+  // The refused widths left the undo history: the undo before goes to the width drawn.
+  const widthIs = async w => {
+    for (let i = 0; i < 50 && (await sketch()).features[1].properties.width !== w; ++i) await new Promise(r => setTimeout(r, 100));
+    return (await sketch()).features[1].properties.width === w;
+  };
+  await page.keyboard.down('Control');
+  await page.keyboard.press('z');
+  await page.keyboard.up('Control');
+  check(await widthIs(24), `the undo before that goes back to the width drawn, past the refused ones (${(await sketch()).features[1].properties.width})`);
+  await page.keyboard.down('Control');
+  await page.keyboard.press('y');
+  await page.keyboard.up('Control');
+  check(await widthIs(16), 'redo brings the edited width back');
   await page.click('[data-tool="select"]');
 
   // The zone's type, edited in the side panel.
@@ -242,8 +273,8 @@ try {
   check(await page.$eval('textarea[data-zone="commercial"]', t => document.activeElement === t && t.selectionStart === 14),
         'the cursor is where the JSON broke');
   check(JSON.stringify(await sketch()) === kept, 'the sketch is still as it was');
-  check(errors.filter(e => e.startsWith('HTTP 400: ')).length === 3 && errors.every(e => /400/.test(e)),
-        `only the three refusals were errors (${errors.join(' | ')})`);
+  check(errors.filter(e => e.startsWith('HTTP 400: ')).length === 4 && errors.every(e => /400/.test(e)),
+        `only the four refusals were errors (${errors.join(' | ')})`);
   errors.length = 0;
 
   // A heightmap loaded from a file: the sketch points at it, and the map shows it.
@@ -251,6 +282,8 @@ try {
   await chooser.accept([path.join(path.dirname(new URL(import.meta.url).pathname), '..', '..', 'examples', 'valley.png')]);
   for (let i = 0; i < 50 && !(await sketch()).exacity?.terrain; ++i) await new Promise(r => setTimeout(r, 100));
   check((await sketch()).exacity.terrain.heightmap === 'heightmap.png', 'the loaded heightmap is the sketch\'s terrain');
+  await page.waitForFunction(() => document.getElementById('heightmap-in-use').textContent === 'heightmap.png', {timeout: 5000});
+  check(await page.$eval('#models-in-use', e => e.textContent.startsWith('none')), 'the panel names the heightmap, and no model library');
 
   // Reload: the page shows the sketch the server kept.
   await page.reload({waitUntil: 'load'});
@@ -348,6 +381,14 @@ try {
     return !document.getElementById('render-result').hidden && img.complete && img.naturalWidth > 0;
   }, {timeout: 600000});
   check(true, 'the rendered still is on the page');
+  // A click enlarges the still to the view's size, another brings it back.
+  const stillWidth = () => page.$eval('#render-image', i => i.getBoundingClientRect().width);
+  const small = await stillWidth();
+  await page.click('#render-image');
+  const enlarged = await stillWidth();
+  await page.screenshot({path: path.join(out, 'still-large.png')});
+  await page.click('#render-image');
+  check(small <= 480 && enlarged > 1.5 * small && await stillWidth() === small, `a click enlarges the still (${small} to ${enlarged} px) and another shrinks it`);
   listed = await downloads();
   check(listed.some(([href, name]) => href === '/api/render/still.png' && name === 'still.png') &&
         listed.some(([, name]) => name === 'still.json'), 'the still listed to download');
@@ -365,6 +406,7 @@ try {
       () => /Model library models\/library.json loaded/.test(document.getElementById('message').textContent),
       {timeout: 10000}).then(() => true, () => false);
   check(said, 'the page says the library loaded');
+  check(await page.$eval('#models-in-use', e => e.textContent) === 'models/library.json', 'the panel names the model library');
 
   // Save downloads the sketch; Open reads one from a file and shows what the server took.
   const cdp = await page.createCDPSession();

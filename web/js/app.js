@@ -56,8 +56,9 @@ async function sendNow(doc) {
   return true;
 }
 
-// After a refusal the map shows the sketch the server holds, and the refused edit leaves the
-// undo history; the settings form keeps what was typed there, to be fixed and applied again.
+// After a refusal the map shows the sketch the server holds (the refused edit, and any made on
+// top of it, leave the undo history once their sends end: sendEdit); the settings form keeps
+// what was typed there, to be fixed and applied again.
 async function backToServer(message) {
   const doc = await api.getSketch();
   if (doc) {
@@ -65,7 +66,7 @@ async function backToServer(message) {
     map.load(doc, false);
     showCount(doc);
     panel.keep(doc.exacity);
-    history.replaceLast(JSON.stringify(map.sketch()));
+    history.push(JSON.stringify(map.sketch()));
     updateButtons();
   }
   say(message, true, 'Not saved: the map shows the sketch the server has.');
@@ -92,14 +93,22 @@ const panel = new SettingsPanel({
   typo: (what, why) => say(what, true, `${why}. Not applied: fix the box and apply again.`),
 });
 
+// Sends an edit that is in the undo history as `text`; one the server did not take leaves it,
+// so undo never brings back a sketch the server refused.
+async function sendEdit(doc, text) {
+  if (!(await send(doc))) history.forget(text);
+  updateButtons();
+}
+
 function recordEdit() {
   const doc = map.sketch();
+  const text = JSON.stringify(doc);
   showCount(doc);
-  history.push(JSON.stringify(doc));
+  history.push(text);
   updateButtons();
   // An empty sketch is one the CLI refuses too: say so, without sending.
   if (!doc.features.length) return say('Draw a zone to start.');
-  send(doc);
+  sendEdit(doc, text);
 }
 
 function restore(text) {
@@ -109,7 +118,7 @@ function restore(text) {
   showCount(doc);
   panel.show(doc.exacity);
   updateButtons();
-  if (doc.features.length) send(doc);
+  if (doc.features.length) sendEdit(doc, text);
 }
 
 function updateButtons() {
@@ -315,6 +324,8 @@ for (const b of document.querySelectorAll('[data-view]'))
     }
     explore.resize();
   });
+
+$('render-image').addEventListener('click', () => $('render-result').classList.toggle('large'));
 
 $('render-view').addEventListener('click', async () => {
   if (!explore) return;

@@ -7,11 +7,13 @@ export class SketchHistory {
     this.done.push(text);
     this.undone = [];
   }
-  // The sketch as it is instead of the last edit, which was refused.
-  replaceLast(text) {
-    if (!this.done.length) return this.push(text);
-    this.done[this.done.length - 1] = text;
-    if (this.done.length > 1 && this.done[this.done.length - 2] === text) this.done.pop();
+  // Drops the latest `text`, an edit the server refused; the first sketch stays.
+  forget(text) {
+    const i = this.done.lastIndexOf(text);
+    if (i < 1) return;
+    this.done.splice(i, 1);
+    // Equal neighbours left behind are one state.
+    if (this.done[i - 1] === this.done[i]) this.done.splice(i, 1);
   }
   canUndo() { return this.done.length > 1; }
   canRedo() { return this.undone.length > 0; }

@@ -40,6 +40,9 @@ export class SettingsPanel {
     this.current = exacity || {};
     this.note.textContent = '';
     this.seed.value = this.current.seed ?? 1;
+    // The files the sketch names, which Models… and Heightmap… replace.
+    document.getElementById('models-in-use').textContent = this.current.models ?? 'none (Models… loads one)';
+    document.getElementById('heightmap-in-use').textContent = this.current.terrain?.heightmap ?? 'none (flat ground)';
     const zones = this.current.zones || {};
     for (const zone of settingZones) {
       const {layout, ...params} = zones[zone] || {};

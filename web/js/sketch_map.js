@@ -40,11 +40,12 @@ function sketchStyle(feature, resolution, selected) {
   return styles;
 }
 
-// Grid lines about a hundred pixels apart, at a round number of metres, and their labels:
-// each x along the top edge, each y along the left one.
+// Grid lines a hundred to two hundred and fifty pixels apart, at 1, 2 or 5 times a power of
+// ten metres, and their labels: each x along the top edge, each y along the left one.
 function gridLines(extent, resolution) {
-  const step = Math.pow(10, Math.ceil(Math.log10(resolution * 100)));
-  const digits = Math.max(0, -Math.round(Math.log10(step)));
+  const least = resolution * 100, power = Math.pow(10, Math.floor(Math.log10(least)));
+  const step = [1, 2, 5, 10].map(m => m * power).find(s => s >= least);
+  const digits = Math.max(0, -Math.floor(Math.log10(step) + 1e-9));
   const lines = [], labels = [];
   const [x0, y0, x1, y1] = extent;
   const label = (at, text, axis) => {
@@ -53,11 +54,11 @@ function gridLines(extent, resolution) {
     labels.push(f);
   };
   // Multiples of the step counted, not summed, so a label reads 0.3 and not 0.30000000000000004.
-  for (let i = Math.floor(x0 / step); i * step <= x1 && lines.length < 400; ++i) {
+  for (let i = Math.ceil(x0 / step); i * step <= x1 && lines.length < 400; ++i) {
     lines.push(new ol.Feature(new ol.geom.LineString([[i * step, y0], [i * step, y1]])));
     label([i * step, y1], `${(i * step).toFixed(digits)} m`, 'x');
   }
-  for (let i = Math.floor(y0 / step); i * step <= y1 && lines.length < 800; ++i) {
+  for (let i = Math.ceil(y0 / step); i * step <= y1 && lines.length < 800; ++i) {
     lines.push(new ol.Feature(new ol.geom.LineString([[x0, i * step], [x1, i * step]])));
     label([x0, i * step], `${(i * step).toFixed(digits)} m`, 'y');
   }
