@@ -166,11 +166,9 @@ ordered_json id_or_null(int id) { return id >= 0 ? ordered_json(id) : ordered_js
 int merge_sliver_road_areas(CityMap& city_map) {
   const int roads = static_cast<int>(city_map.roads.size());
   const std::vector<int> group = city_map.per_label([&](const FaceLabel& l) { return road_area_group(city_map, l); });
-  // An edge's kind: the road area across it (1 + its group), else the face's label (-2 -
-  // label), 0 outside the city.
+  // An edge's kind: the road area across it, 1 + its group (0: no road area).
   std::vector<int> kind(group.size());
-  for (std::size_t l = 0; l < group.size(); ++l)
-    kind[l] = group[l] >= 0 ? group[l] + 1 : city_map.labels[l].cover == Cover::Outside ? 0 : -2 - static_cast<int>(l);
+  for (std::size_t l = 0; l < group.size(); ++l) kind[l] = group[l] + 1;
   std::vector<int> groups, components;
   const std::vector<geom::Cell> cells = city_map.map.cells(group, kind, &groups, &components);
   const int count = components.empty() ? 0 : components.back() + 1;
@@ -181,11 +179,11 @@ int merge_sliver_road_areas(CityMap& city_map) {
   std::map<int, int> real_areas;  // per road, its areas that are no sliver
   for (int c = 0; c < count; ++c)
     if (area[c] >= kSliverRoadArea) ++real_areas[road_of(group_of[c])];
-  // Each sliver goes to the road area it shares the longest boundary with, else (a sliver
-  // no other road area touches along an edge) to the face it shares the longest one with.
+  // Each sliver goes to the road area it shares the longest boundary with. (One that no
+  // road area touches along an edge stays: the faces beside it are of other zones or
+  // outside the city, and taking their label would move a zone's edge.)
   std::vector<int> target(count, 0);  // an edge kind; 0: stays
-  std::vector<double> road_shared(count, 0), other_shared(count, 0);
-  std::vector<int> fallback(count, 0);
+  std::vector<double> shared(count, 0);
   for (std::size_t c = 0; c < cells.size(); ++c) {
     const int component = components[c];
     if (area[component] >= kSliverRoadArea) continue;
@@ -193,8 +191,7 @@ int merge_sliver_road_areas(CityMap& city_map) {
       if (k == 0 || k == group_of[component] + 1) continue;
       double length = 0;
       for (const auto& [a, b] : cells[c].edges_of_kind(k)) length += std::hypot(b.x - a.x, b.y - a.y);
-      double& best = k > 0 ? road_shared[component] : other_shared[component];
-      if (length > best) best = length, (k > 0 ? target[component] : fallback[component]) = k;
+      if (length > shared[component]) shared[component] = length, target[component] = k;
     }
   }
   // A road keeps a surface: the sliver that is all of it takes in instead the road area
@@ -203,7 +200,7 @@ int merge_sliver_road_areas(CityMap& city_map) {
   for (int c = 0; c < count; ++c) {
     if (area[c] >= kSliverRoadArea || real_areas.count(road_of(group_of[c]))) continue;
     const int beside = target[c] - 1;
-    target[c] = fallback[c] = 0;
+    target[c] = 0;
     if (beside < 0) continue;
     for (std::size_t n = 0; n < cells.size(); ++n) {
       const int other = components[n];
@@ -217,10 +214,7 @@ int merge_sliver_road_areas(CityMap& city_map) {
     }
   }
   int merged = 0;
-  for (int c = 0; c < count; ++c) {
-    if (!target[c]) target[c] = fallback[c];
-    merged += target[c] != 0 || taken_by[c] >= 0;
-  }
+  for (int c = 0; c < count; ++c) merged += target[c] != 0 || taken_by[c] >= 0;
   if (merged == 0) return 0;
   auto in_group = [&](FaceLabel l, int g) {
     const bool junction = g >= 4 * roads;
@@ -234,7 +228,6 @@ int merge_sliver_road_areas(CityMap& city_map) {
   city_map.map.relabel_components(group, [&](int c, int label) {
     if (taken_by[c] >= 0) return in_group(city_map.labels[label], taken_by[c]);
     if (target[c] > 0) return in_group(city_map.labels[label], target[c] - 1);
-    if (target[c] < 0) return -2 - target[c];  // the face beside it: its label
     return label;
   });
   return merged;

@@ -30,9 +30,8 @@ CityLayers read_layers(const std::filesystem::path& vector_dir, std::vector<std:
 inline constexpr double kSliverRoadArea = 0.01;
 
 // Gives each road area (a connected piece of one road's carriageway, sidewalk or junction)
-// under kSliverRoadArea to the road area it shares the longest boundary with (one no road
-// area touches along an edge: to the face beside it), in the map: the faces' labels
-// change, nothing moves. A road whose only area is a sliver takes in the road area beside
+// under kSliverRoadArea to the road area it shares the longest boundary with, in the map:
+// the faces' labels change, nothing moves; one no road area touches along an edge stays. A road whose only area is a sliver takes in the road area beside
 // it instead, when that is not its road's last; else the sliver stays. Returns how many
 // areas changed hands.
 int merge_sliver_road_areas(CityMap& city_map);
