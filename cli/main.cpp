@@ -139,9 +139,13 @@ int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, 
   }
   folder.commit();
   const auto& counts = result.report["counts"];
-  std::printf("exacity: wrote %s (roads %d, blocks %d, lots %d, buildings %d); open %s\n", out.string().c_str(),
+  // Buildings alone; the library's other models (trees, ...) by kind after them.
+  std::string other_models;
+  for (const auto& [kind, n] : counts["buildings_by_kind"].items())
+    if (kind != "building") other_models += ", " + kind + " models " + std::to_string(n.get<int>());
+  std::printf("exacity: wrote %s (roads %d, blocks %d, lots %d, buildings %d%s); open %s\n", out.string().c_str(),
               counts["roads"].get<int>(), counts["blocks"].get<int>(), counts["lots"].get<int>(),
-              counts["buildings"].get<int>(), (out / "map.svg").string().c_str());
+              counts["buildings_by_kind"].value("building", 0), other_models.c_str(), (out / "map.svg").string().c_str());
   if (!sketch.osm_left_out.empty()) {
     int total = 0;
     std::string tags;
@@ -155,6 +159,8 @@ int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, 
                  "sketch.geojson's \"osm\" member counts them all\n",
                  sketch.path.string().c_str(), total, tags.c_str(), most.size() > 4 ? ", ..." : "");
   }
+  for (const std::string& what : sketch.osm_repaired)
+    std::fprintf(stderr, "exacity: note: %s: %s\n", sketch.path.string().c_str(), what.c_str());
   for (const auto& z : result.report["empty_zones"]) {
     const std::string zone = z["zone"].get<std::string>(), why = z["why"].get<std::string>();
     if (z.contains("grid_cell"))

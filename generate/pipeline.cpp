@@ -95,6 +95,7 @@ City build_city(const Sketch& sketch, StageClock& stages) {
   city.buildings = std::move(raised.buildings);
   city.models = std::move(raised.models);
   stages.run("vector layers", [&] {
+    merge_sliver_road_areas(city.network.map);
     city.ground = extract_ground(city.network.map, city.blocks, city.lots, sketch);
     city.layers = layers_of(city.ground, city.buildings, city.models, city.model_library());
   });
@@ -210,6 +211,12 @@ ordered_json counts_report(const City& city, const MeshCounts& mesh, const GltfC
   int green = 0;
   for (const Block& b : city.blocks) green += b.green;
   auto counts = city.network.map.map.counts();
+  // The buildings layer holds every structure: buildings, and models of other kinds (trees).
+  ordered_json by_kind = ordered_json::object();
+  for (const VectorFeature& f : layers.buildings.features) {
+    const std::string kind = f.properties.value("kind", std::string("building"));
+    by_kind[kind] = by_kind.value(kind, 0) + 1;
+  }
   return {{"zones", layers.zones.features.size()},
           {"water", layers.water.features.size()},
           {"roads", layers.roads.features.size()},
@@ -218,6 +225,7 @@ ordered_json counts_report(const City& city, const MeshCounts& mesh, const GltfC
           {"green_spaces", green},
           {"lots", layers.lots.features.size()},
           {"buildings", layers.buildings.features.size()},
+          {"buildings_by_kind", by_kind},
           {"clutter", city.clutter.items.size()},
           {"map", {{"vertices", counts.vertices}, {"edges", counts.edges}, {"faces", counts.faces}}},
           {"mesh", {{"vertices", mesh.vertices}, {"faces", mesh.faces}}},

@@ -25,6 +25,7 @@ struct RoadLine {
   int region = -1;  // the region it was laid out in; -1 for roads drawn in the sketch
   bool bridge = false;
   geom::Polyline line;
+  int sketch_road = -1;  // its road in Sketch::roads; -1 for roads laid out
 };
 
 // A piece of a road's surface: carriageway, sidewalk or junction.

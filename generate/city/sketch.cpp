@@ -189,7 +189,7 @@ class Parser {
     if (!rc)
       fail(where, "unknown road class " + quote(rname) + "; did you mean " +
                       quote(nearest_road_class_name(rname)) + "? (valid: " + list(kRoadClassNames) + ")");
-    RoadFeature rf{index, *rc, default_width(*rc), {}};
+    RoadFeature rf{index, *rc, default_width(*rc), {}, osm_road_tags(props)};
     if (props.contains("width") && !props["width"].is_null())
       rf.width = number(props["width"], where + " width", kMinRoadWidth, kMaxRoadWidth);
     auto line = [&](const json& j, const std::string& w) {
@@ -518,6 +518,9 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
   if (doc.contains("osm") && doc["osm"].is_object() && doc["osm"].contains("skipped") && doc["osm"]["skipped"].is_object())
     for (const auto& [why, count] : doc["osm"]["skipped"].items())
       if (count.is_number_integer()) sketch.osm_left_out[why] = count.get<int>();
+  if (doc.contains("osm") && doc["osm"].is_object() && doc["osm"].contains("repaired") && doc["osm"]["repaired"].is_array())
+    for (const auto& what : doc["osm"]["repaired"])
+      if (what.is_string()) sketch.osm_repaired.push_back(what.get<std::string>());
   if (doc.contains("exacity")) parser.settings(doc["exacity"], sketch);
   const json& features = doc["features"];
   for (std::size_t i = 0; i < features.size(); ++i) parser.feature(features[i], static_cast<int>(i), sketch);

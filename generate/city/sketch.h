@@ -54,6 +54,8 @@ struct RoadFeature {
   RoadClass road_class = RoadClass::Highway;
   double width = 24;
   std::vector<geom::Polyline> lines;
+  // Its OpenStreetMap tags (highway, name, ...: osm_road_tags), which city.osm writes back.
+  std::vector<std::pair<std::string, std::string>> osm_tags;
 };
 
 // The sketch's own street graph (seed 004): how it is joined, what its streets carry.
@@ -90,6 +92,9 @@ struct Sketch {
   // OpenStreetMap features whose tags make no zone or road, by tag ("highway=footway"):
   // the document's "osm" member (generate/gis/osm_tags.h).
   std::map<std::string, int> osm_left_out;
+  // OpenStreetMap areas osmium could not assemble, mended (rings the extract's edge cut
+  // closed along it), each named: the "osm" member's "repaired".
+  std::vector<std::string> osm_repaired;
   // The document read when it is not the file at `path` (a grid map; a sketch naming one in
   // "grid", whose features it holds; `generate --models`), else empty. OUT/sketch.geojson
   // holds it, so that validate and render read the sketch generate read.

@@ -153,31 +153,27 @@ void write_vector_formats(const fs::path& dir, const std::vector<std::string>& f
 
 namespace {
 
-// Nodes by their position as written, so centre lines meeting at a vertex share one.
+using OsmTagList = std::vector<std::pair<std::string, std::string>>;
+
+// Nodes by their position as written, so centre lines meeting at a vertex share one; each
+// node's index, from 0, in the order first met.
 class OsmNodes {
  public:
-  explicit OsmNodes(const ToLonLat& to_lon_lat) : to_lon_lat_(to_lon_lat) {}
-  std::int64_t at(geom::Vec2 p) {
-    auto [it, added] = ids_.try_emplace({p.x, p.y}, static_cast<std::int64_t>(ids_.size() + 1));
+  std::size_t at(geom::Vec2 p) {
+    auto [it, added] = index_.try_emplace({p.x, p.y}, order_.size());
     if (added) order_.push_back(p);
     return it->second;
   }
-  void write(osmium::memory::Buffer& buffer) const {
-    for (std::size_t i = 0; i < order_.size(); ++i) {
-      const geom::Vec2 ll = to_lon_lat_(order_[i]);
-      osmium::builder::NodeBuilder node{buffer};
-      node.set_id(static_cast<osmium::object_id_type>(i + 1)).set_version(1).set_visible(true);
-      node.set_location(osmium::Location{ll.x, ll.y});
-      node.set_user("exacity");
-    }
-    buffer.commit();
-  }
-  std::int64_t count() const { return static_cast<std::int64_t>(order_.size()); }
+  const std::vector<geom::Vec2>& positions() const { return order_; }
 
  private:
-  const ToLonLat& to_lon_lat_;
-  std::map<std::pair<double, double>, std::int64_t> ids_;
+  std::map<std::pair<double, double>, std::size_t> index_;
   std::vector<geom::Vec2> order_;
+};
+
+struct OsmWay {
+  std::vector<std::size_t> nodes;  // indices into OsmNodes
+  OsmTagList tags;
 };
 
 std::string osm_number(double v) { return format_number(std::round(v * 100) / 100); }
@@ -193,8 +189,38 @@ std::pair<const char*, const char*> osm_clutter_tag(ModelKind kind) {
   }
 }
 
-const char* osm_highway(const std::string& road_class) {
-  return road_class == "highway" ? "motorway" : road_class == "main" ? "primary" : "residential";
+// The highway tag a mapper would give a road Exacity laid out (or one drawn without OSM
+// tags): its roads meet at level junctions and carry sidewalks, so none is a motorway; a
+// highway is a city's primary road, a main road a secondary one, a local road a residential
+// street.
+const char* osm_highway(RoadClass road_class) {
+  return road_class == RoadClass::Highway ? "primary" : road_class == RoadClass::Main ? "secondary" : "residential";
+}
+
+// A road's tags: the OSM tags it was read with (its highway class, name, ref ...), else the
+// class a mapper would give it; its width as built, and bridge and layer on bridges.
+OsmTagList road_tags(const RoadLine& road, int id, const Sketch& sketch) {
+  OsmTagList tags;
+  if (road.sketch_road >= 0) tags = sketch.roads[road.sketch_road].osm_tags;
+  const bool tagged = std::any_of(tags.begin(), tags.end(), [](const auto& t) { return t.first == "highway"; });
+  if (!tagged) tags.insert(tags.begin(), {"highway", osm_highway(road.road_class)});
+  tags.push_back({"width", osm_number(road.width)});
+  if (road.bridge) tags.push_back({"bridge", "yes"}), tags.push_back({"layer", "1"});
+  tags.push_back({"exacity:id", std::to_string(id)});
+  return tags;
+}
+
+// New objects carry negative ids (JOSM's convention), and two cities must not share one, or
+// `osmium merge` of their files keeps one city's object of each id: the ids are
+// -(K * 2^32 + n) for n from 1, K in [1, 2^24) a hash of every node's location, so the same
+// city always has the same ids and different cities ids apart (by chance of 1 in 2^24).
+std::int64_t first_osm_id(const std::vector<osmium::Location>& locations) {
+  std::uint64_t hash = 14695981039346656037ull;  // FNV-1a
+  for (const osmium::Location& l : locations)
+    for (std::int32_t v : {l.x(), l.y()})
+      for (int byte = 0; byte < 4; ++byte) hash = (hash ^ ((static_cast<std::uint32_t>(v) >> (8 * byte)) & 0xff)) * 1099511628211ull;
+  const std::int64_t key = static_cast<std::int64_t>(hash % ((1u << 24) - 1)) + 1;
+  return key << 32;
 }
 
 }  // namespace
@@ -203,65 +229,76 @@ bool write_city_osm(const City& city, const fs::path& file) {
   const std::optional<int> epsg = epsg_of(city.sketch.crs);
   if (!epsg) return false;
   const ToLonLat to_lon_lat(*epsg);
-  OsmNodes nodes(to_lon_lat);
-  osmium::memory::Buffer ways{1024 * 1024, osmium::memory::Buffer::auto_grow::yes};
-  std::int64_t way_id = 0;
-  auto way = [&](const std::vector<geom::Vec2>& points, const std::vector<std::pair<std::string, std::string>>& tags) {
-    {
-      osmium::builder::WayBuilder builder{ways};
-      builder.set_id(++way_id).set_version(1).set_visible(true);
-      builder.set_user("exacity");
-      {
-        osmium::builder::WayNodeListBuilder refs{builder};
-        for (geom::Vec2 p : points) refs.add_node_ref(nodes.at(p));
-      }
-      osmium::builder::TagListBuilder tag_list{builder};
-      for (const auto& [k, v] : tags) tag_list.add_tag(k, v);
-    }
-    ways.commit();
+  OsmNodes nodes;
+  std::vector<OsmWay> ways;
+  auto way = [&](const std::vector<geom::Vec2>& points, OsmTagList tags) {
+    OsmWay w{{}, std::move(tags)};
+    for (geom::Vec2 p : points) w.nodes.push_back(nodes.at(p));
+    ways.push_back(std::move(w));
   };
-  for (const VectorFeature& road : city.layers.roads.features) {
-    if (road.line.size() < 2) continue;
-    const auto& p = road.properties;
-    std::vector<std::pair<std::string, std::string>> tags{{"highway", osm_highway(p.value("class", std::string("local")))}};
-    if (p.contains("width") && p["width"].is_number()) tags.push_back({"width", osm_number(p["width"].get<double>())});
-    if (p.value("bridge", false)) tags.push_back({"bridge", "yes"}), tags.push_back({"layer", "1"});
-    tags.push_back({"exacity:id", std::to_string(p.value("id", -1))});
-    way(road.line, tags);
+  for (std::size_t i = 0; i < city.ground.roads.size(); ++i) {
+    const RoadLine& road = city.ground.roads[i];
+    if (road.line.size() >= 2) way(road.line, road_tags(road, static_cast<int>(i), city.sketch));
   }
   for (const VectorFeature& b : city.layers.buildings.features) {
     if (b.properties.value("kind", std::string("building")) != "building") continue;
     std::vector<geom::Vec2> ring = b.polygon.outer;
     ring.push_back(ring.front());  // a closed way
-    std::vector<std::pair<std::string, std::string>> tags{{"building", "yes"}};
+    OsmTagList tags{{"building", "yes"}};
     if (b.properties.contains("height") && b.properties["height"].is_number())
       tags.push_back({"height", osm_number(b.properties["height"].get<double>())});
     tags.push_back({"exacity:id", std::to_string(b.properties.value("id", -1))});
-    way(ring, tags);
+    way(ring, std::move(tags));
   }
-  osmium::memory::Buffer node_buffer{1024 * 1024, osmium::memory::Buffer::auto_grow::yes};
-  nodes.write(node_buffer);
-  // Street clutter as the tagged nodes mappers use for it.
-  std::int64_t node_id = nodes.count();
+  // Street clutter as the tagged nodes mappers use for it, after the ways' nodes.
+  std::vector<osmium::Location> locations;
+  for (geom::Vec2 p : nodes.positions()) {
+    const geom::Vec2 ll = to_lon_lat(p);
+    locations.push_back(osmium::Location{ll.x, ll.y});
+  }
   for (const Clutter& c : city.clutter.items) {
     const geom::Vec2 ll = to_lon_lat(c.spot);
+    locations.push_back(osmium::Location{ll.x, ll.y});
+  }
+  const std::int64_t first_id = first_osm_id(locations);
+  auto id = [&](std::size_t n) { return static_cast<osmium::object_id_type>(-(first_id + static_cast<std::int64_t>(n) + 1)); };
+
+  osmium::memory::Buffer node_buffer{1024 * 1024, osmium::memory::Buffer::auto_grow::yes};
+  for (std::size_t i = 0; i < locations.size(); ++i) {
     {
       osmium::builder::NodeBuilder node{node_buffer};
-      node.set_id(++node_id).set_version(1).set_visible(true);
-      node.set_location(osmium::Location{ll.x, ll.y});
+      node.set_id(id(i)).set_version(1).set_visible(true);
+      node.set_location(locations[i]);
       node.set_user("exacity");
-      osmium::builder::TagListBuilder tags{node};
-      const auto [key, value] = osm_clutter_tag(c.instance.kind);
-      tags.add_tag(key, value);
+      if (i >= nodes.positions().size()) {
+        osmium::builder::TagListBuilder tags{node};
+        const auto [key, value] = osm_clutter_tag(city.clutter.items[i - nodes.positions().size()].instance.kind);
+        tags.add_tag(key, value);
+      }
     }
     node_buffer.commit();
+  }
+  osmium::memory::Buffer way_buffer{1024 * 1024, osmium::memory::Buffer::auto_grow::yes};
+  for (std::size_t i = 0; i < ways.size(); ++i) {
+    {
+      osmium::builder::WayBuilder builder{way_buffer};
+      builder.set_id(id(i)).set_version(1).set_visible(true);
+      builder.set_user("exacity");
+      {
+        osmium::builder::WayNodeListBuilder refs{builder};
+        for (std::size_t n : ways[i].nodes) refs.add_node_ref(id(n));
+      }
+      osmium::builder::TagListBuilder tag_list{builder};
+      for (const auto& [k, v] : ways[i].tags) tag_list.add_tag(k, v);
+    }
+    way_buffer.commit();
   }
   try {
     osmium::io::Header header;
     header.set("generator", "exacity");
     osmium::io::Writer writer{file.string(), header, osmium::io::overwrite::allow};
     writer(std::move(node_buffer));
-    writer(std::move(ways));
+    writer(std::move(way_buffer));
     writer.close();
   } catch (const std::exception& e) {
     throw UserError(file.string() + ": cannot be written (" + e.what() + ")");

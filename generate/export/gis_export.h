@@ -20,11 +20,13 @@ inline constexpr const char* kVectorFormats[] = {"geojson", "gpkg", "fgb", "shp"
 void write_vector_formats(const std::filesystem::path& dir, const std::vector<std::string>& formats,
                           const nlohmann::ordered_json& crs);
 
-// OUT/city.osm: the roads layer's centre lines as ways (highway from the class: motorway,
-// primary, residential; width; bridge and layer), sharing a node wherever they meet, every
-// building footprint as a closed way (building, height), and the street clutter as tagged
-// nodes (street lamps, traffic signals, stops, benches, fire hydrants, trees), in lon/lat. Whether it was
-// written: a sketch without a CRS (EPSG) has no place on Earth.
+// OUT/city.osm: the centre lines as ways (a road read from OSM with the tags it was read
+// with, others with the highway class a mapper would give them: primary, secondary,
+// residential; width; bridge and layer), sharing a node wherever they meet, every building
+// footprint as a closed way (building, height), and the street clutter as tagged nodes
+// (street lamps, traffic signals, stops, benches, fire hydrants, trees), in lon/lat, with
+// negative ids apart from any other city's. Whether it was written: a sketch without a
+// CRS (EPSG) has no place on Earth.
 bool write_city_osm(const City& city, const std::filesystem::path& file);
 
 }  // namespace exacity

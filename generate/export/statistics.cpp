@@ -1,5 +1,6 @@
 #include "generate/export/statistics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <set>
@@ -338,6 +339,11 @@ void add_polygon(const ordered_json& rings, RealFeatures& real) {
   if (p.outer.size() > 1 && p.outer.front() == p.outer.back()) p.outer.pop_back();
   if (p.outer.size() < 3) return ++real.skipped, void();
   for (std::size_t k = 1; k < rings.size(); ++k) p.holes.push_back(real_positions(rings[k]));
+  // Real files wind their rings either way (ogr2ogr writes OSM's outer rings clockwise):
+  // the figures take outer rings counter-clockwise and holes clockwise, as the city's are.
+  if (geom::signed_area(p.outer) < 0) std::reverse(p.outer.begin(), p.outer.end());
+  for (geom::Ring& h : p.holes)
+    if (geom::signed_area(h) > 0) std::reverse(h.begin(), h.end());
   real.polygons.push_back(std::move(p));
 }
 

@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <map>
 
 #include "geom/measure.h"
 #include "geom/polygon_check.h"
@@ -81,7 +82,8 @@ std::vector<std::array<int, 2>> extract_centre_lines(const CityMap& city_map, Gr
         if (run.size() < 2) return;
         int& first = first_line[r][run_bridge];
         if (first < 0) first = static_cast<int>(out.roads.size());
-        out.roads.push_back({road.road_class, road.width, road.level, road.region, run_bridge, std::move(run)});
+        const int sketch_road = static_cast<int>(r) < city_map.sketch_roads ? static_cast<int>(r) : -1;
+        out.roads.push_back({road.road_class, road.width, road.level, road.region, run_bridge, std::move(run), sketch_road});
         run.clear();
       };
       for (const geom::PolylinePiece& piece : pieces_of[road.first_tag + k]) {
@@ -98,17 +100,20 @@ std::vector<std::array<int, 2>> extract_centre_lines(const CityMap& city_map, Gr
   return first_line;
 }
 
-// Road areas by road, surface and bridge: carriageways and sidewalks per road (groups
-// 4r + 2 sidewalk + bridge), then each junction (4 roads + 2j + bridge).
+// A road face's road area: carriageways and sidewalks per road (groups 4r + 2 sidewalk +
+// bridge), then each junction (4 roads + 2j + bridge); -1 for other faces.
+int road_area_group(const CityMap& city_map, const FaceLabel& l) {
+  if (!l.road_surface()) return -1;
+  const int roads = static_cast<int>(city_map.roads.size());
+  if (l.surface == RoadSurface::Junction) return 4 * roads + 2 * l.junction + l.bridge;
+  return 4 * l.road + 2 * (l.surface == RoadSurface::Sidewalk) + l.bridge;
+}
+
+// Road areas by road, surface and bridge (road_area_group).
 void extract_road_areas(const CityMap& city_map, const std::function<int(int, bool)>& road_id, Ground& out) {
   const int roads = static_cast<int>(city_map.roads.size());
   const int junctions = static_cast<int>(city_map.junction_roads.size());
-  dissolve(city_map, 4 * roads + 2 * junctions,
-           [&](const FaceLabel& l) {
-             if (!l.road_surface()) return -1;
-             if (l.surface == RoadSurface::Junction) return 4 * roads + 2 * l.junction + l.bridge;
-             return 4 * l.road + 2 * (l.surface == RoadSurface::Sidewalk) + l.bridge;
-           },
+  dissolve(city_map, 4 * roads + 2 * junctions, [&](const FaceLabel& l) { return road_area_group(city_map, l); },
            [&](int g, geom::Polygon p) {
              const bool junction = g >= 4 * roads, bridge = g % 2 == 1;
              const int road = junction ? city_map.junction_roads[(g - 4 * roads) / 2] : g / 4;
@@ -157,6 +162,76 @@ int block_piece_of(const Lot& lot, const std::vector<std::size_t>& pieces, const
 ordered_json id_or_null(int id) { return id >= 0 ? ordered_json(id) : ordered_json(nullptr); }
 
 }  // namespace
+
+int merge_sliver_road_areas(CityMap& city_map) {
+  const int roads = static_cast<int>(city_map.roads.size());
+  const std::vector<int> group = city_map.per_label([&](const FaceLabel& l) { return road_area_group(city_map, l); });
+  // An edge's kind: the road area across it, 1 + its group (0: no road area).
+  std::vector<int> kind(group.size());
+  for (std::size_t l = 0; l < group.size(); ++l) kind[l] = group[l] + 1;
+  std::vector<int> groups, components;
+  const std::vector<geom::Cell> cells = city_map.map.cells(group, kind, &groups, &components);
+  const int count = components.empty() ? 0 : components.back() + 1;
+  std::vector<double> area(count, 0);
+  std::vector<int> group_of(count, -1);
+  for (std::size_t c = 0; c < cells.size(); ++c) area[components[c]] += cells[c].area(), group_of[components[c]] = groups[c];
+  auto road_of = [&](int g) { return g >= 4 * roads ? city_map.junction_roads[(g - 4 * roads) / 2] : g / 4; };
+  std::map<int, int> real_areas;  // per road, its areas that are no sliver
+  for (int c = 0; c < count; ++c)
+    if (area[c] >= kSliverRoadArea) ++real_areas[road_of(group_of[c])];
+  // Each sliver goes to the road area it shares the longest boundary with. (One that no
+  // road area touches along an edge stays: the faces beside it are of other zones or
+  // outside the city, and taking their label would move a zone's edge.)
+  std::vector<int> target(count, 0);  // an edge kind; 0: stays
+  std::vector<double> shared(count, 0);
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    const int component = components[c];
+    if (area[component] >= kSliverRoadArea) continue;
+    for (int k : cells[c].edge_kinds()) {
+      if (k == 0 || k == group_of[component] + 1) continue;
+      double length = 0;
+      for (const auto& [a, b] : cells[c].edges_of_kind(k)) length += std::hypot(b.x - a.x, b.y - a.y);
+      if (length > shared[component]) shared[component] = length, target[component] = k;
+    }
+  }
+  // A road keeps a surface: the sliver that is all of it takes in instead the road area
+  // beside it (a piece of a road that keeps another), else stays.
+  std::vector<int> taken_by(count, -1);  // a road area given to a sliver's group
+  for (int c = 0; c < count; ++c) {
+    if (area[c] >= kSliverRoadArea || real_areas.count(road_of(group_of[c]))) continue;
+    const int beside = target[c] - 1;
+    target[c] = 0;
+    if (beside < 0) continue;
+    for (std::size_t n = 0; n < cells.size(); ++n) {
+      const int other = components[n];
+      if (group_of[other] != beside || area[other] < kSliverRoadArea || taken_by[other] >= 0 ||
+          real_areas[road_of(beside)] < 2 || cells[n].edges_of_kind(group_of[c] + 1).empty())
+        continue;
+      taken_by[other] = group_of[c];
+      --real_areas[road_of(beside)];
+      ++real_areas[road_of(group_of[c])];
+      break;
+    }
+  }
+  int merged = 0;
+  for (int c = 0; c < count; ++c) merged += target[c] != 0 || taken_by[c] >= 0;
+  if (merged == 0) return 0;
+  auto in_group = [&](FaceLabel l, int g) {
+    const bool junction = g >= 4 * roads;
+    l.road = road_of(g);
+    l.bridge = g % 2 == 1;
+    l.surface = junction ? RoadSurface::Junction : g % 4 >= 2 ? RoadSurface::Sidewalk : RoadSurface::Carriageway;
+    l.junction = junction ? (g - 4 * roads) / 2 : -1;
+    if (!l.bridge) l.cover = Cover::Road;  // a bridge's sliver over water joins the land's road
+    return city_map.label_index(l);
+  };
+  city_map.map.relabel_components(group, [&](int c, int label) {
+    if (taken_by[c] >= 0) return in_group(city_map.labels[label], taken_by[c]);
+    if (target[c] > 0) return in_group(city_map.labels[label], target[c] - 1);
+    return label;
+  });
+  return merged;
+}
 
 Ground extract_ground(const CityMap& city_map, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
                       const Sketch& sketch) {

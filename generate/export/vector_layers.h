@@ -25,6 +25,17 @@ struct CityLayers {
 // anything malformed is appended to `problems`, one line each.
 CityLayers read_layers(const std::filesystem::path& vector_dir, std::vector<std::string>& problems);
 
+// Road areas under this (m2) are slivers: where two roads' strokes or a junction's outline
+// nearly meet, rounding leaves a face or two of one road between the others'.
+inline constexpr double kSliverRoadArea = 0.01;
+
+// Gives each road area (a connected piece of one road's carriageway, sidewalk or junction)
+// under kSliverRoadArea to the road area it shares the longest boundary with, in the map:
+// the faces' labels change, nothing moves; one no road area touches along an edge stays. A road whose only area is a sliver takes in the road area beside
+// it instead, when that is not its road's last; else the sliver stays. Returns how many
+// areas changed hands.
+int merge_sliver_road_areas(CityMap& city_map);
+
 // The ground as the map leaves it: ids and properties as the layers write them.
 Ground extract_ground(const CityMap& city_map, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
                       const Sketch& sketch);

@@ -3,9 +3,12 @@
 // MultipolygonManager, way node locations from a node index.
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
+#include <tuple>
 
 #include <osmium/area/assembler.hpp>
 #include <osmium/area/multipolygon_manager.hpp>
@@ -13,6 +16,7 @@
 #include <osmium/handler/node_locations_for_ways.hpp>
 #include <osmium/index/map/flex_mem.hpp>
 #include <osmium/io/any_input.hpp>
+#include <osmium/osm/box.hpp>
 #include <osmium/relations/manager_util.hpp>
 #include <osmium/tags/tags_filter.hpp>
 #include <osmium/visitor.hpp>
@@ -45,18 +49,188 @@ struct OsmFeature {
   LonLat line;                                                    // ways
 };
 
+// A way's located nodes: node ids, to chain ways into rings, and positions.
+struct WayNodes {
+  std::vector<osmium::object_id_type> ids;
+  LonLat points;
+};
+
+// A feature's properties: its tags among osm_keys() (a road's among osm_road_keys() too)
+// and its name.
+ordered_json osm_properties(const osmium::TagList& tags, bool road) {
+  ordered_json p = ordered_json::object();
+  for (const std::string& key : osm_keys())
+    if (const char* v = tags[key.c_str()]) p[key] = v;
+  for (const std::string& key : road ? osm_road_keys() : std::vector<std::string>{"name"})
+    if (const char* v = tags[key.c_str()]; v && !p.contains(key)) p[key] = v;
+  return p;
+}
+
+// A multipolygon relation whose tags make a zone, or a way with such tags that is not
+// closed: kept in case osmium cannot assemble its area (the extract cut its outer way, or
+// left members out).
+struct ZoneRelation {
+  ordered_json properties;
+  std::vector<osmium::object_id_type> outer, inner;
+};
+
+// The first pass: the multipolygon relations whose tags make a zone.
+class ZoneRelations : public osmium::handler::Handler {
+ public:
+  void relation(const osmium::Relation& relation) {
+    const osmium::TagList& tags = relation.tags();
+    if (!tags.has_tag("type", "multipolygon") || osm_area_meaning(lookup(tags)).kind != OsmMeaning::Zone) return;
+    ZoneRelation& r = relations_[relation.id()];
+    r.properties = osm_properties(tags, false);
+    for (const osmium::RelationMember& m : relation.members()) {
+      if (m.type() != osmium::item_type::way) continue;
+      (std::string(m.role()) == "inner" ? r.inner : r.outer).push_back(m.ref());
+      member_ways_.insert(m.ref());
+    }
+  }
+  std::map<osmium::object_id_type, ZoneRelation> relations_;
+  std::set<osmium::object_id_type> member_ways_;
+};
+
+// Chains ways into rings by their shared end nodes: closed rings, and open chains.
+std::vector<WayNodes> chained(std::vector<WayNodes> ways) {
+  std::vector<WayNodes> out;
+  while (!ways.empty()) {
+    WayNodes chain = std::move(ways.back());
+    ways.pop_back();
+    for (bool grown = true; grown && chain.ids.front() != chain.ids.back();) {
+      grown = false;
+      for (std::size_t i = 0; i < ways.size(); ++i) {
+        WayNodes& w = ways[i];
+        if (w.ids.front() != chain.ids.back() && w.ids.back() != chain.ids.back()) {
+          if (w.ids.front() != chain.ids.front() && w.ids.back() != chain.ids.front()) continue;
+          std::reverse(chain.ids.begin(), chain.ids.end());  // grow at the other end
+          std::reverse(chain.points.begin(), chain.points.end());
+        }
+        if (w.ids.front() != chain.ids.back()) {
+          std::reverse(w.ids.begin(), w.ids.end());
+          std::reverse(w.points.begin(), w.points.end());
+        }
+        chain.ids.insert(chain.ids.end(), w.ids.begin() + 1, w.ids.end());
+        chain.points.insert(chain.points.end(), w.points.begin() + 1, w.points.end());
+        ways.erase(ways.begin() + static_cast<std::ptrdiff_t>(i));
+        grown = true;
+        break;
+      }
+    }
+    out.push_back(std::move(chain));
+  }
+  return out;
+}
+
+double ring_area(const LonLat& r) {
+  double a = 0;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    const auto &u = r[i], &v = r[(i + 1) % r.size()];
+    a += (u.first - r[0].first) * (v.second - r[0].second) - (v.first - r[0].first) * (u.second - r[0].second);
+  }
+  return a / 2;
+}
+
+// An open chain the extract's edge cut, closed along the edge (`box`): each end goes on in
+// its last segment's direction to the box, and the box's outline joins the two points
+// there, round the side that encloses less (OSM's rings have no orientation to say which
+// side the area lies on, and the extract holds the area only up to its edge).
+LonLat closed_along(const LonLat& chain, const osmium::Box& box) {
+  const double x0 = box.bottom_left().lon(), y0 = box.bottom_left().lat(), x1 = box.top_right().lon(),
+               y1 = box.top_right().lat();
+  const double w = x1 - x0, h = y1 - y0;
+  // Where a ray from `from` through `end` leaves the box (from the nearest point of the box
+  // to `end`, if outside it), exactly on the side it leaves by.
+  auto exit = [&](std::pair<double, double> from, std::pair<double, double> end) {
+    const double x = std::clamp(end.first, x0, x1), y = std::clamp(end.second, y0, y1);
+    const double dx = end.first - from.first, dy = end.second - from.second;
+    // The sides by their distance along the ray: bottom, right, top, left.
+    const double t[] = {dy < 0 ? (y0 - y) / dy : INFINITY, dx > 0 ? (x1 - x) / dx : INFINITY,
+                        dy > 0 ? (y1 - y) / dy : INFINITY, dx < 0 ? (x0 - x) / dx : INFINITY};
+    const int side = static_cast<int>(std::min_element(std::begin(t), std::end(t)) - std::begin(t));
+    const double s = std::isfinite(t[side]) ? t[side] : 0;
+    std::pair<double, double> p{std::clamp(x + s * dx, x0, x1), std::clamp(y + s * dy, y0, y1)};
+    if (side == 0) p.second = y0;
+    else if (side == 1) p.first = x1;
+    else if (side == 2) p.second = y1;
+    else p.first = x0;
+    return p;
+  };
+  // A point of the outline's place along it, counter-clockwise from the lower left corner.
+  auto along = [&](std::pair<double, double> p) {
+    const auto [x, y] = p;
+    if (y == y0) return x - x0;
+    if (x == x1) return w + (y - y0);
+    if (y == y1) return w + h + (x1 - x);
+    return 2 * w + h + (y1 - y);
+  };
+  const std::pair<double, double> corners[] = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+  const double corner_at[] = {0, w, w + h, 2 * w + h}, perimeter = 2 * (w + h);
+  const auto from = exit(chain[chain.size() - 2], chain.back()), to = exit(chain[1], chain.front());
+  LonLat best;
+  for (const int direction : {1, -1}) {
+    LonLat ring = chain;
+    if (from != chain.back()) ring.push_back(from);
+    // The corners passed going from `from` to `to` that way round.
+    const double a = along(from), b = along(to);
+    double span = direction > 0 ? b - a : a - b;
+    if (span < 0) span += perimeter;
+    std::vector<std::pair<double, std::pair<double, double>>> passed;
+    for (int c = 0; c < 4; ++c) {
+      double d = direction > 0 ? corner_at[c] - a : a - corner_at[c];
+      if (d < 0) d += perimeter;
+      if (d > 0 && d < span) passed.push_back({d, corners[c]});
+    }
+    std::sort(passed.begin(), passed.end());
+    for (const auto& [d, corner] : passed) ring.push_back(corner);
+    if (to != chain.front()) ring.push_back(to);
+    ring.push_back(chain.front());
+    if (best.empty() || std::abs(ring_area(ring)) < std::abs(ring_area(best))) best = std::move(ring);
+  }
+  return best;
+}
+
+bool inside(std::pair<double, double> p, const LonLat& ring) {
+  bool in = false;
+  for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+    const auto &a = ring[i], &b = ring[j];
+    if ((a.second > p.second) != (b.second > p.second) &&
+        p.first < (b.first - a.first) * (p.second - a.second) / (b.second - a.second) + a.first)
+      in = !in;
+  }
+  return in;
+}
+
 // What the extract makes, and what it leaves out and why (the document's "osm" member).
 class Collector : public osmium::handler::Handler {
  public:
-  explicit Collector(std::string file) : file_(std::move(file)) {}
+  Collector(std::string file, const ZoneRelations& relations) : file_(std::move(file)), relations_(relations) {}
+
+  void node(const osmium::Node& node) {
+    const osmium::Location l = node.location();
+    if (!l) return;
+    if (!l.valid())
+      throw UserError(file_ + ": node " + std::to_string(node.id()) + " lies at lon " + std::to_string(l.lon_without_check()) +
+                      ", lat " + std::to_string(l.lat_without_check()) +
+                      ", outside -180 to 180 and -90 to 90; correct or delete the node");
+    nodes_box_.extend(l);
+  }
 
   void way(const osmium::Way& way) {
     const osmium::TagList& tags = way.tags();
+    if (way.nodes().empty()) return;
+    const bool member = relations_.member_ways_.count(way.id()) > 0;
+    if (member) member_ways_[way.id()] = way_nodes(way);
+    // An area tag on a way the extract cut open: closed along its edge, as a relation's ring.
+    if (!member && !tags["highway"] && !tags["waterway"] && !way.is_closed() &&
+        osm_area_meaning(lookup(tags)).kind == OsmMeaning::Zone)
+      return cut_ways_.push_back({way.id(), {osm_properties(tags, false), {}, {}}, way_nodes(way)}), void();
     // A closed way tagged only as an area (waterway=riverbank) is the area handler's.
     if (!tags["highway"] && !(tags["waterway"] && !way.is_closed())) return;
     const OsmMeaning meaning = osm_line_meaning(lookup(tags));
     if (meaning.kind == OsmMeaning::LeftOut) return ++skipped_[meaning.why], void();
-    OsmFeature f{properties(tags, " way " + std::to_string(way.id())), {}, points(way.nodes())};
+    OsmFeature f{properties(tags, " way " + std::to_string(way.id()), true), {}, points(way.nodes())};
     if (f.line.size() < 2) return ++skipped_["ways without located nodes"], void();
     (meaning.kind == OsmMeaning::River ? rivers_ : roads_).push_back(std::move(f));
   }
@@ -70,18 +244,72 @@ class Collector : public osmium::handler::Handler {
       f.polygons.push_back({points(outer), {}});
       for (const osmium::InnerRing& inner : area.inner_rings(outer)) f.polygons.back().second.push_back(points(inner));
     }
-    if (!f.polygons.empty()) zones_.push_back(std::move(f));
+    if (f.polygons.empty()) {
+      // A relation is mended from its member ways below; a way's rings are beyond that.
+      if (area.from_way()) ++skipped_["areas whose rings osmium could not assemble"];
+      return;
+    }
+    if (!area.from_way()) assembled_.insert(area.orig_id());
+    zones_.push_back(std::move(f));
+  }
+
+  // The relations osmium could not assemble (a ring left open where the extract cut its
+  // outer way, or members the extract left out) and the area ways it cut open, closed along
+  // the extract's edge (`box`): each named in `repaired_`, or counted in `skipped_`.
+  void mend(const osmium::Box& box) {
+    for (const auto& [id, relation] : relations_.relations_) {
+      if (assembled_.count(id)) continue;
+      std::vector<WayNodes> outer, inner;
+      for (const auto& [ids, rings] : {std::pair{&relation.outer, &outer}, std::pair{&relation.inner, &inner}})
+        for (osmium::object_id_type way : *ids)
+          if (auto it = member_ways_.find(way); it != member_ways_.end() && it->second.ids.size() >= 2) rings->push_back(it->second);
+      mend_rings("relation " + std::to_string(id), relation.properties, std::move(outer), std::move(inner), box);
+    }
+    for (auto& [id, way, nodes] : cut_ways_)
+      if (nodes.ids.size() >= 2) mend_rings("way " + std::to_string(id), way.properties, {std::move(nodes)}, {}, box);
   }
 
   std::vector<OsmFeature> zones_, roads_, rivers_;
   std::map<std::string, int> skipped_;
+  std::vector<std::string> repaired_;
+  osmium::Box nodes_box_;
 
  private:
-  ordered_json properties(const osmium::TagList& tags, const std::string& what) const {
-    ordered_json p = ordered_json::object();
-    for (const std::string& key : osm_keys())
-      if (const char* v = tags[key.c_str()]) p[key] = v;
-    if (const char* name = tags["name"]) p["name"] = name;
+  void mend_rings(const std::string& what, const ordered_json& tags, std::vector<WayNodes> outer, std::vector<WayNodes> inner,
+                  const osmium::Box& box) {
+    OsmFeature f{tags, {}, {}};
+    f.properties["source"] = file_ + " " + what;
+    int cut = 0;
+    for (WayNodes& ring : chained(std::move(outer))) {
+      if (ring.ids.front() == ring.ids.back()) {
+        if (ring.points.size() >= 4) f.polygons.push_back({std::move(ring.points), {}});
+      } else if (box.valid() && ring.points.size() >= 2) {
+        f.polygons.push_back({closed_along(ring.points, box), {}});
+        ++cut;
+      }
+    }
+    for (WayNodes& ring : chained(std::move(inner)))
+      if (ring.ids.front() == ring.ids.back() && ring.points.size() >= 4)
+        for (auto& polygon : f.polygons)
+          if (inside(ring.points.front(), polygon.first)) {
+            polygon.second.push_back(std::move(ring.points));
+            break;
+          }
+    if (f.polygons.empty()) return ++skipped_["multipolygons without a way in the extract"], void();
+    repaired_.push_back(what + " (" + zone_tag(tags) + "): " +
+                        (cut ? "its outer ring, cut by the extract's edge, closed along the edge"
+                             : "its rings assembled from the member ways the extract holds"));
+    zones_.push_back(std::move(f));
+  }
+
+  static std::string zone_tag(const ordered_json& tags) {
+    for (const char* key : {"landuse", "leisure", "natural", "water", "waterway"})
+      if (tags.contains(key) && tags[key].is_string()) return std::string(key) + "=" + tags[key].get<std::string>();
+    return "area";
+  }
+
+  ordered_json properties(const osmium::TagList& tags, const std::string& what, bool road = false) const {
+    ordered_json p = osm_properties(tags, road);
     p["source"] = file_ + what;
     return p;
   }
@@ -92,8 +320,18 @@ class Collector : public osmium::handler::Handler {
       if (n.location().valid()) out.push_back({n.location().lon(), n.location().lat()});
     return out;
   }
+  WayNodes way_nodes(const osmium::Way& way) const {
+    WayNodes out;
+    for (const osmium::NodeRef& n : way.nodes())
+      if (n.location().valid()) out.ids.push_back(n.ref()), out.points.push_back({n.location().lon(), n.location().lat()});
+    return out;
+  }
 
   std::string file_;
+  const ZoneRelations& relations_;
+  std::map<osmium::object_id_type, WayNodes> member_ways_;
+  std::set<osmium::object_id_type> assembled_;
+  std::vector<std::tuple<osmium::object_id_type, ZoneRelation, WayNodes>> cut_ways_;
 };
 
 ordered_json position(std::pair<double, double> p) { return {p.first, p.second}; }
@@ -104,11 +342,52 @@ ordered_json ring_json(const LonLat& r) {
   return out;
 }
 
+// OSM XML's node coordinates as written: libosmium reads a latitude of "1e308" as 0 (its
+// digits overflow), so every node's lat and lon are read again here and one out of range
+// is refused, naming the node. A start tag is everything up to the next '>' ('<' cannot
+// stand in an attribute's value, so "<node " starts a node's tag).
+void check_node_coordinates(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  auto attribute = [](const std::string& tag, const char* name) -> std::optional<std::string> {
+    const std::string key = std::string(" ") + name + "=";
+    std::size_t at = tag.find(key);
+    if (at == std::string::npos) {
+      std::string tabbed = key;
+      for (const char space : {'\t', '\n', '\r'}) {
+        tabbed[0] = space;
+        if ((at = tag.find(tabbed)) != std::string::npos) break;
+      }
+      if (at == std::string::npos) return std::nullopt;
+    }
+    at += key.size();
+    if (at >= tag.size() || (tag[at] != '"' && tag[at] != '\'')) return std::nullopt;
+    const std::size_t end = tag.find(tag[at], at + 1);
+    if (end == std::string::npos) return std::nullopt;
+    return tag.substr(at + 1, end - at - 1);
+  };
+  for (std::string tag; std::getline(in, tag, '>');) {
+    const std::size_t start = tag.find('<');
+    if (start == std::string::npos || tag.compare(start, 6, "<node ") != 0) continue;
+    for (auto [name, limit] : {std::pair{"lat", 90.0}, std::pair{"lon", 180.0}}) {
+      const std::optional<std::string> text = attribute(tag, name);
+      if (!text) continue;
+      char* end = nullptr;
+      const double v = std::strtod(text->c_str(), &end);
+      if (end == text->c_str() || *end) continue;  // libosmium refuses what is not a number
+      if (!(std::abs(v) <= limit))
+        throw UserError(path.string() + ": node " + attribute(tag, "id").value_or("?") + " has " + name + "=\"" + *text +
+                        "\", outside -" + std::to_string(static_cast<int>(limit)) + " to " + std::to_string(static_cast<int>(limit)) + "; correct or delete the node");
+    }
+  }
+}
+
 }  // namespace
 
 ordered_json osm_sketch_document(const fs::path& path) {
   const std::string file = path.string();
-  Collector collector(file);
+  if (path.extension() == ".osm") check_node_coordinates(path);
+  ZoneRelations relations;
+  Collector collector(file, relations);
   try {
     const osmium::io::File input(file);
     osmium::area::Assembler::config_type config;
@@ -116,16 +395,26 @@ ordered_json osm_sketch_document(const fs::path& path) {
     for (const char* key : {"landuse", "natural", "water", "waterway", "leisure"}) areas.add_rule(true, osmium::TagMatcher{key});
     osmium::area::MultipolygonManager<osmium::area::Assembler> multipolygons{config, areas};
     osmium::relations::read_relations(input, multipolygons);
+    {
+      osmium::io::Reader reader{input, osmium::osm_entity_bits::relation};
+      osmium::apply(reader, relations);
+      reader.close();
+    }
     using Index = osmium::index::map::FlexMem<osmium::unsigned_object_id_type, osmium::Location>;
     Index index;
     osmium::handler::NodeLocationsForWays<Index> locations{index};
     locations.ignore_errors();  // an extract cut at its edge lacks some nodes
     osmium::io::Reader reader{input, osmium::osm_entity_bits::node | osmium::osm_entity_bits::way |
                                          osmium::osm_entity_bits::relation};
+    const osmium::Box bounds = reader.header().box();
     osmium::apply(reader, locations, collector, multipolygons.handler([&](osmium::memory::Buffer&& buffer) {
       osmium::apply(buffer, collector);
     }));
     reader.close();
+    // The extract's edge: its <bounds>, else the box around its nodes.
+    collector.mend(bounds.valid() ? bounds : collector.nodes_box_);
+  } catch (const UserError&) {
+    throw;
   } catch (const std::exception& e) {
     throw UserError(file + ": not a readable OpenStreetMap extract (" + e.what() + "); give an .osm or .osm.pbf file");
   }
@@ -149,10 +438,9 @@ ordered_json osm_sketch_document(const fs::path& path) {
                           {"geometry", {{"type", "LineString"}, {"coordinates", ring_json(f.line)}}}});
   ordered_json skipped = ordered_json::object();
   for (const auto& [what, count] : collector.skipped_) skipped[what] = count;
-  return {{"type", "FeatureCollection"},
-          {"crs", crs_member(4326)},
-          {"osm", {{"file", file}, {"skipped", skipped}}},
-          {"features", std::move(features)}};
+  ordered_json osm{{"file", file}, {"skipped", skipped}};
+  if (!collector.repaired_.empty()) osm["repaired"] = collector.repaired_;
+  return {{"type", "FeatureCollection"}, {"crs", crs_member(4326)}, {"osm", std::move(osm)}, {"features", std::move(features)}};
 }
 
 }  // namespace exacity

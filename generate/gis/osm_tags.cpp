@@ -18,7 +18,7 @@ std::optional<std::string> road_class(const std::string& highway) {
       {"motorway", "highway"},  {"motorway_link", "highway"}, {"trunk", "highway"},      {"trunk_link", "highway"},
       {"primary", "highway"},   {"primary_link", "highway"},  {"secondary", "main"},     {"secondary_link", "main"},
       {"tertiary", "main"},     {"tertiary_link", "main"},    {"unclassified", "local"}, {"residential", "local"},
-      {"living_street", "local"}, {"service", "local"},       {"road", "local"}};
+      {"living_street", "local"}, {"service", "local"},       {"road", "local"},         {"pedestrian", "local"}};
   auto it = classes.find(highway);
   if (it == classes.end()) return std::nullopt;
   return it->second;
@@ -36,6 +36,9 @@ std::optional<double> metres(const std::optional<std::string>& tag) {
 }
 
 double default_width(const std::string& road) { return road == "highway" ? 20 : road == "main" ? 12 : 8; }
+
+// Pedestrian streets and alleys are local streets, narrower than the class's default.
+constexpr double kPedestrianWidth = 6, kAlleyWidth = 4;
 
 OsmMeaning left_out(const std::string& why) { return {OsmMeaning::LeftOut, "", 0, why}; }
 
@@ -125,6 +128,25 @@ const std::vector<std::string>& osm_keys() {
   return keys;
 }
 
+const std::vector<std::string>& osm_road_keys() {
+  static const std::vector<std::string> keys{"highway", "name", "ref", "lanes", "oneway", "maxspeed", "surface", "service"};
+  return keys;
+}
+
+std::vector<std::pair<std::string, std::string>> osm_road_tags(const ordered_json& properties) {
+  std::vector<std::pair<std::string, std::string>> out;
+  if (!properties.is_object()) return out;
+  std::map<std::string, std::string> other;
+  if (properties.contains("other_tags") && properties["other_tags"].is_string())
+    other = hstore(properties["other_tags"].get<std::string>());
+  for (const std::string& key : osm_road_keys()) {
+    std::optional<std::string> value = properties.contains(key) ? text_value(properties.at(key)) : std::nullopt;
+    if (auto it = other.find(key); !value && it != other.end()) value = it->second;
+    if (value && !value->empty()) out.push_back({key, *value});
+  }
+  return out;
+}
+
 OsmMeaning osm_line_meaning(const OsmTags& tags) {
   if (std::optional<std::string> waterway = tags("waterway")) {
     if (*waterway == "river" || *waterway == "canal") return {OsmMeaning::River, "water", std::clamp(metres(tags("width")).value_or(10), 1.0, 5000.0), ""};
@@ -139,9 +161,13 @@ OsmMeaning osm_line_meaning(const OsmTags& tags) {
   const std::optional<std::string> road = road_class(*highway);
   if (!road) return left_out("highway=" + *highway);
   if (tags("tunnel") == std::optional<std::string>("yes")) return left_out("tunnel");
-  if (*highway == "service")
-    if (std::optional<std::string> service = tags("service")) return left_out("service=" + *service);
   double width = default_width(*road);
+  if (*highway == "pedestrian") width = kPedestrianWidth;
+  if (*highway == "service")
+    if (std::optional<std::string> service = tags("service")) {
+      if (*service != "alley") return left_out("service=" + *service);
+      width = kAlleyWidth;
+    }
   if (std::optional<double> w = metres(tags("width"))) width = *w;
   else if (std::optional<std::string> lanes = tags("lanes"); lanes && std::atoi(lanes->c_str()) > 0)
     width = 3.5 * std::atoi(lanes->c_str());

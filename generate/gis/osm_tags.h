@@ -7,6 +7,8 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -30,6 +32,12 @@ OsmMeaning osm_area_meaning(const OsmTags& tags);
 // The keys read, in the order they are looked at; an OGR layer with any of them as a field
 // is read for them.
 const std::vector<std::string>& osm_keys();
+
+// The tags a road keeps from OpenStreetMap (or from a GIS file exported from it) for
+// city.osm to write back as they were read: its highway class, name, ref, lanes ...
+const std::vector<std::string>& osm_road_keys();
+// Those of a feature's properties (columns, or GDAL's "other_tags"), in osm_road_keys' order.
+std::vector<std::pair<std::string, std::string>> osm_road_tags(const nlohmann::ordered_json& properties);
 
 // Gives every feature of a sketch document in metres that has OSM tags but no "zone" or
 // "road" the zone or road its tags make (a river its centre line widened to water by GEOS;

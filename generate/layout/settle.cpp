@@ -23,7 +23,7 @@ std::vector<RoadFeature> without_repeated_segments(const std::vector<RoadFeature
     const geom::Polyline& line = r.lines[0];
     geom::Polyline piece;
     auto flush = [&] {
-      if (piece.size() >= 2) out.push_back({static_cast<int>(out.size()), r.road_class, r.width, {piece}});
+      if (piece.size() >= 2) out.push_back({static_cast<int>(out.size()), r.road_class, r.width, {piece}, {}});
       piece.clear();
     };
     for (std::size_t k = 0; k + 1 < line.size(); ++k) {
@@ -70,7 +70,7 @@ std::vector<RoadFeature> without_roads_inside_others(const std::vector<RoadFeatu
 
 std::vector<RoadFeature> planned_roads(const LinePlan& plan) {
   std::vector<RoadFeature> roads;
-  for (const PlannedRoad& r : plan.roads) roads.push_back({static_cast<int>(roads.size()), r.road_class, r.width, {r.line}});
+  for (const PlannedRoad& r : plan.roads) roads.push_back({static_cast<int>(roads.size()), r.road_class, r.width, {r.line}, {}});
   return roads;
 }
 

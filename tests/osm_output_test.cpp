@@ -1,0 +1,268 @@
+// OpenStreetMap in and out as OSM tools expect it (README, GIS and OpenStreetMap): city.osm
+// read back with libosmium and GDAL's OSM driver (classes and names as read, negative ids
+// apart between cities), extracts the edge cut, coordinates out of range, and real
+// footprints measured whichever way their rings wind.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <set>
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+#include <osmium/handler.hpp>
+#include <osmium/io/any_input.hpp>
+#include <osmium/visitor.hpp>
+
+#include "generate/city/sketch.h"
+#include "generate/errors.h"
+#include "generate/export/statistics.h"
+#include "generate/gis/osm_tags.h"
+#include "generate/gis/projection.h"
+#include "generate/gis/sketch_sources.h"
+#include "generate/pipeline.h"
+#include "geom/measure.h"
+#include "tests/cli_util.h"
+#include "tests/test_util.h"
+
+using namespace exacity;
+namespace fs = std::filesystem;
+using nlohmann::ordered_json;
+
+namespace {
+
+const fs::path kVillage = cli_util::kSource / "examples" / "osm" / "village.osm";
+
+void write(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::binary) << text; }
+
+GenerateResult generate(const fs::path& sketch, const fs::path& out) {
+  fs::remove_all(out);
+  fs::create_directories(out);
+  StageClock clock(nullptr, kCityStages + kWriteStages);
+  return write_city(build_city(load_sketch(sketch), clock), out, clock, {});
+}
+
+// city.osm as libosmium reads it: every id, and each way's tags.
+struct OsmFile : osmium::handler::Handler {
+  std::set<osmium::object_id_type> node_ids, way_ids;
+  std::vector<std::map<std::string, std::string>> ways;
+  void node(const osmium::Node& n) { node_ids.insert(n.id()); }
+  void way(const osmium::Way& w) {
+    way_ids.insert(w.id());
+    std::map<std::string, std::string> tags;
+    for (const osmium::Tag& t : w.tags()) tags[t.key()] = t.value();
+    ways.push_back(std::move(tags));
+  }
+};
+
+OsmFile read_osm(const fs::path& file) {
+  OsmFile osm;
+  osmium::io::Reader reader{file.string()};
+  osmium::apply(reader, osm);
+  reader.close();
+  return osm;
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const UserError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+}  // namespace
+
+TEST(OsmOutput, RealFootprintsHaveTheirAreaWhicheverWayTheirRingsWind) {
+  const fs::path dir = testing_util::temp_dir("osm-stats");
+  // A 20 x 10 m footprint with a 2 x 2 m court, its outer ring clockwise and its hole
+  // counter-clockwise (as ogr2ogr writes OSM's), and the same wound the other way.
+  write(dir / "real.geojson", R"({"type": "FeatureCollection", "features": [
+    {"type": "Feature", "properties": {}, "geometry": {"type": "Polygon", "coordinates": [
+      [[1000, 1000], [1000, 1010], [1020, 1010], [1020, 1000], [1000, 1000]],
+      [[1004, 1004], [1006, 1004], [1006, 1006], [1004, 1006], [1004, 1004]]]}},
+    {"type": "Feature", "properties": {}, "geometry": {"type": "Polygon", "coordinates": [
+      [[1100, 1000], [1120, 1000], [1120, 1010], [1100, 1010], [1100, 1000]],
+      [[1104, 1004], [1104, 1006], [1106, 1006], [1106, 1004], [1104, 1004]]]}}]})");
+  const ordered_json s = real_statistics(dir / "real.geojson");
+  const ordered_json& areas = s["zones"]["all"]["footprints"]["area_m2"];
+  EXPECT_EQ(areas["count"].get<int>(), 2);
+  EXPECT_EQ(areas["median"].get<double>(), 196);
+  EXPECT_EQ(areas["max"].get<double>(), 196);
+}
+
+TEST(OsmOutput, CityOsmKeepsTheClassesAndNamesItReadAndNewObjectsHaveNegativeIdsApartBetweenCities) {
+  const fs::path dir = testing_util::temp_dir("osm-out");
+  const GenerateResult village = generate(kVillage, dir / "village");
+  ASSERT_TRUE(village.valid);
+  const OsmFile osm = read_osm(dir / "village" / "city.osm");
+  // Hauptstrasse is highway=primary with 4 lanes in the extract; its residential streets
+  // are 7 m wide; the grown streets are tagged as a mapper would (no motorway).
+  std::set<std::string> main_street, classes;
+  int named = 0;
+  for (const auto& tags : osm.ways) {
+    if (!tags.count("highway")) continue;
+    classes.insert(tags.at("highway"));
+    if (tags.count("name") && tags.at("name") == "Hauptstrasse") {
+      ++named;
+      main_street.insert(tags.at("highway") + " lanes " + (tags.count("lanes") ? tags.at("lanes") : "none"));
+    }
+  }
+  EXPECT_GT(named, 0);
+  EXPECT_EQ(main_street, std::set<std::string>{"primary lanes 4"});
+  for (const std::string& c : classes) EXPECT_TRUE(c == "primary" || c == "secondary" || c == "residential") << c;
+  EXPECT_TRUE(classes.count("residential"));
+  // New objects: negative ids.
+  ASSERT_FALSE(osm.node_ids.empty());
+  EXPECT_LT(*osm.node_ids.rbegin(), 0);
+  EXPECT_LT(*osm.way_ids.rbegin(), 0);
+
+  // Another city: `osmium merge` keeps both only if no id is in both.
+  ordered_json other = ordered_json::parse(cli_util::read(kVillage.parent_path() / "village.exacity.json"));
+  other["seed"] = other.value("seed", 1) + 1;
+  fs::copy_file(kVillage, dir / "other.osm", fs::copy_options::overwrite_existing);
+  write(dir / "other.exacity.json", other.dump());
+  ASSERT_TRUE(generate(dir / "other.osm", dir / "other").valid);
+  const OsmFile second = read_osm(dir / "other" / "city.osm");
+  for (osmium::object_id_type id : second.node_ids) ASSERT_FALSE(osm.node_ids.count(id)) << "node " << id;
+  for (osmium::object_id_type id : second.way_ids) ASSERT_FALSE(osm.way_ids.count(id)) << "way " << id;
+  // The same city twice has the same ids: merged, it is one city.
+  ASSERT_TRUE(generate(kVillage, dir / "again").valid);
+  EXPECT_EQ(read_osm(dir / "again" / "city.osm").way_ids, osm.way_ids);
+
+  // GDAL's OSM driver reads the streets with their classes and names (negative ids, as in
+  // any file of new objects, need its SQLite node index).
+  start_gdal();
+  const CPLConfigOptionSetter indexing("OSM_USE_CUSTOM_INDEXING", "NO", false);
+  GDALDatasetUniquePtr ds(GDALDataset::Open((dir / "village" / "city.osm").string().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  ASSERT_TRUE(ds);
+  OGRLayer* lines = ds->GetLayerByName("lines");
+  ASSERT_NE(lines, nullptr);
+  int streets = 0, primary = 0;
+  for (OGRFeatureUniquePtr f(lines->GetNextFeature()); f; f.reset(lines->GetNextFeature())) {
+    streets += std::string(f->GetFieldAsString("highway")) != "";
+    primary += std::string(f->GetFieldAsString("name")) == "Hauptstrasse" && std::string(f->GetFieldAsString("highway")) == "primary";
+  }
+  EXPECT_EQ(streets, village.report["counts"]["roads"].get<int>());
+  EXPECT_EQ(primary, named);
+}
+
+TEST(OsmOutput, PedestrianStreetsAndAlleysAreNarrowLocalStreets) {
+  auto meaning = [](std::map<std::string, std::string> tags) {
+    return osm_line_meaning([&](const std::string& key) -> std::optional<std::string> {
+      if (auto it = tags.find(key); it != tags.end()) return it->second;
+      return std::nullopt;
+    });
+  };
+  const OsmMeaning pedestrian = meaning({{"highway", "pedestrian"}});
+  EXPECT_EQ(pedestrian.kind, OsmMeaning::Road);
+  EXPECT_EQ(pedestrian.type, "local");
+  EXPECT_EQ(pedestrian.width, 6);
+  const OsmMeaning alley = meaning({{"highway", "service"}, {"service", "alley"}});
+  EXPECT_EQ(alley.kind, OsmMeaning::Road);
+  EXPECT_EQ(alley.type, "local");
+  EXPECT_EQ(alley.width, 4);
+  EXPECT_EQ(meaning({{"highway", "service"}, {"service", "driveway"}}).why, "service=driveway");
+}
+
+namespace {
+
+// An extract cut at its bounds: a residential relation whose outer way the cut left open
+// (north from (10.005, 48.001), then east to (10.008, 48.005)), and a street.
+std::string cut_extract(const std::string& lat_of_node_7 = "48.005") {
+  return R"(<?xml version="1.0" encoding="UTF-8"?>
+<osm version="0.6" generator="test">
+  <bounds minlat="48.0" minlon="10.0" maxlat="48.01" maxlon="10.01"/>
+  <node id="1" version="1" lat="48.001" lon="10.005"/>
+  <node id="2" version="1" lat="48.005" lon="10.005"/>
+  <node id="3" version="1" lat="48.005" lon="10.008"/>
+  <node id="4" version="1" lat="48.002" lon="10.0055"/>
+  <node id="5" version="1" lat="48.002" lon="10.0095"/>
+  <node id="7" version="1" lat=")" + lat_of_node_7 + R"(" lon="10.007"/>
+  <way id="10" version="1"><nd ref="1"/><nd ref="2"/><nd ref="3"/></way>
+  <way id="11" version="1"><nd ref="4"/><nd ref="5"/><tag k="highway" v="residential"/></way>
+  <way id="12" version="1"><nd ref="7"/><nd ref="3"/><tag k="highway" v="residential"/></way>
+  <relation id="20" version="1">
+    <member type="way" ref="10" role="outer"/>
+    <tag k="type" v="multipolygon"/>
+    <tag k="landuse" v="residential"/>
+  </relation>
+</osm>
+)";
+}
+
+}  // namespace
+
+TEST(OsmOutput, AMultipolygonTheExtractCutIsClosedAlongItsBoundsAndNamed) {
+  const fs::path dir = testing_util::temp_dir("osm-cut");
+  write(dir / "cut.osm", cut_extract());
+  const ordered_json doc = osm_sketch_document(dir / "cut.osm");
+  const ordered_json* zone = nullptr;
+  for (const ordered_json& f : doc["features"])
+    if (f["properties"].value("landuse", "") == "residential") zone = &f;
+  ASSERT_NE(zone, nullptr) << doc.dump();
+  // Each end goes on to the bounds (south from the first node, east from the last) and the
+  // bounds close the ring round the side that holds less: the south-east corner.
+  EXPECT_EQ((*zone)["geometry"]["coordinates"], ordered_json::parse(R"([[[[10.005, 48.001], [10.005, 48.005], [10.008, 48.005],
+      [10.01, 48.005], [10.01, 48.0], [10.005, 48.0], [10.005, 48.001]]]])"));
+  EXPECT_EQ((*zone)["properties"]["source"], (dir / "cut.osm").string() + " relation 20");
+  EXPECT_EQ(doc["osm"]["repaired"], ordered_json::parse(R"(["relation 20 (landuse=residential): its outer ring, cut by the extract's edge, closed along the edge"])"));
+}
+
+TEST(OsmOutput, ANodeOutsideLonLatRangesIsRefusedByItsId) {
+  const fs::path dir = testing_util::temp_dir("osm-range");
+  write(dir / "far.osm", cut_extract("1e308"));
+  EXPECT_EQ(error_of([&] { osm_sketch_document(dir / "far.osm"); }),
+            (dir / "far.osm").string() + ": node 7 has lat=\"1e308\", outside -90 to 90; correct or delete the node");
+  write(dir / "north.osm", cut_extract("91"));
+  EXPECT_EQ(error_of([&] { osm_sketch_document(dir / "north.osm"); }),
+            (dir / "north.osm").string() + ": node 7 has lat=\"91\", outside -90 to 90; correct or delete the node");
+}
+
+namespace {
+
+// Streets crossing at many angles over a park: where strokes' sides nearly meet, rounding
+// leaves slivers of one road's surface between the others'.
+const char* kCrossingStreets = R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": "Polygon", "coordinates": [[[-100, -100], [500, -100], [500, 500], [-100, 500], [-100, -100]]]}}, {"type": "Feature", "properties": {"road": "main", "width": 10.5}, "geometry": {"type": "LineString", "coordinates": [[36.6, 144.4], [67.6, 323.6]]}}, {"type": "Feature", "properties": {"road": "main", "width": 12}, "geometry": {"type": "LineString", "coordinates": [[84.9, 14.3], [272.5, 399.9], [255.4, 321.5], [344.1, 203.6]]}}, {"type": "Feature", "properties": {"road": "local", "width": 8}, "geometry": {"type": "LineString", "coordinates": [[107.3, 14.4], [11.0, 186.0], [127.4, 152.0], [356.7, 210.3]]}}, {"type": "Feature", "properties": {"road": "local", "width": 12}, "geometry": {"type": "LineString", "coordinates": [[9.5, 130.1], [54.7, 204.1]]}}, {"type": "Feature", "properties": {"road": "main", "width": 8}, "geometry": {"type": "LineString", "coordinates": [[293.8, 362.6], [305.2, 315.9], [141.5, 392.4]]}}, {"type": "Feature", "properties": {"road": "main", "width": 12}, "geometry": {"type": "LineString", "coordinates": [[286.1, 184.6], [212.1, 196.0], [369.9, 200.3]]}}, {"type": "Feature", "properties": {"road": "local", "width": 10.5}, "geometry": {"type": "LineString", "coordinates": [[140.3, 290.4], [223.0, 182.6], [263.6, 376.2]]}}, {"type": "Feature", "properties": {"road": "main", "width": 10.5}, "geometry": {"type": "LineString", "coordinates": [[123.8, 382.9], [282.5, 201.7], [207.1, 260.6]]}}]})";
+
+std::set<int> roads_with_areas(const Ground& ground) {
+  std::set<int> out;
+  for (const RoadArea& a : ground.road_areas) out.insert(a.road);
+  return out;
+}
+
+}  // namespace
+
+TEST(OsmOutput, NoRoadAreaIsASliverAndEveryRoadKeepsASurface) {
+  const fs::path dir = testing_util::temp_dir("osm-slivers");
+  write(dir / "crossing.geojson", kCrossingStreets);
+  const Sketch sketch = load_sketch(dir / "crossing.geojson");
+  StageClock clock(nullptr, kCityStages);
+  const City city = build_city(sketch, clock);
+  for (const RoadArea& a : city.ground.road_areas) EXPECT_GE(geom::area(a.polygon), 0.009) << "road " << a.road;
+  // The same map as the road network leaves it, before anything is given away: the same
+  // roads have surfaces, and it did hold a sliver.
+  const RoadNetwork network = grow_road_network(build_city_map(sketch, nullptr), sketch);
+  const Ground unmerged = extract_ground(network.map, {}, {}, sketch);
+  EXPECT_TRUE(std::any_of(unmerged.road_areas.begin(), unmerged.road_areas.end(),
+                          [](const RoadArea& a) { return geom::area(a.polygon) < 0.01; }));
+  EXPECT_EQ(roads_with_areas(city.ground), roads_with_areas(unmerged));
+  EXPECT_EQ(city.ground.roads.size(), unmerged.roads.size());
+}
+
+TEST(OsmOutput, TheSummaryLineCountsBuildingsWithoutTrees) {
+  const fs::path out = testing_util::temp_dir("osm-summary") / "out";
+  const fs::path library = cli_util::kSource / "examples" / "models" / "library.json";
+  const cli_util::Result r =
+      cli_util::run("generate " + kVillage.string() + " --models " + library.string() + " -o " + out.string() + " -q");
+  ASSERT_EQ(r.code, 0) << r.out;
+  int buildings = 0, others = 0;
+  const nlohmann::json layer = nlohmann::json::parse(cli_util::read(out / "vector" / "buildings.geojson"));
+  for (const auto& f : layer["features"])
+    (f["properties"]["kind"] == "building" ? buildings : others) += 1;
+  EXPECT_GT(others, 0);  // trees stand among the buildings in the layer
+  EXPECT_NE(r.out.find(", buildings " + std::to_string(buildings) + ","), std::string::npos) << r.out;
+}
