@@ -90,6 +90,8 @@ struct Sketch {
   // OpenStreetMap features whose tags make no zone or road, by tag ("highway=footway"):
   // the document's "osm" member (generate/gis/osm_tags.h).
   std::map<std::string, int> osm_left_out;
+  // The files those counts are of, when several were read together (the member's "files").
+  std::vector<std::string> osm_files;
   // The document read when it is not the file at `path` (a grid map; a sketch naming one in
   // "grid", whose features it holds; `generate --models`), else empty. OUT/sketch.geojson
   // holds it, so that validate and render read the sketch generate read.
