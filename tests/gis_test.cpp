@@ -493,6 +493,11 @@ TEST(Gis, SeveralSketchFilesAreReadAsOne) {
   EXPECT_EQ(two.roads[0].lines, one.roads[0].lines);
   EXPECT_EQ(two.osm_left_out, one.osm_left_out);
   EXPECT_EQ(epsg_of(two.crs), 32635);
+  // The counts are of both files' features, and name both.
+  const std::vector<std::string> both{(dir / "land.geojson").string(), (dir / "streets.geojson").string()};
+  EXPECT_EQ(two.osm_files, both);
+  EXPECT_EQ(ordered_json::parse(two.geojson)["osm"]["files"], ordered_json(both));
+  EXPECT_FALSE(ordered_json::parse(two.geojson)["osm"].contains("file"));
 
   auto error_of_both = [&](const fs::path& a, const fs::path& b) -> std::string {
     try {
