@@ -385,6 +385,11 @@ TEST(Gis, BadInputsAreOneLineNamingTheFile) {
   write(dir / "crs.geojson", R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "EPSG:999999"}},
       "features": [{"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [100, 0], [100, 100], [0, 0]]]}}]})");
   EXPECT_NE(error_of(dir / "crs.geojson").find("is not a CRS PROJ knows"), std::string::npos) << error_of(dir / "crs.geojson");
+  // ... and only that line: PROJ's own message kept off the terminal.
+  const cli_util::Result run = cli_util::run("generate " + (dir / "crs.geojson").string() + " -o " + (dir / "out").string());
+  EXPECT_EQ(run.code, 2);
+  EXPECT_EQ(run.out.rfind("exacity: error: " + (dir / "crs.geojson").string() + ": crs:", 0), 0u) << run.out;
+  EXPECT_EQ(std::count(run.out.begin(), run.out.end(), '\n'), 1) << run.out;
 }
 
 namespace {
@@ -820,6 +825,11 @@ TEST(Gis, ASketchWiderThanOneMapHoldsIsRefusedNamingTheStrayFeature) {
     EXPECT_NE(error.find("the sketch spans longitude"), std::string::npos) << error;
     EXPECT_NE(error.find((dir / name).string() + " features[2] lies farthest from the rest"), std::string::npos) << error;
   }
+  // Through the program: one line, exit 2, nothing written.
+  const cli_util::Result run = cli_util::run("generate " + (dir / "stray.osm").string() + " -o " + (dir / "out").string());
+  EXPECT_EQ(run.code, 2);
+  EXPECT_EQ(std::count(run.out.begin(), run.out.end(), '\n'), 1) << run.out;
+  EXPECT_FALSE(fs::exists(dir / "out"));
   // One UTM zone holds a sketch a few degrees wide; not one of 20 at the equator.
   ordered_json wide = {{"type", "FeatureCollection"},
                        {"features", {{{"type", "Feature"}, {"properties", {{"zone", "park"}}},
