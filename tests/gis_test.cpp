@@ -833,7 +833,7 @@ TEST(Gis, ASketchWiderThanOneMapHoldsIsRefusedNamingTheStrayFeature) {
   // One UTM zone holds a sketch a few degrees wide; not one of 20 at the equator.
   ordered_json wide = {{"type", "FeatureCollection"},
                        {"features", {{{"type", "Feature"}, {"properties", {{"zone", "park"}}},
-                                      {"geometry", {{"type", "Polygon"}, {"coordinates", {{{0, 0}, {20, 0}, {20, 1}, {0, 0}}}}}}}}}};
+                                      {"geometry", {{"type", "Polygon"}, {"coordinates", {{{0.5, 0}, {20.5, 0}, {20.5, 1}, {0.5, 0}}}}}}}}}};
   write(dir / "equator.geojson", wide.dump());
   EXPECT_NE(error_of(dir / "equator.geojson").find("scale is"), std::string::npos) << error_of(dir / "equator.geojson");
 }

@@ -234,14 +234,20 @@ std::vector<Place> raw_places(const std::vector<FeaturePositions>& features) {
 }
 
 // A document without a crs is in lon/lat when every position is within lon/lat ranges
-// (longitudes to ±360, as tools drawing across the antimeridian write them) and the
-// positions span under kLonLatSpan degrees, or all but one feature's under a degree (a
-// stray node, which the extent's check then names).
+// (longitudes to ±360, as tools drawing across the antimeridian write them), not every
+// coordinate is a whole number (a sketch in metres a few metres wide, as tests draw them;
+// no place is drawn in whole degrees), and the positions span under kLonLatSpan degrees,
+// or all but one feature's under a degree (a stray node, which the extent's check then
+// names).
 bool looks_lon_lat(const std::vector<FeaturePositions>& features) {
   std::vector<Place> places = raw_places(features);
+  bool whole = true;  // every coordinate a whole number: metres drawn by hand, however small
   for (const Place& place : places)
-    for (geom::Vec2 p : place.lonlat)
+    for (geom::Vec2 p : place.lonlat) {
       if (!(std::abs(p.x) <= 360 && std::abs(p.y) <= 90)) return false;
+      whole = whole && p.x == std::floor(p.x) && p.y == std::floor(p.y);
+    }
+  if (whole) return false;
   unwrap(places);
   const geom::Box box = box_of(places);
   if (box.width() < kLonLatSpan && box.height() < kLonLatSpan) return true;
