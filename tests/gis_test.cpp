@@ -67,11 +67,14 @@ void expect_same_layers(const fs::path& a, const fs::path& b) {
 }
 
 // Converts a GeoJSON file with OGR (ogr2ogr's library call).
-void translate(const fs::path& from, const fs::path& to, const char* driver) {
+// `crs` ("EPSG:3857"), if given, is the one to write it in (ogr2ogr's -t_srs).
+void translate(const fs::path& from, const fs::path& to, const char* driver, const std::string& crs = "") {
   start_gdal();
   GDALDatasetH source = GDALOpenEx(from.string().c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr);
   ASSERT_NE(source, nullptr);
-  char* args[] = {const_cast<char*>("-f"), const_cast<char*>(driver), nullptr};
+  char* args[] = {const_cast<char*>("-f"), const_cast<char*>(driver), const_cast<char*>("-t_srs"),
+                  const_cast<char*>(crs.c_str()), nullptr};
+  if (crs.empty()) args[2] = nullptr;
   GDALVectorTranslateOptions* options = GDALVectorTranslateOptionsNew(args, nullptr);
   int error = 0;
   GDALDatasetH made = GDALVectorTranslate(to.string().c_str(), nullptr, 1, &source, options, &error);
@@ -572,19 +575,7 @@ ordered_json in_lon_lat(ordered_json doc, int utm, geom::Vec2 origin) {
 
 // Converts a GeoJSON file in lon/lat to `epsg` with OGR, as `ogr2ogr -t_srs EPSG:N` does.
 void reproject(const fs::path& from, const fs::path& to, const char* driver, int epsg) {
-  start_gdal();
-  GDALDatasetH source = GDALOpenEx(from.string().c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr);
-  ASSERT_NE(source, nullptr);
-  const std::string crs = "EPSG:" + std::to_string(epsg);
-  char* args[] = {const_cast<char*>("-f"), const_cast<char*>(driver), const_cast<char*>("-t_srs"),
-                  const_cast<char*>(crs.c_str()), nullptr};
-  GDALVectorTranslateOptions* options = GDALVectorTranslateOptionsNew(args, nullptr);
-  int error = 0;
-  GDALDatasetH made = GDALVectorTranslate(to.string().c_str(), nullptr, 1, &source, options, &error);
-  GDALVectorTranslateOptionsFree(options);
-  ASSERT_NE(made, nullptr);
-  GDALClose(made);
-  GDALClose(source);
+  translate(from, to, driver, "EPSG:" + std::to_string(epsg));
 }
 
 // The areas of a city's buildings, smallest first.
