@@ -150,6 +150,8 @@ int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, 
     int total = 0;
     std::string tags;
     for (const auto& [why, count] : sketch.osm_left_out) total += count;
+    std::string files = sketch.osm_files.empty() ? sketch.path.string() : "";
+    for (const std::string& file : sketch.osm_files) files += (files.empty() ? "" : ", ") + file;
     std::vector<std::pair<std::string, int>> most(sketch.osm_left_out.begin(), sketch.osm_left_out.end());
     std::stable_sort(most.begin(), most.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
     for (std::size_t i = 0; i < most.size() && i < 4; ++i)
@@ -157,7 +159,7 @@ int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, 
     std::fprintf(stderr,
                  "exacity: note: %s: left out %d OpenStreetMap features whose tags make no zone or road (%s%s); "
                  "sketch.geojson's \"osm\" member counts them all\n",
-                 sketch.path.string().c_str(), total, tags.c_str(), most.size() > 4 ? ", ..." : "");
+                 files.c_str(), total, tags.c_str(), most.size() > 4 ? ", ..." : "");
   }
   for (const std::string& what : sketch.osm_repaired)
     std::fprintf(stderr, "exacity: note: %s: %s\n", sketch.path.string().c_str(), what.c_str());

@@ -12,7 +12,7 @@ packages=(
   libopenmesh-dev libembree-dev libopenimageio-dev libpng-dev openimageio-tools libopenexr-dev libtbb-dev
   nlohmann-json3-dev libcli11-dev libtinygltf-dev libcpp-httplib-dev
   libgtest-dev libgmock-dev libbenchmark-dev libgoogle-perftools-dev libgeos-dev
-  libgdal-dev libosmium2-dev libexpat1-dev libbz2-dev zlib1g-dev
+  libgdal-dev libproj-dev libosmium2-dev libexpat1-dev libbz2-dev zlib1g-dev
   python3 python3-shapely chromium
   slurm-wlm ffmpeg
 )

@@ -8,6 +8,7 @@
 
 #include <gdal_priv.h>
 #include <gdal_utils.h>
+#include <geodesic.h>
 #include <ogrsf_frmts.h>
 #include <osmium/handler.hpp>
 #include <osmium/io/any_input.hpp>
@@ -66,11 +67,14 @@ void expect_same_layers(const fs::path& a, const fs::path& b) {
 }
 
 // Converts a GeoJSON file with OGR (ogr2ogr's library call).
-void translate(const fs::path& from, const fs::path& to, const char* driver) {
+// `crs` ("EPSG:3857"), if given, is the one to write it in (ogr2ogr's -t_srs).
+void translate(const fs::path& from, const fs::path& to, const char* driver, const std::string& crs = "") {
   start_gdal();
   GDALDatasetH source = GDALOpenEx(from.string().c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr);
   ASSERT_NE(source, nullptr);
-  char* args[] = {const_cast<char*>("-f"), const_cast<char*>(driver), nullptr};
+  char* args[] = {const_cast<char*>("-f"), const_cast<char*>(driver), const_cast<char*>("-t_srs"),
+                  const_cast<char*>(crs.c_str()), nullptr};
+  if (crs.empty()) args[2] = nullptr;
   GDALVectorTranslateOptions* options = GDALVectorTranslateOptionsNew(args, nullptr);
   int error = 0;
   GDALDatasetH made = GDALVectorTranslate(to.string().c_str(), nullptr, 1, &source, options, &error);
@@ -384,6 +388,11 @@ TEST(Gis, BadInputsAreOneLineNamingTheFile) {
   write(dir / "crs.geojson", R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "EPSG:999999"}},
       "features": [{"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [100, 0], [100, 100], [0, 0]]]}}]})");
   EXPECT_NE(error_of(dir / "crs.geojson").find("is not a CRS PROJ knows"), std::string::npos) << error_of(dir / "crs.geojson");
+  // ... and only that line: PROJ's own message kept off the terminal.
+  const cli_util::Result run = cli_util::run("generate " + (dir / "crs.geojson").string() + " -o " + (dir / "out").string());
+  EXPECT_EQ(run.code, 2);
+  EXPECT_EQ(run.out.rfind("exacity: error: " + (dir / "crs.geojson").string() + ": crs:", 0), 0u) << run.out;
+  EXPECT_EQ(std::count(run.out.begin(), run.out.end(), '\n'), 1) << run.out;
 }
 
 namespace {
@@ -492,6 +501,11 @@ TEST(Gis, SeveralSketchFilesAreReadAsOne) {
   EXPECT_EQ(two.roads[0].lines, one.roads[0].lines);
   EXPECT_EQ(two.osm_left_out, one.osm_left_out);
   EXPECT_EQ(epsg_of(two.crs), 32635);
+  // The counts are of both files' features, and name both.
+  const std::vector<std::string> both{(dir / "land.geojson").string(), (dir / "streets.geojson").string()};
+  EXPECT_EQ(two.osm_files, both);
+  EXPECT_EQ(ordered_json::parse(two.geojson)["osm"]["files"], ordered_json(both));
+  EXPECT_FALSE(ordered_json::parse(two.geojson)["osm"].contains("file"));
 
   auto error_of_both = [&](const fs::path& a, const fs::path& b) -> std::string {
     try {
@@ -509,11 +523,7 @@ TEST(Gis, SeveralSketchFilesAreReadAsOne) {
   EXPECT_EQ(error_of_both(dir / "land.geojson", dir / "bad.geojson").rfind((dir / "bad.geojson").string() + " features[4]: unknown road class", 0),
             0u)
       << error_of_both(dir / "land.geojson", dir / "bad.geojson");
-  // Another CRS, settings in both, a grid map: refused, naming the file.
-  ordered_json elsewhere = streets;
-  elsewhere["crs"] = crs_member(32634);
-  write(dir / "elsewhere.geojson", elsewhere.dump());
-  EXPECT_NE(error_of_both(dir / "land.geojson", dir / "elsewhere.geojson").find("elsewhere.geojson: its crs"), std::string::npos);
+  // Settings in both, a grid map: refused, naming the file.
   write(dir / "streets.exacity.json", R"({"seed": 2})");
   write(dir / "land.exacity.json", R"({"seed": 3})");
   EXPECT_NE(error_of_both(dir / "land.geojson", dir / "streets.geojson").find("streets.geojson: has settings, and so has"),
@@ -523,4 +533,308 @@ TEST(Gis, SeveralSketchFilesAreReadAsOne) {
   EXPECT_NE(error_of_both(dir / "land.geojson", cli_util::kSource / "examples" / "grid" / "town.grid")
                 .find("a grid map is a whole sketch"),
             std::string::npos);
+}
+
+namespace {
+
+// Every position of a GeoJSON document's features through `t`.
+void transform_positions(ordered_json& doc, OGRCoordinateTransformation& t) {
+  std::function<void(ordered_json&)> each = [&](ordered_json& c) {
+    if (c[0].is_number()) {
+      double x = c[0], y = c[1];
+      ASSERT_TRUE(t.Transform(1, &x, &y));
+      c = {x, y};
+      return;
+    }
+    for (ordered_json& inner : c) each(inner);
+  };
+  for (ordered_json& f : doc["features"]) each(f["geometry"]["coordinates"]);
+}
+
+std::unique_ptr<OGRCoordinateTransformation> transformation(int from, int to) {
+  OGRSpatialReference a, b;
+  a.importFromEPSG(from), b.importFromEPSG(to);
+  a.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER), b.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  return std::unique_ptr<OGRCoordinateTransformation>(OGRCreateCoordinateTransformation(&a, &b));
+}
+
+// A document in metres of UTM zone `utm` moved so that its first position is at `origin`
+// (that zone's metres), then drawn in lon/lat without a crs, as GeoJSON's default is.
+ordered_json in_lon_lat(ordered_json doc, int utm, geom::Vec2 origin) {
+  const geom::Vec2 first{doc["features"][0]["geometry"]["coordinates"][0][0][0].get<double>(),
+                         doc["features"][0]["geometry"]["coordinates"][0][0][1].get<double>()};
+  std::function<void(ordered_json&)> move = [&](ordered_json& c) {
+    if (c[0].is_number()) return void(c = {c[0].get<double>() - first.x + origin.x, c[1].get<double>() - first.y + origin.y});
+    for (ordered_json& inner : c) move(inner);
+  };
+  for (ordered_json& f : doc["features"]) move(f["geometry"]["coordinates"]);
+  transform_positions(doc, *transformation(utm, 4326));
+  doc.erase("crs");
+  return doc;
+}
+
+// Converts a GeoJSON file in lon/lat to `epsg` with OGR, as `ogr2ogr -t_srs EPSG:N` does.
+void reproject(const fs::path& from, const fs::path& to, const char* driver, int epsg) {
+  translate(from, to, driver, "EPSG:" + std::to_string(epsg));
+}
+
+// The areas of a city's buildings, smallest first.
+std::vector<double> building_areas(const fs::path& out) {
+  std::vector<double> areas;
+  for (const auto& f : nlohmann::json::parse(cli_util::read(out / "vector" / "buildings.geojson"))["features"]) {
+    if (f["properties"].value("kind", "") != "building") continue;
+    for (const auto& polygon : f["geometry"]["type"] == "Polygon" ? nlohmann::json::array({f["geometry"]["coordinates"]})
+                                                                  : f["geometry"]["coordinates"]) {
+      geom::Ring ring;
+      for (const auto& p : polygon[0]) ring.push_back({p[0].get<double>(), p[1].get<double>()});
+      areas.push_back(std::abs(geom::signed_area(ring)));
+    }
+  }
+  std::sort(areas.begin(), areas.end());
+  return areas;
+}
+
+// Two cities of one place: the same counts, and the same buildings within a square millimetre.
+void expect_same_city(const GenerateResult& a, const fs::path& out_a, const GenerateResult& b, const fs::path& out_b) {
+  for (const char* count : {"roads", "blocks", "lots", "buildings"})
+    EXPECT_EQ(a.report["counts"][count], b.report["counts"][count]) << count;
+  const std::vector<double> areas_a = building_areas(out_a), areas_b = building_areas(out_b);
+  ASSERT_EQ(areas_a.size(), areas_b.size());
+  for (std::size_t i = 0; i < areas_a.size(); ++i) EXPECT_NEAR(areas_a[i], areas_b[i], 1e-6) << i;
+}
+
+}  // namespace
+
+TEST(Gis, WebMercatorAndFeetSketchesOfAPlaceAreItsLonLatCity) {
+  const fs::path dir = testing_util::temp_dir("gis-mercator-feet");
+  // San Francisco (UTM zone 10N): Web Mercator's scale there is 1.26, and California's
+  // state plane (EPSG:2227) counts US survey feet.
+  write(dir / "lonlat.geojson", in_lon_lat(town_in_metres(), 32610, {551000, 4180000}).dump());
+  reproject(dir / "lonlat.geojson", dir / "mercator.gpkg", "GPKG", 3857);
+  reproject(dir / "lonlat.geojson", dir / "feet.gpkg", "GPKG", 2227);
+  for (const char* name : {"lonlat", "mercator", "feet"}) write(dir / (std::string(name) + ".exacity.json"), kSettings.dump());
+  const Sketch lonlat = load_sketch(dir / "lonlat.geojson");
+  ASSERT_EQ(epsg_of(lonlat.crs), 32610);
+  for (const char* name : {"mercator.gpkg", "feet.gpkg"}) {
+    SCOPED_TRACE(name);
+    const Sketch sketch = load_sketch(dir / name);
+    EXPECT_EQ(epsg_of(sketch.crs), 32610);
+    ASSERT_EQ(sketch.zones.size(), lonlat.zones.size());
+    for (std::size_t z = 0; z < sketch.zones.size(); ++z)
+      for (std::size_t i = 0; i < sketch.zones[z].polygons[0].outer.size(); ++i) {
+        EXPECT_NEAR(sketch.zones[z].polygons[0].outer[i].x, lonlat.zones[z].polygons[0].outer[i].x, 1e-3);
+        EXPECT_NEAR(sketch.zones[z].polygons[0].outer[i].y, lonlat.zones[z].polygons[0].outer[i].y, 1e-3);
+      }
+  }
+  const GenerateResult a = generate(dir / "lonlat.geojson", dir / "a");
+  EXPECT_TRUE(a.valid);
+  EXPECT_GT(a.report["counts"]["lots"].get<int>(), 20);
+  for (const char* name : {"mercator", "feet"}) {
+    SCOPED_TRACE(name);
+    const GenerateResult b = generate(dir / (std::string(name) + ".gpkg"), dir / name);
+    expect_same_city(a, dir / "a", b, dir / name);
+    EXPECT_NE(cli_util::read(dir / name / "vector" / "lots.geojson").find("EPSG::32610"), std::string::npos);
+  }
+}
+
+TEST(Gis, AHundredMetreSquareInFeetIsAHundredMetresOnTheGround) {
+  const fs::path dir = testing_util::temp_dir("gis-feet-square");
+  // A square of 100 m sides on the ellipsoid (PROJ's geodesics) in San Francisco.
+  geod_geodesic wgs84;
+  geod_init(&wgs84, 6378137, 1 / 298.257223563);
+  std::vector<geom::Vec2> corners{{-122.42, 37.77}};
+  for (double azimuth : {90.0, 0.0, -90.0}) {
+    double lat = 0, lon = 0;
+    geod_direct(&wgs84, corners.back().y, corners.back().x, azimuth, 100, &lat, &lon, nullptr);
+    corners.push_back({lon, lat});
+  }
+  ordered_json ring = ordered_json::array();
+  for (geom::Vec2 c : corners) ring.push_back({c.x, c.y});
+  ring.push_back(ring[0]);
+  ordered_json sketch = {{"type", "FeatureCollection"},
+                         {"features", {{{"type", "Feature"}, {"properties", {{"zone", "residential"}}},
+                                        {"geometry", {{"type", "Polygon"}, {"coordinates", {ring}}}}}}}};
+  write(dir / "square.geojson", sketch.dump());
+  reproject(dir / "square.geojson", dir / "feet.gpkg", "GPKG", 2227);
+  reproject(dir / "square.geojson", dir / "feet.geojson", "GeoJSON", 2227);
+  for (const char* name : {"feet.gpkg", "feet.geojson"}) {
+    SCOPED_TRACE(name);
+    const Sketch read = load_sketch(dir / name, false);
+    ASSERT_EQ(epsg_of(read.crs), 32610);
+    const geom::Ring& square = read.zones.at(0).polygons.at(0).outer;
+    ASSERT_EQ(square.size(), 4u);
+    // In Exacity's metres, the place's UTM map; back in lon/lat, 100 m on the ground.
+    const ToLonLat to_lon_lat(32610);
+    auto to_utm = transformation(4326, 32610);
+    for (std::size_t i = 0; i < 4; ++i) {
+      geom::Vec2 expected = corners[i];
+      ASSERT_TRUE(to_utm->Transform(1, &expected.x, &expected.y));
+      EXPECT_NEAR(square[i].x, expected.x, 1e-3);
+      EXPECT_NEAR(square[i].y, expected.y, 1e-3);
+    }
+    for (std::size_t i = 0; i < 3; ++i) {
+      const geom::Vec2 a = to_lon_lat(square[i]), b = to_lon_lat(square[i + 1]);
+      double metres = 0;
+      geod_inverse(&wgs84, a.y, a.x, b.y, b.x, &metres, nullptr, nullptr);
+      EXPECT_NEAR(metres, 100, 1e-3) << "side " << i;
+    }
+  }
+}
+
+TEST(Gis, LonLatWithoutCrsIsFoundOverDegreesAndAcrossTheAntimeridian) {
+  const fs::path dir = testing_util::temp_dir("gis-wide-lonlat");
+  auto expect_projected_by_hand = [](const Sketch& sketch, const ordered_json& lonlat) {
+    const std::optional<int> epsg = epsg_of(sketch.crs);
+    ASSERT_TRUE(epsg);
+    ordered_json by_hand = lonlat;
+    transform_positions(by_hand, *transformation(4326, *epsg));
+    const ordered_json& outer = by_hand["features"][0]["geometry"]["coordinates"][0];
+    const geom::Ring& ring = sketch.zones.at(0).polygons.at(0).outer;
+    ASSERT_EQ(ring.size() + 1, outer.size());
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      EXPECT_EQ(ring[i].x, outer[i][0].get<double>());
+      EXPECT_EQ(ring[i].y, outer[i][1].get<double>());
+    }
+  };
+  // Two places two degrees apart, as a sketch of a region: lon/lat, not metres.
+  ordered_json wide = in_lon_lat(town_in_metres(), 32635, {385000, 6672000});
+  ordered_json far = wide["features"][1];
+  for (ordered_json& p : far["geometry"]["coordinates"][0]) p[0] = p[0].get<double>() + 2;
+  wide["features"].push_back(far);
+  write(dir / "wide.geojson", wide.dump());
+  const Sketch region = load_sketch(dir / "wide.geojson", false);
+  EXPECT_EQ(epsg_of(region.crs), 32635);
+  expect_projected_by_hand(region, wide);
+
+  // A town on the antimeridian (Taveuni, Fiji): longitudes from 179.99 to -179.99.
+  const ordered_json fiji = in_lon_lat(town_in_metres(), 32760, {819500, 8140000});
+  double west = 180, east = -180;
+  for (const ordered_json& p : fiji["features"][0]["geometry"]["coordinates"][0])
+    west = std::min(west, p[0].get<double>()), east = std::max(east, p[0].get<double>());
+  ASSERT_GT(east, 179.9);
+  ASSERT_LT(west, -179.9);
+  write(dir / "fiji.geojson", fiji.dump());
+  write(dir / "fiji.exacity.json", kSettings.dump());
+  const Sketch town = load_sketch(dir / "fiji.geojson");
+  EXPECT_TRUE(epsg_of(town.crs) == 32760 || epsg_of(town.crs) == 32701) << town.crs.dump();
+  expect_projected_by_hand(town, fiji);
+  // The town's 600 by 500 m across the antimeridian (turned by the two zones' convergence).
+  const geom::Ring& ring = town.zones[0].polygons[0].outer;
+  EXPECT_NEAR(std::hypot(ring[1].x - ring[0].x, ring[1].y - ring[0].y), 600, 1);
+  EXPECT_NEAR(std::hypot(ring[2].x - ring[1].x, ring[2].y - ring[1].y), 500, 1);
+  const GenerateResult city = generate(dir / "fiji.geojson", dir / "fiji");
+  EXPECT_TRUE(city.valid);
+  EXPECT_GT(city.report["counts"]["lots"].get<int>(), 20);
+}
+
+TEST(Gis, FilesReadTogetherAreEachBroughtFromTheirOwnCrs) {
+  const fs::path dir = testing_util::temp_dir("gis-mixed-crs");
+  // Land use in lon/lat without a crs, streets in Web Mercator: the one lon/lat town.
+  const ordered_json town = in_lon_lat(osm_tagged_town(), 32635, {385000, 6672000});
+  ordered_json land = town, streets = town;
+  land["features"] = ordered_json::array(), streets["features"] = ordered_json::array();
+  for (const ordered_json& f : town["features"])
+    (f["geometry"]["type"] == "Polygon" ? land : streets)["features"].push_back(f);
+  write(dir / "town.geojson", town.dump());
+  write(dir / "land.geojson", land.dump());
+  write(dir / "streets-lonlat.geojson", streets.dump());
+  reproject(dir / "streets-lonlat.geojson", dir / "streets.gpkg", "GPKG", 3857);
+  const Sketch one = load_sketch(dir / "town.geojson", false);
+  const Sketch two = load_sketch(std::vector<fs::path>{dir / "land.geojson", dir / "streets.gpkg"}, false);
+  EXPECT_EQ(epsg_of(two.crs), 32635);
+  ASSERT_EQ(two.zones.size(), one.zones.size());
+  ASSERT_EQ(two.roads.size(), one.roads.size());
+  ASSERT_EQ(two.roads.size(), 1u);
+  for (std::size_t i = 0; i < one.roads[0].lines[0].size(); ++i) {
+    EXPECT_NEAR(two.roads[0].lines[0][i].x, one.roads[0].lines[0][i].x, 1e-6);
+    EXPECT_NEAR(two.roads[0].lines[0][i].y, one.roads[0].lines[0][i].y, 1e-6);
+  }
+  for (const ZoneFeature& z : two.zones) {  // the river, widened from the street file's line
+    if (z.type != ZoneType::Water) continue;
+    EXPECT_NEAR(box_of(z).height(), 20, 1e-6);
+  }
+  // A file in another national grid is brought to the first's: land use in UTM 35N
+  // metres, streets in 34N.
+  ordered_json land_utm = land, streets_utm = streets;
+  transform_positions(land_utm, *transformation(4326, 32635));
+  transform_positions(streets_utm, *transformation(4326, 32634));
+  land_utm["crs"] = crs_member(32635), streets_utm["crs"] = crs_member(32634);
+  write(dir / "land-utm.geojson", land_utm.dump());
+  write(dir / "streets-utm.geojson", streets_utm.dump());
+  const Sketch grids = load_sketch(std::vector<fs::path>{dir / "land-utm.geojson", dir / "streets-utm.geojson"}, false);
+  EXPECT_EQ(epsg_of(grids.crs), 32635);
+  ASSERT_EQ(grids.roads.size(), 1u);
+  EXPECT_NEAR(grids.roads[0].lines[0][0].x, one.roads[0].lines[0][0].x, 1e-6);
+  EXPECT_NEAR(grids.roads[0].lines[0][0].y, one.roads[0].lines[0][0].y, 1e-6);
+}
+
+TEST(Gis, AMapInMetresTrueToScaleStaysAndOneFarFromScaleIsProjected) {
+  const fs::path dir = testing_util::temp_dir("gis-kept-crs");
+  // Delft in the Dutch national grid (EPSG:28992): its own metres, kept to the byte.
+  ordered_json delft = in_lon_lat(town_in_metres(), 32631, {597000, 5763000});
+  transform_positions(delft, *transformation(4326, 28992));
+  delft["crs"] = crs_member(28992);
+  write(dir / "delft.geojson", delft.dump());
+  const Sketch kept = load_sketch(dir / "delft.geojson", false);
+  EXPECT_EQ(epsg_of(kept.crs), 28992);
+  EXPECT_EQ(kept.zones[0].polygons[0].outer[0].x, delft["features"][0]["geometry"]["coordinates"][0][0][0].get<double>());
+  EXPECT_TRUE(kept.geojson.empty());  // the file as it is
+  // UTM zone 35N's metres used 18 degrees west of its zone, where its scale is 4% off: the
+  // zone of the place instead (32N).
+  ordered_json stretched = in_lon_lat(town_in_metres(), 32632, {500000, 5320000});
+  ordered_json lonlat = stretched;
+  transform_positions(stretched, *transformation(4326, 32635));
+  stretched["crs"] = crs_member(32635);
+  write(dir / "stretched.geojson", stretched.dump());
+  const Sketch moved = load_sketch(dir / "stretched.geojson", false);
+  EXPECT_EQ(epsg_of(moved.crs), 32632);
+  transform_positions(lonlat, *transformation(4326, 32632));
+  EXPECT_NEAR(moved.zones[0].polygons[0].outer[0].x, lonlat["features"][0]["geometry"]["coordinates"][0][0][0].get<double>(), 1e-6);
+  EXPECT_NEAR(box_of(moved.zones[0]).width(), 600, 1e-3);
+}
+
+TEST(Gis, ASketchWiderThanOneMapHoldsIsRefusedNamingTheStrayFeature) {
+  const fs::path dir = testing_util::temp_dir("gis-stray");
+  // The village with node 14, the primary road's last, moved to longitude -170.
+  std::string village = cli_util::read(kVillage);
+  const std::string node = R"(<node id="14" version="1" lat="48.0000000" lon="10.0088705"/>)";
+  ASSERT_NE(village.find(node), std::string::npos);
+  village.replace(village.find(node), node.size(), R"(<node id="14" version="1" lat="48.0000000" lon="-170.0000000"/>)");
+  write(dir / "stray.osm", village);
+  const std::string osm = error_of(dir / "stray.osm");
+  EXPECT_EQ(osm.rfind((dir / "stray.osm").string() + ": the sketch spans longitude", 0), 0u) << osm;
+  EXPECT_NE(osm.find("stray.osm way 100 lies farthest from the rest, at longitude -170.00000, latitude 48.00000"),
+            std::string::npos) << osm;
+  // A GeoJSON in CRS84 with one stray road, and the same without a crs.
+  ordered_json town = in_lon_lat(town_in_metres(), 32632, {500000, 5320000});
+  town["features"][2]["geometry"]["coordinates"][1] = {-170, 48};
+  write(dir / "lonlat.geojson", town.dump());
+  town["crs"] = {{"type", "name"}, {"properties", {{"name", "urn:ogc:def:crs:OGC:1.3:CRS84"}}}};
+  write(dir / "crs84.geojson", town.dump());
+  for (const char* name : {"lonlat.geojson", "crs84.geojson"}) {
+    const std::string error = error_of(dir / name);
+    EXPECT_NE(error.find("the sketch spans longitude"), std::string::npos) << error;
+    EXPECT_NE(error.find((dir / name).string() + " features[2] lies farthest from the rest"), std::string::npos) << error;
+  }
+  // Through the program: one line, exit 2, nothing written.
+  const cli_util::Result run = cli_util::run("generate " + (dir / "stray.osm").string() + " -o " + (dir / "out").string());
+  EXPECT_EQ(run.code, 2);
+  EXPECT_EQ(std::count(run.out.begin(), run.out.end(), '\n'), 1) << run.out;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  // One UTM zone holds a sketch a few degrees wide; not one of 20 at the equator.
+  ordered_json wide = {{"type", "FeatureCollection"},
+                       {"features", {{{"type", "Feature"}, {"properties", {{"zone", "park"}}},
+                                      {"geometry", {{"type", "Polygon"}, {"coordinates", {{{0.5, 0}, {20.5, 0}, {20.5, 1}, {0.5, 0}}}}}}}}}};
+  write(dir / "equator.geojson", wide.dump());
+  EXPECT_NE(error_of(dir / "equator.geojson").find("scale is"), std::string::npos) << error_of(dir / "equator.geojson");
+}
+
+TEST(Gis, AWidthOutOfRangeNamesTheFileOnce) {
+  const fs::path dir = testing_util::temp_dir("gis-width");
+  ordered_json town = town_in_metres();
+  town["features"][2]["properties"]["width"] = 1000;
+  write(dir / "town.geojson", town.dump());
+  translate(dir / "town.geojson", dir / "town.gpkg", "GPKG");
+  EXPECT_EQ(error_of(dir / "town.gpkg"),
+            (dir / "town.gpkg").string() + " layer town feature 3: width: value 1000.0 is out of range; use a value from 0.5 to 500.0");
 }

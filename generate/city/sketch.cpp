@@ -70,12 +70,12 @@ class Parser {
 
   // A feature named by its "source" is named with its file already.
   [[noreturn]] void fail(const std::string& where, const std::string& what) const {
-    const bool sourced = std::any_of(sources_.begin(), sources_.end(),
-                                     [&](const std::string& s) { return where.compare(0, s.size(), s) == 0; });
-    throw UserError((sourced ? "" : file_ + ": ") + where + ": " + what);
+    throw UserError((source_of(where) ? "" : file_ + ": ") + where + ": " + what);
   }
 
   double number(const json& j, const std::string& where, double min, double max) const {
+    if (const std::string* source = source_of(where))
+      return read_number(j, *source, where.substr(std::min(where.size(), source->size() + 1)), min, max);
     return read_number(j, file_, where, min, max);
   }
 
@@ -428,6 +428,13 @@ class Parser {
   }
 
  private:
+  // The "source" that `where` begins with: the feature's name, with its file.
+  const std::string* source_of(const std::string& where) const {
+    for (const std::string& s : sources_)  // "... feature 1" is no source of "... feature 12 width"
+      if (where.compare(0, s.size(), s) == 0 && (where.size() == s.size() || where[s.size()] == ' ')) return &s;
+    return nullptr;
+  }
+
   std::string file_;
   mutable std::set<std::string> sources_;  // the names features have by their "source"
   bool read_grammars_;
@@ -521,6 +528,9 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
   if (doc.contains("osm") && doc["osm"].is_object() && doc["osm"].contains("repaired") && doc["osm"]["repaired"].is_array())
     for (const auto& what : doc["osm"]["repaired"])
       if (what.is_string()) sketch.osm_repaired.push_back(what.get<std::string>());
+  if (doc.contains("osm") && doc["osm"].is_object() && doc["osm"].contains("files") && doc["osm"]["files"].is_array())
+    for (const json& file : doc["osm"]["files"])
+      if (file.is_string()) sketch.osm_files.push_back(file.get<std::string>());
   if (doc.contains("exacity")) parser.settings(doc["exacity"], sketch);
   const json& features = doc["features"];
   for (std::size_t i = 0; i < features.size(); ++i) parser.feature(features[i], static_cast<int>(i), sketch);
@@ -545,13 +555,6 @@ void expect_readable(const fs::path& path, SketchSource source) {
 
 std::string file_text(const fs::path& path) { return read_input(path, kMaxDataFileBytes, "the sketch", kSketchFix); }
 
-// project_to_metres, with GDAL's error handler quiet first: PROJ's complaints ("ERROR 1:
-// PROJ: ... crs not found") would print beside the one line the UserError says.
-bool in_metres(nlohmann::ordered_json& doc, const fs::path& path) {
-  start_gdal();
-  return project_to_metres(doc, path);
-}
-
 // An OSM extract's or another vector file's features as a GeoJSON document, with its own
 // settings beside it (docs/design.md, The sketch, GIS and OSM).
 nlohmann::ordered_json gis_document(const fs::path& path, SketchSource source) {
@@ -562,12 +565,13 @@ nlohmann::ordered_json gis_document(const fs::path& path, SketchSource source) {
 
 // Gives OSM-tagged features their zones and roads (generate/gis/osm_tags.h); land use
 // that came with OSM's streets is laid out by them, unless the settings say otherwise.
-bool apply_osm_tags_and_layout(nlohmann::ordered_json& doc, const fs::path& path) {
+// `files` names the files read, for messages.
+bool apply_osm_tags_and_layout(nlohmann::ordered_json& doc, const fs::path& path, const std::string& files) {
   if (!apply_osm_tags(doc, path)) return false;
   if (doc["features"].empty()) {
     std::string tags;
     for (const auto& [why, count] : doc["osm"]["skipped"].items()) tags += (tags.empty() ? "" : ", ") + why + " " + count.dump();
-    throw UserError(path.string() + ": no feature's OpenStreetMap tags make a zone or a road (" + tags +
+    throw UserError(files + ": no feature's OpenStreetMap tags make a zone or a road (" + tags +
                     "); see the README's OpenStreetMap section for the tags Exacity reads");
   }
   if (doc["osm"]["taken"].value("roads", 0) > 0) {
@@ -601,8 +605,8 @@ Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& mod
   expect_readable(path, source);
   if (source == SketchSource::Osm || source == SketchSource::Ogr) {
     nlohmann::ordered_json doc = gis_document(path, source);
-    in_metres(doc, path);
-    apply_osm_tags_and_layout(doc, path);
+    project_to_metres(doc, path);
+    apply_osm_tags_and_layout(doc, path, path.string());
     return made_sketch(doc, path, read_grammars, models);
   }
   const std::string text = file_text(path);
@@ -612,8 +616,8 @@ Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& mod
   if (doc.is_discarded() || !doc.is_object()) return parse_sketch(text, path, read_grammars, models);  // it says what is wrong
   // The settings first: their terrain and channel bounds are in the sketch's CRS too.
   const bool beside = add_settings_beside(doc, path);
-  const bool projected = in_metres(doc, path);
-  const bool tagged = apply_osm_tags_and_layout(doc, path);
+  const bool projected = project_to_metres(doc, path);
+  const bool tagged = apply_osm_tags_and_layout(doc, path, path.string());
   if (!projected && !beside && !tagged) return parse_sketch(text, path, read_grammars, models);
   return made_sketch(doc, path, read_grammars, models);
 }
@@ -621,8 +625,7 @@ Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& mod
 Sketch load_sketch(const std::vector<fs::path>& paths, bool read_grammars, const fs::path& models) {
   if (paths.empty()) throw UserError("no sketch given; give a GeoJSON sketch, a grid map, a vector file or an OSM extract");
   if (paths.size() == 1) return load_sketch(paths[0], read_grammars, models);
-  nlohmann::ordered_json doc = {{"type", "FeatureCollection"}, {"features", nlohmann::ordered_json::array()}};
-  fs::path crs_from, settings_from;
+  std::vector<SketchPart> parts;
   for (const fs::path& path : paths) {
     const SketchSource source = sketch_source(path);
     expect_readable(path, source);
@@ -647,27 +650,40 @@ Sketch load_sketch(const std::vector<fs::path>& paths, bool read_grammars, const
       if (f.is_object() && f.contains("properties") && f["properties"].is_object() && !f["properties"].contains("source"))
         f["properties"]["source"] = path.string() + " features[" + std::to_string(i) + "]";
     }
-    // A file without a crs is taken to be in the others'.
-    if (part.contains("crs") && !part["crs"].is_null()) {
-      if (!doc.contains("crs")) doc["crs"] = part["crs"], crs_from = path;
-      else if (epsg_of(doc["crs"]) ? epsg_of(doc["crs"]) != epsg_of(part["crs"]) : doc["crs"] != part["crs"])
-        throw UserError(path.string() + ": its crs " + part["crs"].dump() + " is not " + crs_from.string() + "'s " +
-                        doc["crs"].dump() + "; sketches given together share one CRS (reproject with ogr2ogr -t_srs)");
-    }
+    parts.push_back({std::move(part), path});
+  }
+  // Each file from its own CRS to the one they share.
+  const nlohmann::ordered_json crs = project_to_metres(parts);
+  nlohmann::ordered_json doc = {{"type", "FeatureCollection"}, {"features", nlohmann::ordered_json::array()}};
+  if (!crs.is_null()) doc["crs"] = crs;
+  fs::path settings_from;
+  for (SketchPart& p : parts) {
+    nlohmann::ordered_json& part = p.doc;
     if (part.contains("exacity")) {
       if (doc.contains("exacity"))
-        throw UserError(path.string() + ": has settings, and so has " + settings_from.string() +
+        throw UserError(p.path.string() + ": has settings, and so has " + settings_from.string() +
                         "; sketches given together take their settings from one of them");
-      doc["exacity"] = std::move(part["exacity"]), settings_from = path;
+      doc["exacity"] = std::move(part["exacity"]), settings_from = p.path;
     }
+    // An extract's own member: its counts added up, its lists one after the other.
     if (part.contains("osm") && part["osm"].is_object()) {
-      if (!doc.contains("osm")) doc["osm"] = {{"file", part["osm"].value("file", path.string())}};
-      add_counts(doc["osm"]["skipped"], part["osm"].value("skipped", nlohmann::ordered_json()));
+      if (!doc.contains("osm")) doc["osm"] = nlohmann::ordered_json::object();
+      for (auto& [key, value] : part["osm"].items())
+        if (key == "skipped") add_counts(doc["osm"]["skipped"], value);
+        else if (value.is_array())
+          for (nlohmann::ordered_json& v : value) doc["osm"][key].push_back(std::move(v));
     }
     for (nlohmann::ordered_json& f : part["features"]) doc["features"].push_back(std::move(f));
   }
-  in_metres(doc, paths[0]);
-  apply_osm_tags_and_layout(doc, paths[0]);
+  std::string files;
+  for (const fs::path& path : paths) files += (files.empty() ? "" : ", ") + path.string();
+  apply_osm_tags_and_layout(doc, paths[0], files);
+  // The "osm" member counts every file's features: it names them all.
+  if (doc.contains("osm") && doc["osm"].is_object()) {
+    doc["osm"].erase("file");
+    doc["osm"]["files"] = nlohmann::ordered_json::array();
+    for (const fs::path& path : paths) doc["osm"]["files"].push_back(path.string());
+  }
   return made_sketch(doc, paths[0], read_grammars, models);
 }
 

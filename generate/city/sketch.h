@@ -95,6 +95,8 @@ struct Sketch {
   // OpenStreetMap areas osmium could not assemble, mended (rings the extract's edge cut
   // closed along it), each named: the "osm" member's "repaired".
   std::vector<std::string> osm_repaired;
+  // The files those counts are of, when several were read together (the member's "files").
+  std::vector<std::string> osm_files;
   // The document read when it is not the file at `path` (a grid map; a sketch naming one in
   // "grid", whose features it holds; `generate --models`), else empty. OUT/sketch.geojson
   // holds it, so that validate and render read the sketch generate read.
