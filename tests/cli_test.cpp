@@ -645,3 +645,75 @@ TEST(Cli, AnUnknownCrsIsOneLineWithoutProjsOwn) {
   EXPECT_EQ(r.out.rfind("exacity: error: " + (dir / "crs.geojson").string() + ": crs: ", 0), 0u) << r.out;
   EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
 }
+
+namespace {
+
+// An OSM way of `nodes` nodes alternating between two parallel lines 110 m apart, each
+// node at a scrambled place along them, so the road runs back and forth across itself.
+std::string zig_zag_osm(int nodes) {
+  std::ostringstream s;
+  s.precision(10);
+  for (int i = 0; i < nodes; ++i)
+    s << "  <node id=\"" << 900000 + i << "\" version=\"1\" lat=\"" << (i % 2 ? 48.002 : 48.001) << "\" lon=\""
+      << 10 + 0.003 * ((i * 7919) % nodes) / nodes << "\"/>\n";
+  s << "  <way id=\"900000\" version=\"1\">\n";
+  for (int i = 0; i < nodes; ++i) s << "    <nd ref=\"" << 900000 + i << "\"/>\n";
+  s << "    <tag k=\"highway\" v=\"residential\"/>\n  </way>\n";
+  return s.str();
+}
+
+}  // namespace
+
+// A way zig-zagging across itself: every crossing of its strokes is vertices of the exact
+// map, quadratic in its nodes (400 nodes made gigabytes and ran for hours; alone, or with
+// 2,000 in the village example). The crossings are counted first and the sketch refused.
+TEST(Cli, AWayRunningAcrossItselfHundredsOfTimesIsRefusedBeforeTheMap) {
+  fs::path dir = testing_util::temp_dir("cli-zig-zag");
+  std::ofstream(dir / "zigzag.osm") << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<osm version=\"0.6\">\n"
+                                    << zig_zag_osm(400) << "</osm>\n";
+  std::string village = read(kSource / "examples" / "osm" / "village.osm");
+  village.insert(village.rfind("</osm>"), zig_zag_osm(2000));
+  std::ofstream(dir / "village.osm") << village;
+  for (const char* sketch : {"zigzag.osm", "village.osm"}) {
+    const fs::path out = dir / (std::string(sketch) + "-out");
+    Result r = shell("timeout 60 " + std::string(EXACITY_BINARY) + " generate " + (dir / sketch).string() + " -o " +
+                     out.string() + " -q --threads 1");
+    EXPECT_EQ(r.code, 2) << sketch << ": " << r.out;
+    EXPECT_NE(r.out.find("way 900000"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("cross or overlap one another more than"), std::string::npos) << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+    EXPECT_FALSE(fs::exists(out)) << sketch;
+  }
+  // The village itself, real towns and a few dozen nodes of zig-zag are far under the limit.
+  std::ofstream(dir / "few.osm") << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<osm version=\"0.6\">\n"
+                                 << zig_zag_osm(40) << "</osm>\n";
+  Result r = run("generate " + (dir / "few.osm").string() + " -o " + (dir / "few-out").string() + " -q --threads 1");
+  EXPECT_EQ(r.code, 0) << r.out;
+}
+
+// Seed 23's industrial L and a 60 m residential L inside its bend: cells of the corridor
+// grown again from beside their road edge seeded a centimetre inside the far edge, and
+// their branches out to it were stubs of 2 to 40 cm ending on open land.
+TEST(Cli, GrowthLeavesNoDanglingStubShorterThanABlockIsWide) {
+  fs::path dir = testing_util::temp_dir("cli-stubs");
+  const std::string sketch = R"({"type": "FeatureCollection", "exacity": {"seed": 23}, "features": [
+    {"type": "Feature", "properties": {"zone": "industrial"}, "geometry": {"type": "Polygon",
+     "coordinates": [[[0, 0], [3000, 0], [3000, 600], [600, 600], [600, 2500], [0, 2500]]]}},
+    {"type": "Feature", "properties": {"zone": "residential"}, "geometry": {"type": "Polygon",
+     "coordinates": [[[700, 700], [3000, 700], [3000, 760], [760, 760], [760, 2500], [700, 2500]]]}}]})";
+  ASSERT_EQ(generate_in(dir, sketch).code, 0);
+  const auto roads = nlohmann::json::parse(read(dir / "out" / "vector" / "roads.geojson"))["features"];
+  std::map<std::pair<double, double>, int> ends;
+  for (const auto& f : roads)
+    for (const auto& p : f["geometry"]["coordinates"]) ++ends[{p[0].get<double>(), p[1].get<double>()}];
+  for (const auto& f : roads) {
+    const auto& c = f["geometry"]["coordinates"];
+    double length = 0;
+    for (std::size_t i = 1; i < c.size(); ++i)
+      length += std::hypot(c[i][0].get<double>() - c[i - 1][0].get<double>(), c[i][1].get<double>() - c[i - 1][1].get<double>());
+    if (length >= 6) continue;  // the zones' min_block_width
+    for (const auto& p : {c.front(), c.back()})
+      EXPECT_GT(ends[std::make_pair(p[0].get<double>(), p[1].get<double>())], 1)
+          << "road " << f["properties"]["id"] << ", " << length << " m, ends alone at " << p.dump();
+  }
+}

@@ -12,6 +12,7 @@
 #include "generate/errors.h"
 #include "generate/input_file.h"
 #include "generate/layout/street_graph.h"
+#include "geom/crowding.h"
 #include "geom/measure.h"
 
 namespace exacity {
@@ -245,6 +246,47 @@ class Parser {
            "the zones would make about " + std::to_string(static_cast<long long>(blocks)) +
                " blocks, more than the " + std::to_string(static_cast<long long>(kMaxBlocks)) + " one run builds (this " + std::string(name(largest->type)) + " zone alone " +
                std::to_string(static_cast<long long>(most)) + "); draw smaller zones or raise their \"block_area\"");
+  }
+
+  // The exact map holds every road's stroke and every zone's rings, and where two cross it
+  // gets vertices: a way that zig-zags across itself, or thousands of zones drawn over one
+  // another, make a map quadratic in their points (a 400-point way, gigabytes). The strokes'
+  // meetings are counted in doubles first and a sketch with too many refused, naming the
+  // feature most of them are on.
+  void expect_few_meetings(const Sketch& sketch) const {
+    std::vector<geom::FatSegment> segments;
+    std::vector<int> feature_of;  // by chain
+    auto add_chain = [&](const std::vector<geom::Vec2>& points, double radius, bool ring, int feature) {
+      const int chain = static_cast<int>(feature_of.size());
+      feature_of.push_back(feature);
+      const std::size_t n = ring ? points.size() : points.size() - 1;
+      for (std::size_t i = 0; i < n; ++i)
+        segments.push_back({points[i], points[(i + 1) % points.size()], radius, chain, static_cast<int>(i),
+                            static_cast<int>(n) - 1, ring});
+    };
+    for (const RoadFeature& r : sketch.roads)
+      for (const geom::Polyline& line : r.lines)
+        if (line.size() > 1) add_chain(line, r.width / 2 + sketch.streets.sidewalk(r.road_class), false, r.index);
+    for (const ZoneFeature& z : sketch.zones)
+      for (const geom::Polygon& p : z.polygons) {
+        if (p.outer.size() > 1) add_chain(p.outer, 0, true, z.index);
+        for (const geom::Ring& h : p.holes)
+          if (h.size() > 1) add_chain(h, 0, true, z.index);
+      }
+    // Real maps meet under once a piece (junctions, land use along its streets).
+    const std::size_t limit = kMaxMeetings + 4 * segments.size();
+    std::vector<std::size_t> per_chain;
+    if (geom::count_meetings(segments, limit + 1, per_chain) <= limit) return;
+    std::map<int, std::size_t> per_feature;
+    for (std::size_t c = 0; c < per_chain.size(); ++c) per_feature[feature_of[c]] += per_chain[c];
+    const auto most = std::max_element(per_feature.begin(), per_feature.end(),
+                                       [](const auto& x, const auto& y) { return x.second < y.second; });
+    fail(names_[most->first],
+         "the sketch's roads (with their sidewalks) and zone edges cross or overlap one another more than " +
+             std::to_string(limit) + " times (" + std::to_string(kMaxMeetings) + " and 4 for each of their " +
+             std::to_string(segments.size()) + " segments), more than one run builds: each crossing is work for "
+             "the exact map; this feature is in " + std::to_string(most->second) +
+             " of them: draw it without running across itself or over other features so often");
   }
 
   void settings(const json& ex, Sketch& sketch) const {
@@ -539,6 +581,7 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
   parser.expect_metres(sketch);
   parser.expect_buildable(sketch);
   parser.join_streets(sketch);
+  parser.expect_few_meetings(sketch);
   return sketch;
 }
 

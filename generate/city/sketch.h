@@ -110,6 +110,9 @@ inline constexpr double kMaxCoordinate = 1e10;
 // The most blocks one run builds (the zones' area over their block_area): the 10 km
 // benchmark city's 12,700 blocks peak at 4.1 GiB.
 inline constexpr double kMaxBlocks = 50000;
+// Pairs of sketch pieces (road strokes, zone edges) crossing or overlapping, past 4 a piece:
+// each is vertices of the exact map (a way zig-zagging over itself makes gigabytes).
+inline constexpr std::size_t kMaxMeetings = 10000;
 // A road's width, m.
 inline constexpr double kMinRoadWidth = 0.5, kMaxRoadWidth = 500;
 

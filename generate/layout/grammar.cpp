@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "generate/city/sketch.h"
 #include "generate/errors.h"
 #include "generate/input_file.h"
 #include "geom/measure.h"
@@ -14,10 +15,14 @@
 namespace exacity {
 namespace {
 
-constexpr int kMaxLeaves = 1 << 20;  // a grammar that splits every node in four, eight deep, on many roots
-
 [[noreturn]] void fail(const std::filesystem::path& file, int line, const std::string& what) {
   throw UserError(file.string() + ":" + std::to_string(line) + ": " + what);
+}
+
+std::string number_text(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
 }
 
 bool read_number(const std::string& token, double& out) {
@@ -177,10 +182,19 @@ std::vector<GrammarLeaf> grow_layout(const Grammar& grammar, const std::vector<s
     auto rules = grammar.rules.find({at.name, static_cast<int>(at.corners.size())});
     const bool road = at.name.find("Road") != std::string::npos;
     if (rules == grammar.rules.end() || road || at.depth >= max_depth ||
-        std::abs(geom::signed_area(at.corners)) < min_area || leaves.size() + open.size() >= kMaxLeaves) {
+        std::abs(geom::signed_area(at.corners)) < min_area) {
       leaves.push_back(std::move(node.leaf));
       continue;
     }
+    // Each piece is a block or a road: the tree is refused as it grows past the blocks one
+    // run builds, before the work of growing it further (a rule that makes roads beside its
+    // symbols grows a third more pieces than blocks, every one to be settled and inserted).
+    if (static_cast<double>(leaves.size() + open.size()) >= kMaxBlocks)
+      throw UserError(grammar.file.string() + ": the grammar grows more than " +
+                      std::to_string(static_cast<long long>(kMaxBlocks)) +
+                      " pieces (blocks and roads) in one region, the blocks one run builds, at \"grammar_depth\" " +
+                      std::to_string(max_depth) + " and \"min_block_area\" " + number_text(min_area) +
+                      "; lower \"grammar_depth\" or raise \"min_block_area\"");
     Random rng(node.id);
     double total = 0;
     for (const GrammarRule& r : rules->second) total += r.weight;
