@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <utility>
 
 #include "generate/cancel.h"
 #include "generate/errors.h"
@@ -383,7 +384,7 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
   json doc{{"type", "CityJSON"},
            {"version", "2.0"},
            {"transform", {{"scale", {kScale, kScale, kScale}}, {"translate", {origin.x, origin.y, 0.0}}}},
-           {"CityObjects", objects},
+           {"CityObjects", std::move(objects)},
            {"vertices", v.to_json()}};
   Appearance appearance(file.parent_path() / "textures");
   if (library) doc["geometry-templates"] = templates(*library, appearance);
