@@ -22,10 +22,9 @@ const char* kSketch = R"({"type": "FeatureCollection", "exacity": {"seed": 3}, "
   {"type": "Feature", "properties": {"road": "highway", "width": 16},
    "geometry": {"type": "LineString", "coordinates": [[-50, 150], [650, 150]]}}]})";
 
-// Builds and writes the city, setting the flag as `stage` begins; the last stage begun when
-// the build ended, and whether it ended by Cancelled.
-std::pair<std::string, bool> cancel_at(const std::string& stage) {
-  const std::filesystem::path dir = testing_util::temp_dir("cancel_" + std::to_string(std::hash<std::string>()(stage)));
+// Builds and writes the city into `dir`/out, setting the flag as `stage` begins; the last
+// stage begun when the build ended, and whether it ended by Cancelled.
+std::pair<std::string, bool> cancel_at(const std::string& stage, const std::filesystem::path& dir) {
   std::ofstream(dir / "sketch.geojson") << kSketch;
   const Sketch sketch = load_sketch(dir / "sketch.geojson");
   std::atomic<bool> flag{false};
@@ -47,11 +46,33 @@ std::pair<std::string, bool> cancel_at(const std::string& stage) {
   return {last, false};
 }
 
+std::pair<std::string, bool> cancel_at(const std::string& stage) {
+  return cancel_at(stage, testing_util::temp_dir("cancel_" + std::to_string(std::hash<std::string>()(stage))));
+}
+
 TEST(Cancel, TheLongStagesStopWithinThemselves) {
-  for (const char* stage : {"road network", "lots", "buildings", "3d export"}) {
+  for (const char* stage : {"road network", "lots", "buildings", "vector layers", "3d export"}) {
     const auto [last, cancelled] = cancel_at(stage);
     EXPECT_TRUE(cancelled) << stage;
     EXPECT_EQ(last, stage);
+  }
+}
+
+// The exports and the validation stop within their first feature: a cancelled export
+// writes none of its features, and a cancelled validation leaves no report.
+TEST(Cancel, TheExportsAndTheValidationStopWithinThemselves) {
+  for (const char* stage : {"export", "validation"}) {
+    const std::filesystem::path dir = testing_util::temp_dir(std::string("cancel_writing_") + stage);
+    const auto [last, cancelled] = cancel_at(stage, dir);
+    EXPECT_TRUE(cancelled) << stage;
+    EXPECT_EQ(last, stage);
+    EXPECT_FALSE(std::filesystem::exists(dir / "out" / "report.json")) << stage;
+    if (std::string(stage) != "export") continue;
+    // The first layer written holds no feature, and the map is not begun.
+    std::ifstream zones(dir / "out" / "vector" / "zones.geojson");
+    const std::string text((std::istreambuf_iterator<char>(zones)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text.find("\"Feature\""), std::string::npos) << text.substr(0, 200);
+    EXPECT_FALSE(std::filesystem::exists(dir / "out" / "map.svg"));
   }
 }
 

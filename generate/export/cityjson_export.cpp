@@ -3,7 +3,9 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <utility>
 
+#include "generate/cancel.h"
 #include "generate/errors.h"
 #include "generate/export/bridges.h"
 #include "generate/export/ground_layers.h"
@@ -355,18 +357,24 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
   const geom::Vec2 origin{std::floor(box.min_x), std::floor(box.min_y)};
   Vertices v(origin);
   json objects = json::object();
-
+  const CancelCheck cancel;
   for_each_by_id(
       buildings, models,
       [&](const Building& b) {
+        cancel.check();
         if (json o = building_object(b, meshes[b.id], v); !o.is_null()) objects["building-" + std::to_string(b.id)] = o;
       },
       [&](const ModelInstance& m) {
+        cancel.check();
         if (json o = model_object(m, meshes[m.id], *library, v); !o.is_null())
           objects["building-" + std::to_string(m.id)] = o;
       });
-  for (const Clutter& c : clutter) objects["clutter-" + std::to_string(c.instance.id)] = clutter_object(c, *library, v);
+  for (const Clutter& c : clutter) {
+    cancel.check();
+    objects["clutter-" + std::to_string(c.instance.id)] = clutter_object(c, *library, v);
+  }
   add_ground_objects(ground, ground_layers, terrain, v, objects);
+  cancel.check();
 
   // The ground under the city: the heightmap over the rectangle around it.
   json tin = json::array();
@@ -376,7 +384,7 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
   json doc{{"type", "CityJSON"},
            {"version", "2.0"},
            {"transform", {{"scale", {kScale, kScale, kScale}}, {"translate", {origin.x, origin.y, 0.0}}}},
-           {"CityObjects", objects},
+           {"CityObjects", std::move(objects)},
            {"vertices", v.to_json()}};
   Appearance appearance(file.parent_path() / "textures");
   if (library) doc["geometry-templates"] = templates(*library, appearance);

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "generate/cancel.h"
 #include "generate/errors.h"
 
 namespace exacity {
@@ -40,7 +41,9 @@ void write_layer(const Layer& layer, const nlohmann::ordered_json& crs, const fs
   out << "{\"type\":\"FeatureCollection\",\"name\":" << json(layer.name).dump();
   if (!crs.is_null()) out << ",\"crs\":" << crs.dump();
   out << ",\"features\":[";
+  const CancelCheck cancel;
   for (std::size_t i = 0; i < layer.features.size(); ++i) {
+    cancel.check();
     const VectorFeature& f = layer.features[i];
     out << (i ? ",\n" : "\n") << "{\"type\":\"Feature\",\"properties\":" << f.properties.dump()
         << ",\"geometry\":{\"type\":";
@@ -90,7 +93,9 @@ Layer read_geojson(const fs::path& file, std::vector<std::string>& problems) {
     return layer;
   }
   auto position = [](const json& p) { return geom::Vec2{p.at(0).get<double>(), p.at(1).get<double>()}; };
+  const CancelCheck cancel;
   for (std::size_t i = 0; i < doc["features"].size(); ++i) {
+    cancel.check();
     const json& f = doc["features"][i];
     std::string where = file.filename().string() + ": features[" + std::to_string(i) + "]";
     try {

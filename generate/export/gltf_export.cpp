@@ -6,6 +6,7 @@
 
 #include <tiny_gltf.h>
 
+#include "generate/cancel.h"
 #include "generate/errors.h"
 #include "generate/export/ground_layers.h"
 #include "generate/city/palette.h"
@@ -208,7 +209,9 @@ Primitives ground_primitives(const std::vector<GroundLayer>& layers, const Frame
 Primitives building_primitives(const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
                                const std::vector<Mesh>& meshes, const Frame& local, Glb& glb) {
   std::map<std::pair<ZoneType, int>, Triangles> merged;
+  const CancelCheck cancel;
   auto merge = [&](ZoneType zone, const Mesh& mesh) {
+    cancel.check();
     const MeshTriangles tris = mesh_triangles(mesh);
     for (std::size_t k = 0; k < tris.triangles.size(); ++k) {
       Triangles& t = merged[{zone, static_cast<int>(tris.surface[k])}];
@@ -243,7 +246,9 @@ std::size_t add_model_nodes(const std::vector<ModelInstance>& models, const Mode
                             Glb& glb, tinygltf::Node& root, StoredModels& stored) {
   auto& geometry = stored.geometry;
   auto& variant_mesh = stored.variant_mesh;
+  const CancelCheck cancel;
   for (const ModelInstance& m : models) {
+    cancel.check();
     const int mi = m.placed.model;
     const Model& model = library->models[mi];
     if (!geometry.count(mi)) {

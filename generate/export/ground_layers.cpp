@@ -2,6 +2,7 @@
 
 #include <map>
 
+#include "generate/cancel.h"
 #include "generate/export/bridges.h"
 
 namespace exacity {
@@ -18,7 +19,9 @@ std::vector<GroundLayer> ground_layers(const Ground& ground, const Terrain* terr
   layers.push_back(
       {GroundKind::Terrain, "terrain", kTerrainColour, 0.9, terrain_mesh(terrain, box, box, ground.water, 512)});
   std::map<std::string, GroundLayer> zones;  // by name: the layers' order
+  const CancelCheck cancel;
   for (const ZoneArea& z : ground.zones) {
+    cancel.check();
     const std::string material = "ground_" + std::string(name(z.type));
     auto [it, added] =
         zones.try_emplace(material, GroundLayer{GroundKind::Zone, material, ground_colour(z.type), 0.9, {}});
@@ -33,6 +36,7 @@ std::vector<GroundLayer> ground_layers(const Ground& ground, const Terrain* terr
   const BridgeDecks decks = bridge_decks(ground, terrain);
   GroundLayer roads{GroundKind::Road, "road", kRoadColour, 0.9, {}};
   for (std::size_t i = 0; i < ground.road_areas.size(); ++i) {
+    cancel.check();
     const RoadArea& a = ground.road_areas[i];
     if (a.bridge)
       drape_flat(a.polygon, decks.height[i], roads.mesh);

@@ -3,6 +3,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "generate/cancel.h"
 #include "generate/city/palette.h"
 #include "generate/errors.h"
 #include "generate/export/geojson.h"
@@ -88,7 +89,9 @@ MeshCounts write_meshes(const std::vector<Building>& buildings, const std::vecto
   for_each_by_id(
       buildings, models, [&](const Building& b) { zone_of.push_back(b.zone); },
       [&](const ModelInstance& m) { zone_of.push_back(m.zone); });
+  const CancelCheck cancel;
   for (std::size_t i = 0; i < meshes.size(); ++i) {
+    cancel.check();
     const Mesh& mesh = meshes[i];
     auto surface = surface_property(mesh);
     out.object("building_" + std::to_string(i));
@@ -106,6 +109,7 @@ MeshCounts write_meshes(const std::vector<Building>& buildings, const std::vecto
     }
   }
   for (const GroundLayer& layer : ground) {
+    cancel.check();
     out.object(layer.name);
     out.use(layer.name);
     const std::size_t first = out.first();

@@ -8,6 +8,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "generate/cancel.h"
 #include "generate/errors.h"
 #include "generate/input_file.h"
 #include "generate/parcels/lots.h"
@@ -224,7 +225,9 @@ std::set<int> built_lots(const Layer& buildings) {
 
 LotTally tally_lots(const Layer& lots, const std::string& zone, const RoadEdges& road_edges, const std::set<int>& built) {
   LotTally t;
+  const CancelCheck cancel;
   for (const auto& f : lots.features) {
+    cancel.check();
     if (!in_zone(f, zone)) continue;
     t.areas.push_back(geom::area(f.polygon));
     ++t.count;
@@ -256,6 +259,7 @@ std::vector<const geom::Polygon*> zone_footprints(const Layer& buildings, const 
 // One zone's (or "all"'s) blocks, lots and footprints; none for a zone with none of them.
 std::optional<ordered_json> zone_figures(const CityLayers& layers, const std::string& zone, const RoadEdges& road_edges,
                                          const Sketch* sketch) {
+  CancelCheck().check();
   const BlockTally blocks = tally_blocks(layers.blocks, zone, sketch);
   const LotTally lots = tally_lots(layers.lots, zone, road_edges, built_lots(layers.buildings));
   const std::vector<const geom::Polygon*> footprints = zone_footprints(layers.buildings, zone);

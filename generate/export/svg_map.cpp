@@ -7,6 +7,7 @@
 #include <ostream>
 #include <vector>
 
+#include "generate/cancel.h"
 #include "generate/city/palette.h"
 #include "generate/errors.h"
 #include "generate/export/geojson.h"
@@ -19,7 +20,9 @@ std::string point(geom::Vec2 p, const geom::Box& b) {
   return format_number(p.x - b.min_x) + "," + format_number(b.max_y - p.y);
 }
 
+// Every feature of the map passes here: the place to stop a cancelled build.
 std::string path_data(const geom::Polygon& poly, const geom::Box& b) {
+  CancelCheck().check();
   std::string d;
   auto ring = [&](const geom::Ring& r) {
     for (std::size_t i = 0; i < r.size(); ++i) d += (i ? "L" : "M") + point(r[i], b);

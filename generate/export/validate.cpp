@@ -5,6 +5,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "generate/cancel.h"
 #include "generate/city/drawn_zones.h"
 #include "generate/errors.h"
 #include "generate/export/geojson.h"
@@ -58,7 +59,9 @@ class Checker {
 void check_polygons(Checker& c, const Layer& layer, std::vector<PolygonRef>& refs,
                     std::vector<const geom::Polygon*>& polygons) {
   c.v_.features[layer.name] = static_cast<int>(layer.features.size());
+  const CancelCheck cancel;
   for (std::size_t i = 0; i < layer.features.size(); ++i) {
+    cancel.check();
     const VectorFeature& f = layer.features[i];
     std::string name = layer.name + ".geojson features[" + std::to_string(i) + "]";
     if (!f.properties.contains("id")) c.problem(name + ": no \"id\"");
@@ -126,6 +129,7 @@ class FaceLabels {
       : sketch_(sketch), refs_(refs), drawn_(drawn), polygons_(polygons) {}
 
   int of(const geom::Windings& w) {
+    cancel_.check();
     std::vector<int> inside;
     if (int label = ring_windings(w, inside)) return label;
     const FaceCover here(refs_, inside);
@@ -224,6 +228,7 @@ class FaceLabels {
   const std::vector<PolygonRef>& refs_;
   const DrawnZones& drawn_;
   const int polygons_;
+  const CancelCheck cancel_;
   std::map<std::string, int> message_index_{{"", 0}};
   std::map<std::pair<int, int>, int> nested_;  // overlapping buildings -> their problem's label, 0 for none
 };
@@ -259,7 +264,9 @@ void report_face_problems(Checker& c, const geom::PlanarMap& map, const FaceLabe
 // over the edges also finds which polygons share an edge with a road area or bridge.
 std::vector<bool> check_shared_edges(Checker& c, const geom::PlanarMap& map, const std::vector<PolygonRef>& refs, int P) {
   std::vector<bool> fronts(P, false);
+  const CancelCheck cancel;
   map.for_each_edge([&](const std::vector<geom::CurveTag>& tags, geom::Vec2 a, geom::Vec2) {
+    cancel.check();
     bool road = false;
     for (const auto& t : tags)
       if (t.counter < 2 * P && (refs[t.counter / 2].kind == Kind::Road || refs[t.counter / 2].kind == Kind::Bridge)) road = true;
@@ -300,7 +307,9 @@ void check_road_meetings(Checker& c, const std::vector<VectorFeature>& features)
   geom::PlanarMap map;
   for (std::size_t i = 0; i < features.size(); ++i) map.add_polyline(features[i].line, static_cast<int>(i));
   map.insert_batch();
-  for (const auto& [tag, pieces] : map.polyline_pieces())
+  const CancelCheck cancel;
+  for (const auto& [tag, pieces] : map.polyline_pieces()) {
+    cancel.check();
     if (pieces.size() != features[tag].line.size() - 1)
       for (std::size_t k = 1; k < pieces.size(); ++k)
         if (pieces[k].segment == pieces[k - 1].segment) {
@@ -308,6 +317,7 @@ void check_road_meetings(Checker& c, const std::vector<VectorFeature>& features)
                     " meets another centre line between its vertices" + near(pieces[k].from));
           break;
         }
+  }
 }
 
 void check_road_connectivity(Checker& c, const std::vector<VectorFeature>& features) {
@@ -359,7 +369,9 @@ void check_road_ends(Checker& c, const Sketch& sketch, const std::vector<VectorF
   for (const auto& z : sketch.zones)
     for (const auto& p : z.polygons) edges.add_polygon(p);
   for (const auto& f : water.features) edges.add_polygon(f.polygon);
+  const CancelCheck cancel;
   for (std::size_t i = 0; i < features.size(); ++i) {
+    cancel.check();
     const VectorFeature& f = features[i];
     if (f.properties["level"].is_null()) continue;  // drawn in the sketch
     for (geom::Vec2 end : {f.line.front(), f.line.back()}) {
@@ -440,8 +452,12 @@ Validation validate_output(const fs::path& dir) {
   check_references(c, road_areas, "road", roads);
   check_references(c, blocks, "roads", roads);
   if (!well_formed) return v;
+  const CancelCheck cancel;
+  cancel.check();
   check_tiling(c, sketch, refs, polygons);
+  cancel.check();
   check_roads(c, sketch, roads, water);
+  cancel.check();
   validate_clutter(dir, layers, v);
   return v;
 }

@@ -5,6 +5,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "generate/cancel.h"
 #include "generate/placement/model_library.h"
 #include "geom/polygon_check.h"
 
@@ -80,8 +81,10 @@ void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers
   for (const VectorFeature& f : clutter.features)
     if (f.line.size() == 1) points.push_back(f.line[0]);
   AreaCells cells(points);
+  const CancelCheck cancel;
   auto add = [&](const Layer& layer, auto&& stands_on, auto&& what) {
     for (std::size_t i = 0; i < layer.features.size(); ++i) {
+      cancel.check();
       const VectorFeature& f = layer.features[i];
       cells.add(static_cast<int>(areas.size()), f.polygon);
       areas.push_back(
@@ -115,6 +118,7 @@ void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers
   std::set<int> roads, ids;
   for (const VectorFeature& f : layers.roads.features) roads.insert(f.properties.value("id", -1));
   for (std::size_t i = 0; i < clutter.features.size(); ++i) {
+    cancel.check();
     const VectorFeature& f = clutter.features[i];
     const std::string name = "clutter.geojson features[" + std::to_string(i) + "]";
     if (f.line.size() != 1 || !f.polygon.outer.empty()) {

@@ -5,6 +5,7 @@
 #include <functional>
 #include <map>
 
+#include "generate/cancel.h"
 #include "geom/measure.h"
 #include "geom/polygon_check.h"
 
@@ -17,12 +18,18 @@ using nlohmann::ordered_json;
 // add(group, polygon) receives them in a stable order.
 template <typename GroupOf, typename Add>
 void dissolve(const CityMap& city_map, int group_count, GroupOf group_of, Add add) {
+  const CancelCheck cancel;
+  cancel.check();
   auto polygons = city_map.map.dissolve(city_map.per_label(group_of), group_count);
-  for (int g = 0; g < group_count; ++g)
+  for (int g = 0; g < group_count; ++g) {
+    cancel.check();
     for (geom::Dissolved& d : polygons[g]) add(g, std::move(d.polygon));
+  }
 }
 
+// Every polygon feature passes here: the place to stop a cancelled build.
 void add_polygon(Layer& layer, const ordered_json& props, const geom::Polygon& p) {
+  CancelCheck().check();
   ordered_json full{{"id", static_cast<int>(layer.features.size())}};
   if (props.is_object()) full.update(props);
   layer.features.push_back({std::move(full), p, {}});
@@ -73,7 +80,9 @@ void extract_zones_and_water(const CityMap& city_map, const Sketch& sketch, Grou
 std::vector<std::array<int, 2>> extract_centre_lines(const CityMap& city_map, Ground& out) {
   std::vector<std::array<int, 2>> first_line(city_map.roads.size(), {-1, -1});
   auto pieces_of = city_map.map.polyline_pieces();
+  const CancelCheck cancel;
   for (std::size_t r = 0; r < city_map.roads.size(); ++r) {
+    cancel.check();
     const MapRoad& road = city_map.roads[r];
     for (int k = 0; k < static_cast<int>(road.lines.size()); ++k) {
       geom::Polyline run;
@@ -133,7 +142,9 @@ std::vector<std::vector<std::size_t>> extract_blocks(const CityMap& city_map, co
            [&](int g, geom::Polygon p) { block_polygons[g].push_back(std::move(p)); });
   std::vector<std::vector<std::size_t>> pieces(blocks.size());
   int next_id = static_cast<int>(blocks.size());
-  for (std::size_t g = 0; g < blocks.size(); ++g)
+  const CancelCheck cancel;
+  for (std::size_t g = 0; g < blocks.size(); ++g) {
+    cancel.check();
     for (std::size_t k = 0; k < block_polygons[g].size(); ++k) {
       const Block& b = blocks[g];
       BlockArea area{k > 0 ? next_id++ : static_cast<int>(g), static_cast<int>(g), b.zone, b.green, {},
@@ -142,6 +153,7 @@ std::vector<std::vector<std::size_t>> extract_blocks(const CityMap& city_map, co
       pieces[g].push_back(out.blocks.size());
       out.blocks.push_back(std::move(area));
     }
+  }
   return pieces;
 }
 
@@ -245,7 +257,11 @@ Ground extract_ground(const CityMap& city_map, const std::vector<Block>& blocks,
   extract_road_areas(city_map, road_id, out);
   const std::vector<std::vector<std::size_t>> pieces = extract_blocks(city_map, blocks, road_id, out);
   // Lots as they ended up in the map; a lot's id is its index, which buildings name.
-  for (const Lot& lot : lots) out.lots.push_back({block_piece_of(lot, pieces[lot.block], out), lot.zone, lot.polygon});
+  const CancelCheck cancel;
+  for (const Lot& lot : lots) {
+    cancel.check();
+    out.lots.push_back({block_piece_of(lot, pieces[lot.block], out), lot.zone, lot.polygon});
+  }
   return out;
 }
 
@@ -255,6 +271,7 @@ CityLayers layers_of(const Ground& ground, const std::vector<Building>& building
   for (const ZoneArea& z : ground.zones) add_polygon(out.zones, {{"zone", name(z.type)}}, z.polygon);
   for (const geom::Polygon& w : ground.water) add_polygon(out.water, {}, w);
   for (const RoadLine& r : ground.roads) {
+    CancelCheck().check();
     ordered_json props{{"id", static_cast<int>(out.roads.features.size())}, {"class", name(r.road_class)},
                        {"width", r.width},  {"level", id_or_null(r.level)},
                        {"region", id_or_null(r.region)}, {"bridge", r.bridge}};
@@ -264,6 +281,7 @@ CityLayers layers_of(const Ground& ground, const std::vector<Building>& building
     add_polygon(out.road_areas, {{"road", id_or_null(a.road)}, {"bridge", a.bridge}, {"surface", name(a.surface)}},
                 a.polygon);
   for (const BlockArea& b : ground.blocks) {
+    CancelCheck().check();
     ordered_json roads = ordered_json::array();
     for (int r : b.roads) roads.push_back(id_or_null(r));
     out.blocks.features.push_back(
