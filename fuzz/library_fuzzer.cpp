@@ -1,5 +1,5 @@
 // The model library manifest on any bytes, its entries naming a small house and a lamp that
-// exist: a library or one UserError. Seed 004's keys (lots, channels, clutter kinds and
+// exist: a library or one UserError. The keys (lots, channels, clutter kinds and
 // their spacing) are read too, and the channels checked against a sketch's one, as
 // generate does.
 #include <cstddef>
