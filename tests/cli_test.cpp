@@ -691,29 +691,3 @@ TEST(Cli, AWayRunningAcrossItselfHundredsOfTimesIsRefusedBeforeTheMap) {
   EXPECT_EQ(r.code, 0) << r.out;
 }
 
-// Seed 23's industrial L and a 60 m residential L inside its bend: cells of the corridor
-// grown again from beside their road edge seeded a centimetre inside the far edge, and
-// their branches out to it were stubs of 2 to 40 cm ending on open land.
-TEST(Cli, GrowthLeavesNoDanglingStubShorterThanABlockIsWide) {
-  fs::path dir = testing_util::temp_dir("cli-stubs");
-  const std::string sketch = R"({"type": "FeatureCollection", "exacity": {"seed": 23}, "features": [
-    {"type": "Feature", "properties": {"zone": "industrial"}, "geometry": {"type": "Polygon",
-     "coordinates": [[[0, 0], [3000, 0], [3000, 600], [600, 600], [600, 2500], [0, 2500]]]}},
-    {"type": "Feature", "properties": {"zone": "residential"}, "geometry": {"type": "Polygon",
-     "coordinates": [[[700, 700], [3000, 700], [3000, 760], [760, 760], [760, 2500], [700, 2500]]]}}]})";
-  ASSERT_EQ(generate_in(dir, sketch).code, 0);
-  const auto roads = nlohmann::json::parse(read(dir / "out" / "vector" / "roads.geojson"))["features"];
-  std::map<std::pair<double, double>, int> ends;
-  for (const auto& f : roads)
-    for (const auto& p : f["geometry"]["coordinates"]) ++ends[{p[0].get<double>(), p[1].get<double>()}];
-  for (const auto& f : roads) {
-    const auto& c = f["geometry"]["coordinates"];
-    double length = 0;
-    for (std::size_t i = 1; i < c.size(); ++i)
-      length += std::hypot(c[i][0].get<double>() - c[i - 1][0].get<double>(), c[i][1].get<double>() - c[i - 1][1].get<double>());
-    if (length >= 6) continue;  // the zones' min_block_width
-    for (const auto& p : {c.front(), c.back()})
-      EXPECT_GT(ends[std::make_pair(p[0].get<double>(), p[1].get<double>())], 1)
-          << "road " << f["properties"]["id"] << ", " << length << " m, ends alone at " << p.dump();
-  }
-}

@@ -69,12 +69,6 @@ geom::Vec2 ahead(geom::Vec2 p, double degrees, double distance) {
 }
 
 
-double length_of(const geom::Polyline& line) {
-  double length = 0;
-  for (std::size_t i = 1; i < line.size(); ++i) length += geom::distance(line[i - 1], line[i]);
-  return length;
-}
-
 // The roads grown in one cell from its seed, and the sketch roads they run on to.
 struct CellRoads {
   geom::Vec2 seed;
@@ -103,9 +97,8 @@ struct RunOnLines {
 // Grows `branches` roads from the seed. Returns whether one reached a road (of the region,
 // or of the sketch); always true when `free`, for a cell with no road to reach.
 // `across_only`: only the branches within 45 degrees of `orientation` or its opposite.
-bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const GrowthSettings& p, double min_piece, int level, bool free,
-                   double orientation, bool across_only, double reach, const RunOnLines& run_on, Random& rng,
-                   CellRoads& out) {
+bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const GrowthSettings& p, int level, bool free, double orientation,
+                   bool across_only, double reach, const RunOnLines& run_on, Random& rng, CellRoads& out) {
   const double segment_deviation = std::max(p.segment_deviation - 2.0 * level, 0.0);
   const int max_steps = static_cast<int>(reach / (p.segment_length * std::cos(p.origin_deviation * M_PI / 180))) + 2;
   bool reached_road = free;
@@ -132,9 +125,6 @@ bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const GrowthSettings& 
     }
     geom::Path road = growth.end();
     if (road.empty()) return false;
-    // A seed just inside the region's edge (a cell grown again from beside its road edge)
-    // would leave a stub of a few centimetres out to open land: a dead end no block needs.
-    if (met.edge_of_kind(GrowthEdge::kRegionEdge) && length_of(road.to_plain()) < min_piece) return false;
     const int sketch_road = met.what == geom::Growth::Met::Edge ? GrowthEdge::sketch_road_of(met.kind) : -1;
     bool joined = false;
     if (sketch_road >= 0) {
@@ -197,8 +187,8 @@ std::optional<double> strip_axis(const geom::Cell& cell, const GrowthSettings& p
 // when they fail (a concave cell can hide those edges from the seed), they are grown
 // again from just inside one of those edges, the first branch heading straight back to
 // it. Empty when that fails too.
-CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const GrowthSettings& p, double min_piece, int level, bool top,
-                    double orientation, int stalls, const RunOnLines& run_on, Random& rng) {
+CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const GrowthSettings& p, int level, bool top, double orientation,
+                    int stalls, const RunOnLines& run_on, Random& rng) {
   const geom::Box b = cell.bounds();
   const double reach = 2 * std::hypot(b.width(), b.height()) + 1;  // past the cell from anywhere in it
   auto edges = edges_to_reach(cell, top);
@@ -208,7 +198,7 @@ CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const GrowthSetting
   {
     geom::Growth growth(cell, p.segment_length);
     CellRoads grown{seed, {}, {}};
-    if (grow_branches(growth, seed, p, min_piece, level, free, axis ? *axis + 90 : orientation, axis.has_value(), reach,
+    if (grow_branches(growth, seed, p, level, free, axis ? *axis + 90 : orientation, axis.has_value(), reach,
                       run_on, rng, grown) &&
         !grown.open_end)
       return grown;
@@ -250,7 +240,7 @@ CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const GrowthSetting
     geom::Growth growth(cell, p.segment_length);
     CellRoads grown{*start, {}, {}};
     double back = std::atan2(m.y - start->y, m.x - start->x) * 180 / M_PI;
-    if (grow_branches(growth, *start, p, min_piece, level, free, back, false, reach, run_on, rng, grown) && !grown.open_end)
+    if (grow_branches(growth, *start, p, level, free, back, false, reach, run_on, rng, grown) && !grown.open_end)
       return grown;
   }
   return {seed, {}, {}};
@@ -273,7 +263,7 @@ Grown seed(const Work& w, const ZoneAt& zone_at) {
 // sliver off it, are dropped and the cell grown again from another seed, a few times at
 // most: slivers make poor blocks. Cutting off a tenth of a block is progress, so a long
 // corridor is grown on however little of it each cut takes.
-void grow_one(const Work& w, Grown& g, const GrowthSettings& p, double min_piece, int level, const RunOnLines& run_on) {
+void grow_one(const Work& w, Grown& g, const GrowthSettings& p, int level, const RunOnLines& run_on) {
   if (!g.seed) return;
   if (w.cell.area() <= p.block_area) return;  // small enough to be one block
   Random rng(mix(w.id, 1 + 16 * w.stalls));
@@ -288,7 +278,7 @@ void grow_one(const Work& w, Grown& g, const GrowthSettings& p, double min_piece
       g.without_access = !w.top;
     }
   };
-  CellRoads grown = grow_cell(w.cell, *g.seed, p, min_piece, level, w.top, w.orientation, w.stalls, run_on, rng);
+  CellRoads grown = grow_cell(w.cell, *g.seed, p, level, w.top, w.orientation, w.stalls, run_on, rng);
   g.seed = grown.seed;
   g.roads = std::move(grown.roads);
   g.joined = std::move(grown.joined);
@@ -347,8 +337,7 @@ class GrowthLayout : public RoadLayout {
       tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
         cancel.check();
         grown[i] = seed(work[i], zone_at_);
-        const ZoneSettings& zone = sketch_.zone_settings.at(grown[i].type);
-        grow_one(work[i], grown[i], zone.roads.growth, zone.blocks.min_block_width, level, run_on_);
+        grow_one(work[i], grown[i], sketch_.zone_settings.at(grown[i].type).roads.growth, level, run_on_);
       });
       work = collect(grown, work, level, sketch_, plan);
     }
