@@ -598,10 +598,14 @@ TEST(ModelLibrary, ItsFilesStayInTheManifestsFolder) {
     write(lib, "m.obj", obj_head + box_obj(4, 4, 4));
     return library_error(lib, R"({"file": ")" + file + R"(", "zones": ["residential"], "up": "z"})");
   };
-  const std::string keep = "; keep a model library's OBJ, MTL and texture files in its manifest's folder or below";
+  const std::string keep = "; keep an OBJ's MTL and texture files in its library's folder (an OBJ outside it: its own folder) or below";
   EXPECT_EQ(message("m.obj", "mtllib inside.mtl\nmtllib sub/../inside.mtl\n"), "no error");
-  EXPECT_EQ(message("../outside.obj", ""), (lib / "library.json").string() + " models[0]: \"file\" ../outside.obj lies outside " +
-                                               lib.string() + keep);
+  // The manifest names an OBJ anywhere (examples/nesting shares examples/models' lamp), but
+  // that OBJ's own words stay below its folder.
+  EXPECT_EQ(message("../outside.obj", ""), "no error");
+  write(dir, "outside.obj", "mtllib ../passwd\n" + box_obj(4, 4, 4));
+  EXPECT_EQ(message("../outside.obj", ""),
+            (dir / "outside.obj").string() + " line 1: mtllib ../passwd lies outside " + dir.string() + keep);
   EXPECT_EQ(message("m.obj", "mtllib ../../../../etc/passwd\n"),
             (lib / "m.obj").string() + " line 1: mtllib ../../../../etc/passwd lies outside " + lib.string() + keep);
   EXPECT_EQ(message("m.obj", "mtllib ../outside.mtl\n"),

@@ -282,10 +282,11 @@ Model read_model(const json& e, const fs::path& manifest, const std::string& whe
   check_keys(e, where);
   if (!e.contains("file") || !e["file"].is_string()) fail(where, "\"file\" must name an OBJ file");
   const fs::path file = manifest.parent_path() / e["file"].get<std::string>();
-  const fs::path folder = fs::absolute(manifest).parent_path();
-  if (!lies_within(file, folder))
-    fail(where, "\"file\" " + e["file"].get<std::string>() + " lies outside " + folder.string() +
-                    "; keep a model library's OBJ, MTL and texture files in its manifest's folder or below");
+  // The manifest may name an OBJ anywhere, as the command line may name a sketch; what the
+  // OBJ names in turn (MTL, textures: a downloaded model's words) stays below the manifest's
+  // folder, or below the OBJ's own where the manifest named one outside it.
+  const fs::path library_folder = fs::absolute(manifest).parent_path();
+  const fs::path folder = lies_within(file, library_folder) ? library_folder : fs::absolute(file).lexically_normal().parent_path();
   const std::string up = e.value("up", "y");
   if (up != "y" && up != "z") fail(where, "\"up\" must be \"y\" or \"z\"");
   const std::string front = e.value("front", up == "y" ? "+z" : "-y");

@@ -91,7 +91,7 @@ struct MtlEntry {
 };
 
 constexpr const char* kOutsideFix =
-    "; keep a model library's OBJ, MTL and texture files in its manifest's folder or below";
+    "; keep an OBJ's MTL and texture files in its library's folder (an OBJ outside it: its own folder) or below";
 
 // Diffuse colours and textures by material name; a missing library leaves the defaults, one
 // that is not a regular file or is too large, and a texture that is missing or unreadable,
