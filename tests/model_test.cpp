@@ -605,7 +605,7 @@ TEST(ModelLibrary, ItsFilesStayInTheManifestsFolder) {
   EXPECT_EQ(message("../outside.obj", ""), "no error");
   write(dir, "outside.obj", "mtllib ../passwd\n" + box_obj(4, 4, 4));
   EXPECT_EQ(message("../outside.obj", ""),
-            (dir / "outside.obj").string() + " line 1: mtllib ../passwd lies outside " + dir.string() + keep);
+            (lib / ".." / "outside.obj").string() + " line 1: mtllib ../passwd lies outside " + dir.string() + keep);
   EXPECT_EQ(message("m.obj", "mtllib ../../../../etc/passwd\n"),
             (lib / "m.obj").string() + " line 1: mtllib ../../../../etc/passwd lies outside " + lib.string() + keep);
   EXPECT_EQ(message("m.obj", "mtllib ../outside.mtl\n"),
