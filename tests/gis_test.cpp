@@ -581,7 +581,8 @@ void reproject(const fs::path& from, const fs::path& to, const char* driver, int
 // The areas of a city's buildings, smallest first.
 std::vector<double> building_areas(const fs::path& out) {
   std::vector<double> areas;
-  for (const auto& f : nlohmann::json::parse(cli_util::read(out / "vector" / "buildings.geojson"))["features"]) {
+  const nlohmann::json doc = nlohmann::json::parse(cli_util::read(out / "vector" / "buildings.geojson"));
+  for (const auto& f : doc["features"]) {
     if (f["properties"].value("kind", "") != "building") continue;
     for (const auto& polygon : f["geometry"]["type"] == "Polygon" ? nlohmann::json::array({f["geometry"]["coordinates"]})
                                                                   : f["geometry"]["coordinates"]) {
