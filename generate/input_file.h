@@ -31,8 +31,8 @@ std::string read_input(const std::filesystem::path& file, std::uintmax_t limit, 
 void expect_input(const std::filesystem::path& file, std::uintmax_t limit, const std::string& what,
                   const std::string& fix);
 
-// Whether `file` lies in `folder` or below it, symbolic links followed: a model library keeps
-// its OBJ, MTL and texture files below its manifest's folder.
+// Whether `file` lies in `folder` or below it, symbolic links followed: the MTL and texture
+// files a library's OBJ names stay below the library's folder (or the OBJ's own).
 bool lies_within(const std::filesystem::path& file, const std::filesystem::path& folder);
 
 // "16 MB": a limit as messages say it.

@@ -586,8 +586,8 @@ TEST(ObjFile, OnlyRegularFilesAreRead) {
 }
 
 TEST(ModelLibrary, ItsFilesStayInTheManifestsFolder) {
-  // As the server keeps a sketch's files in its work folder, a library's OBJ, MTL and
-  // texture files lie in its manifest's folder or below: "mtllib ../../etc/passwd" is not read.
+  // As the server keeps a sketch's files in its work folder, the MTL and texture files a
+  // library's OBJ names lie below its folder: "mtllib ../../etc/passwd" is not read.
   fs::path dir = testing_util::temp_dir("library-confined"), lib = dir / "lib";
   fs::create_directories(lib / "sub");
   write(dir, "outside.obj", box_obj(4, 4, 4));

@@ -58,7 +58,8 @@ std::vector<std::string> material_files(const std::filesystem::path& obj);
 // line when the file cannot be read, an index points nowhere or nothing is left, and
 // naming the .mtl file and line when a texture is missing or unreadable. `textures` shares
 // images between models (a library's); null: the file's own. Unless `within` is empty, the
-// .mtl and texture files must lie in that folder or below (a library's manifest folder).
+// .mtl and texture files must lie in that folder or below (a library's folder, or the OBJ's own
+// where the manifest names one outside it).
 TriangleMesh read_obj(const std::filesystem::path& file, TextureImages* textures = nullptr,
                       const std::filesystem::path& within = {});
 // The same from a stream: `file` names it in messages, and .mtl files are found beside it.
