@@ -70,7 +70,7 @@ City build_city(const Sketch& sketch, StageClock& stages) {
     if (!sketch.models.empty()) {
       library = load_model_library(sketch.models);
       library->check_channels(sketch.channels);
-      // Seed 001's nesting compares models slab by slab (docs/design.md, Placement: nesting).
+      // Nesting compares models slab by slab (docs/design.md, Placement: nesting).
       if (std::any_of(sketch.zone_settings.begin(), sketch.zone_settings.end(),
                       [](const auto& z) { return z.second.buildings.nesting; }))
         cut_slabs(*library);

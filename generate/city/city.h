@@ -22,7 +22,7 @@ namespace exacity {
 struct City {
   Sketch sketch;
   std::optional<Terrain> terrain;
-  Channels channels;  // seed 004's, empty when the sketch has none
+  Channels channels;  // empty when the sketch has none
   std::optional<ModelLibrary> library;
   RoadNetwork network;
   std::vector<Block> blocks;
@@ -30,7 +30,7 @@ struct City {
   UnbuiltLots unbuilt_lots;  // lots merged into a neighbour or left open: no placer could build on them
   std::vector<Building> buildings;  // extruded
   std::vector<ModelInstance> models;  // placed from the library
-  StreetClutter clutter;  // seed 004's, along the streets; written as vector/clutter.geojson
+  StreetClutter clutter;  // along the streets; written as vector/clutter.geojson
   Ground ground;
   CityLayers layers;  // as written into vector/
 

@@ -347,7 +347,7 @@ class Parser {
     }
   }
 
-  // Seed 004's channels, {"NAME": {"image": FILE, "bounds": [min_x, min_y, max_x, max_y]}}.
+  // Channels, {"NAME": {"image": FILE, "bounds": [min_x, min_y, max_x, max_y]}}.
   std::vector<ChannelSpec> channels(const json& j, const fs::path& sketch_path) const {
     const std::string w = "\"exacity\".channels";
     if (!j.is_object())
@@ -452,7 +452,7 @@ class Parser {
   // The grid map the sketch's "exacity".grid names, relative to the sketch: its features go
   // before the sketch's own, so that zones the sketch draws win where they overlap it (the
   // later zone wins), and the zone types that get roads are laid out by "streets" and filled
-  // by seed 001's grid filling unless the sketch says otherwise (a planned city). The key is gone from `doc` after.
+  // by grid filling unless the sketch says otherwise (a planned city). The key is gone from `doc` after.
   void add_grid(nlohmann::ordered_json& doc, const fs::path& sketch_path) {
     nlohmann::ordered_json& ex = doc["exacity"];
     const std::string w = "\"exacity\".grid";

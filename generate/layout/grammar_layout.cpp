@@ -1,4 +1,4 @@
-// Seed 002's layout: the region's triangles and near-square quads grow by a split grammar;
+// The split grammar layout: the region's triangles and near-square quads grow by a split grammar;
 // each road leaf becomes one road down its middle, and each land leaf a use.
 #include <algorithm>
 #include <cmath>
@@ -25,7 +25,7 @@ bool lies_along(geom::Vec2 a, geom::Vec2 b, geom::Vec2 p, geom::Vec2 q) {
 }
 
 // A road leaf's corners from the start of its long side: a road runs along its longer
-// axis, whichever edge the grammar wrote first (seed 002 writes the long one first; a road
+// axis, whichever edge the grammar wrote first (grammars are meant to write the long one first; a road
 // read across would be a stub of its own width, which nothing joins).
 std::vector<geom::Vec2> long_side_first(std::vector<geom::Vec2> c) {
   if (c.size() == 4) {
@@ -80,8 +80,8 @@ void add_grown(RoadPlan& plan, RoadPlan grown, const std::vector<std::vector<geo
 }
 
 // Land between the grammar's roads over 4 times the zone's block_area (as the statistics
-// measure blocks), where seed 002 would fill one piece all the way in: the region is cut
-// along the roads' centre lines and each such piece grown by seed 000's growth as a region
+// measure blocks), where a plain split grammar would fill one piece all the way in: the region is cut
+// along the roads' centre lines and each such piece grown by recursive road growth as a region
 // of its own, its roads running on to the grammar's (an Exacity extension;
 // "grow_large_pieces": false keeps the pieces whole). A piece holding a park is kept whole:
 // growth's roads would cross it.

@@ -57,7 +57,7 @@ void read_grammar(const SettingsReader& s, const std::string& layout, bool read_
 RoadSettings default_road_settings(ZoneType type) {
   RoadSettings r;
   if (type == ZoneType::Commercial || type == ZoneType::Industrial) {
-    // Manhattan grid (seed 000): straight roads, smaller jitter.
+    // Manhattan grid (recursive road growth's commercial setting): straight roads, smaller jitter.
     r.growth.jitter = 10;
     r.growth.segment_deviation = 0;
     r.growth.origin_deviation = 0;

@@ -14,7 +14,7 @@ namespace exacity {
 
 struct Grammar;
 
-// Seed 000's growth.
+// Recursive road growth (docs/design.md, Road layouts).
 struct GrowthSettings {
   double block_area = 12000;      // m²: faces above this are subdivided again
   double segment_length = 40;     // m: one growth step
@@ -24,21 +24,21 @@ struct GrowthSettings {
   double origin_deviation = 30;   // degrees: Δorig
 };
 
-// Seed 002's split grammar.
+// The split grammar (docs/design.md, Road layouts).
 struct GrammarSettings {
   std::shared_ptr<const Grammar> file;  // read with the sketch
   int depth = 8;                        // rules applied at most, from a root down
-  bool grow_large_pieces = true;        // land over 4 x block_area is grown by seed 000's growth
+  bool grow_large_pieces = true;        // land over 4 x block_area is grown by recursive growth
 };
 
-// Seed 003's Voronoi streets.
+// The Voronoi layout (docs/design.md, Road layouts).
 struct VoronoiSettings {
   double cell_size = 180;         // m: one point per square this size
   double junction_spacing = 60;   // m: junctions at about this step along the cells' roads
 };
 
 struct RoadSettings {
-  // "growth", "grammar", "voronoi" or "streets" (seed 004: none are generated; the sketch's
+  // "growth", "grammar", "voronoi" or "streets" (the street graph: none are generated; the sketch's
   // roads are the whole network).
   std::string layout = "growth";
   std::vector<double> road_widths{12, 8};  // m: at level n, road_widths[min(n, last)]

@@ -1,4 +1,4 @@
-// Seed 003's layout: points spread over the region, their Voronoi diagram clipped to it;
+// The Voronoi layout (docs/design.md, Algorithms): points spread over the region, their Voronoi diagram clipped to it;
 // main roads on the cell edges, inner roads by the junction heuristic (generate/layout/voronoi.h).
 #include <algorithm>
 #include <cmath>

@@ -16,10 +16,10 @@ struct BlockSettings {
 };
 
 struct LotSettings {
-  // "allocation" (seed 000 measured from the street: lots side by side along every road
+  // "allocation" (measured from the street: lots side by side along every road
   // edge of a block, corner lots at its corners, the block's middle left open; four quarters
-  // in industrial blocks), "split" (seed 003: halve perpendicular to the longest edge
-  // down to lot_area) or "library" (seed 004: the lots the model library's entries ask for,
+  // in industrial blocks), "split" (halve perpendicular to the longest edge
+  // down to lot_area) or "library" (the lots the model library's entries ask for,
   // along the streets).
   std::string layout = "allocation";
   Range lot_width{14, 24};   // m: frontage of an allocated lot, drawn per street side
@@ -35,7 +35,7 @@ LotSettings default_lot_settings(ZoneType type);
 const std::set<std::string>& parcel_setting_keys();
 
 BlockSettings read_block_settings(const SettingsReader& settings, BlockSettings defaults);
-// `road_layout`: seed 003's Voronoi plots are split into lots unless the zone says otherwise.
+// `road_layout`: the Voronoi layout's plots are split into lots unless the zone says otherwise.
 LotSettings read_lot_settings(const SettingsReader& settings, LotSettings defaults, const std::string& road_layout);
 
 }  // namespace exacity

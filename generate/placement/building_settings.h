@@ -24,17 +24,17 @@ struct BuildingSettings {
   // elsewhere; or "flat", "gabled" (falls back to hipped), "hipped" for every footprint.
   std::string roof = "auto";
   double roof_pitch = 30;             // degrees
-  // How far apart placed models stand in their rows, centre to centre (seed 002's
+  // How far apart placed models stand in their rows, centre to centre (a grammar's
   // _Dense/_Sparse): "dense" 1.25–1.5 model widths, "normal" 2–3, "sparse" 4–5.
   std::string density = "normal";
-  // How placed models fill a lot: "rows" along the street (seed 002) or "grid", seed 001's
+  // How placed models fill a lot: "rows" along the street or "grid", the occupancy grid's
   // grid filling, on cells of `grid_cell` metres, filled `grid_passes` times.
   std::string placement = "rows";
   double grid_cell = 1;
   int grid_passes = 1;
-  // Seed 001's 3D bounding grid: grid filling lets a model stand under another's overhang.
+  // Nesting, a 3D occupancy grid: grid filling lets a model stand under another's overhang.
   bool nesting = false;
-  // Seed 004: a channel whose value takes the place of nearness to the city's centre in the
+  // A channel whose value takes the place of nearness to the city's centre in the
   // extruded buildings' heights (building_height); empty for none.
   std::string height_channel;
 };

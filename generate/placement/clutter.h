@@ -1,4 +1,4 @@
-// Seed 004's street clutter: the library's lamps, signs, traffic lights, benches, hydrants and
+// Street clutter (docs/design.md, Placement): the library's lamps, signs, traffic lights, benches, hydrants and
 // trees dress the streets by the rules each entry sets (spacing along the street, offset in from
 // the kerb, both sides or alternate ones), after the buildings stand (docs/design.md,
 // Placement). Lamps, benches and hydrants line every street, trees residential ones; traffic

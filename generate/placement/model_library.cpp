@@ -222,7 +222,7 @@ double default_spacing(ModelKind k) {
   }
 }
 
-// Seed 004's clutter rules and channel values, and its lot.
+// Street clutter's rules and channel values, and the lot library's lot.
 void read_street_rules(const json& e, const std::string& where, Model& m) {
   m.offset = e.value("offset", m.kind == ModelKind::Tree || m.kind == ModelKind::Bench ? 1.5 : 0.5);
   if (!(m.offset >= 0) || m.offset > 50) fail(where, "\"offset\" must be metres from the kerb, 0 to 50");
