@@ -17,8 +17,8 @@ struct BlockSettings {
 
 struct LotSettings {
   // "allocation" (measured from the street: lots side by side along every road
-  // edge of a block, corner lots at its corners, the block's middle left open; four quarters
-  // in industrial blocks), "split" (halve perpendicular to the longest edge
+  // edge of a block, corner lots at its corners, the block's middle left open; some lots
+  // dropped by chance in industrial blocks), "split" (halve perpendicular to the longest edge
   // down to lot_area) or "library" (the lots the model library's entries ask for,
   // along the streets).
   std::string layout = "allocation";
