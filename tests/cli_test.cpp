@@ -356,7 +356,7 @@ Result generate_one_street_block(const fs::path& dir, const fs::path& out) {
 
 }  // namespace
 
-// Issue 25: a camera path's frames, rendered whole, in ranges, in shares and through
+// A camera path's frames, rendered whole, in ranges, in shares and through
 // scripts/render_path.sbatch's tasks (Slurm's environment by hand), are the same files; a bad path file is one line naming it and its key; --time records
 // its passes; --denoise, --exposure and --white-balance are taken and recorded.
 TEST(Cli, CameraPathFramesInRangesEqualOneRunAndBadPathsAreOneLine) {
@@ -416,7 +416,7 @@ TEST(Cli, CameraPathFramesInRangesEqualOneRunAndBadPathsAreOneLine) {
   EXPECT_EQ(run("render " + out.string() + " --denoise maybe -q").code, 2);
 }
 
-// Issue 25: the pedestrian and the flyer as stills and in a path, depth of field's flags
+// The pedestrian and the flyer as stills and in a path, depth of field's flags
 // recorded; a bad camera (its syntax, or a road the city does not have) is one line and
 // exit 2, with nothing written.
 TEST(Cli, PedestrianAndFlyerCamerasAndTheirMistakes) {

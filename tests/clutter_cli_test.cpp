@@ -1,4 +1,4 @@
-// Seed 004's street clutter through the exacity program: the same bytes whatever the thread
+// Street clutter through the exacity program: the same bytes whatever the thread
 // count, and the outputs that hold it pass the independent checks (GEOS on clutter.geojson,
 // the Khronos glTF validator, the CityJSON checker), which also catch clutter misplaced;
 // Exacity's own trees and lamps pass them too, and a bad "builtin_models" is refused.

@@ -1,4 +1,4 @@
-// In and out of the GIS and OSM ecosystems (README, GIS and OpenStreetMap): sketches read
+// In and out of the GIS and OSM ecosystems (docs/gis.md): sketches read
 // through OGR and libosmium, lon/lat projected through PROJ, the layers written through OGR
 // and the city as an OSM file, each read back with the library made for it.
 #include <gtest/gtest.h>
@@ -397,7 +397,7 @@ TEST(Gis, BadInputsAreOneLineNamingTheFile) {
 
 namespace {
 
-// OpenStreetMap's land use and streets as GIS tools export them (README, GIS and
+// OpenStreetMap's land use and streets as GIS tools export them (docs/gis.md,
 // OpenStreetMap): tags as columns, the rest in GDAL's "other_tags".
 ordered_json osm_tagged_town() {
   return ordered_json::parse(R"({"type": "FeatureCollection",

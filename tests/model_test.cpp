@@ -171,7 +171,7 @@ TEST(ModelLibrary, BadEntriesAreNamed) {
   EXPECT_NE(error(R"({"file": "box.obj", "zones": ["residential"], "weight": "heavy"})").find("models[0]"), std::string::npos);
   EXPECT_NE(error(R"({"file": "none.obj", "zones": ["residential"]})").find("none.obj"), std::string::npos);
   EXPECT_NE(error(R"({"file": "box.obj", "zones": ["residential"], "colour": 1})").find("unknown key"), std::string::npos);
-  // Seed 004's keys: kinds, clutter rules, channel values and lots.
+  // The library's newer keys: kinds, clutter rules, channel values and lots.
   EXPECT_NE(error(R"({"file": "box.obj", "kind": "kiosk"})").find("\"kind\" is \"kiosk\"; expected one of"), std::string::npos);
   EXPECT_NE(error(R"({"file": "box.obj", "kind": "lamp", "side": "left"})").find("\"side\""), std::string::npos);
   EXPECT_NE(error(R"({"file": "box.obj", "kind": "bench", "offset": -1})").find("\"offset\""), std::string::npos);

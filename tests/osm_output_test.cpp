@@ -1,4 +1,4 @@
-// OpenStreetMap in and out as OSM tools expect it (README, GIS and OpenStreetMap): city.osm
+// OpenStreetMap in and out as OSM tools expect it (docs/gis.md): city.osm
 // read back with libosmium and GDAL's OSM driver (classes and names as read, negative ids
 // apart between cities), extracts the edge cut, coordinates out of range, and real
 // footprints measured whichever way their rings wind.

@@ -101,7 +101,7 @@ std::vector<Shape> shapes() {
        {zone("residential", {{{0, 0}, {700, 0}, {700, 500}, {0, 500}}}),
         zone("commercial", {{{700, 0}, {1000, 0}, {1000, 900}, {700, 900}}})},
        R"({"residential": {"branches": 1}, "commercial": {"branches": 3}})"},
-      // The other layouts (issue 12) on shapes written to break them: a street graph drawn by
+      // The other layouts on shapes written to break them: a street graph drawn by
       // hand (ends short of and past the streets they meet), Voronoi streets in a comb, a
       // split grammar in a U.
       {"streets",
