@@ -191,7 +191,17 @@ OsmMeaning osm_area_meaning(const OsmTags& tags) {
   return {};
 }
 
-bool apply_osm_tags(ordered_json& doc, const std::filesystem::path& path) {
+std::vector<const ordered_json*> osm_file_counts(const ordered_json& osm) {
+  std::vector<const ordered_json*> out;
+  if (!osm.is_object()) return out;
+  if (!osm.contains("files")) return {&osm};
+  if (osm["files"].is_array())
+    for (const ordered_json& file : osm["files"])
+      if (file.is_object()) out.push_back(&file);
+  return out;
+}
+
+bool apply_osm_tags(ordered_json& doc, const std::vector<SketchFile>& files) {
   if (!doc.is_object() || !doc.contains("features") || !doc["features"].is_array()) return false;
   ordered_json& features = doc["features"];
   std::vector<OsmMeaning> meanings;
@@ -219,29 +229,32 @@ bool apply_osm_tags(ordered_json& doc, const std::filesystem::path& path) {
   if (std::all_of(meanings.begin(), meanings.end(), [](const OsmMeaning& m) { return m.kind == OsmMeaning::Untagged; }))
     return false;
 
-  std::map<std::string, int> taken{{"zones", 0}, {"roads", 0}, {"rivers", 0}}, skipped;
+  std::map<std::string, int> taken{{"zones", 0}, {"roads", 0}, {"rivers", 0}};
+  std::vector<std::map<std::string, int>> skipped(files.size());  // by file
   std::vector<std::size_t> zones;  // places of the features whose tags made zones
   ordered_json kept = ordered_json::array();
+  std::size_t file = 0, first = 0;  // the file of feature i, and the place of its first feature
   for (std::size_t i = 0; i < features.size(); ++i) {
+    while (file + 1 < files.size() && i >= first + files[file].features) first += files[file++].features;
     ordered_json& f = features[i];
     const OsmMeaning& meaning = meanings[i];
     // Features are taken out below: each keeps its place in the user's file for messages.
     if (f.is_object() && f.contains("properties") && f["properties"].is_object() && !f["properties"].contains("source"))
-      f["properties"]["source"] = path.string() + " features[" + std::to_string(i) + "]";
+      f["properties"]["source"] = files[file].path.string() + " features[" + std::to_string(i - first) + "]";
     if (meaning.kind == OsmMeaning::LeftOut) {
-      ++skipped[meaning.why];
+      ++skipped[file][meaning.why];
       continue;
     }
     if (meaning.kind == OsmMeaning::River) {
       std::optional<ordered_json> water = buffered(f["geometry"], meaning.width / 2);
       if (!water) {
-        ++skipped["rivers GEOS could not widen"];
+        ++skipped[file]["rivers GEOS could not widen"];
         continue;
       }
       f["geometry"] = std::move(*water);
     }
     if (meaning.kind == OsmMeaning::Zone && !drop_degenerate_rings(f["geometry"])) {
-      ++skipped["areas of fewer than 3 distinct points"];
+      ++skipped[file]["areas of fewer than 3 distinct points"];
       continue;
     }
     if (meaning.kind != OsmMeaning::Untagged) {
@@ -275,10 +288,20 @@ bool apply_osm_tags(ordered_json& doc, const std::filesystem::path& path) {
   features = std::move(kept);
 
   ordered_json& osm = doc["osm"];
-  if (!osm.is_object()) osm = {{"file", path.string()}};
+  if (!osm.is_object()) osm = files.size() == 1 ? ordered_json{{"file", files[0].path.string()}} : ordered_json::object();
   osm["taken"] = taken;
-  if (!osm.contains("skipped") || !osm["skipped"].is_object()) osm["skipped"] = ordered_json::object();
-  for (const auto& [why, count] : skipped) osm["skipped"][why] = osm["skipped"].value(why, 0) + count;
+  // Each file's counts: the member itself for one file, its "files" for several (an
+  // extract's own counts, from reading it, already there).
+  if (files.size() > 1 && !(osm.contains("files") && osm["files"].is_array() && osm["files"].size() == files.size())) {
+    osm["files"] = ordered_json::array();
+    for (const SketchFile& f : files) osm["files"].push_back({{"file", f.path.string()}});
+  }
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    ordered_json& counts = files.size() > 1 ? osm["files"][k] : osm;
+    if (!counts.contains("file")) counts["file"] = files[k].path.string();
+    if (!counts.contains("skipped") || !counts["skipped"].is_object()) counts["skipped"] = ordered_json::object();
+    for (const auto& [why, count] : skipped[k]) counts["skipped"][why] = counts["skipped"].value(why, 0) + count;
+  }
   return true;
 }
 
