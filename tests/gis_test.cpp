@@ -312,6 +312,44 @@ TEST(Gis, EveryVectorFormatReadsBackWithOgr) {
     EXPECT_EQ(cad[name], counts[name]) << name;
 }
 
+TEST(Gis, EmptyLayersKeepTheirGeometryTypeAndADutchGridSketchItsCrsInEveryFormat) {
+  const fs::path dir = testing_util::temp_dir("gis-empty-layers");
+  // A park in the Dutch national grid, without Exacity's trees and lamps: every layer but
+  // the zones is empty.
+  write(dir / "park.geojson", R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::28992"}},
+    "exacity": {"builtin_models": []},
+    "features": [{"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": "Polygon",
+      "coordinates": [[[85000, 446000], [85200, 446000], [85200, 446150], [85000, 446150], [85000, 446000]]]}}]})");
+  const GenerateResult result = generate(dir / "park.geojson", dir / "out", {"gpkg", "fgb", "shp"});
+  ASSERT_TRUE(result.valid);
+  const std::map<std::string, OGRwkbGeometryType> types{
+      {"zones", wkbPolygon},      {"water", wkbPolygon},     {"roads", wkbLineString}, {"road_areas", wkbPolygon},
+      {"blocks", wkbPolygon},     {"lots", wkbPolygon},      {"buildings", wkbPolygon}, {"clutter", wkbPoint}};
+  start_gdal();
+  auto open = [](const fs::path& file) {
+    return GDALDatasetUniquePtr(GDALDataset::Open(file.string().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  };
+  GDALDatasetUniquePtr gpkg = open(dir / "out" / "city.gpkg");
+  ASSERT_TRUE(gpkg);
+  for (const auto& [name, type] : types) {
+    SCOPED_TRACE(name);
+    EXPECT_EQ(nlohmann::json::parse(cli_util::read(dir / "out" / "vector" / (name + ".geojson")))["features"].size(),
+              name == "zones" ? 1u : 0u);
+    GDALDatasetUniquePtr fgb = open(dir / "out" / "vector" / (name + ".fgb"));
+    GDALDatasetUniquePtr shp = open(dir / "out" / "vector" / "shp" / (name + ".shp"));
+    ASSERT_TRUE(fgb);
+    ASSERT_TRUE(shp);
+    for (OGRLayer* layer : {gpkg->GetLayerByName(name.c_str()), fgb->GetLayer(0), shp->GetLayer(0)}) {
+      ASSERT_NE(layer, nullptr);
+      EXPECT_EQ(wkbFlatten(layer->GetGeomType()), type) << OGRGeometryTypeToName(layer->GetGeomType());
+      ASSERT_NE(layer->GetSpatialRef(), nullptr);
+      EXPECT_STREQ(layer->GetSpatialRef()->GetAuthorityCode(nullptr), "28992");
+    }
+  }
+  EXPECT_EQ(nlohmann::json::parse(cli_util::read(dir / "out" / "city.city.json"))["metadata"]["referenceSystem"],
+            "https://www.opengis.net/def/crs/EPSG/0/28992");
+}
+
 TEST(Gis, CityOsmReadsBackWithOsmiumAsOneNetworkAndClosedBuildings) {
   const fs::path out = testing_util::temp_dir("gis-osm") / "out";
   const GenerateResult result = generate(kVillage, out, {}, kLibrary);

@@ -54,6 +54,17 @@ std::vector<SourceLayer> geojson_layers(const fs::path& dir) {
   return out;
 }
 
+// A layer's geometry type as the GeoJSON has it; an empty GeoJSON layer has none, and a
+// format whose layer has none shows it as lines or "Unknown" (QGIS then offers the wrong
+// symbols and refuses to append polygons): the type every layer of OUT/vector holds.
+OGRwkbGeometryType geometry_type(const SourceLayer& source) {
+  const OGRwkbGeometryType read = source.layer->GetGeomType();
+  if (read != wkbUnknown) return read;
+  if (source.name == "roads") return wkbLineString;  // centre lines
+  if (source.name == "clutter") return wkbPoint;
+  return wkbPolygon;  // zones, water, road areas, blocks, lots, buildings
+}
+
 // Copies every GeoJSON layer into `target`, one layer each (GeoPackage, FlatGeobuf and
 // Shapefile keep geometry and attributes; CRS set from the sketch's).
 void copy_layers(const std::vector<const SourceLayer*>& layers, GDALDataset& target, OGRSpatialReference* srs,
@@ -64,7 +75,7 @@ void copy_layers(const std::vector<const SourceLayer*>& layers, GDALDataset& tar
     OGRLayer* from = source->layer;
     from->ResetReading();
     const std::string& name = source->name;
-    OGRLayer* to = target.CreateLayer(name.c_str(), srs, from->GetGeomType(), const_cast<char**>(layer_options));
+    OGRLayer* to = target.CreateLayer(name.c_str(), srs, geometry_type(*source), const_cast<char**>(layer_options));
     if (!to) fail(file, "cannot hold layer " + name);
     // A list (a block's roads) is written as its JSON text: no format here stores lists.
     OGRFeatureDefn* defn = from->GetLayerDefn();
