@@ -94,6 +94,34 @@ TEST(OsmOutput, RealFootprintsHaveTheirAreaWhicheverWayTheirRingsWind) {
   EXPECT_EQ(areas["max"].get<double>(), 196);
 }
 
+TEST(OsmOutput, RealFootprintsAreMeasuredInGroundMetresWhateverTheirCrs) {
+  const fs::path dir = testing_util::temp_dir("osm-stats-crs");
+  // A 100 by 50 m footprint in Helsinki (UTM zone 35N), in Web Mercator (whose metres are
+  // twice the ground's there) and in lon/lat without a crs: 5000 m2 on the ground in each.
+  OGRSpatialReference utm, mercator, wgs84;
+  utm.importFromEPSG(32635), mercator.importFromEPSG(3857), wgs84.importFromEPSG(4326);
+  for (OGRSpatialReference* srs : {&utm, &mercator, &wgs84}) srs->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  for (const auto& [name, target, crs] : {std::tuple{"mercator.geojson", &mercator, crs_member(3857)},
+                                          std::tuple{"lonlat.geojson", &wgs84, ordered_json()}}) {
+    SCOPED_TRACE(name);
+    std::unique_ptr<OGRCoordinateTransformation> t(OGRCreateCoordinateTransformation(&utm, target));
+    ASSERT_TRUE(t);
+    ordered_json ring = ordered_json::array();
+    for (auto [x, y] : {std::pair{385000.0, 6672000.0}, {385100.0, 6672000.0}, {385100.0, 6672050.0}, {385000.0, 6672050.0},
+                        {385000.0, 6672000.0}}) {
+      ASSERT_TRUE(t->Transform(1, &x, &y));
+      ring.push_back({x, y});
+    }
+    ordered_json doc = {{"type", "FeatureCollection"},
+                        {"features", {{{"type", "Feature"}, {"properties", ordered_json::object()},
+                                       {"geometry", {{"type", "Polygon"}, {"coordinates", {ring}}}}}}}};
+    if (!crs.is_null()) doc["crs"] = crs;
+    write(dir / name, doc.dump());
+    const ordered_json s = real_statistics(dir / name);
+    EXPECT_NEAR(s["zones"]["all"]["footprints"]["area_m2"]["median"].get<double>(), 5000, 0.1);
+  }
+}
+
 TEST(OsmOutput, CityOsmKeepsTheClassesAndNamesItReadAndNewObjectsHaveNegativeIdsApartBetweenCities) {
   const fs::path dir = testing_util::temp_dir("osm-out");
   const GenerateResult village = generate(kVillage, dir / "village");
