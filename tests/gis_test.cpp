@@ -457,7 +457,9 @@ ordered_json osm_tagged_town() {
        "geometry": {"type": "LineString", "coordinates": [[384900, 6672600], [385700, 6672600]]}},
       {"type": "Feature", "properties": {"zone": "commercial"},
        "geometry": {"type": "Polygon", "coordinates": [[[385600, 6672000], [385800, 6672000], [385800, 6672200], [385600, 6672200], [385600, 6672000]]]}},
-      {"type": "Feature", "properties": {"highway": "crossing"}, "geometry": {"type": "Point", "coordinates": [385300, 6672250]}}]})");
+      {"type": "Feature", "properties": {"highway": "crossing"}, "geometry": {"type": "Point", "coordinates": [385300, 6672250]}},
+      {"type": "Feature", "properties": {"osm_way_id": "27204443", "amenity": "school", "landuse": null},
+       "geometry": {"type": "Polygon", "coordinates": [[[385300, 6672100], [385350, 6672100], [385350, 6672150], [385300, 6672100]]]}}]})");
 }
 
 geom::Box box_of(const ZoneFeature& zone) {
@@ -495,7 +497,7 @@ TEST(Gis, OsmTaggedFeaturesBecomeZonesAndRoads) {
     EXPECT_EQ(sketch.osm_counts[0].file, (dir / name).string());
     EXPECT_EQ(sketch.osm_counts[0].left_out, (std::map<std::string, int>{
                                        {"highway=footway", 1}, {"landuse=farmland", 1}, {"areas of fewer than 3 distinct points", 1},
-                                       {"highway=crossing as a point", 1}}));
+                                       {"highway=crossing as a point", 1}, {"amenity=school", 1}}));
     EXPECT_EQ(sketch.zone_settings.at(ZoneType::Residential).roads.layout, "streets");
   }
   // Features taken out do not move the others' names: the user's zone is still features[7].
@@ -546,7 +548,7 @@ TEST(Gis, SeveralSketchFilesAreReadAsOne) {
   ASSERT_EQ(two.osm_counts.size(), 2u);
   EXPECT_EQ(two.osm_counts[0].file, (dir / "land.geojson").string());
   EXPECT_EQ(two.osm_counts[0].left_out,
-            (std::map<std::string, int>{{"landuse=farmland", 1}, {"areas of fewer than 3 distinct points", 1}}));
+            (std::map<std::string, int>{{"landuse=farmland", 1}, {"areas of fewer than 3 distinct points", 1}, {"amenity=school", 1}}));
   EXPECT_EQ(two.osm_counts[1].file, (dir / "streets.geojson").string());
   EXPECT_EQ(two.osm_counts[1].left_out, (std::map<std::string, int>{{"highway=footway", 1}, {"highway=crossing as a point", 1}}));
   std::map<std::string, int> together = two.osm_counts[0].left_out;
@@ -558,8 +560,8 @@ TEST(Gis, SeveralSketchFilesAreReadAsOne) {
                                              (dir / "streets.geojson").string() + " -o " + (dir / "out").string() + " -q");
   ASSERT_EQ(run.code, 0) << run.out;
   EXPECT_NE(run.out.find("note: " + (dir / "land.geojson").string() +
-                         ": left out 2 OpenStreetMap features whose tags make no zone or road (areas of fewer than 3 "
-                         "distinct points 1, landuse=farmland 1)"),
+                         ": left out 3 OpenStreetMap features whose tags make no zone or road (amenity=school 1, areas of "
+                         "fewer than 3 distinct points 1, landuse=farmland 1)"),
             std::string::npos)
       << run.out;
   EXPECT_NE(run.out.find("note: " + (dir / "streets.geojson").string() +

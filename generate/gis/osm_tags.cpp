@@ -37,6 +37,9 @@ std::optional<double> metres(const std::optional<std::string>& tag) {
 
 double default_width(const std::string& road) { return road == "highway" ? 20 : road == "main" ? 12 : 8; }
 
+// Where osm_keys' main tags that name a feature left out begin.
+constexpr std::ptrdiff_t kReadKeys = 13;
+
 // Pedestrian streets and alleys are local streets, narrower than the class's default.
 constexpr double kPedestrianWidth = 6, kAlleyWidth = 4;
 
@@ -123,8 +126,12 @@ bool drop_degenerate_rings(ordered_json& geometry) {
 }  // namespace
 
 const std::vector<std::string>& osm_keys() {
-  static const std::vector<std::string> keys{"highway", "waterway", "landuse", "natural", "leisure", "water",
-                                             "width",   "lanes",    "tunnel",  "service", "other_tags"};
+  // The keys read, then the OSM ids GIS exports carry and the main tags of what Exacity
+  // makes nothing of (kReadKeys on), which name what is left out.
+  static const std::vector<std::string> keys{
+      "highway",  "waterway", "landuse", "natural", "leisure",  "water",    "width",    "lanes",   "tunnel",
+      "service",  "other_tags", "osm_id", "osm_way_id", "building", "amenity", "shop", "tourism", "man_made",
+      "railway",  "aeroway",  "barrier", "boundary", "place",    "power",    "historic", "military", "sport", "office"};
   return keys;
 }
 
@@ -225,6 +232,16 @@ bool apply_osm_tags(ordered_json& doc, const std::vector<SketchFile>& files) {
     else if (is_linear(type)) meanings.back() = osm_line_meaning(tags);
     else if (std::optional<std::string> tag = first_tag(tags, {"highway", "waterway", "landuse", "natural", "leisure", "water"}))
       meanings.back() = left_out(*tag + " as a point");  // a crossing, a bus stop, a tree
+    // A feature GDAL's OSM driver or pyrosm exported (it has their OSM id columns) whose tags
+    // are none of those read: a building, a school's grounds. Left out and counted by its
+    // main tag, as an extract's would be; a feature drawn by hand without a zone or road
+    // is still the sketch reader's to refuse.
+    if (meanings.back().kind == OsmMeaning::Untagged && (tags("osm_id") || tags("osm_way_id"))) {
+      std::optional<std::string> tag;
+      for (auto key = osm_keys().begin() + kReadKeys; key != osm_keys().end() && !tag; ++key)
+        if (std::optional<std::string> v = tags(*key)) tag = *key + "=" + *v;
+      meanings.back() = left_out(tag ? *tag : "OpenStreetMap features without a tag Exacity reads");
+    }
   }
   if (std::all_of(meanings.begin(), meanings.end(), [](const OsmMeaning& m) { return m.kind == OsmMeaning::Untagged; }))
     return false;
