@@ -13,7 +13,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev libtinygltf-dev libcpp-httplib-dev
   libgtest-dev libgmock-dev libbenchmark-dev libgoogle-perftools-dev libgeos-dev
   libgdal-dev libproj-dev libosmium2-dev libexpat1-dev libbz2-dev zlib1g-dev
-  python3 python3-shapely chromium
+  python3 python3-shapely chromium osmium-tool
   slurm-wlm ffmpeg
 )
 
