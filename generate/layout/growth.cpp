@@ -18,6 +18,7 @@ constexpr int kMaxLevels = 64;  // a long corridor is cut a block or so per leve
 constexpr int kConnectorTries = 8;
 constexpr int kMaxStalls = 4;        // regrowths of a cell that the roads failed to divide
 constexpr int kSeedCandidates = 48;  // points tried for a cell's seed
+constexpr int kDeepeningSteps = 8;   // steps moving a start away from the boundary
 
 // A cell waiting to be grown.
 struct Work {
@@ -29,18 +30,31 @@ struct Work {
   bool top = true;     // a whole region, with no roads of its own yet to reach
 };
 
+// How far points inside a cell lie from its boundary (its drawn edges and the roads grown
+// around it before), in doubles.
+class Depth {
+ public:
+  explicit Depth(const geom::Cell& cell) : rings_(cell.kinded_rings()) {}
+  double operator()(geom::Vec2 p) const { return geom::distance(p, nearest(p)); }
+  geom::Vec2 nearest(geom::Vec2 p) const {
+    geom::Vec2 best = p;
+    double d = INFINITY;
+    for (const auto& r : rings_)
+      for (std::size_t i = 0, n = r.points.size(); i < n; ++i) {
+        const geom::Vec2 q = geom::nearest_on_segment(p, r.points[i], r.points[(i + 1) % n]);
+        if (const double e = geom::distance(p, q); e < d) d = e, best = q;
+      }
+    return best;
+  }
+
+ private:
+  std::vector<geom::KindedRing> rings_;
+};
+
 // Where a cell's roads start: the deepest of some points inside it (the farthest from its
 // boundary), so a seed sits in the middle of a corridor or an arm rather than at the
 // centroid, which a U, a ring or a spiral leaves outside or against an edge.
-std::optional<geom::Vec2> seed_point(const geom::Cell& cell, Random& rng) {
-  const std::vector<geom::KindedRing> rings = cell.kinded_rings();
-  auto depth = [&](geom::Vec2 p) {
-    double d = INFINITY;
-    for (const auto& r : rings)
-      for (std::size_t i = 0, n = r.points.size(); i < n; ++i)
-        d = std::min(d, geom::distance_to_segment(p, r.points[i], r.points[(i + 1) % n]));
-    return d;
-  };
+std::optional<geom::Vec2> seed_point(const geom::Cell& cell, const Depth& depth, Random& rng) {
   std::optional<geom::Vec2> best = cell.point_inside_near(cell.centroid());
   double best_depth = best ? depth(*best) : -1;
   const geom::Box b = cell.bounds();
@@ -50,6 +64,24 @@ std::optional<geom::Vec2> seed_point(const geom::Cell& cell, Random& rng) {
     if (d > best_depth && cell.contains(p)) best = p, best_depth = d;  // the exact test only when it would win
   }
   return best;
+}
+
+// A start for a cell's roads at least `least` from its boundary: p, or p stepped away from
+// the boundary point nearest it, a few times (a corner pushes it on from the next edge).
+// Every road from a start that deep is at least that long, so none is a stub; a start just
+// inside an edge (Cell::point_inside_near's answer when the point wanted lies outside) grew
+// roads of centimetres out to it. nullopt where the steps leave the cell or find no such
+// point: a cell narrower than twice `least` there.
+std::optional<geom::Vec2> deep_start(const geom::Cell& cell, const Depth& depth, geom::Vec2 p, double least) {
+  for (int step = 0; step < kDeepeningSteps; ++step) {
+    const double d = depth(p);
+    if (d >= least) return p;
+    if (d == 0) return std::nullopt;
+    const geom::Vec2 away = (p - depth.nearest(p)) * ((least - d + geom::kGridStep) / d);
+    p = geom::snap(p + away);
+    if (!cell.contains(p)) return std::nullopt;
+  }
+  return depth(p) >= least ? std::optional<geom::Vec2>(p) : std::nullopt;
 }
 
 // What growing one cell gave.
@@ -187,18 +219,18 @@ std::optional<double> strip_axis(const geom::Cell& cell, const GrowthSettings& p
 // when they fail (a concave cell can hide those edges from the seed), they are grown
 // again from just inside one of those edges, the first branch heading straight back to
 // it. Empty when that fails too.
-CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const GrowthSettings& p, int level, bool top, double orientation,
-                    int stalls, const RunOnLines& run_on, Random& rng) {
+CellRoads grow_cell(const geom::Cell& cell, const Depth& depth, geom::Vec2 seed, const GrowthSettings& p, double min_piece,
+                    int level, bool top, double orientation, int stalls, const RunOnLines& run_on, Random& rng) {
   const geom::Box b = cell.bounds();
   const double reach = 2 * std::hypot(b.width(), b.height()) + 1;  // past the cell from anywhere in it
   auto edges = edges_to_reach(cell, top);
   const bool free = edges.empty();
   // A strip is cut across, never along.
   const std::optional<double> axis = strip_axis(cell, p);
-  {
+  if (const std::optional<geom::Vec2> start = deep_start(cell, depth, seed, min_piece)) {
     geom::Growth growth(cell, p.segment_length);
-    CellRoads grown{seed, {}, {}};
-    if (grow_branches(growth, seed, p, level, free, axis ? *axis + 90 : orientation, axis.has_value(), reach,
+    CellRoads grown{*start, {}, {}};
+    if (grow_branches(growth, *start, p, level, free, axis ? *axis + 90 : orientation, axis.has_value(), reach,
                       run_on, rng, grown) &&
         !grown.open_end)
       return grown;
@@ -236,6 +268,7 @@ CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const GrowthSetting
         }
     }
     auto start = cell.point_inside_near({m.x + inward.x * d, m.y + inward.y * d});
+    if (start) start = deep_start(cell, depth, *start, min_piece);
     if (!start) continue;
     geom::Growth growth(cell, p.segment_length);
     CellRoads grown{*start, {}, {}};
@@ -248,10 +281,10 @@ CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const GrowthSetting
 
 // A cell's seed, and the zone type it grows as: the type at its seed (a cell keeps its
 // parent's type where the seed lies on none).
-Grown seed(const Work& w, const ZoneAt& zone_at) {
+Grown seed(const Work& w, const Depth& depth, const ZoneAt& zone_at) {
   Grown g;
   Random seed_rng(mix(w.id, 3 + w.stalls));
-  g.seed = seed_point(w.cell, seed_rng);
+  g.seed = seed_point(w.cell, depth, seed_rng);
   g.type = w.type;
   if (g.seed)
     if (std::optional<ZoneType> t = zone_at(*g.seed)) g.type = *t;
@@ -263,7 +296,8 @@ Grown seed(const Work& w, const ZoneAt& zone_at) {
 // sliver off it, are dropped and the cell grown again from another seed, a few times at
 // most: slivers make poor blocks. Cutting off a tenth of a block is progress, so a long
 // corridor is grown on however little of it each cut takes.
-void grow_one(const Work& w, Grown& g, const GrowthSettings& p, int level, const RunOnLines& run_on) {
+void grow_one(const Work& w, const Depth& depth, Grown& g, const GrowthSettings& p, double min_piece, int level,
+              const RunOnLines& run_on) {
   if (!g.seed) return;
   if (w.cell.area() <= p.block_area) return;  // small enough to be one block
   Random rng(mix(w.id, 1 + 16 * w.stalls));
@@ -278,7 +312,7 @@ void grow_one(const Work& w, Grown& g, const GrowthSettings& p, int level, const
       g.without_access = !w.top;
     }
   };
-  CellRoads grown = grow_cell(w.cell, *g.seed, p, level, w.top, w.orientation, w.stalls, run_on, rng);
+  CellRoads grown = grow_cell(w.cell, depth, *g.seed, p, min_piece, level, w.top, w.orientation, w.stalls, run_on, rng);
   g.seed = grown.seed;
   g.roads = std::move(grown.roads);
   g.joined = std::move(grown.joined);
@@ -336,8 +370,10 @@ class GrowthLayout : public RoadLayout {
       std::vector<Grown> grown(work.size());
       tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
         cancel.check();
-        grown[i] = seed(work[i], zone_at_);
-        grow_one(work[i], grown[i], sketch_.zone_settings.at(grown[i].type).roads.growth, level, run_on_);
+        const Depth depth(work[i].cell);
+        grown[i] = seed(work[i], depth, zone_at_);
+        const ZoneSettings& zone = sketch_.zone_settings.at(grown[i].type);
+        grow_one(work[i], depth, grown[i], zone.roads.growth, zone.blocks.min_block_width, level, run_on_);
       });
       work = collect(grown, work, level, sketch_, plan);
     }
