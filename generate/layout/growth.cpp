@@ -217,9 +217,10 @@ std::optional<double> strip_axis(const geom::Cell& cell, const GrowthSettings& p
 // The roads of one cell, grown from its seed. They must reach one of edges_to_reach, and
 // none may stop at a sketch road's surface short of a centre line (it would end in the open);
 // when they fail (a concave cell can hide those edges from the seed), they are grown
-// again from just inside one of those edges, the first branch heading straight back to
-// it. Empty when that fails too.
-CellRoads grow_cell(const geom::Cell& cell, const Depth& depth, geom::Vec2 seed, const GrowthSettings& p, double min_piece,
+// again from inside one of those edges, the first branch heading straight back to it.
+// Every start lies at least `shortest_road` inside the cell (deep_start). Empty when that
+// fails too.
+CellRoads grow_cell(const geom::Cell& cell, const Depth& depth, geom::Vec2 seed, const GrowthSettings& p, double shortest_road,
                     int level, bool top, double orientation, int stalls, const RunOnLines& run_on, Random& rng) {
   const geom::Box b = cell.bounds();
   const double reach = 2 * std::hypot(b.width(), b.height()) + 1;  // past the cell from anywhere in it
@@ -227,7 +228,7 @@ CellRoads grow_cell(const geom::Cell& cell, const Depth& depth, geom::Vec2 seed,
   const bool free = edges.empty();
   // A strip is cut across, never along.
   const std::optional<double> axis = strip_axis(cell, p);
-  if (const std::optional<geom::Vec2> start = deep_start(cell, depth, seed, min_piece)) {
+  if (const std::optional<geom::Vec2> start = deep_start(cell, depth, seed, shortest_road)) {
     geom::Growth growth(cell, p.segment_length);
     CellRoads grown{*start, {}, {}};
     if (grow_branches(growth, *start, p, level, free, axis ? *axis + 90 : orientation, axis.has_value(), reach,
@@ -268,7 +269,7 @@ CellRoads grow_cell(const geom::Cell& cell, const Depth& depth, geom::Vec2 seed,
         }
     }
     auto start = cell.point_inside_near({m.x + inward.x * d, m.y + inward.y * d});
-    if (start) start = deep_start(cell, depth, *start, min_piece);
+    if (start) start = deep_start(cell, depth, *start, shortest_road);
     if (!start) continue;
     geom::Growth growth(cell, p.segment_length);
     CellRoads grown{*start, {}, {}};
@@ -296,7 +297,7 @@ Grown seed(const Work& w, const Depth& depth, const ZoneAt& zone_at) {
 // sliver off it, are dropped and the cell grown again from another seed, a few times at
 // most: slivers make poor blocks. Cutting off a tenth of a block is progress, so a long
 // corridor is grown on however little of it each cut takes.
-void grow_one(const Work& w, const Depth& depth, Grown& g, const GrowthSettings& p, double min_piece, int level,
+void grow_one(const Work& w, const Depth& depth, Grown& g, const GrowthSettings& p, double shortest_road, int level,
               const RunOnLines& run_on) {
   if (!g.seed) return;
   if (w.cell.area() <= p.block_area) return;  // small enough to be one block
@@ -312,7 +313,7 @@ void grow_one(const Work& w, const Depth& depth, Grown& g, const GrowthSettings&
       g.without_access = !w.top;
     }
   };
-  CellRoads grown = grow_cell(w.cell, depth, *g.seed, p, min_piece, level, w.top, w.orientation, w.stalls, run_on, rng);
+  CellRoads grown = grow_cell(w.cell, depth, *g.seed, p, shortest_road, level, w.top, w.orientation, w.stalls, run_on, rng);
   g.seed = grown.seed;
   g.roads = std::move(grown.roads);
   g.joined = std::move(grown.joined);
