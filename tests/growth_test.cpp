@@ -31,6 +31,14 @@ Cell cell_of(const geom::Ring& ring, const std::vector<geom::Ring>& holes = {}) 
 
 const geom::Ring kSquare{{0, 0}, {10, 0}, {10, 10}, {0, 10}};
 
+// Every road of the plan but road i.
+std::vector<geom::Path> other_roads(const exacity::RoadPlan& plan, std::size_t i) {
+  std::vector<geom::Path> others;
+  for (std::size_t j = 0; j < plan.roads.size(); ++j)
+    if (j != i) others.push_back(plan.roads[j].path);
+  return others;
+}
+
 }  // namespace
 
 TEST(Growth, StopsExactlyAtTheEdgeItMeets) {
@@ -266,9 +274,7 @@ TEST(GrowthLayout, ARoadMeetingASurfaceNamedForAFarRoadRunsOnToTheNearestCentreL
     // Each road grows from its cell's seed, which its sibling roads share; where it stopped
     // is its last point.
     const geom::Path& road = plan.roads[i].path;
-    std::vector<geom::Path> others;
-    for (std::size_t j = 0; j < plan.roads.size(); ++j)
-      if (j != i) others.push_back(plan.roads[j].path);
+    const std::vector<geom::Path> others = other_roads(plan, i);
     const Vec2 end = road.point(road.size() - 1);
     const bool on_region_edge = end.x == 0 || end.y == 0 || end.y == 300;
     on_near += geom::ends_on(road, {near});
@@ -341,9 +347,7 @@ TEST(GrowthLayout, NoRoadIsShorterThanABlockIsWideNorEndsInTheOpen) {
       ASSERT_GT(plan.roads.size(), 2u);
       for (std::size_t i = 0; i < plan.roads.size(); ++i) {
         const geom::Path& road = plan.roads[i].path;
-        std::vector<geom::Path> others;
-        for (std::size_t j = 0; j < plan.roads.size(); ++j)
-          if (j != i) others.push_back(plan.roads[j].path);
+        const std::vector<geom::Path> others = other_roads(plan, i);
         const Vec2 end = road.point(road.size() - 1);
         EXPECT_GE(length_of(road.to_plain()), least) << "road " << i << " ends at (" << end.x << ", " << end.y << ")";
         EXPECT_TRUE(geom::ends_on(road.reversed(), others)) << "road " << i << " starts alone";
