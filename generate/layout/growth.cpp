@@ -66,22 +66,31 @@ std::optional<geom::Vec2> seed_point(const geom::Cell& cell, const Depth& depth,
   return best;
 }
 
+// Where a cell's roads start, and, for a start moved off an edge it lay too near, the way
+// off that edge.
+struct Start {
+  geom::Vec2 at;
+  std::optional<geom::Vec2> off_edge;  // a unit vector
+};
+
 // A start for a cell's roads at least `least` from its boundary: p, or p stepped away from
 // the boundary point nearest it, a few times (a corner pushes it on from the next edge).
 // Every road from a start that deep is at least that long, so none is a stub; a start just
 // inside an edge (Cell::point_inside_near's answer when the point wanted lies outside) grew
 // roads of centimetres out to it. nullopt where the steps leave the cell or find no such
 // point: a cell narrower than twice `least` there.
-std::optional<geom::Vec2> deep_start(const geom::Cell& cell, const Depth& depth, geom::Vec2 p, double least) {
+std::optional<Start> deep_start(const geom::Cell& cell, const Depth& depth, geom::Vec2 p, double least) {
+  Start start{p, std::nullopt};
   for (int step = 0; step < kDeepeningSteps; ++step) {
-    const double d = depth(p);
-    if (d >= least) return p;
+    const double d = depth(start.at);
+    if (d >= least) return start;
     if (d == 0) return std::nullopt;
-    const geom::Vec2 away = (p - depth.nearest(p)) * ((least - d + geom::kGridStep) / d);
-    p = geom::snap(p + away);
-    if (!cell.contains(p)) return std::nullopt;
+    const geom::Vec2 away = (start.at - depth.nearest(start.at)) * (1 / d);
+    if (!start.off_edge) start.off_edge = away;
+    start.at = geom::snap(start.at + away * (least - d + geom::kGridStep));
+    if (!cell.contains(start.at)) return std::nullopt;
   }
-  return depth(p) >= least ? std::optional<geom::Vec2>(p) : std::nullopt;
+  return depth(start.at) >= least ? std::optional<Start>(start) : std::nullopt;
 }
 
 // What growing one cell gave.
@@ -129,8 +138,12 @@ struct RunOnLines {
 // Grows `branches` roads from the seed. Returns whether one reached a road (of the region,
 // or of the sketch); always true when `free`, for a cell with no road to reach.
 // `across_only`: only the branches within 45 degrees of `orientation` or its opposite.
+// `off_edge`: for a connector's start moved off an edge, no branch but the first (back to its
+// road edge) running within 45 degrees of along that edge: from where the start lay those
+// were stubs, and from a block's width off the edge they would cut a sliver along it.
 bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const GrowthSettings& p, int level, bool free, double orientation,
-                   bool across_only, double reach, const RunOnLines& run_on, Random& rng, CellRoads& out) {
+                   bool across_only, std::optional<geom::Vec2> off_edge, double reach, const RunOnLines& run_on, Random& rng,
+                   CellRoads& out) {
   const double segment_deviation = std::max(p.segment_deviation - 2.0 * level, 0.0);
   const int max_steps = static_cast<int>(reach / (p.segment_length * std::cos(p.origin_deviation * M_PI / 180))) + 2;
   bool reached_road = free;
@@ -182,6 +195,8 @@ bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const GrowthSettings& 
     const double off_axis = std::fmod(360.0 * i / p.branches, 180.0);
     if (across_only && off_axis > 45 && off_axis < 135) continue;
     const double alpha = orientation + 360.0 * i / p.branches;
+    const geom::Vec2 heading{std::cos(alpha * M_PI / 180), std::sin(alpha * M_PI / 180)};
+    if (off_edge && i > 0 && std::abs(geom::dot(heading, *off_edge)) < M_SQRT1_2) continue;
     if (grow(alpha)) grown.push_back(alpha);
   }
   // A seed left with one road would be a dead end: that road runs on through it instead.
@@ -228,10 +243,10 @@ CellRoads grow_cell(const geom::Cell& cell, const Depth& depth, geom::Vec2 seed,
   const bool free = edges.empty();
   // A strip is cut across, never along.
   const std::optional<double> axis = strip_axis(cell, p);
-  if (const std::optional<geom::Vec2> start = deep_start(cell, depth, seed, shortest_road)) {
+  if (const std::optional<Start> start = deep_start(cell, depth, seed, shortest_road)) {
     geom::Growth growth(cell, p.segment_length);
-    CellRoads grown{*start, {}, {}};
-    if (grow_branches(growth, *start, p, level, free, axis ? *axis + 90 : orientation, axis.has_value(), reach,
+    CellRoads grown{start->at, {}, {}};
+    if (grow_branches(growth, start->at, p, level, free, axis ? *axis + 90 : orientation, axis.has_value(), std::nullopt, reach,
                       run_on, rng, grown) &&
         !grown.open_end)
       return grown;
@@ -268,13 +283,14 @@ CellRoads grow_cell(const geom::Cell& cell, const Depth& depth, geom::Vec2 seed,
           break;
         }
     }
-    auto start = cell.point_inside_near({m.x + inward.x * d, m.y + inward.y * d});
-    if (start) start = deep_start(cell, depth, *start, shortest_road);
+    const std::optional<geom::Vec2> wanted = cell.point_inside_near({m.x + inward.x * d, m.y + inward.y * d});
+    const std::optional<Start> start = wanted ? deep_start(cell, depth, *wanted, shortest_road) : std::nullopt;
     if (!start) continue;
     geom::Growth growth(cell, p.segment_length);
-    CellRoads grown{*start, {}, {}};
-    double back = std::atan2(m.y - start->y, m.x - start->x) * 180 / M_PI;
-    if (grow_branches(growth, *start, p, level, free, back, false, reach, run_on, rng, grown) && !grown.open_end)
+    CellRoads grown{start->at, {}, {}};
+    double back = std::atan2(m.y - start->at.y, m.x - start->at.x) * 180 / M_PI;
+    if (grow_branches(growth, start->at, p, level, free, back, false, start->off_edge, reach, run_on, rng, grown) &&
+        !grown.open_end)
       return grown;
   }
   return {seed, {}, {}};
