@@ -691,3 +691,42 @@ TEST(Cli, AWayRunningAcrossItselfHundredsOfTimesIsRefusedBeforeTheMap) {
   EXPECT_EQ(r.code, 0) << r.out;
 }
 
+
+// An industrial L and a 60 m residential L inside its bend: growth started cells of the
+// narrow arm a centimetre inside their edge and left roads of 2 to 40 cm there, one ending
+// alone on the zone's edge (road 372, 10 cm); and two narrow zones, 40 m and 30 m wide,
+// touching at a corner. No generated road is shorter than its zone's min_block_width, and
+// none ends in the open: every dead end is a sketch road's.
+TEST(Cli, GrowthLeavesNoRoadShorterThanABlockIsWideNorADeadEnd) {
+  const std::vector<std::pair<std::string, std::string>> sketches{
+      {"two-ls", R"({"type": "FeatureCollection", "exacity": {"seed": 23}, "features": [
+    {"type": "Feature", "properties": {"zone": "industrial"}, "geometry": {"type": "Polygon",
+     "coordinates": [[[0, 0], [3000, 0], [3000, 600], [600, 600], [600, 2500], [0, 2500], [0, 0]]]}},
+    {"type": "Feature", "properties": {"zone": "residential"}, "geometry": {"type": "Polygon",
+     "coordinates": [[[700, 700], [3000, 700], [3000, 760], [760, 760], [760, 2500], [700, 2500], [700, 700]]]}}]})"},
+      {"corner", R"({"type": "FeatureCollection", "exacity": {"seed": 7}, "features": [
+    {"type": "Feature", "properties": {"zone": "residential"}, "geometry": {"type": "Polygon",
+     "coordinates": [[[0, 0], [40, 0], [40, 800], [0, 800], [0, 0]]]}},
+    {"type": "Feature", "properties": {"zone": "residential"}, "geometry": {"type": "Polygon",
+     "coordinates": [[[40, 800], [840, 800], [840, 830], [40, 830], [40, 800]]]}}]})"}};
+  const double least = 6;  // the zones' min_block_width
+  for (const auto& [name, sketch] : sketches) {
+    SCOPED_TRACE(name);
+    fs::path dir = testing_util::temp_dir("cli-stubs-" + name);
+    const Result g = generate_in(dir, sketch);
+    ASSERT_EQ(g.code, 0) << g.out;
+    const auto roads = nlohmann::json::parse(read(dir / "out" / "vector" / "roads.geojson"))["features"];
+    ASSERT_GT(roads.size(), 10u);
+    for (const auto& f : roads) {
+      const auto& c = f["geometry"]["coordinates"];
+      double length = 0;
+      for (std::size_t i = 1; i < c.size(); ++i)
+        length += std::hypot(c[i][0].get<double>() - c[i - 1][0].get<double>(), c[i][1].get<double>() - c[i - 1][1].get<double>());
+      EXPECT_GE(length, least) << "road " << f["properties"]["id"] << " from " << c.front().dump() << " to " << c.back().dump();
+    }
+    const auto report = nlohmann::json::parse(read(dir / "out" / "report.json"));
+    EXPECT_EQ(report["statistics"]["streets"]["dead_ends"].get<int>(), 0);
+    const Result v = run("validate " + (dir / "out").string());
+    EXPECT_EQ(v.code, 0) << v.out;  // every generated road's end meets a road or a drawn edge
+  }
+}
