@@ -730,3 +730,25 @@ TEST(Cli, GrowthLeavesNoRoadShorterThanABlockIsWideNorADeadEnd) {
     EXPECT_EQ(v.code, 0) << v.out;  // every generated road's end meets a road or a drawn edge
   }
 }
+
+TEST(Cli, AGrammarOfThousandsOfPiecesGeneratesAndValidates) {
+  // Each Town splits into four Towns and two Roads, six deep: 4,096 blocks and 2,730 road
+  // pieces. Settling the roads compared each with every other and the clutter walked the map
+  // from its edge for every spot (seven deep took 111 s in the release build, 26 s now; the
+  // figures are in docs/limits.md, timings stay out of the tests).
+  const fs::path dir = testing_util::temp_dir("cli-deep-grammar");
+  std::ofstream(dir / "split.grammar")
+      << "1 Town 4 Town,0,0,0.5,0,0.5,0.5,0,0.5 Town,0.5,0,1,0,1,0.5,0.5,0.5 Town,0.5,0.5,1,0.5,1,1,0.5,1 "
+         "Town,0,0.5,0.5,0.5,0.5,1,0,1 Road,0.45,0,0.55,0,0.55,1,0.45,1 Road,0,0.45,1,0.45,1,0.55,0,0.55\n";
+  std::ofstream(dir / "deep.geojson") << R"({"type": "FeatureCollection", "exacity": {"zones": {"residential":
+      {"layout": "grammar", "grammar": "split.grammar", "grammar_depth": 6, "min_block_area": 0.0001}}}, "features": [
+    {"type": "Feature", "properties": {"zone": "residential"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [600, 0], [600, 600], [0, 600], [0, 0]]]}}]})";
+  const fs::path out = dir / "out";
+  Result r = shell(std::string(EXACITY_BINARY) + " generate " + (dir / "deep.geojson").string() + " -o " + out.string() +
+                   " -q --threads 1");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto report = nlohmann::json::parse(read(out / "report.json"));
+  EXPECT_GT(report["road_network"]["roads"]["local"].get<int>(), 1000) << report["road_network"];
+  EXPECT_TRUE(report["validation"]["ok"].get<bool>()) << report["validation"];
+}

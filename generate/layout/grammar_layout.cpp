@@ -10,6 +10,7 @@
 #include "generate/layout/growth.h"
 #include "generate/layout/road_layout.h"
 #include "generate/layout/settle.h"
+#include "geom/box_index.h"
 #include "geom/grid.h"
 #include "geom/measure.h"
 
@@ -41,12 +42,38 @@ std::vector<geom::Vec2> long_side_first(std::vector<geom::Vec2> c) {
   return c;
 }
 
-// The use of the leaf that holds p, if any.
-std::optional<Terminal> use_at(const std::vector<PlannedUse>& uses, geom::Vec2 p) {
-  for (const PlannedUse& u : uses)
-    if (geom::winding_number(u.ring, p) != 0) return u.use;
-  return std::nullopt;
-}
+// The leaves' uses, to find the one that holds a point without a pass over all of them
+// (a deep grammar has tens of thousands, and every piece and growth seed asks).
+class UsesIndex {
+ public:
+  explicit UsesIndex(const std::vector<PlannedUse>& uses) : uses_(uses), boxes_(mean_size(uses)) {
+    for (std::size_t k = 0; k < uses.size(); ++k) {
+      geom::Box box = geom::Box::none();
+      for (geom::Vec2 v : uses[k].ring) box.add(v);
+      boxes_.add(static_cast<int>(k), box);
+    }
+  }
+  // The use of the first leaf that holds p, if any (asking the index a metre around p: it
+  // filters in doubles, and the winding number decides as it did over all leaves).
+  std::optional<Terminal> at(geom::Vec2 p) const {
+    for (int k : boxes_.meeting({p.x - 1, p.y - 1, p.x + 1, p.y + 1}))
+      if (geom::winding_number(uses_[k].ring, p) != 0) return uses_[k].use;
+    return std::nullopt;
+  }
+
+ private:
+  static double mean_size(const std::vector<PlannedUse>& uses) {
+    double sum = 0;
+    for (const PlannedUse& u : uses) {
+      geom::Box box = geom::Box::none();
+      for (geom::Vec2 v : u.ring) box.add(v);
+      if (!box.holds_nothing()) sum += std::max(box.width(), box.height());
+    }
+    return uses.empty() ? 0 : sum / static_cast<double>(uses.size());
+  }
+  const std::vector<PlannedUse>& uses_;
+  geom::BoxIndex boxes_;
+};
 
 // Whether a use other than land (a park) lies in the piece: growth's roads would cross it.
 bool holds_other_use(const geom::Cell& piece, const std::vector<PlannedUse>& uses) {
@@ -97,15 +124,16 @@ void grow_large_pieces(RoadPlan& plan, const Region& region, const Sketch& sketc
   const int grammar_road = GrowthEdge::sketch_road(static_cast<int>(lines.size()) - 1);
   const std::vector<geom::Cell> pieces =
       lines.back().lines.empty() ? std::vector<geom::Cell>{region.cell} : geom::split_cell(region.cell, lines.back().lines, grammar_road);
+  const UsesIndex uses(plan.uses);
   for (std::size_t k = 0; k < pieces.size(); ++k) {
     const std::optional<geom::Vec2> inside = pieces[k].point_inside_near(pieces[k].centroid());
-    const std::optional<Terminal> use = inside ? use_at(plan.uses, *inside) : std::nullopt;
+    const std::optional<Terminal> use = inside ? uses.at(*inside) : std::nullopt;
     if (!use || use->kind != Terminal::Land) continue;
     if (pieces[k].area() <= 4 * sketch.zone_settings.at(zone).roads.growth.block_area) continue;
     if (holds_other_use(pieces[k], plan.uses)) continue;
     // Each cell grows as the land use at its seed, as a growth region follows its zones.
-    const auto growth = make_growth_layout(sketch, lines, [&uses = plan.uses, piece_type = use->type](geom::Vec2 p) {
-      const std::optional<Terminal> u = use_at(uses, p);
+    const auto growth = make_growth_layout(sketch, lines, [&uses, piece_type = use->type](geom::Vec2 p) {
+      const std::optional<Terminal> u = uses.at(p);
       return std::optional<ZoneType>(u && u->kind == Terminal::Land ? u->type : piece_type);
     });
     add_grown(plan, growth->plan({pieces[k], mix(region.stream, 0x9e0000 + k)}), piece_lines);

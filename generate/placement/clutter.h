@@ -56,6 +56,11 @@ struct ClutterGround {
   const std::vector<ModelInstance>& models;
 };
 
+// The parks' trees one run plants: their area over the square of 1.5 tree spacings (each a
+// model instance in every export, about 4 kB in memory), and the squares of their boxes,
+// each walked to find its spot. Past either, place_clutter throws UserError before placing any.
+inline constexpr double kMaxParkTrees = 100000, kMaxParkSquares = 1e8;
+
 // Every street's clutter, road by road in parallel, gathered in road order; none without a
 // library or clutter entries.
 StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* library, const Channels& channels,
