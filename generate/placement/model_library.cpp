@@ -260,7 +260,7 @@ void read_placement(const json& e, const std::string& where, Model& m) {
     const json& s = e["scale"];
     if (!s.is_array() || s.size() != 2 || !s[0].is_number() || !s[1].is_number() || !(s[0].get<double>() > 0) ||
         s[1].get<double>() < s[0].get<double>() || s[1].get<double>() > 100)
-      fail(where, "\"scale\" must be [min, max] with 0 < min <= max");
+      fail(where, "\"scale\" must be [min, max] with 0 < min <= max <= 100");
     m.min_scale = s[0], m.max_scale = s[1];
   }
   m.spacing = e.value("spacing", default_spacing(m.kind));
