@@ -63,10 +63,13 @@ int pick(const Choices& choices, Random& rng) {
 
 void ModelLibrary::check_channels(const std::vector<ChannelSpec>& channels) const {
   for (std::size_t i = 0; i < models.size(); ++i)
-    for (const auto& [channel, value] : models[i].channels)
+    for (const auto& named : models[i].channels) {
+      // Not a structured binding: clang 14 (the fuzz preset's) cannot capture one in a lambda.
+      const std::string& channel = named.first;
       if (std::none_of(channels.begin(), channels.end(), [&](const ChannelSpec& c) { return c.name == channel; }))
         throw UserError(file.string() + " models[" + std::to_string(i) + "]: channels names \"" + channel +
                         "\", which the sketch does not define; define it in the sketch's \"exacity\".channels, or remove it");
+    }
 }
 
 namespace {
