@@ -50,7 +50,7 @@ for t in "${targets[@]}"; do
   cp -n fuzz/corpus/"$t"/* "$corpus"/
   if [ "$t" = sketch ]; then cp -n examples/*.geojson examples/shapes/*.geojson "$corpus"/; fi
   echo "exacity: fuzzing $t for $seconds s (log: $log, findings: $findings)" >&2
-  nice -n 10 build/fuzz/fuzz/"$t"_fuzzer "$corpus" -jobs=1 -workers=1 \
+  nice -n 10 build/fuzz/fuzz/"$t"_fuzzer "$corpus" \
     -max_total_time="$seconds" -timeout="${timeout[$t]:-20}" -rss_limit_mb=1024 -max_len="${max_len[$t]}" \
     -artifact_prefix="$findings"/ -print_final_stats=1 >"$log" 2>&1 || status=1
   grep -E '^stat::(number_of_executed_units|peak_rss_mb)|^(==[0-9]+== )?(ERROR|SUMMARY)|Test unit written' "$log" >&2 || true
