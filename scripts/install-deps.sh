@@ -8,6 +8,7 @@ cd "$(dirname "$0")/.."
 
 packages=(
   g++ cmake ninja-build ccache pkg-config
+  clang  # the fuzz preset and libFuzzer (scripts/fuzz.sh); its FuzzedDataProvider.h for the corpus replay
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libopenmesh-dev libembree-dev libopenimageio-dev libpng-dev openimageio-tools libopenexr-dev libtbb-dev
   nlohmann-json3-dev libcli11-dev libtinygltf-dev libcpp-httplib-dev

@@ -551,6 +551,19 @@ TEST(ModelLibrary, AHugeUnitOrAFarVertexIsRefusedBeforeTheOutlineIsComputed) {
             std::string::npos);
 }
 
+TEST(ModelLibrary, AScaleRefusalNamesItsLimit) {
+  fs::path dir = testing_util::temp_dir("library-scale");
+  write(dir, "box.obj", box_obj(4, 4, 4));
+  auto message = [&](const std::string& scale) {
+    return library_error(dir, R"({"file": "box.obj", "zones": ["residential"], "up": "z", "scale": )" + scale + "}");
+  };
+  const std::string refusal = (dir / "library.json").string() + " models[0]: \"scale\" must be [min, max] with 0 < min <= max <= 100";
+  EXPECT_EQ(message("[1, 101]"), refusal);
+  EXPECT_EQ(message("[0, 1]"), refusal);
+  EXPECT_EQ(message("[2, 1]"), refusal);
+  EXPECT_EQ(message("[1, 100]"), "no error");
+}
+
 TEST(ModelLibrary, ClutterSpacingHasAFloor) {
   // Stations along a street number its length over the spacing: 1e-9 m ran for hours.
   fs::path dir = testing_util::temp_dir("library-spacing");
