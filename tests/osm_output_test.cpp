@@ -346,3 +346,30 @@ TEST(OsmOutput, TheSummaryLineCountsBuildingsWithoutTrees) {
   EXPECT_GT(others, 0);  // trees stand among the buildings in the layer
   EXPECT_NE(r.out.find(", buildings " + std::to_string(buildings) + ","), std::string::npos) << r.out;
 }
+
+// New objects in OSM files (JOSM's, and city.osm's own) carry negative ids: their ways find
+// their nodes as positive ones do, and Exacity reads its own city.osm back.
+TEST(OsmOutput, NegativeIdsAreReadAsAnyOthersAndCityOsmReadsBack) {
+  const fs::path dir = testing_util::temp_dir("osm-negative");
+  write(dir / "new.osm", R"(<?xml version="1.0" encoding="UTF-8"?>
+<osm version="0.6">
+  <node id="-1" lat="-33.8600" lon="151.2000"/>
+  <node id="-2" lat="-33.8600" lon="151.2030"/>
+  <node id="-3" lat="-33.8580" lon="151.2030"/>
+  <node id="-4" lat="-33.8580" lon="151.2000"/>
+  <node id="-5" lat="-33.8590" lon="151.1995"/>
+  <way id="-10"><nd ref="-1"/><nd ref="-2"/><nd ref="-3"/><nd ref="-4"/><nd ref="-1"/><tag k="landuse" v="industrial"/></way>
+  <way id="-12"><nd ref="-5"/><nd ref="-3"/><tag k="highway" v="tertiary"/></way>
+</osm>
+)");
+  const Sketch sketch = load_sketch(dir / "new.osm");
+  EXPECT_EQ(sketch.zones.size(), 1u);
+  EXPECT_EQ(sketch.roads.size(), 1u);
+
+  const GenerateResult village = generate(kVillage, dir / "village");
+  ASSERT_TRUE(village.valid);
+  const Sketch again = load_sketch(dir / "village" / "city.osm");
+  // city.osm holds streets, buildings and clutter, no land use. Before: "Way IDs out of order"
+  // (its negative ids count up), then "the extract has no highways" (no negative node found).
+  EXPECT_EQ(again.roads.size(), 7u);
+}

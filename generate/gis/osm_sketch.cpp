@@ -16,7 +16,9 @@
 #include <osmium/handler/node_locations_for_ways.hpp>
 #include <osmium/index/map/flex_mem.hpp>
 #include <osmium/io/any_input.hpp>
+#include <osmium/object_pointer_collection.hpp>
 #include <osmium/osm/box.hpp>
+#include <osmium/osm/object_comparisons.hpp>
 #include <osmium/relations/manager_util.hpp>
 #include <osmium/tags/tags_filter.hpp>
 #include <osmium/visitor.hpp>
@@ -383,6 +385,20 @@ void check_node_coordinates(const fs::path& path) {
 
 }  // namespace
 
+// The extract's objects in libosmium's order (nodes, ways, relations; negative ids first),
+// which its relation and area code relies on. Files of new objects are often in another:
+// city.osm counts its negative ids up, as `osmium merge` wants, and JOSM writes in any order.
+// The extract is held in memory whole; the input size limit bounds it.
+osmium::memory::Buffer in_osmium_order(osmium::memory::Buffer extract) {
+  osmium::ObjectPointerCollection objects;
+  osmium::apply(extract, objects);
+  objects.sort(osmium::object_order_type_id_version{});
+  osmium::memory::Buffer sorted{std::max<std::size_t>(extract.committed(), 1024), osmium::memory::Buffer::auto_grow::yes};
+  for (const osmium::OSMObject& object : objects) sorted.add_item(object);
+  sorted.commit();
+  return sorted;
+}
+
 ordered_json osm_sketch_document(const fs::path& path) {
   const std::string file = path.string();
   if (path.extension() == ".osm") check_node_coordinates(path);
@@ -390,27 +406,23 @@ ordered_json osm_sketch_document(const fs::path& path) {
   Collector collector(file, relations);
   try {
     const osmium::io::File input(file);
+    osmium::io::Reader header_reader{input, osmium::osm_entity_bits::nothing};
+    const osmium::Box bounds = header_reader.header().box();
+    header_reader.close();
+    osmium::memory::Buffer extract = in_osmium_order(osmium::io::read_file(input));
     osmium::area::Assembler::config_type config;
     osmium::TagsFilter areas{false};
     for (const char* key : {"landuse", "natural", "water", "waterway", "leisure"}) areas.add_rule(true, osmium::TagMatcher{key});
     osmium::area::MultipolygonManager<osmium::area::Assembler> multipolygons{config, areas};
-    osmium::relations::read_relations(input, multipolygons);
-    {
-      osmium::io::Reader reader{input, osmium::osm_entity_bits::relation};
-      osmium::apply(reader, relations);
-      reader.close();
-    }
+    osmium::apply(extract, multipolygons, relations);
+    multipolygons.prepare_for_lookup();
     using Index = osmium::index::map::FlexMem<osmium::unsigned_object_id_type, osmium::Location>;
-    Index index;
-    osmium::handler::NodeLocationsForWays<Index> locations{index};
+    Index index, negative_index;  // new objects carry negative ids (JOSM's and city.osm's)
+    osmium::handler::NodeLocationsForWays<Index, Index> locations{index, negative_index};
     locations.ignore_errors();  // an extract cut at its edge lacks some nodes
-    osmium::io::Reader reader{input, osmium::osm_entity_bits::node | osmium::osm_entity_bits::way |
-                                         osmium::osm_entity_bits::relation};
-    const osmium::Box bounds = reader.header().box();
-    osmium::apply(reader, locations, collector, multipolygons.handler([&](osmium::memory::Buffer&& buffer) {
+    osmium::apply(extract, locations, collector, multipolygons.handler([&](osmium::memory::Buffer&& buffer) {
       osmium::apply(buffer, collector);
     }));
-    reader.close();
     // The extract's edge: its <bounds>, else the box around its nodes.
     collector.mend(bounds.valid() ? bounds : collector.nodes_box_);
   } catch (const UserError&) {
