@@ -1,8 +1,35 @@
-// GET and PUT /api/sketch, PUT /api/heightmap, GET /api/heightmap.png, POST /api/models.
+// GET and PUT /api/sketch, PUT /api/heightmap, GET /api/heightmap.png, GET and POST /api/models.
 #include "generate/errors.h"
+#include "generate/placement/model_library.h"
 #include "serve/server_state.h"
 
 namespace exacity::serve {
+using nlohmann::json;
+
+namespace {
+
+// The model library the sketch names, read as the model library stage reads it: each model's
+// name, kind, the zone types it stands in, weight and size; and the built-in models wanted.
+json library_in_use(ServerState& s) {
+  json out{{"file", nullptr}, {"models", json::array()}, {"builtin", json::array()}};
+  if (!s.sketch.stored()) return out;
+  const Sketch sketch = s.sketch.load();
+  if (sketch.builtin_trees) out["builtin"].push_back("tree");
+  if (sketch.builtin_lamps) out["builtin"].push_back("lamp");
+  if (sketch.models.empty()) return out;
+  out["file"] = s.in_work(sketch.models.lexically_normal().string());
+  for (const Model& m : load_model_library(sketch.models).models) {
+    json zones = json::array();
+    for (ZoneType z : m.zones) zones.push_back(name(z));
+    json model{{"name", m.name}, {"kind", name(m.kind)}, {"zones", zones}, {"weight", m.weight},
+               {"size", {m.width, m.depth, m.height}}};
+    if (m.has_lot()) model["lot"] = {m.lot_width, m.lot_depth};
+    out["models"].push_back(std::move(model));
+  }
+  return out;
+}
+
+}  // namespace
 
 void add_sketch_routes(ServerState& s) {
   s.http.Get("/api/sketch", [&s](const httplib::Request&, httplib::Response& res) {
@@ -40,6 +67,16 @@ void add_sketch_routes(ServerState& s) {
       return refuse(res, 400, s.in_work(e.what()));
     }
     res.set_content(s.sketch.text(), "application/geo+json");
+  });
+  s.http.Get("/api/models", [&s](const httplib::Request&, httplib::Response& res) {
+    json library;
+    try {
+      library = library_in_use(s);
+    } catch (const UserError& e) {
+      return refuse(res, 400, s.in_work(e.what()));
+    }
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(library.dump(), "application/json");
   });
   s.http.Get("/api/heightmap.png", [&s](const httplib::Request&, httplib::Response& res) {
     std::optional<std::string> png;
