@@ -255,6 +255,37 @@ TEST_F(ServeTest, SettingsTableIsTheOneTheCliReads) {
   EXPECT_EQ(stranger.Get("/api/settings")->status, 403);
 }
 
+// A sketch with a place on Earth gives the page a grid of lon/lat over it for a basemap: on
+// UTM zone 33's central meridian (x = 500000) the longitude is 15 degrees exactly; rows go
+// north. One with no place on Earth has none.
+TEST_F(ServeTest, LonLatGridPlacesTheSketch) {
+  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+  EXPECT_EQ(json::parse(client->Get("/api/lonlat")->body), json::parse(R"({"epsg": null})"));
+  json doc = json::parse(kSmallSketch);
+  doc["crs"] = {{"type", "name"}, {"properties", {{"name", "urn:ogc:def:crs:EPSG::32633"}}}};
+  const auto moved = [](json& p) { p = {p[0].get<double>() + 499700, p[1].get<double>() + 5500000}; };
+  for (int zone : {0, 1})
+    for (json& p : doc["features"][zone]["geometry"]["coordinates"][0]) moved(p);
+  for (json& p : doc["features"][2]["geometry"]["coordinates"]) moved(p);
+  auto put = client->Put("/api/sketch", doc.dump(), "application/geo+json");
+  ASSERT_EQ(put->status, 200) << put->body;
+  auto r = client->Get("/api/lonlat");
+  ASSERT_EQ(r->status, 200) << r->body;
+  const json grid = json::parse(r->body);
+  EXPECT_EQ(grid["epsg"], 32633);
+  ASSERT_EQ(grid["side"], 9);
+  ASSERT_EQ(grid["lonlat"].size(), 81u);
+  // The features span x 499650 to 500350: the box, grown by 700 each way, is centred on 500000.
+  EXPECT_EQ(grid["box"], json::array({499650 - 700, 5500000 - 700, 500350 + 700, 5500300 + 700}));
+  for (int row = 0; row < 9; ++row) {
+    EXPECT_NEAR(grid["lonlat"][row * 9 + 4][0].get<double>(), 15, 1e-9) << row;
+    if (row) {
+      EXPECT_GT(grid["lonlat"][row * 9][1].get<double>(), grid["lonlat"][(row - 1) * 9][1].get<double>());
+    }
+  }
+  EXPECT_NEAR(grid["lonlat"][40][1].get<double>(), 49.65, 0.01);  // 5500 km north of the equator
+}
+
 // The page draws with the program's colours and default road widths.
 TEST_F(ServeTest, PaletteIsTheProgramsOwn) {
   auto r = client->Get("/api/palette");

@@ -11,6 +11,7 @@
 // request the page makes, with its time.
 import {spawn} from 'node:child_process';
 import fs from 'node:fs';
+import http from 'node:http';
 import path from 'node:path';
 import puppeteer from 'puppeteer-core';
 
@@ -25,7 +26,7 @@ fs.mkdirSync(out, {recursive: true});
 const started = Date.now();
 function check(ok, what) {
   if (!ok) throw new Error(`check failed: ${what}`);
-  console.log(`ok: ${what}`);
+  console.log(`ok (${((Date.now() - started) / 1000).toFixed(1)} s): ${what}`);
 }
 
 // The server, on a free port of 127.0.0.1, with a work folder of its own.
@@ -103,6 +104,7 @@ try {
     }
   });
   const seen = id => page.evaluate(id => window.exacitySeen[id], id);
+  const few = list => [...new Set(list)].slice(0, 6).join(' | ');
   // The page draws in the program's colours (GET /api/palette), none of its own.
   const palette = await (await get('/api/palette')).json();
   const buttonColour = await page.$eval('button[data-tool="residential"]', b => getComputedStyle(b).borderLeftColor);
@@ -352,7 +354,7 @@ try {
   await page.click('#generate');
   await page.waitForSelector('body[data-city="shown"]', {timeout: 600000});
   check((await seen('time-left')).some(t => /^(estimating…|about \d+ (s|min) left)$/.test(t)) && await page.$eval('#time-left', e => e.textContent) === '',
-        `the generation showed its time left, gone at its end: ${(await seen('time-left')).join(' | ')}`);
+        `the generation showed its time left, gone at its end: ${few(await seen('time-left'))}`);
   const layers = await page.$$eval('#layer-toggles input', inputs => inputs.map(i => i.dataset.layer));
   check(['zones', 'blocks', 'lots', 'roads', 'buildings'].every(l => layers.includes(l)), `generated layers shown: ${layers}`);
   const legend = await page.$$eval('#layer-toggles label', labels => labels.map(l => l.querySelector('.swatch')?.style.background));
@@ -426,7 +428,7 @@ try {
   });
   check(limit.distance === Math.max(5000, 8 * limit.diagonal), `zooming out stops at 8 city diagonals, or 5 km: ${JSON.stringify(limit)}`);
   check((await seen('tiles-loading')).some(t => /^Loading \d+ tiles?…$/.test(t)) && !(await visible('#tiles-loading')),
-        `the tiles' loading was shown, and hidden once in: ${(await seen('tiles-loading')).join(' | ')}`);
+        `the tiles' loading was shown, and hidden once in: ${few(await seen('tiles-loading'))}`);
   await page.evaluate(() => window.exacityExplore.setOrbit({elevation: 60, distance: 4000}));
   const far = await tiles();
   check(far.tiles >= 2 && far.inView === far.tiles && far.shown[2] === far.tiles && far.shown[0] === 0 &&
@@ -495,7 +497,7 @@ try {
     return !document.getElementById('render-result').hidden && img.complete && img.naturalWidth > 0;
   }, {timeout: 600000});
   check((await seen('time-left')).some(t => /^(estimating…|about \d+ (s|min) left)$/.test(t)),
-        `the render showed its time left: ${(await seen('time-left')).join(' | ')}`);
+        `the render showed its time left: ${few(await seen('time-left'))}`);
   // A click enlarges the still to the view's size, another brings it back.
   const stillWidth = () => page.$eval('#render-image', i => i.getBoundingClientRect().width);
   const small = await stillWidth();
@@ -546,6 +548,34 @@ try {
   s = await sketch();
   check(s.exacity.seed === 5 && s.features[0].properties.zone === 'industrial', 'Open read a sketch from a file');
   check(await page.$eval('#seed', i => i.value) === '5', 'the panel shows the opened sketch\'s seed');
+
+  // A basemap under a sketch with a place on Earth (UTM zone 33 north, around 15° E,
+  // 49.65° N): tiles from the URL named, none before; those asked for cover the sketch.
+  const tileRequests = [];
+  const tileServer = http.createServer((req, res) => {
+    tileRequests.push(req.url);
+    res.writeHead(200, {'Content-Type': 'image/png', 'Access-Control-Allow-Origin': '*'});
+    res.end(fs.readFileSync(path.join(path.dirname(new URL(import.meta.url).pathname), '..', '..', 'examples', 'valley.png')));
+  });
+  await new Promise(resolve => tileServer.listen(0, '127.0.0.1', resolve));
+  const placed = path.join(out, 'placed.geojson');
+  fs.writeFileSync(placed, JSON.stringify({type: 'FeatureCollection', crs: {type: 'name', properties: {name: 'urn:ogc:def:crs:EPSG::32633'}},
+    features: [{type: 'Feature', properties: {zone: 'residential'},
+                geometry: {type: 'Polygon', coordinates: [[[499800, 5499800], [500200, 5499800], [500200, 5500200], [499800, 5500200], [499800, 5499800]]]}}]}));
+  const [placedChooser] = await Promise.all([page.waitForFileChooser(), page.click('#open')]);
+  await placedChooser.accept([placed]);
+  await page.waitForFunction(() => /EPSG:32633/.test(document.getElementById('basemap-where').textContent), {timeout: 5000});
+  check(tileRequests.length === 0, 'no basemap is fetched before one is named');
+  await page.click('#basemap-panel summary');
+  await page.$eval('#basemap-url', (i, port) => { i.value = `http://127.0.0.1:${port}/{z}/{x}/{y}.png`; }, tileServer.address().port);
+  await page.click('#basemap-show');
+  for (let i = 0; i < 100 && tileRequests.length === 0; ++i) await new Promise(r => setTimeout(r, 100));
+  const tileOf = (z, lon, lat) => [Math.floor((lon + 180) / 360 * 2 ** z),
+                                   Math.floor((1 - Math.asinh(Math.tan(lat * Math.PI / 180)) / Math.PI) / 2 * 2 ** z)];
+  const asked = tileRequests.map(u => u.slice(1, -4).split('/').map(Number));
+  check(asked.length > 0 && asked.some(([z, x, y]) => tileOf(z, 15, 49.65254)[0] === x && tileOf(z, 15, 49.65254)[1] === y),
+        `the basemap's tiles cover the sketch (15° E, 49.65° N): ${tileRequests.slice(0, 4).join(' ')}`);
+  tileServer.close();
 
   // Cancel: a city some kilometres across (as serve_test's), cancelled in its lots stage; the
   // progress bar empties and says so.

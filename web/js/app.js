@@ -170,6 +170,24 @@ async function showLibrary() {
   }));
 }
 
+// Basemap: tiles from an XYZ URL the user names, under a sketch with a place on Earth (its
+// CRS's lon/lat from the server); nothing is fetched until a URL is named.
+let lonlat = null;
+async function showPlace() {
+  lonlat = await api.getJson('/api/lonlat');
+  $('basemap-where').textContent = lonlat?.epsg ? `The sketch is in EPSG:${lonlat.epsg}: name a tile server to draw it under the sketch.` :
+                                                  'The sketch has no place on Earth (no CRS): no basemap.';
+  $('basemap-url').disabled = $('basemap-show').disabled = !lonlat?.epsg;
+  if (map.basemap.getSource()) map.setBasemap($('basemap-url').value.trim(), lonlat);
+}
+$('basemap-show').addEventListener('click', () => {
+  const url = $('basemap-url').value.trim();
+  if (!/^https?:\/\/.*\{z\}.*\{x\}.*\{y\}/.test(url)) return say('A basemap URL has {z}, {x} and {y} in it, such as https://tile.example.org/{z}/{x}/{y}.png', true);
+  map.setBasemap(url, lonlat);
+  say(`Basemap ${url} under the sketch.`);
+});
+$('basemap-hide').addEventListener('click', () => map.setBasemap(null));
+
 // Open: a GeoJSON sketch from this computer, shown once the server has taken it.
 $('open').addEventListener('click', () => $('open-file').click());
 $('open-file').addEventListener('change', async e => {
@@ -189,6 +207,7 @@ $('open-file').addEventListener('change', async e => {
   history.push(JSON.stringify(map.sketch()));
   updateButtons();
   showLibrary();
+  showPlace();
 });
 
 // Save: the sketch as the server holds it, downloaded.
@@ -418,7 +437,7 @@ $('render-view').addEventListener('click', async () => {
   map.load(doc, true);
   showCount(doc);
   panel.show(doc.exacity);
-  await Promise.all([panel.build(), showLibrary()]);
+  await Promise.all([panel.build(), showLibrary(), showPlace()]);
   history.push(JSON.stringify(map.sketch()));
   updateButtons();
   const status = await api.getJson('/api/status');
