@@ -76,17 +76,11 @@ json own_default(const std::string& key, const ZoneSettings& z) {
 }  // namespace
 
 json zone_settings_table(ZoneType type) {
-  // The steps read an empty object over the zone type's defaults, as the sketch reader reads
-  // a zone's settings (generate/city/sketch.cpp), each describing what it reads.
+  // The steps read an empty object over the zone type's defaults as the sketch reader reads
+  // a zone's settings, each describing what it reads.
   std::vector<SettingShape> shapes;
   const json empty = json::object();
-  const SettingsReader reader(empty, shapes);
-  const ZoneSettings defaults = default_zone_settings(type);
-  ZoneSettings read;
-  read.roads = read_road_settings(reader, defaults.roads, false);
-  read.blocks = read_block_settings(reader, defaults.blocks);
-  read.lots = read_lot_settings(reader, defaults.lots, read.roads.layout);
-  read.buildings = read_building_settings(reader, defaults.buildings);
+  const ZoneSettings read = read_zone_settings(SettingsReader(empty, shapes), type, false);
   json table = json::array();
   for (const SettingShape& s : shapes) {
     json row{{"key", s.key}, {"kind", s.kind}, {"default", s.kind == "json" ? own_default(s.key, read) : s.value}};

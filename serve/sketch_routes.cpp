@@ -104,26 +104,19 @@ void add_sketch_routes(ServerState& s) {
     }
     res.set_content(s.sketch.text(), "application/geo+json");
   });
-  s.http.Get("/api/models", [&s](const httplib::Request&, httplib::Response& res) {
-    json library;
-    try {
-      library = library_in_use(s);
-    } catch (const UserError& e) {
-      return refuse(res, 400, s.in_work(e.what()));
-    }
-    res.set_header("Cache-Control", "no-store");
-    res.set_content(library.dump(), "application/json");
-  });
-  s.http.Get("/api/lonlat", [&s](const httplib::Request&, httplib::Response& res) {
-    json grid;
-    try {
-      grid = lonlat_grid(s);
-    } catch (const UserError& e) {
-      return refuse(res, 400, s.in_work(e.what()));
-    }
-    res.set_header("Cache-Control", "no-store");
-    res.set_content(grid.dump(), "application/json");
-  });
+  // What the stored sketch names or says, read as generate reads it: a sketch that no longer
+  // reads (a library changed under it) is a 400 with the CLI's message.
+  for (const auto& [route, read] : {std::pair{"/api/models", &library_in_use}, std::pair{"/api/lonlat", &lonlat_grid}})
+    s.http.Get(route, [&s, read = read](const httplib::Request&, httplib::Response& res) {
+      json answer;
+      try {
+        answer = read(s);
+      } catch (const UserError& e) {
+        return refuse(res, 400, s.in_work(e.what()));
+      }
+      res.set_header("Cache-Control", "no-store");
+      res.set_content(answer.dump(), "application/json");
+    });
   s.http.Get("/api/heightmap.png", [&s](const httplib::Request&, httplib::Response& res) {
     std::optional<std::string> png;
     try {

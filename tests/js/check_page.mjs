@@ -283,13 +283,14 @@ try {
         `the refused value's line is beside its field, the sketch as it was: ${fieldError}`);
   check(await page.$eval(`${formField('residential', 'block_area')} input`, i => i.value) === '50', 'the refused value stays typed');
   await typeInto(`${formField('residential', 'block_area')} input`, '20000');
-  for (let i = 0; i < 50 && (await sketch()).exacity?.zones?.residential?.block_area !== 20000; ++i) await new Promise(r => setTimeout(r, 100));
+  // Taken once the page shows it in the JSON view, which it fills from the server's answer.
+  await page.waitForFunction(() => /"block_area":20000/.test(document.querySelector('textarea[data-zone="residential"]').value), {timeout: 5000});
   check((await sketch()).exacity.zones.residential.block_area === 20000 &&
         await page.$eval(`${formField('residential', 'block_area')} .field-error`, e => e.textContent) === '' &&
         JSON.parse(await page.$eval('textarea[data-zone="residential"]', t => t.value)).block_area === 20000,
         'a value taken is the sketch\'s, its error gone, and the JSON view shows it');
   await typeInto(`${formField('residential', 'block_area')} input`, '');
-  for (let i = 0; i < 50 && (await sketch()).exacity?.zones; ++i) await new Promise(r => setTimeout(r, 100));
+  await page.waitForFunction(() => document.querySelector('textarea[data-zone="residential"]').value === '', {timeout: 5000});
   check(JSON.stringify(await sketch()) === kept, 'an emptied field goes back to the default');
 
   // A setting the CLI refuses is refused with its message, and the sketch stays as it was.
@@ -569,12 +570,16 @@ try {
   await page.click('#basemap-panel summary');
   await page.$eval('#basemap-url', (i, port) => { i.value = `http://127.0.0.1:${port}/{z}/{x}/{y}.png`; }, tileServer.address().port);
   await page.click('#basemap-show');
-  for (let i = 0; i < 100 && tileRequests.length === 0; ++i) await new Promise(r => setTimeout(r, 100));
+  await page.evaluate(() => window.exacityPage.drawn());
   const tileOf = (z, lon, lat) => [Math.floor((lon + 180) / 360 * 2 ** z),
                                    Math.floor((1 - Math.asinh(Math.tan(lat * Math.PI / 180)) / Math.PI) / 2 * 2 ** z)];
   const asked = tileRequests.map(u => u.slice(1, -4).split('/').map(Number));
   check(asked.length > 0 && asked.some(([z, x, y]) => tileOf(z, 15, 49.65254)[0] === x && tileOf(z, 15, 49.65254)[1] === y),
         `the basemap's tiles cover the sketch (15° E, 49.65° N): ${tileRequests.slice(0, 4).join(' ')}`);
+  await page.click('#basemap-hide');
+  const hidden = tileRequests.length;
+  await page.evaluate(() => window.exacityPage.drawn(true));
+  check(tileRequests.length === hidden, 'Hide drops the basemap: no tiles asked for after it');
   tileServer.close();
 
   // Cancel: a city some kilometres across (as serve_test's), cancelled in its lots stage; the

@@ -82,6 +82,12 @@ const map = new SketchMap('map', {
 });
 // For the browser test: the sketch as the page would send it, and the grid's labels.
 window.exacityPage = {sketch: () => map.sketch(),
+                      // Resolves once the map is drawn with every tile in (after zooming out).
+                      drawn: (zoomOut = false) => new Promise(resolve => {
+                        map.map.once('rendercomplete', () => resolve());
+                        if (zoomOut) map.map.getView().setResolution(map.map.getView().getResolution() * 2);
+                        map.map.render();
+                      }),
                       gridLabels: () => map.gridLabels.getSource().getFeatures().map(f => ({label: f.get('label'), axis: f.get('axis')}))};
 const panel = new SettingsPanel({
   // Resolves to the refusal's message, or null when the server took the settings.
@@ -201,13 +207,13 @@ $('open-file').addEventListener('change', async e => {
     return say(`${file.name}: not JSON (${x.message})`, true);
   }
   if (!(await send(doc))) return;
+  await showPlace();  // before the view moves to it: a basemap of the sketch before is dropped
   map.load(lastGood, true);
   showCount(lastGood);
   panel.show(lastGood.exacity);
   history.push(JSON.stringify(map.sketch()));
   updateButtons();
   showLibrary();
-  showPlace();
 });
 
 // Save: the sketch as the server holds it, downloaded.
