@@ -1,6 +1,6 @@
 // The README's pictures of exacity serve: serves SKETCH, generates it, and saves the map
 // with the generated city (the residential settings' form open) and the 3D view with its
-// path-traced still and a building's attributes (no checks: see check_page.mjs). Usage: node screenshot_page.mjs EXACITY_BINARY SKETCH OUT_DIR
+// path-traced still, a building's attributes and the city's legend and report (no checks: see check_page.mjs). Usage: node screenshot_page.mjs EXACITY_BINARY SKETCH OUT_DIR
 import {spawn} from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
@@ -32,6 +32,7 @@ try {
   await page.waitForSelector('body[data-city="shown"]', {timeout: 600000});
   await page.click('.zone-form[data-zone="residential"] summary');
   await page.screenshot({path: path.join(out, 'serve-map.png')});
+  await page.click('.zone-form[data-zone="residential"] summary');  // the city's legend and report in view again
   await page.click('[data-view="explore"]');
   await page.waitForFunction(() => window.exacityExplore && window.exacityExplore.city, {timeout: 60000});
   await page.evaluate(() => window.exacityExplore.setOrbit({azimuth: 235, elevation: 28}));

@@ -164,7 +164,7 @@ document.addEventListener('keydown', e => {
 async function showLibrary() {
   const library = await api.getJson('/api/models');
   if (!library) return;
-  const builtin = library.builtin.length ? `built-in ${library.builtin.join(' and ')}s` : 'no built-in models';
+  const builtin = library.builtin.length ? `built-in ${library.builtin.map(kind => kind + 's').join(' and ')}` : 'no built-in models';
   $('library-name').textContent = library.file ? `${library.file} (${library.models.length} models; ${builtin})` :
                                                  `none: ${builtin} (Models… loads a library)`;
   $('library-models').hidden = !library.models.length;
