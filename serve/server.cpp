@@ -136,6 +136,7 @@ CityServer::CityServer(ServeOptions options) {
       [&s](const httplib::Request& req, httplib::Response& res) { return check_request(s, req, res); });
   add_sketch_routes(s);
   add_city_routes(s);
+  add_settings_routes(s);
   s.http.Get(R"(/(.*))", [&s](const httplib::Request& req, httplib::Response& res) {
     if (req.path.rfind("/api/", 0) == 0)
       return refuse(res, 404, "no such route: GET " + req.path + "; the API is listed in the README (exacity serve)");

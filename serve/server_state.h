@@ -59,5 +59,6 @@ httplib::Server::HandlerResponse check_request(ServerState& s, const httplib::Re
 
 void add_sketch_routes(ServerState& s);
 void add_city_routes(ServerState& s);
+void add_settings_routes(ServerState& s);
 
 }  // namespace exacity::serve

@@ -1,8 +1,71 @@
-// GET and PUT /api/sketch, PUT /api/heightmap, GET /api/heightmap.png, POST /api/models.
+// GET and PUT /api/sketch, PUT /api/heightmap, GET /api/heightmap.png, GET and POST /api/models,
+// GET /api/lonlat.
 #include "generate/errors.h"
+#include "generate/gis/projection.h"
+#include "generate/placement/model_library.h"
 #include "serve/server_state.h"
 
 namespace exacity::serve {
+using nlohmann::json;
+
+namespace {
+
+// The model library the sketch names, read as the model library stage reads it: each model's
+// name, kind, the zone types it stands in, weight and size; and the built-in models wanted.
+json library_in_use(ServerState& s) {
+  json out{{"file", nullptr}, {"models", json::array()}, {"builtin", json::array()}};
+  if (!s.sketch.stored()) return out;
+  const Sketch sketch = s.sketch.load();
+  if (sketch.builtin_trees) out["builtin"].push_back("tree");
+  if (sketch.builtin_lamps) out["builtin"].push_back("lamp");
+  if (sketch.models.empty()) return out;
+  out["file"] = s.in_work(sketch.models.lexically_normal().string());
+  for (const Model& m : load_model_library(sketch.models).models) {
+    json zones = json::array();
+    for (ZoneType z : m.zones) zones.push_back(name(z));
+    json model{{"name", m.name}, {"kind", name(m.kind)}, {"zones", zones}, {"weight", m.weight},
+               {"size", {m.width, m.depth, m.height}}};
+    if (m.has_lot()) model["lot"] = {m.lot_width, m.lot_depth};
+    out["models"].push_back(std::move(model));
+  }
+  return out;
+}
+
+// Where the sketch lies on Earth, for a basemap under it: its CRS's EPSG code, and the
+// lon/lat PROJ gives a grid of points over its features' box grown by its size each way,
+// which the page interpolates (over a city's few kilometres a map projection is as good as
+// linear; the page needs no projection library). No EPSG code: no place on Earth.
+json lonlat_grid(ServerState& s) {
+  json out{{"epsg", nullptr}};
+  if (!s.sketch.stored()) return out;
+  const Sketch sketch = s.sketch.load();
+  const std::optional<int> epsg = sketch.crs.is_null() ? std::nullopt : epsg_of(sketch.crs);
+  if (!epsg) return out;
+  geom::Box box = geom::Box::none();
+  for (const ZoneFeature& z : sketch.zones)
+    for (const geom::Polygon& p : z.polygons)
+      for (geom::Vec2 v : p.outer) box.add(v);
+  for (const RoadFeature& r : sketch.roads)
+    for (const geom::Polyline& l : r.lines)
+      for (geom::Vec2 v : l) box.add(v);
+  const double grow = std::max({box.width(), box.height(), 100.0});
+  box = {box.min_x - grow, box.min_y - grow, box.max_x + grow, box.max_y + grow};
+  constexpr int kSide = 9;
+  const ToLonLat to_lonlat(*epsg);
+  json points = json::array();
+  for (int row = 0; row < kSide; ++row)
+    for (int col = 0; col < kSide; ++col) {
+      const geom::Vec2 p = to_lonlat({box.min_x + box.width() * col / (kSide - 1), box.min_y + box.height() * row / (kSide - 1)});
+      points.push_back({p.x, p.y});
+    }
+  out["epsg"] = *epsg;
+  out["box"] = {box.min_x, box.min_y, box.max_x, box.max_y};
+  out["side"] = kSide;
+  out["lonlat"] = std::move(points);  // row by row from the south-west corner, x first
+  return out;
+}
+
+}  // namespace
 
 void add_sketch_routes(ServerState& s) {
   s.http.Get("/api/sketch", [&s](const httplib::Request&, httplib::Response& res) {
@@ -41,6 +104,19 @@ void add_sketch_routes(ServerState& s) {
     }
     res.set_content(s.sketch.text(), "application/geo+json");
   });
+  // What the stored sketch names or says, read as generate reads it: a sketch that no longer
+  // reads (a library changed under it) is a 400 with the CLI's message.
+  for (const auto& [route, read] : {std::pair{"/api/models", &library_in_use}, std::pair{"/api/lonlat", &lonlat_grid}})
+    s.http.Get(route, [&s, read = read](const httplib::Request&, httplib::Response& res) {
+      json answer;
+      try {
+        answer = read(s);
+      } catch (const UserError& e) {
+        return refuse(res, 400, s.in_work(e.what()));
+      }
+      res.set_header("Cache-Control", "no-store");
+      res.set_content(answer.dump(), "application/json");
+    });
   s.http.Get("/api/heightmap.png", [&s](const httplib::Request&, httplib::Response& res) {
     std::optional<std::string> png;
     try {

@@ -14,6 +14,7 @@
 #include <atomic>
 #include <chrono>
 #include <fstream>
+#include <map>
 #include <future>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -21,6 +22,7 @@
 #include <thread>
 
 #include "generate/cancel.h"
+#include "generate/city/palette.h"
 #include "generate/city/sketch.h"
 #include "generate/errors.h"
 #include "generate/pipeline.h"
@@ -203,6 +205,102 @@ TEST_F(ServeTest, BadSketchIsRefusedWithTheCliMessageAndTheOldOneKept) {
   EXPECT_EQ(client->Get("/api/sketch")->body, kSmallSketch);
 }
 
+// The page's forms come from the settings the CLI reads: every key a zone type takes, once,
+// with the kind, bounds and default its step reads it with, a unit and a description; a
+// value the table says is out of range is one the CLI refuses.
+TEST_F(ServeTest, SettingsTableIsTheOneTheCliReads) {
+  auto r = client->Get("/api/settings");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(r->get_header_value("Content-Type"), "application/json");
+  const json zones = json::parse(r->body)["zones"];
+  std::set<std::string> keys = exacity::road_setting_keys();
+  for (const auto* more : {&exacity::parcel_setting_keys(), &exacity::building_setting_keys()})
+    keys.insert(more->begin(), more->end());
+  for (const char* zone : {"residential", "commercial", "industrial"}) {
+    std::set<std::string> listed;
+    for (const json& row : zones[zone]) {
+      EXPECT_TRUE(listed.insert(row["key"]).second) << zone << " lists " << row["key"] << " twice";
+      EXPECT_FALSE(row["description"].get<std::string>().empty()) << row["key"];
+    }
+    EXPECT_EQ(listed, keys) << zone;
+  }
+  const auto row = [&](const char* zone, const char* key) {
+    for (const json& r : zones[zone])
+      if (r["key"] == key) return r;
+    return json();
+  };
+  EXPECT_EQ(row("residential", "block_area"),
+            json::parse(R"({"key": "block_area", "kind": "number", "min": 100, "max": 1e9, "default": 12000,
+                            "unit": "m²", "description": "cells above this are grown again, one level deeper"})"));
+  EXPECT_EQ(row("commercial", "block_area")["default"], 15000);
+  EXPECT_EQ(row("industrial", "lot_width")["default"], json::array({40, 90}));
+  EXPECT_EQ(row("industrial", "lot_width")["kind"], "range");
+  EXPECT_EQ(row("residential", "layout")["choices"], json::array({"growth", "grammar", "voronoi", "streets"}));
+  EXPECT_EQ(row("residential", "grid_passes")["kind"], "whole");
+  EXPECT_EQ(row("residential", "nesting")["kind"], "boolean");
+  EXPECT_EQ(row("residential", "road_widths")["default"], json::array({12, 8}));
+  EXPECT_EQ(row("commercial", "heights")["default"], json::array({12, 48}));
+  EXPECT_EQ(row("commercial", "heights")["kind"], "json");
+  // Just past the table's bound the CLI refuses, naming the key; at the bound it takes it.
+  const json area = row("residential", "block_area");
+  for (double v : {area["min"].get<double>(), area["max"].get<double>()})
+    EXPECT_EQ(cli_message(sketch_with(R"({"zones": {"residential": {"block_area": )" + json(v).dump() + "}}}"),
+                          sketch_file()),
+              "");
+  const std::string below = cli_message(sketch_with(R"({"zones": {"residential": {"block_area": 99}}})"), sketch_file());
+  EXPECT_NE(below.find("\"exacity\".zones.residential.block_area: value 99.0 is out of range"), std::string::npos) << below;
+  // A GET the token-less stranger cannot make, as every route.
+  httplib::Client stranger("127.0.0.1", port);
+  EXPECT_EQ(stranger.Get("/api/settings")->status, 403);
+}
+
+// A sketch with a place on Earth gives the page a grid of lon/lat over it for a basemap: on
+// UTM zone 33's central meridian (x = 500000) the longitude is 15 degrees exactly; rows go
+// north. One with no place on Earth has none.
+TEST_F(ServeTest, LonLatGridPlacesTheSketch) {
+  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+  EXPECT_EQ(json::parse(client->Get("/api/lonlat")->body), json::parse(R"({"epsg": null})"));
+  json doc = json::parse(kSmallSketch);
+  doc["crs"] = {{"type", "name"}, {"properties", {{"name", "urn:ogc:def:crs:EPSG::32633"}}}};
+  const auto moved = [](json& p) { p = {p[0].get<double>() + 499700, p[1].get<double>() + 5500000}; };
+  for (int zone : {0, 1})
+    for (json& p : doc["features"][zone]["geometry"]["coordinates"][0]) moved(p);
+  for (json& p : doc["features"][2]["geometry"]["coordinates"]) moved(p);
+  auto put = client->Put("/api/sketch", doc.dump(), "application/geo+json");
+  ASSERT_EQ(put->status, 200) << put->body;
+  auto r = client->Get("/api/lonlat");
+  ASSERT_EQ(r->status, 200) << r->body;
+  const json grid = json::parse(r->body);
+  EXPECT_EQ(grid["epsg"], 32633);
+  ASSERT_EQ(grid["side"], 9);
+  ASSERT_EQ(grid["lonlat"].size(), 81u);
+  // The features span x 499650 to 500350: the box, grown by 700 each way, is centred on 500000.
+  EXPECT_EQ(grid["box"], json::array({499650 - 700, 5500000 - 700, 500350 + 700, 5500300 + 700}));
+  for (int row = 0; row < 9; ++row) {
+    EXPECT_NEAR(grid["lonlat"][row * 9 + 4][0].get<double>(), 15, 1e-9) << row;
+    if (row) {
+      EXPECT_GT(grid["lonlat"][row * 9][1].get<double>(), grid["lonlat"][(row - 1) * 9][1].get<double>());
+    }
+  }
+  EXPECT_NEAR(grid["lonlat"][40][1].get<double>(), 49.65, 0.01);  // 5500 km north of the equator
+}
+
+// The page draws with the program's colours and default road widths.
+TEST_F(ServeTest, PaletteIsTheProgramsOwn) {
+  auto r = client->Get("/api/palette");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  const json p = json::parse(r->body);
+  EXPECT_EQ(p["road_widths"], json::parse(R"({"highway": 24, "main": 12, "local": 8})"));
+  EXPECT_EQ(p["sketch_zones"]["residential"], exacity::sketch_zone_colour(exacity::ZoneType::Residential));
+  EXPECT_EQ(p["sketch_zones"]["water"], exacity::kMapWater);
+  EXPECT_EQ(p["sketch_roads"]["main"], "#333333");
+  EXPECT_EQ(p["map"]["building"], exacity::kMapBuilding);
+  EXPECT_EQ(p["map"]["zones"]["park"], "#a8d38d");
+  EXPECT_EQ(httplib::Client("127.0.0.1", port).Get("/api/palette")->status, 403);
+}
+
 TEST_F(ServeTest, UnknownRoutesAreRefusedWithAMessage) {
   for (const char* path : {"/api/nothing", "/api/layers/streets.geojson", "/api/render/sky.png", "/nothing.html"}) {
     auto r = client->Get(path);
@@ -322,6 +420,30 @@ TEST_F(ServeTest, UploadedModelLibraryIsUsedByTheGeneration) {
     placed += tile["models"].get<std::size_t>(), clutter += tile["clutter"].get<std::size_t>();
   EXPECT_GT(placed, 0u);
   EXPECT_EQ(placed + clutter, report["counts"]["gltf"]["instances"].get<std::size_t>());
+}
+
+// The library in use, as the model library stage reads it: each model's kind and the zone
+// types it stands in; none before a sketch names one.
+TEST_F(ServeTest, LibraryInUseIsListed) {
+  EXPECT_EQ(json::parse(client->Get("/api/models")->body),
+            json::parse(R"({"file": null, "models": [], "builtin": []})"));
+  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+  EXPECT_EQ(json::parse(client->Get("/api/models")->body)["file"], nullptr);
+  ASSERT_EQ(client->Post("/api/models", example_library())->status, 200);
+  auto r = client->Get("/api/models");
+  ASSERT_EQ(r->status, 200) << r->body;
+  const json library = json::parse(r->body);
+  EXPECT_EQ(library["file"], "models/library.json");
+  EXPECT_EQ(library["builtin"], json::array());  // the small sketch turns them off
+  const exacity::ModelLibrary loaded = exacity::load_model_library(work() / "models" / "library.json");
+  ASSERT_EQ(library["models"].size(), loaded.models.size());
+  std::map<std::string, json> by_name;
+  for (const json& m : library["models"]) by_name[m["name"]] = m;
+  EXPECT_EQ(by_name["apartment"]["zones"], json::array({"residential", "commercial"}));
+  EXPECT_EQ(by_name["apartment"]["kind"], "building");
+  EXPECT_EQ(by_name["tree"]["kind"], "tree");
+  EXPECT_EQ(by_name["house_gabled"]["weight"], 3);
+  EXPECT_EQ(by_name["house_gabled"]["size"].size(), 3u);
 }
 
 // A bad library is refused with the message the CLI gives for it; the library and sketch

@@ -89,4 +89,26 @@ inline constexpr const char* kMapSidewalk = "#c9c3b8";
 inline constexpr const char* kMapCentreLine = "#ffffff";
 inline constexpr const char* kMapClutter = "#7b3294";  // street clutter's dots
 
+// The sketch as exacity serve's page draws it (sRGB hex): seed 000's red residential, green
+// commercial and brown industrial (3.1.1), park and water as on the SVG map; roads darker
+// the higher their class.
+inline const char* sketch_zone_colour(ZoneType zone) {
+  switch (zone) {
+    case ZoneType::Residential: return "#d6604d";
+    case ZoneType::Commercial: return "#3f9a6e";
+    case ZoneType::Industrial: return "#96693c";
+    case ZoneType::Park: return "#a6d96a";
+    case ZoneType::Water: return kMapWater;
+  }
+  return "#808080";
+}
+inline const char* sketch_road_colour(RoadClass road) {
+  switch (road) {
+    case RoadClass::Highway: return "#111111";
+    case RoadClass::Main: return "#333333";
+    case RoadClass::Local: return "#555555";
+  }
+  return "#000000";
+}
+
 }  // namespace exacity

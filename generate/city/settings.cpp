@@ -36,11 +36,21 @@ void SettingsReader::expect_keys(const std::set<std::string>& keys) const {
   }
 }
 
+void SettingsReader::describe(const char* key, const char* kind, double min, double max, json value,
+                              std::vector<std::string> choices, std::string what) const {
+  if (!shapes_) return;
+  for (const SettingShape& s : *shapes_)
+    if (s.key == key) return;
+  shapes_->push_back({key, kind, min, max, std::move(value), std::move(choices), std::move(what)});
+}
+
 void SettingsReader::number(const char* key, double& field, double min, double max) const {
+  describe(key, "number", min, max, field);
   if (has(key)) field = read_number(object_[key], file_, where(key), min, max);
 }
 
 void SettingsReader::whole_number(const char* key, int& field, int min, int max, const char* what) const {
+  describe(key, "whole", min, max, field, {}, what);
   if (!has(key)) return;
   if (!object_[key].is_number_integer())
     fail(key, std::string("expected a whole number of ") + what + ", " + std::to_string(min) + " to " + std::to_string(max));
@@ -48,6 +58,7 @@ void SettingsReader::whole_number(const char* key, int& field, int min, int max,
 }
 
 void SettingsReader::range(const char* key, Range& field, double min, double max, const char* what) const {
+  describe(key, "range", min, max, json::array({field.min, field.max}), {}, what);
   if (!has(key)) return;
   const json& v = object_[key];
   if (!v.is_array() || v.size() != 2) fail(key, std::string("give [smallest, largest] ") + what);
@@ -57,6 +68,7 @@ void SettingsReader::range(const char* key, Range& field, double min, double max
 
 void SettingsReader::choice(const char* key, std::string& field, std::initializer_list<std::string_view> values,
                             const std::string& what) const {
+  describe(key, "choice", 0, 0, field, std::vector<std::string>(values.begin(), values.end()), what);
   if (!has(key)) return;
   const json& v = object_[key];
   if (v.is_string())
@@ -69,6 +81,7 @@ void SettingsReader::choice(const char* key, std::string& field, std::initialize
 }
 
 void SettingsReader::boolean(const char* key, bool& field) const {
+  describe(key, "boolean", 0, 0, field);
   if (!has(key)) return;
   if (!object_[key].is_boolean()) fail(key, "expected true or false");
   field = object_[key].get<bool>();

@@ -9,6 +9,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -29,16 +30,34 @@ std::optional<std::string> overflowed_literal(const nlohmann::json& j);
 // `where`.
 double read_number(const nlohmann::json& j, const std::string& file, const std::string& where, double min, double max);
 
+// A setting as its step reads it, for a form of the settings (exacity serve's GET
+// /api/settings): its key; its kind ("number", "whole", "range", "choice", "boolean", or
+// "json" for one the step reads itself); its bounds; the value the field held before it was
+// read (read over the defaults: the default); a choice's values; the reader's own words on it.
+struct SettingShape {
+  std::string key, kind;
+  double min = 0, max = 0;
+  nlohmann::json value;
+  std::vector<std::string> choices;
+  std::string what;
+};
+
 // One JSON object of settings. Every getter leaves the field as it is when the key is absent.
 class SettingsReader {
  public:
   SettingsReader(const nlohmann::json& object, std::string file, std::string where)
       : object_(object), file_(std::move(file)), where_(std::move(where)) {}
+  // Each key read is also described into `shapes`, once, in the order read.
+  SettingsReader(const nlohmann::json& object, std::vector<SettingShape>& shapes)
+      : object_(object), shapes_(&shapes) {}
 
   // Refuses the object when it is not one, or when it has a key not in `keys`, listing them.
   void expect_keys(const std::set<std::string>& keys) const;
 
-  bool has(const char* key) const { return object_.contains(key); }
+  bool has(const char* key) const {
+    describe(key, "json", 0, 0, nullptr);
+    return object_.contains(key);
+  }
   const nlohmann::json& at(const char* key) const { return object_.at(key); }
   const std::string& file() const { return file_; }
   // How errors name a key: "exacity".zones.residential.block_area.
@@ -57,8 +76,11 @@ class SettingsReader {
   [[noreturn]] void fail(const char* key, const std::string& what) const;
 
  private:
+  void describe(const char* key, const char* kind, double min, double max, nlohmann::json value,
+                std::vector<std::string> choices = {}, std::string what = {}) const;
   const nlohmann::json& object_;
   std::string file_, where_;
+  std::vector<SettingShape>* shapes_ = nullptr;
 };
 
 }  // namespace exacity

@@ -23,6 +23,16 @@ ZoneSettings default_zone_settings(ZoneType type) {
   return {default_road_settings(type), {}, default_lot_settings(type), default_building_settings(type)};
 }
 
+ZoneSettings read_zone_settings(const SettingsReader& settings, ZoneType type, bool read_grammars) {
+  const ZoneSettings defaults = default_zone_settings(type);
+  ZoneSettings z;
+  z.roads = read_road_settings(settings, defaults.roads, read_grammars);
+  z.blocks = read_block_settings(settings, defaults.blocks);
+  z.lots = read_lot_settings(settings, defaults.lots, z.roads.layout);
+  z.buildings = read_building_settings(settings, defaults.buildings);
+  return z;
+}
+
 double default_width(RoadClass road_class) {
   switch (road_class) {
     case RoadClass::Highway: return 24;
@@ -440,13 +450,7 @@ class Parser {
     std::set<std::string> keys = road_setting_keys();
     for (const auto* more : {&parcel_setting_keys(), &building_setting_keys()}) keys.insert(more->begin(), more->end());
     settings.expect_keys(keys);
-    const ZoneSettings defaults = default_zone_settings(zt);
-    ZoneSettings z;
-    z.roads = read_road_settings(settings, defaults.roads, read_grammars_);
-    z.blocks = read_block_settings(settings, defaults.blocks);
-    z.lots = read_lot_settings(settings, defaults.lots, z.roads.layout);
-    z.buildings = read_building_settings(settings, defaults.buildings);
-    return z;
+    return read_zone_settings(settings, zt, read_grammars_);
   }
 
   // The grid map the sketch's "exacity".grid names, relative to the sketch: its features go

@@ -119,6 +119,10 @@ inline constexpr std::size_t kMaxMeetings = 10000;
 inline constexpr double kMinRoadWidth = 0.5, kMaxRoadWidth = 500;
 
 ZoneSettings default_zone_settings(ZoneType type);
+// A zone type's settings over its defaults, each step's read by that step; the caller checks
+// the keys (SettingsReader::expect_keys). With `read_grammars` false, grammar files are
+// named but not read.
+ZoneSettings read_zone_settings(const SettingsReader& settings, ZoneType type, bool read_grammars);
 double default_width(RoadClass road_class);
 
 // Throws UserError with one line naming the file, the feature and the fix. With

@@ -3,12 +3,15 @@
 // move the zone with Ctrl-drag, delete the road with Del, undo, have edits and settings
 // refused (the page back at the server's sketch, the message on one line), reload, generate,
 // find the generated layers and the downloads, orbit the 3D view, see its tiles' levels
-// switch from far to near, render it, upload a model library, cancel a generation; no
-// console error throughout but the refusals asked for. Usage: node check_page.mjs EXACITY_BINARY OUT_DIR
+// switch from far to near, walk and fly, pick a building, render it, upload a model library
+// (listed with its models), cancel a generation (its time left shown); the settings' forms
+// made from the server's table, a value refused next to its field; the page's colours the
+// server's; no console error throughout but the refusals asked for. Usage: node check_page.mjs EXACITY_BINARY OUT_DIR
 // (screenshots go to OUT_DIR). Exits 1 on the first failed check. DEBUG_PAGE=1 logs every
 // request the page makes, with its time.
 import {spawn} from 'node:child_process';
 import fs from 'node:fs';
+import http from 'node:http';
 import path from 'node:path';
 import puppeteer from 'puppeteer-core';
 
@@ -23,7 +26,7 @@ fs.mkdirSync(out, {recursive: true});
 const started = Date.now();
 function check(ok, what) {
   if (!ok) throw new Error(`check failed: ${what}`);
-  console.log(`ok: ${what}`);
+  console.log(`ok (${((Date.now() - started) / 1000).toFixed(1)} s): ${what}`);
 }
 
 // The server, on a free port of 127.0.0.1, with a work folder of its own.
@@ -87,8 +90,43 @@ try {
     throw new Error(`the server's sketch never had ${n} features`);
   };
 
-  await page.goto(base + (token ? `?token=${token}` : ''), {waitUntil: 'load'});
+  // Two samples a pixel: the still's look is serve_test's and render_test's business.
+  await page.goto(base + (token ? `?token=${token}&spp=2` : '?spp=2'), {waitUntil: 'load'});
   await ready();
+  // What some elements showed over time (the tiles' loading line, the time left), since a
+  // check after the fact would miss a state that came and went.
+  const watch = () => page.evaluate(() => {
+    window.exacitySeen = {};
+    for (const id of ['tiles-loading', 'time-left']) {
+      const e = document.getElementById(id), seen = window.exacitySeen[id] = [];
+      new MutationObserver(() => seen.push(e.hidden ? '(hidden)' : e.textContent))
+          .observe(e, {attributes: true, childList: true, characterData: true, subtree: true});
+    }
+  });
+  const seen = id => page.evaluate(id => window.exacitySeen[id], id);
+  const few = list => [...new Set(list)].slice(0, 6).join(' | ');
+  // The page draws in the program's colours (GET /api/palette), none of its own.
+  const palette = await (await get('/api/palette')).json();
+  const buttonColour = await page.$eval('button[data-tool="residential"]', b => getComputedStyle(b).borderLeftColor);
+  check(buttonColour === `rgb(${[1, 3, 5].map(i => parseInt(palette.sketch_zones.residential.slice(i, i + 2), 16)).join(', ')})`,
+        `the residential tool in the program's colour (${buttonColour}, ${palette.sketch_zones.residential})`);
+  // The settings' forms, one per zone type, made from the table the CLI reads.
+  const table = await (await get('/api/settings')).json();
+  const formField = (zone, key) => `.zone-form[data-zone="${zone}"] .setting[data-key="${key}"]`;
+  const areaField = await page.$eval(`${formField('residential', 'block_area')} input`, i => ({
+    min: i.min, max: i.max, placeholder: i.placeholder, unit: i.parentElement.querySelector('.unit').textContent,
+    title: i.parentElement.title}));
+  const area = table.zones.residential.find(r => r.key === 'block_area');
+  check(areaField.min === String(area.min) && areaField.max === String(area.max) && areaField.placeholder === '12000' &&
+        areaField.unit === 'm²' && areaField.title === area.description,
+        `the residential form's block area field is the table's: ${JSON.stringify(areaField)}`);
+  check(await page.$eval(`${formField('commercial', 'block_area')} input`, i => i.placeholder) === '15000',
+        'the commercial form shows its own default');
+  for (const zone of ['residential', 'commercial', 'industrial'])
+    check(await page.$$eval(`.zone-form[data-zone="${zone}"] .setting`, rows => rows.map(r => r.dataset.key).join()) ===
+          table.zones[zone].map(r => r.key).join(), `the ${zone} form has every key of the table, in its order`);
+  check(await page.$eval(`${formField('residential', 'layout')} select`, s => [...s.options].map(o => o.textContent).join()) ===
+        'default (growth),growth,grammar,voronoi,streets', 'the layout field offers the layouts the CLI knows');
   const box = await (await page.$('#map')).boundingBox();
   const at = (dx, dy) => [box.x + box.width / 2 + dx, box.y + box.height / 2 + dy];
   const visible = selector => page.$eval(selector, e => e.checkVisibility());
@@ -233,9 +271,31 @@ try {
   for (let i = 0; i < 50 && (await sketch()).features[0].properties.zone !== 'commercial'; ++i) await new Promise(r => setTimeout(r, 100));
   check((await sketch()).features[0].properties.zone === 'commercial', 'the zone\'s type edited in the panel');
 
+  // A value typed in a form: one the CLI refuses is refused with its one line beside the
+  // field, the sketch as it was; one it takes is the sketch's.
+  const kept = JSON.stringify(await sketch());
+  await page.click('.zone-form[data-zone="residential"] summary');
+  const typeInto = (selector, value) => page.$eval(selector, (i, v) => { i.value = v; i.dispatchEvent(new Event('change')); }, value);
+  await typeInto(`${formField('residential', 'block_area')} input`, '50');
+  await page.waitForFunction(s => document.querySelector(s).textContent !== '', {timeout: 5000}, `${formField('residential', 'block_area')} .field-error`);
+  const fieldError = await page.$eval(`${formField('residential', 'block_area')} .field-error`, e => e.textContent);
+  check(/^value 50(\.0)? is out of range; use a value from 100(\.0)? to/.test(fieldError) && JSON.stringify(await sketch()) === kept,
+        `the refused value's line is beside its field, the sketch as it was: ${fieldError}`);
+  check(await page.$eval(`${formField('residential', 'block_area')} input`, i => i.value) === '50', 'the refused value stays typed');
+  await typeInto(`${formField('residential', 'block_area')} input`, '20000');
+  // Taken once the page shows it in the JSON view, which it fills from the server's answer.
+  await page.waitForFunction(() => /"block_area":20000/.test(document.querySelector('textarea[data-zone="residential"]').value), {timeout: 5000});
+  check((await sketch()).exacity.zones.residential.block_area === 20000 &&
+        await page.$eval(`${formField('residential', 'block_area')} .field-error`, e => e.textContent) === '' &&
+        JSON.parse(await page.$eval('textarea[data-zone="residential"]', t => t.value)).block_area === 20000,
+        'a value taken is the sketch\'s, its error gone, and the JSON view shows it');
+  await typeInto(`${formField('residential', 'block_area')} input`, '');
+  await page.waitForFunction(() => document.querySelector('textarea[data-zone="residential"]').value === '', {timeout: 5000});
+  check(JSON.stringify(await sketch()) === kept, 'an emptied field goes back to the default');
+
   // A setting the CLI refuses is refused with its message, and the sketch stays as it was.
   // The browser logs the refusals' 400s as console errors: those are expected.
-  const kept = JSON.stringify(await sketch());
+  await page.click('#advanced-settings summary');
   await page.$eval('textarea[data-zone="residential"]', t => { t.value = '{"block_area": -5}'; });
   await page.click('#apply-settings');
   await page.waitForFunction(() => /block_area/.test(document.getElementById('message').textContent), {timeout: 5000});
@@ -273,8 +333,8 @@ try {
   check(await page.$eval('textarea[data-zone="commercial"]', t => document.activeElement === t && t.selectionStart === 14),
         'the cursor is where the JSON broke');
   check(JSON.stringify(await sketch()) === kept, 'the sketch is still as it was');
-  check(errors.filter(e => e.startsWith('HTTP 400: ')).length === 4 && errors.every(e => /400/.test(e)),
-        `only the four refusals were errors (${errors.join(' | ')})`);
+  check(errors.filter(e => e.startsWith('HTTP 400: ')).length === 5 && errors.every(e => /400/.test(e)),
+        `only the five refusals were errors (${errors.join(' | ')})`);
   errors.length = 0;
 
   // A heightmap loaded from a file: the sketch points at it, and the map shows it.
@@ -291,8 +351,11 @@ try {
   check(await page.$eval('body', b => b.dataset.features) === '2', 'after a reload the page shows both features');
 
   // Generate: the progress bar moves through the stages, then the layers and the report.
+  await watch();
   await page.click('#generate');
   await page.waitForSelector('body[data-city="shown"]', {timeout: 600000});
+  check((await seen('time-left')).some(t => /^(estimating…|about \d+ (s|min) left)$/.test(t)) && await page.$eval('#time-left', e => e.textContent) === '',
+        `the generation showed its time left, gone at its end: ${few(await seen('time-left'))}`);
   const layers = await page.$$eval('#layer-toggles input', inputs => inputs.map(i => i.dataset.layer));
   check(['zones', 'blocks', 'lots', 'roads', 'buildings'].every(l => layers.includes(l)), `generated layers shown: ${layers}`);
   const legend = await page.$$eval('#layer-toggles label', labels => labels.map(l => l.querySelector('.swatch')?.style.background));
@@ -358,7 +421,16 @@ try {
     return page.evaluate(() => window.exacityExplore.tileCounts());
   };
   const kept_orbit = await page.evaluate(() => ({...window.exacityExplore.orbit}));
-  await page.evaluate(() => window.exacityExplore.setOrbit({elevation: 60, distance: 20000}));
+  // Zoom stops at its limit, a few times the city's size.
+  const limit = await page.evaluate(() => {
+    const view = window.exacityExplore, [x0, y0, x1, y1] = view.bounds;
+    view.setOrbit({distance: 1e9});
+    return {distance: view.orbit.distance, diagonal: Math.hypot(x1 - x0, y1 - y0)};
+  });
+  check(limit.distance === Math.max(5000, 8 * limit.diagonal), `zooming out stops at 8 city diagonals, or 5 km: ${JSON.stringify(limit)}`);
+  check((await seen('tiles-loading')).some(t => /^Loading \d+ tiles?…$/.test(t)) && !(await visible('#tiles-loading')),
+        `the tiles' loading was shown, and hidden once in: ${few(await seen('tiles-loading'))}`);
+  await page.evaluate(() => window.exacityExplore.setOrbit({elevation: 60, distance: 4000}));
   const far = await tiles();
   check(far.tiles >= 2 && far.inView === far.tiles && far.shown[2] === far.tiles && far.shown[0] === 0 &&
         far.shown[1] === 0, `far away, every tile at its coarsest level: ${JSON.stringify(far)}`);
@@ -374,13 +446,59 @@ try {
   const near = await tiles();
   check(near.shown[0] >= 1 && near.loaded[0] >= 1,
         `close over a tile, it shows its full level: ${JSON.stringify(near)}`);
+  // A click on a building shows its attributes: straight above one whose footprint holds its
+  // corners' mean, the view's middle is its roof.
+  const picked = await page.evaluate(() => {
+    const view = window.exacityExplore;
+    for (const f of view.layers.buildings.features) {
+      const ring = f.geometry.type === 'Polygon' ? f.geometry.coordinates[0] : f.geometry.coordinates[0][0];
+      const [x, y] = ring.slice(1).reduce(([a, b], [c, d]) => [a + c / (ring.length - 1), b + d / (ring.length - 1)], [0, 0]);
+      if (ring.length !== 5 || f.properties.model) continue;  // a plain box, whose middle is inside
+      view.setOrbit({target: [x, y, 0], elevation: 90, distance: 120});
+      return f.properties;
+    }
+    return null;
+  });
+  await tiles();
+  await page.mouse.click(view.x + view.width / 2, view.y + view.height / 2);
+  await page.waitForSelector('#building-info:not([hidden])', {timeout: 5000});
+  const info = await page.$eval('#building-info', b => b.textContent);
+  check(picked && await page.$eval('#building-info', b => b.dataset.id) === String(picked.id) &&
+        info.includes(picked.zone) && info.includes(`lot${picked.lot}`),
+        `a click on building ${picked?.id} shows its attributes: ${info}`);
+  // Walk: the CLI's pedestrian, where the orbit looked; keys move it along its heading.
+  await page.click('[data-mode="pedestrian"]');
+  const walker = await spec();
+  check(/^pedestrian:at=[-\d.]+,[-\d.]+,heading=[\d.]+,pitch=0$/.test(walker), `walking: ${walker}`);
+  await page.keyboard.press('w');
+  await page.keyboard.press('w');
+  const walked = await spec();
+  const [wx0, wy0] = /at=([-\d.]+),([-\d.]+)/.exec(walker).slice(1).map(Number), [wx1, wy1] = /at=([-\d.]+),([-\d.]+)/.exec(walked).slice(1).map(Number);
+  check(Math.abs(Math.hypot(wx1 - wx0, wy1 - wy0) - 4) < 0.05, `two steps of 2 m: ${walker} to ${walked}`);
+  // Fly: the CLI's flyer, standing where the orbit's camera stood, looking the same way.
+  await page.click('[data-mode="orbit"]');
+  await page.evaluate(() => window.exacityExplore.setOrbit({elevation: 30, distance: 300, azimuth: 225}));
+  const eye = () => page.evaluate(() => window.exacityExplore.camera.position.toArray());
+  const orbitEye = await eye();
+  await page.click('[data-mode="flyer"]');
+  const flyer = await spec(), flyerEye = await eye();
+  check(/^flyer:at=[-\d.]+,[-\d.]+,height=[\d.]+,heading=45,pitch=-30$/.test(flyer) &&
+        orbitEye.every((v, i) => Math.abs(v - flyerEye[i]) < 0.05), `flying from where the orbit's camera was: ${flyer}`);
+  const height = async () => Number(/height=([\d.]+)/.exec(await spec())[1]);
+  const before_r = await height();
+  await page.keyboard.press('r');
+  check(await height() > before_r, `R raises the flyer: ${await spec()}`);
+  await page.click('#fit-view');
+  check(/^orbit:.*elevation=35,/.test(await spec()), `Fit view orbits the whole city again: ${await spec()}`);
   await page.evaluate(o => window.exacityExplore.setOrbit(o), kept_orbit);
+  await watch();
   await page.click('#render-view');
   await page.waitForFunction(() => {
     const img = document.getElementById('render-image');
     return !document.getElementById('render-result').hidden && img.complete && img.naturalWidth > 0;
   }, {timeout: 600000});
-  check(true, 'the rendered still is on the page');
+  check((await seen('time-left')).some(t => /^(estimating…|about \d+ (s|min) left)$/.test(t)),
+        `the render showed its time left: ${few(await seen('time-left'))}`);
   // A click enlarges the still to the view's size, another brings it back.
   const stillWidth = () => page.$eval('#render-image', i => i.getBoundingClientRect().width);
   const small = await stillWidth();
@@ -407,6 +525,11 @@ try {
       {timeout: 10000}).then(() => true, () => false);
   check(said, 'the page says the library loaded');
   check(await page.$eval('#models-in-use', e => e.textContent) === 'models/library.json', 'the panel names the model library');
+  // The library in use, listed: each model with its kind and zone types.
+  await page.waitForFunction(() => document.getElementById('library-name').textContent.startsWith('models/library.json'), {timeout: 5000});
+  const listedModels = await page.$$eval('#library-models tbody tr', rows => rows.map(r => [...r.cells].map(c => c.textContent).join('|')));
+  check(listedModels.includes('apartment|building|residential, commercial') && listedModels.includes('tree|tree|residential, commercial, industrial'),
+        `the library's models listed with their zone types: ${listedModels.join('; ')}`);
 
   // Save downloads the sketch; Open reads one from a file and shows what the server took.
   const cdp = await page.createCDPSession();
@@ -426,6 +549,38 @@ try {
   s = await sketch();
   check(s.exacity.seed === 5 && s.features[0].properties.zone === 'industrial', 'Open read a sketch from a file');
   check(await page.$eval('#seed', i => i.value) === '5', 'the panel shows the opened sketch\'s seed');
+
+  // A basemap under a sketch with a place on Earth (UTM zone 33 north, around 15° E,
+  // 49.65° N): tiles from the URL named, none before; those asked for cover the sketch.
+  const tileRequests = [];
+  const tileServer = http.createServer((req, res) => {
+    tileRequests.push(req.url);
+    res.writeHead(200, {'Content-Type': 'image/png', 'Access-Control-Allow-Origin': '*'});
+    res.end(fs.readFileSync(path.join(path.dirname(new URL(import.meta.url).pathname), '..', '..', 'examples', 'valley.png')));
+  });
+  await new Promise(resolve => tileServer.listen(0, '127.0.0.1', resolve));
+  const placed = path.join(out, 'placed.geojson');
+  fs.writeFileSync(placed, JSON.stringify({type: 'FeatureCollection', crs: {type: 'name', properties: {name: 'urn:ogc:def:crs:EPSG::32633'}},
+    features: [{type: 'Feature', properties: {zone: 'residential'},
+                geometry: {type: 'Polygon', coordinates: [[[499800, 5499800], [500200, 5499800], [500200, 5500200], [499800, 5500200], [499800, 5499800]]]}}]}));
+  const [placedChooser] = await Promise.all([page.waitForFileChooser(), page.click('#open')]);
+  await placedChooser.accept([placed]);
+  await page.waitForFunction(() => /EPSG:32633/.test(document.getElementById('basemap-where').textContent), {timeout: 5000});
+  check(tileRequests.length === 0, 'no basemap is fetched before one is named');
+  await page.click('#basemap-panel summary');
+  await page.$eval('#basemap-url', (i, port) => { i.value = `http://127.0.0.1:${port}/{z}/{x}/{y}.png`; }, tileServer.address().port);
+  await page.click('#basemap-show');
+  await page.evaluate(() => window.exacityPage.drawn());
+  const tileOf = (z, lon, lat) => [Math.floor((lon + 180) / 360 * 2 ** z),
+                                   Math.floor((1 - Math.asinh(Math.tan(lat * Math.PI / 180)) / Math.PI) / 2 * 2 ** z)];
+  const asked = tileRequests.map(u => u.slice(1, -4).split('/').map(Number));
+  check(asked.length > 0 && asked.some(([z, x, y]) => tileOf(z, 15, 49.65254)[0] === x && tileOf(z, 15, 49.65254)[1] === y),
+        `the basemap's tiles cover the sketch (15° E, 49.65° N): ${tileRequests.slice(0, 4).join(' ')}`);
+  await page.click('#basemap-hide');
+  const hidden = tileRequests.length;
+  await page.evaluate(() => window.exacityPage.drawn(true));
+  check(tileRequests.length === hidden, 'Hide drops the basemap: no tiles asked for after it');
+  tileServer.close();
 
   // Cancel: a city some kilometres across (as serve_test's), cancelled in its lots stage; the
   // progress bar empties and says so.
@@ -451,10 +606,15 @@ try {
   await page.click('#generate');
   await page.waitForFunction(() => / lots$/.test(document.getElementById('stage').textContent), {timeout: 120000});
   check(await page.$eval('#progress', p => p.value) > 0, 'the generation under way fills the bar');
+  // By then its time left is known: from the stage clock's seconds of the last generation.
+  const timeLeft = await page.waitForFunction(() => /^about \d+ (s|min) left$/.test(document.getElementById('time-left').textContent),
+                                              {timeout: 5000}).then(() => true, () => false);
+  check(timeLeft, `the generation's time left: ${await page.$eval('#time-left', e => e.textContent)}`);
   await page.click('#cancel');
   await page.waitForSelector('body[data-job="cancelled"]', {timeout: 60000});
   check(await page.$eval('#progress', p => p.value) === 0 && await page.$eval('#stage', e => e.textContent) === 'generate cancelled',
         `after Cancel the bar is empty and says so: ${await page.$eval('#stage', e => e.textContent)}`);
+  check(await page.$eval('#time-left', e => e.textContent) === '', 'and no time left is shown');
   check(/cancelled during the lots stage/.test(await message()), `the page says where it stopped: ${await message()}`);
   check(errors.length === 0, `no console errors${errors.length ? ': ' + errors.join(' | ') : ''}`);
 } catch (e) {

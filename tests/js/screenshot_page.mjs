@@ -1,6 +1,6 @@
-// The pictures of exacity serve in the README and docs/serve.md: serves SKETCH, generates it, and saves the map
-// with the generated city and the 3D view with its path-traced still (no checks: see
-// check_page.mjs). Usage: node screenshot_page.mjs EXACITY_BINARY SKETCH OUT_DIR
+// The README's pictures of exacity serve: serves SKETCH, generates it, and saves the map
+// with the generated city (the residential settings' form open) and the 3D view with its
+// path-traced still, a building's attributes and the city's legend and report (no checks: see check_page.mjs). Usage: node screenshot_page.mjs EXACITY_BINARY SKETCH OUT_DIR
 import {spawn} from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
@@ -30,7 +30,9 @@ try {
   await page.waitForSelector('body[data-ready="yes"]');
   await page.click('#generate');
   await page.waitForSelector('body[data-city="shown"]', {timeout: 600000});
+  await page.click('.zone-form[data-zone="residential"] summary');
   await page.screenshot({path: path.join(out, 'serve-map.png')});
+  await page.click('.zone-form[data-zone="residential"] summary');  // the city's legend and report in view again
   await page.click('[data-view="explore"]');
   await page.waitForFunction(() => window.exacityExplore && window.exacityExplore.city, {timeout: 60000});
   await page.evaluate(() => window.exacityExplore.setOrbit({azimuth: 235, elevation: 28}));
@@ -41,6 +43,15 @@ try {
   }, {timeout: 600000});
   // Every tile in view at the level it asked for.
   await page.waitForFunction(() => window.exacityExplore.tileCounts().pending === 0, {timeout: 60000});
+  // A building near the view's middle, its attributes shown as a click shows them.
+  await page.evaluate(() => {
+    const view = window.exacityExplore, r = view.renderer.domElement.getBoundingClientRect();
+    for (let step = 0; step < 40; ++step) {
+      const a = step * 2.4, d = step * 6;
+      const feature = view.buildingAt(r.left + r.width / 2 + d * Math.cos(a), r.top + r.height / 2 + d * Math.sin(a));
+      if (feature) return view.showBuilding(feature);
+    }
+  });
   await page.screenshot({path: path.join(out, 'serve-explore.png')});
 } finally {
   await browser.close();

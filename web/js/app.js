@@ -7,12 +7,14 @@ import {SketchHistory} from './history.js';
 import {SketchMap} from './sketch_map.js';
 import {SettingsPanel} from './settings_panel.js';
 import {CityLayers} from './city_layers.js';
+import {zoneColours, rgba} from './colours.js';
 
 const $ = id => document.getElementById(id);
 const history = new SketchHistory();
 let explore = null;  // made when first shown: three.js loads only then
 let cityLayers = null;
 let lastGood = null;
+for (const b of document.querySelectorAll('button.zone')) b.style.setProperty('--zone', rgba(zoneColours[b.dataset.tool], 1));
 
 // The message line (one line, the whole text on hover or unfolded by a click), and under it
 // what the page did about it.
@@ -37,6 +39,7 @@ function showCount(doc) {
 // page has gone back to the server's sketch since.
 let sending = Promise.resolve();
 let refusals = 0;
+let lastRefusal = '';
 function send(doc) {
   const after = refusals;
   const sent = sending.then(() => (after === refusals ? sendNow(doc) : false));
@@ -48,6 +51,7 @@ async function sendNow(doc) {
   const r = await api.putSketch(doc);
   if (!r.ok) {
     ++refusals;
+    lastRefusal = r.message;
     await backToServer(r.message);
     return false;
   }
@@ -78,16 +82,23 @@ const map = new SketchMap('map', {
 });
 // For the browser test: the sketch as the page would send it, and the grid's labels.
 window.exacityPage = {sketch: () => map.sketch(),
+                      // Resolves once the map is drawn with every tile in (after zooming out).
+                      drawn: (zoomOut = false) => new Promise(resolve => {
+                        map.map.once('rendercomplete', () => resolve());
+                        if (zoomOut) map.map.getView().setResolution(map.map.getView().getResolution() * 2);
+                        map.map.render();
+                      }),
                       gridLabels: () => map.gridLabels.getSource().getFeatures().map(f => ({label: f.get('label'), axis: f.get('axis')}))};
 const panel = new SettingsPanel({
+  // Resolves to the refusal's message, or null when the server took the settings.
   apply: async exacity => {
     const doc = map.sketch();
     doc.exacity = exacity;
-    if (!(await send(doc))) return false;
+    if (!(await send(doc))) return lastRefusal;
     map.setSettings(exacity);
     history.push(JSON.stringify(map.sketch()));
     panel.show(exacity);
-    return true;
+    return null;
   },
   featureEdited: () => recordEdit(),
   typo: (what, why) => say(what, true, `${why}. Not applied: fix the box and apply again.`),
@@ -148,6 +159,41 @@ document.addEventListener('keydown', e => {
   e.preventDefault();
 });
 
+// The model library the sketch names (GET /api/models): its manifest, and each model's kind
+// and the zone types it stands in; the built-in trees and lamps otherwise.
+async function showLibrary() {
+  const library = await api.getJson('/api/models');
+  if (!library) return;
+  const builtin = library.builtin.length ? `built-in ${library.builtin.map(kind => kind + 's').join(' and ')}` : 'no built-in models';
+  $('library-name').textContent = library.file ? `${library.file} (${library.models.length} models; ${builtin})` :
+                                                 `none: ${builtin} (Models… loads a library)`;
+  $('library-models').hidden = !library.models.length;
+  $('library-models').tBodies[0].replaceChildren(...library.models.map(m => {
+    const row = document.createElement('tr');
+    for (const text of [m.name, m.kind, m.zones.join(', ')]) row.insertCell().textContent = text;
+    row.title = `weight ${m.weight}, ${m.size.map(v => v.toFixed(1)).join(' × ')} m` + (m.lot ? `, lot ${m.lot.join(' × ')} m` : '');
+    return row;
+  }));
+}
+
+// Basemap: tiles from an XYZ URL the user names, under a sketch with a place on Earth (its
+// CRS's lon/lat from the server); nothing is fetched until a URL is named.
+let lonlat = null;
+async function showPlace() {
+  lonlat = await api.getJson('/api/lonlat');
+  $('basemap-where').textContent = lonlat?.epsg ? `The sketch is in EPSG:${lonlat.epsg}: name a tile server to draw it under the sketch.` :
+                                                  'The sketch has no place on Earth (no CRS): no basemap.';
+  $('basemap-url').disabled = $('basemap-show').disabled = !lonlat?.epsg;
+  if (map.basemap.getSource()) map.setBasemap($('basemap-url').value.trim(), lonlat);
+}
+$('basemap-show').addEventListener('click', () => {
+  const url = $('basemap-url').value.trim();
+  if (!/^https?:\/\/.*\{z\}.*\{x\}.*\{y\}/.test(url)) return say('A basemap URL has {z}, {x} and {y} in it, such as https://tile.example.org/{z}/{x}/{y}.png', true);
+  map.setBasemap(url, lonlat);
+  say(`Basemap ${url} under the sketch.`);
+});
+$('basemap-hide').addEventListener('click', () => map.setBasemap(null));
+
 // Open: a GeoJSON sketch from this computer, shown once the server has taken it.
 $('open').addEventListener('click', () => $('open-file').click());
 $('open-file').addEventListener('change', async e => {
@@ -161,11 +207,13 @@ $('open-file').addEventListener('change', async e => {
     return say(`${file.name}: not JSON (${x.message})`, true);
   }
   if (!(await send(doc))) return;
+  await showPlace();  // before the view moves to it: a basemap of the sketch before is dropped
   map.load(lastGood, true);
   showCount(lastGood);
   panel.show(lastGood.exacity);
   history.push(JSON.stringify(map.sketch()));
   updateButtons();
+  showLibrary();
 });
 
 // Save: the sketch as the server holds it, downloaded.
@@ -210,6 +258,7 @@ $('models-file').addEventListener('change', async e => {
   history.push(JSON.stringify(map.sketch()));
   updateButtons();
   say(`Model library ${lastGood.exacity.models} loaded (${files.length} files).`);
+  showLibrary();
 });
 
 $('cancel').addEventListener('click', async () => {
@@ -224,14 +273,49 @@ $('generate').addEventListener('click', async () => {
   say('Generating…');
 });
 
+// Time left: the job's time so far over the share of it done. A generation's stages are
+// weighed by their seconds in the last report (the stage clock's timings_s), equally without
+// one; a render's share is its samples done.
+let stageSeconds = {};
+let jobClock = null;  // while a job runs: its start, its share done, the stages seen
+function shareDone(event) {
+  const known = Object.values(stageSeconds);
+  if (!event.count) return 0;
+  if (jobClock.job !== 'generate' || !known.length) return (event.index - 1 + (event.fraction || 0)) / event.count;
+  const mean = known.reduce((a, b) => a + b, 0) / known.length;
+  const weight = name => stageSeconds[name] ?? mean;
+  const names = Object.keys(stageSeconds);
+  // Stages not yet seen in this run are the last report's that have not come, and any others.
+  const before = jobClock.seen.slice(0, -1).reduce((a, n) => a + weight(n), 0);
+  const later = names.filter(n => !jobClock.seen.includes(n)).reduce((a, n) => a + weight(n), 0);
+  const unnamed = Math.max(0, event.count - jobClock.seen.length - names.filter(n => !jobClock.seen.includes(n)).length) * mean;
+  const now = weight(event.stage);
+  return (before + now * (event.fraction || 0)) / (before + now + later + unnamed);
+}
+
+function showTimeLeft() {
+  const box = $('time-left');
+  if (!jobClock) return (box.textContent = '');
+  const elapsed = (Date.now() - jobClock.start) / 1000, done = jobClock.done;
+  if (done < 0.005 || elapsed < 0.5) return (box.textContent = 'estimating…');
+  const left = elapsed * (1 - done) / done;
+  box.textContent = `about ${left < 90 ? Math.max(1, Math.round(left)) + ' s' : Math.round(left / 60) + ' min'} left`;
+}
+setInterval(showTimeLeft, 1000);
+
 function showProgress(event) {
+  if (!jobClock) jobClock = {start: Date.now(), job: 'generate', seen: [], done: 0};
+  if (event.stage && jobClock.seen.at(-1) !== event.stage) jobClock.seen.push(event.stage);
+  jobClock.done = shareDone(event);
   if (event.count) $('progress').value = (event.index - 1 + (event.fraction || 0)) / event.count;
   $('stage').textContent = `${event.index}/${event.count} ${event.stage}`;
+  showTimeLeft();
 }
 
 async function showCity() {
   cityLayers = cityLayers || new CityLayers(map.city);
   const report = await cityLayers.load();
+  stageSeconds = report?.timings_s || {};
   map.layer.setOpacity(0.5);  // the sketch stays editable over the city, without hiding its streets
   if (explore) await loadExplore();
   return report;
@@ -278,6 +362,9 @@ api.listen({
   progress: e => showProgress({...stageEvent, fraction: e.fraction, stage: e.stage}),
   state: async s => {
     const ended = lastState === 'running' && s.state !== 'running';
+    if (s.state === 'running' && lastState !== 'running') jobClock = {start: Date.now(), job: s.job, seen: [], done: 0};
+    if (s.state !== 'running') jobClock = null;
+    showTimeLeft();
     lastState = s.state;
     document.body.dataset.job = s.state;
     $('generate').disabled = s.state === 'running';
@@ -325,6 +412,19 @@ for (const b of document.querySelectorAll('[data-view]'))
     explore.resize();
   });
 
+for (const b of document.querySelectorAll('[data-mode]'))
+  b.addEventListener('click', () => {
+    if (!explore) return;
+    explore.setMode(b.dataset.mode);
+    for (const o of document.querySelectorAll('[data-mode]')) o.classList.toggle('active', o === b);
+    explore.renderer.domElement.focus();
+  });
+$('fit-view').addEventListener('click', () => {
+  if (!explore) return;
+  explore.fit();
+  for (const o of document.querySelectorAll('[data-mode]')) o.classList.toggle('active', o.dataset.mode === 'orbit');
+});
+
 $('render-image').addEventListener('click', () => $('render-result').classList.toggle('large'));
 
 $('render-view').addEventListener('click', async () => {
@@ -343,6 +443,7 @@ $('render-view').addEventListener('click', async () => {
   map.load(doc, true);
   showCount(doc);
   panel.show(doc.exacity);
+  await Promise.all([panel.build(), showLibrary(), showPlace()]);
   history.push(JSON.stringify(map.sketch()));
   updateButtons();
   const status = await api.getJson('/api/status');

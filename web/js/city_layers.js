@@ -1,6 +1,6 @@
 // The generated city's layers drawn as vector layers over the sketch, and the report's
-// figures beside them (docs/outputs.md).
-import {zoneColours, rgba} from './colours.js';
+// figures beside them (README, Outputs).
+import {zoneColours, mapColours, rgba} from './colours.js';
 import {metres} from './sketch_map.js';
 
 const ol = window.ol;
@@ -8,9 +8,11 @@ const geojson = new ol.format.GeoJSON({dataProjection: metres, featureProjection
 
 const fill = c => new ol.style.Fill({color: c});
 const stroke = (c, width) => new ol.style.Stroke({color: c, width});
-const colours = {water: '#5b9bd5', green: '#a8d38d', lot: '#fbf3e680', lotEdge: '#8a6d4b', sidewalk: '#c9c3b8',
-                 carriageway: '#6b6b6b', building: '#9a8672', buildingEdge: '#5e4f40'};
-// In drawing order, bottom first; colours as on the SVG map (generate/city/palette.h).
+// The SVG map's colours (generate/city/palette.h); lots half opaque, as the map draws them.
+const colours = {water: mapColours.water, green: mapColours.zones.park, lot: mapColours.lot_fill + '80',
+                 lotEdge: mapColours.lot_edge, sidewalk: mapColours.sidewalk, carriageway: mapColours.road,
+                 building: mapColours.building, buildingEdge: mapColours.building_edge};
+// In drawing order, bottom first.
 const layerStyles = {
   zones: f => new ol.style.Style({fill: fill(rgba(zoneColours[f.get('zone')] || [200, 200, 200], 0.35))}),
   water: () => new ol.style.Style({fill: fill(colours.water)}),
@@ -82,7 +84,7 @@ export class CityLayers {
       dd.textContent = typeof v === 'number' ? v.toLocaleString('en') : v;
       box.append(dt, dd);
     }
-    // The notes the CLI prints after a generation (docs/outputs.md: report.json).
+    // The notes the CLI prints after a generation (README, Outputs: report.json).
     const notes = document.getElementById('report-notes');
     notes.innerHTML = '';
     for (const z of report.empty_zones || []) {

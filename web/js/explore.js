@@ -1,13 +1,16 @@
 // Explore: the city in three.js under the orbit camera, a spherical camera bound to
 // the upper hemisphere around a target that pans over the ground, with a minimap of the
-// camera and the ground it sees over an overview of the city; "Render this view"
-// path-traces the same camera.
+// camera and the ground it sees over an overview of the city (3.3.4); "Render this view"
+// path-traces the same camera. Walk and Fly stand the camera on the ground as the CLI's
+// pedestrian and flyer cameras do (README, Rendering: cameras), moved by keys and turned by
+// dragging; a click on a building shows its attributes (its buildings.geojson feature). The
+// sun stands where the renderer's does and casts shadows.
 // The city comes as its ground and its tiles (GET /api/tiles.json), each tile drawn at the
 // level of detail its distance asks for, loaded when first needed, and left out when outside
 // the view (docs/design.md, Serving: tiles); city.glb is the fallback for a city without.
 import * as THREE from 'three';
 import {GLTFLoader} from 'three/addons/loaders/GLTFLoader.js';
-import {zoneColours, rgba} from './colours.js';
+import {zoneColours, mapColours, sun, rgba} from './colours.js';
 
 const degree = Math.PI / 180;
 // glTF is y up with z south (generate/export/gltf_export.cpp); the city is x east, y north, z up.
@@ -19,16 +22,29 @@ export class ExploreView {
     this.minimap = minimap;
     this.renderer = new THREE.WebGLRenderer({antialias: true});
     this.renderer.setPixelRatio(window.devicePixelRatio);
+    this.renderer.shadowMap.enabled = true;
+    this.renderer.shadowMap.type = THREE.PCFSoftShadowMap;
+    this.renderer.domElement.tabIndex = 0;  // takes the keys once clicked
     container.appendChild(this.renderer.domElement);
     this.scene = new THREE.Scene();
     this.scene.background = new THREE.Color(0xb8d4ee);
-    this.scene.add(new THREE.HemisphereLight(0xdfefff, 0x807060, 1.6));
-    const sun = new THREE.DirectionalLight(0xffffff, 2.2);
-    sun.position.set(-0.6, 0.7, 0.4);
-    this.scene.add(sun);
+    this.scene.add(new THREE.HemisphereLight(0xdfefff, 0x807060, 1.3));
+    // The renderer's sun (render/render.h): azimuth counter-clockwise from east, elevation.
+    const az = sun.azimuth * degree, el = sun.elevation * degree;
+    this.sunDirection = toThree(Math.cos(el) * Math.cos(az), Math.cos(el) * Math.sin(az), Math.sin(el));
+    this.sun = new THREE.DirectionalLight(0xffffff, 2.4);
+    this.sun.castShadow = true;
+    this.sun.shadow.mapSize.set(2048, 2048);
+    this.sun.shadow.bias = -0.0005;
+    this.scene.add(this.sun, this.sun.target);
     this.camera = new THREE.PerspectiveCamera(45, 1, 1, 200000);
-    // The orbit, in the city's coordinates (docs/rendering.md, Cameras: orbit:target=..,azimuth=..).
+    // The orbit, in the city's coordinates (README, Rendering: orbit:target=..,azimuth=..).
     this.orbit = {target: [0, 0, 0], azimuth: 225, elevation: 35, distance: 800};
+    // Walk and Fly: the CLI's pedestrian and flyer, standing at (x, y), `height` over the
+    // ground (the eye's 1.7 m walking), heading counter-clockwise from east, pitch up.
+    this.mode = 'orbit';
+    this.stand = {x: 0, y: 0, height: 1.7, heading: 45, pitch: 0};
+    this.maxDistance = 1e5;
     this.bounds = [0, 0, 1, 1];
     this.city = null;
     this.tiles = [];
@@ -51,6 +67,7 @@ export class ExploreView {
     this.tiles = [];
     this.levels = index ? index.levels : [];
     this.city = (await loader.loadAsync((index ? index.ground : '/api/city.glb') + '?v=' + this.version)).scene;
+    shadowed(this.city);
     this.scene.add(this.city);
     for (const tile of index?.tiles || []) {
       const [x0, y0, z0, x1, y1, z1] = tile.box;
@@ -60,16 +77,80 @@ export class ExploreView {
       this.tiles.push({name: tile.name, urls: tile.levels, group, loaded: [], loading: [], shown: -1,
                        box: new THREE.Box3().setFromPoints([toThree(x0, y0, z0), toThree(x1, y1, z1)])});
     }
-    const [x0, y0, x1, y1] = bounds;
-    const [cx, cy] = [(x0 + x1) / 2, (y0 + y1) / 2];
-    this.orbit = {target: [cx, cy, this.groundHeight(cx, cy)], azimuth: 225, elevation: 35,
-                  distance: 0.75 * Math.hypot(x1 - x0, y1 - y0)};
     this.overview = null;
-    this.update();
+    this.fit();
     this.captureOverview();
   }
 
-  // An air photo of the whole city, taken once from straight above at the
+  // The whole city in view from the south-west, orbiting; zoom out at most to a few times
+  // its size, so it is never lost.
+  fit() {
+    const [x0, y0, x1, y1] = this.bounds;
+    const [cx, cy] = [(x0 + x1) / 2, (y0 + y1) / 2], diagonal = Math.hypot(x1 - x0, y1 - y0);
+    this.maxDistance = Math.max(5000, 8 * diagonal);
+    this.mode = 'orbit';
+    this.orbit = {target: [cx, cy, this.groundHeight(cx, cy)], azimuth: 225, elevation: 35, distance: 0.75 * diagonal};
+    this.update();
+  }
+
+  // Orbit, walk (the CLI's pedestrian) or fly (its flyer). Walking or flying starts where
+  // the orbit's camera looks from, the same way; orbiting again takes up the orbit left.
+  setMode(mode) {
+    if (mode === this.mode) return;
+    if (mode !== 'orbit' && this.mode === 'orbit') {
+      const [fx, fy, fz] = this.from(), [tx, ty] = this.orbit.target;
+      const ground = this.groundHeight(fx, fy);
+      const flying = mode === 'flyer';
+      this.stand = {x: flying ? fx : tx, y: flying ? fy : ty, height: flying ? Math.max(2, fz - ground) : 1.7,
+                    heading: (this.orbit.azimuth + 180) % 360, pitch: flying ? -this.orbit.elevation : 0};
+    } else if (mode !== 'orbit') {
+      this.stand.height = mode === 'flyer' ? Math.max(this.stand.height, 30) : 1.7;
+    }
+    this.mode = mode;
+    this.update();
+  }
+
+  // Ground modes: turned, moved along the heading (forward, right) and up, in metres.
+  setStand(change) {
+    const s = {...this.stand, ...change};
+    s.pitch = Math.min(89.9, Math.max(-89.9, s.pitch));
+    s.heading = ((s.heading % 360) + 360) % 360;
+    s.height = this.mode === 'pedestrian' ? 1.7 : Math.min(1e5, Math.max(0.5, s.height));
+    this.stand = s;
+    this.update();
+  }
+
+  move(forward, right, up = 0) {
+    const h = this.stand.heading * degree;
+    this.setStand({x: this.stand.x + forward * Math.cos(h) + right * Math.sin(h),
+                   y: this.stand.y + forward * Math.sin(h) - right * Math.cos(h), height: this.stand.height + up});
+  }
+
+  // Keys: arrows or WASD move (pan the orbit's target, walk or fly), Q and E turn, R and F
+  // tilt the orbit or raise and lower the flyer, + and - zoom, Home fits the city.
+  key(e) {
+    const k = e.key.length === 1 ? e.key.toLowerCase() : e.key;
+    const ahead = {w: 1, ArrowUp: 1, s: -1, ArrowDown: -1}[k] || 0, side = {d: 1, ArrowRight: 1, a: -1, ArrowLeft: -1}[k] || 0;
+    const turn = {q: 1, e: -1}[k] || 0, tilt = {r: 1, f: -1}[k] || 0, zoom = {'+': 1, '=': 1, '-': -1}[k] || 0;
+    if (k === 'Home') return this.fit(), true;
+    if (!(ahead || side || turn || tilt || zoom)) return false;
+    if (this.mode === 'orbit') {
+      const step = this.orbit.distance * 0.05, az = this.orbit.azimuth * degree;
+      const [x, y, z] = this.orbit.target;
+      // Forward is away from the camera: against the azimuth.
+      const fx = -Math.cos(az), fy = -Math.sin(az);
+      this.setOrbit({target: [x + (ahead * fx + side * fy) * step, y + (ahead * fy - side * fx) * step, z],
+                     azimuth: this.orbit.azimuth + 5 * turn, elevation: this.orbit.elevation + 5 * tilt,
+                     distance: this.orbit.distance * Math.pow(1.25, -zoom)});
+      return true;
+    }
+    const step = this.mode === 'pedestrian' ? 2 : Math.max(5, this.stand.height / 5);
+    if (turn) return this.setStand({heading: this.stand.heading + 5 * turn}), true;
+    this.move((ahead + zoom) * step, side * step, this.mode === 'flyer' ? tilt * step : 0);
+    return true;
+  }
+
+  // Seed 000, 3.3.4: an air photo of the whole city, taken once from straight above at the
   // height that sees all of it, is the minimap's background: every tile at its coarsest level
   // over the ground. Until it is taken the minimap draws the zones, water and roads.
   async captureOverview() {
@@ -118,18 +199,21 @@ export class ExploreView {
     return hit ? Math.round(hit.point.y * 100) / 100 : 0;
   }
 
-  // The orbit camera: azimuth any way round, elevation kept in the upper hemisphere.
+  // Seed 000, 3.3.2: azimuth any way round, elevation kept in the upper hemisphere.
   setOrbit(change) {
     const o = {...this.orbit, ...change};
     o.elevation = Math.min(90, Math.max(1, o.elevation));
     o.azimuth = ((o.azimuth % 360) + 360) % 360;
-    o.distance = Math.min(1e5, Math.max(5, o.distance));
+    o.distance = Math.min(this.maxDistance, Math.max(5, o.distance));
     this.orbit = o;
     this.update();
   }
 
   spec() {
     const f = v => Number(v.toFixed(2));
+    const {x: sx, y: sy, height, heading, pitch} = this.stand;
+    if (this.mode === 'pedestrian') return `pedestrian:at=${f(sx)},${f(sy)},heading=${f(heading)},pitch=${f(pitch)}`;
+    if (this.mode === 'flyer') return `flyer:at=${f(sx)},${f(sy)},height=${f(height)},heading=${f(heading)},pitch=${f(pitch)}`;
     const [x, y, z] = this.orbit.target;
     return `orbit:target=${f(x)},${f(y)},${f(z)},azimuth=${f(this.orbit.azimuth)},` +
            `elevation=${f(this.orbit.elevation)},distance=${f(this.orbit.distance)}`;
@@ -137,21 +221,41 @@ export class ExploreView {
 
   // The camera's place, as Exacity's renderer puts it (render/camera.cpp, Camera::orbit).
   from() {
+    if (this.mode !== 'orbit') {
+      const {x, y, height} = this.stand;
+      return [x, y, this.groundHeight(x, y) + height];
+    }
     const {target: [x, y, z], azimuth, elevation, distance} = this.orbit;
     const az = azimuth * degree, el = elevation * degree;
     return [x + distance * Math.cos(el) * Math.cos(az), y + distance * Math.cos(el) * Math.sin(az),
             z + distance * Math.sin(el)];
   }
 
+  // Where the camera looks: the orbit's target, or a point ahead on the stand's heading.
+  lookAt() {
+    if (this.mode === 'orbit') return this.orbit.target;
+    const [x, y, z] = this.from(), h = this.stand.heading * degree, p = this.stand.pitch * degree;
+    const ahead = this.mode === 'flyer' ? 100 : 20;
+    return [x + ahead * Math.cos(p) * Math.cos(h), y + ahead * Math.cos(p) * Math.sin(h), z + ahead * Math.sin(p)];
+  }
+
   update() {
-    const [fx, fy, fz] = this.from(), [tx, ty, tz] = this.orbit.target;
+    const [fx, fy, fz] = this.from(), [tx, ty, tz] = this.lookAt();
     this.camera.position.copy(toThree(fx, fy, fz));
     // Looking straight down, north stays up the screen.
     this.camera.up.set(0, 1, 0);
-    if (this.orbit.elevation > 89.9) this.camera.up.set(0, 0, -1);
+    if (this.mode === 'orbit' && this.orbit.elevation > 89.9) this.camera.up.set(0, 0, -1);
     this.camera.lookAt(toThree(tx, ty, tz));
-    this.camera.near = Math.max(0.5, this.orbit.distance / 1000);
-    this.camera.far = this.orbit.distance * 50 + 10000;
+    const reach = this.mode === 'orbit' ? this.orbit.distance : this.stand.height * 10 + 200;
+    this.camera.near = this.mode === 'pedestrian' ? 0.2 : Math.max(0.5, reach / 1000);
+    this.camera.far = reach * 50 + 10000;
+    // The sun's shadows over the ground in view around where the camera looks.
+    const half = Math.min(2000, Math.max(100, reach));
+    const at = toThree(tx, ty, tz);
+    Object.assign(this.sun.shadow.camera, {left: -half, right: half, top: half, bottom: -half, near: 1, far: 4 * half + 6000});
+    this.sun.shadow.camera.updateProjectionMatrix();
+    this.sun.target.position.copy(at);
+    this.sun.position.copy(at).addScaledVector(this.sunDirection, 2 * half + 3000);
     this.camera.updateProjectionMatrix();
     this.camera.updateMatrixWorld();
     this.chooseLevels();
@@ -198,12 +302,48 @@ export class ExploreView {
     if (tile.loading[level]) return;
     tile.loading[level] = new GLTFLoader().loadAsync(tile.urls[level] + '?v=' + this.version).then(gltf => {
       if (!this.tiles.includes(tile)) return;  // a newer city came meanwhile
-      tile.loaded[level] = gltf.scene;
+      tile.loaded[level] = shadowed(gltf.scene);
       tile.group.add(gltf.scene);
       this.update();
     }, error => {
       console.error(`tile ${tile.name} level ${level}: ${error.message || error}`);
-    });
+    }).finally(() => this.showLoading());
+    this.showLoading();
+  }
+
+  // How many tiles are still coming, over the view while any are.
+  showLoading() {
+    const pending = this.tileCounts().pending, box = document.getElementById('tiles-loading');
+    box.hidden = pending === 0;
+    box.textContent = `Loading ${pending} tile${pending === 1 ? '' : 's'}…`;
+  }
+
+  // The building under the pointer: the first surface a ray from the camera meets, a little
+  // past it (inside the building, not on its wall), found among buildings.geojson's
+  // footprints; null for none.
+  buildingAt(clientX, clientY) {
+    const r = this.renderer.domElement.getBoundingClientRect();
+    const ray = new THREE.Raycaster();
+    ray.setFromCamera(new THREE.Vector2((clientX - r.left) / r.width * 2 - 1, -(clientY - r.top) / r.height * 2 + 1), this.camera);
+    // The ray meets hidden levels too: the first hit on something shown.
+    const drawn = o => { for (; o; o = o.parent) if (!o.visible) return false; return true; };
+    const hit = ray.intersectObjects([this.city, ...this.tiles.map(t => t.group)], true).find(h => drawn(h.object));
+    if (!hit) return null;
+    const p = hit.point.clone().addScaledVector(ray.ray.direction, 0.05);
+    const x = p.x, y = -p.z;
+    return (this.layers?.buildings?.features || []).find(f => covers(f.geometry, x, y)) || null;
+  }
+
+  showBuilding(feature) {
+    const box = document.getElementById('building-info');
+    box.hidden = !feature;
+    if (!feature) return;
+    const p = feature.properties;
+    const rows = [['building', p.id], ['zone', p.zone], ['height', typeof p.height === 'number' ? `${p.height.toFixed(1)} m` : p.height],
+                  ['lot', p.lot], ['model', p.model ?? 'extruded'], ['roof', p.roof]].filter(([, v]) => v !== undefined && v !== null);
+    box.replaceChildren(...rows.flatMap(([k, v]) => [Object.assign(document.createElement('dt'), {textContent: k}),
+                                                       Object.assign(document.createElement('dd'), {textContent: String(v)})]));
+    box.dataset.id = p.id;
   }
 
   // For the browser test and the curious: tiles per level loaded and shown, tiles in view,
@@ -227,22 +367,30 @@ export class ExploreView {
     const el = this.renderer.domElement;
     el.addEventListener('contextmenu', e => e.preventDefault());
     let last = null;
-    el.addEventListener('pointerdown', e => {
-      last = {x: e.clientX, y: e.clientY, pan: e.button === 2 || e.shiftKey};
-      el.setPointerCapture(e.pointerId);
+    el.addEventListener('keydown', e => {
+      if (!e.ctrlKey && !e.metaKey && !e.altKey && this.key(e)) e.preventDefault();
     });
-    // A pan ends with the target set on the ground there (one ray into the city, not one per move).
-    el.addEventListener('pointerup', () => {
-      if (last && last.pan && this.city) {
+    el.addEventListener('pointerdown', e => {
+      last = {x: e.clientX, y: e.clientY, pan: e.button === 2 || e.shiftKey, moved: 0};
+      el.setPointerCapture(e.pointerId);
+      el.focus();
+    });
+    // A pan ends with the target set on the ground there (one ray into the city, not one per
+    // move); a click that did not move picks the building under it.
+    el.addEventListener('pointerup', e => {
+      if (last && last.pan && this.city && this.mode === 'orbit') {
         const [x, y] = this.orbit.target;
         this.setOrbit({target: [x, y, this.groundHeight(x, y)]});
       }
+      if (last && last.moved < 4 && e.button === 0 && this.city) this.showBuilding(this.buildingAt(e.clientX, e.clientY));
       last = null;
     });
     el.addEventListener('pointermove', e => {
       if (!last) return;
       const dx = e.clientX - last.x, dy = e.clientY - last.y;
       last.x = e.clientX, last.y = e.clientY;
+      last.moved += Math.abs(dx) + Math.abs(dy);
+      if (this.mode !== 'orbit') return this.setStand({heading: this.stand.heading - dx * 0.2, pitch: this.stand.pitch - dy * 0.2});
       if (!last.pan) return this.setOrbit({azimuth: this.orbit.azimuth - dx * 0.4, elevation: this.orbit.elevation + dy * 0.3});
       // Pan: the target slides over the ground, as far as the pointer moved at its distance.
       const scale = this.orbit.distance * 2 * Math.tan(this.camera.fov * degree / 2) / el.clientHeight;
@@ -253,6 +401,7 @@ export class ExploreView {
     });
     el.addEventListener('wheel', e => {
       e.preventDefault();
+      if (this.mode !== 'orbit') return this.move(-e.deltaY * (this.mode === 'pedestrian' ? 0.02 : Math.max(0.05, this.stand.height / 500)), 0);
       this.setOrbit({distance: this.orbit.distance * Math.pow(1.0015, e.deltaY)});
     }, {passive: false});
   }
@@ -283,14 +432,14 @@ export class ExploreView {
     const size = this.minimap.width, pad = 8;
     const s = (size - 2 * pad) / Math.max(x1 - x0, y1 - y0);
     const px = ([x, y]) => [pad + (x - x0) * s, size - pad - (y - y0) * s];
-    c.fillStyle = '#f4f4f0';
+    c.fillStyle = mapColours.background;
     c.fillRect(0, 0, size, size);
     if (this.overview) {
       const [ox0, , ox1, oy1] = this.overview.box;
       const [left, top] = px([ox0, oy1]);
       c.drawImage(this.overview.canvas, left, top, (ox1 - ox0) * s, (ox1 - ox0) * s);
     }
-    for (const [name, colour] of this.overview ? [] : [['zones', null], ['water', '#5b9bd5'], ['road_areas', '#6b6b6b']]) {
+    for (const [name, colour] of this.overview ? [] : [['zones', null], ['water', mapColours.water], ['road_areas', mapColours.road]]) {
       const doc = this.layers?.[name];
       if (!doc) continue;
       for (const f of doc.features) {
@@ -315,7 +464,7 @@ export class ExploreView {
       c.fill();
       c.stroke();
     }
-    const [fx, fy] = this.from(), [tx, ty] = this.orbit.target;
+    const [fx, fy] = this.from(), [tx, ty] = this.lookAt();
     const [cx, cy] = px([fx, fy]), [ax, ay] = px([tx, ty]);
     c.strokeStyle = '#d00';
     c.beginPath();
@@ -327,4 +476,24 @@ export class ExploreView {
     c.arc(cx, cy, 4, 0, 2 * Math.PI);
     c.fill();
   }
+}
+
+// Every mesh casts and takes the sun's shadows.
+function shadowed(object) {
+  object.traverse(o => { if (o.isMesh) o.castShadow = o.receiveShadow = true; });
+  return object;
+}
+
+// Whether (x, y) lies in a GeoJSON Polygon or MultiPolygon (even-odd over its rings).
+function covers(geometry, x, y) {
+  const polygons = geometry.type === 'Polygon' ? [geometry.coordinates] : geometry.type === 'MultiPolygon' ? geometry.coordinates : [];
+  return polygons.some(rings => {
+    let inside = false;
+    for (const ring of rings)
+      for (let i = 0, j = ring.length - 1; i < ring.length; j = i++) {
+        const [xi, yi] = ring[i], [xj, yj] = ring[j];
+        if ((yi > y) !== (yj > y) && x < xi + (y - yi) * (xj - xi) / (yj - yi)) inside = !inside;
+      }
+    return inside;
+  });
 }

@@ -70,6 +70,37 @@ const gridLabelStyle = f => new ol.style.Style({text: new ol.style.Text({
   stroke: new ol.style.Stroke({color: '#fff', width: 3}), textAlign: 'left',
   textBaseline: f.get('axis') === 'x' ? 'top' : 'bottom', offsetX: 3, offsetY: f.get('axis') === 'x' ? 3 : -2})});
 
+// The sketch's metres to lon/lat and back, from the server's grid of PROJ's lon/lat over the
+// sketch (GET /api/lonlat): bilinear within a cell, the edge cells' continued beyond; the
+// inverse by Newton's method on it. Registered with OpenLayers, so a basemap in Web
+// Mercator or lon/lat is reprojected under the sketch.
+function registerLonLat(grid) {
+  const [x0, y0, x1, y1] = grid.box, n = grid.side, dx = (x1 - x0) / (n - 1), dy = (y1 - y0) / (n - 1);
+  const at = (col, row) => grid.lonlat[row * n + col];
+  const toLonLat = ([x, y]) => {
+    const fc = (x - x0) / dx, fr = (y - y0) / dy;
+    const c = Math.min(n - 2, Math.max(0, Math.floor(fc))), r = Math.min(n - 2, Math.max(0, Math.floor(fr)));
+    const u = fc - c, v = fr - r;
+    const [lon, lat] = [0, 1].map(k => (1 - u) * (1 - v) * at(c, r)[k] + u * (1 - v) * at(c + 1, r)[k] +
+                                       (1 - u) * v * at(c, r + 1)[k] + u * v * at(c + 1, r + 1)[k]);
+    return [lon, Math.max(-85, Math.min(85, lat))];
+  };
+  const fromLonLat = ([lon, lat]) => {
+    let p = [(x0 + x1) / 2, (y0 + y1) / 2];
+    for (let i = 0; i < 6; ++i) {
+      const f = toLonLat(p), fx = toLonLat([p[0] + dx, p[1]]), fy = toLonLat([p[0], p[1] + dy]);
+      const a = (fx[0] - f[0]) / dx, b = (fy[0] - f[0]) / dy, c = (fx[1] - f[1]) / dx, d = (fy[1] - f[1]) / dy;
+      const e0 = lon - f[0], e1 = lat - f[1], det = a * d - b * c;
+      p = [p[0] + (d * e0 - b * e1) / det, p[1] + (a * e1 - c * e0) / det];
+    }
+    return p;
+  };
+  ol.proj.addCoordinateTransforms(metres, 'EPSG:4326', toLonLat, fromLonLat);
+  ol.proj.addCoordinateTransforms(metres, 'EPSG:3857', c => ol.proj.fromLonLat(toLonLat(c)),
+                                  c => fromLonLat(ol.proj.toLonLat(c)));
+  return {toLonLat, fromLonLat};
+}
+
 export class SketchMap {
   // `edited` is called after every edit of the drawing; `selected` with the selected feature or null.
   constructor(target, {edited, selected}) {
@@ -86,10 +117,12 @@ export class SketchMap {
     this.gridLabels = new ol.layer.Vector({source: new ol.source.Vector(), style: gridLabelStyle,
                                            declutter: true});
     this.heightmap = new ol.layer.Image({opacity: 0.85});
+    // A basemap the user names, under everything; none until then.
+    this.basemap = new ol.layer.Tile({opacity: 0.8});
     this.city = new ol.layer.Group({layers: []});
     this.map = new ol.Map({
       target,
-      layers: [this.heightmap, this.grid, this.city, this.layer, this.gridLabels],
+      layers: [this.basemap, this.heightmap, this.grid, this.city, this.layer, this.gridLabels],
       view: new ol.View({projection: metres, center: [0, 0], resolution: 2}),
       controls: defaults(ol.control.defaults)().extend([
         new ol.control.ScaleLine({units: 'metric'}),
@@ -201,6 +234,14 @@ export class SketchMap {
     if (!terrain || !terrain.bounds) return this.heightmap.setSource(null);
     this.heightmap.setSource(new ol.source.ImageStatic({
       url: '/api/heightmap.png?v=' + Date.now(), imageExtent: terrain.bounds, projection: metres}));
+  }
+
+  // An XYZ tile URL (`{z}`, `{x}`, `{y}`, in Web Mercator) under a sketch with a place on Earth
+  // (`grid`, GET /api/lonlat); null or an empty URL removes it.
+  setBasemap(url, grid) {
+    if (!url || !grid?.epsg) return this.basemap.setSource(null);
+    this.lonLat = registerLonLat(grid);
+    this.basemap.setSource(new ol.source.XYZ({url, projection: 'EPSG:3857', maxZoom: 19}));
   }
 
   drawGrid() {
