@@ -24,7 +24,7 @@ struct Note {
 // bounds and defaults come from the steps' readers themselves.
 const std::map<std::string, Note>& notes() {
   static const std::map<std::string, Note> n{
-      {"layout", {"", "how the zone's roads are laid out: growth (seed 000), grammar (seed 002's split grammar), voronoi (seed 003) or streets (the sketch's roads only)"}},
+      {"layout", {"", "how the zone's roads are laid out: growth (recursive road growth), grammar (a split grammar), voronoi (streets along Voronoi cells) or streets (the sketch's roads only)"}},
       {"grammar", {"", "for grammar: the grammar file, relative to the sketch"}},
       {"grammar_depth", {"rules", "for grammar: how many rules deep a root grows at most"}},
       {"grow_large_pieces", {"", "for grammar: land between the grammar's roads over 4 × block_area is laid out by growth inside"}},
@@ -40,7 +40,7 @@ const std::map<std::string, Note>& notes() {
       {"min_block_area", {"m²", "smaller blocks become green space"}},
       {"min_block_width", {"m", "thinner blocks (width 2·area/perimeter) become green space"}},
       {"bridges", {"", "grown roads cross heightmap water as bridges instead of stopping at the shore"}},
-      {"lots", {"", "allocation (seed 000, from the street), split (seed 003) or library (seed 004: the lots the model library's entries ask for)"}},
+      {"lots", {"", "allocation (lots along the street), split (recursive splitting) or library (the lots the model library's entries ask for)"}},
       {"lot_width", {"m", "[min, max] frontage of an allocated lot, drawn per street side"}},
       {"lot_depth", {"m", "how far allocated lots reach back from the street"}},
       {"lot_area", {"m²", "split halves lots until they are below this"}},
@@ -57,10 +57,10 @@ const std::map<std::string, Note>& notes() {
       {"roof", {"", "auto (gabled on near-rectangles, hipped otherwise, for residential; flat for the others), flat, gabled or hipped"}},
       {"roof_pitch", {"°", "the roofs' pitch"}},
       {"density", {"", "placed models' spacing along a row: dense 1.25–1.5 model widths, normal 2–3, sparse 4–5"}},
-      {"placement", {"", "how library buildings fill a lot: rows along the street (seed 002) or grid, seed 001's grid filling"}},
+      {"placement", {"", "how library buildings fill a lot: rows along the street or grid (grid filling)"}},
       {"grid_cell", {"m", "for grid: the grid's cell"}},
       {"grid_passes", {"passes", "for grid: how many times the lot is filled"}},
-      {"nesting", {"", "for grid: seed 001's 3D bounding grid, so a model may stand under another's overhang"}},
+      {"nesting", {"", "for grid: a 3D bounding grid, so a model may stand under another's overhang"}},
       {"height_channel", {"", "a channel whose value takes the place of nearness to the city's centre in extruded heights"}},
   };
   return n;

@@ -89,8 +89,8 @@ inline constexpr const char* kMapSidewalk = "#c9c3b8";
 inline constexpr const char* kMapCentreLine = "#ffffff";
 inline constexpr const char* kMapClutter = "#7b3294";  // street clutter's dots
 
-// The sketch as exacity serve's page draws it (sRGB hex): seed 000's red residential, green
-// commercial and brown industrial (3.1.1), park and water as on the SVG map; roads darker
+// The sketch as exacity serve's page draws it (sRGB hex): the classic red residential, green
+// commercial and brown industrial, park and water as on the SVG map; roads darker
 // the higher their class.
 inline const char* sketch_zone_colour(ZoneType zone) {
   switch (zone) {
