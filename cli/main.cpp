@@ -20,7 +20,7 @@
 #include "generate/export/output_folder.h"
 #include "generate/export/gis_export.h"
 #include "generate/pipeline.h"
-#include "generate/city/sketch.h"
+#include "generate/sketch/sketch.h"
 #include "generate/export/statistics.h"
 #include "generate/export/validate.h"
 #include "geom/planar_map.h"
@@ -336,7 +336,7 @@ int stats(const fs::path& out, const std::vector<fs::path>& real) {
     std::vector<std::string> problems;
     const CityLayers layers = read_layers(out / "vector", problems);
     if (!problems.empty()) throw UserError(problems.front() + "; generate the city again");
-    std::printf("%s\n%s", out.string().c_str(), format_statistics(city_statistics(layers, &sketch)).c_str());
+    std::printf("%s\n%s", out.string().c_str(), format_statistics(city_statistics(layers, &sketch, &sketch)).c_str());
   }
   for (const fs::path& file : real) std::printf("%s (real)\n%s", file.string().c_str(), format_statistics(real_statistics(file)).c_str());
   return 0;

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "generate/parcels/blocks.h"
+#include "generate/placement/building_settings.h"
 #include "generate/placement/buildings.h"
 #include "generate/placement/builtin_models.h"
 #include "generate/export/cityjson_export.h"
@@ -76,12 +77,12 @@ City build_city(const Sketch& sketch, StageClock& stages) {
         cut_slabs(*library);
     }
     check_lot_library(sketch, library ? &*library : nullptr);
-    add_builtin_models(library, sketch);
+    add_builtin_models(library, sketch.builtin_trees, sketch.builtin_lamps);
     return library;
   });
-  CityMap city_map = stages.run("zone map", [&] { return build_city_map(sketch, city.heightmap()); });
-  city.network = stages.run("road network", [&] { return grow_road_network(std::move(city_map), sketch); });
-  city.blocks = stages.run("blocks", [&] { return cut_blocks(city.network.map, sketch, city.network.uses); });
+  CityMap city_map = stages.run("zone map", [&] { return build_city_map(sketch, sketch, city.heightmap()); });
+  city.network = stages.run("road network", [&] { return grow_road_network(std::move(city_map), sketch, sketch.zones); });
+  city.blocks = stages.run("blocks", [&] { return cut_blocks(city.network.map, sketch, sketch.zones, city.network.uses); });
   std::vector<PlannedLot> planned;
   city.lots = stages.run("lots", [&] {
     planned = plan_lots(city.blocks, sketch, city.model_library(), city.channels);
@@ -96,13 +97,13 @@ City build_city(const Sketch& sketch, StageClock& stages) {
   city.models = std::move(raised.models);
   stages.run("vector layers", [&] {
     merge_sliver_road_areas(city.network.map);
-    city.ground = extract_ground(city.network.map, city.blocks, city.lots, sketch);
+    city.ground = extract_ground(city.network.map, city.blocks, city.lots, sketch.zones);
     city.layers = layers_of(city.ground, city.buildings, city.models, city.model_library());
   });
   // After the ground, whose centre lines the clutter dresses and names (docs/design.md, Placement).
   city.clutter = stages.run("clutter", [&] {
     return place_clutter({city.network.map, city.ground, city.lots, city.buildings, city.models}, city.model_library(),
-                         city.channels, sketch, city.heightmap());
+                         city.channels, sketch.seed, sketch.zones, city.heightmap());
   });
   return city;
 }
@@ -195,7 +196,8 @@ ordered_json empty_zones_report(const City& city) {
 ordered_json placement_fallbacks_report(const City& city) {
   ordered_json fallbacks = ordered_json::array();
   for (const auto& [zone, settings] : city.sketch.zone_settings) {
-    if (settings.buildings.placement != "grid" || !grows_roads(zone)) continue;
+    // The default placer falls back without a word: extruded footprints are what it asks for then.
+    if (settings.buildings.placement == &placer_types().front() || !grows_roads(zone)) continue;
     const ModelLibrary* library = city.model_library();
     if (library && !library->choices(zone, ModelKind::Building).empty()) continue;
     fallbacks.push_back({{"zone", name(zone)},
@@ -265,7 +267,7 @@ MeshCounts export_3d(const City& city, const fs::path& dir, GltfCounts& gltf) {
   const ModelLibrary* library = city.model_library();
   std::vector<Mesh> meshes = structure_meshes(city.buildings, city.models, library);
   const std::vector<GroundLayer> ground = ground_layers(city.ground, city.heightmap());
-  write_cityjson(city.ground, city.buildings, city.models, meshes, library, city.heightmap(), ground, city.sketch,
+  write_cityjson(city.ground, city.buildings, city.models, meshes, library, city.heightmap(), ground, city.sketch.crs,
                  dir / "city.city.json", city.clutter.items);
   std::vector<ModelInstance> clutter;
   for (const Clutter& c : city.clutter.items) clutter.push_back(c.instance);
@@ -303,7 +305,7 @@ GenerateResult write_city(const City& city, const fs::path& dir, StageClock& sta
       {"empty_zones", empty_zones_report(city)},
       {"placement_fallbacks", placement_fallbacks_report(city)},
       {"clutter", clutter_report(city.clutter.tally)},
-      {"statistics", city_statistics(city.layers, &sketch)},
+      {"statistics", city_statistics(city.layers, &sketch, &sketch)},
       {"validation",
        {{"ok", validation.ok()}, {"problems", validation.problems}, {"widest_sliver_m", validation.widest_sliver}}},
       {"timings_s", stages.seconds},

@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "generate/city/city.h"
+#include "generate/city.h"
 #include "generate/version.h"
 
 namespace exacity {

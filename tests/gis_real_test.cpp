@@ -3,7 +3,7 @@
 // to the test preset (label slow).
 #include <gtest/gtest.h>
 
-#include "generate/city/sketch.h"
+#include "generate/sketch/sketch.h"
 #include "generate/pipeline.h"
 #include "tests/cli_util.h"
 #include "tests/test_util.h"

@@ -163,10 +163,10 @@ TEST(BuiltinModels, ALibrarysOwnTreesAndLampsTakeTheirPlace) {
       load_model_library(std::filesystem::path(EXACITY_SOURCE_DIR) / "examples/models/library.json");
   const std::size_t before = library->models.size();
   Sketch sketch = parse_sketch(sketch_text(""), "living.geojson");
-  add_builtin_models(library, sketch);
+  add_builtin_models(library, sketch.builtin_trees, sketch.builtin_lamps);
   EXPECT_EQ(library->models.size(), before);  // it has a tree and a lamp
   std::optional<ModelLibrary> none;
-  add_builtin_models(none, sketch);
+  add_builtin_models(none, sketch.builtin_trees, sketch.builtin_lamps);
   ASSERT_TRUE(none);
   EXPECT_EQ(none->models.size(), 3u);
 }

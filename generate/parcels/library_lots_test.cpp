@@ -130,7 +130,7 @@ TEST(LibraryLots, AZoneAskingForLibraryLotsNeedsEntriesWithLotsOfAGoodShape) {
   Sketch sketch;
   sketch.path = "town.geojson";
   sketch.zone_settings[ZoneType::Residential] = default_zone_settings(ZoneType::Residential);
-  sketch.zone_settings[ZoneType::Residential].lots.layout = "library";
+  sketch.zone_settings[ZoneType::Residential].lots.layout = &lot_layout_type("library");
   auto message = [&](const ModelLibrary* lib) {
     try {
       check_lot_library(sketch, lib);

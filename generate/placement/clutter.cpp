@@ -127,8 +127,8 @@ struct Where {
 // The city the clutter stands in, with indices to find lots and footprints near a spot.
 class StandingGround {
  public:
-  StandingGround(const ClutterGround& g, const Sketch& sketch)
-      : g_(g), sketch_(sketch), lot_rings_(32), footprints_(8) {
+  StandingGround(const ClutterGround& g, const std::vector<ZoneFeature>& zones)
+      : g_(g), zones_(zones), lot_rings_(32), footprints_(8) {
     for (std::size_t i = 0; i < g.lots.size(); ++i) lot_rings_.add(g.lots[i].polygon.outer, static_cast<int>(i));
     auto add = [&](const geom::Polygon& p) {
       footprints_.add(p.outer, static_cast<int>(footprint_rings_.size()));
@@ -145,7 +145,7 @@ class StandingGround {
     if (label < 0) return {-1, false, kOnEdge, std::nullopt};
     const FaceLabel& l = g_.map.labels[label];
     Where w;
-    if (l.zone >= 0) w.zone = sketch_.zones[l.zone].type;
+    if (l.zone >= 0) w.zone = zones_[l.zone].type;
     if (l.bridge || l.cover == Cover::Water)
       w.blocked = kOnWater;
     else if (l.cover == Cover::Road && l.surface == RoadSurface::Sidewalk)
@@ -174,7 +174,7 @@ class StandingGround {
 
  private:
   const ClutterGround& g_;
-  const Sketch& sketch_;
+  const std::vector<ZoneFeature>& zones_;
   RingBuckets lot_rings_, footprints_;
   std::vector<const geom::Ring*> footprint_rings_;
 };
@@ -485,14 +485,14 @@ void dress_park(const ZoneArea& park, const ModelLibrary& lib, Random& rng, Dres
 }  // namespace
 
 StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* library, const Channels& channels,
-                            const Sketch& sketch, const Terrain* terrain) {
+                            std::uint64_t seed, const std::vector<ZoneFeature>& zones, const Terrain* terrain) {
   StreetClutter out;
   if (!library ||
       std::none_of(library->models.begin(), library->models.end(), [](const Model& m) { return is_clutter(m.kind); }))
     return out;
   std::vector<Base> bases;
   for (const Model& m : library->models) bases.push_back(base_of(m));
-  const StandingGround side(ground, sketch);
+  const StandingGround side(ground, zones);
   const std::vector<RoadLine>& roads = ground.ground.roads;
   const std::vector<StreetJunction> junctions = street_junctions(roads);
   // Streets keep clear of a junction's surface and of the clutter at its corners.
@@ -501,7 +501,7 @@ StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* lib
 
   // What a street's stations probe stands in a drawn zone, or none is there.
   std::vector<geom::Box> zone_boxes;
-  for (const ZoneFeature& z : sketch.zones)
+  for (const ZoneFeature& z : zones)
     for (const geom::Polygon& p : z.polygons) zone_boxes.push_back(RingBuckets::box_of(p.outer));
 
   std::vector<const ZoneArea*> parks;
@@ -514,7 +514,7 @@ StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* lib
   const std::size_t streets_and_junctions = roads.size() + junctions.size();
   const std::size_t groups = streets_and_junctions + parks.size();
   std::vector<Proposals> proposed(groups);
-  const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Clutter));
+  const std::uint64_t stage = mix(seed, static_cast<std::uint64_t>(Stage::Clutter));
   const CancelCheck cancel;
   tbb::parallel_for(std::size_t(0), groups, [&](std::size_t g) {
     cancel.check();

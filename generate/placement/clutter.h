@@ -20,7 +20,7 @@
 #include "generate/city/channels.h"
 #include "generate/city/city_map.h"
 #include "generate/city/ground.h"
-#include "generate/city/sketch.h"
+#include "generate/city/features.h"
 #include "generate/city/terrain.h"
 #include "generate/parcels/lots.h"
 #include "generate/placement/buildings.h"
@@ -59,6 +59,6 @@ struct ClutterGround {
 // Every street's clutter, road by road in parallel, gathered in road order; none without a
 // library or clutter entries.
 StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* library, const Channels& channels,
-                            const Sketch& sketch, const Terrain* terrain);
+                            std::uint64_t seed, const std::vector<ZoneFeature>& zones, const Terrain* terrain);
 
 }  // namespace exacity

@@ -46,7 +46,7 @@ ModelLibrary l_and_square() {
 
 BuildingSettings tight() {
   BuildingSettings p;
-  p.setback = 0, p.building_gap = 0, p.placement = "grid", p.grid_cell = 1;
+  p.setback = 0, p.building_gap = 0, p.placement = &placer_type("grid"), p.grid_cell = 1;
   return p;
 }
 
@@ -114,7 +114,7 @@ TEST(GridFilling, NothingOverlapsAndEverythingStandsInTheLot) {
   lib.models.push_back(model("bar", {{0, 0}, {14, 0}, {14, 5}, {0, 5}}, 2));
   lib.models.back().zones = {ZoneType::Residential};
   BuildingSettings p;
-  p.placement = "grid", p.grid_passes = 3, p.grid_cell = 0.5;
+  p.placement = &placer_type("grid"), p.grid_passes = 3, p.grid_cell = 0.5;
   const std::vector<ModelInstance> placed = fill(lot, lib, p, 11);
   ASSERT_GT(placed.size(), 8u);
   for (std::size_t a = 0; a < placed.size(); ++a) {

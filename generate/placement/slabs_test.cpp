@@ -144,7 +144,7 @@ std::vector<ModelInstance> fill_arches(bool nesting, std::uint64_t seed) {
   lib.models = {arch(), kiosk(2.5)};
   lib.models[1].weight = 4;
   BuildingSettings p;
-  p.placement = "grid", p.nesting = nesting, p.setback = 1, p.building_gap = 1, p.grid_cell = 1;
+  p.placement = &placer_type("grid"), p.nesting = nesting, p.setback = 1, p.building_gap = 1, p.grid_cell = 1;
   const Channels none;
   const auto filler = make_grid_filler(lib, ZoneType::Commercial, none);
   Occupancy occupancy(lot, LotEdge::kStreet);

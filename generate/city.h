@@ -7,7 +7,7 @@
 
 #include "generate/city/channels.h"
 #include "generate/city/ground.h"
-#include "generate/city/sketch.h"
+#include "generate/sketch/sketch.h"
 #include "generate/city/terrain.h"
 #include "generate/export/vector_layers.h"
 #include "generate/layout/road_network.h"
