@@ -54,8 +54,9 @@ GenerateResult generate(const fs::path& sketch, const fs::path& out, std::vector
   fs::remove_all(out);
   fs::create_directories(out);
   StageClock clock(nullptr, kCityStages + kWriteStages);
-  City city = build_city(load_sketch(sketch, true, models), clock);
-  return write_city(city, out, clock, {std::move(formats)});
+  const Sketch loaded = load_sketch(sketch, true, models);
+  City city = build_city(loaded, clock);
+  return write_city(loaded, city, out, clock, {std::move(formats)});
 }
 
 // The vector layers of two output folders are the same files.

@@ -41,7 +41,8 @@ GenerateResult generate(const fs::path& sketch, const fs::path& out) {
   fs::remove_all(out);
   fs::create_directories(out);
   StageClock clock(nullptr, kCityStages + kWriteStages);
-  return write_city(build_city(load_sketch(sketch), clock), out, clock, {});
+  const Sketch loaded = load_sketch(sketch);
+  return write_city(loaded, build_city(loaded, clock), out, clock, {});
 }
 
 // city.osm as libosmium reads it: every id, and each way's tags.

@@ -4,6 +4,8 @@
 #include "generate/errors.h"
 #include "generate/sketch/sketch.h"
 #include "generate/city/street_graph.h"
+#include "generate/layout/road_settings.h"
+#include "generate/placement/building_settings.h"
 
 using namespace exacity;
 
