@@ -3,6 +3,7 @@
 
 #include <tbb/global_control.h>
 
+#include "generate/sketch/sketch.h"
 #include "generate/parcels/blocks.h"
 #include "generate/layout/road_network.h"
 #include "generate/export/vector_layers.h"

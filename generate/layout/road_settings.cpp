@@ -1,6 +1,7 @@
 #include "generate/layout/road_settings.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace exacity {
 
@@ -19,6 +20,12 @@ const std::vector<RoadLayoutType>& road_layout_types() {
       {"streets", "the sketch's roads only", {}, read_streets_layout},
   };
   return table;
+}
+
+const RoadLayoutType& road_layout_type(std::string_view name) {
+  for (const RoadLayoutType& t : road_layout_types())
+    if (t.name == name) return t;
+  throw std::logic_error("no road layout " + std::string(name));
 }
 
 namespace {
@@ -42,30 +49,6 @@ void read_widths(const SettingsReader& s, std::vector<double>& widths) {
   widths.clear();
   for (std::size_t i = 0; i < w.size(); ++i)
     widths.push_back(read_number(w[i], s.file(), s.where("road_widths") + "[" + std::to_string(i) + "]", 0.5, 200));
-}
-
-const RoadLayoutType& layout_named(const std::string& name) {
-  for (const RoadLayoutType& t : road_layout_types())
-    if (t.name == name) return t;
-  return road_layout_types().front();
-}
-
-// The "layout" key, one of the table's names; the error lists them.
-const RoadLayoutType& read_layout_name(const SettingsReader& s, const std::string& defaults) {
-  std::string name = defaults;
-  std::string expected = "expected ";
-  const auto& table = road_layout_types();
-  for (std::size_t i = 0; i < table.size(); ++i)
-    expected += std::string(i == 0 ? "" : i + 1 == table.size() ? " or " : ", ") + "\"" + std::string(table[i].name) +
-                "\" (" + std::string(table[i].what) + ")";
-  if (s.has("layout")) {
-    const nlohmann::json& j = s.at("layout");
-    if (!j.is_string()) s.fail("layout", expected);
-    name = j.get<std::string>();
-    if (std::none_of(table.begin(), table.end(), [&](const RoadLayoutType& t) { return t.name == name; }))
-      s.fail("layout", expected);
-  }
-  return layout_named(name);
 }
 
 }  // namespace
@@ -102,10 +85,11 @@ const std::set<std::string>& road_setting_keys() {
 RoadSettings read_road_settings(const SettingsReader& s, RoadSettings r, bool read_grammars) {
   read_growth(s, r.growth);
   read_widths(s, r.road_widths);
-  const RoadLayoutType& chosen = read_layout_name(s, r.layout->name());
+  const auto& table = road_layout_types();
+  const RoadLayoutType& chosen = s.row("layout", table, road_layout_type(r.layout->name()));
   // Every layout's keys are checked where written, so that a wrong value is caught before
   // the zone switches to that layout; the chosen one's reading is kept.
-  for (const RoadLayoutType& t : road_layout_types()) {
+  for (const RoadLayoutType& t : table) {
     auto layout = t.read({s, r, read_grammars, &t == &chosen});
     if (&t == &chosen) r.layout = std::move(layout);
   }

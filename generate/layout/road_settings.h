@@ -35,6 +35,7 @@ struct RoadLayoutType {
   std::shared_ptr<const RoadLayoutChoice> (*read)(const RoadLayoutReading& reading);
 };
 const std::vector<RoadLayoutType>& road_layout_types();
+const RoadLayoutType& road_layout_type(std::string_view name);  // one of the table's
 
 RoadSettings default_road_settings(ZoneType type);
 double road_width(const RoadSettings& s, int level);

@@ -2,8 +2,10 @@
 // corner lots first, and the entries steered by a two-valued channel.
 #include <gtest/gtest.h>
 
+#include "generate/sketch/sketch.h"
 #include "generate/errors.h"
 #include "generate/parcels/lots.h"
+#include "generate/parcels/parcel_settings.h"
 #include "geom/measure.h"
 #include "geom/planar_map.h"
 

@@ -1,6 +1,5 @@
 #include "generate/parcels/parcel_settings.h"
 
-#include <algorithm>
 #include <stdexcept>
 
 namespace exacity {
@@ -51,20 +50,7 @@ LotSettings read_lot_settings(const SettingsReader& s, LotSettings l, const Road
   s.number("min_lot_area", l.min_lot_area, 0, 1e8);
   s.number("lot_depth", l.lot_depth, 2, 1e4);
   s.range("lot_width", l.lot_width, 2, 1e4, "lot frontage in metres");
-  l.layout = &lot_layout_type(road_layout.default_lots());
-  if (s.has("lots")) {
-    const auto& table = lot_layout_types();
-    std::string expected = "expected ";
-    for (std::size_t i = 0; i < table.size(); ++i)
-      expected += std::string(i == 0 ? "" : i + 1 == table.size() ? " or " : ", ") + "\"" + std::string(table[i].name) +
-                  "\" (" + std::string(table[i].what) + ")";
-    const nlohmann::json& j = s.at("lots");
-    const auto chosen = std::find_if(table.begin(), table.end(), [&](const LotLayoutType& t) {
-      return j.is_string() && t.name == j.get_ref<const std::string&>();
-    });
-    if (chosen == table.end()) s.fail("lots", expected);
-    l.layout = &*chosen;
-  }
+  l.layout = &s.row("lots", lot_layout_types(), lot_layout_type(road_layout.default_lots()));
   return l;
 }
 

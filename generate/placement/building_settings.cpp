@@ -1,6 +1,5 @@
 #include "generate/placement/building_settings.h"
 
-#include <algorithm>
 #include <stdexcept>
 
 namespace exacity {
@@ -78,19 +77,7 @@ BuildingSettings read_building_settings(const SettingsReader& s, BuildingSetting
   s.choice("density", b.density, {"dense", "normal", "sparse"},
            "expected \"dense\", \"normal\" or \"sparse\" (how far apart placed models stand)");
   read_heights(s, b);
-  if (s.has("placement")) {
-    const auto& table = placer_types();
-    std::string expected = "expected ";
-    for (std::size_t i = 0; i < table.size(); ++i)
-      expected += std::string(i == 0 ? "" : i + 1 == table.size() ? " or " : ", ") + "\"" + std::string(table[i].name) +
-                  "\" (" + std::string(table[i].what) + ")";
-    const nlohmann::json& j = s.at("placement");
-    const auto chosen = std::find_if(table.begin(), table.end(), [&](const PlacerType& t) {
-      return j.is_string() && t.name == j.get_ref<const std::string&>();
-    });
-    if (chosen == table.end()) s.fail("placement", expected);
-    b.placement = &*chosen;
-  }
+  b.placement = &s.row("placement", placer_types(), *b.placement);
   s.number("grid_cell", b.grid_cell, 0.1, 10);
   s.whole_number("grid_passes", b.grid_passes, 1, 16, "passes");
   s.boolean("nesting", b.nesting);

@@ -1,6 +1,7 @@
 // Seed 001's 3D bounding grid made exact: models cut into slabs at their undersides, and
 // grid filling with nesting, which lets a small model stand under an arch's beam only
 // where no two models' slabs meet.
+#include "generate/placement/building_settings.h"
 #include "generate/placement/slabs.h"
 
 #include <gtest/gtest.h>
