@@ -1,4 +1,4 @@
-// The robustness benchmark's families of near-degenerate sketches (issue 11). Each case is
+// The robustness benchmark's families of near-degenerate sketches (docs/benchmarks.md). Each case is
 // a small city written as a GeoJSON sketch, a function of (family, case, seed) only.
 #pragma once
 

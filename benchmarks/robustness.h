@@ -1,4 +1,4 @@
-// The geometric-robustness benchmark (issue 11): every build of Exacity (the exact one and
+// The geometric-robustness benchmark (docs/benchmarks.md): every build of Exacity (the exact one and
 // the floating-point ones, geom/exact.h) generates every case of every family in a child
 // process with a time limit; each output is judged by GEOS (benchmarks/judge.h) and by the
 // exact build's `exacity validate`. Writes robustness.json, robustness.md and robustness.svg.

@@ -146,23 +146,24 @@ int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, 
   std::printf("exacity: wrote %s (roads %d, blocks %d, lots %d, buildings %d%s); open %s\n", out.string().c_str(),
               counts["roads"].get<int>(), counts["blocks"].get<int>(), counts["lots"].get<int>(),
               counts["buildings_by_kind"].value("building", 0), other_models.c_str(), (out / "map.svg").string().c_str());
-  if (!sketch.osm_left_out.empty()) {
+  // Each file's own counts (several files read together each have theirs).
+  for (const Sketch::OsmCounts& file : sketch.osm_counts) {
+    if (file.left_out.empty()) continue;
     int total = 0;
     std::string tags;
-    for (const auto& [why, count] : sketch.osm_left_out) total += count;
-    std::string files = sketch.osm_files.empty() ? sketch.path.string() : "";
-    for (const std::string& file : sketch.osm_files) files += (files.empty() ? "" : ", ") + file;
-    std::vector<std::pair<std::string, int>> most(sketch.osm_left_out.begin(), sketch.osm_left_out.end());
+    for (const auto& [why, count] : file.left_out) total += count;
+    std::vector<std::pair<std::string, int>> most(file.left_out.begin(), file.left_out.end());
     std::stable_sort(most.begin(), most.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
     for (std::size_t i = 0; i < most.size() && i < 4; ++i)
       tags += (i ? ", " : "") + most[i].first + " " + std::to_string(most[i].second);
     std::fprintf(stderr,
                  "exacity: note: %s: left out %d OpenStreetMap features whose tags make no zone or road (%s%s); "
                  "sketch.geojson's \"osm\" member counts them all\n",
-                 files.c_str(), total, tags.c_str(), most.size() > 4 ? ", ..." : "");
+                 file.file.c_str(), total, tags.c_str(), most.size() > 4 ? ", ..." : "");
   }
-  for (const std::string& what : sketch.osm_repaired)
-    std::fprintf(stderr, "exacity: note: %s: %s\n", sketch.path.string().c_str(), what.c_str());
+  for (const Sketch::OsmCounts& file : sketch.osm_counts)
+    for (const std::string& what : file.repaired)
+      std::fprintf(stderr, "exacity: note: %s: %s\n", file.file.c_str(), what.c_str());
   for (const auto& z : result.report["empty_zones"]) {
     const std::string zone = z["zone"].get<std::string>(), why = z["why"].get<std::string>();
     if (z.contains("grid_cell"))

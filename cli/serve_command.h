@@ -1,4 +1,4 @@
-// exacity serve: the sketch editor and viewer in a browser (README, exacity serve).
+// exacity serve: the sketch editor and viewer in a browser (docs/serve.md).
 #pragma once
 
 #include <CLI/CLI.hpp>

@@ -2,7 +2,7 @@
 """Writes valley.png: the 16-bit greyscale heightmap of examples/valley.geojson.
 
 A valley floor rising to hills east and west, with a meandering river whose pixels are 0
-(water, as seed 000 marks it). Pure standard library, so it runs anywhere:
+(water, as Exacity reads it). Pure standard library, so it runs anywhere:
     python3 examples/make_valley_heightmap.py examples/valley.png
 """
 import math

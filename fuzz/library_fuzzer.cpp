@@ -1,12 +1,13 @@
 // The model library manifest on any bytes, its entries naming a small house and a lamp that
 // exist: a library or one UserError. The keys (lots, channels, clutter kinds and
-// their spacing) are read too, and the channels checked against a sketch's one, as
-// generate does.
+// their spacing) are read too, the channels checked against a sketch's one as generate
+// does, and the library then drawn from and cut into slabs as placement and nesting do.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
 #include "fuzz/fuzz_target.h"
+#include "generate/city/random.h"
 #include "generate/placement/model_library.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -21,8 +22,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   exacity::fuzz::expect_user_errors_only([&] {
     exacity::ModelLibrary library = exacity::load_model_library(dir / "library.json");
     library.check_channels({{"downtown", dir / "downtown.png", {0, 0, 100, 100}}});
-    for (exacity::ZoneType zone : {exacity::ZoneType::Residential, exacity::ZoneType::Commercial})
+    // What placement draws from: every zone's lot models and every kind's models, by weight.
+    for (std::size_t z = 0; z < exacity::kZoneTypeNames.size(); ++z) {
+      const auto zone = static_cast<exacity::ZoneType>(z);
       library.lot_choices(zone);
+      for (exacity::ModelKind kind : exacity::kModelKinds) {
+        exacity::Random rng(z);
+        exacity::pick(exacity::choices_at(library.choices(zone, kind), library, nullptr, {0, 0}), rng);
+      }
+    }
+    // The slabs nesting cuts each building into (exact work on the scaled models).
+    exacity::cut_slabs(library);
   });
   return 0;
 }

@@ -25,7 +25,7 @@ struct City {
   DrawnFeatures drawn;    // the sketch's zones and roads
   std::string camera;     // the sketch's still camera (exacity render's --camera syntax), or empty
   std::optional<Terrain> terrain;
-  Channels channels;  // seed 004's, empty when the sketch has none
+  Channels channels;  // empty when the sketch has none
   std::optional<ModelLibrary> library;
   RoadNetwork network;
   std::vector<Block> blocks;
@@ -33,7 +33,7 @@ struct City {
   UnbuiltLots unbuilt_lots;  // lots merged into a neighbour or left open: no placer could build on them
   std::vector<Building> buildings;  // extruded
   std::vector<ModelInstance> models;  // placed from the library
-  StreetClutter clutter;  // seed 004's, along the streets; written as vector/clutter.geojson
+  StreetClutter clutter;  // along the streets; written as vector/clutter.geojson
   Ground ground;
   CityLayers layers;  // as written into vector/
 

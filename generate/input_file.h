@@ -1,7 +1,7 @@
 // The one way Exacity reads a file a user names (sketches, grid maps, grammars, model
 // libraries, OBJ and MTL files, images, camera paths): only a regular file, and only up to
 // a size limit, so a device such as /dev/zero, a pipe or a folder is one line, not a hang
-// or runaway memory (README, Limits).
+// or runaway memory (docs/limits.md).
 #pragma once
 
 #include <cstdint>

@@ -73,7 +73,7 @@ City build_city(const Sketch& sketch, StageClock& stages) {
     if (!sketch.models.empty()) {
       library = load_model_library(sketch.models);
       library->check_channels(sketch.channels);
-      // Seed 001's nesting compares models slab by slab (docs/design.md, Placement: nesting).
+      // Nesting compares models slab by slab (docs/design.md, Placement: nesting).
       if (std::any_of(sketch.zone_settings.begin(), sketch.zone_settings.end(),
                       [](const auto& z) { return z.second.buildings.nesting; }))
         cut_slabs(*library);
@@ -105,7 +105,7 @@ City build_city(const Sketch& sketch, StageClock& stages) {
   // After the ground, whose centre lines the clutter dresses and names (docs/design.md, Placement).
   city.clutter = stages.run("clutter", [&] {
     return place_clutter({city.network.map, city.ground, city.lots, city.buildings, city.models}, city.model_library(),
-                         city.channels, city.settings.seed, city.drawn.zones, city.heightmap());
+                         city.channels, city.settings, city.drawn.zones, city.heightmap());
   });
   return city;
 }

@@ -12,7 +12,9 @@ namespace exacity {
 bool is_png(std::string_view bytes);
 
 // Decodes the PNG in `bytes` row by row (one row in memory) and returns libpng's error
-// message, or "" when it decodes. Nothing is printed.
-std::string png_problem(std::string_view bytes);
+// message, or "" when it decodes. Nothing is printed. An image of more than `max_pixels`
+// is not decoded (""): its caller refuses it by the size its header gives, before the
+// work its rows would be (a small file of compressed zeros inflates a thousandfold).
+std::string png_problem(std::string_view bytes, double max_pixels);
 
 }  // namespace exacity

@@ -103,7 +103,7 @@ ExactRing joint_piece(Vec2 a, Vec2 q, Vec2 b, double half_width);
 // A 16-gon around the disc of radius r at c, its corners on the grid.
 ExactRing disc_piece(Vec2 c, double r);
 
-// The mitred junction of streets meeting at q (seed 004's StreetBuilder): each street
+// The mitred junction of streets meeting at q (docs/design.md, Algorithms: street-graph layout): each street
 // leaves q towards `toward` with its half width. Around q, each pair of neighbouring
 // streets meets where their sides cross (a bevel where that mitre reaches past the mitre
 // limit on the outside of a bend), and each street is cut straight across where its last

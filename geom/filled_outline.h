@@ -1,5 +1,5 @@
 // What a part of a mesh covers seen from above, holes filled: a model's outline within one
-// horizontal slab (seed 001's 3D bounding grid; docs/design.md, Placement: nesting).
+// horizontal slab (nesting's 3D occupancy grid; docs/design.md, Placement: nesting).
 #pragma once
 
 #include <array>

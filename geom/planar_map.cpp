@@ -7,6 +7,7 @@
 #include <cmath>
 #include <deque>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <tuple>
 #include <unordered_map>
@@ -16,7 +17,7 @@
 #include <CGAL/Arr_extended_dcel.h>
 #include <CGAL/Arr_observer.h>
 #include <CGAL/Arr_segment_traits_2.h>
-#include <CGAL/Arr_walk_along_line_point_location.h>
+#include <CGAL/Arr_landmarks_point_location.h>
 #include <CGAL/Arrangement_2.h>
 #include <CGAL/Polygon_2_algorithms.h>
 
@@ -273,6 +274,25 @@ int winding_of(const Windings& w, int counter) {
 struct PlanarMap::Impl {
   Arrangement arr;
   LabelKeeper keeper{arr};
+  // Point location for label_at, built on the first query after the map last changed:
+  // walking from the unbounded face crossed a share of the whole map per query, and the
+  // clutter asks once a spot (a grammar's 27,000 pieces took minutes). Landmarks walk from
+  // the nearest vertex. The answer is the exact face either way.
+  using Landmarks = CGAL::Arr_landmarks_point_location<Arrangement>;
+  mutable std::mutex locator_mutex;
+  mutable std::unique_ptr<Landmarks> locator;
+
+  const Landmarks& landmarks() const {
+    std::lock_guard<std::mutex> lock(locator_mutex);
+    if (!locator) {
+      locator = std::make_unique<Landmarks>(arr);
+      locator->locate(Point(0, 0));  // builds its search tree here, not in concurrent queries
+    }
+    return *locator;
+  }
+  // Called before the map's edges change: a locator attached to the map would be updated
+  // edge by edge.
+  void map_changes() { locator.reset(); }
   std::vector<Curve> pending;
   std::vector<std::vector<Curve>> within;  // per region, for insert_within()
   std::map<int, std::vector<Point>> polylines;
@@ -384,6 +404,7 @@ void PlanarMap::add_path_stroke(const Path& path, double half_width, int counter
 }
 
 void PlanarMap::insert_batch() {
+  impl_->map_changes();
   impl_->merge_plain_edges();
   CGAL::insert(impl_->arr, impl_->pending.begin(), impl_->pending.end());
   impl_->pending.clear();
@@ -637,6 +658,7 @@ void for_each_near_pair(const std::vector<Vec2>& vertices, const std::vector<std
 }  // namespace
 
 std::size_t PlanarMap::snap_round() {
+  impl_->map_changes();
   Arrangement& arr = impl_->arr;
   // Candidates come from the vertices' interval approximations (rounding every vertex
   // exactly costs seconds on a large map); only a candidate's vertices are rounded exactly.
@@ -699,6 +721,7 @@ std::size_t PlanarMap::snap_round() {
 
 void PlanarMap::insert_within(const std::vector<int>& region_of_label,
                                const std::function<int(const Windings&, int)>& label_of) {
+  impl_->map_changes();
   auto region_of = impl_->group_function(region_of_label);
   std::vector<std::vector<Arrangement::Face_handle>> faces(impl_->within.size());
   for (auto f = impl_->arr.faces_begin(); f != impl_->arr.faces_end(); ++f)
@@ -868,8 +891,7 @@ std::map<int, std::vector<PolylinePiece>> PlanarMap::polyline_pieces() const {
 }
 
 int PlanarMap::label_at(Vec2 point) const {
-  const CGAL::Arr_walk_along_line_point_location<Arrangement> walk(impl_->arr);
-  const auto where = walk.locate(to_exact(point));
+  const auto where = impl_->landmarks().locate(to_exact(point));
   const Face* f = boost::get<Face>(&where);
   return f ? (*f)->data() : -1;
 }

@@ -71,7 +71,7 @@ class PlanarMap {
   // end to end; and a 16-gon around a disc, for where several meet.
   void add_joint(Vec2 a, Vec2 q, Vec2 b, double half_width, int counter);
   void add_disc(Vec2 centre, double radius, int counter);
-  // The mitred junction of streets meeting at q (seed 004): one polygon whose sides lie on
+  // The mitred junction of streets meeting at q (docs/design.md, Exactness rule 3): one polygon whose sides lie on
   // the streets' stroke sides. False, and nothing queued, where none is needed or none can
   // be drawn (see exact::junction_piece).
   bool add_junction(Vec2 q, const std::vector<JunctionArm>& arms, int counter);

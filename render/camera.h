@@ -1,4 +1,4 @@
-// Cameras (seed 000, 3.3): a spherical orbit bound to the upper hemisphere or a look-at
+// Cameras (docs/design.md, Algorithms): a spherical orbit bound to the upper hemisphere or a look-at
 // camera, perspective or orthographic; the overview camera that sees the whole city; and
 // the ground region a camera sees, for the minimap.
 #pragma once
@@ -84,7 +84,7 @@ class Lens {
   float focus_offset_ = 0;
 };
 
-// Seed 000, 3.3.4: straight down over the city's centre, at the height where the whole map
+// The overview, an air photo: straight down over the city's centre, at the height where the whole map
 // is seen: height = map height / (2 tan(fov_y / 2)), the map height being the box's extent
 // north-south or its east-west extent over the aspect ratio, whichever is more; counted
 // from `top`, the highest point of the city. Orthographic: the map height is spanned.
@@ -94,7 +94,7 @@ float overview_height(const geom::Box& city, float fov_y, float aspect);
 // Where the image's corner rays meet the ground plane z = ground, as a quadrilateral
 // (bottom-left, bottom-right, top-right, top-left). Where an upper ray points at or above
 // the horizon, the lower ray on its side is followed on along the ground to the edge of
-// `bounds` instead (seed 000's special case).
+// `bounds` instead (a view near the horizon).
 std::vector<geom::Vec2> ground_footprint(const Camera& camera, int width, int height, float ground,
                                          const geom::Box& bounds);
 

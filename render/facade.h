@@ -4,7 +4,7 @@
 // bays along the wall; commercial buildings a ground floor of shop windows under a fascia;
 // each building its own storey height, bay width, window size and a phase along its walls.
 // Pitched roofs get rows of tiles down their slope, flat ones gravel (Perlin fBm, as grass
-// has, seed 003).
+// has).
 #pragma once
 
 #include <cstdint>

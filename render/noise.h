@@ -1,4 +1,4 @@
-// Perlin's improved gradient noise in 2D and its fractal sum, for grass (seed 003).
+// Perlin's improved gradient noise in 2D and its fractal sum, for grass (docs/design.md, Algorithms: path tracing).
 #pragma once
 
 #include <array>

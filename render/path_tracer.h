@@ -49,7 +49,7 @@ struct Image {
 
 // A homogeneous layer of haze from the ground up to `top` (scene z): light scatters in it
 // (Henyey–Greenstein, asymmetry g) and is not absorbed, which gives aerial perspective
-// and, where buildings shade it from the sun, light shafts (seed 003), physically.
+// and, where buildings shade it from the sun, light shafts, physically.
 struct Haze {
   float density = 0;  // scattering per metre; 0: clear air
   float top = 500;

@@ -1,5 +1,5 @@
 // Renders a city held in memory: the still from a camera, the overview from straight
-// above, and the minimap with the still's visible ground region (seed 000, 3.3.4).
+// above, and the minimap with the still's visible ground region (docs/design.md, Algorithms).
 #pragma once
 
 #include <filesystem>

@@ -36,7 +36,7 @@ enum class Entity : std::uint32_t {
   Zone = 5,
   Water = 6,
   Terrain = 7,
-  Clutter = 8  // seed 004's street clutter, by its id in vector/clutter.geojson
+  Clutter = 8  // street clutter, by its id in vector/clutter.geojson
 };
 inline std::uint32_t entity_id(Entity kind, std::size_t index) {
   return static_cast<std::uint32_t>(kind) << 24 | static_cast<std::uint32_t>(index & 0xffffff);

@@ -8,12 +8,13 @@ cd "$(dirname "$0")/.."
 
 packages=(
   g++ cmake ninja-build ccache pkg-config
+  clang  # the fuzz preset and libFuzzer (scripts/fuzz.sh); its FuzzedDataProvider.h for the corpus replay
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libopenmesh-dev libembree-dev libopenimageio-dev libpng-dev openimageio-tools libopenexr-dev libtbb-dev
   nlohmann-json3-dev libcli11-dev libtinygltf-dev libcpp-httplib-dev
   libgtest-dev libgmock-dev libbenchmark-dev libgoogle-perftools-dev libgeos-dev
   libgdal-dev libproj-dev libosmium2-dev libexpat1-dev libbz2-dev zlib1g-dev
-  python3 python3-shapely chromium
+  python3 python3-shapely chromium osmium-tool
   slurm-wlm ffmpeg
 )
 

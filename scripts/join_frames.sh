@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Joins a camera path's frames (FRAMES/frame_NNNN.png, from exacity render --path or
-# scripts/render_path.sbatch) into an H.264 MP4 with ffmpeg (README.md, Rendering).
+# scripts/render_path.sbatch) into an H.264 MP4 with ffmpeg (docs/rendering.md, On a Slurm cluster).
 #
 #   scripts/join_frames.sh FRAMES FPS OUT.mp4
 #

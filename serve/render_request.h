@@ -1,5 +1,5 @@
 // POST /api/render's body as a render request, checked as `exacity render` checks its
-// options, with the CLI's messages (README, Rendering).
+// options, with the CLI's messages (docs/rendering.md).
 #pragma once
 
 #include <cstdint>

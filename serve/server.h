@@ -1,4 +1,4 @@
-// exacity serve: the page, its static files and the JSON API over HTTP (README, exacity serve;
+// exacity serve: the page, its static files and the JSON API over HTTP (docs/serve.md;
 // docs/design.md, Serving).
 #pragma once
 

@@ -63,7 +63,7 @@ json json_for_check(std::string text) {
   return json();
 }
 
-// Every file the sketch's settings name (README, The sketch), with the key that names it.
+// Every file the sketch's settings name (docs/sketch.md), with the key that names it.
 std::vector<std::pair<std::string, std::string>> named_files(const json& ex) {
   std::vector<std::pair<std::string, std::string>> files;
   auto add = [&](const json& j, const char* key, const std::string& where) {

@@ -1,4 +1,4 @@
-// Bridges as the 3D exports hold them (issue 25; docs/design.md, Ground meshes): a highway
+// Bridges as the 3D exports hold them (docs/design.md, Ground meshes): a highway
 // over a river in a heightmap valley, read back from city.glb, CityJSON and city.obj, has
 // its deck level from abutment to abutment over the whole crossing, on piers standing on
 // the riverbed; then roads that cross water in awkward ways keep a deck at every crossing.

@@ -1,4 +1,4 @@
-// Issue 25: depth of field (a thin lens, its plane in focus tilted or not) and the cameras
+// Depth of field (a thin lens, its plane in focus tilted or not) and the cameras
 // that stand on the city's ground (render/README.md, Cameras): a pedestrian walking a road
 // at eye height over a heightmap, a flyer at a height over it, and their bad specs.
 #include <OpenImageIO/imageio.h>

@@ -4,7 +4,7 @@
 Written apart from exacity's own exact validator so that a bug in one is caught by the
 other: every polygon valid in the OGC sense, outer rings counter-clockwise and holes
 clockwise, rings closed; zones, water and non-bridge road areas pairwise disjoint (their
-overlaps have no area); bridges over water; buildings apart, or, nested (seed 001), apart in
+overlaps have no area); bridges over water; buildings apart, or, nested, apart in
 3D by the slabs they write; each piece of street clutter strictly inside a sidewalk or a lot
 and in no carriageway, junction, water or building.
 
@@ -37,7 +37,7 @@ def signed_area(ring):
 
 
 def nested_overlap(a, b):
-    """Why two buildings whose footprints overlap may not (seed 001's nesting); None when the
+    """Why two buildings whose footprints overlap may not (nesting); None when the
     slabs both write (heights from their floors, exact as fractions) prove that wherever
     they share the plan one lies wholly below the other."""
     stacks = []

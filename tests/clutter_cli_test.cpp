@@ -1,4 +1,4 @@
-// Seed 004's street clutter through the exacity program: the same bytes whatever the thread
+// Street clutter through the exacity program: the same bytes whatever the thread
 // count, and the outputs that hold it pass the independent checks (GEOS on clutter.geojson,
 // the Khronos glTF validator, the CityJSON checker), which also catch clutter misplaced;
 // Exacity's own trees and lamps pass them too, and a bad "builtin_models" is refused.
@@ -109,4 +109,33 @@ TEST(ClutterCli, ExacitysOwnTreesAndLampsPassTheCheckersAndABadChoiceIsOneLine) 
   EXPECT_NE(bad.out.find("\"exacity\".builtin_models: \"bench\" is not a built-in model"), std::string::npos)
       << bad.out;
   EXPECT_FALSE(fs::exists(dir / "bad"));
+}
+
+TEST(ClutterCli, ParksWhoseTreesWouldBeMoreThanOneRunPlantsAreOneLineBeforeAnyIsPlaced) {
+  // A park of 6 by 6 km would get about 111,000 of Exacity's own trees (one to a square of
+  // 18 m): past the 100,000 one run plants. A strip 1 m wide from (0, 0) to (1000 km,
+  // 1000 km) would plant only 3,000, but its box is three billion squares to walk.
+  const fs::path dir = testing_util::temp_dir("clutter-cli-park-limit");
+  auto park = [](const std::string& ring) {
+    return R"({"type": "FeatureCollection", "exacity": {"seed": 4}, "features": [
+      {"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": "Polygon", "coordinates": [)" +
+           ring + "]}}]}";
+  };
+  write(dir / "wide.geojson", park("[[0, 0], [6000, 0], [6000, 6000], [0, 6000], [0, 0]]"));
+  write(dir / "strip.geojson", park("[[0, 0], [1, 0], [1000001, 1000000], [1000000, 1000000], [0, 0]]"));
+  const std::pair<std::string, std::string> refusals[] = {
+      {"wide", "would plant about 111111 trees, more than the 100000 one run plants"},
+      {"strip", "span about 3086469136 squares of a tree in their boxes, more than the 100000000 one run walks"}};
+  for (const auto& [sketch, what] : refusals) {
+    const fs::path out = dir / (sketch + "-out");
+    Result r = shell("timeout 60 " + std::string(EXACITY_BINARY) + " generate " + (dir / (sketch + ".geojson")).string() +
+                     " -o " + out.string() + " -q --threads 1");
+    EXPECT_EQ(r.code, 2) << sketch << ": " << r.out;
+    EXPECT_NE(r.out.find("features[0] (park): the parks "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(what), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"spacing\""), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"exacity\".builtin_models"), std::string::npos) << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+    EXPECT_FALSE(fs::exists(out)) << sketch;
+  }
 }

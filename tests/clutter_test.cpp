@@ -1,4 +1,4 @@
-// Seed 004's street clutter on a small city of four streets: two main roads crossing (a
+// Street clutter on a small city of four streets: two main roads crossing (a
 // junction of major roads), two local roads meeting them (approaches of minor roads to major
 // ones). Where clutter may stand, checked against the exact map; which junctions get traffic
 // lights and stop signs; alternate sides; channels steering the model; a library of clutter

@@ -399,3 +399,22 @@ TEST(Junction, SidesPartingPastTheStreetsAreNotDrawn) {
   for (auto& arm : longer) arm.length = 220;
   EXPECT_TRUE(map.add_junction({0, 0}, longer, 1));
 }
+
+TEST(PlanarMap, LabelAtAnswersForTheMapAsItNowIs) {
+  // label_at keeps a point location between queries; edges inserted after one are seen.
+  PlanarMap map;
+  map.add_ring(square(0, 0, 10), 0);
+  map.insert_batch();
+  map.label_faces([](const Windings& w) { return geom::winding_of(w, 0) != 0 ? 1 : 0; });
+  EXPECT_EQ(map.label_at({7.5, 7.5}), 1);
+  EXPECT_EQ(map.label_at({20, 20}), 0);
+  EXPECT_EQ(map.label_at({10, 5}), -1);  // on an edge
+  map.add_ring(square(5, 5, 10), 1);
+  map.insert_batch();
+  map.label_faces([](const Windings& w) { return (geom::winding_of(w, 0) != 0) + 2 * (geom::winding_of(w, 1) != 0); });
+  EXPECT_EQ(map.label_at({7.5, 7.5}), 3);
+  EXPECT_EQ(map.label_at({12.5, 12.5}), 2);
+  EXPECT_EQ(map.label_at({2.5, 2.5}), 1);
+  EXPECT_EQ(map.label_at({20, 20}), 0);
+  EXPECT_EQ(map.label_at({10, 7.5}), -1);
+}

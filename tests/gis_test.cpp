@@ -1,4 +1,4 @@
-// In and out of the GIS and OSM ecosystems (README, GIS and OpenStreetMap): sketches read
+// In and out of the GIS and OSM ecosystems (docs/gis.md): sketches read
 // through OGR and libosmium, lon/lat projected through PROJ, the layers written through OGR
 // and the city as an OSM file, each read back with the library made for it.
 #include <gtest/gtest.h>
@@ -313,6 +313,44 @@ TEST(Gis, EveryVectorFormatReadsBackWithOgr) {
     EXPECT_EQ(cad[name], counts[name]) << name;
 }
 
+TEST(Gis, EmptyLayersKeepTheirGeometryTypeAndADutchGridSketchItsCrsInEveryFormat) {
+  const fs::path dir = testing_util::temp_dir("gis-empty-layers");
+  // A park in the Dutch national grid, without Exacity's trees and lamps: every layer but
+  // the zones is empty.
+  write(dir / "park.geojson", R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::28992"}},
+    "exacity": {"builtin_models": []},
+    "features": [{"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": "Polygon",
+      "coordinates": [[[85000, 446000], [85200, 446000], [85200, 446150], [85000, 446150], [85000, 446000]]]}}]})");
+  const GenerateResult result = generate(dir / "park.geojson", dir / "out", {"gpkg", "fgb", "shp"});
+  ASSERT_TRUE(result.valid);
+  const std::map<std::string, OGRwkbGeometryType> types{
+      {"zones", wkbPolygon},      {"water", wkbPolygon},     {"roads", wkbLineString}, {"road_areas", wkbPolygon},
+      {"blocks", wkbPolygon},     {"lots", wkbPolygon},      {"buildings", wkbPolygon}, {"clutter", wkbPoint}};
+  start_gdal();
+  auto open = [](const fs::path& file) {
+    return GDALDatasetUniquePtr(GDALDataset::Open(file.string().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  };
+  GDALDatasetUniquePtr gpkg = open(dir / "out" / "city.gpkg");
+  ASSERT_TRUE(gpkg);
+  for (const auto& [name, type] : types) {
+    SCOPED_TRACE(name);
+    EXPECT_EQ(nlohmann::json::parse(cli_util::read(dir / "out" / "vector" / (name + ".geojson")))["features"].size(),
+              name == "zones" ? 1u : 0u);
+    GDALDatasetUniquePtr fgb = open(dir / "out" / "vector" / (name + ".fgb"));
+    GDALDatasetUniquePtr shp = open(dir / "out" / "vector" / "shp" / (name + ".shp"));
+    ASSERT_TRUE(fgb);
+    ASSERT_TRUE(shp);
+    for (OGRLayer* layer : {gpkg->GetLayerByName(name.c_str()), fgb->GetLayer(0), shp->GetLayer(0)}) {
+      ASSERT_NE(layer, nullptr);
+      EXPECT_EQ(wkbFlatten(layer->GetGeomType()), type) << OGRGeometryTypeToName(layer->GetGeomType());
+      ASSERT_NE(layer->GetSpatialRef(), nullptr);
+      EXPECT_STREQ(layer->GetSpatialRef()->GetAuthorityCode(nullptr), "28992");
+    }
+  }
+  EXPECT_EQ(nlohmann::json::parse(cli_util::read(dir / "out" / "city.city.json"))["metadata"]["referenceSystem"],
+            "https://www.opengis.net/def/crs/EPSG/0/28992");
+}
+
 TEST(Gis, CityOsmReadsBackWithOsmiumAsOneNetworkAndClosedBuildings) {
   const fs::path out = testing_util::temp_dir("gis-osm") / "out";
   const GenerateResult result = generate(kVillage, out, {}, kLibrary);
@@ -398,7 +436,7 @@ TEST(Gis, BadInputsAreOneLineNamingTheFile) {
 
 namespace {
 
-// OpenStreetMap's land use and streets as GIS tools export them (README, GIS and
+// OpenStreetMap's land use and streets as GIS tools export them (docs/gis.md,
 // OpenStreetMap): tags as columns, the rest in GDAL's "other_tags".
 ordered_json osm_tagged_town() {
   return ordered_json::parse(R"({"type": "FeatureCollection",
@@ -420,7 +458,9 @@ ordered_json osm_tagged_town() {
        "geometry": {"type": "LineString", "coordinates": [[384900, 6672600], [385700, 6672600]]}},
       {"type": "Feature", "properties": {"zone": "commercial"},
        "geometry": {"type": "Polygon", "coordinates": [[[385600, 6672000], [385800, 6672000], [385800, 6672200], [385600, 6672200], [385600, 6672000]]]}},
-      {"type": "Feature", "properties": {"highway": "crossing"}, "geometry": {"type": "Point", "coordinates": [385300, 6672250]}}]})");
+      {"type": "Feature", "properties": {"highway": "crossing"}, "geometry": {"type": "Point", "coordinates": [385300, 6672250]}},
+      {"type": "Feature", "properties": {"osm_way_id": "27204443", "amenity": "school", "landuse": null},
+       "geometry": {"type": "Polygon", "coordinates": [[[385300, 6672100], [385350, 6672100], [385350, 6672150], [385300, 6672100]]]}}]})");
 }
 
 geom::Box box_of(const ZoneFeature& zone) {
@@ -454,9 +494,11 @@ TEST(Gis, OsmTaggedFeaturesBecomeZonesAndRoads) {
     ASSERT_EQ(sketch.roads.size(), 1u);
     EXPECT_EQ(sketch.roads[0].road_class, RoadClass::Local);
     EXPECT_EQ(sketch.roads[0].width, 7);  // lanes=2 in other_tags
-    EXPECT_EQ(sketch.osm_left_out, (std::map<std::string, int>{
+    ASSERT_EQ(sketch.osm_counts.size(), 1u);
+    EXPECT_EQ(sketch.osm_counts[0].file, (dir / name).string());
+    EXPECT_EQ(sketch.osm_counts[0].left_out, (std::map<std::string, int>{
                                        {"highway=footway", 1}, {"landuse=farmland", 1}, {"areas of fewer than 3 distinct points", 1},
-                                       {"highway=crossing as a point", 1}}));
+                                       {"highway=crossing as a point", 1}, {"amenity=school", 1}}));
     EXPECT_EQ(sketch.zone_settings.at(ZoneType::Residential).roads.layout->name(), "streets");
   }
   // Features taken out do not move the others' names: the user's zone is still features[7].
@@ -500,13 +542,34 @@ TEST(Gis, SeveralSketchFilesAreReadAsOne) {
   EXPECT_EQ(rings_one, rings_two);
   ASSERT_EQ(two.roads.size(), 1u);
   EXPECT_EQ(two.roads[0].lines, one.roads[0].lines);
-  EXPECT_EQ(two.osm_left_out, one.osm_left_out);
   EXPECT_EQ(epsg_of(two.crs), 32635);
-  // The counts are of both files' features, and name both.
-  const std::vector<std::string> both{(dir / "land.geojson").string(), (dir / "streets.geojson").string()};
-  EXPECT_EQ(two.osm_files, both);
-  EXPECT_EQ(ordered_json::parse(two.geojson)["osm"]["files"], ordered_json(both));
+  // Each file's own features counted and named by it: the land use's farmland and
+  // degenerate area, the streets' footway and crossing.
+  ASSERT_EQ(one.osm_counts.size(), 1u);
+  ASSERT_EQ(two.osm_counts.size(), 2u);
+  EXPECT_EQ(two.osm_counts[0].file, (dir / "land.geojson").string());
+  EXPECT_EQ(two.osm_counts[0].left_out,
+            (std::map<std::string, int>{{"landuse=farmland", 1}, {"areas of fewer than 3 distinct points", 1}, {"amenity=school", 1}}));
+  EXPECT_EQ(two.osm_counts[1].file, (dir / "streets.geojson").string());
+  EXPECT_EQ(two.osm_counts[1].left_out, (std::map<std::string, int>{{"highway=footway", 1}, {"highway=crossing as a point", 1}}));
+  std::map<std::string, int> together = two.osm_counts[0].left_out;
+  together.insert(two.osm_counts[1].left_out.begin(), two.osm_counts[1].left_out.end());
+  EXPECT_EQ(together, one.osm_counts[0].left_out);
   EXPECT_FALSE(ordered_json::parse(two.geojson)["osm"].contains("file"));
+  // The notes say so, a file each.
+  const cli_util::Result run = cli_util::run("generate " + (dir / "land.geojson").string() + " " +
+                                             (dir / "streets.geojson").string() + " -o " + (dir / "out").string() + " -q");
+  ASSERT_EQ(run.code, 0) << run.out;
+  EXPECT_NE(run.out.find("note: " + (dir / "land.geojson").string() +
+                         ": left out 3 OpenStreetMap features whose tags make no zone or road (amenity=school 1, areas of "
+                         "fewer than 3 distinct points 1, landuse=farmland 1)"),
+            std::string::npos)
+      << run.out;
+  EXPECT_NE(run.out.find("note: " + (dir / "streets.geojson").string() +
+                         ": left out 2 OpenStreetMap features whose tags make no zone or road (highway=crossing as a "
+                         "point 1, highway=footway 1)"),
+            std::string::npos)
+      << run.out;
 
   auto error_of_both = [&](const fs::path& a, const fs::path& b) -> std::string {
     try {
@@ -727,6 +790,66 @@ TEST(Gis, LonLatWithoutCrsIsFoundOverDegreesAndAcrossTheAntimeridian) {
   const GenerateResult city = generate(dir / "fiji.geojson", dir / "fiji");
   EXPECT_TRUE(city.valid);
   EXPECT_GT(city.report["counts"]["lots"].get<int>(), 20);
+}
+
+TEST(Gis, LonLatWithoutCrsSpanningTensOfDegreesIsRefusedButNoSmallSketchInMetres) {
+  const fs::path dir = testing_util::temp_dir("gis-far-lonlat");
+  // Helsinki's town and a copy of it 34 degrees west, in one file without a crs.
+  ordered_json two_towns = in_lon_lat(town_in_metres(), 32635, {385000, 6672000});
+  for (std::size_t i = 0; i < 3; ++i) {
+    ordered_json copy = two_towns["features"][i];
+    std::function<void(ordered_json&)> west = [&](ordered_json& c) {
+      if (c[0].is_number()) return void(c[0] = c[0].get<double>() - 34);
+      for (ordered_json& inner : c) west(inner);
+    };
+    west(copy["geometry"]["coordinates"]);
+    two_towns["features"].push_back(copy);
+  }
+  write(dir / "towns.geojson", two_towns.dump());
+  const std::string error = error_of(dir / "towns.geojson");
+  EXPECT_EQ(error.rfind((dir / "towns.geojson").string() +
+                            ": has no crs, and its coordinates lie within longitude and latitude ranges but span 34.0° "
+                            "of longitude and 0.0° of latitude",
+                        0),
+            0u)
+      << error;
+  EXPECT_NE(error.find("add a \"crs\" member naming its CRS"), std::string::npos) << error;
+  const cli_util::Result run = cli_util::run("generate " + (dir / "towns.geojson").string() + " -o " + (dir / "out").string());
+  EXPECT_EQ(run.code, 2);
+  EXPECT_EQ(std::count(run.out.begin(), run.out.end(), '\n'), 1) << run.out;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  // Named as lon/lat, as the line says, it is a sketch one map cannot hold.
+  two_towns["crs"] = crs_member(4326);
+  write(dir / "named.geojson", two_towns.dump());
+  EXPECT_NE(error_of(dir / "named.geojson").find("more than one map holds"), std::string::npos) << error_of(dir / "named.geojson");
+
+  // Small sketches in metres, whose coordinates lie within lon/lat ranges too, stay in
+  // metres with no place: 100 by 80 m at the origin in whole metres and in half metres,
+  // and the town moved to the origin (500 by 400 m).
+  auto metres = [](double step) {
+    ordered_json doc = {{"type", "FeatureCollection"}, {"features", ordered_json::array()}};
+    doc["features"].push_back({{"type", "Feature"}, {"properties", {{"zone", "residential"}}},
+                               {"geometry", {{"type", "Polygon"},
+                                             {"coordinates", {{{0, 0}, {100, 0}, {100, 80}, {0, 80}, {0, 0}}}}}}});
+    doc["features"].push_back({{"type", "Feature"}, {"properties", {{"road", "local"}}},
+                               {"geometry", {{"type", "LineString"}, {"coordinates", {{-5, 40 + step}, {105, 40 + step}}}}}});
+    return doc;
+  };
+  ordered_json origin = town_in_metres();
+  origin.erase("crs");
+  std::function<void(ordered_json&)> to_origin = [&](ordered_json& c) {
+    if (c[0].is_number()) return void(c = {c[0].get<double>() - 385000, c[1].get<double>() - 6672000});
+    for (ordered_json& inner : c) to_origin(inner);
+  };
+  for (ordered_json& f : origin["features"]) to_origin(f["geometry"]["coordinates"]);
+  for (const auto& [name, doc] : {std::pair{"whole.geojson", metres(0)}, std::pair{"half.geojson", metres(0.5)},
+                                  std::pair{"origin.geojson", origin}}) {
+    SCOPED_TRACE(name);
+    write(dir / name, doc.dump());
+    const Sketch sketch = load_sketch(dir / name, false);
+    EXPECT_TRUE(sketch.crs.is_null()) << sketch.crs.dump();
+    EXPECT_EQ(sketch.zones.at(0).polygons.at(0).outer[1].x, doc["features"][0]["geometry"]["coordinates"][0][1][0].get<double>());
+  }
 }
 
 TEST(Gis, FilesReadTogetherAreEachBroughtFromTheirOwnCrs) {

@@ -1,4 +1,4 @@
-// Seed 002's split grammar: the file format and its errors, the parameter mappings, the
+// The split grammar: the file format and its errors, the parameter mappings, the
 // layout tree, and the grammar layout end to end (no two roads side by side on a border).
 #include <gtest/gtest.h>
 
@@ -175,7 +175,7 @@ std::filesystem::path generate_with_grammar(const std::string& name, const std::
   return dir / "out";
 }
 
-// A strict seed 002 run: the grammar's pieces are kept whole, however large.
+// A plain split grammar run: the grammar's pieces are kept whole, however large.
 const std::string kKeptWhole = R"("layout": "grammar", "grammar": "g.grammar", "grow_large_pieces": false)";
 
 std::string zone(const std::string& type, const std::string& ring) {
@@ -291,8 +291,8 @@ nlohmann::json report_of(const std::filesystem::path& out) {
   return nlohmann::json::parse(in);
 }
 
-// Land between the grammar's roads over 4 times block_area is grown by seed 000's growth;
-// "grow_large_pieces": false keeps seed 002's pieces whole.
+// Land between the grammar's roads over 4 times block_area is grown by recursive road growth;
+// "grow_large_pieces": false keeps the grammar's pieces whole.
 TEST(GrammarLayout, PiecesOverFourBlocksAreGrownUnlessKeptWhole) {
   const std::string ring_road =
       "1 Town 4 Inner,0.03,0.03,0.97,0.03,0.97,0.97,0.03,0.97 Road,0,0,1,0,0.97,0.03,0.03,0.03 Road,1,0,1,1,0.97,0.97,0.97,0.03 "

@@ -1,4 +1,4 @@
-// Terrain, water and bridges as the renderer draws them (issue 25): small cities on small
+// Terrain, water and bridges as the renderer draws them: small cities on small
 // heightmaps written here, rendered straight down through an orthographic camera, read back
 // from the image's depth and id layers (each from the ray through its pixel's centre).
 #include <gtest/gtest.h>

@@ -17,10 +17,11 @@ namespace {
 
 constexpr int kEdge = 0, kRoad = 1;
 
-// The faces of a ring as one cell, its edges of kind kEdge.
-Cell cell_of(const geom::Ring& ring) {
+// The faces inside the outer ring and outside the holes as one cell, its edges of kind kEdge.
+Cell cell_of(const geom::Ring& ring, const std::vector<geom::Ring>& holes = {}) {
   geom::PlanarMap map;
   map.add_ring(ring, 0);
+  for (const geom::Ring& h : holes) map.add_ring(geom::Ring(h.rbegin(), h.rend()), 0);
   map.insert_batch();
   map.label_faces([](const geom::Windings& w) { return geom::winding_of(w, 0) != 0 ? 1 : 0; });
   auto cells = map.cells({-1, 0}, {kEdge, kEdge});
@@ -29,6 +30,14 @@ Cell cell_of(const geom::Ring& ring) {
 }
 
 const geom::Ring kSquare{{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+
+// Every road of the plan but road i.
+std::vector<geom::Path> other_roads(const exacity::RoadPlan& plan, std::size_t i) {
+  std::vector<geom::Path> others;
+  for (std::size_t j = 0; j < plan.roads.size(); ++j)
+    if (j != i) others.push_back(plan.roads[j].path);
+  return others;
+}
 
 }  // namespace
 
@@ -265,9 +274,7 @@ TEST(GrowthLayout, ARoadMeetingASurfaceNamedForAFarRoadRunsOnToTheNearestCentreL
     // Each road grows from its cell's seed, which its sibling roads share; where it stopped
     // is its last point.
     const geom::Path& road = plan.roads[i].path;
-    std::vector<geom::Path> others;
-    for (std::size_t j = 0; j < plan.roads.size(); ++j)
-      if (j != i) others.push_back(plan.roads[j].path);
+    const std::vector<geom::Path> others = other_roads(plan, i);
     const Vec2 end = road.point(road.size() - 1);
     const bool on_region_edge = end.x == 0 || end.y == 0 || end.y == 300;
     on_near += geom::ends_on(road, {near});
@@ -285,4 +292,68 @@ TEST(GrowthLayout, ARoadMeetingASurfaceNamedForAFarRoadRunsOnToTheNearestCentreL
   EXPECT_TRUE(none.roads.empty()) << none.roads.size() << " roads, one ending at (" << none.roads[0].path.point(1).x << ", "
                                   << none.roads[0].path.point(1).y << ")";
   EXPECT_EQ(none.piece_reaches_sketch, std::vector<char>{0});
+}
+
+namespace {
+
+geom::Ring circle(double r, int n) {
+  geom::Ring out;
+  for (int i = 0; i < n; ++i) out.push_back({r * std::cos(2 * M_PI * i / n), r * std::sin(2 * M_PI * i / n)});
+  return out;
+}
+
+double length_of(const geom::Polyline& line) {
+  double length = 0;
+  for (std::size_t i = 1; i < line.size(); ++i) length += geom::distance(line[i - 1], line[i]);
+  return length;
+}
+
+}  // namespace
+
+// Narrow zones: a cell grown again from beside its road edge, or a seed the zone's narrow
+// arm or ring left against an edge, started its roads a centimetre inside the boundary, and
+// the branches out to it were stubs of centimetres (a 60 m residential L: roads of 2 to
+// 40 cm). Every grown road is at least the zone's min_block_width long, starts at a junction
+// of its seed and ends on the region's edge or another road: no stub, no dead end.
+TEST(GrowthLayout, NoRoadIsShorterThanABlockIsWideNorEndsInTheOpen) {
+  using namespace exacity;
+  Sketch sketch;
+  sketch.zone_settings[ZoneType::Residential] = default_zone_settings(ZoneType::Residential);
+  const double least = sketch.zone_settings[ZoneType::Residential].blocks.min_block_width;
+  std::vector<Vec2> spiral, outer_side;
+  for (int k = 0; k < 120; ++k) {
+    const double a = k * 0.06, r = 120 + a * 50;
+    spiral.push_back({r * std::cos(a), r * std::sin(a)});
+    outer_side.push_back({(r + 40) * std::cos(a), (r + 40) * std::sin(a)});
+  }
+  spiral.insert(spiral.end(), outer_side.rbegin(), outer_side.rend());
+  const std::vector<std::pair<const char*, Cell>> zones{
+      {"60 m L", cell_of({{700, 700}, {3000, 700}, {3000, 760}, {760, 760}, {760, 2500}, {700, 2500}})},
+      {"20 m L", cell_of({{0, 0}, {1200, 0}, {1200, 20}, {20, 20}, {20, 900}, {0, 900}})},
+      {"30 m ring", cell_of(circle(800, 64), {circle(770, 64)})},
+      {"40 m spiral", cell_of(spiral)},
+  };
+  const auto layout = make_growth_layout(sketch, {}, [](Vec2) { return std::optional<ZoneType>(ZoneType::Residential); });
+  for (const auto& [name, cell] : zones) {
+    std::vector<geom::Path> boundary;
+    for (const geom::KindedRing& r : cell.kinded_rings()) {
+      geom::Polyline closed(r.points.begin(), r.points.end());
+      closed.push_back(r.points.front());
+      boundary.push_back(geom::Path::from(closed));
+    }
+    for (std::uint64_t stream : {1, 2, 3, 4}) {
+      SCOPED_TRACE(std::string(name) + ", stream " + std::to_string(stream));
+      const RoadPlan plan = layout->plan({cell, stream});
+      ASSERT_GT(plan.roads.size(), 2u);
+      for (std::size_t i = 0; i < plan.roads.size(); ++i) {
+        const geom::Path& road = plan.roads[i].path;
+        const std::vector<geom::Path> others = other_roads(plan, i);
+        const Vec2 end = road.point(road.size() - 1);
+        EXPECT_GE(length_of(road.to_plain()), least) << "road " << i << " ends at (" << end.x << ", " << end.y << ")";
+        EXPECT_TRUE(geom::ends_on(road.reversed(), others)) << "road " << i << " starts alone";
+        EXPECT_TRUE(geom::ends_on(road, boundary) || geom::ends_on(road, others))
+            << "road " << i << " ends in the open at (" << end.x << ", " << end.y << ")";
+      }
+    }
+  }
 }

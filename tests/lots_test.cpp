@@ -1,4 +1,4 @@
-// Lots: seed 000's three residential cases on hand-made corners, the weighted centre,
+// Lots: allocation from the street on hand-made blocks, blocks too small to cut, heights,
 // and whole cities whose lots the exact validator accepts.
 #include <gtest/gtest.h>
 

@@ -172,7 +172,7 @@ TEST(ModelLibrary, BadEntriesAreNamed) {
   EXPECT_NE(error(R"({"file": "box.obj", "zones": ["residential"], "weight": "heavy"})").find("models[0]"), std::string::npos);
   EXPECT_NE(error(R"({"file": "none.obj", "zones": ["residential"]})").find("none.obj"), std::string::npos);
   EXPECT_NE(error(R"({"file": "box.obj", "zones": ["residential"], "colour": 1})").find("unknown key"), std::string::npos);
-  // Seed 004's keys: kinds, clutter rules, channel values and lots.
+  // The library's newer keys: kinds, clutter rules, channel values and lots.
   EXPECT_NE(error(R"({"file": "box.obj", "kind": "kiosk"})").find("\"kind\" is \"kiosk\"; expected one of"), std::string::npos);
   EXPECT_NE(error(R"({"file": "box.obj", "kind": "lamp", "side": "left"})").find("\"side\""), std::string::npos);
   EXPECT_NE(error(R"({"file": "box.obj", "kind": "bench", "offset": -1})").find("\"offset\""), std::string::npos);
@@ -550,6 +550,19 @@ TEST(ModelLibrary, AHugeUnitOrAFarVertexIsRefusedBeforeTheOutlineIsComputed) {
   EXPECT_NE(message(R"({"file": "box.obj", "zones": ["residential"], "up": "z", "unit": 300, "scale": [1, 1]})")
                 .find("the model is 1200 x 1200 x 1200 m at its largest \"scale\""),
             std::string::npos);
+}
+
+TEST(ModelLibrary, AScaleRefusalNamesItsLimit) {
+  fs::path dir = testing_util::temp_dir("library-scale");
+  write(dir, "box.obj", box_obj(4, 4, 4));
+  auto message = [&](const std::string& scale) {
+    return library_error(dir, R"({"file": "box.obj", "zones": ["residential"], "up": "z", "scale": )" + scale + "}");
+  };
+  const std::string refusal = (dir / "library.json").string() + " models[0]: \"scale\" must be [min, max] with 0 < min <= max <= 100";
+  EXPECT_EQ(message("[1, 101]"), refusal);
+  EXPECT_EQ(message("[0, 1]"), refusal);
+  EXPECT_EQ(message("[2, 1]"), refusal);
+  EXPECT_EQ(message("[1, 100]"), "no error");
 }
 
 TEST(ModelLibrary, ClutterSpacingHasAFloor) {

@@ -1,4 +1,4 @@
-// Seed 001's nesting end to end on examples/nesting: models stand under the gateways' and
+// Nesting end to end on examples/nesting: models stand under the gateways' and
 // tees' overhangs, the city writes the same bytes on one thread or two, and both validators
 // (exacity validate and the GEOS cross-check) accept the nested overlaps but refuse a copy
 // where a nested model is made taller than the room under the model above it.

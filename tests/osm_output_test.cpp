@@ -1,4 +1,4 @@
-// OpenStreetMap in and out as OSM tools expect it (README, GIS and OpenStreetMap): city.osm
+// OpenStreetMap in and out as OSM tools expect it (docs/gis.md): city.osm
 // read back with libosmium and GDAL's OSM driver (classes and names as read, negative ids
 // apart between cities), extracts the edge cut, coordinates out of range, and real
 // footprints measured whichever way their rings wind.
@@ -95,6 +95,34 @@ TEST(OsmOutput, RealFootprintsHaveTheirAreaWhicheverWayTheirRingsWind) {
   EXPECT_EQ(areas["max"].get<double>(), 196);
 }
 
+TEST(OsmOutput, RealFootprintsAreMeasuredInGroundMetresWhateverTheirCrs) {
+  const fs::path dir = testing_util::temp_dir("osm-stats-crs");
+  // A 100 by 50 m footprint in Helsinki (UTM zone 35N), in Web Mercator (whose metres are
+  // twice the ground's there) and in lon/lat without a crs: 5000 m2 on the ground in each.
+  OGRSpatialReference utm, mercator, wgs84;
+  utm.importFromEPSG(32635), mercator.importFromEPSG(3857), wgs84.importFromEPSG(4326);
+  for (OGRSpatialReference* srs : {&utm, &mercator, &wgs84}) srs->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  for (const auto& [name, target, crs] : {std::tuple{"mercator.geojson", &mercator, crs_member(3857)},
+                                          std::tuple{"lonlat.geojson", &wgs84, ordered_json()}}) {
+    SCOPED_TRACE(name);
+    std::unique_ptr<OGRCoordinateTransformation> t(OGRCreateCoordinateTransformation(&utm, target));
+    ASSERT_TRUE(t);
+    ordered_json ring = ordered_json::array();
+    for (auto [x, y] : {std::pair{385000.0, 6672000.0}, {385100.0, 6672000.0}, {385100.0, 6672050.0}, {385000.0, 6672050.0},
+                        {385000.0, 6672000.0}}) {
+      ASSERT_TRUE(t->Transform(1, &x, &y));
+      ring.push_back({x, y});
+    }
+    ordered_json doc = {{"type", "FeatureCollection"},
+                        {"features", {{{"type", "Feature"}, {"properties", ordered_json::object()},
+                                       {"geometry", {{"type", "Polygon"}, {"coordinates", {ring}}}}}}}};
+    if (!crs.is_null()) doc["crs"] = crs;
+    write(dir / name, doc.dump());
+    const ordered_json s = real_statistics(dir / name);
+    EXPECT_NEAR(s["zones"]["all"]["footprints"]["area_m2"]["median"].get<double>(), 5000, 0.1);
+  }
+}
+
 TEST(OsmOutput, CityOsmKeepsTheClassesAndNamesItReadAndNewObjectsHaveNegativeIdsApartBetweenCities) {
   const fs::path dir = testing_util::temp_dir("osm-out");
   const GenerateResult village = generate(kVillage, dir / "village");
@@ -149,6 +177,58 @@ TEST(OsmOutput, CityOsmKeepsTheClassesAndNamesItReadAndNewObjectsHaveNegativeIds
   }
   EXPECT_EQ(streets, village.report["counts"]["roads"].get<int>());
   EXPECT_EQ(primary, named);
+}
+
+namespace {
+
+// `osmium fileinfo -e`'s counts of a file's nodes, ways and relations (osmium-tool, which
+// scripts/install-deps.sh installs).
+std::map<std::string, int> osmium_counts(const fs::path& file) {
+  const cli_util::Result info = cli_util::shell("osmium fileinfo -e -j " + file.string() + " 2>&1");
+  EXPECT_EQ(info.code, 0) << info.out;
+  const nlohmann::json doc = nlohmann::json::parse(info.out, nullptr, false);
+  if (doc.is_discarded()) return {};
+  const nlohmann::json& count = doc["data"]["count"];
+  return {{"nodes", count.value("nodes", -1)}, {"ways", count.value("ways", -1)}, {"relations", count.value("relations", -1)}};
+}
+
+}  // namespace
+
+TEST(OsmOutput, TwoCitiesMergedWithOsmiumLoseNoObject) {
+  const fs::path dir = testing_util::temp_dir("osm-merge");
+  ordered_json other = ordered_json::parse(cli_util::read(kVillage.parent_path() / "village.exacity.json"));
+  other["seed"] = other.value("seed", 1) + 1;
+  fs::copy_file(kVillage, dir / "other.osm", fs::copy_options::overwrite_existing);
+  write(dir / "other.exacity.json", other.dump());
+  for (const auto& [sketch, out] : {std::pair{kVillage, dir / "a"}, std::pair{dir / "other.osm", dir / "b"}}) {
+    const cli_util::Result r = cli_util::run("generate " + sketch.string() + " -o " + out.string() + " -q");
+    ASSERT_EQ(r.code, 0) << r.out;
+  }
+  const std::map<std::string, int> a = osmium_counts(dir / "a" / "city.osm"), b = osmium_counts(dir / "b" / "city.osm");
+  ASSERT_EQ(a.size(), 3u);
+  ASSERT_EQ(b.size(), 3u);
+  EXPECT_GT(a.at("nodes"), 100);
+  EXPECT_GT(a.at("ways"), 10);
+  const cli_util::Result merge = cli_util::shell("osmium merge " + (dir / "a" / "city.osm").string() + " " +
+                                                 (dir / "b" / "city.osm").string() + " -o " + (dir / "both.osm").string() +
+                                                 " --overwrite 2>&1");
+  ASSERT_EQ(merge.code, 0) << merge.out;
+  const std::map<std::string, int> both = osmium_counts(dir / "both.osm");
+  for (const char* kind : {"nodes", "ways", "relations"}) EXPECT_EQ(both.at(kind), a.at(kind) + b.at(kind)) << kind;
+  // GDAL's OSM driver reads the merged file's streets: both cities'.
+  start_gdal();
+  const CPLConfigOptionSetter indexing("OSM_USE_CUSTOM_INDEXING", "NO", false);
+  GDALDatasetUniquePtr ds(GDALDataset::Open((dir / "both.osm").string().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  ASSERT_TRUE(ds);
+  OGRLayer* lines = ds->GetLayerByName("lines");
+  ASSERT_NE(lines, nullptr);
+  int streets = 0;
+  for (OGRFeatureUniquePtr f(lines->GetNextFeature()); f; f.reset(lines->GetNextFeature()))
+    streets += std::string(f->GetFieldAsString("highway")) != "";
+  const auto roads = [&](const char* out) {
+    return nlohmann::json::parse(cli_util::read(dir / out / "report.json"))["counts"]["roads"].get<int>();
+  };
+  EXPECT_EQ(streets, roads("a") + roads("b"));
 }
 
 TEST(OsmOutput, PedestrianStreetsAndAlleysAreNarrowLocalStreets) {

@@ -1,5 +1,5 @@
 // The robustness benchmark's families and harness: the families are deterministic, and
-// the exact build passes a slice of every family (the CI slice of issue 11: an exact
+// the exact build passes a slice of every family (the CI slice: an exact
 // failure is a bug).
 #include <gtest/gtest.h>
 

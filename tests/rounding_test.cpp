@@ -1,5 +1,5 @@
 // Sketches the city fuzz target found whose exports rounding left invalid before snap
-// rounding (issue 10): far from the origin, turned, with vertices shared or a few ulps
+// rounding: far from the origin, turned, with vertices shared or a few ulps
 // apart. Each must now give a city the exact validator accepts.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // exacity serve's API through httplib's client, against a server in this process
-// (README, exacity serve; docs/design.md, Serving).
+// (docs/serve.md; docs/design.md, Serving).
 #include <OpenImageIO/imageio.h>
 #include <arpa/inet.h>
 #include <fcntl.h>

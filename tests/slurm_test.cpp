@@ -1,8 +1,8 @@
-// Issue 25: scripts/render_path.sbatch under a real Slurm, a one-node cluster this test
+// scripts/render_path.sbatch under a real Slurm, a one-node cluster this test
 // starts itself (slurmctld and slurmd in the foreground, a slurm.conf of its own in a
 // temporary folder, AuthType=auth/none, which Debian 12's Slurm 22.05 still has, so no
 // munge key), as a job array of three tasks; then scripts/join_frames.sh as a job that
-// waits for the array, as README.md shows. The frames must be the bytes one process
+// waits for the array, as docs/rendering.md shows. The frames must be the bytes one process
 // renders, and the MP4 must hold every frame (ffprobe). Slurm's daemons need root.
 #include <gtest/gtest.h>
 #include <netinet/in.h>
@@ -116,7 +116,7 @@ TEST(Slurm, AJobArrayRendersAPathsFramesAsOneProcessAndFfmpegJoinsThem) {
 
   OneNodeSlurm slurm(dir / "slurm");
   ASSERT_TRUE(slurm.ready(20)) << "the node never became idle:\n" << slurm.logs();
-  // README.md, Rendering: the array, then the join waiting for it. --cpus-per-task=1 over
+  // docs/rendering.md, On a Slurm cluster: the array, then the join waiting for it. --cpus-per-task=1 over
   // the script's 4: the node may have fewer CPUs than that.
   const std::string env = slurm.env() + "EXACITY=" + EXACITY_BINARY + " ";
   const Result array =

@@ -1,4 +1,4 @@
-// Seed 003's Voronoi streets: the diagram, junctions along its edges, the inner-road
+// The Voronoi layout's streets: the diagram, junctions along its edges, the inner-road
 // heuristic on a hand-made cell, and cells clipped at a concave zone edge.
 #include <gtest/gtest.h>
 

@@ -254,7 +254,7 @@ def main():
         ("warehouse.obj", warehouse(), {"zones": ["industrial"], "up": "y", "weight": 1, "scale": [0.8, 1.3]}),
         ("tree.obj", tree(), {"zones": ["residential", "commercial", "industrial"], "kind": "tree", "up": "y",
                               "scale": [0.7, 1.3]}),
-        # Street clutter (seed 004): without "zones" it dresses every zone's streets but water.
+        # Street clutter: without "zones" it dresses every zone's streets but water.
         ("street_lamp.obj", street_lamp(), {"kind": "lamp", "up": "z", "unit": "cm", "spacing": 30, "offset": 0.6,
                                             "scale": [1, 1]}),
         ("stop_sign.obj", stop_sign(), {"kind": "sign", "up": "z", "unit": "mm", "offset": 0.5, "scale": [1, 1]}),

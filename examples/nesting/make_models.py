@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Writes the nesting example's model library (seed 001's 3D bounding grid): a gateway (a
+"""Writes the nesting example's model library (nesting's 3D occupancy grid): a gateway (a
 beam on two pillars) and a T on one pillar, whose overhangs leave room under them, and two
 small models that fit there: a kiosk and a hut. OBJ files in Z-up metres, each part a closed
 box with its faces wound counter-clockwise seen from outside, and library.json naming them.
@@ -92,7 +92,7 @@ def main():
                {"name": "tee", "file": "tee.obj", "zones": ["commercial"], "up": "z", "weight": 1},
                {"name": "kiosk", "file": "kiosk.obj", "zones": ["commercial"], "up": "z", "weight": 3},
                {"name": "hut", "file": "hut.obj", "zones": ["commercial"], "up": "z", "weight": 2},
-               # The street dressed with the example library's clutter (seed 004).
+               # The street dressed with the example library's street clutter.
                {"name": "street_lamp", "file": "../models/street_lamp.obj", "kind": "lamp", "up": "z", "unit": "cm",
                 "spacing": 20, "offset": 0.6, "scale": [1, 1]},
                {"name": "bench", "file": "../models/bench.obj", "kind": "bench", "up": "z", "front": "+x",

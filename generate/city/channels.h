@@ -1,4 +1,4 @@
-// Seed 004's channels: greyscale images stretched over the city, each giving every point a
+// Channels (docs/design.md, Placement): greyscale images stretched over the city, each giving every point a
 // value in [0, 1] whose meaning the user decides ("downtown-ness", wealth, greenery). Library
 // models and clutter carry values of their own; where one stands, its weight is multiplied
 // by how near its values are to the channels' there (docs/design.md, Placement).

@@ -1,4 +1,4 @@
-// Seed 004's channels: values read between pixel centres, clamped at the bounds, and the
+// Channels (docs/design.md, Placement): values read between pixel centres, clamped at the bounds, and the
 // affinity that weighs a model by them.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // The city's planar map: drawn zones, heightmap water and road areas in one exact
-// arrangement, every face labelled with what covers it (seed 000, 3.1). The road-network
+// arrangement, every face labelled with what covers it (docs/design.md, The city model). The road-network
 // stage refines the same map.
 #pragma once
 
@@ -20,7 +20,7 @@ namespace exacity {
 // What the user sees at a face: water beats road beats drawn zone.
 enum class Cover : std::uint8_t { Outside, Zone, Water, Road };
 
-// Which part of a road a road face is (seed 004): its carriageway, a sidewalk beside it, or
+// Which part of a road a road face is: its carriageway, a sidewalk beside it, or
 // the junction where streets meet. A junction beats a carriageway beats a sidewalk.
 enum class RoadSurface : std::uint8_t { None, Carriageway, Sidewalk, Junction };
 inline const char* name(RoadSurface s) {

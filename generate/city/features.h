@@ -19,7 +19,7 @@ struct TerrainSpec {
   double low = 0, high = 100;       // heights of the image's lowest and highest values
 };
 
-// Seed 004's channel: a greyscale image stretched over `bounds` (generate/city/channels.h).
+// A channel: a greyscale image stretched over `bounds` (generate/city/channels.h).
 struct ChannelSpec {
   std::string name;
   std::filesystem::path image;  // resolved against the sketch's folder
@@ -43,7 +43,7 @@ struct RoadFeature {
   std::vector<std::pair<std::string, std::string>> osm_tags;
 };
 
-// The sketch's own street graph (seed 004): how it is joined, what its streets carry.
+// The sketch's own street graph (docs/design.md, Road layouts): how it is joined, what its streets carry.
 struct StreetSettings {
   double snap = 0.5;                     // m: a line end this near another line is joined to it
   bool dead_ends_are_errors = false;     // "dead_ends": "error"
@@ -66,7 +66,7 @@ struct DrawnFeatures {
   std::vector<DeadEnd> dead_ends;
 };
 
-// The sketch reader's limits (README, The sketch). Coordinates Exacity computes exactly in:
+// The sketch reader's limits (docs/sketch.md, docs/limits.md). Coordinates Exacity computes exactly in:
 // rounding its exact vertices to doubles moves them by under 2e-6 m out here; at 1e12 m
 // (0.1 mm steps) written rings stop being simple.
 inline constexpr double kMaxCoordinate = 1e10;

@@ -30,7 +30,7 @@ GreyImage read_grey_image(const std::filesystem::path& path, const std::string& 
   std::string bytes, why;
   if (!read_input(path, kMaxDataFileBytes, bytes, why)) fail("cannot be read (" + why + "); name an image file in " + named_by);
   if (is_png(bytes))
-    if (const std::string problem = png_problem(bytes); !problem.empty())
+    if (const std::string problem = png_problem(bytes, kMaxGreyImagePixels); !problem.empty())
       fail("is unreadable (" + problem + "); save it as an 8/16-bit PNG, TIFF or EXR");
   auto in = OIIO::ImageInput::open(file);
   if (!in) fail("is unreadable (" + OIIO::geterror() + "); save it as an 8/16-bit PNG, TIFF or EXR");

@@ -1,5 +1,5 @@
 // A greyscale image stretched over a box of the city: the heightmap (generate/city/terrain.h)
-// and seed 004's channels (generate/city/channels.h) read theirs this way.
+// and the channels (generate/city/channels.h) read theirs this way.
 #pragma once
 
 #include <filesystem>

@@ -39,7 +39,7 @@ inline Colour ground_colour(ZoneType zone) {
 inline constexpr Colour kRoadColour{0.22, 0.22, 0.23};
 inline constexpr Colour kTerrainColour{0.45, 0.52, 0.33};
 
-// Seed 001's colour alteration of placed models: tint t multiplies a model's colours.
+// The colour variation of placed models (docs/design.md, Algorithms: rows): tint t multiplies a model's colours.
 inline Colour tinted(const Colour& c, int tint) {
   static constexpr std::array<Colour, 4> kTint{{{1, 1, 1}, {1.08, 1.0, 0.90}, {0.90, 0.96, 1.06}, {0.82, 0.82, 0.82}}};
   const Colour& t = kTint[static_cast<std::size_t>(tint) % kTint.size()];
@@ -55,7 +55,7 @@ inline constexpr Albedo kPaintAlbedo{0.85f, 0.85f, 0.80f}, kYellowPaintAlbedo{0.
 inline constexpr Albedo kWaterAlbedo{0.02f, 0.06f, 0.08f}, kWindowAlbedo{0.04f, 0.05f, 0.06f};
 inline constexpr Albedo kCommercialLotAlbedo{0.50f, 0.49f, 0.46f}, kIndustrialLotAlbedo{0.42f, 0.40f, 0.37f};
 
-// Facade and roof albedos per zone type; each building picks one of each (seed 000).
+// Facade and roof albedos per zone type; each building picks one of each.
 inline const std::vector<Albedo>& facade_albedos(ZoneType z) {
   static const std::vector<Albedo> residential{
       {0.80f, 0.72f, 0.60f}, {0.72f, 0.48f, 0.36f}, {0.86f, 0.82f, 0.66f}, {0.70f, 0.70f, 0.68f}};

@@ -5,6 +5,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "geom/box_index.h"
 #include "geom/grid.h"
 #include "geom/measure.h"
 
@@ -71,12 +72,18 @@ geom::Vec2& point_of(std::vector<RoadFeature>& roads, const LineEnd& e) {
   return e.back ? l.back() : l.front();
 }
 
-// Each end joins the first earlier end of another line near it.
+// A box around p, a metre wider than `snap` each way: the index filters in doubles, the
+// callers measure exactly as before.
+geom::Box around(geom::Vec2 p, double snap) { return {p.x - snap - 1, p.y - snap - 1, p.x + snap + 1, p.y + snap + 1}; }
+
+// Each end joins the first earlier end of another line near it. An end moves only as its
+// turn comes, so the earlier ends are in the index where they now are.
 int join_ends_to_ends(std::vector<RoadFeature>& roads, const std::vector<LineEnd>& ends, double snap,
                       Segments& segments) {
   int moved = 0;
-  for (std::size_t i = 0; i < ends.size(); ++i)
-    for (std::size_t j = 0; j < i; ++j) {
+  geom::BoxIndex earlier(snap + 1);
+  for (std::size_t i = 0; i < ends.size(); ++i) {
+    for (int j : earlier.meeting(around(point_of(roads, ends[i]), snap))) {
       if (ends[j].road == ends[i].road && ends[j].line == ends[i].line) continue;
       const geom::Vec2 target = point_of(roads, ends[j]);
       if (geom::distance(point_of(roads, ends[i]), target) > snap) continue;
@@ -84,6 +91,9 @@ int join_ends_to_ends(std::vector<RoadFeature>& roads, const std::vector<LineEnd
         moved += move_end(roads[ends[i].road].lines[ends[i].line], ends[i].back, target, segments);
       break;
     }
+    const geom::Vec2 now = point_of(roads, ends[i]);
+    earlier.add(static_cast<int>(i), {now.x, now.y, now.x, now.y});
+  }
   return moved;
 }
 
@@ -92,22 +102,42 @@ struct Side {
   std::size_t segment = 0;
 };
 
+// Every line's box in an index, by its place in the order of roads, then lines; a line
+// that changes is added again with its new points (its box only grows).
+struct LineBoxes {
+  std::vector<geom::Polyline*> lines;
+  std::map<const geom::Polyline*, int> place;
+  geom::BoxIndex index;
+
+  LineBoxes(std::vector<RoadFeature>& roads, double bucket) : index(bucket) {
+    for (RoadFeature& r : roads)
+      for (geom::Polyline& line : r.lines) place[&line] = static_cast<int>(lines.size()), lines.push_back(&line), update(line);
+  }
+  void update(const geom::Polyline& line) {
+    geom::Box box = geom::Box::none();
+    for (geom::Vec2 p : line) box.add(p);
+    index.add(place.at(&line), box);
+  }
+};
+
 // The segment nearest p within snap, not counting the end's own segment, which already
-// touches it; on a tie, the last found.
-Side nearest_side(std::vector<RoadFeature>& roads, const geom::Polyline& own, bool back, geom::Vec2 p, double snap) {
+// touches it; on a tie, the last found. Only lines whose box lies near p hold one, and
+// they are searched in the order of all lines.
+Side nearest_side(const LineBoxes& boxes, const geom::Polyline& own, bool back, geom::Vec2 p, double snap) {
   double best = snap;
   Side side;
-  for (RoadFeature& r : roads)
-    for (geom::Polyline& line : r.lines)
-      for (std::size_t s = 0; s + 1 < line.size(); ++s) {
-        if (&line == &own && (back ? s + 2 == line.size() : s == 0)) continue;
-        const geom::Vec2 a = line[s], b = line[s + 1];
-        if (std::min(a.x, b.x) - snap > p.x || std::max(a.x, b.x) + snap < p.x ||
-            std::min(a.y, b.y) - snap > p.y || std::max(a.y, b.y) + snap < p.y)
-          continue;
-        const double d = geom::distance_to_segment(p, a, b);
-        if (d <= best) best = d, side = {&line, s};
-      }
+  for (int k : boxes.index.meeting(around(p, snap))) {
+    geom::Polyline& line = *boxes.lines[k];
+    for (std::size_t s = 0; s + 1 < line.size(); ++s) {
+      if (&line == &own && (back ? s + 2 == line.size() : s == 0)) continue;
+      const geom::Vec2 a = line[s], b = line[s + 1];
+      if (std::min(a.x, b.x) - snap > p.x || std::max(a.x, b.x) + snap < p.x ||
+          std::min(a.y, b.y) - snap > p.y || std::max(a.y, b.y) + snap < p.y)
+        continue;
+      const double d = geom::distance_to_segment(p, a, b);
+      if (d <= best) best = d, side = {&line, s};
+    }
+  }
   return side;
 }
 
@@ -139,13 +169,15 @@ int join_ends_to_sides(std::vector<RoadFeature>& roads, const std::vector<LineEn
                        Segments& segments) {
   int moved = 0;
   auto counts = vertex_counts(roads);
+  LineBoxes boxes(roads, snap + 1);
   for (const LineEnd& e : ends) {
     geom::Polyline& own = roads[e.road].lines[e.line];
     const geom::Vec2 p = point_of(roads, e);
     if (counts[p] > 1) continue;
-    const Side side = nearest_side(roads, own, e.back, p, snap);
+    const Side side = nearest_side(boxes, own, e.back, p, snap);
     if (!side.line) continue;
     moved += join_end_to_side(own, e.back, p, side, snap, segments, counts);
+    boxes.update(own), boxes.update(*side.line);
   }
   return moved;
 }

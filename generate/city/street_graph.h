@@ -1,4 +1,4 @@
-// The sketch's roads as a street graph (seed 004's StreetBuilder): lines drawn by hand
+// The sketch's roads as a street graph (docs/design.md, Road layouts): lines drawn by hand
 // nearly meet, so ends are joined first; then every point where lines meet is a node with
 // the streets leaving it, and a line end that meets nothing is a dead end.
 #pragma once

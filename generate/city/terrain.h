@@ -1,4 +1,4 @@
-// The heightmap stretched over its bounds (seed 000, 3.1: value 0 marks water).
+// The heightmap stretched over its bounds (value 0 marks water; docs/design.md, The city model).
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,5 @@
-// The outline of a heightmap's water (seed 000, 3.1: value 0 marks water), smooth where the
-// pixels step: a contour of the water mask filtered at pixel scale (docs/design.md, Terrain).
+// The outline of a heightmap's water (value 0 marks water), smooth where the
+// pixels step: a contour of the water mask filtered at pixel scale (docs/design.md, Heightmap water).
 #pragma once
 
 #include <vector>

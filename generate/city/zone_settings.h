@@ -25,7 +25,7 @@ struct LayoutSite;
 struct LotLayoutType;
 struct PlacerType;
 
-// Seed 000's growth. Every zone type has these, whatever its layout: growth also grows the
+// Recursive road growth (docs/design.md, Road layouts). Every zone type has these, whatever its layout: growth also grows the
 // large land a grammar leaves, as the zone at each seed, and block_area sizes the city.
 struct GrowthSettings {
   double block_area = 12000;      // m²: faces above this are subdivided again
@@ -71,10 +71,10 @@ struct BlockSettings {
 
 struct LotSettings {
   // A row of the table of lot layouts (lot_layout_types, generate/parcels/parcel_settings.h):
-  // "allocation" (seed 000 measured from the street: lots side by side along every road
-  // edge of a block, corner lots at its corners, the block's middle left open; four quarters
-  // in industrial blocks), "split" (seed 003: halve perpendicular to the longest edge
-  // down to lot_area) or "library" (seed 004: the lots the model library's entries ask for,
+  // "allocation" (measured from the street: lots side by side along every road
+  // edge of a block, corner lots at its corners, the block's middle left open; some lots
+  // dropped by chance in industrial blocks), "split" (halve perpendicular to the longest edge
+  // down to lot_area) or "library" (the lots the model library's entries ask for,
   // along the streets).
   const LotLayoutType* layout = nullptr;
   Range lot_width{14, 24};   // m: frontage of an allocated lot, drawn per street side
@@ -97,18 +97,18 @@ struct BuildingSettings {
   // elsewhere; or "flat", "gabled" (falls back to hipped), "hipped" for every footprint.
   std::string roof = "auto";
   double roof_pitch = 30;             // degrees
-  // How far apart placed models stand in their rows, centre to centre (seed 002's
+  // How far apart placed models stand in their rows, centre to centre (a grammar's
   // _Dense/_Sparse): "dense" 1.25–1.5 model widths, "normal" 2–3, "sparse" 4–5.
   std::string density = "normal";
   // How placed models fill a lot, a row of the table of placers (placer_types,
-  // generate/placement/building_settings.h): "rows" along the street (seed 002) or "grid",
-  // seed 001's grid filling, on cells of `grid_cell` metres, filled `grid_passes` times.
+  // generate/placement/building_settings.h): "rows" along the street or "grid", the
+  // occupancy grid's grid filling, on cells of `grid_cell` metres, filled `grid_passes` times.
   const PlacerType* placement = nullptr;
   double grid_cell = 1;
   int grid_passes = 1;
-  // Seed 001's 3D bounding grid: grid filling lets a model stand under another's overhang.
+  // Nesting, a 3D occupancy grid: grid filling lets a model stand under another's overhang.
   bool nesting = false;
-  // Seed 004: a channel whose value takes the place of nearness to the city's centre in the
+  // A channel whose value takes the place of nearness to the city's centre in the
   // extruded buildings' heights (building_height); empty for none.
   std::string height_channel;
 };

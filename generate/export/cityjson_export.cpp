@@ -209,7 +209,7 @@ class Appearance {
   std::map<const TextureImage*, std::string> names_;
 };
 
-// Each model of the library once, as a MultiSurface in its own frame (seed 004), its
+// Each model of the library once, as a MultiSurface in its own frame (a geometry template), its
 // textured triangles with their texture coordinates.
 json templates(const ModelLibrary& library, Appearance& appearance) {
   json list = json::array(), vertices = json::array();
@@ -286,7 +286,7 @@ json model_object(const ModelInstance& m, const Mesh& mesh, const ModelLibrary& 
           {"geometry", json::array({lod1, placed})}};
 }
 
-// Street clutter (seed 004): CityFurniture, or SolitaryVegetationObject for a tree, whose one
+// Street clutter: CityFurniture, or SolitaryVegetationObject for a tree, whose one
 // geometry is its model's template placed; its attributes name the road it dresses (null for
 // a park's tree).
 json clutter_object(const Clutter& c, const ModelLibrary& library, Vertices& v) {

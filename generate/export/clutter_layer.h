@@ -1,4 +1,4 @@
-// vector/clutter.geojson: seed 004's street clutter as points (docs/design.md, Outputs).
+// vector/clutter.geojson: street clutter as points (docs/design.md, Outputs).
 #pragma once
 
 #include <vector>

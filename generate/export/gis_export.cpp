@@ -54,6 +54,17 @@ std::vector<SourceLayer> geojson_layers(const fs::path& dir) {
   return out;
 }
 
+// A layer's geometry type as the GeoJSON has it; an empty GeoJSON layer has none, and a
+// format whose layer has none shows it as lines or "Unknown" (QGIS then offers the wrong
+// symbols and refuses to append polygons): the type every layer of OUT/vector holds.
+OGRwkbGeometryType geometry_type(const SourceLayer& source) {
+  const OGRwkbGeometryType read = source.layer->GetGeomType();
+  if (read != wkbUnknown) return read;
+  if (source.name == "roads") return wkbLineString;  // centre lines
+  if (source.name == "clutter") return wkbPoint;
+  return wkbPolygon;  // zones, water, road areas, blocks, lots, buildings
+}
+
 // Copies every GeoJSON layer into `target`, one layer each (GeoPackage, FlatGeobuf and
 // Shapefile keep geometry and attributes; CRS set from the sketch's).
 void copy_layers(const std::vector<const SourceLayer*>& layers, GDALDataset& target, OGRSpatialReference* srs,
@@ -64,7 +75,7 @@ void copy_layers(const std::vector<const SourceLayer*>& layers, GDALDataset& tar
     OGRLayer* from = source->layer;
     from->ResetReading();
     const std::string& name = source->name;
-    OGRLayer* to = target.CreateLayer(name.c_str(), srs, from->GetGeomType(), const_cast<char**>(layer_options));
+    OGRLayer* to = target.CreateLayer(name.c_str(), srs, geometry_type(*source), const_cast<char**>(layer_options));
     if (!to) fail(file, "cannot hold layer " + name);
     // A list (a block's roads) is written as its JSON text: no format here stores lists.
     OGRFeatureDefn* defn = from->GetLayerDefn();
@@ -261,13 +272,17 @@ bool write_city_osm(const City& city, const fs::path& file) {
     locations.push_back(osmium::Location{ll.x, ll.y});
   }
   const std::int64_t first_id = first_osm_id(locations);
-  auto id = [&](std::size_t n) { return static_cast<osmium::object_id_type>(-(first_id + static_cast<std::int64_t>(n) + 1)); };
+  // The n-th of `count` objects of a type: ids rise through the file, from the most negative
+  // to -(first_id + 1), as `osmium merge` requires of each input (it compares ids as numbers).
+  auto id = [&](std::size_t n, std::size_t count) {
+    return static_cast<osmium::object_id_type>(-(first_id + static_cast<std::int64_t>(count - n)));
+  };
 
   osmium::memory::Buffer node_buffer{1024 * 1024, osmium::memory::Buffer::auto_grow::yes};
   for (std::size_t i = 0; i < locations.size(); ++i) {
     {
       osmium::builder::NodeBuilder node{node_buffer};
-      node.set_id(id(i)).set_version(1).set_visible(true);
+      node.set_id(id(i, locations.size())).set_version(1).set_visible(true);
       node.set_location(locations[i]);
       node.set_user("exacity");
       if (i >= nodes.positions().size()) {
@@ -282,11 +297,11 @@ bool write_city_osm(const City& city, const fs::path& file) {
   for (std::size_t i = 0; i < ways.size(); ++i) {
     {
       osmium::builder::WayBuilder builder{way_buffer};
-      builder.set_id(id(i)).set_version(1).set_visible(true);
+      builder.set_id(id(i, ways.size())).set_version(1).set_visible(true);
       builder.set_user("exacity");
       {
         osmium::builder::WayNodeListBuilder refs{builder};
-        for (std::size_t n : ways[i].nodes) refs.add_node_ref(id(n));
+        for (std::size_t n : ways[i].nodes) refs.add_node_ref(id(n, locations.size()));
       }
       osmium::builder::TagListBuilder tag_list{builder};
       for (const auto& [k, v] : ways[i].tags) tag_list.add_tag(k, v);

@@ -3,7 +3,7 @@
 // millimetres across a large city. The ground is ground_layers' (terrain, zones, water,
 // roads, bridges), as in city.obj and city.ply; extruded buildings are merged per
 // material; each library model is stored once
-// and every placement is a node referring to it (seed 004), one mesh per colour variant
+// and every placement is a node referring to it (instancing), one mesh per colour variant
 // sharing the same geometry.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Surfaces on the ground that follow the terrain (seed 002's flaw avoided: a road
+// Surfaces on the ground that follow the terrain (a road draped only at its corners would sink: a road
 // triangulated only at its corners cuts through the hills between them). Edges are split
 // every half pixel and the pixel centres inside become vertices, so every surface bends
 // with the heightmap; roads are lifted a little above it.

@@ -10,6 +10,7 @@
 
 #include "generate/cancel.h"
 #include "generate/errors.h"
+#include "generate/gis/projection.h"
 #include "generate/input_file.h"
 #include "generate/parcels/lots.h"
 #include "geom/measure.h"
@@ -383,18 +384,6 @@ geom::Box bounds(const RealFeatures& real) {
   return box;
 }
 
-// Projected about the box's centre, equirectangular: ample for areas and lengths over a
-// few kilometres.
-void project_lon_lat(RealFeatures& real, const geom::Box& box) {
-  const double lon0 = (box.min_x + box.max_x) / 2, lat0 = (box.min_y + box.max_y) / 2, r = 6371008.8 * M_PI / 180;
-  auto project = [&](Vec2& v) { v = {(v.x - lon0) * r * std::cos(lat0 * M_PI / 180), (v.y - lat0) * r}; };
-  for (auto& p : real.polygons) {
-    for (Vec2& v : p.outer) project(v);
-    for (auto& h : p.holes) for (Vec2& v : h) project(v);
-  }
-  for (auto& l : real.lines) for (Vec2& v : l) project(v);
-}
-
 // The extract's box stands for the city's edge: streets cut there end on it.
 ordered_json real_street_figures(const std::vector<geom::Polyline>& lines, const geom::Box& box) {
   const double margin = 20;
@@ -420,16 +409,13 @@ ordered_json city_statistics(const CityLayers& layers, const CitySettings* setti
 
 ordered_json real_statistics(const std::filesystem::path& file) {
   ordered_json doc = read_feature_collection(file);
+  // Measured in ground metres as a sketch is built (generate/gis/projection.h): its crs
+  // (Web Mercator, feet) or lon/lat without one projected to its UTM zone.
+  const bool projected = project_to_metres(doc, file);
   RealFeatures real = read_features(doc["features"]);
-  geom::Box box = bounds(real);
+  const geom::Box box = bounds(real);
   if (box.holds_nothing()) throw UserError(file.string() + ": holds no usable Polygon or LineString; give footprints or streets");
-  // Lon/lat when every coordinate is within range.
-  const bool lon_lat = box.min_x >= -180 && box.max_x <= 180 && box.min_y >= -90 && box.max_y <= 90;
-  if (lon_lat) {
-    project_lon_lat(real, box);
-    box = bounds(real);
-  }
-  ordered_json out{{"file", file.filename().string()}, {"lon_lat", lon_lat}, {"features_skipped", real.skipped}};
+  ordered_json out{{"file", file.filename().string()}, {"projected", projected}, {"features_skipped", real.skipped}};
   if (!real.polygons.empty()) out["zones"] = {{"all", {{"footprints", footprint_figures(pointers(real.polygons))}}}};
   if (!real.lines.empty()) out["streets"] = real_street_figures(real.lines, box);
   return out;

@@ -38,10 +38,13 @@ void write_legend(std::ostream& out, const Ground& ground, bool structures, bool
                   double px) {
   std::vector<std::pair<std::string, std::string>> keys;
   const bool green_blocks = std::any_of(ground.blocks.begin(), ground.blocks.end(), [](const BlockArea& b) { return b.green; });
-  for (const auto& [zone, colour] : map_zone_colours())
+  // Not a structured binding: clang 14 (the fuzz preset's) cannot capture one in a lambda.
+  for (const auto& zone_colour : map_zone_colours()) {
+    const auto& zone = zone_colour.first;
     if (std::any_of(ground.zones.begin(), ground.zones.end(), [&](const ZoneArea& z) { return name(z.type) == zone; }) ||
         (zone == "park" && green_blocks))
-      keys.emplace_back(zone, colour);
+      keys.emplace_back(zone, zone_colour.second);
+  }
   if (!ground.water.empty()) keys.emplace_back("water", kMapWater);
   if (!ground.lots.empty()) keys.emplace_back("lot", kMapLot);
   if (structures) keys.emplace_back("building", kMapBuilding);

@@ -185,7 +185,7 @@ class FaceLabels {
       if (here.count({Kind::Block}) == 0 || here.first(Kind::Block).id != lot.block)
         return wrong(lot.name + " leaves its block " + std::to_string(lot.block));
     }
-    // Buildings overlap only where seed 001's nesting proves one wholly below the other
+    // Buildings overlap only where nesting proves one wholly below the other
     // (docs/design.md, Placement: nesting), each pair decided once.
     if (here.count({Kind::Building}) > 0) {
       const std::vector<int>& buildings = here.all(Kind::Building);

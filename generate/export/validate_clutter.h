@@ -1,4 +1,4 @@
-// `exacity validate`'s checks of vector/clutter.geojson (seed 004's street clutter), on the
+// `exacity validate`'s checks of vector/clutter.geojson (street clutter), on the
 // coordinates as written and exactly (docs/design.md, Exactness rule 7).
 #pragma once
 

@@ -1,4 +1,4 @@
-// Seed 001's nesting in `exacity validate` (docs/design.md, Placement: nesting): two models
+// Nesting (a 3D occupancy grid) in `exacity validate` (docs/design.md, Placement: nesting): two models
 // whose footprints overlap are valid only where the slabs each writes (heights from its
 // floor, the outlines of what it holds between them) prove one lies wholly below the
 // other wherever they share the plan. Decided exactly on the written doubles.

@@ -37,6 +37,9 @@ std::optional<double> metres(const std::optional<std::string>& tag) {
 
 double default_width(const std::string& road) { return road == "highway" ? 20 : road == "main" ? 12 : 8; }
 
+// Where osm_keys' main tags that name a feature left out begin.
+constexpr std::ptrdiff_t kReadKeys = 13;
+
 // Pedestrian streets and alleys are local streets, narrower than the class's default.
 constexpr double kPedestrianWidth = 6, kAlleyWidth = 4;
 
@@ -123,8 +126,12 @@ bool drop_degenerate_rings(ordered_json& geometry) {
 }  // namespace
 
 const std::vector<std::string>& osm_keys() {
-  static const std::vector<std::string> keys{"highway", "waterway", "landuse", "natural", "leisure", "water",
-                                             "width",   "lanes",    "tunnel",  "service", "other_tags"};
+  // The keys read, then the OSM ids GIS exports carry and the main tags of what Exacity
+  // makes nothing of (kReadKeys on), which name what is left out.
+  static const std::vector<std::string> keys{
+      "highway",  "waterway", "landuse", "natural", "leisure",  "water",    "width",    "lanes",   "tunnel",
+      "service",  "other_tags", "osm_id", "osm_way_id", "building", "amenity", "shop", "tourism", "man_made",
+      "railway",  "aeroway",  "barrier", "boundary", "place",    "power",    "historic", "military", "sport", "office"};
   return keys;
 }
 
@@ -191,7 +198,17 @@ OsmMeaning osm_area_meaning(const OsmTags& tags) {
   return {};
 }
 
-bool apply_osm_tags(ordered_json& doc, const std::filesystem::path& path) {
+std::vector<const ordered_json*> osm_file_counts(const ordered_json& osm) {
+  std::vector<const ordered_json*> out;
+  if (!osm.is_object()) return out;
+  if (!osm.contains("files")) return {&osm};
+  if (osm["files"].is_array())
+    for (const ordered_json& file : osm["files"])
+      if (file.is_object()) out.push_back(&file);
+  return out;
+}
+
+bool apply_osm_tags(ordered_json& doc, const std::vector<SketchFile>& files) {
   if (!doc.is_object() || !doc.contains("features") || !doc["features"].is_array()) return false;
   ordered_json& features = doc["features"];
   std::vector<OsmMeaning> meanings;
@@ -215,33 +232,46 @@ bool apply_osm_tags(ordered_json& doc, const std::filesystem::path& path) {
     else if (is_linear(type)) meanings.back() = osm_line_meaning(tags);
     else if (std::optional<std::string> tag = first_tag(tags, {"highway", "waterway", "landuse", "natural", "leisure", "water"}))
       meanings.back() = left_out(*tag + " as a point");  // a crossing, a bus stop, a tree
+    // A feature GDAL's OSM driver or pyrosm exported (it has their OSM id columns) whose tags
+    // are none of those read: a building, a school's grounds. Left out and counted by its
+    // main tag, as an extract's would be; a feature drawn by hand without a zone or road
+    // is still the sketch reader's to refuse.
+    if (meanings.back().kind == OsmMeaning::Untagged && (tags("osm_id") || tags("osm_way_id"))) {
+      std::optional<std::string> tag;
+      for (auto key = osm_keys().begin() + kReadKeys; key != osm_keys().end() && !tag; ++key)
+        if (std::optional<std::string> v = tags(*key)) tag = *key + "=" + *v;
+      meanings.back() = left_out(tag ? *tag : "OpenStreetMap features without a tag Exacity reads");
+    }
   }
   if (std::all_of(meanings.begin(), meanings.end(), [](const OsmMeaning& m) { return m.kind == OsmMeaning::Untagged; }))
     return false;
 
-  std::map<std::string, int> taken{{"zones", 0}, {"roads", 0}, {"rivers", 0}}, skipped;
+  std::map<std::string, int> taken{{"zones", 0}, {"roads", 0}, {"rivers", 0}};
+  std::vector<std::map<std::string, int>> skipped(files.size());  // by file
   std::vector<std::size_t> zones;  // places of the features whose tags made zones
   ordered_json kept = ordered_json::array();
+  std::size_t file = 0, first = 0;  // the file of feature i, and the place of its first feature
   for (std::size_t i = 0; i < features.size(); ++i) {
+    while (file + 1 < files.size() && i >= first + files[file].features) first += files[file++].features;
     ordered_json& f = features[i];
     const OsmMeaning& meaning = meanings[i];
     // Features are taken out below: each keeps its place in the user's file for messages.
     if (f.is_object() && f.contains("properties") && f["properties"].is_object() && !f["properties"].contains("source"))
-      f["properties"]["source"] = path.string() + " features[" + std::to_string(i) + "]";
+      f["properties"]["source"] = files[file].path.string() + " features[" + std::to_string(i - first) + "]";
     if (meaning.kind == OsmMeaning::LeftOut) {
-      ++skipped[meaning.why];
+      ++skipped[file][meaning.why];
       continue;
     }
     if (meaning.kind == OsmMeaning::River) {
       std::optional<ordered_json> water = buffered(f["geometry"], meaning.width / 2);
       if (!water) {
-        ++skipped["rivers GEOS could not widen"];
+        ++skipped[file]["rivers GEOS could not widen"];
         continue;
       }
       f["geometry"] = std::move(*water);
     }
     if (meaning.kind == OsmMeaning::Zone && !drop_degenerate_rings(f["geometry"])) {
-      ++skipped["areas of fewer than 3 distinct points"];
+      ++skipped[file]["areas of fewer than 3 distinct points"];
       continue;
     }
     if (meaning.kind != OsmMeaning::Untagged) {
@@ -275,10 +305,20 @@ bool apply_osm_tags(ordered_json& doc, const std::filesystem::path& path) {
   features = std::move(kept);
 
   ordered_json& osm = doc["osm"];
-  if (!osm.is_object()) osm = {{"file", path.string()}};
+  if (!osm.is_object()) osm = files.size() == 1 ? ordered_json{{"file", files[0].path.string()}} : ordered_json::object();
   osm["taken"] = taken;
-  if (!osm.contains("skipped") || !osm["skipped"].is_object()) osm["skipped"] = ordered_json::object();
-  for (const auto& [why, count] : skipped) osm["skipped"][why] = osm["skipped"].value(why, 0) + count;
+  // Each file's counts: the member itself for one file, its "files" for several (an
+  // extract's own counts, from reading it, already there).
+  if (files.size() > 1 && !(osm.contains("files") && osm["files"].is_array() && osm["files"].size() == files.size())) {
+    osm["files"] = ordered_json::array();
+    for (const SketchFile& f : files) osm["files"].push_back({{"file", f.path.string()}});
+  }
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    ordered_json& counts = files.size() > 1 ? osm["files"][k] : osm;
+    if (!counts.contains("file")) counts["file"] = files[k].path.string();
+    if (!counts.contains("skipped") || !counts["skipped"].is_object()) counts["skipped"] = ordered_json::object();
+    for (const auto& [why, count] : skipped[k]) counts["skipped"][why] = counts["skipped"].value(why, 0) + count;
+  }
   return true;
 }
 

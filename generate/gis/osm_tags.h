@@ -39,13 +39,26 @@ const std::vector<std::string>& osm_road_keys();
 // Those of a feature's properties (columns, or GDAL's "other_tags"), in osm_road_keys' order.
 std::vector<std::pair<std::string, std::string>> osm_road_tags(const nlohmann::ordered_json& properties);
 
+// A file read into a sketch document: its path, and how many of the document's features
+// (in order, after the files before it) are its.
+struct SketchFile {
+  std::filesystem::path path;
+  std::size_t features = 0;
+};
+
 // Gives every feature of a sketch document in metres that has OSM tags but no "zone" or
 // "road" the zone or road its tags make (a river its centre line widened to water by GEOS;
 // an area without its rings of fewer than 3 distinct points, as OSM exports have them);
-// features the tags make nothing of are taken out and counted by tag in the document's
-// "osm" member ({"skipped": {"highway=footway": N, ...}}), and every feature keeps its
-// place in the user's file as its "source" for messages. Features with neither OSM tags
-// nor a zone or road are left for the sketch reader to refuse. Whether anything changed.
-bool apply_osm_tags(nlohmann::ordered_json& doc, const std::filesystem::path& path);
+// features the tags make nothing of are taken out and counted by tag, each in its own
+// file's counts, in the document's "osm" member: {"file": F, "skipped": {"highway=footway":
+// N, ...}} for one file, {"files": [{"file": F, "skipped": ...}, ...]} for several (an
+// extract's own "repaired" list stays with its file). Every feature keeps its place in
+// the user's file as its "source" for messages. Features with neither OSM tags nor a zone
+// or road are left for the sketch reader to refuse. Whether anything changed.
+bool apply_osm_tags(nlohmann::ordered_json& doc, const std::vector<SketchFile>& files);
+
+// The "osm" member's counts of each file: {"file": F, "skipped": ..., "repaired": ...}
+// (null where there are none).
+std::vector<const nlohmann::ordered_json*> osm_file_counts(const nlohmann::ordered_json& osm);
 
 }  // namespace exacity

@@ -40,6 +40,12 @@ OGRSpatialReference from_epsg(int epsg) {
   return srs;
 }
 
+std::string fixed(double v, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, v);
+  return text;
+}
+
 // Calls f on every [x, y] position of a GeoJSON geometry's coordinates.
 template <typename F>
 void for_each_position(ordered_json& coords, F&& f) {
@@ -238,8 +244,10 @@ std::vector<Place> raw_places(const std::vector<FeaturePositions>& features) {
 // coordinate is a whole number (a sketch in metres a few metres wide, as tests draw them;
 // no place is drawn in whole degrees), and the positions span under kLonLatSpan degrees,
 // or all but one feature's under a degree (a stray node, which the extent's check then
-// names).
-bool looks_lon_lat(const std::vector<FeaturePositions>& features) {
+// names). One spanning more whose features are mostly under a unit across is lon/lat of
+// places too far apart for one map (a sketch in metres has features metres across), and is
+// refused; anything else is in metres.
+bool looks_lon_lat(const std::vector<FeaturePositions>& features, const fs::path& path) {
   std::vector<Place> places = raw_places(features);
   bool whole = true;  // every coordinate a whole number: metres drawn by hand, however small
   for (const Place& place : places)
@@ -251,12 +259,25 @@ bool looks_lon_lat(const std::vector<FeaturePositions>& features) {
   unwrap(places);
   const geom::Box box = box_of(places);
   if (box.width() < kLonLatSpan && box.height() < kLonLatSpan) return true;
-  if (places.size() < 2) return false;
-  geom::Vec2 where;
-  places.erase(places.begin() + static_cast<std::ptrdiff_t>(farthest(places, where)));
-  unwrap(places);
-  const geom::Box rest = box_of(places);
-  return rest.width() < 1 && rest.height() < 1;
+  std::vector<double> sizes;  // each feature's extent, its width or height, whichever is more
+  for (const Place& place : places) {
+    const geom::Box own = box_of({place});
+    sizes.push_back(std::max(own.width(), own.height()));
+  }
+  if (places.size() >= 2) {
+    std::vector<Place> rest = places;
+    geom::Vec2 where;
+    rest.erase(rest.begin() + static_cast<std::ptrdiff_t>(farthest(rest, where)));
+    unwrap(rest);
+    const geom::Box rest_box = box_of(rest);
+    if (rest_box.width() < 1 && rest_box.height() < 1) return true;
+  }
+  if (median(sizes) >= 1) return false;
+  throw UserError(path.string() + ": has no crs, and its coordinates lie within longitude and latitude ranges but span " +
+                  fixed(box.width(), 1) + "° of longitude and " + fixed(box.height(), 1) +
+                  "° of latitude, while its features are mostly under a degree across: places too far apart for one "
+                  "map, or a CRS Exacity cannot guess; add a \"crs\" member naming its CRS, like {\"type\": \"name\", "
+                  "\"properties\": {\"name\": \"EPSG:4326\"}} for longitude and latitude");
 }
 
 // The CRS a crs member names, as PROJ knows it.
@@ -275,12 +296,6 @@ std::string crs_text(const OGRSpatialReference& srs) {
   const char* code = srs.GetAuthorityCode(nullptr);
   if (authority && code) return std::string(authority) + ":" + code;
   return srs.GetName() ? srs.GetName() : "its CRS";
-}
-
-std::string fixed(double v, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, v);
-  return text;
 }
 
 // Moves the positions (and the bounds of the settings' images) of one part from `from`
@@ -381,7 +396,7 @@ ordered_json bring_to_one_crs(std::vector<SketchPart>& parts, bool& changed) {
     if (doc.is_object() && doc.contains("crs") && !doc["crs"].is_null()) {
       crs[i] = named_crs(doc["crs"], parts[i].path), members[i] = doc["crs"];
       if (!first_named) first_named = i;
-    } else if (!features[i].empty() && looks_lon_lat(features[i])) {
+    } else if (!features[i].empty() && looks_lon_lat(features[i], parts[i].path)) {
       crs[i] = lon_lat();
     }
   }

@@ -39,8 +39,10 @@ struct SketchPart {
 // among the parts that is projected, in metres and within 1% of scale 1 at the sketch's
 // centre (a national grid, UTM), else the UTM zone of the sketch's centre. A part without
 // a crs is lon/lat when its positions lie in lon/lat ranges, are not all whole numbers and
-// span under 30 degrees (or all but one feature's under 1), else in the other parts' CRS, else in metres with no
-// place on Earth. Longitudes are read around the antimeridian where the sketch crosses
+// span under 30 degrees (or all but one feature's under 1); such positions spanning more
+// with features mostly under 1 across are refused (places too far apart, a crs to name);
+// any other part without a crs is in the other parts' CRS, else in metres with no place
+// on Earth. Longitudes are read around the antimeridian where the sketch crosses
 // it. Throws UserError, naming the extent and the feature farthest from the rest, when
 // the CRS's scale at the extent's edge is more than 1% off (a sketch one flat map cannot
 // hold), and naming the file when PROJ does not know its crs. The CRS's "crs" member,

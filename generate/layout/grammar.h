@@ -1,4 +1,4 @@
-// Seed 002's split grammar: its text file, and the growth of a layout tree from it.
+// The split grammar (docs/design.md, Algorithms): its text file, and the growth of a layout tree from it.
 //
 // One rule per line, `#` starts a comment: `WEIGHT LEFT N CHILD CHILD ...`, N the left
 // symbol's corner count (3 or 4), each CHILD `Name,u1,v1,u2,v2,u3,v3` (a triangle) or
@@ -29,7 +29,7 @@ struct GrammarRule {
   int line = 0;
 };
 
-// What a terminal symbol stands for (seed 002's zone types).
+// What a terminal symbol stands for (the grammar's land uses).
 struct Terminal {
   enum Kind { Land, Park, Road } kind = Land;
   ZoneType type = ZoneType::Residential;  // for Land
@@ -44,7 +44,7 @@ struct Grammar {
 
 // Throws UserError naming the file and line: bad syntax, a child with other than 6 or 8
 // values, N not 3 or 4, a corner outside [0, 1], rules for a symbol whose weights sum to 0,
-// a terminal that is none of seed 002's names, a child whose corner count its symbol has no
+// a terminal that is none of the land uses' names, a child whose corner count its symbol has no
 // rule for, no rule for `Town`.
 Grammar parse_grammar(const std::string& text, const std::filesystem::path& file);
 Grammar load_grammar(const std::filesystem::path& file);
@@ -71,7 +71,7 @@ struct GrammarLeaf {
 std::vector<GrammarLeaf> grow_layout(const Grammar& grammar, const std::vector<std::vector<geom::Vec2>>& roots,
                                      int max_depth, double min_area, std::uint64_t seed);
 
-// Seed 002's roots for a polygon: its triangles, neighbouring pairs that make a near
+// The grammar's roots for a polygon: its triangles, neighbouring pairs that make a near
 // rectangle (every corner within 20 degrees of square) merged into quads, best first.
 // Counter-clockwise, each starting at its longest edge.
 std::vector<std::vector<geom::Vec2>> layout_roots(const geom::Polygon& polygon);

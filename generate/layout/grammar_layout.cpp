@@ -1,4 +1,4 @@
-// Seed 002's layout: the region's triangles and near-square quads grow by a split grammar;
+// The split grammar layout: the region's triangles and near-square quads grow by a split grammar;
 // each road leaf becomes one road down its middle, and each land leaf a use.
 #include <algorithm>
 #include <cmath>
@@ -10,17 +10,18 @@
 #include "generate/layout/growth.h"
 #include "generate/layout/road_layout.h"
 #include "generate/layout/settle.h"
+#include "geom/box_index.h"
 #include "geom/grid.h"
 #include "geom/measure.h"
 
 namespace exacity {
 namespace {
 
-// Seed 002's split grammar.
+// The split grammar (docs/design.md, Road layouts).
 struct GrammarSettings {
   std::shared_ptr<const Grammar> file;  // read with the sketch
   int depth = 8;                        // rules applied at most, from a root down
-  bool grow_large_pieces = true;        // land over 4 x block_area is grown by seed 000's growth
+  bool grow_large_pieces = true;        // land over 4 x block_area is grown by recursive growth
 };
 
 geom::Vec2 mid(geom::Vec2 a, geom::Vec2 b) { return {(a.x + b.x) / 2, (a.y + b.y) / 2}; }
@@ -32,7 +33,7 @@ bool lies_along(geom::Vec2 a, geom::Vec2 b, geom::Vec2 p, geom::Vec2 q) {
 }
 
 // A road leaf's corners from the start of its long side: a road runs along its longer
-// axis, whichever edge the grammar wrote first (seed 002 writes the long one first; a road
+// axis, whichever edge the grammar wrote first (grammars are meant to write the long one first; a road
 // read across would be a stub of its own width, which nothing joins).
 std::vector<geom::Vec2> long_side_first(std::vector<geom::Vec2> c) {
   if (c.size() == 4) {
@@ -48,12 +49,38 @@ std::vector<geom::Vec2> long_side_first(std::vector<geom::Vec2> c) {
   return c;
 }
 
-// The use of the leaf that holds p, if any.
-std::optional<Terminal> use_at(const std::vector<PlannedUse>& uses, geom::Vec2 p) {
-  for (const PlannedUse& u : uses)
-    if (geom::winding_number(u.ring, p) != 0) return u.use;
-  return std::nullopt;
-}
+// The leaves' uses, to find the one that holds a point without a pass over all of them
+// (a deep grammar has tens of thousands, and every piece and growth seed asks).
+class UsesIndex {
+ public:
+  explicit UsesIndex(const std::vector<PlannedUse>& uses) : uses_(uses), boxes_(mean_size(uses)) {
+    for (std::size_t k = 0; k < uses.size(); ++k) {
+      geom::Box box = geom::Box::none();
+      for (geom::Vec2 v : uses[k].ring) box.add(v);
+      boxes_.add(static_cast<int>(k), box);
+    }
+  }
+  // The use of the first leaf that holds p, if any (asking the index a metre around p: it
+  // filters in doubles, and the winding number decides as it did over all leaves).
+  std::optional<Terminal> at(geom::Vec2 p) const {
+    for (int k : boxes_.meeting({p.x - 1, p.y - 1, p.x + 1, p.y + 1}))
+      if (geom::winding_number(uses_[k].ring, p) != 0) return uses_[k].use;
+    return std::nullopt;
+  }
+
+ private:
+  static double mean_size(const std::vector<PlannedUse>& uses) {
+    double sum = 0;
+    for (const PlannedUse& u : uses) {
+      geom::Box box = geom::Box::none();
+      for (geom::Vec2 v : u.ring) box.add(v);
+      if (!box.holds_nothing()) sum += std::max(box.width(), box.height());
+    }
+    return uses.empty() ? 0 : sum / static_cast<double>(uses.size());
+  }
+  const std::vector<PlannedUse>& uses_;
+  geom::BoxIndex boxes_;
+};
 
 // Whether a use other than land (a park) lies in the piece: growth's roads would cross it.
 bool holds_other_use(const geom::Cell& piece, const std::vector<PlannedUse>& uses) {
@@ -87,8 +114,8 @@ void add_grown(RoadPlan& plan, RoadPlan grown, const std::vector<std::vector<geo
 }
 
 // Land between the grammar's roads over 4 times the zone's block_area (as the statistics
-// measure blocks), where seed 002 would fill one piece all the way in: the region is cut
-// along the roads' centre lines and each such piece grown by seed 000's growth as a region
+// measure blocks), where a plain split grammar would fill one piece all the way in: the region is cut
+// along the roads' centre lines and each such piece grown by recursive road growth as a region
 // of its own, its roads running on to the grammar's (an Exacity extension;
 // "grow_large_pieces": false keeps the pieces whole). A piece holding a park is kept whole:
 // growth's roads would cross it.
@@ -104,15 +131,16 @@ void grow_large_pieces(RoadPlan& plan, const Region& region, const CitySettings&
   const int grammar_road = GrowthEdge::sketch_road(static_cast<int>(lines.size()) - 1);
   const std::vector<geom::Cell> pieces =
       lines.back().lines.empty() ? std::vector<geom::Cell>{region.cell} : geom::split_cell(region.cell, lines.back().lines, grammar_road);
+  const UsesIndex uses(plan.uses);
   for (std::size_t k = 0; k < pieces.size(); ++k) {
     const std::optional<geom::Vec2> inside = pieces[k].point_inside_near(pieces[k].centroid());
-    const std::optional<Terminal> use = inside ? use_at(plan.uses, *inside) : std::nullopt;
+    const std::optional<Terminal> use = inside ? uses.at(*inside) : std::nullopt;
     if (!use || use->kind != Terminal::Land) continue;
     if (pieces[k].area() <= 4 * city.zone_settings.at(zone).roads.growth.block_area) continue;
     if (holds_other_use(pieces[k], plan.uses)) continue;
     // Each cell grows as the land use at its seed, as a growth region follows its zones.
-    const auto growth = make_growth_layout(city, lines, [&uses = plan.uses, piece_type = use->type](geom::Vec2 p) {
-      const std::optional<Terminal> u = use_at(uses, p);
+    const auto growth = make_growth_layout(city, lines, [&uses, piece_type = use->type](geom::Vec2 p) {
+      const std::optional<Terminal> u = uses.at(p);
       return std::optional<ZoneType>(u && u->kind == Terminal::Land ? u->type : piece_type);
     });
     add_grown(plan, growth->plan({pieces[k], mix(region.stream, 0x9e0000 + k)}), piece_lines);

@@ -18,6 +18,7 @@ constexpr int kMaxLevels = 64;  // a long corridor is cut a block or so per leve
 constexpr int kConnectorTries = 8;
 constexpr int kMaxStalls = 4;        // regrowths of a cell that the roads failed to divide
 constexpr int kSeedCandidates = 48;  // points tried for a cell's seed
+constexpr int kDeepeningSteps = 8;   // steps moving a start away from the boundary
 
 // A cell waiting to be grown.
 struct Work {
@@ -29,18 +30,31 @@ struct Work {
   bool top = true;     // a whole region, with no roads of its own yet to reach
 };
 
+// How far points inside a cell lie from its boundary (its drawn edges and the roads grown
+// around it before), in doubles.
+class Depth {
+ public:
+  explicit Depth(const geom::Cell& cell) : rings_(cell.kinded_rings()) {}
+  double operator()(geom::Vec2 p) const { return geom::distance(p, nearest(p)); }
+  geom::Vec2 nearest(geom::Vec2 p) const {
+    geom::Vec2 best = p;
+    double d = INFINITY;
+    for (const auto& r : rings_)
+      for (std::size_t i = 0, n = r.points.size(); i < n; ++i) {
+        const geom::Vec2 q = geom::nearest_on_segment(p, r.points[i], r.points[(i + 1) % n]);
+        if (const double e = geom::distance(p, q); e < d) d = e, best = q;
+      }
+    return best;
+  }
+
+ private:
+  std::vector<geom::KindedRing> rings_;
+};
+
 // Where a cell's roads start: the deepest of some points inside it (the farthest from its
 // boundary), so a seed sits in the middle of a corridor or an arm rather than at the
 // centroid, which a U, a ring or a spiral leaves outside or against an edge.
-std::optional<geom::Vec2> seed_point(const geom::Cell& cell, Random& rng) {
-  const std::vector<geom::KindedRing> rings = cell.kinded_rings();
-  auto depth = [&](geom::Vec2 p) {
-    double d = INFINITY;
-    for (const auto& r : rings)
-      for (std::size_t i = 0, n = r.points.size(); i < n; ++i)
-        d = std::min(d, geom::distance_to_segment(p, r.points[i], r.points[(i + 1) % n]));
-    return d;
-  };
+std::optional<geom::Vec2> seed_point(const geom::Cell& cell, const Depth& depth, Random& rng) {
   std::optional<geom::Vec2> best = cell.point_inside_near(cell.centroid());
   double best_depth = best ? depth(*best) : -1;
   const geom::Box b = cell.bounds();
@@ -50,6 +64,33 @@ std::optional<geom::Vec2> seed_point(const geom::Cell& cell, Random& rng) {
     if (d > best_depth && cell.contains(p)) best = p, best_depth = d;  // the exact test only when it would win
   }
   return best;
+}
+
+// Where a cell's roads start, and, for a start moved off an edge it lay too near, the way
+// off that edge.
+struct Start {
+  geom::Vec2 at;
+  std::optional<geom::Vec2> off_edge;  // a unit vector
+};
+
+// A start for a cell's roads at least `least` from its boundary: p, or p stepped away from
+// the boundary point nearest it, a few times (a corner pushes it on from the next edge).
+// Every road from a start that deep is at least that long, so none is a stub; a start just
+// inside an edge (Cell::point_inside_near's answer when the point wanted lies outside) grew
+// roads of centimetres out to it. nullopt where the steps leave the cell or find no such
+// point: a cell narrower than twice `least` there.
+std::optional<Start> deep_start(const geom::Cell& cell, const Depth& depth, geom::Vec2 p, double least) {
+  Start start{p, std::nullopt};
+  for (int step = 0; step < kDeepeningSteps; ++step) {
+    const double d = depth(start.at);
+    if (d >= least) return start;
+    if (d == 0) return std::nullopt;
+    const geom::Vec2 away = (start.at - depth.nearest(start.at)) * (1 / d);
+    if (!start.off_edge) start.off_edge = away;
+    start.at = geom::snap(start.at + away * (least - d + geom::kGridStep));
+    if (!cell.contains(start.at)) return std::nullopt;
+  }
+  return depth(start.at) >= least ? std::optional<Start>(start) : std::nullopt;
 }
 
 // What growing one cell gave.
@@ -97,8 +138,12 @@ struct RunOnLines {
 // Grows `branches` roads from the seed. Returns whether one reached a road (of the region,
 // or of the sketch); always true when `free`, for a cell with no road to reach.
 // `across_only`: only the branches within 45 degrees of `orientation` or its opposite.
+// `off_edge`: for a connector's start moved off an edge, no branch but the first (back to its
+// road edge) running within 45 degrees of along that edge: from where the start lay those
+// were stubs, and from a block's width off the edge they would cut a sliver along it.
 bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const GrowthSettings& p, int level, bool free, double orientation,
-                   bool across_only, double reach, const RunOnLines& run_on, Random& rng, CellRoads& out) {
+                   bool across_only, std::optional<geom::Vec2> off_edge, double reach, const RunOnLines& run_on, Random& rng,
+                   CellRoads& out) {
   const double segment_deviation = std::max(p.segment_deviation - 2.0 * level, 0.0);
   const int max_steps = static_cast<int>(reach / (p.segment_length * std::cos(p.origin_deviation * M_PI / 180))) + 2;
   bool reached_road = free;
@@ -150,6 +195,8 @@ bool grow_branches(geom::Growth& growth, geom::Vec2 seed, const GrowthSettings& 
     const double off_axis = std::fmod(360.0 * i / p.branches, 180.0);
     if (across_only && off_axis > 45 && off_axis < 135) continue;
     const double alpha = orientation + 360.0 * i / p.branches;
+    const geom::Vec2 heading{std::cos(alpha * M_PI / 180), std::sin(alpha * M_PI / 180)};
+    if (off_edge && i > 0 && std::abs(geom::dot(heading, *off_edge)) < M_SQRT1_2) continue;
     if (grow(alpha)) grown.push_back(alpha);
   }
   // A seed left with one road would be a dead end: that road runs on through it instead.
@@ -185,20 +232,21 @@ std::optional<double> strip_axis(const geom::Cell& cell, const GrowthSettings& p
 // The roads of one cell, grown from its seed. They must reach one of edges_to_reach, and
 // none may stop at a sketch road's surface short of a centre line (it would end in the open);
 // when they fail (a concave cell can hide those edges from the seed), they are grown
-// again from just inside one of those edges, the first branch heading straight back to
-// it. Empty when that fails too.
-CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const GrowthSettings& p, int level, bool top, double orientation,
-                    int stalls, const RunOnLines& run_on, Random& rng) {
+// again from inside one of those edges, the first branch heading straight back to it.
+// Every start lies at least `shortest_road` inside the cell (deep_start). Empty when that
+// fails too.
+CellRoads grow_cell(const geom::Cell& cell, const Depth& depth, geom::Vec2 seed, const GrowthSettings& p, double shortest_road,
+                    int level, bool top, double orientation, int stalls, const RunOnLines& run_on, Random& rng) {
   const geom::Box b = cell.bounds();
   const double reach = 2 * std::hypot(b.width(), b.height()) + 1;  // past the cell from anywhere in it
   auto edges = edges_to_reach(cell, top);
   const bool free = edges.empty();
   // A strip is cut across, never along.
   const std::optional<double> axis = strip_axis(cell, p);
-  {
+  if (const std::optional<Start> start = deep_start(cell, depth, seed, shortest_road)) {
     geom::Growth growth(cell, p.segment_length);
-    CellRoads grown{seed, {}, {}};
-    if (grow_branches(growth, seed, p, level, free, axis ? *axis + 90 : orientation, axis.has_value(), reach,
+    CellRoads grown{start->at, {}, {}};
+    if (grow_branches(growth, start->at, p, level, free, axis ? *axis + 90 : orientation, axis.has_value(), std::nullopt, reach,
                       run_on, rng, grown) &&
         !grown.open_end)
       return grown;
@@ -235,12 +283,14 @@ CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const GrowthSetting
           break;
         }
     }
-    auto start = cell.point_inside_near({m.x + inward.x * d, m.y + inward.y * d});
+    const std::optional<geom::Vec2> wanted = cell.point_inside_near({m.x + inward.x * d, m.y + inward.y * d});
+    const std::optional<Start> start = wanted ? deep_start(cell, depth, *wanted, shortest_road) : std::nullopt;
     if (!start) continue;
     geom::Growth growth(cell, p.segment_length);
-    CellRoads grown{*start, {}, {}};
-    double back = std::atan2(m.y - start->y, m.x - start->x) * 180 / M_PI;
-    if (grow_branches(growth, *start, p, level, free, back, false, reach, run_on, rng, grown) && !grown.open_end)
+    CellRoads grown{start->at, {}, {}};
+    double back = std::atan2(m.y - start->at.y, m.x - start->at.x) * 180 / M_PI;
+    if (grow_branches(growth, start->at, p, level, free, back, false, start->off_edge, reach, run_on, rng, grown) &&
+        !grown.open_end)
       return grown;
   }
   return {seed, {}, {}};
@@ -248,10 +298,10 @@ CellRoads grow_cell(const geom::Cell& cell, geom::Vec2 seed, const GrowthSetting
 
 // A cell's seed, and the zone type it grows as: the type at its seed (a cell keeps its
 // parent's type where the seed lies on none).
-Grown seed(const Work& w, const ZoneAt& zone_at) {
+Grown seed(const Work& w, const Depth& depth, const ZoneAt& zone_at) {
   Grown g;
   Random seed_rng(mix(w.id, 3 + w.stalls));
-  g.seed = seed_point(w.cell, seed_rng);
+  g.seed = seed_point(w.cell, depth, seed_rng);
   g.type = w.type;
   if (g.seed)
     if (std::optional<ZoneType> t = zone_at(*g.seed)) g.type = *t;
@@ -263,7 +313,8 @@ Grown seed(const Work& w, const ZoneAt& zone_at) {
 // sliver off it, are dropped and the cell grown again from another seed, a few times at
 // most: slivers make poor blocks. Cutting off a tenth of a block is progress, so a long
 // corridor is grown on however little of it each cut takes.
-void grow_one(const Work& w, Grown& g, const GrowthSettings& p, int level, const RunOnLines& run_on) {
+void grow_one(const Work& w, const Depth& depth, Grown& g, const GrowthSettings& p, double shortest_road, int level,
+              const RunOnLines& run_on) {
   if (!g.seed) return;
   if (w.cell.area() <= p.block_area) return;  // small enough to be one block
   Random rng(mix(w.id, 1 + 16 * w.stalls));
@@ -278,7 +329,7 @@ void grow_one(const Work& w, Grown& g, const GrowthSettings& p, int level, const
       g.without_access = !w.top;
     }
   };
-  CellRoads grown = grow_cell(w.cell, *g.seed, p, level, w.top, w.orientation, w.stalls, run_on, rng);
+  CellRoads grown = grow_cell(w.cell, depth, *g.seed, p, shortest_road, level, w.top, w.orientation, w.stalls, run_on, rng);
   g.seed = grown.seed;
   g.roads = std::move(grown.roads);
   g.joined = std::move(grown.joined);
@@ -336,8 +387,10 @@ class GrowthLayout : public RoadLayout {
       std::vector<Grown> grown(work.size());
       tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
         cancel.check();
-        grown[i] = seed(work[i], zone_at_);
-        grow_one(work[i], grown[i], sketch_.zone_settings.at(grown[i].type).roads.growth, level, run_on_);
+        const Depth depth(work[i].cell);
+        grown[i] = seed(work[i], depth, zone_at_);
+        const ZoneSettings& zone = sketch_.zone_settings.at(grown[i].type);
+        grow_one(work[i], depth, grown[i], zone.roads.growth, zone.blocks.min_block_width, level, run_on_);
       });
       work = collect(grown, work, level, sketch_, plan);
     }

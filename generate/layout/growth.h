@@ -1,4 +1,4 @@
-// Road growth (seed 000, 3.2.1) in exact vector form: from a seed point in each region,
+// Recursive road growth (docs/design.md, Algorithms) in exact vector form: from a seed point in each region,
 // roads grow step by step until they meet a road or the region's edge; they split the
 // region, and each part above its zone's block area is grown again, one level deeper.
 #pragma once

@@ -1,5 +1,5 @@
 // The roads stage: every region's roads planned by its zone's RoadLayout
-// (generate/layout/road_layout.h; seed 000's growth in growth.h), links that join islands
+// (generate/layout/road_layout.h; recursive road growth in growth.h), links that join islands
 // of streets to the rest, then every generated road into the city map in one batch.
 #pragma once
 

@@ -58,7 +58,7 @@ RoadSettings default_road_settings(ZoneType type) {
   static const nlohmann::json none = nlohmann::json::object();
   r.layout = road_layout_types().front().read({SettingsReader(none, "", ""), r, false, true});
   if (type == ZoneType::Commercial || type == ZoneType::Industrial) {
-    // Manhattan grid (seed 000): straight roads, smaller jitter.
+    // Manhattan grid (recursive road growth's commercial setting): straight roads, smaller jitter.
     r.growth.jitter = 10;
     r.growth.segment_deviation = 0;
     r.growth.origin_deviation = 0;

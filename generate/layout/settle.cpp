@@ -9,6 +9,7 @@
 #include <set>
 
 #include "generate/city/street_graph.h"
+#include "geom/box_index.h"
 #include "geom/measure.h"
 
 namespace exacity {
@@ -41,16 +42,22 @@ std::vector<RoadFeature> without_repeated_segments(const std::vector<RoadFeature
 
 // A road that runs wholly inside the surface of roads before it (a grammar can lay thin
 // road pieces side by side) adds nothing but overlapping centre lines: it is left out.
+// Only the kept roads whose box lies within the widest half width of a sample can cover it
+// (the index is asked a metre further: a filter in doubles).
 std::vector<RoadFeature> without_roads_inside_others(const std::vector<RoadFeature>& roads) {
+  double widest = 0;
+  for (const RoadFeature& r : roads) widest = std::max(widest, r.width);
   std::vector<RoadFeature> kept;
   std::vector<geom::Box> boxes;
+  geom::BoxIndex index(std::max(widest, 1.0));
   for (const RoadFeature& r : roads) {
     const geom::Polyline& line = r.lines[0];
     std::vector<geom::Vec2> samples = line;
     for (std::size_t k = 0; k + 1 < line.size(); ++k)
       samples.push_back({(line[k].x + line[k + 1].x) / 2, (line[k].y + line[k + 1].y) / 2});
     auto covered = [&](geom::Vec2 p) {
-      for (std::size_t j = 0; j < kept.size(); ++j) {
+      const double near = widest / 2 + 1;
+      for (int j : index.meeting({p.x - near, p.y - near, p.x + near, p.y + near})) {
         const double reach = std::max(r.width, kept[j].width) / 2;
         const geom::Box& b = boxes[j];
         if (p.x < b.min_x - reach || p.x > b.max_x + reach || p.y < b.min_y - reach || p.y > b.max_y + reach) continue;
@@ -63,6 +70,7 @@ std::vector<RoadFeature> without_roads_inside_others(const std::vector<RoadFeatu
     if (!kept.empty() && std::all_of(samples.begin(), samples.end(), covered)) continue;
     geom::Box box = geom::Box::none();
     for (geom::Vec2 p : line) box.add(p);
+    index.add(static_cast<int>(kept.size()), box);
     kept.push_back(r), boxes.push_back(box);
   }
   return kept;
@@ -122,15 +130,22 @@ struct Round {
   std::map<std::pair<double, double>, int> uses;  // road vertices at each point; an end used once is open
   std::vector<int> others;                        // the live roads
   std::vector<geom::Path> paths;                  // of the live roads, in `others` order
+  std::vector<int> position;                      // per road, its place in `others` (-1: not live)
+  geom::BoxIndex boxes{0};                        // of the live roads' lines, by place in `others`
 };
 
-Round start_round(const std::vector<RoadFeature>& roads, const std::vector<char>& live) {
+Round start_round(const std::vector<RoadFeature>& roads, const std::vector<char>& live, double reach) {
   Round round;
+  round.position.assign(roads.size(), -1);
+  round.boxes = geom::BoxIndex(reach);
   for (std::size_t i = 0; i < roads.size(); ++i)
     if (live[i]) {
+      round.position[i] = static_cast<int>(round.others.size());
+      geom::Box box = geom::Box::none();
+      for (geom::Vec2 p : roads[i].lines[0]) ++round.uses[{p.x, p.y}], box.add(p);
+      round.boxes.add(static_cast<int>(round.others.size()), box);
       round.others.push_back(static_cast<int>(i));
       round.paths.push_back(geom::Path::from(roads[i].lines[0]));
-      for (geom::Vec2 p : roads[i].lines[0]) ++round.uses[{p.x, p.y}];
     }
   return round;
 }
@@ -174,21 +189,23 @@ int nearest_road(geom::Vec2 p, const std::vector<int>& candidates, const std::ve
 }
 
 // Road i with its open ends run on, each road it ran on to added to `meetings`; none when
-// an end reaches nothing, and the road must be dropped.
+// an end reaches nothing, and the road must be dropped. An end looks at the other roads
+// near it only: run_on reaches no further than targets.reach (extend_to searches a metre
+// past it), and every road it could meet or find nearest lies in that box, in their order.
 std::optional<SettledRoad> settle_road(int i, const std::vector<RoadFeature>& roads, Round& round, const Targets& targets,
                                        std::vector<std::pair<int, int>>& meetings) {
   const geom::Polyline& line = roads[i].lines[0];
-  std::vector<geom::Path> ahead;
-  std::vector<int> ahead_road;
-  geom::Path path;
-  for (std::size_t k = 0; k < round.others.size(); ++k)
-    if (round.others[k] != i) ahead.push_back(round.paths[k]), ahead_road.push_back(round.others[k]);
-    else path = round.paths[k];
+  geom::Path path = round.paths[round.position[i]];
   bool to_sketch = false;
   for (bool back : {true, false}) {
     const geom::Vec2 end = back ? line.back() : line.front();
     if (!back) path = path.reversed();
     if (round.uses[{end.x, end.y}] > 1) continue;
+    const double near = targets.reach + 2;
+    std::vector<geom::Path> ahead;
+    std::vector<int> ahead_road;
+    for (int k : round.boxes.meeting({end.x - near, end.y - near, end.x + near, end.y + near}))
+      if (round.others[k] != i) ahead.push_back(round.paths[k]), ahead_road.push_back(round.others[k]);
     std::optional<RunOn> on = run_on(path, ahead, roads[i].width, targets);
     if (!on) return std::nullopt;
     path = on->path;
@@ -211,7 +228,7 @@ struct Settlement {
 // again without it, as the ends it used may now be open.
 Settlement settle_live_roads(const std::vector<RoadFeature>& roads, std::vector<char> live, const Targets& targets) {
   for (;;) {
-    Round round = start_round(roads, live);
+    Round round = start_round(roads, live, targets.reach);
     Settlement s;
     bool dropped = false;
     for (std::size_t i = 0; i < roads.size(); ++i) {

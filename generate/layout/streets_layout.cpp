@@ -1,4 +1,4 @@
-// Seed 004's layout: the sketch's roads are the whole network, so a region gets none.
+// The street-graph layout: the sketch's roads are the whole network, so a region gets none.
 #include "generate/layout/road_layout.h"
 
 namespace exacity {

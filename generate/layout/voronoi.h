@@ -1,4 +1,4 @@
-// Seed 003's streets: a Voronoi diagram's edges are the main roads, junctions at equal steps
+// Voronoi streets (docs/design.md, Algorithms): a Voronoi diagram's edges are the main roads, junctions at equal steps
 // along them, and inside each cell inner roads joining junctions, the first closest to
 // perpendicular to the cell's longest road, the rest most parallel to it. In doubles: the
 // layout rounds what it keeps to the grid and the map inserts it exactly.
@@ -22,7 +22,7 @@ std::vector<VoronoiCell> voronoi_cells(const std::vector<geom::Vec2>& sites, con
 // the first and last the road's ends (the cell's corners), junctions between.
 using CellRoad = std::vector<geom::Vec2>;
 
-// Inner roads of one convex cell by seed 003's heuristic: roads are taken longest first; from
+// Inner roads of one convex cell by the junction heuristic: roads are taken longest first; from
 // the first free junction of a road, the connection to a junction of another road that is
 // closest to perpendicular to it (within 30 degrees); from its other junctions, the
 // connections most parallel to that inner road (within 15 degrees); no inner road crosses

@@ -1,4 +1,4 @@
-// Seed 003's layout: points spread over the region, their Voronoi diagram clipped to it;
+// The Voronoi layout (docs/design.md, Algorithms): points spread over the region, their Voronoi diagram clipped to it;
 // main roads on the cell edges, inner roads by the junction heuristic (generate/layout/voronoi.h).
 #include <algorithm>
 #include <cmath>
@@ -14,7 +14,7 @@
 namespace exacity {
 namespace {
 
-// Seed 003's Voronoi streets.
+// The Voronoi layout (docs/design.md, Road layouts).
 struct VoronoiSettings {
   double cell_size = 180;         // m: one point per square this size
   double junction_spacing = 60;   // m: junctions at about this step along the cells' roads

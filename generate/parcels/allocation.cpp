@@ -1,4 +1,4 @@
-// Seed 000's lots, measured from the street (3.2.2): along every run of road edges of a
+// Lots measured from the street (docs/design.md, Lots): along every run of road edges of a
 // block, lots side by side, corner lots at its corners, the block's middle left open.
 #include "generate/parcels/lot_layout.h"
 
@@ -128,7 +128,7 @@ geom::Ring on_grid(const geom::Ring& ring) {
   return r;
 }
 
-// Seed 000's industrial chance: a lot is kept with a chance that falls after a kept lot and
+// The industrial chance: a lot is kept with a chance that falls after a kept lot and
 // rises after a dropped one, so some street frontage stays open yard.
 class Allocation : public LotLayout {
  public:

@@ -1,4 +1,4 @@
-// Seed 004's lot library (BlockBuilder): a block's street edges divided into the lots the
+// The lot library (docs/design.md, Lots): a block's street edges divided into the lots the
 // model library's entries ask for ("lot": [width, depth]), corner lots first, each entry
 // drawn by weight and channels where its lot fronts the street, until no entry's lot fits;
 // what is left inside the block stays open space. Each lot remembers its model, which the

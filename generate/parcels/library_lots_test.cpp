@@ -1,4 +1,4 @@
-// Seed 004's lot library on hand-made blocks: street edges lined with the entries' lots,
+// The lot library on hand-made blocks: street edges lined with the entries' lots,
 // corner lots first, and the entries steered by a two-valued channel.
 #include <gtest/gtest.h>
 

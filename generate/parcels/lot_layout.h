@@ -1,7 +1,7 @@
 // Lot layouts (docs/design.md, Lots): how a block is cut into lots, one layout per zone
-// type from its "lots" setting: seed 000's allocation measured from the street
-// (generate/parcels/allocation.cpp), seed 003's split (generate/parcels/split.cpp) or seed
-// 004's lot library (generate/parcels/library_lots.cpp). A layout plans from the block
+// type from its "lots" setting: allocation measured from the street
+// (generate/parcels/allocation.cpp), the recursive split (generate/parcels/split.cpp) or the
+// lot library (generate/parcels/library_lots.cpp). A layout plans from the block
 // alone; the lots stage puts every plan into the map at once.
 #pragma once
 
@@ -23,7 +23,7 @@ struct PlannedLot {
   ZoneType zone = ZoneType::Residential;
   geom::Ring ring;
   geom::Cell cell;
-  int model = -1;  // a library lot's model (seed 004), else -1
+  int model = -1;  // a library lot's model, else -1
 };
 
 class LotLayout {
@@ -36,7 +36,7 @@ class LotLayout {
 // The library's lots for the zone's building entries that carry one; none when it has none.
 std::unique_ptr<LotLayout> make_library_lots(const ModelLibrary& library, ZoneType zone, const Channels& channels);
 
-// Seed 000's lots measured from the street: along every run of road edges of the block
+// Lots measured from the street (docs/design.md, Lots): along every run of road edges of the block
 // (BlockEdge::is_road), lots side by side, about `lot_width` wide and `lot_depth` deep (at most
 // half the way across the block), split at the run's corners along the corner's bisector;
 // the block's middle is left open. Rings in doubles, not yet on the grid; each reaches a

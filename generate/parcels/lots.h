@@ -1,4 +1,4 @@
-// Lots inside blocks (seed 000, 3.2.2; seed 003's split), exact and in the same planar map.
+// Lots inside blocks (docs/design.md, Lots), exact and in the same planar map.
 // Lot corners are computed in doubles and rounded to the grid, so every lot edge is a grid
 // line; a lot is labelled only on faces of its own block, so where it would cross a road it
 // is cut back exactly there, and where lots overlap the first one listed owns the overlap.
@@ -26,7 +26,7 @@ struct Lot {
   int planned = -1;        // the planned lot it is a piece of (its faces' FaceLabel::lot)
   int rank = 0;            // its order among the planned lot's pieces kept as lots
   int piece = -1;          // its component among the map's lot faces (geom::PlanarMap::cells)
-  int model = -1;          // a library lot's model (seed 004), else -1
+  int model = -1;          // a library lot's model, else -1
 };
 // The kind of a lot cell's edge (its geom::Cell edge tag).
 struct LotEdge {

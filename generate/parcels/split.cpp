@@ -1,4 +1,4 @@
-// Seed 003's lots: a block halved again and again until its parts are small enough.
+// The recursive split (docs/design.md, Lots): a block halved again and again until its parts are small enough.
 #include "generate/parcels/lot_layout.h"
 
 #include <algorithm>
@@ -13,8 +13,8 @@ using geom::Vec2;
 
 using geom::lerp;
 
-// Seed 003: halve perpendicular to the longest edge near its middle until below lot_area;
-// a split that would leave a part with no road edge (seed 004: frontage) is not made.
+// Halve perpendicular to the longest edge near its middle until below lot_area;
+// a split that would leave a part with no road edge (no frontage) is not made.
 std::vector<geom::Cell> split_lots(const geom::Cell& block, const LotSettings& p, Random& rng) {
   std::vector<geom::Cell> done, todo{block};
   while (!todo.empty()) {

@@ -47,7 +47,7 @@ bool near_rectangle(const geom::Polygon& p) {
 }
 
 // Rectangles in a row along the lot's street frontage, fronts `setback` behind the street
-// (seed 002's rows facing the road), each `footprint_width` by `footprint_depth` and no
+// (rows facing the road), each `footprint_width` by `footprint_depth` and no
 // larger than `max_footprint_area`, `building_gap` apart and half that inside the lot's
 // other edges; where one does not fit, a smaller one is tried, down to
 // `min_footprint_width`. Each is checked exactly against the lot and the footprints taken.
@@ -115,7 +115,7 @@ void choose_roof(Building& b, const BuildingSettings& p) {
 
 namespace {
 
-// Seed 003's buildings: rectangles in a row along the street, raised to a height that falls
+// Extruded buildings (docs/design.md, Algorithms): rectangles in a row along the street, raised to a height that falls
 // with distance from the city's centre (or rises with the zone's height channel), under a
 // roof.
 class Extrusion : public Placer {

@@ -2,7 +2,7 @@
 // Extruded buildings are rectangular footprints in a row along the lot's street, checked
 // exactly inside the lot; each one's height drawn between the zone's range, which falls
 // with distance from the city centre, with a small chance near the centre of doubling
-// (seed 003).
+// (docs/design.md, Algorithms: extruded buildings).
 #pragma once
 
 #include <vector>
@@ -58,7 +58,7 @@ struct ModelInstance {
   Placement placed;
   double height = 0;       // m, the model's top
   double base = 0, floor = 0;
-  // Seed 001's nesting (docs/design.md, Placement: nesting): the model's slabs in place,
+  // Nesting (docs/design.md, Placement: nesting): the model's slabs in place,
   // heights from its floor, the lowest from its base; empty where the zone does not nest.
   std::vector<Slab> slabs;
 };
@@ -98,7 +98,7 @@ Structures place_buildings(const std::vector<Lot>& lots, const CitySettings& cit
 inline constexpr double kMaxExportTriangles = 20e6;
 void check_export_size(const std::vector<ModelInstance>& models, const ModelLibrary* library);
 
-// Seed 003's height: uniform in the zone's range scaled by 0.5 + 0.5 near_centre (in [0, 1]:
+// The height: uniform in the zone's range scaled by 0.5 + 0.5 near_centre (in [0, 1]:
 // 1 - distance / radius from the city's centre, or the zone's height channel), so down to
 // half at the city's edge; the top doubles with a chance of 0.1 × near_centre².
 double building_height(const BuildingSettings& p, double near_centre, Random& rng);

@@ -9,6 +9,8 @@
 #include <unordered_map>
 
 #include "generate/cancel.h"
+#include "generate/errors.h"
+#include "generate/export/geojson.h"
 #include "generate/placement/model_placement.h"
 #include "generate/placement/street_nodes.h"
 #include "geom/grid.h"
@@ -457,17 +459,36 @@ void dress_junction(const StreetJunction& j, Dresser& dresser) {
   }
 }
 
+// The spacing of the trees that stand in parks (the widest, as the squares are laid out);
+// 0 when none do.
+double park_tree_spacing(const ModelLibrary& lib) {
+  double spacing = 0;
+  for (const Model& m : lib.models)
+    if (m.kind == ModelKind::Tree && stands_in(m, ZoneType::Park)) spacing = std::max(spacing, m.spacing);
+  return spacing;
+}
+
+// The park's box in squares of `step`, row by row from its lowest corner, as dress_park
+// walks them.
+struct Squares {
+  geom::Box box;
+  double count = 0;
+};
+Squares squares_of(const ZoneArea& park, double step) {
+  Squares s{geom::Box::none()};
+  for (Vec2 p : park.polygon.outer) s.box.add(p);
+  if (!s.box.holds_nothing()) s.count = std::ceil(s.box.width() / step) * std::ceil(s.box.height() / step);
+  return s;
+}
+
 // Trees over a park's open land: one per square of 1.5 tree spacings, at a random place in
 // it (so they stand apart but in no rows), each turned at random; a spot that is not on
 // the park's open land (a road, water, a pond's hole) is tried a metre or two away.
 void dress_park(const ZoneArea& park, const ModelLibrary& lib, Random& rng, Dresser& dresser) {
-  double spacing = 0;
-  for (const Model& m : lib.models)
-    if (m.kind == ModelKind::Tree && stands_in(m, ZoneType::Park)) spacing = std::max(spacing, m.spacing);
+  const double spacing = park_tree_spacing(lib);
   if (spacing <= 0) return;
   const double step = 1.5 * spacing;
-  geom::Box box = geom::Box::none();
-  for (Vec2 p : park.polygon.outer) box.add(p);
+  const geom::Box box = squares_of(park, step).box;
   const auto in_park = [](const Model& m, ZoneType z) {
     return stands_in(m, ZoneType::Park) && z == ZoneType::Park ? kHere : kNotHere;
   };
@@ -482,10 +503,49 @@ void dress_park(const ZoneArea& park, const ModelLibrary& lib, Random& rng, Dres
     }
 }
 
+// Parks whose trees would be more than one run plants are refused before any is placed:
+// each tree is an instance in every export (a park of 4.5 by 2.5 degrees took 13 GB and
+// was still planting), and the squares of the parks' boxes are each walked.
+void check_park_trees(const std::vector<const ZoneArea*>& parks, const ModelLibrary& lib, const CitySettings& city,
+                      const std::vector<ZoneFeature>& zones) {
+  const double spacing = park_tree_spacing(lib);
+  if (spacing <= 0 || parks.empty()) return;
+  const double step = 1.5 * spacing;
+  double trees = 0, squares = 0;
+  for (const ZoneArea* park : parks) trees += std::abs(geom::area(park->polygon)) / (step * step), squares += squares_of(*park, step).count;
+  if (trees <= kMaxParkTrees && squares <= kMaxParkSquares) return;
+  // The drawn park with the largest area, to name.
+  const ZoneFeature* largest = nullptr;
+  double largest_area = -1;
+  for (const ZoneFeature& z : zones) {
+    if (z.type != ZoneType::Park) continue;
+    double area = 0;
+    for (const geom::Polygon& p : z.polygons) area += std::abs(geom::area(p));
+    if (area > largest_area) largest_area = area, largest = &z;
+  }
+  const std::string feature = !largest                    ? std::string("the parks")
+                              : !largest->source.empty()    ? largest->source
+                              : !largest->grid_cell.empty() ? "grid map cell " + largest->grid_cell
+                                                            : "features[" + std::to_string(largest->index) + "]";
+  auto count = [](double n) { return std::to_string(static_cast<long long>(std::round(n))); };
+  const std::string what = trees > kMaxParkTrees
+                               ? "would plant about " + count(trees) + " trees, more than the " + count(kMaxParkTrees) + " one run plants"
+                               : "span about " + count(squares) + " squares of a tree in their boxes, more than the " +
+                                     count(kMaxParkSquares) + " one run walks";
+  // A library of built-in models only has no file (builtin_models.h).
+  const std::string fix = lib.file.empty()
+                              ? "raise the trees' \"spacing\" in a model library of your own, or leave \"tree\" out of "
+                                "\"exacity\".builtin_models"
+                              : "raise the \"spacing\" of the trees in " + lib.file.string() +
+                                    " that stand in parks, or leave \"park\" out of their \"zones\"";
+  throw UserError(city.path.string() + ": " + feature + " (park): the parks " + what + " (a tree to a square of " +
+                  format_number(step) + " m, 1.5 times the park trees' spacing); draw smaller parks, " + fix);
+}
+
 }  // namespace
 
 StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* library, const Channels& channels,
-                            std::uint64_t seed, const std::vector<ZoneFeature>& zones, const Terrain* terrain) {
+                            const CitySettings& city, const std::vector<ZoneFeature>& zones, const Terrain* terrain) {
   StreetClutter out;
   if (!library ||
       std::none_of(library->models.begin(), library->models.end(), [](const Model& m) { return is_clutter(m.kind); }))
@@ -507,6 +567,7 @@ StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* lib
   std::vector<const ZoneArea*> parks;
   for (const ZoneArea& z : ground.ground.zones)
     if (z.type == ZoneType::Park) parks.push_back(&z);
+  check_park_trees(parks, *library, city, zones);
 
   // Each street, then each junction, then each park proposes its own clutter in parallel,
   // checked against the ground and its own; then in that order each is checked against the
@@ -514,7 +575,7 @@ StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* lib
   const std::size_t streets_and_junctions = roads.size() + junctions.size();
   const std::size_t groups = streets_and_junctions + parks.size();
   std::vector<Proposals> proposed(groups);
-  const std::uint64_t stage = mix(seed, static_cast<std::uint64_t>(Stage::Clutter));
+  const std::uint64_t stage = mix(city.seed, static_cast<std::uint64_t>(Stage::Clutter));
   const CancelCheck cancel;
   tbb::parallel_for(std::size_t(0), groups, [&](std::size_t g) {
     cancel.check();

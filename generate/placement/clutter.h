@@ -1,4 +1,4 @@
-// Seed 004's street clutter: the library's lamps, signs, traffic lights, benches, hydrants and
+// Street clutter (docs/design.md, Placement): the library's lamps, signs, traffic lights, benches, hydrants and
 // trees dress the streets by the rules each entry sets (spacing along the street, offset in from
 // the kerb, both sides or alternate ones), after the buildings stand (docs/design.md,
 // Placement). Lamps, benches and hydrants line every street, trees residential ones; traffic
@@ -21,6 +21,7 @@
 #include "generate/city/city_map.h"
 #include "generate/city/ground.h"
 #include "generate/city/features.h"
+#include "generate/city/zone_settings.h"
 #include "generate/city/terrain.h"
 #include "generate/parcels/lots.h"
 #include "generate/placement/buildings.h"
@@ -56,9 +57,14 @@ struct ClutterGround {
   const std::vector<ModelInstance>& models;
 };
 
+// The parks' trees one run plants: their area over the square of 1.5 tree spacings (each a
+// model instance in every export, about 4 kB in memory), and the squares of their boxes,
+// each walked to find its spot. Past either, place_clutter throws UserError before placing any.
+inline constexpr double kMaxParkTrees = 100000, kMaxParkSquares = 1e8;
+
 // Every street's clutter, road by road in parallel, gathered in road order; none without a
 // library or clutter entries.
 StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* library, const Channels& channels,
-                            std::uint64_t seed, const std::vector<ZoneFeature>& zones, const Terrain* terrain);
+                            const CitySettings& city, const std::vector<ZoneFeature>& zones, const Terrain* terrain);
 
 }  // namespace exacity

@@ -64,7 +64,7 @@ struct LotGrid {
   std::vector<char> blocked;
   std::vector<int> facing;      // per cell: the quarter turn that faces the nearest street
   std::vector<int> sums;        // blocked cells below and left of each cell corner ((width + 1) * (height + 1))
-  // With nesting (seed 001's 3D bounding grid): per cell, the levels taken (Levels); a
+  // With nesting (the 3D occupancy grid): per cell, the levels taken (Levels); a
   // cell the lot blocks has them all. `blocked` then holds what stands on the ground.
   std::vector<std::uint64_t> levels;
 
@@ -161,7 +161,7 @@ LotGrid lay_grid(const Occupancy& occupancy, const BuildingSettings& params, dou
   return g;
 }
 
-// Seed 001's 3D bounding grid stacks footprint grids, one per unit of height (a cell's
+// The 3D occupancy grid stacks footprint grids, one per unit of height (a cell's
 // side): a bit per level from the floor up, the last standing for every level above it.
 using Levels = std::uint64_t;
 constexpr int kLevels = 64;
@@ -255,7 +255,7 @@ class Candidate {
     return *taken_[r];
   }
   bool nesting() const { return nesting_; }
-  // Seed 001's 3D bounding grid: each slab's cells in the footprint grid's frame, bottom to top.
+  // The 3D occupancy grid: each slab's cells in the footprint grid's frame, bottom to top.
   const std::vector<SlabGrid>& slabs(int r) const {
     if (!slabs_[r]) {
       slabs_[r].emplace();
@@ -272,7 +272,7 @@ class Candidate {
     }
     return *slabs_[r];
   }
-  // Seed 001's size: the cells of its bounding grid, counted per level with nesting.
+  // A model's size: the cells of its bounding grid, counted per level with nesting.
   int size() const {
     if (!nesting_) return footprint(0).cells;
     int cells = 0;
@@ -292,7 +292,7 @@ class Candidate {
   mutable std::optional<std::vector<SlabGrid>> slabs_[4];
 };
 
-// A random model of the choices, of a random size and colour (seed 001's alteration); none
+// A random model of the choices, of a random size and colour (the library's size and colour variation); none
 // when no choice has weight here.
 std::optional<Candidate> draw(const Choices& choices, const ModelLibrary& lib, const BuildingSettings& params,
                               double cell, Random& rng) {
@@ -396,7 +396,7 @@ class GridFiller : public Placer {
     for (int pass = 0; pass < params.grid_passes; ++pass) {
       const int free = static_cast<int>(std::count(g.blocked.begin(), g.blocked.end(), 0));
       if (free == 0) return;
-      // Enough for the free cells to fill, largest first (seed 001), each a random size and colour.
+      // Enough for the free cells to fill, largest first (first-fit decreasing), each a random size and colour.
       const int count = static_cast<int>(std::clamp(std::ceil(1.5 * free / mean_cells), 1.0, 256.0));
       std::vector<Candidate> candidates;
       for (int n = 0; n < count; ++n)

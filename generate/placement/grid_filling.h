@@ -1,9 +1,9 @@
-// Seed 001's grid filling (docs/design.md, Placement): a lot piece laid over a grid of
+// Grid filling (docs/design.md, Placement): a lot piece laid over a grid of
 // square cells in its frontage's frame, free or blocked; each model's footprint grid (the
 // cells its real outline covers, so an L leaves its notch free); models placed largest
 // first, each at the first free place along a serpentine curve (one row along the street,
-// the next back), facing the road edge nearest that place. With nesting, seed 001's 3D
-// bounding grid: a stack of footprint grids, one per slab (slabs.h) over its units of
+// the next back), facing the road edge nearest that place. With nesting, a 3D occupancy
+// grid: a stack of footprint grids, one per slab (slabs.h) over its units of
 // height, so a smaller model may stand under another's overhang. The grid only proposes:
 // the lot's Occupancy, exact, has the last word.
 #pragma once
@@ -33,7 +33,7 @@ struct FootprintGrid {
 // footprint standing on free cells stands on free ground.
 FootprintGrid footprint_grid(const geom::Ring& outline, double cell);
 
-// The same test for several rings (a slab's pieces, seed 001's 3D bounding grid) on the
+// The same test for several rings (a slab's pieces, the 3D occupancy grid) on the
 // cells of another footprint grid: its corner and size.
 FootprintGrid footprint_grid_within(const std::vector<geom::Ring>& rings, const FootprintGrid& frame, double cell);
 

@@ -1,4 +1,4 @@
-// Seed 001's grid filling on hand-made lots and models: the serpentine, footprint grids
+// Grid filling (docs/design.md, Placement) on hand-made lots and models: the serpentine, footprint grids
 // that follow the real outline, largest first, a notch taken by a smaller model, never an
 // overlap, and the same fill from the same stream.
 #include "generate/placement/building_settings.h"

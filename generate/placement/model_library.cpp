@@ -63,10 +63,13 @@ int pick(const Choices& choices, Random& rng) {
 
 void ModelLibrary::check_channels(const std::vector<ChannelSpec>& channels) const {
   for (std::size_t i = 0; i < models.size(); ++i)
-    for (const auto& [channel, value] : models[i].channels)
+    for (const auto& named : models[i].channels) {
+      // Not a structured binding: clang 14 (the fuzz preset's) cannot capture one in a lambda.
+      const std::string& channel = named.first;
       if (std::none_of(channels.begin(), channels.end(), [&](const ChannelSpec& c) { return c.name == channel; }))
         throw UserError(file.string() + " models[" + std::to_string(i) + "]: channels names \"" + channel +
                         "\", which the sketch does not define; define it in the sketch's \"exacity\".channels, or remove it");
+    }
 }
 
 namespace {
@@ -222,7 +225,7 @@ double default_spacing(ModelKind k) {
   }
 }
 
-// Seed 004's clutter rules and channel values, and its lot.
+// Street clutter's rules and channel values, and the lot library's lot.
 void read_street_rules(const json& e, const std::string& where, Model& m) {
   m.offset = e.value("offset", m.kind == ModelKind::Tree || m.kind == ModelKind::Bench ? 1.5 : 0.5);
   if (!(m.offset >= 0) || m.offset > 50) fail(where, "\"offset\" must be metres from the kerb, 0 to 50");
@@ -260,7 +263,7 @@ void read_placement(const json& e, const std::string& where, Model& m) {
     const json& s = e["scale"];
     if (!s.is_array() || s.size() != 2 || !s[0].is_number() || !s[1].is_number() || !(s[0].get<double>() > 0) ||
         s[1].get<double>() < s[0].get<double>() || s[1].get<double>() > 100)
-      fail(where, "\"scale\" must be [min, max] with 0 < min <= max");
+      fail(where, "\"scale\" must be [min, max] with 0 < min <= max <= 100");
     m.min_scale = s[0], m.max_scale = s[1];
   }
   m.spacing = e.value("spacing", default_spacing(m.kind));

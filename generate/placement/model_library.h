@@ -1,4 +1,4 @@
-// A library of placed models (seeds 001, 002, 004): a JSON manifest naming OBJ files, the
+// A library of placed models (docs/models.md): a JSON manifest naming OBJ files, the
 // zone types each suits, its axes and units, and how often to pick it. Each model is
 // loaded once, brought to Exacity's frame, and placed many times by transforms.
 //
@@ -23,7 +23,7 @@
 namespace exacity {
 
 // Buildings fill lots; "street" furniture stands along a lot's frontage inside the setback;
-// trees fill space left in lots and line residential streets. The rest are seed 004's street
+// trees fill space left in lots and line residential streets. The rest are street
 // clutter, which dresses the streets' sidewalks: lamps, stop signs, traffic lights,
 // benches and hydrants.
 enum class ModelKind { Building, Street, Tree, Lamp, Sign, TrafficLight, Bench, Hydrant };
@@ -31,7 +31,7 @@ inline constexpr ModelKind kModelKinds[] = {ModelKind::Building,     ModelKind::
                                             ModelKind::Lamp,         ModelKind::Sign,   ModelKind::TrafficLight,
                                             ModelKind::Bench,        ModelKind::Hydrant};
 const char* name(ModelKind k);
-// Whether models of the kind dress streets (seed 004's clutter): trees and the clutter kinds.
+// Whether models of the kind dress streets (street clutter): trees and the clutter kinds.
 bool is_clutter(ModelKind k);
 
 // Which sides of a street a clutter model stands on: both, or each in turn.
@@ -42,14 +42,14 @@ struct Model {
   ModelKind kind = ModelKind::Building;
   std::vector<ZoneType> zones;
   double weight = 1;
-  double min_scale = 0.9, max_scale = 1.1;  // random size variation (seed 001)
+  double min_scale = 0.9, max_scale = 1.1;  // random size variation
   double spacing = 30;                      // m between street furniture or clutter along a street
   double offset = 0.5;                      // m: clutter stands this far in from the kerb
   StreetSide side = StreetSide::Both;       // clutter: which sides of a street
-  // Seed 004's channel values ("channels": {"NAME": value in [0, 1]}), in the manifest's
+  // Channel values ("channels": {"NAME": value in [0, 1]}), in the manifest's
   // order; the sketch's channels weigh the model by how near these are to theirs.
   std::vector<std::pair<std::string, double>> channels;
-  // Seed 004's lot ("lot": [width along the street, depth]), m: the lot the model needs in a
+  // The lot library's lot ("lot": [width along the street, depth]), m: the lot the model needs in a
   // zone whose lots come from the library; 0 x 0 when the entry gives none.
   double lot_width = 0, lot_depth = 0;
   bool has_lot() const { return lot_width > 0; }
@@ -62,7 +62,7 @@ struct Model {
   // kOutlineCorners corners, a polygon of that many sides around it.
   geom::Ring outline;
   double width = 0, depth = 0, height = 0;  // along x, y and z
-  // Seed 001's 3D bounding grid, exactly (slabs.h): made by cut_slabs only when a zone type
+  // Nesting's 3D occupancy grid, exactly (slabs.h): made by cut_slabs only when a zone type
   // asks for nesting; empty otherwise.
   std::vector<Slab> slabs;
 };
@@ -98,7 +98,7 @@ struct ModelLibrary {
 void cut_slabs(ModelLibrary& library);
 
 // The models a placer or lot layout draws from, each with its weight where it draws: the
-// library's weight times its channel affinity there (seed 004).
+// library's weight times its channel affinity there (docs/design.md, Placement).
 struct Choices {
   std::vector<int> models;
   std::vector<double> weights;

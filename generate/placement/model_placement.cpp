@@ -13,7 +13,7 @@ namespace {
 
 using geom::Vec2;
 
-// Centre-to-centre spacing along a row, in model widths (seed 002).
+// Centre-to-centre spacing along a row, in model widths (docs/sketch.md: density).
 std::pair<double, double> spacing(const std::string& density) {
   if (density == "dense") return {1.25, 1.5};
   if (density == "sparse") return {4, 5};
@@ -175,7 +175,7 @@ bool place_in_row(Placing& s, const Candidate& c, Row& row, double offset) {
   return false;
 }
 
-// Seed 002's rows: the candidates largest first, each in the first row with room.
+// Rows facing the road (docs/design.md, Algorithms): the candidates largest first, each in the first row with room.
 void place_building_rows(Placing& s, const Choices& choices, const BuildingSettings& params, Random& rng) {
   double row_depth = 0;
   const std::vector<Candidate> candidates = draw_candidates(s, choices, params, rng, row_depth);
@@ -231,7 +231,7 @@ class ModelPlacer : public Placer {
 
 namespace {
 
-// Seed 004's lot library: the lot's own model in the middle of the lot, its front to the
+// The lot library: the lot's own model in the middle of the lot, its front to the
 // street, at a random size within its range, smaller where the lot is (down to the
 // smallest; the library made sure that fits a lot of the entry's size).
 class OwnLotPlacer : public Placer {

@@ -1,4 +1,4 @@
-// Models on one lot piece (seeds 001 and 002): buildings in rows parallel to the lot's
+// Models on one lot piece (docs/design.md, Placement): buildings in rows parallel to the lot's
 // principal road frontage, their fronts to the road, spaced by the zone's density and
 // placed largest first; street furniture along the frontage inside the setback; trees
 // where room is left. Every footprint is checked exactly: strictly inside the lot piece

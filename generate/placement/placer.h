@@ -1,6 +1,6 @@
 // Placers (docs/design.md, Placement): the ways a lot is filled. Extruded footprints in a
 // row along the street (generate/placement/buildings.cpp), rows of library buildings
-// facing the road (seed 002), street furniture and trees (generate/placement/
+// facing the road, street furniture and trees (generate/placement/
 // model_placement.cpp). Each zone type has its placers, run on every lot in order; each
 // proposes places in doubles and keeps those its lot's Occupancy lets it take.
 #pragma once
@@ -31,7 +31,7 @@ class Placer {
 std::unique_ptr<Placer> make_model_placer(const ModelLibrary& library, ZoneType zone, ModelKind kind,
                                           const Channels& channels);
 
-// Seed 004's lot library: each lot's own model (Lot::model) in the middle of it, facing the
+// The lot library: each lot's own model (Lot::model) in the middle of it, facing the
 // street.
 std::unique_ptr<Placer> make_own_lot_placer(const ModelLibrary& library);
 

@@ -1,4 +1,4 @@
-// Seed 001's 3D bounding grid, made exact (docs/design.md, Placement: nesting): a model as
+// Nesting's 3D occupancy grid, made exact (docs/design.md, Placement: nesting): a model as
 // a few horizontal slabs, each the height range it spans and what of the model lies in that
 // range seen from above. An arch is a slab of two pillars under a slab of its beam, so a
 // smaller model may stand under the beam where the two models' slabs do not meet.

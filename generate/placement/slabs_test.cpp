@@ -1,4 +1,4 @@
-// Seed 001's 3D bounding grid made exact: models cut into slabs at their undersides, and
+// Nesting's 3D occupancy grid made exact: models cut into slabs at their undersides, and
 // grid filling with nesting, which lets a small model stand under an arch's beam only
 // where no two models' slabs meet.
 #include "generate/placement/building_settings.h"

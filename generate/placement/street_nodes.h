@@ -1,4 +1,4 @@
-// Where the centre lines meet (seed 004's clutter): the roads layer is a noded network, every
+// Where the centre lines meet (for street clutter): the roads layer is a noded network, every
 // junction a vertex of each line through it (docs/design.md, Outputs), so its nodes are found
 // by exact equality of written vertices, with no tolerance. A node where three or more arms
 // leave is a junction; traffic lights stand at the corners of junctions of major roads, stop

@@ -37,7 +37,7 @@ TextureImage decode(const fs::path& file, const std::string& named_by) {
     throw UserError(where + " cannot be read (" + why + "); name a PNG or JPEG file in the map_Kd line");
   image.bytes.assign(bytes.begin(), bytes.end());
   if (is_png(bytes))
-    if (const std::string problem = png_problem(bytes); !problem.empty())
+    if (const std::string problem = png_problem(bytes, double{kMaxTextureSide} * kMaxTextureSide); !problem.empty())
       throw UserError(where + " cannot be decoded (" + problem + "); save it again as PNG");
   image.mime_type = mime_type_of(image.bytes);
   if (image.mime_type.empty())

@@ -18,7 +18,7 @@ using nlohmann::ordered_json;
 
 namespace {
 
-// What a cell holds (seed 001's lot statuses; `.` is its empty lot, residential land).
+// What a cell holds (a planned map grid's lot statuses; `.` is an empty lot, residential land).
 enum class Status : unsigned char { Residential, Commercial, Industrial, Water, Park, Road, Blocked };
 
 std::optional<Status> status_of(char c) {

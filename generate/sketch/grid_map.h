@@ -1,4 +1,4 @@
-// Seed 001's planned map grid: a city drawn as text, one character a cell (README, Grid
+// A grid map, a planned map grid: a city drawn as text, one character a cell (docs/sketch.md, Grid
 // maps). The reader turns it into a sketch's features, so that every check of the sketch
 // reader applies to it and OUT/sketch.geojson holds what was read.
 #pragma once

@@ -1,4 +1,4 @@
-// Grid maps (seed 001): each cell's status becomes the right zone or road, regions become
+// Grid maps (docs/sketch.md, Grid maps): each cell's status becomes the right zone or road, regions become
 // exact polygons, road bands one connected network, every mistake one line naming the
 // file, line and column, and a map generates a city that validates without gaps.
 #include "generate/sketch/grid_map.h"

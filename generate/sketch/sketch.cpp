@@ -350,7 +350,7 @@ class Parser {
     }
   }
 
-  // Seed 004's channels, {"NAME": {"image": FILE, "bounds": [min_x, min_y, max_x, max_y]}}.
+  // Channels, {"NAME": {"image": FILE, "bounds": [min_x, min_y, max_x, max_y]}}.
   std::vector<ChannelSpec> channels(const json& j, const fs::path& sketch_path) const {
     const std::string w = "\"exacity\".channels";
     if (!j.is_object())
@@ -455,7 +455,7 @@ class Parser {
   // The grid map the sketch's "exacity".grid names, relative to the sketch: its features go
   // before the sketch's own, so that zones the sketch draws win where they overlap it (the
   // later zone wins), and the zone types that get roads are laid out by "streets" and filled
-  // by seed 001's grid filling unless the sketch says otherwise (a planned city). The key is gone from `doc` after.
+  // by grid filling unless the sketch says otherwise (a planned city). The key is gone from `doc` after.
   void add_grid(nlohmann::ordered_json& doc, const fs::path& sketch_path) {
     nlohmann::ordered_json& ex = doc["exacity"];
     const std::string w = "\"exacity\".grid";
@@ -567,15 +567,17 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
                      ZoneType::Water})
     sketch.zone_settings[t] = default_zone_settings(t);
   if (doc.contains("crs")) sketch.crs = nlohmann::ordered_json::parse(marked)["crs"];  // keeps key order
-  if (doc.contains("osm") && doc["osm"].is_object() && doc["osm"].contains("skipped") && doc["osm"]["skipped"].is_object())
-    for (const auto& [why, count] : doc["osm"]["skipped"].items())
-      if (count.is_number_integer()) sketch.osm_left_out[why] = count.get<int>();
-  if (doc.contains("osm") && doc["osm"].is_object() && doc["osm"].contains("repaired") && doc["osm"]["repaired"].is_array())
-    for (const auto& what : doc["osm"]["repaired"])
-      if (what.is_string()) sketch.osm_repaired.push_back(what.get<std::string>());
-  if (doc.contains("osm") && doc["osm"].is_object() && doc["osm"].contains("files") && doc["osm"]["files"].is_array())
-    for (const json& file : doc["osm"]["files"])
-      if (file.is_string()) sketch.osm_files.push_back(file.get<std::string>());
+  const nlohmann::ordered_json osm = doc.contains("osm") ? nlohmann::ordered_json(doc["osm"]) : nullptr;
+  for (const nlohmann::ordered_json* file : osm_file_counts(osm)) {
+    Sketch::OsmCounts& counts = sketch.osm_counts.emplace_back();
+    counts.file = file->contains("file") && (*file)["file"].is_string() ? (*file)["file"].get<std::string>() : path.string();
+    if (file->contains("skipped") && (*file)["skipped"].is_object())
+      for (const auto& [why, count] : (*file)["skipped"].items())
+        if (count.is_number_integer()) counts.left_out[why] = count.get<int>();
+    if (file->contains("repaired") && (*file)["repaired"].is_array())
+      for (const auto& what : (*file)["repaired"])
+        if (what.is_string()) counts.repaired.push_back(what.get<std::string>());
+  }
   if (doc.contains("exacity")) parser.settings(doc["exacity"], sketch);
   const json& features = doc["features"];
   for (std::size_t i = 0; i < features.size(); ++i) parser.feature(features[i], static_cast<int>(i), sketch);
@@ -611,13 +613,19 @@ nlohmann::ordered_json gis_document(const fs::path& path, SketchSource source) {
 
 // Gives OSM-tagged features their zones and roads (generate/gis/osm_tags.h); land use
 // that came with OSM's streets is laid out by them, unless the settings say otherwise.
-// `files` names the files read, for messages.
-bool apply_osm_tags_and_layout(nlohmann::ordered_json& doc, const fs::path& path, const std::string& files) {
-  if (!apply_osm_tags(doc, path)) return false;
+bool apply_osm_tags_and_layout(nlohmann::ordered_json& doc, const std::vector<SketchFile>& files) {
+  if (!apply_osm_tags(doc, files)) return false;
   if (doc["features"].empty()) {
-    std::string tags;
-    for (const auto& [why, count] : doc["osm"]["skipped"].items()) tags += (tags.empty() ? "" : ", ") + why + " " + count.dump();
-    throw UserError(files + ": no feature's OpenStreetMap tags make a zone or a road (" + tags +
+    // Each file's counts, named by the file when there are several.
+    std::string names, tags;
+    for (const nlohmann::ordered_json* file : osm_file_counts(doc["osm"])) {
+      const std::string name = (*file)["file"].get<std::string>();
+      std::string counts;
+      for (const auto& [why, count] : (*file)["skipped"].items()) counts += (counts.empty() ? "" : ", ") + why + " " + count.dump();
+      names += (names.empty() ? "" : ", ") + name;
+      tags += (tags.empty() ? "" : "; ") + (files.size() > 1 ? name + ": " : "") + (counts.empty() ? "none" : counts);
+    }
+    throw UserError(names + ": no feature's OpenStreetMap tags make a zone or a road (" + tags +
                     "); see the README's OpenStreetMap section for the tags Exacity reads");
   }
   if (doc["osm"]["taken"].value("roads", 0) > 0) {
@@ -636,14 +644,6 @@ Sketch made_sketch(const nlohmann::ordered_json& doc, const fs::path& path, bool
   return sketch;
 }
 
-// Adds the counts of `part` (an "osm" member's "skipped") to `sum`.
-void add_counts(nlohmann::ordered_json& sum, const nlohmann::ordered_json& part) {
-  if (!part.is_object()) return;
-  if (!sum.is_object()) sum = nlohmann::ordered_json::object();
-  for (const auto& [what, count] : part.items())
-    if (count.is_number_integer()) sum[what] = sum.value(what, 0) + count.get<int>();
-}
-
 }  // namespace
 
 Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& models) {
@@ -652,7 +652,7 @@ Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& mod
   if (source == SketchSource::Osm || source == SketchSource::Ogr) {
     nlohmann::ordered_json doc = gis_document(path, source);
     project_to_metres(doc, path);
-    apply_osm_tags_and_layout(doc, path, path.string());
+    apply_osm_tags_and_layout(doc, {{path, doc["features"].size()}});
     return made_sketch(doc, path, read_grammars, models);
   }
   const std::string text = file_text(path);
@@ -663,7 +663,8 @@ Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& mod
   // The settings first: their terrain and channel bounds are in the sketch's CRS too.
   const bool beside = add_settings_beside(doc, path);
   const bool projected = project_to_metres(doc, path);
-  const bool tagged = apply_osm_tags_and_layout(doc, path, path.string());
+  const bool tagged = doc.contains("features") && doc["features"].is_array() &&
+                      apply_osm_tags_and_layout(doc, {{path, doc["features"].size()}});
   if (!projected && !beside && !tagged) return parse_sketch(text, path, read_grammars, models);
   return made_sketch(doc, path, read_grammars, models);
 }
@@ -703,6 +704,7 @@ Sketch load_sketch(const std::vector<fs::path>& paths, bool read_grammars, const
   nlohmann::ordered_json doc = {{"type", "FeatureCollection"}, {"features", nlohmann::ordered_json::array()}};
   if (!crs.is_null()) doc["crs"] = crs;
   fs::path settings_from;
+  std::vector<SketchFile> files;
   for (SketchPart& p : parts) {
     nlohmann::ordered_json& part = p.doc;
     if (part.contains("exacity")) {
@@ -711,25 +713,21 @@ Sketch load_sketch(const std::vector<fs::path>& paths, bool read_grammars, const
                         "; sketches given together take their settings from one of them");
       doc["exacity"] = std::move(part["exacity"]), settings_from = p.path;
     }
-    // An extract's own member: its counts added up, its lists one after the other.
-    if (part.contains("osm") && part["osm"].is_object()) {
-      if (!doc.contains("osm")) doc["osm"] = nlohmann::ordered_json::object();
-      for (auto& [key, value] : part["osm"].items())
-        if (key == "skipped") add_counts(doc["osm"]["skipped"], value);
-        else if (value.is_array())
-          for (nlohmann::ordered_json& v : value) doc["osm"][key].push_back(std::move(v));
-    }
+    files.push_back({p.path, part["features"].size()});
     for (nlohmann::ordered_json& f : part["features"]) doc["features"].push_back(std::move(f));
   }
-  std::string files;
-  for (const fs::path& path : paths) files += (files.empty() ? "" : ", ") + path.string();
-  apply_osm_tags_and_layout(doc, paths[0], files);
-  // The "osm" member counts every file's features: it names them all.
-  if (doc.contains("osm") && doc["osm"].is_object()) {
-    doc["osm"].erase("file");
+  // An extract's own counts (what reading it left out and mended) stay with its file.
+  if (std::any_of(parts.begin(), parts.end(), [](const SketchPart& p) { return p.doc.contains("osm"); })) {
     doc["osm"]["files"] = nlohmann::ordered_json::array();
-    for (const fs::path& path : paths) doc["osm"]["files"].push_back(path.string());
+    for (SketchPart& p : parts) {
+      nlohmann::ordered_json counts = {{"file", p.path.string()}};
+      if (p.doc.contains("osm") && p.doc["osm"].is_object())
+        for (auto& [key, value] : p.doc["osm"].items())
+          if (key != "file") counts[key] = std::move(value);
+      doc["osm"]["files"].push_back(std::move(counts));
+    }
   }
+  apply_osm_tags_and_layout(doc, files);
   return made_sketch(doc, paths[0], read_grammars, models);
 }
 

@@ -27,14 +27,16 @@ struct Sketch : CitySettings, DrawnFeatures {
   double channel_sharpness = 4;     // the exponent of a model's channel affinity
   // Exacity's own trees and lamps ("builtin_models"), for the kinds the library lacks.
   bool builtin_trees = true, builtin_lamps = true;
-  // OpenStreetMap features whose tags make no zone or road, by tag ("highway=footway"):
-  // the document's "osm" member (generate/gis/osm_tags.h).
-  std::map<std::string, int> osm_left_out;
-  // OpenStreetMap areas osmium could not assemble, mended (rings the extract's edge cut
-  // closed along it), each named: the "osm" member's "repaired".
-  std::vector<std::string> osm_repaired;
-  // The files those counts are of, when several were read together (the member's "files").
-  std::vector<std::string> osm_files;
+  // What each file read left out of OpenStreetMap's features, by the tag that makes no zone
+  // or road ("highway=footway"), and the areas osmium could not assemble that it mended
+  // (rings the extract's edge cut closed along it), each named: the document's "osm"
+  // member (generate/gis/osm_tags.h), a file each.
+  struct OsmCounts {
+    std::string file;
+    std::map<std::string, int> left_out;
+    std::vector<std::string> repaired;
+  };
+  std::vector<OsmCounts> osm_counts;
   // The document read when it is not the file at `path` (a grid map; a sketch naming one in
   // "grid", whose features it holds; `generate --models`), else empty. OUT/sketch.geojson
   // holds it, so that validate and render read the sketch generate read.

@@ -132,7 +132,7 @@ try {
   s = await sketch();
   check(s.features[1].properties.road === 'highway' && s.features[1].properties.width === 24, 'a highway drawn');
 
-  // Ctrl-drag moves the zone (seed 000, 3.1.1).
+  // Ctrl-drag moves the zone.
   await page.click('[data-tool="select"]');
   const before = s.features[0].geometry.coordinates[0][0];
   await page.keyboard.down('Control');
@@ -315,7 +315,7 @@ try {
   // Explore: the 3D view, orbited with the mouse, then rendered.
   await page.click('[data-view="explore"]');
   await page.waitForFunction(() => window.exacityExplore && window.exacityExplore.city, {timeout: 60000});
-  // The minimap's background is an overview of the city taken from above (seed 000, 3.3.4):
+  // The minimap's background is an overview of the city taken from above (an air photo):
   // not one colour, and the minimap shows it.
   await page.waitForFunction(() => window.exacityExplore.overview, {timeout: 60000});
   const overview = await page.evaluate(() => {
@@ -337,7 +337,7 @@ try {
   await page.mouse.up();
   const second = await spec();
   check(first !== second && /azimuth=/.test(second), `orbiting moved the camera (${first} to ${second})`);
-  // Dragging far down stops at the top of the upper hemisphere (seed 000, 3.3.2).
+  // Dragging far down stops at the top of the upper hemisphere (the orbit camera).
   await page.mouse.move(view.x + view.width / 2, view.y + view.height / 4);
   await page.mouse.down();
   for (let i = 1; i <= 10; ++i) await page.mouse.move(view.x + view.width / 2, view.y + view.height / 4 + 40 * i);

@@ -1,4 +1,4 @@
-// The README's pictures of exacity serve: serves SKETCH, generates it, and saves the map
+// The pictures of exacity serve in the README and docs/serve.md: serves SKETCH, generates it, and saves the map
 // with the generated city and the 3D view with its path-traced still (no checks: see
 // check_page.mjs). Usage: node screenshot_page.mjs EXACITY_BINARY SKETCH OUT_DIR
 import {spawn} from 'node:child_process';

@@ -1,4 +1,4 @@
-// The server's JSON API (README, exacity serve). Refusals come back as {ok: false, message}
+// The server's JSON API (docs/serve.md, The API). Refusals come back as {ok: false, message}
 // holding the server's one-line message, which is the CLI's for a sketch.
 
 async function answer(response) {

@@ -1,5 +1,5 @@
 // exacity serve's page: the sketch editor, generation with its progress, the generated layers
-// and the 3D view (README, exacity serve). Every sketch edit is sent to the server, which
+// and the 3D view (docs/serve.md). Every sketch edit is sent to the server, which
 // checks it as the CLI does; a refusal shows the CLI's message and the page goes back to the
 // server's sketch, so what is drawn is always what a generation uses.
 import * as api from './api.js';
@@ -252,7 +252,7 @@ async function loadExplore() {
 }
 
 // Every output the server has, to download: the city's files once generated, the still once
-// rendered (README, exacity serve: the API).
+// rendered (docs/serve.md, The API).
 let rendered = false;
 function showDownloads() {
   const files = [['/api/sketch', 'sketch.geojson'], ['/api/city.glb', 'city.glb'], ['/api/map.svg', 'map.svg'],

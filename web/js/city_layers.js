@@ -1,5 +1,5 @@
 // The generated city's layers drawn as vector layers over the sketch, and the report's
-// figures beside them (README, Outputs).
+// figures beside them (docs/outputs.md).
 import {zoneColours, rgba} from './colours.js';
 import {metres} from './sketch_map.js';
 
@@ -82,7 +82,7 @@ export class CityLayers {
       dd.textContent = typeof v === 'number' ? v.toLocaleString('en') : v;
       box.append(dt, dd);
     }
-    // The notes the CLI prints after a generation (README, Outputs: report.json).
+    // The notes the CLI prints after a generation (docs/outputs.md: report.json).
     const notes = document.getElementById('report-notes');
     notes.innerHTML = '';
     for (const z of report.empty_zones || []) {

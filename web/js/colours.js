@@ -1,5 +1,5 @@
-// Zone colours on the page: seed 000's red residential, green commercial and brown industrial
-// (3.1.1), with park and water as on the SVG map (generate/city/palette.h).
+// Zone colours on the page: red residential, green commercial and brown industrial
+// as drawn, with park and water as on the SVG map (generate/city/palette.h).
 export const zoneColours = {
   residential: [214, 96, 77], commercial: [63, 154, 110], industrial: [150, 105, 60],
   park: [166, 217, 106], water: [91, 155, 213],

@@ -1,6 +1,6 @@
-// Explore: the city in three.js under seed 000's camera (3.3.2), a spherical camera bound to
+// Explore: the city in three.js under the orbit camera, a spherical camera bound to
 // the upper hemisphere around a target that pans over the ground, with a minimap of the
-// camera and the ground it sees over an overview of the city (3.3.4); "Render this view"
+// camera and the ground it sees over an overview of the city; "Render this view"
 // path-traces the same camera.
 // The city comes as its ground and its tiles (GET /api/tiles.json), each tile drawn at the
 // level of detail its distance asks for, loaded when first needed, and left out when outside
@@ -27,7 +27,7 @@ export class ExploreView {
     sun.position.set(-0.6, 0.7, 0.4);
     this.scene.add(sun);
     this.camera = new THREE.PerspectiveCamera(45, 1, 1, 200000);
-    // The orbit, in the city's coordinates (README, Rendering: orbit:target=..,azimuth=..).
+    // The orbit, in the city's coordinates (docs/rendering.md, Cameras: orbit:target=..,azimuth=..).
     this.orbit = {target: [0, 0, 0], azimuth: 225, elevation: 35, distance: 800};
     this.bounds = [0, 0, 1, 1];
     this.city = null;
@@ -69,7 +69,7 @@ export class ExploreView {
     this.captureOverview();
   }
 
-  // Seed 000, 3.3.4: an air photo of the whole city, taken once from straight above at the
+  // An air photo of the whole city, taken once from straight above at the
   // height that sees all of it, is the minimap's background: every tile at its coarsest level
   // over the ground. Until it is taken the minimap draws the zones, water and roads.
   async captureOverview() {
@@ -118,7 +118,7 @@ export class ExploreView {
     return hit ? Math.round(hit.point.y * 100) / 100 : 0;
   }
 
-  // Seed 000, 3.3.2: azimuth any way round, elevation kept in the upper hemisphere.
+  // The orbit camera: azimuth any way round, elevation kept in the upper hemisphere.
   setOrbit(change) {
     const o = {...this.orbit, ...change};
     o.elevation = Math.min(90, Math.max(1, o.elevation));
@@ -259,7 +259,7 @@ export class ExploreView {
 
   // Where the view's corner rays meet the ground (z = 0), for the minimap; an upper ray at or
   // above the horizon is replaced by the lower ray on its side followed to the city's edge
-  // (seed 000, 3.3.2's special case; render/camera.h, ground_footprint).
+  // (a view near the horizon; render/camera.h, ground_footprint).
   groundFootprint() {
     const corners = [[-1, -1], [1, -1], [1, 1], [-1, 1]];
     const origin = this.camera.position;

@@ -1,6 +1,6 @@
 // The side panel: the selected feature's zone type or road class and width, and the sketch's
 // settings (seed; per zone type its layout and parameters). Nothing is checked here: the
-// server checks as the CLI does and its one-line message is shown (README, The sketch).
+// server checks as the CLI does and its one-line message is shown (docs/sketch.md).
 const layouts = ['growth', 'grammar', 'voronoi', 'streets'];
 const settingZones = ['residential', 'commercial', 'industrial'];
 

@@ -1,4 +1,4 @@
-// The sketch on a 2D map in metres (seed 000, 3.1.1): zones drawn by clicking vertices, roads
+// The sketch on a 2D map in metres (docs/serve.md, The page): zones drawn by clicking vertices, roads
 // as polylines with a width, selected by click, moved by Ctrl-drag, deleted with Del; the
 // heightmap under them in grey with its water in blue, a labelled grid, a scale bar and the
 // pointer's coordinates.
@@ -6,7 +6,7 @@ import {zoneColours, roadColours, defaultWidths, rgba} from './colours.js';
 
 const ol = window.ol;
 
-// Sketch coordinates are metres, x east and y north (README, The sketch): a plain metric plane.
+// Sketch coordinates are metres, x east and y north (docs/sketch.md): a plain metric plane.
 export const metres = new ol.proj.Projection({code: 'exacity-metres', units: 'm', extent: [-1e7, -1e7, 1e7, 1e7]});
 const geojson = new ol.format.GeoJSON({dataProjection: metres, featureProjection: metres});
 const zoneTypes = Object.keys(zoneColours);
@@ -109,7 +109,7 @@ export class SketchMap {
     this.select.on('select', () => this.onSelected(this.selectedFeature()));
     this.modify = new ol.interaction.Modify({features: this.select.getFeatures()});
     this.modify.on('modifyend', () => this.edited());
-    // Seed 000, 3.1.1: elements are moved by holding Ctrl and dragging them.
+    // Elements are moved by holding Ctrl and dragging them.
     this.translate = new ol.interaction.Translate({layers: [this.layer], hitTolerance: 5,
                                                    condition: e => ol.events.condition.platformModifierKeyOnly(e)});
     this.translate.on('translateend', () => this.edited());
@@ -167,7 +167,7 @@ export class SketchMap {
   }
 
   // The sketch as GeoJSON: the document's other members kept, features in drawing order
-  // (where zones overlap, the later one wins: README, The sketch).
+  // (where zones overlap, the later one wins: docs/sketch.md).
   sketch() {
     const features = this.source.getFeatures().slice().sort((a, b) => a.exacityOrder - b.exacityOrder);
     const doc = {...this.doc};
