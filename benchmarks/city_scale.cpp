@@ -60,16 +60,16 @@ void run_road_stages(const Sketch& sketch, bool with_lots) {
   auto t = std::chrono::steady_clock::now();
   std::optional<Terrain> terrain;
   if (sketch.terrain) terrain = Terrain::load(*sketch.terrain);
-  CityMap zones = build_city_map(sketch, terrain ? &*terrain : nullptr);
+  CityMap zones = build_city_map(sketch, sketch, terrain ? &*terrain : nullptr);
   row("zone map", seconds_since(t), std::to_string(zones.map.counts().faces) + " faces");
   t = std::chrono::steady_clock::now();
-  RoadNetwork net = grow_road_network(std::move(zones), sketch);
+  RoadNetwork net = grow_road_network(std::move(zones), sketch, sketch.zones);
   double roads_s = seconds_since(t);
   row("road network", roads_s,
       std::to_string(net.map.roads.size()) + " roads, " + std::to_string(net.stats.levels) + " levels, " +
           std::to_string(net.map.map.counts().edges) + " map edges");
   t = std::chrono::steady_clock::now();
-  std::vector<Block> blocks = cut_blocks(net.map, sketch);
+  std::vector<Block> blocks = cut_blocks(net.map, sketch, sketch.zones);
   double blocks_s = seconds_since(t);
   row("blocks", blocks_s, std::to_string(blocks.size()) + " blocks");
   if (with_lots) {

@@ -20,7 +20,7 @@
 #include "generate/export/output_folder.h"
 #include "generate/export/gis_export.h"
 #include "generate/pipeline.h"
-#include "generate/city/sketch.h"
+#include "generate/sketch/sketch.h"
 #include "generate/export/statistics.h"
 #include "generate/export/validate.h"
 #include "geom/planar_map.h"
@@ -62,9 +62,9 @@ constexpr const char* kCameraExamples =
     "pedestrian:road=3,along=40, pedestrian:at=120,80,heading=90 or flyer:at=0,0,height=60,heading=45,pitch=-20";
 
 // The camera the user gave (option first, then the sketch's), parsed; nullopt for none.
-std::optional<render::CameraSpec> given_camera(const Sketch& sketch, const RenderOptions& o,
+std::optional<render::CameraSpec> given_camera(const std::string& sketch_camera, const RenderOptions& o,
                                                const std::string& camera_source) {
-  const std::string spec = !o.camera.empty() ? o.camera : sketch.camera;
+  const std::string spec = !o.camera.empty() ? o.camera : sketch_camera;
   if (spec.empty()) return std::nullopt;
   try {
     return render::parse_camera_spec(spec, o.fov);
@@ -87,7 +87,7 @@ render::RenderRequest request_for(const City& city, const RenderOptions& o, cons
   render::RenderRequest r;
   std::tie(r.width, r.height) = image_size(o);
   r.spp = o.spp;
-  if (auto given = given_camera(city.sketch, o, camera_source)) {
+  if (auto given = given_camera(city.camera, o, camera_source)) {
     try {
       r.camera = render::place_camera(*given, city);
     } catch (const std::invalid_argument& e) {
@@ -114,7 +114,7 @@ int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, 
              const RenderOptions* rendering, const ExportOptions& exports) {
   Sketch sketch = load_sketch(sketch_paths, true, models);
   if (rendering) {  // a bad camera or size stops us before any work
-    given_camera(sketch, *rendering, sketch.path.string());
+    given_camera(sketch.camera, *rendering, sketch.path.string());
     image_size(*rendering);
   }
   OutputFolder folder(out);
@@ -124,7 +124,7 @@ int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, 
     StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); },
                      kCityStages + kWriteStages + (rendering ? 1 : 0));
     City city = build_city(sketch, clock);
-    result = write_city(city, folder.staging(), clock, exports);
+    result = write_city(sketch, city, folder.staging(), clock, exports);
     if (rendering) {
       // The default still, the overview and the minimap, into OUT/render.
       const fs::path dir = folder.staging() / "render";
@@ -284,7 +284,7 @@ int render_folder(const fs::path& out, const RenderOptions& o, const fs::path& f
     throw UserError((out / "report.json").string() + ": unreadable or from an older exacity; generate the city again");
   // The copy's relative paths (heightmap, models) resolve where the original sketch was.
   Sketch sketch = parse_sketch(output_file(out / "sketch.geojson"), report["sketch_path"].get<std::string>());
-  given_camera(sketch, o, (out / "sketch.geojson").string());  // a bad camera or size stops us before any work
+  given_camera(sketch.camera, o, (out / "sketch.geojson").string());  // a bad camera or size stops us before any work
   image_size(o);
   if (!o.path.empty()) return render_path_folder(out, sketch, o, file, quiet);
   const fs::path still = file.empty() ? out / "render" / "still.png" : file;
@@ -337,7 +337,7 @@ int stats(const fs::path& out, const std::vector<fs::path>& real) {
     std::vector<std::string> problems;
     const CityLayers layers = read_layers(out / "vector", problems);
     if (!problems.empty()) throw UserError(problems.front() + "; generate the city again");
-    std::printf("%s\n%s", out.string().c_str(), format_statistics(city_statistics(layers, &sketch)).c_str());
+    std::printf("%s\n%s", out.string().c_str(), format_statistics(city_statistics(layers, &sketch, &sketch)).c_str());
   }
   for (const fs::path& file : real) std::printf("%s (real)\n%s", file.string().c_str(), format_statistics(real_statistics(file)).c_str());
   return 0;

@@ -14,7 +14,7 @@
 
 #include "fuzz/fuzz_target.h"
 #include "generate/pipeline.h"
-#include "generate/city/sketch.h"
+#include "generate/sketch/sketch.h"
 
 namespace {
 

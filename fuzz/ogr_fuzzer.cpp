@@ -11,7 +11,7 @@
 #include <gdal_utils.h>
 
 #include "fuzz/fuzz_target.h"
-#include "generate/city/sketch.h"
+#include "generate/sketch/sketch.h"
 #include "generate/gis/projection.h"
 
 namespace {

@@ -39,7 +39,7 @@ std::pair<std::string, bool> cancel_at(const std::string& stage, const std::file
   try {
     const City city = build_city(sketch, clock);
     std::filesystem::create_directory(dir / "out");
-    write_city(city, dir / "out", clock);
+    write_city(sketch, city, dir / "out", clock);
   } catch (const Cancelled&) {
     return {last, true};
   }

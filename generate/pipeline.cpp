@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "generate/parcels/blocks.h"
+#include "generate/placement/building_settings.h"
 #include "generate/placement/buildings.h"
 #include "generate/placement/builtin_models.h"
 #include "generate/export/cityjson_export.h"
@@ -43,13 +44,13 @@ std::vector<Lot> with_density(std::vector<Lot> lots, const std::vector<Block>& b
 Structures build_on_lots(City& city, const std::vector<PlannedLot>& planned) {
   constexpr int kMerges = 2;
   for (int merges = 0;; ++merges) {
-    Structures s = place_buildings(city.lots, city.sketch, city.model_library(), city.channels, city.heightmap());
+    Structures s = place_buildings(city.lots, city.settings, city.model_library(), city.channels, city.heightmap());
     std::vector<char> built(city.lots.size(), 0);
     for (const Building& b : s.buildings) built[b.lot] = 1;
     for (const ModelInstance& m : s.models) built[m.lot] |= m.kind == ModelKind::Building;
     if (merges == kMerges || std::count(built.begin(), built.end(), 0) == 0) return s;
     city.lots = with_density(merge_unbuilt_lots(city.network.map, planned, city.lots, built, merges + 1 == kMerges,
-                                                city.sketch, city.unbuilt_lots),
+                                                city.settings, city.unbuilt_lots),
                              city.blocks);
   }
 }
@@ -58,7 +59,9 @@ Structures build_on_lots(City& city, const std::vector<PlannedLot>& planned) {
 
 City build_city(const Sketch& sketch, StageClock& stages) {
   City city;
-  city.sketch = sketch;
+  city.settings = sketch;
+  city.drawn = sketch;
+  city.camera = sketch.camera;
   // The stage reads the sketch's images: the heightmap and the channels.
   city.terrain = stages.run("terrain", [&]() -> std::optional<Terrain> {
     city.channels = Channels::load(sketch.channels, sketch.channel_sharpness);
@@ -76,16 +79,16 @@ City build_city(const Sketch& sketch, StageClock& stages) {
         cut_slabs(*library);
     }
     check_lot_library(sketch, library ? &*library : nullptr);
-    add_builtin_models(library, sketch);
+    add_builtin_models(library, sketch.builtin_trees, sketch.builtin_lamps);
     return library;
   });
-  CityMap city_map = stages.run("zone map", [&] { return build_city_map(sketch, city.heightmap()); });
-  city.network = stages.run("road network", [&] { return grow_road_network(std::move(city_map), sketch); });
-  city.blocks = stages.run("blocks", [&] { return cut_blocks(city.network.map, sketch, city.network.uses); });
+  CityMap city_map = stages.run("zone map", [&] { return build_city_map(city.settings, city.drawn, city.heightmap()); });
+  city.network = stages.run("road network", [&] { return grow_road_network(std::move(city_map), city.settings, city.drawn.zones); });
+  city.blocks = stages.run("blocks", [&] { return cut_blocks(city.network.map, city.settings, city.drawn.zones, city.network.uses); });
   std::vector<PlannedLot> planned;
   city.lots = stages.run("lots", [&] {
-    planned = plan_lots(city.blocks, sketch, city.model_library(), city.channels);
-    return with_density(insert_lots(city.network.map, planned, sketch), city.blocks);
+    planned = plan_lots(city.blocks, city.settings, city.model_library(), city.channels);
+    return with_density(insert_lots(city.network.map, planned, city.settings), city.blocks);
   });
   Structures raised = stages.run("buildings", [&] {
     Structures s = build_on_lots(city, planned);
@@ -96,13 +99,13 @@ City build_city(const Sketch& sketch, StageClock& stages) {
   city.models = std::move(raised.models);
   stages.run("vector layers", [&] {
     merge_sliver_road_areas(city.network.map);
-    city.ground = extract_ground(city.network.map, city.blocks, city.lots, sketch);
+    city.ground = extract_ground(city.network.map, city.blocks, city.lots, city.drawn.zones);
     city.layers = layers_of(city.ground, city.buildings, city.models, city.model_library());
   });
   // After the ground, whose centre lines the clutter dresses and names (docs/design.md, Placement).
   city.clutter = stages.run("clutter", [&] {
     return place_clutter({city.network.map, city.ground, city.lots, city.buildings, city.models}, city.model_library(),
-                         city.channels, sketch, city.heightmap());
+                         city.channels, city.settings, city.drawn.zones, city.heightmap());
   });
   return city;
 }
@@ -110,14 +113,14 @@ City build_city(const Sketch& sketch, StageClock& stages) {
 GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const ProgressFn& progress) {
   StageClock stages(progress, kCityStages + kWriteStages);
   City city = build_city(sketch, stages);
-  return write_city(city, dir, stages);
+  return write_city(sketch, city, dir, stages);
 }
 
 namespace {
 
 // report.json's road_network: regions and levels grown, roads and segments per class,
 // junctions per degree (1: a dead end at a region's edge), how the sketch's roads met.
-ordered_json road_network_report(const RoadNetwork& network, const Sketch& sketch) {
+ordered_json road_network_report(const RoadNetwork& network, const DrawnFeatures& sketch) {
   ordered_json segments = ordered_json::object(), roads_by_class = ordered_json::object();
   for (const MapRoad& r : network.map.roads) {
     std::string c(name(r.road_class));
@@ -154,7 +157,7 @@ bool zone_holds(const ZoneFeature& zone, geom::Vec2 p) {
 }
 
 // The drawn zone a cell lies in (the later of two zones drawn over each other), or -1.
-int zone_feature_of(const geom::Cell& cell, const Sketch& sketch) {
+int zone_feature_of(const geom::Cell& cell, const DrawnFeatures& sketch) {
   const std::optional<geom::Vec2> p = cell.point_inside_near(cell.centroid());
   if (!p) return -1;
   for (int z = static_cast<int>(sketch.zones.size()) - 1; z >= 0; --z)
@@ -165,7 +168,7 @@ int zone_feature_of(const geom::Cell& cell, const Sketch& sketch) {
 // report.json's empty_zones: each drawn residential, commercial or industrial zone that got
 // no lot, and why, so a zone never stays empty without a word.
 ordered_json empty_zones_report(const City& city) {
-  const Sketch& sketch = city.sketch;
+  const DrawnFeatures& sketch = city.drawn;
   std::vector<char> has_land(sketch.zones.size(), 0), has_lot(sketch.zones.size(), 0), has_street(sketch.zones.size(), 0);
   for (const FaceLabel& label : city.network.map.labels)
     if (label.cover == Cover::Zone && label.zone >= 0) has_land[label.zone] = 1;
@@ -194,8 +197,9 @@ ordered_json empty_zones_report(const City& city) {
 // lots are built with extruded footprints in rows, as the library has no building for them.
 ordered_json placement_fallbacks_report(const City& city) {
   ordered_json fallbacks = ordered_json::array();
-  for (const auto& [zone, settings] : city.sketch.zone_settings) {
-    if (settings.buildings.placement != "grid" || !grows_roads(zone)) continue;
+  for (const auto& [zone, settings] : city.settings.zone_settings) {
+    // The default placer falls back without a word: extruded footprints are what it asks for then.
+    if (settings.buildings.placement == &placer_types().front() || !grows_roads(zone)) continue;
     const ModelLibrary* library = city.model_library();
     if (library && !library->choices(zone, ModelKind::Building).empty()) continue;
     fallbacks.push_back({{"zone", name(zone)},
@@ -242,20 +246,20 @@ ordered_json clutter_report(const ClutterTally& tally) {
 }
 
 // The vector layers, a copy of the sketch and the SVG map.
-void export_vectors(const City& city, const fs::path& dir) {
+void export_vectors(const Sketch& sketch, const City& city, const fs::path& dir) {
   const CityLayers& layers = city.layers;
   fs::create_directories(dir / "vector");
-  if (city.sketch.geojson.empty()) {
-    fs::copy_file(city.sketch.path, dir / "sketch.geojson");
+  if (sketch.geojson.empty()) {
+    fs::copy_file(sketch.path, dir / "sketch.geojson");
   } else {
     std::ofstream copy(dir / "sketch.geojson", std::ios::binary);
-    copy << city.sketch.geojson;
+    copy << sketch.geojson;
     if (!copy) throw UserError((dir / "sketch.geojson").string() + ": write failed (disk full?)");
   }
   for (const Layer* l : {&layers.zones, &layers.water, &layers.roads, &layers.road_areas, &layers.blocks, &layers.lots,
                          &layers.buildings})
-    write_geojson(*l, city.sketch.crs, dir / "vector" / (l->name + ".geojson"));
-  write_point_geojson(clutter_layer(city.clutter.items, city.model_library()), city.sketch.crs,
+    write_geojson(*l, city.settings.crs, dir / "vector" / (l->name + ".geojson"));
+  write_point_geojson(clutter_layer(city.clutter.items, city.model_library()), city.settings.crs,
                       dir / "vector" / "clutter.geojson");
   write_svg_map(city.ground, city.buildings, city.models, dir / "map.svg", city.clutter.items);
 }
@@ -265,7 +269,7 @@ MeshCounts export_3d(const City& city, const fs::path& dir, GltfCounts& gltf) {
   const ModelLibrary* library = city.model_library();
   std::vector<Mesh> meshes = structure_meshes(city.buildings, city.models, library);
   const std::vector<GroundLayer> ground = ground_layers(city.ground, city.heightmap());
-  write_cityjson(city.ground, city.buildings, city.models, meshes, library, city.heightmap(), ground, city.sketch,
+  write_cityjson(city.ground, city.buildings, city.models, meshes, library, city.heightmap(), ground, city.settings.crs,
                  dir / "city.city.json", city.clutter.items);
   std::vector<ModelInstance> clutter;
   for (const Clutter& c : city.clutter.items) clutter.push_back(c.instance);
@@ -275,12 +279,13 @@ MeshCounts export_3d(const City& city, const fs::path& dir, GltfCounts& gltf) {
 
 }  // namespace
 
-GenerateResult write_city(const City& city, const fs::path& dir, StageClock& stages, const ExportOptions& options) {
-  const Sketch& sketch = city.sketch;
+GenerateResult write_city(const Sketch& sketch, const City& city, const fs::path& dir, StageClock& stages,
+                          const ExportOptions& options) {
+  const CitySettings& settings = city.settings;
   bool city_osm = false;
   stages.run("export", [&] {
-    export_vectors(city, dir);
-    write_vector_formats(dir, options.vector_formats, sketch.crs);
+    export_vectors(sketch, city, dir);
+    write_vector_formats(dir, options.vector_formats, settings.crs);
     city_osm = write_city_osm(city, dir / "city.osm");
   });
   GltfCounts gltf;
@@ -290,20 +295,20 @@ GenerateResult write_city(const City& city, const fs::path& dir, StageClock& sta
       {"generator", "exacity"},
       {"version", kVersion},
       {"kernel", geom::kernel_name()},
-      {"sketch", sketch.path.filename().string()},
+      {"sketch", settings.path.filename().string()},
       // Where the sketch's relative paths (heightmap, models) resolve, for `exacity render`.
-      {"sketch_path", fs::absolute(sketch.path).lexically_normal().string()},
-      {"seed", sketch.seed},
+      {"sketch_path", fs::absolute(settings.path).lexically_normal().string()},
+      {"seed", settings.seed},
       {"counts", counts_report(city, mesh, gltf)},
       {"exports",
        {{"vector_formats", options.vector_formats.empty() ? std::vector<std::string>{"geojson"} : options.vector_formats},
         {"city_osm", city_osm ? "city.osm" : "not written: the sketch has no CRS (EPSG) to place it on Earth"}}},
-      {"road_network", road_network_report(city.network, sketch)},
+      {"road_network", road_network_report(city.network, city.drawn)},
       {"unbuilt_lots", {{"merged", city.unbuilt_lots.merged}, {"left_open", city.unbuilt_lots.left_open}}},
       {"empty_zones", empty_zones_report(city)},
       {"placement_fallbacks", placement_fallbacks_report(city)},
       {"clutter", clutter_report(city.clutter.tally)},
-      {"statistics", city_statistics(city.layers, &sketch)},
+      {"statistics", city_statistics(city.layers, &settings, &city.drawn)},
       {"validation",
        {{"ok", validation.ok()}, {"problems", validation.problems}, {"widest_sliver_m", validation.widest_sliver}}},
       {"timings_s", stages.seconds},

@@ -9,7 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "generate/city/city.h"
+#include "generate/city.h"
+#include "generate/sketch/sketch.h"
 #include "generate/version.h"
 
 namespace exacity {
@@ -60,7 +61,8 @@ GenerateResult generate_city(const Sketch& sketch, const std::filesystem::path& 
 struct ExportOptions {
   std::vector<std::string> vector_formats;
 };
-GenerateResult write_city(const City& city, const std::filesystem::path& dir, StageClock& clock,
+// `sketch` is the one `city` was built from: OUT/sketch.geojson is its copy.
+GenerateResult write_city(const Sketch& sketch, const City& city, const std::filesystem::path& dir, StageClock& clock,
                           const ExportOptions& options = {});
 inline constexpr int kWriteStages = 3;
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "generate/city/city.h"
+#include "generate/city.h"
 #include "render/camera_spec.h"
 
 namespace render {

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "generate/city/city.h"
+#include "generate/city.h"
 #include "render/camera.h"
 
 namespace render {

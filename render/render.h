@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "generate/city/city.h"
+#include "generate/city.h"
 #include "render/camera.h"
 
 namespace render {

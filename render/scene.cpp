@@ -508,9 +508,9 @@ void RenderScene::add_buildings(const exacity::City& city, const geom::Box& worl
   facades_.assign(city.buildings.size() + city.models.size(), FacadeStyle{});
   // `eaves`: where the walls end, from the ground (their windows end below).
   auto add_mesh = [&](int id, exacity::ZoneType zone, const exacity::Mesh& mesh, double floor, double eaves) {
-    facades_[id] = facade_style(zone, city.sketch.seed, id, static_cast<float>(floor), static_cast<float>(eaves));
+    facades_[id] = facade_style(zone, city.settings.seed, id, static_cast<float>(floor), static_cast<float>(eaves));
     const int k = tiles.tile_of[id];
-    exacity::Random pick(exacity::mix(city.sketch.seed, static_cast<std::uint64_t>(id)));
+    exacity::Random pick(exacity::mix(city.settings.seed, static_cast<std::uint64_t>(id)));
     const int f = palette.facade.at({zone, static_cast<int>(pick.next() % exacity::facade_albedos(zone).size())});
     const int r = palette.roof.at({zone, static_cast<int>(pick.next() % exacity::roof_albedos(zone).size())});
     const exacity::MeshTriangles tris = exacity::mesh_triangles(mesh);

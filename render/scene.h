@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "generate/city/city.h"
+#include "generate/city.h"
 #include "generate/export/bridges.h"
 #include "render/camera.h"
 #include "render/facade.h"

@@ -36,7 +36,7 @@ void generate_job(ServerState& s, const Sketch& sketch, JobRunner::Progress& pro
   StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); },
                    kCityStages + kWriteStages + 1);
   auto city = std::make_shared<City>(build_city(sketch, clock));
-  const GenerateResult result = write_city(*city, folder.staging(), clock);
+  const GenerateResult result = write_city(sketch, *city, folder.staging(), clock);
   clock.run("tiles", [&] { write_city_tiles(*city, folder.staging() / "tiles"); });
   {
     std::unique_lock lock(s.outputs);

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "generate/city/city.h"
+#include "generate/city.h"
 
 namespace exacity::serve {
 

@@ -85,13 +85,13 @@ RenderAsk parse_render_ask(const std::string& body, std::uint64_t max_samples) {
 render::RenderRequest render_request(const City& city, const RenderAsk& ask) {
   render::RenderRequest r;
   r.width = ask.width, r.height = ask.height, r.spp = ask.spp;
-  const std::string spec = !ask.camera.empty() ? ask.camera : city.sketch.camera;
+  const std::string spec = !ask.camera.empty() ? ask.camera : city.camera;
   try {
     r.camera = spec.empty() ? render::default_camera(city)
                             : render::place_camera(render::parse_camera_spec(spec, ask.fov), city);
   } catch (const std::invalid_argument& e) {
     throw UserError((!ask.camera.empty() ? std::string("render request: \"camera\"")
-                                          : city.sketch.path.string() + ": \"exacity\".camera") +
+                                          : city.settings.path.string() + ": \"exacity\".camera") +
                     " \"" + spec + "\": " + e.what());
   }
   if (spec.empty()) r.camera.fov_y = ask.fov;

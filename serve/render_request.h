@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "generate/city/city.h"
+#include "generate/city.h"
 #include "render/render.h"
 
 namespace exacity::serve {

@@ -9,7 +9,7 @@
 #include <shared_mutex>
 #include <string>
 
-#include "generate/city/city.h"
+#include "generate/city.h"
 #include "serve/confined_folder.h"
 #include "serve/job_runner.h"
 #include "serve/server.h"

@@ -6,7 +6,7 @@
 #include <map>
 
 #include "generate/city/palette.h"
-#include "generate/city/sketch.h"
+#include "generate/sketch/sketch.h"
 #include "render/render.h"
 #include "serve/server_state.h"
 

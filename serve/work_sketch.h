@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "generate/city/sketch.h"
+#include "generate/sketch/sketch.h"
 #include "serve/confined_folder.h"
 
 namespace exacity::serve {

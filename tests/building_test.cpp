@@ -6,6 +6,7 @@
 #include <map>
 #include <sstream>
 
+#include "generate/placement/building_settings.h"
 #include "generate/export/building_mesh.h"
 #include "generate/export/ground_mesh.h"
 #include "generate/export/mesh_export.h"

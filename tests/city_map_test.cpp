@@ -66,7 +66,7 @@ bool covers(const Layer& layer, geom::Vec2 p) {
 
 CityLayers layers_of(const std::vector<std::string>& features, const Terrain* terrain = nullptr) {
   Sketch s = parse_sketch(sketch_text(features), "test.geojson");
-  return extract_layers(build_city_map(s, terrain), {}, {}, {}, {}, s);
+  return extract_layers(build_city_map(s, s, terrain), {}, {}, {}, {}, s.zones);
 }
 
 // Runs the whole generate job and returns the exact validator's verdict.
@@ -186,11 +186,11 @@ TEST(CityMap, UtmSizedCoordinatesGiveTheSameTopology) {
   };
   Sketch near = parse_sketch(sketch_text(shifted(0, 0)), "a.geojson");
   Sketch far = parse_sketch(sketch_text(shifted(500000, 5000000)), "b.geojson");
-  CityMap a = build_city_map(near, nullptr), b = build_city_map(far, nullptr);
+  CityMap a = build_city_map(near, near, nullptr), b = build_city_map(far, far, nullptr);
   EXPECT_EQ(a.map.counts().vertices, b.map.counts().vertices);
   EXPECT_EQ(a.map.counts().edges, b.map.counts().edges);
   EXPECT_EQ(a.map.counts().faces, b.map.counts().faces);
-  CityLayers la = extract_layers(a, {}, {}, {}, {}, near), lb = extract_layers(b, {}, {}, {}, {}, far);
+  CityLayers la = extract_layers(a, {}, {}, {}, {}, near.zones), lb = extract_layers(b, {}, {}, {}, {}, far.zones);
   EXPECT_EQ(la.zones.features.size(), lb.zones.features.size());
   EXPECT_EQ(la.road_areas.features.size(), lb.road_areas.features.size());
   Validation v = generate_and_validate("utm", sketch_text(shifted(500000, 5000000)));
@@ -225,7 +225,7 @@ TEST(CityMap, StreetsAreCarriagewaysSidewalksAndJunctions) {
   std::string text = sketch_text({road(10, "[[-100,0],[0,0],[100,0]]"), road(10, "[[0,-100],[0,0],[0,100]]")});
   text.insert(text.find("\"features\""), R"("exacity": {"roads": {"highway": {"sidewalk": 2}}}, )");
   Sketch s = parse_sketch(text, "test.geojson");
-  CityLayers l = extract_layers(build_city_map(s, nullptr), {}, {}, {}, {}, s);
+  CityLayers l = extract_layers(build_city_map(s, s, nullptr), {}, {}, {}, {}, s.zones);
   std::map<std::string, double> by_surface;
   std::map<std::string, int> count;
   for (const auto& f : l.road_areas.features) {

@@ -3,7 +3,7 @@
 // to the test preset (label slow).
 #include <gtest/gtest.h>
 
-#include "generate/city/sketch.h"
+#include "generate/sketch/sketch.h"
 #include "generate/pipeline.h"
 #include "tests/cli_util.h"
 #include "tests/test_util.h"
@@ -17,7 +17,8 @@ TEST(Gis, ARealExtractGeneratesAndValidates) {
   const fs::path out = testing_util::temp_dir("gis-kotka") / "out";
   fs::create_directories(out);
   StageClock clock(nullptr, kCityStages + kWriteStages);
-  const GenerateResult result = write_city(build_city(load_sketch(extract), clock), out, clock);
+  const Sketch sketch = load_sketch(extract);
+  const GenerateResult result = write_city(sketch, build_city(sketch, clock), out, clock);
   EXPECT_TRUE(result.valid) << result.report["validation"].dump();
   EXPECT_GT(result.report["counts"]["buildings"].get<int>(), 500);
   EXPECT_EQ(result.report["exports"]["city_osm"], "city.osm");

@@ -14,7 +14,7 @@
 #include <osmium/io/any_input.hpp>
 #include <osmium/visitor.hpp>
 
-#include "generate/city/sketch.h"
+#include "generate/sketch/sketch.h"
 #include "generate/errors.h"
 #include "generate/export/gis_export.h"
 #include "generate/gis/projection.h"
@@ -54,8 +54,9 @@ GenerateResult generate(const fs::path& sketch, const fs::path& out, std::vector
   fs::remove_all(out);
   fs::create_directories(out);
   StageClock clock(nullptr, kCityStages + kWriteStages);
-  City city = build_city(load_sketch(sketch, true, models), clock);
-  return write_city(city, out, clock, {std::move(formats)});
+  const Sketch loaded = load_sketch(sketch, true, models);
+  City city = build_city(loaded, clock);
+  return write_city(loaded, city, out, clock, {std::move(formats)});
 }
 
 // The vector layers of two output folders are the same files.
@@ -247,7 +248,7 @@ TEST(Gis, AnOsmExtractBecomesZonesRoadsAndWater) {
   }
   EXPECT_EQ(roads[RoadClass::Highway], 1);
   EXPECT_EQ(roads[RoadClass::Local], 6);  // the footway and the tunnel left out
-  EXPECT_EQ(sketch.zone_settings.at(ZoneType::Residential).roads.layout, "streets");
+  EXPECT_EQ(sketch.zone_settings.at(ZoneType::Residential).roads.layout->name(), "streets");
   EXPECT_EQ(sketch.seed, 11u);  // village.exacity.json
   const ordered_json doc = ordered_json::parse(sketch.geojson);
   EXPECT_EQ(doc["osm"]["skipped"], ordered_json::parse(R"({"highway=footway": 1, "tunnel": 1})"));
@@ -498,7 +499,7 @@ TEST(Gis, OsmTaggedFeaturesBecomeZonesAndRoads) {
     EXPECT_EQ(sketch.osm_counts[0].left_out, (std::map<std::string, int>{
                                        {"highway=footway", 1}, {"landuse=farmland", 1}, {"areas of fewer than 3 distinct points", 1},
                                        {"highway=crossing as a point", 1}, {"amenity=school", 1}}));
-    EXPECT_EQ(sketch.zone_settings.at(ZoneType::Residential).roads.layout, "streets");
+    EXPECT_EQ(sketch.zone_settings.at(ZoneType::Residential).roads.layout->name(), "streets");
   }
   // Features taken out do not move the others' names: the user's zone is still features[7].
   const Sketch sketch = load_sketch(dir / "town.geojson");

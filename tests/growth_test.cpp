@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "generate/city/sketch.h"
+#include "generate/sketch/sketch.h"
 #include "generate/layout/growth.h"
 #include "geom/cell.h"
 #include "geom/planar_map.h"

@@ -38,11 +38,15 @@ std::string sketch_text(const std::string& builtin) {
      "geometry": {"type": "Polygon", "coordinates": [[[360, 0], [520, 0], [520, 300], [360, 300], [360, 0]]]}}]})";
 }
 
-City built(const std::string& builtin) {
-  StageClock clock(nullptr, kCityStages);
+Sketch living_sketch(const std::string& builtin) {
   Sketch sketch = parse_sketch(sketch_text(builtin), "living.geojson");
   sketch.geojson = sketch_text(builtin);  // what write_city copies, there being no file
-  return build_city(sketch, clock);
+  return sketch;
+}
+
+City built(const std::string& builtin) {
+  StageClock clock(nullptr, kCityStages);
+  return build_city(living_sketch(builtin), clock);
 }
 
 struct Counts {
@@ -63,7 +67,7 @@ bool in_park(const City& city, geom::Vec2 p) {
   const int label = city.network.map.map.label_at(p);
   if (label < 0) return false;
   const FaceLabel& l = city.network.map.labels[label];
-  return l.cover == Cover::Zone && l.zone >= 0 && city.sketch.zones[l.zone].type == ZoneType::Park;
+  return l.cover == Cover::Zone && l.zone >= 0 && city.drawn.zones[l.zone].type == ZoneType::Park;
 }
 
 }  // namespace
@@ -121,7 +125,7 @@ TEST(BuiltinModels, TreesAndLampsStandWhereTheyMayAndTheCityValidates) {
   // Every output, and validate's check of the clutter layer (park trees name no road).
   const auto dir = testing_util::temp_dir("living-outputs");
   StageClock clock(nullptr, kWriteStages);
-  const GenerateResult result = write_city(city, dir, clock);
+  const GenerateResult result = write_city(living_sketch(""), city, dir, clock);
   EXPECT_TRUE(result.valid) << result.report["validation"].dump();
 }
 
@@ -163,10 +167,10 @@ TEST(BuiltinModels, ALibrarysOwnTreesAndLampsTakeTheirPlace) {
       load_model_library(std::filesystem::path(EXACITY_SOURCE_DIR) / "examples/models/library.json");
   const std::size_t before = library->models.size();
   Sketch sketch = parse_sketch(sketch_text(""), "living.geojson");
-  add_builtin_models(library, sketch);
+  add_builtin_models(library, sketch.builtin_trees, sketch.builtin_lamps);
   EXPECT_EQ(library->models.size(), before);  // it has a tree and a lamp
   std::optional<ModelLibrary> none;
-  add_builtin_models(none, sketch);
+  add_builtin_models(none, sketch.builtin_trees, sketch.builtin_lamps);
   ASSERT_TRUE(none);
   EXPECT_EQ(none->models.size(), 3u);
 }

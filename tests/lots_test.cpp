@@ -5,6 +5,7 @@
 #include <fstream>
 #include <set>
 
+#include "generate/placement/building_settings.h"
 #include "generate/placement/buildings.h"
 #include "generate/parcels/lots.h"
 #include "generate/pipeline.h"

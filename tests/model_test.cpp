@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "generate/placement/building_settings.h"
 #include "generate/placement/buildings.h"
 #include "generate/errors.h"
 #include "generate/placement/model_library.h"

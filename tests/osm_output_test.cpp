@@ -16,7 +16,7 @@
 #include <osmium/io/any_input.hpp>
 #include <osmium/visitor.hpp>
 
-#include "generate/city/sketch.h"
+#include "generate/sketch/sketch.h"
 #include "generate/errors.h"
 #include "generate/export/statistics.h"
 #include "generate/gis/osm_tags.h"
@@ -41,7 +41,8 @@ GenerateResult generate(const fs::path& sketch, const fs::path& out) {
   fs::remove_all(out);
   fs::create_directories(out);
   StageClock clock(nullptr, kCityStages + kWriteStages);
-  return write_city(build_city(load_sketch(sketch), clock), out, clock, {});
+  const Sketch loaded = load_sketch(sketch);
+  return write_city(loaded, build_city(loaded, clock), out, clock, {});
 }
 
 // city.osm as libosmium reads it: every id, and each way's tags.
@@ -325,8 +326,8 @@ TEST(OsmOutput, NoRoadAreaIsASliverAndEveryRoadKeepsASurface) {
   for (const RoadArea& a : city.ground.road_areas) EXPECT_GE(geom::area(a.polygon), 0.009) << "road " << a.road;
   // The same map as the road network leaves it, before anything is given away: the same
   // roads have surfaces, and it did hold a sliver.
-  const RoadNetwork network = grow_road_network(build_city_map(sketch, nullptr), sketch);
-  const Ground unmerged = extract_ground(network.map, {}, {}, sketch);
+  const RoadNetwork network = grow_road_network(build_city_map(sketch, sketch, nullptr), sketch, sketch.zones);
+  const Ground unmerged = extract_ground(network.map, {}, {}, sketch.zones);
   EXPECT_TRUE(std::any_of(unmerged.road_areas.begin(), unmerged.road_areas.end(),
                           [](const RoadArea& a) { return geom::area(a.polygon) < 0.01; }));
   EXPECT_EQ(roads_with_areas(city.ground), roads_with_areas(unmerged));

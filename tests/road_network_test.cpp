@@ -3,6 +3,7 @@
 
 #include <tbb/global_control.h>
 
+#include "generate/sketch/sketch.h"
 #include "generate/parcels/blocks.h"
 #include "generate/layout/road_network.h"
 #include "generate/export/vector_layers.h"
@@ -32,8 +33,8 @@ struct City {
 City grow(const std::string& text) {
   City c;
   c.sketch = parse_sketch(text, "test.geojson");
-  c.network = grow_road_network(build_city_map(c.sketch, nullptr), c.sketch);
-  c.blocks = cut_blocks(c.network.map, c.sketch);
+  c.network = grow_road_network(build_city_map(c.sketch, c.sketch, nullptr), c.sketch, c.sketch.zones);
+  c.blocks = cut_blocks(c.network.map, c.sketch, c.sketch.zones);
   return c;
 }
 
@@ -69,7 +70,7 @@ TEST(RoadNetwork, ResidentialRoadsBendAndStraightenWithDepth) {
 
 TEST(RoadNetwork, BlocksTileTheZoneWithTheRoads) {
   City c = grow(sketch_with(zone("residential", 0, 0, 600, 400)));
-  CityLayers l = extract_layers(c.network.map, c.blocks, {}, {}, {}, c.sketch);
+  CityLayers l = extract_layers(c.network.map, c.blocks, {}, {}, {}, c.sketch.zones);
   double blocks = 0, roads_inside = 0;
   for (const auto& f : l.blocks.features) blocks += testing_util::area(f.polygon);
   for (const auto& f : l.zones.features) roads_inside -= testing_util::area(f.polygon);
@@ -117,7 +118,7 @@ TEST(RoadNetwork, GrownRoadsBridgeOnlyWhereTheZoneAllowsThem) {
         sketch_with(zone("residential", 0, 0, 1000, 1000),
                     std::string(R"({"zones": {"residential": {"bridges": )") + (allow ? "true" : "false") + "}}}"),
         "test.geojson");
-    RoadNetwork n = grow_road_network(build_city_map(s, &t), s);
+    RoadNetwork n = grow_road_network(build_city_map(s, s, &t), s, s.zones);
     std::pair<int, int> bridges;  // faces bridged by grown roads, by links
     for (const FaceLabel& l : n.map.labels)
       if (l.bridge) ++(n.map.roads[l.road].link ? bridges.second : bridges.first);
@@ -135,7 +136,7 @@ TEST(RoadNetwork, SameResultWithOneOrTwoThreads) {
   auto layers = [](int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     City c = grow(sketch_with(zone("residential", 0, 0, 1500, 1000) + "," + zone("commercial", 1500, 0, 2500, 1000)));
-    CityLayers l = extract_layers(c.network.map, c.blocks, {}, {}, {}, c.sketch);
+    CityLayers l = extract_layers(c.network.map, c.blocks, {}, {}, {}, c.sketch.zones);
     std::string all;
     for (const Layer* layer : {&l.roads, &l.road_areas, &l.blocks})
       for (const auto& f : layer->features) {

@@ -23,7 +23,7 @@
 
 #include "generate/cancel.h"
 #include "generate/city/palette.h"
-#include "generate/city/sketch.h"
+#include "generate/sketch/sketch.h"
 #include "generate/errors.h"
 #include "generate/pipeline.h"
 #include "generate/placement/model_library.h"

@@ -2,8 +2,10 @@
 #include <gtest/gtest.h>
 
 #include "generate/errors.h"
-#include "generate/city/sketch.h"
-#include "generate/layout/street_graph.h"
+#include "generate/sketch/sketch.h"
+#include "generate/city/street_graph.h"
+#include "generate/layout/road_settings.h"
+#include "generate/placement/building_settings.h"
 
 using namespace exacity;
 
@@ -176,10 +178,10 @@ TEST(Sketch, GridFillingSettingsAreReadAndChecked) {
                                                    "grid_passes": 3}}})"),
                           "city.geojson");
   const BuildingSettings& b = s.zone_settings.at(ZoneType::Commercial).buildings;
-  EXPECT_EQ(b.placement, "grid");
+  EXPECT_EQ(b.placement->name, "grid");
   EXPECT_EQ(b.grid_cell, 0.5);
   EXPECT_EQ(b.grid_passes, 3);
-  EXPECT_EQ(s.zone_settings.at(ZoneType::Residential).buildings.placement, "rows");
+  EXPECT_EQ(s.zone_settings.at(ZoneType::Residential).buildings.placement->name, "rows");
   expect_error(with_features(kSquare, R"({"zones": {"residential": {"placement": "hex"}}})"), {"placement", "\"grid\""});
   expect_error(with_features(kSquare, R"({"zones": {"residential": {"grid_cell": 0}}})"), {"grid_cell"});
   expect_error(with_features(kSquare, R"({"zones": {"residential": {"grid_passes": 1.5}}})"), {"grid_passes", "whole"});

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "generate/city/grey_image.h"
-#include "generate/city/sketch.h"
+#include "generate/city/features.h"
 
 namespace exacity {
 

@@ -4,23 +4,23 @@
 
 #include "generate/cancel.h"
 #include "generate/city/drawn_zones.h"
-#include "generate/layout/street_graph.h"
+#include "generate/city/street_graph.h"
 
 namespace exacity {
 
 namespace {
 
-// Where sketch roads meet (generate/layout/street_graph.h), one mitred junction polygon (seed
+// Where sketch roads meet (generate/city/street_graph.h), one mitred junction polygon (seed
 // 004) instead of the notches their flat ends would leave; and, where the streets have
 // sidewalks, an outer one of their sidewalks' width. A meeting too sharp for a mitre gets
 // a disc of each road's width, as before junctions were mitred.
-void add_junctions(const Sketch& sketch, CityMap& city_map) {
-  for (const StreetNode& node : street_nodes(sketch.roads)) {
+void add_junctions(const DrawnFeatures& features, CityMap& city_map) {
+  for (const StreetNode& node : street_nodes(features.roads)) {
     std::vector<geom::JunctionArm> carriageway, outer;
     bool sidewalks = false;
     for (const StreetArm& arm : node.arms) {
-      const RoadFeature& r = sketch.roads[arm.road];
-      const double sidewalk = sketch.streets.sidewalk(r.road_class);
+      const RoadFeature& r = features.roads[arm.road];
+      const double sidewalk = features.streets.sidewalk(r.road_class);
       carriageway.push_back({arm.toward, r.width / 2, arm.length});
       outer.push_back({arm.toward, r.width / 2 + sidewalk, arm.length});
       sidewalks |= sidewalk > 0;
@@ -40,10 +40,10 @@ void add_junctions(const Sketch& sketch, CityMap& city_map) {
       continue;
     ++city_map.disc_junctions;
     for (const StreetArm& arm : node.arms) {
-      const RoadFeature& r = sketch.roads[arm.road];
+      const RoadFeature& r = features.roads[arm.road];
       city_map.map.add_disc(node.at, r.width / 2, city_map.sketch_carriageways.at(arm.road));
       if (sidewalks)
-        city_map.map.add_disc(node.at, r.width / 2 + sketch.streets.sidewalk(r.road_class), city_map.sidewalks.at(arm.road));
+        city_map.map.add_disc(node.at, r.width / 2 + features.streets.sidewalk(r.road_class), city_map.sidewalks.at(arm.road));
     }
   }
 }
@@ -56,20 +56,19 @@ int CityMap::road_of_counter(int counter) const {
   return -1;
 }
 
-void CityMap::label(const Sketch& sketch) {
+void CityMap::label() {
   labels.clear();
   index_.clear();
   map.label_faces([&](const geom::Windings& w) {
     FaceLabel l;
     l.zone = drawn->top_zone(w);
-    const ZoneType type = l.zone >= 0 ? sketch.zones[l.zone].type : ZoneType::Park;
+    const ZonePaving zone = l.zone >= 0 ? zones[l.zone] : ZonePaving{};
+    const ZoneType type = zone.type;
     const bool water = geom::winding_of(w, heightmap_water.first) != 0 || (l.zone >= 0 && type == ZoneType::Water);
     // A generated road paves only where roads are generated (not in a zone laid out as
     // "streets"): its flat end stops at the region's edge. A link paves all its way, over
     // open land, parks and water.
-    const RoadSettings& params = sketch.zone_settings.at(type).roads;
-    const bool paved_by_growth =
-        l.zone >= 0 && grows_roads(type) && params.layout != "streets" && (!water || params.bridges);
+    const bool paved_by_growth = l.zone >= 0 && grows_roads(type) && zone.generated_roads && (!water || zone.bridges);
     // Counters grow with road index, so the first road found is the first listed: it owns
     // a crossing.
     int carriageway = -1, sidewalk = -1, junction = -1;
@@ -122,16 +121,20 @@ void CityMap::insert_lots() {
   });
 }
 
-CityMap build_city_map(const Sketch& sketch, const Terrain* terrain) {
+CityMap build_city_map(const CitySettings& settings, const DrawnFeatures& features, const Terrain* terrain) {
   CityMap city_map;
-  city_map.sketch_roads = static_cast<int>(sketch.roads.size());
+  for (const ZoneFeature& z : features.zones) {
+    const RoadSettings& roads = settings.zone_settings.at(z.type).roads;
+    city_map.zones.push_back({z.type, roads.layout->generates_roads(), roads.bridges});
+  }
+  city_map.sketch_roads = static_cast<int>(features.roads.size());
   city_map.sketch_carriageways = {city_map.heightmap_water.end(), city_map.sketch_roads};
   if (terrain) {
     for (const geom::Ring& r : terrain->water_boundary()) city_map.map.add_ring(r, city_map.heightmap_water.first);
   }
   int tag = 0;
   for (int r = 0; r < city_map.sketch_roads; ++r) {
-    const RoadFeature& f = sketch.roads[r];
+    const RoadFeature& f = features.roads[r];
     MapRoad road{f.road_class, f.width, -1, -1, f.index, {}, tag};
     for (const geom::Polyline& line : f.lines) {
       city_map.map.add_stroke(line, f.width / 2, city_map.sketch_carriageways.at(r));
@@ -140,18 +143,18 @@ CityMap build_city_map(const Sketch& sketch, const Terrain* terrain) {
     }
     city_map.roads.push_back(std::move(road));
   }
-  city_map.drawn = std::make_shared<DrawnZones>(sketch.zones, city_map.map, city_map.sketch_carriageways.end());
+  city_map.drawn = std::make_shared<DrawnZones>(features.zones, city_map.map, city_map.sketch_carriageways.end());
   city_map.sidewalks = {city_map.drawn->end_counter(), city_map.sketch_roads};
   city_map.junctions = {city_map.sidewalks.end(), 0};
   for (int r = 0; r < city_map.sketch_roads; ++r) {
-    const RoadFeature& f = sketch.roads[r];
-    if (const double sidewalk = sketch.streets.sidewalk(f.road_class); sidewalk > 0)
+    const RoadFeature& f = features.roads[r];
+    if (const double sidewalk = features.streets.sidewalk(f.road_class); sidewalk > 0)
       for (const geom::Polyline& line : f.lines) city_map.map.add_stroke(line, f.width / 2 + sidewalk, city_map.sidewalks.at(r));
   }
-  add_junctions(sketch, city_map);
+  add_junctions(features, city_map);
   city_map.generated_roads = {city_map.junctions.end(), 0};
   city_map.map.insert_batch();
-  city_map.label(sketch);
+  city_map.label();
   return city_map;
 }
 

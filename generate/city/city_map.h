@@ -10,8 +10,9 @@
 #include <vector>
 
 #include "generate/city/drawn_zones.h"
-#include "generate/city/sketch.h"
+#include "generate/city/features.h"
 #include "generate/city/terrain.h"
+#include "generate/city/zone_settings.h"
 #include "geom/planar_map.h"
 
 namespace exacity {
@@ -62,6 +63,14 @@ struct CounterRange {
   int end() const { return first + size; }
 };
 
+// What labelling a face reads of the drawn zone on top: its type, and whether a generated
+// road paves it (its layout lays roads) and the water in it (its roads bridge water).
+struct ZonePaving {
+  ZoneType type = ZoneType::Park;
+  bool generated_roads = false;
+  bool bridges = false;
+};
+
 struct CityMap {
   geom::PlanarMap map;
   std::vector<FaceLabel> labels;  // indexed by face label
@@ -77,6 +86,7 @@ struct CityMap {
   CounterRange junctions;             // junction j, a polygon where sketch roads meet
   CounterRange generated_roads;       // road sketch_roads + i, grown or laid out, with its discs
   CounterRange lots;                  // lot l, once the lots stage has run
+  std::vector<ZonePaving> zones;      // per drawn zone
   std::vector<int> junction_roads;  // per junction, the road it belongs to: the first to meet there
   int mitred_junctions = 0, disc_junctions = 0;  // how the sketch's road meetings were drawn
 
@@ -87,7 +97,7 @@ struct CityMap {
   // The road whose carriageway winds around `counter`, or -1.
   int road_of_counter(int counter) const;
   // (Re)labels every face from its windings.
-  void label(const Sketch& sketch);
+  void label();
   // The index of this label in `labels`, added if new.
   int label_index(const FaceLabel& l);
   // f(label) for every face label: how a stage picks faces (a group, -1 for none) and
@@ -108,6 +118,7 @@ struct CityMap {
   std::map<FaceLabel, int> index_;
 };
 
-CityMap build_city_map(const Sketch& sketch, const Terrain* terrain);
+// The zone-map stage.
+CityMap build_city_map(const CitySettings& settings, const DrawnFeatures& features, const Terrain* terrain);
 
 }  // namespace exacity

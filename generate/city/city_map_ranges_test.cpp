@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "generate/city/sketch.h"
+#include "generate/sketch/sketch.h"
 
 namespace exacity {
 namespace {
@@ -30,7 +30,7 @@ TEST(CityMap, RangesFollowEachOtherWithoutOverlapAndRoadsFindTheirCounters) {
     {"type": "Feature", "properties": {"road": "main", "width": 10},
      "geometry": {"type": "LineString", "coordinates": [[50, -20], [50, 50]]}}]})";
   const Sketch sketch = parse_sketch(text, "ranges.geojson");
-  const CityMap map = build_city_map(sketch, nullptr);
+  const CityMap map = build_city_map(sketch, sketch, nullptr);
   EXPECT_EQ(map.heightmap_water.first, 0);
   EXPECT_EQ(map.sketch_carriageways.first, map.heightmap_water.end());
   EXPECT_EQ(map.sketch_carriageways.size, 2);

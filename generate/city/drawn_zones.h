@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "generate/city/sketch.h"
+#include "generate/city/features.h"
 #include "geom/planar_map.h"
 
 namespace exacity {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "generate/export/building_mesh.h"
+#include "generate/city/surface.h"
 #include "generate/city/zone_type.h"
 
 namespace exacity {

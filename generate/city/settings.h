@@ -73,6 +73,21 @@ class SettingsReader {
   // A whole number in [min, max]; `what` names what it counts ("rules").
   void whole_number(const char* key, int& field, int min, int max, const char* what) const;
 
+  // The row of `table` (rows with a `name` and a `what`) the key names, `fallback` when it
+  // is absent; the error lists the table's rows.
+  template <typename Row>
+  const Row& row(const char* key, const std::vector<Row>& table, const Row& fallback) const {
+    if (!has(key)) return fallback;
+    const nlohmann::json& j = at(key);
+    for (const Row& r : table)
+      if (j.is_string() && r.name == j.get_ref<const std::string&>()) return r;
+    std::string expected = "expected ";
+    for (std::size_t i = 0; i < table.size(); ++i)
+      expected += std::string(i == 0 ? "" : i + 1 == table.size() ? " or " : ", ") + "\"" + std::string(table[i].name) +
+                  "\" (" + std::string(table[i].what) + ")";
+    fail(key, expected);
+  }
+
   [[noreturn]] void fail(const char* key, const std::string& what) const;
 
  private:

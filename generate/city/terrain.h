@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "generate/city/grey_image.h"
-#include "generate/city/sketch.h"
+#include "generate/city/features.h"
 #include "geom/plain.h"
 
 namespace exacity {

@@ -4,6 +4,7 @@
 
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 
+#include "generate/city/surface.h"
 #include "generate/placement/buildings.h"
 
 namespace exacity {
@@ -14,9 +15,6 @@ struct MeshTraits : OpenMesh::DefaultTraits {
 };
 using Mesh = OpenMesh::PolyMesh_ArrayKernelT<MeshTraits>;
 
-// A foundation's top counts as roof: it is what the model stands on.
-enum class Surface : int { Ground = 0, Wall = 1, Roof = 2 };
-inline constexpr const char* kSurfaceNames[] = {"ground", "wall", "roof"};
 
 // Meshes are z up, each face carrying a Surface in the mesh's "surface" face property.
 // An extruded building's is closed and outward-facing, its walls reaching down to the

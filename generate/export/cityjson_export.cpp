@@ -352,7 +352,7 @@ void add_ground_objects(const Ground& ground, const std::vector<GroundLayer>& la
 void write_cityjson(const Ground& ground, const std::vector<Building>& buildings,
                     const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
                     const ModelLibrary* library, const Terrain* terrain, const std::vector<GroundLayer>& ground_layers,
-                    const Sketch& sketch, const std::filesystem::path& file, const std::vector<Clutter>& clutter) {
+                    const nlohmann::ordered_json& crs, const std::filesystem::path& file, const std::vector<Clutter>& clutter) {
   const geom::Box box = city_box(ground);
   const geom::Vec2 origin{std::floor(box.min_x), std::floor(box.min_y)};
   Vertices v(origin);
@@ -390,7 +390,7 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
   if (library) doc["geometry-templates"] = templates(*library, appearance);
   if (!appearance.empty()) doc["appearance"] = appearance.to_json();
   // An EPSG code in the sketch's crs becomes the reference system.
-  if (const std::optional<int> epsg = epsg_of(sketch.crs))
+  if (const std::optional<int> epsg = epsg_of(crs))
     doc["metadata"] = {{"referenceSystem", "https://www.opengis.net/def/crs/EPSG/0/" + std::to_string(*epsg)}};
 
   std::ofstream out(file, std::ios::binary);

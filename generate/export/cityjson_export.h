@@ -10,7 +10,6 @@
 #include "generate/export/ground_layers.h"
 #include "generate/placement/clutter.h"
 #include "generate/city/ground.h"
-#include "generate/city/sketch.h"
 #include "generate/city/terrain.h"
 
 namespace exacity {
@@ -22,6 +21,6 @@ namespace exacity {
 void write_cityjson(const Ground& ground, const std::vector<Building>& buildings,
                     const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
                     const ModelLibrary* library, const Terrain* terrain, const std::vector<GroundLayer>& ground_layers,
-                    const Sketch& sketch, const std::filesystem::path& file, const std::vector<Clutter>& clutter = {});
+                    const nlohmann::ordered_json& crs, const std::filesystem::path& file, const std::vector<Clutter>& clutter = {});
 
 }  // namespace exacity

@@ -11,13 +11,6 @@ namespace exacity {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-std::string format_number(double v) {
-  if (v == 0) v = 0;  // no "-0"
-  char buf[32];
-  auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, end);
-}
-
 namespace {
 
 void write_position(std::ostream& out, geom::Vec2 p) {

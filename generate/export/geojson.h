@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "generate/city/format_number.h"
 #include "geom/plain.h"
 
 namespace exacity {
@@ -33,8 +34,5 @@ void write_point_geojson(const Layer& layer, const nlohmann::ordered_json& crs, 
 // Polygons, LineStrings or Points).
 // Anything malformed is appended to `problems`, one line each, and skipped.
 Layer read_geojson(const std::filesystem::path& file, std::vector<std::string>& problems);
-
-// Shortest text that reads back as the same double.
-std::string format_number(double v);
 
 }  // namespace exacity

@@ -210,7 +210,7 @@ const char* osm_highway(RoadClass road_class) {
 
 // A road's tags: the OSM tags it was read with (its highway class, name, ref ...), else the
 // class a mapper would give it; its width as built, and bridge and layer on bridges.
-OsmTagList road_tags(const RoadLine& road, int id, const Sketch& sketch) {
+OsmTagList road_tags(const RoadLine& road, int id, const DrawnFeatures& sketch) {
   OsmTagList tags;
   if (road.sketch_road >= 0) tags = sketch.roads[road.sketch_road].osm_tags;
   const bool tagged = std::any_of(tags.begin(), tags.end(), [](const auto& t) { return t.first == "highway"; });
@@ -237,7 +237,7 @@ std::int64_t first_osm_id(const std::vector<osmium::Location>& locations) {
 }  // namespace
 
 bool write_city_osm(const City& city, const fs::path& file) {
-  const std::optional<int> epsg = epsg_of(city.sketch.crs);
+  const std::optional<int> epsg = epsg_of(city.settings.crs);
   if (!epsg) return false;
   const ToLonLat to_lon_lat(*epsg);
   OsmNodes nodes;
@@ -249,7 +249,7 @@ bool write_city_osm(const City& city, const fs::path& file) {
   };
   for (std::size_t i = 0; i < city.ground.roads.size(); ++i) {
     const RoadLine& road = city.ground.roads[i];
-    if (road.line.size() >= 2) way(road.line, road_tags(road, static_cast<int>(i), city.sketch));
+    if (road.line.size() >= 2) way(road.line, road_tags(road, static_cast<int>(i), city.drawn));
   }
   for (const VectorFeature& b : city.layers.buildings.features) {
     if (b.properties.value("kind", std::string("building")) != "building") continue;

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "generate/city/city.h"
+#include "generate/city.h"
 
 namespace exacity {
 

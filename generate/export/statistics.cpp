@@ -191,7 +191,7 @@ struct BlockTally {
   double total = 0, oversized = 0;
 };
 
-BlockTally tally_blocks(const Layer& blocks, const std::string& zone, const Sketch* sketch) {
+BlockTally tally_blocks(const Layer& blocks, const std::string& zone, const CitySettings* settings) {
   BlockTally t;
   for (const auto& f : blocks.features) {
     if (!in_zone(f, zone) || f.properties.value("green", false)) continue;
@@ -199,7 +199,7 @@ BlockTally tally_blocks(const Layer& blocks, const std::string& zone, const Sket
     t.areas.push_back(a);
     t.total += a;
     auto type = parse_zone_type(f.properties.value("zone", ""));
-    if (sketch && type && a > kOversized * sketch->zone_settings.at(*type).roads.growth.block_area) t.oversized += a;
+    if (settings && type && a > kOversized * settings->zone_settings.at(*type).roads.growth.block_area) t.oversized += a;
   }
   return t;
 }
@@ -259,9 +259,9 @@ std::vector<const geom::Polygon*> zone_footprints(const Layer& buildings, const 
 
 // One zone's (or "all"'s) blocks, lots and footprints; none for a zone with none of them.
 std::optional<ordered_json> zone_figures(const CityLayers& layers, const std::string& zone, const RoadEdges& road_edges,
-                                         const Sketch* sketch) {
+                                         const CitySettings* settings) {
   CancelCheck().check();
-  const BlockTally blocks = tally_blocks(layers.blocks, zone, sketch);
+  const BlockTally blocks = tally_blocks(layers.blocks, zone, settings);
   const LotTally lots = tally_lots(layers.lots, zone, road_edges, built_lots(layers.buildings));
   const std::vector<const geom::Polygon*> footprints = zone_footprints(layers.buildings, zone);
   if (blocks.areas.empty() && lots.areas.empty() && footprints.empty()) return std::nullopt;
@@ -282,9 +282,9 @@ double ground_area(const CityLayers& layers) {
 // drawn zone.
 class CityEdge {
  public:
-  CityEdge(const CityLayers& layers, const Sketch* sketch) {
-    if (sketch)
-      for (const auto& z : sketch->zones)
+  CityEdge(const CityLayers& layers, const DrawnFeatures* drawn) {
+    if (drawn)
+      for (const auto& z : drawn->zones)
         for (const auto& p : z.polygons) rings_.add_polygon(p), drawn_.push_back(&p);
     for (const auto& f : layers.water.features) rings_.add_polygon(f.polygon);
   }
@@ -395,14 +395,14 @@ ordered_json real_street_figures(const std::vector<geom::Polyline>& lines, const
 
 }  // namespace
 
-ordered_json city_statistics(const CityLayers& layers, const Sketch* sketch) {
+ordered_json city_statistics(const CityLayers& layers, const CitySettings* settings, const DrawnFeatures* drawn) {
   const std::set<std::string> zones = zone_names(layers);
   const RoadEdges road_edges = road_area_edges(layers.road_areas);
   ordered_json per_zone = ordered_json::object();
   for (const std::string& zone : zones)
-    if (std::optional<ordered_json> z = zone_figures(layers, zone, road_edges, sketch)) per_zone[zone] = *z;
+    if (std::optional<ordered_json> z = zone_figures(layers, zone, road_edges, settings)) per_zone[zone] = *z;
   const double ground = ground_area(layers);
-  const CityEdge edge(layers, sketch);
+  const CityEdge edge(layers, drawn);
   auto on_edge = [&](Vec2 p) { return edge.lies_on(p); };
   return {{"zones", per_zone}, {"streets", street_figures(centre_lines(layers.roads), ground, on_edge)}};
 }

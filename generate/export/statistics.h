@@ -10,7 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "generate/export/geojson.h"
-#include "generate/city/sketch.h"
+#include "generate/city/features.h"
+#include "generate/city/zone_settings.h"
 #include "generate/export/vector_layers.h"
 
 namespace exacity {
@@ -23,7 +24,8 @@ namespace exacity {
 // edge), street length and junctions per km2.
 // Any layer may be empty; `sketch` (may be null) gives the zones' block_area and the drawn
 // city's edge.
-nlohmann::ordered_json city_statistics(const CityLayers& layers, const Sketch* sketch);
+nlohmann::ordered_json city_statistics(const CityLayers& layers, const CitySettings* settings = nullptr,
+                                       const DrawnFeatures* drawn = nullptr);
 
 // The same figures for real data: a GeoJSON file of footprints (Polygons, MultiPolygons)
 // and/or streets (LineStrings, MultiLineStrings), in metres or lon/lat (projected about its

@@ -12,6 +12,7 @@
 #include "generate/export/validate_nesting.h"
 #include "generate/export/validate_clutter.h"
 #include "generate/export/vector_layers.h"
+#include "generate/sketch/sketch.h"
 #include "geom/measure.h"
 #include "geom/planar_map.h"
 #include "geom/polygon_check.h"
@@ -125,7 +126,7 @@ class FaceCover {
 // nothing is; each problem is stated once however many faces have it.
 class FaceLabels {
  public:
-  FaceLabels(const Sketch& sketch, const std::vector<PolygonRef>& refs, const DrawnZones& drawn, int polygons)
+  FaceLabels(const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs, const DrawnZones& drawn, int polygons)
       : sketch_(sketch), refs_(refs), drawn_(drawn), polygons_(polygons) {}
 
   int of(const geom::Windings& w) {
@@ -224,7 +225,7 @@ class FaceLabels {
     return 0;
   }
 
-  const Sketch& sketch_;
+  const DrawnFeatures& sketch_;
   const std::vector<PolygonRef>& refs_;
   const DrawnZones& drawn_;
   const int polygons_;
@@ -283,7 +284,7 @@ std::vector<bool> check_shared_edges(Checker& c, const geom::PlanarMap& map, con
 
 // All polygons and the drawn zones in one exact map, each face labelled with what is
 // wrong there; then the map's edges. Every lot shares an edge with a road area.
-void check_tiling(Checker& c, const Sketch& sketch, const std::vector<PolygonRef>& refs,
+void check_tiling(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
                   const std::vector<const geom::Polygon*>& polygons) {
   geom::PlanarMap map;
   const int P = static_cast<int>(polygons.size());
@@ -361,7 +362,7 @@ void check_road_connectivity(Checker& c, const std::vector<VectorFeature>& featu
 }
 
 // A generated road ends at another road or on a drawn edge (a zone's or the water's).
-void check_road_ends(Checker& c, const Sketch& sketch, const std::vector<VectorFeature>& features, const Layer& water) {
+void check_road_ends(Checker& c, const DrawnFeatures& sketch, const std::vector<VectorFeature>& features, const Layer& water) {
   std::unordered_map<geom::Vec2, std::vector<int>, geom::Vec2Hash> roads_at;  // vertex -> features through it
   for (std::size_t i = 0; i < features.size(); ++i)
     for (auto p : features[i].line) roads_at[p].push_back(static_cast<int>(i));
@@ -383,7 +384,7 @@ void check_road_ends(Checker& c, const Sketch& sketch, const std::vector<VectorF
   }
 }
 
-void check_roads(Checker& c, const Sketch& sketch, const Layer& roads, const Layer& water) {
+void check_roads(Checker& c, const DrawnFeatures& sketch, const Layer& roads, const Layer& water) {
   check_road_meetings(c, roads.features);
   check_road_connectivity(c, roads.features);
   check_road_ends(c, sketch, roads.features, water);

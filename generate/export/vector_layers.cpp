@@ -65,10 +65,10 @@ CityLayers read_layers(const std::filesystem::path& vector_dir, std::vector<std:
 namespace {
 
 // The drawn zones by type, then the water.
-void extract_zones_and_water(const CityMap& city_map, const Sketch& sketch, Ground& out) {
+void extract_zones_and_water(const CityMap& city_map, const std::vector<ZoneFeature>& zones, Ground& out) {
   const int zone_types = static_cast<int>(ZoneType::Water);  // water has its own layer
   dissolve(city_map, zone_types,
-           [&](const FaceLabel& l) { return l.cover == Cover::Zone ? static_cast<int>(sketch.zones[l.zone].type) : -1; },
+           [&](const FaceLabel& l) { return l.cover == Cover::Zone ? static_cast<int>(zones[l.zone].type) : -1; },
            [&](int g, geom::Polygon p) { out.zones.push_back({static_cast<ZoneType>(g), std::move(p)}); });
   dissolve(city_map, 1, [](const FaceLabel& l) { return l.cover == Cover::Water ? 0 : -1; },
            [&](int, geom::Polygon p) { out.water.push_back(std::move(p)); });
@@ -246,9 +246,9 @@ int merge_sliver_road_areas(CityMap& city_map) {
 }
 
 Ground extract_ground(const CityMap& city_map, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
-                      const Sketch& sketch) {
+                      const std::vector<ZoneFeature>& zones) {
   Ground out;
-  extract_zones_and_water(city_map, sketch, out);
+  extract_zones_and_water(city_map, zones, out);
   const std::vector<std::array<int, 2>> first_line = extract_centre_lines(city_map, out);
   const std::function<int(int, bool)> road_id = [&](int r, bool bridge) {
     const auto& f = first_line[r];
@@ -307,8 +307,8 @@ CityLayers layers_of(const Ground& ground, const std::vector<Building>& building
 
 CityLayers extract_layers(const CityMap& city_map, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
                           const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
-                          const Sketch& sketch, const ModelLibrary* library) {
-  return layers_of(extract_ground(city_map, blocks, lots, sketch), buildings, models, library);
+                          const std::vector<ZoneFeature>& zones, const ModelLibrary* library) {
+  return layers_of(extract_ground(city_map, blocks, lots, zones), buildings, models, library);
 }
 
 }  // namespace exacity

@@ -10,7 +10,7 @@
 #include "generate/city/ground.h"
 #include "generate/export/geojson.h"
 #include "generate/parcels/lots.h"
-#include "generate/city/sketch.h"
+#include "generate/city/features.h"
 #include "generate/city/city_map.h"
 
 namespace exacity {
@@ -38,7 +38,7 @@ int merge_sliver_road_areas(CityMap& city_map);
 
 // The ground as the map leaves it: ids and properties as the layers write them.
 Ground extract_ground(const CityMap& city_map, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
-                      const Sketch& sketch);
+                      const std::vector<ZoneFeature>& zones);
 
 // The layers written into `vector/`.
 CityLayers layers_of(const Ground& ground, const std::vector<Building>& buildings,
@@ -47,6 +47,6 @@ CityLayers layers_of(const Ground& ground, const std::vector<Building>& building
 // extract_ground, then layers_of.
 CityLayers extract_layers(const CityMap& city_map, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
                           const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
-                          const Sketch& sketch, const ModelLibrary* library = nullptr);
+                          const std::vector<ZoneFeature>& zones, const ModelLibrary* library = nullptr);
 
 }  // namespace exacity

@@ -6,7 +6,7 @@
 #include <set>
 #include <sstream>
 
-#include "generate/city/sketch.h"
+#include "generate/city/features.h"
 #include "generate/errors.h"
 #include "generate/input_file.h"
 #include "geom/measure.h"

@@ -17,6 +17,13 @@
 namespace exacity {
 namespace {
 
+// The split grammar (docs/design.md, Road layouts).
+struct GrammarSettings {
+  std::shared_ptr<const Grammar> file;  // read with the sketch
+  int depth = 8;                        // rules applied at most, from a root down
+  bool grow_large_pieces = true;        // land over 4 x block_area is grown by recursive growth
+};
+
 geom::Vec2 mid(geom::Vec2 a, geom::Vec2 b) { return {(a.x + b.x) / 2, (a.y + b.y) / 2}; }
 
 // Whether segment a-b lies along p-q (both ends within a hair of it).
@@ -112,7 +119,7 @@ void add_grown(RoadPlan& plan, RoadPlan grown, const std::vector<std::vector<geo
 // of its own, its roads running on to the grammar's (an Exacity extension;
 // "grow_large_pieces": false keeps the pieces whole). A piece holding a park is kept whole:
 // growth's roads would cross it.
-void grow_large_pieces(RoadPlan& plan, const Region& region, const Sketch& sketch, ZoneType zone, const SketchLines& sketch_roads) {
+void grow_large_pieces(RoadPlan& plan, const Region& region, const CitySettings& city, ZoneType zone, const SketchLines& sketch_roads) {
   SketchLines lines = sketch_roads;  // the grammar's roads are one more sketch road to growth
   lines.push_back({});
   std::vector<std::vector<geom::Path>> piece_lines(plan.piece_reaches_sketch.size());
@@ -129,10 +136,10 @@ void grow_large_pieces(RoadPlan& plan, const Region& region, const Sketch& sketc
     const std::optional<geom::Vec2> inside = pieces[k].point_inside_near(pieces[k].centroid());
     const std::optional<Terminal> use = inside ? uses.at(*inside) : std::nullopt;
     if (!use || use->kind != Terminal::Land) continue;
-    if (pieces[k].area() <= 4 * sketch.zone_settings.at(zone).roads.growth.block_area) continue;
+    if (pieces[k].area() <= 4 * city.zone_settings.at(zone).roads.growth.block_area) continue;
     if (holds_other_use(pieces[k], plan.uses)) continue;
     // Each cell grows as the land use at its seed, as a growth region follows its zones.
-    const auto growth = make_growth_layout(sketch, lines, [&uses, piece_type = use->type](geom::Vec2 p) {
+    const auto growth = make_growth_layout(city, lines, [&uses, piece_type = use->type](geom::Vec2 p) {
       const std::optional<Terminal> u = uses.at(p);
       return std::optional<ZoneType>(u && u->kind == Terminal::Land ? u->type : piece_type);
     });
@@ -142,9 +149,10 @@ void grow_large_pieces(RoadPlan& plan, const Region& region, const Sketch& sketc
 
 class GrammarLayout : public RoadLayout {
  public:
-  GrammarLayout(const Sketch& sketch, ZoneType type, const SketchLines& sketch_roads)
-      : sketch_(sketch), roads_(sketch.zone_settings.at(type).roads),
-        min_block_area_(sketch.zone_settings.at(type).blocks.min_block_area), type_(type), sketch_roads_(sketch_roads) {}
+  GrammarLayout(const GrammarSettings& grammar, const LayoutSite& site)
+      : city_(site.city), roads_(site.roads()), grammar_(grammar),
+        min_block_area_(site.city.zone_settings.at(site.type).blocks.min_block_area), type_(site.type),
+        sketch_roads_(site.sketch_roads) {}
 
   RoadPlan plan(const Region& region) const override {
     Random random(region.stream);
@@ -163,7 +171,7 @@ class GrammarLayout : public RoadLayout {
     LinePlan plan;
     // Road pieces meet only roughly (each is mapped from its own parent): join within a width.
     plan.join = *std::max_element(roads_.road_widths.begin(), roads_.road_widths.end());
-    for (GrammarLeaf& leaf : grow_layout(*roads_.grammar.file, roots, roads_.grammar.depth, min_block_area_, random.next())) {
+    for (GrammarLeaf& leaf : grow_layout(*grammar_.file, roots, grammar_.depth, min_block_area_, random.next())) {
       Terminal t;
       if (!parse_terminal(leaf.name, t)) t.type = type_;  // a symbol left at the depth bound
       if (t.kind != Terminal::Road) {
@@ -198,22 +206,45 @@ class GrammarLayout : public RoadLayout {
       plan.roads.push_back(std::move(road));
     }
     RoadPlan settled = settle(std::move(plan), region.cell, sketch_roads_);
-    if (roads_.grammar.grow_large_pieces) grow_large_pieces(settled, region, sketch_, type_, sketch_roads_);
+    if (grammar_.grow_large_pieces) grow_large_pieces(settled, region, city_, type_, sketch_roads_);
     return settled;
   }
 
  private:
-  const Sketch& sketch_;
+  const CitySettings& city_;
   RoadSettings roads_;
+  GrammarSettings grammar_;
   double min_block_area_;  // the grammar's land leaves stop above it
   ZoneType type_;
   const SketchLines& sketch_roads_;
 };
 
+class GrammarChoice : public RoadLayoutChoice {
+ public:
+  explicit GrammarChoice(GrammarSettings settings) : RoadLayoutChoice("grammar"), settings_(std::move(settings)) {}
+  std::unique_ptr<RoadLayout> make(const LayoutSite& site) const override {
+    return std::make_unique<GrammarLayout>(settings_, site);
+  }
+
+ private:
+  GrammarSettings settings_;
+};
+
 }  // namespace
 
-std::unique_ptr<RoadLayout> make_grammar_layout(const Sketch& sketch, ZoneType type, const SketchLines& sketch_roads) {
-  return std::make_unique<GrammarLayout>(sketch, type, sketch_roads);
+std::shared_ptr<const RoadLayoutChoice> read_grammar_layout(const RoadLayoutReading& reading) {
+  const SettingsReader& s = reading.settings;
+  GrammarSettings g;
+  s.whole_number("grammar_depth", g.depth, 1, 32, "rules");
+  if (s.has("grammar")) {
+    if (!s.at("grammar").is_string())
+      s.fail("grammar", "expected the path of a grammar file (a string), relative to the sketch");
+    const std::filesystem::path file = std::filesystem::path(s.file()).parent_path() / s.at("grammar").get<std::string>();
+    g.file = std::make_shared<Grammar>(reading.read_grammars ? load_grammar(file) : Grammar{file, {}});
+  }
+  if (reading.chosen && !g.file) s.fail("layout", "\"grammar\" needs \"grammar\": the path of a grammar file");
+  s.boolean("grow_large_pieces", g.grow_large_pieces);
+  return std::make_shared<GrammarChoice>(std::move(g));
 }
 
 }  // namespace exacity

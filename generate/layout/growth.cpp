@@ -353,7 +353,7 @@ void grow_one(const Work& w, const Depth& depth, Grown& g, const GrowthSettings&
 }
 
 // The level's roads onto the plan, in cell order; returns the next level's work.
-std::vector<Work> collect(std::vector<Grown>& grown, const std::vector<Work>& work, int level, const Sketch& sketch,
+std::vector<Work> collect(std::vector<Grown>& grown, const std::vector<Work>& work, int level, const CitySettings& sketch,
                           RoadPlan& plan) {
   std::vector<Work> next;
   for (std::size_t i = 0; i < grown.size(); ++i) {
@@ -371,7 +371,7 @@ std::vector<Work> collect(std::vector<Grown>& grown, const std::vector<Work>& wo
 
 class GrowthLayout : public RoadLayout {
  public:
-  GrowthLayout(const Sketch& sketch, const SketchLines& sketch_lines, ZoneAt zone_at)
+  GrowthLayout(const CitySettings& sketch, const SketchLines& sketch_lines, ZoneAt zone_at)
       : sketch_(sketch), run_on_(sketch_lines), zone_at_(std::move(zone_at)) {}
 
   // The region's roads are one piece, grown a level at a time; each level's cells grow in
@@ -398,14 +398,14 @@ class GrowthLayout : public RoadLayout {
   }
 
  private:
-  const Sketch& sketch_;
+  const CitySettings& sketch_;
   RunOnLines run_on_;
   ZoneAt zone_at_;
 };
 
 }  // namespace
 
-std::unique_ptr<RoadLayout> make_growth_layout(const Sketch& sketch, const SketchLines& sketch_lines, ZoneAt zone_at) {
+std::unique_ptr<RoadLayout> make_growth_layout(const CitySettings& sketch, const SketchLines& sketch_lines, ZoneAt zone_at) {
   return std::make_unique<GrowthLayout>(sketch, sketch_lines, std::move(zone_at));
 }
 

@@ -15,6 +15,6 @@ namespace exacity {
 using ZoneAt = std::function<std::optional<ZoneType>(geom::Vec2)>;
 
 // A growth region may span zones of several types: each cell grows as the zone at its seed.
-std::unique_ptr<RoadLayout> make_growth_layout(const Sketch& sketch, const SketchLines& sketch_lines, ZoneAt zone_at);
+std::unique_ptr<RoadLayout> make_growth_layout(const CitySettings& sketch, const SketchLines& sketch_lines, ZoneAt zone_at);
 
 }  // namespace exacity

@@ -1,5 +1,7 @@
 #include "generate/layout/road_layout.h"
 
+#include "generate/layout/growth.h"
+
 namespace exacity {
 
 std::vector<std::pair<geom::Vec2, geom::Vec2>> edges_to_reach(const geom::Cell& cell, bool top) {
@@ -11,12 +13,24 @@ std::vector<std::pair<geom::Vec2, geom::Vec2>> edges_to_reach(const geom::Cell& 
   return edges;
 }
 
-std::unique_ptr<RoadLayout> make_road_layout(const Sketch& sketch, ZoneType type, const SketchLines& sketch_roads) {
-  const RoadSettings& settings = sketch.zone_settings.at(type).roads;
-  if (settings.layout == "grammar") return make_grammar_layout(sketch, type, sketch_roads);
-  if (settings.layout == "voronoi") return make_voronoi_layout(settings, sketch_roads);
-  if (settings.layout == "streets") return make_streets_layout();
-  return nullptr;
+
+namespace {
+
+// Growth's settings are every zone type's (RoadSettings::growth): a region spans the zone
+// types laid out by growth, and each cell grows by the zone at its seed.
+class GrowthChoice : public RoadLayoutChoice {
+ public:
+  GrowthChoice() : RoadLayoutChoice("growth") {}
+  std::unique_ptr<RoadLayout> make(const LayoutSite& site) const override {
+    return make_growth_layout(site.city, site.sketch_roads, site.zone_at);
+  }
+  bool spans_zone_types() const override { return true; }
+};
+
+}  // namespace
+
+std::shared_ptr<const RoadLayoutChoice> read_growth_layout(const RoadLayoutReading&) {
+  return std::make_shared<GrowthChoice>();
 }
 
 }  // namespace exacity

@@ -5,12 +5,15 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
+#include "generate/city/zone_settings.h"
 #include "generate/layout/grammar.h"
-#include "generate/city/sketch.h"
+#include "generate/layout/road_settings.h"
 #include "geom/cell.h"
 
 namespace exacity {
@@ -81,13 +84,14 @@ class RoadLayout {
 // reach nothing).
 std::vector<std::pair<geom::Vec2, geom::Vec2>> edges_to_reach(const geom::Cell& cell, bool top);
 
-// The layout a zone type's settings name ("grammar", "voronoi" or "streets"); growth is
-// made apart (growth.h), as one growth region may span zone types.
-std::unique_ptr<RoadLayout> make_road_layout(const Sketch& sketch, ZoneType type, const SketchLines& sketch_roads);
-
-// One per file.
-std::unique_ptr<RoadLayout> make_grammar_layout(const Sketch& sketch, ZoneType type, const SketchLines& sketch_roads);
-std::unique_ptr<RoadLayout> make_streets_layout();
-std::unique_ptr<RoadLayout> make_voronoi_layout(const RoadSettings& settings, const SketchLines& sketch);
+// What a layout is made for: the city's settings, the zone type (for a layout spanning
+// zone types, the zone at a point: ZoneAt, growth.h), and the sketch's roads.
+struct LayoutSite {
+  const CitySettings& city;
+  ZoneType type;
+  const SketchLines& sketch_roads;
+  std::function<std::optional<ZoneType>(geom::Vec2)> zone_at;
+  const RoadSettings& roads() const { return city.zone_settings.at(type).roads; }
+};
 
 }  // namespace exacity

@@ -108,28 +108,34 @@ std::vector<RoadPlan> plan_regions(const std::vector<geom::Cell>& cells, std::ui
 }
 
 // The type of the zone at a point, where roads grow in it.
-ZoneAt zone_at(const CityMap& city_map, const Sketch& sketch) {
+ZoneAt zone_at(const CityMap& city_map, const std::vector<ZoneFeature>& zones) {
   return [&](geom::Vec2 p) -> std::optional<ZoneType> {
     const int l = city_map.map.label_at(p);
     if (l < 0 || city_map.labels[l].zone < 0) return std::nullopt;
-    const ZoneType t = sketch.zones[city_map.labels[l].zone].type;
+    const ZoneType t = zones[city_map.labels[l].zone].type;
     return grows_roads(t) ? std::optional<ZoneType>(t) : std::nullopt;
   };
 }
 
-// Growth's regions: connected faces of zones laid out by growth (and the water under them
-// where the zone lets roads bridge it), one piece each. Their roads take ids a level at a
-// time across regions, every region's main roads first.
-void lay_out_growth(CityMap& city_map, const Sketch& sketch, const SketchLines& sketch_lines, const std::vector<int>& kind,
-                    Laid& laid, RoadNetworkStats& stats) {
-  auto params = [&](ZoneType t) -> const RoadSettings& { return sketch.zone_settings.at(t).roads; };
+// The regions of growth, the layout whose regions span zone types: connected faces of
+// zones laid out by it (and the water under them where the zone lets roads bridge it), one
+// piece each. Their roads take ids a level at a time across regions, every region's main
+// roads first.
+void lay_out_growth(CityMap& city_map, const CitySettings& settings, const std::vector<ZoneFeature>& zones,
+                    const SketchLines& sketch_lines, const std::vector<int>& kind, Laid& laid, RoadNetworkStats& stats) {
+  auto params = [&](ZoneType t) -> const RoadSettings& { return settings.zone_settings.at(t).roads; };
+  const RoadLayoutChoice* spanning = nullptr;
+  for (const auto& [t, z] : settings.zone_settings)
+    if (grows_roads(t) && z.roads.layout->spans_zone_types() && !spanning) spanning = z.roads.layout.get();
+  if (!spanning) return;
   const std::vector<int> group = city_map.per_label([&](const FaceLabel& f) {
-    ZoneType t = f.zone >= 0 ? sketch.zones[f.zone].type : ZoneType::Park;
-    bool growable = f.zone >= 0 && grows_roads(t) && params(t).layout == "growth";
+    ZoneType t = f.zone >= 0 ? zones[f.zone].type : ZoneType::Park;
+    bool growable = f.zone >= 0 && grows_roads(t) && params(t).layout->spans_zone_types();
     return (f.cover == Cover::Zone && growable) || (f.cover == Cover::Water && growable && params(t).bridges) ? 0 : -1;
   });
-  const std::unique_ptr<RoadLayout> growth = make_growth_layout(sketch, sketch_lines, zone_at(city_map, sketch));
-  const std::vector<RoadPlan> plans = plan_regions(city_map.map.cells(group, kind), mix(sketch.seed, static_cast<std::uint64_t>(Stage::Roads)),
+  const std::unique_ptr<RoadLayout> growth =
+      spanning->make({settings, ZoneType::Residential, sketch_lines, zone_at(city_map, zones)});
+  const std::vector<RoadPlan> plans = plan_regions(city_map.map.cells(group, kind), mix(settings.seed, static_cast<std::uint64_t>(Stage::Roads)),
                                                    [&](std::size_t) -> const RoadLayout& { return *growth; });
   const int first_region = static_cast<int>(laid.joined.size());
   for (const RoadPlan& plan : plans) {
@@ -151,21 +157,21 @@ void lay_out_growth(CityMap& city_map, const Sketch& sketch, const SketchLines& 
 // The regions of zones laid out otherwise, a region per connected set of faces of one zone
 // type; each plan's pieces count as regions of their own, so link_islands joins every piece
 // to the rest.
-void lay_out_regions(CityMap& city_map, const Sketch& sketch, const SketchLines& sketch_lines, const std::vector<int>& kind,
-                     Laid& laid, std::vector<PlannedUse>& uses, RoadNetworkStats& stats) {
+void lay_out_regions(CityMap& city_map, const CitySettings& settings, const std::vector<ZoneFeature>& zones,
+                     const SketchLines& sketch_lines, const std::vector<int>& kind, Laid& laid,
+                     std::vector<PlannedUse>& uses, RoadNetworkStats& stats) {
   std::map<ZoneType, std::unique_ptr<RoadLayout>> layouts;
-  for (const auto& [t, p] : sketch.zone_settings)
-    if (grows_roads(t))
-      if (std::unique_ptr<RoadLayout> layout = make_road_layout(sketch, t, sketch_lines)) layouts[t] = std::move(layout);
+  for (const auto& [t, p] : settings.zone_settings)
+    if (grows_roads(t) && !p.roads.layout->spans_zone_types()) layouts[t] = p.roads.layout->make({settings, t, sketch_lines, {}});
   if (layouts.empty()) return;
   const std::vector<int> group = city_map.per_label([&](const FaceLabel& f) {
-    return f.cover == Cover::Zone && f.zone >= 0 && layouts.count(sketch.zones[f.zone].type)
-               ? static_cast<int>(sketch.zones[f.zone].type)
+    return f.cover == Cover::Zone && f.zone >= 0 && layouts.count(zones[f.zone].type)
+               ? static_cast<int>(zones[f.zone].type)
                : -1;
   });
   std::vector<int> types;
   const std::vector<geom::Cell> cells = city_map.map.cells(group, kind, &types);
-  const std::uint64_t stage = mix(mix(sketch.seed, static_cast<std::uint64_t>(Stage::Roads)), 0x1a1047);
+  const std::uint64_t stage = mix(mix(settings.seed, static_cast<std::uint64_t>(Stage::Roads)), 0x1a1047);
   std::vector<RoadPlan> plans = plan_regions(cells, stage, [&](std::size_t i) -> const RoadLayout& {
     return *layouts.at(static_cast<ZoneType>(types[i]));
   });
@@ -183,7 +189,7 @@ void lay_out_regions(CityMap& city_map, const Sketch& sketch, const SketchLines&
 
 // Every generated road into the map in one batch: centre line, area, and a disc where
 // roads meet; then the map is labelled again.
-void insert_generated_roads(CityMap& city_map, const std::vector<Junction>& junctions, const Sketch& sketch) {
+void insert_generated_roads(CityMap& city_map, const std::vector<Junction>& junctions) {
   int tag = 0;
   for (const MapRoad& r : city_map.roads) tag = std::max(tag, r.first_tag + static_cast<int>(r.lines.size()));
   city_map.generated_roads.size = static_cast<int>(city_map.roads.size()) - city_map.sketch_roads;
@@ -195,12 +201,12 @@ void insert_generated_roads(CityMap& city_map, const std::vector<Junction>& junc
   }
   for (const Junction& s : junctions) city_map.map.add_disc(s.at, city_map.roads[s.first_road].width / 2, city_map.road_counter(s.first_road));
   city_map.map.insert_batch();
-  city_map.label(sketch);
+  city_map.label();
 }
 
 }  // namespace
 
-RoadNetwork grow_road_network(CityMap city_map, const Sketch& sketch) {
+RoadNetwork grow_road_network(CityMap city_map, const CitySettings& settings, const std::vector<ZoneFeature>& zones) {
   RoadNetwork net;
   const std::vector<int> kind = city_map.per_label([&](const FaceLabel& f) {
     return f.road_surface() && f.road < city_map.sketch_roads ? GrowthEdge::sketch_road(f.road) : GrowthEdge::kRegionEdge;
@@ -209,10 +215,10 @@ RoadNetwork grow_road_network(CityMap city_map, const Sketch& sketch) {
   for (int r = 0; r < city_map.sketch_roads; ++r) sketch_lines.push_back({city_map.roads[r].lines, city_map.roads[r].width});
 
   Laid laid;
-  lay_out_growth(city_map, sketch, sketch_lines, kind, laid, net.stats);
-  lay_out_regions(city_map, sketch, sketch_lines, kind, laid, net.uses, net.stats);
+  lay_out_growth(city_map, settings, zones, sketch_lines, kind, laid, net.stats);
+  lay_out_regions(city_map, settings, zones, sketch_lines, kind, laid, net.uses, net.stats);
   net.stats.links = link_islands(city_map, laid.joined, laid.junctions);
-  insert_generated_roads(city_map, laid.junctions, sketch);
+  insert_generated_roads(city_map, laid.junctions);
   net.map = std::move(city_map);
   return net;
 }

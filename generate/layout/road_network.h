@@ -3,9 +3,10 @@
 // of streets to the rest, then every generated road into the city map in one batch.
 #pragma once
 
-#include "generate/layout/road_layout.h"
-#include "generate/city/sketch.h"
 #include "generate/city/city_map.h"
+#include "generate/city/features.h"
+#include "generate/city/zone_settings.h"
+#include "generate/layout/road_layout.h"
 
 namespace exacity {
 
@@ -23,6 +24,6 @@ struct RoadNetwork {
   std::vector<PlannedUse> uses;  // land a layout gave a use (a grammar's terminals)
 };
 
-RoadNetwork grow_road_network(CityMap zones, const Sketch& sketch);
+RoadNetwork grow_road_network(CityMap zones, const CitySettings& settings, const std::vector<ZoneFeature>& drawn_zones);
 
 }  // namespace exacity

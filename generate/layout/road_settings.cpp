@@ -1,11 +1,33 @@
 #include "generate/layout/road_settings.h"
 
 #include <algorithm>
-#include <filesystem>
-
-#include "generate/layout/grammar.h"
+#include <stdexcept>
 
 namespace exacity {
+
+// Each layout's reader, in its layout's file.
+std::shared_ptr<const RoadLayoutChoice> read_growth_layout(const RoadLayoutReading& reading);
+std::shared_ptr<const RoadLayoutChoice> read_grammar_layout(const RoadLayoutReading& reading);
+std::shared_ptr<const RoadLayoutChoice> read_voronoi_layout(const RoadLayoutReading& reading);
+std::shared_ptr<const RoadLayoutChoice> read_streets_layout(const RoadLayoutReading& reading);
+
+const std::vector<RoadLayoutType>& road_layout_types() {
+  static const std::vector<RoadLayoutType> table{
+      {"growth", "seed 000's growing roads", {}, read_growth_layout},
+      {"grammar", "seed 002's split grammar, with \"grammar\": FILE", {"grammar", "grammar_depth", "grow_large_pieces"},
+       read_grammar_layout},
+      {"voronoi", "seed 003's Voronoi streets", {"cell_size", "junction_spacing"}, read_voronoi_layout},
+      {"streets", "the sketch's roads only", {}, read_streets_layout},
+  };
+  return table;
+}
+
+const RoadLayoutType& road_layout_type(std::string_view name) {
+  for (const RoadLayoutType& t : road_layout_types())
+    if (t.name == name) return t;
+  throw std::logic_error("no road layout " + std::string(name));
+}
+
 namespace {
 
 void read_growth(const SettingsReader& s, GrowthSettings& g) {
@@ -29,33 +51,12 @@ void read_widths(const SettingsReader& s, std::vector<double>& widths) {
     widths.push_back(read_number(w[i], s.file(), s.where("road_widths") + "[" + std::to_string(i) + "]", 0.5, 200));
 }
 
-// "cell_size" is checked against the road widths, so it is read after them.
-void read_voronoi(const SettingsReader& s, const RoadSettings& r, VoronoiSettings& v) {
-  s.number("cell_size", v.cell_size, 20, 1e5);
-  const double widest = *std::max_element(r.road_widths.begin(), r.road_widths.end());
-  if (r.layout == "voronoi" && v.cell_size < 4 * widest)
-    s.fail("cell_size", nlohmann::json(v.cell_size).dump() + " m is under 4 road widths (" +
-                            nlohmann::json(4 * widest).dump() +
-                            " m): the cells would be all road; raise \"cell_size\" or narrow \"road_widths\"");
-  s.number("junction_spacing", v.junction_spacing, 5, 1e5);
-}
-
-void read_grammar(const SettingsReader& s, const std::string& layout, bool read_grammars, GrammarSettings& g) {
-  s.whole_number("grammar_depth", g.depth, 1, 32, "rules");
-  if (s.has("grammar")) {
-    if (!s.at("grammar").is_string())
-      s.fail("grammar", "expected the path of a grammar file (a string), relative to the sketch");
-    const std::filesystem::path file = std::filesystem::path(s.file()).parent_path() / s.at("grammar").get<std::string>();
-    g.file = std::make_shared<Grammar>(read_grammars ? load_grammar(file) : Grammar{file, {}});
-  }
-  if (layout == "grammar" && !g.file) s.fail("layout", "\"grammar\" needs \"grammar\": the path of a grammar file");
-  s.boolean("grow_large_pieces", g.grow_large_pieces);
-}
-
 }  // namespace
 
 RoadSettings default_road_settings(ZoneType type) {
   RoadSettings r;
+  static const nlohmann::json none = nlohmann::json::object();
+  r.layout = road_layout_types().front().read({SettingsReader(none, "", ""), r, false, true});
   if (type == ZoneType::Commercial || type == ZoneType::Industrial) {
     // Manhattan grid (recursive road growth's commercial setting): straight roads, smaller jitter.
     r.growth.jitter = 10;
@@ -71,21 +72,27 @@ double road_width(const RoadSettings& s, int level) {
 }
 
 const std::set<std::string>& road_setting_keys() {
-  static const std::set<std::string> keys{"layout",        "road_widths",      "bridges",          "block_area",
-                                          "segment_length", "branches",        "jitter",           "segment_deviation",
-                                          "origin_deviation", "cell_size",     "junction_spacing", "grammar_depth",
-                                          "grammar",        "grow_large_pieces"};
+  static const std::set<std::string> keys = [] {
+    std::set<std::string> k{"layout",           "road_widths", "bridges",           "block_area",
+                            "segment_length",   "branches",    "jitter",            "segment_deviation",
+                            "origin_deviation"};
+    for (const RoadLayoutType& t : road_layout_types()) k.insert(t.keys.begin(), t.keys.end());
+    return k;
+  }();
   return keys;
 }
 
 RoadSettings read_road_settings(const SettingsReader& s, RoadSettings r, bool read_grammars) {
   read_growth(s, r.growth);
   read_widths(s, r.road_widths);
-  s.choice("layout", r.layout, {"growth", "grammar", "voronoi", "streets"},
-           "expected \"growth\" (seed 000's growing roads), \"grammar\" (seed 002's split grammar, with \"grammar\": "
-           "FILE), \"voronoi\" (seed 003's Voronoi streets) or \"streets\" (the sketch's roads only)");
-  read_voronoi(s, r, r.voronoi);
-  read_grammar(s, r.layout, read_grammars, r.grammar);
+  const auto& table = road_layout_types();
+  const RoadLayoutType& chosen = s.row("layout", table, road_layout_type(r.layout->name()));
+  // Every layout's keys are checked where written, so that a wrong value is caught before
+  // the zone switches to that layout; the chosen one's reading is kept.
+  for (const RoadLayoutType& t : table) {
+    auto layout = t.read({s, r, read_grammars, &t == &chosen});
+    if (&t == &chosen) r.layout = std::move(layout);
+  }
   s.boolean("bridges", r.bridges);
   return r;
 }

@@ -1,57 +1,46 @@
-// A zone type's road settings ("exacity".zones.TYPE, docs/design.md, The sketch): which
-// layout lays out its roads, and each layout's own settings, read and checked here.
+// A zone type's road settings ("exacity".zones.TYPE, docs/design.md, The sketch): the
+// widths and bridges every layout shares, growth's settings, and the road layout the zone
+// names, parsed once from the table of road layouts into the chosen layout with its own
+// settings (generate/city/zone_settings.h).
 #pragma once
 
 #include <memory>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "generate/city/settings.h"
+#include "generate/city/zone_settings.h"
 #include "generate/city/zone_type.h"
 
 namespace exacity {
 
-struct Grammar;
-
-// Recursive road growth (docs/design.md, Road layouts).
-struct GrowthSettings {
-  double block_area = 12000;      // m²: faces above this are subdivided again
-  double segment_length = 40;     // m: one growth step
-  int branches = 4;               // roads grown from each seed point
-  double jitter = 15;             // degrees: level-n orientation jitter is ±jitter/n
-  double segment_deviation = 8;   // degrees: Δsegm at level 0, falling by 2 per level
-  double origin_deviation = 30;   // degrees: Δorig
+// What a layout's reader is given: the zone's settings object, the settings every layout
+// shares (widths read), and whether grammar files are read.
+struct RoadLayoutReading {
+  const SettingsReader& settings;
+  const RoadSettings& shared;
+  bool read_grammars;
+  // The zone chose this layout; else its keys, where written, are only checked.
+  bool chosen;
 };
 
-// The split grammar (docs/design.md, Road layouts).
-struct GrammarSettings {
-  std::shared_ptr<const Grammar> file;  // read with the sketch
-  int depth = 8;                        // rules applied at most, from a root down
-  bool grow_large_pieces = true;        // land over 4 x block_area is grown by recursive growth
+// A row of the table of road layouts: a new layout is a file defining its RoadLayout, its
+// RoadLayoutChoice and its reader, and one row here (road_settings.cpp).
+struct RoadLayoutType {
+  std::string_view name;
+  std::string_view what;  // how the error for an unknown name describes it
+  std::set<std::string> keys;  // its own settings' keys
+  std::shared_ptr<const RoadLayoutChoice> (*read)(const RoadLayoutReading& reading);
 };
-
-// The Voronoi layout (docs/design.md, Road layouts).
-struct VoronoiSettings {
-  double cell_size = 180;         // m: one point per square this size
-  double junction_spacing = 60;   // m: junctions at about this step along the cells' roads
-};
-
-struct RoadSettings {
-  // "growth", "grammar", "voronoi" or "streets" (the street graph: none are generated; the sketch's
-  // roads are the whole network).
-  std::string layout = "growth";
-  std::vector<double> road_widths{12, 8};  // m: at level n, road_widths[min(n, last)]
-  bool bridges = false;                    // roads cross heightmap water in this zone, or stop at the shore
-  GrowthSettings growth;
-  GrammarSettings grammar;
-  VoronoiSettings voronoi;
-};
+const std::vector<RoadLayoutType>& road_layout_types();
+const RoadLayoutType& road_layout_type(std::string_view name);  // one of the table's
 
 RoadSettings default_road_settings(ZoneType type);
 double road_width(const RoadSettings& s, int level);
 
-// The keys read_road_settings reads.
+// The keys read_road_settings reads: the shared ones and every layout's.
 const std::set<std::string>& road_setting_keys();
 
 // `settings` over `defaults`. With `read_grammars` false (for `exacity validate`, which reads

@@ -8,7 +8,7 @@
 #include <optional>
 #include <set>
 
-#include "generate/layout/street_graph.h"
+#include "generate/city/street_graph.h"
 #include "geom/box_index.h"
 #include "geom/measure.h"
 

@@ -22,7 +22,7 @@ struct PlannedRoad {
 struct LinePlan {
   std::vector<PlannedRoad> roads;
   std::vector<PlannedUse> uses;
-  double join = 0;  // m: road ends this near another road are joined to it (generate/layout/street_graph.h)
+  double join = 0;  // m: road ends this near another road are joined to it (generate/city/street_graph.h)
 };
 
 RoadPlan settle(LinePlan plan, const geom::Cell& region, const SketchLines& sketch);

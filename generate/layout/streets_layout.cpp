@@ -8,6 +8,16 @@ class StreetsLayout : public RoadLayout {
   RoadPlan plan(const Region&) const override { return {}; }
 };
 
-std::unique_ptr<RoadLayout> make_streets_layout() { return std::make_unique<StreetsLayout>(); }
+// Lays no roads, so a generated road (a link) passing through paves nothing of the zone.
+class StreetsChoice : public RoadLayoutChoice {
+ public:
+  StreetsChoice() : RoadLayoutChoice("streets") {}
+  std::unique_ptr<RoadLayout> make(const LayoutSite&) const override { return std::make_unique<StreetsLayout>(); }
+  bool generates_roads() const override { return false; }
+};
+
+std::shared_ptr<const RoadLayoutChoice> read_streets_layout(const RoadLayoutReading&) {
+  return std::make_shared<StreetsChoice>();
+}
 
 }  // namespace exacity

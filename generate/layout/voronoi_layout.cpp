@@ -14,15 +14,22 @@
 namespace exacity {
 namespace {
 
+// The Voronoi layout (docs/design.md, Road layouts).
+struct VoronoiSettings {
+  double cell_size = 180;         // m: one point per square this size
+  double junction_spacing = 60;   // m: junctions at about this step along the cells' roads
+};
+
 class VoronoiLayout : public RoadLayout {
  public:
-  VoronoiLayout(const RoadSettings& roads, const SketchLines& sketch) : roads_(roads), sketch_(sketch) {}
+  VoronoiLayout(const RoadSettings& roads, const VoronoiSettings& voronoi, const SketchLines& sketch)
+      : roads_(roads), voronoi_(voronoi), sketch_(sketch) {}
 
   RoadPlan plan(const Region& region) const override {
     Random random(region.stream);
     const geom::Cell& cell = region.cell;
     const geom::Box b = cell.bounds();
-    const double size = roads_.voronoi.cell_size;
+    const double size = voronoi_.cell_size;
     // One point in each square of a grid of cell_size, jittered, where it falls inside.
     std::vector<geom::Vec2> sites;
     for (double y = b.min_y; y < b.max_y; y += size)
@@ -46,7 +53,7 @@ class VoronoiLayout : public RoadLayout {
         const geom::Vec2 p = geom::snap(ring[k]), q = geom::snap(ring[(k + 1) % ring.size()]);
         if (p == q) continue;
         CellRoad road{p};
-        for (geom::Vec2 v : junctions_along(p, q, roads_.voronoi.junction_spacing)) road.push_back(v);
+        for (geom::Vec2 v : junctions_along(p, q, voronoi_.junction_spacing)) road.push_back(v);
         road.push_back(q);
         edges[{static_cast<int>(i), j}] = std::move(road);
       }
@@ -111,13 +118,38 @@ class VoronoiLayout : public RoadLayout {
   }
 
   RoadSettings roads_;
+  VoronoiSettings voronoi_;
   const SketchLines& sketch_;
+};
+
+class VoronoiChoice : public RoadLayoutChoice {
+ public:
+  explicit VoronoiChoice(const VoronoiSettings& settings) : RoadLayoutChoice("voronoi"), settings_(settings) {}
+  std::unique_ptr<RoadLayout> make(const LayoutSite& site) const override {
+    return std::make_unique<VoronoiLayout>(site.roads(), settings_, site.sketch_roads);
+  }
+  // Its plots are split into lots unless the zone says otherwise.
+  const char* default_lots() const override { return "split"; }
+
+ private:
+  VoronoiSettings settings_;
 };
 
 }  // namespace
 
-std::unique_ptr<RoadLayout> make_voronoi_layout(const RoadSettings& roads, const SketchLines& sketch) {
-  return std::make_unique<VoronoiLayout>(roads, sketch);
+// "cell_size" is checked against the road widths, so it is read after them.
+std::shared_ptr<const RoadLayoutChoice> read_voronoi_layout(const RoadLayoutReading& reading) {
+  const SettingsReader& s = reading.settings;
+  VoronoiSettings v;
+  s.number("cell_size", v.cell_size, 20, 1e5);
+  const std::vector<double>& widths = reading.shared.road_widths;
+  const double widest = *std::max_element(widths.begin(), widths.end());
+  if (reading.chosen && v.cell_size < 4 * widest)
+    s.fail("cell_size", nlohmann::json(v.cell_size).dump() + " m is under 4 road widths (" +
+                            nlohmann::json(4 * widest).dump() +
+                            " m): the cells would be all road; raise \"cell_size\" or narrow \"road_widths\"");
+  s.number("junction_spacing", v.junction_spacing, 5, 1e5);
+  return std::make_shared<VoronoiChoice>(v);
 }
 
 }  // namespace exacity

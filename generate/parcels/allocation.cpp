@@ -211,6 +211,8 @@ std::vector<geom::Ring> street_lots(const geom::Cell& block, const LotSettings& 
   return lots;
 }
 
-std::unique_ptr<LotLayout> make_allocation(const LotSettings& settings) { return std::make_unique<Allocation>(settings); }
+std::unique_ptr<LotLayout> make_allocation(const LotSettings& settings, ZoneType, const ModelLibrary*, const Channels&) {
+  return std::make_unique<Allocation>(settings);
+}
 
 }  // namespace exacity

@@ -20,9 +20,10 @@ const Terminal* use_of(const geom::Cell& cell, const std::vector<PlannedUse>& us
 
 }  // namespace
 
-std::vector<Block> cut_blocks(CityMap& city_map, const Sketch& sketch, const std::vector<PlannedUse>& uses) {
+std::vector<Block> cut_blocks(CityMap& city_map, const CitySettings& city, const std::vector<ZoneFeature>& zones,
+                              const std::vector<PlannedUse>& uses) {
   const std::vector<int> group = city_map.per_label([&](const FaceLabel& f) {
-    return f.cover == Cover::Zone && grows_roads(sketch.zones[f.zone].type) ? static_cast<int>(sketch.zones[f.zone].type)
+    return f.cover == Cover::Zone && grows_roads(zones[f.zone].type) ? static_cast<int>(zones[f.zone].type)
                                                                              : -1;
   });
   const std::vector<int> road_across =
@@ -38,7 +39,7 @@ std::vector<Block> cut_blocks(CityMap& city_map, const Sketch& sketch, const std
     if (b.polygon.outer.empty()) continue;
     block_of_component[components[i]] = static_cast<int>(blocks.size());
     b.zone = static_cast<ZoneType>(types[i]);
-    const BlockSettings& p = sketch.zone_settings.at(b.zone).blocks;
+    const BlockSettings& p = city.zone_settings.at(b.zone).blocks;
     double a = geom::area(b.polygon);
     const Terminal* use = use_of(cell, uses);
     if (a < p.min_block_area || 2 * a / geom::perimeter(b.polygon) < p.min_block_width ||

@@ -7,7 +7,8 @@
 #include <vector>
 
 #include "generate/layout/road_layout.h"
-#include "generate/city/sketch.h"
+#include "generate/city/features.h"
+#include "generate/city/zone_settings.h"
 #include "generate/city/city_map.h"
 
 namespace exacity {
@@ -32,6 +33,7 @@ struct Block {
 // The blocks, in the map's face order; every face of block b gets a label whose `block` is b.
 // A block takes the use of the layout's land around a point inside it: a grammar's Park
 // makes it green space, its _Dense and _Sparse its density.
-std::vector<Block> cut_blocks(CityMap& city_map, const Sketch& sketch, const std::vector<PlannedUse>& uses = {});
+std::vector<Block> cut_blocks(CityMap& city_map, const CitySettings& city, const std::vector<ZoneFeature>& zones,
+                              const std::vector<PlannedUse>& uses = {});
 
 }  // namespace exacity

@@ -175,4 +175,9 @@ std::unique_ptr<LotLayout> make_library_lots(const ModelLibrary& library, ZoneTy
   return std::make_unique<LibraryLots>(library, std::move(models), channels);
 }
 
+std::unique_ptr<LotLayout> make_library_lots(const LotSettings&, ZoneType zone, const ModelLibrary* library,
+                                             const Channels& channels) {
+  return make_library_lots(*library, zone, channels);
+}
+
 }  // namespace exacity

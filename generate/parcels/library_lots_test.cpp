@@ -2,8 +2,10 @@
 // corner lots first, and the entries steered by a two-valued channel.
 #include <gtest/gtest.h>
 
+#include "generate/sketch/sketch.h"
 #include "generate/errors.h"
 #include "generate/parcels/lots.h"
+#include "generate/parcels/parcel_settings.h"
 #include "geom/measure.h"
 #include "geom/planar_map.h"
 
@@ -130,7 +132,7 @@ TEST(LibraryLots, AZoneAskingForLibraryLotsNeedsEntriesWithLotsOfAGoodShape) {
   Sketch sketch;
   sketch.path = "town.geojson";
   sketch.zone_settings[ZoneType::Residential] = default_zone_settings(ZoneType::Residential);
-  sketch.zone_settings[ZoneType::Residential].lots.layout = "library";
+  sketch.zone_settings[ZoneType::Residential].lots.layout = &lot_layout_type("library");
   auto message = [&](const ModelLibrary* lib) {
     try {
       check_lot_library(sketch, lib);

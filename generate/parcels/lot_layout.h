@@ -9,8 +9,9 @@
 #include <vector>
 
 #include "generate/city/random.h"
-#include "generate/city/sketch.h"
+#include "generate/city/zone_settings.h"
 #include "generate/parcels/blocks.h"
+#include "generate/parcels/parcel_settings.h"
 #include "generate/placement/model_library.h"
 
 namespace exacity {
@@ -32,11 +33,6 @@ class LotLayout {
   virtual std::vector<PlannedLot> plan(const Block& block, int index, Random& rng) const = 0;
 };
 
-// `library` may be null, except for the "library" layout (check_lot_library).
-std::unique_ptr<LotLayout> make_lot_layout(const LotSettings& settings, ZoneType zone, const ModelLibrary* library,
-                                           const Channels& channels);
-std::unique_ptr<LotLayout> make_allocation(const LotSettings& settings);
-std::unique_ptr<LotLayout> make_split(const LotSettings& settings);
 // The library's lots for the zone's building entries that carry one; none when it has none.
 std::unique_ptr<LotLayout> make_library_lots(const ModelLibrary& library, ZoneType zone, const Channels& channels);
 

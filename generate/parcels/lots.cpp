@@ -11,19 +11,19 @@
 #include "generate/cancel.h"
 #include "generate/city/random.h"
 #include "generate/errors.h"
-#include "generate/export/geojson.h"
+#include "generate/city/format_number.h"
 #include "generate/parcels/lot_layout.h"
 #include "geom/measure.h"
 
 namespace exacity {
 
-std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch& sketch, const ModelLibrary* library,
+std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const CitySettings& city, const ModelLibrary* library,
                                   const Channels& channels) {
   std::map<ZoneType, std::unique_ptr<LotLayout>> layouts;
-  for (const auto& [zone, settings] : sketch.zone_settings)
-    layouts[zone] = make_lot_layout(settings.lots, zone, library, channels);
+  for (const auto& [zone, settings] : city.zone_settings)
+    layouts[zone] = settings.lots.layout->make(settings.lots, zone, library, channels);
   std::vector<std::vector<PlannedLot>> per_block(blocks.size());
-  const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Lots));
+  const std::uint64_t stage = mix(city.seed, static_cast<std::uint64_t>(Stage::Lots));
   const CancelCheck cancel;
   tbb::parallel_for(std::size_t(0), blocks.size(), [&](std::size_t bi) {
     cancel.check();
@@ -33,7 +33,7 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch
     per_block[bi] = layouts.at(block.zone)->plan(block, static_cast<int>(bi), rng);
     // A block too small for the layout to cut is one lot, if it makes one (kept_lots); not
     // for the lot library, whose lots are the models' own.
-    if (per_block[bi].empty() && sketch.zone_settings.at(block.zone).lots.layout != "library")
+    if (per_block[bi].empty() && !city.zone_settings.at(block.zone).lots.layout->models_own_lots)
       per_block[bi].push_back({static_cast<int>(bi), block.zone, {}, block.cell});
   });
   std::vector<PlannedLot> lots;
@@ -42,10 +42,10 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch
   return lots;
 }
 
-void check_lot_library(const Sketch& sketch, const ModelLibrary* library) {
-  for (const auto& [zone, settings] : sketch.zone_settings) {
-    if (settings.lots.layout != "library") continue;
-    const std::string setting = sketch.path.string() + ": \"exacity\".zones." + std::string(name(zone)) + ".lots is \"library\"";
+void check_lot_library(const CitySettings& city, const ModelLibrary* library) {
+  for (const auto& [zone, settings] : city.zone_settings) {
+    if (!settings.lots.layout->models_own_lots) continue;
+    const std::string setting = city.path.string() + ": \"exacity\".zones." + std::string(name(zone)) + ".lots is \"" + std::string(settings.lots.layout->name) + "\"";
     if (!library)
       throw UserError(setting + ", but the sketch names no model library; name one in \"exacity\".models or with --models");
     const std::vector<int> models = library->lot_choices(zone);
@@ -70,11 +70,6 @@ void check_lot_library(const Sketch& sketch, const ModelLibrary* library) {
   }
 }
 
-std::unique_ptr<LotLayout> make_lot_layout(const LotSettings& settings, ZoneType zone, const ModelLibrary* library,
-                                           const Channels& channels) {
-  if (settings.layout == "library") return make_library_lots(*library, zone, channels);
-  return settings.layout == "split" ? make_split(settings) : make_allocation(settings);
-}
 
 namespace {
 
@@ -98,7 +93,7 @@ bool good_shape(double ratio) { return ratio >= kLotShape.min && ratio <= kLotSh
 // Each planned lot's pieces in the map, those that make sensible lots: on the street, at
 // least min_lot_area, and within kLotShape. A lot's rank orders the kept pieces of its
 // planned lot.
-std::vector<Lot> kept_lots(const CityMap& city_map, const std::vector<PlannedLot>& planned, const Sketch& sketch) {
+std::vector<Lot> kept_lots(const CityMap& city_map, const std::vector<PlannedLot>& planned, const CitySettings& city) {
   const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
   const std::vector<int> kind =
       city_map.per_label([](const FaceLabel& f) { return f.road_surface() ? LotEdge::kStreet : LotEdge::kInner; });
@@ -115,7 +110,7 @@ std::vector<Lot> kept_lots(const CityMap& city_map, const std::vector<PlannedLot
     std::optional<geom::Cell> cell = pieces[i].as_written();
     if (!cell) return;
     geom::Polygon shape = cell->to_plain();
-    if (geom::area(shape) < sketch.zone_settings.at(plan.zone).lots.min_lot_area) return;
+    if (geom::area(shape) < city.zone_settings.at(plan.zone).lots.min_lot_area) return;
     if (!good_shape(lot_shape({&*cell}, {&shape.outer}))) return;
     kept[i] = Lot{plan.block, plan.zone, {}, std::move(*cell), std::move(shape), planned_of[i], 0, component[i], plan.model};
   });
@@ -178,7 +173,7 @@ void make_blocks_whole(CityMap& city_map, const std::map<int, int>& lot_of_block
 // A block none of whose planned lots made a sensible lot (a block a little larger than a
 // lot, cut into corners and slivers) is tried whole, as one lot, rather than left empty.
 std::vector<Lot> with_refused_blocks_whole(CityMap& city_map, const std::vector<PlannedLot>& planned,
-                                           std::vector<Lot> lots, const Sketch& sketch) {
+                                           std::vector<Lot> lots, const CitySettings& city) {
   std::set<int> kept_in;
   for (const Lot& lot : lots) kept_in.insert(lot.block);
   std::map<int, int> lot_of_block;
@@ -186,13 +181,13 @@ std::vector<Lot> with_refused_blocks_whole(CityMap& city_map, const std::vector<
     if (!kept_in.count(planned[l].block)) lot_of_block.emplace(planned[l].block, static_cast<int>(l));
   if (lot_of_block.empty()) return lots;
   make_blocks_whole(city_map, lot_of_block);
-  return kept_lots(city_map, planned, sketch);
+  return kept_lots(city_map, planned, city);
 }
 
 }  // namespace
 
 std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
-                             const Sketch& sketch) {
+                             const CitySettings& city) {
   city_map.lots = {city_map.generated_roads.end(), static_cast<int>(planned.size())};
   for (std::size_t l = 0; l < planned.size(); ++l) {
     const int counter = city_map.lots.at(static_cast<int>(l));
@@ -204,12 +199,12 @@ std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& p
   // included, rounds without edges crossing.
   city_map.map.snap_round();
 
-  return with_refused_blocks_whole(city_map, planned, kept_lots(city_map, planned, sketch), sketch);
+  return with_refused_blocks_whole(city_map, planned, kept_lots(city_map, planned, city), city);
 }
 
 std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
                                     const std::vector<Lot>& lots, const std::vector<char>& built,
-                                    bool last, const Sketch& sketch, UnbuiltLots& tally) {
+                                    bool last, const CitySettings& city, UnbuiltLots& tally) {
   std::map<int, int> lot_of_piece;  // an unbuilt lot's piece -> the planned lot it joins, or -1
   std::vector<char> settled(lots.size(), 0);  // unbuilt lots joined, or kept for another to join
   // The last time, a block still without a building (a small one, cut into lots too small
@@ -246,7 +241,7 @@ std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<Planned
     return city_map.label_index(l);
   });
   make_blocks_whole(city_map, lot_of_block);
-  return kept_lots(city_map, planned, sketch);
+  return kept_lots(city_map, planned, city);
 }
 
 }  // namespace exacity

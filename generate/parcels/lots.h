@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "generate/city/city_map.h"
-#include "generate/city/sketch.h"
+#include "generate/city/zone_settings.h"
 #include "generate/parcels/blocks.h"
 #include "generate/parcels/lot_layout.h"
 
@@ -37,19 +37,19 @@ inline constexpr Range kLotShape{0.5, 5};  // a lot's depth over its width (acro
 
 // The lots of every block that is not green space, block by block in parallel, each by its
 // zone's LotLayout. `library` may be null unless a zone's lots come from it.
-std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const Sketch& sketch, const ModelLibrary* library,
+std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const CitySettings& city, const ModelLibrary* library,
                                   const Channels& channels);
 
 // Refuses a zone type whose "lots" is "library" when the library holds no building entry
 // with a "lot" for it, or one whose lot no lot of the zone may be (under its min_lot_area,
 // or of a shape outside kLotShape): UserError
 // naming the sketch's setting or the library's entry.
-void check_lot_library(const Sketch& sketch, const ModelLibrary* library);
+void check_lot_library(const CitySettings& city, const ModelLibrary* library);
 
 // The planned lots into the map in one batch; faces of a block then know the lot planned
 // there that they lie in. Returns the lots as they ended up.
 std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& lots,
-                             const Sketch& sketch);
+                             const CitySettings& city);
 
 // What merge_unbuilt_lots did, for report.json.
 struct UnbuiltLots {
@@ -64,6 +64,6 @@ struct UnbuiltLots {
 // is no lot and its land is open. Returns the lots as they now are, in the map's order.
 std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
                                     const std::vector<Lot>& lots, const std::vector<char>& built, bool last,
-                                    const Sketch& sketch, UnbuiltLots& tally);
+                                    const CitySettings& city, UnbuiltLots& tally);
 
 }  // namespace exacity

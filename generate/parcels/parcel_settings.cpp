@@ -1,9 +1,32 @@
 #include "generate/parcels/parcel_settings.h"
 
+#include <stdexcept>
+
 namespace exacity {
+
+// Each layout's factory, in its layout's file.
+std::unique_ptr<LotLayout> make_allocation(const LotSettings&, ZoneType, const ModelLibrary*, const Channels&);
+std::unique_ptr<LotLayout> make_split(const LotSettings&, ZoneType, const ModelLibrary*, const Channels&);
+std::unique_ptr<LotLayout> make_library_lots(const LotSettings&, ZoneType, const ModelLibrary*, const Channels&);
+
+const std::vector<LotLayoutType>& lot_layout_types() {
+  static const std::vector<LotLayoutType> table{
+      {"allocation", "seed 000", make_allocation},
+      {"split", "seed 003", make_split},
+      {"library", "seed 004: the model library's lots", make_library_lots, true},
+  };
+  return table;
+}
+
+const LotLayoutType& lot_layout_type(std::string_view name) {
+  for (const LotLayoutType& t : lot_layout_types())
+    if (t.name == name) return t;
+  throw std::logic_error("no lot layout " + std::string(name));
+}
 
 LotSettings default_lot_settings(ZoneType type) {
   LotSettings l;
+  l.layout = &lot_layout_types().front();
   if (type == ZoneType::Commercial) l.lot_area = 1500, l.lot_width = {20, 45}, l.lot_depth = 35;
   if (type == ZoneType::Industrial) l.lot_area = 3000, l.lot_width = {40, 90}, l.lot_depth = 60;
   return l;
@@ -21,15 +44,13 @@ BlockSettings read_block_settings(const SettingsReader& s, BlockSettings b) {
   return b;
 }
 
-LotSettings read_lot_settings(const SettingsReader& s, LotSettings l, const std::string& road_layout) {
+LotSettings read_lot_settings(const SettingsReader& s, LotSettings l, const RoadLayoutChoice& road_layout) {
   s.number("lot_area", l.lot_area, 10, 1e8);
   s.number("min_lot_edge", l.min_lot_edge, 0, 1e4);
   s.number("min_lot_area", l.min_lot_area, 0, 1e8);
   s.number("lot_depth", l.lot_depth, 2, 1e4);
   s.range("lot_width", l.lot_width, 2, 1e4, "lot frontage in metres");
-  if (road_layout == "voronoi") l.layout = "split";
-  s.choice("lots", l.layout, {"allocation", "split", "library"},
-           "expected \"allocation\" (seed 000), \"split\" (seed 003) or \"library\" (seed 004: the model library's lots)");
+  l.layout = &s.row("lots", lot_layout_types(), lot_layout_type(road_layout.default_lots()));
   return l;
 }
 

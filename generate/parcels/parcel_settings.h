@@ -2,32 +2,36 @@
 // read and checked here.
 #pragma once
 
+#include <memory>
 #include <set>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "generate/city/settings.h"
+#include "generate/city/zone_settings.h"
 #include "generate/city/zone_type.h"
 
 namespace exacity {
 
-struct BlockSettings {
-  double min_block_area = 200;  // m²: smaller blocks become green space
-  double min_block_width = 6;   // m: so do thinner ones (2 x area / perimeter)
-};
+class LotLayout;
+struct ModelLibrary;
+class Channels;
 
-struct LotSettings {
-  // "allocation" (measured from the street: lots side by side along every road
-  // edge of a block, corner lots at its corners, the block's middle left open; some lots
-  // dropped by chance in industrial blocks), "split" (halve perpendicular to the longest edge
-  // down to lot_area) or "library" (the lots the model library's entries ask for,
-  // along the streets).
-  std::string layout = "allocation";
-  Range lot_width{14, 24};   // m: frontage of an allocated lot, drawn per street side
-  double lot_depth = 30;     // m: how far allocated lots reach back from the street
-  double lot_area = 600;     // m²: split stops below this
-  double min_lot_edge = 3;   // m: allocated lots with a shorter edge are dropped
-  double min_lot_area = 20;  // m²: smaller pieces of lots are dropped
+// A row of the table of lot layouts: a new layout is a file defining its LotLayout and
+// its factory, and one row here (parcel_settings.cpp).
+struct LotLayoutType {
+  std::string_view name;
+  std::string_view what;  // how the error for an unknown name describes it
+  // `library` may be null, unless the lots are the library's (check_lot_library).
+  std::unique_ptr<LotLayout> (*make)(const LotSettings& settings, ZoneType zone, const ModelLibrary* library,
+                                     const Channels& channels);
+  // Its lots are the model library's own, each for one model (Lot::model), which stands
+  // on it: no block is one lot when it fits none.
+  bool models_own_lots = false;
 };
+const std::vector<LotLayoutType>& lot_layout_types();
+const LotLayoutType& lot_layout_type(std::string_view name);  // one of the table's
 
 LotSettings default_lot_settings(ZoneType type);
 
@@ -35,7 +39,7 @@ LotSettings default_lot_settings(ZoneType type);
 const std::set<std::string>& parcel_setting_keys();
 
 BlockSettings read_block_settings(const SettingsReader& settings, BlockSettings defaults);
-// `road_layout`: the Voronoi layout's plots are split into lots unless the zone says otherwise.
-LotSettings read_lot_settings(const SettingsReader& settings, LotSettings defaults, const std::string& road_layout);
+// `road_layout`: the zone's, whose default lot layout it takes unless the zone names one.
+LotSettings read_lot_settings(const SettingsReader& settings, LotSettings defaults, const RoadLayoutChoice& road_layout);
 
 }  // namespace exacity

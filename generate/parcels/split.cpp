@@ -68,6 +68,8 @@ class Split : public LotLayout {
 
 }  // namespace
 
-std::unique_ptr<LotLayout> make_split(const LotSettings& settings) { return std::make_unique<Split>(settings); }
+std::unique_ptr<LotLayout> make_split(const LotSettings& settings, ZoneType, const ModelLibrary*, const Channels&) {
+  return std::make_unique<Split>(settings);
+}
 
 }  // namespace exacity

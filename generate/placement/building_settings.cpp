@@ -1,6 +1,27 @@
 #include "generate/placement/building_settings.h"
 
+#include <stdexcept>
+
 namespace exacity {
+
+// Each placer's factory, in its placer's file.
+std::unique_ptr<Placer> make_row_placer(const ModelLibrary& library, ZoneType zone, const Channels& channels);
+std::unique_ptr<Placer> make_grid_filler(const ModelLibrary& library, ZoneType zone, const Channels& channels);
+
+const std::vector<PlacerType>& placer_types() {
+  static const std::vector<PlacerType> table{
+      {"rows", "along the street", make_row_placer},
+      {"grid", "seed 001's grid filling", make_grid_filler, true},
+  };
+  return table;
+}
+
+const PlacerType& placer_type(std::string_view name) {
+  for (const PlacerType& t : placer_types())
+    if (t.name == name) return t;
+  throw std::logic_error("no placer " + std::string(name));
+}
+
 namespace {
 
 void read_footprint_sizes(const SettingsReader& s, BuildingSettings& b) {
@@ -25,6 +46,7 @@ void read_heights(const SettingsReader& s, BuildingSettings& b) {
 
 BuildingSettings default_building_settings(ZoneType type) {
   BuildingSettings b;
+  b.placement = &placer_types().front();
   if (type == ZoneType::Commercial) {
     b.setback = 2, b.min_height = 12, b.max_height = 48;
     b.building_gap = 3, b.footprint_width = {14, 36}, b.footprint_depth = {12, 28};
@@ -55,12 +77,11 @@ BuildingSettings read_building_settings(const SettingsReader& s, BuildingSetting
   s.choice("density", b.density, {"dense", "normal", "sparse"},
            "expected \"dense\", \"normal\" or \"sparse\" (how far apart placed models stand)");
   read_heights(s, b);
-  s.choice("placement", b.placement, {"rows", "grid"},
-           "expected \"rows\" (along the street) or \"grid\" (seed 001's grid filling)");
+  b.placement = &s.row("placement", placer_types(), *b.placement);
   s.number("grid_cell", b.grid_cell, 0.1, 10);
   s.whole_number("grid_passes", b.grid_passes, 1, 16, "passes");
   s.boolean("nesting", b.nesting);
-  if (b.nesting && b.placement != "grid")
+  if (b.nesting && !b.placement->nests)
     s.fail("nesting", "nesting stands models under others' overhangs in grid filling; set \"placement\": \"grid\" too, or remove it");
   if (s.has("height_channel")) {
     if (!s.at("height_channel").is_string() || s.at("height_channel").get<std::string>().empty())

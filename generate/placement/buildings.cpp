@@ -9,7 +9,8 @@
 
 #include "generate/cancel.h"
 #include "generate/errors.h"
-#include "generate/export/geojson.h"
+#include "generate/placement/building_settings.h"
+#include "generate/city/format_number.h"
 #include "generate/placement/grid_filling.h"
 #include "generate/placement/model_placement.h"
 #include "generate/placement/placer.h"
@@ -146,7 +147,7 @@ class Extrusion : public Placer {
 
 // Each zone type's placers, in the order they fill a lot: its buildings (the library's,
 // where it has some for the zone, else extruded), then street furniture, then trees.
-std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> zone_placers(const Sketch& sketch, const ModelLibrary* library,
+std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> zone_placers(const CitySettings& city_settings, const ModelLibrary* library,
                                                                       const Channels& channels,
                                                                       const std::vector<Lot>& lots) {
   geom::Box city = geom::Box::none();
@@ -154,13 +155,11 @@ std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> zone_placers(const Sket
   const geom::Vec2 centre{(city.min_x + city.max_x) / 2, (city.min_y + city.max_y) / 2};
   const double radius = std::hypot(city.width(), city.height()) / 2;
   std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> placers;
-  for (const auto& [zone, settings] : sketch.zone_settings) {
+  for (const auto& [zone, settings] : city_settings.zone_settings) {
     auto& list = placers[zone];
     std::unique_ptr<Placer> models;
-    if (library && settings.lots.layout == "library") models = make_own_lot_placer(*library);
-    else if (library)
-      models = settings.buildings.placement == "grid" ? make_grid_filler(*library, zone, channels)
-                                                       : make_model_placer(*library, zone, ModelKind::Building, channels);
+    if (library && settings.lots.layout->models_own_lots) models = make_own_lot_placer(*library);
+    else if (library) models = settings.buildings.placement->make(*library, zone, channels);
     list.push_back(models ? std::move(models) : std::make_unique<Extrusion>(centre, radius, channels));
     if (!library) continue;
     for (ModelKind kind : {ModelKind::Street, ModelKind::Tree})
@@ -171,16 +170,16 @@ std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> zone_placers(const Sket
 
 }  // namespace
 
-Structures place_buildings(const std::vector<Lot>& lots, const Sketch& sketch, const ModelLibrary* library,
+Structures place_buildings(const std::vector<Lot>& lots, const CitySettings& city, const ModelLibrary* library,
                            const Channels& channels, const Terrain* terrain) {
-  const auto placers = zone_placers(sketch, library, channels, lots);
-  const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Buildings));
+  const auto placers = zone_placers(city, library, channels, lots);
+  const std::uint64_t stage = mix(city.seed, static_cast<std::uint64_t>(Stage::Buildings));
   std::vector<Structures> placed(lots.size());
   const CancelCheck cancel;
   tbb::parallel_for(std::size_t(0), lots.size(), [&](std::size_t i) {
     cancel.check();
     const Lot& lot = lots[i];
-    BuildingSettings p = sketch.zone_settings.at(lot.zone).buildings;
+    BuildingSettings p = city.zone_settings.at(lot.zone).buildings;
     if (!lot.density.empty()) p.density = lot.density;
     // By the lot's planned lot, not its index, so merging lots around it leaves it as it was.
     Random rng(mix(mix(stage, static_cast<std::uint64_t>(lot.planned)), static_cast<std::uint64_t>(lot.rank)));

@@ -11,7 +11,7 @@
 #include "generate/placement/model_library.h"
 #include "generate/city/channels.h"
 #include "generate/city/random.h"
-#include "generate/city/sketch.h"
+#include "generate/city/zone_settings.h"
 #include "generate/city/terrain.h"
 #include "generate/city/city_map.h"
 #include "geom/roof.h"
@@ -89,7 +89,7 @@ void choose_roof(Building& b, const BuildingSettings& p);
 // for the zone, else a row of extruded rectangles along the street; then the
 // library's street furniture and trees where they fit, each drawn by its weight and
 // channels. Each stands on the terrain.
-Structures place_buildings(const std::vector<Lot>& lots, const Sketch& sketch, const ModelLibrary* library,
+Structures place_buildings(const std::vector<Lot>& lots, const CitySettings& city, const ModelLibrary* library,
                            const Channels& channels, const Terrain* terrain);
 
 // The 3D exports write every placed model's triangles (OBJ, PLY and CityJSON have no

@@ -142,16 +142,16 @@ TriangleMesh lamp_mesh() {
   return b.take();
 }
 
-void add_builtin_models(std::optional<ModelLibrary>& library, const Sketch& sketch) {
+void add_builtin_models(std::optional<ModelLibrary>& library, bool trees, bool lamps) {
   std::vector<Model> added;
-  if (sketch.builtin_trees && !has_kind(library, ModelKind::Tree)) {
+  if (trees && !has_kind(library, ModelKind::Tree)) {
     added.push_back(builtin(broadleaf_mesh(), "exacity_broadleaf", ModelKind::Tree,
                             {ZoneType::Residential, ZoneType::Park}, 2, 0.75, 1.25));
     added.push_back(builtin(conifer_mesh(), "exacity_conifer", ModelKind::Tree, {ZoneType::Residential, ZoneType::Park},
                             1, 0.8, 1.2));
     for (Model& m : added) m.spacing = 12, m.offset = 0.5;  // the library's defaults for trees
   }
-  if (sketch.builtin_lamps && !has_kind(library, ModelKind::Lamp)) {
+  if (lamps && !has_kind(library, ModelKind::Lamp)) {
     Model lamp = builtin(lamp_mesh(), "exacity_lamp", ModelKind::Lamp,
                          {ZoneType::Residential, ZoneType::Commercial, ZoneType::Industrial, ZoneType::Park}, 1, 1, 1);
     lamp.spacing = 30, lamp.offset = 0.5;

@@ -7,7 +7,7 @@
 
 #include <optional>
 
-#include "generate/city/sketch.h"
+#include "generate/city/features.h"
 #include "generate/placement/model_library.h"
 
 namespace exacity {
@@ -22,6 +22,6 @@ TriangleMesh lamp_mesh();       // a pole with an arm and a head, about 6 m tall
 // default) that the library has no entry of: trees (a broadleaf and a conifer) in
 // residential and park zones, lamps in every zone. A library is made when there is none
 // and something is added; its `file` stays empty.
-void add_builtin_models(std::optional<ModelLibrary>& library, const Sketch& sketch);
+void add_builtin_models(std::optional<ModelLibrary>& library, bool trees, bool lamps);
 
 }  // namespace exacity

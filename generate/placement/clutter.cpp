@@ -129,8 +129,8 @@ struct Where {
 // The city the clutter stands in, with indices to find lots and footprints near a spot.
 class StandingGround {
  public:
-  StandingGround(const ClutterGround& g, const Sketch& sketch)
-      : g_(g), sketch_(sketch), lot_rings_(32), footprints_(8) {
+  StandingGround(const ClutterGround& g, const std::vector<ZoneFeature>& zones)
+      : g_(g), zones_(zones), lot_rings_(32), footprints_(8) {
     for (std::size_t i = 0; i < g.lots.size(); ++i) lot_rings_.add(g.lots[i].polygon.outer, static_cast<int>(i));
     auto add = [&](const geom::Polygon& p) {
       footprints_.add(p.outer, static_cast<int>(footprint_rings_.size()));
@@ -147,7 +147,7 @@ class StandingGround {
     if (label < 0) return {-1, false, kOnEdge, std::nullopt};
     const FaceLabel& l = g_.map.labels[label];
     Where w;
-    if (l.zone >= 0) w.zone = sketch_.zones[l.zone].type;
+    if (l.zone >= 0) w.zone = zones_[l.zone].type;
     if (l.bridge || l.cover == Cover::Water)
       w.blocked = kOnWater;
     else if (l.cover == Cover::Road && l.surface == RoadSurface::Sidewalk)
@@ -176,7 +176,7 @@ class StandingGround {
 
  private:
   const ClutterGround& g_;
-  const Sketch& sketch_;
+  const std::vector<ZoneFeature>& zones_;
   RingBuckets lot_rings_, footprints_;
   std::vector<const geom::Ring*> footprint_rings_;
 };
@@ -506,7 +506,8 @@ void dress_park(const ZoneArea& park, const ModelLibrary& lib, Random& rng, Dres
 // Parks whose trees would be more than one run plants are refused before any is placed:
 // each tree is an instance in every export (a park of 4.5 by 2.5 degrees took 13 GB and
 // was still planting), and the squares of the parks' boxes are each walked.
-void check_park_trees(const std::vector<const ZoneArea*>& parks, const ModelLibrary& lib, const Sketch& sketch) {
+void check_park_trees(const std::vector<const ZoneArea*>& parks, const ModelLibrary& lib, const CitySettings& city,
+                      const std::vector<ZoneFeature>& zones) {
   const double spacing = park_tree_spacing(lib);
   if (spacing <= 0 || parks.empty()) return;
   const double step = 1.5 * spacing;
@@ -516,7 +517,7 @@ void check_park_trees(const std::vector<const ZoneArea*>& parks, const ModelLibr
   // The drawn park with the largest area, to name.
   const ZoneFeature* largest = nullptr;
   double largest_area = -1;
-  for (const ZoneFeature& z : sketch.zones) {
+  for (const ZoneFeature& z : zones) {
     if (z.type != ZoneType::Park) continue;
     double area = 0;
     for (const geom::Polygon& p : z.polygons) area += std::abs(geom::area(p));
@@ -537,21 +538,21 @@ void check_park_trees(const std::vector<const ZoneArea*>& parks, const ModelLibr
                                 "\"exacity\".builtin_models"
                               : "raise the \"spacing\" of the trees in " + lib.file.string() +
                                     " that stand in parks, or leave \"park\" out of their \"zones\"";
-  throw UserError(sketch.path.string() + ": " + feature + " (park): the parks " + what + " (a tree to a square of " +
+  throw UserError(city.path.string() + ": " + feature + " (park): the parks " + what + " (a tree to a square of " +
                   format_number(step) + " m, 1.5 times the park trees' spacing); draw smaller parks, " + fix);
 }
 
 }  // namespace
 
 StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* library, const Channels& channels,
-                            const Sketch& sketch, const Terrain* terrain) {
+                            const CitySettings& city, const std::vector<ZoneFeature>& zones, const Terrain* terrain) {
   StreetClutter out;
   if (!library ||
       std::none_of(library->models.begin(), library->models.end(), [](const Model& m) { return is_clutter(m.kind); }))
     return out;
   std::vector<Base> bases;
   for (const Model& m : library->models) bases.push_back(base_of(m));
-  const StandingGround side(ground, sketch);
+  const StandingGround side(ground, zones);
   const std::vector<RoadLine>& roads = ground.ground.roads;
   const std::vector<StreetJunction> junctions = street_junctions(roads);
   // Streets keep clear of a junction's surface and of the clutter at its corners.
@@ -560,13 +561,13 @@ StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* lib
 
   // What a street's stations probe stands in a drawn zone, or none is there.
   std::vector<geom::Box> zone_boxes;
-  for (const ZoneFeature& z : sketch.zones)
+  for (const ZoneFeature& z : zones)
     for (const geom::Polygon& p : z.polygons) zone_boxes.push_back(RingBuckets::box_of(p.outer));
 
   std::vector<const ZoneArea*> parks;
   for (const ZoneArea& z : ground.ground.zones)
     if (z.type == ZoneType::Park) parks.push_back(&z);
-  check_park_trees(parks, *library, sketch);
+  check_park_trees(parks, *library, city, zones);
 
   // Each street, then each junction, then each park proposes its own clutter in parallel,
   // checked against the ground and its own; then in that order each is checked against the
@@ -574,7 +575,7 @@ StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* lib
   const std::size_t streets_and_junctions = roads.size() + junctions.size();
   const std::size_t groups = streets_and_junctions + parks.size();
   std::vector<Proposals> proposed(groups);
-  const std::uint64_t stage = mix(sketch.seed, static_cast<std::uint64_t>(Stage::Clutter));
+  const std::uint64_t stage = mix(city.seed, static_cast<std::uint64_t>(Stage::Clutter));
   const CancelCheck cancel;
   tbb::parallel_for(std::size_t(0), groups, [&](std::size_t g) {
     cancel.check();

@@ -20,7 +20,8 @@
 #include "generate/city/channels.h"
 #include "generate/city/city_map.h"
 #include "generate/city/ground.h"
-#include "generate/city/sketch.h"
+#include "generate/city/features.h"
+#include "generate/city/zone_settings.h"
 #include "generate/city/terrain.h"
 #include "generate/parcels/lots.h"
 #include "generate/placement/buildings.h"
@@ -64,6 +65,6 @@ inline constexpr double kMaxParkTrees = 100000, kMaxParkSquares = 1e8;
 // Every street's clutter, road by road in parallel, gathered in road order; none without a
 // library or clutter entries.
 StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* library, const Channels& channels,
-                            const Sketch& sketch, const Terrain* terrain);
+                            const CitySettings& city, const std::vector<ZoneFeature>& zones, const Terrain* terrain);
 
 }  // namespace exacity

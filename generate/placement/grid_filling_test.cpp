@@ -1,6 +1,7 @@
 // Grid filling (docs/design.md, Placement) on hand-made lots and models: the serpentine, footprint grids
 // that follow the real outline, largest first, a notch taken by a smaller model, never an
 // overlap, and the same fill from the same stream.
+#include "generate/placement/building_settings.h"
 #include "generate/placement/grid_filling.h"
 
 #include <gtest/gtest.h>
@@ -46,7 +47,7 @@ ModelLibrary l_and_square() {
 
 BuildingSettings tight() {
   BuildingSettings p;
-  p.setback = 0, p.building_gap = 0, p.placement = "grid", p.grid_cell = 1;
+  p.setback = 0, p.building_gap = 0, p.placement = &placer_type("grid"), p.grid_cell = 1;
   return p;
 }
 
@@ -114,7 +115,7 @@ TEST(GridFilling, NothingOverlapsAndEverythingStandsInTheLot) {
   lib.models.push_back(model("bar", {{0, 0}, {14, 0}, {14, 5}, {0, 5}}, 2));
   lib.models.back().zones = {ZoneType::Residential};
   BuildingSettings p;
-  p.placement = "grid", p.grid_passes = 3, p.grid_cell = 0.5;
+  p.placement = &placer_type("grid"), p.grid_passes = 3, p.grid_cell = 0.5;
   const std::vector<ModelInstance> placed = fill(lot, lib, p, 11);
   ASSERT_GT(placed.size(), 8u);
   for (std::size_t a = 0; a < placed.size(); ++a) {

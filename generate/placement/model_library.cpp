@@ -6,7 +6,7 @@
 
 #include "generate/errors.h"
 #include "generate/input_file.h"
-#include "generate/export/geojson.h"
+#include "generate/city/format_number.h"
 #include "geom/grid.h"
 #include "geom/outline.h"
 #include "geom/polygon_check.h"

@@ -16,7 +16,7 @@
 #include "generate/placement/slabs.h"
 #include "generate/city/channels.h"
 #include "generate/city/random.h"
-#include "generate/city/sketch.h"
+#include "generate/city/features.h"
 #include "generate/city/zone_type.h"
 #include "geom/plain.h"
 

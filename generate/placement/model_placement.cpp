@@ -262,6 +262,10 @@ class OwnLotPlacer : public Placer {
 
 std::unique_ptr<Placer> make_own_lot_placer(const ModelLibrary& library) { return std::make_unique<OwnLotPlacer>(library); }
 
+std::unique_ptr<Placer> make_row_placer(const ModelLibrary& library, ZoneType zone, const Channels& channels) {
+  return make_model_placer(library, zone, ModelKind::Building, channels);
+}
+
 std::unique_ptr<Placer> make_model_placer(const ModelLibrary& library, ZoneType zone, ModelKind kind,
                                           const Channels& channels) {
   std::vector<int> models = library.choices(zone, kind);

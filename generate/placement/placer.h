@@ -10,7 +10,7 @@
 
 #include "generate/city/channels.h"
 #include "generate/city/random.h"
-#include "generate/city/sketch.h"
+#include "generate/city/features.h"
 #include "generate/parcels/lots.h"
 #include "generate/placement/buildings.h"
 #include "generate/placement/model_library.h"

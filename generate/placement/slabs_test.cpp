@@ -1,6 +1,7 @@
 // Nesting's 3D occupancy grid made exact: models cut into slabs at their undersides, and
 // grid filling with nesting, which lets a small model stand under an arch's beam only
 // where no two models' slabs meet.
+#include "generate/placement/building_settings.h"
 #include "generate/placement/slabs.h"
 
 #include <gtest/gtest.h>
@@ -144,7 +145,7 @@ std::vector<ModelInstance> fill_arches(bool nesting, std::uint64_t seed) {
   lib.models = {arch(), kiosk(2.5)};
   lib.models[1].weight = 4;
   BuildingSettings p;
-  p.placement = "grid", p.nesting = nesting, p.setback = 1, p.building_gap = 1, p.grid_cell = 1;
+  p.placement = &placer_type("grid"), p.nesting = nesting, p.setback = 1, p.building_gap = 1, p.grid_cell = 1;
   const Channels none;
   const auto filler = make_grid_filler(lib, ZoneType::Commercial, none);
   Occupancy occupancy(lot, LotEdge::kStreet);

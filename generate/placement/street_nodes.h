@@ -17,7 +17,7 @@ inline bool is_major(RoadClass c) { return c != RoadClass::Local; }
 
 // A centre line leaving a node: the road (its id in the roads layer), the unit direction
 // towards its next vertex, its class and half width. (Not the sketch reader's StreetArm,
-// generate/layout/street_graph.h: one name, one type, in the whole program.)
+// generate/city/street_graph.h: one name, one type, in the whole program.)
 struct RoadArm {
   int road = -1;
   geom::Vec2 toward;

@@ -1,4 +1,4 @@
-#include "generate/city/grid_map.h"
+#include "generate/sketch/grid_map.h"
 
 #include <algorithm>
 #include <cctype>
@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "generate/city/sketch.h"
+#include "generate/sketch/sketch.h"
 #include "generate/errors.h"
 #include "geom/grid.h"
 

@@ -6,9 +6,10 @@
 #include <vector>
 
 #include "generate/city/channels.h"
+#include "generate/city/features.h"
 #include "generate/city/ground.h"
-#include "generate/city/sketch.h"
 #include "generate/city/terrain.h"
+#include "generate/city/zone_settings.h"
 #include "generate/export/vector_layers.h"
 #include "generate/layout/road_network.h"
 #include "generate/parcels/blocks.h"
@@ -20,7 +21,9 @@
 namespace exacity {
 
 struct City {
-  Sketch sketch;
+  CitySettings settings;  // the sketch's: its file, seed, CRS, zone settings
+  DrawnFeatures drawn;    // the sketch's zones and roads
+  std::string camera;     // the sketch's still camera (exacity render's --camera syntax), or empty
   std::optional<Terrain> terrain;
   Channels channels;  // empty when the sketch has none
   std::optional<ModelLibrary> library;

@@ -1,7 +1,7 @@
 // Grid maps (docs/sketch.md, Grid maps): each cell's status becomes the right zone or road, regions become
 // exact polygons, road bands one connected network, every mistake one line naming the
 // file, line and column, and a map generates a city that validates without gaps.
-#include "generate/city/grid_map.h"
+#include "generate/sketch/grid_map.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include <set>
 #include <sstream>
 
-#include "generate/city/sketch.h"
+#include "generate/sketch/sketch.h"
 #include "generate/errors.h"
 #include "generate/export/validate.h"
 #include "generate/pipeline.h"
@@ -622,7 +622,7 @@ TEST(GridMapCity, ASmallTownGeneratesValidatesAndLeavesNoGaps) {
   // OUT/sketch.geojson holds the sketch read, so validate and render read it too.
   const Sketch copy = load_sketch(out_of("town") / "sketch.geojson", false);
   EXPECT_EQ(copy.zones.size(), load_sketch(out_of("town").parent_path() / "city.grid").zones.size());
-  EXPECT_EQ(copy.zone_settings.at(ZoneType::Residential).roads.layout, "streets");
+  EXPECT_EQ(copy.zone_settings.at(ZoneType::Residential).roads.layout->name(), "streets");
 }
 
 TEST(GridMapCity, AMapAllOfRoad) {
@@ -680,8 +680,8 @@ TEST(GridMapCity, ASketchNamingAGridMapAddsItsOwnZonesOverIt) {
   EXPECT_EQ(sketch.zones.back().index, static_cast<int>(grid.zones.size() + grid.roads.size()));
   EXPECT_EQ(sketch.roads.size(), grid.roads.size());
   EXPECT_EQ(sketch.seed, 3u);
-  EXPECT_EQ(sketch.zone_settings.at(ZoneType::Residential).roads.layout, "streets");
-  EXPECT_EQ(sketch.zone_settings.at(ZoneType::Commercial).roads.layout, "streets")
+  EXPECT_EQ(sketch.zone_settings.at(ZoneType::Residential).roads.layout->name(), "streets");
+  EXPECT_EQ(sketch.zone_settings.at(ZoneType::Commercial).roads.layout->name(), "streets")
       << "set where the sketch says nothing of it";
   EXPECT_EQ(sketch.zone_settings.at(ZoneType::Commercial).lots.lot_width.max, 30);
   fs::create_directories(dir / "out");
@@ -710,7 +710,7 @@ TEST(GridMapCity, ASketchNamingAGridMapAddsItsOwnZonesOverIt) {
   // A layout the sketch sets stands.
   std::ofstream(dir / "growth.geojson") << R"({"type": "FeatureCollection",
     "exacity": {"grid": "town.grid", "zones": {"residential": {"layout": "growth"}}}, "features": []})";
-  EXPECT_EQ(load_sketch(dir / "growth.geojson").zone_settings.at(ZoneType::Residential).roads.layout, "growth");
+  EXPECT_EQ(load_sketch(dir / "growth.geojson").zone_settings.at(ZoneType::Residential).roads.layout->name(), "growth");
 }
 
 TEST(GridMapCity, ModelsGivenInPlaceOfTheSketchsOwn) {

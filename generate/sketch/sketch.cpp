@@ -1,17 +1,20 @@
-#include "generate/city/sketch.h"
+#include "generate/sketch/sketch.h"
 
 #include <algorithm>
 #include <cmath>
 #include <optional>
 #include <set>
 
-#include "generate/city/grid_map.h"
+#include "generate/sketch/grid_map.h"
 #include "generate/gis/osm_tags.h"
 #include "generate/gis/projection.h"
 #include "generate/gis/sketch_sources.h"
 #include "generate/errors.h"
 #include "generate/input_file.h"
-#include "generate/layout/street_graph.h"
+#include "generate/layout/road_settings.h"
+#include "generate/parcels/parcel_settings.h"
+#include "generate/placement/building_settings.h"
+#include "generate/city/street_graph.h"
 #include "geom/crowding.h"
 #include "geom/measure.h"
 
@@ -28,7 +31,7 @@ ZoneSettings read_zone_settings(const SettingsReader& settings, ZoneType type, b
   ZoneSettings z;
   z.roads = read_road_settings(settings, defaults.roads, read_grammars);
   z.blocks = read_block_settings(settings, defaults.blocks);
-  z.lots = read_lot_settings(settings, defaults.lots, z.roads.layout);
+  z.lots = read_lot_settings(settings, defaults.lots, *z.roads.layout);
   z.buildings = read_building_settings(settings, defaults.buildings);
   return z;
 }
@@ -412,7 +415,7 @@ class Parser {
     return s;
   }
 
-  // Joins the roads' near ends and finds their dead ends (generate/layout/street_graph.h).
+  // Joins the roads' near ends and finds their dead ends (generate/city/street_graph.h).
   void join_streets(Sketch& sketch) const {
     sketch.joined_ends = join_near_ends(sketch.roads, sketch.streets.snap);
     sketch.dead_ends = dead_ends(sketch.roads);

@@ -1,4 +1,4 @@
-#include "generate/layout/street_graph.h"
+#include "generate/city/street_graph.h"
 
 #include <cmath>
 #include <map>

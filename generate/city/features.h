@@ -1,0 +1,82 @@
+// The sketch's drawn features and the specs of its images, as the stages read them
+// (docs/design.md, The sketch).
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "generate/city/zone_type.h"
+#include "geom/plain.h"
+
+namespace exacity {
+
+struct TerrainSpec {
+  std::filesystem::path heightmap;  // resolved against the sketch's folder
+  geom::Box bounds;
+  double low = 0, high = 100;       // heights of the image's lowest and highest values
+};
+
+// A channel: a greyscale image stretched over `bounds` (generate/city/channels.h).
+struct ChannelSpec {
+  std::string name;
+  std::filesystem::path image;  // resolved against the sketch's folder
+  geom::Box bounds;
+};
+
+struct ZoneFeature {
+  int index = 0;                    // position in "features"
+  ZoneType type = ZoneType::Residential;
+  std::vector<geom::Polygon> polygons;  // rings as drawn: any orientation, maybe self-intersecting
+  std::string grid_cell;            // a grid map's region: FILE:LINE:COLUMN of its first cell; else empty
+  std::string source;               // a feature read from another format: FILE layer L feature N, FILE way N
+};
+
+struct RoadFeature {
+  int index = 0;
+  RoadClass road_class = RoadClass::Highway;
+  double width = 24;
+  std::vector<geom::Polyline> lines;
+  // Its OpenStreetMap tags (highway, name, ...: osm_road_tags), which city.osm writes back.
+  std::vector<std::pair<std::string, std::string>> osm_tags;
+};
+
+// The sketch's own street graph (docs/design.md, Road layouts): how it is joined, what its streets carry.
+struct StreetSettings {
+  double snap = 0.5;                     // m: a line end this near another line is joined to it
+  bool dead_ends_are_errors = false;     // "dead_ends": "error"
+  std::map<RoadClass, double> sidewalks;  // m on each side, per class; none unless set
+  double sidewalk(RoadClass c) const { return sidewalks.count(c) ? sidewalks.at(c) : 0.0; }
+};
+
+// A road end that meets no other road.
+struct DeadEnd {
+  int feature = 0;  // its road's position in "features"
+  geom::Vec2 at;
+};
+
+// The features the stages read: the zones and roads as drawn, and how the roads were joined.
+struct DrawnFeatures {
+  std::vector<ZoneFeature> zones;
+  std::vector<RoadFeature> roads;     // as joined by StreetSettings::snap
+  StreetSettings streets;
+  int joined_ends = 0;                // line ends moved by up to `snap` to meet another line
+  std::vector<DeadEnd> dead_ends;
+};
+
+// The sketch reader's limits (docs/sketch.md, docs/limits.md). Coordinates Exacity computes exactly in:
+// rounding its exact vertices to doubles moves them by under 2e-6 m out here; at 1e12 m
+// (0.1 mm steps) written rings stop being simple.
+inline constexpr double kMaxCoordinate = 1e10;
+// The most blocks one run builds (the zones' area over their block_area): the 10 km
+// benchmark city's 12,700 blocks peak at 4.1 GiB.
+inline constexpr double kMaxBlocks = 50000;
+// Pairs of sketch pieces (road strokes, zone edges) crossing or overlapping, past 4 a piece:
+// each is vertices of the exact map (a way zig-zagging over itself makes gigabytes).
+inline constexpr std::size_t kMaxMeetings = 10000;
+// A road's width, m.
+inline constexpr double kMinRoadWidth = 0.5, kMaxRoadWidth = 500;
+
+}  // namespace exacity
