@@ -17,7 +17,7 @@ void add_serve(CLI::App& app, ServeCommand& c) {
   c.app
       ->add_option("--host", c.host,
                    "The address to listen on; anything but 127.0.0.1 lets others on the network use the server "
-                   "(README, exacity serve)")
+                   "(docs/serve.md)")
       ->capture_default_str();
   c.app->add_option("--work", c.work, "The work folder: the sketch, its heightmap, the city and the renders")
       ->capture_default_str();

@@ -123,7 +123,7 @@ CityServer::CityServer(ServeOptions options) {
         if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
         if (res.status == 404)
           refuse(res, 404,
-                 "no such route: " + req.method + " " + req.path + "; the API is listed in the README (exacity serve)");
+                 "no such route: " + req.method + " " + req.path + "; the API is listed in docs/serve.md");
         else if (res.status == 413)
           refuse(res, 413, "request body too large: at most " + std::to_string(max) + " bytes");
         else
@@ -139,7 +139,7 @@ CityServer::CityServer(ServeOptions options) {
   add_settings_routes(s);
   s.http.Get(R"(/(.*))", [&s](const httplib::Request& req, httplib::Response& res) {
     if (req.path.rfind("/api/", 0) == 0)
-      return refuse(res, 404, "no such route: GET " + req.path + "; the API is listed in the README (exacity serve)");
+      return refuse(res, 404, "no such route: GET " + req.path + "; the API is listed in docs/serve.md");
     send_static(s, req, res);
   });
 }

@@ -431,7 +431,7 @@ ordered_json osm_sketch_document(const fs::path& path) {
     throw UserError(file + ": not a readable OpenStreetMap extract (" + e.what() + "); give an .osm or .osm.pbf file");
   }
   if (collector.zones_.empty() && collector.roads_.empty() && collector.rivers_.empty())
-    throw UserError(file + ": the extract has no highways, land use or water Exacity reads; see the README's OpenStreetMap section");
+    throw UserError(file + ": the extract has no highways, land use or water Exacity reads; see docs/gis.md");
 
   ordered_json features = ordered_json::array();
   for (OsmFeature& f : collector.zones_) {

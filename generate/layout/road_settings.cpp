@@ -13,10 +13,10 @@ std::shared_ptr<const RoadLayoutChoice> read_streets_layout(const RoadLayoutRead
 
 const std::vector<RoadLayoutType>& road_layout_types() {
   static const std::vector<RoadLayoutType> table{
-      {"growth", "seed 000's growing roads", {}, read_growth_layout},
-      {"grammar", "seed 002's split grammar, with \"grammar\": FILE", {"grammar", "grammar_depth", "grow_large_pieces"},
+      {"growth", "recursive road growth", {}, read_growth_layout},
+      {"grammar", "a split grammar, with \"grammar\": FILE", {"grammar", "grammar_depth", "grow_large_pieces"},
        read_grammar_layout},
-      {"voronoi", "seed 003's Voronoi streets", {"cell_size", "junction_spacing"}, read_voronoi_layout},
+      {"voronoi", "streets along Voronoi cells", {"cell_size", "junction_spacing"}, read_voronoi_layout},
       {"streets", "the sketch's roads only", {}, read_streets_layout},
   };
   return table;

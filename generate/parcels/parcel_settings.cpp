@@ -11,9 +11,9 @@ std::unique_ptr<LotLayout> make_library_lots(const LotSettings&, ZoneType, const
 
 const std::vector<LotLayoutType>& lot_layout_types() {
   static const std::vector<LotLayoutType> table{
-      {"allocation", "seed 000", make_allocation},
-      {"split", "seed 003", make_split},
-      {"library", "seed 004: the model library's lots", make_library_lots, true},
+      {"allocation", "lots along the street", make_allocation},
+      {"split", "recursive splitting", make_split},
+      {"library", "the model library's lots", make_library_lots, true},
   };
   return table;
 }

@@ -11,7 +11,7 @@ std::unique_ptr<Placer> make_grid_filler(const ModelLibrary& library, ZoneType z
 const std::vector<PlacerType>& placer_types() {
   static const std::vector<PlacerType> table{
       {"rows", "along the street", make_row_placer},
-      {"grid", "seed 001's grid filling", make_grid_filler, true},
+      {"grid", "grid filling", make_grid_filler, true},
   };
   return table;
 }

@@ -317,7 +317,7 @@ ModelLibrary load_model_library(const fs::path& manifest) {
     try {
       lib.models.push_back(read_model(doc["models"][i], manifest, where, textures));
     } catch (const json::exception& x) {
-      fail(where, std::string("a value has the wrong type (") + x.what() + "); see the README's model library section");
+      fail(where, std::string("a value has the wrong type (") + x.what() + "); see docs/models.md");
     }
   }
   if (lib.models.empty()) throw UserError(manifest.string() + ": the library lists no models");

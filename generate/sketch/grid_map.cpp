@@ -223,7 +223,7 @@ class Reader {
     for (std::size_t k = 0; k < line.size(); ++k)
       if (!status_of(line[k]))
         fail(n, static_cast<int>(k) + 1,
-             shown(line[k]) + " is not a cell; a cell is one of " + kCellCharacters + " (README, Grid maps)");
+             shown(line[k]) + " is not a cell; a cell is one of " + kCellCharacters + " (docs/sketch.md, Grid maps)");
     const int length = static_cast<int>(line.size());
     if (map.height > 0 && length != map.width)
       fail(n, std::min(length, map.width) + 1,

@@ -630,7 +630,7 @@ bool apply_osm_tags_and_layout(nlohmann::ordered_json& doc, const std::vector<Sk
       tags += (tags.empty() ? "" : "; ") + (files.size() > 1 ? name + ": " : "") + (counts.empty() ? "none" : counts);
     }
     throw UserError(names + ": no feature's OpenStreetMap tags make a zone or a road (" + tags +
-                    "); see the README's OpenStreetMap section for the tags Exacity reads");
+                    "); see docs/gis.md for the tags Exacity reads");
   }
   if (doc["osm"]["taken"].value("roads", 0) > 0) {
     if (!doc.contains("exacity") || doc["exacity"].is_null()) doc["exacity"] = nlohmann::ordered_json::object();
