@@ -77,6 +77,9 @@ class SettingsReader {
   // is absent; the error lists the table's rows.
   template <typename Row>
   const Row& row(const char* key, const std::vector<Row>& table, const Row& fallback) const {
+    std::vector<std::string> names;
+    for (const Row& r : table) names.emplace_back(r.name);
+    describe(key, "choice", 0, 0, std::string(fallback.name), std::move(names));
     if (!has(key)) return fallback;
     const nlohmann::json& j = at(key);
     for (const Row& r : table)
