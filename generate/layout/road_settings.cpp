@@ -1,7 +1,8 @@
 #include "generate/layout/road_settings.h"
 
 #include <algorithm>
-#include <stdexcept>
+
+#include "generate/city/named_row.h"
 
 namespace exacity {
 
@@ -22,11 +23,7 @@ const std::vector<RoadLayoutType>& road_layout_types() {
   return table;
 }
 
-const RoadLayoutType& road_layout_type(std::string_view name) {
-  for (const RoadLayoutType& t : road_layout_types())
-    if (t.name == name) return t;
-  throw std::logic_error("no road layout " + std::string(name));
-}
+const RoadLayoutType& road_layout_type(std::string_view name) { return named_row(road_layout_types(), name, "road layout"); }
 
 namespace {
 

@@ -1,6 +1,6 @@
 #include "generate/parcels/parcel_settings.h"
 
-#include <stdexcept>
+#include "generate/city/named_row.h"
 
 namespace exacity {
 
@@ -18,11 +18,7 @@ const std::vector<LotLayoutType>& lot_layout_types() {
   return table;
 }
 
-const LotLayoutType& lot_layout_type(std::string_view name) {
-  for (const LotLayoutType& t : lot_layout_types())
-    if (t.name == name) return t;
-  throw std::logic_error("no lot layout " + std::string(name));
-}
+const LotLayoutType& lot_layout_type(std::string_view name) { return named_row(lot_layout_types(), name, "lot layout"); }
 
 LotSettings default_lot_settings(ZoneType type) {
   LotSettings l;

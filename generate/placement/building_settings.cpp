@@ -1,6 +1,6 @@
 #include "generate/placement/building_settings.h"
 
-#include <stdexcept>
+#include "generate/city/named_row.h"
 
 namespace exacity {
 
@@ -16,11 +16,7 @@ const std::vector<PlacerType>& placer_types() {
   return table;
 }
 
-const PlacerType& placer_type(std::string_view name) {
-  for (const PlacerType& t : placer_types())
-    if (t.name == name) return t;
-  throw std::logic_error("no placer " + std::string(name));
-}
+const PlacerType& placer_type(std::string_view name) { return named_row(placer_types(), name, "placer"); }
 
 namespace {
 
