@@ -9,6 +9,7 @@
 #include <optional>
 #include <set>
 #include <tuple>
+#include <vector>
 
 #include <osmium/area/assembler.hpp>
 #include <osmium/area/multipolygon_manager.hpp>
@@ -389,11 +390,17 @@ void check_node_coordinates(const fs::path& path) {
 // which its relation and area code relies on. Files of new objects are often in another:
 // city.osm counts its negative ids up, as `osmium merge` wants, and JOSM writes in any order.
 // The extract is held in memory whole; the input size limit bounds it.
-osmium::memory::Buffer in_osmium_order(osmium::memory::Buffer extract) {
+osmium::memory::Buffer in_osmium_order(osmium::io::Reader& reader) {
+  std::vector<osmium::memory::Buffer> read;
   osmium::ObjectPointerCollection objects;
-  osmium::apply(extract, objects);
+  std::size_t bytes = 0;
+  while (osmium::memory::Buffer buffer = reader.read()) {
+    osmium::apply(buffer, objects);
+    bytes += buffer.committed();
+    read.push_back(std::move(buffer));
+  }
   objects.sort(osmium::object_order_type_id_version{});
-  osmium::memory::Buffer sorted{std::max<std::size_t>(extract.committed(), 1024), osmium::memory::Buffer::auto_grow::yes};
+  osmium::memory::Buffer sorted{std::max<std::size_t>(bytes, 1024), osmium::memory::Buffer::auto_grow::yes};
   for (const osmium::OSMObject& object : objects) sorted.add_item(object);
   sorted.commit();
   return sorted;
@@ -406,10 +413,10 @@ ordered_json osm_sketch_document(const fs::path& path) {
   Collector collector(file, relations);
   try {
     const osmium::io::File input(file);
-    osmium::io::Reader header_reader{input, osmium::osm_entity_bits::nothing};
-    const osmium::Box bounds = header_reader.header().box();
-    header_reader.close();
-    osmium::memory::Buffer extract = in_osmium_order(osmium::io::read_file(input));
+    osmium::io::Reader reader{input};
+    const osmium::Box bounds = reader.header().box();
+    osmium::memory::Buffer extract = in_osmium_order(reader);
+    reader.close();
     osmium::area::Assembler::config_type config;
     osmium::TagsFilter areas{false};
     for (const char* key : {"landuse", "natural", "water", "waterway", "leisure"}) areas.add_rule(true, osmium::TagMatcher{key});
