@@ -77,7 +77,7 @@ class BoxIndex {
   }
 
   struct PairHash {
-    std::size_t operator()(const std::pair<long, long>& k) const { return std::hash<long>()(k.first * 1000003 ^ k.second); }
+    std::size_t operator()(const std::pair<long, long>& k) const { return std::hash<unsigned long>()(static_cast<unsigned long>(k.first) * 1000003u ^ static_cast<unsigned long>(k.second)); }
   };
   double bucket_;
   std::vector<Box> boxes_;

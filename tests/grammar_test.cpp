@@ -66,7 +66,7 @@ TEST(GrammarFile, EveryMistakeNamesTheFileAndLine) {
             "");
 }
 
-TEST(GrammarFile, TerminalNamesAreSeed002s) {
+TEST(GrammarFile, TerminalNamesAreAZoneAndDensityARoadOrAPark) {
   Terminal t;
   ASSERT_TRUE(parse_terminal("Industrial_Sparse", t));
   EXPECT_EQ(t.kind, Terminal::Land);

@@ -150,7 +150,7 @@ export class ExploreView {
     return true;
   }
 
-  // Seed 000, 3.3.4: an air photo of the whole city, taken once from straight above at the
+  // An air photo of the whole city, taken once from straight above at the
   // height that sees all of it, is the minimap's background: every tile at its coarsest level
   // over the ground. Until it is taken the minimap draws the zones, water and roads.
   async captureOverview() {
@@ -199,7 +199,7 @@ export class ExploreView {
     return hit ? Math.round(hit.point.y * 100) / 100 : 0;
   }
 
-  // Seed 000, 3.3.2: azimuth any way round, elevation kept in the upper hemisphere.
+  // The orbit: azimuth any way round, elevation kept in the upper hemisphere.
   setOrbit(change) {
     const o = {...this.orbit, ...change};
     o.elevation = Math.min(90, Math.max(1, o.elevation));
