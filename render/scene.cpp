@@ -193,47 +193,27 @@ struct RenderScene::Geometry {
 
 unsigned RenderScene::add_triangles(const std::vector<V3>& vertices, const std::vector<std::array<int, 3>>& tris,
                                     Geometry info) {
-  RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+  RTCGeometry g = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* v = static_cast<float*>(
-      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices.size()));
+      device_.new_buffer(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices.size()));
   for (std::size_t i = 0; i < vertices.size(); ++i)
     v[3 * i] = vertices[i].x, v[3 * i + 1] = vertices[i].y, v[3 * i + 2] = vertices[i].z;
   auto* t = static_cast<unsigned*>(
-      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), tris.size()));
+      device_.new_buffer(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), tris.size()));
   for (std::size_t i = 0; i < tris.size(); ++i)
     for (int k = 0; k < 3; ++k) t[3 * i + k] = static_cast<unsigned>(tris[i][k]);
   rtcCommitGeometry(g);
   unsigned id = rtcAttachGeometry(scene_, g);
   rtcReleaseGeometry(g);
+  device_.check("a mesh");
   if (geometries_.size() <= id) geometries_.resize(id + 1);
   geometries_[id] = std::move(info);
   triangles += tris.size();
   return id;
 }
 
-void RenderScene::start_device() {
-  device_ = rtcNewDevice(nullptr);
-  if (!device_) throw std::runtime_error("Embree: no device");
-  // Embree 3 builds ray packets and streams together (EMBREE_RAY_PACKETS); this property
-  // tells whether it was.
-  packets_ = rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_RAY_STREAM_SUPPORTED) != 0;
-  rtcSetDeviceMemoryMonitorFunction(
-      device_,
-      [](void* user, ssize_t bytes, bool) {
-        auto* m = static_cast<Memory*>(user);
-        const std::int64_t now = m->now += bytes;
-        std::size_t peak = m->peak;
-        while (now > 0 && static_cast<std::size_t>(now) > peak &&
-               !m->peak.compare_exchange_weak(peak, static_cast<std::size_t>(now))) {
-        }
-        return true;
-      },
-      memory_.get());
-  scene_ = rtcNewScene(device_);
-}
-
-RenderScene::RenderScene(const std::vector<TriangleSoup>& soups, bool ground_plane) : ground_plane_(ground_plane) {
-  start_device();
+RenderScene::RenderScene(const std::vector<TriangleSoup>& soups, bool ground_plane)
+    : scene_(rtcNewScene(device_.get())), ground_plane_(ground_plane) {
   bounds = geom::Box::none();
   for (const TriangleSoup& s : soups) {
     materials_.push_back(s.material);
@@ -248,6 +228,7 @@ RenderScene::RenderScene(const std::vector<TriangleSoup>& soups, bool ground_pla
   patterns_.push_back(Pattern::Grass);
   grass_material_ = static_cast<int>(materials_.size()) - 1;
   rtcCommitScene(scene_);
+  device_.check("the scene");
 }
 
 namespace {
@@ -275,12 +256,12 @@ void commit_cancellable(RTCScene scene) {
 }  // namespace
 
 RenderScene::RenderScene(const exacity::City& city, V3 sun, const SceneOptions& options)
-    : ground_plane_(options.ground_plane) {
-  start_device();
+    : scene_(rtcNewScene(device_.get())), ground_plane_(options.ground_plane) {
   try {
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
     build(city, sun, options);
     commit_cancellable(scene_);
+    device_.check("the city's scene");
   } catch (...) {
     release();  // no destructor runs for a constructor that throws
     throw;
@@ -293,8 +274,7 @@ void RenderScene::release() {
   if (scene_) rtcReleaseScene(scene_);
   for (RTCScene s : model_scenes_)
     if (s) rtcReleaseScene(s);
-  if (device_) rtcReleaseDevice(device_);
-  scene_ = nullptr, model_scenes_.clear(), device_ = nullptr;
+  scene_ = nullptr, model_scenes_.clear();
 }
 
 void RenderScene::build(const exacity::City& city, V3 sun, const SceneOptions& options) {
@@ -632,28 +612,29 @@ RenderScene::ModelMaterials RenderScene::add_model_materials(const exacity::Mode
 RTCScene RenderScene::model_scene(const exacity::ModelLibrary& library, int model) {
   if (model_scenes_[model]) return model_scenes_[model];
   const exacity::TriangleMesh& mesh = library.models[model].mesh;
-  RTCScene ms = rtcNewScene(device_);
-  RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+  RTCScene ms = model_scenes_[model] = rtcNewScene(device_.get());  // released with the others if this throws
+  RTCGeometry g = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* v = static_cast<float*>(
-      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.size()));
+      device_.new_buffer(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.size()));
   for (std::size_t j = 0; j < mesh.vertices.size(); ++j)
     for (int c = 0; c < 3; ++c) v[3 * j + c] = static_cast<float>(mesh.vertices[j][c]);
-  auto* t = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                           3 * sizeof(unsigned), mesh.triangles.size()));
+  auto* t = static_cast<unsigned*>(
+      device_.new_buffer(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangles.size()));
   for (std::size_t j = 0; j < mesh.triangles.size(); ++j)
     for (int c = 0; c < 3; ++c) t[3 * j + c] = static_cast<unsigned>(mesh.triangles[j][c]);
   rtcCommitGeometry(g);
   rtcAttachGeometry(ms, g);
   rtcReleaseGeometry(g);
   rtcCommitScene(ms);
-  return model_scenes_[model] = ms;
+  device_.check("a model's scene");
+  return ms;
 }
 
 // An instance of the model's scene in the top scene, turned, scaled and moved into place.
 void RenderScene::add_instance(const exacity::ModelInstance& m, const exacity::ModelLibrary& library,
                                const ModelMaterials& materials, Entity entity) {
   const exacity::Model& model = library.models[m.placed.model];
-  RTCGeometry inst = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+  RTCGeometry inst = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_INSTANCE);
   rtcSetGeometryInstancedScene(inst, model_scene(library, m.placed.model));
   const float c = std::cos(static_cast<float>(m.placed.angle)) * static_cast<float>(m.placed.scale);
   const float s = std::sin(static_cast<float>(m.placed.angle)) * static_cast<float>(m.placed.scale);
@@ -665,6 +646,7 @@ void RenderScene::add_instance(const exacity::ModelInstance& m, const exacity::M
   rtcCommitGeometry(inst);
   unsigned id = rtcAttachGeometry(scene_, inst);
   rtcReleaseGeometry(inst);
+  device_.check("a model's instance");
   Geometry info;
   info.instance = true;
   info.instance_entity = entity_id(entity, static_cast<std::size_t>(m.id));
@@ -704,7 +686,7 @@ bool RenderScene::intersect(V3 o, V3 d, float tmax, Surface& s) const {
 
 void RenderScene::intersect_packet(const V3* o, const V3* d, int count, Surface* hits, bool* found) const {
   assert(count >= 0 && count <= kPacket);
-  if (!packets_) {
+  if (!device_.packets()) {
     for (int i = 0; i < count; ++i) found[i] = intersect(o[i], d[i], INFINITY, hits[i]);
     return;
   }
@@ -808,7 +790,7 @@ bool RenderScene::meets_ground_plane(V3 o, V3 d, float tmax) const {
 void RenderScene::occluded_packet(const V3* o, const V3* d, int count, bool* blocked) const {
   assert(count >= 0 && count <= kPacket);
   if (count == 0) return;  // camera rays that met no surface the sun lights: no call to make
-  if (!packets_) {
+  if (!device_.packets()) {
     for (int i = 0; i < count; ++i) blocked[i] = occluded(o[i], d[i], INFINITY);
     return;
   }
