@@ -6,9 +6,9 @@
 #include <stdexcept>
 
 #include "generate/cancel.h"
-#include "generate/export/building_mesh.h"
-#include "generate/export/bridges.h"
-#include "generate/export/ground_mesh.h"
+#include "generate/mesh/building_mesh.h"
+#include "generate/mesh/bridges.h"
+#include "generate/mesh/ground_mesh.h"
 #include "generate/city/palette.h"
 #include "generate/city/random.h"
 #include "render/noise.h"

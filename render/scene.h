@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "generate/city.h"
-#include "generate/export/bridges.h"
+#include "generate/mesh/bridges.h"
 #include "render/camera.h"
 #include "render/embree_device.h"
 #include "render/facade.h"

@@ -1,4 +1,4 @@
-#include "generate/export/ground_mesh.h"
+#include "generate/mesh/ground_mesh.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "generate/export/building_mesh.h"
+#include "generate/mesh/building_mesh.h"
 
 #include <cmath>
 #include <map>
