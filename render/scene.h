@@ -3,7 +3,9 @@
 // lane markings), building meshes merged per city tile, and each placed model stored once
 // as its own scene and placed by an instance in the top scene (Debian's Embree allows one
 // instance level). Tiles outside the view frustum stay out (a BVH over tile boxes finds
-// them); distant tiles get a simpler level. Every hit maps back to its city entity.
+// them); distant tiles get a simpler level. Every hit maps back to its city entity. Its
+// parts live in render/scene*.cpp, one concept each (render/scene_build.h lists them), and
+// render/tile_culling.h.
 #pragma once
 
 #include <embree3/rtcore.h>
