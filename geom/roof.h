@@ -7,10 +7,10 @@
 #include <vector>
 
 #include "geom/plain.h"
+#include "geom/vec3.h"
 
 namespace geom {
 
-using Vec3 = std::array<double, 3>;
 using Face3 = std::vector<Vec3>;
 
 // One face per footprint edge, rising with `slope` (rise over run) from eaves at height

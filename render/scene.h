@@ -3,7 +3,9 @@
 // lane markings), building meshes merged per city tile, and each placed model stored once
 // as its own scene and placed by an instance in the top scene (Debian's Embree allows one
 // instance level). Tiles outside the view frustum stay out (a BVH over tile boxes finds
-// them); distant tiles get a simpler level. Every hit maps back to its city entity.
+// them); distant tiles get a simpler level. Every hit maps back to its city entity. Its
+// parts live in render/scene*.cpp, one concept each (render/scene_build.h lists them), and
+// render/tile_culling.h.
 #pragma once
 
 #include <embree3/rtcore.h>
@@ -17,8 +19,9 @@
 #include <vector>
 
 #include "generate/city.h"
-#include "generate/export/bridges.h"
+#include "generate/mesh/bridges.h"
 #include "render/camera.h"
+#include "render/embree_device.h"
 #include "render/facade.h"
 #include "render/material.h"
 #include "render/texture.h"
@@ -113,19 +116,13 @@ class RenderScene {
   std::vector<TileLevel> tiles;
   std::size_t triangles = 0, instances = 0;
   // The most memory Embree held at once, from its device's memory monitor.
-  std::size_t embree_peak_bytes() const { return memory_->peak; }
+  std::size_t embree_peak_bytes() const { return device_.peak_bytes(); }
 
  private:
-  struct Memory {
-    std::atomic<std::int64_t> now{0};
-    std::atomic<std::size_t> peak{0};
-  };
-  void start_device();
   void release();
   struct Hit;
   bool surface(V3 origin, V3 direction, float tmax, const Hit& hit, Surface& s) const;
   bool meets_ground_plane(V3 origin, V3 direction, float tmax) const;
-  std::unique_ptr<Memory> memory_ = std::make_unique<Memory>();
   struct Geometry;
   struct Palette;
   unsigned add_triangles(const std::vector<V3>& vertices, const std::vector<std::array<int, 3>>& tris, Geometry info);
@@ -156,8 +153,7 @@ class RenderScene {
   void add_instance(const exacity::ModelInstance& m, const exacity::ModelLibrary& library,
                     const ModelMaterials& materials, Entity entity = Entity::Model);
 
-  RTCDevice device_ = nullptr;
-  bool packets_ = false;  // the device traces packets of kPacket rays
+  EmbreeDevice device_;  // declared first: released after the scenes
   RTCScene scene_ = nullptr;
   std::vector<RTCScene> model_scenes_;
   std::vector<Geometry> geometries_;  // by top-level geomID

@@ -7,7 +7,7 @@
 
 #include "generate/cancel.h"
 #include "generate/errors.h"
-#include "generate/export/building_mesh.h"
+#include "generate/mesh/building_mesh.h"
 #include "generate/export/gltf_export.h"
 
 namespace exacity::serve {

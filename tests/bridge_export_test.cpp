@@ -10,7 +10,7 @@
 #include <cstring>
 #include <set>
 
-#include "generate/export/bridges.h"
+#include "generate/mesh/bridges.h"
 #include "geom/measure.h"
 #include "tests/cli_util.h"
 #include "tests/river_sketch.h"

@@ -7,8 +7,8 @@
 #include <sstream>
 
 #include "generate/placement/building_settings.h"
-#include "generate/export/building_mesh.h"
-#include "generate/export/ground_mesh.h"
+#include "generate/mesh/building_mesh.h"
+#include "generate/mesh/ground_mesh.h"
 #include "generate/export/mesh_export.h"
 #include "generate/city/terrain.h"
 #include "geom/polygon_check.h"

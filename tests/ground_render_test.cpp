@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "generate/export/bridges.h"
+#include "generate/mesh/bridges.h"
 #include "generate/pipeline.h"
 #include "geom/measure.h"
 #include "render/camera.h"

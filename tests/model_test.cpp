@@ -254,7 +254,7 @@ TEST(LibraryLots, EachLotHoldsItsOwnModelFacingTheStreet) {
     EXPECT_EQ(m.placed.model, city.lots[m.lot].model);
   }
   for (std::size_t i = 0; i < city.lots.size(); ++i) {
-    EXPECT_GE(city.lots[i].model, 0);
+    EXPECT_TRUE(city.lots[i].model.has_value());
     EXPECT_EQ(held[i], 1) << "lot " << i;
   }
   EXPECT_EQ(city.unbuilt_lots.merged + city.unbuilt_lots.left_open, 0);

@@ -10,8 +10,10 @@
 #include <OpenImageIO/imageio.h>
 #include <tbb/global_control.h>
 
+#include "generate/errors.h"
 #include "generate/pipeline.h"
 #include "render/camera.h"
+#include "render/embree_device.h"
 #include "render/image_io.h"
 #include "render/material.h"
 #include "render/path_tracer.h"
@@ -200,6 +202,34 @@ TEST(Camera, OrbitStaysAboveTheGroundAndSpecsParse) {
   for (const char* bad : {"orbit:target=0,0,azimuth=1,elevation=2,distance=3", "look:from=1,2,3", "pan:x=1",
                           "look:from=0,0,0,to=0,0,0", "orbit:target=a,0,0,azimuth=0,elevation=1,distance=2"})
     EXPECT_THROW(Camera::parse(bad, 50), std::invalid_argument) << bad;
+}
+
+// Embree reports an error through the device's error function and carries on; the device
+// turns it into one InternalError with Embree's own text.
+TEST(Render, EmbreeErrorsBecomeOneInternalErrorWithEmbreesText) {
+  render::EmbreeDevice device;
+  EXPECT_NO_THROW(device.check("nothing yet"));
+  RTCGeometry wrong = rtcNewGeometry(device.get(), static_cast<RTCGeometryType>(999));
+  EXPECT_EQ(wrong, nullptr);
+  try {
+    device.check("a mesh");
+    ADD_FAILURE() << "no error";
+  } catch (const exacity::InternalError& e) {
+    EXPECT_EQ(std::string(e.what()), "Embree: a mesh: unknown error, invalid geometry type");
+  }
+}
+
+// A buffer Embree cannot make is an InternalError, not a null pointer written to.
+TEST(Render, AnEmbreeBufferTooLargeIsAnInternalError) {
+  render::EmbreeDevice device;
+  RTCGeometry g = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+  try {
+    device.new_buffer(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, 3 * sizeof(float), std::size_t(1) << 58);
+    ADD_FAILURE() << "no error";
+  } catch (const exacity::InternalError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("Embree: a geometry's buffer: invalid argument, buffer too large", 0), 0u) << e.what();
+  }
+  rtcReleaseGeometry(g);
 }
 
 TEST(Render, CityImagesAreTheSameWhateverTheThreadCountAndHitsNameTheirEntity) {

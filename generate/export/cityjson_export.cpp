@@ -7,7 +7,7 @@
 
 #include "generate/cancel.h"
 #include "generate/errors.h"
-#include "generate/export/bridges.h"
+#include "generate/mesh/bridges.h"
 #include "generate/export/ground_layers.h"
 #include "generate/gis/projection.h"
 #include "geom/ring_cleanup.h"

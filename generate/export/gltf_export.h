@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "generate/export/building_mesh.h"
+#include "generate/mesh/building_mesh.h"
 #include "generate/export/ground_layers.h"
 #include "generate/placement/model_library.h"
 #include "generate/city/ground.h"

@@ -3,7 +3,7 @@
 #include <map>
 
 #include "generate/cancel.h"
-#include "generate/export/bridges.h"
+#include "generate/mesh/bridges.h"
 
 namespace exacity {
 

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "generate/export/building_mesh.h"
+#include "generate/mesh/building_mesh.h"
 #include "generate/export/ground_layers.h"
 
 namespace exacity {

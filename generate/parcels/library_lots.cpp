@@ -136,13 +136,13 @@ class LibraryLots : public LotLayout {
     if (fitting.empty()) return 0;
     const Vec2 front = e.at(backwards ? t - library_.models[fitting[0]].lot_width / 2 : t, 0);
     Choices choices = choices_at(fitting, library_, &channels_, front);
-    const int drawn = pick(choices, p.rng);
-    if (drawn < 0) return 0;
+    const std::optional<int> drawn = pick(choices, p.rng);
+    if (!drawn) return 0;
     // The drawn entry first, then the rest by weight.
     std::vector<std::size_t> order(choices.models.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::stable_sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
-      const bool di = choices.models[i] == drawn, dj = choices.models[j] == drawn;
+      const bool di = choices.models[i] == *drawn, dj = choices.models[j] == *drawn;
       return di != dj ? di : choices.weights[i] > choices.weights[j];
     });
     for (std::size_t i : order) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "generate/city/random.h"
@@ -23,7 +24,7 @@ struct PlannedLot {
   ZoneType zone = ZoneType::Residential;
   geom::Ring ring;
   geom::Cell cell;
-  int model = -1;  // a library lot's model, else -1
+  std::optional<int> model = std::nullopt;  // a library lot's model
 };
 
 class LotLayout {

@@ -4,6 +4,7 @@
 // is cut back exactly there, and where lots overlap the first one listed owns the overlap.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "generate/city/city_map.h"
@@ -26,7 +27,7 @@ struct Lot {
   int planned = -1;        // the planned lot it is a piece of (its faces' FaceLabel::lot)
   int rank = 0;            // its order among the planned lot's pieces kept as lots
   int piece = -1;          // its component among the map's lot faces (geom::PlanarMap::cells)
-  int model = -1;          // a library lot's model, else -1
+  std::optional<int> model = std::nullopt;  // a library lot's model
 };
 // The kind of a lot cell's edge (its geom::Cell edge tag).
 struct LotEdge {

@@ -225,12 +225,13 @@ class Dresser {
     }
     if (models.empty()) return later;
     const Vec2 nominal = geom::snap(from + out * lib_.models[models[0]].offset);
-    const int m = pick(choices_at(models, lib_, &channels_, nominal), rng_);
+    const std::optional<int> drawn = pick(choices_at(models, lib_, &channels_, nominal), rng_);
     const char* why = nullptr;
-    if (m < 0) {
+    if (!drawn) {
       miss(kind, kChannels);
       return lib_.models[models[0]].spacing;
     }
+    const int m = *drawn;
     const Model& model = lib_.models[m];
     const double scale = rng_.uniform(model.min_scale, model.max_scale);
     const int tint = static_cast<int>(rng_.next() % kTints);

@@ -296,14 +296,14 @@ class Candidate {
 // when no choice has weight here.
 std::optional<Candidate> draw(const Choices& choices, const ModelLibrary& lib, const BuildingSettings& params,
                               double cell, Random& rng) {
-  const int model = pick(choices, rng);
-  if (model < 0) return std::nullopt;
-  const Model& m = lib.models[model];
+  const std::optional<int> model = pick(choices, rng);
+  if (!model) return std::nullopt;
+  const Model& m = lib.models[*model];
   const double scale = rng.uniform(m.min_scale, m.max_scale);
   const int tint = static_cast<int>(rng.next() % kTints);
   // The lot's edges keep half the gap already (lay_grid); between models, the whole gap,
   // and a cell at least: footprints that touch are not apart (Occupancy).
-  return Candidate{m, model, scale, tint, cell, std::max(1, static_cast<int>(std::ceil(params.building_gap / cell - 1e-9))),
+  return Candidate{m, *model, scale, tint, cell, std::max(1, static_cast<int>(std::ceil(params.building_gap / cell - 1e-9))),
                    params.nesting};
 }
 

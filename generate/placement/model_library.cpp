@@ -47,12 +47,12 @@ Choices choices_at(const std::vector<int>& models, const ModelLibrary& lib, cons
   return out;
 }
 
-int pick(const Choices& choices, Random& rng) {
+std::optional<int> pick(const Choices& choices, Random& rng) {
   double total = 0;
   for (double w : choices.weights) total += w;
   double r = rng.uniform() * total;
-  if (!(total > 0)) return -1;
-  int last = -1;
+  if (!(total > 0)) return std::nullopt;
+  std::optional<int> last;
   for (std::size_t i = 0; i < choices.models.size(); ++i) {
     if (choices.weights[i] <= 0) continue;
     last = choices.models[i];

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -107,8 +108,8 @@ struct Choices {
 // `channels` may be null (no channels: the library's weights).
 Choices choices_at(const std::vector<int>& models, const ModelLibrary& library, const Channels* channels, geom::Vec2 p);
 
-// One of the choices, drawn by weight; -1 when every weight is 0.
-int pick(const Choices& choices, Random& rng);
+// One of the choices, drawn by weight; none when every weight is 0.
+std::optional<int> pick(const Choices& choices, Random& rng);
 
 // Throws UserError naming the manifest, the entry and the fix.
 ModelLibrary load_model_library(const std::filesystem::path& manifest);

@@ -90,8 +90,9 @@ struct Placing {
 void place_street_furniture(Placing& s, const Choices& choices, const BuildingSettings& params, Random& rng) {
   if (!s.f.on_road) return;
   for (double t = s.f.t0 + s.lib.models[choices.models[0]].spacing / 2; t < s.f.t1;) {
-    int m = pick(choices, rng);
-    if (m < 0) return;
+    const std::optional<int> drawn = pick(choices, rng);
+    if (!drawn) return;
+    const int m = *drawn;
     double scale = rng.uniform(s.lib.models[m].min_scale, s.lib.models[m].max_scale);
     int tint = static_cast<int>(rng.next() % kTints);
     s.try_place(m, {m, s.f.at(t, params.setback / 2), s.along, scale, tint});
@@ -105,8 +106,9 @@ void place_trees(Placing& s, const Choices& choices, Random& rng) {
   const geom::Box box = piece.bounds();
   const int attempts = static_cast<int>(std::clamp(piece.area() / 150, 1.0, 24.0));
   for (int i = 0; i < attempts; ++i) {
-    int m = pick(choices, rng);
-    if (m < 0) return;
+    const std::optional<int> drawn = pick(choices, rng);
+    if (!drawn) return;
+    const int m = *drawn;
     Placement p{m, {rng.uniform(box.min_x, box.max_x), rng.uniform(box.min_y, box.max_y)}, rng.uniform(0, 2 * M_PI),
                 rng.uniform(s.lib.models[m].min_scale, s.lib.models[m].max_scale), static_cast<int>(rng.next() % kTints)};
     s.try_place(m, p);
@@ -133,8 +135,9 @@ std::vector<Candidate> draw_candidates(const Placing& s, const Choices& choices,
   std::vector<Candidate> candidates;
   row_depth = 0;
   for (int i = 0; i < count; ++i) {
-    int m = pick(choices, rng);
-    if (m < 0) break;
+    const std::optional<int> drawn = pick(choices, rng);
+    if (!drawn) break;
+    const int m = *drawn;
     double scale = rng.uniform(s.lib.models[m].min_scale, s.lib.models[m].max_scale);
     const Model& model = s.lib.models[m];
     candidates.push_back({m, scale, rng.uniform(lo, hi), model.width * model.depth * scale * scale,
@@ -238,15 +241,15 @@ class OwnLotPlacer : public Placer {
  public:
   explicit OwnLotPlacer(const ModelLibrary& library) : library_(library) {}
   void place(const Lot& lot, const BuildingSettings&, Occupancy& occupancy, Random& rng, Structures& out) const override {
-    if (lot.model < 0) return;
-    const Model& m = library_.models[lot.model];
+    if (!lot.model) return;
+    const Model& m = library_.models[*lot.model];
     const Frontage& f = occupancy.frontage();
     if (!(f.t1 > f.t0)) return;
     const double room = std::min((f.t1 - f.t0 - 2 * kLotMargin) / m.width, (f.depth - 2 * kLotMargin) / m.depth);
     const double drawn = rng.uniform(m.min_scale, m.max_scale);
     const int tint = static_cast<int>(rng.next() % kTints);
     for (double scale : {std::max(std::min(drawn, room), m.min_scale), m.min_scale}) {
-      const Placement p{lot.model, f.at((f.t0 + f.t1) / 2, f.depth / 2), std::atan2(f.u.y, f.u.x), scale, tint};
+      const Placement p{*lot.model, f.at((f.t0 + f.t1) / 2, f.depth / 2), std::atan2(f.u.y, f.u.x), scale, tint};
       geom::Ring ring = placed_outline(m, p);
       if (!occupancy.take(ring)) continue;
       out.models.push_back(made(m, p, std::move(ring)));

@@ -19,11 +19,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
 // An .mtl's map_Kd line after the keyword: options, then the file name, which is the rest of
 // the line (names may hold spaces; "\\" between parts is read as "/").
 struct TextureMap {
@@ -327,7 +322,7 @@ std::pair<std::vector<int>, std::vector<int>> welded_face(const std::vector<int>
 }
 
 bool has_no_area(const std::vector<Vec3>& vertices, const std::array<int, 3>& t) {
-  Vec3 n = cross(sub(vertices[t[1]], vertices[t[0]]), sub(vertices[t[2]], vertices[t[0]]));
+  const Vec3 n = geom::triangle_normal(vertices[t[0]], vertices[t[1]], vertices[t[2]]);
   return n[0] == 0 && n[1] == 0 && n[2] == 0;
 }
 

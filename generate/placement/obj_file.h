@@ -13,10 +13,11 @@
 #include <vector>
 
 #include "generate/placement/texture_image.h"
+#include "geom/vec3.h"
 
 namespace exacity {
 
-using Vec3 = std::array<double, 3>;
+using geom::Vec3;
 
 using Uv = std::array<double, 2>;
 

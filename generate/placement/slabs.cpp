@@ -13,12 +13,6 @@ namespace {
 
 using geom::Vec2;
 
-Vec3 minus(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3 normal(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 u = minus(b, a), v = minus(c, a);
-  return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-}
-
 // Where the edge from p (at or below z) to q (above) crosses the height z. Always from the
 // lower end, so the two triangles sharing an edge find the same point.
 Vec2 crossing(const Vec3& p, const Vec3& q, double z) {
@@ -49,7 +43,7 @@ std::vector<double> cut_heights(const TriangleMesh& mesh, double height) {
   std::vector<double> zs;
   for (const auto& t : mesh.triangles) {
     const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
-    if (normal(a, b, c)[2] >= 0) continue;
+    if (geom::triangle_normal(a, b, c)[2] >= 0) continue;
     for (const Vec3* v : {&a, &b, &c})
       if ((*v)[2] > 0 && (*v)[2] < height) zs.push_back((*v)[2]);
   }
@@ -92,7 +86,7 @@ std::optional<std::vector<geom::Ring>> slab_outline(const TriangleMesh& mesh, do
       ends.push_back(p[2] <= mid ? crossing(p, q, mid) : crossing(q, p, mid));
     }
     if (ends.size() != 2) continue;
-    const Vec3 n = normal(tri[0], tri[1], tri[2]);
+    const Vec3 n = geom::triangle_normal(tri[0], tri[1], tri[2]);
     const Vec2 d = ends[1] - ends[0];
     // Inside on the left: the left normal points against the outward normal.
     const double side = -d.y * n[0] + d.x * n[1];

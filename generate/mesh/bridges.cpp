@@ -1,4 +1,4 @@
-#include "generate/export/bridges.h"
+#include "generate/mesh/bridges.h"
 
 #include <cmath>
 #include <map>

@@ -7,7 +7,7 @@
 
 #include "generate/city/ground.h"
 #include "generate/city/terrain.h"
-#include "generate/export/ground_mesh.h"
+#include "generate/mesh/ground_mesh.h"
 
 namespace exacity {
 

@@ -1,4 +1,4 @@
-#include "generate/export/building_mesh.h"
+#include "generate/mesh/building_mesh.h"
 
 #include <cmath>
 #include <map>
@@ -132,10 +132,8 @@ class MeshBuilder {
 
 // A slope's surface class: facing up a roof, facing down a ground, else a wall.
 Surface slope_class(const Vec3& p, const Vec3& q, const Vec3& r) {
-  double nx = (q[1] - p[1]) * (r[2] - p[2]) - (q[2] - p[2]) * (r[1] - p[1]);
-  double ny = (q[2] - p[2]) * (r[0] - p[0]) - (q[0] - p[0]) * (r[2] - p[2]);
-  double nz = (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
-  double len = std::sqrt(nx * nx + ny * ny + nz * nz);
+  const auto [nx, ny, nz] = geom::triangle_normal(p, q, r);
+  const double len = std::sqrt(nx * nx + ny * ny + nz * nz);
   return nz > 0.5 * len ? Surface::Roof : nz < -0.5 * len ? Surface::Ground : Surface::Wall;
 }
 

@@ -1,0 +1,181 @@
+#include "generate/city_report.h"
+
+#include <algorithm>
+#include <fstream>
+#include <optional>
+
+#include "generate/errors.h"
+#include "generate/export/statistics.h"
+#include "generate/placement/building_settings.h"
+#include "generate/version.h"
+#include "geom/measure.h"
+
+namespace exacity {
+namespace fs = std::filesystem;
+using nlohmann::ordered_json;
+
+namespace {
+
+// report.json's road_network: regions and levels grown, roads and segments per class,
+// junctions per degree (1: a dead end at a region's edge), how the sketch's roads met.
+ordered_json road_network_report(const RoadNetwork& network, const DrawnFeatures& sketch) {
+  ordered_json segments = ordered_json::object(), roads_by_class = ordered_json::object();
+  for (const MapRoad& r : network.map.roads) {
+    std::string c(name(r.road_class));
+    roads_by_class[c] = roads_by_class.value(c, 0) + 1;
+    for (const auto& line : r.lines) segments[c] = segments.value(c, 0) + static_cast<int>(line.size()) - 1;
+  }
+  ordered_json junctions = ordered_json::object();
+  for (auto [degree, count] : network.map.map.polyline_degrees())
+    if (degree != 2) junctions[std::to_string(degree)] = count;
+  ordered_json dead_ends = ordered_json::array();
+  for (const DeadEnd& d : sketch.dead_ends) dead_ends.push_back({{"feature", d.feature}, {"at", {d.at.x, d.at.y}}});
+  return {{"regions", network.stats.regions},
+          {"levels", network.stats.levels},
+          {"roads", roads_by_class},
+          {"segments", segments},
+          {"junctions_by_degree", junctions},
+          {"cells_without_access", network.stats.cells_without_access},
+          {"links", network.stats.links},
+          {"dropped_roads", network.stats.dropped_roads},
+          {"sketch_junctions", {{"mitred", network.map.mitred_junctions}, {"discs", network.map.disc_junctions}}},
+          {"joined_ends", sketch.joined_ends},
+          {"dead_ends", dead_ends}};
+}
+
+// Whether a drawn zone holds p as the sketch reads it: its outer ring winds around p and no
+// hole does.
+bool zone_holds(const ZoneFeature& zone, geom::Vec2 p) {
+  for (const geom::Polygon& polygon : zone.polygons) {
+    if (geom::winding_number(polygon.outer, p) == 0) continue;
+    if (std::none_of(polygon.holes.begin(), polygon.holes.end(), [&](const geom::Ring& h) { return geom::winding_number(h, p) != 0; }))
+      return true;
+  }
+  return false;
+}
+
+// The drawn zone a cell lies in (the later of two zones drawn over each other), or -1.
+int zone_feature_of(const geom::Cell& cell, const DrawnFeatures& sketch) {
+  const std::optional<geom::Vec2> p = cell.point_inside_near(cell.centroid());
+  if (!p) return -1;
+  for (int z = static_cast<int>(sketch.zones.size()) - 1; z >= 0; --z)
+    if (zone_holds(sketch.zones[z], *p)) return z;
+  return -1;
+}
+
+// report.json's empty_zones: each drawn residential, commercial or industrial zone that got
+// no lot, and why, so a zone never stays empty without a word.
+ordered_json empty_zones_report(const City& city) {
+  const DrawnFeatures& sketch = city.drawn;
+  std::vector<char> has_land(sketch.zones.size(), 0), has_lot(sketch.zones.size(), 0), has_street(sketch.zones.size(), 0);
+  for (const FaceLabel& label : city.network.map.labels)
+    if (label.cover == Cover::Zone && label.zone >= 0) has_land[label.zone] = 1;
+  for (const Lot& lot : city.lots)
+    if (const int z = zone_feature_of(lot.cell, sketch); z >= 0) has_lot[z] = 1;
+  for (const Block& block : city.blocks)
+    if (!block.green && !block.roads.empty())
+      if (const int z = zone_feature_of(block.cell, sketch); z >= 0) has_street[z] = 1;
+  ordered_json empty = ordered_json::array();
+  for (std::size_t z = 0; z < sketch.zones.size(); ++z) {
+    const ZoneFeature& zone = sketch.zones[z];
+    if (has_lot[z] || !grows_roads(zone.type)) continue;
+    ordered_json entry{{"feature", zone.index},
+                       {"zone", name(zone.type)},
+                       {"why", !has_land[z]    ? "no land of its own: zones drawn later, water or roads cover all of it"
+                               : has_street[z] ? "its blocks along streets are too small or narrow for a lot"
+                                               : "no street reaches its land: draw a road to it, or lay it out by growth"}};
+    if (!zone.grid_cell.empty()) entry["grid_cell"] = zone.grid_cell;  // where a grid map's region begins
+    if (!zone.source.empty()) entry["source"] = zone.source;  // a feature read from another format
+    empty.push_back(std::move(entry));
+  }
+  return empty;
+}
+
+// report.json's placement_fallbacks: zone types whose lots ask for grid filling but whose
+// lots are built with extruded footprints in rows, as the library has no building for them.
+ordered_json placement_fallbacks_report(const City& city) {
+  ordered_json fallbacks = ordered_json::array();
+  for (const auto& [zone, settings] : city.settings.zone_settings) {
+    // The default placer falls back without a word: extruded footprints are what it asks for then.
+    if (settings.buildings.placement == &placer_types().front() || !grows_roads(zone)) continue;
+    const ModelLibrary* library = city.model_library();
+    if (library && !library->choices(zone, ModelKind::Building).empty()) continue;
+    fallbacks.push_back({{"zone", name(zone)},
+                         {"why", library && !library->file.empty() ? "the model library has no building for this zone type"
+                                         : "the sketch names no model library (\"exacity\".models, or --models)"}});
+  }
+  return fallbacks;
+}
+
+// report.json's counts: features per layer, the map's size and the 3D exports'.
+ordered_json counts_report(const City& city, const MeshCounts& mesh, const GltfCounts& gltf) {
+  const CityLayers& layers = city.layers;
+  int green = 0;
+  for (const Block& b : city.blocks) green += b.green;
+  auto counts = city.network.map.map.counts();
+  // The buildings layer holds every structure: buildings, and models of other kinds (trees).
+  ordered_json by_kind = ordered_json::object();
+  for (const VectorFeature& f : layers.buildings.features) {
+    const std::string kind = f.properties.value("kind", std::string("building"));
+    by_kind[kind] = by_kind.value(kind, 0) + 1;
+  }
+  return {{"zones", layers.zones.features.size()},
+          {"water", layers.water.features.size()},
+          {"roads", layers.roads.features.size()},
+          {"road_areas", layers.road_areas.features.size()},
+          {"blocks", city.blocks.size() - green},
+          {"green_spaces", green},
+          {"lots", layers.lots.features.size()},
+          {"buildings", layers.buildings.features.size()},
+          {"buildings_by_kind", by_kind},
+          {"clutter", city.clutter.items.size()},
+          {"map", {{"vertices", counts.vertices}, {"edges", counts.edges}, {"faces", counts.faces}}},
+          {"mesh", {{"vertices", mesh.vertices}, {"faces", mesh.faces}}},
+          {"gltf", {{"meshes", gltf.meshes}, {"instances", gltf.instances}, {"triangles", gltf.triangles}}}};
+}
+
+// report.json's clutter: what stands by kind, and the spots that found no place by kind and
+// why, so no spot is dropped without a word (docs/design.md, Placement).
+ordered_json clutter_report(const ClutterTally& tally) {
+  ordered_json placed = ordered_json::object(), missed = ordered_json::array();
+  for (const auto& [kind, n] : tally.placed) placed[kind] = n;
+  for (const auto& [key, n] : tally.missed) missed.push_back({{"kind", key.first}, {"why", key.second}, {"spots", n}});
+  return {{"placed", placed}, {"not_placed", missed}};
+}
+
+}  // namespace
+
+ordered_json city_report(const City& city, const WrittenCity& written, const ordered_json& timings) {
+  const CitySettings& settings = city.settings;
+  return {
+      {"generator", "exacity"},
+      {"version", kVersion},
+      {"kernel", geom::kernel_name()},
+      {"sketch", settings.path.filename().string()},
+      // Where the sketch's relative paths (heightmap, models) resolve, for `exacity render`.
+      {"sketch_path", fs::absolute(settings.path).lexically_normal().string()},
+      {"seed", settings.seed},
+      {"counts", counts_report(city, written.mesh, written.gltf)},
+      {"exports",
+       {{"vector_formats", written.vector_formats.empty() ? std::vector<std::string>{"geojson"} : written.vector_formats},
+        {"city_osm", written.city_osm ? "city.osm" : "not written: the sketch has no CRS (EPSG) to place it on Earth"}}},
+      {"road_network", road_network_report(city.network, city.drawn)},
+      {"unbuilt_lots", {{"merged", city.unbuilt_lots.merged}, {"left_open", city.unbuilt_lots.left_open}}},
+      {"empty_zones", empty_zones_report(city)},
+      {"placement_fallbacks", placement_fallbacks_report(city)},
+      {"clutter", clutter_report(city.clutter.tally)},
+      {"statistics", city_statistics(city.layers, &settings, &city.drawn)},
+      {"validation",
+       {{"ok", written.validation.ok()}, {"problems", written.validation.problems},
+        {"widest_sliver_m", written.validation.widest_sliver}}},
+      {"timings_s", timings},
+  };
+}
+
+void write_report(const ordered_json& report, const fs::path& dir) {
+  std::ofstream out(dir / "report.json", std::ios::binary);
+  out << report.dump(2) << "\n";
+  if (!out) throw UserError((dir / "report.json").string() + ": write failed (disk full?)");
+}
+
+}  // namespace exacity

@@ -1,0 +1,31 @@
+// report.json: what the generate job made, counted and explained from the city and the
+// exports' own counts (docs/design.md, Outputs).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "generate/city.h"
+#include "generate/export/gltf_export.h"
+#include "generate/export/mesh_export.h"
+#include "generate/export/validate.h"
+
+namespace exacity {
+
+// What the write stages learnt, besides the city.
+struct WrittenCity {
+  MeshCounts mesh;
+  GltfCounts gltf;
+  std::vector<std::string> vector_formats;  // beside GeoJSON
+  bool city_osm = false;                     // city.osm written (the sketch has a CRS)
+  Validation validation;
+};
+
+// The report, with the stages' timings under timings_s.
+nlohmann::ordered_json city_report(const City& city, const WrittenCity& written, const nlohmann::ordered_json& timings);
+void write_report(const nlohmann::ordered_json& report, const std::filesystem::path& dir);
+
+}  // namespace exacity
