@@ -334,6 +334,64 @@ TEST(OsmOutput, NoRoadAreaIsASliverAndEveryRoadKeepsASurface) {
   EXPECT_EQ(city.ground.roads.size(), unmerged.roads.size());
 }
 
+namespace {
+
+// Two stubs a few metres long lying wholly on others' surfaces, as short OSM ways at a
+// junction do: one across a highway's carriageway, one inside the junction of two highways.
+const char* kCoveredStubs = R"({"type": "FeatureCollection", "features": [
+  {"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": "Polygon", "coordinates": [[[-100, -100], [300, -100], [300, 300], [-100, 300], [-100, -100]]]}},
+  {"type": "Feature", "properties": {"road": "main", "width": 12}, "geometry": {"type": "LineString", "coordinates": [[0, 0], [200, 0]]}},
+  {"type": "Feature", "properties": {"road": "local", "width": 6}, "geometry": {"type": "LineString", "coordinates": [[60, -2], [64, 2]]}},
+  {"type": "Feature", "properties": {"road": "main", "width": 12}, "geometry": {"type": "LineString", "coordinates": [[100, 0], [100, 200]]}},
+  {"type": "Feature", "properties": {"road": "local", "width": 6}, "geometry": {"type": "LineString", "coordinates": [[100, 0], [101, 3]]}}]})";
+
+std::map<int, double> road_area_by_road(const Ground& ground) {
+  std::map<int, double> out;
+  for (const RoadArea& a : ground.road_areas) out[a.road] += geom::area(a.polygon);
+  return out;
+}
+
+}  // namespace
+
+TEST(OsmOutput, AStubOnOtherRoadsSurfacesTakesWhatItsCarriagewayCovers) {
+  const fs::path dir = testing_util::temp_dir("osm-stubs");
+  write(dir / "stubs.geojson", kCoveredStubs);
+  const Sketch sketch = load_sketch(dir / "stubs.geojson");
+  StageClock clock(nullptr, kCityStages);
+  const City city = build_city(sketch, clock);
+  ASSERT_EQ(city.ground.roads.size(), 4u);
+  const std::map<int, double> area = road_area_by_road(city.ground);
+  // Before: roads 1 and 3 had no area (the highway and the junction owned all they cover).
+  EXPECT_EQ(area.size(), 4u);
+  EXPECT_TRUE(city.ground.roads_without_area.empty());
+  // The stub across the highway has all its carriageway, 6 m by its length (its sides on the
+  // grid-line rule's points, within 1 cm2 of it); the highway
+  // gave it that and nothing moved: the surfaces cover what they covered.
+  ASSERT_TRUE(area.count(1));
+  EXPECT_NEAR(area.at(1), 6 * std::sqrt(32.0), 0.01);  // its sides on the grid-line rule's points
+  EXPECT_GT(area.count(3) ? area.at(3) : 0.0, 1.0);
+  const RoadNetwork network = grow_road_network(build_city_map(sketch, sketch, nullptr), sketch, sketch.zones);
+  const Ground before = extract_ground(network.map, {}, {}, sketch.zones);
+  double total = 0, total_before = 0;
+  for (const auto& [road, a] : area) total += a;
+  for (const auto& [road, a] : road_area_by_road(before)) total_before += a;
+  EXPECT_NEAR(total, total_before, 1e-6);
+}
+
+TEST(OsmOutput, AStubOnOtherRoadsSurfacesIsARoadObjectInCityJson) {
+  const fs::path dir = testing_util::temp_dir("osm-stubs-cli");
+  write(dir / "stubs.geojson", kCoveredStubs);
+  const cli_util::Result r = cli_util::run("generate " + (dir / "stubs.geojson").string() + " -o " + (dir / "out").string() + " -q");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const nlohmann::json city = nlohmann::json::parse(cli_util::read(dir / "out" / "city.city.json"));
+  std::set<int> roads;
+  for (const auto& [id, o] : city["CityObjects"].items())
+    if (o["type"] == "Road") roads.insert(o["attributes"]["road"].get<int>());
+  EXPECT_EQ(roads, (std::set<int>{0, 1, 2, 3}));
+  const nlohmann::json report = nlohmann::json::parse(cli_util::read(dir / "out" / "report.json"));
+  EXPECT_EQ(report["roads_without_area"], nlohmann::json::array());
+}
+
 TEST(OsmOutput, TheSummaryLineCountsBuildingsWithoutTrees) {
   const fs::path out = testing_util::temp_dir("osm-summary") / "out";
   const fs::path library = cli_util::kSource / "examples" / "models" / "library.json";
