@@ -176,6 +176,11 @@ int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, 
       std::fprintf(stderr, "exacity: note: %s: features[%d] (%s) got no lots: %s\n", sketch.path.string().c_str(),
                    z["feature"].get<int>(), zone.c_str(), why.c_str());
   }
+  for (const auto& r : result.report["roads_without_area"])
+    std::fprintf(stderr, "exacity: note: %s: road %d%s has a centre line and no road area: %s\n",
+                 (out / "vector" / "roads.geojson").string().c_str(), r["road"].get<int>(),
+                 r.contains("feature") ? (" (sketch.geojson features[" + std::to_string(r["feature"].get<int>()) + "])").c_str() : "",
+                 r["why"].get<std::string>().c_str());
   for (const auto& z : result.report["placement_fallbacks"])
     std::fprintf(stderr, "exacity: note: %s: %s lots are filled on the grid only with library models: %s; they get extruded footprints in rows\n",
                  sketch.path.string().c_str(), z["zone"].get<std::string>().c_str(), z["why"].get<std::string>().c_str());

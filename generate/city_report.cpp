@@ -91,6 +91,21 @@ ordered_json empty_zones_report(const City& city) {
   return empty;
 }
 
+// report.json's roads_without_area: each road with a centre line but no road area, so no
+// road is left out of road_areas and CityJSON without a word.
+ordered_json roads_without_area_report(const City& city) {
+  ordered_json out = ordered_json::array();
+  for (int id : city.ground.roads_without_area) {
+    ordered_json entry{{"road", id},
+                       {"why", "its carriageway lies wholly on other roads' surfaces, which have too little to spare "
+                               "for it, or rounding left it none"}};
+    // Its position in OUT/sketch.geojson's features, for a road drawn in the sketch.
+    if (const int road = city.ground.roads[id].sketch_road; road >= 0) entry["feature"] = city.drawn.roads[road].index;
+    out.push_back(std::move(entry));
+  }
+  return out;
+}
+
 // report.json's placement_fallbacks: zone types whose lots ask for grid filling but whose
 // lots are built with extruded footprints in rows, as the library has no building for them.
 ordered_json placement_fallbacks_report(const City& city) {
@@ -162,6 +177,7 @@ ordered_json city_report(const City& city, const WrittenCity& written, const ord
       {"road_network", road_network_report(city.network, city.drawn)},
       {"unbuilt_lots", {{"merged", city.unbuilt_lots.merged}, {"left_open", city.unbuilt_lots.left_open}}},
       {"empty_zones", empty_zones_report(city)},
+      {"roads_without_area", roads_without_area_report(city)},
       {"placement_fallbacks", placement_fallbacks_report(city)},
       {"clutter", clutter_report(city.clutter.tally)},
       {"statistics", city_statistics(city.layers, &settings, &city.drawn)},

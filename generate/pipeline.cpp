@@ -96,6 +96,7 @@ City build_city(const Sketch& sketch, StageClock& stages) {
   city.buildings = std::move(raised.buildings);
   city.models = std::move(raised.models);
   stages.run("vector layers", [&] {
+    give_covered_roads_their_carriageway(city.network.map);
     merge_sliver_road_areas(city.network.map);
     city.ground = extract_ground(city.network.map, city.blocks, city.lots, city.drawn.zones);
     city.layers = layers_of(city.ground, city.buildings, city.models, city.model_library());

@@ -3,6 +3,8 @@
 // to the test preset (label slow).
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "generate/sketch/sketch.h"
 #include "generate/pipeline.h"
 #include "tests/cli_util.h"
@@ -25,3 +27,29 @@ TEST(Gis, ARealExtractGeneratesAndValidates) {
   EXPECT_EQ(cli_util::shell(cli_util::geos_check(out)).code, 0);
 }
 
+
+// Helsinki's centre from its land use and streets (ogr2ogr exports of an extract): every
+// centre line's road has a road area and a CityJSON Road object, short ways lying wholly on
+// wider streets' surfaces among them (eight had none).
+TEST(Gis, EveryRealRoadWithACentreLineHasAnAreaAndARoadObject) {
+  const fs::path osm = cli_util::kSource / ".." / "shared" / "data" / "osm";
+  if (!fs::exists(osm / "helsinki_centre_streets.geojson"))
+    GTEST_SKIP() << osm << " is not here (../shared/data holds real data beside the repository)";
+  const fs::path out = testing_util::temp_dir("gis-helsinki") / "out";
+  fs::create_directories(out);
+  StageClock clock(nullptr, kCityStages + kWriteStages);
+  const Sketch sketch = load_sketch({osm / "helsinki_centre_landuse.geojson", osm / "helsinki_centre_streets.geojson"});
+  const City city = build_city(sketch, clock);
+  std::set<int> with_area;
+  for (const RoadArea& a : city.ground.road_areas) with_area.insert(a.road);
+  EXPECT_EQ(with_area.size(), city.ground.roads.size());
+  EXPECT_TRUE(city.ground.roads_without_area.empty());
+  const GenerateResult result = write_city(sketch, city, out, clock);
+  EXPECT_TRUE(result.valid) << result.report["validation"].dump();
+  EXPECT_EQ(result.report["roads_without_area"], nlohmann::ordered_json::array());
+  const nlohmann::json cityjson = nlohmann::json::parse(cli_util::read(out / "city.city.json"));
+  std::set<int> road_objects;
+  for (const auto& [id, o] : cityjson["CityObjects"].items())
+    if (o["type"] == "Road") road_objects.insert(o["attributes"]["road"].get<int>());
+  EXPECT_EQ(road_objects, with_area);
+}

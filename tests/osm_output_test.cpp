@@ -309,6 +309,26 @@ namespace {
 // leaves slivers of one road's surface between the others'.
 const char* kCrossingStreets = R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": "Polygon", "coordinates": [[[-100, -100], [500, -100], [500, 500], [-100, 500], [-100, -100]]]}}, {"type": "Feature", "properties": {"road": "main", "width": 10.5}, "geometry": {"type": "LineString", "coordinates": [[36.6, 144.4], [67.6, 323.6]]}}, {"type": "Feature", "properties": {"road": "main", "width": 12}, "geometry": {"type": "LineString", "coordinates": [[84.9, 14.3], [272.5, 399.9], [255.4, 321.5], [344.1, 203.6]]}}, {"type": "Feature", "properties": {"road": "local", "width": 8}, "geometry": {"type": "LineString", "coordinates": [[107.3, 14.4], [11.0, 186.0], [127.4, 152.0], [356.7, 210.3]]}}, {"type": "Feature", "properties": {"road": "local", "width": 12}, "geometry": {"type": "LineString", "coordinates": [[9.5, 130.1], [54.7, 204.1]]}}, {"type": "Feature", "properties": {"road": "main", "width": 8}, "geometry": {"type": "LineString", "coordinates": [[293.8, 362.6], [305.2, 315.9], [141.5, 392.4]]}}, {"type": "Feature", "properties": {"road": "main", "width": 12}, "geometry": {"type": "LineString", "coordinates": [[286.1, 184.6], [212.1, 196.0], [369.9, 200.3]]}}, {"type": "Feature", "properties": {"road": "local", "width": 10.5}, "geometry": {"type": "LineString", "coordinates": [[140.3, 290.4], [223.0, 182.6], [263.6, 376.2]]}}, {"type": "Feature", "properties": {"road": "main", "width": 10.5}, "geometry": {"type": "LineString", "coordinates": [[123.8, 382.9], [282.5, 201.7], [207.1, 260.6]]}}]})";
 
+// A sketch written into a folder of its own and read, and its city.
+struct BuiltSketch {
+  Sketch sketch;
+  City city;
+};
+BuiltSketch build(const std::string& name, const char* text) {
+  const fs::path file = testing_util::temp_dir(name) / "sketch.geojson";
+  write(file, text);
+  BuiltSketch out{load_sketch(file), {}};
+  StageClock clock(nullptr, kCityStages);
+  out.city = build_city(out.sketch, clock);
+  return out;
+}
+
+// The ground of the map as the road network leaves it, before road areas change hands.
+Ground ground_before_giving(const Sketch& sketch) {
+  const RoadNetwork network = grow_road_network(build_city_map(sketch, sketch, nullptr), sketch, sketch.zones);
+  return extract_ground(network.map, {}, {}, sketch.zones);
+}
+
 std::set<int> roads_with_areas(const Ground& ground) {
   std::set<int> out;
   for (const RoadArea& a : ground.road_areas) out.insert(a.road);
@@ -318,20 +338,68 @@ std::set<int> roads_with_areas(const Ground& ground) {
 }  // namespace
 
 TEST(OsmOutput, NoRoadAreaIsASliverAndEveryRoadKeepsASurface) {
-  const fs::path dir = testing_util::temp_dir("osm-slivers");
-  write(dir / "crossing.geojson", kCrossingStreets);
-  const Sketch sketch = load_sketch(dir / "crossing.geojson");
-  StageClock clock(nullptr, kCityStages);
-  const City city = build_city(sketch, clock);
+  const auto [sketch, city] = build("osm-slivers", kCrossingStreets);
   for (const RoadArea& a : city.ground.road_areas) EXPECT_GE(geom::area(a.polygon), 0.009) << "road " << a.road;
   // The same map as the road network leaves it, before anything is given away: the same
   // roads have surfaces, and it did hold a sliver.
-  const RoadNetwork network = grow_road_network(build_city_map(sketch, sketch, nullptr), sketch, sketch.zones);
-  const Ground unmerged = extract_ground(network.map, {}, {}, sketch.zones);
+  const Ground unmerged = ground_before_giving(sketch);
   EXPECT_TRUE(std::any_of(unmerged.road_areas.begin(), unmerged.road_areas.end(),
                           [](const RoadArea& a) { return geom::area(a.polygon) < 0.01; }));
   EXPECT_EQ(roads_with_areas(city.ground), roads_with_areas(unmerged));
   EXPECT_EQ(city.ground.roads.size(), unmerged.roads.size());
+}
+
+namespace {
+
+// Two stubs a few metres long lying wholly on others' surfaces, as short OSM ways at a
+// junction do: one across a highway's carriageway, one inside the junction of two highways.
+const char* kCoveredStubs = R"({"type": "FeatureCollection", "features": [
+  {"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": "Polygon", "coordinates": [[[-100, -100], [300, -100], [300, 300], [-100, 300], [-100, -100]]]}},
+  {"type": "Feature", "properties": {"road": "main", "width": 12}, "geometry": {"type": "LineString", "coordinates": [[0, 0], [200, 0]]}},
+  {"type": "Feature", "properties": {"road": "local", "width": 6}, "geometry": {"type": "LineString", "coordinates": [[60, -2], [64, 2]]}},
+  {"type": "Feature", "properties": {"road": "main", "width": 12}, "geometry": {"type": "LineString", "coordinates": [[100, 0], [100, 200]]}},
+  {"type": "Feature", "properties": {"road": "local", "width": 6}, "geometry": {"type": "LineString", "coordinates": [[100, 0], [101, 3]]}}]})";
+
+std::map<int, double> road_area_by_road(const Ground& ground) {
+  std::map<int, double> out;
+  for (const RoadArea& a : ground.road_areas) out[a.road] += geom::area(a.polygon);
+  return out;
+}
+
+}  // namespace
+
+TEST(OsmOutput, AStubOnOtherRoadsSurfacesTakesWhatItsCarriagewayCovers) {
+  const auto [sketch, city] = build("osm-stubs", kCoveredStubs);
+  ASSERT_EQ(city.ground.roads.size(), 4u);
+  const std::map<int, double> area = road_area_by_road(city.ground);
+  // Before: roads 1 and 3 had no area (the highway and the junction owned all they cover).
+  EXPECT_EQ(area.size(), 4u);
+  EXPECT_TRUE(city.ground.roads_without_area.empty());
+  // The stub across the highway has all its carriageway, 6 m by its length (its sides on the
+  // grid-line rule's points, within 1 cm2 of it); the highway
+  // gave it that and nothing moved: the surfaces cover what they covered.
+  ASSERT_TRUE(area.count(1));
+  EXPECT_NEAR(area.at(1), 6 * std::sqrt(32.0), 0.01);  // its sides on the grid-line rule's points
+  EXPECT_GT(area.count(3) ? area.at(3) : 0.0, 1.0);
+  const Ground before = ground_before_giving(sketch);
+  double total = 0, total_before = 0;
+  for (const auto& [road, a] : area) total += a;
+  for (const auto& [road, a] : road_area_by_road(before)) total_before += a;
+  EXPECT_NEAR(total, total_before, 1e-6);
+}
+
+TEST(OsmOutput, AStubOnOtherRoadsSurfacesIsARoadObjectInCityJson) {
+  const fs::path dir = testing_util::temp_dir("osm-stubs-cli");
+  write(dir / "stubs.geojson", kCoveredStubs);
+  const cli_util::Result r = cli_util::run("generate " + (dir / "stubs.geojson").string() + " -o " + (dir / "out").string() + " -q");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const nlohmann::json city = nlohmann::json::parse(cli_util::read(dir / "out" / "city.city.json"));
+  std::set<int> roads;
+  for (const auto& [id, o] : city["CityObjects"].items())
+    if (o["type"] == "Road") roads.insert(o["attributes"]["road"].get<int>());
+  EXPECT_EQ(roads, (std::set<int>{0, 1, 2, 3}));
+  const nlohmann::json report = nlohmann::json::parse(cli_util::read(dir / "out" / "report.json"));
+  EXPECT_EQ(report["roads_without_area"], nlohmann::json::array());
 }
 
 TEST(OsmOutput, TheSummaryLineCountsBuildingsWithoutTrees) {

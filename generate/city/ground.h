@@ -59,6 +59,10 @@ struct Ground {
   std::vector<RoadArea> road_areas;
   std::vector<BlockArea> blocks;
   std::vector<LotArea> lots;
+  // The ids of the first centre lines of roads no road area names (report.json names
+  // them): what every face a road's carriageway covers is in is another's and could not be
+  // given to it, or rounding took all it had.
+  std::vector<int> roads_without_area;
 
   // The box around zones, water and road areas (what covers the ground); holds nothing
   // for an empty city.

@@ -428,6 +428,9 @@ std::string format_statistics(const ordered_json& s) {
     out << "    " << what << ": " << a["count"] << ", area m2 median " << a["median"] << ", p95 " << a["p95"] << ", largest "
         << a["max"] << "\n";
   };
+  if (s.value("features_skipped", 0) > 0)
+    out << "features left out: " << s["features_skipped"]
+        << " (rings of fewer than 3 corners, lines of fewer than 2 points, other geometry, positions past 1e9 m)\n";
   if (s.contains("zones"))
     for (const auto& [zone, z] : s["zones"].items()) {
       out << zone << "\n";

@@ -1,11 +1,14 @@
 #include "generate/export/vector_layers.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
 #include <map>
+#include <set>
 
 #include "generate/cancel.h"
+#include "geom/box_index.h"
 #include "geom/measure.h"
 #include "geom/polygon_check.h"
 
@@ -175,6 +178,55 @@ ordered_json id_or_null(int id) { return id >= 0 ? ordered_json(id) : ordered_js
 
 }  // namespace
 
+int give_covered_roads_their_carriageway(CityMap& city_map) {
+  const int roads = static_cast<int>(city_map.roads.size());
+  // Each road's area as the map's faces give it; taken marks a face given to a covered road
+  // until its owner's loss is known (the block field, -1 on every road face, holds -2 -
+  // the face's label before).
+  auto taken = [](const FaceLabel& l) { return l.block <= -2; };
+  auto road_areas = [&] {
+    const std::vector<int> road_of_label =
+        city_map.per_label([](const FaceLabel& l) { return l.road_surface() ? l.road : -1; });
+    std::vector<int> groups;
+    const std::vector<geom::Cell> cells =
+        city_map.map.cells(road_of_label, std::vector<int>(road_of_label.size(), 0), &groups);
+    std::vector<double> area(roads, 0);
+    for (std::size_t c = 0; c < cells.size(); ++c) area[groups[c]] += cells[c].area();
+    return area;
+  };
+  std::vector<char> covered(roads, 0);
+  {
+    const std::vector<double> area = road_areas();
+    for (int r = 0; r < roads; ++r) covered[r] = area[r] == 0 && !city_map.roads[r].lines.empty();
+  }
+  if (std::none_of(covered.begin(), covered.end(), [](char c) { return c != 0; })) return 0;
+  const std::vector<FaceLabel> before = city_map.labels;
+  city_map.map.relabel_faces(0, [&](const geom::Windings& windings, int label) {
+    FaceLabel l = city_map.labels[label];  // a copy: label_index may grow the labels
+    if (!l.road_surface() || covered[l.road]) return label;
+    for (auto [counter, winding] : windings)
+      if (const int r = city_map.road_of_counter(counter); winding != 0 && r >= 0 && covered[r]) {
+        l.road = r, l.surface = RoadSurface::Carriageway, l.junction = -1, l.block = -2 - label;
+        return city_map.label_index(l);
+      }
+    return label;
+  });
+  // An owner left with less than a sliver's area takes back what it gave.
+  const std::vector<double> kept = road_areas();
+  std::set<int> took;
+  city_map.map.relabel_faces(0, [&](const geom::Windings&, int label) {
+    const FaceLabel l = city_map.labels[label];
+    if (!taken(l)) return label;
+    const int was = -2 - l.block;
+    if (kept[before[was].road] < kSliverRoadArea) return was;
+    FaceLabel given = before[was];
+    given.road = l.road, given.surface = RoadSurface::Carriageway, given.junction = -1;
+    took.insert(l.road);
+    return city_map.label_index(given);
+  });
+  return static_cast<int>(took.size());
+}
+
 int merge_sliver_road_areas(CityMap& city_map) {
   const int roads = static_cast<int>(city_map.roads.size());
   const std::vector<int> group = city_map.per_label([&](const FaceLabel& l) { return road_area_group(city_map, l); });
@@ -208,16 +260,29 @@ int merge_sliver_road_areas(CityMap& city_map) {
   }
   // A road keeps a surface: the sliver that is all of it takes in instead the road area
   // beside it (a piece of a road that keeps another), else stays.
+  // Whether a road keeps an area that is no sliver (asked without adding it to the map).
+  auto keeps = [&](int road, int at_least) {
+    const auto it = real_areas.find(road);
+    return it != real_areas.end() && it->second >= at_least;
+  };
+  std::vector<char> without(roads, 0);  // roads whose areas are all slivers, as they came
+  for (int r = 0; r < roads; ++r) without[r] = !keeps(r, 1);
+  // The road areas beside a sliver, found by their boxes: cells that share an edge share its
+  // vertices, which round alike, so their boxes meet.
+  geom::BoxIndex near(10);
+  std::vector<geom::Box> box(count, geom::Box::none());
+  for (std::size_t n = 0; n < cells.size(); ++n) box[components[n]].add(cells[n].bounds());
+  for (std::size_t n = 0; n < cells.size(); ++n) near.add(static_cast<int>(n), cells[n].bounds());
   std::vector<int> taken_by(count, -1);  // a road area given to a sliver's group
   for (int c = 0; c < count; ++c) {
-    if (area[c] >= kSliverRoadArea || real_areas.count(road_of(group_of[c]))) continue;
+    if (area[c] >= kSliverRoadArea || !without[road_of(group_of[c])] || keeps(road_of(group_of[c]), 1)) continue;
     const int beside = target[c] - 1;
     target[c] = 0;
     if (beside < 0) continue;
-    for (std::size_t n = 0; n < cells.size(); ++n) {
+    for (const int n : near.meeting(box[c])) {
       const int other = components[n];
       if (group_of[other] != beside || area[other] < kSliverRoadArea || taken_by[other] >= 0 ||
-          real_areas[road_of(beside)] < 2 || cells[n].edges_of_kind(group_of[c] + 1).empty())
+          !keeps(road_of(beside), 2) || cells[n].edges_of_kind(group_of[c] + 1).empty())
         continue;
       taken_by[other] = group_of[c];
       --real_areas[road_of(beside)];
@@ -255,6 +320,10 @@ Ground extract_ground(const CityMap& city_map, const std::vector<Block>& blocks,
     return f[bridge] >= 0 ? f[bridge] : f[!bridge];
   };
   extract_road_areas(city_map, road_id, out);
+  std::set<int> named;
+  for (const RoadArea& a : out.road_areas) named.insert(a.road);
+  for (const auto& f : first_line)
+    if ((f[0] >= 0 || f[1] >= 0) && !named.count(f[0]) && !named.count(f[1])) out.roads_without_area.push_back(f[0] >= 0 ? f[0] : f[1]);
   const std::vector<std::vector<std::size_t>> pieces = extract_blocks(city_map, blocks, road_id, out);
   // Lots as they ended up in the map; a lot's id is its index, which buildings name.
   const CancelCheck cancel;

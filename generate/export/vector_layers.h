@@ -29,6 +29,13 @@ CityLayers read_layers(const std::filesystem::path& vector_dir, std::vector<std:
 // nearly meet, rounding leaves a face or two of one road between the others'.
 inline constexpr double kSliverRoadArea = 0.01;
 
+// A road whose every face another road, or a junction, owns (a stub a few metres long
+// inside a wider street's carriageway or a junction: the first road listed owns a
+// crossing) takes the faces its own carriageway covers from them, unless that leaves their
+// road less than kSliverRoadArea: the faces' labels change, nothing moves. Returns how many
+// roads took faces.
+int give_covered_roads_their_carriageway(CityMap& city_map);
+
 // Gives each road area (a connected piece of one road's carriageway, sidewalk or junction)
 // under kSliverRoadArea to the road area it shares the longest boundary with, in the map:
 // the faces' labels change, nothing moves; one no road area touches along an edge stays. A road whose only area is a sliver takes in the road area beside
