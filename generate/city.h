@@ -2,6 +2,7 @@
 // renderer read (docs/design.md, The city model).
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -20,6 +21,8 @@
 
 namespace exacity {
 
+struct RegionCache;  // generate/regenerate.h
+
 struct City {
   CitySettings settings;  // the sketch's: its file, seed, CRS, zone settings
   DrawnFeatures drawn;    // the sketch's zones and roads
@@ -36,6 +39,8 @@ struct City {
   StreetClutter clutter;  // along the streets; written as vector/clutter.geojson
   Ground ground;
   CityLayers layers;  // as written into vector/
+  // What a build kept for the next one (generate/regenerate.h), when built with a cache.
+  std::shared_ptr<RegionCache> regions;
 
   const Terrain* heightmap() const { return terrain ? &*terrain : nullptr; }  // null without one
   const ModelLibrary* model_library() const { return library ? &*library : nullptr; }

@@ -21,6 +21,7 @@
 #include "generate/export/svg_map.h"
 #include "generate/city/terrain.h"
 #include "generate/export/validate.h"
+#include "generate/regenerate.h"
 #include "generate/export/vector_layers.h"
 #include "generate/city/city_map.h"
 
@@ -42,7 +43,8 @@ std::vector<Lot> with_density(std::vector<Lot> lots, const std::vector<Block>& b
 Structures build_on_lots(City& city, const std::vector<PlannedLot>& planned) {
   constexpr int kMerges = 2;
   for (int merges = 0;; ++merges) {
-    Structures s = place_buildings(city.lots, city.settings, city.model_library(), city.channels, city.heightmap());
+    Structures s = place_buildings(city.lots, city.settings, city.model_library(), city.channels, city.heightmap(),
+                                   city.regions ? &city.regions->placements : nullptr);
     std::vector<char> built(city.lots.size(), 0);
     for (const Building& b : s.buildings) built[b.lot] = 1;
     for (const ModelInstance& m : s.models) built[m.lot] |= m.kind == ModelKind::Building;
@@ -55,8 +57,11 @@ Structures build_on_lots(City& city, const std::vector<PlannedLot>& planned) {
 
 }  // namespace
 
-City build_city(const Sketch& sketch, StageClock& stages) {
+City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<RegionCache> cache) {
   City city;
+  if (cache) cache->next_build(sketch);
+  city.regions = std::move(cache);
+  RegionCache* const regions = city.regions.get();
   city.settings = sketch;
   city.drawn = sketch;
   city.camera = sketch.camera;
@@ -81,11 +86,13 @@ City build_city(const Sketch& sketch, StageClock& stages) {
     return library;
   });
   CityMap city_map = stages.run("zone map", [&] { return build_city_map(city.settings, city.drawn, city.heightmap()); });
-  city.network = stages.run("road network", [&] { return grow_road_network(std::move(city_map), city.settings, city.drawn.zones); });
+  city.network = stages.run("road network", [&] { return grow_road_network(std::move(city_map), city.settings, city.drawn.zones,
+                                                                               regions ? &regions->road_plans : nullptr); });
   city.blocks = stages.run("blocks", [&] { return cut_blocks(city.network.map, city.settings, city.drawn.zones, city.network.uses); });
   std::vector<PlannedLot> planned;
   city.lots = stages.run("lots", [&] {
-    planned = plan_lots(city.blocks, city.settings, city.model_library(), city.channels);
+    planned = plan_lots(city.blocks, city.settings, city.model_library(), city.channels,
+                        regions ? &regions->lot_plans : nullptr);
     return with_density(insert_lots(city.network.map, planned, city.settings), city.blocks);
   });
   Structures raised = stages.run("buildings", [&] {

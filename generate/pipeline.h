@@ -4,6 +4,7 @@
 #include <chrono>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -45,8 +46,12 @@ class StageClock {
 
 inline constexpr int kCityStages = 9;
 
-// Runs the city's stages on `clock` (kCityStages of them).
-City build_city(const Sketch& sketch, StageClock& clock);
+struct RegionCache;  // generate/regenerate.h
+
+// Runs the city's stages on `clock` (kCityStages of them). With a cache, each region's road
+// plan, each block's lot plan and each lot's structures are reused from the cache's last
+// build where their input is the same (generate/regenerate.h), and the city keeps the cache.
+City build_city(const Sketch& sketch, StageClock& clock, std::shared_ptr<RegionCache> cache = {});
 
 struct GenerateResult {
   nlohmann::ordered_json report;  // as written to report.json

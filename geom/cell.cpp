@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include <CGAL/Polygon_2_algorithms.h>
 
@@ -468,6 +469,52 @@ Path Growth::end() {
   impl->points = std::move(g.road);
   g.road.clear();
   return Path(std::move(impl));
+}
+
+}  // namespace geom
+
+namespace geom {
+namespace {
+
+void write_coordinate(std::ostringstream& out, [[maybe_unused]] const exact::FT& v, double rounded) {
+#if !defined(EXACITY_FLOAT_KERNEL)
+  if (exact::FT(rounded) != v) {
+    out << 'q' << CGAL::exact(v) << ' ';
+    return;
+  }
+#endif
+  out << std::hexfloat << rounded << ' ';
+}
+
+void write_point(std::ostringstream& out, const exact::Point& p) {
+  const Vec2 r = exact::to_plain(p);
+  write_coordinate(out, p.x(), r.x);
+  write_coordinate(out, p.y(), r.y);
+}
+
+void write_ring(std::ostringstream& out, const KindRing& ring) {
+  out << "ring " << ring.points.size() << ' ';
+  for (std::size_t i = 0; i < ring.points.size(); ++i) {
+    write_point(out, ring.points[i]);
+    out << ring.kinds[i] << ' ';
+  }
+}
+
+}  // namespace
+
+std::string exact_text(const Cell& cell) {
+  std::ostringstream out;
+  write_ring(out, cell.exact().outer);
+  for (const KindRing& hole : cell.exact().holes) write_ring(out, hole);
+  return out.str();
+}
+
+std::string exact_text(const Path& path) {
+  std::ostringstream out;
+  out << "path ";
+  if (path.size() > 0)
+    for (const exact::Point& p : path.exact().points) write_point(out, p);
+  return out.str();
 }
 
 }  // namespace geom

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "geom/plain.h"
@@ -81,6 +82,12 @@ class Cell {
  private:
   std::shared_ptr<const Impl> impl_;
 };
+
+// Every vertex written exactly (a double as a hex float, any other coordinate as its exact
+// rational) and every edge's kind: two cells with equal texts are the same cell, vertex for
+// vertex from the same start. A cache's key (generate/city/memo.h).
+std::string exact_text(const Cell& cell);
+std::string exact_text(const Path& path);
 
 // Roads growing inside one cell.
 class Growth {

@@ -35,7 +35,8 @@ void generate_job(ServerState& s, const Sketch& sketch, JobRunner::Progress& pro
   OutputFolder folder(s.city_folder());
   StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); },
                    kCityStages + kWriteStages + 1);
-  auto city = std::make_shared<City>(build_city(sketch, clock));
+  // Regions, blocks and lots the edits since the last generation left as they were are reused.
+  auto city = std::make_shared<City>(build_city(sketch, clock, s.regions));
   const GenerateResult result = write_city(sketch, *city, folder.staging(), clock);
   clock.run("tiles", [&] { write_city_tiles(*city, folder.staging() / "tiles"); });
   {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "generate/city.h"
+#include "generate/regenerate.h"
 #include "serve/confined_folder.h"
 #include "serve/job_runner.h"
 #include "serve/server.h"
@@ -37,6 +38,9 @@ struct ServerState {
   // The last city generated, kept for renders.
   std::mutex city_mutex;
   std::shared_ptr<const City> city;
+  // What the last generation kept for the next (generate/regenerate.h); only the job
+  // thread touches it.
+  std::shared_ptr<RegionCache> regions = std::make_shared<RegionCache>();
 
   // `message` naming files by their paths in the work folder, as the user knows them,
   // rather than by the server's absolute path to it.

@@ -659,6 +659,23 @@ TEST_F(ServeTest, TilesHoldTheCityAtThreeLevels) {
     EXPECT_EQ(client->Get(url)->status, 404) << url;
 }
 
+// A generation after an edit reuses the regions, blocks and lots the edit left as they were
+// (generate/regenerate.h); what it writes is what generating the edited sketch alone writes.
+TEST_F(ServeTest, GenerationAfterAnEditWritesTheEditedSketchsCity) {
+  put_small_and_generate();
+  json edited = json::parse(kSmallSketch);
+  edited["features"][1]["geometry"]["coordinates"][0][2] = json::array({620, 310});  // north of the highway only
+  ASSERT_EQ(client->Put("/api/sketch", edited.dump(), "application/geo+json")->status, 200);
+  ASSERT_EQ(client->Post("/api/generate", "", "application/json")->status, 202);
+  ASSERT_EQ(wait_for_job(*client)["state"], "done");
+  const fs::path alone = testing_util::temp_dir("alone");
+  exacity::generate_city(exacity::parse_sketch(edited.dump(), sketch_file()), alone, nullptr);
+  for (const char* file : {"vector/zones.geojson", "vector/roads.geojson", "vector/road_areas.geojson",
+                           "vector/blocks.geojson", "vector/lots.geojson", "vector/buildings.geojson",
+                           "vector/clutter.geojson", "map.svg", "city.city.json"})
+    EXPECT_TRUE(read(work() / "city" / file) == read(alone / file)) << file;
+}
+
 // Eight clients poll the status and fetch a layer while the city is generated again; every
 // answer must be whole and right.
 TEST_F(ServeTest, EightClientsDuringAGeneration) {

@@ -95,14 +95,26 @@ void add_road(CityMap& city_map, const LaidRoad& road, int region) {
   city_map.roads.push_back(std::move(m));
 }
 
-// Each region's plan, in parallel: region i takes the stream mix(stage, i).
+// Each region's plan, in parallel: region i takes the stream mix(stage, i). With a memo, a
+// plan is reused when its region is the same cell with the same stream, laid out by the same
+// layout (`layout_key`) over the same drawn zones (which say the zone at each point).
 std::vector<RoadPlan> plan_regions(const std::vector<geom::Cell>& cells, std::uint64_t stage,
-                                   const std::function<const RoadLayout&(std::size_t)>& layout_of) {
+                                   const std::function<const RoadLayout&(std::size_t)>& layout_of,
+                                   const std::function<std::string(std::size_t)>& layout_key,
+                                   const std::vector<ZoneFeature>& zones, Memo<RoadPlan>* memo) {
   std::vector<RoadPlan> plans(cells.size());
   const CancelCheck cancel;
   tbb::parallel_for(std::size_t(0), cells.size(), [&](std::size_t i) {
     cancel.check();
-    plans[i] = layout_of(i).plan({cells[i], mix(stage, i)});
+    const Region region{cells[i], mix(stage, i)};
+    auto plan = [&] { return layout_of(i).plan(region); };
+    if (!memo) {
+      plans[i] = plan();
+      return;
+    }
+    std::string key = layout_key(i) + " stream " + std::to_string(region.stream) + " " + geom::exact_text(region.cell);
+    append_zones_over(key, zones, region.cell.bounds());
+    plans[i] = memo->get(key, plan);
   });
   return plans;
 }
@@ -122,7 +134,8 @@ ZoneAt zone_at(const CityMap& city_map, const std::vector<ZoneFeature>& zones) {
 // piece each. Their roads take ids a level at a time across regions, every region's main
 // roads first.
 void lay_out_growth(CityMap& city_map, const CitySettings& settings, const std::vector<ZoneFeature>& zones,
-                    const SketchLines& sketch_lines, const std::vector<int>& kind, Laid& laid, RoadNetworkStats& stats) {
+                    const SketchLines& sketch_lines, const std::vector<int>& kind, Laid& laid, RoadNetworkStats& stats,
+                    Memo<RoadPlan>* memo) {
   auto params = [&](ZoneType t) -> const RoadSettings& { return settings.zone_settings.at(t).roads; };
   const RoadLayoutChoice* spanning = nullptr;
   for (const auto& [t, z] : settings.zone_settings)
@@ -136,7 +149,8 @@ void lay_out_growth(CityMap& city_map, const CitySettings& settings, const std::
   const std::unique_ptr<RoadLayout> growth =
       spanning->make({settings, ZoneType::Residential, sketch_lines, zone_at(city_map, zones)});
   const std::vector<RoadPlan> plans = plan_regions(city_map.map.cells(group, kind), mix(settings.seed, static_cast<std::uint64_t>(Stage::Roads)),
-                                                   [&](std::size_t) -> const RoadLayout& { return *growth; });
+                                                   [&](std::size_t) -> const RoadLayout& { return *growth; },
+                                                   [](std::size_t) { return std::string("growth"); }, zones, memo);
   const int first_region = static_cast<int>(laid.joined.size());
   for (const RoadPlan& plan : plans) {
     laid.joined.push_back(plan.piece_reaches_sketch[0]);
@@ -159,7 +173,7 @@ void lay_out_growth(CityMap& city_map, const CitySettings& settings, const std::
 // to the rest.
 void lay_out_regions(CityMap& city_map, const CitySettings& settings, const std::vector<ZoneFeature>& zones,
                      const SketchLines& sketch_lines, const std::vector<int>& kind, Laid& laid,
-                     std::vector<PlannedUse>& uses, RoadNetworkStats& stats) {
+                     std::vector<PlannedUse>& uses, RoadNetworkStats& stats, Memo<RoadPlan>* memo) {
   std::map<ZoneType, std::unique_ptr<RoadLayout>> layouts;
   for (const auto& [t, p] : settings.zone_settings)
     if (grows_roads(t) && !p.roads.layout->spans_zone_types()) layouts[t] = p.roads.layout->make({settings, t, sketch_lines, {}});
@@ -174,7 +188,7 @@ void lay_out_regions(CityMap& city_map, const CitySettings& settings, const std:
   const std::uint64_t stage = mix(mix(settings.seed, static_cast<std::uint64_t>(Stage::Roads)), 0x1a1047);
   std::vector<RoadPlan> plans = plan_regions(cells, stage, [&](std::size_t i) -> const RoadLayout& {
     return *layouts.at(static_cast<ZoneType>(types[i]));
-  });
+  }, [&](std::size_t i) { return "layout of " + std::to_string(types[i]); }, zones, memo);
   for (RoadPlan& plan : plans) {
     for (PlannedUse& u : plan.uses) uses.push_back(std::move(u));
     const int first_region = static_cast<int>(laid.joined.size());
@@ -206,7 +220,8 @@ void insert_generated_roads(CityMap& city_map, const std::vector<Junction>& junc
 
 }  // namespace
 
-RoadNetwork grow_road_network(CityMap city_map, const CitySettings& settings, const std::vector<ZoneFeature>& zones) {
+RoadNetwork grow_road_network(CityMap city_map, const CitySettings& settings, const std::vector<ZoneFeature>& zones,
+                              Memo<RoadPlan>* memo) {
   RoadNetwork net;
   const std::vector<int> kind = city_map.per_label([&](const FaceLabel& f) {
     return f.road_surface() && f.road < city_map.sketch_roads ? GrowthEdge::sketch_road(f.road) : GrowthEdge::kRegionEdge;
@@ -215,8 +230,8 @@ RoadNetwork grow_road_network(CityMap city_map, const CitySettings& settings, co
   for (int r = 0; r < city_map.sketch_roads; ++r) sketch_lines.push_back({city_map.roads[r].lines, city_map.roads[r].width});
 
   Laid laid;
-  lay_out_growth(city_map, settings, zones, sketch_lines, kind, laid, net.stats);
-  lay_out_regions(city_map, settings, zones, sketch_lines, kind, laid, net.uses, net.stats);
+  lay_out_growth(city_map, settings, zones, sketch_lines, kind, laid, net.stats, memo);
+  lay_out_regions(city_map, settings, zones, sketch_lines, kind, laid, net.uses, net.stats, memo);
   net.stats.links = link_islands(city_map, laid.joined, laid.junctions);
   insert_generated_roads(city_map, laid.junctions);
   net.map = std::move(city_map);

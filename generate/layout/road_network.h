@@ -5,6 +5,7 @@
 
 #include "generate/city/city_map.h"
 #include "generate/city/features.h"
+#include "generate/city/memo.h"
 #include "generate/city/zone_settings.h"
 #include "generate/layout/road_layout.h"
 
@@ -24,6 +25,9 @@ struct RoadNetwork {
   std::vector<PlannedUse> uses;  // land a layout gave a use (a grammar's terminals)
 };
 
-RoadNetwork grow_road_network(CityMap zones, const CitySettings& settings, const std::vector<ZoneFeature>& drawn_zones);
+// With a memo, each region's plan is taken from it when its region, stream and the drawn
+// zones over it are as before (docs/design.md, Regions and regenerating).
+RoadNetwork grow_road_network(CityMap zones, const CitySettings& settings, const std::vector<ZoneFeature>& drawn_zones,
+                              Memo<RoadPlan>* memo = nullptr);
 
 }  // namespace exacity

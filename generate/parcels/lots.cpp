@@ -18,7 +18,7 @@
 namespace exacity {
 
 std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const CitySettings& city, const ModelLibrary* library,
-                                  const Channels& channels) {
+                                  const Channels& channels, Memo<std::vector<PlannedLot>>* memo) {
   std::map<ZoneType, std::unique_ptr<LotLayout>> layouts;
   for (const auto& [zone, settings] : city.zone_settings)
     layouts[zone] = settings.lots.layout->make(settings.lots, zone, library, channels);
@@ -29,12 +29,25 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const CitySe
     cancel.check();
     const Block& block = blocks[bi];
     if (block.green) return;
-    Random rng(mix(stage, bi));
-    per_block[bi] = layouts.at(block.zone)->plan(block, static_cast<int>(bi), rng);
-    // A block too small for the layout to cut is one lot, if it makes one (kept_lots); not
-    // for the lot library, whose lots are the models' own.
-    if (per_block[bi].empty() && !city.zone_settings.at(block.zone).lots.layout->models_own_lots)
-      per_block[bi].push_back({static_cast<int>(bi), block.zone, {}, block.cell});
+    auto plan = [&] {
+      Random rng(mix(stage, bi));
+      std::vector<PlannedLot> lots = layouts.at(block.zone)->plan(block, static_cast<int>(bi), rng);
+      // A block too small for the layout to cut is one lot, if it makes one (kept_lots); not
+      // for the lot library, whose lots are the models' own.
+      if (lots.empty() && !city.zone_settings.at(block.zone).lots.layout->models_own_lots)
+        lots.push_back({static_cast<int>(bi), block.zone, {}, block.cell});
+      return lots;
+    };
+    if (!memo) {
+      per_block[bi] = plan();
+      return;
+    }
+    // Everything the plan reads of the block; the rest (settings, library, channels) is the memo's context.
+    std::string key = "block " + std::to_string(bi) + " zone " + std::to_string(static_cast<int>(block.zone)) +
+                      " density " + block.density + " roads";
+    for (int r : block.roads) key += " " + std::to_string(r);
+    key += " " + geom::exact_text(block.cell);
+    per_block[bi] = memo->get(key, plan);
   });
   std::vector<PlannedLot> lots;
   for (auto& list : per_block)

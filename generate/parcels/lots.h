@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "generate/city/city_map.h"
+#include "generate/city/memo.h"
 #include "generate/city/zone_settings.h"
 #include "generate/parcels/blocks.h"
 #include "generate/parcels/lot_layout.h"
@@ -38,8 +39,10 @@ inline constexpr Range kLotShape{0.5, 5};  // a lot's depth over its width (acro
 
 // The lots of every block that is not green space, block by block in parallel, each by its
 // zone's LotLayout. `library` may be null unless a zone's lots come from it.
+// With a memo, a block's plan is taken from it when the block (its index, zone, density,
+// roads and exact cell) is as before (docs/design.md, Regions and regenerating).
 std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const CitySettings& city, const ModelLibrary* library,
-                                  const Channels& channels);
+                                  const Channels& channels, Memo<std::vector<PlannedLot>>* memo = nullptr);
 
 // Refuses a zone type whose "lots" is "library" when the library holds no building entry
 // with a "lot" for it, or one whose lot no lot of the zone may be (under its min_lot_area,

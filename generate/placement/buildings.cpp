@@ -149,9 +149,7 @@ class Extrusion : public Placer {
 // where it has some for the zone, else extruded), then street furniture, then trees.
 std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> zone_placers(const CitySettings& city_settings, const ModelLibrary* library,
                                                                       const Channels& channels,
-                                                                      const std::vector<Lot>& lots) {
-  geom::Box city = geom::Box::none();
-  for (const Lot& lot : lots) city.add(lot.cell.bounds());
+                                                                      const geom::Box& city) {
   const geom::Vec2 centre{(city.min_x + city.max_x) / 2, (city.min_y + city.max_y) / 2};
   const double radius = std::hypot(city.width(), city.height()) / 2;
   std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> placers;
@@ -171,8 +169,10 @@ std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> zone_placers(const City
 }  // namespace
 
 Structures place_buildings(const std::vector<Lot>& lots, const CitySettings& city, const ModelLibrary* library,
-                           const Channels& channels, const Terrain* terrain) {
-  const auto placers = zone_placers(city, library, channels, lots);
+                           const Channels& channels, const Terrain* terrain, Memo<Structures>* memo) {
+  geom::Box box = geom::Box::none();
+  for (const Lot& lot : lots) box.add(lot.cell.bounds());
+  const auto placers = zone_placers(city, library, channels, box);
   const std::uint64_t stage = mix(city.seed, static_cast<std::uint64_t>(Stage::Buildings));
   std::vector<Structures> placed(lots.size());
   const CancelCheck cancel;
@@ -181,11 +181,26 @@ Structures place_buildings(const std::vector<Lot>& lots, const CitySettings& cit
     const Lot& lot = lots[i];
     BuildingSettings p = city.zone_settings.at(lot.zone).buildings;
     if (!lot.density.empty()) p.density = lot.density;
-    // By the lot's planned lot, not its index, so merging lots around it leaves it as it was.
-    Random rng(mix(mix(stage, static_cast<std::uint64_t>(lot.planned)), static_cast<std::uint64_t>(lot.rank)));
-    Occupancy occupancy(lot.cell, LotEdge::kStreet, terrain);
+    auto place = [&] {
+      // By the lot's planned lot, not its index, so merging lots around it leaves it as it was.
+      Random rng(mix(mix(stage, static_cast<std::uint64_t>(lot.planned)), static_cast<std::uint64_t>(lot.rank)));
+      Occupancy occupancy(lot.cell, LotEdge::kStreet, terrain);
+      Structures here;
+      for (const auto& placer : placers.at(lot.zone)) placer->place(lot, p, occupancy, rng, here);
+      return here;
+    };
     Structures& here = placed[i];
-    for (const auto& placer : placers.at(lot.zone)) placer->place(lot, p, occupancy, rng, here);
+    if (memo) {
+      // Everything placing reads of the lot, and the city's box (extruded heights fall from its centre).
+      std::string key = "lot " + std::to_string(lot.planned) + " " + std::to_string(lot.rank) + " zone " +
+                        std::to_string(static_cast<int>(lot.zone)) + " density " + lot.density + " model " +
+                        std::to_string(lot.model) + " city ";
+      for (double v : {box.min_x, box.min_y, box.max_x, box.max_y}) append_key(key, v);
+      key += geom::exact_text(lot.cell);
+      here = memo->get(key, place);
+    } else {
+      here = place();
+    }
     auto stand = [&](auto& s) {
       s.lot = static_cast<int>(i);
       s.zone = lot.zone;

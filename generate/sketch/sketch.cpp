@@ -583,6 +583,10 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
         if (what.is_string()) counts.repaired.push_back(what.get<std::string>());
   }
   if (doc.contains("exacity")) parser.settings(doc["exacity"], sketch);
+  json settings = json::object();
+  for (const auto& [key, value] : doc.items())
+    if (key != "features") settings[key] = value;
+  sketch.settings_text = settings.dump();
   const json& features = doc["features"];
   for (std::size_t i = 0; i < features.size(); ++i) parser.feature(features[i], static_cast<int>(i), sketch);
   if (sketch.zones.empty() && sketch.roads.empty())

@@ -41,6 +41,9 @@ struct Sketch : CitySettings, DrawnFeatures {
   // "grid", whose features it holds; `generate --models`), else empty. OUT/sketch.geojson
   // holds it, so that validate and render read the sketch generate read.
   std::string geojson;
+  // The document read but its features (settings, CRS, ...), as JSON: with the roads, what
+  // every region of the city shares (generate/regenerate.h).
+  std::string settings_text;
 };
 
 ZoneSettings default_zone_settings(ZoneType type);

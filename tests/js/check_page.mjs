@@ -375,6 +375,24 @@ try {
   }
   await page.screenshot({path: path.join(out, 'map.png')});
 
+  // With "after each edit" ticked, settings the server takes are generated without a click.
+  await page.click('#auto-generate');
+  const [generated] = await Promise.all([
+    page.waitForResponse(r => r.url().includes('/api/generate') && r.request().method() === 'POST', {timeout: 10000}),
+    page.$eval('textarea[data-zone="commercial"]', t => { t.value = '{}'; })
+      .then(() => page.$eval('textarea[data-zone="residential"]', t => { t.value = '{"block_area": 9000}'; }))
+      .then(() => page.$eval('#apply-settings', b => b.click())),  // the button is scrolled out of the panel here
+  ]);
+  check(generated.status() === 202, `the edit the server took started a generation (${generated.status()})`);
+  let edited = {state: 'running'};
+  for (let i = 0; i < 6000 && edited.state === 'running'; ++i) {
+    await new Promise(r => setTimeout(r, 100));
+    edited = await (await get('/api/status')).json();
+  }
+  check(edited.state === 'done', `the generation after the edit ended done (${edited.state})`);
+  await page.waitForSelector('body[data-job="done"]', {timeout: 60000});
+  await page.click('#auto-generate');  // untick it: the page keeps the setting for the later steps
+
   // Explore: the 3D view, orbited with the mouse, then rendered.
   await page.click('[data-view="explore"]');
   await page.waitForFunction(() => window.exacityExplore && window.exacityExplore.city, {timeout: 60000});

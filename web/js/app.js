@@ -57,8 +57,25 @@ async function sendNow(doc) {
   }
   lastGood = JSON.parse(r.text);
   say('Saved.');
+  if ($('auto-generate').checked) generateAfterEdit();
   return true;
 }
+
+// With "after each edit" ticked, each edit the server took is generated: at once, or when
+// the job running ends (one generation then covers every edit made meanwhile). The setting
+// is kept in the browser.
+let generateWhenIdle = false;
+async function generateAfterEdit() {
+  if (lastState === 'running') {
+    generateWhenIdle = true;
+    return;
+  }
+  const r = await api.startGenerate();
+  if (r.status === 409) generateWhenIdle = true;
+  else if (!r.ok) say(r.message, true);
+}
+$('auto-generate').checked = localStorage.getItem('exacity.autoGenerate') === 'true';
+$('auto-generate').addEventListener('change', () => localStorage.setItem('exacity.autoGenerate', $('auto-generate').checked));
 
 // After a refusal the map shows the sketch the server holds (the refused edit, and any made on
 // top of it, leave the undo history once their sends end: sendEdit); the settings form keeps
@@ -367,6 +384,10 @@ api.listen({
     showTimeLeft();
     lastState = s.state;
     document.body.dataset.job = s.state;
+    if (ended && generateWhenIdle) {
+      generateWhenIdle = false;
+      generateAfterEdit();
+    }
     $('generate').disabled = s.state === 'running';
     $('render-view').disabled = s.state === 'running';
     $('cancel').disabled = s.state !== 'running';

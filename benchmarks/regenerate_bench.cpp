@@ -1,0 +1,103 @@
+// Regenerating after a one-zone edit against building the edited sketch whole: seconds per
+// stage of build_city both ways, and how many regions, blocks and lots were reused.
+// Measures; asserts nothing (tests/regenerate_test.cpp holds the two cities equal).
+//
+//   build/release/benchmarks/exacity_regenerate SKETCH [--scale K] [--zone NAME] [--move DX DY]
+//
+// The sketch's coordinates are multiplied by K (roads keep their widths); the edit moves the
+// first corner of the zone whose "name" is NAME (the first zone when none is given) by DX, DY
+// metres.
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "generate/errors.h"
+#include "generate/pipeline.h"
+#include "generate/regenerate.h"
+
+using namespace exacity;
+using nlohmann::ordered_json;
+
+namespace {
+
+void scale(ordered_json& coordinates, double k) {
+  if (coordinates.is_number()) {
+    coordinates = coordinates.get<double>() * k;
+    return;
+  }
+  for (ordered_json& c : coordinates) scale(c, k);
+}
+
+struct Run {
+  City city;
+  ordered_json seconds;
+  double total = 0;
+};
+
+Run build(const ordered_json& doc, const std::string& path, std::shared_ptr<RegionCache> cache, const City* previous) {
+  StageClock clock(nullptr, kCityStages);
+  const auto start = std::chrono::steady_clock::now();
+  const Sketch sketch = parse_sketch(doc.dump(), path);
+  Run run{previous ? regenerate(*previous, sketch, clock) : build_city(sketch, clock, std::move(cache)), {}, 0};
+  run.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.seconds = clock.seconds;
+  return run;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: %s SKETCH [--scale K] [--zone NAME] [--move DX DY]\n", argv[0]);
+    return 2;
+  }
+  const std::string path = argv[1];
+  double k = 1, dx = 10, dy = 10;
+  std::string zone_name;
+  for (int i = 2; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--scale") && i + 1 < argc) k = std::stod(argv[++i]);
+    else if (!std::strcmp(argv[i], "--zone") && i + 1 < argc) zone_name = argv[++i];
+    else if (!std::strcmp(argv[i], "--move") && i + 2 < argc) dx = std::stod(argv[++i]), dy = std::stod(argv[++i]);
+  }
+  try {
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    ordered_json doc = ordered_json::parse(text.str());
+    for (ordered_json& f : doc["features"]) scale(f["geometry"]["coordinates"], k);
+    ordered_json edited = doc;
+    bool moved = false;
+    for (ordered_json& f : edited["features"]) {
+      const ordered_json& p = f["properties"];
+      if (moved || !p.contains("zone") || (!zone_name.empty() && p.value("name", "") != zone_name)) continue;
+      ordered_json& outer = f["geometry"]["type"] == "MultiPolygon" ? f["geometry"]["coordinates"][0][0] : f["geometry"]["coordinates"][0];
+      for (ordered_json* corner : {&outer.front(), &outer.back()}) {
+        (*corner)[0] = (*corner)[0].get<double>() + dx;
+        (*corner)[1] = (*corner)[1].get<double>() + dy;
+      }
+      moved = true;
+    }
+    if (!moved) throw UserError(path + ": no zone named \"" + zone_name + "\"");
+
+    const Run first = build(doc, path, std::make_shared<RegionCache>(), nullptr);
+    const Run whole = build(edited, path, nullptr, nullptr);
+    const Run again = build(edited, path, nullptr, &first.city);
+    std::printf("| stage          | whole s | regenerated s |\n|----------------|---------|---------------|\n");
+    for (const auto& [stage, s] : whole.seconds.items())
+      std::printf("| %-14s | %7.3f | %13.3f |\n", stage.c_str(), s.get<double>(), again.seconds.value(stage, 0.0));
+    std::printf("| %-14s | %7.3f | %13.3f |\n", "all", whole.total, again.total);
+    const RegionCache& c = *again.city.regions;
+    std::printf("reused: %d of %d region plans, %d of %d block plans, %d of %d lot placements\n",
+                c.road_plans.hits(), c.road_plans.hits() + c.road_plans.misses(), c.lot_plans.hits(),
+                c.lot_plans.hits() + c.lot_plans.misses(), c.placements.hits(), c.placements.hits() + c.placements.misses());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,42 @@
+// Regenerating a city after an edit of its sketch (docs/design.md, Regions and
+// regenerating): each region's road plan, each block's lot plan and each lot's structures
+// are kept by the whole of their input, and a build reuses those whose input the edit left
+// as it was. The result is the city a full build of the edited sketch makes, byte for byte.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "generate/city.h"
+#include "generate/pipeline.h"
+#include "generate/city/memo.h"
+#include "generate/sketch/sketch.h"
+
+namespace exacity {
+
+struct RegionCache {
+  Memo<RoadPlan> road_plans;                // per region of the road stage
+  Memo<std::vector<PlannedLot>> lot_plans;  // per block
+  Memo<Structures> placements;              // per lot, before it stands on the terrain
+  // Starts a build of `sketch`: a change in what every item reads (the settings, the CRS,
+  // the sketch roads, the files the sketch names) forgets everything.
+  void next_build(const Sketch& sketch);
+  // Items reused and computed in the last build, over the three memos.
+  int hits() const { return road_plans.hits() + lot_plans.hits() + placements.hits(); }
+  int misses() const { return road_plans.misses() + lot_plans.misses() + placements.misses(); }
+
+ private:
+  int unknown_ = 0;  // builds of sketches whose settings_text is unknown, each its own context
+};
+
+// What every cached item reads besides its own input: the sketch's settings and CRS
+// (Sketch::settings_text), its roads as joined, and the size and time of each file it
+// names (heightmap, channel images, model library manifest).
+std::string shared_input(const Sketch& sketch);
+
+// The city of `edited`, built with `previous`'s cache (a new one when it has none), which
+// the new city then holds: the same city build_city(edited) makes.
+City regenerate(const City& previous, const Sketch& edited, StageClock& clock);
+
+}  // namespace exacity
