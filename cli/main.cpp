@@ -457,6 +457,11 @@ void add_generate(CLI::App& app, GenerateCommand& c, SharedOptions& shared) {
                     "Also write the vector layers as gpkg (OUT/city.gpkg), fgb (OUT/vector/*.fgb), shp "
                     "(OUT/vector/shp/) or dxf (OUT/city.dxf); repeatable; GeoJSON is always written")
       ->check(CLI::IsMember(std::vector<std::string>(std::begin(kVectorFormats), std::end(kVectorFormats))));
+  c.app->add_option("--osm-ids-from", c.exports.osm_first_id,
+                    "Number city.osm's nodes and ways from N up (a range kept for this city) in place of new "
+                    "objects' negative ids, which GDAL's OSM driver (and so QGIS) reads only with "
+                    "OSM_USE_CUSTOM_INDEXING=NO")
+      ->check(CLI::Range(std::int64_t{1}, std::int64_t{1'000'000'000'000'000}));
   c.app->add_option("--models", c.models,
                     "A model library (JSON manifest) in place of the sketch's own \"models\"");
   c.app->add_option("-o,--output", c.out, "Output folder (replaced if an earlier exacity run wrote it)")

@@ -164,7 +164,7 @@ GenerateResult write_city(const Sketch& sketch, const City& city, const fs::path
   stages.run("export", [&] {
     export_vectors(sketch, city, dir);
     write_vector_formats(dir, options.vector_formats, city.settings.crs);
-    city_osm = write_city_osm(city, dir / "city.osm");
+    city_osm = write_city_osm(city, dir / "city.osm", options.osm_first_id);
   });
   GltfCounts gltf;
   MeshCounts mesh = stages.run("3d export", [&] { return export_3d(city, dir, gltf); });

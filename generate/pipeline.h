@@ -2,6 +2,7 @@
 #pragma once
 
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -65,6 +66,9 @@ GenerateResult generate_city(const Sketch& sketch, const std::filesystem::path& 
 // (generate/export/gis_export.h).
 struct ExportOptions {
   std::vector<std::string> vector_formats;
+  // city.osm's ids from here up (an id range the user keeps for this city), else new
+  // objects' negative ids.
+  std::optional<std::int64_t> osm_first_id;
 };
 // `sketch` is the one `city` was built from: OUT/sketch.geojson is its copy.
 GenerateResult write_city(const Sketch& sketch, const City& city, const std::filesystem::path& dir, StageClock& clock,

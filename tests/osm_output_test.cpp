@@ -442,3 +442,29 @@ TEST(OsmOutput, NegativeIdsAreReadAsAnyOthersAndCityOsmReadsBack) {
   // (its negative ids count up), then "the extract has no highways" (no negative node found).
   EXPECT_EQ(again.roads.size(), 7u);
 }
+
+TEST(OsmOutput, IdsFromAGivenRangeAreReadByGdalsOsmDriverAsItIs) {
+  const fs::path dir = testing_util::temp_dir("osm-ids-from");
+  const cli_util::Result r =
+      cli_util::run("generate " + kVillage.string() + " -o " + (dir / "v").string() + " -q --osm-ids-from 7000000000");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const OsmFile osm = read_osm(dir / "v" / "city.osm");
+  ASSERT_FALSE(osm.node_ids.empty());
+  EXPECT_EQ(*osm.node_ids.begin(), 7000000000);
+  EXPECT_EQ(*osm.node_ids.rbegin(), 7000000000 + static_cast<std::int64_t>(osm.node_ids.size()) - 1);
+  EXPECT_EQ(*osm.way_ids.begin(), 7000000000);
+  // GDAL's default node index (no OSM_USE_CUSTOM_INDEXING=NO) reads every street.
+  start_gdal();
+  GDALDatasetUniquePtr ds(GDALDataset::Open((dir / "v" / "city.osm").string().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  ASSERT_TRUE(ds);
+  OGRLayer* lines = ds->GetLayerByName("lines");
+  ASSERT_NE(lines, nullptr);
+  int streets = 0;
+  for (OGRFeatureUniquePtr f(lines->GetNextFeature()); f; f.reset(lines->GetNextFeature()))
+    streets += std::string(f->GetFieldAsString("highway")) != "";
+  EXPECT_EQ(streets, nlohmann::json::parse(cli_util::read(dir / "v" / "report.json"))["counts"]["roads"].get<int>());
+  // Zero and negative first ids are refused.
+  const cli_util::Result zero = cli_util::run("generate " + kVillage.string() + " -o " + (dir / "z").string() + " -q --osm-ids-from 0");
+  EXPECT_EQ(zero.code, 2) << zero.out;
+  EXPECT_FALSE(fs::exists(dir / "z" / "city.osm"));
+}

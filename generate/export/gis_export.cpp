@@ -236,7 +236,7 @@ std::int64_t first_osm_id(const std::vector<osmium::Location>& locations) {
 
 }  // namespace
 
-bool write_city_osm(const City& city, const fs::path& file) {
+bool write_city_osm(const City& city, const fs::path& file, std::optional<std::int64_t> first_given_id) {
   const std::optional<int> epsg = epsg_of(city.settings.crs);
   if (!epsg) return false;
   const ToLonLat to_lon_lat(*epsg);
@@ -272,9 +272,11 @@ bool write_city_osm(const City& city, const fs::path& file) {
     locations.push_back(osmium::Location{ll.x, ll.y});
   }
   const std::int64_t first_id = first_osm_id(locations);
-  // The n-th of `count` objects of a type: ids rise through the file, from the most negative
-  // to -(first_id + 1), as `osmium merge` requires of each input (it compares ids as numbers).
+  // The n-th of `count` objects of a type: ids rise through the file, as `osmium merge` and
+  // GDAL's OSM driver require of each input; new objects' from the most negative to
+  // -(first_id + 1), or the user's range from its first id.
   auto id = [&](std::size_t n, std::size_t count) {
+    if (first_given_id) return static_cast<osmium::object_id_type>(*first_given_id + static_cast<std::int64_t>(n));
     return static_cast<osmium::object_id_type>(-(first_id + static_cast<std::int64_t>(count - n)));
   };
 

@@ -3,7 +3,9 @@
 // the street network and buildings as an OpenStreetMap file.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,8 +27,8 @@ void write_vector_formats(const std::filesystem::path& dir, const std::vector<st
 // residential; width; bridge and layer), sharing a node wherever they meet, every building
 // footprint as a closed way (building, height), and the street clutter as tagged nodes
 // (street lamps, traffic signals, stops, benches, fire hydrants, trees), in lon/lat, with
-// negative ids apart from any other city's. Whether it was written: a sketch without a
+// negative ids apart from any other city's, or ids from first_id up. Whether it was written: a sketch without a
 // CRS (EPSG) has no place on Earth.
-bool write_city_osm(const City& city, const std::filesystem::path& file);
+bool write_city_osm(const City& city, const std::filesystem::path& file, std::optional<std::int64_t> first_id = {});
 
 }  // namespace exacity

@@ -194,7 +194,7 @@ Structures place_buildings(const std::vector<Lot>& lots, const CitySettings& cit
       // Everything placing reads of the lot, and the city's box (extruded heights fall from its centre).
       std::string key = "lot " + std::to_string(lot.planned) + " " + std::to_string(lot.rank) + " zone " +
                         std::to_string(static_cast<int>(lot.zone)) + " density " + lot.density + " model " +
-                        std::to_string(lot.model) + " city ";
+                        (lot.model ? std::to_string(*lot.model) : std::string("none")) + " city ";
       for (double v : {box.min_x, box.min_y, box.max_x, box.max_y}) append_key(key, v);
       key += geom::exact_text(lot.cell);
       here = memo->get(key, place);
