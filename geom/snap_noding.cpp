@@ -84,25 +84,59 @@ std::vector<Polyline> snap_round_segments(const std::vector<std::pair<Vec2, Vec2
   grid.columns = static_cast<long>(grid.box.width() / grid.size) + 1;
   grid.rows = static_cast<long>(grid.box.height() / grid.size) + 1;
 
+  auto xy_less = [](Vec2 p, Vec2 q) { return p.x != q.x ? p.x < q.x : p.y < q.y; };
   std::vector<std::pair<long, int>> entries;  // (bucket, segment)
-  for (std::size_t i = 0; i < n; ++i)
-    if (!(s[i].first == s[i].second))
-      grid.along(s[i].first, s[i].second, step, [&](long k) { entries.push_back({k, static_cast<int>(i)}); });
-  std::sort(entries.begin(), entries.end());
-
   // Crossings: decided exactly on the snapped ends, placed in doubles, then snapped.
-  for (std::size_t begin = 0, end; begin < entries.size(); begin = end) {
-    for (end = begin; end < entries.size() && entries[end].first == entries[begin].first;) ++end;
-    for (std::size_t p = begin; p < end; ++p)
-      for (std::size_t q = p + 1; q < end; ++q) {
-        const auto [a, b] = s[entries[p].second];
-        const auto [c, d] = s[entries[q].second];
-        const int sc = side(a, b, c), sd = side(a, b, d), sa = side(c, d, a), sb = side(c, d, b);
-        if (sc * sd >= 0 || sa * sb >= 0) continue;  // touching and overlapping ends are hot already
-        const double ca = cross(d - c, a - c), cb = cross(d - c, b - c);
-        hot.push_back(snap_to(lerp(a, b, ca / (ca - cb)), step));
+  auto crossings = [&] {
+    entries.clear();
+    for (std::size_t i = 0; i < n; ++i)
+      if (!(s[i].first == s[i].second))
+        grid.along(s[i].first, s[i].second, step, [&](long k) { entries.push_back({k, static_cast<int>(i)}); });
+    std::sort(entries.begin(), entries.end());
+    std::vector<Vec2> found;
+    for (std::size_t begin = 0, end; begin < entries.size(); begin = end) {
+      for (end = begin; end < entries.size() && entries[end].first == entries[begin].first;) ++end;
+      for (std::size_t p = begin; p < end; ++p)
+        for (std::size_t q = p + 1; q < end; ++q) {
+          const auto [a, b] = s[entries[p].second];
+          const auto [c, d] = s[entries[q].second];
+          const int sc = side(a, b, c), sd = side(a, b, d), sa = side(c, d, a), sb = side(c, d, b);
+          if (sc * sd >= 0 || sa * sb >= 0) continue;  // touching and overlapping ends are hot already
+          const double ca = cross(d - c, a - c), cb = cross(d - c, b - c);
+          found.push_back(snap_to(lerp(a, b, ca / (ca - cb)), step));
+        }
+    }
+    std::sort(found.begin(), found.end(), xy_less);
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+    return found;
+  };
+  // An end within one pixel of a crossing merges into it, unless it ends a segment that
+  // must stay monotone (a vertex the arrangement has): a road computed to stop at another
+  // and snapped a pixel past it would otherwise end in a tail one pixel long beyond the
+  // junction (the snapping tolerance of a snapping noder).
+  std::vector<Vec2> crossing = crossings();
+  if (!crossing.empty()) {
+    std::vector<Vec2> fixed;
+    for (std::size_t i = 0; i < n && i < monotone.size(); ++i)
+      if (monotone[i]) fixed.push_back(s[i].first), fixed.push_back(s[i].second);
+    std::sort(fixed.begin(), fixed.end(), xy_less);
+    auto merged = [&](Vec2 e) {
+      if (std::binary_search(fixed.begin(), fixed.end(), e, xy_less)) return e;
+      auto it = std::lower_bound(crossing.begin(), crossing.end(), Vec2{e.x - step, -INFINITY}, xy_less);
+      Vec2 best = e;
+      double best_d = INFINITY;
+      for (; it != crossing.end() && it->x <= e.x + step; ++it) {
+        const double d = std::max(std::abs(it->x - e.x), std::abs(it->y - e.y));
+        if (d > 0 && d <= step * (1 + 1e-9) && d < best_d) best = *it, best_d = d;
       }
+      return best;
+    };
+    for (auto& [a, b] : s) a = merged(a), b = merged(b);
+    crossing = crossings();
   }
+  hot.clear();
+  for (const auto& [a, b] : s) hot.push_back(a), hot.push_back(b);
+  hot.insert(hot.end(), crossing.begin(), crossing.end());
   std::sort(hot.begin(), hot.end(), [](Vec2 a, Vec2 b) { return a.x != b.x ? a.x < b.x : a.y < b.y; });
   hot.erase(std::unique(hot.begin(), hot.end()), hot.end());
   std::vector<std::pair<long, int>> hot_in;  // (bucket, hot pixel)
@@ -114,7 +148,6 @@ std::vector<Polyline> snap_round_segments(const std::vector<std::pair<Vec2, Vec2
   // until no piece meets a hot pixel not its own (iterated snap rounding: the result, noded
   // again on the same grid, stays as it is).
   const double half = step * (0.5 + 1e-9);
-  auto xy_less = [](Vec2 p, Vec2 q) { return p.x != q.x ? p.x < q.x : p.y < q.y; };
   std::vector<std::pair<double, Vec2>> found;
   auto hot_on = [&](Vec2 p, Vec2 q) {
     found.clear();

@@ -208,3 +208,13 @@ TEST(SnapNoding, SegmentsPassingBesideAnotherPixelStayWhole) {
   EXPECT_EQ(lines[0], (geom::Polyline{{0, 0}, {8, 0}}));
   EXPECT_EQ(lines[1], (geom::Polyline{{4, 1}, {4, 0.25}}));
 }
+
+TEST(SnapNoding, AnEndAPixelPastACrossingMergesIntoIt) {
+  const double step = 0.125;
+  // The second segment stops a pixel past the first, as a road computed to stop at another
+  // lands after snapping: it ends at the crossing, with no tail beyond it.
+  const std::vector<geom::Polyline> lines =
+      geom::snap_round_segments({{{0, 0}, {8, 0}}, {{4, 3}, {4, -0.125}}}, step);
+  EXPECT_EQ(lines[0], (geom::Polyline{{0, 0}, {4, 0}, {8, 0}}));
+  EXPECT_EQ(lines[1], (geom::Polyline{{4, 3}, {4, 0}}));
+}
