@@ -56,8 +56,10 @@ const char* const kBuilt[] = {"residential", "commercial", "industrial"};
 // ulps over a 256 x 256 grid around the point (100.5, 100.5) of the line y = x, on which
 // a neighbouring zone's edge runs; the two zones overlap, touch or part by a sliver of
 // ulps, as the orientation of (q, r, p) decides.
-json near_collinear(Random& rng) {
+// Level: 8 less log2 of (1 + the ulps p lies off the line), 8 on it.
+json near_collinear(Random& rng, double& level) {
   const int i = static_cast<int>(rng.next() % 256), j = static_cast<int>(rng.next() % 256);
+  level = 8 - std::log2(1.0 + std::abs(i - j));
   P p{100.5, 100.5};
   for (int k = 0; k < i; ++k) p.x = std::nextafter(p.x, INFINITY);
   for (int k = 0; k < j; ++k) p.y = std::nextafter(p.y, INFINITY);
@@ -85,17 +87,20 @@ json random_city(Random& rng, P offset) {
   return features;
 }
 
-// 2. One random city translated to 1e5, 1e6 (UTM), 1e7 and 1e9 m.
-json translated(Random& rng, int index) {
+// 2. One random city translated to 1e5, 1e6 (UTM), 1e7 and 1e9 m. Level: log10 of the
+// translation.
+json translated(Random& rng, int index, double& level) {
   static const double offsets[] = {1e5, 1e6, 1e7, 1e9};
   const double o = offsets[index % 4];
+  level = std::log10(o);
   return random_city(rng, {o, o / 2});
 }
 
 // 3. Highways crossing at angles from 1e-3 down to 1e-12 radians inside a zone, or (odd
-// cases) nearly parallel, 5 m apart where they enter it.
-json thin_angles(Random& rng, int index) {
+// cases) nearly parallel, 5 m apart where they enter it. Level: -log10 of the angle.
+json thin_angles(Random& rng, int index, double& level) {
   const double angle = sweep(3, 12, index / 2, 10);
+  level = -std::log10(angle);
   const P at{rng.uniform(150, 350), rng.uniform(150, 250)};
   const double apart = index % 2 ? 5 : 0;
   const double reach = 600;
@@ -107,9 +112,10 @@ json thin_angles(Random& rng, int index) {
 }
 
 // 4. Zone corners moved off a shared edge, or off a highway's centre line, by 1e-1 down to
-// 1e-12 m, to either side.
-json off_edge(Random& rng, int index) {
+// 1e-12 m, to either side. Level: -log10 of the offset.
+json off_edge(Random& rng, int index, double& level) {
   const double d = sweep(1, 12, index / 2, 12) * (rng.next() % 2 ? 1 : -1);
+  level = -std::log10(std::abs(d));
   const double y = rng.uniform(50, 350);
   if (index % 2 == 0)
     return json::array({zone("residential", {rect(0, 0, 300, 400)}),
@@ -120,9 +126,12 @@ json off_edge(Random& rng, int index) {
 }
 
 // 5. Zones sharing edges exactly, overlapping along collinear edges, touching at a point,
-// drawn twice.
-json shared_edges(Random& rng, int index) {
+// drawn twice. Level: how many rings run along one edge (two sharing it, two overlapping
+// along part of it, two touching at a point with a road through it, three drawn on each
+// other).
+json shared_edges(Random& rng, int index, double& level) {
   const double a = rng.uniform(150, 400), b = rng.uniform(150, 400);
+  level = index % 4 == 3 ? 3 : 2;
   switch (index % 4) {
     case 0:
       return json::array({zone("residential", {rect(0, 0, a, b)}), zone("commercial", {rect(a, 0, 2 * a, b)}),
@@ -140,9 +149,10 @@ json shared_edges(Random& rng, int index) {
 }
 
 // 6. Slivers 1e-3 down to 1e-9 m wide beside or inside a zone; spikes as thin; rings that
-// touch themselves.
-json slivers(Random& rng, int index) {
+// touch themselves. Level: -log10 of the width.
+json slivers(Random& rng, int index, double& level) {
   const double w = sweep(3, 9, index / 3, 7);
+  level = -std::log10(w);
   const double a = rng.uniform(200, 400), b = rng.uniform(200, 400);
   switch (index % 3) {
     case 0:
@@ -159,18 +169,21 @@ json slivers(Random& rng, int index) {
   }
 }
 
-// 7. Many highways through one point; a dense tangle of random polylines.
-json many_highways(Random& rng, int index) {
+// 7. Many highways through one point; a dense tangle of random polylines. Level: how many
+// lines pass through one point (2 in a tangle: they cross in pairs).
+json many_highways(Random& rng, int index, double& level) {
   json features = json::array({zone("residential", {rect(0, 0, 500, 500)}), zone("commercial", {rect(500, 0, 800, 500)})});
   if (index % 2 == 0) {
     const P c{rng.uniform(100, 400), rng.uniform(100, 400)};
     const int n = 3 + index % 10;
+    level = n;
     for (int k = 0; k < n; ++k) {
       const double t = rng.uniform(0, M_PI);
       features.push_back(road("main", 8, {{c.x - 700 * std::cos(t), c.y - 700 * std::sin(t)}, c,
                                           {c.x + 700 * std::cos(t), c.y + 700 * std::sin(t)}}));
     }
   } else {
+    level = 2;
     for (int k = 0; k < 10; ++k) {
       Line line;
       for (int v = 0; v < 8; ++v) line.push_back({rng.uniform(0, 800), rng.uniform(0, 500)});
@@ -180,7 +193,7 @@ json many_highways(Random& rng, int index) {
   return features;
 }
 
-using Maker = json (*)(Random&, int);
+using Maker = json (*)(Random&, int, double& level);
 struct Entry {
   Family family;
   Maker make;
@@ -188,15 +201,22 @@ struct Entry {
 
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> list{
-      {{"near-collinear", "a zone corner stepped by ulps over a 256x256 grid around its neighbour's edge"},
-       [](Random& rng, int) { return near_collinear(rng); }},
-      {{"translated", "a random city at 1e5, 1e6, 1e7 and 1e9 m"}, translated},
-      {{"thin-angles", "highways crossing at 1e-3 to 1e-12 rad, or nearly parallel"}, thin_angles},
-      {{"off-edge", "corners 1e-1 to 1e-12 m off a shared edge or a highway"}, off_edge},
-      {{"shared-edges", "zones sharing edges, overlapping along them, touching at a point, drawn twice"}, shared_edges},
-      {{"slivers", "zones and spikes 1e-3 to 1e-9 m wide, rings touching themselves"}, slivers},
-      {{"many-highways", "up to 12 highways through one point, tangles of random polylines"}, many_highways},
-      {{"random", "small random cities (the control)"}, [](Random& rng, int) { return random_city(rng, {0, 0}); }},
+      {{"near-collinear", "a zone corner stepped by ulps over a 256x256 grid around its neighbour's edge",
+        "8 - log2(1 + ulps off the line)"},
+       [](Random& rng, int, double& level) { return near_collinear(rng, level); }},
+      {{"translated", "a random city at 1e5, 1e6, 1e7 and 1e9 m", "log10 of the translation (m)"}, translated},
+      {{"thin-angles", "highways crossing at 1e-3 to 1e-12 rad, or nearly parallel", "-log10 of the angle (rad)"},
+       thin_angles},
+      {{"off-edge", "corners 1e-1 to 1e-12 m off a shared edge or a highway", "-log10 of the offset (m)"}, off_edge},
+      {{"shared-edges", "zones sharing edges, overlapping along them, touching at a point, drawn twice",
+        "rings along one edge"},
+       shared_edges},
+      {{"slivers", "zones and spikes 1e-3 to 1e-9 m wide, rings touching themselves", "-log10 of the width (m)"},
+       slivers},
+      {{"many-highways", "up to 12 highways through one point, tangles of random polylines", "lines through one point"},
+       many_highways},
+      {{"random", "small random cities (the control)", "0 (the control)"},
+       [](Random& rng, int, double&) { return random_city(rng, {0, 0}); }},
   };
   return list;
 }
@@ -218,18 +238,25 @@ const std::vector<Family>& families() {
   return list;
 }
 
-std::string family_sketch(const std::string& family, int index, std::uint64_t seed) {
+FamilyCase family_case(const std::string& family, int index, std::uint64_t seed) {
   for (const Entry& e : entries()) {
     if (e.family.name != family) continue;
     const std::uint64_t id = mix(mix(seed, hash(family)), static_cast<std::uint64_t>(index));
     Random rng(id);
+    FamilyCase c;
+    json features = e.make(rng, index, c.level);
     // The city's own seed: 53 bits, so any JSON reader keeps it exactly.
     json sketch = {{"type", "FeatureCollection"},
                    {"exacity", {{"version", 1}, {"seed", mix(id) >> 11}}},
-                   {"features", e.make(rng, index)}};
-    return sketch.dump() + "\n";
+                   {"features", std::move(features)}};
+    c.sketch = sketch.dump() + "\n";
+    return c;
   }
   throw std::invalid_argument("no family named \"" + family + "\"");
+}
+
+std::string family_sketch(const std::string& family, int index, std::uint64_t seed) {
+  return family_case(family, index, seed).sketch;
 }
 
 }  // namespace exacity::bench

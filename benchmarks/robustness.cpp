@@ -42,7 +42,7 @@ std::vector<Build> builds_in(const RobustnessOptions& o, std::ostream& log) {
   if (!o.builds.empty() && std::find(o.builds.begin(), o.builds.end(), "exact") == o.builds.end())
     throw std::runtime_error("--build: the exact build is what the others are measured against; include exact");
   std::vector<Build> found;
-  for (const std::string name : {"exact", "float", "float-simple"}) {
+  for (const std::string& name : kBuildNames) {
     const bool asked = std::find(o.builds.begin(), o.builds.end(), name) != o.builds.end();
     if (!o.builds.empty() && !asked) continue;
     const fs::path program = o.programs / (name == "exact" ? "exacity" : "exacity-" + name);
@@ -100,6 +100,7 @@ Run run_child(const std::vector<std::string>& args, const fs::path& log, double 
 // One build on one case.
 struct Result {
   enum Kind { Passed, Crash, Hang, Error, Rejected } kind = Passed;
+  static constexpr const char* kWords[] = {"passed", "crash", "hang", "error", "rejected"};
   std::vector<std::string> rejected;  // kinds, for Rejected
   double seconds = 0;
 };
@@ -163,37 +164,80 @@ nlohmann::ordered_json to_json(const Outcome& o) {
           {"median_s", std::round(o.median_s * 1000) / 1000}};
 }
 
-// A grouped bar chart of failure rate by family, one bar per build.
+// What a family's degeneracy level measures (benchmarks/families.h).
+std::string level_of(const std::string& family) {
+  for (const Family& f : families())
+    if (f.name == family) return f.level;
+  return {};
+}
+
+// How the report names a build: the two float builds without tolerances say so.
+std::string build_label(const std::string& name) {
+  if (name == "float-snapped") return "float-snapped (practitioner)";
+  if (name == "float") return "float, Epick (no tolerance)";
+  if (name == "float-simple") return "float-simple (no tolerance)";
+  return name;
+}
+
+// Failure rate against degeneracy level, one panel per family, one line per build; cases
+// are binned by their level rounded to a whole number.
 std::string svg_chart(const std::vector<FamilyResult>& results, const std::vector<Build>& builds) {
-  const int bar = 14, group = static_cast<int>(builds.size()) * bar + 16, left = 50, top = 30, height = 200;
-  const int width = left + group * static_cast<int>(results.size()) + 20;
-  static const char* colours[] = {"#2b7a3d", "#d9822b", "#b8322a"};
+  const int columns = 4, panel_w = 230, panel_h = 150, gap_x = 40, gap_y = 70, left = 50, top = 40;
+  const int rows = (static_cast<int>(results.size()) + columns - 1) / columns;
+  const int width = left + columns * (panel_w + gap_x), height = top + rows * (panel_h + gap_y) + 30;
+  static const char* colours[] = {"#2b7a3d", "#1f5fa8", "#d9822b", "#b8322a"};
+  static const char* dashes[] = {"", "", "6 3", "2 3"};
   std::ostringstream s;
-  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << top + height + 120
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
     << "\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-    << "<text x=\"" << left << "\" y=\"18\" font-size=\"13\">Failure rate by family (share of cases not passed)</text>\n";
-  for (int t = 0; t <= 4; ++t) {
-    const int y = top + height - t * height / 4;
-    s << "<line x1=\"" << left << "\" x2=\"" << width - 10 << "\" y1=\"" << y << "\" y2=\"" << y
-      << "\" stroke=\"#ddd\"/><text x=\"" << left - 6 << "\" y=\"" << y + 4 << "\" text-anchor=\"end\">" << t * 25
-      << "%</text>\n";
-  }
-  for (std::size_t f = 0; f < results.size(); ++f) {
-    const int x0 = left + static_cast<int>(f) * group + 8;
-    for (std::size_t b = 0; b < results[f].builds.size(); ++b) {
-      const Outcome& o = results[f].builds[b].second;
-      const double rate = o.cases ? static_cast<double>(o.failures()) / o.cases : 0;
-      const int h = static_cast<int>(std::lround(rate * height));
-      s << "<rect x=\"" << x0 + static_cast<int>(b) * bar << "\" y=\"" << top + height - h << "\" width=\"" << bar - 2
-        << "\" height=\"" << std::max(h, 1) << "\" fill=\"" << colours[b % 3] << "\"/>\n";
-    }
-    s << "<text transform=\"translate(" << x0 + 4 << "," << top + height + 10 << ") rotate(40)\">" << results[f].family
-      << "</text>\n";
-  }
+    << "<text x=\"" << left << "\" y=\"18\" font-size=\"13\">Failure rate against degeneracy level, per family "
+    << "(share of the cases at each level not passed)</text>\n";
   for (std::size_t b = 0; b < builds.size(); ++b)
-    s << "<rect x=\"" << left + 160 * b << "\" y=\"" << top + height + 95 << "\" width=\"10\" height=\"10\" fill=\""
-      << colours[b % 3] << "\"/><text x=\"" << left + 160 * b + 14 << "\" y=\"" << top + height + 104 << "\">"
-      << builds[b].name << "</text>\n";
+    s << "<line x1=\"" << left + 230 * b << "\" x2=\"" << left + 230 * b + 20 << "\" y1=\"28\" y2=\"28\" stroke=\""
+      << colours[b % 4] << "\" stroke-width=\"2\" stroke-dasharray=\"" << dashes[b % 4] << "\"/><text x=\""
+      << left + 230 * b + 24 << "\" y=\"32\">" << build_label(builds[b].name) << "</text>\n";
+  for (std::size_t f = 0; f < results.size(); ++f) {
+    const FamilyResult& fr = results[f];
+    const int x0 = left + static_cast<int>(f % columns) * (panel_w + gap_x);
+    const int y0 = top + 15 + static_cast<int>(f / columns) * (panel_h + gap_y);
+    // Per whole level: cases, and failures per build.
+    std::map<long, std::pair<int, std::vector<int>>> bins;
+    for (const CaseResult& c : fr.cases) {
+      auto& bin = bins[std::lround(c.level)];
+      bin.second.resize(builds.size());
+      ++bin.first;
+      for (std::size_t b = 0; b < c.results.size(); ++b) bin.second[b] += c.results[b] != "passed";
+    }
+    if (bins.empty()) continue;
+    const double lo = static_cast<double>(bins.begin()->first) - (bins.size() == 1 ? 1 : 0);
+    const double hi = static_cast<double>(bins.rbegin()->first) + (bins.size() == 1 ? 1 : 0);
+    auto x_of = [&](double level) { return x0 + (level - lo) / (hi - lo) * panel_w; };
+    auto y_of = [&](double rate) { return y0 + panel_h - rate * panel_h; };
+    s << "<text x=\"" << x0 << "\" y=\"" << y0 - 6 << "\" font-size=\"12\">" << fr.family << "</text>\n";
+    for (int t = 0; t <= 4; ++t)
+      s << "<line x1=\"" << x0 << "\" x2=\"" << x0 + panel_w << "\" y1=\"" << y_of(t / 4.0) << "\" y2=\"" << y_of(t / 4.0)
+        << "\" stroke=\"#ddd\"/>" << (f % columns == 0 ? "<text x=\"" + std::to_string(x0 - 4) + "\" y=\"" +
+                                                           fixed(y_of(t / 4.0) + 4, 1) + "\" text-anchor=\"end\">" +
+                                                           std::to_string(t * 25) + "%</text>"
+                                                     : std::string())
+        << "\n";
+    for (const auto& [level, bin] : bins)
+      s << "<text x=\"" << fixed(x_of(static_cast<double>(level)), 1) << "\" y=\"" << y0 + panel_h + 13
+        << "\" text-anchor=\"middle\">" << level << "</text>\n";
+    s << "<text x=\"" << x0 + panel_w / 2 << "\" y=\"" << y0 + panel_h + 28 << "\" text-anchor=\"middle\" fill=\"#555\">"
+      << level_of(fr.family) << "</text>\n";
+    for (std::size_t b = 0; b < builds.size(); ++b) {
+      std::ostringstream points;
+      for (const auto& [level, bin] : bins)
+        points << fixed(x_of(static_cast<double>(level)), 1) << "," << fixed(y_of(static_cast<double>(bin.second[b]) / bin.first), 1) << " ";
+      s << "<polyline points=\"" << points.str() << "\" fill=\"none\" stroke=\"" << colours[b % 4]
+        << "\" stroke-width=\"2\" stroke-dasharray=\"" << dashes[b % 4] << "\"/>\n";
+      for (const auto& [level, bin] : bins)
+        s << "<circle cx=\"" << fixed(x_of(static_cast<double>(level)), 1) << "\" cy=\""
+          << fixed(y_of(static_cast<double>(bin.second[b]) / bin.first), 1) << "\" r=\"2.5\" fill=\"" << colours[b % 4]
+          << "\"/>\n";
+    }
+  }
   s << "</svg>\n";
   return s.str();
 }
@@ -209,7 +253,7 @@ std::string markdown(const std::vector<FamilyResult>& results, const std::vector
     << "(the judge's or the validator's kinds, in brackets). The time ratio is the exact build's median time over\n"
     << "the other's on the cases both passed (— where none did: a crash's time says nothing of the cost).\n\n"
     << "| family | cases |";
-  for (const Build& b : builds) s << " " << b.name << " passed | " << b.name << " failures |";
+  for (const Build& b : builds) s << " " << build_label(b.name) << " passed | " << b.name << " failures |";
   s << " median s (" << builds.front().name << ") |";
   for (std::size_t b = 1; b < builds.size(); ++b) s << " time " << builds.front().name << "/" << builds[b].name << " |";
   s << "\n|---|---|";
@@ -236,10 +280,10 @@ std::string markdown(const std::vector<FamilyResult>& results, const std::vector
     for (double ratio : f.time_ratio) s << " " << (ratio > 0 ? fixed(ratio, 2) : "—") << " |";
     s << "\n";
   }
-  s << "\n![failure rate by family](robustness.svg)\n\nReproduce (release preset, which builds the float programs too):\n\n"
+  s << "\n![failure rate against degeneracy level](robustness.svg)\n\nReproduce (release preset, which builds the float programs too):\n\n"
     << "```\ncmake --workflow --preset release\nbuild/release/cli/exacity bench robustness --cases " << o.cases
     << " --seed " << o.seed << "\n```\n\nFamilies:\n\n";
-  for (const Family& f : families()) s << "- `" << f.name << "`: " << f.about << "\n";
+  for (const Family& f : families()) s << "- `" << f.name << "`: " << f.about << " (level: " << f.level << ")\n";
   return s.str();
 }
 
@@ -255,6 +299,7 @@ std::vector<std::string> family_names(const RobustnessOptions& o) {
 struct Job {
   std::size_t family;
   int index;
+  double level = 0;  // the case's, known once it has run
 };
 
 // Every (family, case) in a fixed order; results land by index, whatever order they finish in.
@@ -266,19 +311,21 @@ std::vector<Job> case_jobs(std::size_t families, int cases) {
 }
 
 // Every build on one case; returns its progress line. Passed outputs are removed unless kept.
-std::string run_job(const RobustnessOptions& o, const std::string& family, int index, const std::vector<Build>& builds,
+std::string run_job(const RobustnessOptions& o, const std::string& family, Job& job, const std::vector<Build>& builds,
                     std::vector<Result>& results) {
+  const int index = job.index;
   const fs::path dir = o.out / "cases" / family / std::to_string(index);
   fs::create_directories(dir);
   const fs::path sketch = dir / "sketch.geojson";
-  std::ofstream(sketch, std::ios::binary) << family_sketch(family, index, o.seed);
+  const FamilyCase c = family_case(family, index, o.seed);
+  job.level = c.level;
+  std::ofstream(sketch, std::ios::binary) << c.sketch;
   bool all_passed = true;
   std::ostringstream line;
   line << family << " " << index << ":";
   for (std::size_t b = 0; b < builds.size(); ++b) {
     Result r = run_case(builds[b], o.programs / "exacity", sketch, dir, o.time_limit);
-    static const char* words[] = {"passed", "crash", "hang", "error", "rejected"};
-    line << " " << builds[b].name << " " << words[r.kind];
+    line << " " << builds[b].name << " " << Result::kWords[r.kind];
     for (const std::string& k : r.rejected) line << " " << k;
     all_passed &= r.kind == Result::Passed;
     if (r.kind == Result::Passed && !o.keep_outputs) fs::remove_all(dir / builds[b].name);
@@ -290,7 +337,7 @@ std::string run_job(const RobustnessOptions& o, const std::string& family, int i
 
 // Runs the jobs on o.jobs threads (one per core by default); results[job][build].
 std::vector<std::vector<Result>> run_jobs(const RobustnessOptions& o, const std::vector<std::string>& names,
-                                          const std::vector<Job>& jobs, const std::vector<Build>& builds,
+                                          std::vector<Job>& jobs, const std::vector<Build>& builds,
                                           std::ostream& log) {
   std::vector<std::vector<Result>> results(jobs.size(), std::vector<Result>(builds.size()));
   fs::create_directories(o.out);
@@ -298,7 +345,7 @@ std::vector<std::vector<Result>> run_jobs(const RobustnessOptions& o, const std:
   std::mutex log_mutex;
   auto work = [&] {
     for (std::size_t j; (j = next++) < jobs.size();) {
-      const std::string line = run_job(o, names[jobs[j].family], jobs[j].index, builds, results[j]);
+      const std::string line = run_job(o, names[jobs[j].family], jobs[j], builds, results[j]);
       std::lock_guard<std::mutex> lock(log_mutex);
       log << line << "\n" << std::flush;
     }
@@ -342,7 +389,13 @@ std::vector<FamilyResult> summarise(const std::vector<std::string>& names, const
                                     const std::vector<Build>& builds, const std::vector<std::vector<Result>>& results) {
   std::vector<FamilyResult> out;
   for (std::size_t f = 0; f < names.size(); ++f) {
-    FamilyResult fr{names[f], {}, {}};
+    FamilyResult fr{names[f], {}, {}, {}};
+    for (std::size_t j = 0; j < jobs.size(); ++j) {
+      if (jobs[j].family != f) continue;
+      CaseResult c{jobs[j].index, jobs[j].level, {}};
+      for (const Result& r : results[j]) c.results.push_back(Result::kWords[r.kind]);
+      fr.cases.push_back(std::move(c));
+    }
     for (std::size_t b = 0; b < builds.size(); ++b) {
       fr.builds.push_back({builds[b].name, outcome_of(jobs, results, f, b)});
       if (b == 0) continue;
@@ -364,6 +417,13 @@ nlohmann::ordered_json robustness_json(const RobustnessOptions& o, const std::ve
       entry[f.builds[b].first] = to_json(f.builds[b].second);
       if (b > 0) entry[f.builds[b].first]["exact_over_this_time"] = f.time_ratio[b - 1] > 0 ? nlohmann::ordered_json(f.time_ratio[b - 1]) : nullptr;
     }
+    entry["level"] = level_of(f.family);
+    entry["per_case"] = nlohmann::ordered_json::array();
+    for (const CaseResult& c : f.cases) {
+      nlohmann::ordered_json one = {{"case", c.index}, {"level", std::round(c.level * 1000) / 1000}};
+      for (std::size_t b = 0; b < builds.size(); ++b) one[builds[b].name] = c.results[b];
+      entry["per_case"].push_back(one);
+    }
     doc["families"].push_back(entry);
   }
   return doc;
@@ -381,7 +441,7 @@ void write_reports(const RobustnessOptions& o, const std::vector<Build>& builds,
 std::vector<FamilyResult> run_robustness(const RobustnessOptions& o, std::ostream& log) {
   const std::vector<Build> builds = builds_in(o, log);
   const std::vector<std::string> names = family_names(o);
-  const std::vector<Job> jobs = case_jobs(names.size(), o.cases);
+  std::vector<Job> jobs = case_jobs(names.size(), o.cases);
   const std::vector<std::vector<Result>> results = run_jobs(o, names, jobs, builds, log);
   std::vector<FamilyResult> out = summarise(names, jobs, builds, results);
   write_reports(o, builds, out);

@@ -13,6 +13,10 @@
 
 namespace exacity::bench {
 
+// The builds, in report order: the exact one, the practitioner's float build (snapped to a
+// grid, with tolerances), and the two float builds with no tolerance (geom/exact.h).
+inline const std::vector<std::string> kBuildNames = {"exact", "float-snapped", "float", "float-simple"};
+
 struct RobustnessOptions {
   std::vector<std::string> families;  // empty: all
   int cases = 40;                     // per family
@@ -20,9 +24,9 @@ struct RobustnessOptions {
   std::filesystem::path out = "out/robustness";
   double time_limit = 60;  // seconds per run of a build on a case
   int jobs = 0;            // cases run at once (0: one per core)
-  // Where exacity, exacity-float and exacity-float-simple are; builds not there are left out.
+  // Where exacity and exacity-<build> are; builds not there are left out.
   std::filesystem::path programs;
-  std::vector<std::string> builds;  // exact, float, float-simple; empty: every build found
+  std::vector<std::string> builds;  // of kBuildNames; empty: every build found
   bool keep_outputs = false;        // else only failed cases' outputs stay
 };
 
@@ -33,9 +37,18 @@ struct Outcome {
   int failures() const { return cases - passed; }
 };
 
+// One case of a family: its degeneracy level and each build's result ("passed", "crash",
+// "hang", "error" or "rejected"), in build order.
+struct CaseResult {
+  int index = 0;
+  double level = 0;
+  std::vector<std::string> results;
+};
+
 struct FamilyResult {
   std::string family;
   std::vector<std::pair<std::string, Outcome>> builds;  // in build order
+  std::vector<CaseResult> cases;
   // Per build after the first: the exact build's median time over its own, on the cases
   // both passed (0 when none did: a crash's time says nothing of the cost).
   std::vector<double> time_ratio;

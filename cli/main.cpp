@@ -532,7 +532,7 @@ void add_bench_robustness(CLI::App& app, RobustnessCommand& c) {
       ->capture_default_str();
   c.app->add_option("--jobs", o.jobs, "Cases run at once (0: one per core)")->check(CLI::Range(0, 1024));
   c.app->add_option("--build", o.builds, "Only these builds, exact among them (default: every one built)")
-      ->check(CLI::IsMember({"exact", "float", "float-simple"}));
+      ->check(CLI::IsMember(bench::kBuildNames));
   c.app->add_flag("--keep", o.keep_outputs, "Keep every output, not only those of failed cases");
 }
 

@@ -262,10 +262,12 @@ Path extend_to(const Path& road, const std::vector<Path>& targets, double reach,
         continue;
       auto meet = CGAL::intersection(line, s);
       if (!meet) continue;
-      const Point* x = boost::get<Point>(&*meet);
-      if (!x || *x == q || CGAL::angle(p, q, *x) != CGAL::OBTUSE) continue;  // only ahead of q
-      if (CGAL::squared_distance(q, *x) > exact::FT(reach * reach)) continue;
-      if (!best || CGAL::has_smaller_distance_to_point(q, *x, *best)) best = *x;
+      const Point* found = boost::get<Point>(&*meet);
+      if (!found) continue;
+      const Point x = exact::constructed(*found);
+      if (x == q || CGAL::angle(p, q, x) != CGAL::OBTUSE) continue;  // only ahead of q
+      if (CGAL::squared_distance(q, x) > exact::FT(reach * reach)) continue;
+      if (!best || CGAL::has_smaller_distance_to_point(q, x, *best)) best = x;
     }
   }
   if (!best && may_turn) {
@@ -286,8 +288,15 @@ bool ends_on(const Path& road, const std::vector<Path>& targets) {
   const Point& q = pts.back();
   for (const Path& target : targets) {
     const auto& t = target.exact().points;
-    for (std::size_t i = 0; i + 1 < t.size(); ++i)
-      if (Segment(t[i], t[i + 1]).has_on(q)) return true;
+    for (std::size_t i = 0; i + 1 < t.size(); ++i) {
+      const Segment s(t[i], t[i + 1]);
+      if constexpr (exact::kSnapped) {
+        // The snapped build's ends lie within a grid step of what they met, not on it.
+        if (CGAL::squared_distance(s, q) <= exact::FT(exact::kSnapStep * exact::kSnapStep)) return true;
+      } else if (s.has_on(q)) {
+        return true;
+      }
+    }
   }
   return false;
 }
@@ -342,7 +351,7 @@ std::optional<Link> shortest_link(const std::vector<Path>& from, const std::vect
   const Point &p = s[best->segment], &q = s[best->segment + 1];
   Point nearest = CGAL::angle(v, p, q) != CGAL::ACUTE   ? p
                   : CGAL::angle(v, q, p) != CGAL::ACUTE ? q
-                                                        : exact::Line(p, q).projection(v);
+                                                        : exact::constructed(exact::Line(p, q).projection(v));
   if (nearest == v) return Link{};
   auto impl = std::make_shared<Path::Impl>();
   impl->points = best->vertex_from ? std::vector<Point>{v, nearest} : std::vector<Point>{nearest, v};
@@ -433,8 +442,8 @@ Growth::Met Growth::extend(Vec2 next) {
       auto meet = CGAL::intersection(step, o.segment);
       Point at;
       if (const Point* x = boost::get<Point>(&*meet)) {
-        if (*x == p) continue;  // where this step starts: the road's own previous vertex
-        at = *x;
+        at = exact::constructed(*x);
+        if (at == p) continue;  // where this step starts: the road's own previous vertex
       } else {
         const Segment& overlap = boost::get<Segment>(*meet);
         at = CGAL::compare_distance_to_point(p, overlap.source(), overlap.target()) == CGAL::SMALLER

@@ -3,7 +3,11 @@
 // Exacity is built on the exact kernel. The robustness benchmark (benchmarks/robustness.cpp)
 // builds the very same code on floating-point kernels instead, chosen here at compile time
 // by EXACITY_FLOAT_KERNEL: 1 for exact predicates with double constructions (Epick), 2 for
-// plain doubles (Simple_cartesian<double>). Nothing else differs between the builds.
+// plain doubles (Simple_cartesian<double>); nothing else differs between those builds. 3 is
+// the practitioner's float build: Epick, with every constructed point snapped to a fixed
+// grid (`constructed`), equality of constructed points tested on that grid, and every
+// batch noded by snap rounding in doubles before the arrangement sees it
+// (geom/snap_noding.h; docs/design.md, Exactness).
 #pragma once
 
 #include <array>
@@ -20,8 +24,11 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #elif EXACITY_FLOAT_KERNEL == 2
 #include <CGAL/Simple_cartesian.h>
+#elif EXACITY_FLOAT_KERNEL == 3
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include "geom/snap_noding.h"
 #else
-#error "EXACITY_FLOAT_KERNEL: 1 (Epick) or 2 (Simple_cartesian<double>)"
+#error "EXACITY_FLOAT_KERNEL: 1 (Epick), 2 (Simple_cartesian<double>) or 3 (Epick, snapped)"
 #endif
 
 namespace geom::exact {
@@ -32,10 +39,23 @@ inline constexpr const char* kKernelName = "exact (Epeck)";
 #elif EXACITY_FLOAT_KERNEL == 1
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 inline constexpr const char* kKernelName = "float (Epick)";
-#else
+#elif EXACITY_FLOAT_KERNEL == 2
 using Kernel = CGAL::Simple_cartesian<double>;
 inline constexpr const char* kKernelName = "float (Simple_cartesian<double>)";
+#else
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+inline constexpr const char* kKernelName = "float snapped (Epick, constructions on a 2^-24 m grid)";
 #endif
+
+#if EXACITY_FLOAT_KERNEL == 3
+inline constexpr bool kSnapped = true;
+#else
+inline constexpr bool kSnapped = false;
+#endif
+// The snapped build's grid: 2^-24 m, 60 nm, a power of two so that every point of
+// geom/grid.h's grid is on it, and fine enough that a snapped point stays within the
+// validator's 1 µm of the drawn edge it was computed on.
+inline constexpr double kSnapStep = 1.0 / (1 << 24);
 using FT = Kernel::FT;
 using Point = Kernel::Point_2;
 using Segment = Kernel::Segment_2;
@@ -44,6 +64,17 @@ using Line = Kernel::Line_2;
 inline Point to_exact(Vec2 p) {
   CGAL_assertion(std::isfinite(p.x) && std::isfinite(p.y));
   return Point(p.x, p.y);
+}
+
+// A point this code constructed (a meeting of two lines, a projection): itself, or in the
+// snapped build the nearest point of its grid, where equality tests then find it again.
+inline Point constructed(const Point& p) {
+#if EXACITY_FLOAT_KERNEL == 3
+  const Vec2 s = snap_to({p.x(), p.y()}, kSnapStep);
+  return Point(s.x, s.y);
+#else
+  return p;
+#endif
 }
 
 // The nearest double, ties to even: what snap rounding's pixels assume. (CGAL::to_double

@@ -15,6 +15,7 @@
 #include <CGAL/Arr_curve_data_traits_2.h>
 #include <CGAL/Arr_extended_dcel.h>
 #include <CGAL/Arr_observer.h>
+#include <CGAL/Arr_non_caching_segment_traits_2.h>
 #include <CGAL/Arr_segment_traits_2.h>
 #include <CGAL/Arr_walk_along_line_point_location.h>
 #include <CGAL/Arrangement_2.h>
@@ -22,6 +23,7 @@
 
 #include "geom/cell_impl.h"
 #include "geom/grid.h"
+#include "geom/kernel.h"
 #include "geom/split_loops.h"
 #include "geom/untangle.h"
 
@@ -44,7 +46,13 @@ struct ConcatenateTags {
   }
 };
 
+#if EXACITY_FLOAT_KERNEL == 3
+// The snapped build splits an edge at a grid point near it, not on it: each piece must be
+// the segment between its ends, not a part of the first segment's line.
+using SegmentTraits = CGAL::Arr_non_caching_segment_traits_2<Kernel>;
+#else
 using SegmentTraits = CGAL::Arr_segment_traits_2<Kernel>;
+#endif
 using Traits = CGAL::Arr_curve_data_traits_2<SegmentTraits, Tags, ConcatenateTags>;
 using Dcel = CGAL::Arr_face_extended_dcel<Traits, int>;
 using Arrangement = CGAL::Arrangement_2<Traits, Dcel>;
@@ -78,6 +86,57 @@ template <typename Handle>
 Handle left_to_right(Handle h) {
   return h->direction() == CGAL::ARR_LEFT_TO_RIGHT ? h : h->twin();
 }
+
+constexpr int kMapEdge = INT_MIN;  // tag counter of a map edge copied into a region's own arrangement
+
+#if EXACITY_FLOAT_KERNEL == 3
+// Inserts the curves noded by snap rounding in doubles (geom/snap_noding.h) together with
+// the edges the arrangement has already: those are split where the new curves' hot pixels
+// lie on them, and the new curves go in as pieces between grid points, each keeping its
+// curve's tags (a ring tag's sign follows the piece's own left-to-right direction). The
+// sweep then meets only shared ends and constructs no point of its own.
+void insert_curves(Arrangement& arr, std::vector<Curve>& curves) {
+  std::vector<Arrangement::Halfedge_handle> edges;  // each left to right
+  std::vector<std::pair<Vec2, Vec2>> ends;
+  for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
+    edges.push_back(left_to_right(Arrangement::Halfedge_handle(e)));
+    ends.push_back({to_plain(edges.back()->source()->point()), to_plain(edges.back()->target()->point())});
+  }
+  // Edges split in place, and a map edge a region's arrangement splits the same way, must
+  // keep their pieces in order along them.
+  std::vector<bool> monotone(edges.size(), true);
+  for (const Curve& c : curves) {
+    ends.push_back({to_plain(c.source()), to_plain(c.target())});
+    monotone.push_back(std::any_of(c.data().begin(), c.data().end(), [](const CurveTag& t) { return t.counter == kMapEdge; }));
+  }
+  const std::vector<Polyline> lines = snap_round_segments(ends, exact::kSnapStep, monotone);
+  const auto split = arr.geometry_traits()->split_2_object();
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    Arrangement::Halfedge_handle h = edges[i];
+    for (std::size_t k = 1; k + 1 < lines[i].size(); ++k) {
+      Traits::X_monotone_curve_2 left, right;
+      split(h->curve(), to_exact(lines[i][k]), left, right);
+      h = arr.split_edge(h, left, right)->next();
+    }
+  }
+  std::vector<Curve> noded;
+  for (std::size_t i = 0; i < curves.size(); ++i) {
+    const Polyline& line = lines[edges.size() + i];
+    const bool given_left_to_right = CGAL::compare_xy(curves[i].source(), curves[i].target()) == CGAL::SMALLER;
+    for (std::size_t k = 0; k + 1 < line.size(); ++k) {
+      const Point a = to_exact(line[k]), b = to_exact(line[k + 1]);
+      Tags tags = curves[i].data();
+      if ((CGAL::compare_xy(a, b) == CGAL::SMALLER) != given_left_to_right)
+        for (CurveTag& t : tags) t.sign = -t.sign;
+      noded.emplace_back(exact::Segment(a, b), std::move(tags));
+    }
+  }
+  CGAL::insert(arr, noded.begin(), noded.end());
+}
+#else
+// Inserts the curves in one sweep.
+void insert_curves(Arrangement& arr, std::vector<Curve>& curves) { CGAL::insert(arr, curves.begin(), curves.end()); }
+#endif
 
 void add_winding(Windings& w, int counter, int delta) {
   auto it = std::lower_bound(w.begin(), w.end(), std::make_pair(counter, INT32_MIN));
@@ -385,13 +444,11 @@ void PlanarMap::add_path_stroke(const Path& path, double half_width, int counter
 
 void PlanarMap::insert_batch() {
   impl_->merge_plain_edges();
-  CGAL::insert(impl_->arr, impl_->pending.begin(), impl_->pending.end());
+  insert_curves(impl_->arr, impl_->pending);
   impl_->pending.clear();
 }
 
 namespace {
-
-constexpr int kMapEdge = INT_MIN;  // tag counter of a map edge copied into a region's own arrangement
 
 // One region's rings, cut against the region's faces in an arrangement of their own, then
 // put into the map: map edges split where the rings touch them, ring edges inside the
@@ -415,7 +472,7 @@ class RegionInsertion {
       });
       for (auto v = f->isolated_vertices_begin(); v != f->isolated_vertices_end(); ++v) isolated_.push_back(v);
     }
-    CGAL::insert(local_, curves.begin(), curves.end());
+    insert_curves(local_, curves);
     for (auto v : isolated_) vertex_of_.emplace(&*CGAL::insert_point(local_, v->point()), v);
     // Each local face's windings, and the map face it lies in (none outside the region):
     // known across a map edge's piece, the same on both sides of a ring edge.
@@ -637,6 +694,7 @@ void for_each_near_pair(const std::vector<Vec2>& vertices, const std::vector<std
 }  // namespace
 
 std::size_t PlanarMap::snap_round() {
+  if constexpr (exact::kSnapped) return 0;  // every vertex is a double already, noded on its grid
   Arrangement& arr = impl_->arr;
   // Candidates come from the vertices' interval approximations (rounding every vertex
   // exactly costs seconds on a large map); only a candidate's vertices are rounded exactly.
@@ -776,7 +834,7 @@ std::vector<Cell> split_cell(const Cell& cell, const std::vector<Path>& roads, i
     const auto& p = road.exact().points;
     for (std::size_t i = 0; i + 1 < p.size(); ++i) add_curve(curves, p[i], p[i + 1], {1, 0, 0});
   }
-  CGAL::insert(arr, curves.begin(), curves.end());
+  insert_curves(arr, curves);
   label_all_faces(arr, [](const Windings& w) { return winding_of(w, 0) != 0 ? 1 : -1; });
 
   std::unordered_map<const void*, int> index;  // each face inside is its own group
@@ -825,7 +883,7 @@ std::vector<Cell> inset_cell(const Cell& cell, double s) {
   };
   add_bands(cell.exact().outer);
   for (const KindRing& h : cell.exact().holes) add_bands(h);
-  CGAL::insert(arr, curves.begin(), curves.end());
+  insert_curves(arr, curves);
   label_all_faces(arr, [](const Windings& w) { return winding_of(w, 0) != 0 && winding_of(w, 1) == 0 ? 1 : -1; });
   std::vector<Cell> parts;
   trace_components(arr, [](Face f) { return f->data() == 1 ? 0 : -1; },
@@ -937,5 +995,7 @@ PlanarMapCounts PlanarMap::counts() const {
 }
 
 const char* kernel_name() { return exact::kKernelName; }
+
+bool kernel_validates_its_output() { return !exact::kSnapped; }
 
 }  // namespace geom

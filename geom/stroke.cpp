@@ -85,9 +85,10 @@ double along(const Arm& a, Vec2 q, Vec2 p) { return (p.x - q.x) * a.d.x + (p.y -
 // part only past their length.
 std::optional<Corner> corner_between(Vec2 q, const Arm& a, const Arm& b, double gap) {
   Corner c;
-  const Point* m = nullptr;
-  auto meet = CGAL::intersection(a.left, b.right);
-  if (meet) m = boost::get<Point>(&*meet);
+  std::optional<Point> meet_point;
+  if (auto meet = CGAL::intersection(a.left, b.right))
+    if (const Point* p = boost::get<Point>(&*meet)) meet_point = constructed(*p);
+  const Point* m = meet_point ? &*meet_point : nullptr;
   if (gap < M_PI) {
     // Inside a bend the streets part where their sides cross: on both streets, or within
     // the mitre limit of the node (a street shorter than the junction is wide, as
@@ -144,8 +145,8 @@ std::optional<ExactRing> star_ring(const std::vector<Arm>& arms, const std::vect
       auto other = CGAL::intersection(cut, by_right ? a.left : a.right);
       const Point* o = other ? boost::get<Point>(&*other) : nullptr;
       if (!o) return std::nullopt;
-      if (by_right) push(through), push(*o);
-      else push(*o), push(through);
+      if (by_right) push(through), push(constructed(*o));
+      else push(constructed(*o)), push(through);
     }
     for (const Point& p : after.points) push(p);
   }
@@ -165,10 +166,11 @@ ExactRing joint_piece(Vec2 a, Vec2 q, Vec2 b, double hw) {
   auto [r1, s1] = side(q, b, d);
   auto meet = CGAL::intersection(Line(s0, r0), Line(r1, s1));
   if (meet) {
-    if (const Point* m = boost::get<Point>(&*meet)) {
-      Vec2 mp = to_plain(*m);
+    if (const Point* found = boost::get<Point>(&*meet)) {
+      const Point m = constructed(*found);
+      Vec2 mp = to_plain(m);
       if (std::hypot(mp.x - q.x, mp.y - q.y) <= kMitreLimit * hw) {
-        ExactRing mitre = counter_clockwise({pq, r0, *m, r1});
+        ExactRing mitre = counter_clockwise({pq, r0, m, r1});
         if (!mitre.empty()) return mitre;
       }
     }

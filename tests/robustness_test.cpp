@@ -1,9 +1,13 @@
 // The robustness benchmark's families and harness: the families are deterministic, and
-// the exact build passes a slice of every family (the CI slice: an exact
-// failure is a bug).
+// the exact build passes a slice of every family while the practitioner's float build runs
+// it too (the CI slice: an exact failure is a bug, a baseline's is a finding).
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <fstream>
 #include <sstream>
+
+#include <nlohmann/json.hpp>
 
 #include "benchmarks/families.h"
 #include "benchmarks/robustness.h"
@@ -24,25 +28,60 @@ TEST(RobustnessFamilies, SameSeedSameSketchesOtherSeedOthers) {
   EXPECT_THROW(family_sketch("no-such-family", 0, 1), std::invalid_argument);
 }
 
-TEST(Robustness, TheExactBuildPassesEveryCaseOfTheSlice) {
+TEST(RobustnessFamilies, EveryCaseHasALevelTheControlsIsZero) {
+  for (const Family& f : families()) {
+    SCOPED_TRACE(f.name);
+    EXPECT_FALSE(f.level.empty());
+    for (int i = 0; i < 8; ++i) {
+      const FamilyCase c = family_case(f.name, i, 7);
+      EXPECT_EQ(c.sketch, family_sketch(f.name, i, 7));
+      EXPECT_TRUE(std::isfinite(c.level));
+      if (f.name == "random") {
+        EXPECT_EQ(c.level, 0);
+      }
+    }
+  }
+  // The sweeps' ends: 1e-3 rad is level 3, the first off-edge case 1e-1 m level 1.
+  EXPECT_DOUBLE_EQ(family_case("thin-angles", 0, 7).level, 3);
+  EXPECT_DOUBLE_EQ(family_case("off-edge", 0, 7).level, 1);
+  EXPECT_DOUBLE_EQ(family_case("translated", 3, 7).level, 9);
+  EXPECT_DOUBLE_EQ(family_case("many-highways", 4, 7).level, 7);
+}
+
+TEST(Robustness, TheExactBuildPassesEveryCaseOfTheSliceAndTheBaselineRunsIt) {
   RobustnessOptions o;
   o.cases = 2;
   o.seed = 20261123;
   o.out = testing_util::temp_dir("robustness-slice");
   o.programs = std::filesystem::path(EXACITY_BINARY).parent_path();
-  o.builds = {"exact"};
+  o.builds = {"exact", "float-snapped"};
   o.jobs = 2;
   o.time_limit = 300;  // the test build is unoptimised; a hang would still be caught
   std::ostringstream log;
   const std::vector<FamilyResult> results = run_robustness(o, log);
   ASSERT_EQ(results.size(), families().size());
   for (const FamilyResult& f : results) {
-    ASSERT_EQ(f.builds.size(), 1u);
+    ASSERT_EQ(f.builds.size(), 2u);
     const Outcome& exact = f.builds[0].second;
     EXPECT_EQ(exact.cases, 2) << f.family;
     EXPECT_EQ(exact.passed, 2) << f.family << "\n" << log.str();
+    EXPECT_EQ(f.builds[1].first, "float-snapped");
+    EXPECT_EQ(f.builds[1].second.cases, 2) << f.family;  // it may fail them; it ran them
+    ASSERT_EQ(f.cases.size(), 2u);
+    for (const CaseResult& c : f.cases) {
+      EXPECT_EQ(c.level, family_case(f.family, c.index, o.seed).level);
+      EXPECT_EQ(c.results.at(0), "passed");
+    }
   }
-  // The report is written, and names every family.
+  // The report is written; the JSON has each case's level and results.
   for (const char* file : {"robustness.json", "robustness.md", "robustness.svg"})
     EXPECT_TRUE(std::filesystem::is_regular_file(o.out / file)) << file;
+  std::ifstream in(o.out / "robustness.json");
+  const auto doc = nlohmann::json::parse(in);
+  ASSERT_EQ(doc["families"].size(), families().size());
+  const auto& first = doc["families"][0];
+  ASSERT_EQ(first["per_case"].size(), 2u);
+  EXPECT_EQ(first["per_case"][0]["exact"], "passed");
+  EXPECT_TRUE(first["per_case"][0].contains("level"));
+  EXPECT_TRUE(first["per_case"][0].contains("float-snapped"));
 }

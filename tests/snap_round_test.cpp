@@ -1,5 +1,5 @@
 // Rounding the exact map to doubles: nearest rounding, snap rounding (no rounded edges
-// cross), and untangling the rings rounding collapsed.
+// cross), and untangling the rings rounding collapsed; and the snapped float build's noder.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +10,7 @@
 #include "geom/exact.h"
 #include "geom/planar_map.h"
 #include "geom/polygon_check.h"
+#include "geom/snap_noding.h"
 #include "geom/untangle.h"
 #include "tests/test_util.h"
 
@@ -176,4 +177,44 @@ TEST(Untangle, AHoleTouchingTheOuterRingAtAVertexStaysAHole) {
 
 TEST(Untangle, ARingThatCollapsedToALineIsGone) {
   EXPECT_TRUE(geom::untangle({{{0, 0}, {1, 1}, {2, 2}, {1, 1}}}).empty());
+}
+
+// The practitioner float build's noder (geom/snap_noding.h), in doubles on a grid of 1/8.
+TEST(SnapNoding, CrossingSegmentsMeetAtTheirCrossingsPixel) {
+  const double step = 0.125;
+  const std::vector<geom::Polyline> lines =
+      geom::snap_round_segments({{{0, 0}, {10, 1}}, {{3, -5}, {3.01, 5}}}, step);
+  ASSERT_EQ(lines.size(), 2u);
+  // They cross near (3.0, 0.3); both run through the centre of that pixel.
+  const geom::Vec2 meet{3.0, 0.25};
+  EXPECT_EQ(lines[0], (geom::Polyline{{0, 0}, meet, {10, 1}}));
+  EXPECT_EQ(lines[1], (geom::Polyline{{3, -5}, meet, {3, 5}}));
+}
+
+TEST(SnapNoding, AnEndASegmentPassesNearBecomesItsVertex) {
+  const double step = 0.125;
+  // The second segment ends a hair off the first, as a road's computed end lands beside
+  // the edge it stopped at; the first is split there, the ends snapped to the grid.
+  const std::vector<geom::Polyline> lines =
+      geom::snap_round_segments({{{0, 0}, {8, 0}}, {{4.01, 3}, {4.01, 0.03}}, {{1, 1}, {1, 1.01}}}, step);
+  EXPECT_EQ(lines[0], (geom::Polyline{{0, 0}, {4, 0}, {8, 0}}));
+  EXPECT_EQ(lines[1], (geom::Polyline{{4, 3}, {4, 0}}));
+  EXPECT_TRUE(lines[2].empty());  // snapped to one point
+}
+
+TEST(SnapNoding, SegmentsPassingBesideAnotherPixelStayWhole) {
+  const double step = 0.125;
+  const std::vector<geom::Polyline> lines = geom::snap_round_segments({{{0, 0}, {8, 0}}, {{4, 1}, {4, 0.25}}}, step);
+  EXPECT_EQ(lines[0], (geom::Polyline{{0, 0}, {8, 0}}));
+  EXPECT_EQ(lines[1], (geom::Polyline{{4, 1}, {4, 0.25}}));
+}
+
+TEST(SnapNoding, AnEndAPixelPastACrossingMergesIntoIt) {
+  const double step = 0.125;
+  // The second segment stops a pixel past the first, as a road computed to stop at another
+  // lands after snapping: it ends at the crossing, with no tail beyond it.
+  const std::vector<geom::Polyline> lines =
+      geom::snap_round_segments({{{0, 0}, {8, 0}}, {{4, 3}, {4, -0.125}}}, step);
+  EXPECT_EQ(lines[0], (geom::Polyline{{0, 0}, {4, 0}, {8, 0}}));
+  EXPECT_EQ(lines[1], (geom::Polyline{{4, 3}, {4, 0}}));
 }

@@ -1,0 +1,30 @@
+// Noding in doubles by snap rounding to a fixed grid, as careful floating-point geometry
+// code does it (Hobby, "Practical segment intersection with finite precision output",
+// 1999): only the robustness benchmark's practitioner build (geom/exact.h, the snapped
+// kernel) uses it, in place of the exact sweep's constructed intersections.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "geom/plain.h"
+
+namespace geom {
+
+// The nearest point of the grid of `step`.
+Vec2 snap_to(Vec2 p, double step);
+
+// Each segment's ends snapped to the grid of `step`; the pixels (squares of side `step`
+// around grid points) holding an end or a crossing of two segments are hot; each segment
+// becomes the polyline from its snapped start through the centre of every hot pixel it
+// passes through, in order, to its snapped end. Rounded so, segments meet only at shared
+// vertices (they may overlap: equal pieces). A segment that snaps to one point gives an
+// empty polyline. Pixels are tested in doubles, a hair wider than half a step; then each
+// piece again until none meets a hot pixel not its own (iterated snap rounding). The first
+// `monotone` segments (or those it marks) run one way in (x, y) order, as the pieces of a
+// split arrangement edge must: a hot pixel that would turn one back is passed by (a
+// crossing left unnoded, the rare price).
+std::vector<Polyline> snap_round_segments(const std::vector<std::pair<Vec2, Vec2>>& segments, double step,
+                                          const std::vector<bool>& monotone = {});
+
+}  // namespace geom
