@@ -133,8 +133,9 @@ class PlanarMap {
   // Calls f with the tags of every edge and its end points.
   void for_each_edge(const std::function<void(const std::vector<CurveTag>&, Vec2, Vec2)>& f) const;
 
-  // The label of the face holding a point (on an edge or vertex: -1). A walk from the
-  // unbounded face that reads the map only, so threads may call it at once.
+  // The label of the face holding a point (on an edge or vertex: -1), exactly. The first
+  // call after the edges change indexes them (a grid of squares); later calls only read
+  // the index and the map, so threads may call it at once.
   int label_at(Vec2 point) const;
 
   // How many polyline edges meet at each vertex where any meet: degree -> vertex count.

@@ -5,6 +5,7 @@
 #include <climits>
 #include <cmath>
 #include <random>
+#include <thread>
 
 #include "geom/grid.h"
 #include "geom/planar_map.h"
@@ -417,4 +418,99 @@ TEST(PlanarMap, LabelAtAnswersForTheMapAsItNowIs) {
   EXPECT_EQ(map.label_at({2.5, 2.5}), 1);
   EXPECT_EQ(map.label_at({20, 20}), 0);
   EXPECT_EQ(map.label_at({10, 7.5}), -1);
+}
+
+namespace {
+
+// Whether p lies on the segment a-b (whole and half coordinates: exact in doubles).
+bool on_segment(geom::Vec2 p, geom::Vec2 a, geom::Vec2 b) {
+  const double cross = (b.x - a.x) * (p.y - a.y) - (p.x - a.x) * (b.y - a.y);
+  return cross == 0 && std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= p.y &&
+         p.y <= std::max(a.y, b.y);
+}
+
+// Random rings (quadrilaterals, triangles, squares in squares) and loose polylines on whole
+// coordinates, ring k labelling its inside with bit k, and a lattice of half steps over
+// them: each point's label worked out from the rings in doubles (-1 on any ring or line).
+struct LocateCase {
+  PlanarMap map;
+  std::vector<geom::Vec2> points;
+  std::vector<int> expected;
+
+  explicit LocateCase(unsigned seed) {
+    std::mt19937 rng(seed);
+    auto coord = [&](int lo, int hi) { return static_cast<double>(std::uniform_int_distribution<int>(lo, hi)(rng)); };
+    std::vector<Ring> rings;
+    std::vector<geom::Polyline> lines;
+    while (rings.size() < 10) {
+      const double x = coord(0, 16), y = coord(0, 16);
+      switch (rings.size() % 3) {
+        case 0: rings.push_back({{x, y}, {x + coord(1, 4), y}, {x + coord(1, 4), y + coord(1, 4)}, {x, y + coord(1, 4)}}); break;
+        case 1: {
+          const Ring t{{x, y}, {coord(0, 20), coord(0, 20)}, {coord(0, 20), coord(0, 20)}};
+          if (geom::ring_orientation(t) != 0) rings.push_back(t);
+          break;
+        }
+        default: rings.push_back(square(x, y, 4)), rings.push_back(square(x + 1, y + 1, 2));
+      }
+    }
+    for (int i = 0; i < 4; ++i) lines.push_back({{coord(0, 20), coord(0, 20)}, {coord(0, 20), coord(0, 20)}, {coord(0, 20), coord(0, 20)}});
+    lines.push_back({{coord(0, 20), 2}, {lines.back()[0].x, 18}});  // vertical
+    lines.push_back({{-1e7, -0.5}, {1e7, 20.5}});                     // longer than any square of an index
+    for (std::size_t k = 0; k < rings.size(); ++k) map.add_ring(rings[k], static_cast<int>(k));
+    for (std::size_t i = 0; i < lines.size(); ++i) map.add_polyline(lines[i], static_cast<int>(i));
+    map.insert_batch();
+    map.label_faces([](const Windings& w) {
+      int label = 0;
+      for (const auto& [counter, n] : w) label |= n != 0 ? 1 << counter : 0;
+      return label;
+    });
+    for (double y = -1; y <= 21; y += 0.5)
+      for (double x = -1; x <= 21; x += 0.5) {
+        const geom::Vec2 p{x, y};
+        int label = 0;
+        for (std::size_t k = 0; k < rings.size(); ++k) {
+          for (std::size_t i = 0; i < rings[k].size(); ++i)
+            if (on_segment(p, rings[k][i], rings[k][(i + 1) % rings[k].size()])) label = -1;
+          if (label >= 0 && geom::winding_number(rings[k], p) != 0) label |= 1 << k;
+        }
+        for (const geom::Polyline& l : lines)
+          for (std::size_t i = 0; i + 1 < l.size(); ++i)
+            if (on_segment(p, l[i], l[i + 1])) label = -1;
+        points.push_back(p);
+        expected.push_back(label);
+      }
+  }
+};
+
+}  // namespace
+
+TEST(PlanarMap, LabelAtIsExact) {
+  // Points inside faces, on edges and vertices, straight below vertices and crossings,
+  // inside holes and beside dangling lines.
+  for (unsigned seed = 1; seed <= 20; ++seed) {
+    LocateCase c(seed);
+    for (std::size_t i = 0; i < c.points.size(); ++i)
+      ASSERT_EQ(c.map.label_at(c.points[i]), c.expected[i]) << "seed " << seed << ", point " << c.points[i].x << ", " << c.points[i].y;
+  }
+}
+
+TEST(PlanarMap, LabelAtFromManyThreadsAtOnce) {
+  // The clutter locates its spots from every thread; the first queries after a batch race
+  // to find the map's point location built.
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    LocateCase c(seed);
+    const std::size_t n = c.points.size();
+    std::vector<std::vector<int>> found(8, std::vector<int>(n));
+    std::vector<std::thread> threads;
+    for (std::size_t t = 0; t < found.size(); ++t)
+      threads.emplace_back([&, t] {
+        for (std::size_t k = 0; k < n; ++k) {
+          const std::size_t j = (k + t * n / found.size()) % n, i = t % 2 ? n - 1 - j : j;  // each its own order
+          found[t][i] = c.map.label_at(c.points[i]);
+        }
+      });
+    for (std::thread& t : threads) t.join();
+    for (std::size_t t = 0; t < found.size(); ++t) EXPECT_EQ(found[t], c.expected) << "seed " << seed << ", thread " << t;
+  }
 }
