@@ -695,6 +695,38 @@ TEST(Cli, AWayRunningAcrossItselfHundredsOfTimesIsRefusedBeforeTheMap) {
 }
 
 
+// The village with 5,000 tiny triangles of land use (1.7 MB) over its streets: OSM land use
+// reaches 8 m further where streets come with it, so each 2 m triangle becomes a rounded
+// area overlapping hundreds of the others, and the exact map of their crossings grew past
+// 6 GB. Their edges' crossings are counted first and the sketch refused.
+TEST(Cli, ThousandsOfTinyLandUseAreasOverTheVillageAreRefusedBeforeTheMap) {
+  fs::path dir = testing_util::temp_dir("cli-land-use-triangles");
+  std::ostringstream areas;
+  areas.precision(10);
+  const char* const uses[] = {"residential", "commercial", "industrial", "retail", "grass", "forest"};
+  for (int i = 0; i < 5000; ++i) {
+    // Scattered over 110 x 75 m at the village's middle, 2 m a side.
+    const double lat = 48.0013 + 0.001 * ((i * 7919) % 5000) / 5000, lon = 10.0035 + 0.001 * ((i * 104729) % 4999) / 4999;
+    for (int k = 0; k < 3; ++k)
+      areas << "  <node id=\"" << 700000 + 3 * i + k << "\" version=\"1\" lat=\"" << lat + (k == 1 ? 0.00002 : 0)
+            << "\" lon=\"" << lon + (k == 2 ? 0.00003 : 0) << "\"/>\n";
+    areas << "  <way id=\"" << 800000 + i << "\" version=\"1\">";
+    for (int k : {0, 1, 2, 0}) areas << "<nd ref=\"" << 700000 + 3 * i + k << "\"/>";
+    areas << "<tag k=\"landuse\" v=\"" << uses[i % 6] << "\"/></way>\n";
+  }
+  std::string village = read(kSource / "examples" / "osm" / "village.osm");
+  village.insert(village.rfind("</osm>"), areas.str());
+  std::ofstream(dir / "village.osm") << village;
+  const fs::path out = dir / "out";
+  const Result r = shell("timeout 60 " + std::string(EXACITY_BINARY) + " generate " + (dir / "village.osm").string() +
+                         " -o " + out.string() + " -q --threads 1");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_EQ(r.out.rfind("exacity: error: " + (dir / "village.osm").string() + " way ", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("cross or overlap one another more than"), std::string::npos) << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 // An industrial L and a 60 m residential L inside its bend: growth started cells of the
 // narrow arm a centimetre inside their edge and left roads of 2 to 40 cm there, one ending
 // alone on the zone's edge (road 372, 10 cm); and two narrow zones, 40 m and 30 m wide,

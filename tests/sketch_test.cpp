@@ -85,9 +85,23 @@ TEST(SketchErrors, CoordinatesBeyondTheExactRange) {
 
 TEST(SketchErrors, MoreBlocksThanOneRunBuilds) {
   const std::string big = R"({"type": "Feature", "properties": {"zone": "commercial"}, "geometry": {"type": "Polygon", "coordinates": [[[0,0],[30000,0],[30000,30000],[0,30000],[0,0]]]}})";
-  // 9e8 m2 over 15,000 m2 blocks: 60,000 blocks; with 20,000 m2 blocks, 45,000 fit.
-  expect_error(with_features(kSquare + "," + big), {"features[1]", "about 60000 blocks", "\"block_area\""});
+  // 9e8 m2 over 15,000 m2 blocks: 60,000 blocks, and the small square one; with 20,000 m2
+  // blocks, 45,000 fit.
+  expect_error(with_features(kSquare + "," + big), {"features[1]", "about 60001 blocks", "\"block_area\""});
   EXPECT_EQ(error_of(with_features(big, R"({"zones": {"commercial": {"block_area": 20000}}})")), "");
+}
+
+// Every polygon is a block (or park or water face) at least: 50,001 triangles of half a
+// square metre have the area of no block, but each is a face of the exact map.
+TEST(SketchErrors, MorePolygonsThanBlocksOneRunBuilds) {
+  std::string polygons;
+  for (int i = 0; i <= 50000; ++i) {
+    const std::string x = std::to_string(2 * i);
+    polygons += (i ? ",[[[" : "[[[") + x + ",0],[" + std::to_string(2 * i + 1) + ",0],[" + x + ",1]]]";
+  }
+  const std::string many = R"({"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": "MultiPolygon", "coordinates": [)" +
+                           polygons + "]}}";
+  expect_error(with_features(kSquare + "," + many), {"features[1]", "about 50002 blocks", "each polygon one at least", "fewer"});
 }
 
 TEST(SketchErrors, RingWithFewerThanThreeDistinctPoints) {

@@ -2,6 +2,7 @@
 #include <cctype>
 #include <memory>
 
+#include <cpl_string.h>
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
@@ -40,7 +41,16 @@ ordered_json field(OGRFeature& f, const char* name) {
     case OFTInteger:
     case OFTInteger64: return f.GetFieldAsInteger64(i);
     case OFTReal: return f.GetFieldAsDouble(i);
-    default: return f.GetFieldAsString(i);
+    default: {
+      const char* text = f.GetFieldAsString(i);
+      if (CPLIsUTF8(text, -1)) return text;
+      // Not UTF-8 (an old shapefile's Latin-1 names, or a stray byte): read as Latin-1, so
+      // that every value is text the sketch's JSON and the messages can hold.
+      char* recoded = CPLRecode(text, CPL_ENC_ISO8859_1, CPL_ENC_UTF8);
+      std::string utf8(recoded);
+      CPLFree(recoded);
+      return utf8;
+    }
   }
 }
 

@@ -737,7 +737,19 @@ ordered_json grid_map_features(const std::string& text, const fs::path& path) {
   Reader reader(path);
   const GridMap map = reader.read(text);
   ordered_json features = ordered_json::array();
-  for (const Region& region : zone_regions(map))
+  const std::vector<Region> regions = zone_regions(map);
+  // Each region is a zone polygon, one block (or park or water face) at least, however few
+  // its cells: the sketch reader's block limit, said before the features are made.
+  if (static_cast<double>(regions.size()) > kMaxBlocks) {
+    const Region& past = regions[static_cast<std::size_t>(kMaxBlocks)];
+    reader.fail(map.lines[past.row], past.column + 1,
+                "the map's zones are " + std::to_string(regions.size()) +
+                    " separate regions (cells of one kind joined side to side), each a block at least, more than the " +
+                    std::to_string(static_cast<long long>(kMaxBlocks)) +
+                    " one run builds (this is the first past them); join them with fewer road or other cells between "
+                    "them, or use a smaller map");
+  }
+  for (const Region& region : regions)
     features.push_back(zone_feature(map, region, reader.where(map, region.row, region.column)));
   for (const RoadPath& road : RoadBands(map).paths()) {
     if (road.cells_across * map.cell > kMaxRoadWidth)

@@ -545,6 +545,19 @@ TEST(GridMapErrors, BadNumbers) {
   expect_error(vast, "2002:1", {"over 4000000 cells", "fewer, larger cells"});
 }
 
+// Each region is a zone polygon and a block (or park face) at least, however small its area:
+// a checkerboard of 1 m cells is 102,400 one-cell regions, which the blocks counted from the
+// zones' area (9 of them) let through to an exact map of gigabytes.
+TEST(GridMapErrors, MoreSeparateRegionsThanBlocksOneRunBuilds) {
+  std::string board = "cell 1\n";
+  for (int r = 0; r < 320; ++r) {
+    for (int c = 0; c < 320; ++c) board += (r + c) % 2 ? 'r' : '"';
+    board += "\n";
+  }
+  // The 50,001st region in reading order: row 156 (file line 158), column 81.
+  expect_error(board, "158:81", {"102400 separate regions", "more than the 50000 one run builds", "smaller map"});
+}
+
 TEST(GridMapErrors, NoRowsOrNothingButBlockedCells) {
   expect_error("", "1:1", {"no grid map here"});
   expect_error("; just a comment\n\n", "1:1", {"no grid map here"});

@@ -242,23 +242,26 @@ class Parser {
   }
 
   // A sketch whose zones would need more blocks than one run can hold is refused before
-  // anything is built, naming the zone that needs the most.
+  // anything is built, naming the zone that needs the most. Every polygon is one block (or
+  // park or water face of the map) at least, however small: a hundred thousand tiny zones
+  // have little area but make a map of gigabytes.
   void expect_buildable(const Sketch& sketch) const {
     double blocks = 0, most = -1;
     const ZoneFeature* largest = nullptr;
     for (const ZoneFeature& z : sketch.zones) {
-      if (!grows_roads(z.type)) continue;
-      double area = 0;
-      for (const auto& p : z.polygons) area += std::abs(geom::area(p));
-      const double n = area / sketch.zone_settings.at(z.type).roads.growth.block_area;
+      double n = 0;
+      for (const auto& p : z.polygons)
+        n += grows_roads(z.type)
+                 ? std::max(1.0, std::abs(geom::area(p)) / sketch.zone_settings.at(z.type).roads.growth.block_area)
+                 : 1.0;
       blocks += n;
       if (n > most) most = n, largest = &z;
     }
     if (blocks > kMaxBlocks)
       fail(names_[largest->index],
            "the zones would make about " + std::to_string(static_cast<long long>(blocks)) +
-               " blocks, more than the " + std::to_string(static_cast<long long>(kMaxBlocks)) + " one run builds (this " + std::string(name(largest->type)) + " zone alone " +
-               std::to_string(static_cast<long long>(most)) + "); draw smaller zones or raise their \"block_area\"");
+               " blocks (each polygon one at least), more than the " + std::to_string(static_cast<long long>(kMaxBlocks)) + " one run builds (this " + std::string(name(largest->type)) + " zone alone " +
+               std::to_string(static_cast<long long>(most)) + "); draw fewer or smaller zones or raise their \"block_area\"");
   }
 
   // The exact map holds every road's stroke and every zone's rings, and where two cross it
