@@ -56,7 +56,9 @@ GenerateResult generate(const fs::path& sketch, const fs::path& out, std::vector
   StageClock clock(nullptr, kCityStages + kWriteStages);
   const Sketch loaded = load_sketch(sketch, true, models);
   City city = build_city(loaded, clock);
-  return write_city(loaded, city, out, clock, {std::move(formats)});
+  ExportOptions options;
+  options.vector_formats = std::move(formats);
+  return write_city(loaded, city, out, clock, options);
 }
 
 // The vector layers of two output folders are the same files.
