@@ -192,6 +192,19 @@ std::map<std::string, int> osmium_counts(const fs::path& file) {
   return {{"nodes", count.value("nodes", -1)}, {"ways", count.value("ways", -1)}, {"relations", count.value("relations", -1)}};
 }
 
+// How many lines GDAL's OSM driver reads from a file as streets (highway set); -1 when it
+// cannot open it.
+int gdal_streets(const fs::path& file) {
+  start_gdal();
+  GDALDatasetUniquePtr ds(GDALDataset::Open(file.string().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  OGRLayer* lines = ds ? ds->GetLayerByName("lines") : nullptr;
+  if (!lines) return -1;
+  int streets = 0;
+  for (OGRFeatureUniquePtr f(lines->GetNextFeature()); f; f.reset(lines->GetNextFeature()))
+    streets += std::string(f->GetFieldAsString("highway")) != "";
+  return streets;
+}
+
 }  // namespace
 
 TEST(OsmOutput, TwoCitiesMergedWithOsmiumLoseNoObject) {
@@ -216,15 +229,8 @@ TEST(OsmOutput, TwoCitiesMergedWithOsmiumLoseNoObject) {
   const std::map<std::string, int> both = osmium_counts(dir / "both.osm");
   for (const char* kind : {"nodes", "ways", "relations"}) EXPECT_EQ(both.at(kind), a.at(kind) + b.at(kind)) << kind;
   // GDAL's OSM driver reads the merged file's streets: both cities'.
-  start_gdal();
   const CPLConfigOptionSetter indexing("OSM_USE_CUSTOM_INDEXING", "NO", false);
-  GDALDatasetUniquePtr ds(GDALDataset::Open((dir / "both.osm").string().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
-  ASSERT_TRUE(ds);
-  OGRLayer* lines = ds->GetLayerByName("lines");
-  ASSERT_NE(lines, nullptr);
-  int streets = 0;
-  for (OGRFeatureUniquePtr f(lines->GetNextFeature()); f; f.reset(lines->GetNextFeature()))
-    streets += std::string(f->GetFieldAsString("highway")) != "";
+  const int streets = gdal_streets(dir / "both.osm");
   const auto roads = [&](const char* out) {
     return nlohmann::json::parse(cli_util::read(dir / out / "report.json"))["counts"]["roads"].get<int>();
   };
@@ -454,15 +460,7 @@ TEST(OsmOutput, IdsFromAGivenRangeAreReadByGdalsOsmDriverAsItIs) {
   EXPECT_EQ(*osm.node_ids.rbegin(), 7000000000 + static_cast<std::int64_t>(osm.node_ids.size()) - 1);
   EXPECT_EQ(*osm.way_ids.begin(), 7000000000);
   // GDAL's default node index (no OSM_USE_CUSTOM_INDEXING=NO) reads every street.
-  start_gdal();
-  GDALDatasetUniquePtr ds(GDALDataset::Open((dir / "v" / "city.osm").string().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
-  ASSERT_TRUE(ds);
-  OGRLayer* lines = ds->GetLayerByName("lines");
-  ASSERT_NE(lines, nullptr);
-  int streets = 0;
-  for (OGRFeatureUniquePtr f(lines->GetNextFeature()); f; f.reset(lines->GetNextFeature()))
-    streets += std::string(f->GetFieldAsString("highway")) != "";
-  EXPECT_EQ(streets, nlohmann::json::parse(cli_util::read(dir / "v" / "report.json"))["counts"]["roads"].get<int>());
+  EXPECT_EQ(gdal_streets(dir / "v" / "city.osm"), nlohmann::json::parse(cli_util::read(dir / "v" / "report.json"))["counts"]["roads"].get<int>());
   // Zero and negative first ids are refused.
   const cli_util::Result zero = cli_util::run("generate " + kVillage.string() + " -o " + (dir / "z").string() + " -q --osm-ids-from 0");
   EXPECT_EQ(zero.code, 2) << zero.out;
