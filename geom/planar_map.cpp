@@ -25,6 +25,7 @@
 #include "geom/cell_impl.h"
 #include "geom/grid.h"
 #include "geom/kernel.h"
+#include "geom/segment_buckets.h"
 #include "geom/split_loops.h"
 #include "geom/untangle.h"
 
@@ -889,30 +890,14 @@ void for_each_near_pair(const std::vector<Vec2>& vertices, const std::vector<std
   for (Vec2 v : vertices) box.add(v);
   const double extent = std::max({box.width(), box.height(), reach});
   const double bucket = std::max(extent / std::sqrt(static_cast<double>(vertices.size()) + 1), 16 * reach);
-  const long columns = static_cast<long>(box.width() / bucket) + 1, rows = static_cast<long>(box.height() / bucket) + 1;
-  auto column = [&](double x) { return std::clamp(static_cast<long>(std::floor((x - box.min_x) / bucket)), 0L, columns - 1); };
-  auto row = [&](double y) { return std::clamp(static_cast<long>(std::floor((y - box.min_y) / bucket)), 0L, rows - 1); };
+  const SegmentBuckets grid(box, bucket);
   std::vector<std::pair<long, int>> entries;  // (bucket, edge)
-  for (int e = 0; e < static_cast<int>(edges.size()); ++e) {
-    const Vec2 a = vertices[edges[e].first], b = vertices[edges[e].second];
-    const double x0 = std::min(a.x, b.x) - reach, x1 = std::max(a.x, b.x) + reach;
-    for (long i = column(x0); i <= column(x1); ++i) {
-      // The edge's y-range over this column (widened by `reach` both ways), or over all of
-      // it for an edge within one or two columns.
-      double y0 = std::min(a.y, b.y), y1 = std::max(a.y, b.y);
-      if (column(x1) - column(x0) > 1) {
-        const double lo = std::max(x0, box.min_x + static_cast<double>(i) * bucket - reach);
-        const double hi = std::min(x1, box.min_x + static_cast<double>(i + 1) * bucket + reach);
-        auto y_at = [&](double x) { return a.y + (b.y - a.y) * std::clamp((x - a.x) / (b.x - a.x), 0.0, 1.0); };
-        y0 = std::min(y_at(lo), y_at(hi)), y1 = std::max(y_at(lo), y_at(hi));
-      }
-      for (long j = row(y0 - reach); j <= row(y1 + reach); ++j) entries.push_back({i * rows + j, e});
-    }
-  }
+  for (int e = 0; e < static_cast<int>(edges.size()); ++e)
+    grid.along(vertices[edges[e].first], vertices[edges[e].second], reach, [&](long k) { entries.push_back({k, e}); });
   std::sort(entries.begin(), entries.end());
   for (int v = 0; v < static_cast<int>(vertices.size()); ++v) {
     const Vec2 p = vertices[v];
-    const long key = column(p.x) * rows + row(p.y);
+    const long key = grid.key(p);
     for (auto it = std::lower_bound(entries.begin(), entries.end(), std::pair<long, int>(key, INT_MIN));
          it != entries.end() && it->first == key; ++it) {
       const auto [ia, ib] = edges[it->second];

@@ -6,6 +6,8 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
+#include "geom/segment_buckets.h"
+
 namespace geom {
 namespace {
 
@@ -15,34 +17,6 @@ using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 int side(Vec2 a, Vec2 b, Vec2 p) {
   return static_cast<int>(CGAL::orientation(K::Point_2(a.x, a.y), K::Point_2(b.x, b.y), K::Point_2(p.x, p.y)));
 }
-
-// A grid of square buckets; each segment is entered in every bucket it passes within
-// `reach` of.
-struct Buckets {
-  Box box = Box::none();
-  double size = 1;
-  long columns = 1, rows = 1;
-
-  long column(double x) const { return std::clamp(static_cast<long>(std::floor((x - box.min_x) / size)), 0L, columns - 1); }
-  long row(double y) const { return std::clamp(static_cast<long>(std::floor((y - box.min_y) / size)), 0L, rows - 1); }
-  long key(Vec2 p) const { return column(p.x) * rows + row(p.y); }
-
-  template <typename F>
-  void along(Vec2 a, Vec2 b, double reach, F f) const {
-    const double x0 = std::min(a.x, b.x) - reach, x1 = std::max(a.x, b.x) + reach;
-    for (long i = column(x0); i <= column(x1); ++i) {
-      double y0 = std::min(a.y, b.y), y1 = std::max(a.y, b.y);
-      if (column(x1) - column(x0) > 1) {
-        // The segment's y-range over this column only.
-        const double lo = std::max(x0, box.min_x + static_cast<double>(i) * size - reach);
-        const double hi = std::min(x1, box.min_x + static_cast<double>(i + 1) * size + reach);
-        auto y_at = [&](double x) { return a.y + (b.y - a.y) * std::clamp((x - a.x) / (b.x - a.x), 0.0, 1.0); };
-        y0 = std::min(y_at(lo), y_at(hi)), y1 = std::max(y_at(lo), y_at(hi));
-      }
-      for (long j = row(y0 - reach); j <= row(y1 + reach); ++j) f(i * rows + j);
-    }
-  }
-};
 
 // Where the segment a -> b enters the closed square of half side h around c, as a
 // fraction of its length; negative when it misses it (Liang and Barsky's clipping).
@@ -70,19 +44,17 @@ std::vector<Polyline> snap_round_segments(const std::vector<std::pair<Vec2, Vec2
                                           const std::vector<bool>& monotone) {
   const std::size_t n = segments.size();
   std::vector<std::pair<Vec2, Vec2>> s(n);
-  Buckets grid;
+  Box box = Box::none();
   std::vector<Vec2> hot;
   for (std::size_t i = 0; i < n; ++i) {
     s[i] = {snap_to(segments[i].first, step), snap_to(segments[i].second, step)};
-    grid.box.add(s[i].first), grid.box.add(s[i].second);
+    box.add(s[i].first), box.add(s[i].second);
     hot.push_back(s[i].first), hot.push_back(s[i].second);
   }
   std::vector<Polyline> out(n);
   if (n == 0) return out;
-  const double extent = std::max({grid.box.width(), grid.box.height(), step});
-  grid.size = std::max(extent / std::sqrt(static_cast<double>(n)), 8 * step);
-  grid.columns = static_cast<long>(grid.box.width() / grid.size) + 1;
-  grid.rows = static_cast<long>(grid.box.height() / grid.size) + 1;
+  const double extent = std::max({box.width(), box.height(), step});
+  const SegmentBuckets grid(box, std::max(extent / std::sqrt(static_cast<double>(n)), 8 * step));
 
   auto xy_less = [](Vec2 p, Vec2 q) { return p.x != q.x ? p.x < q.x : p.y < q.y; };
   std::vector<std::pair<long, int>> entries;  // (bucket, segment)
