@@ -1120,12 +1120,13 @@ std::string served_token(const fs::path& log) {
   return at == std::string::npos ? "" : text.substr(at + 7, text.find(' ', at) - at - 7);
 }
 
-// The port the program says it serves on; 0 when it has not said so within 30 s.
+// The port the program says it serves on; 0 when it has not said so within 30 s. The line
+// counts once whole: read while the program writes it, it may end inside the port or token.
 int served_port(const fs::path& log) {
   for (int i = 0; i < 300; ++i) {
     const std::string text = read(log);
     const auto at = text.find("serving http://127.0.0.1:");
-    if (at != std::string::npos) return std::atoi(text.c_str() + at + 25);
+    if (at != std::string::npos && text.find('\n', at) != std::string::npos) return std::atoi(text.c_str() + at + 25);
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   return 0;
