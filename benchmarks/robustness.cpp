@@ -32,7 +32,19 @@ namespace {
 struct Build {
   std::string name;
   fs::path program;
+  std::vector<std::string> args;  // after generate's own
+  // Exacity's builds write a whole city, which the exact build's validator checks too;
+  // GEOS's partition writes blocks and lots only, for the judge.
+  bool validated = true;
 };
+
+// The build's program beside the exact one: exacity-<name>, or exacity-geos at a precision.
+Build build_named(const std::string& name, const fs::path& programs) {
+  if (name == "exact") return {name, programs / "exacity", {}, true};
+  if (name.starts_with("geos-"))
+    return {name, programs / "exacity-geos", {"--precision", name.substr(5)}, false};
+  return {name, programs / ("exacity-" + name), {}, true};
+}
 
 // The builds asked for (all by default), exact first, each program beside the exact one,
 // which validates the others' outputs.
@@ -45,12 +57,12 @@ std::vector<Build> builds_in(const RobustnessOptions& o, std::ostream& log) {
   for (const std::string& name : kBuildNames) {
     const bool asked = std::find(o.builds.begin(), o.builds.end(), name) != o.builds.end();
     if (!o.builds.empty() && !asked) continue;
-    const fs::path program = o.programs / (name == "exact" ? "exacity" : "exacity-" + name);
-    if (fs::exists(program)) {
-      found.push_back({name, program});
+    const Build build = build_named(name, o.programs);
+    if (fs::exists(build.program)) {
+      found.push_back(build);
       continue;
     }
-    const std::string why = program.string() + " is not built; configure with -DEXACITY_FLOAT=ON (the release preset does)";
+    const std::string why = build.program.string() + " is not built; configure with -DEXACITY_FLOAT=ON (the release preset does)";
     if (asked) throw std::runtime_error(why);
     log << "left out: " << why << "\n";
   }
@@ -115,8 +127,9 @@ Result run_case(const Build& build, const fs::path& exact_program, const fs::pat
                 double limit) {
   const fs::path out = dir / build.name, log = dir / (build.name + ".log");
   fs::remove_all(out);
-  Run run = run_child({build.program.string(), "generate", sketch.string(), "-o", out.string(), "-q", "--threads", "1"},
-                      log, limit);
+  std::vector<std::string> args = {build.program.string(), "generate", sketch.string(), "-o", out.string(), "-q", "--threads", "1"};
+  args.insert(args.end(), build.args.begin(), build.args.end());
+  Run run = run_child(args, log, limit);
   Result r;
   r.seconds = run.seconds;
   if (run.status == Run::TimedOut) r.kind = Result::Hang;
@@ -128,7 +141,7 @@ Result run_case(const Build& build, const fs::path& exact_program, const fs::pat
 
   const Verdict verdict = judge(out);
   for (const auto& [kind, n] : verdict.rejected) r.rejected.push_back(kind);
-  if (build.name != "exact") {
+  if (build.name != "exact" && build.validated) {
     // The exact build's validator, on what a float build wrote (the exact build validated
     // its own output already, inside generate).
     Run check = run_child({exact_program.string(), "validate", out.string()}, dir / (build.name + ".validate.log"), limit);
@@ -176,26 +189,32 @@ std::string build_label(const std::string& name) {
   if (name == "float-snapped") return "float-snapped (practitioner)";
   if (name == "float") return "float, Epick (no tolerance)";
   if (name == "float-simple") return "float-simple (no tolerance)";
+  if (name == "geos-floating") return "GEOS, floating (blocks and lots only)";
+  if (name == "geos-fixed") return "GEOS, fixed 2^-24 m (blocks and lots only)";
   return name;
 }
 
 // Failure rate against degeneracy level, one panel per family, one line per build; cases
 // are binned by their level rounded to a whole number.
 std::string svg_chart(const std::vector<FamilyResult>& results, const std::vector<Build>& builds) {
-  const int columns = 4, panel_w = 230, panel_h = 150, gap_x = 40, gap_y = 70, left = 50, top = 40;
+  // The legend in rows of three builds.
+  const int legend_rows = (static_cast<int>(builds.size()) + 2) / 3;
+  const int columns = 4, panel_w = 230, panel_h = 150, gap_x = 40, gap_y = 70, left = 50, top = 24 + 16 * legend_rows;
   const int rows = (static_cast<int>(results.size()) + columns - 1) / columns;
   const int width = left + columns * (panel_w + gap_x), height = top + rows * (panel_h + gap_y) + 30;
-  static const char* colours[] = {"#2b7a3d", "#1f5fa8", "#d9822b", "#b8322a"};
-  static const char* dashes[] = {"", "", "6 3", "2 3"};
+  static const char* colours[] = {"#2b7a3d", "#1f5fa8", "#7b3fa0", "#c23c8c", "#d9822b", "#b8322a"};
+  static const char* dashes[] = {"", "", "", "4 2", "6 3", "2 3"};
   std::ostringstream s;
   s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
     << "\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
     << "<text x=\"" << left << "\" y=\"18\" font-size=\"13\">Failure rate against degeneracy level, per family "
     << "(share of the cases at each level not passed)</text>\n";
-  for (std::size_t b = 0; b < builds.size(); ++b)
-    s << "<line x1=\"" << left + 230 * b << "\" x2=\"" << left + 230 * b + 20 << "\" y1=\"28\" y2=\"28\" stroke=\""
-      << colours[b % 4] << "\" stroke-width=\"2\" stroke-dasharray=\"" << dashes[b % 4] << "\"/><text x=\""
-      << left + 230 * b + 24 << "\" y=\"32\">" << build_label(builds[b].name) << "</text>\n";
+  for (std::size_t b = 0; b < builds.size(); ++b) {
+    const std::size_t x = left + 360 * (b % 3), y = 28 + 16 * (b / 3);
+    s << "<line x1=\"" << x << "\" x2=\"" << x + 20 << "\" y1=\"" << y << "\" y2=\"" << y << "\" stroke=\""
+      << colours[b % 6] << "\" stroke-width=\"2\" stroke-dasharray=\"" << dashes[b % 6] << "\"/><text x=\"" << x + 24
+      << "\" y=\"" << y + 4 << "\">" << build_label(builds[b].name) << "</text>\n";
+  }
   for (std::size_t f = 0; f < results.size(); ++f) {
     const FamilyResult& fr = results[f];
     const int x0 = left + static_cast<int>(f % columns) * (panel_w + gap_x);
@@ -230,11 +249,11 @@ std::string svg_chart(const std::vector<FamilyResult>& results, const std::vecto
       std::ostringstream points;
       for (const auto& [level, bin] : bins)
         points << fixed(x_of(static_cast<double>(level)), 1) << "," << fixed(y_of(static_cast<double>(bin.second[b]) / bin.first), 1) << " ";
-      s << "<polyline points=\"" << points.str() << "\" fill=\"none\" stroke=\"" << colours[b % 4]
-        << "\" stroke-width=\"2\" stroke-dasharray=\"" << dashes[b % 4] << "\"/>\n";
+      s << "<polyline points=\"" << points.str() << "\" fill=\"none\" stroke=\"" << colours[b % 6]
+        << "\" stroke-width=\"2\" stroke-dasharray=\"" << dashes[b % 6] << "\"/>\n";
       for (const auto& [level, bin] : bins)
         s << "<circle cx=\"" << fixed(x_of(static_cast<double>(level)), 1) << "\" cy=\""
-          << fixed(y_of(static_cast<double>(bin.second[b]) / bin.first), 1) << "\" r=\"2.5\" fill=\"" << colours[b % 4]
+          << fixed(y_of(static_cast<double>(bin.second[b]) / bin.first), 1) << "\" r=\"2.5\" fill=\"" << colours[b % 6]
           << "\"/>\n";
     }
   }
@@ -249,9 +268,11 @@ std::string markdown(const std::vector<FamilyResult>& results, const std::vector
     << "Each case is a sketch written by the family (deterministic in the seed); each build generates it in a child\n"
     << "process limited to " << o.time_limit << " s, on one thread. A case passes when the build exits 0 and its output\n"
     << "passes the GEOS judge and the exact build's `exacity validate`. Failures: crash (a signal, or exit 3: a\n"
-    << "failed CGAL precondition or internal check), hang (over the limit), error (another exit code), rejected\n"
-    << "(the judge's or the validator's kinds, in brackets). The time ratio is the exact build's median time over\n"
-    << "the other's on the cases both passed (— where none did: a crash's time says nothing of the cost).\n\n"
+    << "failed CGAL precondition or internal check, or a GEOS exception), hang (over the limit), error (another exit\n"
+    << "code), rejected (the judge's or the validator's kinds, in brackets). The GEOS rows are the partition stage\n"
+    << "only (zones, water and road areas overlaid into blocks, blocks cut into lots by a fishnet; no growth, no\n"
+    << "buildings), judged by the judge alone. The time ratio is the exact build's median time over the other's on\n"
+    << "the cases both passed (— where none did: a crash's time says nothing of the cost).\n\n"
     << "| family | cases |";
   for (const Build& b : builds) s << " " << build_label(b.name) << " passed | " << b.name << " failures |";
   s << " median s (" << builds.front().name << ") |";

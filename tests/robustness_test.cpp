@@ -10,7 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "benchmarks/families.h"
+#include "benchmarks/judge.h"
 #include "benchmarks/robustness.h"
+#include "tests/cli_util.h"
 #include "tests/test_util.h"
 
 using namespace exacity::bench;
@@ -48,25 +50,27 @@ TEST(RobustnessFamilies, EveryCaseHasALevelTheControlsIsZero) {
   EXPECT_DOUBLE_EQ(family_case("many-highways", 4, 7).level, 7);
 }
 
-TEST(Robustness, TheExactBuildPassesEveryCaseOfTheSliceAndTheBaselineRunsIt) {
+TEST(Robustness, TheExactBuildPassesEveryCaseOfTheSliceAndTheBaselinesRunIt) {
   RobustnessOptions o;
   o.cases = 2;
   o.seed = 20261123;
   o.out = testing_util::temp_dir("robustness-slice");
   o.programs = std::filesystem::path(EXACITY_BINARY).parent_path();
-  o.builds = {"exact", "float-snapped"};
+  o.builds = {"exact", "float-snapped", "geos-floating", "geos-fixed"};
   o.jobs = 2;
   o.time_limit = 300;  // the test build is unoptimised; a hang would still be caught
   std::ostringstream log;
   const std::vector<FamilyResult> results = run_robustness(o, log);
   ASSERT_EQ(results.size(), families().size());
   for (const FamilyResult& f : results) {
-    ASSERT_EQ(f.builds.size(), 2u);
+    ASSERT_EQ(f.builds.size(), 4u);
     const Outcome& exact = f.builds[0].second;
     EXPECT_EQ(exact.cases, 2) << f.family;
     EXPECT_EQ(exact.passed, 2) << f.family << "\n" << log.str();
-    EXPECT_EQ(f.builds[1].first, "float-snapped");
-    EXPECT_EQ(f.builds[1].second.cases, 2) << f.family;  // it may fail them; it ran them
+    for (std::size_t b = 1; b < 4; ++b) {
+      EXPECT_EQ(f.builds[b].first, o.builds[b]);
+      EXPECT_EQ(f.builds[b].second.cases, 2) << f.family;  // it may fail them; it ran them
+    }
     ASSERT_EQ(f.cases.size(), 2u);
     for (const CaseResult& c : f.cases) {
       EXPECT_EQ(c.level, family_case(f.family, c.index, o.seed).level);
@@ -84,4 +88,30 @@ TEST(Robustness, TheExactBuildPassesEveryCaseOfTheSliceAndTheBaselineRunsIt) {
   EXPECT_EQ(first["per_case"][0]["exact"], "passed");
   EXPECT_TRUE(first["per_case"][0].contains("level"));
   EXPECT_TRUE(first["per_case"][0].contains("float-snapped"));
+  EXPECT_TRUE(first["per_case"][0].contains("geos-fixed"));
+}
+
+// The GEOS baseline writes Exacity's layers, which the judge reads: the default example's
+// partition in GEOS's default (floating) overlay passes it. A sketch it cannot read is one
+// line, exit 2, and nothing written.
+TEST(Robustness, TheGeosBaselinePartitionsTheTownAsTheJudgeWants) {
+  const std::filesystem::path geos = std::filesystem::path(EXACITY_BINARY).parent_path() / "exacity-geos";
+  const std::filesystem::path out = testing_util::temp_dir("geos-town");
+  std::filesystem::remove_all(out);
+  const cli_util::Result r = cli_util::shell(geos.string() + " generate " +
+                                             (cli_util::kSource / "examples" / "town.geojson").string() + " -o " +
+                                             out.string() + " --precision floating");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const Verdict v = judge(out);
+  EXPECT_TRUE(v.passed()) << testing::PrintToString(v.problems);
+  std::ifstream in(out / "vector" / "lots.geojson");
+  EXPECT_GT(nlohmann::json::parse(in)["features"].size(), 100u);
+
+  std::filesystem::remove_all(out);
+  const cli_util::Result bad = cli_util::shell(geos.string() + " generate " +
+                                               (cli_util::kSource / "examples" / "grid" / "town.grid").string() +
+                                               " -o " + out.string());
+  EXPECT_EQ(bad.code, 2) << bad.out;
+  EXPECT_NE(bad.out.find("not a GeoJSON FeatureCollection"), std::string::npos) << bad.out;
+  EXPECT_FALSE(std::filesystem::exists(out));
 }
