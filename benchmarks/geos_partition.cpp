@@ -28,6 +28,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "benchmarks/geos_handle.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -55,11 +57,8 @@ class Overlay {
   Overlay(const Overlay&) = delete;
   Overlay& operator=(const Overlay&) = delete;
 
-  struct Free {
-    GEOSContextHandle_t ctx;
-    void operator()(GEOSGeometry* g) const { GEOSGeom_destroy_r(ctx, g); }
-  };
-  using Geometry = std::unique_ptr<GEOSGeometry, Free>;
+  using Free = exacity::bench::GeosFree;
+  using Geometry = exacity::bench::GeosGeometry;
 
   GEOSContextHandle_t ctx() const { return ctx_; }
   // Takes a GEOS result; NULL is GEOS's failure.

@@ -9,7 +9,10 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <exception>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -87,9 +90,16 @@ Run run_child(const std::vector<std::string>& args, const fs::path& log, double 
   posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
   const auto start = std::chrono::steady_clock::now();
   pid_t pid = 0;
-  const int failed = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  // A loaded machine can refuse a process for a moment (EAGAIN, ENOMEM): try again before
+  // giving up on the whole run.
+  int failed = 0;
+  for (int attempt = 0; attempt < 6; ++attempt) {
+    failed = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+    if (failed != EAGAIN && failed != ENOMEM) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(250 << attempt));
+  }
   posix_spawn_file_actions_destroy(&actions);
-  if (failed) throw std::runtime_error("cannot run " + args[0]);
+  if (failed) throw std::runtime_error("cannot run " + args[0] + ": " + std::strerror(failed));
   Run run;
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   int status = 0;
@@ -115,7 +125,18 @@ struct Result {
   static constexpr const char* kWords[] = {"passed", "crash", "hang", "error", "rejected"};
   std::vector<std::string> rejected;  // kinds, for Rejected
   double seconds = 0;
+  std::map<std::string, double> stage_s;  // report.json's timings_s, when it passed
 };
+
+std::map<std::string, double> stage_times(const fs::path& out) {
+  std::ifstream in(out / "report.json");
+  const auto report = nlohmann::json::parse(in, nullptr, false);
+  std::map<std::string, double> times;
+  if (report.is_discarded() || !report.contains("timings_s")) return times;
+  for (const auto& [stage, s] : report["timings_s"].items())
+    if (s.is_number()) times[stage] = s.get<double>();
+  return times;
+}
 
 bool failed_validation(const fs::path& out) {
   std::ifstream in(out / "report.json");
@@ -148,6 +169,7 @@ Result run_case(const Build& build, const fs::path& exact_program, const fs::pat
     if (check.status != Run::Exited || check.code != 0) r.rejected.push_back("validate");
   }
   if (!r.rejected.empty()) r.kind = Result::Rejected;
+  else r.stage_s = stage_times(out);
   return r;
 }
 
@@ -262,7 +284,7 @@ std::string svg_chart(const std::vector<FamilyResult>& results, const std::vecto
 }
 
 std::string markdown(const std::vector<FamilyResult>& results, const std::vector<Build>& builds,
-                     const RobustnessOptions& o) {
+                     const RobustnessOptions& o, const std::vector<std::vector<StageRatio>>& stages) {
   std::ostringstream s;
   s << "# Robustness: the exact build against floating-point builds of itself\n\n"
     << "Each case is a sketch written by the family (deterministic in the seed); each build generates it in a child\n"
@@ -300,6 +322,31 @@ std::string markdown(const std::vector<FamilyResult>& results, const std::vector
     s << " " << fixed(f.builds.front().second.median_s, 2) << " |";
     for (double ratio : f.time_ratio) s << " " << (ratio > 0 ? fixed(ratio, 2) : "—") << " |";
     s << "\n";
+  }
+  // Per stage, for the builds that write report.json's timings (Exacity's, not GEOS's).
+  std::vector<std::size_t> timed;
+  for (std::size_t b = 1; b < builds.size(); ++b)
+    if (!stages[b].empty()) timed.push_back(b);
+  if (!timed.empty()) {
+    s << "\nThe exact build's time over each build's per stage of generate (report.json's `timings_s`), on the cases\n"
+      << "of every family both passed: median (25th–75th percentile), stages under a millisecond left out.\n\n| stage |";
+    for (std::size_t b : timed) s << " " << builds.front().name << "/" << builds[b].name << " |";
+    s << "\n|---|";
+    for (std::size_t i = 0; i < timed.size(); ++i) s << "---|";
+    s << "\n";
+    std::vector<std::string> names;
+    for (std::size_t b : timed)
+      for (const StageRatio& r : stages[b])
+        if (std::find(names.begin(), names.end(), r.stage) == names.end()) names.push_back(r.stage);
+    for (const std::string& stage : names) {
+      s << "| " << stage << " |";
+      for (std::size_t b : timed) {
+        auto r = std::find_if(stages[b].begin(), stages[b].end(), [&](const StageRatio& x) { return x.stage == stage; });
+        if (r == stages[b].end()) s << " — |";
+        else s << " " << fixed(r->median, 2) << " (" << fixed(r->low, 2) << "–" << fixed(r->high, 2) << ", " << r->cases << " cases) |";
+      }
+      s << "\n";
+    }
   }
   s << "\n![failure rate against degeneracy level](robustness.svg)\n\nReproduce (release preset, which builds the float programs too):\n\n"
     << "```\ncmake --workflow --preset release\nbuild/release/cli/exacity bench robustness --cases " << o.cases
@@ -364,17 +411,27 @@ std::vector<std::vector<Result>> run_jobs(const RobustnessOptions& o, const std:
   fs::create_directories(o.out);
   std::atomic<std::size_t> next{0};
   std::mutex log_mutex;
+  // A job that throws stops the others; its exception is the run's, once they have stopped
+  // (thrown inside a thread it would end the program).
+  std::exception_ptr failure;
   auto work = [&] {
-    for (std::size_t j; (j = next++) < jobs.size();) {
-      const std::string line = run_job(o, names[jobs[j].family], jobs[j], builds, results[j]);
+    try {
+      for (std::size_t j; (j = next++) < jobs.size();) {
+        const std::string line = run_job(o, names[jobs[j].family], jobs[j], builds, results[j]);
+        std::lock_guard<std::mutex> lock(log_mutex);
+        log << line << "\n" << std::flush;
+      }
+    } catch (...) {
       std::lock_guard<std::mutex> lock(log_mutex);
-      log << line << "\n" << std::flush;
+      if (!failure) failure = std::current_exception();
+      next = jobs.size();
     }
   };
   const int threads = o.jobs > 0 ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
   std::vector<std::thread> pool;
   for (int t = 0; t < threads; ++t) pool.emplace_back(work);
   for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
   return results;
 }
 
@@ -406,6 +463,31 @@ double time_ratio(const std::vector<Job>& jobs, const std::vector<std::vector<Re
   return exact_s.empty() ? 0 : median(exact_s) / median(other_s);
 }
 
+// The q-quantile of sorted values, by nearest rank.
+double quantile(const std::vector<double>& sorted, double q) {
+  return sorted[static_cast<std::size_t>(std::lround(q * static_cast<double>(sorted.size() - 1)))];
+}
+
+// Per build after the first, its stage ratios (StageRatio) over every case both passed.
+std::vector<std::vector<StageRatio>> stage_ratios(const std::vector<std::vector<Result>>& results, std::size_t builds) {
+  std::vector<std::vector<StageRatio>> out(builds);
+  for (std::size_t b = 1; b < builds; ++b) {
+    std::map<std::string, std::vector<double>> ratios;
+    for (const std::vector<Result>& r : results) {
+      if (r[0].kind != Result::Passed || r[b].kind != Result::Passed) continue;
+      for (const auto& [stage, exact_s] : r[0].stage_s) {
+        const auto other = r[b].stage_s.find(stage);
+        if (exact_s >= 1e-3 && other != r[b].stage_s.end() && other->second > 0) ratios[stage].push_back(exact_s / other->second);
+      }
+    }
+    for (auto& [stage, v] : ratios) {
+      std::sort(v.begin(), v.end());
+      out[b].push_back({stage, static_cast<int>(v.size()), median(v), quantile(v, 0.25), quantile(v, 0.75)});
+    }
+  }
+  return out;
+}
+
 std::vector<FamilyResult> summarise(const std::vector<std::string>& names, const std::vector<Job>& jobs,
                                     const std::vector<Build>& builds, const std::vector<std::vector<Result>>& results) {
   std::vector<FamilyResult> out;
@@ -428,7 +510,8 @@ std::vector<FamilyResult> summarise(const std::vector<std::string>& names, const
 }
 
 nlohmann::ordered_json robustness_json(const RobustnessOptions& o, const std::vector<Build>& builds,
-                                       const std::vector<FamilyResult>& out) {
+                                       const std::vector<FamilyResult>& out,
+                                       const std::vector<std::vector<StageRatio>>& stages) {
   nlohmann::ordered_json doc = {{"seed", o.seed}, {"cases_per_family", o.cases}, {"time_limit_s", o.time_limit}};
   for (const Build& b : builds) doc["builds"][b.name] = b.program.filename().string();
   doc["families"] = nlohmann::ordered_json::array();
@@ -447,13 +530,22 @@ nlohmann::ordered_json robustness_json(const RobustnessOptions& o, const std::ve
     }
     doc["families"].push_back(entry);
   }
+  // The exact build's time over each build's, per stage, on every case both passed.
+  doc["exact_over_this_time_by_stage"] = nlohmann::ordered_json::object();
+  for (std::size_t b = 1; b < builds.size(); ++b) {
+    nlohmann::ordered_json per_stage = nlohmann::ordered_json::object();
+    for (const StageRatio& r : stages[b])
+      per_stage[r.stage] = {{"cases", r.cases}, {"median", r.median}, {"p25", r.low}, {"p75", r.high}};
+    doc["exact_over_this_time_by_stage"][builds[b].name] = per_stage;
+  }
   return doc;
 }
 
-void write_reports(const RobustnessOptions& o, const std::vector<Build>& builds, const std::vector<FamilyResult>& out) {
-  const nlohmann::ordered_json doc = robustness_json(o, builds, out);
+void write_reports(const RobustnessOptions& o, const std::vector<Build>& builds, const std::vector<FamilyResult>& out,
+                   const std::vector<std::vector<StageRatio>>& stages) {
+  const nlohmann::ordered_json doc = robustness_json(o, builds, out, stages);
   std::ofstream(o.out / "robustness.json", std::ios::binary) << doc.dump(2) << "\n";
-  std::ofstream(o.out / "robustness.md", std::ios::binary) << markdown(out, builds, o);
+  std::ofstream(o.out / "robustness.md", std::ios::binary) << markdown(out, builds, o, stages);
   std::ofstream(o.out / "robustness.svg", std::ios::binary) << svg_chart(out, builds);
 }
 
@@ -465,8 +557,30 @@ std::vector<FamilyResult> run_robustness(const RobustnessOptions& o, std::ostrea
   std::vector<Job> jobs = case_jobs(names.size(), o.cases);
   const std::vector<std::vector<Result>> results = run_jobs(o, names, jobs, builds, log);
   std::vector<FamilyResult> out = summarise(names, jobs, builds, results);
-  write_reports(o, builds, out);
+  write_reports(o, builds, out, stage_ratios(results, builds.size()));
   return out;
+}
+
+int export_cases(const RobustnessOptions& o, const fs::path& dir) {
+  int written = 0;
+  for (const std::string& family : family_names(o)) {
+    fs::create_directories(dir / family);
+    for (int i = 0; i < o.cases; ++i) {
+      const FamilyCase c = family_case(family, i, o.seed);
+      const std::string name = std::to_string(i);
+      std::ofstream(dir / family / (name + ".geojson"), std::ios::binary) << c.sketch;
+      nlohmann::ordered_json about = {{"family", family},
+                                      {"case", i},
+                                      {"seed", o.seed},
+                                      {"level", c.level},
+                                      {"level_measures", level_of(family)},
+                                      {"sketch", name + ".geojson"},
+                                      {"judge", judge_invariants()}};
+      std::ofstream(dir / family / (name + ".json"), std::ios::binary) << about.dump(2) << "\n";
+      ++written;
+    }
+  }
+  return written;
 }
 
 }  // namespace exacity::bench

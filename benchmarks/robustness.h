@@ -48,6 +48,16 @@ struct CaseResult {
   std::vector<std::string> results;
 };
 
+// A build's time over the exact build's, per stage of generate (report.json's timings_s),
+// on the cases of every family both passed: the exact build's seconds over this build's,
+// median and quartiles. Stages the exact build spent under a millisecond on are left out
+// (their ratios are timer noise).
+struct StageRatio {
+  std::string stage;
+  int cases = 0;
+  double median = 0, low = 0, high = 0;  // low and high: the 25th and 75th percentiles
+};
+
 struct FamilyResult {
   std::string family;
   std::vector<std::pair<std::string, Outcome>> builds;  // in build order
@@ -59,5 +69,10 @@ struct FamilyResult {
 
 // Runs the benchmark and writes its files into options.out; progress lines go to `log`.
 std::vector<FamilyResult> run_robustness(const RobustnessOptions& options, std::ostream& log);
+
+// Writes every case of the families asked for, for another tool to run: DIR/FAMILY/N.geojson
+// (the sketch) and DIR/FAMILY/N.json (the family, case, seed, degeneracy level and the
+// invariants the judge checks, benchmarks/judge.h). Returns how many cases it wrote.
+int export_cases(const RobustnessOptions& options, const std::filesystem::path& dir);
 
 }  // namespace exacity::bench

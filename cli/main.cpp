@@ -397,6 +397,7 @@ struct StatsCommand {
 struct RobustnessCommand {
   CLI::App* app = nullptr;
   bench::RobustnessOptions options;
+  fs::path export_dir;  // write the cases there instead of running them
 };
 
 void add_program_options(CLI::App& app, SharedOptions& shared) {
@@ -534,6 +535,8 @@ void add_bench_robustness(CLI::App& app, RobustnessCommand& c) {
   c.app->add_option("--build", o.builds, "Only these builds, exact among them (default: every one built)")
       ->check(CLI::IsMember(bench::kBuildNames));
   c.app->add_flag("--keep", o.keep_outputs, "Keep every output, not only those of failed cases");
+  c.app->add_option("--export", c.export_dir,
+                    "Write every case as DIR/FAMILY/N.geojson and the invariants the judge checks as N.json; run nothing");
 }
 
 // Parses the command line; the exit code when it is wrong or only asked for help or the
@@ -605,6 +608,11 @@ int main(int argc, char** argv) {
     if (*val.app) return validate(val.folder);
     if (*sta.app) return stats(sta.folder, sta.real);
     if (*srv.app) return run_serve(srv);
+    if (*rob.app && !rob.export_dir.empty()) {
+      const int n = bench::export_cases(rob.options, rob.export_dir);
+      std::printf("wrote %d cases into %s\n", n, rob.export_dir.string().c_str());
+      return 0;
+    }
     if (*rob.app) return robustness_benchmark(rob.options, argv[0]);
     return 0;
   });

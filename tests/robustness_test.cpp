@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -89,6 +90,38 @@ TEST(Robustness, TheExactBuildPassesEveryCaseOfTheSliceAndTheBaselinesRunIt) {
   EXPECT_TRUE(first["per_case"][0].contains("level"));
   EXPECT_TRUE(first["per_case"][0].contains("float-snapped"));
   EXPECT_TRUE(first["per_case"][0].contains("geos-fixed"));
+  // Per stage, for every build but the exact one; GEOS's partition writes no stage timings.
+  const auto& by_stage = doc["exact_over_this_time_by_stage"];
+  for (const char* build : {"float-snapped", "geos-floating", "geos-fixed"}) EXPECT_TRUE(by_stage.contains(build)) << build;
+  EXPECT_TRUE(by_stage["geos-fixed"].empty());
+  for (const auto& [stage, r] : by_stage["float-snapped"].items()) {
+    EXPECT_GT(r["cases"].get<int>(), 0) << stage;
+    EXPECT_LE(r["p25"].get<double>(), r["median"].get<double>()) << stage;
+    EXPECT_LE(r["median"].get<double>(), r["p75"].get<double>()) << stage;
+  }
+}
+
+// --export writes each case's sketch as the benchmark runs it, and beside it its level and
+// the judge's invariants, for another tool to be scored on the same cases.
+TEST(Robustness, ExportWritesEveryCaseWithItsLevelAndTheJudgesInvariants) {
+  RobustnessOptions o;
+  o.cases = 2;
+  o.seed = 7;
+  o.families = {"off-edge", "random"};
+  const std::filesystem::path dir = testing_util::temp_dir("robustness-export");
+  EXPECT_EQ(export_cases(o, dir), 4);
+  for (const std::string& family : o.families)
+    for (int i = 0; i < 2; ++i) {
+      SCOPED_TRACE(family + " " + std::to_string(i));
+      EXPECT_EQ(cli_util::read(dir / family / (std::to_string(i) + ".geojson")), family_sketch(family, i, 7));
+      std::ifstream in(dir / family / (std::to_string(i) + ".json"));
+      const auto about = nlohmann::json::parse(in);
+      EXPECT_EQ(about["level"].get<double>(), family_case(family, i, 7).level);
+      EXPECT_EQ(about["sketch"], std::to_string(i) + ".geojson");
+      std::set<std::string> kinds;
+      for (const auto& inv : about["judge"]["invariants"]) kinds.insert(inv["kind"].get<std::string>());
+      EXPECT_EQ(kinds, (std::set<std::string>{"invalid", "overlap", "gap", "outside", "network"}));
+    }
 }
 
 // The GEOS baseline writes Exacity's layers, which the judge reads: the default example's
