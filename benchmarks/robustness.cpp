@@ -329,7 +329,8 @@ std::string markdown(const std::vector<FamilyResult>& results, const std::vector
     if (!stages[b].empty()) timed.push_back(b);
   if (!timed.empty()) {
     s << "\nThe exact build's time over each build's per stage of generate (report.json's `timings_s`), on the cases\n"
-      << "of every family both passed: median (25th–75th percentile), stages under a millisecond left out.\n\n| stage |";
+      << "of every family both passed: median (25th–75th percentile); a stage either build spent under a millisecond\n"
+      << "on is left out of that case.\n\n| stage |";
     for (std::size_t b : timed) s << " " << builds.front().name << "/" << builds[b].name << " |";
     s << "\n|---|";
     for (std::size_t i = 0; i < timed.size(); ++i) s << "---|";
@@ -477,7 +478,8 @@ std::vector<std::vector<StageRatio>> stage_ratios(const std::vector<std::vector<
       if (r[0].kind != Result::Passed || r[b].kind != Result::Passed) continue;
       for (const auto& [stage, exact_s] : r[0].stage_s) {
         const auto other = r[b].stage_s.find(stage);
-        if (exact_s >= 1e-3 && other != r[b].stage_s.end() && other->second > 0) ratios[stage].push_back(exact_s / other->second);
+        if (exact_s >= 1e-3 && other != r[b].stage_s.end() && other->second >= 1e-3)
+          ratios[stage].push_back(exact_s / other->second);
       }
     }
     for (auto& [stage, v] : ratios) {

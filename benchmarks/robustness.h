@@ -50,8 +50,8 @@ struct CaseResult {
 
 // A build's time over the exact build's, per stage of generate (report.json's timings_s),
 // on the cases of every family both passed: the exact build's seconds over this build's,
-// median and quartiles. Stages the exact build spent under a millisecond on are left out
-// (their ratios are timer noise).
+// median and quartiles. A stage either build spent under a millisecond on is left out of
+// that case (its ratio is timer noise).
 struct StageRatio {
   std::string stage;
   int cases = 0;
