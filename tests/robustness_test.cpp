@@ -148,3 +148,19 @@ TEST(Robustness, TheGeosBaselinePartitionsTheTownAsTheJudgeWants) {
   EXPECT_NE(bad.out.find("not a GeoJSON FeatureCollection"), std::string::npos) << bad.out;
   EXPECT_FALSE(std::filesystem::exists(out));
 }
+
+// The practitioner's float build runs the examples: tangle's grown roads stop at edges that
+// the city map's batch routed through other hot pixels, and ended in the open beside them
+// until ends got a snap tolerance. Its output passes the exact build's validator.
+TEST(Robustness, TheSnappedBuildsTangleEndsNoRoadInTheOpen) {
+  const std::filesystem::path snapped = std::filesystem::path(EXACITY_BINARY).parent_path() / "exacity-float-snapped";
+  const std::filesystem::path out = testing_util::temp_dir("snapped-tangle");
+  std::filesystem::remove_all(out);
+  const cli_util::Result r = cli_util::shell(snapped.string() + " generate " +
+                                             (cli_util::kSource / "examples" / "tangle.geojson").string() + " -o " +
+                                             out.string() + " -q --threads 1");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const cli_util::Result v = cli_util::shell(std::string(EXACITY_BINARY) + " validate " + out.string());
+  EXPECT_EQ(v.code, 0) << v.out;
+  EXPECT_EQ(v.out.find("ends in the open"), std::string::npos) << v.out;
+}
