@@ -156,6 +156,30 @@ TEST(Cli, ZonesLeftEmptyAreNamedWithTheReason) {
   EXPECT_NE(g.out.find("features[2] (commercial) got no lots: no street reaches"), std::string::npos) << g.out;
 }
 
+// Many zones left empty (an OSM extract's land-use areas no street reaches) are not one
+// line each: the first few are named, report.json lists all.
+TEST(Cli, ManyEmptyZonesAreNamedFirstFewThenCounted) {
+  const fs::path dir = testing_util::temp_dir("cli-many-empty");
+  std::string features = R"({"type": "Feature", "properties": {"zone": "residential"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [300, 200], [0, 200], [0, 0]]]}})";
+  for (int i = 0; i < 12; ++i) {  // 12 small commercial squares far apart, no street to any
+    const std::string x0 = std::to_string(1000 + 200 * i), x1 = std::to_string(1100 + 200 * i);
+    features += R"(, {"type": "Feature", "properties": {"zone": "commercial"}, "geometry": {"type": "Polygon",
+      "coordinates": [[[)" + x0 + ", 0], [" + x1 + ", 0], [" + x1 + ", 100], [" + x0 + ", 100], [" + x0 + ", 0]]]}}";
+  }
+  Result g = generate_in(dir, R"({"type": "FeatureCollection", "exacity": {"seed": 3, "zones":
+    {"commercial": {"layout": "streets"}}}, "features": [)" + features + "]}");
+  ASSERT_EQ(g.code, 0) << g.out;
+  EXPECT_EQ(nlohmann::json::parse(read(dir / "out" / "report.json"))["empty_zones"].size(), 12u);
+  std::size_t named = 0;
+  for (std::size_t at = g.out.find(") got no lots:"); at != std::string::npos; at = g.out.find(") got no lots:", at + 1)) ++named;
+  EXPECT_EQ(named, 5u) << g.out;
+  EXPECT_NE(g.out.find("and 7 more zones got no lots (" + (dir / "out" / "report.json").string() +
+                       " lists them all under \"empty_zones\")"),
+            std::string::npos)
+      << g.out;
+}
+
 // Grid filling places library models: a zone that asks for it without any is built in
 // rows, and the run says so.
 TEST(Cli, GridFillingWithoutModelsIsNamedNotSilent) {
