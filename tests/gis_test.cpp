@@ -840,6 +840,57 @@ TEST(Gis, FeaturesCutAtTheAntimeridianMeetAgainExactly) {
   EXPECT_EQ(shared(halves[0].outer, halves[1].outer), 2);
 }
 
+// Names that are not UTF-8 (Latin-1 from old tools) are read where they are text the outputs
+// can hold, and refused in one line where they are the user's own file names; a file whose
+// CRS is in degrees but whose coordinates are metres is named as such.
+TEST(Gis, NamesNotInUtf8AndCoordinatesNotInTheFilesCrs) {
+  const fs::path dir = testing_util::temp_dir("gis-not-utf8");
+  ordered_json town = town_in_metres();
+  write(dir / "town.geojson", town.dump());
+  write(dir / "town.exacity.json", kSettings.dump());
+  const std::string latin1 = "zon\xe9s";  // "zonés" in Latin-1
+  start_gdal();
+  auto to_gpkg = [&](const fs::path& from, const fs::path& to) {
+    GDALDatasetH source = GDALOpenEx(from.string().c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr);
+    ASSERT_NE(source, nullptr);
+    const char* args[] = {"-f", "GPKG", "-nln", latin1.c_str(), nullptr};
+    GDALVectorTranslateOptions* options = GDALVectorTranslateOptionsNew(const_cast<char**>(args), nullptr);
+    GDALDatasetH made = GDALVectorTranslate(to.string().c_str(), nullptr, 1, &source, options, nullptr);
+    GDALVectorTranslateOptionsFree(options);
+    ASSERT_NE(made, nullptr);
+    GDALClose(made);
+    GDALClose(source);
+  };
+  to_gpkg(dir / "town.geojson", dir / "town.gpkg");
+  // A layer named in Latin-1: the sources name it in UTF-8.
+  const cli_util::Result named = cli_util::run("generate " + (dir / "town.gpkg").string() + " -o " + (dir / "out").string());
+  ASSERT_EQ(named.code, 0) << named.out;
+  const ordered_json sketch = ordered_json::parse(cli_util::read(dir / "out" / "sketch.geojson"));
+  EXPECT_NE(sketch.dump().find("layer zon\u00e9s"), std::string::npos);
+
+  auto refused = [&](const std::string& args, const std::string& says, const fs::path& out) {
+    const cli_util::Result r = cli_util::run("generate " + args + " -o '" + out.string() + "'");
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+    EXPECT_NE(r.out.find(says), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(out));
+  };
+  // The user's own file names: the outputs record them in JSON.
+  fs::copy_file(dir / "town.gpkg", dir / ("caf\xe9.gpkg"));
+  refused("'" + (dir / "caf\xe9.gpkg").string() + "'", "its name is not UTF-8 text", dir / "out2");
+  refused((dir / "town.gpkg").string(), "the output path is not UTF-8 text", dir / "out\xe9");
+  // A GeoJSON in metres without a crs is lon/lat to ogr2ogr, as GeoJSON says: the GeoPackage
+  // it writes is in EPSG:4326 with coordinates of hundreds of thousands.
+  ordered_json no_crs = town;
+  no_crs.erase("crs");
+  write(dir / "no_crs.geojson", no_crs.dump());
+  to_gpkg(dir / "no_crs.geojson", dir / "degrees.gpkg");
+  refused((dir / "degrees.gpkg").string(),
+          "degrees.gpkg layer zon\u00e9s feature 1: position [385000, 6672000] is no longitude and latitude, though " +
+              (dir / "degrees.gpkg").string() + "'s CRS, EPSG:4326, counts in degrees",
+          dir / "out3");
+}
+
 TEST(Gis, LonLatWithoutCrsSpanningTensOfDegreesIsRefusedButNoSmallSketchInMetres) {
   const fs::path dir = testing_util::temp_dir("gis-far-lonlat");
   // Helsinki's town and a copy of it 34 degrees west, in one file without a crs.

@@ -11,6 +11,7 @@
 #include <ogr_spatialref.h>
 #include <proj.h>
 
+#include "generate/city/format_number.h"
 #include "generate/errors.h"
 
 namespace exacity {
@@ -365,7 +366,16 @@ std::vector<Place> places_of(const std::vector<std::vector<FeaturePositions>>& f
     if (!crs[i] || features[i].empty()) continue;
     std::vector<Place> part = raw_places(features[i]);
     // A geographic CRS's degrees are lon/lat enough for an extent, whatever its datum.
-    if (!in_degrees(*crs[i])) {
+    if (in_degrees(*crs[i])) {
+      for (const Place& place : part)
+        for (geom::Vec2 p : place.lonlat)
+          if (!(std::abs(p.x) <= 360 && std::abs(p.y) <= 90))
+            throw UserError(*place.feature + ": position [" + format_number(p.x) + ", " + format_number(p.y) +
+                            "] is no longitude and latitude, though " + parts[i].path.string() + "'s CRS, " +
+                            crs_text(*crs[i]) +
+                            ", counts in degrees: the file's CRS is wrong (ogr2ogr gives a GeoJSON without a crs "
+                            "EPSG:4326); assign the right one with ogr2ogr -a_srs EPSG:<code>");
+    } else {
       std::unique_ptr<OGRCoordinateTransformation> t(OGRCreateCoordinateTransformation(&*crs[i], &wgs84));
       if (!t)
         throw UserError(parts[i].path.string() + ": PROJ cannot bring " + crs_text(*crs[i]) +
