@@ -124,26 +124,28 @@ TEST(Robustness, ExportWritesEveryCaseWithItsLevelAndTheJudgesInvariants) {
     }
 }
 
+// A baseline program beside exacity generating an example into `out` (made empty first).
+cli_util::Result generate_with(const char* program, const char* example, const std::filesystem::path& out,
+                               const std::string& options) {
+  std::filesystem::remove_all(out);
+  const std::filesystem::path binary = std::filesystem::path(EXACITY_BINARY).parent_path() / program;
+  return cli_util::shell(binary.string() + " generate " + (cli_util::kSource / "examples" / example).string() + " -o " +
+                         out.string() + " " + options);
+}
+
 // The GEOS baseline writes Exacity's layers, which the judge reads: the default example's
 // partition in GEOS's default (floating) overlay passes it. A sketch it cannot read is one
 // line, exit 2, and nothing written.
 TEST(Robustness, TheGeosBaselinePartitionsTheTownAsTheJudgeWants) {
-  const std::filesystem::path geos = std::filesystem::path(EXACITY_BINARY).parent_path() / "exacity-geos";
   const std::filesystem::path out = testing_util::temp_dir("geos-town");
-  std::filesystem::remove_all(out);
-  const cli_util::Result r = cli_util::shell(geos.string() + " generate " +
-                                             (cli_util::kSource / "examples" / "town.geojson").string() + " -o " +
-                                             out.string() + " --precision floating");
+  const cli_util::Result r = generate_with("exacity-geos", "town.geojson", out, "--precision floating");
   ASSERT_EQ(r.code, 0) << r.out;
   const Verdict v = judge(out);
   EXPECT_TRUE(v.passed()) << testing::PrintToString(v.problems);
   std::ifstream in(out / "vector" / "lots.geojson");
   EXPECT_GT(nlohmann::json::parse(in)["features"].size(), 100u);
 
-  std::filesystem::remove_all(out);
-  const cli_util::Result bad = cli_util::shell(geos.string() + " generate " +
-                                               (cli_util::kSource / "examples" / "grid" / "town.grid").string() +
-                                               " -o " + out.string());
+  const cli_util::Result bad = generate_with("exacity-geos", "grid/town.grid", out, "");
   EXPECT_EQ(bad.code, 2) << bad.out;
   EXPECT_NE(bad.out.find("not a GeoJSON FeatureCollection"), std::string::npos) << bad.out;
   EXPECT_FALSE(std::filesystem::exists(out));
@@ -153,12 +155,8 @@ TEST(Robustness, TheGeosBaselinePartitionsTheTownAsTheJudgeWants) {
 // the city map's batch routed through other hot pixels, and ended in the open beside them
 // until ends got a snap tolerance. Its output passes the exact build's validator.
 TEST(Robustness, TheSnappedBuildsTangleEndsNoRoadInTheOpen) {
-  const std::filesystem::path snapped = std::filesystem::path(EXACITY_BINARY).parent_path() / "exacity-float-snapped";
   const std::filesystem::path out = testing_util::temp_dir("snapped-tangle");
-  std::filesystem::remove_all(out);
-  const cli_util::Result r = cli_util::shell(snapped.string() + " generate " +
-                                             (cli_util::kSource / "examples" / "tangle.geojson").string() + " -o " +
-                                             out.string() + " -q --threads 1");
+  const cli_util::Result r = generate_with("exacity-float-snapped", "tangle.geojson", out, "-q --threads 1");
   ASSERT_EQ(r.code, 0) << r.out;
   const cli_util::Result v = cli_util::shell(std::string(EXACITY_BINARY) + " validate " + out.string());
   EXPECT_EQ(v.code, 0) << v.out;
