@@ -31,8 +31,8 @@ ZoneSettings read_zone_settings(const SettingsReader& settings, ZoneType type, b
   ZoneSettings z;
   z.roads = read_road_settings(settings, defaults.roads, read_grammars);
   z.blocks = read_block_settings(settings, defaults.blocks);
-  z.lots = read_lot_settings(settings, defaults.lots, *z.roads.layout);
-  z.buildings = read_building_settings(settings, defaults.buildings);
+  z.lots = read_lot_settings(settings, type, defaults.lots, *z.roads.layout);
+  z.buildings = read_building_settings(settings, type, defaults.buildings);
   return z;
 }
 
