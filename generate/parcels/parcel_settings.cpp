@@ -8,14 +8,12 @@ namespace exacity {
 std::shared_ptr<const LotLayoutChoice> read_allocation(const LotLayoutReading& reading);
 std::shared_ptr<const LotLayoutChoice> read_split(const LotLayoutReading& reading);
 std::shared_ptr<const LotLayoutChoice> read_library_lots(const LotLayoutReading& reading);
-std::shared_ptr<const LotLayoutChoice> read_whole_lots(const LotLayoutReading& reading);
 
 const std::vector<LotLayoutType>& lot_layout_types() {
   static const std::vector<LotLayoutType> table{
       {"allocation", "lots along the street", {"lot_width", "lot_depth", "min_lot_edge"}, read_allocation},
       {"split", "recursive splitting", {"lot_area"}, read_split},
       {"library", "the model library's lots", {}, read_library_lots},
-      {"whole", "every block one lot", {}, read_whole_lots},
   };
   return table;
 }

@@ -7,13 +7,11 @@ namespace exacity {
 // Each placer's reader, in its placer's file.
 std::shared_ptr<const PlacerChoice> read_row_placer(const PlacerReading& reading);
 std::shared_ptr<const PlacerChoice> read_grid_filler(const PlacerReading& reading);
-std::shared_ptr<const PlacerChoice> read_centre_placer(const PlacerReading& reading);
 
 const std::vector<PlacerType>& placer_types() {
   static const std::vector<PlacerType> table{
       {"rows", "along the street", {}, read_row_placer},
       {"grid", "grid filling", {"grid_cell", "grid_passes", "nesting"}, read_grid_filler},
-      {"centre", "one building in the middle", {"centre_scale"}, read_centre_placer},
   };
   return table;
 }
