@@ -112,7 +112,7 @@ ordered_json placement_fallbacks_report(const City& city) {
   ordered_json fallbacks = ordered_json::array();
   for (const auto& [zone, settings] : city.settings.zone_settings) {
     // The default placer falls back without a word: extruded footprints are what it asks for then.
-    if (settings.buildings.placement == &placer_types().front() || !grows_roads(zone)) continue;
+    if (settings.buildings.placement->name() == placer_types().front().name || !grows_roads(zone)) continue;
     const ModelLibrary* library = city.model_library();
     if (library && !library->choices(zone, ModelKind::Building).empty()) continue;
     fallbacks.push_back({{"zone", name(zone)},

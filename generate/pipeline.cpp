@@ -79,7 +79,7 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
       library->check_channels(sketch.channels);
       // Nesting compares models slab by slab (docs/design.md, Placement: nesting).
       if (std::any_of(sketch.zone_settings.begin(), sketch.zone_settings.end(),
-                      [](const auto& z) { return z.second.buildings.nesting; }))
+                      [](const auto& z) { return z.second.buildings.placement->nests(); }))
         cut_slabs(*library);
     }
     check_lot_library(sketch, library ? &*library : nullptr);

@@ -7,6 +7,7 @@
 
 #include "generate/placement/building_settings.h"
 #include "generate/placement/buildings.h"
+#include "generate/parcels/allocation.h"
 #include "generate/parcels/lots.h"
 #include "generate/pipeline.h"
 #include "generate/export/validate.h"
@@ -36,7 +37,7 @@ TEST(Lots, StreetLotsLineEveryRoadEdgeAndLeaveTheMiddleOpen) {
   map.insert_batch();
   map.label_faces([](const geom::Windings& w) { return geom::winding_of(w, 0) ? 1 : 0; });
   geom::Cell block = map.cells({-1, 0}, {0, 0})[0];
-  LotSettings p = default_lot_settings(ZoneType::Residential);
+  AllocationSettings p;
   p.lot_width = {20, 20}, p.lot_depth = 30;
   Random rng(1);
   std::vector<geom::Ring> lots = street_lots(block, p, rng);
@@ -62,7 +63,7 @@ TEST(Lots, StreetLotsSkipEdgesWithoutARoad) {
   map.insert_batch();
   map.label_faces([](const geom::Windings& w) { return geom::winding_of(w, 0) ? 1 : 0; });
   geom::Cell block = map.cells({-1, 0}, {-1, -1})[0];
-  LotSettings p = default_lot_settings(ZoneType::Residential);
+  AllocationSettings p;
   p.lot_width = {25, 25};
   Random rng(1);
   EXPECT_TRUE(street_lots(block, p, rng).empty());

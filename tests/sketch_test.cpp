@@ -6,6 +6,7 @@
 #include "generate/city/street_graph.h"
 #include "generate/layout/road_settings.h"
 #include "generate/placement/building_settings.h"
+#include "generate/placement/grid_filling.h"
 
 using namespace exacity;
 
@@ -192,10 +193,12 @@ TEST(Sketch, GridFillingSettingsAreReadAndChecked) {
                                                    "grid_passes": 3}}})"),
                           "city.geojson");
   const BuildingSettings& b = s.zone_settings.at(ZoneType::Commercial).buildings;
-  EXPECT_EQ(b.placement->name, "grid");
-  EXPECT_EQ(b.grid_cell, 0.5);
-  EXPECT_EQ(b.grid_passes, 3);
-  EXPECT_EQ(s.zone_settings.at(ZoneType::Residential).buildings.placement->name, "rows");
+  ASSERT_EQ(b.placement->name(), "grid");
+  const GridFillingSettings& grid = dynamic_cast<const GridFillingChoice&>(*b.placement).settings();
+  EXPECT_EQ(grid.cell, 0.5);
+  EXPECT_EQ(grid.passes, 3);
+  EXPECT_FALSE(b.placement->nests());
+  EXPECT_EQ(s.zone_settings.at(ZoneType::Residential).buildings.placement->name(), "rows");
   expect_error(with_features(kSquare, R"({"zones": {"residential": {"placement": "hex"}}})"), {"placement", "\"grid\""});
   expect_error(with_features(kSquare, R"({"zones": {"residential": {"grid_cell": 0}}})"), {"grid_cell"});
   expect_error(with_features(kSquare, R"({"zones": {"residential": {"grid_passes": 1.5}}})"), {"grid_passes", "whole"});

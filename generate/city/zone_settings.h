@@ -22,8 +22,10 @@ namespace exacity {
 
 class RoadLayout;
 struct LayoutSite;
-struct LotLayoutType;
-struct PlacerType;
+class LotLayout;
+class Placer;
+struct ModelLibrary;
+class Channels;
 
 // Recursive road growth (docs/design.md, Road layouts). Every zone type has these, whatever its layout: growth also grows the
 // large land a grammar leaves, as the zone at each seed, and block_area sizes the city.
@@ -69,19 +71,46 @@ struct BlockSettings {
   double min_block_width = 6;   // m: so do thinner ones (2 x area / perimeter)
 };
 
+// A zone type's lot layout as the sketch chose it from the table of lot layouts
+// (lot_layout_types, generate/parcels/parcel_settings.h), carrying that layout's own settings.
+class LotLayoutChoice {
+ public:
+  explicit LotLayoutChoice(std::string name) : name_(std::move(name)) {}
+  virtual ~LotLayoutChoice() = default;
+  const std::string& name() const { return name_; }
+  // The layout of the zone type's blocks; `library` may be null unless models_own_lots.
+  virtual std::unique_ptr<LotLayout> make(ZoneType zone, const ModelLibrary* library, const Channels& channels) const = 0;
+  // Its lots are the model library's own, each for one model (Lot::model), which stands
+  // on it: no block is one lot when it fits none.
+  virtual bool models_own_lots() const { return false; }
+
+ private:
+  std::string name_;
+};
+
 struct LotSettings {
-  // A row of the table of lot layouts (lot_layout_types, generate/parcels/parcel_settings.h):
-  // "allocation" (measured from the street: lots side by side along every road
-  // edge of a block, corner lots at its corners, the block's middle left open; some lots
-  // dropped by chance in industrial blocks), "split" (halve perpendicular to the longest edge
-  // down to lot_area) or "library" (the lots the model library's entries ask for,
-  // along the streets).
-  const LotLayoutType* layout = nullptr;
-  Range lot_width{14, 24};   // m: frontage of an allocated lot, drawn per street side
-  double lot_depth = 30;     // m: how far allocated lots reach back from the street
-  double lot_area = 600;     // m²: split stops below this
-  double min_lot_edge = 3;   // m: allocated lots with a shorter edge are dropped
+  // "allocation" (lots along the street), "split" (recursive splitting) or "library" (the
+  // lots the model library's entries ask for), with that layout's own settings.
+  std::shared_ptr<const LotLayoutChoice> layout;
   double min_lot_area = 20;  // m²: smaller pieces of lots are dropped
+};
+
+// A zone type's placer as the sketch chose it from the table of placers (placer_types,
+// generate/placement/building_settings.h), carrying that placer's own settings.
+class PlacerChoice {
+ public:
+  explicit PlacerChoice(std::string name) : name_(std::move(name)) {}
+  virtual ~PlacerChoice() = default;
+  const std::string& name() const { return name_; }
+  // The placer of the library's buildings on the zone type's lots; none when the library
+  // has no building for it.
+  virtual std::unique_ptr<Placer> make(const ModelLibrary& library, ZoneType zone, const Channels& channels) const = 0;
+  // It stands models under others' overhangs (nesting), so the library's models are cut
+  // into slabs.
+  virtual bool nests() const { return false; }
+
+ private:
+  std::string name_;
 };
 
 struct BuildingSettings {
@@ -100,14 +129,9 @@ struct BuildingSettings {
   // How far apart placed models stand in their rows, centre to centre (a grammar's
   // _Dense/_Sparse): "dense" 1.25–1.5 model widths, "normal" 2–3, "sparse" 4–5.
   std::string density = "normal";
-  // How placed models fill a lot, a row of the table of placers (placer_types,
-  // generate/placement/building_settings.h): "rows" along the street or "grid", the
-  // occupancy grid's grid filling, on cells of `grid_cell` metres, filled `grid_passes` times.
-  const PlacerType* placement = nullptr;
-  double grid_cell = 1;
-  int grid_passes = 1;
-  // Nesting, a 3D occupancy grid: grid filling lets a model stand under another's overhang.
-  bool nesting = false;
+  // How the library's buildings fill a lot: "rows" along the street or "grid" (grid
+  // filling), with that placer's own settings.
+  std::shared_ptr<const PlacerChoice> placement;
   // A channel whose value takes the place of nearness to the city's centre in the
   // extruded buildings' heights (building_height); empty for none.
   std::string height_channel;

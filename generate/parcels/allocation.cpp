@@ -1,6 +1,6 @@
 // Lots measured from the street (docs/design.md, Lots): along every run of road edges of a
 // block, lots side by side, corner lots at its corners, the block's middle left open.
-#include "generate/parcels/lot_layout.h"
+#include "generate/parcels/allocation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -132,7 +132,7 @@ geom::Ring on_grid(const geom::Ring& ring) {
 // rises after a dropped one, so some street frontage stays open yard.
 class Allocation : public LotLayout {
  public:
-  explicit Allocation(const LotSettings& settings) : settings_(settings) {}
+  explicit Allocation(const AllocationSettings& settings) : settings_(settings) {}
   std::vector<PlannedLot> plan(const Block& block, int index, Random& rng) const override {
     std::vector<PlannedLot> out;
     double keep = 0.8;
@@ -149,12 +149,16 @@ class Allocation : public LotLayout {
   }
 
  private:
-  LotSettings settings_;
+  AllocationSettings settings_;
 };
 
 }  // namespace
 
-std::vector<geom::Ring> street_lots(const geom::Cell& block, const LotSettings& p, Random& rng) {
+std::unique_ptr<LotLayout> AllocationChoice::make(ZoneType, const ModelLibrary*, const Channels&) const {
+  return std::make_unique<Allocation>(settings_);
+}
+
+std::vector<geom::Ring> street_lots(const geom::Cell& block, const AllocationSettings& p, Random& rng) {
   std::vector<geom::Ring> lots;
   const std::vector<geom::KindedRing> rings = block.kinded_rings();
   for (const geom::KindedRing& r : rings) {
@@ -211,8 +215,15 @@ std::vector<geom::Ring> street_lots(const geom::Cell& block, const LotSettings& 
   return lots;
 }
 
-std::unique_ptr<LotLayout> make_allocation(const LotSettings& settings, ZoneType, const ModelLibrary*, const Channels&) {
-  return std::make_unique<Allocation>(settings);
+std::shared_ptr<const LotLayoutChoice> read_allocation(const LotLayoutReading& reading) {
+  const SettingsReader& s = reading.settings;
+  AllocationSettings a;
+  if (reading.zone == ZoneType::Commercial) a.lot_width = {20, 45}, a.lot_depth = 35;
+  if (reading.zone == ZoneType::Industrial) a.lot_width = {40, 90}, a.lot_depth = 60;
+  s.number("min_lot_edge", a.min_lot_edge, 0, 1e4);
+  s.number("lot_depth", a.lot_depth, 2, 1e4);
+  s.range("lot_width", a.lot_width, 2, 1e4, "lot frontage in metres");
+  return std::make_shared<AllocationChoice>(a);
 }
 
 }  // namespace exacity

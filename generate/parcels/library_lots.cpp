@@ -175,9 +175,22 @@ std::unique_ptr<LotLayout> make_library_lots(const ModelLibrary& library, ZoneTy
   return std::make_unique<LibraryLots>(library, std::move(models), channels);
 }
 
-std::unique_ptr<LotLayout> make_library_lots(const LotSettings&, ZoneType zone, const ModelLibrary* library,
-                                             const Channels& channels) {
-  return make_library_lots(*library, zone, channels);
+namespace {
+
+// Its lots come with their models, which the placement stage stands on them (make_own_lot_placer).
+class LibraryLotsChoice : public LotLayoutChoice {
+ public:
+  LibraryLotsChoice() : LotLayoutChoice("library") {}
+  std::unique_ptr<LotLayout> make(ZoneType zone, const ModelLibrary* library, const Channels& channels) const override {
+    return make_library_lots(*library, zone, channels);
+  }
+  bool models_own_lots() const override { return true; }
+};
+
+}  // namespace
+
+std::shared_ptr<const LotLayoutChoice> read_library_lots(const LotLayoutReading&) {
+  return std::make_shared<LibraryLotsChoice>();
 }
 
 }  // namespace exacity

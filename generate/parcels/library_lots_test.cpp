@@ -131,8 +131,9 @@ TEST(LibraryLots, ASharpChannelSendsEachEntryToItsHalf) {
 TEST(LibraryLots, AZoneAskingForLibraryLotsNeedsEntriesWithLotsOfAGoodShape) {
   Sketch sketch;
   sketch.path = "town.geojson";
-  sketch.zone_settings[ZoneType::Residential] = default_zone_settings(ZoneType::Residential);
-  sketch.zone_settings[ZoneType::Residential].lots.layout = &lot_layout_type("library");
+  const nlohmann::json library_lots{{"lots", "library"}};
+  sketch.zone_settings[ZoneType::Residential] =
+      read_zone_settings(SettingsReader(library_lots, "", ""), ZoneType::Residential, false);
   auto message = [&](const ModelLibrary* lib) {
     try {
       check_lot_library(sketch, lib);

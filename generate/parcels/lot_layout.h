@@ -1,8 +1,8 @@
 // Lot layouts (docs/design.md, Lots): how a block is cut into lots, one layout per zone
-// type from its "lots" setting: allocation measured from the street
-// (generate/parcels/allocation.cpp), the recursive split (generate/parcels/split.cpp) or the
-// lot library (generate/parcels/library_lots.cpp). A layout plans from the block
-// alone; the lots stage puts every plan into the map at once.
+// type from its "lots" setting (the table of lot layouts, parcel_settings.h): allocation
+// measured from the street (generate/parcels/allocation.cpp), the recursive split
+// (generate/parcels/split.cpp) or the lot library (generate/parcels/library_lots.cpp). A
+// layout plans from the block alone; the lots stage puts every plan into the map at once.
 #pragma once
 
 #include <memory>
@@ -36,12 +36,5 @@ class LotLayout {
 
 // The library's lots for the zone's building entries that carry one; none when it has none.
 std::unique_ptr<LotLayout> make_library_lots(const ModelLibrary& library, ZoneType zone, const Channels& channels);
-
-// Lots measured from the street (docs/design.md, Lots): along every run of road edges of the block
-// (BlockEdge::is_road), lots side by side, about `lot_width` wide and `lot_depth` deep (at most
-// half the way across the block), split at the run's corners along the corner's bisector;
-// the block's middle is left open. Rings in doubles, not yet on the grid; each reaches a
-// little past the block's edge, so the map cuts it back exactly there.
-std::vector<geom::Ring> street_lots(const geom::Cell& block, const LotSettings& p, Random& rng);
 
 }  // namespace exacity

@@ -21,7 +21,7 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const CitySe
                                   const Channels& channels, Memo<std::vector<PlannedLot>>* memo) {
   std::map<ZoneType, std::unique_ptr<LotLayout>> layouts;
   for (const auto& [zone, settings] : city.zone_settings)
-    layouts[zone] = settings.lots.layout->make(settings.lots, zone, library, channels);
+    layouts[zone] = settings.lots.layout->make(zone, library, channels);
   std::vector<std::vector<PlannedLot>> per_block(blocks.size());
   const std::uint64_t stage = mix(city.seed, static_cast<std::uint64_t>(Stage::Lots));
   const CancelCheck cancel;
@@ -34,7 +34,7 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const CitySe
       std::vector<PlannedLot> lots = layouts.at(block.zone)->plan(block, static_cast<int>(bi), rng);
       // A block too small for the layout to cut is one lot, if it makes one (kept_lots); not
       // for the lot library, whose lots are the models' own.
-      if (lots.empty() && !city.zone_settings.at(block.zone).lots.layout->models_own_lots)
+      if (lots.empty() && !city.zone_settings.at(block.zone).lots.layout->models_own_lots())
         lots.push_back({static_cast<int>(bi), block.zone, {}, block.cell});
       return lots;
     };
@@ -57,8 +57,8 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const CitySe
 
 void check_lot_library(const CitySettings& city, const ModelLibrary* library) {
   for (const auto& [zone, settings] : city.zone_settings) {
-    if (!settings.lots.layout->models_own_lots) continue;
-    const std::string setting = city.path.string() + ": \"exacity\".zones." + std::string(name(zone)) + ".lots is \"" + std::string(settings.lots.layout->name) + "\"";
+    if (!settings.lots.layout->models_own_lots()) continue;
+    const std::string setting = city.path.string() + ": \"exacity\".zones." + std::string(name(zone)) + ".lots is \"" + settings.lots.layout->name() + "\"";
     if (!library)
       throw UserError(setting + ", but the sketch names no model library; name one in \"exacity\".models or with --models");
     const std::vector<int> models = library->lot_choices(zone);

@@ -4,16 +4,16 @@
 
 namespace exacity {
 
-// Each layout's factory, in its layout's file.
-std::unique_ptr<LotLayout> make_allocation(const LotSettings&, ZoneType, const ModelLibrary*, const Channels&);
-std::unique_ptr<LotLayout> make_split(const LotSettings&, ZoneType, const ModelLibrary*, const Channels&);
-std::unique_ptr<LotLayout> make_library_lots(const LotSettings&, ZoneType, const ModelLibrary*, const Channels&);
+// Each layout's reader, in its layout's file.
+std::shared_ptr<const LotLayoutChoice> read_allocation(const LotLayoutReading& reading);
+std::shared_ptr<const LotLayoutChoice> read_split(const LotLayoutReading& reading);
+std::shared_ptr<const LotLayoutChoice> read_library_lots(const LotLayoutReading& reading);
 
 const std::vector<LotLayoutType>& lot_layout_types() {
   static const std::vector<LotLayoutType> table{
-      {"allocation", "lots along the street", make_allocation},
-      {"split", "recursive splitting", make_split},
-      {"library", "the model library's lots", make_library_lots, true},
+      {"allocation", "lots along the street", {"lot_width", "lot_depth", "min_lot_edge"}, read_allocation},
+      {"split", "recursive splitting", {"lot_area"}, read_split},
+      {"library", "the model library's lots", {}, read_library_lots},
   };
   return table;
 }
@@ -21,16 +21,18 @@ const std::vector<LotLayoutType>& lot_layout_types() {
 const LotLayoutType& lot_layout_type(std::string_view name) { return named_row(lot_layout_types(), name, "lot layout"); }
 
 LotSettings default_lot_settings(ZoneType type) {
+  static const nlohmann::json none = nlohmann::json::object();
   LotSettings l;
-  l.layout = &lot_layout_types().front();
-  if (type == ZoneType::Commercial) l.lot_area = 1500, l.lot_width = {20, 45}, l.lot_depth = 35;
-  if (type == ZoneType::Industrial) l.lot_area = 3000, l.lot_width = {40, 90}, l.lot_depth = 60;
+  l.layout = lot_layout_types().front().read({SettingsReader(none, "", ""), type, true});
   return l;
 }
 
 const std::set<std::string>& parcel_setting_keys() {
-  static const std::set<std::string> keys{"min_block_area", "min_block_width", "lots",        "lot_width",
-                                          "lot_depth",      "lot_area",        "min_lot_edge", "min_lot_area"};
+  static const std::set<std::string> keys = [] {
+    std::set<std::string> k{"min_block_area", "min_block_width", "lots", "min_lot_area"};
+    for (const LotLayoutType& t : lot_layout_types()) k.insert(t.keys.begin(), t.keys.end());
+    return k;
+  }();
   return keys;
 }
 
@@ -40,13 +42,16 @@ BlockSettings read_block_settings(const SettingsReader& s, BlockSettings b) {
   return b;
 }
 
-LotSettings read_lot_settings(const SettingsReader& s, LotSettings l, const RoadLayoutChoice& road_layout) {
-  s.number("lot_area", l.lot_area, 10, 1e8);
-  s.number("min_lot_edge", l.min_lot_edge, 0, 1e4);
+LotSettings read_lot_settings(const SettingsReader& s, ZoneType type, LotSettings l, const RoadLayoutChoice& road_layout) {
   s.number("min_lot_area", l.min_lot_area, 0, 1e8);
-  s.number("lot_depth", l.lot_depth, 2, 1e4);
-  s.range("lot_width", l.lot_width, 2, 1e4, "lot frontage in metres");
-  l.layout = &s.row("lots", lot_layout_types(), lot_layout_type(road_layout.default_lots()));
+  const auto& table = lot_layout_types();
+  const LotLayoutType& chosen = s.row("lots", table, lot_layout_type(road_layout.default_lots()));
+  // As for road layouts: every layout's keys are checked where written; the chosen one's
+  // reading is kept.
+  for (const LotLayoutType& t : table) {
+    auto layout = t.read({s, type, &t == &chosen});
+    if (&t == &chosen) l.layout = std::move(layout);
+  }
   return l;
 }
 

@@ -1,5 +1,6 @@
-// A zone type's block and lot settings ("exacity".zones.TYPE, docs/design.md, The sketch),
-// read and checked here.
+// A zone type's block and lot settings ("exacity".zones.TYPE, docs/design.md, The sketch):
+// the blocks', the lots' smallest area, and the lot layout the zone names, parsed once from
+// the table of lot layouts into the chosen layout with its own settings.
 #pragma once
 
 #include <memory>
@@ -14,32 +15,34 @@
 
 namespace exacity {
 
-class LotLayout;
-struct ModelLibrary;
-class Channels;
+// What a lot layout's reader is given: the zone's settings object and type (its defaults
+// differ by zone type).
+struct LotLayoutReading {
+  const SettingsReader& settings;
+  ZoneType zone;
+  // The zone chose this layout; else its keys, where written, are only checked.
+  bool chosen;
+};
 
-// A row of the table of lot layouts: a new layout is a file defining its LotLayout and
-// its factory, and one row here (parcel_settings.cpp).
+// A row of the table of lot layouts: a new layout is a file defining its LotLayout, its
+// LotLayoutChoice and its reader, and one row here (parcel_settings.cpp).
 struct LotLayoutType {
   std::string_view name;
   std::string_view what;  // how the error for an unknown name describes it
-  // `library` may be null, unless the lots are the library's (check_lot_library).
-  std::unique_ptr<LotLayout> (*make)(const LotSettings& settings, ZoneType zone, const ModelLibrary* library,
-                                     const Channels& channels);
-  // Its lots are the model library's own, each for one model (Lot::model), which stands
-  // on it: no block is one lot when it fits none.
-  bool models_own_lots = false;
+  std::set<std::string> keys;  // its own settings' keys
+  std::shared_ptr<const LotLayoutChoice> (*read)(const LotLayoutReading& reading);
 };
 const std::vector<LotLayoutType>& lot_layout_types();
 const LotLayoutType& lot_layout_type(std::string_view name);  // one of the table's
 
 LotSettings default_lot_settings(ZoneType type);
 
-// The keys the readers below read.
+// The keys the readers below read: the shared ones and every layout's.
 const std::set<std::string>& parcel_setting_keys();
 
 BlockSettings read_block_settings(const SettingsReader& settings, BlockSettings defaults);
 // `road_layout`: the zone's, whose default lot layout it takes unless the zone names one.
-LotSettings read_lot_settings(const SettingsReader& settings, LotSettings defaults, const RoadLayoutChoice& road_layout);
+LotSettings read_lot_settings(const SettingsReader& settings, ZoneType type, LotSettings defaults,
+                              const RoadLayoutChoice& road_layout);
 
 }  // namespace exacity

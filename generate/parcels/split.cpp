@@ -15,12 +15,12 @@ using geom::lerp;
 
 // Halve perpendicular to the longest edge near its middle until below lot_area;
 // a split that would leave a part with no road edge (no frontage) is not made.
-std::vector<geom::Cell> split_lots(const geom::Cell& block, const LotSettings& p, Random& rng) {
+std::vector<geom::Cell> split_lots(const geom::Cell& block, double lot_area, Random& rng) {
   std::vector<geom::Cell> done, todo{block};
   while (!todo.empty()) {
     geom::Cell cell = std::move(todo.back());
     todo.pop_back();
-    if (cell.area() <= p.lot_area) {
+    if (cell.area() <= lot_area) {
       done.push_back(std::move(cell));
       continue;
     }
@@ -55,21 +55,34 @@ std::vector<geom::Cell> split_lots(const geom::Cell& block, const LotSettings& p
 
 class Split : public LotLayout {
  public:
-  explicit Split(const LotSettings& settings) : settings_(settings) {}
+  explicit Split(double lot_area) : lot_area_(lot_area) {}
   std::vector<PlannedLot> plan(const Block& block, int index, Random& rng) const override {
     std::vector<PlannedLot> out;
-    for (geom::Cell& c : split_lots(block.cell, settings_, rng)) out.push_back({index, block.zone, {}, std::move(c)});
+    for (geom::Cell& c : split_lots(block.cell, lot_area_, rng)) out.push_back({index, block.zone, {}, std::move(c)});
     return out;
   }
 
  private:
-  LotSettings settings_;
+  double lot_area_;
+};
+
+class SplitChoice : public LotLayoutChoice {
+ public:
+  explicit SplitChoice(double lot_area) : LotLayoutChoice("split"), lot_area_(lot_area) {}
+  std::unique_ptr<LotLayout> make(ZoneType, const ModelLibrary*, const Channels&) const override {
+    return std::make_unique<Split>(lot_area_);
+  }
+
+ private:
+  double lot_area_;  // m²: a part is split no further below this
 };
 
 }  // namespace
 
-std::unique_ptr<LotLayout> make_split(const LotSettings& settings, ZoneType, const ModelLibrary*, const Channels&) {
-  return std::make_unique<Split>(settings);
+std::shared_ptr<const LotLayoutChoice> read_split(const LotLayoutReading& reading) {
+  double lot_area = reading.zone == ZoneType::Commercial ? 1500 : reading.zone == ZoneType::Industrial ? 3000 : 600;
+  reading.settings.number("lot_area", lot_area, 10, 1e8);
+  return std::make_shared<SplitChoice>(lot_area);
 }
 
 }  // namespace exacity

@@ -4,14 +4,14 @@
 
 namespace exacity {
 
-// Each placer's factory, in its placer's file.
-std::unique_ptr<Placer> make_row_placer(const ModelLibrary& library, ZoneType zone, const Channels& channels);
-std::unique_ptr<Placer> make_grid_filler(const ModelLibrary& library, ZoneType zone, const Channels& channels);
+// Each placer's reader, in its placer's file.
+std::shared_ptr<const PlacerChoice> read_row_placer(const PlacerReading& reading);
+std::shared_ptr<const PlacerChoice> read_grid_filler(const PlacerReading& reading);
 
 const std::vector<PlacerType>& placer_types() {
   static const std::vector<PlacerType> table{
-      {"rows", "along the street", make_row_placer},
-      {"grid", "grid filling", make_grid_filler, true},
+      {"rows", "along the street", {}, read_row_placer},
+      {"grid", "grid filling", {"grid_cell", "grid_passes", "nesting"}, read_grid_filler},
   };
   return table;
 }
@@ -41,8 +41,9 @@ void read_heights(const SettingsReader& s, BuildingSettings& b) {
 }  // namespace
 
 BuildingSettings default_building_settings(ZoneType type) {
+  static const nlohmann::json none = nlohmann::json::object();
   BuildingSettings b;
-  b.placement = &placer_types().front();
+  b.placement = placer_types().front().read({SettingsReader(none, "", ""), type, true});
   if (type == ZoneType::Commercial) {
     b.setback = 2, b.min_height = 12, b.max_height = 48;
     b.building_gap = 3, b.footprint_width = {14, 36}, b.footprint_depth = {12, 28};
@@ -57,28 +58,32 @@ BuildingSettings default_building_settings(ZoneType type) {
 }
 
 const std::set<std::string>& building_setting_keys() {
-  static const std::set<std::string> keys{"setback",         "building_gap",       "footprint_width",
-                                          "footprint_depth", "min_footprint_width", "max_footprint_area",
-                                          "min_footprint_area", "heights",          "roof",
-                                          "roof_pitch",      "density",            "placement",
-                                          "grid_cell",       "grid_passes",        "nesting",
-                                          "height_channel"};
+  static const std::set<std::string> keys = [] {
+    std::set<std::string> k{"setback",          "building_gap",       "footprint_width",    "footprint_depth",
+                            "min_footprint_width", "max_footprint_area", "min_footprint_area", "heights",
+                            "roof",             "roof_pitch",         "density",            "placement",
+                            "height_channel"};
+    for (const PlacerType& t : placer_types()) k.insert(t.keys.begin(), t.keys.end());
+    return k;
+  }();
   return keys;
 }
 
-BuildingSettings read_building_settings(const SettingsReader& s, BuildingSettings b) {
+BuildingSettings read_building_settings(const SettingsReader& s, ZoneType type, BuildingSettings b) {
   read_footprint_sizes(s, b);
   s.number("roof_pitch", b.roof_pitch, 1, 75);
   s.choice("roof", b.roof, {"auto", "flat", "gabled", "hipped"}, "expected \"auto\", \"flat\", \"gabled\" or \"hipped\"");
   s.choice("density", b.density, {"dense", "normal", "sparse"},
            "expected \"dense\", \"normal\" or \"sparse\" (how far apart placed models stand)");
   read_heights(s, b);
-  b.placement = &s.row("placement", placer_types(), *b.placement);
-  s.number("grid_cell", b.grid_cell, 0.1, 10);
-  s.whole_number("grid_passes", b.grid_passes, 1, 16, "passes");
-  s.boolean("nesting", b.nesting);
-  if (b.nesting && !b.placement->nests)
-    s.fail("nesting", "nesting stands models under others' overhangs in grid filling; set \"placement\": \"grid\" too, or remove it");
+  const auto& table = placer_types();
+  const PlacerType& chosen = s.row("placement", table, placer_type(b.placement->name()));
+  // As for road layouts: every placer's keys are checked where written; the chosen one's
+  // reading is kept.
+  for (const PlacerType& t : table) {
+    auto placer = t.read({s, type, &t == &chosen});
+    if (&t == &chosen) b.placement = std::move(placer);
+  }
   if (s.has("height_channel")) {
     if (!s.at("height_channel").is_string() || s.at("height_channel").get<std::string>().empty())
       s.fail("height_channel", "expected the name of a channel (\"exacity\".channels)");

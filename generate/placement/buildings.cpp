@@ -156,7 +156,7 @@ std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> zone_placers(const City
   for (const auto& [zone, settings] : city_settings.zone_settings) {
     auto& list = placers[zone];
     std::unique_ptr<Placer> models;
-    if (library && settings.lots.layout->models_own_lots) models = make_own_lot_placer(*library);
+    if (library && settings.lots.layout->models_own_lots()) models = make_own_lot_placer(*library);
     else if (library) models = settings.buildings.placement->make(*library, zone, channels);
     list.push_back(models ? std::move(models) : std::make_unique<Extrusion>(centre, radius, channels));
     if (!library) continue;

@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 
+#include "generate/placement/building_settings.h"
 #include "generate/placement/model_placement.h"
 #include "geom/measure.h"
 
@@ -91,7 +92,7 @@ struct LotGrid {
 // lots keeps the fill quick.
 constexpr double kMaxCells = 1 << 16;
 
-LotGrid lay_grid(const Occupancy& occupancy, const BuildingSettings& params, double cell) {
+LotGrid lay_grid(const Occupancy& occupancy, const BuildingSettings& params, double cell, bool nesting) {
   LotGrid g;
   g.f = occupancy.frontage();
   const double length = g.f.t1 - g.f.t0, depth = g.f.depth;
@@ -155,7 +156,7 @@ LotGrid lay_grid(const Occupancy& occupancy, const BuildingSettings& params, dou
       }
       g.facing[g.index(i, j)] = best;
     }
-  if (params.nesting)
+  if (nesting)
     for (char b : g.blocked) g.levels.push_back(b ? ~std::uint64_t{0} : 0);
   g.count_blocked();
   return g;
@@ -295,7 +296,7 @@ class Candidate {
 // A random model of the choices, of a random size and colour (the library's size and colour variation); none
 // when no choice has weight here.
 std::optional<Candidate> draw(const Choices& choices, const ModelLibrary& lib, const BuildingSettings& params,
-                              double cell, Random& rng) {
+                              double cell, bool nesting, Random& rng) {
   const std::optional<int> model = pick(choices, rng);
   if (!model) return std::nullopt;
   const Model& m = lib.models[*model];
@@ -304,7 +305,7 @@ std::optional<Candidate> draw(const Choices& choices, const ModelLibrary& lib, c
   // The lot's edges keep half the gap already (lay_grid); between models, the whole gap,
   // and a cell at least: footprints that touch are not apart (Occupancy).
   return Candidate{m, *model, scale, tint, cell, std::max(1, static_cast<int>(std::ceil(params.building_gap / cell - 1e-9))),
-                   params.nesting};
+                   nesting};
 }
 
 // Whether the candidate, turned r times, fits with its footprint's lower-left cell at (i, j):
@@ -380,27 +381,28 @@ bool place_first_free(LotGrid& g, const std::vector<std::pair<int, int>>& order,
 
 class GridFiller : public Placer {
  public:
-  GridFiller(const ModelLibrary& library, std::vector<int> models, const Channels& channels)
-      : library_(library), models_(std::move(models)), channels_(channels) {}
+  GridFiller(const ModelLibrary& library, std::vector<int> models, const Channels& channels,
+             const GridFillingSettings& settings)
+      : library_(library), models_(std::move(models)), channels_(channels), settings_(settings) {}
 
   void place(const Lot&, const BuildingSettings& params, Occupancy& occupancy, Random& rng,
              Structures& out) const override {
     const Frontage& f = occupancy.frontage();
     if (!(f.t1 > f.t0) || !(f.depth > 0)) return;
-    LotGrid g = lay_grid(occupancy, params, params.grid_cell);
+    LotGrid g = lay_grid(occupancy, params, settings_.cell, settings_.nesting);
     const std::vector<std::pair<int, int>> order = serpentine(g.width, g.height);
     double mean_cells = 0;
     for (int c : models_) mean_cells += library_.models[c].width * library_.models[c].depth;
     mean_cells = std::max(mean_cells / static_cast<double>(models_.size()) / (g.cell * g.cell), 1.0);
     const Choices choices = choices_at(models_, library_, &channels_, occupancy.piece());
-    for (int pass = 0; pass < params.grid_passes; ++pass) {
+    for (int pass = 0; pass < settings_.passes; ++pass) {
       const int free = static_cast<int>(std::count(g.blocked.begin(), g.blocked.end(), 0));
       if (free == 0) return;
       // Enough for the free cells to fill, largest first (first-fit decreasing), each a random size and colour.
       const int count = static_cast<int>(std::clamp(std::ceil(1.5 * free / mean_cells), 1.0, 256.0));
       std::vector<Candidate> candidates;
       for (int n = 0; n < count; ++n)
-        if (std::optional<Candidate> c = draw(choices, library_, params, g.cell, rng)) candidates.push_back(std::move(*c));
+        if (std::optional<Candidate> c = draw(choices, library_, params, g.cell, settings_.nesting, rng)) candidates.push_back(std::move(*c));
       std::stable_sort(candidates.begin(), candidates.end(),
                        [](const Candidate& a, const Candidate& b) { return a.size() > b.size(); });
       // A model that found no place three times in a pass (at sizes no larger each time)
@@ -421,9 +423,14 @@ class GridFiller : public Placer {
   const ModelLibrary& library_;
   std::vector<int> models_;
   const Channels& channels_;
+  GridFillingSettings settings_;
 };
 
 }  // namespace
+
+std::unique_ptr<Placer> GridFillingChoice::make(const ModelLibrary& library, ZoneType zone, const Channels& channels) const {
+  return make_grid_filler(library, zone, channels, settings_);
+}
 
 namespace {
 
@@ -489,10 +496,22 @@ std::vector<std::pair<int, int>> serpentine(int width, int height) {
   return order;
 }
 
-std::unique_ptr<Placer> make_grid_filler(const ModelLibrary& library, ZoneType zone, const Channels& channels) {
+std::unique_ptr<Placer> make_grid_filler(const ModelLibrary& library, ZoneType zone, const Channels& channels,
+                                         const GridFillingSettings& settings) {
   std::vector<int> models = library.choices(zone, ModelKind::Building);
   if (models.empty()) return nullptr;
-  return std::make_unique<GridFiller>(library, std::move(models), channels);
+  return std::make_unique<GridFiller>(library, std::move(models), channels, settings);
+}
+
+std::shared_ptr<const PlacerChoice> read_grid_filler(const PlacerReading& reading) {
+  const SettingsReader& s = reading.settings;
+  GridFillingSettings g;
+  s.number("grid_cell", g.cell, 0.1, 10);
+  s.whole_number("grid_passes", g.passes, 1, 16, "passes");
+  s.boolean("nesting", g.nesting);
+  if (g.nesting && !reading.chosen)
+    s.fail("nesting", "nesting stands models under others' overhangs in grid filling; set \"placement\": \"grid\" too, or remove it");
+  return std::make_shared<GridFillingChoice>(g);
 }
 
 }  // namespace exacity

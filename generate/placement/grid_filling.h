@@ -40,8 +40,29 @@ FootprintGrid footprint_grid_within(const std::vector<geom::Ring>& rings, const 
 // The serpentine order of a grid's cells: row 0 left to right, row 1 right to left, ...
 std::vector<std::pair<int, int>> serpentine(int width, int height);
 
+// Grid filling's settings ("placement": "grid").
+struct GridFillingSettings {
+  double cell = 1;    // m: the grid's cell ("grid_cell")
+  int passes = 1;     // how many times a lot is filled ("grid_passes")
+  // Nesting, a 3D occupancy grid: a model may stand under another's overhang.
+  bool nesting = false;
+};
+
+// Grid filling as a zone chose it.
+class GridFillingChoice : public PlacerChoice {
+ public:
+  explicit GridFillingChoice(const GridFillingSettings& settings) : PlacerChoice("grid"), settings_(settings) {}
+  std::unique_ptr<Placer> make(const ModelLibrary& library, ZoneType zone, const Channels& channels) const override;
+  bool nests() const override { return settings_.nesting; }
+  const GridFillingSettings& settings() const { return settings_; }
+
+ private:
+  GridFillingSettings settings_;
+};
+
 // Grid filling with the library's building models for the zone (none when it has none),
 // drawn by their weights and channels where the lot stands.
-std::unique_ptr<Placer> make_grid_filler(const ModelLibrary& library, ZoneType zone, const Channels& channels);
+std::unique_ptr<Placer> make_grid_filler(const ModelLibrary& library, ZoneType zone, const Channels& channels,
+                                         const GridFillingSettings& settings);
 
 }  // namespace exacity

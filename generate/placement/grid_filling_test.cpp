@@ -47,13 +47,14 @@ ModelLibrary l_and_square() {
 
 BuildingSettings tight() {
   BuildingSettings p;
-  p.setback = 0, p.building_gap = 0, p.placement = &placer_type("grid"), p.grid_cell = 1;
+  p.setback = 0, p.building_gap = 0;
   return p;
 }
 
-std::vector<ModelInstance> fill(const geom::Cell& lot, const ModelLibrary& lib, const BuildingSettings& p, std::uint64_t seed) {
+std::vector<ModelInstance> fill(const geom::Cell& lot, const ModelLibrary& lib, const BuildingSettings& p, std::uint64_t seed,
+                                const GridFillingSettings& grid = {}) {
   const Channels none;
-  const auto filler = make_grid_filler(lib, ZoneType::Residential, none);
+  const auto filler = make_grid_filler(lib, ZoneType::Residential, none, grid);
   EXPECT_NE(filler, nullptr);
   Occupancy occupancy(lot, LotEdge::kStreet);
   Random rng(seed);
@@ -114,9 +115,9 @@ TEST(GridFilling, NothingOverlapsAndEverythingStandsInTheLot) {
   ModelLibrary lib = l_and_square();
   lib.models.push_back(model("bar", {{0, 0}, {14, 0}, {14, 5}, {0, 5}}, 2));
   lib.models.back().zones = {ZoneType::Residential};
-  BuildingSettings p;
-  p.placement = &placer_type("grid"), p.grid_passes = 3, p.grid_cell = 0.5;
-  const std::vector<ModelInstance> placed = fill(lot, lib, p, 11);
+  const BuildingSettings p;
+  const GridFillingSettings grid{.cell = 0.5, .passes = 3};
+  const std::vector<ModelInstance> placed = fill(lot, lib, p, 11, grid);
   ASSERT_GT(placed.size(), 8u);
   for (std::size_t a = 0; a < placed.size(); ++a) {
     EXPECT_TRUE(lot.holds(placed[a].polygon.outer));
@@ -124,7 +125,7 @@ TEST(GridFilling, NothingOverlapsAndEverythingStandsInTheLot) {
       EXPECT_FALSE(geom::rings_meet(placed[a].polygon.outer, placed[b].polygon.outer)) << a << " and " << b;
   }
   // The same stream fills the same way.
-  const std::vector<ModelInstance> again = fill(lot, lib, p, 11);
+  const std::vector<ModelInstance> again = fill(lot, lib, p, 11, grid);
   ASSERT_EQ(again.size(), placed.size());
   for (std::size_t k = 0; k < placed.size(); ++k) EXPECT_EQ(again[k].polygon.outer, placed[k].polygon.outer);
 }

@@ -1,5 +1,6 @@
 #include "generate/placement/model_placement.h"
 
+#include "generate/placement/building_settings.h"
 #include "generate/placement/placer.h"
 
 #include <algorithm>
@@ -265,9 +266,20 @@ class OwnLotPlacer : public Placer {
 
 std::unique_ptr<Placer> make_own_lot_placer(const ModelLibrary& library) { return std::make_unique<OwnLotPlacer>(library); }
 
-std::unique_ptr<Placer> make_row_placer(const ModelLibrary& library, ZoneType zone, const Channels& channels) {
-  return make_model_placer(library, zone, ModelKind::Building, channels);
-}
+namespace {
+
+// Rows facing the road, largest first: no settings of its own.
+class RowPlacerChoice : public PlacerChoice {
+ public:
+  RowPlacerChoice() : PlacerChoice("rows") {}
+  std::unique_ptr<Placer> make(const ModelLibrary& library, ZoneType zone, const Channels& channels) const override {
+    return make_model_placer(library, zone, ModelKind::Building, channels);
+  }
+};
+
+}  // namespace
+
+std::shared_ptr<const PlacerChoice> read_row_placer(const PlacerReading&) { return std::make_shared<RowPlacerChoice>(); }
 
 std::unique_ptr<Placer> make_model_placer(const ModelLibrary& library, ZoneType zone, ModelKind kind,
                                           const Channels& channels) {

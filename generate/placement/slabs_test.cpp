@@ -145,9 +145,9 @@ std::vector<ModelInstance> fill_arches(bool nesting, std::uint64_t seed) {
   lib.models = {arch(), kiosk(2.5)};
   lib.models[1].weight = 4;
   BuildingSettings p;
-  p.placement = &placer_type("grid"), p.nesting = nesting, p.setback = 1, p.building_gap = 1, p.grid_cell = 1;
+  p.setback = 1, p.building_gap = 1;
   const Channels none;
-  const auto filler = make_grid_filler(lib, ZoneType::Commercial, none);
+  const auto filler = make_grid_filler(lib, ZoneType::Commercial, none, {.cell = 1, .nesting = nesting});
   Occupancy occupancy(lot, LotEdge::kStreet);
   Random rng(seed);
   Structures out;

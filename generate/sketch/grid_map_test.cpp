@@ -14,6 +14,7 @@
 
 #include "generate/sketch/sketch.h"
 #include "generate/errors.h"
+#include "generate/parcels/allocation.h"
 #include "generate/export/validate.h"
 #include "generate/pipeline.h"
 #include "geom/measure.h"
@@ -696,7 +697,8 @@ TEST(GridMapCity, ASketchNamingAGridMapAddsItsOwnZonesOverIt) {
   EXPECT_EQ(sketch.zone_settings.at(ZoneType::Residential).roads.layout->name(), "streets");
   EXPECT_EQ(sketch.zone_settings.at(ZoneType::Commercial).roads.layout->name(), "streets")
       << "set where the sketch says nothing of it";
-  EXPECT_EQ(sketch.zone_settings.at(ZoneType::Commercial).lots.lot_width.max, 30);
+  const LotLayoutChoice& lots = *sketch.zone_settings.at(ZoneType::Commercial).lots.layout;
+  EXPECT_EQ(dynamic_cast<const AllocationChoice&>(lots).settings().lot_width.max, 30);
   fs::create_directories(dir / "out");
   const GenerateResult result = generate_city(sketch, dir / "out", nullptr);
   EXPECT_TRUE(result.valid) << result.report["validation"];

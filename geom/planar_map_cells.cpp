@@ -1,0 +1,260 @@
+// The map's faces as polygons and cells (docs/design.md, Algorithms: The exact city map):
+// edge-connected components of faces traced into simple loops (dissolve, cells,
+// relabel_components), and a cell split by roads or inset in a small arrangement of its own
+// (split_cell, inset_cell).
+#include "geom/planar_map_arrangement.h"
+
+#include <algorithm>
+#include <unordered_map>
+#include <unordered_set>
+
+#include <CGAL/Polygon_2_algorithms.h>
+
+#include "geom/grid.h"
+#include "geom/split_loops.h"
+#include "geom/untangle.h"
+
+namespace geom {
+using namespace arrangement;
+
+namespace {
+
+std::vector<Point> loop_points(const std::vector<Halfedge>& loop) {
+  std::vector<Point> pts;
+  pts.reserve(loop.size());
+  for (const Halfedge& h : loop) pts.push_back(h->source()->point());
+  return pts;
+}
+
+CGAL::Orientation loop_orientation(const std::vector<Point>& pts) {
+  auto lowest = std::min_element(pts.begin(), pts.end(), [](const Point& a, const Point& b) {
+    return CGAL::compare_xy(a, b) == CGAL::SMALLER;
+  });
+  std::size_t i = lowest - pts.begin(), n = pts.size();
+  return CGAL::orientation(pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
+}
+
+// A polygon of halfedge loops: one counter-clockwise outer loop, clockwise holes.
+struct LoopPolygon {
+  std::vector<Halfedge> outer;
+  std::vector<std::vector<Halfedge>> holes;
+};
+
+// Calls f(group, faces, boundary) for each edge-connected component of faces that share a
+// group (group_of(face) >= 0), in face order; boundary: the halfedges with the component on
+// their left and another group on their right.
+template <typename GroupOf, typename F>
+void for_each_component(const Arrangement& arr, GroupOf group_of, F f) {
+  std::unordered_set<const void*> seen;
+  for (auto start = arr.faces_begin(); start != arr.faces_end(); ++start) {
+    int g = group_of(Face(start));
+    if (g < 0 || seen.count(&*start)) continue;
+    std::vector<Face> faces{start};
+    std::vector<Halfedge> boundary;
+    seen.insert(&*start);
+    for (std::size_t i = 0; i < faces.size(); ++i)
+      for_each_boundary_halfedge(faces[i], [&](Halfedge h) {
+        Face t = h->twin()->face();
+        if (group_of(t) != g) boundary.push_back(h);
+        else if (seen.insert(&*t).second) faces.push_back(t);
+      });
+    f(g, faces, boundary);
+  }
+}
+
+// Calls emit(group, polygons, neighbour labels) for each edge-connected component of faces
+// that share a group (group_of(face) >= 0), in face order. Boundaries are walked with the
+// component on the left, turning as tightly as possible at each vertex, and cut where
+// they touch themselves, so every loop is simple; a hole may touch its outer loop.
+template <typename GroupOf, typename Emit>
+void trace_components(const Arrangement& arr, GroupOf group_of, Emit emit) {
+  std::unordered_set<const void*> used;
+  for_each_component(arr, group_of, [&](int g, const std::vector<Face>&, const std::vector<Halfedge>& boundary) {
+
+    std::vector<std::vector<Halfedge>> outers, holes;
+    std::vector<std::vector<Point>> outer_points;
+    std::vector<int> neighbours;
+    for (const Halfedge& first : boundary) {
+      neighbours.push_back(first->twin()->face()->data());
+      if (used.count(&*first)) continue;
+      std::vector<Halfedge> walk;
+      Halfedge h = first;
+      do {
+        used.insert(&*h);
+        walk.push_back(h);
+        Halfedge next = h->next();
+        while (group_of(next->twin()->face()) == g) next = next->twin()->next();
+        h = next;
+      } while (h != first);
+      for (auto& loop : split_at_repeats<const void*>(walk, [](const Halfedge& h) -> const void* { return &*h->source(); })) {
+        std::vector<Point> pts = loop_points(loop);
+        if (loop_orientation(pts) == CGAL::COUNTERCLOCKWISE) {
+          outers.push_back(std::move(loop));
+          outer_points.push_back(std::move(pts));
+        } else {
+          holes.push_back(std::move(loop));
+        }
+      }
+    }
+    std::sort(neighbours.begin(), neighbours.end());
+    neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
+
+    std::vector<LoopPolygon> polygons;
+    for (auto& o : outers) polygons.push_back({std::move(o), {}});
+    for (auto& hole : holes) {
+      std::size_t owner = 0;
+      if (outer_points.size() > 1) {
+        Point probe = CGAL::midpoint(hole[0]->source()->point(), hole[0]->target()->point());
+        double best_area = 0;
+        for (std::size_t k = 0; k < outer_points.size(); ++k) {
+          const auto& o = outer_points[k];
+          if (CGAL::bounded_side_2(o.begin(), o.end(), probe, Kernel()) != CGAL::ON_BOUNDED_SIDE) continue;
+          double area = CGAL::to_double(CGAL::polygon_area_2(o.begin(), o.end(), Kernel()));
+          if (best_area == 0 || area < best_area) best_area = area, owner = k;
+        }
+      }
+      if (!polygons.empty()) polygons[owner].holes.push_back(std::move(hole));
+    }
+    emit(g, polygons, neighbours);
+  });
+}
+
+Ring plain_ring(const std::vector<Halfedge>& loop) {
+  Ring ring;
+  for (const Halfedge& h : loop) ring.push_back(to_plain(h->source()->point()));
+  return ring;
+}
+
+// Cells from traced polygons; kind_of(h) gives the kind of boundary halfedge h.
+template <typename KindOf>
+void add_cells(const std::vector<LoopPolygon>& polygons, KindOf kind_of, std::vector<Cell>& out) {
+  auto ring = [&](const std::vector<Halfedge>& loop) {
+    KindRing r;
+    for (const Halfedge& h : loop) r.points.push_back(h->source()->point()), r.kinds.push_back(kind_of(h));
+    return r;
+  };
+  for (const LoopPolygon& p : polygons) {
+    std::vector<KindRing> holes;
+    for (const auto& h : p.holes) holes.push_back(ring(h));
+    out.push_back(make_cell(ring(p.outer), std::move(holes)));
+  }
+}
+
+}  // namespace
+
+void PlanarMap::relabel_components(const std::vector<int>& group_of_label, const std::function<int(int, int)>& relabel) {
+  // Collected first: relabelled faces would change the groups the walk still reads.
+  std::vector<std::vector<Face>> components;
+  for_each_component(impl_->arr, impl_->group_function(group_of_label),
+                     [&](int, const std::vector<Face>& faces, const std::vector<Halfedge>&) { components.push_back(faces); });
+  for (std::size_t c = 0; c < components.size(); ++c)
+    for (Face f : components[c]) impl_->arr.non_const_handle(f)->set_data(relabel(static_cast<int>(c), f->data()));
+}
+
+std::vector<std::vector<Dissolved>> PlanarMap::dissolve(const std::vector<int>& group_of_label,
+                                                        int group_count) const {
+  std::vector<std::vector<Dissolved>> result(group_count);
+  trace_components(impl_->arr, impl_->group_function(group_of_label),
+                   [&](int g, const std::vector<LoopPolygon>& polygons, const std::vector<int>& neighbours) {
+                     for (const LoopPolygon& lp : polygons) {
+                       std::vector<Ring> rings{plain_ring(lp.outer)};
+                       for (const auto& h : lp.holes) rings.push_back(plain_ring(h));
+                       for (Polygon& p : untangle(rings)) result[g].push_back({std::move(p), neighbours});
+                     }
+                   });
+  return result;
+}
+
+std::vector<Cell> PlanarMap::cells(const std::vector<int>& group_of_label, const std::vector<int>& kind_of_label,
+                                   std::vector<int>* groups, std::vector<int>* components) const {
+  std::vector<Cell> cells;
+  auto kind_of = [&](Halfedge h) {
+    int l = h->twin()->face()->data();
+    return l >= 0 && l < static_cast<int>(kind_of_label.size()) ? kind_of_label[l] : 0;
+  };
+  int component = 0;
+  trace_components(impl_->arr, impl_->group_function(group_of_label),
+                   [&](int g, const std::vector<LoopPolygon>& polygons, const std::vector<int>&) {
+                     add_cells(polygons, kind_of, cells);
+                     if (groups) groups->resize(cells.size(), g);
+                     if (components) components->resize(cells.size(), component);
+                     ++component;
+                   });
+  return cells;
+}
+
+std::vector<Cell> split_cell(const Cell& cell, const std::vector<Path>& roads, int road_kind) {
+  // A small arrangement of the cell's boundary (winding around counter 0, tagged with each
+  // edge's kind) and the roads (counter 1); every face inside becomes a cell.
+  Arrangement arr;
+  std::vector<Curve> curves;
+  auto add_ring = [&](const KindRing& r) {
+    for (std::size_t i = 0; i < r.points.size(); ++i)
+      add_curve(curves, r.points[i], r.points[(i + 1) % r.points.size()], {0, +1, r.kinds[i]});
+  };
+  add_ring(cell.exact().outer);
+  for (const auto& h : cell.exact().holes) add_ring(h);
+  for (const Path& road : roads) {
+    const auto& p = road.exact().points;
+    for (std::size_t i = 0; i + 1 < p.size(); ++i) add_curve(curves, p[i], p[i + 1], {1, 0, 0});
+  }
+  insert_curves(arr, curves);
+  label_all_faces(arr, [](const Windings& w) { return winding_of(w, 0) != 0 ? 1 : -1; });
+
+  std::unordered_map<const void*, int> index;  // each face inside is its own group
+  for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f)
+    if (f->data() == 1) index.emplace(&*f, static_cast<int>(index.size()));
+  auto group_of = [&](Face f) {
+    auto it = index.find(&*f);
+    return it == index.end() ? -1 : it->second;
+  };
+  auto kind_of = [&](Halfedge h) {
+    int kind = 0;
+    for (const CurveTag& t : h->curve().data()) {
+      if (t.counter == 1) return road_kind;
+      kind = t.aux;
+    }
+    return kind;
+  };
+  std::vector<Cell> parts;
+  trace_components(arr, group_of, [&](int, const std::vector<LoopPolygon>& polygons, const std::vector<int>&) {
+    add_cells(polygons, kind_of, parts);
+  });
+  return parts;
+}
+
+std::vector<Cell> inset_cell(const Cell& cell, double s) {
+  // The cell winds around counter 0, the bands around counter 1; what is inside the
+  // first and outside every band is left.
+  Arrangement arr;
+  std::vector<Curve> curves;
+  auto add_ring = [&](const std::vector<Point>& r, int counter, int kind) {
+    for (std::size_t i = 0; i < r.size(); ++i) add_curve(curves, r[i], r[(i + 1) % r.size()], {counter, +1, kind});
+  };
+  auto add_bands = [&](const KindRing& r) {
+    add_ring(r.points, 0, 0);
+    for (std::size_t i = 0; i < r.points.size(); ++i) {
+      Vec2 a = to_plain(r.points[i]), b = to_plain(r.points[(i + 1) % r.points.size()]);
+      double len = std::hypot(b.x - a.x, b.y - a.y);
+      if (len == 0) continue;
+      Vec2 t{(b.x - a.x) / len, (b.y - a.y) / len}, n{-t.y, t.x};  // the cell is on the left
+      const double out = 1.0;  // reaches past the edge's exact position, whatever the rounding
+      auto at = [&](Vec2 p, double along, double across) {
+        return to_exact(snap(Vec2{p.x + t.x * along + n.x * across, p.y + t.y * along + n.y * across}));
+      };
+      add_ring({at(a, -s, -out), at(b, s, -out), at(b, s, s), at(a, -s, s)}, 1, 0);
+    }
+  };
+  add_bands(cell.exact().outer);
+  for (const KindRing& h : cell.exact().holes) add_bands(h);
+  insert_curves(arr, curves);
+  label_all_faces(arr, [](const Windings& w) { return winding_of(w, 0) != 0 && winding_of(w, 1) == 0 ? 1 : -1; });
+  std::vector<Cell> parts;
+  trace_components(arr, [](Face f) { return f->data() == 1 ? 0 : -1; },
+                   [&](int, const std::vector<LoopPolygon>& polygons, const std::vector<int>&) {
+                     add_cells(polygons, [](Halfedge) { return 0; }, parts);
+                   });
+  return parts;
+}
+
+}  // namespace geom
