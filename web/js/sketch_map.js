@@ -117,12 +117,14 @@ export class SketchMap {
     this.gridLabels = new ol.layer.Vector({source: new ol.source.Vector(), style: gridLabelStyle,
                                            declutter: true});
     this.heightmap = new ol.layer.Image({opacity: 0.85});
-    // A basemap the user names, under everything; none until then.
+    // A basemap the user names, under everything; none until then: XYZ tiles, or a GeoTIFF
+    // of the work folder that the server warps into the sketch's coordinates.
     this.basemap = new ol.layer.Tile({opacity: 0.8});
+    this.geotiff = new ol.layer.Image({opacity: 0.8});
     this.city = new ol.layer.Group({layers: []});
     this.map = new ol.Map({
       target,
-      layers: [this.basemap, this.heightmap, this.grid, this.city, this.layer, this.gridLabels],
+      layers: [this.basemap, this.geotiff, this.heightmap, this.grid, this.city, this.layer, this.gridLabels],
       view: new ol.View({projection: metres, center: [0, 0], resolution: 2}),
       controls: defaults(ol.control.defaults)().extend([
         new ol.control.ScaleLine({units: 'metric'}),
@@ -242,6 +244,15 @@ export class SketchMap {
     if (!url || !grid?.epsg) return this.basemap.setSource(null);
     this.lonLat = registerLonLat(grid);
     this.basemap.setSource(new ol.source.XYZ({url, projection: 'EPSG:3857', maxZoom: 19}));
+  }
+
+  // A GeoTIFF as the server placed it (GET /api/basemap: its name and extent in the sketch's
+  // coordinates); null removes it.
+  setGeoTiff(placed) {
+    if (!placed) return this.geotiff.setSource(null);
+    this.geotiff.setSource(new ol.source.ImageStatic({
+      url: `/api/basemap.png?file=${encodeURIComponent(placed.file)}&v=${Date.now()}`,
+      imageExtent: placed.extent, projection: metres}));
   }
 
   drawGrid() {
