@@ -2,6 +2,7 @@
 // (docs/serve.md; docs/design.md, Serving).
 #include <OpenImageIO/imageio.h>
 #include <gdal_priv.h>
+#include <tiny_gltf.h>
 #include <ogr_spatialref.h>
 #include <arpa/inet.h>
 #include <fcntl.h>
@@ -25,6 +26,7 @@
 
 #include "generate/cancel.h"
 #include "generate/city/palette.h"
+#include "generate/city/structure_albedos.h"
 #include "generate/sketch/sketch.h"
 #include "generate/errors.h"
 #include "generate/pipeline.h"
@@ -810,6 +812,62 @@ TEST_F(ServeTest, TilesHoldTheCityAtThreeLevels) {
 
 // A generation after an edit reuses the regions, blocks and lots the edit left as they were
 // (generate/regenerate.h); what it writes is what generating the edited sketch alone writes.
+// A glb's materials by name, with their base colours.
+std::map<std::string, std::array<double, 3>> glb_materials(const std::string& bytes) {
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string error, warning;
+  EXPECT_TRUE(loader.LoadBinaryFromMemory(&model, &error, &warning,
+                                          reinterpret_cast<const unsigned char*>(bytes.data()),
+                                          static_cast<unsigned>(bytes.size())))
+      << error;
+  std::map<std::string, std::array<double, 3>> out;
+  for (const tinygltf::Material& m : model.materials) {
+    const auto& c = m.pbrMetallicRoughness.baseColorFactor;
+    out[m.name] = {c[0], c[1], c[2]};
+  }
+  return out;
+}
+
+// The 3D view looks like the still: city.glb and the tiles' boxes give each building the
+// facade and roof albedo the renderer gives it (a material per albedo, named by its zone,
+// surface and index), and the ground the renderer's grass, paving and asphalt.
+TEST_F(ServeTest, CityGlbColoursAreTheRenderersAlbedos) {
+  put_small_and_generate();
+  const json buildings = json::parse(client->Get("/api/layers/buildings.geojson")->body);
+  const std::map<std::string, exacity::ZoneType> zones{{"residential", exacity::ZoneType::Residential},
+                                                       {"commercial", exacity::ZoneType::Commercial},
+                                                       {"industrial", exacity::ZoneType::Industrial}};
+  std::map<std::string, exacity::Albedo> expected;
+  for (const json& f : buildings["features"]) {
+    ASSERT_TRUE(f["properties"]["model"].is_null());  // extruded, as this sketch has no library
+    const std::string zone = f["properties"]["zone"];
+    const auto albedos = exacity::structure_albedos(zones.at(zone), 3, f["properties"]["id"].get<int>());
+    expected[zone + "_wall_" + std::to_string(albedos.facade)] = exacity::facade_albedos(zones.at(zone))[albedos.facade];
+    expected[zone + "_roof_" + std::to_string(albedos.roof)] = exacity::roof_albedos(zones.at(zone))[albedos.roof];
+  }
+  ASSERT_GE(expected.size(), 6u);  // residential and commercial buildings, in more than one colour each
+  const auto structure_colours = [&](const std::map<std::string, std::array<double, 3>>& materials) {
+    std::map<std::string, exacity::Albedo> out;
+    for (const auto& [name, c] : materials)
+      if (name.find("_wall_") != std::string::npos || name.find("_roof_") != std::string::npos)
+        out[name] = {static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2])};
+    return out;
+  };
+  const auto city = glb_materials(client->Get("/api/city.glb")->body);
+  EXPECT_EQ(structure_colours(city), expected);
+  EXPECT_EQ(city.at("ground_residential"), (std::array<double, 3>{0.30f, 0.45f, 0.20f}));  // grass
+  EXPECT_EQ(city.at("ground_commercial"), (std::array<double, 3>{0.50f, 0.49f, 0.46f}));   // paving
+  EXPECT_EQ(city.at("road"), (std::array<double, 3>{0.09f, 0.09f, 0.10f}));                // asphalt
+  // The boxes standing for buildings further away are coloured as the buildings are.
+  std::map<std::string, exacity::Albedo> boxes;
+  const json index = json::parse(client->Get("/api/tiles.json")->body);
+  for (const json& tile : index["tiles"])
+    for (const auto& named : structure_colours(glb_materials(client->Get(tile["levels"][1].get<std::string>())->body)))
+      boxes.insert(named);
+  EXPECT_EQ(boxes, expected);
+}
+
 TEST_F(ServeTest, GenerationAfterAnEditWritesTheEditedSketchsCity) {
   put_small_and_generate();
   json edited = json::parse(kSmallSketch);
