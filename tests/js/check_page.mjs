@@ -486,6 +486,33 @@ try {
   check(picked && await page.$eval('#building-info', b => b.dataset.id) === String(picked.id) &&
         info.includes(picked.zone) && info.includes(`lot${picked.lot}`),
         `a click on building ${picked?.id} shows its attributes: ${info}`);
+  // Walls have the still's windows: facing the tallest extruded building's wall from 30 m,
+  // dark glass in rows where the wall alone is light.
+  const tallest = await page.evaluate(() => {
+    const view = window.exacityExplore;
+    const plain = view.layers.buildings.features.filter(f => !f.properties.model);
+    const f = plain.reduce((a, b) => (b.properties.height > a.properties.height ? b : a));
+    const ring = f.geometry.type === 'Polygon' ? f.geometry.coordinates[0] : f.geometry.coordinates[0][0];
+    const ys = ring.map(p => p[1]), south = Math.min(...ys);
+    const x = ring.reduce((s, p) => s + p[0], 0) / ring.length;
+    // Its south side, from the south, at half its height.
+    view.setOrbit({target: [x, south, f.properties.height / 2], azimuth: 270, elevation: 5, distance: 30});
+    return f.properties;
+  });
+  await tiles();
+  const darkShare = () => page.evaluate(() => {
+    const pixels = window.exacityExplore.pixels();
+    let dark = 0;
+    for (let i = 0; i < pixels.length; i += 4) if (pixels[i] < 60 && pixels[i + 1] < 60 && pixels[i + 2] < 70) ++dark;
+    return dark / (pixels.length / 4);
+  });
+  const withWindows = await darkShare();
+  await page.evaluate(() => { window.exacityExplore.facadeWindows.value = 0; });
+  const bare = await darkShare();
+  await page.evaluate(() => { window.exacityExplore.facadeWindows.value = 1; });
+  check(withWindows > bare + 0.05, `the walls have windows: ${(100 * withWindows).toFixed(1)}% of the view dark glass against ` +
+        `${(100 * bare).toFixed(1)}% without (building ${tallest.id}, ${tallest.height} m)`);
+  await page.screenshot({path: path.join(out, 'windows.png')});
   // Walk: the CLI's pedestrian, where the orbit looked; keys move it along its heading.
   await page.click('[data-mode="pedestrian"]');
   const walker = await spec();
