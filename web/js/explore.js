@@ -4,7 +4,7 @@
 // path-traces the same camera. Walk and Fly stand the camera on the ground as the CLI's
 // pedestrian and flyer cameras do (README, Rendering: cameras), moved by keys and turned by
 // dragging; a click on a building shows its attributes (its buildings.geojson feature). The
-// sun stands where the renderer's does and casts shadows.
+// sun stands where the renderer's does and casts shadows; walls have the renderer's windows.
 // The city comes as its ground and its tiles (GET /api/tiles.json), each tile drawn at the
 // level of detail its distance asks for, loaded when first needed, and left out when outside
 // the view (docs/design.md, Serving: tiles); city.glb is the fallback for a city without.
