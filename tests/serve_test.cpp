@@ -262,19 +262,25 @@ TEST_F(ServeTest, SettingsTableIsTheOneTheCliReads) {
   EXPECT_EQ(stranger.Get("/api/settings")->status, 403);
 }
 
-// A sketch with a place on Earth gives the page a grid of lon/lat over it for a basemap: on
-// UTM zone 33's central meridian (x = 500000) the longitude is 15 degrees exactly; rows go
-// north. One with no place on Earth has none.
-TEST_F(ServeTest, LonLatGridPlacesTheSketch) {
-  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
-  EXPECT_EQ(json::parse(client->Get("/api/lonlat")->body), json::parse(R"({"epsg": null})"));
+// The small sketch moved into UTM zone 33 north (EPSG:32633), around 15 degrees east,
+// 49.65 north: x 499650 to 500350, y 5500000 to 5500300.
+std::string placed_small_sketch() {
   json doc = json::parse(kSmallSketch);
   doc["crs"] = {{"type", "name"}, {"properties", {{"name", "urn:ogc:def:crs:EPSG::32633"}}}};
   const auto moved = [](json& p) { p = {p[0].get<double>() + 499700, p[1].get<double>() + 5500000}; };
   for (int zone : {0, 1})
     for (json& p : doc["features"][zone]["geometry"]["coordinates"][0]) moved(p);
   for (json& p : doc["features"][2]["geometry"]["coordinates"]) moved(p);
-  auto put = client->Put("/api/sketch", doc.dump(), "application/geo+json");
+  return doc.dump();
+}
+
+// A sketch with a place on Earth gives the page a grid of lon/lat over it for a basemap: on
+// UTM zone 33's central meridian (x = 500000) the longitude is 15 degrees exactly; rows go
+// north. One with no place on Earth has none.
+TEST_F(ServeTest, LonLatGridPlacesTheSketch) {
+  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+  EXPECT_EQ(json::parse(client->Get("/api/lonlat")->body), json::parse(R"({"epsg": null})"));
+  auto put = client->Put("/api/sketch", placed_small_sketch(), "application/geo+json");
   ASSERT_EQ(put->status, 200) << put->body;
   auto r = client->Get("/api/lonlat");
   ASSERT_EQ(r->status, 200) << r->body;
@@ -291,18 +297,6 @@ TEST_F(ServeTest, LonLatGridPlacesTheSketch) {
     }
   }
   EXPECT_NEAR(grid["lonlat"][40][1].get<double>(), 49.65, 0.01);  // 5500 km north of the equator
-}
-
-// The small sketch moved into UTM zone 33 north (EPSG:32633), around 15 degrees east,
-// 49.65 north: x 499650 to 500350, y 5500000 to 5500300.
-std::string placed_small_sketch() {
-  json doc = json::parse(kSmallSketch);
-  doc["crs"] = {{"type", "name"}, {"properties", {{"name", "urn:ogc:def:crs:EPSG::32633"}}}};
-  const auto moved = [](json& p) { p = {p[0].get<double>() + 499700, p[1].get<double>() + 5500000}; };
-  for (int zone : {0, 1})
-    for (json& p : doc["features"][zone]["geometry"]["coordinates"][0]) moved(p);
-  for (json& p : doc["features"][2]["geometry"]["coordinates"]) moved(p);
-  return doc.dump();
 }
 
 // A 200 x 200 GeoTIFF of 10-unit pixels in EPSG `epsg` (0: no CRS, its coordinates the
