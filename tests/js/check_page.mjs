@@ -454,6 +454,17 @@ try {
   const far = await tiles();
   check(far.tiles >= 2 && far.inView === far.tiles && far.shown[2] === far.tiles && far.shown[0] === 0 &&
         far.shown[1] === 0, `far away, every tile at its coarsest level: ${JSON.stringify(far)}`);
+  // Looking down 37° and more, the view is all ground: the renderer's grass plane goes on past
+  // the city's ground, so no sky shows under the horizon.
+  const sky = await page.evaluate(() => {
+    const pixels = window.exacityExplore.pixels(), background = window.exacityExplore.scene.background.clone();
+    const [r, g, b] = background.convertLinearToSRGB().toArray().map(v => Math.round(v * 255));
+    let n = 0;
+    for (let i = 0; i < pixels.length; i += 4)
+      if (Math.abs(pixels[i] - r) < 4 && Math.abs(pixels[i + 1] - g) < 4 && Math.abs(pixels[i + 2] - b) < 4) ++n;
+    return n;
+  });
+  check(sky === 0, `no sky under the horizon: ${sky} pixels of the sky's colour`);
   // Between 3 and 8 tile sides (250 m) from every tile of this city (under 1 km across): boxes.
   await page.evaluate(o => window.exacityExplore.setOrbit({...o, elevation: 60, distance: 1400}), kept_orbit);
   const middle = await tiles();
@@ -688,6 +699,15 @@ try {
            ['0 m', '1000 m', '2000 m'].every(t => on('y').includes(t));
   }, {timeout: 5000}).then(() => true, () => false);
   check(gridLabelled, `the grid is labelled: ${JSON.stringify(await page.evaluate(() => window.exacityPage.gridLabels()))}`);
+  // No label in the top left corner, under the zoom buttons or on the other row's labels,
+  // wherever the grid's lines fall: the view moved 17 px at a time over 136 px.
+  const cornered = [];
+  for (let i = 0; i < 8; ++i) {
+    await page.evaluate(() => window.exacityPage.pan(17, 17));
+    for (const l of await page.evaluate(() => window.exacityPage.gridLabels()))
+      if ((l.axis === 'x' && l.at[0] < 32) || (l.axis === 'y' && l.at[1] < 72)) cornered.push(`${l.label} at ${l.at.map(Math.round)}`);
+  }
+  check(cornered.length === 0, `no grid label in the zoom buttons' corner: ${cornered.join(', ')}`);
   await page.click('#generate');
   await page.waitForFunction(() => / lots$/.test(document.getElementById('stage').textContent), {timeout: 120000});
   check(await page.$eval('#progress', p => p.value) > 0, 'the generation under way fills the bar');

@@ -111,7 +111,14 @@ window.exacityPage = {sketch: () => map.sketch(),
                         const data = map.geotiff.getSource() && map.geotiff.getData(map.map.getPixelFromCoordinate(c));
                         return data ? [...data] : null;
                       }),
-                      gridLabels: () => map.gridLabels.getSource().getFeatures().map(f => ({label: f.get('label'), axis: f.get('axis')}))};
+                      gridLabels: () => map.gridLabels.getSource().getFeatures().map(f => ({
+                        label: f.get('label'), axis: f.get('axis'), at: map.map.getPixelFromCoordinate(f.getGeometry().getCoordinates())})),
+                      // Moves the map's view by (dx, dy) pixels; resolves once the grid is drawn again.
+                      pan: (dx, dy) => new Promise(resolve => {
+                        const view = map.map.getView(), [x, y] = view.getCenter(), r = view.getResolution();
+                        map.map.once('moveend', () => resolve());
+                        view.setCenter([x + dx * r, y - dy * r]);
+                      })};
 const panel = new SettingsPanel({
   // Resolves to the refusal's message, or null when the server took the settings.
   apply: async exacity => {

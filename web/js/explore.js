@@ -70,6 +70,7 @@ export class ExploreView {
     this.city = (await loader.loadAsync((index ? index.ground : '/api/city.glb') + '?v=' + this.version)).scene;
     shadowed(this.city);
     this.scene.add(this.city);
+    this.addGroundPlane();
     for (const tile of index?.tiles || []) {
       const [x0, y0, z0, x1, y1, z1] = tile.box;
       const group = new THREE.Group();
@@ -81,6 +82,22 @@ export class ExploreView {
     this.overview = null;
     this.fit();
     this.captureOverview();
+  }
+
+  // The renderer's grass plane beyond the city (render/scene_shading.cpp): level with the
+  // city's lowest ground, out past where the camera may go, so the ground has no edge.
+  addGroundPlane() {
+    if (this.groundPlane) this.scene.remove(this.groundPlane);
+    const lowest = new THREE.Box3().setFromObject(this.city).min.y;
+    const side = 1e6;
+    this.groundPlane = new THREE.Mesh(new THREE.PlaneGeometry(side, side),
+                                      new THREE.MeshStandardMaterial({color: new THREE.Color(...grassAlbedo), roughness: 0.9}));
+    this.groundPlane.name = 'ground plane';
+    this.groundPlane.rotation.x = -Math.PI / 2;
+    // A few centimetres under the lowest ground, which it must not show through.
+    this.groundPlane.position.set(0, lowest - 0.05, 0);
+    this.groundPlane.receiveShadow = true;
+    this.scene.add(this.groundPlane);
   }
 
   // The whole city in view from the south-west, orbiting; zoom out at most to a few times
@@ -506,6 +523,7 @@ const facadeStyles = {  // storey, bay, window share of a bay, sill and head sha
 // Off only for the browser test, to see what the windows change.
 export const facadeWindows = {value: 1};
 const windowAlbedo = new THREE.Color(0.04, 0.05, 0.06);  // palette.h, kWindowAlbedo (linear)
+const grassAlbedo = [0.30, 0.45, 0.20];  // palette.h, kGrassAlbedo (linear)
 
 function withWindows(material, style) {
   material.onBeforeCompile = shader => {

@@ -41,7 +41,9 @@ function sketchStyle(feature, resolution, selected) {
 }
 
 // Grid lines a hundred to two hundred and fifty pixels apart, at 1, 2 or 5 times a power of
-// ten metres, and their labels: each x along the top edge, each y along the left one.
+// ten metres, and their labels: each x along the top edge, each y along the left one, none
+// in the top left corner, where the zoom buttons are and the two rows of labels would meet.
+const kCornerWidth = 32, kCornerHeight = 72;  // pixels: OpenLayers' zoom buttons, and a label's height under them
 function gridLines(extent, resolution) {
   const least = resolution * 100, power = Math.pow(10, Math.floor(Math.log10(least)));
   const step = [1, 2, 5, 10].map(m => m * power).find(s => s >= least);
@@ -56,11 +58,11 @@ function gridLines(extent, resolution) {
   // Multiples of the step counted, not summed, so a label reads 0.3 and not 0.30000000000000004.
   for (let i = Math.ceil(x0 / step); i * step <= x1 && lines.length < 400; ++i) {
     lines.push(new ol.Feature(new ol.geom.LineString([[i * step, y0], [i * step, y1]])));
-    label([i * step, y1], `${(i * step).toFixed(digits)} m`, 'x');
+    if (i * step > x0 + kCornerWidth * resolution) label([i * step, y1], `${(i * step).toFixed(digits)} m`, 'x');
   }
   for (let i = Math.ceil(y0 / step); i * step <= y1 && lines.length < 800; ++i) {
     lines.push(new ol.Feature(new ol.geom.LineString([[x0, i * step], [x1, i * step]])));
-    label([x0, i * step], `${(i * step).toFixed(digits)} m`, 'y');
+    if (i * step < y1 - kCornerHeight * resolution) label([x0, i * step], `${(i * step).toFixed(digits)} m`, 'y');
   }
   return {lines, labels};
 }
