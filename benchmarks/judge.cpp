@@ -14,6 +14,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "benchmarks/geos_handle.h"
+
 namespace exacity::bench {
 
 namespace {
@@ -37,11 +39,8 @@ class Geos {
   Geos(const Geos&) = delete;
   Geos& operator=(const Geos&) = delete;
 
-  struct Free {
-    GEOSContextHandle_t ctx;
-    void operator()(GEOSGeometry* g) const { GEOSGeom_destroy_r(ctx, g); }
-  };
-  using Geometry = std::unique_ptr<GEOSGeometry, Free>;
+  using Free = GeosFree;
+  using Geometry = GeosGeometry;
 
   GEOSContextHandle_t ctx() const { return ctx_; }
   Geometry own(GEOSGeometry* g) const { return Geometry(g, Free{ctx_}); }
@@ -303,6 +302,38 @@ Verdict judge(const std::filesystem::path& out) {
   check_inside(geos, layers["buildings"], layers["lots"], "lot", verdict);
   check_network(geos, layers["roads"], verdict);
   return verdict;
+}
+
+nlohmann::ordered_json judge_invariants() {
+  using json = nlohmann::ordered_json;
+  auto invariant = [](const char* kind, json layers, const char* rule, double tolerance) {
+    return json{{"kind", kind}, {"layers", std::move(layers)}, {"rule", rule}, {"relative_area_tolerance", tolerance}};
+  };
+  const json polygons = {"zones", "water", "road_areas", "blocks", "lots", "buildings"};
+  return {
+      {"output",
+       {{"sketch", "OUT/sketch.geojson, the sketch the output was made from"},
+        {"layers", "OUT/vector/LAYER.geojson, GeoJSON FeatureCollections in the sketch's metres: zones (property "
+                   "zone), water, road_areas (bridge: true for those over water), blocks (id), lots (id, block), "
+                   "buildings (id, lot), roads (centre lines; level null for a road the sketch drew)"}}},
+      {"invariants",
+       json::array({invariant("invalid", polygons, "every polygon is valid by OGC rules", 0),
+                    invariant("overlap", {"zones", "water", "road_areas not bridges"},
+                              "a tiling: the parts' areas sum to their union's", kRelativeArea),
+                    invariant("overlap", {"blocks", "parks of zones", "water", "road_areas not bridges"},
+                              "a tiling: the parts' areas sum to their union's", kRelativeArea),
+                    invariant("overlap", {"lots", "road_areas not bridges"}, "a tiling", kRelativeArea),
+                    invariant("overlap", {"buildings", "road_areas not bridges"}, "a tiling", kRelativeArea),
+                    invariant("gap", {"sketch zones (made valid)", "zones", "water", "road_areas not bridges"},
+                              "the drawn zones are covered by the zones, water and road areas", kRelativeArea),
+                    invariant("outside", {"lots", "blocks"}, "each lot lies in the block its property block names",
+                              kRelativeArea),
+                    invariant("outside", {"buildings", "lots"},
+                              "each building lies in the lot its property lot names", kRelativeArea),
+                    invariant("network", {"roads"},
+                              "centre lines meet only at vertices of both, never overlap, and every connected piece "
+                              "holds a road the sketch drew (or there is one piece)",
+                              0)})}};
 }
 
 }  // namespace exacity::bench

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 namespace exacity::bench {
 
 // What a judge rejects, by kind: "unreadable" (a layer missing or not GeoJSON), "invalid"
@@ -26,5 +28,9 @@ struct Verdict {
 constexpr double kRelativeArea = 1e-9;
 
 Verdict judge(const std::filesystem::path& out);
+
+// What judge() checks, as data: the layers it reads, and each invariant with its kind, the
+// layers it concerns and its tolerance (for `exacity bench robustness --export`).
+nlohmann::ordered_json judge_invariants();
 
 }  // namespace exacity::bench

@@ -9,7 +9,10 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <exception>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -32,7 +35,19 @@ namespace {
 struct Build {
   std::string name;
   fs::path program;
+  std::vector<std::string> args;  // after generate's own
+  // Exacity's builds write a whole city, which the exact build's validator checks too;
+  // GEOS's partition writes blocks and lots only, for the judge.
+  bool validated = true;
 };
+
+// The build's program beside the exact one: exacity-<name>, or exacity-geos at a precision.
+Build build_named(const std::string& name, const fs::path& programs) {
+  if (name == "exact") return {name, programs / "exacity", {}, true};
+  if (name.starts_with("geos-"))
+    return {name, programs / "exacity-geos", {"--precision", name.substr(5)}, false};
+  return {name, programs / ("exacity-" + name), {}, true};
+}
 
 // The builds asked for (all by default), exact first, each program beside the exact one,
 // which validates the others' outputs.
@@ -45,12 +60,12 @@ std::vector<Build> builds_in(const RobustnessOptions& o, std::ostream& log) {
   for (const std::string& name : kBuildNames) {
     const bool asked = std::find(o.builds.begin(), o.builds.end(), name) != o.builds.end();
     if (!o.builds.empty() && !asked) continue;
-    const fs::path program = o.programs / (name == "exact" ? "exacity" : "exacity-" + name);
-    if (fs::exists(program)) {
-      found.push_back({name, program});
+    const Build build = build_named(name, o.programs);
+    if (fs::exists(build.program)) {
+      found.push_back(build);
       continue;
     }
-    const std::string why = program.string() + " is not built; configure with -DEXACITY_FLOAT=ON (the release preset does)";
+    const std::string why = build.program.string() + " is not built; configure with -DEXACITY_FLOAT=ON (the release preset does)";
     if (asked) throw std::runtime_error(why);
     log << "left out: " << why << "\n";
   }
@@ -75,9 +90,16 @@ Run run_child(const std::vector<std::string>& args, const fs::path& log, double 
   posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
   const auto start = std::chrono::steady_clock::now();
   pid_t pid = 0;
-  const int failed = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  // A loaded machine can refuse a process for a moment (EAGAIN, ENOMEM): try again before
+  // giving up on the whole run.
+  int failed = 0;
+  for (int attempt = 0; attempt < 6; ++attempt) {
+    failed = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+    if (failed != EAGAIN && failed != ENOMEM) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(250 << attempt));
+  }
   posix_spawn_file_actions_destroy(&actions);
-  if (failed) throw std::runtime_error("cannot run " + args[0]);
+  if (failed) throw std::runtime_error("cannot run " + args[0] + ": " + std::strerror(failed));
   Run run;
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   int status = 0;
@@ -103,7 +125,18 @@ struct Result {
   static constexpr const char* kWords[] = {"passed", "crash", "hang", "error", "rejected"};
   std::vector<std::string> rejected;  // kinds, for Rejected
   double seconds = 0;
+  std::map<std::string, double> stage_s;  // report.json's timings_s, when it passed
 };
+
+std::map<std::string, double> stage_times(const fs::path& out) {
+  std::ifstream in(out / "report.json");
+  const auto report = nlohmann::json::parse(in, nullptr, false);
+  std::map<std::string, double> times;
+  if (report.is_discarded() || !report.contains("timings_s")) return times;
+  for (const auto& [stage, s] : report["timings_s"].items())
+    if (s.is_number()) times[stage] = s.get<double>();
+  return times;
+}
 
 bool failed_validation(const fs::path& out) {
   std::ifstream in(out / "report.json");
@@ -115,8 +148,9 @@ Result run_case(const Build& build, const fs::path& exact_program, const fs::pat
                 double limit) {
   const fs::path out = dir / build.name, log = dir / (build.name + ".log");
   fs::remove_all(out);
-  Run run = run_child({build.program.string(), "generate", sketch.string(), "-o", out.string(), "-q", "--threads", "1"},
-                      log, limit);
+  std::vector<std::string> args = {build.program.string(), "generate", sketch.string(), "-o", out.string(), "-q", "--threads", "1"};
+  args.insert(args.end(), build.args.begin(), build.args.end());
+  Run run = run_child(args, log, limit);
   Result r;
   r.seconds = run.seconds;
   if (run.status == Run::TimedOut) r.kind = Result::Hang;
@@ -128,13 +162,14 @@ Result run_case(const Build& build, const fs::path& exact_program, const fs::pat
 
   const Verdict verdict = judge(out);
   for (const auto& [kind, n] : verdict.rejected) r.rejected.push_back(kind);
-  if (build.name != "exact") {
+  if (build.name != "exact" && build.validated) {
     // The exact build's validator, on what a float build wrote (the exact build validated
     // its own output already, inside generate).
     Run check = run_child({exact_program.string(), "validate", out.string()}, dir / (build.name + ".validate.log"), limit);
     if (check.status != Run::Exited || check.code != 0) r.rejected.push_back("validate");
   }
   if (!r.rejected.empty()) r.kind = Result::Rejected;
+  else r.stage_s = stage_times(out);
   return r;
 }
 
@@ -176,26 +211,32 @@ std::string build_label(const std::string& name) {
   if (name == "float-snapped") return "float-snapped (practitioner)";
   if (name == "float") return "float, Epick (no tolerance)";
   if (name == "float-simple") return "float-simple (no tolerance)";
+  if (name == "geos-floating") return "GEOS, floating (blocks and lots only)";
+  if (name == "geos-fixed") return "GEOS, fixed 2^-24 m (blocks and lots only)";
   return name;
 }
 
 // Failure rate against degeneracy level, one panel per family, one line per build; cases
 // are binned by their level rounded to a whole number.
 std::string svg_chart(const std::vector<FamilyResult>& results, const std::vector<Build>& builds) {
-  const int columns = 4, panel_w = 230, panel_h = 150, gap_x = 40, gap_y = 70, left = 50, top = 40;
+  // The legend in rows of three builds.
+  const int legend_rows = (static_cast<int>(builds.size()) + 2) / 3;
+  const int columns = 4, panel_w = 230, panel_h = 150, gap_x = 40, gap_y = 70, left = 50, top = 24 + 16 * legend_rows;
   const int rows = (static_cast<int>(results.size()) + columns - 1) / columns;
   const int width = left + columns * (panel_w + gap_x), height = top + rows * (panel_h + gap_y) + 30;
-  static const char* colours[] = {"#2b7a3d", "#1f5fa8", "#d9822b", "#b8322a"};
-  static const char* dashes[] = {"", "", "6 3", "2 3"};
+  static const char* colours[] = {"#2b7a3d", "#1f5fa8", "#7b3fa0", "#c23c8c", "#d9822b", "#b8322a"};
+  static const char* dashes[] = {"", "", "", "4 2", "6 3", "2 3"};
   std::ostringstream s;
   s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
     << "\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
     << "<text x=\"" << left << "\" y=\"18\" font-size=\"13\">Failure rate against degeneracy level, per family "
     << "(share of the cases at each level not passed)</text>\n";
-  for (std::size_t b = 0; b < builds.size(); ++b)
-    s << "<line x1=\"" << left + 230 * b << "\" x2=\"" << left + 230 * b + 20 << "\" y1=\"28\" y2=\"28\" stroke=\""
-      << colours[b % 4] << "\" stroke-width=\"2\" stroke-dasharray=\"" << dashes[b % 4] << "\"/><text x=\""
-      << left + 230 * b + 24 << "\" y=\"32\">" << build_label(builds[b].name) << "</text>\n";
+  for (std::size_t b = 0; b < builds.size(); ++b) {
+    const std::size_t x = left + 360 * (b % 3), y = 28 + 16 * (b / 3);
+    s << "<line x1=\"" << x << "\" x2=\"" << x + 20 << "\" y1=\"" << y << "\" y2=\"" << y << "\" stroke=\""
+      << colours[b % 6] << "\" stroke-width=\"2\" stroke-dasharray=\"" << dashes[b % 6] << "\"/><text x=\"" << x + 24
+      << "\" y=\"" << y + 4 << "\">" << build_label(builds[b].name) << "</text>\n";
+  }
   for (std::size_t f = 0; f < results.size(); ++f) {
     const FamilyResult& fr = results[f];
     const int x0 = left + static_cast<int>(f % columns) * (panel_w + gap_x);
@@ -230,11 +271,11 @@ std::string svg_chart(const std::vector<FamilyResult>& results, const std::vecto
       std::ostringstream points;
       for (const auto& [level, bin] : bins)
         points << fixed(x_of(static_cast<double>(level)), 1) << "," << fixed(y_of(static_cast<double>(bin.second[b]) / bin.first), 1) << " ";
-      s << "<polyline points=\"" << points.str() << "\" fill=\"none\" stroke=\"" << colours[b % 4]
-        << "\" stroke-width=\"2\" stroke-dasharray=\"" << dashes[b % 4] << "\"/>\n";
+      s << "<polyline points=\"" << points.str() << "\" fill=\"none\" stroke=\"" << colours[b % 6]
+        << "\" stroke-width=\"2\" stroke-dasharray=\"" << dashes[b % 6] << "\"/>\n";
       for (const auto& [level, bin] : bins)
         s << "<circle cx=\"" << fixed(x_of(static_cast<double>(level)), 1) << "\" cy=\""
-          << fixed(y_of(static_cast<double>(bin.second[b]) / bin.first), 1) << "\" r=\"2.5\" fill=\"" << colours[b % 4]
+          << fixed(y_of(static_cast<double>(bin.second[b]) / bin.first), 1) << "\" r=\"2.5\" fill=\"" << colours[b % 6]
           << "\"/>\n";
     }
   }
@@ -243,15 +284,17 @@ std::string svg_chart(const std::vector<FamilyResult>& results, const std::vecto
 }
 
 std::string markdown(const std::vector<FamilyResult>& results, const std::vector<Build>& builds,
-                     const RobustnessOptions& o) {
+                     const RobustnessOptions& o, const std::vector<std::vector<StageRatio>>& stages) {
   std::ostringstream s;
   s << "# Robustness: the exact build against floating-point builds of itself\n\n"
     << "Each case is a sketch written by the family (deterministic in the seed); each build generates it in a child\n"
     << "process limited to " << o.time_limit << " s, on one thread. A case passes when the build exits 0 and its output\n"
     << "passes the GEOS judge and the exact build's `exacity validate`. Failures: crash (a signal, or exit 3: a\n"
-    << "failed CGAL precondition or internal check), hang (over the limit), error (another exit code), rejected\n"
-    << "(the judge's or the validator's kinds, in brackets). The time ratio is the exact build's median time over\n"
-    << "the other's on the cases both passed (— where none did: a crash's time says nothing of the cost).\n\n"
+    << "failed CGAL precondition or internal check, or a GEOS exception), hang (over the limit), error (another exit\n"
+    << "code), rejected (the judge's or the validator's kinds, in brackets). The GEOS rows are the partition stage\n"
+    << "only (zones, water and road areas overlaid into blocks, blocks cut into lots by a fishnet; no growth, no\n"
+    << "buildings), judged by the judge alone. The time ratio is the exact build's median time over the other's on\n"
+    << "the cases both passed (— where none did: a crash's time says nothing of the cost).\n\n"
     << "| family | cases |";
   for (const Build& b : builds) s << " " << build_label(b.name) << " passed | " << b.name << " failures |";
   s << " median s (" << builds.front().name << ") |";
@@ -279,6 +322,32 @@ std::string markdown(const std::vector<FamilyResult>& results, const std::vector
     s << " " << fixed(f.builds.front().second.median_s, 2) << " |";
     for (double ratio : f.time_ratio) s << " " << (ratio > 0 ? fixed(ratio, 2) : "—") << " |";
     s << "\n";
+  }
+  // Per stage, for the builds that write report.json's timings (Exacity's, not GEOS's).
+  std::vector<std::size_t> timed;
+  for (std::size_t b = 1; b < builds.size(); ++b)
+    if (!stages[b].empty()) timed.push_back(b);
+  if (!timed.empty()) {
+    s << "\nThe exact build's time over each build's per stage of generate (report.json's `timings_s`), on the cases\n"
+      << "of every family both passed: median (25th–75th percentile); a stage either build spent under a millisecond\n"
+      << "on is left out of that case.\n\n| stage |";
+    for (std::size_t b : timed) s << " " << builds.front().name << "/" << builds[b].name << " |";
+    s << "\n|---|";
+    for (std::size_t i = 0; i < timed.size(); ++i) s << "---|";
+    s << "\n";
+    std::vector<std::string> names;
+    for (std::size_t b : timed)
+      for (const StageRatio& r : stages[b])
+        if (std::find(names.begin(), names.end(), r.stage) == names.end()) names.push_back(r.stage);
+    for (const std::string& stage : names) {
+      s << "| " << stage << " |";
+      for (std::size_t b : timed) {
+        auto r = std::find_if(stages[b].begin(), stages[b].end(), [&](const StageRatio& x) { return x.stage == stage; });
+        if (r == stages[b].end()) s << " — |";
+        else s << " " << fixed(r->median, 2) << " (" << fixed(r->low, 2) << "–" << fixed(r->high, 2) << ", " << r->cases << " cases) |";
+      }
+      s << "\n";
+    }
   }
   s << "\n![failure rate against degeneracy level](robustness.svg)\n\nReproduce (release preset, which builds the float programs too):\n\n"
     << "```\ncmake --workflow --preset release\nbuild/release/cli/exacity bench robustness --cases " << o.cases
@@ -343,17 +412,27 @@ std::vector<std::vector<Result>> run_jobs(const RobustnessOptions& o, const std:
   fs::create_directories(o.out);
   std::atomic<std::size_t> next{0};
   std::mutex log_mutex;
+  // A job that throws stops the others; its exception is the run's, once they have stopped
+  // (thrown inside a thread it would end the program).
+  std::exception_ptr failure;
   auto work = [&] {
-    for (std::size_t j; (j = next++) < jobs.size();) {
-      const std::string line = run_job(o, names[jobs[j].family], jobs[j], builds, results[j]);
+    try {
+      for (std::size_t j; (j = next++) < jobs.size();) {
+        const std::string line = run_job(o, names[jobs[j].family], jobs[j], builds, results[j]);
+        std::lock_guard<std::mutex> lock(log_mutex);
+        log << line << "\n" << std::flush;
+      }
+    } catch (...) {
       std::lock_guard<std::mutex> lock(log_mutex);
-      log << line << "\n" << std::flush;
+      if (!failure) failure = std::current_exception();
+      next = jobs.size();
     }
   };
   const int threads = o.jobs > 0 ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
   std::vector<std::thread> pool;
   for (int t = 0; t < threads; ++t) pool.emplace_back(work);
   for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
   return results;
 }
 
@@ -385,6 +464,32 @@ double time_ratio(const std::vector<Job>& jobs, const std::vector<std::vector<Re
   return exact_s.empty() ? 0 : median(exact_s) / median(other_s);
 }
 
+// The q-quantile of sorted values, by nearest rank.
+double quantile(const std::vector<double>& sorted, double q) {
+  return sorted[static_cast<std::size_t>(std::lround(q * static_cast<double>(sorted.size() - 1)))];
+}
+
+// Per build after the first, its stage ratios (StageRatio) over every case both passed.
+std::vector<std::vector<StageRatio>> stage_ratios(const std::vector<std::vector<Result>>& results, std::size_t builds) {
+  std::vector<std::vector<StageRatio>> out(builds);
+  for (std::size_t b = 1; b < builds; ++b) {
+    std::map<std::string, std::vector<double>> ratios;
+    for (const std::vector<Result>& r : results) {
+      if (r[0].kind != Result::Passed || r[b].kind != Result::Passed) continue;
+      for (const auto& [stage, exact_s] : r[0].stage_s) {
+        const auto other = r[b].stage_s.find(stage);
+        if (exact_s >= 1e-3 && other != r[b].stage_s.end() && other->second >= 1e-3)
+          ratios[stage].push_back(exact_s / other->second);
+      }
+    }
+    for (auto& [stage, v] : ratios) {
+      std::sort(v.begin(), v.end());
+      out[b].push_back({stage, static_cast<int>(v.size()), median(v), quantile(v, 0.25), quantile(v, 0.75)});
+    }
+  }
+  return out;
+}
+
 std::vector<FamilyResult> summarise(const std::vector<std::string>& names, const std::vector<Job>& jobs,
                                     const std::vector<Build>& builds, const std::vector<std::vector<Result>>& results) {
   std::vector<FamilyResult> out;
@@ -407,7 +512,8 @@ std::vector<FamilyResult> summarise(const std::vector<std::string>& names, const
 }
 
 nlohmann::ordered_json robustness_json(const RobustnessOptions& o, const std::vector<Build>& builds,
-                                       const std::vector<FamilyResult>& out) {
+                                       const std::vector<FamilyResult>& out,
+                                       const std::vector<std::vector<StageRatio>>& stages) {
   nlohmann::ordered_json doc = {{"seed", o.seed}, {"cases_per_family", o.cases}, {"time_limit_s", o.time_limit}};
   for (const Build& b : builds) doc["builds"][b.name] = b.program.filename().string();
   doc["families"] = nlohmann::ordered_json::array();
@@ -426,13 +532,22 @@ nlohmann::ordered_json robustness_json(const RobustnessOptions& o, const std::ve
     }
     doc["families"].push_back(entry);
   }
+  // The exact build's time over each build's, per stage, on every case both passed.
+  doc["exact_over_this_time_by_stage"] = nlohmann::ordered_json::object();
+  for (std::size_t b = 1; b < builds.size(); ++b) {
+    nlohmann::ordered_json per_stage = nlohmann::ordered_json::object();
+    for (const StageRatio& r : stages[b])
+      per_stage[r.stage] = {{"cases", r.cases}, {"median", r.median}, {"p25", r.low}, {"p75", r.high}};
+    doc["exact_over_this_time_by_stage"][builds[b].name] = per_stage;
+  }
   return doc;
 }
 
-void write_reports(const RobustnessOptions& o, const std::vector<Build>& builds, const std::vector<FamilyResult>& out) {
-  const nlohmann::ordered_json doc = robustness_json(o, builds, out);
+void write_reports(const RobustnessOptions& o, const std::vector<Build>& builds, const std::vector<FamilyResult>& out,
+                   const std::vector<std::vector<StageRatio>>& stages) {
+  const nlohmann::ordered_json doc = robustness_json(o, builds, out, stages);
   std::ofstream(o.out / "robustness.json", std::ios::binary) << doc.dump(2) << "\n";
-  std::ofstream(o.out / "robustness.md", std::ios::binary) << markdown(out, builds, o);
+  std::ofstream(o.out / "robustness.md", std::ios::binary) << markdown(out, builds, o, stages);
   std::ofstream(o.out / "robustness.svg", std::ios::binary) << svg_chart(out, builds);
 }
 
@@ -444,8 +559,30 @@ std::vector<FamilyResult> run_robustness(const RobustnessOptions& o, std::ostrea
   std::vector<Job> jobs = case_jobs(names.size(), o.cases);
   const std::vector<std::vector<Result>> results = run_jobs(o, names, jobs, builds, log);
   std::vector<FamilyResult> out = summarise(names, jobs, builds, results);
-  write_reports(o, builds, out);
+  write_reports(o, builds, out, stage_ratios(results, builds.size()));
   return out;
+}
+
+int export_cases(const RobustnessOptions& o, const fs::path& dir) {
+  int written = 0;
+  for (const std::string& family : family_names(o)) {
+    fs::create_directories(dir / family);
+    for (int i = 0; i < o.cases; ++i) {
+      const FamilyCase c = family_case(family, i, o.seed);
+      const std::string name = std::to_string(i);
+      std::ofstream(dir / family / (name + ".geojson"), std::ios::binary) << c.sketch;
+      nlohmann::ordered_json about = {{"family", family},
+                                      {"case", i},
+                                      {"seed", o.seed},
+                                      {"level", c.level},
+                                      {"level_measures", level_of(family)},
+                                      {"sketch", name + ".geojson"},
+                                      {"judge", judge_invariants()}};
+      std::ofstream(dir / family / (name + ".json"), std::ios::binary) << about.dump(2) << "\n";
+      ++written;
+    }
+  }
+  return written;
 }
 
 }  // namespace exacity::bench

@@ -14,8 +14,11 @@
 namespace exacity::bench {
 
 // The builds, in report order: the exact one, the practitioner's float build (snapped to a
-// grid, with tolerances), and the two float builds with no tolerance (geom/exact.h).
-inline const std::vector<std::string> kBuildNames = {"exact", "float-snapped", "float", "float-simple"};
+// grid, with tolerances), GEOS's overlay in floating and in fixed precision (the partition
+// stage only: benchmarks/geos_partition.cpp), and the two float builds with no tolerance
+// (geom/exact.h).
+inline const std::vector<std::string> kBuildNames = {"exact",      "float-snapped", "geos-floating",
+                                                     "geos-fixed", "float",         "float-simple"};
 
 struct RobustnessOptions {
   std::vector<std::string> families;  // empty: all
@@ -24,7 +27,7 @@ struct RobustnessOptions {
   std::filesystem::path out = "out/robustness";
   double time_limit = 60;  // seconds per run of a build on a case
   int jobs = 0;            // cases run at once (0: one per core)
-  // Where exacity and exacity-<build> are; builds not there are left out.
+  // Where exacity, exacity-<build> and exacity-geos are; builds not there are left out.
   std::filesystem::path programs;
   std::vector<std::string> builds;  // of kBuildNames; empty: every build found
   bool keep_outputs = false;        // else only failed cases' outputs stay
@@ -45,6 +48,16 @@ struct CaseResult {
   std::vector<std::string> results;
 };
 
+// A build's time over the exact build's, per stage of generate (report.json's timings_s),
+// on the cases of every family both passed: the exact build's seconds over this build's,
+// median and quartiles. A stage either build spent under a millisecond on is left out of
+// that case (its ratio is timer noise).
+struct StageRatio {
+  std::string stage;
+  int cases = 0;
+  double median = 0, low = 0, high = 0;  // low and high: the 25th and 75th percentiles
+};
+
 struct FamilyResult {
   std::string family;
   std::vector<std::pair<std::string, Outcome>> builds;  // in build order
@@ -56,5 +69,10 @@ struct FamilyResult {
 
 // Runs the benchmark and writes its files into options.out; progress lines go to `log`.
 std::vector<FamilyResult> run_robustness(const RobustnessOptions& options, std::ostream& log);
+
+// Writes every case of the families asked for, for another tool to run: DIR/FAMILY/N.geojson
+// (the sketch) and DIR/FAMILY/N.json (the family, case, seed, degeneracy level and the
+// invariants the judge checks, benchmarks/judge.h). Returns how many cases it wrote.
+int export_cases(const RobustnessOptions& options, const std::filesystem::path& dir);
 
 }  // namespace exacity::bench

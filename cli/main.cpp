@@ -164,7 +164,17 @@ int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, 
   for (const Sketch::OsmCounts& file : sketch.osm_counts)
     for (const std::string& what : file.repaired)
       std::fprintf(stderr, "exacity: note: %s: %s\n", file.file.c_str(), what.c_str());
-  for (const auto& z : result.report["empty_zones"]) {
+  // Each kind of note names its first few; report.json lists every one (an OSM extract can
+  // have thousands of land-use areas no street reaches).
+  constexpr std::size_t kNotesOfAKind = 5;
+  auto more = [&](const char* key, const char* what) {
+    const std::size_t n = result.report[key].size();
+    if (n > kNotesOfAKind)
+      std::fprintf(stderr, "exacity: note: and %zu more %s (%s lists them all under \"%s\")\n", n - kNotesOfAKind, what,
+                   (out / "report.json").string().c_str(), key);
+  };
+  for (std::size_t i = 0; i < result.report["empty_zones"].size() && i < kNotesOfAKind; ++i) {
+    const auto& z = result.report["empty_zones"][i];
     const std::string zone = z["zone"].get<std::string>(), why = z["why"].get<std::string>();
     if (z.contains("grid_cell"))
       std::fprintf(stderr, "exacity: note: %s: the %s region there got no lots: %s\n",
@@ -176,11 +186,15 @@ int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, 
       std::fprintf(stderr, "exacity: note: %s: features[%d] (%s) got no lots: %s\n", sketch.path.string().c_str(),
                    z["feature"].get<int>(), zone.c_str(), why.c_str());
   }
-  for (const auto& r : result.report["roads_without_area"])
+  more("empty_zones", "zones got no lots");
+  for (std::size_t i = 0; i < result.report["roads_without_area"].size() && i < kNotesOfAKind; ++i) {
+    const auto& r = result.report["roads_without_area"][i];
     std::fprintf(stderr, "exacity: note: %s: road %d%s has a centre line and no road area: %s\n",
                  (out / "vector" / "roads.geojson").string().c_str(), r["road"].get<int>(),
                  r.contains("feature") ? (" (sketch.geojson features[" + std::to_string(r["feature"].get<int>()) + "])").c_str() : "",
                  r["why"].get<std::string>().c_str());
+  }
+  more("roads_without_area", "roads have no road area");
   for (const auto& z : result.report["placement_fallbacks"])
     std::fprintf(stderr, "exacity: note: %s: %s lots are filled on the grid only with library models: %s; they get extruded footprints in rows\n",
                  sketch.path.string().c_str(), z["zone"].get<std::string>().c_str(), z["why"].get<std::string>().c_str());
@@ -397,6 +411,7 @@ struct StatsCommand {
 struct RobustnessCommand {
   CLI::App* app = nullptr;
   bench::RobustnessOptions options;
+  fs::path export_dir;  // write the cases there instead of running them
 };
 
 void add_program_options(CLI::App& app, SharedOptions& shared) {
@@ -534,6 +549,8 @@ void add_bench_robustness(CLI::App& app, RobustnessCommand& c) {
   c.app->add_option("--build", o.builds, "Only these builds, exact among them (default: every one built)")
       ->check(CLI::IsMember(bench::kBuildNames));
   c.app->add_flag("--keep", o.keep_outputs, "Keep every output, not only those of failed cases");
+  c.app->add_option("--export", c.export_dir,
+                    "Write every case as DIR/FAMILY/N.geojson and the invariants the judge checks as N.json; run nothing");
 }
 
 // Parses the command line; the exit code when it is wrong or only asked for help or the
@@ -605,6 +622,11 @@ int main(int argc, char** argv) {
     if (*val.app) return validate(val.folder);
     if (*sta.app) return stats(sta.folder, sta.real);
     if (*srv.app) return run_serve(srv);
+    if (*rob.app && !rob.export_dir.empty()) {
+      const int n = bench::export_cases(rob.options, rob.export_dir);
+      std::printf("wrote %d cases into %s\n", n, rob.export_dir.string().c_str());
+      return 0;
+    }
     if (*rob.app) return robustness_benchmark(rob.options, argv[0]);
     return 0;
   });

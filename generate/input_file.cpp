@@ -5,6 +5,8 @@
 #include <cstring>
 #include <memory>
 
+#include <cpl_string.h>
+
 #include "generate/errors.h"
 
 namespace exacity {
@@ -24,6 +26,10 @@ std::string too_large(std::uintmax_t size, std::uintmax_t limit) {
 }  // namespace
 
 bool readable_input(const fs::path& file, std::uintmax_t limit, std::string& why) {
+  if (!CPLIsUTF8(file.c_str(), -1)) {  // outputs name their inputs in JSON, which holds only UTF-8
+    why = "its name is not UTF-8 text, which the outputs naming it cannot hold; rename it";
+    return false;
+  }
   std::error_code ec;
   const fs::file_status status = fs::status(file, ec);
   if (!fs::exists(status)) {

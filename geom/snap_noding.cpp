@@ -45,90 +45,104 @@ std::vector<Polyline> snap_round_segments(const std::vector<std::pair<Vec2, Vec2
   const std::size_t n = segments.size();
   std::vector<std::pair<Vec2, Vec2>> s(n);
   Box box = Box::none();
-  std::vector<Vec2> hot;
   for (std::size_t i = 0; i < n; ++i) {
     s[i] = {snap_to(segments[i].first, step), snap_to(segments[i].second, step)};
     box.add(s[i].first), box.add(s[i].second);
-    hot.push_back(s[i].first), hot.push_back(s[i].second);
   }
   std::vector<Polyline> out(n);
   if (n == 0) return out;
   const double extent = std::max({box.width(), box.height(), step});
   const SegmentBuckets grid(box, std::max(extent / std::sqrt(static_cast<double>(n)), 8 * step));
-
   auto xy_less = [](Vec2 p, Vec2 q) { return p.x != q.x ? p.x < q.x : p.y < q.y; };
-  std::vector<std::pair<long, int>> entries;  // (bucket, segment)
-  // Crossings: decided exactly on the snapped ends, placed in doubles, then snapped.
-  auto crossings = [&] {
-    entries.clear();
-    for (std::size_t i = 0; i < n; ++i)
-      if (!(s[i].first == s[i].second))
-        grid.along(s[i].first, s[i].second, step, [&](long k) { entries.push_back({k, static_cast<int>(i)}); });
-    std::sort(entries.begin(), entries.end());
-    std::vector<Vec2> found;
-    for (std::size_t begin = 0, end; begin < entries.size(); begin = end) {
-      for (end = begin; end < entries.size() && entries[end].first == entries[begin].first;) ++end;
-      for (std::size_t p = begin; p < end; ++p)
-        for (std::size_t q = p + 1; q < end; ++q) {
-          const auto [a, b] = s[entries[p].second];
-          const auto [c, d] = s[entries[q].second];
-          const int sc = side(a, b, c), sd = side(a, b, d), sa = side(c, d, a), sb = side(c, d, b);
-          if (sc * sd >= 0 || sa * sb >= 0) continue;  // touching and overlapping ends are hot already
-          const double ca = cross(d - c, a - c), cb = cross(d - c, b - c);
-          found.push_back(snap_to(lerp(a, b, ca / (ca - cb)), step));
-        }
-    }
-    std::sort(found.begin(), found.end(), xy_less);
-    found.erase(std::unique(found.begin(), found.end()), found.end());
-    return found;
-  };
-  // An end within one pixel of a crossing merges into it, unless it ends a segment that
-  // must stay monotone (a vertex the arrangement has): a road computed to stop at another
-  // and snapped a pixel past it would otherwise end in a tail one pixel long beyond the
-  // junction (the snapping tolerance of a snapping noder).
-  std::vector<Vec2> crossing = crossings();
-  if (!crossing.empty()) {
-    std::vector<Vec2> fixed;
-    for (std::size_t i = 0; i < n && i < monotone.size(); ++i)
-      if (monotone[i]) fixed.push_back(s[i].first), fixed.push_back(s[i].second);
-    std::sort(fixed.begin(), fixed.end(), xy_less);
-    auto merged = [&](Vec2 e) {
+  auto apart = [](Vec2 p, Vec2 q) { return std::max(std::abs(p.x - q.x), std::abs(p.y - q.y)); };
+  // Half the side of a pixel, a hair more so a pixel a segment grazes in exact arithmetic is
+  // not missed by rounding; and of the square around an end within which a segment is
+  // routed through that end (the snap tolerance).
+  const double half = step * (0.5 + 1e-9), end_reach = step * (kEndReach + 1e-9);
+
+  // An end within the end reach of a vertex the arrangement has (an end of a segment that
+  // must stay monotone) moves onto it: a road that starts where an earlier batch's road
+  // stopped was computed from that road's end before the earlier batch moved it.
+  std::vector<Vec2> fixed;
+  for (std::size_t i = 0; i < n && i < monotone.size(); ++i)
+    if (monotone[i]) fixed.push_back(s[i].first), fixed.push_back(s[i].second);
+  std::sort(fixed.begin(), fixed.end(), xy_less);
+  fixed.erase(std::unique(fixed.begin(), fixed.end()), fixed.end());
+  if (!fixed.empty()) {
+    auto moved = [&](Vec2 e) {
       if (std::binary_search(fixed.begin(), fixed.end(), e, xy_less)) return e;
-      auto it = std::lower_bound(crossing.begin(), crossing.end(), Vec2{e.x - step, -INFINITY}, xy_less);
       Vec2 best = e;
       double best_d = INFINITY;
-      for (; it != crossing.end() && it->x <= e.x + step; ++it) {
-        const double d = std::max(std::abs(it->x - e.x), std::abs(it->y - e.y));
-        if (d > 0 && d <= step * (1 + 1e-9) && d < best_d) best = *it, best_d = d;
-      }
+      for (auto it = std::lower_bound(fixed.begin(), fixed.end(), Vec2{e.x - end_reach, -INFINITY}, xy_less);
+           it != fixed.end() && it->x <= e.x + end_reach; ++it)
+        if (const double d = apart(e, *it); d <= end_reach && d < best_d) best = *it, best_d = d;
       return best;
     };
-    for (auto& [a, b] : s) a = merged(a), b = merged(b);
-    crossing = crossings();
+    for (auto& [a, b] : s) a = moved(a), b = moved(b);
   }
-  hot.clear();
+
+  // Whether segment i is routed through end e beside it: e lies within the end reach of it
+  // and farther than that from its own ends (near those, two ends are apart, not an end
+  // beside an edge).
+  auto takes_end = [&](std::size_t i, Vec2 e) {
+    const auto [a, b] = s[i];
+    return apart(e, a) > end_reach && apart(e, b) > end_reach && enters_square(a, b, e, end_reach) >= 0;
+  };
+
+  // Crossings: decided exactly on the snapped ends, placed in doubles, then snapped. One
+  // within a pixel of an end of either segment, where the other segment is routed through
+  // that end, is that end: a road computed to stop at another and snapped a pixel past or
+  // short of it would otherwise end in a tail or a gap one pixel long beside the junction.
+  std::vector<std::pair<long, int>> entries;  // (bucket, segment)
+  for (std::size_t i = 0; i < n; ++i)
+    if (!(s[i].first == s[i].second))
+      grid.along(s[i].first, s[i].second, step, [&](long k) { entries.push_back({k, static_cast<int>(i)}); });
+  std::sort(entries.begin(), entries.end());
+  std::vector<Vec2> hot;
+  for (std::size_t begin = 0, end; begin < entries.size(); begin = end) {
+    for (end = begin; end < entries.size() && entries[end].first == entries[begin].first;) ++end;
+    for (std::size_t p = begin; p < end; ++p)
+      for (std::size_t q = p + 1; q < end; ++q) {
+        const std::size_t i = entries[p].second, j = entries[q].second;
+        const auto [a, b] = s[i];
+        const auto [c, d] = s[j];
+        const int sc = side(a, b, c), sd = side(a, b, d), sa = side(c, d, a), sb = side(c, d, b);
+        if (sc * sd >= 0 || sa * sb >= 0) continue;  // touching and overlapping ends are hot already
+        const double ca = cross(d - c, a - c), cb = cross(d - c, b - c);
+        const Vec2 x = snap_to(lerp(a, b, ca / (ca - cb)), step);
+        auto at_end = [&](Vec2 e, std::size_t other) { return apart(x, e) <= step * (1 + 1e-9) && takes_end(other, e); };
+        if (at_end(a, j) || at_end(b, j) || at_end(c, i) || at_end(d, i)) continue;
+        hot.push_back(x);
+      }
+  }
+  const std::size_t crossings = hot.size();
   for (const auto& [a, b] : s) hot.push_back(a), hot.push_back(b);
-  hot.insert(hot.end(), crossing.begin(), crossing.end());
-  std::sort(hot.begin(), hot.end(), [](Vec2 a, Vec2 b) { return a.x != b.x ? a.x < b.x : a.y < b.y; });
-  hot.erase(std::unique(hot.begin(), hot.end()), hot.end());
-  std::vector<std::pair<long, int>> hot_in;  // (bucket, hot pixel)
-  for (std::size_t k = 0; k < hot.size(); ++k) hot_in.push_back({grid.key(hot[k]), static_cast<int>(k)});
+  // Each pixel once; an end's reach wins over a crossing's.
+  std::vector<std::pair<Vec2, bool>> pixels;  // (centre, an end)
+  for (std::size_t k = 0; k < hot.size(); ++k) pixels.push_back({hot[k], k >= crossings});
+  std::sort(pixels.begin(), pixels.end(), [&](const auto& u, const auto& v) {
+    return u.first == v.first ? u.second > v.second : xy_less(u.first, v.first);
+  });
+  pixels.erase(std::unique(pixels.begin(), pixels.end(), [](const auto& u, const auto& v) { return u.first == v.first; }),
+               pixels.end());
+  std::vector<std::pair<long, int>> hot_in;  // (bucket, pixel)
+  for (std::size_t k = 0; k < pixels.size(); ++k) hot_in.push_back({grid.key(pixels[k].first), static_cast<int>(k)});
   std::sort(hot_in.begin(), hot_in.end());
 
-  // Each segment through the hot pixels it meets, a hair past half a step so a pixel the
-  // segment grazes in exact arithmetic is not missed by rounding; then each piece again,
-  // until no piece meets a hot pixel not its own (iterated snap rounding: the result, noded
-  // again on the same grid, stays as it is).
-  const double half = step * (0.5 + 1e-9);
+  // Each segment through the hot pixels it meets (and the ends it passes within the end
+  // reach of); then each piece again, until no piece meets a hot pixel not its own
+  // (iterated snap rounding: the result, noded again on the same grid, stays as it is).
   std::vector<std::pair<double, Vec2>> found;
-  auto hot_on = [&](Vec2 p, Vec2 q) {
+  auto hot_on = [&](Vec2 p, Vec2 q, Vec2 a, Vec2 b) {
     found.clear();
     const Vec2 d = q - p;
-    grid.along(p, q, step, [&](long k) {
+    grid.along(p, q, end_reach, [&](long k) {
       for (auto it = std::lower_bound(hot_in.begin(), hot_in.end(), std::pair<long, int>(k, INT_MIN));
            it != hot_in.end() && it->first == k; ++it) {
-        const Vec2 c = hot[it->second];
-        if (c == p || c == q || enters_square(p, q, c, half) < 0) continue;
+        const auto [c, is_end] = pixels[it->second];
+        if (c == p || c == q) continue;
+        const bool beside = is_end && apart(c, a) > end_reach && apart(c, b) > end_reach;
+        if (enters_square(p, q, c, beside ? end_reach : half) < 0) continue;
         found.push_back({std::clamp(dot(c - p, d) / dot(d, d), 0.0, 1.0), c});
       }
     });
@@ -149,7 +163,7 @@ std::vector<Polyline> snap_round_segments(const std::vector<std::pair<Vec2, Vec2
       Polyline next{a};
       bool changed = false;
       for (std::size_t k = 0; k + 1 < line.size(); ++k) {
-        hot_on(line[k], line[k + 1]);
+        hot_on(line[k], line[k + 1], a, b);
         for (const auto& [u, c] : found)
           if (ahead(next.back(), c) && ahead(c, line[k + 1]) && !(c == next.back()) &&
               std::find(line.begin(), line.end(), c) == line.end())

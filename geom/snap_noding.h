@@ -11,16 +11,24 @@
 
 namespace geom {
 
+// The snap tolerance, in grid steps (measured in x and y apart): an end this near a vertex
+// of the arrangement moves onto it, and a segment passing this near an end (but not this
+// near its own ends) is routed through that end.
+inline constexpr double kEndReach = 2.5;
+
 // The nearest point of the grid of `step`.
 Vec2 snap_to(Vec2 p, double step);
 
-// Each segment's ends snapped to the grid of `step`; the pixels (squares of side `step`
-// around grid points) holding an end or a crossing of two segments are hot; each segment
-// becomes the polyline from its snapped start through the centre of every hot pixel it
-// passes through, in order, to its snapped end. Rounded so, segments meet only at shared
-// vertices (they may overlap: equal pieces). A segment that snaps to one point gives an
-// empty polyline. Pixels are tested in doubles, a hair wider than half a step; then each
-// piece again until none meets a hot pixel not its own (iterated snap rounding). The first
+// Each segment's ends snapped to the grid of `step`, an end within kEndReach of an end of a
+// `monotone` segment (a vertex the arrangement has) moved onto it; the pixels (squares of
+// side `step` around grid points) holding an end or a crossing of two segments are hot, but
+// for a crossing within a pixel of an end of either segment where the other is routed
+// through that end; each segment becomes the polyline from its snapped start through the
+// centre of every hot pixel it passes through (and of every end it passes within kEndReach
+// of), in order, to its snapped end. Rounded so, segments meet only at shared vertices
+// (they may overlap: equal pieces). A segment that snaps to one point gives an empty
+// polyline. Pixels are tested in doubles, a hair wider than half a step; then each piece
+// again until none meets a hot pixel not its own (iterated snap rounding). The first
 // `monotone` segments (or those it marks) run one way in (x, y) order, as the pieces of a
 // split arrangement edge must: a hot pixel that would turn one back is passed by (a
 // crossing left unnoded, the rare price).

@@ -156,6 +156,30 @@ TEST(Cli, ZonesLeftEmptyAreNamedWithTheReason) {
   EXPECT_NE(g.out.find("features[2] (commercial) got no lots: no street reaches"), std::string::npos) << g.out;
 }
 
+// Many zones left empty (an OSM extract's land-use areas no street reaches) are not one
+// line each: the first few are named, report.json lists all.
+TEST(Cli, ManyEmptyZonesAreNamedFirstFewThenCounted) {
+  const fs::path dir = testing_util::temp_dir("cli-many-empty");
+  std::string features = R"({"type": "Feature", "properties": {"zone": "residential"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [300, 200], [0, 200], [0, 0]]]}})";
+  for (int i = 0; i < 12; ++i) {  // 12 small commercial squares far apart, no street to any
+    const std::string x0 = std::to_string(1000 + 200 * i), x1 = std::to_string(1100 + 200 * i);
+    features += R"(, {"type": "Feature", "properties": {"zone": "commercial"}, "geometry": {"type": "Polygon",
+      "coordinates": [[[)" + x0 + ", 0], [" + x1 + ", 0], [" + x1 + ", 100], [" + x0 + ", 100], [" + x0 + ", 0]]]}}";
+  }
+  Result g = generate_in(dir, R"({"type": "FeatureCollection", "exacity": {"seed": 3, "zones":
+    {"commercial": {"layout": "streets"}}}, "features": [)" + features + "]}");
+  ASSERT_EQ(g.code, 0) << g.out;
+  EXPECT_EQ(nlohmann::json::parse(read(dir / "out" / "report.json"))["empty_zones"].size(), 12u);
+  std::size_t named = 0;
+  for (std::size_t at = g.out.find(") got no lots:"); at != std::string::npos; at = g.out.find(") got no lots:", at + 1)) ++named;
+  EXPECT_EQ(named, 5u) << g.out;
+  EXPECT_NE(g.out.find("and 7 more zones got no lots (" + (dir / "out" / "report.json").string() +
+                       " lists them all under \"empty_zones\")"),
+            std::string::npos)
+      << g.out;
+}
+
 // Grid filling places library models: a zone that asks for it without any is built in
 // rows, and the run says so.
 TEST(Cli, GridFillingWithoutModelsIsNamedNotSilent) {
@@ -730,20 +754,46 @@ TEST(Cli, ThousandsOfTinyLandUseAreasOverTheVillageAreRefusedBeforeTheMap) {
 // An industrial L and a 60 m residential L inside its bend: growth started cells of the
 // narrow arm a centimetre inside their edge and left roads of 2 to 40 cm there, one ending
 // alone on the zone's edge (road 372, 10 cm); and two narrow zones, 40 m and 30 m wide,
-// touching at a corner. No generated road is shorter than its zone's min_block_width, and
-// none ends in the open: every dead end is a sketch road's.
+// touching at a corner. Then a 60 m commercial spiral (straight roads), a 45 m L 10 m off the
+// industrial L's bend (another seed), and a comb of 50 m teeth: started a centimetre inside an
+// edge, growth left stubs of centimetres in each. No generated road is shorter than its zone's
+// min_block_width, and none ends in the open: every dead end is a sketch road's.
 TEST(Cli, GrowthLeavesNoRoadShorterThanABlockIsWideNorADeadEnd) {
-  const std::vector<std::pair<std::string, std::string>> sketches{
-      {"two-ls", R"({"type": "FeatureCollection", "exacity": {"seed": 23}, "features": [
+  std::ostringstream spiral;  // 60 m wide, over a turn, straight roads (commercial)
+  spiral.precision(10);
+  spiral << R"({"type": "FeatureCollection", "exacity": {"seed": 23}, "features": [{"type": "Feature", )"
+         << R"("properties": {"zone": "commercial"}, "geometry": {"type": "Polygon", "coordinates": [[)";
+  for (int k = 0; k <= 240; ++k) {  // out along the inner side, back along the outer, closed
+    const int i = k < 120 ? k : k < 240 ? 239 - k : 0;
+    const double a = i * 0.06, r = 120 + a * 50 + (k >= 120 && k < 240 ? 60 : 0);
+    spiral << (k ? ", " : "") << "[" << r * std::cos(a) << ", " << r * std::sin(a) << "]";
+  }
+  spiral << "]]}}]}";
+  // The industrial L of the sketch that had the stubs, and a residential zone (its ring) in its bend.
+  auto beside_industrial_l = [](int seed, const std::string& residential) {
+    return R"({"type": "FeatureCollection", "exacity": {"seed": )" + std::to_string(seed) + R"(}, "features": [
     {"type": "Feature", "properties": {"zone": "industrial"}, "geometry": {"type": "Polygon",
      "coordinates": [[[0, 0], [3000, 0], [3000, 600], [600, 600], [600, 2500], [0, 2500], [0, 0]]]}},
     {"type": "Feature", "properties": {"zone": "residential"}, "geometry": {"type": "Polygon",
-     "coordinates": [[[700, 700], [3000, 700], [3000, 760], [760, 760], [760, 2500], [700, 2500], [700, 700]]]}}]})"},
+     "coordinates": [)" +
+           residential + "]}}]}";
+  };
+  const std::vector<std::pair<std::string, std::string>> sketches{
+      {"two-ls", beside_industrial_l(
+                     23, "[[700, 700], [3000, 700], [3000, 760], [760, 760], [760, 2500], [700, 2500], [700, 700]]")},
       {"corner", R"({"type": "FeatureCollection", "exacity": {"seed": 7}, "features": [
     {"type": "Feature", "properties": {"zone": "residential"}, "geometry": {"type": "Polygon",
      "coordinates": [[[0, 0], [40, 0], [40, 800], [0, 800], [0, 0]]]}},
     {"type": "Feature", "properties": {"zone": "residential"}, "geometry": {"type": "Polygon",
-     "coordinates": [[[40, 800], [840, 800], [840, 830], [40, 830], [40, 800]]]}}]})"}};
+     "coordinates": [[[40, 800], [840, 800], [840, 830], [40, 830], [40, 800]]]}}]})"},
+      {"spiral", spiral.str()},
+      {"ten-off", beside_industrial_l(
+                      4, "[[610, 610], [3000, 610], [3000, 655], [655, 655], [655, 2500], [610, 2500], [610, 610]]")},
+      {"comb", R"({"type": "FeatureCollection", "exacity": {"seed": 23}, "features": [
+    {"type": "Feature", "properties": {"zone": "residential"}, "geometry": {"type": "Polygon", "coordinates": [[[0, 0],
+     [1000, 0], [1000, 500], [950, 500], [950, 100], [850, 100], [850, 500], [800, 500], [800, 100], [700, 100],
+     [700, 500], [650, 500], [650, 100], [550, 100], [550, 500], [500, 500], [500, 100], [400, 100], [400, 500],
+     [350, 500], [350, 100], [250, 100], [250, 500], [200, 500], [200, 100], [100, 100], [100, 500], [0, 500], [0, 0]]]}}]})"}};
   const double least = 6;  // the zones' min_block_width
   for (const auto& [name, sketch] : sketches) {
     SCOPED_TRACE(name);

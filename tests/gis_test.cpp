@@ -794,6 +794,103 @@ TEST(Gis, LonLatWithoutCrsIsFoundOverDegreesAndAcrossTheAntimeridian) {
   EXPECT_GT(city.report["counts"]["lots"].get<int>(), 20);
 }
 
+TEST(Gis, FeaturesCutAtTheAntimeridianMeetAgainExactly) {
+  const fs::path dir = testing_util::temp_dir("gis-seam");
+  // The town across the antimeridian in UTM metres, cut there as ogr2ogr -wrapdateline
+  // does: each half computes its own crossing, some 1e-10 degrees from the other's.
+  ordered_json town = town_in_metres();
+  town["crs"] = crs_member(32760);
+  std::function<void(ordered_json&)> move = [&](ordered_json& c) {
+    if (c[0].is_number()) return void(c = {c[0].get<double>() + 819500 - 385000, c[1].get<double>() + 8140000 - 6672000});
+    for (ordered_json& inner : c) move(inner);
+  };
+  for (ordered_json& f : town["features"]) move(f["geometry"]["coordinates"]);
+  write(dir / "utm.geojson", town.dump());
+  start_gdal();  // then to lon/lat as ogr2ogr -t_srs EPSG:4326 -wrapdateline does
+  GDALDatasetH source = GDALOpenEx((dir / "utm.geojson").string().c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr);
+  ASSERT_NE(source, nullptr);
+  const char* args[] = {"-f", "GeoJSON", "-t_srs", "EPSG:4326", "-wrapdateline", nullptr};
+  GDALVectorTranslateOptions* options = GDALVectorTranslateOptionsNew(const_cast<char**>(args), nullptr);
+  GDALDatasetH cut = GDALVectorTranslate((dir / "fiji.geojson").string().c_str(), nullptr, 1, &source, options, nullptr);
+  GDALVectorTranslateOptionsFree(options);
+  ASSERT_NE(cut, nullptr);
+  GDALClose(cut);
+  GDALClose(source);
+  const ordered_json written = ordered_json::parse(cli_util::read(dir / "fiji.geojson"));
+  ASSERT_EQ(written["features"][0]["geometry"]["type"], "MultiPolygon");
+  ASSERT_EQ(written["features"][2]["geometry"]["type"], "MultiLineString");
+  std::set<double> seam_latitudes;  // as written: the halves' crossings differ
+  for (const ordered_json& polygon : written["features"][0]["geometry"]["coordinates"])
+    for (const ordered_json& p : polygon[0])
+      if (std::abs(p[0].get<double>()) == 180) seam_latitudes.insert(p[1].get<double>());
+  ASSERT_GT(seam_latitudes.size(), 2u);
+
+  write(dir / "fiji.exacity.json", kSettings.dump());
+  const Sketch sketch = load_sketch(dir / "fiji.geojson");
+  // The road's halves end at one point, and every seam vertex of one half of the zone is a
+  // vertex of the other.
+  const std::vector<geom::Polyline>& road = sketch.roads.at(0).lines;
+  ASSERT_EQ(road.size(), 2u);
+  EXPECT_TRUE(road[0].back() == road[1].front() || road[0].front() == road[1].back());
+  const std::vector<geom::Polygon>& halves = sketch.zones.at(0).polygons;
+  ASSERT_EQ(halves.size(), 2u);
+  auto shared = [](const geom::Ring& a, const geom::Ring& b) {
+    return std::count_if(a.begin(), a.end(), [&](geom::Vec2 p) { return std::find(b.begin(), b.end(), p) != b.end(); });
+  };
+  EXPECT_EQ(shared(halves[0].outer, halves[1].outer), 2);
+}
+
+// Names that are not UTF-8 (Latin-1 from old tools) are read where they are text the outputs
+// can hold, and refused in one line where they are the user's own file names; a file whose
+// CRS is in degrees but whose coordinates are metres is named as such.
+TEST(Gis, NamesNotInUtf8AndCoordinatesNotInTheFilesCrs) {
+  const fs::path dir = testing_util::temp_dir("gis-not-utf8");
+  ordered_json town = town_in_metres();
+  write(dir / "town.geojson", town.dump());
+  write(dir / "town.exacity.json", kSettings.dump());
+  const std::string latin1 = "zon\xe9s";  // "zonés" in Latin-1
+  start_gdal();
+  auto to_gpkg = [&](const fs::path& from, const fs::path& to) {
+    GDALDatasetH source = GDALOpenEx(from.string().c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr);
+    ASSERT_NE(source, nullptr);
+    const char* args[] = {"-f", "GPKG", "-nln", latin1.c_str(), nullptr};
+    GDALVectorTranslateOptions* options = GDALVectorTranslateOptionsNew(const_cast<char**>(args), nullptr);
+    GDALDatasetH made = GDALVectorTranslate(to.string().c_str(), nullptr, 1, &source, options, nullptr);
+    GDALVectorTranslateOptionsFree(options);
+    ASSERT_NE(made, nullptr);
+    GDALClose(made);
+    GDALClose(source);
+  };
+  to_gpkg(dir / "town.geojson", dir / "town.gpkg");
+  // A layer named in Latin-1: the sources name it in UTF-8.
+  const cli_util::Result named = cli_util::run("generate " + (dir / "town.gpkg").string() + " -o " + (dir / "out").string());
+  ASSERT_EQ(named.code, 0) << named.out;
+  const ordered_json sketch = ordered_json::parse(cli_util::read(dir / "out" / "sketch.geojson"));
+  EXPECT_NE(sketch.dump().find("layer zon\u00e9s"), std::string::npos);
+
+  auto refused = [&](const std::string& args, const std::string& says, const fs::path& out) {
+    const cli_util::Result r = cli_util::run("generate " + args + " -o '" + out.string() + "'");
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+    EXPECT_NE(r.out.find(says), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(out));
+  };
+  // The user's own file names: the outputs record them in JSON.
+  fs::copy_file(dir / "town.gpkg", dir / ("caf\xe9.gpkg"));
+  refused("'" + (dir / "caf\xe9.gpkg").string() + "'", "its name is not UTF-8 text", dir / "out2");
+  refused((dir / "town.gpkg").string(), "the output path is not UTF-8 text", dir / "out\xe9");
+  // A GeoJSON in metres without a crs is lon/lat to ogr2ogr, as GeoJSON says: the GeoPackage
+  // it writes is in EPSG:4326 with coordinates of hundreds of thousands.
+  ordered_json no_crs = town;
+  no_crs.erase("crs");
+  write(dir / "no_crs.geojson", no_crs.dump());
+  to_gpkg(dir / "no_crs.geojson", dir / "degrees.gpkg");
+  refused((dir / "degrees.gpkg").string(),
+          "degrees.gpkg layer zon\u00e9s feature 1: position [385000, 6672000] is no longitude and latitude, though " +
+              (dir / "degrees.gpkg").string() + "'s CRS, EPSG:4326, counts in degrees",
+          dir / "out3");
+}
+
 TEST(Gis, LonLatWithoutCrsSpanningTensOfDegreesIsRefusedButNoSmallSketchInMetres) {
   const fs::path dir = testing_util::temp_dir("gis-far-lonlat");
   // Helsinki's town and a copy of it 34 degrees west, in one file without a crs.

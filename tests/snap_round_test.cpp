@@ -204,17 +204,40 @@ TEST(SnapNoding, AnEndASegmentPassesNearBecomesItsVertex) {
 
 TEST(SnapNoding, SegmentsPassingBesideAnotherPixelStayWhole) {
   const double step = 0.125;
-  const std::vector<geom::Polyline> lines = geom::snap_round_segments({{{0, 0}, {8, 0}}, {{4, 1}, {4, 0.25}}}, step);
+  // Three steps apart: past the reach within which an end is moved onto a segment.
+  const std::vector<geom::Polyline> lines = geom::snap_round_segments({{{0, 0}, {8, 0}}, {{4, 1}, {4, 0.375}}}, step);
   EXPECT_EQ(lines[0], (geom::Polyline{{0, 0}, {8, 0}}));
-  EXPECT_EQ(lines[1], (geom::Polyline{{4, 1}, {4, 0.25}}));
+  EXPECT_EQ(lines[1], (geom::Polyline{{4, 1}, {4, 0.375}}));
 }
 
-TEST(SnapNoding, AnEndAPixelPastACrossingMergesIntoIt) {
+TEST(SnapNoding, ASegmentTwoPixelsBesideAnEndIsRoutedThroughIt) {
+  const double step = 0.125;
+  // A road computed to stop at an edge, against a version of it routed through other hot
+  // pixels, lands two pixels beside this one: the edge is split at the road's end. An end
+  // as near the edge's own end is not taken: two ends are apart there.
+  const std::vector<geom::Polyline> lines =
+      geom::snap_round_segments({{{0, 0}, {8, 0}}, {{4, 3}, {4, 0.25}}, {{8.25, 1}, {8.25, 0.25}}}, step);
+  EXPECT_EQ(lines[0], (geom::Polyline{{0, 0}, {4, 0.25}, {8, 0}}));
+  EXPECT_EQ(lines[1], (geom::Polyline{{4, 3}, {4, 0.25}}));
+  EXPECT_EQ(lines[2], (geom::Polyline{{8.25, 1}, {8.25, 0.25}}));
+}
+
+TEST(SnapNoding, AnEndAPixelPastACrossingIsTheCrossing) {
   const double step = 0.125;
   // The second segment stops a pixel past the first, as a road computed to stop at another
-  // lands after snapping: it ends at the crossing, with no tail beyond it.
+  // lands after snapping: the first is routed through its end, with no tail beyond it.
   const std::vector<geom::Polyline> lines =
       geom::snap_round_segments({{{0, 0}, {8, 0}}, {{4, 3}, {4, -0.125}}}, step);
-  EXPECT_EQ(lines[0], (geom::Polyline{{0, 0}, {4, 0}, {8, 0}}));
-  EXPECT_EQ(lines[1], (geom::Polyline{{4, 3}, {4, 0}}));
+  EXPECT_EQ(lines[0], (geom::Polyline{{0, 0}, {4, -0.125}, {8, 0}}));
+  EXPECT_EQ(lines[1], (geom::Polyline{{4, 3}, {4, -0.125}}));
+}
+
+TEST(SnapNoding, AnEndNearAnArrangementVertexMovesOntoIt) {
+  const double step = 0.125;
+  // The first segment is an edge the arrangement has (monotone); the second starts two
+  // pixels from its end, as a road computed from where an earlier batch's road stopped.
+  const std::vector<geom::Polyline> lines =
+      geom::snap_round_segments({{{0, 0}, {4, 0}}, {{4.25, 0.125}, {4.25, 3}}}, step, {true, false});
+  EXPECT_EQ(lines[0], (geom::Polyline{{0, 0}, {4, 0}}));
+  EXPECT_EQ(lines[1], (geom::Polyline{{4, 0}, {4.25, 3}}));
 }

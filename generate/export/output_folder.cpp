@@ -13,6 +13,8 @@
 #include <thread>
 #include <utility>
 
+#include <cpl_string.h>
+
 #include "generate/errors.h"
 
 namespace exacity {
@@ -84,6 +86,9 @@ void on_interrupt(std::function<void(int)> stop) {
 OutputFolder::OutputFolder(fs::path target) : target_(fs::absolute(std::move(target)).lexically_normal()) {
   if (target_.filename().empty()) target_ = target_.parent_path();
   const std::string t = target_.string();
+  if (!CPLIsUTF8(t.c_str(), -1))  // the outputs name files in JSON, which holds only UTF-8
+    throw UserError(t + ": the output path is not UTF-8 text, which the outputs naming their files cannot hold; "
+                        "choose a name in UTF-8 with -o");
   if (fs::exists(target_) && !fs::is_directory(target_))
     throw UserError(t + ": the output path exists and is a file; choose a folder path with -o");
   if (fs::is_directory(target_) && !fs::is_empty(target_) && !fs::exists(target_ / "report.json"))

@@ -33,6 +33,17 @@ std::optional<int> epsg_of(const OGRSpatialReference& srs) {
   return std::atoi(code);
 }
 
+// Text as UTF-8: not UTF-8 (an old shapefile's Latin-1 names, a layer named in Latin-1, or a
+// stray byte), it is read as Latin-1, so that every name is text the sketch's JSON and the
+// messages can hold.
+std::string utf8(const char* text) {
+  if (CPLIsUTF8(text, -1)) return text;
+  char* recoded = CPLRecode(text, CPL_ENC_ISO8859_1, CPL_ENC_UTF8);
+  std::string out(recoded);
+  CPLFree(recoded);
+  return out;
+}
+
 // A field's value as JSON, or null when the feature has no such field or it is unset.
 ordered_json field(OGRFeature& f, const char* name) {
   const int i = f.GetFieldIndex(name);
@@ -41,16 +52,7 @@ ordered_json field(OGRFeature& f, const char* name) {
     case OFTInteger:
     case OFTInteger64: return f.GetFieldAsInteger64(i);
     case OFTReal: return f.GetFieldAsDouble(i);
-    default: {
-      const char* text = f.GetFieldAsString(i);
-      if (CPLIsUTF8(text, -1)) return text;
-      // Not UTF-8 (an old shapefile's Latin-1 names, or a stray byte): read as Latin-1, so
-      // that every value is text the sketch's JSON and the messages can hold.
-      char* recoded = CPLRecode(text, CPL_ENC_ISO8859_1, CPL_ENC_UTF8);
-      std::string utf8(recoded);
-      CPLFree(recoded);
-      return utf8;
-    }
+    default: return utf8(f.GetFieldAsString(i));
   }
 }
 
@@ -96,7 +98,7 @@ ordered_json ogr_sketch_document(const fs::path& path) {
   std::unique_ptr<OGRSpatialReference> crs;  // the first spatial layer's; the others are brought to it
   for (OGRLayer* layer : ds->GetLayers()) {
     if (layer->GetGeomType() == wkbNone) continue;  // a table without geometry (QGIS's styles, say)
-    const std::string where = path.string() + " layer " + layer->GetName();
+    const std::string where = path.string() + " layer " + utf8(layer->GetName());
     OGRFeatureDefn* defn = layer->GetLayerDefn();
     const bool osm_tagged = std::any_of(osm_keys().begin(), osm_keys().end(),
                                         [&](const std::string& key) { return defn->GetFieldIndex(key.c_str()) >= 0; });
@@ -111,7 +113,7 @@ ordered_json ogr_sketch_document(const fs::path& path) {
         crs->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
         const std::optional<int> epsg = epsg_of(*crs);
         if (!epsg)
-          throw UserError(where + ": its CRS (" + std::string(crs->GetName() ? crs->GetName() : "unnamed") +
+          throw UserError(where + ": its CRS (" + (crs->GetName() ? utf8(crs->GetName()) : "unnamed") +
                           ") has no EPSG code; reproject the file to an EPSG CRS, e.g. ogr2ogr -t_srs EPSG:<code>");
         doc["crs"] = crs_member(*epsg);
       } else if (!srs->IsSame(crs.get())) {

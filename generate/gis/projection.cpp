@@ -11,6 +11,7 @@
 #include <ogr_spatialref.h>
 #include <proj.h>
 
+#include "generate/city/format_number.h"
 #include "generate/errors.h"
 
 namespace exacity {
@@ -280,6 +281,39 @@ bool looks_lon_lat(const std::vector<FeaturePositions>& features, const fs::path
                   "\"properties\": {\"name\": \"EPSG:4326\"}} for longitude and latitude");
 }
 
+bool in_degrees(const OGRSpatialReference& crs) {
+  return crs.IsGeographic() && std::abs(crs.GetAngularUnits() - M_PI / 180) < 1e-12;
+}
+
+// Tools that cut features at the antimeridian (ogr2ogr -wrapdateline, GeoJSON's
+// recommendation) compute each part's crossing on its own: the halves of one polygon or
+// road end at latitudes some 1e-10 degrees apart (tens of micrometres) and at longitude 180
+// on one side, -180 on the other. Exactly, those are different points, and the city would
+// have a seam of slivers and roads ending a hair short. Positions on the antimeridian whose
+// latitudes are within kSeamTolerance of the next one's are made one point: the lowest
+// latitude of their run, at longitude 180.
+constexpr double kSeamTolerance = 1e-7;  // degrees of latitude, about a centimetre
+
+void node_the_antimeridian(const std::vector<std::vector<FeaturePositions>>& features,
+                           const std::vector<std::optional<OGRSpatialReference>>& crs) {
+  std::vector<ordered_json*> seam;
+  for (std::size_t i = 0; i < features.size(); ++i) {
+    if (!crs[i] || !in_degrees(*crs[i])) continue;
+    for (const FeaturePositions& f : features[i])
+      for (ordered_json* p : f.positions)
+        if (std::abs(std::abs((*p)[0].get<double>()) - 180) <= 1e-9) seam.push_back(p);
+  }
+  std::stable_sort(seam.begin(), seam.end(),
+                   [](const ordered_json* a, const ordered_json* b) { return (*a)[1].get<double>() < (*b)[1].get<double>(); });
+  double run_start = 0, previous = -1000;
+  for (ordered_json* p : seam) {
+    const double lat = (*p)[1].get<double>();
+    if (lat - previous > kSeamTolerance) run_start = lat;
+    previous = lat;
+    (*p)[0] = 180.0, (*p)[1] = run_start;
+  }
+}
+
 // The CRS a crs member names, as PROJ knows it.
 OGRSpatialReference named_crs(const ordered_json& crs, const fs::path& path) {
   const std::string name = crs_name(crs);
@@ -332,7 +366,16 @@ std::vector<Place> places_of(const std::vector<std::vector<FeaturePositions>>& f
     if (!crs[i] || features[i].empty()) continue;
     std::vector<Place> part = raw_places(features[i]);
     // A geographic CRS's degrees are lon/lat enough for an extent, whatever its datum.
-    if (!(crs[i]->IsGeographic() && std::abs(crs[i]->GetAngularUnits() - M_PI / 180) < 1e-12)) {
+    if (in_degrees(*crs[i])) {
+      for (const Place& place : part)
+        for (geom::Vec2 p : place.lonlat)
+          if (!(std::abs(p.x) <= 360 && std::abs(p.y) <= 90))
+            throw UserError(*place.feature + ": position [" + format_number(p.x) + ", " + format_number(p.y) +
+                            "] is no longitude and latitude, though " + parts[i].path.string() + "'s CRS, " +
+                            crs_text(*crs[i]) +
+                            ", counts in degrees: the file's CRS is wrong (ogr2ogr gives a GeoJSON without a crs "
+                            "EPSG:4326); assign the right one with ogr2ogr -a_srs EPSG:<code>");
+    } else {
       std::unique_ptr<OGRCoordinateTransformation> t(OGRCreateCoordinateTransformation(&*crs[i], &wgs84));
       if (!t)
         throw UserError(parts[i].path.string() + ": PROJ cannot bring " + crs_text(*crs[i]) +
@@ -413,6 +456,7 @@ ordered_json bring_to_one_crs(std::vector<SketchPart>& parts, bool& changed) {
     crs[i] = crs[*first_named], members[i] = members[*first_named];
   }
 
+  node_the_antimeridian(features, crs);
   const std::vector<Place> places = places_of(features, crs, parts);
   if (places.empty()) return members[*first];  // no positions: the sketch reader says so
   const geom::Box box = box_of(places);
