@@ -153,7 +153,8 @@ MeshCounts export_3d(const City& city, const fs::path& dir, GltfCounts& gltf) {
                  dir / "city.city.json", city.clutter.items);
   std::vector<ModelInstance> clutter;
   for (const Clutter& c : city.clutter.items) clutter.push_back(c.instance);
-  gltf = write_gltf(city.ground, ground, city.buildings, city.models, meshes, library, dir / "city.glb", clutter);
+  gltf = write_gltf(city.ground, ground, city.buildings, city.models, meshes, city.settings.seed, library,
+                    dir / "city.glb", clutter);
   return write_meshes(city.buildings, city.models, meshes, ground, dir / "city.obj", dir / "city.ply");
 }
 

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "generate/cancel.h"
-#include "generate/city/random.h"
+#include "generate/city/structure_albedos.h"
 #include "generate/mesh/building_mesh.h"
 #include "render/scene_build.h"
 
@@ -35,9 +35,8 @@ void RenderScene::add_buildings(const exacity::City& city, const geom::Box& worl
   auto add_mesh = [&](int id, exacity::ZoneType zone, const exacity::Mesh& mesh, double floor, double eaves) {
     facades_[id] = facade_style(zone, city.settings.seed, id, static_cast<float>(floor), static_cast<float>(eaves));
     const int k = tiles.tile_of[id];
-    exacity::Random pick(exacity::mix(city.settings.seed, static_cast<std::uint64_t>(id)));
-    const int f = palette.facade.at({zone, static_cast<int>(pick.next() % exacity::facade_albedos(zone).size())});
-    const int r = palette.roof.at({zone, static_cast<int>(pick.next() % exacity::roof_albedos(zone).size())});
+    const exacity::StructureAlbedos albedos = exacity::structure_albedos(zone, city.settings.seed, id);
+    const int f = palette.facade.at({zone, albedos.facade}), r = palette.roof.at({zone, albedos.roof});
     const exacity::MeshTriangles tris = exacity::mesh_triangles(mesh);
     const int first = static_cast<int>(meshes.vertices[k].size());
     for (const auto& p : tris.vertices) meshes.vertices[k].push_back(to_scene(p[0], p[1], p[2]));

@@ -83,7 +83,7 @@ json write_city_tiles(const City& city, const fs::path& dir) {
       for (const geom::Vec2& p : outline.outer) b.add(p.x, p.y, floor), b.add(p.x, p.y, floor + height);
     Tile& t = tiles[tile_of((b.box.min_x + b.box.max_x) / 2, (b.box.min_y + b.box.max_y) / 2)];
     t.bounds.add(b);
-    t.boxes.push_back({b.box, b.bottom, b.top, zone});
+    t.boxes.push_back({b.box, b.bottom, b.top, zone, id});
     const int block = lot >= 0 ? city.lots[lot].block : -1;
     BlockPart& part = t.blocks[{block, zone}];
     part.bounds.add(b);
@@ -104,7 +104,8 @@ json write_city_tiles(const City& city, const fs::path& dir) {
 
   fs::create_directories(dir);
   const GltfCounts ground =
-      write_gltf(city.ground, ground_layers(city.ground, city.heightmap()), {}, {}, {}, nullptr, dir / "ground.glb");
+      write_gltf(city.ground, ground_layers(city.ground, city.heightmap()), {}, {}, {}, city.settings.seed, nullptr,
+                 dir / "ground.glb");
   json index{{"tile_size", size},
              {"bounds", {box.min_x, box.min_y, box.max_x, box.max_y}},
              {"ground", "/api/tiles/ground.glb"},
@@ -123,12 +124,13 @@ json write_city_tiles(const City& city, const fs::path& dir) {
     std::vector<StructureBox> blocks;
     for (const auto& [key, part] : t.blocks) {
       const Bounds3& b = part.bounds;
-      blocks.push_back({b.box, b.bottom, part.area > 0 ? part.area_times_top / part.area : b.top, key.second});
+      blocks.push_back({b.box, b.bottom, part.area > 0 ? part.area_times_top / part.area : b.top, key.second, -1});
     }
     const GltfCounts full =
-        write_gltf_structures(city.ground, t.buildings, t.models, meshes, library, dir / name / "0.glb", t.clutter);
-    const GltfCounts boxes = write_gltf_boxes(city.ground, t.boxes, dir / name / "1.glb");
-    const GltfCounts far = write_gltf_boxes(city.ground, blocks, dir / name / "2.glb");
+        write_gltf_structures(city.ground, t.buildings, t.models, meshes, city.settings.seed, library,
+                              dir / name / "0.glb", t.clutter);
+    const GltfCounts boxes = write_gltf_boxes(city.ground, t.boxes, city.settings.seed, dir / name / "1.glb");
+    const GltfCounts far = write_gltf_boxes(city.ground, blocks, city.settings.seed, dir / name / "2.glb");
     json levels = json::array();
     for (int level = 0; level < 3; ++level)
       levels.push_back("/api/tiles/" + name + "/" + std::to_string(level) + ".glb");

@@ -1,8 +1,9 @@
 // GET and PUT /api/sketch, PUT /api/heightmap, GET /api/heightmap.png, GET and POST /api/models,
-// GET /api/lonlat.
+// GET /api/lonlat, GET /api/basemap and /api/basemap.png.
 #include "generate/errors.h"
 #include "generate/gis/projection.h"
 #include "generate/placement/model_library.h"
+#include "serve/basemap.h"
 #include "serve/server_state.h"
 
 namespace exacity::serve {
@@ -41,15 +42,7 @@ json lonlat_grid(ServerState& s) {
   const Sketch sketch = s.sketch.load();
   const std::optional<int> epsg = sketch.crs.is_null() ? std::nullopt : epsg_of(sketch.crs);
   if (!epsg) return out;
-  geom::Box box = geom::Box::none();
-  for (const ZoneFeature& z : sketch.zones)
-    for (const geom::Polygon& p : z.polygons)
-      for (geom::Vec2 v : p.outer) box.add(v);
-  for (const RoadFeature& r : sketch.roads)
-    for (const geom::Polyline& l : r.lines)
-      for (geom::Vec2 v : l) box.add(v);
-  const double grow = std::max({box.width(), box.height(), 100.0});
-  box = {box.min_x - grow, box.min_y - grow, box.max_x + grow, box.max_y + grow};
+  const geom::Box box = sketch_surroundings(sketch);
   constexpr int kSide = 9;
   const ToLonLat to_lonlat(*epsg);
   json points = json::array();
@@ -117,6 +110,36 @@ void add_sketch_routes(ServerState& s) {
       res.set_header("Cache-Control", "no-store");
       res.set_content(answer.dump(), "application/json");
     });
+  // A GeoTIFF below the work folder drawn under the sketch: where it lies, then its picture.
+  // Read-only, so a GET (behind the token and Host checks as every route).
+  const auto basemap = [&s](const httplib::Request& req) {
+    if (!s.sketch.stored()) throw UserError("basemap: there is no sketch yet to place it under; draw or open one");
+    return place_basemap(s.work, req.get_param_value("file"), s.sketch.load());
+  };
+  s.http.Get("/api/basemap", [&s, basemap](const httplib::Request& req, httplib::Response& res) {
+    BasemapImage image;
+    try {
+      image = basemap(req);
+    } catch (const UserError& e) {
+      return refuse(res, 400, s.in_work(e.what()));
+    }
+    const json answer{{"file", image.name},
+                      {"extent", image.extent},
+                      {"size", {image.width, image.height}},
+                      {"crs", image.target_srs.empty() ? json(nullptr) : json(image.target_srs)}};
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(answer.dump(), "application/json");
+  });
+  s.http.Get("/api/basemap.png", [&s, basemap](const httplib::Request& req, httplib::Response& res) {
+    std::string png;
+    try {
+      png = basemap_png(basemap(req));
+    } catch (const UserError& e) {
+      return refuse(res, 400, s.in_work(e.what()));
+    }
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(png, "image/png");
+  });
   s.http.Get("/api/heightmap.png", [&s](const httplib::Request&, httplib::Response& res) {
     std::optional<std::string> png;
     try {

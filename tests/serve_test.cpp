@@ -1,6 +1,9 @@
 // exacity serve's API through httplib's client, against a server in this process
 // (docs/serve.md; docs/design.md, Serving).
 #include <OpenImageIO/imageio.h>
+#include <gdal_priv.h>
+#include <tiny_gltf.h>
+#include <ogr_spatialref.h>
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
@@ -23,6 +26,7 @@
 
 #include "generate/cancel.h"
 #include "generate/city/palette.h"
+#include "generate/city/structure_albedos.h"
 #include "generate/sketch/sketch.h"
 #include "generate/errors.h"
 #include "generate/pipeline.h"
@@ -258,19 +262,25 @@ TEST_F(ServeTest, SettingsTableIsTheOneTheCliReads) {
   EXPECT_EQ(stranger.Get("/api/settings")->status, 403);
 }
 
-// A sketch with a place on Earth gives the page a grid of lon/lat over it for a basemap: on
-// UTM zone 33's central meridian (x = 500000) the longitude is 15 degrees exactly; rows go
-// north. One with no place on Earth has none.
-TEST_F(ServeTest, LonLatGridPlacesTheSketch) {
-  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
-  EXPECT_EQ(json::parse(client->Get("/api/lonlat")->body), json::parse(R"({"epsg": null})"));
+// The small sketch moved into UTM zone 33 north (EPSG:32633), around 15 degrees east,
+// 49.65 north: x 499650 to 500350, y 5500000 to 5500300.
+std::string placed_small_sketch() {
   json doc = json::parse(kSmallSketch);
   doc["crs"] = {{"type", "name"}, {"properties", {{"name", "urn:ogc:def:crs:EPSG::32633"}}}};
   const auto moved = [](json& p) { p = {p[0].get<double>() + 499700, p[1].get<double>() + 5500000}; };
   for (int zone : {0, 1})
     for (json& p : doc["features"][zone]["geometry"]["coordinates"][0]) moved(p);
   for (json& p : doc["features"][2]["geometry"]["coordinates"]) moved(p);
-  auto put = client->Put("/api/sketch", doc.dump(), "application/geo+json");
+  return doc.dump();
+}
+
+// A sketch with a place on Earth gives the page a grid of lon/lat over it for a basemap: on
+// UTM zone 33's central meridian (x = 500000) the longitude is 15 degrees exactly; rows go
+// north. One with no place on Earth has none.
+TEST_F(ServeTest, LonLatGridPlacesTheSketch) {
+  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+  EXPECT_EQ(json::parse(client->Get("/api/lonlat")->body), json::parse(R"({"epsg": null})"));
+  auto put = client->Put("/api/sketch", placed_small_sketch(), "application/geo+json");
   ASSERT_EQ(put->status, 200) << put->body;
   auto r = client->Get("/api/lonlat");
   ASSERT_EQ(r->status, 200) << r->body;
@@ -287,6 +297,141 @@ TEST_F(ServeTest, LonLatGridPlacesTheSketch) {
     }
   }
   EXPECT_NEAR(grid["lonlat"][40][1].get<double>(), 49.65, 0.01);  // 5500 km north of the equator
+}
+
+// A 200 x 200 GeoTIFF of 10-unit pixels in EPSG `epsg` (0: no CRS, its coordinates the
+// sketch's), white but for a red 6-pixel square centred on `mark` (a point in EPSG:32633, or
+// in the sketch's coordinates without a CRS) and a pixel's grid corner there.
+void write_geotiff(const fs::path& file, int epsg, double mark_x, double mark_y) {
+  GDALAllRegister();
+  double x = mark_x, y = mark_y;
+  OGRSpatialReference srs;
+  if (epsg) {
+    OGRSpatialReference utm;
+    utm.importFromEPSG(32633);
+    utm.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    srs.importFromEPSG(epsg);
+    srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    std::unique_ptr<OGRCoordinateTransformation> to(OGRCreateCoordinateTransformation(&utm, &srs));
+    ASSERT_TRUE(to && to->Transform(1, &x, &y));
+  }
+  const int n = 200;
+  GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GTiff")->Create(file.c_str(), n, n, 3, GDT_Byte, nullptr);
+  ASSERT_NE(ds, nullptr);
+  double transform[6] = {x - 1000, 10, 0, y + 1000, 0, -10};
+  ds->SetGeoTransform(transform);
+  if (epsg) ds->SetSpatialRef(&srs);
+  for (int band = 1; band <= 3; ++band) {
+    std::vector<unsigned char> pixels(n * n, 255);
+    if (band > 1)
+      for (int row = 97; row < 103; ++row)
+        for (int col = 97; col < 103; ++col) pixels[row * n + col] = 0;
+    ASSERT_EQ(ds->GetRasterBand(band)->RasterIO(GF_Write, 0, 0, n, n, pixels.data(), n, n, GDT_Byte, 0, 0), CE_None);
+  }
+  GDALClose(ds);
+}
+
+// The red square's centre in a basemap picture served with `extent`, in the sketch's
+// coordinates; and its alpha there.
+std::pair<geom::Vec2, int> red_mark(const std::string& png, const json& extent, const fs::path& scratch) {
+  write(scratch, png);
+  auto in = OIIO::ImageInput::open(scratch.string());
+  EXPECT_TRUE(in);
+  if (!in) return {{}, 0};
+  const OIIO::ImageSpec spec = in->spec();
+  std::vector<unsigned char> pixels(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
+  in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, pixels.data());
+  EXPECT_EQ(spec.nchannels, 4);  // RGB and alpha
+  double sx = 0, sy = 0, weight = 0;
+  int alpha = 0;
+  for (int row = 0; row < spec.height; ++row)
+    for (int col = 0; col < spec.width; ++col) {
+      const unsigned char* p = &pixels[(static_cast<std::size_t>(row) * spec.width + col) * spec.nchannels];
+      const double red = p[3] == 255 ? (p[0] - p[1]) / 255.0 : 0;  // white 0, the square's red 1
+      if (red <= 0.05) continue;
+      sx += red * (col + 0.5), sy += red * (row + 0.5), weight += red;
+      alpha = std::max(alpha, int(p[3]));
+    }
+  EXPECT_GT(weight, 4) << "no red square in the picture";
+  const double x0 = extent[0], y0 = extent[1], x1 = extent[2], y1 = extent[3];
+  return {{x0 + sx / weight * (x1 - x0) / spec.width, y1 - sy / weight * (y1 - y0) / spec.height}, alpha};
+}
+
+// A GeoTIFF below the work folder, in the sketch's CRS, in Web Mercator or in another UTM
+// zone, is reprojected into the sketch's CRS by GDAL and drawn where it lies: its red mark
+// lands on the point it marks, within a source pixel's half (5 m). Without CRS on both
+// sides its coordinates are the sketch's. Names that leave the folder, files that are not
+// GeoTIFFs, a CRS on one side only and a GeoTIFF far away are refused with one line.
+TEST_F(ServeTest, GeoTiffBasemapIsPlacedInTheSketchsCrs) {
+  ASSERT_EQ(client->Put("/api/sketch", placed_small_sketch(), "application/geo+json")->status, 200);
+  const geom::Vec2 mark{499900, 5500120};
+  for (const int epsg : {32633, 3857, 32634}) {
+    const std::string name = "maps/mark_" + std::to_string(epsg) + ".tif";
+    fs::create_directories(work() / "maps");
+    write_geotiff(work() / name, epsg, mark.x, mark.y);
+    auto where = client->Get("/api/basemap?file=" + name);
+    ASSERT_EQ(where->status, 200) << where->body;
+    const json placed = json::parse(where->body);
+    EXPECT_EQ(placed["file"], name);
+    EXPECT_EQ(placed["crs"], "EPSG:32633");
+    // Cut to the sketch's surroundings: its features' box grown by 700 m each way.
+    const json extent = placed["extent"];
+    EXPECT_GE(extent[0].get<double>(), 499650 - 700.0);
+    EXPECT_LE(extent[2].get<double>(), 500350 + 700.0);
+    EXPECT_GE(extent[1].get<double>(), 5500000 - 700.0);
+    EXPECT_LE(extent[3].get<double>(), 5500300 + 700.0);
+    auto png = client->Get("/api/basemap.png?file=" + name);
+    ASSERT_EQ(png->status, 200) << png->body;
+    EXPECT_EQ(png->get_header_value("Content-Type"), "image/png");
+    const auto [at, alpha] = red_mark(png->body, extent, dir / "basemap.png");
+    EXPECT_NEAR(at.x, mark.x, 5) << epsg;
+    EXPECT_NEAR(at.y, mark.y, 5) << epsg;
+    EXPECT_EQ(alpha, 255) << epsg;
+  }
+
+  const auto refused = [&](const std::string& query, const std::string& says) {
+    auto r = client->Get("/api/basemap?file=" + query);
+    ASSERT_TRUE(r) << query;
+    EXPECT_EQ(r->status, 400) << query;
+    EXPECT_NE(r->body.find(says), std::string::npos) << query << ": " << r->body;
+    EXPECT_EQ(r->body.find('\n'), std::string::npos) << r->body;
+    EXPECT_EQ(r->body.find(work().string()), std::string::npos) << r->body;
+    EXPECT_EQ(client->Get("/api/basemap.png?file=" + query)->status, 400) << query;
+  };
+  write_geotiff(dir / "outside.tif", 32633, mark.x, mark.y);
+  fs::create_symlink(dir / "outside.tif", work() / "maps" / "link.tif");
+  refused("../outside.tif", "\"..\" would leave the folder");
+  refused("maps/%252e%252e/%252e%252e/outside.tif", "percent-encoded");  // "%2e%2e" once decoded
+  refused("maps%2f..%2f..%2foutside.tif", "\"..\" would leave the folder");
+  refused(dir.string() + "/outside.tif", "absolute");
+  refused("maps/link.tif", "symbolic link");
+  refused("maps/.hidden.tif", "hidden");
+  refused("maps/none.tif", "no such file in the work folder");
+  refused("sketch.geojson", "not a GeoTIFF GDAL reads");
+  refused("", "no file named");
+  // A VRT names files anywhere: not read, whatever its name.
+  write(work() / "maps" / "outside.tif.vrt",
+        "<VRTDataset rasterXSize=\"1\" rasterYSize=\"1\"><VRTRasterBand dataType=\"Byte\" band=\"1\"><SimpleSource>"
+        "<SourceFilename>" + (dir / "outside.tif").string() + "</SourceFilename></SimpleSource></VRTRasterBand></VRTDataset>");
+  refused("maps/outside.tif.vrt", "not a GeoTIFF GDAL reads");
+  write_geotiff(work() / "maps" / "plain.tif", 0, mark.x, mark.y);
+  refused("maps/plain.tif", "has no CRS while the sketch is in EPSG:32633");
+  write_geotiff(work() / "maps" / "far.tif", 32633, mark.x + 50000, mark.y);
+  refused("maps/far.tif", "away from the sketch");
+  // Only with the token.
+  EXPECT_EQ(httplib::Client("127.0.0.1", port).Get("/api/basemap.png?file=maps/mark_3857.tif")->status, 403);
+
+  // No CRS on either side: the GeoTIFF's coordinates are the sketch's.
+  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+  write_geotiff(work() / "maps" / "local.tif", 0, 250, 100);
+  auto where = client->Get("/api/basemap?file=maps/local.tif");
+  ASSERT_EQ(where->status, 200) << where->body;
+  EXPECT_TRUE(json::parse(where->body)["crs"].is_null());
+  const auto [at, alpha] = red_mark(client->Get("/api/basemap.png?file=maps/local.tif")->body,
+                                    json::parse(where->body)["extent"], dir / "basemap.png");
+  EXPECT_NEAR(at.x, 250, 5);
+  EXPECT_NEAR(at.y, 100, 5);
+  refused("maps/mark_3857.tif", "while the sketch has no place on Earth");
 }
 
 // The page draws with the program's colours and default road widths.
@@ -661,6 +806,62 @@ TEST_F(ServeTest, TilesHoldTheCityAtThreeLevels) {
 
 // A generation after an edit reuses the regions, blocks and lots the edit left as they were
 // (generate/regenerate.h); what it writes is what generating the edited sketch alone writes.
+// A glb's materials by name, with their base colours.
+std::map<std::string, std::array<double, 3>> glb_materials(const std::string& bytes) {
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string error, warning;
+  EXPECT_TRUE(loader.LoadBinaryFromMemory(&model, &error, &warning,
+                                          reinterpret_cast<const unsigned char*>(bytes.data()),
+                                          static_cast<unsigned>(bytes.size())))
+      << error;
+  std::map<std::string, std::array<double, 3>> out;
+  for (const tinygltf::Material& m : model.materials) {
+    const auto& c = m.pbrMetallicRoughness.baseColorFactor;
+    out[m.name] = {c[0], c[1], c[2]};
+  }
+  return out;
+}
+
+// The 3D view looks like the still: city.glb and the tiles' boxes give each building the
+// facade and roof albedo the renderer gives it (a material per albedo, named by its zone,
+// surface and index), and the ground the renderer's grass, paving and asphalt.
+TEST_F(ServeTest, CityGlbColoursAreTheRenderersAlbedos) {
+  put_small_and_generate();
+  const json buildings = json::parse(client->Get("/api/layers/buildings.geojson")->body);
+  const std::map<std::string, exacity::ZoneType> zones{{"residential", exacity::ZoneType::Residential},
+                                                       {"commercial", exacity::ZoneType::Commercial},
+                                                       {"industrial", exacity::ZoneType::Industrial}};
+  std::map<std::string, exacity::Albedo> expected;
+  for (const json& f : buildings["features"]) {
+    ASSERT_TRUE(f["properties"]["model"].is_null());  // extruded, as this sketch has no library
+    const std::string zone = f["properties"]["zone"];
+    const auto albedos = exacity::structure_albedos(zones.at(zone), 3, f["properties"]["id"].get<int>());
+    expected[zone + "_wall_" + std::to_string(albedos.facade)] = exacity::facade_albedos(zones.at(zone))[albedos.facade];
+    expected[zone + "_roof_" + std::to_string(albedos.roof)] = exacity::roof_albedos(zones.at(zone))[albedos.roof];
+  }
+  ASSERT_GE(expected.size(), 6u);  // residential and commercial buildings, in more than one colour each
+  const auto structure_colours = [&](const std::map<std::string, std::array<double, 3>>& materials) {
+    std::map<std::string, exacity::Albedo> out;
+    for (const auto& [name, c] : materials)
+      if (name.find("_wall_") != std::string::npos || name.find("_roof_") != std::string::npos)
+        out[name] = {static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2])};
+    return out;
+  };
+  const auto city = glb_materials(client->Get("/api/city.glb")->body);
+  EXPECT_EQ(structure_colours(city), expected);
+  EXPECT_EQ(city.at("ground_residential"), (std::array<double, 3>{0.30f, 0.45f, 0.20f}));  // grass
+  EXPECT_EQ(city.at("ground_commercial"), (std::array<double, 3>{0.50f, 0.49f, 0.46f}));   // paving
+  EXPECT_EQ(city.at("road"), (std::array<double, 3>{0.09f, 0.09f, 0.10f}));                // asphalt
+  // The boxes standing for buildings further away are coloured as the buildings are.
+  std::map<std::string, exacity::Albedo> boxes;
+  const json index = json::parse(client->Get("/api/tiles.json")->body);
+  for (const json& tile : index["tiles"])
+    for (const auto& named : structure_colours(glb_materials(client->Get(tile["levels"][1].get<std::string>())->body)))
+      boxes.insert(named);
+  EXPECT_EQ(boxes, expected);
+}
+
 TEST_F(ServeTest, GenerationAfterAnEditWritesTheEditedSketchsCity) {
   put_small_and_generate();
   json edited = json::parse(kSmallSketch);

@@ -25,20 +25,6 @@ inline Colour surface_colour(ZoneType zone, Surface s) {
   return c;
 }
 
-// The ground: open land by zone, roads, water and the terrain beyond the zones.
-inline Colour ground_colour(ZoneType zone) {
-  switch (zone) {
-    case ZoneType::Residential: return {0.55, 0.60, 0.42};
-    case ZoneType::Commercial: return {0.58, 0.58, 0.55};
-    case ZoneType::Industrial: return {0.52, 0.50, 0.46};
-    case ZoneType::Park: return {0.36, 0.55, 0.26};
-    case ZoneType::Water: return {0.16, 0.33, 0.50};
-  }
-  return {0.5, 0.5, 0.5};
-}
-inline constexpr Colour kRoadColour{0.22, 0.22, 0.23};
-inline constexpr Colour kTerrainColour{0.45, 0.52, 0.33};
-
 // The colour variation of placed models (docs/design.md, Algorithms: rows): tint t multiplies a model's colours.
 inline Colour tinted(const Colour& c, int tint) {
   static constexpr std::array<Colour, 4> kTint{{{1, 1, 1}, {1.08, 1.0, 0.90}, {0.90, 0.96, 1.06}, {0.82, 0.82, 0.82}}};
@@ -54,6 +40,26 @@ inline constexpr Albedo kSidewalkAlbedo{0.40f, 0.39f, 0.37f}, kAsphaltAlbedo{0.0
 inline constexpr Albedo kPaintAlbedo{0.85f, 0.85f, 0.80f}, kYellowPaintAlbedo{0.80f, 0.62f, 0.12f};
 inline constexpr Albedo kWaterAlbedo{0.02f, 0.06f, 0.08f}, kWindowAlbedo{0.04f, 0.05f, 0.06f};
 inline constexpr Albedo kCommercialLotAlbedo{0.50f, 0.49f, 0.46f}, kIndustrialLotAlbedo{0.42f, 0.40f, 0.37f};
+
+// The ground in the 3D exports (city.glb, city.obj, city.ply): open land by zone, roads,
+// water and the terrain beyond the zones, in the renderer's albedos, so the 3D view looks
+// like the still: zones and terrain grass, commercial and industrial land their lots'
+// paving, roads asphalt, bridges' piers and sides the sidewalks' concrete, water its (the
+// still's water is that under the sky's reflection).
+inline constexpr Colour albedo_colour(const Albedo& a) { return {a[0], a[1], a[2]}; }
+inline Colour ground_colour(ZoneType zone) {
+  switch (zone) {
+    case ZoneType::Commercial: return albedo_colour(kCommercialLotAlbedo);
+    case ZoneType::Industrial: return albedo_colour(kIndustrialLotAlbedo);
+    case ZoneType::Water: return albedo_colour(kWaterAlbedo);
+    case ZoneType::Residential:
+    case ZoneType::Park: break;
+  }
+  return albedo_colour(kGrassAlbedo);
+}
+inline constexpr Colour kRoadColour = albedo_colour(kAsphaltAlbedo);
+inline constexpr Colour kTerrainColour = albedo_colour(kGrassAlbedo);
+inline constexpr Colour kBridgeColour = albedo_colour(kSidewalkAlbedo);
 
 // Facade and roof albedos per zone type; each building picks one of each.
 inline const std::vector<Albedo>& facade_albedos(ZoneType z) {

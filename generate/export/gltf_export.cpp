@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <tuple>
 
 #include <tiny_gltf.h>
 
@@ -10,6 +11,7 @@
 #include "generate/errors.h"
 #include "generate/export/ground_layers.h"
 #include "generate/city/palette.h"
+#include "generate/city/structure_albedos.h"
 #include "generate/version.h"
 
 namespace exacity {
@@ -205,16 +207,50 @@ Primitives ground_primitives(const std::vector<GroundLayer>& layers, const Frame
   return out;
 }
 
-// Extruded buildings and the foundations of placed models, merged per zone and surface.
+// A structure's surfaces are merged with those of the same look: its zone, the surface and
+// the albedo the renderer gives it there (structure_albedos; -1: the ground face, or a
+// box of several structures).
+using Look = std::tuple<ZoneType, int, int>;
+
+Look look_of(ZoneType zone, Surface surface, const StructureAlbedos& albedos) {
+  return {zone, static_cast<int>(surface),
+          surface == Surface::Wall ? albedos.facade : surface == Surface::Roof ? albedos.roof : -1};
+}
+
+// The renderer's albedo for a look (docs/design.md, Rendering: facades and roofs): walls and
+// roofs their structure's, the mean of the zone's for a box of several, ground faces the
+// sidewalk's.
+int look_material(const Look& look, Glb& glb) {
+  const auto [zone, surface_index, index] = look;
+  const auto surface = static_cast<Surface>(surface_index);
+  std::string name_ = std::string(name(zone)) + "_" + kSurfaceNames[surface_index];
+  const std::vector<Albedo>* albedos = surface == Surface::Wall   ? &facade_albedos(zone)
+                                       : surface == Surface::Roof ? &roof_albedos(zone)
+                                                                  : nullptr;
+  Colour colour{kSidewalkAlbedo[0], kSidewalkAlbedo[1], kSidewalkAlbedo[2]};
+  if (albedos && index >= 0) {
+    const Albedo& a = (*albedos)[static_cast<std::size_t>(index)];
+    colour = {a[0], a[1], a[2]};
+    name_ += "_" + std::to_string(index);
+  } else if (albedos) {
+    colour = {0, 0, 0};
+    for (const Albedo& a : *albedos)
+      for (int c = 0; c < 3; ++c) colour[c] += a[c] / static_cast<double>(albedos->size());
+  }
+  return glb.material(name_, colour);
+}
+
+// Extruded buildings and the foundations of placed models, merged by look.
 Primitives building_primitives(const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
-                               const std::vector<Mesh>& meshes, const Frame& local, Glb& glb) {
-  std::map<std::pair<ZoneType, int>, Triangles> merged;
+                               const std::vector<Mesh>& meshes, std::uint64_t seed, const Frame& local, Glb& glb) {
+  std::map<Look, Triangles> merged;
   const CancelCheck cancel;
-  auto merge = [&](ZoneType zone, const Mesh& mesh) {
+  auto merge = [&](int id, ZoneType zone, const Mesh& mesh) {
     cancel.check();
+    const StructureAlbedos albedos = structure_albedos(zone, seed, id);
     const MeshTriangles tris = mesh_triangles(mesh);
     for (std::size_t k = 0; k < tris.triangles.size(); ++k) {
-      Triangles& t = merged[{zone, static_cast<int>(tris.surface[k])}];
+      Triangles& t = merged[look_of(zone, tris.surface[k], albedos)];
       for (int v : tris.triangles[k]) {
         const Vec3& p = tris.vertices[v];
         t.indices.push_back(static_cast<std::uint32_t>(t.positions.size()));
@@ -223,14 +259,12 @@ Primitives building_primitives(const std::vector<Building>& buildings, const std
     }
   };
   for_each_by_id(
-      buildings, models, [&](const Building& b) { merge(b.zone, meshes[b.id]); },
+      buildings, models, [&](const Building& b) { merge(b.id, b.zone, meshes[b.id]); },
       [&](const ModelInstance& m) {
-        if (m.floor > m.base) merge(m.zone, model_mesh(m, nullptr));
+        if (m.floor > m.base) merge(m.id, m.zone, model_mesh(m, nullptr));
       });
   Primitives out;
-  for (const auto& [key, t] : merged)
-    out.push_back({glb.accessors(t), glb.material(std::string(name(key.first)) + "_" + kSurfaceNames[key.second],
-                                                  surface_colour(key.first, static_cast<Surface>(key.second)))});
+  for (const auto& [look, t] : merged) out.push_back({glb.accessors(t), look_material(look, glb)});
   return out;
 }
 
@@ -305,7 +339,7 @@ void add_mesh_node(const std::string& name, const Primitives& primitives, Glb& g
 // write_gltf's body; without the ground when `ground_layers` is null (a tile's structures).
 GltfCounts write_city_part(const std::vector<GroundLayer>* ground_layers, const geom::Box& box,
                            const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
-                           const std::vector<Mesh>& meshes, const ModelLibrary* library,
+                           const std::vector<Mesh>& meshes, std::uint64_t seed, const ModelLibrary* library,
                            const std::filesystem::path& file, const std::vector<ModelInstance>& clutter) {
   const Frame local{local_origin(box)};
   Glb glb;
@@ -313,7 +347,7 @@ GltfCounts write_city_part(const std::vector<GroundLayer>* ground_layers, const 
   root.name = "city";
   root.translation = {local.origin.x, 0, -local.origin.y};
   if (ground_layers) add_mesh_node("ground", ground_primitives(*ground_layers, local, glb), glb, root);
-  add_mesh_node("buildings", building_primitives(buildings, models, meshes, local, glb), glb, root);
+  add_mesh_node("buildings", building_primitives(buildings, models, meshes, seed, local, glb), glb, root);
   GltfCounts counts;
   StoredModels stored;
   counts.instances = add_model_nodes(models, library, local, glb, root, stored);
@@ -334,26 +368,27 @@ GltfCounts write_city_part(const std::vector<GroundLayer>* ground_layers, const 
 
 GltfCounts write_gltf(const Ground& ground, const std::vector<GroundLayer>& ground_layers,
                       const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
-                      const std::vector<Mesh>& meshes, const ModelLibrary* library, const std::filesystem::path& file,
-                      const std::vector<ModelInstance>& clutter) {
-  return write_city_part(&ground_layers, city_box(ground), buildings, models, meshes, library, file, clutter);
+                      const std::vector<Mesh>& meshes, std::uint64_t seed, const ModelLibrary* library,
+                      const std::filesystem::path& file, const std::vector<ModelInstance>& clutter) {
+  return write_city_part(&ground_layers, city_box(ground), buildings, models, meshes, seed, library, file, clutter);
 }
 
 GltfCounts write_gltf_structures(const Ground& ground, const std::vector<Building>& buildings,
                                  const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
-                                 const ModelLibrary* library, const std::filesystem::path& file,
+                                 std::uint64_t seed, const ModelLibrary* library, const std::filesystem::path& file,
                                  const std::vector<ModelInstance>& clutter) {
-  return write_city_part(nullptr, city_box(ground), buildings, models, meshes, library, file, clutter);
+  return write_city_part(nullptr, city_box(ground), buildings, models, meshes, seed, library, file, clutter);
 }
 
-GltfCounts write_gltf_boxes(const Ground& ground, const std::vector<StructureBox>& boxes,
+GltfCounts write_gltf_boxes(const Ground& ground, const std::vector<StructureBox>& boxes, std::uint64_t seed,
                             const std::filesystem::path& file) {
   const Frame local{local_origin(city_box(ground))};
-  std::map<std::pair<ZoneType, int>, Triangles> merged;
+  std::map<Look, Triangles> merged;
   for (const StructureBox& b : boxes) {
     const double x[2] = {b.box.min_x, b.box.max_x}, y[2] = {b.box.min_y, b.box.max_y}, z[2] = {b.bottom, b.top};
+    const StructureAlbedos albedos = b.id >= 0 ? structure_albedos(b.zone, seed, b.id) : StructureAlbedos{-1, -1};
     auto quad = [&](Surface surface, std::array<std::array<int, 3>, 4> corners) {
-      Triangles& t = merged[{b.zone, static_cast<int>(surface)}];
+      Triangles& t = merged[look_of(b.zone, surface, albedos)];
       const auto first = static_cast<std::uint32_t>(t.positions.size());
       for (const auto& c : corners) t.positions.push_back(local(x[c[0]], y[c[1]], z[c[2]]));
       for (std::uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) t.indices.push_back(first + k);
@@ -370,9 +405,7 @@ GltfCounts write_gltf_boxes(const Ground& ground, const std::vector<StructureBox
   root.name = "city";
   root.translation = {local.origin.x, 0, -local.origin.y};
   Primitives prims;
-  for (const auto& [key, t] : merged)
-    prims.push_back({glb.accessors(t), glb.material(std::string(name(key.first)) + "_" + kSurfaceNames[key.second],
-                                                    surface_colour(key.first, static_cast<Surface>(key.second)))});
+  for (const auto& [look, t] : merged) prims.push_back({glb.accessors(t), look_material(look, glb)});
   add_mesh_node("boxes", prims, glb, root);
   glb.write(glb.node(root), file);
   GltfCounts counts;

@@ -23,29 +23,33 @@ struct GltfCounts {
 };
 
 // ground_layers are ground_layers(ground, terrain), a primitive each of the mesh "ground";
-// meshes are structure_meshes(buildings, models, library), by id. The street clutter's
+// meshes are structure_meshes(buildings, models, library), by id; `seed` the city's, which
+// picks each structure's facade and roof albedo as the renderer picks it (structure_albedos,
+// a material each). The street clutter's
 // models are instanced like the lots', sharing their geometry: a node each, in id order,
 // under the root's child "clutter".
 GltfCounts write_gltf(const Ground& ground, const std::vector<GroundLayer>& ground_layers,
                       const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
-                      const std::vector<Mesh>& meshes, const ModelLibrary* library, const std::filesystem::path& file,
-                      const std::vector<ModelInstance>& clutter = {});
+                      const std::vector<Mesh>& meshes, std::uint64_t seed, const ModelLibrary* library,
+                      const std::filesystem::path& file, const std::vector<ModelInstance>& clutter = {});
 
 // exacity serve's tiles (docs/design.md, Serving: tiles), in write_gltf's frame for the same
 // ground, so a tile's structures are city.glb's to the float.
 // The structures given and their clutter, as write_gltf writes them, without the ground.
 GltfCounts write_gltf_structures(const Ground& ground, const std::vector<Building>& buildings,
                                  const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
-                                 const ModelLibrary* library, const std::filesystem::path& file,
+                                 std::uint64_t seed, const ModelLibrary* library, const std::filesystem::path& file,
                                  const std::vector<ModelInstance>& clutter = {});
-// Boxes standing for structures far away: a roof and four walls each, coloured as an
-// extruded building of their zone.
+// Boxes standing for structures far away: a roof and four walls each, coloured as the
+// structure `id` is (structure_albedos), or, for a box of several (id -1), in the mean of
+// their zone's albedos.
 struct StructureBox {
   geom::Box box;
   double bottom = 0, top = 0;
   ZoneType zone = ZoneType::Residential;
+  int id = -1;
 };
-GltfCounts write_gltf_boxes(const Ground& ground, const std::vector<StructureBox>& boxes,
+GltfCounts write_gltf_boxes(const Ground& ground, const std::vector<StructureBox>& boxes, std::uint64_t seed,
                             const std::filesystem::path& file);
 
 }  // namespace exacity

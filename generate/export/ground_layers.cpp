@@ -44,7 +44,7 @@ std::vector<GroundLayer> ground_layers(const Ground& ground, const Terrain* terr
       drape(a.polygon, terrain, kRoadOverTerrain, roads.mesh);
   }
   layers.push_back(std::move(roads));
-  GroundLayer bridges{GroundKind::Bridge, "bridge", kRoadColour, 0.9, {}};
+  GroundLayer bridges{GroundKind::Bridge, "bridge", kBridgeColour, 0.9, {}};
   bridge_structure(ground, terrain, decks, bridges.mesh);
   layers.push_back(std::move(bridges));
   std::erase_if(layers, [](const GroundLayer& l) { return l.mesh.triangles.empty(); });

@@ -4,7 +4,7 @@
 // refused (the page back at the server's sketch, the message on one line), reload, generate,
 // find the generated layers and the downloads, orbit the 3D view, see its tiles' levels
 // switch from far to near, walk and fly, pick a building, render it, upload a model library
-// (listed with its models), cancel a generation (its time left shown); the settings' forms
+// (listed with its models), draw an XYZ basemap and a GeoTIFF under a sketch in UTM, cancel a generation (its time left shown); the settings' forms
 // made from the server's table, a value refused next to its field; the page's colours the
 // server's; no console error throughout but the refusals asked for. Usage: node check_page.mjs EXACITY_BINARY OUT_DIR
 // (screenshots go to OUT_DIR). Exits 1 on the first failed check. DEBUG_PAGE=1 logs every
@@ -14,6 +14,8 @@ import fs from 'node:fs';
 import http from 'node:http';
 import path from 'node:path';
 import puppeteer from 'puppeteer-core';
+// The page's own copy of geotiff.js (an OpenLayers dependency), to write a test GeoTIFF.
+import {writeArrayBuffer} from '../../web/node_modules/geotiff/dist-module/geotiff.js';
 
 const [binary, out] = process.argv.slice(2);
 if (!binary || !out) {
@@ -452,6 +454,17 @@ try {
   const far = await tiles();
   check(far.tiles >= 2 && far.inView === far.tiles && far.shown[2] === far.tiles && far.shown[0] === 0 &&
         far.shown[1] === 0, `far away, every tile at its coarsest level: ${JSON.stringify(far)}`);
+  // Looking down 37° and more, the view is all ground: the renderer's grass plane goes on past
+  // the city's ground, so no sky shows under the horizon.
+  const sky = await page.evaluate(() => {
+    const pixels = window.exacityExplore.pixels(), background = window.exacityExplore.scene.background.clone();
+    const [r, g, b] = background.convertLinearToSRGB().toArray().map(v => Math.round(v * 255));
+    let n = 0;
+    for (let i = 0; i < pixels.length; i += 4)
+      if (Math.abs(pixels[i] - r) < 4 && Math.abs(pixels[i + 1] - g) < 4 && Math.abs(pixels[i + 2] - b) < 4) ++n;
+    return n;
+  });
+  check(sky === 0, `no sky under the horizon: ${sky} pixels of the sky's colour`);
   // Between 3 and 8 tile sides (250 m) from every tile of this city (under 1 km across): boxes.
   await page.evaluate(o => window.exacityExplore.setOrbit({...o, elevation: 60, distance: 1400}), kept_orbit);
   const middle = await tiles();
@@ -484,6 +497,33 @@ try {
   check(picked && await page.$eval('#building-info', b => b.dataset.id) === String(picked.id) &&
         info.includes(picked.zone) && info.includes(`lot${picked.lot}`),
         `a click on building ${picked?.id} shows its attributes: ${info}`);
+  // Walls have the still's windows: facing the tallest extruded building's wall from 30 m,
+  // dark glass in rows where the wall alone is light.
+  const tallest = await page.evaluate(() => {
+    const view = window.exacityExplore;
+    const plain = view.layers.buildings.features.filter(f => !f.properties.model);
+    const f = plain.reduce((a, b) => (b.properties.height > a.properties.height ? b : a));
+    const ring = f.geometry.type === 'Polygon' ? f.geometry.coordinates[0] : f.geometry.coordinates[0][0];
+    const ys = ring.map(p => p[1]), south = Math.min(...ys);
+    const x = ring.reduce((s, p) => s + p[0], 0) / ring.length;
+    // Its south side, from the south, at half its height.
+    view.setOrbit({target: [x, south, f.properties.height / 2], azimuth: 270, elevation: 5, distance: 30});
+    return f.properties;
+  });
+  await tiles();
+  const darkShare = () => page.evaluate(() => {
+    const pixels = window.exacityExplore.pixels();
+    let dark = 0;
+    for (let i = 0; i < pixels.length; i += 4) if (pixels[i] < 60 && pixels[i + 1] < 60 && pixels[i + 2] < 70) ++dark;
+    return dark / (pixels.length / 4);
+  });
+  const withWindows = await darkShare();
+  await page.evaluate(() => { window.exacityExplore.facadeWindows.value = 0; });
+  const bare = await darkShare();
+  await page.evaluate(() => { window.exacityExplore.facadeWindows.value = 1; });
+  check(withWindows > bare + 0.05, `the walls have windows: ${(100 * withWindows).toFixed(1)}% of the view dark glass against ` +
+        `${(100 * bare).toFixed(1)}% without (building ${tallest.id}, ${tallest.height} m)`);
+  await page.screenshot({path: path.join(out, 'windows.png')});
   // Walk: the CLI's pedestrian, where the orbit looked; keys move it along its heading.
   await page.click('[data-mode="pedestrian"]');
   const walker = await spec();
@@ -600,6 +640,44 @@ try {
   check(tileRequests.length === hidden, 'Hide drops the basemap: no tiles asked for after it');
   tileServer.close();
 
+  // A GeoTIFF of the work folder in Web Mercator, white with a red square 40 m across on a
+  // point of the sketch: the server warps it into the sketch's UTM zone and the page lays it
+  // under the sketch, the square's middle red where the point is drawn and white 60 m off.
+  // A name that leaves the folder is refused with its one line.
+  const mark = [499900, 5500100];
+  const [lon, lat] = await page.evaluate(m => window.exacityPage.lonLat(m), mark);
+  const mercator = [lon * 20037508.342789244 / 180, Math.log(Math.tan((90 + lat) * Math.PI / 360)) * 6378137];
+  const cells = 200, cell = 8;  // in Web Mercator metres: some 5.2 m on the ground here
+  const rgb = new Uint8Array(cells * cells * 3).fill(255);
+  const half = Math.round(20 / 0.648 / cell);  // 20 m on the ground, Mercator's scale 1/cos(49.65°)
+  for (let r = cells / 2 - half; r < cells / 2 + half; ++r)
+    for (let c = cells / 2 - half; c < cells / 2 + half; ++c) rgb[(r * cells + c) * 3 + 1] = rgb[(r * cells + c) * 3 + 2] = 0;
+  fs.mkdirSync(path.join(out, 'work', 'maps'), {recursive: true});
+  fs.writeFileSync(path.join(out, 'work', 'maps', 'mark.tif'), Buffer.from(writeArrayBuffer(rgb, {
+    width: cells, height: cells, ModelPixelScale: [cell, cell, 0],
+    ModelTiepoint: [0, 0, 0, mercator[0] - cells / 2 * cell, mercator[1] + cells / 2 * cell, 0],
+    GTModelTypeGeoKey: 1, GTRasterTypeGeoKey: 1, ProjectedCSTypeGeoKey: 3857})));
+  await page.$eval('#geotiff-name', i => { i.value = '../mark.tif'; });
+  await page.click('#geotiff-show');
+  await page.waitForSelector('#message.error', {timeout: 5000});
+  check(/^basemap \.\.\/mark\.tif: "\.\." would leave the folder/.test(await message()),
+        `a GeoTIFF name leaving the work folder is refused: ${await message()}`);
+  check(errors.filter(e => /^HTTP 400: .*\/api\/basemap\?file=\.\.%2Fmark\.tif$/.test(e)).length === 1 &&
+        errors.every(e => /400/.test(e)), `its 400 is the only error: ${errors.join(' | ')}`);
+  errors.length = 0;
+  await page.$eval('#geotiff-name', i => { i.value = 'maps/mark.tif'; });
+  await page.click('#geotiff-show');
+  await page.waitForFunction(() => /^Basemap maps\/mark\.tif under the sketch, warped into EPSG:32633\.$/.test(
+      document.getElementById('message').textContent), {timeout: 10000});
+  await page.evaluate(() => window.exacityPage.drawn());
+  const colours = await page.evaluate(m => window.exacityPage.geotiffAt([m, [m[0] + 60, m[1]], [m[0], m[1] - 60]]), mark);
+  const red = c => c && c[0] > 200 && c[1] < 80 && c[2] < 80, white = c => c && c.slice(0, 3).every(v => v > 200);
+  check(red(colours[0]) && white(colours[1]) && white(colours[2]),
+        `the GeoTIFF's red square lies on its point, white around it: ${JSON.stringify(colours)}`);
+  await page.screenshot({path: path.join(out, 'geotiff.png')});
+  await page.click('#basemap-hide');
+  check(await page.evaluate(() => window.exacityPage.geotiffAt([[0, 0]])[0]) === null, 'Hide drops the GeoTIFF');
+
   // Cancel: a city some kilometres across (as serve_test's), cancelled in its lots stage; the
   // progress bar empties and says so.
   const large = path.join(out, 'large.geojson');
@@ -621,6 +699,15 @@ try {
            ['0 m', '1000 m', '2000 m'].every(t => on('y').includes(t));
   }, {timeout: 5000}).then(() => true, () => false);
   check(gridLabelled, `the grid is labelled: ${JSON.stringify(await page.evaluate(() => window.exacityPage.gridLabels()))}`);
+  // No label in the top left corner, under the zoom buttons or on the other row's labels,
+  // wherever the grid's lines fall: the view moved 17 px at a time over 136 px.
+  const cornered = [];
+  for (let i = 0; i < 8; ++i) {
+    await page.evaluate(() => window.exacityPage.pan(17, 17));
+    for (const l of await page.evaluate(() => window.exacityPage.gridLabels()))
+      if ((l.axis === 'x' && l.at[0] < 32) || (l.axis === 'y' && l.at[1] < 72)) cornered.push(`${l.label} at ${l.at.map(Math.round)}`);
+  }
+  check(cornered.length === 0, `no grid label in the zoom buttons' corner: ${cornered.join(', ')}`);
   await page.click('#generate');
   await page.waitForFunction(() => / lots$/.test(document.getElementById('stage').textContent), {timeout: 120000});
   check(await page.$eval('#progress', p => p.value) > 0, 'the generation under way fills the bar');

@@ -46,6 +46,11 @@ export async function startRender(request) {
                                             body: JSON.stringify(request)}));
 }
 
+// Where the server places a GeoTIFF of the work folder: {file, extent, size, crs}, or its refusal.
+export async function placeBasemap(name) {
+  return answer(await fetch(`/api/basemap?file=${encodeURIComponent(name)}`, {cache: 'no-store'}));
+}
+
 export async function getJson(url) {
   const r = await answer(await fetch(url, {cache: 'no-store'}));
   return r.ok ? JSON.parse(r.text) : null;

@@ -105,7 +105,20 @@ window.exacityPage = {sketch: () => map.sketch(),
                         if (zoomOut) map.map.getView().setResolution(map.map.getView().getResolution() * 2);
                         map.map.render();
                       }),
-                      gridLabels: () => map.gridLabels.getSource().getFeatures().map(f => ({label: f.get('label'), axis: f.get('axis')}))};
+                      lonLat: c => map.lonLat.toLonLat(c),
+                      // The GeoTIFF basemap's colour at sketch points as drawn, null where it has none.
+                      geotiffAt: points => points.map(c => {
+                        const data = map.geotiff.getSource() && map.geotiff.getData(map.map.getPixelFromCoordinate(c));
+                        return data ? [...data] : null;
+                      }),
+                      gridLabels: () => map.gridLabels.getSource().getFeatures().map(f => ({
+                        label: f.get('label'), axis: f.get('axis'), at: map.map.getPixelFromCoordinate(f.getGeometry().getCoordinates())})),
+                      // Moves the map's view by (dx, dy) pixels; resolves once the grid is drawn again.
+                      pan: (dx, dy) => new Promise(resolve => {
+                        const view = map.map.getView(), [x, y] = view.getCenter(), r = view.getResolution();
+                        map.map.once('moveend', () => resolve());
+                        view.setCenter([x + dx * r, y - dy * r]);
+                      })};
 const panel = new SettingsPanel({
   // Resolves to the refusal's message, or null when the server took the settings.
   apply: async exacity => {
@@ -194,22 +207,40 @@ async function showLibrary() {
 }
 
 // Basemap: tiles from an XYZ URL the user names, under a sketch with a place on Earth (its
-// CRS's lon/lat from the server); nothing is fetched until a URL is named.
+// CRS's lon/lat from the server); nothing is fetched until a URL is named. Or a GeoTIFF of
+// the work folder, which the server warps into the sketch's coordinates.
 let lonlat = null;
 async function showPlace() {
   lonlat = await api.getJson('/api/lonlat');
-  $('basemap-where').textContent = lonlat?.epsg ? `The sketch is in EPSG:${lonlat.epsg}: name a tile server to draw it under the sketch.` :
-                                                  'The sketch has no place on Earth (no CRS): no basemap.';
+  $('basemap-where').textContent = lonlat?.epsg ? `The sketch is in EPSG:${lonlat.epsg}: name a tile server or a GeoTIFF to draw under it.` :
+                                                  'The sketch has no place on Earth (no CRS): no tiles, but a GeoTIFF without a CRS in its coordinates.';
   $('basemap-url').disabled = $('basemap-show').disabled = !lonlat?.epsg;
   if (map.basemap.getSource()) map.setBasemap($('basemap-url').value.trim(), lonlat);
+  if (map.geotiff.getSource()) await showGeoTiff();  // placed again over the new sketch, or dropped
 }
+// The GeoTIFF named, placed by the server: its refusal (no such file, no CRS, far away) said.
+async function showGeoTiff() {
+  const name = $('geotiff-name').value.trim();
+  const r = await api.placeBasemap(name);
+  if (!r.ok) {
+    map.setGeoTiff(null);
+    return say(r.message, true);
+  }
+  const placed = JSON.parse(r.text);
+  map.setGeoTiff(placed);
+  say(`Basemap ${placed.file} under the sketch${placed.crs ? `, warped into ${placed.crs}` : ''}.`);
+}
+$('geotiff-show').addEventListener('click', showGeoTiff);
 $('basemap-show').addEventListener('click', () => {
   const url = $('basemap-url').value.trim();
   if (!/^https?:\/\/.*\{z\}.*\{x\}.*\{y\}/.test(url)) return say('A basemap URL has {z}, {x} and {y} in it, such as https://tile.example.org/{z}/{x}/{y}.png', true);
   map.setBasemap(url, lonlat);
   say(`Basemap ${url} under the sketch.`);
 });
-$('basemap-hide').addEventListener('click', () => map.setBasemap(null));
+$('basemap-hide').addEventListener('click', () => {
+  map.setBasemap(null);
+  map.setGeoTiff(null);
+});
 
 // Open: a GeoJSON sketch from this computer, shown once the server has taken it.
 $('open').addEventListener('click', () => $('open-file').click());

@@ -4,7 +4,7 @@
 // path-traces the same camera. Walk and Fly stand the camera on the ground as the CLI's
 // pedestrian and flyer cameras do (README, Rendering: cameras), moved by keys and turned by
 // dragging; a click on a building shows its attributes (its buildings.geojson feature). The
-// sun stands where the renderer's does and casts shadows.
+// sun stands where the renderer's does and casts shadows; walls have the renderer's windows.
 // The city comes as its ground and its tiles (GET /api/tiles.json), each tile drawn at the
 // level of detail its distance asks for, loaded when first needed, and left out when outside
 // the view (docs/design.md, Serving: tiles); city.glb is the fallback for a city without.
@@ -50,6 +50,7 @@ export class ExploreView {
     this.tiles = [];
     this.levels = [];
     this.layers = null;
+    this.facadeWindows = facadeWindows;
     this.bindPointer();
     new ResizeObserver(() => this.resize()).observe(container);
   }
@@ -69,6 +70,7 @@ export class ExploreView {
     this.city = (await loader.loadAsync((index ? index.ground : '/api/city.glb') + '?v=' + this.version)).scene;
     shadowed(this.city);
     this.scene.add(this.city);
+    this.addGroundPlane();
     for (const tile of index?.tiles || []) {
       const [x0, y0, z0, x1, y1, z1] = tile.box;
       const group = new THREE.Group();
@@ -80,6 +82,22 @@ export class ExploreView {
     this.overview = null;
     this.fit();
     this.captureOverview();
+  }
+
+  // The renderer's grass plane beyond the city (render/scene_shading.cpp): level with the
+  // city's lowest ground, out past where the camera may go, so the ground has no edge.
+  addGroundPlane() {
+    if (this.groundPlane) this.scene.remove(this.groundPlane);
+    const lowest = new THREE.Box3().setFromObject(this.city).min.y;
+    const side = 1e6;
+    this.groundPlane = new THREE.Mesh(new THREE.PlaneGeometry(side, side),
+                                      new THREE.MeshStandardMaterial({color: new THREE.Color(...grassAlbedo), roughness: 0.9}));
+    this.groundPlane.name = 'ground plane';
+    this.groundPlane.rotation.x = -Math.PI / 2;
+    // A few centimetres under the lowest ground, which it must not show through.
+    this.groundPlane.position.set(0, lowest - 0.05, 0);
+    this.groundPlane.receiveShadow = true;
+    this.scene.add(this.groundPlane);
   }
 
   // The whole city in view from the south-west, orbiting; zoom out at most to a few times
@@ -190,6 +208,20 @@ export class ExploreView {
     canvas.getContext('2d').putImageData(image, 0, 0);
     this.overview = {canvas, box: [cx - half, cy - half, cx + half, cy + half]};
     this.drawMinimap();
+  }
+
+  // The view as drawn now, RGBA rows bottom up (for the browser test).
+  pixels() {
+    const w = this.renderer.domElement.width, h = this.renderer.domElement.height;
+    const target = new THREE.WebGLRenderTarget(w, h);
+    target.texture.colorSpace = THREE.SRGBColorSpace;
+    this.renderer.setRenderTarget(target);
+    this.renderer.render(this.scene, this.camera);
+    this.renderer.setRenderTarget(null);
+    const pixels = new Uint8Array(w * h * 4);
+    this.renderer.readRenderTargetPixels(target, 0, 0, w, h, pixels);
+    target.dispose();
+    return pixels;
   }
 
   // The city's surface under (x, y), so the target stands on a heightmap's ground, not under it.
@@ -478,9 +510,79 @@ export class ExploreView {
   }
 }
 
-// Every mesh casts and takes the sun's shadows.
+// The renderer's windows (render/facade.cpp, in_window) on the walls of extruded buildings,
+// city.glb's materials "<zone>_wall_<n>": rows of windows a storey apart and bays along the
+// wall, a commercial building's ground floor shop windows. Each building's own storey, bay
+// and floor are the renderer's; here each zone's middle values, counted from height 0.
+// Far away, where a pixel spans a bay, the wall takes the windows' share of its area.
+const facadeStyles = {  // storey, bay, window share of a bay, sill and head shares of a storey, shopfront
+  residential: [3.0, 3.1, 0.425, 0.33, 0.77, 0],
+  commercial: [3.8, 2.8, 0.675, 0.22, 0.83, 1],
+  industrial: [5.25, 5.0, 0.625, 0.55, 0.85, 0],
+};
+// Off only for the browser test, to see what the windows change.
+export const facadeWindows = {value: 1};
+const windowAlbedo = new THREE.Color(0.04, 0.05, 0.06);  // palette.h, kWindowAlbedo (linear)
+const grassAlbedo = [0.30, 0.45, 0.20];  // palette.h, kGrassAlbedo (linear)
+
+function withWindows(material, style) {
+  material.onBeforeCompile = shader => {
+    shader.uniforms.facadeStyle = {value: new THREE.Vector4(...style.slice(0, 4))};
+    shader.uniforms.facadeShop = {value: new THREE.Vector2(style[4], style[5])};
+    shader.uniforms.facadeWindows = facadeWindows;
+    shader.uniforms.windowAlbedo = {value: windowAlbedo};
+    // In city.glb's own frame (about its local origin, which every tile shares): small
+    // numbers, so the pattern stays put in single floats.
+    shader.vertexShader = 'varying vec3 vCityPosition;\nvarying vec3 vCityNormal;\n' + shader.vertexShader.replace(
+        '#include <begin_vertex>', `#include <begin_vertex>
+          vCityPosition = transformed;
+          vCityNormal = objectNormal;`);
+    shader.fragmentShader = `varying vec3 vCityPosition;
+        varying vec3 vCityNormal;
+        uniform vec4 facadeStyle;  // storey, bay, window, sill
+        uniform vec2 facadeShop;   // head, shopfront
+        uniform float facadeWindows;
+        uniform vec3 windowAlbedo;
+        ` + shader.fragmentShader.replace('#include <color_fragment>', `#include <color_fragment>
+          float windowed = 0.0;
+          float h = vCityPosition.y;
+          // Along the wall: glTF's x east and z south (render/facade.h, along_wall).
+          float along = vCityPosition.x * vCityNormal.z - vCityPosition.z * vCityNormal.x;
+          if (facadeWindows > 0.5 && abs(vCityNormal.y) < 0.3 && h > 0.0) {
+            float share = facadeStyle.z * (facadeShop.x - facadeStyle.w);
+            if (facadeShop.y > 0.5 && h < 4.5) {
+              float bay = fract(along / (2.0 * facadeStyle.y));
+              windowed = float(h > 0.4 && h < 3.4 && bay > 0.05 && bay < 0.95);
+            } else {
+              float storey = fract((facadeShop.y > 0.5 ? h - 4.5 : h) / facadeStyle.x);
+              float bay = fract(along / facadeStyle.y);
+              windowed = float(storey > facadeStyle.w && storey < facadeShop.x && abs(bay - 0.5) < facadeStyle.z / 2.0);
+            }
+            float blur = clamp(2.0 * max(fwidth(along) / facadeStyle.y, fwidth(h) / facadeStyle.x) - 0.5, 0.0, 1.0);
+            windowed = mix(windowed, share, blur);
+          }
+          diffuseColor.rgb = mix(diffuseColor.rgb, windowAlbedo, windowed);`).replace(
+        '#include <roughnessmap_fragment>', `#include <roughnessmap_fragment>
+          roughnessFactor = mix(roughnessFactor, 0.15, windowed);`);
+  };
+  material.customProgramCacheKey = () => 'exacity-facade';
+}
+
+// Every mesh casts and takes the sun's shadows; walls get their windows.
 function shadowed(object) {
-  object.traverse(o => { if (o.isMesh) o.castShadow = o.receiveShadow = true; });
+  object.traverse(o => {
+    if (!o.isMesh) return;
+    o.castShadow = o.receiveShadow = true;
+    const wall = /^(residential|commercial|industrial)_wall/.exec(o.material.name || '');
+    if (wall) {
+      // city.glb has no normals (its triangles do not share corners): the faces' own.
+      if (!o.geometry.attributes.normal) o.geometry.computeVertexNormals();
+    }
+    if (wall && !o.material.userData.windows) {
+      withWindows(o.material, facadeStyles[wall[1]]);
+      o.material.userData.windows = true;
+    }
+  });
   return object;
 }
 

@@ -41,7 +41,9 @@ function sketchStyle(feature, resolution, selected) {
 }
 
 // Grid lines a hundred to two hundred and fifty pixels apart, at 1, 2 or 5 times a power of
-// ten metres, and their labels: each x along the top edge, each y along the left one.
+// ten metres, and their labels: each x along the top edge, each y along the left one, none
+// in the top left corner, where the zoom buttons are and the two rows of labels would meet.
+const kCornerWidth = 32, kCornerHeight = 72;  // pixels: OpenLayers' zoom buttons, and a label's height under them
 function gridLines(extent, resolution) {
   const least = resolution * 100, power = Math.pow(10, Math.floor(Math.log10(least)));
   const step = [1, 2, 5, 10].map(m => m * power).find(s => s >= least);
@@ -56,11 +58,11 @@ function gridLines(extent, resolution) {
   // Multiples of the step counted, not summed, so a label reads 0.3 and not 0.30000000000000004.
   for (let i = Math.ceil(x0 / step); i * step <= x1 && lines.length < 400; ++i) {
     lines.push(new ol.Feature(new ol.geom.LineString([[i * step, y0], [i * step, y1]])));
-    label([i * step, y1], `${(i * step).toFixed(digits)} m`, 'x');
+    if (i * step > x0 + kCornerWidth * resolution) label([i * step, y1], `${(i * step).toFixed(digits)} m`, 'x');
   }
   for (let i = Math.ceil(y0 / step); i * step <= y1 && lines.length < 800; ++i) {
     lines.push(new ol.Feature(new ol.geom.LineString([[x0, i * step], [x1, i * step]])));
-    label([x0, i * step], `${(i * step).toFixed(digits)} m`, 'y');
+    if (i * step < y1 - kCornerHeight * resolution) label([x0, i * step], `${(i * step).toFixed(digits)} m`, 'y');
   }
   return {lines, labels};
 }
@@ -117,12 +119,14 @@ export class SketchMap {
     this.gridLabels = new ol.layer.Vector({source: new ol.source.Vector(), style: gridLabelStyle,
                                            declutter: true});
     this.heightmap = new ol.layer.Image({opacity: 0.85});
-    // A basemap the user names, under everything; none until then.
+    // A basemap the user names, under everything; none until then: XYZ tiles, or a GeoTIFF
+    // of the work folder that the server warps into the sketch's coordinates.
     this.basemap = new ol.layer.Tile({opacity: 0.8});
+    this.geotiff = new ol.layer.Image({opacity: 0.8});
     this.city = new ol.layer.Group({layers: []});
     this.map = new ol.Map({
       target,
-      layers: [this.basemap, this.heightmap, this.grid, this.city, this.layer, this.gridLabels],
+      layers: [this.basemap, this.geotiff, this.heightmap, this.grid, this.city, this.layer, this.gridLabels],
       view: new ol.View({projection: metres, center: [0, 0], resolution: 2}),
       controls: defaults(ol.control.defaults)().extend([
         new ol.control.ScaleLine({units: 'metric'}),
@@ -242,6 +246,15 @@ export class SketchMap {
     if (!url || !grid?.epsg) return this.basemap.setSource(null);
     this.lonLat = registerLonLat(grid);
     this.basemap.setSource(new ol.source.XYZ({url, projection: 'EPSG:3857', maxZoom: 19}));
+  }
+
+  // A GeoTIFF as the server placed it (GET /api/basemap: its name and extent in the sketch's
+  // coordinates); null removes it.
+  setGeoTiff(placed) {
+    if (!placed) return this.geotiff.setSource(null);
+    this.geotiff.setSource(new ol.source.ImageStatic({
+      url: `/api/basemap.png?file=${encodeURIComponent(placed.file)}&v=${Date.now()}`,
+      imageExtent: placed.extent, projection: metres}));
   }
 
   drawGrid() {
