@@ -1,5 +1,6 @@
 // Regenerating after a one-zone edit against building the edited sketch whole: seconds per
-// stage of build_city both ways, and how many regions, blocks and lots were reused.
+// stage both ways, as the server's generation runs them (build_city, write_city into a
+// temporary folder, the 3D view's tiles), and how many regions, blocks and lots were reused.
 // Measures; asserts nothing (tests/regenerate_test.cpp holds the two cities equal).
 //
 //   build/release/benchmarks/exacity_regenerate SKETCH [--scale K] [--zone NAME] [--move DX DY]
@@ -10,15 +11,19 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+
+#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
 #include "generate/errors.h"
 #include "generate/pipeline.h"
 #include "generate/regenerate.h"
+#include "serve/city_tiles.h"
 
 using namespace exacity;
 using nlohmann::ordered_json;
@@ -40,10 +45,16 @@ struct Run {
 };
 
 Run build(const ordered_json& doc, const std::string& path, std::shared_ptr<RegionCache> cache, const City* previous) {
-  StageClock clock(nullptr, kCityStages);
+  StageClock clock(nullptr, kCityStages + kWriteStages + 1);
   const auto start = std::chrono::steady_clock::now();
   const Sketch sketch = parse_sketch(doc.dump(), path);
   Run run{previous ? regenerate(*previous, sketch, clock) : build_city(sketch, clock, std::move(cache)), {}, 0};
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("exacity_regenerate." + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  write_city(sketch, run.city, dir, clock);
+  clock.run("tiles", [&] { serve::write_city_tiles(run.city, dir / "tiles"); });
+  std::filesystem::remove_all(dir);
   run.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   run.seconds = clock.seconds;
   return run;
