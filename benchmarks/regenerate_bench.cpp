@@ -1,5 +1,8 @@
 // Regenerating after a one-zone edit against building the edited sketch whole: seconds per
-// stage of build_city both ways, and how many regions, blocks and lots were reused.
+// stage both ways, as the server's generation runs them (build_city, write_city into a
+// temporary folder, the 3D view's tiles), and how many regions, blocks, lots and meshes were
+// reused. Each stage's CPU seconds (all threads) are printed beside its wall seconds, since
+// on a shared machine the wall clock measures the other users too.
 // Measures; asserts nothing (tests/regenerate_test.cpp holds the two cities equal).
 //
 //   build/release/benchmarks/exacity_regenerate SKETCH [--scale K] [--zone NAME] [--move DX DY]
@@ -8,17 +11,22 @@
 // first corner of the zone whose "name" is NAME (the first zone when none is given) by DX, DY
 // metres.
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+
+#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
 #include "generate/errors.h"
 #include "generate/pipeline.h"
 #include "generate/regenerate.h"
+#include "serve/city_tiles.h"
 
 using namespace exacity;
 using nlohmann::ordered_json;
@@ -35,15 +43,40 @@ void scale(ordered_json& coordinates, double k) {
 
 struct Run {
   City city;
-  ordered_json seconds;
-  double total = 0;
+  ordered_json seconds, cpu = ordered_json::object();
+  double total = 0, total_cpu = 0;
 };
 
+double cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 Run build(const ordered_json& doc, const std::string& path, std::shared_ptr<RegionCache> cache, const City* previous) {
-  StageClock clock(nullptr, kCityStages);
+  ordered_json cpu = ordered_json::object();
+  std::string stage;
+  double stage_start = cpu_seconds();
+  // Each stage's CPU time: from its start to the next one's (or the end).
+  auto next_stage = [&](const std::string& name) {
+    const double now = cpu_seconds();
+    if (!stage.empty()) cpu[stage] = now - stage_start;
+    stage = name, stage_start = now;
+  };
+  StageClock clock([&](int, int, const std::string& name) { next_stage(name); }, kCityStages + kWriteStages + 1);
+  const double cpu_start = cpu_seconds();
   const auto start = std::chrono::steady_clock::now();
   const Sketch sketch = parse_sketch(doc.dump(), path);
   Run run{previous ? regenerate(*previous, sketch, clock) : build_city(sketch, clock, std::move(cache)), {}, 0};
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("exacity_regenerate." + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  write_city(sketch, run.city, dir, clock);
+  clock.run("tiles", [&] { serve::write_city_tiles(run.city, dir / "tiles"); });
+  next_stage("");
+  run.cpu = cpu;
+  run.total_cpu = cpu_seconds() - cpu_start;
+  std::filesystem::remove_all(dir);
   run.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   run.seconds = clock.seconds;
   return run;
@@ -87,14 +120,18 @@ int main(int argc, char** argv) {
     const Run first = build(doc, path, std::make_shared<RegionCache>(), nullptr);
     const Run whole = build(edited, path, nullptr, nullptr);
     const Run again = build(edited, path, nullptr, &first.city);
-    std::printf("| stage          | whole s | regenerated s |\n|----------------|---------|---------------|\n");
+    std::printf("| stage          | whole s | regenerated s | whole CPU s | regenerated CPU s |\n"
+                "|----------------|---------|---------------|-------------|-------------------|\n");
     for (const auto& [stage, s] : whole.seconds.items())
-      std::printf("| %-14s | %7.3f | %13.3f |\n", stage.c_str(), s.get<double>(), again.seconds.value(stage, 0.0));
-    std::printf("| %-14s | %7.3f | %13.3f |\n", "all", whole.total, again.total);
+      std::printf("| %-14s | %7.3f | %13.3f | %11.3f | %17.3f |\n", stage.c_str(), s.get<double>(),
+                  again.seconds.value(stage, 0.0), whole.cpu.value(stage, 0.0), again.cpu.value(stage, 0.0));
+    std::printf("| %-14s | %7.3f | %13.3f | %11.3f | %17.3f |\n", "all", whole.total, again.total, whole.total_cpu,
+                again.total_cpu);
     const RegionCache& c = *again.city.regions;
-    std::printf("reused: %d of %d region plans, %d of %d block plans, %d of %d lot placements\n",
+    std::printf("reused: %d of %d region plans, %d of %d block plans, %d of %d lot placements, %d of %d meshes\n",
                 c.road_plans.hits(), c.road_plans.hits() + c.road_plans.misses(), c.lot_plans.hits(),
-                c.lot_plans.hits() + c.lot_plans.misses(), c.placements.hits(), c.placements.hits() + c.placements.misses());
+                c.lot_plans.hits() + c.lot_plans.misses(), c.placements.hits(), c.placements.hits() + c.placements.misses(),
+                c.meshes.hits(), c.meshes.hits() + c.meshes.misses());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 2;

@@ -7,6 +7,7 @@
 #include "generate/errors.h"
 #include "generate/export/statistics.h"
 #include "generate/placement/building_settings.h"
+#include "generate/regenerate.h"
 #include "generate/version.h"
 #include "geom/measure.h"
 
@@ -162,7 +163,7 @@ ordered_json clutter_report(const ClutterTally& tally) {
 
 ordered_json city_report(const City& city, const WrittenCity& written, const ordered_json& timings) {
   const CitySettings& settings = city.settings;
-  return {
+  ordered_json report{
       {"generator", "exacity"},
       {"version", kVersion},
       {"kernel", geom::kernel_name()},
@@ -189,6 +190,9 @@ ordered_json city_report(const City& city, const WrittenCity& written, const ord
                                           ") cannot check its own output: run the exact build's exacity validate"}}},
       {"timings_s", timings},
   };
+  // A generation with a cache (exacity serve's) says what it reused of the one before.
+  if (city.regions) report["reused"] = reuse_report(*city.regions);
+  return report;
 }
 
 void write_report(const ordered_json& report, const fs::path& dir) {

@@ -147,7 +147,7 @@ void export_vectors(const Sketch& sketch, const City& city, const fs::path& dir)
 // CityJSON, glTF, OBJ and PLY, from one set of building meshes and one set of ground layers.
 MeshCounts export_3d(const City& city, const fs::path& dir, GltfCounts& gltf) {
   const ModelLibrary* library = city.model_library();
-  std::vector<Mesh> meshes = structure_meshes(city.buildings, city.models, library);
+  std::vector<Mesh> meshes = city_meshes(city);
   const std::vector<GroundLayer> ground = ground_layers(city.ground, city.heightmap());
   write_cityjson(city.ground, city.buildings, city.models, meshes, library, city.heightmap(), ground, city.settings.crs,
                  dir / "city.city.json", city.clutter.items);

@@ -3,6 +3,10 @@
 #include <filesystem>
 #include <system_error>
 
+#include <tbb/parallel_for.h>
+
+#include "generate/cancel.h"
+
 namespace exacity {
 namespace fs = std::filesystem;
 
@@ -40,6 +44,48 @@ void RegionCache::next_build(const Sketch& sketch) {
   road_plans.next_build(shared);
   lot_plans.next_build(shared);
   placements.next_build(shared);
+  meshes.next_build(shared);
+}
+
+std::vector<Mesh> city_meshes(const City& city) {
+  const ModelLibrary* library = city.model_library();
+  if (!city.regions) return structure_meshes(city.buildings, city.models, library);
+  Memo<Mesh>& memo = city.regions->meshes;
+  std::vector<Mesh> meshes(city.buildings.size() + city.models.size());
+  const CancelCheck cancel;
+  // Each key is what building_mesh or model_mesh reads of the structure (the library is the memo's context).
+  tbb::parallel_for(std::size_t(0), city.buildings.size(), [&](std::size_t i) {
+    cancel.check();
+    const Building& b = city.buildings[i];
+    std::string key = "building ";
+    for (double v : {b.base, b.floor, b.eaves}) append_key(key, v);
+    append_key(key, b.polygon);
+    for (const geom::Face3& f : b.roof_faces) {
+      key += "face ";
+      for (const geom::Vec3& p : f) append_key(key, p[0]), append_key(key, p[1]), append_key(key, p[2]);
+    }
+    meshes[b.id] = memo.get(key, [&] { return building_mesh(b); });
+  });
+  tbb::parallel_for(std::size_t(0), city.models.size(), [&](std::size_t i) {
+    cancel.check();
+    const ModelInstance& m = city.models[i];
+    std::string key = "model " + std::to_string(library ? m.placed.model : -1) + " ";
+    for (double v : {m.base, m.floor, m.placed.position.x, m.placed.position.y, m.placed.angle, m.placed.scale})
+      append_key(key, v);
+    if (m.floor > m.base) append_key(key, m.polygon);
+    meshes[m.id] = memo.get(key, [&] { return model_mesh(m, library); });
+  });
+  return meshes;
+}
+
+nlohmann::ordered_json reuse_report(const RegionCache& cache) {
+  auto counts = [](const auto& memo) {
+    return nlohmann::ordered_json{{"reused", memo.hits()}, {"of", memo.hits() + memo.misses()}};
+  };
+  return {{"region_plans", counts(cache.road_plans)},
+          {"block_plans", counts(cache.lot_plans)},
+          {"lot_placements", counts(cache.placements)},
+          {"structure_meshes", counts(cache.meshes)}};
 }
 
 City regenerate(const City& previous, const Sketch& edited, StageClock& clock) {

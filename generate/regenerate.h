@@ -8,9 +8,12 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "generate/city.h"
 #include "generate/pipeline.h"
 #include "generate/city/memo.h"
+#include "generate/mesh/building_mesh.h"
 #include "generate/sketch/sketch.h"
 
 namespace exacity {
@@ -19,21 +22,31 @@ struct RegionCache {
   Memo<RoadPlan> road_plans;                // per region of the road stage
   Memo<std::vector<PlannedLot>> lot_plans;  // per block
   Memo<Structures> placements;              // per lot, before it stands on the terrain
+  Memo<Mesh> meshes;                        // per building or placed model, for the exports and tiles
   // Starts a build of `sketch`: a change in what every item reads (the settings, the CRS,
   // the sketch roads, the files the sketch names) forgets everything.
   void next_build(const Sketch& sketch);
-  // Items reused and computed in the last build, over the three memos.
-  int hits() const { return road_plans.hits() + lot_plans.hits() + placements.hits(); }
-  int misses() const { return road_plans.misses() + lot_plans.misses() + placements.misses(); }
+  // Items reused and computed in the last build, over the memos.
+  int hits() const { return road_plans.hits() + lot_plans.hits() + placements.hits() + meshes.hits(); }
+  int misses() const { return road_plans.misses() + lot_plans.misses() + placements.misses() + meshes.misses(); }
 
  private:
   int unknown_ = 0;  // builds of sketches whose settings_text is unknown, each its own context
 };
 
+// What the last build reused, per kind of item: {"region_plans": {"reused": n, "of": m},
+// ...}, for report.json and the page.
+nlohmann::ordered_json reuse_report(const RegionCache& cache);
+
 // What every cached item reads besides its own input: the sketch's settings and CRS
 // (Sketch::settings_text), its roads as joined, and the size and time of each file it
 // names (heightmap, channel images, model library manifest).
 std::string shared_input(const Sketch& sketch);
+
+// structure_meshes of the city's buildings and models; with the city's cache, a structure's
+// mesh is reused where the structure is as it was (the exports and the tiles of one build
+// ask twice, and so make each mesh once).
+std::vector<Mesh> city_meshes(const City& city);
 
 // The city of `edited`, built with `previous`'s cache (a new one when it has none), which
 // the new city then holds: the same city build_city(edited) makes.

@@ -9,6 +9,7 @@
 #include "generate/errors.h"
 #include "generate/mesh/building_mesh.h"
 #include "generate/export/gltf_export.h"
+#include "generate/regenerate.h"
 
 namespace exacity::serve {
 namespace fs = std::filesystem;
@@ -75,7 +76,7 @@ json write_city_tiles(const City& city, const fs::path& dir) {
     return std::make_pair(i, j);
   };
   const ModelLibrary* library = city.model_library();
-  const std::vector<Mesh> meshes = structure_meshes(city.buildings, city.models, library);
+  const std::vector<Mesh> meshes = city_meshes(city);
   std::map<std::pair<int, int>, Tile> tiles;  // by column and row: the index's order
   auto place = [&](int id, int lot, ZoneType zone, const geom::Polygon& outline, double floor, double height) -> Tile& {
     Bounds3 b = mesh_bounds(meshes[id]);

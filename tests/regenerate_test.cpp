@@ -2,15 +2,14 @@
 // city before is the city a full build of the edited sketch makes, byte for byte.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
-#include "generate/export/geojson.h"
-#include "generate/export/svg_map.h"
-#include "generate/export/clutter_layer.h"
 #include "generate/errors.h"
 #include "generate/pipeline.h"
 #include "generate/regenerate.h"
@@ -101,69 +100,126 @@ json edited(json sketch, std::mt19937& random) {
   return sketch;
 }
 
-// The city's layers, clutter and map as written, one text.
-std::string written(const City& city, const std::string& name) {
+// Every file write_city writes for the city, one text: the layers, clutter, map, CityJSON,
+// glTF, OBJ, PLY and the report, less its seconds and what the build reused.
+std::string written(const Sketch& sketch, const City& city, const std::string& name) {
   const auto dir = testing_util::temp_dir(name);
+  StageClock clock(nullptr, kWriteStages);
+  write_city(sketch, city, dir, clock);
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir))
+    if (entry.is_regular_file()) files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
   std::string all;
-  auto read = [&](const std::filesystem::path& file) {
+  for (const auto& file : files) {
     std::ifstream in(file, std::ios::binary);
     std::stringstream text;
     text << in.rdbuf();
-    all += file.filename().string() + "\n" + text.str();
-  };
-  for (const Layer* l : {&city.layers.zones, &city.layers.water, &city.layers.roads, &city.layers.road_areas,
-                         &city.layers.blocks, &city.layers.lots, &city.layers.buildings}) {
-    write_geojson(*l, city.settings.crs, dir / (l->name + ".geojson"));
-    read(dir / (l->name + ".geojson"));
+    std::string content = text.str();
+    if (file.filename() == "report.json") {
+      json report = json::parse(content);
+      report.erase("timings_s");
+      report.erase("reused");
+      content = report.dump(1);
+    }
+    all += file.lexically_relative(dir).string() + "\n" + content;
   }
-  write_point_geojson(clutter_layer(city.clutter.items, city.model_library()), city.settings.crs, dir / "clutter.geojson");
-  read(dir / "clutter.geojson");
-  write_svg_map(city.ground, city.buildings, city.models, dir / "map.svg", city.clutter.items);
-  read(dir / "map.svg");
   return all;
 }
 
-City build(const json& sketch, std::shared_ptr<RegionCache> cache = {}) {
-  StageClock clock(nullptr, kCityStages);
-  return build_city(parse_sketch(sketch.dump(), "town.geojson"), clock, std::move(cache));
+struct Built {
+  Sketch sketch;
+  City city;
+};
+
+// The sketch as write_city copies it (a parsed text has no file to copy).
+Sketch parsed(const json& text) {
+  Sketch sketch = parse_sketch(text.dump(), "town.geojson");
+  if (sketch.geojson.empty()) sketch.geojson = text.dump();
+  return sketch;
 }
 
-City regenerated(const City& previous, const json& sketch) {
+Built build(const json& text, std::shared_ptr<RegionCache> cache = {}) {
   StageClock clock(nullptr, kCityStages);
-  return regenerate(previous, parse_sketch(sketch.dump(), "town.geojson"), clock);
+  Built b{parsed(text), {}};
+  b.city = build_city(b.sketch, clock, std::move(cache));
+  return b;
 }
+
+Built regenerated(const City& previous, const json& text) {
+  StageClock clock(nullptr, kCityStages);
+  Built b{parsed(text), {}};
+  b.city = regenerate(previous, b.sketch, clock);
+  return b;
+}
+
+std::string written(const Built& b, const std::string& name) { return written(b.sketch, b.city, name); }
 
 }  // namespace
 
-TEST(Regenerate, UnchangedSketchReusesEveryRegionBlockAndLot) {
-  const City first = build(town(), std::make_shared<RegionCache>());
-  const City again = regenerated(first, town());
-  EXPECT_GT(again.regions->road_plans.hits(), 0);
-  EXPECT_EQ(again.regions->road_plans.misses(), 0);
-  EXPECT_EQ(again.regions->lot_plans.misses(), 0);
-  EXPECT_EQ(again.regions->placements.misses(), 0);
-  EXPECT_EQ(written(again, "again"), written(first, "first"));
+TEST(Regenerate, UnchangedSketchReusesEveryRegionBlockLotAndMesh) {
+  const Built first = build(town(), std::make_shared<RegionCache>());
+  const std::string first_written = written(first, "first");  // as the server does, before the next build
+  const Built again = regenerated(first.city, town());
+  const std::string again_written = written(again, "again");
+  const RegionCache& cache = *again.city.regions;
+  EXPECT_GT(cache.road_plans.hits(), 0);
+  EXPECT_EQ(cache.road_plans.misses(), 0);
+  EXPECT_EQ(cache.lot_plans.misses(), 0);
+  EXPECT_EQ(cache.placements.misses(), 0);
+  EXPECT_GT(cache.meshes.hits(), 0);
+  EXPECT_EQ(cache.meshes.misses(), 0);
+  EXPECT_EQ(again_written, first_written);
+  const json reused = reuse_report(cache);
+  EXPECT_EQ(reused["structure_meshes"]["reused"], cache.meshes.hits());
+  EXPECT_EQ(reused["region_plans"]["of"], cache.road_plans.hits());
 }
 
+// Each edit regenerated from the city before it, which was written (so its meshes are kept),
+// against the edited sketch built whole without a cache.
 TEST(Regenerate, RandomEditsGiveTheFullBuildsCity) {
   std::mt19937 random(11);
   json sketch = town();
-  City previous = build(sketch, std::make_shared<RegionCache>());
-  int reused = 0;
-  for (int edit = 0; edit < 12; ++edit) {
+  Built previous = build(sketch, std::make_shared<RegionCache>());
+  written(previous, "first");
+  int reused = 0, meshes_reused = 0;
+  for (int edit = 0; edit < 16; ++edit) {
     json next = edited(sketch, random);
-    City city;
+    Built city;
     try {
-      city = regenerated(previous, next);
+      city = regenerated(previous.city, next);
     } catch (const UserError&) {
       EXPECT_THROW(build(next), UserError);  // an edit the reader refuses is refused by a full build too
       continue;
     }
-    reused += city.regions->hits();
-    EXPECT_EQ(written(city, "regenerated"), written(build(next), "full")) << "edit " << edit << ": " << next.dump();
+    const std::string regenerated_written = written(city, "regenerated");
+    reused += city.city.regions->hits();
+    meshes_reused += city.city.regions->meshes.hits();
+    EXPECT_EQ(regenerated_written, written(build(next), "full")) << "edit " << edit << ": " << next.dump();
     sketch = std::move(next);
     previous = std::move(city);
   }
-  // Not every edit reaches every region: some were reused.
+  // Not every edit reaches every region, block, lot or structure: some were reused.
   EXPECT_GT(reused, 0);
+  EXPECT_GT(meshes_reused, 0);
+}
+
+// A zone drawn apart from the others is a region of its own: adding it and removing it
+// again, each regenerated, give the full builds' cities, and the first build's cache serves
+// the regions, blocks and lots the new zone did not reach.
+TEST(Regenerate, AddingAndRemovingARegion) {
+  Built previous = build(town(), std::make_shared<RegionCache>());
+  written(previous, "first");
+  json added = town();
+  added["features"].push_back(zone("residential", ring(820, 0, 1000, 160)));
+  Built with = regenerated(previous.city, added);
+  EXPECT_GT(with.city.regions->road_plans.hits(), 0);
+  EXPECT_GT(with.city.regions->road_plans.misses(), 0);  // the new region
+  EXPECT_GT(with.city.regions->placements.hits(), 0);
+  EXPECT_EQ(written(with, "added"), written(build(added), "added full"));
+  Built without = regenerated(with.city, town());
+  const std::string without_written = written(without, "removed");
+  EXPECT_EQ(without.city.regions->road_plans.misses(), 0);
+  EXPECT_GT(without.city.regions->meshes.hits(), 0);
+  EXPECT_EQ(without_written, written(previous, "removed full"));
 }

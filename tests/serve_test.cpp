@@ -873,8 +873,21 @@ TEST_F(ServeTest, GenerationAfterAnEditWritesTheEditedSketchsCity) {
   exacity::generate_city(exacity::parse_sketch(edited.dump(), sketch_file()), alone, nullptr);
   for (const char* file : {"vector/zones.geojson", "vector/roads.geojson", "vector/road_areas.geojson",
                            "vector/blocks.geojson", "vector/lots.geojson", "vector/buildings.geojson",
-                           "vector/clutter.geojson", "map.svg", "city.city.json"})
+                           "vector/clutter.geojson", "map.svg", "city.city.json", "city.glb", "city.obj"})
     EXPECT_TRUE(read(work() / "city" / file) == read(alone / file)) << file;
+  // The report says what was reused: each kind's count within all it asked for.
+  const json reused = json::parse(read(work() / "city" / "report.json"))["reused"];
+  for (const char* kind : {"region_plans", "block_plans", "lot_placements", "structure_meshes"}) {
+    EXPECT_GT(reused[kind]["of"].get<int>(), 0) << kind;
+    EXPECT_LE(reused[kind]["reused"].get<int>(), reused[kind]["of"].get<int>()) << kind;
+  }
+  // Generated again without an edit: every region plan, block plan and mesh is reused.
+  ASSERT_EQ(client->Post("/api/generate", "", "application/json")->status, 202);
+  ASSERT_EQ(wait_for_job(*client)["state"], "done");
+  const json again = json::parse(read(work() / "city" / "report.json"))["reused"];
+  for (const char* kind : {"region_plans", "block_plans", "structure_meshes"})
+    EXPECT_EQ(again[kind]["reused"], again[kind]["of"]) << kind;
+  EXPECT_FALSE(json::parse(read(alone / "report.json")).contains("reused"));  // a generation without a cache
 }
 
 // Eight clients poll the status and fetch a layer while the city is generated again; every

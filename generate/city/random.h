@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string_view>
 
 namespace exacity {
 
@@ -14,6 +15,15 @@ constexpr std::uint64_t mix(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 constexpr std::uint64_t mix(std::uint64_t a, std::uint64_t b) { return mix(a ^ mix(b)); }
+
+// A stable id from a thing's exact content written out (geom::exact_text): FNV-1a, the same
+// on every platform, so what is generated from it depends on the thing alone, not on how
+// many came before it (docs/design.md, Regions and regenerating).
+constexpr std::uint64_t content_id(std::string_view text) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (unsigned char c : text) h = (h ^ c) * 0x100000001b3ull;
+  return h;
+}
 
 enum class Stage : std::uint64_t { Roads = 1, Lots = 2, Buildings = 3, Clutter = 4 };
 

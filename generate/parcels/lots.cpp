@@ -29,8 +29,10 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const CitySe
     cancel.check();
     const Block& block = blocks[bi];
     if (block.green) return;
+    // A block's stream is its shape's, so a block an edit left as it was is planned as before.
+    const std::string cell_text = geom::exact_text(block.cell);
     auto plan = [&] {
-      Random rng(mix(stage, bi));
+      Random rng(mix(stage, content_id(cell_text)));
       std::vector<PlannedLot> lots = layouts.at(block.zone)->plan(block, static_cast<int>(bi), rng);
       // A block too small for the layout to cut is one lot, if it makes one (kept_lots); not
       // for the lot library, whose lots are the models' own.
@@ -43,11 +45,12 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const CitySe
       return;
     }
     // Everything the plan reads of the block; the rest (settings, library, channels) is the memo's context.
-    std::string key = "block " + std::to_string(bi) + " zone " + std::to_string(static_cast<int>(block.zone)) +
+    std::string key = "block zone " + std::to_string(static_cast<int>(block.zone)) +
                       " density " + block.density + " roads";
     for (int r : block.roads) key += " " + std::to_string(r);
-    key += " " + geom::exact_text(block.cell);
+    key += " " + cell_text;
     per_block[bi] = memo->get(key, plan);
+    for (PlannedLot& lot : per_block[bi]) lot.block = static_cast<int>(bi);  // its index in this build
   });
   std::vector<PlannedLot> lots;
   for (auto& list : per_block)

@@ -39,8 +39,9 @@ inline constexpr Range kLotShape{0.5, 5};  // a lot's depth over its width (acro
 
 // The lots of every block that is not green space, block by block in parallel, each by its
 // zone's LotLayout. `library` may be null unless a zone's lots come from it.
-// With a memo, a block's plan is taken from it when the block (its index, zone, density,
-// roads and exact cell) is as before (docs/design.md, Regions and regenerating).
+// Each block draws from a stream of its exact cell (content_id), not of its index. With a
+// memo, a block's plan is taken from it when the block (its zone, density, roads and exact
+// cell) is as before (docs/design.md, Regions and regenerating).
 std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const CitySettings& city, const ModelLibrary* library,
                                   const Channels& channels, Memo<std::vector<PlannedLot>>* memo = nullptr);
 

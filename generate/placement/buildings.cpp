@@ -181,9 +181,11 @@ Structures place_buildings(const std::vector<Lot>& lots, const CitySettings& cit
     const Lot& lot = lots[i];
     BuildingSettings p = city.zone_settings.at(lot.zone).buildings;
     if (!lot.density.empty()) p.density = lot.density;
+    // By the lot's shape, not its index, so merging lots around it, or an edit elsewhere,
+    // leaves it as it was.
+    const std::string cell_text = geom::exact_text(lot.cell);
     auto place = [&] {
-      // By the lot's planned lot, not its index, so merging lots around it leaves it as it was.
-      Random rng(mix(mix(stage, static_cast<std::uint64_t>(lot.planned)), static_cast<std::uint64_t>(lot.rank)));
+      Random rng(mix(stage, content_id(cell_text)));
       Occupancy occupancy(lot.cell, LotEdge::kStreet, terrain);
       Structures here;
       for (const auto& placer : placers.at(lot.zone)) placer->place(lot, p, occupancy, rng, here);
@@ -192,11 +194,11 @@ Structures place_buildings(const std::vector<Lot>& lots, const CitySettings& cit
     Structures& here = placed[i];
     if (memo) {
       // Everything placing reads of the lot, and the city's box (extruded heights fall from its centre).
-      std::string key = "lot " + std::to_string(lot.planned) + " " + std::to_string(lot.rank) + " zone " +
+      std::string key = "lot zone " +
                         std::to_string(static_cast<int>(lot.zone)) + " density " + lot.density + " model " +
                         (lot.model ? std::to_string(*lot.model) : std::string("none")) + " city ";
       for (double v : {box.min_x, box.min_y, box.max_x, box.max_y}) append_key(key, v);
-      key += geom::exact_text(lot.cell);
+      key += cell_text;
       here = memo->get(key, place);
     } else {
       here = place();

@@ -88,9 +88,10 @@ void choose_roof(Building& b, const BuildingSettings& p);
 // Lot by lot in parallel: rows of models facing the road where the library has buildings
 // for the zone, else a row of extruded rectangles along the street; then the
 // library's street furniture and trees where they fit, each drawn by its weight and
-// channels. Each stands on the terrain. With a memo, a lot's structures are taken from it
-// when the lot (its planned lot, rank, zone, density, model and cell) and the lots' box
-// are as before (docs/design.md, Regions and regenerating).
+// channels. Each stands on the terrain. Each lot draws from a stream of its exact cell
+// (content_id). With a memo, a lot's structures are taken from it when the lot (its zone,
+// density, model and cell) and the lots' box are as before (docs/design.md, Regions and
+// regenerating).
 Structures place_buildings(const std::vector<Lot>& lots, const CitySettings& city, const ModelLibrary* library,
                            const Channels& channels, const Terrain* terrain, Memo<Structures>* memo = nullptr);
 

@@ -393,6 +393,11 @@ try {
   }
   check(edited.state === 'done', `the generation after the edit ended done (${edited.state})`);
   await page.waitForSelector('body[data-job="done"]', {timeout: 60000});
+  // The report beside the map says what the generation reused of the one before.
+  await page.waitForFunction(() => [...document.querySelectorAll('#report dt')].some(d => d.textContent === 'reused'), {timeout: 60000});
+  const reusedText = await page.$$eval('#report dt', dts => dts.find(d => d.textContent === 'reused').nextElementSibling.textContent);
+  check(/^[\d,]+ of [\d,]+ regions, [\d,]+ of [\d,]+ blocks, [\d,]+ of [\d,]+ lots, [\d,]+ of [\d,]+ meshes$/.test(reusedText),
+        `the report shows what was reused: ${reusedText}`);
   await page.click('#auto-generate');  // untick it: the page keeps the setting for the later steps
 
   // Explore: the 3D view, orbited with the mouse, then rendered.

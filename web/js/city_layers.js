@@ -77,6 +77,13 @@ export class CityLayers {
     const rows = Object.entries(report.counts || {}).filter(([, v]) => typeof v === "number").map(([k, v]) => [k.replace(/_/g, ' '), v]);
     const seconds = Object.values(report.timings_s || {}).reduce((a, b) => a + (typeof b === 'number' ? b : 0), 0);
     rows.push(['seconds', seconds.toFixed(1)]);
+    // What this generation reused of the one before (the server keeps each region's plans).
+    const reused = report.reused;
+    if (reused) {
+      const part = (c, what) => `${c.reused.toLocaleString('en')} of ${c.of.toLocaleString('en')} ${what}`;
+      rows.push(['reused', [part(reused.region_plans, 'regions'), part(reused.block_plans, 'blocks'),
+                            part(reused.lot_placements, 'lots'), part(reused.structure_meshes, 'meshes')].join(', ')]);
+    }
     if (report.validation) rows.push(['valid', String(report.validation.valid ?? report.validation.ok ?? '')]);
     for (const [k, v] of rows) {
       const dt = document.createElement('dt'), dd = document.createElement('dd');
