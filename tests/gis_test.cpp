@@ -134,8 +134,8 @@ TEST(Gis, ALonLatSketchIsTheCityOfItsProjectionByHand) {
       to_lonlat->Transform(1, &x, &y);
       c = {x, y};
       double bx = x, by = y;
-      to_utm->Transform(1, &bx, &by);  // what Exacity's projection gives, done by hand
-      back = {bx, by};
+      to_utm->Transform(1, &bx, &by);  // what Exacity's projection gives, done by hand:
+      back = {std::round(bx * 1e6) / 1e6, std::round(by * 1e6) / 1e6};  // PROJ's metres to the micrometre
       return;
     }
     for (std::size_t i = 0; i < c.size(); ++i) each(c[i], back[i]);
@@ -758,9 +758,9 @@ TEST(Gis, LonLatWithoutCrsIsFoundOverDegreesAndAcrossTheAntimeridian) {
     const ordered_json& outer = by_hand["features"][0]["geometry"]["coordinates"][0];
     const geom::Ring& ring = sketch.zones.at(0).polygons.at(0).outer;
     ASSERT_EQ(ring.size() + 1, outer.size());
-    for (std::size_t i = 0; i < ring.size(); ++i) {
-      EXPECT_EQ(ring[i].x, outer[i][0].get<double>());
-      EXPECT_EQ(ring[i].y, outer[i][1].get<double>());
+    for (std::size_t i = 0; i < ring.size(); ++i) {  // PROJ's metres, to the micrometre
+      EXPECT_EQ(ring[i].x, std::round(outer[i][0].get<double>() * 1e6) / 1e6);
+      EXPECT_EQ(ring[i].y, std::round(outer[i][1].get<double>() * 1e6) / 1e6);
     }
   };
   // Two places two degrees apart, as a sketch of a region: lon/lat, not metres.

@@ -332,6 +332,13 @@ std::string crs_text(const OGRSpatialReference& srs) {
   return srs.GetName() ? srs.GetName() : "its CRS";
 }
 
+// A projected coordinate to the nearest micrometre. The same place read from files in
+// different CRSs (lon/lat, Web Mercator, feet) comes out of PROJ a few nanometres apart,
+// and the city follows every bit of its sketch (lots and buildings draw from streams of
+// their exact cells): rounded, it is one city. PROJ's transformations are good to a
+// millimetre at best, so nothing is lost.
+double to_micrometre(double v) { return std::round(v * 1e6) / 1e6; }
+
 // Moves the positions (and the bounds of the settings' images) of one part from `from`
 // to `to`, in place.
 void transform_part(SketchPart& part, const std::vector<FeaturePositions>& features, const OGRSpatialReference& from,
@@ -346,7 +353,7 @@ void transform_part(SketchPart& part, const std::vector<FeaturePositions>& featu
       if (!t->Transform(1, &x, &y) || !std::isfinite(x) || !std::isfinite(y))
         throw UserError(f.name + ": position " + p->dump() + " could not be projected to " + crs_text(to) +
                         "; check its coordinates");
-      (*p)[0] = x, (*p)[1] = y;
+      (*p)[0] = to_micrometre(x), (*p)[1] = to_micrometre(y);
     }
   if (part.doc.contains("exacity") && part.doc["exacity"].is_object()) {
     ordered_json& ex = part.doc["exacity"];

@@ -77,7 +77,7 @@ try {
   const get = url => fetch(new URL(url, base), {headers: token ? {Authorization: `Bearer ${token}`} : {}});
   const sketch = async () => (await get('/api/sketch')).json();
   const ready = () => page.waitForSelector('body[data-ready="yes"]', {timeout: 30000});
-  const features = n => page.waitForSelector(`body[data-features="${n}"]`, {timeout: 10000});
+  const features = n => page.waitForSelector(`body[data-features="${n}"]`, {timeout: 30000});
   // The page's features as it would send them, and the server's, to the millimetre.
   const rounded = features => JSON.stringify(features, (k, v) => (typeof v === 'number' ? Math.round(v * 1000) : v));
   const pageFeatures = async () => rounded((await page.evaluate(() => window.exacityPage.sketch())).features);
@@ -189,7 +189,7 @@ try {
 
   // Click the road, Del deletes it; Ctrl-Z brings it back.
   await page.mouse.click(...at(200, 9));
-  await page.waitForSelector('#feature-panel:not([hidden])', {timeout: 5000});
+  await page.waitForSelector('#feature-panel:not([hidden])', {timeout: 30000});
   await page.keyboard.press('Delete');
   await features(1);
   await saved(1);
@@ -203,7 +203,7 @@ try {
 
   // The road's width, edited in the side panel.
   await page.mouse.click(...at(200, 9));
-  await page.waitForSelector('#feature-panel:not([hidden]) #width-row:not([hidden])', {timeout: 5000});
+  await page.waitForSelector('#feature-panel:not([hidden]) #width-row:not([hidden])', {timeout: 30000});
   await page.$eval('#road-width', i => { i.value = '16'; i.dispatchEvent(new Event('change')); });
   for (let i = 0; i < 50 && (await sketch()).features[1].properties.width !== 16; ++i) await new Promise(r => setTimeout(r, 100));
   check((await sketch()).features[1].properties.width === 16,
@@ -214,7 +214,7 @@ try {
   // A refused edit (a width the CLI refuses): the message is shown, and the page goes back to
   // the server's sketch, so later edits are taken (they were all refused, silently lost).
   await page.$eval('#road-width', i => { i.value = '900'; i.dispatchEvent(new Event('change')); });
-  await page.waitForSelector('#message.error', {timeout: 5000});
+  await page.waitForSelector('#message.error', {timeout: 30000});
   check(/width/.test(await message()) && /server/.test(await page.$eval('#message-note', n => n.textContent)),
         `the refused width's message is shown: ${await message()}`);
   check(await pageFeatures() === await serverFeatures(), 'after the refusal the page shows the server\'s sketch');
@@ -222,14 +222,14 @@ try {
   // Two edits at once, the first refused: the second, made on top of it, is not sent, and
   // neither stays in the undo history.
   await page.mouse.click(...at(200, 9));
-  await page.waitForSelector('#feature-panel:not([hidden]) #width-row:not([hidden])', {timeout: 5000});
+  await page.waitForSelector('#feature-panel:not([hidden]) #width-row:not([hidden])', {timeout: 30000});
   await page.$eval('#road-width', i => {
     for (const width of ['900', '20']) {
       i.value = width;
       i.dispatchEvent(new Event('change'));
     }
   });
-  await page.waitForFunction(() => /width/.test(document.getElementById('message').textContent), {timeout: 5000});
+  await page.waitForFunction(() => /width/.test(document.getElementById('message').textContent), {timeout: 30000});
   await new Promise(r => setTimeout(r, 500));
   check((await sketch()).features[1].properties.width === 16 && await pageFeatures() === await serverFeatures(),
         'the edit made on top of a refused one is dropped: the page shows the server\'s sketch');
@@ -268,7 +268,7 @@ try {
 
   // The zone's type, edited in the side panel.
   await page.mouse.click(...at(-60, -60));
-  await page.waitForSelector('#feature-panel:not([hidden]) #zone-row:not([hidden])', {timeout: 5000});
+  await page.waitForSelector('#feature-panel:not([hidden]) #zone-row:not([hidden])', {timeout: 30000});
   await page.select('#zone-type', 'commercial');
   for (let i = 0; i < 50 && (await sketch()).features[0].properties.zone !== 'commercial'; ++i) await new Promise(r => setTimeout(r, 100));
   check((await sketch()).features[0].properties.zone === 'commercial', 'the zone\'s type edited in the panel');
@@ -279,20 +279,20 @@ try {
   await page.click('.zone-form[data-zone="residential"] summary');
   const typeInto = (selector, value) => page.$eval(selector, (i, v) => { i.value = v; i.dispatchEvent(new Event('change')); }, value);
   await typeInto(`${formField('residential', 'block_area')} input`, '50');
-  await page.waitForFunction(s => document.querySelector(s).textContent !== '', {timeout: 5000}, `${formField('residential', 'block_area')} .field-error`);
+  await page.waitForFunction(s => document.querySelector(s).textContent !== '', {timeout: 30000}, `${formField('residential', 'block_area')} .field-error`);
   const fieldError = await page.$eval(`${formField('residential', 'block_area')} .field-error`, e => e.textContent);
   check(/^value 50(\.0)? is out of range; use a value from 100(\.0)? to/.test(fieldError) && JSON.stringify(await sketch()) === kept,
         `the refused value's line is beside its field, the sketch as it was: ${fieldError}`);
   check(await page.$eval(`${formField('residential', 'block_area')} input`, i => i.value) === '50', 'the refused value stays typed');
   await typeInto(`${formField('residential', 'block_area')} input`, '20000');
   // Taken once the page shows it in the JSON view, which it fills from the server's answer.
-  await page.waitForFunction(() => /"block_area":20000/.test(document.querySelector('textarea[data-zone="residential"]').value), {timeout: 5000});
+  await page.waitForFunction(() => /"block_area":20000/.test(document.querySelector('textarea[data-zone="residential"]').value), {timeout: 30000});
   check((await sketch()).exacity.zones.residential.block_area === 20000 &&
         await page.$eval(`${formField('residential', 'block_area')} .field-error`, e => e.textContent) === '' &&
         JSON.parse(await page.$eval('textarea[data-zone="residential"]', t => t.value)).block_area === 20000,
         'a value taken is the sketch\'s, its error gone, and the JSON view shows it');
   await typeInto(`${formField('residential', 'block_area')} input`, '');
-  await page.waitForFunction(() => document.querySelector('textarea[data-zone="residential"]').value === '', {timeout: 5000});
+  await page.waitForFunction(() => document.querySelector('textarea[data-zone="residential"]').value === '', {timeout: 30000});
   check(JSON.stringify(await sketch()) === kept, 'an emptied field goes back to the default');
 
   // A setting the CLI refuses is refused with its message, and the sketch stays as it was.
@@ -300,7 +300,7 @@ try {
   await page.click('#advanced-settings summary');
   await page.$eval('textarea[data-zone="residential"]', t => { t.value = '{"block_area": -5}'; });
   await page.click('#apply-settings');
-  await page.waitForFunction(() => /block_area/.test(document.getElementById('message').textContent), {timeout: 5000});
+  await page.waitForFunction(() => /block_area/.test(document.getElementById('message').textContent), {timeout: 30000});
   const refusal = await message();
   check(/block_area/.test(refusal) && refusal.includes('sketch.geojson'), `the settings refused with the CLI's message: ${refusal}`);
   check(JSON.stringify(await sketch()) === kept, 'the refused settings left the sketch as it was');
@@ -312,7 +312,7 @@ try {
   // whole of it on hover and unfolded by a click.
   await page.$eval('textarea[data-zone="residential"]', t => { t.value = '{"block_aera": 5000}'; });
   await page.click('#apply-settings');
-  await page.waitForFunction(() => /block_aera/.test(document.getElementById('message').textContent), {timeout: 5000});
+  await page.waitForFunction(() => /block_aera/.test(document.getElementById('message').textContent), {timeout: 30000});
   const folded = await page.$eval('#message', m => ({height: m.clientHeight, line: parseFloat(getComputedStyle(m).lineHeight) ||
                                                      1.2 * parseFloat(getComputedStyle(m).fontSize), title: m.title,
                                                      text: m.textContent, cut: m.scrollWidth > m.clientWidth}));
@@ -344,7 +344,7 @@ try {
   await chooser.accept([path.join(path.dirname(new URL(import.meta.url).pathname), '..', '..', 'examples', 'valley.png')]);
   for (let i = 0; i < 50 && !(await sketch()).exacity?.terrain; ++i) await new Promise(r => setTimeout(r, 100));
   check((await sketch()).exacity.terrain.heightmap === 'heightmap.png', 'the loaded heightmap is the sketch\'s terrain');
-  await page.waitForFunction(() => document.getElementById('heightmap-in-use').textContent === 'heightmap.png', {timeout: 5000});
+  await page.waitForFunction(() => document.getElementById('heightmap-in-use').textContent === 'heightmap.png', {timeout: 30000});
   check(await page.$eval('#models-in-use', e => e.textContent.startsWith('none')), 'the panel names the heightmap, and no model library');
 
   // Reload: the page shows the sketch the server kept.
@@ -380,7 +380,7 @@ try {
   // With "after each edit" ticked, settings the server takes are generated without a click.
   await page.click('#auto-generate');
   const [generated] = await Promise.all([
-    page.waitForResponse(r => r.url().includes('/api/generate') && r.request().method() === 'POST', {timeout: 10000}),
+    page.waitForResponse(r => r.url().includes('/api/generate') && r.request().method() === 'POST', {timeout: 30000}),
     page.$eval('textarea[data-zone="commercial"]', t => { t.value = '{}'; })
       .then(() => page.$eval('textarea[data-zone="residential"]', t => { t.value = '{"block_area": 9000}'; }))
       .then(() => page.$eval('#apply-settings', b => b.click())),  // the button is scrolled out of the panel here
@@ -497,7 +497,7 @@ try {
   });
   await tiles();
   await page.mouse.click(view.x + view.width / 2, view.y + view.height / 2);
-  await page.waitForSelector('#building-info:not([hidden])', {timeout: 5000});
+  await page.waitForSelector('#building-info:not([hidden])', {timeout: 30000});
   const info = await page.$eval('#building-info', b => b.textContent);
   check(picked && await page.$eval('#building-info', b => b.dataset.id) === String(picked.id) &&
         info.includes(picked.zone) && info.includes(`lot${picked.lot}`),
@@ -585,11 +585,11 @@ try {
   // The server holds the new sketch a moment before the page has read its answer and said so.
   const said = await page.waitForFunction(
       () => /Model library models\/library.json loaded/.test(document.getElementById('message').textContent),
-      {timeout: 10000}).then(() => true, () => false);
+      {timeout: 30000}).then(() => true, () => false);
   check(said, 'the page says the library loaded');
   check(await page.$eval('#models-in-use', e => e.textContent) === 'models/library.json', 'the panel names the model library');
   // The library in use, listed: each model with its kind and zone types.
-  await page.waitForFunction(() => document.getElementById('library-name').textContent.startsWith('models/library.json'), {timeout: 5000});
+  await page.waitForFunction(() => document.getElementById('library-name').textContent.startsWith('models/library.json'), {timeout: 30000});
   const listedModels = await page.$$eval('#library-models tbody tr', rows => rows.map(r => [...r.cells].map(c => c.textContent).join('|')));
   check(listedModels.includes('apartment|building|residential, commercial') && listedModels.includes('tree|tree|residential, commercial, industrial'),
         `the library's models listed with their zone types: ${listedModels.join('; ')}`);
@@ -628,7 +628,7 @@ try {
                 geometry: {type: 'Polygon', coordinates: [[[499800, 5499800], [500200, 5499800], [500200, 5500200], [499800, 5500200], [499800, 5499800]]]}}]}));
   const [placedChooser] = await Promise.all([page.waitForFileChooser(), page.click('#open')]);
   await placedChooser.accept([placed]);
-  await page.waitForFunction(() => /EPSG:32633/.test(document.getElementById('basemap-where').textContent), {timeout: 5000});
+  await page.waitForFunction(() => /EPSG:32633/.test(document.getElementById('basemap-where').textContent), {timeout: 30000});
   check(tileRequests.length === 0, 'no basemap is fetched before one is named');
   await page.click('#basemap-panel summary');
   await page.$eval('#basemap-url', (i, port) => { i.value = `http://127.0.0.1:${port}/{z}/{x}/{y}.png`; }, tileServer.address().port);
@@ -664,7 +664,7 @@ try {
     GTModelTypeGeoKey: 1, GTRasterTypeGeoKey: 1, ProjectedCSTypeGeoKey: 3857})));
   await page.$eval('#geotiff-name', i => { i.value = '../mark.tif'; });
   await page.click('#geotiff-show');
-  await page.waitForSelector('#message.error', {timeout: 5000});
+  await page.waitForSelector('#message.error', {timeout: 30000});
   check(/^basemap \.\.\/mark\.tif: "\.\." would leave the folder/.test(await message()),
         `a GeoTIFF name leaving the work folder is refused: ${await message()}`);
   check(errors.filter(e => /^HTTP 400: .*\/api\/basemap\?file=\.\.%2Fmark\.tif$/.test(e)).length === 1 &&
@@ -673,7 +673,7 @@ try {
   await page.$eval('#geotiff-name', i => { i.value = 'maps/mark.tif'; });
   await page.click('#geotiff-show');
   await page.waitForFunction(() => /^Basemap maps\/mark\.tif under the sketch, warped into EPSG:32633\.$/.test(
-      document.getElementById('message').textContent), {timeout: 10000});
+      document.getElementById('message').textContent), {timeout: 30000});
   await page.evaluate(() => window.exacityPage.drawn());
   const colours = await page.evaluate(m => window.exacityPage.geotiffAt([m, [m[0] + 60, m[1]], [m[0], m[1] - 60]]), mark);
   const red = c => c && c[0] > 200 && c[1] < 80 && c[2] < 80, white = c => c && c.slice(0, 3).every(v => v > 200);
@@ -702,7 +702,7 @@ try {
     const on = axis => labels.filter(l => l.axis === axis).map(l => l.label);
     return ['0 m', '1000 m', '2000 m', '3000 m', '4000 m'].every(t => on('x').includes(t)) &&
            ['0 m', '1000 m', '2000 m'].every(t => on('y').includes(t));
-  }, {timeout: 5000}).then(() => true, () => false);
+  }, {timeout: 30000}).then(() => true, () => false);
   check(gridLabelled, `the grid is labelled: ${JSON.stringify(await page.evaluate(() => window.exacityPage.gridLabels()))}`);
   // No label in the top left corner, under the zoom buttons or on the other row's labels,
   // wherever the grid's lines fall: the view moved 17 px at a time over 136 px.
@@ -718,7 +718,7 @@ try {
   check(await page.$eval('#progress', p => p.value) > 0, 'the generation under way fills the bar');
   // By then its time left is known: from the stage clock's seconds of the last generation.
   const timeLeft = await page.waitForFunction(() => /^about \d+ (s|min) left$/.test(document.getElementById('time-left').textContent),
-                                              {timeout: 5000}).then(() => true, () => false);
+                                              {timeout: 30000}).then(() => true, () => false);
   check(timeLeft, `the generation's time left: ${await page.$eval('#time-left', e => e.textContent)}`);
   await page.click('#cancel');
   await page.waitForSelector('body[data-job="cancelled"]', {timeout: 60000});
