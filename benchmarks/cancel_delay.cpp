@@ -11,29 +11,20 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <mutex>
-#include <sstream>
 #include <string>
 #include <thread>
 
-#include <nlohmann/json.hpp>
-
+#include "benchmarks/scaled_sketch.h"
 #include "generate/cancel.h"
 #include "generate/pipeline.h"
 #include "generate/sketch/sketch.h"
 
 using namespace exacity;
 namespace fs = std::filesystem;
-using nlohmann::ordered_json;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-
-void scale(ordered_json& coordinates, double k) {
-  if (coordinates.is_number()) return void(coordinates = coordinates.get<double>() * k);
-  for (ordered_json& c : coordinates) scale(c, k);
-}
 
 double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
@@ -73,12 +64,7 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--scale") && i + 1 < argc) k = std::stod(argv[++i]);
     else if (!std::strcmp(argv[i], "--tries") && i + 1 < argc) tries = std::stoi(argv[++i]);
   }
-  std::ifstream in(argv[1]);
-  std::stringstream text;
-  text << in.rdbuf();
-  ordered_json doc = ordered_json::parse(text.str());
-  for (ordered_json& f : doc["features"]) scale(f["geometry"]["coordinates"], k);
-  const Sketch sketch = parse_sketch(doc.dump(), argv[1]);
+  const Sketch sketch = parse_sketch(bench::scaled_sketch(argv[1], k).dump(), argv[1]);
   const fs::path dir = fs::temp_directory_path() / "exacity-cancel-delay";
 
   std::atomic<bool> never{false};

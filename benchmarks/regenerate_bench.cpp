@@ -15,14 +15,13 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
+#include "benchmarks/scaled_sketch.h"
 #include "generate/errors.h"
 #include "generate/pipeline.h"
 #include "generate/regenerate.h"
@@ -32,14 +31,6 @@ using namespace exacity;
 using nlohmann::ordered_json;
 
 namespace {
-
-void scale(ordered_json& coordinates, double k) {
-  if (coordinates.is_number()) {
-    coordinates = coordinates.get<double>() * k;
-    return;
-  }
-  for (ordered_json& c : coordinates) scale(c, k);
-}
 
 struct Run {
   City city;
@@ -98,11 +89,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--move") && i + 2 < argc) dx = std::stod(argv[++i]), dy = std::stod(argv[++i]);
   }
   try {
-    std::ifstream in(path);
-    std::stringstream text;
-    text << in.rdbuf();
-    ordered_json doc = ordered_json::parse(text.str());
-    for (ordered_json& f : doc["features"]) scale(f["geometry"]["coordinates"], k);
+    const ordered_json doc = bench::scaled_sketch(path, k);
     ordered_json edited = doc;
     bool moved = false;
     for (ordered_json& f : edited["features"]) {

@@ -164,17 +164,17 @@ int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, 
   for (const Sketch::OsmCounts& file : sketch.osm_counts)
     for (const std::string& what : file.repaired)
       std::fprintf(stderr, "exacity: note: %s: %s\n", file.file.c_str(), what.c_str());
-  // Each kind of note names its first few; report.json lists every one (an OSM extract can
-  // have thousands of land-use areas no street reaches).
-  constexpr std::size_t kNotesOfAKind = 5;
-  auto more = [&](const char* key, const char* what) {
-    const std::size_t n = result.report[key].size();
-    if (n > kNotesOfAKind)
-      std::fprintf(stderr, "exacity: note: and %zu more %s (%s lists them all under \"%s\")\n", n - kNotesOfAKind, what,
-                   (out / "report.json").string().c_str(), key);
+  // Each kind of note names its first few, then counts the rest; report.json lists every
+  // one (an OSM extract can have thousands of land-use areas no street reaches).
+  auto first_few = [&](const char* key, const char* what, auto&& note) {
+    constexpr std::size_t kNotesOfAKind = 5;
+    const auto& list = result.report[key];
+    for (std::size_t i = 0; i < list.size() && i < kNotesOfAKind; ++i) note(list[i]);
+    if (list.size() > kNotesOfAKind)
+      std::fprintf(stderr, "exacity: note: and %zu more %s (%s lists them all under \"%s\")\n", list.size() - kNotesOfAKind,
+                   what, (out / "report.json").string().c_str(), key);
   };
-  for (std::size_t i = 0; i < result.report["empty_zones"].size() && i < kNotesOfAKind; ++i) {
-    const auto& z = result.report["empty_zones"][i];
+  first_few("empty_zones", "zones got no lots", [&](const nlohmann::ordered_json& z) {
     const std::string zone = z["zone"].get<std::string>(), why = z["why"].get<std::string>();
     if (z.contains("grid_cell"))
       std::fprintf(stderr, "exacity: note: %s: the %s region there got no lots: %s\n",
@@ -185,16 +185,13 @@ int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, 
     else
       std::fprintf(stderr, "exacity: note: %s: features[%d] (%s) got no lots: %s\n", sketch.path.string().c_str(),
                    z["feature"].get<int>(), zone.c_str(), why.c_str());
-  }
-  more("empty_zones", "zones got no lots");
-  for (std::size_t i = 0; i < result.report["roads_without_area"].size() && i < kNotesOfAKind; ++i) {
-    const auto& r = result.report["roads_without_area"][i];
+  });
+  first_few("roads_without_area", "roads have no road area", [&](const nlohmann::ordered_json& r) {
     std::fprintf(stderr, "exacity: note: %s: road %d%s has a centre line and no road area: %s\n",
                  (out / "vector" / "roads.geojson").string().c_str(), r["road"].get<int>(),
                  r.contains("feature") ? (" (sketch.geojson features[" + std::to_string(r["feature"].get<int>()) + "])").c_str() : "",
                  r["why"].get<std::string>().c_str());
-  }
-  more("roads_without_area", "roads have no road area");
+  });
   for (const auto& z : result.report["placement_fallbacks"])
     std::fprintf(stderr, "exacity: note: %s: %s lots are filled on the grid only with library models: %s; they get extruded footprints in rows\n",
                  sketch.path.string().c_str(), z["zone"].get<std::string>().c_str(), z["why"].get<std::string>().c_str());

@@ -231,6 +231,10 @@ std::size_t farthest(const std::vector<Place>& places, geom::Vec2& where) {
   return far;
 }
 
+// Within longitude and latitude ranges; longitudes to ±360, as tools drawing across the
+// antimeridian write them.
+bool in_lon_lat_ranges(geom::Vec2 p) { return std::abs(p.x) <= 360 && std::abs(p.y) <= 90; }
+
 std::vector<Place> raw_places(const std::vector<FeaturePositions>& features) {
   std::vector<Place> places;
   for (const FeaturePositions& f : features) {
@@ -253,7 +257,7 @@ bool looks_lon_lat(const std::vector<FeaturePositions>& features, const fs::path
   bool whole = true;  // every coordinate a whole number: metres drawn by hand, however small
   for (const Place& place : places)
     for (geom::Vec2 p : place.lonlat) {
-      if (!(std::abs(p.x) <= 360 && std::abs(p.y) <= 90)) return false;
+      if (!in_lon_lat_ranges(p)) return false;
       whole = whole && p.x == std::floor(p.x) && p.y == std::floor(p.y);
     }
   if (whole) return false;
@@ -376,7 +380,7 @@ std::vector<Place> places_of(const std::vector<std::vector<FeaturePositions>>& f
     if (in_degrees(*crs[i])) {
       for (const Place& place : part)
         for (geom::Vec2 p : place.lonlat)
-          if (!(std::abs(p.x) <= 360 && std::abs(p.y) <= 90))
+          if (!in_lon_lat_ranges(p))
             throw UserError(*place.feature + ": position [" + format_number(p.x) + ", " + format_number(p.y) +
                             "] is no longitude and latitude, though " + parts[i].path.string() + "'s CRS, " +
                             crs_text(*crs[i]) +
