@@ -35,8 +35,9 @@ class CancelScope {
 class CancelCheck {
  public:
   CancelCheck() : flag_(detail::cancel_flag) {}
+  bool requested() const { return flag_ && flag_->load(std::memory_order_relaxed); }
   void check() const {
-    if (flag_ && flag_->load(std::memory_order_relaxed)) throw Cancelled();
+    if (requested()) throw Cancelled();
   }
 
  private:

@@ -9,8 +9,18 @@
 #include <climits>
 #include <cmath>
 #include <deque>
+#include <list>
 #include <map>
 #include <tuple>
+
+#include <CGAL/Arr_accessor.h>
+#include <CGAL/Surface_sweep_2.h>
+#include <CGAL/Surface_sweep_2/Arr_construction_event.h>
+#include <CGAL/Surface_sweep_2/Arr_construction_subcurve.h>
+#include <CGAL/Surface_sweep_2/Arr_construction_ss_visitor.h>
+#include <CGAL/Surface_sweep_2/Arr_insertion_ss_visitor.h>
+#include <CGAL/Surface_sweep_2/Arr_insertion_traits_2.h>
+#include <CGAL/Surface_sweep_2/Surface_sweep_2_utils.h>
 
 #include "geom/grid.h"
 
@@ -74,8 +84,69 @@ void insert_curves(Arrangement& arr, std::vector<Curve>& curves) {
   CGAL::insert(arr, noded.begin(), noded.end());
 }
 #else
-// Inserts the curves in one sweep.
-void insert_curves(Arrangement& arr, std::vector<Curve>& curves) { CGAL::insert(arr, curves.begin(), curves.end()); }
+namespace {
+
+// CGAL's sweep visitor `Base` that ends the sweep after the event under way once the build is
+// cancelled. Throwing out of a sweep would leak its subcurves (it frees them only when it
+// completes), so the sweep is stopped (CGAL's stop_sweep), completes over what it has, and
+// insert_curves throws after it.
+template <template <typename, typename> class Base, typename Helper>
+class StoppableSweep : public Base<Helper, StoppableSweep<Base, Helper>> {
+ public:
+  StoppableSweep(CGAL::Arrangement_on_surface_2<Traits, Arrangement::Topology_traits>* arr,
+                 const exacity::CancelCheck& cancel)
+      : Base<Helper, StoppableSweep>(arr), cancel_(cancel) {}
+
+  template <typename Event, typename Place>
+  bool after_handle_event(Event* event, Place place, bool on_above) {
+    const bool free = Base<Helper, StoppableSweep>::after_handle_event(event, place, on_above);
+    if (cancel_.requested()) this->stop_sweep();
+    return free;
+  }
+
+ private:
+  const exacity::CancelCheck& cancel_;
+};
+
+}  // namespace
+
+// Inserts the curves in one sweep: CGAL::insert's aggregated insertion of x-monotone curves
+// (Arrangement_on_surface_2_global.h, insert_empty and insert_non_empty), with a sweep that
+// stops once the build is cancelled, so a large map stops within a second.
+void insert_curves(Arrangement& arr, std::vector<Curve>& curves) {
+  using Surface = CGAL::Arrangement_on_surface_2<Traits, Arrangement::Topology_traits>;
+  using Allocator = Surface::Allocator;
+  Surface& surface = arr;
+  const exacity::CancelCheck cancel;
+  CGAL::Arr_accessor<Surface> access(surface);
+  access.notify_before_global_change();
+  if (arr.is_empty()) {
+    using Event = CGAL::Arr_construction_event<Traits, Surface, Allocator>;
+    using Subcurve = CGAL::Arr_construction_subcurve<Traits, Event, Allocator>;
+    using Helper = Arrangement::Topology_traits::Construction_helper<Event, Subcurve>;
+    using Visitor = StoppableSweep<CGAL::Arr_construction_ss_visitor, Helper>;
+    Visitor visitor(&surface, cancel);
+    CGAL::Surface_sweep_2::Surface_sweep_2<Visitor> sweep(arr.geometry_traits(), &visitor);
+    sweep.sweep(curves.begin(), curves.end());
+  } else {
+    using InsertionTraits = CGAL::Arr_insertion_traits_2<Traits, Surface>;
+    using Event = CGAL::Arr_construction_event<InsertionTraits, Surface, Allocator>;
+    using Subcurve = CGAL::Arr_construction_subcurve<InsertionTraits, Event, Allocator>;
+    using Helper = Arrangement::Topology_traits::Insertion_helper<Event, Subcurve>;
+    using Visitor = StoppableSweep<CGAL::Arr_insertion_ss_visitor, Helper>;
+    const InsertionTraits traits(*arr.geometry_traits());
+    std::list<InsertionTraits::X_monotone_curve_2> all_curves;
+    std::list<InsertionTraits::Point_2> points;
+    const std::vector<Traits::Point_2> no_points;
+    CGAL::Surface_sweep_2::prepare_for_sweep(surface, curves.begin(), curves.end(), no_points.begin(), no_points.end(),
+                                             std::back_inserter(all_curves), std::back_inserter(points), &traits);
+    Visitor visitor(&surface, cancel);
+    CGAL::Surface_sweep_2::Surface_sweep_2<Visitor> sweep(&traits, &visitor);
+    sweep.sweep(all_curves.begin(), all_curves.end(), points.begin(), points.end());
+  }
+  access.notify_after_global_change();
+  cancel.check();
+}
 #endif
 
 namespace {

@@ -20,6 +20,7 @@
 #include <CGAL/Arr_segment_traits_2.h>
 #include <CGAL/Arrangement_2.h>
 
+#include "generate/cancel.h"
 #include "geom/cell_impl.h"
 #include "geom/kernel.h"
 #include "geom/planar_map.h"

@@ -107,7 +107,9 @@ std::size_t PlanarMap::snap_round() {
   // than that, and than the error of the test.
   const double step = std::nextafter(largest, std::numeric_limits<double>::infinity()) - largest;
   std::vector<std::pair<int, Point>> splits;  // (edge, point)
+  const exacity::CancelCheck cancel;
   for_each_near_pair(near, ends, 16 * step + 2 * widest, [&](int v, int e) {
+    cancel.check();
     const Vec2 g = rounded_of(v);
     if (rounded_of(ends[e].first) == g || rounded_of(ends[e].second) == g) return;  // it has a vertex there
     if (auto m = point_rounding_to(exact::Segment(edge_of[e]->source()->point(), edge_of[e]->target()->point()), g))
@@ -119,6 +121,7 @@ std::size_t PlanarMap::snap_round() {
   std::size_t added = 0;
   const auto split = arr.geometry_traits()->split_2_object();
   for (std::size_t k = 0; k < splits.size();) {
+    cancel.check();
     Arrangement::Halfedge_handle h = edge_of[splits[k].first];
     Vec2 last = rounded_of(ends[splits[k].first].first);
     for (const int e = splits[k].first; k < splits.size() && splits[k].first == e; ++k) {

@@ -7,6 +7,7 @@
 #include <random>
 #include <thread>
 
+#include "generate/cancel.h"
 #include "geom/grid.h"
 #include "geom/planar_map.h"
 #include "geom/polygon_check.h"
@@ -49,6 +50,48 @@ TEST(PlanarMap, OverlappingSquaresWindOncePerRing) {
   EXPECT_EQ(a[1], 75);
   EXPECT_EQ(a[2], 75);
   EXPECT_EQ(a[3], 25);
+}
+
+// A cancelled insertion ends its sweep at the event under way (so a large map stops within
+// a second of Cancel) and throws once the sweep has cleaned up (the sanitizer build checks
+// that nothing leaks), into an empty map and into one that has edges already.
+TEST(PlanarMap, CancelledInsertionStopsAtTheSweepsFirstEvent) {
+  auto add_lattice = [](PlanarMap& map, double shift) {
+    for (int i = 0; i < 60; ++i) {
+      map.add_edge({shift, shift + i}, {shift + 60, shift + i}, 0);
+      map.add_edge({shift + i + 0.5, shift}, {shift + i + 0.5, shift + 60}, 0);
+    }
+  };
+  PlanarMap whole;
+  add_lattice(whole, 0);
+  whole.insert_batch();
+  add_lattice(whole, 30.25);
+  whole.insert_batch();
+  const std::size_t first_edges = [&] {
+    PlanarMap one;
+    add_lattice(one, 0);
+    one.insert_batch();
+    return one.counts().edges;
+  }();
+  ASSERT_GT(first_edges, 7000u);  // 60 x 60 crossings
+
+  std::atomic<bool> cancelled{false};
+  const exacity::CancelScope scope(cancelled);
+  PlanarMap empty;
+  add_lattice(empty, 0);
+  cancelled = true;
+  EXPECT_THROW(empty.insert_batch(), exacity::Cancelled);
+  EXPECT_LT(empty.counts().edges, 10u);
+
+  cancelled = false;
+  PlanarMap filled;
+  add_lattice(filled, 0);
+  filled.insert_batch();
+  EXPECT_EQ(filled.counts().edges, first_edges);
+  add_lattice(filled, 30.25);
+  cancelled = true;
+  EXPECT_THROW(filled.insert_batch(), exacity::Cancelled);
+  EXPECT_LT(filled.counts().edges, whole.counts().edges / 2);
 }
 
 TEST(PlanarMap, ClockwiseRingWindsMinusOne) {
