@@ -7,6 +7,8 @@
 #include <fstream>
 #include <thread>
 
+#include "generate/errors.h"
+#include "generate/export/cancellable_file.h"
 #include "generate/pipeline.h"
 #include "tests/test_util.h"
 
@@ -101,6 +103,36 @@ TEST(Cancel, ACheckTakesItsThreadsFlagToOtherThreads) {
     }
   }).join();
   EXPECT_TRUE(thrown);
+}
+
+// A document written in one call stops within its first 64 KiB once cancelled, and a file
+// that cannot be written is a UserError, not a stream quietly gone bad.
+TEST(Cancel, AFileWrittenInOneCallStopsWithinIt) {
+  nlohmann::json doc = nlohmann::json::array();
+  for (int i = 0; i < 100000; ++i) doc.push_back({{"id", i}, {"name", "feature " + std::to_string(i)}});
+  const std::filesystem::path dir = testing_util::temp_dir("cancel_file");
+  std::atomic<bool> flag{false};
+  const CancelScope scope(flag);
+  {
+    CancellableFile whole(dir / "whole.json");
+    whole << doc;
+    whole.close();
+  }
+  EXPECT_EQ(std::filesystem::file_size(dir / "whole.json"), doc.dump().size());
+  flag = true;
+  {
+    CancellableFile cut(dir / "cut.json");
+    EXPECT_THROW(cut << doc, Cancelled);
+  }
+  EXPECT_LT(std::filesystem::file_size(dir / "cut.json"), 1u << 16);
+  flag = false;
+  CancellableFile full("/dev/full");
+  EXPECT_THROW(
+      {
+        full << doc;
+        full.close();
+      },
+      UserError);
 }
 
 }  // namespace

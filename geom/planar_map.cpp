@@ -179,7 +179,9 @@ void label_all_faces(Arrangement& arr, int from_counter, const std::function<int
   std::vector<int> labels(faces.size(), -1);
   std::deque<int> queue{arr.unbounded_face()->data()};
   reached[queue.front()] = 1;
+  const exacity::CancelCheck cancel;
   while (!queue.empty()) {
+    cancel.check();
     const int i = queue.front();
     queue.pop_front();
     labels[i] = label_of(windings[i], previous[i]);

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "generate/cancel.h"
+#include "generate/export/cancellable_file.h"
 #include "generate/errors.h"
 #include "generate/mesh/bridges.h"
 #include "generate/export/ground_layers.h"
@@ -393,9 +394,9 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
   if (const std::optional<int> epsg = epsg_of(crs))
     doc["metadata"] = {{"referenceSystem", "https://www.opengis.net/def/crs/EPSG/0/" + std::to_string(*epsg)}};
 
-  std::ofstream out(file, std::ios::binary);
-  out << doc.dump() << '\n';
-  if (!out) throw UserError(file.string() + ": write failed (disk full?)");
+  CancellableFile out(file);
+  out << doc << '\n';
+  out.close();
 }
 
 }  // namespace exacity

@@ -2,10 +2,10 @@
 
 #include <charconv>
 #include <fstream>
-#include <sstream>
 
 #include "generate/cancel.h"
 #include "generate/errors.h"
+#include "generate/export/cancellable_file.h"
 
 namespace exacity {
 namespace fs = std::filesystem;
@@ -73,14 +73,12 @@ void write_point_geojson(const Layer& layer, const nlohmann::ordered_json& crs, 
 Layer read_geojson(const fs::path& file, std::vector<std::string>& problems) {
   Layer layer;
   layer.name = file.stem().string();
-  std::ifstream in(file, std::ios::binary);
+  CancellableInput in(file);
   if (!in) {
     problems.push_back(file.string() + ": missing");
     return layer;
   }
-  std::stringstream text;
-  text << in.rdbuf();
-  json doc = json::parse(text.str(), nullptr, false);
+  json doc = json::parse(in, nullptr, false);
   if (doc.is_discarded() || !doc.is_object() || !doc.contains("features") || !doc["features"].is_array()) {
     problems.push_back(file.string() + ": not a GeoJSON FeatureCollection");
     return layer;

@@ -8,6 +8,7 @@
 #include <tiny_gltf.h>
 
 #include "generate/cancel.h"
+#include "generate/export/cancellable_file.h"
 #include "generate/errors.h"
 #include "generate/export/ground_layers.h"
 #include "generate/city/palette.h"
@@ -109,10 +110,10 @@ class Glb {
     scene.nodes = {root};
     model_.scenes.push_back(scene);
     model_.defaultScene = 0;
-    std::ofstream out(file, std::ios::binary);
+    CancellableFile out(file);
     tinygltf::TinyGLTF writer;
-    if (!out || !writer.WriteGltfSceneToStream(&model_, out, false, true) || !out.flush())
-      throw UserError(file.string() + ": write failed (disk full?)");
+    if (!writer.WriteGltfSceneToStream(&model_, out, false, true)) throw UserError(file.string() + ": write failed");
+    out.close();
   }
 
  private:

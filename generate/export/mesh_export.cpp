@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "generate/cancel.h"
+#include "generate/export/cancellable_file.h"
 #include "generate/city/palette.h"
 #include "generate/errors.h"
 #include "generate/export/geojson.h"
@@ -118,9 +119,10 @@ MeshCounts write_meshes(const std::vector<Building>& buildings, const std::vecto
       out.face(std::array<std::size_t, 3>{first + t[0], first + t[1], first + t[2]}, ply_surface(layer.kind));
   }
 
-  std::ofstream ply(ply_file, std::ios::binary);
+  CancellableFile ply(ply_file);
   const MeshCounts counts = out.write_ply(ply);
-  if (!obj || !mtl || !ply) throw UserError(obj_file.string() + ": write failed (disk full?)");
+  ply.close();
+  if (!obj || !mtl) throw UserError(obj_file.string() + ": write failed (disk full?)");
   return counts;
 }
 
