@@ -1,11 +1,5 @@
 #include "benchmarks/robustness.h"
 
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -23,10 +17,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "benchmarks/child_process.h"
 #include "benchmarks/families.h"
 #include "benchmarks/judge.h"
-
-extern char** environ;
 
 namespace exacity::bench {
 namespace fs = std::filesystem;
@@ -70,53 +63,6 @@ std::vector<Build> builds_in(const RobustnessOptions& o, std::ostream& log) {
     log << "left out: " << why << "\n";
   }
   return found;
-}
-
-struct Run {
-  enum Status { Exited, Signalled, TimedOut } status = Exited;
-  int code = 0;  // exit code, or signal
-  double seconds = 0;
-};
-
-// Runs the program with its output into `log`, killed after `limit` seconds.
-Run run_child(const std::vector<std::string>& args, const fs::path& log, double limit) {
-  std::vector<char*> argv;
-  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  const auto start = std::chrono::steady_clock::now();
-  pid_t pid = 0;
-  // A loaded machine can refuse a process for a moment (EAGAIN, ENOMEM): try again before
-  // giving up on the whole run.
-  int failed = 0;
-  for (int attempt = 0; attempt < 6; ++attempt) {
-    failed = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-    if (failed != EAGAIN && failed != ENOMEM) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(250 << attempt));
-  }
-  posix_spawn_file_actions_destroy(&actions);
-  if (failed) throw std::runtime_error("cannot run " + args[0] + ": " + std::strerror(failed));
-  Run run;
-  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-  int status = 0;
-  while (waitpid(pid, &status, WNOHANG) == 0) {
-    if (elapsed() > limit) {
-      kill(pid, SIGKILL);
-      waitpid(pid, &status, 0);
-      run.status = Run::TimedOut;
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  run.seconds = elapsed();
-  if (run.status == Run::TimedOut) return run;
-  if (WIFSIGNALED(status)) run.status = Run::Signalled, run.code = WTERMSIG(status);
-  else run.code = WEXITSTATUS(status);
-  return run;
 }
 
 // One build on one case.

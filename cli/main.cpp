@@ -13,6 +13,7 @@
 
 #include "benchmarks/families.h"
 #include "benchmarks/robustness.h"
+#include "benchmarks/scale.h"
 #include "cli/progress.h"
 #include "cli/serve_command.h"
 #include "generate/errors.h"
@@ -134,6 +135,7 @@ int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, 
       r.still = dir / "still.png", r.overview_file = dir / "overview.png", r.minimap_file = dir / "minimap.png";
       result.report["render"] = clock.run("render", [&] { return render_with_progress(city, r, progress); });
       result.report["timings_s"] = clock.seconds;
+      result.report["peak_memory_mib"] = clock.peak_mib;
       std::ofstream(folder.staging() / "report.json", std::ios::binary) << result.report.dump(2) << "\n";
     }
   }
@@ -359,11 +361,16 @@ int stats(const fs::path& out, const std::vector<fs::path>& real) {
   return 0;
 }
 
+// This program's own path, for the benchmarks that run it (or the builds beside it).
+fs::path this_program(const char* argv0) {
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? fs::absolute(argv0) : self;
+}
+
 // Runs the robustness benchmark with the builds beside this program, and prints its table.
 int robustness_benchmark(bench::RobustnessOptions o, const char* argv0) {
-  std::error_code ec;
-  fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  o.programs = (ec ? fs::absolute(argv0) : self).parent_path();
+  o.programs = this_program(argv0).parent_path();
   try {
     bench::run_robustness(o, std::cout);
   } catch (const std::runtime_error& e) {
@@ -371,6 +378,18 @@ int robustness_benchmark(bench::RobustnessOptions o, const char* argv0) {
   }
   std::ifstream table(o.out / "robustness.md");
   std::cout << table.rdbuf();
+  return 0;
+}
+
+// Runs the scale benchmark with this program, and prints its tables.
+int scale_benchmark(bench::ScaleOptions o, const char* argv0) {
+  o.program = this_program(argv0);
+  try {
+    bench::run_scale(o, std::cout);
+  } catch (const std::runtime_error& e) {
+    throw UserError(e.what());
+  }
+  std::printf("wrote %s (scale.json, scale.md, scale.svg)\n", o.out.string().c_str());
   return 0;
 }
 
@@ -409,6 +428,11 @@ struct RobustnessCommand {
   CLI::App* app = nullptr;
   bench::RobustnessOptions options;
   fs::path export_dir;  // write the cases there instead of running them
+};
+
+struct ScaleCommand {
+  CLI::App* app = nullptr;
+  bench::ScaleOptions options;
 };
 
 void add_program_options(CLI::App& app, SharedOptions& shared) {
@@ -526,10 +550,26 @@ void add_stats(CLI::App& app, StatsCommand& c) {
                     "GeoJSON of real footprints or streets (metres or lon/lat), measured the same way");
 }
 
-void add_bench_robustness(CLI::App& app, RobustnessCommand& c) {
+void add_bench_scale(CLI::App& benchmarks, ScaleCommand& c) {
+  bench::ScaleOptions& o = c.options;
+  c.app = benchmarks.add_subcommand(
+      "scale", "The sketch tiled to several sizes, each generated as a user runs it: seconds and memory per stage");
+  c.app->add_option("SKETCH", o.sketch, "The sketch to tile")->check(CLI::ExistingFile)->capture_default_str();
+  c.app->add_option("--sizes", o.sizes, "Areas in copies of the sketch, square numbers (1 4 16: 1x1, 2x2, 4x4)")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
+  c.app->add_option("--threads", o.threads, "generate's --threads (0: one per core)")->check(CLI::Range(0, 1024));
+  c.app->add_option("--runs", o.runs, "Runs a size (medians)")->check(CLI::Range(1, 100))->capture_default_str();
+  c.app->add_option("-o,--output", o.out, "Folder for the tiled sketches, the cities and scale.json, .md, .svg")
+      ->capture_default_str();
+}
+
+void add_bench(CLI::App& app, RobustnessCommand& c, ScaleCommand& scale) {
   bench::RobustnessOptions& o = c.options;
   auto* benchmarks = app.add_subcommand("bench", "Benchmarks");
   benchmarks->require_subcommand(1);
+  add_bench_scale(*benchmarks, scale);
   c.app = benchmarks->add_subcommand(
       "robustness", "The exact build against its floating-point builds on families of near-degenerate sketches");
   std::vector<std::string> family_names;
@@ -600,6 +640,7 @@ int main(int argc, char** argv) {
   ValidateCommand val;
   StatsCommand sta;
   RobustnessCommand rob;
+  ScaleCommand scale;
   ServeCommand srv;
   // In this order --help lists them.
   add_program_options(app, shared);
@@ -608,7 +649,7 @@ int main(int argc, char** argv) {
   add_validate(app, val);
   add_stats(app, sta);
   add_serve(app, srv);
-  add_bench_robustness(app, rob);
+  add_bench(app, rob, scale);
   if (const std::optional<int> code = parse_command_line(app, argc, argv, sta)) return *code;
 
   return exit_code_of([&] {
@@ -625,6 +666,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*rob.app) return robustness_benchmark(rob.options, argv[0]);
+    if (*scale.app) return scale_benchmark(scale.options, argv[0]);
     return 0;
   });
 }

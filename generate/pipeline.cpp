@@ -1,5 +1,7 @@
 #include "generate/pipeline.h"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <chrono>
 #include <fstream>
@@ -29,6 +31,12 @@
 namespace exacity {
 namespace fs = std::filesystem;
 using nlohmann::ordered_json;
+
+double peak_resident_mib() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;
+}
 
 namespace {
 
@@ -172,8 +180,8 @@ GenerateResult write_city(const Sketch& sketch, const City& city, const fs::path
   MeshCounts mesh = stages.run("3d export", [&] { return export_3d(city, dir, gltf); });
   std::optional<Validation> validation;
   if (geom::kernel_validates_its_output()) validation = stages.run("validation", [&] { return validate_output(dir); });
-  const ordered_json report =
-      city_report(city, {mesh, gltf, options.vector_formats, city_osm, validation}, stages.seconds);
+  ordered_json report = city_report(city, {mesh, gltf, options.vector_formats, city_osm, validation}, stages.seconds);
+  report["peak_memory_mib"] = stages.peak_mib;
   write_report(report, dir);
   return {report, !validation || validation->ok()};
 }

@@ -21,6 +21,9 @@ namespace exacity {
 using ProgressFn = std::function<void(int, int, const std::string&)>;
 
 // Times stages and tells the progress callback as each begins.
+// The largest resident set this process has had, in MiB.
+double peak_resident_mib();
+
 class StageClock {
  public:
   StageClock(ProgressFn progress, int count) : progress_(std::move(progress)), count_(count) {}
@@ -34,11 +37,15 @@ class StageClock {
       std::chrono::steady_clock::time_point start;
       ~Record() {
         clock.seconds[name] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        clock.peak_mib[name] = peak_resident_mib();
       }
     } record{*this, name, start};
     return f();
   }
   nlohmann::ordered_json seconds = nlohmann::ordered_json::object();
+  // The process's largest resident set so far, as each stage ended (report.json's
+  // peak_memory_mib): where the peak is reached.
+  nlohmann::ordered_json peak_mib = nlohmann::ordered_json::object();
 
  private:
   ProgressFn progress_;

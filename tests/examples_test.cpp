@@ -196,6 +196,7 @@ std::map<std::string, std::string> outputs(const fs::path& dir) {
     if (rel == "report.json") {
       auto j = nlohmann::ordered_json::parse(text);
       j.erase("timings_s");
+      j.erase("peak_memory_mib");
       text = j.dump();
     }
     files[rel] = text;

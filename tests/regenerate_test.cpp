@@ -119,6 +119,7 @@ std::string written(const Sketch& sketch, const City& city, const std::string& n
     if (file.filename() == "report.json") {
       json report = json::parse(content);
       report.erase("timings_s");
+      report.erase("peak_memory_mib");
       report.erase("reused");
       content = report.dump(1);
     }
