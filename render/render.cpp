@@ -59,10 +59,10 @@ Haze haze_layer(const RenderRequest& request, const RenderScene& scene) {
   return haze;
 }
 
-// The exposure and white balance asked for, applied on the way to the 8-bit images only:
-// the EXR keeps linear radiance (render/README.md, Tone mapping).
-Rgb8 tone_mapped(const Image& image, const RenderRequest& request) {
-  return tone_map(image, request.exposure * std::exp2(request.exposure_ev),
+// The exposure and white balance asked for, `metered` stops brighter, applied on the way to
+// the 8-bit images only: the EXR keeps linear radiance (render/README.md, Tone mapping).
+Rgb8 tone_mapped(const Image& image, const RenderRequest& request, float metered = 0) {
+  return tone_map(image, request.exposure * std::exp2(request.exposure_ev + metered),
                   white_balance_gains(request.white_balance_k));
 }
 
@@ -79,6 +79,7 @@ struct Still {
   RayCounts rays;
   int passes = 0;
   double seconds = 0, denoise_seconds = 0;  // tracing, filtering
+  float metered_ev = 0;
 };
 
 // Passes of request.spp samples: one, or as many as the time budget holds. A pass is not
@@ -105,7 +106,8 @@ Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camer
   const auto filtering = std::chrono::steady_clock::now();
   still.image = finished(film.image(), scene, sky, camera, haze, request);
   still.denoise_seconds = seconds_since(filtering);
-  still.png = tone_mapped(still.image, request);
+  still.metered_ev = metered_stops(still.image);
+  still.png = tone_mapped(still.image, request, still.metered_ev);
   return still;
 }
 
@@ -135,6 +137,7 @@ nlohmann::ordered_json still_report(const RenderRequest& request, const RenderSc
       {"time_budget_s", request.time_budget_s},
       {"denoised", request.denoise},
       {"exposure_ev", request.exposure_ev},
+      {"metered_ev", still.metered_ev},
       {"white_balance_k", request.white_balance_k},
       {"haze_visibility_m", request.haze_visibility},
       {"camera",
