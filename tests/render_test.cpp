@@ -77,6 +77,35 @@ TEST(Render, HazeInTheFurnaceChangesNothing) {
   EXPECT_NEAR(furnace({0.2f, 100, 0.7f}), 5.0, 5.0 * 0.02);
 }
 
+// Haze of 1500 m visibility over a sunlit plane, the sky seen through it at 16 samples,
+// across the sun's direction: each sky pixel's mean is nearer its truth. The sun reached
+// the haze only at the points where rays scattered (with weight one, drawn nearest the
+// ground, where it is dimmest), and a ray either saw the sky or scattered: a grain of
+// pixels that did and pixels that did not (a mean relative error of 0.236 here; 0.195
+// with the sun sought along every ray and the sky seen through the haze as well as
+// scattered; the light scattered many times is what is left).
+TEST(Render, HazySkyIsLessGrainyAtAFewSamples) {
+  TriangleSoup plane;
+  plane.vertices = {{-20000, -20000, 0}, {20000, -20000, 0}, {20000, 20000, 0}, {-20000, 20000, 0}};
+  plane.triangles = {{0, 1, 2}, {0, 2, 3}};
+  plane.material = {Material::Diffuse, {0.3f, 0.3f, 0.3f}};
+  RenderScene scene({plane});
+  const Sky sky(200, 30);
+  const Haze haze{Haze::density_for_visibility(1500), 500, 0.7f};
+  // At right angles to the sun, from the horizon up to 40 degrees.
+  const Camera c = Camera::look({0, 0, 2}, {-34, 94, 40}, 40);
+  const Image img = trace(scene, sky, c, TraceSettings{32, 16, 16, 8, haze});
+  double spread = 0;
+  int sky_pixels = 0;
+  for (std::size_t i = 0; i < img.beauty.size() / 2; ++i) {  // the upper half, clear of the horizon
+    if (std::isfinite(img.depth[i])) continue;
+    spread += std::sqrt(img.variance[i]) / luminance(img.beauty[i]);
+    ++sky_pixels;
+  }
+  ASSERT_EQ(sky_pixels, 32 * 8);
+  EXPECT_LT(spread / sky_pixels, 0.215) << "the sky pixels' mean relative standard deviation";
+}
+
 TEST(Render, HenyeyGreensteinSamplesItsOwnDensity) {
   for (float g : {0.0f, 0.7f, -0.4f}) {
     // Its mean cosine is g, and the density integrates to one.
