@@ -39,6 +39,15 @@ TriangleSoup box(float s, Material m) {
   return b;
 }
 
+// The ground, z = 0, from -s to s each way.
+TriangleSoup ground_plane(float s, Material m) {
+  TriangleSoup plane;
+  plane.vertices = {{-s, -s, 0}, {s, -s, 0}, {s, s, 0}, {-s, s, 0}};
+  plane.triangles = {{0, 1, 2}, {0, 2, 3}};
+  plane.material = m;
+  return plane;
+}
+
 double mean_luminance(const Image& img) {
   double sum = 0;
   for (V3 c : img.beauty) sum += (c.x + c.y + c.z) / 3;
@@ -85,11 +94,7 @@ TEST(Render, HazeInTheFurnaceChangesNothing) {
 // with the sun sought along every ray and the sky seen through the haze as well as
 // scattered; the light scattered many times is what is left).
 TEST(Render, HazySkyIsLessGrainyAtAFewSamples) {
-  TriangleSoup plane;
-  plane.vertices = {{-20000, -20000, 0}, {20000, -20000, 0}, {20000, 20000, 0}, {-20000, 20000, 0}};
-  plane.triangles = {{0, 1, 2}, {0, 2, 3}};
-  plane.material = {Material::Diffuse, {0.3f, 0.3f, 0.3f}};
-  RenderScene scene({plane});
+  RenderScene scene({ground_plane(20000, {Material::Diffuse, {0.3f, 0.3f, 0.3f}})});
   const Sky sky(200, 30);
   const Haze haze{Haze::density_for_visibility(1500), 500, 0.7f};
   // At right angles to the sun, from the horizon up to 40 degrees.
@@ -153,11 +158,7 @@ TEST(Render, EveryMaterialConservesEnergyAndSamplesWhatItEvaluates) {
 
 TEST(Render, SunLitPlaneMatchesItsIrradiance) {
   // A white-ish plane under the sun alone: L = albedo / pi * E_sun * sin(elevation).
-  TriangleSoup plane;
-  plane.vertices = {{-5000, -5000, 0}, {5000, -5000, 0}, {5000, 5000, 0}, {-5000, 5000, 0}};
-  plane.triangles = {{0, 1, 2}, {0, 2, 3}};
-  plane.material = {Material::Diffuse, {0.5f, 0.5f, 0.5f}};
-  RenderScene scene({plane});
+  RenderScene scene({ground_plane(5000, {Material::Diffuse, {0.5f, 0.5f, 0.5f}})});
   for (float elevation : {30.0f, 60.0f}) {
     Sky sun_only(100, elevation, 3, 0, 1);
     Camera c = Camera::look({0, 0, 50}, {0, 20, 0}, 40);
