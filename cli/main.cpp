@@ -1,5 +1,6 @@
 // The exacity command: options, progress, error reporting and exit codes (0 ok, 2 bad
 // input, 3 failed internal check). The work itself lives in generate/.
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -113,6 +114,7 @@ nlohmann::ordered_json render_with_progress(const City& city, render::RenderRequ
 
 int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, const fs::path& out, bool quiet,
              const RenderOptions* rendering, const ExportOptions& exports) {
+  const auto started = std::chrono::steady_clock::now();  // --time is the whole command's
   Sketch sketch = load_sketch(sketch_paths, true, models);
   if (rendering) {  // a bad camera or size stops us before any work
     given_camera(sketch.camera, *rendering, sketch.path.string());
@@ -131,6 +133,7 @@ int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, 
       const fs::path dir = folder.staging() / "render";
       fs::create_directories(dir);
       render::RenderRequest r = request_for(city, *rendering, sketch.path.string());
+      r.started = started;
       r.overview = r.minimap = true;
       r.still = dir / "still.png", r.overview_file = dir / "overview.png", r.minimap_file = dir / "minimap.png";
       result.report["render"] = clock.run("render", [&] { return render_with_progress(city, r, progress); });
@@ -295,6 +298,7 @@ int render_path_folder(const fs::path& out, const Sketch& sketch, const RenderOp
 // Rebuilds the city of an output folder in memory (same sketch, same seed: the same city)
 // and renders it.
 int render_folder(const fs::path& out, const RenderOptions& o, const fs::path& file, bool quiet) {
+  const auto started = std::chrono::steady_clock::now();  // --time is the whole command's
   if (!fs::is_regular_file(out / "report.json") || !fs::is_regular_file(out / "sketch.geojson"))
     throw UserError(out.string() + ": not an output folder of exacity generate (no report.json or sketch.geojson); run exacity generate first");
   nlohmann::json report = nlohmann::json::parse(output_file(out / "report.json"), nullptr, false);
@@ -314,6 +318,7 @@ int render_folder(const fs::path& out, const RenderOptions& o, const fs::path& f
   StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); }, kCityStages + 1);
   City city = build_city(sketch, clock);
   render::RenderRequest r = request_for(city, o, (out / "sketch.geojson").string());
+  r.started = started;
   r.still = still;
   create_output_folder(dir);
   r.overview_file = dir / "overview.png", r.minimap_file = dir / "minimap.png";
@@ -462,8 +467,8 @@ void add_image_options(CLI::App* c, RenderOptions& o) {
       ->check(CLI::Range(static_cast<double>(render::kLeastKelvin), static_cast<double>(render::kMostKelvin)))
       ->capture_default_str();
   c->add_option("--time", o.time_s,
-                "Progressive: passes of --spp samples until this many seconds are spent (still.json records the "
-                "passes)")
+                "Progressive: passes of --spp samples while the whole command, the denoiser included, fits in "
+                "this many seconds (still.json records the passes)")
       ->check(CLI::Range(0.0, 1e6));
   c->add_option("--aperture", o.aperture,
                 "Depth of field: the thin lens's diameter in metres (0: a pinhole, all sharp; a few metres over "

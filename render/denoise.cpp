@@ -1,8 +1,12 @@
 #include "render/denoise.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <type_traits>
 
 #include "generate/cancel.h"
 #include "render/primary_layer.h"
@@ -15,7 +19,19 @@ constexpr float kB3[5] = {1 / 16.0f, 1 / 4.0f, 3 / 8.0f, 1 / 4.0f, 1 / 16.0f};  
 // Albedo below this is not divided out: black surfaces would blow their noise up.
 constexpr float kLeastAlbedo = 0.01f;
 
-bool is_sky(const Image& img, std::size_t i) { return !std::isfinite(img.depth[i]); }
+inline bool is_sky(const Image& img, std::size_t i) { return !std::isfinite(img.depth[i]); }
+
+// f(i) for every pixel, in parallel: on two cores a serial pass over the image costs
+// twice its share of the filter's time. Each pixel's result is its own, so the output is
+// the same whatever the threads.
+template <typename F>
+void each_pixel(std::size_t n, const F& f) {
+  const exacity::CancelCheck cancel;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    cancel.check();
+    for (std::size_t i = r.begin(); i < r.end(); ++i) f(i);
+  });
+}
 
 V3 dividable(V3 a) { return {std::max(a.x, kLeastAlbedo), std::max(a.y, kLeastAlbedo), std::max(a.z, kLeastAlbedo)}; }
 
@@ -37,13 +53,13 @@ Estimate estimate_of(const std::vector<V3>& beauty, const std::vector<V3>& albed
   const std::size_t n = beauty.size();
   Estimate e{std::vector<V3>(n), std::vector<V3>(n), sun.empty() ? std::vector<V3>(n) : sun, {}, {},
              std::vector<float>(n, 0), share};
-  for (std::size_t i = 0; i < n; ++i) {
+  each_pixel(n, [&](std::size_t i) {
     const V3 a = dividable(albedo[i]), rest = beauty[i] - e.sun[i];
     e.light[i] = {rest.x / a.x, rest.y / a.y, rest.z / a.z}, e.albedo[i] = a;
     const float la = luminance(a);
     // A part of the samples is noisier than all of them by their ratio.
     if (!variance.empty()) e.variance[i] = variance[i] / share / (la * la);
-  }
+  });
   return e;
 }
 
@@ -101,7 +117,7 @@ std::vector<V3> guide_albedo(const Image& img) {
 // differences, so a ground plane seen at a grazing angle is still one surface.
 std::vector<float> depth_gradients(const Image& img) {
   std::vector<float> g(img.depth.size(), 0);
-  for (int y = 0; y < img.height; ++y)
+  tbb::parallel_for(0, img.height, [&](int y) {
     for (int x = 0; x < img.width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * img.width + x;
       if (is_sky(img, i)) continue;
@@ -115,6 +131,7 @@ std::vector<float> depth_gradients(const Image& img) {
       }
       g[i] = most;
     }
+  });
   return g;
 }
 
@@ -158,12 +175,12 @@ void filter_level(const Image& img, std::vector<Estimate>& estimates, const std:
   std::vector<std::vector<float>> lum(count), inverse_noise(count);
   for (std::size_t e = 0; e < count; ++e) {
     lum[e].resize(img.beauty.size());
-    for (std::size_t i = 0; i < lum[e].size(); ++i) lum[e][i] = luminance(estimates[e].light[i]);
+    each_pixel(lum[e].size(), [&](std::size_t i) { lum[e][i] = luminance(estimates[e].light[i]); });
     // Without a variance (an image from elsewhere) luminance stops nothing.
     inverse_noise[e].assign(img.beauty.size(), 0);
     if (img.variance.empty()) continue;
     const std::vector<float> v = smoothed_variance(img, estimates[e].variance);
-    for (std::size_t i = 0; i < v.size(); ++i) inverse_noise[e][i] = 1 / (s.luminance_sigma * std::sqrt(v[i]) + 1e-6f);
+    each_pixel(v.size(), [&](std::size_t i) { inverse_noise[e][i] = 1 / (s.luminance_sigma * std::sqrt(v[i]) + 1e-6f); });
   }
   float distance[5][5];
   for (int v = -2; v <= 2; ++v)
@@ -198,6 +215,7 @@ void filter_level(const Image& img, std::vector<Estimate>& estimates, const std:
             const V3 da = albedo[i] - albedo[j];
             exponent = -std::abs(img.depth[i] - img.depth[j]) / depth_scale -
                        (std::abs(da.x) + std::abs(da.y) + std::abs(da.z)) / s.albedo_sigma;
+            if (exponent < -30) continue;  // the guides alone stop it (below)
             // cos^128 by squaring; other powers through pow.
             guides *= s.normal_power == 128 ? power_128(facing) : std::pow(facing, s.normal_power);
           }
@@ -300,8 +318,8 @@ Image denoise(const Image& img, const DenoiseSettings& s) {
     for (const bool finer : {false, true}) {
       if ((l == 0 && !finer) || (finer && finer_albedo.empty())) continue;
       const std::vector<float> error = level_error(img, level, finer, s.selection_radius);
-      for (std::size_t i = 0; i < n; ++i) {
-        if (!(error[i] < least[i])) continue;
+      each_pixel(n, [&](std::size_t i) {
+        if (!(error[i] < least[i])) return;
         least[i] = error[i];
         V3 light{0, 0, 0}, own{0, 0, 0};
         float variance = 0;
@@ -311,17 +329,58 @@ Image denoise(const Image& img, const DenoiseSettings& s) {
           variance += e.share * e.share * e.variance[i] * la * la;
         }
         out.beauty[i] = finer ? light * finer_albedo[i] + finer_sun[i] : own, out.variance[i] = variance;
-      }
+      });
     }
   }
   return out;
 }
 
+int primary_rays(int samples, const DenoiseSettings& settings) {
+  return std::clamp(samples / 2, std::min(8, settings.primary_rays), settings.primary_rays);
+}
+
+namespace {
+
+// Rows [y0, y1) of an image with every layer it has.
+Image rows_of(const Image& img, int y0, int y1) {
+  const std::size_t from = static_cast<std::size_t>(y0) * img.width, to = static_cast<std::size_t>(y1) * img.width;
+  auto cut = [&](const auto& v) {
+    using Vector = std::decay_t<decltype(v)>;
+    return v.empty() ? Vector{} : Vector(v.begin() + static_cast<std::ptrdiff_t>(from), v.begin() + static_cast<std::ptrdiff_t>(to));
+  };
+  Image out;
+  out.width = img.width, out.height = y1 - y0;
+  out.beauty = cut(img.beauty), out.depth = cut(img.depth), out.normal = cut(img.normal), out.albedo = cut(img.albedo);
+  out.id = cut(img.id), out.variance = cut(img.variance), out.mean_albedo = cut(img.mean_albedo);
+  out.first_sun = cut(img.first_sun);
+  for (int h = 0; h < 2; ++h)
+    out.halves[h] = {cut(img.halves[h].beauty), cut(img.halves[h].albedo), cut(img.halves[h].sun), img.halves[h].samples};
+  return out;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
+double filter_seconds(const Image& image, const DenoiseSettings& settings) {
+  // A band of an eighth of the rows (32 at least), timed and scaled: the filter's work is
+  // the same for every pixel.
+  const int rows = std::min(image.height, std::max(32, image.height / 8));
+  if (rows == 0) return 0;
+  const Image band = rows_of(image, 0, rows);
+  const auto start = std::chrono::steady_clock::now();
+  denoise(band, settings);
+  return seconds_since(start) * image.height / rows;
+}
+
 Image denoise_render(Image image, const RenderScene& scene, const Sky& sky, const Camera& camera, const Haze& haze,
                      const DenoiseSettings& settings) {
   const int samples = image.halves[0].samples + image.halves[1].samples;
-  if (settings.primary_rays > 0 && samples >= 2 && haze.density <= 0)
-    image.extra = primary_layer(scene, sky, camera, image.width, image.height, samples, settings.primary_rays);
+  const int rays = primary_rays(samples, settings);
+  if (rays > 0 && samples >= 2 && haze.density <= 0)
+    image.extra = primary_layer(scene, sky, camera, image.width, image.height, samples, rays);
   return denoise(image, settings);
 }
 

@@ -25,9 +25,10 @@ struct DenoiseSettings {
   // averaged before each pixel picks its level: the Cycles comparison's view measured
   // 3 a little worse, 2 worse again (one pixel's error is too noisy to choose by).
   int selection_radius = 5;
-  // denoise_render's camera rays a pixel beyond the path samples (render/primary_layer.h):
-  // on the Cycles comparison's view 16 cut the error at 16 samples from 0.0219 to 0.0149,
-  // 32 to 0.0129, 64 to 0.0112 at nearly twice 32's cost; 32 gave the most for the time.
+  // The most camera rays a pixel denoise_render adds beyond the path samples
+  // (render/primary_layer.h; primary_rays() below): on the Cycles comparison's view 16 cut
+  // the error at 16 samples from 0.0219 to 0.0149, 32 to 0.0129, 64 to 0.0112 at nearly
+  // twice 32's cost; 32 gave the most for the time.
   int primary_rays = 32;
 };
 
@@ -35,6 +36,16 @@ struct DenoiseSettings {
 // variance becomes the filtered estimate's. Uses the image's halves (Image::halves) and
 // its primary layer (Image::extra) where it has them.
 Image denoise(const Image& image, const DenoiseSettings& settings = {});
+
+// The primary layer's rays a pixel for an image of `samples` path samples: half as many,
+// 8 to settings.primary_rays. A primary ray costs about a third of a path sample, so the
+// layer costs a sixth of the tracing (more under 16 samples, where 8 rays are the least
+// that help): with the filter, the denoiser stays under half the tracing at 16 samples.
+int primary_rays(int samples, const DenoiseSettings& settings = {});
+
+// How long denoise() takes on `image` here: a band of its rows filtered, timed and scaled
+// (the filter's work is the same for every pixel); for a time budget.
+double filter_seconds(const Image& image, const DenoiseSettings& settings = {});
 
 // What exacity render does: the primary layer's rays (none in haze), then denoise();
 // the scene, sky, camera (in scene coordinates) and haze `image` was traced with.

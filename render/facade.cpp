@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "generate/city/palette.h"
 #include "generate/city/random.h"
 #include "render/noise.h"
 
@@ -23,6 +22,8 @@ float hash01(int a, int b) {
 }
 
 float fraction(float x) { return x - std::floor(x); }
+
+constexpr float kFrame = 0.06f;  // m: a window frame's width
 
 }  // namespace
 
@@ -52,33 +53,55 @@ FacadeStyle facade_style(exacity::ZoneType zone, std::uint64_t seed, int id, flo
       break;
   }
   s.phase = static_cast<float>(rng.uniform(0, s.bay));
+  s.dark_frames = rng.uniform(0, 1) < 0.4;
   return s;
 }
 
-bool in_window(const FacadeStyle& s, float along, float z) {
+WindowPoint window_at(const FacadeStyle& s, float along, float z) {
+  WindowPoint w;
   const float h = z - s.floor;
-  if (h < 0 || z > s.eaves - 0.4f) return false;
+  if (h < 0 || z > s.eaves - 0.4f) return w;
   // A shop floor 4.5 m tall: glass from 0.4 m to 3.4 m, bays 0.9 of their width, a fascia above.
   constexpr float kShopFloor = 4.5f;
   if (s.shopfront && h < kShopFloor) {
-    const float bay = fraction((along - s.phase) / (2 * s.bay));
-    return h > 0.4f && h < 3.4f && bay > 0.05f && bay < 0.95f;
+    const float cell = (along - s.phase) / (2 * s.bay), bay = fraction(cell);
+    if (!(h > 0.4f && h < 3.4f && bay > 0.05f && bay < 0.95f)) return w;
+    w.inside = true, w.row = -1, w.column = static_cast<int>(std::floor(cell));
+    w.from_edge = std::min((0.45f - std::abs(bay - 0.5f)) * 2 * s.bay, std::min(h - 0.4f, 3.4f - h));
+    w.from_centre = std::abs(bay - 0.5f) * 2 * s.bay;
+    return w;
   }
   const float above = s.shopfront ? h - kShopFloor : h;
   const float storey = fraction(above / s.storey);
   // No window cut by the eaves: the storey's top must be below them.
   if (s.floor + (s.shopfront ? kShopFloor : 0) + (std::floor(above / s.storey) + s.head) * s.storey > s.eaves - 0.4f)
-    return false;
-  const float bay = fraction((along - s.phase) / s.bay);
-  return storey > s.sill && storey < s.head && std::abs(bay - 0.5f) < s.window / 2;
+    return w;
+  const float cell = (along - s.phase) / s.bay, bay = fraction(cell);
+  if (!(storey > s.sill && storey < s.head && std::abs(bay - 0.5f) < s.window / 2)) return w;
+  w.inside = true, w.row = static_cast<int>(std::floor(above / s.storey)), w.column = static_cast<int>(std::floor(cell));
+  w.from_edge = std::min((s.window / 2 - std::abs(bay - 0.5f)) * s.bay, std::min(storey - s.sill, s.head - storey) * s.storey);
+  w.from_centre = std::abs(bay - 0.5f) * s.bay;
+  return w;
 }
 
+bool in_window(const FacadeStyle& s, float along, float z) { return window_at(s, along, z).inside; }
+
 Material facade_material(const FacadeStyle& s, const Material& wall, V3 p, V3 n) {
-  if (std::abs(n.z) < 0.3f && in_window(s, along_wall(p, n), p.z))
-    return {Material::Glossy,
-            {exacity::kWindowAlbedo[0], exacity::kWindowAlbedo[1], exacity::kWindowAlbedo[2]},
-            0.05f,
-            1.5f};
+  if (std::abs(n.z) < 0.3f) {
+    const WindowPoint w = window_at(s, along_wall(p, n), p.z);
+    // A frame 6 cm wide round the pane, and a mullion down the middle of a pane wider than
+    // 1.2 m, in white or dark grey by building.
+    const float width = w.row < 0 ? 0.9f * 2 * s.bay : s.window * s.bay;
+    if (w.inside && (w.from_edge < kFrame || (width > 1.2f && w.from_centre < kFrame / 2)))
+      return {Material::Diffuse, s.dark_frames ? V3{0.12f, 0.12f, 0.13f} : V3{0.75f, 0.75f, 0.73f}};
+    if (w.inside) {
+      // Glass: a smooth coat that mirrors the sky and the street (Fresnel), over the room
+      // behind it, each window its own (curtains, blinds, a lit wall or a dark room).
+      const float room = 0.03f + 0.1f * hash01(w.row * 7919 + static_cast<int>(s.phase * 1000), w.column);
+      const float warm = hash01(w.column, w.row * 31 + 3);
+      return {Material::Glossy, V3{room * (0.9f + 0.2f * warm), room, room * (1.1f - 0.2f * warm)}, 0.05f, 1.52f};
+    }
+  }
   Material m = wall;
   const float plaster = noise().fractal(p.x * 0.7f + p.y * 0.7f, p.z * 0.7f, 3);
   m.albedo = m.albedo * (0.93f + 0.14f * plaster);

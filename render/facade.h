@@ -23,15 +23,26 @@ struct FacadeStyle {
   float sill = 0.3f, head = 0.78f;  // a window's bottom and top, as shares of its storey
   float phase = 0;                  // m: where the bays start along a wall
   bool shopfront = false;           // commercial: shop windows on the ground floor
+  bool dark_frames = false;         // window frames dark grey, else white
 };
+
+// Where a wall point lies in the style's windows: inside a window or not, that window's
+// storey (-1: the shop floor) and bay, and the metres to the pane's nearest edge and to
+// its vertical centre line.
+struct WindowPoint {
+  bool inside = false;
+  int row = 0, column = 0;
+  float from_edge = 0, from_centre = 0;
+};
+WindowPoint window_at(const FacadeStyle& style, float along, float z);
 
 // A building's style: storeys and windows by its zone (residential 2.8-3.2 m storeys,
 // commercial 3.4-4.2 m over a 4.5 m shop floor, industrial 4.5-6 m with wide high
 // windows), varied per building by a stream seeded by the city's seed and its id.
 FacadeStyle facade_style(exacity::ZoneType zone, std::uint64_t seed, int id, float floor, float eaves);
 
-// What the wall is at a point: glass in a window, else the wall's albedo with a little
-// plaster noise; `along` is the distance along the wall's horizontal direction.
+// What the wall is at a point: in a window glass over its room, or its frame or mullion;
+// else the wall's albedo with a little plaster noise; `along` is the distance along the wall's horizontal direction.
 Material facade_material(const FacadeStyle& style, const Material& wall, V3 position, V3 normal);
 
 // Whether a wall point lies in a window of the style (the facade test's oracle too).

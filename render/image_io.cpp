@@ -75,6 +75,16 @@ Rgb8 tone_map(const Image& img, float exposure, V3 gains) {
   return out;
 }
 
+float metered_stops(const Image& img) {
+  // The log-average luminance of the town's default still (exacity render out/town).
+  constexpr double kSunlitTown = 0.66;
+  if (img.beauty.empty()) return 0;
+  double logs = 0;
+  for (const V3& c : img.beauty) logs += std::log(1e-4 + std::max(0.0f, luminance(c)));
+  const double average = std::exp(logs / static_cast<double>(img.beauty.size()));
+  return static_cast<float>(std::clamp(std::log2(kSunlitTown / average), 0.0, double{kMostMeteredStops}));
+}
+
 void write_png(const Rgb8& img, const fs::path& file) {
   OIIO::ImageSpec spec(img.width, img.height, 3, OIIO::TypeDesc::UINT8);
   write(file, spec, img.pixels.data());

@@ -21,6 +21,13 @@ void write_exr(const Image& image, const std::filesystem::path& file);
 // ACES filmic curve (Narkowicz's fit) after `exposure` and the white balance's per-channel
 // `gains`, then the sRGB transfer function.
 Rgb8 tone_map(const Image& image, float exposure, V3 gains = {1, 1, 1});
+// A camera's meter: the stops to add to the default exposure so that the image's
+// log-average luminance (Reinhard et al. 2002's key) reaches that of a sunlit town seen
+// from above, where the default exposure was set; never fewer than none, at most
+// kMostMeteredStops. A street in its buildings' shade is exposed for, as a photographer
+// would; a view of sunlit roofs stays as it was.
+constexpr float kMostMeteredStops = 1.5f;
+float metered_stops(const Image& image);
 void write_png(const Rgb8& image, const std::filesystem::path& file);
 
 }  // namespace render

@@ -89,19 +89,47 @@ bool scatters_in_haze(const Haze& haze, V3 o, V3 d, float tmax, Sampler& rng, fl
   return t1 > t0 && ts < t1;
 }
 
-// The light turns in the haze, ts along the path (no absorption: the weight stays): next
-// event towards the sun, then a new direction from the phase function.
+// Next event towards the sun from the haze the ray crosses before tmax, from a point drawn
+// along the stretch in the haze with a density proportional to the light that reaches the
+// ray there from the sun: the transmittance back along the ray, e^(-σt), times that
+// towards the sun, which grows as the ray climbs, e^(σ d.z t / sun.z): together one
+// exponential, e^(-kt), so the point is drawn exactly (Kulla and Fajardo's idea,
+// "Importance sampling techniques for path tracing in participating media", 2012, for a
+// light at infinity). Every ray through the haze sees the sun this way, where only those
+// that scattered did, with weight one, at a point drawn by the transmittance back alone
+// (nearest the ground, where the sun is dimmest): a grain in hazy skies. A path that
+// scatters takes no next event at its scattering (its stretch's stood for it) and draws its
+// new direction from the phase function, which meets the sun disk weighed against this.
+void add_sun_through_haze(const Tracing& t, Path& path, float tmax) {
+  auto [t0, t1] = in_haze(t.haze, path.o, path.d, tmax);
+  const float u = t.rng.next();
+  const auto [u1, u2] = t.rng.next2();
+  if (!(t1 > t0) || !t.sky.sun_up()) return;
+  const float sigma = t.haze.density, k = sigma * (1 - path.d.z / t.sky.sun_direction().z), span = t1 - t0;
+  // The point s past t0 and its density: e^(-ks) normalised over [0, span).
+  float s, density;
+  if (std::abs(k * span) < 1e-4f) {
+    s = u * span, density = 1 / span;
+  } else {
+    const float mass = -std::expm1(-k * span) / k;  // the integral of e^(-ks) over [0, span)
+    s = -std::log1p(-u * k * mass) / k;
+    density = std::exp(-k * s) / mass;
+  }
+  if (!(s >= 0 && s <= span && density > 0)) return;
+  const V3 p = path.o + path.d * (t0 + s);
+  const V3 wi = t.sky.sun_frame().to_world(uniform_cone(u1, u2, t.sky.sun_cos_max()));
+  const float phase = henyey_greenstein(dot(path.d, wi), t.haze.g);
+  ++t.counts.shadow;
+  if (!t.scene.occluded(p, wi, INFINITY))
+    path.L += path.beta * t.sky.sun_radiance() *
+              (sigma * std::exp(-sigma * s) / density * phase * transmittance(t.haze, p, wi) *
+               power_heuristic(t.sun_pdf, phase) / t.sun_pdf);
+}
+
+// The light turns in the haze, ts along the path (no absorption: the weight stays): a new
+// direction from the phase function (the sun's next event was its stretch's).
 void scatter_in_haze(const Tracing& t, float ts, Path& path) {
   const V3 p = path.o + path.d * ts;
-  if (t.sky.sun_up()) {
-    const auto [u1, u2] = t.rng.next2();
-    const V3 wi = t.sky.sun_frame().to_world(uniform_cone(u1, u2, t.sky.sun_cos_max()));
-    const float phase = henyey_greenstein(dot(path.d, wi), t.haze.g);
-    ++t.counts.shadow;
-    if (!t.scene.occluded(p, wi, INFINITY))
-      path.L += path.beta * t.sky.sun_radiance() *
-                (phase * transmittance(t.haze, p, wi) * power_heuristic(t.sun_pdf, phase) / t.sun_pdf);
-  }
   const auto [u1, u2] = t.rng.next2();
   const V3 next = sample_henyey_greenstein(path.d, t.haze.g, u1, u2);
   path.prev_pdf = henyey_greenstein(dot(path.d, next), t.haze.g);
@@ -117,6 +145,28 @@ void add_sky_seen(const Tracing& t, Path& path) {
             (path.prev_pdf > 0 && sky_pdf > 0 ? power_heuristic(path.prev_pdf, sky_pdf) : 1.0f);
   if (t.sky.sun_up() && dot(path.d, t.sky.sun_direction()) >= t.sky.sun_cos_max())
     path.L += path.beta * t.sky.sun_radiance() * (path.prev_pdf > 0 ? power_heuristic(path.prev_pdf, t.sun_pdf) : 1.0f);
+}
+
+// A ray to the sky through the haze: the sky it sees through the haze is added with the
+// haze's transmittance, and the path goes on scattered in the haze, its weight times the
+// chance it scatters (1 - transmittance), at a distance ts drawn as free flight is, within
+// the haze; false (the sky added whole) when it crosses none. Free flight chose one or the
+// other, which made hazy skies a grain of pixels that saw the sky and pixels that did not.
+bool scatters_before_the_sky(const Tracing& t, Path& path, float& ts) {
+  auto [t0, t1] = in_haze(t.haze, path.o, path.d, INFINITY);
+  const float u = t.rng.next();
+  if (!(t1 > t0)) {
+    add_sky_seen(t, path);
+    return false;
+  }
+  const float scatters = -std::expm1(-t.haze.density * (t1 - t0));
+  Path through = path;
+  through.beta = path.beta * (1 - scatters);
+  add_sky_seen(t, through);
+  path.L = through.L;
+  path.beta = path.beta * scatters;
+  ts = t0 - std::log1p(-u * scatters) / t.haze.density;
+  return true;
 }
 
 // The sun's next event from p up to its shadow ray: the direction drawn in the sun's disk
@@ -218,10 +268,18 @@ V3 radiance_after_camera_ray(const RenderScene& scene, const Sky& sky, V3 o, V3 
       hit = scene.intersect(path.o, path.d, INFINITY, s);
     }
     float ts = 0;
-    if (haze.density > 0 && scatters_in_haze(haze, path.o, path.d, hit ? s.distance : INFINITY, rng, ts)) {
-      if (depth >= max_depth) break;
-      scatter_in_haze(t, ts, path);
-      continue;
+    if (haze.density > 0) {
+      if (depth < max_depth) add_sun_through_haze(t, path, hit ? s.distance : INFINITY);
+      if (!hit) {
+        if (!scatters_before_the_sky(t, path, ts) || depth >= max_depth) break;
+        scatter_in_haze(t, ts, path);
+        continue;
+      }
+      if (hit && scatters_in_haze(haze, path.o, path.d, s.distance, rng, ts)) {
+        if (depth >= max_depth) break;
+        scatter_in_haze(t, ts, path);
+        continue;
+      }
     }
     if (!hit) {
       add_sky_seen(t, path);

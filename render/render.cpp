@@ -59,10 +59,10 @@ Haze haze_layer(const RenderRequest& request, const RenderScene& scene) {
   return haze;
 }
 
-// The exposure and white balance asked for, applied on the way to the 8-bit images only:
-// the EXR keeps linear radiance (render/README.md, Tone mapping).
-Rgb8 tone_mapped(const Image& image, const RenderRequest& request) {
-  return tone_map(image, request.exposure * std::exp2(request.exposure_ev),
+// The exposure and white balance asked for, `metered` stops brighter, applied on the way to
+// the 8-bit images only: the EXR keeps linear radiance (render/README.md, Tone mapping).
+Rgb8 tone_mapped(const Image& image, const RenderRequest& request, float metered = 0) {
+  return tone_map(image, request.exposure * std::exp2(request.exposure_ev + metered),
                   white_balance_gains(request.white_balance_k));
 }
 
@@ -78,11 +78,22 @@ struct Still {
   Rgb8 png;  // tone-mapped; the minimap is set into it before it is written
   RayCounts rays;
   int passes = 0;
-  double seconds = 0, denoise_seconds = 0;  // tracing, filtering
+  double seconds = 0, denoise_seconds = 0;  // tracing, denoising
+  bool denoised = false;
+  int primary_rays = 0;  // the denoiser's primary layer's, a pixel
+  float metered_ev = 0;
 };
 
-// Passes of request.spp samples: one, or as many as the time budget holds. A pass is not
-// begun when the passes so far, on average, say it would end past the budget; the image
+// The denoiser's time for `samples` path samples a pixel, from the filter's time and a
+// path sample's: its primary layer's rays cost about a third of a sample each.
+double denoise_seconds(const RenderRequest& request, const Haze& haze, int samples, double filter_s, double sample_s) {
+  if (!request.denoise) return 0;
+  return filter_s + (haze.density > 0 ? 0 : sample_s * primary_rays(samples) / 3);
+}
+
+// Passes of request.spp samples: one, or as many as the time budget holds. The budget is
+// the whole command's, from request.started: a pass is not begun when the passes so far,
+// on average, say that it and the denoiser after it would end past the budget. The image
 // depends only on the number of passes done (Film), and the report records it.
 Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camera, const RenderRequest& request,
                    const Haze& haze, const RenderProgress& progress) {
@@ -90,22 +101,41 @@ Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camer
   TraceSettings settings{request.width, request.height, request.spp};
   settings.haze = haze;
   const auto start = std::chrono::steady_clock::now();
+  const bool budget = request.time_budget_s > 0;
+  const double left = request.time_budget_s - seconds_since(request.started);  // at the start of tracing
   Film film(request.width, request.height);
   const int most_passes = std::max(1, 65536 / request.spp);
+  double filter_s = 0;  // the filter's time, measured on a band after the first pass
+  auto denoiser_s = [&](int samples) {
+    return denoise_seconds(request, haze, samples, filter_s, still.seconds / film.samples);
+  };
   do {
+    const auto pass = std::chrono::steady_clock::now();
     add_samples(film, scene, sky, camera, settings, &still.rays, [&](int done, int all) {
       if (!progress) return;
-      if (request.time_budget_s <= 0) return progress("still", static_cast<double>(done) / all);
-      progress("still", std::min(1.0, seconds_since(start) / request.time_budget_s));
+      if (!budget) return progress("still", static_cast<double>(done) / all);
+      progress("still", std::clamp(seconds_since(start) / left, 0.0, 1.0));
     });
+    still.seconds += seconds_since(pass);
     ++still.passes;
-  } while (request.time_budget_s > 0 && still.passes < most_passes &&
-           seconds_since(start) * (still.passes + 1) / still.passes <= request.time_budget_s);
-  still.seconds = seconds_since(start);
+    if (budget && still.passes == 1 && request.denoise) filter_s = filter_seconds(film.image());
+  } while (budget && still.passes < most_passes &&
+           seconds_since(start) + still.seconds / still.passes + denoiser_s(film.samples + request.spp) <= left);
   const auto filtering = std::chrono::steady_clock::now();
-  still.image = finished(film.image(), scene, sky, camera, haze, request);
+  Image image = film.image();
+  if (request.denoise) {
+    // Over the budget already: the filter without its primary layer, or none.
+    DenoiseSettings denoising;
+    const double remaining = left - seconds_since(start);
+    if (budget && denoiser_s(film.samples) > remaining) denoising.primary_rays = 0;
+    still.denoised = !budget || filter_s <= remaining;
+    if (still.denoised) image = denoise_render(std::move(image), scene, sky, camera, haze, denoising);
+    still.primary_rays = image.extra.samples;
+  }
+  still.image = std::move(image);
   still.denoise_seconds = seconds_since(filtering);
-  still.png = tone_mapped(still.image, request);
+  still.metered_ev = metered_stops(still.image);
+  still.png = tone_mapped(still.image, request, still.metered_ev);
   return still;
 }
 
@@ -133,8 +163,10 @@ nlohmann::ordered_json still_report(const RenderRequest& request, const RenderSc
       {"passes", still.passes},
       {"samples_per_pass", request.spp},
       {"time_budget_s", request.time_budget_s},
-      {"denoised", request.denoise},
+      {"denoised", still.denoised},
+      {"primary_rays", still.primary_rays},
       {"exposure_ev", request.exposure_ev},
+      {"metered_ev", still.metered_ev},
       {"white_balance_k", request.white_balance_k},
       {"haze_visibility_m", request.haze_visibility},
       {"camera",

@@ -2,6 +2,7 @@
 // above, and the minimap with the still's visible ground region (docs/design.md, Algorithms).
 #pragma once
 
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -21,9 +22,13 @@ struct RenderRequest {
   float exposure_ev = 0;        // stops over `exposure`
   float white_balance_k = 6500; // the light's colour temperature made neutral (6500: none)
   bool denoise = true;          // the edge-aware filter (render/denoise.h) before tone mapping
-  // Progressive: passes of `spp` samples until this many seconds of tracing are spent (at
-  // least one pass); 0: one pass. The report records the passes, which fix the image.
+  // Progressive: passes of `spp` samples while the whole still, counted from `started`
+  // (the command's start: the city's and the scene's builds included) and the denoiser
+  // after them, fits in this many seconds (at least one pass; the denoiser's primary layer,
+  // then the denoiser, left out when it would not fit); 0: one pass. The report records the
+  // passes, which fix the image.
   double time_budget_s = 0;
+  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
   std::filesystem::path still;  // PNG; the EXR goes beside it
   std::filesystem::path overview_file, minimap_file;
 };

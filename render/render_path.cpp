@@ -1,6 +1,7 @@
 #include "render/render_path.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 
@@ -26,6 +27,7 @@ nlohmann::ordered_json render_path_frames(const exacity::City& city, const Camer
   if (placed.city != &city) placed.place(city, "the camera path");
   for (int n = first; n <= last; ++n) {
     RenderRequest r = request;
+    r.started = std::chrono::steady_clock::now();  // a frame's budget is its own
     r.camera = placed.frame(n);
     r.camera.depth_of_field = request.camera.depth_of_field;
     r.overview = r.minimap = false;

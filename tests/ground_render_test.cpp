@@ -184,3 +184,49 @@ TEST(GroundRender, BridgeDeckIsLevelFromAbutmentToAbutmentOnPiers) {
   EXPECT_EQ(hit.entity, entity_id(Entity::Road, static_cast<std::size_t>(road)));  // the pier is its bridge's
   EXPECT_NEAR(hit.position.y + scene.origin_y, 100 - exacity::kPierWidth / 2, 0.01);
 }
+
+// A highway across a flat park, seen from the grass at eye height 15 m south of its edge
+// through a narrow lens (a pixel is 8 mm there): every pixel sees the grass before the
+// edge, or the road (its top or its side), never the ground under the road. The road lies
+// 10 cm over the ground and the grass 3 cm; through the gap under the road's edge the
+// camera saw the ground beneath it, in the road's shadow: a black sliver along every road
+// edge seen from the grass.
+TEST(GroundRender, ARoadsEdgeSeenFromTheGrassHidesTheGroundUnderIt) {
+  const auto dir = testing_util::temp_dir("ground-road-edge");
+  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 5, "builtin_models": []},
+    "features": [)" + kPark + ", " + river_sketch::highway("[-20, 100], [220, 100]") + "]}";
+  exacity::StageClock clock(nullptr, exacity::kCityStages);
+  const exacity::City city = exacity::build_city(exacity::parse_sketch(text, dir / "sketch.geojson"), clock);
+  // The road's southern edge where x = 100.
+  double edge = INFINITY;
+  for (const auto& a : city.ground.road_areas)
+    for (std::size_t i = 0, j = a.polygon.outer.size() - 1; i < a.polygon.outer.size(); j = i++) {
+      const geom::Vec2 p = a.polygon.outer[j], q = a.polygon.outer[i];
+      if ((p.x < 100) != (q.x < 100)) edge = std::min(edge, p.y + (q.y - p.y) * (100 - p.x) / (q.x - p.x));
+    }
+  ASSERT_LT(edge, 100);
+  Sky sky(200, 40);
+  RenderScene scene(city, sky.sun_direction(), SceneOptions{});
+  const Camera view = scene.to_scene(Camera::look({100, static_cast<float>(edge - 15), 1.7f},
+                                                  {100, static_cast<float>(edge), 0.06f}, 1));
+  const int size = 32;
+  const Image img = trace(scene, sky, view, TraceSettings{size, size, 1, 1});
+  int road = 0, grass = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * size + x;
+      ASSERT_TRUE(std::isfinite(img.depth[i]));
+      V3 o, d;
+      view.ray(x + 0.5f, y + 0.5f, size, size, o, d);
+      const double at = o.y + d.y * img.depth[i] + scene.origin_y;
+      if (kind(img.id[i]) == Entity::Road) {
+        ++road;
+        continue;
+      }
+      ++grass;
+      EXPECT_LT(at, edge + 1e-3) << "pixel " << x << ", " << y << " sees entity kind "
+                                 << (img.id[i] >> 24) << " " << at - edge << " m under the road";
+    }
+  EXPECT_GT(road, size * 4);
+  EXPECT_GT(grass, size * 4);
+}

@@ -4,6 +4,7 @@
 // overview and the minimap show.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -12,6 +13,7 @@
 
 #include "generate/errors.h"
 #include "generate/pipeline.h"
+#include "geom/measure.h"
 #include "render/camera.h"
 #include "render/embree_device.h"
 #include "render/image_io.h"
@@ -35,6 +37,15 @@ TriangleSoup box(float s, Material m) {
                  {2, 3, 7}, {2, 7, 6}, {0, 2, 6}, {0, 6, 4}, {1, 5, 7}, {1, 7, 3}};
   b.material = m;
   return b;
+}
+
+// The ground, z = 0, from -s to s each way.
+TriangleSoup ground_plane(float s, Material m) {
+  TriangleSoup plane;
+  plane.vertices = {{-s, -s, 0}, {s, -s, 0}, {s, s, 0}, {-s, s, 0}};
+  plane.triangles = {{0, 1, 2}, {0, 2, 3}};
+  plane.material = m;
+  return plane;
 }
 
 double mean_luminance(const Image& img) {
@@ -73,6 +84,31 @@ TEST(Render, HazeInTheFurnaceChangesNothing) {
   // A medium that scatters and absorbs nothing leaves a uniform radiance field as it is;
   // five metres between scatterings on average.
   EXPECT_NEAR(furnace({0.2f, 100, 0.7f}), 5.0, 5.0 * 0.02);
+}
+
+// Haze of 1500 m visibility over a sunlit plane, the sky seen through it at 16 samples,
+// across the sun's direction: each sky pixel's mean is nearer its truth. The sun reached
+// the haze only at the points where rays scattered (with weight one, drawn nearest the
+// ground, where it is dimmest), and a ray either saw the sky or scattered: a grain of
+// pixels that did and pixels that did not (a mean relative error of 0.236 here; 0.195
+// with the sun sought along every ray and the sky seen through the haze as well as
+// scattered; the light scattered many times is what is left).
+TEST(Render, HazySkyIsLessGrainyAtAFewSamples) {
+  RenderScene scene({ground_plane(20000, {Material::Diffuse, {0.3f, 0.3f, 0.3f}})});
+  const Sky sky(200, 30);
+  const Haze haze{Haze::density_for_visibility(1500), 500, 0.7f};
+  // At right angles to the sun, from the horizon up to 40 degrees.
+  const Camera c = Camera::look({0, 0, 2}, {-34, 94, 40}, 40);
+  const Image img = trace(scene, sky, c, TraceSettings{32, 16, 16, 8, haze});
+  double spread = 0;
+  int sky_pixels = 0;
+  for (std::size_t i = 0; i < img.beauty.size() / 2; ++i) {  // the upper half, clear of the horizon
+    if (std::isfinite(img.depth[i])) continue;
+    spread += std::sqrt(img.variance[i]) / luminance(img.beauty[i]);
+    ++sky_pixels;
+  }
+  ASSERT_EQ(sky_pixels, 32 * 8);
+  EXPECT_LT(spread / sky_pixels, 0.215) << "the sky pixels' mean relative standard deviation";
 }
 
 TEST(Render, HenyeyGreensteinSamplesItsOwnDensity) {
@@ -122,11 +158,7 @@ TEST(Render, EveryMaterialConservesEnergyAndSamplesWhatItEvaluates) {
 
 TEST(Render, SunLitPlaneMatchesItsIrradiance) {
   // A white-ish plane under the sun alone: L = albedo / pi * E_sun * sin(elevation).
-  TriangleSoup plane;
-  plane.vertices = {{-5000, -5000, 0}, {5000, -5000, 0}, {5000, 5000, 0}, {-5000, 5000, 0}};
-  plane.triangles = {{0, 1, 2}, {0, 2, 3}};
-  plane.material = {Material::Diffuse, {0.5f, 0.5f, 0.5f}};
-  RenderScene scene({plane});
+  RenderScene scene({ground_plane(5000, {Material::Diffuse, {0.5f, 0.5f, 0.5f}})});
   for (float elevation : {30.0f, 60.0f}) {
     Sky sun_only(100, elevation, 3, 0, 1);
     Camera c = Camera::look({0, 0, 50}, {0, 20, 0}, 40);
@@ -257,6 +289,40 @@ TEST(Render, CityImagesAreTheSameWhateverTheThreadCountAndHitsNameTheirEntity) {
   ASSERT_TRUE(scene.intersect(scene.to_scene(inside.x, inside.y, 500), {0, 0, -1}, INFINITY, hit));
   EXPECT_EQ(hit.entity, entity_id(Entity::Building, 0));
   EXPECT_NEAR(hit.position.z, b.floor + b.height, 1e-3);  // flat or the ridge's height at most
+}
+
+// A street between offices at eye height, rendered as exacity render does: it reads as
+// daylight, not half black. The windows were flat near-black glass and the shaded
+// asphalt nearly so at the aerial views' exposure: 32% of the town's street view
+// (pedestrian:road=3,along=560) was under 40/255.
+TEST(Render, AStreetBetweenOfficesReadsAsDaylight) {
+  const int width = 400, height = 300;
+  const exacity::City city = one_zone_city("commercial", width, height, 5);
+  // The segment of a laid-out street whose middle lies deepest inside the zone.
+  geom::Vec2 at{0, 0}, along{1, 0};
+  double deepest = 0;
+  for (const auto& r : city.ground.roads)
+    for (std::size_t i = 0; i + 1 < r.line.size(); ++i) {
+      const geom::Vec2 a = r.line[i], b = r.line[i + 1], m = geom::lerp(a, b, 0.5);
+      const double depth = std::min({m.x, width - m.x, m.y, height - m.y});
+      if (geom::distance(a, b) > 40 && depth > deepest) deepest = depth, at = m, along = geom::unit_along(a, b);
+    }
+  ASSERT_GT(deepest, 40);
+  RenderRequest request;
+  request.camera = Camera::look({static_cast<float>(at.x), static_cast<float>(at.y), 1.7f},
+                                {static_cast<float>(at.x + along.x * 30), static_cast<float>(at.y + along.y * 30), 1.7f});
+  request.width = 160, request.height = 90, request.spp = 4;
+  const auto dir = testing_util::temp_dir("street-daylight");
+  request.still = dir / "still.png";
+  render_city(city, request);
+  auto in = OIIO::ImageInput::open(request.still.string());
+  ASSERT_TRUE(in);
+  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(request.width) * request.height * 3);
+  ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, rgb.data()));
+  int dark = 0;
+  for (std::size_t i = 0; i < rgb.size(); i += 3)
+    dark += 0.2126 * rgb[i] + 0.7152 * rgb[i + 1] + 0.0722 * rgb[i + 2] < 40;
+  EXPECT_LT(dark, request.width * request.height / 10) << "pixels under 40/255";
 }
 
 TEST(Render, PacketsFindWhatSingleRaysFind) {
