@@ -14,11 +14,11 @@
 namespace exacity::bench {
 
 // The builds, in report order: the exact one, the practitioner's float build (snapped to a
-// grid, with tolerances), GEOS's overlay in floating and in fixed precision (the partition
-// stage only: benchmarks/geos_partition.cpp), and the two float builds with no tolerance
-// (geom/exact.h).
-inline const std::vector<std::string> kBuildNames = {"exact",      "float-snapped", "geos-floating",
-                                                     "geos-fixed", "float",         "float-simple"};
+// grid, with tolerances), CGAL's snap rounding on its inexact kernel and GEOS's overlay in
+// floating and in fixed precision (the partition stage only: benchmarks/cgal_snap_partition.cpp
+// and geos_partition.cpp), and the two float builds with no tolerance (geom/exact.h).
+inline const std::vector<std::string> kBuildNames = {"exact",         "float-snapped", "cgal-snap", "geos-floating",
+                                                     "geos-fixed",    "float",         "float-simple"};
 
 struct RobustnessOptions {
   std::vector<std::string> families;  // empty: all
@@ -27,7 +27,7 @@ struct RobustnessOptions {
   std::filesystem::path out = "out/robustness";
   double time_limit = 60;  // seconds per run of a build on a case
   int jobs = 0;            // cases run at once (0: one per core)
-  // Where exacity, exacity-<build> and exacity-geos are; builds not there are left out.
+  // Where exacity, exacity-<build>, exacity-cgal-snap and exacity-geos are; builds not there are left out.
   std::filesystem::path programs;
   std::vector<std::string> builds;  // of kBuildNames; empty: every build found
   bool keep_outputs = false;        // else only failed cases' outputs stay
