@@ -285,6 +285,14 @@ std::string svg_chart(const std::vector<FamilyResult>& results, const std::vecto
   return s.str();
 }
 
+// "low → high" failures of a build on a family, or "—" where its cases share one level.
+std::string trend_cell(const FamilyResult& f, std::size_t b) {
+  const LevelTrend t = level_trend(f, b);
+  if (!t.high_cases) return "—";
+  return std::to_string(t.low_failed) + "/" + std::to_string(t.low_cases) + " → " + std::to_string(t.high_failed) +
+         "/" + std::to_string(t.high_cases) + (t.rises() ? " (rises)" : "");
+}
+
 std::string markdown(const std::vector<FamilyResult>& results, const std::vector<Build>& builds,
                      const RobustnessOptions& o, const std::vector<std::vector<StageRatio>>& stages) {
   std::ostringstream s;
@@ -325,6 +333,26 @@ std::string markdown(const std::vector<FamilyResult>& results, const std::vector
     for (double ratio : f.time_ratio) s << " " << (ratio > 0 ? fixed(ratio, 2) : "—") << " |";
     s << "\n";
   }
+  // Whether failures rise with the level, per family and build.
+  s << "\nFailures against degeneracy: failed/cases at or below each family's median level → above it (\"rises\"\n"
+    << "where the rate above is higher).\n\n| family | median level |";
+  for (const Build& b : builds) s << " " << b.name << " |";
+  s << "\n|---|---|";
+  for (std::size_t b = 0; b < builds.size(); ++b) s << "---|";
+  s << "\n";
+  std::vector<int> rising(builds.size(), 0);
+  int swept = 0;
+  for (const FamilyResult& f : results) {
+    s << "| " << f.family << " | " << fixed(level_trend(f, 0).median_level, 1) << " |";
+    for (std::size_t b = 0; b < builds.size(); ++b) s << " " << trend_cell(f, b) << " |";
+    s << "\n";
+    if (!level_trend(f, 0).high_cases) continue;
+    ++swept;
+    for (std::size_t b = 0; b < builds.size(); ++b) rising[b] += level_trend(f, b).rises();
+  }
+  s << "| rises on | |";
+  for (int n : rising) s << " " << n << " of " << swept << " |";
+  s << "\n";
   // Per stage, for the builds that write report.json's timings (Exacity's, not GEOS's).
   std::vector<std::size_t> timed;
   for (std::size_t b = 1; b < builds.size(); ++b)
@@ -353,7 +381,10 @@ std::string markdown(const std::vector<FamilyResult>& results, const std::vector
   }
   s << "\n![failure rate against degeneracy level](robustness.svg)\n\nReproduce (release preset, which builds the float programs too):\n\n"
     << "```\ncmake --workflow --preset release\nbuild/release/cli/exacity bench robustness --cases " << o.cases
-    << " --seed " << o.seed << "\n```\n\nFamilies:\n\n";
+    << " --seed " << o.seed;
+  if (o.jobs > 0) s << " --jobs " << o.jobs;
+  for (const std::string& b : o.builds) s << " --build " << b;
+  s << "\n```\n\nFamilies:\n\n";
   for (const Family& f : families()) s << "- `" << f.name << "`: " << f.about << " (level: " << f.level << ")\n";
   return s.str();
 }
@@ -524,6 +555,10 @@ nlohmann::ordered_json robustness_json(const RobustnessOptions& o, const std::ve
     for (std::size_t b = 0; b < f.builds.size(); ++b) {
       entry[f.builds[b].first] = to_json(f.builds[b].second);
       if (b > 0) entry[f.builds[b].first]["exact_over_this_time"] = f.time_ratio[b - 1] > 0 ? nlohmann::ordered_json(f.time_ratio[b - 1]) : nullptr;
+      if (const LevelTrend t = level_trend(f, b); t.high_cases)
+        entry[f.builds[b].first]["by_level"] = {{"median_level", t.median_level}, {"failed_at_or_below", t.low_failed},
+                                                 {"cases_at_or_below", t.low_cases}, {"failed_above", t.high_failed},
+                                                 {"cases_above", t.high_cases}, {"rises", t.rises()}};
     }
     entry["level"] = level_of(f.family);
     entry["per_case"] = nlohmann::ordered_json::array();
@@ -554,6 +589,19 @@ void write_reports(const RobustnessOptions& o, const std::vector<Build>& builds,
 }
 
 }  // namespace
+
+LevelTrend level_trend(const FamilyResult& family, std::size_t build) {
+  LevelTrend t;
+  std::vector<double> levels;
+  for (const CaseResult& c : family.cases) levels.push_back(c.level);
+  t.median_level = median(levels);
+  for (const CaseResult& c : family.cases) {
+    const bool failed = c.results.at(build) != "passed";
+    if (c.level > t.median_level) ++t.high_cases, t.high_failed += failed;
+    else ++t.low_cases, t.low_failed += failed;
+  }
+  return t;
+}
 
 std::vector<FamilyResult> run_robustness(const RobustnessOptions& o, std::ostream& log) {
   const std::vector<Build> builds = builds_in(o, log);

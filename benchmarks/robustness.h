@@ -67,6 +67,18 @@ struct FamilyResult {
   std::vector<double> time_ratio;
 };
 
+// Whether a build fails more often as a family's cases near degeneracy: its failure rate on
+// the cases above the family's median level against that on the others (the lower half).
+// A family whose cases share one level (the control) has no upper half.
+struct LevelTrend {
+  double median_level = 0;
+  int low_cases = 0, low_failed = 0, high_cases = 0, high_failed = 0;
+  double low_rate() const { return low_cases ? static_cast<double>(low_failed) / low_cases : 0; }
+  double high_rate() const { return high_cases ? static_cast<double>(high_failed) / high_cases : 0; }
+  bool rises() const { return high_cases > 0 && high_rate() > low_rate(); }
+};
+LevelTrend level_trend(const FamilyResult& family, std::size_t build);
+
 // Runs the benchmark and writes its files into options.out; progress lines go to `log`.
 std::vector<FamilyResult> run_robustness(const RobustnessOptions& options, std::ostream& log);
 

@@ -97,11 +97,40 @@ TEST(Robustness, TheExactBuildPassesEveryCaseOfTheSliceAndTheBaselinesRunIt) {
     EXPECT_TRUE(by_stage.contains(build)) << build;
   EXPECT_TRUE(by_stage["cgal-snap"].empty());
   EXPECT_TRUE(by_stage["geos-fixed"].empty());
+  // Each build's failures by level where a family's cases differ in level (never the control's).
+  for (const auto& family : doc["families"]) {
+    SCOPED_TRACE(family["family"].get<std::string>());
+    const bool levels_differ = family["per_case"][0]["level"] != family["per_case"][1]["level"];
+    EXPECT_EQ(family["float-snapped"].contains("by_level"), levels_differ);
+    if (family["family"] == "random") {
+      EXPECT_FALSE(levels_differ);
+    }
+  }
   for (const auto& [stage, r] : by_stage["float-snapped"].items()) {
     EXPECT_GT(r["cases"].get<int>(), 0) << stage;
     EXPECT_LE(r["p25"].get<double>(), r["median"].get<double>()) << stage;
     EXPECT_LE(r["median"].get<double>(), r["p75"].get<double>()) << stage;
   }
+}
+
+// A build's failures rise with the level where it fails more of the cases above the family's
+// median level than of the others; the control, all at one level, has no upper half.
+TEST(Robustness, LevelTrendComparesTheCasesAboveTheMedianLevelWithTheRest) {
+  FamilyResult f{"off-edge", {}, {}, {}};
+  const double levels[] = {1, 2, 2, 5, 9};
+  const char* baseline[] = {"passed", "crash", "passed", "rejected", "hang"};
+  for (int i = 0; i < 5; ++i) f.cases.push_back({i, levels[i], {"passed", baseline[i]}});
+  const LevelTrend exact = level_trend(f, 0), other = level_trend(f, 1);
+  EXPECT_EQ(other.median_level, 2);
+  EXPECT_EQ(other.low_cases, 3);
+  EXPECT_EQ(other.low_failed, 1);
+  EXPECT_EQ(other.high_cases, 2);
+  EXPECT_EQ(other.high_failed, 2);
+  EXPECT_TRUE(other.rises());
+  EXPECT_FALSE(exact.rises());
+  FamilyResult control{"random", {}, {{0, 0, {"passed", "crash"}}, {1, 0, {"passed", "passed"}}}, {}};
+  EXPECT_EQ(level_trend(control, 1).high_cases, 0);
+  EXPECT_FALSE(level_trend(control, 1).rises());
 }
 
 // --export writes each case's sketch as the benchmark runs it, and beside it its level and
