@@ -19,7 +19,7 @@
 using namespace exacity::bench;
 
 TEST(RobustnessFamilies, SameSeedSameSketchesOtherSeedOthers) {
-  ASSERT_EQ(families().size(), 8u);
+  ASSERT_EQ(families().size(), 9u);
   for (const Family& f : families()) {
     SCOPED_TRACE(f.name);
     for (int i = 0; i < 4; ++i) {
@@ -49,6 +49,7 @@ TEST(RobustnessFamilies, EveryCaseHasALevelTheControlsIsZero) {
   EXPECT_DOUBLE_EQ(family_case("off-edge", 0, 7).level, 1);
   EXPECT_DOUBLE_EQ(family_case("translated", 3, 7).level, 9);
   EXPECT_DOUBLE_EQ(family_case("many-highways", 4, 7).level, 7);
+  EXPECT_DOUBLE_EQ(family_case("near-touching", 11, 7).level, 12);
 }
 
 TEST(Robustness, TheExactBuildPassesEveryCaseOfTheSliceAndTheBaselinesRunIt) {
