@@ -193,6 +193,17 @@ json many_highways(Random& rng, int index, double& level) {
   return features;
 }
 
+// 8. Zones whose edges run side by side 1e-1 down to 1e-12 m apart, a road across the gap.
+// Level: -log10 of the gap.
+json near_touching(Random& rng, int index, double& level) {
+  const double gap = sweep(1, 12, index, 12);
+  level = -std::log10(gap);
+  const double a = rng.uniform(200, 400), b = rng.uniform(200, 400), y = rng.uniform(0.2 * b, 0.8 * b);
+  return json::array({zone("residential", {rect(0, 0, a, b)}), zone("commercial", {rect(a + gap, 0, 2 * a, b)}),
+                      zone("industrial", {rect(0, b + gap, a, 2 * b)}),
+                      road("main", 10, {{-50, y}, {2 * a + 50, y + rng.uniform(-2, 2)}})});
+}
+
 using Maker = json (*)(Random&, int, double& level);
 struct Entry {
   Family family;
@@ -215,6 +226,8 @@ const std::vector<Entry>& entries() {
        slivers},
       {{"many-highways", "up to 12 highways through one point, tangles of random polylines", "lines through one point"},
        many_highways},
+      {{"near-touching", "zones side by side 1e-1 to 1e-12 m apart, a road across the gap", "-log10 of the gap (m)"},
+       near_touching},
       {{"random", "small random cities (the control)", "0 (the control)"},
        [](Random& rng, int, double&) { return random_city(rng, {0, 0}); }},
   };

@@ -22,7 +22,7 @@ struct FamilyCase {
   double level = 0;
 };
 
-// The eight families, in report order.
+// The nine families, in report order.
 const std::vector<Family>& families();
 
 // Case `index` of the family. Throws std::invalid_argument for a family that does not exist.

@@ -22,27 +22,25 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "benchmarks/geos_handle.h"
+#include "benchmarks/partition_program.h"
 
 namespace {
 
-namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
-
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+using exacity::bench::default_width;
+using exacity::bench::Layers;
+using exacity::bench::UsageError;
 
 // m, the fixed precision model's cell: the snapped float build's grid (geom/exact.h), so
 // the two snap-rounding baselines round alike.
 constexpr double kFixedGrid = 1.0 / (1 << 24);
-constexpr double kLotCell = 25;      // m, the fishnet that cuts blocks into lots
+constexpr double kLotCell = 25;  // m, the fishnet that cuts blocks into lots
 
 std::string geos_message;
 void keep_message(const char* message, void*) { geos_message = message; }
@@ -86,10 +84,13 @@ class Overlay {
   Geometry union_all(std::vector<Geometry> parts, int type) const {
     std::vector<GEOSGeometry*> raw;
     for (Geometry& g : parts) raw.push_back(g.release());
-    Geometry all = own(GEOSGeom_createCollection_r(ctx_, type, raw.data(), static_cast<unsigned>(raw.size())), "collect");
+    Geometry all =
+        own(GEOSGeom_createCollection_r(ctx_, type, raw.data(), static_cast<unsigned>(raw.size())), "collect");
     return own(grid_ > 0 ? GEOSUnaryUnionPrec_r(ctx_, all.get(), grid_) : GEOSUnaryUnion_r(ctx_, all.get()), "union");
   }
-  Geometry box(double x0, double y0, double x1, double y1) const { return own(GEOSGeom_createRectangle_r(ctx_, x0, y0, x1, y1), "box"); }
+  Geometry box(double x0, double y0, double x1, double y1) const {
+    return own(GEOSGeom_createRectangle_r(ctx_, x0, y0, x1, y1), "box");
+  }
 
   // The polygons (or lines) of a result, each as a GeoJSON geometry, empty ones left out.
   std::vector<json> parts(const GEOSGeometry* g, int wanted) const {
@@ -135,19 +136,8 @@ class Overlay {
   double grid_;
 };
 
-json feature(json geometry, json properties) {
-  return {{"type", "Feature"}, {"properties", std::move(properties)}, {"geometry", std::move(geometry)}};
-}
-
-double default_width(const std::string& road) {
-  if (road == "highway") return 24;
-  if (road == "main") return 12;
-  if (road == "local") return 8;
-  throw UsageError("unknown road class \"" + road + "\" (highway, main or local)");
-}
-
 // The partition: the layers, by name, as GeoJSON FeatureCollections.
-std::map<std::string, json> partition(const json& sketch, const Overlay& geos) {
+Layers partition(const json& sketch, const Overlay& geos) {
   struct Zone {
     std::string type;
     Overlay::Geometry area;
@@ -161,14 +151,16 @@ std::map<std::string, json> partition(const json& sketch, const Overlay& geos) {
       // Rings that cross or touch themselves, as drawn: made valid as a GIS user would.
       Overlay::Geometry area = geos.own(GEOSMakeValid_r(geos.ctx(), drawn.get()), "make valid");
       const std::string type = props["zone"].get<std::string>();
-      if (type == "water") water_parts.push_back(std::move(area));
-      else zones.push_back({type, std::move(area)});
+      if (type == "water")
+        water_parts.push_back(std::move(area));
+      else
+        zones.push_back({type, std::move(area)});
     } else if (props.contains("road")) {
       Overlay::Geometry line = geos.read(f.at("geometry"));
       const double width = props.contains("width") ? props["width"].get<double>() : default_width(props["road"]);
-      surfaces.push_back(geos.own(GEOSBufferWithStyle_r(geos.ctx(), line.get(), width / 2, 8, GEOSBUF_CAP_FLAT,
-                                                        GEOSBUF_JOIN_MITRE, 4.0),
-                                  "buffer"));
+      surfaces.push_back(geos.own(
+          GEOSBufferWithStyle_r(geos.ctx(), line.get(), width / 2, 8, GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_MITRE, 4.0),
+          "buffer"));
       centre_lines.push_back(std::move(line));
     }
   }
@@ -180,7 +172,8 @@ std::map<std::string, json> partition(const json& sketch, const Overlay& geos) {
   const Overlay::Geometry water = geos.union_all(std::move(water_parts), GEOS_GEOMETRYCOLLECTION);
   // Water over road over the last drawn zone.
   const Overlay::Geometry roads = geos.difference(
-      geos.intersection(geos.union_all(std::move(surfaces), GEOS_GEOMETRYCOLLECTION).get(), extent.get()).get(), water.get());
+      geos.intersection(geos.union_all(std::move(surfaces), GEOS_GEOMETRYCOLLECTION).get(), extent.get()).get(),
+      water.get());
   Overlay::Geometry taken = geos.union_of(water.get(), roads.get());
   std::vector<Overlay::Geometry> own_area(zones.size());
   for (std::size_t i = zones.size(); i-- > 0;) {
@@ -188,13 +181,9 @@ std::map<std::string, json> partition(const json& sketch, const Overlay& geos) {
     taken = geos.union_of(taken.get(), zones[i].area.get());
   }
 
-  std::map<std::string, json> layers;
-  for (const char* name : {"zones", "water", "road_areas", "blocks", "lots", "buildings", "roads"})
-    layers[name] = {{"type", "FeatureCollection"}, {"features", json::array()}};
+  Layers layers;
   auto add = [&](const char* layer, json geometry, json properties) {
-    json& features = layers[layer]["features"];
-    properties["id"] = static_cast<int>(features.size());
-    features.push_back(feature(std::move(geometry), std::move(properties)));
+    return layers.add(layer, std::move(geometry), std::move(properties));
   };
   for (json& p : geos.parts(water.get(), GEOS_POLYGON)) add("water", std::move(p), json::object());
   for (json& p : geos.parts(roads.get(), GEOS_POLYGON)) add("road_areas", std::move(p), {{"bridge", false}});
@@ -203,8 +192,7 @@ std::map<std::string, json> partition(const json& sketch, const Overlay& geos) {
     for (json& p : geos.parts(own_area[i].get(), GEOS_POLYGON)) {
       add("zones", p, {{"zone", type}});
       if (type == "park") continue;
-      const int block = static_cast<int>(layers["blocks"]["features"].size());
-      add("blocks", p, {{"zone", type}});
+      const int block = add("blocks", p, {{"zone", type}});
       // The block cut by the fishnet: each cell's share of it is a lot.
       const Overlay::Geometry area = geos.read(p);
       double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
@@ -225,64 +213,17 @@ std::map<std::string, json> partition(const json& sketch, const Overlay& geos) {
   return layers;
 }
 
-struct Options {
-  fs::path sketch, out;
-  double grid = 0;
-};
-
-Options parse(int argc, char** argv) {
-  Options o;
-  if (argc < 2 || std::string(argv[1]) != "generate") throw UsageError("usage: exacity-geos generate SKETCH.geojson -o OUT [--precision floating|fixed]");
-  for (int i = 2; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&] {
-      if (i + 1 >= argc) throw UsageError(a + " needs a value");
-      return std::string(argv[++i]);
-    };
-    if (a == "-o" || a == "--output") o.out = value();
-    else if (a == "--precision") {
-      const std::string p = value();
-      if (p != "floating" && p != "fixed") throw UsageError("--precision: floating or fixed, not " + p);
-      o.grid = p == "fixed" ? kFixedGrid : 0;
-    } else if (a == "--threads") (void)value();  // one thread always
-    else if (a == "-q" || a == "--quiet") continue;
-    else if (o.sketch.empty() && a[0] != '-') o.sketch = a;
-    else throw UsageError("unknown argument " + a);
-  }
-  if (o.sketch.empty() || o.out.empty()) throw UsageError("usage: exacity-geos generate SKETCH.geojson -o OUT [--precision floating|fixed]");
-  return o;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  fs::path staging;
-  try {
-    const Options o = parse(argc, argv);
-    std::ifstream in(o.sketch);
-    const json sketch = json::parse(in, nullptr, false);
-    if (!in || sketch.is_discarded() || !sketch.contains("features"))
-      throw UsageError(o.sketch.string() + ": not a GeoJSON FeatureCollection (exacity-geos reads GeoJSON sketches only)");
-    const Overlay geos(o.grid);
-    const std::map<std::string, json> layers = partition(sketch, geos);
-    // Written beside the output and renamed into place: a failed run leaves nothing.
-    staging = o.out.string() + ".partial";
-    fs::remove_all(staging);
-    fs::create_directories(staging / "vector");
-    fs::copy_file(o.sketch, staging / "sketch.geojson");
-    for (const auto& [name, layer] : layers) std::ofstream(staging / "vector" / (name + ".geojson")) << layer.dump() << "\n";
-    fs::remove_all(o.out);
-    fs::rename(staging, o.out);
-    return 0;
-  } catch (const UsageError& e) {
-    std::cerr << "exacity-geos: " << e.what() << "\n";
-    return 2;
-  } catch (const json::exception& e) {
-    std::cerr << "exacity-geos: the sketch: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    if (!staging.empty()) fs::remove_all(staging);
-    std::cerr << "exacity-geos: " << e.what() << "\n";
-    return 3;
-  }
+  double grid = 0;
+  return exacity::bench::partition_main(
+      argc, argv, "exacity-geos", "exacity-geos generate SKETCH.geojson -o OUT [--precision floating|fixed]",
+      [&](const std::string& name, const std::string& value) {
+        if (name != "--precision") return false;
+        if (value != "floating" && value != "fixed") throw UsageError("--precision: floating or fixed, not " + value);
+        grid = value == "fixed" ? kFixedGrid : 0;
+        return true;
+      },
+      [&](const json& sketch) { return partition(sketch, Overlay(grid)); });
 }

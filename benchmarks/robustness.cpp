@@ -29,14 +29,15 @@ struct Build {
   std::string name;
   fs::path program;
   std::vector<std::string> args;  // after generate's own
-  // Exacity's builds write a whole city, which the exact build's validator checks too;
-  // GEOS's partition writes blocks and lots only, for the judge.
+  // Exacity's builds write a whole city, which the exact build's validator checks too; the
+  // partition baselines (CGAL's snap rounding, GEOS) write blocks and lots only, for the judge.
   bool validated = true;
 };
 
 // The build's program beside the exact one: exacity-<name>, or exacity-geos at a precision.
 Build build_named(const std::string& name, const fs::path& programs) {
   if (name == "exact") return {name, programs / "exacity", {}, true};
+  if (name == "cgal-snap") return {name, programs / "exacity-cgal-snap", {}, false};
   if (name.starts_with("geos-"))
     return {name, programs / "exacity-geos", {"--precision", name.substr(5)}, false};
   return {name, programs / ("exacity-" + name), {}, true};
@@ -157,6 +158,7 @@ std::string build_label(const std::string& name) {
   if (name == "float-snapped") return "float-snapped (practitioner)";
   if (name == "float") return "float, Epick (no tolerance)";
   if (name == "float-simple") return "float-simple (no tolerance)";
+  if (name == "cgal-snap") return "CGAL snap rounding on Epick (blocks and lots only)";
   if (name == "geos-floating") return "GEOS, floating (blocks and lots only)";
   if (name == "geos-fixed") return "GEOS, fixed 2^-24 m (blocks and lots only)";
   return name;
@@ -170,8 +172,8 @@ std::string svg_chart(const std::vector<FamilyResult>& results, const std::vecto
   const int columns = 4, panel_w = 230, panel_h = 150, gap_x = 40, gap_y = 70, left = 50, top = 24 + 16 * legend_rows;
   const int rows = (static_cast<int>(results.size()) + columns - 1) / columns;
   const int width = left + columns * (panel_w + gap_x), height = top + rows * (panel_h + gap_y) + 30;
-  static const char* colours[] = {"#2b7a3d", "#1f5fa8", "#7b3fa0", "#c23c8c", "#d9822b", "#b8322a"};
-  static const char* dashes[] = {"", "", "", "4 2", "6 3", "2 3"};
+  static const char* colours[] = {"#2b7a3d", "#1f5fa8", "#138d90", "#7b3fa0", "#c23c8c", "#d9822b", "#b8322a"};
+  static const char* dashes[] = {"", "", "", "", "4 2", "6 3", "2 3"};
   std::ostringstream s;
   s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
     << "\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
@@ -180,7 +182,7 @@ std::string svg_chart(const std::vector<FamilyResult>& results, const std::vecto
   for (std::size_t b = 0; b < builds.size(); ++b) {
     const std::size_t x = left + 360 * (b % 3), y = 28 + 16 * (b / 3);
     s << "<line x1=\"" << x << "\" x2=\"" << x + 20 << "\" y1=\"" << y << "\" y2=\"" << y << "\" stroke=\""
-      << colours[b % 6] << "\" stroke-width=\"2\" stroke-dasharray=\"" << dashes[b % 6] << "\"/><text x=\"" << x + 24
+      << colours[b % 7] << "\" stroke-width=\"2\" stroke-dasharray=\"" << dashes[b % 7] << "\"/><text x=\"" << x + 24
       << "\" y=\"" << y + 4 << "\">" << build_label(builds[b].name) << "</text>\n";
   }
   for (std::size_t f = 0; f < results.size(); ++f) {
@@ -217,16 +219,24 @@ std::string svg_chart(const std::vector<FamilyResult>& results, const std::vecto
       std::ostringstream points;
       for (const auto& [level, bin] : bins)
         points << fixed(x_of(static_cast<double>(level)), 1) << "," << fixed(y_of(static_cast<double>(bin.second[b]) / bin.first), 1) << " ";
-      s << "<polyline points=\"" << points.str() << "\" fill=\"none\" stroke=\"" << colours[b % 6]
-        << "\" stroke-width=\"2\" stroke-dasharray=\"" << dashes[b % 6] << "\"/>\n";
+      s << "<polyline points=\"" << points.str() << "\" fill=\"none\" stroke=\"" << colours[b % 7]
+        << "\" stroke-width=\"2\" stroke-dasharray=\"" << dashes[b % 7] << "\"/>\n";
       for (const auto& [level, bin] : bins)
         s << "<circle cx=\"" << fixed(x_of(static_cast<double>(level)), 1) << "\" cy=\""
-          << fixed(y_of(static_cast<double>(bin.second[b]) / bin.first), 1) << "\" r=\"2.5\" fill=\"" << colours[b % 6]
+          << fixed(y_of(static_cast<double>(bin.second[b]) / bin.first), 1) << "\" r=\"2.5\" fill=\"" << colours[b % 7]
           << "\"/>\n";
     }
   }
   s << "</svg>\n";
   return s.str();
+}
+
+// "low → high" failures of a build on a family, or "—" where its cases share one level.
+std::string trend_cell(const FamilyResult& f, std::size_t b) {
+  const LevelTrend t = level_trend(f, b);
+  if (!t.high_cases) return "—";
+  return std::to_string(t.low_failed) + "/" + std::to_string(t.low_cases) + " → " + std::to_string(t.high_failed) +
+         "/" + std::to_string(t.high_cases) + (t.rises() ? " (rises)" : "");
 }
 
 std::string markdown(const std::vector<FamilyResult>& results, const std::vector<Build>& builds,
@@ -237,9 +247,9 @@ std::string markdown(const std::vector<FamilyResult>& results, const std::vector
     << "process limited to " << o.time_limit << " s, on one thread. A case passes when the build exits 0 and its output\n"
     << "passes the GEOS judge and the exact build's `exacity validate`. Failures: crash (a signal, or exit 3: a\n"
     << "failed CGAL precondition or internal check, or a GEOS exception), hang (over the limit), error (another exit\n"
-    << "code), rejected (the judge's or the validator's kinds, in brackets). The GEOS rows are the partition stage\n"
-    << "only (zones, water and road areas overlaid into blocks, blocks cut into lots by a fishnet; no growth, no\n"
-    << "buildings), judged by the judge alone. The time ratio is the exact build's median time over the other's on\n"
+    << "code), rejected (the judge's or the validator's kinds, in brackets). The CGAL snap rounding and GEOS rows are\n"
+    << "the partition stage only (zones, water and road areas overlaid into blocks, blocks cut into lots by a fishnet;\n"
+    << "no growth, no buildings), judged by the judge alone. The time ratio is the exact build's median time over the other's on\n"
     << "the cases both passed (— where none did: a crash's time says nothing of the cost).\n\n"
     << "| family | cases |";
   for (const Build& b : builds) s << " " << build_label(b.name) << " passed | " << b.name << " failures |";
@@ -269,6 +279,26 @@ std::string markdown(const std::vector<FamilyResult>& results, const std::vector
     for (double ratio : f.time_ratio) s << " " << (ratio > 0 ? fixed(ratio, 2) : "—") << " |";
     s << "\n";
   }
+  // Whether failures rise with the level, per family and build.
+  s << "\nFailures against degeneracy: failed/cases at or below each family's median level → above it (\"rises\"\n"
+    << "where the rate above is higher).\n\n| family | median level |";
+  for (const Build& b : builds) s << " " << b.name << " |";
+  s << "\n|---|---|";
+  for (std::size_t b = 0; b < builds.size(); ++b) s << "---|";
+  s << "\n";
+  std::vector<int> rising(builds.size(), 0);
+  int swept = 0;
+  for (const FamilyResult& f : results) {
+    s << "| " << f.family << " | " << fixed(level_trend(f, 0).median_level, 1) << " |";
+    for (std::size_t b = 0; b < builds.size(); ++b) s << " " << trend_cell(f, b) << " |";
+    s << "\n";
+    if (!level_trend(f, 0).high_cases) continue;
+    ++swept;
+    for (std::size_t b = 0; b < builds.size(); ++b) rising[b] += level_trend(f, b).rises();
+  }
+  s << "| rises on | |";
+  for (int n : rising) s << " " << n << " of " << swept << " |";
+  s << "\n";
   // Per stage, for the builds that write report.json's timings (Exacity's, not GEOS's).
   std::vector<std::size_t> timed;
   for (std::size_t b = 1; b < builds.size(); ++b)
@@ -297,7 +327,10 @@ std::string markdown(const std::vector<FamilyResult>& results, const std::vector
   }
   s << "\n![failure rate against degeneracy level](robustness.svg)\n\nReproduce (release preset, which builds the float programs too):\n\n"
     << "```\ncmake --workflow --preset release\nbuild/release/cli/exacity bench robustness --cases " << o.cases
-    << " --seed " << o.seed << "\n```\n\nFamilies:\n\n";
+    << " --seed " << o.seed;
+  if (o.jobs > 0) s << " --jobs " << o.jobs;
+  for (const std::string& b : o.builds) s << " --build " << b;
+  s << "\n```\n\nFamilies:\n\n";
   for (const Family& f : families()) s << "- `" << f.name << "`: " << f.about << " (level: " << f.level << ")\n";
   return s.str();
 }
@@ -468,6 +501,10 @@ nlohmann::ordered_json robustness_json(const RobustnessOptions& o, const std::ve
     for (std::size_t b = 0; b < f.builds.size(); ++b) {
       entry[f.builds[b].first] = to_json(f.builds[b].second);
       if (b > 0) entry[f.builds[b].first]["exact_over_this_time"] = f.time_ratio[b - 1] > 0 ? nlohmann::ordered_json(f.time_ratio[b - 1]) : nullptr;
+      if (const LevelTrend t = level_trend(f, b); t.high_cases)
+        entry[f.builds[b].first]["by_level"] = {{"median_level", t.median_level}, {"failed_at_or_below", t.low_failed},
+                                                 {"cases_at_or_below", t.low_cases}, {"failed_above", t.high_failed},
+                                                 {"cases_above", t.high_cases}, {"rises", t.rises()}};
     }
     entry["level"] = level_of(f.family);
     entry["per_case"] = nlohmann::ordered_json::array();
@@ -498,6 +535,19 @@ void write_reports(const RobustnessOptions& o, const std::vector<Build>& builds,
 }
 
 }  // namespace
+
+LevelTrend level_trend(const FamilyResult& family, std::size_t build) {
+  LevelTrend t;
+  std::vector<double> levels;
+  for (const CaseResult& c : family.cases) levels.push_back(c.level);
+  t.median_level = median(levels);
+  for (const CaseResult& c : family.cases) {
+    const bool failed = c.results.at(build) != "passed";
+    if (c.level > t.median_level) ++t.high_cases, t.high_failed += failed;
+    else ++t.low_cases, t.low_failed += failed;
+  }
+  return t;
+}
 
 std::vector<FamilyResult> run_robustness(const RobustnessOptions& o, std::ostream& log) {
   const std::vector<Build> builds = builds_in(o, log);

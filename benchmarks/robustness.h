@@ -14,11 +14,11 @@
 namespace exacity::bench {
 
 // The builds, in report order: the exact one, the practitioner's float build (snapped to a
-// grid, with tolerances), GEOS's overlay in floating and in fixed precision (the partition
-// stage only: benchmarks/geos_partition.cpp), and the two float builds with no tolerance
-// (geom/exact.h).
-inline const std::vector<std::string> kBuildNames = {"exact",      "float-snapped", "geos-floating",
-                                                     "geos-fixed", "float",         "float-simple"};
+// grid, with tolerances), CGAL's snap rounding on its inexact kernel and GEOS's overlay in
+// floating and in fixed precision (the partition stage only: benchmarks/cgal_snap_partition.cpp
+// and geos_partition.cpp), and the two float builds with no tolerance (geom/exact.h).
+inline const std::vector<std::string> kBuildNames = {"exact",         "float-snapped", "cgal-snap", "geos-floating",
+                                                     "geos-fixed",    "float",         "float-simple"};
 
 struct RobustnessOptions {
   std::vector<std::string> families;  // empty: all
@@ -27,7 +27,7 @@ struct RobustnessOptions {
   std::filesystem::path out = "out/robustness";
   double time_limit = 60;  // seconds per run of a build on a case
   int jobs = 0;            // cases run at once (0: one per core)
-  // Where exacity, exacity-<build> and exacity-geos are; builds not there are left out.
+  // Where exacity, exacity-<build>, exacity-cgal-snap and exacity-geos are; builds not there are left out.
   std::filesystem::path programs;
   std::vector<std::string> builds;  // of kBuildNames; empty: every build found
   bool keep_outputs = false;        // else only failed cases' outputs stay
@@ -66,6 +66,18 @@ struct FamilyResult {
   // both passed (0 when none did: a crash's time says nothing of the cost).
   std::vector<double> time_ratio;
 };
+
+// Whether a build fails more often as a family's cases near degeneracy: its failure rate on
+// the cases above the family's median level against that on the others (the lower half).
+// A family whose cases share one level (the control) has no upper half.
+struct LevelTrend {
+  double median_level = 0;
+  int low_cases = 0, low_failed = 0, high_cases = 0, high_failed = 0;
+  double low_rate() const { return low_cases ? static_cast<double>(low_failed) / low_cases : 0; }
+  double high_rate() const { return high_cases ? static_cast<double>(high_failed) / high_cases : 0; }
+  bool rises() const { return high_cases > 0 && high_rate() > low_rate(); }
+};
+LevelTrend level_trend(const FamilyResult& family, std::size_t build);
 
 // Runs the benchmark and writes its files into options.out; progress lines go to `log`.
 std::vector<FamilyResult> run_robustness(const RobustnessOptions& options, std::ostream& log);
