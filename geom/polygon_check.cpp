@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <CGAL/Boolean_set_operations_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Exact_rational.h>
 #include <CGAL/Polygon_2_algorithms.h>
@@ -25,6 +27,24 @@ std::vector<K::Point_2> points(const Ring& ring) {
 }
 
 }  // namespace
+
+bool interiors_overlap(const Polygon& a, const Polygon& b) {
+  // Most pairs a caller asks about lie apart or share only an edge: the closed regions'
+  // test decides the first kind without building an arrangement.
+  if (!rings_meet(a.outer, b.outer)) return false;
+  using E = CGAL::Epeck;
+  auto exact = [](const Polygon& p) {
+    auto ring = [](const Ring& r) {
+      CGAL::Polygon_2<E> out;
+      for (Vec2 v : r) out.push_back(E::Point_2(v.x, v.y));
+      return out;
+    };
+    CGAL::Polygon_with_holes_2<E> out(ring(p.outer));
+    for (const Ring& h : p.holes) out.add_hole(ring(h));
+    return out;
+  };
+  return CGAL::do_intersect(exact(a), exact(b));
+}
 
 int ring_orientation(const Ring& ring) {
   if (ring.size() < 3 || !ring_is_simple(ring)) return 0;

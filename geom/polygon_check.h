@@ -18,6 +18,11 @@ bool rings_meet(const Ring& a, const Ring& b);
 // the two do not cross (they may touch, or share edges), decided exactly.
 bool ring_within(const Ring& ring, const Ring& outer);
 
+// The interiors of the two polygons (simple rings, outer counter-clockwise, holes clockwise)
+// meet: they overlap in some area, not only along edges or at points. Exact (CGAL's
+// regularised Boolean operations on the exact kernel).
+bool interiors_overlap(const Polygon& a, const Polygon& b);
+
 // The sign of (a + b) - (c + d), exact: heights counted from different floors compared.
 int compare_sums(double a, double b, double c, double d);
 
