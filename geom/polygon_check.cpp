@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <CGAL/Boolean_set_operations_2.h>
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Exact_rational.h>
 #include <CGAL/Polygon_2_algorithms.h>
@@ -12,6 +10,7 @@
 
 #include "geom/exact.h"
 #include "geom/grid.h"
+#include "geom/planar_map.h"
 
 namespace geom {
 namespace {
@@ -28,22 +27,29 @@ std::vector<K::Point_2> points(const Ring& ring) {
 
 }  // namespace
 
+std::set<std::pair<int, int>> overlapping_pairs(const std::vector<const Polygon*>& polygons) {
+  PlanarMap map;
+  for (std::size_t i = 0; i < polygons.size(); ++i) {
+    map.add_ring(polygons[i]->outer, static_cast<int>(i));
+    for (const Ring& h : polygons[i]->holes) map.add_ring(h, static_cast<int>(i));
+  }
+  map.insert_batch();
+  std::set<std::pair<int, int>> pairs;
+  map.label_faces([&](const Windings& w) {
+    std::vector<int> inside;
+    for (auto [counter, winding] : w)
+      if (winding != 0) inside.push_back(counter);
+    for (std::size_t a = 0; a < inside.size(); ++a)
+      for (std::size_t b = a + 1; b < inside.size(); ++b) pairs.insert({std::min(inside[a], inside[b]), std::max(inside[a], inside[b])});
+    return 0;
+  });
+  return pairs;
+}
+
 bool interiors_overlap(const Polygon& a, const Polygon& b) {
-  // Most pairs a caller asks about lie apart or share only an edge: the closed regions'
-  // test decides the first kind without building an arrangement.
-  if (!rings_meet(a.outer, b.outer)) return false;
-  using E = CGAL::Epeck;
-  auto exact = [](const Polygon& p) {
-    auto ring = [](const Ring& r) {
-      CGAL::Polygon_2<E> out;
-      for (Vec2 v : r) out.push_back(E::Point_2(v.x, v.y));
-      return out;
-    };
-    CGAL::Polygon_with_holes_2<E> out(ring(p.outer));
-    for (const Ring& h : p.holes) out.add_hole(ring(h));
-    return out;
-  };
-  return CGAL::do_intersect(exact(a), exact(b));
+  // Most pairs a caller asks about lie apart: the closed regions' test decides those
+  // without building a map.
+  return rings_meet(a.outer, b.outer) && !overlapping_pairs({&a, &b}).empty();
 }
 
 int ring_orientation(const Ring& ring) {

@@ -9,7 +9,6 @@
 
 #include "generate/city/memo.h"
 #include "generate/city/random.h"
-#include "geom/box_index.h"
 #include "geom/measure.h"
 #include "geom/polygon_check.h"
 #include "geom/triangulate.h"
@@ -20,12 +19,6 @@ namespace {
 
 // How many refusals and repairs report.json names one by one; the counts hold them all.
 constexpr std::size_t kNamed = 20;
-
-geom::Box box_of(const geom::Polygon& p) {
-  geom::Box b = geom::Box::none();
-  for (geom::Vec2 v : p.outer) b.add(v);
-  return b;
-}
 
 bool simple(const geom::Polygon& p) {
   if (!geom::ring_is_simple(p.outer)) return false;
@@ -96,15 +89,9 @@ std::vector<Building> mapped_footprints(const std::vector<MappedBuilding>& drawn
     ++tally.refused[why];
     if (tally.named.size() < kNamed) tally.named.push_back(m.name + ": refused, " + (detail.empty() ? why : detail));
   };
-  // The road surfaces (carriageways, sidewalks, junctions, bridges) as the map has them.
-  std::vector<int> group(map.labels.size(), -1);
-  for (std::size_t l = 0; l < map.labels.size(); ++l)
-    if (map.labels[l].road_surface()) group[l] = 0;
-  std::vector<std::vector<geom::Dissolved>> surfaces = map.map.dissolve(group, 1);
-  std::vector<geom::Polygon> roads;
-  for (geom::Dissolved& d : surfaces[0]) roads.push_back(std::move(d.polygon));
-  geom::BoxIndex road_index(50), kept_index(50);
-  for (std::size_t r = 0; r < roads.size(); ++r) road_index.add(static_cast<int>(r), box_of(roads[r]));
+  // Each footprint simple, or repaired, or refused.
+  std::vector<Building> candidates;
+  std::vector<char> repaired;
   for (std::size_t i = 0; i < drawn.size(); ++i) {
     const MappedBuilding& m = drawn[i];
     if (!m.problem.empty()) {
@@ -116,59 +103,75 @@ std::vector<Building> mapped_footprints(const std::vector<MappedBuilding>& drawn
     b.osm_id = m.osm_id;
     b.building_tag = m.building;
     b.polygon = m.polygon;
-    bool repaired = false;
-    if (!simple(b.polygon) || !ogr_valid(b.polygon)) {
+    repaired.push_back(!simple(b.polygon) || !ogr_valid(b.polygon));
+    if (repaired.back()) {
       std::optional<geom::Polygon> valid = made_valid(b.polygon);
       if (!valid) {
         refuse(m, "self-intersecting footprint that GEOS's MakeValid does not make one polygon");
+        repaired.pop_back();
         continue;
       }
       b.polygon = std::move(*valid);
-      repaired = true;
     }
     orient(b.polygon);
-    const geom::Box box = box_of(b.polygon);
-    bool on_road = false;
-    for (int r : road_index.meeting(box))
-      if ((on_road = geom::interiors_overlap(b.polygon, roads[r]))) break;
-    if (on_road) {
+    candidates.push_back(std::move(b));
+  }
+  // The road surfaces (carriageways, sidewalks, junctions, bridges) as the map has them,
+  // then the footprints, in one exact map: which footprint crosses a road, which overlap.
+  std::vector<int> group(map.labels.size(), -1);
+  for (std::size_t l = 0; l < map.labels.size(); ++l)
+    if (map.labels[l].road_surface()) group[l] = 0;
+  const std::vector<std::vector<geom::Dissolved>> surfaces = map.map.dissolve(group, 1);
+  std::vector<const geom::Polygon*> polygons;
+  for (const geom::Dissolved& d : surfaces[0]) polygons.push_back(&d.polygon);
+  const int roads = static_cast<int>(polygons.size());
+  for (const Building& b : candidates) polygons.push_back(&b.polygon);
+  std::vector<char> on_road(candidates.size(), 0);
+  std::vector<std::vector<int>> earlier(candidates.size());  // the footprints before each that it overlaps
+  for (auto [a, b] : geom::overlapping_pairs(polygons)) {
+    if (b < roads) continue;
+    if (a < roads) on_road[b - roads] = 1;
+    else earlier[b - roads].push_back(a - roads);
+  }
+  std::vector<int> kept_as(candidates.size(), -1);
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    const MappedBuilding& m = drawn[candidates[c].mapped];
+    if (on_road[c]) {
       refuse(m, "crosses a road surface");
       continue;
     }
-    int over = -1;
-    for (int k : kept_index.meeting(box))
-      if (geom::interiors_overlap(b.polygon, kept[k].polygon)) {
-        over = k;
-        break;
-      }
-    if (over >= 0) {
-      refuse(m, "overlaps a mapped building kept before it", "overlaps " + drawn[kept[over].mapped].name + ", kept before it");
+    const auto over = std::find_if(earlier[c].begin(), earlier[c].end(), [&](int e) { return kept_as[e] >= 0; });
+    if (over != earlier[c].end()) {
+      refuse(m, "overlaps a mapped building kept before it",
+             "overlaps " + drawn[candidates[*over].mapped].name + ", kept before it");
       continue;
     }
-    if (repaired) {
+    if (repaired[c]) {
       ++tally.repaired, ++tally.repairs["self-intersecting footprint made valid by GEOS's MakeValid"];
       if (tally.named.size() < kNamed) tally.named.push_back(m.name + ": repaired, its self-intersecting footprint made valid by GEOS's MakeValid");
     } else {
       ++tally.kept;
     }
-    kept_index.add(static_cast<int>(kept.size()), box);
-    kept.push_back(std::move(b));
+    kept_as[c] = static_cast<int>(kept.size());
+    kept.push_back(candidates[c]);
   }
   return kept;
 }
 
-std::vector<char> lots_holding(const std::vector<Lot>& lots, const std::vector<Building>& footprints) {
-  std::vector<char> held(lots.size(), 0);
-  if (footprints.empty()) return held;
-  geom::BoxIndex index(50);
-  for (std::size_t k = 0; k < footprints.size(); ++k) index.add(static_cast<int>(k), box_of(footprints[k].polygon));
-  for (std::size_t i = 0; i < lots.size(); ++i)
-    for (int k : index.meeting(box_of(lots[i].polygon)))
-      if (geom::interiors_overlap(lots[i].polygon, footprints[k].polygon)) {
-        held[i] = 1;
-        break;
-      }
-  return held;
+HeldLots lots_holding(const std::vector<Lot>& lots, const std::vector<Building>& footprints) {
+  HeldLots out{std::vector<char>(lots.size(), 0), std::vector<int>(footprints.size(), -1)};
+  if (footprints.empty()) return out;
+  std::vector<const geom::Polygon*> polygons;
+  for (const Lot& lot : lots) polygons.push_back(&lot.polygon);
+  for (const Building& b : footprints) polygons.push_back(&b.polygon);
+  const int n = static_cast<int>(lots.size());
+  // Pairs come in order, so each footprint's lot is the first it stands on.
+  for (auto [lot, footprint] : geom::overlapping_pairs(polygons)) {
+    if (lot >= n || footprint < n) continue;
+    out.held[lot] = 1;
+    if (out.lot_of[footprint - n] < 0) out.lot_of[footprint - n] = lot;
+  }
+  return out;
 }
 
 namespace {
@@ -207,7 +210,7 @@ std::vector<geom::Face3> pitched_roof(const std::string& shape, const geom::Poly
 }  // namespace
 
 void raise_mapped_buildings(std::vector<Building>& footprints, const std::vector<MappedBuilding>& drawn,
-                            const std::vector<Lot>& lots, const CityMap& map, const std::vector<ZoneFeature>& zones,
+                            const HeldLots& held, const std::vector<Lot>& lots, const CityMap& map, const std::vector<ZoneFeature>& zones,
                             const CitySettings& city, const Channels& channels, const Terrain* terrain, int first_id,
                             MappedTally& tally) {
   if (footprints.empty()) return;
@@ -215,18 +218,13 @@ void raise_mapped_buildings(std::vector<Building>& footprints, const std::vector
   for (const Lot& lot : lots) box.add(lot.cell.bounds());
   const geom::Vec2 centre{(box.min_x + box.max_x) / 2, (box.min_y + box.max_y) / 2};
   const double radius = box.holds_nothing() ? 0 : std::hypot(box.width(), box.height()) / 2;
-  geom::BoxIndex lot_index(50);
-  for (std::size_t i = 0; i < lots.size(); ++i) lot_index.add(static_cast<int>(i), box_of(lots[i].polygon));
   const std::uint64_t stage = mix(city.seed, static_cast<std::uint64_t>(Stage::Buildings));
   int id = first_id;
-  for (Building& b : footprints) {
+  for (std::size_t k = 0; k < footprints.size(); ++k) {
+    Building& b = footprints[k];
     const MappedBuilding& m = drawn[b.mapped];
     b.id = id++;
-    for (int l : lot_index.meeting(box_of(b.polygon)))
-      if (geom::interiors_overlap(lots[l].polygon, b.polygon)) {
-        b.lot = l;
-        break;
-      }
+    b.lot = held.lot_of[k];
     const std::optional<geom::Vec2> inside = point_inside(b.polygon);
     if (b.lot >= 0) {
       b.zone = lots[b.lot].zone;

@@ -37,17 +37,20 @@ struct MappedTally {
 // before it. `mapped` is each one's index in `drawn`; zone, heights and roof come later.
 std::vector<Building> mapped_footprints(const std::vector<MappedBuilding>& drawn, const CityMap& map, MappedTally& tally);
 
-// For each lot, whether its interior meets a mapped footprint's (exactly): no placer builds
-// on it.
-std::vector<char> lots_holding(const std::vector<Lot>& lots, const std::vector<Building>& footprints);
+// The lots mapped footprints stand on: their interiors meet (exactly).
+struct HeldLots {
+  std::vector<char> held;   // per lot: no placer builds on it
+  std::vector<int> lot_of;  // per footprint: the first lot it stands on, or -1
+};
+HeldLots lots_holding(const std::vector<Lot>& lots, const std::vector<Building>& footprints);
 
-// Raises the kept footprints: each takes the zone and id of the lot it holds most of (else
+// Raises the kept footprints: each takes the zone and id of the first lot it stands on (else
 // the drawn zone under it, else residential), the height of its `height` tag, else its
 // `building:levels` × the zone's storey_height (plus its roof), else one drawn from the
 // zone's heights as an extruded building's; its roof from `roof:shape` and `roof:height`
 // where geom/roof.h makes that shape, else flat (counted). Ids run on from `first_id`.
 void raise_mapped_buildings(std::vector<Building>& footprints, const std::vector<MappedBuilding>& drawn,
-                            const std::vector<Lot>& lots, const CityMap& map, const std::vector<ZoneFeature>& zones,
+                            const HeldLots& held, const std::vector<Lot>& lots, const CityMap& map, const std::vector<ZoneFeature>& zones,
                             const CitySettings& city, const Channels& channels, const Terrain* terrain, int first_id,
                             MappedTally& tally);
 
