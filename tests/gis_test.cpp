@@ -1229,3 +1229,32 @@ TEST(Gis, MappedBuildingsAreKeptRaisedAndNeverBuiltOver) {
   EXPECT_NE(city_osm.find("<tag k=\"exacity:osm_id\" v=\"relation/5900\"/>"), std::string::npos);
   EXPECT_NE(city_osm.find("<tag k=\"building\" v=\"pavilion\"/>"), std::string::npos);
 }
+
+// A GIS export of OpenStreetMap's buildings (GDAL's OSM driver's columns): each polygon a
+// mapped building with its OSM id as a type and number and its tags from other_tags.
+TEST(Gis, BuildingsOfAGisExportAreMappedBuildings) {
+  const fs::path dir = testing_util::temp_dir("gis-export-buildings");
+  ordered_json town = town_in_metres();
+  auto square = [](double x, double y) {
+    return ordered_json{{"type", "Polygon"},
+                        {"coordinates", {{{x, y}, {x + 10, y}, {x + 10, y + 10}, {x, y + 10}, {x, y}}}}};
+  };
+  town["features"].push_back({{"type", "Feature"},
+                              {"properties", {{"osm_id", nullptr}, {"osm_way_id", "4198"}, {"building", "yes"},
+                                              {"other_tags", "\"building:levels\"=>\"6\",\"roof:shape\"=>\"hipped\""}}},
+                              {"geometry", square(385300, 6672200)}});
+  town["features"].push_back({{"type", "Feature"},
+                              {"properties", {{"osm_id", "77"}, {"osm_way_id", nullptr}, {"building", "church"}, {"height", 30}}},
+                              {"geometry", square(385400, 6672200)}});
+  write(dir / "town.geojson", town.dump());
+  const Sketch sketch = load_sketch(dir / "town.geojson");
+  ASSERT_EQ(sketch.buildings.size(), 2u);
+  EXPECT_EQ(sketch.buildings[0].osm_id, "way/4198");
+  EXPECT_EQ(sketch.buildings[0].levels, 6);
+  EXPECT_EQ(sketch.buildings[0].roof_shape, "hipped");
+  EXPECT_EQ(sketch.buildings[1].osm_id, "relation/77");
+  EXPECT_EQ(sketch.buildings[1].building, "church");
+  EXPECT_EQ(sketch.buildings[1].height, 30);
+  EXPECT_EQ(sketch.zones.size(), 2u);
+  EXPECT_EQ(sketch.roads.size(), 1u);
+}
