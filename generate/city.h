@@ -17,6 +17,7 @@
 #include "generate/parcels/lots.h"
 #include "generate/placement/buildings.h"
 #include "generate/placement/clutter.h"
+#include "generate/placement/mapped_buildings.h"
 #include "generate/placement/model_library.h"
 
 namespace exacity {
@@ -34,7 +35,8 @@ struct City {
   std::vector<Block> blocks;
   std::vector<Lot> lots;
   UnbuiltLots unbuilt_lots;  // lots merged into a neighbour or left open: no placer could build on them
-  std::vector<Building> buildings;  // extruded
+  std::vector<Building> buildings;  // extruded, then the mapped ones kept
+  MappedTally mapped;  // what became of the sketch's mapped buildings
   std::vector<ModelInstance> models;  // placed from the library
   StreetClutter clutter;  // along the streets; written as vector/clutter.geojson
   Ground ground;

@@ -1,6 +1,7 @@
 #include "generate/city_report.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <optional>
 
@@ -159,6 +160,46 @@ ordered_json clutter_report(const ClutterTally& tally) {
   return {{"placed", placed}, {"not_placed", missed}};
 }
 
+// report.json's mapped_buildings: what became of each building the sketch maps (kept,
+// repaired, refused and why), the generated buildings beside them and the share of the
+// built-up land (footprint area) each holds.
+ordered_json mapped_buildings_report(const City& city) {
+  const MappedTally& t = city.mapped;
+  double mapped_area = 0, generated_area = 0;
+  int generated = 0;
+  for (const Building& b : city.buildings) {
+    if (b.mapped >= 0) {
+      mapped_area += geom::area(b.polygon);
+    } else {
+      ++generated;
+      generated_area += geom::area(b.polygon);
+    }
+  }
+  for (const ModelInstance& m : city.models)
+    if (m.kind == ModelKind::Building) ++generated, generated_area += geom::area(m.polygon);
+  // Those the files' readers left out (a building way not closed) are refused too.
+  std::map<std::string, int> refused_why = t.refused;
+  for (const auto& [why, n] : city.drawn.buildings_left_out) refused_why[why] += n;
+  int refused = 0;
+  for (const auto& [why, n] : refused_why) refused += n;
+  const double built = mapped_area + generated_area;
+  auto share = [&](double a) { return built > 0 ? std::round(a / built * 1e4) / 1e4 : 0.0; };
+  return {{"in_sketch", city.drawn.buildings.size()},
+          {"kept", t.kept},
+          {"repaired", t.repaired},
+          {"refused", refused},
+          {"refused_why", refused_why},
+          {"repairs", t.repairs},
+          {"named", t.named},
+          {"heights_from", t.heights},
+          {"roofs", t.roofs},
+          {"roofs_made_flat", t.made_flat},
+          {"lots_not_built_again", t.held_lots},
+          {"generated", generated},
+          {"built_up_m2", {{"mapped", std::round(mapped_area * 100) / 100}, {"generated", std::round(generated_area * 100) / 100}}},
+          {"built_up_share", {{"mapped", share(mapped_area)}, {"generated", share(generated_area)}}}};
+}
+
 }  // namespace
 
 ordered_json city_report(const City& city, const WrittenCity& written, const ordered_json& timings) {
@@ -190,6 +231,7 @@ ordered_json city_report(const City& city, const WrittenCity& written, const ord
                                           ") cannot check its own output: run the exact build's exacity validate"}}},
       {"timings_s", timings},
   };
+  if (!city.drawn.buildings.empty() || !city.drawn.buildings_left_out.empty()) report["mapped_buildings"] = mapped_buildings_report(city);
   // A generation with a cache (exacity serve's) says what it reused of the one before.
   if (city.regions) report["reused"] = reuse_report(*city.regions);
   return report;

@@ -11,6 +11,7 @@
 #include "generate/parcels/blocks.h"
 #include "generate/placement/buildings.h"
 #include "generate/placement/builtin_models.h"
+#include "generate/placement/mapped_buildings.h"
 #include "generate/export/cityjson_export.h"
 #include "generate/export/clutter_layer.h"
 #include "generate/errors.h"
@@ -49,12 +50,16 @@ std::vector<Lot> with_density(std::vector<Lot> lots, const std::vector<Block>& b
 // Buildings on every lot. Lots no placer could build on are merged into a neighbour or,
 // the last time, left open (merge_unbuilt_lots), and every lot is placed again, twice at
 // most: with lot ids renumbered, every lot draws from its new stream.
-Structures build_on_lots(City& city, const std::vector<PlannedLot>& planned) {
+// Lots a mapped building stands on (`held`, as the lots end) count as built and get nothing more.
+Structures build_on_lots(City& city, const std::vector<PlannedLot>& planned, const std::vector<Building>& mapped,
+                         HeldLots& held) {
   constexpr int kMerges = 2;
   for (int merges = 0;; ++merges) {
+    held = lots_holding(city.lots, mapped);
     Structures s = place_buildings(city.lots, city.settings, city.model_library(), city.channels, city.heightmap(),
-                                   city.regions ? &city.regions->placements : nullptr);
-    std::vector<char> built(city.lots.size(), 0);
+                                   city.regions ? &city.regions->placements : nullptr, &held.held);
+    city.mapped.held_lots = static_cast<int>(std::count(held.held.begin(), held.held.end(), 1));
+    std::vector<char> built = held.held;
     for (const Building& b : s.buildings) built[b.lot] = 1;
     for (const ModelInstance& m : s.models) built[m.lot] |= m.kind == ModelKind::Building;
     if (merges == kMerges || std::count(built.begin(), built.end(), 0) == 0) return s;
@@ -105,8 +110,15 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
     return with_density(insert_lots(city.network.map, planned, city.settings), city.blocks);
   });
   Structures raised = stages.run("buildings", [&] {
-    Structures s = build_on_lots(city, planned);
+    std::vector<Building> mapped = mapped_footprints(city.drawn.buildings, city.network.map, city.mapped);
+    HeldLots held;
+    Structures s = build_on_lots(city, planned, mapped, held);
     check_export_size(s.models, city.model_library());
+    // After every generated structure, so that their ids are as without mapped buildings.
+    raise_mapped_buildings(mapped, city.drawn.buildings, held, city.lots, city.network.map, city.drawn.zones, city.settings,
+                           city.channels, city.heightmap(), static_cast<int>(s.buildings.size() + s.models.size()),
+                           city.mapped);
+    s.buildings.insert(s.buildings.end(), std::make_move_iterator(mapped.begin()), std::make_move_iterator(mapped.end()));
     return s;
   });
   city.buildings = std::move(raised.buildings);

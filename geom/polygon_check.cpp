@@ -10,6 +10,7 @@
 
 #include "geom/exact.h"
 #include "geom/grid.h"
+#include "geom/planar_map.h"
 
 namespace geom {
 namespace {
@@ -25,6 +26,31 @@ std::vector<K::Point_2> points(const Ring& ring) {
 }
 
 }  // namespace
+
+std::set<std::pair<int, int>> overlapping_pairs(const std::vector<const Polygon*>& polygons) {
+  PlanarMap map;
+  for (std::size_t i = 0; i < polygons.size(); ++i) {
+    map.add_ring(polygons[i]->outer, static_cast<int>(i));
+    for (const Ring& h : polygons[i]->holes) map.add_ring(h, static_cast<int>(i));
+  }
+  map.insert_batch();
+  std::set<std::pair<int, int>> pairs;
+  map.label_faces([&](const Windings& w) {
+    std::vector<int> inside;
+    for (auto [counter, winding] : w)
+      if (winding != 0) inside.push_back(counter);
+    for (std::size_t a = 0; a < inside.size(); ++a)
+      for (std::size_t b = a + 1; b < inside.size(); ++b) pairs.insert({std::min(inside[a], inside[b]), std::max(inside[a], inside[b])});
+    return 0;
+  });
+  return pairs;
+}
+
+bool interiors_overlap(const Polygon& a, const Polygon& b) {
+  // Most pairs a caller asks about lie apart: the closed regions' test decides those
+  // without building a map.
+  return rings_meet(a.outer, b.outer) && !overlapping_pairs({&a, &b}).empty();
+}
 
 int ring_orientation(const Ring& ring) {
   if (ring.size() < 3 || !ring_is_simple(ring)) return 0;

@@ -1,6 +1,10 @@
 // Exact checks on polygons given in doubles (the exports as they were written).
 #pragma once
 
+#include <set>
+#include <utility>
+#include <vector>
+
 #include "geom/plain.h"
 
 namespace geom {
@@ -17,6 +21,15 @@ bool rings_meet(const Ring& a, const Ring& b);
 // The simple ring lies in the closed region the simple ring `outer` bounds, given that
 // the two do not cross (they may touch, or share edges), decided exactly.
 bool ring_within(const Ring& ring, const Ring& outer);
+
+// The pairs (i < j) of polygons (simple rings, outer counter-clockwise, holes clockwise)
+// whose interiors meet: they overlap in some area, not only along edges or at points.
+// Exact: every ring in one planar map, polygon i's winding counter i, and a pair for each
+// face two of them wind around.
+std::set<std::pair<int, int>> overlapping_pairs(const std::vector<const Polygon*>& polygons);
+
+// The same for two polygons.
+bool interiors_overlap(const Polygon& a, const Polygon& b);
 
 // The sign of (a + b) - (c + d), exact: heights counted from different floors compared.
 int compare_sums(double a, double b, double c, double d);

@@ -350,6 +350,23 @@ TEST(PolygonCheck, SimpleAndOriented) {
   EXPECT_TRUE(geom::ring_is_simple({{0, 0}, {1, 0}, {1, 1e-300}}));
 }
 
+TEST(PolygonCheck, InteriorsOverlapOnlyWhereTheyShareArea) {
+  const geom::Polygon a{square(0, 0, 2), {}};
+  EXPECT_FALSE(geom::interiors_overlap(a, {square(2, 0, 2), {}}));      // a shared wall
+  EXPECT_FALSE(geom::interiors_overlap(a, {square(2, 2, 1), {}}));      // a shared corner
+  EXPECT_FALSE(geom::interiors_overlap(a, {square(5, 5, 1), {}}));      // apart
+  EXPECT_TRUE(geom::interiors_overlap(a, a));                           // the same
+  EXPECT_TRUE(geom::interiors_overlap(a, {square(0.5, 0.5, 1), {}}));   // inside, no edge meeting
+  EXPECT_TRUE(geom::interiors_overlap(a, {square(1, 1, 2), {}}));       // crossing
+  // A hair's breadth over the wall is an overlap: the test is exact.
+  EXPECT_TRUE(geom::interiors_overlap(a, {square(2 - 1e-12, 0, 2), {}}));
+  // In a courtyard: no overlap.
+  geom::Polygon block{square(0, 0, 10), {square(3, 3, 4)}};
+  std::reverse(block.holes[0].begin(), block.holes[0].end());
+  EXPECT_FALSE(geom::interiors_overlap(block, {square(4, 4, 2), {}}));
+  EXPECT_TRUE(geom::interiors_overlap(block, {square(2, 2, 2), {}}));
+}
+
 namespace {
 
 // Streets of half width `hw` leaving q = (0, 0) at the given angles (degrees), `length` long.

@@ -3,8 +3,10 @@
 // and the city as an OSM file, each read back with the library made for it.
 #include <gtest/gtest.h>
 
+#include <iomanip>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include <gdal_priv.h>
 #include <gdal_utils.h>
@@ -18,6 +20,7 @@
 #include "generate/errors.h"
 #include "generate/export/gis_export.h"
 #include "generate/gis/projection.h"
+#include "geom/polygon_check.h"
 #include "generate/pipeline.h"
 #include "tests/cli_util.h"
 #include "tests/test_util.h"
@@ -1061,4 +1064,197 @@ TEST(Gis, AWidthOutOfRangeNamesTheFileOnce) {
   translate(dir / "town.geojson", dir / "town.gpkg", "GPKG");
   EXPECT_EQ(error_of(dir / "town.gpkg"),
             (dir / "town.gpkg").string() + " layer town feature 3: width: value 1000.0 is out of range; use a value from 0.5 to 500.0");
+}
+
+namespace {
+
+// The village with buildings mapped in its residential land use (x, y in metres east and
+// north of its south-west corner, at its own scale): a house with a height, its terraced
+// neighbour with levels, a gabled house, one untagged, one with a skillion roof, a
+// courtyard block (a multipolygon relation), a pavilion in the park, a house with a spike
+// (repaired), a bow tie, one overlapping the first house and one across a street (refused).
+std::string village_with_buildings() {
+  std::ostringstream osm;
+  osm << std::setprecision(10);
+  long node = 5000, way = 5000;
+  auto at = [](double x, double y) {
+    return std::pair{10 + x * 0.0026880 / 200, 48 + y * 0.0017986 / 200};
+  };
+  auto ring = [&](std::vector<std::pair<double, double>> points) {
+    std::vector<long> ids;
+    for (auto [x, y] : points) {
+      const auto [lon, lat] = at(x, y);
+      osm << "  <node id=\"" << node << "\" version=\"1\" lat=\"" << lat << "\" lon=\"" << lon << "\"/>\n";
+      ids.push_back(node++);
+    }
+    ids.push_back(ids.front());
+    return ids;
+  };
+  std::ostringstream ways;
+  auto building = [&](std::vector<std::pair<double, double>> points, const std::map<std::string, std::string>& tags) {
+    const std::vector<long> ids = ring(std::move(points));
+    ways << "  <way id=\"" << way++ << "\" version=\"1\">\n";
+    for (long id : ids) ways << "    <nd ref=\"" << id << "\"/>\n";
+    for (const auto& [k, v] : tags) ways << "    <tag k=\"" << k << "\" v=\"" << v << "\"/>\n";
+    ways << "  </way>\n";
+    return way - 1;
+  };
+  auto box = [](double x0, double y0, double x1, double y1) {
+    return std::vector<std::pair<double, double>>{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+  };
+  building(box(90, 50, 102, 60), {{"building", "house"}, {"height", "9"}});                 // 5000
+  building(box(102, 50, 114, 60), {{"building", "yes"}, {"building:levels", "3"}});         // 5001
+  building(box(60, 120, 72, 130), {{"building", "house"}, {"building:levels", "2"}, {"roof:shape", "gabled"},
+                                   {"roof:height", "3"}});                                    // 5002
+  building(box(30, 150, 42, 160), {{"building", "yes"}});                                    // 5003
+  building(box(150, 40, 160, 50), {{"building", "shed"}, {"roof:shape", "skillion"}, {"height", "4"}});  // 5004
+  const long outer = building(box(120, 120, 160, 160), {}), inner = building(box(130, 130, 150, 150), {});  // 5005, 5006
+  building(box(90, 290, 100, 300), {{"building", "pavilion"}, {"height", "5 m"}});          // 5007
+  building({{30, 60}, {42, 60}, {42, 70}, {36, 70}, {36, 74}, {36, 70}, {30, 70}}, {{"building", "yes"}});  // 5008
+  building({{60, 40}, {70, 50}, {70, 40}, {60, 50}}, {{"building", "yes"}});                 // 5009
+  building(box(95, 55, 105, 65), {{"building", "yes"}});                                     // 5010
+  building(box(195, 150, 205, 160), {{"building", "yes"}});                                  // 5011
+  osm << ways.str();
+  osm << "  <relation id=\"5900\" version=\"1\">\n    <member type=\"way\" ref=\"" << outer
+      << "\" role=\"outer\"/>\n    <member type=\"way\" ref=\"" << inner
+      << "\" role=\"inner\"/>\n    <tag k=\"type\" v=\"multipolygon\"/>\n    <tag k=\"building\" v=\"apartments\"/>\n"
+         "    <tag k=\"height\" v=\"15\"/>\n  </relation>\n";
+  std::string village = cli_util::read(kVillage);
+  // Nodes before the village's ways, ways and the relation after its own.
+  const std::string added = osm.str();
+  const std::size_t ways_at = added.find("  <way ");
+  village.insert(village.rfind("</osm>"), added.substr(ways_at));
+  village.insert(village.find("  <way "), added.substr(0, ways_at));
+  return village;
+}
+
+// A building layer's footprints by OSM id, rings as written.
+std::map<std::string, std::vector<ordered_json>> mapped_by_osm_id(const ordered_json& buildings) {
+  std::map<std::string, std::vector<ordered_json>> out;
+  for (const ordered_json& f : buildings["features"])
+    if (f["properties"].value("mapped", false)) out[f["properties"]["osm_id"].get<std::string>()].push_back(f);
+  return out;
+}
+
+}  // namespace
+
+TEST(Gis, MappedBuildingsAreKeptRaisedAndNeverBuiltOver) {
+  const fs::path dir = testing_util::temp_dir("gis-mapped");
+  write(dir / "village.osm", village_with_buildings());
+  fs::copy_file(cli_util::kSource / "examples" / "osm" / "village.exacity.json", dir / "village.exacity.json");
+  const fs::path out = dir / "out";
+  const GenerateResult result = generate(dir / "village.osm", out);
+  EXPECT_TRUE(result.valid) << result.report["validation"].dump();
+  const ordered_json& report = result.report["mapped_buildings"];
+  EXPECT_EQ(report["in_sketch"], 11) << report.dump(1);
+  EXPECT_EQ(report["kept"], 7) << report.dump(1);
+  EXPECT_EQ(report["repaired"], 1) << report.dump(1);
+  EXPECT_EQ(report["refused_why"], ordered_json::parse(R"({"crosses a road surface": 1,
+      "overlaps a mapped building kept before it": 1,
+      "self-intersecting footprint that GEOS's MakeValid does not make one polygon": 1})")) << report.dump(1);
+  EXPECT_EQ(report["heights_from"], ordered_json::parse(R"({"building:levels": 2, "height": 4, "zone": 2})"));
+  EXPECT_EQ(report["roofs_made_flat"], ordered_json::parse(R"({"skillion: not a shape Exacity builds": 1})"));
+  EXPECT_GT(report["lots_not_built_again"].get<int>(), 0);
+  EXPECT_GT(report["generated"].get<int>(), 20);
+
+  const ordered_json buildings = ordered_json::parse(cli_util::read(out / "vector" / "buildings.geojson"));
+  const auto mapped = mapped_by_osm_id(buildings);
+  std::set<std::string> ids;
+  for (const auto& [id, features] : mapped) ids.insert(id);
+  EXPECT_EQ(ids, (std::set<std::string>{"way/5000", "way/5001", "way/5002", "way/5003", "way/5004", "relation/5900",
+                                        "way/5007", "way/5008"}));
+  auto height = [&](const char* id) { return mapped.at(id)[0]["properties"]["height"].get<double>(); };
+  EXPECT_EQ(height("way/5000"), 9);
+  EXPECT_EQ(height("way/5001"), 9);   // 3 levels of the zone's 3 m
+  EXPECT_EQ(height("way/5002"), 9);   // 2 levels and a roof of 3 m
+  EXPECT_EQ(height("way/5004"), 4);
+  EXPECT_EQ(height("way/5007"), 5);
+  EXPECT_EQ(height("relation/5900"), 15);
+  EXPECT_EQ(mapped.at("way/5002")[0]["properties"]["roof"], "gabled");
+  EXPECT_EQ(mapped.at("way/5004")[0]["properties"]["roof"], "flat");
+  EXPECT_EQ(mapped.at("way/5000")[0]["properties"]["building"], "house");
+  EXPECT_EQ(mapped.at("relation/5900")[0]["geometry"]["coordinates"].size(), 2u);  // its courtyard
+  EXPECT_TRUE(mapped.at("way/5007")[0]["properties"]["lot"].is_null());             // in the park
+
+  // Footprints as the sketch has them, vertex for vertex (turned counter-clockwise).
+  const ordered_json sketch = ordered_json::parse(cli_util::read(out / "sketch.geojson"));
+  int compared = 0;
+  for (const ordered_json& f : sketch["features"]) {
+    if (!f["properties"].contains("building") || f["properties"]["osm_id"] != "way/5000") continue;
+    std::set<std::pair<double, double>> drawn, written;
+    for (const ordered_json& p : f["geometry"]["coordinates"][0][0]) drawn.insert(std::pair{p[0].get<double>(), p[1].get<double>()});
+    for (const ordered_json& p : mapped.at("way/5000")[0]["geometry"]["coordinates"][0])
+      written.insert(std::pair{p[0].get<double>(), p[1].get<double>()});
+    EXPECT_EQ(drawn, written);
+    ++compared;
+  }
+  EXPECT_EQ(compared, 1);
+
+  // No generated structure overlaps a mapped footprint, nor stands on a lot one holds.
+  std::vector<geom::Polygon> kept;
+  std::set<int> held;
+  auto polygon = [](const ordered_json& rings) {
+    geom::Polygon p;
+    for (std::size_t r = 0; r < rings.size(); ++r) {
+      geom::Ring ring;
+      for (std::size_t i = 0; i + 1 < rings[r].size(); ++i)
+        ring.push_back(geom::Vec2{rings[r][i][0].get<double>(), rings[r][i][1].get<double>()});
+      (r ? p.holes.emplace_back() : p.outer) = ring;
+    }
+    return p;
+  };
+  for (const auto& [id, features] : mapped)
+    for (const ordered_json& f : features) {
+      kept.push_back(polygon(f["geometry"]["coordinates"]));
+      if (f["properties"]["lot"].is_number_integer()) held.insert(f["properties"]["lot"].get<int>());
+    }
+  int generated = 0;
+  for (const ordered_json& f : buildings["features"]) {
+    if (f["properties"].value("mapped", false)) continue;
+    ++generated;
+    EXPECT_EQ(held.count(f["properties"]["lot"].get<int>()), 0u) << f["properties"].dump();
+    const geom::Polygon p = polygon(f["geometry"]["coordinates"]);
+    for (const geom::Polygon& m : kept) EXPECT_FALSE(geom::interiors_overlap(p, m)) << f["properties"].dump();
+  }
+  EXPECT_GT(generated, 20);
+
+  // The same attributes in CityJSON and city.osm.
+  const ordered_json cityjson = ordered_json::parse(cli_util::read(out / "city.city.json"));
+  std::set<std::string> in_cityjson;
+  for (const auto& [key, object] : cityjson["CityObjects"].items())
+    if (object.contains("attributes") && object["attributes"].value("mapped", false))
+      in_cityjson.insert(object["attributes"]["osm_id"].get<std::string>());
+  EXPECT_EQ(in_cityjson, ids);
+  const std::string city_osm = cli_util::read(out / "city.osm");
+  EXPECT_NE(city_osm.find("<tag k=\"exacity:osm_id\" v=\"relation/5900\"/>"), std::string::npos);
+  EXPECT_NE(city_osm.find("<tag k=\"building\" v=\"pavilion\"/>"), std::string::npos);
+}
+
+// A GIS export of OpenStreetMap's buildings (GDAL's OSM driver's columns): each polygon a
+// mapped building with its OSM id as a type and number and its tags from other_tags.
+TEST(Gis, BuildingsOfAGisExportAreMappedBuildings) {
+  const fs::path dir = testing_util::temp_dir("gis-export-buildings");
+  ordered_json town = town_in_metres();
+  auto square = [](double x, double y) {
+    return ordered_json{{"type", "Polygon"},
+                        {"coordinates", {{{x, y}, {x + 10, y}, {x + 10, y + 10}, {x, y + 10}, {x, y}}}}};
+  };
+  town["features"].push_back({{"type", "Feature"},
+                              {"properties", {{"osm_id", nullptr}, {"osm_way_id", "4198"}, {"building", "yes"},
+                                              {"other_tags", "\"building:levels\"=>\"6\",\"roof:shape\"=>\"hipped\""}}},
+                              {"geometry", square(385300, 6672200)}});
+  town["features"].push_back({{"type", "Feature"},
+                              {"properties", {{"osm_id", "77"}, {"osm_way_id", nullptr}, {"building", "church"}, {"height", 30}}},
+                              {"geometry", square(385400, 6672200)}});
+  write(dir / "town.geojson", town.dump());
+  const Sketch sketch = load_sketch(dir / "town.geojson");
+  ASSERT_EQ(sketch.buildings.size(), 2u);
+  EXPECT_EQ(sketch.buildings[0].osm_id, "way/4198");
+  EXPECT_EQ(sketch.buildings[0].levels, 6);
+  EXPECT_EQ(sketch.buildings[0].roof_shape, "hipped");
+  EXPECT_EQ(sketch.buildings[1].osm_id, "relation/77");
+  EXPECT_EQ(sketch.buildings[1].building, "church");
+  EXPECT_EQ(sketch.buildings[1].height, 30);
+  EXPECT_EQ(sketch.zones.size(), 2u);
+  EXPECT_EQ(sketch.roads.size(), 1u);
 }

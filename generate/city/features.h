@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -43,6 +44,20 @@ struct RoadFeature {
   std::vector<std::pair<std::string, std::string>> osm_tags;
 };
 
+// A building the sketch maps (OpenStreetMap's `building=*`, or any feature with a "building"
+// property): kept as drawn, raised from its tags (docs/design.md, Mapped buildings). A
+// tag that is absent or not a number in metres is nothing.
+struct MappedBuilding {
+  int index = 0;            // position in "features"
+  std::string name;         // how messages and report.json name it: its source, else features[N]
+  std::string osm_id;       // "way/123", "relation/45", a GIS export's osm_id; else empty
+  std::string building;     // the building tag's value ("yes", "house")
+  geom::Polygon polygon;    // as drawn, in metres: any orientation, maybe not simple
+  std::optional<double> height, levels, roof_height;  // m, storeys, m
+  std::string roof_shape;   // roof:shape as tagged, or empty
+  std::string problem;      // why it cannot be read as a footprint (a ring of 2 points); else empty
+};
+
 // The sketch's own street graph (docs/design.md, Road layouts): how it is joined, what its streets carry.
 struct StreetSettings {
   double snap = 0.5;                     // m: a line end this near another line is joined to it
@@ -61,6 +76,10 @@ struct DeadEnd {
 struct DrawnFeatures {
   std::vector<ZoneFeature> zones;
   std::vector<RoadFeature> roads;     // as joined by StreetSettings::snap
+  std::vector<MappedBuilding> buildings;  // in sketch order
+  // Mapped buildings a reader left out, by why ("buildings whose way is not closed"), from
+  // the counts of what OpenStreetMap's files left out.
+  std::map<std::string, int> buildings_left_out;
   StreetSettings streets;
   int joined_ends = 0;                // line ends moved by up to `snap` to meet another line
   std::vector<DeadEnd> dead_ends;

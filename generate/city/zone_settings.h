@@ -126,6 +126,7 @@ struct BuildingSettings {
   // elsewhere; or "flat", "gabled" (falls back to hipped), "hipped" for every footprint.
   std::string roof = "auto";
   double roof_pitch = 30;             // degrees
+  double storey_height = 3;           // m: a mapped building's building:levels times this is its walls' height
   // How far apart placed models stand in their rows, centre to centre (a grammar's
   // _Dense/_Sparse): "dense" 1.25–1.5 model widths, "normal" 2–3, "sparse" 4–5.
   std::string density = "normal";

@@ -10,6 +10,7 @@
 #include "generate/errors.h"
 #include "generate/mesh/bridges.h"
 #include "generate/export/ground_layers.h"
+#include "generate/export/vector_layers.h"
 #include "generate/gis/projection.h"
 #include "geom/ring_cleanup.h"
 #include "geom/triangulate.h"
@@ -254,9 +255,13 @@ json building_object(const Building& b, const Mesh& mesh, Vertices& v) {
   if (!mesh_shell(mesh, v, lod2_shell, lod2_classes)) lod2_shell = shell, lod2_classes = classes;
   json lod2{{"type", "Solid"}, {"lod", "2"}, {"boundaries", json::array({lod2_shell})},
             {"semantics", {{"surfaces", kSemanticSurfaces}, {"values", json::array({lod2_classes})}}}};
-  return {{"type", "Building"},
-          {"attributes", {{"lot", b.lot}, {"zone", name(b.zone)}, {"measuredHeight", b.height}, {"roofType", b.roof}}},
-          {"geometry", json::array({lod1, lod2})}};
+  json attributes{{"lot", b.lot >= 0 ? json(b.lot) : json(nullptr)}, {"zone", name(b.zone)}, {"measuredHeight", b.height},
+                  {"roofType", b.roof}};
+  if (b.mapped >= 0) {
+    const nlohmann::ordered_json mapped = mapped_attributes(b);
+    for (auto it = mapped.begin(); it != mapped.end(); ++it) attributes[it.key()] = *it;
+  }
+  return {{"type", "Building"}, {"attributes", std::move(attributes)}, {"geometry", json::array({lod1, lod2})}};
 }
 
 // A placed model: LOD1 the prism of its outline; then a library building's surfaces as

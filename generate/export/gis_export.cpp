@@ -255,10 +255,17 @@ bool write_city_osm(const City& city, const fs::path& file, std::optional<std::i
     if (b.properties.value("kind", std::string("building")) != "building") continue;
     std::vector<geom::Vec2> ring = b.polygon.outer;
     ring.push_back(ring.front());  // a closed way
-    OsmTagList tags{{"building", "yes"}};
+    // A mapped building keeps its building tag and says where it came from.
+    const bool mapped = b.properties.value("mapped", false);
+    OsmTagList tags{{"building", mapped ? b.properties.value("building", std::string("yes")) : std::string("yes")}};
     if (b.properties.contains("height") && b.properties["height"].is_number())
       tags.push_back({"height", osm_number(b.properties["height"].get<double>())});
     tags.push_back({"exacity:id", std::to_string(b.properties.value("id", -1))});
+    if (mapped) {
+      tags.push_back({"exacity:mapped", "yes"});
+      if (b.properties.contains("osm_id") && b.properties["osm_id"].is_string())
+        tags.push_back({"exacity:osm_id", b.properties["osm_id"].get<std::string>()});
+    }
     way(ring, std::move(tags));
   }
   // Street clutter as the tagged nodes mappers use for it, after the ways' nodes.

@@ -79,8 +79,10 @@ void check_polygons(Checker& c, const Layer& layer, std::vector<PolygonRef>& ref
                 : f.properties.value("bridge", false) ? Kind::Bridge
                                                       : Kind::Road;
     const int id = f.properties.value("id", -1);
+    const auto lot = f.properties.find("lot");  // null for a mapped building on no lot
     refs.push_back({kind, name, zone, f.properties.value("green", false), id, f.properties.value("block", -1),
-                    kind == Kind::Lot ? id : f.properties.value("lot", -1), &f.properties});
+                    kind == Kind::Lot ? id : lot != f.properties.end() && lot->is_number_integer() ? lot->get<int>() : -1,
+                    &f.properties});
     polygons.push_back(&f.polygon);
   }
 }
@@ -197,9 +199,13 @@ class FaceLabels {
             if (auto why = nested_overlap_problem(*a.properties, a.name, *b.properties, b.name)) it->second = wrong(*why);
           if (it->second) return it->second;
         }
+      // A mapped building stands as mapped, on lots or not, but never on a road.
       for (int p : buildings)
-        if (here.count({Kind::Lot}) == 0 || here.first(Kind::Lot).lot != refs_[p].lot)
+        if (refs_[p].properties->value("mapped", false)) {
+          if (here.count({Kind::Road, Kind::Bridge}) > 0) return wrong(refs_[p].name + " stands on a road");
+        } else if (here.count({Kind::Lot}) == 0 || here.first(Kind::Lot).lot != refs_[p].lot) {
           return wrong(refs_[p].name + " leaves its lot " + std::to_string(refs_[p].lot));
+        }
     }
     if (here.count({Kind::Block}) == 1) {
       const PolygonRef &b = here.first(Kind::Block), &z = here.first(Kind::Zone);
@@ -396,6 +402,7 @@ void check_references(Checker& c, const Layer& from, const char* key, const Laye
   for (const auto& f : to.features) ids.insert(f.properties.value("id", -1));
   for (std::size_t i = 0; i < from.features.size(); ++i) {
     const auto& value = from.features[i].properties.value(key, nlohmann::ordered_json());
+    if (value.is_null() && from.features[i].properties.value("mapped", false)) continue;  // a mapped building on no lot
     for (const auto& v : value.is_array() ? value : nlohmann::ordered_json::array({value}))
       if (!v.is_number_integer() || !ids.count(v.get<int>())) {
         c.problem(from.name + ".geojson features[" + std::to_string(i) + "]: \"" + key + "\" " + v.dump() +

@@ -334,6 +334,11 @@ Ground extract_ground(const CityMap& city_map, const std::vector<Block>& blocks,
   return out;
 }
 
+ordered_json mapped_attributes(const Building& b) {
+  return {{"mapped", true}, {"osm_id", b.osm_id.empty() ? ordered_json(nullptr) : ordered_json(b.osm_id)},
+          {"building", b.building_tag}};
+}
+
 CityLayers layers_of(const Ground& ground, const std::vector<Building>& buildings,
                      const std::vector<ModelInstance>& models, const ModelLibrary* library) {
   CityLayers out;
@@ -360,10 +365,10 @@ CityLayers layers_of(const Ground& ground, const std::vector<Building>& building
   for_each_by_id(
       buildings, models,
       [&](const Building& b) {
-        add_polygon(out.buildings,
-                    {{"lot", b.lot}, {"zone", name(b.zone)}, {"height", b.height}, {"roof", b.roof}, {"model", nullptr},
-                     {"kind", "building"}},
-                    b.polygon);
+        ordered_json props{{"lot", id_or_null(b.lot)}, {"zone", name(b.zone)}, {"height", b.height}, {"roof", b.roof},
+                           {"model", nullptr}, {"kind", "building"}};
+        if (b.mapped >= 0) props.update(mapped_attributes(b));
+        add_polygon(out.buildings, std::move(props), b.polygon);
       },
       [&](const ModelInstance& m) {
         ordered_json props{{"lot", m.lot}, {"zone", name(m.zone)}, {"height", m.height}, {"roof", "model"},

@@ -47,6 +47,10 @@ int merge_sliver_road_areas(CityMap& city_map);
 Ground extract_ground(const CityMap& city_map, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
                       const std::vector<ZoneFeature>& zones);
 
+// A mapped building's attributes in every export: "mapped": true, its "osm_id" (null
+// where it has none) and its "building" tag.
+nlohmann::ordered_json mapped_attributes(const Building& b);
+
 // The layers written into `vector/`.
 CityLayers layers_of(const Ground& ground, const std::vector<Building>& buildings,
                      const std::vector<ModelInstance>& models, const ModelLibrary* library);

@@ -229,6 +229,16 @@ class Collector : public osmium::handler::Handler {
     if (!member && !tags["highway"] && !tags["waterway"] && !way.is_closed() &&
         osm_area_meaning(lookup(tags)).kind == OsmMeaning::Zone)
       return cut_ways_.push_back({way.id(), {osm_properties(tags, false), {}, {}}, way_nodes(way)}), void();
+    // A building way is its footprint, node for node, whatever osmium's assembler makes of
+    // its ring (it gives none for a self-intersecting one, which the city repairs or refuses).
+    if (!tags["highway"] && osm_area_meaning(lookup(tags)).kind == OsmMeaning::Building) {
+      if (!way.is_closed()) return ++skipped_["buildings whose way is not closed"], void();
+      const std::string what = "way " + std::to_string(way.id());
+      OsmFeature f{building_properties(tags, what), {{points(way.nodes()), {}}}, {}};
+      if (f.polygons[0].first.size() != way.nodes().size()) return ++skipped_["buildings with nodes the extract lacks"], void();
+      return buildings_.push_back(std::move(f));
+    }
+    if (tags["building:part"] && !tags["building"]) return ++skipped_["building:part"], void();
     // A closed way tagged only as an area (waterway=riverbank) is the area handler's.
     if (!tags["highway"] && !(tags["waterway"] && !way.is_closed())) return;
     const OsmMeaning meaning = osm_line_meaning(lookup(tags));
@@ -241,17 +251,22 @@ class Collector : public osmium::handler::Handler {
   void area(const osmium::Area& area) {
     const OsmMeaning meaning = osm_area_meaning(lookup(area.tags()));
     if (meaning.kind == OsmMeaning::LeftOut) return ++skipped_[meaning.why], void();
-    if (meaning.kind != OsmMeaning::Zone) return;
-    OsmFeature f{properties(area.tags(), (area.from_way() ? " way " : " relation ") + std::to_string(area.orig_id())), {}, {}};
+    if (meaning.kind != OsmMeaning::Zone && meaning.kind != OsmMeaning::Building) return;
+    if (meaning.kind == OsmMeaning::Building && area.from_way()) return;  // the way handler's
+    const std::string what = (area.from_way() ? "way " : "relation ") + std::to_string(area.orig_id());
+    OsmFeature f{properties(area.tags(), " " + what), {}, {}};
+    if (meaning.kind == OsmMeaning::Building) f.properties = building_properties(area.tags(), what);
     for (const osmium::OuterRing& outer : area.outer_rings()) {
       f.polygons.push_back({points(outer), {}});
       for (const osmium::InnerRing& inner : area.inner_rings(outer)) f.polygons.back().second.push_back(points(inner));
     }
     if (f.polygons.empty()) {
       // A relation is mended from its member ways below; a way's rings are beyond that.
-      if (area.from_way()) ++skipped_["areas whose rings osmium could not assemble"];
+      if (meaning.kind == OsmMeaning::Building) ++skipped_["building relations whose rings osmium could not assemble"];
+      else if (area.from_way()) ++skipped_["areas whose rings osmium could not assemble"];
       return;
     }
+    if (meaning.kind == OsmMeaning::Building) return buildings_.push_back(std::move(f));
     if (!area.from_way()) assembled_.insert(area.orig_id());
     zones_.push_back(std::move(f));
   }
@@ -272,7 +287,7 @@ class Collector : public osmium::handler::Handler {
       if (nodes.ids.size() >= 2) mend_rings("way " + std::to_string(id), way.properties, {std::move(nodes)}, {}, box);
   }
 
-  std::vector<OsmFeature> zones_, roads_, rivers_;
+  std::vector<OsmFeature> zones_, roads_, rivers_, buildings_;
   std::map<std::string, int> skipped_;
   std::vector<std::string> repaired_;
   osmium::Box nodes_box_;
@@ -311,6 +326,18 @@ class Collector : public osmium::handler::Handler {
     return "area";
   }
 
+  // A building's: its building tag, the tags it is raised from, its name and its OSM id.
+  ordered_json building_properties(const osmium::TagList& tags, const std::string& what) const {
+    ordered_json p{{"building", tags["building"]}};
+    for (const std::string& key : osm_building_keys())
+      if (const char* v = tags[key.c_str()]) p[key] = v;
+    if (const char* name = tags["name"]) p["name"] = name;
+    std::string id = what;
+    id[id.find(' ')] = '/';
+    p["osm_id"] = id;
+    p["source"] = file_ + " " + what;
+    return p;
+  }
   ordered_json properties(const osmium::TagList& tags, const std::string& what, bool road = false) const {
     ordered_json p = osm_properties(tags, road);
     p["source"] = file_ + what;
@@ -419,7 +446,7 @@ ordered_json osm_sketch_document(const fs::path& path) {
     reader.close();
     osmium::area::Assembler::config_type config;
     osmium::TagsFilter areas{false};
-    for (const char* key : {"landuse", "natural", "water", "waterway", "leisure"}) areas.add_rule(true, osmium::TagMatcher{key});
+    for (const char* key : {"landuse", "natural", "water", "waterway", "leisure", "building"}) areas.add_rule(true, osmium::TagMatcher{key});
     osmium::area::MultipolygonManager<osmium::area::Assembler> multipolygons{config, areas};
     osmium::apply(extract, multipolygons, relations);
     multipolygons.prepare_for_lookup();
@@ -441,16 +468,18 @@ ordered_json osm_sketch_document(const fs::path& path) {
     throw UserError(file + ": the extract has no highways, land use or water Exacity reads; see docs/gis.md");
 
   ordered_json features = ordered_json::array();
-  for (OsmFeature& f : collector.zones_) {
-    ordered_json polygons = ordered_json::array();
-    for (auto& [outer, holes] : f.polygons) {
-      ordered_json rings = ordered_json::array({ring_json(outer)});
-      for (const LonLat& h : holes) rings.push_back(ring_json(h));
-      polygons.push_back(std::move(rings));
+  // Buildings after the zones: the sketch reader keeps them apart, in this order.
+  for (auto* areas : {&collector.zones_, &collector.buildings_})
+    for (OsmFeature& f : *areas) {
+      ordered_json polygons = ordered_json::array();
+      for (auto& [outer, holes] : f.polygons) {
+        ordered_json rings = ordered_json::array({ring_json(outer)});
+        for (const LonLat& h : holes) rings.push_back(ring_json(h));
+        polygons.push_back(std::move(rings));
+      }
+      features.push_back({{"type", "Feature"}, {"properties", std::move(f.properties)},
+                          {"geometry", {{"type", "MultiPolygon"}, {"coordinates", std::move(polygons)}}}});
     }
-    features.push_back({{"type", "Feature"}, {"properties", std::move(f.properties)},
-                        {"geometry", {{"type", "MultiPolygon"}, {"coordinates", std::move(polygons)}}}});
-  }
   for (auto* lines : {&collector.rivers_, &collector.roads_})
     for (OsmFeature& f : *lines)
       features.push_back({{"type", "Feature"}, {"properties", std::move(f.properties)},

@@ -135,6 +135,11 @@ const std::vector<std::string>& osm_keys() {
   return keys;
 }
 
+const std::vector<std::string>& osm_building_keys() {
+  static const std::vector<std::string> keys{"height", "building:levels", "roof:shape", "roof:height"};
+  return keys;
+}
+
 const std::vector<std::string>& osm_road_keys() {
   static const std::vector<std::string> keys{"highway", "name", "ref", "lanes", "oneway", "maxspeed", "surface", "service"};
   return keys;
@@ -193,6 +198,10 @@ OsmMeaning osm_area_meaning(const OsmTags& tags) {
   if (l == "grass" || l == "meadow" || l == "forest" || l == "recreation_ground" || l == "village_green" ||
       is("leisure", "park") || is("leisure", "garden") || is("natural", "wood"))
     return zone("park");
+  // A building mapped with the land use it stands on, a school's or a sports centre's,
+  // is still a building.
+  if (std::optional<std::string> building = tags("building"); building && *building != "no")
+    return {OsmMeaning::Building, *building, 0, ""};
   if (std::optional<std::string> tag = first_tag(tags, {"landuse", "leisure", "natural", "waterway", "highway"}))
     return left_out(*tag);
   return {};
@@ -270,6 +279,25 @@ bool apply_osm_tags(ordered_json& doc, const std::vector<SketchFile>& files) {
       }
       f["geometry"] = std::move(*water);
     }
+    if (meaning.kind == OsmMeaning::Building) {
+      // What the sketch reader raises it from, where a GIS export keeps it in other_tags,
+      // and its OSM id as a type and number where the export says which.
+      ++taken["buildings"];
+      ordered_json& p = f["properties"];
+      std::map<std::string, std::string> other;
+      if (p.contains("other_tags") && p["other_tags"].is_string()) other = hstore(p["other_tags"].get<std::string>());
+      p["building"] = meaning.type;
+      for (const std::string& key : osm_building_keys())
+        if (auto it = other.find(key); !p.contains(key) && it != other.end()) p[key] = it->second;
+      // GDAL's OSM driver fills osm_way_id for a closed way and osm_id for a relation;
+      // other exports (pyrosm's) have only osm_id, of either.
+      const std::optional<std::string> way = p.contains("osm_way_id") ? text_value(p["osm_way_id"]) : std::nullopt;
+      const std::optional<std::string> id = p.contains("osm_id") ? text_value(p["osm_id"]) : std::nullopt;
+      if (way) p["osm_id"] = "way/" + *way;
+      else if (id && id->find('/') == std::string::npos) p["osm_id"] = (p.contains("osm_way_id") ? "relation/" : "") + *id;
+      kept.push_back(std::move(f));
+      continue;
+    }
     if (meaning.kind == OsmMeaning::Zone && !drop_degenerate_rings(f["geometry"])) {
       ++skipped[file]["areas of fewer than 3 distinct points"];
       continue;
@@ -306,6 +334,7 @@ bool apply_osm_tags(ordered_json& doc, const std::vector<SketchFile>& files) {
 
   ordered_json& osm = doc["osm"];
   if (!osm.is_object()) osm = files.size() == 1 ? ordered_json{{"file", files[0].path.string()}} : ordered_json::object();
+  if (taken["buildings"] == 0) taken.erase("buildings");  // named only where the files map some
   osm["taken"] = taken;
   // Each file's counts: the member itself for one file, its "files" for several (an
   // extract's own counts, from reading it, already there).

@@ -18,20 +18,23 @@ namespace exacity {
 using OsmTags = std::function<std::optional<std::string>(const std::string& key)>;
 
 struct OsmMeaning {
-  enum Kind { Untagged, Zone, Road, River, LeftOut } kind = Untagged;
-  std::string type;  // the zone type or road class
+  enum Kind { Untagged, Zone, Road, River, Building, LeftOut } kind = Untagged;
+  std::string type;  // the zone type or road class; a building's building tag
   double width = 0;  // roads and rivers, metres
   std::string why;   // LeftOut: the tag that says what it is ("highway=footway")
 };
 
 // A way or line: a highway, or a river or canal.
 OsmMeaning osm_line_meaning(const OsmTags& tags);
-// An area: land use, parks, water.
+// An area: land use, parks, water; else a building (`building=*` but `no`).
 OsmMeaning osm_area_meaning(const OsmTags& tags);
 
 // The keys read, in the order they are looked at; an OGR layer with any of them as a field
 // is read for them.
 const std::vector<std::string>& osm_keys();
+
+// The tags a mapped building is raised from (generate/city/features.h, MappedBuilding).
+const std::vector<std::string>& osm_building_keys();
 
 // The tags a road keeps from OpenStreetMap (or from a GIS file exported from it) for
 // city.osm to write back as they were read: its highway class, name, ref, lanes ...

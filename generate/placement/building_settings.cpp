@@ -62,7 +62,7 @@ const std::set<std::string>& building_setting_keys() {
     std::set<std::string> k{"setback",          "building_gap",       "footprint_width",    "footprint_depth",
                             "min_footprint_width", "max_footprint_area", "min_footprint_area", "heights",
                             "roof",             "roof_pitch",         "density",            "placement",
-                            "height_channel"};
+                            "height_channel",   "storey_height"};
     for (const PlacerType& t : placer_types()) k.insert(t.keys.begin(), t.keys.end());
     return k;
   }();
@@ -72,6 +72,7 @@ const std::set<std::string>& building_setting_keys() {
 BuildingSettings read_building_settings(const SettingsReader& s, ZoneType type, BuildingSettings b) {
   read_footprint_sizes(s, b);
   s.number("roof_pitch", b.roof_pitch, 1, 75);
+  s.number("storey_height", b.storey_height, 1, 20);
   s.choice("roof", b.roof, {"auto", "flat", "gabled", "hipped"}, "expected \"auto\", \"flat\", \"gabled\" or \"hipped\"");
   s.choice("density", b.density, {"dense", "normal", "sparse"},
            "expected \"dense\", \"normal\" or \"sparse\" (how far apart placed models stand)");

@@ -169,7 +169,8 @@ std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> zone_placers(const City
 }  // namespace
 
 Structures place_buildings(const std::vector<Lot>& lots, const CitySettings& city, const ModelLibrary* library,
-                           const Channels& channels, const Terrain* terrain, Memo<Structures>* memo) {
+                           const Channels& channels, const Terrain* terrain, Memo<Structures>* memo,
+                           const std::vector<char>* held) {
   geom::Box box = geom::Box::none();
   for (const Lot& lot : lots) box.add(lot.cell.bounds());
   const auto placers = zone_placers(city, library, channels, box);
@@ -178,6 +179,7 @@ Structures place_buildings(const std::vector<Lot>& lots, const CitySettings& cit
   const CancelCheck cancel;
   tbb::parallel_for(std::size_t(0), lots.size(), [&](std::size_t i) {
     cancel.check();
+    if (held && (*held)[i]) return;
     const Lot& lot = lots[i];
     BuildingSettings p = city.zone_settings.at(lot.zone).buildings;
     if (!lot.density.empty()) p.density = lot.density;

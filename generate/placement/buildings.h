@@ -46,6 +46,11 @@ struct Building {
   double eaves = 0;        // m: where walls meet a pitched roof (the height, for flat roofs)
   std::vector<geom::Face3> roof_faces;  // pitched roofs only, in place
   double base = 0, floor = 0;
+  // A mapped building's (generate/placement/mapped_buildings.h): its index in the sketch's
+  // buildings, OSM id and building tag; -1 and empty for generated ones. Its lot, the one
+  // it stands on, may be -1.
+  int mapped = -1;
+  std::string osm_id, building_tag;
 };
 
 // A library model placed on a lot: a building, street furniture or a tree.
@@ -91,9 +96,10 @@ void choose_roof(Building& b, const BuildingSettings& p);
 // channels. Each stands on the terrain. Each lot draws from a stream of its exact cell
 // (content_id). With a memo, a lot's structures are taken from it when the lot (its zone,
 // density, model and cell) and the lots' box are as before (docs/design.md, Regions and
-// regenerating).
+// regenerating). Lots `held` names (those a mapped building stands on) get nothing.
 Structures place_buildings(const std::vector<Lot>& lots, const CitySettings& city, const ModelLibrary* library,
-                           const Channels& channels, const Terrain* terrain, Memo<Structures>* memo = nullptr);
+                           const Channels& channels, const Terrain* terrain, Memo<Structures>* memo = nullptr,
+                           const std::vector<char>* held = nullptr);
 
 // The 3D exports write every placed model's triangles (OBJ, PLY and CityJSON have no
 // instances for buildings), about 0.75 kB of memory each while they are written: past

@@ -167,6 +167,8 @@ class StandingGround {
         const Where c = at(p);
         if (w.sidewalk ? !c.sidewalk : !c.park) return kBaseLeaves;
       }
+      // A park's open land may hold mapped buildings; no road surface does.
+      if (w.park && meets_any(base, footprints_.near(RingBuckets::box_of(base)), footprint_rings_)) return kBuilding;
       return nullptr;
     }
     if (!g_.lots[w.lot].cell.holds(base)) return kBaseLeaves;

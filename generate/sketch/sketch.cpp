@@ -183,6 +183,9 @@ class Parser {
     const json& coords = g["coordinates"];
     const json props = f.contains("properties") && f["properties"].is_object() ? f["properties"] : json::object();
     bool is_zone = props.contains("zone"), is_road = props.contains("road");
+    if (!is_zone && !is_road && props.contains("building") && !props["building"].is_null() && props["building"] != "no" &&
+        props["building"] != false)
+      return mapped_building(props, type, coords, where, index, sketch);
     if (is_zone == is_road)
       fail(where, is_zone ? "feature has both \"zone\" and \"road\"; keep one"
                           : "feature has neither a \"zone\" nor a \"road\" property; add one");
@@ -231,6 +234,63 @@ class Parser {
       fail(where, "a road must be a LineString or MultiLineString, not " + quote(type));
     }
     sketch.roads.push_back(std::move(rf));
+  }
+
+  // A mapped building: each polygon one footprint, kept as drawn; a ring the reader cannot
+  // take (fewer than 3 distinct points) is the building's problem, counted when it is
+  // refused, not the sketch's. Tags that are not numbers are as if absent.
+  void mapped_building(const json& props, const std::string& type, const json& coords, const std::string& where,
+                       int index, Sketch& sketch) const {
+    if (type != "Polygon" && type != "MultiPolygon")
+      fail(where, "a building must be a Polygon or MultiPolygon, not " + quote(type) + "; draw its footprint or delete it");
+    MappedBuilding b;
+    b.index = index;
+    b.name = where;
+    const json& tag = props["building"];
+    b.building = tag.is_string() ? tag.get<std::string>() : tag.dump();
+    if (props.contains("osm_id") && props["osm_id"].is_string()) b.osm_id = props["osm_id"].get<std::string>();
+    else if (props.contains("osm_id") && props["osm_id"].is_number_integer()) b.osm_id = props["osm_id"].dump();
+    b.height = tagged_number(props, "height");
+    b.levels = tagged_number(props, "building:levels");
+    b.roof_height = tagged_number(props, "roof:height");
+    if (props.contains("roof:shape") && props["roof:shape"].is_string()) b.roof_shape = props["roof:shape"].get<std::string>();
+    auto add = [&](const json& rings, const std::string& w) {
+      MappedBuilding part = b;
+      if (!rings.is_array() || rings.empty()) fail(w, "a Polygon needs at least one ring");
+      for (std::size_t i = 0; i < rings.size(); ++i) {
+        geom::Ring r = positions(rings[i], w + (i ? " hole " + std::to_string(i) : std::string(" outer ring")));
+        if (r.size() > 1 && r.front() == r.back()) r.pop_back();
+        std::set<std::pair<double, double>> distinct;
+        for (geom::Vec2 p : r) distinct.insert({p.x, p.y});
+        if (distinct.size() < 3) part.problem = "a ring of fewer than 3 distinct points";
+        (i ? part.polygon.holes.emplace_back() : part.polygon.outer) = std::move(r);
+      }
+      if (w != where) part.name = w;
+      sketch.buildings.push_back(std::move(part));
+    };
+    if (type == "Polygon") return add(coords, where);
+    if (!coords.is_array()) fail(where, "a MultiPolygon's coordinates must be an array of polygons");
+    for (std::size_t i = 0; i < coords.size(); ++i) add(coords[i], coords.size() == 1 ? where : where + " polygon " + std::to_string(i));
+  }
+
+  // A tag's positive number in metres or storeys ("12", "12 m", 12); nothing otherwise.
+  static std::optional<double> tagged_number(const json& props, const char* key) {
+    if (!props.contains(key)) return std::nullopt;
+    const json& v = props[key];
+    double x = 0;
+    if (v.is_number()) {
+      x = v.get<double>();
+    } else if (v.is_string()) {
+      const std::string text = v.get<std::string>();
+      char* end = nullptr;
+      x = std::strtod(text.c_str(), &end);
+      while (end && *end == ' ') ++end;
+      if (end == text.c_str() || (*end && std::string(end) != "m")) return std::nullopt;
+    } else {
+      return std::nullopt;
+    }
+    if (!std::isfinite(x) || x <= 0 || x > 1000) return std::nullopt;
+    return x;
   }
 
   // Coordinates are metres. Longitude/latitude (the GeoJSON default) would make a city a
@@ -577,7 +637,10 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
     counts.file = file->contains("file") && (*file)["file"].is_string() ? (*file)["file"].get<std::string>() : path.string();
     if (file->contains("skipped") && (*file)["skipped"].is_object())
       for (const auto& [why, count] : (*file)["skipped"].items())
-        if (count.is_number_integer()) counts.left_out[why] = count.get<int>();
+        if (count.is_number_integer()) {
+          counts.left_out[why] = count.get<int>();
+          if (why.rfind("building", 0) == 0) sketch.buildings_left_out[why] += count.get<int>();
+        }
     if (file->contains("repaired") && (*file)["repaired"].is_array())
       for (const auto& what : (*file)["repaired"])
         if (what.is_string()) counts.repaired.push_back(what.get<std::string>());
