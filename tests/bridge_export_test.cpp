@@ -195,6 +195,7 @@ Crossings crossings(const fs::path& out) {
 struct Bridge3d {
   double top;                    // the road surface on the deck
   std::size_t pier_corners = 0;  // the piers' bottom corners
+  std::size_t parapet_corners = 0;  // the parapets' top corners
 };
 
 // Each bridge road area's deck in one export: the road triangles over it all at one height,
@@ -227,6 +228,10 @@ std::vector<Bridge3d> check_decks(const Ground3d& g, const Crossings& c) {
       for (const Point& p : t) {
         if (!geom::odd_crossings(area, plan(p)) && geom::distance_to_outline(area, plan(p)) > kOnOutline) continue;
         if (std::abs(p[2] - side_top) <= g.precision) continue;
+        if (std::abs(p[2] - (side_top + exacity::kParapetHeight)) <= g.precision) {
+          ++bridge.parapet_corners;
+          continue;
+        }
         if (std::abs(p[2] - underside) <= g.precision) {
           pier_tops.insert({p[0], p[1]});
           continue;
@@ -307,6 +312,9 @@ TEST(BridgeExport, DeckIsLevelFromAbutmentToAbutmentOverTheWholeCrossingOnPiersI
     std::size_t pier_corners = 0;
     for (const Bridge3d& b : bridges) pier_corners += b.pier_corners;
     EXPECT_EQ(pier_corners, 4u) << g.format << ": one pier in the middle";
+    std::size_t parapet_corners = 0;
+    for (const Bridge3d& b : bridges) parapet_corners += b.parapet_corners;
+    EXPECT_GT(parapet_corners, 0u) << g.format << ": parapets along the deck";
     top[g.format] = bridges[0].top;
   }
   // The same deck in each, metres over the riverbed.

@@ -69,14 +69,14 @@ GroundMesh terrain_tin(const Terrain* terrain, const geom::Box& box, int max_cel
 }
 
 double water_level(const geom::Polygon& water, const Terrain* terrain) {
-  if (!terrain) return 0;
+  if (!terrain) return -kWaterBelowBank;
   double level = INFINITY;
   auto visit = [&](const geom::Ring& r) {
     for (geom::Vec2 p : geom::densified(r, terrain->pixel_size() / 2)) level = std::min(level, terrain->height_at(p));
   };
   visit(water.outer);
   for (const auto& h : water.holes) visit(h);
-  return std::isfinite(level) ? level : terrain->lowest();
+  return (std::isfinite(level) ? level : terrain->lowest()) - kWaterBelowBank;
 }
 
 double bed_height(const Terrain* terrain, geom::Vec2 p, double level) {
@@ -111,6 +111,16 @@ std::vector<double> grid_lines(double lo, double hi, double dlo, double dhi, dou
   return kept;
 }
 
+// Without terrain: the box grown by a metre, no lines inside (the land is flat).
+TerrainGrid flat_grid(const geom::Box& b) {
+  TerrainGrid grid;
+  grid.box = {b.min_x - 1, b.min_y - 1, b.max_x + 1, b.max_y + 1};
+  grid.xs = {grid.box.min_x, grid.box.max_x};
+  grid.ys = {grid.box.min_y, grid.box.max_y};
+  grid.step = INFINITY;
+  return grid;
+}
+
 // Grid lines through the pixel centres (extended past the map), or coarser ones; the box's
 // own edges, one cell out, close the grid.
 TerrainGrid terrain_grid(const Terrain& terrain, const geom::Box& box_in, const geom::Box& detail, int max_cells) {
@@ -139,7 +149,7 @@ struct Land {
   std::vector<std::pair<std::size_t, std::size_t>> water_rings;  // by water: (first ring, ring count) in the holes
 };
 
-Land land_around_water(const TerrainGrid& grid, const Terrain& terrain, const std::vector<geom::Polygon>& water) {
+Land land_around_water(const TerrainGrid& grid, const Terrain* terrain, const std::vector<geom::Polygon>& water) {
   Land land;
   geom::Ring& outer = land.polygon.outer;
   const int nx = grid.nx(), ny = grid.ny();
@@ -147,13 +157,16 @@ Land land_around_water(const TerrainGrid& grid, const Terrain& terrain, const st
   for (int j = 0; j < ny; ++j) outer.push_back(grid.at(nx, j));
   for (int i = nx; i > 0; --i) outer.push_back(grid.at(i, ny));
   for (int j = ny; j > 0; --j) outer.push_back(grid.at(0, j));
-  const double ring_step = std::min(grid.step, terrain.pixel_size()) / 2;
+  // Flat land needs no points along the rings but their corners.
+  auto split = [&](const geom::Ring& r) {
+    return terrain ? geom::densified(r, std::min(grid.step, terrain->pixel_size()) / 2) : r;
+  };
   std::vector<geom::Ring>& holes = land.polygon.holes;
   for (const geom::Polygon& w : water) {
-    land.levels.push_back(water_level(w, &terrain));
+    land.levels.push_back(water_level(w, terrain));
     land.water_rings.push_back({holes.size(), 1 + w.holes.size()});
-    holes.push_back(geom::densified(w.outer, ring_step));
-    for (const auto& h : w.holes) holes.push_back(geom::densified(h, ring_step));
+    holes.push_back(split(w.outer));
+    for (const auto& h : w.holes) holes.push_back(split(h));
   }
   return land;
 }
@@ -203,16 +216,16 @@ std::vector<geom::Vec2> grid_points_on_land(const TerrainGrid& grid, const std::
 }
 
 // Banks: from the land's edge down to the bed, along the same split rings; then the beds.
-void add_banks_and_beds(const Land& land, const std::vector<geom::Polygon>& water, const Terrain& terrain,
+void add_banks_and_beds(const Land& land, const std::vector<geom::Polygon>& water, const Terrain* terrain,
                         GroundMesh& m) {
-  auto height = [&](geom::Vec2 p) { return terrain.height_at(p); };
+  auto height = [&](geom::Vec2 p) { return terrain ? terrain->height_at(p) : 0.0; };
   for (std::size_t w = 0; w < water.size(); ++w) {
     const double bottom = land.levels[w] - kBedDepth;
     for (std::size_t k = 0; k < land.water_rings[w].second; ++k) {
       const geom::Ring& r = land.polygon.holes[land.water_rings[w].first + k];
       add_wall(r, height, [&](geom::Vec2) { return bottom; }, m);
     }
-    drape_with(water[w], &terrain, [&](geom::Vec2 p) { return bed_height(&terrain, p, land.levels[w]); }, m);
+    drape_with(water[w], terrain, [&](geom::Vec2 p) { return bed_height(terrain, p, land.levels[w]); }, m);
   }
 }
 
@@ -220,20 +233,19 @@ void add_banks_and_beds(const Land& land, const std::vector<geom::Polygon>& wate
 
 GroundMesh terrain_mesh(const Terrain* terrain, const geom::Box& box, const geom::Box& detail,
                         const std::vector<geom::Polygon>& water, int max_cells) {
-  if (!terrain) return terrain_tin(nullptr, box, max_cells);
-  const TerrainGrid grid = terrain_grid(*terrain, box, detail, max_cells);
-  const Land land = land_around_water(grid, *terrain, water);
+  const TerrainGrid grid = terrain ? terrain_grid(*terrain, box, detail, max_cells) : flat_grid(box);
+  const Land land = land_around_water(grid, terrain, water);
   const std::vector<geom::Vec2> inside = grid_points_on_land(grid, land.polygon.holes);
   auto triangles = geom::triangulate(land.polygon, inside);
   if (triangles.empty()) return terrain_tin(terrain, grid.box, max_cells);  // rings that cross: no banks
   GroundMesh m;
-  auto height = [&](geom::Vec2 p) { return terrain->height_at(p); };
+  auto height = [&](geom::Vec2 p) { return terrain ? terrain->height_at(p) : 0.0; };
   for (geom::Vec2 p : land.polygon.outer) m.vertices.push_back({p.x, p.y, height(p)});
   for (const auto& h : land.polygon.holes)
     for (geom::Vec2 p : h) m.vertices.push_back({p.x, p.y, height(p)});
   for (geom::Vec2 p : inside) m.vertices.push_back({p.x, p.y, height(p)});
   m.triangles = std::move(triangles);
-  add_banks_and_beds(land, water, *terrain, m);
+  add_banks_and_beds(land, water, terrain, m);
   return m;
 }
 

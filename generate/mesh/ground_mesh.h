@@ -52,9 +52,12 @@ void add_wall(const geom::Ring& ring, const From& from, const To& to, GroundMesh
 // two triangles).
 GroundMesh terrain_tin(const Terrain* terrain, const geom::Box& box, int max_cells);
 
-// Water lies level at its shore height: the lowest terrain along its outline (0 without
-// terrain), so it neither climbs its banks nor spills over them (docs/design.md, Ground
-// meshes).
+// How far water lies under the lowest ground along its outline, in metres: a bank edge
+// shows between them.
+constexpr double kWaterBelowBank = 0.8;
+// Water lies level kWaterBelowBank under its shore: the lowest terrain along its outline (0
+// without terrain), so it neither climbs its banks nor spills over them (docs/design.md,
+// Ground meshes).
 double water_level(const geom::Polygon& water, const Terrain* terrain);
 // How far a riverbed lies at least under its water's surface, in metres.
 constexpr double kBedDepth = 0.5;
@@ -66,8 +69,8 @@ double bed_height(const Terrain* terrain, geom::Vec2 p, double level);
 // the water's outline exactly; each bank as a wall from the land down to the bed, kBedDepth
 // under the water's level; the bed under the water. Over `detail` the cells are the
 // heightmap's pixels, or coarser so that at most `max_cells` span its side; past it,
-// coarser so that about 128 more span the rest of the box. Without terrain: flat, two
-// triangles over the box.
+// coarser so that about 128 more span the rest of the box. Without terrain the land is flat
+// at 0 (the box grown by a metre, triangulated around the water).
 GroundMesh terrain_mesh(const Terrain* terrain, const geom::Box& box, const geom::Box& detail,
                         const std::vector<geom::Polygon>& water, int max_cells);
 
