@@ -354,3 +354,64 @@ TEST(Ground, ABridgeOverDrawnWaterHasADeckPiersAndParapets) {
   EXPECT_NEAR(north, 60 * kParapetThickness, 1e-9);
   EXPECT_EQ(ends, 0);
 }
+
+namespace {
+
+// A river across a 200 m map of 20 x 20 pixels (x 80 to 120 m), running off its north and
+// south edges; the land 40 m high west of it, rising east from 42 m.
+Terrain river_terrain() {
+  std::vector<float> values;
+  for (int row = 0; row < 20; ++row)
+    for (int col = 0; col < 20; ++col)
+      values.push_back(col >= 8 && col <= 11 ? 0.0f : col < 8 ? 0.4f : 0.42f + 0.01f * (col - 12));
+  return Terrain({"river.png", {0, 0, 200, 200}, 0, 100}, 20, 20, values);
+}
+
+const geom::Polygon kRiver{{{80, 0}, {120, 0}, {120, 200}, {80, 200}}, {}};
+
+// How steeply each triangle rises: its height's gradient; infinite for an upright one.
+double steepest(const GroundMesh& m) {
+  double most = 0;
+  for (const auto& t : m.triangles) {
+    const Vec3 &a = m.vertices[t[0]], &b = m.vertices[t[1]], &c = m.vertices[t[2]];
+    const Vec3 u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double nx = u[1] * v[2] - u[2] * v[1], ny = u[2] * v[0] - u[0] * v[2], nz = u[0] * v[1] - u[1] * v[0];
+    most = std::max(most, nz == 0 ? INFINITY : std::hypot(nx, ny) / std::abs(nz));
+  }
+  return most;
+}
+
+}  // namespace
+
+// On a heightmap the banks slope from the land down under the water (1 in 2 here), and
+// past the map's edge, where the river runs off it, the ground runs on without walls:
+// banks were upright walls from the land's edge to the bed, the land fell into them from
+// 40 m to the water pixels' 0 within a pixel, and past the edges the mirrored water
+// pixels made walled grooves.
+TEST(Ground, BanksSlopeFromTheLandUnderTheWaterAndNoWallStandsPastTheWatersEnd) {
+  const Terrain t = river_terrain();
+  const double level = water_level(kRiver, &t);
+  EXPECT_NEAR(level, 40 - kWaterBelowBank, 1e-5);  // the heightmap's values are floats
+  // The ground 100 m past the north and south edges, where the river runs off the map.
+  const GroundMesh m = terrain_mesh(&t, {0, -100, 200, 300}, {0, -100, 200, 300}, {kRiver}, 512);
+  // Where two banks meet at a corner of the outline a triangle spans both: √2 steeper.
+  EXPECT_LE(steepest(m), kBankSlope * std::sqrt(2) + 1e-3);
+  EXPECT_NEAR(surface_at(m, {100, 100}), level - kBedDepth, 1e-9);  // the bed in the middle
+  // West, the land at 40 m down to the bed 1.3 m under it, 2.6 m out; east, from 42 m, 6.6 m out.
+  EXPECT_NEAR(surface_at(m, {80, 100}), 40, 1e-5);
+  EXPECT_NEAR(surface_at(m, {81.3, 100}), level - kBedDepth + 0.65, 0.1);
+  EXPECT_NEAR(surface_at(m, {120 - 3.3, 100}), (42 + level - kBedDepth) / 2, 0.1);
+  EXPECT_NEAR(surface_at(m, {100, 250}), 40, 1.5);  // past the north edge: land, level with the river's
+}
+
+// A road on the land ending at the water's edge stays on the land: it ran down the bank
+// as the terrain fell to the water pixels' 0.
+TEST(Ground, ARoadEndingAtTheWaterStaysOnTheLand) {
+  const Terrain t = river_terrain();
+  GroundMesh road;
+  drape({{{50, 95}, {80, 95}, {80, 105}, {50, 105}}, {}}, &t, kRoadOverTerrain, road);
+  double low = INFINITY, high = -INFINITY;
+  for (const Vec3& v : road.vertices) low = std::min(low, v[2]), high = std::max(high, v[2]);
+  EXPECT_NEAR(low, 40 + kRoadOverTerrain, 1e-6);
+  EXPECT_NEAR(high, 40 + kRoadOverTerrain, 1e-6);
+}
