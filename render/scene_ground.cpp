@@ -138,9 +138,8 @@ void RenderScene::add_terrain(const exacity::Terrain* terrain, const geom::Box& 
   info.material.assign(g.triangles.size(), grass_material_);
   info.entity.assign(g.triangles.size(), entity_id(Entity::Terrain, 0));
   add_triangles(v, g.triangles, std::move(info));
-  ground = INFINITY;
-  for (const V3& p : v) ground = std::min(ground, p.z);
-  if (terrain) ground = static_cast<float>(terrain->lowest());  // the beds under water lie lower, unseen
+  // The plane beyond lies at the land's lowest height; the beds under water lie lower, unseen.
+  ground = static_cast<float>(terrain ? terrain->lowest() : 0);
 }
 
 // The pieces draped over the terrain, as one geometry.

@@ -1,12 +1,15 @@
 // Building meshes: closed, outward, the volume of their prism; and the OBJ they make.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "generate/placement/building_settings.h"
+#include "generate/mesh/bridges.h"
 #include "generate/mesh/building_mesh.h"
 #include "generate/mesh/ground_mesh.h"
 #include "generate/export/mesh_export.h"
@@ -266,4 +269,149 @@ TEST(Ground, DrapedSurfacesBendWithTheTerrainAndCoverThePolygon) {
   GroundMesh flat;
   drape(road, nullptr, 0, flat);
   EXPECT_EQ(flat.vertices.size(), 8u);
+}
+
+namespace {
+
+// The height of the mesh's surface over p: the highest triangle over it, NaN where none is.
+double surface_at(const GroundMesh& m, geom::Vec2 p) {
+  double top = NAN;
+  for (const auto& t : m.triangles) {
+    const Vec3 &a = m.vertices[t[0]], &b = m.vertices[t[1]], &c = m.vertices[t[2]];
+    const double d = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+    if (d == 0) continue;  // upright: a bank
+    const double u = ((b[0] - p.x) * (c[1] - p.y) - (c[0] - p.x) * (b[1] - p.y)) / d;
+    const double v = ((c[0] - p.x) * (a[1] - p.y) - (a[0] - p.x) * (c[1] - p.y)) / d;
+    const double w = 1 - u - v;
+    if (u < 0 || v < 0 || w < 0) continue;
+    const double z = u * a[2] + v * b[2] + w * c[2];
+    top = std::isnan(top) ? z : std::max(top, z);
+  }
+  return top;
+}
+
+}  // namespace
+
+// Without a heightmap, drawn water lies some decimetres under the flat land around it,
+// with a bank edge down to it and its bed under it: it lay at the lawn's level.
+TEST(Ground, DrawnWaterOnFlatLandLiesUnderItsBanks) {
+  const geom::Polygon pond{{{20, 20}, {80, 25}, {75, 80}, {25, 70}}, {}};
+  const double level = water_level(pond, nullptr);
+  EXPECT_DOUBLE_EQ(level, -kWaterBelowBank);
+  EXPECT_LE(level, -0.3);
+  const GroundMesh m = terrain_mesh(nullptr, {0, 0, 100, 100}, {0, 0, 100, 100}, {pond}, 512);
+  EXPECT_DOUBLE_EQ(surface_at(m, {50, 50}), level - kBedDepth);  // the bed, under the water
+  EXPECT_DOUBLE_EQ(surface_at(m, {10, 50}), 0);                  // the land
+  EXPECT_DOUBLE_EQ(surface_at(m, {50, 95}), 0);
+  // The bank: upright from the land down to the bed along the whole outline.
+  double bank = 0;
+  for (const auto& t : m.triangles) {
+    const Vec3 &a = m.vertices[t[0]], &b = m.vertices[t[1]], &c = m.vertices[t[2]];
+    const Vec3 u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double up = u[0] * v[1] - u[1] * v[0];
+    if (std::abs(up) < 1e-9)
+      bank += std::hypot(u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2]) / 2;
+  }
+  EXPECT_NEAR(bank, geom::perimeter(pond) * (kBedDepth - level), 1e-6);
+}
+
+// A road over drawn water on flat land is a bridge: its deck over the water with room
+// under it, parapets along its sides over the water (not across its ends on the banks),
+// and piers down to the bed. It lay flush on the water, its deck's underside in it.
+TEST(Ground, ABridgeOverDrawnWaterHasADeckPiersAndParapets) {
+  Ground ground;
+  ground.water.push_back({{{20, 0}, {80, 0}, {80, 100}, {20, 100}}, {}});
+  ground.road_areas.push_back({0, true, RoadSurface::Carriageway, {{{20, 45}, {80, 45}, {80, 55}, {20, 55}}, {}}});
+  ground.roads.push_back({RoadClass::Highway, 10, -1, -1, true, {{20, 50}, {80, 50}}, 0});
+  const BridgeDecks decks = bridge_decks(ground, nullptr);
+  const double top = decks.height[0], level = water_level(ground.water[0], nullptr);
+  EXPECT_DOUBLE_EQ(top, kRoadOverTerrain);
+  GroundMesh m;
+  bridge_structure(ground, nullptr, decks, m);
+  std::set<double> heights;
+  for (const Vec3& v : m.vertices) heights.insert(v[2]);
+  // The bed, the deck's underside, its top and the parapets' top.
+  ASSERT_EQ(heights.size(), 4u);
+  const std::vector<double> z(heights.begin(), heights.end());
+  EXPECT_DOUBLE_EQ(z[0], level - kBedDepth);  // the piers' feet
+  EXPECT_LT(z[0], level);
+  EXPECT_GE(z[1] - level, 0.5) << "no room under the deck";
+  EXPECT_DOUBLE_EQ(z[2], top);
+  EXPECT_NEAR(z[3], top + 1, 0.1);
+  // Two piers (a third and two thirds of the way), four corners each at the bed.
+  EXPECT_EQ(std::count_if(m.vertices.begin(), m.vertices.end(), [&](const Vec3& v) { return v[2] == z[0]; }), 8);
+  // The parapets' tops: along both sides, none across the ends.
+  double south = 0, north = 0, ends = 0;
+  for (const auto& t : m.triangles) {
+    const Vec3 &a = m.vertices[t[0]], &b = m.vertices[t[1]], &c = m.vertices[t[2]];
+    if (a[2] != z[3] || b[2] != z[3] || c[2] != z[3]) continue;
+    const double area = std::abs((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])) / 2;
+    const double x = (a[0] + b[0] + c[0]) / 3, y = (a[1] + b[1] + c[1]) / 3;
+    if (x < 21 || x > 79) ends += area * (y > 46 && y < 54);
+    (y < 50 ? south : north) += area;
+  }
+  EXPECT_NEAR(south, 60 * kParapetThickness, 1e-9);
+  EXPECT_NEAR(north, 60 * kParapetThickness, 1e-9);
+  EXPECT_EQ(ends, 0);
+}
+
+namespace {
+
+// A river across a 200 m map of 20 x 20 pixels (x 80 to 120 m), running off its north and
+// south edges; the land 40 m high west of it, rising east from 42 m.
+Terrain river_terrain() {
+  std::vector<float> values;
+  for (int row = 0; row < 20; ++row)
+    for (int col = 0; col < 20; ++col)
+      values.push_back(col >= 8 && col <= 11 ? 0.0f : col < 8 ? 0.4f : 0.42f + 0.01f * (col - 12));
+  return Terrain({"river.png", {0, 0, 200, 200}, 0, 100}, 20, 20, values);
+}
+
+const geom::Polygon kRiver{{{80, 0}, {120, 0}, {120, 200}, {80, 200}}, {}};
+
+// How steeply each triangle rises: its height's gradient; infinite for an upright one.
+double steepest(const GroundMesh& m) {
+  double most = 0;
+  for (const auto& t : m.triangles) {
+    const Vec3 &a = m.vertices[t[0]], &b = m.vertices[t[1]], &c = m.vertices[t[2]];
+    const Vec3 u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double nx = u[1] * v[2] - u[2] * v[1], ny = u[2] * v[0] - u[0] * v[2], nz = u[0] * v[1] - u[1] * v[0];
+    most = std::max(most, nz == 0 ? INFINITY : std::hypot(nx, ny) / std::abs(nz));
+  }
+  return most;
+}
+
+}  // namespace
+
+// On a heightmap the banks slope from the land down under the water (1 in 2 here), and
+// past the map's edge, where the river runs off it, the ground runs on without walls:
+// banks were upright walls from the land's edge to the bed, the land fell into them from
+// 40 m to the water pixels' 0 within a pixel, and past the edges the mirrored water
+// pixels made walled grooves.
+TEST(Ground, BanksSlopeFromTheLandUnderTheWaterAndNoWallStandsPastTheWatersEnd) {
+  const Terrain t = river_terrain();
+  const double level = water_level(kRiver, &t);
+  EXPECT_NEAR(level, 40 - kWaterBelowBank, 1e-5);  // the heightmap's values are floats
+  // The ground 100 m past the north and south edges, where the river runs off the map.
+  const GroundMesh m = terrain_mesh(&t, {0, -100, 200, 300}, {0, -100, 200, 300}, {kRiver}, 512);
+  // Where two banks meet at a corner of the outline a triangle spans both: √2 steeper.
+  EXPECT_LE(steepest(m), kBankSlope * std::sqrt(2) + 1e-3);
+  EXPECT_NEAR(surface_at(m, {100, 100}), level - kBedDepth, 1e-9);  // the bed in the middle
+  // West, the land at 40 m down to the bed 1.3 m under it, 2.6 m out; east, from 42 m, 6.6 m out.
+  EXPECT_NEAR(surface_at(m, {80, 100}), 40, 1e-5);
+  EXPECT_NEAR(surface_at(m, {81.3, 100}), level - kBedDepth + 0.65, 0.1);
+  EXPECT_NEAR(surface_at(m, {120 - 3.3, 100}), (42 + level - kBedDepth) / 2, 0.1);
+  EXPECT_NEAR(surface_at(m, {100, 250}), 40, 1.5);  // past the north edge: land, level with the river's
+}
+
+// A road on the land ending at the water's edge stays on the land: it ran down the bank
+// as the terrain fell to the water pixels' 0.
+TEST(Ground, ARoadEndingAtTheWaterStaysOnTheLand) {
+  const Terrain t = river_terrain();
+  GroundMesh road;
+  drape({{{50, 95}, {80, 95}, {80, 105}, {50, 105}}, {}}, &t, kRoadOverTerrain, road);
+  double low = INFINITY, high = -INFINITY;
+  for (const Vec3& v : road.vertices) low = std::min(low, v[2]), high = std::max(high, v[2]);
+  EXPECT_NEAR(low, 40 + kRoadOverTerrain, 1e-6);
+  EXPECT_NEAR(high, 40 + kRoadOverTerrain, 1e-6);
 }

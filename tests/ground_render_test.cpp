@@ -127,9 +127,9 @@ TEST(GroundRender, PastTheMapTheGroundSinksToThePlaneWithoutWallsOrAStep) {
   EXPECT_LT(steepest, 2.0);
 }
 
-// Seen from above, water covers exactly its outline (the smooth contour of its pixels,
-// exact in the city map), and the water is level: the ground no longer pokes through it
-// along the banks in pixel-sized teeth.
+// Seen from above, water covers its outline (the smooth contour of its pixels, exact in the
+// city map) but for its banks sloping under it, and the water is level: the ground no
+// longer pokes through it along the banks in pixel-sized teeth.
 TEST(GroundRender, BanksFollowTheWaterOutlineAndWaterIsLevel) {
   const exacity::City city = city_on("river", river_value, kPark);
   ASSERT_FALSE(city.ground.water.empty());
@@ -139,15 +139,17 @@ TEST(GroundRender, BanksFollowTheWaterOutlineAndWaterIsLevel) {
   double low = INFINITY, high = -INFINITY;
   int water = 0, wrong = 0;
   for (std::size_t i = 0; i < t.id.size(); ++i) {
-    if (distance_to_water_outline(city, t.at[i]) < 1.0) continue;  // pixels on the outline
     const bool wet = in_water(city, t.at[i]);
+    // Pixels on the outline, and in the water along it, where its bank slopes under it
+    // (kBankSlope, at most a quarter of the water's width out).
+    if (distance_to_water_outline(city, t.at[i]) < (wet ? 8.0 : 1.0)) continue;
     if (wet != (kind(t.id[i]) == Entity::Water)) ++wrong;
     if (wet && kind(t.id[i]) == Entity::Water) {
       ++water;
       low = std::min(low, t.z[i]), high = std::max(high, t.z[i]);
     }
   }
-  EXPECT_GT(water, 1000);
+  EXPECT_GT(water, 400);  // of 1.5625 m, the river 20 to 30 m wide less 8 m along each bank
   EXPECT_EQ(wrong, 0) << "pixels whose water or land disagrees with the outline";
   EXPECT_LT(high - low, 1e-3) << "the water's surface is not level";
 }
@@ -175,7 +177,9 @@ TEST(GroundRender, BridgeDeckIsLevelFromAbutmentToAbutmentOnPiers) {
   EXPECT_GE(low, bank) << "the deck sinks below its bank";
   // A level ray from the south, under the deck and over the water, meets the pier at x 100.
   Surface hit;
-  const double under = bank - 3;
+  const exacity::BridgeDecks decks = exacity::bridge_decks(city.ground, city.heightmap());
+  const double underside = low - decks.thickness[decks.area_at(city.ground, {100, 100})];
+  const double under = (underside + exacity::water_level(city.ground.water[0], city.heightmap())) / 2;
   ASSERT_TRUE(scene.intersect(scene.to_scene(100, 50, under), {0, 1, 0}, 100, hit));
   int road = -1;
   for (const auto& r : city.ground.road_areas)

@@ -291,15 +291,34 @@ TEST(Terrain, HeightsAreBicubicBetweenPixelCentresHeldWithinTheFourAround) {
   EXPECT_DOUBLE_EQ(t.height_at({0.5, 0.5}), 50);
   EXPECT_DOUBLE_EQ(t.height_at({1.5, 0.5}), 100);
   EXPECT_DOUBLE_EQ(t.height_at({1.0, 0.5}), 75);
-  // Catmull-Rom halfway between 25 and 100 with 0 and 100 beyond: 9/16 (25 + 100) - 1/16
-  // (0 + 100) = 64.0625, where bilinear gave 62.5.
-  Terrain curve(spec(4, 1), 4, 1, {0.0f, 0.25f, 1.0f, 1.0f});
-  EXPECT_DOUBLE_EQ(curve.height_at({2.0, 0.5}), 64.0625);
-  // A groove a pixel wide between high ground: the cubic dips below 0 between the two low
-  // pixels, and is held at 0.
-  Terrain groove(spec(4, 1), 4, 1, {1.0f, 0.0f, 0.0f, 1.0f});
-  EXPECT_DOUBLE_EQ(groove.height_at({2.0, 0.5}), 0);
-  EXPECT_DOUBLE_EQ(groove.lowest(), 0);
+  // Catmull-Rom halfway between 25 and 100 with 1 and 100 beyond: 9/16 (25 + 100) - 1/16
+  // (1 + 100) = 64, where bilinear gave 62.5.
+  Terrain curve(spec(4, 1), 4, 1, {0.01f, 0.25f, 1.0f, 1.0f});
+  EXPECT_NEAR(curve.height_at({2.0, 0.5}), 64, 1e-6);  // 0.01 as a float
+  // A groove a pixel wide between high ground: the cubic dips below 1 between the two low
+  // pixels, and is held at 1.
+  Terrain groove(spec(4, 1), 4, 1, {1.0f, 0.01f, 0.01f, 1.0f});
+  EXPECT_DOUBLE_EQ(groove.height_at({2.0, 0.5}), groove.lowest());
+  EXPECT_NEAR(groove.lowest(), 1, 1e-6);
+}
+
+// A water pixel's 0 marks water, not the ground's height: the ground under water is the
+// lowest land around it, filled in from the shore, so the land does not fall into a
+// pixel-wide cliff at the water's edge (nor past the map's edge, where the map is mirrored).
+TEST(Terrain, WaterPixelsTakeTheLowestLandAroundThem) {
+  Terrain t(spec(6, 1), 6, 1, {0.5f, 0.0f, 0.0f, 0.0f, 0.8f, 0.9f});
+  EXPECT_TRUE(t.is_water(1, 0) && t.is_water(2, 0) && t.is_water(3, 0));
+  EXPECT_FALSE(t.is_water(0, 0) || t.is_water(4, 0));
+  EXPECT_FLOAT_EQ(t.value(1, 0), 0.5f);  // from the shore west
+  EXPECT_FLOAT_EQ(t.value(3, 0), 0.8f);  // from the shore east
+  EXPECT_FLOAT_EQ(t.value(2, 0), 0.5f);  // the lower of the two filled beside it
+  EXPECT_DOUBLE_EQ(t.lowest(), 50);
+  // The shore (pixel edges 1 and 4) at the land's height, where it fell to the water's 0.
+  EXPECT_DOUBLE_EQ(t.height_at({1, 0.5}), 50);
+  EXPECT_GE(t.height_at({4, 0.5}), 80);
+  EXPECT_DOUBLE_EQ(t.height_at({-0.5, 0.5}), 50);  // mirrored past the west edge
+  // A map all water keeps its 0.
+  EXPECT_DOUBLE_EQ(Terrain(spec(2, 1), 2, 1, {0.0f, 0.0f}).height_at({1, 0.5}), 0);
 }
 
 // Past the bounds the map is mirrored at its edge and sinks smoothly (smoothstep) to its

@@ -11,8 +11,54 @@
 
 namespace exacity {
 
+namespace {
+
+// Each water pixel (value 0) takes the lowest value of its neighbours (across and along)
+// filled before it, ring by ring in from the shore: the heightmap marks water with 0, which
+// says nothing of the ground's height there (docs/design.md, The city model). A map all
+// water keeps its 0s.
+void fill_water(std::vector<float>& values, const std::vector<char>& water, int width, int height) {
+  std::vector<char> known(water.size());
+  std::vector<std::size_t> ring;
+  for (std::size_t i = 0; i < water.size(); ++i) known[i] = !water[i];
+  auto neighbours = [&](std::size_t i, auto&& visit) {
+    const int col = static_cast<int>(i % width), row = static_cast<int>(i / width);
+    if (col > 0) visit(i - 1);
+    if (col + 1 < width) visit(i + 1);
+    if (row > 0) visit(i - width);
+    if (row + 1 < height) visit(i + width);
+  };
+  for (std::size_t i = 0; i < water.size(); ++i)
+    if (water[i]) {
+      bool shore = false;
+      neighbours(i, [&](std::size_t j) { shore |= static_cast<bool>(known[j]); });
+      if (shore) ring.push_back(i);
+    }
+  while (!ring.empty()) {
+    for (std::size_t i : ring) {
+      float lowest = INFINITY;
+      neighbours(i, [&](std::size_t j) {
+        if (known[j]) lowest = std::min(lowest, values[j]);
+      });
+      values[i] = lowest;
+    }
+    for (std::size_t i : ring) known[i] = 1;
+    std::vector<std::size_t> next;
+    for (std::size_t i : ring)
+      neighbours(i, [&](std::size_t j) {
+        if (!known[j] && water[j]) known[j] = 2, next.push_back(j);  // 2: queued, not yet filled
+      });
+    for (std::size_t j : next) known[j] = 0;
+    ring = std::move(next);
+  }
+}
+
+}  // namespace
+
 Terrain::Terrain(const TerrainSpec& spec, int width, int height, std::vector<float> values)
     : spec_(spec), image_{width, height, std::move(values)} {
+  for (float v : image_.values) water_.push_back(v <= 0.0f);
+  fill_water(image_.values, water_, width, height);
   lowest_ = spec_.low + *std::min_element(image_.values.begin(), image_.values.end()) * (spec_.high - spec_.low);
 }
 

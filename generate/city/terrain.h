@@ -21,14 +21,17 @@ class Terrain {
   int width() const { return image_.width; }
   int height() const { return image_.height; }
   const geom::Box& bounds() const { return spec_.bounds; }
-  bool is_water(int col, int row) const { return value(col, row) <= 0.0f; }
+  bool is_water(int col, int row) const { return water_[static_cast<std::size_t>(row) * width() + col]; }
+  // The ground's value at a pixel: the image's, but a water pixel's is the lowest of the
+  // land around it (filled in from the shore, ring by ring), so the ground runs on level
+  // under water rather than down to the image's 0 in a pixel-wide cliff.
   float value(int col, int row) const { return image_.at(col, row); }
 
-  // The height in metres at a point: bicubic between pixel centres, held within the four
-  // pixels around it; past the bounds the map mirrored at its edges, sinking smoothly to
-  // lowest() over fade() metres and level there.
+  // The height in metres at a point: bicubic between pixel centres (water pixels filled,
+  // value), held within the four pixels around it; past the bounds the map mirrored at its
+  // edges, sinking smoothly to lowest() over fade() metres and level there.
   double height_at(geom::Vec2 p) const;
-  // The lowest height of the map.
+  // The lowest height of the map (water pixels filled).
   double lowest() const { return lowest_; }
   // How far past the bounds the ground sinks to lowest(): half the map's longer side.
   double fade() const;
@@ -47,7 +50,8 @@ class Terrain {
  private:
   double inside_height(geom::Vec2 p) const;
   TerrainSpec spec_;
-  GreyImage image_;
+  GreyImage image_;           // water pixels filled (value)
+  std::vector<char> water_;  // by pixel, row 0 north
   double lowest_ = 0;
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "geom/measure.h"
 #include "geom/triangulate.h"
@@ -69,14 +70,14 @@ GroundMesh terrain_tin(const Terrain* terrain, const geom::Box& box, int max_cel
 }
 
 double water_level(const geom::Polygon& water, const Terrain* terrain) {
-  if (!terrain) return 0;
+  if (!terrain) return -kWaterBelowBank;
   double level = INFINITY;
   auto visit = [&](const geom::Ring& r) {
     for (geom::Vec2 p : geom::densified(r, terrain->pixel_size() / 2)) level = std::min(level, terrain->height_at(p));
   };
   visit(water.outer);
   for (const auto& h : water.holes) visit(h);
-  return std::isfinite(level) ? level : terrain->lowest();
+  return (std::isfinite(level) ? level : terrain->lowest()) - kWaterBelowBank;
 }
 
 double bed_height(const Terrain* terrain, geom::Vec2 p, double level) {
@@ -111,6 +112,16 @@ std::vector<double> grid_lines(double lo, double hi, double dlo, double dhi, dou
   return kept;
 }
 
+// Without terrain: the box grown by a metre, no lines inside (the land is flat).
+TerrainGrid flat_grid(const geom::Box& b) {
+  TerrainGrid grid;
+  grid.box = {b.min_x - 1, b.min_y - 1, b.max_x + 1, b.max_y + 1};
+  grid.xs = {grid.box.min_x, grid.box.max_x};
+  grid.ys = {grid.box.min_y, grid.box.max_y};
+  grid.step = INFINITY;
+  return grid;
+}
+
 // Grid lines through the pixel centres (extended past the map), or coarser ones; the box's
 // own edges, one cell out, close the grid.
 TerrainGrid terrain_grid(const Terrain& terrain, const geom::Box& box_in, const geom::Box& detail, int max_cells) {
@@ -139,7 +150,7 @@ struct Land {
   std::vector<std::pair<std::size_t, std::size_t>> water_rings;  // by water: (first ring, ring count) in the holes
 };
 
-Land land_around_water(const TerrainGrid& grid, const Terrain& terrain, const std::vector<geom::Polygon>& water) {
+Land land_around_water(const TerrainGrid& grid, const Terrain* terrain, const std::vector<geom::Polygon>& water) {
   Land land;
   geom::Ring& outer = land.polygon.outer;
   const int nx = grid.nx(), ny = grid.ny();
@@ -147,13 +158,16 @@ Land land_around_water(const TerrainGrid& grid, const Terrain& terrain, const st
   for (int j = 0; j < ny; ++j) outer.push_back(grid.at(nx, j));
   for (int i = nx; i > 0; --i) outer.push_back(grid.at(i, ny));
   for (int j = ny; j > 0; --j) outer.push_back(grid.at(0, j));
-  const double ring_step = std::min(grid.step, terrain.pixel_size()) / 2;
+  // Flat land needs no points along the rings but their corners.
+  auto split = [&](const geom::Ring& r) {
+    return terrain ? geom::densified(r, std::min(grid.step, terrain->pixel_size()) / 2) : r;
+  };
   std::vector<geom::Ring>& holes = land.polygon.holes;
   for (const geom::Polygon& w : water) {
-    land.levels.push_back(water_level(w, &terrain));
+    land.levels.push_back(water_level(w, terrain));
     land.water_rings.push_back({holes.size(), 1 + w.holes.size()});
-    holes.push_back(geom::densified(w.outer, ring_step));
-    for (const auto& h : w.holes) holes.push_back(geom::densified(h, ring_step));
+    holes.push_back(split(w.outer));
+    for (const auto& h : w.holes) holes.push_back(split(h));
   }
   return land;
 }
@@ -202,17 +216,104 @@ std::vector<geom::Vec2> grid_points_on_land(const TerrainGrid& grid, const std::
   return inside;
 }
 
-// Banks: from the land's edge down to the bed, along the same split rings; then the beds.
-void add_banks_and_beds(const Land& land, const std::vector<geom::Polygon>& water, const Terrain& terrain,
-                        GroundMesh& m) {
-  auto height = [&](geom::Vec2 p) { return terrain.height_at(p); };
-  for (std::size_t w = 0; w < water.size(); ++w) {
-    const double bottom = land.levels[w] - kBedDepth;
-    for (std::size_t k = 0; k < land.water_rings[w].second; ++k) {
-      const geom::Ring& r = land.polygon.holes[land.water_rings[w].first + k];
-      add_wall(r, height, [&](geom::Vec2) { return bottom; }, m);
+// The inward normal at each corner of a ring with water on its left: the mean of its two
+// edges' left normals.
+std::vector<geom::Vec2> inward_normals(const geom::Ring& r) {
+  std::vector<geom::Vec2> normals(r.size());
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    const geom::Vec2 prev = r[(i + r.size() - 1) % r.size()], next = r[(i + 1) % r.size()];
+    const geom::Vec2 n = geom::left_normal(prev, r[i]) + geom::left_normal(r[i], next);
+    const double length = std::hypot(n.x, n.y);
+    normals[i] = length > 0 ? n * (1 / length) : geom::left_normal(r[i], next);
+  }
+  return normals;
+}
+
+// The bank and bed under heightmap water of level `level`, its rings split as the land's
+// (`rings`): from each point of the outline, at the land's height there, the bank runs
+// down at kBankSlope until kBedDepth under the water, or steeper so that it gets there
+// within a quarter of the water's width; the bed lies under it (bed_height). Points along
+// each corner's inward normal at a third, two thirds and all of its bank's run, and the
+// pixel centres inside, carry the slope; the land meets the bank at the outline without
+// a wall.
+void add_sloped_bank_and_bed(const geom::Polygon& water, const geom::Polygon& rings, double level,
+                             const Terrain& terrain, GroundMesh& m) {
+  const double bed = level - kBedDepth;
+  const double reach = std::max(2 * geom::area(water) / geom::perimeter(water) / 4, 1e-3);
+  auto run_from = [&](double drop) { return std::min(drop / kBankSlope, reach); };
+  const double gap = terrain.pixel_size() / 8;
+  std::vector<geom::Vec2> points;
+  std::vector<double> heights;
+  std::map<std::pair<long, long>, std::vector<std::size_t>> near;  // accepted points by cell of `gap`
+  auto cell = [&](geom::Vec2 p) { return std::make_pair(std::lround(p.x / gap), std::lround(p.y / gap)); };
+  auto add = [&](geom::Vec2 p, double z) {
+    const auto [cx, cy] = cell(p);
+    for (long dy = -1; dy <= 1; ++dy)
+      for (long dx = -1; dx <= 1; ++dx)
+        if (auto it = near.find({cx + dx, cy + dy}); it != near.end())
+          for (std::size_t k : it->second)
+            if (geom::distance(points[k], p) < gap) return;
+    near[{cx, cy}].push_back(points.size());
+    points.push_back(p), heights.push_back(z);
+  };
+  auto visit = [&](const geom::Ring& r) {
+    const std::vector<geom::Vec2> normals = inward_normals(r);
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      const double top = terrain.height_at(r[i]), drop = std::max(top - bed, 0.0), run = run_from(drop);
+      for (double f : {1.0 / 3, 2.0 / 3, 1.0}) {
+        const geom::Vec2 p = r[i] + normals[i] * (run * f);
+        // Kept where the water is wider than the bank: not folded past the far side.
+        if (geom::odd_crossings(rings, p) && geom::distance_to_outline(rings, p) > run * f * 0.9)
+          add(p, std::max(top - drop * f, bed_height(&terrain, p, level)));
+      }
     }
-    drape_with(water[w], &terrain, [&](geom::Vec2 p) { return bed_height(&terrain, p, land.levels[w]); }, m);
+  };
+  visit(rings.outer);
+  for (const auto& h : rings.holes) visit(h);
+  // The pixel centres inside, at the bank from the nearest point of the outline or on the bed.
+  geom::Box box = geom::Box::none();
+  for (geom::Vec2 p : rings.outer) box.add(p);
+  for (geom::Vec2 p : terrain.pixel_centres(box)) {
+    if (!geom::odd_crossings(rings, p)) continue;
+    double d = INFINITY;
+    geom::Vec2 nearest = p;
+    auto closest = [&](const geom::Ring& r) {
+      for (std::size_t i = 0, j = r.size() - 1; i < r.size(); j = i++) {
+        const geom::Vec2 q = geom::nearest_on_segment(p, r[j], r[i]);
+        if (const double e = geom::distance(p, q); e < d) d = e, nearest = q;
+      }
+    };
+    closest(rings.outer);
+    for (const auto& h : rings.holes) closest(h);
+    if (d < terrain.pixel_size() / 4) continue;  // no sliver along the outline
+    const double top = terrain.height_at(nearest), drop = std::max(top - bed, 0.0), run = run_from(drop);
+    add(p, std::max(run > 0 ? top - drop * d / run : bed, bed_height(&terrain, p, level)));
+  }
+  const int first = static_cast<int>(m.vertices.size());
+  for (geom::Vec2 p : rings.outer) m.vertices.push_back({p.x, p.y, terrain.height_at(p)});
+  for (const auto& h : rings.holes)
+    for (geom::Vec2 p : h) m.vertices.push_back({p.x, p.y, terrain.height_at(p)});
+  for (std::size_t k = 0; k < points.size(); ++k) m.vertices.push_back({points[k].x, points[k].y, heights[k]});
+  for (const auto& t : geom::triangulate(rings, points)) m.triangles.push_back({first + t[0], first + t[1], first + t[2]});
+}
+
+// Banks and beds: with terrain each bank slopes from the land's edge down under the water
+// (add_sloped_bank_and_bed); on flat land it is a wall from the land down to the bed, the
+// bed flat under the water.
+void add_banks_and_beds(const Land& land, const std::vector<geom::Polygon>& water, const Terrain* terrain,
+                        GroundMesh& m) {
+  for (std::size_t w = 0; w < water.size(); ++w) {
+    const auto [first, count] = land.water_rings[w];
+    geom::Polygon rings{land.polygon.holes[first], {}};
+    for (std::size_t k = 1; k < count; ++k) rings.holes.push_back(land.polygon.holes[first + k]);
+    if (terrain) {
+      add_sloped_bank_and_bed(water[w], rings, land.levels[w], *terrain, m);
+      continue;
+    }
+    const double bottom = land.levels[w] - kBedDepth;
+    for (std::size_t k = 0; k < count; ++k)
+      add_wall(land.polygon.holes[first + k], [](geom::Vec2) { return 0.0; }, [&](geom::Vec2) { return bottom; }, m);
+    drape_flat(water[w], bottom, m);
   }
 }
 
@@ -220,20 +321,19 @@ void add_banks_and_beds(const Land& land, const std::vector<geom::Polygon>& wate
 
 GroundMesh terrain_mesh(const Terrain* terrain, const geom::Box& box, const geom::Box& detail,
                         const std::vector<geom::Polygon>& water, int max_cells) {
-  if (!terrain) return terrain_tin(nullptr, box, max_cells);
-  const TerrainGrid grid = terrain_grid(*terrain, box, detail, max_cells);
-  const Land land = land_around_water(grid, *terrain, water);
+  const TerrainGrid grid = terrain ? terrain_grid(*terrain, box, detail, max_cells) : flat_grid(box);
+  const Land land = land_around_water(grid, terrain, water);
   const std::vector<geom::Vec2> inside = grid_points_on_land(grid, land.polygon.holes);
   auto triangles = geom::triangulate(land.polygon, inside);
   if (triangles.empty()) return terrain_tin(terrain, grid.box, max_cells);  // rings that cross: no banks
   GroundMesh m;
-  auto height = [&](geom::Vec2 p) { return terrain->height_at(p); };
+  auto height = [&](geom::Vec2 p) { return terrain ? terrain->height_at(p) : 0.0; };
   for (geom::Vec2 p : land.polygon.outer) m.vertices.push_back({p.x, p.y, height(p)});
   for (const auto& h : land.polygon.holes)
     for (geom::Vec2 p : h) m.vertices.push_back({p.x, p.y, height(p)});
   for (geom::Vec2 p : inside) m.vertices.push_back({p.x, p.y, height(p)});
   m.triangles = std::move(triangles);
-  add_banks_and_beds(land, water, *terrain, m);
+  add_banks_and_beds(land, water, terrain, m);
   return m;
 }
 

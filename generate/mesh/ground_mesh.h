@@ -52,22 +52,30 @@ void add_wall(const geom::Ring& ring, const From& from, const To& to, GroundMesh
 // two triangles).
 GroundMesh terrain_tin(const Terrain* terrain, const geom::Box& box, int max_cells);
 
-// Water lies level at its shore height: the lowest terrain along its outline (0 without
-// terrain), so it neither climbs its banks nor spills over them (docs/design.md, Ground
-// meshes).
+// How far water lies under the lowest ground along its outline, in metres: a bank edge
+// shows between them.
+constexpr double kWaterBelowBank = 0.8;
+// Water lies level kWaterBelowBank under its shore: the lowest terrain along its outline (0
+// without terrain), so it neither climbs its banks nor spills over them (docs/design.md,
+// Ground meshes).
 double water_level(const geom::Polygon& water, const Terrain* terrain);
 // How far a riverbed lies at least under its water's surface, in metres.
 constexpr double kBedDepth = 0.5;
+// A bank on a heightmap falls this many metres a metre (1 in 2) from the land at the
+// water's outline to the bed, or more steeply where the water is narrow.
+constexpr double kBankSlope = 0.5;
 // The bed under water of level `level` at p: the terrain, at least kBedDepth under it.
 double bed_height(const Terrain* terrain, geom::Vec2 p, double level);
 
 // The ground over `box` (grown by a cell, so water on its edge stays inside), conforming
 // to the water outlines: the land, triangulated along every water ring so a bank follows
-// the water's outline exactly; each bank as a wall from the land down to the bed, kBedDepth
-// under the water's level; the bed under the water. Over `detail` the cells are the
+// the water's outline exactly; each bank sloping inside it from the land down to the bed,
+// kBedDepth under the water's level (kBankSlope, or steeper where the water is narrow);
+// the bed under the water. Over `detail` the cells are the
 // heightmap's pixels, or coarser so that at most `max_cells` span its side; past it,
-// coarser so that about 128 more span the rest of the box. Without terrain: flat, two
-// triangles over the box.
+// coarser so that about 128 more span the rest of the box. Without terrain the land is flat
+// at 0 (the box grown by a metre, triangulated around the water) and each bank is a wall
+// from it down to the bed.
 GroundMesh terrain_mesh(const Terrain* terrain, const geom::Box& box, const geom::Box& detail,
                         const std::vector<geom::Polygon>& water, int max_cells);
 
