@@ -152,7 +152,7 @@ json multisurface(const std::vector<LevelPolygon>& polygons, const Terrain* terr
     append_triangles(m, v, boundaries);
   }
   if (boundaries.empty()) return nullptr;
-  return {{"type", "MultiSurface"}, {"lod", "1"}, {"boundaries", boundaries}};
+  return {{"type", "MultiSurface"}, {"lod", "1"}, {"boundaries", std::move(boundaries)}};
 }
 
 // Model textures as CityJSON's appearance (docs/design.md, Textured models): CityJSON names
@@ -247,15 +247,15 @@ json building_object(const Building& b, const Mesh& mesh, Vertices& v) {
   json shell = json::array();
   std::vector<int> classes;
   if (!prism(b.polygon, b.base, b.floor + b.height, v, shell, classes)) return nullptr;
-  json lod1{{"type", "Solid"}, {"lod", "1"}, {"boundaries", json::array({shell})}};
   json lod2_shell = json::array();
   std::vector<int> lod2_classes;
   if (!mesh_shell(mesh, v, lod2_shell, lod2_classes)) lod2_shell = shell, lod2_classes = classes;
-  json lod2{{"type", "Solid"}, {"lod", "2"}, {"boundaries", json::array({lod2_shell})},
+  json lod1{{"type", "Solid"}, {"lod", "1"}, {"boundaries", json::array({std::move(shell)})}};
+  json lod2{{"type", "Solid"}, {"lod", "2"}, {"boundaries", json::array({std::move(lod2_shell)})},
             {"semantics", {{"surfaces", kSemanticSurfaces}, {"values", json::array({lod2_classes})}}}};
   return {{"type", "Building"},
           {"attributes", {{"lot", b.lot}, {"zone", name(b.zone)}, {"measuredHeight", b.height}, {"roofType", b.roof}}},
-          {"geometry", json::array({lod1, lod2})}};
+          {"geometry", json::array({std::move(lod1), std::move(lod2)})}};
 }
 
 // A placed model: LOD1 the prism of its outline; then a library building's surfaces as
@@ -266,13 +266,13 @@ json model_object(const ModelInstance& m, const Mesh& mesh, const ModelLibrary& 
   json shell = json::array();
   std::vector<int> classes;
   if (!prism(m.polygon, m.base, m.floor + m.height, v, shell, classes)) return nullptr;
-  json lod1{{"type", "Solid"}, {"lod", "1"}, {"boundaries", json::array({shell})}};
+  json lod1{{"type", "Solid"}, {"lod", "1"}, {"boundaries", json::array({std::move(shell)})}};
   json placed;
   if (m.kind == ModelKind::Building) {
     json faces = json::array();
     std::vector<int> face_classes;
     mesh_shell(mesh, v, faces, face_classes, true);
-    placed = {{"type", "MultiSurface"}, {"lod", "2"}, {"boundaries", faces},
+    placed = {{"type", "MultiSurface"}, {"lod", "2"}, {"boundaries", std::move(faces)},
               {"semantics", {{"surfaces", kSemanticSurfaces}, {"values", face_classes}}}};
   } else {
     placed = geometry_instance(m.placed, m.floor, v);
@@ -283,7 +283,7 @@ json model_object(const ModelInstance& m, const Mesh& mesh, const ModelLibrary& 
   return {{"type", type},
           {"attributes",
            {{"lot", m.lot}, {"zone", name(m.zone)}, {"measuredHeight", m.height}, {"model", library.models[m.placed.model].name}}},
-          {"geometry", json::array({lod1, placed})}};
+          {"geometry", json::array({std::move(lod1), std::move(placed)})}};
 }
 
 // Street clutter: CityFurniture, or SolitaryVegetationObject for a tree, whose one
@@ -298,7 +298,7 @@ json clutter_object(const Clutter& c, const ModelLibrary& library, Vertices& v) 
                   {"model", library.models[m.placed.model].name}};
   if (m.lot >= 0) attributes["lot"] = m.lot;
   return {{"type", m.kind == ModelKind::Tree ? "SolitaryVegetationObject" : "CityFurniture"},
-          {"attributes", attributes},
+          {"attributes", std::move(attributes)},
           {"geometry", json::array({geometry_instance(m.placed, m.floor, v)})}};
 }
 
@@ -313,9 +313,9 @@ void add_ground_objects(const Ground& ground, const std::vector<GroundLayer>& la
     for (const auto& [text, group] : groups) {
       json geometry = multisurface(group.second, terrain, v);
       if (geometry.is_null()) continue;
-      json o{{"type", type}, {"geometry", json::array({geometry})}};
+      json o{{"type", type}, {"geometry", json::array({std::move(geometry)})}};
       if (key) o["attributes"] = {{key, group.first}};
-      objects[prefix + std::to_string(n++)] = o;
+      objects[prefix + std::to_string(n++)] = std::move(o);
     }
   };
   Groups roads, zones, water;
@@ -343,7 +343,7 @@ void add_ground_objects(const Ground& ground, const std::vector<GroundLayer>& la
     append_triangles(*bridges, v, boundaries);
     if (!boundaries.empty())
       objects["bridges"] = {{"type", "Bridge"},
-                            {"geometry", json::array({{{"type", "MultiSurface"}, {"lod", "1"}, {"boundaries", boundaries}}})}};
+                            {"geometry", json::array({{{"type", "MultiSurface"}, {"lod", "1"}, {"boundaries", std::move(boundaries)}}})}};
   }
 }
 
@@ -362,12 +362,13 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
       buildings, models,
       [&](const Building& b) {
         cancel.check();
-        if (json o = building_object(b, meshes[b.id], v); !o.is_null()) objects["building-" + std::to_string(b.id)] = o;
+        if (json o = building_object(b, meshes[b.id], v); !o.is_null())
+          objects["building-" + std::to_string(b.id)] = std::move(o);
       },
       [&](const ModelInstance& m) {
         cancel.check();
         if (json o = model_object(m, meshes[m.id], *library, v); !o.is_null())
-          objects["building-" + std::to_string(m.id)] = o;
+          objects["building-" + std::to_string(m.id)] = std::move(o);
       });
   for (const Clutter& c : clutter) {
     cancel.check();
@@ -379,7 +380,7 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
   // The ground under the city: the heightmap over the rectangle around it.
   json tin = json::array();
   append_triangles(*layer_mesh(ground_layers, GroundKind::Terrain), v, tin);
-  objects["terrain"] = {{"type", "TINRelief"}, {"geometry", json::array({{{"type", "CompositeSurface"}, {"lod", "1"}, {"boundaries", tin}}})}};
+  objects["terrain"] = {{"type", "TINRelief"}, {"geometry", json::array({{{"type", "CompositeSurface"}, {"lod", "1"}, {"boundaries", std::move(tin)}}})}};
 
   json doc{{"type", "CityJSON"},
            {"version", "2.0"},
@@ -393,8 +394,9 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
   if (const std::optional<int> epsg = epsg_of(crs))
     doc["metadata"] = {{"referenceSystem", "https://www.opengis.net/def/crs/EPSG/0/" + std::to_string(*epsg)}};
 
+  // Streamed as it is serialised: the whole text in memory at once would be as large again.
   std::ofstream out(file, std::ios::binary);
-  out << doc.dump() << '\n';
+  out << doc << '\n';
   if (!out) throw UserError(file.string() + ": write failed (disk full?)");
 }
 
