@@ -3,9 +3,11 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <unordered_map>
 #include <utility>
 
 #include "generate/cancel.h"
+#include "generate/city/random.h"
 #include "generate/errors.h"
 #include "generate/mesh/bridges.h"
 #include "generate/export/ground_layers.h"
@@ -47,7 +49,12 @@ class Vertices {
 
  private:
   geom::Vec2 origin_;
-  std::map<std::array<long long, 3>, int> index_;
+  struct Hash {
+    std::size_t operator()(const std::array<long long, 3>& q) const {
+      return mix(mix(static_cast<std::uint64_t>(q[0]), static_cast<std::uint64_t>(q[1])), static_cast<std::uint64_t>(q[2]));
+    }
+  };
+  std::unordered_map<std::array<long long, 3>, int, Hash> index_;
   std::vector<std::array<long long, 3>> list_;
 };
 
