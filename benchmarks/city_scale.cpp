@@ -13,6 +13,7 @@
 
 #include <tbb/global_control.h>
 
+#include "benchmarks/stage_cpu.h"
 #include "generate/errors.h"
 #include "generate/parcels/blocks.h"
 #include "generate/parcels/lots.h"
@@ -29,6 +30,9 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
+void row(const char* stage, double s, double cpu, const std::string& counts) {
+  std::printf("| %-14s | %8.3f | %8.3f | %s\n", stage, s, cpu, counts.c_str());
+}
 void row(const char* stage, double s, const std::string& counts) { std::printf("| %-14s | %8.3f | %s\n", stage, s, counts.c_str()); }
 
 double peak_mib() {
@@ -104,18 +108,21 @@ void run_every_stage(const Sketch& sketch) {
   fs::remove_all(out);
   fs::create_directories(out);
   auto t = std::chrono::steady_clock::now();
-  GenerateResult result = generate_city(sketch, out, nullptr);
-  const double total = seconds_since(t);
+  bench::StageCpu cpu;
+  const double cpu_start = bench::cpu_seconds();
+  GenerateResult result = generate_city(sketch, out, [&](int, int, const std::string& stage) { cpu.next(stage); });
+  cpu.next("");
+  const double total = seconds_since(t), total_cpu = bench::cpu_seconds() - cpu_start;
   const auto& report = result.report;
   const auto& s = report["timings_s"];
-  std::printf("| stage          |  seconds | counts\n|----------------|----------|-------\n");
+  std::printf("| stage          |  seconds | CPU s    | counts\n|----------------|----------|----------|-------\n");
   for (const auto& [stage, seconds] : s.items()) {
     std::string counts = stage_counts(stage, seconds.get<double>(), result);
-    row(stage.c_str(), seconds.get<double>(), counts);
+    row(stage.c_str(), seconds.get<double>(), cpu.seconds.value(stage, 0.0), counts);
   }
   const double validation = s["validation"].get<double>();
-  std::printf("\nsketch to every export: %.3f s (+ validation %.3f s); peak memory %.0f MiB; outputs in %s\n",
-              total - validation, validation, peak_mib(), out.string().c_str());
+  std::printf("\nsketch to every export: %.3f s (+ validation %.3f s); CPU %.3f s in all; peak memory %.0f MiB; outputs in %s\n",
+              total - validation, validation, total_cpu, peak_mib(), out.string().c_str());
 }
 
 }  // namespace

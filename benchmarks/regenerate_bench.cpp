@@ -11,7 +11,6 @@
 // first corner of the zone whose "name" is NAME (the first zone when none is given) by DX, DY
 // metres.
 #include <chrono>
-#include <ctime>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -22,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "benchmarks/scaled_sketch.h"
+#include "benchmarks/stage_cpu.h"
 #include "generate/errors.h"
 #include "generate/pipeline.h"
 #include "generate/regenerate.h"
@@ -38,24 +38,10 @@ struct Run {
   double total = 0, total_cpu = 0;
 };
 
-double cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
 Run build(const ordered_json& doc, const std::string& path, std::shared_ptr<RegionCache> cache, const City* previous) {
-  ordered_json cpu = ordered_json::object();
-  std::string stage;
-  double stage_start = cpu_seconds();
-  // Each stage's CPU time: from its start to the next one's (or the end).
-  auto next_stage = [&](const std::string& name) {
-    const double now = cpu_seconds();
-    if (!stage.empty()) cpu[stage] = now - stage_start;
-    stage = name, stage_start = now;
-  };
-  StageClock clock([&](int, int, const std::string& name) { next_stage(name); }, kCityStages + kWriteStages + 1);
-  const double cpu_start = cpu_seconds();
+  bench::StageCpu cpu;
+  StageClock clock([&](int, int, const std::string& name) { cpu.next(name); }, kCityStages + kWriteStages + 1);
+  const double cpu_start = bench::cpu_seconds();
   const auto start = std::chrono::steady_clock::now();
   const Sketch sketch = parse_sketch(doc.dump(), path);
   Run run{previous ? regenerate(*previous, sketch, clock) : build_city(sketch, clock, std::move(cache)), {}, 0};
@@ -64,9 +50,9 @@ Run build(const ordered_json& doc, const std::string& path, std::shared_ptr<Regi
   std::filesystem::create_directories(dir);
   write_city(sketch, run.city, dir, clock);
   clock.run("tiles", [&] { serve::write_city_tiles(run.city, dir / "tiles"); });
-  next_stage("");
-  run.cpu = cpu;
-  run.total_cpu = cpu_seconds() - cpu_start;
+  cpu.next("");
+  run.cpu = cpu.seconds;
+  run.total_cpu = bench::cpu_seconds() - cpu_start;
   std::filesystem::remove_all(dir);
   run.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   run.seconds = clock.seconds;

@@ -3,9 +3,11 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <unordered_map>
 #include <utility>
 
 #include "generate/cancel.h"
+#include "generate/city/random.h"
 #include "generate/export/cancellable_file.h"
 #include "generate/errors.h"
 #include "generate/mesh/bridges.h"
@@ -49,7 +51,12 @@ class Vertices {
 
  private:
   geom::Vec2 origin_;
-  std::map<std::array<long long, 3>, int> index_;
+  struct Hash {
+    std::size_t operator()(const std::array<long long, 3>& q) const {
+      return mix(mix(static_cast<std::uint64_t>(q[0]), static_cast<std::uint64_t>(q[1])), static_cast<std::uint64_t>(q[2]));
+    }
+  };
+  std::unordered_map<std::array<long long, 3>, int, Hash> index_;
   std::vector<std::array<long long, 3>> list_;
 };
 
@@ -154,7 +161,7 @@ json multisurface(const std::vector<LevelPolygon>& polygons, const Terrain* terr
     append_triangles(m, v, boundaries);
   }
   if (boundaries.empty()) return nullptr;
-  return {{"type", "MultiSurface"}, {"lod", "1"}, {"boundaries", boundaries}};
+  return {{"type", "MultiSurface"}, {"lod", "1"}, {"boundaries", std::move(boundaries)}};
 }
 
 // Model textures as CityJSON's appearance (docs/design.md, Textured models): CityJSON names
@@ -249,11 +256,11 @@ json building_object(const Building& b, const Mesh& mesh, Vertices& v) {
   json shell = json::array();
   std::vector<int> classes;
   if (!prism(b.polygon, b.base, b.floor + b.height, v, shell, classes)) return nullptr;
-  json lod1{{"type", "Solid"}, {"lod", "1"}, {"boundaries", json::array({shell})}};
   json lod2_shell = json::array();
   std::vector<int> lod2_classes;
   if (!mesh_shell(mesh, v, lod2_shell, lod2_classes)) lod2_shell = shell, lod2_classes = classes;
-  json lod2{{"type", "Solid"}, {"lod", "2"}, {"boundaries", json::array({lod2_shell})},
+  json lod1{{"type", "Solid"}, {"lod", "1"}, {"boundaries", json::array({std::move(shell)})}};
+  json lod2{{"type", "Solid"}, {"lod", "2"}, {"boundaries", json::array({std::move(lod2_shell)})},
             {"semantics", {{"surfaces", kSemanticSurfaces}, {"values", json::array({lod2_classes})}}}};
   json attributes{{"lot", b.lot >= 0 ? json(b.lot) : json(nullptr)}, {"zone", name(b.zone)}, {"measuredHeight", b.height},
                   {"roofType", b.roof}};
@@ -261,7 +268,9 @@ json building_object(const Building& b, const Mesh& mesh, Vertices& v) {
     const nlohmann::ordered_json mapped = mapped_attributes(b);
     for (auto it = mapped.begin(); it != mapped.end(); ++it) attributes[it.key()] = *it;
   }
-  return {{"type", "Building"}, {"attributes", std::move(attributes)}, {"geometry", json::array({lod1, lod2})}};
+  return {{"type", "Building"},
+          {"attributes", std::move(attributes)},
+          {"geometry", json::array({std::move(lod1), std::move(lod2)})}};
 }
 
 // A placed model: LOD1 the prism of its outline; then a library building's surfaces as
@@ -272,13 +281,13 @@ json model_object(const ModelInstance& m, const Mesh& mesh, const ModelLibrary& 
   json shell = json::array();
   std::vector<int> classes;
   if (!prism(m.polygon, m.base, m.floor + m.height, v, shell, classes)) return nullptr;
-  json lod1{{"type", "Solid"}, {"lod", "1"}, {"boundaries", json::array({shell})}};
+  json lod1{{"type", "Solid"}, {"lod", "1"}, {"boundaries", json::array({std::move(shell)})}};
   json placed;
   if (m.kind == ModelKind::Building) {
     json faces = json::array();
     std::vector<int> face_classes;
     mesh_shell(mesh, v, faces, face_classes, true);
-    placed = {{"type", "MultiSurface"}, {"lod", "2"}, {"boundaries", faces},
+    placed = {{"type", "MultiSurface"}, {"lod", "2"}, {"boundaries", std::move(faces)},
               {"semantics", {{"surfaces", kSemanticSurfaces}, {"values", face_classes}}}};
   } else {
     placed = geometry_instance(m.placed, m.floor, v);
@@ -289,7 +298,7 @@ json model_object(const ModelInstance& m, const Mesh& mesh, const ModelLibrary& 
   return {{"type", type},
           {"attributes",
            {{"lot", m.lot}, {"zone", name(m.zone)}, {"measuredHeight", m.height}, {"model", library.models[m.placed.model].name}}},
-          {"geometry", json::array({lod1, placed})}};
+          {"geometry", json::array({std::move(lod1), std::move(placed)})}};
 }
 
 // Street clutter: CityFurniture, or SolitaryVegetationObject for a tree, whose one
@@ -304,7 +313,7 @@ json clutter_object(const Clutter& c, const ModelLibrary& library, Vertices& v) 
                   {"model", library.models[m.placed.model].name}};
   if (m.lot >= 0) attributes["lot"] = m.lot;
   return {{"type", m.kind == ModelKind::Tree ? "SolitaryVegetationObject" : "CityFurniture"},
-          {"attributes", attributes},
+          {"attributes", std::move(attributes)},
           {"geometry", json::array({geometry_instance(m.placed, m.floor, v)})}};
 }
 
@@ -319,9 +328,9 @@ void add_ground_objects(const Ground& ground, const std::vector<GroundLayer>& la
     for (const auto& [text, group] : groups) {
       json geometry = multisurface(group.second, terrain, v);
       if (geometry.is_null()) continue;
-      json o{{"type", type}, {"geometry", json::array({geometry})}};
+      json o{{"type", type}, {"geometry", json::array({std::move(geometry)})}};
       if (key) o["attributes"] = {{key, group.first}};
-      objects[prefix + std::to_string(n++)] = o;
+      objects[prefix + std::to_string(n++)] = std::move(o);
     }
   };
   Groups roads, zones, water;
@@ -349,7 +358,7 @@ void add_ground_objects(const Ground& ground, const std::vector<GroundLayer>& la
     append_triangles(*bridges, v, boundaries);
     if (!boundaries.empty())
       objects["bridges"] = {{"type", "Bridge"},
-                            {"geometry", json::array({{{"type", "MultiSurface"}, {"lod", "1"}, {"boundaries", boundaries}}})}};
+                            {"geometry", json::array({{{"type", "MultiSurface"}, {"lod", "1"}, {"boundaries", std::move(boundaries)}}})}};
   }
 }
 
@@ -368,12 +377,13 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
       buildings, models,
       [&](const Building& b) {
         cancel.check();
-        if (json o = building_object(b, meshes[b.id], v); !o.is_null()) objects["building-" + std::to_string(b.id)] = o;
+        if (json o = building_object(b, meshes[b.id], v); !o.is_null())
+          objects["building-" + std::to_string(b.id)] = std::move(o);
       },
       [&](const ModelInstance& m) {
         cancel.check();
         if (json o = model_object(m, meshes[m.id], *library, v); !o.is_null())
-          objects["building-" + std::to_string(m.id)] = o;
+          objects["building-" + std::to_string(m.id)] = std::move(o);
       });
   for (const Clutter& c : clutter) {
     cancel.check();
@@ -385,7 +395,7 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
   // The ground under the city: the heightmap over the rectangle around it.
   json tin = json::array();
   append_triangles(*layer_mesh(ground_layers, GroundKind::Terrain), v, tin);
-  objects["terrain"] = {{"type", "TINRelief"}, {"geometry", json::array({{{"type", "CompositeSurface"}, {"lod", "1"}, {"boundaries", tin}}})}};
+  objects["terrain"] = {{"type", "TINRelief"}, {"geometry", json::array({{{"type", "CompositeSurface"}, {"lod", "1"}, {"boundaries", std::move(tin)}}})}};
 
   json doc{{"type", "CityJSON"},
            {"version", "2.0"},
@@ -399,6 +409,8 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
   if (const std::optional<int> epsg = epsg_of(crs))
     doc["metadata"] = {{"referenceSystem", "https://www.opengis.net/def/crs/EPSG/0/" + std::to_string(*epsg)}};
 
+  // Streamed as it is serialised (the whole text in memory at once would be as large again),
+  // through a buffer that stops once the build is cancelled.
   CancellableFile out(file);
   out << doc << '\n';
   out.close();

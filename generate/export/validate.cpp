@@ -253,6 +253,7 @@ void add_polygon_rings(geom::PlanarMap& map, const std::vector<const geom::Polyg
 // Each face problem once, near a face that has it. Faces found wrong only against the
 // sketch and no wider than kRounding are rounding slivers, not problems.
 void report_face_problems(Checker& c, const geom::PlanarMap& map, const FaceLabels& labels) {
+  if (labels.messages.size() == 1) return;  // no face has a problem: no widths to measure (a pass over every face)
   const std::vector<double> widths = map.widest_faces(static_cast<int>(labels.messages.size()));
   for (std::size_t m = 1; m < labels.messages.size(); ++m) {
     if (labels.sketch_checks[m]) {

@@ -158,14 +158,16 @@ double shared_length(const geom::Ring& a, const geom::Ring& b) {
 }
 
 // The lot of lots[i]'s block that `may_join` allows and that shares the longest edge with
-// it, of those it would make a lot of good shape with; or -1.
+// it, of those it would make a lot of good shape with; or -1. `of_block` lists each block's
+// lots in ascending order: a block's lots are all it scans, in the order of the lots.
 template <typename MayJoin>
-int neighbour(const std::vector<Lot>& lots, std::size_t i, MayJoin&& may_join) {
+int neighbour(const std::vector<Lot>& lots, const std::map<int, std::vector<int>>& of_block, std::size_t i,
+              MayJoin&& may_join) {
   int best = -1;
   double longest = 0;
   const geom::Box box = lots[i].cell.bounds();
-  for (std::size_t k = 0; k < lots.size(); ++k) {
-    if (k == i || !may_join(k) || lots[k].block != lots[i].block || !box.meets(lots[k].cell.bounds())) continue;
+  for (const int k : of_block.at(lots[i].block)) {
+    if (k == static_cast<int>(i) || !may_join(k) || !box.meets(lots[k].cell.bounds())) continue;
     if (!good_shape(lot_shape({&lots[i].cell, &lots[k].cell}, {&lots[i].polygon.outer, &lots[k].polygon.outer}))) continue;
     if (const double d = shared_length(lots[i].polygon.outer, lots[k].polygon.outer); d > longest)
       longest = d, best = static_cast<int>(k);
@@ -236,12 +238,15 @@ std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<Planned
       if (!lot_of_block.emplace(lots[i].block, lots[i].planned).second) ++tally.merged;
     }
   }
+  std::map<int, std::vector<int>> of_block;
+  for (std::size_t i = 0; i < lots.size(); ++i) of_block[lots[i].block].push_back(static_cast<int>(i));
   for (std::size_t i = 0; i < lots.size(); ++i) {
     if (built[i] || settled[i]) continue;
     settled[i] = 1;
-    int next = neighbour(lots, i, [&](std::size_t k) { return built[k]; });
+    int next = neighbour(lots, of_block, i, [&](std::size_t k) { return built[k]; });
     // Two unbuilt lots together may hold a building (two shallow rows back to back).
-    if (next < 0 && !last) next = neighbour(lots, i, [&](std::size_t k) { return !built[k] && !settled[k]; });
+    if (next < 0 && !last)
+      next = neighbour(lots, of_block, i, [&](std::size_t k) { return !built[k] && !settled[k]; });
     if (next >= 0 && !built[next]) settled[next] = 1;
     if (next < 0 && !last) continue;
     lot_of_piece[lots[i].piece] = next >= 0 ? lots[next].planned : -1;
