@@ -19,6 +19,7 @@
 
 #include "benchmarks/child_process.h"
 #include "benchmarks/families.h"
+#include "benchmarks/figures.h"
 #include "benchmarks/judge.h"
 
 namespace exacity::bench {
@@ -118,21 +119,6 @@ Result run_case(const Build& build, const fs::path& exact_program, const fs::pat
   if (!r.rejected.empty()) r.kind = Result::Rejected;
   else r.stage_s = stage_times(out);
   return r;
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
-}
-
-std::string fixed(double v, int digits) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(digits);
-  s << v;
-  return s.str();
 }
 
 nlohmann::ordered_json to_json(const Outcome& o) {

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "benchmarks/child_process.h"
+#include "benchmarks/figures.h"
 
 namespace exacity::bench {
 namespace fs = std::filesystem;
@@ -23,11 +24,6 @@ constexpr double kGap = 60;  // metres between copies: a street's width and its 
 void for_each_position(ordered_json& coordinates, const auto& f) {
   if (coordinates.is_array() && !coordinates.empty() && coordinates[0].is_number()) return f(coordinates);
   for (ordered_json& c : coordinates) for_each_position(c, f);
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0 : v.size() % 2 ? v[v.size() / 2] : (v[v.size() / 2 - 1] + v[v.size() / 2]) / 2;
 }
 
 // One size's runs: the medians of each figure.
@@ -74,14 +70,6 @@ SizeResult measure(const ScaleOptions& o, int size) {
     if (stage_peak.count(stage)) r.stage_peak_mib[stage] = median(stage_peak[stage]);
   }
   return r;
-}
-
-std::string fixed(double v, int digits) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(digits);
-  s << v;
-  return s.str();
 }
 
 // A figure at this size over the smallest size's scaled by the buildings: 1 is linear growth.
