@@ -56,6 +56,7 @@ const std::map<std::string, Note>& notes() {
       {"heights", {"m", "[lowest, highest] building near the city centre (half at its edge)"}},
       {"roof", {"", "auto (gabled on near-rectangles, hipped otherwise, for residential; flat for the others), flat, gabled or hipped"}},
       {"roof_pitch", {"°", "the roofs' pitch"}},
+      {"storey_height", {"m", "a mapped building with building:levels and no height is this tall a storey"}},
       {"density", {"", "placed models' spacing along a row: dense 1.25–1.5 model widths, normal 2–3, sparse 4–5"}},
       {"placement", {"", "how library buildings fill a lot: rows along the street or grid (grid filling)"}},
       {"grid_cell", {"m", "for grid: the grid's cell"}},
