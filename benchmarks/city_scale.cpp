@@ -2,8 +2,6 @@
 // counts per stage and the peak memory. Measures; asserts nothing.
 //
 //   build/release/benchmarks/exacity_scale [SKETCH] [--threads N] [--until blocks|lots] [--models LIBRARY]
-#include <sys/resource.h>
-
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -34,12 +32,6 @@ void row(const char* stage, double s, double cpu, const std::string& counts) {
   std::printf("| %-14s | %8.3f | %8.3f | %s\n", stage, s, cpu, counts.c_str());
 }
 void row(const char* stage, double s, const std::string& counts) { std::printf("| %-14s | %8.3f | %s\n", stage, s, counts.c_str()); }
-
-double peak_mib() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss / 1024.0;
-}
 
 struct ScaleOptions {
   fs::path sketch_path = fs::path(EXACITY_SOURCE_DIR) / "benchmarks" / "city_10km.geojson", models;
@@ -81,7 +73,7 @@ void run_road_stages(const Sketch& sketch, bool with_lots) {
     std::vector<Lot> lots = insert_lots(net.map, plan_lots(blocks, sketch, nullptr, Channels{}), sketch);
     row("lots", seconds_since(t), std::to_string(lots.size()) + " lots");
   }
-  std::printf("\nroads and blocks: %.3f s; peak memory %.0f MiB\n", roads_s + blocks_s, peak_mib());
+  std::printf("\nroads and blocks: %.3f s; peak memory %.0f MiB\n", roads_s + blocks_s, peak_resident_mib());
 }
 
 // The counts column of the full run's row for one stage.
@@ -122,7 +114,7 @@ void run_every_stage(const Sketch& sketch) {
   }
   const double validation = s["validation"].get<double>();
   std::printf("\nsketch to every export: %.3f s (+ validation %.3f s); CPU %.3f s in all; peak memory %.0f MiB; outputs in %s\n",
-              total - validation, validation, total_cpu, peak_mib(), out.string().c_str());
+              total - validation, validation, total_cpu, peak_resident_mib(), out.string().c_str());
 }
 
 }  // namespace

@@ -9,7 +9,6 @@
 // default view at --spp (16) raw and denoised, and raw at 4x and 16x the samples, each
 // against a --reference (1024) sample render of the same view, as display_rmse and the
 // seconds each took.
-#include <sys/resource.h>
 
 #include <chrono>
 #include <cstdio>
@@ -34,12 +33,6 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-double rss_mib() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss / 1024.0;
 }
 
 struct BenchOptions {
@@ -73,7 +66,7 @@ exacity::City load_and_build_city(const BenchOptions& o) {
   exacity::StageClock clock(nullptr, exacity::kCityStages);
   exacity::City city = exacity::build_city(sketch, clock);
   std::printf("city %s: %zu buildings, built in %.1f s; peak memory %.0f MiB\n", o.sketch_path.filename().c_str(),
-              city.buildings.size(), seconds_since(t), rss_mib());
+              city.buildings.size(), seconds_since(t), exacity::peak_resident_mib());
   return city;
 }
 
@@ -83,7 +76,7 @@ void report_scene(const RenderScene& scene, double build_s, double rss_before) {
   std::printf("scene: %.2f s, %zu triangles, %zu instances, %zu tiles (%d culled, %d simple); Embree held %.0f MiB at "
               "most; process peak %.0f MiB (%.0f before the scene)\n",
               build_s, scene.triangles, scene.instances, scene.tiles.size(), culled, simple,
-              static_cast<double>(scene.embree_peak_bytes()) / (1 << 20), rss_mib(), rss_before);
+              static_cast<double>(scene.embree_peak_bytes()) / (1 << 20), exacity::peak_resident_mib(), rss_before);
 }
 
 struct Rays {
@@ -178,7 +171,7 @@ int main(int argc, char** argv) {
   SceneOptions options;
   options.view = &camera;
   options.aspect = static_cast<float>(o.width) / static_cast<float>(o.height);
-  const double before = rss_mib();
+  const double before = exacity::peak_resident_mib();
   auto t = std::chrono::steady_clock::now();
   RenderScene scene(city, sky.sun_direction(), options);
   report_scene(scene, seconds_since(t), before);
@@ -190,6 +183,6 @@ int main(int argc, char** argv) {
   }
   const double raw_rate = raw_ray_rate(scene, camera_and_bounce_rays(scene, camera, o.width, o.height));
   time_still(scene, sky, camera, o, raw_rate);
-  std::printf("peak memory %.0f MiB\n", rss_mib());
+  std::printf("peak memory %.0f MiB\n", exacity::peak_resident_mib());
   return 0;
 }

@@ -20,10 +20,10 @@ namespace exacity {
 // Called as each stage starts: its position (1-based), the stage count, its name.
 using ProgressFn = std::function<void(int, int, const std::string&)>;
 
-// Times stages and tells the progress callback as each begins.
 // The largest resident set this process has had, in MiB.
 double peak_resident_mib();
 
+// Times stages and tells the progress callback as each begins.
 class StageClock {
  public:
   StageClock(ProgressFn progress, int count) : progress_(std::move(progress)), count_(count) {}
