@@ -394,8 +394,12 @@ try {
   check(edited.state === 'done', `the generation after the edit ended done (${edited.state})`);
   await page.waitForSelector('body[data-job="done"]', {timeout: 60000});
   // The report beside the map says what the generation reused of the one before.
-  await page.waitForFunction(() => [...document.querySelectorAll('#report dt')].some(d => d.textContent === 'reused'), {timeout: 60000});
-  const reusedText = await page.$$eval('#report dt', dts => dts.find(d => d.textContent === 'reused').nextElementSibling.textContent);
+  // Read in the same evaluation that finds it: the report is redrawn when the layers reload,
+  // and a dt read in a later round trip may already be detached from its dd.
+  const reusedText = await (await page.waitForFunction(() => {
+    const dt = [...document.querySelectorAll('#report dt')].find(d => d.textContent === 'reused');
+    return dt?.nextElementSibling?.textContent;
+  }, {timeout: 60000})).jsonValue();
   check(/^[\d,]+ of [\d,]+ regions, [\d,]+ of [\d,]+ blocks, [\d,]+ of [\d,]+ lots, [\d,]+ of [\d,]+ meshes$/.test(reusedText),
         `the report shows what was reused: ${reusedText}`);
   await page.click('#auto-generate');  // untick it: the page keeps the setting for the later steps
