@@ -219,27 +219,43 @@ async function showPlace() {
   if (map.geotiff.getSource()) await showGeoTiff();  // placed again over the new sketch, or dropped
 }
 // The GeoTIFF named, placed by the server: its refusal (no such file, no CRS, far away) said.
+// The basemaps shown are kept in the browser, so a reload draws them again.
 async function showGeoTiff() {
   const name = $('geotiff-name').value.trim();
   const r = await api.placeBasemap(name);
   if (!r.ok) {
     map.setGeoTiff(null);
+    localStorage.removeItem('exacity.geotiff');
     return say(r.message, true);
   }
   const placed = JSON.parse(r.text);
   map.setGeoTiff(placed);
+  localStorage.setItem('exacity.geotiff', name);
   say(`Basemap ${placed.file} under the sketch${placed.crs ? `, warped into ${placed.crs}` : ''}.`);
 }
-$('geotiff-show').addEventListener('click', showGeoTiff);
-$('basemap-show').addEventListener('click', () => {
+function showTiles() {
   const url = $('basemap-url').value.trim();
   if (!/^https?:\/\/.*\{z\}.*\{x\}.*\{y\}/.test(url)) return say('A basemap URL has {z}, {x} and {y} in it, such as https://tile.example.org/{z}/{x}/{y}.png', true);
   map.setBasemap(url, lonlat);
+  localStorage.setItem('exacity.basemap', url);
   say(`Basemap ${url} under the sketch.`);
-});
+}
+async function showSavedBasemaps() {
+  const url = localStorage.getItem('exacity.basemap'), name = localStorage.getItem('exacity.geotiff');
+  if (url) $('basemap-url').value = url;
+  if (url && lonlat?.epsg) showTiles();
+  if (name) {
+    $('geotiff-name').value = name;
+    await showGeoTiff();
+  }
+}
+$('geotiff-show').addEventListener('click', showGeoTiff);
+$('basemap-show').addEventListener('click', showTiles);
 $('basemap-hide').addEventListener('click', () => {
   map.setBasemap(null);
   map.setGeoTiff(null);
+  localStorage.removeItem('exacity.basemap');
+  localStorage.removeItem('exacity.geotiff');
 });
 
 // Open: a GeoJSON sketch from this computer, shown once the server has taken it.
@@ -496,6 +512,7 @@ $('render-view').addEventListener('click', async () => {
   showCount(doc);
   panel.show(doc.exacity);
   await Promise.all([panel.build(), showLibrary(), showPlace()]);
+  await showSavedBasemaps();
   history.push(JSON.stringify(map.sketch()));
   updateButtons();
   const status = await api.getJson('/api/status');
