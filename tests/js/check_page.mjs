@@ -199,7 +199,7 @@ try {
   await page.keyboard.up('Control');
   await features(2);
   await saved(2);
-  check(true, 'undo brought the road back');
+  check((await sketch()).features.some(f => f.properties.road === 'highway'), 'undo brought the road back');
 
   // The road's width, edited in the side panel.
   await page.mouse.click(...at(200, 9));
@@ -744,6 +744,24 @@ try {
   check(await page.$eval('#time-left', e => e.textContent) === '', 'and no time left is shown');
   check(/cancelled during the lots stage/.test(await message()), `the page says where it stopped: ${await message()}`);
   check(errors.length === 0, `no console errors${errors.length ? ': ' + errors.join(' | ') : ''}`);
+
+  // A page the server no longer knows (restarted, its token another; here the page's cookie
+  // is dropped): an edit is refused, the page keeps what is drawn and says so, and Save
+  // downloads what is drawn.
+  await page.deleteCookie(...(await page.cookies()));
+  const drawnBefore = await pageFeatures();
+  await page.click('#undo');
+  await page.waitForSelector('body[data-server="lost"]', {timeout: 30000});
+  const lostNote = await page.$eval('#message-note', e => e.textContent);
+  check(/^refused: no token/.test(await message()) && /^Not saved: the server does not know this page/.test(lostNote),
+        `a refused token is said: ${await message()} / ${lostNote}`);
+  const drawnAfter = await pageFeatures();
+  check(drawnAfter !== drawnBefore && drawnAfter !== await serverFeatures(), 'the page keeps the edit the server did not take');
+  fs.rmSync(downloaded);
+  await page.click('#save');
+  for (let i = 0; i < 50 && !fs.existsSync(downloaded); ++i) await new Promise(r => setTimeout(r, 100));
+  check(fs.existsSync(downloaded) && rounded(JSON.parse(fs.readFileSync(downloaded, 'utf8')).features) === drawnAfter,
+        'Save downloads the sketch as drawn');
 } catch (e) {
   console.error(String(e.stack || e));
   if (errors.length) console.error('console errors:', errors.join(' | '));

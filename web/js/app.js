@@ -40,6 +40,9 @@ function showCount(doc) {
 let sending = Promise.resolve();
 let refusals = 0;
 let lastRefusal = '';
+// Set once the server refuses this page's token (it was restarted, so its token is another):
+// what is drawn stays here, to be saved to a file, since no edit can reach the server now.
+let serverLost = false;
 function send(doc) {
   const after = refusals;
   const sent = sending.then(() => (after === refusals ? sendNow(doc) : false));
@@ -49,6 +52,14 @@ function send(doc) {
 
 async function sendNow(doc) {
   const r = await api.putSketch(doc);
+  if (r.status === 403) {
+    serverLost = true;
+    document.body.dataset.server = 'lost';
+    lastRefusal = r.message;
+    say(r.message, true, 'Not saved: the server does not know this page (restarted?). What is drawn stays here: ' +
+                         'Save downloads it, to Open in the page at the address exacity serve printed.');
+    return false;
+  }
   if (!r.ok) {
     ++refusals;
     lastRefusal = r.message;
@@ -137,7 +148,7 @@ const panel = new SettingsPanel({
 // Sends an edit that is in the undo history as `text`; one the server did not take leaves it,
 // so undo never brings back a sketch the server refused.
 async function sendEdit(doc, text) {
-  if (!(await send(doc))) history.forget(text);
+  if (!(await send(doc)) && !serverLost) history.forget(text);
   updateButtons();
 }
 
@@ -283,7 +294,7 @@ $('open-file').addEventListener('change', async e => {
 // Save: the sketch as the server holds it, downloaded.
 $('save').addEventListener('click', async () => {
   const doc = map.sketch();
-  if (doc.features.length && !(await send(doc))) return;
+  if (doc.features.length && !(await send(doc)) && !serverLost) return;
   const link = document.createElement('a');
   link.href = URL.createObjectURL(new Blob([JSON.stringify(doc, null, 1)], {type: 'application/geo+json'}));
   link.download = 'sketch.geojson';
