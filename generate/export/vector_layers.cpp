@@ -84,15 +84,17 @@ void extract_zones_and_water(const CityMap& city_map, const std::vector<ZoneFeat
 // Each rounded segment is written once, by the first line that has it: two exact edges
 // nearer each other than a double's step (roads leaving one point at 1e-11 rad) can round
 // to the same segment, and the later line then stops before it and goes on after it, so
-// the two meet at its ends, vertices of both, and never overlap.
+// the two meet at its ends, vertices of both, and never overlap. A road all of whose
+// segments an earlier line wrote is that line at the output's precision: its areas name it.
 std::vector<std::array<int, 2>> extract_centre_lines(const CityMap& city_map, Ground& out) {
   std::vector<std::array<int, 2>> first_line(city_map.roads.size(), {-1, -1});
   auto pieces_of = city_map.map.polyline_pieces();
-  std::set<geom::SegmentKey> written;
+  std::map<geom::SegmentKey, int> written;  // the line that wrote each segment
   const CancelCheck cancel;
   for (std::size_t r = 0; r < city_map.roads.size(); ++r) {
     cancel.check();
     const MapRoad& road = city_map.roads[r];
+    int covering = -1;  // the first earlier line holding one of this road's segments
     for (int k = 0; k < static_cast<int>(road.lines.size()); ++k) {
       geom::Polyline run;
       bool run_bridge = false;
@@ -106,8 +108,10 @@ std::vector<std::array<int, 2>> extract_centre_lines(const CityMap& city_map, Gr
       };
       for (const geom::PolylinePiece& piece : pieces_of[road.first_tag + k]) {
         if (piece.from == piece.to) continue;  // shorter than a double's step: rounded away
-        if (!written.insert(geom::segment_key(piece.from, piece.to)).second) {
+        const geom::SegmentKey key = geom::segment_key(piece.from, piece.to);
+        if (const auto at = written.find(key); at != written.end()) {
           flush();
+          if (covering < 0) covering = at->second;
           continue;
         }
         bool bridge = city_map.labels[piece.left_label].cover == Cover::Water &&
@@ -115,9 +119,11 @@ std::vector<std::array<int, 2>> extract_centre_lines(const CityMap& city_map, Gr
         if (!run.empty() && (bridge != run_bridge || !(run.back() == piece.from))) flush();
         if (run.empty()) run.push_back(piece.from), run_bridge = bridge;
         run.push_back(piece.to);
+        written.emplace(key, static_cast<int>(out.roads.size()));  // the index the run gets at its flush
       }
       flush();
     }
+    if (first_line[r][0] < 0 && first_line[r][1] < 0 && covering >= 0) first_line[r][out.roads[covering].bridge] = covering;
   }
   return first_line;
 }
