@@ -35,6 +35,8 @@ struct RenderScene::Palette {
 // entity, or an instance's.
 struct RenderScene::Geometry {
   std::vector<int> material;          // per triangle; for instances, per model triangle
+  const std::vector<int>* shared_material = nullptr;  // instances: their model's, instead of `material`
+  int material_of(unsigned prim) const { return shared_material ? (*shared_material)[prim] : material[prim]; }
   std::vector<std::uint32_t> entity;  // per triangle; empty for instances
   // Instances: their entity, the offset into the materials of their colour variant, and
   // the turn that takes the model's normals into the city.

@@ -613,3 +613,84 @@ TEST(Render, PixelSamplesStartAtTheCentreAndCoverThePixelEvenly) {
   for (const auto& row : cells)
     for (int count : row) EXPECT_NEAR(count, 4, 1);
 }
+
+// Beyond the city the land is farmland, not one lawn to the horizon: straight down over the
+// ring 150 to 700 m past a small city, some rays meet the trees of woods and hedgerows
+// (metres over the ground, which lies at 0), and the fields between are of several crops,
+// ripe cereals and bare soil among them (redder than green, which grass never is).
+TEST(Render, TheLandBeyondTheCityIsFieldsHedgerowsAndWoods) {
+  const exacity::City city = one_zone_city("residential", 300, 200, 4);
+  Sky sky(200, 40);
+  RenderScene scene(city, sky.sun_direction(), SceneOptions{});
+  int rays = 0, trees = 0, ground = 0, golden = 0;
+  for (int y = -700; y <= 900; y += 7)
+    for (int x = -700; x <= 1000; x += 7) {
+      const double past = std::max({-x, x - 300, -y, y - 200});
+      if (past < 150 || past > 700) continue;
+      Surface hit;
+      ASSERT_TRUE(scene.intersect(scene.to_scene(x, y, 400), {0, 0, -1}, INFINITY, hit));
+      ++rays;
+      if (hit.position.z > 2) ++trees;
+      if (hit.entity >> 24 != static_cast<std::uint32_t>(Entity::Terrain)) continue;
+      ++ground;
+      golden += hit.material.albedo.x > hit.material.albedo.y;
+    }
+  ASSERT_GT(rays, 10000);
+  EXPECT_GT(trees, rays / 20) << "rays meeting trees of " << rays;
+  EXPECT_LT(trees, rays * 2 / 3);
+  EXPECT_GT(golden, ground / 10) << "cereal or soil of " << ground << " on the ground";
+  EXPECT_LT(golden, ground * 2 / 3);
+}
+
+// Clear air fades distance towards the sky's colour: 300 m up, looking level over flat
+// land, the ground just under the horizon (some 30 km off) is nearly the sky just above it.
+// Without aerial perspective the far fields met the sky in a hard line.
+TEST(Render, ClearAirFadesTheFarGroundTowardsTheSky) {
+  const exacity::City city = one_zone_city("residential", 300, 200, 4);
+  const auto dir = testing_util::temp_dir("clear-air");
+  RenderRequest request;
+  request.camera = Camera::look({150, 100, 300}, {150, 10100, 300}, 45);
+  request.width = 96, request.height = 64, request.spp = 4;
+  request.still = dir / "still.png";
+  render_city(city, request);
+  const Png png = read_png(request.still);
+  // Rows 32 (centre) and up are sky; the ground's first rows are 33 and on.
+  double apart = 0;
+  for (int x = 8; x < 88; ++x) {
+    const auto sky = png.at(x, 30), ground = png.at(x, 34);
+    for (int c = 0; c < 3; ++c) apart += std::abs(sky[c] - ground[c]) / 3.0 / 80;
+  }
+  EXPECT_LT(apart, 12) << "mean 8-bit difference across the horizon";
+  // And near ground keeps its own colour: green under the camera.
+  const auto near = png.mean(48, 60, 3);
+  EXPECT_GT(near[1], near[2]);
+}
+
+// The default camera holds the whole city in its frame, with the horizon and sky above it.
+TEST(Camera, DefaultViewHoldsTheCityWithSkyAbove) {
+  const exacity::City city = one_zone_city("commercial", 400, 300, 6);
+  const Camera c = default_camera(city, 16.0f / 9);
+  V3 o, top, bottom;
+  c.ray(480, 0, 960, 540, o, top);
+  c.ray(480, 540, 960, 540, o, bottom);
+  EXPECT_GT(top.z, 0.02f) << "the frame's top looks above the horizon";
+  EXPECT_LT(bottom.z, 0);
+  const V3 f = c.forward(), r = c.right(), u = cross(r, f);
+  const float tan_y = std::tan(c.fov_y * kPi / 360), tan_x = tan_y * 16 / 9;
+  for (float x : {0.0f, 400.0f})
+    for (float y : {0.0f, 300.0f}) {
+      const V3 p = V3{x, y, 0} - c.from;
+      const float depth = dot(p, f);
+      ASSERT_GT(depth, 0);
+      EXPECT_LE(std::abs(dot(p, r)), depth * tan_x) << x << "," << y;
+      EXPECT_LE(std::abs(dot(p, u)), depth * tan_y) << x << "," << y;
+    }
+  // Near enough that the city fills much of the frame's width.
+  float widest = 0;
+  for (float x : {0.0f, 400.0f})
+    for (float y : {0.0f, 300.0f}) {
+      const V3 p = V3{x, y, 0} - c.from;
+      widest = std::max(widest, std::abs(dot(p, r)) / (dot(p, f) * tan_x));
+    }
+  EXPECT_GT(widest, 0.6f);
+}
