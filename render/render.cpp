@@ -41,13 +41,15 @@ SceneOptions culled_to_view(const RenderRequest& request) {
   SceneOptions options;
   options.view = &request.camera;
   options.aspect = static_cast<float>(request.width) / static_cast<float>(request.height);
+  options.mark_mapped = request.mark_mapped;
   return options;
 }
 
 // The overview's and the minimap's scene: the whole city, nothing culled.
-SceneOptions whole_city() {
+SceneOptions whole_city(const RenderRequest& request) {
   SceneOptions all;
   all.aspect = 1;
+  all.mark_mapped = request.mark_mapped;
   return all;
 }
 
@@ -173,6 +175,7 @@ nlohmann::ordered_json still_report(const RenderRequest& request, const RenderSc
       {"white_balance_k", request.white_balance_k},
       {"haze_visibility_m", request.haze_visibility},
       {"clear_visibility_m", request.haze_visibility > 0 ? 0.0f : request.clear_visibility},
+      {"mark_mapped", request.mark_mapped},
       {"camera",
        {{"from", {request.camera.from.x, request.camera.from.y, request.camera.from.z}},
         {"to", {request.camera.to.x, request.camera.to.y, request.camera.to.z}},
@@ -355,7 +358,7 @@ nlohmann::ordered_json render_city(const exacity::City& city, const RenderReques
   const exacity::CancelCheck cancel;
   cancel.check();
   if (request.overview || request.minimap) {
-    const RenderScene whole(city, sky.sun_direction(), whole_city());
+    const RenderScene whole(city, sky.sun_direction(), whole_city(request));
     if (request.overview) report["overview"] = render_overview(whole, sky, request, haze, progress);
     if (request.minimap) report["minimap"] = render_minimap(whole, scene, sky, camera, request, still.png);
   }

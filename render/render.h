@@ -23,6 +23,7 @@ struct RenderRequest {
   float clear_visibility = 20000;
   float exposure_ev = 0;        // stops over `exposure`
   float white_balance_k = 6500; // the light's colour temperature made neutral (6500: none)
+  bool mark_mapped = false;     // buildings coloured by origin (SceneOptions::mark_mapped)
   bool denoise = true;          // the edge-aware filter (render/denoise.h) before tone mapping
   // Progressive: passes of `spp` samples while the whole still, counted from `started`
   // (the command's start: the city's and the scene's builds included) and the denoiser

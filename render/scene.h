@@ -76,6 +76,9 @@ struct SceneOptions {
   float tile_size = 400;         // m
   bool ground_plane = true;      // the infinite grass plane beyond the city
   bool landscape_trees = true;   // the woods and hedgerows beyond the city (render/landscape.h)
+  // Buildings in two plain colours by where they come from: mapped (read from the sketch)
+  // light grey, generated (extruded or placed models) orange; no windows.
+  bool mark_mapped = false;
 };
 
 struct TileLevel {
@@ -154,7 +157,7 @@ class RenderScene {
   TileView view_tiles(const std::vector<Box3>& boxes, const SceneOptions& options);
   ModelMaterials add_model_materials(const exacity::ModelLibrary* library);
   RTCScene model_scene(const exacity::ModelLibrary& library, int model);
-  void add_instance(const exacity::ModelInstance& m, const exacity::ModelLibrary& library,
+  unsigned add_instance(const exacity::ModelInstance& m, const exacity::ModelLibrary& library,
                     const ModelMaterials& materials, Entity entity = Entity::Model);
 
   EmbreeDevice device_;  // declared first: released after the scenes

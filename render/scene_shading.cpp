@@ -40,7 +40,7 @@ bool RenderScene::surface(V3 o, V3 d, float tmax, const Hit& hit, Surface& s) co
     if (hit.inst != RTC_INVALID_GEOMETRY_ID) {
       const Geometry& g = geometries_[hit.inst];
       n = {g.cos_turn * n.x - g.sin_turn * n.y, g.sin_turn * n.x + g.cos_turn * n.y, n.z};
-      m = g.material_base + g.material_of(hit.prim);
+      m = g.instance_override >= 0 ? g.instance_override : g.material_base + g.material_of(hit.prim);
       s.entity = g.instance_entity;
       if (g.uv) textured = &(*g.uv)[hit.prim], hit_u = hit.u, hit_v = hit.v;
     } else {

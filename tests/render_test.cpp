@@ -694,3 +694,42 @@ TEST(Camera, DefaultViewHoldsTheCityWithSkyAbove) {
     }
   EXPECT_GT(widest, 0.6f);
 }
+
+// --mark-mapped: a building read from the sketch is light grey from above, a generated one
+// orange. The mapped one stands in a park, whose buildings had no material (the palette
+// held the built-up zones' only): Helsinki's centre, with mapped buildings in parks, was an
+// internal error (map::at) in every render.
+TEST(Render, MarkMappedTellsMappedBuildingsFromGeneratedOnesAndParksHoldThem) {
+  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 3}, "features": [
+    {"type": "Feature", "properties": {"zone": "residential"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [300, 200], [0, 200], [0, 0]]]}},
+    {"type": "Feature", "properties": {"zone": "park"},
+     "geometry": {"type": "Polygon", "coordinates": [[[300, 0], [400, 0], [400, 200], [300, 200], [300, 0]]]}},
+    {"type": "Feature", "properties": {"building": "yes", "height": 12},
+     "geometry": {"type": "Polygon", "coordinates": [[[340, 90], [360, 90], [360, 110], [340, 110], [340, 90]]]}}]})";
+  exacity::StageClock clock(nullptr, exacity::kCityStages);
+  const exacity::City city = exacity::build_city(exacity::parse_sketch(text, "marked.geojson"), clock);
+  const exacity::Building* mapped = nullptr;
+  const exacity::Building* generated = nullptr;
+  for (const auto& b : city.buildings) (b.mapped >= 0 ? mapped : generated) = &b;
+  ASSERT_TRUE(mapped && generated);
+  Sky sky(200, 40);
+  SceneOptions options;
+  options.mark_mapped = true;
+  RenderScene scene(city, sky.sun_direction(), options);
+  auto albedo_over = [&](const exacity::Building& b) {
+    geom::Vec2 c{0, 0};
+    for (geom::Vec2 v : b.polygon.outer) c.x += v.x / b.polygon.outer.size(), c.y += v.y / b.polygon.outer.size();
+    Surface hit;
+    EXPECT_TRUE(scene.intersect(scene.to_scene(c.x, c.y, 500), {0, 0, -1}, INFINITY, hit));
+    EXPECT_EQ(hit.entity >> 24, static_cast<std::uint32_t>(Entity::Building));
+    return hit.material.albedo;
+  };
+  const V3 grey = albedo_over(*mapped), orange = albedo_over(*generated);
+  EXPECT_NEAR(grey.x, grey.z, 0.05f);
+  EXPECT_GT(orange.x, 2 * orange.z + 0.3f);
+  // Unmarked, the park's mapped building has its palette's facade and roof.
+  RenderScene plain(city, sky.sun_direction(), SceneOptions{});
+  Surface hit;
+  EXPECT_TRUE(plain.intersect(plain.to_scene(350, 100, 500), {0, 0, -1}, INFINITY, hit));
+}
