@@ -25,7 +25,7 @@ struct LandscapeTree {
 class Landscape {
  public:
   // `city_box`: the city's ground in scene coordinates; `origin`: the scene's origin in the
-  // city's; `ground_at`: the terrain's height at a scene point.
+  // city's (the ground's polygons are in the city's coordinates).
   Landscape(const exacity::Ground& ground, const geom::Box& city_box, geom::Vec2 origin, std::uint32_t seed);
 
   // 0 on the city's ground and its verge, 1 from 45 m past it, smoothly between.
