@@ -88,7 +88,10 @@ bool RenderScene::surface(V3 o, V3 d, float tmax, const Hit& hit, Surface& s) co
       const float fine = noise()(s.position.x * 0.9f, s.position.y * 0.9f);
       const V3 lush = colour(exacity::kLushGrassAlbedo), dry = colour(exacity::kDryGrassAlbedo);
       const float t = std::clamp(0.5f + coarse * 1.2f, 0.0f, 1.0f);
-      s.material.albedo = (lush * (1 - t) + dry * t) * (0.85f + 0.3f * fine);
+      // Tufts and blades a few centimetres across, which at eye level make grass of what
+      // were metre-wide blurred blobs; from the air a pixel's rays average them out.
+      const float tufts = noise()(s.position.x * 7.3f, s.position.y * 7.3f), blades = noise()(s.position.x * 31, s.position.y * 29);
+      s.material.albedo = (lush * (1 - t) + dry * t) * (0.85f + 0.3f * fine) * (1 + 0.35f * tufts + 0.3f * blades);
       if (beyond > 0) s.material.albedo = s.material.albedo * (1 - beyond) + landscape_->albedo(s.position.x, s.position.y) * beyond;
       break;
     }
