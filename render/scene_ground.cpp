@@ -14,6 +14,8 @@ using exacity::ZoneType;
 
 namespace {
 
+constexpr double kKerb = 0.12;  // m: a sidewalk's height over the carriageway
+
 // A ribbon of `width` along a ground path, its corners draped over the terrain, in pieces
 // no longer than half a pixel; dashes where `dash` > 0 (dash on, gap off, metres).
 void ribbon(const geom::Polyline& line, double offset, double width, double dash, double gap,
@@ -94,9 +96,11 @@ void RenderScene::add_ground(const exacity::City& city, const geom::Box& world, 
   for (std::size_t i = 0; i < g.road_areas.size(); ++i) {
     const exacity::RoadArea& a = g.road_areas[i];
     // A road surface names the centre line it belongs to; its id is the road's entity.
-    const int material = a.surface == exacity::RoadSurface::Sidewalk ? palette.sidewalk : palette.asphalt;
-    road_areas.push_back({&a.polygon, material, entity_id(Entity::Road, a.road >= 0 ? static_cast<std::size_t>(a.road) : 0),
-                          exacity::kRoadOverTerrain, a.bridge ? decks.height[i] : NAN});
+    // Sidewalks stand a kerb over the carriageway (off bridges), their sides its face.
+    const bool sidewalk = a.surface == exacity::RoadSurface::Sidewalk;
+    road_areas.push_back({&a.polygon, sidewalk ? palette.sidewalk : palette.asphalt,
+                          entity_id(Entity::Road, a.road >= 0 ? static_cast<std::size_t>(a.road) : 0),
+                          exacity::kRoadOverTerrain + (sidewalk ? kKerb : 0), a.bridge ? decks.height[i] : NAN});
   }
   for (const auto* pieces : {&zones, &lots, &water, &road_areas}) add_draped(*pieces, terrain);
   add_road_markings(g, decks, terrain, palette);

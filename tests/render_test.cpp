@@ -760,3 +760,36 @@ TEST(Render, GrassHasTuftsAtEyeLevel) {
   ASSERT_GT(pairs, 500);
   EXPECT_GT(change / level, 0.04) << "mean relative change between neighbours 4 cm apart";
 }
+
+// Sidewalks (where the sketch gives its streets some) stand a kerb (12 cm) over the
+// carriageway, its face their side: straight down on an office district's streets, road surfaces lie at two heights, 0.1 m (asphalt) and 0.22 m
+// (sidewalks); they lay at one, the street flush from wall to wall.
+TEST(Render, SidewalksStandAKerbOverTheCarriageway) {
+  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 4,
+    "zones": {"commercial": {"layout": "streets"}}, "roads": {"local": {"sidewalk": 2.5}}}, "features": [
+    {"type": "Feature", "properties": {"zone": "commercial"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [300, 200], [0, 200], [0, 0]]]}},
+    {"type": "Feature", "properties": {"road": "local"},
+     "geometry": {"type": "LineString", "coordinates": [[0, 100], [300, 100]]}},
+    {"type": "Feature", "properties": {"road": "local"},
+     "geometry": {"type": "LineString", "coordinates": [[150, 0], [150, 200]]}}]})";
+  exacity::StageClock clock(nullptr, exacity::kCityStages);
+  const exacity::City city = exacity::build_city(exacity::parse_sketch(text, "kerbs.geojson"), clock);
+  ASSERT_TRUE(std::any_of(city.ground.road_areas.begin(), city.ground.road_areas.end(),
+                          [](const auto& a) { return a.surface == exacity::RoadSurface::Sidewalk; }));
+  Sky sky(200, 40);
+  SceneOptions options;
+  RenderScene scene(city, sky.sun_direction(), options);
+  int road = 0, kerb_high = 0;
+  for (double y = 1; y < 200; y += 1.3)
+    for (double x = 1; x < 300; x += 1.3) {
+      Surface hit;
+      if (!scene.intersect(scene.to_scene(x, y, 100), {0, 0, -1}, INFINITY, hit)) continue;
+      if (hit.entity >> 24 != static_cast<std::uint32_t>(Entity::Road) || hit.position.z > 1) continue;
+      ++road;
+      kerb_high += std::abs(hit.position.z - 0.22f) < 0.005f;
+    }
+  ASSERT_GT(road, 1000);
+  EXPECT_GT(kerb_high, road / 10) << "of " << road << " road hits at the sidewalk's height";
+  EXPECT_LT(kerb_high, road * 9 / 10);
+}
