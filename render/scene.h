@@ -147,6 +147,8 @@ class RenderScene {
   void add_draped(const std::vector<DrapedPiece>& pieces, const exacity::Terrain* terrain);
   void add_road_markings(const exacity::Ground& ground, const exacity::BridgeDecks& decks,
                          const exacity::Terrain* terrain, const Palette& palette);
+  void add_crossings(const exacity::Ground& ground, const exacity::Terrain* terrain, const Palette& palette,
+                     std::vector<V3>& vertices, std::vector<std::array<int, 3>>& triangles, Geometry& info);
   void add_landscape(const exacity::City& city, const geom::Box& world, const SceneOptions& options);
   void add_buildings(const exacity::City& city, const geom::Box& world, V3 sun, const SceneOptions& options,
                      const Palette& palette);

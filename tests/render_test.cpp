@@ -11,6 +11,7 @@
 #include <OpenImageIO/imageio.h>
 #include <tbb/global_control.h>
 
+#include "generate/city/palette.h"
 #include "generate/errors.h"
 #include "generate/pipeline.h"
 #include "geom/measure.h"
@@ -792,4 +793,28 @@ TEST(Render, SidewalksStandAKerbOverTheCarriageway) {
   ASSERT_GT(road, 1000);
   EXPECT_GT(kerb_high, road / 10) << "of " << road << " road hits at the sidewalk's height";
   EXPECT_LT(kerb_high, road * 9 / 10);
+}
+
+// Where a street meets another road it has a zebra crossing and a stop line: paint lies on
+// the street away from its centre stripe, near its end. Before, the only paint on streets
+// was the centre stripe.
+TEST(Render, StreetsHaveCrossingsAndStopLinesAtJunctions) {
+  const exacity::City city = one_zone_city("residential", 400, 300, 3);
+  Sky sky(200, 40);
+  RenderScene scene(city, sky.sun_direction(), SceneOptions{});
+  const V3 paint{exacity::kPaintAlbedo[0], exacity::kPaintAlbedo[1], exacity::kPaintAlbedo[2]};
+  int marked = 0;
+  for (double y = 0.5; y < 300; y += 0.35)
+    for (double x = 0.5; x < 400; x += 0.35) {
+      Surface hit;
+      if (!scene.intersect(scene.to_scene(x, y, 100), {0, 0, -1}, INFINITY, hit)) continue;
+      if (hit.entity >> 24 != static_cast<std::uint32_t>(Entity::Road) || length(hit.material.albedo - paint) > 1e-3f)
+        continue;
+      double to_centre = INFINITY;
+      for (const auto& r : city.ground.roads)
+        for (std::size_t k = 0; k + 1 < r.line.size(); ++k)
+          to_centre = std::min(to_centre, geom::distance_to_segment({x, y}, r.line[k], r.line[k + 1]));
+      marked += to_centre > 0.6;
+    }
+  EXPECT_GT(marked, 200) << "painted points off the centre stripes";
 }
