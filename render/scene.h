@@ -159,6 +159,7 @@ class RenderScene {
   TileView view_tiles(const std::vector<Box3>& boxes, const SceneOptions& options);
   ModelMaterials add_model_materials(const exacity::ModelLibrary* library);
   RTCScene model_scene(const exacity::ModelLibrary& library, int model);
+  void fill_mesh_scene(RTCScene scene, const exacity::TriangleMesh& mesh);
   unsigned add_instance(const exacity::ModelInstance& m, const exacity::ModelLibrary& library,
                     const ModelMaterials& materials, Entity entity = Entity::Model);
 

@@ -35,20 +35,7 @@ void RenderScene::add_landscape(const exacity::City& city, const geom::Box& worl
       for (const auto& mat : mesh.materials)
         add_material({Material::Diffuse, colour(exacity::tinted(mat.colour, tint)) * 0.8f});
     RTCScene ms = model_scenes_.emplace_back(rtcNewScene(device_.get()));  // released with the others
-    RTCGeometry g = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(
-        device_.new_buffer(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.size()));
-    for (std::size_t j = 0; j < mesh.vertices.size(); ++j)
-      for (int c = 0; c < 3; ++c) v[3 * j + c] = static_cast<float>(mesh.vertices[j][c]);
-    auto* t = static_cast<unsigned*>(
-        device_.new_buffer(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangles.size()));
-    for (std::size_t j = 0; j < mesh.triangles.size(); ++j)
-      for (int c = 0; c < 3; ++c) t[3 * j + c] = static_cast<unsigned>(mesh.triangles[j][c]);
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(ms, g);
-    rtcReleaseGeometry(g);
-    rtcCommitScene(ms);
-    device_.check("a landscape tree's scene");
+    fill_mesh_scene(ms, mesh);
     scenes[k] = ms;
   }
   const exacity::CancelCheck cancel;

@@ -91,8 +91,13 @@ void RenderScene::add_buildings(const exacity::City& city, const geom::Box& worl
 // The model's own scene, made the first time it is placed.
 RTCScene RenderScene::model_scene(const exacity::ModelLibrary& library, int model) {
   if (model_scenes_[model]) return model_scenes_[model];
-  const exacity::TriangleMesh& mesh = library.models[model].mesh;
-  RTCScene ms = model_scenes_[model] = rtcNewScene(device_.get());  // released with the others if this throws
+  model_scenes_[model] = rtcNewScene(device_.get());  // released with the others if this throws
+  fill_mesh_scene(model_scenes_[model], library.models[model].mesh);
+  return model_scenes_[model];
+}
+
+// A mesh's triangles as the one geometry of its own scene, committed.
+void RenderScene::fill_mesh_scene(RTCScene ms, const exacity::TriangleMesh& mesh) {
   RTCGeometry g = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* v = static_cast<float*>(
       device_.new_buffer(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.size()));
@@ -107,7 +112,6 @@ RTCScene RenderScene::model_scene(const exacity::ModelLibrary& library, int mode
   rtcReleaseGeometry(g);
   rtcCommitScene(ms);
   device_.check("a model's scene");
-  return ms;
 }
 
 // An instance of the model's scene in the top scene, turned, scaled and moved into place.
