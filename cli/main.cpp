@@ -44,6 +44,7 @@ struct RenderOptions {
   std::string size = "960x540";
   int spp = 16;
   float haze = 0;
+  bool mark_mapped = false;
   bool overview = false, minimap = false, orthographic = false;
   std::string denoise = "on";
   float exposure_ev = 0, white_balance_k = render::kNeutralKelvin;
@@ -101,6 +102,7 @@ render::RenderRequest request_for(const City& city, const RenderOptions& o, cons
   }
   r.overview = o.overview, r.minimap = o.minimap, r.orthographic_overview = o.orthographic;
   r.haze_visibility = o.haze;
+  r.mark_mapped = o.mark_mapped;
   r.denoise = o.denoise == "on";
   r.exposure_ev = o.exposure_ev, r.white_balance_k = o.white_balance_k;
   r.time_budget_s = o.time_s;
@@ -456,6 +458,8 @@ void add_image_options(CLI::App* c, RenderOptions& o) {
                 "Haze for aerial perspective and light shafts: the visibility in metres (0: clear air)")
       ->check(CLI::Range(0.0, 1e7))
       ->capture_default_str();
+  c->add_flag("--mark-mapped", o.mark_mapped,
+              "Colour buildings by where they come from: mapped (read from the sketch) light grey, generated orange");
   c->add_option("--denoise", o.denoise, "The edge-aware denoiser, on or off")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();

@@ -380,7 +380,7 @@ Image denoise_render(Image image, const RenderScene& scene, const Sky& sky, cons
   const int samples = image.halves[0].samples + image.halves[1].samples;
   const int rays = primary_rays(samples, settings);
   if (rays > 0 && samples >= 2 && haze.density <= 0)
-    image.extra = primary_layer(scene, sky, camera, image.width, image.height, samples, rays);
+    image.extra = primary_layer(scene, sky, camera, image.width, image.height, samples, rays, haze);
   return denoise(image, settings);
 }
 

@@ -319,8 +319,24 @@ V3 radiance(const RenderScene& scene, const Sky& sky, V3 o, V3 d, Sampler& rng, 
   return radiance_after_camera_ray(scene, sky, o, d, hit, s, rng, max_depth, counts, haze, first_sun);
 }
 
+float Haze::air_transmittance(V3 o, V3 d, float t) const {
+  if (air_density <= 0) return 1;
+  // The integral of air_density e^(-(z - air_ground) / H) along z = o.z + d.z s, s in [0, t].
+  const float H = kAirScaleHeight, k = d.z / H;
+  const float at_o = air_density * std::exp(-(o.z - air_ground) / H);
+  float length;
+  if (std::abs(k * t) < 1e-4f) {
+    length = t;
+  } else {
+    if (!std::isfinite(t)) return k > 0 ? std::exp(-at_o / k) : 0;
+    length = -std::expm1(-k * t) / k;
+  }
+  return std::exp(-at_o * length);
+}
+
 void trace_camera_packet(const RenderScene& scene, const Sky& sky, const Lens& lens, int x, int y, std::size_t pixel,
-                         int k0, int n, bool with_sun, std::vector<Sampler>& rngs, CameraPacket& p, RayCounts& counts) {
+                         int k0, int n, bool with_sun, std::vector<Sampler>& rngs, CameraPacket& p, RayCounts& counts,
+                         const Haze& air) {
   p.n = n;
   rngs.clear();
   for (int j = 0; j < n; ++j) {
@@ -341,6 +357,14 @@ void trace_camera_packet(const RenderScene& scene, const Sky& sky, const Lens& l
     lens.ray(static_cast<float>(x) + jx, static_cast<float>(y) + jy, lu, lv, p.o[j], p.d[j]);
   }
   scene.intersect_packet(p.o, p.d, n, p.hits, p.found);
+  for (int j = 0; j < n; ++j) {
+    p.fade[j] = 1, p.inscattered[j] = {0, 0, 0};
+    if (!p.found[j] || air.density > 0 || air.air_density <= 0) continue;
+    p.fade[j] = air.air_transmittance(p.o[j], p.d[j], p.hits[j].distance);
+    // The light scattered in is the horizon's sky in the ray's direction.
+    const V3 horizon = normalize(V3{p.d[j].x, p.d[j].y, std::max(std::abs(p.d[j].z), 0.05f)});
+    p.inscattered[j] = sky.radiance(horizon) * (1 - p.fade[j]);
+  }
   if (!with_sun) return;
   V3 from[CameraPacket::kSize], towards[CameraPacket::kSize];
   int ray_of[CameraPacket::kSize], rays = 0;
@@ -430,7 +454,7 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
         // The camera rays in packets, each path on alone from its first surface.
         for (int k0 = first, n = 0; k0 < first + t.spp; k0 += n) {
           n = CameraPacket::size_from(k0, first + t.spp);
-          trace_camera_packet(scene, sky, lens, x, y, i, k0, n, sun_first, rngs, packet, tile_counts);
+          trace_camera_packet(scene, sky, lens, x, y, i, k0, n, sun_first, rngs, packet, tile_counts, t.haze);
           for (int j = 0; j < n; ++j) {
             const int k = k0 + j;
             const Surface* first_hit = packet.found[j] ? &packet.hits[j] : nullptr;
@@ -439,7 +463,8 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
                                              rngs[j], t.max_depth, tile_counts, t.haze, &from_sun,
                                              sun_first ? &packet.sun[j] : nullptr);
             if (!std::isfinite(l.x + l.y + l.z)) l = from_sun = {0, 0, 0};
-            const V3 a = first_hit ? first_hit->material.albedo : V3{1, 1, 1};
+            V3 a = first_hit ? first_hit->material.albedo : V3{1, 1, 1};
+            packet.through_air(j, l, a, from_sun);
             sum += l, albedo += a, sun += from_sun;
             if (k % 2 == 0) even_sum += l, even_albedo += a, even_sun += from_sun;
             squares += static_cast<double>(luminance(l)) * luminance(l);

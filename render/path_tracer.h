@@ -56,6 +56,17 @@ struct Haze {
   float g = 0.7f;
   // Koschmieder: the visibility at which contrast falls to 2%.
   static float density_for_visibility(float metres) { return 3.912f / metres; }
+  // Clear air's aerial perspective, where density is 0: on a camera ray, a surface's light
+  // is dimmed by the air's transmittance and the horizon sky's light in that direction,
+  // scattered in, makes up the rest, so distance fades towards the sky's colour (the
+  // single-scattering fog of Hoffman and Preetham's "Rendering outdoor light scattering in
+  // real time", 2002, with the horizon's sky radiance standing for the light scattered in).
+  // The air thins with height: extinction air_density at air_ground, e-folding every
+  // kAirScaleHeight metres up, as the aerosols near the ground do. 0: none.
+  float air_density = 0, air_ground = 0;
+  static constexpr float kAirScaleHeight = 1200;
+  // The air's transmittance along the ray from o towards d, t metres long (infinite: to the sky).
+  float air_transmittance(V3 o, V3 d, float t) const;
 };
 
 struct TraceSettings {
@@ -119,16 +130,26 @@ struct CameraPacket {
   V3 o[kSize], d[kSize];
   Surface hits[kSize];
   bool found[kSize];
-  V3 sun[kSize];  // the sun at each first surface: zero where the ray met nothing or it was blocked
+  V3 sun[kSize];
+  // Clear air's aerial perspective on each ray (Haze::air_density): the transmittance to
+  // its surface and the light scattered in (1 and 0 without it, or where it met nothing).
+  float fade[kSize];
+  V3 inscattered[kSize];
+  // The sample's beauty, first-hit albedo and sun next event as seen through the air.
+  void through_air(int j, V3& beauty, V3& albedo, V3& sun) const {
+    beauty = beauty * fade[j] + inscattered[j], albedo = albedo * fade[j] + V3{1, 1, 1} * (1 - fade[j]);
+    sun = sun * fade[j];
+  }  // the sun at each first surface: zero where the ray met nothing or it was blocked
 };
 
 // Camera rays k0 .. k0 + n - 1 (n at most CameraPacket::kSize) of pixel (x, y), numbered
 // `pixel`, as add_samples draws them; with `with_sun` (clear air only), their first
-// surfaces' sun next events too, as radiance() adds them to `first_sun`. Each sample's
-// sampler, past the draws made here, is left in `rngs` for its path.
+// surfaces' sun next events too, as radiance() adds them to `first_sun`; and the clear air's
+// fade (`air`'s air_density, where its density is 0). Each sample's sampler, past the draws
+// made here, is left in `rngs` for its path.
 void trace_camera_packet(const RenderScene& scene, const Sky& sky, const Lens& lens, int x, int y, std::size_t pixel,
                          int k0, int n, bool with_sun, std::vector<Sampler>& rngs, CameraPacket& packet,
-                         RayCounts& counts);
+                         RayCounts& counts, const Haze& air = {});
 
 // Henyey–Greenstein's phase function for the angle between the light's old and new
 // directions, and a new direction drawn from it.

@@ -12,7 +12,7 @@
 namespace render {
 
 Image::Primaries primary_layer(const RenderScene& scene, const Sky& sky, const Camera& camera, int width, int height,
-                               int first, int count) {
+                               int first, int count, const Haze& air) {
   const std::size_t n = static_cast<std::size_t>(width) * height;
   Image::Primaries sums{std::vector<V3>(n), std::vector<V3>(n), count};
   const Lens lens(camera, width, height);
@@ -28,9 +28,12 @@ Image::Primaries primary_layer(const RenderScene& scene, const Sky& sky, const C
       V3 albedo{0, 0, 0}, sun{0, 0, 0};
       for (int k0 = first, rays = 0; k0 < first + count; k0 += rays) {
         rays = CameraPacket::size_from(k0, first + count);
-        trace_camera_packet(scene, sky, lens, x, y, i, k0, rays, true, rngs, packet, uncounted);
-        for (int j = 0; j < rays; ++j)
-          albedo += packet.found[j] ? packet.hits[j].material.albedo : V3{1, 1, 1}, sun += packet.sun[j];
+        trace_camera_packet(scene, sky, lens, x, y, i, k0, rays, true, rngs, packet, uncounted, air);
+        for (int j = 0; j < rays; ++j) {
+          V3 a = packet.found[j] ? packet.hits[j].material.albedo : V3{1, 1, 1}, s = packet.sun[j], unused{0, 0, 0};
+          packet.through_air(j, unused, a, s);
+          albedo += a, sun += s;
+        }
       }
       sums.albedo[i] = albedo, sums.sun[i] = sun;
     }

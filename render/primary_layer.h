@@ -15,8 +15,9 @@
 namespace render {
 
 // Samples first .. first + count - 1 of each pixel, summed; `camera` in scene coordinates.
-// Clear air only: in haze a camera ray's first event need not be a surface.
+// Clear air only: in haze a camera ray's first event need not be a surface; `air`'s
+// aerial perspective (Haze::air_density) as the path samples saw it.
 Image::Primaries primary_layer(const RenderScene& scene, const Sky& sky, const Camera& camera, int width, int height,
-                               int first, int count);
+                               int first, int count, const Haze& air = {});
 
 }  // namespace render

@@ -41,21 +41,26 @@ SceneOptions culled_to_view(const RenderRequest& request) {
   SceneOptions options;
   options.view = &request.camera;
   options.aspect = static_cast<float>(request.width) / static_cast<float>(request.height);
+  options.mark_mapped = request.mark_mapped;
   return options;
 }
 
 // The overview's and the minimap's scene: the whole city, nothing culled.
-SceneOptions whole_city() {
+SceneOptions whole_city(const RenderRequest& request) {
   SceneOptions all;
   all.aspect = 1;
+  all.mark_mapped = request.mark_mapped;
   return all;
 }
 
 // Clear air unless a visibility is asked for; the haze fills the 500 m over the lowest ground.
+// Clear air has its aerial perspective (Haze::air_density) at request.clear_visibility.
 Haze haze_layer(const RenderRequest& request, const RenderScene& scene) {
   Haze haze;
   if (request.haze_visibility > 0)
     haze = {Haze::density_for_visibility(request.haze_visibility), scene.ground + 500, 0.7f};
+  else if (request.clear_visibility > 0)
+    haze.air_density = Haze::density_for_visibility(request.clear_visibility), haze.air_ground = scene.ground;
   return haze;
 }
 
@@ -169,6 +174,8 @@ nlohmann::ordered_json still_report(const RenderRequest& request, const RenderSc
       {"metered_ev", still.metered_ev},
       {"white_balance_k", request.white_balance_k},
       {"haze_visibility_m", request.haze_visibility},
+      {"clear_visibility_m", request.haze_visibility > 0 ? 0.0f : request.clear_visibility},
+      {"mark_mapped", request.mark_mapped},
       {"camera",
        {{"from", {request.camera.from.x, request.camera.from.y, request.camera.from.z}},
         {"to", {request.camera.to.x, request.camera.to.y, request.camera.to.z}},
@@ -199,10 +206,13 @@ nlohmann::ordered_json render_overview(const RenderScene& whole, const Sky& sky,
   const int size = std::max(request.width, request.height);
   const float top = whole.top;
   Camera over = overview_camera(whole.bounds, top, request.camera.fov_y, 1, request.orthographic_overview);
-  TraceSettings s{size, size, request.spp, 8, haze};
+  // A map: the air's fade is the still's, not the overview's.
+  Haze map_haze = haze;
+  map_haze.air_density = 0;
+  TraceSettings s{size, size, request.spp, 8, map_haze};
   Image img = finished(trace(whole, sky, over, s, nullptr, [&](int done, int n) {
     if (progress) progress("overview", static_cast<double>(done) / n);
-  }), whole, sky, over, haze, request);
+  }), whole, sky, over, map_haze, request);
   write_png(tone_mapped(img, request), request.overview_file);
   return {{"height_m", over.from.z - top}, {"orthographic", request.orthographic_overview}};
 }
@@ -280,13 +290,55 @@ void write_still(const Still& still, const fs::path& png) {
 
 }  // namespace
 
-Camera default_camera(const exacity::City& city) {
+Camera default_camera(const exacity::City& city, float aspect) {
   geom::Box box = city.ground.bounds();
   if (box.holds_nothing()) box = {0, 0, 100, 100};
-  const double cx = (box.min_x + box.max_x) / 2, cy = (box.min_y + box.max_y) / 2;
-  const double z = city.heightmap() ? city.heightmap()->height_at({cx, cy}) : 0;
-  const float distance = static_cast<float>(0.5 * std::hypot(box.width(), box.height()));
-  return Camera::orbit({static_cast<float>(cx), static_cast<float>(cy), static_cast<float>(z)}, 235, 30, distance, 45);
+  const exacity::Terrain* terrain = city.heightmap();
+  auto ground_at = [&](double x, double y) { return terrain ? terrain->height_at({x, y}) : 0.0; };
+  // The city's outline: its zones' and water's corners on the ground, its buildings' at
+  // their tops (the box's corners where it has none).
+  std::vector<V3> outline;
+  auto add = [&](geom::Vec2 p, double z) {
+    outline.push_back({static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(z)});
+  };
+  for (const auto& z : city.ground.zones)
+    for (geom::Vec2 p : z.polygon.outer) add(p, ground_at(p.x, p.y));
+  for (const auto& w : city.ground.water)
+    for (geom::Vec2 p : w.outer) add(p, ground_at(p.x, p.y));
+  for (const auto& b : city.buildings)
+    for (geom::Vec2 p : b.polygon.outer) add(p, b.floor + b.height);
+  for (const auto& m : city.models)
+    for (geom::Vec2 p : m.polygon.outer) add(p, m.floor + m.height);
+  if (outline.empty())
+    for (double x : {box.min_x, box.max_x})
+      for (double y : {box.min_y, box.max_y}) add({x, y}, ground_at(x, y));
+  geom::Box around = geom::Box::none();
+  for (const V3& p : outline) around.add(geom::Vec2{p.x, p.y});
+  const double cx = (around.min_x + around.max_x) / 2, cy = (around.min_y + around.max_y) / 2;
+  const float az = 235 * kPi / 180, pitch = kDefaultPitch * kPi / 180, fov = 45;
+  const V3 target{static_cast<float>(cx), static_cast<float>(cy), static_cast<float>(ground_at(cx, cy))};
+  const V3 back{std::cos(pitch) * std::cos(az), std::cos(pitch) * std::sin(az), std::sin(pitch)};
+  // The nearest eye, backing off along the view, whose frame holds every corner with a
+  // margin of a twentieth.
+  const float tan_y = 0.95f * std::tan(fov * kPi / 360), tan_x = tan_y * aspect;
+  auto holds = [&](float distance) {
+    const Camera c = Camera::look(target + back * distance, target, fov);
+    const V3 f = c.forward(), r = c.right(), u = cross(r, f);
+    for (const V3& corner : outline) {
+      const V3 p = corner - c.from;
+      const float depth = dot(p, f);
+      if (!(depth > 0 && std::abs(dot(p, r)) <= depth * tan_x && std::abs(dot(p, u)) <= depth * tan_y)) return false;
+    }
+    return true;
+  };
+  float top = 0;
+  for (const V3& p : outline) top = std::max(top, p.z - target.z);
+  float near = 1, far = static_cast<float>(10 * std::hypot(box.width(), box.height()) + 10 * top + 100);
+  for (int i = 0; i < 40; ++i) {
+    const float mid = (near + far) / 2;
+    (holds(mid) ? far : near) = mid;
+  }
+  return Camera::look(target + back * far, target, fov);
 }
 
 nlohmann::ordered_json render_city(const exacity::City& city, const RenderRequest& request,
@@ -306,7 +358,7 @@ nlohmann::ordered_json render_city(const exacity::City& city, const RenderReques
   const exacity::CancelCheck cancel;
   cancel.check();
   if (request.overview || request.minimap) {
-    const RenderScene whole(city, sky.sun_direction(), whole_city());
+    const RenderScene whole(city, sky.sun_direction(), whole_city(request));
     if (request.overview) report["overview"] = render_overview(whole, sky, request, haze, progress);
     if (request.minimap) report["minimap"] = render_minimap(whole, scene, sky, camera, request, still.png);
   }

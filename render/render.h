@@ -19,8 +19,11 @@ struct RenderRequest {
   bool overview = false, orthographic_overview = false, minimap = false;
   float sun_azimuth = 200, sun_elevation = 40, turbidity = 3, exposure = 0.25f;
   float haze_visibility = 0;    // m; 0: clear air. Haze fills the 500 m over the lowest ground.
+  // m: clear air's visibility, for the still's aerial perspective (Haze::air_density; 0: none)
+  float clear_visibility = 20000;
   float exposure_ev = 0;        // stops over `exposure`
   float white_balance_k = 6500; // the light's colour temperature made neutral (6500: none)
+  bool mark_mapped = false;     // buildings coloured by origin (SceneOptions::mark_mapped)
   bool denoise = true;          // the edge-aware filter (render/denoise.h) before tone mapping
   // Progressive: passes of `spp` samples while the whole still, counted from `started`
   // (the command's start: the city's and the scene's builds included) and the denoiser
@@ -33,8 +36,11 @@ struct RenderRequest {
   std::filesystem::path overview_file, minimap_file;
 };
 
-// From the south-west, 30 degrees up, at half the city's diagonal from its centre.
-Camera default_camera(const exacity::City& city);
+// From the south-west, looking kDefaultPitch degrees down at the city's centre, as near as
+// the frame (of this aspect) holds the city's whole box, ground to tallest roof; the
+// horizon and a band of sky show above it, as in an oblique air photo.
+constexpr float kDefaultPitch = 18;
+Camera default_camera(const exacity::City& city, float aspect = 16.0f / 9);
 
 // The stage name, then the fraction of it done.
 using RenderProgress = std::function<void(const std::string&, double)>;

@@ -103,6 +103,7 @@ void RenderScene::build(const exacity::City& city, V3 sun, const SceneOptions& o
   make_palette(palette);
   add_ground(city, world, palette);
   add_buildings(city, world, sun, options, palette);
+  add_landscape(city, world, options);
 }
 
 int RenderScene::add_material(Material m, Pattern p) {

@@ -23,6 +23,7 @@
 #include "render/camera.h"
 #include "render/embree_device.h"
 #include "render/facade.h"
+#include "render/landscape.h"
 #include "render/material.h"
 #include "render/texture.h"
 
@@ -39,7 +40,8 @@ enum class Entity : std::uint32_t {
   Zone = 5,
   Water = 6,
   Terrain = 7,
-  Clutter = 8  // street clutter, by its id in vector/clutter.geojson
+  Clutter = 8,  // street clutter, by its id in vector/clutter.geojson
+  Landscape = 9  // the woods' and hedgerows' trees beyond the city (render/landscape.h), by their number
 };
 inline std::uint32_t entity_id(Entity kind, std::size_t index) {
   return static_cast<std::uint32_t>(kind) << 24 | static_cast<std::uint32_t>(index & 0xffffff);
@@ -73,6 +75,10 @@ struct SceneOptions {
   float detail_distance = 2500;  // m: tiles farther than this get extruded boxes, no roofs
   float tile_size = 400;         // m
   bool ground_plane = true;      // the infinite grass plane beyond the city
+  bool landscape_trees = true;   // the woods and hedgerows beyond the city (render/landscape.h)
+  // Buildings in two plain colours by where they come from: mapped (read from the sketch)
+  // light grey, generated (extruded or placed models) orange; no windows.
+  bool mark_mapped = false;
 };
 
 struct TileLevel {
@@ -141,6 +147,9 @@ class RenderScene {
   void add_draped(const std::vector<DrapedPiece>& pieces, const exacity::Terrain* terrain);
   void add_road_markings(const exacity::Ground& ground, const exacity::BridgeDecks& decks,
                          const exacity::Terrain* terrain, const Palette& palette);
+  void add_crossings(const exacity::Ground& ground, const exacity::Terrain* terrain, const Palette& palette,
+                     std::vector<V3>& vertices, std::vector<std::array<int, 3>>& triangles, Geometry& info);
+  void add_landscape(const exacity::City& city, const geom::Box& world, const SceneOptions& options);
   void add_buildings(const exacity::City& city, const geom::Box& world, V3 sun, const SceneOptions& options,
                      const Palette& palette);
   struct StructureTiles;
@@ -150,7 +159,8 @@ class RenderScene {
   TileView view_tiles(const std::vector<Box3>& boxes, const SceneOptions& options);
   ModelMaterials add_model_materials(const exacity::ModelLibrary* library);
   RTCScene model_scene(const exacity::ModelLibrary& library, int model);
-  void add_instance(const exacity::ModelInstance& m, const exacity::ModelLibrary& library,
+  void fill_mesh_scene(RTCScene scene, const exacity::TriangleMesh& mesh);
+  unsigned add_instance(const exacity::ModelInstance& m, const exacity::ModelLibrary& library,
                     const ModelMaterials& materials, Entity entity = Entity::Model);
 
   EmbreeDevice device_;  // declared first: released after the scenes
@@ -170,6 +180,10 @@ class RenderScene {
   std::vector<FacadeStyle> facades_;  // by building id: its windows' rows and bays
   bool ground_plane_ = true;
   int grass_material_ = -1;
+  // The land beyond the city (null for a scene of triangle soups) and its trees' meshes,
+  // which their instances' materials point into.
+  std::unique_ptr<Landscape> landscape_;
+  std::vector<exacity::TriangleMesh> landscape_trees_;
 };
 
 }  // namespace render

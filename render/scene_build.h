@@ -27,6 +27,7 @@ inline V3 colour(const exacity::Albedo& a) { return {a[0], a[1], a[2]}; }
 // The materials of the ground and of buildings, as indices.
 struct RenderScene::Palette {
   int sidewalk = 0, asphalt = 0, paint = 0, yellow = 0, water = 0;
+  int mapped = 0, generated = 0;  // SceneOptions::mark_mapped's
   std::map<exacity::ZoneType, int> lot_ground;
   std::map<std::pair<exacity::ZoneType, int>, int> facade, roof;  // (zone, palette entry)
 };
@@ -35,6 +36,9 @@ struct RenderScene::Palette {
 // entity, or an instance's.
 struct RenderScene::Geometry {
   std::vector<int> material;          // per triangle; for instances, per model triangle
+  const std::vector<int>* shared_material = nullptr;  // instances: their model's, instead of `material`
+  int material_of(unsigned prim) const { return shared_material ? (*shared_material)[prim] : material[prim]; }
+  int instance_override = -1;  // instances: every triangle's material instead, where not negative
   std::vector<std::uint32_t> entity;  // per triangle; empty for instances
   // Instances: their entity, the offset into the materials of their colour variant, and
   // the turn that takes the model's normals into the city.

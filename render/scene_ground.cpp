@@ -1,6 +1,8 @@
 // The scene's ground: the terrain, the ground layers draped over it, the road markings
 // and the bridges' structure.
+#include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "generate/cancel.h"
 #include "generate/mesh/bridges.h"
@@ -13,6 +15,8 @@ namespace render {
 using exacity::ZoneType;
 
 namespace {
+
+constexpr double kKerb = 0.12;  // m: a sidewalk's height over the carriageway
 
 // A ribbon of `width` along a ground path, its corners draped over the terrain, in pieces
 // no longer than half a pixel; dashes where `dash` > 0 (dash on, gap off, metres).
@@ -69,6 +73,42 @@ void add_sides(const geom::Polygon& polygon, const exacity::Terrain* terrain, do
   for (const geom::Ring& h : polygon.holes) side(h);
 }
 
+// The roads' segments by a 50 m grid.
+struct SegmentGrid {
+  static constexpr double kCell = 50;
+  std::map<std::pair<long, long>, std::vector<std::pair<int, int>>> cells;  // (road, segment)
+  static std::pair<long, long> cell(geom::Vec2 p) {
+    return {static_cast<long>(std::floor(p.x / kCell)), static_cast<long>(std::floor(p.y / kCell))};
+  }
+};
+
+// Where a road's end point p meets another road: the distance back from p to the
+// crossing road's edge (and a metre), NaN where no other road crosses there.
+double crossing_edge(const std::vector<exacity::RoadLine>& roads, const SegmentGrid& grid, int road, geom::Vec2 p) {
+  double edge = NAN;
+  std::vector<int> met;
+  const auto [cx, cy] = SegmentGrid::cell(p);
+  for (long i = cx - 1; i <= cx + 1; ++i)
+    for (long j = cy - 1; j <= cy + 1; ++j) {
+      const auto it = grid.cells.find({i, j});
+      if (it == grid.cells.end()) continue;
+      for (const auto& [other, k] : it->second) {
+        if (other == road) continue;
+        const exacity::RoadLine& o = roads[other];
+        if (geom::distance_to_segment(p, o.line[k], o.line[k + 1]) > o.width / 2 + 0.5) continue;
+        const double back = o.width / 2 + 1;
+        if (!(back <= edge)) edge = back;
+        if (std::find(met.begin(), met.end(), other) == met.end()) met.push_back(other);
+      }
+    }
+  // One other road that ends there too carries this one on: a bend, not a junction.
+  if (met.size() == 1) {
+    const geom::Polyline& o = roads[met[0]].line;
+    if (geom::distance(o.front(), p) < 0.5 || geom::distance(o.back(), p) < 0.5) return NAN;
+  }
+  return edge;
+}
+
 }  // namespace
 
 // The ground: terrain, then layers a few centimetres above each other; water level at its
@@ -94,9 +134,11 @@ void RenderScene::add_ground(const exacity::City& city, const geom::Box& world, 
   for (std::size_t i = 0; i < g.road_areas.size(); ++i) {
     const exacity::RoadArea& a = g.road_areas[i];
     // A road surface names the centre line it belongs to; its id is the road's entity.
-    const int material = a.surface == exacity::RoadSurface::Sidewalk ? palette.sidewalk : palette.asphalt;
-    road_areas.push_back({&a.polygon, material, entity_id(Entity::Road, a.road >= 0 ? static_cast<std::size_t>(a.road) : 0),
-                          exacity::kRoadOverTerrain, a.bridge ? decks.height[i] : NAN});
+    // Sidewalks stand a kerb over the carriageway (off bridges), their sides its face.
+    const bool sidewalk = a.surface == exacity::RoadSurface::Sidewalk;
+    road_areas.push_back({&a.polygon, sidewalk ? palette.sidewalk : palette.asphalt,
+                          entity_id(Entity::Road, a.road >= 0 ? static_cast<std::size_t>(a.road) : 0),
+                          exacity::kRoadOverTerrain + (sidewalk ? kKerb : 0), a.bridge ? decks.height[i] : NAN});
   }
   for (const auto* pieces : {&zones, &lots, &water, &road_areas}) add_draped(*pieces, terrain);
   add_road_markings(g, decks, terrain, palette);
@@ -186,7 +228,58 @@ void RenderScene::add_road_markings(const exacity::Ground& ground, const exacity
     info.material.resize(t.size(), palette.paint);
     info.entity.resize(t.size(), entity_id(Entity::Road, id));
   }
+  add_crossings(ground, terrain, palette, v, t, info);
   if (!t.empty()) add_triangles(v, t, std::move(info));
+}
+
+}  // namespace render
+
+namespace render {
+
+// At every end of a street that meets another road (not on highways or bridges): a zebra
+// crossing of 0.5 m stripes 1 m apart, 3 m long, from 1 m back from the crossing road's
+// edge, and behind it a 0.4 m stop line across the lane coming in (traffic on the right).
+void RenderScene::add_crossings(const exacity::Ground& ground, const exacity::Terrain* terrain, const Palette& palette,
+                                std::vector<V3>& v, std::vector<std::array<int, 3>>& t, Geometry& info) {
+  const std::vector<exacity::RoadLine>& roads = ground.roads;
+  SegmentGrid grid;
+  for (std::size_t r = 0; r < roads.size(); ++r)
+    for (std::size_t k = 0; k + 1 < roads[r].line.size(); ++k) {
+      const geom::Vec2 a = roads[r].line[k], b = roads[r].line[k + 1];
+      const auto [x0, y0] = SegmentGrid::cell({std::min(a.x, b.x), std::min(a.y, b.y)});
+      const auto [x1, y1] = SegmentGrid::cell({std::max(a.x, b.x), std::max(a.y, b.y)});
+      for (long i = x0; i <= x1; ++i)
+        for (long j = y0; j <= y1; ++j) grid.cells[{i, j}].push_back({static_cast<int>(r), static_cast<int>(k)});
+    }
+  constexpr double kLift = 0.12, kZebra = 3, kStop = 0.4;
+  for (std::size_t id = 0; id < roads.size(); ++id) {
+    const exacity::RoadLine& r = roads[id];
+    if (r.road_class == exacity::RoadClass::Highway || r.bridge || r.line.size() < 2 || r.width < 5) continue;
+    for (int end = 0; end < 2; ++end) {
+      // The line from this end inwards, and its length.
+      geom::Polyline from_end = r.line;
+      if (end == 1) std::reverse(from_end.begin(), from_end.end());
+      double length = 0;
+      for (std::size_t k = 0; k + 1 < from_end.size(); ++k) length += geom::distance(from_end[k], from_end[k + 1]);
+      const double back = crossing_edge(roads, grid, static_cast<int>(id), from_end[0]);
+      if (!std::isfinite(back) || length < back + kZebra + 3) continue;
+      // The point `along` the line from the end, `across` to its left there.
+      auto at = [&](double along, double across) {
+        std::size_t k = 0;
+        double a = geom::distance(from_end[0], from_end[1]);
+        while (along > a && k + 2 < from_end.size()) along -= a, ++k, a = geom::distance(from_end[k], from_end[k + 1]);
+        const geom::Vec2 u = geom::unit_along(from_end[k], from_end[k + 1]), n = geom::left_normal(from_end[k], from_end[k + 1]);
+        return geom::Vec2{from_end[k].x + u.x * along + n.x * across, from_end[k].y + u.y * along + n.y * across};
+      };
+      const double half = r.width / 2 - 0.3;
+      for (double across = -half + 0.25; across <= half - 0.25; across += 1)
+        ribbon({at(back, across), at(back + kZebra, across)}, 0, 0.5, 0, 0, terrain, kLift, v, t, *this);
+      // Coming in towards this end, the right-hand lane is on this direction's left.
+      ribbon({at(back + kZebra + 1, 0.1), at(back + kZebra + 1, half)}, 0, kStop, 0, 0, terrain, kLift, v, t, *this);
+    }
+    info.material.resize(t.size(), palette.paint);
+    info.entity.resize(t.size(), entity_id(Entity::Road, id));
+  }
 }
 
 }  // namespace render

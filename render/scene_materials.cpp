@@ -13,11 +13,14 @@ void RenderScene::make_palette(Palette& p) {
   p.paint = add_material({Material::Diffuse, colour(exacity::kPaintAlbedo)});
   p.yellow = add_material({Material::Diffuse, colour(exacity::kYellowPaintAlbedo)});
   p.water = add_material({Material::Glossy, colour(exacity::kWaterAlbedo), 0.02f, 1.33f});
+  p.mapped = add_material({Material::Diffuse, {0.62f, 0.62f, 0.60f}});
+  p.generated = add_material({Material::Diffuse, {0.80f, 0.30f, 0.06f}});
   p.lot_ground = {{ZoneType::Residential, grass_material_},
                   {ZoneType::Commercial,
                    add_material({Material::Diffuse, colour(exacity::kCommercialLotAlbedo)}, Pattern::Paving)},
                   {ZoneType::Industrial, add_material({Material::Diffuse, colour(exacity::kIndustrialLotAlbedo)})}};
-  for (ZoneType z : {ZoneType::Residential, ZoneType::Commercial, ZoneType::Industrial}) {
+  // Every zone: a mapped building stands in a park or by the water as well.
+  for (ZoneType z : {ZoneType::Residential, ZoneType::Commercial, ZoneType::Industrial, ZoneType::Park, ZoneType::Water}) {
     for (int i = 0; i < static_cast<int>(exacity::facade_albedos(z).size()); ++i)
       p.facade[{z, i}] = add_material({Material::Diffuse, colour(exacity::facade_albedos(z)[i])}, Pattern::Windows);
     for (int i = 0; i < static_cast<int>(exacity::roof_albedos(z).size()); ++i)

@@ -40,7 +40,7 @@ bool RenderScene::surface(V3 o, V3 d, float tmax, const Hit& hit, Surface& s) co
     if (hit.inst != RTC_INVALID_GEOMETRY_ID) {
       const Geometry& g = geometries_[hit.inst];
       n = {g.cos_turn * n.x - g.sin_turn * n.y, g.sin_turn * n.x + g.cos_turn * n.y, n.z};
-      m = g.material_base + g.material[hit.prim];
+      m = g.instance_override >= 0 ? g.instance_override : g.material_base + g.material_of(hit.prim);
       s.entity = g.instance_entity;
       if (g.uv) textured = &(*g.uv)[hit.prim], hit_u = hit.u, hit_v = hit.v;
     } else {
@@ -77,11 +77,22 @@ bool RenderScene::surface(V3 o, V3 d, float tmax, const Hit& hit, Surface& s) co
       s.material = paving_material(s.material, s.position);
       break;
     case Pattern::Grass: {
+      const float beyond = landscape_ && s.entity >> 24 == static_cast<std::uint32_t>(Entity::Terrain)
+                               ? landscape_->beyond(s.position.x, s.position.y)
+                               : 0.0f;
+      if (beyond >= 1) {
+        s.material.albedo = landscape_->albedo(s.position.x, s.position.y);
+        break;
+      }
       const float coarse = noise().fractal(s.position.x * 0.02f, s.position.y * 0.02f, 2);
       const float fine = noise()(s.position.x * 0.9f, s.position.y * 0.9f);
       const V3 lush = colour(exacity::kLushGrassAlbedo), dry = colour(exacity::kDryGrassAlbedo);
       const float t = std::clamp(0.5f + coarse * 1.2f, 0.0f, 1.0f);
-      s.material.albedo = (lush * (1 - t) + dry * t) * (0.85f + 0.3f * fine);
+      // Tufts and blades a few centimetres across, which at eye level make grass of what
+      // were metre-wide blurred blobs; from the air a pixel's rays average them out.
+      const float tufts = noise()(s.position.x * 7.3f, s.position.y * 7.3f), blades = noise()(s.position.x * 31, s.position.y * 29);
+      s.material.albedo = (lush * (1 - t) + dry * t) * (0.85f + 0.3f * fine) * (1 + 0.35f * tufts + 0.3f * blades);
+      if (beyond > 0) s.material.albedo = s.material.albedo * (1 - beyond) + landscape_->albedo(s.position.x, s.position.y) * beyond;
       break;
     }
     case Pattern::None:

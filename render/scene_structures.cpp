@@ -32,11 +32,14 @@ void RenderScene::add_buildings(const exacity::City& city, const geom::Box& worl
   std::vector<Geometry> tile_info(tiles.boxes.size());
   facades_.assign(city.buildings.size() + city.models.size(), FacadeStyle{});
   // `eaves`: where the walls end, from the ground (their windows end below).
-  auto add_mesh = [&](int id, exacity::ZoneType zone, const exacity::Mesh& mesh, double floor, double eaves) {
+  // `mapped`: read from the sketch, not generated.
+  auto add_mesh = [&](int id, exacity::ZoneType zone, const exacity::Mesh& mesh, double floor, double eaves,
+                      bool mapped) {
     facades_[id] = facade_style(zone, city.settings.seed, id, static_cast<float>(floor), static_cast<float>(eaves));
     const int k = tiles.tile_of[id];
     const exacity::StructureAlbedos albedos = exacity::structure_albedos(zone, city.settings.seed, id);
-    const int f = palette.facade.at({zone, albedos.facade}), r = palette.roof.at({zone, albedos.roof});
+    int f = palette.facade.at({zone, albedos.facade}), r = palette.roof.at({zone, albedos.roof});
+    if (options.mark_mapped) f = r = mapped ? palette.mapped : palette.generated;
     const exacity::MeshTriangles tris = exacity::mesh_triangles(mesh);
     const int first = static_cast<int>(meshes.vertices[k].size());
     for (const auto& p : tris.vertices) meshes.vertices[k].push_back(to_scene(p[0], p[1], p[2]));
@@ -56,20 +59,24 @@ void RenderScene::add_buildings(const exacity::City& city, const geom::Box& worl
         cancel.check();
         const int k = tiles.tile_of[b.id];
         if (!view.seen[k]) return;
-        if (view.detailed[k]) return add_mesh(b.id, b.zone, exacity::building_mesh(b), b.floor, b.floor + b.eaves);
+        const bool mapped = b.mapped >= 0;
+        if (view.detailed[k])
+          return add_mesh(b.id, b.zone, exacity::building_mesh(b), b.floor, b.floor + b.eaves, mapped);
         exacity::Building box = b;  // the simple level: the footprint extruded, no roof
         box.roof_faces.clear();
         box.eaves = box.height;
-        add_mesh(b.id, b.zone, exacity::building_mesh(box), b.floor, b.floor + b.height);
+        add_mesh(b.id, b.zone, exacity::building_mesh(box), b.floor, b.floor + b.height, mapped);
       },
       [&](const exacity::ModelInstance& m) {
         cancel.check();
         const int k = tiles.tile_of[m.id];
         if (!view.seen[k]) return;
         if (!view.detailed[k] && m.kind != exacity::ModelKind::Building) return;
-        add_instance(m, *city.model_library(), model_materials);
+        const unsigned id = add_instance(m, *city.model_library(), model_materials);
+        if (options.mark_mapped && m.kind == exacity::ModelKind::Building)
+          geometries_[id].instance_override = palette.generated;
         // Its foundation, below its floor: no windows.
-        if (m.floor > m.base) add_mesh(m.id, m.zone, exacity::model_mesh(m, nullptr), m.floor, m.floor);
+        if (m.floor > m.base) add_mesh(m.id, m.zone, exacity::model_mesh(m, nullptr), m.floor, m.floor, false);
       });
   // Street clutter, like lot furniture: an instance each in the detailed tiles seen.
   for (std::size_t i = 0; i < city.clutter.items.size(); ++i) {
@@ -84,8 +91,13 @@ void RenderScene::add_buildings(const exacity::City& city, const geom::Box& worl
 // The model's own scene, made the first time it is placed.
 RTCScene RenderScene::model_scene(const exacity::ModelLibrary& library, int model) {
   if (model_scenes_[model]) return model_scenes_[model];
-  const exacity::TriangleMesh& mesh = library.models[model].mesh;
-  RTCScene ms = model_scenes_[model] = rtcNewScene(device_.get());  // released with the others if this throws
+  model_scenes_[model] = rtcNewScene(device_.get());  // released with the others if this throws
+  fill_mesh_scene(model_scenes_[model], library.models[model].mesh);
+  return model_scenes_[model];
+}
+
+// A mesh's triangles as the one geometry of its own scene, committed.
+void RenderScene::fill_mesh_scene(RTCScene ms, const exacity::TriangleMesh& mesh) {
   RTCGeometry g = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* v = static_cast<float*>(
       device_.new_buffer(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.size()));
@@ -100,11 +112,10 @@ RTCScene RenderScene::model_scene(const exacity::ModelLibrary& library, int mode
   rtcReleaseGeometry(g);
   rtcCommitScene(ms);
   device_.check("a model's scene");
-  return ms;
 }
 
 // An instance of the model's scene in the top scene, turned, scaled and moved into place.
-void RenderScene::add_instance(const exacity::ModelInstance& m, const exacity::ModelLibrary& library,
+unsigned RenderScene::add_instance(const exacity::ModelInstance& m, const exacity::ModelLibrary& library,
                                const ModelMaterials& materials, Entity entity) {
   const exacity::Model& model = library.models[m.placed.model];
   RTCGeometry inst = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_INSTANCE);
@@ -130,6 +141,7 @@ void RenderScene::add_instance(const exacity::ModelInstance& m, const exacity::M
   if (geometries_.size() <= id) geometries_.resize(id + 1);
   geometries_[id] = std::move(info);
   ++instances;
+  return id;
 }
 
 }  // namespace render

@@ -105,7 +105,9 @@ TEST(GroundRender, PastTheMapTheGroundSinksToThePlaneWithoutWallsOrAStep) {
   const double lowest = city.heightmap()->lowest();
   EXPECT_NEAR(lowest, 0.2 * 50, 1e-3);
   Sky sky(200, 40);
-  RenderScene scene(city, sky.sun_direction(), SceneOptions{});
+  SceneOptions bare_ground;  // the ground itself, without the landscape's hedgerows on it
+  bare_ground.landscape_trees = false;
+  RenderScene scene(city, sky.sun_direction(), bare_ground);
   // x 150 to 750 m (the ground drawn before reached 400), y 25 to 175 m; 1.5625 m a pixel.
   const TopView t = look_down(scene, {150, 25, 750, 175}, 384, 96);
   double steepest = 0;

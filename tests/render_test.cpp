@@ -11,6 +11,7 @@
 #include <OpenImageIO/imageio.h>
 #include <tbb/global_control.h>
 
+#include "generate/city/palette.h"
 #include "generate/errors.h"
 #include "generate/pipeline.h"
 #include "geom/measure.h"
@@ -612,4 +613,208 @@ TEST(Render, PixelSamplesStartAtTheCentreAndCoverThePixelEvenly) {
   }
   for (const auto& row : cells)
     for (int count : row) EXPECT_NEAR(count, 4, 1);
+}
+
+// Beyond the city the land is farmland, not one lawn to the horizon: straight down over the
+// ring 150 to 700 m past a small city, some rays meet the trees of woods and hedgerows
+// (metres over the ground, which lies at 0), and the fields between are of several crops,
+// ripe cereals and bare soil among them (redder than green, which grass never is).
+TEST(Render, TheLandBeyondTheCityIsFieldsHedgerowsAndWoods) {
+  const exacity::City city = one_zone_city("residential", 300, 200, 4);
+  Sky sky(200, 40);
+  RenderScene scene(city, sky.sun_direction(), SceneOptions{});
+  int rays = 0, trees = 0, ground = 0, golden = 0;
+  for (int y = -700; y <= 900; y += 7)
+    for (int x = -700; x <= 1000; x += 7) {
+      const double past = std::max({-x, x - 300, -y, y - 200});
+      if (past < 150 || past > 700) continue;
+      Surface hit;
+      ASSERT_TRUE(scene.intersect(scene.to_scene(x, y, 400), {0, 0, -1}, INFINITY, hit));
+      ++rays;
+      if (hit.position.z > 2) ++trees;
+      if (hit.entity >> 24 != static_cast<std::uint32_t>(Entity::Terrain)) continue;
+      ++ground;
+      golden += hit.material.albedo.x > hit.material.albedo.y;
+    }
+  ASSERT_GT(rays, 10000);
+  EXPECT_GT(trees, rays / 20) << "rays meeting trees of " << rays;
+  EXPECT_LT(trees, rays * 2 / 3);
+  EXPECT_GT(golden, ground / 10) << "cereal or soil of " << ground << " on the ground";
+  EXPECT_LT(golden, ground * 2 / 3);
+}
+
+// Clear air fades distance towards the sky's colour: 300 m up, looking level over flat
+// land, the ground just under the horizon (some 30 km off) is nearly the sky just above it.
+// Without aerial perspective the far fields met the sky in a hard line.
+TEST(Render, ClearAirFadesTheFarGroundTowardsTheSky) {
+  const exacity::City city = one_zone_city("residential", 300, 200, 4);
+  const auto dir = testing_util::temp_dir("clear-air");
+  RenderRequest request;
+  request.camera = Camera::look({150, 100, 300}, {150, 10100, 300}, 45);
+  request.width = 96, request.height = 64, request.spp = 4;
+  request.still = dir / "still.png";
+  render_city(city, request);
+  const Png png = read_png(request.still);
+  // Rows 32 (centre) and up are sky; the ground's first rows are 33 and on.
+  double apart = 0;
+  for (int x = 8; x < 88; ++x) {
+    const auto sky = png.at(x, 30), ground = png.at(x, 34);
+    for (int c = 0; c < 3; ++c) apart += std::abs(sky[c] - ground[c]) / 3.0 / 80;
+  }
+  EXPECT_LT(apart, 12) << "mean 8-bit difference across the horizon";
+  // And near ground keeps its own colour: green under the camera.
+  const auto near = png.mean(48, 60, 3);
+  EXPECT_GT(near[1], near[2]);
+}
+
+// The default camera holds the whole city in its frame, with the horizon and sky above it.
+TEST(Camera, DefaultViewHoldsTheCityWithSkyAbove) {
+  const exacity::City city = one_zone_city("commercial", 400, 300, 6);
+  const Camera c = default_camera(city, 16.0f / 9);
+  V3 o, top, bottom;
+  c.ray(480, 0, 960, 540, o, top);
+  c.ray(480, 540, 960, 540, o, bottom);
+  EXPECT_GT(top.z, 0.02f) << "the frame's top looks above the horizon";
+  EXPECT_LT(bottom.z, 0);
+  const V3 f = c.forward(), r = c.right(), u = cross(r, f);
+  const float tan_y = std::tan(c.fov_y * kPi / 360), tan_x = tan_y * 16 / 9;
+  for (float x : {0.0f, 400.0f})
+    for (float y : {0.0f, 300.0f}) {
+      const V3 p = V3{x, y, 0} - c.from;
+      const float depth = dot(p, f);
+      ASSERT_GT(depth, 0);
+      EXPECT_LE(std::abs(dot(p, r)), depth * tan_x) << x << "," << y;
+      EXPECT_LE(std::abs(dot(p, u)), depth * tan_y) << x << "," << y;
+    }
+  // Near enough that the city fills much of the frame's width.
+  float widest = 0;
+  for (float x : {0.0f, 400.0f})
+    for (float y : {0.0f, 300.0f}) {
+      const V3 p = V3{x, y, 0} - c.from;
+      widest = std::max(widest, std::abs(dot(p, r)) / (dot(p, f) * tan_x));
+    }
+  EXPECT_GT(widest, 0.6f);
+}
+
+// --mark-mapped: a building read from the sketch is light grey from above, a generated one
+// orange. The mapped one stands in a park, whose buildings had no material (the palette
+// held the built-up zones' only): Helsinki's centre, with mapped buildings in parks, was an
+// internal error (map::at) in every render.
+TEST(Render, MarkMappedTellsMappedBuildingsFromGeneratedOnesAndParksHoldThem) {
+  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 3}, "features": [
+    {"type": "Feature", "properties": {"zone": "residential"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [300, 200], [0, 200], [0, 0]]]}},
+    {"type": "Feature", "properties": {"zone": "park"},
+     "geometry": {"type": "Polygon", "coordinates": [[[300, 0], [400, 0], [400, 200], [300, 200], [300, 0]]]}},
+    {"type": "Feature", "properties": {"building": "yes", "height": 12},
+     "geometry": {"type": "Polygon", "coordinates": [[[340, 90], [360, 90], [360, 110], [340, 110], [340, 90]]]}}]})";
+  exacity::StageClock clock(nullptr, exacity::kCityStages);
+  const exacity::City city = exacity::build_city(exacity::parse_sketch(text, "marked.geojson"), clock);
+  const exacity::Building* mapped = nullptr;
+  const exacity::Building* generated = nullptr;
+  for (const auto& b : city.buildings) (b.mapped >= 0 ? mapped : generated) = &b;
+  ASSERT_TRUE(mapped && generated);
+  Sky sky(200, 40);
+  SceneOptions options;
+  options.mark_mapped = true;
+  RenderScene scene(city, sky.sun_direction(), options);
+  auto albedo_over = [&](const exacity::Building& b) {
+    geom::Vec2 c{0, 0};
+    for (geom::Vec2 v : b.polygon.outer) c.x += v.x / b.polygon.outer.size(), c.y += v.y / b.polygon.outer.size();
+    Surface hit;
+    EXPECT_TRUE(scene.intersect(scene.to_scene(c.x, c.y, 500), {0, 0, -1}, INFINITY, hit));
+    EXPECT_EQ(hit.entity >> 24, static_cast<std::uint32_t>(Entity::Building));
+    return hit.material.albedo;
+  };
+  const V3 grey = albedo_over(*mapped), orange = albedo_over(*generated);
+  EXPECT_NEAR(grey.x, grey.z, 0.05f);
+  EXPECT_GT(orange.x, 2 * orange.z + 0.3f);
+  // Unmarked, the park's mapped building has its palette's facade and roof.
+  RenderScene plain(city, sky.sun_direction(), SceneOptions{});
+  Surface hit;
+  EXPECT_TRUE(plain.intersect(plain.to_scene(350, 100, 500), {0, 0, -1}, INFINITY, hit));
+}
+
+// Grass has detail a few centimetres across: at eye level it was metre-wide blurred blobs
+// (its finest noise 1.1 m across), neighbours 4 cm apart differing by about 1%.
+TEST(Render, GrassHasTuftsAtEyeLevel) {
+  const exacity::City city = one_zone_city("park", 200, 200, 2);
+  Sky sky(200, 40);
+  SceneOptions options;
+  RenderScene scene(city, sky.sun_direction(), options);
+  double change = 0, level = 0;
+  int pairs = 0;
+  Surface last;
+  bool have_last = false;
+  for (int i = 0; i < 2000; ++i) {
+    const double x = 20 + i * 0.04, y = 37.3;
+    Surface hit;
+    const bool grass = scene.intersect(scene.to_scene(x, y, 100), {0, 0, -1}, INFINITY, hit) &&
+                       hit.entity >> 24 == static_cast<std::uint32_t>(Entity::Zone) && hit.position.z < 1;
+    if (grass && have_last) {
+      change += std::abs(luminance(hit.material.albedo) - luminance(last.material.albedo));
+      level += luminance(hit.material.albedo);
+      ++pairs;
+    }
+    have_last = grass, last = hit;
+  }
+  ASSERT_GT(pairs, 500);
+  EXPECT_GT(change / level, 0.04) << "mean relative change between neighbours 4 cm apart";
+}
+
+// Sidewalks (where the sketch gives its streets some) stand a kerb (12 cm) over the
+// carriageway, its face their side: straight down on an office district's streets, road surfaces lie at two heights, 0.1 m (asphalt) and 0.22 m
+// (sidewalks); they lay at one, the street flush from wall to wall.
+TEST(Render, SidewalksStandAKerbOverTheCarriageway) {
+  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 4,
+    "zones": {"commercial": {"layout": "streets"}}, "roads": {"local": {"sidewalk": 2.5}}}, "features": [
+    {"type": "Feature", "properties": {"zone": "commercial"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [300, 0], [300, 200], [0, 200], [0, 0]]]}},
+    {"type": "Feature", "properties": {"road": "local"},
+     "geometry": {"type": "LineString", "coordinates": [[0, 100], [300, 100]]}},
+    {"type": "Feature", "properties": {"road": "local"},
+     "geometry": {"type": "LineString", "coordinates": [[150, 0], [150, 200]]}}]})";
+  exacity::StageClock clock(nullptr, exacity::kCityStages);
+  const exacity::City city = exacity::build_city(exacity::parse_sketch(text, "kerbs.geojson"), clock);
+  ASSERT_TRUE(std::any_of(city.ground.road_areas.begin(), city.ground.road_areas.end(),
+                          [](const auto& a) { return a.surface == exacity::RoadSurface::Sidewalk; }));
+  Sky sky(200, 40);
+  SceneOptions options;
+  RenderScene scene(city, sky.sun_direction(), options);
+  int road = 0, kerb_high = 0;
+  for (double y = 1; y < 200; y += 1.3)
+    for (double x = 1; x < 300; x += 1.3) {
+      Surface hit;
+      if (!scene.intersect(scene.to_scene(x, y, 100), {0, 0, -1}, INFINITY, hit)) continue;
+      if (hit.entity >> 24 != static_cast<std::uint32_t>(Entity::Road) || hit.position.z > 1) continue;
+      ++road;
+      kerb_high += std::abs(hit.position.z - 0.22f) < 0.005f;
+    }
+  ASSERT_GT(road, 1000);
+  EXPECT_GT(kerb_high, road / 10) << "of " << road << " road hits at the sidewalk's height";
+  EXPECT_LT(kerb_high, road * 9 / 10);
+}
+
+// Where a street meets another road it has a zebra crossing and a stop line: paint lies on
+// the street away from its centre stripe, near its end. Before, the only paint on streets
+// was the centre stripe.
+TEST(Render, StreetsHaveCrossingsAndStopLinesAtJunctions) {
+  const exacity::City city = one_zone_city("residential", 400, 300, 3);
+  Sky sky(200, 40);
+  RenderScene scene(city, sky.sun_direction(), SceneOptions{});
+  const V3 paint{exacity::kPaintAlbedo[0], exacity::kPaintAlbedo[1], exacity::kPaintAlbedo[2]};
+  int marked = 0;
+  for (double y = 0.5; y < 300; y += 0.35)
+    for (double x = 0.5; x < 400; x += 0.35) {
+      Surface hit;
+      if (!scene.intersect(scene.to_scene(x, y, 100), {0, 0, -1}, INFINITY, hit)) continue;
+      if (hit.entity >> 24 != static_cast<std::uint32_t>(Entity::Road) || length(hit.material.albedo - paint) > 1e-3f)
+        continue;
+      double to_centre = INFINITY;
+      for (const auto& r : city.ground.roads)
+        for (std::size_t k = 0; k + 1 < r.line.size(); ++k)
+          to_centre = std::min(to_centre, geom::distance_to_segment({x, y}, r.line[k], r.line[k + 1]));
+      marked += to_centre > 0.6;
+    }
+  EXPECT_GT(marked, 200) << "painted points off the centre stripes";
 }
