@@ -61,7 +61,7 @@ ordered_json report_of(const fs::path& out) { return ordered_json::parse(cli_uti
 // gap as measured, the areas' distribution at every twentieth; the sketch copy holds them
 // (and no "like"), so validate rebuilds the same city.
 TEST(Like, MeasuresKnownFootprintsExactly) {
-  const fs::path dir = test_util::temp_dir("like_known");
+  const fs::path dir = testing_util::temp_dir("like_known");
   write(dir / "place.geojson", measured_place().dump());
   const auto r = cli_util::run("generate " + (dir / "place.geojson").string() + " --like " +
                                (dir / "place.geojson").string() + " -q -o " + (dir / "out").string());
@@ -105,7 +105,7 @@ TEST(Like, MeasuresKnownFootprintsExactly) {
 // A key the sketch sets itself is kept, and named as kept; the sketch's own "like" is read
 // relative to it, as --like would be.
 TEST(Like, TheSketchsOwnSettingsWinAndLikeIsASetting) {
-  const fs::path dir = test_util::temp_dir("like_setting");
+  const fs::path dir = testing_util::temp_dir("like_setting");
   ordered_json place = measured_place();
   place["exacity"] = {{"like", "place.geojson"}, {"zones", {{"residential", {{"setback", 2}}}}}};
   write(dir / "place.geojson", place.dump());
@@ -122,7 +122,7 @@ TEST(Like, TheSketchsOwnSettingsWinAndLikeIsASetting) {
 // Generating empty land like the place moves the generated footprints' median from the
 // defaults' toward the place's 200 m², to within a quarter of it.
 TEST(Like, GeneratedMedianMovesTowardThePlace) {
-  const fs::path dir = test_util::temp_dir("like_median");
+  const fs::path dir = testing_util::temp_dir("like_median");
   write(dir / "place.geojson", measured_place().dump());
   write(dir / "empty.geojson", empty_place().dump());
   auto median = [&](const std::string& like, const char* out) {
@@ -138,7 +138,7 @@ TEST(Like, GeneratedMedianMovesTowardThePlace) {
 
 // A file with too few buildings to measure is one line, exit 2, nothing written.
 TEST(Like, TooFewBuildingsIsOneLine) {
-  const fs::path dir = test_util::temp_dir("like_few");
+  const fs::path dir = testing_util::temp_dir("like_few");
   ordered_json few = measured_place();
   few["features"].erase(few["features"].begin() + 5, few["features"].end());  // three buildings left
   write(dir / "few.geojson", few.dump());

@@ -267,10 +267,11 @@ ordered_json settings_from_figures(const PlaceFigures& f, const ZoneSettings& de
   set["max_footprint_area"] = std::ceil(std::max(areas.back(), widths.max * depths.max));
   // The row placer shrinks a footprint that does not fit, down to these, and fills what
   // frontage is left with more: smaller than the place's tenth percentile, or narrower than
-  // 0.8 of the middle width, they are fillers the place does not have (measured on Kotka
-  // and Helsinki, smaller ones drag the median down by half), so that frontage stays open.
+  // 0.8 of the middle width, they are fillers the place does not have (on Kotka, with the
+  // defaults' 6 m, they halve the median), so that frontage stays open. Since the least
+  // width bounds both sides, it is no more than the middle depth.
   set["min_footprint_area"] = std::floor(quantile(areas, 0.1));
-  set["min_footprint_width"] = std::max(1.0, std::floor(0.8 * width));
+  set["min_footprint_width"] = std::max(1.0, std::floor(std::min(0.8 * width, depth)));
   set["setback"] = setback;
   set["building_gap"] = gap;
   // Lots deep enough for the deepest footprint behind its setback, and wide enough for a
