@@ -18,6 +18,7 @@
 #include "cli/progress.h"
 #include "cli/serve_command.h"
 #include "generate/city/format_number.h"
+#include "generate/city_report.h"
 #include "generate/errors.h"
 #include "generate/input_file.h"
 #include "generate/export/output_folder.h"
@@ -136,7 +137,7 @@ int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, 
     result = write_city(sketch, city, folder.staging(), clock, exports);
     if (!like_report.is_null()) {
       result.report["like"] = like_report;
-      std::ofstream(folder.staging() / "report.json", std::ios::binary) << result.report.dump(2) << "\n";
+      write_report(result.report, folder.staging());
     }
     if (rendering) {
       // The default still, the overview and the minimap, into OUT/render.
