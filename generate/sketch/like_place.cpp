@@ -295,6 +295,10 @@ struct RealPlace {
 };
 
 RealPlace read_place(const std::filesystem::path& like) {
+  std::error_code error;
+  if (!std::filesystem::exists(like, error))
+    throw UserError(like.string() + ": no such file, so no place to look like; give an OSM extract or a file of "
+                    "building footprints");
   ordered_json doc = sketch_document(like);
   // A file of footprints and nothing else (a cadastre's) has them untagged: each polygon
   // that is no zone or road is one.
