@@ -17,11 +17,14 @@
 #include "benchmarks/scale.h"
 #include "cli/progress.h"
 #include "cli/serve_command.h"
+#include "generate/city/format_number.h"
+#include "generate/city_report.h"
 #include "generate/errors.h"
 #include "generate/input_file.h"
 #include "generate/export/output_folder.h"
 #include "generate/export/gis_export.h"
 #include "generate/pipeline.h"
+#include "generate/sketch/like_place.h"
 #include "generate/sketch/sketch.h"
 #include "generate/export/statistics.h"
 #include "generate/export/validate.h"
@@ -114,10 +117,14 @@ nlohmann::ordered_json render_with_progress(const City& city, render::RenderRequ
   return render::render_city(city, r, [&](const std::string& stage, double f) { progress.fraction("render " + stage, f); });
 }
 
-int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, const fs::path& out, bool quiet,
-             const RenderOptions* rendering, const ExportOptions& exports) {
+int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, const fs::path& like_given,
+             const fs::path& out, bool quiet, const RenderOptions* rendering, const ExportOptions& exports) {
   const auto started = std::chrono::steady_clock::now();  // --time is the whole command's
   Sketch sketch = load_sketch(sketch_paths, true, models);
+  // The zone parameters measured from a real place's buildings, before any work.
+  const fs::path like = like_given.empty() ? sketch.like : like_given;
+  nlohmann::ordered_json like_report;
+  if (!like.empty()) like_report = like_place(sketch, like);
   if (rendering) {  // a bad camera or size stops us before any work
     given_camera(sketch.camera, *rendering, sketch.path.string());
     image_size(*rendering);
@@ -130,6 +137,10 @@ int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, 
                      kCityStages + kWriteStages + (rendering ? 1 : 0));
     City city = build_city(sketch, clock);
     result = write_city(sketch, city, folder.staging(), clock, exports);
+    if (!like_report.is_null()) {
+      result.report["like"] = like_report;
+      write_report(result.report, folder.staging());
+    }
     if (rendering) {
       // The default still, the overview and the minimap, into OUT/render.
       const fs::path dir = folder.staging() / "render";
@@ -153,6 +164,19 @@ int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, 
   std::printf("exacity: wrote %s (roads %d, blocks %d, lots %d, buildings %d%s); open %s\n", out.string().c_str(),
               counts["roads"].get<int>(), counts["blocks"].get<int>(), counts["lots"].get<int>(),
               counts["buildings_by_kind"].value("building", 0), other_models.c_str(), (out / "map.svg").string().c_str());
+  if (!like_report.is_null())
+    for (const std::string& line : like_notes(like_report)) std::printf("exacity: like %s\n", line.c_str());
+  if (!like_report.is_null())
+    for (const auto& [zone, z] : result.report["footprints_by_zone"].items()) {
+      auto figures = [](const nlohmann::ordered_json& f) {
+        if (f["footprints"].get<int>() == 0) return std::string("none");
+        return std::to_string(f["footprints"].get<int>()) + ", median " + format_number(f["median_m2"].get<double>()) +
+               " m2, p90 " + format_number(f["p90_m2"].get<double>()) + " m2, coverage " +
+               format_number(f["coverage_of_lots"].get<double>()) + " of their lots";
+      };
+      std::printf("exacity: %s footprints: mapped %s; generated %s\n", zone.c_str(), figures(z["mapped"]).c_str(),
+                  figures(z["generated"]).c_str());
+    }
   // Each file's own counts (several files read together each have theirs).
   for (const Sketch::OsmCounts& file : sketch.osm_counts) {
     if (file.left_out.empty()) continue;
@@ -410,7 +434,7 @@ struct SharedOptions {
 struct GenerateCommand {
   CLI::App* app = nullptr;
   std::vector<fs::path> sketch;
-  fs::path models, out = "out";
+  fs::path models, like, out = "out";
   bool render = false;
   ExportOptions exports;
 };
@@ -509,6 +533,10 @@ void add_generate(CLI::App& app, GenerateCommand& c, SharedOptions& shared) {
       ->check(CLI::Range(std::int64_t{1}, std::int64_t{1'000'000'000'000'000}));
   c.app->add_option("--models", c.models,
                     "A model library (JSON manifest) in place of the sketch's own \"models\"");
+  c.app->add_option("--like", c.like,
+                    "Take the zone parameters (footprint sizes, heights, setbacks, gaps, lot sizes) from the mapped "
+                    "buildings of this OSM extract or file of footprints (the sketch itself, say), per zone type; "
+                    "in place of the sketch's own \"like\"");
   c.app->add_option("-o,--output", c.out, "Output folder (replaced if an earlier exacity run wrote it)")
       ->capture_default_str();
   c.app->add_flag("-q,--quiet", shared.quiet, "Hide progress");
@@ -663,7 +691,7 @@ int main(int argc, char** argv) {
 
   return exit_code_of([&] {
     const std::unique_ptr<tbb::global_control> limit = thread_limit(shared.threads);
-    if (*gen.app) return generate(gen.sketch, gen.models, gen.out, shared.quiet, gen.render ? &shared.render : nullptr,
+    if (*gen.app) return generate(gen.sketch, gen.models, gen.like, gen.out, shared.quiet, gen.render ? &shared.render : nullptr,
                                    gen.exports);
     if (*ren.app) return render_folder(ren.folder, shared.render, ren.file, shared.quiet);
     if (*val.app) return validate(val.folder);

@@ -37,6 +37,7 @@ struct City {
   UnbuiltLots unbuilt_lots;  // lots merged into a neighbour or left open: no placer could build on them
   std::vector<Building> buildings;  // extruded, then the mapped ones kept
   MappedTally mapped;  // what became of the sketch's mapped buildings
+  std::vector<char> held_lots;  // per lot: a mapped building stands on it
   std::vector<ModelInstance> models;  // placed from the library
   StreetClutter clutter;  // along the streets; written as vector/clutter.geojson
   Ground ground;

@@ -1,14 +1,17 @@
 #include "generate/city_report.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <optional>
 
 #include "generate/errors.h"
 #include "generate/export/statistics.h"
 #include "generate/placement/building_settings.h"
 #include "generate/regenerate.h"
+#include "generate/sketch/like_place.h"
 #include "generate/version.h"
 #include "geom/measure.h"
 
@@ -163,6 +166,69 @@ ordered_json clutter_report(const ClutterTally& tally) {
 // report.json's mapped_buildings: what became of each building the sketch maps (kept,
 // repaired, refused and why), the generated buildings beside them and the share of the
 // built-up land (footprint area) each holds.
+// The footprints of each built-up zone type, mapped and generated apart (docs/gis.md,
+// Looking like the place): how many, their areas' median and 90th percentile, and two
+// coverages. Over the land use: footprint area over the area the zone type's drawn zones
+// cover. Over their lots: footprint area over the land of the lots mapped buildings stand
+// on, and of the other lots, each lot's land its area and its share of its block's open
+// middle (in proportion to the lots' areas), so the land generated on is measured as the
+// land mapped is. A mapped building counts in the land use its centre lies in, as --like
+// measures it.
+ordered_json footprints_by_zone(const City& city) {
+  struct Side {
+    std::vector<double> areas;
+    double land_m2 = 0;
+  };
+  std::map<ZoneType, std::array<Side, 2>> zones;  // [0] mapped, [1] generated
+  for (const Building& b : city.buildings) {
+    if (b.mapped < 0) {
+      zones[b.zone][1].areas.push_back(geom::area(b.polygon));
+    } else if (const std::optional<ZoneType> t = built_up_zone_at(city.drawn.zones, b.polygon.outer)) {
+      zones[*t][0].areas.push_back(geom::area(b.polygon));
+    }
+  }
+  for (const ModelInstance& m : city.models)
+    if (m.kind == ModelKind::Building) zones[m.zone][1].areas.push_back(geom::area(m.polygon));
+  std::vector<double> lots_in_block(city.blocks.size(), 0);
+  for (const Lot& lot : city.lots)
+    if (lot.block >= 0) lots_in_block[lot.block] += geom::area(lot.polygon);
+  for (std::size_t i = 0; i < city.lots.size(); ++i) {
+    const Lot& lot = city.lots[i];
+    const double area = geom::area(lot.polygon);
+    const double land = lot.block >= 0 && lots_in_block[lot.block] > 0
+                            ? area * geom::area(city.blocks[lot.block].polygon) / lots_in_block[lot.block]
+                            : area;
+    zones[lot.zone][i < city.held_lots.size() && city.held_lots[i] ? 0 : 1].land_m2 += land;
+  }
+  std::map<ZoneType, double> land_use;
+  for (const ZoneFeature& z : city.drawn.zones)
+    for (const geom::Polygon& p : z.polygons) land_use[z.type] += drawn_area(p);
+  ordered_json out = ordered_json::object();
+  for (ZoneType t : {ZoneType::Residential, ZoneType::Commercial, ZoneType::Industrial}) {
+    if (!zones.count(t)) continue;
+    ordered_json zone{{"land_use_m2", std::round(land_use[t])}};
+    for (int k = 0; k < 2; ++k) {
+      Side& side = zones[t][k];
+      std::sort(side.areas.begin(), side.areas.end());
+      double total = 0;
+      for (double a : side.areas) total += a;
+      auto at = [&](double q) {
+        const std::size_t i = static_cast<std::size_t>(std::ceil(q * static_cast<double>(side.areas.size())));
+        return std::round(side.areas[std::max<std::size_t>(i, 1) - 1] * 10) / 10;
+      };
+      ordered_json figures{{"footprints", side.areas.size()}};
+      if (!side.areas.empty()) figures["median_m2"] = at(0.5), figures["p90_m2"] = at(0.9);
+      figures["footprint_m2"] = std::round(total);
+      figures["coverage_of_land_use"] = land_use[t] > 0 ? std::round(total / land_use[t] * 1e4) / 1e4 : 0.0;
+      figures["lots_land_m2"] = std::round(side.land_m2);
+      figures["coverage_of_lots"] = side.land_m2 > 0 ? std::round(total / side.land_m2 * 1e4) / 1e4 : 0.0;
+      zone[k == 0 ? "mapped" : "generated"] = figures;
+    }
+    out[std::string(name(t))] = zone;
+  }
+  return out;
+}
+
 ordered_json mapped_buildings_report(const City& city) {
   const MappedTally& t = city.mapped;
   double mapped_area = 0, generated_area = 0;
@@ -223,6 +289,7 @@ ordered_json city_report(const City& city, const WrittenCity& written, const ord
       {"placement_fallbacks", placement_fallbacks_report(city)},
       {"clutter", clutter_report(city.clutter.tally)},
       {"statistics", city_statistics(city.layers, &settings, &city.drawn)},
+      {"footprints_by_zone", footprints_by_zone(city)},
       {"validation",
        written.validation
            ? ordered_json{{"ok", written.validation->ok()}, {"problems", written.validation->problems},

@@ -59,6 +59,7 @@ Structures build_on_lots(City& city, const std::vector<PlannedLot>& planned, con
     Structures s = place_buildings(city.lots, city.settings, city.model_library(), city.channels, city.heightmap(),
                                    city.regions ? &city.regions->placements : nullptr, &held.held);
     city.mapped.held_lots = static_cast<int>(std::count(held.held.begin(), held.held.end(), 1));
+    city.held_lots = held.held;
     std::vector<char> built = held.held;
     for (const Building& b : s.buildings) built[b.lot] = 1;
     for (const ModelInstance& m : s.models) built[m.lot] |= m.kind == ModelKind::Building;

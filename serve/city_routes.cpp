@@ -3,9 +3,11 @@
 #include <set>
 #include <sstream>
 
+#include "generate/city_report.h"
 #include "generate/errors.h"
 #include "generate/export/output_folder.h"
 #include "generate/pipeline.h"
+#include "generate/sketch/like_place.h"
 #include "serve/city_tiles.h"
 #include "serve/render_request.h"
 #include "serve/server_state.h"
@@ -31,13 +33,20 @@ void refuse_busy(ServerState& s, httplib::Response& res) {
 
 // Sketch to every output into work/city, as exacity generate does (docs/design.md, The
 // pipeline), then the 3D view's tiles (docs/design.md, Serving: tiles).
-void generate_job(ServerState& s, const Sketch& sketch, JobRunner::Progress& progress) {
+void generate_job(ServerState& s, const Sketch& drawn, JobRunner::Progress& progress) {
   OutputFolder folder(s.city_folder());
   StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); },
                    kCityStages + kWriteStages + 1);
+  // The zone parameters of the place the sketch's "like" names, measured first.
+  Sketch sketch = drawn;
+  const nlohmann::ordered_json like = sketch.like.empty() ? nlohmann::ordered_json() : like_place(sketch, sketch.like);
   // Regions, blocks and lots the edits since the last generation left as they were are reused.
   auto city = std::make_shared<City>(build_city(sketch, clock, s.regions));
-  const GenerateResult result = write_city(sketch, *city, folder.staging(), clock);
+  GenerateResult result = write_city(sketch, *city, folder.staging(), clock);
+  if (!like.is_null()) {
+    result.report["like"] = like;
+    write_report(result.report, folder.staging());
+  }
   clock.run("tiles", [&] { write_city_tiles(*city, folder.staging() / "tiles"); });
   {
     std::unique_lock lock(s.outputs);

@@ -53,6 +53,7 @@ const std::map<std::string, Note>& notes() {
       {"min_footprint_width", {"m", "no footprint narrower than this either way"}},
       {"max_footprint_area", {"m²", "no footprint larger; a larger lot gets several buildings"}},
       {"min_footprint_area", {"m²", "no smaller footprint"}},
+      {"footprint_areas", {"m²", "footprint areas at equal steps of their distribution, smallest to largest (a real place's, as --like measures it): each footprint's area is drawn from it, its shape from footprint_width and footprint_depth"}},
       {"heights", {"m", "[lowest, highest] building near the city centre (half at its edge)"}},
       {"roof", {"", "auto (gabled on near-rectangles, hipped otherwise, for residential; flat for the others), flat, gabled or hipped"}},
       {"roof_pitch", {"°", "the roofs' pitch"}},
@@ -71,6 +72,7 @@ const std::map<std::string, Note>& notes() {
 json own_default(const std::string& key, const ZoneSettings& z) {
   if (key == "road_widths") return z.roads.road_widths;
   if (key == "heights") return json::array({z.buildings.min_height, z.buildings.max_height});
+  if (key == "footprint_areas") return z.buildings.footprint_areas;
   return nullptr;
 }
 

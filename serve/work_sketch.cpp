@@ -71,6 +71,7 @@ std::vector<std::pair<std::string, std::string>> named_files(const json& ex) {
   };
   if (ex.contains("terrain")) add(ex["terrain"], "heightmap", "\"exacity\".terrain.heightmap");
   add(ex, "grid", "\"exacity\".grid");
+  add(ex, "like", "\"exacity\".like");
   if (ex.contains("channels") && ex["channels"].is_object())
     for (const auto& [name, c] : ex["channels"].items()) add(c, "image", "\"exacity\".channels." + name + ".image");
   if (ex.contains("zones") && ex["zones"].is_object())

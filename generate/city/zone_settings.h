@@ -119,6 +119,10 @@ struct BuildingSettings {
   Range footprint_width{8, 14};       // m: along the street
   Range footprint_depth{9, 14};       // m: back from the street
   double min_footprint_width = 6;     // m: no footprint narrower than this either way
+  // m²: when given, footprint areas at equal steps of their distribution, smallest to
+  // largest (a real place's, measured by --like): each footprint's area is drawn from it,
+  // its shape from footprint_width and footprint_depth. Empty: sides drawn from those alone.
+  std::vector<double> footprint_areas;
   double max_footprint_area = 2000;   // m²: no footprint larger
   double min_footprint_area = 30;     // m²: smaller footprints get no building
   double min_height = 4, max_height = 12;  // m: near the city centre; half that at its edge

@@ -30,6 +30,17 @@ void read_footprint_sizes(const SettingsReader& s, BuildingSettings& b) {
   s.range("footprint_depth", b.footprint_depth, 1, 1e4, "footprint depth back from the street in metres");
 }
 
+void read_footprint_areas(const SettingsReader& s, BuildingSettings& b) {
+  if (!s.has("footprint_areas")) return;
+  const nlohmann::json& a = s.at("footprint_areas");
+  if (!a.is_array() || a.size() < 2 || a.size() > 101)
+    s.fail("footprint_areas", "give from 2 to 101 footprint areas in m², smallest to largest, such as [40, 90, 150, 400]");
+  b.footprint_areas.clear();
+  for (const nlohmann::json& v : a)
+    b.footprint_areas.push_back(read_number(v, s.file(), s.where("footprint_areas"),
+                                            b.footprint_areas.empty() ? 1 : b.footprint_areas.back(), 1e8));
+}
+
 void read_heights(const SettingsReader& s, BuildingSettings& b) {
   if (!s.has("heights")) return;
   const nlohmann::json& h = s.at("heights");
@@ -62,7 +73,7 @@ const std::set<std::string>& building_setting_keys() {
     std::set<std::string> k{"setback",          "building_gap",       "footprint_width",    "footprint_depth",
                             "min_footprint_width", "max_footprint_area", "min_footprint_area", "heights",
                             "roof",             "roof_pitch",         "density",            "placement",
-                            "height_channel",   "storey_height"};
+                            "height_channel",   "storey_height",      "footprint_areas"};
     for (const PlacerType& t : placer_types()) k.insert(t.keys.begin(), t.keys.end());
     return k;
   }();
@@ -77,6 +88,7 @@ BuildingSettings read_building_settings(const SettingsReader& s, ZoneType type, 
   s.choice("density", b.density, {"dense", "normal", "sparse"},
            "expected \"dense\", \"normal\" or \"sparse\" (how far apart placed models stand)");
   read_heights(s, b);
+  read_footprint_areas(s, b);
   const auto& table = placer_types();
   const PlacerType& chosen = s.row("placement", table, placer_type(b.placement->name()));
   // As for road layouts: every placer's keys are checked where written; the chosen one's

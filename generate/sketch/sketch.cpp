@@ -381,7 +381,7 @@ class Parser {
     const std::string w = "\"exacity\"";
     known_keys(ex, w,
                {"version", "seed", "terrain", "models", "zones", "roads", "camera", "channels", "channel_sharpness",
-                "builtin_models"});
+                "builtin_models", "like"});
     if (ex.contains("version") && number(ex["version"], w + ".version", 1, 1) != 1) fail(w, "unsupported version");
     if (ex.contains("seed")) {
       const json& s = ex["seed"];
@@ -392,6 +392,11 @@ class Parser {
     if (ex.contains("models")) {
       if (!ex["models"].is_string()) fail(w + ".models", "expected the path of a model library (a string)");
       sketch.models = sketch.path.parent_path() / ex["models"].get<std::string>();
+    }
+    if (ex.contains("like")) {
+      if (!ex["like"].is_string() || ex["like"].get<std::string>().empty())
+        fail(w + ".like", "expected the path of an OSM extract or a file of building footprints (a string)");
+      sketch.like = sketch.path.parent_path() / ex["like"].get<std::string>();
     }
     if (ex.contains("camera")) {
       if (!ex["camera"].is_string())
@@ -659,6 +664,16 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
   parser.join_streets(sketch);
   parser.expect_few_meetings(sketch);
   return sketch;
+}
+
+DrawnFeatures read_drawn_features(const nlohmann::ordered_json& doc, const fs::path& path) {
+  Parser parser(path, false);
+  Sketch sketch;
+  sketch.path = path;
+  const json plain = json::parse(doc.dump());
+  const json& features = plain["features"];
+  for (std::size_t i = 0; i < features.size(); ++i) parser.feature(features[i], static_cast<int>(i), sketch);
+  return std::move(static_cast<DrawnFeatures&>(sketch));
 }
 
 }  // namespace exacity

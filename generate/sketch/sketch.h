@@ -41,6 +41,9 @@ struct Sketch : CitySettings, DrawnFeatures {
   // "grid", whose features it holds; `generate --models`), else empty. OUT/sketch.geojson
   // holds it, so that validate and render read the sketch generate read.
   std::string geojson;
+  // The real place whose mapped buildings give the zone parameters ("like", resolved
+  // against the sketch's folder; generate/sketch/like_place.h), or empty.
+  std::filesystem::path like;
   // The document read but its features (settings, CRS, ...), as JSON: with the roads, what
   // every region of the city shares (generate/regenerate.h).
   std::string settings_text;
@@ -67,6 +70,13 @@ Sketch load_sketch(const std::filesystem::path& path, bool read_grammars = true,
 // relative paths are the first file's.
 Sketch load_sketch(const std::vector<std::filesystem::path>& paths, bool read_grammars = true,
                    const std::filesystem::path& models = {});
+// A file as the sketch reader reads it, before its features are: a GeoJSON document in
+// metres, OpenStreetMap's tags made zones, roads and mapped buildings (a file of real
+// footprints, say, that has no zone or road and that load_sketch would refuse).
+nlohmann::ordered_json sketch_document(const std::filesystem::path& path);
+// The features of such a document, each checked as parse_sketch checks it; none need be a
+// zone or a road.
+DrawnFeatures read_drawn_features(const nlohmann::ordered_json& doc, const std::filesystem::path& path);
 Sketch parse_sketch(const std::string& text, const std::filesystem::path& path, bool read_grammars = true,
                     const std::filesystem::path& models = {});
 

@@ -72,6 +72,24 @@ Sketch made_sketch(const nlohmann::ordered_json& doc, const fs::path& path, bool
 
 }  // namespace
 
+nlohmann::ordered_json sketch_document(const fs::path& path) {
+  const SketchSource source = sketch_source(path);
+  expect_readable(path, source);
+  if (source == SketchSource::GridMap)
+    throw UserError(path.string() + ": a grid map maps no buildings; give an OSM extract or a file of footprints");
+  nlohmann::ordered_json doc;
+  if (source == SketchSource::Osm || source == SketchSource::Ogr) {
+    doc = gis_document(path, source);
+  } else {
+    doc = nlohmann::ordered_json::parse(file_text(path), nullptr, false);
+    if (doc.is_discarded() || !doc.is_object() || !doc.contains("features") || !doc["features"].is_array())
+      throw UserError(path.string() + ": not a GeoJSON FeatureCollection; give an OSM extract or a file of footprints");
+  }
+  project_to_metres(doc, path);
+  apply_osm_tags(doc, {{path, doc["features"].size()}});
+  return doc;
+}
+
 Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& models) {
   const SketchSource source = sketch_source(path);
   expect_readable(path, source);

@@ -1,0 +1,153 @@
+// Looking like a place (docs/gis.md): `generate --like FILE` and the sketch's "like" take
+// the zone parameters from the mapped buildings of a real place, measured per zone type.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "tests/cli_util.h"
+#include "tests/test_util.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::ordered_json;
+
+void write(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::binary) << text; }
+
+ordered_json rectangle(double x0, double y0, double x1, double y1) {
+  return {{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}, {x0, y0}}};
+}
+
+// A residential zone 330 m by 100 m along a road 10 m wide on y = 0, and twelve mapped
+// footprints 10 m deep standing 5 m behind the road's surface (y = 10), 4 m apart, 10 to
+// 32 m wide: areas 100 to 320 m² in steps of 20 (median 200, 90th percentile 300).
+ordered_json measured_place() {
+  ordered_json features = ordered_json::array();
+  features.push_back({{"type", "Feature"}, {"properties", {{"zone", "residential"}}},
+                      {"geometry", {{"type", "Polygon"}, {"coordinates", rectangle(0, 0, 330, 100)}}}});
+  features.push_back({{"type", "Feature"}, {"properties", {{"road", "local"}, {"width", 10}}},
+                      {"geometry", {{"type", "LineString"}, {"coordinates", {{-10, 0}, {340, 0}}}}}});
+  double x = 10;
+  for (int i = 0; i < 12; ++i) {
+    const double w = 10 + 2 * i;
+    features.push_back({{"type", "Feature"}, {"properties", {{"building", "house"}, {"height", 6 + i}}},
+                        {"geometry", {{"type", "Polygon"}, {"coordinates", rectangle(x, 10, x + w, 20)}}}});
+    x += w + 4;
+  }
+  return {{"type", "FeatureCollection"}, {"features", features}};
+}
+
+// A residential zone with streets every 120 m and no buildings: all of it generated.
+ordered_json empty_place() {
+  ordered_json features = ordered_json::array();
+  features.push_back({{"type", "Feature"}, {"properties", {{"zone", "residential"}}},
+                      {"geometry", {{"type", "Polygon"}, {"coordinates", rectangle(0, 0, 480, 360)}}}});
+  for (double v = 0; v <= 480; v += 120)
+    features.push_back({{"type", "Feature"}, {"properties", {{"road", "local"}}},
+                        {"geometry", {{"type", "LineString"}, {"coordinates", {{v, -10}, {v, 370}}}}}});
+  for (double v = 0; v <= 360; v += 120)
+    features.push_back({{"type", "Feature"}, {"properties", {{"road", "local"}}},
+                        {"geometry", {{"type", "LineString"}, {"coordinates", {{-10, v}, {490, v}}}}}});
+  return {{"type", "FeatureCollection"},
+          {"exacity", {{"zones", {{"residential", {{"layout", "streets"}}}}}}},
+          {"features", features}};
+}
+
+ordered_json report_of(const fs::path& out) { return ordered_json::parse(cli_util::read(out / "report.json")); }
+
+}  // namespace
+
+// The twelve footprints' figures come out exactly, and the settings from them: setback and
+// gap as measured, the areas' distribution at every twentieth; the sketch copy holds them
+// (and no "like"), so validate rebuilds the same city.
+TEST(Like, MeasuresKnownFootprintsExactly) {
+  const fs::path dir = testing_util::temp_dir("like_known");
+  write(dir / "place.geojson", measured_place().dump());
+  const auto r = cli_util::run("generate " + (dir / "place.geojson").string() + " --like " +
+                               (dir / "place.geojson").string() + " -q -o " + (dir / "out").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const ordered_json like = report_of(dir / "out")["like"];
+  EXPECT_EQ(like["footprints"], 12);
+  EXPECT_EQ(like["zones_from"], "the file's land use");
+  const ordered_json z = like["zones"]["residential"];
+  EXPECT_EQ(z["buildings"], 12);
+  const ordered_json& m = z["measured"];
+  EXPECT_EQ(m["area_m2"], ordered_json::parse(R"({"count": 12, "p10": 120.0, "median": 200.0, "p90": 300.0})"));
+  EXPECT_EQ(m["long_side_m"]["median"], 20.0);
+  EXPECT_EQ(m["short_side_m"]["median"], 10.0);
+  EXPECT_EQ(m["setback_m"], ordered_json::parse(R"({"count": 12, "p10": 5.0, "median": 5.0, "p90": 5.0})"));
+  EXPECT_EQ(m["gap_m"], ordered_json::parse(R"({"count": 12, "p10": 4.0, "median": 4.0, "p90": 4.0})"));
+  EXPECT_EQ(m["height_m"]["median"], 11.0);
+  EXPECT_EQ(m["coverage_of_land_use"], std::round(2520.0 / 33000 * 1e4) / 1e4);
+  const ordered_json& set = z["set"];
+  EXPECT_EQ(set["setback"], 5.0);
+  EXPECT_EQ(set["building_gap"], 4.0);
+  EXPECT_EQ(set["min_footprint_area"], 120.0);
+  EXPECT_GE(set["max_footprint_area"].get<double>(), 320.0);
+  EXPECT_EQ(set["heights"], ordered_json::parse("[7.0, 16.0]"));
+  const ordered_json areas = set["footprint_areas"];
+  ASSERT_EQ(areas.size(), 21u);
+  EXPECT_EQ(areas[0], 100.0);
+  EXPECT_EQ(areas[10], 200.0);
+  EXPECT_EQ(areas[20], 320.0);
+  // Commercial and industrial land have no buildings: their defaults stay, and say so.
+  EXPECT_EQ(like["zones"]["commercial"]["kept_defaults"], "fewer than 10 mapped buildings in commercial land");
+  EXPECT_NE(r.out.find("exacity: like " + (dir / "place.geojson").string() + ": residential: 12 mapped buildings, "
+                       "footprint median 200 m2, p90 300 m2; set "),
+            std::string::npos)
+      << r.out;
+  const ordered_json copy = ordered_json::parse(cli_util::read(dir / "out" / "sketch.geojson"));
+  EXPECT_FALSE(copy["exacity"].contains("like"));
+  EXPECT_EQ(copy["exacity"]["zones"]["residential"]["setback"], 5.0);
+  EXPECT_EQ(cli_util::run("validate " + (dir / "out").string()).code, 0);
+}
+
+// A key the sketch sets itself is kept, and named as kept; the sketch's own "like" is read
+// relative to it, as --like would be.
+TEST(Like, TheSketchsOwnSettingsWinAndLikeIsASetting) {
+  const fs::path dir = testing_util::temp_dir("like_setting");
+  ordered_json place = measured_place();
+  place["exacity"] = {{"like", "place.geojson"}, {"zones", {{"residential", {{"setback", 2}}}}}};
+  write(dir / "place.geojson", place.dump());
+  const auto r = cli_util::run("generate " + (dir / "place.geojson").string() + " -q -o " + (dir / "out").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const ordered_json z = report_of(dir / "out")["like"]["zones"]["residential"];
+  EXPECT_EQ(z["kept_as_the_sketch_sets"], ordered_json::array({"setback"}));
+  EXPECT_FALSE(z["set"].contains("setback"));
+  EXPECT_EQ(z["set"]["building_gap"], 4.0);
+  const ordered_json copy = ordered_json::parse(cli_util::read(dir / "out" / "sketch.geojson"));
+  EXPECT_EQ(copy["exacity"]["zones"]["residential"]["setback"], 2);
+}
+
+// Generating empty land like the place moves the generated footprints' median from the
+// defaults' toward the place's 200 m², to within a quarter of it.
+TEST(Like, GeneratedMedianMovesTowardThePlace) {
+  const fs::path dir = testing_util::temp_dir("like_median");
+  write(dir / "place.geojson", measured_place().dump());
+  write(dir / "empty.geojson", empty_place().dump());
+  auto median = [&](const std::string& like, const char* out) {
+    const auto r = cli_util::run("generate " + (dir / "empty.geojson").string() + like + " -q -o " + (dir / out).string());
+    EXPECT_EQ(r.code, 0) << r.out;
+    return report_of(dir / out)["footprints_by_zone"]["residential"]["generated"]["median_m2"].get<double>();
+  };
+  const double before = median("", "before");
+  const double after = median(" --like " + (dir / "place.geojson").string(), "after");
+  EXPECT_LT(std::abs(after - 200), std::abs(before - 200)) << before << " -> " << after;
+  EXPECT_LT(std::abs(after - 200), 0.25 * 200) << before << " -> " << after;
+}
+
+// A file with too few buildings to measure is one line, exit 2, nothing written.
+TEST(Like, TooFewBuildingsIsOneLine) {
+  const fs::path dir = testing_util::temp_dir("like_few");
+  ordered_json few = measured_place();
+  few["features"].erase(few["features"].begin() + 5, few["features"].end());  // three buildings left
+  write(dir / "few.geojson", few.dump());
+  write(dir / "empty.geojson", empty_place().dump());
+  const auto r = cli_util::run("generate " + (dir / "empty.geojson").string() + " --like " + (dir / "few.geojson").string() +
+                               " -q -o " + (dir / "out").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_EQ(r.out, "exacity: error: " + (dir / "few.geojson").string() +
+                       ": maps 3 building footprints, too few to measure a place by (at least 10); give an extract "
+                       "or a file with more of its buildings, or leave out --like\n");
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
