@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "generate/cancel.h"
+#include "generate/cancellable_invoke.h"
 #include "generate/city/drawn_zones.h"
 #include "generate/errors.h"
 #include "generate/export/geojson.h"
@@ -480,13 +481,24 @@ Validation validate_output(const fs::path& dir) {
   check_references(c, road_areas, "road", roads);
   check_references(c, blocks, "roads", roads);
   if (!well_formed) return v;
-  const CancelCheck cancel;
-  cancel.check();
-  check_tiling(c, sketch, refs, polygons);
-  cancel.check();
-  check_roads(c, sketch, roads, water);
-  cancel.check();
-  validate_clutter(dir, layers, v);
+  // The tiling's map, the roads' checks and the clutter's share nothing: they run at once,
+  // each with its own problems, taken in this order as if they had run one after another.
+  Validation tiling, road_checks, clutter;
+  invoke_cancellable(
+      [&] {
+        Checker t(tiling);
+        check_tiling(t, sketch, refs, polygons);
+      },
+      [&] {
+        Checker r(road_checks);
+        check_roads(r, sketch, roads, water);
+        validate_clutter(dir, layers, clutter);
+      });
+  for (const Validation* part : {&tiling, &road_checks, &clutter}) {
+    for (const std::string& p : part->problems) c.problem(p);
+    v.features.insert(part->features.begin(), part->features.end());
+    v.widest_sliver = std::max(v.widest_sliver, part->widest_sliver);
+  }
   return v;
 }
 
