@@ -3,10 +3,13 @@
 #include "generate/cancel.h"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
+#include <chrono>
 #include <fstream>
 #include <thread>
 
+#include "generate/cancellable_invoke.h"
 #include "generate/errors.h"
 #include "generate/export/cancellable_file.h"
 #include "generate/pipeline.h"
@@ -103,6 +106,25 @@ TEST(Cancel, ACheckTakesItsThreadsFlagToOtherThreads) {
     }
   }).join();
   EXPECT_TRUE(thrown);
+}
+
+// Work run at once on TBB's threads checks the flag of the thread that started it: once
+// cancelled, no piece begins, on whichever thread it would have run.
+TEST(Cancel, PiecesRunAtOnceTakeTheStartingThreadsFlag) {
+  const tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
+  std::atomic<bool> flag{true};
+  const CancelScope scope(flag);
+  std::atomic<int> begun{0};
+  auto piece = [&] {
+    ++begun;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  };
+  EXPECT_THROW(for_each_cancellable(64, [&](std::size_t) { piece(); }), Cancelled);
+  EXPECT_THROW(invoke_cancellable(piece, piece, piece, piece), Cancelled);
+  EXPECT_EQ(begun.load(), 0);
+  flag = false;
+  for_each_cancellable(64, [&](std::size_t) { piece(); });
+  EXPECT_EQ(begun.load(), 64);
 }
 
 // A document written in one call stops within its first 64 KiB once cancelled, and a file

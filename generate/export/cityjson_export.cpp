@@ -43,10 +43,12 @@ class Vertices {
     if (added) list_.push_back(q);
     return it->second;
   }
-  json to_json() const {
-    json v = json::array();
-    for (const auto& q : list_) v.push_back({q[0], q[1], q[2]});
-    return v;
+  // As JSON's array of [x, y, z] integers, written as it goes.
+  void write(std::ostream& out) const {
+    out << '[';
+    for (std::size_t i = 0; i < list_.size(); ++i)
+      out << (i ? ",[" : "[") << list_[i][0] << ',' << list_[i][1] << ',' << list_[i][2] << ']';
+    out << ']';
   }
 
  private:
@@ -371,24 +373,26 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
   const geom::Box box = city_box(ground);
   const geom::Vec2 origin{std::floor(box.min_x), std::floor(box.min_y)};
   Vertices v(origin);
-  json objects = json::object();
+  // Each object's text as soon as it is made, by its key in the document's order: the
+  // objects as JSON values all at once took several times the file's size.
+  std::map<std::string, std::string> texts;
   const CancelCheck cancel;
   for_each_by_id(
       buildings, models,
       [&](const Building& b) {
         cancel.check();
-        if (json o = building_object(b, meshes[b.id], v); !o.is_null())
-          objects["building-" + std::to_string(b.id)] = std::move(o);
+        if (json o = building_object(b, meshes[b.id], v); !o.is_null()) texts["building-" + std::to_string(b.id)] = o.dump();
       },
       [&](const ModelInstance& m) {
         cancel.check();
         if (json o = model_object(m, meshes[m.id], *library, v); !o.is_null())
-          objects["building-" + std::to_string(m.id)] = std::move(o);
+          texts["building-" + std::to_string(m.id)] = o.dump();
       });
   for (const Clutter& c : clutter) {
     cancel.check();
-    objects["clutter-" + std::to_string(c.instance.id)] = clutter_object(c, *library, v);
+    texts["clutter-" + std::to_string(c.instance.id)] = clutter_object(c, *library, v).dump();
   }
+  json objects = json::object();
   add_ground_objects(ground, ground_layers, terrain, v, objects);
   cancel.check();
 
@@ -396,12 +400,14 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
   json tin = json::array();
   append_triangles(*layer_mesh(ground_layers, GroundKind::Terrain), v, tin);
   objects["terrain"] = {{"type", "TINRelief"}, {"geometry", json::array({{{"type", "CompositeSurface"}, {"lod", "1"}, {"boundaries", std::move(tin)}}})}};
+  for (auto it = objects.begin(); it != objects.end(); ++it) texts[it.key()] = it->dump();
+  objects = nullptr;
 
+  // Every member but the objects and the vertices; in the document's (sorted) order the
+  // objects come first and the vertices last, so they are written before and after it.
   json doc{{"type", "CityJSON"},
            {"version", "2.0"},
-           {"transform", {{"scale", {kScale, kScale, kScale}}, {"translate", {origin.x, origin.y, 0.0}}}},
-           {"CityObjects", std::move(objects)},
-           {"vertices", v.to_json()}};
+           {"transform", {{"scale", {kScale, kScale, kScale}}, {"translate", {origin.x, origin.y, 0.0}}}}};
   Appearance appearance(file.parent_path() / "textures");
   if (library) doc["geometry-templates"] = templates(*library, appearance);
   if (!appearance.empty()) doc["appearance"] = appearance.to_json();
@@ -409,10 +415,15 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
   if (const std::optional<int> epsg = epsg_of(crs))
     doc["metadata"] = {{"referenceSystem", "https://www.opengis.net/def/crs/EPSG/0/" + std::to_string(*epsg)}};
 
-  // Streamed as it is serialised (the whole text in memory at once would be as large again),
-  // through a buffer that stops once the build is cancelled.
+  // Written as it goes, through a buffer that stops once the build is cancelled.
   CancellableFile out(file);
-  out << doc << '\n';
+  out << "{\"CityObjects\":{";
+  bool first = true;
+  for (const auto& [key, text] : texts) out << (first ? "" : ",") << json(key).dump() << ':' << text, first = false;
+  const std::string members = doc.dump();
+  out << "}," << members.substr(1, members.size() - 2) << ",\"vertices\":";
+  v.write(out);
+  out << "}\n";
   out.close();
 }
 

@@ -70,6 +70,54 @@ void write_point_geojson(const Layer& layer, const nlohmann::ordered_json& crs, 
   write_layer(layer, crs, file, true);
 }
 
+namespace {
+
+// One element of a FeatureCollection's "features" as a VectorFeature; false (with the
+// problem appended) when it is malformed or of a geometry type no layer holds.
+bool read_feature(const json& f, const std::string& where, Layer& layer, VectorFeature& vf,
+                  std::vector<std::string>& problems) {
+  auto position = [](const json& p) { return geom::Vec2{p.at(0).get<double>(), p.at(1).get<double>()}; };
+  try {
+    vf.properties = f.at("properties");
+    const json& g = f.at("geometry");
+    std::string type = g.at("type");
+    const json& c = g.at("coordinates");
+    if (type == "Point") {
+      vf.line = {position(c)};
+    } else if (type == "LineString") {
+      layer.lines = true;
+      for (const json& p : c) vf.line.push_back(position(p));
+    } else if (type == "Polygon") {
+      bool closed = true;
+      auto ring = [&](const json& r) {
+        geom::Ring ring;
+        for (const json& p : r) ring.push_back(position(p));
+        if (ring.size() < 4 || !(ring.front() == ring.back())) closed = false;
+        else ring.pop_back();
+        return ring;
+      };
+      vf.polygon.outer = ring(c.at(0));
+      for (std::size_t k = 1; k < c.size(); ++k) vf.polygon.holes.push_back(ring(c[k]));
+      if (!closed) {
+        problems.push_back(where + ": a ring is not closed or has fewer than 4 positions");
+        return false;
+      }
+    } else {
+      problems.push_back(where + ": unexpected geometry type " + type);
+      return false;
+    }
+    return true;
+  } catch (const json::exception& e) {
+    problems.push_back(where + ": malformed feature (" + e.what() + ")");
+    return false;
+  }
+}
+
+}  // namespace
+
+// Each feature is taken out of the parse as soon as it is read and dropped from the
+// document, so no more than one feature's JSON is held at once (a whole layer's document
+// takes several times its text's size).
 Layer read_geojson(const fs::path& file, std::vector<std::string>& problems) {
   Layer layer;
   layer.name = file.stem().string();
@@ -78,51 +126,35 @@ Layer read_geojson(const fs::path& file, std::vector<std::string>& problems) {
     problems.push_back(file.string() + ": missing");
     return layer;
   }
-  json doc = json::parse(in, nullptr, false);
-  if (doc.is_discarded() || !doc.is_object() || !doc.contains("features") || !doc["features"].is_array()) {
-    problems.push_back(file.string() + ": not a GeoJSON FeatureCollection");
-    return layer;
-  }
-  auto position = [](const json& p) { return geom::Vec2{p.at(0).get<double>(), p.at(1).get<double>()}; };
+  const std::size_t problems_before = problems.size();
   const CancelCheck cancel;
-  for (std::size_t i = 0; i < doc["features"].size(); ++i) {
-    cancel.check();
-    const json& f = doc["features"][i];
-    std::string where = file.filename().string() + ": features[" + std::to_string(i) + "]";
-    try {
-      VectorFeature vf;
-      vf.properties = f.at("properties");
-      const json& g = f.at("geometry");
-      std::string type = g.at("type");
-      const json& c = g.at("coordinates");
-      if (type == "Point") {
-        vf.line = {position(c)};
-      } else if (type == "LineString") {
-        layer.lines = true;
-        for (const json& p : c) vf.line.push_back(position(p));
-      } else if (type == "Polygon") {
-        bool closed = true;
-        auto ring = [&](const json& r) {
-          geom::Ring ring;
-          for (const json& p : r) ring.push_back(position(p));
-          if (ring.size() < 4 || !(ring.front() == ring.back())) closed = false;
-          else ring.pop_back();
-          return ring;
-        };
-        vf.polygon.outer = ring(c.at(0));
-        for (std::size_t k = 1; k < c.size(); ++k) vf.polygon.holes.push_back(ring(c[k]));
-        if (!closed) {
-          problems.push_back(where + ": a ring is not closed or has fewer than 4 positions");
-          continue;
-        }
-      } else {
-        problems.push_back(where + ": unexpected geometry type " + type);
-        continue;
-      }
-      layer.features.push_back(std::move(vf));
-    } catch (const json::exception& e) {
-      problems.push_back(where + ": malformed feature (" + e.what() + ")");
+  std::string key;           // the top-level member being read
+  bool in_features = false;  // within the top-level "features" array
+  std::size_t index = 0;     // the next feature's
+  auto feature_read = [&](int depth, json::parse_event_t event, json& parsed) {
+    if (depth == 1 && event == json::parse_event_t::key) key = parsed.get<std::string>();
+    if (depth == 1 && event == json::parse_event_t::array_start && key == "features") {
+      // A later "features" member replaces an earlier one, as in the parsed document.
+      in_features = true, index = 0, layer.lines = false, layer.features.clear(), problems.resize(problems_before);
+      return true;
     }
+    if (depth == 1 && event == json::parse_event_t::array_end) in_features = false;
+    if (!in_features || depth != 2 ||
+        (event != json::parse_event_t::object_end && event != json::parse_event_t::array_end &&
+         event != json::parse_event_t::value))
+      return true;
+    cancel.check();
+    VectorFeature vf;
+    if (read_feature(parsed, file.filename().string() + ": features[" + std::to_string(index++) + "]", layer, vf, problems))
+      layer.features.push_back(std::move(vf));
+    return false;  // read: not kept in the document
+  };
+  json doc = json::parse(in, feature_read, false);
+  if (doc.is_discarded() || !doc.is_object() || !doc.contains("features") || !doc["features"].is_array()) {
+    problems.resize(problems_before);
+    problems.push_back(file.string() + ": not a GeoJSON FeatureCollection");
+    layer.lines = false, layer.features.clear();
+    return layer;
   }
   return layer;
 }

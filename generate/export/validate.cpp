@@ -1,12 +1,16 @@
 #include "generate/export/validate.h"
 
+#include <array>
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <span>
+#include <stdexcept>
 #include <set>
 #include <unordered_map>
 
 #include "generate/cancel.h"
+#include "generate/cancellable_invoke.h"
 #include "generate/city/drawn_zones.h"
 #include "generate/errors.h"
 #include "generate/export/geojson.h"
@@ -93,36 +97,51 @@ void check_polygons(Checker& c, const Layer& layer, std::vector<PolygonRef>& ref
 constexpr std::initializer_list<Kind> kZoning{Kind::Zone, Kind::Park, Kind::Water, Kind::Road};
 constexpr std::initializer_list<Kind> kBlocking{Kind::Block, Kind::Park, Kind::Water, Kind::Road};
 
-// The polygons one face of the tiling map lies in, by kind.
+// The polygons one face of the tiling map lies in, by kind: indices into refs, grouped by
+// kind in a buffer reused from face to face rather than a map of vectors made per face.
 class FaceCover {
  public:
-  FaceCover(const std::vector<PolygonRef>& refs, const std::vector<int>& inside) : refs_(refs) {
-    for (int p : inside) here_[refs[p].kind].push_back(p);
+  static constexpr int kKinds = static_cast<int>(Kind::Building) + 1;
+
+  FaceCover(const std::vector<PolygonRef>& refs, const std::vector<int>& inside, std::vector<int>& by_kind)
+      : refs_(refs), by_kind_(by_kind) {
+    start_.fill(0);
+    for (int p : inside) ++start_[static_cast<int>(refs[p].kind) + 1];
+    for (int k = 1; k <= kKinds; ++k) start_[k] += start_[k - 1];
+    by_kind_.resize(inside.size());
+    std::array<int, kKinds + 1> next = start_;
+    for (int p : inside) by_kind_[next[static_cast<int>(refs[p].kind)]++] = p;
   }
 
   std::size_t count(std::initializer_list<Kind> kinds) const {
     std::size_t n = 0;
-    for (Kind k : kinds)
-      if (auto it = here_.find(k); it != here_.end()) n += it->second.size();
+    for (Kind k : kinds) n += all(k).size();
     return n;
   }
 
   std::string names(std::initializer_list<Kind> kinds) const {
     std::string s;
     for (Kind k : kinds)
-      if (auto it = here_.find(k); it != here_.end())
-        for (int p : it->second) s += (s.empty() ? "" : " and ") + refs_[p].name;
+      for (int p : all(k)) s += (s.empty() ? "" : " and ") + refs_[p].name;
     return s;
   }
 
   // The first polygon of that kind; there must be one.
-  const PolygonRef& first(Kind k) const { return refs_[here_.at(k)[0]]; }
-  // The indices of every polygon of that kind; there must be one.
-  const std::vector<int>& all(Kind k) const { return here_.at(k); }
+  const PolygonRef& first(Kind k) const {
+    const std::span<const int> of_kind = all(k);
+    if (of_kind.empty()) throw std::out_of_range("FaceCover::first: no polygon of this kind");
+    return refs_[of_kind[0]];
+  }
+  // The indices of every polygon of that kind.
+  std::span<const int> all(Kind k) const {
+    const int i = static_cast<int>(k);
+    return {by_kind_.data() + start_[i], static_cast<std::size_t>(start_[i + 1] - start_[i])};
+  }
 
  private:
   const std::vector<PolygonRef>& refs_;
-  std::map<Kind, std::vector<int>> here_;
+  std::vector<int>& by_kind_;
+  std::array<int, kKinds + 1> start_;  // kind k's indices are by_kind_[start_[k], start_[k + 1])
 };
 
 // Labels each face of the tiling map with the index of what is wrong there, 0 where
@@ -134,9 +153,9 @@ class FaceLabels {
 
   int of(const geom::Windings& w) {
     cancel_.check();
-    std::vector<int> inside;
-    if (int label = ring_windings(w, inside)) return label;
-    const FaceCover here(refs_, inside);
+    inside_.clear();
+    if (int label = ring_windings(w, inside_)) return label;
+    const FaceCover here(refs_, inside_, by_kind_);
     if (int label = overlaps(here)) return label;
     if (int label = nesting(here)) return label;
     return against_sketch(here, w);
@@ -191,7 +210,7 @@ class FaceLabels {
     // Buildings overlap only where nesting proves one wholly below the other
     // (docs/design.md, Placement: nesting), each pair decided once.
     if (here.count({Kind::Building}) > 0) {
-      const std::vector<int>& buildings = here.all(Kind::Building);
+      const std::span<const int> buildings = here.all(Kind::Building);
       for (std::size_t i = 0; i < buildings.size(); ++i)
         for (std::size_t j = i + 1; j < buildings.size(); ++j) {
           const PolygonRef &a = refs_[buildings[i]], &b = refs_[buildings[j]];
@@ -239,6 +258,7 @@ class FaceLabels {
   const CancelCheck cancel_;
   std::map<std::string, int> message_index_{{"", 0}};
   std::map<std::pair<int, int>, int> nested_;  // overlapping buildings -> their problem's label, 0 for none
+  std::vector<int> inside_, by_kind_;  // of the face being labelled (FaceCover's buffers)
 };
 
 // Polygon p's outer ring winds around counter 2p and its holes around 2p + 1.
@@ -473,13 +493,24 @@ Validation validate_output(const fs::path& dir) {
   check_references(c, road_areas, "road", roads);
   check_references(c, blocks, "roads", roads);
   if (!well_formed) return v;
-  const CancelCheck cancel;
-  cancel.check();
-  check_tiling(c, sketch, refs, polygons);
-  cancel.check();
-  check_roads(c, sketch, roads, water);
-  cancel.check();
-  validate_clutter(dir, layers, v);
+  // The tiling's map, the roads' checks and the clutter's share nothing: they run at once,
+  // each with its own problems, taken in this order as if they had run one after another.
+  Validation tiling, road_checks, clutter;
+  invoke_cancellable(
+      [&] {
+        Checker t(tiling);
+        check_tiling(t, sketch, refs, polygons);
+      },
+      [&] {
+        Checker r(road_checks);
+        check_roads(r, sketch, roads, water);
+        validate_clutter(dir, layers, clutter);
+      });
+  for (const Validation* part : {&tiling, &road_checks, &clutter}) {
+    for (const std::string& p : part->problems) c.problem(p);
+    v.features.insert(part->features.begin(), part->features.end());
+    v.widest_sliver = std::max(v.widest_sliver, part->widest_sliver);
+  }
   return v;
 }
 

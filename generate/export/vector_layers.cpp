@@ -8,6 +8,7 @@
 #include <set>
 
 #include "generate/cancel.h"
+#include "generate/cancellable_invoke.h"
 #include "geom/box_index.h"
 #include "geom/measure.h"
 #include "geom/polygon_check.h"
@@ -57,11 +58,16 @@ ordered_json slabs_json(const std::vector<Slab>& slabs) {
 
 }  // namespace
 
+// The files are read at once, each with its own problems, listed in this order.
 CityLayers read_layers(const std::filesystem::path& vector_dir, std::vector<std::string>& problems) {
   CityLayers layers;
-  for (Layer* l : {&layers.zones, &layers.water, &layers.roads, &layers.road_areas, &layers.blocks, &layers.lots,
-                   &layers.buildings})
-    *l = read_geojson(vector_dir / (l->name + ".geojson"), problems);
+  const std::vector<Layer*> all{&layers.zones,  &layers.water, &layers.roads,    &layers.road_areas,
+                                &layers.blocks, &layers.lots,  &layers.buildings};
+  std::vector<std::vector<std::string>> read_problems(all.size());
+  for_each_cancellable(all.size(), [&](std::size_t i) {
+    *all[i] = read_geojson(vector_dir / (all[i]->name + ".geojson"), read_problems[i]);
+  });
+  for (const auto& p : read_problems) problems.insert(problems.end(), p.begin(), p.end());
   return layers;
 }
 
