@@ -417,7 +417,12 @@ bool apply_osm_tags(ordered_json& doc, const std::vector<SketchFile>& files) {
     ordered_json& counts = files.size() > 1 ? osm["files"][k] : osm;
     if (!counts.contains("file")) counts["file"] = files[k].path.string();
     if (!counts.contains("skipped") || !counts["skipped"].is_object()) counts["skipped"] = ordered_json::object();
-    for (const auto& [why, count] : skipped[k]) counts["skipped"][why] = counts["skipped"].value(why, 0) + count;
+    // By why, as the extract's own counts are: a footway is counted here, after them.
+    std::map<std::string, ordered_json> merged;
+    for (const auto& [why, count] : counts["skipped"].items()) merged[why] = count;
+    for (const auto& [why, count] : skipped[k]) merged[why] = counts["skipped"].value(why, 0) + count;
+    counts["skipped"] = ordered_json::object();
+    for (auto& [why, count] : merged) counts["skipped"][why] = std::move(count);
   }
   return true;
 }
