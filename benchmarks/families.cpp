@@ -52,17 +52,20 @@ double sweep(double from, double to, int index, int steps) {
 
 const char* const kBuilt[] = {"residential", "commercial", "industrial"};
 
-// 1. Kettner et al.'s classroom example in a city: a zone's corner p, stepped by single
-// ulps over a 256 x 256 grid around the point (100.5, 100.5) of the line y = x, on which
-// a neighbouring zone's edge runs; the two zones overlap, touch or part by a sliver of
-// ulps, as the orientation of (q, r, p) decides.
+// 1. Kettner et al.'s classroom example in a city: a zone's corner p, stepped over a
+// 256 x 256 grid around the point (100.5, 100.5) of the line y = x, on which a
+// neighbouring zone's edge runs; the two zones overlap, touch or part by a sliver, as the
+// orientation of (q, r, p) decides. The grid's step is 2^e ulps, e from 0 (Kettner's
+// single ulps, 1e-14 m) up to 36 (1e-3 m), so the corner goes from an ordinary sketch's
+// distances off the line down to ulps.
 // Level: 8 less log2 of (1 + the ulps p lies off the line), 8 on it.
-json near_collinear(Random& rng, double& level) {
+json near_collinear(Random& rng, int index, double& level) {
   const int i = static_cast<int>(rng.next() % 256), j = static_cast<int>(rng.next() % 256);
-  level = 8 - std::log2(1.0 + std::abs(i - j));
-  P p{100.5, 100.5};
-  for (int k = 0; k < i; ++k) p.x = std::nextafter(p.x, INFINITY);
-  for (int k = 0; k < j; ++k) p.y = std::nextafter(p.y, INFINITY);
+  const int e = 4 * (index % 10);
+  // An ulp of 100.5 is 2^-46, so these sums are exact.
+  const double step = std::ldexp(1.0, e - 46);
+  level = 8 - std::log2(1.0 + std::abs(i - j) * std::ldexp(1.0, e));
+  const P p{100.5 + i * step, 100.5 + j * step};
   const P q{-200, -200}, r{400, 400};
   return json::array({zone("commercial", {{q, r, {-200, 400}}}), zone("residential", {{q, {400, -200}, r, p}}),
                       road("highway", 18, {{-300, 90 + rng.uniform(0, 20)}, {500, 80 + rng.uniform(0, 20)}})});
@@ -212,9 +215,9 @@ struct Entry {
 
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> list{
-      {{"near-collinear", "a zone corner stepped by ulps over a 256x256 grid around its neighbour's edge",
+      {{"near-collinear", "a zone corner stepped over a 256x256 grid of 1 to 2^36 ulps around its neighbour's edge",
         "8 - log2(1 + ulps off the line)"},
-       [](Random& rng, int, double& level) { return near_collinear(rng, level); }},
+       near_collinear},
       {{"translated", "a random city at 1e5, 1e6, 1e7 and 1e9 m", "log10 of the translation (m)"}, translated},
       {{"thin-angles", "highways crossing at 1e-3 to 1e-12 rad, or nearly parallel", "-log10 of the angle (rad)"},
        thin_angles},

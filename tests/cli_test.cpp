@@ -133,6 +133,20 @@ TEST(Cli, ValidateCatchesCentreLinesThatMeetBetweenVertices) {
   EXPECT_NE(v.out.find("meets another centre line between its vertices"), std::string::npos) << v.out;
 }
 
+TEST(Cli, ValidateCatchesCentreLinesThatRunAlongOneSegment) {
+  Result v = validate_tampered("overlap", "roads", [](nlohmann::json& doc) {
+    // A new centre line along the first one's first segment: they meet at vertices of both,
+    // and along the segment between them.
+    auto line = doc["features"][0]["geometry"]["coordinates"];
+    nlohmann::json along = doc["features"][0];
+    along["properties"]["id"] = 999999;
+    along["geometry"]["coordinates"] = {line[1], line[0]};
+    doc["features"].push_back(along);
+  });
+  EXPECT_EQ(v.code, 1) << v.out;
+  EXPECT_NE(v.out.find("runs along road"), std::string::npos) << v.out;
+}
+
 // A zone the run leaves without a lot is named, with the reason, in report.json and in a
 // note: here one drawn twice (the later copy takes all its land) and one no street reaches.
 TEST(Cli, ZonesLeftEmptyAreNamedWithTheReason) {

@@ -73,15 +73,18 @@ void expect_same_layers(const fs::path& a, const fs::path& b) {
 }
 
 // Converts a GeoJSON file with OGR (ogr2ogr's library call).
-// `crs` ("EPSG:3857"), if given, is the one to write it in (ogr2ogr's -t_srs).
-void translate(const fs::path& from, const fs::path& to, const char* driver, const std::string& crs = "") {
+// `crs` ("EPSG:3857"), if given, is the one to write it in (ogr2ogr's -t_srs); `creation`
+// ("SPATIAL_INDEX=NO"), a layer creation option (-lco).
+void translate(const fs::path& from, const fs::path& to, const char* driver, const std::string& crs = "",
+               const std::string& creation = "") {
   start_gdal();
   GDALDatasetH source = GDALOpenEx(from.string().c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr);
   ASSERT_NE(source, nullptr);
-  char* args[] = {const_cast<char*>("-f"), const_cast<char*>(driver), const_cast<char*>("-t_srs"),
-                  const_cast<char*>(crs.c_str()), nullptr};
-  if (crs.empty()) args[2] = nullptr;
-  GDALVectorTranslateOptions* options = GDALVectorTranslateOptionsNew(args, nullptr);
+  std::vector<char*> args = {const_cast<char*>("-f"), const_cast<char*>(driver)};
+  if (!crs.empty()) args.insert(args.end(), {const_cast<char*>("-t_srs"), const_cast<char*>(crs.c_str())});
+  if (!creation.empty()) args.insert(args.end(), {const_cast<char*>("-lco"), const_cast<char*>(creation.c_str())});
+  args.push_back(nullptr);
+  GDALVectorTranslateOptions* options = GDALVectorTranslateOptionsNew(args.data(), nullptr);
   int error = 0;
   GDALDatasetH made = GDALVectorTranslate(to.string().c_str(), nullptr, 1, &source, options, &error);
   GDALVectorTranslateOptionsFree(options);
@@ -229,6 +232,32 @@ TEST(Gis, GeoPackageAndShapefileSketchesGiveTheSameCity) {
   generate(dir / "shp", dir / "from-shp");
   expect_same_layers(dir / "from-geojson", dir / "from-gpkg");
   expect_same_layers(dir / "from-geojson", dir / "from-shp");
+}
+
+// A FlatGeobuf with its spatial index keeps its features in the index's order: overlapping
+// zones (the park drawn over the residential zone) are refused, since which covers which is
+// lost; without the index, or without overlaps, it is the GeoJSON's city.
+TEST(Gis, AFlatGeobufThatLostTheOrderOfOverlappingZonesIsRefused) {
+  const fs::path dir = testing_util::temp_dir("gis-fgb-order");
+  ordered_json town = town_in_metres();
+  write(dir / "town.geojson", town.dump());
+  translate(dir / "town.geojson", dir / "indexed.fgb", "FlatGeobuf");
+  EXPECT_EQ(error_of(dir / "indexed.fgb"),
+            (dir / "indexed.fgb").string() + " layer town: feature 0 and feature 1 overlap, and this FlatGeobuf keeps its "
+            "features in its spatial index's order, not the order they were drawn in, so which covers the other is unknown; "
+            "write it without the index (ogr2ogr -lco SPATIAL_INDEX=NO) or as a GeoPackage");
+  translate(dir / "town.geojson", dir / "unindexed.fgb", "FlatGeobuf", "", "SPATIAL_INDEX=NO");
+  write(dir / "town.exacity.json", kSettings.dump());
+  write(dir / "unindexed.exacity.json", kSettings.dump());
+  generate(dir / "town.geojson", dir / "from-geojson");
+  generate(dir / "unindexed.fgb", dir / "from-fgb");
+  expect_same_layers(dir / "from-geojson", dir / "from-fgb");
+  // The park moved beside the zone, touching it along an edge: no overlap, nothing refused.
+  town["features"][1]["geometry"]["coordinates"] =
+      ordered_json::parse("[[[385600, 6672300], [385700, 6672300], [385700, 6672400], [385600, 6672400], [385600, 6672300]]]");
+  write(dir / "beside.geojson", town.dump());
+  translate(dir / "beside.geojson", dir / "beside.fgb", "FlatGeobuf");
+  EXPECT_EQ(error_of(dir / "beside.fgb"), "");
 }
 
 TEST(Gis, AnOsmExtractBecomesZonesRoadsAndWater) {

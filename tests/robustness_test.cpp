@@ -50,6 +50,10 @@ TEST(RobustnessFamilies, EveryCaseHasALevelTheControlsIsZero) {
   EXPECT_DOUBLE_EQ(family_case("translated", 3, 7).level, 9);
   EXPECT_DOUBLE_EQ(family_case("many-highways", 4, 7).level, 7);
   EXPECT_DOUBLE_EQ(family_case("near-touching", 11, 7).level, 12);
+  // The corner's grid from single ulps (under 256 of them off the line: level above 0) to
+  // steps of 2^36 ulps (an ordinary sketch's millimetres and more: level under -20).
+  EXPECT_GT(family_case("near-collinear", 0, 7).level, 0);
+  EXPECT_LT(family_case("near-collinear", 9, 7).level, -20);
 }
 
 TEST(Robustness, TheExactBuildPassesEveryCaseOfTheSliceAndTheBaselinesRunIt) {

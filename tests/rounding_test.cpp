@@ -1,6 +1,7 @@
-// Sketches the city fuzz target found whose exports rounding left invalid before snap
-// rounding: far from the origin, turned, with vertices shared or a few ulps
-// apart. Each must now give a city the exact validator accepts.
+// Sketches the city fuzz target and the robustness benchmark found whose exports rounding
+// left invalid: far from the origin, turned, with vertices shared or a few ulps apart, or
+// lines nearer each other than a double's step. Each must now give a city the exact
+// validator accepts.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -30,6 +31,9 @@ const FuzzFinding kFindings[] = {
      R"({"exacity":{"seed":0},"features":[{"geometry":{"coordinates":[[[-6999999799.055381,1000000051.7074765],[-7000000199.267749,999999979.9469131],[-7000000109.807621,999999590.1923789],[-7000000109.807621,999999590.1923789],[-7000000109.807621,999999590.1923789],[-6999999799.055381,1000000051.7074765]]],"type":"Polygon"},"properties":{"zone":"residential"},"type":"Feature"},{"geometry":{"coordinates":[[[-6999999798.726285,999999806.579876],[-7000000018.628743,1000000176.8458557],[-7000000128.847116,999999673.1425145],[-6999999798.726285,999999806.579876]]],"type":"Polygon"},"properties":{"zone":"commercial"},"type":"Feature"},{"geometry":{"coordinates":[[[-7000000005.7714,999999904.1392429],[-6999999904.042572,999999983.908671],[-7000000109.807621,999999590.1923789],[-7000000109.807621,999999590.1923789],[-7000000109.807621,999999590.1923789],[-7000000005.7714,999999904.1392429]]],"type":"Polygon"},"properties":{"zone":"residential"},"type":"Feature"}],"type":"FeatureCollection"})"},
     {"finding4", "two residential rings sharing an edge at (1e5, 1e9) with setback 0: rounded zones overlapped",
      R"({"exacity":{"seed":5126,"zones":{"commercial":{"block_area":1000000000.0,"jitter":180.0,"setback":0.0}}},"features":[{"geometry":{"coordinates":[[[99952.43960478825,1000000163.0757262],[100045.60819298503,999999800.808701],[100002.15594140546,999999969.763906],[99953.86041162227,1000000157.551209],[99952.43960478825,1000000163.0757262]]],"type":"Polygon"},"properties":{"zone":"residential"},"type":"Feature"},{"geometry":{"coordinates":[[[100045.60819298503,999999800.808701],[100026.34054291643,999999875.7270229],[100002.15594140546,999999969.763906],[100037.8969761743,999999830.7921926],[99921.28121958107,1000000185.8999572],[99969.7254803103,1000000095.86313],[100045.60819298503,999999800.808701]]],"type":"Polygon"},"properties":{"zone":"residential"},"type":"Feature"}],"type":"FeatureCollection"})"},
+    {"thin_angle", "a highway and a main road leaving one point 1e-11 rad apart: rounded, the main road's first "
+                   "73 um ran along the highway's",
+     R"({"exacity":{"version":1,"seed":4562442215541141},"features":[{"type":"Feature","properties":{"zone":"residential"},"geometry":{"type":"Polygon","coordinates":[[[0.0,0.0],[500.0,0.0],[500.0,400.0],[0.0,400.0],[0.0,0.0]]]}},{"type":"Feature","properties":{"road":"highway","width":18.0},"geometry":{"type":"LineString","coordinates":[[-348.6934320756883,225.6823192514458],[851.3065679243117,225.6823192514458]]}},{"type":"Feature","properties":{"road":"main","width":10.0},"geometry":{"type":"LineString","coordinates":[[-348.6934320756883,225.6823192454458],[851.3065679243117,225.68231925744578]]}}],"type":"FeatureCollection"})"},
 };
 
 void PrintTo(const FuzzFinding& f, std::ostream* os) { *os << f.name; }

@@ -1,6 +1,7 @@
 #include "generate/export/validate.h"
 
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <set>
 #include <unordered_map>
@@ -310,14 +311,25 @@ void check_tiling(Checker& c, const DrawnFeatures& sketch, const std::vector<Pol
 // end of a grown road is a vertex of another centre line (a junction) or lies on the edge
 // of the built city (a drawn zone's ring or water). Every piece of the network holding a
 // region's roads holds a road the sketch drew (in a sketch without roads, all are one).
-// A road's centre line meets another only at its vertices.
+// A road's centre line meets another only at its vertices: never between them, nor along
+// a segment both have.
 void check_road_meetings(Checker& c, const std::vector<VectorFeature>& features) {
   geom::PlanarMap map;
   for (std::size_t i = 0; i < features.size(); ++i) map.add_polyline(features[i].line, static_cast<int>(i));
   map.insert_batch();
   const CancelCheck cancel;
+  std::map<geom::SegmentKey, int> line_along;  // each piece's first line
   for (const auto& [tag, pieces] : map.polyline_pieces()) {
     cancel.check();
+    for (const geom::PolylinePiece& piece : pieces) {
+      const auto [it, first] = line_along.emplace(geom::segment_key(piece.from, piece.to), tag);
+      if (!first && it->second != tag) {
+        c.problem("roads.geojson: road " + std::to_string(features[tag].properties.value("id", -1)) +
+                  " runs along road " + std::to_string(features[it->second].properties.value("id", -1)) +
+                  near(piece.from));
+        break;
+      }
+    }
     if (pieces.size() != features[tag].line.size() - 1)
       for (std::size_t k = 1; k < pieces.size(); ++k)
         if (pieces[k].segment == pieces[k - 1].segment) {

@@ -80,9 +80,15 @@ void extract_zones_and_water(const CityMap& city_map, const std::vector<ZoneFeat
 // Centre lines with every junction as a vertex, cut where they go on or off a bridge.
 // Returns each map road's first centre line on land and on a bridge: what its areas and
 // the blocks along it name.
+//
+// Each rounded segment is written once, by the first line that has it: two exact edges
+// nearer each other than a double's step (roads leaving one point at 1e-11 rad) can round
+// to the same segment, and the later line then stops before it and goes on after it, so
+// the two meet at its ends, vertices of both, and never overlap.
 std::vector<std::array<int, 2>> extract_centre_lines(const CityMap& city_map, Ground& out) {
   std::vector<std::array<int, 2>> first_line(city_map.roads.size(), {-1, -1});
   auto pieces_of = city_map.map.polyline_pieces();
+  std::set<geom::SegmentKey> written;
   const CancelCheck cancel;
   for (std::size_t r = 0; r < city_map.roads.size(); ++r) {
     cancel.check();
@@ -100,6 +106,10 @@ std::vector<std::array<int, 2>> extract_centre_lines(const CityMap& city_map, Gr
       };
       for (const geom::PolylinePiece& piece : pieces_of[road.first_tag + k]) {
         if (piece.from == piece.to) continue;  // shorter than a double's step: rounded away
+        if (!written.insert(geom::segment_key(piece.from, piece.to)).second) {
+          flush();
+          continue;
+        }
         bool bridge = city_map.labels[piece.left_label].cover == Cover::Water &&
                       city_map.labels[piece.right_label].cover == Cover::Water;
         if (!run.empty() && (bridge != run_bridge || !(run.back() == piece.from))) flush();

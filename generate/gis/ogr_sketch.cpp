@@ -56,6 +56,31 @@ ordered_json field(OGRFeature& f, const char* name) {
   }
 }
 
+// A polygon of a layer whose features' order decides which covers which where they overlap.
+struct Cover {
+  std::unique_ptr<OGRGeometry> geometry;
+  OGREnvelope box;
+  std::string source;
+};
+
+// A FlatGeobuf written with its spatial index (GDAL's default) holds its features in the
+// index's order, not the order they were drawn in; where zones overlap, the later one covers
+// the earlier, so that order is lost. Refused where it would matter: two zones overlapping.
+void expect_order_kept(std::vector<Cover>& covers, const std::string& where) {
+  std::sort(covers.begin(), covers.end(), [](const Cover& a, const Cover& b) { return a.box.MinX < b.box.MinX; });
+  for (std::size_t i = 0; i < covers.size(); ++i)
+    for (std::size_t j = i + 1; j < covers.size() && covers[j].box.MinX <= covers[i].box.MaxX; ++j) {
+      if (!covers[i].box.Intersects(covers[j].box) || !covers[i].geometry->Intersects(covers[j].geometry.get())) continue;
+      std::unique_ptr<OGRGeometry> common(covers[i].geometry->Intersection(covers[j].geometry.get()));
+      if (common && !common->IsEmpty() && common->getDimension() == 2)
+        throw UserError(where + ": " + covers[i].source.substr(where.size() + 1) + " and " +
+                        covers[j].source.substr(where.size() + 1) +
+                        " overlap, and this FlatGeobuf keeps its features in its spatial index's order, not the order "
+                        "they were drawn in, so which covers the other is unknown; write it without the index "
+                        "(ogr2ogr -lco SPATIAL_INDEX=NO) or as a GeoPackage");
+    }
+}
+
 }  // namespace
 
 SketchSource sketch_source(const fs::path& path) {
@@ -123,6 +148,8 @@ ordered_json ogr_sketch_document(const fs::path& path) {
         if (!to_crs) throw UserError(where + ": PROJ cannot bring its CRS to the first layer's; reproject it");
       }
     }
+    const bool order_lost = lower(ds->GetDriverName()) == "flatgeobuf" && layer->TestCapability(OLCFastSpatialFilter);
+    std::vector<Cover> covers;
     layer->ResetReading();
     for (OGRFeatureUniquePtr f(layer->GetNextFeature()); f; f.reset(layer->GetNextFeature())) {
       const std::string source = where + " feature " + std::to_string(f->GetFID());
@@ -141,9 +168,16 @@ ordered_json ogr_sketch_document(const fs::path& path) {
         char* text = linear->exportToJson();
         geometry = ordered_json::parse(text ? text : "null", nullptr, false);
         CPLFree(text);
+        const bool zone = linear->getDimension() == 2 && !properties.contains("road") &&
+                          !properties.contains("building") && !properties.contains("building:part");
+        if (order_lost && zone) {
+          Cover& c = covers.emplace_back(Cover{std::move(linear), {}, source});
+          c.geometry->getEnvelope(&c.box);
+        }
       }
       doc["features"].push_back({{"type", "Feature"}, {"properties", std::move(properties)}, {"geometry", std::move(geometry)}});
     }
+    expect_order_kept(covers, where);
   }
   return doc;
 }

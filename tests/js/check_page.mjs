@@ -199,7 +199,7 @@ try {
   await page.keyboard.up('Control');
   await features(2);
   await saved(2);
-  check(true, 'undo brought the road back');
+  check((await sketch()).features.some(f => f.properties.road === 'highway'), 'undo brought the road back');
 
   // The road's width, edited in the side panel.
   await page.mouse.click(...at(200, 9));
@@ -647,7 +647,6 @@ try {
   const hidden = tileRequests.length;
   await page.evaluate(() => window.exacityPage.drawn(true));
   check(tileRequests.length === hidden, 'Hide drops the basemap: no tiles asked for after it');
-  tileServer.close();
 
   // A GeoTIFF of the work folder in Web Mercator, white with a red square 40 m across on a
   // point of the sketch: the server warps it into the sketch's UTM zone and the page lays it
@@ -684,8 +683,22 @@ try {
   check(red(colours[0]) && white(colours[1]) && white(colours[2]),
         `the GeoTIFF's red square lies on its point, white around it: ${JSON.stringify(colours)}`);
   await page.screenshot({path: path.join(out, 'geotiff.png')});
+  // Both basemaps shown survive a reload; Hide forgets them.
+  await page.click('#basemap-show');
+  const beforeReload = tileRequests.length;
+  await page.reload({waitUntil: 'load'});
+  await ready();
+  await page.evaluate(() => window.exacityPage.drawn());
+  const again = await page.evaluate(m => window.exacityPage.geotiffAt([m, [m[0] + 60, m[1]]]), mark);
+  check(tileRequests.length > beforeReload && red(again[0]) && white(again[1]) &&
+        await page.$eval('#basemap-url', i => i.value) === `http://127.0.0.1:${tileServer.address().port}/{z}/{x}/{y}.png`,
+        `after a reload the tiles (${tileRequests.length - beforeReload} asked for) and the GeoTIFF (${JSON.stringify(again)}) are drawn again`);
+  await page.click('#basemap-panel summary');
   await page.click('#basemap-hide');
-  check(await page.evaluate(() => window.exacityPage.geotiffAt([[0, 0]])[0]) === null, 'Hide drops the GeoTIFF');
+  check(await page.evaluate(() => window.exacityPage.geotiffAt([[0, 0]])[0]) === null &&
+        await page.evaluate(() => localStorage.getItem('exacity.basemap') === null && localStorage.getItem('exacity.geotiff') === null),
+        'Hide drops the GeoTIFF and the tiles, also for the next reload');
+  tileServer.close();
 
   // Cancel: a city some kilometres across (as serve_test's), cancelled in its lots stage; the
   // progress bar empties and says so.
@@ -731,6 +744,24 @@ try {
   check(await page.$eval('#time-left', e => e.textContent) === '', 'and no time left is shown');
   check(/cancelled during the lots stage/.test(await message()), `the page says where it stopped: ${await message()}`);
   check(errors.length === 0, `no console errors${errors.length ? ': ' + errors.join(' | ') : ''}`);
+
+  // A page the server no longer knows (restarted, its token another; here the page's cookie
+  // is dropped): an edit is refused, the page keeps what is drawn and says so, and Save
+  // downloads what is drawn.
+  await page.deleteCookie(...(await page.cookies()));
+  const drawnBefore = await pageFeatures();
+  await page.click('#undo');
+  await page.waitForSelector('body[data-server="lost"]', {timeout: 30000});
+  const lostNote = await page.$eval('#message-note', e => e.textContent);
+  check(/^refused: no token/.test(await message()) && /^Not saved: the server does not know this page/.test(lostNote),
+        `a refused token is said: ${await message()} / ${lostNote}`);
+  const drawnAfter = await pageFeatures();
+  check(drawnAfter !== drawnBefore && drawnAfter !== await serverFeatures(), 'the page keeps the edit the server did not take');
+  fs.rmSync(downloaded);
+  await page.click('#save');
+  for (let i = 0; i < 50 && !fs.existsSync(downloaded); ++i) await new Promise(r => setTimeout(r, 100));
+  check(fs.existsSync(downloaded) && rounded(JSON.parse(fs.readFileSync(downloaded, 'utf8')).features) === drawnAfter,
+        'Save downloads the sketch as drawn');
 } catch (e) {
   console.error(String(e.stack || e));
   if (errors.length) console.error('console errors:', errors.join(' | '));

@@ -40,6 +40,9 @@ function showCount(doc) {
 let sending = Promise.resolve();
 let refusals = 0;
 let lastRefusal = '';
+// Set once the server refuses this page's token (it was restarted, so its token is another):
+// what is drawn stays here, to be saved to a file, since no edit can reach the server now.
+let serverLost = false;
 function send(doc) {
   const after = refusals;
   const sent = sending.then(() => (after === refusals ? sendNow(doc) : false));
@@ -49,6 +52,14 @@ function send(doc) {
 
 async function sendNow(doc) {
   const r = await api.putSketch(doc);
+  if (r.status === 403) {
+    serverLost = true;
+    document.body.dataset.server = 'lost';
+    lastRefusal = r.message;
+    say(r.message, true, 'Not saved: the server does not know this page (restarted?). What is drawn stays here: ' +
+                         'Save downloads it, to Open in the page at the address exacity serve printed.');
+    return false;
+  }
   if (!r.ok) {
     ++refusals;
     lastRefusal = r.message;
@@ -137,7 +148,7 @@ const panel = new SettingsPanel({
 // Sends an edit that is in the undo history as `text`; one the server did not take leaves it,
 // so undo never brings back a sketch the server refused.
 async function sendEdit(doc, text) {
-  if (!(await send(doc))) history.forget(text);
+  if (!(await send(doc)) && !serverLost) history.forget(text);
   updateButtons();
 }
 
@@ -219,27 +230,43 @@ async function showPlace() {
   if (map.geotiff.getSource()) await showGeoTiff();  // placed again over the new sketch, or dropped
 }
 // The GeoTIFF named, placed by the server: its refusal (no such file, no CRS, far away) said.
+// The basemaps shown are kept in the browser, so a reload draws them again.
 async function showGeoTiff() {
   const name = $('geotiff-name').value.trim();
   const r = await api.placeBasemap(name);
   if (!r.ok) {
     map.setGeoTiff(null);
+    localStorage.removeItem('exacity.geotiff');
     return say(r.message, true);
   }
   const placed = JSON.parse(r.text);
   map.setGeoTiff(placed);
+  localStorage.setItem('exacity.geotiff', name);
   say(`Basemap ${placed.file} under the sketch${placed.crs ? `, warped into ${placed.crs}` : ''}.`);
 }
-$('geotiff-show').addEventListener('click', showGeoTiff);
-$('basemap-show').addEventListener('click', () => {
+function showTiles() {
   const url = $('basemap-url').value.trim();
   if (!/^https?:\/\/.*\{z\}.*\{x\}.*\{y\}/.test(url)) return say('A basemap URL has {z}, {x} and {y} in it, such as https://tile.example.org/{z}/{x}/{y}.png', true);
   map.setBasemap(url, lonlat);
+  localStorage.setItem('exacity.basemap', url);
   say(`Basemap ${url} under the sketch.`);
-});
+}
+async function showSavedBasemaps() {
+  const url = localStorage.getItem('exacity.basemap'), name = localStorage.getItem('exacity.geotiff');
+  if (url) $('basemap-url').value = url;
+  if (url && lonlat?.epsg) showTiles();
+  if (name) {
+    $('geotiff-name').value = name;
+    await showGeoTiff();
+  }
+}
+$('geotiff-show').addEventListener('click', showGeoTiff);
+$('basemap-show').addEventListener('click', showTiles);
 $('basemap-hide').addEventListener('click', () => {
   map.setBasemap(null);
   map.setGeoTiff(null);
+  localStorage.removeItem('exacity.basemap');
+  localStorage.removeItem('exacity.geotiff');
 });
 
 // Open: a GeoJSON sketch from this computer, shown once the server has taken it.
@@ -267,7 +294,7 @@ $('open-file').addEventListener('change', async e => {
 // Save: the sketch as the server holds it, downloaded.
 $('save').addEventListener('click', async () => {
   const doc = map.sketch();
-  if (doc.features.length && !(await send(doc))) return;
+  if (doc.features.length && !(await send(doc)) && !serverLost) return;
   const link = document.createElement('a');
   link.href = URL.createObjectURL(new Blob([JSON.stringify(doc, null, 1)], {type: 'application/geo+json'}));
   link.download = 'sketch.geojson';
@@ -496,6 +523,7 @@ $('render-view').addEventListener('click', async () => {
   showCount(doc);
   panel.show(doc.exacity);
   await Promise.all([panel.build(), showLibrary(), showPlace()]);
+  await showSavedBasemaps();
   history.push(JSON.stringify(map.sketch()));
   updateButtons();
   const status = await api.getJson('/api/status');
