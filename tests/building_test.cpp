@@ -322,7 +322,7 @@ TEST(Ground, ABridgeOverDrawnWaterHasADeckPiersAndParapets) {
   Ground ground;
   ground.water.push_back({{{20, 0}, {80, 0}, {80, 100}, {20, 100}}, {}});
   ground.road_areas.push_back({0, true, RoadSurface::Carriageway, {{{20, 45}, {80, 45}, {80, 55}, {20, 55}}, {}}});
-  ground.roads.push_back({RoadClass::Highway, 10, -1, -1, true, {{20, 50}, {80, 50}}, 0});
+  ground.roads.push_back({RoadClass::Highway, 10, -1, -1, true, {{20, 50}, {80, 50}}, 0, {}});
   const BridgeDecks decks = bridge_decks(ground, nullptr);
   const double top = decks.height[0], level = water_level(ground.water[0], nullptr);
   EXPECT_DOUBLE_EQ(top, kRoadOverTerrain);

@@ -466,3 +466,218 @@ TEST(OsmOutput, IdsFromAGivenRangeAreReadByGdalsOsmDriverAsItIs) {
   EXPECT_EQ(zero.code, 2) << zero.out;
   EXPECT_FALSE(fs::exists(dir / "z" / "city.osm"));
 }
+
+namespace {
+
+// Two residential areas side by side between four streets, each way with the tags a mapper
+// gives a street (names, lanes, one way, speed, sidewalks, a bridge, a building passage), a
+// footway along the edge the two areas share, a footway mapped as a street's sidewalk and
+// one across an area. South: Broad Street (two ways, the east one a bridge), north: Narrow
+// Lane drawn east to west (its left is south), west: an alley, east: a residential street
+// without a sidewalk tag.
+const char* kTaggedStreets = R"(<?xml version="1.0" encoding="UTF-8"?>
+<osm version="0.6" generator="test">
+  <node id="1" version="1" lat="48.000" lon="9.999"/>
+  <node id="2" version="1" lat="48.000" lon="10.000"/>
+  <node id="3" version="1" lat="48.000" lon="10.004"/>
+  <node id="4" version="1" lat="48.000" lon="10.008"/>
+  <node id="5" version="1" lat="48.000" lon="10.009"/>
+  <node id="6" version="1" lat="48.003" lon="10.000"/>
+  <node id="7" version="1" lat="48.003" lon="10.004"/>
+  <node id="8" version="1" lat="48.003" lon="10.008"/>
+  <node id="9" version="1" lat="48.0003" lon="10.0005"/>
+  <node id="10" version="1" lat="48.0003" lon="10.0075"/>
+  <node id="11" version="1" lat="48.001" lon="10.001"/>
+  <node id="12" version="1" lat="48.002" lon="10.003"/>
+  <way id="100" version="1"><nd ref="1"/><nd ref="2"/><nd ref="3"/>
+    <tag k="highway" v="primary"/><tag k="name" v="Broad Street"/><tag k="lanes" v="4"/><tag k="oneway" v="yes"/>
+    <tag k="maxspeed" v="50"/><tag k="sidewalk" v="both"/></way>
+  <way id="101" version="1"><nd ref="3"/><nd ref="4"/><nd ref="5"/>
+    <tag k="highway" v="primary"/><tag k="name" v="Broad Street"/><tag k="lanes" v="4"/><tag k="oneway" v="yes"/>
+    <tag k="maxspeed" v="50"/><tag k="sidewalk" v="both"/><tag k="bridge" v="yes"/><tag k="layer" v="1"/></way>
+  <way id="102" version="1"><nd ref="8"/><nd ref="7"/><nd ref="6"/>
+    <tag k="highway" v="residential"/><tag k="name" v="Narrow Lane"/><tag k="lanes" v="2"/><tag k="maxspeed" v="30"/>
+    <tag k="sidewalk" v="left"/></way>
+  <way id="103" version="1"><nd ref="2"/><nd ref="6"/>
+    <tag k="highway" v="service"/><tag k="service" v="alley"/><tag k="tunnel" v="building_passage"/><tag k="sidewalk" v="no"/></way>
+  <way id="104" version="1"><nd ref="4"/><nd ref="8"/><tag k="highway" v="residential"/></way>
+  <way id="105" version="1"><nd ref="3"/><nd ref="7"/><tag k="highway" v="footway"/></way>
+  <way id="106" version="1"><nd ref="9"/><nd ref="10"/><tag k="highway" v="footway"/><tag k="footway" v="sidewalk"/></way>
+  <way id="107" version="1"><nd ref="11"/><nd ref="12"/><tag k="highway" v="footway"/></way>
+  <way id="200" version="1"><nd ref="2"/><nd ref="3"/><nd ref="7"/><nd ref="6"/><nd ref="2"/><tag k="landuse" v="residential"/></way>
+  <way id="201" version="1"><nd ref="3"/><nd ref="4"/><nd ref="8"/><nd ref="7"/><nd ref="3"/><tag k="landuse" v="residential"/></way>
+</osm>
+)";
+
+// The streets' own layout, and local streets with sidewalks of 1.5 m where their ways say
+// nothing.
+const char* kTaggedStreetsSettings =
+    R"({"roads": {"local": {"sidewalk": 1.5}}, "zones": {"residential": {"layout": "streets"}}})";
+
+struct TaggedStreetsCity {
+  fs::path out;
+  nlohmann::json roads, road_areas, blocks;
+  // roads.geojson's ids by the way they came from.
+  std::map<std::string, std::set<int>> ids_of_way;
+};
+
+const TaggedStreetsCity& tagged_streets_city() {
+  static const TaggedStreetsCity city = [] {
+    TaggedStreetsCity c;
+    const fs::path dir = testing_util::temp_dir("osm-tagged-streets");
+    write(dir / "streets.osm", kTaggedStreets);
+    write(dir / "streets.exacity.json", kTaggedStreetsSettings);
+    c.out = dir / "out";
+    EXPECT_TRUE(generate(dir / "streets.osm", c.out).valid);
+    c.roads = nlohmann::json::parse(cli_util::read(c.out / "vector" / "roads.geojson"));
+    c.road_areas = nlohmann::json::parse(cli_util::read(c.out / "vector" / "road_areas.geojson"));
+    c.blocks = nlohmann::json::parse(cli_util::read(c.out / "vector" / "blocks.geojson"));
+    for (const auto& f : c.roads["features"])
+      if (f["properties"].contains("osm_id")) c.ids_of_way[f["properties"]["osm_id"]].insert(f["properties"]["id"].get<int>());
+    return c;
+  }();
+  return city;
+}
+
+// The area of a road's sidewalks north and south of the line y = `y` (by each polygon's
+// outer ring's centroid).
+std::pair<double, double> sidewalk_area_north_and_south(const nlohmann::json& road_areas, const std::set<int>& roads, double y) {
+  double north = 0, south = 0;
+  for (const auto& f : road_areas["features"]) {
+    if (f["properties"]["surface"] != "sidewalk" || !f["properties"]["road"].is_number() ||
+        !roads.count(f["properties"]["road"].get<int>()))
+      continue;
+    const auto& ring = f["geometry"]["coordinates"][0];
+    double a = 0, cy = 0;
+    for (std::size_t i = 0; i + 1 < ring.size(); ++i) {
+      const double x0 = ring[i][0], y0 = ring[i][1], x1 = ring[i + 1][0], y1 = ring[i + 1][1];
+      const double cross = x0 * y1 - x1 * y0;
+      a += cross / 2;
+      cy += (y0 + y1) * cross / 6;
+    }
+    (cy / a > y ? north : south) += std::abs(a);
+  }
+  return {north, south};
+}
+
+}  // namespace
+
+// Before, roads.geojson and CityJSON had no OSM attributes and city.osm no way id, sidewalk,
+// bridge, layer or tunnel.
+TEST(OsmOutput, StreetsKeepTheirWaysAttributesInEveryOutput) {
+  const TaggedStreetsCity& city = tagged_streets_city();
+  ASSERT_EQ(city.ids_of_way.count("way/100"), 1u);
+  ASSERT_EQ(city.ids_of_way.count("way/101"), 1u);
+  ASSERT_EQ(city.ids_of_way.count("way/102"), 1u);
+  // Every piece of a way the map cuts (at junctions) keeps the way's attributes.
+  std::map<int, nlohmann::json> by_id;
+  for (const auto& f : city.roads["features"]) by_id[f["properties"]["id"].get<int>()] = f["properties"];
+  for (int id : city.ids_of_way.at("way/100")) {
+    const nlohmann::json& p = by_id.at(id);
+    EXPECT_EQ(p["name"], "Broad Street");
+    EXPECT_EQ(p["highway"], "primary");
+    EXPECT_EQ(p["oneway"], "yes");
+    EXPECT_EQ(p["lanes"], "4");
+    EXPECT_EQ(p["maxspeed"], "50");
+    EXPECT_EQ(p["sidewalk"], "both");
+    EXPECT_FALSE(p.contains("osm_bridge"));
+    EXPECT_EQ(p["width"], 14.0);  // 4 lanes of 3.5 m
+  }
+  for (int id : city.ids_of_way.at("way/101")) {
+    EXPECT_EQ(by_id.at(id)["osm_bridge"], "yes");
+    EXPECT_EQ(by_id.at(id)["layer"], "1");
+    EXPECT_EQ(by_id.at(id)["bridge"], false);  // over no water
+  }
+  for (int id : city.ids_of_way.at("way/102")) {
+    EXPECT_EQ(by_id.at(id)["name"], "Narrow Lane");
+    EXPECT_EQ(by_id.at(id)["width"], 7.0);  // a lanes=4 road is twice as wide as a lanes=2 one
+  }
+  for (int id : city.ids_of_way.at("way/103")) EXPECT_EQ(by_id.at(id)["tunnel"], "building_passage");
+
+  // city.osm: the same tags, the way's id as exacity:osm_id.
+  const OsmFile osm = read_osm(city.out / "city.osm");
+  int broad = 0;
+  for (const auto& tags : osm.ways) {
+    if (!tags.count("exacity:osm_id") || tags.at("exacity:osm_id") != "way/101") continue;
+    ++broad;
+    EXPECT_EQ(tags.at("name"), "Broad Street");
+    EXPECT_EQ(tags.at("oneway"), "yes");
+    EXPECT_EQ(tags.at("maxspeed"), "50");
+    EXPECT_EQ(tags.at("sidewalk"), "both");
+    EXPECT_EQ(tags.at("bridge"), "yes");
+    EXPECT_EQ(tags.at("layer"), "1");
+  }
+  EXPECT_EQ(broad, static_cast<int>(city.ids_of_way.at("way/101").size()));
+
+  // CityJSON: each road object carries its road's attributes.
+  const nlohmann::json cityjson = nlohmann::json::parse(cli_util::read(city.out / "city.city.json"));
+  std::set<std::string> named;
+  for (const auto& [key, o] : cityjson["CityObjects"].items())
+    if (o["type"] == "Road" && o["attributes"].contains("name")) {
+      named.insert(o["attributes"]["name"].get<std::string>() + " " + o["attributes"]["osm_id"].get<std::string>());
+      if (o["attributes"]["osm_id"] == "way/100") {
+        EXPECT_EQ(o["attributes"]["lanes"], "4");
+      }
+    }
+  EXPECT_EQ(named, (std::set<std::string>{"Broad Street way/100", "Broad Street way/101", "Narrow Lane way/102"}));
+}
+
+// Before, sidewalks came only from a class's setting: Broad Street (sidewalk=both, a
+// highway, whose class has none) had none, Narrow Lane (sidewalk=left) and the alley
+// (sidewalk=no) had the local class's on both sides.
+TEST(OsmOutput, SidewalksAreWhereTheWaysSayAndTheClassSettingWhereTheySayNothing) {
+  const TaggedStreetsCity& city = tagged_streets_city();
+  auto line_y = [&](const std::string& way) {
+    for (const auto& f : city.roads["features"])
+      if (f["properties"].value("osm_id", "") == way) return f["geometry"]["coordinates"][0][1].get<double>();
+    return std::nan("");
+  };
+  auto sidewalks = [&](const std::string& way) {
+    return sidewalk_area_north_and_south(city.road_areas, city.ids_of_way.at(way), line_y(way));
+  };
+  // Broad Street: 2 m on both sides of 740 m (its class sets none).
+  const auto [broad_north, broad_south] = sidewalks("way/100");
+  EXPECT_GT(broad_north, 250);
+  EXPECT_GT(broad_south, 250);
+  // Narrow Lane, drawn east to west: on its left, the south, 1.5 m along 600 m; on its
+  // north only the corners of its junctions.
+  const auto [lane_north, lane_south] = sidewalks("way/102");
+  EXPECT_GT(lane_south, 600);
+  EXPECT_LT(lane_north, 0.1 * lane_south);
+  // The alley (sidewalk=no) has none but junction corners; the east street, untagged, has
+  // its class's on both sides (its "north" here is its east, by centroid x below).
+  double alley = 0, east = 0, footway = 0;
+  for (const auto& f : city.road_areas["features"]) {
+    if (f["properties"]["surface"] != "sidewalk" || !f["properties"]["road"].is_number()) continue;
+    const int road = f["properties"]["road"];
+    const auto& ring = f["geometry"]["coordinates"][0];
+    double a = 0;
+    for (std::size_t i = 0; i + 1 < ring.size(); ++i)
+      a += (ring[i][0].get<double>() * ring[i + 1][1].get<double>() - ring[i + 1][0].get<double>() * ring[i][1].get<double>()) / 2;
+    if (city.ids_of_way.at("way/103").count(road)) alley += std::abs(a);
+    if (city.ids_of_way.at("way/104").count(road)) east += std::abs(a);
+    if (city.ids_of_way.at("way/105").count(road)) footway += std::abs(a);
+  }
+  EXPECT_GT(east, 2 * 1.5 * 300);
+  EXPECT_LT(alley, 0.1 * east);
+  EXPECT_LT(footway, 0.1 * east);  // a footway is all sidewalk: it has none of its own but junction corners
+}
+
+// Before, every footway was left out: the two areas were one block.
+TEST(OsmOutput, AFootwayAlongTheEdgeOfLandUseBoundsBlocksAndSidewalkFootwaysDoNot) {
+  const TaggedStreetsCity& city = tagged_streets_city();
+  ASSERT_EQ(city.ids_of_way.count("way/105"), 1u);
+  EXPECT_EQ(city.ids_of_way.count("way/106"), 0u);  // footway=sidewalk
+  EXPECT_EQ(city.ids_of_way.count("way/107"), 0u);  // across an area, bounding nothing
+  const int footway = *city.ids_of_way.at("way/105").begin();
+  int fronting = 0;
+  for (const auto& b : city.blocks["features"])
+    for (const auto& r : b["properties"]["roads"]) fronting += r == footway;
+  EXPECT_EQ(fronting, 2);  // a block each side
+  for (const auto& f : city.roads["features"])
+    if (f["properties"]["id"] == footway) {
+      EXPECT_EQ(f["properties"]["highway"], "footway");
+    }
+  const nlohmann::json sketch = nlohmann::json::parse(cli_util::read(city.out / "sketch.geojson"));
+  EXPECT_EQ(sketch["osm"]["skipped"]["highway=footway"], 2);  // the other two, counted as left out
+}

@@ -1,5 +1,6 @@
 #include "generate/city/city_map.h"
 
+#include <cmath>
 #include <map>
 
 #include "generate/cancel.h"
@@ -20,7 +21,7 @@ void add_junctions(const DrawnFeatures& features, CityMap& city_map) {
     bool sidewalks = false;
     for (const StreetArm& arm : node.arms) {
       const RoadFeature& r = features.roads[arm.road];
-      const double sidewalk = features.streets.sidewalk(r.road_class);
+      const double sidewalk = r.widest_sidewalk();
       carriageway.push_back({arm.toward, r.width / 2, arm.length});
       outer.push_back({arm.toward, r.width / 2 + sidewalk, arm.length});
       sidewalks |= sidewalk > 0;
@@ -43,9 +44,37 @@ void add_junctions(const DrawnFeatures& features, CityMap& city_map) {
       const RoadFeature& r = features.roads[arm.road];
       city_map.map.add_disc(node.at, r.width / 2, city_map.sketch_carriageways.at(arm.road));
       if (sidewalks)
-        city_map.map.add_disc(node.at, r.width / 2 + features.streets.sidewalk(r.road_class), city_map.sidewalks.at(arm.road));
+        city_map.map.add_disc(node.at, r.width / 2 + r.widest_sidewalk(), city_map.sidewalks.at(arm.road));
     }
   }
+}
+
+// The ground between a line and its offset by `d` (to its left; right where negative),
+// mitred as a stroke's side (bevelled past the same limit of 4): where a road has a sidewalk
+// on one side only (OSM's sidewalk=left or right), what its carriageway leaves of it is that
+// sidewalk. A sharp bend can fold the offset over itself; the fold still winds around the
+// counter, under the carriageway.
+geom::Ring one_side(const geom::Polyline& line, double d) {
+  auto normal = [&](std::size_t i) {  // of segment i -> i + 1, to its left
+    const double dx = line[i + 1].x - line[i].x, dy = line[i + 1].y - line[i].y, length = std::hypot(dx, dy);
+    return length > 0 ? geom::Vec2{-dy / length, dx / length} : geom::Vec2{0, 0};
+  };
+  geom::Ring ring(line.begin(), line.end());
+  std::vector<geom::Vec2> offset;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const geom::Vec2 before = normal(i > 0 ? i - 1 : i), after = normal(i + 1 < line.size() ? i : i - 1);
+    const geom::Vec2 mitre{before.x + after.x, before.y + after.y};
+    const double cosine = (mitre.x * before.x + mitre.y * before.y);  // |mitre| cos(half the turn)
+    const double scale = cosine > 0 ? d / cosine : 0;
+    if (cosine > 0 && std::hypot(mitre.x, mitre.y) * std::abs(scale) <= 4 * std::abs(d)) {
+      offset.push_back({line[i].x + mitre.x * scale, line[i].y + mitre.y * scale});
+    } else {
+      offset.push_back({line[i].x + before.x * d, line[i].y + before.y * d});
+      offset.push_back({line[i].x + after.x * d, line[i].y + after.y * d});
+    }
+  }
+  ring.insert(ring.end(), offset.rbegin(), offset.rend());
+  return ring;
 }
 
 }  // namespace
@@ -135,7 +164,7 @@ CityMap build_city_map(const CitySettings& settings, const DrawnFeatures& featur
   int tag = 0;
   for (int r = 0; r < city_map.sketch_roads; ++r) {
     const RoadFeature& f = features.roads[r];
-    MapRoad road{f.road_class, f.width, -1, -1, f.index, {}, tag};
+    MapRoad road{f.road_class, f.width, -1, -1, f.index, {}, tag, false, f.osm_tags};
     for (const geom::Polyline& line : f.lines) {
       city_map.map.add_stroke(line, f.width / 2, city_map.sketch_carriageways.at(r));
       road.lines.push_back(geom::Path::from(line));
@@ -148,8 +177,14 @@ CityMap build_city_map(const CitySettings& settings, const DrawnFeatures& featur
   city_map.junctions = {city_map.sidewalks.end(), 0};
   for (int r = 0; r < city_map.sketch_roads; ++r) {
     const RoadFeature& f = features.roads[r];
-    if (const double sidewalk = features.streets.sidewalk(f.road_class); sidewalk > 0)
-      for (const geom::Polyline& line : f.lines) city_map.map.add_stroke(line, f.width / 2 + sidewalk, city_map.sidewalks.at(r));
+    for (const geom::Polyline& line : f.lines) {
+      if (f.sidewalk_left == f.sidewalk_right) {
+        if (f.sidewalk_left > 0) city_map.map.add_stroke(line, f.width / 2 + f.sidewalk_left, city_map.sidewalks.at(r));
+      } else {
+        for (const double side : {f.sidewalk_left, -f.sidewalk_right})
+          if (side != 0) city_map.map.add_ring(one_side(line, side > 0 ? f.width / 2 + side : side - f.width / 2), city_map.sidewalks.at(r));
+      }
+    }
   }
   add_junctions(features, city_map);
   city_map.generated_roads = {city_map.junctions.end(), 0};

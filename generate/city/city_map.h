@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "generate/city/drawn_zones.h"
@@ -51,6 +53,7 @@ struct MapRoad {
   std::vector<geom::Path> lines;
   int first_tag = 0;  // polyline tag of lines[0]; the others follow
   bool link = false;  // joins a region's streets to the rest (road_network.cpp): paved wherever it runs
+  std::vector<std::pair<std::string, std::string>> osm_tags;  // a sketch road's (RoadFeature::osm_tags)
 };
 
 // A run of the map's winding counters that one kind of thing winds around: thing i

@@ -40,8 +40,13 @@ struct RoadFeature {
   RoadClass road_class = RoadClass::Highway;
   double width = 24;
   std::vector<geom::Polyline> lines;
-  // Its OpenStreetMap tags (highway, name, ...: osm_road_tags), which city.osm writes back.
+  // Its OpenStreetMap tags (osm_id, highway, name, lanes, sidewalk ...: osm_road_tags), which
+  // every export carries.
   std::vector<std::pair<std::string, std::string>> osm_tags;
+  // Its sidewalks' widths, m, left and right of its lines' direction: its sidewalk tag's, else
+  // its class's (StreetSettings::sidewalks).
+  double sidewalk_left = 0, sidewalk_right = 0;
+  double widest_sidewalk() const { return sidewalk_left > sidewalk_right ? sidewalk_left : sidewalk_right; }
 };
 
 // A building the sketch maps (OpenStreetMap's `building=*`, or any feature with a "building"
@@ -64,6 +69,8 @@ struct StreetSettings {
   bool dead_ends_are_errors = false;     // "dead_ends": "error"
   std::map<RoadClass, double> sidewalks;  // m on each side, per class; none unless set
   double sidewalk(RoadClass c) const { return sidewalks.count(c) ? sidewalks.at(c) : 0.0; }
+  // A sidewalk a road's own tag asks for (OSM's sidewalk=both): its class's width, else 2 m.
+  double tagged_sidewalk(RoadClass c) const { return sidewalk(c) > 0 ? sidewalk(c) : 2.0; }
 };
 
 // A road end that meets no other road.

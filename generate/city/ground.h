@@ -4,6 +4,8 @@
 // feature's id is its index in its list, but for blocks, which carry their own.
 #pragma once
 
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "generate/city/city_map.h"
@@ -26,6 +28,9 @@ struct RoadLine {
   bool bridge = false;
   geom::Polyline line;
   int sketch_road = -1;  // its road in Sketch::roads; -1 for roads laid out
+  // Its road's OpenStreetMap tags as read (RoadFeature::osm_tags): every piece of a way the
+  // map cuts keeps the way's.
+  std::vector<std::pair<std::string, std::string>> osm_tags;
 };
 
 // A piece of a road's surface: carriageway, sidewalk or junction.

@@ -325,13 +325,13 @@ json clutter_object(const Clutter& c, const ModelLibrary& library, Vertices& v) 
 void add_ground_objects(const Ground& ground, const std::vector<GroundLayer>& layers, const Terrain* terrain,
                         Vertices& v, json& objects) {
   using Groups = std::map<std::string, std::pair<json, std::vector<LevelPolygon>>>;
-  auto surfaces = [&](const Groups& groups, const std::string& prefix, const std::string& type, const char* key) {
+  auto surfaces = [&](const Groups& groups, const std::string& prefix, const std::string& type) {
     int n = 0;
     for (const auto& [text, group] : groups) {
       json geometry = multisurface(group.second, terrain, v);
       if (geometry.is_null()) continue;
       json o{{"type", type}, {"geometry", json::array({std::move(geometry)})}};
-      if (key) o["attributes"] = {{key, group.first}};
+      if (!group.first.is_null()) o["attributes"] = group.first;
       objects[prefix + std::to_string(n++)] = std::move(o);
     }
   };
@@ -341,19 +341,23 @@ void add_ground_objects(const Ground& ground, const std::vector<GroundLayer>& la
   const BridgeDecks decks = bridge_decks(ground, terrain);
   for (std::size_t i = 0; i < ground.road_areas.size(); ++i) {
     const RoadArea& a = ground.road_areas[i];
-    auto& [road, polygons] = roads[a.road >= 0 ? std::to_string(a.road) : "null"];
-    road = a.road >= 0 ? json(a.road) : json(nullptr);
+    auto& [attributes, polygons] = roads[a.road >= 0 ? std::to_string(a.road) : "null"];
+    // The road's id and its OpenStreetMap tags, as roads.geojson has them.
+    if (attributes.is_null()) {
+      attributes = {{"road", a.road >= 0 ? json(a.road) : json(nullptr)}};
+      if (a.road >= 0) attributes.update(json(road_attributes(ground.roads[a.road])));
+    }
     polygons.push_back({&a.polygon, decks.height[i]});
   }
   for (const ZoneArea& z : ground.zones) {
     auto& [zone, polygons] = zones[std::string(name(z.type))];
-    zone = name(z.type);
+    zone = {{"zone", name(z.type)}};
     polygons.push_back({&z.polygon, NAN});
   }
   for (const geom::Polygon& w : ground.water) water[""].second.push_back({&w, water_level(w, terrain)});
-  surfaces(roads, "road-", "Road", "road");
-  surfaces(zones, "landuse-", "LandUse", "zone");
-  surfaces(water, "water-", "WaterBody", nullptr);
+  surfaces(roads, "road-", "Road");
+  surfaces(zones, "landuse-", "LandUse");
+  surfaces(water, "water-", "WaterBody");
   // The decks' sides and undersides and the piers, one Bridge object for every bridge.
   if (const GroundMesh* bridges = layer_mesh(layers, GroundKind::Bridge); terrain && bridges) {
     json boundaries = json::array();

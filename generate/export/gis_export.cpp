@@ -208,15 +208,19 @@ const char* osm_highway(RoadClass road_class) {
   return road_class == RoadClass::Highway ? "primary" : road_class == RoadClass::Main ? "secondary" : "residential";
 }
 
-// A road's tags: the OSM tags it was read with (its highway class, name, ref ...), else the
-// class a mapper would give it; its width as built, and bridge and layer on bridges.
-OsmTagList road_tags(const RoadLine& road, int id, const DrawnFeatures& sketch) {
+// A road's tags: the OSM tags it was read with (its highway class, name, lanes, sidewalk ...;
+// its way's id as exacity:osm_id, as a mapped building's), else the class a mapper would
+// give it; its width as built, and bridge and layer on bridges the way does not tag.
+OsmTagList road_tags(const RoadLine& road, int id) {
   OsmTagList tags;
-  if (road.sketch_road >= 0) tags = sketch.roads[road.sketch_road].osm_tags;
-  const bool tagged = std::any_of(tags.begin(), tags.end(), [](const auto& t) { return t.first == "highway"; });
-  if (!tagged) tags.insert(tags.begin(), {"highway", osm_highway(road.road_class)});
+  for (const auto& [key, value] : road.osm_tags) tags.push_back({key == "osm_id" ? "exacity:osm_id" : key, value});
+  auto tagged = [&](const char* key) { return std::any_of(tags.begin(), tags.end(), [&](const auto& t) { return t.first == key; }); };
+  if (!tagged("highway")) tags.insert(tags.begin(), {"highway", osm_highway(road.road_class)});
   tags.push_back({"width", osm_number(road.width)});
-  if (road.bridge) tags.push_back({"bridge", "yes"}), tags.push_back({"layer", "1"});
+  if (road.bridge && !tagged("bridge")) {
+    tags.push_back({"bridge", "yes"});
+    if (!tagged("layer")) tags.push_back({"layer", "1"});
+  }
   tags.push_back({"exacity:id", std::to_string(id)});
   return tags;
 }
@@ -249,7 +253,7 @@ bool write_city_osm(const City& city, const fs::path& file, std::optional<std::i
   };
   for (std::size_t i = 0; i < city.ground.roads.size(); ++i) {
     const RoadLine& road = city.ground.roads[i];
-    if (road.line.size() >= 2) way(road.line, road_tags(road, static_cast<int>(i), city.drawn));
+    if (road.line.size() >= 2) way(road.line, road_tags(road, static_cast<int>(i)));
   }
   for (const VectorFeature& b : city.layers.buildings.features) {
     if (b.properties.value("kind", std::string("building")) != "building") continue;

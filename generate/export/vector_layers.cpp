@@ -109,7 +109,7 @@ std::vector<std::array<int, 2>> extract_centre_lines(const CityMap& city_map, Gr
         int& first = first_line[r][run_bridge];
         if (first < 0) first = static_cast<int>(out.roads.size());
         const int sketch_road = static_cast<int>(r) < city_map.sketch_roads ? static_cast<int>(r) : -1;
-        out.roads.push_back({road.road_class, road.width, road.level, road.region, run_bridge, std::move(run), sketch_road});
+        out.roads.push_back({road.road_class, road.width, road.level, road.region, run_bridge, std::move(run), sketch_road, road.osm_tags});
         run.clear();
       };
       for (const geom::PolylinePiece& piece : pieces_of[road.first_tag + k]) {
@@ -361,6 +361,12 @@ ordered_json mapped_attributes(const Building& b) {
           {"building", b.building_tag}};
 }
 
+ordered_json road_attributes(const RoadLine& road) {
+  ordered_json out = ordered_json::object();
+  for (const auto& [key, value] : road.osm_tags) out[key == "bridge" ? "osm_bridge" : key] = value;
+  return out;
+}
+
 CityLayers layers_of(const Ground& ground, const std::vector<Building>& buildings,
                      const std::vector<ModelInstance>& models, const ModelLibrary* library) {
   CityLayers out;
@@ -371,6 +377,7 @@ CityLayers layers_of(const Ground& ground, const std::vector<Building>& building
     ordered_json props{{"id", static_cast<int>(out.roads.features.size())}, {"class", name(r.road_class)},
                        {"width", r.width},  {"level", id_or_null(r.level)},
                        {"region", id_or_null(r.region)}, {"bridge", r.bridge}};
+    props.update(road_attributes(r));
     out.roads.features.push_back({std::move(props), {}, r.line});
   }
   for (const RoadArea& a : ground.road_areas)

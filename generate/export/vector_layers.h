@@ -51,6 +51,10 @@ Ground extract_ground(const CityMap& city_map, const std::vector<Block>& blocks,
 // where it has none) and its "building" tag.
 nlohmann::ordered_json mapped_attributes(const Building& b);
 
+// A road's OpenStreetMap tags as roads.geojson and CityJSON carry them: under their keys,
+// OSM's bridge as "osm_bridge" (the layer's own "bridge" says the piece crosses water).
+nlohmann::ordered_json road_attributes(const RoadLine& road);
+
 // The layers written into `vector/`.
 CityLayers layers_of(const Ground& ground, const std::vector<Building>& buildings,
                      const std::vector<ModelInstance>& models, const ModelLibrary* library);

@@ -242,8 +242,10 @@ class Collector : public osmium::handler::Handler {
     // A closed way tagged only as an area (waterway=riverbank) is the area handler's.
     if (!tags["highway"] && !(tags["waterway"] && !way.is_closed())) return;
     const OsmMeaning meaning = osm_line_meaning(lookup(tags));
-    if (meaning.kind == OsmMeaning::LeftOut) return ++skipped_[meaning.why], void();
+    // A footway is kept for apply_osm_tags to see whether it bounds land.
+    if (meaning.kind == OsmMeaning::LeftOut && !meaning.road_where_it_bounds_land) return ++skipped_[meaning.why], void();
     OsmFeature f{properties(tags, " way " + std::to_string(way.id()), true), {}, points(way.nodes())};
+    f.properties["osm_id"] = "way/" + std::to_string(way.id());
     if (f.line.size() < 2) return ++skipped_["ways without located nodes"], void();
     (meaning.kind == OsmMeaning::River ? rivers_ : roads_).push_back(std::move(f));
   }

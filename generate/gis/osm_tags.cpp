@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <memory>
+#include <set>
 
 #include <ogr_geometry.h>
 
@@ -38,10 +40,11 @@ std::optional<double> metres(const std::optional<std::string>& tag) {
 double default_width(const std::string& road) { return road == "highway" ? 20 : road == "main" ? 12 : 8; }
 
 // Where osm_keys' main tags that name a feature left out begin.
-constexpr std::ptrdiff_t kReadKeys = 13;
+constexpr std::ptrdiff_t kReadKeys = 15;
 
-// Pedestrian streets and alleys are local streets, narrower than the class's default.
-constexpr double kPedestrianWidth = 6, kAlleyWidth = 4;
+// Pedestrian streets and alleys are local streets, narrower than the class's default; so
+// are footways that bound land. A lane's width multiplies `lanes`.
+constexpr double kPedestrianWidth = 6, kAlleyWidth = 4, kFootwayWidth = 3, kLaneWidth = 3.5;
 
 OsmMeaning left_out(const std::string& why) { return {OsmMeaning::LeftOut, "", 0, why}; }
 
@@ -123,6 +126,51 @@ bool drop_degenerate_rings(ordered_json& geometry) {
   return !coords.empty();
 }
 
+// The footways (road_where_it_bounds_land) that share a segment with a zone's ring, as OSM
+// maps a path along the edge of land use (the same nodes, so the same positions), become
+// local streets; the others stay left out.
+void make_roads_of_footways_that_bound_land(const ordered_json& features, std::vector<OsmMeaning>& meanings) {
+  using Position = std::pair<double, double>;
+  auto position = [](const ordered_json& p) -> std::optional<Position> {
+    if (!p.is_array() || p.size() < 2 || !p[0].is_number() || !p[1].is_number()) return std::nullopt;
+    return Position{p[0].get<double>(), p[1].get<double>()};
+  };
+  // Each line's segments, either way round.
+  auto for_each_segment = [&](const ordered_json& line, const std::function<void(Position, Position)>& f) {
+    if (!line.is_array()) return;
+    for (std::size_t i = 1; i < line.size(); ++i)
+      if (auto a = position(line[i - 1]), b = position(line[i]); a && b) f(std::min(*a, *b), std::max(*a, *b));
+  };
+  // A geometry's lines: a LineString's, a MultiLineString's or a Polygon's rings, a MultiPolygon's.
+  auto lines_of = [](const ordered_json& geometry) {
+    std::vector<const ordered_json*> out;
+    if (!geometry.is_object() || !geometry.contains("coordinates") || !geometry["coordinates"].is_array()) return out;
+    const ordered_json& c = geometry["coordinates"];
+    const std::string type = geometry.value("type", "");
+    if (type == "LineString") out.push_back(&c);
+    if (type == "MultiLineString" || type == "Polygon")
+      for (const ordered_json& l : c) out.push_back(&l);
+    if (type == "MultiPolygon")
+      for (const ordered_json& polygon : c)
+        if (polygon.is_array())
+          for (const ordered_json& ring : polygon) out.push_back(&ring);
+    return out;
+  };
+  if (std::none_of(meanings.begin(), meanings.end(), [](const OsmMeaning& m) { return m.road_where_it_bounds_land; })) return;
+  std::set<std::pair<Position, Position>> edges;
+  for (std::size_t i = 0; i < features.size(); ++i)
+    if (meanings[i].kind == OsmMeaning::Zone)
+      for (const ordered_json* ring : lines_of(features[i]["geometry"]))
+        for_each_segment(*ring, [&](Position a, Position b) { edges.insert({a, b}); });
+  for (std::size_t i = 0; i < features.size(); ++i) {
+    if (!meanings[i].road_where_it_bounds_land) continue;
+    bool bounds = false;
+    for (const ordered_json* line : lines_of(features[i]["geometry"]))
+      for_each_segment(*line, [&](Position a, Position b) { bounds = bounds || edges.count({a, b}); });
+    if (bounds) meanings[i] = {OsmMeaning::Road, meanings[i].type, meanings[i].width, ""};
+  }
+}
+
 }  // namespace
 
 const std::vector<std::string>& osm_keys() {
@@ -130,7 +178,7 @@ const std::vector<std::string>& osm_keys() {
   // makes nothing of (kReadKeys on), which name what is left out.
   static const std::vector<std::string> keys{
       "highway",  "waterway", "landuse", "natural", "leisure",  "water",    "width",    "lanes",   "tunnel",
-      "service",  "other_tags", "osm_id", "osm_way_id", "building", "amenity", "shop", "tourism", "man_made",
+      "service",  "footway",  "indoor",  "other_tags", "osm_id", "osm_way_id", "building", "amenity", "shop", "tourism", "man_made",
       "railway",  "aeroway",  "barrier", "boundary", "place",    "power",    "historic", "military", "sport", "office"};
   return keys;
 }
@@ -141,8 +189,17 @@ const std::vector<std::string>& osm_building_keys() {
 }
 
 const std::vector<std::string>& osm_road_keys() {
-  static const std::vector<std::string> keys{"highway", "name", "ref", "lanes", "oneway", "maxspeed", "surface", "service"};
+  static const std::vector<std::string> keys{"highway", "name",     "ref",    "lanes", "oneway", "maxspeed",
+                                             "surface", "service",  "sidewalk", "bridge", "layer", "tunnel"};
   return keys;
+}
+
+std::optional<std::pair<bool, bool>> osm_sidewalk_sides(const std::string& value) {
+  if (value == "both" || value == "yes") return std::pair{true, true};
+  if (value == "left") return std::pair{true, false};
+  if (value == "right") return std::pair{false, true};
+  if (value == "no" || value == "none" || value == "separate") return std::pair{false, false};
+  return std::nullopt;
 }
 
 std::vector<std::pair<std::string, std::string>> osm_road_tags(const ordered_json& properties) {
@@ -151,6 +208,11 @@ std::vector<std::pair<std::string, std::string>> osm_road_tags(const ordered_jso
   std::map<std::string, std::string> other;
   if (properties.contains("other_tags") && properties["other_tags"].is_string())
     other = hstore(properties["other_tags"].get<std::string>());
+  // Its way as "way/N": an extract's; GDAL's OSM driver's and pyrosm's lines have the way's
+  // number in osm_id.
+  if (std::optional<std::string> id = properties.contains("osm_id") ? text_value(properties.at("osm_id")) : std::nullopt;
+      id && !id->empty())
+    out.push_back({"osm_id", id->find('/') == std::string::npos ? "way/" + *id : *id});
   for (const std::string& key : osm_road_keys()) {
     std::optional<std::string> value = properties.contains(key) ? text_value(properties.at(key)) : std::nullopt;
     if (auto it = other.find(key); !value && it != other.end()) value = it->second;
@@ -171,6 +233,14 @@ OsmMeaning osm_line_meaning(const OsmTags& tags) {
     return {};
   }
   const std::optional<std::string> road = road_class(*highway);
+  // A footway between two pieces of land (a passage between blocks, a path along a park) is
+  // a block's edge; one beside a street (footway=sidewalk), across it or in a tunnel is not.
+  if (*highway == "footway" && !tags("tunnel") && !tags("indoor") &&
+      !std::set<std::string>{"sidewalk", "crossing", "traffic_island", "access_aisle"}.count(tags("footway").value_or(""))) {
+    OsmMeaning footway = left_out("highway=footway");
+    footway.type = "local", footway.width = kFootwayWidth, footway.road_where_it_bounds_land = true;
+    return footway;
+  }
   if (!road) return left_out("highway=" + *highway);
   if (tags("tunnel") == std::optional<std::string>("yes")) return left_out("tunnel");
   double width = default_width(*road);
@@ -182,7 +252,7 @@ OsmMeaning osm_line_meaning(const OsmTags& tags) {
     }
   if (std::optional<double> w = metres(tags("width"))) width = *w;
   else if (std::optional<std::string> lanes = tags("lanes"); lanes && std::atoi(lanes->c_str()) > 0)
-    width = 3.5 * std::atoi(lanes->c_str());
+    width = kLaneWidth * std::atoi(lanes->c_str());
   return {OsmMeaning::Road, *road, std::clamp(width, 1.0, 100.0), ""};
 }
 
@@ -254,6 +324,7 @@ bool apply_osm_tags(ordered_json& doc, const std::vector<SketchFile>& files) {
   }
   if (std::all_of(meanings.begin(), meanings.end(), [](const OsmMeaning& m) { return m.kind == OsmMeaning::Untagged; }))
     return false;
+  make_roads_of_footways_that_bound_land(features, meanings);
 
   std::map<std::string, int> taken{{"zones", 0}, {"roads", 0}, {"rivers", 0}};
   std::vector<std::map<std::string, int>> skipped(files.size());  // by file
@@ -346,7 +417,12 @@ bool apply_osm_tags(ordered_json& doc, const std::vector<SketchFile>& files) {
     ordered_json& counts = files.size() > 1 ? osm["files"][k] : osm;
     if (!counts.contains("file")) counts["file"] = files[k].path.string();
     if (!counts.contains("skipped") || !counts["skipped"].is_object()) counts["skipped"] = ordered_json::object();
-    for (const auto& [why, count] : skipped[k]) counts["skipped"][why] = counts["skipped"].value(why, 0) + count;
+    // By why, as the extract's own counts are: a footway is counted here, after them.
+    std::map<std::string, ordered_json> merged;
+    for (const auto& [why, count] : counts["skipped"].items()) merged[why] = count;
+    for (const auto& [why, count] : skipped[k]) merged[why] = counts["skipped"].value(why, 0) + count;
+    counts["skipped"] = ordered_json::object();
+    for (auto& [why, count] : merged) counts["skipped"][why] = std::move(count);
   }
   return true;
 }

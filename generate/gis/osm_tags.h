@@ -22,6 +22,9 @@ struct OsmMeaning {
   std::string type;  // the zone type or road class; a building's building tag
   double width = 0;  // roads and rivers, metres
   std::string why;   // LeftOut: the tag that says what it is ("highway=footway")
+  // LeftOut unless it bounds land: a footway is a local street of `width` where it runs
+  // along a zone's edge (apply_osm_tags), else left out as `why` says.
+  bool road_where_it_bounds_land = false;
 };
 
 // A way or line: a highway, or a river or canal.
@@ -36,11 +39,16 @@ const std::vector<std::string>& osm_keys();
 // The tags a mapped building is raised from (generate/city/features.h, MappedBuilding).
 const std::vector<std::string>& osm_building_keys();
 
-// The tags a road keeps from OpenStreetMap (or from a GIS file exported from it) for
-// city.osm to write back as they were read: its highway class, name, ref, lanes ...
+// The tags a road keeps from OpenStreetMap (or from a GIS file exported from it), which
+// every export carries as they were read: its highway class, name, ref, lanes, sidewalk ...
 const std::vector<std::string>& osm_road_keys();
-// Those of a feature's properties (columns, or GDAL's "other_tags"), in osm_road_keys' order.
+// Those of a feature's properties (columns, or GDAL's "other_tags"), in osm_road_keys' order,
+// after its "osm_id" as "way/N" where it has one.
 std::vector<std::pair<std::string, std::string>> osm_road_tags(const nlohmann::ordered_json& properties);
+// The sides (left, right of the way's direction) a sidewalk tag puts sidewalks on: both or
+// yes, left, right, and none for no, none or separate (drawn as footways of their own);
+// nothing for another value, which leaves the road its class's.
+std::optional<std::pair<bool, bool>> osm_sidewalk_sides(const std::string& value);
 
 // A file read into a sketch document: its path, and how many of the document's features
 // (in order, after the files before it) are its.

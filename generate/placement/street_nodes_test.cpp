@@ -8,7 +8,7 @@ namespace exacity {
 namespace {
 
 RoadLine line(RoadClass c, geom::Polyline points) {
-  return {c, c == RoadClass::Local ? 8.0 : 12.0, -1, -1, false, std::move(points), -1};
+  return {c, c == RoadClass::Local ? 8.0 : 12.0, -1, -1, false, std::move(points), -1, {}};
 }
 
 TEST(StreetNodes, ACrossingOfMainRoadsHasLightsAndALocalRoadMeetingOneHasSigns) {

@@ -219,6 +219,15 @@ class Parser {
       fail(where, "unknown road class " + quote(rname) + "; did you mean " +
                       quote(nearest_road_class_name(rname)) + "? (valid: " + list(kRoadClassNames) + ")");
     RoadFeature rf{index, *rc, default_width(*rc), {}, osm_road_tags(props)};
+    rf.sidewalk_left = rf.sidewalk_right = sketch.streets.sidewalk(*rc);
+    for (const auto& [key, value] : rf.osm_tags) {
+      if (key == "sidewalk")
+        if (const std::optional<std::pair<bool, bool>> sides = osm_sidewalk_sides(value)) {
+          rf.sidewalk_left = sides->first ? sketch.streets.tagged_sidewalk(*rc) : 0;
+          rf.sidewalk_right = sides->second ? sketch.streets.tagged_sidewalk(*rc) : 0;
+        }
+      if (key == "highway" && value == "footway") rf.sidewalk_left = rf.sidewalk_right = 0;  // all of it is one
+    }
     if (props.contains("width") && !props["width"].is_null())
       rf.width = number(props["width"], where + " width", kMinRoadWidth, kMaxRoadWidth);
     auto line = [&](const json& j, const std::string& w) {
@@ -354,7 +363,7 @@ class Parser {
     };
     for (const RoadFeature& r : sketch.roads)
       for (const geom::Polyline& line : r.lines)
-        if (line.size() > 1) add_chain(line, r.width / 2 + sketch.streets.sidewalk(r.road_class), false, r.index);
+        if (line.size() > 1) add_chain(line, r.width / 2 + r.widest_sidewalk(), false, r.index);
     for (const ZoneFeature& z : sketch.zones)
       for (const geom::Polygon& p : z.polygons) {
         if (p.outer.size() > 1) add_chain(p.outer, 0, true, z.index);
