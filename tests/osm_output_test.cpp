@@ -299,6 +299,48 @@ TEST(OsmOutput, AMultipolygonTheExtractCutIsClosedAlongItsBoundsAndNamed) {
   EXPECT_EQ(doc["osm"]["repaired"], ordered_json::parse(R"(["relation 20 (landuse=residential): its outer ring, cut by the extract's edge, closed along the edge"])"));
 }
 
+// A village's residential land and the forest beside it, both relations the extract cut
+// open along one shared way (north along longitude 10.007): the houses stand west of it, on
+// the larger side, so the residential land is the west and the forest the east, whichever
+// side encloses less.
+TEST(OsmOutput, CutLandUseLiesOnTheSideItsMappedBuildingsSay) {
+  const fs::path dir = testing_util::temp_dir("osm-cut-sides");
+  write(dir / "cut.osm", R"(<?xml version="1.0" encoding="UTF-8"?>
+<osm version="0.6" generator="test">
+  <bounds minlat="48.0" minlon="10.0" maxlat="48.01" maxlon="10.01"/>
+  <node id="1" version="1" lat="48.001" lon="10.007"/>
+  <node id="2" version="1" lat="48.009" lon="10.007"/>
+  <node id="3" version="1" lat="48.005" lon="10.002"/>
+  <node id="4" version="1" lat="48.005" lon="10.0022"/>
+  <node id="5" version="1" lat="48.0052" lon="10.0022"/>
+  <node id="6" version="1" lat="48.0052" lon="10.002"/>
+  <node id="8" version="1" lat="48.002" lon="10.001"/>
+  <node id="9" version="1" lat="48.002" lon="10.006"/>
+  <way id="10" version="1"><nd ref="1"/><nd ref="2"/></way>
+  <way id="11" version="1"><nd ref="3"/><nd ref="4"/><nd ref="5"/><nd ref="6"/><nd ref="3"/><tag k="building" v="house"/></way>
+  <way id="12" version="1"><nd ref="8"/><nd ref="9"/><tag k="highway" v="residential"/></way>
+  <relation id="20" version="1">
+    <member type="way" ref="10" role="outer"/>
+    <tag k="type" v="multipolygon"/>
+    <tag k="landuse" v="residential"/>
+  </relation>
+  <relation id="21" version="1">
+    <member type="way" ref="10" role="outer"/>
+    <tag k="type" v="multipolygon"/>
+    <tag k="landuse" v="forest"/>
+  </relation>
+</osm>
+)");
+  const ordered_json doc = osm_sketch_document(dir / "cut.osm");
+  std::map<std::string, ordered_json> zones;
+  for (const ordered_json& f : doc["features"])
+    if (f["properties"].contains("landuse")) zones[f["properties"]["landuse"]] = f["geometry"]["coordinates"];
+  EXPECT_EQ(zones["residential"], ordered_json::parse(R"([[[[10.007, 48.001], [10.007, 48.009], [10.007, 48.01],
+      [10.0, 48.01], [10.0, 48.0], [10.007, 48.0], [10.007, 48.001]]]])")) << doc.dump();
+  EXPECT_EQ(zones["forest"], ordered_json::parse(R"([[[[10.007, 48.001], [10.007, 48.009], [10.007, 48.01],
+      [10.01, 48.01], [10.01, 48.0], [10.007, 48.0], [10.007, 48.001]]]])")) << doc.dump();
+}
+
 TEST(OsmOutput, ANodeOutsideLonLatRangesIsRefusedByItsId) {
   const fs::path dir = testing_util::temp_dir("osm-range");
   write(dir / "far.osm", cut_extract("1e308"));
