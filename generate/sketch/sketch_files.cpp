@@ -95,11 +95,22 @@ Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& mod
   return made_sketch(doc, path, read_grammars, models);
 }
 
-Sketch load_sketch(const std::vector<fs::path>& paths, bool read_grammars, const fs::path& models) {
+Sketch load_sketch(const std::vector<fs::path>& paths, bool read_grammars, const fs::path& models,
+                   const std::vector<fs::path>& footprints) {
   if (paths.empty()) throw UserError("no sketch given; give a GeoJSON sketch, a grid map, a vector file or an OSM extract");
-  if (paths.size() == 1) return load_sketch(paths[0], read_grammars, models);
+  if (paths.size() == 1 && footprints.empty()) return load_sketch(paths[0], read_grammars, models);
   std::vector<SketchPart> parts;
-  for (const fs::path& path : paths) {
+  for (const fs::path& path : footprints) {
+    // Read as the sketch's files are, after them: a folder of shapefiles, or any one file.
+    if (!fs::is_directory(path)) expect_input(path, kMaxDataFileBytes, "the building footprints", "give a vector file of footprint polygons");
+  }
+  for (std::size_t k = 0; k < paths.size() + footprints.size(); ++k) {
+    const bool footprint = k >= paths.size();
+    const fs::path& path = footprint ? footprints[k - paths.size()] : paths[k];
+    if (footprint) {
+      parts.push_back({footprint_document(path), path});
+      continue;
+    }
     const SketchSource source = sketch_source(path);
     expect_readable(path, source);
     if (source == SketchSource::GridMap)
