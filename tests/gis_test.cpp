@@ -20,6 +20,7 @@
 #include "generate/errors.h"
 #include "generate/export/gis_export.h"
 #include "generate/gis/projection.h"
+#include "generate/gis/sketch_sources.h"
 #include "geom/polygon_check.h"
 #include "generate/pipeline.h"
 #include "tests/cli_util.h"
@@ -1228,6 +1229,29 @@ TEST(Gis, MappedBuildingsAreKeptRaisedAndNeverBuiltOver) {
   const std::string city_osm = cli_util::read(out / "city.osm");
   EXPECT_NE(city_osm.find("<tag k=\"exacity:osm_id\" v=\"relation/5900\"/>"), std::string::npos);
   EXPECT_NE(city_osm.find("<tag k=\"building\" v=\"pavilion\"/>"), std::string::npos);
+  // The building with a courtyard as OSM maps one: a multipolygon relation of an outer and
+  // an inner way, closed, which osmium assembles into its area with one hole.
+  struct Relations : osmium::handler::Handler {
+    std::vector<std::pair<std::map<std::string, std::string>, std::vector<std::string>>> found;
+    void relation(const osmium::Relation& r) {
+      auto& [tags, roles] = found.emplace_back();
+      for (const osmium::Tag& t : r.tags()) tags[t.key()] = t.value();
+      for (const osmium::RelationMember& m : r.members()) roles.push_back(m.role());
+    }
+  } relations;
+  osmium::io::Reader reader{(out / "city.osm").string()};
+  osmium::apply(reader, relations);
+  reader.close();
+  ASSERT_EQ(relations.found.size(), 1u);
+  EXPECT_EQ(relations.found[0].first.at("type"), "multipolygon");
+  EXPECT_EQ(relations.found[0].first.at("exacity:osm_id"), "relation/5900");
+  EXPECT_EQ(relations.found[0].second, (std::vector<std::string>{"outer", "inner"}));
+  const ordered_json read_back = osm_sketch_document(out / "city.osm");
+  int courtyards = 0;
+  for (const ordered_json& f : read_back["features"])
+    if (f["properties"].contains("building"))
+      for (const ordered_json& polygon : f["geometry"]["coordinates"]) courtyards += static_cast<int>(polygon.size()) - 1;
+  EXPECT_EQ(courtyards, 1);
 }
 
 // A GIS export of OpenStreetMap's buildings (GDAL's OSM driver's columns): each polygon a
