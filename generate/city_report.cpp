@@ -232,6 +232,12 @@ ordered_json city_report(const City& city, const WrittenCity& written, const ord
       {"timings_s", timings},
   };
   if (!city.drawn.buildings.empty() || !city.drawn.buildings_left_out.empty()) report["mapped_buildings"] = mapped_buildings_report(city);
+  if (const LandUseTally& l = city.drawn.land_use; l.closed_along_bounds > 0 || l.infer_zones) {
+    report["land_use"] = {{"closed_along_bounds", l.closed_along_bounds}};
+    if (l.infer_zones)
+      report["land_use"]["infer_zones"] = {{"street_faces", l.street_faces}, {"faces_with_land_use", l.faces_with_land_use},
+                                          {"inferred", l.inferred}, {"left_open", l.left_open}};
+  }
   // A generation with a cache (exacity serve's) says what it reused of the one before.
   if (city.regions) report["reused"] = reuse_report(*city.regions);
   return report;

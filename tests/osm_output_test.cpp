@@ -8,7 +8,9 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <iomanip>
 #include <set>
+#include <sstream>
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
@@ -507,4 +509,70 @@ TEST(OsmOutput, IdsFromAGivenRangeAreReadByGdalsOsmDriverAsItIs) {
   const cli_util::Result zero = cli_util::run("generate " + kVillage.string() + " -o " + (dir / "z").string() + " -q --osm-ids-from 0");
   EXPECT_EQ(zero.code, 2) << zero.out;
   EXPECT_FALSE(fs::exists(dir / "z" / "city.osm"));
+}
+
+namespace {
+
+// Streets in a grid of 2 x 3 faces (lon 10.000 to 10.006, lat 48.000 to 48.003), land use
+// on one face, and in the others: three houses; a warehouse; an untagged building of 900
+// m2; a small untagged one; none. `settings` beside it.
+std::string streets_and_buildings() {
+  std::string nodes, ways;
+  int node = 1, way = 100;
+  auto add_node = [&](double lon, double lat) {
+    std::ostringstream n;
+    n << std::setprecision(10) << "  <node id=\"" << node << "\" version=\"1\" lat=\"" << lat << "\" lon=\"" << lon << "\"/>\n";
+    nodes += n.str();
+    return node++;
+  };
+  auto add_way = [&](const std::vector<int>& refs, const std::string& tags) {
+    ways += "  <way id=\"" + std::to_string(way++) + "\" version=\"1\">";
+    for (int r : refs) ways += "<nd ref=\"" + std::to_string(r) + "\"/>";
+    ways += tags + "</way>\n";
+  };
+  const std::string street = "<tag k=\"highway\" v=\"residential\"/>";
+  for (int row = 0; row <= 2; ++row) add_way({add_node(10.0, 48.0 + row * 0.0015), add_node(10.006, 48.0 + row * 0.0015)}, street);
+  for (int col = 0; col <= 3; ++col) add_way({add_node(10.0 + col * 0.002, 48.0), add_node(10.0 + col * 0.002, 48.003)}, street);
+  // A w x h degree box at a face's centre (col, row), moved by (dx, dy), with its tags.
+  auto box = [&](int col, int row, double w, double h, double dx, double dy, const std::string& tags) {
+    const double x = 10.001 + col * 0.002 + dx - w / 2, y = 48.00075 + row * 0.0015 + dy - h / 2;
+    const int a = add_node(x, y), b = add_node(x + w, y), c = add_node(x + w, y + h), d = add_node(x, y + h);
+    add_way({a, b, c, d, a}, tags);
+  };
+  const std::string house = "<tag k=\"building\" v=\"house\"/>";
+  for (double dx : {-0.0004, 0.0, 0.0004}) box(0, 0, 0.00013, 0.00009, dx, 0, house);
+  box(1, 0, 0.0008, 0.0005, 0, 0, "<tag k=\"building\" v=\"warehouse\"/>");
+  box(2, 0, 0.0004, 0.00027, 0, 0, "<tag k=\"building\" v=\"yes\"/>");  // 30 x 30 m
+  box(0, 1, 0.00013, 0.00009, 0, 0, "<tag k=\"building\" v=\"yes\"/>");
+  box(1, 1, 0.0018, 0.0013, 0, 0, "<tag k=\"landuse\" v=\"residential\"/>");
+  box(1, 1, 0.00013, 0.00009, 0, 0, house);
+  return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<osm version=\"0.6\" generator=\"test\">\n"
+         "  <bounds minlat=\"47.999\" minlon=\"9.999\" maxlat=\"48.004\" maxlon=\"10.007\"/>\n" +
+         nodes + ways + "</osm>\n";
+}
+
+}  // namespace
+
+TEST(OsmOutput, StreetFacesWithoutLandUseAreZonedFromTheirMappedBuildings) {
+  const fs::path dir = testing_util::temp_dir("osm-infer");
+  write(dir / "town.osm", streets_and_buildings());
+  write(dir / "town.exacity.json", R"({"infer_zones": true})");
+  const GenerateResult result = generate(dir / "town.osm", dir / "out");
+  EXPECT_EQ(result.report["land_use"], ordered_json::parse(R"({"closed_along_bounds": 0, "infer_zones": {"street_faces": 6,
+      "faces_with_land_use": 1, "inferred": {"commercial": 1, "industrial": 1, "residential": 2}, "left_open": 1}})"))
+      << result.report["land_use"].dump();
+  // The zones given are in the sketch the city was built from, each named as inferred.
+  const ordered_json sketch = ordered_json::parse(cli_util::read(dir / "out" / "sketch.geojson"));
+  std::multiset<std::string> zones;
+  for (const ordered_json& f : sketch["features"])
+    if (f["properties"].value("source", "").find("zone inferred from its mapped buildings") != std::string::npos)
+      zones.insert(f["properties"]["zone"].get<std::string>());
+  EXPECT_EQ(zones, (std::multiset<std::string>{"commercial", "industrial", "residential", "residential"}));
+  EXPECT_GT(result.report["mapped_buildings"]["lots_not_built_again"].get<int>(), 0);
+
+  // A setting that is no boolean: one line.
+  write(dir / "town.exacity.json", R"({"infer_zones": "yes"})");
+  EXPECT_EQ(error_of([&] { load_sketch(dir / "town.osm"); }),
+            (dir / "town.osm").string() + ": \"exacity\".infer_zones: expected true or false (true: street faces without land "
+            "use are zoned from their mapped buildings)");
 }
