@@ -182,6 +182,8 @@ ordered_json mapped_buildings_report(const City& city) {
   for (const auto& [why, n] : city.drawn.buildings_left_out) refused_why[why] += n;
   int refused = 0;
   for (const auto& [why, n] : refused_why) refused += n;
+  std::vector<std::string> named = city.drawn.buildings_left_out_named;
+  named.insert(named.end(), t.named.begin(), t.named.end());
   const double built = mapped_area + generated_area;
   auto share = [&](double a) { return built > 0 ? std::round(a / built * 1e4) / 1e4 : 0.0; };
   return {{"in_sketch", city.drawn.buildings.size()},
@@ -190,7 +192,7 @@ ordered_json mapped_buildings_report(const City& city) {
           {"refused", refused},
           {"refused_why", refused_why},
           {"repairs", t.repairs},
-          {"named", t.named},
+          {"named", named},
           {"heights_from", t.heights},
           {"roofs", t.roofs},
           {"roofs_made_flat", t.made_flat},

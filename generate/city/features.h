@@ -90,6 +90,7 @@ struct DrawnFeatures {
   // Mapped buildings a reader left out, by why ("buildings whose way is not closed"), from
   // the counts of what OpenStreetMap's files left out.
   std::map<std::string, int> buildings_left_out;
+  std::vector<std::string> buildings_left_out_named;  // the first few, "FILE layer L feature N: refused, why"
   LandUseTally land_use;
   StreetSettings streets;
   int joined_ends = 0;                // line ends moved by up to `snap` to meet another line

@@ -193,6 +193,11 @@ ordered_json footprint_document(const fs::path& path) {
   GDALDatasetUniquePtr ds = open_vector(path);
   ordered_json doc = {{"type", "FeatureCollection"}, {"features", ordered_json::array()}};
   std::map<std::string, int> refused;
+  ordered_json named = ordered_json::array();  // the first few refused, as report.json names the placement's
+  auto refuse = [&](const std::string& source, const std::string& why) {
+    if (named.size() < 20) named.push_back(source + ": refused, " + why);
+    ++refused[why];
+  };
   auto layer_read = [](OGRLayer& layer, const std::string& where) {
     const OGRwkbGeometryType type = wkbFlatten(layer.GetGeomType());
     if (type != wkbUnknown && type != wkbPolygon && type != wkbMultiPolygon && type != wkbCurvePolygon &&
@@ -202,10 +207,10 @@ ordered_json footprint_document(const fs::path& path) {
   };
   read_features(*ds, path, doc, layer_read, [&](OGRFeature& f, const std::string& source, ordered_json geometry) {
     const std::string type = geometry.is_object() ? geometry.value("type", "") : "";
-    if (type != "Polygon" && type != "MultiPolygon") return ++refused["buildings that are not polygons"], void();
+    if (type != "Polygon" && type != "MultiPolygon") return refuse(source, "buildings that are not polygons");
     const ordered_json status = field(f, "status");
     if (status.is_string() && not_standing(status.get<std::string>()))
-      return ++refused["buildings not standing (BAG's status " + status.get<std::string>() + ")"], void();
+      return refuse(source, "buildings not standing (BAG's status " + status.get<std::string>() + ")");
     ordered_json building = field(f, "building");
     ordered_json p{{"building", building.is_string() && !building.get<std::string>().empty() ? building : ordered_json("yes")}};
     // Heights as OSM tags them, as Overture and Microsoft's footprints name them, and BAG 3D's
@@ -229,7 +234,7 @@ ordered_json footprint_document(const fs::path& path) {
   // mapped_buildings).
   ordered_json skipped = ordered_json::object();
   for (const auto& [why, n] : refused) skipped[why] = n;
-  doc["osm"] = {{"file", path.string()}, {"skipped", skipped}};
+  doc["osm"] = {{"file", path.string()}, {"skipped", skipped}, {"buildings_named", std::move(named)}};
   if (doc["features"].empty())
     throw UserError(path.string() + ": has no building footprints (polygons) to keep" +
                     (refused.empty() ? std::string() : " (" + std::to_string(refused.begin()->second) + " " + refused.begin()->first + ")") +

@@ -643,6 +643,9 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
           counts.left_out[why] = count.get<int>();
           if (why.rfind("building", 0) == 0) sketch.buildings_left_out[why] += count.get<int>();
         }
+    if (file->contains("buildings_named") && (*file)["buildings_named"].is_array())
+      for (const auto& what : (*file)["buildings_named"])
+        if (what.is_string()) sketch.buildings_left_out_named.push_back(what.get<std::string>());
     if (file->contains("repaired") && (*file)["repaired"].is_array())
       for (const auto& what : (*file)["repaired"])
         if (what.is_string()) {
