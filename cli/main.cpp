@@ -117,10 +117,11 @@ nlohmann::ordered_json render_with_progress(const City& city, render::RenderRequ
   return render::render_city(city, r, [&](const std::string& stage, double f) { progress.fraction("render " + stage, f); });
 }
 
-int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, const fs::path& like_given,
-             const fs::path& out, bool quiet, const RenderOptions* rendering, const ExportOptions& exports) {
+int generate(const std::vector<fs::path>& sketch_paths, const std::vector<fs::path>& footprints, const fs::path& models,
+             const fs::path& like_given, const fs::path& out, bool quiet, const RenderOptions* rendering,
+             const ExportOptions& exports) {
   const auto started = std::chrono::steady_clock::now();  // --time is the whole command's
-  Sketch sketch = load_sketch(sketch_paths, true, models);
+  Sketch sketch = load_sketch(sketch_paths, true, models, footprints);
   // The zone parameters measured from a real place's buildings, before any work.
   const fs::path like = like_given.empty() ? sketch.like : like_given;
   nlohmann::ordered_json like_report;
@@ -187,9 +188,12 @@ int generate(const std::vector<fs::path>& sketch_paths, const fs::path& models, 
     std::stable_sort(most.begin(), most.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
     for (std::size_t i = 0; i < most.size() && i < 4; ++i)
       tags += (i ? ", " : "") + most[i].first + " " + std::to_string(most[i].second);
+    // A footprint file (--buildings) leaves out only buildings.
+    const bool buildings = std::all_of(most.begin(), most.end(), [](const auto& m) { return m.first.rfind("building", 0) == 0; });
     std::fprintf(stderr,
-                 "exacity: note: %s: left out %d OpenStreetMap features whose tags make no zone or road (%s%s); "
-                 "sketch.geojson's \"osm\" member counts them all\n",
+                 buildings ? "exacity: note: %s: left out %d buildings (%s%s); report.json's \"mapped_buildings\" counts them\n"
+                           : "exacity: note: %s: left out %d OpenStreetMap features whose tags make no zone or road (%s%s); "
+                             "sketch.geojson's \"osm\" member counts them all\n",
                  file.file.c_str(), total, tags.c_str(), most.size() > 4 ? ", ..." : "");
   }
   for (const Sketch::OsmCounts& file : sketch.osm_counts)
@@ -433,7 +437,7 @@ struct SharedOptions {
 
 struct GenerateCommand {
   CLI::App* app = nullptr;
-  std::vector<fs::path> sketch;
+  std::vector<fs::path> sketch, buildings;
   fs::path models, like, out = "out";
   bool render = false;
   ExportOptions exports;
@@ -531,6 +535,10 @@ void add_generate(CLI::App& app, GenerateCommand& c, SharedOptions& shared) {
                     "objects' negative ids, which GDAL's OSM driver (and so QGIS) reads only with "
                     "OSM_USE_CUSTOM_INDEXING=NO")
       ->check(CLI::Range(std::int64_t{1}, std::int64_t{1'000'000'000'000'000}));
+  c.app->add_option("--buildings", c.buildings,
+                    "A file of building footprints in any vector format OGR reads (BAG, Overture, Microsoft's, a "
+                    "GeoPackage's layer of polygons), kept as mapped buildings beside the sketch and raised from "
+                    "its height, levels or roof fields; repeatable");
   c.app->add_option("--models", c.models,
                     "A model library (JSON manifest) in place of the sketch's own \"models\"");
   c.app->add_option("--like", c.like,
@@ -691,8 +699,8 @@ int main(int argc, char** argv) {
 
   return exit_code_of([&] {
     const std::unique_ptr<tbb::global_control> limit = thread_limit(shared.threads);
-    if (*gen.app) return generate(gen.sketch, gen.models, gen.like, gen.out, shared.quiet, gen.render ? &shared.render : nullptr,
-                                   gen.exports);
+    if (*gen.app) return generate(gen.sketch, gen.buildings, gen.models, gen.like, gen.out, shared.quiet,
+                                  gen.render ? &shared.render : nullptr, gen.exports);
     if (*ren.app) return render_folder(ren.folder, shared.render, ren.file, shared.quiet);
     if (*val.app) return validate(val.folder);
     if (*sta.app) return stats(sta.folder, sta.real);

@@ -248,6 +248,8 @@ ordered_json mapped_buildings_report(const City& city) {
   for (const auto& [why, n] : city.drawn.buildings_left_out) refused_why[why] += n;
   int refused = 0;
   for (const auto& [why, n] : refused_why) refused += n;
+  std::vector<std::string> named = city.drawn.buildings_left_out_named;
+  named.insert(named.end(), t.named.begin(), t.named.end());
   const double built = mapped_area + generated_area;
   auto share = [&](double a) { return built > 0 ? std::round(a / built * 1e4) / 1e4 : 0.0; };
   return {{"in_sketch", city.drawn.buildings.size()},
@@ -256,7 +258,7 @@ ordered_json mapped_buildings_report(const City& city) {
           {"refused", refused},
           {"refused_why", refused_why},
           {"repairs", t.repairs},
-          {"named", t.named},
+          {"named", named},
           {"heights_from", t.heights},
           {"roofs", t.roofs},
           {"roofs_made_flat", t.made_flat},
@@ -299,6 +301,12 @@ ordered_json city_report(const City& city, const WrittenCity& written, const ord
       {"timings_s", timings},
   };
   if (!city.drawn.buildings.empty() || !city.drawn.buildings_left_out.empty()) report["mapped_buildings"] = mapped_buildings_report(city);
+  if (const LandUseTally& l = city.drawn.land_use; l.closed_along_bounds > 0 || l.infer_zones) {
+    report["land_use"] = {{"closed_along_bounds", l.closed_along_bounds}};
+    if (l.infer_zones)
+      report["land_use"]["infer_zones"] = {{"street_faces", l.street_faces}, {"faces_with_land_use", l.faces_with_land_use},
+                                          {"inferred", l.inferred}, {"left_open", l.left_open}};
+  }
   // A generation with a cache (exacity serve's) says what it reused of the one before.
   if (city.regions) report["reused"] = reuse_report(*city.regions);
   return report;

@@ -20,6 +20,7 @@
 #include "generate/errors.h"
 #include "generate/export/gis_export.h"
 #include "generate/gis/projection.h"
+#include "generate/gis/sketch_sources.h"
 #include "geom/polygon_check.h"
 #include "generate/pipeline.h"
 #include "tests/cli_util.h"
@@ -1257,6 +1258,29 @@ TEST(Gis, MappedBuildingsAreKeptRaisedAndNeverBuiltOver) {
   const std::string city_osm = cli_util::read(out / "city.osm");
   EXPECT_NE(city_osm.find("<tag k=\"exacity:osm_id\" v=\"relation/5900\"/>"), std::string::npos);
   EXPECT_NE(city_osm.find("<tag k=\"building\" v=\"pavilion\"/>"), std::string::npos);
+  // The building with a courtyard as OSM maps one: a multipolygon relation of an outer and
+  // an inner way, closed, which osmium assembles into its area with one hole.
+  struct Relations : osmium::handler::Handler {
+    std::vector<std::pair<std::map<std::string, std::string>, std::vector<std::string>>> found;
+    void relation(const osmium::Relation& r) {
+      auto& [tags, roles] = found.emplace_back();
+      for (const osmium::Tag& t : r.tags()) tags[t.key()] = t.value();
+      for (const osmium::RelationMember& m : r.members()) roles.push_back(m.role());
+    }
+  } relations;
+  osmium::io::Reader reader{(out / "city.osm").string()};
+  osmium::apply(reader, relations);
+  reader.close();
+  ASSERT_EQ(relations.found.size(), 1u);
+  EXPECT_EQ(relations.found[0].first.at("type"), "multipolygon");
+  EXPECT_EQ(relations.found[0].first.at("exacity:osm_id"), "relation/5900");
+  EXPECT_EQ(relations.found[0].second, (std::vector<std::string>{"outer", "inner"}));
+  const ordered_json read_back = osm_sketch_document(out / "city.osm");
+  int courtyards = 0;
+  for (const ordered_json& f : read_back["features"])
+    if (f["properties"].contains("building"))
+      for (const ordered_json& polygon : f["geometry"]["coordinates"]) courtyards += static_cast<int>(polygon.size()) - 1;
+  EXPECT_EQ(courtyards, 1);
 }
 
 // A GIS export of OpenStreetMap's buildings (GDAL's OSM driver's columns): each polygon a
@@ -1286,4 +1310,74 @@ TEST(Gis, BuildingsOfAGisExportAreMappedBuildings) {
   EXPECT_EQ(sketch.buildings[1].height, 30);
   EXPECT_EQ(sketch.zones.size(), 2u);
   EXPECT_EQ(sketch.roads.size(), 1u);
+}
+
+namespace {
+
+// A footprint at (x, y) in the town's UTM metres, 20 x 15 m, with its fields.
+ordered_json footprint(double x, double y, const ordered_json& fields) {
+  return {{"type", "Feature"}, {"properties", fields},
+          {"geometry", {{"type", "Polygon"}, {"coordinates", {{{x, y}, {x + 20, y}, {x + 20, y + 15}, {x, y + 15}, {x, y}}}}}}};
+}
+
+}  // namespace
+
+// A layer of footprints with no zone, road or OSM tag, given beside the sketch with
+// --buildings, in another format: each polygon a mapped building raised from the fields a
+// GIS file names heights by; a feature that is no polygon and a building BAG says was
+// demolished are counted and named as refused.
+TEST(Gis, AFootprintLayerGivenWithBuildingsIsKeptAsMappedBuildings) {
+  const fs::path dir = testing_util::temp_dir("gis-footprints");
+  ordered_json sketch = town_in_metres();
+  sketch["exacity"] = ordered_json::parse(R"({"seed": 3, "zones": {"residential": {"layout": "streets"}}})");
+  write(dir / "town.geojson", sketch.dump());
+  ordered_json layer = {{"type", "FeatureCollection"}, {"crs", sketch["crs"]}, {"features", ordered_json::array()}};
+  layer["features"].push_back(footprint(385300, 6672200, {{"building", "office"}, {"height", 12.5}}));
+  layer["features"].push_back(footprint(385340, 6672200, {{"building", "house"}, {"bouwlagen", 3}}));
+  layer["features"].push_back(footprint(385380, 6672200, {{"building", "school"}, {"b3_h_dak_70p", 20.5}, {"b3_h_maaiveld", 0.5}}));
+  layer["features"].push_back(footprint(385420, 6672200, ordered_json::object()));
+  layer["features"].push_back(footprint(385460, 6672200, {{"status", "Pand gesloopt"}}));
+  layer["features"].push_back({{"type", "Feature"}, {"properties", ordered_json::object()},
+                               {"geometry", {{"type", "LineString"}, {"coordinates", {{385300, 6672250}, {385320, 6672250}}}}}});
+  write(dir / "footprints.geojson", layer.dump());
+  translate(dir / "footprints.geojson", dir / "footprints.gpkg", "GPKG");
+
+  const fs::path out = dir / "out";
+  const cli_util::Result run = cli_util::run("generate -q " + (dir / "town.geojson").string() + " --buildings " +
+                                             (dir / "footprints.gpkg").string() + " -o " + out.string());
+  ASSERT_EQ(run.code, 0) << run.out;
+  const ordered_json report = ordered_json::parse(cli_util::read(out / "report.json"))["mapped_buildings"];
+  EXPECT_EQ(report["kept"], 4) << report.dump(1);
+  EXPECT_EQ(report["refused_why"], ordered_json::parse(R"x({"buildings not standing (BAG's status Pand gesloopt)": 1,
+      "buildings that are not polygons": 1})x")) << report.dump(1);
+  EXPECT_EQ(report["heights_from"], ordered_json::parse(R"({"building:levels": 1, "height": 2, "zone": 1})")) << report.dump(1);
+  EXPECT_NE(run.out.find((dir / "footprints.gpkg").string() + ": left out 2 buildings"), std::string::npos) << run.out;
+  const std::string layer = (dir / "footprints.gpkg").string() + " layer footprints feature ";
+  EXPECT_EQ(report["named"], ordered_json({layer + "5: refused, buildings not standing (BAG's status Pand gesloopt)",
+                                           layer + "6: refused, buildings that are not polygons"}))
+      << report.dump(1);
+
+  // Each kept as drawn, raised from its own field.
+  std::map<std::string, ordered_json> by_tag;
+  const ordered_json buildings = ordered_json::parse(cli_util::read(out / "vector" / "buildings.geojson"));
+  for (const ordered_json& f : buildings["features"])
+    if (f["properties"].value("mapped", false)) by_tag[f["properties"]["building"].get<std::string>()] = f;
+  ASSERT_EQ(by_tag.size(), 4u);
+  EXPECT_EQ(by_tag["office"]["properties"]["height"], 12.5);
+  EXPECT_EQ(by_tag["house"]["properties"]["height"], 9);  // 3 storeys of the zone's 3 m
+  EXPECT_EQ(by_tag["school"]["properties"]["height"], 20);
+  std::set<std::pair<double, double>> written;
+  for (const ordered_json& p : by_tag["office"]["geometry"]["coordinates"][0]) written.insert({p[0].get<double>(), p[1].get<double>()});
+  EXPECT_EQ(written, (std::set<std::pair<double, double>>{{385300, 6672200}, {385320, 6672200}, {385320, 6672215}, {385300, 6672215}}));
+
+  // A layer of points is no footprints: one line, exit 2, nothing written.
+  write(dir / "points.geojson", R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {},
+      "geometry": {"type": "Point", "coordinates": [385300, 6672200]}}]})");
+  const cli_util::Result points = cli_util::run("generate -q " + (dir / "town.geojson").string() + " --buildings " +
+                                                (dir / "points.geojson").string() + " -o " + (dir / "none").string());
+  EXPECT_EQ(points.code, 2) << points.out;
+  EXPECT_EQ(points.out, "exacity: error: " + (dir / "points.geojson").string() +
+                            " layer points: holds points, not building footprints; give --buildings a file of polygons, "
+                            "or draw the footprints\n");
+  EXPECT_FALSE(fs::exists(dir / "none"));
 }

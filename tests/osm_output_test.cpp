@@ -8,7 +8,9 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <iomanip>
 #include <set>
+#include <sstream>
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
@@ -299,6 +301,48 @@ TEST(OsmOutput, AMultipolygonTheExtractCutIsClosedAlongItsBoundsAndNamed) {
   EXPECT_EQ(doc["osm"]["repaired"], ordered_json::parse(R"(["relation 20 (landuse=residential): its outer ring, cut by the extract's edge, closed along the edge"])"));
 }
 
+// A village's residential land and the forest beside it, both relations the extract cut
+// open along one shared way (north along longitude 10.007): the houses stand west of it, on
+// the larger side, so the residential land is the west and the forest the east, whichever
+// side encloses less.
+TEST(OsmOutput, CutLandUseLiesOnTheSideItsMappedBuildingsSay) {
+  const fs::path dir = testing_util::temp_dir("osm-cut-sides");
+  write(dir / "cut.osm", R"(<?xml version="1.0" encoding="UTF-8"?>
+<osm version="0.6" generator="test">
+  <bounds minlat="48.0" minlon="10.0" maxlat="48.01" maxlon="10.01"/>
+  <node id="1" version="1" lat="48.001" lon="10.007"/>
+  <node id="2" version="1" lat="48.009" lon="10.007"/>
+  <node id="3" version="1" lat="48.005" lon="10.002"/>
+  <node id="4" version="1" lat="48.005" lon="10.0022"/>
+  <node id="5" version="1" lat="48.0052" lon="10.0022"/>
+  <node id="6" version="1" lat="48.0052" lon="10.002"/>
+  <node id="8" version="1" lat="48.002" lon="10.001"/>
+  <node id="9" version="1" lat="48.002" lon="10.006"/>
+  <way id="10" version="1"><nd ref="1"/><nd ref="2"/></way>
+  <way id="11" version="1"><nd ref="3"/><nd ref="4"/><nd ref="5"/><nd ref="6"/><nd ref="3"/><tag k="building" v="house"/></way>
+  <way id="12" version="1"><nd ref="8"/><nd ref="9"/><tag k="highway" v="residential"/></way>
+  <relation id="20" version="1">
+    <member type="way" ref="10" role="outer"/>
+    <tag k="type" v="multipolygon"/>
+    <tag k="landuse" v="residential"/>
+  </relation>
+  <relation id="21" version="1">
+    <member type="way" ref="10" role="outer"/>
+    <tag k="type" v="multipolygon"/>
+    <tag k="landuse" v="forest"/>
+  </relation>
+</osm>
+)");
+  const ordered_json doc = osm_sketch_document(dir / "cut.osm");
+  std::map<std::string, ordered_json> zones;
+  for (const ordered_json& f : doc["features"])
+    if (f["properties"].contains("landuse")) zones[f["properties"]["landuse"]] = f["geometry"]["coordinates"];
+  EXPECT_EQ(zones["residential"], ordered_json::parse(R"([[[[10.007, 48.001], [10.007, 48.009], [10.007, 48.01],
+      [10.0, 48.01], [10.0, 48.0], [10.007, 48.0], [10.007, 48.001]]]])")) << doc.dump();
+  EXPECT_EQ(zones["forest"], ordered_json::parse(R"([[[[10.007, 48.001], [10.007, 48.009], [10.007, 48.01],
+      [10.01, 48.01], [10.01, 48.0], [10.007, 48.0], [10.007, 48.001]]]])")) << doc.dump();
+}
+
 TEST(OsmOutput, ANodeOutsideLonLatRangesIsRefusedByItsId) {
   const fs::path dir = testing_util::temp_dir("osm-range");
   write(dir / "far.osm", cut_extract("1e308"));
@@ -560,6 +604,44 @@ std::pair<double, double> sidewalk_area_north_and_south(const nlohmann::json& ro
   return {north, south};
 }
 
+// Streets in a grid of 2 x 3 faces (lon 10.000 to 10.006, lat 48.000 to 48.003), land use
+// on one face, and in the others: three houses; a warehouse; an untagged building of 900
+// m2; a small untagged one; none. `settings` beside it.
+std::string streets_and_buildings() {
+  std::string nodes, ways;
+  int node = 1, way = 100;
+  auto add_node = [&](double lon, double lat) {
+    std::ostringstream n;
+    n << std::setprecision(10) << "  <node id=\"" << node << "\" version=\"1\" lat=\"" << lat << "\" lon=\"" << lon << "\"/>\n";
+    nodes += n.str();
+    return node++;
+  };
+  auto add_way = [&](const std::vector<int>& refs, const std::string& tags) {
+    ways += "  <way id=\"" + std::to_string(way++) + "\" version=\"1\">";
+    for (int r : refs) ways += "<nd ref=\"" + std::to_string(r) + "\"/>";
+    ways += tags + "</way>\n";
+  };
+  const std::string street = "<tag k=\"highway\" v=\"residential\"/>";
+  for (int row = 0; row <= 2; ++row) add_way({add_node(10.0, 48.0 + row * 0.0015), add_node(10.006, 48.0 + row * 0.0015)}, street);
+  for (int col = 0; col <= 3; ++col) add_way({add_node(10.0 + col * 0.002, 48.0), add_node(10.0 + col * 0.002, 48.003)}, street);
+  // A w x h degree box at a face's centre (col, row), moved by (dx, dy), with its tags.
+  auto box = [&](int col, int row, double w, double h, double dx, double dy, const std::string& tags) {
+    const double x = 10.001 + col * 0.002 + dx - w / 2, y = 48.00075 + row * 0.0015 + dy - h / 2;
+    const int a = add_node(x, y), b = add_node(x + w, y), c = add_node(x + w, y + h), d = add_node(x, y + h);
+    add_way({a, b, c, d, a}, tags);
+  };
+  const std::string house = "<tag k=\"building\" v=\"house\"/>";
+  for (double dx : {-0.0004, 0.0, 0.0004}) box(0, 0, 0.00013, 0.00009, dx, 0, house);
+  box(1, 0, 0.0008, 0.0005, 0, 0, "<tag k=\"building\" v=\"warehouse\"/>");
+  box(2, 0, 0.0004, 0.00027, 0, 0, "<tag k=\"building\" v=\"yes\"/>");  // 30 x 30 m
+  box(0, 1, 0.00013, 0.00009, 0, 0, "<tag k=\"building\" v=\"yes\"/>");
+  box(1, 1, 0.0018, 0.0013, 0, 0, "<tag k=\"landuse\" v=\"residential\"/>");
+  box(1, 1, 0.00013, 0.00009, 0, 0, house);
+  return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<osm version=\"0.6\" generator=\"test\">\n"
+         "  <bounds minlat=\"47.999\" minlon=\"9.999\" maxlat=\"48.004\" maxlon=\"10.007\"/>\n" +
+         nodes + ways + "</osm>\n";
+}
+
 }  // namespace
 
 // Before, roads.geojson and CityJSON had no OSM attributes and city.osm no way id, sidewalk,
@@ -680,4 +762,28 @@ TEST(OsmOutput, AFootwayAlongTheEdgeOfLandUseBoundsBlocksAndSidewalkFootwaysDoNo
     }
   const nlohmann::json sketch = nlohmann::json::parse(cli_util::read(city.out / "sketch.geojson"));
   EXPECT_EQ(sketch["osm"]["skipped"]["highway=footway"], 2);  // the other two, counted as left out
+}
+
+TEST(OsmOutput, StreetFacesWithoutLandUseAreZonedFromTheirMappedBuildings) {
+  const fs::path dir = testing_util::temp_dir("osm-infer");
+  write(dir / "town.osm", streets_and_buildings());
+  write(dir / "town.exacity.json", R"({"infer_zones": true})");
+  const GenerateResult result = generate(dir / "town.osm", dir / "out");
+  EXPECT_EQ(result.report["land_use"], ordered_json::parse(R"({"closed_along_bounds": 0, "infer_zones": {"street_faces": 6,
+      "faces_with_land_use": 1, "inferred": {"commercial": 1, "industrial": 1, "residential": 2}, "left_open": 1}})"))
+      << result.report["land_use"].dump();
+  // The zones given are in the sketch the city was built from, each named as inferred.
+  const ordered_json sketch = ordered_json::parse(cli_util::read(dir / "out" / "sketch.geojson"));
+  std::multiset<std::string> zones;
+  for (const ordered_json& f : sketch["features"])
+    if (f["properties"].value("source", "").find("zone inferred from its mapped buildings") != std::string::npos)
+      zones.insert(f["properties"]["zone"].get<std::string>());
+  EXPECT_EQ(zones, (std::multiset<std::string>{"commercial", "industrial", "residential", "residential"}));
+  EXPECT_GT(result.report["mapped_buildings"]["lots_not_built_again"].get<int>(), 0);
+
+  // A setting that is no boolean: one line.
+  write(dir / "town.exacity.json", R"({"infer_zones": "yes"})");
+  EXPECT_EQ(error_of([&] { load_sketch(dir / "town.osm"); }),
+            (dir / "town.osm").string() + ": \"exacity\".infer_zones: expected true or false (true: street faces without land "
+            "use are zoned from their mapped buildings)");
 }

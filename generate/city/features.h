@@ -63,6 +63,16 @@ struct MappedBuilding {
   std::string problem;      // why it cannot be read as a footprint (a ring of 2 points); else empty
 };
 
+// What became of the land use (docs/gis.md): areas the extract's edge cut open, closed
+// along it, and with "infer_zones" the street faces no zone covered, zoned from their
+// mapped buildings or left open (the document's "land_use" member).
+struct LandUseTally {
+  int closed_along_bounds = 0;
+  bool infer_zones = false;
+  int street_faces = 0, faces_with_land_use = 0, left_open = 0;
+  std::map<std::string, int> inferred;  // faces by the zone given them
+};
+
 // The sketch's own street graph (docs/design.md, Road layouts): how it is joined, what its streets carry.
 struct StreetSettings {
   double snap = 0.5;                     // m: a line end this near another line is joined to it
@@ -87,6 +97,8 @@ struct DrawnFeatures {
   // Mapped buildings a reader left out, by why ("buildings whose way is not closed"), from
   // the counts of what OpenStreetMap's files left out.
   std::map<std::string, int> buildings_left_out;
+  std::vector<std::string> buildings_left_out_named;  // the first few, "FILE layer L feature N: refused, why"
+  LandUseTally land_use;
   StreetSettings streets;
   int joined_ends = 0;                // line ends moved by up to `snap` to meet another line
   std::vector<DeadEnd> dead_ends;

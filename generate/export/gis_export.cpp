@@ -187,6 +187,12 @@ struct OsmWay {
   OsmTagList tags;
 };
 
+// A building with courtyards: a multipolygon relation of its rings' ways.
+struct OsmMultipolygon {
+  std::vector<std::pair<std::size_t, const char*>> members;  // indices into the ways, and their roles
+  OsmTagList tags;
+};
+
 std::string osm_number(double v) { return format_number(std::round(v * 100) / 100); }
 
 std::pair<const char*, const char*> osm_clutter_tag(ModelKind kind) {
@@ -255,10 +261,13 @@ bool write_city_osm(const City& city, const fs::path& file, std::optional<std::i
     const RoadLine& road = city.ground.roads[i];
     if (road.line.size() >= 2) way(road.line, road_tags(road, static_cast<int>(i)));
   }
+  std::vector<OsmMultipolygon> multipolygons;
+  auto closed = [](std::vector<geom::Vec2> ring) {
+    ring.push_back(ring.front());
+    return ring;
+  };
   for (const VectorFeature& b : city.layers.buildings.features) {
     if (b.properties.value("kind", std::string("building")) != "building") continue;
-    std::vector<geom::Vec2> ring = b.polygon.outer;
-    ring.push_back(ring.front());  // a closed way
     // A mapped building keeps its building tag and says where it came from.
     const bool mapped = b.properties.value("mapped", false);
     OsmTagList tags{{"building", mapped ? b.properties.value("building", std::string("yes")) : std::string("yes")}};
@@ -270,7 +279,20 @@ bool write_city_osm(const City& city, const fs::path& file, std::optional<std::i
       if (b.properties.contains("osm_id") && b.properties["osm_id"].is_string())
         tags.push_back({"exacity:osm_id", b.properties["osm_id"].get<std::string>()});
     }
-    way(ring, std::move(tags));
+    if (b.polygon.holes.empty()) {
+      way(closed(b.polygon.outer), std::move(tags));
+      continue;
+    }
+    // Its courtyards as OSM maps them: the tags on a multipolygon relation, its rings untagged ways.
+    OsmMultipolygon& m = multipolygons.emplace_back();
+    m.tags = std::move(tags);
+    m.tags.insert(m.tags.begin(), {"type", "multipolygon"});
+    m.members.push_back({ways.size(), "outer"});
+    way(closed(b.polygon.outer), {});
+    for (const geom::Ring& hole : b.polygon.holes) {
+      m.members.push_back({ways.size(), "inner"});
+      way(closed(hole), {});
+    }
   }
   // Street clutter as the tagged nodes mappers use for it, after the ways' nodes.
   std::vector<osmium::Location> locations;
@@ -321,12 +343,29 @@ bool write_city_osm(const City& city, const fs::path& file, std::optional<std::i
     }
     way_buffer.commit();
   }
+  osmium::memory::Buffer relation_buffer{1024 * 1024, osmium::memory::Buffer::auto_grow::yes};
+  for (std::size_t i = 0; i < multipolygons.size(); ++i) {
+    {
+      osmium::builder::RelationBuilder builder{relation_buffer};
+      builder.set_id(id(i, multipolygons.size())).set_version(1).set_visible(true);
+      builder.set_user("exacity");
+      {
+        osmium::builder::RelationMemberListBuilder members{builder};
+        for (const auto& [w, role] : multipolygons[i].members)
+          members.add_member(osmium::item_type::way, id(w, ways.size()), role);
+      }
+      osmium::builder::TagListBuilder tag_list{builder};
+      for (const auto& [k, v] : multipolygons[i].tags) tag_list.add_tag(k, v);
+    }
+    relation_buffer.commit();
+  }
   try {
     osmium::io::Header header;
     header.set("generator", "exacity");
     osmium::io::Writer writer{file.string(), header, osmium::io::overwrite::allow};
     writer(std::move(node_buffer));
     writer(std::move(way_buffer));
+    if (!multipolygons.empty()) writer(std::move(relation_buffer));
     writer.close();
   } catch (const std::exception& e) {
     throw UserError(file.string() + ": cannot be written (" + e.what() + ")");

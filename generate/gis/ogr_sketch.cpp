@@ -1,5 +1,7 @@
 #include <algorithm>
 #include <cctype>
+#include <functional>
+#include <map>
 #include <memory>
 
 #include <cpl_string.h>
@@ -111,7 +113,9 @@ bool add_settings_beside(ordered_json& doc, const fs::path& path) {
   return true;
 }
 
-ordered_json ogr_sketch_document(const fs::path& path) {
+namespace {
+
+GDALDatasetUniquePtr open_vector(const fs::path& path) {
   start_gdal();
   CPLErrorReset();
   GDALDatasetUniquePtr ds(GDALDataset::Open(path.string().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
@@ -119,18 +123,20 @@ ordered_json ogr_sketch_document(const fs::path& path) {
     throw UserError(path.string() + ": OGR cannot read it as a vector file (" +
                     (CPLGetLastErrorMsg()[0] ? std::string(CPLGetLastErrorMsg()) : "no driver recognises it") +
                     "); give GeoJSON, GeoPackage, Shapefile, KML, FlatGeobuf, GML or an OSM extract");
-  ordered_json doc = {{"type", "FeatureCollection"}, {"features", ordered_json::array()}};
+  return ds;
+}
+
+// Every feature of every layer with a geometry, with its geometry as GeoJSON (2D, linear, in
+// the first such layer's CRS, which becomes the document's crs): `layer_read` says whether a
+// layer is read (and refuses one that cannot be), `feature_read` adds a feature to `doc`.
+void read_features(GDALDataset& ds, const fs::path& path, ordered_json& doc,
+                   const std::function<void(OGRLayer&, const std::string& where)>& layer_read,
+                   const std::function<void(OGRFeature&, const std::string& source, ordered_json geometry)>& feature_read) {
   std::unique_ptr<OGRSpatialReference> crs;  // the first spatial layer's; the others are brought to it
-  for (OGRLayer* layer : ds->GetLayers()) {
+  for (OGRLayer* layer : ds.GetLayers()) {
     if (layer->GetGeomType() == wkbNone) continue;  // a table without geometry (QGIS's styles, say)
     const std::string where = path.string() + " layer " + utf8(layer->GetName());
-    OGRFeatureDefn* defn = layer->GetLayerDefn();
-    const bool osm_tagged = std::any_of(osm_keys().begin(), osm_keys().end(),
-                                        [&](const std::string& key) { return defn->GetFieldIndex(key.c_str()) >= 0; });
-    if (defn->GetFieldIndex("zone") < 0 && defn->GetFieldIndex("road") < 0 && !osm_tagged)
-      throw UserError(where + ": has neither a \"zone\" nor a \"road\" field, nor OpenStreetMap's landuse or highway; add "
-                      "one (zones: residential, commercial, industrial, park, water; roads: highway, main, local), or remove "
-                      "the layer");
+    layer_read(*layer, where);
     std::unique_ptr<OGRCoordinateTransformation> to_crs;
     if (const OGRSpatialReference* srs = layer->GetSpatialRef()) {
       if (!crs) {
@@ -153,12 +159,6 @@ ordered_json ogr_sketch_document(const fs::path& path) {
     layer->ResetReading();
     for (OGRFeatureUniquePtr f(layer->GetNextFeature()); f; f.reset(layer->GetNextFeature())) {
       const std::string source = where + " feature " + std::to_string(f->GetFID());
-      ordered_json properties = ordered_json::object();
-      for (const char* name : {"zone", "road", "width", "name"})
-        if (ordered_json v = field(*f, name); !v.is_null()) properties[name] = std::move(v);
-      for (const std::string& key : osm_keys())
-        if (ordered_json v = field(*f, key.c_str()); !v.is_null() && !properties.contains(key)) properties[key] = std::move(v);
-      properties["source"] = source;
       ordered_json geometry = nullptr;
       if (const OGRGeometry* g = f->GetGeometryRef()) {
         std::unique_ptr<OGRGeometry> linear(g->hasCurveGeometry() ? g->getLinearGeometry() : g->clone());
@@ -175,10 +175,104 @@ ordered_json ogr_sketch_document(const fs::path& path) {
           c.geometry->getEnvelope(&c.box);
         }
       }
-      doc["features"].push_back({{"type", "Feature"}, {"properties", std::move(properties)}, {"geometry", std::move(geometry)}});
+      feature_read(*f, source, std::move(geometry));
     }
     expect_order_kept(covers, where);
   }
+}
+
+// A field's value by the first of `names` the layer has (any case), or null.
+ordered_json first_field(OGRFeature& f, std::initializer_list<const char*> names) {
+  for (const char* name : names)
+    if (ordered_json v = field(f, name); !v.is_null()) return v;
+  return nullptr;
+}
+
+// BAG's statuses of a building not standing (planned, being built, demolished, registered
+// in error); the others ("Pand in gebruik", "Verbouwing pand" ...) stand.
+bool not_standing(const std::string& status) {
+  for (const char* s : {"Bouwvergunning verleend", "Bouw gestart", "Niet gerealiseerd pand", "Pand gesloopt",
+                        "Pand ten onrechte opgevoerd"})
+    if (status == s) return true;
+  return false;
+}
+
+}  // namespace
+
+ordered_json ogr_sketch_document(const fs::path& path) {
+  GDALDatasetUniquePtr ds = open_vector(path);
+  ordered_json doc = {{"type", "FeatureCollection"}, {"features", ordered_json::array()}};
+  auto layer_read = [](OGRLayer& layer, const std::string& where) {
+    OGRFeatureDefn* defn = layer.GetLayerDefn();
+    const bool osm_tagged = std::any_of(osm_keys().begin(), osm_keys().end(),
+                                        [&](const std::string& key) { return defn->GetFieldIndex(key.c_str()) >= 0; });
+    if (defn->GetFieldIndex("zone") < 0 && defn->GetFieldIndex("road") < 0 && !osm_tagged)
+      throw UserError(where + ": has neither a \"zone\" nor a \"road\" field, nor OpenStreetMap's landuse or highway; add "
+                      "one (zones: residential, commercial, industrial, park, water; roads: highway, main, local), give "
+                      "a layer of building footprints with --buildings FILE, or remove the layer");
+  };
+  read_features(*ds, path, doc, layer_read, [&](OGRFeature& f, const std::string& source, ordered_json geometry) {
+    ordered_json properties = ordered_json::object();
+    for (const char* name : {"zone", "road", "width", "name"})
+      if (ordered_json v = field(f, name); !v.is_null()) properties[name] = std::move(v);
+    for (const std::string& key : osm_keys())
+      if (ordered_json v = field(f, key.c_str()); !v.is_null() && !properties.contains(key)) properties[key] = std::move(v);
+    properties["source"] = source;
+    doc["features"].push_back({{"type", "Feature"}, {"properties", std::move(properties)}, {"geometry", std::move(geometry)}});
+  });
+  return doc;
+}
+
+ordered_json footprint_document(const fs::path& path) {
+  GDALDatasetUniquePtr ds = open_vector(path);
+  ordered_json doc = {{"type", "FeatureCollection"}, {"features", ordered_json::array()}};
+  std::map<std::string, int> refused;
+  ordered_json named = ordered_json::array();  // the first few refused, as report.json names the placement's
+  auto refuse = [&](const std::string& source, const std::string& why) {
+    if (named.size() < 20) named.push_back(source + ": refused, " + why);
+    ++refused[why];
+  };
+  auto layer_read = [](OGRLayer& layer, const std::string& where) {
+    const OGRwkbGeometryType type = wkbFlatten(layer.GetGeomType());
+    if (type != wkbUnknown && type != wkbPolygon && type != wkbMultiPolygon && type != wkbCurvePolygon &&
+        type != wkbMultiSurface && type != wkbGeometryCollection)
+      throw UserError(where + ": holds " + lower(OGRGeometryTypeToName(type)) + "s, not building footprints; give "
+                      "--buildings a file of polygons, or draw the footprints");
+  };
+  read_features(*ds, path, doc, layer_read, [&](OGRFeature& f, const std::string& source, ordered_json geometry) {
+    const std::string type = geometry.is_object() ? geometry.value("type", "") : "";
+    if (type != "Polygon" && type != "MultiPolygon") return refuse(source, "buildings that are not polygons");
+    const ordered_json status = field(f, "status");
+    if (status.is_string() && not_standing(status.get<std::string>()))
+      return refuse(source, "buildings not standing (BAG's status " + status.get<std::string>() + ")");
+    ordered_json building = field(f, "building");
+    ordered_json p{{"building", building.is_string() && !building.get<std::string>().empty() ? building : ordered_json("yes")}};
+    // Heights as OSM tags them, as Overture and Microsoft's footprints name them, and BAG 3D's
+    // roof height above the ground.
+    ordered_json height = first_field(f, {"height", "hoogte"});
+    if (height.is_number() && height.get<double>() <= 0) height = nullptr;  // Microsoft's -1: not measured
+    const ordered_json roof = first_field(f, {"b3_h_dak_70p", "h_dak_70p"}), ground = first_field(f, {"b3_h_maaiveld", "h_maaiveld"});
+    if (height.is_null() && roof.is_number() && ground.is_number()) height = roof.get<double>() - ground.get<double>();
+    if (!height.is_null()) p["height"] = height;
+    if (ordered_json v = first_field(f, {"building:levels", "levels", "num_floors", "floors", "storeys", "stories",
+                                         "b3_bouwlagen", "bouwlagen", "aantal_bouwlagen"});
+        !v.is_null())
+      p["building:levels"] = v;
+    if (ordered_json v = first_field(f, {"roof:shape", "roof_shape"}); !v.is_null()) p["roof:shape"] = v;
+    if (ordered_json v = first_field(f, {"roof:height", "roof_height"}); !v.is_null()) p["roof:height"] = v;
+    if (ordered_json v = first_field(f, {"name"}); !v.is_null()) p["name"] = v;
+    p["source"] = source;
+    doc["features"].push_back({{"type", "Feature"}, {"properties", std::move(p)}, {"geometry", std::move(geometry)}});
+  });
+  // What was refused is counted as an extract's left-out buildings are (report.json's
+  // mapped_buildings).
+  ordered_json skipped = ordered_json::object();
+  for (const auto& [why, n] : refused) skipped[why] = n;
+  doc["osm"] = {{"file", path.string()}, {"skipped", skipped}, {"buildings_named", std::move(named)}};
+  if (doc["features"].empty())
+    throw UserError(path.string() + ": has no building footprints (polygons) to keep" +
+                    (refused.empty() ? std::string() : " (" + std::to_string(refused.begin()->second) + " " + refused.begin()->first + ")") +
+                    "; give --buildings a file of footprint polygons");
   return doc;
 }
 

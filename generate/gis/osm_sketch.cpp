@@ -2,6 +2,7 @@
 // libosmium: multipolygon relations and closed ways assembled into areas by its
 // MultipolygonManager, way node locations from a node index.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -135,11 +136,11 @@ double ring_area(const LonLat& r) {
   return a / 2;
 }
 
-// An open chain the extract's edge cut, closed along the edge (`box`): each end goes on in
-// its last segment's direction to the box, and the box's outline joins the two points
-// there, round the side that encloses less (OSM's rings have no orientation to say which
+// An open chain the extract's edge cut, closed along the edge (`box`) both ways: each end
+// goes on in its last segment's direction to the box, and the box's outline joins the two
+// points there, round one side or the other (OSM's rings have no orientation to say which
 // side the area lies on, and the extract holds the area only up to its edge).
-LonLat closed_along(const LonLat& chain, const osmium::Box& box) {
+std::array<LonLat, 2> closed_along(const LonLat& chain, const osmium::Box& box) {
   const double x0 = box.bottom_left().lon(), y0 = box.bottom_left().lat(), x1 = box.top_right().lon(),
                y1 = box.top_right().lat();
   const double w = x1 - x0, h = y1 - y0;
@@ -171,9 +172,10 @@ LonLat closed_along(const LonLat& chain, const osmium::Box& box) {
   const std::pair<double, double> corners[] = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
   const double corner_at[] = {0, w, w + h, 2 * w + h}, perimeter = 2 * (w + h);
   const auto from = exit(chain[chain.size() - 2], chain.back()), to = exit(chain[1], chain.front());
-  LonLat best;
+  std::array<LonLat, 2> rings;
   for (const int direction : {1, -1}) {
-    LonLat ring = chain;
+    LonLat& ring = rings[direction > 0 ? 0 : 1];
+    ring = chain;
     if (from != chain.back()) ring.push_back(from);
     // The corners passed going from `from` to `to` that way round.
     const double a = along(from), b = along(to);
@@ -189,9 +191,8 @@ LonLat closed_along(const LonLat& chain, const osmium::Box& box) {
     for (const auto& [d, corner] : passed) ring.push_back(corner);
     if (to != chain.front()) ring.push_back(to);
     ring.push_back(chain.front());
-    if (best.empty() || std::abs(ring_area(ring)) < std::abs(ring_area(best))) best = std::move(ring);
   }
-  return best;
+  return rings;
 }
 
 bool inside(std::pair<double, double> p, const LonLat& ring) {
@@ -304,7 +305,7 @@ class Collector : public osmium::handler::Handler {
       if (ring.ids.front() == ring.ids.back()) {
         if (ring.points.size() >= 4) f.polygons.push_back({std::move(ring.points), {}});
       } else if (box.valid() && ring.points.size() >= 2) {
-        f.polygons.push_back({closed_along(ring.points, box), {}});
+        f.polygons.push_back({side_of(tags, closed_along(ring.points, box)), {}});
         ++cut;
       }
     }
@@ -320,6 +321,30 @@ class Collector : public osmium::handler::Handler {
                         (cut ? "its outer ring, cut by the extract's edge, closed along the edge"
                              : "its rings assembled from the member ways the extract holds"));
     zones_.push_back(std::move(f));
+  }
+
+  // Which of a cut ring's two closings is the area's: built-up land use (residential,
+  // commercial, industrial) lies where the mapped buildings stand, a park, forest or water
+  // where they do not; where the buildings do not tell (none on either side, or as many),
+  // the side that encloses less. In the extract a village's residential land and the forest
+  // beside it, cut by the same edge, share one boundary and lie on its two sides.
+  LonLat side_of(const ordered_json& tags, std::array<LonLat, 2> closings) const {
+    const OsmMeaning meaning = osm_area_meaning([&](const std::string& key) -> std::optional<std::string> {
+      if (tags.contains(key) && tags[key].is_string()) return tags[key].get<std::string>();
+      return std::nullopt;
+    });
+    const bool built_up = meaning.type == "residential" || meaning.type == "commercial" || meaning.type == "industrial";
+    int held[2] = {0, 0};
+    for (const OsmFeature& b : buildings_)
+      for (const auto& [outer, holes] : b.polygons) {
+        if (outer.empty()) continue;
+        std::pair<double, double> centre{0, 0};
+        for (const auto& [x, y] : outer) centre.first += x / outer.size(), centre.second += y / outer.size();
+        for (int k = 0; k < 2; ++k) held[k] += inside(centre, closings[k]);
+      }
+    int pick = std::abs(ring_area(closings[1])) < std::abs(ring_area(closings[0]));
+    if (held[0] != held[1]) pick = (held[1] > held[0]) == built_up;
+    return std::move(closings[pick]);
   }
 
   static std::string zone_tag(const ordered_json& tags) {

@@ -25,6 +25,14 @@ std::filesystem::path settings_beside(const std::filesystem::path& path);
 // Throws UserError naming the file (and the layer) when OGR cannot read it.
 nlohmann::ordered_json ogr_sketch_document(const std::filesystem::path& path);
 
+// A file of building footprints in any format OGR reads (`generate --buildings`): every
+// polygon of every layer a mapped building (a "building" property, "yes" unless a field
+// says which), raised from the fields OSM, Overture, Microsoft's footprints or BAG 3D name
+// heights, levels and roofs by; features that are no polygons, and buildings BAG's
+// status says do not stand, are counted in the "osm" member's "skipped" as an extract's
+// left-out buildings are. Throws UserError for a layer of points or lines, or no footprint.
+nlohmann::ordered_json footprint_document(const std::filesystem::path& path);
+
 // An OpenStreetMap extract (.osm or .osm.pbf, read with libosmium) in lon/lat, as OSM is
 // (EPSG:4326; project_to_metres then projects it with its settings' bounds): its highways,
 // rivers and canals as lines and its land use and water as areas, each with the tags

@@ -390,7 +390,9 @@ class Parser {
     const std::string w = "\"exacity\"";
     known_keys(ex, w,
                {"version", "seed", "terrain", "models", "zones", "roads", "camera", "channels", "channel_sharpness",
-                "builtin_models", "like"});
+                "builtin_models", "like", "infer_zones"});
+    if (ex.contains("infer_zones") && !ex["infer_zones"].is_boolean())
+      fail(w + ".infer_zones", "expected true or false (true: street faces without land use are zoned from their mapped buildings)");
     if (ex.contains("version") && number(ex["version"], w + ".version", 1, 1) != 1) fail(w, "unsupported version");
     if (ex.contains("seed")) {
       const json& s = ex["seed"];
@@ -655,9 +657,25 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
           counts.left_out[why] = count.get<int>();
           if (why.rfind("building", 0) == 0) sketch.buildings_left_out[why] += count.get<int>();
         }
+    if (file->contains("buildings_named") && (*file)["buildings_named"].is_array())
+      for (const auto& what : (*file)["buildings_named"])
+        if (what.is_string()) sketch.buildings_left_out_named.push_back(what.get<std::string>());
     if (file->contains("repaired") && (*file)["repaired"].is_array())
       for (const auto& what : (*file)["repaired"])
-        if (what.is_string()) counts.repaired.push_back(what.get<std::string>());
+        if (what.is_string()) {
+          counts.repaired.push_back(what.get<std::string>());
+          if (counts.repaired.back().find("closed along the edge") != std::string::npos) ++sketch.land_use.closed_along_bounds;
+        }
+  }
+  if (doc.contains("land_use") && doc["land_use"].is_object()) {
+    const json& l = doc["land_use"];
+    LandUseTally& t = sketch.land_use;
+    t.infer_zones = true;
+    t.street_faces = l.value("street_faces", 0), t.faces_with_land_use = l.value("faces_with_land_use", 0);
+    t.left_open = l.value("left_open", 0);
+    if (l.contains("inferred") && l["inferred"].is_object())
+      for (const auto& [zone, n] : l["inferred"].items())
+        if (n.is_number_integer()) t.inferred[zone] = n.get<int>();
   }
   if (doc.contains("exacity")) parser.settings(doc["exacity"], sketch);
   json settings = json::object();

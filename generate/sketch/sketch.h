@@ -67,9 +67,11 @@ Sketch load_sketch(const std::filesystem::path& path, bool read_grammars = true,
 // Several sketch files read as one (a land use layer and a streets layer, say): their
 // features in the order given, each named by its file; they share one CRS (a file without
 // one is taken to be in the others') and at most one of them has settings. Messages and
-// relative paths are the first file's.
+// relative paths are the first file's. `footprints` are files of building footprints
+// (`generate --buildings`, generate/gis/sketch_sources.h's footprint_document), read after
+// them as mapped buildings.
 Sketch load_sketch(const std::vector<std::filesystem::path>& paths, bool read_grammars = true,
-                   const std::filesystem::path& models = {});
+                   const std::filesystem::path& models = {}, const std::vector<std::filesystem::path>& footprints = {});
 // A file as the sketch reader reads it, before its features are: a GeoJSON document in
 // metres, OpenStreetMap's tags made zones, roads and mapped buildings (a file of real
 // footprints, say, that has no zone or road and that load_sketch would refuse).

@@ -8,6 +8,7 @@
 #include "generate/gis/osm_tags.h"
 #include "generate/gis/projection.h"
 #include "generate/gis/sketch_sources.h"
+#include "generate/gis/zone_inference.h"
 #include "generate/input_file.h"
 #include "generate/sketch/grid_map.h"
 #include "generate/sketch/sketch.h"
@@ -61,6 +62,16 @@ bool apply_osm_tags_and_layout(nlohmann::ordered_json& doc, const std::vector<Sk
   return true;
 }
 
+// Street faces without land use zoned from their mapped buildings, where the settings ask
+// (generate/gis/zone_inference.h); whether they did.
+bool infer_zones_if_asked(nlohmann::ordered_json& doc) {
+  if (!doc.contains("exacity") || !doc["exacity"].is_object() || doc["exacity"].value("infer_zones", nlohmann::ordered_json()) != true)
+    return false;
+  if (doc.contains("land_use")) return false;  // OUT/sketch.geojson, read again: its zones are inferred already
+  infer_zones(doc);
+  return true;
+}
+
 // Sketches of other formats, several files, and GeoJSON in lon/lat become a document in
 // metres first (docs/design.md, The sketch, GIS and OSM); OUT/sketch.geojson keeps it.
 Sketch made_sketch(const nlohmann::ordered_json& doc, const fs::path& path, bool read_grammars, const fs::path& models) {
@@ -97,6 +108,7 @@ Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& mod
     nlohmann::ordered_json doc = gis_document(path, source);
     project_to_metres(doc, path);
     apply_osm_tags_and_layout(doc, {{path, doc["features"].size()}});
+    infer_zones_if_asked(doc);
     return made_sketch(doc, path, read_grammars, models);
   }
   const std::string text = file_text(path);
@@ -109,15 +121,27 @@ Sketch load_sketch(const fs::path& path, bool read_grammars, const fs::path& mod
   const bool projected = project_to_metres(doc, path);
   const bool tagged = doc.contains("features") && doc["features"].is_array() &&
                       apply_osm_tags_and_layout(doc, {{path, doc["features"].size()}});
-  if (!projected && !beside && !tagged) return parse_sketch(text, path, read_grammars, models);
+  const bool inferred = infer_zones_if_asked(doc);
+  if (!projected && !beside && !tagged && !inferred) return parse_sketch(text, path, read_grammars, models);
   return made_sketch(doc, path, read_grammars, models);
 }
 
-Sketch load_sketch(const std::vector<fs::path>& paths, bool read_grammars, const fs::path& models) {
+Sketch load_sketch(const std::vector<fs::path>& paths, bool read_grammars, const fs::path& models,
+                   const std::vector<fs::path>& footprints) {
   if (paths.empty()) throw UserError("no sketch given; give a GeoJSON sketch, a grid map, a vector file or an OSM extract");
-  if (paths.size() == 1) return load_sketch(paths[0], read_grammars, models);
+  if (paths.size() == 1 && footprints.empty()) return load_sketch(paths[0], read_grammars, models);
   std::vector<SketchPart> parts;
-  for (const fs::path& path : paths) {
+  for (const fs::path& path : footprints) {
+    // Read as the sketch's files are, after them: a folder of shapefiles, or any one file.
+    if (!fs::is_directory(path)) expect_input(path, kMaxDataFileBytes, "the building footprints", "give a vector file of footprint polygons");
+  }
+  for (std::size_t k = 0; k < paths.size() + footprints.size(); ++k) {
+    const bool footprint = k >= paths.size();
+    const fs::path& path = footprint ? footprints[k - paths.size()] : paths[k];
+    if (footprint) {
+      parts.push_back({footprint_document(path), path});
+      continue;
+    }
     const SketchSource source = sketch_source(path);
     expect_readable(path, source);
     if (source == SketchSource::GridMap)
@@ -172,6 +196,7 @@ Sketch load_sketch(const std::vector<fs::path>& paths, bool read_grammars, const
     }
   }
   apply_osm_tags_and_layout(doc, files);
+  infer_zones_if_asked(doc);
   return made_sketch(doc, paths[0], read_grammars, models);
 }
 
