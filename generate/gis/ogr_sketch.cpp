@@ -154,7 +154,7 @@ void read_features(GDALDataset& ds, const fs::path& path, ordered_json& doc,
         if (!to_crs) throw UserError(where + ": PROJ cannot bring its CRS to the first layer's; reproject it");
       }
     }
-    const bool order_lost = lower(ds->GetDriverName()) == "flatgeobuf" && layer->TestCapability(OLCFastSpatialFilter);
+    const bool order_lost = lower(ds.GetDriverName()) == "flatgeobuf" && layer->TestCapability(OLCFastSpatialFilter);
     std::vector<Cover> covers;
     layer->ResetReading();
     for (OGRFeatureUniquePtr f(layer->GetNextFeature()); f; f.reset(layer->GetNextFeature())) {
@@ -168,9 +168,9 @@ void read_features(GDALDataset& ds, const fs::path& path, ordered_json& doc,
         char* text = linear->exportToJson();
         geometry = ordered_json::parse(text ? text : "null", nullptr, false);
         CPLFree(text);
-        const bool zone = linear->getDimension() == 2 && !properties.contains("road") &&
-                          !properties.contains("building") && !properties.contains("building:part");
-        if (order_lost && zone) {
+        const bool covers_land = linear->getDimension() == 2 && field(*f, "road").is_null() &&
+                                 field(*f, "building").is_null() && field(*f, "building:part").is_null();
+        if (order_lost && covers_land) {
           Cover& c = covers.emplace_back(Cover{std::move(linear), {}, source});
           c.geometry->getEnvelope(&c.box);
         }
