@@ -1352,9 +1352,9 @@ TEST(Gis, AFootprintLayerGivenWithBuildingsIsKeptAsMappedBuildings) {
       "buildings that are not polygons": 1})x")) << report.dump(1);
   EXPECT_EQ(report["heights_from"], ordered_json::parse(R"({"building:levels": 1, "height": 2, "zone": 1})")) << report.dump(1);
   EXPECT_NE(run.out.find((dir / "footprints.gpkg").string() + ": left out 2 buildings"), std::string::npos) << run.out;
-  const std::string layer = (dir / "footprints.gpkg").string() + " layer footprints feature ";
-  EXPECT_EQ(report["named"], ordered_json({layer + "5: refused, buildings not standing (BAG's status Pand gesloopt)",
-                                           layer + "6: refused, buildings that are not polygons"}))
+  const std::string feature = (dir / "footprints.gpkg").string() + " layer footprints feature ";
+  EXPECT_EQ(report["named"], ordered_json({feature + "5: refused, buildings not standing (BAG's status Pand gesloopt)",
+                                           feature + "6: refused, buildings that are not polygons"}))
       << report.dump(1);
 
   // Each kept as drawn, raised from its own field.
