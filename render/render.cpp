@@ -187,6 +187,7 @@ nlohmann::ordered_json still_report(const RenderRequest& request, const RenderSc
       {"scene",
        {{"triangles", scene.triangles},
         {"instances", scene.instances},
+        {"landscape_instances", scene.landscape_instances},
         {"build_s", scene_s},
         {"embree_peak_mib", static_cast<double>(scene.embree_peak_bytes()) / (1 << 20)}}},
       {"still",

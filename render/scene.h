@@ -121,6 +121,7 @@ class RenderScene {
   float ground = 0, top = 0;
   std::vector<TileLevel> tiles;
   std::size_t triangles = 0, instances = 0;
+  std::size_t landscape_instances = 0;  // the trees beyond the city, apart from the city's instances
   // The most memory Embree held at once, from its device's memory monitor.
   std::size_t embree_peak_bytes() const { return device_.peak_bytes(); }
 

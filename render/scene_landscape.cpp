@@ -69,7 +69,7 @@ void RenderScene::add_landscape(const exacity::City& city, const geom::Box& worl
     info.cos_turn = c, info.sin_turn = s;
     if (geometries_.size() <= id) geometries_.resize(id + 1);
     geometries_[id] = std::move(info);
-    ++instances;
+    ++landscape_instances;
   }
   device_.check("the landscape's trees");
 }
