@@ -168,9 +168,9 @@ void read_features(GDALDataset& ds, const fs::path& path, ordered_json& doc,
         char* text = linear->exportToJson();
         geometry = ordered_json::parse(text ? text : "null", nullptr, false);
         CPLFree(text);
-        const bool covers_land = linear->getDimension() == 2 && field(*f, "road").is_null() &&
-                                 field(*f, "building").is_null() && field(*f, "building:part").is_null();
-        if (order_lost && covers_land) {
+        // Only a file that lost its order pays for the fields' look-ups.
+        if (order_lost && linear->getDimension() == 2 && field(*f, "road").is_null() && field(*f, "building").is_null() &&
+            field(*f, "building:part").is_null()) {
           Cover& c = covers.emplace_back(Cover{std::move(linear), {}, source});
           c.geometry->getEnvelope(&c.box);
         }

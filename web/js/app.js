@@ -291,7 +291,7 @@ $('open-file').addEventListener('change', async e => {
   showLibrary();
 });
 
-// Save: the sketch as the server holds it, downloaded.
+// Save: the sketch as the server holds it, downloaded; as drawn when the server no longer knows this page.
 $('save').addEventListener('click', async () => {
   const doc = map.sketch();
   if (doc.features.length && !(await send(doc)) && !serverLost) return;
