@@ -196,6 +196,44 @@ TEST(Cli, ManyEmptyZonesAreNamedFirstFewThenCounted) {
 
 // Grid filling places library models: a zone that asks for it without any is built in
 // rows, and the run says so.
+// perimeter_depth: a block that is one lot, with streets on every side, is one building
+// round a courtyard, fronting each street behind its setback.
+TEST(Cli, PerimeterBlocksRingTheBlockRoundACourtyard) {
+  const fs::path dir = testing_util::temp_dir("cli-perimeter");
+  std::string roads;
+  for (int v : {0, 120})
+    roads += R"(, {"type": "Feature", "properties": {"road": "local"}, "geometry": {"type": "LineString", "coordinates": [[)" +
+             std::to_string(v) + ", -10], [" + std::to_string(v) + R"(, 130]]}},
+      {"type": "Feature", "properties": {"road": "local"}, "geometry": {"type": "LineString", "coordinates": [[-10, )" +
+             std::to_string(v) + "], [130, " + std::to_string(v) + "]]}}";
+  Result g = generate_in(dir, R"({"type": "FeatureCollection", "exacity": {"seed": 3, "zones": {"residential":
+    {"layout": "streets", "lots": "split", "lot_area": 100000, "perimeter_depth": 12, "setback": 2}}}, "features": [
+    {"type": "Feature", "properties": {"zone": "residential"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [120, 0], [120, 120], [0, 120], [0, 0]]]}})" + roads + "]}");
+  ASSERT_EQ(g.code, 0) << g.out;
+  const auto lots = nlohmann::json::parse(read(dir / "out" / "vector" / "lots.geojson"))["features"];
+  ASSERT_EQ(lots.size(), 1u);
+  const auto features = nlohmann::json::parse(read(dir / "out" / "vector" / "buildings.geojson"))["features"];
+  std::vector<nlohmann::json> buildings;
+  for (const auto& f : features)
+    if (f["properties"]["kind"] == "building") buildings.push_back(f);
+  ASSERT_EQ(buildings.size(), 1u);
+  const auto& rings = buildings[0]["geometry"]["coordinates"];
+  ASSERT_EQ(rings.size(), 2u) << "one courtyard";
+  // The lot is the block inside the road areas, a square of side s; the building its ring
+  // from 2 m (the setback, and half the building gap inside the lot's edges) to 14 m
+  // behind each street.
+  auto side = [](const nlohmann::json& ring) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (const auto& p : ring) lo = std::min(lo, p[0].get<double>()), hi = std::max(hi, p[0].get<double>());
+    return hi - lo;
+  };
+  const double s = side(lots[0]["geometry"]["coordinates"][0]);
+  EXPECT_NEAR(side(rings[0]), s - 4, 0.11);
+  EXPECT_NEAR(side(rings[1]), s - 28, 0.11);
+  EXPECT_EQ(run("validate " + (dir / "out").string()).code, 0);
+}
+
 TEST(Cli, GridFillingWithoutModelsIsNamedNotSilent) {
   const fs::path dir = testing_util::temp_dir("cli-grid-fallback");
   Result g = generate_in(dir, R"({"type": "FeatureCollection", "exacity": {"seed": 3, "zones":

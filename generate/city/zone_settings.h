@@ -124,6 +124,10 @@ struct BuildingSettings {
   // its shape from footprint_width and footprint_depth. Empty: sides drawn from those alone.
   std::vector<double> footprint_areas;
   double max_footprint_area = 2000;   // m²: no footprint larger
+  // m: above 0, an extruded zone's lots build perimeter blocks (generate/placement/
+  // perimeter.h): each lot's land this deep behind its street frontages, whatever its
+  // size; the rows' sizes above apply only where that leaves nothing.
+  double perimeter_depth = 0;
   double min_footprint_area = 30;     // m²: smaller footprints get no building
   double min_height = 4, max_height = 12;  // m: near the city centre; half that at its edge
   // "auto": gabled on near-rectangular residential footprints, hipped on the others, flat

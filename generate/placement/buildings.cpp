@@ -13,9 +13,11 @@
 #include "generate/city/format_number.h"
 #include "generate/placement/grid_filling.h"
 #include "generate/placement/model_placement.h"
+#include "generate/placement/perimeter.h"
 #include "generate/placement/placer.h"
 #include "geom/grid.h"
 #include "geom/measure.h"
+#include "geom/polygon_check.h"
 
 namespace exacity {
 
@@ -127,16 +129,38 @@ namespace {
 // with distance from the city's centre (or rises with the zone's height channel), under a
 // roof.
 class Extrusion : public Placer {
+  // The perimeter block's footprints the lot takes: those the exact test lets stand whole,
+  // courtyards included, and no smaller than min_footprint_area.
+  static std::vector<geom::Polygon> perimeter(Occupancy& occupancy, const BuildingSettings& p) {
+    std::vector<geom::Polygon> taken;
+    for (geom::Polygon& footprint : perimeter_footprints(occupancy.piece(), LotEdge::kStreet, p.setback, p.perimeter_depth,
+                                                         std::max(p.building_gap / 2, 0.05))) {
+      const bool courtyards_inside = std::all_of(footprint.holes.begin(), footprint.holes.end(), [&](const geom::Ring& hole) {
+        return geom::ring_orientation(hole) == -1 && geom::ring_is_simple(hole) &&
+               std::all_of(hole.begin(), hole.end(), [&](geom::Vec2 v) { return geom::point_side(footprint.outer, v) == 1; }) &&
+               std::all_of(footprint.outer.begin(), footprint.outer.end(), [&](geom::Vec2 v) { return geom::point_side(hole, v) == -1; });
+      });
+      if (courtyards_inside && geom::area(footprint) >= p.min_footprint_area && geom::ring_is_simple(footprint.outer) &&
+          occupancy.take(footprint.outer))
+        taken.push_back(std::move(footprint));
+    }
+    return taken;
+  }
+
  public:
   Extrusion(geom::Vec2 centre, double radius, const Channels& channels)
       : centre_(centre), radius_(radius), channels_(channels) {}
   void place(const Lot& lot, const BuildingSettings& p, Occupancy& occupancy, Random& rng, Structures& out) const override {
+    std::vector<geom::Polygon> footprints;
+    if (p.perimeter_depth > 0) footprints = perimeter(occupancy, p);
+    if (footprints.empty())
+      for (geom::Ring& ring : street_footprints(occupancy, p, rng)) footprints.push_back({std::move(ring), {}});
     const int height_channel = p.height_channel.empty() ? -1 : channels_.index(p.height_channel);
-    for (geom::Ring& ring : street_footprints(occupancy, p, rng)) {
+    for (geom::Polygon& footprint : footprints) {
       Building b;
-      b.polygon.outer = std::move(ring);
+      b.polygon = std::move(footprint);
       geom::Vec2 c{0, 0};
-      for (geom::Vec2 v : b.polygon.outer) c.x += v.x / 4, c.y += v.y / 4;  // a rectangle's centre
+      for (geom::Vec2 v : b.polygon.outer) c = c + v * (1.0 / static_cast<double>(b.polygon.outer.size()));
       const double near_centre = height_channel >= 0 ? channels_.value(height_channel, c)
                                  : radius_ > 0 ? 1 - std::min(std::hypot(c.x - centre_.x, c.y - centre_.y) / radius_, 1.0)
                                                : 1;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "generate/city/format_number.h"
 #include "generate/errors.h"
@@ -17,6 +18,7 @@ using nlohmann::ordered_json;
 
 constexpr double kSetbackReach = 25;  // m: a footprint farther from every road fronts none
 constexpr double kGapReach = 20;      // m: a footprint farther from every other stands alone
+constexpr double kTouching = 0.5;     // m: a median gap below this is a continuous frontage
 
 // The value at quantile q (0 to 1) of sorted values, the lower one between two.
 double quantile(const std::vector<double>& sorted, double q) {
@@ -225,6 +227,7 @@ std::map<ZoneType, PlaceFigures> measure_place(const std::vector<RealFootprint>&
       ++f.buildings;
       f.areas.push_back(area);
       f.long_sides.push_back(long_side), f.short_sides.push_back(short_side);
+      f.wing_depths.push_back(2 * area / geom::perimeter(p));
       if (footprints[i].height) f.heights.push_back(*footprints[i].height);
       else if (footprints[i].levels) f.heights.push_back(*footprints[i].levels * settings.at(t).buildings.storey_height);
       if (setback <= kSetbackReach) f.setbacks.push_back(std::max(setback, 0.0));
@@ -234,6 +237,14 @@ std::map<ZoneType, PlaceFigures> measure_place(const std::vector<RealFootprint>&
   for (const ZoneFeature& z : zones)
     if (out.count(z.type))
       for (const geom::Polygon& p : z.polygons) out[z.type].land_m2 += drawn_area(p);
+  // Each side of each street fronts the land use a metre past its edge.
+  if (!zones.empty())
+    for (const Piece& piece : pieces) {
+      const Vec2 middle = geom::lerp(piece.a, piece.b, 0.5), n = geom::left_normal(piece.a, piece.b);
+      for (double side : {-1.0, 1.0})
+        if (const std::optional<ZoneType> t = zone_at(zones, middle + n * (side * (piece.half + 1))); t && out.count(*t))
+          out[*t].frontage_m += geom::distance(piece.a, piece.b);
+    }
   return out;
 }
 
@@ -274,10 +285,24 @@ ordered_json settings_from_figures(const PlaceFigures& f, const ZoneSettings& de
   set["min_footprint_width"] = std::max(1.0, std::floor(std::min(0.8 * width, depth)));
   set["setback"] = setback;
   set["building_gap"] = gap;
-  // Lots deep enough for the deepest footprint behind its setback, and wide enough for a
-  // footprint of the middle width and its gap up to the widest one.
-  set["lot_depth"] = std::ceil(setback + depths.max + gap / 2);
-  set["lot_width"] = {std::ceil(width + gap), std::ceil(std::max(widths.max, width + 1) + gap)};
+  const double footprint_m2 = std::accumulate(areas.begin(), areas.end(), 0.0);
+  if (gap < kTouching && f.land_m2 > footprint_m2) {
+    // Most buildings touch their neighbours: a continuous frontage, perimeter blocks, as
+    // deep as the place builds per metre of street it fronts (else as its deep wings, at
+    // the ninetieth percentile). One building a lot, and a lot reaches the block's middle:
+    // its frontage holds the median footprint at that depth, and its depth is half a
+    // block's, twice the land per metre of frontage (a square block fronted on every side),
+    // so it is twice the median footprint over the place's coverage.
+    const double depth = f.frontage_m > 0 ? footprint_m2 / f.frontage_m : quantile(sorted(f.wing_depths), 0.9);
+    set["perimeter_depth"] = tenth(depth);
+    set["lots"] = "split";
+    set["lot_area"] = std::ceil(2 * median * f.land_m2 / footprint_m2);
+  } else {
+    // Lots deep enough for the deepest footprint behind its setback, and wide enough for a
+    // footprint of the middle width and its gap up to the widest one.
+    set["lot_depth"] = std::ceil(setback + depths.max + gap / 2);
+    set["lot_width"] = {std::ceil(width + gap), std::ceil(std::max(widths.max, width + 1) + gap)};
+  }
   if (static_cast<int>(f.heights.size()) >= kMinBuildingsToMeasure) {
     const std::vector<double> h = sorted(f.heights);
     set["heights"] = {tenth(std::max(quantile(h, 0.1), 0.5)), tenth(std::max(quantile(h, 0.9), quantile(h, 0.1)))};
@@ -363,10 +388,12 @@ ordered_json like_place(Sketch& sketch, const std::filesystem::path& like) {
     z["measured"] = {{"area_m2", summary(f.areas)},
                      {"long_side_m", summary(f.long_sides)},
                      {"short_side_m", summary(f.short_sides)},
+                     {"wing_depth_m", summary(f.wing_depths)},
                      {"height_m", summary(f.heights)},
                      {"setback_m", summary(f.setbacks)},
                      {"gap_m", summary(f.gaps)}};
     if (f.land_m2 > 0) z["measured"]["coverage_of_land_use"] = std::round(footprint_area / f.land_m2 * 1e4) / 1e4;
+    if (f.frontage_m > 0) z["measured"]["street_frontage_m"] = std::round(f.frontage_m);
     if (!ex["zones"].contains(type) || !ex["zones"][type].is_object()) ex["zones"][type] = ordered_json::object();
     ordered_json& zone = ex["zones"][type];
     ordered_json set = ordered_json::object(), kept = ordered_json::array();

@@ -31,8 +31,10 @@ struct RealFootprint {
 // its distance from the nearest other footprint (for those within 20 m of one).
 struct PlaceFigures {
   int buildings = 0;
-  std::vector<double> areas, long_sides, short_sides, heights, setbacks, gaps;
+  // wing_depths: twice the area over the perimeter, a long wing's depth.
+  std::vector<double> areas, long_sides, short_sides, wing_depths, heights, setbacks, gaps;
   double land_m2 = 0;  // the zone type's land use, where the buildings stand
+  double frontage_m = 0;  // the length of street its land use fronts, each side of a street once
 };
 
 // Measures `footprints` by the zone type of `zones` each one's centre lies in (the last
