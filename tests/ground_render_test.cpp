@@ -236,3 +236,58 @@ TEST(GroundRender, ARoadsEdgeSeenFromTheGrassHidesTheGroundUnderIt) {
   EXPECT_GT(road, size * 4);
   EXPECT_GT(grass, size * 4);
 }
+
+// A river leaving the map runs on past its edge, where the terrain is the map mirrored and
+// sinking to the plane: level water over the river's width, land beside it, no bank
+// across it at the map's edge (y 200), and water on over the plane past the fade (100 m).
+// It ended in a bank along the map's edge, the land going on.
+TEST(GroundRender, ARiverAtTheMapsEdgeRunsOnPastIt) {
+  const exacity::City city = city_on("river-on", straight_river, kPark);
+  ASSERT_EQ(city.ground.water.size(), 1u);
+  Sky sky(200, 40);
+  SceneOptions bare_ground;
+  bare_ground.landscape_trees = false;
+  RenderScene scene(city, sky.sun_direction(), bare_ground);
+  const TopView t = look_down(scene, {40, 190, 160, 430}, 60, 120);  // 2 m a pixel
+  const double level = exacity::water_level(city.ground.water[0], city.heightmap()) + 0.05;
+  int water = 0;
+  for (std::size_t i = 0; i < t.id.size(); ++i) {
+    const geom::Vec2 p = t.at[i];
+    if (p.x > 89 && p.x < 111) {  // the river's middle, clear of its banks
+      EXPECT_EQ(kind(t.id[i]), Entity::Water) << "at " << p.x << ", " << p.y;
+      if (p.y < 290) {
+        EXPECT_NEAR(t.z[i], level, 1e-3) << "at " << p.x << ", " << p.y;
+      }
+      ++water;
+    } else if (p.x < 70 || p.x > 130) {
+      EXPECT_NE(kind(t.id[i]), Entity::Water) << "at " << p.x << ", " << p.y;
+    }
+  }
+  EXPECT_GT(water, 10 * 120);
+}
+
+// A highway drawn past the city's ground (a park x 0 to 200, the road to x 220) runs on
+// straight into the land beyond, far into it, as a road with its lines, grass either side
+// and no tree on it. It ended 20 m past the park, in a field.
+TEST(GroundRender, ADrawnRoadLeavingTheCityRunsOnIntoTheLand) {
+  const auto dir = testing_util::temp_dir("ground-road-on");
+  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 5, "builtin_models": []},
+    "features": [)" + kPark + ", " + river_sketch::highway("[-20, 100], [220, 100]", 16) + "]}";
+  exacity::StageClock clock(nullptr, exacity::kCityStages);
+  const exacity::City city = exacity::build_city(exacity::parse_sketch(text, dir / "sketch.geojson"), clock);
+  Sky sky(200, 40);
+  RenderScene scene(city, sky.sun_direction(), SceneOptions{});
+  auto down = [&](double x, double y) {
+    Surface hit;
+    EXPECT_TRUE(scene.intersect(scene.to_scene(x, y, 200), {0, 0, -1}, INFINITY, hit)) << x << ", " << y;
+    return hit;
+  };
+  for (double x : {230.0, 400.0, 1000.0, 3000.0, 10000.0, 25000.0, -500.0, -20000.0}) {
+    for (double y : {93.0, 100.0, 107.0}) {
+      const Surface hit = down(x, y);
+      EXPECT_EQ(kind(hit.entity), Entity::Road) << "at " << x << ", " << y;
+      EXPECT_NEAR(hit.position.z, exacity::kRoadOverTerrain, 0.03) << "at " << x << ", " << y;
+    }
+    for (double y : {80.0, 120.0}) EXPECT_NE(kind(down(x, y).entity), Entity::Road) << "at " << x << ", " << y;
+  }
+}
