@@ -251,7 +251,8 @@ void RenderScene::add_road_markings(const exacity::Ground& ground, const exacity
 // Roads and rivers carried on past the city (render/onward.h). A road is draped as the
 // city's roads are, in pieces no longer than kPiece over the drawn terrain and one flat
 // piece over the plane past it, with sides and lines; the far water lies flat over the
-// plane at its water's level (or the plane's, if higher, hiding the near water's end bank).
+// plane at its water's level, or the plane's where that is higher (the land where the near
+// water ends lies there), rising to it from the near water.
 void RenderScene::add_onward(const exacity::Ground& ground, const exacity::Terrain* terrain,
                              const geom::Box& drawn, const WaterOnward& water, const Palette& palette) {
   constexpr double kPiece = 250;
@@ -298,8 +299,20 @@ void RenderScene::add_onward(const exacity::Ground& ground, const exacity::Terra
     info.entity.resize(g.triangles.size(), entity);
   }
   for (const auto& [w, p] : water.far) {
-    const double level = exacity::water_level(ground.water[w], terrain) + 0.05;
-    exacity::drape_flat(p, std::max(level, plane + 0.05), g);
+    const double level = exacity::water_level(ground.water[w], terrain) + 0.05, top = std::max(level, plane + 0.05);
+    exacity::drape_flat(p, top, g);
+    if (top > level) {
+      // A ramp of kRamp up to it from the near water, which the land where that ends lies
+      // under: a step, or a weir, showed as a dark line across the river.
+      constexpr double kRamp = 50;
+      const geom::Vec2 out = geom::unit_along(p.outer[0], p.outer[1]);
+      const geom::Vec2 a = p.outer[0], b = p.outer[3];
+      const int first = static_cast<int>(g.vertices.size());
+      g.vertices.insert(g.vertices.end(), {{a.x - out.x * kRamp, a.y - out.y * kRamp, level}, {a.x, a.y, top},
+                                           {b.x, b.y, top}, {b.x - out.x * kRamp, b.y - out.y * kRamp, level}});
+      g.triangles.push_back({first, first + 1, first + 2});
+      g.triangles.push_back({first, first + 2, first + 3});
+    }
     info.material.resize(g.triangles.size(), palette.water);
     info.entity.resize(g.triangles.size(), entity_id(Entity::Water, w));
     // The corridor from the map's bound, where the near water leaves it.

@@ -255,7 +255,7 @@ TEST(GroundRender, ARiverAtTheMapsEdgeRunsOnPastIt) {
     const geom::Vec2 p = t.at[i];
     if (p.x > 89 && p.x < 111) {  // the river's middle, clear of its banks
       EXPECT_EQ(kind(t.id[i]), Entity::Water) << "at " << p.x << ", " << p.y;
-      if (p.y < 290) {
+      if (p.y < 240) {  // then rising over 50 m to the sheet over the plane
         EXPECT_NEAR(t.z[i], level, 1e-3) << "at " << p.x << ", " << p.y;
       }
       ++water;
@@ -264,6 +264,15 @@ TEST(GroundRender, ARiverAtTheMapsEdgeRunsOnPastIt) {
     }
   }
   EXPECT_GT(water, 10 * 120);
+  // Looking down the river from a metre over it, no ray meets land where the water drawn
+  // with the terrain gives way to the sheet over the plane, 0.8 m higher here (the land's
+  // lowest height): under that sheet's edge the rays met the land there, a dark line.
+  for (double slope : {0.005, 0.01, 0.02, 0.04}) {
+    Surface hit;
+    ASSERT_TRUE(scene.intersect(scene.to_scene(100, 230, level + 1), normalize(V3{0, 1, static_cast<float>(-slope)}),
+                                INFINITY, hit));
+    EXPECT_EQ(kind(hit.entity), Entity::Water) << "slope " << slope << " met y " << hit.position.y + scene.origin_y;
+  }
 }
 
 // A highway drawn past the city's ground (a park x 0 to 200, the road to x 220) runs on
