@@ -44,6 +44,7 @@ std::vector<RoadOnward> roads_onward(const exacity::Ground& ground) {
   for (const auto& z : ground.zones) city.add(z.polygon);
   for (const auto& w : ground.water) city.add(w);
   for (const auto& a : ground.road_areas) city.add(a.polygon);
+  const geom::Box city_box = ground.bounds();
   std::vector<RoadOnward> out;
   for (std::size_t id = 0; id < ground.roads.size(); ++id) {
     const exacity::RoadLine& r = ground.roads[id];
@@ -59,9 +60,15 @@ std::vector<RoadOnward> roads_onward(const exacity::Ground& ground) {
       if (geom::distance(line[k], e) == 0) continue;
       const geom::Vec2 u = geom::unit_along(line[k], e);
       if (city.holds(e + u * 20)) continue;
+      // Until it would come back onto the city's ground (a city curving round).
+      double length = kOnward;
+      for (double at = 25; at < length && city_box.meets({e.x + u.x * at, e.y + u.y * at, e.x + u.x * at, e.y + u.y * at});
+           at += 5)
+        if (city.holds(e + u * at)) length = at - 20;
+      if (length < 50) continue;
       RoadOnward onward{id, r};
       onward.line.bridge = false;
-      onward.line.line = {e, e + u * kOnward};
+      onward.line.line = {e, e + u * length};
       out.push_back(std::move(onward));
     }
   }

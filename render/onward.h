@@ -21,7 +21,8 @@ struct RoadOnward {
   exacity::RoadLine line;  // from the road's end outwards, kOnward long, as wide
 };
 // Every end of a centre line drawn in the sketch that no other centre line meets and
-// from which the road runs off the city (20 m on lies in no zone, road area or water).
+// from which the road runs off the city (20 m on lies in no zone, road area or water),
+// kOnward on, or to 20 m short of where it would come back onto the city's ground.
 std::vector<RoadOnward> roads_onward(const exacity::Ground& ground);
 
 // Heightmap water at the map's edge, carried on past it. Past the map the terrain is the

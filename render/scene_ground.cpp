@@ -269,7 +269,7 @@ void RenderScene::add_onward(const exacity::Ground& ground, const exacity::Terra
     const exacity::RoadLine& r = onward.line;
     const geom::Vec2 from = r.line.front(), to = r.line.back();
     const geom::Vec2 u = geom::unit_along(from, to), n = geom::left_normal(from, to);
-    const double half = r.width / 2;
+    const double half = r.width / 2, length = geom::distance(from, to);
     corridors_.push_back({from - geom::Vec2{origin_x, origin_y}, to - geom::Vec2{origin_x, origin_y}, half});
     const std::uint32_t entity = entity_id(Entity::Road, onward.road);
     auto piece = [&](double a, double b) {
@@ -277,8 +277,8 @@ void RenderScene::add_onward(const exacity::Ground& ground, const exacity::Terra
     };
     // Over the terrain while it is drawn, then flat over the plane.
     double at = 0;
-    while (terrain && at < kOnward && inside(from + u * at)) {
-      const double end = std::min(at + kPiece, kOnward);
+    while (terrain && at < length && inside(from + u * at)) {
+      const double end = std::min(at + kPiece, length);
       const geom::Polygon p = piece(at, end);
       exacity::drape(p, terrain, exacity::kRoadOverTerrain, g), add_sides(p, terrain, exacity::kRoadOverTerrain, g);
       exacity::RoadLine stretch = r;
@@ -286,8 +286,8 @@ void RenderScene::add_onward(const exacity::Ground& ground, const exacity::Terra
       add_lines(stretch, terrain, kMarkingLift, entity, palette, lines, line_triangles, line_info);
       at = end;
     }
-    if (at < kOnward) {
-      const geom::Polygon p = piece(at, kOnward);
+    if (at < length) {
+      const geom::Polygon p = piece(at, length);
       const double top = plane + exacity::kRoadOverTerrain;
       exacity::drape_flat(p, top, g);
       exacity::add_wall(p.outer, [&](geom::Vec2) { return top; }, [&](geom::Vec2) { return plane - 0.05; }, g);

@@ -32,6 +32,15 @@ exacity::City city_on(const std::string& name, double (*value)(int, int), const 
   return exacity::build_city(exacity::parse_sketch(text, dir / "sketch.geojson"), clock);
 }
 
+// A city of `features` on flat land (no heightmap).
+exacity::City flat_city_of(const std::string& name, const std::string& features) {
+  const auto dir = testing_util::temp_dir("ground-" + name);
+  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 5, "builtin_models": []},
+    "features": [)" + features + "]}";
+  exacity::StageClock clock(nullptr, exacity::kCityStages);
+  return exacity::build_city(exacity::parse_sketch(text, dir / "sketch.geojson"), clock);
+}
+
 // What the ray through each pixel's centre met, straight down from 1 km over the box.
 struct TopView {
   int width = 0, height = 0;
@@ -198,11 +207,7 @@ TEST(GroundRender, BridgeDeckIsLevelFromAbutmentToAbutmentOnPiers) {
 // camera saw the ground beneath it, in the road's shadow: a black sliver along every road
 // edge seen from the grass.
 TEST(GroundRender, ARoadsEdgeSeenFromTheGrassHidesTheGroundUnderIt) {
-  const auto dir = testing_util::temp_dir("ground-road-edge");
-  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 5, "builtin_models": []},
-    "features": [)" + kPark + ", " + river_sketch::highway("[-20, 100], [220, 100]") + "]}";
-  exacity::StageClock clock(nullptr, exacity::kCityStages);
-  const exacity::City city = exacity::build_city(exacity::parse_sketch(text, dir / "sketch.geojson"), clock);
+  const exacity::City city = flat_city_of("road-edge", kPark + ", " + river_sketch::highway("[-20, 100], [220, 100]"));
   // The road's southern edge where x = 100.
   double edge = INFINITY;
   for (const auto& a : city.ground.road_areas)
@@ -279,11 +284,8 @@ TEST(GroundRender, ARiverAtTheMapsEdgeRunsOnPastIt) {
 // straight into the land beyond, far into it, as a road with its lines, grass either side
 // and no tree on it. It ended 20 m past the park, in a field.
 TEST(GroundRender, ADrawnRoadLeavingTheCityRunsOnIntoTheLand) {
-  const auto dir = testing_util::temp_dir("ground-road-on");
-  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 5, "builtin_models": []},
-    "features": [)" + kPark + ", " + river_sketch::highway("[-20, 100], [220, 100]", 16) + "]}";
-  exacity::StageClock clock(nullptr, exacity::kCityStages);
-  const exacity::City city = exacity::build_city(exacity::parse_sketch(text, dir / "sketch.geojson"), clock);
+  const exacity::City city =
+      flat_city_of("road-on", kPark + ", " + river_sketch::highway("[-20, 100], [220, 100]", 16));
   Sky sky(200, 40);
   RenderScene scene(city, sky.sun_direction(), SceneOptions{});
   auto down = [&](double x, double y) {
@@ -299,4 +301,28 @@ TEST(GroundRender, ADrawnRoadLeavingTheCityRunsOnIntoTheLand) {
     }
     for (double y : {80.0, 120.0}) EXPECT_NE(kind(down(x, y).entity), Entity::Road) << "at " << x << ", " << y;
   }
+}
+
+// A road carried on past the city stops 20 m short of where it would come back onto the
+// city's ground: a second park 300 m on along it keeps its grass, the road running up to
+// it and no further.
+TEST(GroundRender, ARoadRunningOnStopsShortOfTheCitysGroundAhead) {
+  const std::string ahead = R"({"type": "Feature", "properties": {"zone": "park"},
+    "geometry": {"type": "Polygon", "coordinates": [[[500, 0], [700, 0], [700, 200], [500, 200], [500, 0]]]}})";
+  const exacity::City city =
+      flat_city_of("road-back", kPark + ", " + ahead + ", " + river_sketch::highway("[-20, 100], [220, 100]", 16));
+  Sky sky(200, 40);
+  SceneOptions bare_ground;
+  bare_ground.landscape_trees = false;
+  RenderScene scene(city, sky.sun_direction(), bare_ground);
+  auto down = [&](double x) {
+    Surface hit;
+    EXPECT_TRUE(scene.intersect(scene.to_scene(x, 100, 200), {0, 0, -1}, INFINITY, hit)) << x;
+    return kind(hit.entity);
+  };
+  EXPECT_EQ(down(300), Entity::Road);
+  EXPECT_EQ(down(470), Entity::Road);
+  EXPECT_NE(down(490), Entity::Road);
+  EXPECT_NE(down(600), Entity::Road);
+  EXPECT_NE(down(2000), Entity::Road);
 }
