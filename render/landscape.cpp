@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "render/noise.h"
 
@@ -17,6 +18,7 @@ constexpr float kMargin = 3;          // m of grass along a field's edges
 constexpr float kHedge = 1.5f;        // m: half a hedgerow's width
 constexpr float kWoodsSpacing = 9;    // m between trees in woods
 constexpr float kHedgeSpacing = 3.5f; // m between shrubs along a hedgerow
+constexpr float kCorridorVerge = 6;   // m of grass either side of a road or river carried on
 
 const Noise& noise() {
   static const Noise n;
@@ -101,8 +103,9 @@ float smoothstep(float a, float b, float x) {
 
 }  // namespace
 
-Landscape::Landscape(const exacity::Ground& ground, const geom::Box& city_box, geom::Vec2 origin, std::uint32_t seed)
-    : seed_(seed) {
+Landscape::Landscape(const exacity::Ground& ground, const geom::Box& city_box, geom::Vec2 origin, std::uint32_t seed,
+                     std::vector<Corridor> corridors)
+    : seed_(seed), corridors_(std::move(corridors)) {
   const float turn = 6.2831853f * hash(1, 2, 3);
   cos_ = std::cos(turn), sin_ = std::sin(turn);
   // A grid over the city and 100 m around it, of at most about four million cells.
@@ -127,6 +130,12 @@ float Landscape::beyond(float x, float y) const {
   auto d = [&](int i, int j) { return distance_[static_cast<std::size_t>(iy + j) * nx_ + ix + i]; };
   const float dist = (d(0, 0) * (1 - tx) + d(1, 0) * tx) * (1 - ty) + (d(0, 1) * (1 - tx) + d(1, 1) * tx) * ty;
   return smoothstep(kVerge, kFieldsFrom, dist);
+}
+
+double Landscape::from_corridors(float x, float y) const {
+  double d = INFINITY;
+  for (const Corridor& c : corridors_) d = std::min(d, geom::distance_to_segment({x, y}, c.a, c.b) - c.half_width);
+  return d;
 }
 
 float Landscape::hash(int a, int b, int salt) const {
@@ -183,6 +192,10 @@ Landscape::Field Landscape::field_at(float x, float y) const {
 }
 
 V3 Landscape::albedo(float x, float y) const {
+  if (from_corridors(x, y) < kCorridorVerge) {
+    const float patch = noise().fractal(x / 45, y / 45, 3), fine = noise()(x * 0.7f, y * 0.7f);
+    return kVergeAlbedo * (0.9f + 0.35f * patch) * (0.92f + 0.16f * fine);
+  }
   const Field f = field_at(x, y);
   V3 a = crop_albedo(f.crop);
   // Hedgerows' floor and the grass margins along the edges.
@@ -216,7 +229,7 @@ std::vector<LandscapeTree> Landscape::tree_spots(const geom::Box& region) const 
   std::vector<LandscapeTree> out;
   auto place = [&](float x, float y, float width, float height, bool conifer, int tint, float angle) {
     if (x < region.min_x || x > region.max_x || y < region.min_y || y > region.max_y) return;
-    if (beyond(x, y) < 0.999f) return;
+    if (beyond(x, y) < 0.999f || from_corridors(x, y) < kCorridorVerge - 2) return;
     out.push_back({{x, y, 0}, width, height, angle, conifer, tint});
   };
   // Woods: a jittered grid, broadleaf or conifer by the wood's own noise.

@@ -22,11 +22,19 @@ struct LandscapeTree {
   int tint = 0;
 };
 
+// A strip the land beyond keeps clear of fields and trees, but for a grass verge: a road
+// or river carried on past the city (render/onward.h), in scene coordinates.
+struct Corridor {
+  geom::Vec2 a, b;
+  double half_width = 0;
+};
+
 class Landscape {
  public:
   // `city_box`: the city's ground in scene coordinates; `origin`: the scene's origin in the
   // city's (the ground's polygons are in the city's coordinates).
-  Landscape(const exacity::Ground& ground, const geom::Box& city_box, geom::Vec2 origin, std::uint32_t seed);
+  Landscape(const exacity::Ground& ground, const geom::Box& city_box, geom::Vec2 origin, std::uint32_t seed,
+            std::vector<Corridor> corridors = {});
 
   // 0 on the city's ground and its verge, 1 from 45 m past it, smoothly between.
   float beyond(float x, float y) const;
@@ -58,6 +66,8 @@ class Landscape {
   bool hedged_column_edge(int column, int row) const;
   bool hedged_row_edge(int row, float u) const;
   bool woods_at(float u, float v) const;
+  // How far (x, y) lies from the nearest corridor's side (negative inside it).
+  double from_corridors(float x, float y) const;
   float hash(int a, int b, int salt) const;
   // The city's ground on a grid: the distance from it in metres, for beyond().
   geom::Box grid_box_;
@@ -65,6 +75,7 @@ class Landscape {
   int nx_ = 0, ny_ = 0;
   std::vector<float> distance_;
   std::uint32_t seed_;
+  std::vector<Corridor> corridors_;
   float cos_ = 1, sin_ = 0;  // the fields' frame, turned by the seed
 };
 

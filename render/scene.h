@@ -24,6 +24,7 @@
 #include "render/embree_device.h"
 #include "render/facade.h"
 #include "render/landscape.h"
+#include "render/onward.h"
 #include "render/material.h"
 #include "render/texture.h"
 
@@ -148,6 +149,11 @@ class RenderScene {
   void add_draped(const std::vector<DrapedPiece>& pieces, const exacity::Terrain* terrain);
   void add_road_markings(const exacity::Ground& ground, const exacity::BridgeDecks& decks,
                          const exacity::Terrain* terrain, const Palette& palette);
+  void add_lines(const exacity::RoadLine& road, const exacity::Terrain* under, double lift, std::uint32_t entity,
+                 const Palette& palette, std::vector<V3>& vertices, std::vector<std::array<int, 3>>& triangles,
+                 Geometry& info);
+  void add_onward(const exacity::Ground& ground, const exacity::Terrain* terrain, const geom::Box& drawn,
+                  const WaterOnward& water, const Palette& palette);
   void add_crossings(const exacity::Ground& ground, const exacity::Terrain* terrain, const Palette& palette,
                      std::vector<V3>& vertices, std::vector<std::array<int, 3>>& triangles, Geometry& info);
   void add_landscape(const exacity::City& city, const geom::Box& world, const SceneOptions& options);
@@ -184,6 +190,7 @@ class RenderScene {
   // The land beyond the city (null for a scene of triangle soups) and its trees' meshes,
   // which their instances' materials point into.
   std::unique_ptr<Landscape> landscape_;
+  std::vector<Corridor> corridors_;  // the roads and rivers carried on through it (render/onward.h)
   std::vector<exacity::TriangleMesh> landscape_trees_;
 };
 

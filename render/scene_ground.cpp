@@ -17,6 +17,7 @@ using exacity::ZoneType;
 namespace {
 
 constexpr double kKerb = 0.12;  // m: a sidewalk's height over the carriageway
+constexpr double kMarkingLift = 0.12;  // m over the terrain: 2 cm over a road
 
 // A ribbon of `width` along a ground path, its corners draped over the terrain, in pieces
 // no longer than half a pixel; dashes where `dash` > 0 (dash on, gap off, metres).
@@ -73,6 +74,18 @@ void add_sides(const geom::Polygon& polygon, const exacity::Terrain* terrain, do
   for (const geom::Ring& h : polygon.holes) side(h);
 }
 
+// Where add_terrain draws the ground: without a heightmap the city's box; with one, a
+// city's size past the city on every side and the map's fade() past the map.
+geom::Box terrain_box(const exacity::Terrain* terrain, const geom::Box& world) {
+  if (!terrain) return world;
+  geom::Box wide{world.min_x - world.width(), world.min_y - world.height(), world.max_x + world.width(),
+                 world.max_y + world.height()};
+  const geom::Box& b = terrain->bounds();
+  const double f = terrain->fade();
+  wide.add(geom::Box{b.min_x - f, b.min_y - f, b.max_x + f, b.max_y + f});
+  return wide;
+}
+
 // The roads' segments by a 50 m grid.
 struct SegmentGrid {
   static constexpr double kCell = 50;
@@ -116,7 +129,8 @@ double crossing_edge(const std::vector<exacity::RoadLine>& roads, const SegmentG
 void RenderScene::add_ground(const exacity::City& city, const geom::Box& world, const Palette& palette) {
   const exacity::Ground& g = city.ground;
   const exacity::Terrain* terrain = city.heightmap();
-  add_terrain(terrain, world, g.water);
+  const WaterOnward onward = water_onward(g.water, terrain);
+  add_terrain(terrain, world, onward.near);
   const exacity::BridgeDecks decks = exacity::bridge_decks(g, terrain);
   std::vector<DrapedPiece> zones, lots, water, road_areas;
   // Zone land no lot covers is gardens, verges and parks: grass. Paving is where people
@@ -129,7 +143,7 @@ void RenderScene::add_ground(const exacity::City& city, const geom::Box& world, 
     lots.push_back({&g.lots[id].polygon, m, entity_id(Entity::Lot, id), 0.06});
   }
   for (std::size_t id = 0; id < g.water.size(); ++id)
-    water.push_back({&g.water[id], palette.water, entity_id(Entity::Water, id), 0.05,
+    water.push_back({&onward.near[id], palette.water, entity_id(Entity::Water, id), 0.05,
                      exacity::water_level(g.water[id], terrain) + 0.05});
   for (std::size_t i = 0; i < g.road_areas.size(); ++i) {
     const exacity::RoadArea& a = g.road_areas[i];
@@ -142,6 +156,7 @@ void RenderScene::add_ground(const exacity::City& city, const geom::Box& world, 
   }
   for (const auto* pieces : {&zones, &lots, &water, &road_areas}) add_draped(*pieces, terrain);
   add_road_markings(g, decks, terrain, palette);
+  add_onward(g, terrain, terrain_box(terrain, world), onward, palette);
   // The decks' sides and undersides and their piers, in the road's asphalt grey.
   exacity::GroundMesh structure;
   std::vector<int> area;
@@ -166,14 +181,8 @@ void RenderScene::add_terrain(const exacity::Terrain* terrain, const geom::Box& 
                               const std::vector<geom::Polygon>& water) {
   const geom::Box near{world.min_x - world.width(), world.min_y - world.height(), world.max_x + world.width(),
                        world.max_y + world.height()};
-  geom::Box wide = near;
-  if (terrain) {
-    const geom::Box& b = terrain->bounds();
-    const double f = terrain->fade();
-    wide.add(geom::Box{b.min_x - f, b.min_y - f, b.max_x + f, b.max_y + f});
-  }
   // Pixel-sized cells near the city, coarser past it.
-  exacity::GroundMesh g = exacity::terrain_mesh(terrain, terrain ? wide : world, near, water, 768);
+  exacity::GroundMesh g = exacity::terrain_mesh(terrain, terrain_box(terrain, world), near, water, 768);
   std::vector<V3> v;
   for (const auto& p : g.vertices) v.push_back(to_scene(p[0], p[1], p[2]));
   Geometry info;
@@ -203,7 +212,21 @@ void RenderScene::add_draped(const std::vector<DrapedPiece>& pieces, const exaci
   if (!g.triangles.empty()) add_triangles(v, g.triangles, std::move(info));
 }
 
-// Centre stripes (solid yellow on highways, dashed white elsewhere) and dashed lane lines.
+// A road's centre stripe (solid yellow on highways, dashed white elsewhere) and dashed
+// lane lines, `lift` over `under` (flat at `lift` where null).
+void RenderScene::add_lines(const exacity::RoadLine& r, const exacity::Terrain* under, double lift,
+                            std::uint32_t entity, const Palette& palette, std::vector<V3>& v,
+                            std::vector<std::array<int, 3>>& t, Geometry& info) {
+  const bool highway = r.road_class == exacity::RoadClass::Highway;
+  ribbon(r.line, 0, 0.15, highway ? 0 : 3, 5, under, lift, v, t, *this);
+  info.material.resize(t.size(), highway ? palette.yellow : palette.paint);
+  if (highway && r.width >= 14)
+    for (double side : {-r.width / 4, r.width / 4}) ribbon(r.line, side, 0.12, 3, 6, under, lift, v, t, *this);
+  info.material.resize(t.size(), palette.paint);
+  info.entity.resize(t.size(), entity);
+}
+
+// Every road's lines, on its bridge's deck where it has one, and the crossings.
 void RenderScene::add_road_markings(const exacity::Ground& ground, const exacity::BridgeDecks& decks,
                                     const exacity::Terrain* terrain, const Palette& palette) {
   const std::vector<exacity::RoadLine>& roads = ground.roads;
@@ -212,24 +235,99 @@ void RenderScene::add_road_markings(const exacity::Ground& ground, const exacity
   Geometry info;
   for (std::size_t id = 0; id < roads.size(); ++id) {
     const exacity::RoadLine& r = roads[id];
-    const bool highway = r.road_class == exacity::RoadClass::Highway;
-    const double width = r.width;
-    double lift = 0.12;
+    double lift = kMarkingLift;
     const exacity::Terrain* under = terrain;
     if (r.bridge && r.line.size() >= 2) {
       // On its deck: flat, just over the deck's surface.
       const double deck = decks.at(ground, geom::lerp(r.line[0], r.line[1], 0.5));
       if (std::isfinite(deck)) under = nullptr, lift = deck + 0.02;
     }
-    ribbon(r.line, 0, 0.15, highway ? 0 : 3, 5, under, lift, v, t, *this);
-    info.material.resize(t.size(), highway ? palette.yellow : palette.paint);
-    if (highway && width >= 14)
-      for (double side : {-width / 4, width / 4}) ribbon(r.line, side, 0.12, 3, 6, under, lift, v, t, *this);
-    info.material.resize(t.size(), palette.paint);
-    info.entity.resize(t.size(), entity_id(Entity::Road, id));
+    add_lines(r, under, lift, entity_id(Entity::Road, id), palette, v, t, info);
   }
   add_crossings(ground, terrain, palette, v, t, info);
   if (!t.empty()) add_triangles(v, t, std::move(info));
+}
+
+// Roads and rivers carried on past the city (render/onward.h). A road is draped as the
+// city's roads are, in pieces no longer than kPiece over the drawn terrain and one flat
+// piece over the plane past it, with sides and lines; the far water lies flat over the
+// plane at its water's level, or the plane's where that is higher (the land where the near
+// water ends lies there), rising to it from the near water.
+void RenderScene::add_onward(const exacity::Ground& ground, const exacity::Terrain* terrain,
+                             const geom::Box& drawn, const WaterOnward& water, const Palette& palette) {
+  constexpr double kPiece = 250;
+  const double plane = terrain ? terrain->lowest() : 0;
+  auto inside = [&](geom::Vec2 p) {
+    return p.x >= drawn.min_x && p.x <= drawn.max_x && p.y >= drawn.min_y && p.y <= drawn.max_y;
+  };
+  exacity::GroundMesh g;
+  Geometry info;
+  std::vector<V3> lines;
+  std::vector<std::array<int, 3>> line_triangles;
+  Geometry line_info;
+  for (const RoadOnward& onward : roads_onward(ground)) {
+    const exacity::RoadLine& r = onward.line;
+    const geom::Vec2 from = r.line.front(), to = r.line.back();
+    const geom::Vec2 u = geom::unit_along(from, to), n = geom::left_normal(from, to);
+    const double half = r.width / 2, length = geom::distance(from, to);
+    corridors_.push_back({from - geom::Vec2{origin_x, origin_y}, to - geom::Vec2{origin_x, origin_y}, half});
+    const std::uint32_t entity = entity_id(Entity::Road, onward.road);
+    auto piece = [&](double a, double b) {
+      return geom::Polygon{{from + u * a - n * half, from + u * b - n * half, from + u * b + n * half, from + u * a + n * half}, {}};
+    };
+    // Over the terrain while it is drawn, then flat over the plane.
+    double at = 0;
+    while (terrain && at < length && inside(from + u * at)) {
+      const double end = std::min(at + kPiece, length);
+      const geom::Polygon p = piece(at, end);
+      exacity::drape(p, terrain, exacity::kRoadOverTerrain, g), add_sides(p, terrain, exacity::kRoadOverTerrain, g);
+      exacity::RoadLine stretch = r;
+      stretch.line = {from + u * at, from + u * end};
+      add_lines(stretch, terrain, kMarkingLift, entity, palette, lines, line_triangles, line_info);
+      at = end;
+    }
+    if (at < length) {
+      const geom::Polygon p = piece(at, length);
+      const double top = plane + exacity::kRoadOverTerrain;
+      exacity::drape_flat(p, top, g);
+      exacity::add_wall(p.outer, [&](geom::Vec2) { return top; }, [&](geom::Vec2) { return plane - 0.05; }, g);
+      exacity::RoadLine stretch = r;
+      stretch.line = {from + u * at, to};
+      add_lines(stretch, nullptr, plane + kMarkingLift, entity, palette, lines, line_triangles, line_info);
+    }
+    info.material.resize(g.triangles.size(), palette.asphalt);
+    info.entity.resize(g.triangles.size(), entity);
+  }
+  for (const auto& [w, p] : water.far) {
+    const double level = exacity::water_level(ground.water[w], terrain) + 0.05, top = std::max(level, plane + 0.05);
+    exacity::drape_flat(p, top, g);
+    if (top > level) {
+      // A ramp of kRamp up to it from the near water, which the land where that ends lies
+      // under: a step, or a weir, showed as a dark line across the river.
+      constexpr double kRamp = 50;
+      const geom::Vec2 out = geom::unit_along(p.outer[0], p.outer[1]);
+      const geom::Vec2 a = p.outer[0], b = p.outer[3];
+      const int first = static_cast<int>(g.vertices.size());
+      g.vertices.insert(g.vertices.end(), {{a.x - out.x * kRamp, a.y - out.y * kRamp, level}, {a.x, a.y, top},
+                                           {b.x, b.y, top}, {b.x - out.x * kRamp, b.y - out.y * kRamp, level}});
+      g.triangles.push_back({first, first + 1, first + 2});
+      g.triangles.push_back({first, first + 2, first + 3});
+    }
+    info.material.resize(g.triangles.size(), palette.water);
+    info.entity.resize(g.triangles.size(), entity_id(Entity::Water, w));
+    // The corridor from the map's bound, where the near water leaves it.
+    const geom::Vec2 out = geom::unit_along(p.outer[0], p.outer[1]);
+    const geom::Vec2 a = geom::lerp(p.outer[0], p.outer[3], 0.5) - out * (terrain ? terrain->fade() - WaterOnward::kOverlap : 0);
+    const geom::Vec2 b = geom::lerp(p.outer[1], p.outer[2], 0.5);
+    corridors_.push_back({a - geom::Vec2{origin_x, origin_y}, b - geom::Vec2{origin_x, origin_y},
+                          geom::distance(p.outer[0], p.outer[3]) / 2});
+  }
+  if (!g.triangles.empty()) {
+    std::vector<V3> v;
+    for (const auto& p : g.vertices) v.push_back(to_scene(p[0], p[1], p[2]));
+    add_triangles(v, g.triangles, std::move(info));
+  }
+  if (!line_triangles.empty()) add_triangles(lines, line_triangles, std::move(line_info));
 }
 
 }  // namespace render

@@ -12,7 +12,8 @@
 namespace render {
 
 void RenderScene::add_landscape(const exacity::City& city, const geom::Box& world, const SceneOptions& options) {
-  landscape_ = std::make_unique<Landscape>(city.ground, bounds, geom::Vec2{origin_x, origin_y}, city.settings.seed);
+  landscape_ = std::make_unique<Landscape>(city.ground, bounds, geom::Vec2{origin_x, origin_y}, city.settings.seed,
+                                           corridors_);
   // Trees as far past the city as the city is across, 1 to 1.5 km; past them woods are
   // their dark floor, and the air fades them.
   const double reach = std::clamp(std::max(world.width(), world.height()), 1000.0, 1500.0);

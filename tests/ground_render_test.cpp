@@ -32,6 +32,15 @@ exacity::City city_on(const std::string& name, double (*value)(int, int), const 
   return exacity::build_city(exacity::parse_sketch(text, dir / "sketch.geojson"), clock);
 }
 
+// A city of `features` on flat land (no heightmap).
+exacity::City flat_city_of(const std::string& name, const std::string& features) {
+  const auto dir = testing_util::temp_dir("ground-" + name);
+  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 5, "builtin_models": []},
+    "features": [)" + features + "]}";
+  exacity::StageClock clock(nullptr, exacity::kCityStages);
+  return exacity::build_city(exacity::parse_sketch(text, dir / "sketch.geojson"), clock);
+}
+
 // What the ray through each pixel's centre met, straight down from 1 km over the box.
 struct TopView {
   int width = 0, height = 0;
@@ -198,11 +207,7 @@ TEST(GroundRender, BridgeDeckIsLevelFromAbutmentToAbutmentOnPiers) {
 // camera saw the ground beneath it, in the road's shadow: a black sliver along every road
 // edge seen from the grass.
 TEST(GroundRender, ARoadsEdgeSeenFromTheGrassHidesTheGroundUnderIt) {
-  const auto dir = testing_util::temp_dir("ground-road-edge");
-  const std::string text = R"({"type": "FeatureCollection", "exacity": {"seed": 5, "builtin_models": []},
-    "features": [)" + kPark + ", " + river_sketch::highway("[-20, 100], [220, 100]") + "]}";
-  exacity::StageClock clock(nullptr, exacity::kCityStages);
-  const exacity::City city = exacity::build_city(exacity::parse_sketch(text, dir / "sketch.geojson"), clock);
+  const exacity::City city = flat_city_of("road-edge", kPark + ", " + river_sketch::highway("[-20, 100], [220, 100]"));
   // The road's southern edge where x = 100.
   double edge = INFINITY;
   for (const auto& a : city.ground.road_areas)
@@ -235,4 +240,89 @@ TEST(GroundRender, ARoadsEdgeSeenFromTheGrassHidesTheGroundUnderIt) {
     }
   EXPECT_GT(road, size * 4);
   EXPECT_GT(grass, size * 4);
+}
+
+// A river leaving the map runs on past its edge, where the terrain is the map mirrored and
+// sinking to the plane: level water over the river's width, land beside it, no bank
+// across it at the map's edge (y 200), and water on over the plane past the fade (100 m).
+// It ended in a bank along the map's edge, the land going on.
+TEST(GroundRender, ARiverAtTheMapsEdgeRunsOnPastIt) {
+  const exacity::City city = city_on("river-on", straight_river, kPark);
+  ASSERT_EQ(city.ground.water.size(), 1u);
+  Sky sky(200, 40);
+  SceneOptions bare_ground;
+  bare_ground.landscape_trees = false;
+  RenderScene scene(city, sky.sun_direction(), bare_ground);
+  const TopView t = look_down(scene, {40, 190, 160, 430}, 60, 120);  // 2 m a pixel
+  const double level = exacity::water_level(city.ground.water[0], city.heightmap()) + 0.05;
+  int water = 0;
+  for (std::size_t i = 0; i < t.id.size(); ++i) {
+    const geom::Vec2 p = t.at[i];
+    if (p.x > 89 && p.x < 111) {  // the river's middle, clear of its banks
+      EXPECT_EQ(kind(t.id[i]), Entity::Water) << "at " << p.x << ", " << p.y;
+      if (p.y < 240) {  // then rising over 50 m to the sheet over the plane
+        EXPECT_NEAR(t.z[i], level, 1e-3) << "at " << p.x << ", " << p.y;
+      }
+      ++water;
+    } else if (p.x < 70 || p.x > 130) {
+      EXPECT_NE(kind(t.id[i]), Entity::Water) << "at " << p.x << ", " << p.y;
+    }
+  }
+  EXPECT_GT(water, 10 * 120);
+  // Looking down the river from a metre over it, no ray meets land where the water drawn
+  // with the terrain gives way to the sheet over the plane, 0.8 m higher here (the land's
+  // lowest height): under that sheet's edge the rays met the land there, a dark line.
+  for (double slope : {0.005, 0.01, 0.02, 0.04}) {
+    Surface hit;
+    ASSERT_TRUE(scene.intersect(scene.to_scene(100, 230, level + 1), normalize(V3{0, 1, static_cast<float>(-slope)}),
+                                INFINITY, hit));
+    EXPECT_EQ(kind(hit.entity), Entity::Water) << "slope " << slope << " met y " << hit.position.y + scene.origin_y;
+  }
+}
+
+// A highway drawn past the city's ground (a park x 0 to 200, the road to x 220) runs on
+// straight into the land beyond, far into it, as a road with its lines, grass either side
+// and no tree on it. It ended 20 m past the park, in a field.
+TEST(GroundRender, ADrawnRoadLeavingTheCityRunsOnIntoTheLand) {
+  const exacity::City city =
+      flat_city_of("road-on", kPark + ", " + river_sketch::highway("[-20, 100], [220, 100]", 16));
+  Sky sky(200, 40);
+  RenderScene scene(city, sky.sun_direction(), SceneOptions{});
+  auto down = [&](double x, double y) {
+    Surface hit;
+    EXPECT_TRUE(scene.intersect(scene.to_scene(x, y, 200), {0, 0, -1}, INFINITY, hit)) << x << ", " << y;
+    return hit;
+  };
+  for (double x : {230.0, 400.0, 1000.0, 3000.0, 10000.0, 25000.0, -500.0, -20000.0}) {
+    for (double y : {93.0, 100.0, 107.0}) {
+      const Surface hit = down(x, y);
+      EXPECT_EQ(kind(hit.entity), Entity::Road) << "at " << x << ", " << y;
+      EXPECT_NEAR(hit.position.z, exacity::kRoadOverTerrain, 0.03) << "at " << x << ", " << y;
+    }
+    for (double y : {80.0, 120.0}) EXPECT_NE(kind(down(x, y).entity), Entity::Road) << "at " << x << ", " << y;
+  }
+}
+
+// A road carried on past the city stops 20 m short of where it would come back onto the
+// city's ground: a second park 300 m on along it keeps its grass, the road running up to
+// it and no further.
+TEST(GroundRender, ARoadRunningOnStopsShortOfTheCitysGroundAhead) {
+  const std::string ahead = R"({"type": "Feature", "properties": {"zone": "park"},
+    "geometry": {"type": "Polygon", "coordinates": [[[500, 0], [700, 0], [700, 200], [500, 200], [500, 0]]]}})";
+  const exacity::City city =
+      flat_city_of("road-back", kPark + ", " + ahead + ", " + river_sketch::highway("[-20, 100], [220, 100]", 16));
+  Sky sky(200, 40);
+  SceneOptions bare_ground;
+  bare_ground.landscape_trees = false;
+  RenderScene scene(city, sky.sun_direction(), bare_ground);
+  auto down = [&](double x) {
+    Surface hit;
+    EXPECT_TRUE(scene.intersect(scene.to_scene(x, 100, 200), {0, 0, -1}, INFINITY, hit)) << x;
+    return kind(hit.entity);
+  };
+  EXPECT_EQ(down(300), Entity::Road);
+  EXPECT_EQ(down(470), Entity::Road);
+  EXPECT_NE(down(490), Entity::Road);
+  EXPECT_NE(down(600), Entity::Road);
+  EXPECT_NE(down(2000), Entity::Road);
 }
