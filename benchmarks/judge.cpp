@@ -246,21 +246,18 @@ void check_network(const Geos& geos, const std::vector<Feature>& roads, Verdict&
 }
 
 // Each zone written has the type of the zone the sketch has on top where it lies (the last
-// drawn; water beats every zone): a face given the windings of the wrong side of an edge,
-// as when a vertex or a hole silently crosses an edge, is labelled with another zone's
-// type, which the tilings and the coverage cannot see. Areas compare to the drawn area.
+// drawn, water zones too): a face given the windings of the wrong side of an edge, as when
+// a vertex or a hole silently crosses an edge, is labelled with another zone's type, which
+// the tilings and the coverage cannot see. Areas compare to the drawn area.
 void check_labels(const Geos& geos, const std::vector<const GEOSGeometry*>& drawn, const std::vector<std::string>& types,
                   const std::vector<Feature>& zones, double drawn_area, Verdict& verdict) {
   std::map<std::string, std::vector<Geos::Geometry>> visible;  // per type, the parts of its zones on top
-  std::vector<const GEOSGeometry*> water;
   Geos::Geometry above;  // the zones drawn after the one at hand
   for (std::size_t i = drawn.size(); i-- > 0;) {
     Geos::Geometry part = above ? geos.difference(drawn[i], above.get()) : geos.own(GEOSGeom_clone_r(geos.ctx(), drawn[i]));
     if (part) visible[types[i]].push_back(std::move(part));
-    if (types[i] == "water") water.push_back(drawn[i]);
     above = above ? geos.union_of({above.get(), drawn[i]}) : geos.own(GEOSGeom_clone_r(geos.ctx(), drawn[i]));
   }
-  Geos::Geometry all_water = geos.union_of(water);
   std::map<std::string, std::vector<const GEOSGeometry*>> written;
   for (const Feature& z : zones)
     if (z.valid) written[z.properties.value("zone", "")].push_back(z.geometry.get());
@@ -269,7 +266,6 @@ void check_labels(const Geos& geos, const std::vector<const GEOSGeometry*>& draw
     std::vector<const GEOSGeometry*> on_top;
     for (const Geos::Geometry& g : visible[type]) on_top.push_back(g.get());
     Geos::Geometry drawn_type = geos.union_of(on_top);
-    if (drawn_type && all_water && type != "water") drawn_type = geos.difference(drawn_type.get(), all_water.get());
     Geos::Geometry wrong;
     if (out && drawn_type) wrong = geos.difference(out.get(), drawn_type.get());
     const double area = wrong ? geos.area(wrong.get()) : out ? geos.area(out.get()) : 0;
@@ -367,7 +363,7 @@ nlohmann::ordered_json judge_invariants() {
                               "the drawn zones are covered by the zones, water and road areas", kRelativeArea),
                     invariant("label", {"zones", "sketch zones (made valid)"},
                               "each zone written has the type of the sketch's zone on top where it lies (the last "
-                              "drawn; water over every zone)",
+                              "drawn, water zones too)",
                               kRelativeArea),
                     invariant("outside", {"lots", "blocks"}, "each lot lies in the block its property block names",
                               kRelativeArea),
