@@ -329,17 +329,15 @@ struct Partition {
     insert_snap_rounded(arr, areas);
     label_faces(arr, [&](const std::map<int, int>& w) {
       int zone = kOutside;
-      bool water = false, road = false;
+      bool road = false;
       for (const auto& [c, n] : w) {
         if (c >= first_road)
           road |= n != 0;
-        else if (n % 2 != 0 && zones[c].type == "water")
-          water = true;
         else if (n % 2 != 0)
-          zone = c;  // the last drawn wins
+          zone = c;  // the last drawn wins, a water zone as any other
       }
       // Water over road over zone; a road off every zone is nothing.
-      if (water) return kWater;
+      if (zone != kOutside && zones[zone].type == "water") return kWater;
       if (zone == kOutside) return kOutside;
       return road ? kRoad : zone;
     });

@@ -22,7 +22,7 @@ struct FamilyCase {
   double level = 0;
 };
 
-// The nine families, in report order.
+// The families, in report order (the control last).
 const std::vector<Family>& families();
 
 // Case `index` of the family. Throws std::invalid_argument for a family that does not exist.

@@ -1,6 +1,6 @@
 // The robustness benchmark's GEOS baseline (docs/benchmarks.md): the partition stage as a
 // GIS user would write it with GEOS's overlay (OverlayNG, through its C API), in doubles.
-// Zones (the last drawn on top), water and road surfaces (the sketch's centre lines
+// Zones (the last drawn on top, water zones too), water and road surfaces (the sketch's centre lines
 // buffered by half their width) are overlaid into zones, water and road areas; each built
 // zone's parts are blocks, and each block is cut into lots by a 25 m fishnet. No growth,
 // no buildings: blocks and lots only. `--precision floating` uses GEOS's default overlay
@@ -150,11 +150,7 @@ Layers partition(const json& sketch, const Overlay& geos) {
       Overlay::Geometry drawn = geos.read(f.at("geometry"));
       // Rings that cross or touch themselves, as drawn: made valid as a GIS user would.
       Overlay::Geometry area = geos.own(GEOSMakeValid_r(geos.ctx(), drawn.get()), "make valid");
-      const std::string type = props["zone"].get<std::string>();
-      if (type == "water")
-        water_parts.push_back(std::move(area));
-      else
-        zones.push_back({type, std::move(area)});
+      zones.push_back({props["zone"].get<std::string>(), std::move(area)});
     } else if (props.contains("road")) {
       Overlay::Geometry line = geos.read(f.at("geometry"));
       const double width = props.contains("width") ? props["width"].get<double>() : default_width(props["road"]);
@@ -164,22 +160,25 @@ Layers partition(const json& sketch, const Overlay& geos) {
       centre_lines.push_back(std::move(line));
     }
   }
+  // Each zone's part on top: the last drawn wins, a water zone as any other.
+  std::vector<Overlay::Geometry> on_top(zones.size());
+  Overlay::Geometry above = geos.union_all({}, GEOS_GEOMETRYCOLLECTION);
+  for (std::size_t i = zones.size(); i-- > 0;) {
+    on_top[i] = geos.difference(zones[i].area.get(), above.get());
+    above = geos.union_of(above.get(), zones[i].area.get());
+  }
   // The city's extent: every drawn zone, water included.
-  std::vector<Overlay::Geometry> everything;
-  for (const Zone& z : zones) everything.push_back(geos.own(GEOSGeom_clone_r(geos.ctx(), z.area.get()), "clone"));
-  for (const auto& w : water_parts) everything.push_back(geos.own(GEOSGeom_clone_r(geos.ctx(), w.get()), "clone"));
-  const Overlay::Geometry extent = geos.union_all(std::move(everything), GEOS_GEOMETRYCOLLECTION);
+  const Overlay::Geometry& extent = above;
+  for (std::size_t i = 0; i < zones.size(); ++i)
+    if (zones[i].type == "water") water_parts.push_back(geos.own(GEOSGeom_clone_r(geos.ctx(), on_top[i].get()), "clone"));
   const Overlay::Geometry water = geos.union_all(std::move(water_parts), GEOS_GEOMETRYCOLLECTION);
-  // Water over road over the last drawn zone.
+  // Water over road over the zone on top.
   const Overlay::Geometry roads = geos.difference(
       geos.intersection(geos.union_all(std::move(surfaces), GEOS_GEOMETRYCOLLECTION).get(), extent.get()).get(),
       water.get());
-  Overlay::Geometry taken = geos.union_of(water.get(), roads.get());
   std::vector<Overlay::Geometry> own_area(zones.size());
-  for (std::size_t i = zones.size(); i-- > 0;) {
-    own_area[i] = geos.difference(zones[i].area.get(), taken.get());
-    taken = geos.union_of(taken.get(), zones[i].area.get());
-  }
+  for (std::size_t i = 0; i < zones.size(); ++i)
+    if (zones[i].type != "water") own_area[i] = geos.difference(on_top[i].get(), roads.get());
 
   Layers layers;
   auto add = [&](const char* layer, json geometry, json properties) {
@@ -189,6 +188,7 @@ Layers partition(const json& sketch, const Overlay& geos) {
   for (json& p : geos.parts(roads.get(), GEOS_POLYGON)) add("road_areas", std::move(p), {{"bridge", false}});
   for (std::size_t i = 0; i < zones.size(); ++i) {
     const std::string& type = zones[i].type;
+    if (type == "water") continue;  // in the water layer
     for (json& p : geos.parts(own_area[i].get(), GEOS_POLYGON)) {
       add("zones", p, {{"zone", type}});
       if (type == "park") continue;

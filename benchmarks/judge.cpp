@@ -245,6 +245,38 @@ void check_network(const Geos& geos, const std::vector<Feature>& roads, Verdict&
                                   std::to_string(apart) + " of them reaching no road of the sketch");
 }
 
+// Each zone written has the type of the zone the sketch has on top where it lies (the last
+// drawn, water zones too): a face given the windings of the wrong side of an edge, as when
+// a vertex or a hole silently crosses an edge, is labelled with another zone's type, which
+// the tilings and the coverage cannot see. Areas compare to the drawn area.
+void check_labels(const Geos& geos, const std::vector<const GEOSGeometry*>& drawn, const std::vector<std::string>& types,
+                  const std::vector<Feature>& zones, double drawn_area, Verdict& verdict) {
+  std::map<std::string, std::vector<Geos::Geometry>> visible;  // per type, the parts of its zones on top
+  Geos::Geometry above;  // the zones drawn after the one at hand
+  for (std::size_t i = drawn.size(); i-- > 0;) {
+    Geos::Geometry part = above ? geos.difference(drawn[i], above.get()) : geos.own(GEOSGeom_clone_r(geos.ctx(), drawn[i]));
+    if (part) visible[types[i]].push_back(std::move(part));
+    above = above ? geos.union_of({above.get(), drawn[i]}) : geos.own(GEOSGeom_clone_r(geos.ctx(), drawn[i]));
+  }
+  std::map<std::string, std::vector<const GEOSGeometry*>> written;
+  for (const Feature& z : zones)
+    if (z.valid) written[z.properties.value("zone", "")].push_back(z.geometry.get());
+  for (const auto& [type, parts] : written) {
+    Geos::Geometry out = geos.union_of(parts);
+    std::vector<const GEOSGeometry*> on_top;
+    for (const Geos::Geometry& g : visible[type]) on_top.push_back(g.get());
+    Geos::Geometry drawn_type = geos.union_of(on_top);
+    Geos::Geometry wrong;
+    if (out && drawn_type) wrong = geos.difference(out.get(), drawn_type.get());
+    const double area = wrong ? geos.area(wrong.get()) : out ? geos.area(out.get()) : 0;
+    if (area > kRelativeArea * drawn_area) {
+      std::ostringstream why;
+      why << area << " m2 of zones written as " << type << " where the sketch's zone on top is not " << type;
+      verdict.reject("label", why.str());
+    }
+  }
+}
+
 }  // namespace
 
 Verdict judge(const std::filesystem::path& out) {
@@ -281,11 +313,13 @@ Verdict judge(const std::filesystem::path& out) {
 
   // Every drawn zone is covered by the zones, water and road areas written.
   std::vector<const GEOSGeometry*> zones_drawn;
+  std::vector<std::string> types_drawn;
   std::vector<Geos::Geometry> repaired;
   for (const Feature& f : drawn) {
     if (!f.properties.contains("zone")) continue;
     repaired.push_back(geos.own(GEOSMakeValid_r(geos.ctx(), f.geometry.get())));
-    if (repaired.back()) zones_drawn.push_back(repaired.back().get());
+    if (repaired.back())
+      zones_drawn.push_back(repaired.back().get()), types_drawn.push_back(f.properties.value("zone", ""));
   }
   Geos::Geometry sketch_area = geos.union_of(zones_drawn), covered = geos.union_of(valid_geometries(ground));
   if (sketch_area && covered) {
@@ -297,6 +331,7 @@ Verdict judge(const std::filesystem::path& out) {
       verdict.reject("gap", why.str());
     }
   }
+  if (sketch_area) check_labels(geos, zones_drawn, types_drawn, layers["zones"], geos.area(sketch_area.get()), verdict);
 
   check_inside(geos, layers["lots"], layers["blocks"], "block", verdict);
   check_inside(geos, layers["buildings"], layers["lots"], "lot", verdict);
@@ -326,6 +361,10 @@ nlohmann::ordered_json judge_invariants() {
                     invariant("overlap", {"buildings", "road_areas not bridges"}, "a tiling", kRelativeArea),
                     invariant("gap", {"sketch zones (made valid)", "zones", "water", "road_areas not bridges"},
                               "the drawn zones are covered by the zones, water and road areas", kRelativeArea),
+                    invariant("label", {"zones", "sketch zones (made valid)"},
+                              "each zone written has the type of the sketch's zone on top where it lies (the last "
+                              "drawn, water zones too)",
+                              kRelativeArea),
                     invariant("outside", {"lots", "blocks"}, "each lot lies in the block its property block names",
                               kRelativeArea),
                     invariant("outside", {"buildings", "lots"},

@@ -13,7 +13,8 @@ namespace exacity::bench {
 
 // What a judge rejects, by kind: "unreadable" (a layer missing or not GeoJSON), "invalid"
 // (a polygon not valid by OGC rules), "overlap" (a tiling's parts cover more than their
-// union), "gap" (drawn zones left uncovered), "outside" (a lot outside its block, a building
+// union), "gap" (drawn zones left uncovered), "label" (a zone written with another type than
+// the sketch's zone on top there), "outside" (a lot outside its block, a building
 // outside its lot), "network" (centre lines that cross between vertices, overlap, or fall
 // apart into pieces of which some reach no road the sketch drew).
 struct Verdict {

@@ -94,3 +94,20 @@ TEST(Judge, RejectsADisconnectedOrCrossingNetwork) {
   EXPECT_EQ(judged("cross", [](auto& c) { c["roads"]["features"].push_back(feature(line({{50, 50}, {60, 40}, {40, 30}}), {{"id", 2}})); }),
             (Kinds{{"network", 1}}));
 }
+
+// A vertex moved across an edge keeps the zones a tiling that covers the sketch: only the
+// zones' types show that a face is on the wrong side.
+TEST(Judge, RejectsAZoneWrittenOnTheWrongSideOfAnEdge) {
+  auto split_zone = [](auto& c, double shared_y) {
+    c["sketch"]["features"].push_back(feature(box(55, 50, 100, 100), {{"zone", "commercial"}}));
+    c["zones"]["features"][1] = feature(json{{"type", "Polygon"}, {"coordinates", {{{55, 0}, {100, 0}, {100, 50}, {55, shared_y}, {55, 0}}}}},
+                                        {{"id", 1}, {"zone", "residential"}});
+    c["zones"]["features"].push_back(
+        feature(json{{"type", "Polygon"}, {"coordinates", {{{55, shared_y}, {100, 50}, {100, 100}, {55, 100}, {55, shared_y}}}}},
+                {{"id", 2}, {"zone", "commercial"}}));
+  };
+  EXPECT_EQ(judged("sides", [&](auto& c) { split_zone(c, 50); }), Kinds{});
+  EXPECT_EQ(judged("vertex-across", [&](auto& c) { split_zone(c, 50.001); }), (Kinds{{"label", 1}}));
+  EXPECT_EQ(judged("relabelled", [](auto& c) { c["zones"]["features"][1]["properties"]["zone"] = "commercial"; }),
+            (Kinds{{"label", 1}}));
+}
