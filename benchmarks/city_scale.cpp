@@ -28,8 +28,8 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-void row(const char* stage, double s, double cpu, const std::string& counts) {
-  std::printf("| %-14s | %8.3f | %8.3f | %s\n", stage, s, cpu, counts.c_str());
+void row(const char* stage, double s, double cpu, double system_s, long faults, const std::string& counts) {
+  std::printf("| %-14s | %8.3f | %8.3f | %8.3f | %9ld | %s\n", stage, s, cpu, system_s, faults, counts.c_str());
 }
 void row(const char* stage, double s, const std::string& counts) { std::printf("| %-14s | %8.3f | %s\n", stage, s, counts.c_str()); }
 
@@ -107,10 +107,12 @@ void run_every_stage(const Sketch& sketch) {
   const double total = seconds_since(t), total_cpu = bench::cpu_seconds() - cpu_start;
   const auto& report = result.report;
   const auto& s = report["timings_s"];
-  std::printf("| stage          |  seconds | CPU s    | counts\n|----------------|----------|----------|-------\n");
+  std::printf("| stage          |  seconds | CPU s    | sys s    | faults    | counts\n"
+              "|----------------|----------|----------|----------|-----------|-------\n");
   for (const auto& [stage, seconds] : s.items()) {
     std::string counts = stage_counts(stage, seconds.get<double>(), result);
-    row(stage.c_str(), seconds.get<double>(), cpu.seconds.value(stage, 0.0), counts);
+    row(stage.c_str(), seconds.get<double>(), cpu.seconds.value(stage, 0.0), cpu.system_s.value(stage, 0.0),
+        cpu.faults.value(stage, 0L), counts);
   }
   const double validation = s["validation"].get<double>();
   std::printf("\nsketch to every export: %.3f s (+ validation %.3f s); CPU %.3f s in all; peak memory %.0f MiB; outputs in %s\n",

@@ -3,6 +3,7 @@
 #include <fstream>
 
 #include "generate/cancel.h"
+#include "generate/city/format_number.h"
 #include "generate/city/palette.h"
 #include "generate/errors.h"
 #include "generate/export/geojson.h"
@@ -69,37 +70,44 @@ struct Counter {
   void face(const Indices&, int) { ++counts.faces; }
 };
 
-// The OBJ file (its indices from 1) and PLY's vertices, written as walk_city gives them.
+// The OBJ file (its indices from 1) and PLY's vertices, written as walk_city gives them;
+// each line made in a reused buffer and written whole.
 struct ObjAndPlyVertices {
   std::ostream &obj, &ply;
+  std::string line{};
   void object(std::size_t building) { obj << "o building_" << building << '\n'; }
   void object(const GroundLayer& layer) { obj << "o " << layer.name << "\nusemtl " << layer.name << '\n'; }
   void use(ZoneType zone, Surface s) { obj << "usemtl " << material_name(zone, s) << '\n'; }
   void vertex(double x, double y, double z) {
-    const std::string xyz = format_number(x) + ' ' + format_number(y) + ' ' + format_number(z);
-    obj << "v " << xyz << '\n';
-    ply << xyz << '\n';
+    line.assign("v ");
+    append_number(line, x), line += ' ', append_number(line, y), line += ' ', append_number(line, z), line += '\n';
+    obj.write(line.data(), static_cast<std::streamsize>(line.size()));
+    ply.write(line.data() + 2, static_cast<std::streamsize>(line.size() - 2));
   }
   template <typename Indices>
   void face(const Indices& vertices, int) {
-    obj << 'f';
-    for (std::size_t v : vertices) obj << ' ' << v + 1;
-    obj << '\n';
+    line.assign("f");
+    for (std::size_t v : vertices) line += ' ', append_number(line, v + 1);
+    line += '\n';
+    obj.write(line.data(), static_cast<std::streamsize>(line.size()));
   }
 };
 
 // PLY's faces (indices from 0, then the surface class), written as walk_city gives them.
 struct PlyFaces {
   std::ostream& ply;
+  std::string line{};
   void object(std::size_t) {}
   void object(const GroundLayer&) {}
   void use(ZoneType, Surface) {}
   void vertex(double, double, double) {}
   template <typename Indices>
   void face(const Indices& vertices, int surface) {
-    ply << vertices.size();
-    for (std::size_t v : vertices) ply << ' ' << v;
-    ply << ' ' << surface << '\n';
+    line.clear();
+    append_number(line, vertices.size());
+    for (std::size_t v : vertices) line += ' ', append_number(line, v);
+    line += ' ', append_number(line, surface), line += '\n';
+    ply.write(line.data(), static_cast<std::streamsize>(line.size()));
   }
 };
 
