@@ -287,6 +287,10 @@ V3 radiance_after_camera_ray(const RenderScene& scene, const Sky& sky, V3 o, V3 
     }
     path.L += path.beta * s.material.emission;
     if (depth >= max_depth) break;
+    // Past the first surface a smooth coat is taken rougher (path regularisation, Kaplanyan
+    // and Dachsbacher 2013): the sun seen in glass from the street otherwise comes in a few
+    // paths of great weight, white grains on shaded asphalt beside a glass tower.
+    if (depth > 0 && s.material.kind == Material::Glossy) s.material.roughness = std::max(s.material.roughness, 0.3f);
     if (!scatter_at_surface(t, s, depth, path, depth == 0 ? first_sun : nullptr, depth == 0 ? known_sun : nullptr))
       break;
   }
