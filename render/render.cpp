@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cmath>
 
+#include <sys/resource.h>
+
 #include "generate/cancel.h"
 #include "render/denoise.h"
 #include "render/image_io.h"
@@ -17,6 +19,15 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+// The process's CPU seconds (user and system, every thread): on a shared machine the wall
+// time says more about the others' load than about the work.
+double cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-6;
 }
 
 void line(Rgb8& img, V3 colour, float x0, float y0, float x1, float y1, int thickness) {
@@ -82,8 +93,9 @@ struct Still {
   Image image;
   Rgb8 png;  // tone-mapped; the minimap is set into it before it is written
   RayCounts rays;
-  int passes = 0;
+  int passes = 0, samples = 0;  // samples a pixel, over the passes
   double seconds = 0, denoise_seconds = 0;  // tracing, denoising
+  double cpu_s = 0, denoise_cpu_s = 0;      // the same in CPU seconds
   bool denoised = false;
   int primary_rays = 0;  // the denoiser's primary layer's, a pixel
   float metered_ev = 0;
@@ -97,36 +109,49 @@ double denoise_seconds(const RenderRequest& request, const Haze& haze, int sampl
 }
 
 // Passes of request.spp samples: one, or as many as the time budget holds. The budget is
-// the whole command's, from request.started: a pass is not begun when the passes so far,
-// on average, say that it and the denoiser after it would end past the budget. The image
-// depends only on the number of passes done (Film), and the report records it.
+// the whole command's, from request.started. With a budget the first pass is of one
+// sample, to time a sample before committing to spp of them; each
+// pass after it holds as many samples, up to spp, as the time per sample so far says will
+// end, with the denoiser after them, within the budget, and none is begun when not one
+// would. The image depends only on the passes' sizes (Film), and the report records its
+// samples and passes.
 Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camera, const RenderRequest& request,
                    const Haze& haze, const RenderProgress& progress) {
   Still still;
-  TraceSettings settings{request.width, request.height, request.spp};
+  const bool budget = request.time_budget_s > 0;
+  TraceSettings settings{request.width, request.height, budget ? 1 : request.spp};
   settings.haze = haze;
   const auto start = std::chrono::steady_clock::now();
-  const bool budget = request.time_budget_s > 0;
   const double left = request.time_budget_s - seconds_since(request.started);  // at the start of tracing
   Film film(request.width, request.height);
-  const int most_passes = std::max(1, 65536 / request.spp);
+  constexpr int kMostSamples = 65536;
   double filter_s = 0;  // the filter's time, measured on a band after the first pass
   auto denoiser_s = [&](int samples) {
     return denoise_seconds(request, haze, samples, filter_s, still.seconds / film.samples);
   };
-  do {
+  while (true) {
     const auto pass = std::chrono::steady_clock::now();
+    const double pass_cpu = cpu_seconds();
     add_samples(film, scene, sky, camera, settings, &still.rays, [&](int done, int all) {
       if (!progress) return;
       if (!budget) return progress("still", static_cast<double>(done) / all);
       progress("still", std::clamp(seconds_since(start) / left, 0.0, 1.0));
     });
     still.seconds += seconds_since(pass);
+    still.cpu_s += cpu_seconds() - pass_cpu;
     ++still.passes;
-    if (budget && still.passes == 1 && request.denoise) filter_s = filter_seconds(film.image());
-  } while (budget && still.passes < most_passes &&
-           seconds_since(start) + still.seconds / still.passes + denoiser_s(film.samples + request.spp) <= left);
+    if (!budget) break;
+    if (still.passes == 1 && request.denoise) filter_s = filter_seconds(film.image());
+    // The most samples, up to spp, that end with the denoiser within the budget.
+    const double per_sample = still.seconds / film.samples, remaining = left - seconds_since(start);
+    int next = std::min(request.spp, kMostSamples - film.samples);
+    while (next > 0 && per_sample * next + denoiser_s(film.samples + next) > remaining) --next;
+    if (next <= 0) break;
+    settings.spp = next;
+  }
+  still.samples = film.samples;
   const auto filtering = std::chrono::steady_clock::now();
+  const double filtering_cpu = cpu_seconds();
   Image image = film.image();
   if (request.denoise) {
     // Over the budget already: the filter without its primary layer, or none.
@@ -139,6 +164,7 @@ Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camer
   }
   still.image = std::move(image);
   still.denoise_seconds = seconds_since(filtering);
+  still.denoise_cpu_s = cpu_seconds() - filtering_cpu;
   still.metered_ev = metered_stops(still.image);
   still.png = tone_mapped(still.image, request, still.metered_ev);
   return still;
@@ -164,9 +190,9 @@ nlohmann::ordered_json still_report(const RenderRequest& request, const RenderSc
   const RayCounts& rays = still.rays;
   nlohmann::ordered_json report{
       {"size", {request.width, request.height}},
-      {"samples_per_pixel", request.spp * still.passes},
+      {"samples_per_pixel", still.samples},
       {"passes", still.passes},
-      {"samples_per_pass", request.spp},
+      {"samples_per_pass", request.spp},  // the most; with a budget, the first pass's is one
       {"time_budget_s", request.time_budget_s},
       {"denoised", still.denoised},
       {"primary_rays", still.primary_rays},
@@ -196,7 +222,9 @@ nlohmann::ordered_json still_report(const RenderRequest& request, const RenderSc
         {"bounce_rays", rays.bounce},
         {"shadow_rays", rays.shadow},
         {"rays_per_s", static_cast<double>(rays.camera + rays.bounce + rays.shadow) / still.seconds},
-        {"denoise_s", still.denoise_seconds}}},
+        {"denoise_s", still.denoise_seconds},
+        {"cpu_s", still.cpu_s},
+        {"denoise_cpu_s", still.denoise_cpu_s}}},
   };
   return report;
 }
