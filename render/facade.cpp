@@ -152,7 +152,11 @@ Material facade_material(const FacadeStyle& s, const Material& wall, V3 p, V3 n)
       const float warm = hash01(w.column, w.row * 31 + 3);
       V3 behind{room * (0.9f + 0.2f * warm), room, room * (1.1f - 0.2f * warm)};
       if (s.kind == FacadeKind::CurtainWall && w.row >= 0) behind = behind * s.glass_tint;
-      return {Material::Glossy, behind, 0.05f, 1.52f};
+      Material glass{Material::Glossy, behind, 0.05f, 1.52f};
+      // At night a share of the rooms are lit, each window its own, warm to cool white.
+      if (s.lit > 0 && hash01(w.row * 104729 + static_cast<int>(s.phase * 1000) + 17, w.column * 3 + 1) < s.lit)
+        glass.emission = s.light * (0.6f + 0.8f * hash01(w.column + 5, w.row)) * V3{1, 0.85f - 0.1f * warm, 0.6f - 0.2f * warm};
+      return glass;
     }
     // A curtain wall's spandrels, from one storey's glass to the next: opaque glass, dark.
     const bool above_shops = !s.shopfront || p.z - s.floor > kShopFloor;

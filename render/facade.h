@@ -33,6 +33,9 @@ struct FacadeStyle {
   // A band at each floor's slab (a string course), this much of the wall's albedo; 1: none.
   float band = 1;
   V3 glass_tint{1, 1, 1};  // a curtain wall's glass and spandrels (blue, green, bronze or grey)
+  // At night: the share of its windows lit, and their radiance.
+  float lit = 0;
+  V3 light{0, 0, 0};
 };
 
 // Where a wall point lies in the style's windows: inside a window or not, that window's

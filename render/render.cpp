@@ -8,6 +8,7 @@
 #include "generate/cancel.h"
 #include "render/denoise.h"
 #include "render/image_io.h"
+#include "render/night.h"
 #include "render/path_tracer.h"
 #include "render/scene.h"
 #include "render/white_balance.h"
@@ -47,9 +48,38 @@ void disc(Rgb8& img, V3 colour, float cx, float cy, float r) {
       if ((x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r) img.set(x, y, colour);
 }
 
-// The still's scene: culled and simplified outside what its camera sees close up.
-SceneOptions culled_to_view(const RenderRequest& request) {
+// What the hour makes of the still (render/night.h): its sun, how far into the night it
+// is, and how many stops the camera opens up by for it.
+struct Daylight {
+  float sun_azimuth, sun_elevation;
+  float night = 0;
+  float stops = 0;
+};
+// A night's exposure: as many more stops as bring a street under its lamps to about a
+// sunlit street's brightness.
+constexpr float kNightStops = 6;
+// The lamps' light: each lamp's intensity straight down and its head's radiance (the
+// sun's irradiance is 8 in these units: a lamp lights the road under it 6 m down at a
+// 2^kNightStops-th of that, a lit street at night), the lit windows' radiance and share.
+constexpr float kLampIntensity = 4, kLampHeadRadiance = 40;
+constexpr float kWindowLight = 0.015f, kLitWindows = 0.35f;
+
+Daylight daylight(const RenderRequest& request) {
+  if (request.time_of_day < 0) return {request.sun_azimuth, request.sun_elevation};
+  const SunPosition sun = sun_at_hour(request.time_of_day);
+  const float night = night_share(sun.elevation);
+  return {sun.azimuth, sun.elevation, night, kNightStops * night};
+}
+
+// The still's scene: culled and simplified outside what its camera sees close up; at
+// night, its lamps and lit windows.
+SceneOptions culled_to_view(const RenderRequest& request, const Daylight& day) {
   SceneOptions options;
+  if (day.night > 0) {
+    options.lit_windows = kLitWindows * day.night;
+    options.window_light = V3{1, 1, 1} * kWindowLight;
+    options.lamp_intensity = kLampIntensity, options.lamp_head_radiance = kLampHeadRadiance;
+  }
   options.view = &request.camera;
   options.aspect = static_cast<float>(request.width) / static_cast<float>(request.height);
   options.mark_mapped = request.mark_mapped;
@@ -116,11 +146,12 @@ double denoise_seconds(const RenderRequest& request, const Haze& haze, int sampl
 // would. The image depends only on the passes' sizes (Film), and the report records its
 // samples and passes.
 Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camera, const RenderRequest& request,
-                   const Haze& haze, const RenderProgress& progress) {
+                   const Haze& haze, const RenderProgress& progress, const StreetLights* lights) {
   Still still;
   const bool budget = request.time_budget_s > 0;
   TraceSettings settings{request.width, request.height, budget ? 1 : request.spp};
   settings.haze = haze;
+  settings.lights = lights;
   const auto start = std::chrono::steady_clock::now();
   const double left = request.time_budget_s - seconds_since(request.started);  // at the start of tracing
   Film film(request.width, request.height);
@@ -166,7 +197,7 @@ Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camer
   still.denoise_seconds = seconds_since(filtering);
   still.denoise_cpu_s = cpu_seconds() - filtering_cpu;
   still.metered_ev = metered_stops(still.image);
-  still.png = tone_mapped(still.image, request, still.metered_ev);
+  still.png = tone_mapped(still.image, request, still.metered_ev + daylight(request).stops);
   return still;
 }
 
@@ -199,6 +230,10 @@ nlohmann::ordered_json still_report(const RenderRequest& request, const RenderSc
       {"exposure_ev", request.exposure_ev},
       {"metered_ev", still.metered_ev},
       {"white_balance_k", request.white_balance_k},
+      {"time_of_day", request.time_of_day},
+      {"sun", {{"azimuth", daylight(request).sun_azimuth}, {"elevation", daylight(request).sun_elevation}}},
+      {"night", daylight(request).night},
+      {"lamps", scene.lamps.size()},
       {"haze_visibility_m", request.haze_visibility},
       {"clear_visibility_m", request.haze_visibility > 0 ? 0.0f : request.clear_visibility},
       {"mark_mapped", request.mark_mapped},
@@ -373,23 +408,28 @@ Camera default_camera(const exacity::City& city, float aspect) {
 nlohmann::ordered_json render_city(const exacity::City& city, const RenderRequest& request,
                                    const RenderProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
-  const Sky sky(request.sun_azimuth, request.sun_elevation, request.turbidity);
-  const SceneOptions options = culled_to_view(request);
+  const Daylight day = daylight(request);
+  const Sky sky = Sky::at(day.sun_azimuth, day.sun_elevation, request.turbidity, day.night);
+  const SceneOptions options = culled_to_view(request, day);
   if (progress) progress("scene", 0);
-  RenderScene scene(city, sky.sun_direction(), options);
+  // Tiles are grown towards the sun to keep what casts shadows into view; a set sun casts none.
+  RenderScene scene(city, sky.sun_up() ? sky.sun_direction() : V3{0, 0, 1}, options);
+  const StreetLights lights(scene.lamps);
   const double scene_s = seconds_since(start);
   const Camera camera = scene.to_scene(request.camera);
   const Haze haze = haze_layer(request, scene);
 
-  Still still = render_still(scene, sky, camera, request, haze, progress);
+  Still still = render_still(scene, sky, camera, request, haze, progress, lights.empty() ? nullptr : &lights);
   nlohmann::ordered_json report = still_report(request, scene, scene_s, still);
   // Between the steps too: writing a large image takes a while (generate/cancel.h).
   const exacity::CancelCheck cancel;
   cancel.check();
   if (request.overview || request.minimap) {
-    const RenderScene whole(city, sky.sun_direction(), whole_city(request));
-    if (request.overview) report["overview"] = render_overview(whole, sky, request, haze, progress);
-    if (request.minimap) report["minimap"] = render_minimap(whole, scene, sky, camera, request, still.png);
+    // By day whatever the still's hour: maps, not views.
+    const Sky map_sky(request.sun_azimuth, request.sun_elevation, request.turbidity);
+    const RenderScene whole(city, map_sky.sun_direction(), whole_city(request));
+    if (request.overview) report["overview"] = render_overview(whole, map_sky, request, haze, progress);
+    if (request.minimap) report["minimap"] = render_minimap(whole, scene, map_sky, camera, request, still.png);
   }
   cancel.check();
   write_still(still, request.still);
