@@ -66,11 +66,4 @@ const Lamp* StreetLights::choose(V3 p, float u, float& chance) const {
   return &lamps_[around.lamps[k]];
 }
 
-float StreetLights::chance(V3 p, std::size_t i) const {
-  const Near around = near(p);
-  for (std::size_t k = 0; k < around.lamps.size(); ++k)
-    if (around.lamps[k] == i) return around.weights[k] / around.total;
-  return 0;
-}
-
 }  // namespace render

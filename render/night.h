@@ -5,6 +5,7 @@
 // them does.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -48,8 +49,6 @@ class StreetLights {
   // A lamp for a shadow ray from p, from a uniform number, and the chance it was drawn;
   // null where no lamp reaches p.
   const Lamp* choose(V3 p, float u, float& chance) const;
-  // The chance choose() draws lamp i from p (for tests).
-  float chance(V3 p, std::size_t i) const;
 
  private:
   struct Near {

@@ -903,3 +903,34 @@ TEST(Render, TheSunFollowsTheHour) {
   EXPECT_EQ(night_share(10), 0);
   EXPECT_EQ(night_share(-20), 1);
 }
+
+// Ten thousand lamps, every 30 m on a 3 km square: the light at a street point estimated
+// from 64 lamps drawn by StreetLights::choose is within 5% of the sum over them all (the
+// draws go where the light comes from), and no draw goes to a lamp that gives none.
+TEST(Render, ManyLampsConvergeAsAFewDo) {
+  std::vector<Lamp> lamps;
+  for (int y = 0; y < 100; ++y)
+    for (int x = 0; x < 100; ++x) lamps.push_back({{x * 30.0f, y * 30.0f, 6}, 1 + 0.5f * static_cast<float>((x + y) % 3)});
+  const StreetLights lights(lamps);
+  for (const V3 p : {V3{1510, 1495, 0}, V3{3, 2, 0}, V3{1000, 2980, 0}}) {
+    double exact = 0;
+    for (const Lamp& l : lamps) {
+      const V3 d = l.position - p;
+      const float r = std::sqrt(dot(d, d));
+      exact += lamp_intensity(l, d * (-1 / r), r) * (d.z / r) / std::max(dot(d, d), 1.0f);
+    }
+    double estimate = 0;
+    constexpr int kDraws = 64;
+    for (int k = 0; k < kDraws; ++k) {
+      float chance = 0;
+      const Lamp* l = lights.choose(p, (k + 0.5f) / kDraws, chance);
+      ASSERT_TRUE(l);
+      const V3 d = l->position - p;
+      const float r = std::sqrt(dot(d, d));
+      const double light = lamp_intensity(*l, d * (-1 / r), r) * (d.z / r) / std::max(dot(d, d), 1.0f);
+      EXPECT_GT(light, 0);
+      estimate += light / chance / kDraws;
+    }
+    EXPECT_NEAR(estimate, exact, 0.05 * exact) << p.x << ", " << p.y;
+  }
+}
