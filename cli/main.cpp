@@ -52,6 +52,8 @@ struct RenderOptions {
   std::string denoise = "on";
   float exposure_ev = 0, white_balance_k = render::kNeutralKelvin;
   double time_s = 0;
+  std::string time_of_day;  // HH:MM
+  bool night = false;       // --night: 22:00
   float aperture = 0, focus_distance = 0, focus_tilt = 0;  // depth of field (render/camera.h)
   fs::path path;       // a camera path file: frames, not a still
   std::string frames;  // A:B, of the path's frames
@@ -77,6 +79,18 @@ std::optional<render::CameraSpec> given_camera(const std::string& sketch_camera,
   } catch (const std::invalid_argument& e) {
     throw UserError(camera_origin(o, camera_source) + " \"" + spec + "\": " + e.what() + kCameraExamples);
   }
+}
+
+// --time-of-day (or --night) as hours; below 0 for neither. Checked before any work.
+float time_of_day(const RenderOptions& o) {
+  if (o.night) return 22;
+  if (o.time_of_day.empty()) return -1;
+  int h = -1, m = -1;
+  char colon = 0;
+  std::istringstream in(o.time_of_day);
+  if (!(in >> h >> colon >> m) || colon != ':' || h < 0 || h > 23 || m < 0 || m > 59 || !in.eof())
+    throw UserError("--time-of-day " + o.time_of_day + ": expected HH:MM from 00:00 to 23:59, such as 06:30 or 21:00");
+  return static_cast<float>(h) + static_cast<float>(m) / 60;
 }
 
 // --size as width and height; checked before any work.
@@ -109,6 +123,7 @@ render::RenderRequest request_for(const City& city, const RenderOptions& o, cons
   r.denoise = o.denoise == "on";
   r.exposure_ev = o.exposure_ev, r.white_balance_k = o.white_balance_k;
   r.time_budget_s = o.time_s;
+  r.time_of_day = time_of_day(o);
   r.camera.depth_of_field = {o.aperture, o.focus_distance, o.focus_tilt};
   return r;
 }
@@ -338,6 +353,7 @@ int render_folder(const fs::path& out, const RenderOptions& o, const fs::path& f
   Sketch sketch = parse_sketch(output_file(out / "sketch.geojson"), report["sketch_path"].get<std::string>());
   given_camera(sketch.camera, o, (out / "sketch.geojson").string());  // a bad camera or size stops us before any work
   image_size(o);
+  time_of_day(o);
   if (!o.path.empty()) return render_path_folder(out, sketch, o, file, quiet);
   const fs::path still = file.empty() ? out / "render" / "still.png" : file;
   if (still.extension() != ".png") throw UserError(still.string() + ": the still is written as PNG; give a file ending in .png");
@@ -502,6 +518,11 @@ void add_image_options(CLI::App* c, RenderOptions& o) {
                 "Progressive: passes of --spp samples while the whole command, the denoiser included, fits in "
                 "this many seconds (still.json records the passes)")
       ->check(CLI::Range(0.0, 1e6));
+  auto* hour = c->add_option("--time-of-day", o.time_of_day,
+                             "HH:MM of local solar time on an equinox: the sun by the hour, and after sunset the "
+                             "twilight, the street lamps and a share of the windows lit (the overview and minimap "
+                             "stay by day)");
+  c->add_flag("--night", o.night, "Night: the same as --time-of-day 22:00")->excludes(hour);
   c->add_option("--aperture", o.aperture,
                 "Depth of field: the thin lens's diameter in metres (0: a pinhole, all sharp; a few metres over "
                 "a city for a miniature look)")

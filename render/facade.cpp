@@ -24,6 +24,36 @@ float hash01(int a, int b) {
 float fraction(float x) { return x - std::floor(x); }
 
 constexpr float kFrame = 0.06f;  // m: a window frame's width
+constexpr float kShopFloor = 4.5f;  // m: a shop floor's height, glass from 0.4 m to 3.4 m
+constexpr float kBand = 0.3f;  // m: a storey band's height, from the slab up
+
+// The wall's own material between its windows: plaster noise, brick coursing (0.225 by
+// 0.075 m bricks in stretcher bond, each its own shade, in lighter mortar) or ribbed
+// cladding (a rib every 0.2 m); a storey band at each floor's slab.
+V3 wall_albedo(const FacadeStyle& s, V3 albedo, V3 p, V3 n) {
+  const float along = along_wall(p, n), h = p.z - s.floor;
+  switch (s.kind) {
+    case FacadeKind::Brick: {
+      const float course = h / 0.075f;
+      const int row = static_cast<int>(std::floor(course));
+      const float brick = along / 0.225f + (row % 2 ? 0.5f : 0.0f);
+      const bool mortar = fraction(course) < 0.13f || fraction(brick) < 0.045f;
+      albedo = albedo * (mortar ? 1.3f : 0.82f + 0.3f * hash01(row, static_cast<int>(std::floor(brick))));
+      break;
+    }
+    case FacadeKind::Cladding:
+      albedo = albedo * (0.92f + 0.1f * std::cos(along * (2 * kPi / 0.2f)));
+      break;
+    default:
+      albedo = albedo * (0.93f + 0.14f * noise().fractal(p.x * 0.7f + p.y * 0.7f, p.z * 0.7f, 3));
+      break;
+  }
+  if (s.band != 1 && h > 0 && p.z < s.eaves) {
+    const float above = s.shopfront ? h - kShopFloor : h;
+    if (above >= 0 && fraction(above / s.storey) * s.storey < kBand) albedo = albedo * s.band;
+  }
+  return {std::min(albedo.x, 0.9f), std::min(albedo.y, 0.9f), std::min(albedo.z, 0.9f)};
+}
 
 }  // namespace
 
@@ -54,6 +84,27 @@ FacadeStyle facade_style(exacity::ZoneType zone, std::uint64_t seed, int id, flo
   }
   s.phase = static_cast<float>(rng.uniform(0, s.bay));
   s.dark_frames = rng.uniform(0, 1) < 0.4;
+  // Drawn after the rest, so each building keeps the storeys and bays it had.
+  const double kind = rng.uniform(0, 1);
+  const bool banded = rng.uniform(0, 1) < 0.6;
+  const float band = static_cast<float>(rng.uniform(0, 1) < 0.5 ? rng.uniform(0.65, 0.8) : rng.uniform(1.15, 1.3));
+  static const V3 kTints[4] = {{0.55f, 0.75f, 1.0f}, {0.6f, 0.9f, 0.8f}, {0.95f, 0.75f, 0.55f}, {0.8f, 0.8f, 0.8f}};
+  s.glass_tint = kTints[rng.next() % 4];
+  switch (zone) {
+    case exacity::ZoneType::Commercial:
+      s.kind = kind < 0.35 ? FacadeKind::Punched : kind < 0.65 ? FacadeKind::Ribbon : FacadeKind::CurtainWall;
+      break;
+    case exacity::ZoneType::Industrial:
+      s.kind = kind < 0.5 ? FacadeKind::Punched : FacadeKind::Cladding;
+      break;
+    default:
+      s.kind = kind < 0.6 ? FacadeKind::Punched : FacadeKind::Brick;
+      break;
+  }
+  // Ribbons and curtain walls: panes 1.5 m wide from mullion to mullion all along the wall.
+  if (s.kind == FacadeKind::Ribbon) s.bay = 1.5f, s.window = 0.98f, s.sill = 0.32f, s.head = 0.8f;
+  if (s.kind == FacadeKind::CurtainWall) s.bay = 1.5f, s.window = 0.98f, s.sill = 0.12f, s.head = 0.97f;
+  if (banded && (s.kind == FacadeKind::Punched || s.kind == FacadeKind::Brick)) s.band = band;
   return s;
 }
 
@@ -61,8 +112,7 @@ WindowPoint window_at(const FacadeStyle& s, float along, float z) {
   WindowPoint w;
   const float h = z - s.floor;
   if (h < 0 || z > s.eaves - 0.4f) return w;
-  // A shop floor 4.5 m tall: glass from 0.4 m to 3.4 m, bays 0.9 of their width, a fascia above.
-  constexpr float kShopFloor = 4.5f;
+  // A shop floor: bays 0.9 of their width, a fascia above.
   if (s.shopfront && h < kShopFloor) {
     const float cell = (along - s.phase) / (2 * s.bay), bay = fraction(cell);
     if (!(h > 0.4f && h < 3.4f && bay > 0.05f && bay < 0.95f)) return w;
@@ -96,15 +146,25 @@ Material facade_material(const FacadeStyle& s, const Material& wall, V3 p, V3 n)
       return {Material::Diffuse, s.dark_frames ? V3{0.12f, 0.12f, 0.13f} : V3{0.75f, 0.75f, 0.73f}};
     if (w.inside) {
       // Glass: a smooth coat that mirrors the sky and the street (Fresnel), over the room
-      // behind it, each window its own (curtains, blinds, a lit wall or a dark room).
+      // behind it, each window its own (curtains, blinds, a lit wall or a dark room); a
+      // curtain wall's glass is tinted.
       const float room = 0.03f + 0.1f * hash01(w.row * 7919 + static_cast<int>(s.phase * 1000), w.column);
       const float warm = hash01(w.column, w.row * 31 + 3);
-      return {Material::Glossy, V3{room * (0.9f + 0.2f * warm), room, room * (1.1f - 0.2f * warm)}, 0.05f, 1.52f};
+      V3 behind{room * (0.9f + 0.2f * warm), room, room * (1.1f - 0.2f * warm)};
+      if (s.kind == FacadeKind::CurtainWall && w.row >= 0) behind = behind * s.glass_tint;
+      Material glass{Material::Glossy, behind, 0.05f, 1.52f};
+      // At night a share of the rooms are lit, each window its own, warm to cool white.
+      if (s.lit > 0 && hash01(w.row * 104729 + static_cast<int>(s.phase * 1000) + 17, w.column * 3 + 1) < s.lit)
+        glass.emission = s.light * (0.6f + 0.8f * hash01(w.column + 5, w.row)) * V3{1, 0.85f - 0.1f * warm, 0.6f - 0.2f * warm};
+      return glass;
     }
+    // A curtain wall's spandrels, from one storey's glass to the next: opaque glass, dark.
+    const bool above_shops = !s.shopfront || p.z - s.floor > kShopFloor;
+    if (s.kind == FacadeKind::CurtainWall && above_shops && p.z - s.floor > 0 && p.z < s.eaves - 0.4f)
+      return {Material::Glossy, s.glass_tint * 0.14f, 0.05f, 1.52f};
   }
   Material m = wall;
-  const float plaster = noise().fractal(p.x * 0.7f + p.y * 0.7f, p.z * 0.7f, 3);
-  m.albedo = m.albedo * (0.93f + 0.14f * plaster);
+  m.albedo = wall_albedo(s, m.albedo, p, n);
   return m;
 }
 

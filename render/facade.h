@@ -14,7 +14,13 @@
 
 namespace render {
 
+// What a wall is made of: punched windows in plaster or stone, the same in brick coursing,
+// ribbon windows (one band of glass a storey, mullions every bay), a curtain wall (glass
+// from slab to slab over dark spandrel panels) or ribbed metal cladding.
+enum class FacadeKind : std::uint8_t { Punched, Brick, Ribbon, CurtainWall, Cladding };
+
 struct FacadeStyle {
+  FacadeKind kind = FacadeKind::Punched;
   float floor = 0;                  // height of the ground floor, scene coordinates
   float eaves = 1e9f;               // walls above this (a gable) get no windows
   float storey = 3.2f;              // m from floor to floor
@@ -24,6 +30,12 @@ struct FacadeStyle {
   float phase = 0;                  // m: where the bays start along a wall
   bool shopfront = false;           // commercial: shop windows on the ground floor
   bool dark_frames = false;         // window frames dark grey, else white
+  // A band at each floor's slab (a string course), this much of the wall's albedo; 1: none.
+  float band = 1;
+  V3 glass_tint{1, 1, 1};  // a curtain wall's glass and spandrels (blue, green, bronze or grey)
+  // At night: the share of its windows lit, and their radiance.
+  float lit = 0;
+  V3 light{0, 0, 0};
 };
 
 // Where a wall point lies in the style's windows: inside a window or not, that window's
@@ -38,7 +50,9 @@ WindowPoint window_at(const FacadeStyle& style, float along, float z);
 
 // A building's style: storeys and windows by its zone (residential 2.8-3.2 m storeys,
 // commercial 3.4-4.2 m over a 4.5 m shop floor, industrial 4.5-6 m with wide high
-// windows), varied per building by a stream seeded by the city's seed and its id.
+// windows) and its kind of wall (residential plaster or brick, commercial stone, ribbon
+// windows or a curtain wall, industrial plaster or cladding), varied per building by a
+// stream seeded by the city's seed and its id.
 FacadeStyle facade_style(exacity::ZoneType zone, std::uint64_t seed, int id, float floor, float eaves);
 
 // What the wall is at a point: in a window glass over its room, or its frame or mullion;

@@ -14,6 +14,9 @@ struct Material {
   float roughness = 0.1f;  // GGX alpha, glossy only
   float ior = 1.5f;        // glossy only
   V3 emission{0, 0, 0};
+  // Its emission seen by camera rays only: a lamp's head, whose light is its point light's
+  // (render/night.h).
+  bool camera_only = false;
 };
 
 // f(wo, wi) · cos(wi): what the surface sends towards wo of light arriving from wi.

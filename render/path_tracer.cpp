@@ -68,6 +68,7 @@ struct Tracing {
   float sun_pdf;  // of uniform_cone over the sun's disk
   Sampler& rng;
   RayCounts& counts;
+  const StreetLights* lights = nullptr;
 };
 
 // A path between two vertices: the light gathered so far, the weight of what comes next,
@@ -208,6 +209,24 @@ void add_sky_next_event(const Tracing& t, const Material& m, const Frame& frame,
   }
 }
 
+// Next event: one street lamp, chosen among those that reach p (StreetLights::choose), a
+// point light: no surface's sampling could find it, so it takes no multiple importance weight.
+void add_lamp_next_event(const Tracing& t, const Material& m, const Frame& frame, V3 wo, V3 p, Path& path) {
+  float chance = 0;
+  const Lamp* lamp = t.lights->choose(p, t.rng.next(), chance);
+  if (!lamp || chance <= 0) return;
+  const V3 to = lamp->position - p;
+  const float d2 = dot(to, to), d = std::sqrt(d2);
+  const V3 wi = to / d;
+  const V3 f = eval(m, wo, frame.to_local(wi));
+  if (max_component(f) <= 0) return;
+  ++t.counts.shadow;
+  if (!t.scene.occluded(p, wi, d * (1 - 1e-4f)))
+    // Nearer than a metre, as from a metre: a lamp's head is no point, and a wall beside
+    // it lit as by one made grains of every path that bounced off it.
+    path.L += path.beta * f * (lamp_intensity(*lamp, wi * -1, d) / (std::max(d2, 1.0f) * chance));
+}
+
 // The surface chooses the next direction, from p; false when it draws none.
 bool follow_surface_sample(const Tracing& t, const Surface& s, const Frame& frame, V3 wo, V3 p, Path& path) {
   BsdfSample bs;
@@ -249,6 +268,7 @@ bool scatter_at_surface(const Tracing& t, const Surface& s, int depth, Path& pat
   path.L += from_sun;
   if (sun) *sun += from_sun;
   add_sky_next_event(t, s.material, frame, wo, p, path);
+  if (t.lights && !t.lights->empty()) add_lamp_next_event(t, s.material, frame, wo, p, path);
   if (!follow_surface_sample(t, s, frame, wo, p, path)) return false;
   return depth < 3 || survives_roulette(t.rng, path);
 }
@@ -258,8 +278,8 @@ bool scatter_at_surface(const Tracing& t, const Surface& s, int depth, Path& pat
 // at that surface where it was found already (in clear air).
 V3 radiance_after_camera_ray(const RenderScene& scene, const Sky& sky, V3 o, V3 d, bool hit, Surface s, Sampler& rng,
                              int max_depth, RayCounts& counts, const Haze& haze, V3* first_sun,
-                             const V3* known_sun = nullptr) {
-  const Tracing t{scene, sky, haze, sun_cone_pdf(sky), rng, counts};
+                             const V3* known_sun = nullptr, const StreetLights* lights = nullptr) {
+  const Tracing t{scene, sky, haze, sun_cone_pdf(sky), rng, counts, lights};
   Path path{o, d};
   ++counts.camera;
   for (int depth = 0;; ++depth) {
@@ -285,8 +305,12 @@ V3 radiance_after_camera_ray(const RenderScene& scene, const Sky& sky, V3 o, V3 
       add_sky_seen(t, path);
       break;
     }
-    path.L += path.beta * s.material.emission;
+    if (depth == 0 || !s.material.camera_only) path.L += path.beta * s.material.emission;
     if (depth >= max_depth) break;
+    // Past the first surface a smooth coat is taken rougher (path regularisation, Kaplanyan
+    // and Dachsbacher 2013): the sun seen in glass from the street otherwise comes in a few
+    // paths of great weight, white grains on shaded asphalt beside a glass tower.
+    if (depth > 0 && s.material.kind == Material::Glossy) s.material.roughness = std::max(s.material.roughness, 0.3f);
     if (!scatter_at_surface(t, s, depth, path, depth == 0 ? first_sun : nullptr, depth == 0 ? known_sun : nullptr))
       break;
   }
@@ -312,11 +336,11 @@ SunShadowRay first_hit_sun(const RenderScene& scene, const Sky& sky, V3 d, const
 }  // namespace
 
 V3 radiance(const RenderScene& scene, const Sky& sky, V3 o, V3 d, Sampler& rng, int max_depth, RayCounts& counts,
-            Surface* first, const Haze& haze, V3* first_sun) {
+            Surface* first, const Haze& haze, V3* first_sun, const StreetLights* lights) {
   Surface s;
   const bool hit = scene.intersect(o, d, INFINITY, s);
   if (first && hit) *first = s;
-  return radiance_after_camera_ray(scene, sky, o, d, hit, s, rng, max_depth, counts, haze, first_sun);
+  return radiance_after_camera_ray(scene, sky, o, d, hit, s, rng, max_depth, counts, haze, first_sun, nullptr, lights);
 }
 
 float Haze::air_transmittance(V3 o, V3 d, float t) const {
@@ -461,7 +485,7 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
             V3 from_sun{0, 0, 0};
             V3 l = radiance_after_camera_ray(scene, sky, packet.o[j], packet.d[j], packet.found[j], packet.hits[j],
                                              rngs[j], t.max_depth, tile_counts, t.haze, &from_sun,
-                                             sun_first ? &packet.sun[j] : nullptr);
+                                             sun_first ? &packet.sun[j] : nullptr, t.lights);
             if (!std::isfinite(l.x + l.y + l.z)) l = from_sun = {0, 0, 0};
             V3 a = first_hit ? first_hit->material.albedo : V3{1, 1, 1};
             packet.through_air(j, l, a, from_sun);

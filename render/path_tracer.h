@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "render/camera.h"
+#include "render/night.h"
 #include "render/sampling.h"
 #include "render/scene.h"
 #include "render/sky.h"
@@ -76,6 +77,7 @@ struct TraceSettings {
   int width = 960, height = 540, spp = 16;
   int max_depth = 8;
   Haze haze;
+  const StreetLights* lights = nullptr;  // at night (render/night.h); none by day
 };
 
 struct RayCounts {
@@ -116,7 +118,8 @@ Image trace(const RenderScene& scene, const Sky& sky, const Camera& camera, cons
 // `counts`. The sun's next event at the first surface, part of the radiance, is also
 // added to `first_sun` where given.
 V3 radiance(const RenderScene& scene, const Sky& sky, V3 origin, V3 direction, Sampler& rng, int max_depth,
-            RayCounts& counts, Surface* first = nullptr, const Haze& haze = {}, V3* first_sun = nullptr);
+            RayCounts& counts, Surface* first = nullptr, const Haze& haze = {}, V3* first_sun = nullptr,
+            const StreetLights* lights = nullptr);
 
 // A pixel's camera rays traced as one Embree packet (RenderScene::intersect_packet), with
 // the sun's next events at their first surfaces where asked, whose shadow rays make one more.

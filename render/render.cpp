@@ -3,9 +3,12 @@
 #include <chrono>
 #include <cmath>
 
+#include <sys/resource.h>
+
 #include "generate/cancel.h"
 #include "render/denoise.h"
 #include "render/image_io.h"
+#include "render/night.h"
 #include "render/path_tracer.h"
 #include "render/scene.h"
 #include "render/white_balance.h"
@@ -17,6 +20,15 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+// The process's CPU seconds (user and system, every thread): on a shared machine the wall
+// time says more about the others' load than about the work.
+double cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-6;
 }
 
 void line(Rgb8& img, V3 colour, float x0, float y0, float x1, float y1, int thickness) {
@@ -36,9 +48,38 @@ void disc(Rgb8& img, V3 colour, float cx, float cy, float r) {
       if ((x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r) img.set(x, y, colour);
 }
 
-// The still's scene: culled and simplified outside what its camera sees close up.
-SceneOptions culled_to_view(const RenderRequest& request) {
+// What the hour makes of the still (render/night.h): its sun, how far into the night it
+// is, and how many stops the camera opens up by for it.
+struct Daylight {
+  float sun_azimuth, sun_elevation;
+  float night = 0;
+  float stops = 0;
+};
+// A night's exposure: as many more stops as bring a street under its lamps to about a
+// sunlit street's brightness.
+constexpr float kNightStops = 6;
+// The lamps' light: each lamp's intensity straight down and its head's radiance (the
+// sun's irradiance is 8 in these units: a lamp lights the road under it 6 m down at a
+// 2^kNightStops-th of that, a lit street at night), the lit windows' radiance and share.
+constexpr float kLampIntensity = 4, kLampHeadRadiance = 40;
+constexpr float kWindowLight = 0.015f, kLitWindows = 0.35f;
+
+Daylight daylight(const RenderRequest& request) {
+  if (request.time_of_day < 0) return {request.sun_azimuth, request.sun_elevation};
+  const SunPosition sun = sun_at_hour(request.time_of_day);
+  const float night = night_share(sun.elevation);
+  return {sun.azimuth, sun.elevation, night, kNightStops * night};
+}
+
+// The still's scene: culled and simplified outside what its camera sees close up; at
+// night, its lamps and lit windows.
+SceneOptions culled_to_view(const RenderRequest& request, const Daylight& day) {
   SceneOptions options;
+  if (day.night > 0) {
+    options.lit_windows = kLitWindows * day.night;
+    options.window_light = V3{1, 1, 1} * kWindowLight;
+    options.lamp_intensity = kLampIntensity, options.lamp_head_radiance = kLampHeadRadiance;
+  }
   options.view = &request.camera;
   options.aspect = static_cast<float>(request.width) / static_cast<float>(request.height);
   options.mark_mapped = request.mark_mapped;
@@ -82,8 +123,9 @@ struct Still {
   Image image;
   Rgb8 png;  // tone-mapped; the minimap is set into it before it is written
   RayCounts rays;
-  int passes = 0;
+  int passes = 0, samples = 0;  // samples a pixel, over the passes
   double seconds = 0, denoise_seconds = 0;  // tracing, denoising
+  double cpu_s = 0, denoise_cpu_s = 0;      // the same in CPU seconds
   bool denoised = false;
   int primary_rays = 0;  // the denoiser's primary layer's, a pixel
   float metered_ev = 0;
@@ -97,36 +139,50 @@ double denoise_seconds(const RenderRequest& request, const Haze& haze, int sampl
 }
 
 // Passes of request.spp samples: one, or as many as the time budget holds. The budget is
-// the whole command's, from request.started: a pass is not begun when the passes so far,
-// on average, say that it and the denoiser after it would end past the budget. The image
-// depends only on the number of passes done (Film), and the report records it.
+// the whole command's, from request.started. With a budget the first pass is of one
+// sample, to time a sample before committing to spp of them; each
+// pass after it holds as many samples, up to spp, as the time per sample so far says will
+// end, with the denoiser after them, within the budget, and none is begun when not one
+// would. The image depends only on the passes' sizes (Film), and the report records its
+// samples and passes.
 Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camera, const RenderRequest& request,
-                   const Haze& haze, const RenderProgress& progress) {
+                   const Haze& haze, const RenderProgress& progress, const StreetLights* lights) {
   Still still;
-  TraceSettings settings{request.width, request.height, request.spp};
-  settings.haze = haze;
-  const auto start = std::chrono::steady_clock::now();
   const bool budget = request.time_budget_s > 0;
+  TraceSettings settings{request.width, request.height, budget ? 1 : request.spp};
+  settings.haze = haze;
+  settings.lights = lights;
+  const auto start = std::chrono::steady_clock::now();
   const double left = request.time_budget_s - seconds_since(request.started);  // at the start of tracing
   Film film(request.width, request.height);
-  const int most_passes = std::max(1, 65536 / request.spp);
+  constexpr int kMostSamples = 65536;
   double filter_s = 0;  // the filter's time, measured on a band after the first pass
   auto denoiser_s = [&](int samples) {
     return denoise_seconds(request, haze, samples, filter_s, still.seconds / film.samples);
   };
-  do {
+  while (true) {
     const auto pass = std::chrono::steady_clock::now();
+    const double pass_cpu = cpu_seconds();
     add_samples(film, scene, sky, camera, settings, &still.rays, [&](int done, int all) {
       if (!progress) return;
       if (!budget) return progress("still", static_cast<double>(done) / all);
       progress("still", std::clamp(seconds_since(start) / left, 0.0, 1.0));
     });
     still.seconds += seconds_since(pass);
+    still.cpu_s += cpu_seconds() - pass_cpu;
     ++still.passes;
-    if (budget && still.passes == 1 && request.denoise) filter_s = filter_seconds(film.image());
-  } while (budget && still.passes < most_passes &&
-           seconds_since(start) + still.seconds / still.passes + denoiser_s(film.samples + request.spp) <= left);
+    if (!budget) break;
+    if (still.passes == 1 && request.denoise) filter_s = filter_seconds(film.image());
+    // The most samples, up to spp, that end with the denoiser within the budget.
+    const double per_sample = still.seconds / film.samples, remaining = left - seconds_since(start);
+    int next = std::min(request.spp, kMostSamples - film.samples);
+    while (next > 0 && per_sample * next + denoiser_s(film.samples + next) > remaining) --next;
+    if (next <= 0) break;
+    settings.spp = next;
+  }
+  still.samples = film.samples;
   const auto filtering = std::chrono::steady_clock::now();
+  const double filtering_cpu = cpu_seconds();
   Image image = film.image();
   if (request.denoise) {
     // Over the budget already: the filter without its primary layer, or none.
@@ -139,8 +195,9 @@ Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camer
   }
   still.image = std::move(image);
   still.denoise_seconds = seconds_since(filtering);
+  still.denoise_cpu_s = cpu_seconds() - filtering_cpu;
   still.metered_ev = metered_stops(still.image);
-  still.png = tone_mapped(still.image, request, still.metered_ev);
+  still.png = tone_mapped(still.image, request, still.metered_ev + daylight(request).stops);
   return still;
 }
 
@@ -164,15 +221,19 @@ nlohmann::ordered_json still_report(const RenderRequest& request, const RenderSc
   const RayCounts& rays = still.rays;
   nlohmann::ordered_json report{
       {"size", {request.width, request.height}},
-      {"samples_per_pixel", request.spp * still.passes},
+      {"samples_per_pixel", still.samples},
       {"passes", still.passes},
-      {"samples_per_pass", request.spp},
+      {"samples_per_pass", request.spp},  // the most; with a budget, the first pass's is one
       {"time_budget_s", request.time_budget_s},
       {"denoised", still.denoised},
       {"primary_rays", still.primary_rays},
       {"exposure_ev", request.exposure_ev},
       {"metered_ev", still.metered_ev},
       {"white_balance_k", request.white_balance_k},
+      {"time_of_day", request.time_of_day},
+      {"sun", {{"azimuth", daylight(request).sun_azimuth}, {"elevation", daylight(request).sun_elevation}}},
+      {"night", daylight(request).night},
+      {"lamps", scene.lamps.size()},
       {"haze_visibility_m", request.haze_visibility},
       {"clear_visibility_m", request.haze_visibility > 0 ? 0.0f : request.clear_visibility},
       {"mark_mapped", request.mark_mapped},
@@ -196,7 +257,9 @@ nlohmann::ordered_json still_report(const RenderRequest& request, const RenderSc
         {"bounce_rays", rays.bounce},
         {"shadow_rays", rays.shadow},
         {"rays_per_s", static_cast<double>(rays.camera + rays.bounce + rays.shadow) / still.seconds},
-        {"denoise_s", still.denoise_seconds}}},
+        {"denoise_s", still.denoise_seconds},
+        {"cpu_s", still.cpu_s},
+        {"denoise_cpu_s", still.denoise_cpu_s}}},
   };
   return report;
 }
@@ -345,23 +408,28 @@ Camera default_camera(const exacity::City& city, float aspect) {
 nlohmann::ordered_json render_city(const exacity::City& city, const RenderRequest& request,
                                    const RenderProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
-  const Sky sky(request.sun_azimuth, request.sun_elevation, request.turbidity);
-  const SceneOptions options = culled_to_view(request);
+  const Daylight day = daylight(request);
+  const Sky sky = Sky::at(day.sun_azimuth, day.sun_elevation, request.turbidity, day.night);
+  const SceneOptions options = culled_to_view(request, day);
   if (progress) progress("scene", 0);
-  RenderScene scene(city, sky.sun_direction(), options);
+  // Tiles are grown towards the sun to keep what casts shadows into view; a set sun casts none.
+  RenderScene scene(city, sky.sun_up() ? sky.sun_direction() : V3{0, 0, 1}, options);
+  const StreetLights lights(scene.lamps);
   const double scene_s = seconds_since(start);
   const Camera camera = scene.to_scene(request.camera);
   const Haze haze = haze_layer(request, scene);
 
-  Still still = render_still(scene, sky, camera, request, haze, progress);
+  Still still = render_still(scene, sky, camera, request, haze, progress, lights.empty() ? nullptr : &lights);
   nlohmann::ordered_json report = still_report(request, scene, scene_s, still);
   // Between the steps too: writing a large image takes a while (generate/cancel.h).
   const exacity::CancelCheck cancel;
   cancel.check();
   if (request.overview || request.minimap) {
-    const RenderScene whole(city, sky.sun_direction(), whole_city(request));
-    if (request.overview) report["overview"] = render_overview(whole, sky, request, haze, progress);
-    if (request.minimap) report["minimap"] = render_minimap(whole, scene, sky, camera, request, still.png);
+    // By day whatever the still's hour: maps, not views.
+    const Sky map_sky(request.sun_azimuth, request.sun_elevation, request.turbidity);
+    const RenderScene whole(city, map_sky.sun_direction(), whole_city(request));
+    if (request.overview) report["overview"] = render_overview(whole, map_sky, request, haze, progress);
+    if (request.minimap) report["minimap"] = render_minimap(whole, scene, map_sky, camera, request, still.png);
   }
   cancel.check();
   write_still(still, request.still);

@@ -18,6 +18,10 @@ struct RenderRequest {
   int width = 960, height = 540, spp = 16;
   bool overview = false, orthographic_overview = false, minimap = false;
   float sun_azimuth = 200, sun_elevation = 40, turbidity = 3, exposure = 0.25f;
+  // Hours of local solar time (render/night.h): the still's sun by the hour, and after
+  // sunset its sky's twilight, the street lamps and a share of the windows lit; below 0,
+  // the sun above as given. The overview and the minimap keep that sun, by day.
+  float time_of_day = -1;
   float haze_visibility = 0;    // m; 0: clear air. Haze fills the 500 m over the lowest ground.
   // m: clear air's visibility, for the still's aerial perspective (Haze::air_density; 0: none)
   float clear_visibility = 20000;

@@ -26,6 +26,7 @@
 #include "render/landscape.h"
 #include "render/onward.h"
 #include "render/material.h"
+#include "render/night.h"
 #include "render/texture.h"
 
 namespace render {
@@ -80,6 +81,11 @@ struct SceneOptions {
   // Buildings in two plain colours by where they come from: mapped (read from the sketch)
   // light grey, generated (extruded or placed models) orange; no windows.
   bool mark_mapped = false;
+  // Night (render/night.h): the share of windows lit, their radiance, and the street
+  // lamps' intensity (their point lights', down) and their heads' radiance; 0: day.
+  float lit_windows = 0;
+  V3 window_light{0, 0, 0};
+  float lamp_intensity = 0, lamp_head_radiance = 0;
 };
 
 struct TileLevel {
@@ -123,6 +129,9 @@ class RenderScene {
   std::vector<TileLevel> tiles;
   std::size_t triangles = 0, instances = 0;
   std::size_t landscape_instances = 0;  // the trees beyond the city, apart from the city's instances
+  // The street lamps' point lights, every lamp of the city's whether its tile is seen or
+  // not, where SceneOptions::lamp_intensity is above 0.
+  std::vector<Lamp> lamps;
   // The most memory Embree held at once, from its device's memory monitor.
   std::size_t embree_peak_bytes() const { return device_.peak_bytes(); }
 
@@ -164,7 +173,8 @@ class RenderScene {
   struct ModelMaterials;
   StructureTiles tile_structures(const exacity::City& city, const geom::Box& world, float tile_size);
   TileView view_tiles(const std::vector<Box3>& boxes, const SceneOptions& options);
-  ModelMaterials add_model_materials(const exacity::ModelLibrary* library);
+  ModelMaterials add_model_materials(const exacity::ModelLibrary* library, float lamp_head_radiance);
+  void add_lamps(const exacity::City& city, float intensity);
   RTCScene model_scene(const exacity::ModelLibrary& library, int model);
   void fill_mesh_scene(RTCScene scene, const exacity::TriangleMesh& mesh);
   unsigned add_instance(const exacity::ModelInstance& m, const exacity::ModelLibrary& library,

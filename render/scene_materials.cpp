@@ -28,7 +28,8 @@ void RenderScene::make_palette(Palette& p) {
   }
 }
 
-RenderScene::ModelMaterials RenderScene::add_model_materials(const exacity::ModelLibrary* library) {
+RenderScene::ModelMaterials RenderScene::add_model_materials(const exacity::ModelLibrary* library,
+                                                             float lamp_head_radiance) {
   ModelMaterials out;
   if (!library) return out;
   model_scenes_.assign(library->models.size(), nullptr);
@@ -37,8 +38,11 @@ RenderScene::ModelMaterials RenderScene::add_model_materials(const exacity::Mode
     for (int tint = 0; tint < exacity::kTints; ++tint)
       for (const auto& mat : m.mesh.materials) {
         const bool glass = mat.name.find("glass") != std::string::npos || mat.name.find("window") != std::string::npos;
-        const int index = add_material(
-            {glass ? Material::Glossy : Material::Diffuse, colour(exacity::tinted(mat.colour, tint)), 0.05f, 1.5f});
+        Material made{glass ? Material::Glossy : Material::Diffuse, colour(exacity::tinted(mat.colour, tint)), 0.05f, 1.5f};
+        // At night a lamp's head glows, warm (its light is its point light's, render/night.h).
+        if (lamp_head_radiance > 0 && m.kind == exacity::ModelKind::Lamp && lamp_light_material(mat.name))
+          made.emission = V3{1.0f, 0.78f, 0.5f} * lamp_head_radiance, made.camera_only = true;
+        const int index = add_material(made);
         if (!mat.texture) continue;
         // The texture times the material's colour, as the MTL's map_Kd and Kd combine.
         std::unique_ptr<Texture>& texture = textures_[mat.texture.get()];

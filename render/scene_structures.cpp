@@ -25,7 +25,8 @@ void RenderScene::add_buildings(const exacity::City& city, const geom::Box& worl
   StructureTiles tiles = tile_structures(city, world, options.tile_size);
   grow_towards_sun(tiles.boxes, sun);
   const TileView view = view_tiles(tiles.boxes, options);
-  const ModelMaterials model_materials = add_model_materials(city.model_library());
+  const ModelMaterials model_materials = add_model_materials(city.model_library(), options.lamp_head_radiance);
+  if (options.lamp_intensity > 0) add_lamps(city, options.lamp_intensity);
 
   TileMeshes meshes{std::vector<std::vector<V3>>(tiles.boxes.size()),
                     std::vector<std::vector<std::array<int, 3>>>(tiles.boxes.size())};
@@ -36,6 +37,7 @@ void RenderScene::add_buildings(const exacity::City& city, const geom::Box& worl
   auto add_mesh = [&](int id, exacity::ZoneType zone, const exacity::Mesh& mesh, double floor, double eaves,
                       bool mapped) {
     facades_[id] = facade_style(zone, city.settings.seed, id, static_cast<float>(floor), static_cast<float>(eaves));
+    facades_[id].lit = options.lit_windows, facades_[id].light = options.window_light;
     const int k = tiles.tile_of[id];
     const exacity::StructureAlbedos albedos = exacity::structure_albedos(zone, city.settings.seed, id);
     int f = palette.facade.at({zone, albedos.facade}), r = palette.roof.at({zone, albedos.roof});
@@ -142,6 +144,61 @@ unsigned RenderScene::add_instance(const exacity::ModelInstance& m, const exacit
   geometries_[id] = std::move(info);
   ++instances;
   return id;
+}
+
+}  // namespace render
+
+namespace render {
+
+namespace {
+
+// Where a lamp model's point light sits, in its own frame: 5 cm under the middle of its
+// light's triangles (under its head, so that shadow rays towards it leave the head out),
+// or 0.5 m under the middle of its top where no material is named as its light.
+V3 lamp_light_point(const exacity::Model& model) {
+  const exacity::TriangleMesh& mesh = model.mesh;
+  V3 sum{0, 0, 0};
+  float lowest = INFINITY;
+  int corners = 0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    if (!lamp_light_material(mesh.materials[static_cast<std::size_t>(mesh.material[t])].name)) continue;
+    for (int c : mesh.triangles[t]) {
+      const auto& v = mesh.vertices[static_cast<std::size_t>(c)];
+      sum += V3{static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
+      lowest = std::min(lowest, static_cast<float>(v[2]));
+      ++corners;
+    }
+  }
+  if (corners > 0) return {sum.x / static_cast<float>(corners), sum.y / static_cast<float>(corners), lowest - 0.05f};
+  V3 low{INFINITY, INFINITY, INFINITY}, high{-INFINITY, -INFINITY, -INFINITY};
+  for (const auto& v : mesh.vertices) {
+    const V3 p{static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
+    low = {std::min(low.x, p.x), std::min(low.y, p.y), std::min(low.z, p.z)};
+    high = {std::max(high.x, p.x), std::max(high.y, p.y), std::max(high.z, p.z)};
+  }
+  return {(low.x + high.x) / 2, (low.y + high.y) / 2, high.z - 0.5f};
+}
+
+}  // namespace
+
+// Every lamp of the city's, placed or street clutter, as a point light under its head.
+void RenderScene::add_lamps(const exacity::City& city, float intensity) {
+  const exacity::ModelLibrary* library = city.model_library();
+  if (!library) return;
+  std::vector<V3> points(library->models.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (library->models[i].kind == exacity::ModelKind::Lamp) points[i] = lamp_light_point(library->models[i]);
+  auto add = [&](const exacity::ModelInstance& m) {
+    if (library->models[static_cast<std::size_t>(m.placed.model)].kind != exacity::ModelKind::Lamp) return;
+    const V3 local = points[static_cast<std::size_t>(m.placed.model)];
+    const float c = std::cos(static_cast<float>(m.placed.angle)), s = std::sin(static_cast<float>(m.placed.angle));
+    const float scale = static_cast<float>(m.placed.scale);
+    const V3 at = to_scene(m.placed.position.x, m.placed.position.y, m.floor);
+    lamps.push_back({at + V3{c * local.x - s * local.y, s * local.x + c * local.y, local.z} * scale,
+                     intensity * scale * scale});
+  };
+  for (const auto& m : city.models) add(m);
+  for (const auto& item : city.clutter.items) add(item.instance);
 }
 
 }  // namespace render

@@ -80,8 +80,15 @@ float Sky::perez(const float c[5], float cos_theta, float gamma) const {
          (1 + c[2] * std::exp(c[3] * gamma) + c[4] * cg * cg);
 }
 
+Sky Sky::at(float sun_azimuth, float sun_elevation, float turbidity, float night) {
+  Sky sky(sun_azimuth, sun_elevation, turbidity, sun_elevation >= 0 ? 1 : std::exp(sun_elevation / 2.5f));
+  sky.glow_ = V3{0.00025f, 0.0004f, 0.0008f} * night;
+  for (V3& t : sky.table_) t += sky.glow_;
+  return sky;
+}
+
 V3 Sky::radiance(V3 dir) const {
-  if (scale_ == 0) return {0, 0, 0};
+  if (scale_ == 0) return glow_;
   // Rows by sqrt(1 - z), about even in the angle from the zenith down.
   const float u = std::sqrt(1 - std::clamp(dir.z, 0.0f, 1.0f)) * (kRows - 1);
   const float v = (azimuth(dir.y, dir.x) / (2 * kPi) + 0.5f) * kColumns;
@@ -93,7 +100,7 @@ V3 Sky::radiance(V3 dir) const {
 }
 
 V3 Sky::model_radiance(V3 dir) const {
-  if (scale_ == 0) return {0, 0, 0};
+  if (scale_ == 0) return glow_;
   dir.z = std::max(dir.z, 0.001f);
   dir = normalize(dir);
   const float gamma = std::acos(std::clamp(dot(dir, sun_), -1.0f, 1.0f));
@@ -105,7 +112,7 @@ V3 Sky::model_radiance(V3 dir) const {
   V3 rgb{3.2406f * X - 1.5372f * Y - 0.4986f * Z, -0.9689f * X + 1.8758f * Y + 0.0415f * Z,
          0.0557f * X - 0.2040f * Y + 1.0570f * Z};
   rgb = {std::max(rgb.x, 0.0f), std::max(rgb.y, 0.0f), std::max(rgb.z, 0.0f)};
-  return rgb * (kLuminanceToRadiance * scale_);
+  return rgb * (kLuminanceToRadiance * scale_) + glow_;
 }
 
 V3 Sky::sun_irradiance() const { return sun_radiance_ * (2 * kPi * (1 - sun_cos_max_)); }

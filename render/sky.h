@@ -15,6 +15,11 @@ class Sky {
   // both in degrees; turbidity 2 (clear) to 10 (hazy). The scales multiply the sky's and
   // the sun's radiance (0 turns either off, for tests).
   Sky(float sun_azimuth, float sun_elevation, float turbidity = 3, float sky_scale = 1, float sun_scale = 1);
+  // The sky at a sun this high, night included: Preetham's model holds the sun at the
+  // horizon once it has set, so the sky dims with the sun's depth under it (e-folding every
+  // 2.5 degrees: a tenth at -6, civil twilight's end) and keeps the night's glow, a dark
+  // blue (a city's sky glow and the moon's) `night` of it (0 to 1, render/night.h).
+  static Sky at(float sun_azimuth, float sun_elevation, float turbidity, float night);
 
   // Sky radiance (linear sRGB) towards `dir`, the sun disk excluded: looked up in a table
   // of the model, bilinearly, so a bounce costs no exponentials.
@@ -37,6 +42,7 @@ class Sky {
   float sun_cos_max_;
   V3 sun_radiance_;
   float scale_;
+  V3 glow_{0, 0, 0};  // added everywhere: the night's
   float cY_[5], cx_[5], cy_[5];
   float zenith_Y_, zenith_x_, zenith_y_;
   float norm_Y_, norm_x_, norm_y_;                  // the Perez functions at the zenith

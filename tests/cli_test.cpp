@@ -521,6 +521,8 @@ TEST(Cli, PedestrianAndFlyerCamerasAndTheirMistakes) {
       {"--camera pedestrian:road=999,along=0", "--camera \"pedestrian:road=999,along=0\": the city has no road 999"},
       {"--camera flyer:at=0,0,height=10", "--camera \"flyer:at=0,0,height=10\": missing heading="},
       {"--camera pedestrian:at=0,0,heading=0,eye=-1", "eye=-1 is outside 0.1 to 100"},
+      {"--time-of-day 24:10", "--time-of-day 24:10: expected HH:MM from 00:00 to 23:59"},
+      {"--time-of-day 9h30", "--time-of-day 9h30: expected HH:MM"},
   };
   for (const auto& [args, expected] : bad) {
     r = run(render + args + " -o " + (dir / "bad" / "still.png").string());

@@ -11,6 +11,7 @@
 #include <optional>
 #include <set>
 
+#include "generate/city/palette.h"
 #include "generate/errors.h"
 #include "generate/export/validate.h"
 #include "generate/pipeline.h"
@@ -194,14 +195,60 @@ TEST(Facade, WindowsSitInRowsPerStoreyOverAShopFloor) {
   EXPECT_FALSE(render::in_window(s, bay_centre, 39.8f));
 }
 
+// Towers of one zone differ: some nearly all glass (a curtain wall), some punched windows
+// in stone; walls between windows carry a band at each floor's slab. Before, every
+// office had punched windows, glazing 0.33 to 0.5 of its wall, and walls were one plaster.
+TEST(Facade, TowersOfAZoneDifferAndFloorsShowBands) {
+  float least = 1, most = 0;
+  for (int id = 0; id < 40; ++id) {
+    const render::FacadeStyle s = render::facade_style(ZoneType::Commercial, 7, id, 0, 60);
+    int glass = 0, points = 0;
+    for (float z = 10; z < 50; z += 0.37f)
+      for (float along = 0; along < 30; along += 0.23f) glass += render::in_window(s, along, z), ++points;
+    const float share = static_cast<float>(glass) / static_cast<float>(points);
+    least = std::min(least, share), most = std::max(most, share);
+  }
+  EXPECT_GT(most, 0.7f);
+  EXPECT_LT(least, 0.4f);
+  // A wall's albedo at each slab (the band) against mid-storey, beside the windows, on the
+  // residential buildings that have bands: darker or lighter by more than the plaster's
+  // noise.
+  int banded = 0;
+  const render::Material wall{render::Material::Diffuse, {0.5f, 0.5f, 0.5f}};
+  const render::V3 south{0, -1, 0};
+  for (int id = 0; id < 40; ++id) {
+    const render::FacadeStyle s = render::facade_style(ZoneType::Residential, 7, id, 0, 30);
+    double slab = 0, middle = 0;
+    for (int storey = 1; storey < 6; ++storey)
+      for (float along = 0; along < 20; along += 0.5f) {
+        const float z = s.storey * static_cast<float>(storey), mid = z + 0.12f - s.storey * 0.5f;
+        if (render::in_window(s, along, mid)) continue;
+        slab += render::facade_material(s, wall, {along, 0, z + 0.12f}, south).albedo.y;
+        middle += render::facade_material(s, wall, {along, 0, mid}, south).albedo.y;
+      }
+    banded += std::abs(slab / middle - 1) > 0.12;
+  }
+  EXPECT_GT(banded, 10);
+  // Asphalt and paving albedos within field measurements of pavements in service
+  // (docs/design.md, Rendering: facades and roofs).
+  auto grey = [](const Albedo& a) { return 0.2126 * a[0] + 0.7152 * a[1] + 0.0722 * a[2]; };
+  EXPECT_GE(grey(kAsphaltAlbedo), 0.10);
+  EXPECT_LE(grey(kAsphaltAlbedo), 0.18);
+  EXPECT_GE(grey(kSidewalkAlbedo), 0.25);
+  EXPECT_LE(grey(kSidewalkAlbedo), 0.35);
+}
+
 TEST(Facade, RenderedWallsHaveDarkWindowRowsAtTheirStoreysAndParkTreesAreSeen) {
   const City city = built("");
   render::Sky sky(200, 40);
   render::RenderScene scene(city, sky.sun_direction(), render::SceneOptions{});
-  // The tallest commercial building's longest wall, scanned by rays at it from 0.3 m out.
+  // The tallest commercial building with punched windows (a curtain wall's spandrels are
+  // glass too): its longest wall, scanned by rays at it from 0.3 m out.
   const Building* tall = nullptr;
   for (const Building& b : city.buildings)
-    if (b.zone == ZoneType::Commercial && (!tall || b.eaves > tall->eaves)) tall = &b;
+    if (b.zone == ZoneType::Commercial && (!tall || b.eaves > tall->eaves) &&
+        render::facade_style(b.zone, city.settings.seed, b.id, 0, 1).kind == render::FacadeKind::Punched)
+      tall = &b;
   ASSERT_TRUE(tall);
   ASSERT_GT(tall->eaves, 9);
   const geom::Ring& r = tall->polygon.outer;

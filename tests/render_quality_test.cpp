@@ -218,19 +218,21 @@ TEST(Film, PassesOfSamplesAddUpToOneTraceBitForBit) {
 }
 
 // A time budget is the whole still's, the scene's build and the denoiser included: one
-// spent before the first pass is traced gives that pass alone, and the denoiser, which
+// spent before the first pass is traced gives that pass alone, of one sample, not spp
+// (a whole pass of spp ran however far past the budget it took), and the denoiser, which
 // would end past the budget, is left out (it ran whatever the budget, and took longer
 // than the tracing).
 TEST(Film, ABudgetSpentBeforeTracingGivesOnePassAndNoDenoiser) {
   const exacity::City city = small_city();
   RenderRequest request;
   request.camera = Camera::orbit({200, 150, 0}, 235, 25, 120, 45);
-  request.width = 32, request.height = 24, request.spp = 2;
+  request.width = 32, request.height = 24, request.spp = 8;
   request.time_budget_s = 1e-6;  // the scene's build alone takes longer
   const auto dir = testing_util::temp_dir("spent-budget");
   request.still = dir / "still.png";
   const nlohmann::ordered_json report = render_city(city, request);
   EXPECT_EQ(report["passes"], 1);
+  EXPECT_EQ(report["samples_per_pixel"], 1);
   EXPECT_EQ(report["denoised"], false);
   // With no budget the same request is denoised, with half its samples' primary rays,
   // eight at least.

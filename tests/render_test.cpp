@@ -19,6 +19,7 @@
 #include "render/embree_device.h"
 #include "render/image_io.h"
 #include "render/material.h"
+#include "render/night.h"
 #include "render/path_tracer.h"
 #include "render/render.h"
 #include "render/sampling.h"
@@ -817,4 +818,119 @@ TEST(Render, StreetsHaveCrossingsAndStopLinesAtJunctions) {
       marked += to_centre > 0.6;
     }
   EXPECT_GT(marked, 200) << "painted points off the centre stripes";
+}
+
+// At night (--night) a street lamp is lit: its head bright, the sky dark; the lamps are
+// point lights chosen among those that reach a point (render/night.h), the minimap is the
+// day's whatever the hour.
+TEST(Render, AtNightTheLampsAreLitAndTheSkyIsDark) {
+  const exacity::City city = one_zone_city("residential", 400, 300, 3);
+  SceneOptions lit;
+  lit.lamp_intensity = 1;
+  const RenderScene probe(city, {0, 0, 1}, lit);
+  ASSERT_FALSE(probe.lamps.empty());
+  // The lamp farthest from any tree, looked up at from 2 m beside its foot: its head at
+  // the middle of the frame against the sky.
+  V3 head{0, 0, 0};
+  double clearest = -1;
+  for (const Lamp& lamp : probe.lamps) {
+    const V3 at{lamp.position.x + static_cast<float>(probe.origin_x), lamp.position.y + static_cast<float>(probe.origin_y),
+                lamp.position.z};
+    double nearest = INFINITY;
+    auto near_tree = [&](const exacity::ModelInstance& m) {
+      if (m.kind == exacity::ModelKind::Tree)
+        nearest = std::min(nearest, std::hypot(m.placed.position.x - at.x, m.placed.position.y - at.y));
+    };
+    for (const auto& m : city.models) near_tree(m);
+    for (const auto& c : city.clutter.items) near_tree(c.instance);
+    if (nearest > clearest) clearest = nearest, head = at + V3{0, 0, 0.1f};
+  }
+  RenderRequest request;
+  request.width = 96, request.height = 64, request.spp = 4;
+  request.camera = Camera::look({head.x + 1.5f, head.y + 1.5f, 1.7f}, head, 60);
+  request.minimap = true;
+  const auto dir = testing_util::temp_dir("night-lamp");
+  auto pixels = [&](const std::filesystem::path& file) {
+    auto in = OIIO::ImageInput::open(file.string());
+    EXPECT_TRUE(in);
+    const OIIO::ImageSpec& spec = in->spec();
+    std::vector<std::uint8_t> rgb(static_cast<std::size_t>(spec.width) * spec.height * 3);
+    EXPECT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, rgb.data()));
+    return rgb;
+  };
+  auto grey = [](const std::vector<std::uint8_t>& rgb, std::size_t i) {
+    return 0.2126 * rgb[3 * i] + 0.7152 * rgb[3 * i + 1] + 0.0722 * rgb[3 * i + 2];
+  };
+  std::vector<std::vector<std::uint8_t>> minimaps;
+  for (float hour : {-1.0f, 22.0f}) {
+    request.time_of_day = hour;
+    request.still = dir / (hour < 0 ? "day.png" : "night.png");
+    request.minimap_file = dir / (hour < 0 ? "day-minimap.png" : "night-minimap.png");
+    const nlohmann::ordered_json report = render_city(city, request);
+    const std::vector<std::uint8_t> rgb = pixels(request.still);
+    // The head, at the middle of the frame: its brightest pixel of the 5x5 there.
+    double head_grey = 0;
+    for (int y = request.height / 2 - 2; y <= request.height / 2 + 2; ++y)
+      for (int x = request.width / 2 - 2; x <= request.width / 2 + 2; ++x)
+        head_grey = std::max(head_grey, grey(rgb, static_cast<std::size_t>(y) * request.width + x));
+    // The sky: the top rows, left of the minimap's inset.
+    double sky = 0;
+    int sky_pixels = 0;
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < request.width / 3; ++x) sky += grey(rgb, static_cast<std::size_t>(y) * request.width + x), ++sky_pixels;
+    sky /= sky_pixels;
+    if (hour < 0) {
+      EXPECT_EQ(report["lamps"], 0u);
+      EXPECT_GT(sky, 90) << "a day's sky";
+    } else {
+      EXPECT_GT(report["lamps"].get<std::size_t>(), 0u);
+      EXPECT_GT(head_grey, 230) << "the lamp's head, lit";
+      EXPECT_LT(sky, 50) << "the night sky";
+      EXPECT_LT(report["sun"]["elevation"].get<float>(), -20);
+    }
+    minimaps.push_back(pixels(request.minimap_file));
+  }
+  EXPECT_EQ(minimaps[0], minimaps[1]) << "the minimap is the day's at any hour";
+}
+
+TEST(Render, TheSunFollowsTheHour) {
+  const SunPosition noon = sun_at_hour(12), morning = sun_at_hour(9), evening = sun_at_hour(18.5f);
+  EXPECT_NEAR(noon.elevation, 40, 0.01);  // 90 less the latitude, on an equinox
+  EXPECT_NEAR(noon.azimuth, -90, 0.01);   // due south
+  EXPECT_GT(morning.elevation, 0);
+  EXPECT_GT(std::cos(morning.azimuth * kPi / 180), 0);  // east of south
+  EXPECT_LT(evening.elevation, 0);
+  EXPECT_EQ(night_share(10), 0);
+  EXPECT_EQ(night_share(-20), 1);
+}
+
+// Ten thousand lamps, every 30 m on a 3 km square: the light at a street point estimated
+// from 64 lamps drawn by StreetLights::choose is within 5% of the sum over them all (the
+// draws go where the light comes from), and no draw goes to a lamp that gives none.
+TEST(Render, ManyLampsConvergeAsAFewDo) {
+  std::vector<Lamp> lamps;
+  for (int y = 0; y < 100; ++y)
+    for (int x = 0; x < 100; ++x) lamps.push_back({{x * 30.0f, y * 30.0f, 6}, 1 + 0.5f * static_cast<float>((x + y) % 3)});
+  const StreetLights lights(lamps);
+  for (const V3 p : {V3{1510, 1495, 0}, V3{3, 2, 0}, V3{1000, 2980, 0}}) {
+    double exact = 0;
+    for (const Lamp& l : lamps) {
+      const V3 d = l.position - p;
+      const float r = std::sqrt(dot(d, d));
+      exact += lamp_intensity(l, d * (-1 / r), r) * (d.z / r) / std::max(dot(d, d), 1.0f);
+    }
+    double estimate = 0;
+    constexpr int kDraws = 64;
+    for (int k = 0; k < kDraws; ++k) {
+      float chance = 0;
+      const Lamp* l = lights.choose(p, (k + 0.5f) / kDraws, chance);
+      ASSERT_TRUE(l);
+      const V3 d = l->position - p;
+      const float r = std::sqrt(dot(d, d));
+      const double light = lamp_intensity(*l, d * (-1 / r), r) * (d.z / r) / std::max(dot(d, d), 1.0f);
+      EXPECT_GT(light, 0);
+      estimate += light / chance / kDraws;
+    }
+    EXPECT_NEAR(estimate, exact, 0.05 * exact) << p.x << ", " << p.y;
+  }
 }

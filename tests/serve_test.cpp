@@ -852,7 +852,7 @@ TEST_F(ServeTest, CityGlbColoursAreTheRenderersAlbedos) {
   EXPECT_EQ(structure_colours(city), expected);
   EXPECT_EQ(city.at("ground_residential"), (std::array<double, 3>{0.30f, 0.45f, 0.20f}));  // grass
   EXPECT_EQ(city.at("ground_commercial"), (std::array<double, 3>{0.50f, 0.49f, 0.46f}));   // paving
-  EXPECT_EQ(city.at("road"), (std::array<double, 3>{0.09f, 0.09f, 0.10f}));                // asphalt
+  EXPECT_EQ(city.at("road"), (std::array<double, 3>{0.125f, 0.12f, 0.115f}));              // asphalt
   // The boxes standing for buildings further away are coloured as the buildings are.
   std::map<std::string, exacity::Albedo> boxes;
   const json index = json::parse(client->Get("/api/tiles.json")->body);

@@ -36,7 +36,10 @@ inline Colour tinted(const Colour& c, int tint) {
 using Albedo = std::array<float, 3>;
 inline constexpr Albedo kGrassAlbedo{0.30f, 0.45f, 0.20f};  // grass, before its pattern
 inline constexpr Albedo kLushGrassAlbedo{0.20f, 0.40f, 0.12f}, kDryGrassAlbedo{0.42f, 0.45f, 0.22f};  // the pattern
-inline constexpr Albedo kSidewalkAlbedo{0.40f, 0.39f, 0.37f}, kAsphaltAlbedo{0.09f, 0.09f, 0.10f};
+// Pavements as measured in the field (docs/design.md, Rendering: facades and roofs): asphalt
+// in service, its binder worn off the aggregate, 0.10-0.18 (new, 0.05); concrete slabs
+// weathered, 0.25-0.35 (new, about 0.4).
+inline constexpr Albedo kSidewalkAlbedo{0.31f, 0.30f, 0.285f}, kAsphaltAlbedo{0.125f, 0.12f, 0.115f};
 inline constexpr Albedo kPaintAlbedo{0.85f, 0.85f, 0.80f}, kYellowPaintAlbedo{0.80f, 0.62f, 0.12f};
 inline constexpr Albedo kWaterAlbedo{0.02f, 0.06f, 0.08f}, kWindowAlbedo{0.04f, 0.05f, 0.06f};
 inline constexpr Albedo kCommercialLotAlbedo{0.50f, 0.49f, 0.46f}, kIndustrialLotAlbedo{0.42f, 0.40f, 0.37f};
