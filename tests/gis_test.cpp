@@ -1170,6 +1170,15 @@ std::string village_with_buildings() {
   });
 }
 
+// The city of the village extract `osm`, with the example's settings, in dir/out.
+GenerateResult generate_village(const fs::path& dir, const std::string& osm) {
+  write(dir / "village.osm", osm);
+  fs::copy_file(cli_util::kSource / "examples" / "osm" / "village.exacity.json", dir / "village.exacity.json");
+  GenerateResult result = generate(dir / "village.osm", dir / "out");
+  EXPECT_TRUE(result.valid) << result.report["validation"].dump();
+  return result;
+}
+
 // A building layer's footprints by OSM id, rings as written.
 std::map<std::string, std::vector<ordered_json>> mapped_by_osm_id(const ordered_json& buildings) {
   std::map<std::string, std::vector<ordered_json>> out;
@@ -1181,12 +1190,8 @@ std::map<std::string, std::vector<ordered_json>> mapped_by_osm_id(const ordered_
 }  // namespace
 
 TEST(Gis, MappedBuildingsAreKeptRaisedAndNeverBuiltOver) {
-  const fs::path dir = testing_util::temp_dir("gis-mapped");
-  write(dir / "village.osm", village_with_buildings());
-  fs::copy_file(cli_util::kSource / "examples" / "osm" / "village.exacity.json", dir / "village.exacity.json");
-  const fs::path out = dir / "out";
-  const GenerateResult result = generate(dir / "village.osm", out);
-  EXPECT_TRUE(result.valid) << result.report["validation"].dump();
+  const fs::path dir = testing_util::temp_dir("gis-mapped"), out = dir / "out";
+  const GenerateResult result = generate_village(dir, village_with_buildings());
   const ordered_json& report = result.report["mapped_buildings"];
   EXPECT_EQ(report["in_sketch"], 11) << report.dump(1);
   EXPECT_EQ(report["kept"], 7) << report.dump(1);
@@ -1300,8 +1305,8 @@ TEST(Gis, MappedBuildingsAreKeptRaisedAndNeverBuiltOver) {
 // height under its own roof: BuildingParts in CityJSON, closed prisms in city.glb,
 // building:part ways in city.osm. A part in no kept building is refused, and counted.
 TEST(Gis, BuildingPartsAreTheThreeDOfTheirBuildingWhoseOutlineStaysTheFootprint) {
-  const fs::path dir = testing_util::temp_dir("gis-parts");
-  write(dir / "village.osm", village_with([](const AddWay& way, std::ostream& relations) {
+  const fs::path dir = testing_util::temp_dir("gis-parts"), out = dir / "out";
+  const GenerateResult result = generate_village(dir, village_with([](const AddWay& way, std::ostream& relations) {
           way(box(90, 50, 114, 60), {{"building", "yes"}, {"building:levels", "2"}});                // 5000
           way(box(90, 50, 102, 60), {{"building:part", "yes"}, {"height", "12"}, {"roof:shape", "hipped"},
                                      {"roof:height", "3"}});                                          // 5001
@@ -1315,10 +1320,6 @@ TEST(Gis, BuildingPartsAreTheThreeDOfTheirBuildingWhoseOutlineStaysTheFootprint)
                        "    <tag k=\"building:part\" v=\"classroom\"/>\n    <tag k=\"building:min_level\" v=\"1\"/>\n"
                        "    <tag k=\"height\" v=\"6\"/>\n  </relation>\n";
         }));
-  fs::copy_file(cli_util::kSource / "examples" / "osm" / "village.exacity.json", dir / "village.exacity.json");
-  const fs::path out = dir / "out";
-  const GenerateResult result = generate(dir / "village.osm", out);
-  EXPECT_TRUE(result.valid) << result.report["validation"].dump();
   const ordered_json& report = result.report["mapped_buildings"];
   EXPECT_EQ(report["kept"], 2) << report.dump(1);
   EXPECT_EQ(report["refused"], 0) << report.dump(1);
@@ -1383,13 +1384,10 @@ TEST(Gis, BuildingPartsAreTheThreeDOfTheirBuildingWhoseOutlineStaysTheFootprint)
 // those lanes is still refused.
 TEST(Gis, AStreetGivesWayToAMappedBuildingBesideItDownToItsCarriageway) {
   const fs::path dir = testing_util::temp_dir("gis-give-way");
-  write(dir / "village.osm", village_with([](const AddWay& way, std::ostream&) {
-          way(box(250, 203.8, 262, 213.8), {{"building", "house"}});  // 5000, beside Mittelweg (y = 200)
-          way(box(300, 198, 310, 208), {{"building", "house"}});      // 5001, on it
-        }));
-  fs::copy_file(cli_util::kSource / "examples" / "osm" / "village.exacity.json", dir / "village.exacity.json");
-  const GenerateResult result = generate(dir / "village.osm", dir / "out");
-  EXPECT_TRUE(result.valid) << result.report["validation"].dump();
+  const GenerateResult result = generate_village(dir, village_with([](const AddWay& way, std::ostream&) {
+    way(box(250, 203.8, 262, 213.8), {{"building", "house"}});  // 5000, beside Mittelweg (y = 200)
+    way(box(300, 198, 310, 208), {{"building", "house"}});      // 5001, on it
+  }));
   const ordered_json& report = result.report["mapped_buildings"];
   EXPECT_EQ(report["kept"], 1) << report.dump(1);
   EXPECT_EQ(report["refused_why"], ordered_json::parse(R"({"crosses a road surface": 1})")) << report.dump(1);

@@ -81,6 +81,19 @@ std::optional<geom::Polygon> made_valid(const geom::Polygon& p) {
 
 bool ogr_valid(const geom::Polygon& p) { return ogr_polygon(p)->IsValid(); }
 
+// A footprint as kept: as drawn where its rings are simple and GEOS finds it valid, else
+// made valid (`repaired`), else nothing; oriented.
+std::optional<geom::Polygon> kept_polygon(geom::Polygon p, bool& repaired) {
+  repaired = !simple(p) || !ogr_valid(p);
+  if (repaired) {
+    std::optional<geom::Polygon> valid = made_valid(p);
+    if (!valid) return std::nullopt;
+    p = std::move(*valid);
+  }
+  orient(p);
+  return p;
+}
+
 // A point strictly inside the polygon: the centre of its largest triangle.
 std::optional<geom::Vec2> point_inside(const geom::Polygon& p) {
   std::vector<geom::Vec2> points(p.outer);
@@ -150,6 +163,14 @@ void give_way_to_mapped_buildings(DrawnFeatures& drawn, MappedTally& tally) {
       for (const Footprint& f : footprints) {
         if (!box.meets(f.box)) continue;
         const double d = ogr_line.Distance(f.polygon.get());
+        // Nearest to an end of the line, past which its stroke does not reach (a junction's
+        // polygon, of every road meeting there, stands there instead).
+        bool past_an_end = false;
+        for (geom::Vec2 end : {line.front(), line.back()}) {
+          OGRPoint point(end.x, end.y);
+          past_an_end |= d > 0 && point.Distance(f.polygon.get()) <= d;
+        }
+        if (past_an_end) continue;
         // Narrowing to the carriageway as mapped would not clear it: it stands on the road.
         if (!(d - kClear >= floor / 2) || d >= width / 2 + std::max(left, right)) continue;
         // Its side of the road: of the segment nearest its centre.
@@ -201,18 +222,14 @@ std::vector<Building> mapped_footprints(const std::vector<MappedBuilding>& drawn
     b.osm_id = m.osm_id;
     b.building_tag = m.building;
     b.source_id = m.source_id;
-    b.polygon = m.polygon;
-    repaired.push_back(!simple(b.polygon) || !ogr_valid(b.polygon));
-    if (repaired.back()) {
-      std::optional<geom::Polygon> valid = made_valid(b.polygon);
-      if (!valid) {
-        refuse(m, "self-intersecting footprint that GEOS's MakeValid does not make one polygon");
-        repaired.pop_back();
-        continue;
-      }
-      b.polygon = std::move(*valid);
+    bool was_repaired = false;
+    std::optional<geom::Polygon> polygon = kept_polygon(m.polygon, was_repaired);
+    if (!polygon) {
+      refuse(m, "self-intersecting footprint that GEOS's MakeValid does not make one polygon");
+      continue;
     }
-    orient(b.polygon);
+    b.polygon = std::move(*polygon);
+    repaired.push_back(was_repaired);
     candidates.push_back(std::move(b));
   }
   // The road surfaces (carriageways, sidewalks, junctions, bridges) as the map has them,
@@ -278,16 +295,13 @@ void attach_building_parts(std::vector<Building>& footprints, const std::vector<
     part.mapped = static_cast<int>(i);
     part.osm_id = m.osm_id;
     part.tag = m.building;
-    part.polygon = m.polygon;
-    if (!simple(part.polygon) || !ogr_valid(part.polygon)) {
-      std::optional<geom::Polygon> valid = made_valid(part.polygon);
-      if (!valid) {
-        refuse(m, "building:part whose self-intersecting ring GEOS's MakeValid does not make one polygon");
-        continue;
-      }
-      part.polygon = std::move(*valid);
+    bool repaired = false;
+    std::optional<geom::Polygon> polygon = kept_polygon(m.polygon, repaired);
+    if (!polygon) {
+      refuse(m, "building:part whose self-intersecting ring GEOS's MakeValid does not make one polygon");
+      continue;
     }
-    orient(part.polygon);
+    part.polygon = std::move(*polygon);
     const std::optional<geom::Vec2> inside = point_inside(part.polygon);
     std::size_t k = 0;
     for (; inside && k < footprints.size(); ++k)
