@@ -163,14 +163,6 @@ void give_way_to_mapped_buildings(DrawnFeatures& drawn, MappedTally& tally) {
       for (const Footprint& f : footprints) {
         if (!box.meets(f.box)) continue;
         const double d = ogr_line.Distance(f.polygon.get());
-        // Nearest to an end of the line, past which its stroke does not reach (a junction's
-        // polygon, of every road meeting there, stands there instead).
-        bool past_an_end = false;
-        for (geom::Vec2 end : {line.front(), line.back()}) {
-          OGRPoint point(end.x, end.y);
-          past_an_end |= d > 0 && point.Distance(f.polygon.get()) <= d;
-        }
-        if (past_an_end) continue;
         // Narrowing to the carriageway as mapped would not clear it: it stands on the road.
         if (!(d - kClear >= floor / 2) || d >= width / 2 + std::max(left, right)) continue;
         // Its side of the road: of the segment nearest its centre.
