@@ -252,6 +252,10 @@ ordered_json mapped_buildings_report(const City& city) {
   named.insert(named.end(), t.named.begin(), t.named.end());
   const double built = mapped_area + generated_area;
   auto share = [&](double a) { return built > 0 ? std::round(a / built * 1e4) / 1e4 : 0.0; };
+  std::map<std::string, int> parts_refused_why = t.parts_refused;
+  for (const auto& [why, n] : city.drawn.building_parts_left_out) parts_refused_why[why] += n;
+  int parts_refused = 0;
+  for (const auto& [why, n] : parts_refused_why) parts_refused += n;
   return {{"in_sketch", city.drawn.buildings.size()},
           {"kept", t.kept},
           {"repaired", t.repaired},
@@ -262,6 +266,14 @@ ordered_json mapped_buildings_report(const City& city) {
           {"heights_from", t.heights},
           {"roofs", t.roofs},
           {"roofs_made_flat", t.made_flat},
+          {"building_parts",
+           {{"in_sketch", city.drawn.building_parts.size()},
+            {"kept", t.parts},
+            {"refused", parts_refused},
+            {"refused_why", parts_refused_why},
+            {"roofs", t.part_roofs}}},
+          {"roads_narrowed", t.roads_narrowed},
+          {"roads_narrowed_named", t.narrowed},
           {"lots_not_built_again", t.held_lots},
           {"generated", generated},
           {"built_up_m2", {{"mapped", std::round(mapped_area * 100) / 100}, {"generated", std::round(generated_area * 100) / 100}}},

@@ -101,7 +101,10 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
     add_builtin_models(library, sketch.builtin_trees, sketch.builtin_lamps);
     return library;
   });
-  CityMap city_map = stages.run("zone map", [&] { return build_city_map(city.settings, city.drawn, city.heightmap()); });
+  CityMap city_map = stages.run("zone map", [&] {
+    give_way_to_mapped_buildings(city.drawn, city.mapped);
+    return build_city_map(city.settings, city.drawn, city.heightmap());
+  });
   city.network = stages.run("road network", [&] { return grow_road_network(std::move(city_map), city.settings, city.drawn.zones,
                                                                                regions ? &regions->road_plans : nullptr); });
   city.blocks = stages.run("blocks", [&] { return cut_blocks(city.network.map, city.settings, city.drawn.zones, city.network.uses); });
@@ -113,11 +116,12 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
   });
   Structures raised = stages.run("buildings", [&] {
     std::vector<Building> mapped = mapped_footprints(city.drawn.buildings, city.network.map, city.mapped);
+    attach_building_parts(mapped, city.drawn.building_parts, city.mapped);
     HeldLots held;
     Structures s = build_on_lots(city, planned, mapped, held);
     check_export_size(s.models, city.model_library());
     // After every generated structure, so that their ids are as without mapped buildings.
-    raise_mapped_buildings(mapped, city.drawn.buildings, held, city.lots, city.network.map, city.drawn.zones, city.settings,
+    raise_mapped_buildings(mapped, city.drawn.buildings, city.drawn.building_parts, held, city.lots, city.network.map, city.drawn.zones, city.settings,
                            city.channels, city.heightmap(), static_cast<int>(s.buildings.size() + s.models.size()),
                            city.mapped);
     s.buildings.insert(s.buildings.end(), std::make_move_iterator(mapped.begin()), std::make_move_iterator(mapped.end()));

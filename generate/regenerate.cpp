@@ -60,9 +60,18 @@ std::vector<Mesh> city_meshes(const City& city) {
     std::string key = "building ";
     for (double v : {b.base, b.floor, b.eaves}) append_key(key, v);
     append_key(key, b.polygon);
-    for (const geom::Face3& f : b.roof_faces) {
-      key += "face ";
-      for (const geom::Vec3& p : f) append_key(key, p[0]), append_key(key, p[1]), append_key(key, p[2]);
+    auto append_faces = [&](const std::vector<geom::Face3>& faces) {
+      for (const geom::Face3& f : faces) {
+        key += "face ";
+        for (const geom::Vec3& p : f) append_key(key, p[0]), append_key(key, p[1]), append_key(key, p[2]);
+      }
+    };
+    append_faces(b.roof_faces);
+    for (const BuildingPart& part : b.parts) {
+      key += "part ";
+      for (double v : {part.bottom, part.eaves}) append_key(key, v);
+      append_key(key, part.polygon);
+      append_faces(part.roof_faces);
     }
     meshes[b.id] = memo.get(key, [&] { return building_mesh(b); });
   });

@@ -1098,12 +1098,16 @@ TEST(Gis, AWidthOutOfRangeNamesTheFileOnce) {
 
 namespace {
 
-// The village with buildings mapped in its residential land use (x, y in metres east and
-// north of its south-west corner, at its own scale): a house with a height, its terraced
-// neighbour with levels, a gabled house, one untagged, one with a skillion roof, a
-// courtyard block (a multipolygon relation), a pavilion in the park, a house with a spike
-// (repaired), a bow tie, one overlapping the first house and one across a street (refused).
-std::string village_with_buildings() {
+// A closed way added to the village: its ring of (x, y) in metres east and north of the
+// village's south-west corner (at its own scale) and its tags; its id.
+using AddWay = std::function<long(std::vector<std::pair<double, double>>, const std::map<std::string, std::string>&)>;
+
+std::vector<std::pair<double, double>> box(double x0, double y0, double x1, double y1) {
+  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+}
+
+// The village with the closed ways `add` adds (ids from 5000) and the relations it writes.
+std::string village_with(const std::function<void(const AddWay&, std::ostream& relations)>& add) {
   std::ostringstream osm;
   osm << std::setprecision(10);
   long node = 5000, way = 5000;
@@ -1120,8 +1124,8 @@ std::string village_with_buildings() {
     ids.push_back(ids.front());
     return ids;
   };
-  std::ostringstream ways;
-  auto building = [&](std::vector<std::pair<double, double>> points, const std::map<std::string, std::string>& tags) {
+  std::ostringstream ways, relations;
+  const AddWay building = [&](std::vector<std::pair<double, double>> points, const std::map<std::string, std::string>& tags) {
     const std::vector<long> ids = ring(std::move(points));
     ways << "  <way id=\"" << way++ << "\" version=\"1\">\n";
     for (long id : ids) ways << "    <nd ref=\"" << id << "\"/>\n";
@@ -1129,26 +1133,8 @@ std::string village_with_buildings() {
     ways << "  </way>\n";
     return way - 1;
   };
-  auto box = [](double x0, double y0, double x1, double y1) {
-    return std::vector<std::pair<double, double>>{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-  };
-  building(box(90, 50, 102, 60), {{"building", "house"}, {"height", "9"}});                 // 5000
-  building(box(102, 50, 114, 60), {{"building", "yes"}, {"building:levels", "3"}});         // 5001
-  building(box(60, 120, 72, 130), {{"building", "house"}, {"building:levels", "2"}, {"roof:shape", "gabled"},
-                                   {"roof:height", "3"}});                                    // 5002
-  building(box(30, 150, 42, 160), {{"building", "yes"}});                                    // 5003
-  building(box(150, 40, 160, 50), {{"building", "shed"}, {"roof:shape", "skillion"}, {"height", "4"}});  // 5004
-  const long outer = building(box(120, 120, 160, 160), {}), inner = building(box(130, 130, 150, 150), {});  // 5005, 5006
-  building(box(90, 290, 100, 300), {{"building", "pavilion"}, {"height", "5 m"}});          // 5007
-  building({{30, 60}, {42, 60}, {42, 70}, {36, 70}, {36, 74}, {36, 70}, {30, 70}}, {{"building", "yes"}});  // 5008
-  building({{60, 40}, {70, 50}, {70, 40}, {60, 50}}, {{"building", "yes"}});                 // 5009
-  building(box(95, 55, 105, 65), {{"building", "yes"}});                                     // 5010
-  building(box(195, 150, 205, 160), {{"building", "yes"}});                                  // 5011
-  osm << ways.str();
-  osm << "  <relation id=\"5900\" version=\"1\">\n    <member type=\"way\" ref=\"" << outer
-      << "\" role=\"outer\"/>\n    <member type=\"way\" ref=\"" << inner
-      << "\" role=\"inner\"/>\n    <tag k=\"type\" v=\"multipolygon\"/>\n    <tag k=\"building\" v=\"apartments\"/>\n"
-         "    <tag k=\"height\" v=\"15\"/>\n  </relation>\n";
+  add(building, relations);
+  osm << ways.str() << relations.str();
   std::string village = cli_util::read(kVillage);
   // Nodes before the village's ways, ways and the relation after its own.
   const std::string added = osm.str();
@@ -1156,6 +1142,41 @@ std::string village_with_buildings() {
   village.insert(village.rfind("</osm>"), added.substr(ways_at));
   village.insert(village.find("  <way "), added.substr(0, ways_at));
   return village;
+}
+
+// The village with buildings mapped in its residential land use: a house with a height,
+// its terraced neighbour with levels, a gabled house, one untagged, one with a skillion
+// roof, a courtyard block (a multipolygon relation), a pavilion in the park, a house with a
+// spike (repaired), a bow tie, one overlapping the first house and one across a street
+// (refused).
+std::string village_with_buildings() {
+  return village_with([](const AddWay& building, std::ostream& relations) {
+    building(box(90, 50, 102, 60), {{"building", "house"}, {"height", "9"}});                 // 5000
+    building(box(102, 50, 114, 60), {{"building", "yes"}, {"building:levels", "3"}});         // 5001
+    building(box(60, 120, 72, 130), {{"building", "house"}, {"building:levels", "2"}, {"roof:shape", "gabled"},
+                                     {"roof:height", "3"}});                                    // 5002
+    building(box(30, 150, 42, 160), {{"building", "yes"}});                                    // 5003
+    building(box(150, 40, 160, 50), {{"building", "shed"}, {"roof:shape", "skillion"}, {"height", "4"}});  // 5004
+    const long outer = building(box(120, 120, 160, 160), {}), inner = building(box(130, 130, 150, 150), {});  // 5005, 5006
+    building(box(90, 290, 100, 300), {{"building", "pavilion"}, {"height", "5 m"}});          // 5007
+    building({{30, 60}, {42, 60}, {42, 70}, {36, 70}, {36, 74}, {36, 70}, {30, 70}}, {{"building", "yes"}});  // 5008
+    building({{60, 40}, {70, 50}, {70, 40}, {60, 50}}, {{"building", "yes"}});                 // 5009
+    building(box(95, 55, 105, 65), {{"building", "yes"}});                                     // 5010
+    building(box(195, 150, 205, 160), {{"building", "yes"}});                                  // 5011
+    relations << "  <relation id=\"5900\" version=\"1\">\n    <member type=\"way\" ref=\"" << outer
+              << "\" role=\"outer\"/>\n    <member type=\"way\" ref=\"" << inner
+              << "\" role=\"inner\"/>\n    <tag k=\"type\" v=\"multipolygon\"/>\n    <tag k=\"building\" v=\"apartments\"/>\n"
+                 "    <tag k=\"height\" v=\"15\"/>\n  </relation>\n";
+  });
+}
+
+// The city of the village extract `osm`, with the example's settings, in dir/out.
+GenerateResult generate_village(const fs::path& dir, const std::string& osm) {
+  write(dir / "village.osm", osm);
+  fs::copy_file(cli_util::kSource / "examples" / "osm" / "village.exacity.json", dir / "village.exacity.json");
+  GenerateResult result = generate(dir / "village.osm", dir / "out");
+  EXPECT_TRUE(result.valid) << result.report["validation"].dump();
+  return result;
 }
 
 // A building layer's footprints by OSM id, rings as written.
@@ -1169,12 +1190,8 @@ std::map<std::string, std::vector<ordered_json>> mapped_by_osm_id(const ordered_
 }  // namespace
 
 TEST(Gis, MappedBuildingsAreKeptRaisedAndNeverBuiltOver) {
-  const fs::path dir = testing_util::temp_dir("gis-mapped");
-  write(dir / "village.osm", village_with_buildings());
-  fs::copy_file(cli_util::kSource / "examples" / "osm" / "village.exacity.json", dir / "village.exacity.json");
-  const fs::path out = dir / "out";
-  const GenerateResult result = generate(dir / "village.osm", out);
-  EXPECT_TRUE(result.valid) << result.report["validation"].dump();
+  const fs::path dir = testing_util::temp_dir("gis-mapped"), out = dir / "out";
+  const GenerateResult result = generate_village(dir, village_with_buildings());
   const ordered_json& report = result.report["mapped_buildings"];
   EXPECT_EQ(report["in_sketch"], 11) << report.dump(1);
   EXPECT_EQ(report["kept"], 7) << report.dump(1);
@@ -1283,6 +1300,109 @@ TEST(Gis, MappedBuildingsAreKeptRaisedAndNeverBuiltOver) {
   EXPECT_EQ(courtyards, 1);
 }
 
+// OSM's Simple 3D Buildings: a building's outline is its footprint in the map and the
+// layers, and its building:parts are its 3D, each from its min_height (or min_level) to its
+// height under its own roof: BuildingParts in CityJSON, closed prisms in city.glb,
+// building:part ways in city.osm. A part in no kept building is refused, and counted.
+TEST(Gis, BuildingPartsAreTheThreeDOfTheirBuildingWhoseOutlineStaysTheFootprint) {
+  const fs::path dir = testing_util::temp_dir("gis-parts"), out = dir / "out";
+  const GenerateResult result = generate_village(dir, village_with([](const AddWay& way, std::ostream& relations) {
+          way(box(90, 50, 114, 60), {{"building", "yes"}, {"building:levels", "2"}});                // 5000
+          way(box(90, 50, 102, 60), {{"building:part", "yes"}, {"height", "12"}, {"roof:shape", "hipped"},
+                                     {"roof:height", "3"}});                                          // 5001
+          way(box(102, 50, 114, 60), {{"building:part", "yes"}, {"min_height", "4"}, {"building:levels", "3"}});  // 5002
+          way(box(30, 150, 42, 160), {{"building:part", "yes"}});                                     // 5003, in no building
+          way(box(60, 120, 80, 136), {{"building", "school"}});                                       // 5004
+          const long outer = way(box(60, 120, 80, 136), {}), inner = way(box(66, 126, 74, 130), {});  // 5005, 5006
+          relations << "  <relation id=\"5900\" version=\"1\">\n    <member type=\"way\" ref=\"" << outer
+                    << "\" role=\"outer\"/>\n    <member type=\"way\" ref=\"" << inner
+                    << "\" role=\"inner\"/>\n    <tag k=\"type\" v=\"multipolygon\"/>\n"
+                       "    <tag k=\"building:part\" v=\"classroom\"/>\n    <tag k=\"building:min_level\" v=\"1\"/>\n"
+                       "    <tag k=\"height\" v=\"6\"/>\n  </relation>\n";
+        }));
+  const ordered_json& report = result.report["mapped_buildings"];
+  EXPECT_EQ(report["kept"], 2) << report.dump(1);
+  EXPECT_EQ(report["refused"], 0) << report.dump(1);
+  EXPECT_EQ(report["building_parts"], ordered_json::parse(R"({"in_sketch": 4, "kept": 3, "refused": 1,
+      "refused_why": {"building:part in no kept building": 1}, "roofs": {"flat": 2, "hipped": 1}})")) << report.dump(1);
+
+  // The outlines are the footprints, as mapped; the building as tall as its tallest part.
+  const auto mapped = mapped_by_osm_id(ordered_json::parse(cli_util::read(out / "vector" / "buildings.geojson")));
+  ASSERT_EQ(mapped.size(), 2u);
+  EXPECT_EQ(mapped.at("way/5000")[0]["properties"]["height"], 12);
+  EXPECT_EQ(mapped.at("way/5004")[0]["properties"]["height"], 6);
+  EXPECT_EQ(mapped.at("way/5000")[0]["geometry"]["coordinates"][0].size(), 5u);
+
+  // CityJSON: each building's parts are its BuildingParts, each its own prism between its
+  // bottom and its top (millimetres; the village is flat, at 0).
+  const ordered_json cityjson = ordered_json::parse(cli_util::read(out / "city.city.json"));
+  std::map<std::string, std::pair<double, double>> part_heights;  // by osm_id: lowest and highest vertex
+  std::map<std::string, std::size_t> children;
+  for (const auto& [key, object] : cityjson["CityObjects"].items()) {
+    if (object["type"] == "Building" && object["attributes"].value("mapped", false))
+      children[object["attributes"]["osm_id"].get<std::string>()] = object.value("children", ordered_json::array()).size();
+    if (object["type"] != "BuildingPart") continue;
+    EXPECT_TRUE(cityjson["CityObjects"].contains(object["parents"][0].get<std::string>()));
+    double low = INFINITY, high = -INFINITY;
+    std::function<void(const ordered_json&)> visit = [&](const ordered_json& b) {
+      if (b.is_number()) {
+        const double z = cityjson["vertices"][b.get<int>()][2].get<double>() * 0.001;
+        low = std::min(low, z), high = std::max(high, z);
+      } else {
+        for (const ordered_json& x : b) visit(x);
+      }
+    };
+    for (const ordered_json& g : object["geometry"]) visit(g["boundaries"]);
+    part_heights[object["attributes"]["osm_id"].get<std::string>()] = {low, high};
+  }
+  EXPECT_EQ(children, (std::map<std::string, std::size_t>{{"way/5000", 2}, {"way/5004", 1}}));
+  EXPECT_EQ(part_heights, (std::map<std::string, std::pair<double, double>>{
+                              {"way/5001", {0, 12}}, {"way/5002", {4, 9}}, {"relation/5900", {3, 6}}}));
+  const fs::path schemas = cli_util::cityjson_schemas();
+  const cli_util::Result cityjson_check =
+      cli_util::shell(cli_util::node_tool("check_cityjson.mjs") + " " + (out / "city.city.json").string() +
+                      (fs::exists(schemas / "cityjson.schema.json") ? " " + schemas.string() : ""));
+  EXPECT_EQ(cityjson_check.code, 0) << cityjson_check.out;
+  const cli_util::Result glb_check = cli_util::shell(cli_util::node_tool("check_glb.mjs") + " " + (out / "city.glb").string());
+  EXPECT_EQ(glb_check.code, 0) << glb_check.out;
+
+  // city.osm: the outline and its parts as OSM maps them; read back, the parts are parts again.
+  const ordered_json read_back = osm_sketch_document(out / "city.osm");
+  std::multiset<std::string> parts;  // each as "way HEIGHT/MIN_HEIGHT"
+  for (const ordered_json& f : read_back["features"])
+    if (f["properties"].contains("building:part")) {
+      const std::string id = f["properties"]["osm_id"];
+      parts.insert(id.substr(0, id.find('/')) + " " + f["properties"].value("height", "") + "/" +
+                   f["properties"].value("min_height", ""));
+    }
+  EXPECT_EQ(parts, (std::multiset<std::string>{"way 12/", "way 9/4", "relation 6/3"}));
+}
+
+// A mapped building is what stands there: a street whose width only its class gives (8 m
+// for a residential street) and which reaches over a house mapped 3.8 m from its centre line
+// narrows to clear it, down to the two lanes it must keep (7 m), and says so; a house on
+// those lanes is still refused.
+TEST(Gis, AStreetGivesWayToAMappedBuildingBesideItDownToItsCarriageway) {
+  const fs::path dir = testing_util::temp_dir("gis-give-way");
+  const GenerateResult result = generate_village(dir, village_with([](const AddWay& way, std::ostream&) {
+    way(box(250, 203.8, 262, 213.8), {{"building", "house"}});  // 5000, beside Mittelweg (y = 200)
+    way(box(300, 198, 310, 208), {{"building", "house"}});      // 5001, on it
+  }));
+  const ordered_json& report = result.report["mapped_buildings"];
+  EXPECT_EQ(report["kept"], 1) << report.dump(1);
+  EXPECT_EQ(report["refused_why"], ordered_json::parse(R"({"crosses a road surface": 1})")) << report.dump(1);
+  EXPECT_EQ(report["roads_narrowed"], 1) << report.dump(1);
+  ASSERT_EQ(report["roads_narrowed_named"].size(), 1u) << report.dump(1);
+  const std::string narrowed = report["roads_narrowed_named"][0];
+  EXPECT_EQ(narrowed.substr(0, narrowed.find(" to ")), "way/105: 8 m wide") << narrowed;
+  EXPECT_EQ(narrowed.substr(narrowed.find(" m, ")), " m, sidewalks 0 | 0 m to 0 | 0 m, for way/5000") << narrowed;
+  const double width = std::stod(narrowed.substr(narrowed.find(" to ") + 4));
+  EXPECT_GE(width, 7.0) << narrowed;
+  EXPECT_LT(width, 7.6) << narrowed;
+  const auto mapped = mapped_by_osm_id(ordered_json::parse(cli_util::read(dir / "out" / "vector" / "buildings.geojson")));
+  EXPECT_EQ(mapped.count("way/5000"), 1u);
+}
+
 // A GIS export of OpenStreetMap's buildings (GDAL's OSM driver's columns): each polygon a
 // mapped building with its OSM id as a type and number and its tags from other_tags.
 TEST(Gis, BuildingsOfAGisExportAreMappedBuildings) {
@@ -1332,7 +1452,8 @@ TEST(Gis, AFootprintLayerGivenWithBuildingsIsKeptAsMappedBuildings) {
   sketch["exacity"] = ordered_json::parse(R"({"seed": 3, "zones": {"residential": {"layout": "streets"}}})");
   write(dir / "town.geojson", sketch.dump());
   ordered_json layer = {{"type", "FeatureCollection"}, {"crs", sketch["crs"]}, {"features", ordered_json::array()}};
-  layer["features"].push_back(footprint(385300, 6672200, {{"building", "office"}, {"height", 12.5}}));
+  layer["features"].push_back(footprint(385300, 6672200, {{"building", "office"}, {"height", 12.5},
+                                                          {"identificatie", "NL.IMBAG.Pand.0503100000030264"}}));
   layer["features"].push_back(footprint(385340, 6672200, {{"building", "house"}, {"bouwlagen", 3}}));
   layer["features"].push_back(footprint(385380, 6672200, {{"building", "school"}, {"b3_h_dak_70p", 20.5}, {"b3_h_maaiveld", 0.5}}));
   layer["features"].push_back(footprint(385420, 6672200, ordered_json::object()));
@@ -1369,6 +1490,21 @@ TEST(Gis, AFootprintLayerGivenWithBuildingsIsKeptAsMappedBuildings) {
   std::set<std::pair<double, double>> written;
   for (const ordered_json& p : by_tag["office"]["geometry"]["coordinates"][0]) written.insert({p[0].get<double>(), p[1].get<double>()});
   EXPECT_EQ(written, (std::set<std::pair<double, double>>{{385300, 6672200}, {385320, 6672200}, {385320, 6672215}, {385300, 6672215}}));
+  // Each keeps its identifier: BAG's identificatie, else its FID in the layer (the
+  // GeoPackage's count from 1), in every export; in city.osm BAG's as OSM's ref:bag.
+  EXPECT_EQ(by_tag["office"]["properties"]["identificatie"], "NL.IMBAG.Pand.0503100000030264");
+  EXPECT_FALSE(by_tag["office"]["properties"].contains("fid"));
+  EXPECT_EQ(by_tag["house"]["properties"]["fid"], "2");
+  const ordered_json cityjson = ordered_json::parse(cli_util::read(out / "city.city.json"));
+  std::set<std::string> ids_in_cityjson;
+  for (const auto& [key, object] : cityjson["CityObjects"].items())
+    for (const char* id : {"identificatie", "fid"})
+      if (object.contains("attributes") && object["attributes"].contains(id))
+        ids_in_cityjson.insert(id + std::string("=") + object["attributes"][id].get<std::string>());
+  EXPECT_EQ(ids_in_cityjson, (std::set<std::string>{"identificatie=NL.IMBAG.Pand.0503100000030264", "fid=2", "fid=3", "fid=4"}));
+  const std::string city_osm = cli_util::read(out / "city.osm");
+  EXPECT_NE(city_osm.find("<tag k=\"ref:bag\" v=\"503100000030264\"/>"), std::string::npos);
+  EXPECT_NE(city_osm.find("<tag k=\"exacity:fid\" v=\"2\"/>"), std::string::npos);
 
   // A layer of points is no footprints: one line, exit 2, nothing written.
   write(dir / "points.geojson", R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {},

@@ -46,6 +46,9 @@ struct RoadFeature {
   // Its sidewalks' widths, m, left and right of its lines' direction: its sidewalk tag's, else
   // its class's (StreetSettings::sidewalks).
   double sidewalk_left = 0, sidewalk_right = 0;
+  // Its carriageway as mapped (OSM's width, or its lanes), m, which it keeps where it gives
+  // way to a mapped building; else nothing.
+  std::optional<double> carriageway = std::nullopt;
   double widest_sidewalk() const { return sidewalk_left > sidewalk_right ? sidewalk_left : sidewalk_right; }
 };
 
@@ -57,8 +60,13 @@ struct MappedBuilding {
   std::string name;         // how messages and report.json name it: its source, else features[N]
   std::string osm_id;       // "way/123", "relation/45", a GIS export's osm_id; else empty
   std::string building;     // the building tag's value ("yes", "house")
+  // Its identifier in a footprint layer (docs/gis.md): {"identificatie", BAG's} or {"fid",
+  // the layer's FID}; else empty.
+  std::pair<std::string, std::string> source_id;
   geom::Polygon polygon;    // as drawn, in metres: any orientation, maybe not simple
   std::optional<double> height, levels, roof_height;  // m, storeys, m
+  // A building:part's bottom: min_height (m), else building:min_level (storeys skipped).
+  std::optional<double> min_height, min_level;
   std::string roof_shape;   // roof:shape as tagged, or empty
   std::string problem;      // why it cannot be read as a footprint (a ring of 2 points); else empty
 };
@@ -94,9 +102,13 @@ struct DrawnFeatures {
   std::vector<ZoneFeature> zones;
   std::vector<RoadFeature> roads;     // as joined by StreetSettings::snap
   std::vector<MappedBuilding> buildings;  // in sketch order
+  // OSM's building:part areas (Simple 3D Buildings), `building` their building:part tag:
+  // each raises the 3D of the kept building it lies in, whose outline stays the footprint.
+  std::vector<MappedBuilding> building_parts;
   // Mapped buildings a reader left out, by why ("buildings whose way is not closed"), from
   // the counts of what OpenStreetMap's files left out.
   std::map<std::string, int> buildings_left_out;
+  std::map<std::string, int> building_parts_left_out;  // the same of building:parts
   std::vector<std::string> buildings_left_out_named;  // the first few, "FILE layer L feature N: refused, why"
   LandUseTally land_use;
   StreetSettings streets;

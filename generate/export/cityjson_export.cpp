@@ -274,6 +274,16 @@ json geometry_instance(const Placement& p, double floor, Vertices& v) {
 
 const json kSemanticSurfaces = json::array({{{"type", "GroundSurface"}}, {{"type", "WallSurface"}}, {{"type", "RoofSurface"}}});
 
+json building_attributes(const Building& b) {
+  json attributes{{"lot", b.lot >= 0 ? json(b.lot) : json(nullptr)}, {"zone", name(b.zone)}, {"measuredHeight", b.height},
+                  {"roofType", b.roof}};
+  if (b.mapped >= 0) {
+    const nlohmann::ordered_json mapped = mapped_attributes(b);
+    for (auto it = mapped.begin(); it != mapped.end(); ++it) attributes[it.key()] = *it;
+  }
+  return attributes;
+}
+
 // An extruded building: LOD1 its prism, LOD2 its roof as built (where quantisation
 // collapses a face of it, the prism). Null when the prism collapses.
 json building_object(const Building& b, const Mesh& mesh, Vertices& v) {
@@ -286,14 +296,39 @@ json building_object(const Building& b, const Mesh& mesh, Vertices& v) {
   json lod1{{"type", "Solid"}, {"lod", "1"}, {"boundaries", json::array({std::move(shell)})}};
   json lod2{{"type", "Solid"}, {"lod", "2"}, {"boundaries", json::array({std::move(lod2_shell)})},
             {"semantics", {{"surfaces", kSemanticSurfaces}, {"values", json::array({lod2_classes})}}}};
-  json attributes{{"lot", b.lot >= 0 ? json(b.lot) : json(nullptr)}, {"zone", name(b.zone)}, {"measuredHeight", b.height},
-                  {"roofType", b.roof}};
-  if (b.mapped >= 0) {
-    const nlohmann::ordered_json mapped = mapped_attributes(b);
-    for (auto it = mapped.begin(); it != mapped.end(); ++it) attributes[it.key()] = *it;
-  }
   return {{"type", "Building"},
-          {"attributes", std::move(attributes)},
+          {"attributes", building_attributes(b)},
+          {"geometry", json::array({std::move(lod1), std::move(lod2)})}};
+}
+
+// A mapped building with building:parts: its attributes, its geometry theirs (children
+// added as they are written), since OSM's outline of such a building is 2D only.
+json building_with_parts(const Building& b) {
+  return {{"type", "Building"}, {"attributes", building_attributes(b)}, {"geometry", json::array()}, {"children", json::array()}};
+}
+
+// A building:part (OSM's Simple 3D Buildings) of a mapped building: LOD1 its prism from
+// its bottom to its height, LOD2 as built, as an extruded building's; its parent named.
+// Null when the prism collapses.
+json building_part_object(const Building& b, const BuildingPart& part, const std::string& parent, Vertices& v) {
+  json shell = json::array();
+  std::vector<int> classes;
+  const double bottom = part.bottom > 0 ? b.floor + part.bottom : b.base;
+  if (!prism(part.polygon, bottom, b.floor + part.height, v, shell, classes)) return nullptr;
+  json lod2_shell = json::array();
+  std::vector<int> lod2_classes;
+  if (!mesh_shell(building_part_mesh(b, part), v, lod2_shell, lod2_classes)) lod2_shell = shell, lod2_classes = classes;
+  json lod1{{"type", "Solid"}, {"lod", "1"}, {"boundaries", json::array({std::move(shell)})}};
+  json lod2{{"type", "Solid"}, {"lod", "2"}, {"boundaries", json::array({std::move(lod2_shell)})},
+            {"semantics", {{"surfaces", kSemanticSurfaces}, {"values", json::array({lod2_classes})}}}};
+  return {{"type", "BuildingPart"},
+          {"parents", json::array({parent})},
+          {"attributes",
+           {{"osm_id", part.osm_id.empty() ? json(nullptr) : json(part.osm_id)},
+            {"building:part", part.tag},
+            {"measuredHeight", part.height},
+            {"min_height", part.bottom},
+            {"roofType", part.roof}}},
           {"geometry", json::array({std::move(lod1), std::move(lod2)})}};
 }
 
@@ -407,7 +442,17 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
       buildings, models,
       [&](const Building& b) {
         cancel.check();
-        if (json o = building_object(b, meshes[b.id], v); !o.is_null()) texts["building-" + std::to_string(b.id)] = o.dump();
+        const std::string key = "building-" + std::to_string(b.id);
+        json o = b.parts.empty() ? building_object(b, meshes[b.id], v) : building_with_parts(b);
+        // Its parts are its 3D (OSM's Simple 3D Buildings): BuildingParts, its children.
+        for (std::size_t k = 0; k < b.parts.size(); ++k) {
+          const std::string part_key = key + "-part-" + std::to_string(k);
+          if (json part = building_part_object(b, b.parts[k], key, v); !part.is_null()) {
+            o["children"].push_back(part_key);
+            texts[part_key] = part.dump();
+          }
+        }
+        if (!o.is_null()) texts[key] = o.dump();
       },
       [&](const ModelInstance& m) {
         cancel.check();

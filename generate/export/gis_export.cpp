@@ -266,6 +266,23 @@ bool write_city_osm(const City& city, const fs::path& file, std::optional<std::i
     ring.push_back(ring.front());
     return ring;
   };
+  // A footprint: a closed way, or with courtyards as OSM maps them: the tags on a
+  // multipolygon relation, its rings untagged ways.
+  auto area = [&](const geom::Polygon& polygon, OsmTagList tags) {
+    if (polygon.holes.empty()) return way(closed(polygon.outer), std::move(tags));
+    OsmMultipolygon& m = multipolygons.emplace_back();
+    m.tags = std::move(tags);
+    m.tags.insert(m.tags.begin(), {"type", "multipolygon"});
+    m.members.push_back({ways.size(), "outer"});
+    way(closed(polygon.outer), {});
+    for (const geom::Ring& hole : polygon.holes) {
+      m.members.push_back({ways.size(), "inner"});
+      way(closed(hole), {});
+    }
+  };
+  std::map<int, const Building*> with_parts;
+  for (const Building& b : city.buildings)
+    if (!b.parts.empty()) with_parts[b.id] = &b;
   for (const VectorFeature& b : city.layers.buildings.features) {
     if (b.properties.value("kind", std::string("building")) != "building") continue;
     // A mapped building keeps its building tag and says where it came from.
@@ -273,26 +290,33 @@ bool write_city_osm(const City& city, const fs::path& file, std::optional<std::i
     OsmTagList tags{{"building", mapped ? b.properties.value("building", std::string("yes")) : std::string("yes")}};
     if (b.properties.contains("height") && b.properties["height"].is_number())
       tags.push_back({"height", osm_number(b.properties["height"].get<double>())});
-    tags.push_back({"exacity:id", std::to_string(b.properties.value("id", -1))});
+    const int id = b.properties.value("id", -1);
+    tags.push_back({"exacity:id", std::to_string(id)});
     if (mapped) {
       tags.push_back({"exacity:mapped", "yes"});
       if (b.properties.contains("osm_id") && b.properties["osm_id"].is_string())
         tags.push_back({"exacity:osm_id", b.properties["osm_id"].get<std::string>()});
+      // A footprint layer's identifier: BAG's as OSM's Dutch buildings carry it, the number
+      // without "NL.IMBAG.Pand." and its leading zeros; else the layer's FID.
+      if (b.properties.contains("identificatie") && b.properties["identificatie"].is_string()) {
+        std::string bag = b.properties["identificatie"].get<std::string>();
+        bag = bag.substr(bag.find_last_of('.') + 1);
+        bag.erase(0, std::min(bag.find_first_not_of('0'), bag.size() - 1));
+        tags.push_back({"ref:bag", bag});
+      }
+      if (b.properties.contains("fid") && b.properties["fid"].is_string())
+        tags.push_back({"exacity:fid", b.properties["fid"].get<std::string>()});
     }
-    if (b.polygon.holes.empty()) {
-      way(closed(b.polygon.outer), std::move(tags));
-      continue;
-    }
-    // Its courtyards as OSM maps them: the tags on a multipolygon relation, its rings untagged ways.
-    OsmMultipolygon& m = multipolygons.emplace_back();
-    m.tags = std::move(tags);
-    m.tags.insert(m.tags.begin(), {"type", "multipolygon"});
-    m.members.push_back({ways.size(), "outer"});
-    way(closed(b.polygon.outer), {});
-    for (const geom::Ring& hole : b.polygon.holes) {
-      m.members.push_back({ways.size(), "inner"});
-      way(closed(hole), {});
-    }
+    area(b.polygon, std::move(tags));
+    // Its building:parts as OSM's Simple 3D Buildings maps them, after its outline.
+    if (auto it = with_parts.find(id); it != with_parts.end())
+      for (const BuildingPart& part : it->second->parts) {
+        OsmTagList part_tags{{"building:part", part.tag}, {"height", osm_number(part.height)}};
+        if (part.bottom > 0) part_tags.push_back({"min_height", osm_number(part.bottom)});
+        if (part.roof != "flat") part_tags.push_back({"roof:shape", part.roof});
+        if (!part.osm_id.empty()) part_tags.push_back({"exacity:osm_id", part.osm_id});
+        area(part.polygon, std::move(part_tags));
+      }
   }
   // Street clutter as the tagged nodes mappers use for it, after the ways' nodes.
   std::vector<osmium::Location> locations;

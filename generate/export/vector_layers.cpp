@@ -357,8 +357,10 @@ Ground extract_ground(const CityMap& city_map, const std::vector<Block>& blocks,
 }
 
 ordered_json mapped_attributes(const Building& b) {
-  return {{"mapped", true}, {"osm_id", b.osm_id.empty() ? ordered_json(nullptr) : ordered_json(b.osm_id)},
-          {"building", b.building_tag}};
+  ordered_json out{{"mapped", true}, {"osm_id", b.osm_id.empty() ? ordered_json(nullptr) : ordered_json(b.osm_id)},
+                   {"building", b.building_tag}};
+  if (!b.source_id.first.empty()) out[b.source_id.first] = b.source_id.second;
+  return out;
 }
 
 ordered_json road_attributes(const RoadLine& road) {

@@ -261,6 +261,10 @@ ordered_json footprint_document(const fs::path& path) {
     if (ordered_json v = first_field(f, {"roof:shape", "roof_shape"}); !v.is_null()) p["roof:shape"] = v;
     if (ordered_json v = first_field(f, {"roof:height", "roof_height"}); !v.is_null()) p["roof:height"] = v;
     if (ordered_json v = first_field(f, {"name"}); !v.is_null()) p["name"] = v;
+    // Its identifier in its source, which every export keeps: BAG's, else the layer's FID.
+    if (ordered_json id = field(f, "identificatie"); id.is_string() && !id.get<std::string>().empty()) p["identificatie"] = id;
+    else if (id.is_number_integer()) p["identificatie"] = id.dump();
+    else if (f.GetFID() != OGRNullFID) p["fid"] = f.GetFID();
     p["source"] = source;
     doc["features"].push_back({{"type", "Feature"}, {"properties", std::move(p)}, {"geometry", std::move(geometry)}});
   });

@@ -231,15 +231,19 @@ class Collector : public osmium::handler::Handler {
         osm_area_meaning(lookup(tags)).kind == OsmMeaning::Zone)
       return cut_ways_.push_back({way.id(), {osm_properties(tags, false), {}, {}}, way_nodes(way)}), void();
     // A building way is its footprint, node for node, whatever osmium's assembler makes of
-    // its ring (it gives none for a self-intersecting one, which the city repairs or refuses).
-    if (!tags["highway"] && osm_area_meaning(lookup(tags)).kind == OsmMeaning::Building) {
-      if (!way.is_closed()) return ++skipped_["buildings whose way is not closed"], void();
+    // its ring (it gives none for a self-intersecting one, which the city repairs or refuses);
+    // a building:part's the same.
+    if (const OsmMeaning::Kind kind = osm_area_meaning(lookup(tags)).kind;
+        !tags["highway"] && (kind == OsmMeaning::Building || kind == OsmMeaning::BuildingPart)) {
+      const bool part = kind == OsmMeaning::BuildingPart;
+      const std::string buildings = part ? "building:parts" : "buildings";
+      if (!way.is_closed()) return ++skipped_[buildings + " whose way is not closed"], void();
       const std::string what = "way " + std::to_string(way.id());
-      OsmFeature f{building_properties(tags, what), {{points(way.nodes()), {}}}, {}};
-      if (f.polygons[0].first.size() != way.nodes().size()) return ++skipped_["buildings with nodes the extract lacks"], void();
-      return buildings_.push_back(std::move(f));
+      OsmFeature f{building_properties(tags, what, part), {{points(way.nodes()), {}}}, {}};
+      if (f.polygons[0].first.size() != way.nodes().size()) return ++skipped_[buildings + " with nodes the extract lacks"], void();
+      if (!part) also_a_part(tags, f);
+      return (part ? parts_ : buildings_).push_back(std::move(f));
     }
-    if (tags["building:part"] && !tags["building"]) return ++skipped_["building:part"], void();
     // A closed way tagged only as an area (waterway=riverbank) is the area handler's.
     if (!tags["highway"] && !(tags["waterway"] && !way.is_closed())) return;
     const OsmMeaning meaning = osm_line_meaning(lookup(tags));
@@ -254,22 +258,29 @@ class Collector : public osmium::handler::Handler {
   void area(const osmium::Area& area) {
     const OsmMeaning meaning = osm_area_meaning(lookup(area.tags()));
     if (meaning.kind == OsmMeaning::LeftOut) return ++skipped_[meaning.why], void();
-    if (meaning.kind != OsmMeaning::Zone && meaning.kind != OsmMeaning::Building) return;
-    if (meaning.kind == OsmMeaning::Building && area.from_way()) return;  // the way handler's
+    const bool building = meaning.kind == OsmMeaning::Building || meaning.kind == OsmMeaning::BuildingPart;
+    if (meaning.kind != OsmMeaning::Zone && !building) return;
+    if (building && area.from_way()) return;  // the way handler's
     const std::string what = (area.from_way() ? "way " : "relation ") + std::to_string(area.orig_id());
     OsmFeature f{properties(area.tags(), " " + what), {}, {}};
-    if (meaning.kind == OsmMeaning::Building) f.properties = building_properties(area.tags(), what);
+    if (building) f.properties = building_properties(area.tags(), what, meaning.kind == OsmMeaning::BuildingPart);
     for (const osmium::OuterRing& outer : area.outer_rings()) {
       f.polygons.push_back({points(outer), {}});
       for (const osmium::InnerRing& inner : area.inner_rings(outer)) f.polygons.back().second.push_back(points(inner));
     }
     if (f.polygons.empty()) {
       // A relation is mended from its member ways below; a way's rings are beyond that.
-      if (meaning.kind == OsmMeaning::Building) ++skipped_["building relations whose rings osmium could not assemble"];
+      if (building)
+        ++skipped_[(meaning.kind == OsmMeaning::Building ? "building" : "building:part") +
+                   std::string(" relations whose rings osmium could not assemble")];
       else if (area.from_way()) ++skipped_["areas whose rings osmium could not assemble"];
       return;
     }
-    if (meaning.kind == OsmMeaning::Building) return buildings_.push_back(std::move(f));
+    if (meaning.kind == OsmMeaning::Building) {
+      also_a_part(area.tags(), f);
+      return buildings_.push_back(std::move(f));
+    }
+    if (meaning.kind == OsmMeaning::BuildingPart) return parts_.push_back(std::move(f));
     if (!area.from_way()) assembled_.insert(area.orig_id());
     zones_.push_back(std::move(f));
   }
@@ -290,7 +301,7 @@ class Collector : public osmium::handler::Handler {
       if (nodes.ids.size() >= 2) mend_rings("way " + std::to_string(id), way.properties, {std::move(nodes)}, {}, box);
   }
 
-  std::vector<OsmFeature> zones_, roads_, rivers_, buildings_;
+  std::vector<OsmFeature> zones_, roads_, rivers_, buildings_, parts_;
   std::map<std::string, int> skipped_;
   std::vector<std::string> repaired_;
   osmium::Box nodes_box_;
@@ -347,15 +358,28 @@ class Collector : public osmium::handler::Handler {
     return std::move(closings[pick]);
   }
 
+  // A building tagged building:part too is one of its own parts (Simple 3D Buildings: its
+  // volume beside the parts mapped in it).
+  void also_a_part(const osmium::TagList& tags, const OsmFeature& building) {
+    const char* part = tags["building:part"];
+    if (!part || std::string(part) == "no") return;
+    OsmFeature f = building;
+    f.properties.erase("building");
+    f.properties["building:part"] = part;
+    parts_.push_back(std::move(f));
+  }
+
   static std::string zone_tag(const ordered_json& tags) {
     for (const char* key : {"landuse", "leisure", "natural", "water", "waterway"})
       if (tags.contains(key) && tags[key].is_string()) return std::string(key) + "=" + tags[key].get<std::string>();
     return "area";
   }
 
-  // A building's: its building tag, the tags it is raised from, its name and its OSM id.
-  ordered_json building_properties(const osmium::TagList& tags, const std::string& what) const {
-    ordered_json p{{"building", tags["building"]}};
+  // A building's: its building tag (a part's building:part tag), the tags it is raised
+  // from, its name and its OSM id.
+  ordered_json building_properties(const osmium::TagList& tags, const std::string& what, bool part) const {
+    const char* key = part ? "building:part" : "building";
+    ordered_json p{{key, tags[key]}};
     for (const std::string& key : osm_building_keys())
       if (const char* v = tags[key.c_str()]) p[key] = v;
     if (const char* name = tags["name"]) p["name"] = name;
@@ -473,7 +497,8 @@ ordered_json osm_sketch_document(const fs::path& path) {
     reader.close();
     osmium::area::Assembler::config_type config;
     osmium::TagsFilter areas{false};
-    for (const char* key : {"landuse", "natural", "water", "waterway", "leisure", "building"}) areas.add_rule(true, osmium::TagMatcher{key});
+    for (const char* key : {"landuse", "natural", "water", "waterway", "leisure", "building", "building:part"})
+      areas.add_rule(true, osmium::TagMatcher{key});
     osmium::area::MultipolygonManager<osmium::area::Assembler> multipolygons{config, areas};
     osmium::apply(extract, multipolygons, relations);
     multipolygons.prepare_for_lookup();
@@ -495,8 +520,8 @@ ordered_json osm_sketch_document(const fs::path& path) {
     throw UserError(file + ": the extract has no highways, land use or water Exacity reads; see docs/gis.md");
 
   ordered_json features = ordered_json::array();
-  // Buildings after the zones: the sketch reader keeps them apart, in this order.
-  for (auto* areas : {&collector.zones_, &collector.buildings_})
+  // Buildings and their parts after the zones: the sketch reader keeps them apart, in this order.
+  for (auto* areas : {&collector.zones_, &collector.buildings_, &collector.parts_})
     for (OsmFeature& f : *areas) {
       ordered_json polygons = ordered_json::array();
       for (auto& [outer, holes] : f.polygons) {

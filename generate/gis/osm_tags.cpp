@@ -184,7 +184,8 @@ const std::vector<std::string>& osm_keys() {
 }
 
 const std::vector<std::string>& osm_building_keys() {
-  static const std::vector<std::string> keys{"height", "building:levels", "roof:shape", "roof:height"};
+  static const std::vector<std::string> keys{"height",      "building:levels",    "roof:shape",
+                                             "roof:height", "min_height", "building:min_level"};
   return keys;
 }
 
@@ -250,10 +251,14 @@ OsmMeaning osm_line_meaning(const OsmTags& tags) {
       if (*service != "alley") return left_out("service=" + *service);
       width = kAlleyWidth;
     }
+  bool mapped = true;
   if (std::optional<double> w = metres(tags("width"))) width = *w;
   else if (std::optional<std::string> lanes = tags("lanes"); lanes && std::atoi(lanes->c_str()) > 0)
     width = kLaneWidth * std::atoi(lanes->c_str());
-  return {OsmMeaning::Road, *road, std::clamp(width, 1.0, 100.0), ""};
+  else mapped = false;
+  OsmMeaning out{OsmMeaning::Road, *road, std::clamp(width, 1.0, 100.0), ""};
+  out.width_mapped = mapped;
+  return out;
 }
 
 OsmMeaning osm_area_meaning(const OsmTags& tags) {
@@ -272,6 +277,8 @@ OsmMeaning osm_area_meaning(const OsmTags& tags) {
   // is still a building.
   if (std::optional<std::string> building = tags("building"); building && *building != "no")
     return {OsmMeaning::Building, *building, 0, ""};
+  if (std::optional<std::string> part = tags("building:part"); part && *part != "no")
+    return {OsmMeaning::BuildingPart, *part, 0, ""};
   if (std::optional<std::string> tag = first_tag(tags, {"landuse", "leisure", "natural", "waterway", "highway"}))
     return left_out(*tag);
   return {};
@@ -350,14 +357,15 @@ bool apply_osm_tags(ordered_json& doc, const std::vector<SketchFile>& files) {
       }
       f["geometry"] = std::move(*water);
     }
-    if (meaning.kind == OsmMeaning::Building) {
+    if (meaning.kind == OsmMeaning::Building || meaning.kind == OsmMeaning::BuildingPart) {
       // What the sketch reader raises it from, where a GIS export keeps it in other_tags,
       // and its OSM id as a type and number where the export says which.
-      ++taken["buildings"];
+      const bool part = meaning.kind == OsmMeaning::BuildingPart;
+      ++taken[part ? "building parts" : "buildings"];
       ordered_json& p = f["properties"];
       std::map<std::string, std::string> other;
       if (p.contains("other_tags") && p["other_tags"].is_string()) other = hstore(p["other_tags"].get<std::string>());
-      p["building"] = meaning.type;
+      p[part ? "building:part" : "building"] = meaning.type;
       for (const std::string& key : osm_building_keys())
         if (auto it = other.find(key); !p.contains(key) && it != other.end()) p[key] = it->second;
       // GDAL's OSM driver fills osm_way_id for a closed way and osm_id for a relation;
@@ -379,6 +387,9 @@ bool apply_osm_tags(ordered_json& doc, const std::vector<SketchFile>& files) {
       ordered_json& p = f["properties"];
       p[zone ? "zone" : "road"] = meaning.type;
       if (!zone) p["width"] = meaning.width;
+      // The carriageway as mapped, which a road narrowed for a mapped building keeps
+      // (generate/placement/mapped_buildings.h).
+      if (meaning.width_mapped) p["carriageway"] = meaning.width;
       if (zone) zones.push_back(kept.size());
     }
     kept.push_back(std::move(f));
@@ -405,7 +416,9 @@ bool apply_osm_tags(ordered_json& doc, const std::vector<SketchFile>& files) {
 
   ordered_json& osm = doc["osm"];
   if (!osm.is_object()) osm = files.size() == 1 ? ordered_json{{"file", files[0].path.string()}} : ordered_json::object();
-  if (taken["buildings"] == 0) taken.erase("buildings");  // named only where the files map some
+  // Named only where the files map some.
+  for (const char* what : {"buildings", "building parts"})
+    if (taken[what] == 0) taken.erase(what);
   osm["taken"] = taken;
   // Each file's counts: the member itself for one file, its "files" for several (an
   // extract's own counts, from reading it, already there).

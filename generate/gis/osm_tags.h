@@ -18,25 +18,28 @@ namespace exacity {
 using OsmTags = std::function<std::optional<std::string>(const std::string& key)>;
 
 struct OsmMeaning {
-  enum Kind { Untagged, Zone, Road, River, Building, LeftOut } kind = Untagged;
-  std::string type;  // the zone type or road class; a building's building tag
+  enum Kind { Untagged, Zone, Road, River, Building, BuildingPart, LeftOut } kind = Untagged;
+  std::string type;  // the zone type or road class; a building's building tag, a part's building:part tag
   double width = 0;  // roads and rivers, metres
   std::string why;   // LeftOut: the tag that says what it is ("highway=footway")
   // LeftOut unless it bounds land: a footway is a local street of `width` where it runs
   // along a zone's edge (apply_osm_tags), else left out as `why` says.
   bool road_where_it_bounds_land = false;
+  bool width_mapped = false;  // a road's width from its width or lanes tag, not its class's
 };
 
 // A way or line: a highway, or a river or canal.
 OsmMeaning osm_line_meaning(const OsmTags& tags);
-// An area: land use, parks, water; else a building (`building=*` but `no`).
+// An area: land use, parks, water; else a building (`building=*` but `no`), else a
+// building:part (Simple 3D Buildings).
 OsmMeaning osm_area_meaning(const OsmTags& tags);
 
 // The keys read, in the order they are looked at; an OGR layer with any of them as a field
 // is read for them.
 const std::vector<std::string>& osm_keys();
 
-// The tags a mapped building is raised from (generate/city/features.h, MappedBuilding).
+// The tags a mapped building or building:part is raised from (generate/city/features.h,
+// MappedBuilding).
 const std::vector<std::string>& osm_building_keys();
 
 // The tags a road keeps from OpenStreetMap (or from a GIS file exported from it), which

@@ -123,6 +123,8 @@ class MeshBuilder {
     }
   }
   Mesh take() { return std::move(mesh_); }
+  // What comes next is a mesh of its own, sharing no vertex with what came before.
+  void next_piece() { vertices_.clear(); }
 
  private:
   Mesh mesh_;
@@ -157,18 +159,45 @@ Mesh model_mesh(const ModelInstance& m, const ModelLibrary* library) {
   return mesh.take();
 }
 
+namespace {
+
+// A footprint's prism from `base` up to `eaves` (heights in the city) under its roof's faces
+// (standing on `floor`), or a flat roof where it has none.
+void add_prism(MeshBuilder& mesh, const geom::Polygon& footprint, double base, double eaves,
+               const std::vector<geom::Face3>& roof_faces, double floor) {
+  mesh.walls(footprint.outer, base, eaves);
+  for (const auto& h : footprint.holes) mesh.walls(h, base, eaves);
+  mesh.cap(footprint, base, true, Surface::Ground);
+  if (roof_faces.empty()) mesh.cap(footprint, eaves, false, Surface::Roof);
+  // Pitched roofs: faces rising from the eaves (a gable's upright triangle counts as wall).
+  for (const geom::Face3& f : roof_faces) {
+    std::vector<Mesh::VertexHandle> face;
+    for (const geom::Vec3& v : f) face.push_back(mesh.vertex(v[0], v[1], v[2] + floor));
+    mesh.add(face, is_gable(f) ? Surface::Wall : Surface::Roof);
+  }
+}
+
+// A building:part's prism: from the ground under the building where it stands on it.
+void add_part(MeshBuilder& mesh, const Building& b, const BuildingPart& part) {
+  add_prism(mesh, part.polygon, part.bottom > 0 ? b.floor + part.bottom : b.base, b.floor + part.eaves, part.roof_faces,
+            b.floor);
+}
+
+}  // namespace
+
+Mesh building_part_mesh(const Building& b, const BuildingPart& part) {
+  MeshBuilder mesh;
+  add_part(mesh, b, part);
+  return mesh.take();
+}
+
 Mesh building_mesh(const Building& b) {
   MeshBuilder mesh;
-  const double eaves = b.floor + b.eaves;
-  mesh.walls(b.polygon.outer, b.base, eaves);
-  for (const auto& h : b.polygon.holes) mesh.walls(h, b.base, eaves);
-  mesh.cap(b.polygon, b.base, true, Surface::Ground);
-  if (b.roof_faces.empty()) mesh.cap(b.polygon, eaves, false, Surface::Roof);
-  // Pitched roofs: faces rising from the eaves (a gable's upright triangle counts as wall).
-  for (const geom::Face3& f : b.roof_faces) {
-    std::vector<Mesh::VertexHandle> face;
-    for (const geom::Vec3& v : f) face.push_back(mesh.vertex(v[0], v[1], v[2] + b.floor));
-    mesh.add(face, is_gable(f) ? Surface::Wall : Surface::Roof);
+  if (b.parts.empty()) add_prism(mesh, b.polygon, b.base, b.floor + b.eaves, b.roof_faces, b.floor);
+  // Where it maps parts, they are its 3D (OSM's Simple 3D Buildings), each closed on its own.
+  for (const BuildingPart& part : b.parts) {
+    mesh.next_piece();
+    add_part(mesh, b, part);
   }
   return mesh.take();
 }

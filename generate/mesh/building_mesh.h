@@ -19,7 +19,10 @@ using Mesh = OpenMesh::PolyMesh_ArrayKernelT<MeshTraits>;
 // Meshes are z up, each face carrying a Surface in the mesh's "surface" face property.
 // An extruded building's is closed and outward-facing, its walls reaching down to the
 // terrain's lowest point under it.
+// One with building:parts is their prisms, each closed on its own, and not its outline's.
 Mesh building_mesh(const Building& b);
+// A building:part's alone (CityJSON's BuildingPart).
+Mesh building_part_mesh(const Building& b, const BuildingPart& part);
 // A placed model's: its library mesh moved into place (faces classed by their slope) on a
 // foundation where the ground slopes; without a library, only the foundation.
 Mesh model_mesh(const ModelInstance& m, const ModelLibrary* library);

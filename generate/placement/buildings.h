@@ -35,6 +35,17 @@ inline constexpr int kTints = 4;
 // stands on `floor` (the highest point), its walls or foundation reach down to `base` (the
 // lowest); heights count from floor.
 
+// A mapped building's building:part (OSM's Simple 3D Buildings): its own prism from
+// `bottom` to its eaves under its own roof, heights from the building's floor.
+struct BuildingPart {
+  geom::Polygon polygon;  // outer ring counter-clockwise, inside the building's outline
+  double bottom = 0, height = 0, eaves = 0;  // m
+  std::string roof = "flat";
+  std::vector<geom::Face3> roof_faces;  // pitched roofs only, in place
+  std::string osm_id, tag;              // its OSM id and building:part tag
+  int mapped = -1;                      // its index in the sketch's building_parts
+};
+
 // An extruded building: a footprint raised to its height under a roof.
 struct Building {
   int id = -1;
@@ -51,6 +62,10 @@ struct Building {
   // it stands on, may be -1.
   int mapped = -1;
   std::string osm_id, building_tag;
+  std::pair<std::string, std::string> source_id;  // MappedBuilding's
+  // Where it maps building:parts, its 3D is theirs and its footprint only the outline (its
+  // height their highest top).
+  std::vector<BuildingPart> parts;
 };
 
 // A library model placed on a lot: a building, street furniture or a tree.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <sstream>
 
 #include <ogr_geometry.h>
 
@@ -80,7 +81,117 @@ std::optional<geom::Polygon> made_valid(const geom::Polygon& p) {
 
 bool ogr_valid(const geom::Polygon& p) { return ogr_polygon(p)->IsValid(); }
 
+// A footprint as kept: as drawn where its rings are simple and GEOS finds it valid, else
+// made valid (`repaired`), else nothing; oriented.
+std::optional<geom::Polygon> kept_polygon(geom::Polygon p, bool& repaired) {
+  repaired = !simple(p) || !ogr_valid(p);
+  if (repaired) {
+    std::optional<geom::Polygon> valid = made_valid(p);
+    if (!valid) return std::nullopt;
+    p = std::move(*valid);
+  }
+  orient(p);
+  return p;
+}
+
+// A point strictly inside the polygon: the centre of its largest triangle.
+std::optional<geom::Vec2> point_inside(const geom::Polygon& p) {
+  std::vector<geom::Vec2> points(p.outer);
+  for (const geom::Ring& h : p.holes) points.insert(points.end(), h.begin(), h.end());
+  double best = 0;
+  std::optional<geom::Vec2> out;
+  for (const auto& t : geom::triangulate(p)) {
+    const geom::Vec2 a = points[t[0]], b = points[t[1]], c = points[t[2]];
+    const double area = std::abs((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y));
+    if (area > best) best = area, out = geom::Vec2{(a.x + b.x + c.x) / 3, (a.y + b.y + c.y) / 3};
+  }
+  return out;
+}
+
+
 }  // namespace
+
+namespace {
+
+// A road's carriageway as mapped, which it keeps whatever stands beside it.
+double mapped_carriageway(const RoadFeature& road) {
+  if (road.carriageway) return *road.carriageway;
+  constexpr double kLane = 3.5;
+  bool one_lane = false;
+  for (const auto& [key, value] : road.osm_tags)
+    one_lane |= (key == "oneway" && (value == "yes" || value == "1" || value == "-1")) || (key == "highway" && value == "service");
+  return std::min(road.width, one_lane ? kLane : 2 * kLane);
+}
+
+std::string format_metres(double v) {
+  std::ostringstream out;
+  out << std::round(v * 100) / 100;
+  return out.str();
+}
+
+}  // namespace
+
+void give_way_to_mapped_buildings(DrawnFeatures& drawn, MappedTally& tally) {
+  constexpr double kClear = 0.01;
+  struct Footprint {
+    std::unique_ptr<OGRPolygon> polygon;
+    geom::Box box;
+    geom::Vec2 centre;
+    const MappedBuilding* mapped;
+  };
+  std::vector<Footprint> footprints;
+  for (const MappedBuilding& m : drawn.buildings) {
+    if (!m.problem.empty() || m.polygon.outer.size() < 3) continue;
+    Footprint f{ogr_polygon(m.polygon), geom::Box::none(), {0, 0}, &m};
+    for (geom::Vec2 v : m.polygon.outer) {
+      f.box.add(v);
+      f.centre = f.centre + v * (1.0 / static_cast<double>(m.polygon.outer.size()));
+    }
+    footprints.push_back(std::move(f));
+  }
+  if (footprints.empty()) return;
+  for (RoadFeature& road : drawn.roads) {
+    const double floor = mapped_carriageway(road);
+    double width = road.width, left = road.sidewalk_left, right = road.sidewalk_right;
+    std::string for_building;  // the first building it gave way to
+    for (const geom::Polyline& line : road.lines) {
+      OGRLineString ogr_line;
+      geom::Box box = geom::Box::none();
+      for (geom::Vec2 v : line) ogr_line.addPoint(v.x, v.y), box.add(v);
+      const double reach = road.width / 2 + road.widest_sidewalk();
+      box = {box.min_x - reach, box.min_y - reach, box.max_x + reach, box.max_y + reach};
+      for (const Footprint& f : footprints) {
+        if (!box.meets(f.box)) continue;
+        const double d = ogr_line.Distance(f.polygon.get());
+        // Narrowing to the carriageway as mapped would not clear it: it stands on the road.
+        if (!(d - kClear >= floor / 2) || d >= width / 2 + std::max(left, right)) continue;
+        // Its side of the road: of the segment nearest its centre.
+        std::size_t nearest = 0;
+        for (std::size_t i = 0; i + 1 < line.size(); ++i)
+          if (geom::distance_to_segment(f.centre, line[i], line[i + 1]) <
+              geom::distance_to_segment(f.centre, line[nearest], line[nearest + 1]))
+            nearest = i;
+        double& sidewalk = geom::cross(line[nearest + 1] - line[nearest], f.centre - line[nearest]) > 0 ? left : right;
+        if (d >= width / 2 + sidewalk) continue;
+        sidewalk = std::max(0.0, std::min(sidewalk, d - kClear - width / 2));
+        width = std::min(width, 2 * (d - kClear));
+        if (for_building.empty()) for_building = f.mapped->osm_id.empty() ? f.mapped->name : f.mapped->osm_id;
+      }
+    }
+    if (for_building.empty()) continue;
+    ++tally.roads_narrowed;
+    if (tally.narrowed.size() < kNamed) {
+      std::string name = "features[" + std::to_string(road.index) + "]";
+      for (const auto& [key, value] : road.osm_tags)
+        if (key == "osm_id") name = value;
+      tally.narrowed.push_back(name + ": " + format_metres(road.width) + " m wide to " + format_metres(width) +
+                               " m, sidewalks " + format_metres(road.sidewalk_left) + " | " +
+                               format_metres(road.sidewalk_right) + " m to " + format_metres(left) + " | " +
+                               format_metres(right) + " m, for " + for_building);
+    }
+    road.width = width, road.sidewalk_left = left, road.sidewalk_right = right;
+  }
+}
 
 std::vector<Building> mapped_footprints(const std::vector<MappedBuilding>& drawn, const CityMap& map, MappedTally& tally) {
   std::vector<Building> kept;
@@ -102,18 +213,15 @@ std::vector<Building> mapped_footprints(const std::vector<MappedBuilding>& drawn
     b.mapped = static_cast<int>(i);
     b.osm_id = m.osm_id;
     b.building_tag = m.building;
-    b.polygon = m.polygon;
-    repaired.push_back(!simple(b.polygon) || !ogr_valid(b.polygon));
-    if (repaired.back()) {
-      std::optional<geom::Polygon> valid = made_valid(b.polygon);
-      if (!valid) {
-        refuse(m, "self-intersecting footprint that GEOS's MakeValid does not make one polygon");
-        repaired.pop_back();
-        continue;
-      }
-      b.polygon = std::move(*valid);
+    b.source_id = m.source_id;
+    bool was_repaired = false;
+    std::optional<geom::Polygon> polygon = kept_polygon(m.polygon, was_repaired);
+    if (!polygon) {
+      refuse(m, "self-intersecting footprint that GEOS's MakeValid does not make one polygon");
+      continue;
     }
-    orient(b.polygon);
+    b.polygon = std::move(*polygon);
+    repaired.push_back(was_repaired);
     candidates.push_back(std::move(b));
   }
   // The road surfaces (carriageways, sidewalks, junctions, bridges) as the map has them,
@@ -158,6 +266,46 @@ std::vector<Building> mapped_footprints(const std::vector<MappedBuilding>& drawn
   return kept;
 }
 
+void attach_building_parts(std::vector<Building>& footprints, const std::vector<MappedBuilding>& drawn, MappedTally& tally) {
+  std::vector<geom::Box> boxes;
+  for (const Building& b : footprints) {
+    geom::Box box = geom::Box::none();
+    for (geom::Vec2 v : b.polygon.outer) box.add(v);
+    boxes.push_back(box);
+  }
+  auto refuse = [&](const MappedBuilding& m, const std::string& why) {
+    ++tally.parts_refused[why];
+    if (tally.named.size() < kNamed) tally.named.push_back(m.name + ": refused, " + why);
+  };
+  for (std::size_t i = 0; i < drawn.size(); ++i) {
+    const MappedBuilding& m = drawn[i];
+    if (!m.problem.empty()) {
+      refuse(m, "building:part: " + m.problem);
+      continue;
+    }
+    BuildingPart part;
+    part.mapped = static_cast<int>(i);
+    part.osm_id = m.osm_id;
+    part.tag = m.building;
+    bool repaired = false;
+    std::optional<geom::Polygon> polygon = kept_polygon(m.polygon, repaired);
+    if (!polygon) {
+      refuse(m, "building:part whose self-intersecting ring GEOS's MakeValid does not make one polygon");
+      continue;
+    }
+    part.polygon = std::move(*polygon);
+    const std::optional<geom::Vec2> inside = point_inside(part.polygon);
+    std::size_t k = 0;
+    for (; inside && k < footprints.size(); ++k)
+      if (boxes[k].meets({inside->x, inside->y, inside->x, inside->y}) && geom::point_side(footprints[k].polygon, *inside) > 0) break;
+    if (!inside || k == footprints.size()) {
+      refuse(m, "building:part in no kept building");
+      continue;
+    }
+    footprints[k].parts.push_back(std::move(part));
+  }
+}
+
 HeldLots lots_holding(const std::vector<Lot>& lots, const std::vector<Building>& footprints) {
   HeldLots out{std::vector<char>(lots.size(), 0), std::vector<int>(footprints.size(), -1)};
   if (footprints.empty()) return out;
@@ -176,20 +324,6 @@ HeldLots lots_holding(const std::vector<Lot>& lots, const std::vector<Building>&
 
 namespace {
 
-// A point strictly inside the polygon: the centre of its largest triangle.
-std::optional<geom::Vec2> point_inside(const geom::Polygon& p) {
-  std::vector<geom::Vec2> points(p.outer);
-  for (const geom::Ring& h : p.holes) points.insert(points.end(), h.begin(), h.end());
-  double best = 0;
-  std::optional<geom::Vec2> out;
-  for (const auto& t : geom::triangulate(p)) {
-    const geom::Vec2 a = points[t[0]], b = points[t[1]], c = points[t[2]];
-    const double area = std::abs((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y));
-    if (area > best) best = area, out = geom::Vec2{(a.x + b.x + c.x) / 3, (a.y + b.y + c.y) / 3};
-  }
-  return out;
-}
-
 // The roof `shape` over the footprint rising `rise` (or at the zone's pitch where it is 0)
 // above its eaves at 0, or nothing where geom/roof.h does not make that shape.
 std::vector<geom::Face3> pitched_roof(const std::string& shape, const geom::Polygon& footprint, double rise,
@@ -207,9 +341,37 @@ std::vector<geom::Face3> pitched_roof(const std::string& shape, const geom::Poly
   return faces;
 }
 
+
+// The roof a mapped building's (or part's) tags ask for over `polygon`, its faces rising
+// from 0, or flat (no faces) where geom/roof.h does not make that shape, counted.
+std::pair<std::string, std::vector<geom::Face3>> tagged_roof(const MappedBuilding& m, const geom::Polygon& polygon,
+                                                             double pitch, MappedTally& tally) {
+  const std::string shape = m.roof_shape.empty() ? "flat" : m.roof_shape;
+  if (shape == "flat") return {shape, {}};
+  std::vector<geom::Face3> roof = pitched_roof(shape, polygon, m.roof_height.value_or(0), pitch);
+  if (!roof.empty()) return {shape, std::move(roof)};
+  const bool known = shape == "gabled" || shape == "hipped" || shape == "pyramidal";
+  ++tally.made_flat[shape + (known ? ": the footprint's shape does not take it" : ": not a shape Exacity builds")];
+  return {"flat", {}};
+}
+
+// The roof put on walls from `bottom` up to `height`: a roof as tall as the walls leaves
+// them none, and is made flat (counted); the faces stand on the eaves. The eaves' height.
+double put_roof(std::string& shape, std::vector<geom::Face3>& roof, double bottom, double height, MappedTally& tally) {
+  if (!roof.empty() && !(geom::roof_top(roof) < height - bottom)) {
+    ++tally.made_flat[shape + ": its roof as tall as the building"];
+    roof.clear(), shape = "flat";
+  }
+  const double eaves = height - geom::roof_top(roof);
+  for (geom::Face3& f : roof)
+    for (geom::Vec3& v : f) v[2] += eaves;
+  return eaves;
+}
+
 }  // namespace
 
 void raise_mapped_buildings(std::vector<Building>& footprints, const std::vector<MappedBuilding>& drawn,
+                            const std::vector<MappedBuilding>& drawn_parts,
                             const HeldLots& held, const std::vector<Lot>& lots, const CityMap& map, const std::vector<ZoneFeature>& zones,
                             const CitySettings& city, const Channels& channels, const Terrain* terrain, int first_id,
                             MappedTally& tally) {
@@ -235,16 +397,7 @@ void raise_mapped_buildings(std::vector<Building>& footprints, const std::vector
     const auto settings = city.zone_settings.find(b.zone);
     const BuildingSettings p = settings != city.zone_settings.end() ? settings->second.buildings : BuildingSettings{};
     // The roof first: a height from levels stands its roof on its walls.
-    std::string shape = m.roof_shape.empty() ? "flat" : m.roof_shape;
-    std::vector<geom::Face3> roof;
-    if (shape != "flat") {
-      roof = pitched_roof(shape, b.polygon, m.roof_height.value_or(0), p.roof_pitch);
-      if (roof.empty()) {
-        const bool known = shape == "gabled" || shape == "hipped" || shape == "pyramidal";
-        ++tally.made_flat[shape + (known ? ": the footprint's shape does not take it" : ": not a shape Exacity builds")];
-        shape = "flat";
-      }
-    }
+    auto [shape, roof] = tagged_roof(m, b.polygon, p.roof_pitch, tally);
     const double rise = geom::roof_top(roof);
     if (m.height) {
       b.height = *m.height, ++tally.heights["height"];
@@ -261,18 +414,32 @@ void raise_mapped_buildings(std::vector<Building>& footprints, const std::vector
                                               : 1;
       b.height = building_height(p, near_centre, rng) + rise, ++tally.heights["zone"];
     }
-    // A roof as tall as the building leaves it no walls.
-    if (!roof.empty() && !(rise < b.height)) {
-      ++tally.made_flat[shape + ": its roof as tall as the building"];
-      roof.clear(), shape = "flat";
-    }
+    b.eaves = put_roof(shape, roof, 0, b.height, tally);
     b.roof = shape;
-    b.eaves = b.height - geom::roof_top(roof);
-    for (geom::Face3& f : roof)
-      for (geom::Vec3& v : f) v[2] += b.eaves;
     b.roof_faces = std::move(roof);
     ++tally.roofs[b.roof];
     if (terrain) std::tie(b.base, b.floor) = terrain->range_under(b.polygon.outer);
+    // Its parts: each from its bottom to its own height, the building's where it tags none.
+    std::vector<BuildingPart> parts;
+    for (BuildingPart& part : b.parts) {
+      const MappedBuilding& t = drawn_parts[part.mapped];
+      auto [part_shape, part_roof] = tagged_roof(t, part.polygon, p.roof_pitch, tally);
+      part.bottom = t.min_height ? *t.min_height : t.min_level ? *t.min_level * p.storey_height : 0;
+      part.height = t.height ? *t.height : t.levels ? *t.levels * p.storey_height + geom::roof_top(part_roof) : b.height;
+      if (!(part.height > part.bottom)) {
+        ++tally.parts_refused["building:part whose height is not above its min_height"];
+        if (tally.named.size() < kNamed) tally.named.push_back(t.name + ": refused, its height is not above its min_height");
+        continue;
+      }
+      part.eaves = put_roof(part_shape, part_roof, part.bottom, part.height, tally);
+      part.roof = part_shape;
+      part.roof_faces = std::move(part_roof);
+      ++tally.parts, ++tally.part_roofs[part.roof];
+      parts.push_back(std::move(part));
+    }
+    b.parts = std::move(parts);
+    if (!b.parts.empty()) b.height = 0;
+    for (const BuildingPart& part : b.parts) b.height = std::max(b.height, part.height);
   }
 }
 

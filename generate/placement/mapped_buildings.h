@@ -29,13 +29,34 @@ struct MappedTally {
   std::map<std::string, int> made_flat;  // roof:shape values made flat, and why
   std::vector<std::string> named;       // the first refusals and repairs, each naming its building
   int held_lots = 0;                    // lots not built again
+  // building:parts: those raised in a kept building, and those refused by why.
+  int parts = 0;
+  std::map<std::string, int> parts_refused, part_roofs;
+  // Roads narrowed to give way to mapped buildings, and the first few, each named with what
+  // was narrowed and for which building.
+  int roads_narrowed = 0;
+  std::vector<std::string> narrowed;
 };
+
+// Roads give way to the mapped buildings (a mapped building is what stands there; a road's
+// surface is as wide as its width tag, else its lanes, else its class's guess): a road whose
+// surface reaches over a mapped footprint loses the sidewalk on that building's side, then
+// width, down to its carriageway as mapped (`carriageway`; else one lane of 3.5 m where it
+// is one-way or a service road, else two, at most its width) and no further: a building on
+// that carriageway is still refused. Decided by GEOS's distance from the road's centre line
+// to each footprint, 1 cm clear. Before the map is built; each road narrowed counted.
+void give_way_to_mapped_buildings(DrawnFeatures& drawn, MappedTally& tally);
 
 // The mapped footprints the city keeps, as drawn: each polygon's rings simple (else
 // mended by GEOS's MakeValid where that leaves one polygon), outer ring counter-clockwise
 // and holes clockwise, over no road surface of the map, and overlapping no footprint kept
 // before it. `mapped` is each one's index in `drawn`; zone, heights and roof come later.
 std::vector<Building> mapped_footprints(const std::vector<MappedBuilding>& drawn, const CityMap& map, MappedTally& tally);
+
+// Gives each kept footprint the building:parts (`drawn`) that lie in it: a point inside the
+// part (simple, else made valid as a footprint is) inside its outline; the others are
+// counted as refused, as are all of a refused building's. Raised with their building.
+void attach_building_parts(std::vector<Building>& footprints, const std::vector<MappedBuilding>& drawn, MappedTally& tally);
 
 // The lots mapped footprints stand on: their interiors meet (exactly).
 struct HeldLots {
@@ -49,7 +70,11 @@ HeldLots lots_holding(const std::vector<Lot>& lots, const std::vector<Building>&
 // `building:levels` × the zone's storey_height (plus its roof), else one drawn from the
 // zone's heights as an extruded building's; its roof from `roof:shape` and `roof:height`
 // where geom/roof.h makes that shape, else flat (counted). Ids run on from `first_id`.
+// Its building:parts (Simple 3D Buildings) each rise from `min_height` (else
+// `building:min_level` storeys) to their own height, found as the building's, under their
+// own roof; the building's height is then their highest top.
 void raise_mapped_buildings(std::vector<Building>& footprints, const std::vector<MappedBuilding>& drawn,
+                            const std::vector<MappedBuilding>& drawn_parts,
                             const HeldLots& held, const std::vector<Lot>& lots, const CityMap& map, const std::vector<ZoneFeature>& zones,
                             const CitySettings& city, const Channels& channels, const Terrain* terrain, int first_id,
                             MappedTally& tally);

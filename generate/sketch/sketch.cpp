@@ -183,9 +183,11 @@ class Parser {
     const json& coords = g["coordinates"];
     const json props = f.contains("properties") && f["properties"].is_object() ? f["properties"] : json::object();
     bool is_zone = props.contains("zone"), is_road = props.contains("road");
-    if (!is_zone && !is_road && props.contains("building") && !props["building"].is_null() && props["building"] != "no" &&
-        props["building"] != false)
-      return mapped_building(props, type, coords, where, index, sketch);
+    auto tagged = [&](const char* key) {
+      return props.contains(key) && !props[key].is_null() && props[key] != "no" && props[key] != false;
+    };
+    if (!is_zone && !is_road && tagged("building")) return mapped_building(props, type, coords, where, index, sketch, false);
+    if (!is_zone && !is_road && tagged("building:part")) return mapped_building(props, type, coords, where, index, sketch, true);
     if (is_zone == is_road)
       fail(where, is_zone ? "feature has both \"zone\" and \"road\"; keep one"
                           : "feature has neither a \"zone\" nor a \"road\" property; add one");
@@ -230,6 +232,8 @@ class Parser {
     }
     if (props.contains("width") && !props["width"].is_null())
       rf.width = number(props["width"], where + " width", kMinRoadWidth, kMaxRoadWidth);
+    if (props.contains("carriageway") && props["carriageway"].is_number())
+      rf.carriageway = std::clamp(props["carriageway"].get<double>(), kMinRoadWidth, rf.width);
     auto line = [&](const json& j, const std::string& w) {
       geom::Polyline l = positions(j, w);
       if (l.size() < 2) fail(w, "a road needs at least 2 distinct points");
@@ -247,35 +251,42 @@ class Parser {
 
   // A mapped building: each polygon one footprint, kept as drawn; a ring the reader cannot
   // take (fewer than 3 distinct points) is the building's problem, counted when it is
-  // refused, not the sketch's. Tags that are not numbers are as if absent.
+  // refused, not the sketch's. Tags that are not numbers are as if absent. A building:part
+  // (`part`) is read the same, into the parts.
   void mapped_building(const json& props, const std::string& type, const json& coords, const std::string& where,
-                       int index, Sketch& sketch) const {
+                       int index, Sketch& sketch, bool part) const {
     if (type != "Polygon" && type != "MultiPolygon")
-      fail(where, "a building must be a Polygon or MultiPolygon, not " + quote(type) + "; draw its footprint or delete it");
+      fail(where, std::string(part ? "a building:part" : "a building") + " must be a Polygon or MultiPolygon, not " +
+                      quote(type) + "; draw its footprint or delete it");
     MappedBuilding b;
     b.index = index;
     b.name = where;
-    const json& tag = props["building"];
+    const json& tag = props[part ? "building:part" : "building"];
     b.building = tag.is_string() ? tag.get<std::string>() : tag.dump();
     if (props.contains("osm_id") && props["osm_id"].is_string()) b.osm_id = props["osm_id"].get<std::string>();
     else if (props.contains("osm_id") && props["osm_id"].is_number_integer()) b.osm_id = props["osm_id"].dump();
+    for (const char* key : {"identificatie", "fid"})
+      if (props.contains(key) && b.source_id.first.empty() && (props[key].is_string() || props[key].is_number_integer()))
+        b.source_id = {key, props[key].is_string() ? props[key].get<std::string>() : props[key].dump()};
     b.height = tagged_number(props, "height");
     b.levels = tagged_number(props, "building:levels");
     b.roof_height = tagged_number(props, "roof:height");
+    b.min_height = tagged_number(props, "min_height");
+    b.min_level = tagged_number(props, "building:min_level");
     if (props.contains("roof:shape") && props["roof:shape"].is_string()) b.roof_shape = props["roof:shape"].get<std::string>();
     auto add = [&](const json& rings, const std::string& w) {
-      MappedBuilding part = b;
+      MappedBuilding polygon = b;
       if (!rings.is_array() || rings.empty()) fail(w, "a Polygon needs at least one ring");
       for (std::size_t i = 0; i < rings.size(); ++i) {
         geom::Ring r = positions(rings[i], w + (i ? " hole " + std::to_string(i) : std::string(" outer ring")));
         if (r.size() > 1 && r.front() == r.back()) r.pop_back();
         std::set<std::pair<double, double>> distinct;
         for (geom::Vec2 p : r) distinct.insert({p.x, p.y});
-        if (distinct.size() < 3) part.problem = "a ring of fewer than 3 distinct points";
-        (i ? part.polygon.holes.emplace_back() : part.polygon.outer) = std::move(r);
+        if (distinct.size() < 3) polygon.problem = "a ring of fewer than 3 distinct points";
+        (i ? polygon.polygon.holes.emplace_back() : polygon.polygon.outer) = std::move(r);
       }
-      if (w != where) part.name = w;
-      sketch.buildings.push_back(std::move(part));
+      if (w != where) polygon.name = w;
+      (part ? sketch.building_parts : sketch.buildings).push_back(std::move(polygon));
     };
     if (type == "Polygon") return add(coords, where);
     if (!coords.is_array()) fail(where, "a MultiPolygon's coordinates must be an array of polygons");
@@ -655,7 +666,8 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
       for (const auto& [why, count] : (*file)["skipped"].items())
         if (count.is_number_integer()) {
           counts.left_out[why] = count.get<int>();
-          if (why.rfind("building", 0) == 0) sketch.buildings_left_out[why] += count.get<int>();
+          if (why.rfind("building:part", 0) == 0) sketch.building_parts_left_out[why] += count.get<int>();
+          else if (why.rfind("building", 0) == 0) sketch.buildings_left_out[why] += count.get<int>();
         }
     if (file->contains("buildings_named") && (*file)["buildings_named"].is_array())
       for (const auto& what : (*file)["buildings_named"])
