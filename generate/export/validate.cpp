@@ -1,6 +1,7 @@
 #include "generate/export/validate.h"
 #include "generate/export/validate_window.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -9,6 +10,7 @@
 #include <string_view>
 #include <stdexcept>
 #include <set>
+#include <tuple>
 #include <unordered_map>
 
 #include "generate/cancel.h"
@@ -279,6 +281,10 @@ class FaceLabels {
   std::vector<int> inside_, by_kind_;  // of the face being labelled (FaceCover's buffers)
 };
 
+// A window of the polygons' map (below) and its outline.
+struct Window;
+void add_window(geom::PlanarMap& map, const Window& w, int counter);
+
 // Polygon p's outer ring winds around counter 2p and its holes around 2p + 1.
 void add_polygon_rings(geom::PlanarMap& map, const std::vector<const geom::Polygon*>& polygons) {
   const int P = static_cast<int>(polygons.size());
@@ -359,7 +365,7 @@ void check_zoning(Checker& c, const DrawnFeatures& sketch, const std::vector<Pol
 // a road area. `in_window` says which polygons the map holds (all without a window), and
 // `fronting` which further road areas it needs for the lots' frontage.
 void check_polygon_map(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
-                       const std::vector<const geom::Polygon*>& polygons, const std::vector<geom::Box>* window,
+                       const std::vector<const geom::Polygon*>& polygons, const Window* window,
                        const std::vector<char>& in_window, const std::vector<char>& fronting) {
   MapPolygons local;
   for (std::size_t p = 0; p < refs.size(); ++p)
@@ -367,9 +373,7 @@ void check_polygon_map(Checker& c, const DrawnFeatures& sketch, const std::vecto
   geom::PlanarMap map;
   const int P = static_cast<int>(local.polygons.size());
   add_polygon_rings(map, local.polygons);
-  if (window)
-    for (const geom::Box& b : *window)
-      map.add_ring({{b.min_x, b.min_y}, {b.max_x, b.min_y}, {b.max_x, b.max_y}, {b.min_x, b.max_y}}, 2 * P);
+  if (window) add_window(map, *window, 2 * P);
   map.insert_batch();
   FaceLabels labels(sketch, local.refs, nullptr, P, window ? 2 * P : -1);
   map.label_faces([&](const geom::Windings& w) { return labels.of(w); });
@@ -384,7 +388,7 @@ void check_polygon_map(Checker& c, const DrawnFeatures& sketch, const std::vecto
 }
 
 void check_tiling(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
-                  const std::vector<const geom::Polygon*>& polygons, const std::vector<geom::Box>* window = nullptr,
+                  const std::vector<const geom::Polygon*>& polygons, const Window* window = nullptr,
                   const std::vector<char>& in_window = {}, const std::vector<char>& fronting = {}) {
   check_polygon_map(c, sketch, refs, polygons, window, in_window, fronting);
   check_zoning(c, sketch, refs, polygons);
@@ -540,27 +544,6 @@ ValidatedPolygons polygons_of(const std::vector<PolygonRef>& refs, const std::ve
   return out;
 }
 
-// The boxes grown by a metre, and any two that meet replaced by the box around both until
-// none meet: the window's rings then share no edge with each other.
-std::vector<geom::Box> apart(std::vector<geom::Box> boxes) {
-  for (geom::Box& b : boxes) b.min_x -= 1, b.min_y -= 1, b.max_x += 1, b.max_y += 1;
-  for (bool merged = true; merged;) {
-    merged = false;
-    for (std::size_t i = 0; i < boxes.size(); ++i)
-      for (std::size_t j = i + 1; j < boxes.size();) {
-        if (!boxes[i].meets(boxes[j])) {
-          ++j;
-          continue;
-        }
-        boxes[i].add(boxes[j]);
-        boxes[j] = boxes.back();
-        boxes.pop_back();
-        merged = true;
-      }
-  }
-  return boxes;
-}
-
 // The boxes of the polygons that changed since `last`, as they were and as they are. A
 // polygon is kept where one of the same key was there before (one each way) and what it
 // names, mapped through the kept blocks' and lots' ids, is what that one named.
@@ -599,19 +582,70 @@ std::vector<geom::Box> changed_boxes(const ValidatedPolygons& last, const Valida
   }
   for (std::size_t o = 0; o < last.keys.size(); ++o)
     if (!old_kept[o]) boxes.push_back(last.boxes[o]);
-  return apart(std::move(boxes));
+  // A polygon kept in place but naming anew has the same box twice.
+  std::sort(boxes.begin(), boxes.end(), [](const geom::Box& a, const geom::Box& b) {
+    return std::tie(a.min_x, a.min_y, a.max_x, a.max_y) < std::tie(b.min_x, b.min_y, b.max_x, b.max_y);
+  });
+  boxes.erase(std::unique(boxes.begin(), boxes.end(),
+                          [](const geom::Box& a, const geom::Box& b) {
+                            return a.min_x == b.min_x && a.min_y == b.min_y && a.max_x == b.max_x && a.max_y == b.max_y;
+                          }),
+              boxes.end());
+  return boxes;
+}
+
+// The window: the cells of a grid that the changed boxes meet. Its outline is made of the
+// cells' sides with an unmarked cell across, so no two of its edges overlap (overlapping
+// window rings tripped the sweep). The grid is offset by a fraction of a metre so its lines
+// do not run along the sketch's round coordinates.
+struct Window {
+  static constexpr double kCell = 40;
+  double x0 = 0, y0 = 0;
+  std::set<std::pair<int, int>> cells;
+  int column(double x) const { return static_cast<int>(std::floor((x - x0) / kCell)); }
+  int row(double y) const { return static_cast<int>(std::floor((y - y0) / kCell)); }
+  geom::Vec2 corner(int i, int j) const { return {x0 + i * kCell, y0 + j * kCell}; }
+  // Whether a cell the box meets is marked (a cell either side of a box's edge on a grid line counts).
+  bool meets(const geom::Box& b) const {
+    for (int i = column(b.min_x) - 1; i <= column(b.max_x) + 1; ++i)
+      if (auto it = cells.lower_bound({i, row(b.min_y) - 1}); it != cells.end() && it->first == i && it->second <= row(b.max_y) + 1)
+        return true;
+    return false;
+  }
+};
+
+Window window_of(const std::vector<geom::Box>& changed, const ValidatedPolygons& now) {
+  Window w;
+  geom::Box all = geom::Box::none();
+  for (const geom::Box& b : now.boxes) all.add(b);
+  if (!all.holds_nothing()) w.x0 = std::floor(all.min_x) - 0.318, w.y0 = std::floor(all.min_y) - 0.318;
+  for (const geom::Box& b : changed)
+    for (int i = w.column(b.min_x); i <= w.column(b.max_x); ++i)
+      for (int j = w.row(b.min_y); j <= w.row(b.max_y); ++j) w.cells.insert({i, j});
+  return w;
+}
+
+// The window's outline around `counter`, counter-clockwise.
+void add_window(geom::PlanarMap& map, const Window& w, int counter) {
+  for (const auto& [i, j] : w.cells) {
+    const geom::Vec2 a = w.corner(i, j), b = w.corner(i + 1, j), c = w.corner(i + 1, j + 1), d = w.corner(i, j + 1);
+    if (!w.cells.count({i, j - 1})) map.add_edge(a, b, counter);
+    if (!w.cells.count({i + 1, j})) map.add_edge(b, c, counter);
+    if (!w.cells.count({i, j + 1})) map.add_edge(c, d, counter);
+    if (!w.cells.count({i - 1, j})) map.add_edge(d, a, counter);
+  }
 }
 
 // The polygons' map of a window holds every polygon whose box meets it (the only ones
 // that can cover a point in it), and the road areas beside its lots, which the lots'
 // frontage needs.
-void window_polygons(const std::vector<geom::Box>& window, const ValidatedPolygons& now,
-                     const std::vector<PolygonRef>& refs, std::vector<char>& in_window, std::vector<char>& fronting) {
+void window_polygons(const Window& window, const ValidatedPolygons& now, const std::vector<PolygonRef>& refs,
+                     std::vector<char>& in_window, std::vector<char>& fronting) {
   const std::size_t P = refs.size();
   in_window.assign(P, 0), fronting.assign(P, 0);
   std::vector<geom::Box> lots;
   for (std::size_t p = 0; p < P; ++p) {
-    in_window[p] = std::any_of(window.begin(), window.end(), [&](const geom::Box& b) { return b.meets(now.boxes[p]); });
+    in_window[p] = window.meets(now.boxes[p]);
     if (in_window[p] && refs[p].kind == Kind::Lot) lots.push_back(now.boxes[p]);
   }
   for (std::size_t p = 0; p < P; ++p)
@@ -679,7 +713,7 @@ Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* las
         if (!previous) return check_tiling(t, sketch, refs, polygons);
         // Within the window of what changed (docs/design.md, Regions and regenerating); a
         // problem there is looked for again in the whole city, whose check states it.
-        const std::vector<geom::Box> window = changed_boxes(*previous, *now, refs);
+        const Window window = window_of(changed_boxes(*previous, *now, refs), *now);
         std::vector<char> in_window, fronting;
         window_polygons(window, *now, refs, in_window, fronting);
         check_tiling(t, sketch, refs, polygons, &window, in_window, fronting);
