@@ -16,7 +16,6 @@
 #include "generate/cancel.h"
 #include "generate/cancellable_invoke.h"
 #include "generate/city/drawn_zones.h"
-#include "generate/city/memo.h"
 #include "generate/errors.h"
 #include "generate/export/geojson.h"
 #include "generate/export/validate_nesting.h"
@@ -523,11 +522,17 @@ struct ValidatedPolygons {
 namespace {
 
 // A polygon as the window compares it: its kind, its properties but ids, its rings exactly.
+// Coordinates go in as their bytes: exact, and cheaper than text for every polygon of a city.
 std::string polygon_key(const PolygonRef& ref, const geom::Polygon& polygon) {
-  nlohmann::ordered_json properties = *ref.properties;
-  for (const char* id : {"id", "block", "lot", "road", "roads"}) properties.erase(id);
-  std::string key = std::to_string(static_cast<int>(ref.kind)) + properties.dump();
-  append_key(key, polygon);
+  std::string key = std::to_string(static_cast<int>(ref.kind));
+  for (const auto& [name, value] : ref.properties->items())
+    if (name != "id" && name != "block" && name != "lot" && name != "road" && name != "roads") key += nlohmann::json(name).dump() + ':' + value.dump() + ',';
+  auto ring = [&](const geom::Ring& r) {
+    key += '|' + std::to_string(r.size()) + '|';
+    key.append(reinterpret_cast<const char*>(r.data()), r.size() * sizeof(geom::Vec2));
+  };
+  ring(polygon.outer);
+  for (const geom::Ring& h : polygon.holes) ring(h);
   return key;
 }
 
