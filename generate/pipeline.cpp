@@ -25,6 +25,7 @@
 #include "generate/export/svg_map.h"
 #include "generate/city/terrain.h"
 #include "generate/export/validate.h"
+#include "generate/export/validate_window.h"
 #include "generate/regenerate.h"
 #include "geom/kernel.h"
 #include "generate/export/vector_layers.h"
@@ -210,7 +211,10 @@ GenerateResult write_city(const Sketch& sketch, const City& city, const fs::path
   GltfCounts gltf;
   MeshCounts mesh = stages.run("3d export", [&] { return export_3d(city, dir, gltf); });
   std::optional<Validation> validation;
-  if (geom::kernel_validates_its_output()) validation = stages.run("validation", [&] { return validate_output(dir); });
+  if (geom::kernel_validates_its_output())
+    validation = stages.run("validation", [&] {
+      return city.regions ? validate_output(dir, city.regions->validated) : validate_output(dir);
+    });
   ordered_json report = city_report(city, {mesh, gltf, options.vector_formats, city_osm, validation}, stages.seconds);
   report["peak_memory_mib"] = stages.peak_mib;
   write_report(report, dir);

@@ -18,11 +18,16 @@
 
 namespace exacity {
 
+struct ValidatedPolygons;  // generate/export/validate_window.h
+
 struct RegionCache {
   Memo<RoadPlan> road_plans;                // per region of the road stage
   Memo<std::vector<PlannedLot>> lot_plans;  // per block
   Memo<Structures> placements;              // per lot, before it stands on the terrain
   Memo<Mesh> meshes;                        // per building or placed model, for the exports and tiles
+  // The last written city's polygons if it passed validation: the next one is validated
+  // where it changed (validate_window.h). Whatever the settings, since validation reads only files.
+  std::shared_ptr<ValidatedPolygons> validated;
   // Starts a build of `sketch`: a change in what every item reads (the settings, the CRS,
   // the sketch roads, the files the sketch names) forgets everything.
   void next_build(const Sketch& sketch);

@@ -5,12 +5,15 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <iterator>
 #include <random>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "generate/errors.h"
+#include "generate/export/validate_window.h"
 #include "generate/pipeline.h"
 #include "generate/regenerate.h"
 #include "tests/test_util.h"
@@ -223,4 +226,48 @@ TEST(Regenerate, AddingAndRemovingARegion) {
   EXPECT_EQ(without.city.regions->road_plans.misses(), 0);
   EXPECT_GT(without.city.regions->meshes.hits(), 0);
   EXPECT_EQ(without_written, written(previous, "removed full"));
+}
+
+// A city written with a cache is validated where it changed since the last one that passed
+// (generate/export/validate_window.h): a lot moved to another block, or a building pushed off
+// its lot, is found there, with the problems the whole check states.
+TEST(Regenerate, AWindowedValidationFindsWhatTheWholeOneFinds) {
+  const Built city = build(town(), std::make_shared<RegionCache>());
+  const auto dir = testing_util::temp_dir("windowed");
+  StageClock clock(nullptr, kWriteStages);
+  ASSERT_TRUE(write_city(city.sketch, city.city, dir, clock).valid);
+  std::shared_ptr<ValidatedPolygons> last = city.city.regions->validated;
+  ASSERT_TRUE(last);
+  EXPECT_TRUE(validate_output(dir, last).ok());  // nothing changed: an empty window
+  ASSERT_TRUE(last);
+  auto rewrite = [&](const std::string& layer, const std::function<void(json&)>& edit) {
+    const auto file = dir / "vector" / (layer + ".geojson");
+    std::ifstream in(file);
+    json doc = json::parse(in);
+    edit(doc["features"]);
+    std::ofstream(file) << doc.dump();
+  };
+  const auto lots_before = std::filesystem::path(dir / "vector" / "lots.geojson");
+  std::ifstream saved_in(lots_before);
+  const std::string saved((std::istreambuf_iterator<char>(saved_in)), std::istreambuf_iterator<char>());
+  rewrite("lots", [](json& lots) {
+    json& lot = lots[lots.size() / 2];
+    lot["properties"]["block"] = lot["properties"]["block"].get<int>() + 1;
+  });
+  const Validation moved = validate_output(dir, last);
+  EXPECT_FALSE(moved.ok());
+  EXPECT_FALSE(last);  // a city that fails keeps nothing for the next
+  EXPECT_EQ(moved.problems, validate_output(dir).problems);
+  EXPECT_NE(testing::PrintToString(moved.problems).find("leaves its block"), std::string::npos) << testing::PrintToString(moved.problems);
+
+  std::ofstream(lots_before) << saved;
+  last = nullptr;
+  ASSERT_TRUE(validate_output(dir, last).ok());  // whole, and kept
+  rewrite("buildings", [](json& buildings) {
+    json& outer = buildings[buildings.size() / 3]["geometry"]["coordinates"][0];
+    for (std::size_t k : {std::size_t(0), outer.size() - 1}) outer[k][0] = outer[k][0].get<double>() + 40;
+  });
+  const Validation pushed = validate_output(dir, last);
+  EXPECT_FALSE(pushed.ok());
+  EXPECT_EQ(pushed.problems, validate_output(dir).problems);
 }

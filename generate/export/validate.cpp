@@ -1,12 +1,16 @@
 #include "generate/export/validate.h"
+#include "generate/export/validate_window.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
 #include <numeric>
 #include <span>
+#include <string_view>
 #include <stdexcept>
 #include <set>
+#include <tuple>
 #include <unordered_map>
 
 #include "generate/cancel.h"
@@ -146,19 +150,27 @@ class FaceCover {
 
 // Labels each face of the tiling map with the index of what is wrong there, 0 where
 // nothing is; each problem is stated once however many faces have it.
+// Two maps are labelled: the zoning map (zones, parks, water, road areas and the drawn
+// zones), whose faces are checked against the sketch, and the map of every polygon (or of
+// those a window meets), whose faces get every other check.
 class FaceLabels {
  public:
-  FaceLabels(const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs, const DrawnZones& drawn, int polygons)
-      : sketch_(sketch), refs_(refs), drawn_(drawn), polygons_(polygons) {}
+  // With `drawn`, the zoning map's; else the polygons' map, whose faces outside the window
+  // (counters from window_first on; -1: no window) are not checked.
+  FaceLabels(const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs, const DrawnZones* drawn, int polygons,
+             int window_first = -1)
+      : sketch_(sketch), refs_(refs), drawn_(drawn), polygons_(polygons), window_first_(window_first) {}
 
   int of(const geom::Windings& w) {
     cancel_.check();
+    if (window_first_ >= 0 && std::none_of(w.begin(), w.end(), [&](const auto& c) { return c.first >= window_first_; }))
+      return 0;
     inside_.clear();
     if (int label = ring_windings(w, inside_)) return label;
     const FaceCover here(refs_, inside_, by_kind_);
+    if (drawn_) return against_sketch(here, w);
     if (int label = overlaps(here)) return label;
-    if (int label = nesting(here)) return label;
-    return against_sketch(here, w);
+    return nesting(here);
   }
 
   std::vector<std::string> messages{""};
@@ -180,8 +192,15 @@ class FaceLabels {
       int p = w[i].first / 2, outer = 0, holes = 0;
       for (; i < w.size() && w[i].first < 2 * polygons_ && w[i].first / 2 == p; ++i)
         (w[i].first % 2 == 0 ? outer : holes) = w[i].second;
-      if (outer != 0 && outer != 1) return wrong(refs_[p].name + ": outer ring winds " + std::to_string(outer) + " times");
-      if (holes != 0 && (holes != -1 || outer != 1)) return wrong(refs_[p].name + ": holes overlap or leave the outer ring");
+      // The zoning map's rings are checked in the polygons' map: a ring wound wrong is not in the face.
+      if (outer != 0 && outer != 1) {
+        if (drawn_) continue;
+        return wrong(refs_[p].name + ": outer ring winds " + std::to_string(outer) + " times");
+      }
+      if (holes != 0 && (holes != -1 || outer != 1)) {
+        if (drawn_) continue;
+        return wrong(refs_[p].name + ": holes overlap or leave the outer ring");
+      }
       if (outer == 1 && holes == 0) inside.push_back(p);
     }
     return 0;
@@ -236,7 +255,7 @@ class FaceLabels {
 
   // The drawn zones are covered, by zones of the type drawn, and nothing else is zoned.
   int against_sketch(const FaceCover& here, const geom::Windings& w) {
-    int top = drawn_.top_zone(w);
+    int top = drawn_->top_zone(w);
     std::size_t surfaces = here.count(kZoning);
     if (top >= 0 && surfaces == 0)
       return wrong("the drawn zone features[" + std::to_string(sketch_.zones[top].index) +
@@ -253,13 +272,17 @@ class FaceLabels {
 
   const DrawnFeatures& sketch_;
   const std::vector<PolygonRef>& refs_;
-  const DrawnZones& drawn_;
-  const int polygons_;
+  const DrawnZones* drawn_;
+  const int polygons_, window_first_;
   const CancelCheck cancel_;
   std::map<std::string, int> message_index_{{"", 0}};
   std::map<std::pair<int, int>, int> nested_;  // overlapping buildings -> their problem's label, 0 for none
   std::vector<int> inside_, by_kind_;  // of the face being labelled (FaceCover's buffers)
 };
+
+// A window of the polygons' map (below) and its outline.
+struct Window;
+void add_window(geom::PlanarMap& map, const Window& w, int counter);
 
 // Polygon p's outer ring winds around counter 2p and its holes around 2p + 1.
 void add_polygon_rings(geom::PlanarMap& map, const std::vector<const geom::Polygon*>& polygons) {
@@ -310,21 +333,64 @@ std::vector<bool> check_shared_edges(Checker& c, const geom::PlanarMap& map, con
   return fronts;
 }
 
-// All polygons and the drawn zones in one exact map, each face labelled with what is
-// wrong there; then the map's edges. Every lot shares an edge with a road area.
-void check_tiling(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
+// The polygons of the given kinds (all for none), as the refs and rings of a map of their own.
+struct MapPolygons {
+  std::vector<PolygonRef> refs;
+  std::vector<const geom::Polygon*> polygons;
+  void add(const PolygonRef& ref, const geom::Polygon* polygon) { refs.push_back(ref), polygons.push_back(polygon); }
+};
+
+// The zoning polygons and the drawn zones in one exact map, each face labelled with what
+// is wrong there against the sketch; rounding slivers are measured here.
+void check_zoning(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
                   const std::vector<const geom::Polygon*>& polygons) {
+  MapPolygons zoning;
+  for (std::size_t p = 0; p < refs.size(); ++p)
+    if (refs[p].kind == Kind::Zone || refs[p].kind == Kind::Park || refs[p].kind == Kind::Water ||
+        refs[p].kind == Kind::Road || refs[p].kind == Kind::Bridge)
+      zoning.add(refs[p], polygons[p]);
   geom::PlanarMap map;
-  const int P = static_cast<int>(polygons.size());
-  add_polygon_rings(map, polygons);
+  const int P = static_cast<int>(zoning.polygons.size());
+  add_polygon_rings(map, zoning.polygons);
   DrawnZones drawn(sketch.zones, map, 2 * P);
   map.insert_batch();
-  FaceLabels labels(sketch, refs, drawn, P);
+  FaceLabels labels(sketch, zoning.refs, &drawn, P);
   map.label_faces([&](const geom::Windings& w) { return labels.of(w); });
   report_face_problems(c, map, labels);
-  const std::vector<bool> fronts = check_shared_edges(c, map, refs, P);
-  for (int p = 0; p < P; ++p)
-    if (refs[p].kind == Kind::Lot && !fronts[p]) c.problem(refs[p].name + " touches no road area");
+}
+
+// The polygons in one exact map, each face inside the window (every face without one)
+// labelled with what is wrong there; then the map's edges. Every lot shares an edge with
+// a road area. `in_window` says which polygons the map holds (all without a window), and
+// `fronting` which further road areas it needs for the lots' frontage.
+void check_polygon_map(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
+                       const std::vector<const geom::Polygon*>& polygons, const Window* window,
+                       const std::vector<char>& in_window, const std::vector<char>& fronting) {
+  MapPolygons local;
+  for (std::size_t p = 0; p < refs.size(); ++p)
+    if (!window || in_window[p] || fronting[p]) local.add(refs[p], polygons[p]);
+  geom::PlanarMap map;
+  const int P = static_cast<int>(local.polygons.size());
+  add_polygon_rings(map, local.polygons);
+  if (window) add_window(map, *window, 2 * P);
+  map.insert_batch();
+  FaceLabels labels(sketch, local.refs, nullptr, P, window ? 2 * P : -1);
+  map.label_faces([&](const geom::Windings& w) { return labels.of(w); });
+  report_face_problems(c, map, labels);
+  const std::vector<bool> fronts = check_shared_edges(c, map, local.refs, P);
+  for (std::size_t p = 0, q = 0; p < refs.size(); ++p) {
+    if (window && !in_window[p] && !fronting[p]) continue;
+    const bool checked = !window || in_window[p];  // a road area added for frontage has no lot's verdict
+    if (checked && refs[p].kind == Kind::Lot && !fronts[q]) c.problem(refs[p].name + " touches no road area");
+    ++q;
+  }
+}
+
+void check_tiling(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
+                  const std::vector<const geom::Polygon*>& polygons, const Window* window = nullptr,
+                  const std::vector<char>& in_window = {}, const std::vector<char>& fronting = {}) {
+  check_polygon_map(c, sketch, refs, polygons, window, in_window, fronting);
+  check_zoning(c, sketch, refs, polygons);
 }
 
 // The centre lines are a noded network: two of them meet only at a vertex of both. Every
@@ -447,7 +513,154 @@ void check_references(Checker& c, const Layer& from, const char* key, const Laye
 
 }  // namespace
 
-Validation validate_output(const fs::path& dir) {
+struct ValidatedPolygons {
+  std::vector<std::string> keys;  // what it is, ids left out (polygon_key)
+  std::vector<int> ids, names;    // its id; the id a lot's block or a building's lot has, else -1
+  std::vector<geom::Box> boxes;
+};
+
+namespace {
+
+// A polygon as the window compares it: its kind, its properties but ids, its rings exactly.
+// Coordinates go in as their bytes: exact, and cheaper than text for every polygon of a city.
+std::string polygon_key(const PolygonRef& ref, const geom::Polygon& polygon) {
+  std::string key = std::to_string(static_cast<int>(ref.kind));
+  for (const auto& [name, value] : ref.properties->items())
+    if (name != "id" && name != "block" && name != "lot" && name != "road" && name != "roads") key += nlohmann::json(name).dump() + ':' + value.dump() + ',';
+  auto ring = [&](const geom::Ring& r) {
+    key += '|' + std::to_string(r.size()) + '|';
+    key.append(reinterpret_cast<const char*>(r.data()), r.size() * sizeof(geom::Vec2));
+  };
+  ring(polygon.outer);
+  for (const geom::Ring& h : polygon.holes) ring(h);
+  return key;
+}
+
+ValidatedPolygons polygons_of(const std::vector<PolygonRef>& refs, const std::vector<const geom::Polygon*>& polygons) {
+  ValidatedPolygons out;
+  for (std::size_t p = 0; p < refs.size(); ++p) {
+    out.keys.push_back(polygon_key(refs[p], *polygons[p]));
+    out.ids.push_back(refs[p].id);
+    out.names.push_back(refs[p].kind == Kind::Lot ? refs[p].block : refs[p].kind == Kind::Building ? refs[p].lot : -1);
+    geom::Box box = geom::Box::none();
+    for (geom::Vec2 q : polygons[p]->outer) box.add(q);
+    out.boxes.push_back(box);
+  }
+  return out;
+}
+
+// The boxes of the polygons that changed since `last`, as they were and as they are. A
+// polygon is kept where one of the same key was there before (one each way) and what it
+// names, mapped through the kept blocks' and lots' ids, is what that one named.
+std::vector<geom::Box> changed_boxes(const ValidatedPolygons& last, const ValidatedPolygons& now,
+                                     const std::vector<PolygonRef>& refs) {
+  auto index = [](const std::vector<std::string>& keys) {
+    std::unordered_map<std::string_view, int> at;
+    for (std::size_t i = 0; i < keys.size(); ++i)
+      if (auto [it, added] = at.emplace(keys[i], static_cast<int>(i)); !added) it->second = -1;  // not one of a kind
+    return at;
+  };
+  const auto old_at = index(last.keys), new_at = index(now.keys);
+  std::vector<int> match(now.keys.size(), -1);
+  std::unordered_map<int, int> block_ids, lot_ids;  // old id -> new id, of matched blocks and lots
+  for (std::size_t p = 0; p < now.keys.size(); ++p) {
+    const auto o = old_at.find(now.keys[p]);
+    if (o == old_at.end() || o->second < 0 || new_at.at(now.keys[p]) < 0) continue;
+    match[p] = o->second;
+    if (refs[p].kind == Kind::Block) block_ids[last.ids[o->second]] = now.ids[p];
+    if (refs[p].kind == Kind::Lot) lot_ids[last.ids[o->second]] = now.ids[p];
+  }
+  auto mapped = [](const std::unordered_map<int, int>& ids, int id) {
+    const auto it = ids.find(id);
+    return it == ids.end() ? -2 : it->second;
+  };
+  std::vector<char> old_kept(last.keys.size(), 0);
+  std::vector<geom::Box> boxes;
+  for (std::size_t p = 0; p < now.keys.size(); ++p) {
+    const int o = match[p];
+    bool kept = o >= 0;
+    if (kept && refs[p].kind == Kind::Lot) kept = mapped(block_ids, last.names[o]) == now.names[p];
+    if (kept && refs[p].kind == Kind::Building)
+      kept = last.names[o] < 0 ? now.names[p] < 0 : mapped(lot_ids, last.names[o]) == now.names[p];
+    if (kept) old_kept[o] = 1;
+    else boxes.push_back(now.boxes[p]);
+  }
+  for (std::size_t o = 0; o < last.keys.size(); ++o)
+    if (!old_kept[o]) boxes.push_back(last.boxes[o]);
+  // A polygon kept in place but naming anew has the same box twice.
+  std::sort(boxes.begin(), boxes.end(), [](const geom::Box& a, const geom::Box& b) {
+    return std::tie(a.min_x, a.min_y, a.max_x, a.max_y) < std::tie(b.min_x, b.min_y, b.max_x, b.max_y);
+  });
+  boxes.erase(std::unique(boxes.begin(), boxes.end(),
+                          [](const geom::Box& a, const geom::Box& b) {
+                            return a.min_x == b.min_x && a.min_y == b.min_y && a.max_x == b.max_x && a.max_y == b.max_y;
+                          }),
+              boxes.end());
+  return boxes;
+}
+
+// The window: the cells of a grid that the changed boxes meet. Its outline is made of the
+// cells' sides with an unmarked cell across, so no two of its edges overlap (overlapping
+// window rings tripped the sweep). The grid is offset by a fraction of a metre so its lines
+// do not run along the sketch's round coordinates.
+struct Window {
+  static constexpr double kCell = 40;
+  double x0 = 0, y0 = 0;
+  std::set<std::pair<int, int>> cells;
+  int column(double x) const { return static_cast<int>(std::floor((x - x0) / kCell)); }
+  int row(double y) const { return static_cast<int>(std::floor((y - y0) / kCell)); }
+  geom::Vec2 corner(int i, int j) const { return {x0 + i * kCell, y0 + j * kCell}; }
+  // Whether a cell the box meets is marked (a cell either side of a box's edge on a grid line counts).
+  bool meets(const geom::Box& b) const {
+    for (int i = column(b.min_x) - 1; i <= column(b.max_x) + 1; ++i)
+      if (auto it = cells.lower_bound({i, row(b.min_y) - 1}); it != cells.end() && it->first == i && it->second <= row(b.max_y) + 1)
+        return true;
+    return false;
+  }
+};
+
+Window window_of(const std::vector<geom::Box>& changed, const ValidatedPolygons& now) {
+  Window w;
+  geom::Box all = geom::Box::none();
+  for (const geom::Box& b : now.boxes) all.add(b);
+  if (!all.holds_nothing()) w.x0 = std::floor(all.min_x) - 0.318, w.y0 = std::floor(all.min_y) - 0.318;
+  for (const geom::Box& b : changed)
+    for (int i = w.column(b.min_x); i <= w.column(b.max_x); ++i)
+      for (int j = w.row(b.min_y); j <= w.row(b.max_y); ++j) w.cells.insert({i, j});
+  return w;
+}
+
+// The window's outline around `counter`, counter-clockwise.
+void add_window(geom::PlanarMap& map, const Window& w, int counter) {
+  for (const auto& [i, j] : w.cells) {
+    const geom::Vec2 a = w.corner(i, j), b = w.corner(i + 1, j), c = w.corner(i + 1, j + 1), d = w.corner(i, j + 1);
+    if (!w.cells.count({i, j - 1})) map.add_edge(a, b, counter);
+    if (!w.cells.count({i + 1, j})) map.add_edge(b, c, counter);
+    if (!w.cells.count({i, j + 1})) map.add_edge(c, d, counter);
+    if (!w.cells.count({i - 1, j})) map.add_edge(d, a, counter);
+  }
+}
+
+// The polygons' map of a window holds every polygon whose box meets it (the only ones
+// that can cover a point in it), and the road areas beside its lots, which the lots'
+// frontage needs.
+void window_polygons(const Window& window, const ValidatedPolygons& now, const std::vector<PolygonRef>& refs,
+                     std::vector<char>& in_window, std::vector<char>& fronting) {
+  const std::size_t P = refs.size();
+  in_window.assign(P, 0), fronting.assign(P, 0);
+  std::vector<geom::Box> lots;
+  for (std::size_t p = 0; p < P; ++p) {
+    in_window[p] = window.meets(now.boxes[p]);
+    if (in_window[p] && refs[p].kind == Kind::Lot) lots.push_back(now.boxes[p]);
+  }
+  for (std::size_t p = 0; p < P; ++p)
+    if (!in_window[p] && (refs[p].kind == Kind::Road || refs[p].kind == Kind::Bridge))
+      fronting[p] = std::any_of(lots.begin(), lots.end(), [&](const geom::Box& b) { return b.meets(now.boxes[p]); });
+}
+
+Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* last) {
+  // Kept again below only if this city passes.
+  const std::shared_ptr<ValidatedPolygons> previous = last ? std::exchange(*last, nullptr) : nullptr;
   Validation v;
   Checker c(v);
   Sketch sketch;
@@ -496,9 +709,21 @@ Validation validate_output(const fs::path& dir) {
   // The tiling's map, the roads' checks and the clutter's share nothing: they run at once,
   // each with its own problems, taken in this order as if they had run one after another.
   Validation tiling, road_checks, clutter;
+  std::shared_ptr<ValidatedPolygons> now;
   invoke_cancellable(
       [&] {
         Checker t(tiling);
+        if (!last) return check_tiling(t, sketch, refs, polygons);
+        now = std::make_shared<ValidatedPolygons>(polygons_of(refs, polygons));
+        if (!previous) return check_tiling(t, sketch, refs, polygons);
+        // Within the window of what changed (docs/design.md, Regions and regenerating); a
+        // problem there is looked for again in the whole city, whose check states it.
+        const Window window = window_of(changed_boxes(*previous, *now, refs), *now);
+        std::vector<char> in_window, fronting;
+        window_polygons(window, *now, refs, in_window, fronting);
+        check_tiling(t, sketch, refs, polygons, &window, in_window, fronting);
+        if (tiling.ok()) return;
+        tiling = {};
         check_tiling(t, sketch, refs, polygons);
       },
       [&] {
@@ -511,7 +736,16 @@ Validation validate_output(const fs::path& dir) {
     v.features.insert(part->features.begin(), part->features.end());
     v.widest_sliver = std::max(v.widest_sliver, part->widest_sliver);
   }
+  if (last && v.ok()) *last = now;
   return v;
+}
+
+}  // namespace
+
+Validation validate_output(const fs::path& dir) { return validate(dir, nullptr); }
+
+Validation validate_output(const fs::path& dir, std::shared_ptr<ValidatedPolygons>& last) {
+  return validate(dir, &last);
 }
 
 }  // namespace exacity

@@ -402,6 +402,13 @@ try {
   }, {timeout: 60000})).jsonValue();
   check(/^[\d,]+ of [\d,]+ regions, [\d,]+ of [\d,]+ blocks, [\d,]+ of [\d,]+ lots, [\d,]+ of [\d,]+ meshes$/.test(reusedText),
         `the report shows what was reused: ${reusedText}`);
+  // And the server time of that update, tiles included (report.json's timings_s).
+  const serverTime = await page.evaluate(() => {
+    const dt = [...document.querySelectorAll('#report dt')].find(d => d.textContent === 'server time');
+    return dt?.nextElementSibling?.textContent;
+  });
+  const stages = (await (await get('/api/report')).json()).timings_s;
+  check(/^\d+\.\d s$/.test(serverTime || '') && 'tiles' in stages, `the report shows the update's server time, tiles included: ${serverTime}`);
   await page.click('#auto-generate');  // untick it: the page keeps the setting for the later steps
 
   // Explore: the 3D view, orbited with the mouse, then rendered.

@@ -76,7 +76,8 @@ export class CityLayers {
     if (!report) return;
     const rows = Object.entries(report.counts || {}).filter(([, v]) => typeof v === "number").map(([k, v]) => [k.replace(/_/g, ' '), v]);
     const seconds = Object.values(report.timings_s || {}).reduce((a, b) => a + (typeof b === 'number' ? b : 0), 0);
-    rows.push(['seconds', seconds.toFixed(1)]);
+    // The server's seconds for this update, from the sketch to the 3D view's tiles.
+    rows.push(['server time', `${seconds.toFixed(1)} s`]);
     // What this generation reused of the one before (the server keeps each region's plans).
     const reused = report.reused;
     if (reused) {
