@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 #include "generate/city/format_number.h"
 #include "generate/errors.h"
@@ -18,7 +17,6 @@ using nlohmann::ordered_json;
 
 constexpr double kSetbackReach = 25;  // m: a footprint farther from every road fronts none
 constexpr double kGapReach = 20;      // m: a footprint farther from every other stands alone
-constexpr double kTouching = 0.5;     // m: a median gap below this is a continuous frontage
 
 // The value at quantile q (0 to 1) of sorted values, the lower one between two.
 double quantile(const std::vector<double>& sorted, double q) {
@@ -285,24 +283,10 @@ ordered_json settings_from_figures(const PlaceFigures& f, const ZoneSettings& de
   set["min_footprint_width"] = std::max(1.0, std::floor(std::min(0.8 * width, depth)));
   set["setback"] = setback;
   set["building_gap"] = gap;
-  const double footprint_m2 = std::accumulate(areas.begin(), areas.end(), 0.0);
-  if (gap < kTouching && f.land_m2 > footprint_m2) {
-    // Most buildings touch their neighbours: a continuous frontage, perimeter blocks, as
-    // deep as the place builds per metre of street it fronts (else as its deep wings, at
-    // the ninetieth percentile). One building a lot, and a lot reaches the block's middle:
-    // its frontage holds the median footprint at that depth, and its depth is half a
-    // block's, twice the land per metre of frontage (a square block fronted on every side),
-    // so it is twice the median footprint over the place's coverage.
-    const double depth = f.frontage_m > 0 ? footprint_m2 / f.frontage_m : quantile(sorted(f.wing_depths), 0.9);
-    set["perimeter_depth"] = tenth(depth);
-    set["lots"] = "split";
-    set["lot_area"] = std::ceil(2 * median * f.land_m2 / footprint_m2);
-  } else {
-    // Lots deep enough for the deepest footprint behind its setback, and wide enough for a
-    // footprint of the middle width and its gap up to the widest one.
-    set["lot_depth"] = std::ceil(setback + depths.max + gap / 2);
-    set["lot_width"] = {std::ceil(width + gap), std::ceil(std::max(widths.max, width + 1) + gap)};
-  }
+  // Lots deep enough for the deepest footprint behind its setback, and wide enough for a
+  // footprint of the middle width and its gap up to the widest one.
+  set["lot_depth"] = std::ceil(setback + depths.max + gap / 2);
+  set["lot_width"] = {std::ceil(width + gap), std::ceil(std::max(widths.max, width + 1) + gap)};
   if (static_cast<int>(f.heights.size()) >= kMinBuildingsToMeasure) {
     const std::vector<double> h = sorted(f.heights);
     set["heights"] = {tenth(std::max(quantile(h, 0.1), 0.5)), tenth(std::max(quantile(h, 0.9), quantile(h, 0.1)))};
