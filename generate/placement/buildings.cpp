@@ -130,7 +130,9 @@ namespace {
 // roof.
 class Extrusion : public Placer {
   // The perimeter block's footprints the lot takes: those the exact test lets stand whole,
-  // courtyards included, and no smaller than min_footprint_area.
+  // courtyards included, and no smaller than min_footprint_area. The union's rings come
+  // rounded to doubles and a courtyard may touch its outer ring at a vertex
+  // (geom::PlanarMap::dissolve), which a building may not: both are checked here.
   static std::vector<geom::Polygon> perimeter(Occupancy& occupancy, const BuildingSettings& p) {
     std::vector<geom::Polygon> taken;
     for (geom::Polygon& footprint : perimeter_footprints(occupancy.piece(), LotEdge::kStreet, p.setback, p.perimeter_depth,
