@@ -745,6 +745,81 @@ TEST(OsmOutput, SidewalksAreWhereTheWaysSayAndTheClassSettingWhereTheySayNothing
   EXPECT_LT(footway, 0.1 * east);  // a footway is all sidewalk: it has none of its own but junction corners
 }
 
+// Before, only `sidewalk` was read: the newer scheme's sides and the width tags were not,
+// so every street here had the local class's 1.5 m on both sides. Three streets drawn west
+// to east (their left is north) over two areas of land use, each tagged another way.
+TEST(OsmOutput, SidewalksFollowTheSideAndWidthTagsOfTheNewerScheme) {
+  std::string osm = R"(<?xml version="1.0" encoding="UTF-8"?>
+<osm version="0.6" generator="test">)";
+  int node = 1;
+  auto add_node = [&](double lon, double lat) {
+    osm += "<node id=\"" + std::to_string(node) + "\" version=\"1\" lat=\"" + std::to_string(lat) + "\" lon=\"" +
+           std::to_string(lon) + "\"/>\n";
+    return node++;
+  };
+  int grid[3][2];
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 2; ++col) grid[row][col] = add_node(10.0 + 0.004 * col, 48.0 + 0.0015 * row);
+  auto way = [&](int id, const std::vector<int>& nodes, const std::string& tags) {
+    osm += "<way id=\"" + std::to_string(id) + "\" version=\"1\">";
+    for (int n : nodes) osm += "<nd ref=\"" + std::to_string(n) + "\"/>";
+    osm += tags + "</way>\n";
+  };
+  auto tag = [](const std::string& k, const std::string& v) { return "<tag k=\"" + k + "\" v=\"" + v + "\"/>"; };
+  const std::string street = tag("highway", "residential");
+  way(100, {grid[0][0], grid[0][1]}, street + tag("sidewalk:both", "yes") + tag("sidewalk:both:width", "3"));
+  way(101, {grid[1][0], grid[1][1]}, street + tag("sidewalk", "both") + tag("sidewalk:right", "no"));
+  way(102, {grid[2][0], grid[2][1]},
+      street + tag("sidewalk:left", "yes") + tag("sidewalk:left:width", "2.5 m") + tag("sidewalk:right", "separate") +
+          tag("sidewalk:width", "wide"));
+  way(103, {grid[0][0], grid[1][0], grid[2][0]}, street);
+  way(104, {grid[0][1], grid[1][1], grid[2][1]}, street);
+  for (int row = 0; row < 2; ++row)
+    way(200 + row, {grid[row][0], grid[row][1], grid[row + 1][1], grid[row + 1][0], grid[row][0]}, tag("landuse", "residential"));
+  osm += "</osm>\n";
+
+  const fs::path dir = testing_util::temp_dir("osm-sidewalk-scheme");
+  write(dir / "streets.osm", osm);
+  write(dir / "streets.exacity.json", kTaggedStreetsSettings);
+  ASSERT_TRUE(generate(dir / "streets.osm", dir / "out").valid);
+  const nlohmann::json roads = nlohmann::json::parse(cli_util::read(dir / "out" / "vector" / "roads.geojson"));
+  const nlohmann::json areas = nlohmann::json::parse(cli_util::read(dir / "out" / "vector" / "road_areas.geojson"));
+  // Each street's sidewalk area north and south of it, over its length: the width, less the
+  // junctions at its ends, plus the corners where a wider sidewalk meets a narrower one.
+  auto widths = [&](const std::string& way) {
+    std::set<int> ids;
+    double y = 0, length = 0;
+    for (const auto& f : roads["features"])
+      if (f["properties"].value("osm_id", "") == way) {
+        ids.insert(f["properties"]["id"].get<int>());
+        const auto& line = f["geometry"]["coordinates"];
+        y = line[0][1];
+        for (std::size_t i = 0; i + 1 < line.size(); ++i) length += std::abs(line[i + 1][0].get<double>() - line[i][0].get<double>());
+      }
+    EXPECT_GT(length, 250) << way;
+    const auto [north, south] = sidewalk_area_north_and_south(areas, ids, y);
+    return std::pair{north / length, south / length};
+  };
+  const auto [both_north, both_south] = widths("way/100");  // sidewalk:both=yes, sidewalk:both:width=3
+  EXPECT_GT(both_north, 0.9 * 3);
+  EXPECT_GT(both_south, 0.9 * 3);
+  EXPECT_LT(both_north, 1.1 * 3);
+  const auto [middle_north, middle_south] = widths("way/101");  // sidewalk=both, sidewalk:right=no
+  EXPECT_GT(middle_north, 0.9 * 1.5);
+  EXPECT_LT(middle_north, 1.1 * 1.5);
+  EXPECT_LT(middle_south, 0.1);
+  const auto [top_north, top_south] = widths("way/102");  // left=yes 2.5 m, right=separate, a width it cannot read
+  EXPECT_GT(top_north, 0.9 * 2.5);
+  EXPECT_LT(top_north, 1.1 * 2.5);
+  EXPECT_LT(top_south, 0.1);
+  // The tags themselves go on to the layer as read.
+  for (const auto& f : roads["features"])
+    if (f["properties"].value("osm_id", "") == "way/102") {
+      EXPECT_EQ(f["properties"]["sidewalk:left:width"], "2.5 m");
+      EXPECT_EQ(f["properties"]["sidewalk:width"], "wide");
+    }
+}
+
 // Before, every footway was left out: the two areas were one block.
 TEST(OsmOutput, AFootwayAlongTheEdgeOfLandUseBoundsBlocksAndSidewalkFootwaysDoNot) {
   const TaggedStreetsCity& city = tagged_streets_city();

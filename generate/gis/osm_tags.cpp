@@ -191,16 +191,45 @@ const std::vector<std::string>& osm_building_keys() {
 
 const std::vector<std::string>& osm_road_keys() {
   static const std::vector<std::string> keys{"highway", "name",     "ref",    "lanes", "oneway", "maxspeed",
-                                             "surface", "service",  "sidewalk", "bridge", "layer", "tunnel"};
+                                             "surface", "service",  "sidewalk", "sidewalk:both", "sidewalk:left",
+                                             "sidewalk:right", "sidewalk:width", "sidewalk:both:width",
+                                             "sidewalk:left:width", "sidewalk:right:width", "bridge", "layer", "tunnel"};
   return keys;
 }
 
-std::optional<std::pair<bool, bool>> osm_sidewalk_sides(const std::string& value) {
-  if (value == "both" || value == "yes") return std::pair{true, true};
-  if (value == "left") return std::pair{true, false};
-  if (value == "right") return std::pair{false, true};
-  if (value == "no" || value == "none" || value == "separate") return std::pair{false, false};
-  return std::nullopt;
+std::pair<double, double> osm_sidewalks(const std::vector<std::pair<std::string, std::string>>& tags, double untagged,
+                                        double tagged) {
+  const std::map<std::string, std::string> tag(tags.begin(), tags.end());
+  auto value = [&](const std::string& key) -> std::optional<std::string> {
+    if (auto it = tag.find(key); it != tag.end()) return it->second;
+    return std::nullopt;
+  };
+  auto width = [&](const std::string& side) {
+    for (const std::string key : {"sidewalk:" + side + ":width", std::string("sidewalk:both:width"), std::string("sidewalk:width")})
+      if (std::optional<double> w = metres(value(key)); w && *w <= 50) return *w;
+    return tagged;
+  };
+  // Whether a value puts a sidewalk on a side; nothing for one it cannot read.
+  auto present = [](const std::optional<std::string>& v) -> std::optional<bool> {
+    if (!v) return std::nullopt;
+    if (*v == "yes" || *v == "both") return true;
+    if (*v == "no" || *v == "none" || *v == "separate") return false;
+    return std::nullopt;
+  };
+  std::optional<bool> left, right;
+  if (const std::optional<std::string> both = value("sidewalk")) {
+    if (*both == "left" || *both == "right") {
+      left = *both == "left";
+      right = *both == "right";
+    } else {
+      left = right = present(both);
+    }
+  }
+  if (const std::optional<bool> both = present(value("sidewalk:both"))) left = right = both;
+  if (const std::optional<bool> l = present(value("sidewalk:left"))) left = l;
+  if (const std::optional<bool> r = present(value("sidewalk:right"))) right = r;
+  auto side = [&](const std::optional<bool>& has, const std::string& name) { return !has ? untagged : *has ? width(name) : 0.0; };
+  return {side(left, "left"), side(right, "right")};
 }
 
 std::vector<std::pair<std::string, std::string>> osm_road_tags(const ordered_json& properties) {

@@ -48,10 +48,15 @@ const std::vector<std::string>& osm_road_keys();
 // Those of a feature's properties (columns, or GDAL's "other_tags"), in osm_road_keys' order,
 // after its "osm_id" as "way/N" where it has one.
 std::vector<std::pair<std::string, std::string>> osm_road_tags(const nlohmann::ordered_json& properties);
-// The sides (left, right of the way's direction) a sidewalk tag puts sidewalks on: both or
-// yes, left, right, and none for no, none or separate (drawn as footways of their own);
-// nothing for another value, which leaves the road its class's.
-std::optional<std::pair<bool, bool>> osm_sidewalk_sides(const std::string& value);
+// A road's sidewalks, metres left and right of its way's direction, from its OSM tags:
+// `sidewalk` for both sides, then `sidewalk:both`, then `sidewalk:left` / `sidewalk:right`
+// (the newer scheme; the more specific tag wins). A side is `tagged` wide where a tag puts
+// a sidewalk on it (both, yes, left, right), unless `sidewalk:<side>:width`,
+// `sidewalk:both:width` or `sidewalk:width` gives a width in (0, 50] m; none for no, none
+// or separate (a sidewalk drawn as a footway of its own); `untagged` where no tag says.
+// A value it cannot read is as if absent; the tag is still carried to every export.
+std::pair<double, double> osm_sidewalks(const std::vector<std::pair<std::string, std::string>>& tags, double untagged,
+                                        double tagged);
 
 // A file read into a sketch document: its path, and how many of the document's features
 // (in order, after the files before it) are its.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 #include <set>
+#include <tuple>
 
 #include "generate/sketch/grid_map.h"
 #include "generate/sketch/sketch_document.h"
@@ -221,15 +222,10 @@ class Parser {
       fail(where, "unknown road class " + quote(rname) + "; did you mean " +
                       quote(nearest_road_class_name(rname)) + "? (valid: " + list(kRoadClassNames) + ")");
     RoadFeature rf{index, *rc, default_width(*rc), {}, osm_road_tags(props)};
-    rf.sidewalk_left = rf.sidewalk_right = sketch.streets.sidewalk(*rc);
-    for (const auto& [key, value] : rf.osm_tags) {
-      if (key == "sidewalk")
-        if (const std::optional<std::pair<bool, bool>> sides = osm_sidewalk_sides(value)) {
-          rf.sidewalk_left = sides->first ? sketch.streets.tagged_sidewalk(*rc) : 0;
-          rf.sidewalk_right = sides->second ? sketch.streets.tagged_sidewalk(*rc) : 0;
-        }
+    std::tie(rf.sidewalk_left, rf.sidewalk_right) =
+        osm_sidewalks(rf.osm_tags, sketch.streets.sidewalk(*rc), sketch.streets.tagged_sidewalk(*rc));
+    for (const auto& [key, value] : rf.osm_tags)
       if (key == "highway" && value == "footway") rf.sidewalk_left = rf.sidewalk_right = 0;  // all of it is one
-    }
     if (props.contains("width") && !props["width"].is_null())
       rf.width = number(props["width"], where + " width", kMinRoadWidth, kMaxRoadWidth);
     if (props.contains("carriageway") && props["carriageway"].is_number())
