@@ -54,6 +54,7 @@ struct RenderOptions {
   double time_s = 0;
   std::string time_of_day;  // HH:MM
   bool night = false;       // --night: 22:00
+  std::string date;         // MM-DD or YYYY-MM-DD: the day the hour's sun is reckoned on
   float aperture = 0, focus_distance = 0, focus_tilt = 0;  // depth of field (render/camera.h)
   fs::path path;       // a camera path file: frames, not a still
   std::string frames;  // A:B, of the path's frames
@@ -93,6 +94,23 @@ float time_of_day(const RenderOptions& o) {
   return static_cast<float>(h) + static_cast<float>(m) / 60;
 }
 
+// --date as the day of the year; 0 for none (an equinox). Checked before any work.
+int day_of_year(const RenderOptions& o) {
+  if (o.date.empty()) return 0;
+  const std::string fix = "--date " + o.date + ": expected MM-DD or YYYY-MM-DD, such as 06-21 or 2024-12-21";
+  int year = 2001, month = 0, day = 0;  // a common year when none is given
+  char dash = 0, dash2 = 0;
+  std::istringstream in(o.date);
+  const bool with_year = o.date.size() > 5;
+  if (with_year && !(in >> year >> dash2 && dash2 == '-' && year >= 1 && year <= 9999)) throw UserError(fix);
+  if (!(in >> month >> dash >> day) || dash != '-' || month < 1 || month > 12 || !in.eof()) throw UserError(fix);
+  const bool leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
+  static constexpr int kDays[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+  if (day < 1 || day > kDays[month - 1] + (leap && month == 2 ? 1 : 0)) throw UserError(fix + " (no such day)");
+  if (time_of_day(o) < 0) throw UserError("--date " + o.date + ": a date sets the hour's sun; give --time-of-day HH:MM or --night with it");
+  return render::day_of_year(month, day, leap);
+}
+
 // --size as width and height; checked before any work.
 std::pair<int, int> image_size(const RenderOptions& o) {
   int w = 0, h = 0;
@@ -124,6 +142,7 @@ render::RenderRequest request_for(const City& city, const RenderOptions& o, cons
   r.exposure_ev = o.exposure_ev, r.white_balance_k = o.white_balance_k;
   r.time_budget_s = o.time_s;
   r.time_of_day = time_of_day(o);
+  r.day_of_year = day_of_year(o);
   r.camera.depth_of_field = {o.aperture, o.focus_distance, o.focus_tilt};
   return r;
 }
@@ -354,6 +373,7 @@ int render_folder(const fs::path& out, const RenderOptions& o, const fs::path& f
   given_camera(sketch.camera, o, (out / "sketch.geojson").string());  // a bad camera or size stops us before any work
   image_size(o);
   time_of_day(o);
+  day_of_year(o);
   if (!o.path.empty()) return render_path_folder(out, sketch, o, file, quiet);
   const fs::path still = file.empty() ? out / "render" / "still.png" : file;
   if (still.extension() != ".png") throw UserError(still.string() + ": the still is written as PNG; give a file ending in .png");
@@ -519,10 +539,12 @@ void add_image_options(CLI::App* c, RenderOptions& o) {
                 "this many seconds (still.json records the passes)")
       ->check(CLI::Range(0.0, 1e6));
   auto* hour = c->add_option("--time-of-day", o.time_of_day,
-                             "HH:MM of local solar time on an equinox: the sun by the hour, and after sunset the "
-                             "twilight, the street lamps and a share of the windows lit (the overview and minimap "
-                             "stay by day)");
+                             "HH:MM of local solar time at the city's latitude (from the sketch's CRS; 50 degrees "
+                             "north without one), on an equinox unless --date: the sun by the hour, and after "
+                             "sunset the twilight, the street lamps and a share of the windows lit (the overview "
+                             "and minimap stay by day)");
   c->add_flag("--night", o.night, "Night: the same as --time-of-day 22:00")->excludes(hour);
+  c->add_option("--date", o.date, "MM-DD or YYYY-MM-DD: the day --time-of-day's sun is reckoned on (default an equinox)");
   c->add_option("--aperture", o.aperture,
                 "Depth of field: the thin lens's diameter in metres (0: a pinhole, all sharp; a few metres over "
                 "a city for a miniature look)")

@@ -7,17 +7,32 @@ namespace render {
 namespace {
 
 constexpr float kDegree = kPi / 180;
-constexpr float kLatitude = 50 * kDegree;
 constexpr float kCell = kReach / 2;  // m: the grid's cells
 
 }  // namespace
 
-SunPosition sun_at_hour(float hours) {
-  // On an equinox the sun's declination is 0: its direction (east, north, up) at hour
-  // angle H is (-sin H, -sin(lat) cos H, cos(lat) cos H).
-  const float h = (hours - 12) * 15 * kDegree;
-  const float east = -std::sin(h), north = -std::sin(kLatitude) * std::cos(h), up = std::cos(kLatitude) * std::cos(h);
-  return {std::atan2(north, east) / kDegree, std::asin(std::clamp(up, -1.0f, 1.0f)) / kDegree};
+SunPosition sun_at_hour(float hours, const SolarPlace& place) {
+  // At hour angle H, the sun's direction (east, north, up) is (-cos d sin H,
+  // cos(lat) sin d - sin(lat) cos d cos H, sin(lat) sin d + cos(lat) cos d cos H), for its
+  // declination d (on an equinox, d = 0: (-sin H, -sin(lat) cos H, cos(lat) cos H)).
+  const float h = (hours - 12) * 15 * kDegree, lat = place.latitude * kDegree, d = place.declination * kDegree;
+  const float east = -std::cos(d) * std::sin(h);
+  const float north = std::cos(lat) * std::sin(d) - std::sin(lat) * std::cos(d) * std::cos(h);
+  const float up = std::sin(lat) * std::sin(d) + std::cos(lat) * std::cos(d) * std::cos(h);
+  // Counter-clockwise from true east, then from the map's east, which is turned with grid north.
+  return {std::atan2(north, east) / kDegree + place.grid_north, std::asin(std::clamp(up, -1.0f, 1.0f)) / kDegree};
+}
+
+float solar_declination(int day_of_year) {
+  const double g = 2 * 3.14159265358979 * (day_of_year - 1) / 365;
+  const double d = 0.006918 - 0.399912 * std::cos(g) + 0.070257 * std::sin(g) - 0.006758 * std::cos(2 * g) +
+                   0.000907 * std::sin(2 * g) - 0.002697 * std::cos(3 * g) + 0.00148 * std::sin(3 * g);
+  return static_cast<float>(d * 180 / 3.14159265358979);
+}
+
+int day_of_year(int month, int day, bool leap) {
+  static constexpr int kBefore[12] = {0, 31, 59, 90, 120, 151, 181, 212, 243, 273, 304, 334};
+  return kBefore[month - 1] + day + (leap && month > 2 ? 1 : 0);
 }
 
 float night_share(float sun_elevation) { return std::clamp((3 - sun_elevation) / 11, 0.0f, 1.0f); }

@@ -13,13 +13,29 @@
 
 namespace render {
 
-// The sun at a local solar time (hours, 0 to 24) on an equinox day at 50 degrees north:
-// up from 6:00 to 18:00, in the south at noon 40 degrees high; degrees as Sky takes them
-// (azimuth counter-clockwise from east).
+// Where and when on Earth the hour's sun is reckoned: the latitude (degrees north), the
+// sun's declination that day (degrees; 0 on an equinox), and how far grid north, the
+// map's y axis, is turned east of true north there (degrees; a projection's meridian
+// convergence). A sketch without a CRS has no place on Earth: 50 degrees north, an
+// equinox, y true north.
+struct SolarPlace {
+  float latitude = 50, declination = 0, grid_north = 0;
+};
+
+// The sun at a local solar time (hours, 0 to 24) at `place`: on an equinox at 50 degrees
+// north, up from 6:00 to 18:00, in the south at noon 40 degrees high; degrees as Sky takes
+// them (azimuth counter-clockwise from the map's east).
 struct SunPosition {
   float azimuth = 0, elevation = 0;
 };
-SunPosition sun_at_hour(float hours);
+SunPosition sun_at_hour(float hours, const SolarPlace& place = {});
+
+// The sun's declination in degrees on a day of the year (1 to 366), by Spencer's Fourier
+// series ("Fourier series representation of the position of the sun", 1971: within 0.05
+// degrees of the almanac's), and the day of the year of a month and day (a leap year's
+// when `leap`).
+float solar_declination(int day_of_year);
+int day_of_year(int month, int day, bool leap = false);
 
 // How far into the night a sun this high is, 0 (day: 3 degrees up or more) to 1 (night:
 // 8 degrees down or more), linearly between.

@@ -82,14 +82,6 @@ struct Path {
   V3 prev_normal{0, 0, 1};
 };
 
-// Free flight through the haze: true, with the distance ts, when the light scatters
-// before it reaches the surface at tmax (its one draw is taken either way).
-bool scatters_in_haze(const Haze& haze, V3 o, V3 d, float tmax, Sampler& rng, float& ts) {
-  auto [t0, t1] = in_haze(haze, o, d, tmax);
-  ts = t0 - std::log(1 - rng.next()) / haze.density;
-  return t1 > t0 && ts < t1;
-}
-
 // Next event towards the sun from the haze the ray crosses before tmax, from a point drawn
 // along the stretch in the haze with a density proportional to the light that reaches the
 // ray there from the sun: the transmittance back along the ray, e^(-σt), times that
@@ -101,9 +93,10 @@ bool scatters_in_haze(const Haze& haze, V3 o, V3 d, float tmax, Sampler& rng, fl
 // (nearest the ground, where the sun is dimmest): a grain in hazy skies. A path that
 // scatters takes no next event at its scattering (its stretch's stood for it) and draws its
 // new direction from the phase function, which meets the sun disk weighed against this.
-void add_sun_through_haze(const Tracing& t, Path& path, float tmax) {
+// `u` places the point (the first of a stratified pair, render/sampling.h: a pixel's
+// samples spread their points along the ray evenly, so shafts and the fade converge).
+void add_sun_through_haze(const Tracing& t, Path& path, float tmax, float u) {
   auto [t0, t1] = in_haze(t.haze, path.o, path.d, tmax);
-  const float u = t.rng.next();
   const auto [u1, u2] = t.rng.next2();
   if (!(t1 > t0) || !t.sky.sun_up()) return;
   const float sigma = t.haze.density, k = sigma * (1 - path.d.z / t.sky.sun_direction().z), span = t1 - t0;
@@ -153,9 +146,8 @@ void add_sky_seen(const Tracing& t, Path& path) {
 // chance it scatters (1 - transmittance), at a distance ts drawn as free flight is, within
 // the haze; false (the sky added whole) when it crosses none. Free flight chose one or the
 // other, which made hazy skies a grain of pixels that saw the sky and pixels that did not.
-bool scatters_before_the_sky(const Tracing& t, Path& path, float& ts) {
+bool scatters_before_the_sky(const Tracing& t, Path& path, float u, float& ts) {
   auto [t0, t1] = in_haze(t.haze, path.o, path.d, INFINITY);
-  const float u = t.rng.next();
   if (!(t1 > t0)) {
     add_sky_seen(t, path);
     return false;
@@ -256,11 +248,13 @@ float sun_cone_pdf(const Sky& sky) { return 1 / (2 * kPi * (1 - sky.sun_cos_max(
 // Where a surface's rays leave from, and the direction the light leaves it by, in its frame.
 V3 leaving_point(const Surface& s) { return s.position + s.normal * kEpsilon; }
 
-// At a surface, after its emission: next events towards the sun and the sky, then the
-// bounce; false when the path ends there. The sun's share is added to `sun` too where given;
+// A surface's own light: its emission, then (short of the last bounce) the next events
+// towards the sun, the sky and a lamp. The sun's share is added to `sun` too where given;
 // `known_sun` is that share where it was found already (a packet's shadow rays).
-bool scatter_at_surface(const Tracing& t, const Surface& s, int depth, Path& path, V3* sun = nullptr,
-                        const V3* known_sun = nullptr) {
+void add_surface_light(const Tracing& t, const Surface& s, int depth, int max_depth, Path& path, V3* sun = nullptr,
+                       const V3* known_sun = nullptr) {
+  if (depth == 0 || !s.material.camera_only) path.L += path.beta * s.material.emission;
+  if (depth >= max_depth) return;
   const Frame frame(s.normal);
   const V3 wo = frame.to_local(path.d * -1);
   const V3 p = leaving_point(s);
@@ -269,16 +263,47 @@ bool scatter_at_surface(const Tracing& t, const Surface& s, int depth, Path& pat
   if (sun) *sun += from_sun;
   add_sky_next_event(t, s.material, frame, wo, p, path);
   if (t.lights && !t.lights->empty()) add_lamp_next_event(t, s.material, frame, wo, p, path);
-  if (!follow_surface_sample(t, s, frame, wo, p, path)) return false;
+}
+
+// The bounce from a surface whose own light was added; false when the path ends there.
+bool bounce_off_surface(const Tracing& t, const Surface& s, int depth, Path& path) {
+  const Frame frame(s.normal);
+  if (!follow_surface_sample(t, s, frame, frame.to_local(path.d * -1), leaving_point(s), path)) return false;
   return depth < 3 || survives_roulette(t.rng, path);
+}
+
+// A ray to a surface through the haze, as to the sky: the surface's own light, dimmed by the
+// haze's transmittance, is added on every such ray, and the path goes on scattered in the
+// haze (true, at ts) with the chance it scatters, or from the surface, its weight kept
+// either way. Free flight added the surface's light only to the paths that reached it,
+// with weight one: a grain of pixels that saw a building and pixels that saw only haze,
+// wherever the haze half hid it. `u` draws ts as free flight does (u under the chance to
+// scatter: ts short of the surface). `lit`: whether the surface's light was added.
+bool scatters_before_the_surface(const Tracing& t, const Surface& s, int depth, int max_depth, Path& path, float u,
+                                 float& ts, bool& lit, V3* sun) {
+  auto [t0, t1] = in_haze(t.haze, path.o, path.d, s.distance);
+  lit = t1 > t0;
+  if (!lit) return false;
+  const float scatters = -std::expm1(-t.haze.density * (t1 - t0));
+  Path through = path;
+  through.beta = path.beta * (1 - scatters);
+  add_surface_light(t, s, depth, max_depth, through, sun);
+  path.L = through.L;
+  ts = t0 - std::log1p(-u) / t.haze.density;
+  return u < scatters;
 }
 
 // A path's radiance from its camera ray (o, d), whose nearest surface `hit` and `s`
 // tell (found by one ray or in a packet); as radiance(). `known_sun`: the sun's next event
 // at that surface where it was found already (in clear air).
+// `medium`, where given, is set to the light gathered after the camera ray scattered in
+// the haze (the light scattered more than once; zero when it did not).
 V3 radiance_after_camera_ray(const RenderScene& scene, const Sky& sky, V3 o, V3 d, bool hit, Surface s, Sampler& rng,
                              int max_depth, RayCounts& counts, const Haze& haze, V3* first_sun,
-                             const V3* known_sun = nullptr, const StreetLights* lights = nullptr) {
+                             const V3* known_sun = nullptr, const StreetLights* lights = nullptr,
+                             V3* medium = nullptr) {
+  V3 scattered_from{0, 0, 0};
+  bool scattered = false;
   const Tracing t{scene, sky, haze, sun_cone_pdf(sky), rng, counts, lights};
   Path path{o, d};
   ++counts.camera;
@@ -287,33 +312,40 @@ V3 radiance_after_camera_ray(const RenderScene& scene, const Sky& sky, V3 o, V3 
       ++counts.bounce;
       hit = scene.intersect(path.o, path.d, INFINITY, s);
     }
-    float ts = 0;
+    // Past the first surface a smooth coat is taken rougher (path regularisation, Kaplanyan
+    // and Dachsbacher 2013): the sun seen in glass from the street otherwise comes in a few
+    // paths of great weight, white grains on shaded asphalt beside a glass tower.
+    if (hit && depth > 0 && s.material.kind == Material::Glossy)
+      s.material.roughness = std::max(s.material.roughness, 0.3f);
+    V3* sun = depth == 0 ? first_sun : nullptr;
+    bool lit = false;  // the surface's own light added already, through the haze
     if (haze.density > 0) {
-      if (depth < max_depth) add_sun_through_haze(t, path, hit ? s.distance : INFINITY);
-      if (!hit) {
-        if (!scatters_before_the_sky(t, path, ts) || depth >= max_depth) break;
-        scatter_in_haze(t, ts, path);
-        continue;
+      // One stratified pair a vertex (render/sampling.h): where along the ray the sun is
+      // sought, and where the path scatters.
+      const auto [u_sun, u_flight] = rng.next2();
+      if (depth < max_depth) {
+        const V3 before = path.L;
+        add_sun_through_haze(t, path, hit ? s.distance : INFINITY, u_sun);
+        if (sun) *sun += path.L - before;
       }
-      if (hit && scatters_in_haze(haze, path.o, path.d, s.distance, rng, ts)) {
+      float ts = 0;
+      if (!hit ? scatters_before_the_sky(t, path, u_flight, ts)
+               : scatters_before_the_surface(t, s, depth, max_depth, path, u_flight, ts, lit, sun)) {
         if (depth >= max_depth) break;
+        if (depth == 0) scattered = true, scattered_from = path.L;
         scatter_in_haze(t, ts, path);
         continue;
       }
+      if (!hit) break;
     }
     if (!hit) {
       add_sky_seen(t, path);
       break;
     }
-    if (depth == 0 || !s.material.camera_only) path.L += path.beta * s.material.emission;
-    if (depth >= max_depth) break;
-    // Past the first surface a smooth coat is taken rougher (path regularisation, Kaplanyan
-    // and Dachsbacher 2013): the sun seen in glass from the street otherwise comes in a few
-    // paths of great weight, white grains on shaded asphalt beside a glass tower.
-    if (depth > 0 && s.material.kind == Material::Glossy) s.material.roughness = std::max(s.material.roughness, 0.3f);
-    if (!scatter_at_surface(t, s, depth, path, depth == 0 ? first_sun : nullptr, depth == 0 ? known_sun : nullptr))
-      break;
+    if (!lit) add_surface_light(t, s, depth, max_depth, path, sun, depth == 0 ? known_sun : nullptr);
+    if (depth >= max_depth || !bounce_off_surface(t, s, depth, path)) break;
   }
+  if (medium) *medium = scattered ? path.L - scattered_from : V3{0, 0, 0};
   return path.L;
 }
 
@@ -341,6 +373,12 @@ V3 radiance(const RenderScene& scene, const Sky& sky, V3 o, V3 d, Sampler& rng, 
   const bool hit = scene.intersect(o, d, INFINITY, s);
   if (first && hit) *first = s;
   return radiance_after_camera_ray(scene, sky, o, d, hit, s, rng, max_depth, counts, haze, first_sun, nullptr, lights);
+}
+
+float haze_transmittance(const Haze& h, V3 o, V3 d, float t) {
+  if (h.density <= 0) return 1;
+  auto [t0, t1] = in_haze(h, o, d, t);
+  return t1 > t0 ? std::exp(-h.density * (t1 - t0)) : 1.0f;
 }
 
 float Haze::air_transmittance(V3 o, V3 d, float t) const {
@@ -416,6 +454,16 @@ Film::Film(int width, int height) {
   sun_sum.assign(n, {}), even_sum.assign(n, {}), even_albedo_sum.assign(n, {}), even_sun_sum.assign(n, {});
 }
 
+namespace {
+
+std::vector<V3> mean_of(const std::vector<V3>& sum, float count) {
+  std::vector<V3> mean(sum.size());
+  for (std::size_t i = 0; i < sum.size(); ++i) mean[i] = sum[i] / count;
+  return mean;
+}
+
+}  // namespace
+
 Image Film::image() const {
   Image img = layers;
   const std::size_t n = sum.size();
@@ -426,6 +474,10 @@ Image Film::image() const {
     img.beauty[i] = sum[i] / count, img.mean_albedo[i] = albedo_sum[i] / count, img.first_sun[i] = sun_sum[i] / count;
     const double mean = luminance(img.beauty[i]);
     img.variance[i] = static_cast<float>(std::max(0.0, luminance_squares[i] / samples - mean * mean) / samples);
+  }
+  if (!inscatter_sum.empty()) {
+    img.inscatter = mean_of(inscatter_sum, count), img.seen.resize(n);
+    for (std::size_t i = 0; i < n; ++i) img.seen[i] = seen_sum[i] / count;
   }
   if (samples < 2) return img;
   const int even = (samples + 1) / 2, odd = samples / 2;
@@ -439,6 +491,10 @@ Image Film::image() const {
     o.beauty[i] = (sum[i] - even_sum[i]) / no, o.albedo[i] = (albedo_sum[i] - even_albedo_sum[i]) / no;
     o.sun[i] = (sun_sum[i] - even_sun_sum[i]) / no;
   }
+  if (!inscatter_sum.empty()) {
+    e.inscatter = mean_of(even_inscatter_sum, ne), o.inscatter.resize(n);
+    for (std::size_t i = 0; i < n; ++i) o.inscatter[i] = (inscatter_sum[i] - even_inscatter_sum[i]) / no;
+  }
   return img;
 }
 
@@ -448,6 +504,11 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
   const int tiles_x = (width + kTile - 1) / kTile, tiles_y = (height + kTile - 1) / kTile, tiles = tiles_x * tiles_y;
   const int first = film.samples;
   Image& img = film.layers;
+  const bool hazy = t.haze.density > 0;
+  if (hazy && film.inscatter_sum.empty()) {
+    const std::size_t n = film.sum.size();
+    film.inscatter_sum.assign(n, {}), film.even_inscatter_sum.assign(n, {}), film.seen_sum.assign(n, 0);
+  }
   const Lens lens(camera, width, height);
   std::atomic<int> done{0};
   std::mutex report;
@@ -475,6 +536,8 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
         V3 sun = film.sun_sum[i], even_sum = film.even_sum[i], even_albedo = film.even_albedo_sum[i],
            even_sun = film.even_sun_sum[i];
         double squares = film.luminance_squares[i];
+        V3 inscatter{0, 0, 0}, even_inscatter{0, 0, 0};
+        float seen = 0;
         // The camera rays in packets, each path on alone from its first surface.
         for (int k0 = first, n = 0; k0 < first + t.spp; k0 += n) {
           n = CameraPacket::size_from(k0, first + t.spp);
@@ -482,12 +545,17 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
           for (int j = 0; j < n; ++j) {
             const int k = k0 + j;
             const Surface* first_hit = packet.found[j] ? &packet.hits[j] : nullptr;
-            V3 from_sun{0, 0, 0};
+            V3 from_sun{0, 0, 0}, medium{0, 0, 0};
             V3 l = radiance_after_camera_ray(scene, sky, packet.o[j], packet.d[j], packet.found[j], packet.hits[j],
                                              rngs[j], t.max_depth, tile_counts, t.haze, &from_sun,
-                                             sun_first ? &packet.sun[j] : nullptr, t.lights);
-            if (!std::isfinite(l.x + l.y + l.z)) l = from_sun = {0, 0, 0};
+                                             sun_first ? &packet.sun[j] : nullptr, t.lights, &medium);
+            if (!std::isfinite(l.x + l.y + l.z)) l = from_sun = medium = {0, 0, 0};
             V3 a = first_hit ? first_hit->material.albedo : V3{1, 1, 1};
+            if (hazy) {
+              inscatter += medium;
+              if (k % 2 == 0) even_inscatter += medium;
+              if (first_hit) seen += haze_transmittance(t.haze, packet.o[j], packet.d[j], first_hit->distance);
+            }
             packet.through_air(j, l, a, from_sun);
             sum += l, albedo += a, sun += from_sun;
             if (k % 2 == 0) even_sum += l, even_albedo += a, even_sun += from_sun;
@@ -501,6 +569,8 @@ void add_samples(Film& film, const RenderScene& scene, const Sky& sky, const Cam
         film.sum[i] = sum, film.albedo_sum[i] = albedo, film.luminance_squares[i] = squares;
         film.sun_sum[i] = sun, film.even_sum[i] = even_sum, film.even_albedo_sum[i] = even_albedo;
         film.even_sun_sum[i] = even_sun;
+        if (hazy)
+          film.inscatter_sum[i] += inscatter, film.even_inscatter_sum[i] += even_inscatter, film.seen_sum[i] += seen;
       }
     const int finished = ++done;
     std::lock_guard<std::mutex> lock(report);

@@ -36,9 +36,16 @@ struct Image {
   struct Half {
     std::vector<V3> beauty, albedo, sun;
     int samples = 0;
+    std::vector<V3> inscatter;  // as Image::inscatter; empty in clear air
   };
   std::array<Half, 2> halves;
   std::vector<V3> first_sun;  // over all samples
+  // In haze (render/README.md, Denoising in haze): the light the camera ray's haze scattered
+  // towards the camera more than once, part of the beauty, which the denoiser smooths
+  // apart; and the mean transmittance of the haze to the first surface (0 for the sky),
+  // which guides it. Empty in clear air.
+  std::vector<V3> inscatter;
+  std::vector<float> seen;
   // Camera rays beyond the path samples (render/primary_layer.h): the sums of their first
   // hits' albedo and sun next event, which the denoiser adds to the path samples' own.
   struct Primaries {
@@ -100,6 +107,8 @@ struct Film {
   std::vector<V3> sum, albedo_sum;
   std::vector<V3> sun_sum;                                  // Image::first_sun's
   std::vector<V3> even_sum, even_albedo_sum, even_sun_sum;  // the even-numbered samples' (Image::halves)
+  std::vector<V3> inscatter_sum, even_inscatter_sum;        // in haze (Image::inscatter)
+  std::vector<float> seen_sum;
   std::vector<double> luminance_squares;
   int samples = 0;
   // The mean of the samples so far and its variance, with the data layers.
@@ -115,11 +124,15 @@ Image trace(const RenderScene& scene, const Sky& sky, const Camera& camera, cons
             RayCounts* counts = nullptr, const TileProgress& progress = nullptr);
 
 // One path's radiance along a ray (exposed for tests); the rays it casts are added to
-// `counts`. The sun's next event at the first surface, part of the radiance, is also
-// added to `first_sun` where given.
+// `counts`. The sun's next event at the first surface, and in haze the sunlight the ray's
+// haze scatters once towards it, part of the radiance, are also added to `first_sun`
+// where given.
 V3 radiance(const RenderScene& scene, const Sky& sky, V3 origin, V3 direction, Sampler& rng, int max_depth,
             RayCounts& counts, Surface* first = nullptr, const Haze& haze = {}, V3* first_sun = nullptr,
             const StreetLights* lights = nullptr);
+
+// The haze's transmittance along the ray from o towards d, t long (1 in clear air).
+float haze_transmittance(const Haze& haze, V3 o, V3 d, float t);
 
 // A pixel's camera rays traced as one Embree packet (RenderScene::intersect_packet), with
 // the sun's next events at their first surfaces where asked, whose shadow rays make one more.

@@ -6,6 +6,7 @@
 #include <sys/resource.h>
 
 #include "generate/cancel.h"
+#include "generate/gis/projection.h"
 #include "render/denoise.h"
 #include "render/image_io.h"
 #include "render/night.h"
@@ -64,9 +65,9 @@ constexpr float kNightStops = 6;
 constexpr float kLampIntensity = 4, kLampHeadRadiance = 40;
 constexpr float kWindowLight = 0.015f, kLitWindows = 0.35f;
 
-Daylight daylight(const RenderRequest& request) {
+Daylight daylight(const RenderRequest& request, const SolarPlace& place) {
   if (request.time_of_day < 0) return {request.sun_azimuth, request.sun_elevation};
-  const SunPosition sun = sun_at_hour(request.time_of_day);
+  const SunPosition sun = sun_at_hour(request.time_of_day, place);
   const float night = night_share(sun.elevation);
   return {sun.azimuth, sun.elevation, night, kNightStops * night};
 }
@@ -146,7 +147,7 @@ double denoise_seconds(const RenderRequest& request, const Haze& haze, int sampl
 // would. The image depends only on the passes' sizes (Film), and the report records its
 // samples and passes.
 Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camera, const RenderRequest& request,
-                   const Haze& haze, const RenderProgress& progress, const StreetLights* lights) {
+                   const Daylight& day, const Haze& haze, const RenderProgress& progress, const StreetLights* lights) {
   Still still;
   const bool budget = request.time_budget_s > 0;
   TraceSettings settings{request.width, request.height, budget ? 1 : request.spp};
@@ -197,7 +198,7 @@ Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camer
   still.denoise_seconds = seconds_since(filtering);
   still.denoise_cpu_s = cpu_seconds() - filtering_cpu;
   still.metered_ev = metered_stops(still.image);
-  still.png = tone_mapped(still.image, request, still.metered_ev + daylight(request).stops);
+  still.png = tone_mapped(still.image, request, still.metered_ev + day.stops);
   return still;
 }
 
@@ -216,8 +217,8 @@ nlohmann::ordered_json tiles_report(const RenderScene& scene) {
   return tiles;
 }
 
-nlohmann::ordered_json still_report(const RenderRequest& request, const RenderScene& scene, double scene_s,
-                                    const Still& still) {
+nlohmann::ordered_json still_report(const RenderRequest& request, const SolarPlace& place, const Daylight& day,
+                                    const RenderScene& scene, double scene_s, const Still& still) {
   const RayCounts& rays = still.rays;
   nlohmann::ordered_json report{
       {"size", {request.width, request.height}},
@@ -231,8 +232,11 @@ nlohmann::ordered_json still_report(const RenderRequest& request, const RenderSc
       {"metered_ev", still.metered_ev},
       {"white_balance_k", request.white_balance_k},
       {"time_of_day", request.time_of_day},
-      {"sun", {{"azimuth", daylight(request).sun_azimuth}, {"elevation", daylight(request).sun_elevation}}},
-      {"night", daylight(request).night},
+      {"day_of_year", request.day_of_year},
+      {"latitude", place.latitude},
+      {"grid_north", place.grid_north},
+      {"sun", {{"azimuth", day.sun_azimuth}, {"elevation", day.sun_elevation}}},
+      {"night", day.night},
       {"lamps", scene.lamps.size()},
       {"haze_visibility_m", request.haze_visibility},
       {"clear_visibility_m", request.haze_visibility > 0 ? 0.0f : request.clear_visibility},
@@ -354,6 +358,24 @@ void write_still(const Still& still, const fs::path& png) {
 
 }  // namespace
 
+SolarPlace solar_place(const exacity::City& city, int day_of_year) {
+  SolarPlace place;
+  if (day_of_year > 0) place.declination = solar_declination(day_of_year);
+  const std::optional<int> epsg = exacity::epsg_of(city.settings.crs);
+  const geom::Box box = city.ground.bounds();
+  if (!epsg || box.holds_nothing()) return place;
+  // The city's centre and a point a kilometre north of it on the map, in lon/lat: the
+  // latitude, and the bearing of the map's north from true north there.
+  const exacity::ToLonLat to_lon_lat(*epsg);
+  const geom::Vec2 centre{(box.min_x + box.max_x) / 2, (box.min_y + box.max_y) / 2};
+  const geom::Vec2 here = to_lon_lat(centre), north = to_lon_lat({centre.x, centre.y + 1000});
+  if (!std::isfinite(here.y) || std::abs(here.y) > 90) return place;
+  place.latitude = static_cast<float>(here.y);
+  const double east = std::remainder(north.x - here.x, 360.0) * std::cos(here.y * 3.14159265358979 / 180);
+  place.grid_north = static_cast<float>(std::atan2(east, north.y - here.y) * 180 / 3.14159265358979);
+  return place;
+}
+
 Camera default_camera(const exacity::City& city, float aspect) {
   geom::Box box = city.ground.bounds();
   if (box.holds_nothing()) box = {0, 0, 100, 100};
@@ -408,7 +430,8 @@ Camera default_camera(const exacity::City& city, float aspect) {
 nlohmann::ordered_json render_city(const exacity::City& city, const RenderRequest& request,
                                    const RenderProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
-  const Daylight day = daylight(request);
+  const SolarPlace place = solar_place(city, request.day_of_year);
+  const Daylight day = daylight(request, place);
   const Sky sky = Sky::at(day.sun_azimuth, day.sun_elevation, request.turbidity, day.night);
   const SceneOptions options = culled_to_view(request, day);
   if (progress) progress("scene", 0);
@@ -419,8 +442,8 @@ nlohmann::ordered_json render_city(const exacity::City& city, const RenderReques
   const Camera camera = scene.to_scene(request.camera);
   const Haze haze = haze_layer(request, scene);
 
-  Still still = render_still(scene, sky, camera, request, haze, progress, lights.empty() ? nullptr : &lights);
-  nlohmann::ordered_json report = still_report(request, scene, scene_s, still);
+  Still still = render_still(scene, sky, camera, request, day, haze, progress, lights.empty() ? nullptr : &lights);
+  nlohmann::ordered_json report = still_report(request, place, day, scene, scene_s, still);
   // Between the steps too: writing a large image takes a while (generate/cancel.h).
   const exacity::CancelCheck cancel;
   cancel.check();

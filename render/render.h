@@ -10,6 +10,7 @@
 
 #include "generate/city.h"
 #include "render/camera.h"
+#include "render/night.h"
 
 namespace render {
 
@@ -22,6 +23,9 @@ struct RenderRequest {
   // sunset its sky's twilight, the street lamps and a share of the windows lit; below 0,
   // the sun above as given. The overview and the minimap keep that sun, by day.
   float time_of_day = -1;
+  // The day of the year (1 to 366) the hour's sun is reckoned on; 0: an equinox. Where on
+  // Earth is the city's own (solar_place).
+  int day_of_year = 0;
   float haze_visibility = 0;    // m; 0: clear air. Haze fills the 500 m over the lowest ground.
   // m: clear air's visibility, for the still's aerial perspective (Haze::air_density; 0: none)
   float clear_visibility = 20000;
@@ -45,6 +49,11 @@ struct RenderRequest {
 // horizon and a band of sky show above it, as in an oblique air photo.
 constexpr float kDefaultPitch = 18;
 Camera default_camera(const exacity::City& city, float aspect = 16.0f / 9);
+
+// Where on Earth the city's hour is reckoned (render/night.h): the latitude of its centre
+// and its map's grid north from the sketch's CRS (through PROJ), or 50 degrees north and
+// true north where it has none; the sun's declination on `day_of_year` (0: an equinox).
+SolarPlace solar_place(const exacity::City& city, int day_of_year = 0);
 
 // The stage name, then the fraction of it done.
 using RenderProgress = std::function<void(const std::string&, double)>;

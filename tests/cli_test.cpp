@@ -516,6 +516,9 @@ TEST(Cli, PedestrianAndFlyerCamerasAndTheirMistakes) {
   auto fly = nlohmann::json::parse(read(dir / "fly.json"));
   EXPECT_NEAR(fly["camera"]["from"][2].get<double>(), 50, 1e-5);
   EXPECT_NEAR(fly["camera"]["from"][0].get<double>(), 80, 1e-5);
+  r = run(render + "--time-of-day 12:00 --date 2024-03-01 -o " + (dir / "leap.png").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(nlohmann::json::parse(read(dir / "leap.json"))["day_of_year"].get<int>(), 31 + 29 + 1);
 
   const std::pair<std::string, std::string> bad[] = {
       {"--camera pedestrian:road=999,along=0", "--camera \"pedestrian:road=999,along=0\": the city has no road 999"},
@@ -523,6 +526,10 @@ TEST(Cli, PedestrianAndFlyerCamerasAndTheirMistakes) {
       {"--camera pedestrian:at=0,0,heading=0,eye=-1", "eye=-1 is outside 0.1 to 100"},
       {"--time-of-day 24:10", "--time-of-day 24:10: expected HH:MM from 00:00 to 23:59"},
       {"--time-of-day 9h30", "--time-of-day 9h30: expected HH:MM"},
+      {"--night --date 02-30", "--date 02-30: expected MM-DD or YYYY-MM-DD, such as 06-21 or 2024-12-21 (no such day)"},
+      {"--night --date 2023-02-29", "--date 2023-02-29: expected MM-DD or YYYY-MM-DD"},
+      {"--night --date 21.6.", "--date 21.6.: expected MM-DD or YYYY-MM-DD"},
+      {"--date 06-21", "--date 06-21: a date sets the hour's sun; give --time-of-day HH:MM or --night with it"},
   };
   for (const auto& [args, expected] : bad) {
     r = run(render + args + " -o " + (dir / "bad" / "still.png").string());

@@ -904,6 +904,62 @@ TEST(Render, TheSunFollowsTheHour) {
   EXPECT_EQ(night_share(-20), 1);
 }
 
+namespace {
+
+// A 400 m square residential zone with its south-west corner at (x, y) in the CRS of
+// EPSG `epsg`.
+exacity::City zone_on_earth(int epsg, double x, double y) {
+  const auto at = [](double v) { return std::to_string(static_cast<long long>(v)); };
+  const std::string text = R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name":
+    "urn:ogc:def:crs:EPSG::)" + std::to_string(epsg) + R"("}}, "exacity": {"seed": 3}, "features": [
+    {"type": "Feature", "properties": {"zone": "residential"}, "geometry": {"type": "Polygon", "coordinates": [[[)" +
+                           at(x) + ", " + at(y) + "], [" + at(x + 400) + ", " + at(y) + "], [" + at(x + 400) + ", " +
+                           at(y + 400) + "], [" + at(x) + ", " + at(y + 400) + "], [" + at(x) + ", " + at(y) +
+                           "]]]}}]}";
+  exacity::StageClock clock(nullptr, exacity::kCityStages);
+  return exacity::build_city(exacity::parse_sketch(text, "on-earth.geojson"), clock);
+}
+
+}  // namespace
+
+// The hour's sun stands where the city is: a city in Helsinki's centre (UTM zone 35N,
+// 60.17 degrees north, 2.05 degrees west of the zone's central meridian, where the map's
+// north is turned 1.78 degrees west of true north: cs2cs and the meridian convergence,
+// atan(tan(dlon) sin(lat))) sees the noon sun 29.8 degrees high on an equinox, in the
+// south, which is 1.78 degrees clockwise of the map's south, and 53.3 degrees high on the
+// June solstice; one in Sydney (zone 56S, 33.86 south) sees it in the north, 56.1 degrees
+// high. A sketch without a CRS keeps 50 north. Every city stood at 50
+// north (the sun 40 degrees high at noon wherever it was).
+TEST(Render, TheHoursSunStandsAtTheCitysLatitude) {
+  const exacity::City helsinki = zone_on_earth(32635, 385800, 6671900);
+  RenderRequest request;
+  request.width = 16, request.height = 9, request.spp = 1, request.denoise = false;
+  request.time_of_day = 12;
+  request.camera = default_camera(helsinki);
+  request.still = testing_util::temp_dir("sun-latitude") / "still.png";
+  const nlohmann::ordered_json report = render_city(helsinki, request);
+  EXPECT_NEAR(report["latitude"].get<double>(), 60.17, 0.01);
+  EXPECT_NEAR(report["sun"]["elevation"].get<double>(), 90 - 60.17, 0.02);
+  EXPECT_NEAR(report["sun"]["azimuth"].get<double>(), -90 - 1.78, 0.02);
+
+  const SolarPlace midsummer = solar_place(helsinki, day_of_year(6, 21));
+  EXPECT_NEAR(midsummer.declination, 23.44, 0.1);
+  EXPECT_NEAR(sun_at_hour(12, midsummer).elevation, 90 - 60.17 + 23.44, 0.1);
+  // At midnight on midsummer's night the sun is under the northern horizon, but barely.
+  EXPECT_NEAR(sun_at_hour(0, midsummer).elevation, 60.17 + 23.44 - 90, 0.1);
+
+  const SolarPlace sydney = solar_place(zone_on_earth(32756, 334000, 6252000));
+  EXPECT_NEAR(sydney.latitude, -33.86, 0.01);
+  const SunPosition noon = sun_at_hour(12, sydney);
+  EXPECT_NEAR(noon.elevation, 90 - 33.86, 0.02);
+  EXPECT_NEAR(std::remainder(noon.azimuth - sydney.grid_north, 360.0), 90, 0.01);  // due north
+
+  const SolarPlace local = solar_place(one_zone_city("residential", 100, 100, 3));
+  EXPECT_EQ(local.latitude, 50);
+  EXPECT_EQ(local.grid_north, 0);
+  EXPECT_NEAR(sun_at_hour(12, local).elevation, 40, 0.01);
+}
+
 // Ten thousand lamps, every 30 m on a 3 km square: the light at a street point estimated
 // from 64 lamps drawn by StreetLights::choose is within 5% of the sum over them all (the
 // draws go where the light comes from), and no draw goes to a lamp that gives none.
