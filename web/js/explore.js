@@ -124,9 +124,10 @@ export class ExploreView {
       const flying = mode === 'flyer';
       // A walker stands where the orbit looked, or, when that is inside a building, at the
       // first point outside it on the way back towards the orbit's camera.
+      const az = this.orbit.azimuth * degree;
       let [wx, wy] = [tx, ty];
-      for (let step = 0; !flying && step < this.orbit.distance && this.footprints?.at(wx, wy) != null; ++step)
-        [wx, wy] = [tx + (fx - tx) * step / this.orbit.distance, ty + (fy - ty) * step / this.orbit.distance];
+      for (let step = 1; !flying && step <= 1000 && this.footprints?.at(wx, wy) != null; ++step)
+        [wx, wy] = [tx + step * Math.cos(az), ty + step * Math.sin(az)];  // a metre a step
       this.stand = {x: flying ? fx : wx, y: flying ? fy : wy, height: flying ? Math.max(2, fz - ground) : 1.7,
                     heading: (this.orbit.azimuth + 180) % 360, pitch: flying ? -this.orbit.elevation : 0};
     } else if (mode !== 'orbit') {
