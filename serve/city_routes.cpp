@@ -1,4 +1,5 @@
 // The generate and render jobs, their status and events, and the outputs they leave.
+#include <algorithm>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -39,10 +40,12 @@ void generate_job(ServerState& s, const Sketch& drawn, JobRunner::Progress& prog
                    kCityStages + kWriteStages + 1);
   // The zone parameters of the place the sketch's "like" names, measured first.
   Sketch sketch = drawn;
-  const nlohmann::ordered_json like = sketch.like.empty() ? nlohmann::ordered_json() : like_place(sketch, sketch.like);
+  nlohmann::ordered_json like = sketch.like.empty() ? nlohmann::ordered_json() : like_place(sketch, sketch.like);
+  if (!like.is_null()) like["file"] = s.in_work(like["file"].get<std::string>());  // as the page names it
   // Regions, blocks and lots the edits since the last generation left as they were are reused.
   auto city = std::make_shared<City>(build_city(sketch, clock, s.regions));
-  GenerateResult result = write_city(sketch, *city, folder.staging(), clock);
+  // GeoPackage too, the GIS user's one file of every layer, for the page's downloads.
+  GenerateResult result = write_city(sketch, *city, folder.staging(), clock, ExportOptions{{"gpkg"}, std::nullopt});
   if (!like.is_null()) result.report["like"] = like;
   clock.run("tiles", [&] { write_city_tiles(*city, folder.staging() / "tiles"); });
   // The report's seconds are then the whole update's server time, tiles included, which the page shows.
@@ -164,6 +167,17 @@ void stream_events(ServerState& s, httplib::Response& res) {
       });
 }
 
+// The city's files offered to download as generate writes them, with their media types
+// (GET /api/files/NAME; the status lists those there: city.osm only for a sketch with a CRS).
+const std::vector<std::pair<std::string, std::string>>& city_files() {
+  static const std::vector<std::pair<std::string, std::string>> files{
+      {"city.glb", "model/gltf-binary"},     {"city.city.json", "application/city+json"},
+      {"city.obj", "model/obj"},             {"city.ply", "application/octet-stream"},
+      {"city.osm", "application/xml"},       {"city.gpkg", "application/geopackage+sqlite3"},
+      {"map.svg", "image/svg+xml"}};
+  return files;
+}
+
 const std::set<std::string>& layer_names() {
   static const std::set<std::string> names{"zones", "water", "roads", "road_areas", "blocks", "lots", "buildings"};
   return names;
@@ -220,6 +234,9 @@ void add_city_routes(ServerState& s) {
       std::shared_lock lock(s.outputs);
       status["city"] = fs::is_regular_file(s.city_folder() / "report.json");
       status["render"] = fs::is_regular_file(s.render_folder() / "still.png");
+      status["files"] = nlohmann::json::array();
+      for (const auto& [name, type] : city_files())
+        if (fs::is_regular_file(s.city_folder() / name)) status["files"].push_back(name);
     }
     res.set_header("Cache-Control", "no-store");
     res.set_content(status.dump(), "application/json");
@@ -234,8 +251,21 @@ void add_city_routes(ServerState& s) {
   s.http.Get("/api/city.glb", [&s](const httplib::Request&, httplib::Response& res) {
     send_file(s, s.city_folder() / "city.glb", "model/gltf-binary", res, kNoCity);
   });
+  s.http.Get(R"(/api/files/([a-z.]+))", [&s](const httplib::Request& req, httplib::Response& res) {
+    const std::string name = req.matches[1];
+    const auto file = std::find_if(city_files().begin(), city_files().end(), [&](const auto& f) { return f.first == name; });
+    if (file == city_files().end()) {
+      std::string names;
+      for (const auto& [known, type] : city_files()) names += (names.empty() ? "" : ", ") + known;
+      return refuse(res, 404, "no city file \"" + name + "\"; the files are " + names);
+    }
+    send_file(s, s.city_folder() / name, file->second, res, name == "city.osm" ? kNoCity + " (city.osm needs a sketch with a CRS)" : kNoCity);
+  });
   s.http.Get("/api/tiles.json", [&s](const httplib::Request&, httplib::Response& res) {
     send_file(s, s.city_folder() / "tiles" / "index.json", "application/json", res, kNoCity);
+  });
+  s.http.Get("/api/tiles/facades.json", [&s](const httplib::Request&, httplib::Response& res) {
+    send_file(s, s.city_folder() / "tiles" / "facades.json", "application/json", res, kNoCity);
   });
   s.http.Get("/api/tiles/ground.glb", [&s](const httplib::Request&, httplib::Response& res) {
     send_file(s, s.city_folder() / "tiles" / "ground.glb", "model/gltf-binary", res, kNoCity);

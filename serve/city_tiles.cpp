@@ -10,6 +10,7 @@
 #include "generate/mesh/building_mesh.h"
 #include "generate/export/gltf_export.h"
 #include "generate/regenerate.h"
+#include "render/facade.h"
 
 namespace exacity::serve {
 namespace fs = std::filesystem;
@@ -63,6 +64,32 @@ double tile_size(const geom::Box& city) {
   const double extent = std::max(city.width(), city.height());
   return std::max(250.0, std::ceil(extent / 16 / 50) * 50);
 }
+
+namespace {
+
+// Each extruded building's windows as the renderer draws them (render/facade.h,
+// facade_style, from the city's seed and the building's id, zone, floor and eaves), so the
+// 3D view's walls have the still's rows and bays: {"fields": [...], "buildings": {"ID": [...]}}.
+void write_facades(const City& city, const fs::path& file) {
+  auto rounded = [](float v) { return std::round(static_cast<double>(v) * 1e4) / 1e4; };
+  json buildings = json::object();
+  for (const Building& b : city.buildings) {
+    const render::FacadeStyle f = render::facade_style(b.zone, city.settings.seed, b.id, static_cast<float>(b.floor),
+                                                       static_cast<float>(b.floor + b.eaves));
+    buildings[std::to_string(b.id)] = {rounded(f.storey), rounded(f.bay),   rounded(f.window),
+                                       rounded(f.sill),   rounded(f.head),  rounded(f.phase),
+                                       rounded(f.floor),  rounded(f.eaves), f.shopfront ? 1 : 0,
+                                       f.kind == render::FacadeKind::CurtainWall ? 1 : 0};
+  }
+  const json facades{{"fields", {"storey", "bay", "window", "sill", "head", "phase", "floor", "eaves", "shopfront",
+                                 "curtain_wall"}},
+                     {"buildings", buildings}};
+  std::ofstream out(file, std::ios::binary);
+  out << facades.dump() << "\n";
+  if (!out) throw UserError(file.string() + ": write failed (disk full?)");
+}
+
+}  // namespace
 
 json write_city_tiles(const City& city, const fs::path& dir) {
   geom::Box box = city.ground.bounds();
@@ -145,6 +172,8 @@ json write_city_tiles(const City& city, const fs::path& dir) {
                               {"levels", levels},
                               {"triangles", {full.triangles, boxes.triangles, far.triangles}}});
   }
+  write_facades(city, dir / "facades.json");
+  index["facades"] = "/api/tiles/facades.json";
   std::ofstream out(dir / "index.json", std::ios::binary);
   out << index.dump(1) << "\n";
   if (!out) throw UserError((dir / "index.json").string() + ": write failed (disk full?)");

@@ -94,7 +94,10 @@ const std::vector<BodyRule>& body_rules() {
        "send the heightmap's bytes as image/png, image/tiff, image/x-exr or application/octet-stream"},
       {"POST", "/api/models", {"multipart/form-data"},
        "send the model library as multipart/form-data: the .json manifest and its OBJ and .mtl files, each part's "
-       "file name its path below the library's folder"}};
+       "file name its path below the library's folder"},
+      {"POST", "/api/like", {"multipart/form-data"},
+       "send the place as multipart/form-data: an OSM extract or a file of building footprints (a shapefile with its "
+       ".shx, .dbf and .prj)"}};
   return rules;
 }
 

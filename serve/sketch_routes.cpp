@@ -1,5 +1,7 @@
-// GET and PUT /api/sketch, PUT /api/heightmap, GET /api/heightmap.png, GET and POST /api/models,
-// GET /api/lonlat, GET /api/basemap and /api/basemap.png.
+// GET and PUT /api/sketch, PUT /api/heightmap, GET /api/heightmap.png, GET and POST /api/models
+// and /api/like, GET /api/lonlat, GET /api/basemap and /api/basemap.png.
+#include <tuple>
+
 #include "generate/errors.h"
 #include "generate/gis/projection.h"
 #include "generate/placement/model_library.h"
@@ -58,6 +60,13 @@ json lonlat_grid(ServerState& s) {
   return out;
 }
 
+// The place the sketch's "like" names, measured as generate measures it: {"file", "measured"}
+// (report.json's "like", in its order), both null when it names none.
+nlohmann::ordered_json place_measured(ServerState& s) {
+  const nlohmann::ordered_json measured = s.sketch.stored() ? s.sketch.like_measured() : nullptr;
+  return {{"file", measured.is_null() ? nlohmann::ordered_json() : measured["file"]}, {"measured", measured}};
+}
+
 }  // namespace
 
 void add_sketch_routes(ServerState& s) {
@@ -83,22 +92,37 @@ void add_sketch_routes(ServerState& s) {
     }
     res.set_content(s.sketch.text(), "application/geo+json");
   });
-  // A model library's files in one multipart form (check_request refuses any other body),
-  // each part's file name its path below the library's folder. Refused while a job runs: a generation reads the library it started with.
-  s.http.Post("/api/models", [&s](const httplib::Request& req, httplib::Response& res) {
-    if (s.jobs.status().state == JobState::Running)
-      return refuse(res, 409, "a " + s.jobs.status().job + " job is running; upload the library when it ends");
-    std::vector<std::pair<std::string, std::string>> files;
-    for (const auto& [field, part] : req.files) files.emplace_back(part.filename, part.content);
+  // A model library's files, or a real place's, in one multipart form (check_request
+  // refuses any other body), each part's file name its path below their folder: stored as
+  // work/models or work/like and named by the sketch. Refused while a job runs: a generation
+  // reads the library and the place it started with.
+  using Upload = Sketch (WorkSketch::*)(const std::vector<std::pair<std::string, std::string>>&);
+  for (const auto& [route, what, put] : {std::tuple{"/api/models", "library", Upload{&WorkSketch::put_library}},
+                                         std::tuple{"/api/like", "place", Upload{&WorkSketch::put_like}}})
+    s.http.Post(route, [&s, what = std::string(what), put = put](const httplib::Request& req, httplib::Response& res) {
+      if (s.jobs.status().state == JobState::Running)
+        return refuse(res, 409, "a " + s.jobs.status().job + " job is running; upload the " + what + " when it ends");
+      std::vector<std::pair<std::string, std::string>> files;
+      for (const auto& [field, part] : req.files) files.emplace_back(part.filename, part.content);
+      try {
+        (s.sketch.*put)(files);
+      } catch (const UserError& e) {
+        return refuse(res, 400, s.in_work(e.what()));
+      }
+      res.set_content(s.sketch.text(), "application/geo+json");
+    });
+  // What the stored sketch names or says, read as generate reads it: a sketch that no longer
+  // reads (a library changed under it) is a 400 with the CLI's message.
+  s.http.Get("/api/like", [&s](const httplib::Request&, httplib::Response& res) {
+    nlohmann::ordered_json answer;
     try {
-      s.sketch.put_library(files);
+      answer = place_measured(s);
     } catch (const UserError& e) {
       return refuse(res, 400, s.in_work(e.what()));
     }
-    res.set_content(s.sketch.text(), "application/geo+json");
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(answer.dump(), "application/json");
   });
-  // What the stored sketch names or says, read as generate reads it: a sketch that no longer
-  // reads (a library changed under it) is a 400 with the CLI's message.
   for (const auto& [route, read] : {std::pair{"/api/models", &library_in_use}, std::pair{"/api/lonlat", &lonlat_grid}})
     s.http.Get(route, [&s, read = read](const httplib::Request&, httplib::Response& res) {
       json answer;

@@ -1,10 +1,13 @@
 #include "serve/work_sketch.h"
 
 #include <OpenImageIO/imageio.h>
+#include <gdal.h>
 
 #include <cstdio>
 #include <fstream>
+#include <cctype>
 #include <functional>
+#include <map>
 #include <set>
 #include <sstream>
 #include <system_error>
@@ -15,6 +18,7 @@
 #include "generate/errors.h"
 #include "generate/placement/obj_file.h"
 #include "generate/placement/model_library.h"
+#include "generate/sketch/like_place.h"
 
 namespace exacity::serve {
 namespace fs = std::filesystem;
@@ -239,19 +243,76 @@ std::string upload_name_problem(const std::string& name) {
   return why.empty() ? "" : "has " + why;
 }
 
-}  // namespace
-
-Sketch WorkSketch::put_library(const std::vector<std::pair<std::string, std::string>>& files) {
-  const std::string upload = "the model library upload";
-  if (files.empty())
-    throw UserError(upload + " holds no files; choose the library's .json file with its OBJ and .mtl files");
-  std::string manifest;
+// Refuses an upload of no files, or one whose file names cannot be paths below `folder` or
+// come twice; `what` names the upload, `fix` says what to choose.
+void check_upload_names(const std::string& what, const std::vector<std::pair<std::string, std::string>>& files,
+                        const std::string& folder, const std::string& fix) {
+  if (files.empty()) throw UserError(what + " holds no files; " + fix);
   std::set<std::string> names;
   for (const auto& [name, bytes] : files) {
     if (const std::string why = upload_name_problem(name); !why.empty())
-      throw UserError(upload + ": the file name \"" + printable(name) + "\" " + why +
-                      "; upload files by their paths below the library's folder");
-    if (!names.insert(name).second) throw UserError(upload + ": \"" + name + "\" comes twice; send it once");
+      throw UserError(what + ": the file name \"" + printable(name) + "\" " + why + "; upload files by their paths below " + folder);
+    if (!names.insert(name).second) throw UserError(what + ": \"" + name + "\" comes twice; send it once");
+  }
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// A real place's files (generate --like): the place itself, or a shapefile's companion.
+// Formats read by OGR are the ones named here and no other (an OGR VRT, say, could read any
+// file on the machine): checked by the driver GDAL picks for the file's bytes.
+const std::map<std::string, const char*> kPlaceFormats{
+    {".osm", nullptr}, {".pbf", nullptr}, {".geojson", nullptr}, {".json", nullptr},
+    {".gpkg", "GPKG"}, {".fgb", "FlatGeobuf"}, {".shp", "ESRI Shapefile"}};
+const std::set<std::string> kShapefileCompanions{".shx", ".dbf", ".prj", ".cpg"};
+const std::string kPlaceFiles =
+    "an OSM extract (.osm, .osm.pbf) or building footprints as .geojson, .gpkg, .fgb or a .shp with its .shx, .dbf and .prj";
+
+}  // namespace
+
+std::string WorkSketch::replace_folder(const std::string& folder,
+                                       const std::vector<std::pair<std::string, std::string>>& files,
+                                       const std::string& key, const std::string& named,
+                                       const std::function<void(const std::string&)>& take) {
+  const fs::path root = work_.root(), target = root / folder, incoming = root / ("." + folder + "-upload"),
+                 previous = root / ("." + folder + "-previous");
+  fs::remove_all(incoming);
+  for (const auto& [name, bytes] : files) {
+    fs::create_directories((incoming / name).parent_path());
+    std::ofstream out(incoming / name, std::ios::binary);
+    out << bytes;
+    if (!out) throw UserError((incoming / name).string() + ": write failed (disk full?)");
+  }
+  // Checked where it will stay, so a bad upload's message names its files as a generation
+  // would; the folder there before waits aside until the new one is taken.
+  fs::remove_all(previous);
+  if (fs::exists(target)) fs::rename(target, previous);
+  fs::rename(incoming, target);
+  nlohmann::ordered_json doc = nlohmann::ordered_json::parse(
+      fs::is_regular_file(file()) ? read_file(file()) : std::string(kEmptySketch), nullptr, false);
+  if (doc.is_discarded() || !doc.is_object()) doc = nlohmann::ordered_json::parse(kEmptySketch);
+  doc["exacity"][key] = folder + "/" + named;
+  const std::string text = doc.dump(1) + "\n";
+  try {
+    take(text);
+  } catch (...) {
+    fs::remove_all(target);
+    if (fs::exists(previous)) fs::rename(previous, target);
+    throw;
+  }
+  fs::remove_all(previous);
+  write_file(file(), text);
+  return text;
+}
+
+Sketch WorkSketch::put_library(const std::vector<std::pair<std::string, std::string>>& files) {
+  const std::string upload = "the model library upload";
+  check_upload_names(upload, files, "the library's folder", "choose the library's .json file with its OBJ and .mtl files");
+  std::string manifest;
+  for (const auto& [name, bytes] : files) {
     if (fs::path(name).extension() != ".json") continue;
     if (!manifest.empty())
       throw UserError(upload + " has two .json files (\"" + manifest + "\", \"" + name +
@@ -260,40 +321,55 @@ Sketch WorkSketch::put_library(const std::vector<std::pair<std::string, std::str
   }
   if (manifest.empty())
     throw UserError(upload + " has no .json manifest; choose the library's .json file with its OBJ and .mtl files");
-
   std::lock_guard lock(mutex_);
-  const fs::path root = work_.root(), models = root / "models", incoming = root / ".models-upload",
-                 previous = root / ".models-previous";
-  fs::remove_all(incoming);
-  for (const auto& [name, bytes] : files) {
-    fs::create_directories((incoming / name).parent_path());
-    std::ofstream out(incoming / name, std::ios::binary);
-    out << bytes;
-    if (!out) throw UserError((incoming / name).string() + ": write failed (disk full?)");
-  }
-  // Checked where it will stay, so a bad library's message names its files as a generation
-  // would; the library there before waits aside until the new one is taken.
-  fs::remove_all(previous);
-  if (fs::exists(models)) fs::rename(models, previous);
-  fs::rename(incoming, models);
-  nlohmann::ordered_json doc = nlohmann::ordered_json::parse(
-      fs::is_regular_file(file()) ? read_file(file()) : std::string(kEmptySketch), nullptr, false);
-  if (doc.is_discarded() || !doc.is_object()) doc = nlohmann::ordered_json::parse(kEmptySketch);
-  doc["exacity"]["models"] = "models/" + manifest;
-  const std::string text = doc.dump(1) + "\n";
   Sketch sketch;
-  try {
+  replace_folder("models", files, "models", manifest, [&](const std::string& text) {
     check_library("models/" + manifest);  // before the library stage reads any file it names
-    load_model_library(models / manifest);
+    load_model_library(work_.root() / "models" / manifest);
     sketch = check(text);
-  } catch (...) {
-    fs::remove_all(models);
-    if (fs::exists(previous)) fs::rename(previous, models);
-    throw;
-  }
-  fs::remove_all(previous);
-  write_file(file(), text);
+  });
   return sketch;
+}
+
+Sketch WorkSketch::put_like(const std::vector<std::pair<std::string, std::string>>& files) {
+  const std::string upload = "the place upload";
+  check_upload_names(upload, files, "the place's folder", "choose " + kPlaceFiles);
+  std::string place;
+  for (const auto& [name, bytes] : files) {
+    const std::string extension = lower(fs::path(name).extension().string());
+    if (kShapefileCompanions.count(extension)) continue;
+    if (!kPlaceFormats.count(extension))
+      throw UserError(upload + ": \"" + name + "\" is not a file of a place exacity serve reads; choose " + kPlaceFiles);
+    if (!place.empty())
+      throw UserError(upload + " has two places (\"" + place + "\", \"" + name + "\"); upload one, with a shapefile's companions");
+    place = name;
+  }
+  if (place.empty()) throw UserError(upload + " has only a shapefile's companions; choose its .shp file with them");
+  std::lock_guard lock(mutex_);
+  Sketch sketch;
+  replace_folder("like", files, "like", place, [&](const std::string& text) {
+    const fs::path stored = work_.root() / "like" / place;
+    if (const char* format = kPlaceFormats.at(lower(stored.extension().string()))) {
+      GDALAllRegister();
+      GDALDriverH driver = GDALIdentifyDriverEx(stored.c_str(), GDAL_OF_VECTOR, nullptr, nullptr);
+      if (!driver || std::string(GDALGetDriverShortName(driver)) != format)
+        throw UserError(stored.string() + ": not a " + format + " file, as its name says; save it as one");
+    }
+    sketch = check(text);
+    Sketch measured = sketch;
+    measured.geojson = text;  // like_place reads the sketch's settings from it, not from the file it replaces
+    like_place(measured, sketch.like);
+  });
+  return sketch;
+}
+
+nlohmann::ordered_json WorkSketch::like_measured() const {
+  Sketch sketch = load();
+  if (sketch.like.empty()) return nullptr;
+  const std::string file = sketch.like.lexically_relative(work_.root()).generic_string();
+  nlohmann::ordered_json measured = like_place(sketch, sketch.like);  // the sketch then names no place
+  measured["file"] = file;
+  return measured;
 }
 
 std::optional<std::string> WorkSketch::heightmap_preview() const {
@@ -376,6 +452,18 @@ void WorkSketch::import(const fs::path& path) {
       if (zone.is_object() && zone.contains("grammar") && zone["grammar"].is_string())
         zone["grammar"] = bring(path.parent_path() / zone["grammar"].get<std::string>(), name + ".grammar");
   if (!original.models.empty()) ex["models"] = import_library(original.models);
+  // The real place it looks like into work/like, with a shapefile's companions.
+  if (!original.like.empty()) {
+    fs::remove_all(work_.root() / "like");
+    fs::create_directories(work_.root() / "like");
+    const fs::path& place = original.like;
+    ex["like"] = bring(place, "like/" + place.filename().string());
+    if (lower(place.extension().string()) == ".shp")
+      for (const std::string& companion : kShapefileCompanions) {
+        const fs::path other = fs::path(place).replace_extension(companion);
+        if (fs::exists(other)) bring(other, "like/" + other.filename().string());
+      }
+  }
   if (ex.is_null()) doc.erase("exacity");
   put(doc.dump(1) + "\n");
 }

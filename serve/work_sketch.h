@@ -3,11 +3,14 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "generate/sketch/sketch.h"
 #include "serve/confined_folder.h"
@@ -37,6 +40,16 @@ class WorkSketch {
   // sketch's "models". Throws UserError (a bad library's message is the CLI's); then the work
   // folder and the sketch stay as they were.
   Sketch put_library(const std::vector<std::pair<std::string, std::string>>& files);
+  // A real place uploaded as files (generate --like): an OSM extract, or footprints as
+  // GeoJSON, GeoPackage, FlatGeobuf or a shapefile with its .shx, .dbf, .prj and .cpg, the
+  // one file that is no shapefile's companion the place. Stored as work/like in place of the
+  // files there, measured as generate measures it (a file it cannot measure is refused with
+  // the CLI's message) and named by the sketch's "like". Throws UserError; then the work
+  // folder and the sketch stay as they were.
+  Sketch put_like(const std::vector<std::pair<std::string, std::string>>& files);
+  // What the place the sketch's "like" names measures and sets, as report.json's "like" holds
+  // it, with its file named in the work folder; null when the sketch names none. Throws UserError.
+  nlohmann::ordered_json like_measured() const;
   // An 8-bit picture of the heightmap for the page: grey by height, its water (value 0) in
   // the map's water colour; nullopt when the sketch has none.
   std::optional<std::string> heightmap_preview() const;
@@ -51,6 +64,12 @@ class WorkSketch {
   void check_library(const std::string& manifest) const;
   // Copies a model library into work/models; returns the manifest's name there.
   std::string import_library(const std::filesystem::path& manifest);
+  // Writes `files` as work/FOLDER in place of the folder there and returns the sketch's text
+  // with `key` naming `named` (a path below it); then `take(sketch_text)` checks it. When that
+  // throws, the folder and the sketch from before are put back. Call with mutex_ held.
+  std::string replace_folder(const std::string& folder, const std::vector<std::pair<std::string, std::string>>& files,
+                             const std::string& key, const std::string& named,
+                             const std::function<void(const std::string&)>& take);
   void store(const std::string& text);
   const ConfinedFolder& work_;
   mutable std::mutex mutex_;

@@ -657,6 +657,93 @@ TEST_F(ServeTest, ModelUploadNamesThatTryToLeaveAreRefused) {
   EXPECT_FALSE(fs::exists(work() / "models"));
 }
 
+// A real place: its own residential land 330 m by 100 m along a road, and `buildings`
+// footprints 10 m deep 5 m behind the road's surface, 4 m apart, 10 m wide and 2 m more each
+// (tests/like_test.cpp: twelve give areas 100 to 320 m², median 200).
+std::string place_geojson(int buildings) {
+  auto rectangle = [](double x0, double y0, double x1, double y1) {
+    return json::array({json::array({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}, {x0, y0}})});
+  };
+  json features = json::array();
+  features.push_back({{"type", "Feature"}, {"properties", {{"zone", "residential"}}},
+                      {"geometry", {{"type", "Polygon"}, {"coordinates", rectangle(0, 0, 330, 100)}}}});
+  features.push_back({{"type", "Feature"}, {"properties", {{"road", "local"}, {"width", 10}}},
+                      {"geometry", {{"type", "LineString"}, {"coordinates", {{-10, 0}, {340, 0}}}}}});
+  double x = 10;
+  for (int i = 0; i < buildings; ++i) {
+    const double w = 10 + 2 * i;
+    features.push_back({{"type", "Feature"}, {"properties", {{"building", "house"}, {"height", 6 + i}}},
+                        {"geometry", {{"type", "Polygon"}, {"coordinates", rectangle(x, 10, x + w, 20)}}}});
+    x += w + 4;
+  }
+  return json{{"type", "FeatureCollection"}, {"features", features}}.dump();
+}
+
+// A place uploaded from the page (generate --like): stored in work/like, named by the
+// sketch, measured as generate measures it (GET /api/like), and looked like by the
+// generation.
+TEST_F(ServeTest, UploadedPlaceIsMeasuredAndLookedLike) {
+  EXPECT_EQ(json::parse(client->Get("/api/like")->body), json::parse(R"({"file": null, "measured": null})"));
+  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+  auto r = client->Post("/api/like", httplib::MultipartFormDataItems{{"file", place_geojson(12), "place.geojson", ""}});
+  ASSERT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(json::parse(r->body)["exacity"]["like"], "like/place.geojson");
+  EXPECT_EQ(json::parse(client->Get("/api/sketch")->body)["exacity"]["like"], "like/place.geojson");
+  EXPECT_EQ(read(work() / "like" / "place.geojson"), place_geojson(12));
+  const json like = json::parse(client->Get("/api/like")->body);
+  EXPECT_EQ(like["file"], "like/place.geojson");
+  EXPECT_EQ(like["measured"]["file"], "like/place.geojson");
+  EXPECT_EQ(like["measured"]["footprints"], 12);
+  EXPECT_EQ(like["measured"]["zones"]["residential"]["measured"]["area_m2"],
+            json::parse(R"({"count": 12, "p10": 120.0, "median": 200.0, "p90": 300.0})"));
+  EXPECT_EQ(like["measured"]["zones"]["residential"]["set"]["setback"], 5.0);
+  EXPECT_EQ(like["measured"]["zones"]["commercial"]["kept_defaults"], "fewer than 10 mapped buildings in commercial land");
+  ASSERT_EQ(client->Post("/api/generate", "", "application/json")->status, 202);
+  const json done = wait_for_job(*client);
+  ASSERT_EQ(done["state"], "done") << done.dump();
+  const json report = json::parse(client->Get("/api/report")->body);
+  EXPECT_EQ(report["like"], like["measured"]);
+  // The city's sketch holds what was set in place of "like", as generate's copy does.
+  const json copy = json::parse(read(work() / "city" / "sketch.geojson"));
+  EXPECT_FALSE(copy["exacity"].contains("like"));
+  EXPECT_EQ(copy["exacity"]["zones"]["residential"]["setback"], 5.0);
+}
+
+// A place the CLI cannot measure is refused with its message; so are uploads that are no
+// place, two places, a file that is not what its name says (an OGR VRT named .gpkg could
+// read any file) and names that leave the folder. The sketch and the place from before stay.
+TEST_F(ServeTest, BadPlaceUploadsAreRefused) {
+  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+  ASSERT_EQ(client->Post("/api/like", httplib::MultipartFormDataItems{{"file", place_geojson(12), "place.geojson", ""}})->status,
+            200);
+  const std::string sketch_before = client->Get("/api/sketch")->body;
+  auto few = client->Post("/api/like", httplib::MultipartFormDataItems{{"file", place_geojson(3), "few.geojson", ""}});
+  EXPECT_EQ(few->status, 400);
+  EXPECT_EQ(few->body, "like/few.geojson: maps 3 building footprints, too few to measure a place by (at least 10); give an "
+                       "extract or a file with more of its buildings, or leave out --like");
+  const std::string vrt = "<OGRVRTDataSource><OGRVRTLayer name=\"x\"><SrcDataSource>" + (dir / "secret.txt").string() +
+                          "</SrcDataSource></OGRVRTLayer></OGRVRTDataSource>";
+  const std::vector<std::pair<httplib::MultipartFormDataItems, std::string>> refused{
+      {{{"file", vrt, "place.gpkg", ""}}, "like/place.gpkg: not a GPKG file, as its name says; save it as one"},
+      {{{"file", "x", "place.txt", ""}}, "the place upload: \"place.txt\" is not a file of a place exacity serve reads"},
+      {{{"file", "{}", "a.geojson", ""}, {"file", "{}", "b.osm", ""}}, "the place upload has two places"},
+      {{{"file", "x", "place.dbf", ""}}, "the place upload has only a shapefile's companions"},
+      {{{"file", place_geojson(12), "../place.geojson", ""}}, "the place upload: the file name \"../place.geojson\" has"},
+      {{{"file", place_geojson(12), "sub/.hidden.geojson", ""}}, "the place upload: the file name"},
+      {{{"file", place_geojson(12), "", ""}}, "the place upload: the file name \"\" has no name"}};
+  for (const auto& [items, message] : refused) {
+    auto r = client->Post("/api/like", items);
+    EXPECT_EQ(r->status, 400) << message;
+    EXPECT_EQ(r->body.rfind(message, 0), 0u) << message << " / " << r->body;
+    EXPECT_EQ(r->body.find('\n'), std::string::npos) << r->body;
+  }
+  EXPECT_EQ(client->Post("/api/like", place_geojson(12), "application/geo+json")->status, 415);
+  EXPECT_EQ(client->Get("/api/sketch")->body, sketch_before);
+  EXPECT_EQ(read(work() / "like" / "place.geojson"), place_geojson(12));
+  EXPECT_FALSE(fs::exists(dir / "place.geojson"));
+  EXPECT_FALSE(fs::exists(work() / "like" / "place.gpkg"));
+}
+
 TEST_F(ServeTest, OversizedBodyIsRefused) {
   ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
   std::string big = kSmallSketch;
@@ -745,6 +832,19 @@ TEST_F(ServeTest, GenerateStreamsStagesThenServesOutputsAndRenders) {
     ASSERT_EQ(r->status, 200) << layer;
     EXPECT_EQ(json::parse(r->body)["type"], "FeatureCollection") << layer;
   }
+  // Every 3D and GIS file generate writes, to download: city.osm not, the sketch having no
+  // CRS; the GeoPackage with every layer.
+  EXPECT_EQ(json::parse(client->Get("/api/status")->body)["files"],
+            json::parse(R"(["city.glb", "city.city.json", "city.obj", "city.ply", "city.gpkg", "map.svg"])"));
+  for (const char* name : {"city.glb", "city.city.json", "city.obj", "city.ply", "city.gpkg", "map.svg"}) {
+    auto r = client->Get(std::string("/api/files/") + name);
+    ASSERT_EQ(r->status, 200) << name;
+    EXPECT_EQ(r->body, read(work() / "city" / name)) << name;
+  }
+  EXPECT_EQ(client->Get("/api/files/city.gpkg")->body.substr(0, 15), "SQLite format 3");
+  EXPECT_EQ(client->Get("/api/files/city.osm")->status, 404);
+  EXPECT_EQ(client->Get("/api/files/report.json")->status, 404);
+  EXPECT_EQ(client->Get("/api/files/..")->status, 404);
 
   auto render =
       client->Post("/api/render",
@@ -1407,6 +1507,25 @@ TEST(ServeCommandTest, ImportsAModelLibrarysTextures) {
   ASSERT_GT(port, 0) << read(dir / "log.txt");
   ASSERT_TRUE(fs::is_regular_file(dir / "work" / "models" / "textures" / "skin.png"));
   EXPECT_TRUE(read(dir / "work" / "models" / "textures" / "skin.png") == read(dir / "lib" / "textures" / "skin.png"));
+  kill(pid, SIGTERM);
+  EXPECT_EQ(exit_code(pid), 128 + SIGTERM) << read(dir / "log.txt");
+}
+
+// A sketch's "like" comes along into work/like, a shapefile's companions with it.
+TEST(ServeCommandTest, ImportsThePlaceItLooksLike) {
+  const fs::path dir = testing_util::temp_dir("serve_command_like");
+  fs::create_directories(dir / "places");
+  for (const char* extension : {".shp", ".shx", ".dbf", ".prj"}) write(dir / "places" / (std::string("town") + extension), extension);
+  write(dir / "in.geojson", sketch_with(R"({"seed": 3, "like": "places/town.shp"})"));
+  const pid_t pid = start_program(
+      {"serve", (dir / "in.geojson").string(), "--port", "0", "--work", (dir / "work").string()}, dir / "log.txt");
+  const int port = served_port(dir / "log.txt");
+  ASSERT_GT(port, 0) << read(dir / "log.txt");
+  httplib::Client c("127.0.0.1", port);
+  c.set_bearer_token_auth(served_token(dir / "log.txt").c_str());
+  EXPECT_EQ(json::parse(c.Get("/api/sketch")->body)["exacity"]["like"], "like/town.shp");
+  for (const char* extension : {".shp", ".shx", ".dbf", ".prj"})
+    EXPECT_EQ(read(dir / "work" / "like" / (std::string("town") + extension)), extension);
   kill(pid, SIGTERM);
   EXPECT_EQ(exit_code(pid), 128 + SIGTERM) << read(dir / "log.txt");
 }

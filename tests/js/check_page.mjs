@@ -4,7 +4,8 @@
 // refused (the page back at the server's sketch, the message on one line), reload, generate,
 // find the generated layers and the downloads, orbit the 3D view, see its tiles' levels
 // switch from far to near, walk and fly, pick a building, render it, upload a model library
-// (listed with its models), draw an XYZ basemap and a GeoTIFF under a sketch in UTM, cancel a generation (its time left shown); the settings' forms
+// (listed with its models), look like a real place (its file uploaded, measured, generated
+// like it), draw an XYZ basemap and a GeoTIFF under a sketch in UTM, cancel a generation (its time left shown); the settings' forms
 // made from the server's table, a value refused next to its field; the page's colours the
 // server's; no console error throughout but the refusals asked for. Usage: node check_page.mjs EXACITY_BINARY OUT_DIR
 // (screenshots go to OUT_DIR). Exits 1 on the first failed check. DEBUG_PAGE=1 logs every
@@ -369,7 +370,8 @@ try {
   const downloads = async () => page.$$eval('#downloads a', links => links.map(a => [a.getAttribute('href'), a.download]));
   let listed = await downloads();
   const names = listed.map(([, name]) => name);
-  check(['sketch.geojson', 'city.glb', 'map.svg', 'report.json', 'zones.geojson', 'buildings.geojson'].every(n => names.includes(n)) &&
+  check(['sketch.geojson', 'city.glb', 'city.city.json', 'city.obj', 'city.ply', 'city.gpkg', 'map.svg', 'report.json',
+         'zones.geojson', 'buildings.geojson'].every(n => names.includes(n)) &&
         !names.includes('still.png'), `the city's outputs listed to download: ${names}`);
   for (const [href, name] of listed) {
     const r = await get(href);
@@ -540,10 +542,60 @@ try {
   check(withWindows > bare + 0.05, `the walls have windows: ${(100 * withWindows).toFixed(1)}% of the view dark glass against ` +
         `${(100 * bare).toFixed(1)}% without (building ${tallest.id}, ${tallest.height} m)`);
   await page.screenshot({path: path.join(out, 'windows.png')});
+  // Each building's own windows, as the renderer draws them: every wall triangle of the
+  // full levels loaded carries its building's style from facades.json (its storey, bay,
+  // window, phase, sill, head, floor and eaves), its building the footprint just inside it.
+  const styles = await page.evaluate(() => {
+    const view = window.exacityExplore, facades = view.facades.buildings;
+    let walls = 0, styled = 0, own = 0;
+    const heights = new Set();
+    for (const tile of view.tiles) tile.loaded[0]?.traverse(o => {
+      if (!o.isMesh || !/_wall/.test(o.material.name)) return;
+      const g = o.geometry, p = g.attributes.position, a = g.attributes.facadeA, b = g.attributes.facadeB;
+      for (let t = 0; t < (g.index ? g.index.count : p.count); t += 3) {
+        const i = g.index ? g.index.getX(t) : t;
+        ++walls;
+        if (!(a.getX(i) > 0)) continue;
+        ++styled;
+        const same = (k, field, value) => Math.fround(facades[k][field]) === value;  // the attributes are single floats
+        const id = Object.keys(facades).find(k => same(k, 0, a.getX(i)) && same(k, 1, a.getY(i)) && same(k, 5, a.getW(i)) &&
+                                                    same(k, 6, b.getZ(i)) && same(k, 7, b.getW(i)));
+        if (id !== undefined) ++own;
+        heights.add(a.getX(i));
+      }
+    });
+    return {walls, styled, own, storeys: heights.size, buildings: Object.keys(facades).length};
+  });
+  check(styles.walls > 0 && styles.styled >= 0.9 * styles.walls && styles.own === styles.styled && styles.storeys > 1,
+        `walls take their buildings' own windows: ${styles.styled} of ${styles.walls} wall triangles styled, each as one of ` +
+        `the ${styles.buildings} buildings' facades, ${styles.storeys} storey heights`);
+  // Roofs have the still's tiles or gravel: looking down on the tallest building's roof
+  // from 12 m, the pattern changes the roof's pixels.
+  await page.evaluate(t => {
+    const view = window.exacityExplore, f = view.layers.buildings.features.find(f => f.properties.id === t.id);
+    const ring = f.geometry.type === 'Polygon' ? f.geometry.coordinates[0] : f.geometry.coordinates[0][0];
+    const x = ring.reduce((s, p) => s + p[0], 0) / ring.length, y = ring.reduce((s, p) => s + p[1], 0) / ring.length;
+    view.setOrbit({target: [x, y, view.groundHeight(x, y) + t.height], azimuth: 200, elevation: 85, distance: 12});
+  }, tallest);
+  await tiles();
+  const roofPixels = () => page.evaluate(() => Array.from(window.exacityExplore.pixels()));
+  const patterned = await roofPixels();
+  await page.evaluate(() => { window.exacityExplore.roofPattern.value = 0; });
+  const plainRoof = await roofPixels();
+  await page.evaluate(() => { window.exacityExplore.roofPattern.value = 1; });
+  let changed = 0;
+  for (let i = 0; i < patterned.length; i += 4)
+    if (Math.abs(patterned[i] - plainRoof[i]) + Math.abs(patterned[i + 1] - plainRoof[i + 1]) > 2) ++changed;
+  await page.screenshot({path: path.join(out, 'roof.png')});
+  check(changed > 0.15 * patterned.length / 4, `the roof has its pattern: ${(400 * changed / patterned.length).toFixed(1)}% of the view changed by it`);
   // Walk: the CLI's pedestrian, where the orbit looked; keys move it along its heading.
   await page.click('[data-mode="pedestrian"]');
   const walker = await spec();
   check(/^pedestrian:at=[-\d.]+,[-\d.]+,heading=[\d.]+,pitch=0$/.test(walker), `walking: ${walker}`);
+  // The orbit looked at the tallest building's roof: the walker stands outside it, not in it.
+  const standing = /at=([-\d.]+),([-\d.]+)/.exec(walker).slice(1).map(Number);
+  check(await page.evaluate(([x, y]) => window.exacityExplore.footprints.at(x, y), standing) === null,
+        `the walker stands outside every building: ${walker}`);
   await page.keyboard.press('w');
   await page.keyboard.press('w');
   const walked = await spec();
@@ -604,6 +656,84 @@ try {
   const listedModels = await page.$$eval('#library-models tbody tr', rows => rows.map(r => [...r.cells].map(c => c.textContent).join('|')));
   check(listedModels.includes('apartment|building|residential, commercial') && listedModels.includes('tree|tree|residential, commercial, industrial'),
         `the library's models listed with their zone types: ${listedModels.join('; ')}`);
+
+  // Like a place…: a file of a real place's footprints, measured by the server as generate
+  // --like measures it. Its own residential land 330 m by 100 m along a road, and twelve
+  // footprints 10 m deep 5 m behind the road's surface, 4 m apart, 10 to 32 m wide: areas 100
+  // to 320 m² (median 200, p90 300; tests/like_test.cpp). A file with three is refused with
+  // the CLI's line, the sketch as it was.
+  const rectangle = (x0, y0, x1, y1) => [[[x0, y0], [x1, y0], [x1, y1], [x0, y1], [x0, y0]]];
+  const placeFeatures = [
+    {type: 'Feature', properties: {zone: 'residential'}, geometry: {type: 'Polygon', coordinates: rectangle(0, 0, 330, 100)}},
+    {type: 'Feature', properties: {road: 'local', width: 10}, geometry: {type: 'LineString', coordinates: [[-10, 0], [340, 0]]}}];
+  for (let i = 0, x = 10; i < 12; x += 10 + 2 * i + 4, ++i)
+    placeFeatures.push({type: 'Feature', properties: {building: 'house', height: 6 + i},
+                        geometry: {type: 'Polygon', coordinates: rectangle(x, 10, x + 10 + 2 * i, 20)}});
+  const placeFile = path.join(out, 'place.geojson'), fewFile = path.join(out, 'few.geojson');
+  fs.writeFileSync(placeFile, JSON.stringify({type: 'FeatureCollection', features: placeFeatures}));
+  fs.writeFileSync(fewFile, JSON.stringify({type: 'FeatureCollection', features: placeFeatures.slice(0, 5)}));
+  const likeChooser = async file => {
+    const [chooser] = await Promise.all([page.waitForFileChooser(), page.click('#like')]);
+    await chooser.accept([file]);
+  };
+  errors.length = 0;
+  const [fewAnswer] = await Promise.all([page.waitForResponse(r => r.url().endsWith('/api/like') && r.request().method() === 'POST'),
+                                         likeChooser(fewFile)]);
+  const fewMessage = await fewAnswer.text();
+  check(fewAnswer.status() === 400 && fewMessage === 'like/few.geojson: maps 3 building footprints, too few to measure a place by ' +
+        '(at least 10); give an extract or a file with more of its buildings, or leave out --like',
+        `a place with three footprints refused with the CLI's line: ${fewMessage}`);
+  await page.waitForFunction(m => document.getElementById('message').textContent === m, {timeout: 30000}, fewMessage);
+  check(!('like' in (await sketch()).exacity) && await page.$eval('#like-panel', p => p.hidden), 'the sketch names no place after the refusal');
+  check(errors.filter(e => /^HTTP 400: .*\/api\/like$/.test(e)).length === 1 && errors.every(e => /400/.test(e)),
+        `only the refusal was an error (${errors.join(' | ')})`);
+  errors.length = 0;
+  await likeChooser(placeFile);
+  for (let i = 0; i < 50 && !(await sketch()).exacity?.like; ++i) await new Promise(r => setTimeout(r, 100));
+  check((await sketch()).exacity.like === 'like/place.geojson', 'the uploaded place is the sketch\'s "like"');
+  await page.waitForFunction(() => document.querySelectorAll('#like-figures tbody tr').length === 3, {timeout: 30000});
+  check(await page.$eval('#like-in-use', e => e.textContent) === 'like/place.geojson' &&
+        /^like\/place.geojson: 12 footprints; zones from the file's land use$/.test(await page.$eval('#like-name', e => e.textContent)),
+        'the panel names the place and what it measured');
+  const likeRows = async () => page.$$eval('#like-figures tbody tr', rows => rows.map(r => [...r.cells].map(c => c.textContent).join('|')));
+  let rows = await likeRows();
+  check(rows[0] === 'residential|12|200 / 300|–' && rows[1] === 'commercial|0|too few|–',
+        `the place's footprints measured per zone type: ${rows.join('; ')}`);
+  const likeSet = await page.$$eval('#like-set li', items => items.map(i => i.textContent));
+  check(/^residential: .*setback 5, building gap 4,/.test(likeSet[0]) && /footprint areas \[100,/.test(likeSet[0]) &&
+        likeSet[1] === 'commercial: defaults kept (fewer than 10 mapped buildings in commercial land)',
+        `the settings the place gives each zone type: ${likeSet.join('; ')}`);
+  // Generate looks like it: report.json's "like" is the place's, and the panel sets the
+  // generated footprints beside the place's.
+  const [likeStart] = await Promise.all([
+    page.waitForResponse(r => r.url().endsWith('/api/generate') && r.request().method() === 'POST', {timeout: 30000}),
+    page.click('#generate')]);
+  check(likeStart.status() === 202, `Generate started (${likeStart.status()})`);
+  let liked = {state: 'running'};
+  for (let i = 0; i < 6000 && liked.state === 'running'; ++i) {
+    await new Promise(r => setTimeout(r, 100));
+    liked = await (await get('/api/status')).json();
+  }
+  check(liked.state === 'done', `the generation like the place ended done (${liked.state})`);
+  const likeReport = await (await get('/api/report')).json();
+  check(likeReport.like?.file === 'like/place.geojson' && likeReport.like.zones.residential.set.setback === 5,
+        `the generation looked like the place: ${JSON.stringify(likeReport.like?.zones?.residential?.set)}`);
+  const m2 = v => Math.round(v).toLocaleString('en');
+  const expectedRows = ['residential', 'commercial', 'industrial'].map(zone => {
+    const g = likeReport.footprints_by_zone[zone]?.generated;
+    return g?.footprints ? `${m2(g.median_m2)} / ${m2(g.p90_m2)}` : '–';
+  });
+  await page.waitForFunction(expected => [...document.querySelectorAll('#like-figures tbody tr')].map(r => r.cells[3].textContent).join() === expected,
+                             {timeout: 60000}, expectedRows.join()).catch(() => {});
+  rows = await likeRows();
+  check(rows.map(r => r.split('|')[3]).join() === expectedRows.join() && expectedRows.some(r => r !== '–'),
+        `the generated footprints beside the place's: ${rows.join('; ')}`);
+  await page.screenshot({path: path.join(out, 'like.png')});
+  // Stop using it: the sketch names no place, and the panel goes.
+  await page.$eval('#like-clear', b => b.click());
+  for (let i = 0; i < 50 && (await sketch()).exacity?.like; ++i) await new Promise(r => setTimeout(r, 100));
+  check(!('like' in (await sketch()).exacity), 'Stop using it: the sketch names no place');
+  await page.waitForFunction(() => document.getElementById('like-panel').hidden, {timeout: 30000});
 
   // Save downloads the sketch; Open reads one from a file and shows what the server took.
   const cdp = await page.createCDPSession();

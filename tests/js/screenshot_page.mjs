@@ -26,15 +26,15 @@ try {
   const page = await browser.newPage();
   await page.setViewport({width: 1400, height: 860});
   address.searchParams.set('spp', '32');
-  await page.goto(address.href);
-  await page.waitForSelector('body[data-ready="yes"]');
+  await page.goto(address.href, {timeout: 120000});  // a loaded machine takes its time
+  await page.waitForSelector('body[data-ready="yes"]', {timeout: 120000});
   await page.click('#generate');
   await page.waitForSelector('body[data-city="shown"]', {timeout: 600000});
   await page.click('.zone-form[data-zone="residential"] summary');
   await page.screenshot({path: path.join(out, 'serve-map.png')});
   await page.click('.zone-form[data-zone="residential"] summary');  // the city's legend and report in view again
   await page.click('[data-view="explore"]');
-  await page.waitForFunction(() => window.exacityExplore && window.exacityExplore.city, {timeout: 60000});
+  await page.waitForFunction(() => window.exacityExplore && window.exacityExplore.city, {timeout: 300000});
   await page.evaluate(() => window.exacityExplore.setOrbit({azimuth: 235, elevation: 28}));
   await page.click('#render-view');
   await page.waitForFunction(() => {
@@ -42,7 +42,7 @@ try {
     return !document.getElementById('render-result').hidden && img.complete && img.naturalWidth > 0;
   }, {timeout: 600000});
   // Every tile in view at the level it asked for.
-  await page.waitForFunction(() => window.exacityExplore.tileCounts().pending === 0, {timeout: 60000});
+  await page.waitForFunction(() => window.exacityExplore.tileCounts().pending === 0, {timeout: 300000});
   // A building near the view's middle, its attributes shown as a click shows them.
   await page.evaluate(() => {
     const view = window.exacityExplore, r = view.renderer.domElement.getBoundingClientRect();

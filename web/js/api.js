@@ -22,12 +22,13 @@ export async function putHeightmap(file) {
                                                body: await file.arrayBuffer()}));
 }
 
-// A model library's files in one form, each named by its path below the library's folder
-// (a folder chosen whole gives paths starting with the folder's own name, dropped here).
-export async function postModels(files) {
+// Files in one form, each named by its path below their folder (a folder chosen whole gives
+// paths starting with the folder's own name, dropped here): a model library's to
+// /api/models, a real place's to /api/like.
+export async function postFiles(url, files) {
   const form = new FormData();
   for (const f of files) form.append('file', f, f.webkitRelativePath ? f.webkitRelativePath.split('/').slice(1).join('/') : f.name);
-  return answer(await fetch('/api/models', {method: 'POST', body: form}));
+  return answer(await fetch(url, {method: 'POST', body: form}));
 }
 
 // The server may require a JSON content type on its JSON routes: these send an empty object.
@@ -49,6 +50,11 @@ export async function startRender(request) {
 // Where the server places a GeoTIFF of the work folder: {file, extent, size, crs}, or its refusal.
 export async function placeBasemap(name) {
   return answer(await fetch(`/api/basemap?file=${encodeURIComponent(name)}`, {cache: 'no-store'}));
+}
+
+// The place the sketch looks like, measured: {file, measured}, or the server's refusal.
+export async function getLike() {
+  return answer(await fetch('/api/like', {cache: 'no-store'}));
 }
 
 export async function getJson(url) {

@@ -68,6 +68,7 @@ async function sendNow(doc) {
   }
   lastGood = JSON.parse(r.text);
   say('Saved.');
+  showLikeIfChanged();
   if ($('auto-generate').checked) generateAfterEdit();
   return true;
 }
@@ -100,6 +101,7 @@ async function backToServer(message) {
     panel.keep(doc.exacity);
     history.push(JSON.stringify(map.sketch()));
     updateButtons();
+    showLikeIfChanged();
   }
   say(message, true, 'Not saved: the map shows the sketch the server has.');
 }
@@ -130,17 +132,19 @@ window.exacityPage = {sketch: () => map.sketch(),
                         map.map.once('moveend', () => resolve());
                         view.setCenter([x + dx * r, y - dy * r]);
                       })};
+// The sketch with `exacity` as its settings, sent; resolves to the refusal's message, or null
+// when the server took them.
+async function applySettings(exacity) {
+  const doc = map.sketch();
+  doc.exacity = exacity;
+  if (!(await send(doc))) return lastRefusal;
+  map.setSettings(exacity);
+  history.push(JSON.stringify(map.sketch()));
+  panel.show(exacity);
+  return null;
+}
 const panel = new SettingsPanel({
-  // Resolves to the refusal's message, or null when the server took the settings.
-  apply: async exacity => {
-    const doc = map.sketch();
-    doc.exacity = exacity;
-    if (!(await send(doc))) return lastRefusal;
-    map.setSettings(exacity);
-    history.push(JSON.stringify(map.sketch()));
-    panel.show(exacity);
-    return null;
-  },
+  apply: applySettings,
   featureEdited: () => recordEdit(),
   typo: (what, why) => say(what, true, `${why}. Not applied: fix the box and apply again.`),
 });
@@ -325,7 +329,7 @@ $('models-file').addEventListener('change', async e => {
   const files = [...e.target.files];
   e.target.value = '';
   if (!files.length) return;
-  const r = await api.postModels(files);
+  const r = await api.postFiles('/api/models', files);
   if (!r.ok) return say(r.message, true);
   lastGood = JSON.parse(r.text);
   map.setSettings(lastGood.exacity);
@@ -335,6 +339,78 @@ $('models-file').addEventListener('change', async e => {
   say(`Model library ${lastGood.exacity.models} loaded (${files.length} files).`);
   showLibrary();
 });
+
+// Like a place…: a real place's files (an OSM extract, or footprints with a shapefile's
+// companions), which the server measures as generate --like does; the sketch then names it,
+// and the panel shows what was measured and the settings it gives each zone type.
+$('like').addEventListener('click', () => $('like-file').click());
+$('like-file').addEventListener('change', async e => {
+  const files = [...e.target.files];
+  e.target.value = '';
+  if (!files.length) return;
+  say(`Measuring ${files.map(f => f.name).join(', ')}…`);
+  const r = await api.postFiles('/api/like', files);
+  if (!r.ok) return say(r.message, true, 'Not taken: the sketch looks like the place it named before, if any.');
+  lastGood = JSON.parse(r.text);
+  map.setSettings(lastGood.exacity);
+  panel.show(lastGood.exacity);
+  history.push(JSON.stringify(map.sketch()));
+  updateButtons();
+  say(`${lastGood.exacity.like} measured: Generate builds the zone types like it.`);
+  await showLike();  // measured again: a file of the same name may hold another place
+});
+$('like-clear').addEventListener('click', async () => {
+  const exacity = {...(lastGood?.exacity || {})};
+  delete exacity.like;
+  if ((await applySettings(exacity)) === null) say('The sketch looks like no place now.');
+});
+
+// What the place the sketch names measures (GET /api/like), per built-up zone type: its
+// mapped buildings' footprint median and p90, and the generated ones' after a generation
+// that looked like it (report.json's footprints_by_zone); the settings it gives each.
+let likeShown;  // the place whose figures are shown
+let lastReport = null;
+async function showLikeIfChanged() {
+  const like = lastGood?.exacity?.like ?? null;
+  if (like !== likeShown) await showLike();
+}
+async function showLike() {
+  const r = await api.getLike();
+  likeShown = r.ok ? JSON.parse(r.text).file : lastGood?.exacity?.like ?? null;
+  $('like-panel').hidden = !likeShown;
+  if (!r.ok) {
+    $('like-name').textContent = r.message;
+    $('like-name').className = 'error';
+    $('like-figures').tBodies[0].replaceChildren();
+    $('like-set').replaceChildren();
+    return;
+  }
+  const {file, measured} = JSON.parse(r.text);
+  if (!measured) return;
+  $('like-name').className = '';
+  $('like-name').textContent = `${file}: ${measured.footprints.toLocaleString('en')} footprints; zones from ${measured.zones_from}`;
+  const generated = lastReport?.like?.file === file ? lastReport.footprints_by_zone || {} : {};
+  const m2 = v => (typeof v === 'number' ? Math.round(v).toLocaleString('en') : '–');
+  const rows = [], set = [];
+  for (const zone of ['residential', 'commercial', 'industrial'].filter(z => z in measured.zones)) {
+    const z = measured.zones[zone];
+    const area = z.measured?.area_m2, g = generated[zone]?.generated;
+    const row = document.createElement('tr');
+    row.dataset.zone = zone;
+    for (const text of [zone, z.buildings, area ? `${m2(area.median)} / ${m2(area.p90)}` : 'too few',
+                        g?.footprints ? `${m2(g.median_m2)} / ${m2(g.p90_m2)}` : '–'])
+      row.insertCell().textContent = text;
+    rows.push(row);
+    const item = document.createElement('li');
+    item.dataset.zone = zone;
+    if (z.kept_defaults) item.textContent = `${zone}: defaults kept (${z.kept_defaults})`;
+    else item.textContent = `${zone}: ` + (Object.entries(z.set).map(([k, v]) => `${k.replace(/_/g, ' ')} ${JSON.stringify(v)}`).join(', ') || 'nothing set') +
+                            (z.kept_as_the_sketch_sets ? `; the sketch's own ${z.kept_as_the_sketch_sets.join(', ')} kept` : '');
+    set.push(item);
+  }
+  $('like-figures').tBodies[0].replaceChildren(...rows);
+  $('like-set').replaceChildren(...set);
+}
 
 $('cancel').addEventListener('click', async () => {
   const r = await api.cancelJob();
@@ -390,7 +466,9 @@ function showProgress(event) {
 async function showCity() {
   cityLayers = cityLayers || new CityLayers(map.city);
   const report = await cityLayers.load();
+  lastReport = report;
   stageSeconds = report?.timings_s || {};
+  if (report?.like) await showLike();
   map.layer.setOpacity(0.5);  // the sketch stays editable over the city, without hiding its streets
   if (explore) await loadExplore();
   return report;
@@ -410,11 +488,14 @@ async function loadExplore() {
   await explore.load(cityBounds(), cityLayers.data);
 }
 
-// Every output the server has, to download: the city's files once generated, the still once
+// Every output the server has, to download: the city's files once generated (those the
+// status lists: glTF, CityJSON, OBJ, PLY, OSM, GeoPackage, the SVG map), the still once
 // rendered (docs/serve.md, The API).
 let rendered = false;
-function showDownloads() {
-  const files = [['/api/sketch', 'sketch.geojson'], ['/api/city.glb', 'city.glb'], ['/api/map.svg', 'map.svg'],
+let cityFiles = [];
+async function showDownloads() {
+  cityFiles = (await api.getJson('/api/status'))?.files || cityFiles;
+  const files = [['/api/sketch', 'sketch.geojson'], ...cityFiles.map(name => [`/api/files/${name}`, name]),
                  ['/api/report', 'report.json'],
                  ...Object.keys(cityLayers?.data || {}).map(n => [`/api/layers/${n}.geojson`, `${n}.geojson`])];
   if (rendered) files.push(['/api/render/still.png', 'still.png'], ['/api/render/still.json', 'still.json']);
@@ -461,7 +542,7 @@ api.listen({
     $('stage').textContent = `${s.job} done`;
     if (s.job === 'generate') {
       await showCity();
-      showDownloads();
+      await showDownloads();
       say('City generated.');
       document.body.dataset.city = 'shown';
     } else if (s.job === 'render') {
@@ -522,7 +603,8 @@ $('render-view').addEventListener('click', async () => {
   map.load(doc, true);
   showCount(doc);
   panel.show(doc.exacity);
-  await Promise.all([panel.build(), showLibrary(), showPlace()]);
+  lastGood = doc;
+  await Promise.all([panel.build(), showLibrary(), showPlace(), showLikeIfChanged()]);
   await showSavedBasemaps();
   history.push(JSON.stringify(map.sketch()));
   updateButtons();
@@ -530,7 +612,7 @@ $('render-view').addEventListener('click', async () => {
   rendered = status.render;
   if (status.city) {
     await showCity();
-    showDownloads();
+    await showDownloads();
     document.body.dataset.city = 'shown';
   }
   document.body.dataset.ready = 'yes';

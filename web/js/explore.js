@@ -51,6 +51,7 @@ export class ExploreView {
     this.levels = [];
     this.layers = null;
     this.facadeWindows = facadeWindows;
+    this.roofPattern = roofPattern;
     this.bindPointer();
     new ResizeObserver(() => this.resize()).observe(container);
   }
@@ -67,8 +68,10 @@ export class ExploreView {
     for (const t of this.tiles) this.scene.remove(t.group);
     this.tiles = [];
     this.levels = index ? index.levels : [];
+    this.facades = index?.facades ? await fetch(index.facades + '?v=' + this.version).then(r => (r.ok ? r.json() : null)) : null;
+    this.footprints = footprintGrid(layers?.buildings);
     this.city = (await loader.loadAsync((index ? index.ground : '/api/city.glb') + '?v=' + this.version)).scene;
-    shadowed(this.city);
+    this.styleWalls(shadowed(this.city));
     this.scene.add(this.city);
     this.addGroundPlane();
     for (const tile of index?.tiles || []) {
@@ -119,7 +122,13 @@ export class ExploreView {
       const [fx, fy, fz] = this.from(), [tx, ty] = this.orbit.target;
       const ground = this.groundHeight(fx, fy);
       const flying = mode === 'flyer';
-      this.stand = {x: flying ? fx : tx, y: flying ? fy : ty, height: flying ? Math.max(2, fz - ground) : 1.7,
+      // A walker stands where the orbit looked, or, when that is inside a building, at the
+      // first point outside it on the way back towards the orbit's camera.
+      const az = this.orbit.azimuth * degree;
+      let [wx, wy] = [tx, ty];
+      for (let step = 1; !flying && step <= 1000 && this.footprints?.at(wx, wy) != null; ++step)
+        [wx, wy] = [tx + step * Math.cos(az), ty + step * Math.sin(az)];  // a metre a step
+      this.stand = {x: flying ? fx : wx, y: flying ? fy : wy, height: flying ? Math.max(2, fz - ground) : 1.7,
                     heading: (this.orbit.azimuth + 180) % 360, pitch: flying ? -this.orbit.elevation : 0};
     } else if (mode !== 'orbit') {
       this.stand.height = mode === 'flyer' ? Math.max(this.stand.height, 30) : 1.7;
@@ -334,13 +343,50 @@ export class ExploreView {
     if (tile.loading[level]) return;
     tile.loading[level] = new GLTFLoader().loadAsync(tile.urls[level] + '?v=' + this.version).then(gltf => {
       if (!this.tiles.includes(tile)) return;  // a newer city came meanwhile
-      tile.loaded[level] = shadowed(gltf.scene);
+      tile.loaded[level] = this.styleWalls(shadowed(gltf.scene));
       tile.group.add(gltf.scene);
       this.update();
     }, error => {
       console.error(`tile ${tile.name} level ${level}: ${error.message || error}`);
     }).finally(() => this.showLoading());
     this.showLoading();
+  }
+
+  // Each wall triangle takes its building's windows (GET /api/tiles/facades.json: the
+  // renderer's storey, bay, window, phase, floor and eaves) as vertex attributes, its building
+  // the footprint that holds a point just inside the wall; walls with none (a model's
+  // foundation, a box wider than its footprint) keep their zone's middle windows.
+  styleWalls(object) {
+    if (!this.facades || !this.footprints) return object;
+    object.updateMatrixWorld(true);
+    const buildings = this.facades.buildings;
+    const v = [new THREE.Vector3(), new THREE.Vector3(), new THREE.Vector3()], e1 = new THREE.Vector3(), e2 = new THREE.Vector3();
+    object.traverse(o => {
+      if (!o.isMesh || !/^(residential|commercial|industrial)_wall/.test(o.material.name || '')) return;
+      const g = o.geometry, position = g.attributes.position, index = g.index;
+      const a = new Float32Array(position.count * 4), b = new Float32Array(position.count * 4), c = new Float32Array(position.count * 2);
+      const corners = index ? index.count : position.count;
+      let styled = 0;
+      for (let t = 0; t + 2 < corners; t += 3) {
+        const at = [0, 1, 2].map(k => (index ? index.getX(t + k) : t + k));
+        at.forEach((i, k) => v[k].fromBufferAttribute(position, i).applyMatrix4(o.matrixWorld));
+        const outward = e1.subVectors(v[1], v[0]).cross(e2.subVectors(v[2], v[0])).normalize();
+        const x = (v[0].x + v[1].x + v[2].x) / 3 - 0.05 * outward.x, y = -((v[0].z + v[1].z + v[2].z) / 3 - 0.05 * outward.z);
+        const id = this.footprints.at(x, y), f = id === null ? null : buildings[id];
+        if (!f) continue;
+        ++styled;
+        for (const i of at) {
+          a.set([f[0], f[1], f[2], f[5]], i * 4);
+          b.set([f[3], f[4], f[6], f[7]], i * 4);
+          c.set([f[8], f[9]], i * 2);
+        }
+      }
+      g.setAttribute('facadeA', new THREE.BufferAttribute(a, 4));
+      g.setAttribute('facadeB', new THREE.BufferAttribute(b, 4));
+      g.setAttribute('facadeC', new THREE.BufferAttribute(c, 2));
+      g.userData.styledTriangles = styled;
+    });
+    return object;
   }
 
   // How many tiles are still coming, over the view while any are.
@@ -510,18 +556,21 @@ export class ExploreView {
   }
 }
 
-// The renderer's windows (render/facade.cpp, in_window) on the walls of extruded buildings,
+// The renderer's windows (render/facade.cpp, window_at) on the walls of extruded buildings,
 // city.glb's materials "<zone>_wall_<n>": rows of windows a storey apart and bays along the
-// wall, a commercial building's ground floor shop windows. Each building's own storey, bay
-// and floor are the renderer's; here each zone's middle values, counted from height 0.
+// wall, a commercial building's ground floor shop windows, a curtain wall's dark spandrels
+// between its storeys' glass. Each building's own storey, bay, window, phase, floor and
+// eaves are the renderer's (vertex attributes: ExploreView.styleWalls); a wall whose
+// building is not known takes its zone's middle values below, counted from height 0.
 // Far away, where a pixel spans a bay, the wall takes the windows' share of its area.
 const facadeStyles = {  // storey, bay, window share of a bay, sill and head shares of a storey, shopfront
   residential: [3.0, 3.1, 0.425, 0.33, 0.77, 0],
   commercial: [3.8, 2.8, 0.675, 0.22, 0.83, 1],
   industrial: [5.25, 5.0, 0.625, 0.55, 0.85, 0],
 };
-// Off only for the browser test, to see what the windows change.
+// Off only for the browser test, to see what the windows and the roofs' tiles change.
 export const facadeWindows = {value: 1};
+export const roofPattern = {value: 1};
 const windowAlbedo = new THREE.Color(0.04, 0.05, 0.06);  // palette.h, kWindowAlbedo (linear)
 const grassAlbedo = [0.30, 0.45, 0.20];  // palette.h, kGrassAlbedo (linear)
 
@@ -533,12 +582,26 @@ function withWindows(material, style) {
     shader.uniforms.windowAlbedo = {value: windowAlbedo};
     // In city.glb's own frame (about its local origin, which every tile shares): small
     // numbers, so the pattern stays put in single floats.
-    shader.vertexShader = 'varying vec3 vCityPosition;\nvarying vec3 vCityNormal;\n' + shader.vertexShader.replace(
+    shader.vertexShader = `varying vec3 vCityPosition;
+        varying vec3 vCityNormal;
+        attribute vec4 facadeA;  // storey, bay, window, phase (storey 0: not known)
+        attribute vec4 facadeB;  // sill, head, floor, eaves
+        attribute vec2 facadeC;  // shopfront, curtain wall
+        varying vec4 vFacadeA;
+        varying vec4 vFacadeB;
+        varying vec2 vFacadeC;
+        ` + shader.vertexShader.replace(
         '#include <begin_vertex>', `#include <begin_vertex>
           vCityPosition = transformed;
-          vCityNormal = objectNormal;`);
+          vCityNormal = objectNormal;
+          vFacadeA = facadeA;
+          vFacadeB = facadeB;
+          vFacadeC = facadeC;`);
     shader.fragmentShader = `varying vec3 vCityPosition;
         varying vec3 vCityNormal;
+        varying vec4 vFacadeA;
+        varying vec4 vFacadeB;
+        varying vec2 vFacadeC;
         uniform vec4 facadeStyle;  // storey, bay, window, sill
         uniform vec2 facadeShop;   // head, shopfront
         uniform float facadeWindows;
@@ -548,7 +611,31 @@ function withWindows(material, style) {
           float h = vCityPosition.y;
           // Along the wall: glTF's x east and z south (render/facade.h, along_wall).
           float along = vCityPosition.x * vCityNormal.z - vCityPosition.z * vCityNormal.x;
-          if (facadeWindows > 0.5 && abs(vCityNormal.y) < 0.3 && h > 0.0) {
+          float spandrel = 0.0;
+          if (facadeWindows > 0.5 && abs(vCityNormal.y) < 0.3 && vFacadeA.x > 0.0) {
+            // This building's own style, as render/facade.cpp's window_at reads it.
+            float storey = vFacadeA.x, bayWidth = vFacadeA.y, pane = vFacadeA.z, phase = vFacadeA.w;
+            float sill = vFacadeB.x, head = vFacadeB.y, floorZ = vFacadeB.z, eaves = vFacadeB.w;
+            bool shop = vFacadeC.x > 0.5;
+            float above = h - floorZ;
+            if (above >= 0.0 && h <= eaves - 0.4) {
+              if (shop && above < 4.5) {
+                float bay = fract((along - phase) / (2.0 * bayWidth));
+                windowed = float(above > 0.4 && above < 3.4 && bay > 0.05 && bay < 0.95);
+              } else {
+                float up = shop ? above - 4.5 : above;
+                float row = floor(up / storey);
+                bool below = floorZ + (shop ? 4.5 : 0.0) + (row + head) * storey <= eaves - 0.4;
+                float bay = fract((along - phase) / bayWidth), level = fract(up / storey);
+                windowed = float(below && level > sill && level < head && abs(bay - 0.5) < pane / 2.0);
+                spandrel = float(vFacadeC.y > 0.5 && windowed < 0.5);
+              }
+            }
+            float share = pane * (head - sill);
+            float blur = clamp(2.0 * max(fwidth(along) / bayWidth, fwidth(h) / storey) - 0.5, 0.0, 1.0);
+            windowed = mix(windowed, share, blur);
+            spandrel *= 1.0 - blur;
+          } else if (facadeWindows > 0.5 && abs(vCityNormal.y) < 0.3 && h > 0.0) {
             float share = facadeStyle.z * (facadeShop.x - facadeStyle.w);
             if (facadeShop.y > 0.5 && h < 4.5) {
               float bay = fract(along / (2.0 * facadeStyle.y));
@@ -561,22 +648,75 @@ function withWindows(material, style) {
             float blur = clamp(2.0 * max(fwidth(along) / facadeStyle.y, fwidth(h) / facadeStyle.x) - 0.5, 0.0, 1.0);
             windowed = mix(windowed, share, blur);
           }
-          diffuseColor.rgb = mix(diffuseColor.rgb, windowAlbedo, windowed);`).replace(
+          diffuseColor.rgb = mix(diffuseColor.rgb, windowAlbedo, windowed);
+          // A curtain wall's spandrels: opaque dark glass (the renderer's tint × 0.14).
+          diffuseColor.rgb = mix(diffuseColor.rgb, vec3(0.1), spandrel);`).replace(
         '#include <roughnessmap_fragment>', `#include <roughnessmap_fragment>
-          roughnessFactor = mix(roughnessFactor, 0.15, windowed);`);
+          roughnessFactor = mix(roughnessFactor, 0.15, max(windowed, spandrel));`);
   };
   material.customProgramCacheKey = () => 'exacity-facade';
 }
 
-// Every mesh casts and takes the sun's shadows; walls get their windows.
+// The renderer's roofs (render/facade.cpp, roof_material) on city.glb's materials
+// "<zone>_roof_<n>": a pitched roof in rows of tiles 0.3 m apart down its slope, 0.25 m wide,
+// each row shifted half a tile, the lower edge of a row in the shadow of the row above and
+// each tile a shade of its own; a flat roof gravel, fine grains over broad stains (value
+// noise here, Perlin there). Far away, where a pixel spans a tile, the roof takes the
+// pattern's mean shade, so far roofs do not shimmer.
+function withRoofTiles(material) {
+  material.onBeforeCompile = shader => {
+    shader.uniforms.roofPattern = roofPattern;
+    shader.vertexShader = 'varying vec3 vRoofPosition;\nvarying vec3 vRoofNormal;\n' + shader.vertexShader.replace(
+        '#include <begin_vertex>', `#include <begin_vertex>
+          vRoofPosition = transformed;
+          vRoofNormal = objectNormal;`);
+    shader.fragmentShader = `varying vec3 vRoofPosition;
+        varying vec3 vRoofNormal;
+        uniform float roofPattern;
+        float roofHash(vec2 c) { return fract(sin(dot(c, vec2(12.9898, 78.233))) * 43758.5453); }
+        float roofNoise(vec2 p) {  // value noise, -1 to 1
+          vec2 i = floor(p), f = fract(p), u = f * f * (3.0 - 2.0 * f);
+          float a = roofHash(i), b = roofHash(i + vec2(1, 0)), c = roofHash(i + vec2(0, 1)), d = roofHash(i + vec2(1, 1));
+          return 2.0 * mix(mix(a, b, u.x), mix(c, d, u.x), u.y) - 1.0;
+        }
+        ` + shader.fragmentShader.replace('#include <color_fragment>', `#include <color_fragment>
+          if (roofPattern > 0.5) {
+            // The city's x east, y north, z up: glTF's x, -z and y.
+            vec2 p = vec2(vRoofPosition.x, -vRoofPosition.z);
+            vec3 n = normalize(vec3(vRoofNormal.x, -vRoofNormal.z, vRoofNormal.y));
+            float shade;
+            if (abs(n.z) > 0.98) {
+              float grain = roofNoise(p * 9.0), stain = 0.5 * roofNoise(p * 0.15) + 0.25 * roofNoise(p * 0.3);
+              float blur = clamp(2.0 * fwidth(p.x * 9.0) - 0.5, 0.0, 1.0);
+              shade = clamp(0.9 + 0.25 * grain * (1.0 - blur) + 0.3 * stain, 0.5, 1.3);
+            } else {
+              vec2 d = normalize(n.xy);
+              float down = dot(p, d) / 0.3, across = dot(p, vec2(-d.y, d.x)) / 0.25;
+              float row = floor(down), shifted = across + (mod(row, 2.0) > 0.5 ? 0.5 : 0.0);
+              shade = 0.88 + 0.24 * roofHash(vec2(row, floor(shifted)));
+              if (fract(down) > 0.8) shade *= 0.6;
+              if (fract(shifted) < 0.06) shade *= 0.75;
+              float blur = clamp(2.0 * max(fwidth(down), fwidth(across)) - 0.5, 0.0, 1.0);
+              shade = mix(shade, 0.92 * 0.985, blur);  // the rows' and joints' mean
+            }
+            diffuseColor.rgb *= shade;
+          }`);
+  };
+  material.customProgramCacheKey = () => 'exacity-roof';
+}
+
+// Every mesh casts and takes the sun's shadows; walls get their windows, roofs their tiles.
 function shadowed(object) {
   object.traverse(o => {
     if (!o.isMesh) return;
     o.castShadow = o.receiveShadow = true;
     const wall = /^(residential|commercial|industrial)_wall/.exec(o.material.name || '');
-    if (wall) {
-      // city.glb has no normals (its triangles do not share corners): the faces' own.
-      if (!o.geometry.attributes.normal) o.geometry.computeVertexNormals();
+    const roof = /^(residential|commercial|industrial)_roof/.test(o.material.name || '');
+    // city.glb has no normals (its triangles do not share corners): the faces' own.
+    if ((wall || roof) && !o.geometry.attributes.normal) o.geometry.computeVertexNormals();
+    if (roof && !o.material.userData.tiles) {
+      withRoofTiles(o.material);
+      o.material.userData.tiles = true;
     }
     if (wall && !o.material.userData.windows) {
       withWindows(o.material, facadeStyles[wall[1]]);
@@ -584,6 +724,29 @@ function shadowed(object) {
     }
   });
   return object;
+}
+
+// buildings.geojson's footprints in square cells, to find the one holding a point: its
+// `at(x, y)` is the building's id, or null.
+function footprintGrid(buildings) {
+  if (!buildings) return null;
+  const cell = 32, cells = new Map();
+  const key = (i, j) => i * 100003 + j;
+  for (const f of buildings.features) {
+    const box = [Infinity, Infinity, -Infinity, -Infinity];
+    const grow = c => (typeof c[0] === 'number' ? (box[0] = Math.min(box[0], c[0]), box[1] = Math.min(box[1], c[1]),
+                                                   box[2] = Math.max(box[2], c[0]), box[3] = Math.max(box[3], c[1])) : c.forEach(grow));
+    grow(f.geometry.coordinates);
+    for (let i = Math.floor(box[0] / cell); i <= Math.floor(box[2] / cell); ++i)
+      for (let j = Math.floor(box[1] / cell); j <= Math.floor(box[3] / cell); ++j) {
+        if (!cells.has(key(i, j))) cells.set(key(i, j), []);
+        cells.get(key(i, j)).push(f);
+      }
+  }
+  return {at: (x, y) => {
+    const f = (cells.get(key(Math.floor(x / cell), Math.floor(y / cell))) || []).find(f => covers(f.geometry, x, y));
+    return f ? f.properties.id : null;
+  }};
 }
 
 // Whether (x, y) lies in a GeoJSON Polygon or MultiPolygon (even-odd over its rings).

@@ -109,6 +109,7 @@ export class SettingsPanel {
     // The files the sketch names, which Models… and Heightmap… replace.
     document.getElementById('models-in-use').textContent = this.current.models ?? 'none (Models… loads one)';
     document.getElementById('heightmap-in-use').textContent = this.current.terrain?.heightmap ?? 'none (flat ground)';
+    document.getElementById('like-in-use').textContent = this.current.like ?? 'no place (Like a place… loads one)';
     const zones = this.current.zones || {};
     for (const zone of settingZones) {
       const settings = zones[zone] && typeof zones[zone] === 'object' ? zones[zone] : {};
