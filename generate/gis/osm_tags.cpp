@@ -205,7 +205,7 @@ std::pair<double, double> osm_sidewalks(const std::vector<std::pair<std::string,
     return std::nullopt;
   };
   auto width = [&](const std::string& side) {
-    for (const std::string key : {"sidewalk:" + side + ":width", std::string("sidewalk:both:width"), std::string("sidewalk:width")})
+    for (const std::string& key : {"sidewalk:" + side + ":width", std::string("sidewalk:both:width"), std::string("sidewalk:width")})
       if (std::optional<double> w = metres(value(key)); w && *w <= 50) return *w;
     return tagged;
   };
