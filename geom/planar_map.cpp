@@ -43,16 +43,20 @@ void add_ring_curves(std::vector<Curve>& curves, const std::vector<Point>& ring,
 namespace {
 
 // The pieces of a polyline as curves with `tags`, given relative to the left-to-right
-// direction of the segment first -> last: a ring tag's sign follows each piece's own.
+// direction of the segment first -> last: a ring tag's sign follows each piece's own. Each
+// piece runs left to right, as every edge's curve then does: where a piece runs along an
+// edge the map has, CGAL gives that edge the overlap's curve, which must equal its own, and
+// the kernel's segments are equal only running the same way.
 void add_pieces(std::vector<Curve>& out, const Polyline& line, const Tags& tags) {
   if (line.size() < 2) return;
   const bool line_left_to_right = CGAL::compare_xy(to_exact(line.front()), to_exact(line.back())) == CGAL::SMALLER;
   for (std::size_t k = 0; k + 1 < line.size(); ++k) {
     const Point a = to_exact(line[k]), b = to_exact(line[k + 1]);
+    const bool left_to_right = CGAL::compare_xy(a, b) == CGAL::SMALLER;
     Tags piece = tags;
-    if ((CGAL::compare_xy(a, b) == CGAL::SMALLER) != line_left_to_right)
+    if (left_to_right != line_left_to_right)
       for (CurveTag& t : piece) t.sign = -t.sign;
-    out.emplace_back(exact::Segment(a, b), std::move(piece));
+    out.emplace_back(left_to_right ? exact::Segment(a, b) : exact::Segment(b, a), std::move(piece));
   }
 }
 
