@@ -40,11 +40,37 @@ void add_ring_curves(std::vector<Curve>& curves, const std::vector<Point>& ring,
 }
 
 #if EXACITY_FLOAT_KERNEL == 3
+namespace {
+
+// The pieces of a polyline as curves with `tags`, given relative to the left-to-right
+// direction of the segment first -> last: a ring tag's sign follows each piece's own. Each
+// piece runs left to right, as every edge's curve then does: where a piece runs along an
+// edge the map has, CGAL gives that edge the overlap's curve, which must equal its own, and
+// the kernel's segments are equal only running the same way.
+void add_pieces(std::vector<Curve>& out, const Polyline& line, const Tags& tags) {
+  if (line.size() < 2) return;
+  const bool line_left_to_right = CGAL::compare_xy(to_exact(line.front()), to_exact(line.back())) == CGAL::SMALLER;
+  for (std::size_t k = 0; k + 1 < line.size(); ++k) {
+    const Point a = to_exact(line[k]), b = to_exact(line[k + 1]);
+    const bool left_to_right = CGAL::compare_xy(a, b) == CGAL::SMALLER;
+    Tags piece = tags;
+    if (left_to_right != line_left_to_right)
+      for (CurveTag& t : piece) t.sign = -t.sign;
+    out.emplace_back(left_to_right ? exact::Segment(a, b) : exact::Segment(b, a), std::move(piece));
+  }
+}
+
+}  // namespace
+
 // Inserts the curves noded by snap rounding in doubles (geom/snap_noding.h) together with
-// the edges the arrangement has already: those are split where the new curves' hot pixels
-// lie on them, and the new curves go in as pieces between grid points, each keeping its
-// curve's tags (a ring tag's sign follows the piece's own left-to-right direction). The
-// sweep then meets only shared ends and constructs no point of its own.
+// the edges the arrangement has already. An edge the rounding routes through new hot pixels
+// is bent off its line, so it is taken out and its pieces go in with the new curves, each
+// keeping its tags, and CGAL's insertion works out from the geometry where they lie. Split
+// in place instead, the arrangement failed its own validity check right after the splits
+// (the order of the edges around each vertex still held; what a bent piece moved to its
+// other side was not found), and CGAL's precondition `f == f2` stopped the insertion. The
+// sweep then meets only shared ends and equal pieces and constructs no point of its own.
+// Faces lose their labels here, as in every build: each batch is labelled again after it.
 void insert_curves(Arrangement& arr, std::vector<Curve>& curves) {
   std::vector<Arrangement::Halfedge_handle> edges;  // each left to right
   std::vector<std::pair<Vec2, Vec2>> ends;
@@ -52,34 +78,32 @@ void insert_curves(Arrangement& arr, std::vector<Curve>& curves) {
     edges.push_back(left_to_right(Arrangement::Halfedge_handle(e)));
     ends.push_back({to_plain(edges.back()->source()->point()), to_plain(edges.back()->target()->point())});
   }
-  // Edges split in place, and a map edge a region's arrangement splits the same way, must
-  // keep their pieces in order along them.
+  // Edges the arrangement has (their ends are its vertices: a new end this near one moves
+  // onto it), and map edges a region's arrangement splits: both keep their pieces in order
+  // along them (a region's map edges are split in place in the map).
   std::vector<bool> monotone(edges.size(), true);
   for (const Curve& c : curves) {
     ends.push_back({to_plain(c.source()), to_plain(c.target())});
     monotone.push_back(std::any_of(c.data().begin(), c.data().end(), [](const CurveTag& t) { return t.counter == kMapEdge; }));
   }
   const std::vector<Polyline> lines = snap_round_segments(ends, exact::kSnapStep, monotone);
-  const auto split = arr.geometry_traits()->split_2_object();
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    Arrangement::Halfedge_handle h = edges[i];
-    for (std::size_t k = 1; k + 1 < lines[i].size(); ++k) {
-      Traits::X_monotone_curve_2 left, right;
-      split(h->curve(), to_exact(lines[i][k]), left, right);
-      h = arr.split_edge(h, left, right)->next();
-    }
-  }
   std::vector<Curve> noded;
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    if (lines[i].size() <= 2) continue;
+    add_pieces(noded, lines[i], edges[i]->curve().data());
+    arr.remove_edge(edges[i]);
+  }
   for (std::size_t i = 0; i < curves.size(); ++i) {
+    // The tags are relative to the curve's left-to-right direction, which is its snapped
+    // line's unless snapping swapped its ends' order.
     const Polyline& line = lines[edges.size() + i];
+    if (line.size() < 2) continue;
     const bool given_left_to_right = CGAL::compare_xy(curves[i].source(), curves[i].target()) == CGAL::SMALLER;
-    for (std::size_t k = 0; k + 1 < line.size(); ++k) {
-      const Point a = to_exact(line[k]), b = to_exact(line[k + 1]);
-      Tags tags = curves[i].data();
-      if ((CGAL::compare_xy(a, b) == CGAL::SMALLER) != given_left_to_right)
-        for (CurveTag& t : tags) t.sign = -t.sign;
-      noded.emplace_back(exact::Segment(a, b), std::move(tags));
-    }
+    const bool line_left_to_right = CGAL::compare_xy(to_exact(line.front()), to_exact(line.back())) == CGAL::SMALLER;
+    Tags tags = curves[i].data();
+    if (given_left_to_right != line_left_to_right)
+      for (CurveTag& t : tags) t.sign = -t.sign;
+    add_pieces(noded, line, tags);
   }
   CGAL::insert(arr, noded.begin(), noded.end());
 }
