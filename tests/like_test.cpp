@@ -209,7 +209,8 @@ TEST(Like, LotFrontagesDrawEachLotFromTheirDistribution) {
   const auto r = cli_util::run("generate " + (dir / "sketch.geojson").string() + " -q -o " + (dir / "out").string());
   ASSERT_EQ(r.code, 0) << r.out;
   std::vector<std::pair<double, double>> spans;  // each lot's least and greatest x
-  for (const ordered_json& lot : ordered_json::parse(cli_util::read(dir / "out" / "vector" / "lots.geojson"))["features"]) {
+  const ordered_json lots = ordered_json::parse(cli_util::read(dir / "out" / "vector" / "lots.geojson"));
+  for (const ordered_json& lot : lots["features"]) {
     std::pair<double, double> span{INFINITY, -INFINITY};
     for (const ordered_json& p : lot["geometry"]["coordinates"][0])
       span = {std::min(span.first, p[0].get<double>()), std::max(span.second, p[0].get<double>())};
