@@ -186,6 +186,7 @@ TEST(Like, MeasuresStreetFrontageAndWingDepths) {
 // widest frontage). Reported, not set.
 TEST(Like, ReportsTheFrontageRule) {
   const ordered_json z = touching_place_report("like_frontage_rule");
+  ASSERT_TRUE(z.contains("frontage_rule")) << z.dump();
   const ordered_json& rule = z["frontage_rule"];
   EXPECT_EQ(rule["perimeter_depth"], 11.3);
   EXPECT_EQ(rule["lot_frontages"], ordered_json(std::vector<double>(21, 31.9)));
