@@ -2,7 +2,9 @@
 // the zone parameters from the mapped buildings of a real place, measured per zone type.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "tests/cli_util.h"
 #include "tests/test_util.h"
@@ -152,12 +154,11 @@ TEST(Like, TooFewBuildingsIsOneLine) {
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
-// What a perimeter block's depth would be read from (docs/gis.md): the street frontage its
-// land use fronts and each footprint's wing depth, twice its area over its perimeter.
-TEST(Like, MeasuresStreetFrontageAndWingDepths) {
-  const fs::path dir = testing_util::temp_dir("like_frontage");
-  // Eleven footprints 30 m wide and 12 m deep side by side 5 m behind the road's surface,
-  // on 350 m of street fronting the zone on one side (the road's 350 m).
+// Eleven footprints 30 m wide and 12 m deep side by side 5 m behind the road's surface,
+// on 350 m of street fronting the zone on one side (the road's 350 m); the like report of
+// generating it like itself.
+ordered_json touching_place_report(const std::string& name) {
+  const fs::path dir = testing_util::temp_dir(name);
   ordered_json place = measured_place();
   place["features"].erase(place["features"].begin() + 2, place["features"].end());
   for (int i = 0; i < 11; ++i)
@@ -166,9 +167,60 @@ TEST(Like, MeasuresStreetFrontageAndWingDepths) {
   write(dir / "place.geojson", place.dump());
   const auto r = cli_util::run("generate " + (dir / "place.geojson").string() + " --like " + (dir / "place.geojson").string() +
                                " -q -o " + (dir / "out").string());
-  ASSERT_EQ(r.code, 0) << r.out;
-  const ordered_json m = report_of(dir / "out")["like"]["zones"]["residential"]["measured"];
+  EXPECT_EQ(r.code, 0) << r.out;
+  return report_of(dir / "out")["like"]["zones"]["residential"];
+}
+
+// What a perimeter block's depth would be read from (docs/gis.md): the street frontage its
+// land use fronts and each footprint's wing depth, twice its area over its perimeter.
+TEST(Like, MeasuresStreetFrontageAndWingDepths) {
+  const ordered_json m = touching_place_report("like_frontage")["measured"];
   EXPECT_EQ(m["gap_m"]["median"], 0.0);
   EXPECT_EQ(m["street_frontage_m"], 350.0);
   EXPECT_EQ(m["wing_depth_m"]["median"], 8.6);  // 720 / 84
+}
+
+// The frontage rule (docs/gis.md): the 350 m of street shared by the eleven footprints'
+// 3,960 m² (no gap beside them) gives each a depth of 11.3 m, and each lot the frontage
+// of its 360 m² at that depth; lots 17 m deep (5 m setback and 11.3 m, over half the
+// widest frontage). Reported, not set.
+TEST(Like, ReportsTheFrontageRule) {
+  const ordered_json z = touching_place_report("like_frontage_rule");
+  ASSERT_TRUE(z.contains("frontage_rule")) << z.dump();
+  const ordered_json& rule = z["frontage_rule"];
+  EXPECT_EQ(rule["perimeter_depth"], 11.3);
+  EXPECT_EQ(rule["lot_frontages"], ordered_json(std::vector<double>(21, 31.9)));
+  EXPECT_EQ(rule["lot_depth"], 17.0);
+  EXPECT_FALSE(z["set"].contains("perimeter_depth"));
+  EXPECT_FALSE(z["set"].contains("lot_frontages"));
+}
+
+// "lot_frontages" draws each allocated lot's frontage from its distribution: 25 m every
+// time along the 200 m of street a zone 200 m by 60 m fronts makes eight lots.
+TEST(Like, LotFrontagesDrawEachLotFromTheirDistribution) {
+  const fs::path dir = testing_util::temp_dir("like_lot_frontages");
+  ordered_json sketch{{"type", "FeatureCollection"},
+                      {"exacity", {{"zones", {{"residential", {{"layout", "streets"}, {"lot_frontages", {25, 25}}}}}}}},
+                      {"features", ordered_json::array()}};
+  sketch["features"].push_back({{"type", "Feature"}, {"properties", {{"zone", "residential"}}},
+                                {"geometry", {{"type", "Polygon"}, {"coordinates", rectangle(0, 0, 200, 60)}}}});
+  sketch["features"].push_back({{"type", "Feature"}, {"properties", {{"road", "local"}}},
+                                {"geometry", {{"type", "LineString"}, {"coordinates", {{-20, 0}, {220, 0}}}}}});
+  write(dir / "sketch.geojson", sketch.dump());
+  const auto r = cli_util::run("generate " + (dir / "sketch.geojson").string() + " -q -o " + (dir / "out").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  std::vector<std::pair<double, double>> spans;  // each lot's least and greatest x
+  const ordered_json lots = ordered_json::parse(cli_util::read(dir / "out" / "vector" / "lots.geojson"));
+  for (const ordered_json& lot : lots["features"]) {
+    std::pair<double, double> span{INFINITY, -INFINITY};
+    for (const ordered_json& p : lot["geometry"]["coordinates"][0])
+      span = {std::min(span.first, p[0].get<double>()), std::max(span.second, p[0].get<double>())};
+    spans.push_back(span);
+  }
+  std::sort(spans.begin(), spans.end());
+  ASSERT_EQ(spans.size(), 8u);
+  for (std::size_t k = 0; k < spans.size(); ++k) {
+    EXPECT_NEAR(spans[k].first, 25.0 * static_cast<double>(k), 1e-6);
+    EXPECT_NEAR(spans[k].second, 25.0 * static_cast<double>(k + 1), 1e-6);
+  }
 }

@@ -2,8 +2,11 @@
 // (seed, stage, stable id of the thing generated), never from one shared stream.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <string_view>
+#include <vector>
 
 namespace exacity {
 
@@ -38,5 +41,13 @@ class Random {
  private:
   std::uint64_t state_;
 };
+
+// A value drawn from a distribution given at equal steps, smallest to largest (a real
+// place's, as --like measures it): linear between its steps; at least two steps.
+inline double draw_from_steps(const std::vector<double>& steps, Random& rng) {
+  const double at = rng.uniform() * static_cast<double>(steps.size() - 1);
+  const std::size_t i = std::min(static_cast<std::size_t>(at), steps.size() - 2);
+  return steps[i] + (at - static_cast<double>(i)) * (steps[i + 1] - steps[i]);
+}
 
 }  // namespace exacity

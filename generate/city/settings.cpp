@@ -87,6 +87,17 @@ void SettingsReader::boolean(const char* key, bool& field) const {
   field = object_[key].get<bool>();
 }
 
+void SettingsReader::distribution(const char* key, std::vector<double>& field, double min, double max,
+                                  const std::string& what, const char* example) const {
+  describe(key, "json", 0, 0, field, {}, what + " at equal steps of their distribution, smallest to largest");
+  if (!has(key)) return;
+  const json& a = object_[key];
+  if (!a.is_array() || a.size() < 2 || a.size() > 101)
+    fail(key, "give from 2 to 101 " + what + ", smallest to largest, such as " + example);
+  field.clear();
+  for (const json& v : a) field.push_back(read_number(v, file_, where(key), field.empty() ? min : field.back(), max));
+}
+
 void SettingsReader::fail(const char* key, const std::string& what) const {
   throw UserError(file_ + ": " + where(key) + ": " + what);
 }

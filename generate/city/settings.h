@@ -70,6 +70,11 @@ class SettingsReader {
   void choice(const char* key, std::string& field, std::initializer_list<std::string_view> values,
               const std::string& what) const;
   void boolean(const char* key, bool& field) const;
+  // Values at equal steps of their distribution, smallest to largest (2 to 101, from `min`
+  // to `max`), as --like measures them (kind "json"); `what` names them with their unit,
+  // "footprint areas in m²", and `example` is a list of them.
+  void distribution(const char* key, std::vector<double>& field, double min, double max, const std::string& what,
+                    const char* example) const;
   // A whole number in [min, max]; `what` names what it counts ("rules").
   void whole_number(const char* key, int& field, int min, int max, const char* what) const;
 

@@ -41,6 +41,7 @@ double ray_distance(const std::vector<geom::KindedRing>& rings, Vec2 p, Vec2 dir
 // boundary turns by more than this.
 constexpr double kRunTurn = 35 * M_PI / 180;
 constexpr Range kOwnedCorner{60 * M_PI / 180, 150 * M_PI / 180};  // turns at which a corner lot takes the corner
+constexpr double kTinyEdge = 0.1;  // m: a block edge shorter than this makes no corner
 constexpr double kFrontOverhang = 0.5;  // m: lots reach this far past the block's edge, so they meet it exactly
 
 // One lot boundary across the street side: from `at` on the block's edge, `depth` along `dir`.
@@ -57,31 +58,54 @@ struct RunEnd {
   double skip = 0, extend = 0;
 };
 
+// Where the lots along `length` of street start and end, as shares of it from 0 to 1: each
+// lot's frontage drawn from `steps` in turn (no wider than `widest`, and a metre at least,
+// as the setting's least, so that a sliver of a block makes no more lots than that)
+// until they pass its end, the last one kept when at least half of it fits (else its part
+// shared out), and all scaled alike to fill it.
+std::vector<double> drawn_cuts(double length, const std::vector<double>& steps, double widest, Random& rng) {
+  std::vector<double> ends;
+  double sum = 0;
+  while (sum < length) ends.push_back(sum += std::max(std::min(draw_from_steps(steps, rng), widest), 1.0));
+  if (ends.size() > 1 && length - ends[ends.size() - 2] < (ends.back() - ends[ends.size() - 2]) / 2) ends.pop_back();
+  std::vector<double> cuts{0};
+  for (std::size_t k = 0; k + 1 < ends.size(); ++k) cuts.push_back(ends[k] / ends.back());
+  cuts.push_back(1);
+  return cuts;
+}
+
 // The lots along one run of street edges: `points` from one end of the run to the other
-// (the block on the left), `normals` inward at each point, cut at equal steps near `width`.
+// (the block on the left), `normals` inward at each point, cut at equal steps near `width`
+// (or where `drawn_cuts` says, from p.lot_frontages).
 void run_lots(const std::vector<Vec2>& points, const std::vector<Vec2>& normals, const RunEnd& first, const RunEnd& last,
-              const std::vector<geom::KindedRing>& rings, double width, double depth, double min_edge,
+              const std::vector<geom::KindedRing>& rings, const AllocationSettings& p, double width, Random& rng,
               std::vector<geom::Ring>& lots) {
+  const double depth = p.lot_depth, min_edge = p.min_lot_edge;
   std::vector<double> at_length{0};
   for (std::size_t i = 1; i < points.size(); ++i) at_length.push_back(at_length.back() + geom::distance(points[i - 1], points[i]));
   const double total = at_length.back(), begin = first.skip;
   if (total - begin < min_edge) return;
-  {
-    // Where the block is too thin for the full depth, lots are narrower too, so that
-    // none is much wider than deep.
-    std::size_t mid = 0;
-    while (mid + 2 < points.size() && at_length[mid + 1] < (begin + total) / 2) ++mid;
-    Vec2 at = lerp(points[mid], points[mid + 1], 0.5);
-    double across = ray_distance(rings, at, left_normal(points[mid], points[mid + 1]), 4 * depth);
-    width = std::min(width, std::max(2 * std::min(depth, across / 2), min_edge));
+  // Where the block is too thin for the full depth, lots are narrower too, so that none is
+  // much wider than deep (kLotShape).
+  std::size_t mid = 0;
+  while (mid + 2 < points.size() && at_length[mid + 1] < (begin + total) / 2) ++mid;
+  const double across = ray_distance(rings, lerp(points[mid], points[mid + 1], 0.5), left_normal(points[mid], points[mid + 1]), 4 * depth);
+  const double widest = std::max(2 * std::min(depth, across / 2), min_edge);
+  std::vector<double> cut_at;  // where along the run each lot starts, and the last one ends
+  if (!p.lot_frontages.empty()) {
+    for (double f : drawn_cuts(total - begin, p.lot_frontages, widest, rng)) cut_at.push_back(begin + (total - begin) * f);
+  } else {
+    width = std::min(width, widest);
+    const int count = std::max(1, static_cast<int>(std::lround((total - begin) / width)));
+    for (int k = 0; k <= count; ++k) cut_at.push_back(begin + (total - begin) * k / count);
   }
-  const int count = std::max(1, static_cast<int>(std::lround((total - begin) / width)));
+  const int count = static_cast<int>(cut_at.size()) - 1;
   // The cuts: square to the street, but at the run's ends, where they are as given.
   std::vector<Cut> cuts;
   std::vector<std::size_t> after;  // per cut: the index of the first point past it
   std::size_t seg = 0;
   for (int k = 0; k <= count; ++k) {
-    const double s = begin + (total - begin) * k / count;
+    const double s = cut_at[k];
     while (seg + 2 < points.size() && at_length[seg + 1] <= s) ++seg;
     const double span = at_length[seg + 1] - at_length[seg];
     Vec2 at = lerp(points[seg], points[seg + 1], span > 0 ? (s - at_length[seg]) / span : 0);
@@ -129,7 +153,8 @@ geom::Ring on_grid(const geom::Ring& ring) {
 }
 
 // The industrial chance: a lot is kept with a chance that falls after a kept lot and
-// rises after a dropped one, so some street frontage stays open yard.
+// rises after a dropped one, so some street frontage stays open yard (unless the lots'
+// frontages are a real place's, whose yards they hold).
 class Allocation : public LotLayout {
  public:
   explicit Allocation(const AllocationSettings& settings) : settings_(settings) {}
@@ -137,7 +162,7 @@ class Allocation : public LotLayout {
     std::vector<PlannedLot> out;
     double keep = 0.8;
     for (const geom::Ring& ring : street_lots(block.cell, settings_, rng)) {
-      if (block.zone == ZoneType::Industrial) {
+      if (block.zone == ZoneType::Industrial && settings_.lot_frontages.empty()) {
         bool kept = rng.uniform() < keep;
         keep = std::clamp(keep + (kept ? -0.25 : 0.25), 0.25, 1.0);
         if (!kept) continue;
@@ -165,9 +190,17 @@ std::vector<geom::Ring> street_lots(const geom::Cell& block, const AllocationSet
     const std::size_t n = r.points.size();
     auto road = [&](std::size_t edge) { return BlockEdge::is_road(r.kinds[edge % n]); };
     auto normal = [&](std::size_t edge) { return left_normal(r.points[edge % n], r.points[(edge + 1) % n]); };
-    // At vertex i, between edge i - 1 and edge i.
+    // At vertex i, between edge i - 1 and edge i; or, for a real place's lots, where either
+    // is shorter than kTinyEdge, the nearest longer ones: rounding leaves blocks with such
+    // edges at random turns along straight streets (Helsinki's centre has 249), which break
+    // a run into lots cut at false corners.
+    auto edge = [&](std::size_t e) { return r.points[(e + 1) % n] - r.points[e % n]; };
+    const double tiny = p.lot_frontages.empty() ? 0 : kTinyEdge;  // sketches without them as before
     auto turn = [&](std::size_t i) {
-      Vec2 u = r.points[i % n] - r.points[(i + n - 1) % n], v = r.points[(i + 1) % n] - r.points[i % n];
+      std::size_t before = i + n - 1, after = i;
+      for (std::size_t k = 0; k < n && std::hypot(edge(before).x, edge(before).y) < tiny; ++k) before += n - 1;
+      for (std::size_t k = 0; k < n && std::hypot(edge(after).x, edge(after).y) < tiny; ++k) ++after;
+      const Vec2 u = edge(before), v = edge(after);
       return std::atan2(cross(u, v), dot(u, v));
     };
     auto breaks = [&](std::size_t i) { return road(i + n - 1) != road(i) || std::abs(turn(i)) > kRunTurn; };
@@ -206,8 +239,8 @@ std::vector<geom::Ring> street_lots(const geom::Cell& block, const AllocationSet
         RunEnd first{corner_dir(i, normals.front())}, last{corner_dir(j, normals.back())};
         if (owned(i)) first = {normals.front(), p.lot_depth / std::sin(turn(i)), 0};
         if (owned(j)) last = {normals.back(), 0, kFrontOverhang + std::max(0.0, p.lot_depth / std::tan(turn(j)))};
-        run_lots(pts, normals, first, last, rings, rng.uniform(p.lot_width.min, p.lot_width.max), p.lot_depth,
-                 p.min_lot_edge, lots);
+        const double width = p.lot_frontages.empty() ? rng.uniform(p.lot_width.min, p.lot_width.max) : 0;
+        run_lots(pts, normals, first, last, rings, p, width, rng, lots);
       }
       i = j;
     }
@@ -223,6 +256,7 @@ std::shared_ptr<const LotLayoutChoice> read_allocation(const LotLayoutReading& r
   s.number("min_lot_edge", a.min_lot_edge, 0, 1e4);
   s.number("lot_depth", a.lot_depth, 2, 1e4);
   s.range("lot_width", a.lot_width, 2, 1e4, "lot frontage in metres");
+  s.distribution("lot_frontages", a.lot_frontages, 1, 1e4, "lot frontages in m", "[12, 18, 25, 60]");
   return std::make_shared<AllocationChoice>(a);
 }
 

@@ -11,7 +11,7 @@ std::shared_ptr<const LotLayoutChoice> read_library_lots(const LotLayoutReading&
 
 const std::vector<LotLayoutType>& lot_layout_types() {
   static const std::vector<LotLayoutType> table{
-      {"allocation", "lots along the street", {"lot_width", "lot_depth", "min_lot_edge"}, read_allocation},
+      {"allocation", "lots along the street", {"lot_width", "lot_frontages", "lot_depth", "min_lot_edge"}, read_allocation},
       {"split", "recursive splitting", {"lot_area"}, read_split},
       {"library", "the model library's lots", {}, read_library_lots},
   };

@@ -31,17 +31,6 @@ void read_footprint_sizes(const SettingsReader& s, BuildingSettings& b) {
   s.range("footprint_depth", b.footprint_depth, 1, 1e4, "footprint depth back from the street in metres");
 }
 
-void read_footprint_areas(const SettingsReader& s, BuildingSettings& b) {
-  if (!s.has("footprint_areas")) return;
-  const nlohmann::json& a = s.at("footprint_areas");
-  if (!a.is_array() || a.size() < 2 || a.size() > 101)
-    s.fail("footprint_areas", "give from 2 to 101 footprint areas in m², smallest to largest, such as [40, 90, 150, 400]");
-  b.footprint_areas.clear();
-  for (const nlohmann::json& v : a)
-    b.footprint_areas.push_back(read_number(v, s.file(), s.where("footprint_areas"),
-                                            b.footprint_areas.empty() ? 1 : b.footprint_areas.back(), 1e8));
-}
-
 void read_heights(const SettingsReader& s, BuildingSettings& b) {
   if (!s.has("heights")) return;
   const nlohmann::json& h = s.at("heights");
@@ -89,7 +78,7 @@ BuildingSettings read_building_settings(const SettingsReader& s, ZoneType type, 
   s.choice("density", b.density, {"dense", "normal", "sparse"},
            "expected \"dense\", \"normal\" or \"sparse\" (how far apart placed models stand)");
   read_heights(s, b);
-  read_footprint_areas(s, b);
+  s.distribution("footprint_areas", b.footprint_areas, 1, 1e8, "footprint areas in m²", "[40, 90, 150, 400]");
   const auto& table = placer_types();
   const PlacerType& chosen = s.row("placement", table, placer_type(b.placement->name()));
   // As for road layouts: every placer's keys are checked where written; the chosen one's

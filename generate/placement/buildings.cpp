@@ -71,10 +71,7 @@ std::vector<geom::Ring> street_footprints(Occupancy& occupancy, const BuildingSe
     double d = rng.uniform(p.footprint_depth.min, p.footprint_depth.max);
     if (!p.footprint_areas.empty()) {
       // The area from its distribution (linear between its steps), the shape as drawn.
-      const double at = rng.uniform() * static_cast<double>(p.footprint_areas.size() - 1);
-      const std::size_t i = std::min(static_cast<std::size_t>(at), p.footprint_areas.size() - 2);
-      const double area = p.footprint_areas[i] + (at - static_cast<double>(i)) * (p.footprint_areas[i + 1] - p.footprint_areas[i]);
-      const double s = std::sqrt(area / (w * d));
+      const double s = std::sqrt(draw_from_steps(p.footprint_areas, rng) / (w * d));
       w *= s, d *= s;
     }
     if (w * d > p.max_footprint_area) {

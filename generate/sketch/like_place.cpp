@@ -6,6 +6,7 @@
 #include "generate/city/format_number.h"
 #include "generate/errors.h"
 #include "generate/input_file.h"
+#include "generate/parcels/lots.h"
 #include "generate/sketch/sketch_document.h"
 #include "geom/measure.h"
 
@@ -296,6 +297,28 @@ ordered_json settings_from_figures(const PlaceFigures& f, const ZoneSettings& de
 
 namespace {
 
+// The frontage rule (docs/gis.md, Looking like the place): each footprint fronts a street
+// with its lot. The place's street frontage, less a gap beside each footprint, is shared by
+// its footprints; each one's depth back from the street is then their area over that, and
+// its lot's frontage its area over that depth and its gap, so that perimeter blocks of that
+// depth on lots of those frontages have the place's areas, as many to the metre of street
+// as it has. The settings it gives (lot frontages from the tenth percentile up: smaller
+// footprints are below min_footprint_area, and their lots would stand empty; lots deep
+// enough for their footprints and for the widest frontage to make a lot, kLotShape); none
+// without frontage to share.
+ordered_json frontage_rule(const PlaceFigures& f, double setback, double gap) {
+  double total_area = 0;
+  for (double a : f.areas) total_area += a;
+  const double net_frontage = f.frontage_m - static_cast<double>(f.buildings) * gap;
+  const double depth = net_frontage > 0 ? tenth(total_area / net_frontage) : 0;
+  if (depth < 1) return nullptr;
+  const std::vector<double> areas = sorted(f.areas);
+  ordered_json frontages = ordered_json::array();
+  for (int k = 0; k <= 20; ++k) frontages.push_back(std::max(tenth(quantile(areas, 0.1 + 0.9 * k / 20) / depth + gap), 1.0));
+  const double lot_depth = std::ceil(std::max(setback + depth + gap / 2, frontages.back().get<double>() * kLotShape.min));
+  return {{"perimeter_depth", depth}, {"lot_frontages", frontages}, {"lot_depth", lot_depth}};
+}
+
 // The footprints a file maps, and the zones and roads it draws.
 struct RealPlace {
   std::vector<RealFootprint> footprints;
@@ -391,6 +414,10 @@ ordered_json like_place(Sketch& sketch, const std::filesystem::path& like) {
       set[key] = value;
     }
     z["set"] = set;
+    // Not set: on Helsinki's centre it lowers the residential median (docs/gis.md).
+    if (derived.contains("setback"))
+      if (ordered_json rule = frontage_rule(f, derived["setback"].get<double>(), derived["building_gap"].get<double>()); !rule.is_null())
+        z["frontage_rule"] = rule;
     if (!kept.empty()) z["kept_as_the_sketch_sets"] = kept;
     report["zones"][type] = z;
   }
