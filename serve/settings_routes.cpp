@@ -42,6 +42,7 @@ const std::map<std::string, Note>& notes() {
       {"bridges", {"", "grown roads cross heightmap water as bridges instead of stopping at the shore"}},
       {"lots", {"", "allocation (lots along the street), split (recursive splitting) or library (the lots the model library's entries ask for)"}},
       {"lot_width", {"m", "[min, max] frontage of an allocated lot, drawn per street side"}},
+      {"lot_frontages", {"m", "street widths of allocated lots at equal steps of their distribution, smallest to largest (a real place's, as --like's frontage rule gives it): each lot's width is drawn from it instead of lot_width; empty: lot_width"}},
       {"lot_depth", {"m", "how far allocated lots reach back from the street"}},
       {"lot_area", {"m²", "split halves lots until they are below this"}},
       {"min_lot_edge", {"m", "allocated lots with a shorter frontage or depth are dropped"}},
@@ -74,6 +75,7 @@ json own_default(const std::string& key, const ZoneSettings& z) {
   if (key == "road_widths") return z.roads.road_widths;
   if (key == "heights") return json::array({z.buildings.min_height, z.buildings.max_height});
   if (key == "footprint_areas") return z.buildings.footprint_areas;
+  if (key == "lot_frontages") return json::array();  // none: lot_width decides
   return nullptr;
 }
 
