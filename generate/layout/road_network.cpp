@@ -96,9 +96,10 @@ void add_road(CityMap& city_map, const LaidRoad& road, int region) {
   city_map.roads.push_back(std::move(m));
 }
 
-// Each region's plan, in parallel: a region takes a stream of its exact cell (content_id),
-// not of its index, so an edit that adds or removes a region leaves the others' roads as
-// they were. With a memo, a
+// Each region's plan, in parallel: region i takes the stream mix(stage, i) (a stream of its
+// exact cell would draw a region of growth afresh after any edit of it, where the town's
+// market edit keeps most of its roads: 45 block plans of 1,408 reused against 1,439). With a
+// memo, a
 // plan is reused when its region is the same cell with the same stream, laid out by the same
 // layout (`layout_key`) over the same drawn zones (which say the zone at each point).
 // Each region's hash (CityMap::region_hashes) is of its layout and exact cell.
@@ -113,7 +114,7 @@ std::vector<RoadPlan> plan_regions(const std::vector<geom::Cell>& cells, std::ui
   tbb::parallel_for(std::size_t(0), cells.size(), [&](std::size_t i) {
     cancel.check();
     const std::string cell_text = geom::exact_text(cells[i]);
-    const Region region{cells[i], mix(stage, content_id(cell_text))};
+    const Region region{cells[i], mix(stage, i)};
     auto plan = [&] { return layout_of(i).plan(region); };
     hashes[i] = ContentHash(content_id(layout_key(i))).add(std::string_view(cell_text)).value();
     if (!memo) {
