@@ -3,6 +3,8 @@
 // temporary folder, the 3D view's tiles), and how many regions, blocks, lots and meshes were
 // reused. Each stage's CPU seconds (all threads) are printed beside its wall seconds, since
 // on a shared machine the wall clock measures the other users too.
+// Then, per layer file of vector/, how many features the edit changed: lines of the
+// regenerated city's file that are not in the first city's.
 // Measures; asserts nothing (tests/regenerate_test.cpp holds the two cities equal).
 //
 //   build/release/benchmarks/exacity_regenerate SKETCH [--scale K] [--zone NAME] [--move DX DY]
@@ -14,6 +16,9 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
 #include <string>
 
 #include <unistd.h>
@@ -36,7 +41,24 @@ struct Run {
   City city;
   ordered_json seconds, cpu = ordered_json::object();
   double total = 0, total_cpu = 0;
+  std::map<std::string, std::set<std::string>> features;  // per file of vector/, its features' lines
 };
+
+// The features of each layer file, one a line, without the comma after it.
+std::map<std::string, std::set<std::string>> feature_lines(const std::filesystem::path& vector_dir) {
+  std::map<std::string, std::set<std::string>> out;
+  for (const auto& entry : std::filesystem::directory_iterator(vector_dir)) {
+    std::ifstream in(entry.path());
+    std::set<std::string>& lines = out[entry.path().filename().string()];
+    for (std::string line; std::getline(in, line);) {
+      if (line.rfind("{\"type\":\"Feature\"", 0) != 0) continue;
+      if (line.back() == ',') line.pop_back();
+      if (line.size() > 2 && line.compare(line.size() - 2, 2, "]}") == 0) line.resize(line.size() - 2);
+      lines.insert(line);
+    }
+  }
+  return out;
+}
 
 Run build(const ordered_json& doc, const std::string& path, std::shared_ptr<RegionCache> cache, const City* previous) {
   bench::StageCpu cpu;
@@ -55,6 +77,7 @@ Run build(const ordered_json& doc, const std::string& path, std::shared_ptr<Regi
   cpu.next("");
   run.cpu = cpu.seconds;
   run.total_cpu = bench::cpu_seconds() - cpu_start;
+  run.features = feature_lines(dir / "vector");
   std::filesystem::remove_all(dir);
   run.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   run.seconds = clock.seconds;
@@ -107,6 +130,15 @@ int main(int argc, char** argv) {
                 c.road_plans.hits(), c.road_plans.hits() + c.road_plans.misses(), c.lot_plans.hits(),
                 c.lot_plans.hits() + c.lot_plans.misses(), c.placements.hits(), c.placements.hits() + c.placements.misses(),
                 c.meshes.hits(), c.meshes.hits() + c.meshes.misses());
+    std::printf("ground pieces reused: %d of %d\nfeatures the edit changed (lines not in the first city's):",
+                c.ground_pieces.hits(), c.ground_pieces.hits() + c.ground_pieces.misses());
+    for (const auto& [file, lines] : again.features) {
+      const std::set<std::string>& before = first.features.at(file);
+      std::size_t changed = 0;
+      for (const std::string& line : lines) changed += !before.count(line);
+      std::printf(" %s %zu of %zu;", file.c_str(), changed, lines.size());
+    }
+    std::printf("\n");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 2;

@@ -101,7 +101,7 @@ ordered_json empty_zones_report(const City& city) {
 ordered_json roads_without_area_report(const City& city) {
   ordered_json out = ordered_json::array();
   for (int id : city.ground.roads_without_area) {
-    ordered_json entry{{"road", id},
+    ordered_json entry{{"road", city.ground.roads[id].stable_id},
                        {"why", "its carriageway lies wholly on other roads' surfaces, which have too little to spare "
                                "for it, or rounding left it none"}};
     // Its position in OUT/sketch.geojson's features, for a road drawn in the sketch.

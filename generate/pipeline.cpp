@@ -126,6 +126,7 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
                            city.channels, city.heightmap(), static_cast<int>(s.buildings.size() + s.models.size()),
                            city.mapped);
     s.buildings.insert(s.buildings.end(), std::make_move_iterator(mapped.begin()), std::make_move_iterator(mapped.end()));
+    give_stable_ids(s.buildings, s.models);
     return s;
   });
   city.buildings = std::move(raised.buildings);
@@ -169,7 +170,7 @@ void export_vectors(const Sketch& sketch, const City& city, const fs::path& dir)
         }
       },
       [&] {
-        write_point_geojson(clutter_layer(city.clutter.items, city.model_library()), city.settings.crs,
+        write_point_geojson(clutter_layer(city.clutter.items, city.ground, city.model_library()), city.settings.crs,
                             dir / "vector" / "clutter.geojson");
       },
       [&] { write_svg_map(city.ground, city.buildings, city.models, dir / "map.svg", city.clutter.items); }};
@@ -188,7 +189,7 @@ MeshCounts export_3d(const City& city, const fs::path& dir, GltfCounts& gltf) {
   const ModelLibrary* library = city.model_library();
   std::vector<Mesh> meshes;
   std::vector<GroundLayer> ground;
-  invoke_cancellable([&] { meshes = city_meshes(city); }, [&] { ground = ground_layers(city.ground, city.heightmap()); });
+  invoke_cancellable([&] { meshes = city_meshes(city); }, [&] { ground = city_ground_layers(city); });
   write_cityjson(city.ground, city.buildings, city.models, meshes, library, city.heightmap(), ground, city.settings.crs,
                  dir / "city.city.json", city.clutter.items);
   std::vector<ModelInstance> clutter;

@@ -45,6 +45,11 @@ void RegionCache::next_build(const Sketch& sketch) {
   lot_plans.next_build(shared);
   placements.next_build(shared);
   meshes.next_build(shared);
+  ground_pieces.next_build(shared);
+}
+
+std::vector<GroundLayer> city_ground_layers(const City& city) {
+  return ground_layers(city.ground, city.heightmap(), city.regions ? &city.regions->ground_pieces : nullptr);
 }
 
 std::vector<Mesh> city_meshes(const City& city) {
@@ -94,7 +99,8 @@ nlohmann::ordered_json reuse_report(const RegionCache& cache) {
   return {{"region_plans", counts(cache.road_plans)},
           {"block_plans", counts(cache.lot_plans)},
           {"lot_placements", counts(cache.placements)},
-          {"structure_meshes", counts(cache.meshes)}};
+          {"structure_meshes", counts(cache.meshes)},
+          {"ground_pieces", counts(cache.ground_pieces)}};
 }
 
 City regenerate(const City& previous, const Sketch& edited, StageClock& clock) {

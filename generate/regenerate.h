@@ -13,6 +13,7 @@
 #include "generate/city.h"
 #include "generate/pipeline.h"
 #include "generate/city/memo.h"
+#include "generate/export/ground_layers.h"
 #include "generate/mesh/building_mesh.h"
 #include "generate/sketch/sketch.h"
 
@@ -25,6 +26,7 @@ struct RegionCache {
   Memo<std::vector<PlannedLot>> lot_plans;  // per block
   Memo<Structures> placements;              // per lot, before it stands on the terrain
   Memo<Mesh> meshes;                        // per building or placed model, for the exports and tiles
+  Memo<GroundMesh> ground_pieces;           // per zone, water and road area polygon draped, likewise
   // The last written city's polygons if it passed validation: the next one is validated
   // where it changed (validate_window.h). Whatever the settings, since validation reads only files.
   std::shared_ptr<ValidatedPolygons> validated;
@@ -32,8 +34,12 @@ struct RegionCache {
   // the sketch roads, the files the sketch names) forgets everything.
   void next_build(const Sketch& sketch);
   // Items reused and computed in the last build, over the memos.
-  int hits() const { return road_plans.hits() + lot_plans.hits() + placements.hits() + meshes.hits(); }
-  int misses() const { return road_plans.misses() + lot_plans.misses() + placements.misses() + meshes.misses(); }
+  int hits() const {
+    return road_plans.hits() + lot_plans.hits() + placements.hits() + meshes.hits() + ground_pieces.hits();
+  }
+  int misses() const {
+    return road_plans.misses() + lot_plans.misses() + placements.misses() + meshes.misses() + ground_pieces.misses();
+  }
 
  private:
   int unknown_ = 0;  // builds of sketches whose settings_text is unknown, each its own context
@@ -52,6 +58,10 @@ std::string shared_input(const Sketch& sketch);
 // mesh is reused where the structure is as it was (the exports and the tiles of one build
 // ask twice, and so make each mesh once).
 std::vector<Mesh> city_meshes(const City& city);
+
+// ground_layers of the city's ground; with the city's cache, a polygon's piece is reused
+// where it is as it was (the exports and the tiles of one build ask twice).
+std::vector<GroundLayer> city_ground_layers(const City& city);
 
 // The city of `edited`, built with `previous`'s cache (a new one when it has none), which
 // the new city then holds: the same city build_city(edited) makes.

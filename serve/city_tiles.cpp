@@ -105,13 +105,15 @@ json write_city_tiles(const City& city, const fs::path& dir) {
   const ModelLibrary* library = city.model_library();
   const std::vector<Mesh> meshes = city_meshes(city);
   std::map<std::pair<int, int>, Tile> tiles;  // by column and row: the index's order
-  auto place = [&](int id, int lot, ZoneType zone, const geom::Polygon& outline, double floor, double height) -> Tile& {
+  // `id` indexes the meshes; the box is coloured by the structure's stable id, as city.glb colours it.
+  auto place = [&](int id, int stable_id, int lot, ZoneType zone, const geom::Polygon& outline, double floor,
+                   double height) -> Tile& {
     Bounds3 b = mesh_bounds(meshes[id]);
     if (b.box.holds_nothing())  // no mesh to bound: its outline from its floor up to its height
       for (const geom::Vec2& p : outline.outer) b.add(p.x, p.y, floor), b.add(p.x, p.y, floor + height);
     Tile& t = tiles[tile_of((b.box.min_x + b.box.max_x) / 2, (b.box.min_y + b.box.max_y) / 2)];
     t.bounds.add(b);
-    t.boxes.push_back({b.box, b.bottom, b.top, zone, id});
+    t.boxes.push_back({b.box, b.bottom, b.top, zone, stable_id});
     const int block = lot >= 0 ? city.lots[lot].block : -1;
     BlockPart& part = t.blocks[{block, zone}];
     part.bounds.add(b);
@@ -120,9 +122,9 @@ json write_city_tiles(const City& city, const fs::path& dir) {
     return t;
   };
   for (const Building& b : city.buildings)
-    place(b.id, b.lot, b.zone, b.polygon, b.floor, b.height).buildings.push_back(b);
+    place(b.id, b.stable_id, b.lot, b.zone, b.polygon, b.floor, b.height).buildings.push_back(b);
   for (const ModelInstance& m : city.models)
-    place(m.id, m.lot, m.zone, m.polygon, m.floor, m.height).models.push_back(m);
+    place(m.id, m.stable_id, m.lot, m.zone, m.polygon, m.floor, m.height).models.push_back(m);
   for (const Clutter& c : city.clutter.items) {
     Tile& t = tiles[tile_of(c.spot.x, c.spot.y)];
     t.clutter.push_back(c.instance);
@@ -132,7 +134,7 @@ json write_city_tiles(const City& city, const fs::path& dir) {
 
   fs::create_directories(dir);
   const GltfCounts ground =
-      write_gltf(city.ground, ground_layers(city.ground, city.heightmap()), {}, {}, {}, city.settings.seed, nullptr,
+      write_gltf(city.ground, city_ground_layers(city), {}, {}, {}, city.settings.seed, nullptr,
                  dir / "ground.glb");
   json index{{"tile_size", size},
              {"bounds", {box.min_x, box.min_y, box.max_x, box.max_y}},

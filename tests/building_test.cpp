@@ -119,7 +119,7 @@ TEST(BuildingMesh, ObjAndPlyCarryTheGroundLayers) {
   }
   EXPECT_EQ(names, (std::vector<std::string>{"terrain", "ground_park", "water", "road", "bridge"}));
   std::vector<Building> buildings{prism({{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {}}, 5)};
-  buildings[0].id = 0;
+  buildings[0].id = 0, buildings[0].stable_id = 7;  // OBJ names a building by the id the layers write
   MeshCounts counts = write_meshes(buildings, {}, structure_meshes(buildings, {}, nullptr), layers, dir / "city.obj",
                                    dir / "city.ply");
   EXPECT_EQ(counts.vertices, 8u + layer_vertices);
@@ -131,7 +131,7 @@ TEST(BuildingMesh, ObjAndPlyCarryTheGroundLayers) {
     if (line.rfind("o ", 0) == 0) objects.push_back(line.substr(2));
     if (line.rfind("usemtl ", 0) == 0) materials.push_back(line.substr(7));
   }
-  EXPECT_EQ(objects, (std::vector<std::string>{"building_0", "terrain", "ground_park", "water", "road", "bridge"}));
+  EXPECT_EQ(objects, (std::vector<std::string>{"building_7", "terrain", "ground_park", "water", "road", "bridge"}));
   EXPECT_EQ(std::vector<std::string>(materials.end() - 5, materials.end()), names);
   std::ifstream mtl_file(dir / "city.mtl");
   const std::string mtl((std::istreambuf_iterator<char>(mtl_file)), std::istreambuf_iterator<char>());

@@ -253,10 +253,14 @@ TEST(CityMap, GrownRoadsStoppedAtAJunctionNamedForAFarStreetValidate) {
   const std::vector<std::string> features = {street("local", 8, "[[0,0],[-15,130]]"), street("main", 7, "[[-300,-3],[0,0]]"),
                                              street("main", 12, "[[0,0],[300,0]]"),
                                              zone("residential", "[[[-280,-150],[-30,-150],[-30,150],[-280,150],[-280,-150]]]")};
-  // The case itself: the junction, named for road 0, reaches past 4 of its widths from it.
+  // The case itself: the junction, named for the 8 m street (the sketch's first road, the
+  // first centre line), reaches past 4 of its widths from it.
+  const CityLayers layers = layers_of(features);
+  ASSERT_FALSE(layers.roads.features.empty());
+  const auto first = layers.roads.features[0].properties["id"];
   double reach_west = 0;
-  for (const auto& f : layers_of(features).road_areas.features)
-    if (f.properties["surface"] == "junction" && f.properties["road"] == 0)
+  for (const auto& f : layers.road_areas.features)
+    if (f.properties["surface"] == "junction" && f.properties["road"] == first)
       for (geom::Vec2 p : f.polygon.outer) reach_west = std::min(reach_west, p.x);
   EXPECT_LT(reach_west, -4 * 8) << "the junction no longer runs down the 7 m street: this sketch shows the case no more";
 

@@ -7,7 +7,10 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <map>
 #include <random>
+#include <regex>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -136,6 +139,61 @@ struct Built {
   City city;
 };
 
+// A feature of a layer file (one a line) as written.
+struct FeatureLine {
+  std::string text;  // the file's name and the feature's text, without the comma after it
+};
+
+// The features of every line-per-feature file written for the city: the vector layers and
+// clutter (docs/design.md, Outputs).
+std::vector<FeatureLine> feature_lines(const Sketch& sketch, const City& city, const std::string& name) {
+  const auto dir = testing_util::temp_dir(name);
+  StageClock clock(nullptr, kWriteStages);
+  write_city(sketch, city, dir, clock);
+  std::vector<FeatureLine> out;
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "vector")) {
+    std::ifstream in(entry.path());
+    std::string line;
+    while (std::getline(in, line)) {
+      if (line.rfind("{\"type\":\"Feature\"", 0) != 0) continue;
+      if (line.back() == ',') line.pop_back();
+      if (line.size() > 2 && line.compare(line.size() - 2, 2, "]}") == 0) line.resize(line.size() - 2);
+      out.push_back({entry.path().filename().string() + " " + line});
+    }
+  }
+  return out;
+}
+
+// A feature's text with its id and the ids it names left out, and its id.
+std::pair<std::string, std::string> without_ids(const std::string& text) {
+  static const std::regex id(R"re("id":([0-9]+))re");
+  static const std::regex names(R"re("(id|block|lot|road|region)":(-?[0-9]+|null)|"roads":\[[^\]]*\])re");
+  std::smatch m;
+  std::regex_search(text, m, id);
+  return {std::regex_replace(text, names, ""), m.size() > 1 ? m[1].str() : ""};
+}
+
+// Every feature of `after` that is, ids and what it names left out, one of `before` (one
+// each way) has that one's id: ids depend on what a feature is, not on where it comes in
+// the map or on what else the edit changed. Returns how many were compared.
+int expect_ids_kept(const std::vector<FeatureLine>& before, const std::vector<FeatureLine>& after, const std::string& what) {
+  std::map<std::string, std::string> id_before;
+  std::set<std::string> twice;
+  for (const FeatureLine& f : before) {
+    auto [text, id] = without_ids(f.text);
+    if (!id_before.emplace(text, id).second) twice.insert(text);
+  }
+  int compared = 0;
+  for (const FeatureLine& f : after) {
+    auto [text, id] = without_ids(f.text);
+    const auto it = id_before.find(text);
+    if (it == id_before.end() || twice.count(text)) continue;
+    ++compared;
+    EXPECT_EQ(id, it->second) << what << ": " << f.text.substr(0, 300);
+  }
+  return compared;
+}
+
 // The sketch as write_city copies it (a parsed text has no file to copy).
 Sketch parsed(const json& text) {
   Sketch sketch = parse_sketch(text.dump(), "town.geojson");
@@ -180,13 +238,15 @@ TEST(Regenerate, UnchangedSketchReusesEveryRegionBlockLotAndMesh) {
 }
 
 // Each edit regenerated from the city before it, which was written (so its meshes are kept),
-// against the edited sketch built whole without a cache.
+// against the edited sketch built whole without a cache; and every feature of the layers
+// and clutter the edit left as it was keeps its id.
 TEST(Regenerate, RandomEditsGiveTheFullBuildsCity) {
   std::mt19937 random(11);
   json sketch = town();
   Built previous = build(sketch, std::make_shared<RegionCache>());
   written(previous, "first");
-  int reused = 0, meshes_reused = 0;
+  std::vector<FeatureLine> lines = feature_lines(previous.sketch, previous.city, "first lines");
+  int reused = 0, meshes_reused = 0, kept = 0;
   for (int edit = 0; edit < 16; ++edit) {
     json next = edited(sketch, random);
     Built city;
@@ -199,13 +259,18 @@ TEST(Regenerate, RandomEditsGiveTheFullBuildsCity) {
     const std::string regenerated_written = written(city, "regenerated");
     reused += city.city.regions->hits();
     meshes_reused += city.city.regions->meshes.hits();
-    EXPECT_EQ(regenerated_written, written(build(next), "full")) << "edit " << edit << ": " << next.dump();
+    const Built full = build(next);
+    EXPECT_EQ(regenerated_written, written(full, "full")) << "edit " << edit << ": " << next.dump();
+    std::vector<FeatureLine> next_lines = feature_lines(full.sketch, full.city, "full lines");
+    kept += expect_ids_kept(lines, next_lines, "edit " + std::to_string(edit));
+    lines = std::move(next_lines);
     sketch = std::move(next);
     previous = std::move(city);
   }
   // Not every edit reaches every region, block, lot or structure: some were reused.
   EXPECT_GT(reused, 0);
   EXPECT_GT(meshes_reused, 0);
+  EXPECT_GT(kept, 1000);
 }
 
 // A zone drawn apart from the others is a region of its own: adding it and removing it

@@ -79,6 +79,9 @@ struct CityMap {
   std::vector<FaceLabel> labels;  // indexed by face label
   std::vector<MapRoad> roads;     // sketch roads first, in sketch order
   int sketch_roads = 0;
+  // Per region of the road stage (MapRoad::region), a hash of what it is: its layout and
+  // exact cell, and its piece of the plan; its id in the outputs is drawn from it.
+  std::vector<std::uint64_t> region_hashes;
 
   // The map's counters, range after range; each range is sized before the next opens.
   // The map owns them: every stage takes its counters from here.

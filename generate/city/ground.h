@@ -1,7 +1,8 @@
 // The ground as the city map leaves it, typed: zones, water, roads and their surfaces,
 // blocks and lots, each as the vector layers write it (docs/design.md, The city model).
-// The exports and the renderer read these, never the layers' GeoJSON properties. A
-// feature's id is its index in its list, but for blocks, which carry their own.
+// The exports and the renderer read these, never the layers' GeoJSON properties. Inside the
+// program a feature is named by its index in its list (blocks carry their own); the outputs
+// write its stable_id instead (generate/city/stable_ids.h), drawn from what it is.
 #pragma once
 
 #include <string>
@@ -17,6 +18,7 @@ namespace exacity {
 struct ZoneArea {
   ZoneType type = ZoneType::Residential;
   geom::Polygon polygon;
+  int stable_id = -1;  // its id in the outputs
 };
 
 // A centre line, cut where it goes on or off a bridge.
@@ -31,6 +33,8 @@ struct RoadLine {
   // Its road's OpenStreetMap tags as read (RoadFeature::osm_tags): every piece of a way the
   // map cuts keeps the way's.
   std::vector<std::pair<std::string, std::string>> osm_tags;
+  int stable_id = -1;         // its id in the outputs
+  int region_stable_id = -1;  // its region's id in the outputs, -1 for roads drawn in the sketch
 };
 
 // A piece of a road's surface: carriageway, sidewalk or junction.
@@ -39,6 +43,7 @@ struct RoadArea {
   bool bridge = false;
   RoadSurface surface = RoadSurface::Carriageway;
   geom::Polygon polygon;
+  int stable_id = -1;  // its id in the outputs
 };
 
 // A block as written: rounding can pinch a block in two, and each piece is a feature.
@@ -49,17 +54,20 @@ struct BlockArea {
   bool green = false;
   std::vector<int> roads;  // the ids of the centre lines it fronts, -1 for a road with none
   geom::Polygon polygon;
+  int stable_id = -1;  // its id in the outputs
 };
 
 struct LotArea {
   int block = 0;  // the id of the block piece it lies in
   ZoneType zone = ZoneType::Residential;
   geom::Polygon polygon;
+  int stable_id = -1;  // its id in the outputs
 };
 
 struct Ground {
   std::vector<ZoneArea> zones;
   std::vector<geom::Polygon> water;
+  std::vector<int> water_stable_ids;  // each water polygon's id in the outputs
   std::vector<RoadLine> roads;
   std::vector<RoadArea> road_areas;
   std::vector<BlockArea> blocks;

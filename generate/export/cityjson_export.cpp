@@ -274,8 +274,11 @@ json geometry_instance(const Placement& p, double floor, Vertices& v) {
 
 const json kSemanticSurfaces = json::array({{{"type", "GroundSurface"}}, {{"type", "WallSurface"}}, {{"type", "RoofSurface"}}});
 
-json building_attributes(const Building& b) {
-  json attributes{{"lot", b.lot >= 0 ? json(b.lot) : json(nullptr)}, {"zone", name(b.zone)}, {"measuredHeight", b.height},
+// A lot by its id in the outputs; null for none.
+json lot_id(const Ground& ground, int lot) { return lot >= 0 ? json(ground.lots[lot].stable_id) : json(nullptr); }
+
+json building_attributes(const Building& b, const Ground& ground) {
+  json attributes{{"lot", lot_id(ground, b.lot)}, {"zone", name(b.zone)}, {"measuredHeight", b.height},
                   {"roofType", b.roof}};
   if (b.mapped >= 0) {
     const nlohmann::ordered_json mapped = mapped_attributes(b);
@@ -286,7 +289,7 @@ json building_attributes(const Building& b) {
 
 // An extruded building: LOD1 its prism, LOD2 its roof as built (where quantisation
 // collapses a face of it, the prism). Null when the prism collapses.
-json building_object(const Building& b, const Mesh& mesh, Vertices& v) {
+json building_object(const Building& b, const Ground& ground, const Mesh& mesh, Vertices& v) {
   json shell = json::array();
   std::vector<int> classes;
   if (!prism(b.polygon, b.base, b.floor + b.height, v, shell, classes)) return nullptr;
@@ -297,14 +300,14 @@ json building_object(const Building& b, const Mesh& mesh, Vertices& v) {
   json lod2{{"type", "Solid"}, {"lod", "2"}, {"boundaries", json::array({std::move(lod2_shell)})},
             {"semantics", {{"surfaces", kSemanticSurfaces}, {"values", json::array({lod2_classes})}}}};
   return {{"type", "Building"},
-          {"attributes", building_attributes(b)},
+          {"attributes", building_attributes(b, ground)},
           {"geometry", json::array({std::move(lod1), std::move(lod2)})}};
 }
 
 // A mapped building with building:parts: its attributes, its geometry theirs (children
 // added as they are written), since OSM's outline of such a building is 2D only.
-json building_with_parts(const Building& b) {
-  return {{"type", "Building"}, {"attributes", building_attributes(b)}, {"geometry", json::array()}, {"children", json::array()}};
+json building_with_parts(const Building& b, const Ground& ground) {
+  return {{"type", "Building"}, {"attributes", building_attributes(b, ground)}, {"geometry", json::array()}, {"children", json::array()}};
 }
 
 // A building:part (OSM's Simple 3D Buildings) of a mapped building: LOD1 its prism from
@@ -336,7 +339,7 @@ json building_part_object(const Building& b, const BuildingPart& part, const std
 // placed (CityJSON lets no Building hold a GeometryInstance), or for furniture and trees
 // the template stored once, placed by a transform about its reference point. Null when
 // the prism collapses.
-json model_object(const ModelInstance& m, const Mesh& mesh, const ModelLibrary& library, Vertices& v) {
+json model_object(const ModelInstance& m, const Ground& ground, const Mesh& mesh, const ModelLibrary& library, Vertices& v) {
   json shell = json::array();
   std::vector<int> classes;
   if (!prism(m.polygon, m.base, m.floor + m.height, v, shell, classes)) return nullptr;
@@ -356,21 +359,21 @@ json model_object(const ModelInstance& m, const Mesh& mesh, const ModelLibrary& 
                                                      : "CityFurniture";
   return {{"type", type},
           {"attributes",
-           {{"lot", m.lot}, {"zone", name(m.zone)}, {"measuredHeight", m.height}, {"model", library.models[m.placed.model].name}}},
+           {{"lot", lot_id(ground, m.lot)}, {"zone", name(m.zone)}, {"measuredHeight", m.height}, {"model", library.models[m.placed.model].name}}},
           {"geometry", json::array({std::move(lod1), std::move(placed)})}};
 }
 
 // Street clutter: CityFurniture, or SolitaryVegetationObject for a tree, whose one
 // geometry is its model's template placed; its attributes name the road it dresses (null for
 // a park's tree).
-json clutter_object(const Clutter& c, const ModelLibrary& library, Vertices& v) {
+json clutter_object(const Clutter& c, const Ground& ground, const ModelLibrary& library, Vertices& v) {
   const ModelInstance& m = c.instance;
   json attributes{{"kind", name(m.kind)},
-                  {"road", c.road >= 0 ? json(c.road) : json(nullptr)},
+                  {"road", c.road >= 0 ? json(ground.roads[c.road].stable_id) : json(nullptr)},
                   {"heading", c.heading},
                   {"measuredHeight", m.height},
                   {"model", library.models[m.placed.model].name}};
-  if (m.lot >= 0) attributes["lot"] = m.lot;
+  if (m.lot >= 0) attributes["lot"] = ground.lots[m.lot].stable_id;
   return {{"type", m.kind == ModelKind::Tree ? "SolitaryVegetationObject" : "CityFurniture"},
           {"attributes", std::move(attributes)},
           {"geometry", json::array({geometry_instance(m.placed, m.floor, v)})}};
@@ -378,18 +381,19 @@ json clutter_object(const Clutter& c, const ModelLibrary& library, Vertices& v) 
 
 // Roads, land use and water as LOD1 surfaces: an object per road (its areas), per zone
 // type and one for the water, in the order of their key's text (kept from when they were
-// grouped by their GeoJSON property), each named prefix + n.
+// grouped by their GeoJSON property), each named prefix + n; a road's prefix + its id, so
+// that an edit leaves the names of the roads it does not reach as they were.
 void add_ground_objects(const Ground& ground, const std::vector<GroundLayer>& layers, const Terrain* terrain,
                         Vertices& v, json& objects) {
   using Groups = std::map<std::string, std::pair<json, std::vector<LevelPolygon>>>;
-  auto surfaces = [&](const Groups& groups, const std::string& prefix, const std::string& type) {
+  auto surfaces = [&](const Groups& groups, const std::string& prefix, const std::string& type, bool by_key = false) {
     int n = 0;
     for (const auto& [text, group] : groups) {
       json geometry = multisurface(group.second, terrain, v);
       if (geometry.is_null()) continue;
       json o{{"type", type}, {"geometry", json::array({std::move(geometry)})}};
       if (!group.first.is_null()) o["attributes"] = group.first;
-      objects[prefix + std::to_string(n++)] = std::move(o);
+      objects[prefix + (by_key ? text : std::to_string(n++))] = std::move(o);
     }
   };
   Groups roads, zones, water;
@@ -398,10 +402,11 @@ void add_ground_objects(const Ground& ground, const std::vector<GroundLayer>& la
   const BridgeDecks decks = bridge_decks(ground, terrain);
   for (std::size_t i = 0; i < ground.road_areas.size(); ++i) {
     const RoadArea& a = ground.road_areas[i];
-    auto& [attributes, polygons] = roads[a.road >= 0 ? std::to_string(a.road) : "null"];
+    const int road = a.road >= 0 ? ground.roads[a.road].stable_id : -1;
+    auto& [attributes, polygons] = roads[road >= 0 ? std::to_string(road) : "null"];
     // The road's id and its OpenStreetMap tags, as roads.geojson has them.
     if (attributes.is_null()) {
-      attributes = {{"road", a.road >= 0 ? json(a.road) : json(nullptr)}};
+      attributes = {{"road", road >= 0 ? json(road) : json(nullptr)}};
       if (a.road >= 0) attributes.update(json(road_attributes(ground.roads[a.road])));
     }
     polygons.push_back({&a.polygon, decks.height[i]});
@@ -412,7 +417,7 @@ void add_ground_objects(const Ground& ground, const std::vector<GroundLayer>& la
     polygons.push_back({&z.polygon, NAN});
   }
   for (const geom::Polygon& w : ground.water) water[""].second.push_back({&w, water_level(w, terrain)});
-  surfaces(roads, "road-", "Road");
+  surfaces(roads, "road-", "Road", true);
   surfaces(zones, "landuse-", "LandUse");
   surfaces(water, "water-", "WaterBody");
   // The decks' sides and undersides and the piers, one Bridge object for every bridge.
@@ -442,8 +447,8 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
       buildings, models,
       [&](const Building& b) {
         cancel.check();
-        const std::string key = "building-" + std::to_string(b.id);
-        json o = b.parts.empty() ? building_object(b, meshes[b.id], v) : building_with_parts(b);
+        const std::string key = "building-" + std::to_string(b.stable_id);
+        json o = b.parts.empty() ? building_object(b, ground, meshes[b.id], v) : building_with_parts(b, ground);
         // Its parts are its 3D (OSM's Simple 3D Buildings): BuildingParts, its children.
         for (std::size_t k = 0; k < b.parts.size(); ++k) {
           const std::string part_key = key + "-part-" + std::to_string(k);
@@ -456,12 +461,12 @@ void write_cityjson(const Ground& ground, const std::vector<Building>& buildings
       },
       [&](const ModelInstance& m) {
         cancel.check();
-        if (json o = model_object(m, meshes[m.id], *library, v); !o.is_null())
-          texts["building-" + std::to_string(m.id)] = o.dump();
+        if (json o = model_object(m, ground, meshes[m.id], *library, v); !o.is_null())
+          texts["building-" + std::to_string(m.stable_id)] = o.dump();
       });
   for (const Clutter& c : clutter) {
     cancel.check();
-    texts["clutter-" + std::to_string(c.instance.id)] = clutter_object(c, *library, v).dump();
+    texts["clutter-" + std::to_string(c.instance.stable_id)] = clutter_object(c, ground, *library, v).dump();
   }
   json objects = json::object();
   add_ground_objects(ground, ground_layers, terrain, v, objects);

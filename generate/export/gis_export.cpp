@@ -282,7 +282,7 @@ bool write_city_osm(const City& city, const fs::path& file, std::optional<std::i
   };
   std::map<int, const Building*> with_parts;
   for (const Building& b : city.buildings)
-    if (!b.parts.empty()) with_parts[b.id] = &b;
+    if (!b.parts.empty()) with_parts[b.stable_id] = &b;  // by the id the layer writes
   for (const VectorFeature& b : city.layers.buildings.features) {
     if (b.properties.value("kind", std::string("building")) != "building") continue;
     // A mapped building keeps its building tag and says where it came from.

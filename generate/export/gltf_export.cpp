@@ -260,9 +260,9 @@ Primitives building_primitives(const std::vector<Building>& buildings, const std
     }
   };
   for_each_by_id(
-      buildings, models, [&](const Building& b) { merge(b.id, b.zone, meshes[b.id]); },
+      buildings, models, [&](const Building& b) { merge(b.stable_id, b.zone, meshes[b.id]); },
       [&](const ModelInstance& m) {
-        if (m.floor > m.base) merge(m.id, m.zone, model_mesh(m, nullptr));
+        if (m.floor > m.base) merge(m.stable_id, m.zone, model_mesh(m, nullptr));
       });
   Primitives out;
   for (const auto& [look, t] : merged) out.push_back({glb.accessors(t), look_material(look, glb)});

@@ -24,8 +24,9 @@ struct GltfCounts {
 
 // ground_layers are ground_layers(ground, terrain), a primitive each of the mesh "ground";
 // meshes are structure_meshes(buildings, models, library), by id; `seed` the city's, which
-// picks each structure's facade and roof albedo as the renderer picks it (structure_albedos,
-// a material each). The street clutter's
+// with each structure's stable id picks its facade and roof albedo (structure_albedos, a
+// material each; the renderer still picks by the structure's index, so the two agree only
+// where they are equal). The street clutter's
 // models are instanced like the lots', sharing their geometry: a node each, in id order,
 // under the root's child "clutter".
 GltfCounts write_gltf(const Ground& ground, const std::vector<GroundLayer>& ground_layers,
@@ -41,7 +42,7 @@ GltfCounts write_gltf_structures(const Ground& ground, const std::vector<Buildin
                                  std::uint64_t seed, const ModelLibrary* library, const std::filesystem::path& file,
                                  const std::vector<ModelInstance>& clutter = {});
 // Boxes standing for structures far away: a roof and four walls each, coloured as the
-// structure `id` is (structure_albedos), or, for a box of several (id -1), in the mean of
+// structure whose stable id is `id` is (structure_albedos), or, for a box of several (id -1), in the mean of
 // their zone's albedos.
 struct StructureBox {
   geom::Box box;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "generate/city/ground.h"
+#include "generate/city/memo.h"
 #include "generate/city/palette.h"
 #include "generate/city/terrain.h"
 #include "generate/mesh/ground_mesh.h"
@@ -30,8 +31,10 @@ geom::Box city_box(const Ground& ground);
 // (with the banks and the beds under the water), the zones draped over it (a layer per zone
 // type, by name), the water level at its shore height, the road surfaces (bridge decks
 // level among them) and the bridges' decks' sides and undersides and their piers. Layers
-// without a triangle are left out.
-std::vector<GroundLayer> ground_layers(const Ground& ground, const Terrain* terrain);
+// without a triangle are left out. With a memo (whose context holds the terrain), each
+// zone's, water's and road area's polygon is draped once while it stays the same (a build
+// drapes the ground twice, for the 3D exports and the tiles).
+std::vector<GroundLayer> ground_layers(const Ground& ground, const Terrain* terrain, Memo<GroundMesh>* pieces = nullptr);
 
 // The mesh of the layer of that kind (the first), null where there is none.
 const GroundMesh* layer_mesh(const std::vector<GroundLayer>& layers, GroundKind kind);

@@ -18,11 +18,11 @@ int ply_surface(GroundKind kind) { return 3 + static_cast<int>(kind); }
 // The city's vertices and faces in the order both files list them: each building's
 // vertices, then its faces by surface (ground, wall, roof; the material named before each
 // surface's faces), then each ground layer's. Faces index vertices counted across the city
-// from 0. `out` takes object(building index or ground layer), use(zone, surface),
+// from 0. `out` takes object(building id or ground layer), use(zone, surface),
 // vertex(x, y, z) and face(indices, PLY surface class). Walked once per pass (PLY's counts,
 // OBJ with PLY's vertices, PLY's faces), so no file is held in memory to be written later.
 template <typename Out>
-void walk_city(const std::vector<Mesh>& meshes, const std::vector<ZoneType>& zone_of,
+void walk_city(const std::vector<Mesh>& meshes, const std::vector<ZoneType>& zone_of, const std::vector<int>& id_of,
                const std::vector<GroundLayer>& ground, Out& out) {
   const CancelCheck cancel;
   std::size_t first = 0;  // the object's first vertex
@@ -30,7 +30,7 @@ void walk_city(const std::vector<Mesh>& meshes, const std::vector<ZoneType>& zon
     cancel.check();
     const Mesh& mesh = meshes[i];
     auto surface = surface_property(mesh);
-    out.object(i);
+    out.object(id_of[i]);
     std::size_t count = 0;
     for (auto v : mesh.vertices()) out.vertex(mesh.point(v)[0], mesh.point(v)[1], mesh.point(v)[2]), ++count;
     std::vector<std::size_t> face;
@@ -62,7 +62,7 @@ std::string material_name(ZoneType zone, Surface s) {
 // Counts what walk_city gives, for PLY's header.
 struct Counter {
   MeshCounts counts;
-  void object(std::size_t) {}
+  void object(int) {}
   void object(const GroundLayer&) {}
   void use(ZoneType, Surface) {}
   void vertex(double, double, double) { ++counts.vertices; }
@@ -75,7 +75,7 @@ struct Counter {
 struct ObjAndPlyVertices {
   std::ostream &obj, &ply;
   std::string line{};
-  void object(std::size_t building) { obj << "o building_" << building << '\n'; }
+  void object(int building) { obj << "o building_" << building << '\n'; }
   void object(const GroundLayer& layer) { obj << "o " << layer.name << "\nusemtl " << layer.name << '\n'; }
   void use(ZoneType zone, Surface s) { obj << "usemtl " << material_name(zone, s) << '\n'; }
   void vertex(double x, double y, double z) {
@@ -97,7 +97,7 @@ struct ObjAndPlyVertices {
 struct PlyFaces {
   std::ostream& ply;
   std::string line{};
-  void object(std::size_t) {}
+  void object(int) {}
   void object(const GroundLayer&) {}
   void use(ZoneType, Surface) {}
   void vertex(double, double, double) {}
@@ -132,20 +132,21 @@ MeshCounts write_meshes(const std::vector<Building>& buildings, const std::vecto
   for (const GroundLayer& layer : ground) material(layer.name, layer.colour);
 
   std::vector<ZoneType> zone_of;
+  std::vector<int> id_of;  // ids in the outputs
   for_each_by_id(
-      buildings, models, [&](const Building& b) { zone_of.push_back(b.zone); },
-      [&](const ModelInstance& m) { zone_of.push_back(m.zone); });
+      buildings, models, [&](const Building& b) { zone_of.push_back(b.zone), id_of.push_back(b.stable_id); },
+      [&](const ModelInstance& m) { zone_of.push_back(m.zone), id_of.push_back(m.stable_id); });
   Counter counter;
-  walk_city(meshes, zone_of, ground, counter);
+  walk_city(meshes, zone_of, id_of, ground, counter);
   const MeshCounts& counts = counter.counts;
   ply << "ply\nformat ascii 1.0\ncomment Exacity city: x east, y north, z up, metres; surface " << kPlySurfaces
       << "\nelement vertex " << counts.vertices
       << "\nproperty double x\nproperty double y\nproperty double z\nelement face " << counts.faces
       << "\nproperty list uchar int vertex_indices\nproperty uchar surface\nend_header\n";
   ObjAndPlyVertices obj_and_vertices{obj, ply};
-  walk_city(meshes, zone_of, ground, obj_and_vertices);
+  walk_city(meshes, zone_of, id_of, ground, obj_and_vertices);
   PlyFaces faces{ply};
-  walk_city(meshes, zone_of, ground, faces);
+  walk_city(meshes, zone_of, id_of, ground, faces);
   if (!obj || !mtl || !ply) throw UserError(obj_file.string() + ": write failed (disk full?)");
   return counts;
 }

@@ -6,9 +6,11 @@
 #include <functional>
 #include <map>
 #include <set>
+#include <unordered_map>
 
 #include "generate/cancel.h"
 #include "generate/cancellable_invoke.h"
+#include "generate/city/stable_ids.h"
 #include "geom/box_index.h"
 #include "geom/measure.h"
 #include "geom/polygon_check.h"
@@ -29,14 +31,6 @@ void dissolve(const CityMap& city_map, int group_count, GroupOf group_of, Add ad
     cancel.check();
     for (geom::Dissolved& d : polygons[g]) add(g, std::move(d.polygon));
   }
-}
-
-// Every polygon feature passes here: the place to stop a cancelled build.
-void add_polygon(Layer& layer, const ordered_json& props, const geom::Polygon& p) {
-  CancelCheck().check();
-  ordered_json full{{"id", static_cast<int>(layer.features.size())}};
-  if (props.is_object()) full.update(props);
-  layer.features.push_back({std::move(full), p, {}});
 }
 
 // A nested model's slabs as the buildings layer writes them (docs/design.md, Outputs):
@@ -198,6 +192,48 @@ int block_piece_of(const Lot& lot, const std::vector<std::size_t>& pieces, const
 
 ordered_json id_or_null(int id) { return id >= 0 ? ordered_json(id) : ordered_json(nullptr); }
 
+// Each feature's id in the outputs (stable_ids.h), from what its layer writes of it but ids
+// and what it names; a road's region's from the region (CityMap::region_hashes).
+void give_stable_ids(const CityMap& city_map, Ground& out) {
+  enum Kind : std::uint64_t { kZone = 1, kWater, kRoad, kRoadArea, kBlock, kLot };
+  auto give = [](auto& features, auto hash, auto set) {
+    std::vector<std::uint64_t> hashes;
+    hashes.reserve(features.size());
+    for (const auto& f : features) hashes.push_back(hash(f));
+    const std::vector<int> ids = stable_ids(hashes);
+    for (std::size_t i = 0; i < features.size(); ++i) set(features[i], ids[i]);
+  };
+  give(out.zones, [](const ZoneArea& z) { return ContentHash(kZone).add(static_cast<int>(z.type)).add(z.polygon).value(); },
+       [](ZoneArea& z, int id) { z.stable_id = id; });
+  out.water_stable_ids.assign(out.water.size(), -1);
+  give(out.water, [](const geom::Polygon& w) { return ContentHash(kWater).add(w).value(); },
+       [&](const geom::Polygon& w, int id) { out.water_stable_ids[&w - out.water.data()] = id; });
+  const std::vector<int> regions = stable_ids(city_map.region_hashes);
+  give(out.roads,
+       [](const RoadLine& r) {
+         ContentHash h(kRoad);
+         h.add(static_cast<int>(r.road_class)).add(r.width).add(r.level).add(static_cast<int>(r.bridge)).add(r.line);
+         for (const auto& [key, value] : r.osm_tags) h.add(std::string_view(key)).add(std::string_view(value));
+         return h.value();
+       },
+       [&](RoadLine& r, int id) {
+         r.stable_id = id;
+         r.region_stable_id = r.region >= 0 ? regions.at(r.region) : -1;
+       });
+  give(out.road_areas,
+       [](const RoadArea& a) {
+         return ContentHash(kRoadArea).add(static_cast<int>(a.surface)).add(static_cast<int>(a.bridge)).add(a.polygon).value();
+       },
+       [](RoadArea& a, int id) { a.stable_id = id; });
+  give(out.blocks,
+       [](const BlockArea& b) {
+         return ContentHash(kBlock).add(static_cast<int>(b.zone)).add(static_cast<int>(b.green)).add(b.polygon).value();
+       },
+       [](BlockArea& b, int id) { b.stable_id = id; });
+  give(out.lots, [](const LotArea& l) { return ContentHash(kLot).add(static_cast<int>(l.zone)).add(l.polygon).value(); },
+       [](LotArea& l, int id) { l.stable_id = id; });
+}
+
 }  // namespace
 
 int give_covered_roads_their_carriageway(CityMap& city_map) {
@@ -353,6 +389,7 @@ Ground extract_ground(const CityMap& city_map, const std::vector<Block>& blocks,
     cancel.check();
     out.lots.push_back({block_piece_of(lot, pieces[lot.block], out), lot.zone, lot.polygon});
   }
+  give_stable_ids(city_map, out);
   return out;
 }
 
@@ -372,40 +409,52 @@ ordered_json road_attributes(const RoadLine& road) {
 CityLayers layers_of(const Ground& ground, const std::vector<Building>& buildings,
                      const std::vector<ModelInstance>& models, const ModelLibrary* library) {
   CityLayers out;
-  for (const ZoneArea& z : ground.zones) add_polygon(out.zones, {{"zone", name(z.type)}}, z.polygon);
-  for (const geom::Polygon& w : ground.water) add_polygon(out.water, {}, w);
+  // Every feature writes its stable id, and names others by theirs. Every polygon feature
+  // passes here: the place to stop a cancelled build.
+  auto add = [](Layer& layer, int id, ordered_json props, const geom::Polygon& p) {
+    CancelCheck().check();
+    ordered_json full{{"id", id}};
+    full.update(props);
+    layer.features.push_back({std::move(full), p, {}});
+  };
+  auto road_id = [&](int r) { return r >= 0 ? ordered_json(ground.roads[r].stable_id) : ordered_json(nullptr); };
+  std::unordered_map<int, int> block_id;  // a block piece's id in the program -> its stable id
+  for (const BlockArea& b : ground.blocks) block_id.emplace(b.id, b.stable_id);
+  for (const ZoneArea& z : ground.zones) add(out.zones, z.stable_id, {{"zone", name(z.type)}}, z.polygon);
+  for (std::size_t w = 0; w < ground.water.size(); ++w)
+    add(out.water, ground.water_stable_ids[w], ordered_json::object(), ground.water[w]);
   for (const RoadLine& r : ground.roads) {
     CancelCheck().check();
-    ordered_json props{{"id", static_cast<int>(out.roads.features.size())}, {"class", name(r.road_class)},
+    ordered_json props{{"id", r.stable_id}, {"class", name(r.road_class)},
                        {"width", r.width},  {"level", id_or_null(r.level)},
-                       {"region", id_or_null(r.region)}, {"bridge", r.bridge}};
+                       {"region", id_or_null(r.region_stable_id)}, {"bridge", r.bridge}};
     props.update(road_attributes(r));
     out.roads.features.push_back({std::move(props), {}, r.line});
   }
   for (const RoadArea& a : ground.road_areas)
-    add_polygon(out.road_areas, {{"road", id_or_null(a.road)}, {"bridge", a.bridge}, {"surface", name(a.surface)}},
-                a.polygon);
+    add(out.road_areas, a.stable_id, {{"road", road_id(a.road)}, {"bridge", a.bridge}, {"surface", name(a.surface)}},
+        a.polygon);
   for (const BlockArea& b : ground.blocks) {
-    CancelCheck().check();
     ordered_json roads = ordered_json::array();
-    for (int r : b.roads) roads.push_back(id_or_null(r));
-    out.blocks.features.push_back(
-        {ordered_json{{"id", b.id}, {"zone", name(b.zone)}, {"green", b.green}, {"roads", roads}}, b.polygon, {}});
+    for (int r : b.roads) roads.push_back(road_id(r));
+    add(out.blocks, b.stable_id, {{"zone", name(b.zone)}, {"green", b.green}, {"roads", roads}}, b.polygon);
   }
-  for (const LotArea& lot : ground.lots) add_polygon(out.lots, {{"block", lot.block}, {"zone", name(lot.zone)}}, lot.polygon);
+  for (const LotArea& lot : ground.lots)
+    add(out.lots, lot.stable_id, {{"block", block_id.at(lot.block)}, {"zone", name(lot.zone)}}, lot.polygon);
+  auto lot_id = [&](int lot) { return lot >= 0 ? ordered_json(ground.lots[lot].stable_id) : ordered_json(nullptr); };
   for_each_by_id(
       buildings, models,
       [&](const Building& b) {
-        ordered_json props{{"lot", id_or_null(b.lot)}, {"zone", name(b.zone)}, {"height", b.height}, {"roof", b.roof},
+        ordered_json props{{"lot", lot_id(b.lot)}, {"zone", name(b.zone)}, {"height", b.height}, {"roof", b.roof},
                            {"model", nullptr}, {"kind", "building"}};
         if (b.mapped >= 0) props.update(mapped_attributes(b));
-        add_polygon(out.buildings, std::move(props), b.polygon);
+        add(out.buildings, b.stable_id, std::move(props), b.polygon);
       },
       [&](const ModelInstance& m) {
-        ordered_json props{{"lot", m.lot}, {"zone", name(m.zone)}, {"height", m.height}, {"roof", "model"},
+        ordered_json props{{"lot", lot_id(m.lot)}, {"zone", name(m.zone)}, {"height", m.height}, {"roof", "model"},
                            {"model", library->models[m.placed.model].name}, {"kind", name(m.kind)}};
         if (!m.slabs.empty()) props["floor"] = m.floor, props["slabs"] = slabs_json(m.slabs);
-        add_polygon(out.buildings, std::move(props), m.polygon);
+        add(out.buildings, m.stable_id, std::move(props), m.polygon);
       });
   return out;
 }

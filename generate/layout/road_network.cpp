@@ -12,6 +12,7 @@
 #include "generate/layout/growth.h"
 #include "generate/layout/road_layout.h"
 #include "generate/city/random.h"
+#include "generate/city/stable_ids.h"
 #include "geom/grid.h"
 #include "geom/measure.h"
 
@@ -95,24 +96,32 @@ void add_road(CityMap& city_map, const LaidRoad& road, int region) {
   city_map.roads.push_back(std::move(m));
 }
 
-// Each region's plan, in parallel: region i takes the stream mix(stage, i). With a memo, a
+// Each region's plan, in parallel: region i takes the stream mix(stage, i) (a stream of its
+// exact cell would draw a region of growth afresh after any edit of it, where the town's
+// market edit keeps most of its roads: 45 block plans of 1,408 reused against 1,439). With a
+// memo, a
 // plan is reused when its region is the same cell with the same stream, laid out by the same
 // layout (`layout_key`) over the same drawn zones (which say the zone at each point).
+// Each region's hash (CityMap::region_hashes) is of its layout and exact cell.
 std::vector<RoadPlan> plan_regions(const std::vector<geom::Cell>& cells, std::uint64_t stage,
                                    const std::function<const RoadLayout&(std::size_t)>& layout_of,
                                    const std::function<std::string(std::size_t)>& layout_key,
-                                   const std::vector<ZoneFeature>& zones, Memo<RoadPlan>* memo) {
+                                   const std::vector<ZoneFeature>& zones, Memo<RoadPlan>* memo,
+                                   std::vector<std::uint64_t>& hashes) {
   std::vector<RoadPlan> plans(cells.size());
+  hashes.assign(cells.size(), 0);
   const CancelCheck cancel;
   tbb::parallel_for(std::size_t(0), cells.size(), [&](std::size_t i) {
     cancel.check();
+    const std::string cell_text = geom::exact_text(cells[i]);
     const Region region{cells[i], mix(stage, i)};
     auto plan = [&] { return layout_of(i).plan(region); };
+    hashes[i] = ContentHash(content_id(layout_key(i))).add(std::string_view(cell_text)).value();
     if (!memo) {
       plans[i] = plan();
       return;
     }
-    std::string key = layout_key(i) + " stream " + std::to_string(region.stream) + " " + geom::exact_text(region.cell);
+    std::string key = layout_key(i) + " stream " + std::to_string(region.stream) + " " + cell_text;
     append_zones_over(key, zones, region.cell.bounds());
     plans[i] = memo->get(key, plan);
   });
@@ -148,10 +157,12 @@ void lay_out_growth(CityMap& city_map, const CitySettings& settings, const std::
   });
   const std::unique_ptr<RoadLayout> growth =
       spanning->make({settings, ZoneType::Residential, sketch_lines, zone_at(city_map, zones)});
+  std::vector<std::uint64_t> hashes;
   const std::vector<RoadPlan> plans = plan_regions(city_map.map.cells(group, kind), mix(settings.seed, static_cast<std::uint64_t>(Stage::Roads)),
                                                    [&](std::size_t) -> const RoadLayout& { return *growth; },
-                                                   [](std::size_t) { return std::string("growth"); }, zones, memo);
+                                                   [](std::size_t) { return std::string("growth"); }, zones, memo, hashes);
   const int first_region = static_cast<int>(laid.joined.size());
+  city_map.region_hashes.insert(city_map.region_hashes.end(), hashes.begin(), hashes.end());
   for (const RoadPlan& plan : plans) {
     laid.joined.push_back(plan.piece_reaches_sketch[0]);
     stats.levels = std::max(stats.levels, plan.levels);
@@ -186,13 +197,17 @@ void lay_out_regions(CityMap& city_map, const CitySettings& settings, const std:
   std::vector<int> types;
   const std::vector<geom::Cell> cells = city_map.map.cells(group, kind, &types);
   const std::uint64_t stage = mix(mix(settings.seed, static_cast<std::uint64_t>(Stage::Roads)), 0x1a1047);
+  std::vector<std::uint64_t> hashes;
   std::vector<RoadPlan> plans = plan_regions(cells, stage, [&](std::size_t i) -> const RoadLayout& {
     return *layouts.at(static_cast<ZoneType>(types[i]));
-  }, [&](std::size_t i) { return "layout of " + std::to_string(types[i]); }, zones, memo);
-  for (RoadPlan& plan : plans) {
+  }, [&](std::size_t i) { return "layout of " + std::to_string(types[i]); }, zones, memo, hashes);
+  for (std::size_t i = 0; i < plans.size(); ++i) {
+    RoadPlan& plan = plans[i];
     for (PlannedUse& u : plan.uses) uses.push_back(std::move(u));
     const int first_region = static_cast<int>(laid.joined.size());
     laid.joined.insert(laid.joined.end(), plan.piece_reaches_sketch.begin(), plan.piece_reaches_sketch.end());
+    for (std::size_t piece = 0; piece < plan.piece_reaches_sketch.size(); ++piece)
+      city_map.region_hashes.push_back(mix(hashes[i], piece));
     stats.regions += static_cast<int>(plan.piece_reaches_sketch.size());
     stats.dropped_roads += plan.dropped_roads;
     const int first = static_cast<int>(city_map.roads.size());

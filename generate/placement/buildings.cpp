@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include "generate/cancel.h"
+#include "generate/city/stable_ids.h"
 #include "generate/errors.h"
 #include "generate/placement/building_settings.h"
 #include "generate/city/format_number.h"
@@ -251,6 +252,26 @@ Structures place_buildings(const std::vector<Lot>& lots, const CitySettings& cit
     for (ModelInstance& m : here.models) m.id = id++, all.models.push_back(std::move(m));
   }
   return all;
+}
+
+void give_stable_ids(std::vector<Building>& buildings, std::vector<ModelInstance>& models) {
+  enum Kind : std::uint64_t { kBuilding = 1, kModel };
+  std::vector<std::uint64_t> hashes;
+  hashes.reserve(buildings.size() + models.size());
+  for (const Building& b : buildings) {
+    ContentHash h(kBuilding);
+    h.add(static_cast<int>(b.zone)).add(b.polygon).add(b.height).add(std::string_view(b.roof)).add(b.mapped);
+    hashes.push_back(h.value());
+  }
+  for (const ModelInstance& m : models) {
+    ContentHash h(kModel);
+    h.add(static_cast<int>(m.zone)).add(static_cast<int>(m.kind)).add(m.placed.model).add(m.placed.position);
+    h.add(m.placed.angle).add(m.placed.scale).add(m.polygon).add(m.height).add(m.floor);
+    hashes.push_back(h.value());
+  }
+  const std::vector<int> ids = stable_ids(hashes);
+  for (std::size_t i = 0; i < buildings.size(); ++i) buildings[i].stable_id = ids[i];
+  for (std::size_t i = 0; i < models.size(); ++i) models[i].stable_id = ids[buildings.size() + i];
 }
 
 void check_export_size(const std::vector<ModelInstance>& models, const ModelLibrary* library) {

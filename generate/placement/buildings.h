@@ -30,8 +30,8 @@ struct Placement {
 };
 inline constexpr int kTints = 4;
 
-// Buildings and placed models share one numbering, their ids in the buildings layer: lot
-// by lot, a lot's extruded buildings before its models. Terrain under a footprint: it
+// Buildings and placed models share one numbering, `id`: lot by lot, a lot's extruded
+// buildings before its models. The outputs write their stable_id (give_stable_ids). Terrain under a footprint: it
 // stands on `floor` (the highest point), its walls or foundation reach down to `base` (the
 // lowest); heights count from floor.
 
@@ -49,6 +49,7 @@ struct BuildingPart {
 // An extruded building: a footprint raised to its height under a roof.
 struct Building {
   int id = -1;
+  int stable_id = -1;  // its id in the outputs (give_stable_ids)
   int lot = -1;  // index into the lots
   ZoneType zone = ZoneType::Residential;
   geom::Polygon polygon;   // on the grid
@@ -71,6 +72,7 @@ struct Building {
 // A library model placed on a lot: a building, street furniture or a tree.
 struct ModelInstance {
   int id = -1;
+  int stable_id = -1;  // its id in the outputs (give_stable_ids; clutter's, place_clutter)
   int lot = -1;
   ZoneType zone = ZoneType::Residential;
   ModelKind kind = ModelKind::Building;
@@ -99,6 +101,10 @@ void for_each_by_id(const std::vector<Building>& buildings, const std::vector<Mo
     else on_model(models[j++]);
   }
 }
+
+// Each building's and model's stable_id (generate/city/stable_ids.h), from what the
+// buildings layer writes of it but ids and its lot: one numbering for both.
+void give_stable_ids(std::vector<Building>& buildings, std::vector<ModelInstance>& models);
 
 // The roof a footprint gets: its kind, its faces (none for flat) and the eaves height.
 // A pitched roof rising over half the building's height, or whose skeleton leaves the

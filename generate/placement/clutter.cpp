@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "generate/cancel.h"
+#include "generate/city/stable_ids.h"
 #include "generate/errors.h"
 #include "generate/export/geojson.h"
 #include "generate/placement/model_placement.h"
@@ -612,6 +613,13 @@ StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* lib
   }
   for (auto it = out.tally.placed.begin(); it != out.tally.placed.end();)
     it = it->second == 0 ? out.tally.placed.erase(it) : std::next(it);
+  // Each piece's id in the outputs (stable_ids.h), from what clutter.geojson writes of it.
+  std::vector<std::uint64_t> hashes;
+  for (const Clutter& c : out.items)
+    hashes.push_back(ContentHash(static_cast<std::uint64_t>(c.instance.kind))
+                         .add(c.instance.placed.model).add(c.spot).add(c.heading).value());
+  const std::vector<int> ids = stable_ids(hashes);
+  for (std::size_t i = 0; i < out.items.size(); ++i) out.items[i].instance.stable_id = ids[i];
   return out;
 }
 

@@ -29,11 +29,12 @@
 
 namespace exacity {
 
-// One piece of clutter; its id is its index in the clutter layer.
+// One piece of clutter; its instance's id is its index in the city's clutter, its
+// stable_id its id in the outputs.
 struct Clutter {
   ModelInstance instance;  // kind, model, placement; polygon: its base on the grid; lot -1 on a sidewalk
   geom::Vec2 spot;         // where it stands: its base's centre, on the grid (the layer's point)
-  int road = -1;           // the id of the centre line it dresses (roads layer)
+  int road = -1;           // the centre line it dresses (an index into Ground::roads)
   double heading = 0;      // degrees counter-clockwise from east: where its front faces
 };
 
