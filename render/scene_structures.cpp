@@ -34,12 +34,15 @@ void RenderScene::add_buildings(const exacity::City& city, const geom::Box& worl
   facades_.assign(city.buildings.size() + city.models.size(), FacadeStyle{});
   // `eaves`: where the walls end, from the ground (their windows end below).
   // `mapped`: read from the sketch, not generated.
-  auto add_mesh = [&](int id, exacity::ZoneType zone, const exacity::Mesh& mesh, double floor, double eaves,
-                      bool mapped) {
-    facades_[id] = facade_style(zone, city.settings.seed, id, static_cast<float>(floor), static_cast<float>(eaves));
+  // `stable_id`: its id in the outputs, which draws its facade and colours as city.glb's
+  // and the page's tiles do.
+  auto add_mesh = [&](int id, int stable_id, exacity::ZoneType zone, const exacity::Mesh& mesh, double floor,
+                      double eaves, bool mapped) {
+    facades_[id] =
+        facade_style(zone, city.settings.seed, stable_id, static_cast<float>(floor), static_cast<float>(eaves));
     facades_[id].lit = options.lit_windows, facades_[id].light = options.window_light;
     const int k = tiles.tile_of[id];
-    const exacity::StructureAlbedos albedos = exacity::structure_albedos(zone, city.settings.seed, id);
+    const exacity::StructureAlbedos albedos = exacity::structure_albedos(zone, city.settings.seed, stable_id);
     int f = palette.facade.at({zone, albedos.facade}), r = palette.roof.at({zone, albedos.roof});
     if (options.mark_mapped) f = r = mapped ? palette.mapped : palette.generated;
     const exacity::MeshTriangles tris = exacity::mesh_triangles(mesh);
@@ -63,11 +66,11 @@ void RenderScene::add_buildings(const exacity::City& city, const geom::Box& worl
         if (!view.seen[k]) return;
         const bool mapped = b.mapped >= 0;
         if (view.detailed[k])
-          return add_mesh(b.id, b.zone, exacity::building_mesh(b), b.floor, b.floor + b.eaves, mapped);
+          return add_mesh(b.id, b.stable_id, b.zone, exacity::building_mesh(b), b.floor, b.floor + b.eaves, mapped);
         exacity::Building box = b;  // the simple level: the footprint extruded, no roof
         box.roof_faces.clear();
         box.eaves = box.height;
-        add_mesh(b.id, b.zone, exacity::building_mesh(box), b.floor, b.floor + b.height, mapped);
+        add_mesh(b.id, b.stable_id, b.zone, exacity::building_mesh(box), b.floor, b.floor + b.height, mapped);
       },
       [&](const exacity::ModelInstance& m) {
         cancel.check();
@@ -78,7 +81,7 @@ void RenderScene::add_buildings(const exacity::City& city, const geom::Box& worl
         if (options.mark_mapped && m.kind == exacity::ModelKind::Building)
           geometries_[id].instance_override = palette.generated;
         // Its foundation, below its floor: no windows.
-        if (m.floor > m.base) add_mesh(m.id, m.zone, exacity::model_mesh(m, nullptr), m.floor, m.floor, false);
+        if (m.floor > m.base) add_mesh(m.id, m.stable_id, m.zone, exacity::model_mesh(m, nullptr), m.floor, m.floor, false);
       });
   // Street clutter, like lot furniture: an instance each in the detailed tiles seen.
   for (std::size_t i = 0; i < city.clutter.items.size(); ++i) {

@@ -74,9 +74,9 @@ void write_facades(const City& city, const fs::path& file) {
   auto rounded = [](float v) { return std::round(static_cast<double>(v) * 1e4) / 1e4; };
   json buildings = json::object();
   for (const Building& b : city.buildings) {
-    const render::FacadeStyle f = render::facade_style(b.zone, city.settings.seed, b.id, static_cast<float>(b.floor),
+    const render::FacadeStyle f = render::facade_style(b.zone, city.settings.seed, b.stable_id, static_cast<float>(b.floor),
                                                        static_cast<float>(b.floor + b.eaves));
-    buildings[std::to_string(b.id)] = {rounded(f.storey), rounded(f.bay),   rounded(f.window),
+    buildings[std::to_string(b.stable_id)] = {rounded(f.storey), rounded(f.bay),   rounded(f.window),
                                        rounded(f.sill),   rounded(f.head),  rounded(f.phase),
                                        rounded(f.floor),  rounded(f.eaves), f.shopfront ? 1 : 0,
                                        f.kind == render::FacadeKind::CurtainWall ? 1 : 0};

@@ -247,7 +247,7 @@ TEST(Facade, RenderedWallsHaveDarkWindowRowsAtTheirStoreysAndParkTreesAreSeen) {
   const Building* tall = nullptr;
   for (const Building& b : city.buildings)
     if (b.zone == ZoneType::Commercial && (!tall || b.eaves > tall->eaves) &&
-        render::facade_style(b.zone, city.settings.seed, b.id, 0, 1).kind == render::FacadeKind::Punched)
+        render::facade_style(b.zone, city.settings.seed, b.stable_id, 0, 1).kind == render::FacadeKind::Punched)
       tall = &b;
   ASSERT_TRUE(tall);
   ASSERT_GT(tall->eaves, 9);
