@@ -68,7 +68,7 @@ Run build(const ordered_json& doc, const std::string& path, std::shared_ptr<Regi
   Sketch sketch = parse_sketch(doc.dump(), path);
   // The copy write_city makes is of the scaled sketch, which validation reads (else it copies SKETCH's file).
   if (sketch.geojson.empty()) sketch.geojson = doc.dump();
-  Run run{previous ? regenerate(*previous, sketch, clock) : build_city(sketch, clock, std::move(cache)), {}, 0};
+  Run run{.city = previous ? regenerate(*previous, sketch, clock) : build_city(sketch, clock, std::move(cache))};
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("exacity_regenerate." + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
