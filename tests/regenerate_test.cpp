@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <functional>
 #include <iterator>
 #include <map>
@@ -335,4 +336,49 @@ TEST(Regenerate, AWindowedValidationFindsWhatTheWholeOneFinds) {
   const Validation pushed = validate_output(dir, last);
   EXPECT_FALSE(pushed.ok());
   EXPECT_EQ(pushed.problems, validate_output(dir).problems);
+}
+
+// The map of every polygon is checked tile by tile (docs/design.md, Validation by tiles):
+// with 40 m tiles, whose seams run through every block, a broken town gives the problems one
+// map of the whole town gives (a tile as wide as the world), but for where each is said to be.
+TEST(Regenerate, ValidationByTilesFindsWhatOneMapFinds) {
+  const Built city = build(town());
+  const auto dir = testing_util::temp_dir("tiles");
+  StageClock clock(nullptr, kWriteStages);
+  ASSERT_TRUE(write_city(city.sketch, city.city, dir, clock).valid);
+  EXPECT_TRUE(validate_output(dir, 40).ok());
+  auto said = [&](double tile_side) {
+    std::set<std::string> problems;
+    for (std::string p : validate_output(dir, tile_side).problems) problems.insert(p.substr(0, p.find(" near (")));
+    return problems;
+  };
+  auto broken = [&](const std::string& layer, const std::function<void(json&)>& edit, const std::string& expected) {
+    const auto file = dir / "vector" / (layer + ".geojson");
+    std::string saved;
+    {
+      std::ifstream in(file);
+      saved.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    json doc = json::parse(saved);
+    edit(doc["features"]);
+    std::ofstream(file) << doc.dump();
+    const std::set<std::string> tiled = said(40), whole = said(1e9);
+    EXPECT_EQ(tiled, whole) << layer;
+    EXPECT_NE(testing::PrintToString(tiled).find(expected), std::string::npos) << testing::PrintToString(tiled);
+    std::ofstream(file) << saved;
+  };
+  broken("lots", [](json& lots) { lots[lots.size() / 2]["properties"]["block"] = lots[lots.size() / 2]["properties"]["block"].get<int>() + 1; },
+         "leaves its block");
+  broken("buildings", [](json& buildings) {
+    for (auto& p : buildings[buildings.size() / 3]["geometry"]["coordinates"][0]) p[0] = p[0].get<double>() + 40;
+  }, "leaves its lot");
+  broken("blocks", [](json& blocks) { blocks.erase(blocks.size() / 2); }, "holds no block");
+  broken("lots", [](json& lots) {
+    // A hole that runs along the outer ring's first edge.
+    json& outer = lots[lots.size() / 3]["geometry"]["coordinates"][0];
+    const double cx = (outer[0][0].get<double>() + outer[1][0].get<double>() + outer[2][0].get<double>()) / 3;
+    const double cy = (outer[0][1].get<double>() + outer[1][1].get<double>() + outer[2][1].get<double>()) / 3;
+    lots[lots.size() / 3]["geometry"]["coordinates"].push_back(json::array({outer[0], json::array({cx, cy}), outer[1], outer[0]}));
+  }, "two of its rings share an edge");
+  broken("zones", [](json& zones) { zones.erase(zones.size() / 2); }, "lies outside the zones");
 }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <climits>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -19,6 +20,7 @@
 #include "generate/errors.h"
 #include "generate/export/geojson.h"
 #include "generate/export/validate_nesting.h"
+#include "generate/export/validate_tiles.h"
 #include "generate/export/validate_clutter.h"
 #include "generate/export/vector_layers.h"
 #include "generate/sketch/sketch.h"
@@ -148,6 +150,13 @@ class FaceCover {
   std::array<int, kKinds + 1> start_;  // kind k's indices are by_kind_[start_[k], start_[k + 1])
 };
 
+// Counters of a tile's map (check_tile): polygon p's outer ring winds around 2p and its
+// holes around 2p + 1; the tile's outline around 2P and the window's around 2P + 1 (P
+// polygons); the edges that stand in for a run of a ring's edges outside the tile
+// (ring_near_tile) around their ring's counter plus 2P + kStandIns, so that they count in
+// its windings but are no edge of it.
+constexpr int kStandIns = 2;
+
 // Labels each face of the tiling map with the index of what is wrong there, 0 where
 // nothing is; each problem is stated once however many faces have it.
 // Two maps are labelled: the zoning map (zones, parks, water, road areas and the drawn
@@ -155,16 +164,17 @@ class FaceCover {
 // those a window meets), whose faces get every other check.
 class FaceLabels {
  public:
-  // With `drawn`, the zoning map's; else the polygons' map, whose faces outside the window
-  // (counters from window_first on; -1: no window) are not checked.
+  // With `drawn`, the zoning map's; else a tile of the polygons' map, whose faces are
+  // checked only inside every ring of `inside_of` (the tile's outline, and the window's).
   FaceLabels(const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs, const DrawnZones* drawn, int polygons,
-             int window_first = -1)
-      : sketch_(sketch), refs_(refs), drawn_(drawn), polygons_(polygons), window_first_(window_first) {}
+             std::vector<int> inside_of = {})
+      : sketch_(sketch), refs_(refs), drawn_(drawn), polygons_(polygons), inside_of_(std::move(inside_of)) {}
 
-  int of(const geom::Windings& w) {
+  int of(const geom::Windings& windings) {
     cancel_.check();
-    if (window_first_ >= 0 && std::none_of(w.begin(), w.end(), [&](const auto& c) { return c.first >= window_first_; }))
-      return 0;
+    for (int counter : inside_of_)
+      if (geom::winding_of(windings, counter) == 0) return 0;
+    const geom::Windings& w = with_stand_ins(windings);
     inside_.clear();
     if (int label = ring_windings(w, inside_)) return label;
     const FaceCover here(refs_, inside_, by_kind_);
@@ -182,6 +192,23 @@ class FaceLabels {
     auto [it, added] = message_index_.emplace(m, static_cast<int>(messages.size()));
     if (added) messages.push_back(m), sketch_checks.push_back(sketch_check);
     return it->second;
+  }
+
+  // The windings with each stand-in's counter (kStandIns on from its ring's) counted as its ring's.
+  const geom::Windings& with_stand_ins(const geom::Windings& w) {
+    if (w.empty() || w.back().first < stand_ins_) return w;
+    merged_.clear();
+    for (const auto& [counter, winding] : w)
+      if (counter < 2 * polygons_) merged_.push_back({counter, winding});
+      else if (counter >= stand_ins_) merged_.push_back({counter - stand_ins_, winding});
+    std::sort(merged_.begin(), merged_.end());
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < merged_.size(); ++i)
+      if (n > 0 && merged_[n - 1].first == merged_[i].first) merged_[n - 1].second += merged_[i].second;
+      else merged_[n++] = merged_[i];
+    merged_.resize(n);
+    std::erase_if(merged_, [](const auto& c) { return c.second == 0; });
+    return merged_;
   }
 
   // Each polygon's outer ring winds once around the face or not at all, and its holes
@@ -273,16 +300,94 @@ class FaceLabels {
   const DrawnFeatures& sketch_;
   const std::vector<PolygonRef>& refs_;
   const DrawnZones* drawn_;
-  const int polygons_, window_first_;
+  const int polygons_;
+  const std::vector<int> inside_of_;
+  const int stand_ins_ = drawn_ ? INT_MAX : 2 * polygons_ + kStandIns;  // the zoning map's counters from 2P on are the drawn zones
+  geom::Windings merged_;  // with_stand_ins' buffer
   const CancelCheck cancel_;
   std::map<std::string, int> message_index_{{"", 0}};
   std::map<std::pair<int, int>, int> nested_;  // overlapping buildings -> their problem's label, 0 for none
   std::vector<int> inside_, by_kind_;  // of the face being labelled (FaceCover's buffers)
 };
 
-// A window of the polygons' map (below) and its outline.
-struct Window;
-void add_window(geom::PlanarMap& map, const Window& w, int counter);
+// A grid of square cells, offset by a fraction of a metre so its lines do not run along the
+// sketch's round coordinates: the window's cells (below), and the tiles of the polygons' map
+// (each tile a square of cells, so a tile holds whole cells of the window).
+struct Grid {
+  static constexpr double kCell = 40;
+  double x0 = 0, y0 = 0;
+  int column(double x) const { return static_cast<int>(std::floor((x - x0) / kCell)); }
+  int row(double y) const { return static_cast<int>(std::floor((y - y0) / kCell)); }
+  geom::Vec2 corner(int i, int j) const { return {x0 + i * kCell, y0 + j * kCell}; }
+};
+
+// The grid of a city whose polygons' outer rings have these boxes.
+Grid grid_of(const std::vector<geom::Box>& boxes) {
+  geom::Box all = geom::Box::none();
+  for (const geom::Box& b : boxes) all.add(b);
+  Grid g;
+  if (!all.holds_nothing()) g.x0 = std::floor(all.min_x) - 0.318, g.y0 = std::floor(all.min_y) - 0.318;
+  return g;
+}
+
+// The window: the cells that the changed boxes meet. Its outline is made of the cells'
+// sides with an unmarked cell across, so no two of its edges overlap (overlapping window
+// rings tripped the sweep).
+struct Window {
+  Grid grid;
+  std::set<std::pair<int, int>> cells;
+  // Whether a cell the box meets is marked (a cell either side of a box's edge on a grid line counts).
+  bool meets(const geom::Box& b) const {
+    for (int i = grid.column(b.min_x) - 1; i <= grid.column(b.max_x) + 1; ++i)
+      if (auto it = cells.lower_bound({i, grid.row(b.min_y) - 1});
+          it != cells.end() && it->first == i && it->second <= grid.row(b.max_y) + 1)
+        return true;
+    return false;
+  }
+};
+
+// The outline of the window's cells in columns [i0, i1) and rows [j0, j1) around
+// `counter`, counter-clockwise.
+void add_window(geom::PlanarMap& map, const Window& w, int counter, int i0, int j0, int i1, int j1) {
+  auto marked = [&](int i, int j) { return i >= i0 && i < i1 && j >= j0 && j < j1 && w.cells.count({i, j}); };
+  for (auto it = w.cells.lower_bound({i0, INT_MIN}); it != w.cells.end() && it->first < i1; ++it) {
+    const auto [i, j] = *it;
+    if (!marked(i, j)) continue;
+    const geom::Vec2 a = w.grid.corner(i, j), b = w.grid.corner(i + 1, j), c = w.grid.corner(i + 1, j + 1),
+                     d = w.grid.corner(i, j + 1);
+    if (!marked(i, j - 1)) map.add_edge(a, b, counter);
+    if (!marked(i + 1, j)) map.add_edge(b, c, counter);
+    if (!marked(i, j + 1)) map.add_edge(c, d, counter);
+    if (!marked(i - 1, j)) map.add_edge(d, a, counter);
+  }
+}
+
+// Each face problem once, near a face that has it, given to `problem(message, near)`.
+// Faces found wrong only against the sketch and no wider than kRounding are rounding
+// slivers, not problems: the widest is kept in `widest_sliver`.
+template <typename F>
+void report_face_problems(const geom::PlanarMap& map, const FaceLabels& labels, double& widest_sliver, F&& problem) {
+  if (labels.messages.size() == 1) return;  // no face has a problem: no widths to measure (a pass over every face)
+  const std::vector<double> widths = map.widest_faces(static_cast<int>(labels.messages.size()));
+  for (std::size_t m = 1; m < labels.messages.size(); ++m) {
+    if (labels.sketch_checks[m]) {
+      double width = widths[m];
+      if (width <= kRounding) {
+        widest_sliver = std::max(widest_sliver, width);
+        continue;
+      }
+    }
+    geom::Vec2 at;
+    problem(labels.messages[m], map.point_near_label(static_cast<int>(m), at) ? near(at) : "");
+  }
+}
+
+// The polygons of the given kinds (all for none), as the refs and rings of a map of their own.
+struct MapPolygons {
+  std::vector<PolygonRef> refs;
+  std::vector<const geom::Polygon*> polygons;
+  void add(const PolygonRef& ref, const geom::Polygon* polygon) { refs.push_back(ref), polygons.push_back(polygon); }
+};
 
 // Polygon p's outer ring winds around counter 2p and its holes around 2p + 1.
 void add_polygon_rings(geom::PlanarMap& map, const std::vector<const geom::Polygon*>& polygons) {
@@ -293,52 +398,6 @@ void add_polygon_rings(geom::PlanarMap& map, const std::vector<const geom::Polyg
       map.add_ring(polygons[p]->holes[h], 2 * p + 1, static_cast<int>(h) + 1);
   }
 }
-
-// Each face problem once, near a face that has it. Faces found wrong only against the
-// sketch and no wider than kRounding are rounding slivers, not problems.
-void report_face_problems(Checker& c, const geom::PlanarMap& map, const FaceLabels& labels) {
-  if (labels.messages.size() == 1) return;  // no face has a problem: no widths to measure (a pass over every face)
-  const std::vector<double> widths = map.widest_faces(static_cast<int>(labels.messages.size()));
-  for (std::size_t m = 1; m < labels.messages.size(); ++m) {
-    if (labels.sketch_checks[m]) {
-      double width = widths[m];
-      if (width <= kRounding) {
-        c.v_.widest_sliver = std::max(c.v_.widest_sliver, width);
-        continue;
-      }
-    }
-    geom::Vec2 at;
-    c.problem(labels.messages[m] + (map.point_near_label(static_cast<int>(m), at) ? near(at) : ""));
-  }
-}
-
-// Two rings of one polygon may touch at a vertex but not run along each other. One pass
-// over the edges also finds which polygons share an edge with a road area or bridge.
-std::vector<bool> check_shared_edges(Checker& c, const geom::PlanarMap& map, const std::vector<PolygonRef>& refs, int P) {
-  std::vector<bool> fronts(P, false);
-  const CancelCheck cancel;
-  map.for_each_edge([&](const std::vector<geom::CurveTag>& tags, geom::Vec2 a, geom::Vec2) {
-    cancel.check();
-    bool road = false;
-    for (const auto& t : tags)
-      if (t.counter < 2 * P && (refs[t.counter / 2].kind == Kind::Road || refs[t.counter / 2].kind == Kind::Bridge)) road = true;
-    for (std::size_t i = 0; i < tags.size(); ++i) {
-      if (tags[i].counter >= 2 * P) continue;
-      if (road) fronts[tags[i].counter / 2] = true;
-      for (std::size_t j = i + 1; j < tags.size(); ++j)
-        if (tags[j].counter < 2 * P && tags[i].counter / 2 == tags[j].counter / 2)
-          c.problem(refs[tags[i].counter / 2].name + ": two of its rings share an edge" + near(a));
-    }
-  });
-  return fronts;
-}
-
-// The polygons of the given kinds (all for none), as the refs and rings of a map of their own.
-struct MapPolygons {
-  std::vector<PolygonRef> refs;
-  std::vector<const geom::Polygon*> polygons;
-  void add(const PolygonRef& ref, const geom::Polygon* polygon) { refs.push_back(ref), polygons.push_back(polygon); }
-};
 
 // The zoning polygons and the drawn zones in one exact map, each face labelled with what
 // is wrong there against the sketch; rounding slivers are measured here.
@@ -356,41 +415,201 @@ void check_zoning(Checker& c, const DrawnFeatures& sketch, const std::vector<Pol
   map.insert_batch();
   FaceLabels labels(sketch, zoning.refs, &drawn, P);
   map.label_faces([&](const geom::Windings& w) { return labels.of(w); });
-  report_face_problems(c, map, labels);
+  report_face_problems(map, labels, c.v_.widest_sliver,
+                       [&](const std::string& m, const std::string& at) { c.problem(m + at); });
 }
 
-// The polygons in one exact map, each face inside the window (every face without one)
-// labelled with what is wrong there; then the map's edges. Every lot shares an edge with
-// a road area. `in_window` says which polygons the map holds (all without a window), and
-// `fronting` which further road areas it needs for the lots' frontage.
-void check_polygon_map(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
-                       const std::vector<const geom::Polygon*>& polygons, const Window* window,
-                       const std::vector<char>& in_window, const std::vector<char>& fronting) {
-  MapPolygons local;
-  for (std::size_t p = 0; p < refs.size(); ++p)
-    if (!window || in_window[p] || fronting[p]) local.add(refs[p], polygons[p]);
+// What one tile of the polygons' map found.
+struct TileFindings {
+  std::vector<std::pair<std::string, std::string>> face_problems;  // each message once, and where
+  std::vector<std::pair<int, geom::Vec2>> shared_rings;  // a polygon two of whose rings share an edge, and where
+  std::vector<int> fronting;  // polygons with an edge on a road area's or bridge's edge
+};
+
+// Two rings of one polygon may touch at a vertex but not run along each other. One pass
+// over the edges also finds which polygons share an edge with a road area or bridge. Every
+// edge a tile's map has is checked, outside the tile too: each is where rings of its tags
+// really run along each other (stand-ins left out), and each such place of the city lies in
+// some tile, whose map holds both rings there.
+void check_shared_edges(const geom::PlanarMap& map, const std::vector<PolygonRef>& refs, TileFindings& found) {
+  const int P = static_cast<int>(refs.size());
+  const CancelCheck cancel;
+  std::vector<const geom::CurveTag*> own;
+  map.for_each_edge([&](const std::vector<geom::CurveTag>& tags, geom::Vec2 a, geom::Vec2) {
+    cancel.check();
+    own.clear();
+    bool road = false;
+    for (const auto& t : tags)
+      if (t.counter < 2 * P) {  // a ring's own edge (not the tile's, the window's or a stand-in)
+        own.push_back(&t);
+        road |= refs[t.counter / 2].kind == Kind::Road || refs[t.counter / 2].kind == Kind::Bridge;
+      }
+    for (std::size_t i = 0; i < own.size(); ++i) {
+      const int p = own[i]->counter / 2;
+      if (road) found.fronting.push_back(p);
+      for (std::size_t j = i + 1; j < own.size(); ++j)
+        if (own[j]->counter / 2 == p) found.shared_rings.push_back({p, a});
+    }
+  });
+}
+
+// A polygon's rings: ring 0 its outer ring, ring h + 1 its hole h.
+const geom::Ring& ring_of(const geom::Polygon& polygon, int ring) { return ring == 0 ? polygon.outer : polygon.holes[ring - 1]; }
+
+// The tiles of the polygons' map: squares of `cells` grid cells, and the rings of `held`
+// polygons whose boxes meet each (rings[t]: (polygon, ring) in polygon order).
+struct Tiles {
+  Grid grid;
+  int cells = 1;
+  std::vector<std::pair<int, int>> at;  // each tile's column and row
+  std::vector<std::vector<std::pair<int, int>>> rings;
+  geom::Box box(std::size_t t) const {
+    const geom::Vec2 lo = grid.corner(at[t].first * cells, at[t].second * cells);
+    const geom::Vec2 hi = grid.corner((at[t].first + 1) * cells, (at[t].second + 1) * cells);
+    return {lo.x, lo.y, hi.x, hi.y};
+  }
+};
+
+// Tiles of about this many ring vertices each: small maps sweep faster and hold less, and
+// each ring a tile cuts is partly swept twice.
+constexpr double kVerticesPerTile = 20000;
+
+Tiles tiles_of(const Grid& grid, const std::vector<const geom::Polygon*>& polygons, const std::vector<char>& held,
+               double tile_side) {
+  Tiles tiles;
+  tiles.grid = grid;
+  struct HeldRing {
+    int polygon, ring;
+    geom::Box box;
+  };
+  std::vector<HeldRing> rings;
+  geom::Box all = geom::Box::none();
+  double vertices = 0;
+  for (std::size_t p = 0; p < polygons.size(); ++p) {
+    if (!held[p]) continue;
+    for (int r = 0; r <= static_cast<int>(polygons[p]->holes.size()); ++r) {
+      geom::Box b = geom::Box::none();
+      for (geom::Vec2 q : ring_of(*polygons[p], r)) b.add(q);
+      if (b.holds_nothing()) continue;
+      rings.push_back({static_cast<int>(p), r, b});
+      all.add(b);
+      vertices += static_cast<double>(ring_of(*polygons[p], r).size());
+    }
+  }
+  if (rings.empty()) return tiles;
+  if (tile_side <= 0)
+    tile_side = std::sqrt(std::max(all.width() * all.height(), 1.0) * kVerticesPerTile / std::max(vertices, 1.0));
+  tiles.cells = std::clamp(static_cast<int>(std::lround(tile_side / Grid::kCell)), 1, 1 << 20);
+  const double side = tiles.cells * Grid::kCell;
+  auto tile_column = [&](double x) { return static_cast<int>(std::floor((x - grid.x0) / side)); };
+  auto tile_row = [&](double y) { return static_cast<int>(std::floor((y - grid.y0) / side)); };
+  std::map<std::pair<int, int>, std::size_t> index;  // tile (column, row) -> t, in that order
+  const int c0 = tile_column(all.min_x) - 1, r0 = tile_row(all.min_y) - 1;
+  for (int i = c0; i <= tile_column(all.max_x) + 1; ++i)
+    for (int j = r0; j <= tile_row(all.max_y) + 1; ++j) index.emplace(std::pair{i, j}, 0);
+  std::vector<std::vector<std::pair<int, int>>> by_cell(index.size());
+  {
+    std::size_t t = 0;
+    for (auto& [cell, at] : index) at = t++;
+  }
+  for (const HeldRing& r : rings)
+    for (int i = tile_column(r.box.min_x) - 1; i <= tile_column(r.box.max_x) + 1; ++i)
+      for (int j = tile_row(r.box.min_y) - 1; j <= tile_row(r.box.max_y) + 1; ++j) {
+        const geom::Vec2 lo = grid.corner(i * tiles.cells, j * tiles.cells);
+        const geom::Vec2 hi = grid.corner((i + 1) * tiles.cells, (j + 1) * tiles.cells);
+        if (r.box.meets({lo.x, lo.y, hi.x, hi.y})) by_cell[index.at({i, j})].push_back({r.polygon, r.ring});
+      }
+  for (auto& [cell, t] : index)
+    if (!by_cell[t].empty()) tiles.at.push_back(cell), tiles.rings.push_back(std::move(by_cell[t]));
+  return tiles;
+}
+
+// One tile's map: each held ring as its edges near the tile (ring_near_tile), the tile's
+// outline and the window's cells in it; its faces inside both labelled with what is wrong
+// there, then its edges.
+TileFindings check_tile(const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
+                        const std::vector<const geom::Polygon*>& polygons, const Tiles& tiles, std::size_t t,
+                        const Window* window) {
+  const int P = static_cast<int>(refs.size());
+  const geom::Box box = tiles.box(t);
   geom::PlanarMap map;
-  const int P = static_cast<int>(local.polygons.size());
-  add_polygon_rings(map, local.polygons);
-  if (window) add_window(map, *window, 2 * P);
+  std::vector<TileEdge> edges;
+  for (const auto& [p, r] : tiles.rings[t]) {
+    edges.clear();
+    ring_near_tile(ring_of(*polygons[p], r), box, edges);
+    const int counter = r == 0 ? 2 * p : 2 * p + 1;
+    for (const TileEdge& e : edges) map.add_edge(e.a, e.b, e.stand_in ? 2 * P + kStandIns + counter : counter);
+  }
+  map.add_ring({{box.min_x, box.min_y}, {box.max_x, box.min_y}, {box.max_x, box.max_y}, {box.min_x, box.max_y}}, 2 * P);
+  std::vector<int> inside_of{2 * P};
+  if (window) {
+    const int i0 = tiles.at[t].first * tiles.cells, j0 = tiles.at[t].second * tiles.cells;
+    add_window(map, *window, 2 * P + 1, i0, j0, i0 + tiles.cells, j0 + tiles.cells);
+    inside_of.push_back(2 * P + 1);
+  }
   map.insert_batch();
-  FaceLabels labels(sketch, local.refs, nullptr, P, window ? 2 * P : -1);
+  FaceLabels labels(sketch, refs, nullptr, P, inside_of);
   map.label_faces([&](const geom::Windings& w) { return labels.of(w); });
-  report_face_problems(c, map, labels);
-  const std::vector<bool> fronts = check_shared_edges(c, map, local.refs, P);
-  for (std::size_t p = 0, q = 0; p < refs.size(); ++p) {
-    if (window && !in_window[p] && !fronting[p]) continue;
+  TileFindings found;
+  double no_slivers = 0;  // none: the polygons' map is not checked against the sketch
+  report_face_problems(map, labels, no_slivers,
+                       [&](const std::string& m, const std::string& at) { found.face_problems.push_back({m, at}); });
+  check_shared_edges(map, refs, found);
+  return found;
+}
+
+// The polygons' map, tile by tile at once (docs/design.md, Validation by tiles): each face
+// inside the window (every face without one) labelled with what is wrong there; then the
+// map's edges. Every lot shares an edge with a road area. `in_window` says which polygons
+// the map holds (all without a window), and `fronting` which further road areas it needs
+// for the lots' frontage. Problems are taken tile by tile, each once.
+void check_polygon_map(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
+                       const std::vector<const geom::Polygon*>& polygons, const Grid& grid, double tile_side,
+                       const Window* window, const std::vector<char>& in_window, const std::vector<char>& fronting) {
+  const std::size_t P = refs.size();
+  std::vector<char> held(P, 1);
+  if (window)
+    for (std::size_t p = 0; p < P; ++p) held[p] = in_window[p] || fronting[p];
+  const Tiles tiles = tiles_of(grid, polygons, held, tile_side);
+  std::vector<TileFindings> found(tiles.rings.size());
+  for_each_cancellable(found.size(), [&](std::size_t t) { found[t] = check_tile(sketch, refs, polygons, tiles, t, window); });
+  std::set<std::string> said;
+  for (const TileFindings& f : found)
+    for (const auto& [message, at] : f.face_problems)
+      if (said.insert(message).second) c.problem(message + at);
+  std::map<int, geom::Vec2> shared;  // each polygon once, where its first tile found it
+  std::vector<char> fronts(P, 0);
+  for (const TileFindings& f : found) {
+    for (const auto& [p, at] : f.shared_rings) shared.emplace(p, at);
+    for (int p : f.fronting) fronts[p] = 1;
+  }
+  for (const auto& [p, at] : shared) c.problem(refs[p].name + ": two of its rings share an edge" + near(at));
+  for (std::size_t p = 0; p < P; ++p) {
     const bool checked = !window || in_window[p];  // a road area added for frontage has no lot's verdict
-    if (checked && refs[p].kind == Kind::Lot && !fronts[q]) c.problem(refs[p].name + " touches no road area");
-    ++q;
+    if (checked && refs[p].kind == Kind::Lot && !fronts[p]) c.problem(refs[p].name + " touches no road area");
   }
 }
 
+// The polygons' map and the zoning map share nothing: they run at once, the polygons'
+// problems taken first.
 void check_tiling(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
-                  const std::vector<const geom::Polygon*>& polygons, const Window* window = nullptr,
-                  const std::vector<char>& in_window = {}, const std::vector<char>& fronting = {}) {
-  check_polygon_map(c, sketch, refs, polygons, window, in_window, fronting);
-  check_zoning(c, sketch, refs, polygons);
+                  const std::vector<const geom::Polygon*>& polygons, const Grid& grid, double tile_side,
+                  const Window* window = nullptr, const std::vector<char>& in_window = {},
+                  const std::vector<char>& fronting = {}) {
+  Validation polygon_map, zoning;
+  invoke_cancellable(
+      [&] {
+        Checker p(polygon_map);
+        check_polygon_map(p, sketch, refs, polygons, grid, tile_side, window, in_window, fronting);
+      },
+      [&] {
+        Checker z(zoning);
+        check_zoning(z, sketch, refs, polygons);
+      });
+  for (const Validation* part : {&polygon_map, &zoning}) {
+    for (const std::string& p : part->problems) c.problem(p);
+    c.v_.widest_sliver = std::max(c.v_.widest_sliver, part->widest_sliver);
+  }
 }
 
 // The centre lines are a noded network: two of them meet only at a vertex of both. Every
@@ -599,46 +818,12 @@ std::vector<geom::Box> changed_boxes(const ValidatedPolygons& last, const Valida
   return boxes;
 }
 
-// The window: the cells of a grid that the changed boxes meet. Its outline is made of the
-// cells' sides with an unmarked cell across, so no two of its edges overlap (overlapping
-// window rings tripped the sweep). The grid is offset by a fraction of a metre so its lines
-// do not run along the sketch's round coordinates.
-struct Window {
-  static constexpr double kCell = 40;
-  double x0 = 0, y0 = 0;
-  std::set<std::pair<int, int>> cells;
-  int column(double x) const { return static_cast<int>(std::floor((x - x0) / kCell)); }
-  int row(double y) const { return static_cast<int>(std::floor((y - y0) / kCell)); }
-  geom::Vec2 corner(int i, int j) const { return {x0 + i * kCell, y0 + j * kCell}; }
-  // Whether a cell the box meets is marked (a cell either side of a box's edge on a grid line counts).
-  bool meets(const geom::Box& b) const {
-    for (int i = column(b.min_x) - 1; i <= column(b.max_x) + 1; ++i)
-      if (auto it = cells.lower_bound({i, row(b.min_y) - 1}); it != cells.end() && it->first == i && it->second <= row(b.max_y) + 1)
-        return true;
-    return false;
-  }
-};
-
-Window window_of(const std::vector<geom::Box>& changed, const ValidatedPolygons& now) {
-  Window w;
-  geom::Box all = geom::Box::none();
-  for (const geom::Box& b : now.boxes) all.add(b);
-  if (!all.holds_nothing()) w.x0 = std::floor(all.min_x) - 0.318, w.y0 = std::floor(all.min_y) - 0.318;
+Window window_of(const std::vector<geom::Box>& changed, const Grid& grid) {
+  Window w{grid, {}};
   for (const geom::Box& b : changed)
-    for (int i = w.column(b.min_x); i <= w.column(b.max_x); ++i)
-      for (int j = w.row(b.min_y); j <= w.row(b.max_y); ++j) w.cells.insert({i, j});
+    for (int i = grid.column(b.min_x); i <= grid.column(b.max_x); ++i)
+      for (int j = grid.row(b.min_y); j <= grid.row(b.max_y); ++j) w.cells.insert({i, j});
   return w;
-}
-
-// The window's outline around `counter`, counter-clockwise.
-void add_window(geom::PlanarMap& map, const Window& w, int counter) {
-  for (const auto& [i, j] : w.cells) {
-    const geom::Vec2 a = w.corner(i, j), b = w.corner(i + 1, j), c = w.corner(i + 1, j + 1), d = w.corner(i, j + 1);
-    if (!w.cells.count({i, j - 1})) map.add_edge(a, b, counter);
-    if (!w.cells.count({i + 1, j})) map.add_edge(b, c, counter);
-    if (!w.cells.count({i, j + 1})) map.add_edge(c, d, counter);
-    if (!w.cells.count({i - 1, j})) map.add_edge(d, a, counter);
-  }
 }
 
 // The polygons' map of a window holds every polygon whose box meets it (the only ones
@@ -658,7 +843,7 @@ void window_polygons(const Window& window, const ValidatedPolygons& now, const s
       fronting[p] = std::any_of(lots.begin(), lots.end(), [&](const geom::Box& b) { return b.meets(now.boxes[p]); });
 }
 
-Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* last) {
+Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* last, double tile_side) {
   // Kept again below only if this city passes.
   const std::shared_ptr<ValidatedPolygons> previous = last ? std::exchange(*last, nullptr) : nullptr;
   Validation v;
@@ -713,18 +898,25 @@ Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* las
   invoke_cancellable(
       [&] {
         Checker t(tiling);
-        if (!last) return check_tiling(t, sketch, refs, polygons);
+        std::vector<geom::Box> boxes;  // of the outer rings
+        for (const geom::Polygon* polygon : polygons) {
+          geom::Box b = geom::Box::none();
+          for (geom::Vec2 q : polygon->outer) b.add(q);
+          boxes.push_back(b);
+        }
+        const Grid grid = grid_of(boxes);
+        if (!last) return check_tiling(t, sketch, refs, polygons, grid, tile_side);
         now = std::make_shared<ValidatedPolygons>(polygons_of(refs, polygons));
-        if (!previous) return check_tiling(t, sketch, refs, polygons);
+        if (!previous) return check_tiling(t, sketch, refs, polygons, grid, tile_side);
         // Within the window of what changed (docs/design.md, Regions and regenerating); a
         // problem there is looked for again in the whole city, whose check states it.
-        const Window window = window_of(changed_boxes(*previous, *now, refs), *now);
+        const Window window = window_of(changed_boxes(*previous, *now, refs), grid);
         std::vector<char> in_window, fronting;
         window_polygons(window, *now, refs, in_window, fronting);
-        check_tiling(t, sketch, refs, polygons, &window, in_window, fronting);
+        check_tiling(t, sketch, refs, polygons, grid, tile_side, &window, in_window, fronting);
         if (tiling.ok()) return;
         tiling = {};
-        check_tiling(t, sketch, refs, polygons);
+        check_tiling(t, sketch, refs, polygons, grid, tile_side);
       },
       [&] {
         Checker r(road_checks);
@@ -742,10 +934,12 @@ Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* las
 
 }  // namespace
 
-Validation validate_output(const fs::path& dir) { return validate(dir, nullptr); }
+Validation validate_output(const fs::path& dir) { return validate(dir, nullptr, 0); }
 
-Validation validate_output(const fs::path& dir, std::shared_ptr<ValidatedPolygons>& last) {
-  return validate(dir, &last);
+Validation validate_output(const fs::path& dir, double tile_side) { return validate(dir, nullptr, tile_side); }
+
+Validation validate_output(const fs::path& dir, std::shared_ptr<ValidatedPolygons>& last, double tile_side) {
+  return validate(dir, &last, tile_side);
 }
 
 }  // namespace exacity

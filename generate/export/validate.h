@@ -18,4 +18,9 @@ struct Validation {
 
 Validation validate_output(const std::filesystem::path& out_dir);
 
+// The same with the map of every polygon checked in tiles of about this side (m), rounded
+// to the window's 40 m cells (docs/design.md, Validation by tiles); 0 chooses it by the
+// city's size, as validate_output does. The problems found do not depend on it.
+Validation validate_output(const std::filesystem::path& out_dir, double tile_side);
+
 }  // namespace exacity

@@ -17,6 +17,8 @@ struct ValidatedPolygons;
 // in a window around the polygons that changed since `last` (when it holds a city that
 // passed); a window that finds a problem is checked again whole, so the problems are the
 // whole check's. Afterwards `last` holds this city's polygons if it passed, else nothing.
-Validation validate_output(const std::filesystem::path& dir, std::shared_ptr<ValidatedPolygons>& last);
+// `tile_side` as for validate_output.
+Validation validate_output(const std::filesystem::path& dir, std::shared_ptr<ValidatedPolygons>& last,
+                           double tile_side = 0);
 
 }  // namespace exacity
