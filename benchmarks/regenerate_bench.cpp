@@ -39,9 +39,9 @@ namespace {
 
 struct Run {
   City city;
-  ordered_json seconds, cpu = ordered_json::object();
+  ordered_json seconds{}, cpu = ordered_json::object();
   double total = 0, total_cpu = 0;
-  std::map<std::string, std::set<std::string>> features;  // per file of vector/, its features' lines
+  std::map<std::string, std::set<std::string>> features{};  // per file of vector/, its features' lines
 };
 
 // The features of each layer file, one a line, without the comma after it.
