@@ -42,7 +42,7 @@ TEST(Gis, EveryRealRoadWithACentreLineHasAnAreaAndARoadObject) {
   const Sketch sketch = load_sketch({osm / "helsinki_centre_landuse.geojson", osm / "helsinki_centre_streets.geojson"});
   const City city = build_city(sketch, clock);
   std::set<int> with_area;
-  for (const RoadArea& a : city.ground.road_areas) with_area.insert(a.road);
+  for (const RoadArea& a : city.ground.road_areas) with_area.insert(city.ground.roads.at(a.road).stable_id);
   EXPECT_EQ(with_area.size(), city.ground.roads.size());
   EXPECT_TRUE(city.ground.roads_without_area.empty());
   const GenerateResult result = write_city(sketch, city, out, clock);

@@ -182,10 +182,12 @@ TEST(Textures, GoIntoTheGlbOnceWithTheirCoordinatesAndIntoTheRender) {
   // blue, no green), in the beauty and in the albedo the denoiser divides out.
   const auto buildings = nlohmann::json::parse(read(out / "vector" / "buildings.geojson"));
   double x = 0, y = 0;
-  std::set<std::uint32_t> boxes;  // the boxes' ids: Exacity's own garden trees are models too
-  for (const auto& f : buildings["features"])
-    if (f["properties"]["model"] == "box_a" || f["properties"]["model"] == "box_b")
-      boxes.insert(f["properties"]["id"].get<std::uint32_t>());
+  // The boxes as the id layer names them: by their place in the layer (Exacity's own garden
+  // trees are models too).
+  std::set<std::uint32_t> boxes;
+  for (std::uint32_t i = 0; i < buildings["features"].size(); ++i)
+    if (const auto& p = buildings["features"][i]["properties"]; p["model"] == "box_a" || p["model"] == "box_b")
+      boxes.insert(i);
   for (const auto& f : buildings["features"])
     if (f["properties"]["model"] == "box_a") {
       const auto& ring = f["geometry"]["coordinates"][0];
