@@ -1446,6 +1446,13 @@ int served_port(const fs::path& log) {
   return 0;
 }
 
+// A client of the program that logs to `log`, serving on `port`, with the token it printed.
+httplib::Client served_client(int port, const fs::path& log) {
+  httplib::Client c("127.0.0.1", port);
+  c.set_bearer_token_auth(served_token(log).c_str());
+  return c;
+}
+
 int exit_code(pid_t pid) {
   int status = 0;
   waitpid(pid, &status, 0);
@@ -1461,8 +1468,7 @@ TEST(ServeCommandTest, ImportsTheSketchWithItsHeightmapAndStopsOnSigterm) {
       {"serve", (dir / "in.geojson").string(), "--port", "0", "--work", (dir / "work").string()}, dir / "log.txt");
   const int port = served_port(dir / "log.txt");
   ASSERT_GT(port, 0) << read(dir / "log.txt");
-  httplib::Client c("127.0.0.1", port);
-  c.set_bearer_token_auth(served_token(dir / "log.txt").c_str());
+  httplib::Client c = served_client(port, dir / "log.txt");
   const json sketch = json::parse(c.Get("/api/sketch")->body);
   EXPECT_EQ(sketch["exacity"]["terrain"]["heightmap"], "heightmap.png");
   EXPECT_EQ(read(dir / "work" / "heightmap.png"), read(dir / "hills.png"));
@@ -1478,8 +1484,7 @@ TEST(ServeCommandTest, ImportsAModelLibrary) {
                                   dir / "log.txt");
   const int port = served_port(dir / "log.txt");
   ASSERT_GT(port, 0) << read(dir / "log.txt");
-  httplib::Client c("127.0.0.1", port);
-  c.set_bearer_token_auth(served_token(dir / "log.txt").c_str());
+  httplib::Client c = served_client(port, dir / "log.txt");
   EXPECT_EQ(json::parse(c.Get("/api/sketch")->body)["exacity"]["models"], "models/library.json");
   for (const char* name : {"library.json", "house_gabled.obj", "library.mtl", "street_lamp.obj"})
     EXPECT_TRUE(fs::is_regular_file(dir / "work" / "models" / name)) << name;
@@ -1521,8 +1526,7 @@ TEST(ServeCommandTest, ImportsThePlaceItLooksLike) {
       {"serve", (dir / "in.geojson").string(), "--port", "0", "--work", (dir / "work").string()}, dir / "log.txt");
   const int port = served_port(dir / "log.txt");
   ASSERT_GT(port, 0) << read(dir / "log.txt");
-  httplib::Client c("127.0.0.1", port);
-  c.set_bearer_token_auth(served_token(dir / "log.txt").c_str());
+  httplib::Client c = served_client(port, dir / "log.txt");
   EXPECT_EQ(json::parse(c.Get("/api/sketch")->body)["exacity"]["like"], "like/town.shp");
   for (const char* extension : {".shp", ".shx", ".dbf", ".prj"})
     EXPECT_EQ(read(dir / "work" / "like" / (std::string("town") + extension)), extension);
@@ -1537,8 +1541,7 @@ TEST(ServeCommandTest, InterruptStopsAGenerationWithinItsStage) {
   const pid_t pid = start_program({"serve", "--port", "0", "--work", (dir / "work").string()}, dir / "log.txt");
   const int port = served_port(dir / "log.txt");
   ASSERT_GT(port, 0) << read(dir / "log.txt");
-  httplib::Client c("127.0.0.1", port);
-  c.set_bearer_token_auth(served_token(dir / "log.txt").c_str());
+  httplib::Client c = served_client(port, dir / "log.txt");
   ASSERT_EQ(c.Put("/api/sketch", kLargeSketch, "application/geo+json")->status, 200);
   ASSERT_EQ(c.Post("/api/generate", "", "application/json")->status, 202);
   json status;
