@@ -25,7 +25,10 @@ namespace {
 // Staging folders of runs under way in this process, for the interrupt watcher.
 std::mutex staging_mutex;
 std::set<fs::path> staging_folders;
-std::function<void(int)> interrupt_stop;  // under staging_mutex
+// Held while the stop handler runs, so that replacing it (on_interrupt) waits until a handler
+// already called returns: the handler uses its caller's locals.
+std::mutex interrupt_mutex;
+std::function<void(int)> interrupt_stop;  // under interrupt_mutex
 
 void remove_tree(const fs::path& p) {
   std::error_code ec;
@@ -61,15 +64,12 @@ void clean_up_on_interrupt() {
   std::thread([signals] {
     int signal = 0;
     sigwait(&signals, &signal);
-    std::function<void(int)> stop;
+    bool stopped = false;
     {
-      std::lock_guard lock(staging_mutex);
-      stop = std::exchange(interrupt_stop, nullptr);
+      std::lock_guard lock(interrupt_mutex);
+      if (std::function<void(int)> stop = std::exchange(interrupt_stop, nullptr)) stop(signal), stopped = true;
     }
-    if (stop) {
-      stop(signal);
-      sigwait(&signals, &signal);
-    }
+    if (stopped) sigwait(&signals, &signal);
     std::lock_guard lock(staging_mutex);
     for (const fs::path& p : staging_folders) remove_tree(p);
     const char message[] = "exacity: interrupted; the output folder is as it was before this run\n";
@@ -79,7 +79,7 @@ void clean_up_on_interrupt() {
 }
 
 void on_interrupt(std::function<void(int)> stop) {
-  std::lock_guard lock(staging_mutex);
+  std::lock_guard lock(interrupt_mutex);
   interrupt_stop = std::move(stop);
 }
 

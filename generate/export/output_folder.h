@@ -13,7 +13,8 @@ void clean_up_on_interrupt();
 
 // From then on the first SIGINT or SIGTERM calls `stop` (on the watcher's thread) instead,
 // for a program that stops cleanly by itself (exacity serve); a second one still removes the
-// staging folders and ends the process at once.
+// staging folders and ends the process at once. Replacing the handler waits until one
+// already called has returned.
 void on_interrupt(std::function<void(int)> stop);
 
 class OutputFolder {
