@@ -16,6 +16,7 @@
 #include "generate/gis/projection.h"
 #include "geom/ring_cleanup.h"
 #include "geom/triangulate.h"
+#include "geom/untangle.h"
 
 namespace exacity {
 namespace {
@@ -31,10 +32,11 @@ class Vertices {
  public:
   using Quantised = std::array<long long, 3>;
   explicit Vertices(geom::Vec2 origin) : origin_(origin), slots_(1 << 10, kEmpty) {}
-  int operator()(double x, double y, double z) {
-    return find_or_add({std::llround((x - origin_.x) / kScale), std::llround((y - origin_.y) / kScale),
-                        std::llround(z / kScale)});
-  }
+  int operator()(double x, double y, double z) { return at(grid({x, y}), z); }
+  // A point's place on the millimetre grid, whole numbers from the origin.
+  geom::Vec2 grid(geom::Vec2 p) const { return {std::round((p.x - origin_.x) / kScale), std::round((p.y - origin_.y) / kScale)}; }
+  // The vertex at that place of the grid, at height z.
+  int at(geom::Vec2 grid, double z) { return find_or_add({std::llround(grid.x), std::llround(grid.y), std::llround(z / kScale)}); }
   // The vertex straight below vertex i, at height z.
   int below(int i, double z) {
     Quantised q = list_[i];
@@ -84,49 +86,66 @@ class Vertices {
   std::vector<Quantised> list_;
 };
 
-// A ring as quantised vertex indices at height z, with the repeats and spikes that
-// quantisation makes dropped; empty when fewer than 3 vertices are left.
-std::vector<int> quantised_ring(const geom::Ring& r, double z, Vertices& v) {
-  std::vector<int> q;
-  for (geom::Vec2 p : r) q.push_back(v(p.x, p.y, z));
-  geom::drop_repeats_and_spikes(q);
-  return q;
+// A polygon on the millimetre grid, as the simple polygons it bounds there. Quantising drops
+// repeated vertices and the spikes they leave, and can make a ring touch itself or another
+// (a neck or a gap under a millimetre wide): such rings are cut into simple ones, since
+// CityJSON's rings must be simple (val3dity's 104, ring self-intersection).
+std::vector<geom::Polygon> quantised(const geom::Polygon& p, const Vertices& v) {
+  auto ring = [&](const geom::Ring& r) {
+    geom::Ring q;
+    q.reserve(r.size());
+    for (geom::Vec2 point : r) q.push_back(v.grid(point));
+    geom::drop_repeats_and_spikes(q);
+    return q;
+  };
+  std::vector<geom::Ring> rings{ring(p.outer)};
+  if (rings[0].empty()) return {};
+  for (const geom::Ring& h : p.holes)
+    if (geom::Ring q = ring(h); !q.empty()) rings.push_back(std::move(q));
+  if (geom::vertex_repeats(rings)) return geom::untangle(rings);
+  geom::Polygon out{std::move(rings[0]), {}};
+  out.holes.assign(std::make_move_iterator(rings.begin() + 1), std::make_move_iterator(rings.end()));
+  return {std::move(out)};
 }
 
-// A flat surface from a polygon at height z: outer ring then holes, each counter-clockwise
-// seen from the side the surface faces. Empty when the outer ring collapses.
-json surface(const geom::Polygon& p, double z, bool facing_down, Vertices& v) {
-  json s = json::array();
-  auto add = [&](const geom::Ring& r) {
-    std::vector<int> q = quantised_ring(r, z, v);
-    if (facing_down) std::reverse(q.begin(), q.end());
-    if (!q.empty()) s.push_back(q);
-    return !q.empty();
-  };
-  if (!add(p.outer)) return json::array();
-  for (const auto& h : p.holes) add(h);
-  return s;
+// Flat surfaces from a polygon at height z: each an outer ring then holes, each
+// counter-clockwise seen from the side the surface faces. None when the polygon collapses.
+std::vector<json> surfaces(const geom::Polygon& p, double z, bool facing_down, Vertices& v) {
+  std::vector<json> out;
+  for (const geom::Polygon& simple : quantised(p, v)) {
+    json s = json::array();
+    auto add = [&](const geom::Ring& r) {
+      std::vector<int> q;
+      for (geom::Vec2 g : r) q.push_back(v.at(g, z));
+      if (facing_down) std::reverse(q.begin(), q.end());
+      s.push_back(std::move(q));
+    };
+    add(simple.outer);
+    for (const geom::Ring& h : simple.holes) add(h);
+    out.push_back(std::move(s));
+  }
+  return out;
 }
 
 // The closed shell of a footprint's prism from `base` to `top`: ground, a wall per edge,
 // roof; with each surface's class. Walls follow the same quantised rings as ground and
-// roof, so the shell stays closed.
+// roof, so the shell stays closed. (A footprint with a neck under a millimetre wide becomes
+// prisms that share an edge there: never seen on a generated footprint.)
 bool prism(const geom::Polygon& footprint, double base, double top, Vertices& v, json& shell, std::vector<int>& classes) {
-  json ground = surface(footprint, base, true, v), roof = surface(footprint, top, false, v);
-  if (ground.empty() || roof.empty()) return false;
-  shell.push_back(ground);
-  classes.push_back(0);
-  for (const json& top : roof) {
-    std::vector<int> ring = top.get<std::vector<int>>();
-    for (std::size_t i = 0; i < ring.size(); ++i) {
-      // Roof and ground vertices differ only in z: quantised the same way, so look them up.
-      int a = ring[i], c = ring[(i + 1) % ring.size()];
-      shell.push_back(json::array({json::array({v.below(a, base), v.below(c, base), c, a})}));
-      classes.push_back(1);
+  const std::vector<json> grounds = surfaces(footprint, base, true, v), roofs = surfaces(footprint, top, false, v);
+  if (grounds.empty()) return false;
+  for (const json& ground : grounds) shell.push_back(ground), classes.push_back(0);
+  for (const json& roof : roofs)
+    for (const json& ring_json : roof) {
+      const std::vector<int> ring = ring_json.get<std::vector<int>>();
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        // Roof and ground vertices differ only in z: quantised the same way, so look them up.
+        int a = ring[i], c = ring[(i + 1) % ring.size()];
+        shell.push_back(json::array({json::array({v.below(a, base), v.below(c, base), c, a})}));
+        classes.push_back(1);
+      }
     }
-  }
-  shell.push_back(roof);
-  classes.push_back(2);
+  for (const json& roof : roofs) shell.push_back(roof), classes.push_back(2);
   return true;
 }
 
@@ -176,8 +195,7 @@ json multisurface(const std::vector<LevelPolygon>& polygons, const Terrain* terr
       continue;
     }
     if (!terrain) {
-      json s = surface(*p, 0, false, v);
-      if (!s.empty()) boundaries.push_back(s);
+      for (json& s : surfaces(*p, 0, false, v)) boundaries.push_back(std::move(s));
       continue;
     }
     GroundMesh m;
