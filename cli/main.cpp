@@ -171,7 +171,9 @@ int generate(const std::vector<fs::path>& sketch_paths, const std::vector<fs::pa
     StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); },
                      kCityStages + kWriteStages + (rendering ? 1 : 0));
     City city = build_city(sketch, clock);
-    result = write_city(sketch, city, folder.staging(), clock, exports);
+    // Without a render nothing reads the city after its files: the 3D export need not hold all of it.
+    result = rendering ? write_city(sketch, city, folder.staging(), clock, exports)
+                       : write_city(sketch, std::move(city), folder.staging(), clock, exports);
     if (!like_report.is_null()) {
       result.report["like"] = like_report;
       write_report(result.report, folder.staging());

@@ -128,7 +128,8 @@ ordered_json placement_fallbacks_report(const City& city) {
 }
 
 // report.json's counts: features per layer, the map's size and the 3D exports'.
-ordered_json counts_report(const City& city, const MeshCounts& mesh, const GltfCounts& gltf) {
+// The 3D exports' counts are placeholders here, in their place, for complete_report.
+ordered_json counts_report(const City& city) {
   const CityLayers& layers = city.layers;
   int green = 0;
   for (const Block& b : city.blocks) green += b.green;
@@ -150,8 +151,8 @@ ordered_json counts_report(const City& city, const MeshCounts& mesh, const GltfC
           {"buildings_by_kind", by_kind},
           {"clutter", city.clutter.items.size()},
           {"map", {{"vertices", counts.vertices}, {"edges", counts.edges}, {"faces", counts.faces}}},
-          {"mesh", {{"vertices", mesh.vertices}, {"faces", mesh.faces}}},
-          {"gltf", {{"meshes", gltf.meshes}, {"instances", gltf.instances}, {"triangles", gltf.triangles}}}};
+          {"mesh", nullptr},
+          {"gltf", nullptr}};
 }
 
 // report.json's clutter: what stands by kind, and the spots that found no place by kind and
@@ -282,7 +283,7 @@ ordered_json mapped_buildings_report(const City& city) {
 
 }  // namespace
 
-ordered_json city_report(const City& city, const WrittenCity& written, const ordered_json& timings) {
+ordered_json city_report(const City& city, const std::vector<std::string>& vector_formats, bool city_osm) {
   const CitySettings& settings = city.settings;
   ordered_json report{
       {"generator", "exacity"},
@@ -292,10 +293,10 @@ ordered_json city_report(const City& city, const WrittenCity& written, const ord
       // Where the sketch's relative paths (heightmap, models) resolve, for `exacity render`.
       {"sketch_path", fs::absolute(settings.path).lexically_normal().string()},
       {"seed", settings.seed},
-      {"counts", counts_report(city, written.mesh, written.gltf)},
+      {"counts", counts_report(city)},
       {"exports",
-       {{"vector_formats", written.vector_formats.empty() ? std::vector<std::string>{"geojson"} : written.vector_formats},
-        {"city_osm", written.city_osm ? "city.osm" : "not written: the sketch has no CRS (EPSG) to place it on Earth"}}},
+       {{"vector_formats", vector_formats.empty() ? std::vector<std::string>{"geojson"} : vector_formats},
+        {"city_osm", city_osm ? "city.osm" : "not written: the sketch has no CRS (EPSG) to place it on Earth"}}},
       {"road_network", road_network_report(city.network, city.drawn)},
       {"unbuilt_lots", {{"merged", city.unbuilt_lots.merged}, {"left_open", city.unbuilt_lots.left_open}}},
       {"empty_zones", empty_zones_report(city)},
@@ -304,13 +305,8 @@ ordered_json city_report(const City& city, const WrittenCity& written, const ord
       {"clutter", clutter_report(city.clutter.tally)},
       {"statistics", city_statistics(city.layers, &settings, &city.drawn)},
       {"footprints_by_zone", footprints_by_zone(city)},
-      {"validation",
-       written.validation
-           ? ordered_json{{"ok", written.validation->ok()}, {"problems", written.validation->problems},
-                          {"widest_sliver_m", written.validation->widest_sliver}}
-           : ordered_json{{"skipped", std::string("this build's kernel (") + geom::kernel_name() +
-                                          ") cannot check its own output: run the exact build's exacity validate"}}},
-      {"timings_s", timings},
+      {"validation", nullptr},  // these two by complete_report
+      {"timings_s", nullptr},
   };
   if (!city.drawn.buildings.empty() || !city.drawn.buildings_left_out.empty()) report["mapped_buildings"] = mapped_buildings_report(city);
   if (const LandUseTally& l = city.drawn.land_use; l.closed_along_bounds > 0 || l.infer_zones) {
@@ -319,9 +315,22 @@ ordered_json city_report(const City& city, const WrittenCity& written, const ord
       report["land_use"]["infer_zones"] = {{"street_faces", l.street_faces}, {"faces_with_land_use", l.faces_with_land_use},
                                           {"inferred", l.inferred}, {"left_open", l.left_open}};
   }
-  // A generation with a cache (exacity serve's) says what it reused of the one before.
-  if (city.regions) report["reused"] = reuse_report(*city.regions);
   return report;
+}
+
+void complete_report(ordered_json& report, const City& city, const WrittenCity& written, const ordered_json& timings) {
+  ordered_json& counts = report["counts"];
+  counts["mesh"] = {{"vertices", written.mesh.vertices}, {"faces", written.mesh.faces}};
+  counts["gltf"] = {{"meshes", written.gltf.meshes}, {"instances", written.gltf.instances}, {"triangles", written.gltf.triangles}};
+  report["validation"] =
+      written.validation
+          ? ordered_json{{"ok", written.validation->ok()}, {"problems", written.validation->problems},
+                         {"widest_sliver_m", written.validation->widest_sliver}}
+          : ordered_json{{"skipped", std::string("this build's kernel (") + geom::kernel_name() +
+                                         ") cannot check its own output: run the exact build's exacity validate"}};
+  report["timings_s"] = timings;
+  // A generation with a cache (exacity serve's) says what it reused of the one before, the 3D export's meshes too.
+  if (city.regions) report["reused"] = reuse_report(*city.regions);
 }
 
 void write_report(const ordered_json& report, const fs::path& dir) {

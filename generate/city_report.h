@@ -16,17 +16,21 @@
 
 namespace exacity {
 
-// What the write stages learnt, besides the city.
+// What the 3D export and validation learnt, besides the city.
 struct WrittenCity {
   MeshCounts mesh;
   GltfCounts gltf;
-  std::vector<std::string> vector_formats;  // beside GeoJSON
-  bool city_osm = false;                     // city.osm written (the sketch has a CRS)
   std::optional<Validation> validation;  // none: this build's kernel cannot check its own output
 };
 
-// The report, with the stages' timings under timings_s.
-nlohmann::ordered_json city_report(const City& city, const WrittenCity& written, const nlohmann::ordered_json& timings);
+// The report of what the city holds, made before the 3D export (so that what only it reads
+// of the city, its map and layers, can be freed then): `vector_formats` written beside
+// GeoJSON, `city_osm` whether city.osm was (the sketch has a CRS). The 3D exports' counts,
+// the validation and the timings are left for complete_report, in their places.
+nlohmann::ordered_json city_report(const City& city, const std::vector<std::string>& vector_formats, bool city_osm);
+// Fills in those, with the stages' timings under timings_s; reads only the city's cache.
+void complete_report(nlohmann::ordered_json& report, const City& city, const WrittenCity& written,
+                     const nlohmann::ordered_json& timings);
 void write_report(const nlohmann::ordered_json& report, const std::filesystem::path& dir);
 
 }  // namespace exacity

@@ -148,7 +148,7 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
 GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const ProgressFn& progress) {
   StageClock stages(progress, kCityStages + kWriteStages);
   City city = build_city(sketch, stages);
-  return write_city(sketch, city, dir, stages);
+  return write_city(sketch, std::move(city), dir, stages);
 }
 
 namespace {
@@ -199,27 +199,42 @@ MeshCounts export_3d(const City& city, const fs::path& dir, GltfCounts& gltf) {
   return write_meshes(city.buildings, city.models, meshes, ground, dir / "city.obj", dir / "city.ply");
 }
 
-}  // namespace
-
-GenerateResult write_city(const Sketch& sketch, const City& city, const fs::path& dir, StageClock& stages,
-                          const ExportOptions& options) {
+// Writes `city`; with `released` (the city itself, which no one reads afterwards), frees
+// what only the steps before the 3D export read.
+GenerateResult write(const Sketch& sketch, const City& city, City* released, const fs::path& dir, StageClock& stages,
+                     const ExportOptions& options) {
   bool city_osm = false;
   stages.run("export", [&] {
     export_vectors(sketch, city, dir);
     write_vector_formats(dir, options.vector_formats, city.settings.crs);
     city_osm = write_city_osm(city, dir / "city.osm", options.osm_first_id);
   });
-  GltfCounts gltf;
-  MeshCounts mesh = stages.run("3d export", [&] { return export_3d(city, dir, gltf); });
-  std::optional<Validation> validation;
+  ordered_json report = city_report(city, options.vector_formats, city_osm);
+  WrittenCity written;
+  written.mesh = stages.run("3d export", [&] {
+    if (released) released->network = {}, released->blocks = {}, released->lots = {}, released->layers = {};
+    return export_3d(city, dir, written.gltf);
+  });
   if (geom::kernel_validates_its_output())
-    validation = stages.run("validation", [&] {
+    written.validation = stages.run("validation", [&] {
       return city.regions ? validate_output(dir, city.regions->validated) : validate_output(dir);
     });
-  ordered_json report = city_report(city, {mesh, gltf, options.vector_formats, city_osm, validation}, stages.seconds);
+  complete_report(report, city, written, stages.seconds);
   report["peak_memory_mib"] = stages.peak_mib;
   write_report(report, dir);
-  return {report, !validation || validation->ok()};
+  return {report, !written.validation || written.validation->ok()};
+}
+
+}  // namespace
+
+GenerateResult write_city(const Sketch& sketch, const City& city, const fs::path& dir, StageClock& stages,
+                          const ExportOptions& options) {
+  return write(sketch, city, nullptr, dir, stages, options);
+}
+
+GenerateResult write_city(const Sketch& sketch, City&& city, const fs::path& dir, StageClock& stages,
+                          const ExportOptions& options) {
+  return write(sketch, city, &city, dir, stages, options);
 }
 
 }  // namespace exacity

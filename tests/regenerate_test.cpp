@@ -107,12 +107,9 @@ json edited(json sketch, std::mt19937& random) {
   return sketch;
 }
 
-// Every file write_city writes for the city, one text: the layers, clutter, map, CityJSON,
+// Every file in `dir` (as write_city writes them), one text: the layers, clutter, map, CityJSON,
 // glTF, OBJ, PLY and the report, less its seconds and what the build reused.
-std::string written(const Sketch& sketch, const City& city, const std::string& name) {
-  const auto dir = testing_util::temp_dir(name);
-  StageClock clock(nullptr, kWriteStages);
-  write_city(sketch, city, dir, clock);
+std::string folder_text(const std::filesystem::path& dir) {
   std::vector<std::filesystem::path> files;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(dir))
     if (entry.is_regular_file()) files.push_back(entry.path());
@@ -133,6 +130,13 @@ std::string written(const Sketch& sketch, const City& city, const std::string& n
     all += file.lexically_relative(dir).string() + "\n" + content;
   }
   return all;
+}
+
+std::string written(const Sketch& sketch, const City& city, const std::string& name) {
+  const auto dir = testing_util::temp_dir(name);
+  StageClock clock(nullptr, kWriteStages);
+  write_city(sketch, city, dir, clock);
+  return folder_text(dir);
 }
 
 struct Built {
@@ -236,6 +240,20 @@ TEST(Regenerate, UnchangedSketchReusesEveryRegionBlockLotAndMesh) {
   const json reused = reuse_report(cache);
   EXPECT_EQ(reused["structure_meshes"]["reused"], cache.meshes.hits());
   EXPECT_EQ(reused["region_plans"]["of"], cache.road_plans.hits());
+}
+
+// A city nothing reads after its files has its map, blocks, lots and vector layers freed
+// before the 3D export (the peak of a large city): it writes the same files and report.
+TEST(Regenerate, ACityFreedAsItIsWrittenWritesWhatAKeptOneDoes) {
+  const Built kept = build(town());
+  Built freed = build(town());
+  const auto dir = testing_util::temp_dir("freed");
+  StageClock clock(nullptr, kWriteStages);
+  EXPECT_TRUE(write_city(freed.sketch, std::move(freed.city), dir, clock).valid);
+  EXPECT_TRUE(freed.city.lots.empty());  // NOLINT(bugprone-use-after-move): what the overload frees
+  EXPECT_TRUE(freed.city.layers.buildings.features.empty());
+  EXPECT_FALSE(freed.city.buildings.empty());  // the 3D export's
+  EXPECT_EQ(folder_text(dir), written(kept, "kept"));
 }
 
 // Each edit regenerated from the city before it, which was written (so its meshes are kept),
