@@ -128,18 +128,18 @@ ordered_json placement_fallbacks_report(const City& city) {
 }
 
 // report.json's counts: features per layer, the map's size and the 3D exports'.
-ordered_json counts_report(const City& city, const MeshCounts& mesh, const GltfCounts& gltf) {
+ordered_json counts_report(const City& city, const std::optional<ThreeDCounts>& three_d) {
   const CityLayers& layers = city.layers;
   int green = 0;
   for (const Block& b : city.blocks) green += b.green;
-  auto counts = city.network.map.map.counts();
+  const auto map = city.network.map.map.counts();
   // The buildings layer holds every structure: buildings, and models of other kinds (trees).
   ordered_json by_kind = ordered_json::object();
   for (const VectorFeature& f : layers.buildings.features) {
     const std::string kind = f.properties.value("kind", std::string("building"));
     by_kind[kind] = by_kind.value(kind, 0) + 1;
   }
-  return {{"zones", layers.zones.features.size()},
+  ordered_json counts{{"zones", layers.zones.features.size()},
           {"water", layers.water.features.size()},
           {"roads", layers.roads.features.size()},
           {"road_areas", layers.road_areas.features.size()},
@@ -149,9 +149,13 @@ ordered_json counts_report(const City& city, const MeshCounts& mesh, const GltfC
           {"buildings", layers.buildings.features.size()},
           {"buildings_by_kind", by_kind},
           {"clutter", city.clutter.items.size()},
-          {"map", {{"vertices", counts.vertices}, {"edges", counts.edges}, {"faces", counts.faces}}},
-          {"mesh", {{"vertices", mesh.vertices}, {"faces", mesh.faces}}},
-          {"gltf", {{"meshes", gltf.meshes}, {"instances", gltf.instances}, {"triangles", gltf.triangles}}}};
+          {"map", {{"vertices", map.vertices}, {"edges", map.edges}, {"faces", map.faces}}}};
+  if (three_d) {
+    const auto& [mesh, gltf] = *three_d;
+    counts["mesh"] = {{"vertices", mesh.vertices}, {"faces", mesh.faces}};
+    counts["gltf"] = {{"meshes", gltf.meshes}, {"instances", gltf.instances}, {"triangles", gltf.triangles}};
+  }
+  return counts;
 }
 
 // report.json's clutter: what stands by kind, and the spots that found no place by kind and
@@ -292,7 +296,7 @@ ordered_json city_report(const City& city, const WrittenCity& written, const ord
       // Where the sketch's relative paths (heightmap, models) resolve, for `exacity render`.
       {"sketch_path", fs::absolute(settings.path).lexically_normal().string()},
       {"seed", settings.seed},
-      {"counts", counts_report(city, written.mesh, written.gltf)},
+      {"counts", counts_report(city, written.three_d)},
       {"exports",
        {{"vector_formats", written.vector_formats.empty() ? std::vector<std::string>{"geojson"} : written.vector_formats},
         {"city_osm", written.city_osm ? "city.osm" : "not written: the sketch has no CRS (EPSG) to place it on Earth"}}},

@@ -13,13 +13,13 @@
 #include "generate/export/gltf_export.h"
 #include "generate/export/mesh_export.h"
 #include "generate/export/validate.h"
+#include "generate/pipeline.h"
 
 namespace exacity {
 
 // What the write stages learnt, besides the city.
 struct WrittenCity {
-  MeshCounts mesh;
-  GltfCounts gltf;
+  std::optional<ThreeDCounts> three_d;  // none: not written (exacity serve writes them when first downloaded)
   std::vector<std::string> vector_formats;  // beside GeoJSON
   bool city_osm = false;                     // city.osm written (the sketch has a CRS)
   std::optional<Validation> validation;  // none: this build's kernel cannot check its own output
