@@ -1,6 +1,7 @@
 // Regenerating after a one-zone edit against building the edited sketch whole: seconds per
 // stage both ways, as the server's generation runs them (build_city, write_city into a
-// temporary folder, the 3D view's tiles), and how many regions, blocks, lots and meshes were
+// temporary folder without the 3D files, which the server writes when first downloaded, the
+// 3D view's tiles), and how many regions, blocks, lots and meshes were
 // reused. Each stage's CPU seconds (all threads) are printed beside its wall seconds, since
 // on a shared machine the wall clock measures the other users too.
 // Then, per layer file of vector/, how many features the edit changed: lines of the
@@ -62,7 +63,7 @@ std::map<std::string, std::set<std::string>> feature_lines(const std::filesystem
 
 Run build(const ordered_json& doc, const std::string& path, std::shared_ptr<RegionCache> cache, const City* previous) {
   bench::StageCpu cpu;
-  StageClock clock([&](int, int, const std::string& name) { cpu.next(name); }, kCityStages + kWriteStages + 1);
+  StageClock clock([&](int, int, const std::string& name) { cpu.next(name); }, kCityStages + kWriteStages);
   const double cpu_start = bench::cpu_seconds();
   const auto start = std::chrono::steady_clock::now();
   Sketch sketch = parse_sketch(doc.dump(), path);
@@ -72,7 +73,7 @@ Run build(const ordered_json& doc, const std::string& path, std::shared_ptr<Regi
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("exacity_regenerate." + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
-  write_city(sketch, run.city, dir, clock);
+  write_city(sketch, run.city, dir, clock, ExportOptions{{}, std::nullopt, /*three_d=*/false});
   clock.run("tiles", [&] { serve::write_city_tiles(run.city, dir / "tiles"); });
   cpu.next("");
   run.cpu = cpu.seconds;

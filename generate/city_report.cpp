@@ -320,8 +320,13 @@ ordered_json city_report(const City& city, const std::vector<std::string>& vecto
 
 void complete_report(ordered_json& report, const City& city, const WrittenCity& written, const ordered_json& timings) {
   ordered_json& counts = report["counts"];
-  counts["mesh"] = {{"vertices", written.mesh.vertices}, {"faces", written.mesh.faces}};
-  counts["gltf"] = {{"meshes", written.gltf.meshes}, {"instances", written.gltf.instances}, {"triangles", written.gltf.triangles}};
+  if (written.three_d) {
+    const auto& [mesh, gltf] = *written.three_d;
+    counts["mesh"] = {{"vertices", mesh.vertices}, {"faces", mesh.faces}};
+    counts["gltf"] = {{"meshes", gltf.meshes}, {"instances", gltf.instances}, {"triangles", gltf.triangles}};
+  } else {
+    counts.erase("mesh"), counts.erase("gltf");
+  }
   report["validation"] =
       written.validation
           ? ordered_json{{"ok", written.validation->ok()}, {"problems", written.validation->problems},

@@ -10,16 +10,14 @@
 #include <nlohmann/json.hpp>
 
 #include "generate/city.h"
-#include "generate/export/gltf_export.h"
-#include "generate/export/mesh_export.h"
 #include "generate/export/validate.h"
+#include "generate/pipeline.h"
 
 namespace exacity {
 
 // What the 3D export and validation learnt, besides the city.
 struct WrittenCity {
-  MeshCounts mesh;
-  GltfCounts gltf;
+  std::optional<ThreeDCounts> three_d;  // none: not written (exacity serve writes them when first downloaded)
   std::optional<Validation> validation;  // none: this build's kernel cannot check its own output
 };
 
@@ -28,7 +26,7 @@ struct WrittenCity {
 // GeoJSON, `city_osm` whether city.osm was (the sketch has a CRS). The 3D exports' counts,
 // the validation and the timings are left for complete_report, in their places.
 nlohmann::ordered_json city_report(const City& city, const std::vector<std::string>& vector_formats, bool city_osm);
-// Fills in those, with the stages' timings under timings_s; reads only the city's cache.
+// Fills in those (the 3D exports' counts left out when they were not written), with the stages' timings under timings_s; reads only the city's cache.
 void complete_report(nlohmann::ordered_json& report, const City& city, const WrittenCity& written,
                      const nlohmann::ordered_json& timings);
 void write_report(const nlohmann::ordered_json& report, const std::filesystem::path& dir);

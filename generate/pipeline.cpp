@@ -181,23 +181,31 @@ void export_vectors(const Sketch& sketch, const City& city, const fs::path& dir)
   });
 }
 
-// CityJSON, glTF, OBJ and PLY, from one set of building meshes and one set of ground
-// layers. The meshes and the ground's layers are made at once; the three writers run one
-// after another, since each holds a large part of its file while it writes (all three at
-// once raised the 10 km city's peak by 750 MiB).
-MeshCounts export_3d(const City& city, const fs::path& dir, GltfCounts& gltf) {
+}  // namespace
+
+// From one set of building meshes and one set of ground layers. The meshes and the ground's
+// layers are made at once; the three writers run one after another, since each holds a
+// large part of its file while it writes (all three at once raised the 10 km city's peak by
+// 750 MiB).
+ThreeDCounts write_3d_files(const City& city, const fs::path& dir, bool through_cache) {
   const ModelLibrary* library = city.model_library();
   std::vector<Mesh> meshes;
   std::vector<GroundLayer> ground;
-  invoke_cancellable([&] { meshes = city_meshes(city); }, [&] { ground = city_ground_layers(city); });
+  invoke_cancellable(
+      [&] { meshes = through_cache ? city_meshes(city) : structure_meshes(city.buildings, city.models, library); },
+      [&] { ground = through_cache ? city_ground_layers(city) : ground_layers(city.ground, city.heightmap(), nullptr); });
   write_cityjson(city.ground, city.buildings, city.models, meshes, library, city.heightmap(), ground, city.settings.crs,
                  dir / "city.city.json", city.clutter.items);
   std::vector<ModelInstance> clutter;
   for (const Clutter& c : city.clutter.items) clutter.push_back(c.instance);
-  gltf = write_gltf(city.ground, ground, city.buildings, city.models, meshes, city.settings.seed, library,
-                    dir / "city.glb", clutter);
-  return write_meshes(city.buildings, city.models, meshes, ground, dir / "city.obj", dir / "city.ply");
+  ThreeDCounts counts;
+  counts.gltf = write_gltf(city.ground, ground, city.buildings, city.models, meshes, city.settings.seed, library,
+                           dir / "city.glb", clutter);
+  counts.mesh = write_meshes(city.buildings, city.models, meshes, ground, dir / "city.obj", dir / "city.ply");
+  return counts;
 }
+
+namespace {
 
 // Writes `city`; with `released` (the city itself, which no one reads afterwards), frees
 // what only the steps before the 3D export read.
@@ -211,10 +219,11 @@ GenerateResult write(const Sketch& sketch, const City& city, City* released, con
   });
   ordered_json report = city_report(city, options.vector_formats, city_osm);
   WrittenCity written;
-  written.mesh = stages.run("3d export", [&] {
-    if (released) released->network = {}, released->blocks = {}, released->lots = {}, released->layers = {};
-    return export_3d(city, dir, written.gltf);
-  });
+  if (options.three_d)
+    written.three_d = stages.run("3d export", [&] {
+      if (released) released->network = {}, released->blocks = {}, released->lots = {}, released->layers = {};
+      return write_3d_files(city, dir);
+    });
   if (geom::kernel_validates_its_output())
     written.validation = stages.run("validation", [&] {
       return city.regions ? validate_output(dir, city.regions->validated) : validate_output(dir);

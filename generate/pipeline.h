@@ -12,6 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "generate/city.h"
+#include "generate/export/gltf_export.h"
+#include "generate/export/mesh_export.h"
 #include "generate/sketch/sketch.h"
 #include "generate/version.h"
 
@@ -76,6 +78,10 @@ struct ExportOptions {
   // city.osm's ids from here up (an id range the user keeps for this city), else new
   // objects' negative ids.
   std::optional<std::int64_t> osm_first_id;
+  // The 3D files (CityJSON, glTF, OBJ, PLY) in a "3d export" stage. exacity serve leaves
+  // them out and writes them with write_3d_files when first downloaded: they cost an edit's
+  // update about as much as its other stages together (docs/design.md, Serving).
+  bool three_d = true;
 };
 // `sketch` is the one `city` was built from: OUT/sketch.geojson is its copy.
 GenerateResult write_city(const Sketch& sketch, const City& city, const std::filesystem::path& dir, StageClock& clock,
@@ -86,5 +92,14 @@ GenerateResult write_city(const Sketch& sketch, const City& city, const std::fil
 GenerateResult write_city(const Sketch& sketch, City&& city, const std::filesystem::path& dir, StageClock& clock,
                           const ExportOptions& options = {});
 inline constexpr int kWriteStages = 3;
+
+struct ThreeDCounts {
+  MeshCounts mesh;
+  GltfCounts gltf;
+};
+// city.city.json, city.glb, city.obj and city.ply of `city` into `dir` (write_city's 3d
+// export stage). With `through_cache` false the structures' meshes and the ground's pieces
+// are made afresh rather than through the city's cache, which a build may be using.
+ThreeDCounts write_3d_files(const City& city, const std::filesystem::path& dir, bool through_cache = true);
 
 }  // namespace exacity

@@ -6,6 +6,7 @@
 
 #include "generate/city_report.h"
 #include "generate/errors.h"
+#include "generate/export/gis_export.h"
 #include "generate/export/output_folder.h"
 #include "generate/pipeline.h"
 #include "generate/sketch/like_place.h"
@@ -33,32 +34,36 @@ void refuse_busy(ServerState& s, httplib::Response& res) {
 }
 
 // Sketch to every output into work/city, as exacity generate does (docs/design.md, The
-// pipeline), then the 3D view's tiles (docs/design.md, Serving: tiles).
+// pipeline), but for the files only downloaded (the 3D files and the GeoPackage, written
+// when first asked for: send_city_file), then the 3D view's tiles (docs/design.md,
+// Serving: tiles).
 void generate_job(ServerState& s, const Sketch& drawn, JobRunner::Progress& progress) {
   OutputFolder folder(s.city_folder());
   StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); },
-                   kCityStages + kWriteStages + 1);
+                   kCityStages + kWriteStages);  // the write stages less the 3d export, and the tiles
   // The zone parameters of the place the sketch's "like" names, measured first.
   Sketch sketch = drawn;
   nlohmann::ordered_json like = sketch.like.empty() ? nlohmann::ordered_json() : like_place(sketch, sketch.like);
   if (!like.is_null()) like["file"] = s.in_work(like["file"].get<std::string>());  // as the page names it
   // Regions, blocks and lots the edits since the last generation left as they were are reused.
   auto city = std::make_shared<City>(build_city(sketch, clock, s.regions));
-  // GeoPackage too, the GIS user's one file of every layer, for the page's downloads.
-  GenerateResult result = write_city(sketch, *city, folder.staging(), clock, ExportOptions{{"gpkg"}, std::nullopt});
+  GenerateResult result =
+      write_city(sketch, *city, folder.staging(), clock, ExportOptions{{}, std::nullopt, /*three_d=*/false});
   if (!like.is_null()) result.report["like"] = like;
   clock.run("tiles", [&] { write_city_tiles(*city, folder.staging() / "tiles"); });
-  // The report's seconds are then the whole update's server time, tiles included, which the page shows.
+  // The report's seconds are then the whole update's server time, tiles included, which the
+  // page shows; and what was reused, the tiles' meshes included (the first ask for them).
   result.report["timings_s"] = clock.seconds;
+  result.report["reused"] = reuse_report(*city->regions);
   write_report(result.report, folder.staging());
+  std::shared_ptr<const City> before;  // freed after the locks, as the job's last work
   {
+    // The folder and the city it holds change together: the downloads are written from it.
     std::unique_lock lock(s.outputs);
     folder.commit();
     fs::remove_all(s.render_folder());  // it showed the city before this one
-  }
-  {
-    std::lock_guard lock(s.city_mutex);
-    s.city = std::move(city);
+    std::lock_guard city_lock(s.city_mutex);
+    before = std::exchange(s.city, std::move(city));
   }
   if (!result.valid)
     throw InternalError("the generated city failed validation (see report.json); please report this sketch");
@@ -178,6 +183,65 @@ const std::vector<std::pair<std::string, std::string>>& city_files() {
   return files;
 }
 
+// The files written only when first downloaded, and the call that writes them into a folder.
+bool written_when_asked(const std::string& name) {
+  static const std::set<std::string> names{"city.glb", "city.city.json", "city.obj", "city.ply", "city.gpkg"};
+  return names.count(name) > 0;
+}
+
+// The city work/city holds: the one generated in this run, else rebuilt from its sketch (a
+// server started on the work folder of another run).
+std::shared_ptr<const City> folders_city(ServerState& s) {
+  {
+    std::lock_guard lock(s.city_mutex);
+    if (s.city) return s.city;
+  }
+  StageClock clock(nullptr, kCityStages);
+  auto city = std::make_shared<const City>(
+      build_city(parse_sketch(read_file(s.city_folder() / "sketch.geojson"), s.sketch.file()), clock));
+  std::lock_guard lock(s.city_mutex);
+  if (!s.city) s.city = city;
+  return s.city;
+}
+
+// Writes `name` into work/city if it is one written when asked and is not there yet; the
+// caller holds s.outputs shared, so the folder and its city stay as they are. The 3D files
+// are written together (one set of meshes), aside, then moved in.
+void write_when_asked(ServerState& s, const std::string& name) {
+  if (!written_when_asked(name) || fs::is_regular_file(s.city_folder() / name) ||
+      !fs::is_regular_file(s.city_folder() / "report.json"))
+    return;
+  const std::shared_ptr<const City> city = folders_city(s);
+  const fs::path aside = s.work.root() / ".downloads.partial";
+  fs::remove_all(aside);
+  fs::create_directories(aside);
+  std::vector<std::string> files{name};
+  if (name == "city.gpkg") {
+    // From the layers as written: the GeoPackage is their copy through OGR.
+    fs::create_directory_symlink(s.city_folder() / "vector", aside / "vector");
+    write_vector_formats(aside, {"gpkg"}, city->settings.crs);
+  } else {
+    // The structures' meshes afresh: the cache is the job thread's.
+    write_3d_files(*city, aside, /*through_cache=*/false);
+    files = {"city.glb", "city.city.json", "city.obj", "city.ply"};
+  }
+  for (const std::string& file : files)
+    if (!fs::exists(s.city_folder() / file)) fs::rename(aside / file, s.city_folder() / file);
+  fs::remove_all(aside);
+}
+
+// A file of work/city, written first if it is written when asked.
+void send_city_file(ServerState& s, const std::string& name, const std::string& type, httplib::Response& res,
+                    const std::string& missing) {
+  std::lock_guard writing(s.downloads);
+  std::shared_lock lock(s.outputs);
+  write_when_asked(s, name);
+  if (!fs::is_regular_file(s.city_folder() / name)) return refuse(res, 404, missing);
+  const std::string bytes = read_file(s.city_folder() / name);
+  res.set_header("Cache-Control", "no-store");
+  res.set_content(bytes, type.c_str());
+}
+
 const std::set<std::string>& layer_names() {
   static const std::set<std::string> names{"zones", "water", "roads", "road_areas", "blocks", "lots", "buildings"};
   return names;
@@ -236,7 +300,8 @@ void add_city_routes(ServerState& s) {
       status["render"] = fs::is_regular_file(s.render_folder() / "still.png");
       status["files"] = nlohmann::json::array();
       for (const auto& [name, type] : city_files())
-        if (fs::is_regular_file(s.city_folder() / name)) status["files"].push_back(name);
+        if (fs::is_regular_file(s.city_folder() / name) || (status["city"] && written_when_asked(name)))
+          status["files"].push_back(name);
     }
     res.set_header("Cache-Control", "no-store");
     res.set_content(status.dump(), "application/json");
@@ -249,7 +314,7 @@ void add_city_routes(ServerState& s) {
     send_file(s, s.city_folder() / "report.json", "application/json", res, kNoCity);
   });
   s.http.Get("/api/city.glb", [&s](const httplib::Request&, httplib::Response& res) {
-    send_file(s, s.city_folder() / "city.glb", "model/gltf-binary", res, kNoCity);
+    send_city_file(s, "city.glb", "model/gltf-binary", res, kNoCity);
   });
   s.http.Get(R"(/api/files/([a-z.]+))", [&s](const httplib::Request& req, httplib::Response& res) {
     const std::string name = req.matches[1];
@@ -259,7 +324,8 @@ void add_city_routes(ServerState& s) {
       for (const auto& [known, type] : city_files()) names += (names.empty() ? "" : ", ") + known;
       return refuse(res, 404, "no city file \"" + name + "\"; the files are " + names);
     }
-    send_file(s, s.city_folder() / name, file->second, res, name == "city.osm" ? kNoCity + " (city.osm needs a sketch with a CRS)" : kNoCity);
+    send_city_file(s, name, file->second, res,
+                   name == "city.osm" ? kNoCity + " (city.osm needs a sketch with a CRS)" : kNoCity);
   });
   s.http.Get("/api/tiles.json", [&s](const httplib::Request&, httplib::Response& res) {
     send_file(s, s.city_folder() / "tiles" / "index.json", "application/json", res, kNoCity);

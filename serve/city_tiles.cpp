@@ -92,8 +92,7 @@ void write_facades(const City& city, const fs::path& file) {
 }  // namespace
 
 json write_city_tiles(const City& city, const fs::path& dir) {
-  geom::Box box = city.ground.bounds();
-  if (box.holds_nothing()) box = {0, 0, 1, 1};
+  const geom::Box box = city_box(city.ground);
   const double size = tile_size(box);
   const int columns = std::max(1, static_cast<int>(std::ceil(box.width() / size)));
   const int rows = std::max(1, static_cast<int>(std::ceil(box.height() / size)));
@@ -157,10 +156,10 @@ json write_city_tiles(const City& city, const fs::path& dir) {
       blocks.push_back({b.box, b.bottom, part.area > 0 ? part.area_times_top / part.area : b.top, key.second, -1});
     }
     const GltfCounts full =
-        write_gltf_structures(city.ground, t.buildings, t.models, meshes, city.settings.seed, library,
+        write_gltf_structures(box, t.buildings, t.models, meshes, city.settings.seed, library,
                               dir / name / "0.glb", t.clutter);
-    const GltfCounts boxes = write_gltf_boxes(city.ground, t.boxes, city.settings.seed, dir / name / "1.glb");
-    const GltfCounts far = write_gltf_boxes(city.ground, blocks, city.settings.seed, dir / name / "2.glb");
+    const GltfCounts boxes = write_gltf_boxes(box, t.boxes, city.settings.seed, dir / name / "1.glb");
+    const GltfCounts far = write_gltf_boxes(box, blocks, city.settings.seed, dir / name / "2.glb");
     json levels = json::array();
     for (int level = 0; level < 3; ++level)
       levels.push_back("/api/tiles/" + name + "/" + std::to_string(level) + ".glb");

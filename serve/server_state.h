@@ -31,6 +31,9 @@ struct ServerState {
   std::string token;
   // Readers of the outputs share it; a job takes it alone only to swap a finished folder in.
   std::shared_mutex outputs;
+  // Held while a download written when first asked for is written (serve/city_routes.cpp),
+  // so that two asking at once write it once.
+  std::mutex downloads;
   // Event streams open now: each holds a request thread, so they are capped below the pool
   // (serve/server.cpp) and the API keeps answering however many pages are open.
   std::atomic<int> event_streams{0};

@@ -29,6 +29,7 @@
 #include "generate/city/structure_albedos.h"
 #include "generate/sketch/sketch.h"
 #include "generate/errors.h"
+#include "generate/export/gis_export.h"
 #include "generate/pipeline.h"
 #include "generate/layout/road_settings.h"
 #include "generate/parcels/parcel_settings.h"
@@ -114,6 +115,9 @@ class ServeTest : public ::testing::Test {
     write(dir / "secret.txt", "SECRET");
     fs::create_symlink(dir / "secret.txt", dir / "web" / "leak.txt");
     fs::create_symlink(dir, dir / "web" / "up");
+    start();
+  }
+  void start() {
     exacity::serve::ServeOptions o;
     o.work = dir / "work", o.web = dir / "web", o.port = 0, o.max_body = 64 * 1024, o.token = kToken;
     // Short, so the tests of slow clients are: a request on loopback takes milliseconds.
@@ -129,6 +133,11 @@ class ServeTest : public ::testing::Test {
     server->stop();
     serving.join();
     server->finish_jobs();
+  }
+  // A new server on the same work folder, as after the user started it again.
+  void restart() {
+    TearDown();
+    start();
   }
 
   fs::path work() const { return server->work_folder(); }
@@ -161,6 +170,15 @@ class ServeTest : public ::testing::Test {
     ASSERT_EQ(r->status, 202) << r->body;
     const json done = wait_for_job(*client);
     ASSERT_EQ(done["state"], "done") << done.dump();
+  }
+
+  // report.json of work/city's sketch generated as exacity generate does (the server's
+  // leaves out the counts of the 3D files it writes only when they are downloaded).
+  json full_build_report() const {
+    const fs::path alone = testing_util::temp_dir("full_build");
+    exacity::generate_city(exacity::parse_sketch(read(work() / "city" / "sketch.geojson"), sketch_file()), alone,
+                           nullptr);
+    return json::parse(read(alone / "report.json"));
   }
 
   fs::path dir;
@@ -567,7 +585,7 @@ TEST_F(ServeTest, UploadedModelLibraryIsUsedByTheGeneration) {
   for (const json& tile : index["tiles"])
     placed += tile["models"].get<std::size_t>(), clutter += tile["clutter"].get<std::size_t>();
   EXPECT_GT(placed, 0u);
-  EXPECT_EQ(placed + clutter, report["counts"]["gltf"]["instances"].get<std::size_t>());
+  EXPECT_EQ(placed + clutter, full_build_report()["counts"]["gltf"]["instances"].get<std::size_t>());
 }
 
 // The library in use, as the model library stage reads it: each model's kind and the zone
@@ -817,15 +835,18 @@ TEST_F(ServeTest, GenerateStreamsStagesThenServesOutputsAndRenders) {
   EXPECT_NE(second->body.find("running"), std::string::npos) << second->body;
   events.join();
   EXPECT_EQ(ended, "done");
-  // The CLI's stage names, in its order.
+  // The CLI's stage names, in its order, but the 3D files', which are written when first downloaded.
   EXPECT_EQ(stages, (std::vector<std::string>{"terrain", "model library", "zone map", "road network", "blocks", "lots",
-                                              "buildings", "vector layers", "clutter", "export", "3d export",
-                                              "validation", "tiles"}));
+                                              "buildings", "vector layers", "clutter", "export", "validation",
+                                              "tiles"}));
   EXPECT_EQ(json::parse(client->Get("/api/status")->body)["state"], "done");
 
   EXPECT_EQ(client->Get("/api/map.svg")->body.find("<svg") != std::string::npos, true);
   const json report = json::parse(client->Get("/api/report")->body);
   EXPECT_GT(report["counts"]["lots"].get<int>(), 0);
+  EXPECT_FALSE(report["counts"].contains("gltf"));
+  for (const char* name : {"city.glb", "city.city.json", "city.obj", "city.ply", "city.gpkg"})
+    EXPECT_FALSE(fs::exists(work() / "city" / name)) << name << ": written before it was asked for";
   EXPECT_EQ(client->Get("/api/city.glb")->body.substr(0, 4), "glTF");
   for (const char* layer : {"zones", "water", "roads", "road_areas", "blocks", "lots", "buildings"}) {
     auto r = client->Get(std::string("/api/layers/") + layer + ".geojson");
@@ -898,7 +919,7 @@ TEST_F(ServeTest, TilesHoldTheCityAtThreeLevels) {
   }
   EXPECT_EQ(structures, report["counts"]["buildings"].get<std::size_t>());
   EXPECT_EQ(clutter, report["counts"]["clutter"].get<std::size_t>());
-  EXPECT_EQ(triangles, report["counts"]["gltf"]["triangles"].get<std::size_t>());
+  EXPECT_EQ(triangles, full_build_report()["counts"]["gltf"]["triangles"].get<std::size_t>());
   for (const char* url : {"/api/tiles/99_99/0.glb", "/api/tiles/0_0/3.glb", "/api/tiles/..%2F..%2Fsketch.geojson",
                           "/api/tiles/0_0/..%2F..%2Freport.json"})
     EXPECT_EQ(client->Get(url)->status, 404) << url;
@@ -962,6 +983,24 @@ TEST_F(ServeTest, CityGlbColoursAreTheRenderersAlbedos) {
   EXPECT_EQ(boxes, expected);
 }
 
+// The 3D files and the GeoPackage of a city another run of the server generated: written
+// when asked for, from the city rebuilt from its sketch, as the generation would have.
+TEST_F(ServeTest, DownloadsOfAnotherRunsCityAreWrittenWhenAskedFor) {
+  put_small_and_generate();
+  restart();
+  EXPECT_EQ(json::parse(client->Get("/api/status")->body)["files"],
+            json::parse(R"(["city.glb", "city.city.json", "city.obj", "city.ply", "city.gpkg", "map.svg"])"));
+  const fs::path alone = testing_util::temp_dir("alone");
+  exacity::generate_city(exacity::parse_sketch(kSmallSketch, sketch_file()), alone, nullptr);
+  exacity::write_vector_formats(alone, {"gpkg"}, nullptr);
+  for (const char* file : {"city.gpkg", "city.obj", "city.glb", "city.city.json", "city.ply"}) {
+    auto r = client->Get(std::string("/api/files/") + file);
+    ASSERT_EQ(r->status, 200) << file << ": " << r->body;
+    EXPECT_TRUE(r->body == read(alone / file)) << file;
+  }
+  EXPECT_FALSE(fs::exists(work() / ".downloads.partial"));
+}
+
 TEST_F(ServeTest, GenerationAfterAnEditWritesTheEditedSketchsCity) {
   put_small_and_generate();
   json edited = json::parse(kSmallSketch);
@@ -971,10 +1010,14 @@ TEST_F(ServeTest, GenerationAfterAnEditWritesTheEditedSketchsCity) {
   ASSERT_EQ(wait_for_job(*client)["state"], "done");
   const fs::path alone = testing_util::temp_dir("alone");
   exacity::generate_city(exacity::parse_sketch(edited.dump(), sketch_file()), alone, nullptr);
+  exacity::write_vector_formats(alone, {"gpkg"}, nullptr);
   for (const char* file : {"vector/zones.geojson", "vector/roads.geojson", "vector/road_areas.geojson",
                            "vector/blocks.geojson", "vector/lots.geojson", "vector/buildings.geojson",
-                           "vector/clutter.geojson", "map.svg", "city.city.json", "city.glb", "city.obj"})
+                           "vector/clutter.geojson", "map.svg"})
     EXPECT_TRUE(read(work() / "city" / file) == read(alone / file)) << file;
+  // The 3D files and the GeoPackage, written when asked for, from the city in memory.
+  for (const char* file : {"city.city.json", "city.glb", "city.obj", "city.ply", "city.gpkg"})
+    EXPECT_TRUE(client->Get(std::string("/api/files/") + file)->body == read(alone / file)) << file;
   // The report says what was reused: each kind's count within all it asked for.
   const json reused = json::parse(read(work() / "city" / "report.json"))["reused"];
   for (const char* kind : {"region_plans", "block_plans", "lot_placements", "structure_meshes"}) {

@@ -374,16 +374,16 @@ GltfCounts write_gltf(const Ground& ground, const std::vector<GroundLayer>& grou
   return write_city_part(&ground_layers, city_box(ground), buildings, models, meshes, seed, library, file, clutter);
 }
 
-GltfCounts write_gltf_structures(const Ground& ground, const std::vector<Building>& buildings,
+GltfCounts write_gltf_structures(const geom::Box& city, const std::vector<Building>& buildings,
                                  const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
                                  std::uint64_t seed, const ModelLibrary* library, const std::filesystem::path& file,
                                  const std::vector<ModelInstance>& clutter) {
-  return write_city_part(nullptr, city_box(ground), buildings, models, meshes, seed, library, file, clutter);
+  return write_city_part(nullptr, city, buildings, models, meshes, seed, library, file, clutter);
 }
 
-GltfCounts write_gltf_boxes(const Ground& ground, const std::vector<StructureBox>& boxes, std::uint64_t seed,
+GltfCounts write_gltf_boxes(const geom::Box& city, const std::vector<StructureBox>& boxes, std::uint64_t seed,
                             const std::filesystem::path& file) {
-  const Frame local{local_origin(city_box(ground))};
+  const Frame local{local_origin(city)};
   std::map<Look, Triangles> merged;
   for (const StructureBox& b : boxes) {
     const double x[2] = {b.box.min_x, b.box.max_x}, y[2] = {b.box.min_y, b.box.max_y}, z[2] = {b.bottom, b.top};

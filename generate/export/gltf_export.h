@@ -34,10 +34,11 @@ GltfCounts write_gltf(const Ground& ground, const std::vector<GroundLayer>& grou
                       const std::vector<Mesh>& meshes, std::uint64_t seed, const ModelLibrary* library,
                       const std::filesystem::path& file, const std::vector<ModelInstance>& clutter = {});
 
-// exacity serve's tiles (docs/design.md, Serving: tiles), in write_gltf's frame for the same
-// ground, so a tile's structures are city.glb's to the float.
+// exacity serve's tiles (docs/design.md, Serving: tiles), in write_gltf's frame for the
+// ground whose city_box is `city` (measured once for all tiles, as the whole ground is
+// walked for it), so a tile's structures are city.glb's to the float.
 // The structures given and their clutter, as write_gltf writes them, without the ground.
-GltfCounts write_gltf_structures(const Ground& ground, const std::vector<Building>& buildings,
+GltfCounts write_gltf_structures(const geom::Box& city, const std::vector<Building>& buildings,
                                  const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
                                  std::uint64_t seed, const ModelLibrary* library, const std::filesystem::path& file,
                                  const std::vector<ModelInstance>& clutter = {});
@@ -50,7 +51,7 @@ struct StructureBox {
   ZoneType zone = ZoneType::Residential;
   int id = -1;
 };
-GltfCounts write_gltf_boxes(const Ground& ground, const std::vector<StructureBox>& boxes, std::uint64_t seed,
+GltfCounts write_gltf_boxes(const geom::Box& city, const std::vector<StructureBox>& boxes, std::uint64_t seed,
                             const std::filesystem::path& file);
 
 }  // namespace exacity
