@@ -127,6 +127,7 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
                            city.mapped);
     s.buildings.insert(s.buildings.end(), std::make_move_iterator(mapped.begin()), std::make_move_iterator(mapped.end()));
     give_stable_ids(s.buildings, s.models);
+    city.lot_land = lot_land(city.network.map, planned, city.blocks, city.settings);
     return s;
   });
   city.buildings = std::move(raised.buildings);

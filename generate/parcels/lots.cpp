@@ -106,6 +106,19 @@ double lot_shape(const std::vector<const geom::Cell*>& cells, const std::vector<
 
 bool good_shape(double ratio) { return ratio >= kLotShape.min && ratio <= kLotShape.max; }
 
+// Why a piece of a planned lot, as written (rounded), makes no lot: off the street, too
+// small, or too narrow or shallow for its frontage; null when it makes one. A lot is its
+// rounded cell, so the buildings placed in it lie inside the lot as written.
+const char* refusal(const geom::Cell& cell, const PlannedLot& plan, const CitySettings& city) {
+  const geom::Polygon shape = cell.to_plain();
+  if (geom::area(shape) < city.zone_settings.at(plan.zone).lots.min_lot_area) return "under min_lot_area";
+  const double ratio = lot_shape({&cell}, {&shape.outer});
+  if (ratio == 0) return "no street edge";
+  if (ratio < kLotShape.min) return "shallower than half its width";
+  if (ratio > kLotShape.max) return "deeper than five times its width";
+  return nullptr;
+}
+
 // Each planned lot's pieces in the map, those that make sensible lots: on the street, at
 // least min_lot_area, and within kLotShape. A lot's rank orders the kept pieces of its
 // planned lot.
@@ -120,14 +133,9 @@ std::vector<Lot> kept_lots(const CityMap& city_map, const std::vector<PlannedLot
   tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
     cancel.check();
     const PlannedLot& plan = planned[planned_of[i]];
-    // Collapsed by rounding, off the street, too small, or too narrow or shallow for its
-    // frontage: left open. A lot is its rounded cell, so the buildings placed in it lie
-    // inside the lot as written.
     std::optional<geom::Cell> cell = pieces[i].as_written();
-    if (!cell) return;
+    if (!cell || refusal(*cell, plan, city)) return;
     geom::Polygon shape = cell->to_plain();
-    if (geom::area(shape) < city.zone_settings.at(plan.zone).lots.min_lot_area) return;
-    if (!good_shape(lot_shape({&*cell}, {&shape.outer}))) return;
     kept[i] = Lot{plan.block, plan.zone, {}, std::move(*cell), std::move(shape), planned_of[i], 0, component[i], plan.model};
   });
   std::vector<Lot> lots;
@@ -251,7 +259,7 @@ std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<Planned
     if (next < 0 && !last) continue;
     lot_of_piece[lots[i].piece] = next >= 0 ? lots[next].planned : -1;
     if (next >= 0) ++tally.merged;
-    else ++tally.left_open;
+    else ++tally.left_open, tally.left_open_m2 += geom::area(lots[i].polygon);
   }
   const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
   city_map.map.relabel_components(group, [&](int c, int label) {
@@ -263,6 +271,32 @@ std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<Planned
   });
   make_blocks_whole(city_map, lot_of_block);
   return kept_lots(city_map, planned, city);
+}
+
+std::map<ZoneType, LotLand> lot_land(const CityMap& city_map, const std::vector<PlannedLot>& planned,
+                                     const std::vector<Block>& blocks, const CitySettings& city) {
+  std::map<ZoneType, LotLand> land;
+  for (const Block& b : blocks)
+    if (!b.green) land[b.zone].blocks_m2 += b.cell.area();
+  const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
+  const std::vector<int> kind =
+      city_map.per_label([](const FaceLabel& f) { return f.road_surface() ? LotEdge::kStreet : LotEdge::kInner; });
+  std::vector<int> planned_of;
+  const std::vector<geom::Cell> pieces = city_map.map.cells(group, kind, &planned_of);
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const PlannedLot& plan = planned[planned_of[i]];
+    LotLand& l = land[plan.zone];
+    const double area = pieces[i].area();
+    const std::optional<geom::Cell> cell = pieces[i].as_written();
+    const char* why = cell ? refusal(*cell, plan, city) : "collapsed by rounding";
+    LandShare& share = why ? l.refused[why] : l.lots;
+    ++share.count, share.area_m2 += area;
+  }
+  for (auto& [zone, l] : land) {
+    l.open_m2 = l.blocks_m2 - l.lots.area_m2;
+    for (const auto& [why, share] : l.refused) l.open_m2 -= share.area_m2;
+  }
+  return land;
 }
 
 }  // namespace exacity
