@@ -2,6 +2,7 @@
 // and whole cities whose lots the exact validator accepts.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <set>
 
@@ -54,6 +55,28 @@ TEST(Lots, StreetLotsLineEveryRoadEdgeAndLeaveTheMiddleOpen) {
   }
   // Neighbours along a side share their cut exactly.
   EXPECT_EQ(lots[1][0], lots[0][lots[0].size() - 3]);
+}
+
+TEST(Lots, StreetLotsCoverABlockThinnerThanTwiceTheirDepth) {
+  // A 200 x 60 block with a road on every side and lots 56 m deep, as --like sets them on
+  // Helsinki's centre: every lot reaches half way across, 30 m, so the corner lot of a long
+  // side ends 30 m along the short side, where the short side's lots begin (not 56 m along
+  // it, which left the land between uncut: 26 x 56 m at each corner).
+  geom::PlanarMap map;
+  map.add_ring({{0, 0}, {200, 0}, {200, 60}, {0, 60}}, 0);
+  map.insert_batch();
+  map.label_faces([](const geom::Windings& w) { return geom::winding_of(w, 0) ? 1 : 0; });
+  geom::Cell block = map.cells({-1, 0}, {0, 0})[0];
+  AllocationSettings p;
+  p.lot_width = {20, 20}, p.lot_depth = 56;
+  Random rng(1);
+  const std::vector<geom::Ring> lots = street_lots(block, p, rng);
+  // Every point of the block, on a 1 m grid off its edges, lies in a lot.
+  int uncut = 0;
+  for (double x = 0.5; x < 200; x += 1)
+    for (double y = 0.5; y < 60; y += 1)
+      uncut += std::none_of(lots.begin(), lots.end(), [&](const geom::Ring& l) { return geom::odd_crossings(l, {x, y}); });
+  EXPECT_EQ(uncut, 0);
 }
 
 TEST(Lots, StreetLotsSkipEdgesWithoutARoad) {

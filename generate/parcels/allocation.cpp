@@ -222,6 +222,12 @@ std::vector<geom::Ring> street_lots(const geom::Cell& block, const AllocationSet
       Vec2 d = unit(normal(vertex + n - 1) + normal(vertex));
       return closed || dot(d, own) > 0.5 ? d : own;
     };
+    // How deep the lot arriving at a vertex reaches there: lot_depth, at most half way
+    // across (as run_lots cuts its last lot). An owned corner's lot ends that far back, so
+    // the run leaving the corner starts where that depth, not lot_depth, meets it.
+    auto corner_depth = [&](std::size_t vertex) {
+      return std::min(p.lot_depth, ray_distance(rings, r.points[vertex % n], normal(vertex + n - 1), 4 * p.lot_depth) / 2);
+    };
     auto owned = [&](std::size_t vertex) {
       const double t = turn(vertex);
       return !closed && road(vertex + n - 1) && road(vertex) && t >= kOwnedCorner.min && t <= kOwnedCorner.max;
@@ -237,8 +243,8 @@ std::vector<geom::Ring> street_lots(const geom::Cell& block, const AllocationSet
           normals.push_back(k == i ? normal(i) : k == j ? normal(j - 1) : unit(normal(k - 1) + normal(k)));
         }
         RunEnd first{corner_dir(i, normals.front())}, last{corner_dir(j, normals.back())};
-        if (owned(i)) first = {normals.front(), p.lot_depth / std::sin(turn(i)), 0};
-        if (owned(j)) last = {normals.back(), 0, kFrontOverhang + std::max(0.0, p.lot_depth / std::tan(turn(j)))};
+        if (owned(i)) first = {normals.front(), corner_depth(i) / std::sin(turn(i)), 0};
+        if (owned(j)) last = {normals.back(), 0, kFrontOverhang + std::max(0.0, corner_depth(j) / std::tan(turn(j)))};
         const double width = p.lot_frontages.empty() ? rng.uniform(p.lot_width.min, p.lot_width.max) : 0;
         run_lots(pts, normals, first, last, rings, p, width, rng, lots);
       }
