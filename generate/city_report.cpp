@@ -292,6 +292,7 @@ ordered_json lot_land_report(const std::map<ZoneType, LotLand>& land) {
     for (const auto& [why, s] : l.refused) refused[why] = figures(s);
     out[std::string(name(zone))] = {{"blocks_m2", std::round(l.blocks_m2)},
                                     {"lots", figures(l.lots)},
+                                    {"pieces_joined_to_a_lot", figures(l.joined)},
                                     {"refused", refused},
                                     {"no_lot", {{"area_m2", std::round(l.open_m2)}, {"share", share(l.open_m2)}}}};
   }

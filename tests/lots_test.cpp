@@ -79,6 +79,32 @@ TEST(Lots, StreetLotsCoverABlockThinnerThanTwiceTheirDepth) {
   EXPECT_EQ(uncut, 0);
 }
 
+TEST(Lots, StreetLotsReachAcrossABlockWithNoRoadBehind) {
+  // A 200 x 16 block, a road along its foot only, lots 30 m deep: no lots come from the
+  // other side, so they reach all the way across (half way, 8 m deep and near 16 m wide,
+  // made them shallower than half their width, all refused).
+  geom::PlanarMap map;
+  map.add_ring({{0, 0}, {200, 0}, {200, 16}, {0, 16}}, 0);
+  map.add_ring({{-10, -10}, {210, -10}, {210, 0}, {-10, 0}}, 1);
+  map.insert_batch();
+  map.label_faces([](const geom::Windings& w) { return geom::winding_of(w, 0) ? 1 : geom::winding_of(w, 1) ? 2 : 0; });
+  geom::Cell block = map.cells({-1, 0, -1}, {BlockEdge::kNoRoad, 0, 0})[0];
+  AllocationSettings p;
+  p.lot_width = {20, 20}, p.lot_depth = 30;
+  Random rng(1);
+  const std::vector<geom::Ring> lots = street_lots(block, p, rng);
+  int uncut = 0;
+  for (double x = 0.5; x < 200; x += 1)
+    for (double y = 0.5; y < 16; y += 1)
+      uncut += std::none_of(lots.begin(), lots.end(), [&](const geom::Ring& l) { return geom::odd_crossings(l, {x, y}); });
+  EXPECT_EQ(uncut, 0);
+  for (const geom::Ring& lot : lots) {
+    double depth = 0;
+    for (Vec2 v : lot) depth = std::max(depth, v.y);
+    EXPECT_NEAR(depth, 16, 1e-9);
+  }
+}
+
 TEST(Lots, StreetLotsSkipEdgesWithoutARoad) {
   // Every edge faces a zone edge (kind -1), none a road.
   geom::PlanarMap map;
@@ -129,7 +155,33 @@ TEST(Lots, ShallowStripsBetweenRoadsAreBuiltOn) {
   const auto& lots = report["statistics"]["zones"]["residential"]["lots"];
   EXPECT_GT(lots["area_m2"]["count"].get<int>(), 20);
   EXPECT_LE(lots["share_without_building"].get<double>(), 0.03);
-  EXPECT_GT(report["unbuilt_lots"]["merged"].get<int>(), 0);
+  // The outer strips, a road on one side only, take lots all the way across (they were
+  // cut half way, and those lots merged after placing); the strips between roads take two
+  // rows back to back: every m2 of the blocks is in a lot.
+  EXPECT_EQ(report["lot_land"]["residential"]["lots"]["share"].get<double>(), 1.0);
+}
+
+TEST(Lots, RefusedPiecesJoinTheLotBesideThemAndTheLandIsAccountedFor) {
+  // Three streets, one steep across the others: where its lots meet a cross street's, a
+  // piece 357 m2 shallower than half its width was left open; it joins the lot it shares
+  // the longest edge with, and report.json's lot_land accounts for every m2 of the blocks.
+  std::string features = R"({"type": "Feature", "properties": {"zone": "residential"}, "geometry": {"type": "Polygon",
+      "coordinates": [[[0,0],[240,0],[240,200],[0,200],[0,0]]]}})";
+  for (const char* line : {"[[-20,70],[260,70]]", "[[150,-20],[150,220]]", "[[38,-93],[142,293]]"})
+    features += R"(, {"type": "Feature", "properties": {"road": "local"}, "geometry": {"type": "LineString", "coordinates": )" +
+                std::string(line) + "}}";
+  nlohmann::ordered_json report;
+  Validation v = generate_and_validate("joined", R"({"type": "FeatureCollection", "exacity": {"seed": 2, "zones":
+      {"residential": {"layout": "streets"}}}, "features": [)" + features + "]}",
+                                       &report);
+  ASSERT_TRUE(v.ok()) << v.problems[0];
+  const auto& land = report["lot_land"]["residential"];
+  ASSERT_TRUE(land.contains("pieces_joined_to_a_lot"));
+  EXPECT_EQ(land["pieces_joined_to_a_lot"]["count"].get<int>(), 1);
+  EXPECT_TRUE(land["refused"].empty()) << land["refused"].dump();
+  double m2 = land["lots"]["area_m2"].get<double>() + land["no_lot"]["area_m2"].get<double>();
+  for (const auto& [why, piece] : land["refused"].items()) m2 += piece["area_m2"].get<double>();
+  EXPECT_NEAR(m2, land["blocks_m2"].get<double>(), 2);  // each figure rounded to the m2
 }
 
 TEST(Lots, BlocksTooSmallToCutAreOneLot) {
