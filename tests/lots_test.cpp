@@ -29,15 +29,29 @@ Validation generate_and_validate(const std::string& name, const std::string& tex
   return validate_output(dir / "out");
 }
 
+// A w x h block at the origin with a road on every side.
+geom::Cell block_with_roads_round(double w, double h) {
+  geom::PlanarMap map;
+  map.add_ring({{0, 0}, {w, 0}, {w, h}, {0, h}}, 0);
+  map.insert_batch();
+  map.label_faces([](const geom::Windings& wn) { return geom::winding_of(wn, 0) ? 1 : 0; });
+  return map.cells({-1, 0}, {0, 0})[0];
+}
+
+// The points of a 1 m grid over the block [0, w] x [0, h] (off its edges) that lie in no lot.
+int uncut(const std::vector<geom::Ring>& lots, int w, int h) {
+  int n = 0;
+  for (double x = 0.5; x < w; x += 1)
+    for (double y = 0.5; y < h; y += 1)
+      n += std::none_of(lots.begin(), lots.end(), [&](const geom::Ring& l) { return geom::odd_crossings(l, {x, y}); });
+  return n;
+}
+
 }  // namespace
 
 TEST(Lots, StreetLotsLineEveryRoadEdgeAndLeaveTheMiddleOpen) {
   // A 120 x 100 block with a road on every side; lots 20 m wide and 30 m deep.
-  geom::PlanarMap map;
-  map.add_ring({{0, 0}, {120, 0}, {120, 100}, {0, 100}}, 0);
-  map.insert_batch();
-  map.label_faces([](const geom::Windings& w) { return geom::winding_of(w, 0) ? 1 : 0; });
-  geom::Cell block = map.cells({-1, 0}, {0, 0})[0];
+  const geom::Cell block = block_with_roads_round(120, 100);
   AllocationSettings p;
   p.lot_width = {20, 20}, p.lot_depth = 30;
   Random rng(1);
@@ -62,21 +76,13 @@ TEST(Lots, StreetLotsCoverABlockThinnerThanTwiceTheirDepth) {
   // Helsinki's centre: every lot reaches half way across, 30 m, so the corner lot of a long
   // side ends 30 m along the short side, where the short side's lots begin (not 56 m along
   // it, which left the land between uncut: 26 x 56 m at each corner).
-  geom::PlanarMap map;
-  map.add_ring({{0, 0}, {200, 0}, {200, 60}, {0, 60}}, 0);
-  map.insert_batch();
-  map.label_faces([](const geom::Windings& w) { return geom::winding_of(w, 0) ? 1 : 0; });
-  geom::Cell block = map.cells({-1, 0}, {0, 0})[0];
+  const geom::Cell block = block_with_roads_round(200, 60);
   AllocationSettings p;
   p.lot_width = {20, 20}, p.lot_depth = 56;
   Random rng(1);
   const std::vector<geom::Ring> lots = street_lots(block, p, rng);
   // Every point of the block, on a 1 m grid off its edges, lies in a lot.
-  int uncut = 0;
-  for (double x = 0.5; x < 200; x += 1)
-    for (double y = 0.5; y < 60; y += 1)
-      uncut += std::none_of(lots.begin(), lots.end(), [&](const geom::Ring& l) { return geom::odd_crossings(l, {x, y}); });
-  EXPECT_EQ(uncut, 0);
+  EXPECT_EQ(uncut(lots, 200, 60), 0);
 }
 
 TEST(Lots, StreetLotsReachAcrossABlockWithNoRoadBehind) {
@@ -93,11 +99,7 @@ TEST(Lots, StreetLotsReachAcrossABlockWithNoRoadBehind) {
   p.lot_width = {20, 20}, p.lot_depth = 30;
   Random rng(1);
   const std::vector<geom::Ring> lots = street_lots(block, p, rng);
-  int uncut = 0;
-  for (double x = 0.5; x < 200; x += 1)
-    for (double y = 0.5; y < 16; y += 1)
-      uncut += std::none_of(lots.begin(), lots.end(), [&](const geom::Ring& l) { return geom::odd_crossings(l, {x, y}); });
-  EXPECT_EQ(uncut, 0);
+  EXPECT_EQ(uncut(lots, 200, 16), 0);
   for (const geom::Ring& lot : lots) {
     double depth = 0;
     for (Vec2 v : lot) depth = std::max(depth, v.y);

@@ -217,6 +217,19 @@ std::vector<Lot> with_refused_blocks_whole(CityMap& city_map, const std::vector<
   return kept_lots(city_map, planned, city);
 }
 
+// Relabels each piece of lot faces (a component as geom::PlanarMap::cells finds them,
+// grouped by lot) in `lot_of_piece` to the planned lot it maps to (-1: no lot).
+void relabel_pieces(CityMap& city_map, const std::map<int, int>& lot_of_piece) {
+  const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
+  city_map.map.relabel_components(group, [&](int c, int label) {
+    auto it = lot_of_piece.find(c);
+    if (it == lot_of_piece.end()) return label;
+    FaceLabel l = city_map.labels[label];
+    l.lot = it->second;
+    return city_map.label_index(l);
+  });
+}
+
 // Pieces of planned lots refused as lots (too shallow, off the street, too small: the
 // allocation's cuts meeting a block's odd corners and narrows) join the lot of their block
 // they share the longest edge with, of those the joined land keeps within kLotShape, all
@@ -249,14 +262,7 @@ std::vector<Lot> with_refused_pieces_joined(CityMap& city_map, const std::vector
     if (joined) ++(*joined)[piece.zone].count, (*joined)[piece.zone].area_m2 += geom::area(piece.polygon);
   }
   if (lot_of_piece.empty()) return lots;
-  const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
-  city_map.map.relabel_components(group, [&](int c, int label) {
-    auto it = lot_of_piece.find(c);
-    if (it == lot_of_piece.end()) return label;
-    FaceLabel l = city_map.labels[label];
-    l.lot = it->second;
-    return city_map.label_index(l);
-  });
+  relabel_pieces(city_map, lot_of_piece);
   return kept_lots(city_map, planned, city);
 }
 
@@ -314,14 +320,7 @@ std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<Planned
     if (next >= 0) ++tally.merged;
     else ++tally.left_open, tally.left_open_m2 += geom::area(lots[i].polygon);
   }
-  const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
-  city_map.map.relabel_components(group, [&](int c, int label) {
-    auto it = lot_of_piece.find(c);
-    if (it == lot_of_piece.end()) return label;
-    FaceLabel l = city_map.labels[label];
-    l.lot = it->second;
-    return city_map.label_index(l);
-  });
+  relabel_pieces(city_map, lot_of_piece);
   make_blocks_whole(city_map, lot_of_block);
   return kept_lots(city_map, planned, city);
 }
