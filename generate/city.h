@@ -2,6 +2,7 @@
 // renderer read (docs/design.md, The city model).
 #pragma once
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -35,6 +36,7 @@ struct City {
   std::vector<Block> blocks;
   std::vector<Lot> lots;
   UnbuiltLots unbuilt_lots;  // lots merged into a neighbour or left open: no placer could build on them
+  std::map<ZoneType, LotLand> lot_land;  // where the blocks' land went, as the lots ended
   std::vector<Building> buildings;  // extruded, then the mapped ones kept
   MappedTally mapped;  // what became of the sketch's mapped buildings
   std::vector<char> held_lots;  // per lot: a mapped building stands on it

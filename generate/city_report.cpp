@@ -281,6 +281,25 @@ ordered_json mapped_buildings_report(const City& city) {
           {"built_up_share", {{"mapped", share(mapped_area)}, {"generated", share(generated_area)}}}};
 }
 
+// Per zone type, where its blocks' land went (LotLand): m² and the share of the blocks' land.
+ordered_json lot_land_report(const std::map<ZoneType, LotLand>& land) {
+  ordered_json out = ordered_json::object();
+  for (const auto& [zone, l] : land) {
+    auto share = [&](double m2) { return l.blocks_m2 > 0 ? std::round(m2 / l.blocks_m2 * 1e4) / 1e4 : 0.0; };
+    auto figures = [&](const LandShare& s) {
+      return ordered_json{{"count", s.count}, {"area_m2", std::round(s.area_m2)}, {"share", share(s.area_m2)}};
+    };
+    ordered_json refused = ordered_json::object();
+    for (const auto& [why, s] : l.refused) refused[why] = figures(s);
+    out[std::string(name(zone))] = {{"blocks_m2", std::round(l.blocks_m2)},
+                                    {"lots", figures(l.lots)},
+                                    {"pieces_joined_to_a_lot", figures(l.joined)},
+                                    {"refused", refused},
+                                    {"no_lot", {{"area_m2", std::round(l.open_m2)}, {"share", share(l.open_m2)}}}};
+  }
+  return out;
+}
+
 }  // namespace
 
 ordered_json city_report(const City& city, const std::vector<std::string>& vector_formats, bool city_osm) {
@@ -298,7 +317,9 @@ ordered_json city_report(const City& city, const std::vector<std::string>& vecto
        {{"vector_formats", vector_formats.empty() ? std::vector<std::string>{"geojson"} : vector_formats},
         {"city_osm", city_osm ? "city.osm" : "not written: the sketch has no CRS (EPSG) to place it on Earth"}}},
       {"road_network", road_network_report(city.network, city.drawn)},
-      {"unbuilt_lots", {{"merged", city.unbuilt_lots.merged}, {"left_open", city.unbuilt_lots.left_open}}},
+      {"unbuilt_lots", {{"merged", city.unbuilt_lots.merged}, {"left_open", city.unbuilt_lots.left_open},
+                        {"left_open_m2", std::round(city.unbuilt_lots.left_open_m2)}}},
+      {"lot_land", lot_land_report(city.lot_land)},
       {"empty_zones", empty_zones_report(city)},
       {"roads_without_area", roads_without_area_report(city)},
       {"placement_fallbacks", placement_fallbacks_report(city)},

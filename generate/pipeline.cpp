@@ -110,10 +110,11 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
                                                                                regions ? &regions->road_plans : nullptr); });
   city.blocks = stages.run("blocks", [&] { return cut_blocks(city.network.map, city.settings, city.drawn.zones, city.network.uses); });
   std::vector<PlannedLot> planned;
+  std::map<ZoneType, LandShare> joined;  // pieces refused as lots that joined a neighbour, per zone type
   city.lots = stages.run("lots", [&] {
     planned = plan_lots(city.blocks, city.settings, city.model_library(), city.channels,
                         regions ? &regions->lot_plans : nullptr);
-    return with_density(insert_lots(city.network.map, planned, city.settings), city.blocks);
+    return with_density(insert_lots(city.network.map, planned, city.settings, &joined), city.blocks);
   });
   Structures raised = stages.run("buildings", [&] {
     std::vector<Building> mapped = mapped_footprints(city.drawn.buildings, city.network.map, city.mapped);
@@ -127,6 +128,7 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
                            city.mapped);
     s.buildings.insert(s.buildings.end(), std::make_move_iterator(mapped.begin()), std::make_move_iterator(mapped.end()));
     give_stable_ids(s.buildings, s.models);
+    city.lot_land = lot_land(city.network.map, planned, city.blocks, city.settings, joined);
     return s;
   });
   city.buildings = std::move(raised.buildings);

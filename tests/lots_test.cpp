@@ -2,6 +2,7 @@
 // and whole cities whose lots the exact validator accepts.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <set>
 
@@ -28,15 +29,29 @@ Validation generate_and_validate(const std::string& name, const std::string& tex
   return validate_output(dir / "out");
 }
 
+// A w x h block at the origin with a road on every side.
+geom::Cell block_with_roads_round(double w, double h) {
+  geom::PlanarMap map;
+  map.add_ring({{0, 0}, {w, 0}, {w, h}, {0, h}}, 0);
+  map.insert_batch();
+  map.label_faces([](const geom::Windings& wn) { return geom::winding_of(wn, 0) ? 1 : 0; });
+  return map.cells({-1, 0}, {0, 0})[0];
+}
+
+// The points of a 1 m grid over the block [0, w] x [0, h] (off its edges) that lie in no lot.
+int uncut(const std::vector<geom::Ring>& lots, int w, int h) {
+  int n = 0;
+  for (double x = 0.5; x < w; x += 1)
+    for (double y = 0.5; y < h; y += 1)
+      n += std::none_of(lots.begin(), lots.end(), [&](const geom::Ring& l) { return geom::odd_crossings(l, {x, y}); });
+  return n;
+}
+
 }  // namespace
 
 TEST(Lots, StreetLotsLineEveryRoadEdgeAndLeaveTheMiddleOpen) {
   // A 120 x 100 block with a road on every side; lots 20 m wide and 30 m deep.
-  geom::PlanarMap map;
-  map.add_ring({{0, 0}, {120, 0}, {120, 100}, {0, 100}}, 0);
-  map.insert_batch();
-  map.label_faces([](const geom::Windings& w) { return geom::winding_of(w, 0) ? 1 : 0; });
-  geom::Cell block = map.cells({-1, 0}, {0, 0})[0];
+  const geom::Cell block = block_with_roads_round(120, 100);
   AllocationSettings p;
   p.lot_width = {20, 20}, p.lot_depth = 30;
   Random rng(1);
@@ -54,6 +69,42 @@ TEST(Lots, StreetLotsLineEveryRoadEdgeAndLeaveTheMiddleOpen) {
   }
   // Neighbours along a side share their cut exactly.
   EXPECT_EQ(lots[1][0], lots[0][lots[0].size() - 3]);
+}
+
+TEST(Lots, StreetLotsCoverABlockThinnerThanTwiceTheirDepth) {
+  // A 200 x 60 block with a road on every side and lots 56 m deep, as --like sets them on
+  // Helsinki's centre: every lot reaches half way across, 30 m, so the corner lot of a long
+  // side ends 30 m along the short side, where the short side's lots begin (not 56 m along
+  // it, which left the land between uncut: 26 x 56 m at each corner).
+  const geom::Cell block = block_with_roads_round(200, 60);
+  AllocationSettings p;
+  p.lot_width = {20, 20}, p.lot_depth = 56;
+  Random rng(1);
+  const std::vector<geom::Ring> lots = street_lots(block, p, rng);
+  // Every point of the block, on a 1 m grid off its edges, lies in a lot.
+  EXPECT_EQ(uncut(lots, 200, 60), 0);
+}
+
+TEST(Lots, StreetLotsReachAcrossABlockWithNoRoadBehind) {
+  // A 200 x 16 block, a road along its foot only, lots 30 m deep: no lots come from the
+  // other side, so they reach all the way across (half way, 8 m deep and near 16 m wide,
+  // made them shallower than half their width, all refused).
+  geom::PlanarMap map;
+  map.add_ring({{0, 0}, {200, 0}, {200, 16}, {0, 16}}, 0);
+  map.add_ring({{-10, -10}, {210, -10}, {210, 0}, {-10, 0}}, 1);
+  map.insert_batch();
+  map.label_faces([](const geom::Windings& w) { return geom::winding_of(w, 0) ? 1 : geom::winding_of(w, 1) ? 2 : 0; });
+  geom::Cell block = map.cells({-1, 0, -1}, {BlockEdge::kNoRoad, 0, 0})[0];
+  AllocationSettings p;
+  p.lot_width = {20, 20}, p.lot_depth = 30;
+  Random rng(1);
+  const std::vector<geom::Ring> lots = street_lots(block, p, rng);
+  EXPECT_EQ(uncut(lots, 200, 16), 0);
+  for (const geom::Ring& lot : lots) {
+    double depth = 0;
+    for (Vec2 v : lot) depth = std::max(depth, v.y);
+    EXPECT_NEAR(depth, 16, 1e-9);
+  }
 }
 
 TEST(Lots, StreetLotsSkipEdgesWithoutARoad) {
@@ -106,7 +157,33 @@ TEST(Lots, ShallowStripsBetweenRoadsAreBuiltOn) {
   const auto& lots = report["statistics"]["zones"]["residential"]["lots"];
   EXPECT_GT(lots["area_m2"]["count"].get<int>(), 20);
   EXPECT_LE(lots["share_without_building"].get<double>(), 0.03);
-  EXPECT_GT(report["unbuilt_lots"]["merged"].get<int>(), 0);
+  // The outer strips, a road on one side only, take lots all the way across (they were
+  // cut half way, and those lots merged after placing); the strips between roads take two
+  // rows back to back: every m2 of the blocks is in a lot.
+  EXPECT_EQ(report["lot_land"]["residential"]["lots"]["share"].get<double>(), 1.0);
+}
+
+TEST(Lots, RefusedPiecesJoinTheLotBesideThemAndTheLandIsAccountedFor) {
+  // Three streets, one steep across the others: where its lots meet a cross street's, a
+  // piece 357 m2 shallower than half its width was left open; it joins the lot it shares
+  // the longest edge with, and report.json's lot_land accounts for every m2 of the blocks.
+  std::string features = R"({"type": "Feature", "properties": {"zone": "residential"}, "geometry": {"type": "Polygon",
+      "coordinates": [[[0,0],[240,0],[240,200],[0,200],[0,0]]]}})";
+  for (const char* line : {"[[-20,70],[260,70]]", "[[150,-20],[150,220]]", "[[38,-93],[142,293]]"})
+    features += R"(, {"type": "Feature", "properties": {"road": "local"}, "geometry": {"type": "LineString", "coordinates": )" +
+                std::string(line) + "}}";
+  nlohmann::ordered_json report;
+  Validation v = generate_and_validate("joined", R"({"type": "FeatureCollection", "exacity": {"seed": 2, "zones":
+      {"residential": {"layout": "streets"}}}, "features": [)" + features + "]}",
+                                       &report);
+  ASSERT_TRUE(v.ok()) << v.problems[0];
+  const auto& land = report["lot_land"]["residential"];
+  ASSERT_TRUE(land.contains("pieces_joined_to_a_lot"));
+  EXPECT_EQ(land["pieces_joined_to_a_lot"]["count"].get<int>(), 1);
+  EXPECT_TRUE(land["refused"].empty()) << land["refused"].dump();
+  double m2 = land["lots"]["area_m2"].get<double>() + land["no_lot"]["area_m2"].get<double>();
+  for (const auto& [why, piece] : land["refused"].items()) m2 += piece["area_m2"].get<double>();
+  EXPECT_NEAR(m2, land["blocks_m2"].get<double>(), 2);  // each figure rounded to the m2
 }
 
 TEST(Lots, BlocksTooSmallToCutAreOneLot) {

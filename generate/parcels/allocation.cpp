@@ -21,20 +21,23 @@ using geom::dot;
 using geom::left_normal;
 using geom::unit;
 
-// How far a ray from p along the unit vector `dir` runs inside the block before it meets
-// a boundary edge (past a millimetre, so the edge it starts on does not count). A choice
-// of lot depth, made in doubles; the map decides the lots' topology exactly.
-double ray_distance(const std::vector<geom::KindedRing>& rings, Vec2 p, Vec2 dir, double limit) {
+// How deep lots may reach from p along the unit vector `dir`: half the way the ray runs
+// inside the block before it meets a boundary edge (past a millimetre, so the edge it
+// starts on does not count) when that edge is a road's, whose lots take the other half;
+// the whole way when no lots come from there (water, a park, another zone). A choice of
+// lot depth, made in doubles; the map decides the lots' topology exactly.
+double lot_room(const std::vector<geom::KindedRing>& rings, Vec2 p, Vec2 dir, double limit) {
   double best = limit;
+  bool road = true;
   for (const auto& r : rings)
     for (std::size_t i = 0, n = r.points.size(); i < n; ++i) {
       Vec2 a = r.points[i], e = r.points[(i + 1) % n] - a;
       double den = cross(dir, e);
       if (den == 0) continue;
       double t = cross(a - p, e) / den, u = cross(a - p, dir) / den;
-      if (t > 1e-3 && u >= 0 && u <= 1) best = std::min(best, t);
+      if (t > 1e-3 && u >= 0 && u <= 1 && t < best) best = t, road = BlockEdge::is_road(r.kinds[i]);
     }
-  return best;
+  return road ? best / 2 : best;
 }
 
 // Where a run of street edges is broken: the kind changes between road and not, or the
@@ -89,8 +92,8 @@ void run_lots(const std::vector<Vec2>& points, const std::vector<Vec2>& normals,
   // much wider than deep (kLotShape).
   std::size_t mid = 0;
   while (mid + 2 < points.size() && at_length[mid + 1] < (begin + total) / 2) ++mid;
-  const double across = ray_distance(rings, lerp(points[mid], points[mid + 1], 0.5), left_normal(points[mid], points[mid + 1]), 4 * depth);
-  const double widest = std::max(2 * std::min(depth, across / 2), min_edge);
+  const double room = lot_room(rings, lerp(points[mid], points[mid + 1], 0.5), left_normal(points[mid], points[mid + 1]), 4 * depth);
+  const double widest = std::max(2 * std::min(depth, room), min_edge);
   std::vector<double> cut_at;  // where along the run each lot starts, and the last one ends
   if (!p.lot_frontages.empty()) {
     for (double f : drawn_cuts(total - begin, p.lot_frontages, widest, rng)) cut_at.push_back(begin + (total - begin) * f);
@@ -118,7 +121,7 @@ void run_lots(const std::vector<Vec2>& points, const std::vector<Vec2>& normals,
       dir = last.dir;
     }
     double reach = depth / std::max(dot(dir, k == count ? normals.back() : normals[seg]), 0.5);
-    cuts.push_back({at, dir, std::min(reach, ray_distance(rings, depth_from, dir, 4 * depth) / 2)});
+    cuts.push_back({at, dir, std::min(reach, lot_room(rings, depth_from, dir, 4 * depth))});
     after.push_back(k == count ? points.size() : seg + 1);
   }
   // Neighbouring cuts that would cross (inside a bend) stop short of where they meet.
@@ -217,10 +220,26 @@ std::vector<geom::Ring> street_lots(const geom::Cell& block, const AllocationSet
     }
     // At a corner the cut runs along the bisector of the two edges' inward normals; a
     // square-ish convex corner between two streets goes whole to the lot arriving there,
-    // and the run leaving it starts where that lot's back line meets it.
+    // and the run leaving it starts where that lot's back line meets it. Where the run meets
+    // an edge with no road, whose side no lots come from, the cut runs along that edge (when
+    // it turns into the block by 30° to 150°, and the cut ends on it), so the lot takes the
+    // land up to it.
     auto corner_dir = [&](std::size_t vertex, Vec2 own) {
+      if (!closed && road(vertex + n - 1) != road(vertex)) {
+        const Vec2 v = r.points[vertex % n], far = road(vertex) ? r.points[(vertex + n - 1) % n] : r.points[(vertex + 1) % n];
+        const Vec2 along = unit(far - v);
+        if (dot(along, own) >= 0.5 &&
+            std::min(p.lot_depth / dot(along, own), lot_room(rings, v, along, 4 * p.lot_depth)) <= geom::distance(v, far))
+          return along;
+      }
       Vec2 d = unit(normal(vertex + n - 1) + normal(vertex));
       return closed || dot(d, own) > 0.5 ? d : own;
+    };
+    // How deep the lot arriving at a vertex reaches there: lot_depth, at most the room
+    // across (lot_room, as run_lots cuts its last lot). An owned corner's lot ends that far back, so
+    // the run leaving the corner starts where that depth, not lot_depth, meets it.
+    auto corner_depth = [&](std::size_t vertex) {
+      return std::min(p.lot_depth, lot_room(rings, r.points[vertex % n], normal(vertex + n - 1), 4 * p.lot_depth));
     };
     auto owned = [&](std::size_t vertex) {
       const double t = turn(vertex);
@@ -237,8 +256,8 @@ std::vector<geom::Ring> street_lots(const geom::Cell& block, const AllocationSet
           normals.push_back(k == i ? normal(i) : k == j ? normal(j - 1) : unit(normal(k - 1) + normal(k)));
         }
         RunEnd first{corner_dir(i, normals.front())}, last{corner_dir(j, normals.back())};
-        if (owned(i)) first = {normals.front(), p.lot_depth / std::sin(turn(i)), 0};
-        if (owned(j)) last = {normals.back(), 0, kFrontOverhang + std::max(0.0, p.lot_depth / std::tan(turn(j)))};
+        if (owned(i)) first = {normals.front(), corner_depth(i) / std::sin(turn(i)), 0};
+        if (owned(j)) last = {normals.back(), 0, kFrontOverhang + std::max(0.0, corner_depth(j) / std::tan(turn(j)))};
         const double width = p.lot_frontages.empty() ? rng.uniform(p.lot_width.min, p.lot_width.max) : 0;
         run_lots(pts, normals, first, last, rings, p, width, rng, lots);
       }

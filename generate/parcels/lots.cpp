@@ -106,34 +106,49 @@ double lot_shape(const std::vector<const geom::Cell*>& cells, const std::vector<
 
 bool good_shape(double ratio) { return ratio >= kLotShape.min && ratio <= kLotShape.max; }
 
+// Why a piece of a planned lot, as written (rounded), makes no lot: off the street, too
+// small, or too narrow or shallow for its frontage; null when it makes one. A lot is its
+// rounded cell, so the buildings placed in it lie inside the lot as written.
+const char* refusal(const geom::Cell& cell, const PlannedLot& plan, const CitySettings& city) {
+  const geom::Polygon shape = cell.to_plain();
+  if (geom::area(shape) < city.zone_settings.at(plan.zone).lots.min_lot_area) return "under min_lot_area";
+  const double ratio = lot_shape({&cell}, {&shape.outer});
+  if (ratio == 0) return "no street edge";
+  if (ratio < kLotShape.min) return "shallower than half its width";
+  if (ratio > kLotShape.max) return "deeper than five times its width";
+  return nullptr;
+}
+
 // Each planned lot's pieces in the map, those that make sensible lots: on the street, at
 // least min_lot_area, and within kLotShape. A lot's rank orders the kept pieces of its
-// planned lot.
-std::vector<Lot> kept_lots(const CityMap& city_map, const std::vector<PlannedLot>& planned, const CitySettings& city) {
+// planned lot. The pieces refused once rounded, when `refused` is given, go there.
+std::vector<Lot> kept_lots(const CityMap& city_map, const std::vector<PlannedLot>& planned, const CitySettings& city,
+                           std::vector<Lot>* refused = nullptr) {
   const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
   const std::vector<int> kind =
       city_map.per_label([](const FaceLabel& f) { return f.road_surface() ? LotEdge::kStreet : LotEdge::kInner; });
   std::vector<int> planned_of, component;
   std::vector<geom::Cell> pieces = city_map.map.cells(group, kind, &planned_of, &component);
   std::vector<std::optional<Lot>> kept(pieces.size());
+  std::vector<char> is_lot(pieces.size(), 0);
   const CancelCheck cancel;
   tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
     cancel.check();
     const PlannedLot& plan = planned[planned_of[i]];
-    // Collapsed by rounding, off the street, too small, or too narrow or shallow for its
-    // frontage: left open. A lot is its rounded cell, so the buildings placed in it lie
-    // inside the lot as written.
     std::optional<geom::Cell> cell = pieces[i].as_written();
     if (!cell) return;
+    is_lot[i] = !refusal(*cell, plan, city);
+    if (!is_lot[i] && !refused) return;
     geom::Polygon shape = cell->to_plain();
-    if (geom::area(shape) < city.zone_settings.at(plan.zone).lots.min_lot_area) return;
-    if (!good_shape(lot_shape({&*cell}, {&shape.outer}))) return;
     kept[i] = Lot{plan.block, plan.zone, {}, std::move(*cell), std::move(shape), planned_of[i], 0, component[i], plan.model};
   });
   std::vector<Lot> lots;
   std::map<int, int> pieces_of_planned;
-  for (auto& lot : kept)
-    if (lot) lot->rank = pieces_of_planned[lot->planned]++, lots.push_back(std::move(*lot));
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    if (!kept[i]) continue;
+    if (!is_lot[i]) refused->push_back(std::move(*kept[i]));
+    else kept[i]->rank = pieces_of_planned[kept[i]->planned]++, lots.push_back(std::move(*kept[i]));
+  }
   return lots;
 }
 
@@ -202,10 +217,59 @@ std::vector<Lot> with_refused_blocks_whole(CityMap& city_map, const std::vector<
   return kept_lots(city_map, planned, city);
 }
 
+// Relabels each piece of lot faces (a component as geom::PlanarMap::cells finds them,
+// grouped by lot) in `lot_of_piece` to the planned lot it maps to (-1: no lot).
+void relabel_pieces(CityMap& city_map, const std::map<int, int>& lot_of_piece) {
+  const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
+  city_map.map.relabel_components(group, [&](int c, int label) {
+    auto it = lot_of_piece.find(c);
+    if (it == lot_of_piece.end()) return label;
+    FaceLabel l = city_map.labels[label];
+    l.lot = it->second;
+    return city_map.label_index(l);
+  });
+}
+
+// Pieces of planned lots refused as lots (too shallow, off the street, too small: the
+// allocation's cuts meeting a block's odd corners and narrows) join the lot of their block
+// they share the longest edge with, of those the joined land keeps within kLotShape, all
+// it took so far counted; a piece no lot can take stays refused (lot_land reports it).
+std::vector<Lot> with_refused_pieces_joined(CityMap& city_map, const std::vector<PlannedLot>& planned,
+                                            std::vector<Lot> lots, const std::vector<Lot>& refused,
+                                            const CitySettings& city, std::map<ZoneType, LandShare>* joined) {
+  std::map<int, std::vector<int>> of_block;
+  for (std::size_t i = 0; i < lots.size(); ++i) of_block[lots[i].block].push_back(static_cast<int>(i));
+  std::vector<std::vector<const Lot*>> taken(lots.size());  // per lot: the pieces it takes
+  std::map<int, int> lot_of_piece;
+  for (const Lot& piece : refused) {
+    const auto block = of_block.find(piece.block);
+    if (block == of_block.end()) continue;
+    int best = -1;
+    double longest = 0;
+    for (const int k : block->second) {
+      const Lot& lot = lots[k];
+      if (!piece.cell.bounds().meets(lot.cell.bounds())) continue;
+      const double d = shared_length(piece.polygon.outer, lot.polygon.outer);
+      if (d <= longest) continue;
+      std::vector<const geom::Cell*> cells{&lot.cell, &piece.cell};
+      std::vector<const geom::Ring*> rings{&lot.polygon.outer, &piece.polygon.outer};
+      for (const Lot* t : taken[k]) cells.push_back(&t->cell), rings.push_back(&t->polygon.outer);
+      if (good_shape(lot_shape(cells, rings))) longest = d, best = k;
+    }
+    if (best < 0) continue;
+    taken[best].push_back(&piece);
+    lot_of_piece[piece.piece] = lots[best].planned;
+    if (joined) ++(*joined)[piece.zone].count, (*joined)[piece.zone].area_m2 += geom::area(piece.polygon);
+  }
+  if (lot_of_piece.empty()) return lots;
+  relabel_pieces(city_map, lot_of_piece);
+  return kept_lots(city_map, planned, city);
+}
+
 }  // namespace
 
 std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
-                             const CitySettings& city) {
+                             const CitySettings& city, std::map<ZoneType, LandShare>* joined) {
   city_map.lots = {city_map.generated_roads.end(), static_cast<int>(planned.size())};
   for (std::size_t l = 0; l < planned.size(); ++l) {
     const int counter = city_map.lots.at(static_cast<int>(l));
@@ -217,7 +281,10 @@ std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& p
   // included, rounds without edges crossing.
   city_map.map.snap_round();
 
-  return with_refused_blocks_whole(city_map, planned, kept_lots(city_map, planned, city), city);
+  std::vector<Lot> refused;
+  std::vector<Lot> lots = kept_lots(city_map, planned, city, &refused);
+  lots = with_refused_pieces_joined(city_map, planned, std::move(lots), refused, city, joined);
+  return with_refused_blocks_whole(city_map, planned, std::move(lots), city);
 }
 
 std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
@@ -251,18 +318,39 @@ std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<Planned
     if (next < 0 && !last) continue;
     lot_of_piece[lots[i].piece] = next >= 0 ? lots[next].planned : -1;
     if (next >= 0) ++tally.merged;
-    else ++tally.left_open;
+    else ++tally.left_open, tally.left_open_m2 += geom::area(lots[i].polygon);
   }
-  const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
-  city_map.map.relabel_components(group, [&](int c, int label) {
-    auto it = lot_of_piece.find(c);
-    if (it == lot_of_piece.end()) return label;
-    FaceLabel l = city_map.labels[label];
-    l.lot = it->second;
-    return city_map.label_index(l);
-  });
+  relabel_pieces(city_map, lot_of_piece);
   make_blocks_whole(city_map, lot_of_block);
   return kept_lots(city_map, planned, city);
+}
+
+std::map<ZoneType, LotLand> lot_land(const CityMap& city_map, const std::vector<PlannedLot>& planned,
+                                     const std::vector<Block>& blocks, const CitySettings& city,
+                                     const std::map<ZoneType, LandShare>& joined) {
+  std::map<ZoneType, LotLand> land;
+  for (const auto& [zone, share] : joined) land[zone].joined = share;
+  for (const Block& b : blocks)
+    if (!b.green) land[b.zone].blocks_m2 += b.cell.area();
+  const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
+  const std::vector<int> kind =
+      city_map.per_label([](const FaceLabel& f) { return f.road_surface() ? LotEdge::kStreet : LotEdge::kInner; });
+  std::vector<int> planned_of;
+  const std::vector<geom::Cell> pieces = city_map.map.cells(group, kind, &planned_of);
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const PlannedLot& plan = planned[planned_of[i]];
+    LotLand& l = land[plan.zone];
+    const double area = pieces[i].area();
+    const std::optional<geom::Cell> cell = pieces[i].as_written();
+    const char* why = cell ? refusal(*cell, plan, city) : "collapsed by rounding";
+    LandShare& share = why ? l.refused[why] : l.lots;
+    ++share.count, share.area_m2 += area;
+  }
+  for (auto& [zone, l] : land) {
+    l.open_m2 = l.blocks_m2 - l.lots.area_m2;
+    for (const auto& [why, share] : l.refused) l.open_m2 -= share.area_m2;
+  }
+  return land;
 }
 
 }  // namespace exacity

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <optional>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "generate/city/city_map.h"
@@ -51,16 +53,39 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const CitySe
 // naming the sketch's setting or the library's entry.
 void check_lot_library(const CitySettings& city, const ModelLibrary* library);
 
+// A number of pieces of land and their area (report.json's lot_land).
+struct LandShare {
+  int count = 0;
+  double area_m2 = 0;
+};
+
 // The planned lots into the map in one batch; faces of a block then know the lot planned
-// there that they lie in. Returns the lots as they ended up.
+// there that they lie in. Pieces refused as lots join a neighbouring lot where they can
+// (counted in `joined`, per zone type). Returns the lots as they ended up.
 std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& lots,
-                             const CitySettings& city);
+                             const CitySettings& city, std::map<ZoneType, LandShare>* joined = nullptr);
 
 // What merge_unbuilt_lots did, for report.json.
 struct UnbuiltLots {
   int merged = 0;     // lots joined to a neighbour
   int left_open = 0;  // lots with no built neighbour, given back to their block's open land
+  double left_open_m2 = 0;  // their land
 };
+
+// Where the land of a zone type's blocks (those not green space) went, for report.json's
+// lot_land: into lots, into pieces of planned lots refused as lots (by why, as kept_lots
+// refuses them), or into no lot (the open middle, land no lot was planned on, and lots
+// given back by merge_unbuilt_lots).
+struct LotLand {
+  double blocks_m2 = 0;
+  LandShare lots;
+  LandShare joined;  // pieces refused as lots that a neighbouring lot took (part of `lots`)
+  std::map<std::string, LandShare> refused;
+  double open_m2 = 0;
+};
+std::map<ZoneType, LotLand> lot_land(const CityMap& city_map, const std::vector<PlannedLot>& planned,
+                                     const std::vector<Block>& blocks, const CitySettings& city,
+                                     const std::map<ZoneType, LandShare>& joined);
 
 // Lots no placer could build on (built[i] is 0), too small or too sharp for the zone's
 // smallest building: each is joined, in the map, to the built lot of its block it shares
