@@ -240,6 +240,32 @@ cli_util::Result generate_case(const char* program, const std::string& family, i
   return cli_util::shell(binary.string() + " generate " + sketch.string() + " -o " + out.string() + " -q --threads 1");
 }
 
+// A zone's corner 1 cm inside its neighbour, 238 m up a shared edge of 400 m: the sliver's
+// long edges rise 4 mm for every nanometre they run across. While lots went into the
+// block beside it, the practitioner's float build snapped the ends of the map's own edges
+// (copied into the block's arrangement) to its grid: a sliver edge that had been split at
+// a point off the grid, less than a grid step wide, became a vertical one running the other
+// way, the block's outside was taken for its inside, and CGAL's precondition `f == f2`
+// stopped the insertion (exit 3). The ends of edges the arrangement has stay where they are.
+TEST(Robustness, TheSnappedBuildKeepsTheMapsVerticesWhereTheyAreBesideACentimetreSliver) {
+  const std::filesystem::path dir = testing_util::temp_dir("snapped-sliver"), out = dir / "out";
+  const std::filesystem::path sketch = dir / "sliver.geojson";
+  std::ofstream(sketch, std::ios::binary)
+      << R"({"type":"FeatureCollection","exacity":{"version":1,"seed":4531091233315400},"features":[)"
+      << R"({"type":"Feature","properties":{"zone":"residential"},"geometry":{"type":"Polygon","coordinates":)"
+      << R"([[[0,0],[300,0],[300,400],[0,400],[0,0]]]}},)"
+      << R"({"type":"Feature","properties":{"zone":"commercial"},"geometry":{"type":"Polygon","coordinates":)"
+      << R"([[[300,0],[600,0],[600,400],[300,400],[299.99,238.24421125493612],[300,0]]]}}]})";
+  const std::filesystem::path binary = std::filesystem::path(EXACITY_BINARY).parent_path() / "exacity-float-snapped";
+  const cli_util::Result r =
+      cli_util::shell(binary.string() + " generate " + sketch.string() + " -o " + out.string() + " -q --threads 1");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const Verdict v = judge(out);
+  EXPECT_TRUE(v.passed()) << testing::PrintToString(v.problems);
+  const cli_util::Result check = cli_util::shell(std::string(EXACITY_BINARY) + " validate " + out.string());
+  EXPECT_EQ(check.code, 0) << check.out;
+}
+
 // The practitioner's float build split the map's edges in place at the hot pixels of each
 // new batch, bending them off their lines; a bent edge could leave the edges around its end
 // out of order or a vertex on its wrong side, and CGAL's precondition `f == f2` stopped the
