@@ -125,11 +125,12 @@ json random_city(Random& rng, P offset) {
   return features;
 }
 
-// 2. One random city translated to 1e5, 1e6 (UTM), 1e7 and 1e9 m. Level: log10 of the
-// translation.
+// 2. One random city translated to 1e5, 1e6 (UTM), 1e7, 1e8, 10^8.5 and 1e9 m: a double's
+// step there is 1.5e-11 to 1.2e-7 m, as coarse as the 2^-24 m grid from 2^29 m (5.4e8 m)
+// on. Level: log10 of the translation.
 json translated(Random& rng, int index, double& level) {
-  static const double offsets[] = {1e5, 1e6, 1e7, 1e9};
-  const double o = offsets[step_of(index, 4)];
+  static const double offsets[] = {1e5, 1e6, 1e7, 1e8, std::pow(10.0, 8.5), 1e9};
+  const double o = offsets[step_of(index, 6)];
   level = std::log10(o);
   return random_city(rng, {o, o / 2});
 }
@@ -330,7 +331,7 @@ const std::vector<Entry>& entries() {
       {{"near-collinear", "zone corners 1e-1 to 1e-14 m off their neighbour's edge, every step down to the case's",
         "log10(grid / the nearest corner's distance off the line)"},
        near_collinear},
-      {{"translated", "a random city at 1e5, 1e6, 1e7 and 1e9 m", "log10 of the translation (m)"}, translated},
+      {{"translated", "a random city at 1e5, 1e6, 1e7, 1e8, 10^8.5 and 1e9 m", "log10 of the translation (m)"}, translated},
       {{"thin-angles", "highways crossing at 1e-3 to 1e-12 rad, or nearly parallel", "-log10 of the angle (rad)"},
        thin_angles},
       {{"off-edge", "corners 1e-1 to 1e-12 m off a shared edge or a highway, every step down to the case's", "log10(grid / the nearest offset)"}, off_edge},
