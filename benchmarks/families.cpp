@@ -51,6 +51,14 @@ double sweep(double from, double to, int index, int steps) {
   return std::pow(10.0, -(from + (to - from) * t));
 }
 
+// A sweep's step for case `index`: the step runs fastest, so any run of `steps` cases or more
+// covers every level; the variant (which drawing of the family) changes every `steps` cases.
+int step_of(int index, int steps) { return index % steps; }
+int variant_of(int index, int steps, int variants) { return (index / steps) % variants; }
+
+// A side at random: +1 or -1.
+double side(Random& rng) { return rng.next() % 2 ? 1 : -1; }
+
 const char* const kBuilt[] = {"residential", "commercial", "industrial"};
 
 // m: the grid the snap-rounding baselines round to (the practitioner's float build,
@@ -66,23 +74,35 @@ double level_below_grid(double distance, double magnitude) {
   return std::log10(kGrid / std::max(distance, std::ldexp(std::nextafter(magnitude, INFINITY) - magnitude, -1)));
 }
 
-// 1. Kettner et al.'s classroom example in a city: a zone's corner p, stepped over a
-// 256 x 256 grid around the point (100.5, 100.5) of the line y = x, on which a
-// neighbouring zone's edge runs; the two zones overlap, touch or part by a sliver, as the
-// orientation of (q, r, p) decides. The grid's step is 2^e ulps, e from 0 (Kettner's
-// single ulps, 1e-14 m) up to 36 (1e-3 m), so the corner goes from an ordinary sketch's
-// distances off the line (up to 0.25 m) down to ulps.
-// Level: p's distance off the line, |i - j| steps / sqrt 2, below the grid
-// (level_below_grid: from about -6.6 at 0.25 m to 6.6, half an ulp, on the line).
+// The distance families are cumulative: a case at step s of the sweep holds one
+// near-degenerate feature at every step from the harmless end (0.1 m) down to s, each
+// where it does not meet the others, and its level is that of the nearest. A lone feature
+// below the grid snaps onto the degenerate case, which a snapping pipeline handles, so
+// without the shallower features a snapping pipeline's failures against the distance are
+// a bump a few grid steps wide, not a rise (docs/benchmarks.md): a sketch with one corner
+// 1e-12 m off an edge does not contain the corner 1e-7 m off that one with a few corners
+// off has. Counting features, the deeper case holds the shallower one's and more.
+
+// 1. Kettner et al.'s classroom example in a city: corners of a zone stepped off the line
+// y = x, on which a neighbouring zone's edge runs, by 1e-1 down to 1e-14 m (a few ulps at
+// 100 m: below that the corner is on the line), to either side; the two zones overlap,
+// touch or part by a sliver there, as the orientation of (q, r, p) decides. Level: the
+// nearest corner's distance off the line, as drawn, below the grid (level_below_grid:
+// -6.2 at 0.1 m, 6.6 on the line).
 json near_collinear(Random& rng, int index, double& level) {
-  const int i = static_cast<int>(rng.next() % 256), j = static_cast<int>(rng.next() % 256);
-  const int e = 4 * (index % 10);
-  // An ulp of 100.5 is 2^-46, so these sums are exact.
-  const double step = std::ldexp(1.0, e - 46);
-  level = level_below_grid(std::abs(i - j) * step / std::sqrt(2.0), 100.5);
-  const P p{100.5 + i * step, 100.5 + j * step};
+  const int steps = 14, deepest = step_of(index, steps);
   const P q{-200, -200}, r{400, 400};
-  return json::array({zone("commercial", {{q, r, {-200, 400}}}), zone("residential", {{q, {400, -200}, r, p}}),
+  Line residential{q, {400, -200}, r};
+  level = -INFINITY;
+  for (int k = 0; k <= deepest; ++k) {
+    // Corners from r back towards q, in order along the line, each 500 / (deepest + 2) m apart.
+    const double t = 350 - (k + 1) * 500.0 / (deepest + 2) + rng.uniform(-5, 5);
+    const P p{t, t + side(rng) * sweep(1, 14, k, steps) * std::sqrt(2.0)};
+    // Near the line p.y - p.x is exact (Sterbenz), so this is the distance as drawn.
+    level = std::max(level, level_below_grid(std::abs(p.y - p.x) / std::sqrt(2.0), t));
+    residential.push_back(p);
+  }
+  return json::array({zone("commercial", {{q, r, {-200, 400}}}), zone("residential", {residential}),
                       road("highway", 18, {{-300, 90 + rng.uniform(0, 20)}, {500, 80 + rng.uniform(0, 20)}})});
 }
 
@@ -105,22 +125,24 @@ json random_city(Random& rng, P offset) {
   return features;
 }
 
-// 2. One random city translated to 1e5, 1e6 (UTM), 1e7 and 1e9 m. Level: log10 of the
-// translation.
+// 2. One random city translated to 1e5, 1e6 (UTM), 1e7, 1e8, 10^8.5 and 1e9 m: a double's
+// step there is 1.5e-11 to 1.2e-7 m, as coarse as the 2^-24 m grid from 2^29 m (5.4e8 m)
+// on. Level: log10 of the translation.
 json translated(Random& rng, int index, double& level) {
-  static const double offsets[] = {1e5, 1e6, 1e7, 1e9};
-  const double o = offsets[index % 4];
+  static const double offsets[] = {1e5, 1e6, 1e7, 1e8, std::pow(10.0, 8.5), 1e9};
+  const double o = offsets[step_of(index, 6)];
   level = std::log10(o);
   return random_city(rng, {o, o / 2});
 }
 
-// 3. Highways crossing at angles from 1e-3 down to 1e-12 radians inside a zone, or (odd
-// cases) nearly parallel, 5 m apart where they enter it. Level: -log10 of the angle.
+// 3. Highways crossing at angles from 1e-3 down to 1e-12 radians inside a zone, or (the
+// second variant) nearly parallel, 5 m apart where they enter it. Level: -log10 of the
+// angle.
 json thin_angles(Random& rng, int index, double& level) {
-  const double angle = sweep(3, 12, index / 2, 10);
+  const double angle = sweep(3, 12, index, 10);
   level = -std::log10(angle);
   const P at{rng.uniform(150, 350), rng.uniform(150, 250)};
-  const double apart = index % 2 ? 5 : 0;
+  const double apart = variant_of(index, 10, 2) ? 5 : 0;
   const double reach = 600;
   Line first{{at.x - reach, at.y}, {at.x + reach, at.y}};
   Line second{{at.x - reach * std::cos(angle), at.y + apart - reach * std::sin(angle)},
@@ -129,19 +151,31 @@ json thin_angles(Random& rng, int index, double& level) {
                       road("highway", 18, first), road("main", 10, second)});
 }
 
-// 4. Zone corners moved off a shared edge, or off a highway's centre line, by 1e-1 down to
-// 1e-12 m, to either side. Level: the offset as drawn (300 + d less 300, in doubles) below
-// the grid (level_below_grid: -6.2 at 0.1 m, 4.8 at 1e-12 m).
+// 4. Zone corners moved off a shared edge (first variant), or off a highway's centre line
+// (second), by 1e-1 down to 1e-12 m, to either side, cumulative. Level: the nearest
+// offset as drawn (300 + d less 300, in doubles) below the grid (level_below_grid: -6.2 at
+// 0.1 m, 4.8 at 1e-12 m).
 json off_edge(Random& rng, int index, double& level) {
-  const double d = sweep(1, 12, index / 2, 12) * (rng.next() % 2 ? 1 : -1);
-  level = level_below_grid(std::abs((300 + d) - 300), 300);
-  const double y = rng.uniform(50, 350);
-  if (index % 2 == 0)
-    return json::array({zone("residential", {rect(0, 0, 300, 400)}),
-                        zone("commercial", {{{300, 0}, {600, 0}, {600, 400}, {300, 400}, {300 + d, y}}})});
-  const double x = rng.uniform(50, 550);
-  return json::array({zone("residential", {{{0, 0}, {600, 0}, {600, 300}, {x, 300 + d}, {0, 300}}}),
-                      zone("industrial", {rect(0, 300, 600, 600)}), road("highway", 16, {{-100, 300}, {700, 300}})});
+  const int steps = 12, deepest = step_of(index, steps);
+  const double spacing = 360.0 / (deepest + 1);
+  std::vector<double> offsets;
+  level = -INFINITY;
+  for (int k = 0; k <= deepest; ++k) {
+    offsets.push_back(sweep(1, 12, k, steps) * side(rng));
+    level = std::max(level, level_below_grid(std::abs((300 + offsets.back()) - 300), 300));
+  }
+  // Corner k along the edge, from its far end back (the ring's order), somewhere in its share.
+  auto along = [&](int k) { return 380 - (k + rng.uniform(0.2, 0.8)) * spacing; };
+  if (variant_of(index, steps, 2) == 0) {
+    Line commercial{{300, 0}, {600, 0}, {600, 400}, {300, 400}};
+    for (int k = 0; k <= deepest; ++k) commercial.push_back({300 + offsets[k], along(k)});
+    return json::array({zone("residential", {rect(0, 0, 300, 400)}), zone("commercial", {commercial})});
+  }
+  Line residential{{0, 0}, {600, 0}, {600, 300}};
+  for (int k = 0; k <= deepest; ++k) residential.push_back({600 * along(k) / 400, 300 + offsets[k]});
+  residential.push_back({0, 300});
+  return json::array({zone("residential", {residential}), zone("industrial", {rect(0, 300, 600, 600)}),
+                      road("highway", 16, {{-100, 300}, {700, 300}})});
 }
 
 // 5. Zones sharing edges exactly, overlapping along collinear edges, touching at a point,
@@ -167,86 +201,122 @@ json shared_edges(Random& rng, int index, double& level) {
   }
 }
 
-// 6. Slivers 1e-3 down to 1e-9 m wide beside or inside a zone; spikes as thin; rings that
-// touch themselves. Level: the width below the grid (level_below_grid: -4.2 at 1e-3 m, 1.8
-// at 1e-9 m).
+// 6. Slivers 1e-1 down to 1e-12 m wide, cumulative: zones that wide side by side (first
+// variant), spikes that wide out of a zone (second), or holes touching their outer ring
+// whose first edge rises that far over 100 m (third). Level: the narrowest width below the
+// grid (level_below_grid: -6.2 at 0.1 m, 4.8 at 1e-12 m).
 json slivers(Random& rng, int index, double& level) {
-  const double w = sweep(3, 9, index / 3, 7);
+  const int steps = 12, deepest = step_of(index, steps);
   const double a = rng.uniform(200, 400), b = rng.uniform(200, 400);
-  level = level_below_grid(w, a);
-  switch (index % 3) {
-    case 0:
-      return json::array({zone("residential", {rect(0, 0, a, b)}), zone("commercial", {rect(a, 0, a + w, b)}),
-                          zone("industrial", {rect(a + w, 0, 2 * a, b)}), zone("park", {rect(a / 3, -w, a / 2, b / 2)})});
-    case 1:
-      return json::array({zone("residential", {{{0, 0}, {a, 0}, {a, b / 2}, {a + 300, b / 2 + w}, {a, b / 2 + 2 * w},
-                                               {a, b}, {0, b}}})});
-    default:
-      // An outer ring through one point twice, and a hole touching the outer ring.
+  std::vector<double> widths;
+  for (int k = 0; k <= deepest; ++k) widths.push_back(sweep(1, 12, k, steps));
+  level = level_below_grid(widths.back(), 2 * a);
+  const double spacing = b / (deepest + 2);
+  switch (variant_of(index, steps, 3)) {
+    case 0: {
+      json features = json::array({zone("residential", {rect(0, 0, a, b)})});
+      double x = a;
+      for (int k = 0; k <= deepest; ++k) {
+        features.push_back(zone(kBuilt[1 + k % 2], {rect(x, 0, x + widths[k], b)}));
+        x += widths[k];
+      }
+      features.push_back(zone("park", {rect(x, 0, 2 * a, b)}));
+      return features;
+    }
+    case 1: {
+      Line ring{{0, 0}, {a, 0}};
+      for (int k = 0; k <= deepest; ++k) {
+        const double y = (k + 1) * spacing;
+        ring.push_back({a, y}), ring.push_back({a + 300, y + widths[k]}), ring.push_back({a, y + 2 * widths[k]});
+      }
+      ring.push_back({a, b}), ring.push_back({0, b});
+      return json::array({zone("residential", {ring})});
+    }
+    default: {
+      // An outer ring through one point twice, and holes touching the outer ring.
+      std::vector<Line> commercial{rect(a + 50, 0, 2 * a + 50, b)};
+      for (int k = 0; k <= deepest; ++k) {
+        const double y = (k + 0.5) * spacing;
+        commercial.push_back({{a + 50, y}, {a + 150, y + widths[k]}, {a + 150, y + 0.6 * spacing}});
+      }
       return json::array({zone("residential", {{{0, 0}, {a, 0}, {a / 2, b / 2}, {a, b}, {0, b}, {a / 2, b / 2}}}),
-                          zone("commercial", {rect(a + 50, 0, 2 * a + 50, b), {{a + 50, b / 3}, {a + 150, b / 3 + w},
-                                                                                {a + 150, 2 * b / 3}}})});
+                          zone("commercial", commercial)});
+    }
   }
 }
 
-// 7. 2 to 13 roads through one point at random angles: in even cases each has a vertex there
-// (they meet exactly), in odd ones each is one straight segment whose ends are rounded to
-// doubles, so they pass that point only within a few ulps and their crossings crowd into a
-// cluster a few ulps wide. Level: how many roads pass through the point.
+// 7. 2 to 13 roads through one point at random angles: in the first variant each has a
+// vertex there (they meet exactly), in the second each is one straight segment whose ends
+// are rounded to doubles, so they pass that point only within a few ulps and their
+// crossings crowd into a cluster a few ulps wide. Level: how many roads pass through the
+// point.
 json many_highways(Random& rng, int index, double& level) {
   json features = json::array({zone("residential", {rect(0, 0, 500, 500)}), zone("commercial", {rect(500, 0, 800, 500)})});
   const P c{rng.uniform(100, 400), rng.uniform(100, 400)};
-  const int n = 2 + (index / 2) % 12;
+  const int n = 2 + step_of(index, 12);
+  const bool straight = variant_of(index, 12, 2);
   level = n;
   for (int k = 0; k < n; ++k) {
     const double t = rng.uniform(0, M_PI);
     const P from{c.x - 700 * std::cos(t), c.y - 700 * std::sin(t)}, to{c.x + 700 * std::cos(t), c.y + 700 * std::sin(t)};
-    features.push_back(road(k == 0 ? "highway" : "main", k == 0 ? 16 : 8, index % 2 ? Line{from, to} : Line{from, c, to}));
+    features.push_back(road(k == 0 ? "highway" : "main", k == 0 ? 16 : 8, straight ? Line{from, to} : Line{from, c, to}));
   }
   return features;
 }
 
-// 8. Zones whose edges run side by side 1e-1 down to 1e-12 m apart, a road across the gap.
-// Level: the gap as drawn (a + gap less a, in doubles) below the grid (level_below_grid:
-// -6.2 at 0.1 m, 4.8 at 1e-12 m).
+// 8. Zones in a row whose edges run side by side 1e-1 down to 1e-12 m apart, cumulative, a
+// road across the gaps. Level: the narrowest gap as drawn (x + gap less x, in doubles)
+// below the grid (level_below_grid: -6.2 at 0.1 m, 4.8 at 1e-12 m).
 json near_touching(Random& rng, int index, double& level) {
-  const double gap = sweep(1, 12, index, 12);
-  const double a = rng.uniform(200, 400), b = rng.uniform(200, 400), y = rng.uniform(0.2 * b, 0.8 * b);
-  level = level_below_grid((a + gap) - a, a);
-  return json::array({zone("residential", {rect(0, 0, a, b)}), zone("commercial", {rect(a + gap, 0, 2 * a, b)}),
-                      zone("industrial", {rect(0, b + gap, a, 2 * b)}),
-                      road("main", 10, {{-50, y}, {2 * a + 50, y + rng.uniform(-2, 2)}})});
+  const int steps = 12, deepest = step_of(index, steps);
+  const double w = rng.uniform(50, 70), b = rng.uniform(200, 400), y = rng.uniform(0.2 * b, 0.8 * b);
+  json features = json::array();
+  double x = 0;
+  level = -INFINITY;
+  for (int k = 0; k <= deepest + 1; ++k) {
+    features.push_back(zone(kBuilt[k % 3], {rect(x, 0, x + w, b)}));
+    if (k > deepest) break;
+    const double gap = sweep(1, 12, k, steps);
+    level = std::max(level, level_below_grid((x + w + gap) - (x + w), x + w));
+    x = x + w + gap;
+  }
+  features.push_back(road("main", 10, {{-50, y}, {x + w + 50, y + rng.uniform(-2, 2)}}));
+  return features;
 }
 
-// 9. Holes 1e-3 down to 1e-12 m across in a zone (even cases: three triangles of that
-// circumradius, one under a main road), or an ordinary hole whose edge runs that far inside the zone's outer ring,
-// nearly touching it (odd cases). Level: the hole's size or the gap below the grid
-// (level_below_grid: -4.2 at 1e-3 m, 4.8 at 1e-12 m).
+// 9. Holes 1e-1 down to 1e-12 m across, cumulative: in a zone (first variant: triangles of
+// that circumradius, every third under a main road), or ordinary holes whose corners run
+// that far inside the zone's outer ring, nearly touching it (second). Level: the smallest
+// hole's size or the narrowest gap below the grid (level_below_grid: -6.2 at 0.1 m, 4.8 at
+// 1e-12 m).
 json tiny_holes(Random& rng, int index, double& level) {
-  const double s = sweep(3, 12, index / 2, 12);
+  const int steps = 12, deepest = step_of(index, steps);
   const double a = rng.uniform(300, 500), b = rng.uniform(300, 500);
-  const Line outer = rect(0, 0, a, b);
-  std::vector<Line> rings{outer};
-  if (index % 2 == 0) {
+  std::vector<Line> rings{rect(0, 0, a, b)};
+  level = -INFINITY;
+  if (variant_of(index, steps, 2) == 0) {
     const double road_y = rng.uniform(0.3, 0.7) * b;
-    const P at[] = {{rng.uniform(20, a - 20), rng.uniform(20, 0.25 * b)}, {rng.uniform(20, a - 20), road_y},
-                    {rng.uniform(20, a - 20), rng.uniform(0.75 * b, b - 20)}};
-    for (const P& c : at) {
+    for (int k = 0; k <= deepest; ++k) {
+      const double s = sweep(1, 12, k, steps);
+      // Spread along x so no two meet; every third on the road's centre line.
+      const P c{(k + rng.uniform(0.3, 0.7)) * a / (deepest + 1), k % 3 == 1 ? road_y : rng.uniform(20, b - 20)};
       const double t = rng.uniform(0, 2 * M_PI);
       Line hole;
-      for (int k = 0; k < 3; ++k)
-        hole.push_back({c.x + s * std::cos(t + 2 * M_PI * k / 3), c.y + s * std::sin(t + 2 * M_PI * k / 3)});
+      for (int v = 0; v < 3; ++v) hole.push_back({c.x + s * std::cos(t + 2 * M_PI * v / 3), c.y + s * std::sin(t + 2 * M_PI * v / 3)});
       rings.push_back(hole);
+      level = std::max(level, level_below_grid(s, std::max(a, b)));
     }
-    level = level_below_grid(s, std::max(a, b));
     return json::array({zone("residential", rings), zone("commercial", {rect(a, 0, a + 200, b)}),
                         road("main", 10, {{-50, road_y}, {a + 250, road_y + rng.uniform(-5, 5)}})});
   }
-  // A hole 100 m across, one corner s inside the outer ring's right edge (in doubles: the
-  // gap as drawn).
-  const double y = rng.uniform(100, b - 100), x = a - s;
-  rings.push_back({{x - 100, y - 50}, {x, y}, {x - 100, y + 50}});
-  level = level_below_grid(a - x, a);
+  // Holes 100 m across, each with one corner s inside the outer ring's right edge (in
+  // doubles: the gap as drawn).
+  const double spacing = (b - 20) / (deepest + 1);
+  for (int k = 0; k <= deepest; ++k) {
+    const double y = 10 + (k + 0.5) * spacing, x = a - sweep(1, 12, k, steps), h = 0.4 * spacing;
+    rings.push_back({{x - 100, y - h}, {x, y}, {x - 100, y + h}});
+    level = std::max(level, level_below_grid(a - x, a));
+  }
   return json::array({zone("residential", rings), zone("industrial", {rect(a, 0, a + 200, b)})});
 }
 
@@ -258,25 +328,25 @@ struct Entry {
 
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> list{
-      {{"near-collinear", "a zone corner stepped over a 256x256 grid of 1 to 2^36 ulps around its neighbour's edge",
-        "log10(grid / distance off the line)"},
+      {{"near-collinear", "zone corners 1e-1 to 1e-14 m off their neighbour's edge, every step down to the case's",
+        "log10(grid / the nearest corner's distance off the line)"},
        near_collinear},
-      {{"translated", "a random city at 1e5, 1e6, 1e7 and 1e9 m", "log10 of the translation (m)"}, translated},
+      {{"translated", "a random city at 1e5, 1e6, 1e7, 1e8, 10^8.5 and 1e9 m", "log10 of the translation (m)"}, translated},
       {{"thin-angles", "highways crossing at 1e-3 to 1e-12 rad, or nearly parallel", "-log10 of the angle (rad)"},
        thin_angles},
-      {{"off-edge", "corners 1e-1 to 1e-12 m off a shared edge or a highway", "log10(grid / offset)"}, off_edge},
+      {{"off-edge", "corners 1e-1 to 1e-12 m off a shared edge or a highway, every step down to the case's", "log10(grid / the nearest offset)"}, off_edge},
       {{"shared-edges", "zones sharing edges, overlapping along them, touching at a point, drawn twice",
         "rings along one edge"},
        shared_edges},
-      {{"slivers", "zones and spikes 1e-3 to 1e-9 m wide, rings touching themselves", "log10(grid / width)"},
+      {{"slivers", "zones, spikes and holes 1e-1 to 1e-12 m wide, every step down to the case's; rings touching themselves", "log10(grid / the narrowest width)"},
        slivers},
       {{"many-highways", "2 to 13 roads through one point, meeting at a vertex or crossing within ulps of it",
         "roads through one point"},
        many_highways},
-      {{"near-touching", "zones side by side 1e-1 to 1e-12 m apart, a road across the gap", "log10(grid / gap)"},
+      {{"near-touching", "zones in a row 1e-1 to 1e-12 m apart, every step down to the case's, a road across the gaps", "log10(grid / the narrowest gap)"},
        near_touching},
-      {{"tiny-holes", "holes 1e-3 to 1e-12 m across, or an ordinary hole that far inside its outer ring",
-        "log10(grid / size or gap)"},
+      {{"tiny-holes", "holes 1e-1 to 1e-12 m across, or ordinary holes that far inside their outer ring, every step down to the case's",
+        "log10(grid / the smallest size or gap)"},
        tiny_holes},
       {{"random", "small random cities (the control)", "0 (the control)"},
        [](Random& rng, int, double&) { return random_city(rng, {0, 0}); }},

@@ -45,8 +45,14 @@ std::vector<Polyline> snap_round_segments(const std::vector<std::pair<Vec2, Vec2
   const std::size_t n = segments.size();
   std::vector<std::pair<Vec2, Vec2>> s(n);
   Box box = Box::none();
+  // The ends of a `monotone` segment are vertices an arrangement has: they stay where they
+  // are, on the grid or not (a crossing passed by below is constructed off it by CGAL's
+  // sweep). Snapped, a steep edge less than a step wide, split at such a crossing, became a
+  // vertical copy running the other way in (x, y) order, and a block's lots took its outside
+  // for its inside (CGAL's precondition `f == f2`).
   for (std::size_t i = 0; i < n; ++i) {
-    s[i] = {snap_to(segments[i].first, step), snap_to(segments[i].second, step)};
+    s[i] = i < monotone.size() && monotone[i] ? segments[i]
+                                              : std::pair{snap_to(segments[i].first, step), snap_to(segments[i].second, step)};
     box.add(s[i].first), box.add(s[i].second);
   }
   std::vector<Polyline> out(n);

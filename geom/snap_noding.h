@@ -19,8 +19,9 @@ inline constexpr double kEndReach = 2.5;
 // The nearest point of the grid of `step`.
 Vec2 snap_to(Vec2 p, double step);
 
-// Each segment's ends snapped to the grid of `step`, an end within kEndReach of an end of a
-// `monotone` segment (a vertex the arrangement has) moved onto it; the pixels (squares of
+// Each segment's ends snapped to the grid of `step` but a `monotone` segment's (vertices the
+// arrangement has, kept where they are), an end within kEndReach of an end of a `monotone`
+// segment moved onto it; the pixels (squares of
 // side `step` around grid points) holding an end or a crossing of two segments are hot, but
 // for a crossing within a pixel of an end of either segment where the other is routed
 // through that end; each segment becomes the polyline from its snapped start through the

@@ -241,3 +241,14 @@ TEST(SnapNoding, AnEndNearAnArrangementVertexMovesOntoIt) {
   EXPECT_EQ(lines[0], (geom::Polyline{{0, 0}, {4, 0}}));
   EXPECT_EQ(lines[1], (geom::Polyline{{4, 0}, {4.25, 3}}));
 }
+
+TEST(SnapNoding, AnArrangementEdgeKeepsItsEndsOffTheGrid) {
+  const double step = 0.125;
+  // A steep edge the arrangement has, less than a step wide, ends off the grid (a crossing
+  // CGAL's sweep constructed); snapped, it would become vertical and run the other way in
+  // (x, y) order. A new segment's end within reach moves onto its vertex as it is.
+  const std::vector<geom::Polyline> lines =
+      geom::snap_round_segments({{{2.01, 3}, {2.07, 1}}, {{2.2, 1.1}, {5, 1}}}, step, {true, false});
+  EXPECT_EQ(lines[0], (geom::Polyline{{2.01, 3}, {2.07, 1}}));
+  EXPECT_EQ(lines[1], (geom::Polyline{{2.07, 1}, {5, 1}}));
+}
