@@ -515,20 +515,37 @@ try {
   check(picked && await page.$eval('#building-info', b => b.dataset.id) === String(picked.id) &&
         info.includes(picked.zone) && info.includes(`lot${picked.lot}`),
         `a click on building ${picked?.id} shows its attributes: ${info}`);
-  // Walls have the still's windows: facing the tallest extruded building's wall from 30 m,
-  // dark glass in rows where the wall alone is light.
-  const tallest = await page.evaluate(() => {
-    const view = window.exacityExplore;
-    const plain = view.layers.buildings.features.filter(f => !f.properties.model);
-    const f = plain.reduce((a, b) => (b.properties.height > a.properties.height ? b : a));
-    const ring = f.geometry.type === 'Polygon' ? f.geometry.coordinates[0] : f.geometry.coordinates[0][0];
-    const ys = ring.map(p => p[1]), south = Math.min(...ys);
-    const x = ring.reduce((s, p) => s + p[0], 0) / ring.length;
-    // Its south side, from the south, at half its height.
-    view.setOrbit({target: [x, south, f.properties.height / 2], azimuth: 270, elevation: 5, distance: 30});
-    return f.properties;
-  });
-  await tiles();
+  // Walls have the still's windows: facing a wall of one of the tallest extruded buildings
+  // from 30 m at half its height (the first whose wall the view's middle meets: neighbours
+  // and the heightmap's hills can stand between), dark glass in rows where the wall alone is light.
+  let tallest = null;
+  for (let k = 0; k < 5 * 4 && !tallest; ++k) {
+    const candidate = await page.evaluate((k) => {
+      const view = window.exacityExplore;
+      const plain = view.layers.buildings.features.filter(f => !f.properties.model)
+                        .sort((a, b) => b.properties.height - a.properties.height);
+      const f = plain[Math.floor(k / 4)];
+      if (!f) return null;
+      const ring = f.geometry.type === 'Polygon' ? f.geometry.coordinates[0] : f.geometry.coordinates[0][0];
+      const xs = ring.map(p => p[0]), ys = ring.map(p => p[1]);
+      const cx = xs.reduce((s, v) => s + v, 0) / xs.length, cy = ys.reduce((s, v) => s + v, 0) / ys.length;
+      // Its south, west, north and east sides, each from outside, at half its height over
+      // the heightmap's ground under its middle.
+      const z = view.groundHeight(cx, cy) + f.properties.height / 2;
+      const sides = [[cx, Math.min(...ys), 270], [Math.min(...xs), cy, 180], [cx, Math.max(...ys), 90], [Math.max(...xs), cy, 0]];
+      const [x, y, azimuth] = sides[k % 4];
+      view.setOrbit({target: [x, y, z], azimuth, elevation: 5, distance: 30});
+      return f.properties;
+    }, k);
+    if (!candidate) break;
+    await tiles();
+    const seenId = await page.evaluate(() => {
+      const r = window.exacityExplore.renderer.domElement.getBoundingClientRect();
+      return window.exacityExplore.buildingAt(r.left + r.width / 2, r.top + r.height / 2)?.properties.id;
+    });
+    if (seenId === candidate.id) tallest = candidate;
+  }
+  check(tallest, 'a wall of one of the five tallest extruded buildings can be seen from 30 m');
   const darkShare = () => page.evaluate(() => {
     const pixels = window.exacityExplore.pixels();
     let dark = 0;
