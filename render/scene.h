@@ -174,7 +174,6 @@ class RenderScene {
   StructureTiles tile_structures(const exacity::City& city, const geom::Box& world, float tile_size);
   TileView view_tiles(const std::vector<Box3>& boxes, const SceneOptions& options);
   ModelMaterials add_model_materials(const exacity::ModelLibrary* library, float lamp_head_radiance);
-  void add_lamps(const exacity::City& city, float intensity);
   RTCScene model_scene(const exacity::ModelLibrary& library, int model);
   void fill_mesh_scene(RTCScene scene, const exacity::TriangleMesh& mesh);
   unsigned add_instance(const exacity::ModelInstance& m, const exacity::ModelLibrary& library,
@@ -203,5 +202,10 @@ class RenderScene {
   std::vector<Corridor> corridors_;  // the roads and rivers carried on through it (render/onward.h)
   std::vector<exacity::TriangleMesh> landscape_trees_;
 };
+
+// Every lamp of the city's, placed or street clutter, as a point light under its head
+// (render/night.h) of `intensity` times its model's scale squared, in city coordinates
+// less the origin (a scene's: RenderScene::lamps; the Cycles comparison's lamps: 0, 0).
+std::vector<Lamp> city_lamps(const exacity::City& city, float intensity, double origin_x = 0, double origin_y = 0);
 
 }  // namespace render
