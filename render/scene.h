@@ -59,6 +59,9 @@ enum class Pattern : std::uint8_t { None, Windows, Roof, Paving, Grass };
 struct Surface {
   V3 position, normal;  // the normal faces the incoming ray
   Material material;
+  // The light a diffusely scattered ray takes here: the material's emission, but on a wall
+  // with lit windows their light spread over it (render/facade.h, spread_window_light).
+  V3 spread_emission{0, 0, 0};
   std::uint32_t entity = 0;
   float distance = 0;
 };
