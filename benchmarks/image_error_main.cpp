@@ -4,8 +4,10 @@
 // is also written tone-mapped the way exacity render writes its PNG. The Cycles
 // comparison (benchmarks/cycles/) measures both renderers with it.
 //
-//   build/release/benchmarks/exacity_image_error REFERENCE.exr IMAGE.exr... [--png]
+//   build/release/benchmarks/exacity_image_error REFERENCE.exr IMAGE.exr... [--png] [--exposure 0.25]
 //
+// --exposure scales the radiance before the curve (a night view's camera opened up, as
+// still.json's night_stops and metered_ev say: 0.25 × 2^stops).
 // Prints one line per image: its path and its RMSE; IMAGE.png beside IMAGE.exr with --png.
 #include <OpenImageIO/imageio.h>
 
@@ -45,14 +47,17 @@ std::optional<Image> read_beauty(const std::string& path) {
 int main(int argc, char** argv) {
   std::vector<std::string> paths;
   bool png = false;
+  float exposure = 0.25f;  // exacity render's default
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--png"))
       png = true;
+    else if (!std::strcmp(argv[i], "--exposure") && i + 1 < argc)
+      exposure = std::stof(argv[++i]);
     else
       paths.push_back(argv[i]);
   }
   if (paths.size() < 2) {
-    std::fprintf(stderr, "usage: exacity_image_error REFERENCE.exr IMAGE.exr... [--png]\n");
+    std::fprintf(stderr, "usage: exacity_image_error REFERENCE.exr IMAGE.exr... [--png] [--exposure X]\n");
     return 2;
   }
   const std::optional<Image> reference = read_beauty(paths[0]);
@@ -66,9 +71,9 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "%s: cannot read its RGB channels, or not the reference's size\n", paths[k].c_str());
       return 2;
     }
-    std::printf("%s %.6f\n", paths[k].c_str(), display_rmse(*img, *reference));
-    if (png) write_png(tone_map(*img, 0.25f), std::filesystem::path(paths[k]).replace_extension(".png"));
+    std::printf("%s %.6f\n", paths[k].c_str(), display_rmse(*img, *reference, exposure));
+    if (png) write_png(tone_map(*img, exposure), std::filesystem::path(paths[k]).replace_extension(".png"));
   }
-  if (png) write_png(tone_map(*reference, 0.25f), std::filesystem::path(paths[0]).replace_extension(".png"));
+  if (png) write_png(tone_map(*reference, exposure), std::filesystem::path(paths[0]).replace_extension(".png"));
   return 0;
 }

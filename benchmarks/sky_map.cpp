@@ -7,7 +7,9 @@
 // these. Measures nothing.
 //
 //   build/release/benchmarks/exacity_sky_map OUT.exr [--sun-azimuth 200] [--sun-elevation 40] [--turbidity 3]
-//                                            [--width 1024]
+//                                            [--night 0] [--width 1024]
+// --night (0 to 1, still.json's night) dims the sky as a sun under the horizon does
+// (Sky::at); the sun's irradiance is then 0 once it has set.
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
@@ -22,7 +24,7 @@ using namespace render;
 
 int main(int argc, char** argv) {
   std::string out;
-  float azimuth = 200, elevation = 40, turbidity = 3;  // exacity render's defaults (render/render.h)
+  float azimuth = 200, elevation = 40, turbidity = 3, night = 0;  // exacity render's defaults (render/render.h)
   int width = 1024;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--sun-azimuth") && i + 1 < argc)
@@ -31,6 +33,8 @@ int main(int argc, char** argv) {
       elevation = std::stof(argv[++i]);
     else if (!std::strcmp(argv[i], "--turbidity") && i + 1 < argc)
       turbidity = std::stof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--night") && i + 1 < argc)
+      night = std::stof(argv[++i]);
     else if (!std::strcmp(argv[i], "--width") && i + 1 < argc)
       width = std::stoi(argv[++i]);
     else
@@ -39,10 +43,10 @@ int main(int argc, char** argv) {
   if (out.empty() || width < 4) {
     std::fprintf(
         stderr,
-        "usage: exacity_sky_map OUT.exr [--sun-azimuth DEG] [--sun-elevation DEG] [--turbidity T] [--width N]\n");
+        "usage: exacity_sky_map OUT.exr [--sun-azimuth DEG] [--sun-elevation DEG] [--turbidity T] [--night N] [--width N]\n");
     return 2;
   }
-  const Sky sky(azimuth, elevation, turbidity);
+  const Sky sky = Sky::at(azimuth, elevation, turbidity, night);
   const int height = width / 2;
   std::vector<float> pixels(static_cast<std::size_t>(width) * height * 3);
   for (int row = 0; row < height; ++row)
@@ -66,7 +70,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s: cannot write the sky map\n", out.c_str());
     return 2;
   }
-  const V3 d = sky.sun_direction(), e = sky.sun_irradiance();
+  const V3 d = sky.sun_direction(), e = sky.sun_up() ? sky.sun_irradiance() : V3{0, 0, 0};
   const double diameter = 2 * std::acos(static_cast<double>(sky.sun_cos_max())) * 180 / kPi;
   std::printf(
       "{\"sun_direction\": [%.6f, %.6f, %.6f], \"sun_irradiance\": [%.6f, %.6f, %.6f], \"sun_diameter_deg\": %.6f}\n",

@@ -168,6 +168,22 @@ Material facade_material(const FacadeStyle& s, const Material& wall, V3 p, V3 n)
   return m;
 }
 
+V3 spread_window_light(const FacadeStyle& s, V3 p, V3 n) {
+  if (!(s.lit > 0) || std::abs(n.z) >= 0.3f) return {0, 0, 0};
+  const float h = p.z - s.floor;
+  if (h < 0 || p.z > s.eaves - 0.4f) return {0, 0, 0};
+  // The share of the wall in glass, inside the frames (and a mullion down a pane wider
+  // than 1.2 m): a shop floor's, its panes 0.9 of each double bay from 0.4 m to 3.4 m; a
+  // storey's, its window's width by its height.
+  const bool shop = s.shopfront && h < kShopFloor;
+  const float width = shop ? 0.9f * 2 * s.bay : s.window * s.bay, height = shop ? 3.0f : (s.head - s.sill) * s.storey;
+  const float pane = (width - 2 * kFrame - (width > 1.2f ? kFrame : 0)) * (height - 2 * kFrame);
+  const float glass = std::max(0.0f, pane) / (shop ? 2 * s.bay * kShopFloor : s.bay * s.storey);
+  // facade_material's lit pane on average: its brightness 0.6 to 1.4 (mean 1), its
+  // colour (1, 0.85 - 0.1 w, 0.6 - 0.2 w) for w even in 0 to 1.
+  return s.light * V3{1, 0.8f, 0.5f} * (s.lit * glass);
+}
+
 Material roof_material(const Material& roof, V3 p, V3 n) {
   Material m = roof;
   if (std::abs(n.z) > 0.98f) {

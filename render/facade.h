@@ -59,6 +59,14 @@ FacadeStyle facade_style(exacity::ZoneType zone, std::uint64_t seed, int id, flo
 // else the wall's albedo with a little plaster noise; `along` is the distance along the wall's horizontal direction.
 Material facade_material(const FacadeStyle& style, const Material& wall, V3 position, V3 normal);
 
+// The light of the style's lit windows spread evenly over its wall, at a wall point: what a
+// diffusely scattered ray takes there instead of the window it may hit (render/README.md,
+// Night). The same light leaves the wall, from everywhere on it rather than from a few
+// windows: a ray bounced off the street opposite finds it every time where it found a lit
+// pane now and then, a grain of bright dots on every wall facing lit windows. Zero by day,
+// off the wall (roofs, gables) and on the shop floor of a style without shops.
+V3 spread_window_light(const FacadeStyle& style, V3 position, V3 normal);
+
 // Whether a wall point lies in a window of the style (the facade test's oracle too).
 bool in_window(const FacadeStyle& style, float along, float z);
 // The distance along a wall, for a wall whose outward normal is `normal`.

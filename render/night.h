@@ -50,6 +50,10 @@ struct Lamp {
   float intensity = 0;
 };
 constexpr float kUplight = 0.15f;
+// A street lamp's intensity straight down (the sun's irradiance is 8 in these units: a lamp
+// lights the road under it 6 m down at a 2^6-th of that, a lit street at night, for which
+// the camera opens up 6 stops).
+constexpr float kLampIntensity = 4;
 constexpr float kReach = 80;  // m
 // Its radiant intensity towards direction d (unit, leaving the lamp), at distance r.
 inline float lamp_intensity(const Lamp& l, V3 d, float r) {

@@ -79,6 +79,7 @@ struct Path {
   V3 L{0, 0, 0}, beta{1, 1, 1};
   float prev_pdf = 0;        // of the sampling that chose d; 0 for a camera ray
   bool prev_surface = true;  // d was chosen at a surface (sky next-event estimation ran there)
+  bool prev_diffuse = false;  // d was drawn by a diffuse surface: it takes surfaces' spread light
   V3 prev_normal{0, 0, 1};
 };
 
@@ -127,7 +128,7 @@ void scatter_in_haze(const Tracing& t, float ts, Path& path) {
   const auto [u1, u2] = t.rng.next2();
   const V3 next = sample_henyey_greenstein(path.d, t.haze.g, u1, u2);
   path.prev_pdf = henyey_greenstein(dot(path.d, next), t.haze.g);
-  path.prev_surface = false;
+  path.prev_surface = false, path.prev_diffuse = false;
   path.o = p, path.d = next;
 }
 
@@ -227,6 +228,7 @@ bool follow_surface_sample(const Tracing& t, const Surface& s, const Frame& fram
   path.beta *= bs.weight;
   path.prev_pdf = bs.pdf;
   path.prev_surface = true;
+  path.prev_diffuse = s.material.kind == Material::Diffuse;
   path.prev_normal = s.normal;
   path.o = p;
   path.d = frame.to_world(bs.wi);
@@ -253,7 +255,9 @@ V3 leaving_point(const Surface& s) { return s.position + s.normal * kEpsilon; }
 // `known_sun` is that share where it was found already (a packet's shadow rays).
 void add_surface_light(const Tracing& t, const Surface& s, int depth, int max_depth, Path& path, V3* sun = nullptr,
                        const V3* known_sun = nullptr) {
-  if (depth == 0 || !s.material.camera_only) path.L += path.beta * s.material.emission;
+  // A ray a diffuse surface scattered takes a lit facade's window light spread over its
+  // wall (render/facade.h): the same light, without the grain of the few rays that hit a pane.
+  if (depth == 0 || !s.material.camera_only) path.L += path.beta * (path.prev_diffuse ? s.spread_emission : s.material.emission);
   if (depth >= max_depth) return;
   const Frame frame(s.normal);
   const V3 wo = frame.to_local(path.d * -1);

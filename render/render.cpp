@@ -59,10 +59,9 @@ struct Daylight {
 // A night's exposure: as many more stops as bring a street under its lamps to about a
 // sunlit street's brightness.
 constexpr float kNightStops = 6;
-// The lamps' light: each lamp's intensity straight down and its head's radiance (the
-// sun's irradiance is 8 in these units: a lamp lights the road under it 6 m down at a
-// 2^kNightStops-th of that, a lit street at night), the lit windows' radiance and share.
-constexpr float kLampIntensity = 4, kLampHeadRadiance = 40;
+// The lamps' heads' radiance (their light is kLampIntensity, render/night.h), the lit
+// windows' radiance and share.
+constexpr float kLampHeadRadiance = 40;
 constexpr float kWindowLight = 0.015f, kLitWindows = 0.35f;
 
 Daylight daylight(const RenderRequest& request, const SolarPlace& place) {
@@ -218,7 +217,8 @@ nlohmann::ordered_json tiles_report(const RenderScene& scene) {
 }
 
 nlohmann::ordered_json still_report(const RenderRequest& request, const SolarPlace& place, const Daylight& day,
-                                    const RenderScene& scene, double scene_s, const Still& still) {
+                                    const RenderScene& scene, double scene_s, double scene_cpu_s,
+                                    const Still& still) {
   const RayCounts& rays = still.rays;
   nlohmann::ordered_json report{
       {"size", {request.width, request.height}},
@@ -237,6 +237,7 @@ nlohmann::ordered_json still_report(const RenderRequest& request, const SolarPla
       {"grid_north", place.grid_north},
       {"sun", {{"azimuth", day.sun_azimuth}, {"elevation", day.sun_elevation}}},
       {"night", day.night},
+      {"night_stops", day.stops},  // the camera opened up for the night, with metered_ev
       {"lamps", scene.lamps.size()},
       {"haze_visibility_m", request.haze_visibility},
       {"clear_visibility_m", request.haze_visibility > 0 ? 0.0f : request.clear_visibility},
@@ -254,6 +255,7 @@ nlohmann::ordered_json still_report(const RenderRequest& request, const SolarPla
         {"instances", scene.instances},
         {"landscape_instances", scene.landscape_instances},
         {"build_s", scene_s},
+        {"build_cpu_s", scene_cpu_s},
         {"embree_peak_mib", static_cast<double>(scene.embree_peak_bytes()) / (1 << 20)}}},
       {"still",
        {{"seconds", still.seconds},
@@ -430,6 +432,7 @@ Camera default_camera(const exacity::City& city, float aspect) {
 nlohmann::ordered_json render_city(const exacity::City& city, const RenderRequest& request,
                                    const RenderProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
+  const double start_cpu = cpu_seconds();
   const SolarPlace place = solar_place(city, request.day_of_year);
   const Daylight day = daylight(request, place);
   const Sky sky = Sky::at(day.sun_azimuth, day.sun_elevation, request.turbidity, day.night);
@@ -438,12 +441,12 @@ nlohmann::ordered_json render_city(const exacity::City& city, const RenderReques
   // Tiles are grown towards the sun to keep what casts shadows into view; a set sun casts none.
   RenderScene scene(city, sky.sun_up() ? sky.sun_direction() : V3{0, 0, 1}, options);
   const StreetLights lights(scene.lamps);
-  const double scene_s = seconds_since(start);
+  const double scene_s = seconds_since(start), scene_cpu_s = cpu_seconds() - start_cpu;
   const Camera camera = scene.to_scene(request.camera);
   const Haze haze = haze_layer(request, scene);
 
   Still still = render_still(scene, sky, camera, request, day, haze, progress, lights.empty() ? nullptr : &lights);
-  nlohmann::ordered_json report = still_report(request, place, day, scene, scene_s, still);
+  nlohmann::ordered_json report = still_report(request, place, day, scene, scene_s, scene_cpu_s, still);
   // Between the steps too: writing a large image takes a while (generate/cancel.h).
   const exacity::CancelCheck cancel;
   cancel.check();

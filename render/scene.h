@@ -59,6 +59,9 @@ enum class Pattern : std::uint8_t { None, Windows, Roof, Paving, Grass };
 struct Surface {
   V3 position, normal;  // the normal faces the incoming ray
   Material material;
+  // The light a diffusely scattered ray takes here: the material's emission, but on a wall
+  // with lit windows their light spread over it (render/facade.h, spread_window_light).
+  V3 spread_emission{0, 0, 0};
   std::uint32_t entity = 0;
   float distance = 0;
 };
@@ -174,7 +177,6 @@ class RenderScene {
   StructureTiles tile_structures(const exacity::City& city, const geom::Box& world, float tile_size);
   TileView view_tiles(const std::vector<Box3>& boxes, const SceneOptions& options);
   ModelMaterials add_model_materials(const exacity::ModelLibrary* library, float lamp_head_radiance);
-  void add_lamps(const exacity::City& city, float intensity);
   RTCScene model_scene(const exacity::ModelLibrary& library, int model);
   void fill_mesh_scene(RTCScene scene, const exacity::TriangleMesh& mesh);
   unsigned add_instance(const exacity::ModelInstance& m, const exacity::ModelLibrary& library,
@@ -203,5 +205,10 @@ class RenderScene {
   std::vector<Corridor> corridors_;  // the roads and rivers carried on through it (render/onward.h)
   std::vector<exacity::TriangleMesh> landscape_trees_;
 };
+
+// Every lamp of the city's, placed or street clutter, as a point light under its head
+// (render/night.h) of `intensity` times its model's scale squared, in city coordinates
+// less the origin (a scene's: RenderScene::lamps; the Cycles comparison's lamps: 0, 0).
+std::vector<Lamp> city_lamps(const exacity::City& city, float intensity, double origin_x = 0, double origin_y = 0);
 
 }  // namespace render

@@ -68,6 +68,7 @@ bool RenderScene::surface(V3 o, V3 d, float tmax, const Hit& hit, Surface& s) co
       const std::size_t id = s.entity & 0xffffff;
       const FacadeStyle style = id < facades_.size() ? facades_[id] : FacadeStyle{};
       s.material = facade_material(style, s.material, s.position, s.normal);
+      s.spread_emission = spread_window_light(style, s.position, s.normal);
       break;
     }
     case Pattern::Roof:
@@ -98,6 +99,7 @@ bool RenderScene::surface(V3 o, V3 d, float tmax, const Hit& hit, Surface& s) co
     case Pattern::None:
       break;
   }
+  if (patterns_[m] != Pattern::Windows) s.spread_emission = s.material.emission;
   return true;
 }
 

@@ -26,7 +26,7 @@ void RenderScene::add_buildings(const exacity::City& city, const geom::Box& worl
   grow_towards_sun(tiles.boxes, sun);
   const TileView view = view_tiles(tiles.boxes, options);
   const ModelMaterials model_materials = add_model_materials(city.model_library(), options.lamp_head_radiance);
-  if (options.lamp_intensity > 0) add_lamps(city, options.lamp_intensity);
+  if (options.lamp_intensity > 0) lamps = city_lamps(city, options.lamp_intensity, origin_x, origin_y);
 
   TileMeshes meshes{std::vector<std::vector<V3>>(tiles.boxes.size()),
                     std::vector<std::vector<std::array<int, 3>>>(tiles.boxes.size())};
@@ -184,10 +184,10 @@ V3 lamp_light_point(const exacity::Model& model) {
 
 }  // namespace
 
-// Every lamp of the city's, placed or street clutter, as a point light under its head.
-void RenderScene::add_lamps(const exacity::City& city, float intensity) {
+std::vector<Lamp> city_lamps(const exacity::City& city, float intensity, double origin_x, double origin_y) {
+  std::vector<Lamp> lamps;
   const exacity::ModelLibrary* library = city.model_library();
-  if (!library) return;
+  if (!library) return lamps;
   std::vector<V3> points(library->models.size());
   for (std::size_t i = 0; i < points.size(); ++i)
     if (library->models[i].kind == exacity::ModelKind::Lamp) points[i] = lamp_light_point(library->models[i]);
@@ -196,12 +196,14 @@ void RenderScene::add_lamps(const exacity::City& city, float intensity) {
     const V3 local = points[static_cast<std::size_t>(m.placed.model)];
     const float c = std::cos(static_cast<float>(m.placed.angle)), s = std::sin(static_cast<float>(m.placed.angle));
     const float scale = static_cast<float>(m.placed.scale);
-    const V3 at = to_scene(m.placed.position.x, m.placed.position.y, m.floor);
+    const V3 at{static_cast<float>(m.placed.position.x - origin_x), static_cast<float>(m.placed.position.y - origin_y),
+                static_cast<float>(m.floor)};
     lamps.push_back({at + V3{c * local.x - s * local.y, s * local.x + c * local.y, local.z} * scale,
                      intensity * scale * scale});
   };
   for (const auto& m : city.models) add(m);
   for (const auto& item : city.clutter.items) add(item.instance);
+  return lamps;
 }
 
 }  // namespace render

@@ -195,6 +195,42 @@ TEST(Facade, WindowsSitInRowsPerStoreyOverAShopFloor) {
   EXPECT_FALSE(render::in_window(s, bay_centre, 39.8f));
 }
 
+// At night the light of a facade's lit windows, spread evenly over its wall for the rays a
+// diffuse surface scatters (render/facade.h), is the windows' own light on average over
+// the wall, storeys and shop floor apart: the same light leaves the wall, without the grain
+// of bright dots that rays finding a pane now and then made on the street opposite.
+TEST(Facade, LitWindowsLightSpreadOverTheWallIsTheirsOnAverage) {
+  for (const ZoneType zone : {ZoneType::Residential, ZoneType::Commercial}) {
+    render::FacadeStyle s = render::facade_style(zone, 5, 17, 0, 1000);
+    s.lit = 1, s.light = {0.02f, 0.02f, 0.02f};
+    const render::V3 normal{0, -1, 0};  // a wall along x, facing south
+    // Its storeys over the shop floor, and the shop floor, each sampled on a fine grid
+    // over 1,200 panes (20 storeys of 60 bays; 1,200 shop windows), to average their
+    // brightness and colour.
+    const float shops = s.shopfront ? 4.5f : 0;
+    for (const auto& [bottom, top] : {std::pair{shops, shops + 20 * s.storey}, std::pair{0.0f, shops}}) {
+      if (top <= bottom) continue;
+      double windows[3] = {0, 0, 0}, spread[3] = {0, 0, 0};
+      const float length = (bottom < shops ? 2400 : 60) * s.bay;
+      for (float x = 0.01f; x < length; x += 0.071f)
+        for (float z = bottom + 0.013f; z < top; z += 0.053f) {
+          const render::V3 p{x, 0, z};
+          const render::V3 pane = render::facade_material(s, render::Material{}, p, normal).emission,
+                           wall = render::spread_window_light(s, p, normal);
+          for (int c = 0; c < 3; ++c) windows[c] += pane[c], spread[c] += wall[c];
+        }
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(spread[c], windows[c], 0.03 * windows[c]) << static_cast<int>(zone) << " from " << bottom << " m, channel " << c;
+    }
+    // None by day, on a roof, or under the floor.
+    s.lit = 0;
+    EXPECT_EQ(render::spread_window_light(s, {1, 0, 5}, normal).x, 0);
+    s.lit = 1;
+    EXPECT_EQ(render::spread_window_light(s, {1, 0, 5}, {0, 0, 1}).x, 0);
+    EXPECT_EQ(render::spread_window_light(s, {1, 0, -1}, normal).x, 0);
+  }
+}
+
 // Towers of one zone differ: some nearly all glass (a curtain wall), some punched windows
 // in stone; walls between windows carry a band at each floor's slab. Before, every
 // office had punched windows, glazing 0.33 to 0.5 of its wall, and walls were one plaster.

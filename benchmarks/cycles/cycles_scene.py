@@ -4,8 +4,8 @@
 # the importer and the file's root translation, so coordinates are the city's), sets up
 # the camera, Exacity's sky as an environment map, its sun as a sun lamp, and Cycles on
 # the CPU, then renders each run of CONFIG's "runs" to a linear EXR and times it. Writes
-# CONFIG's "times" file: seconds per run, each the wall time of bpy.ops.render.render
-# (scene sync, BVH build and path tracing; not the import).
+# CONFIG's "times" file: seconds per run, each the CPU time (user and system, every thread)
+# of bpy.ops.render.render (scene sync, BVH build and path tracing; not the import).
 import json
 import math
 import sys
@@ -84,13 +84,67 @@ scene.world = world
 sun = config["sun"]
 irradiance = sun["sun_irradiance"]
 strength = max(irradiance)
-sun_data = bpy.data.lights.new("exacity_sun", "SUN")
-sun_data.energy = strength
-sun_data.color = [c / strength for c in irradiance]
-sun_data.angle = math.radians(sun["sun_diameter_deg"])
-sun_lamp = bpy.data.objects.new("exacity_sun", sun_data)
-scene.collection.objects.link(sun_lamp)
-sun_lamp.rotation_euler = Vector(sun["sun_direction"]).to_track_quat("Z", "Y").to_euler()
+if strength > 0:  # at night no sun lamp: it would still be drawn among the lights
+    sun_data = bpy.data.lights.new("exacity_sun", "SUN")
+    sun_data.energy = strength
+    sun_data.color = [c / strength for c in irradiance]
+    sun_data.angle = math.radians(sun["sun_diameter_deg"])
+    sun_lamp = bpy.data.objects.new("exacity_sun", sun_data)
+    scene.collection.objects.link(sun_lamp)
+    sun_lamp.rotation_euler = Vector(sun["sun_direction"]).to_track_quat("Z", "Y").to_euler()
+
+# The street lamps at night (render/night.h), where CONFIG names them: each a point light of
+# Exacity's lamp, its intensity I straight down (Cycles' point light of power P sends P/4π
+# a steradian, so P = 4πI), the lobe kUplight + (1 - kUplight)·max(0, -d.z) over the
+# direction d leaving it and the window (1 - (r/reach)^4)^2 on the inverse square out to its
+# reach made by the light's own nodes: the Normal texture coordinate is d, the Light
+# Falloff node's Linear output at strength 1 is the distance r. Cycles 3.4 draws one light
+# among all of them by power (no light tree), Exacity one among those within the reach.
+# Lit windows and the lamps' glowing heads are Exacity's procedural surfaces, not in the
+# glTF: Cycles has neither.
+def lamp_light(intensity, uplight, reach):
+    light = bpy.data.lights.new(f"exacity_lamp_{intensity:g}", "POINT")
+    light.energy = 4 * math.pi * intensity
+    light.shadow_soft_size = 0
+    light.use_nodes = True
+    tree = light.node_tree
+    nodes, links = tree.nodes, tree.links
+    emission = next(n for n in nodes if n.type == "EMISSION")
+
+    def math_node(operation, a, b):
+        node = nodes.new("ShaderNodeMath")
+        node.operation = operation
+        for socket, value in zip(node.inputs, (a, b)):
+            if isinstance(value, (int, float)):
+                socket.default_value = value
+            else:
+                links.new(value, socket)
+        return node.outputs[0]
+
+    coordinates = nodes.new("ShaderNodeTexCoord")
+    split = nodes.new("ShaderNodeSeparateXYZ")
+    links.new(coordinates.outputs["Normal"], split.inputs[0])
+    down = math_node("MAXIMUM", math_node("MULTIPLY", split.outputs["Z"], -1), 0)
+    lobe = math_node("ADD", math_node("MULTIPLY", down, 1 - uplight), uplight)
+    falloff = nodes.new("ShaderNodeLightFalloff")
+    falloff.inputs["Strength"].default_value = 1
+    x = math_node("DIVIDE", falloff.outputs["Linear"], reach)
+    x4 = math_node("POWER", x, 4)
+    inside = math_node("MAXIMUM", math_node("SUBTRACT", 1, x4), 0)
+    window = math_node("MULTIPLY", inside, inside)
+    links.new(math_node("MULTIPLY", lobe, window), emission.inputs["Strength"])
+    return light
+
+
+if config.get("lamps"):
+    lamps = config["lamps"]
+    lights = {}
+    for x, y, z, intensity in lamps["lamps"]:
+        if intensity not in lights:
+            lights[intensity] = lamp_light(intensity, lamps["uplight"], lamps["reach_m"])
+        lamp = bpy.data.objects.new("exacity_lamp", lights[intensity])
+        lamp.location = (x, y, z)
+        scene.collection.objects.link(lamp)
 
 # Cycles as close to Exacity's path tracer as it goes: CPU, 2 threads, fixed samples (no
 # adaptive sampling), the same maximum bounces, no clamping, a one-pixel box filter (Exacity
@@ -122,9 +176,9 @@ for run in config["runs"]:
     cycles.use_denoising = run.get("denoise", False)
     if cycles.use_denoising:
         cycles.denoiser = "OPENIMAGEDENOISE"
-    start = time.perf_counter()
+    start = time.process_time()
     bpy.ops.render.render()
-    times[run["name"]] = time.perf_counter() - start
+    times[run["name"]] = time.process_time() - start
     bpy.data.images["Render Result"].save_render(run["exr"])
-    print(f"cycles {run['name']}: {run['spp']} spp in {times[run['name']]:.2f} s", flush=True)
+    print(f"cycles {run['name']}: {run['spp']} spp in {times[run['name']]:.2f} CPU s", flush=True)
 json.dump(times, open(config["times"], "w"), indent=1)
