@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "tests/cli_util.h"
+#include "tests/place_sketch.h"
 #include "tests/test_util.h"
 
 namespace {
@@ -16,28 +17,8 @@ using nlohmann::ordered_json;
 
 void write(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::binary) << text; }
 
-ordered_json rectangle(double x0, double y0, double x1, double y1) {
-  return {{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}, {x0, y0}}};
-}
-
-// A residential zone 330 m by 100 m along a road 10 m wide on y = 0, and twelve mapped
-// footprints 10 m deep standing 5 m behind the road's surface (y = 10), 4 m apart, 10 to
-// 32 m wide: areas 100 to 320 m² in steps of 20 (median 200, 90th percentile 300).
-ordered_json measured_place() {
-  ordered_json features = ordered_json::array();
-  features.push_back({{"type", "Feature"}, {"properties", {{"zone", "residential"}}},
-                      {"geometry", {{"type", "Polygon"}, {"coordinates", rectangle(0, 0, 330, 100)}}}});
-  features.push_back({{"type", "Feature"}, {"properties", {{"road", "local"}, {"width", 10}}},
-                      {"geometry", {{"type", "LineString"}, {"coordinates", {{-10, 0}, {340, 0}}}}}});
-  double x = 10;
-  for (int i = 0; i < 12; ++i) {
-    const double w = 10 + 2 * i;
-    features.push_back({{"type", "Feature"}, {"properties", {{"building", "house"}, {"height", 6 + i}}},
-                        {"geometry", {{"type", "Polygon"}, {"coordinates", rectangle(x, 10, x + w, 20)}}}});
-    x += w + 4;
-  }
-  return {{"type", "FeatureCollection"}, {"features", features}};
-}
+using place_sketch::measured_place;
+using place_sketch::rectangle;
 
 // A residential zone with streets every 120 m and no buildings: all of it generated.
 ordered_json empty_place() {

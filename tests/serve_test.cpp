@@ -42,6 +42,7 @@
 #include "serve/job_runner.h"
 #include "serve/server.h"
 #include "tests/cli_util.h"
+#include "tests/place_sketch.h"
 #include "tests/test_util.h"
 
 namespace fs = std::filesystem;
@@ -675,27 +676,8 @@ TEST_F(ServeTest, ModelUploadNamesThatTryToLeaveAreRefused) {
   EXPECT_FALSE(fs::exists(work() / "models"));
 }
 
-// A real place: its own residential land 330 m by 100 m along a road, and `buildings`
-// footprints 10 m deep 5 m behind the road's surface, 4 m apart, 10 m wide and 2 m more each
-// (tests/like_test.cpp: twelve give areas 100 to 320 m², median 200).
-std::string place_geojson(int buildings) {
-  auto rectangle = [](double x0, double y0, double x1, double y1) {
-    return json::array({json::array({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}, {x0, y0}})});
-  };
-  json features = json::array();
-  features.push_back({{"type", "Feature"}, {"properties", {{"zone", "residential"}}},
-                      {"geometry", {{"type", "Polygon"}, {"coordinates", rectangle(0, 0, 330, 100)}}}});
-  features.push_back({{"type", "Feature"}, {"properties", {{"road", "local"}, {"width", 10}}},
-                      {"geometry", {{"type", "LineString"}, {"coordinates", {{-10, 0}, {340, 0}}}}}});
-  double x = 10;
-  for (int i = 0; i < buildings; ++i) {
-    const double w = 10 + 2 * i;
-    features.push_back({{"type", "Feature"}, {"properties", {{"building", "house"}, {"height", 6 + i}}},
-                        {"geometry", {{"type", "Polygon"}, {"coordinates", rectangle(x, 10, x + w, 20)}}}});
-    x += w + 4;
-  }
-  return json{{"type", "FeatureCollection"}, {"features", features}}.dump();
-}
+// A real place (tests/place_sketch.h) with `buildings` footprints, as the file uploaded.
+std::string place_geojson(int buildings) { return place_sketch::measured_place(buildings).dump(); }
 
 // A place uploaded from the page (generate --like): stored in work/like, named by the
 // sketch, measured as generate measures it (GET /api/like), and looked like by the
