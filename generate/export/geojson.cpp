@@ -2,10 +2,14 @@
 
 #include <charconv>
 #include <fstream>
+#include <iterator>
+#include <optional>
+#include <sstream>
 
 #include "generate/cancel.h"
 #include "generate/errors.h"
 #include "generate/export/cancellable_file.h"
+#include "generate/export/read_lines.h"
 
 namespace exacity {
 namespace fs = std::filesystem;
@@ -115,17 +119,14 @@ bool read_feature(const json& f, const std::string& where, Layer& layer, VectorF
 
 }  // namespace
 
+namespace {
+
 // Each feature is taken out of the parse as soon as it is read and dropped from the
 // document, so no more than one feature's JSON is held at once (a whole layer's document
 // takes several times its text's size).
-Layer read_geojson(const fs::path& file, std::vector<std::string>& problems) {
+Layer read_whole(const fs::path& file, std::istream& in, std::vector<std::string>& problems) {
   Layer layer;
   layer.name = file.stem().string();
-  CancellableInput in(file);
-  if (!in) {
-    problems.push_back(file.string() + ": missing");
-    return layer;
-  }
   const std::size_t problems_before = problems.size();
   const CancelCheck cancel;
   std::string key;           // the top-level member being read
@@ -157,6 +158,85 @@ Layer read_geojson(const fs::path& file, std::vector<std::string>& problems) {
     return layer;
   }
   return layer;
+}
+
+// `text` read line by line as write_layer lays it out, or nothing when it is laid out
+// otherwise or a feature line does not read as a feature without a problem (the whole
+// reading then says what is wrong, as it would have).
+std::optional<Layer> read_by_line(const fs::path& file, const std::string& text, ReadLines& known) {
+  static constexpr std::string_view kOpen = "\"features\":[";
+  std::size_t end = text.find('\n');
+  if (end == std::string::npos || !std::string_view(text.data(), end).ends_with(kOpen)) return std::nullopt;
+  // The first line and the closing "]}" make an object: its "features" opened last, at the top.
+  const json head = json::parse(text.substr(0, end) + "]}", nullptr, false);
+  if (head.is_discarded() || !head.is_object()) return std::nullopt;
+  Layer layer;
+  layer.name = file.stem().string();
+  ReadLines now;
+  const CancelCheck cancel;
+  bool more = true;  // the line before ended in a comma, or was the first
+  for (std::size_t at = end + 1, index = 0;; ++index) {
+    if (index % 1024 == 0) cancel.check();
+    end = text.find('\n', at);
+    if (end == std::string::npos) return std::nullopt;
+    std::string_view line(text.data() + at, end - at);
+    at = end + 1;
+    if (line == "]}") {
+      if ((index > 0 && more) || text.find_first_not_of(" \t\r\n", at) != std::string::npos) return std::nullopt;
+      break;
+    }
+    if (!more) return std::nullopt;
+    more = line.ends_with(',');
+    if (more) line.remove_suffix(1);
+    auto read = now.by_text.find(line);
+    if (read == now.by_text.end()) {
+      if (auto was = known.by_text.find(line); was != known.by_text.end()) {
+        read = now.by_text.insert(known.by_text.extract(was)).position;
+        ++now.reused;
+      } else {
+        const json f = json::parse(line.begin(), line.end(), nullptr, false);
+        if (f.is_discarded()) return std::nullopt;
+        Layer kind;
+        VectorFeature vf;
+        std::vector<std::string> problems;
+        if (!read_feature(f, "", kind, vf, problems)) return std::nullopt;
+        read = now.by_text.emplace(std::string(line), ReadLines::Read{std::move(vf), kind.lines}).first;
+        ++now.parsed;
+      }
+    } else {
+      ++now.reused;
+    }
+    layer.lines |= read->second.line_string;
+    layer.features.push_back(read->second.feature);
+  }
+  known = std::move(now);
+  return layer;
+}
+
+}  // namespace
+
+Layer read_geojson(const fs::path& file, std::vector<std::string>& problems) {
+  CancellableInput in(file);
+  if (!in) {
+    problems.push_back(file.string() + ": missing");
+    Layer layer;
+    layer.name = file.stem().string();
+    return layer;
+  }
+  return read_whole(file, in, problems);
+}
+
+Layer read_geojson(const fs::path& file, std::vector<std::string>& problems, ReadLines& known) {
+  std::string text;
+  {
+    CancellableInput in(file);
+    if (!in) return read_geojson(file, problems);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  if (std::optional<Layer> layer = read_by_line(file, text, known)) return std::move(*layer);
+  known = {};
+  std::istringstream in(text);
+  return read_whole(file, in, problems);
 }
 
 }  // namespace exacity

@@ -19,6 +19,7 @@
 #include "generate/city/drawn_zones.h"
 #include "generate/errors.h"
 #include "generate/export/geojson.h"
+#include "generate/export/read_lines.h"
 #include "generate/export/validate_nesting.h"
 #include "generate/export/validate_tiles.h"
 #include "generate/export/validate_clutter.h"
@@ -736,6 +737,9 @@ struct ValidatedPolygons {
   std::vector<std::string> keys;  // what it is, ids left out (polygon_key)
   std::vector<int> ids, names;    // its id; the id a lot's block or a building's lot has, else -1
   std::vector<geom::Box> boxes;
+  // Each layer file's features by the text of their lines, as read (read_geojson): the next
+  // reading parses only the lines that changed.
+  std::map<std::string, ReadLines> lines;
 };
 
 namespace {
@@ -856,7 +860,11 @@ Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* las
     return v;
   }
   std::vector<std::string> read_problems;
-  const CityLayers layers = read_layers(dir / "vector", read_problems);
+  std::map<std::string, ReadLines> lines;  // with `last`: the lines read before, then this city's
+  if (previous) lines = std::move(previous->lines);
+  lines["clutter"];  // made before the reads at once
+  const CityLayers layers =
+      last ? read_layers(dir / "vector", read_problems, lines) : read_layers(dir / "vector", read_problems);
   const Layer &zones = layers.zones, &water = layers.water, &road_areas = layers.road_areas, &blocks = layers.blocks,
               &lots = layers.lots, &buildings = layers.buildings, &roads = layers.roads;
   for (auto& p : read_problems) c.problem(p);
@@ -921,14 +929,14 @@ Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* las
       [&] {
         Checker r(road_checks);
         check_roads(r, sketch, roads, water);
-        validate_clutter(dir, layers, clutter);
+        validate_clutter(dir, layers, clutter, last ? &lines.at("clutter") : nullptr);
       });
   for (const Validation* part : {&tiling, &road_checks, &clutter}) {
     for (const std::string& p : part->problems) c.problem(p);
     v.features.insert(part->features.begin(), part->features.end());
     v.widest_sliver = std::max(v.widest_sliver, part->widest_sliver);
   }
-  if (last && v.ok()) *last = now;
+  if (last && v.ok()) now->lines = std::move(lines), *last = now;
   return v;
 }
 

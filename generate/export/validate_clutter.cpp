@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "generate/cancel.h"
+#include "generate/export/read_lines.h"
 #include "generate/placement/model_library.h"
 #include "geom/polygon_check.h"
 
@@ -67,12 +68,13 @@ bool is_clutter_kind(const std::string& kind) {
 
 }  // namespace
 
-void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers, Validation& v) {
+void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers, Validation& v, ReadLines* known) {
   auto problem = [&](const std::string& p) {
     if (v.problems.size() < kMaxProblems) v.problems.push_back(p);
   };
   std::vector<std::string> read_problems;
-  const Layer clutter = read_geojson(dir / "vector" / "clutter.geojson", read_problems);
+  const std::filesystem::path file = dir / "vector" / "clutter.geojson";
+  const Layer clutter = known ? read_geojson(file, read_problems, *known) : read_geojson(file, read_problems);
   for (const std::string& p : read_problems) problem(p);
   v.features["clutter"] = static_cast<int>(clutter.features.size());
 

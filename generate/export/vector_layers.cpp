@@ -11,6 +11,7 @@
 #include "generate/cancel.h"
 #include "generate/cancellable_invoke.h"
 #include "generate/city/stable_ids.h"
+#include "generate/export/read_lines.h"
 #include "geom/box_index.h"
 #include "geom/measure.h"
 #include "geom/polygon_check.h"
@@ -52,17 +53,36 @@ ordered_json slabs_json(const std::vector<Slab>& slabs) {
 
 }  // namespace
 
-// The files are read at once, each with its own problems, listed in this order.
-CityLayers read_layers(const std::filesystem::path& vector_dir, std::vector<std::string>& problems) {
+namespace {
+
+// The files are read at once, each with its own problems, listed in this order; with
+// `known`, each with the ReadLines under its name (made here, so the reads only look them up).
+CityLayers read_each_layer(const std::filesystem::path& vector_dir, std::vector<std::string>& problems,
+                           std::map<std::string, ReadLines>* known) {
   CityLayers layers;
   const std::vector<Layer*> all{&layers.zones,  &layers.water, &layers.roads,    &layers.road_areas,
                                 &layers.blocks, &layers.lots,  &layers.buildings};
+  std::vector<ReadLines*> lines(all.size(), nullptr);
+  if (known)
+    for (std::size_t i = 0; i < all.size(); ++i) lines[i] = &(*known)[all[i]->name];
   std::vector<std::vector<std::string>> read_problems(all.size());
   for_each_cancellable(all.size(), [&](std::size_t i) {
-    *all[i] = read_geojson(vector_dir / (all[i]->name + ".geojson"), read_problems[i]);
+    const std::filesystem::path file = vector_dir / (all[i]->name + ".geojson");
+    *all[i] = lines[i] ? read_geojson(file, read_problems[i], *lines[i]) : read_geojson(file, read_problems[i]);
   });
   for (const auto& p : read_problems) problems.insert(problems.end(), p.begin(), p.end());
   return layers;
+}
+
+}  // namespace
+
+CityLayers read_layers(const std::filesystem::path& vector_dir, std::vector<std::string>& problems) {
+  return read_each_layer(vector_dir, problems, nullptr);
+}
+
+CityLayers read_layers(const std::filesystem::path& vector_dir, std::vector<std::string>& problems,
+                       std::map<std::string, ReadLines>& known) {
+  return read_each_layer(vector_dir, problems, &known);
 }
 
 namespace {
