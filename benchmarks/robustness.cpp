@@ -8,6 +8,7 @@
 #include <cstring>
 #include <exception>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <mutex>
 #include <ostream>
@@ -142,6 +143,7 @@ std::string level_of(const std::string& family) {
 // How the report names a build: the two float builds without tolerances say so.
 std::string build_label(const std::string& name) {
   if (name == "float-snapped") return "float-snapped (practitioner)";
+  if (name == "float-simple-snapped") return "float-simple-snapped (practitioner, plain doubles)";
   if (name == "float") return "float, Epick (no tolerance)";
   if (name == "float-simple") return "float-simple (no tolerance)";
   if (name == "cgal-snap") return "CGAL snap rounding on Epick (blocks and lots only)";
@@ -158,8 +160,16 @@ std::string svg_chart(const std::vector<FamilyResult>& results, const std::vecto
   const int columns = 4, panel_w = 230, panel_h = 150, gap_x = 40, gap_y = 70, left = 50, top = 24 + 16 * legend_rows;
   const int rows = (static_cast<int>(results.size()) + columns - 1) / columns;
   const int width = left + columns * (panel_w + gap_x), height = top + rows * (panel_h + gap_y) + 30;
-  static const char* colours[] = {"#2b7a3d", "#1f5fa8", "#138d90", "#7b3fa0", "#c23c8c", "#d9822b", "#b8322a"};
-  static const char* dashes[] = {"", "", "", "", "4 2", "6 3", "2 3"};
+  // One per build of kBuildNames, in its order (the snapped build on plain doubles a lighter
+  // dotted blue beside the practitioner's).
+  static const char* colours[] = {"#2b7a3d", "#1f5fa8", "#5b9bd5", "#138d90", "#7b3fa0", "#c23c8c", "#d9822b", "#b8322a"};
+  static const char* dashes[] = {"", "", "3 2", "", "", "4 2", "6 3", "2 3"};
+  static_assert(std::size(colours) == std::size(dashes));
+  // A build keeps its style whichever builds ran.
+  std::vector<std::size_t> style(builds.size());
+  for (std::size_t b = 0; b < builds.size(); ++b)
+    style[b] = static_cast<std::size_t>(std::find(kBuildNames.begin(), kBuildNames.end(), builds[b].name) - kBuildNames.begin()) %
+               std::size(colours);
   std::ostringstream s;
   s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
     << "\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
@@ -168,7 +178,7 @@ std::string svg_chart(const std::vector<FamilyResult>& results, const std::vecto
   for (std::size_t b = 0; b < builds.size(); ++b) {
     const std::size_t x = left + 360 * (b % 3), y = 28 + 16 * (b / 3);
     s << "<line x1=\"" << x << "\" x2=\"" << x + 20 << "\" y1=\"" << y << "\" y2=\"" << y << "\" stroke=\""
-      << colours[b % 7] << "\" stroke-width=\"2\" stroke-dasharray=\"" << dashes[b % 7] << "\"/><text x=\"" << x + 24
+      << colours[style[b]] << "\" stroke-width=\"2\" stroke-dasharray=\"" << dashes[style[b]] << "\"/><text x=\"" << x + 24
       << "\" y=\"" << y + 4 << "\">" << build_label(builds[b].name) << "</text>\n";
   }
   for (std::size_t f = 0; f < results.size(); ++f) {
@@ -205,11 +215,11 @@ std::string svg_chart(const std::vector<FamilyResult>& results, const std::vecto
       std::ostringstream points;
       for (const auto& [level, bin] : bins)
         points << fixed(x_of(static_cast<double>(level)), 1) << "," << fixed(y_of(static_cast<double>(bin.second[b]) / bin.first), 1) << " ";
-      s << "<polyline points=\"" << points.str() << "\" fill=\"none\" stroke=\"" << colours[b % 7]
-        << "\" stroke-width=\"2\" stroke-dasharray=\"" << dashes[b % 7] << "\"/>\n";
+      s << "<polyline points=\"" << points.str() << "\" fill=\"none\" stroke=\"" << colours[style[b]]
+        << "\" stroke-width=\"2\" stroke-dasharray=\"" << dashes[style[b]] << "\"/>\n";
       for (const auto& [level, bin] : bins)
         s << "<circle cx=\"" << fixed(x_of(static_cast<double>(level)), 1) << "\" cy=\""
-          << fixed(y_of(static_cast<double>(bin.second[b]) / bin.first), 1) << "\" r=\"2.5\" fill=\"" << colours[b % 7]
+          << fixed(y_of(static_cast<double>(bin.second[b]) / bin.first), 1) << "\" r=\"2.5\" fill=\"" << colours[style[b]]
           << "\"/>\n";
     }
   }

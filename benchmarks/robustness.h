@@ -14,11 +14,13 @@
 namespace exacity::bench {
 
 // The builds, in report order: the exact one, the practitioner's float build (snapped to a
-// grid, with tolerances), CGAL's snap rounding on its inexact kernel and GEOS's overlay in
-// floating and in fixed precision (the partition stage only: benchmarks/cgal_snap_partition.cpp
-// and geos_partition.cpp), and the two float builds with no tolerance (geom/exact.h).
-inline const std::vector<std::string> kBuildNames = {"exact",         "float-snapped", "cgal-snap", "geos-floating",
-                                                     "geos-fixed",    "float",         "float-simple"};
+// grid, with tolerances) on exact predicates (Epick) and on plain doubles, CGAL's snap
+// rounding on its inexact kernel and GEOS's overlay in floating and in fixed precision (the
+// partition stage only: benchmarks/cgal_snap_partition.cpp and geos_partition.cpp), and the
+// two float builds with no tolerance (geom/exact.h).
+inline const std::vector<std::string> kBuildNames = {"exact",      "float-snapped", "float-simple-snapped",
+                                                     "cgal-snap",  "geos-floating", "geos-fixed",
+                                                     "float",      "float-simple"};
 
 struct RobustnessOptions {
   std::vector<std::string> families;  // empty: all

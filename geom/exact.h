@@ -7,7 +7,9 @@
 // the practitioner's float build: Epick, with every constructed point snapped to a fixed
 // grid (`constructed`), equality of constructed points tested on that grid, and every
 // batch noded by snap rounding in doubles before the arrangement sees it
-// (geom/snap_noding.h; docs/design.md, Exactness).
+// (geom/snap_noding.h; docs/design.md, Exactness). 4 is that snapped build on plain
+// doubles (Simple_cartesian<double>): the same snapping and tolerances, with predicates
+// that round too, to show what the exact predicates under 3 do for it.
 #pragma once
 
 #include <array>
@@ -27,8 +29,16 @@
 #elif EXACITY_FLOAT_KERNEL == 3
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include "geom/snap_noding.h"
+#elif EXACITY_FLOAT_KERNEL == 4
+#include <CGAL/Simple_cartesian.h>
+#include "geom/snap_noding.h"
 #else
-#error "EXACITY_FLOAT_KERNEL: 1 (Epick), 2 (Simple_cartesian<double>) or 3 (Epick, snapped)"
+#error "EXACITY_FLOAT_KERNEL: 1 (Epick), 2 (Simple_cartesian<double>), 3 (Epick, snapped) or 4 (Simple_cartesian<double>, snapped)"
+#endif
+
+// The snapped builds (3 and 4) share every line of their snapping.
+#if EXACITY_FLOAT_KERNEL == 3 || EXACITY_FLOAT_KERNEL == 4
+#define EXACITY_SNAPPED_KERNEL 1
 #endif
 
 namespace geom::exact {
@@ -42,12 +52,15 @@ inline constexpr const char* kKernelName = "float (Epick)";
 #elif EXACITY_FLOAT_KERNEL == 2
 using Kernel = CGAL::Simple_cartesian<double>;
 inline constexpr const char* kKernelName = "float (Simple_cartesian<double>)";
-#else
+#elif EXACITY_FLOAT_KERNEL == 3
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 inline constexpr const char* kKernelName = "float snapped (Epick, constructions on a 2^-24 m grid)";
+#else
+using Kernel = CGAL::Simple_cartesian<double>;
+inline constexpr const char* kKernelName = "float snapped (Simple_cartesian<double>, constructions on a 2^-24 m grid)";
 #endif
 
-#if EXACITY_FLOAT_KERNEL == 3
+#if defined(EXACITY_SNAPPED_KERNEL)
 inline constexpr bool kSnapped = true;
 #else
 inline constexpr bool kSnapped = false;
@@ -69,7 +82,7 @@ inline Point to_exact(Vec2 p) {
 // A point this code constructed (a meeting of two lines, a projection): itself, or in the
 // snapped build the nearest point of its grid, where equality tests then find it again.
 inline Point constructed(const Point& p) {
-#if EXACITY_FLOAT_KERNEL == 3
+#if defined(EXACITY_SNAPPED_KERNEL)
   const Vec2 s = snap_to({p.x(), p.y()}, kSnapStep);
   return Point(s.x, s.y);
 #else

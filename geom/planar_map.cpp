@@ -39,7 +39,7 @@ void add_ring_curves(std::vector<Curve>& curves, const std::vector<Point>& ring,
   for (std::size_t i = 0; i < ring.size(); ++i) add_curve(curves, ring[i], ring[(i + 1) % ring.size()], {counter, +1, 0});
 }
 
-#if EXACITY_FLOAT_KERNEL == 3
+#if defined(EXACITY_SNAPPED_KERNEL)
 namespace {
 
 // The pieces of a polyline as curves with `tags`, given relative to the left-to-right

@@ -43,7 +43,7 @@ struct ConcatenateTags {
   }
 };
 
-#if EXACITY_FLOAT_KERNEL == 3
+#if defined(EXACITY_SNAPPED_KERNEL)
 // The snapped build splits an edge at a grid point near it, not on it: each piece must be
 // the segment between its ends, not a part of the first segment's line.
 using SegmentTraits = CGAL::Arr_non_caching_segment_traits_2<Kernel>;

@@ -1,16 +1,19 @@
 // The robustness benchmark's families and harness: the families are deterministic, and
-// the exact build passes a slice of every family while the practitioner's float build runs
-// it too (the CI slice: an exact failure is a bug, a baseline's is a finding).
+// the exact build passes a slice of every family while the baselines, the practitioner's
+// float build on exact predicates and on plain doubles among them, run it too (the CI
+// slice: an exact failure is a bug, a baseline's is a finding).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <fstream>
 #include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "benchmarks/child_process.h"
 #include "benchmarks/families.h"
 #include "benchmarks/judge.h"
 #include "benchmarks/robustness.h"
@@ -90,7 +93,7 @@ TEST(Robustness, TheExactBuildPassesEveryCaseOfTheSliceAndTheBaselinesRunIt) {
   o.seed = 20261123;
   o.out = testing_util::temp_dir("robustness-slice");
   o.programs = std::filesystem::path(EXACITY_BINARY).parent_path();
-  o.builds = {"exact", "float-snapped", "cgal-snap", "geos-floating", "geos-fixed"};
+  o.builds = {"exact", "float-snapped", "float-simple-snapped", "cgal-snap", "geos-floating", "geos-fixed"};
   o.jobs = 2;
   o.time_limit = 300;  // the test build is unoptimised; a hang would still be caught
   std::ostringstream log;
@@ -109,6 +112,11 @@ TEST(Robustness, TheExactBuildPassesEveryCaseOfTheSliceAndTheBaselinesRunIt) {
     for (const CaseResult& c : f.cases) {
       EXPECT_EQ(c.level, family_case(f.family, c.index, o.seed).level);
       EXPECT_EQ(c.results.at(0), "passed");
+      // Every baseline has a verdict on every case: a crash or a hang inside CGAL on
+      // inexact predicates is that case's failure, not the run's.
+      ASSERT_EQ(c.results.size(), o.builds.size());
+      for (const std::string& r : c.results)
+        EXPECT_TRUE(r == "passed" || r == "crash" || r == "hang" || r == "error" || r == "rejected") << r;
     }
   }
   // The report is written; the JSON has each case's level and results.
@@ -122,11 +130,12 @@ TEST(Robustness, TheExactBuildPassesEveryCaseOfTheSliceAndTheBaselinesRunIt) {
   EXPECT_EQ(first["per_case"][0]["exact"], "passed");
   EXPECT_TRUE(first["per_case"][0].contains("level"));
   EXPECT_TRUE(first["per_case"][0].contains("float-snapped"));
+  EXPECT_TRUE(first["per_case"][0].contains("float-simple-snapped"));
   EXPECT_TRUE(first["per_case"][0].contains("cgal-snap"));
   EXPECT_TRUE(first["per_case"][0].contains("geos-fixed"));
   // Per stage, for every build but the exact one; the partition baselines write no stage timings.
   const auto& by_stage = doc["exact_over_this_time_by_stage"];
-  for (const char* build : {"float-snapped", "cgal-snap", "geos-floating", "geos-fixed"})
+  for (const char* build : {"float-snapped", "float-simple-snapped", "cgal-snap", "geos-floating", "geos-fixed"})
     EXPECT_TRUE(by_stage.contains(build)) << build;
   EXPECT_TRUE(by_stage["cgal-snap"].empty());
   EXPECT_TRUE(by_stage["geos-fixed"].empty());
@@ -147,6 +156,22 @@ TEST(Robustness, TheExactBuildPassesEveryCaseOfTheSliceAndTheBaselinesRunIt) {
     EXPECT_LE(r["p25"].get<double>(), r["median"].get<double>()) << stage;
     EXPECT_LE(r["median"].get<double>(), r["p75"].get<double>()) << stage;
   }
+}
+
+// Each build runs a case in a child process, so a baseline that dies inside CGAL (on inexact
+// predicates its sweep can segfault or loop) fails that case and the run goes on: a signal
+// is a crash, and a child still running at the limit is killed and counted a hang.
+TEST(Robustness, AChildThatDiesOrOutrunsItsLimitIsContained) {
+  using Child = exacity::bench::Run;  // gtest's Test has a Run of its own
+  const std::filesystem::path dir = testing_util::temp_dir("robustness-child");
+  const Child crashed = run_child({"/bin/sh", "-c", "kill -SEGV $$"}, dir / "crash.log", 60);
+  EXPECT_EQ(crashed.status, Child::Signalled);
+  EXPECT_EQ(crashed.code, SIGSEGV);
+  const Child hung = run_child({"/bin/sleep", "600"}, dir / "hang.log", 0.2);
+  EXPECT_EQ(hung.status, Child::TimedOut);
+  const Child failed = run_child({"/bin/sh", "-c", "exit 3"}, dir / "exit.log", 60);
+  EXPECT_EQ(failed.status, Child::Exited);
+  EXPECT_EQ(failed.code, 3);
 }
 
 // A build's failures rise with the level where it fails more of the cases above the family's
