@@ -85,6 +85,7 @@ SceneOptions culled_to_view(const RenderRequest& request, const Daylight& day) {
   options.view = &request.camera;
   options.aspect = static_cast<float>(request.width) / static_cast<float>(request.height);
   options.mark_mapped = request.mark_mapped;
+  options.landscape_trees = request.landscape_trees;
   return options;
 }
 
@@ -239,6 +240,7 @@ nlohmann::ordered_json still_report(const RenderRequest& request, const SolarPla
       {"haze_visibility_m", request.haze_visibility},
       {"clear_visibility_m", request.haze_visibility > 0 ? 0.0f : request.clear_visibility},
       {"mark_mapped", request.mark_mapped},
+      {"landscape_trees", request.landscape_trees},
       {"camera",
        {{"from", {request.camera.from.x, request.camera.from.y, request.camera.from.z}},
         {"to", {request.camera.to.x, request.camera.to.y, request.camera.to.z}},
