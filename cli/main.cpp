@@ -50,6 +50,7 @@ struct RenderOptions {
   bool mark_mapped = false;
   bool overview = false, minimap = false, orthographic = false;
   std::string denoise = "on";
+  std::string landscape_trees = "on";  // the woods' and hedgerows' trees beyond the city
   float exposure_ev = 0, white_balance_k = render::kNeutralKelvin;
   double time_s = 0;
   std::string time_of_day;  // HH:MM
@@ -139,6 +140,7 @@ render::RenderRequest request_for(const City& city, const RenderOptions& o, cons
   r.haze_visibility = o.haze;
   r.mark_mapped = o.mark_mapped;
   r.denoise = o.denoise == "on";
+  r.landscape_trees = o.landscape_trees == "on";
   r.exposure_ev = o.exposure_ev, r.white_balance_k = o.white_balance_k;
   r.time_budget_s = o.time_s;
   r.time_of_day = time_of_day(o);
@@ -527,6 +529,11 @@ void add_image_options(CLI::App* c, RenderOptions& o) {
   c->add_flag("--mark-mapped", o.mark_mapped,
               "Colour buildings by where they come from: mapped (read from the sketch) light grey, generated orange");
   c->add_option("--denoise", o.denoise, "The edge-aware denoiser, on or off")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  c->add_option("--landscape-trees", o.landscape_trees,
+                "The trees of the woods and hedgerows beyond the city, on or off (off: the fields stay, bare; the "
+                "land as city.glb has it, for comparing renderers)")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   c->add_option("--exposure", o.exposure_ev, "Exposure in stops (EV) over the default")

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include <sys/resource.h>
 
@@ -10,6 +11,7 @@
 #include "render/denoise.h"
 #include "render/image_io.h"
 #include "render/night.h"
+#include "render/pass_budget.h"
 #include "render/path_tracer.h"
 #include "render/scene.h"
 #include "render/white_balance.h"
@@ -83,6 +85,7 @@ SceneOptions culled_to_view(const RenderRequest& request, const Daylight& day) {
   options.view = &request.camera;
   options.aspect = static_cast<float>(request.width) / static_cast<float>(request.height);
   options.mark_mapped = request.mark_mapped;
+  options.landscape_trees = request.landscape_trees;
   return options;
 }
 
@@ -138,47 +141,42 @@ double denoise_seconds(const RenderRequest& request, const Haze& haze, int sampl
   return filter_s + (haze.density > 0 ? 0 : sample_s * primary_rays(samples) / 3);
 }
 
-// Passes of request.spp samples: one, or as many as the time budget holds. The budget is
-// the whole command's, from request.started. With a budget the first pass is of one
-// sample, to time a sample before committing to spp of them; each
-// pass after it holds as many samples, up to spp, as the time per sample so far says will
-// end, with the denoiser after them, within the budget, and none is begun when not one
-// would. The image depends only on the passes' sizes (Film), and the report records its
-// samples and passes.
+// Passes of request.spp samples: one, or as many as the time budget holds (run_passes,
+// render/pass_budget.h). The budget is the whole command's, from request.started. The
+// image depends only on the passes' sizes (Film), and the report records its samples and
+// passes.
 Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camera, const RenderRequest& request,
                    const Daylight& day, const Haze& haze, const RenderProgress& progress, const StreetLights* lights) {
   Still still;
   const bool budget = request.time_budget_s > 0;
-  TraceSettings settings{request.width, request.height, budget ? 1 : request.spp};
+  TraceSettings settings{request.width, request.height, request.spp};
   settings.haze = haze;
   settings.lights = lights;
-  const auto start = std::chrono::steady_clock::now();
-  const double left = request.time_budget_s - seconds_since(request.started);  // at the start of tracing
   Film film(request.width, request.height);
-  constexpr int kMostSamples = 65536;
-  double filter_s = 0;  // the filter's time, measured on a band after the first pass
-  auto denoiser_s = [&](int samples) {
-    return denoise_seconds(request, haze, samples, filter_s, still.seconds / film.samples);
-  };
-  while (true) {
-    const auto pass = std::chrono::steady_clock::now();
+  auto trace_pass = [&](int samples) {
+    settings.spp = samples;
     const double pass_cpu = cpu_seconds();
     add_samples(film, scene, sky, camera, settings, &still.rays, [&](int done, int all) {
       if (!progress) return;
       if (!budget) return progress("still", static_cast<double>(done) / all);
-      progress("still", std::clamp(seconds_since(start) / left, 0.0, 1.0));
+      progress("still", std::clamp(seconds_since(request.started) / request.time_budget_s, 0.0, 1.0));
     });
-    still.seconds += seconds_since(pass);
     still.cpu_s += cpu_seconds() - pass_cpu;
-    ++still.passes;
-    if (!budget) break;
-    if (still.passes == 1 && request.denoise) filter_s = filter_seconds(film.image());
-    // The most samples, up to spp, that end with the denoiser within the budget.
-    const double per_sample = still.seconds / film.samples, remaining = left - seconds_since(start);
-    int next = std::min(request.spp, kMostSamples - film.samples);
-    while (next > 0 && per_sample * next + denoiser_s(film.samples + next) > remaining) --next;
-    if (next <= 0) break;
-    settings.spp = next;
+  };
+  // The filter's time, measured on a band once the first pass has given an image.
+  std::optional<double> filter_s;
+  auto denoiser_s = [&](int samples, double per_sample_s) {
+    if (request.denoise && !filter_s) filter_s = filter_seconds(film.image());
+    return denoise_seconds(request, haze, samples, filter_s.value_or(0), per_sample_s);
+  };
+  if (budget) {
+    PassBudget plan{request.time_budget_s, request.spp, denoiser_s};
+    const Passes passes = run_passes(plan, trace_pass, [&] { return seconds_since(request.started); });
+    still.passes = passes.passes, still.seconds = passes.traced_s;
+  } else {
+    const auto start = std::chrono::steady_clock::now();
+    trace_pass(request.spp);
+    still.passes = 1, still.seconds = seconds_since(start);
   }
   still.samples = film.samples;
   const auto filtering = std::chrono::steady_clock::now();
@@ -187,9 +185,9 @@ Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camer
   if (request.denoise) {
     // Over the budget already: the filter without its primary layer, or none.
     DenoiseSettings denoising;
-    const double remaining = left - seconds_since(start);
-    if (budget && denoiser_s(film.samples) > remaining) denoising.primary_rays = 0;
-    still.denoised = !budget || filter_s <= remaining;
+    const double remaining = request.time_budget_s - seconds_since(request.started);
+    if (budget && denoiser_s(film.samples, still.seconds / film.samples) > remaining) denoising.primary_rays = 0;
+    still.denoised = !budget || filter_s.value_or(0) <= remaining;
     if (still.denoised) image = denoise_render(std::move(image), scene, sky, camera, haze, denoising);
     still.primary_rays = image.extra.samples;
   }
@@ -242,6 +240,7 @@ nlohmann::ordered_json still_report(const RenderRequest& request, const SolarPla
       {"haze_visibility_m", request.haze_visibility},
       {"clear_visibility_m", request.haze_visibility > 0 ? 0.0f : request.clear_visibility},
       {"mark_mapped", request.mark_mapped},
+      {"landscape_trees", request.landscape_trees},
       {"camera",
        {{"from", {request.camera.from.x, request.camera.from.y, request.camera.from.z}},
         {"to", {request.camera.to.x, request.camera.to.y, request.camera.to.z}},

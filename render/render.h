@@ -33,6 +33,9 @@ struct RenderRequest {
   float white_balance_k = 6500; // the light's colour temperature made neutral (6500: none)
   bool mark_mapped = false;     // buildings coloured by origin (SceneOptions::mark_mapped)
   bool denoise = true;          // the edge-aware filter (render/denoise.h) before tone mapping
+  // The still's woods and hedgerows beyond the city (SceneOptions::landscape_trees); off, the
+  // fields stay bare, as city.glb's land is (the Cycles comparison, benchmarks/cycles).
+  bool landscape_trees = true;
   // Progressive: passes of `spp` samples while the whole still, counted from `started`
   // (the command's start: the city's and the scene's builds included) and the denoiser
   // after them, fits in this many seconds (at least one pass; the denoiser's primary layer,

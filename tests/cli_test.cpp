@@ -493,6 +493,17 @@ TEST(Cli, CameraPathFramesInRangesEqualOneRunAndBadPathsAreOneLine) {
   EXPECT_FALSE(still["denoised"].get<bool>());
   EXPECT_EQ(still["exposure_ev"].get<double>(), 1);
   EXPECT_EQ(still["white_balance_k"].get<double>(), 4000);
+  // --landscape-trees off: the land beyond the city without its woods' and hedgerows' trees,
+  // as city.glb has it (the Cycles comparison's scene); the same view has them by default.
+  EXPECT_TRUE(still["landscape_trees"].get<bool>());
+  EXPECT_GT(still["scene"]["landscape_instances"].get<int>(), 0);
+  r = run("render " + out.string() + " --size 32x24 --spp 1 --denoise off --landscape-trees off -q -o " +
+          (dir / "bare.png").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto bare = nlohmann::json::parse(read(dir / "bare.json"));
+  EXPECT_FALSE(bare["landscape_trees"].get<bool>());
+  EXPECT_EQ(bare["scene"]["landscape_instances"].get<int>(), 0);
+  EXPECT_EQ(run("render " + out.string() + " --landscape-trees some -q").code, 2);
   EXPECT_EQ(run("render " + out.string() + " --denoise maybe -q").code, 2);
 }
 

@@ -14,6 +14,7 @@
 #include "render/denoise.h"
 #include "render/image_error.h"
 #include "render/image_io.h"
+#include "render/pass_budget.h"
 #include "render/path_tracer.h"
 #include "render/render.h"
 #include "render/render_path.h"
@@ -282,6 +283,51 @@ TEST(Film, ABudgetSpentBeforeTracingGivesOnePassAndNoDenoiser) {
   const nlohmann::ordered_json whole = render_city(city, request);
   EXPECT_EQ(whole["denoised"], true);
   EXPECT_EQ(whole["primary_rays"], 8);
+}
+
+// The passes under a time budget, on a clock of the test's own: a sample costs 1/8 s
+// (binary fractions, so the sums are exact), the city and the scene took the first second
+// of a 3 s budget. The first pass is one sample; then passes of up to spp that fit, the last
+// shrunk to end on the budget; with the finishing (the denoiser) foretold, room is left
+// for it; a pass that runs long (the machine slowed down) and ends past the budget is the
+// last; and a budget spent before tracing gives one pass of one sample.
+TEST(PassBudget, PassesFitTheBudgetAndStopAfterThePassThatReachesIt) {
+  double clock = 1, slowdown = 1;
+  std::size_t slow_pass = 0;  // the pass (from 1) that runs `slowdown` times as long
+  std::vector<int> passes;
+  auto trace = [&](int n) {
+    passes.push_back(n);
+    clock += 0.125 * n * (passes.size() == slow_pass ? slowdown : 1);
+  };
+  auto now = [&] { return clock; };
+  PassBudget budget{3, 4};
+  Passes done = run_passes(budget, trace, now);
+  EXPECT_EQ(passes, (std::vector<int>{1, 4, 4, 4, 3}));
+  EXPECT_EQ(done.passes, 5);
+  EXPECT_EQ(done.samples, 16);
+  EXPECT_EQ(done.traced_s, 2);
+  EXPECT_EQ(clock, 3);
+
+  // A quarter second of finishing after whatever was traced.
+  budget.finish_s = [](int, double) { return 0.25; };
+  clock = 1, passes.clear();
+  done = run_passes(budget, trace, now);
+  EXPECT_EQ(passes, (std::vector<int>{1, 4, 4, 4, 1}));
+  EXPECT_EQ(clock + 0.25, 3);
+
+  // The third pass takes four times as long as foretold: it ends past the budget, and
+  // nothing is traced after it.
+  budget.finish_s = [](int, double) { return 0.0; };
+  clock = 1, passes.clear(), slow_pass = 3, slowdown = 4;
+  done = run_passes(budget, trace, now);
+  EXPECT_EQ(passes, (std::vector<int>{1, 4, 4}));
+  EXPECT_EQ(clock, 3.625);
+
+  // Spent before the first pass: that pass alone, of one sample.
+  clock = 5, passes.clear(), slow_pass = 0;
+  done = run_passes(budget, trace, now);
+  EXPECT_EQ(passes, (std::vector<int>{1}));
+  EXPECT_EQ(done.samples, 1);
 }
 
 TEST(ToneMap, WhiteBalanceMakesItsBlackBodyNeutral) {

@@ -3,7 +3,7 @@
 
     python3 benchmarks/cycles/bench.py [SKETCH] [-o WORK] [--size 320x180] [--spp 16,64]
                                        [--reference 1024] [--repeat 3] [--threads 2] [--camera SPEC]
-                                       [--time-of-day HH:MM]
+                                       [--time-of-day HH:MM] [--landscape-trees off]
 
 Generates SKETCH (examples/town.geojson) into WORK/city, renders its view with
 `exacity render` and, from WORK/city/city.glb, with Cycles (`blender -b`), each at every
@@ -53,6 +53,9 @@ def main():
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--camera", help="exacity's --camera SPEC; default: exacity render's default view")
     p.add_argument("--time-of-day", help="exacity's --time-of-day HH:MM; default: its default sun")
+    p.add_argument("--landscape-trees", choices=("on", "off"), default="on",
+                   help="exacity render's: off leaves out the woods' and hedgerows' trees beyond the city, which "
+                        "city.glb has not, so that both renderers trace the same scene")
     p.add_argument("--build", default=os.path.join(ROOT, "build", "release"))
     p.add_argument("--reuse-cycles", action="store_true",
                    help="keep WORK/cycles from an earlier run with the same options (Cycles' images and times)")
@@ -104,6 +107,7 @@ def main():
                 args += ["--camera", a.camera]
             if a.time_of_day:
                 args += ["--time-of-day", a.time_of_day]
+            args += ["--landscape-trees", a.landscape_trees]
             run(args)
             report = json.load(open(os.path.join(work, "exacity", name + ".json")))
             seconds.append(report["scene"]["build_cpu_s"] + report["still"]["cpu_s"] + report["still"]["denoise_cpu_s"])
