@@ -1,4 +1,5 @@
 #include "generate/export/geojson.h"
+#include "generate/export/geojson_written.h"
 
 #include <charconv>
 #include <cstdint>

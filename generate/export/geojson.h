@@ -3,7 +3,6 @@
 #pragma once
 
 #include <filesystem>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,10 +34,5 @@ void write_point_geojson(const Layer& layer, const nlohmann::ordered_json& crs, 
 // Polygons, LineStrings or Points).
 // Anything malformed is appended to `problems`, one line each, and skipped.
 Layer read_geojson(const std::filesystem::path& file, std::vector<std::string>& problems);
-
-// The layer if the file has write_geojson's layout exactly (one feature a line, no spaces),
-// read faster than by the JSON parser and to the same layer; else nullopt (read_geojson
-// then parses it).
-std::optional<Layer> read_written_geojson(const std::filesystem::path& file);
 
 }  // namespace exacity

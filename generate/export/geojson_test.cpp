@@ -1,6 +1,7 @@
 // Reading a layer back for validation: feature by feature, each malformed one named and
 // skipped, a document that is no FeatureCollection refused whole.
 #include "generate/export/geojson.h"
+#include "generate/export/geojson_written.h"
 
 #include <gtest/gtest.h>
 
