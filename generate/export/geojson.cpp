@@ -1,10 +1,13 @@
 #include "generate/export/geojson.h"
+#include "generate/export/geojson_written.h"
 
 #include <charconv>
+#include <cstdint>
 #include <fstream>
 #include <iterator>
 #include <optional>
 #include <sstream>
+#include <string_view>
 
 #include "generate/cancel.h"
 #include "generate/errors.h"
@@ -117,7 +120,161 @@ bool read_feature(const json& f, const std::string& where, Layer& layer, VectorF
   }
 }
 
+// The layout write_layer writes, read by a scanner of its own: a first line ending in
+// "features":[, one feature a line (each but the last followed by a comma), then "]}".
+// nlohmann's parser spent most of validation's reading in its lexer and in a JSON value per
+// number; here each feature's properties alone go through it, and numbers through
+// from_chars, as that parser reads them (an integer as an integer, then as a double: "-0" is
+// 0; others correctly rounded, as strtod rounds). Anything else (another writer's spacing, a
+// tampered or malformed feature, a ring not closed) is not this layout: nullopt, and the
+// caller reads the file with nlohmann's parser, which names what is wrong.
+class WrittenLayout {
+ public:
+  explicit WrittenLayout(std::string_view line) : p_(line.data()), end_(line.data() + line.size()) {}
+
+  // One feature line: the feature, and whether a comma followed it.
+  bool feature(Layer& layer, VectorFeature& f, bool& comma) {
+    if (!literal(R"({"type":"Feature","properties":)")) return false;
+    const char* const start = p_;
+    if (!skip_object()) return false;
+    // Through nlohmann::json, as the parser below reads them: its keys in its order.
+    const json properties = json::parse(start, p_, nullptr, false);
+    if (!properties.is_object()) return false;
+    f.properties = properties;
+    if (!literal(R"(,"geometry":{"type":)")) return false;
+    if (literal(R"("Polygon","coordinates":[)")) {
+      do {
+        f.polygon.holes.emplace_back();
+        if (!positions(f.polygon.holes.back()) || f.polygon.holes.back().size() < 4 ||
+            !(f.polygon.holes.back().front() == f.polygon.holes.back().back()))
+          return false;
+        f.polygon.holes.back().pop_back();
+      } while (literal(","));
+      if (!literal("]")) return false;
+      f.polygon.outer = std::move(f.polygon.holes.front());
+      f.polygon.holes.erase(f.polygon.holes.begin());
+    } else if (literal(R"("LineString","coordinates":)")) {
+      layer.lines = true;
+      if (!literal("[]") && !positions(f.line)) return false;
+    } else if (literal(R"("Point","coordinates":)")) {
+      f.line.emplace_back();
+      if (!position(f.line.back())) return false;
+    } else {
+      return false;
+    }
+    if (!literal("}}")) return false;
+    comma = literal(",");
+    return p_ == end_;
+  }
+
+ private:
+  bool literal(std::string_view s) {
+    if (static_cast<std::size_t>(end_ - p_) < s.size() || std::string_view(p_, s.size()) != s) return false;
+    p_ += s.size();
+    return true;
+  }
+
+  // Past a JSON object's closing brace, strings' braces and escapes left alone; the parser
+  // then decides whether it is one.
+  bool skip_object() {
+    int depth = 0;
+    bool in_string = false;
+    for (; p_ < end_; ++p_) {
+      const char c = *p_;
+      if (in_string) {
+        if (c == '\\') ++p_;
+        else if (c == '"') in_string = false;
+      } else if (c == '"') {
+        in_string = true;
+      } else if (c == '{' || c == '[') {
+        ++depth;
+      } else if (c == '}' || c == ']') {
+        if (--depth == 0) return ++p_, true;
+      }
+    }
+    return false;
+  }
+
+  // "[[x,y],[x,y],...]", at least one position.
+  bool positions(std::vector<geom::Vec2>& out) {
+    if (!literal("[")) return false;
+    do {
+      out.emplace_back();
+      if (!position(out.back())) return false;
+    } while (literal(","));
+    return literal("]");
+  }
+
+  bool position(geom::Vec2& v) { return literal("[") && number(v.x) && literal(",") && number(v.y) && literal("]"); }
+
+  // A JSON number as nlohmann's parser gives it to get<double>().
+  bool number(double& v) {
+    const char* const start = p_;
+    bool integer = true;
+    if (p_ < end_ && *p_ == '-') ++p_;
+    if (p_ < end_ && *p_ == '0') ++p_;
+    else if (!digits()) return false;
+    if (p_ < end_ && *p_ == '.') {
+      ++p_, integer = false;
+      if (!digits()) return false;
+    }
+    if (p_ < end_ && (*p_ == 'e' || *p_ == 'E')) {
+      ++p_, integer = false;
+      if (p_ < end_ && (*p_ == '+' || *p_ == '-')) ++p_;
+      if (!digits()) return false;
+    }
+    if (integer) {
+      if (*start == '-') {
+        std::int64_t i = 0;
+        if (std::from_chars(start, p_, i).ec == std::errc()) return v = static_cast<double>(i), true;
+      } else {
+        std::uint64_t u = 0;
+        if (std::from_chars(start, p_, u).ec == std::errc()) return v = static_cast<double>(u), true;
+      }
+    }
+    return std::from_chars(start, p_, v).ec == std::errc();
+  }
+
+  bool digits() {
+    const char* const from = p_;
+    while (p_ < end_ && *p_ >= '0' && *p_ <= '9') ++p_;
+    return p_ != from;
+  }
+
+  const char* p_;
+  const char* const end_;
+};
+
 }  // namespace
+
+std::optional<Layer> read_written_geojson(const fs::path& file) {
+  CancellableInput in(file);
+  std::string line;
+  if (!in || !std::getline(in, line)) return std::nullopt;
+  // The first line with the array closed is a whole object whose last member is "features".
+  constexpr std::string_view kFeatures = R"("features":[)";
+  if (!std::string_view(line).ends_with(kFeatures)) return std::nullopt;
+  const json head = json::parse(line + "]}", nullptr, false);
+  if (!head.is_object() || !head.contains("features") || !head["features"].empty()) return std::nullopt;
+  Layer layer;
+  layer.name = file.stem().string();
+  const CancelCheck cancel;
+  bool more = true;  // a comma after the last feature: another follows
+  while (std::getline(in, line)) {
+    if (line == "]}") {
+      if (more && !layer.features.empty()) return std::nullopt;
+      more = false;
+      break;
+    }
+    cancel.check();
+    if (!more) return std::nullopt;
+    VectorFeature f;
+    if (!WrittenLayout(line).feature(layer, f, more)) return std::nullopt;
+    layer.features.push_back(std::move(f));
+  }
+  if (more || std::getline(in, line) || !in.eof()) return std::nullopt;
+  return layer;
+}
 
 namespace {
 
@@ -216,6 +373,7 @@ std::optional<Layer> read_by_line(const fs::path& file, const std::string& text,
 }  // namespace
 
 Layer read_geojson(const fs::path& file, std::vector<std::string>& problems) {
+  if (std::optional<Layer> layer = read_written_geojson(file)) return std::move(*layer);
   CancellableInput in(file);
   if (!in) {
     problems.push_back(file.string() + ": missing");

@@ -2,6 +2,9 @@
 // skipped, a document that is no FeatureCollection refused whole.
 #include "generate/export/read_lines.h"
 
+#include "generate/export/geojson.h"
+#include "generate/export/geojson_written.h"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -124,6 +127,87 @@ TEST(GeoJsonRead, ByLineReadsAnyOtherFileWhole) {
     EXPECT_EQ(problems, whole_problems) << text;
     for (const VectorFeature& f : by_line.features) EXPECT_EQ(f.properties["id"], 1) << text;
   }
+
+
+// The same layer as bytes: properties as dumped, coordinates as their bits (so "-0" read as
+// 0 shows).
+std::string bits(const Layer& layer) {
+  std::string s = layer.name + (layer.lines ? " lines" : " areas");
+  auto ring = [&](const std::vector<geom::Vec2>& r) {
+    s += '|' + std::to_string(r.size()) + '|';
+    s.append(reinterpret_cast<const char*>(r.data()), r.size() * sizeof(geom::Vec2));
+  };
+  for (const VectorFeature& f : layer.features) {
+    s += '\n' + f.properties.dump();
+    ring(f.polygon.outer);
+    for (const geom::Ring& h : f.polygon.holes) ring(h);
+    ring(f.line);
+  }
+  return s;
+}
+
+// Written layers are read by a scanner of their layout (geojson.cpp, WrittenLayout), any
+// other text by nlohmann's parser: both give the same layer, number for number. The second
+// text is the first with a space after every comma, which only the parser reads.
+TEST(GeoJsonRead, TheWrittenLayoutReadsAsTheParserReadsIt) {
+  const std::vector<std::pair<std::string, std::string>> layers{
+      {"lots",
+       "{\"type\":\"FeatureCollection\",\"name\":\"lots\",\"crs\":{\"type\":\"name\",\"properties\":{\"name\":\"EPSG:3067\"}},\"features\":[\n"
+       R"({"type":"Feature","properties":{"zone":"residential","id":7,"name":"a \"}\" b","tags":[1,{"k":"]"}],"h":1.5e3},"geometry":{"type":"Polygon","coordinates":[[[-0,0],[4.25,-0.0],[18446744073709551615,3],[-9223372036854775809,1E2],[-0,0]],[[1,1],[2,1],[2,2],[1,1]]]}},)"
+       "\n"
+       R"({"type":"Feature","properties":{"id":8},"geometry":{"type":"Polygon","coordinates":[[[0.1,0.2],[123456789.123456789,0.30000000000000004],[5e-324,2.2250738585072014e-308],[0.1,0.2]]]}})"
+       "\n]}\n"},
+      {"roads",
+       "{\"type\":\"FeatureCollection\",\"name\":\"roads\",\"features\":[\n"
+       R"({"type":"Feature","properties":{"id":1,"region":null},"geometry":{"type":"LineString","coordinates":[[1,2],[3.5,-4],[9007199254740993,1]]}},)"
+       "\n"
+       R"({"type":"Feature","properties":{},"geometry":{"type":"LineString","coordinates":[]}},)"
+       "\n"
+       R"({"type":"Feature","properties":{"kind":"bench"},"geometry":{"type":"Point","coordinates":[-12.75,1e1]}})"
+       "\n]}\n"},
+      {"water", "{\"type\":\"FeatureCollection\",\"name\":\"water\",\"features\":[\n]}\n"}};
+  for (const auto& [name, text] : layers) {
+    std::string spaced;
+    for (char c : text) spaced += c == ',' ? std::string(", ") : std::string(1, c);
+    const std::filesystem::path as_written = testing_util::temp_dir("written") / (name + ".geojson"),
+                                as_spaced = testing_util::temp_dir("spaced") / (name + ".geojson");
+    std::ofstream(as_written) << text;
+    std::ofstream(as_spaced) << spaced;
+    EXPECT_TRUE(read_written_geojson(as_written)) << name << ": not read as written";
+    // The first line is any JSON object: spaces there are read as written.
+    EXPECT_EQ(read_written_geojson(as_spaced).has_value(), name == "water") << name;
+    std::vector<std::string> problems;
+    const Layer written = read_geojson(as_written, problems), parsed = read_geojson(as_spaced, problems);
+    EXPECT_TRUE(problems.empty()) << problems.front();
+    EXPECT_EQ(bits(written), bits(parsed)) << name;
+    EXPECT_EQ(written.features.size(), name == "lots" ? 2u : name == "roads" ? 3u : 0u);
+  }
+}
+
+// A line of the written layout that is not one (a ring left open, a trailing comma) is read
+// by the parser, which names the problem.
+TEST(GeoJsonRead, AWrittenLayoutWithAProblemIsReadByTheParser) {
+  std::vector<std::string> problems;
+  const Layer lots = read_text("lots",
+                               "{\"type\":\"FeatureCollection\",\"name\":\"lots\",\"features\":[\n"
+                               R"({"type":"Feature","properties":{"id":1},"geometry":{"type":"Polygon","coordinates":[[[0,0],[4,0],[4,3],[0,0]]]}},)"
+                               "\n"
+                               R"({"type":"Feature","properties":{"id":2},"geometry":{"type":"Polygon","coordinates":[[[0,0],[4,0],[4,3],[0,1]]]}})"
+                               "\n]}\n",
+                               problems);
+  EXPECT_FALSE(read_written_geojson(testing_util::test_dir("geojson_read") / "lots.geojson"));
+  ASSERT_EQ(lots.features.size(), 1u);
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_EQ(problems[0], "lots.geojson: features[1]: a ring is not closed or has fewer than 4 positions");
+  problems.clear();
+  const Layer trailing = read_text("roads",
+                                   "{\"type\":\"FeatureCollection\",\"name\":\"roads\",\"features\":[\n"
+                                   R"({"type":"Feature","properties":{"id":1},"geometry":{"type":"Point","coordinates":[1,2]}},)"
+                                   "\n]}\n",
+                                   problems);
+  EXPECT_TRUE(trailing.features.empty());
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("not a GeoJSON FeatureCollection"), std::string::npos) << problems[0];
 }
 
 }  // namespace

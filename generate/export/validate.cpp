@@ -13,6 +13,7 @@
 #include <set>
 #include <tuple>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "generate/cancel.h"
 #include "generate/cancellable_invoke.h"
@@ -717,7 +718,7 @@ void check_roads(Checker& c, const DrawnFeatures& sketch, const Layer& roads, co
 
 // Every reference names the id of a feature of the layer it refers to.
 void check_references(Checker& c, const Layer& from, const char* key, const Layer& to) {
-  std::set<int> ids;
+  std::unordered_set<int> ids;
   for (const auto& f : to.features) ids.insert(f.properties.value("id", -1));
   for (std::size_t i = 0; i < from.features.size(); ++i) {
     const auto& value = from.features[i].properties.value(key, nlohmann::ordered_json());
@@ -888,7 +889,7 @@ Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* las
     if (f.line.size() < 2) c.problem("roads.geojson features[" + std::to_string(i) + "]: fewer than 2 positions");
   }
   for (const Layer* l : {&zones, &water, &road_areas, &blocks, &lots, &buildings, &roads}) {
-    std::set<int> ids;
+    std::unordered_set<int> ids;
     for (std::size_t i = 0; i < l->features.size(); ++i)
       if (!ids.insert(l->features[i].properties.value("id", -1)).second)
         c.problem(l->name + ".geojson features[" + std::to_string(i) + "]: its id is not unique");
