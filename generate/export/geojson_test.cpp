@@ -1,9 +1,8 @@
 // Reading a layer back for validation: feature by feature, each malformed one named and
 // skipped, a document that is no FeatureCollection refused whole.
-#include "generate/export/read_lines.h"
-
 #include "generate/export/geojson.h"
 #include "generate/export/geojson_written.h"
+#include "generate/export/read_lines.h"
 
 #include <gtest/gtest.h>
 
