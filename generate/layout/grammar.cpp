@@ -40,7 +40,7 @@ bool parse_terminal(const std::string& name, Terminal& out) {
   std::string base = name;
   for (const char* suffix : {"_Dense", "_Sparse"})
     if (base.size() > std::strlen(suffix) && base.ends_with(suffix)) {
-      base.resize(base.size() - std::strlen(suffix));
+      base.erase(base.size() - std::strlen(suffix));
       out.density = suffix[1] == 'D' ? "dense" : "sparse";
     }
   if (base == "Residential") out.type = ZoneType::Residential;
