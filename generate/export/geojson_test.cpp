@@ -126,7 +126,7 @@ TEST(GeoJsonRead, ByLineReadsAnyOtherFileWhole) {
     EXPECT_EQ(problems, whole_problems) << text;
     for (const VectorFeature& f : by_line.features) EXPECT_EQ(f.properties["id"], 1) << text;
   }
-
+}
 
 // The same layer as bytes: properties as dumped, coordinates as their bits (so "-0" read as
 // 0 shows).
