@@ -159,6 +159,29 @@ TEST(Like, LotCoverageFillsLotsRowBehindRow) {
   EXPECT_LT(after, 0.25 + 100.0 / 2000) << "filled past one footprint more than asked";
 }
 
+// A drawn area that does not fit its lot as drawn keeps its area in another shape: 900 m²
+// drawn 45 m wide stands 28.1 m wide and 32 m deep on each of five lots 40 m wide (shrunk,
+// it fell under min_footprint_area, and the lots left empty merged in pairs: 2 buildings).
+TEST(Like, ADrawnAreaThatDoesNotFitKeepsItsAreaInAnotherShape) {
+  const fs::path dir = testing_util::temp_dir("like_whole_areas");
+  ordered_json zone{{"layout", "streets"}, {"lot_width", {40, 40}}, {"lot_depth", 60}, {"setback", 3},
+                    {"building_gap", 4}, {"footprint_width", {45, 45}}, {"footprint_depth", {20, 20}},
+                    {"footprint_areas", {900, 900}}, {"min_footprint_area", 800}};
+  ordered_json sketch{{"type", "FeatureCollection"}, {"exacity", {{"zones", {{"residential", zone}}}}},
+                      {"features", ordered_json::array()}};
+  sketch["features"].push_back({{"type", "Feature"}, {"properties", {{"zone", "residential"}}},
+                                {"geometry", {{"type", "Polygon"}, {"coordinates", rectangle(0, 0, 200, 60)}}}});
+  sketch["features"].push_back({{"type", "Feature"}, {"properties", {{"road", "local"}}},
+                                {"geometry", {{"type", "LineString"}, {"coordinates", {{-20, 0}, {220, 0}}}}}});
+  write(dir / "sketch.geojson", sketch.dump());
+  const auto r = cli_util::run("generate " + (dir / "sketch.geojson").string() + " -q -o " + (dir / "out").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const ordered_json g = report_of(dir / "out")["footprints_by_zone"]["residential"]["generated"];
+  EXPECT_EQ(g["footprints"], 5);  // one on each lot
+  EXPECT_NEAR(g["median_m2"].get<double>(), 900, 0.1);
+  EXPECT_NEAR(g["footprint_m2"].get<double>(), 4500, 0.5);
+}
+
 // A file with too few buildings to measure is one line, exit 2, nothing written.
 TEST(Like, TooFewBuildingsIsOneLine) {
   const fs::path dir = testing_util::temp_dir("like_few");
