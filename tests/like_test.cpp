@@ -39,6 +39,18 @@ ordered_json empty_place() {
 
 ordered_json report_of(const fs::path& out) { return ordered_json::parse(cli_util::read(out / "report.json")); }
 
+// A residential zone 200 m by 60 m along a local street on y = 0, its zone type's settings
+// `zone`.
+ordered_json one_street(const ordered_json& zone) {
+  ordered_json sketch{{"type", "FeatureCollection"}, {"exacity", {{"zones", {{"residential", zone}}}}},
+                      {"features", ordered_json::array()}};
+  sketch["features"].push_back({{"type", "Feature"}, {"properties", {{"zone", "residential"}}},
+                                {"geometry", {{"type", "Polygon"}, {"coordinates", rectangle(0, 0, 200, 60)}}}});
+  sketch["features"].push_back({{"type", "Feature"}, {"properties", {{"road", "local"}}},
+                                {"geometry", {{"type", "LineString"}, {"coordinates", {{-20, 0}, {220, 0}}}}}});
+  return sketch;
+}
+
 }  // namespace
 
 // The twelve footprints' figures come out exactly, and the settings from them: setback and
@@ -130,13 +142,7 @@ TEST(Like, LotCoverageFillsLotsRowBehindRow) {
     ordered_json zone{{"layout", "streets"}, {"lot_width", {40, 40}}, {"lot_depth", 60}, {"setback", 3},
                       {"building_gap", 4}, {"footprint_width", {10, 10}}, {"footprint_depth", {10, 10}}};
     if (coverage > 0) zone["lot_coverage"] = coverage;
-    ordered_json sketch{{"type", "FeatureCollection"}, {"exacity", {{"zones", {{"residential", zone}}}}},
-                        {"features", ordered_json::array()}};
-    sketch["features"].push_back({{"type", "Feature"}, {"properties", {{"zone", "residential"}}},
-                                  {"geometry", {{"type", "Polygon"}, {"coordinates", rectangle(0, 0, 200, 60)}}}});
-    sketch["features"].push_back({{"type", "Feature"}, {"properties", {{"road", "local"}}},
-                                  {"geometry", {{"type", "LineString"}, {"coordinates", {{-20, 0}, {220, 0}}}}}});
-    write(dir / (std::string(out) + ".geojson"), sketch.dump());
+    write(dir / (std::string(out) + ".geojson"), one_street(zone).dump());
     const auto r = cli_util::run("generate " + (dir / (std::string(out) + ".geojson")).string() + " -q -o " + (dir / out).string());
     EXPECT_EQ(r.code, 0) << r.out;
     std::set<double> fronts;  // each footprint's least y, to the centimetre: one per row
@@ -167,13 +173,7 @@ TEST(Like, ADrawnAreaThatDoesNotFitKeepsItsAreaInAnotherShape) {
   ordered_json zone{{"layout", "streets"}, {"lot_width", {40, 40}}, {"lot_depth", 60}, {"setback", 3},
                     {"building_gap", 4}, {"footprint_width", {45, 45}}, {"footprint_depth", {20, 20}},
                     {"footprint_areas", {900, 900}}, {"min_footprint_area", 800}};
-  ordered_json sketch{{"type", "FeatureCollection"}, {"exacity", {{"zones", {{"residential", zone}}}}},
-                      {"features", ordered_json::array()}};
-  sketch["features"].push_back({{"type", "Feature"}, {"properties", {{"zone", "residential"}}},
-                                {"geometry", {{"type", "Polygon"}, {"coordinates", rectangle(0, 0, 200, 60)}}}});
-  sketch["features"].push_back({{"type", "Feature"}, {"properties", {{"road", "local"}}},
-                                {"geometry", {{"type", "LineString"}, {"coordinates", {{-20, 0}, {220, 0}}}}}});
-  write(dir / "sketch.geojson", sketch.dump());
+  write(dir / "sketch.geojson", one_street(zone).dump());
   const auto r = cli_util::run("generate " + (dir / "sketch.geojson").string() + " -q -o " + (dir / "out").string());
   ASSERT_EQ(r.code, 0) << r.out;
   const ordered_json g = report_of(dir / "out")["footprints_by_zone"]["residential"]["generated"];
@@ -243,14 +243,7 @@ TEST(Like, ReportsTheFrontageRule) {
 // time along the 200 m of street a zone 200 m by 60 m fronts makes eight lots.
 TEST(Like, LotFrontagesDrawEachLotFromTheirDistribution) {
   const fs::path dir = testing_util::temp_dir("like_lot_frontages");
-  ordered_json sketch{{"type", "FeatureCollection"},
-                      {"exacity", {{"zones", {{"residential", {{"layout", "streets"}, {"lot_frontages", {25, 25}}}}}}}},
-                      {"features", ordered_json::array()}};
-  sketch["features"].push_back({{"type", "Feature"}, {"properties", {{"zone", "residential"}}},
-                                {"geometry", {{"type", "Polygon"}, {"coordinates", rectangle(0, 0, 200, 60)}}}});
-  sketch["features"].push_back({{"type", "Feature"}, {"properties", {{"road", "local"}}},
-                                {"geometry", {{"type", "LineString"}, {"coordinates", {{-20, 0}, {220, 0}}}}}});
-  write(dir / "sketch.geojson", sketch.dump());
+  write(dir / "sketch.geojson", one_street({{"layout", "streets"}, {"lot_frontages", {25, 25}}}).dump());
   const auto r = cli_util::run("generate " + (dir / "sketch.geojson").string() + " -q -o " + (dir / "out").string());
   ASSERT_EQ(r.code, 0) << r.out;
   std::vector<std::pair<double, double>> spans;  // each lot's least and greatest x
