@@ -208,16 +208,57 @@ Polygon Cell::to_plain() const {
   return *std::max_element(parts.begin(), parts.end(), [](const Polygon& a, const Polygon& b) { return geom::area(a) < geom::area(b); });
 }
 
+namespace {
+
+// The ring rounded, less what rounding collapsed to nothing: an edge whose ends rounded to
+// one point, and a spike, a sliver of the cell (or of its neighbour, reaching in) narrower
+// than a double's step whose two sides rounded to one edge run there and back. Neither
+// encloses anything; every edge kept keeps its kind. Fewer than 3 points when the whole
+// ring collapsed.
+KindedRing without_collapsed(const KindRing& r) {
+  std::vector<Vec2> p = r.rounded;
+  std::vector<int> k = r.kinds;
+  for (bool changed = true; changed && p.size() >= 3;) {
+    changed = false;
+    for (std::size_t i = 0; i < p.size() && p.size() >= 3;) {
+      const std::size_t n = p.size(), before = (i + n - 1) % n, after = (i + 1) % n;
+      if (p[i] == p[after]) {
+        // The edge from i rounded to nothing: the edge into i now ends at `after`, the same point.
+        p.erase(p.begin() + static_cast<std::ptrdiff_t>(i)), k.erase(k.begin() + static_cast<std::ptrdiff_t>(i));
+        changed = true;
+      } else if (p[before] == p[after]) {
+        // Out to p[i] and straight back: `before` goes on along the edge that left `after`.
+        k[before] = k[after];
+        for (std::size_t e : {std::max(i, after), std::min(i, after)})
+          p.erase(p.begin() + static_cast<std::ptrdiff_t>(e)), k.erase(k.begin() + static_cast<std::ptrdiff_t>(e));
+        changed = true;
+      } else {
+        ++i;
+      }
+    }
+  }
+  return {std::move(p), std::move(k)};
+}
+
+}  // namespace
+
 std::optional<Cell> Cell::as_written() const {
-  if (vertex_repeats(rounded_rings(*impl_))) return std::nullopt;
-  auto written = [](const KindRing& r) {
-    KindRing w{{}, r.kinds, r.rounded};
-    for (Vec2 v : r.rounded) w.points.push_back(to_exact(v));
+  const KindedRing outer = without_collapsed(impl_->outer);
+  if (outer.points.size() < 3) return std::nullopt;
+  std::vector<KindedRing> holes;
+  for (const KindRing& h : impl_->holes)
+    if (KindedRing hole = without_collapsed(h); hole.points.size() >= 3) holes.push_back(std::move(hole));
+  std::vector<Ring> rings{outer.points};
+  for (const KindedRing& h : holes) rings.push_back(h.points);
+  if (vertex_repeats(rings)) return std::nullopt;
+  auto written = [](const KindedRing& r) {
+    KindRing w{{}, r.kinds, r.points};
+    for (Vec2 v : r.points) w.points.push_back(to_exact(v));
     return w;
   };
-  std::vector<KindRing> holes;
-  for (const KindRing& h : impl_->holes) holes.push_back(written(h));
-  return make_cell(written(impl_->outer), std::move(holes));
+  std::vector<KindRing> written_holes;
+  for (const KindedRing& h : holes) written_holes.push_back(written(h));
+  return make_cell(written(outer), std::move(written_holes));
 }
 
 std::vector<Vec2> Cell::corners() const {

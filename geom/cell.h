@@ -73,9 +73,11 @@ class Cell {
   std::vector<Polygon> rounded() const;
   // The largest of them; an empty outer ring when it collapses.
   Polygon to_plain() const;
-  // The cell with its vertices rounded to doubles and its edge kinds kept, when rounding
-  // leaves every vertex apart (in a snap-rounded map its rings then stay simple); none
-  // when two land on one double pair.
+  // The cell with its vertices rounded to doubles and its edge kinds kept, less the edges
+  // and spikes (edges run there and straight back) rounding collapsed, when that leaves
+  // every vertex apart (in a snap-rounded map its rings then stay simple); none when two
+  // still land on one double pair (a neck or a hole rounded to touch), or its outer ring
+  // collapsed.
   std::optional<Cell> as_written() const;
   const Impl& exact() const { return *impl_; }
 

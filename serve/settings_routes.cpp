@@ -56,6 +56,7 @@ const std::map<std::string, Note>& notes() {
       {"min_footprint_area", {"m²", "no smaller footprint"}},
       {"footprint_areas", {"m²", "footprint areas at equal steps of their distribution, smallest to largest (a real place's, as --like measures it): each footprint's area is drawn from it, its shape from footprint_width and footprint_depth"}},
       {"perimeter_depth", {"m", "above 0: perimeter blocks, each lot's land this deep behind its streets one building (0: rectangles in rows)"}},
+      {"lot_coverage", {"share", "above 0: rows behind the first fill each lot until its footprints cover this share of it (0: one row)"}},
       {"heights", {"m", "[lowest, highest] building near the city centre (half at its edge)"}},
       {"roof", {"", "auto (gabled on near-rectangles, hipped otherwise, for residential; flat for the others), flat, gabled or hipped"}},
       {"roof_pitch", {"°", "the roofs' pitch"}},

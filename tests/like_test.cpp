@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <vector>
 
 #include "tests/cli_util.h"
@@ -38,6 +39,18 @@ ordered_json empty_place() {
 
 ordered_json report_of(const fs::path& out) { return ordered_json::parse(cli_util::read(out / "report.json")); }
 
+// A residential zone 200 m by 60 m along a local street on y = 0, its zone type's settings
+// `zone`.
+ordered_json one_street(const ordered_json& zone) {
+  ordered_json sketch{{"type", "FeatureCollection"}, {"exacity", {{"zones", {{"residential", zone}}}}},
+                      {"features", ordered_json::array()}};
+  sketch["features"].push_back({{"type", "Feature"}, {"properties", {{"zone", "residential"}}},
+                                {"geometry", {{"type", "Polygon"}, {"coordinates", rectangle(0, 0, 200, 60)}}}});
+  sketch["features"].push_back({{"type", "Feature"}, {"properties", {{"road", "local"}}},
+                                {"geometry", {{"type", "LineString"}, {"coordinates", {{-20, 0}, {220, 0}}}}}});
+  return sketch;
+}
+
 }  // namespace
 
 // The twelve footprints' figures come out exactly, and the settings from them: setback and
@@ -68,6 +81,7 @@ TEST(Like, MeasuresKnownFootprintsExactly) {
   EXPECT_EQ(set["min_footprint_area"], 120.0);
   EXPECT_GE(set["max_footprint_area"].get<double>(), 320.0);
   EXPECT_EQ(set["heights"], ordered_json::parse("[7.0, 16.0]"));
+  EXPECT_EQ(set["lot_coverage"], 0.076);  // 2,520 m² of footprints on 33,000 m² of land use
   const ordered_json areas = set["footprint_areas"];
   ASSERT_EQ(areas.size(), 21u);
   EXPECT_EQ(areas[0], 100.0);
@@ -117,6 +131,55 @@ TEST(Like, GeneratedMedianMovesTowardThePlace) {
   const double after = median(" --like " + (dir / "place.geojson").string(), "after");
   EXPECT_LT(std::abs(after - 200), std::abs(before - 200)) << before << " -> " << after;
   EXPECT_LT(std::abs(after - 200), 0.25 * 200) << before << " -> " << after;
+}
+
+// "lot_coverage" fills each lot with rows behind the first (10 m deep footprints 4 m
+// apart) until they cover that share of it: lots 40 m wide and 56 m deep hold one row of
+// three without it (0.11 of the lot), three rows with 0.25, the last one footprint.
+TEST(Like, LotCoverageFillsLotsRowBehindRow) {
+  const fs::path dir = testing_util::temp_dir("like_lot_coverage");
+  auto run = [&](double coverage, const char* out) {
+    ordered_json zone{{"layout", "streets"}, {"lot_width", {40, 40}}, {"lot_depth", 60}, {"setback", 3},
+                      {"building_gap", 4}, {"footprint_width", {10, 10}}, {"footprint_depth", {10, 10}}};
+    if (coverage > 0) zone["lot_coverage"] = coverage;
+    write(dir / (std::string(out) + ".geojson"), one_street(zone).dump());
+    const auto r = cli_util::run("generate " + (dir / (std::string(out) + ".geojson")).string() + " -q -o " + (dir / out).string());
+    EXPECT_EQ(r.code, 0) << r.out;
+    std::set<double> fronts;  // each footprint's least y, to the centimetre: one per row
+    const ordered_json buildings = ordered_json::parse(cli_util::read(dir / out / "vector" / "buildings.geojson"));
+    for (const ordered_json& b : buildings["features"]) {
+      if (b["properties"]["kind"] != "building") continue;  // not a garden tree
+      double least = INFINITY;
+      for (const ordered_json& p : b["geometry"]["coordinates"][0]) least = std::min(least, p[1].get<double>());
+      fronts.insert(std::round(least * 100) / 100);
+    }
+    EXPECT_EQ(cli_util::run("validate " + (dir / out).string()).code, 0);
+    return std::pair{fronts.size(), report_of(dir / out)["footprints_by_zone"]["residential"]["generated"]["coverage_of_lots"].get<double>()};
+  };
+  const auto [rows_before, before] = run(0, "one_row");
+  const auto [rows_after, after] = run(0.25, "filled");
+  EXPECT_EQ(rows_before, 1u);
+  EXPECT_EQ(rows_after, 3u);
+  EXPECT_LT(before, 0.12);
+  EXPECT_GE(after, 0.25) << before;
+  EXPECT_LT(after, 0.25 + 100.0 / 2000) << "filled past one footprint more than asked";
+}
+
+// A drawn area that does not fit its lot as drawn keeps its area in another shape: 900 m²
+// drawn 45 m wide stands 28.1 m wide and 32 m deep on each of five lots 40 m wide (shrunk,
+// it fell under min_footprint_area, and the lots left empty merged in pairs: 2 buildings).
+TEST(Like, ADrawnAreaThatDoesNotFitKeepsItsAreaInAnotherShape) {
+  const fs::path dir = testing_util::temp_dir("like_whole_areas");
+  ordered_json zone{{"layout", "streets"}, {"lot_width", {40, 40}}, {"lot_depth", 60}, {"setback", 3},
+                    {"building_gap", 4}, {"footprint_width", {45, 45}}, {"footprint_depth", {20, 20}},
+                    {"footprint_areas", {900, 900}}, {"min_footprint_area", 800}};
+  write(dir / "sketch.geojson", one_street(zone).dump());
+  const auto r = cli_util::run("generate " + (dir / "sketch.geojson").string() + " -q -o " + (dir / "out").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const ordered_json g = report_of(dir / "out")["footprints_by_zone"]["residential"]["generated"];
+  EXPECT_EQ(g["footprints"], 5);  // one on each lot
+  EXPECT_NEAR(g["median_m2"].get<double>(), 900, 0.1);
+  EXPECT_NEAR(g["footprint_m2"].get<double>(), 4500, 0.5);
 }
 
 // A file with too few buildings to measure is one line, exit 2, nothing written.
@@ -180,14 +243,7 @@ TEST(Like, ReportsTheFrontageRule) {
 // time along the 200 m of street a zone 200 m by 60 m fronts makes eight lots.
 TEST(Like, LotFrontagesDrawEachLotFromTheirDistribution) {
   const fs::path dir = testing_util::temp_dir("like_lot_frontages");
-  ordered_json sketch{{"type", "FeatureCollection"},
-                      {"exacity", {{"zones", {{"residential", {{"layout", "streets"}, {"lot_frontages", {25, 25}}}}}}}},
-                      {"features", ordered_json::array()}};
-  sketch["features"].push_back({{"type", "Feature"}, {"properties", {{"zone", "residential"}}},
-                                {"geometry", {{"type", "Polygon"}, {"coordinates", rectangle(0, 0, 200, 60)}}}});
-  sketch["features"].push_back({{"type", "Feature"}, {"properties", {{"road", "local"}}},
-                                {"geometry", {{"type", "LineString"}, {"coordinates", {{-20, 0}, {220, 0}}}}}});
-  write(dir / "sketch.geojson", sketch.dump());
+  write(dir / "sketch.geojson", one_street({{"layout", "streets"}, {"lot_frontages", {25, 25}}}).dump());
   const auto r = cli_util::run("generate " + (dir / "sketch.geojson").string() + " -q -o " + (dir / "out").string());
   ASSERT_EQ(r.code, 0) << r.out;
   std::vector<std::pair<double, double>> spans;  // each lot's least and greatest x

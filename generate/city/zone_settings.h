@@ -128,6 +128,9 @@ struct BuildingSettings {
   // perimeter.h): each lot's land this deep behind its street frontages, whatever its
   // size; the rows' sizes above apply only where that leaves nothing.
   double perimeter_depth = 0;
+  // Above 0, the rows' lots are filled further, row behind row, until their footprints
+  // cover this share of the lot (a real place's coverage, measured by --like); 0: one row.
+  double lot_coverage = 0;
   double min_footprint_area = 30;     // m²: smaller footprints get no building
   double min_height = 4, max_height = 12;  // m: near the city centre; half that at its edge
   // "auto": gabled on near-rectangular residential footprints, hipped on the others, flat

@@ -27,6 +27,7 @@ void read_footprint_sizes(const SettingsReader& s, BuildingSettings& b) {
   s.number("min_footprint_width", b.min_footprint_width, 1, 1e4);
   s.number("max_footprint_area", b.max_footprint_area, 1, 1e8);
   s.number("perimeter_depth", b.perimeter_depth, 0, 1e3);
+  s.number("lot_coverage", b.lot_coverage, 0, 1);
   s.range("footprint_width", b.footprint_width, 1, 1e4, "footprint width along the street in metres");
   s.range("footprint_depth", b.footprint_depth, 1, 1e4, "footprint depth back from the street in metres");
 }
@@ -63,7 +64,8 @@ const std::set<std::string>& building_setting_keys() {
     std::set<std::string> k{"setback",          "building_gap",       "footprint_width",    "footprint_depth",
                             "min_footprint_width", "max_footprint_area", "min_footprint_area", "heights",
                             "roof",             "roof_pitch",         "density",            "placement",
-                            "height_channel",   "storey_height",      "footprint_areas",    "perimeter_depth"};
+                            "height_channel",   "storey_height",      "footprint_areas",    "perimeter_depth",
+                            "lot_coverage"};
     for (const PlacerType& t : placer_types()) k.insert(t.keys.begin(), t.keys.end());
     return k;
   }();

@@ -53,48 +53,71 @@ bool near_rectangle(const geom::Polygon& p) {
 // (rows facing the road), each `footprint_width` by `footprint_depth` and no
 // larger than `max_footprint_area`, `building_gap` apart and half that inside the lot's
 // other edges; where one does not fit, a smaller one is tried, down to
-// `min_footprint_width`. Each is checked exactly against the lot and the footprints taken.
+// `min_footprint_width`. With `footprint_areas`, a drawn area that does not fit as drawn is
+// tried first at the same area, wider and shallower or narrower and deeper (a lot's frontage
+// or depth, not its land, is what a large footprint misses). With `lot_coverage`, rows
+// follow behind the first, each `building_gap` behind the deepest of the row before, while
+// the footprints cover less than that share of the lot and the last row took one. Each is
+// checked exactly against the lot and the footprints taken.
 std::vector<geom::Ring> street_footprints(Occupancy& occupancy, const BuildingSettings& p, Random& rng) {
   std::vector<geom::Ring> out;
   const Frontage& f = occupancy.frontage();
   if (!f.on_road || !(f.t1 > f.t0)) return out;
-  const double clearance = std::max(p.building_gap / 2, 0.05), front = std::max(p.setback, 0.1);
-  auto rectangle = [&](double t, double w, double d, double grow) {
-    const double ahead = std::min(grow, front / 2);
+  const double clearance = std::max(p.building_gap / 2, 0.05), setback = std::max(p.setback, 0.1);
+  const double wanted = p.lot_coverage * occupancy.piece().area();
+  double covered = 0;
+  auto rectangle = [&](double front, double t, double w, double d, double grow) {
+    const double ahead = std::min(grow, setback / 2);
     geom::Ring r;
     for (auto [along, across] : {std::pair{t - grow, front - ahead}, {t + w + grow, front - ahead},
                                  {t + w + grow, front + d + grow}, {t - grow, front + d + grow}})
       r.push_back(geom::snap(f.at(along, across)));
     return r;
   };
-  for (double t = f.t0 + clearance; t + p.min_footprint_width <= f.t1;) {
-    double w = rng.uniform(p.footprint_width.min, p.footprint_width.max);
-    double d = rng.uniform(p.footprint_depth.min, p.footprint_depth.max);
-    if (!p.footprint_areas.empty()) {
-      // The area from its distribution (linear between its steps), the shape as drawn.
-      const double s = std::sqrt(draw_from_steps(p.footprint_areas, rng) / (w * d));
-      w *= s, d *= s;
+  // One row, its fronts `front` behind the street; how deep its deepest footprint is (0: none).
+  auto row = [&](double front, bool first) {
+    double deepest = 0;
+    for (double t = f.t0 + clearance; t + p.min_footprint_width <= f.t1;) {
+      if (!first && covered >= wanted) break;
+      double w = rng.uniform(p.footprint_width.min, p.footprint_width.max);
+      double d = rng.uniform(p.footprint_depth.min, p.footprint_depth.max);
+      if (!p.footprint_areas.empty()) {
+        // The area from its distribution (linear between its steps), the shape as drawn.
+        const double s = std::sqrt(draw_from_steps(p.footprint_areas, rng) / (w * d));
+        w *= s, d *= s;
+      }
+      if (w * d > p.max_footprint_area) {
+        const double s = std::sqrt(p.max_footprint_area / (w * d));
+        w *= s, d *= s;
+      }
+      // The drawn size (with footprint_areas, then its area in other shapes), then smaller
+      // ones, down to the narrowest allowed.
+      const double m = p.min_footprint_width;
+      std::vector<std::pair<double, double>> sizes{{w, d}};
+      if (!p.footprint_areas.empty())
+        for (double k : {1.25, 1.6, 2.0}) sizes.insert(sizes.end(), {{w * k, d / k}, {w / k, d * k}});
+      sizes.insert(sizes.end(), {{0.8 * w, 0.8 * d}, {0.64 * w, 0.64 * d}, {0.5 * w, 0.5 * d}, {m, 0.5 * d}, {m, m}});
+      bool placed = false;
+      for (auto [ws, ds] : sizes) {
+        ws = std::max(ws, m), ds = std::max(ds, m);
+        if (t + ws > f.t1 || ws * ds < p.min_footprint_area || ws * ds > p.max_footprint_area) continue;
+        geom::Ring ring = rectangle(front, t, ws, ds, 0);
+        if (!occupancy.inside(rectangle(front, t, ws, ds, clearance)) || !occupancy.take(ring)) continue;
+        out.push_back(std::move(ring));
+        t += ws + p.building_gap;
+        covered += ws * ds, deepest = std::max(deepest, ds);
+        placed = true;
+        break;
+      }
+      if (!placed) t += std::max(m / 4, 1.0);
     }
-    if (w * d > p.max_footprint_area) {
-      const double s = std::sqrt(p.max_footprint_area / (w * d));
-      w *= s, d *= s;
-    }
-    // The drawn size, then smaller ones, down to the narrowest allowed.
-    const double m = p.min_footprint_width;
-    const std::pair<double, double> sizes[] = {{w, d}, {0.8 * w, 0.8 * d}, {0.64 * w, 0.64 * d}, {0.5 * w, 0.5 * d},
-                                               {m, 0.5 * d}, {m, m}};
-    bool placed = false;
-    for (auto [ws, ds] : sizes) {
-      ws = std::max(ws, m), ds = std::max(ds, m);
-      if (t + ws > f.t1 || ws * ds < p.min_footprint_area || ws * ds > p.max_footprint_area) continue;
-      geom::Ring ring = rectangle(t, ws, ds, 0);
-      if (!occupancy.inside(rectangle(t, ws, ds, clearance)) || !occupancy.take(ring)) continue;
-      out.push_back(std::move(ring));
-      t += ws + p.building_gap;
-      placed = true;
-      break;
-    }
-    if (!placed) t += std::max(m / 4, 1.0);
+    return deepest;
+  };
+  double front = setback;
+  for (bool first = true;; first = false) {
+    const double deepest = row(front, first);
+    if (deepest == 0 || covered >= wanted) break;
+    front += deepest + std::max(p.building_gap, 0.1);
   }
   return out;
 }

@@ -284,6 +284,13 @@ ordered_json settings_from_figures(const PlaceFigures& f, const ZoneSettings& de
   set["min_footprint_width"] = std::max(1.0, std::floor(std::min(0.8 * width, depth)));
   set["setback"] = setback;
   set["building_gap"] = gap;
+  // Rows behind the first fill each lot to the place's coverage of its land use: a real
+  // place's parcels cover its land use, so their coverage is that.
+  if (f.land_m2 > 0) {
+    double footprint_area = 0;
+    for (double a : f.areas) footprint_area += a;
+    set["lot_coverage"] = std::min(std::round(footprint_area / f.land_m2 * 1000) / 1000, 1.0);
+  }
   // Lots deep enough for the deepest footprint behind its setback, and wide enough for a
   // footprint of the middle width and its gap up to the widest one.
   set["lot_depth"] = std::ceil(setback + depths.max + gap / 2);
