@@ -245,17 +245,20 @@ class WrittenLayout {
   const char* const end_;
 };
 
+// Whether `line` is the written layout's first: with the array closed, a whole object whose
+// last member is "features".
+bool written_head(std::string_view line) {
+  if (!line.ends_with(R"("features":[)")) return false;
+  const json head = json::parse(std::string(line) + "]}", nullptr, false);
+  return head.is_object() && head.contains("features") && head["features"].empty();
+}
+
 }  // namespace
 
 std::optional<Layer> read_written_geojson(const fs::path& file) {
   CancellableInput in(file);
   std::string line;
-  if (!in || !std::getline(in, line)) return std::nullopt;
-  // The first line with the array closed is a whole object whose last member is "features".
-  constexpr std::string_view kFeatures = R"("features":[)";
-  if (!std::string_view(line).ends_with(kFeatures)) return std::nullopt;
-  const json head = json::parse(line + "]}", nullptr, false);
-  if (!head.is_object() || !head.contains("features") || !head["features"].empty()) return std::nullopt;
+  if (!in || !std::getline(in, line) || !written_head(line)) return std::nullopt;
   Layer layer;
   layer.name = file.stem().string();
   const CancelCheck cancel;
@@ -317,16 +320,12 @@ Layer read_whole(const fs::path& file, std::istream& in, std::vector<std::string
   return layer;
 }
 
-// `text` read line by line as write_layer lays it out, or nothing when it is laid out
-// otherwise or a feature line does not read as a feature without a problem (the whole
-// reading then says what is wrong, as it would have).
+// `text` read line by line as write_layer lays it out, each line not in `known` by the
+// written layout's scanner, or nothing when it is laid out otherwise (the whole reading
+// then says what is wrong, as it would have).
 std::optional<Layer> read_by_line(const fs::path& file, const std::string& text, ReadLines& known) {
-  static constexpr std::string_view kOpen = "\"features\":[";
   std::size_t end = text.find('\n');
-  if (end == std::string::npos || !std::string_view(text.data(), end).ends_with(kOpen)) return std::nullopt;
-  // The first line and the closing "]}" make an object: its "features" opened last, at the top.
-  const json head = json::parse(text.substr(0, end) + "]}", nullptr, false);
-  if (head.is_discarded() || !head.is_object()) return std::nullopt;
+  if (end == std::string::npos || !written_head(std::string_view(text.data(), end))) return std::nullopt;
   Layer layer;
   layer.name = file.stem().string();
   ReadLines now;
@@ -351,12 +350,10 @@ std::optional<Layer> read_by_line(const fs::path& file, const std::string& text,
         read = now.by_text.insert(known.by_text.extract(was)).position;
         ++now.reused;
       } else {
-        const json f = json::parse(line.begin(), line.end(), nullptr, false);
-        if (f.is_discarded()) return std::nullopt;
         Layer kind;
         VectorFeature vf;
-        std::vector<std::string> problems;
-        if (!read_feature(f, "", kind, vf, problems)) return std::nullopt;
+        bool comma = false;  // taken off above
+        if (!WrittenLayout(line).feature(kind, vf, comma)) return std::nullopt;
         read = now.by_text.emplace(std::string(line), ReadLines::Read{std::move(vf), kind.lines}).first;
         ++now.parsed;
       }
