@@ -33,8 +33,8 @@ struct ReadLines {
 
 // read_geojson's layer, problems and all, parsing only what `known` does not hold: a file
 // laid out as write_geojson lays it out (the collection's first line, then a feature a
-// line, each but the last ending in a comma, then "]}") whose feature lines each read
-// without a problem is read line by line, each line that `known` holds taken as read then
+// line, each but the last ending in a comma, then "]}") whose feature lines not known are
+// each in write_geojson's layout (its scanner takes them) is read line by line, each line that `known` holds taken as read then
 // (a JSON value's reading depends on its text alone); any other file is read whole.
 // Afterwards `known` holds this read's lines.
 Layer read_geojson(const std::filesystem::path& file, std::vector<std::string>& problems, ReadLines& known);
