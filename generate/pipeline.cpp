@@ -53,8 +53,9 @@ std::vector<Lot> with_density(std::vector<Lot> lots, const std::vector<Block>& b
 // the last time, left open (merge_unbuilt_lots), and every lot is placed again, twice at
 // most: with lot ids renumbered, every lot draws from its new stream.
 // Lots a mapped building stands on (`held`, as the lots end) count as built and get nothing more.
+// `pieces` is kept the pieces' land of the lots as they end.
 Structures build_on_lots(City& city, const std::vector<PlannedLot>& planned, const std::vector<Building>& mapped,
-                         HeldLots& held) {
+                         HeldLots& held, PiecesLand& pieces) {
   constexpr int kMerges = 2;
   for (int merges = 0;; ++merges) {
     held = lots_holding(city.lots, mapped);
@@ -67,7 +68,7 @@ Structures build_on_lots(City& city, const std::vector<PlannedLot>& planned, con
     for (const ModelInstance& m : s.models) built[m.lot] |= m.kind == ModelKind::Building;
     if (merges == kMerges || std::count(built.begin(), built.end(), 0) == 0) return s;
     city.lots = with_density(merge_unbuilt_lots(city.network.map, planned, city.lots, built, merges + 1 == kMerges,
-                                                city.settings, city.unbuilt_lots),
+                                                city.settings, city.unbuilt_lots, &pieces),
                              city.blocks);
   }
 }
@@ -111,16 +112,17 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
   city.blocks = stages.run("blocks", [&] { return cut_blocks(city.network.map, city.settings, city.drawn.zones, city.network.uses); });
   std::vector<PlannedLot> planned;
   std::map<ZoneType, LandShare> joined;  // pieces refused as lots that joined a neighbour, per zone type
+  PiecesLand pieces;                     // the lots' pieces' land, as the map was last traced into lots
   city.lots = stages.run("lots", [&] {
     planned = plan_lots(city.blocks, city.settings, city.model_library(), city.channels,
                         regions ? &regions->lot_plans : nullptr);
-    return with_density(insert_lots(city.network.map, planned, city.settings, &joined), city.blocks);
+    return with_density(insert_lots(city.network.map, planned, city.settings, &joined, &pieces), city.blocks);
   });
   Structures raised = stages.run("buildings", [&] {
     std::vector<Building> mapped = mapped_footprints(city.drawn.buildings, city.network.map, city.mapped);
     attach_building_parts(mapped, city.drawn.building_parts, city.mapped);
     HeldLots held;
-    Structures s = build_on_lots(city, planned, mapped, held);
+    Structures s = build_on_lots(city, planned, mapped, held, pieces);
     check_export_size(s.models, city.model_library());
     // After every generated structure, so that their ids are as without mapped buildings.
     raise_mapped_buildings(mapped, city.drawn.buildings, city.drawn.building_parts, held, city.lots, city.network.map, city.drawn.zones, city.settings,
@@ -128,7 +130,7 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
                            city.mapped);
     s.buildings.insert(s.buildings.end(), std::make_move_iterator(mapped.begin()), std::make_move_iterator(mapped.end()));
     give_stable_ids(s.buildings, s.models);
-    city.lot_land = lot_land(city.network.map, planned, city.blocks, city.settings, joined);
+    city.lot_land = lot_land(std::move(pieces), city.blocks, joined);
     return s;
   });
   city.buildings = std::move(raised.buildings);

@@ -20,6 +20,17 @@ using geom::Vec2;
 
 namespace {
 
+// A residential square cut by three streets, one steep across the other two.
+std::string three_streets() {
+  std::string features = R"({"type": "Feature", "properties": {"zone": "residential"}, "geometry": {"type": "Polygon",
+      "coordinates": [[[0,0],[240,0],[240,200],[0,200],[0,0]]]}})";
+  for (const char* line : {"[[-20,70],[260,70]]", "[[150,-20],[150,220]]", "[[38,-93],[142,293]]"})
+    features += R"(, {"type": "Feature", "properties": {"road": "local"}, "geometry": {"type": "LineString", "coordinates": )" +
+                std::string(line) + "}}";
+  return R"({"type": "FeatureCollection", "exacity": {"seed": 2, "zones":
+      {"residential": {"layout": "streets"}}}, "features": [)" + features + "]}";
+}
+
 Validation generate_and_validate(const std::string& name, const std::string& text, nlohmann::ordered_json* report = nullptr) {
   auto dir = testing_util::temp_dir("lots-" + name);
   std::ofstream(dir / "in.geojson") << text;
@@ -167,15 +178,8 @@ TEST(Lots, RefusedPiecesJoinTheLotBesideThemAndTheLandIsAccountedFor) {
   // Three streets, one steep across the others: where its lots meet a cross street's, a
   // piece 357 m2 shallower than half its width was left open; it joins the lot it shares
   // the longest edge with, and report.json's lot_land accounts for every m2 of the blocks.
-  std::string features = R"({"type": "Feature", "properties": {"zone": "residential"}, "geometry": {"type": "Polygon",
-      "coordinates": [[[0,0],[240,0],[240,200],[0,200],[0,0]]]}})";
-  for (const char* line : {"[[-20,70],[260,70]]", "[[150,-20],[150,220]]", "[[38,-93],[142,293]]"})
-    features += R"(, {"type": "Feature", "properties": {"road": "local"}, "geometry": {"type": "LineString", "coordinates": )" +
-                std::string(line) + "}}";
   nlohmann::ordered_json report;
-  Validation v = generate_and_validate("joined", R"({"type": "FeatureCollection", "exacity": {"seed": 2, "zones":
-      {"residential": {"layout": "streets"}}}, "features": [)" + features + "]}",
-                                       &report);
+  Validation v = generate_and_validate("joined", three_streets(), &report);
   ASSERT_TRUE(v.ok()) << v.problems[0];
   const auto& land = report["lot_land"]["residential"];
   ASSERT_TRUE(land.contains("pieces_joined_to_a_lot"));
@@ -184,6 +188,33 @@ TEST(Lots, RefusedPiecesJoinTheLotBesideThemAndTheLandIsAccountedFor) {
   double m2 = land["lots"]["area_m2"].get<double>() + land["no_lot"]["area_m2"].get<double>();
   for (const auto& [why, piece] : land["refused"].items()) m2 += piece["area_m2"].get<double>();
   EXPECT_NEAR(m2, land["blocks_m2"].get<double>(), 2);  // each figure rounded to the m2
+}
+
+TEST(Lots, LotLandTalliesTheMapAsTheLotsEnd) {
+  // lot_land is tallied by the tracing that made the last lots, not by tracing the map
+  // again: its pieces must be the map's as the city ends (after joined pieces, whole blocks
+  // and merged unbuilt lots), and its lots the city's.
+  auto dir = testing_util::temp_dir("lots-land-tally");
+  std::ofstream(dir / "in.geojson") << three_streets();
+  StageClock clock(nullptr, kCityStages);
+  const City city = build_city(load_sketch(dir / "in.geojson"), clock);
+  const CityMap& map = city.network.map;
+  std::vector<int> planned_of;
+  const std::vector<geom::Cell> pieces =
+      map.map.cells(map.per_label([](const FaceLabel& f) { return f.lot; }),
+                    map.per_label([](const FaceLabel& f) { return f.road_surface() ? LotEdge::kStreet : LotEdge::kInner; }),
+                    &planned_of);
+  ASSERT_FALSE(pieces.empty());
+  int counted = 0, lots = 0;
+  double m2 = 0, traced_m2 = 0;
+  for (const auto& [zone, land] : city.lot_land) {
+    counted += land.lots.count, lots += land.lots.count, m2 += land.lots.area_m2;
+    for (const auto& [why, share] : land.refused) counted += share.count, m2 += share.area_m2;
+  }
+  for (const geom::Cell& piece : pieces) traced_m2 += piece.area();
+  EXPECT_EQ(counted, static_cast<int>(pieces.size()));
+  EXPECT_EQ(lots, static_cast<int>(city.lots.size()));
+  EXPECT_NEAR(m2, traced_m2, 1e-6 * traced_m2);  // the same areas, summed in another order
 }
 
 TEST(Lots, BlocksTooSmallToCutAreOneLot) {

@@ -121,32 +121,42 @@ const char* refusal(const geom::Cell& cell, const PlannedLot& plan, const CitySe
 
 // Each planned lot's pieces in the map, those that make sensible lots: on the street, at
 // least min_lot_area, and within kLotShape. A lot's rank orders the kept pieces of its
-// planned lot. The pieces refused once rounded, when `refused` is given, go there.
+// planned lot. The pieces refused once rounded, when `refused` is given, go there. When
+// `land` is given it is made the pieces' land (LotLand's lots and refused, per zone type,
+// in the pieces' order): the last tracing of the map is the one lot_land reports.
 std::vector<Lot> kept_lots(const CityMap& city_map, const std::vector<PlannedLot>& planned, const CitySettings& city,
-                           std::vector<Lot>* refused = nullptr) {
+                           std::vector<Lot>* refused = nullptr, PiecesLand* land = nullptr) {
   const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
   const std::vector<int> kind =
       city_map.per_label([](const FaceLabel& f) { return f.road_surface() ? LotEdge::kStreet : LotEdge::kInner; });
   std::vector<int> planned_of, component;
   std::vector<geom::Cell> pieces = city_map.map.cells(group, kind, &planned_of, &component);
   std::vector<std::optional<Lot>> kept(pieces.size());
-  std::vector<char> is_lot(pieces.size(), 0);
+  std::vector<const char*> why(pieces.size(), "collapsed by rounding");  // null: a lot
   const CancelCheck cancel;
   tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
     cancel.check();
     const PlannedLot& plan = planned[planned_of[i]];
     std::optional<geom::Cell> cell = pieces[i].as_written();
     if (!cell) return;
-    is_lot[i] = !refusal(*cell, plan, city);
-    if (!is_lot[i] && !refused) return;
+    why[i] = refusal(*cell, plan, city);
+    if (why[i] && !refused) return;
     geom::Polygon shape = cell->to_plain();
     kept[i] = Lot{plan.block, plan.zone, {}, std::move(*cell), std::move(shape), planned_of[i], 0, component[i], plan.model};
   });
+  if (land) {
+    land->clear();
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      LotLand& l = (*land)[planned[planned_of[i]].zone];
+      LandShare& share = why[i] ? l.refused[why[i]] : l.lots;
+      ++share.count, share.area_m2 += pieces[i].area();
+    }
+  }
   std::vector<Lot> lots;
   std::map<int, int> pieces_of_planned;
   for (std::size_t i = 0; i < kept.size(); ++i) {
     if (!kept[i]) continue;
-    if (!is_lot[i]) refused->push_back(std::move(*kept[i]));
+    if (why[i]) refused->push_back(std::move(*kept[i]));
     else kept[i]->rank = pieces_of_planned[kept[i]->planned]++, lots.push_back(std::move(*kept[i]));
   }
   return lots;
@@ -206,7 +216,7 @@ void make_blocks_whole(CityMap& city_map, const std::map<int, int>& lot_of_block
 // A block none of whose planned lots made a sensible lot (a block a little larger than a
 // lot, cut into corners and slivers) is tried whole, as one lot, rather than left empty.
 std::vector<Lot> with_refused_blocks_whole(CityMap& city_map, const std::vector<PlannedLot>& planned,
-                                           std::vector<Lot> lots, const CitySettings& city) {
+                                           std::vector<Lot> lots, const CitySettings& city, PiecesLand* land) {
   std::set<int> kept_in;
   for (const Lot& lot : lots) kept_in.insert(lot.block);
   std::map<int, int> lot_of_block;
@@ -214,7 +224,7 @@ std::vector<Lot> with_refused_blocks_whole(CityMap& city_map, const std::vector<
     if (!kept_in.count(planned[l].block)) lot_of_block.emplace(planned[l].block, static_cast<int>(l));
   if (lot_of_block.empty()) return lots;
   make_blocks_whole(city_map, lot_of_block);
-  return kept_lots(city_map, planned, city);
+  return kept_lots(city_map, planned, city, nullptr, land);
 }
 
 // Relabels each piece of lot faces (a component as geom::PlanarMap::cells finds them,
@@ -236,7 +246,8 @@ void relabel_pieces(CityMap& city_map, const std::map<int, int>& lot_of_piece) {
 // it took so far counted; a piece no lot can take stays refused (lot_land reports it).
 std::vector<Lot> with_refused_pieces_joined(CityMap& city_map, const std::vector<PlannedLot>& planned,
                                             std::vector<Lot> lots, const std::vector<Lot>& refused,
-                                            const CitySettings& city, std::map<ZoneType, LandShare>* joined) {
+                                            const CitySettings& city, std::map<ZoneType, LandShare>* joined,
+                                            PiecesLand* land) {
   std::map<int, std::vector<int>> of_block;
   for (std::size_t i = 0; i < lots.size(); ++i) of_block[lots[i].block].push_back(static_cast<int>(i));
   std::vector<std::vector<const Lot*>> taken(lots.size());  // per lot: the pieces it takes
@@ -263,13 +274,13 @@ std::vector<Lot> with_refused_pieces_joined(CityMap& city_map, const std::vector
   }
   if (lot_of_piece.empty()) return lots;
   relabel_pieces(city_map, lot_of_piece);
-  return kept_lots(city_map, planned, city);
+  return kept_lots(city_map, planned, city, nullptr, land);
 }
 
 }  // namespace
 
 std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
-                             const CitySettings& city, std::map<ZoneType, LandShare>* joined) {
+                             const CitySettings& city, std::map<ZoneType, LandShare>* joined, PiecesLand* land) {
   city_map.lots = {city_map.generated_roads.end(), static_cast<int>(planned.size())};
   for (std::size_t l = 0; l < planned.size(); ++l) {
     const int counter = city_map.lots.at(static_cast<int>(l));
@@ -282,14 +293,14 @@ std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& p
   city_map.map.snap_round();
 
   std::vector<Lot> refused;
-  std::vector<Lot> lots = kept_lots(city_map, planned, city, &refused);
-  lots = with_refused_pieces_joined(city_map, planned, std::move(lots), refused, city, joined);
-  return with_refused_blocks_whole(city_map, planned, std::move(lots), city);
+  std::vector<Lot> lots = kept_lots(city_map, planned, city, &refused, land);
+  lots = with_refused_pieces_joined(city_map, planned, std::move(lots), refused, city, joined, land);
+  return with_refused_blocks_whole(city_map, planned, std::move(lots), city, land);
 }
 
 std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
                                     const std::vector<Lot>& lots, const std::vector<char>& built,
-                                    bool last, const CitySettings& city, UnbuiltLots& tally) {
+                                    bool last, const CitySettings& city, UnbuiltLots& tally, PiecesLand* land) {
   std::map<int, int> lot_of_piece;  // an unbuilt lot's piece -> the planned lot it joins, or -1
   std::vector<char> settled(lots.size(), 0);  // unbuilt lots joined, or kept for another to join
   // The last time, a block still without a building (a small one, cut into lots too small
@@ -322,30 +333,15 @@ std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<Planned
   }
   relabel_pieces(city_map, lot_of_piece);
   make_blocks_whole(city_map, lot_of_block);
-  return kept_lots(city_map, planned, city);
+  return kept_lots(city_map, planned, city, nullptr, land);
 }
 
-std::map<ZoneType, LotLand> lot_land(const CityMap& city_map, const std::vector<PlannedLot>& planned,
-                                     const std::vector<Block>& blocks, const CitySettings& city,
+std::map<ZoneType, LotLand> lot_land(PiecesLand pieces, const std::vector<Block>& blocks,
                                      const std::map<ZoneType, LandShare>& joined) {
-  std::map<ZoneType, LotLand> land;
+  std::map<ZoneType, LotLand> land = std::move(pieces);
   for (const auto& [zone, share] : joined) land[zone].joined = share;
   for (const Block& b : blocks)
     if (!b.green) land[b.zone].blocks_m2 += b.cell.area();
-  const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
-  const std::vector<int> kind =
-      city_map.per_label([](const FaceLabel& f) { return f.road_surface() ? LotEdge::kStreet : LotEdge::kInner; });
-  std::vector<int> planned_of;
-  const std::vector<geom::Cell> pieces = city_map.map.cells(group, kind, &planned_of);
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    const PlannedLot& plan = planned[planned_of[i]];
-    LotLand& l = land[plan.zone];
-    const double area = pieces[i].area();
-    const std::optional<geom::Cell> cell = pieces[i].as_written();
-    const char* why = cell ? refusal(*cell, plan, city) : "collapsed by rounding";
-    LandShare& share = why ? l.refused[why] : l.lots;
-    ++share.count, share.area_m2 += area;
-  }
   for (auto& [zone, l] : land) {
     l.open_m2 = l.blocks_m2 - l.lots.area_m2;
     for (const auto& [why, share] : l.refused) l.open_m2 -= share.area_m2;

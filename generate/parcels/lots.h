@@ -59,19 +59,6 @@ struct LandShare {
   double area_m2 = 0;
 };
 
-// The planned lots into the map in one batch; faces of a block then know the lot planned
-// there that they lie in. Pieces refused as lots join a neighbouring lot where they can
-// (counted in `joined`, per zone type). Returns the lots as they ended up.
-std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& lots,
-                             const CitySettings& city, std::map<ZoneType, LandShare>* joined = nullptr);
-
-// What merge_unbuilt_lots did, for report.json.
-struct UnbuiltLots {
-  int merged = 0;     // lots joined to a neighbour
-  int left_open = 0;  // lots with no built neighbour, given back to their block's open land
-  double left_open_m2 = 0;  // their land
-};
-
 // Where the land of a zone type's blocks (those not green space) went, for report.json's
 // lot_land: into lots, into pieces of planned lots refused as lots (by why, as kept_lots
 // refuses them), or into no lot (the open middle, land no lot was planned on, and lots
@@ -83,17 +70,40 @@ struct LotLand {
   std::map<std::string, LandShare> refused;
   double open_m2 = 0;
 };
-std::map<ZoneType, LotLand> lot_land(const CityMap& city_map, const std::vector<PlannedLot>& planned,
-                                     const std::vector<Block>& blocks, const CitySettings& city,
-                                     const std::map<ZoneType, LandShare>& joined);
+
+// The map's pieces of lot land as they were last traced into lots, per zone type: LotLand's
+// `lots` and `refused` only. insert_lots and merge_unbuilt_lots make it from the tracing that
+// made their lots, so lot_land needs no tracing of its own.
+using PiecesLand = std::map<ZoneType, LotLand>;
+
+// The planned lots into the map in one batch; faces of a block then know the lot planned
+// there that they lie in. Pieces refused as lots join a neighbouring lot where they can
+// (counted in `joined`, per zone type). Returns the lots as they ended up, and their
+// pieces' land in `pieces`.
+std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& lots,
+                             const CitySettings& city, std::map<ZoneType, LandShare>* joined = nullptr,
+                             PiecesLand* pieces = nullptr);
+
+// What merge_unbuilt_lots did, for report.json.
+struct UnbuiltLots {
+  int merged = 0;     // lots joined to a neighbour
+  int left_open = 0;  // lots with no built neighbour, given back to their block's open land
+  double left_open_m2 = 0;  // their land
+};
 
 // Lots no placer could build on (built[i] is 0), too small or too sharp for the zone's
 // smallest building: each is joined, in the map, to the built lot of its block it shares
 // the longest edge with (its neighbour along the street, mostly); else, unless `last`, to
 // such an unbuilt lot, since the two may hold a building together; else, when `last`, it
-// is no lot and its land is open. Returns the lots as they now are, in the map's order.
+// is no lot and its land is open. Returns the lots as they now are, in the map's order, and
+// their pieces' land in `pieces`.
 std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
                                     const std::vector<Lot>& lots, const std::vector<char>& built, bool last,
-                                    const CitySettings& city, UnbuiltLots& tally);
+                                    const CitySettings& city, UnbuiltLots& tally, PiecesLand* pieces = nullptr);
+
+// The blocks' land (LotLand) from the pieces' land of the map's last tracing, the blocks and
+// the pieces joined to a neighbour.
+std::map<ZoneType, LotLand> lot_land(PiecesLand pieces, const std::vector<Block>& blocks,
+                                     const std::map<ZoneType, LandShare>& joined);
 
 }  // namespace exacity
