@@ -83,6 +83,7 @@ TEST(Like, MeasuresKnownFootprintsExactly) {
   EXPECT_EQ(set["heights"], ordered_json::parse("[7.0, 16.0]"));
   // The road's half inside the land use, 350 m by 5 m, is no block's land: 2,520 m² of
   // footprints on the 31,250 m² left.
+  ASSERT_TRUE(m.contains("street_surface_m2")) << m.dump();
   EXPECT_EQ(m["street_surface_m2"], 1750.0);
   EXPECT_EQ(m["coverage_of_blocks"], std::round(2520.0 / 31250 * 1e4) / 1e4);
   EXPECT_EQ(set["lot_coverage"], 0.081);
