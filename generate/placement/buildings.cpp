@@ -60,7 +60,7 @@ bool near_rectangle(const geom::Polygon& p) {
 // along the rows, never smaller. With `lot_coverage`, rows
 // follow behind the first, each `building_gap` behind the deepest of the row before (a row
 // with no room a step behind it), while the footprints cover less than that share of the
-// lot and the lot is deep enough. Each is
+// lot (the first row too stops there) and the lot is deep enough. Each is
 // checked exactly against the lot and the footprints taken.
 std::vector<geom::Ring> street_footprints(Occupancy& occupancy, const BuildingSettings& p, Random& rng) {
   std::vector<geom::Ring> out;
@@ -89,7 +89,7 @@ std::vector<geom::Ring> street_footprints(Occupancy& occupancy, const BuildingSe
   auto row = [&](double front, bool first) {
     double deepest = 0;
     for (double t = f.t0 + clearance; t + p.min_footprint_width <= f.t1;) {
-      if (!first && covered >= wanted) break;
+      if ((wanted > 0 || !first) && covered >= wanted) break;  // with lot_coverage, the first row too
       double w = 0, d = 0;
       if (waiting) {
         std::tie(w, d) = *waiting;
