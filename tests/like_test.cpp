@@ -201,7 +201,9 @@ TEST(Like, LotCoverageGivesTheBlocksOpenLandToTheirLots) {
     write(dir / (std::string(out) + ".geojson"), sketch.dump());
     const auto r = cli_util::run("generate " + (dir / (std::string(out) + ".geojson")).string() + " -q -o " + (dir / out).string());
     EXPECT_EQ(r.code, 0) << r.out;
-    if (coverage > 0 && std::string(type) == "residential") EXPECT_EQ(cli_util::run("validate " + (dir / out).string()).code, 0);
+    if (coverage > 0 && std::string(type) == "residential") {
+      EXPECT_EQ(cli_util::run("validate " + (dir / out).string()).code, 0);
+    }
     return report_of(dir / out)["lot_land"][type]["no_lot"]["share"].get<double>();
   };
   EXPECT_GT(no_lot("residential", 0, "residential_open"), 0.5);
