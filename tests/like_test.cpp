@@ -81,7 +81,12 @@ TEST(Like, MeasuresKnownFootprintsExactly) {
   EXPECT_EQ(set["min_footprint_area"], 120.0);
   EXPECT_GE(set["max_footprint_area"].get<double>(), 320.0);
   EXPECT_EQ(set["heights"], ordered_json::parse("[7.0, 16.0]"));
-  EXPECT_EQ(set["lot_coverage"], 0.076);  // 2,520 m² of footprints on 33,000 m² of land use
+  // The road's half inside the land use, 350 m by 5 m, is no block's land: 2,520 m² of
+  // footprints on the 31,250 m² left.
+  ASSERT_TRUE(m.contains("street_surface_m2")) << m.dump();
+  EXPECT_EQ(m["street_surface_m2"], 1750.0);
+  EXPECT_EQ(m["coverage_of_blocks"], std::round(2520.0 / 31250 * 1e4) / 1e4);
+  EXPECT_EQ(set["lot_coverage"], 0.081);
   const ordered_json areas = set["footprint_areas"];
   ASSERT_EQ(areas.size(), 21u);
   EXPECT_EQ(areas[0], 100.0);
@@ -180,6 +185,56 @@ TEST(Like, ADrawnAreaThatDoesNotFitKeepsItsAreaInAnotherShape) {
   EXPECT_EQ(g["footprints"], 5);  // one on each lot
   EXPECT_NEAR(g["median_m2"].get<double>(), 900, 0.1);
   EXPECT_NEAR(g["footprint_m2"].get<double>(), 4500, 0.5);
+}
+
+// A zone type with lot_coverage fills its blocks: lots 20 m deep on a zone 60 m deep leave
+// its back two thirds open, which the lots beside it take; an industrial zone keeps every
+// lot (none left out as yard, whose share the place's coverage holds).
+TEST(Like, LotCoverageGivesTheBlocksOpenLandToTheirLots) {
+  const fs::path dir = testing_util::temp_dir("like_fill_blocks");
+  auto no_lot = [&](const char* type, double coverage, const char* out) {
+    ordered_json zone{{"layout", "streets"}, {"lot_width", {20, 20}}, {"lot_depth", 20}};
+    if (coverage > 0) zone["lot_coverage"] = coverage;
+    ordered_json sketch = one_street(zone);
+    sketch["features"][0]["properties"]["zone"] = type;
+    sketch["exacity"]["zones"] = {{type, zone}};
+    write(dir / (std::string(out) + ".geojson"), sketch.dump());
+    const auto r = cli_util::run("generate " + (dir / (std::string(out) + ".geojson")).string() + " -q -o " + (dir / out).string());
+    EXPECT_EQ(r.code, 0) << r.out;
+    if (coverage > 0 && std::string(type) == "residential") {
+      EXPECT_EQ(cli_util::run("validate " + (dir / out).string()).code, 0);
+    }
+    return report_of(dir / out)["lot_land"][type]["no_lot"]["share"].get<double>();
+  };
+  EXPECT_GT(no_lot("residential", 0, "residential_open"), 0.5);
+  EXPECT_LT(no_lot("residential", 0.2, "residential_filled"), 0.01);
+  EXPECT_LT(no_lot("industrial", 0.2, "industrial_filled"), 0.01);
+}
+
+// With footprint_areas, a drawn area that fits nowhere in a lot 30 m deep (20 by 20 m, or
+// the same area in other shapes, past the first on a lot 40 m wide) waits for a place
+// instead of shrinking: every footprint has the drawn 400 m² (shrunk, 100 m² ones filled
+// each lot's end).
+TEST(Like, ADrawnAreaThatFitsNowhereWaitsInsteadOfShrinking) {
+  const fs::path dir = testing_util::temp_dir("like_waiting_areas");
+  ordered_json zone{{"layout", "streets"}, {"lot_width", {40, 40}}, {"lot_depth", 30}, {"setback", 3},
+                    {"building_gap", 4}, {"footprint_width", {20, 20}}, {"footprint_depth", {20, 20}},
+                    {"footprint_areas", {400, 400}}, {"min_footprint_width", 6}};
+  write(dir / "sketch.geojson", one_street(zone).dump());
+  const auto r = cli_util::run("generate " + (dir / "sketch.geojson").string() + " -q -o " + (dir / "out").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const ordered_json buildings = ordered_json::parse(cli_util::read(dir / "out" / "vector" / "buildings.geojson"));
+  int count = 0;
+  for (const ordered_json& b : buildings["features"]) {
+    if (b["properties"]["kind"] != "building") continue;  // not a garden tree
+    const ordered_json& ring = b["geometry"]["coordinates"][0];
+    double twice = 0;
+    for (std::size_t i = 0; i + 1 < ring.size(); ++i)
+      twice += ring[i][0].get<double>() * ring[i + 1][1].get<double>() - ring[i + 1][0].get<double>() * ring[i][1].get<double>();
+    EXPECT_NEAR(std::abs(twice) / 2, 400, 0.01);
+    ++count;
+  }
+  EXPECT_GE(count, 5);
 }
 
 // A file with too few buildings to measure is one line, exit 2, nothing written.

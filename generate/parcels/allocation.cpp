@@ -157,7 +157,7 @@ geom::Ring on_grid(const geom::Ring& ring) {
 
 // The industrial chance: a lot is kept with a chance that falls after a kept lot and
 // rises after a dropped one, so some street frontage stays open yard (unless the lots'
-// frontages are a real place's, whose yards they hold).
+// frontages are a real place's, or its coverage fills the blocks, whose yards they hold).
 class Allocation : public LotLayout {
  public:
   explicit Allocation(const AllocationSettings& settings) : settings_(settings) {}
@@ -165,7 +165,7 @@ class Allocation : public LotLayout {
     std::vector<PlannedLot> out;
     double keep = 0.8;
     for (const geom::Ring& ring : street_lots(block.cell, settings_, rng)) {
-      if (block.zone == ZoneType::Industrial && settings_.lot_frontages.empty()) {
+      if (block.zone == ZoneType::Industrial && settings_.lot_frontages.empty() && !settings_.fills_blocks) {
         bool kept = rng.uniform() < keep;
         keep = std::clamp(keep + (kept ? -0.25 : 0.25), 0.25, 1.0);
         if (!kept) continue;
@@ -276,6 +276,9 @@ std::shared_ptr<const LotLayoutChoice> read_allocation(const LotLayoutReading& r
   s.number("lot_depth", a.lot_depth, 2, 1e4);
   s.range("lot_width", a.lot_width, 2, 1e4, "lot frontage in metres");
   s.distribution("lot_frontages", a.lot_frontages, 1, 1e4, "lot frontages in m", "[12, 18, 25, 60]");
+  double coverage = 0;  // a building setting (read_building_settings), read here for what it means to the lots
+  s.number("lot_coverage", coverage, 0, 1);
+  a.fills_blocks = coverage > 0;
   return std::make_shared<AllocationChoice>(a);
 }
 

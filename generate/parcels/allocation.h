@@ -17,6 +17,9 @@ struct AllocationSettings {
   // --like measures it): each lot's drawn from it in turn along the street, in place of
   // lot_width; the industrial zone's open yards are then the place's own, so no lot is left out.
   std::vector<double> lot_frontages;
+  // The zone's lots fill their blocks to a real place's coverage of its land (the zone's
+  // lot_coverage, which --like sets), whose open yards that coverage holds: no lot is left out.
+  bool fills_blocks = false;
 };
 
 // Allocation as a zone chose it.

@@ -106,14 +106,22 @@ double lot_shape(const std::vector<const geom::Cell*>& cells, const std::vector<
 
 bool good_shape(double ratio) { return ratio >= kLotShape.min && ratio <= kLotShape.max; }
 
+// Whether the zone type's lots fill their blocks: with `lot_coverage` (a real place's
+// coverage of its land use, which --like sets), every piece of a block on a street is a
+// lot whatever its shape, and the land no lot holds joins one (with_open_land_joined),
+// since the place's coverage is of all its land and land outside lots is never built.
+bool fills_blocks(const CitySettings& city, ZoneType zone) { return city.zone_settings.at(zone).buildings.lot_coverage > 0; }
+
 // Why a piece of a planned lot, as written (rounded), makes no lot: off the street, too
-// small, or too narrow or shallow for its frontage; null when it makes one. A lot is its
-// rounded cell, so the buildings placed in it lie inside the lot as written.
+// small, or too narrow or shallow for its frontage (unless its zone fills its blocks);
+// null when it makes one. A lot is its rounded cell, so the buildings placed in it lie
+// inside the lot as written.
 const char* refusal(const geom::Cell& cell, const PlannedLot& plan, const CitySettings& city) {
   const geom::Polygon shape = cell.to_plain();
   if (geom::area(shape) < city.zone_settings.at(plan.zone).lots.min_lot_area) return "under min_lot_area";
   const double ratio = lot_shape({&cell}, {&shape.outer});
   if (ratio == 0) return "no street edge";
+  if (fills_blocks(city, plan.zone)) return nullptr;
   if (ratio < kLotShape.min) return "shallower than half its width";
   if (ratio > kLotShape.max) return "deeper than five times its width";
   return nullptr;
@@ -228,9 +236,11 @@ std::vector<Lot> with_refused_blocks_whole(CityMap& city_map, const std::vector<
 }
 
 // Relabels each piece of lot faces (a component as geom::PlanarMap::cells finds them,
-// grouped by lot) in `lot_of_piece` to the planned lot it maps to (-1: no lot).
-void relabel_pieces(CityMap& city_map, const std::map<int, int>& lot_of_piece) {
-  const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
+// grouped by lot, or by `pieces_of` when given) in `lot_of_piece` to the planned lot it
+// maps to (-1: no lot).
+void relabel_pieces(CityMap& city_map, const std::map<int, int>& lot_of_piece,
+                    const std::vector<int>* pieces_of = nullptr) {
+  const std::vector<int> group = pieces_of ? *pieces_of : city_map.per_label([](const FaceLabel& f) { return f.lot; });
   city_map.map.relabel_components(group, [&](int c, int label) {
     auto it = lot_of_piece.find(c);
     if (it == lot_of_piece.end()) return label;
@@ -277,6 +287,47 @@ std::vector<Lot> with_refused_pieces_joined(CityMap& city_map, const std::vector
   return kept_lots(city_map, planned, city, nullptr, land);
 }
 
+// In zone types that fill their blocks (fills_blocks), each piece of a block's land that
+// no planned lot holds (its middle beyond the lots' depth, corners between runs of lots)
+// joins the lot of its block it shares the longest edge with (counted in `joined`); a
+// piece next to no lot stays open.
+std::vector<Lot> with_open_land_joined(CityMap& city_map, const std::vector<PlannedLot>& planned, std::vector<Lot> lots,
+                                       const CitySettings& city, std::map<ZoneType, LandShare>* joined,
+                                       PiecesLand* land) {
+  std::map<int, ZoneType> zone_of_block;
+  for (const PlannedLot& p : planned) zone_of_block.emplace(p.block, p.zone);
+  const std::vector<int> group = city_map.per_label([&](const FaceLabel& f) {
+    if (f.block < 0 || f.lot >= 0 || f.road_surface()) return -1;
+    const auto it = zone_of_block.find(f.block);
+    return it != zone_of_block.end() && fills_blocks(city, it->second) ? f.block : -1;
+  });
+  if (std::none_of(group.begin(), group.end(), [](int g) { return g >= 0; })) return lots;
+  const std::vector<int> kind =
+      city_map.per_label([](const FaceLabel& f) { return f.road_surface() ? LotEdge::kStreet : LotEdge::kInner; });
+  std::vector<int> block_of, component;
+  const std::vector<geom::Cell> open = city_map.map.cells(group, kind, &block_of, &component);
+  std::map<int, std::vector<int>> of_block;
+  for (std::size_t i = 0; i < lots.size(); ++i) of_block[lots[i].block].push_back(static_cast<int>(i));
+  std::map<int, int> lot_of_piece;
+  for (std::size_t i = 0; i < open.size(); ++i) {
+    const auto block = of_block.find(block_of[i]);
+    if (block == of_block.end()) continue;
+    const geom::Polygon piece = open[i].to_plain();
+    const geom::Box box = open[i].bounds();
+    int best = -1;
+    double longest = 0;
+    for (const int k : block->second)
+      if (box.meets(lots[k].cell.bounds()))
+        if (const double d = shared_length(piece.outer, lots[k].polygon.outer); d > longest) longest = d, best = k;
+    if (best < 0) continue;
+    lot_of_piece[component[i]] = lots[best].planned;
+    if (joined) ++(*joined)[lots[best].zone].count, (*joined)[lots[best].zone].area_m2 += geom::area(piece);
+  }
+  if (lot_of_piece.empty()) return lots;
+  relabel_pieces(city_map, lot_of_piece, &group);
+  return kept_lots(city_map, planned, city, nullptr, land);
+}
+
 }  // namespace
 
 std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
@@ -295,6 +346,7 @@ std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& p
   std::vector<Lot> refused;
   std::vector<Lot> lots = kept_lots(city_map, planned, city, &refused, land);
   lots = with_refused_pieces_joined(city_map, planned, std::move(lots), refused, city, joined, land);
+  lots = with_open_land_joined(city_map, planned, std::move(lots), city, joined, land);
   return with_refused_blocks_whole(city_map, planned, std::move(lots), city, land);
 }
 

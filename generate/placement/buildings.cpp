@@ -4,6 +4,7 @@
 #include <map>
 #include <cmath>
 #include <optional>
+#include <tuple>
 
 #include <tbb/parallel_for.h>
 
@@ -54,10 +55,12 @@ bool near_rectangle(const geom::Polygon& p) {
 // larger than `max_footprint_area`, `building_gap` apart and half that inside the lot's
 // other edges; where one does not fit, a smaller one is tried, down to
 // `min_footprint_width`. With `footprint_areas`, a drawn area that does not fit as drawn is
-// tried first at the same area, wider and shallower or narrower and deeper (a lot's frontage
-// or depth, not its land, is what a large footprint misses). With `lot_coverage`, rows
-// follow behind the first, each `building_gap` behind the deepest of the row before, while
-// the footprints cover less than that share of the lot and the last row took one. Each is
+// tried at the same area, wider and shallower or narrower and deeper (a lot's frontage
+// or depth, not its land, is what a large footprint misses), and else at the next places
+// along the rows, never smaller. With `lot_coverage`, rows
+// follow behind the first, each `building_gap` behind the deepest of the row before (a row
+// with no room a step behind it), while the footprints cover less than that share of the
+// lot (the first row too stops there) and the lot is deep enough. Each is
 // checked exactly against the lot and the footprints taken.
 std::vector<geom::Ring> street_footprints(Occupancy& occupancy, const BuildingSettings& p, Random& rng) {
   std::vector<geom::Ring> out;
@@ -74,33 +77,50 @@ std::vector<geom::Ring> street_footprints(Occupancy& occupancy, const BuildingSe
       r.push_back(geom::snap(f.at(along, across)));
     return r;
   };
+  // With footprint_areas, a drawn size that fits nowhere yet waits for the next place
+  // along the rows rather than shrinking: shrunk, the place's large footprints became the
+  // narrowest allowed (a spike at min_footprint_width squared, and no tail).
+  const bool areas = !p.footprint_areas.empty();
+  std::optional<std::pair<double, double>> waiting;
+  // Past a place where nothing fits: a metre on with footprint_areas (the place's sizes,
+  // whose gaps would otherwise open wherever one waits), else a quarter of the narrowest
+  // (as a row with no room is passed: a metre there costs rows times places).
+  const double step = areas ? 1.0 : std::max(p.min_footprint_width / 4, 1.0);
   // One row, its fronts `front` behind the street; how deep its deepest footprint is (0: none).
   auto row = [&](double front, bool first) {
     double deepest = 0;
     for (double t = f.t0 + clearance; t + p.min_footprint_width <= f.t1;) {
-      if (!first && covered >= wanted) break;
-      double w = rng.uniform(p.footprint_width.min, p.footprint_width.max);
-      double d = rng.uniform(p.footprint_depth.min, p.footprint_depth.max);
-      if (!p.footprint_areas.empty()) {
-        // The area from its distribution (linear between its steps), the shape as drawn.
-        const double s = std::sqrt(draw_from_steps(p.footprint_areas, rng) / (w * d));
-        w *= s, d *= s;
+      if ((wanted > 0 || !first) && covered >= wanted) break;  // with lot_coverage, the first row too
+      double w = 0, d = 0;
+      if (waiting) {
+        std::tie(w, d) = *waiting;
+        waiting.reset();
+      } else {
+        w = rng.uniform(p.footprint_width.min, p.footprint_width.max);
+        d = rng.uniform(p.footprint_depth.min, p.footprint_depth.max);
+        if (areas) {
+          // The area from its distribution (linear between its steps), the shape as drawn.
+          const double s = std::sqrt(draw_from_steps(p.footprint_areas, rng) / (w * d));
+          w *= s, d *= s;
+        }
+        if (w * d > p.max_footprint_area) {
+          const double s = std::sqrt(p.max_footprint_area / (w * d));
+          w *= s, d *= s;
+        }
       }
-      if (w * d > p.max_footprint_area) {
-        const double s = std::sqrt(p.max_footprint_area / (w * d));
-        w *= s, d *= s;
-      }
-      // The drawn size (with footprint_areas, then its area in other shapes), then smaller
-      // ones, down to the narrowest allowed.
+      // The drawn size (with footprint_areas, then its area in other shapes; without, then
+      // smaller ones, down to the narrowest allowed).
       const double m = p.min_footprint_width;
       std::vector<std::pair<double, double>> sizes{{w, d}};
-      if (!p.footprint_areas.empty())
-        for (double k : {1.25, 1.6, 2.0}) sizes.insert(sizes.end(), {{w * k, d / k}, {w / k, d * k}});
-      sizes.insert(sizes.end(), {{0.8 * w, 0.8 * d}, {0.64 * w, 0.64 * d}, {0.5 * w, 0.5 * d}, {m, 0.5 * d}, {m, m}});
+      if (areas) for (double k : {1.25, 1.6, 2.0}) sizes.insert(sizes.end(), {{w * k, d / k}, {w / k, d * k}});
+      else sizes.insert(sizes.end(), {{0.8 * w, 0.8 * d}, {0.64 * w, 0.64 * d}, {0.5 * w, 0.5 * d}, {m, 0.5 * d}, {m, m}});
       bool placed = false;
       for (auto [ws, ds] : sizes) {
         ws = std::max(ws, m), ds = std::max(ds, m);
-        if (t + ws > f.t1 || ws * ds < p.min_footprint_area || ws * ds > p.max_footprint_area) continue;
+        // Past the lot's side or its deepest corner (a millimetre's margin): outside it, untried.
+        if (t + ws > f.t1 || front + ds + clearance > f.depth + 1e-3 || ws * ds < p.min_footprint_area ||
+            ws * ds > p.max_footprint_area)
+          continue;
         geom::Ring ring = rectangle(front, t, ws, ds, 0);
         if (!occupancy.inside(rectangle(front, t, ws, ds, clearance)) || !occupancy.take(ring)) continue;
         out.push_back(std::move(ring));
@@ -109,15 +129,23 @@ std::vector<geom::Ring> street_footprints(Occupancy& occupancy, const BuildingSe
         placed = true;
         break;
       }
-      if (!placed) t += std::max(m / 4, 1.0);
+      if (!placed) {
+        if (areas) waiting = {w, d};
+        t += step;
+      }
     }
     return deepest;
   };
   double front = setback;
   for (bool first = true;; first = false) {
-    const double deepest = row(front, first);
-    if (deepest == 0 || covered >= wanted) break;
-    front += deepest + std::max(p.building_gap, 0.1);
+    double deepest = row(front, first);
+    // What waited fits nowhere in this row: the row again without it.
+    if (deepest == 0 && waiting) waiting.reset(), deepest = row(front, first);
+    if (covered >= wanted) break;
+    // A row with no room (a lot's neck, a corner) may have room behind it: the next row
+    // a step further back, until the lot's depth.
+    front += deepest > 0 ? deepest + std::max(p.building_gap, 0.1) : std::max(p.min_footprint_width / 4, 1.0);
+    if (front + p.min_footprint_width > f.depth) break;
   }
   return out;
 }

@@ -236,16 +236,29 @@ std::map<ZoneType, PlaceFigures> measure_place(const std::vector<RealFootprint>&
   for (const ZoneFeature& z : zones)
     if (out.count(z.type))
       for (const geom::Polygon& p : z.polygons) out[z.type].land_m2 += drawn_area(p);
-  // Each side of each street fronts the land use a metre past its edge.
+  // Each side of each street fronts the land use a metre past its edge, and lies in the
+  // land use where the middle of its half does.
   if (!zones.empty())
     for (const Piece& piece : pieces) {
       const Vec2 middle = geom::lerp(piece.a, piece.b, 0.5), n = geom::left_normal(piece.a, piece.b);
-      for (double side : {-1.0, 1.0})
+      const double length = geom::distance(piece.a, piece.b);
+      for (double side : {-1.0, 1.0}) {
         if (const std::optional<ZoneType> t = zone_at(zones, middle + n * (side * (piece.half + 1))); t && out.count(*t))
-          out[*t].frontage_m += geom::distance(piece.a, piece.b);
+          out[*t].frontage_m += length;
+        if (const std::optional<ZoneType> t = zone_at(zones, middle + n * (side * piece.half / 2)); t && out.count(*t))
+          out[*t].street_m2 += length * piece.half;
+      }
     }
   return out;
 }
+
+namespace {
+
+// The land the place's blocks hold: its land use less its streets, or its land use where
+// the streets would leave none (a land use drawn as a street's surface).
+double block_land_m2(const PlaceFigures& f) { return f.land_m2 > f.street_m2 ? f.land_m2 - f.street_m2 : f.land_m2; }
+
+}  // namespace
 
 ordered_json settings_from_figures(const PlaceFigures& f, const ZoneSettings& defaults) {
   ordered_json set = ordered_json::object();
@@ -284,12 +297,13 @@ ordered_json settings_from_figures(const PlaceFigures& f, const ZoneSettings& de
   set["min_footprint_width"] = std::max(1.0, std::floor(std::min(0.8 * width, depth)));
   set["setback"] = setback;
   set["building_gap"] = gap;
-  // Rows behind the first fill each lot to the place's coverage of its land use: a real
-  // place's parcels cover its land use, so their coverage is that.
-  if (f.land_m2 > 0) {
+  // Rows behind the first fill each lot to the place's coverage of its blocks (its land use
+  // less its streets): its lots fill its blocks, and so do the lots of a zone with
+  // lot_coverage, so their coverage is that.
+  if (const double blocks = block_land_m2(f); blocks > 0) {
     double footprint_area = 0;
     for (double a : f.areas) footprint_area += a;
-    set["lot_coverage"] = std::min(std::round(footprint_area / f.land_m2 * 1000) / 1000, 1.0);
+    set["lot_coverage"] = std::min(std::round(footprint_area / blocks * 1000) / 1000, 1.0);
   }
   // Lots deep enough for the deepest footprint behind its setback, and wide enough for a
   // footprint of the middle width and its gap up to the widest one.
@@ -406,7 +420,11 @@ ordered_json like_place(Sketch& sketch, const std::filesystem::path& like) {
                      {"height_m", summary(f.heights)},
                      {"setback_m", summary(f.setbacks)},
                      {"gap_m", summary(f.gaps)}};
-    if (f.land_m2 > 0) z["measured"]["coverage_of_land_use"] = std::round(footprint_area / f.land_m2 * 1e4) / 1e4;
+    if (f.land_m2 > 0) {
+      z["measured"]["coverage_of_land_use"] = std::round(footprint_area / f.land_m2 * 1e4) / 1e4;
+      z["measured"]["street_surface_m2"] = std::round(f.street_m2);
+      z["measured"]["coverage_of_blocks"] = std::round(footprint_area / block_land_m2(f) * 1e4) / 1e4;
+    }
     if (f.frontage_m > 0) z["measured"]["street_frontage_m"] = std::round(f.frontage_m);
     if (!ex["zones"].contains(type) || !ex["zones"][type].is_object()) ex["zones"][type] = ordered_json::object();
     ordered_json& zone = ex["zones"][type];

@@ -35,6 +35,9 @@ struct PlaceFigures {
   std::vector<double> areas, long_sides, short_sides, wing_depths, heights, setbacks, gaps;
   double land_m2 = 0;  // the zone type's land use, where the buildings stand
   double frontage_m = 0;  // the length of street its land use fronts, each side of a street once
+  // The streets' surface within its land use (each side of a street whose half is in it: its
+  // length times the half width): the land use less it is the land its blocks hold.
+  double street_m2 = 0;
 };
 
 // Measures `footprints` by the zone type of `zones` each one's centre lies in (the last
