@@ -52,6 +52,14 @@ std::vector<Build> builds_in(const RobustnessOptions& o, std::ostream& log) {
     throw std::runtime_error("the exact build, exacity, is not in " + o.programs.string());
   if (!o.builds.empty() && std::find(o.builds.begin(), o.builds.end(), "exact") == o.builds.end())
     throw std::runtime_error("--build: the exact build is what the others are measured against; include exact");
+  // A name that is no build would otherwise just be left out, and a run the caller thought
+  // measured it would not.
+  for (const std::string& name : o.builds)
+    if (std::find(kBuildNames.begin(), kBuildNames.end(), name) == kBuildNames.end()) {
+      std::string known;
+      for (const std::string& k : kBuildNames) known += (known.empty() ? "" : ", ") + k;
+      throw std::runtime_error("--build " + name + ": no such build; use one of " + known);
+    }
   std::vector<Build> found;
   for (const std::string& name : kBuildNames) {
     const bool asked = std::find(o.builds.begin(), o.builds.end(), name) != o.builds.end();
@@ -142,7 +150,8 @@ std::string level_of(const std::string& family) {
 
 // How the report names a build: the two float builds without tolerances say so.
 std::string build_label(const std::string& name) {
-  if (name == "float-snapped") return "float-snapped (practitioner)";
+  if (name == "float-grid") return "float-grid (practitioner, 1e-6 m grid)";
+  if (name == "float-snapped") return "float-snapped (practitioner, iterated snap rounding)";
   if (name == "float-simple-snapped") return "float-simple-snapped (practitioner, plain doubles)";
   if (name == "float") return "float, Epick (no tolerance)";
   if (name == "float-simple") return "float-simple (no tolerance)";
@@ -161,9 +170,10 @@ std::string svg_chart(const std::vector<FamilyResult>& results, const std::vecto
   const int rows = (static_cast<int>(results.size()) + columns - 1) / columns;
   const int width = left + columns * (panel_w + gap_x), height = top + rows * (panel_h + gap_y) + 30;
   // One per build of kBuildNames, in its order (the snapped build on plain doubles a lighter
-  // dotted blue beside the practitioner's).
-  static const char* colours[] = {"#2b7a3d", "#1f5fa8", "#5b9bd5", "#138d90", "#7b3fa0", "#c23c8c", "#d9822b", "#b8322a"};
-  static const char* dashes[] = {"", "", "3 2", "", "", "4 2", "6 3", "2 3"};
+  // dotted blue beside the one on Epick).
+  static const char* colours[] = {"#2b7a3d", "#e0a100", "#1f5fa8", "#5b9bd5", "#138d90",
+                                  "#7b3fa0", "#c23c8c", "#d9822b", "#b8322a"};
+  static const char* dashes[] = {"", "", "", "3 2", "", "", "4 2", "6 3", "2 3"};
   static_assert(std::size(colours) == std::size(dashes));
   // A build keeps its style whichever builds ran.
   std::vector<std::size_t> style(builds.size());

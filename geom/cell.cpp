@@ -306,7 +306,8 @@ Path extend_to(const Path& road, const std::vector<Path>& targets, double reach,
       const Point* found = boost::get<Point>(&*meet);
       if (!found) continue;
       const Point x = exact::constructed(*found);
-      if (x == q || CGAL::angle(p, q, x) != CGAL::OBTUSE) continue;  // only ahead of q
+      // only ahead of q (q on the grid as the snapped builds test equality: a drawn end is not on a decimal one)
+      if (x == exact::constructed(q) || CGAL::angle(p, q, x) != CGAL::OBTUSE) continue;
       if (CGAL::squared_distance(q, x) > exact::FT(reach * reach)) continue;
       if (!best || CGAL::has_smaller_distance_to_point(q, x, *best)) best = x;
     }
@@ -393,7 +394,7 @@ std::optional<Link> shortest_link(const std::vector<Path>& from, const std::vect
   Point nearest = CGAL::angle(v, p, q) != CGAL::ACUTE   ? p
                   : CGAL::angle(v, q, p) != CGAL::ACUTE ? q
                                                         : exact::constructed(exact::Line(p, q).projection(v));
-  if (nearest == v) return Link{};
+  if (nearest == exact::constructed(v)) return Link{};
   auto impl = std::make_shared<Path::Impl>();
   impl->points = best->vertex_from ? std::vector<Point>{v, nearest} : std::vector<Point>{nearest, v};
   return Link{Path(std::move(impl)), best_d};
@@ -484,7 +485,8 @@ Growth::Met Growth::extend(Vec2 next) {
       Point at;
       if (const Point* x = boost::get<Point>(&*meet)) {
         at = exact::constructed(*x);
-        if (at == p) continue;  // where this step starts: the road's own previous vertex
+        // Where this step starts: the road's own previous vertex, on the grid as `at` is.
+        if (at == exact::constructed(p)) continue;
       } else {
         const Segment& overlap = boost::get<Segment>(*meet);
         at = CGAL::compare_distance_to_point(p, overlap.source(), overlap.target()) == CGAL::SMALLER

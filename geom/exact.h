@@ -2,14 +2,14 @@
 //
 // Exacity is built on the exact kernel. The robustness benchmark (benchmarks/robustness.cpp)
 // builds the very same code on floating-point kernels instead, chosen here at compile time
-// by EXACITY_FLOAT_KERNEL: 1 for exact predicates with double constructions (Epick), 2 for
-// plain doubles (Simple_cartesian<double>); nothing else differs between those builds. 3 is
-// the practitioner's float build: Epick, with every constructed point snapped to a fixed
-// grid (`constructed`), equality of constructed points tested on that grid, and every
-// batch noded by snap rounding in doubles before the arrangement sees it
-// (geom/snap_noding.h; docs/design.md, Exactness). 4 is that snapped build on plain
-// doubles (Simple_cartesian<double>): the same snapping and tolerances, with predicates
-// that round too, to show what the exact predicates under 3 do for it.
+// by EXACITY_FLOAT_KERNEL: 1 Epick, 2 plain doubles (Simple_cartesian<double>), nothing else
+// changed. 3 is the practitioner's float build: Epick, every constructed point snapped to a
+// fixed grid (`constructed`), equality of constructed points tested on it, every batch noded
+// by iterated snap rounding in doubles before the arrangement sees it (geom/snap_noding.h;
+// docs/design.md, Exactness). 4 is 3 on plain doubles, whose predicates round too. 5, the grid
+// build (geom/grid_kernel.h), is 4 as a practitioner would write it: a decimal 1e-6 m grid
+// whose points are not exact doubles, and each batch snap-rounded in one pass, not iterated.
+// Lines here keep their places so that the other kernels' objects stay in ccache.
 #pragma once
 
 #include <array>
@@ -32,13 +32,13 @@
 #elif EXACITY_FLOAT_KERNEL == 4
 #include <CGAL/Simple_cartesian.h>
 #include "geom/snap_noding.h"
+#elif EXACITY_FLOAT_KERNEL == 5
+#include "geom/grid_kernel.h"  // its kernel, name and grid
 #else
-#error "EXACITY_FLOAT_KERNEL: 1 (Epick), 2 (Simple_cartesian<double>), 3 (Epick, snapped) or 4 (Simple_cartesian<double>, snapped)"
+#error "EXACITY_FLOAT_KERNEL: 1 (Epick), 2 (Simple_cartesian), 3 and 4 (the same, snapped) or 5 (the grid build)"
 #endif
-
-// The snapped builds (3 and 4) share every line of their snapping.
-#if EXACITY_FLOAT_KERNEL == 3 || EXACITY_FLOAT_KERNEL == 4
-#define EXACITY_SNAPPED_KERNEL 1
+#if EXACITY_FLOAT_KERNEL == 3 || EXACITY_FLOAT_KERNEL == 4 || EXACITY_FLOAT_KERNEL == 5
+#define EXACITY_SNAPPED_KERNEL 1  // the snapped builds share every line of their snapping
 #endif
 
 namespace geom::exact {
@@ -55,7 +55,7 @@ inline constexpr const char* kKernelName = "float (Simple_cartesian<double>)";
 #elif EXACITY_FLOAT_KERNEL == 3
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 inline constexpr const char* kKernelName = "float snapped (Epick, constructions on a 2^-24 m grid)";
-#else
+#elif EXACITY_FLOAT_KERNEL == 4  // 5: geom/grid_kernel.h
 using Kernel = CGAL::Simple_cartesian<double>;
 inline constexpr const char* kKernelName = "float snapped (Simple_cartesian<double>, constructions on a 2^-24 m grid)";
 #endif
@@ -65,10 +65,10 @@ inline constexpr bool kSnapped = true;
 #else
 inline constexpr bool kSnapped = false;
 #endif
-// The snapped build's grid: 2^-24 m, 60 nm, a power of two so that every point of
-// geom/grid.h's grid is on it, and fine enough that a snapped point stays within the
-// validator's 1 µm of the drawn edge it was computed on.
-inline constexpr double kSnapStep = 1.0 / (1 << 24);
+#if !defined(EXACITY_SNAP_STEP)            // the snapped builds' grid (the grid build's: geom/grid_kernel.h): 2^-24 m,
+#define EXACITY_SNAP_STEP 1.0 / (1 << 24)  // 60 nm, a power of two so every point of geom/grid.h's grid is on it
+#endif  // and fine enough that a snapped point stays within the validator's 1 µm of the edge it was computed on
+inline constexpr double kSnapStep = EXACITY_SNAP_STEP;
 using FT = Kernel::FT;
 using Point = Kernel::Point_2;
 using Segment = Kernel::Segment_2;

@@ -1,19 +1,28 @@
 #include "geom/snap_noding.h"
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Simple_cartesian.h>
+
 #include <algorithm>
 #include <climits>
 #include <cmath>
-
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include "geom/segment_buckets.h"
 
 namespace geom {
 namespace {
 
+#if EXACITY_FLOAT_KERNEL == 5
+// The grid build (geom/grid_kernel.h) as a practitioner writes it: crossings decided in
+// rounded doubles, and one pass of snap rounding (Hobby's, not iterated).
+using K = CGAL::Simple_cartesian<double>;
+constexpr int kSnapRounds = 1;
+#else
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+constexpr int kSnapRounds = 16;
+#endif
 
-// Which side of a -> b point p is on, decided exactly on the doubles given.
+// Which side of a -> b point p is on, decided on the doubles given (exactly but in the grid build).
 int side(Vec2 a, Vec2 b, Vec2 p) {
   return static_cast<int>(CGAL::orientation(K::Point_2(a.x, a.y), K::Point_2(b.x, b.y), K::Point_2(p.x, p.y)));
 }
@@ -137,7 +146,7 @@ std::vector<Polyline> snap_round_segments(const std::vector<std::pair<Vec2, Vec2
 
   // Each segment through the hot pixels it meets (and the ends it passes within the end
   // reach of); then each piece again, until no piece meets a hot pixel not its own
-  // (iterated snap rounding: the result, noded again on the same grid, stays as it is).
+  // (iterated snap rounding: the result, noded again on the same grid, stays as it is; one pass in the grid build).
   std::vector<std::pair<double, Vec2>> found;
   auto hot_on = [&](Vec2 p, Vec2 q, Vec2 a, Vec2 b) {
     found.clear();
@@ -165,7 +174,7 @@ std::vector<Polyline> snap_round_segments(const std::vector<std::pair<Vec2, Vec2
     const bool rightwards = xy_less(a, b), one_way = i < monotone.size() && monotone[i];
     auto ahead = [&](Vec2 p, Vec2 q) { return !one_way || (rightwards ? xy_less(p, q) : xy_less(q, p)); };
     Polyline line{a, b};
-    for (int round = 0; round < 16; ++round) {
+    for (int round = 0; round < kSnapRounds; ++round) {
       Polyline next{a};
       bool changed = false;
       for (std::size_t k = 0; k + 1 < line.size(); ++k) {
