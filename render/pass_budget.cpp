@@ -16,12 +16,14 @@ Passes run_passes(const PassBudget& budget, const std::function<void(int samples
     done.traced_s += now() - begun;
     done.samples += next;
     ++done.passes;
-    // The most samples, up to spp, that end with the finishing within the budget (the
+    const double writing = budget.write_s();
+    if (done.passes == 1) done.least_s = now() + writing;
+    // The most samples, up to spp, that end with the finishing and writing within the budget (the
     // clock read after finish_s, which may time the finishing the first time it is asked).
     const double per_sample = done.traced_s / done.samples;
     auto fits = [&](int n) {
       const double finish = budget.finish_s(done.samples + n, per_sample);
-      return per_sample * n + finish <= budget.budget_s - now();
+      return per_sample * n + finish + writing <= budget.budget_s - now();
     };
     next = std::min(budget.spp, kMostSamples - done.samples);
     while (next > 0 && !fits(next)) --next;

@@ -1,6 +1,7 @@
 #include "render/render.h"
 
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <optional>
 
@@ -122,6 +123,34 @@ Image finished(Image image, const RenderScene& scene, const Sky& sky, const Came
   return request.denoise ? denoise_render(std::move(image), scene, sky, camera, haze) : image;
 }
 
+// The still's writing time (its EXR and PNG), foretold from a band of an eighth of the rows
+// (32 at least) written beside it and removed: the writers' work is about the same for every
+// row, and the band is written under the machine's load of the moment.
+double write_seconds(const Image& image, const RenderRequest& request, float stops) {
+  const int rows = std::min(image.height, std::max(32, image.height / 8));
+  if (rows == 0 || request.still.empty()) return 0;
+  Image band;
+  band.width = image.width, band.height = rows;
+  const auto n = static_cast<std::ptrdiff_t>(image.width) * rows;
+  band.beauty.assign(image.beauty.begin(), image.beauty.begin() + n);
+  band.depth.assign(image.depth.begin(), image.depth.begin() + n);
+  band.normal.assign(image.normal.begin(), image.normal.begin() + n);
+  band.albedo.assign(image.albedo.begin(), image.albedo.begin() + n);
+  band.id.assign(image.id.begin(), image.id.begin() + n);
+  const fs::path probe = fs::path(request.still).replace_filename("." + request.still.stem().string() + ".write-probe.png");
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    write_exr(band, fs::path(probe).replace_extension(".exr"));
+    write_png(tone_mapped(band, request, stops), probe);
+  } catch (const std::exception&) {
+    // Writing the still itself will say what is wrong with its folder.
+  }
+  const double seconds = seconds_since(start) * image.height / rows;
+  std::error_code ignored;
+  fs::remove(probe, ignored), fs::remove(fs::path(probe).replace_extension(".exr"), ignored);
+  return seconds;
+}
+
 struct Still {
   Image image;
   Rgb8 png;  // tone-mapped; the minimap is set into it before it is written
@@ -129,6 +158,7 @@ struct Still {
   int passes = 0, samples = 0;  // samples a pixel, over the passes
   double seconds = 0, denoise_seconds = 0;  // tracing, denoising
   double cpu_s = 0, denoise_cpu_s = 0;      // the same in CPU seconds
+  double write_foretold_s = 0;              // with a budget: the writing it kept time for
   bool denoised = false;
   int primary_rays = 0;  // the denoiser's primary layer's, a pixel
   float metered_ev = 0;
@@ -163,16 +193,27 @@ Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camer
     });
     still.cpu_s += cpu_seconds() - pass_cpu;
   };
-  // The filter's time, measured on a band once the first pass has given an image.
-  std::optional<double> filter_s;
+  // The filter's time and the writing's, measured on a band once the first pass has given
+  // an image.
+  std::optional<double> filter_s, write_s;
   auto denoiser_s = [&](int samples, double per_sample_s) {
     if (request.denoise && !filter_s) filter_s = filter_seconds(film.image());
     return denoise_seconds(request, haze, samples, filter_s.value_or(0), per_sample_s);
   };
+  auto writing_s = [&] {
+    if (!write_s) write_s = write_seconds(film.image(), request, day.stops);
+    return *write_s;
+  };
   if (budget) {
-    PassBudget plan{request.time_budget_s, request.spp, denoiser_s};
+    PassBudget plan{request.time_budget_s, request.spp, denoiser_s, writing_s};
     const Passes passes = run_passes(plan, trace_pass, [&] { return seconds_since(request.started); });
     still.passes = passes.passes, still.seconds = passes.traced_s;
+    still.write_foretold_s = writing_s();
+    if (passes.least_s > request.time_budget_s * 1.1)
+      std::fprintf(stderr,
+                   "exacity: note: --time %g is less than this command needs on this machine now: the city, its scene "
+                   "and one sample a pixel took %.1f s, writing takes about %.1f s more; it writes that sample, not denoised\n",
+                   request.time_budget_s, passes.least_s - still.write_foretold_s, still.write_foretold_s);
   } else {
     const auto start = std::chrono::steady_clock::now();
     trace_pass(request.spp);
@@ -185,7 +226,7 @@ Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camer
   if (request.denoise) {
     // Over the budget already: the filter without its primary layer, or none.
     DenoiseSettings denoising;
-    const double remaining = request.time_budget_s - seconds_since(request.started);
+    const double remaining = request.time_budget_s - seconds_since(request.started) - still.write_foretold_s;
     if (budget && denoiser_s(film.samples, still.seconds / film.samples) > remaining) denoising.primary_rays = 0;
     still.denoised = !budget || filter_s.value_or(0) <= remaining;
     if (still.denoised) image = denoise_render(std::move(image), scene, sky, camera, haze, denoising);
@@ -263,6 +304,7 @@ nlohmann::ordered_json still_report(const RenderRequest& request, const SolarPla
         {"shadow_rays", rays.shadow},
         {"rays_per_s", static_cast<double>(rays.camera + rays.bounce + rays.shadow) / still.seconds},
         {"denoise_s", still.denoise_seconds},
+        {"write_foretold_s", still.write_foretold_s},
         {"cpu_s", still.cpu_s},
         {"denoise_cpu_s", still.denoise_cpu_s}}},
   };
@@ -457,7 +499,9 @@ nlohmann::ordered_json render_city(const exacity::City& city, const RenderReques
     if (request.minimap) report["minimap"] = render_minimap(whole, scene, map_sky, camera, request, still.png);
   }
   cancel.check();
+  const auto writing = std::chrono::steady_clock::now();
   write_still(still, request.still);
+  report["still"]["write_s"] = seconds_since(writing);
   return report;
 }
 

@@ -25,12 +25,6 @@ inline V3 colour(const exacity::Colour& c) {
 
 inline V3 colour(const exacity::Albedo& a) { return {a[0], a[1], a[2]}; }
 
-// Whether a lamp model's material is its light: glass, a bulb, a lamp or a light by name.
-inline bool lamp_light_material(const std::string& name) {
-  for (const char* word : {"glass", "bulb", "lamp", "light"})
-    if (name.find(word) != std::string::npos) return true;
-  return false;
-}
 
 // The materials of the ground and of buildings, as indices.
 struct RenderScene::Palette {

@@ -40,7 +40,7 @@ RenderScene::ModelMaterials RenderScene::add_model_materials(const exacity::Mode
         const bool glass = mat.name.find("glass") != std::string::npos || mat.name.find("window") != std::string::npos;
         Material made{glass ? Material::Glossy : Material::Diffuse, colour(exacity::tinted(mat.colour, tint)), 0.05f, 1.5f};
         // At night a lamp's head glows, warm (its light is its point light's, render/night.h).
-        if (lamp_head_radiance > 0 && m.kind == exacity::ModelKind::Lamp && lamp_light_material(mat.name))
+        if (lamp_head_radiance > 0 && m.kind == exacity::ModelKind::Lamp && exacity::is_lamp_light_material(mat.name))
           made.emission = V3{1.0f, 0.78f, 0.5f} * lamp_head_radiance, made.camera_only = true;
         const int index = add_material(made);
         if (!mat.texture) continue;

@@ -164,7 +164,7 @@ V3 lamp_light_point(const exacity::Model& model) {
   float lowest = INFINITY;
   int corners = 0;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    if (!lamp_light_material(mesh.materials[static_cast<std::size_t>(mesh.material[t])].name)) continue;
+    if (!exacity::is_lamp_light_material(mesh.materials[static_cast<std::size_t>(mesh.material[t])].name)) continue;
     for (int c : mesh.triangles[t]) {
       const auto& v = mesh.vertices[static_cast<std::size_t>(c)];
       sum += V3{static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};

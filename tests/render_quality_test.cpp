@@ -290,7 +290,8 @@ TEST(Film, ABudgetSpentBeforeTracingGivesOnePassAndNoDenoiser) {
 // of a 3 s budget. The first pass is one sample; then passes of up to spp that fit, the last
 // shrunk to end on the budget; with the finishing (the denoiser) foretold, room is left
 // for it; a pass that runs long (the machine slowed down) and ends past the budget is the
-// last; and a budget spent before tracing gives one pass of one sample.
+// last; a budget spent before tracing gives one pass of one sample; the writing's time is
+// kept free too, and when the first pass and the writing end past the budget it is known.
 TEST(PassBudget, PassesFitTheBudgetAndStopAfterThePassThatReachesIt) {
   double clock = 1, slowdown = 1;
   std::size_t slow_pass = 0;  // the pass (from 1) that runs `slowdown` times as long
@@ -328,6 +329,21 @@ TEST(PassBudget, PassesFitTheBudgetAndStopAfterThePassThatReachesIt) {
   done = run_passes(budget, trace, now);
   EXPECT_EQ(passes, (std::vector<int>{1}));
   EXPECT_EQ(done.samples, 1);
+
+  // Half a second of writing: kept free after the passes, which end where it begins.
+  budget.write_s = [] { return 0.5; };
+  clock = 1, passes.clear();
+  done = run_passes(budget, trace, now);
+  EXPECT_EQ(passes, (std::vector<int>{1, 4, 4, 3}));
+  EXPECT_EQ(clock + 0.5, 3);
+  EXPECT_EQ(done.least_s, 1.625);  // the first pass, then the writing
+
+  // The city and scene took 2.75 s: the first pass and the writing end at 3.375 s, past
+  // 3 s and its tenth, which the command says.
+  clock = 2.75, passes.clear();
+  done = run_passes(budget, trace, now);
+  EXPECT_EQ(passes, (std::vector<int>{1}));
+  EXPECT_EQ(done.least_s, 3.375);
 }
 
 TEST(ToneMap, WhiteBalanceMakesItsBlackBodyNeutral) {

@@ -33,6 +33,12 @@ constexpr const char* kBaseLeaves = "its base leaves the sidewalk or lot";
 constexpr const char* kBuilding = "a building or lot furniture stands there";
 constexpr const char* kOtherClutter = "other clutter stands there";
 constexpr const char* kChannels = "no entry of the kind suits the channels there";
+constexpr const char* kNearCrown = "a lamp's head would hang in or near a tree's crown";
+
+// How far a lamp's head keeps from a tree's crown (docs/design.md, Placement: street
+// clutter): a lamp a metre from leaves lights them with about its whole intensity, some
+// forty times what reaches the road under it, and at night such crowns glowed.
+constexpr double kCrownClearance = 1.5;
 
 // A model's base: its outline where it meets the ground (the convex hull of its vertices in
 // the lowest 30 cm, or quarter of its height), so a lamp's arm or a tree's crown may reach
@@ -54,6 +60,43 @@ Base base_of(const Model& m) {
   for (Vec2 p : b.ring) box.add(p);
   b.centre = {(box.min_x + box.max_x) / 2, (box.min_y + box.max_y) / 2};
   return b;
+}
+
+// What of a model hangs where other clutter may reach it: a tree's crown (what stands
+// wider than its base), a lamp's head (its light's triangles, else its top half metre), as
+// a vertical cylinder around it in the model's frame. Doubles: a clearance, not a rule the
+// map decides.
+struct Canopy {
+  enum Part { kNone, kCrown, kHead } part = kNone;
+  Vec2 centre;             // in the model's frame, or placed
+  double radius = 0;       // around the centre
+  double low = 0, high = 0;  // over the model's base, or placed
+};
+
+Canopy canopy_of(const Model& m, const Base& base) {
+  std::vector<Vec3> parts;
+  if (m.kind == ModelKind::Tree) {
+    double reach = 0;  // the base's, from its centre
+    for (Vec2 p : base.ring) reach = std::max(reach, geom::distance(p, base.centre));
+    for (const Vec3& v : m.mesh.vertices)
+      if (geom::distance({v[0], v[1]}, base.centre) > reach + 0.05) parts.push_back(v);
+  } else if (m.kind == ModelKind::Lamp) {
+    for (std::size_t t = 0; t < m.mesh.triangles.size(); ++t)
+      if (is_lamp_light_material(m.mesh.materials[static_cast<std::size_t>(m.mesh.material[t])].name))
+        for (int c : m.mesh.triangles[t]) parts.push_back(m.mesh.vertices[static_cast<std::size_t>(c)]);
+    if (parts.empty())
+      for (const Vec3& v : m.mesh.vertices)
+        if (v[2] >= m.height - 0.5) parts.push_back(v);
+  }
+  if (parts.empty()) return {};
+  Canopy c;
+  c.part = m.kind == ModelKind::Tree ? Canopy::kCrown : Canopy::kHead;
+  geom::Box box = geom::Box::none();
+  c.low = INFINITY, c.high = -INFINITY;
+  for (const Vec3& v : parts) box.add(Vec2{v[0], v[1]}), c.low = std::min(c.low, v[2]), c.high = std::max(c.high, v[2]);
+  c.centre = {(box.min_x + box.max_x) / 2, (box.min_y + box.max_y) / 2};
+  for (const Vec3& v : parts) c.radius = std::max(c.radius, geom::distance({v[0], v[1]}, c.centre));
+  return c;
 }
 
 // Rings by the cells of a square grid their boxes meet, to find the few near a point or ring.
@@ -113,6 +156,42 @@ class TakenBases {
   RingBuckets buckets_{8};
   std::vector<geom::Ring> rings_;
 };
+
+// The crowns and lamp heads of the clutter kept so far: a head may not hang within
+// kCrownClearance of a crown.
+class TakenCanopies {
+ public:
+  bool too_near(const Canopy& c) const {
+    if (c.part == Canopy::kNone) return false;
+    const double r = c.radius + kCrownClearance;
+    const std::vector<int> near = buckets_.near({c.centre.x - r, c.centre.y - r, c.centre.x + r, c.centre.y + r});
+    return std::any_of(near.begin(), near.end(), [&](int i) {
+      const Canopy& o = canopies_[i];
+      return o.part != c.part && o.low - kCrownClearance < c.high && c.low - kCrownClearance < o.high &&
+             geom::distance(o.centre, c.centre) < o.radius + c.radius + kCrownClearance;
+    });
+  }
+  void add(const Canopy& c) {
+    if (c.part == Canopy::kNone) return;
+    const double r = c.radius + kCrownClearance;
+    buckets_.add({{c.centre.x - r, c.centre.y - r}, {c.centre.x + r, c.centre.y + r}}, static_cast<int>(canopies_.size()));
+    canopies_.push_back(c);
+  }
+
+ private:
+  RingBuckets buckets_{8};
+  std::vector<Canopy> canopies_;
+};
+
+// A model's canopy where the placement puts it, over its floor.
+Canopy placed(const Canopy& local, const Placement& p, double floor) {
+  Canopy c = local;
+  if (c.part == Canopy::kNone) return c;
+  const Vec3 low = p.apply({local.centre.x, local.centre.y, local.low}, floor);
+  c.centre = {low[0], low[1]}, c.low = low[2];
+  c.radius = local.radius * p.scale, c.high = floor + local.high * p.scale;
+  return c;
+}
 
 // Whether an entry stands at a station (Dresser::dress).
 enum Fit { kNotHere, kNotNow, kHere };
@@ -194,9 +273,11 @@ struct Proposals {
 // few shifted ones, checks each exactly, and counts the spots that find no place.
 class Dresser {
  public:
-  Dresser(const StandingGround& side, const ModelLibrary& lib, const std::vector<Base>& bases, const Channels& channels,
-          const Terrain* terrain, Random& rng, Proposals& out)
-      : side_(side), lib_(lib), bases_(bases), channels_(channels), terrain_(terrain), rng_(rng), out_(out) {}
+  Dresser(const StandingGround& side, const ModelLibrary& lib, const std::vector<Base>& bases,
+          const std::vector<Canopy>& canopies, const Channels& channels, const Terrain* terrain, Random& rng,
+          Proposals& out)
+      : side_(side), lib_(lib), bases_(bases), canopies_(canopies), channels_(channels), terrain_(terrain), rng_(rng),
+        out_(out) {}
 
   // Park trees stand on a park's open land, where street clutter finds no ground.
   void in_parks() { parks_ = true; }
@@ -259,9 +340,15 @@ class Dresser {
         why = why ? why : kOtherClutter;
         continue;
       }
-      if (w.zone) c.instance.zone = *w.zone;
       if (terrain_) std::tie(c.instance.base, c.instance.floor) = terrain_->range_under(c.instance.polygon.outer);
+      const Canopy canopy = placed(canopies_[m], c.instance.placed, c.instance.floor);
+      if (taken_canopies_.too_near(canopy)) {
+        why = why ? why : kNearCrown;
+        continue;
+      }
+      if (w.zone) c.instance.zone = *w.zone;
       taken_.add(c.instance.polygon.outer);
+      taken_canopies_.add(canopy);
       out_.items.push_back(std::move(c));
       ++out_.tally.placed[name(kind)];
       return model.spacing;
@@ -310,11 +397,13 @@ class Dresser {
   const StandingGround& side_;
   const ModelLibrary& lib_;
   const std::vector<Base>& bases_;
+  const std::vector<Canopy>& canopies_;
   const Channels& channels_;
   const Terrain* terrain_;
   Random& rng_;
   Proposals& out_;
   TakenBases taken_;
+  TakenCanopies taken_canopies_;
   bool parks_ = false;
 };
 
@@ -555,7 +644,8 @@ StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* lib
       std::none_of(library->models.begin(), library->models.end(), [](const Model& m) { return is_clutter(m.kind); }))
     return out;
   std::vector<Base> bases;
-  for (const Model& m : library->models) bases.push_back(base_of(m));
+  std::vector<Canopy> canopies;
+  for (const Model& m : library->models) bases.push_back(base_of(m)), canopies.push_back(canopy_of(m, bases.back()));
   const StandingGround side(ground, zones);
   const std::vector<RoadLine>& roads = ground.ground.roads;
   const std::vector<StreetJunction> junctions = street_junctions(roads);
@@ -584,7 +674,7 @@ StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* lib
   tbb::parallel_for(std::size_t(0), groups, [&](std::size_t g) {
     cancel.check();
     Random rng(mix(stage, g));
-    Dresser dresser(side, *library, bases, channels, terrain, rng, proposed[g]);
+    Dresser dresser(side, *library, bases, canopies, channels, terrain, rng, proposed[g]);
     if (g < roads.size()) {
       if (!roads[g].bridge) dress_street(roads[g], static_cast<int>(g), junction_reach, zone_boxes, *library, dresser);
     } else if (g < streets_and_junctions) {
@@ -595,19 +685,24 @@ StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* lib
     }
   });
   TakenBases kept;
+  TakenCanopies kept_canopies;
   for (Proposals& p : proposed) {
     for (auto& [kind, n] : p.tally.placed) out.tally.placed[kind] += n;
     for (auto& [why, n] : p.tally.missed) out.tally.missed[why] += n;
     for (Clutter& c : p.items) {
       const geom::Ring& ring = c.instance.polygon.outer;
-      if (kept.meet(ring)) {
+      const Canopy canopy = placed(canopies[static_cast<std::size_t>(c.instance.placed.model)], c.instance.placed,
+                                   c.instance.floor);
+      const char* refused = kept.meet(ring) ? kOtherClutter : kept_canopies.too_near(canopy) ? kNearCrown : nullptr;
+      if (refused) {
         const std::string kind(name(c.instance.kind));
         --out.tally.placed[kind];
-        ++out.tally.missed[{kind, kOtherClutter}];
+        ++out.tally.missed[{kind, refused}];
         continue;
       }
       c.instance.id = static_cast<int>(out.items.size());
       kept.add(ring);
+      kept_canopies.add(canopy);
       out.items.push_back(std::move(c));
     }
   }

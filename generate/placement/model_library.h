@@ -35,6 +35,13 @@ const char* name(ModelKind k);
 // Whether models of the kind dress streets (street clutter): trees and the clutter kinds.
 bool is_clutter(ModelKind k);
 
+// Whether a lamp model's material is its light: glass, a bulb, a lamp or a light by name.
+inline bool is_lamp_light_material(const std::string& name) {
+  for (const char* word : {"glass", "bulb", "lamp", "light"})
+    if (name.find(word) != std::string::npos) return true;
+  return false;
+}
+
 // Which sides of a street a clutter model stands on: both, or each in turn.
 enum class StreetSide { Both, Alternate };
 
