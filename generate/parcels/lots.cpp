@@ -127,6 +127,11 @@ const char* refusal(const geom::Cell& cell, const PlannedLot& plan, const CitySe
   return nullptr;
 }
 
+// Each face's side of a lot edge: a street where it is road surface, else inner land.
+std::vector<int> edge_kinds(const CityMap& city_map) {
+  return city_map.per_label([](const FaceLabel& f) { return f.road_surface() ? LotEdge::kStreet : LotEdge::kInner; });
+}
+
 // Each planned lot's pieces in the map, those that make sensible lots: on the street, at
 // least min_lot_area, and within kLotShape. A lot's rank orders the kept pieces of its
 // planned lot. The pieces refused once rounded, when `refused` is given, go there. When
@@ -135,10 +140,8 @@ const char* refusal(const geom::Cell& cell, const PlannedLot& plan, const CitySe
 std::vector<Lot> kept_lots(const CityMap& city_map, const std::vector<PlannedLot>& planned, const CitySettings& city,
                            std::vector<Lot>* refused = nullptr, PiecesLand* land = nullptr) {
   const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
-  const std::vector<int> kind =
-      city_map.per_label([](const FaceLabel& f) { return f.road_surface() ? LotEdge::kStreet : LotEdge::kInner; });
   std::vector<int> planned_of, component;
-  std::vector<geom::Cell> pieces = city_map.map.cells(group, kind, &planned_of, &component);
+  std::vector<geom::Cell> pieces = city_map.map.cells(group, edge_kinds(city_map), &planned_of, &component);
   std::vector<std::optional<Lot>> kept(pieces.size());
   std::vector<const char*> why(pieces.size(), "collapsed by rounding");  // null: a lot
   const CancelCheck cancel;
@@ -190,22 +193,38 @@ double shared_length(const geom::Ring& a, const geom::Ring& b) {
   return shared;
 }
 
+// Each block's lots, by index in ascending order.
+std::map<int, std::vector<int>> lots_by_block(const std::vector<Lot>& lots) {
+  std::map<int, std::vector<int>> of_block;
+  for (std::size_t i = 0; i < lots.size(); ++i) of_block[lots[i].block].push_back(static_cast<int>(i));
+  return of_block;
+}
+
+// Of the lots `candidates` (in their order; the first wins a tie) whose bounds meet `box`,
+// the one sharing the longest edge with `ring` that `accept` allows; or -1. `accept` is
+// asked only of a lot that would be the longest so far.
+template <typename Accept>
+int longest_shared(const std::vector<Lot>& lots, const std::vector<int>& candidates, const geom::Box& box,
+                   const geom::Ring& ring, Accept&& accept) {
+  int best = -1;
+  double longest = 0;
+  for (const int k : candidates) {
+    if (!box.meets(lots[k].cell.bounds())) continue;
+    if (const double d = shared_length(ring, lots[k].polygon.outer); d > longest && accept(k)) longest = d, best = k;
+  }
+  return best;
+}
+
 // The lot of lots[i]'s block that `may_join` allows and that shares the longest edge with
 // it, of those it would make a lot of good shape with; or -1. `of_block` lists each block's
 // lots in ascending order: a block's lots are all it scans, in the order of the lots.
 template <typename MayJoin>
 int neighbour(const std::vector<Lot>& lots, const std::map<int, std::vector<int>>& of_block, std::size_t i,
               MayJoin&& may_join) {
-  int best = -1;
-  double longest = 0;
-  const geom::Box box = lots[i].cell.bounds();
-  for (const int k : of_block.at(lots[i].block)) {
-    if (k == static_cast<int>(i) || !may_join(k) || !box.meets(lots[k].cell.bounds())) continue;
-    if (!good_shape(lot_shape({&lots[i].cell, &lots[k].cell}, {&lots[i].polygon.outer, &lots[k].polygon.outer}))) continue;
-    if (const double d = shared_length(lots[i].polygon.outer, lots[k].polygon.outer); d > longest)
-      longest = d, best = static_cast<int>(k);
-  }
-  return best;
+  return longest_shared(lots, of_block.at(lots[i].block), lots[i].cell.bounds(), lots[i].polygon.outer, [&](int k) {
+    return k != static_cast<int>(i) && may_join(k) &&
+           good_shape(lot_shape({&lots[i].cell, &lots[k].cell}, {&lots[i].polygon.outer, &lots[k].polygon.outer}));
+  });
 }
 
 // Makes each block of `lot_of_block` one lot, the planned lot it maps to: every face of
@@ -258,25 +277,19 @@ std::vector<Lot> with_refused_pieces_joined(CityMap& city_map, const std::vector
                                             std::vector<Lot> lots, const std::vector<Lot>& refused,
                                             const CitySettings& city, std::map<ZoneType, LandShare>* joined,
                                             PiecesLand* land) {
-  std::map<int, std::vector<int>> of_block;
-  for (std::size_t i = 0; i < lots.size(); ++i) of_block[lots[i].block].push_back(static_cast<int>(i));
+  const std::map<int, std::vector<int>> of_block = lots_by_block(lots);
   std::vector<std::vector<const Lot*>> taken(lots.size());  // per lot: the pieces it takes
   std::map<int, int> lot_of_piece;
   for (const Lot& piece : refused) {
     const auto block = of_block.find(piece.block);
     if (block == of_block.end()) continue;
-    int best = -1;
-    double longest = 0;
-    for (const int k : block->second) {
+    const int best = longest_shared(lots, block->second, piece.cell.bounds(), piece.polygon.outer, [&](int k) {
       const Lot& lot = lots[k];
-      if (!piece.cell.bounds().meets(lot.cell.bounds())) continue;
-      const double d = shared_length(piece.polygon.outer, lot.polygon.outer);
-      if (d <= longest) continue;
       std::vector<const geom::Cell*> cells{&lot.cell, &piece.cell};
       std::vector<const geom::Ring*> rings{&lot.polygon.outer, &piece.polygon.outer};
       for (const Lot* t : taken[k]) cells.push_back(&t->cell), rings.push_back(&t->polygon.outer);
-      if (good_shape(lot_shape(cells, rings))) longest = d, best = k;
-    }
+      return good_shape(lot_shape(cells, rings));
+    });
     if (best < 0) continue;
     taken[best].push_back(&piece);
     lot_of_piece[piece.piece] = lots[best].planned;
@@ -302,23 +315,15 @@ std::vector<Lot> with_open_land_joined(CityMap& city_map, const std::vector<Plan
     return it != zone_of_block.end() && fills_blocks(city, it->second) ? f.block : -1;
   });
   if (std::none_of(group.begin(), group.end(), [](int g) { return g >= 0; })) return lots;
-  const std::vector<int> kind =
-      city_map.per_label([](const FaceLabel& f) { return f.road_surface() ? LotEdge::kStreet : LotEdge::kInner; });
   std::vector<int> block_of, component;
-  const std::vector<geom::Cell> open = city_map.map.cells(group, kind, &block_of, &component);
-  std::map<int, std::vector<int>> of_block;
-  for (std::size_t i = 0; i < lots.size(); ++i) of_block[lots[i].block].push_back(static_cast<int>(i));
+  const std::vector<geom::Cell> open = city_map.map.cells(group, edge_kinds(city_map), &block_of, &component);
+  const std::map<int, std::vector<int>> of_block = lots_by_block(lots);
   std::map<int, int> lot_of_piece;
   for (std::size_t i = 0; i < open.size(); ++i) {
     const auto block = of_block.find(block_of[i]);
     if (block == of_block.end()) continue;
     const geom::Polygon piece = open[i].to_plain();
-    const geom::Box box = open[i].bounds();
-    int best = -1;
-    double longest = 0;
-    for (const int k : block->second)
-      if (box.meets(lots[k].cell.bounds()))
-        if (const double d = shared_length(piece.outer, lots[k].polygon.outer); d > longest) longest = d, best = k;
+    const int best = longest_shared(lots, block->second, open[i].bounds(), piece.outer, [](int) { return true; });
     if (best < 0) continue;
     lot_of_piece[component[i]] = lots[best].planned;
     if (joined) ++(*joined)[lots[best].zone].count, (*joined)[lots[best].zone].area_m2 += geom::area(piece);
@@ -368,8 +373,7 @@ std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<Planned
       if (!lot_of_block.emplace(lots[i].block, lots[i].planned).second) ++tally.merged;
     }
   }
-  std::map<int, std::vector<int>> of_block;
-  for (std::size_t i = 0; i < lots.size(); ++i) of_block[lots[i].block].push_back(static_cast<int>(i));
+  const std::map<int, std::vector<int>> of_block = lots_by_block(lots);
   for (std::size_t i = 0; i < lots.size(); ++i) {
     if (built[i] || settled[i]) continue;
     settled[i] = 1;
