@@ -85,7 +85,8 @@ std::vector<geom::Ring> street_footprints(Occupancy& occupancy, const BuildingSe
   // Past a place where nothing fits: a metre on with footprint_areas (the place's sizes,
   // whose gaps would otherwise open wherever one waits), else a quarter of the narrowest
   // (as a row with no room is passed: a metre there costs rows times places).
-  const double step = areas ? 1.0 : std::max(p.min_footprint_width / 4, 1.0);
+  const double passed = std::max(p.min_footprint_width / 4, 1.0);  // how far a row with no room is passed
+  const double step = areas ? 1.0 : passed;
   // One row, its fronts `front` behind the street; how deep its deepest footprint is (0: none).
   auto row = [&](double front, bool first) {
     double deepest = 0;
@@ -144,7 +145,7 @@ std::vector<geom::Ring> street_footprints(Occupancy& occupancy, const BuildingSe
     if (covered >= wanted) break;
     // A row with no room (a lot's neck, a corner) may have room behind it: the next row
     // a step further back, until the lot's depth.
-    front += deepest > 0 ? deepest + std::max(p.building_gap, 0.1) : std::max(p.min_footprint_width / 4, 1.0);
+    front += deepest > 0 ? deepest + std::max(p.building_gap, 0.1) : passed;
     if (front + p.min_footprint_width > f.depth) break;
   }
   return out;
