@@ -258,6 +258,13 @@ namespace {
 // the streets would leave none (a land use drawn as a street's surface).
 double block_land_m2(const PlaceFigures& f) { return f.land_m2 > f.street_m2 ? f.land_m2 - f.street_m2 : f.land_m2; }
 
+// The footprints' area, all of them.
+double footprint_m2(const PlaceFigures& f) {
+  double sum = 0;
+  for (double a : f.areas) sum += a;
+  return sum;
+}
+
 }  // namespace
 
 ordered_json settings_from_figures(const PlaceFigures& f, const ZoneSettings& defaults) {
@@ -301,9 +308,7 @@ ordered_json settings_from_figures(const PlaceFigures& f, const ZoneSettings& de
   // less its streets): its lots fill its blocks, and so do the lots of a zone with
   // lot_coverage, so their coverage is that.
   if (const double blocks = block_land_m2(f); blocks > 0) {
-    double footprint_area = 0;
-    for (double a : f.areas) footprint_area += a;
-    set["lot_coverage"] = std::min(std::round(footprint_area / blocks * 1000) / 1000, 1.0);
+    set["lot_coverage"] = std::min(std::round(footprint_m2(f) / blocks * 1000) / 1000, 1.0);
   }
   // Lots deep enough for the deepest footprint behind its setback, and wide enough for a
   // footprint of the middle width and its gap up to the widest one.
@@ -411,8 +416,7 @@ ordered_json like_place(Sketch& sketch, const std::filesystem::path& like) {
       report["zones"][type] = z;
       continue;
     }
-    double footprint_area = 0;
-    for (double a : f.areas) footprint_area += a;
+    const double footprint_area = footprint_m2(f);
     z["measured"] = {{"area_m2", summary(f.areas)},
                      {"long_side_m", summary(f.long_sides)},
                      {"short_side_m", summary(f.short_sides)},
