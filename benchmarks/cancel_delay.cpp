@@ -16,6 +16,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <unistd.h>
 
 #include "benchmarks/scaled_sketch.h"
 #include "generate/cancel.h"
@@ -73,7 +74,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--tries") && i + 1 < argc) tries = std::stoi(argv[++i]);
   }
   const Sketch sketch = parse_sketch(bench::scaled_sketch(argv[1], k).dump(), argv[1]);
-  const fs::path dir = fs::temp_directory_path() / "exacity-cancel-delay";
+  const fs::path dir = fs::temp_directory_path() / ("exacity-cancel-delay." + std::to_string(::getpid()));
 
   std::atomic<bool> never{false};
   const auto start = Clock::now();

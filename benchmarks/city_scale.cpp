@@ -10,6 +10,7 @@
 #include <string>
 
 #include <tbb/global_control.h>
+#include <unistd.h>
 
 #include "benchmarks/stage_cpu.h"
 #include "generate/errors.h"
@@ -96,7 +97,8 @@ std::string stage_counts(const std::string& stage, double seconds, const Generat
 
 // Everything, as `exacity generate` runs it.
 void run_every_stage(const Sketch& sketch) {
-  fs::path out = fs::temp_directory_path() / "exacity-scale";
+  // One folder per run, so that two runs side by side do not write over each other.
+  fs::path out = fs::temp_directory_path() / ("exacity-scale." + std::to_string(::getpid()));
   fs::remove_all(out);
   fs::create_directories(out);
   auto t = std::chrono::steady_clock::now();
