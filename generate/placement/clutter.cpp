@@ -140,46 +140,43 @@ bool meets_any(const geom::Ring& ring, const std::vector<int>& near, const std::
   return std::any_of(near.begin(), near.end(), [&](int i) { return geom::rings_meet(ring, *rings[i]); });
 }
 
-// The bases of the clutter kept so far, each held here.
-class TakenBases {
+// The clutter kept so far: its bases, which no other base may meet, and its crowns and lamp
+// heads, under which a head may not hang within kCrownClearance of a crown.
+class TakenClutter {
  public:
-  bool meet(const geom::Ring& ring) const {
-    const std::vector<int> near = buckets_.near(RingBuckets::box_of(ring));
-    return std::any_of(near.begin(), near.end(), [&](int i) { return geom::rings_meet(ring, rings_[i]); });
+  // Why a piece with this base and canopy cannot stand (kOtherClutter, kNearCrown), or null.
+  const char* refuses(const geom::Ring& base, const Canopy& c) const {
+    if (meets_base(base)) return kOtherClutter;
+    if (near_crown(c)) return kNearCrown;
+    return nullptr;
   }
-  void add(const geom::Ring& ring) {
-    buckets_.add(ring, static_cast<int>(rings_.size()));
-    rings_.push_back(ring);
+  void add(const geom::Ring& base, const Canopy& c) {
+    bases_.add(base, static_cast<int>(rings_.size()));
+    rings_.push_back(base);
+    if (c.part == Canopy::kNone) return;
+    const double r = c.radius + kCrownClearance;
+    crowns_.add({{c.centre.x - r, c.centre.y - r}, {c.centre.x + r, c.centre.y + r}}, static_cast<int>(canopies_.size()));
+    canopies_.push_back(c);
   }
 
  private:
-  RingBuckets buckets_{8};
-  std::vector<geom::Ring> rings_;
-};
-
-// The crowns and lamp heads of the clutter kept so far: a head may not hang within
-// kCrownClearance of a crown.
-class TakenCanopies {
- public:
-  bool too_near(const Canopy& c) const {
+  bool meets_base(const geom::Ring& ring) const {
+    const std::vector<int> near = bases_.near(RingBuckets::box_of(ring));
+    return std::any_of(near.begin(), near.end(), [&](int i) { return geom::rings_meet(ring, rings_[i]); });
+  }
+  bool near_crown(const Canopy& c) const {
     if (c.part == Canopy::kNone) return false;
     const double r = c.radius + kCrownClearance;
-    const std::vector<int> near = buckets_.near({c.centre.x - r, c.centre.y - r, c.centre.x + r, c.centre.y + r});
+    const std::vector<int> near = crowns_.near({c.centre.x - r, c.centre.y - r, c.centre.x + r, c.centre.y + r});
     return std::any_of(near.begin(), near.end(), [&](int i) {
       const Canopy& o = canopies_[i];
       return o.part != c.part && o.low - kCrownClearance < c.high && c.low - kCrownClearance < o.high &&
              geom::distance(o.centre, c.centre) < o.radius + c.radius + kCrownClearance;
     });
   }
-  void add(const Canopy& c) {
-    if (c.part == Canopy::kNone) return;
-    const double r = c.radius + kCrownClearance;
-    buckets_.add({{c.centre.x - r, c.centre.y - r}, {c.centre.x + r, c.centre.y + r}}, static_cast<int>(canopies_.size()));
-    canopies_.push_back(c);
-  }
 
- private:
-  RingBuckets buckets_{8};
+  RingBuckets bases_{8}, crowns_{8};
+  std::vector<geom::Ring> rings_;
   std::vector<Canopy> canopies_;
 };
 
@@ -336,19 +333,14 @@ class Dresser {
         why = why ? why : refused;
         continue;
       }
-      if (taken_.meet(c.instance.polygon.outer)) {
-        why = why ? why : kOtherClutter;
-        continue;
-      }
       if (terrain_) std::tie(c.instance.base, c.instance.floor) = terrain_->range_under(c.instance.polygon.outer);
       const Canopy canopy = placed(canopies_[m], c.instance.placed, c.instance.floor);
-      if (taken_canopies_.too_near(canopy)) {
-        why = why ? why : kNearCrown;
+      if (const char* refused = taken_.refuses(c.instance.polygon.outer, canopy)) {
+        why = why ? why : refused;
         continue;
       }
       if (w.zone) c.instance.zone = *w.zone;
-      taken_.add(c.instance.polygon.outer);
-      taken_canopies_.add(canopy);
+      taken_.add(c.instance.polygon.outer, canopy);
       out_.items.push_back(std::move(c));
       ++out_.tally.placed[name(kind)];
       return model.spacing;
@@ -402,8 +394,7 @@ class Dresser {
   const Terrain* terrain_;
   Random& rng_;
   Proposals& out_;
-  TakenBases taken_;
-  TakenCanopies taken_canopies_;
+  TakenClutter taken_;
   bool parks_ = false;
 };
 
@@ -684,8 +675,7 @@ StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* lib
       dress_park(*parks[g - streets_and_junctions], *library, rng, dresser);
     }
   });
-  TakenBases kept;
-  TakenCanopies kept_canopies;
+  TakenClutter kept;
   for (Proposals& p : proposed) {
     for (auto& [kind, n] : p.tally.placed) out.tally.placed[kind] += n;
     for (auto& [why, n] : p.tally.missed) out.tally.missed[why] += n;
@@ -693,16 +683,14 @@ StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* lib
       const geom::Ring& ring = c.instance.polygon.outer;
       const Canopy canopy = placed(canopies[static_cast<std::size_t>(c.instance.placed.model)], c.instance.placed,
                                    c.instance.floor);
-      const char* refused = kept.meet(ring) ? kOtherClutter : kept_canopies.too_near(canopy) ? kNearCrown : nullptr;
-      if (refused) {
+      if (const char* refused = kept.refuses(ring, canopy)) {
         const std::string kind(name(c.instance.kind));
         --out.tally.placed[kind];
         ++out.tally.missed[{kind, refused}];
         continue;
       }
       c.instance.id = static_cast<int>(out.items.size());
-      kept.add(ring);
-      kept_canopies.add(canopy);
+      kept.add(ring, canopy);
       out.items.push_back(std::move(c));
     }
   }
