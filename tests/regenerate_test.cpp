@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "generate/cancel.h"
 #include "generate/errors.h"
 #include "generate/export/validate_window.h"
 #include "generate/pipeline.h"
@@ -360,6 +361,26 @@ TEST(Regenerate, AWindowedValidationFindsWhatTheWholeOneFinds) {
   const Validation pushed = validate_output(dir, last);
   EXPECT_FALSE(pushed.ok());
   EXPECT_EQ(pushed.problems, validate_output(dir).problems);
+}
+
+// exacity serve stops a validation whose city the next generation replaces: the last city
+// that passed stays the one the next validation is windowed against, its lines kept.
+TEST(Regenerate, ACancelledValidationKeepsTheLastThatPassed) {
+  const Built city = build(town(), std::make_shared<RegionCache>());
+  const auto dir = testing_util::temp_dir("cancelled_validation");
+  StageClock clock(nullptr, kWriteStages);
+  ASSERT_TRUE(write_city(city.sketch, city.city, dir, clock).valid);
+  std::shared_ptr<ValidatedPolygons> last = city.city.regions->validated;
+  ASSERT_TRUE(last);
+  const ValidatedPolygons* const passed = last.get();
+  {
+    const std::atomic<bool> cancelled{true};
+    const CancelScope scope(cancelled);
+    EXPECT_THROW(validate_output(dir, last), Cancelled);
+  }
+  EXPECT_EQ(last.get(), passed);
+  EXPECT_TRUE(validate_output(dir, last).ok());
+  EXPECT_TRUE(last);
 }
 
 // The map of every polygon is checked tile by tile (docs/design.md, Validation by tiles):
