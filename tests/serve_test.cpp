@@ -899,7 +899,7 @@ TEST_F(ServeTest, TheCityIsAnsweredBeforeItsValidation) {
       again = c.Post("/api/generate", "", "application/json")->status;
     }
     if (kind == "state" && e["state"] != "running" && e["job"] == "generate") ends.push_back(e);
-    return ends.size() < 2;
+    return ends.size() < (again == 202 ? 2u : 1u);  // the second generation's end too, once started
   });
   ASSERT_EQ(client->Post("/api/generate", "", "application/json")->status, 202);
   events.join();

@@ -358,9 +358,9 @@ try {
   await page.click('#generate');
   // The city is shown at the server's answer, then validated: the message says both, in turn.
   await page.waitForSelector('body[data-city="validated"]', {timeout: 600000});
-  const said = await seen('message');
-  const answeredAt = said.indexOf('City generated; validating it…'), validatedAt = said.indexOf('City generated and validated.');
-  check(answeredAt >= 0 && validatedAt > answeredAt, `the city shown at the answer, then validated: ${few(said)}`);
+  const messages = await seen('message');
+  const answeredAt = messages.indexOf('City generated; validating it…'), validatedAt = messages.indexOf('City generated and validated.');
+  check(answeredAt >= 0 && validatedAt > answeredAt, `the city shown at the answer, then validated: ${few(messages)}`);
   check(await page.evaluate(() => {
     const dt = [...document.querySelectorAll('#report dt')].find(d => d.textContent === 'answered in');
     return /^\d+\.\d s$/.test(dt?.nextElementSibling?.textContent || '');
