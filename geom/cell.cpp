@@ -556,7 +556,7 @@ void write_coordinate(std::string& out, double rounded, const Exact& exact) {
 // `rounded` is to_plain(p), which a cell keeps for each of its vertices. A coordinate whose
 // interval is one double is that double; the point is evaluated exactly otherwise (as
 // to_plain did, so that costs nothing more), never through p.x(), which adds a lazy node.
-void write_point(std::string& out, const exact::Point& p, Vec2 rounded) {
+void write_point(std::string& out, [[maybe_unused]] const exact::Point& p, Vec2 rounded) {
 #if !defined(EXACITY_FLOAT_KERNEL)
   const auto& a = p.approx();
   if (a.x().inf() != a.x().sup() || a.y().inf() != a.y().sup()) {
