@@ -76,8 +76,16 @@ void generate_job(ServerState& s, const Sketch& drawn, JobRunner::Progress& prog
   if (!geom::kernel_validates_its_output()) return;
   // Only this thread replaces the folder, so it stays as it is while validation reads it;
   // the downloads written meanwhile are files validation does not read.
-  if (!validate_written(*city, s.city_folder(), std::move(result.report), clock).valid)
-    throw InternalError("the generated city failed validation (see report.json); please report this sketch");
+  bool valid = false;
+  try {
+    valid = validate_written(*city, s.city_folder(), result.report, clock).valid;
+  } catch (const Cancelled&) {
+    // The report no longer says validation is under way.
+    result.report["validation"] = {{"stopped", "cancelled before it ended; generate again to validate"}};
+    write_report(result.report, s.city_folder());
+    throw;
+  }
+  if (!valid) throw InternalError("the generated city failed validation (see report.json); please report this sketch");
 }
 
 // The city to render: the one generated in this run, else work/city's rebuilt (same sketch,

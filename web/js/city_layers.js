@@ -88,7 +88,8 @@ export class CityLayers {
                             part(reused.lot_placements, 'lots'), part(reused.structure_meshes, 'meshes')].join(', ')]);
     }
     if (report.validation)
-      rows.push(['valid', report.validation.under_way ? 'checking…' : String(report.validation.valid ?? report.validation.ok ?? '')]);
+      rows.push(['valid', report.validation.under_way ? 'checking…' : report.validation.stopped ? 'not checked (stopped)'
+                          : String(report.validation.valid ?? report.validation.ok ?? '')]);
     for (const [k, v] of rows) {
       const dt = document.createElement('dt'), dd = document.createElement('dd');
       dt.textContent = k;
