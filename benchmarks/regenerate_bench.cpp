@@ -1,7 +1,8 @@
 // Regenerating after a one-zone edit against building the edited sketch whole: seconds per
 // stage both ways, as the server's generation runs them (build_city, write_city into a
 // temporary folder without the 3D files, which the server writes when first downloaded, the
-// 3D view's tiles), and how many regions, blocks, lots and meshes were
+// 3D view's tiles: the answer, what the page shows; then validation), the answer and the
+// whole update apart, and how many regions, blocks, lots and meshes were
 // reused. Each stage's CPU seconds (all threads) are printed beside its wall seconds, since
 // on a shared machine the wall clock measures the other users too.
 // Then, per layer file of vector/, how many features the edit changed: lines of the
@@ -43,6 +44,7 @@ struct Run {
   City city;
   ordered_json seconds{}, cpu = ordered_json::object();
   double total = 0, total_cpu = 0;
+  double answer = 0, answer_cpu = 0;  // up to the answer: the stages before validation
   std::map<std::string, std::set<std::string>> features{};  // per file of vector/, its features' lines
 };
 
@@ -74,8 +76,12 @@ Run build(const ordered_json& doc, const std::string& path, std::shared_ptr<Regi
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("exacity_regenerate." + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
-  write_city(sketch, run.city, dir, clock, ExportOptions{{}, std::nullopt, /*three_d=*/false});
+  GenerateResult written =
+      write_city(sketch, run.city, dir, clock, ExportOptions{{}, std::nullopt, /*three_d=*/false, /*validate=*/false});
   clock.run("tiles", [&] { serve::write_city_tiles(run.city, dir / "tiles"); });
+  run.answer_cpu = bench::cpu_seconds() - cpu_start;
+  run.answer = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  validate_written(run.city, dir, std::move(written.report), clock);
   cpu.next("");
   run.cpu = cpu.seconds;
   run.total_cpu = bench::cpu_seconds() - cpu_start;
@@ -134,6 +140,8 @@ int main(int argc, char** argv) {
     for (const auto& [stage, s] : whole.seconds.items())
       std::printf("| %-14s | %7.3f | %13.3f | %11.3f | %17.3f |\n", stage.c_str(), s.get<double>(),
                   again.seconds.value(stage, 0.0), whole.cpu.value(stage, 0.0), again.cpu.value(stage, 0.0));
+    std::printf("| %-14s | %7.3f | %13.3f | %11.3f | %17.3f |\n", "answer", whole.answer, again.answer, whole.answer_cpu,
+                again.answer_cpu);
     std::printf("| %-14s | %7.3f | %13.3f | %11.3f | %17.3f |\n", "all", whole.total, again.total, whole.total_cpu,
                 again.total_cpu);
     const RegionCache& c = *again.city.regions;

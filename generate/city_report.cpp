@@ -348,21 +348,32 @@ void complete_report(ordered_json& report, const City& city, const WrittenCity& 
   } else {
     counts.erase("mesh"), counts.erase("gltf");
   }
-  report["validation"] =
-      written.validation
-          ? ordered_json{{"ok", written.validation->ok()}, {"problems", written.validation->problems},
-                         {"widest_sliver_m", written.validation->widest_sliver}}
-          : ordered_json{{"skipped", std::string("this build's kernel (") + geom::kernel_name() +
-                                         ") cannot check its own output: run the exact build's exacity validate"}};
+  report_validation(report, written);
   report["timings_s"] = timings;
   // A generation with a cache (exacity serve's) says what it reused of the one before, the 3D export's meshes too.
   if (city.regions) report["reused"] = reuse_report(*city.regions);
 }
 
+void report_validation(ordered_json& report, const WrittenCity& written) {
+  if (written.validation)
+    report["validation"] = {{"ok", written.validation->ok()},
+                            {"problems", written.validation->problems},
+                            {"widest_sliver_m", written.validation->widest_sliver}};
+  else if (written.validation_later)
+    report["validation"] = {{"under_way", true}};
+  else
+    report["validation"] = {{"skipped", std::string("this build's kernel (") + geom::kernel_name() +
+                                            ") cannot check its own output: run the exact build's exacity validate"}};
+}
+
 void write_report(const ordered_json& report, const fs::path& dir) {
-  std::ofstream out(dir / "report.json", std::ios::binary);
-  out << report.dump(2) << "\n";
-  if (!out) throw UserError((dir / "report.json").string() + ": write failed (disk full?)");
+  const fs::path aside = dir / ".report.json.partial";
+  {
+    std::ofstream out(aside, std::ios::binary);
+    out << report.dump(2) << "\n";
+    if (!out) throw UserError((dir / "report.json").string() + ": write failed (disk full?)");
+  }
+  fs::rename(aside, dir / "report.json");
 }
 
 }  // namespace exacity

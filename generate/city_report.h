@@ -18,7 +18,8 @@ namespace exacity {
 // What the 3D export and validation learnt, besides the city.
 struct WrittenCity {
   std::optional<ThreeDCounts> three_d;  // none: not written (exacity serve writes them when first downloaded)
-  std::optional<Validation> validation;  // none: this build's kernel cannot check its own output
+  std::optional<Validation> validation;  // none: this build's kernel cannot check its own output,
+  bool validation_later = false;         // or it is checked after this report is written (validate_written)
 };
 
 // The report of what the city holds, made before the 3D export (so that what only it reads
@@ -29,6 +30,9 @@ nlohmann::ordered_json city_report(const City& city, const std::vector<std::stri
 // Fills in those (the 3D exports' counts left out when they were not written), with the stages' timings under timings_s; reads only the city's cache.
 void complete_report(nlohmann::ordered_json& report, const City& city, const WrittenCity& written,
                      const nlohmann::ordered_json& timings);
+// report.json's "validation" as `written` says.
+void report_validation(nlohmann::ordered_json& report, const WrittenCity& written);
+// Written aside and renamed, so a reader of the folder never sees half of it.
 void write_report(const nlohmann::ordered_json& report, const std::filesystem::path& dir);
 
 }  // namespace exacity

@@ -211,6 +211,12 @@ ThreeDCounts write_3d_files(const City& city, const fs::path& dir, bool through_
 
 namespace {
 
+Validation validation_stage(const City& city, const fs::path& dir, StageClock& stages) {
+  return stages.run("validation", [&] {
+    return city.regions ? validate_output(dir, city.regions->validated) : validate_output(dir);
+  });
+}
+
 // Writes `city`; with `released` (the city itself, which no one reads afterwards), frees
 // what only the steps before the 3D export read.
 GenerateResult write(const Sketch& sketch, const City& city, City* released, const fs::path& dir, StageClock& stages,
@@ -228,10 +234,8 @@ GenerateResult write(const Sketch& sketch, const City& city, City* released, con
       if (released) released->network = {}, released->blocks = {}, released->lots = {}, released->layers = {};
       return write_3d_files(city, dir);
     });
-  if (geom::kernel_validates_its_output())
-    written.validation = stages.run("validation", [&] {
-      return city.regions ? validate_output(dir, city.regions->validated) : validate_output(dir);
-    });
+  if (options.validate && geom::kernel_validates_its_output()) written.validation = validation_stage(city, dir, stages);
+  written.validation_later = !options.validate && geom::kernel_validates_its_output();
   complete_report(report, city, written, stages.seconds);
   report["peak_memory_mib"] = stages.peak_mib;
   write_report(report, dir);
@@ -239,6 +243,16 @@ GenerateResult write(const Sketch& sketch, const City& city, City* released, con
 }
 
 }  // namespace
+
+GenerateResult validate_written(const City& city, const fs::path& dir, ordered_json report, StageClock& stages) {
+  WrittenCity written;
+  written.validation = validation_stage(city, dir, stages);
+  report_validation(report, written);
+  report["timings_s"] = stages.seconds;
+  report["peak_memory_mib"] = stages.peak_mib;
+  write_report(report, dir);
+  return {report, written.validation->ok()};
+}
 
 GenerateResult write_city(const Sketch& sketch, const City& city, const fs::path& dir, StageClock& stages,
                           const ExportOptions& options) {

@@ -82,6 +82,9 @@ struct ExportOptions {
   // them out and writes them with write_3d_files when first downloaded: they cost an edit's
   // update about as much as its other stages together (docs/design.md, Serving).
   bool three_d = true;
+  // The validation stage. exacity serve leaves it out, answers the page, and then
+  // validates with validate_written (docs/design.md, Serving: jobs).
+  bool validate = true;
 };
 // `sketch` is the one `city` was built from: OUT/sketch.geojson is its copy.
 GenerateResult write_city(const Sketch& sketch, const City& city, const std::filesystem::path& dir, StageClock& clock,
@@ -92,6 +95,14 @@ GenerateResult write_city(const Sketch& sketch, const City& city, const std::fil
 GenerateResult write_city(const Sketch& sketch, City&& city, const std::filesystem::path& dir, StageClock& clock,
                           const ExportOptions& options = {});
 inline constexpr int kWriteStages = 3;
+
+// Validates what write_city wrote into `dir` with ExportOptions::validate false, in a
+// "validation" stage on `stages` (that write's clock), and writes `report` (its report,
+// with what the caller added) again with the validation, the stages' seconds and peaks in
+// their places. The city is the one written: with a cache, only what changed since the
+// last validation that passed is checked again (generate/export/validate_window.h).
+GenerateResult validate_written(const City& city, const std::filesystem::path& dir, nlohmann::ordered_json report,
+                                StageClock& stages);
 
 struct ThreeDCounts {
   MeshCounts mesh;

@@ -1,5 +1,8 @@
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <iterator>
+#include <string>
 #include <limits>
 #include <sstream>
 
@@ -528,45 +531,67 @@ Path Growth::end() {
 namespace geom {
 namespace {
 
-void write_coordinate(std::ostringstream& out, [[maybe_unused]] const exact::FT& v, double rounded) {
+// A coordinate as its double in C's %a (std::hexfloat's text) where that is its exact value,
+// else 'q' and its rational. Built with to_chars rather than a stream: a build keys every
+// region, block and lot by this text (generate/regenerate.h), and the stream's printf was
+// most of its cost. The text seeds streams and ids (content_id): it must not change.
+void write_double(std::string& out, double v) {
+  char text[40];
+  char* at = text;
+  if (std::signbit(v)) *at++ = '-';
+  *at++ = '0', *at++ = 'x';
+  at = std::to_chars(at, std::end(text), std::fabs(v), std::chars_format::hex).ptr;
+  *at++ = ' ';
+  out.append(text, at);
+}
+
+template <typename Exact>
+void write_coordinate(std::string& out, double rounded, const Exact& exact) {
+  if (exact == rounded) return write_double(out, rounded);
+  std::ostringstream q;
+  q << 'q' << exact << ' ';
+  out += q.str();
+}
+
+// `rounded` is to_plain(p), which a cell keeps for each of its vertices. A coordinate whose
+// interval is one double is that double; the point is evaluated exactly otherwise (as
+// to_plain did, so that costs nothing more), never through p.x(), which adds a lazy node.
+void write_point(std::string& out, [[maybe_unused]] const exact::Point& p, Vec2 rounded) {
 #if !defined(EXACITY_FLOAT_KERNEL)
-  if (exact::FT(rounded) != v) {
-    out << 'q' << CGAL::exact(v) << ' ';
+  const auto& a = p.approx();
+  if (a.x().inf() != a.x().sup() || a.y().inf() != a.y().sup()) {
+    const auto& e = CGAL::exact(p);
+    write_coordinate(out, rounded.x, e.x());
+    write_coordinate(out, rounded.y, e.y());
     return;
   }
 #endif
-  out << std::hexfloat << rounded << ' ';
+  write_double(out, rounded.x);
+  write_double(out, rounded.y);
 }
 
-void write_point(std::ostringstream& out, const exact::Point& p) {
-  const Vec2 r = exact::to_plain(p);
-  write_coordinate(out, p.x(), r.x);
-  write_coordinate(out, p.y(), r.y);
-}
-
-void write_ring(std::ostringstream& out, const KindRing& ring) {
-  out << "ring " << ring.points.size() << ' ';
+void write_ring(std::string& out, const KindRing& ring) {
+  out += "ring " + std::to_string(ring.points.size()) + ' ';
   for (std::size_t i = 0; i < ring.points.size(); ++i) {
-    write_point(out, ring.points[i]);
-    out << ring.kinds[i] << ' ';
+    write_point(out, ring.points[i], ring.rounded[i]);
+    out += std::to_string(ring.kinds[i]) + ' ';
   }
 }
 
 }  // namespace
 
 std::string exact_text(const Cell& cell) {
-  std::ostringstream out;
+  std::string out;
   write_ring(out, cell.exact().outer);
   for (const KindRing& hole : cell.exact().holes) write_ring(out, hole);
-  return out.str();
+  return out;
 }
 
 std::string exact_text(const Path& path) {
-  std::ostringstream out;
-  out << "path ";
+  std::string out = "path ";
   if (path.size() > 0)
-    for (const exact::Point& p : path.exact().points) write_point(out, p);
-  return out.str();
+    for (const exact::Point& p : path.exact().points) write_point(out, p, exact::to_plain(p));
+  return out;
 }
 
 }  // namespace geom

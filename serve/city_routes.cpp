@@ -1,5 +1,6 @@
 // The generate and render jobs, their status and events, and the outputs they leave.
 #include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -10,6 +11,7 @@
 #include "generate/export/output_folder.h"
 #include "generate/pipeline.h"
 #include "generate/sketch/like_place.h"
+#include "geom/kernel.h"
 #include "serve/city_tiles.h"
 #include "serve/render_request.h"
 #include "serve/server_state.h"
@@ -36,8 +38,10 @@ void refuse_busy(ServerState& s, httplib::Response& res) {
 // Sketch to every output into work/city, as exacity generate does (docs/design.md, The
 // pipeline), but for the files only downloaded (the 3D files and the GeoPackage, written
 // when first asked for: send_city_file), then the 3D view's tiles (docs/design.md,
-// Serving: tiles).
+// Serving: tiles). What the page shows is committed and answered before validation, which
+// then checks the folder and writes its report again (Serving: jobs).
 void generate_job(ServerState& s, const Sketch& drawn, JobRunner::Progress& progress) {
+  const auto start = std::chrono::steady_clock::now();
   OutputFolder folder(s.city_folder());
   StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); },
                    kCityStages + kWriteStages);  // the write stages less the 3d export, and the tiles
@@ -47,13 +51,15 @@ void generate_job(ServerState& s, const Sketch& drawn, JobRunner::Progress& prog
   if (!like.is_null()) like["file"] = s.in_work(like["file"].get<std::string>());  // as the page names it
   // Regions, blocks and lots the edits since the last generation left as they were are reused.
   auto city = std::make_shared<City>(build_city(sketch, clock, s.regions));
-  GenerateResult result =
-      write_city(sketch, *city, folder.staging(), clock, ExportOptions{{}, std::nullopt, /*three_d=*/false});
+  GenerateResult result = write_city(sketch, *city, folder.staging(), clock,
+                                     ExportOptions{{}, std::nullopt, /*three_d=*/false, /*validate=*/false});
   if (!like.is_null()) result.report["like"] = like;
   clock.run("tiles", [&] { write_city_tiles(*city, folder.staging() / "tiles"); });
-  // The report's seconds are then the whole update's server time, tiles included, which the
-  // page shows; and what was reused, the tiles' meshes included (the first ask for them).
+  // The report's seconds are then the update's server time, tiles included, which the page
+  // shows (validation's added when it ends); answer_s the server's time to the answer; and
+  // what was reused, the tiles' meshes included (the first ask for them).
   result.report["timings_s"] = clock.seconds;
+  result.report["answer_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.report["reused"] = reuse_report(*city->regions);
   write_report(result.report, folder.staging());
   std::shared_ptr<const City> before;  // freed after the locks, as the job's last work
@@ -63,10 +69,23 @@ void generate_job(ServerState& s, const Sketch& drawn, JobRunner::Progress& prog
     folder.commit();
     fs::remove_all(s.render_folder());  // it showed the city before this one
     std::lock_guard city_lock(s.city_mutex);
-    before = std::exchange(s.city, std::move(city));
+    before = std::exchange(s.city, city);
   }
-  if (!result.valid)
-    throw InternalError("the generated city failed validation (see report.json); please report this sketch");
+  progress.answered();
+  before.reset();
+  if (!geom::kernel_validates_its_output()) return;
+  // Only this thread replaces the folder, so it stays as it is while validation reads it;
+  // the downloads written meanwhile are files validation does not read.
+  bool valid = false;
+  try {
+    valid = validate_written(*city, s.city_folder(), result.report, clock).valid;
+  } catch (const Cancelled&) {
+    // The report no longer says validation is under way.
+    result.report["validation"] = {{"stopped", "cancelled before it ended; generate again to validate"}};
+    write_report(result.report, s.city_folder());
+    throw;
+  }
+  if (!valid) throw InternalError("the generated city failed validation (see report.json); please report this sketch");
 }
 
 // The city to render: the one generated in this run, else work/city's rebuilt (same sketch,
@@ -250,8 +269,11 @@ const std::set<std::string>& layer_names() {
 }  // namespace
 
 void add_city_routes(ServerState& s) {
+  // A generation whose city is shown and which is still validating is stopped for this one,
+  // which replaces its city (the page's update after each edit does not wait for it).
   s.http.Post("/api/generate", [&s](const httplib::Request&, httplib::Response& res) {
-    if (s.jobs.status().state == JobState::Running) return refuse_busy(s, res);
+    if (const JobStatus now = s.jobs.status(); now.state == JobState::Running && !now.answered)
+      return refuse_busy(s, res);
     Sketch sketch;
     try {
       sketch = s.sketch.load();
@@ -259,7 +281,8 @@ void add_city_routes(ServerState& s) {
       return refuse(res, 400, s.in_work(e.what()));
     }
     auto shared = std::make_shared<Sketch>(std::move(sketch));
-    if (!s.jobs.start("generate", in_work_folder(s, [&s, shared](JobRunner::Progress& p) { generate_job(s, *shared, p); })))
+    if (!s.jobs.start("generate", in_work_folder(s, [&s, shared](JobRunner::Progress& p) { generate_job(s, *shared, p); }),
+                      JobRunner::WhileRunning::ReplaceAnswered))
       return refuse_busy(s, res);
     res.status = 202;
     res.set_content(s.jobs.status().to_json().dump(), "application/json");

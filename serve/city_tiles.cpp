@@ -5,7 +5,7 @@
 #include <fstream>
 #include <map>
 
-#include "generate/cancel.h"
+#include "generate/cancellable_invoke.h"
 #include "generate/errors.h"
 #include "generate/mesh/building_mesh.h"
 #include "generate/export/gltf_export.h"
@@ -132,21 +132,20 @@ json write_city_tiles(const City& city, const fs::path& dir) {
   }
 
   fs::create_directories(dir);
-  const GltfCounts ground =
-      write_gltf(city.ground, city_ground_layers(city), {}, {}, {}, city.settings.seed, nullptr,
-                 dir / "ground.glb");
-  json index{{"tile_size", size},
-             {"bounds", {box.min_x, box.min_y, box.max_x, box.max_y}},
-             {"ground", "/api/tiles/ground.glb"},
-             {"ground_triangles", ground.triangles},
-             {"levels",
-              {{{"name", "full"}, {"until", kFullUntil * size}},
-               {{"name", "boxes"}, {"until", kBoxesUntil * size}},
-               {{"name", "blocks"}, {"until", nullptr}}}},
-             {"tiles", json::array()}};
-  const CancelCheck cancel;
-  for (auto& [at, t] : tiles) {
-    cancel.check();
+  std::vector<std::pair<const std::pair<int, int>, Tile>*> in_order;  // the index's
+  for (auto& tile : tiles) in_order.push_back(&tile);
+  std::vector<json> entries(in_order.size());
+  GltfCounts ground;
+  // The ground, each tile's three levels and the facades are files of their own, written at
+  // once; the index lists the tiles in their order.
+  for_each_cancellable(in_order.size() + 2, [&](std::size_t i) {
+    if (i == in_order.size()) {
+      ground = write_gltf(city.ground, city_ground_layers(city), {}, {}, {}, city.settings.seed, nullptr,
+                          dir / "ground.glb");
+      return;
+    }
+    if (i == in_order.size() + 1) return write_facades(city, dir / "facades.json");
+    const auto& [at, t] = *in_order[i];
     const std::string name = std::to_string(at.first) + "_" + std::to_string(at.second);
     fs::create_directories(dir / name);
     // Blocks: the box of a block's structures, as high as their tops weighed by footprint.
@@ -163,18 +162,26 @@ json write_city_tiles(const City& city, const fs::path& dir) {
     json levels = json::array();
     for (int level = 0; level < 3; ++level)
       levels.push_back("/api/tiles/" + name + "/" + std::to_string(level) + ".glb");
-    index["tiles"].push_back({{"name", name},
-                              {"box",
-                               {t.bounds.box.min_x, t.bounds.box.min_y, t.bounds.bottom, t.bounds.box.max_x,
-                                t.bounds.box.max_y, t.bounds.top}},
-                              {"buildings", t.buildings.size()},
-                              {"models", t.models.size()},
-                              {"clutter", t.clutter.size()},
-                              {"levels", levels},
-                              {"triangles", {full.triangles, boxes.triangles, far.triangles}}});
-  }
-  write_facades(city, dir / "facades.json");
-  index["facades"] = "/api/tiles/facades.json";
+    entries[i] = {{"name", name},
+                  {"box",
+                   {t.bounds.box.min_x, t.bounds.box.min_y, t.bounds.bottom, t.bounds.box.max_x, t.bounds.box.max_y,
+                    t.bounds.top}},
+                  {"buildings", t.buildings.size()},
+                  {"models", t.models.size()},
+                  {"clutter", t.clutter.size()},
+                  {"levels", levels},
+                  {"triangles", {full.triangles, boxes.triangles, far.triangles}}};
+  });
+  json index{{"tile_size", size},
+             {"bounds", {box.min_x, box.min_y, box.max_x, box.max_y}},
+             {"ground", "/api/tiles/ground.glb"},
+             {"ground_triangles", ground.triangles},
+             {"levels",
+              {{{"name", "full"}, {"until", kFullUntil * size}},
+               {{"name", "boxes"}, {"until", kBoxesUntil * size}},
+               {{"name", "blocks"}, {"until", nullptr}}}},
+             {"tiles", std::move(entries)},
+             {"facades", "/api/tiles/facades.json"}};
   std::ofstream out(dir / "index.json", std::ios::binary);
   out << index.dump(1) << "\n";
   if (!out) throw UserError((dir / "index.json").string() + ": write failed (disk full?)");

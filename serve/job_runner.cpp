@@ -29,6 +29,7 @@ nlohmann::json JobStatus::to_json() const {
   j["count"] = count;
   j["fraction"] = fraction;
   j["error"] = state == JobState::Failed || state == JobState::Cancelled ? nlohmann::json(error) : nlohmann::json();
+  j["answered"] = answered;
   return j;
 }
 
@@ -52,13 +53,25 @@ void JobRunner::Progress::fraction(const std::string& name, double done) {
   runner_.publish("progress", {{"job", runner_.status_.job}, {"stage", name}, {"fraction", percent / 100.0}});
 }
 
+void JobRunner::Progress::answered() {
+  runner_.check_cancelled();
+  std::lock_guard lock(runner_.mutex_);
+  runner_.status_.answered = true;
+  runner_.publish("answered", {{"job", runner_.status_.job}, {"stage", runner_.status_.stage}});
+}
+
 void JobRunner::check_cancelled() const {
   if (cancelled_) throw JobCancelled();
 }
 
-bool JobRunner::start(const std::string& name, Job job) {
+bool JobRunner::start(const std::string& name, Job job, WhileRunning running) {
   std::unique_lock lock(mutex_);
-  if (stopped_ || status_.state == JobState::Running) return false;
+  if (stopped_) return false;
+  if (status_.state == JobState::Running) {
+    // (Without a worker to join, another start is already joining it.)
+    if (running != WhileRunning::ReplaceAnswered || !status_.answered || !worker_.joinable()) return false;
+    cancelled_ = true, replaced_ = true;  // it ends within its stage's next step, then is joined below
+  }
   // The previous job has set its final state, so its thread is ending: join it first.
   if (worker_.joinable()) {
     std::thread finished = std::move(worker_);
@@ -67,8 +80,8 @@ bool JobRunner::start(const std::string& name, Job job) {
     lock.lock();
     if (stopped_ || status_.state == JobState::Running) return false;
   }
-  cancelled_ = false;
-  status_ = JobStatus{JobState::Running, name, "", 0, 0, 0, ""};
+  cancelled_ = false, replaced_ = false;
+  status_ = JobStatus{JobState::Running, name, "", 0, 0, 0, "", false};
   publish("state", status_.to_json());
   worker_ = std::thread([this, job = std::move(job)] {
     Progress progress(*this);
@@ -81,8 +94,14 @@ bool JobRunner::start(const std::string& name, Job job) {
     } catch (const Cancelled&) {
       std::lock_guard lock(mutex_);
       end = JobState::Cancelled;
-      error = "cancelled" + (status_.stage.empty() ? std::string() : " during the " + status_.stage + " stage") +
-              " (POST /api/cancel, or the server stopping); the outputs from before stay as they were";
+      const std::string during = status_.stage.empty() ? std::string() : " during the " + status_.stage + " stage";
+      if (replaced_)
+        error = "stopped" + during + " after its answer: the next " + status_.job + " replaces its city";
+      else if (status_.answered)
+        error = "cancelled" + during + " after its answer (POST /api/cancel, or the server stopping); its city stays";
+      else
+        error = "cancelled" + during +
+                " (POST /api/cancel, or the server stopping); the outputs from before stay as they were";
     } catch (const std::exception& e) {
       end = JobState::Failed, error = e.what();
     } catch (...) {

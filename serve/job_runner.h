@@ -27,10 +27,13 @@ struct JobStatus {
   int index = 0, count = 0;  // the stage's position (1-based) and the stage count, as the CLI prints them
   double fraction = 0;       // within a long stage (rendering)
   std::string error;         // for Failed and Cancelled: the one-line message
+  // The job has answered: what the page shows is written, and what it goes on with
+  // (a generation's validation) is not awaited by the page (Progress::answered).
+  bool answered = false;
   nlohmann::json to_json() const;
 };
 
-// One thing that happened, for GET /api/events: "stage", "progress" or "state".
+// One thing that happened, for GET /api/events: "stage", "progress", "answered" or "state".
 struct JobEvent {
   std::uint64_t id = 0;
   std::string name;
@@ -48,6 +51,9 @@ class JobRunner {
    public:
     void stage(int index, int count, const std::string& name);
     void fraction(const std::string& name, double done);
+    // What the page shows is there: an "answered" event, and the status says so until the
+    // job ends. The job goes on with what the page does not wait for.
+    void answered();
 
    private:
     friend class JobRunner;
@@ -62,9 +68,13 @@ class JobRunner {
   JobRunner(const JobRunner&) = delete;
   JobRunner& operator=(const JobRunner&) = delete;
 
-  // Starts `job` on the worker; false while another runs or after stop(). A job that throws
-  // fails with the exception's message; one cancelled ends Cancelled.
-  bool start(const std::string& name, Job job);
+  // What start does while a job runs: refuse, or, when the running job has answered,
+  // cancel what it goes on with, wait for it to end and start (a generation after an edit
+  // does not wait for the last one's validation, whose city it replaces).
+  enum class WhileRunning { Refuse, ReplaceAnswered };
+  // Starts `job` on the worker; false while another runs (as `running` says) or after
+  // stop(). A job that throws fails with the exception's message; one cancelled ends Cancelled.
+  bool start(const std::string& name, Job job, WhileRunning running = WhileRunning::Refuse);
   JobStatus status() const;
   // The running job stops within its stage: at its next progress report or its stage's next
   // loop step (generate/cancel.h). False when no job runs.
@@ -84,6 +94,7 @@ class JobRunner {
   mutable std::condition_variable changed_;
   std::thread worker_;
   std::atomic<bool> cancelled_{false};
+  bool replaced_ = false;  // cancelled after its answer by the next job's start
   bool stopped_ = false;
   JobStatus status_;
   std::deque<JobEvent> events_;  // the most recent kKeptEvents

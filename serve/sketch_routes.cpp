@@ -94,13 +94,14 @@ void add_sketch_routes(ServerState& s) {
   });
   // A model library's files, or a real place's, in one multipart form (check_request
   // refuses any other body), each part's file name its path below their folder: stored as
-  // work/models or work/like and named by the sketch. Refused while a job runs: a generation
-  // reads the library and the place it started with.
+  // work/models or work/like and named by the sketch. Refused while a job runs, but for a
+  // generation that has answered (its validation reads only work/city): a generation reads
+  // the library and the place it started with.
   using Upload = Sketch (WorkSketch::*)(const std::vector<std::pair<std::string, std::string>>&);
   for (const auto& [route, what, put] : {std::tuple{"/api/models", "library", Upload{&WorkSketch::put_library}},
                                          std::tuple{"/api/like", "place", Upload{&WorkSketch::put_like}}})
     s.http.Post(route, [&s, what = std::string(what), put = put](const httplib::Request& req, httplib::Response& res) {
-      if (s.jobs.status().state == JobState::Running)
+      if (const JobStatus now = s.jobs.status(); now.state == JobState::Running && !now.answered)
         return refuse(res, 409, "a " + s.jobs.status().job + " job is running; upload the " + what + " when it ends");
       std::vector<std::pair<std::string, std::string>> files;
       for (const auto& [field, part] : req.files) files.emplace_back(part.filename, part.content);

@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "generate/cancel.h"
 #include "generate/errors.h"
 #include "generate/export/validate_window.h"
 #include "generate/pipeline.h"
@@ -318,15 +319,26 @@ TEST(Regenerate, AddingAndRemovingARegion) {
   EXPECT_EQ(without_written, written(previous, "removed full"));
 }
 
+namespace {
+
+// The town written with a cache into a new folder `name` (its path into `dir`): the
+// polygons its validation kept for the next.
+std::shared_ptr<ValidatedPolygons> written_town(const std::string& name, std::filesystem::path& dir) {
+  const Built city = build(town(), std::make_shared<RegionCache>());
+  dir = testing_util::temp_dir(name);
+  StageClock clock(nullptr, kWriteStages);
+  EXPECT_TRUE(write_city(city.sketch, city.city, dir, clock).valid);
+  return city.city.regions->validated;
+}
+
+}  // namespace
+
 // A city written with a cache is validated where it changed since the last one that passed
 // (generate/export/validate_window.h): a lot moved to another block, or a building pushed off
 // its lot, is found there, with the problems the whole check states.
 TEST(Regenerate, AWindowedValidationFindsWhatTheWholeOneFinds) {
-  const Built city = build(town(), std::make_shared<RegionCache>());
-  const auto dir = testing_util::temp_dir("windowed");
-  StageClock clock(nullptr, kWriteStages);
-  ASSERT_TRUE(write_city(city.sketch, city.city, dir, clock).valid);
-  std::shared_ptr<ValidatedPolygons> last = city.city.regions->validated;
+  std::filesystem::path dir;
+  std::shared_ptr<ValidatedPolygons> last = written_town("windowed", dir);
   ASSERT_TRUE(last);
   EXPECT_TRUE(validate_output(dir, last).ok());  // nothing changed: an empty window
   ASSERT_TRUE(last);
@@ -360,6 +372,23 @@ TEST(Regenerate, AWindowedValidationFindsWhatTheWholeOneFinds) {
   const Validation pushed = validate_output(dir, last);
   EXPECT_FALSE(pushed.ok());
   EXPECT_EQ(pushed.problems, validate_output(dir).problems);
+}
+
+// exacity serve stops a validation whose city the next generation replaces: the last city
+// that passed stays the one the next validation is windowed against, its lines kept.
+TEST(Regenerate, ACancelledValidationKeepsTheLastThatPassed) {
+  std::filesystem::path dir;
+  std::shared_ptr<ValidatedPolygons> last = written_town("cancelled_validation", dir);
+  ASSERT_TRUE(last);
+  const ValidatedPolygons* const passed = last.get();
+  {
+    const std::atomic<bool> cancelled{true};
+    const CancelScope scope(cancelled);
+    EXPECT_THROW(validate_output(dir, last), Cancelled);
+  }
+  EXPECT_EQ(last.get(), passed);
+  EXPECT_TRUE(validate_output(dir, last).ok());
+  EXPECT_TRUE(last);
 }
 
 // The map of every polygon is checked tile by tile (docs/design.md, Validation by tiles):

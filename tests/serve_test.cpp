@@ -17,6 +17,7 @@
 #include <atomic>
 #include <chrono>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <future>
 #include <nlohmann/json.hpp>
@@ -180,6 +181,34 @@ class ServeTest : public ::testing::Test {
     exacity::generate_city(exacity::parse_sketch(read(work() / "city" / "sketch.geojson"), sketch_file()), alone,
                            nullptr);
     return json::parse(read(alone / "report.json"));
+  }
+
+  // Listens to GET /api/events on a thread of its own, giving `on` each event's name and data
+  // until it returns false; returns once the stream has opened.
+  std::thread listen(std::function<bool(const std::string&, const json&)> on) {
+    auto listening = std::make_shared<std::promise<void>>();
+    std::future<void> opened = listening->get_future();
+    std::thread t([this, on = std::move(on), listening] {
+      httplib::Client c("127.0.0.1", port);
+      c.set_read_timeout(600);
+      c.set_bearer_token_auth(kToken.c_str());
+      std::string buffer;
+      bool told = false;
+      c.Get("/api/events", [&](const char* data, std::size_t n) {
+        buffer.append(data, n);
+        for (std::size_t end; (end = buffer.find("\n\n")) != std::string::npos; buffer.erase(0, end + 2)) {
+          const std::string event = buffer.substr(0, end);
+          if (!told) told = true, listening->set_value();
+          const auto name = event.find("event: "), data_at = event.find("data: ");
+          if (name == std::string::npos || data_at == std::string::npos) continue;
+          if (!on(event.substr(name + 7, event.find('\n', name) - name - 7), json::parse(event.substr(data_at + 6))))
+            return false;
+        }
+        return true;
+      });
+    });
+    opened.wait();
+    return t;
   }
 
   fs::path dir;
@@ -781,34 +810,16 @@ TEST_F(ServeTest, BadRenderRequestsAreRefused) {
 // and a render.
 TEST_F(ServeTest, GenerateStreamsStagesThenServesOutputsAndRenders) {
   ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
-  std::promise<void> listening;
   std::vector<std::string> stages;
   std::string ended;
-  std::thread events([&] {
-    httplib::Client c("127.0.0.1", port);
-    c.set_read_timeout(600);
-    c.set_bearer_token_auth(kToken.c_str());
-    std::string buffer;
-    bool told = false;
-    c.Get("/api/events", [&](const char* data, std::size_t n) {
-      buffer.append(data, n);
-      for (std::size_t end; (end = buffer.find("\n\n")) != std::string::npos; buffer.erase(0, end + 2)) {
-        const std::string event = buffer.substr(0, end);
-        if (!told) told = true, listening.set_value();
-        const auto name = event.find("event: "), data_at = event.find("data: ");
-        if (name == std::string::npos || data_at == std::string::npos) continue;
-        const std::string kind = event.substr(name + 7, event.find('\n', name) - name - 7);
-        const json payload = json::parse(event.substr(data_at + 6));
-        if (kind == "stage") stages.push_back(payload["stage"]);
-        if (kind == "state" && payload["state"] != "running" && payload["job"] == "generate") {
-          ended = payload["state"];
-          return false;
-        }
-      }
-      return true;
-    });
+  std::thread events = listen([&](const std::string& kind, const json& payload) {
+    if (kind == "stage") stages.push_back(payload["stage"]);
+    if (kind == "state" && payload["state"] != "running" && payload["job"] == "generate") {
+      ended = payload["state"];
+      return false;
+    }
+    return true;
   });
-  listening.get_future().wait();
   auto first = client->Post("/api/generate", "", "application/json");
   ASSERT_EQ(first->status, 202) << first->body;
   EXPECT_EQ(json::parse(first->body)["state"], "running");
@@ -817,10 +828,11 @@ TEST_F(ServeTest, GenerateStreamsStagesThenServesOutputsAndRenders) {
   EXPECT_NE(second->body.find("running"), std::string::npos) << second->body;
   events.join();
   EXPECT_EQ(ended, "done");
-  // The CLI's stage names, in its order, but the 3D files', which are written when first downloaded.
+  // The CLI's stage names, in its order, but the 3D files', which are written when first
+  // downloaded, and validation's, after the tiles (the page's answer).
   EXPECT_EQ(stages, (std::vector<std::string>{"terrain", "model library", "zone map", "road network", "blocks", "lots",
-                                              "buildings", "vector layers", "clutter", "export", "validation",
-                                              "tiles"}));
+                                              "buildings", "vector layers", "clutter", "export", "tiles",
+                                              "validation"}));
   EXPECT_EQ(json::parse(client->Get("/api/status")->body)["state"], "done");
 
   EXPECT_EQ(client->Get("/api/map.svg")->body.find("<svg") != std::string::npos, true);
@@ -862,6 +874,61 @@ TEST_F(ServeTest, GenerateStreamsStagesThenServesOutputsAndRenders) {
     ASSERT_EQ(r->status, 200) << image;
     EXPECT_EQ(r->body.substr(1, 3), "PNG") << image;
   }
+}
+
+// The page is answered once what it shows is written (docs/design.md, Serving: jobs): the
+// "answered" event comes after the tiles and before validation; from then the layers are
+// there, a 3D file not yet written is written when asked for, and a generation asked for
+// does not wait for the validation, whose city it replaces.
+TEST_F(ServeTest, TheCityIsAnsweredBeforeItsValidation) {
+  ASSERT_EQ(client->Put("/api/sketch", kSmallSketch, "application/geo+json")->status, 200);
+  std::vector<std::string> order;  // the stages and the answers, as they came
+  std::vector<json> ends;          // the generations' end states
+  int lots = 0, again = 0;
+  std::string glb;
+  std::thread events = listen([&](const std::string& kind, const json& e) {
+    if (kind == "stage") order.push_back(e["stage"]);
+    if (kind == "answered" && order.back() == "tiles") {
+      order.push_back("answered");
+      if (again) return true;
+      httplib::Client c("127.0.0.1", port);
+      c.set_read_timeout(60);
+      c.set_bearer_token_auth(kToken.c_str());
+      lots = c.Get("/api/layers/lots.geojson")->status;
+      glb = c.Get("/api/files/city.glb")->body;
+      again = c.Post("/api/generate", "", "application/json")->status;
+    }
+    if (kind == "state" && e["state"] != "running" && e["job"] == "generate") ends.push_back(e);
+    return ends.size() < (again == 202 ? 2u : 1u);  // the second generation's end too, once started
+  });
+  ASSERT_EQ(client->Post("/api/generate", "", "application/json")->status, 202);
+  events.join();
+  const std::vector<std::string> answer{"export", "tiles", "answered", "validation"};
+  int answers = 0;
+  for (std::size_t i = 2; i + 1 < order.size(); ++i)
+    if (order[i] == "answered") {
+      ++answers;
+      EXPECT_EQ(std::vector<std::string>(order.begin() + i - 2, order.begin() + i + 2), answer)
+          << testing::PrintToString(order);
+    }
+  EXPECT_EQ(answers, 2) << testing::PrintToString(order);
+  EXPECT_EQ(lots, 200);
+  EXPECT_EQ(glb.substr(0, 4), "glTF");
+  EXPECT_EQ(again, 202);
+  // The first generation validated its city before the second began, or was stopped in its
+  // validation; the second's city is the same sketch's, validated.
+  ASSERT_EQ(ends.size(), 2u);
+  if (ends[0]["state"] == "cancelled")
+    EXPECT_EQ(ends[0]["error"].get<std::string>().rfind("stopped during the validation stage after its answer", 0), 0u)
+        << ends[0].dump();
+  else
+    EXPECT_EQ(ends[0]["state"], "done") << ends[0].dump();
+  EXPECT_EQ(ends[1]["state"], "done") << ends[1].dump();
+  const json report = json::parse(client->Get("/api/report")->body);
+  EXPECT_EQ(report["validation"]["ok"], true) << report["validation"].dump();
+  EXPECT_GT(report["answer_s"].get<double>(), 0);
+  EXPECT_TRUE(report["timings_s"].contains("validation"));
+  EXPECT_TRUE(client->Get("/api/files/city.glb")->body == glb);
 }
 
 // The 3D view's tiles: every structure in one tile, at full level exactly city.glb's
@@ -1605,6 +1672,44 @@ TEST(ServeCommandTest, RefusesABadSketchAndABusyPort) {
   EXPECT_NE(busy.out.find("cannot listen on 127.0.0.1:" + std::to_string(port)), std::string::npos) << busy.out;
   kill(first, SIGTERM);
   EXPECT_EQ(exit_code(first), 128 + SIGTERM);
+}
+
+// A job that has answered is stopped for the next one asked to replace it (exacity serve's
+// generation after an edit); one that has not is not, and a plain start is refused.
+TEST(JobRunnerTest, AnAnsweredJobIsReplacedByTheNext) {
+  JobRunner runner;
+  std::atomic<bool> answer{false};
+  auto validating = [&answer](JobRunner::Progress& p) {
+    p.stage(1, 2, "tiles");
+    while (!answer) p.stage(1, 2, "tiles"), std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    p.answered();
+    for (;;) p.stage(2, 2, "validation"), std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  };
+  ASSERT_TRUE(runner.start("generate", validating));
+  const auto replace = JobRunner::WhileRunning::ReplaceAnswered;
+  EXPECT_FALSE(runner.start("generate", [](JobRunner::Progress&) {}, replace));  // not answered yet
+  EXPECT_FALSE(runner.status().answered);
+  answer = true;
+  for (int i = 0; i < 1000 && runner.status().stage != "validation"; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_TRUE(runner.status().answered);
+  EXPECT_EQ(runner.status().to_json()["answered"], true);
+  EXPECT_FALSE(runner.start("render", [](JobRunner::Progress&) {}));
+  std::atomic<bool> second_ran{false};
+  ASSERT_TRUE(runner.start("generate", [&](JobRunner::Progress&) { second_ran = true; }, replace));
+  for (int i = 0; i < 1000 && runner.status().state == JobState::Running; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_TRUE(second_ran);
+  EXPECT_EQ(runner.status().state, JobState::Done);
+  EXPECT_FALSE(runner.status().answered);
+  std::vector<std::string> seen;
+  for (const auto& e : runner.events_after(0, std::chrono::milliseconds(0)))
+    if (e.name != "stage") seen.push_back(e.name + " " + e.data.value("state", std::string()));
+  EXPECT_EQ(seen, (std::vector<std::string>{"state running", "answered ", "state cancelled", "state running", "state done"}));
+  for (const auto& e : runner.events_after(0, std::chrono::milliseconds(0)))
+    if (e.name == "state" && e.data["state"] == "cancelled") {
+      EXPECT_EQ(e.data["error"], "stopped during the validation stage after its answer: the next generate replaces its city");
+    }
 }
 
 TEST(JobRunnerTest, OneJobAtATimeReportedAndCancellable) {

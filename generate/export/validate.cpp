@@ -5,6 +5,7 @@
 #include <array>
 #include <climits>
 #include <cmath>
+#include <exception>
 #include <map>
 #include <numeric>
 #include <span>
@@ -851,6 +852,20 @@ void window_polygons(const Window& window, const ValidatedPolygons& now, const s
 Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* last, double tile_side) {
   // Kept again below only if this city passes.
   const std::shared_ptr<ValidatedPolygons> previous = last ? std::exchange(*last, nullptr) : nullptr;
+  std::map<std::string, ReadLines> lines;  // with `last`: the lines read before, then this city's
+  if (previous) lines = std::move(previous->lines);
+  // A validation cancelled (the server's next generation replaces this city) keeps the last
+  // one that passed, to check the next city against; its lines, whatever this read added
+  // (a line's reading depends on its text alone).
+  struct KeepOnCancel {
+    std::shared_ptr<ValidatedPolygons>* last;
+    const std::shared_ptr<ValidatedPolygons>& previous;
+    std::map<std::string, ReadLines>& lines;
+    const int unwinding = std::uncaught_exceptions();
+    ~KeepOnCancel() {
+      if (previous && std::uncaught_exceptions() > unwinding) previous->lines = std::move(lines), *last = previous;
+    }
+  } keep{last, previous, lines};
   Validation v;
   Checker c(v);
   Sketch sketch;
@@ -861,8 +876,6 @@ Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* las
     return v;
   }
   std::vector<std::string> read_problems;
-  std::map<std::string, ReadLines> lines;  // with `last`: the lines read before, then this city's
-  if (previous) lines = std::move(previous->lines);
   lines["clutter"];  // made before the reads at once
   const CityLayers layers =
       last ? read_layers(dir / "vector", read_problems, lines) : read_layers(dir / "vector", read_problems);

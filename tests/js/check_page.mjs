@@ -100,7 +100,7 @@ try {
   // check after the fact would miss a state that came and went.
   const watch = () => page.evaluate(() => {
     window.exacitySeen = {};
-    for (const id of ['tiles-loading', 'time-left']) {
+    for (const id of ['tiles-loading', 'time-left', 'message']) {
       const e = document.getElementById(id), seen = window.exacitySeen[id] = [];
       new MutationObserver(() => seen.push(e.hidden ? '(hidden)' : e.textContent))
           .observe(e, {attributes: true, childList: true, characterData: true, subtree: true});
@@ -356,7 +356,15 @@ try {
   // Generate: the progress bar moves through the stages, then the layers and the report.
   await watch();
   await page.click('#generate');
-  await page.waitForSelector('body[data-city="shown"]', {timeout: 600000});
+  // The city is shown at the server's answer, then validated: the message says both, in turn.
+  await page.waitForSelector('body[data-city="validated"]', {timeout: 600000});
+  const messages = await seen('message');
+  const answeredAt = messages.indexOf('City generated; validating it…'), validatedAt = messages.indexOf('City generated and validated.');
+  check(answeredAt >= 0 && validatedAt > answeredAt, `the city shown at the answer, then validated: ${few(messages)}`);
+  check(await page.evaluate(() => {
+    const dt = [...document.querySelectorAll('#report dt')].find(d => d.textContent === 'answered in');
+    return /^\d+\.\d s$/.test(dt?.nextElementSibling?.textContent || '');
+  }), 'the report shows the server\'s time to the answer');
   check((await seen('time-left')).some(t => /^(estimating…|about \d+ (s|min) left)$/.test(t)) && await page.$eval('#time-left', e => e.textContent) === '',
         `the generation showed its time left, gone at its end: ${few(await seen('time-left'))}`);
   const layers = await page.$$eval('#layer-toggles input', inputs => inputs.map(i => i.dataset.layer));

@@ -62,10 +62,10 @@ export async function getJson(url) {
   return r.ok ? JSON.parse(r.text) : null;
 }
 
-// The job events (stage, progress, state) as server-sent events.
+// The job events (stage, progress, answered, state) as server-sent events.
 export function listen(handlers) {
   const events = new EventSource('/api/events');
-  for (const name of ['stage', 'progress', 'state'])
+  for (const name of ['stage', 'progress', 'answered', 'state'])
     events.addEventListener(name, e => handlers[name] && handlers[name](JSON.parse(e.data)));
   return events;
 }

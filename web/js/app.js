@@ -78,7 +78,9 @@ async function sendNow(doc) {
 // is kept in the browser.
 let generateWhenIdle = false;
 async function generateAfterEdit() {
-  if (lastState === 'running') {
+  // A generation that has answered is only validating a city this one replaces: the server
+  // stops it for this one.
+  if (lastState === 'running' && !answered) {
     generateWhenIdle = true;
     return;
   }
@@ -509,51 +511,94 @@ async function showDownloads() {
   }));
 }
 
+// A generation answers once what the page shows is written (the layers, the tiles, the
+// report), then validates; the page shows the city at the answer and the validation's
+// verdict when the job ends.
+async function showGenerated() {
+  const report = await showCity();
+  await showDownloads();
+  document.body.dataset.city = 'shown';
+  return report;
+}
+
 let stageEvent = {index: 0, count: 1, stage: ''};
 // Each (re)connection of the event stream starts with the status as it is; only a job seen
 // running and then ending changes the page.
 let lastState = null;
+let answered = false;  // the running generation has answered (its city is shown)
+let shownAtAnswer = false;  // and this page showed it then
+// What a job's answer and end show, one after the other in the events' order (showing the
+// answer fetches the layers, and the end may come meanwhile).
+let showing = Promise.resolve();
+const inTurn = f => (showing = showing.then(f, f));
 api.listen({
   stage: e => { stageEvent = e; showProgress(e); },
   progress: e => showProgress({...stageEvent, fraction: e.fraction, stage: e.stage}),
-  state: async s => {
+  answered: e => {
+    if (lastState !== 'running' || e.job !== 'generate') return;
+    answered = shownAtAnswer = true;
+    $('generate').disabled = false;
+    if (generateWhenIdle) {
+      generateWhenIdle = false;
+      generateAfterEdit();
+    }
+    inTurn(async () => {
+      await showGenerated();
+      say('City generated; validating it…');
+    });
+  },
+  state: s => {
     const ended = lastState === 'running' && s.state !== 'running';
     if (s.state === 'running' && lastState !== 'running') jobClock = {start: Date.now(), job: s.job, seen: [], done: 0};
     if (s.state !== 'running') jobClock = null;
     showTimeLeft();
     lastState = s.state;
+    answered = s.state === 'running' && Boolean(s.answered);
+    const shown = shownAtAnswer;
+    if (s.state === 'running' && !s.answered) shownAtAnswer = false;
     document.body.dataset.job = s.state;
     if (ended && generateWhenIdle) {
       generateWhenIdle = false;
       generateAfterEdit();
     }
-    $('generate').disabled = s.state === 'running';
+    $('generate').disabled = s.state === 'running' && !answered;
     $('render-view').disabled = s.state === 'running';
     $('cancel').disabled = s.state !== 'running';
-    if (!ended) return;
-    if (s.state === 'failed') say(`${s.job} failed: ${s.error}`, true);
-    if (s.state === 'cancelled') say(`${s.job} ${s.error}`);
-    if (s.state !== 'done') {
-      $('progress').value = 0;
-      $('stage').textContent = `${s.job} ${s.state}`;
-      return;
-    }
-    $('progress').value = 1;
-    $('stage').textContent = `${s.job} done`;
-    if (s.job === 'generate') {
-      await showCity();
-      await showDownloads();
-      say('City generated.');
-      document.body.dataset.city = 'shown';
-    } else if (s.job === 'render') {
-      $('render-image').src = '/api/render/still.png?v=' + Date.now();
-      $('render-result').hidden = false;
-      rendered = true;
-      showDownloads();
-      say('Rendered.');
-    }
+    if (ended) inTurn(() => showEnd(s, shown));
   },
 });
+
+// A job's end: its message, and for a generation the city (or, shown at its answer, the
+// report with validation's verdict).
+async function showEnd(s, shown) {
+  if (s.state === 'failed') say(`${s.job} failed: ${s.error}`, true);
+  if (s.state === 'cancelled') say(`${s.job} ${s.error}`);
+  if (s.job === 'generate' && shown && s.state !== 'done') {
+    // The city shown stays; the report says why it was not validated.
+    cityLayers?.showReport(await api.getJson('/api/report'));
+    $('stage').textContent = `${s.job} ${s.state}`;
+    return;
+  }
+  if (s.state !== 'done') {
+    $('progress').value = 0;
+    $('stage').textContent = `${s.job} ${s.state}`;
+    return;
+  }
+  $('progress').value = 1;
+  $('stage').textContent = `${s.job} done`;
+  if (s.job === 'generate') {
+    const report = shown ? await api.getJson('/api/report') : await showGenerated();
+    if (shown) cityLayers.showReport(lastReport = report);
+    say(report?.validation?.ok ? 'City generated and validated.' : 'City generated.');
+    document.body.dataset.city = 'validated';
+  } else if (s.job === 'render') {
+    $('render-image').src = '/api/render/still.png?v=' + Date.now();
+    $('render-result').hidden = false;
+    rendered = true;
+    showDownloads();
+    say('Rendered.');
+  }
+}
 
 // Map and Explore.
 for (const b of document.querySelectorAll('[data-view]'))

@@ -76,7 +76,9 @@ export class CityLayers {
     if (!report) return;
     const rows = Object.entries(report.counts || {}).filter(([, v]) => typeof v === "number").map(([k, v]) => [k.replace(/_/g, ' '), v]);
     const seconds = Object.values(report.timings_s || {}).reduce((a, b) => a + (typeof b === 'number' ? b : 0), 0);
-    // The server's seconds for this update, from the sketch to the 3D view's tiles.
+    // The server's seconds to its answer (what the page shows written: the layers, the 3D
+    // view's tiles), and for the whole update so far, validation included once it has run.
+    if (typeof report.answer_s === 'number') rows.push(['answered in', `${report.answer_s.toFixed(1)} s`]);
     rows.push(['server time', `${seconds.toFixed(1)} s`]);
     // What this generation reused of the one before (the server keeps each region's plans).
     const reused = report.reused;
@@ -85,7 +87,9 @@ export class CityLayers {
       rows.push(['reused', [part(reused.region_plans, 'regions'), part(reused.block_plans, 'blocks'),
                             part(reused.lot_placements, 'lots'), part(reused.structure_meshes, 'meshes')].join(', ')]);
     }
-    if (report.validation) rows.push(['valid', String(report.validation.valid ?? report.validation.ok ?? '')]);
+    if (report.validation)
+      rows.push(['valid', report.validation.under_way ? 'checking…' : report.validation.stopped ? 'not checked (stopped)'
+                          : String(report.validation.valid ?? report.validation.ok ?? '')]);
     for (const [k, v] of rows) {
       const dt = document.createElement('dt'), dd = document.createElement('dd');
       dt.textContent = k;
