@@ -24,6 +24,7 @@
 #include "geom/cell_impl.h"
 #include "geom/kernel.h"
 #include "geom/planar_map.h"
+#include "geom/shared_ends.h"
 
 namespace geom::arrangement {
 
@@ -47,8 +48,95 @@ struct ConcatenateTags {
 // The snapped build splits an edge at a grid point near it, not on it: each piece must be
 // the segment between its ends, not a part of the first segment's line.
 using SegmentTraits = CGAL::Arr_non_caching_segment_traits_2<Kernel>;
-#else
+#elif defined(EXACITY_FLOAT_KERNEL)
 using SegmentTraits = CGAL::Arr_segment_traits_2<Kernel>;
+#else
+// CGAL's segment traits, with an intersection that constructs no point the segments do not
+// have, between segments whose ends are doubles. CGAL's sweep asks for the intersection of
+// every two curves that become neighbours; most share an end (every two edges at a ring's
+// vertex) or one's end lies on the other (a lot's corner on its block's edge), and partial
+// overlaps are common (a lot's frontage along its block's edge). CGAL's traits answer each
+// through the crossing of the two supporting lines, a construction the sweep then compares
+// with the ends: a tie the exact kernel settles only in exact rationals (most of validating
+// the 10 km city's exact arithmetic). Exact orientations of the ends give the same answers:
+// where an end of one lies on the other's line and the lines differ, that end is where they
+// meet; where both ends do, the lines are one and CGAL's own overlap code follows, less the
+// lines' intersection. Only a proper crossing is left to CGAL. The answers are CGAL's (the
+// same points, multiplicities and overlaps), so every map is the same. Only validation's
+// maps take this way (geom/shared_ends.h).
+class SegmentTraits : public CGAL::Arr_segment_traits_2<Kernel> {
+  using Base = CGAL::Arr_segment_traits_2<Kernel>;
+
+ public:
+  class Intersect_2 : public Base::Intersect_2 {
+   public:
+    explicit Intersect_2(const Base& traits) : Base::Intersect_2(traits) {}
+
+    template <typename OutputIterator>
+    OutputIterator operator()(const X_monotone_curve_2& a, const X_monotone_curve_2& b, OutputIterator oi) const {
+      using Intersection_point = std::pair<Point_2, Multiplicity>;
+      using Intersection_result = boost::variant<Intersection_point, X_monotone_curve_2>;
+      // Only where validation asks (geom/shared_ends.h), between segments whose ends are
+      // doubles: there the interval filter settles equality and every orientation but ties.
+      if (!SharedEndsByOrientation::on() || !is_double(a.left()) || !is_double(a.right()) || !is_double(b.left()) ||
+          !is_double(b.right()))
+        return Base::Intersect_2::operator()(a, b, oi);
+      const Kernel& kernel = this->m_traits;
+      const auto equal = kernel.equal_2_object();
+      const auto orientation = kernel.orientation_2_object();
+      // A shared end (checked first: cheap, and the commonest case).
+      const Point_2* end = equal(a.left(), b.left()) ? &a.left() : equal(a.right(), b.right()) ? &a.right() : nullptr;
+      if (end) {
+        const Point_2& other = end == &a.left() ? b.right() : b.left();
+        if (orientation(a.left(), a.right(), other) == CGAL::COLLINEAR) return overlap(a, b, oi);
+        *oi++ = Intersection_result(Intersection_point(*end, 1));
+        return oi;
+      }
+      if (!this->do_bboxes_overlap(a, b) || !this->do_intersect(a.left(), a.right(), b.left(), b.right())) return oi;
+      const CGAL::Orientation bl = orientation(a.left(), a.right(), b.left()),
+                             br = orientation(a.left(), a.right(), b.right());
+      if (bl == CGAL::COLLINEAR && br == CGAL::COLLINEAR) return overlap(a, b, oi);
+      // They meet at one point; an end on the other's line is it.
+      if (bl == CGAL::COLLINEAR) end = &b.left();
+      else if (br == CGAL::COLLINEAR) end = &b.right();
+      else if (orientation(b.left(), b.right(), a.left()) == CGAL::COLLINEAR) end = &a.left();
+      else if (orientation(b.left(), b.right(), a.right()) == CGAL::COLLINEAR) end = &a.right();
+      if (!end) return Base::Intersect_2::operator()(a, b, oi);  // a proper crossing: CGAL constructs it
+      *oi++ = Intersection_result(Intersection_point(*end, 1));
+      return oi;
+    }
+
+   private:
+    // Whether the point is known as a pair of doubles (its interval approximation is exact).
+    static bool is_double(const Point_2& p) {
+      const auto& q = CGAL::approx(p);
+      return q.x().is_point() && q.y().is_point();
+    }
+
+    // Two intersecting segments on one line: CGAL's own answer (Arr_segment_traits_2.h, the
+    // end of Intersect_2) once it has found the lines equal.
+    template <typename OutputIterator>
+    OutputIterator overlap(const X_monotone_curve_2& cv1, const X_monotone_curve_2& cv2, OutputIterator oi) const {
+      using Intersection_point = std::pair<Point_2, Multiplicity>;
+      using Intersection_result = boost::variant<Intersection_point, X_monotone_curve_2>;
+      const Kernel& kernel = this->m_traits;
+      const auto compare_xy = kernel.compare_xy_2_object();
+      const Point_2& p_l = compare_xy(cv1.left(), cv2.left()) == CGAL::SMALLER ? cv2.left() : cv1.left();
+      const Point_2& p_r = compare_xy(cv1.right(), cv2.right()) == CGAL::SMALLER ? cv1.right() : cv2.right();
+      if (compare_xy(p_l, p_r) == CGAL::EQUAL) {
+        *oi++ = Intersection_result(Intersection_point(p_r, 0));
+        return oi;
+      }
+      if (cv1.is_directed_right() == cv2.is_directed_right() && !cv1.is_directed_right())
+        *oi++ = Intersection_result(X_monotone_curve_2(cv1.line(), p_r, p_l));
+      else
+        *oi++ = Intersection_result(X_monotone_curve_2(cv1.line(), p_l, p_r));
+      return oi;
+    }
+  };
+
+  Intersect_2 intersect_2_object() const { return Intersect_2(*this); }
+};
 #endif
 using Traits = CGAL::Arr_curve_data_traits_2<SegmentTraits, Tags, ConcatenateTags>;
 using Dcel = CGAL::Arr_face_extended_dcel<Traits, int>;

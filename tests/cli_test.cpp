@@ -147,6 +147,33 @@ TEST(Cli, ValidateCatchesCentreLinesThatRunAlongOneSegment) {
   EXPECT_NE(v.out.find("runs along road"), std::string::npos) << v.out;
 }
 
+// A lot laid exactly over another, its ring starting at another vertex and running along
+// the first's edges split at its midpoints (so no edge of the two is the same segment):
+// validation's map answers shared ends, ends on edges and overlaps from orientations
+// (geom/shared_ends.h), and still finds the two lots on one face.
+TEST(Cli, ValidateCatchesALotLaidOverAnotherAlongSplitEdges) {
+  Result v = validate_tampered("lot-over-lot", "lots", [](nlohmann::json& doc) {
+    nlohmann::json over = doc["features"][0];
+    over["properties"]["id"] = 999999;
+    auto ring = over["geometry"]["coordinates"][0];  // closed: its last position is its first
+    nlohmann::json split = nlohmann::json::array();
+    for (std::size_t k = 1; k + 1 < ring.size(); ++k) {  // from the second vertex on
+      split.push_back(ring[k]);
+      split.push_back({(ring[k][0].get<double>() + ring[k + 1][0].get<double>()) / 2,
+                       (ring[k][1].get<double>() + ring[k + 1][1].get<double>()) / 2});
+    }
+    split.push_back(ring[0]);
+    split.push_back({(ring[0][0].get<double>() + ring[1][0].get<double>()) / 2,
+                     (ring[0][1].get<double>() + ring[1][1].get<double>()) / 2});
+    split.push_back(split[0]);
+    over["geometry"]["coordinates"] = {split};
+    doc["features"].push_back(over);
+  });
+  EXPECT_EQ(v.code, 1) << v.out;
+  EXPECT_NE(v.out.find("lots.geojson features[0] and lots.geojson features["), std::string::npos) << v.out;
+  EXPECT_NE(v.out.find("overlap"), std::string::npos) << v.out;
+}
+
 // A zone the run leaves without a lot is named, with the reason, in report.json and in a
 // note: here one drawn twice (the later copy takes all its land) and one no street reaches.
 TEST(Cli, ZonesLeftEmptyAreNamedWithTheReason) {

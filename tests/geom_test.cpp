@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <map>
+#include <optional>
 #include <random>
 #include <thread>
 
@@ -11,6 +13,7 @@
 #include "geom/grid.h"
 #include "geom/planar_map.h"
 #include "geom/polygon_check.h"
+#include "geom/shared_ends.h"
 #include "tests/test_util.h"
 
 using geom::PlanarMap;
@@ -92,6 +95,52 @@ TEST(PlanarMap, CancelledInsertionStopsAtTheSweepsFirstEvent) {
   cancelled = true;
   EXPECT_THROW(filled.insert_batch(), exacity::Cancelled);
   EXPECT_LT(filled.counts().edges, whole.counts().edges / 2);
+}
+
+// Rings that share ends, end on each other's edges (T-junctions), run along part of each
+// other's edges (both ways), cover one another exactly, overlap in a sliver 2^-20 m wide and
+// cross properly: the cases validation's maps answer from orientations of the ends
+// (geom/shared_ends.h; docs/design.md, Algorithms: The exact city map). With CGAL's answers
+// and with those, each region has its windings and area, and is one face.
+TEST(PlanarMap, EndsOnEdgesOverlapsAndSliversWindAsTheyLie) {
+  const double sliver = std::ldexp(1.0, -20);
+  const std::vector<Ring> rings{
+      square(0, 0, 10),                                      // 0: a block
+      {{0, 0}, {5, 0}, {5, 10}, {0, 10}},                    // 1: its left lot, corners on the block's edges
+      {{5, 0}, {10, 0}, {10, 10}, {5, 10}},                  // 2: its right lot
+      {{5, 0}, {10, 0}, {10, 5}, {10, 10}, {5, 10}, {5, 5}},  // 3: the right lot again, with vertices along its edges
+      {{5 - sliver, 2}, {7, 2}, {7, 3}, {5 - sliver, 3}},    // 4: across the lots' shared edge, a sliver into the left one
+      {{2, 6}, {5, 7}, {2, 8}},                              // 5: a corner on the left lot's edge, inside it
+  };
+  for (const bool by_orientation : {false, true}) {
+    std::optional<geom::SharedEndsByOrientation> scope;
+    if (by_orientation) scope.emplace();
+    PlanarMap map;
+    for (std::size_t r = 0; r < rings.size(); ++r) map.add_ring(rings[r], static_cast<int>(r));
+    // The right lot's ring once more and as a clockwise hole: along the lots' shared edge
+    // the other way (the ring around counter 6 and its hole cancel everywhere).
+    map.add_ring({{5, 0}, {10, 0}, {10, 10}, {5, 10}}, 6);
+    map.add_ring({{5, 10}, {10, 10}, {10, 0}, {5, 0}}, 6);
+    map.insert_batch();
+    std::map<int, int> faces;  // label -> faces with it
+    map.label_faces([&](const Windings& w) {
+      int label = 0;
+      for (auto [c, n] : w) {
+        EXPECT_EQ(n, 1) << "counter " << c;
+        label |= 1 << c;
+      }
+      ++faces[label];
+      return label;
+    });
+    EXPECT_EQ(faces, (std::map<int, int>{{0, 1}, {0b11, 1}, {0b100011, 1}, {0b10011, 1}, {0b11101, 1}, {0b1101, 1}}))
+        << by_orientation;
+    const std::vector<double> a = group_areas(map, 64);
+    EXPECT_EQ(a[0b11], 47 - sliver);  // the left lot but the sliver and the triangle
+    EXPECT_EQ(a[0b100011], 3);        // the triangle
+    EXPECT_EQ(a[0b10011], sliver);    // the sliver
+    EXPECT_EQ(a[0b11101], 2);         // the crossing ring in the right lot
+    EXPECT_EQ(a[0b1101], 48);         // the right lot but that
+  }
 }
 
 TEST(PlanarMap, ClockwiseRingWindsMinusOne) {

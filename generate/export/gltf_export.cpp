@@ -2,7 +2,10 @@
 
 #include <cmath>
 #include <fstream>
+#include <cstdint>
 #include <map>
+#include <sstream>
+#include <stdexcept>
 #include <tuple>
 
 #include <tiny_gltf.h>
@@ -32,6 +35,30 @@ struct Triangles {
 struct Accessors {
   int position = -1, index = -1, uv = -1;
 };
+
+// A binary glTF of a JSON text and a binary buffer, as tinygltf's WriteBinaryGltfStream
+// writes it: each chunk padded to 4 bytes, the JSON with spaces, the buffer with zeros.
+void write_glb(std::ostream& out, const std::string& json_text, const std::vector<unsigned char>& bin) {
+  auto word = [&](std::uint32_t w) {
+    const char bytes[4] = {static_cast<char>(w), static_cast<char>(w >> 8), static_cast<char>(w >> 16),
+                           static_cast<char>(w >> 24)};
+    out.write(bytes, 4);
+  };
+  const auto json_size = static_cast<std::uint32_t>(json_text.size()), bin_size = static_cast<std::uint32_t>(bin.size());
+  const std::uint32_t json_padding = (4 - json_size % 4) % 4, bin_padding = (4 - bin_size % 4) % 4;
+  out.write("glTF", 4);
+  word(2);
+  word(12 + 8 + json_size + json_padding + (bin_size ? 8 + bin_size + bin_padding : 0));
+  word(json_size + json_padding);
+  word(0x4E4F534A);  // "JSON"
+  out.write(json_text.data(), json_size);
+  out.write("   ", json_padding);
+  if (bin_size == 0) return;
+  word(bin_size + bin_padding);
+  word(0x004E4942);  // "BIN"
+  out.write(reinterpret_cast<const char*>(bin.data()), bin_size);
+  out.write("\0\0\0", bin_padding);
+}
 
 class Glb {
  public:
@@ -112,7 +139,24 @@ class Glb {
     model_.defaultScene = 0;
     CancellableFile out(file);
     tinygltf::TinyGLTF writer;
-    if (!writer.WriteGltfSceneToStream(&model_, out, false, true)) throw UserError(file.string() + ": write failed");
+    // tinygltf copies the binary buffer before it writes it (about 150 MB of the 10 km
+    // city's, at the 3D export's peak). So its JSON is made with the buffer set aside, the
+    // buffer's length is put back into it, and the two chunks are written as tinygltf's
+    // WriteBinaryGltfStream writes them: the same bytes.
+    std::vector<unsigned char> bin = std::move(model_.buffers[0].data);
+    model_.buffers[0].data.clear();
+    std::ostringstream without_bin;
+    if (!writer.WriteGltfSceneToStream(&model_, without_bin, false, true)) throw UserError(file.string() + ": write failed");
+    model_.buffers[0].data = std::move(bin);
+    std::string content = std::move(without_bin).str();
+    content.erase(0, 20);  // the header (12 bytes) and the JSON chunk's (8)
+    while (!content.empty() && content.back() == ' ') content.pop_back();  // its padding
+    const std::string empty = R"("buffers":[{"byteLength":0}])";
+    const std::size_t at = content.find(empty);
+    if (at == std::string::npos || content.find(empty, at + 1) != std::string::npos)
+      throw std::logic_error("glTF: the buffer's length is not where it was looked for");
+    content.replace(at, empty.size(), R"("buffers":[{"byteLength":)" + std::to_string(model_.buffers[0].data.size()) + "}]");
+    write_glb(out, content, model_.buffers[0].data);
     out.close();
   }
 

@@ -31,6 +31,7 @@
 #include "geom/planar_map.h"
 #include "geom/polygon_check.h"
 #include "geom/segment_index.h"
+#include "geom/shared_ends.h"
 
 namespace exacity {
 namespace fs = std::filesystem;
@@ -406,6 +407,7 @@ void add_polygon_rings(geom::PlanarMap& map, const std::vector<const geom::Polyg
 // is wrong there against the sketch; rounding slivers are measured here.
 void check_zoning(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
                   const std::vector<const geom::Polygon*>& polygons) {
+  const geom::SharedEndsByOrientation shared_ends;  // every end is a written double
   MapPolygons zoning;
   for (std::size_t p = 0; p < refs.size(); ++p)
     if (refs[p].kind == Kind::Zone || refs[p].kind == Kind::Park || refs[p].kind == Kind::Water ||
@@ -533,6 +535,7 @@ Tiles tiles_of(const Grid& grid, const std::vector<const geom::Polygon*>& polygo
 TileFindings check_tile(const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
                         const std::vector<const geom::Polygon*>& polygons, const Tiles& tiles, std::size_t t,
                         const Window* window) {
+  const geom::SharedEndsByOrientation shared_ends;  // every end is a written double
   const int P = static_cast<int>(refs.size());
   const geom::Box box = tiles.box(t);
   geom::PlanarMap map;
@@ -622,6 +625,7 @@ void check_tiling(Checker& c, const DrawnFeatures& sketch, const std::vector<Pol
 // A road's centre line meets another only at its vertices: never between them, nor along
 // a segment both have.
 void check_road_meetings(Checker& c, const std::vector<VectorFeature>& features) {
+  const geom::SharedEndsByOrientation shared_ends;  // every end is a written double
   geom::PlanarMap map;
   for (std::size_t i = 0; i < features.size(); ++i) map.add_polyline(features[i].line, static_cast<int>(i));
   map.insert_batch();
