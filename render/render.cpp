@@ -193,11 +193,17 @@ Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camer
     });
     still.cpu_s += cpu_seconds() - pass_cpu;
   };
-  // The filter's time and the writing's, measured on a band once the first pass has given
-  // an image.
+  // The filter's time and the writing's, measured on bands once the first pass has given
+  // an image. The filter's is measured again once the film has two halves: on one sample's
+  // two equal halves the filter finds no variance and took a third of its time on two
+  // (town orbit, 960x540: 0.7 s foretold against 1.8 s).
   std::optional<double> filter_s, write_s;
+  bool filter_timed_on_halves = false;
   auto denoiser_s = [&](int samples, double per_sample_s) {
-    if (request.denoise && !filter_s) filter_s = filter_seconds(film.image());
+    if (request.denoise && (!filter_s || (!filter_timed_on_halves && film.samples >= 2))) {
+      filter_s = filter_seconds(film.image());
+      filter_timed_on_halves = film.samples >= 2;
+    }
     return denoise_seconds(request, haze, samples, filter_s.value_or(0), per_sample_s);
   };
   auto writing_s = [&] {
