@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -125,12 +126,14 @@ json random_city(Random& rng, P offset) {
   return features;
 }
 
-// 2. One random city translated to 1e5, 1e6 (UTM), 1e7, 1e8, 10^8.5 and 1e9 m: a double's
-// step there is 1.5e-11 to 1.2e-7 m, as coarse as the 2^-24 m grid from 2^29 m (5.4e8 m)
-// on. Level: log10 of the translation.
+// 2. One random city translated to 1e5, 1e6 (UTM), 1e7, 1e8, 10^8.5, 1e9 and 10^9.5 m: a
+// double's step there is 1.5e-11 to 4.8e-7 m, as coarse as the 2^-24 m grid from 2^29 m
+// (5.4e8 m) on and half the 1e-6 m grid (the grid build's, geom/grid_kernel.h) at 10^9.5 m,
+// the last half power of ten before 1e10 m, beyond which Exacity refuses a sketch
+// (generate/sketch/sketch.cpp). Level: log10 of the translation.
 json translated(Random& rng, int index, double& level) {
-  static const double offsets[] = {1e5, 1e6, 1e7, 1e8, std::pow(10.0, 8.5), 1e9};
-  const double o = offsets[step_of(index, 6)];
+  static const double offsets[] = {1e5, 1e6, 1e7, 1e8, std::pow(10.0, 8.5), 1e9, std::pow(10.0, 9.5)};
+  const double o = offsets[step_of(index, static_cast<int>(std::size(offsets)))];
   level = std::log10(o);
   return random_city(rng, {o, o / 2});
 }
@@ -152,16 +155,17 @@ json thin_angles(Random& rng, int index, double& level) {
 }
 
 // 4. Zone corners moved off a shared edge (first variant), or off a highway's centre line
-// (second), by 1e-1 down to 1e-12 m, to either side, cumulative. Level: the nearest
-// offset as drawn (300 + d less 300, in doubles) below the grid (level_below_grid: -6.2 at
-// 0.1 m, 4.8 at 1e-12 m).
+// (second), by 1e-1 down to 1e-14 m, to either side, cumulative: at 300 m a double's step
+// is 5.7e-14 m, so the last steps are two ulps off and on the edge (300 + 1e-14 is 300),
+// the ulps the family is named for. Level: the nearest offset as drawn (300 + d less 300,
+// in doubles) below the grid (level_below_grid: -6.2 at 0.1 m, 5.8 two ulps off, 6.8 on).
 json off_edge(Random& rng, int index, double& level) {
-  const int steps = 12, deepest = step_of(index, steps);
+  const int steps = 14, deepest = step_of(index, steps);
   const double spacing = 360.0 / (deepest + 1);
   std::vector<double> offsets;
   level = -INFINITY;
   for (int k = 0; k <= deepest; ++k) {
-    offsets.push_back(sweep(1, 12, k, steps) * side(rng));
+    offsets.push_back(sweep(1, 14, k, steps) * side(rng));
     level = std::max(level, level_below_grid(std::abs((300 + offsets.back()) - 300), 300));
   }
   // Corner k along the edge, from its far end back (the ring's order), somewhere in its share.
@@ -331,10 +335,10 @@ const std::vector<Entry>& entries() {
       {{"near-collinear", "zone corners 1e-1 to 1e-14 m off their neighbour's edge, every step down to the case's",
         "log10(grid / the nearest corner's distance off the line)"},
        near_collinear},
-      {{"translated", "a random city at 1e5, 1e6, 1e7, 1e8, 10^8.5 and 1e9 m", "log10 of the translation (m)"}, translated},
+      {{"translated", "a random city at 1e5, 1e6, 1e7, 1e8, 10^8.5, 1e9 and 10^9.5 m", "log10 of the translation (m)"}, translated},
       {{"thin-angles", "highways crossing at 1e-3 to 1e-12 rad, or nearly parallel", "-log10 of the angle (rad)"},
        thin_angles},
-      {{"off-edge", "corners 1e-1 to 1e-12 m off a shared edge or a highway, every step down to the case's", "log10(grid / the nearest offset)"}, off_edge},
+      {{"off-edge", "corners 1e-1 to 1e-14 m (on it) off a shared edge or a highway, every step down to the case's", "log10(grid / the nearest offset)"}, off_edge},
       {{"shared-edges", "zones sharing edges, overlapping along them, touching at a point, drawn twice",
         "rings along one edge"},
        shared_edges},

@@ -56,9 +56,12 @@ TEST(RobustnessFamilies, EveryCaseHasALevelTheControlsIsZero) {
   EXPECT_DOUBLE_EQ(family_case("thin-angles", 9, 7).level, 12);
   EXPECT_NEAR(family_case("off-edge", 0, 7).level, std::log10(grid / 0.1), 1e-9);
   EXPECT_NEAR(family_case("off-edge", 11, 7).level, std::log10(grid / 1e-12), 0.01);
-  EXPECT_NEAR(family_case("off-edge", 23, 7).level, std::log10(grid / 1e-12), 0.01);
+  EXPECT_NEAR(family_case("off-edge", 12, 7).level, std::log10(grid / 1e-13), 0.1);  // two ulps off at 300 m
+  EXPECT_GT(family_case("off-edge", 13, 7).level, 6);                                // on the edge: 300 + 1e-14 is 300
+  EXPECT_NEAR(family_case("off-edge", 25, 7).level, std::log10(grid / 1e-12), 0.01);
   EXPECT_DOUBLE_EQ(family_case("translated", 3, 7).level, 8);
   EXPECT_DOUBLE_EQ(family_case("translated", 5, 7).level, 9);
+  EXPECT_DOUBLE_EQ(family_case("translated", 6, 7).level, 9.5);  // a 1e-6 m grid is two doubles' steps there
   EXPECT_DOUBLE_EQ(family_case("many-highways", 0, 7).level, 2);
   EXPECT_DOUBLE_EQ(family_case("many-highways", 23, 7).level, 13);
   EXPECT_NEAR(family_case("near-touching", 11, 7).level, std::log10(grid / 1e-12), 0.01);
