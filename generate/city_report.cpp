@@ -368,10 +368,16 @@ void report_validation(ordered_json& report, const WrittenCity& written) {
 
 void write_report(const ordered_json& report, const fs::path& dir) {
   const fs::path aside = dir / ".report.json.partial";
+  bool written = false;
   {
     std::ofstream out(aside, std::ios::binary);
     out << report.dump(2) << "\n";
-    if (!out) throw UserError((dir / "report.json").string() + ": write failed (disk full?)");
+    written = static_cast<bool>(out.flush());
+  }
+  if (!written) {
+    std::error_code ignored;
+    fs::remove(aside, ignored);  // nothing half-written left in the folder
+    throw UserError((dir / "report.json").string() + ": write failed (disk full?)");
   }
   fs::rename(aside, dir / "report.json");
 }

@@ -102,7 +102,7 @@ void add_sketch_routes(ServerState& s) {
                                          std::tuple{"/api/like", "place", Upload{&WorkSketch::put_like}}})
     s.http.Post(route, [&s, what = std::string(what), put = put](const httplib::Request& req, httplib::Response& res) {
       if (const JobStatus now = s.jobs.status(); now.state == JobState::Running && !now.answered)
-        return refuse(res, 409, "a " + s.jobs.status().job + " job is running; upload the " + what + " when it ends");
+        return refuse(res, 409, "a " + now.job + " job is running; upload the " + what + " when it ends");
       std::vector<std::pair<std::string, std::string>> files;
       for (const auto& [field, part] : req.files) files.emplace_back(part.filename, part.content);
       try {
