@@ -77,7 +77,7 @@ Run build(const ordered_json& doc, const std::string& path, std::shared_ptr<Regi
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   GenerateResult written =
-      write_city(sketch, run.city, dir, clock, ExportOptions{{}, std::nullopt, /*three_d=*/false, /*validate=*/false});
+      write_city(sketch, run.city, dir, clock, ExportOptions::before_answer());
   clock.run("tiles", [&] { serve::write_city_tiles(run.city, dir / "tiles"); });
   run.answer_cpu = bench::cpu_seconds() - cpu_start;
   run.answer = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

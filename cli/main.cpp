@@ -582,6 +582,10 @@ void add_generate(CLI::App& app, GenerateCommand& c, SharedOptions& shared) {
                     "Also write the vector layers as gpkg (OUT/city.gpkg), fgb (OUT/vector/*.fgb), shp "
                     "(OUT/vector/shp/) or dxf (OUT/city.dxf); repeatable; GeoJSON is always written")
       ->check(CLI::IsMember(std::vector<std::string>(std::begin(kVectorFormats), std::end(kVectorFormats))));
+  c.app->add_flag("--cityjson-seq", c.exports.cityjson_seq,
+                  "Also write the CityJSON as CityJSONSeq (OUT/city.city.jsonl: a first line of what the objects "
+                  "share, then one CityJSONFeature a line with its own vertices), the form cjio and 3D BAG stream "
+                  "large cities in");
   c.app->add_option("--osm-ids-from", c.exports.osm_first_id,
                     "Number city.osm's nodes and ways from N up (a range kept for this city) in place of new "
                     "objects' negative ids, which GDAL's OSM driver (and so QGIS) reads only with "

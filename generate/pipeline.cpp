@@ -191,15 +191,24 @@ void export_vectors(const Sketch& sketch, const City& city, const fs::path& dir)
 // layers are made at once; the three writers run one after another, since each holds a
 // large part of its file while it writes (all three at once raised the 10 km city's peak by
 // 750 MiB).
-ThreeDCounts write_3d_files(const City& city, const fs::path& dir, bool through_cache) {
+ThreeDCounts write_3d_files(const City& city, const fs::path& dir, const ThreeDFiles& files) {
   const ModelLibrary* library = city.model_library();
   std::vector<Mesh> meshes;
   std::vector<GroundLayer> ground;
   invoke_cancellable(
-      [&] { meshes = through_cache ? city_meshes(city) : structure_meshes(city.buildings, city.models, library); },
-      [&] { ground = through_cache ? city_ground_layers(city) : ground_layers(city.ground, city.heightmap(), nullptr); });
-  write_cityjson(city.ground, city.buildings, city.models, meshes, library, city.heightmap(), ground, city.settings.crs,
-                 dir / "city.city.json", city.clutter.items);
+      [&] { meshes = files.through_cache ? city_meshes(city) : structure_meshes(city.buildings, city.models, library); },
+      [&] { ground = files.through_cache ? city_ground_layers(city) : ground_layers(city.ground, city.heightmap(), nullptr); });
+  const MeshedCity meshed{.ground = city.ground,
+                          .ground_layers = ground,
+                          .buildings = city.buildings,
+                          .models = city.models,
+                          .meshes = meshes,
+                          .clutter = city.clutter.items,
+                          .library = library,
+                          .terrain = city.heightmap(),
+                          .crs = city.settings.crs};
+  write_cityjson(meshed, dir / "city.city.json");
+  if (files.cityjson_seq) write_cityjson(meshed, dir / "city.city.jsonl", CityJsonForm::Sequence);
   std::vector<ModelInstance> clutter;
   for (const Clutter& c : city.clutter.items) clutter.push_back(c.instance);
   ThreeDCounts counts;
@@ -232,7 +241,9 @@ GenerateResult write(const Sketch& sketch, const City& city, City* released, con
   if (options.three_d)
     written.three_d = stages.run("3d export", [&] {
       if (released) released->network = {}, released->blocks = {}, released->lots = {}, released->layers = {};
-      return write_3d_files(city, dir);
+      ThreeDFiles files;
+      files.cityjson_seq = options.cityjson_seq;
+      return write_3d_files(city, dir, files);
     });
   if (options.validate && geom::kernel_validates_its_output()) written.validation = validation_stage(city, dir, stages);
   written.validation_later = !options.validate && geom::kernel_validates_its_output();

@@ -85,6 +85,15 @@ struct ExportOptions {
   // The validation stage. exacity serve leaves it out, answers the page, and then
   // validates with validate_written (docs/design.md, Serving: jobs).
   bool validate = true;
+  // With the 3D files, city.city.jsonl: the CityJSON as CityJSONSeq (generate/export/cityjson_export.h).
+  bool cityjson_seq = false;
+
+  // What exacity serve writes before it answers the page: neither the 3D files nor validation.
+  static ExportOptions before_answer() {
+    ExportOptions o;
+    o.three_d = o.validate = false;
+    return o;
+  }
 };
 // `sketch` is the one `city` was built from: OUT/sketch.geojson is its copy.
 GenerateResult write_city(const Sketch& sketch, const City& city, const std::filesystem::path& dir, StageClock& clock,
@@ -108,9 +117,14 @@ struct ThreeDCounts {
   MeshCounts mesh;
   GltfCounts gltf;
 };
+struct ThreeDFiles {
+  // False: the structures' meshes and the ground's pieces are made afresh rather than
+  // through the city's cache, which a build may be using.
+  bool through_cache = true;
+  bool cityjson_seq = false;  // city.city.jsonl as well
+};
 // city.city.json, city.glb, city.obj and city.ply of `city` into `dir` (write_city's 3d
-// export stage). With `through_cache` false the structures' meshes and the ground's pieces
-// are made afresh rather than through the city's cache, which a build may be using.
-ThreeDCounts write_3d_files(const City& city, const std::filesystem::path& dir, bool through_cache = true);
+// export stage).
+ThreeDCounts write_3d_files(const City& city, const std::filesystem::path& dir, const ThreeDFiles& files = ThreeDFiles());
 
 }  // namespace exacity

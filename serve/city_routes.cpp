@@ -51,8 +51,7 @@ void generate_job(ServerState& s, const Sketch& drawn, JobRunner::Progress& prog
   if (!like.is_null()) like["file"] = s.in_work(like["file"].get<std::string>());  // as the page names it
   // Regions, blocks and lots the edits since the last generation left as they were are reused.
   auto city = std::make_shared<City>(build_city(sketch, clock, s.regions));
-  GenerateResult result = write_city(sketch, *city, folder.staging(), clock,
-                                     ExportOptions{{}, std::nullopt, /*three_d=*/false, /*validate=*/false});
+  GenerateResult result = write_city(sketch, *city, folder.staging(), clock, ExportOptions::before_answer());
   if (!like.is_null()) result.report["like"] = like;
   clock.run("tiles", [&] { write_city_tiles(*city, folder.staging() / "tiles"); });
   // The report's seconds are then the update's server time, tiles included, which the page
@@ -241,7 +240,9 @@ void write_when_asked(ServerState& s, const std::string& name) {
     write_vector_formats(aside, {"gpkg"}, city->settings.crs);
   } else {
     // The structures' meshes afresh: the cache is the job thread's.
-    write_3d_files(*city, aside, /*through_cache=*/false);
+    ThreeDFiles afresh;
+    afresh.through_cache = false;
+    write_3d_files(*city, aside, afresh);
     files = {"city.glb", "city.city.json", "city.obj", "city.ply"};
   }
   for (const std::string& file : files)

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 
+#include "tests/cityjson_seq.h"
 #include "tests/cli_util.h"
 #include "tests/clutter_sketch.h"
 
@@ -38,8 +39,10 @@ TEST(ClutterCli, SameBytesWithOneThreadOrTwo) {
 TEST(ClutterCli, TheIndependentCheckersPassTheClutterAndGeosCatchesItMisplaced) {
   const fs::path sketch = four_streets("cli-checkers", "", all_of_the_library());
   const fs::path out = sketch.parent_path() / "out";
-  Result g = run("generate " + sketch.string() + " -o " + out.string() + " -q");
+  Result g = run("generate " + sketch.string() + " -o " + out.string() + " -q --cityjson-seq");
   ASSERT_EQ(g.code, 0) << g.out;
+  // CityJSONSeq holds the same objects, placed models and clutter among them.
+  cityjson_seq::expect_same_city_objects(out / "city.city.json", out / "city.city.jsonl");
   Result geos = shell(geos_check(out));
   EXPECT_EQ(geos.code, 0) << geos.out;
   Result glb = shell(node_tool("check_glb.mjs") + " " + (out / "city.glb").string());

@@ -23,6 +23,7 @@
 #include "generate/gis/sketch_sources.h"
 #include "geom/polygon_check.h"
 #include "generate/pipeline.h"
+#include "tests/cityjson_seq.h"
 #include "tests/cli_util.h"
 #include "tests/test_util.h"
 
@@ -1365,6 +1366,12 @@ TEST(Gis, BuildingPartsAreTheThreeDOfTheirBuildingWhoseOutlineStaysTheFootprint)
   EXPECT_EQ(cityjson_check.code, 0) << cityjson_check.out;
   const cli_util::Result glb_check = cli_util::shell(cli_util::node_tool("check_glb.mjs") + " " + (out / "city.glb").string());
   EXPECT_EQ(glb_check.code, 0) << glb_check.out;
+  // As CityJSONSeq, each building with its parts is one feature; the document is as without it.
+  const cli_util::Result seq = cli_util::run("generate " + (dir / "village.osm").string() + " -q --cityjson-seq -o " +
+                                             (dir / "seq").string());
+  ASSERT_EQ(seq.code, 0) << seq.out;
+  EXPECT_TRUE(cli_util::read(dir / "seq" / "city.city.json") == cli_util::read(out / "city.city.json"));
+  cityjson_seq::expect_same_city_objects(out / "city.city.json", dir / "seq" / "city.city.jsonl");
 
   // city.osm: the outline and its parts as OSM maps them; read back, the parts are parts again.
   const ordered_json read_back = osm_sketch_document(out / "city.osm");

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <utility>
 
 #include <fcntl.h>
@@ -400,57 +401,6 @@ json clutter_object(const Clutter& c, const Ground& ground, const ModelLibrary& 
           {"geometry", json::array({geometry_instance(m.placed, m.floor, v)})}};
 }
 
-// Roads, land use and water as LOD1 surfaces: an object per road (its areas), per zone
-// type and one for the water, in the order of their key's text (kept from when they were
-// grouped by their GeoJSON property), each named prefix + n; a road's prefix + its id, so
-// that an edit leaves the names of the roads it does not reach as they were.
-void add_ground_objects(const Ground& ground, const std::vector<GroundLayer>& layers, const Terrain* terrain,
-                        Vertices& v, json& objects) {
-  using Groups = std::map<std::string, std::pair<json, std::vector<LevelPolygon>>>;
-  auto surfaces = [&](const Groups& groups, const std::string& prefix, const std::string& type, bool by_key = false) {
-    int n = 0;
-    for (const auto& [text, group] : groups) {
-      json geometry = multisurface(group.second, terrain, v);
-      if (geometry.is_null()) continue;
-      json o{{"type", type}, {"geometry", json::array({std::move(geometry)})}};
-      if (!group.first.is_null()) o["attributes"] = group.first;
-      objects[prefix + (by_key ? text : std::to_string(n++))] = std::move(o);
-    }
-  };
-  Groups roads, zones, water;
-  // Water level at its shore height, bridge decks level between their ends
-  // (docs/design.md, Ground meshes).
-  const BridgeDecks decks = bridge_decks(ground, terrain);
-  for (std::size_t i = 0; i < ground.road_areas.size(); ++i) {
-    const RoadArea& a = ground.road_areas[i];
-    const int road = a.road >= 0 ? ground.roads[a.road].stable_id : -1;
-    auto& [attributes, polygons] = roads[road >= 0 ? std::to_string(road) : "null"];
-    // The road's id and its OpenStreetMap tags, as roads.geojson has them.
-    if (attributes.is_null()) {
-      attributes = {{"road", road >= 0 ? json(road) : json(nullptr)}};
-      if (a.road >= 0) attributes.update(json(road_attributes(ground.roads[a.road])));
-    }
-    polygons.push_back({&a.polygon, decks.height[i]});
-  }
-  for (const ZoneArea& z : ground.zones) {
-    auto& [zone, polygons] = zones[std::string(name(z.type))];
-    zone = {{"zone", name(z.type)}};
-    polygons.push_back({&z.polygon, NAN});
-  }
-  for (const geom::Polygon& w : ground.water) water[""].second.push_back({&w, water_level(w, terrain)});
-  surfaces(roads, "road-", "Road", true);
-  surfaces(zones, "landuse-", "LandUse");
-  surfaces(water, "water-", "WaterBody");
-  // The decks' sides and undersides and the piers, one Bridge object for every bridge.
-  if (const GroundMesh* bridges = layer_mesh(layers, GroundKind::Bridge); terrain && bridges) {
-    json boundaries = json::array();
-    append_triangles(*bridges, v, boundaries);
-    if (!boundaries.empty())
-      objects["bridges"] = {{"type", "Bridge"},
-                            {"geometry", json::array({{{"type", "MultiSurface"}, {"lod", "1"}, {"boundaries", std::move(boundaries)}}})}};
-  }
-}
-
 // The city objects' texts by key, kept in a scratch file beside the output until they are
 // written in the document's (key) order, which is not the order they are made in. Held in
 // memory they were most of the file (about 300 MB of the 10 km city's) at the 3D export's
@@ -509,75 +459,172 @@ class ObjectTexts {
   std::map<std::string, std::pair<off_t, std::size_t>> at_;  // key -> offset and length
 };
 
+// Where the city objects go as they are made, by CityJsonForm: a document's objects share
+// one vertex list and are written in key order once all are made; a sequence's features are
+// written at once, each with its own vertices.
+class CityObjectWriter {
+ public:
+  // `shared`: the members every object refers to (transform, templates, appearance, metadata).
+  CityObjectWriter(CityJsonForm form, const std::filesystem::path& file, json shared, geom::Vec2 origin)
+      : form_(form), origin_(origin), vertices_(origin), shared_(std::move(shared)), out_(file) {
+    if (form_ == CityJsonForm::Document) {
+      texts_.emplace(file);
+      return;
+    }
+    json header = shared_;
+    header["CityObjects"] = json::object();
+    header["vertices"] = json::array();
+    out_ << header.dump() << '\n';
+  }
+
+  // The vertices the next feature's geometry indexes.
+  Vertices& next_vertices() {
+    if (form_ == CityJsonForm::Sequence) vertices_ = Vertices(origin_);
+    return vertices_;
+  }
+
+  // A feature made with next_vertices(): its object under `key`, and its children's.
+  void add(const std::string& key, const json& object, const std::vector<std::pair<std::string, json>>& children = {}) {
+    if (form_ == CityJsonForm::Document) {
+      for (const auto& [child, o] : children) texts_->set(child, o.dump());
+      texts_->set(key, object.dump());
+      return;
+    }
+    json objects = json::object();
+    objects[key] = object;
+    for (const auto& [child, o] : children) objects[child] = o;
+    out_ << "{\"type\":\"CityJSONFeature\",\"id\":" << json(key).dump() << ",\"CityObjects\":" << objects.dump()
+         << ",\"vertices\":";
+    vertices_.write(out_);
+    out_ << "}\n";
+  }
+
+  void close() {
+    if (form_ == CityJsonForm::Document) {
+      // In the document's (sorted) order the objects come first and the vertices last, so
+      // they are written before and after the other members.
+      out_ << "{\"CityObjects\":{";
+      texts_->write(out_);
+      const std::string members = shared_.dump();
+      out_ << "}," << members.substr(1, members.size() - 2) << ",\"vertices\":";
+      vertices_.write(out_);
+      out_ << "}\n";
+    }
+    out_.close();
+  }
+
+ private:
+  CityJsonForm form_;
+  geom::Vec2 origin_;
+  Vertices vertices_;
+  json shared_;
+  std::optional<ObjectTexts> texts_;  // the document's objects, until written in key order
+  CancellableFile out_;               // written as it goes, through a buffer that stops once the build is cancelled
+};
+
+// Roads, land use and water as LOD1 surfaces: an object per road (its areas), per zone
+// type and one for the water, in the order of their key's text (kept from when they were
+// grouped by their GeoJSON property), each named prefix + n; a road's prefix + its id, so
+// that an edit leaves the names of the roads it does not reach as they were.
+void add_ground_objects(const Ground& ground, const std::vector<GroundLayer>& layers, const Terrain* terrain,
+                        CityObjectWriter& out) {
+  using Groups = std::map<std::string, std::pair<json, std::vector<LevelPolygon>>>;
+  auto surfaces = [&](const Groups& groups, const std::string& prefix, const std::string& type, bool by_key = false) {
+    int n = 0;
+    for (const auto& [text, group] : groups) {
+      json geometry = multisurface(group.second, terrain, out.next_vertices());
+      if (geometry.is_null()) continue;
+      json o{{"type", type}, {"geometry", json::array({std::move(geometry)})}};
+      if (!group.first.is_null()) o["attributes"] = group.first;
+      out.add(prefix + (by_key ? text : std::to_string(n++)), o);
+    }
+  };
+  Groups roads, zones, water;
+  // Water level at its shore height, bridge decks level between their ends
+  // (docs/design.md, Ground meshes).
+  const BridgeDecks decks = bridge_decks(ground, terrain);
+  for (std::size_t i = 0; i < ground.road_areas.size(); ++i) {
+    const RoadArea& a = ground.road_areas[i];
+    const int road = a.road >= 0 ? ground.roads[a.road].stable_id : -1;
+    auto& [attributes, polygons] = roads[road >= 0 ? std::to_string(road) : "null"];
+    // The road's id and its OpenStreetMap tags, as roads.geojson has them.
+    if (attributes.is_null()) {
+      attributes = {{"road", road >= 0 ? json(road) : json(nullptr)}};
+      if (a.road >= 0) attributes.update(json(road_attributes(ground.roads[a.road])));
+    }
+    polygons.push_back({&a.polygon, decks.height[i]});
+  }
+  for (const ZoneArea& z : ground.zones) {
+    auto& [zone, polygons] = zones[std::string(name(z.type))];
+    zone = {{"zone", name(z.type)}};
+    polygons.push_back({&z.polygon, NAN});
+  }
+  for (const geom::Polygon& w : ground.water) water[""].second.push_back({&w, water_level(w, terrain)});
+  surfaces(roads, "road-", "Road", true);
+  surfaces(zones, "landuse-", "LandUse");
+  surfaces(water, "water-", "WaterBody");
+  // The decks' sides and undersides and the piers, one Bridge object for every bridge.
+  if (const GroundMesh* bridges = layer_mesh(layers, GroundKind::Bridge); terrain && bridges) {
+    json boundaries = json::array();
+    append_triangles(*bridges, out.next_vertices(), boundaries);
+    if (!boundaries.empty())
+      out.add("bridges", {{"type", "Bridge"},
+                          {"geometry", json::array({{{"type", "MultiSurface"}, {"lod", "1"}, {"boundaries", std::move(boundaries)}}})}});
+  }
+}
+
 }  // namespace
 
-void write_cityjson(const Ground& ground, const std::vector<Building>& buildings,
-                    const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
-                    const ModelLibrary* library, const Terrain* terrain, const std::vector<GroundLayer>& ground_layers,
-                    const nlohmann::ordered_json& crs, const std::filesystem::path& file, const std::vector<Clutter>& clutter) {
+void write_cityjson(const MeshedCity& city, const std::filesystem::path& file, CityJsonForm form) {
+  const Ground& ground = city.ground;
   const geom::Box box = city_box(ground);
   const geom::Vec2 origin{std::floor(box.min_x), std::floor(box.min_y)};
-  Vertices v(origin);
-  // Each object's text as soon as it is made, by its key in the document's order: the
-  // objects as JSON values all at once took several times the file's size.
-  ObjectTexts texts(file);
+  json shared{{"type", "CityJSON"},
+              {"version", "2.0"},
+              {"transform", {{"scale", {kScale, kScale, kScale}}, {"translate", {origin.x, origin.y, 0.0}}}}};
+  Appearance appearance(file.parent_path() / "textures");
+  if (city.library) shared["geometry-templates"] = templates(*city.library, appearance);
+  if (!appearance.empty()) shared["appearance"] = appearance.to_json();
+  // An EPSG code in the sketch's crs becomes the reference system.
+  if (const std::optional<int> epsg = epsg_of(city.crs))
+    shared["metadata"] = {{"referenceSystem", "https://www.opengis.net/def/crs/EPSG/0/" + std::to_string(*epsg)}};
+
+  CityObjectWriter out(form, file, std::move(shared), origin);
   const CancelCheck cancel;
   for_each_by_id(
-      buildings, models,
+      city.buildings, city.models,
       [&](const Building& b) {
         cancel.check();
         const std::string key = "building-" + std::to_string(b.stable_id);
-        json o = b.parts.empty() ? building_object(b, ground, meshes[b.id], v) : building_with_parts(b, ground);
+        Vertices& v = out.next_vertices();
+        json o = b.parts.empty() ? building_object(b, ground, city.meshes[b.id], v) : building_with_parts(b, ground);
         // Its parts are its 3D (OSM's Simple 3D Buildings): BuildingParts, its children.
+        std::vector<std::pair<std::string, json>> parts;
         for (std::size_t k = 0; k < b.parts.size(); ++k) {
           const std::string part_key = key + "-part-" + std::to_string(k);
           if (json part = building_part_object(b, b.parts[k], key, v); !part.is_null()) {
             o["children"].push_back(part_key);
-            texts.set(part_key, part.dump());
+            parts.emplace_back(part_key, std::move(part));
           }
         }
-        if (!o.is_null()) texts.set(key, o.dump());
+        if (!o.is_null()) out.add(key, o, parts);
       },
       [&](const ModelInstance& m) {
         cancel.check();
-        if (json o = model_object(m, ground, meshes[m.id], *library, v); !o.is_null())
-          texts.set("building-" + std::to_string(m.stable_id), o.dump());
+        if (json o = model_object(m, ground, city.meshes[m.id], *city.library, out.next_vertices()); !o.is_null())
+          out.add("building-" + std::to_string(m.stable_id), o);
       });
-  for (const Clutter& c : clutter) {
+  for (const Clutter& c : city.clutter) {
     cancel.check();
-    texts.set("clutter-" + std::to_string(c.instance.stable_id), clutter_object(c, ground, *library, v).dump());
+    out.add("clutter-" + std::to_string(c.instance.stable_id), clutter_object(c, ground, *city.library, out.next_vertices()));
   }
-  json objects = json::object();
-  add_ground_objects(ground, ground_layers, terrain, v, objects);
+  add_ground_objects(ground, city.ground_layers, city.terrain, out);
   cancel.check();
 
   // The ground under the city: the heightmap over the rectangle around it.
   json tin = json::array();
-  append_triangles(*layer_mesh(ground_layers, GroundKind::Terrain), v, tin);
-  objects["terrain"] = {{"type", "TINRelief"}, {"geometry", json::array({{{"type", "CompositeSurface"}, {"lod", "1"}, {"boundaries", std::move(tin)}}})}};
-  for (auto it = objects.begin(); it != objects.end(); ++it) texts.set(it.key(), it->dump());
-  objects = nullptr;
-
-  // Every member but the objects and the vertices; in the document's (sorted) order the
-  // objects come first and the vertices last, so they are written before and after it.
-  json doc{{"type", "CityJSON"},
-           {"version", "2.0"},
-           {"transform", {{"scale", {kScale, kScale, kScale}}, {"translate", {origin.x, origin.y, 0.0}}}}};
-  Appearance appearance(file.parent_path() / "textures");
-  if (library) doc["geometry-templates"] = templates(*library, appearance);
-  if (!appearance.empty()) doc["appearance"] = appearance.to_json();
-  // An EPSG code in the sketch's crs becomes the reference system.
-  if (const std::optional<int> epsg = epsg_of(crs))
-    doc["metadata"] = {{"referenceSystem", "https://www.opengis.net/def/crs/EPSG/0/" + std::to_string(*epsg)}};
-
-  // Written as it goes, through a buffer that stops once the build is cancelled.
-  CancellableFile out(file);
-  out << "{\"CityObjects\":{";
-  texts.write(out);
-  const std::string members = doc.dump();
-  out << "}," << members.substr(1, members.size() - 2) << ",\"vertices\":";
-  v.write(out);
-  out << "}\n";
+  append_triangles(*layer_mesh(city.ground_layers, GroundKind::Terrain), out.next_vertices(), tin);
+  out.add("terrain", {{"type", "TINRelief"}, {"geometry", json::array({{{"type", "CompositeSurface"}, {"lod", "1"}, {"boundaries", std::move(tin)}}})}});
   out.close();
 }
 

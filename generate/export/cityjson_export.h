@@ -1,26 +1,23 @@
 // OUT/city.city.json: CityJSON 2.0. Buildings as LOD1 and LOD2 solids (LOD2 with
 // GroundSurface, WallSurface and RoofSurface semantics), roads, land use and water as LOD1
 // surfaces, a TINRelief under the city; vertices quantised to millimetres by `transform`.
+// Or the same objects as CityJSONSeq (OUT/city.city.jsonl), the form cjio and 3D BAG
+// stream large cities in: a first line with what the objects share (transform, templates,
+// appearance, reference system), then one CityJSONFeature a line, each with its own vertices.
 #pragma once
 
 #include <filesystem>
-#include <vector>
 
-#include "generate/mesh/building_mesh.h"
-#include "generate/export/ground_layers.h"
-#include "generate/placement/clutter.h"
-#include "generate/city/ground.h"
-#include "generate/city/terrain.h"
+#include "generate/export/meshed_city.h"
 
 namespace exacity {
 
-// meshes are structure_meshes(buildings, models, ...), by id; ground_layers are
-// ground_layers(ground, terrain), whose terrain and bridges CityJSON writes as they are. Placed models are instances of templates,
-// one per library model; on terrain, ground surfaces are draped over it. Models' textures
-// are written once each into `textures/` beside the file, which the appearance names.
-void write_cityjson(const Ground& ground, const std::vector<Building>& buildings,
-                    const std::vector<ModelInstance>& models, const std::vector<Mesh>& meshes,
-                    const ModelLibrary* library, const Terrain* terrain, const std::vector<GroundLayer>& ground_layers,
-                    const nlohmann::ordered_json& crs, const std::filesystem::path& file, const std::vector<Clutter>& clutter = {});
+enum class CityJsonForm { Document, Sequence };
+
+// The city's terrain and bridges as its ground layers have them. Placed models are
+// instances of templates, one per library model; on terrain, ground surfaces are draped
+// over it. Models' textures are written once each into `textures/` beside the file, which
+// the appearance names.
+void write_cityjson(const MeshedCity& city, const std::filesystem::path& file, CityJsonForm form = CityJsonForm::Document);
 
 }  // namespace exacity

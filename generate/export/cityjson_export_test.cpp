@@ -37,8 +37,9 @@ TEST(CityJson, RingsThatQuantisingMakesTouchAreCutIntoSimpleOnes) {
   road.polygon.outer = {{40, 0}, {50, 10}, {60, 0}, {60, 20}, {50, 10.0003}, {40, 20}};
   ground.road_areas.push_back(road);
   const auto file = testing_util::temp_dir("cityjson_pinch") / "city.city.json";
-  write_cityjson(ground, {}, {}, {}, nullptr, nullptr, ground_layers(ground, nullptr), nlohmann::ordered_json::object(),
-                 file);
+  const std::vector<GroundLayer> layers = ground_layers(ground, nullptr);
+  const nlohmann::ordered_json crs = nlohmann::ordered_json::object();
+  write_cityjson({ground, layers, {}, {}, {}, {}, nullptr, nullptr, crs}, file);
   const json city = json::parse(std::ifstream(file));
   const json& vertices = city["vertices"];
   std::map<std::string, double> area2;  // twice each object's area, in square millimetres
