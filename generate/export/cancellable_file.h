@@ -1,5 +1,5 @@
-// Files written or read in one library call (nlohmann's serializer and parser, tinygltf's
-// writer) that still stop once the build is cancelled (generate/cancel.h): the bytes go
+// Files written or read in one library call (nlohmann's serializer and parser) or copied
+// whole (city.glb's scratch files) that still stop once the build is cancelled (generate/cancel.h): the bytes go
 // through a 64 KiB buffer, and the flag is checked each time it is passed on or refilled.
 #pragma once
 

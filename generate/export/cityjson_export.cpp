@@ -6,9 +6,6 @@
 #include <optional>
 #include <utility>
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include "generate/cancel.h"
 #include "generate/city/format_number.h"
 #include "generate/city/random.h"
@@ -16,6 +13,7 @@
 #include "generate/errors.h"
 #include "generate/mesh/bridges.h"
 #include "generate/export/ground_layers.h"
+#include "generate/export/scratch_file.h"
 #include "generate/export/vector_layers.h"
 #include "generate/gis/projection.h"
 #include "geom/ring_cleanup.h"
@@ -401,62 +399,33 @@ json clutter_object(const Clutter& c, const Ground& ground, const ModelLibrary& 
           {"geometry", json::array({geometry_instance(m.placed, m.floor, v)})}};
 }
 
-// The city objects' texts by key, kept in a scratch file beside the output until they are
-// written in the document's (key) order, which is not the order they are made in. Held in
-// memory they were most of the file (about 300 MB of the 10 km city's) at the 3D export's
-// peak. The scratch file is unlinked once made, so nothing is left behind however the
-// export ends.
+// The city objects' texts by key, kept in a scratch file until they are written in the
+// document's (key) order, which is not the order they are made in. Held in memory they
+// were most of the file (about 300 MB of the 10 km city's) at the 3D export's peak.
 class ObjectTexts {
  public:
-  explicit ObjectTexts(const std::filesystem::path& beside) : path_(beside.string() + ".objects") {
-    fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
-    if (fd_ < 0) fail();
-    ::unlink(path_.c_str());
-  }
-  ObjectTexts(const ObjectTexts&) = delete;
-  ObjectTexts& operator=(const ObjectTexts&) = delete;
-  ~ObjectTexts() { ::close(fd_); }
+  explicit ObjectTexts(const std::filesystem::path& beside) : file_(beside) {}
 
   // As a map's operator[]: a key given again keeps its last text.
   void set(const std::string& key, const std::string& text) {
-    at_[key] = {written_ + static_cast<off_t>(pending_.size()), text.size()};
-    pending_ += text;
-    if (pending_.size() >= (1 << 20)) flush();
+    at_[key] = {file_.size(), text.size()};
+    file_.append(text);
   }
 
   // Each object as `"key":text`, comma-separated, in key order.
   void write(std::ostream& out) {
-    flush();
     std::string text;
     bool first = true;
     for (const auto& [key, where] : at_) {
       text.resize(where.second);
-      for (std::size_t done = 0; done < text.size();) {
-        const ssize_t n = ::pread(fd_, text.data() + done, text.size() - done, where.first + static_cast<off_t>(done));
-        if (n <= 0) fail();
-        done += static_cast<std::size_t>(n);
-      }
+      file_.read(where.first, text.data(), text.size());
       out << (first ? "" : ",") << json(key).dump() << ':' << text, first = false;
     }
   }
 
  private:
-  void flush() {
-    for (std::size_t done = 0; done < pending_.size();) {
-      const ssize_t n = ::write(fd_, pending_.data() + done, pending_.size() - done);
-      if (n <= 0) fail();
-      done += static_cast<std::size_t>(n);
-    }
-    written_ += static_cast<off_t>(pending_.size());
-    pending_.clear();
-  }
-  [[noreturn]] void fail() const { throw UserError(path_.string() + ": scratch file failed (disk full?)"); }
-
-  std::filesystem::path path_;
-  int fd_ = -1;
-  off_t written_ = 0;     // bytes in the file
-  std::string pending_;   // bytes not yet in it
-  std::map<std::string, std::pair<off_t, std::size_t>> at_;  // key -> offset and length
+  ScratchFile file_;
+  std::map<std::string, std::pair<std::uint64_t, std::size_t>> at_;  // key -> offset and length
 };
 
 // Where the city objects go as they are made, by CityJsonForm: a document's objects share

@@ -1,19 +1,18 @@
 #include "generate/export/gltf_export.h"
 
+#include <array>
 #include <cmath>
-#include <fstream>
 #include <cstdint>
 #include <map>
-#include <sstream>
-#include <stdexcept>
 #include <tuple>
 
-#include <tiny_gltf.h>
+#include <nlohmann/json.hpp>
 
 #include "generate/cancel.h"
 #include "generate/export/cancellable_file.h"
 #include "generate/errors.h"
 #include "generate/export/ground_layers.h"
+#include "generate/export/scratch_file.h"
 #include "generate/city/palette.h"
 #include "generate/city/structure_albedos.h"
 #include "generate/version.h"
@@ -21,6 +20,7 @@
 namespace exacity {
 namespace {
 
+using nlohmann::json;
 using Float3 = std::array<float, 3>;
 using Float2 = std::array<float, 2>;
 
@@ -34,54 +34,77 @@ struct Triangles {
 // A primitive's accessors; position -1 when it has no triangles, uv -1 without TEXCOORD_0.
 struct Accessors {
   int position = -1, index = -1, uv = -1;
+  std::size_t triangles = 0;
 };
 
-// A binary glTF of a JSON text and a binary buffer, as tinygltf's WriteBinaryGltfStream
-// writes it: each chunk padded to 4 bytes, the JSON with spaces, the buffer with zeros.
-void write_glb(std::ostream& out, const std::string& json_text, const std::vector<unsigned char>& bin) {
-  auto word = [&](std::uint32_t w) {
-    const char bytes[4] = {static_cast<char>(w), static_cast<char>(w >> 8), static_cast<char>(w >> 16),
-                           static_cast<char>(w >> 24)};
-    out.write(bytes, 4);
-  };
-  const auto json_size = static_cast<std::uint32_t>(json_text.size()), bin_size = static_cast<std::uint32_t>(bin.size());
-  const std::uint32_t json_padding = (4 - json_size % 4) % 4, bin_padding = (4 - bin_size % 4) % 4;
-  out.write("glTF", 4);
-  word(2);
-  word(12 + 8 + json_size + json_padding + (bin_size ? 8 + bin_size + bin_padding : 0));
-  word(json_size + json_padding);
-  word(0x4E4F534A);  // "JSON"
-  out.write(json_text.data(), json_size);
-  out.write("   ", json_padding);
-  if (bin_size == 0) return;
-  word(bin_size + bin_padding);
-  word(0x004E4942);  // "BIN"
-  out.write(reinterpret_cast<const char*>(bin.data()), bin_size);
-  out.write("\0\0\0", bin_padding);
-}
+// glTF's numbers for what it names.
+enum : int {
+  kFloat = 5126,
+  kUnsignedInt = 5125,
+  kArrayBuffer = 34962,
+  kElementArrayBuffer = 34963,
+  kTriangles = 4,
+  kLinear = 9729,
+  kLinearMipmapLinear = 9987,
+  kClampToEdge = 33071,
+  kRepeat = 10497,
+};
 
+// A node: a mesh placed (translation, rotation, scale: none when empty) or a group of
+// children.
+struct Node {
+  std::string name;
+  int mesh = -1;
+  std::vector<double> translation, rotation, scale;
+  std::vector<int> children;
+};
+
+// One of the JSON document's arrays, its elements' texts in a scratch file as they are made.
+class JsonArray {
+ public:
+  explicit JsonArray(const std::filesystem::path& beside) : text_(beside) {}
+  int add(const json& element) {
+    if (count_) text_.append(",");
+    text_.append(element.dump());
+    return count_++;
+  }
+  int size() const { return count_; }
+  ScratchFile& text() { return text_; }
+
+ private:
+  ScratchFile text_;
+  int count_ = 0;
+};
+
+// A binary glTF written as it is made: each element of the JSON's arrays as text into a
+// scratch file when it is added, the binary buffer into another, and the file put
+// together from them at the end (the JSON chunk first, so its length must be known
+// first). The JSON is what tinygltf's writer (which held the whole document, about
+// 550 MiB for the 10 km city's 336,518 nodes, and the buffer) made of the same model, to
+// the byte: each element's members sorted by name, as nlohmann's object holds them,
+// members at their default value left out, numbers as nlohmann prints them; each chunk
+// padded to 4 bytes, the JSON with spaces, the buffer with zeros.
 class Glb {
  public:
-  Glb() {
-    model_.asset.generator = std::string("exacity ") + kVersion;
-    model_.buffers.emplace_back();
-  }
+  explicit Glb(const std::filesystem::path& file)
+      : file_(file), bin_(file), accessors_(file), buffer_views_(file), images_(file), materials_(file),
+        meshes_(file), nodes_(file), samplers_(file), textures_(file) {}
 
-  int material(const std::string& name, const Colour& c, double roughness = 0.9) {
-    tinygltf::Material m;
-    m.name = name;
-    m.pbrMetallicRoughness.baseColorFactor = {c[0], c[1], c[2], 1.0};
-    m.pbrMetallicRoughness.metallicFactor = 0;
-    m.pbrMetallicRoughness.roughnessFactor = roughness;
-    model_.materials.push_back(m);
-    return static_cast<int>(model_.materials.size()) - 1;
+  int material(const std::string& name, const Colour& c, double roughness = 0.9, int texture = -1) {
+    json pbr{{"metallicFactor", 0.0}};
+    // tinygltf's defaults, which it leaves out: a white base colour, roughness 1.
+    auto same = [](double a, double b) { return std::fabs(a - b) < 1e-12; };
+    if (!(same(c[0], 1) && same(c[1], 1) && same(c[2], 1))) pbr["baseColorFactor"] = {c[0], c[1], c[2], 1.0};
+    if (!same(roughness, 1)) pbr["roughnessFactor"] = roughness;
+    if (texture >= 0) pbr["baseColorTexture"] = {{"index", texture}};
+    json m{{"pbrMetallicRoughness", std::move(pbr)}};
+    if (!name.empty()) m["name"] = name;
+    return materials_.add(m);
   }
 
   // A material whose base colour is the image times the colour.
   int textured_material(const std::string& name, const Colour& c, const TextureImage& image, bool clamp) {
-    const int m = material(name, c);
-    model_.materials[m].pbrMetallicRoughness.baseColorTexture.index = texture(image, clamp);
-    return m;
+    return material(name, c, 0.9, texture(image, clamp));
   }
 
   // POSITION, index and (with uvs) TEXCOORD_0 accessors for the triangles; position -1
@@ -91,137 +114,159 @@ class Glb {
     Float3 lo = t.positions[0], hi = t.positions[0];
     for (const Float3& p : t.positions)
       for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
-    int position = accessor(t.positions.data(), t.positions.size() * sizeof(Float3), TINYGLTF_TARGET_ARRAY_BUFFER,
-                            TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, t.positions.size());
-    model_.accessors[position].minValues = {lo[0], lo[1], lo[2]};
-    model_.accessors[position].maxValues = {hi[0], hi[1], hi[2]};
-    int index = accessor(t.indices.data(), t.indices.size() * sizeof(std::uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER,
-                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, t.indices.size());
-    int uv = -1;
+    json position = accessor(t.positions.data(), t.positions.size() * sizeof(Float3), kArrayBuffer, kFloat, "VEC3",
+                             t.positions.size());
+    position["min"] = {double{lo[0]}, double{lo[1]}, double{lo[2]}};
+    position["max"] = {double{hi[0]}, double{hi[1]}, double{hi[2]}};
+    Accessors out;
+    out.position = accessors_.add(position);
+    out.index = accessors_.add(accessor(t.indices.data(), t.indices.size() * sizeof(std::uint32_t),
+                                        kElementArrayBuffer, kUnsignedInt, "SCALAR", t.indices.size()));
     if (!t.uvs.empty())
-      uv = accessor(t.uvs.data(), t.uvs.size() * sizeof(Float2), TINYGLTF_TARGET_ARRAY_BUFFER,
-                    TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, t.uvs.size());
-    return {position, index, uv};
+      out.uv = accessors_.add(
+          accessor(t.uvs.data(), t.uvs.size() * sizeof(Float2), kArrayBuffer, kFloat, "VEC2", t.uvs.size()));
+    out.triangles = t.indices.size() / 3;
+    return out;
   }
 
   // A mesh of primitives (accessors, material); -1 when every primitive is empty.
   int mesh(const std::string& name, const std::vector<std::pair<Accessors, int>>& parts) {
-    tinygltf::Mesh m;
-    m.name = name;
+    json primitives = json::array();
     for (const auto& [acc, mat] : parts) {
       if (acc.position < 0) continue;
-      tinygltf::Primitive p;
-      p.attributes["POSITION"] = acc.position;
-      if (acc.uv >= 0) p.attributes["TEXCOORD_0"] = acc.uv;
-      p.indices = acc.index;
-      p.material = mat;
-      p.mode = TINYGLTF_MODE_TRIANGLES;
-      m.primitives.push_back(p);
-      triangles_ += model_.accessors[acc.index].count / 3;
+      json attributes{{"POSITION", acc.position}};
+      if (acc.uv >= 0) attributes["TEXCOORD_0"] = acc.uv;
+      primitives.push_back(
+          {{"attributes", std::move(attributes)}, {"indices", acc.index}, {"material", mat}, {"mode", kTriangles}});
+      triangles_ += acc.triangles;
     }
-    if (m.primitives.empty()) return -1;
-    model_.meshes.push_back(m);
-    return static_cast<int>(model_.meshes.size()) - 1;
+    if (primitives.empty()) return -1;
+    json m{{"primitives", std::move(primitives)}};
+    if (!name.empty()) m["name"] = name;
+    return meshes_.add(m);
   }
 
-  int node(tinygltf::Node n) {
-    model_.nodes.push_back(std::move(n));
-    return static_cast<int>(model_.nodes.size()) - 1;
+  int node(const Node& n) {
+    json o = json::object();
+    if (!n.translation.empty()) o["translation"] = n.translation;
+    if (!n.rotation.empty()) o["rotation"] = n.rotation;
+    if (!n.scale.empty()) o["scale"] = n.scale;
+    if (n.mesh != -1) o["mesh"] = n.mesh;
+    if (!n.name.empty()) o["name"] = n.name;
+    if (!n.children.empty()) o["children"] = n.children;
+    return nodes_.add(o);
   }
 
   std::size_t triangles() const { return triangles_; }
-  std::size_t meshes() const { return model_.meshes.size(); }
+  std::size_t meshes() const { return static_cast<std::size_t>(meshes_.size()); }
 
-  void write(int root, const std::filesystem::path& file) {
-    tinygltf::Scene scene;
-    scene.nodes = {root};
-    model_.scenes.push_back(scene);
-    model_.defaultScene = 0;
-    CancellableFile out(file);
-    tinygltf::TinyGLTF writer;
-    // tinygltf copies the binary buffer before it writes it (about 150 MB of the 10 km
-    // city's, at the 3D export's peak). So its JSON is made with the buffer set aside, the
-    // buffer's length is put back into it, and the two chunks are written as tinygltf's
-    // WriteBinaryGltfStream writes them: the same bytes.
-    std::vector<unsigned char> bin = std::move(model_.buffers[0].data);
-    model_.buffers[0].data.clear();
-    std::ostringstream without_bin;
-    if (!writer.WriteGltfSceneToStream(&model_, without_bin, false, true)) throw UserError(file.string() + ": write failed");
-    model_.buffers[0].data = std::move(bin);
-    std::string content = std::move(without_bin).str();
-    content.erase(0, 20);  // the header (12 bytes) and the JSON chunk's (8)
-    while (!content.empty() && content.back() == ' ') content.pop_back();  // its padding
-    const std::string empty = R"("buffers":[{"byteLength":0}])";
-    const std::size_t at = content.find(empty);
-    if (at == std::string::npos || content.find(empty, at + 1) != std::string::npos)
-      throw std::logic_error("glTF: the buffer's length is not where it was looked for");
-    content.replace(at, empty.size(), R"("buffers":[{"byteLength":)" + std::to_string(model_.buffers[0].data.size()) + "}]");
-    write_glb(out, content, model_.buffers[0].data);
+  // The file, with `root` the scene's one node.
+  void write(int root) {
+    // The JSON's members in name order, each array's elements from its scratch file.
+    struct Piece {
+      std::string text;
+      ScratchFile* elements = nullptr;  // after the text
+    };
+    std::vector<Piece> pieces{{"{"}};
+    bool first = true;
+    auto member = [&](const std::string& key, const std::string& value) {
+      pieces.back().text += (first ? "" : ",") + json(key).dump() + ":" + value;
+      first = false;
+    };
+    auto array = [&](const std::string& key, JsonArray& a) {
+      if (a.size() == 0) return;
+      member(key, "[");
+      pieces.push_back({"", &a.text()});
+      pieces.push_back({"]"});
+    };
+    array("accessors", accessors_);
+    member("asset", json{{"generator", std::string("exacity ") + kVersion}, {"version", "2.0"}}.dump());
+    array("bufferViews", buffer_views_);
+    member("buffers", json::array({{{"byteLength", bin_.size()}}}).dump());
+    array("images", images_);
+    array("materials", materials_);
+    array("meshes", meshes_);
+    array("nodes", nodes_);
+    array("samplers", samplers_);
+    member("scene", "0");
+    member("scenes", json::array({{{"nodes", {root}}}}).dump());
+    array("textures", textures_);
+    pieces.back().text += "}";
+
+    std::uint64_t json_size = 0;
+    for (const Piece& p : pieces) json_size += (p.elements ? p.elements->size() : 0) + p.text.size();
+    const std::uint64_t bin_size = bin_.size();
+    const std::uint64_t json_padding = (4 - json_size % 4) % 4, bin_padding = (4 - bin_size % 4) % 4;
+    const std::uint64_t length = 12 + 8 + json_size + json_padding + (bin_size ? 8 + bin_size + bin_padding : 0);
+    if (length > 0xFFFFFFFFu) throw UserError(file_.string() + ": larger than a GLB can be (4 GiB)");
+    CancellableFile out(file_);
+    auto word = [&](std::uint64_t w) {
+      const char bytes[4] = {static_cast<char>(w), static_cast<char>(w >> 8), static_cast<char>(w >> 16),
+                             static_cast<char>(w >> 24)};
+      out.write(bytes, 4);
+    };
+    out.write("glTF", 4);
+    word(2);
+    word(length);
+    word(json_size + json_padding);
+    word(0x4E4F534A);  // "JSON"
+    for (Piece& p : pieces) {
+      if (p.elements) p.elements->copy_to(out);
+      out << p.text;
+    }
+    out.write("   ", static_cast<std::streamsize>(json_padding));
+    if (bin_size) {
+      word(bin_size + bin_padding);
+      word(0x004E4942);  // "BIN"
+      bin_.copy_to(out);
+      out.write("\0\0\0", static_cast<std::streamsize>(bin_padding));
+    }
     out.close();
   }
 
  private:
   int buffer_view(const void* data, std::size_t bytes, int target) {
-    auto& buffer = model_.buffers[0].data;
-    while (buffer.size() % 4) buffer.push_back(0);
-    tinygltf::BufferView view;
-    view.buffer = 0;
-    view.byteOffset = buffer.size();
-    view.byteLength = bytes;
-    view.target = target;
-    const auto* p = static_cast<const unsigned char*>(data);
-    buffer.insert(buffer.end(), p, p + bytes);
-    model_.bufferViews.push_back(view);
-    return static_cast<int>(model_.bufferViews.size()) - 1;
+    bin_.append_zeros((4 - bin_.size() % 4) % 4);
+    json view{{"buffer", 0}, {"byteLength", bytes}};
+    if (bin_.size() > 0) view["byteOffset"] = bin_.size();
+    if (target) view["target"] = target;
+    bin_.append({static_cast<const char*>(data), bytes});
+    return buffer_views_.add(view);
   }
 
   // The image's file embedded in the buffer the first time a material uses it (its bytes
   // as read: glTF takes PNG and JPEG as they are), with a sampler that repeats it or
   // clamps it to its edge.
   int texture(const TextureImage& image, bool clamp) {
-    auto [stored, added] = images_.emplace(&image, static_cast<int>(model_.images.size()));
+    auto [stored, added] = image_index_.emplace(&image, images_.size());
     if (added) {
-      tinygltf::Image i;
-      i.name = image.file.filename().string();
-      i.mimeType = image.mime_type;
-      i.bufferView = buffer_view(image.bytes.data(), image.bytes.size(), 0);
-      model_.images.push_back(i);
+      json i{{"mimeType", image.mime_type}, {"bufferView", buffer_view(image.bytes.data(), image.bytes.size(), 0)}};
+      if (const std::string name = image.file.filename().string(); !name.empty()) i["name"] = name;
+      images_.add(i);
     }
-    auto [sampler, new_sampler] = samplers_.emplace(clamp, static_cast<int>(model_.samplers.size()));
+    auto [sampler, new_sampler] = sampler_index_.emplace(clamp, samplers_.size());
     if (new_sampler) {
-      tinygltf::Sampler s;
-      s.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
-      s.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
-      s.wrapS = s.wrapT = clamp ? TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE : TINYGLTF_TEXTURE_WRAP_REPEAT;
-      model_.samplers.push_back(s);
+      const int wrap = clamp ? kClampToEdge : kRepeat;
+      samplers_.add({{"magFilter", kLinear}, {"minFilter", kLinearMipmapLinear}, {"wrapS", wrap}, {"wrapT", wrap}});
     }
     auto [texture, new_texture] =
-        textures_.emplace(std::make_pair(stored->second, sampler->second), static_cast<int>(model_.textures.size()));
-    if (new_texture) {
-      tinygltf::Texture t;
-      t.source = stored->second;
-      t.sampler = sampler->second;
-      model_.textures.push_back(t);
-    }
+        texture_index_.emplace(std::make_pair(stored->second, sampler->second), textures_.size());
+    if (new_texture) textures_.add({{"sampler", sampler->second}, {"source", stored->second}});
     return texture->second;
   }
 
-  int accessor(const void* data, std::size_t bytes, int target, int component, int type, std::size_t count) {
-    tinygltf::Accessor a;
-    a.bufferView = buffer_view(data, bytes, target);
-    a.byteOffset = 0;
-    a.componentType = component;
-    a.type = type;
-    a.count = count;
-    model_.accessors.push_back(a);
-    return static_cast<int>(model_.accessors.size()) - 1;
+  // An accessor of the data, put into the buffer; its bounds are the caller's to add.
+  json accessor(const void* data, std::size_t bytes, int target, int component, const char* type, std::size_t count) {
+    return {{"bufferView", buffer_view(data, bytes, target)}, {"componentType", component}, {"count", count}, {"type", type}};
   }
 
-  tinygltf::Model model_;
+  std::filesystem::path file_;
+  ScratchFile bin_;
+  JsonArray accessors_, buffer_views_, images_, materials_, meshes_, nodes_, samplers_, textures_;
   std::size_t triangles_ = 0;
-  std::map<const TextureImage*, int> images_;
-  std::map<bool, int> samplers_;                 // by clamp
-  std::map<std::pair<int, int>, int> textures_;  // by (image, sampler)
+  std::map<const TextureImage*, int> image_index_;
+  std::map<bool, int> sampler_index_;                 // by clamp
+  std::map<std::pair<int, int>, int> texture_index_;  // by (image, sampler)
 };
 
 // Exacity's x east, y north, z up to glTF's x, y up, z south, about the local origin.
@@ -322,7 +367,7 @@ struct StoredModels {
 // Placed models: geometry once per model, a mesh per colour variant used, a node each
 // (children of `root`). Returns the nodes added.
 std::size_t add_model_nodes(const std::vector<ModelInstance>& models, const ModelLibrary* library, const Frame& local,
-                            Glb& glb, tinygltf::Node& root, StoredModels& stored) {
+                            Glb& glb, Node& root, StoredModels& stored) {
   auto& geometry = stored.geometry;
   auto& variant_mesh = stored.variant_mesh;
   const CancelCheck cancel;
@@ -361,7 +406,7 @@ std::size_t add_model_nodes(const std::vector<ModelInstance>& models, const Mode
       }
       it->second = glb.mesh(model.name + "_" + std::to_string(m.placed.tint), prims);
     }
-    tinygltf::Node n;
+    Node n;
     n.name = model.name;
     n.mesh = it->second;
     Float3 at = local(m.placed.position.x, m.placed.position.y, m.floor);
@@ -374,8 +419,8 @@ std::size_t add_model_nodes(const std::vector<ModelInstance>& models, const Mode
 }
 
 // A node holding one mesh of the primitives, under `root`; none when they are all empty.
-void add_mesh_node(const std::string& name, const Primitives& primitives, Glb& glb, tinygltf::Node& root) {
-  tinygltf::Node node;
+void add_mesh_node(const std::string& name, const Primitives& primitives, Glb& glb, Node& root) {
+  Node node;
   node.name = name;
   node.mesh = glb.mesh(name, primitives);
   if (node.mesh >= 0) root.children.push_back(glb.node(node));
@@ -387,8 +432,8 @@ GltfCounts write_city_part(const std::vector<GroundLayer>* ground_layers, const 
                            const std::vector<Mesh>& meshes, std::uint64_t seed, const ModelLibrary* library,
                            const std::filesystem::path& file, const std::vector<ModelInstance>& clutter) {
   const Frame local{local_origin(box)};
-  Glb glb;
-  tinygltf::Node root;
+  Glb glb(file);
+  Node root;
   root.name = "city";
   root.translation = {local.origin.x, 0, -local.origin.y};
   if (ground_layers) add_mesh_node("ground", ground_primitives(*ground_layers, local, glb), glb, root);
@@ -398,12 +443,12 @@ GltfCounts write_city_part(const std::vector<GroundLayer>* ground_layers, const 
   counts.instances = add_model_nodes(models, library, local, glb, root, stored);
   if (!clutter.empty()) {
     // The street clutter under a node of its own, in clutter.geojson's order.
-    tinygltf::Node group;
+    Node group;
     group.name = "clutter";
     counts.instances += add_model_nodes(clutter, library, local, glb, group, stored);
     root.children.push_back(glb.node(group));
   }
-  glb.write(glb.node(root), file);
+  glb.write(glb.node(root));
   counts.meshes = glb.meshes();
   counts.triangles = glb.triangles();
   return counts;
@@ -445,14 +490,14 @@ GltfCounts write_gltf_boxes(const geom::Box& city, const std::vector<StructureBo
     quad(Surface::Wall, {{{1, 1, 0}, {0, 1, 0}, {0, 1, 1}, {1, 1, 1}}});
     quad(Surface::Wall, {{{0, 1, 0}, {0, 0, 0}, {0, 0, 1}, {0, 1, 1}}});
   }
-  Glb glb;
-  tinygltf::Node root;
+  Glb glb(file);
+  Node root;
   root.name = "city";
   root.translation = {local.origin.x, 0, -local.origin.y};
   Primitives prims;
   for (const auto& [look, t] : merged) prims.push_back({glb.accessors(t), look_material(look, glb)});
   add_mesh_node("boxes", prims, glb, root);
-  glb.write(glb.node(root), file);
+  glb.write(glb.node(root));
   GltfCounts counts;
   counts.meshes = glb.meshes();
   counts.triangles = glb.triangles();
