@@ -193,13 +193,24 @@ ordered_json footprints_by_zone(const City& city) {
   std::vector<double> lots_in_block(city.blocks.size(), 0);
   for (const Lot& lot : city.lots)
     if (lot.block >= 0) lots_in_block[lot.block] += geom::area(lot.polygon);
+  std::vector<double> generated_on(city.lots.size(), 0);  // generated footprint area per lot
+  for (const Building& b : city.buildings)
+    if (b.mapped < 0 && b.lot >= 0) generated_on[b.lot] += geom::area(b.polygon);
+  for (const ModelInstance& m : city.models)
+    if (m.kind == ModelKind::Building && m.lot >= 0) generated_on[m.lot] += geom::area(m.polygon);
   for (std::size_t i = 0; i < city.lots.size(); ++i) {
     const Lot& lot = city.lots[i];
     const double area = geom::area(lot.polygon);
     const double land = lot.block >= 0 && lots_in_block[lot.block] > 0
                             ? area * geom::area(city.blocks[lot.block].polygon) / lots_in_block[lot.block]
                             : area;
-    zones[lot.zone][i < city.held_lots.size() && city.held_lots[i] ? 0 : 1].land_m2 += land;
+    // A lot mapped buildings stand on is the mapped ones' land, shared with the generated
+    // ones built around them (lot_coverage) in proportion to their footprint areas on it.
+    const bool held = i < city.held_lots.size() && city.held_lots[i];
+    const double mapped = held ? city.held_m2[i] : 0;
+    const double mapped_share = !held ? 0 : generated_on[i] > 0 ? mapped / (mapped + generated_on[i]) : 1;
+    zones[lot.zone][0].land_m2 += land * mapped_share;
+    zones[lot.zone][1].land_m2 += land * (1 - mapped_share);
   }
   std::map<ZoneType, double> land_use;
   for (const ZoneFeature& z : city.drawn.zones)
@@ -275,7 +286,8 @@ ordered_json mapped_buildings_report(const City& city) {
             {"roofs", t.part_roofs}}},
           {"roads_narrowed", t.roads_narrowed},
           {"roads_narrowed_named", t.narrowed},
-          {"lots_not_built_again", t.held_lots},
+          {"lots_not_built_again", t.held_lots - t.held_lots_built_on},
+          {"lots_built_around_them", t.held_lots_built_on},
           {"generated", generated},
           {"built_up_m2", {{"mapped", std::round(mapped_area * 100) / 100}, {"generated", std::round(generated_area * 100) / 100}}},
           {"built_up_share", {{"mapped", share(mapped_area)}, {"generated", share(generated_area)}}}};
