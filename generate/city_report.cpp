@@ -293,6 +293,34 @@ ordered_json mapped_buildings_report(const City& city) {
           {"built_up_share", {{"mapped", share(mapped_area)}, {"generated", share(generated_area)}}}};
 }
 
+// report.json's osm: what the readers of OpenStreetMap's files (or GIS exports of them)
+// took, left out by why, and mended, so no feature of theirs goes without a count; null for
+// a sketch of none.
+ordered_json osm_report(const Sketch& sketch) {
+  if (sketch.osm_counts.empty() && sketch.osm_taken.empty()) return nullptr;
+  ordered_json files = ordered_json::array();
+  for (const Sketch::OsmCounts& file : sketch.osm_counts) {
+    int left_out = 0;
+    for (const auto& [why, n] : file.left_out) left_out += n;
+    files.push_back({{"file", file.file}, {"left_out", left_out}, {"left_out_why", file.left_out}, {"repaired", file.repaired}});
+  }
+  return {{"taken", sketch.osm_taken}, {"files", files}};
+}
+
+// report.json's sketch_roads: what became of the roads the sketch draws (an extract's taken
+// highways): every one is in the map; those narrowed to clear a mapped building, and those
+// whose surface other roads cover (no road area: roads_without_area names them).
+ordered_json sketch_roads_report(const City& city) {
+  int without_area = 0;
+  for (int id : city.ground.roads_without_area) without_area += city.ground.roads[id].sketch_road >= 0;
+  const int drawn = static_cast<int>(city.drawn.roads.size());
+  return {{"in_sketch", drawn},
+          {"with_road_area", drawn - without_area},
+          {"without_road_area", without_area},
+          {"narrowed_for_mapped_buildings", city.mapped.roads_narrowed},
+          {"generated", static_cast<int>(city.network.map.roads.size()) - city.network.map.sketch_roads}};
+}
+
 // Per zone type, where its blocks' land went (LotLand): m² and the share of the blocks' land.
 ordered_json lot_land_report(const std::map<ZoneType, LotLand>& land) {
   ordered_json out = ordered_json::object();
@@ -314,7 +342,8 @@ ordered_json lot_land_report(const std::map<ZoneType, LotLand>& land) {
 
 }  // namespace
 
-ordered_json city_report(const City& city, const std::vector<std::string>& vector_formats, bool city_osm) {
+ordered_json city_report(const Sketch& sketch, const City& city, const std::vector<std::string>& vector_formats,
+                         bool city_osm) {
   const CitySettings& settings = city.settings;
   ordered_json report{
       {"generator", "exacity"},
@@ -329,6 +358,7 @@ ordered_json city_report(const City& city, const std::vector<std::string>& vecto
        {{"vector_formats", vector_formats.empty() ? std::vector<std::string>{"geojson"} : vector_formats},
         {"city_osm", city_osm ? "city.osm" : "not written: the sketch has no CRS (EPSG) to place it on Earth"}}},
       {"road_network", road_network_report(city.network, city.drawn)},
+      {"sketch_roads", sketch_roads_report(city)},
       {"unbuilt_lots", {{"merged", city.unbuilt_lots.merged}, {"left_open", city.unbuilt_lots.left_open},
                         {"left_open_m2", std::round(city.unbuilt_lots.left_open_m2)}}},
       {"lot_land", lot_land_report(city.lot_land)},
@@ -342,6 +372,7 @@ ordered_json city_report(const City& city, const std::vector<std::string>& vecto
       {"timings_s", nullptr},
   };
   if (!city.drawn.buildings.empty() || !city.drawn.buildings_left_out.empty()) report["mapped_buildings"] = mapped_buildings_report(city);
+  if (ordered_json osm = osm_report(sketch); !osm.is_null()) report["osm"] = std::move(osm);
   if (const LandUseTally& l = city.drawn.land_use; l.closed_along_bounds > 0 || l.infer_zones) {
     report["land_use"] = {{"closed_along_bounds", l.closed_along_bounds}};
     if (l.infer_zones)

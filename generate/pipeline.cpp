@@ -234,7 +234,7 @@ GenerateResult write(const Sketch& sketch, const City& city, City* released, con
     write_vector_formats(dir, options.vector_formats, city.settings.crs);
     city_osm = write_city_osm(city, dir / "city.osm", options.osm_first_id);
   });
-  ordered_json report = city_report(city, options.vector_formats, city_osm);
+  ordered_json report = city_report(sketch, city, options.vector_formats, city_osm);
   WrittenCity written;
   if (options.three_d)
     written.three_d = stages.run("3d export", [&] {
