@@ -52,6 +52,15 @@ ordered_json one_street(const ordered_json& zone) {
   return sketch;
 }
 
+// Lots 40 m wide and 60 m deep taking 10 m square footprints 3 m behind the street and 4 m
+// apart, with `coverage` as lot_coverage (none when 0).
+ordered_json square_footprints_zone(double coverage) {
+  ordered_json zone{{"layout", "streets"}, {"lot_width", {40, 40}}, {"lot_depth", 60}, {"setback", 3},
+                    {"building_gap", 4}, {"footprint_width", {10, 10}}, {"footprint_depth", {10, 10}}};
+  if (coverage > 0) zone["lot_coverage"] = coverage;
+  return zone;
+}
+
 }  // namespace
 
 // The twelve footprints' figures come out exactly, and the settings from them: setback and
@@ -145,10 +154,7 @@ TEST(Like, GeneratedMedianMovesTowardThePlace) {
 TEST(Like, LotCoverageFillsLotsRowBehindRow) {
   const fs::path dir = testing_util::temp_dir("like_lot_coverage");
   auto run = [&](double coverage, const char* out) {
-    ordered_json zone{{"layout", "streets"}, {"lot_width", {40, 40}}, {"lot_depth", 60}, {"setback", 3},
-                      {"building_gap", 4}, {"footprint_width", {10, 10}}, {"footprint_depth", {10, 10}}};
-    if (coverage > 0) zone["lot_coverage"] = coverage;
-    write(dir / (std::string(out) + ".geojson"), one_street(zone).dump());
+    write(dir / (std::string(out) + ".geojson"), one_street(square_footprints_zone(coverage)).dump());
     const auto r = cli_util::run("generate " + (dir / (std::string(out) + ".geojson")).string() + " -q -o " + (dir / out).string());
     EXPECT_EQ(r.code, 0) << r.out;
     std::set<double> fronts;  // each footprint's least y, to the centimetre: one per row
@@ -221,10 +227,7 @@ TEST(Like, LotCoverageGivesTheBlocksOpenLandToTheirLots) {
 TEST(Like, ALotAMappedBuildingStandsOnIsBuiltAroundItToItsCoverage) {
   const fs::path dir = testing_util::temp_dir("like_built_around_mapped");
   auto run = [&](double coverage, const char* out) {
-    ordered_json zone{{"layout", "streets"}, {"lot_width", {40, 40}}, {"lot_depth", 60}, {"setback", 3},
-                      {"building_gap", 4}, {"footprint_width", {10, 10}}, {"footprint_depth", {10, 10}}};
-    if (coverage > 0) zone["lot_coverage"] = coverage;
-    ordered_json sketch = one_street(zone);
+    ordered_json sketch = one_street(square_footprints_zone(coverage));
     sketch["features"].push_back({{"type", "Feature"}, {"properties", {{"building", "house"}}},
                                   {"geometry", {{"type", "Polygon"}, {"coordinates", rectangle(54, 20, 66, 32)}}}});
     write(dir / (std::string(out) + ".geojson"), sketch.dump());
