@@ -40,6 +40,7 @@ struct City {
   std::vector<Building> buildings;  // extruded, then the mapped ones kept
   MappedTally mapped;  // what became of the sketch's mapped buildings
   std::vector<char> held_lots;  // per lot: a mapped building stands on it
+  std::vector<double> held_m2;  // per lot: the mapped footprints' area on it
   std::vector<ModelInstance> models;  // placed from the library
   StreetClutter clutter;  // along the streets; written as vector/clutter.geojson
   Ground ground;

@@ -193,13 +193,24 @@ ordered_json footprints_by_zone(const City& city) {
   std::vector<double> lots_in_block(city.blocks.size(), 0);
   for (const Lot& lot : city.lots)
     if (lot.block >= 0) lots_in_block[lot.block] += geom::area(lot.polygon);
+  std::vector<double> generated_on(city.lots.size(), 0);  // generated footprint area per lot
+  for (const Building& b : city.buildings)
+    if (b.mapped < 0 && b.lot >= 0) generated_on[b.lot] += geom::area(b.polygon);
+  for (const ModelInstance& m : city.models)
+    if (m.kind == ModelKind::Building && m.lot >= 0) generated_on[m.lot] += geom::area(m.polygon);
   for (std::size_t i = 0; i < city.lots.size(); ++i) {
     const Lot& lot = city.lots[i];
     const double area = geom::area(lot.polygon);
     const double land = lot.block >= 0 && lots_in_block[lot.block] > 0
                             ? area * geom::area(city.blocks[lot.block].polygon) / lots_in_block[lot.block]
                             : area;
-    zones[lot.zone][i < city.held_lots.size() && city.held_lots[i] ? 0 : 1].land_m2 += land;
+    // A lot mapped buildings stand on is the mapped ones' land, shared with the generated
+    // ones built around them (lot_coverage) in proportion to their footprint areas on it.
+    const bool held = i < city.held_lots.size() && city.held_lots[i];
+    const double mapped = held ? city.held_m2[i] : 0;
+    const double mapped_share = !held ? 0 : generated_on[i] > 0 ? mapped / (mapped + generated_on[i]) : 1;
+    zones[lot.zone][0].land_m2 += land * mapped_share;
+    zones[lot.zone][1].land_m2 += land * (1 - mapped_share);
   }
   std::map<ZoneType, double> land_use;
   for (const ZoneFeature& z : city.drawn.zones)
@@ -275,10 +286,39 @@ ordered_json mapped_buildings_report(const City& city) {
             {"roofs", t.part_roofs}}},
           {"roads_narrowed", t.roads_narrowed},
           {"roads_narrowed_named", t.narrowed},
-          {"lots_not_built_again", t.held_lots},
+          {"lots_not_built_again", t.held_lots - t.held_lots_built_on},
+          {"lots_built_around_them", t.held_lots_built_on},
           {"generated", generated},
           {"built_up_m2", {{"mapped", std::round(mapped_area * 100) / 100}, {"generated", std::round(generated_area * 100) / 100}}},
           {"built_up_share", {{"mapped", share(mapped_area)}, {"generated", share(generated_area)}}}};
+}
+
+// report.json's osm: what the readers of OpenStreetMap's files (or GIS exports of them)
+// took, left out by why, and mended, so no feature of theirs goes without a count; null for
+// a sketch of none.
+ordered_json osm_report(const Sketch& sketch) {
+  if (sketch.osm_counts.empty() && sketch.osm_taken.empty()) return nullptr;
+  ordered_json files = ordered_json::array();
+  for (const Sketch::OsmCounts& file : sketch.osm_counts) {
+    int left_out = 0;
+    for (const auto& [why, n] : file.left_out) left_out += n;
+    files.push_back({{"file", file.file}, {"left_out", left_out}, {"left_out_why", file.left_out}, {"repaired", file.repaired}});
+  }
+  return {{"taken", sketch.osm_taken}, {"files", files}};
+}
+
+// report.json's sketch_roads: what became of the roads the sketch draws (an extract's taken
+// highways): every one is in the map; those narrowed to clear a mapped building, and those
+// whose surface other roads cover (no road area: roads_without_area names them).
+ordered_json sketch_roads_report(const City& city) {
+  int without_area = 0;
+  for (int id : city.ground.roads_without_area) without_area += city.ground.roads[id].sketch_road >= 0;
+  const int drawn = static_cast<int>(city.drawn.roads.size());
+  return {{"in_sketch", drawn},
+          {"with_road_area", drawn - without_area},
+          {"without_road_area", without_area},
+          {"narrowed_for_mapped_buildings", city.mapped.roads_narrowed},
+          {"generated", static_cast<int>(city.network.map.roads.size()) - city.network.map.sketch_roads}};
 }
 
 // Per zone type, where its blocks' land went (LotLand): m² and the share of the blocks' land.
@@ -302,7 +342,8 @@ ordered_json lot_land_report(const std::map<ZoneType, LotLand>& land) {
 
 }  // namespace
 
-ordered_json city_report(const City& city, const std::vector<std::string>& vector_formats, bool city_osm) {
+ordered_json city_report(const Sketch& sketch, const City& city, const std::vector<std::string>& vector_formats,
+                         bool city_osm) {
   const CitySettings& settings = city.settings;
   ordered_json report{
       {"generator", "exacity"},
@@ -317,6 +358,7 @@ ordered_json city_report(const City& city, const std::vector<std::string>& vecto
        {{"vector_formats", vector_formats.empty() ? std::vector<std::string>{"geojson"} : vector_formats},
         {"city_osm", city_osm ? "city.osm" : "not written: the sketch has no CRS (EPSG) to place it on Earth"}}},
       {"road_network", road_network_report(city.network, city.drawn)},
+      {"sketch_roads", sketch_roads_report(city)},
       {"unbuilt_lots", {{"merged", city.unbuilt_lots.merged}, {"left_open", city.unbuilt_lots.left_open},
                         {"left_open_m2", std::round(city.unbuilt_lots.left_open_m2)}}},
       {"lot_land", lot_land_report(city.lot_land)},
@@ -330,6 +372,7 @@ ordered_json city_report(const City& city, const std::vector<std::string>& vecto
       {"timings_s", nullptr},
   };
   if (!city.drawn.buildings.empty() || !city.drawn.buildings_left_out.empty()) report["mapped_buildings"] = mapped_buildings_report(city);
+  if (ordered_json osm = osm_report(sketch); !osm.is_null()) report["osm"] = std::move(osm);
   if (const LandUseTally& l = city.drawn.land_use; l.closed_along_bounds > 0 || l.infer_zones) {
     report["land_use"] = {{"closed_along_bounds", l.closed_along_bounds}};
     if (l.infer_zones)

@@ -25,8 +25,10 @@ struct WrittenCity {
 // The report of what the city holds, made before the 3D export (so that what only it reads
 // of the city, its map and layers, can be freed then): `vector_formats` written beside
 // GeoJSON, `city_osm` whether city.osm was (the sketch has a CRS). The 3D exports' counts,
-// the validation and the timings are left for complete_report, in their places.
-nlohmann::ordered_json city_report(const City& city, const std::vector<std::string>& vector_formats, bool city_osm);
+// the validation and the timings are left for complete_report, in their places. `sketch`
+// gives what its readers took and left out of OpenStreetMap's features.
+nlohmann::ordered_json city_report(const Sketch& sketch, const City& city, const std::vector<std::string>& vector_formats,
+                                   bool city_osm);
 // Fills in those (the 3D exports' counts left out when they were not written), with the stages' timings under timings_s; reads only the city's cache.
 void complete_report(nlohmann::ordered_json& report, const City& city, const WrittenCity& written,
                      const nlohmann::ordered_json& timings);

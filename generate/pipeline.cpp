@@ -52,7 +52,8 @@ std::vector<Lot> with_density(std::vector<Lot> lots, const std::vector<Block>& b
 // Buildings on every lot. Lots no placer could build on are merged into a neighbour or,
 // the last time, left open (merge_unbuilt_lots), and every lot is placed again, twice at
 // most: with lot ids renumbered, every lot draws from its new stream.
-// Lots a mapped building stands on (`held`, as the lots end) count as built and get nothing more.
+// Lots a mapped building stands on (`held`, as the lots end) count as built; only where their
+// zone sets lot_coverage are they built on, around the mapped footprints (place_buildings).
 // `pieces` is kept the pieces' land of the lots as they end.
 Structures build_on_lots(City& city, const std::vector<PlannedLot>& planned, const std::vector<Building>& mapped,
                          HeldLots& held, PiecesLand& pieces) {
@@ -60,12 +61,18 @@ Structures build_on_lots(City& city, const std::vector<PlannedLot>& planned, con
   for (int merges = 0;; ++merges) {
     held = lots_holding(city.lots, mapped);
     Structures s = place_buildings(city.lots, city.settings, city.model_library(), city.channels, city.heightmap(),
-                                   city.regions ? &city.regions->placements : nullptr, &held.held);
-    city.mapped.held_lots = static_cast<int>(std::count(held.held.begin(), held.held.end(), 1));
-    city.held_lots = held.held;
-    std::vector<char> built = held.held;
+                                   city.regions ? &city.regions->placements : nullptr, &held);
+    std::vector<char> built(city.lots.size(), 0);
     for (const Building& b : s.buildings) built[b.lot] = 1;
     for (const ModelInstance& m : s.models) built[m.lot] |= m.kind == ModelKind::Building;
+    city.mapped.held_lots = city.mapped.held_lots_built_on = 0;
+    for (std::size_t i = 0; i < built.size(); ++i) {
+      city.mapped.held_lots += held.held[i];
+      city.mapped.held_lots_built_on += held.held[i] && built[i];
+      built[i] |= held.held[i];
+    }
+    city.held_lots = held.held;
+    city.held_m2 = held.standing_m2;
     if (merges == kMerges || std::count(built.begin(), built.end(), 0) == 0) return s;
     city.lots = with_density(merge_unbuilt_lots(city.network.map, planned, city.lots, built, merges + 1 == kMerges,
                                                 city.settings, city.unbuilt_lots, &pieces),
@@ -236,7 +243,7 @@ GenerateResult write(const Sketch& sketch, const City& city, City* released, con
     write_vector_formats(dir, options.vector_formats, city.settings.crs);
     city_osm = write_city_osm(city, dir / "city.osm", options.osm_first_id);
   });
-  ordered_json report = city_report(city, options.vector_formats, city_osm);
+  ordered_json report = city_report(sketch, city, options.vector_formats, city_osm);
   WrittenCity written;
   if (options.three_d)
     written.three_d = stages.run("3d export", [&] {

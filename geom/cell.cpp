@@ -103,16 +103,28 @@ bool Cell::contains(Vec2 v) const {
 }
 
 bool Cell::holds(const Ring& ring) const {
-  if (ring.size() < 3 || !contains(ring[0])) return false;
+  if (ring.size() < 3) return false;
   Box box = Box::none();
   for (Vec2 v : ring) box.add(v);
+  // Each exact vertex lies within a step of its rounded double either way, so what lies past
+  // the rounded bounds by more cannot be inside, and an edge whose rounded ends' box, a step
+  // wider, misses the ring's cannot meet it: both decided before anything exact is made
+  // (placers ask this of every place they try).
+  const auto down = [](double v) { return std::nextafter(v, -INFINITY); };
+  const auto up = [](double v) { return std::nextafter(v, INFINITY); };
+  const Box& b = impl_->bounds;
+  if (box.min_x < down(b.min_x) || box.max_x > up(b.max_x) || box.min_y < down(b.min_y) || box.max_y > up(b.max_y))
+    return false;
+  if (!contains(ring[0])) return false;
   std::vector<Segment> sides;
   for (std::size_t i = 0; i < ring.size(); ++i) sides.emplace_back(to_exact(ring[i]), to_exact(ring[(i + 1) % ring.size()]));
   auto crosses = [&](const KindRing& r) {
     for (std::size_t i = 0; i < r.points.size(); ++i) {
+      const Vec2 a = r.rounded[i], c = r.rounded[(i + 1) % r.points.size()];
+      if (up(std::max(a.x, c.x)) < box.min_x || down(std::min(a.x, c.x)) > box.max_x ||
+          up(std::max(a.y, c.y)) < box.min_y || down(std::min(a.y, c.y)) > box.max_y)
+        continue;
       Segment e(r.points[i], r.points[(i + 1) % r.points.size()]);
-      CGAL::Bbox_2 eb = e.bbox();
-      if (eb.xmax() < box.min_x || eb.xmin() > box.max_x || eb.ymax() < box.min_y || eb.ymin() > box.max_y) continue;
       for (const Segment& s : sides)
         if (CGAL::do_intersect(s, e)) return true;
     }

@@ -294,6 +294,17 @@ TEST(Gis, AnOsmExtractBecomesZonesRoadsAndWater) {
   EXPECT_TRUE(result.valid);
   EXPECT_GT(result.report["counts"]["lots"].get<int>(), 50);
   EXPECT_EQ(result.report["counts"]["water"].get<int>(), 2);
+  // report.json counts every feature the extract's reader took, left out and mended (they
+  // were only in OUT/sketch.geojson), and what became of the roads it took: all 7 in the
+  // map, each with its area.
+  const ordered_json& osm = result.report["osm"];
+  EXPECT_EQ(osm["taken"], ordered_json::parse(R"({"rivers": 1, "roads": 7, "zones": 4})")) << osm.dump();
+  ASSERT_EQ(osm["files"].size(), 1u) << osm.dump();
+  EXPECT_EQ(osm["files"][0]["left_out"], 2);
+  EXPECT_EQ(osm["files"][0]["left_out_why"], doc["osm"]["skipped"]);
+  EXPECT_EQ(osm["files"][0]["repaired"], ordered_json::array());
+  EXPECT_EQ(result.report["sketch_roads"], ordered_json::parse(R"({"in_sketch": 7, "with_road_area": 7,
+      "without_road_area": 0, "narrowed_for_mapped_buildings": 0, "generated": 0})"));
 }
 
 TEST(Gis, EveryVectorFormatReadsBackWithOgr) {
@@ -1399,6 +1410,7 @@ TEST(Gis, AStreetGivesWayToAMappedBuildingBesideItDownToItsCarriageway) {
   EXPECT_EQ(report["kept"], 1) << report.dump(1);
   EXPECT_EQ(report["refused_why"], ordered_json::parse(R"({"crosses a road surface": 1})")) << report.dump(1);
   EXPECT_EQ(report["roads_narrowed"], 1) << report.dump(1);
+  EXPECT_EQ(result.report["sketch_roads"]["narrowed_for_mapped_buildings"], 1);  // repaired, among the roads taken
   ASSERT_EQ(report["roads_narrowed_named"].size(), 1u) << report.dump(1);
   const std::string narrowed = report["roads_narrowed_named"][0];
   EXPECT_EQ(narrowed.substr(0, narrowed.find(" to ")), "way/105: 8 m wide") << narrowed;

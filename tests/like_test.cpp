@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 #include <vector>
@@ -49,6 +50,15 @@ ordered_json one_street(const ordered_json& zone) {
   sketch["features"].push_back({{"type", "Feature"}, {"properties", {{"road", "local"}}},
                                 {"geometry", {{"type", "LineString"}, {"coordinates", {{-20, 0}, {220, 0}}}}}});
   return sketch;
+}
+
+// Lots 40 m wide and 60 m deep taking 10 m square footprints 3 m behind the street and 4 m
+// apart, with `coverage` as lot_coverage (none when 0).
+ordered_json square_footprints_zone(double coverage) {
+  ordered_json zone{{"layout", "streets"}, {"lot_width", {40, 40}}, {"lot_depth", 60}, {"setback", 3},
+                    {"building_gap", 4}, {"footprint_width", {10, 10}}, {"footprint_depth", {10, 10}}};
+  if (coverage > 0) zone["lot_coverage"] = coverage;
+  return zone;
 }
 
 }  // namespace
@@ -144,10 +154,7 @@ TEST(Like, GeneratedMedianMovesTowardThePlace) {
 TEST(Like, LotCoverageFillsLotsRowBehindRow) {
   const fs::path dir = testing_util::temp_dir("like_lot_coverage");
   auto run = [&](double coverage, const char* out) {
-    ordered_json zone{{"layout", "streets"}, {"lot_width", {40, 40}}, {"lot_depth", 60}, {"setback", 3},
-                      {"building_gap", 4}, {"footprint_width", {10, 10}}, {"footprint_depth", {10, 10}}};
-    if (coverage > 0) zone["lot_coverage"] = coverage;
-    write(dir / (std::string(out) + ".geojson"), one_street(zone).dump());
+    write(dir / (std::string(out) + ".geojson"), one_street(square_footprints_zone(coverage)).dump());
     const auto r = cli_util::run("generate " + (dir / (std::string(out) + ".geojson")).string() + " -q -o " + (dir / out).string());
     EXPECT_EQ(r.code, 0) << r.out;
     std::set<double> fronts;  // each footprint's least y, to the centimetre: one per row
@@ -209,6 +216,63 @@ TEST(Like, LotCoverageGivesTheBlocksOpenLandToTheirLots) {
   EXPECT_GT(no_lot("residential", 0, "residential_open"), 0.5);
   EXPECT_LT(no_lot("residential", 0.2, "residential_filled"), 0.01);
   EXPECT_LT(no_lot("industrial", 0.2, "industrial_filled"), 0.01);
+}
+
+// A lot a mapped building stands on is built around it up to lot_coverage, the mapped
+// footprint counted as covered: lots 40 m wide and 56 m deep with 10 m square footprints
+// 4 m apart; the house mapped 12 m square on one of them keeps its lot's generated ones 4 m
+// away, and they and it cover 0.25 of the lot (one footprint past it at most). Without
+// lot_coverage (nothing says how much more it takes) the lot gets nothing, as before; so
+// it did with it too (the lot was not built again, and Kotka's completion built 35% less land).
+TEST(Like, ALotAMappedBuildingStandsOnIsBuiltAroundItToItsCoverage) {
+  const fs::path dir = testing_util::temp_dir("like_built_around_mapped");
+  auto run = [&](double coverage, const char* out) {
+    ordered_json sketch = one_street(square_footprints_zone(coverage));
+    sketch["features"].push_back({{"type", "Feature"}, {"properties", {{"building", "house"}}},
+                                  {"geometry", {{"type", "Polygon"}, {"coordinates", rectangle(54, 20, 66, 32)}}}});
+    write(dir / (std::string(out) + ".geojson"), sketch.dump());
+    const auto r = cli_util::run("generate " + (dir / (std::string(out) + ".geojson")).string() + " -q -o " + (dir / out).string());
+    EXPECT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(cli_util::run("validate " + (dir / out).string()).code, 0);
+    return ordered_json::parse(cli_util::read(dir / out / "vector" / "buildings.geojson"))["features"];
+  };
+  auto box = [](const ordered_json& feature) {
+    std::array<double, 4> b{INFINITY, INFINITY, -INFINITY, -INFINITY};
+    for (const ordered_json& p : feature["geometry"]["coordinates"][0]) {
+      b[0] = std::min(b[0], p[0].get<double>()), b[1] = std::min(b[1], p[1].get<double>());
+      b[2] = std::max(b[2], p[0].get<double>()), b[3] = std::max(b[3], p[1].get<double>());
+    }
+    return b;
+  };
+  for (double coverage : {0.0, 0.25}) {
+    const ordered_json features = run(coverage, coverage > 0 ? "covered" : "not_covered");
+    const auto mapped = std::find_if(features.begin(), features.end(), [](const ordered_json& f) { return f["properties"].value("mapped", false); });
+    ASSERT_NE(mapped, features.end());
+    const int lot = (*mapped)["properties"]["lot"].get<int>();
+    const std::array<double, 4> house = box(*mapped);
+    double covered = 144;
+    int around = 0;
+    for (const ordered_json& f : features) {
+      if (f["properties"]["kind"] != "building" || f["properties"]["lot"] != lot || f["properties"].value("mapped", false)) continue;
+      const std::array<double, 4> b = box(f);
+      EXPECT_GE(std::max({house[0] - b[2], b[0] - house[2], house[1] - b[3], b[1] - house[3]}), 4 - 1e-6);
+      covered += (b[2] - b[0]) * (b[3] - b[1]);
+      ++around;
+    }
+    const ordered_json report = report_of(dir / (coverage > 0 ? "covered" : "not_covered"))["mapped_buildings"];
+    if (coverage == 0) {
+      EXPECT_EQ(around, 0);
+      EXPECT_EQ(report["lots_not_built_again"], 1);
+      EXPECT_EQ(report["lots_built_around_them"], 0);
+      continue;
+    }
+    const double lot_area = 40.0 * 56;
+    EXPECT_GT(around, 0);
+    EXPECT_GE(covered, 0.25 * lot_area);
+    EXPECT_LT(covered, 0.25 * lot_area + 100);
+    EXPECT_EQ(report["lots_not_built_again"], 0);
+    EXPECT_EQ(report["lots_built_around_them"], 1);
+  }
 }
 
 // With footprint_areas, a drawn area that fits nowhere in a lot 30 m deep (20 by 20 m, or

@@ -50,6 +50,46 @@ bool near_rectangle(const geom::Polygon& p) {
   return true;
 }
 
+// The piece's rings, rounded, in the frontage's frame: x along it, y across (into the lot).
+std::vector<geom::Ring> rings_in_frame(const geom::Cell& piece, const Frontage& f) {
+  std::vector<geom::Ring> out;
+  for (const geom::KindedRing& r : piece.kinded_rings()) {
+    geom::Ring& ring = out.emplace_back();
+    for (geom::Vec2 v : r.points) ring.push_back({geom::dot(v - f.a, f.u), geom::dot(v - f.a, f.n)});
+  }
+  return out;
+}
+
+// Whether the frame's rectangle [x0, x1] by [y0, y1] surely does not lie inside the piece
+// (`rings`, rings_in_frame): an edge runs through it two grid steps in from its sides, or
+// its centre lies outside. In doubles: the margin is beyond what moves the rectangle and the
+// piece here (snapping the rectangle's corners to the grid moves them up to 0.7 mm; rounding
+// the piece's vertices and the frame, nanometres), so where this says so the exact test says
+// so too, and nothing else it says is taken as an answer.
+bool surely_not_inside(const std::vector<geom::Ring>& rings, double x0, double x1, double y0, double y1) {
+  constexpr double kMargin = 2 * geom::kGridStep;
+  const double xs = x0 + kMargin, xe = x1 - kMargin, ys = y0 + kMargin, ye = y1 - kMargin;
+  if (!(xs < xe && ys < ye)) return false;
+  const double cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
+  bool inside = false;
+  for (const geom::Ring& ring : rings)
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const geom::Vec2 p = ring[i], q = ring[(i + 1) % ring.size()];
+      // The x the edge spans within the strip ys..ye.
+      const double lo = std::max(ys, std::min(p.y, q.y)), hi = std::min(ye, std::max(p.y, q.y));
+      if (lo <= hi) {
+        double xl = std::min(p.x, q.x), xh = std::max(p.x, q.x);
+        if (p.y != q.y) {
+          const double a = p.x + (q.x - p.x) * (lo - p.y) / (q.y - p.y), b = p.x + (q.x - p.x) * (hi - p.y) / (q.y - p.y);
+          xl = std::min(a, b), xh = std::max(a, b);
+        }
+        if (xl <= xe && xh >= xs) return true;
+      }
+      if ((p.y > cy) != (q.y > cy) && cx < p.x + (q.x - p.x) * (cy - p.y) / (q.y - p.y)) inside = !inside;
+    }
+  return !inside;
+}
+
 // Rectangles in a row along the lot's street frontage, fronts `setback` behind the street
 // (rows facing the road), each `footprint_width` by `footprint_depth` and no
 // larger than `max_footprint_area`, `building_gap` apart and half that inside the lot's
@@ -68,7 +108,7 @@ std::vector<geom::Ring> street_footprints(Occupancy& occupancy, const BuildingSe
   if (!f.on_road || !(f.t1 > f.t0)) return out;
   const double clearance = std::max(p.building_gap / 2, 0.05), setback = std::max(p.setback, 0.1);
   const double wanted = p.lot_coverage * occupancy.piece().area();
-  double covered = 0;
+  double covered = occupancy.standing_m2();  // mapped footprints on the lot count as covered
   auto rectangle = [&](double front, double t, double w, double d, double grow) {
     const double ahead = std::min(grow, setback / 2);
     geom::Ring r;
@@ -82,6 +122,12 @@ std::vector<geom::Ring> street_footprints(Occupancy& occupancy, const BuildingSe
   // narrowest allowed (a spike at min_footprint_width squared, and no tail).
   const bool areas = !p.footprint_areas.empty();
   std::optional<std::pair<double, double>> waiting;
+  // With them, places stepped a metre apart are each tried in up to seven shapes; across a
+  // large lot of odd shape (open land joined to it) most lie partly outside, tens of
+  // thousands a lot. A place where the smallest of the shapes, which each of them holds,
+  // surely does not lie inside the lot is passed without the exact test: the same places
+  // are taken, far cheaper.
+  const std::vector<geom::Ring> frame = areas ? rings_in_frame(occupancy.piece(), f) : std::vector<geom::Ring>{};
   // Past a place where nothing fits: a metre on with footprint_areas (the place's sizes,
   // whose gaps would otherwise open wherever one waits), else a quarter of the narrowest
   // (as a row with no room is passed: a metre there costs rows times places).
@@ -112,6 +158,15 @@ std::vector<geom::Ring> street_footprints(Occupancy& occupancy, const BuildingSe
       // The drawn size (with footprint_areas, then its area in other shapes; without, then
       // smaller ones, down to the narrowest allowed).
       const double m = p.min_footprint_width;
+      if (areas) {
+        const double narrowest = std::max(w / 2, m), shallowest = std::max(d / 2, m);
+        if (surely_not_inside(frame, t - clearance, t + narrowest + clearance, front - std::min(clearance, setback / 2),
+                              front + shallowest + clearance)) {
+          waiting = {w, d};
+          t += step;
+          continue;
+        }
+      }
       std::vector<std::pair<double, double>> sizes{{w, d}};
       if (areas) for (double k : {1.25, 1.6, 2.0}) sizes.insert(sizes.end(), {{w * k, d / k}, {w / k, d * k}});
       else sizes.insert(sizes.end(), {{0.8 * w, 0.8 * d}, {0.64 * w, 0.64 * d}, {0.5 * w, 0.5 * d}, {m, 0.5 * d}, {m, m}});
@@ -123,7 +178,10 @@ std::vector<geom::Ring> street_footprints(Occupancy& occupancy, const BuildingSe
             ws * ds > p.max_footprint_area)
           continue;
         geom::Ring ring = rectangle(front, t, ws, ds, 0);
-        if (!occupancy.inside(rectangle(front, t, ws, ds, clearance)) || !occupancy.take(ring)) continue;
+        if (!occupancy.inside(rectangle(front, t, ws, ds, clearance))) continue;
+        // Mapped buildings standing on the lot are kept building_gap away from, as the row's own are.
+        if (occupancy.has_standing() && !occupancy.apart_from_standing(rectangle(front, t, ws, ds, p.building_gap))) continue;
+        if (!occupancy.take(ring)) continue;
         out.push_back(std::move(ring));
         t += ws + p.building_gap;
         covered += ws * ds, deepest = std::max(deepest, ds);
@@ -254,7 +312,7 @@ std::map<ZoneType, std::vector<std::unique_ptr<Placer>>> zone_placers(const City
 
 Structures place_buildings(const std::vector<Lot>& lots, const CitySettings& city, const ModelLibrary* library,
                            const Channels& channels, const Terrain* terrain, Memo<Structures>* memo,
-                           const std::vector<char>* held) {
+                           const HeldLots* held) {
   geom::Box box = geom::Box::none();
   for (const Lot& lot : lots) box.add(lot.cell.bounds());
   const auto placers = zone_placers(city, library, channels, box);
@@ -263,16 +321,19 @@ Structures place_buildings(const std::vector<Lot>& lots, const CitySettings& cit
   const CancelCheck cancel;
   tbb::parallel_for(std::size_t(0), lots.size(), [&](std::size_t i) {
     cancel.check();
-    if (held && (*held)[i]) return;
     const Lot& lot = lots[i];
     BuildingSettings p = city.zone_settings.at(lot.zone).buildings;
     if (!lot.density.empty()) p.density = lot.density;
+    // Without lot_coverage nothing says how much more a lot a mapped building holds takes.
+    const bool standing = held && held->held[i];
+    if (standing && !(p.lot_coverage > 0)) return;
     // By the lot's shape, not its index, so merging lots around it, or an edit elsewhere,
     // leaves it as it was.
     const std::string cell_text = geom::exact_text(lot.cell);
     auto place = [&] {
       Random rng(mix(stage, content_id(cell_text)));
       Occupancy occupancy(lot.cell, LotEdge::kStreet, terrain);
+      if (standing) occupancy.stand(held->standing[i], held->standing_m2[i]);
       Structures here;
       for (const auto& placer : placers.at(lot.zone)) placer->place(lot, p, occupancy, rng, here);
       return here;
@@ -285,6 +346,11 @@ Structures place_buildings(const std::vector<Lot>& lots, const CitySettings& cit
                         (lot.model ? std::to_string(*lot.model) : std::string("none")) + " city ";
       for (double v : {box.min_x, box.min_y, box.max_x, box.max_y}) append_key(key, v);
       key += cell_text;
+      if (standing) {
+        key += " standing ";
+        append_key(key, held->standing_m2[i]);
+        for (const geom::Ring& ring : held->standing[i]) append_key(key, ring);
+      }
       here = memo->get(key, place);
     } else {
       here = place();

@@ -111,16 +111,26 @@ void give_stable_ids(std::vector<Building>& buildings, std::vector<ModelInstance
 // footprint, falls back to flat.
 void choose_roof(Building& b, const BuildingSettings& p);
 
+// The lots mapped buildings stand on (lots_holding, generate/placement/mapped_buildings.h).
+struct HeldLots {
+  std::vector<char> held;   // per lot: a mapped footprint stands on it
+  std::vector<int> lot_of;  // per footprint: the first lot it stands on, or -1
+  std::vector<std::vector<geom::Ring>> standing;  // per lot: the outer rings of those standing on it
+  std::vector<double> standing_m2;               // per lot: their area on it
+};
+
 // Lot by lot in parallel: rows of models facing the road where the library has buildings
 // for the zone, else a row of extruded rectangles along the street; then the
 // library's street furniture and trees where they fit, each drawn by its weight and
 // channels. Each stands on the terrain. Each lot draws from a stream of its exact cell
 // (content_id). With a memo, a lot's structures are taken from it when the lot (its zone,
 // density, model and cell) and the lots' box are as before (docs/design.md, Regions and
-// regenerating). Lots `held` names (those a mapped building stands on) get nothing.
+// regenerating). A lot `held` names (a mapped building stands on it) is built only where
+// its zone sets lot_coverage, which says how much more it takes: its placers keep off the
+// mapped footprints (Occupancy::stand), which count toward the coverage; else it gets nothing.
 Structures place_buildings(const std::vector<Lot>& lots, const CitySettings& city, const ModelLibrary* library,
                            const Channels& channels, const Terrain* terrain, Memo<Structures>* memo = nullptr,
-                           const std::vector<char>* held = nullptr);
+                           const HeldLots* held = nullptr);
 
 // The 3D exports write every placed model's triangles (OBJ, PLY and CityJSON have no
 // instances for buildings), about 0.75 kB of memory each while they are written: past

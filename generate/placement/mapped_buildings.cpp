@@ -306,8 +306,23 @@ void attach_building_parts(std::vector<Building>& footprints, const std::vector<
   }
 }
 
+namespace {
+
+// The area of a GEOS result's polygons (the lines and points where two polygons only touch
+// have none).
+double surface_area(const OGRGeometry* g) {
+  if (const auto* surface = dynamic_cast<const OGRSurface*>(g)) return surface->get_Area();
+  double sum = 0;
+  if (const auto* collection = dynamic_cast<const OGRGeometryCollection*>(g))
+    for (int i = 0; i < collection->getNumGeometries(); ++i) sum += surface_area(collection->getGeometryRef(i));
+  return sum;
+}
+
+}  // namespace
+
 HeldLots lots_holding(const std::vector<Lot>& lots, const std::vector<Building>& footprints) {
-  HeldLots out{std::vector<char>(lots.size(), 0), std::vector<int>(footprints.size(), -1)};
+  HeldLots out{std::vector<char>(lots.size(), 0), std::vector<int>(footprints.size(), -1),
+               std::vector<std::vector<geom::Ring>>(lots.size()), std::vector<double>(lots.size(), 0)};
   if (footprints.empty()) return out;
   std::vector<const geom::Polygon*> polygons;
   for (const Lot& lot : lots) polygons.push_back(&lot.polygon);
@@ -316,8 +331,12 @@ HeldLots lots_holding(const std::vector<Lot>& lots, const std::vector<Building>&
   // Pairs come in order, so each footprint's lot is the first it stands on.
   for (auto [lot, footprint] : geom::overlapping_pairs(polygons)) {
     if (lot >= n || footprint < n) continue;
+    const geom::Polygon& f = footprints[footprint - n].polygon;
     out.held[lot] = 1;
     if (out.lot_of[footprint - n] < 0) out.lot_of[footprint - n] = lot;
+    out.standing[lot].push_back(f.outer);
+    const std::unique_ptr<OGRGeometry> on_lot(ogr_polygon(lots[lot].polygon)->Intersection(ogr_polygon(f).get()));
+    out.standing_m2[lot] += surface_area(on_lot.get());
   }
   return out;
 }

@@ -28,7 +28,8 @@ struct MappedTally {
   std::map<std::string, int> roofs;     // by the roof built
   std::map<std::string, int> made_flat;  // roof:shape values made flat, and why
   std::vector<std::string> named;       // the first refusals and repairs, each naming its building
-  int held_lots = 0;                    // lots not built again
+  int held_lots = 0;                    // lots mapped buildings stand on
+  int held_lots_built_on = 0;           // of those, lots generated buildings stand on too (lot_coverage)
   // building:parts: those raised in a kept building, and those refused by why.
   int parts = 0;
   std::map<std::string, int> parts_refused, part_roofs;
@@ -58,11 +59,9 @@ std::vector<Building> mapped_footprints(const std::vector<MappedBuilding>& drawn
 // counted as refused, as are all of a refused building's. Raised with their building.
 void attach_building_parts(std::vector<Building>& footprints, const std::vector<MappedBuilding>& drawn, MappedTally& tally);
 
-// The lots mapped footprints stand on: their interiors meet (exactly).
-struct HeldLots {
-  std::vector<char> held;   // per lot: no placer builds on it
-  std::vector<int> lot_of;  // per footprint: the first lot it stands on, or -1
-};
+// The lots mapped footprints stand on (HeldLots, generate/placement/buildings.h): their
+// interiors meet (exactly); each footprint's area on a lot its intersection's (GEOS's, in
+// doubles: a measure, not a test).
 HeldLots lots_holding(const std::vector<Lot>& lots, const std::vector<Building>& footprints);
 
 // Raises the kept footprints: each takes the zone and id of the first lot it stands on (else

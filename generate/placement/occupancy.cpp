@@ -34,7 +34,7 @@ bool Occupancy::inside(const geom::Ring& ring) const {
 }
 
 bool Occupancy::free(const geom::Ring& ring, const std::vector<Slab>* slabs) const {
-  if (!inside(ring)) return false;
+  if (!inside(ring) || !apart_from_standing(ring)) return false;
   const double floor = slabs && !taken_.empty() ? ground_under(ring).second : 0;
   return std::none_of(taken_.begin(), taken_.end(), [&](const Taken& t) {
     if (!geom::rings_meet(ring, t.ring)) return false;
@@ -46,6 +46,15 @@ bool Occupancy::take(const geom::Ring& ring, const std::vector<Slab>* slabs) {
   if (!free(ring, slabs)) return false;
   taken_.push_back({ring, slabs ? *slabs : std::vector<Slab>{}, slabs ? ground_under(ring).second : 0});
   return true;
+}
+
+void Occupancy::stand(std::vector<geom::Ring> rings, double area_m2) {
+  standing_ = std::move(rings);
+  standing_m2_ = area_m2;
+}
+
+bool Occupancy::apart_from_standing(const geom::Ring& ring) const {
+  return std::none_of(standing_.begin(), standing_.end(), [&](const geom::Ring& s) { return geom::rings_meet(ring, s); });
 }
 
 std::pair<double, double> Occupancy::ground_under(const geom::Ring& ring) const {

@@ -48,6 +48,15 @@ class Occupancy {
   bool free(const geom::Ring& ring, const std::vector<Slab>* slabs = nullptr) const;
   // Takes the ring's place when it is free; whether it did.
   bool take(const geom::Ring& ring, const std::vector<Slab>* slabs = nullptr);
+  // Mapped footprints' outer rings (simple, counter-clockwise) standing on the piece
+  // already, which may reach past it (docs/design.md, Mapped buildings): no ring taken
+  // meets them, and `area_m2`, their area on the piece, counts as covered.
+  void stand(std::vector<geom::Ring> rings, double area_m2);
+  // Whether mapped footprints stand here, their area on the piece, and whether the ring
+  // meets none of them.
+  bool has_standing() const { return !standing_.empty(); }
+  double standing_m2() const { return standing_m2_; }
+  bool apart_from_standing(const geom::Ring& ring) const;
   // The lowest and highest ground under the ring (the base and floor a structure there
   // gets); 0 and 0 without terrain.
   std::pair<double, double> ground_under(const geom::Ring& ring) const;
@@ -63,6 +72,8 @@ class Occupancy {
   const Terrain* terrain_;
   mutable std::optional<Frontage> frontage_;
   std::vector<Taken> taken_;
+  std::vector<geom::Ring> standing_;
+  double standing_m2_ = 0;
 };
 
 }  // namespace exacity

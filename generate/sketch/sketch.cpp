@@ -655,6 +655,9 @@ Sketch parse_sketch(const std::string& text, const fs::path& path, bool read_gra
     sketch.zone_settings[t] = default_zone_settings(t);
   if (doc.contains("crs")) sketch.crs = nlohmann::ordered_json::parse(marked)["crs"];  // keeps key order
   const nlohmann::ordered_json osm = doc.contains("osm") ? nlohmann::ordered_json(doc["osm"]) : nullptr;
+  if (osm.is_object() && osm.contains("taken") && osm["taken"].is_object())
+    for (const auto& [what, count] : osm["taken"].items())
+      if (count.is_number_integer()) sketch.osm_taken[what] = count.get<int>();
   for (const nlohmann::ordered_json* file : osm_file_counts(osm)) {
     Sketch::OsmCounts& counts = sketch.osm_counts.emplace_back();
     counts.file = file->contains("file") && (*file)["file"].is_string() ? (*file)["file"].get<std::string>() : path.string();

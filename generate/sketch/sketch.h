@@ -37,6 +37,7 @@ struct Sketch : CitySettings, DrawnFeatures {
     std::vector<std::string> repaired;
   };
   std::vector<OsmCounts> osm_counts;
+  std::map<std::string, int> osm_taken;  // the features whose tags made zones, roads, rivers, buildings, of all files
   // The document read when it is not the file at `path` (a grid map; a sketch naming one in
   // "grid", whose features it holds; `generate --models`), else empty. OUT/sketch.geojson
   // holds it, so that validate and render read the sketch generate read.
