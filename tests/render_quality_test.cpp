@@ -344,6 +344,27 @@ TEST(PassBudget, PassesFitTheBudgetAndStopAfterThePassThatReachesIt) {
   done = run_passes(budget, trace, now);
   EXPECT_EQ(passes, (std::vector<int>{1}));
   EXPECT_EQ(done.least_s, 3.375);
+
+  // A finishing of 2 s from two samples on (the filter and its primary layer, which one
+  // sample does without) fits after no pass: the still stopped at its first sample with
+  // most of the budget left. With the least finishing (the filter alone, a quarter second)
+  // the passes are planned with that from then on.
+  budget.write_s = [] { return 0.0; };
+  budget.finish_s = [](int samples, double) { return samples >= 2 ? 2.0 : 0.25; };
+  clock = 1, passes.clear();
+  done = run_passes(budget, trace, now);
+  EXPECT_EQ(passes, (std::vector<int>{1}));
+  budget.least_finish_s = [](int, double) { return 0.25; };
+  clock = 1, passes.clear();
+  done = run_passes(budget, trace, now);
+  EXPECT_EQ(passes, (std::vector<int>{1, 4, 4, 4, 1}));
+  EXPECT_EQ(clock + 0.25, 3);
+  // Where the whole finishing fits after the first pass, it is planned for, not the least.
+  budget.finish_s = [](int, double) { return 0.5; };
+  clock = 1, passes.clear();
+  done = run_passes(budget, trace, now);
+  EXPECT_EQ(passes, (std::vector<int>{1, 4, 4, 3}));
+  EXPECT_EQ(clock + 0.5, 3);
 }
 
 TEST(ToneMap, WhiteBalanceMakesItsBlackBodyNeutral) {
