@@ -43,13 +43,15 @@ Image denoise(const Image& image, const DenoiseSettings& settings = {});
 // that help): with the filter, the denoiser stays under half the tracing at 16 samples.
 int primary_rays(int samples, const DenoiseSettings& settings = {});
 
-// How long denoise() takes on `image` here: a band of its rows filtered, timed and scaled
-// (the filter's work is the same for every pixel); for a time budget.
-double filter_seconds(const Image& image, const DenoiseSettings& settings = {});
+// How long denoise() takes on `image` here, with a primary layer (Image::extra) or without:
+// bands of its rows filtered, timed and scaled (the filter's work is nearly the same for
+// every surface pixel); for a time budget.
+double filter_seconds(const Image& image, bool primary_layer, const DenoiseSettings& settings = {});
 
 // What exacity render does: the primary layer's rays (none in haze), then denoise();
-// the scene, sky, camera (in scene coordinates) and haze `image` was traced with.
+// the scene, sky, camera (in scene coordinates) and haze `image` was traced with. The
+// primary layer's wall time goes to `primary_layer_s` if given.
 Image denoise_render(Image image, const RenderScene& scene, const Sky& sky, const Camera& camera, const Haze& haze,
-                     const DenoiseSettings& settings = {});
+                     const DenoiseSettings& settings = {}, double* primary_layer_s = nullptr);
 
 }  // namespace render

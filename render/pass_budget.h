@@ -15,6 +15,10 @@ struct PassBudget {
   std::function<double(int samples, double per_sample_s)> finish_s = [](int, double) { return 0.0; };
   // Seconds the still's writing takes, whatever was traced (asked after the first pass).
   std::function<double()> write_s = [] { return 0.0; };
+  // The least finishing (the filter without its primary layer, which needs two samples):
+  // planned for instead when no pass after the first fits with finish_s's, since a still
+  // left at one sample gets no layer anyway. None: no finishing is cheaper than finish_s.
+  std::function<double(int samples, double per_sample_s)> least_finish_s = nullptr;
 };
 
 struct Passes {
@@ -29,8 +33,9 @@ struct Passes {
 // before committing to more; traced however much of the budget is already spent, for an
 // image), then each of as many samples, up to spp, as the time a sample has taken so far
 // says will end, with the finishing after them, within the budget; none is begun when not
-// one sample would. The writing's time is kept free after the finishing. A pass that ends
-// past the budget (the machine slowed down) is the last.
+// one sample would. When none fits after the first pass, passes are planned with the least
+// finishing instead, from then on. The writing's time is kept free after the finishing. A
+// pass that ends past the budget (the machine slowed down) is the last.
 // `trace(n)` traces a pass of n samples; `now()` is the seconds since the command started.
 Passes run_passes(const PassBudget& budget, const std::function<void(int samples)>& trace,
                   const std::function<double()>& now);

@@ -19,8 +19,14 @@ namespace {
 constexpr double kKerb = 0.12;  // m: a sidewalk's height over the carriageway
 constexpr double kMarkingLift = 0.12;  // m over the terrain: 2 cm over a road
 
+// How far a marking's sides reach down from its top: 1 cm under the road it lies 2 cm over.
+constexpr double kMarkingSides = 0.03;
+
 // A ribbon of `width` along a ground path, its corners draped over the terrain, in pieces
-// no longer than half a pixel; dashes where `dash` > 0 (dash on, gap off, metres).
+// no longer than half a pixel; dashes where `dash` > 0 (dash on, gap off, metres). Each
+// piece has sides down to under the road: without them a camera at eye height saw, just
+// short of a marking, the road under it in its shadow (a one-pixel black line under every
+// zebra stripe 20 m off), as it saw the ground under a road's edge (add_sides).
 void ribbon(const geom::Polyline& line, double offset, double width, double dash, double gap,
             const exacity::Terrain* terrain, double lift, std::vector<V3>& verts, std::vector<std::array<int, 3>>& tris,
             const RenderScene& s) {
@@ -43,16 +49,22 @@ void ribbon(const geom::Polyline& line, double offset, double width, double dash
       }
       end = std::min(end, t + step);
       if (on) {
-        auto corner = [&](double at, double side) {
+        auto corner = [&](double at, double side, double drop) {
           double x = a.x + ux * at + nx * (offset + side), y = a.y + uy * at + ny * (offset + side);
-          double z = (terrain ? terrain->height_at({x, y}) : 0) + lift;
+          double z = (terrain ? terrain->height_at({x, y}) : 0) + lift - drop;
           return s.to_scene(x, y, z);
         };
         const int first = static_cast<int>(verts.size());
-        verts.insert(verts.end(),
-                     {corner(t, -width / 2), corner(end, -width / 2), corner(end, width / 2), corner(t, width / 2)});
+        for (const double drop : {0.0, kMarkingSides})
+          verts.insert(verts.end(), {corner(t, -width / 2, drop), corner(end, -width / 2, drop),
+                                     corner(end, width / 2, drop), corner(t, width / 2, drop)});
         tris.push_back({first, first + 1, first + 2});
         tris.push_back({first, first + 2, first + 3});
+        for (int k = 0; k < 4; ++k) {  // the top's edge k and the one under it
+          const int top0 = first + k, top1 = first + (k + 1) % 4;
+          tris.push_back({top0, top1 + 4, top1});
+          tris.push_back({top0, top0 + 4, top1 + 4});
+        }
       }
       t = end + 1e-9;
     }

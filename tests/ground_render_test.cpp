@@ -242,6 +242,40 @@ TEST(GroundRender, ARoadsEdgeSeenFromTheGrassHidesTheGroundUnderIt) {
   EXPECT_GT(grass, size * 4);
 }
 
+// The same highway's centre line (0.15 m, 2 cm over the road), seen across from 15 m at
+// eye height through a narrow lens: every pixel sees the line (its top or its side) or the
+// road beside it, never the road under it. Without sides the camera saw, through the gap
+// under the line's near edge, the road beneath it in its shadow: a black line a pixel high
+// under every zebra stripe and lane line of a street view.
+TEST(GroundRender, ARoadMarkingSeenAcrossTheRoadHidesTheRoadUnderIt) {
+  const exacity::City city = flat_city_of("marking-edge", kPark + ", " + river_sketch::highway("[-20, 100], [220, 100]"));
+  const double line = 100, half = 0.075;  // the centre line's middle and half width
+  Sky sky(200, 40);
+  RenderScene scene(city, sky.sun_direction(), SceneOptions{});
+  const Camera view = scene.to_scene(Camera::look({100, static_cast<float>(line - 15), 1.7f},
+                                                  {100, static_cast<float>(line), 0.12f}, 1));
+  const int size = 32;
+  const Image img = trace(scene, sky, view, TraceSettings{size, size, 1, 1});
+  int marking = 0, beside = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * size + x;
+      ASSERT_TRUE(std::isfinite(img.depth[i]));
+      V3 o, d;
+      view.ray(x + 0.5f, y + 0.5f, size, size, o, d);
+      const double at = o.y + d.y * img.depth[i] + scene.origin_y, z = o.z + d.z * img.depth[i];
+      if (z > exacity::kRoadOverTerrain + 0.005) {
+        ++marking;
+        continue;
+      }
+      ++beside;
+      EXPECT_GE(std::abs(at - line), half - 1e-3) << "pixel " << x << ", " << y << " sees the road "
+                                                  << std::abs(at - line) << " m from the line's middle";
+    }
+  EXPECT_GT(marking, size * 2);
+  EXPECT_GT(beside, size * 4);
+}
+
 // A river leaving the map runs on past its edge, where the terrain is the map mirrored and
 // sinking to the plane: level water over the river's width, land beside it, no bank
 // across it at the map's edge (y 200), and water on over the plane past the fade (100 m).

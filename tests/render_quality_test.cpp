@@ -87,6 +87,26 @@ TEST(Denoise, BringsACitysFewSamplesNearerWithItsPrimaryLayer) {
   EXPECT_LT(after, 0.85 * alone) << "the primary layer must help: without it " << alone;
 }
 
+// The denoiser at most half the tracing's time at 16 samples: with 32 primary rays a
+// pixel at any count it cost 0.8 of the tracing there. Its time is a benchmark's
+// (docs/benchmarks.md, The denoiser's cost and --time); what a test can hold is its work:
+// at 16 samples the primary layer casts 8 camera rays a pixel and at most a shadow ray
+// from each, a small share of the rays the path samples cast on a city.
+TEST(Denoise, ItsPrimaryLayerAtSixteenSamplesCastsAFewOfTheTracingsRays) {
+  const exacity::City city = small_city();
+  const Sky sky(200, 40);
+  RenderScene scene(city, sky.sun_direction(), SceneOptions{});
+  const Camera c = scene.to_scene(Camera::orbit({200, 150, 0}, 235, 25, 120, 45));
+  const int w = 32, h = 24, spp = 16;
+  Film film(w, h);
+  RayCounts traced;
+  add_samples(film, scene, sky, c, TraceSettings{w, h, spp}, &traced);
+  const double tracing = static_cast<double>(traced.camera + traced.bounce + traced.shadow);
+  const double layer = 2.0 * primary_rays(spp) * w * h;
+  EXPECT_EQ(primary_rays(spp), spp / 2);
+  EXPECT_LT(layer / tracing, 0.3) << "the tracing cast " << tracing / (w * h) << " rays a pixel";
+}
+
 // Haze of 1500 m visibility over blocks on a plane, 150 m off, the sun behind the camera's
 // left: most of the light is the haze's, scattered many times. Two traces of 16 samples,
 // independent (samples 0 to 15 and 16 to 31 of each pixel), differ by twice the grain of
@@ -344,6 +364,27 @@ TEST(PassBudget, PassesFitTheBudgetAndStopAfterThePassThatReachesIt) {
   done = run_passes(budget, trace, now);
   EXPECT_EQ(passes, (std::vector<int>{1}));
   EXPECT_EQ(done.least_s, 3.375);
+
+  // A finishing of 2 s from two samples on (the filter and its primary layer, which one
+  // sample does without) fits after no pass: the still stopped at its first sample with
+  // most of the budget left. With the least finishing (the filter alone, a quarter second)
+  // the passes are planned with that from then on.
+  budget.write_s = [] { return 0.0; };
+  budget.finish_s = [](int samples, double) { return samples >= 2 ? 2.0 : 0.25; };
+  clock = 1, passes.clear();
+  done = run_passes(budget, trace, now);
+  EXPECT_EQ(passes, (std::vector<int>{1}));
+  budget.least_finish_s = [](int, double) { return 0.25; };
+  clock = 1, passes.clear();
+  done = run_passes(budget, trace, now);
+  EXPECT_EQ(passes, (std::vector<int>{1, 4, 4, 4, 1}));
+  EXPECT_EQ(clock + 0.25, 3);
+  // Where the whole finishing fits after the first pass, it is planned for, not the least.
+  budget.finish_s = [](int, double) { return 0.5; };
+  clock = 1, passes.clear();
+  done = run_passes(budget, trace, now);
+  EXPECT_EQ(passes, (std::vector<int>{1, 4, 4, 3}));
+  EXPECT_EQ(clock + 0.5, 3);
 }
 
 TEST(ToneMap, WhiteBalanceMakesItsBlackBodyNeutral) {
