@@ -194,8 +194,8 @@ std::vector<Polyline> snap_round_segments(const std::vector<std::pair<Vec2, Vec2
         if (at_end(a, j) || at_end(b, j) || at_end(c, i) || at_end(d, i)) continue;
         hot.push_back(x);
         if (is_given(i) || is_given(j)) {
-          const Vec2 on = drawn_crossing(i, j);  // re-tested: within a step of its pixel
-          if (apart(on, x) <= step) placement.put(x, on);
+          const Vec2 on = drawn_crossing(i, j);  // re-tested: within its pixel
+          if (apart(on, x) <= half) placement.put(x, on);
         }
       }
   }
@@ -253,9 +253,13 @@ std::vector<Polyline> snap_round_segments(const std::vector<std::pair<Vec2, Vec2
         hot_on(line[k], line[k + 1], a, b);
         for (const auto& [u, c] : found) {
           if (c == next.back() || std::find(line.begin(), line.end(), c) != line.end()) continue;
-          const Vec2 at = kept && !placement.has(c) ? nearest_on(segments[i].first, segments[i].second, c) : placement.of(c);
+          // Placed within its own pixel only, so pixels stay apart (an end a segment passes
+          // within the end reach of lies farther off it).
+          const Vec2 onto = nearest_on(segments[i].first, segments[i].second, c);
+          const bool places = kept && !placement.has(c) && apart(onto, c) <= half;
+          const Vec2 at = places ? onto : placement.of(c);
           if (!ahead(placement.of(next.back()), at) || !ahead(at, placement.of(line[k + 1]))) continue;
-          if (kept) placement.put(c, at);
+          if (places) placement.put(c, at);
           next.push_back(c), changed = true;
         }
         next.push_back(line[k + 1]);
