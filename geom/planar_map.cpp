@@ -71,7 +71,7 @@ void add_pieces(std::vector<Curve>& out, const Polyline& line, const Tags& tags)
 // other side was not found), and CGAL's precondition `f == f2` stopped the insertion. The
 // sweep then meets only shared ends and equal pieces and constructs no point of its own.
 // Faces lose their labels here, as in every build: each batch is labelled again after it.
-void insert_curves(Arrangement& arr, std::vector<Curve>& curves) {
+void insert_curves(Arrangement& arr, std::vector<Curve>& curves, std::size_t given_from) {
   std::vector<Arrangement::Halfedge_handle> edges;  // each left to right
   std::vector<std::pair<Vec2, Vec2>> ends;
   for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
@@ -81,12 +81,14 @@ void insert_curves(Arrangement& arr, std::vector<Curve>& curves) {
   // Edges the arrangement has (their ends are its vertices: a new end this near one moves
   // onto it), and map edges a region's arrangement splits: both keep their pieces in order
   // along them (a region's map edges are split in place in the map).
-  std::vector<bool> monotone(edges.size(), true);
-  for (const Curve& c : curves) {
+  std::vector<bool> monotone(edges.size(), true), given(edges.size(), false);
+  for (std::size_t i = 0; i < curves.size(); ++i) {
+    const Curve& c = curves[i];
     ends.push_back({to_plain(c.source()), to_plain(c.target())});
     monotone.push_back(std::any_of(c.data().begin(), c.data().end(), [](const CurveTag& t) { return t.counter == kMapEdge; }));
+    given.push_back(i >= given_from);
   }
-  const std::vector<Polyline> lines = snap_round_segments(ends, exact::kSnapStep, monotone);
+  const std::vector<Polyline> lines = snap_round_segments(ends, exact::kSnapStep, monotone, given);
   std::vector<Curve> noded;
   for (std::size_t i = 0; i < edges.size(); ++i) {
     if (lines[i].size() <= 2) continue;
@@ -137,7 +139,7 @@ class StoppableSweep : public Base<Helper, StoppableSweep<Base, Helper>> {
 // Inserts the curves in one sweep: CGAL::insert's aggregated insertion of x-monotone curves
 // (Arrangement_on_surface_2_global.h, insert_empty and insert_non_empty), with a sweep that
 // stops once the build is cancelled, so a large map stops within a second.
-void insert_curves(Arrangement& arr, std::vector<Curve>& curves) {
+void insert_curves(Arrangement& arr, std::vector<Curve>& curves, std::size_t) {
   using Surface = CGAL::Arrangement_on_surface_2<Traits, Arrangement::Topology_traits>;
   using Allocator = Surface::Allocator;
   Surface& surface = arr;
@@ -294,8 +296,9 @@ void PlanarMap::add_path_stroke(const Path& path, double half_width, int counter
 
 void PlanarMap::insert_batch() {
   impl_->edges_change();
+  const std::size_t given_from = impl_->pending.size();  // merge_plain_edges appends the edges given as doubles
   impl_->merge_plain_edges();
-  insert_curves(impl_->arr, impl_->pending);
+  insert_curves(impl_->arr, impl_->pending, given_from);
   impl_->pending.clear();
 }
 

@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <climits>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -168,8 +169,9 @@ Handle left_to_right(Handle h) {
 
 constexpr int kMapEdge = INT_MIN;  // tag counter of a map edge copied into a region's own arrangement
 
-// Inserts the curves into the arrangement in one sweep (the snapped build: noded first).
-void insert_curves(Arrangement& arr, std::vector<Curve>& curves);
+// Inserts the curves into the arrangement in one sweep (the snapped build: noded first). The
+// curves from `given_from` on are edges given as doubles (PlanarMap::add_ring, add_edge).
+void insert_curves(Arrangement& arr, std::vector<Curve>& curves, std::size_t given_from = SIZE_MAX);
 
 // Calls f for every halfedge on every boundary cycle of face `face`.
 template <typename F>

@@ -33,7 +33,9 @@ Vec2 snap_to(Vec2 p, double step);
 // `monotone` segments (or those it marks) run one way in (x, y) order, as the pieces of a
 // split arrangement edge must: a hot pixel that would turn one back is passed by (a
 // crossing left unnoded, the rare price).
+// In the grid build (geom/grid_kernel.h) the ends of the segments `given` marks (edges given
+// as doubles: the sketch's rings) stay where they are too.
 std::vector<Polyline> snap_round_segments(const std::vector<std::pair<Vec2, Vec2>>& segments, double step,
-                                          const std::vector<bool>& monotone = {});
+                                          const std::vector<bool>& monotone = {}, const std::vector<bool>& given = {});
 
 }  // namespace geom
