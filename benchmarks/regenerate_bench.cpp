@@ -9,11 +9,12 @@
 // regenerated city's file that are not in the first city's.
 // Measures; asserts nothing (tests/regenerate_test.cpp holds the two cities equal).
 //
-//   build/release/benchmarks/exacity_regenerate SKETCH [--scale K] [--zone NAME] [--move DX DY]
+//   build/release/benchmarks/exacity_regenerate SKETCH [--scale K] [--zone NAME] [--move DX DY] [--keep DIR]
 //
 // The sketch's coordinates are multiplied by K (roads keep their widths); the edit moves the
 // first corner of the zone whose "name" is NAME (the first zone when none is given) by DX, DY
-// metres.
+// metres. With --keep, the three runs' folders are kept as DIR/first, DIR/whole and DIR/again
+// (to compare the regenerated run's files with the whole one's).
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -64,7 +65,10 @@ std::map<std::string, std::set<std::string>> feature_lines(const std::filesystem
   return out;
 }
 
-Run build(const ordered_json& doc, const std::string& path, std::shared_ptr<RegionCache> cache, const City* previous) {
+std::string keep_dir;  // --keep
+
+Run build(const ordered_json& doc, const std::string& path, std::shared_ptr<RegionCache> cache, const City* previous,
+          const char* name) {
   bench::StageCpu cpu;
   StageClock clock([&](int, int, const std::string& name) { cpu.next(name); }, kCityStages + kWriteStages);
   const double cpu_start = bench::cpu_seconds();
@@ -86,6 +90,11 @@ Run build(const ordered_json& doc, const std::string& path, std::shared_ptr<Regi
   run.cpu = cpu.seconds;
   run.total_cpu = bench::cpu_seconds() - cpu_start;
   run.features = feature_lines(dir / "vector");
+  if (!keep_dir.empty()) {
+    std::filesystem::create_directories(keep_dir);
+    std::filesystem::remove_all(std::filesystem::path(keep_dir) / name);
+    std::filesystem::copy(dir, std::filesystem::path(keep_dir) / name, std::filesystem::copy_options::recursive);
+  }
   std::filesystem::remove_all(dir);
   run.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   run.seconds = clock.seconds;
@@ -102,7 +111,7 @@ double monotonic_seconds() {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s SKETCH [--scale K] [--zone NAME] [--move DX DY]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s SKETCH [--scale K] [--zone NAME] [--move DX DY] [--keep DIR]\n", argv[0]);
     return 2;
   }
   const std::string path = argv[1];
@@ -112,6 +121,7 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--scale") && i + 1 < argc) k = std::stod(argv[++i]);
     else if (!std::strcmp(argv[i], "--zone") && i + 1 < argc) zone_name = argv[++i];
     else if (!std::strcmp(argv[i], "--move") && i + 2 < argc) dx = std::stod(argv[++i]), dy = std::stod(argv[++i]);
+    else if (!std::strcmp(argv[i], "--keep") && i + 1 < argc) keep_dir = argv[++i];
   }
   try {
     const ordered_json doc = bench::scaled_sketch(path, k);
@@ -129,10 +139,10 @@ int main(int argc, char** argv) {
     }
     if (!moved) throw UserError(path + ": no zone named \"" + zone_name + "\"");
 
-    const Run first = build(doc, path, std::make_shared<RegionCache>(), nullptr);
-    const Run whole = build(edited, path, nullptr, nullptr);
+    const Run first = build(doc, path, std::make_shared<RegionCache>(), nullptr, "first");
+    const Run whole = build(edited, path, nullptr, nullptr, "whole");
     const double again_start = monotonic_seconds();
-    const Run again = build(edited, path, nullptr, &first.city);
+    const Run again = build(edited, path, nullptr, &first.city, "again");
     // For `perf record -k CLOCK_MONOTONIC` and `perf report --time START,END`: the regenerated run alone.
     std::printf("regenerated run: CLOCK_MONOTONIC %.6f to %.6f s\n", again_start, monotonic_seconds());
     std::printf("| stage          | whole s | regenerated s | whole CPU s | regenerated CPU s |\n"
@@ -149,8 +159,9 @@ int main(int argc, char** argv) {
                 c.road_plans.hits(), c.road_plans.hits() + c.road_plans.misses(), c.lot_plans.hits(),
                 c.lot_plans.hits() + c.lot_plans.misses(), c.placements.hits(), c.placements.hits() + c.placements.misses(),
                 c.meshes.hits(), c.meshes.hits() + c.meshes.misses());
-    std::printf("ground pieces reused: %d of %d\nfeatures the edit changed (lines not in the first city's):",
-                c.ground_pieces.hits(), c.ground_pieces.hits() + c.ground_pieces.misses());
+    std::printf("ground pieces reused: %d of %d, tiles %d of %d\nfeatures the edit changed (lines not in the first city's):",
+                c.ground_pieces.hits(), c.ground_pieces.hits() + c.ground_pieces.misses(), c.tiles.hits(),
+                c.tiles.hits() + c.tiles.misses());
     for (const auto& [file, lines] : again.features) {
       const std::set<std::string>& before = first.features.at(file);
       std::size_t changed = 0;

@@ -46,17 +46,19 @@ void RegionCache::next_build(const Sketch& sketch) {
   placements.next_build(shared);
   meshes.next_build(shared);
   ground_pieces.next_build(shared);
+  tiles.next_build(shared);
 }
 
 std::vector<GroundLayer> city_ground_layers(const City& city) {
   return ground_layers(city.ground, city.heightmap(), city.regions ? &city.regions->ground_pieces : nullptr);
 }
 
-std::vector<Mesh> city_meshes(const City& city) {
+std::vector<Mesh> city_meshes(const City& city, std::vector<std::string>* keys) {
   const ModelLibrary* library = city.model_library();
   if (!city.regions) return structure_meshes(city.buildings, city.models, library);
   Memo<Mesh>& memo = city.regions->meshes;
   std::vector<Mesh> meshes(city.buildings.size() + city.models.size());
+  if (keys) keys->assign(meshes.size(), {});
   const CancelCheck cancel;
   // Each key is what building_mesh or model_mesh reads of the structure (the library is the memo's context).
   tbb::parallel_for(std::size_t(0), city.buildings.size(), [&](std::size_t i) {
@@ -79,6 +81,7 @@ std::vector<Mesh> city_meshes(const City& city) {
       append_faces(part.roof_faces);
     }
     meshes[b.id] = memo.get(key, [&] { return building_mesh(b); });
+    if (keys) (*keys)[b.id] = std::move(key);
   });
   tbb::parallel_for(std::size_t(0), city.models.size(), [&](std::size_t i) {
     cancel.check();
@@ -88,6 +91,7 @@ std::vector<Mesh> city_meshes(const City& city) {
       append_key(key, v);
     if (m.floor > m.base) append_key(key, m.polygon);
     meshes[m.id] = memo.get(key, [&] { return model_mesh(m, library); });
+    if (keys) (*keys)[m.id] = std::move(key);
   });
   return meshes;
 }

@@ -21,12 +21,20 @@ namespace exacity {
 
 struct ValidatedPolygons;  // generate/export/validate_window.h
 
+// A tile of exacity serve's 3D view as written (serve/city_tiles.cpp): each level's file
+// and its triangles.
+struct TileFiles {
+  std::vector<std::string> bytes;
+  std::vector<std::size_t> triangles;
+};
+
 struct RegionCache {
   Memo<RoadPlan> road_plans;                // per region of the road stage
   Memo<std::vector<PlannedLot>> lot_plans;  // per block
   Memo<Structures> placements;              // per lot, before it stands on the terrain
   Memo<Mesh> meshes;                        // per building or placed model, for the exports and tiles
   Memo<GroundMesh> ground_pieces;           // per zone, water and road area polygon draped, likewise
+  Memo<TileFiles> tiles;                    // per tile of the 3D view, after the build (not in hits())
   // The last written city's polygons if it passed validation: the next one is validated
   // where it changed (validate_window.h). Whatever the settings, since validation reads only files.
   std::shared_ptr<ValidatedPolygons> validated;
@@ -56,8 +64,9 @@ std::string shared_input(const Sketch& sketch);
 
 // structure_meshes of the city's buildings and models; with the city's cache, a structure's
 // mesh is reused where the structure is as it was (the exports and the tiles of one build
-// ask twice, and so make each mesh once).
-std::vector<Mesh> city_meshes(const City& city);
+// ask twice, and so make each mesh once). With the cache, `keys` (when given) receives
+// each mesh's key by id: all that its mesh is made from.
+std::vector<Mesh> city_meshes(const City& city, std::vector<std::string>* keys = nullptr);
 
 // ground_layers of the city's ground; with the city's cache, a polygon's piece is reused
 // where it is as it was (the exports and the tiles of one build ask twice).

@@ -1,14 +1,18 @@
 #include "serve/city_tiles.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <map>
+#include <string>
 
 #include "generate/cancellable_invoke.h"
 #include "generate/errors.h"
 #include "generate/mesh/building_mesh.h"
 #include "generate/export/gltf_export.h"
+#include "generate/placement/buildings.h"
 #include "generate/regenerate.h"
 #include "render/facade.h"
 
@@ -89,6 +93,50 @@ void write_facades(const City& city, const fs::path& file) {
   if (!out) throw UserError(file.string() + ": write failed (disk full?)");
 }
 
+// A placed model or a piece of clutter, all the tiles' files read of it.
+void append_instance(std::string& key, const ModelInstance& m) {
+  key += "instance " + std::to_string(m.placed.model) + " " + std::to_string(m.placed.tint) + " " +
+         std::to_string(static_cast<int>(m.zone)) + " " + std::to_string(static_cast<int>(m.kind)) + " " +
+         std::to_string(m.stable_id) + " ";
+  for (double v : {m.placed.position.x, m.placed.position.y, m.placed.angle, m.placed.scale, m.height, m.base, m.floor})
+    append_key(key, v);
+  append_key(key, m.polygon);
+}
+
+void append_box(std::string& key, const StructureBox& b) {
+  key += "box " + std::to_string(static_cast<int>(b.zone)) + " " + std::to_string(b.id) + " ";
+  for (double v : {b.box.min_x, b.box.min_y, b.box.max_x, b.box.max_y, b.bottom, b.top}) append_key(key, v);
+}
+
+// All that a tile's files are made of but what every tile of the build shares (the city's
+// seed and model library, the memo's context): the city's box (the frame), each structure
+// as the full level merges it (its mesh's key, stable id and zone, in id order), the placed
+// models and clutter in their order, and the boxes of the two far levels.
+std::string tile_key(const geom::Box& city, const Tile& t, const std::vector<StructureBox>& blocks,
+                     const std::vector<std::string>& mesh_keys) {
+  std::string key = "city ";
+  for (double v : {city.min_x, city.min_y, city.max_x, city.max_y}) append_key(key, v);
+  for_each_by_id(
+      t.buildings, t.models,
+      [&](const Building& b) {
+        key += "building " + std::to_string(b.stable_id) + " " + std::to_string(static_cast<int>(b.zone)) + " " +
+               mesh_keys[b.id];
+      },
+      [&](const ModelInstance& m) { key += "model " + mesh_keys[m.id], append_instance(key, m); });
+  key += "clutter ";
+  for (const ModelInstance& c : t.clutter) append_instance(key, c);
+  key += "boxes ";
+  for (const StructureBox& b : t.boxes) append_box(key, b);
+  key += "blocks ";
+  for (const StructureBox& b : blocks) append_box(key, b);
+  return key;
+}
+
+std::string file_bytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 }  // namespace
 
 json write_city_tiles(const City& city, const fs::path& dir) {
@@ -102,7 +150,8 @@ json write_city_tiles(const City& city, const fs::path& dir) {
     return std::make_pair(i, j);
   };
   const ModelLibrary* library = city.model_library();
-  const std::vector<Mesh> meshes = city_meshes(city);
+  std::vector<std::string> mesh_keys;  // with the city's cache, whose tiles memo reads them
+  const std::vector<Mesh> meshes = city_meshes(city, &mesh_keys);
   std::map<std::pair<int, int>, Tile> tiles;  // by column and row: the index's order
   // `id` indexes the meshes; the box is coloured by the structure's stable id, as city.glb colours it.
   auto place = [&](int id, int stable_id, int lot, ZoneType zone, const geom::Polygon& outline, double floor,
@@ -154,11 +203,35 @@ json write_city_tiles(const City& city, const fs::path& dir) {
       const Bounds3& b = part.bounds;
       blocks.push_back({b.box, b.bottom, part.area > 0 ? part.area_times_top / part.area : b.top, key.second, -1});
     }
-    const GltfCounts full =
-        write_gltf_structures(box, t.buildings, t.models, meshes, city.settings.seed, library,
-                              dir / name / "0.glb", t.clutter);
-    const GltfCounts boxes = write_gltf_boxes(box, t.boxes, city.settings.seed, dir / name / "1.glb");
-    const GltfCounts far = write_gltf_boxes(box, blocks, city.settings.seed, dir / name / "2.glb");
+    // A tile made of what a tile of the last build was made of is that tile's bytes again.
+    auto write_levels = [&] {
+      const std::array<fs::path, 3> files{dir / name / "0.glb", dir / name / "1.glb", dir / name / "2.glb"};
+      TileFiles written{.bytes = {},
+                        .triangles = {write_gltf_structures(box, t.buildings, t.models, meshes, city.settings.seed,
+                                                            library, files[0], t.clutter)
+                                          .triangles,
+                                      write_gltf_boxes(box, t.boxes, city.settings.seed, files[1]).triangles,
+                                      write_gltf_boxes(box, blocks, city.settings.seed, files[2]).triangles}};
+      if (city.regions)
+        for (const fs::path& file : files) written.bytes.push_back(file_bytes(file));
+      return written;
+    };
+    TileFiles levels_written;
+    if (!city.regions) {
+      levels_written = write_levels();
+    } else {
+      bool computed = false;
+      levels_written = city.regions->tiles.get(tile_key(box, t, blocks, mesh_keys), [&] {
+        computed = true;
+        return write_levels();
+      });
+      for (int level = 0; level < 3 && !computed; ++level) {
+        const fs::path file = dir / name / (std::to_string(level) + ".glb");
+        std::ofstream out(file, std::ios::binary);
+        out.write(levels_written.bytes[level].data(), static_cast<std::streamsize>(levels_written.bytes[level].size()));
+        if (!out) throw UserError(file.string() + ": write failed (disk full?)");
+      }
+    }
     json levels = json::array();
     for (int level = 0; level < 3; ++level)
       levels.push_back("/api/tiles/" + name + "/" + std::to_string(level) + ".glb");
@@ -170,7 +243,7 @@ json write_city_tiles(const City& city, const fs::path& dir) {
                   {"models", t.models.size()},
                   {"clutter", t.clutter.size()},
                   {"levels", levels},
-                  {"triangles", {full.triangles, boxes.triangles, far.triangles}}};
+                  {"triangles", levels_written.triangles}};
   });
   json index{{"tile_size", size},
              {"bounds", {box.min_x, box.min_y, box.max_x, box.max_y}},

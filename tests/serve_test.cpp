@@ -32,6 +32,7 @@
 #include "generate/errors.h"
 #include "generate/export/gis_export.h"
 #include "generate/pipeline.h"
+#include "generate/regenerate.h"
 #include "generate/layout/road_settings.h"
 #include "generate/parcels/parcel_settings.h"
 #include "generate/placement/building_settings.h"
@@ -40,6 +41,7 @@
 #include "render/primary_layer.h"
 #include "render/render.h"
 #include "serve/connections.h"
+#include "serve/city_tiles.h"
 #include "serve/job_runner.h"
 #include "serve/server.h"
 #include "tests/cli_util.h"
@@ -972,6 +974,47 @@ TEST_F(ServeTest, TilesHoldTheCityAtThreeLevels) {
   for (const char* url : {"/api/tiles/99_99/0.glb", "/api/tiles/0_0/3.glb", "/api/tiles/..%2F..%2Fsketch.geojson",
                           "/api/tiles/0_0/..%2F..%2Freport.json"})
     EXPECT_EQ(client->Get(url)->status, 404) << url;
+}
+
+// Every file under `dir`, by its path from there, with its bytes.
+std::map<std::string, std::string> folder_files(const fs::path& dir) {
+  std::map<std::string, std::string> out;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    if (entry.is_regular_file()) out[entry.path().lexically_relative(dir).string()] = read(entry.path());
+  return out;
+}
+
+// The tiles written after an edit (serve/city_tiles.h) are every byte the edited sketch's
+// tiles built from nothing are; a tile made of what a tile of the last build was made of
+// keeps that tile's bytes, written without encoding it again.
+TEST(CityTilesTest, AnEditsTilesAreTheFullBuildsAndUnchangedTilesAreKept) {
+  auto tiles_of = [](const json& doc, std::shared_ptr<exacity::RegionCache> cache, const exacity::City* previous,
+                     const std::string& name) {
+    exacity::StageClock clock(nullptr, exacity::kCityStages);
+    const exacity::Sketch sketch = exacity::parse_sketch(doc.dump(), "small.geojson");
+    exacity::City city = previous ? exacity::regenerate(*previous, sketch, clock)
+                                  : exacity::build_city(sketch, clock, std::move(cache));
+    const fs::path dir = testing_util::temp_dir(name);
+    exacity::serve::write_city_tiles(city, dir);
+    return std::make_pair(std::move(city), folder_files(dir));
+  };
+  const json first = json::parse(kSmallSketch);
+  json edited = first;
+  edited["features"].push_back(json::parse(R"({"type": "Feature", "properties": {"zone": "park"},
+    "geometry": {"type": "Polygon", "coordinates": [[[150, 40], [250, 40], [250, 110], [150, 110], [150, 40]]]}})"));
+  const auto [before, before_files] = tiles_of(first, std::make_shared<exacity::RegionCache>(), nullptr, "before");
+  const auto [after, after_files] = tiles_of(edited, nullptr, &before, "after");
+  const auto [whole, whole_files] = tiles_of(edited, nullptr, nullptr, "whole");
+  ASSERT_GE(whole_files.size(), 9u);  // two tiles' three levels, the ground, the facades and the index at least
+  for (const auto& [file, bytes] : whole_files) EXPECT_TRUE(after_files.count(file) && after_files.at(file) == bytes) << file;
+  EXPECT_EQ(after_files.size(), whole_files.size());
+  EXPECT_TRUE(after_files != before_files);
+  // Generated again as it is: every tile is the last build's.
+  const auto [again, again_files] = tiles_of(edited, nullptr, &after, "again");
+  const exacity::Memo<exacity::TileFiles>& tiles = again.regions->tiles;
+  EXPECT_EQ(tiles.misses(), 0);
+  EXPECT_EQ(tiles.hits(), static_cast<int>(json::parse(again_files.at("index.json"))["tiles"].size()));
+  EXPECT_TRUE(again_files == whole_files);
 }
 
 // A generation after an edit reuses the regions, blocks and lots the edit left as they were
