@@ -12,6 +12,7 @@
 #include <tbb/global_control.h>
 #include <unistd.h>
 
+#include "benchmarks/heap_peaks.h"
 #include "benchmarks/stage_cpu.h"
 #include "generate/errors.h"
 #include "generate/parcels/blocks.h"
@@ -29,8 +30,10 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-void row(const char* stage, double s, double cpu, double system_s, long faults, const std::string& counts) {
-  std::printf("| %-14s | %8.3f | %8.3f | %8.3f | %9ld | %s\n", stage, s, cpu, system_s, faults, counts.c_str());
+void row(const char* stage, double s, double cpu, double system_s, long faults, double heap_mib,
+         const std::string& counts) {
+  std::printf("| %-14s | %8.3f | %8.3f | %8.3f | %9ld | %8.0f | %s\n", stage, s, cpu, system_s, faults, heap_mib,
+              counts.c_str());
 }
 void row(const char* stage, double s, const std::string& counts) { std::printf("| %-14s | %8.3f | %s\n", stage, s, counts.c_str()); }
 
@@ -103,18 +106,24 @@ void run_every_stage(const Sketch& sketch) {
   fs::create_directories(out);
   auto t = std::chrono::steady_clock::now();
   bench::StageCpu cpu;
+  bench::HeapPeaks heap;
   const double cpu_start = bench::cpu_seconds();
-  GenerateResult result = generate_city(sketch, out, [&](int, int, const std::string& stage) { cpu.next(stage); });
+  GenerateResult result = generate_city(sketch, out, [&](int, int, const std::string& stage) {
+    cpu.next(stage);
+    heap.next(stage);
+  });
   cpu.next("");
+  heap.stop();
   const double total = seconds_since(t), total_cpu = bench::cpu_seconds() - cpu_start;
   const auto& report = result.report;
   const auto& s = report["timings_s"];
-  std::printf("| stage          |  seconds | CPU s    | sys s    | faults    | counts\n"
-              "|----------------|----------|----------|----------|-----------|-------\n");
+  // heap MiB: the stage's peak of live heap (tcmalloc's count, sampled; 0 without tcmalloc).
+  std::printf("| stage          |  seconds | CPU s    | sys s    | faults    | heap MiB | counts\n"
+              "|----------------|----------|----------|----------|-----------|----------|-------\n");
   for (const auto& [stage, seconds] : s.items()) {
     std::string counts = stage_counts(stage, seconds.get<double>(), result);
     row(stage.c_str(), seconds.get<double>(), cpu.seconds.value(stage, 0.0), cpu.system_s.value(stage, 0.0),
-        cpu.faults.value(stage, 0L), counts);
+        cpu.faults.value(stage, 0L), heap.peak_mib[stage], counts);
   }
   const double validation = s["validation"].get<double>();
   std::printf("\nsketch to every export: %.3f s (+ validation %.3f s); CPU %.3f s in all; peak memory %.0f MiB; outputs in %s\n",

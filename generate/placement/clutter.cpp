@@ -141,18 +141,21 @@ bool meets_any(const geom::Ring& ring, const std::vector<int>& near, const std::
 }
 
 // The clutter kept so far: its bases, which no other base may meet, and its crowns and lamp
-// heads, under which a head may not hang within kCrownClearance of a crown.
+// heads, under which a head may not hang within kCrownClearance of a crown. The pieces are
+// `kept`'s, whose bases it reads there (a copy of each was tens of MB of the 10 km city's).
 class TakenClutter {
  public:
+  explicit TakenClutter(const std::vector<Clutter>& kept) : kept_(kept) {}
   // Why a piece with this base and canopy cannot stand (kOtherClutter, kNearCrown), or null.
   const char* refuses(const geom::Ring& base, const Canopy& c) const {
     if (meets_base(base)) return kOtherClutter;
     if (near_crown(c)) return kNearCrown;
     return nullptr;
   }
-  void add(const geom::Ring& base, const Canopy& c) {
-    bases_.add(base, static_cast<int>(rings_.size()));
-    rings_.push_back(base);
+  // Takes the piece last put into `kept`, whose canopy is c.
+  void take_last(const Canopy& c) {
+    const int i = static_cast<int>(kept_.size()) - 1;
+    bases_.add(kept_[static_cast<std::size_t>(i)].instance.polygon.outer, i);
     if (c.part == Canopy::kNone) return;
     const double r = c.radius + kCrownClearance;
     crowns_.add({{c.centre.x - r, c.centre.y - r}, {c.centre.x + r, c.centre.y + r}}, static_cast<int>(canopies_.size()));
@@ -162,7 +165,9 @@ class TakenClutter {
  private:
   bool meets_base(const geom::Ring& ring) const {
     const std::vector<int> near = bases_.near(RingBuckets::box_of(ring));
-    return std::any_of(near.begin(), near.end(), [&](int i) { return geom::rings_meet(ring, rings_[i]); });
+    return std::any_of(near.begin(), near.end(), [&](int i) {
+      return geom::rings_meet(ring, kept_[static_cast<std::size_t>(i)].instance.polygon.outer);
+    });
   }
   bool near_crown(const Canopy& c) const {
     if (c.part == Canopy::kNone) return false;
@@ -175,8 +180,8 @@ class TakenClutter {
     });
   }
 
+  const std::vector<Clutter>& kept_;
   RingBuckets bases_{8}, crowns_{8};
-  std::vector<geom::Ring> rings_;
   std::vector<Canopy> canopies_;
 };
 
@@ -274,7 +279,7 @@ class Dresser {
           const std::vector<Canopy>& canopies, const Channels& channels, const Terrain* terrain, Random& rng,
           Proposals& out)
       : side_(side), lib_(lib), bases_(bases), canopies_(canopies), channels_(channels), terrain_(terrain), rng_(rng),
-        out_(out) {}
+        out_(out), taken_(out.items) {}
 
   // Park trees stand on a park's open land, where street clutter finds no ground.
   void in_parks() { parks_ = true; }
@@ -340,8 +345,8 @@ class Dresser {
         continue;
       }
       if (w.zone) c.instance.zone = *w.zone;
-      taken_.add(c.instance.polygon.outer, canopy);
       out_.items.push_back(std::move(c));
+      taken_.take_last(canopy);
       ++out_.tally.placed[name(kind)];
       return model.spacing;
     }
@@ -675,7 +680,14 @@ StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* lib
       dress_park(*parks[g - streets_and_junctions], *library, rng, dresser);
     }
   });
-  TakenClutter kept;
+  // Each group's proposals freed once its pieces are kept or refused, and the kept ones
+  // moved into room made for them all at once: the proposals, the pieces kept and their
+  // vector's copies as it grew were all held together, at the top of the 10 km city's
+  // memory.
+  std::size_t proposed_pieces = 0;
+  for (const Proposals& p : proposed) proposed_pieces += p.items.size();
+  out.items.reserve(proposed_pieces);
+  TakenClutter kept(out.items);
   for (Proposals& p : proposed) {
     for (auto& [kind, n] : p.tally.placed) out.tally.placed[kind] += n;
     for (auto& [why, n] : p.tally.missed) out.tally.missed[why] += n;
@@ -690,9 +702,10 @@ StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* lib
         continue;
       }
       c.instance.id = static_cast<int>(out.items.size());
-      kept.add(ring, canopy);
       out.items.push_back(std::move(c));
+      kept.take_last(canopy);
     }
+    p = {};
   }
   for (auto it = out.tally.placed.begin(); it != out.tally.placed.end();)
     it = it->second == 0 ? out.tally.placed.erase(it) : std::next(it);
