@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <initializer_list>
 #include <iterator>
 #include <map>
 #include <string>
@@ -93,19 +94,33 @@ void write_facades(const City& city, const fs::path& file) {
   if (!out) throw UserError(file.string() + ": write failed (disk full?)");
 }
 
+// A tile's key holds thousands of numbers (a piece of clutter and a box each hold several):
+// each as its double's eight bytes, exact and cheaper than text.
+void append_bits(std::string& key, std::initializer_list<double> values) {
+  for (double v : values) key.append(reinterpret_cast<const char*>(&v), sizeof v);
+}
+void append_bits(std::string& key, std::initializer_list<int> values) {
+  for (int v : values) key.append(reinterpret_cast<const char*>(&v), sizeof v);
+}
+
 // A placed model or a piece of clutter, all the tiles' files read of it.
 void append_instance(std::string& key, const ModelInstance& m) {
-  key += "instance " + std::to_string(m.placed.model) + " " + std::to_string(m.placed.tint) + " " +
-         std::to_string(static_cast<int>(m.zone)) + " " + std::to_string(static_cast<int>(m.kind)) + " " +
-         std::to_string(m.stable_id) + " ";
-  for (double v : {m.placed.position.x, m.placed.position.y, m.placed.angle, m.placed.scale, m.height, m.base, m.floor})
-    append_key(key, v);
-  append_key(key, m.polygon);
+  key += 'i';
+  append_bits(key, {m.placed.model, m.placed.tint, static_cast<int>(m.zone), static_cast<int>(m.kind), m.stable_id});
+  append_bits(key, {m.placed.position.x, m.placed.position.y, m.placed.angle, m.placed.scale, m.height, m.base, m.floor});
+  auto ring = [&](const geom::Ring& r) {
+    append_bits(key, {static_cast<int>(r.size())});
+    for (geom::Vec2 p : r) append_bits(key, {p.x, p.y});
+  };
+  ring(m.polygon.outer);
+  append_bits(key, {static_cast<int>(m.polygon.holes.size())});
+  for (const geom::Ring& hole : m.polygon.holes) ring(hole);
 }
 
 void append_box(std::string& key, const StructureBox& b) {
-  key += "box " + std::to_string(static_cast<int>(b.zone)) + " " + std::to_string(b.id) + " ";
-  for (double v : {b.box.min_x, b.box.min_y, b.box.max_x, b.box.max_y, b.bottom, b.top}) append_key(key, v);
+  key += 'b';
+  append_bits(key, {static_cast<int>(b.zone), b.id});
+  append_bits(key, {b.box.min_x, b.box.min_y, b.box.max_x, b.box.max_y, b.bottom, b.top});
 }
 
 // All that a tile's files are made of but what every tile of the build shares (the city's
@@ -114,20 +129,30 @@ void append_box(std::string& key, const StructureBox& b) {
 // models and clutter in their order, and the boxes of the two far levels.
 std::string tile_key(const geom::Box& city, const Tile& t, const std::vector<StructureBox>& blocks,
                      const std::vector<std::string>& mesh_keys) {
-  std::string key = "city ";
-  for (double v : {city.min_x, city.min_y, city.max_x, city.max_y}) append_key(key, v);
+  std::string key;
+  // Each mesh key's length first: a key's text then cannot run on into what follows.
+  auto append_mesh = [&](int id) {
+    append_bits(key, {static_cast<int>(mesh_keys[id].size())});
+    key += mesh_keys[id];
+  };
+  append_bits(key, {city.min_x, city.min_y, city.max_x, city.max_y});
   for_each_by_id(
       t.buildings, t.models,
       [&](const Building& b) {
-        key += "building " + std::to_string(b.stable_id) + " " + std::to_string(static_cast<int>(b.zone)) + " " +
-               mesh_keys[b.id];
+        key += 'B';
+        append_bits(key, {b.stable_id, static_cast<int>(b.zone)});
+        append_mesh(b.id);
       },
-      [&](const ModelInstance& m) { key += "model " + mesh_keys[m.id], append_instance(key, m); });
-  key += "clutter ";
+      [&](const ModelInstance& m) {
+        key += 'M';
+        append_mesh(m.id);
+        append_instance(key, m);
+      });
+  key += 'C';
   for (const ModelInstance& c : t.clutter) append_instance(key, c);
-  key += "boxes ";
+  key += 'X';
   for (const StructureBox& b : t.boxes) append_box(key, b);
-  key += "blocks ";
+  key += 'K';
   for (const StructureBox& b : blocks) append_box(key, b);
   return key;
 }
