@@ -436,7 +436,7 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 
 }  // namespace
 
-double filter_seconds(const Image& image, bool primary_layer, const DenoiseSettings& settings) {
+double filter_seconds(const Image& image, bool primary_layer, bool as_it_is, const DenoiseSettings& settings) {
   // Two bands of a sixteenth of the rows each (32 at least), a quarter and three quarters
   // down, timed and scaled: a sky pixel costs the filter less than a surface's, and the top
   // rows of an aerial view are sky.
@@ -451,7 +451,7 @@ double filter_seconds(const Image& image, bool primary_layer, const DenoiseSetti
     // time is asked, does more, its taps stopped by noise that is there. Two equal halves
     // and a spread as large as each pixel's light stand in (0: the filter stopped nearly
     // every tap and took a third of its time on two samples).
-    if (band.halves[0].samples == 0) {
+    if (band.halves[0].samples == 0 && !as_it_is) {
       for (Image::Half& h : band.halves) h = {band.beauty, band.mean_albedo, band.first_sun, 1, band.inscatter};
       for (std::size_t i = 0; i < band.variance.size(); ++i) band.variance[i] = luminance(band.beauty[i]) * luminance(band.beauty[i]);
     }

@@ -45,8 +45,9 @@ int primary_rays(int samples, const DenoiseSettings& settings = {});
 
 // How long denoise() takes on `image` here, with a primary layer (Image::extra) or without:
 // bands of its rows filtered, timed and scaled (the filter's work is nearly the same for
-// every surface pixel); for a time budget.
-double filter_seconds(const Image& image, bool primary_layer, const DenoiseSettings& settings = {});
+// every surface pixel); for a time budget. An image of one sample is timed as one of two
+// (the filter of the samples to come), unless `as_it_is`: one estimate, a third the work.
+double filter_seconds(const Image& image, bool primary_layer, bool as_it_is = false, const DenoiseSettings& settings = {});
 
 // What exacity render does: the primary layer's rays (none in haze), then denoise();
 // the scene, sky, camera (in scene coordinates) and haze `image` was traced with. The

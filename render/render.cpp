@@ -248,6 +248,10 @@ Still render_still(const RenderScene& scene, const Sky& sky, const Camera& camer
     if (budget) {
       still.denoise_foretold_s = denoiser_s(film.samples, still.seconds / film.samples);
       still.filter_foretold_s = denoiser_s(1, 0);
+      // One sample is filtered as one estimate, not the two halves the passes were planned for.
+      if (film.samples == 1 && remaining > 0)
+        still.filter_foretold_s = still.denoise_foretold_s =
+            denoise_seconds(request, haze, 1, filter_seconds(image, false, true), 0);
     }
     if (budget && still.denoise_foretold_s > remaining) denoising.primary_rays = 0;
     still.denoised = !budget || still.filter_foretold_s <= remaining;
