@@ -352,3 +352,34 @@ TEST(Robustness, TheSnappedBuildInsertsBentEdgesAgainAndPassesTheControlCaseItCr
   const cli_util::Result check = cli_util::shell(std::string(EXACITY_BINARY) + " validate " + out.string());
   EXPECT_EQ(check.code, 0) << check.out;
 }
+
+// The grid build (exacity-float-grid, a decimal 1e-6 m grid) snapped the sketch's own corners
+// onto its grid with every constructed point, so the written zones missed the drawn ones by
+// sub-micrometre slivers (this control case: 0.0002 m2 uncovered, more than the judge's 1e-9
+// of the drawn area; 1 of the 40 control cases passed). Snap rounding now decides on the grid
+// which pixels each segment passes through, and a pixel holding a drawn corner is written
+// at that corner: every corner of every drawn zone is a vertex of the written zones exactly.
+TEST(Robustness, TheGridBuildKeepsTheSketchsCornersAsDrawnAndPassesTheControl) {
+  const std::filesystem::path out = testing_util::temp_dir("grid-random-0") / "out";
+  const cli_util::Result r = generate_case("exacity-float-grid", "random", 0, 1, out);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const Verdict v = judge(out);
+  EXPECT_TRUE(v.passed()) << testing::PrintToString(v.problems);
+  const cli_util::Result check = cli_util::shell(std::string(EXACITY_BINARY) + " validate " + out.string());
+  EXPECT_EQ(check.code, 0) << check.out;
+  auto corners = [](const nlohmann::json& doc, const char* key) {
+    std::set<std::pair<double, double>> points;
+    for (const auto& f : doc["features"]) {
+      if (f["geometry"]["type"] != "Polygon" || (key && !f["properties"].contains(key))) continue;
+      for (const auto& ring : f["geometry"]["coordinates"])
+        for (const auto& p : ring) points.insert({p[0].get<double>(), p[1].get<double>()});
+    }
+    return points;
+  };
+  std::ifstream sketch(out.string() + ".geojson"), zones(out / "vector" / "zones.geojson"), water(out / "vector" / "water.geojson");
+  const auto drawn = corners(nlohmann::json::parse(sketch), "zone");
+  auto written = corners(nlohmann::json::parse(zones), nullptr);
+  written.merge(corners(nlohmann::json::parse(water), nullptr));
+  ASSERT_FALSE(drawn.empty());
+  for (const auto& [x, y] : drawn) EXPECT_TRUE(written.count({x, y})) << x << " " << y;
+}
