@@ -370,9 +370,12 @@ TEST(Robustness, TheGridBuildKeepsTheSketchsCornersAsDrawnAndPassesTheControl) {
   auto corners = [](const nlohmann::json& doc, const char* key) {
     std::set<std::pair<double, double>> points;
     for (const auto& f : doc["features"]) {
-      if (f["geometry"]["type"] != "Polygon" || (key && !f["properties"].contains(key))) continue;
-      for (const auto& ring : f["geometry"]["coordinates"])
-        for (const auto& p : ring) points.insert({p[0].get<double>(), p[1].get<double>()});
+      if (key && !f["properties"].contains(key)) continue;
+      const auto& g = f["geometry"];
+      const auto polygons = g["type"] == "Polygon" ? nlohmann::json::array({g["coordinates"]}) : g["coordinates"];
+      for (const auto& polygon : polygons)
+        for (const auto& ring : polygon)
+          for (const auto& p : ring) points.insert({p[0].get<double>(), p[1].get<double>()});
     }
     return points;
   };
