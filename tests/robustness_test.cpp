@@ -356,7 +356,7 @@ TEST(Robustness, TheSnappedBuildInsertsBentEdgesAgainAndPassesTheControlCaseItCr
 // The grid build (exacity-float-grid, a decimal 1e-6 m grid) snapped the sketch's own corners
 // onto its grid with every constructed point, so the written zones missed the drawn ones by
 // sub-micrometre slivers (this control case: 0.0006 m2 uncovered, more than the judge's 1e-9
-// of the drawn area, and 14 of its 16 drawn corners written 0.1 to 0.7 µm off; 1 of the 40
+// of the drawn area, and 14 of its 16 drawn corners written up to 0.7 µm off; 1 of the 40
 // control cases passed). Snap rounding now decides on the grid which pixels each segment
 // passes through, and a pixel holding a drawn corner is written at that corner.
 TEST(Robustness, TheGridBuildKeepsTheSketchsCornersAsDrawnAndPassesTheControl) {
