@@ -162,7 +162,8 @@ std::vector<Polyline> snap_round_segments(const std::vector<std::pair<Vec2, Vec2
   auto is_monotone = [&](std::size_t i) { return i < monotone.size() && monotone[i]; };
   Placement placement;  // the grid build's (else every pixel is its grid point)
   for (std::size_t i = 0; i < n; ++i)
-    if (kPixelsPlaced && is_monotone(i)) placement.put(s[i].first, segments[i].first), placement.put(s[i].second, segments[i].second);
+    if (kPixelsPlaced && is_monotone(i))
+      placement.put(s[i].first, segments[i].first), placement.put(s[i].second, segments[i].second);
   for (std::size_t i = 0; i < n; ++i)
     if (is_given(i)) {
       // An end the end reach moved onto a vertex the arrangement has is that vertex.
