@@ -392,9 +392,10 @@ TEST(Robustness, TheGridBuildKeepsTheSketchsCornersAsDrawnAndPassesTheControl) {
   for (const auto& [x, y] : drawn) {
     exactly += written.count({x, y});
     for (auto it = written.lower_bound({x - 1e-6, -INFINITY}); it != written.end() && it->first <= x + 1e-6; ++it)
-      if (std::abs(it->second - y) <= 1e-6)
+      if (std::abs(it->second - y) <= 1e-6) {
         EXPECT_TRUE(it->first == x && it->second == y)
             << x << " " << y << " written at " << it->first << " " << it->second;
+      }
   }
   EXPECT_GE(exactly, 10) << "of " << drawn.size();
 }
