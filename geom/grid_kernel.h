@@ -3,7 +3,9 @@
 // snapped build on plain doubles with a practitioner's grid. Constructed points (road ends,
 // crossings, projections) are snapped to a decimal grid of 1e-6 m and tested again on it;
 // equality of constructed points is tested on that grid; each batch is noded by one pass of
-// snap rounding on it (geom/snap_noding.h, kSnapRounds), not iterated; predicates round.
+// snap rounding on it (geom/snap_noding.h, kSnapRounds), not iterated, with the sketch's own
+// corners, the map's vertices and crossings on drawn edges written where they lie, not at
+// their pixels' grid points (Placement); predicates round.
 // A decimal grid's points are not exact doubles, so three points that the grid puts on one
 // line are only nearly collinear in doubles: the orientation tests that iterated snap
 // rounding on 2^-24 m keeps exact (docs/benchmarks.md) can come out wrong here.

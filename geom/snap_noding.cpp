@@ -16,15 +16,15 @@ namespace {
 #if EXACITY_FLOAT_KERNEL == 5
 // The grid build (geom/grid_kernel.h) as a practitioner writes it: crossings decided in
 // rounded doubles, and one pass of snap rounding (Hobby's, not iterated).
-// The sketch's own corners (ends given as doubles) stay as drawn: snapped to a decimal grid,
-// every drawn zone would be written up to 0.7 µm off its drawn outline.
+// Its hot pixels are written where the sketch drew them (Placement): snapped to a decimal
+// grid, every drawn zone was written up to 0.7 µm off its drawn outline.
 using K = CGAL::Simple_cartesian<double>;
 constexpr int kSnapRounds = 1;
-constexpr bool kGivenEndsStay = true;
+constexpr bool kPixelsPlaced = true;
 #else
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 constexpr int kSnapRounds = 16;
-constexpr bool kGivenEndsStay = false;  // on 2^-24 m, snapped corners move under 30 nm
+constexpr bool kPixelsPlaced = false;  // every pixel at its grid point: on 2^-24 m a drawn corner moves under 30 nm
 #endif
 
 // Which side of a -> b point p is on, decided on the doubles given (exactly but in the grid build).
@@ -104,7 +104,7 @@ std::vector<Polyline> snap_round_segments(const std::vector<std::pair<Vec2, Vec2
   // vertical copy running the other way in (x, y) order, and a block's lots took its outside
   // for its inside (CGAL's precondition `f == f2`).
   for (std::size_t i = 0; i < n; ++i) {
-    const bool stays = !kGivenEndsStay && i < monotone.size() && monotone[i];  // the grid build puts them back after
+    const bool stays = !kPixelsPlaced && i < monotone.size() && monotone[i];  // the grid build puts them back after
     s[i] = stays ? segments[i] : std::pair{snap_to(segments[i].first, step), snap_to(segments[i].second, step)};
     box.add(s[i].first), box.add(s[i].second);
   }
@@ -158,11 +158,12 @@ std::vector<Polyline> snap_round_segments(const std::vector<std::pair<Vec2, Vec2
       grid.along(s[i].first, s[i].second, step, [&](long k) { entries.push_back({k, static_cast<int>(i)}); });
   std::sort(entries.begin(), entries.end());
   std::vector<Vec2> hot;
-  auto is_given = [&](std::size_t i) { return kGivenEndsStay && i < given.size() && given[i]; };
+  auto is_given = [&](std::size_t i) { return kPixelsPlaced && i < given.size() && given[i]; };
   auto is_monotone = [&](std::size_t i) { return i < monotone.size() && monotone[i]; };
   Placement placement;  // the grid build's (else every pixel is its grid point)
   for (std::size_t i = 0; i < n; ++i)
-    if (kGivenEndsStay && is_monotone(i)) placement.put(s[i].first, segments[i].first), placement.put(s[i].second, segments[i].second);
+    if (kPixelsPlaced && is_monotone(i))
+      placement.put(s[i].first, segments[i].first), placement.put(s[i].second, segments[i].second);
   for (std::size_t i = 0; i < n; ++i)
     if (is_given(i)) {
       // An end the end reach moved onto a vertex the arrangement has is that vertex.
@@ -242,7 +243,7 @@ std::vector<Polyline> snap_round_segments(const std::vector<std::pair<Vec2, Vec2
     // right one. Others take every hot pixel they meet once.
     // In the grid build, in (x, y) order as written (Placement), and a drawn or map edge places
     // the pixels it takes that nothing placed before it.
-    const bool one_way = is_monotone(i), kept = kGivenEndsStay && (one_way || is_given(i));
+    const bool one_way = is_monotone(i), kept = kPixelsPlaced && (one_way || is_given(i));
     const bool rightwards = xy_less(placement.of(a), placement.of(b));
     auto ahead = [&](Vec2 p, Vec2 q) { return !one_way || (rightwards ? xy_less(p, q) : xy_less(q, p)); };
     Polyline line{a, b};
@@ -269,7 +270,7 @@ std::vector<Polyline> snap_round_segments(const std::vector<std::pair<Vec2, Vec2
     }
     out[i] = std::move(line);
   }
-  if constexpr (kGivenEndsStay) placement.apply(out);
+  if constexpr (kPixelsPlaced) placement.apply(out);
   return out;
 }
 

@@ -33,8 +33,13 @@ Vec2 snap_to(Vec2 p, double step);
 // `monotone` segments (or those it marks) run one way in (x, y) order, as the pieces of a
 // split arrangement edge must: a hot pixel that would turn one back is passed by (a
 // crossing left unnoded, the rare price).
-// In the grid build (geom/grid_kernel.h) the ends of the segments `given` marks (edges given
-// as doubles: the sketch's rings) stay where they are too.
+// In the grid build (geom/grid_kernel.h) every end, the `monotone` segments' too, is snapped
+// for the rounding, and each hot pixel is then written at one point inside it: an end of a
+// `monotone` segment or of one `given` marks (edges given as doubles: the sketch's rings)
+// where it was; a crossing on a `given` segment as computed on its ends; a pixel a
+// `monotone` or `given` segment is routed through, on that segment; any other at its grid
+// point. Pieces of a `monotone` segment run one way as written. So the sketch's corners
+// stay as drawn and only constructed points land on the grid.
 std::vector<Polyline> snap_round_segments(const std::vector<std::pair<Vec2, Vec2>>& segments, double step,
                                           const std::vector<bool>& monotone = {}, const std::vector<bool>& given = {});
 

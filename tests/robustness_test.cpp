@@ -352,3 +352,50 @@ TEST(Robustness, TheSnappedBuildInsertsBentEdgesAgainAndPassesTheControlCaseItCr
   const cli_util::Result check = cli_util::shell(std::string(EXACITY_BINARY) + " validate " + out.string());
   EXPECT_EQ(check.code, 0) << check.out;
 }
+
+// The grid build (exacity-float-grid, a decimal 1e-6 m grid) snapped the sketch's own corners
+// onto its grid with every constructed point, so the written zones missed the drawn ones by
+// sub-micrometre slivers (this control case: 0.0006 m2 uncovered, more than the judge's 1e-9
+// of the drawn area, and 14 of its 16 drawn corners written up to 0.7 µm off; 1 of the 40
+// control cases passed). Snap rounding now decides on the grid which pixels each segment
+// passes through, and a pixel holding a drawn corner is written at that corner.
+TEST(Robustness, TheGridBuildKeepsTheSketchsCornersAsDrawnAndPassesTheControl) {
+  const std::filesystem::path out = testing_util::temp_dir("grid-random-0") / "out";
+  const cli_util::Result r = generate_case("exacity-float-grid", "random", 0, 1, out);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const Verdict v = judge(out);
+  EXPECT_TRUE(v.passed()) << testing::PrintToString(v.problems);
+  const cli_util::Result check = cli_util::shell(std::string(EXACITY_BINARY) + " validate " + out.string());
+  EXPECT_EQ(check.code, 0) << check.out;
+  auto corners = [](const nlohmann::json& doc, const char* key) {
+    std::set<std::pair<double, double>> points;
+    for (const auto& f : doc["features"]) {
+      if (key && !f["properties"].contains(key)) continue;
+      const auto& g = f["geometry"];
+      const auto polygons = g["type"] == "Polygon" ? nlohmann::json::array({g["coordinates"]}) : g["coordinates"];
+      for (const auto& polygon : polygons)
+        for (const auto& ring : polygon)
+          for (const auto& p : ring) points.insert({p[0].get<double>(), p[1].get<double>()});
+    }
+    return points;
+  };
+  std::ifstream sketch(out.string() + ".geojson");
+  const auto drawn = corners(nlohmann::json::parse(sketch), "zone");
+  std::set<std::pair<double, double>> written;
+  for (const char* layer : {"zones", "water", "road_areas"}) {
+    std::ifstream in(out / "vector" / (std::string(layer) + ".geojson"));
+    written.merge(corners(nlohmann::json::parse(in), nullptr));
+  }
+  // A corner under a zone drawn later is no written vertex; one that is, is written exactly:
+  // no written vertex lies within a micrometre of a drawn corner but the corner itself.
+  int exactly = 0;
+  for (const auto& [x, y] : drawn) {
+    exactly += written.count({x, y});
+    for (auto it = written.lower_bound({x - 1e-6, -INFINITY}); it != written.end() && it->first <= x + 1e-6; ++it)
+      if (std::abs(it->second - y) <= 1e-6) {
+        EXPECT_TRUE(it->first == x && it->second == y)
+            << x << " " << y << " written at " << it->first << " " << it->second;
+      }
+  }
+  EXPECT_GE(exactly, 10) << "of " << drawn.size();
+}
