@@ -102,6 +102,21 @@ double river_value(int col, int row) {
   return off < 1.5 ? 0.0 : std::min(1.0, 0.4 + 0.08 * off);
 }
 
+// Traces a size × size view and hands each pixel's coordinates, what it sees and where:
+// the point's y and height in the city's frame.
+template <class F>
+void for_each_pixel_seen(const RenderScene& scene, const Sky& sky, const Camera& view, int size, F&& f) {
+  const Image img = trace(scene, sky, view, TraceSettings{size, size, 1, 1});
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * size + x;
+      ASSERT_TRUE(std::isfinite(img.depth[i]));
+      V3 o, d;
+      view.ray(x + 0.5f, y + 0.5f, size, size, o, d);
+      f(x, y, img.id[i], o.y + d.y * img.depth[i] + scene.origin_y, o.z + d.z * img.depth[i]);
+    }
+}
+
 }  // namespace
 
 // Past the map's east edge (x 200) the ground sinks smoothly to the map's lowest height
@@ -221,23 +236,16 @@ TEST(GroundRender, ARoadsEdgeSeenFromTheGrassHidesTheGroundUnderIt) {
   const Camera view = scene.to_scene(Camera::look({100, static_cast<float>(edge - 15), 1.7f},
                                                   {100, static_cast<float>(edge), 0.06f}, 1));
   const int size = 32;
-  const Image img = trace(scene, sky, view, TraceSettings{size, size, 1, 1});
   int road = 0, grass = 0;
-  for (int y = 0; y < size; ++y)
-    for (int x = 0; x < size; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * size + x;
-      ASSERT_TRUE(std::isfinite(img.depth[i]));
-      V3 o, d;
-      view.ray(x + 0.5f, y + 0.5f, size, size, o, d);
-      const double at = o.y + d.y * img.depth[i] + scene.origin_y;
-      if (kind(img.id[i]) == Entity::Road) {
-        ++road;
-        continue;
-      }
-      ++grass;
-      EXPECT_LT(at, edge + 1e-3) << "pixel " << x << ", " << y << " sees entity kind "
-                                 << (img.id[i] >> 24) << " " << at - edge << " m under the road";
+  for_each_pixel_seen(scene, sky, view, size, [&](int x, int y, std::uint32_t id, double at, double) {
+    if (kind(id) == Entity::Road) {
+      ++road;
+      return;
     }
+    ++grass;
+    EXPECT_LT(at, edge + 1e-3) << "pixel " << x << ", " << y << " sees entity kind " << (id >> 24) << " "
+                               << at - edge << " m under the road";
+  });
   EXPECT_GT(road, size * 4);
   EXPECT_GT(grass, size * 4);
 }
@@ -255,23 +263,16 @@ TEST(GroundRender, ARoadMarkingSeenAcrossTheRoadHidesTheRoadUnderIt) {
   const Camera view = scene.to_scene(Camera::look({100, static_cast<float>(line - 15), 1.7f},
                                                   {100, static_cast<float>(line), 0.12f}, 1));
   const int size = 32;
-  const Image img = trace(scene, sky, view, TraceSettings{size, size, 1, 1});
   int marking = 0, beside = 0;
-  for (int y = 0; y < size; ++y)
-    for (int x = 0; x < size; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * size + x;
-      ASSERT_TRUE(std::isfinite(img.depth[i]));
-      V3 o, d;
-      view.ray(x + 0.5f, y + 0.5f, size, size, o, d);
-      const double at = o.y + d.y * img.depth[i] + scene.origin_y, z = o.z + d.z * img.depth[i];
-      if (z > exacity::kRoadOverTerrain + 0.005) {
-        ++marking;
-        continue;
-      }
-      ++beside;
-      EXPECT_GE(std::abs(at - line), half - 1e-3) << "pixel " << x << ", " << y << " sees the road "
-                                                  << std::abs(at - line) << " m from the line's middle";
+  for_each_pixel_seen(scene, sky, view, size, [&](int x, int y, std::uint32_t, double at, double z) {
+    if (z > exacity::kRoadOverTerrain + 0.005) {
+      ++marking;
+      return;
     }
+    ++beside;
+    EXPECT_GE(std::abs(at - line), half - 1e-3) << "pixel " << x << ", " << y << " sees the road "
+                                                << std::abs(at - line) << " m from the line's middle";
+  });
   EXPECT_GT(marking, size * 2);
   EXPECT_GT(beside, size * 4);
 }
