@@ -214,8 +214,7 @@ ThreeDCounts write_3d_files(const City& city, const fs::path& dir, const ThreeDF
                           .library = library,
                           .terrain = city.heightmap(),
                           .crs = city.settings.crs};
-  write_cityjson(meshed, dir / "city.city.json");
-  if (files.cityjson_seq) write_cityjson(meshed, dir / "city.city.jsonl", CityJsonForm::Sequence);
+  write_cityjson(meshed, dir / "city.city.json", files.cityjson_seq ? dir / "city.city.jsonl" : fs::path());
   std::vector<ModelInstance> clutter;
   for (const Clutter& c : city.clutter.items) clutter.push_back(c.instance);
   ThreeDCounts counts;

@@ -428,15 +428,17 @@ class ObjectTexts {
   std::map<std::string, std::pair<std::uint64_t, std::size_t>> at_;  // key -> offset and length
 };
 
-// Where the city objects go as they are made, by CityJsonForm: a document's objects share
+// Where the city objects go as they are made, by form: a document's objects share
 // one vertex list and are written in key order once all are made; a sequence's features are
 // written at once, each with its own vertices.
 class CityObjectWriter {
  public:
+  enum Form { Document, Sequence };
+
   // `shared`: the members every object refers to (transform, templates, appearance, metadata).
-  CityObjectWriter(CityJsonForm form, const std::filesystem::path& file, json shared, geom::Vec2 origin)
+  CityObjectWriter(Form form, const std::filesystem::path& file, json shared, geom::Vec2 origin)
       : form_(form), origin_(origin), vertices_(origin), shared_(std::move(shared)), out_(file) {
-    if (form_ == CityJsonForm::Document) {
+    if (form_ == Document) {
       texts_.emplace(file);
       return;
     }
@@ -448,13 +450,13 @@ class CityObjectWriter {
 
   // The vertices the next feature's geometry indexes.
   Vertices& next_vertices() {
-    if (form_ == CityJsonForm::Sequence) vertices_ = Vertices(origin_);
+    if (form_ == Sequence) vertices_ = Vertices(origin_);
     return vertices_;
   }
 
   // A feature made with next_vertices(): its object under `key`, and its children's.
   void add(const std::string& key, const json& object, const std::vector<std::pair<std::string, json>>& children = {}) {
-    if (form_ == CityJsonForm::Document) {
+    if (form_ == Document) {
       for (const auto& [child, o] : children) texts_->set(child, o.dump());
       texts_->set(key, object.dump());
       return;
@@ -469,7 +471,7 @@ class CityObjectWriter {
   }
 
   void close() {
-    if (form_ == CityJsonForm::Document) {
+    if (form_ == Document) {
       // In the document's (sorted) order the objects come first and the vertices last, so
       // they are written before and after the other members.
       out_ << "{\"CityObjects\":{";
@@ -483,7 +485,7 @@ class CityObjectWriter {
   }
 
  private:
-  CityJsonForm form_;
+  Form form_;
   geom::Vec2 origin_;
   Vertices vertices_;
   json shared_;
@@ -542,23 +544,9 @@ void add_ground_objects(const Ground& ground, const std::vector<GroundLayer>& la
   }
 }
 
-}  // namespace
-
-void write_cityjson(const MeshedCity& city, const std::filesystem::path& file, CityJsonForm form) {
+// Every object of the city through `out`, in the order their vertices are made.
+void write_objects(const MeshedCity& city, CityObjectWriter& out) {
   const Ground& ground = city.ground;
-  const geom::Box box = city_box(ground);
-  const geom::Vec2 origin{std::floor(box.min_x), std::floor(box.min_y)};
-  json shared{{"type", "CityJSON"},
-              {"version", "2.0"},
-              {"transform", {{"scale", {kScale, kScale, kScale}}, {"translate", {origin.x, origin.y, 0.0}}}}};
-  Appearance appearance(file.parent_path() / "textures");
-  if (city.library) shared["geometry-templates"] = templates(*city.library, appearance);
-  if (!appearance.empty()) shared["appearance"] = appearance.to_json();
-  // An EPSG code in the sketch's crs becomes the reference system.
-  if (const std::optional<int> epsg = epsg_of(city.crs))
-    shared["metadata"] = {{"referenceSystem", "https://www.opengis.net/def/crs/EPSG/0/" + std::to_string(*epsg)}};
-
-  CityObjectWriter out(form, file, std::move(shared), origin);
   const CancelCheck cancel;
   for_each_by_id(
       city.buildings, city.models,
@@ -595,6 +583,29 @@ void write_cityjson(const MeshedCity& city, const std::filesystem::path& file, C
   append_triangles(*layer_mesh(city.ground_layers, GroundKind::Terrain), out.next_vertices(), tin);
   out.add("terrain", {{"type", "TINRelief"}, {"geometry", json::array({{{"type", "CompositeSurface"}, {"lod", "1"}, {"boundaries", std::move(tin)}}})}});
   out.close();
+}
+
+}  // namespace
+
+void write_cityjson(const MeshedCity& city, const std::filesystem::path& document, const std::filesystem::path& sequence) {
+  const geom::Box box = city_box(city.ground);
+  const geom::Vec2 origin{std::floor(box.min_x), std::floor(box.min_y)};
+  // What both forms share, made once: the templates, and the appearance with its image files.
+  json shared{{"type", "CityJSON"},
+              {"version", "2.0"},
+              {"transform", {{"scale", {kScale, kScale, kScale}}, {"translate", {origin.x, origin.y, 0.0}}}}};
+  Appearance appearance(document.parent_path() / "textures");
+  if (city.library) shared["geometry-templates"] = templates(*city.library, appearance);
+  if (!appearance.empty()) shared["appearance"] = appearance.to_json();
+  // An EPSG code in the sketch's crs becomes the reference system.
+  if (const std::optional<int> epsg = epsg_of(city.crs))
+    shared["metadata"] = {{"referenceSystem", "https://www.opengis.net/def/crs/EPSG/0/" + std::to_string(*epsg)}};
+
+  CityObjectWriter out(CityObjectWriter::Document, document, shared, origin);
+  write_objects(city, out);
+  if (sequence.empty()) return;
+  CityObjectWriter features(CityObjectWriter::Sequence, sequence, std::move(shared), origin);
+  write_objects(city, features);
 }
 
 }  // namespace exacity
