@@ -315,7 +315,7 @@ TEST(Cli, BadInputExitsTwoWithOneLineAndNoOutput) {
       {"typeobject", R"({"type":{},"features":[]})", "GeoJSON FeatureCollection"},
       {"huge", R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"zone":"park"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[9,0],[9,-1e308],[0,0]]]}}]})", "beyond 1e10 m"},
       {"far", R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"zone":"residential"},"geometry":{"type":"Polygon","coordinates":[[[4e12,4e12],[4.000000001e12,4e12],[4.000000001e12,4.000000001e12],[4e12,4e12]]]}}]})", "beyond 1e10 m"},
-      {"vast", R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"zone":"residential"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[1e6,0],[1e6,1e6],[0,0]]]}}]})", "more than the 50000 one run builds"},
+      {"vast", R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"zone":"residential"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[1e6,0],[1e6,1e6],[0,0]]]}}]})", "more than the 60000 one run builds"},
       {"library", R"({"type":"FeatureCollection","exacity":{"models":"missing.json"},"features":[)" + zone + "]}", "cannot read the model library"},
       {"model", R"({"type":"FeatureCollection","exacity":{"models":"bad-library.json"},"features":[)" + zone + "]}", "line 2: vertex index 2 points to none"},
       {"grammar", R"({"type":"FeatureCollection","exacity":{"zones":{"park":{"layout":"grammar","grammar":"bad.grammar"}}},"features":[)" + zone + "]}", "bad.grammar:2: the corner count \"5\""},

@@ -125,7 +125,7 @@ TEST(GrammarTree, ASelfRecursiveGrammarStopsAtItsDepth) {
 TEST(GrammarTree, ATreeGrowingPastTheBlocksOneRunBuildsIsRefusedAsItGrows) {
   // Four towns and two roads between them at each step: 9 deep, 262,144 towns and 174,762
   // roads, down to pieces of a ten-thousandth of a square metre. The pieces are counted as
-  // they are made and the tree refused at 50,000, naming the settings that bound it.
+  // they are made and the tree refused at 60,000, naming the settings that bound it.
   const Grammar g = parse_grammar(
       "1 Town 4 Town,0,0,0.5,0,0.5,0.5,0,0.5 Town,0.5,0,1,0,1,0.5,0.5,0.5 Town,0.5,0.5,1,0.5,1,1,0.5,1 "
       "Town,0,0.5,0.5,0.5,0.5,1,0,1 Road,0.45,0,0.55,0,0.55,1,0.45,1 Road,0,0.45,1,0.45,1,0.55,0,0.55\n",
@@ -135,7 +135,7 @@ TEST(GrammarTree, ATreeGrowingPastTheBlocksOneRunBuildsIsRefusedAsItGrows) {
     ADD_FAILURE() << "grown";
   } catch (const exacity::UserError& e) {
     EXPECT_EQ(std::string(e.what()),
-              "split.grammar: the grammar grows more than 50000 pieces (blocks and roads) in one region, the blocks one "
+              "split.grammar: the grammar grows more than 60000 pieces (blocks and roads) in one region, the blocks one "
               "run builds, at \"grammar_depth\" 9 and \"min_block_area\" 0.0001; lower \"grammar_depth\" or raise "
               "\"min_block_area\"");
   }

@@ -92,17 +92,17 @@ TEST(SketchErrors, MoreBlocksThanOneRunBuilds) {
   EXPECT_EQ(error_of(with_features(big, R"({"zones": {"commercial": {"block_area": 20000}}})")), "");
 }
 
-// Every polygon is a block (or park or water face) at least: 50,001 triangles of half a
+// Every polygon is a block (or park or water face) at least: 60,001 triangles of half a
 // square metre have the area of no block, but each is a face of the exact map.
 TEST(SketchErrors, MorePolygonsThanBlocksOneRunBuilds) {
   std::string polygons;
-  for (int i = 0; i <= 50000; ++i) {
+  for (int i = 0; i <= 60000; ++i) {
     const std::string x = std::to_string(2 * i);
     polygons += (i ? ",[[[" : "[[[") + x + ",0],[" + std::to_string(2 * i + 1) + ",0],[" + x + ",1]]]";
   }
   const std::string many = R"({"type": "Feature", "properties": {"zone": "park"}, "geometry": {"type": "MultiPolygon", "coordinates": [)" +
                            polygons + "]}}";
-  expect_error(with_features(kSquare + "," + many), {"features[1]", "about 50002 blocks", "each polygon one at least", "fewer"});
+  expect_error(with_features(kSquare + "," + many), {"features[1]", "about 60002 blocks", "each polygon one at least", "fewer"});
 }
 
 TEST(SketchErrors, RingWithFewerThanThreeDistinctPoints) {

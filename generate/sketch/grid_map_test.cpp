@@ -555,8 +555,8 @@ TEST(GridMapErrors, MoreSeparateRegionsThanBlocksOneRunBuilds) {
     for (int c = 0; c < 320; ++c) board += (r + c) % 2 ? 'r' : '"';
     board += "\n";
   }
-  // The 50,001st region in reading order: row 156 (file line 158), column 81.
-  expect_error(board, "158:81", {"102400 separate regions", "more than the 50000 one run builds", "smaller map"});
+  // The 60,001st region in reading order: row 187 (file line 189), column 161.
+  expect_error(board, "189:161", {"102400 separate regions", "more than the 60000 one run builds", "smaller map"});
 }
 
 TEST(GridMapErrors, NoRowsOrNothingButBlockedCells) {
