@@ -26,6 +26,17 @@ void for_each_position(ordered_json& coordinates, const auto& f) {
   for (ordered_json& c : coordinates) for_each_position(c, f);
 }
 
+// The last line a child wrote to its log, without the program's prefix: why it failed, when
+// it says so (a refused sketch's one line).
+std::string last_line(const fs::path& log) {
+  std::ifstream in(log);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  const std::string prefix = "exacity: error: ";
+  return last.starts_with(prefix) ? last.substr(prefix.size()) : last;
+}
+
 // One size's runs: the medians of each figure.
 struct SizeResult {
   int size = 0;
@@ -50,7 +61,8 @@ SizeResult measure(const ScaleOptions& o, int size) {
                                std::to_string(o.threads), "--quiet"},
                               log, std::numeric_limits<double>::infinity());
     if (ran.status != Run::Exited || ran.code != 0)
-      throw std::runtime_error("the city of " + sketch.string() + " failed; see " + log.string());
+      throw std::runtime_error("the city of " + sketch.string() + " failed (" + last_line(log) + "); see " +
+                               log.string());
     std::ifstream in(city / "report.json");
     const ordered_json report = ordered_json::parse(in);
     const ordered_json& counts = report.at("counts");

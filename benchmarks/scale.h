@@ -12,7 +12,7 @@ namespace exacity::bench {
 
 struct ScaleOptions {
   std::filesystem::path sketch = "benchmarks/city_10km.geojson";
-  std::vector<int> sizes{1, 4, 16};  // areas in copies of the sketch; each a square number
+  std::vector<int> sizes{1, 4, 9};  // areas in copies of the sketch; each a square number (9: a million buildings)
   int threads = 0;                   // generate's --threads (0: one per core)
   int runs = 1;                      // runs per size; medians printed
   std::filesystem::path out = "scale";

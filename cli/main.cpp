@@ -682,7 +682,7 @@ void add_bench_scale(CLI::App& benchmarks, ScaleCommand& c) {
   c.app = benchmarks.add_subcommand(
       "scale", "The sketch tiled to several sizes, each generated as a user runs it: seconds and memory per stage");
   c.app->add_option("SKETCH", o.sketch, "The sketch to tile")->check(CLI::ExistingFile)->capture_default_str();
-  c.app->add_option("--sizes", o.sizes, "Areas in copies of the sketch, square numbers (1 4 16: 1x1, 2x2, 4x4)")
+  c.app->add_option("--sizes", o.sizes, "Areas in copies of the sketch, square numbers (1 4 9: 1x1, 2x2, 3x3)")
       ->delimiter(',')
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();

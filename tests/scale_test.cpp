@@ -61,3 +61,17 @@ TEST(ScaleBenchmark, MeasuresEachSizeAndEveryStage) {
   EXPECT_TRUE(std::filesystem::exists(dir / "out" / "scale.svg"));
   EXPECT_EQ(cli_util::run("bench scale " + (dir / "sketch.geojson").string() + " --sizes 2").code, 2);
 }
+
+// A size the sketch reader refuses stops the benchmark with the reader's own line.
+TEST(ScaleBenchmark, ASizeTheReaderRefusesSaysWhy) {
+  const std::filesystem::path dir = testing_util::temp_dir("scale_refused");
+  std::ofstream(dir / "vast.geojson")
+      << R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {"zone": "residential"},
+           "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [1e6, 0], [1e6, 1e6], [0, 0]]]}}]})";
+  const cli_util::Result r = cli_util::run("bench scale " + (dir / "vast.geojson").string() + " --sizes 1 -o " +
+                                           (dir / "out").string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("more than the 60000 one run builds"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("failed (" + (dir / "out" / "sketch-1.geojson").string() +
+                       ": features[0]: the zones would make about 41666666 blocks"), std::string::npos) << r.out;
+}
