@@ -79,13 +79,14 @@ TEST(Gis, LikeBringsHelsinkisMedianFootprintToItsBuildings) {
     const double is = after["footprints_by_zone"][zone]["generated"]["median_m2"].get<double>();
     EXPECT_GT(std::abs(was - mapped), 0.25 * mapped) << zone << ": " << was << " against " << mapped;
     EXPECT_LT(std::abs(is - mapped), 0.25 * mapped) << zone << ": " << is << " against " << mapped;
-    // The tail too, since drawn areas wait for room rather than shrink (19% and 14% under).
+    // The tail too, since drawn areas wait for room rather than shrink, and a lot does not
+    // replace one it cannot hold by a smaller draw (8% and 11% under).
     const double mapped_p90 = after["like"]["zones"][zone]["measured"]["area_m2"]["p90"].get<double>();
     const double p90 = after["footprints_by_zone"][zone]["generated"]["p90_m2"].get<double>();
     EXPECT_LT(std::abs(p90 - mapped_p90), 0.25 * mapped_p90) << zone << ": p90 " << p90 << " against " << mapped_p90;
   }
-  // Lots that fill the blocks bring the residential coverage within a quarter (18% under;
-  // the commercial one is 25.2% under, docs/gis.md).
+  // Lots that fill the blocks bring the residential coverage within a quarter (22% under;
+  // the commercial one is 28.9% under, docs/gis.md).
   const double mapped = after["like"]["zones"]["residential"]["measured"]["coverage_of_land_use"].get<double>();
   const double is = after["footprints_by_zone"]["residential"]["generated"]["coverage_of_land_use"].get<double>();
   EXPECT_LT(std::abs(is - mapped), 0.25 * mapped) << "residential coverage " << is << " against " << mapped;

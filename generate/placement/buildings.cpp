@@ -97,7 +97,8 @@ bool surely_not_inside(const std::vector<geom::Ring>& rings, double x0, double x
 // `min_footprint_width`. With `footprint_areas`, a drawn area that does not fit as drawn is
 // tried at the same area, wider and shallower or narrower and deeper (a lot's frontage
 // or depth, not its land, is what a large footprint misses), and else at the next places
-// along the rows, never smaller. With `lot_coverage`, rows
+// along the rows, never smaller; one that fits nowhere on the lot ends its footprints (the
+// lot keeps the areas drawn for it, as a place's lots hold what they hold). With `lot_coverage`, rows
 // follow behind the first, each `building_gap` behind the deepest of the row before (a row
 // with no room a step behind it), while the footprints cover less than that share of the
 // lot (the first row too stops there) and the lot is deep enough. Each is
@@ -197,9 +198,13 @@ std::vector<geom::Ring> street_footprints(Occupancy& occupancy, const BuildingSe
   };
   double front = setback;
   for (bool first = true;; first = false) {
-    double deepest = row(front, first);
-    // What waited fits nowhere in this row: the row again without it.
-    if (deepest == 0 && waiting) waiting.reset(), deepest = row(front, first);
+    // What waited fits nowhere in this row goes on waiting in the rows behind, and where it
+    // fits nowhere on the lot it ends the lot's footprints: it is not replaced by a fresh
+    // draw. Replaced (the row again without it), every lot drew until an area its room
+    // held came, so small lots filtered the place's sizes down to theirs: on Kotka's
+    // completion the areas dropped had a median of 138 m² and those placed were drawn at 69 m² (the
+    // place's 120 m²), and the generated median came out 27% under the mapped one.
+    const double deepest = row(front, first);
     if (covered >= wanted) break;
     // A row with no room (a lot's neck, a corner) may have room behind it: the next row
     // a step further back, until the lot's depth.
