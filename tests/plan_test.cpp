@@ -52,7 +52,9 @@ void expect_same_files(const fs::path& expected, const fs::path& actual) {
       EXPECT_TRUE(read(e.path()) == read(actual / relative)) << relative << " differs";
   }
   for (const auto& e : fs::recursive_directory_iterator(actual))
-    if (e.is_regular_file()) EXPECT_TRUE(fs::exists(expected / fs::relative(e.path(), actual))) << e.path();
+    if (e.is_regular_file()) {
+      EXPECT_TRUE(fs::exists(expected / fs::relative(e.path(), actual))) << e.path();
+    }
   EXPECT_GT(files, 10);
 }
 

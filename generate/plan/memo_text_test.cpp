@@ -76,7 +76,9 @@ TEST(MemoText, LotPlansReadBackExactly) {
       EXPECT_EQ(read[i].block, lots[i].block);
       EXPECT_EQ(read[i].ring, lots[i].ring);
       EXPECT_EQ(geom::exact_text(read[i].cell), geom::exact_text(lots[i].cell));
-      if (lots[i].cell.has_value()) EXPECT_EQ(read[i].cell.area(), lots[i].cell.area());
+      if (lots[i].cell.has_value()) {
+        EXPECT_EQ(read[i].cell.area(), lots[i].cell.area());
+      }
       EXPECT_EQ(read[i].model, lots[i].model);
     }
   });
