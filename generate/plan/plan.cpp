@@ -185,10 +185,15 @@ int run_plan_task(const fs::path& dir, int task, PlanStep step) {
   } catch (const StepDone&) {
   }
   std::string items;
+  int count = 0;
+  auto write = [&](const auto& memo) {
+    memo.for_each([&](const std::string&, const auto&) { ++count; });
+    items = memo_text(memo);
+  };
   switch (step) {
-    case PlanStep::Roads: items = memo_text(cache->road_plans); break;
-    case PlanStep::Lots: items = memo_text(cache->lot_plans); break;
-    case PlanStep::Buildings: items = memo_text(cache->placements); break;
+    case PlanStep::Roads: write(cache->road_plans); break;
+    case PlanStep::Lots: write(cache->lot_plans); break;
+    case PlanStep::Buildings: write(cache->placements); break;
   }
   // Written aside and renamed, so a merge never reads half a file.
   const fs::path file = items_file(dir, task, step);
@@ -200,7 +205,7 @@ int run_plan_task(const fs::path& dir, int task, PlanStep step) {
     if (!out) throw UserError(aside.string() + ": could not be written (disk full?); run the task again");
   }
   fs::rename(aside, file);
-  return static_cast<int>(std::count(items.begin(), items.end(), '\n'));
+  return count;
 }
 
 std::shared_ptr<RegionCache> merged_cache(const fs::path& dir, const Plan& plan, const Sketch& sketch) {
