@@ -26,6 +26,8 @@
 #include "generate/export/output_folder.h"
 #include "generate/export/gis_export.h"
 #include "generate/pipeline.h"
+#include "generate/plan/plan.h"
+#include "generate/regenerate.h"
 #include "generate/sketch/like_place.h"
 #include "generate/sketch/sketch.h"
 #include "generate/export/statistics.h"
@@ -181,9 +183,13 @@ nlohmann::ordered_json render_with_progress(const City& city, render::RenderRequ
 
 int generate(const std::vector<fs::path>& sketch_paths, const std::vector<fs::path>& footprints, const fs::path& models,
              const fs::path& like_given, const fs::path& out, bool quiet, const RenderOptions* rendering,
-             const ExportOptions& exports) {
+             const ExportOptions& exports, const fs::path& plan = {}) {
   const auto started = process_started();  // --time is the whole command's
-  Sketch sketch = load_sketch(sketch_paths, true, models, footprints);
+  // exacity merge: the plan's sketch, and a cache holding every item its tasks computed.
+  Sketch sketch;
+  std::shared_ptr<RegionCache> merged;
+  if (plan.empty()) sketch = load_sketch(sketch_paths, true, models, footprints);
+  else merged = merged_cache(plan, read_plan(plan, sketch), sketch);
   // The zone parameters measured from a real place's buildings, before any work.
   const fs::path like = like_given.empty() ? sketch.like : like_given;
   nlohmann::ordered_json like_report;
@@ -198,12 +204,25 @@ int generate(const std::vector<fs::path>& sketch_paths, const std::vector<fs::pa
     ProgressReport progress(quiet);
     StageClock clock([&](int i, int n, const std::string& stage) { progress.stage(i, n, stage); },
                      kCityStages + kWriteStages + (rendering ? 1 : 0));
-    City city = build_city(sketch, clock);
+    City city = build_city(sketch, clock, merged);
     // Without a render nothing reads the city after its files: the 3D export need not hold all of it.
     result = rendering ? write_city(sketch, city, folder.staging(), clock, exports)
                        : write_city(sketch, std::move(city), folder.staging(), clock, exports);
     if (!like_report.is_null()) {
       result.report["like"] = like_report;
+      write_report(result.report, folder.staging());
+    }
+    if (merged) {  // report.json as generate writes it: what the tasks computed is said here
+      // Lots merged into a neighbour after a first placement (build_on_lots) are placed
+      // here: which lots a placer leaves unbuilt is known only once every lot is placed.
+      const auto& reused = result.report["reused"];
+      auto of = [&](const char* kind) {
+        return std::to_string(reused[kind]["reused"].get<int>()) + " of " + std::to_string(reused[kind]["of"].get<int>());
+      };
+      if (!quiet)
+        std::printf("exacity: from the plan's tasks: region plans %s, block plans %s, lot placements %s\n",
+                    of("region_plans").c_str(), of("block_plans").c_str(), of("lot_placements").c_str());
+      result.report.erase("reused");
       write_report(result.report, folder.staging());
     }
     if (rendering) {
@@ -509,6 +528,25 @@ struct GenerateCommand {
   ExportOptions exports;
 };
 
+struct PlanCommand {
+  CLI::App* app = nullptr;
+  std::vector<fs::path> sketch;
+  fs::path out = "plan";
+  int tasks = 4;
+};
+
+struct PlanTaskCommand {
+  CLI::App* app = nullptr;
+  fs::path plan;
+  int task = 0;
+  std::string step;
+};
+
+struct MergeCommand {
+  CLI::App* app = nullptr;
+  fs::path plan, out = "out";
+};
+
 struct RenderCommand {
   CLI::App* app = nullptr;
   fs::path folder, file;
@@ -634,6 +672,44 @@ void add_generate(CLI::App& app, GenerateCommand& c, SharedOptions& shared) {
       ->check(CLI::Range(0, 1024));
   c.app->add_flag("--render", c.render, "Also render the default still, the overview and the minimap into OUT/render");
   add_image_options(c.app, shared.render);
+}
+
+void add_plan(CLI::App& app, PlanCommand& plan, PlanTaskCommand& task, MergeCommand& merge, SharedOptions& shared) {
+  plan.app = app.add_subcommand("plan", "Plan a city as tasks of a job array (scripts/generate_city.sbatch): "
+                                        "plan, each step's tasks, then merge");
+  plan.app->add_option("SKETCH", plan.sketch, "The sketch, as exacity generate reads it (its files read as one)")->required();
+  plan.app->add_option("-o,--output", plan.out, "The plan's folder, new or empty, on storage every node sees")
+      ->capture_default_str();
+  plan.app->add_option("--tasks", plan.tasks, "Tasks of each step (a job array's size)")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  task.app = app.add_subcommand("plan-task", "Compute one task's share of a plan's step, into PLAN/tasks/TASK/STEP.items");
+  task.app->add_option("PLAN", task.plan, "A folder of exacity plan")->required();
+  task.app->add_option("--task", task.task, "The task, from 0")->required()->check(CLI::NonNegativeNumber);
+  task.app->add_option("--step", task.step,
+                       "roads (the regions' road plans), lots (the blocks' lot plans: needs every task's roads) or "
+                       "buildings (the lots' structures: needs every task's lots)")
+      ->required()
+      ->check(CLI::IsMember({"roads", "lots", "buildings"}));
+  task.app->add_option("--threads", shared.threads, "Worker threads (0: one per core); the items do not depend on it")
+      ->check(CLI::Range(0, 1024));
+  merge.app = app.add_subcommand("merge", "Join a plan's tasks into the city exacity generate makes of its sketch, "
+                                          "byte for byte, validated");
+  merge.app->add_option("PLAN", merge.plan, "A folder of exacity plan whose tasks ran every step")->required();
+  merge.app->add_option("-o,--output", merge.out, "Output folder (replaced if an earlier exacity run wrote it)")
+      ->capture_default_str();
+  merge.app->add_flag("-q,--quiet", shared.quiet, "Hide progress");
+  merge.app->add_option("--threads", shared.threads, "Worker threads (0: one per core); the output does not depend on it")
+      ->check(CLI::Range(0, 1024));
+}
+
+int plan_task(const PlanTaskCommand& c) {
+  PlanStep step = PlanStep::Roads;
+  for (PlanStep s : kPlanSteps)
+    if (c.step == step_name(s)) step = s;
+  const int items = run_plan_task(c.plan, c.task, step);
+  std::printf("exacity: task %d, step %s: %d items\n", c.task, c.step.c_str(), items);
+  return 0;
 }
 
 void add_render(CLI::App& app, RenderCommand& c, SharedOptions& shared) {
@@ -769,6 +845,9 @@ int main(int argc, char** argv) {
   RobustnessCommand rob;
   ScaleCommand scale;
   ServeCommand srv;
+  PlanCommand pla;
+  PlanTaskCommand pta;
+  MergeCommand mer;
   // In this order --help lists them.
   add_program_options(app, shared);
   add_generate(app, gen, shared);
@@ -776,6 +855,7 @@ int main(int argc, char** argv) {
   add_validate(app, val);
   add_stats(app, sta);
   add_serve(app, srv);
+  add_plan(app, pla, pta, mer, shared);
   add_bench(app, rob, scale);
   if (const std::optional<int> code = parse_command_line(app, argc, argv, sta)) return *code;
 
@@ -783,6 +863,14 @@ int main(int argc, char** argv) {
     const std::unique_ptr<tbb::global_control> limit = thread_limit(shared.threads);
     if (*gen.app) return generate(gen.sketch, gen.buildings, gen.models, gen.like, gen.out, shared.quiet,
                                   gen.render ? &shared.render : nullptr, gen.exports);
+    if (*pla.app) {
+      const Plan plan = write_plan(pla.sketch, pla.out, pla.tasks);
+      std::printf("exacity: wrote %s: %d tasks a step; run steps roads, lots, buildings (scripts/generate_city.sbatch), "
+                  "then exacity merge %s\n", pla.out.string().c_str(), plan.tasks, pla.out.string().c_str());
+      return 0;
+    }
+    if (*pta.app) return plan_task(pta);
+    if (*mer.app) return generate({}, {}, {}, {}, mer.out, shared.quiet, nullptr, ExportOptions(), mer.plan);
     if (*ren.app) return render_folder(ren.folder, shared.render, ren.file, shared.quiet);
     if (*val.app) return validate(val.folder);
     if (*sta.app) return stats(sta.folder, sta.real);

@@ -5,6 +5,7 @@
 #include <string>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include <CGAL/Polygon_2_algorithms.h>
 
@@ -594,6 +595,7 @@ void write_ring(std::string& out, const KindRing& ring) {
 
 std::string exact_text(const Cell& cell) {
   std::string out;
+  if (!cell.has_value()) return out;
   write_ring(out, cell.exact().outer);
   for (const KindRing& hole : cell.exact().holes) write_ring(out, hole);
   return out;
@@ -604,6 +606,95 @@ std::string exact_text(const Path& path) {
   if (path.size() > 0)
     for (const exact::Point& p : path.exact().points) write_point(out, p, exact::to_plain(p));
   return out;
+}
+
+}  // namespace geom
+
+namespace geom {
+namespace {
+
+// Reads exact_text's words back, one at a time.
+class ExactTextReader {
+ public:
+  explicit ExactTextReader(std::string_view text) : text_(text) {}
+  bool done() const { return at_ >= text_.size(); }
+  std::string_view word() {
+    const auto end = text_.find(' ', at_);
+    if (end == std::string_view::npos) fail();
+    const std::string_view w = text_.substr(at_, end - at_);
+    at_ = end + 1;
+    return w;
+  }
+  void expect(std::string_view w) {
+    if (word() != w) fail();
+  }
+  long number() {
+    const std::string_view w = word();
+    long v = 0;
+    if (std::from_chars(w.data(), w.data() + w.size(), v).ec != std::errc()) fail();
+    return v;
+  }
+  // write_coordinate's text: a hex double, or 'q' and the exact rational.
+  exact::FT coordinate() {
+    const std::string_view w = word();
+    if (!w.empty() && w[0] == 'q') {
+      std::istringstream in{std::string(w.substr(1))};
+      exact::FT::ET value;
+      if (!(in >> value) || !in.eof()) fail();
+      return exact::FT(value);
+    }
+    const bool negative = !w.empty() && w[0] == '-';
+    const std::string_view digits = w.substr(negative ? 1 : 0);
+    double v = 0;
+    if (digits.substr(0, 2) != "0x" ||
+        std::from_chars(digits.data() + 2, digits.data() + digits.size(), v, std::chars_format::hex).ptr !=
+            digits.data() + digits.size())
+      fail();
+    return exact::FT(negative ? -v : v);
+  }
+  Point point() {
+    exact::FT x = coordinate();
+    return Point(x, coordinate());
+  }
+  [[noreturn]] void fail() const {
+    throw std::invalid_argument("not an exact text of a cell or path at character " + std::to_string(at_));
+  }
+
+ private:
+  std::string_view text_;
+  std::size_t at_ = 0;
+};
+
+KindRing read_ring(ExactTextReader& in) {
+  KindRing ring;
+  const long n = in.number();
+  if (n < 0) in.fail();
+  for (long i = 0; i < n; ++i) {
+    ring.points.push_back(in.point());
+    ring.kinds.push_back(static_cast<int>(in.number()));
+  }
+  return ring;
+}
+
+}  // namespace
+
+Cell cell_from_exact_text(std::string_view text) {
+  if (text.empty()) return Cell();
+  ExactTextReader in(text);
+  in.expect("ring");
+  KindRing outer = read_ring(in);
+  std::vector<KindRing> holes;
+  while (!in.done()) in.expect("ring"), holes.push_back(read_ring(in));
+  return make_cell(std::move(outer), std::move(holes));
+}
+
+Path path_from_exact_text(std::string_view text) {
+  ExactTextReader in(text);
+  in.expect("path");
+  if (in.done()) return Path();
+  auto impl = std::make_shared<Path::Impl>();
+  while (!in.done()) impl->points.push_back(in.point());
+  return Path(std::move(impl));
 }
 
 }  // namespace geom

@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "geom/plain.h"
@@ -48,6 +49,7 @@ class Cell {
   Cell() = default;
   explicit Cell(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
 
+  bool has_value() const { return impl_ != nullptr; }  // false for a Cell() (a lot planned without one)
   double area() const;  // the exact area, rounded
   Box bounds() const;
   Vec2 centroid() const;
@@ -87,9 +89,14 @@ class Cell {
 
 // Every vertex written exactly (a double as a hex float, any other coordinate as its exact
 // rational) and every edge's kind: two cells with equal texts are the same cell, vertex for
-// vertex from the same start. A cache's key (generate/city/memo.h).
+// vertex from the same start. A cache's key (generate/city/memo.h). Empty for a Cell().
 std::string exact_text(const Cell& cell);
 std::string exact_text(const Path& path);
+// The cell or path exact_text wrote, vertex for vertex the same (a plan's task writes the
+// items it computed this way: generate/plan/memo_text.h). Throws std::invalid_argument on
+// any other text.
+Cell cell_from_exact_text(std::string_view text);
+Path path_from_exact_text(std::string_view text);
 
 // Roads growing inside one cell.
 class Growth {

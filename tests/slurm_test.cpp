@@ -156,3 +156,47 @@ TEST(Slurm, AJobArrayRendersAPathsFramesAsOneProcessAndFfmpegJoinsThem) {
   EXPECT_NE(frames.out.find("width=64\nheight=48\n"), std::string::npos) << frames.out;
   EXPECT_NE(frames.out.find("pix_fmt=yuv420p\n"), std::string::npos) << frames.out;
 }
+
+// scripts/generate_city.sbatch as docs/commands.md runs it: a plan of 3 tasks, an array a
+// step, each waiting for the one before, then the merge as a job waiting for the last; the
+// city is the bytes exacity generate writes.
+TEST(Slurm, JobArraysGenerateAPlansTasksAndTheMergeIsTheSingleRunsCity) {
+  if (geteuid() != 0) GTEST_SKIP() << "slurmctld and slurmd run as root here (SlurmUser=root); run the tests as root";
+  for (const char* program : {"slurmctld", "slurmd", "sbatch", "sinfo"})
+    if (!on_path(program)) GTEST_SKIP() << program << " is not installed: run scripts/install-deps.sh";
+
+  const fs::path dir = testing_util::temp_dir("slurm-plan");
+  std::ofstream(dir / "city.geojson") << R"({"type": "FeatureCollection", "exacity": {"seed": 5}, "features": [
+    {"type": "Feature", "properties": {"zone": "residential"},
+     "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [160, 0], [160, 120], [0, 120], [0, 0]]]}},
+    {"type": "Feature", "properties": {"road": "main", "width": 10},
+     "geometry": {"type": "LineString", "coordinates": [[80, -20], [80, 140]]}}]})";
+  ASSERT_EQ(run("generate " + (dir / "city.geojson").string() + " -o " + (dir / "whole").string() + " -q").code, 0);
+  const fs::path plan = dir / "plan";
+  ASSERT_EQ(run("plan " + (dir / "city.geojson").string() + " -o " + plan.string() + " --tasks 3").code, 0);
+
+  OneNodeSlurm slurm(dir / "slurm");
+  ASSERT_TRUE(slurm.ready(20)) << "the node never became idle:\n" << slurm.logs();
+  const std::string env = slurm.env() + "EXACITY=" + EXACITY_BINARY + " ";
+  std::string after;
+  for (const char* step : {"roads", "lots", "buildings"}) {
+    const Result array = shell(env + "sbatch --parsable --array=0-2 --cpus-per-task=1 " + after + "--output=" +
+                               (dir / (std::string(step) + "-%a.log")).string() + " " +
+                               (kSource / "scripts" / "generate_city.sbatch").string() + " " + plan.string() + " " + step);
+    ASSERT_EQ(array.code, 0) << array.out;
+    after = "--dependency=afterok:" + array.out.substr(0, array.out.find_first_of(";\n")) + " ";
+  }
+  const Result merge = shell(env + "timeout 300 sbatch --wait " + after + "--output=" + (dir / "merge.log").string() +
+                             " --wrap '" + EXACITY_BINARY + " merge " + plan.string() + " -q -o " +
+                             (dir / "merged").string() + "'");
+  ASSERT_EQ(merge.code, 0) << merge.out << read(dir / "merge.log") << read(dir / "roads-0.log") << slurm.logs();
+  for (const char* step : {"roads", "lots", "buildings"})
+    for (int task = 0; task < 3; ++task)
+      EXPECT_TRUE(fs::exists(plan / "tasks" / std::to_string(task) / (std::string(step) + ".items"))) << step << task;
+  for (const char* file : {"vector/buildings.geojson", "vector/lots.geojson", "vector/roads.geojson", "city.city.json",
+                           "city.glb", "city.obj", "map.svg"}) {
+    const std::string a = read(dir / "whole" / file);
+    ASSERT_FALSE(a.empty()) << file;
+    EXPECT_TRUE(a == read(dir / "merged" / file)) << file;
+  }
+}

@@ -5,7 +5,9 @@
 #pragma once
 
 #include <cstdio>
+#include <functional>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -31,6 +33,8 @@ class Memo {
         return it->second.value;
       }
     }
+    if (others)
+      if (std::optional<Value> stand_in = others(key)) return *std::move(stand_in);
     Value value = compute();
     const std::lock_guard lock(mutex_);
     ++misses_;
@@ -50,6 +54,24 @@ class Memo {
     ++build_;
     hits_ = misses_ = 0;
   }
+  // Puts `key`'s value as if this build had computed it (a plan's merge loads its tasks'
+  // items so: generate/plan/plan.h). Call after next_build.
+  void put(std::string key, Value value) {
+    const std::lock_guard lock(mutex_);
+    entries_.insert_or_assign(std::move(key), Entry{std::move(value), build_});
+  }
+  // Visits every entry held, in no particular order.
+  template <typename Visit>
+  void for_each(Visit&& visit) const {
+    const std::lock_guard lock(mutex_);
+    for (const auto& [key, entry] : entries_) visit(key, entry.value);
+  }
+  // Keys another process computes (a plan's task leaves the other tasks' items to them):
+  // for such a key, when not held, `others` gives a value that stands in for it, neither
+  // computed nor kept nor counted; nullopt for the keys to compute here. Called from many
+  // threads at once.
+  std::function<std::optional<Value>(const std::string&)> others;
+
   int hits() const { return hits_; }
   int misses() const { return misses_; }
 
@@ -58,7 +80,7 @@ class Memo {
     Value value;
     long build;
   };
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::string context_;
   std::unordered_map<std::string, Entry> entries_;
   long build_ = 0;
