@@ -164,8 +164,9 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
 
 namespace {
 
-// The vector layers, a copy of the sketch and the SVG map, each file written at once with the others.
-void export_vectors(const Sketch& sketch, const City& city, const fs::path& dir) {
+// The vector layers (the city's and `clutter`), a copy of the sketch and the SVG map, each
+// file written at once with the others.
+void export_vectors(const Sketch& sketch, const City& city, const Layer& clutter, const fs::path& dir) {
   const CityLayers& layers = city.layers;
   fs::create_directories(dir / "vector");
   const std::vector<const Layer*> polygon_layers{&layers.zones,      &layers.water, &layers.roads,    &layers.road_areas,
@@ -180,10 +181,7 @@ void export_vectors(const Sketch& sketch, const City& city, const fs::path& dir)
           if (!copy) throw UserError((dir / "sketch.geojson").string() + ": write failed (disk full?)");
         }
       },
-      [&] {
-        write_point_geojson(clutter_layer(city.clutter.items, city.ground, city.model_library()), city.settings.crs,
-                            dir / "vector" / "clutter.geojson");
-      },
+      [&] { write_point_geojson(clutter, city.settings.crs, dir / "vector" / "clutter.geojson"); },
       [&] { write_svg_map(city.ground, city.buildings, city.models, dir / "map.svg", city.clutter.items); }};
   for_each_cancellable(files.size() + polygon_layers.size(), [&](std::size_t i) {
     if (i < files.size()) return files[i]();
@@ -238,8 +236,9 @@ GenerateResult write(const Sketch& sketch, const City& city, City* released, con
                      const ExportOptions& options) {
   bool city_osm = false;
   stages.run("export", [&] {
-    export_vectors(sketch, city, dir);
-    write_vector_formats(dir, options.vector_formats, city.settings.crs);
+    const Layer clutter = clutter_layer(city.clutter.items, city.ground, city.model_library());
+    export_vectors(sketch, city, clutter, dir);
+    write_vector_formats(vector_files(city.layers, clutter), dir, options.vector_formats, city.settings.crs);
     city_osm = write_city_osm(city, dir / "city.osm", options.osm_first_id);
   });
   ordered_json report = city_report(sketch, city, options.vector_formats, city_osm);
