@@ -6,6 +6,7 @@
 #include <chrono>
 #include <fstream>
 #include <optional>
+#include <stdexcept>
 
 #include "generate/cancellable_invoke.h"
 #include "generate/city_report.h"
@@ -17,6 +18,7 @@
 #include "generate/export/clutter_layer.h"
 #include "generate/errors.h"
 #include "generate/export/gis_export.h"
+#include "generate/gis/projection.h"
 #include "generate/export/gltf_export.h"
 #include "generate/parcels/lots.h"
 #include "generate/export/mesh_export.h"
@@ -30,6 +32,9 @@
 #include "geom/kernel.h"
 #include "generate/export/vector_layers.h"
 #include "generate/city/city_map.h"
+
+// tcmalloc's C interface, weak so that a build without tcmalloc (the sanitizers') links.
+extern "C" void MallocExtension_ReleaseFreeMemory() __attribute__((weak));
 
 namespace exacity {
 namespace fs = std::filesystem;
@@ -142,6 +147,7 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
   });
   city.buildings = std::move(raised.buildings);
   city.models = std::move(raised.models);
+  std::vector<PlannedLot>().swap(planned);  // the lots' exact cells: only the lots and buildings read them
   stages.run("vector layers", [&] {
     give_covered_roads_their_carriageway(city.network.map);
     merge_sliver_road_areas(city.network.map);
@@ -230,26 +236,46 @@ Validation validation_stage(const City& city, const fs::path& dir, StageClock& s
   });
 }
 
+// Gives the pages of what was just freed back to the system (tcmalloc keeps them, and the
+// exact map's small blocks are not pages the exports' large buffers can reuse); none
+// without tcmalloc.
+void release_freed_memory() {
+  if (MallocExtension_ReleaseFreeMemory) MallocExtension_ReleaseFreeMemory();
+}
+
 // Writes `city`; with `released` (the city itself, which no one reads afterwards), frees
-// what only the steps before the 3D export read.
+// what only the stages before the exports read (the exact map, the blocks and lots: the
+// exports read the typed ground, the structures, the clutter and the layers), and the
+// layers before the 3D export.
 GenerateResult write(const Sketch& sketch, const City& city, City* released, const fs::path& dir, StageClock& stages,
                      const ExportOptions& options) {
-  bool city_osm = false;
+  // The report first, from the whole city: city.osm is written when the sketch has a CRS.
+  const bool city_osm = epsg_of(city.settings.crs).has_value();
+  ordered_json report = city_report(sketch, city, options.vector_formats, city_osm);
+  if (released) {
+    released->network = {}, released->blocks = {}, released->lots = {}, released->lot_land = {};
+    released->held_lots = {}, released->held_m2 = {};
+    release_freed_memory();
+  }
   stages.run("export", [&] {
     const Layer clutter = clutter_layer(city.clutter.items, city.ground, city.model_library());
     export_vectors(sketch, city, clutter, dir);
     write_vector_formats(vector_files(city.layers, clutter), dir, options.vector_formats, city.settings.crs);
-    city_osm = write_city_osm(city, dir / "city.osm", options.osm_first_id);
+    if (write_city_osm(city, dir / "city.osm", options.osm_first_id) != city_osm)
+      throw std::logic_error("city.osm written against the report");
   });
-  ordered_json report = city_report(sketch, city, options.vector_formats, city_osm);
   WrittenCity written;
   if (options.three_d)
     written.three_d = stages.run("3d export", [&] {
-      if (released) released->network = {}, released->blocks = {}, released->lots = {}, released->layers = {};
+      if (released) {
+        released->layers = {};
+        release_freed_memory();
+      }
       ThreeDFiles files;
       files.cityjson_seq = options.cityjson_seq;
       return write_3d_files(city, dir, files);
     });
+  release_freed_memory();  // the meshes' pages, before validation reads the files
   if (options.validate && geom::kernel_validates_its_output()) written.validation = validation_stage(city, dir, stages);
   written.validation_later = !options.validate && geom::kernel_validates_its_output();
   complete_report(report, city, written, stages.seconds);

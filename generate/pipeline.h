@@ -98,9 +98,9 @@ struct ExportOptions {
 // `sketch` is the one `city` was built from: OUT/sketch.geojson is its copy.
 GenerateResult write_city(const Sketch& sketch, const City& city, const std::filesystem::path& dir, StageClock& clock,
                           const ExportOptions& options = {});
-// The same for a city nothing reads afterwards: what the 3D export and validation do not
-// read of it (the map, blocks, lots and vector layers) is freed once the vector exports and
-// the report's counts are made, so the 3D export's meshes and files are not held beside it.
+// The same for a city nothing reads afterwards: what no export reads of it (the exact map,
+// blocks and lots) is freed once the report is made, and the vector layers once they are
+// written, so the exports' files and the 3D export's meshes are not held beside them.
 GenerateResult write_city(const Sketch& sketch, City&& city, const std::filesystem::path& dir, StageClock& clock,
                           const ExportOptions& options = {});
 inline constexpr int kWriteStages = 3;
