@@ -170,14 +170,15 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
 
 namespace {
 
-// The vector layers (the city's and `clutter`), a copy of the sketch and the SVG map, each
-// file written at once with the others.
-void export_vectors(const Sketch& sketch, const City& city, const Layer& clutter, const fs::path& dir) {
-  const CityLayers& layers = city.layers;
+// The vector formats of kCityFormats always written and those `options` ask for (from the
+// city's layers and `clutter`), a copy of the sketch and the SVG map, each file written at
+// once with the others.
+void export_vectors(const Sketch& sketch, const City& city, const Layer& clutter, const fs::path& dir,
+                    const ExportOptions& options) {
   fs::create_directories(dir / "vector");
-  const std::vector<const Layer*> polygon_layers{&layers.zones,      &layers.water, &layers.roads,    &layers.road_areas,
-                                                 &layers.blocks,     &layers.lots,  &layers.buildings};
-  const std::vector<std::function<void()>> files{
+  const std::vector<const Layer*> layers = vector_files(city.layers, clutter);
+  const FormatInput in{.dir = dir, .layers = &layers, .crs = &city.settings.crs};
+  std::vector<std::function<void()>> files{
       [&] {
         if (sketch.geojson.empty()) {
           fs::copy_file(sketch.path, dir / "sketch.geojson");
@@ -187,13 +188,15 @@ void export_vectors(const Sketch& sketch, const City& city, const Layer& clutter
           if (!copy) throw UserError((dir / "sketch.geojson").string() + ": write failed (disk full?)");
         }
       },
-      [&] { write_point_geojson(clutter, city.settings.crs, dir / "vector" / "clutter.geojson"); },
       [&] { write_svg_map(city.ground, city.buildings, city.models, dir / "map.svg", city.clutter.items); }};
-  for_each_cancellable(files.size() + polygon_layers.size(), [&](std::size_t i) {
-    if (i < files.size()) return files[i]();
-    const Layer& l = *polygon_layers[i - files.size()];
-    write_geojson(l, city.settings.crs, dir / "vector" / (l.name + ".geojson"));
-  });
+  for (const CityFormat& f : kCityFormats)
+    if (f.kind == FormatKind::Vector) files.push_back([&in, &f] { f.write(in); });
+  for_each_cancellable(files.size(), [&](std::size_t i) { files[i](); });
+  // Through OGR one after another: GDAL's drivers share its state.
+  for (const CityFormat& f : kCityFormats)
+    if (f.kind == FormatKind::OptionalVector &&
+        std::find(options.vector_formats.begin(), options.vector_formats.end(), f.name) != options.vector_formats.end())
+      f.write(in);
 }
 
 }  // namespace
@@ -217,14 +220,12 @@ ThreeDCounts write_3d_files(const City& city, const fs::path& dir, const ThreeDF
                           .clutter = city.clutter.items,
                           .library = library,
                           .terrain = city.heightmap(),
-                          .crs = city.settings.crs};
-  write_cityjson(meshed, dir / "city.city.json", files.cityjson_seq ? dir / "city.city.jsonl" : fs::path());
-  std::vector<ModelInstance> clutter;
-  for (const Clutter& c : city.clutter.items) clutter.push_back(c.instance);
+                          .crs = city.settings.crs,
+                          .seed = city.settings.seed};
   ThreeDCounts counts;
-  counts.gltf = write_gltf(city.ground, ground, city.buildings, city.models, meshes, city.settings.seed, library,
-                           dir / "city.glb", clutter);
-  counts.mesh = write_meshes(city.buildings, city.models, meshes, ground, dir / "city.obj", dir / "city.ply");
+  const FormatInput in{.dir = dir, .meshed = &meshed, .cityjson_seq = files.cityjson_seq, .counts = &counts};
+  for (const CityFormat& f : kCityFormats)
+    if (f.kind == FormatKind::ThreeD) f.write(in);
   return counts;
 }
 
@@ -259,8 +260,7 @@ GenerateResult write(const Sketch& sketch, const City& city, City* released, con
   }
   stages.run("export", [&] {
     const Layer clutter = clutter_layer(city.clutter.items, city.ground, city.model_library());
-    export_vectors(sketch, city, clutter, dir);
-    write_vector_formats(vector_files(city.layers, clutter), dir, options.vector_formats, city.settings.crs);
+    export_vectors(sketch, city, clutter, dir, options);
     if (write_city_osm(city, dir / "city.osm", options.osm_first_id) != city_osm)
       throw std::logic_error("city.osm written against the report");
   });

@@ -12,8 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "generate/city.h"
-#include "generate/export/gltf_export.h"
-#include "generate/export/mesh_export.h"
+#include "generate/export/formats.h"
 #include "generate/sketch/sketch.h"
 #include "generate/version.h"
 
@@ -113,18 +112,14 @@ inline constexpr int kWriteStages = 3;
 GenerateResult validate_written(const City& city, const std::filesystem::path& dir, nlohmann::ordered_json report,
                                 StageClock& stages);
 
-struct ThreeDCounts {
-  MeshCounts mesh;
-  GltfCounts gltf;
-};
 struct ThreeDFiles {
   // False: the structures' meshes and the ground's pieces are made afresh rather than
   // through the city's cache, which a build may be using.
   bool through_cache = true;
   bool cityjson_seq = false;  // city.city.jsonl as well
 };
-// city.city.json, city.glb, city.obj and city.ply of `city` into `dir` (write_city's 3d
-// export stage).
+// The 3D formats of kCityFormats (city.city.json, city.glb, city.obj and city.ply) of
+// `city` into `dir` (write_city's 3d export stage).
 ThreeDCounts write_3d_files(const City& city, const std::filesystem::path& dir, const ThreeDFiles& files = ThreeDFiles());
 
 }  // namespace exacity

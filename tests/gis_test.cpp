@@ -1601,3 +1601,25 @@ TEST(Gis, AFootprintLayerGivenWithBuildingsIsKeptAsMappedBuildings) {
                             "or draw the footprints\n");
   EXPECT_FALSE(fs::exists(dir / "none"));
 }
+
+// docs/outputs.md's list of formats is the formats' table, row by row.
+TEST(Formats, TheOutputsPageListsTheFormatsTable) {
+  std::istringstream outputs(cli_util::read(cli_util::kSource / "docs" / "outputs.md"));
+  std::vector<std::string> rows;
+  bool in_table = false;
+  for (std::string line; std::getline(outputs, line);) {
+    if (line.rfind("| format | files | written |", 0) == 0) in_table = true;
+    else if (in_table && line.rfind("| ", 0) == 0) rows.push_back(line);
+    else if (in_table && line.rfind("|---", 0) != 0) break;
+  }
+  ASSERT_EQ(rows.size(), kCityFormats.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const CityFormat& f = kCityFormats[i];
+    const std::string when = f.kind == FormatKind::Vector         ? "always"
+                             : f.kind == FormatKind::OptionalVector ? std::string("with --vector-format ") + f.name
+                                                                    : "in the 3D export";
+    EXPECT_EQ(rows[i].rfind(std::string("| ") + f.name + " | OUT/" + f.files + " | " + when, 0), 0u) << rows[i];
+  }
+  EXPECT_EQ(optional_vector_formats_text(),
+            "gpkg (OUT/city.gpkg), fgb (OUT/vector/*.fgb), shp (OUT/vector/shp/) or dxf (OUT/city.dxf)");
+}

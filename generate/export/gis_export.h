@@ -14,15 +14,12 @@
 
 namespace exacity {
 
-// "geojson" (always written: validate reads it), "gpkg" (OUT/city.gpkg, every layer),
-// "fgb" (OUT/vector/NAME.fgb), "shp" (OUT/vector/shp/NAME.shp), "dxf" (OUT/city.dxf, a CAD
-// layer per layer).
-inline constexpr const char* kVectorFormats[] = {"geojson", "gpkg", "fgb", "shp", "dxf"};
-
 // The layers OUT/vector holds (the city's and the street clutter's), in their files' order.
 std::vector<const Layer*> vector_files(const CityLayers& city, const Layer& clutter);
 
-// Writes `formats` (of kVectorFormats) of `layers` (vector_files) into `dir`, in the
+// Writes `formats` ("gpkg": OUT/city.gpkg, every layer; "fgb": OUT/vector/NAME.fgb; "shp":
+// OUT/vector/shp/NAME.shp; "dxf": OUT/city.dxf, a CAD layer per layer; others are left to
+// their writers: generate/export/formats.h) of `layers` (vector_files) into `dir`, in the
 // sketch's CRS; each layer's fields are its features' properties, typed as GDAL's GeoJSON
 // reader types them, so that each format holds what ogr2ogr makes of the GeoJSON file.
 void write_vector_formats(const std::vector<const Layer*>& layers, const std::filesystem::path& dir,
