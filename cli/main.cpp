@@ -643,9 +643,9 @@ void add_generate(CLI::App& app, GenerateCommand& c, SharedOptions& shared) {
                     "sharing a CRS, with the first one's settings")
       ->required();
   c.app->add_option("--vector-format", c.exports.vector_formats,
-                    "Also write the vector layers as gpkg (OUT/city.gpkg), fgb (OUT/vector/*.fgb), shp "
-                    "(OUT/vector/shp/) or dxf (OUT/city.dxf); repeatable; GeoJSON is always written")
-      ->check(CLI::IsMember(std::vector<std::string>(std::begin(kVectorFormats), std::end(kVectorFormats))));
+                    "Also write the vector layers as " + optional_vector_formats_text() +
+                        "; repeatable; GeoJSON is always written")
+      ->check(CLI::IsMember(vector_format_names()));
   c.app->add_flag("--cityjson-seq", c.exports.cityjson_seq,
                   "Also write the CityJSON as CityJSONSeq (OUT/city.city.jsonl: a first line of what the objects "
                   "share, then one CityJSONFeature a line with its own vertices), the form cjio and 3D BAG stream "

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <fstream>
 #include <optional>
+#include <stdexcept>
 
 #include "generate/cancellable_invoke.h"
 #include "generate/city_report.h"
@@ -17,6 +18,7 @@
 #include "generate/export/clutter_layer.h"
 #include "generate/errors.h"
 #include "generate/export/gis_export.h"
+#include "generate/gis/projection.h"
 #include "generate/export/gltf_export.h"
 #include "generate/parcels/lots.h"
 #include "generate/export/mesh_export.h"
@@ -30,6 +32,9 @@
 #include "geom/kernel.h"
 #include "generate/export/vector_layers.h"
 #include "generate/city/city_map.h"
+
+// tcmalloc's C interface, weak so that a build without tcmalloc (the sanitizers') links.
+extern "C" void MallocExtension_ReleaseFreeMemory() __attribute__((weak));
 
 namespace exacity {
 namespace fs = std::filesystem;
@@ -142,6 +147,7 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
   });
   city.buildings = std::move(raised.buildings);
   city.models = std::move(raised.models);
+  std::vector<PlannedLot>().swap(planned);  // the lots' exact cells: only the lots and buildings read them
   stages.run("vector layers", [&] {
     give_covered_roads_their_carriageway(city.network.map);
     merge_sliver_road_areas(city.network.map);
@@ -164,13 +170,15 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
 
 namespace {
 
-// The vector layers, a copy of the sketch and the SVG map, each file written at once with the others.
-void export_vectors(const Sketch& sketch, const City& city, const fs::path& dir) {
-  const CityLayers& layers = city.layers;
+// The vector formats of kCityFormats always written and those `options` ask for (from the
+// city's layers and `clutter`), a copy of the sketch and the SVG map, each file written at
+// once with the others.
+void export_vectors(const Sketch& sketch, const City& city, const Layer& clutter, const fs::path& dir,
+                    const ExportOptions& options) {
   fs::create_directories(dir / "vector");
-  const std::vector<const Layer*> polygon_layers{&layers.zones,      &layers.water, &layers.roads,    &layers.road_areas,
-                                                 &layers.blocks,     &layers.lots,  &layers.buildings};
-  const std::vector<std::function<void()>> files{
+  const std::vector<const Layer*> layers = vector_files(city.layers, clutter);
+  const FormatInput in{.dir = dir, .layers = &layers, .crs = &city.settings.crs};
+  std::vector<std::function<void()>> files{
       [&] {
         if (sketch.geojson.empty()) {
           fs::copy_file(sketch.path, dir / "sketch.geojson");
@@ -180,16 +188,15 @@ void export_vectors(const Sketch& sketch, const City& city, const fs::path& dir)
           if (!copy) throw UserError((dir / "sketch.geojson").string() + ": write failed (disk full?)");
         }
       },
-      [&] {
-        write_point_geojson(clutter_layer(city.clutter.items, city.ground, city.model_library()), city.settings.crs,
-                            dir / "vector" / "clutter.geojson");
-      },
       [&] { write_svg_map(city.ground, city.buildings, city.models, dir / "map.svg", city.clutter.items); }};
-  for_each_cancellable(files.size() + polygon_layers.size(), [&](std::size_t i) {
-    if (i < files.size()) return files[i]();
-    const Layer& l = *polygon_layers[i - files.size()];
-    write_geojson(l, city.settings.crs, dir / "vector" / (l.name + ".geojson"));
-  });
+  for (const CityFormat& f : kCityFormats)
+    if (f.kind == FormatKind::Vector) files.push_back([&in, &f] { f.write(in); });
+  for_each_cancellable(files.size(), [&](std::size_t i) { files[i](); });
+  // Through OGR one after another: GDAL's drivers share its state.
+  for (const CityFormat& f : kCityFormats)
+    if (f.kind == FormatKind::OptionalVector &&
+        std::find(options.vector_formats.begin(), options.vector_formats.end(), f.name) != options.vector_formats.end())
+      f.write(in);
 }
 
 }  // namespace
@@ -213,14 +220,12 @@ ThreeDCounts write_3d_files(const City& city, const fs::path& dir, const ThreeDF
                           .clutter = city.clutter.items,
                           .library = library,
                           .terrain = city.heightmap(),
-                          .crs = city.settings.crs};
-  write_cityjson(meshed, dir / "city.city.json", files.cityjson_seq ? dir / "city.city.jsonl" : fs::path());
-  std::vector<ModelInstance> clutter;
-  for (const Clutter& c : city.clutter.items) clutter.push_back(c.instance);
+                          .crs = city.settings.crs,
+                          .seed = city.settings.seed};
   ThreeDCounts counts;
-  counts.gltf = write_gltf(city.ground, ground, city.buildings, city.models, meshes, city.settings.seed, library,
-                           dir / "city.glb", clutter);
-  counts.mesh = write_meshes(city.buildings, city.models, meshes, ground, dir / "city.obj", dir / "city.ply");
+  const FormatInput in{.dir = dir, .meshed = &meshed, .cityjson_seq = files.cityjson_seq, .counts = &counts};
+  for (const CityFormat& f : kCityFormats)
+    if (f.kind == FormatKind::ThreeD) f.write(in);
   return counts;
 }
 
@@ -232,25 +237,45 @@ Validation validation_stage(const City& city, const fs::path& dir, StageClock& s
   });
 }
 
+// Gives the pages of what was just freed back to the system (tcmalloc keeps them, and the
+// exact map's small blocks are not pages the exports' large buffers can reuse); none
+// without tcmalloc.
+void release_freed_memory() {
+  if (MallocExtension_ReleaseFreeMemory) MallocExtension_ReleaseFreeMemory();
+}
+
 // Writes `city`; with `released` (the city itself, which no one reads afterwards), frees
-// what only the steps before the 3D export read.
+// what only the stages before the exports read (the exact map, the blocks and lots: the
+// exports read the typed ground, the structures, the clutter and the layers), and the
+// layers before the 3D export.
 GenerateResult write(const Sketch& sketch, const City& city, City* released, const fs::path& dir, StageClock& stages,
                      const ExportOptions& options) {
-  bool city_osm = false;
-  stages.run("export", [&] {
-    export_vectors(sketch, city, dir);
-    write_vector_formats(dir, options.vector_formats, city.settings.crs);
-    city_osm = write_city_osm(city, dir / "city.osm", options.osm_first_id);
-  });
+  // The report first, from the whole city: city.osm is written when the sketch has a CRS.
+  const bool city_osm = epsg_of(city.settings.crs).has_value();
   ordered_json report = city_report(sketch, city, options.vector_formats, city_osm);
+  if (released) {
+    released->network = {}, released->blocks = {}, released->lots = {}, released->lot_land = {};
+    released->held_lots = {}, released->held_m2 = {};
+    release_freed_memory();
+  }
+  stages.run("export", [&] {
+    const Layer clutter = clutter_layer(city.clutter.items, city.ground, city.model_library());
+    export_vectors(sketch, city, clutter, dir, options);
+    if (write_city_osm(city, dir / "city.osm", options.osm_first_id) != city_osm)
+      throw std::logic_error("city.osm written against the report");
+  });
   WrittenCity written;
   if (options.three_d)
     written.three_d = stages.run("3d export", [&] {
-      if (released) released->network = {}, released->blocks = {}, released->lots = {}, released->layers = {};
+      if (released) {
+        released->layers = {};
+        release_freed_memory();
+      }
       ThreeDFiles files;
       files.cityjson_seq = options.cityjson_seq;
       return write_3d_files(city, dir, files);
     });
+  release_freed_memory();  // the meshes' pages, before validation reads the files
   if (options.validate && geom::kernel_validates_its_output()) written.validation = validation_stage(city, dir, stages);
   written.validation_later = !options.validate && geom::kernel_validates_its_output();
   complete_report(report, city, written, stages.seconds);

@@ -12,8 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "generate/city.h"
-#include "generate/export/gltf_export.h"
-#include "generate/export/mesh_export.h"
+#include "generate/export/formats.h"
 #include "generate/sketch/sketch.h"
 #include "generate/version.h"
 
@@ -98,9 +97,9 @@ struct ExportOptions {
 // `sketch` is the one `city` was built from: OUT/sketch.geojson is its copy.
 GenerateResult write_city(const Sketch& sketch, const City& city, const std::filesystem::path& dir, StageClock& clock,
                           const ExportOptions& options = {});
-// The same for a city nothing reads afterwards: what the 3D export and validation do not
-// read of it (the map, blocks, lots and vector layers) is freed once the vector exports and
-// the report's counts are made, so the 3D export's meshes and files are not held beside it.
+// The same for a city nothing reads afterwards: what no export reads of it (the exact map,
+// blocks and lots) is freed once the report is made, and the vector layers once they are
+// written, so the exports' files and the 3D export's meshes are not held beside them.
 GenerateResult write_city(const Sketch& sketch, City&& city, const std::filesystem::path& dir, StageClock& clock,
                           const ExportOptions& options = {});
 inline constexpr int kWriteStages = 3;
@@ -113,18 +112,14 @@ inline constexpr int kWriteStages = 3;
 GenerateResult validate_written(const City& city, const std::filesystem::path& dir, nlohmann::ordered_json report,
                                 StageClock& stages);
 
-struct ThreeDCounts {
-  MeshCounts mesh;
-  GltfCounts gltf;
-};
 struct ThreeDFiles {
   // False: the structures' meshes and the ground's pieces are made afresh rather than
   // through the city's cache, which a build may be using.
   bool through_cache = true;
   bool cityjson_seq = false;  // city.city.jsonl as well
 };
-// city.city.json, city.glb, city.obj and city.ply of `city` into `dir` (write_city's 3d
-// export stage).
+// The 3D formats of kCityFormats (city.city.json, city.glb, city.obj and city.ply) of
+// `city` into `dir` (write_city's 3d export stage).
 ThreeDCounts write_3d_files(const City& city, const std::filesystem::path& dir, const ThreeDFiles& files = ThreeDFiles());
 
 }  // namespace exacity

@@ -7,6 +7,7 @@
 
 #include "generate/city_report.h"
 #include "generate/errors.h"
+#include "generate/export/clutter_layer.h"
 #include "generate/export/gis_export.h"
 #include "generate/export/output_folder.h"
 #include "generate/pipeline.h"
@@ -235,9 +236,9 @@ void write_when_asked(ServerState& s, const std::string& name) {
   fs::create_directories(aside);
   std::vector<std::string> files{name};
   if (name == "city.gpkg") {
-    // From the layers as written: the GeoPackage is their copy through OGR.
-    fs::create_directory_symlink(s.city_folder() / "vector", aside / "vector");
-    write_vector_formats(aside, {"gpkg"}, city->settings.crs);
+    // From the layers the GeoJSON files were written from.
+    const Layer clutter = clutter_layer(city->clutter.items, city->ground, city->model_library());
+    write_vector_formats(vector_files(city->layers, clutter), aside, {"gpkg"}, city->settings.crs);
   } else {
     // The structures' meshes afresh: the cache is the job thread's.
     ThreeDFiles afresh;

@@ -214,7 +214,14 @@ json write_city_tiles(const City& city, const fs::path& dir) {
   // once; the index lists the tiles in their order.
   for_each_cancellable(in_order.size() + 2, [&](std::size_t i) {
     if (i == in_order.size()) {
-      ground = write_gltf(city.ground, city_ground_layers(city), {}, {}, {}, city.settings.seed, nullptr,
+      ground = write_gltf({.ground = city.ground,
+                           .ground_layers = city_ground_layers(city),
+                           .buildings = {},
+                           .models = {},
+                           .meshes = {},
+                           .clutter = {},
+                           .crs = city.settings.crs,
+                           .seed = city.settings.seed},
                           dir / "ground.glb");
       return;
     }

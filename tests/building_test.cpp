@@ -72,8 +72,10 @@ TEST(BuildingMesh, ObjHoldsEveryBuildingAtFullPrecision) {
   std::vector<Building> buildings{prism({{{0.1, 0.2}, {10, 0}, {10, 10}, {0, 10}}, {}}, 5),
                                   prism({{{500000.123456789, 5000000.5}, {500010, 5000000.5}, {500010, 5000010}}, {}}, 7.25)};
   buildings[0].id = 0, buildings[1].id = 1;
-  MeshCounts counts =
-      write_meshes(buildings, {}, structure_meshes(buildings, {}, nullptr), {}, dir / "city.obj", dir / "city.ply");
+  const std::vector<Mesh> meshes = structure_meshes(buildings, {}, nullptr);
+  MeshCounts counts = write_meshes(
+      {.ground = {}, .ground_layers = {}, .buildings = buildings, .models = {}, .meshes = meshes, .clutter = {}, .crs = {}},
+      dir / "city.obj", dir / "city.ply");
   EXPECT_EQ(counts.vertices, 8u + 6u);
   EXPECT_EQ(counts.faces, 8u + 3u + 1u + 1u);
   std::ifstream in(dir / "city.obj");
@@ -120,8 +122,10 @@ TEST(BuildingMesh, ObjAndPlyCarryTheGroundLayers) {
   EXPECT_EQ(names, (std::vector<std::string>{"terrain", "ground_park", "water", "road", "bridge"}));
   std::vector<Building> buildings{prism({{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {}}, 5)};
   buildings[0].id = 0, buildings[0].stable_id = 7;  // OBJ names a building by the id the layers write
-  MeshCounts counts = write_meshes(buildings, {}, structure_meshes(buildings, {}, nullptr), layers, dir / "city.obj",
-                                   dir / "city.ply");
+  const std::vector<Mesh> meshes = structure_meshes(buildings, {}, nullptr);
+  MeshCounts counts = write_meshes(
+      {.ground = ground, .ground_layers = layers, .buildings = buildings, .models = {}, .meshes = meshes, .clutter = {}, .crs = {}},
+      dir / "city.obj", dir / "city.ply");
   EXPECT_EQ(counts.vertices, 8u + layer_vertices);
   EXPECT_EQ(counts.faces, 8u + layer_triangles);
 

@@ -18,6 +18,7 @@
 
 #include "generate/sketch/sketch.h"
 #include "generate/errors.h"
+#include "generate/export/clutter_layer.h"
 #include "generate/export/gis_export.h"
 #include "generate/gis/projection.h"
 #include "generate/gis/sketch_sources.h"
@@ -358,6 +359,70 @@ TEST(Gis, EveryVectorFormatReadsBackWithOgr) {
   for (OGRFeatureUniquePtr f(entities->GetNextFeature()); f; f.reset(entities->GetNextFeature())) ++cad[f->GetFieldAsString("Layer")];
   for (const std::string& name : layers)
     EXPECT_EQ(cad[name], counts[name]) << name;
+}
+
+// The formats are written from the layers in memory, not from the GeoJSON files: into a
+// folder without them, every feature with every attribute as the layer has it.
+TEST(Gis, EveryVectorFormatIsWrittenFromTheLayersWithoutTheirGeoJsonFiles) {
+  const fs::path out = testing_util::temp_dir("gis-no-geojson");
+  StageClock clock(nullptr, kCityStages);
+  const Sketch sketch = load_sketch(kVillage, true, kLibrary);
+  const City city = build_city(sketch, clock);
+  const Layer clutter = clutter_layer(city.clutter.items, city.ground, city.model_library());
+  const std::vector<const Layer*> layers = vector_files(city.layers, clutter);
+  write_vector_formats(layers, out, {"gpkg", "fgb", "shp", "dxf"}, city.settings.crs);
+  EXPECT_FALSE(fs::exists(out / "vector" / "roads.geojson"));
+  start_gdal();
+  auto open = [](const fs::path& file) {
+    return GDALDatasetUniquePtr(GDALDataset::Open(file.string().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  };
+  GDALDatasetUniquePtr gpkg = open(out / "city.gpkg");
+  ASSERT_TRUE(gpkg);
+  ASSERT_EQ(gpkg->GetLayerCount(), 8);
+  std::map<std::string, std::size_t> cad;
+  GDALDatasetUniquePtr dxf = open(out / "city.dxf");
+  ASSERT_TRUE(dxf);
+  OGRLayer* entities = dxf->GetLayer(0);
+  for (OGRFeatureUniquePtr f(entities->GetNextFeature()); f; f.reset(entities->GetNextFeature())) ++cad[f->GetFieldAsString("Layer")];
+  for (const Layer* layer : layers) {
+    SCOPED_TRACE(layer->name);
+    EXPECT_EQ(cad[layer->name], layer->features.size());
+    GDALDatasetUniquePtr fgb = open(out / "vector" / (layer->name + ".fgb"));
+    GDALDatasetUniquePtr shp = open(out / "vector" / "shp" / (layer->name + ".shp"));
+    ASSERT_TRUE(fgb && shp);
+    EXPECT_EQ(static_cast<std::size_t>(fgb->GetLayer(0)->GetFeatureCount()), layer->features.size());
+    EXPECT_EQ(static_cast<std::size_t>(shp->GetLayer(0)->GetFeatureCount()), layer->features.size());
+    OGRLayer* written = gpkg->GetLayerByName(layer->name.c_str());
+    ASSERT_NE(written, nullptr);
+    ASSERT_EQ(static_cast<std::size_t>(written->GetFeatureCount()), layer->features.size());
+    std::set<std::string> keys;
+    for (const VectorFeature& feature : layer->features)
+      for (const auto& [key, value] : feature.properties.items()) keys.insert(key);
+    EXPECT_EQ(static_cast<std::size_t>(written->GetLayerDefn()->GetFieldCount()), keys.size());
+    written->ResetReading();
+    for (const VectorFeature& feature : layer->features) {
+      OGRFeatureUniquePtr f(written->GetNextFeature());
+      ASSERT_TRUE(f);
+      for (const auto& [key, value] : feature.properties.items()) {
+        const int i = f->GetFieldIndex(key.c_str());
+        ASSERT_GE(i, 0) << key;
+        if (value.is_null()) EXPECT_FALSE(f->IsFieldSetAndNotNull(i)) << key;
+        else if (value.is_string()) EXPECT_EQ(f->GetFieldAsString(i), value.get<std::string>()) << key;
+        else if (value.is_boolean()) EXPECT_EQ(f->GetFieldAsInteger(i), value.get<bool>() ? 1 : 0) << key;
+        else if (value.is_number_integer()) EXPECT_EQ(f->GetFieldAsInteger64(i), value.get<std::int64_t>()) << key;
+        else if (value.is_number_float()) EXPECT_EQ(f->GetFieldAsDouble(i), value.get<double>()) << key;
+        else EXPECT_EQ(nlohmann::json::parse(f->GetFieldAsString(i)), nlohmann::json::parse(value.dump())) << key;
+      }
+      // The geometry's first position, as the layer has it.
+      const OGRGeometry* g = f->GetGeometryRef();
+      ASSERT_NE(g, nullptr);
+      const geom::Vec2 first = layer->lines || layer->name == "clutter" ? feature.line.at(0) : feature.polygon.outer.at(0);
+      const OGRPoint* point = layer->name == "clutter" ? g->toPoint() : nullptr;
+      const OGRSimpleCurve* curve = layer->lines ? g->toLineString() : point ? nullptr : g->toPolygon()->getExteriorRing();
+      EXPECT_EQ(point ? point->getX() : curve->getX(0), first.x);
+      EXPECT_EQ(point ? point->getY() : curve->getY(0), first.y);
+    }
+  }
 }
 
 TEST(Gis, EmptyLayersKeepTheirGeometryTypeAndADutchGridSketchItsCrsInEveryFormat) {
@@ -1535,4 +1600,26 @@ TEST(Gis, AFootprintLayerGivenWithBuildingsIsKeptAsMappedBuildings) {
                             " layer points: holds points, not building footprints; give --buildings a file of polygons, "
                             "or draw the footprints\n");
   EXPECT_FALSE(fs::exists(dir / "none"));
+}
+
+// docs/outputs.md's list of formats is the formats' table, row by row.
+TEST(Formats, TheOutputsPageListsTheFormatsTable) {
+  std::istringstream outputs(cli_util::read(cli_util::kSource / "docs" / "outputs.md"));
+  std::vector<std::string> rows;
+  bool in_table = false;
+  for (std::string line; std::getline(outputs, line);) {
+    if (line.rfind("| format | files | written |", 0) == 0) in_table = true;
+    else if (in_table && line.rfind("| ", 0) == 0) rows.push_back(line);
+    else if (in_table && line.rfind("|---", 0) != 0) break;
+  }
+  ASSERT_EQ(rows.size(), kCityFormats.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const CityFormat& f = kCityFormats[i];
+    const std::string when = f.kind == FormatKind::Vector         ? "always"
+                             : f.kind == FormatKind::OptionalVector ? std::string("with --vector-format ") + f.name
+                                                                    : "in the 3D export";
+    EXPECT_EQ(rows[i].rfind(std::string("| ") + f.name + " | OUT/" + f.files + " | " + when, 0), 0u) << rows[i];
+  }
+  EXPECT_EQ(optional_vector_formats_text(),
+            "gpkg (OUT/city.gpkg), fgb (OUT/vector/*.fgb), shp (OUT/vector/shp/) or dxf (OUT/city.dxf)");
 }

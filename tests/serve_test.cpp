@@ -185,6 +185,16 @@ class ServeTest : public ::testing::Test {
     return json::parse(read(alone / "report.json"));
   }
 
+  // `sketch`'s city generated into `dir` with its GeoPackage, as `exacity generate
+  // --vector-format gpkg` writes them.
+  void generate_with_gpkg(const std::string& sketch, const fs::path& dir) const {
+    const exacity::Sketch parsed = exacity::parse_sketch(sketch, sketch_file());
+    exacity::StageClock clock(nullptr, exacity::kCityStages + exacity::kWriteStages);
+    exacity::ExportOptions options;
+    options.vector_formats = {"gpkg"};
+    exacity::write_city(parsed, exacity::build_city(parsed, clock), dir, clock, options);
+  }
+
   // Listens to GET /api/events on a thread of its own, giving `on` each event's name and data
   // until it returns false; returns once the stream has opened.
   std::thread listen(std::function<bool(const std::string&, const json&)> on) {
@@ -1083,8 +1093,7 @@ TEST_F(ServeTest, DownloadsOfAnotherRunsCityAreWrittenWhenAskedFor) {
   EXPECT_EQ(json::parse(client->Get("/api/status")->body)["files"],
             json::parse(R"(["city.glb", "city.city.json", "city.obj", "city.ply", "city.gpkg", "map.svg"])"));
   const fs::path alone = testing_util::temp_dir("alone");
-  exacity::generate_city(exacity::parse_sketch(kSmallSketch, sketch_file()), alone, nullptr);
-  exacity::write_vector_formats(alone, {"gpkg"}, nullptr);
+  generate_with_gpkg(kSmallSketch, alone);
   for (const char* file : {"city.gpkg", "city.obj", "city.glb", "city.city.json", "city.ply"}) {
     auto r = client->Get(std::string("/api/files/") + file);
     ASSERT_EQ(r->status, 200) << file << ": " << r->body;
@@ -1101,8 +1110,7 @@ TEST_F(ServeTest, GenerationAfterAnEditWritesTheEditedSketchsCity) {
   ASSERT_EQ(client->Post("/api/generate", "", "application/json")->status, 202);
   ASSERT_EQ(wait_for_job(*client)["state"], "done");
   const fs::path alone = testing_util::temp_dir("alone");
-  exacity::generate_city(exacity::parse_sketch(edited.dump(), sketch_file()), alone, nullptr);
-  exacity::write_vector_formats(alone, {"gpkg"}, nullptr);
+  generate_with_gpkg(edited.dump(), alone);
   for (const char* file : {"vector/zones.geojson", "vector/roads.geojson", "vector/road_areas.geojson",
                            "vector/blocks.geojson", "vector/lots.geojson", "vector/buildings.geojson",
                            "vector/clutter.geojson", "map.svg"})

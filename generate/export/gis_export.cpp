@@ -1,8 +1,12 @@
 #include "generate/export/gis_export.h"
 
 #include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstring>
 #include <map>
 #include <memory>
+#include <set>
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
@@ -31,102 +35,273 @@ GDALDatasetUniquePtr create(const char* driver_name, const fs::path& file) {
   return ds;
 }
 
-// A GeoJSON layer of OUT/vector, opened once for every format written from it.
-struct SourceLayer {
+// A field of a layer in the formats OGR writes, as GDAL's GeoJSON reader would type it from
+// the layer's file (so a GeoPackage of the layers is the one ogr2ogr makes of the GeoJSON):
+// in the order the features first name it; integers (64-bit when one does not fit in 32),
+// reals once any value is one, booleans, strings; lists and objects as their JSON text (no
+// format here stores lists); a field that is null everywhere a string.
+struct LayerField {
   std::string name;
-  GDALDatasetUniquePtr dataset;
-  OGRLayer* layer = nullptr;
+  OGRFieldType type = OFTString;
+  OGRFieldSubType subtype = OFSTNone;
+  bool known = false;  // a value other than null seen
 };
 
-// The GeoJSON layers in OUT/vector, by name.
-std::vector<SourceLayer> geojson_layers(const fs::path& dir) {
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::directory_iterator(dir / "vector"))
-    if (entry.path().extension() == ".geojson") files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
-  std::vector<SourceLayer> out;
-  for (const fs::path& file : files) {
-    GDALDatasetUniquePtr dataset(GDALDataset::Open(file.string().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
-    if (!dataset || dataset->GetLayerCount() != 1) fail(file, "cannot be read back");
-    OGRLayer* layer = dataset->GetLayer(0);
-    out.push_back({file.stem().string(), std::move(dataset), layer});
+OGRFieldType ogr_type(const nlohmann::ordered_json& v, OGRFieldSubType& subtype) {
+  subtype = OFSTNone;
+  if (v.is_boolean()) return subtype = OFSTBoolean, OFTInteger;
+  if (v.is_number_integer()) {
+    const bool fits = v.is_number_unsigned() ? v.get<std::uint64_t>() <= INT32_MAX
+                                             : v.get<std::int64_t>() >= INT32_MIN && v.get<std::int64_t>() <= INT32_MAX;
+    return fits ? OFTInteger : OFTInteger64;
   }
+  if (v.is_number_float()) return OFTReal;
+  if (v.is_array() || v.is_object()) subtype = OFSTJSON;
+  return OFTString;
+}
+
+// A field that met `v`: its type widened as the GeoJSON reader widens it.
+void widen(LayerField& field, const nlohmann::ordered_json& v) {
+  if (v.is_null()) return;
+  OGRFieldSubType subtype;
+  const OGRFieldType type = ogr_type(v, subtype);
+  if (!field.known) {
+    field.type = type, field.subtype = subtype, field.known = true;
+    return;
+  }
+  if (field.type == type && field.subtype == subtype) return;
+  const bool numbers = (field.type == OFTInteger || field.type == OFTInteger64 || field.type == OFTReal) &&
+                       (type == OFTInteger || type == OFTInteger64 || type == OFTReal);
+  if (numbers) {
+    field.type = field.type == OFTReal || type == OFTReal ? OFTReal : OFTInteger64;
+    field.subtype = OFSTNone;
+  } else if (field.type == OFTInteger && type == OFTInteger) {
+    field.subtype = OFSTNone;  // booleans and integers
+  } else if (field.type != OFTString) {
+    field.type = OFTString, field.subtype = OFSTNone;
+  }
+}
+
+// The fields of a layer, from the properties its features write, in the GeoJSON reader's
+// order: a field comes after every field some feature names just before it (where that
+// makes no cycle with the orders met earlier), and of fields free to come next, the least
+// by name first (Kahn's topological sort).
+std::vector<LayerField> layer_fields(const Layer& layer) {
+  std::vector<LayerField> fields;
+  std::map<std::string, std::size_t> index;
+  std::vector<std::set<std::size_t>> after;  // after[i]: the fields some feature names right after i
+  auto reaches = [&](std::size_t from, std::size_t to) {
+    std::vector<std::size_t> stack{from};
+    std::set<std::size_t> seen{from};
+    while (!stack.empty()) {
+      const std::size_t n = stack.back();
+      stack.pop_back();
+      if (n == to) return true;
+      for (std::size_t next : after[n])
+        if (seen.insert(next).second) stack.push_back(next);
+    }
+    return false;
+  };
+  for (const VectorFeature& f : layer.features) {
+    std::optional<std::size_t> previous;
+    for (const auto& [key, value] : f.properties.items()) {
+      auto [it, added] = index.try_emplace(key, fields.size());
+      if (added) fields.push_back({key}), after.emplace_back();
+      const std::size_t i = it->second;
+      widen(fields[i], value);
+      if (previous && *previous != i && !after[*previous].count(i) && !reaches(i, *previous)) after[*previous].insert(i);
+      previous = i;
+    }
+  }
+  std::vector<int> before(fields.size(), 0);
+  for (const std::set<std::size_t>& next : after)
+    for (std::size_t j : next) ++before[j];
+  auto by_name = [&](std::size_t a, std::size_t b) { return fields[a].name < fields[b].name; };
+  std::set<std::size_t, decltype(by_name)> ready(by_name);
+  for (std::size_t i = 0; i < fields.size(); ++i)
+    if (!before[i]) ready.insert(i);
+  std::vector<LayerField> sorted;
+  while (!ready.empty()) {
+    const std::size_t n = *ready.begin();
+    ready.erase(ready.begin());
+    sorted.push_back(fields[n]);
+    for (std::size_t j : after[n])
+      if (!--before[j]) ready.insert(j);
+  }
+  return sorted;
+}
+
+// A layer's geometry type; an empty layer's too (a format whose layer has none shows it as
+// lines or "Unknown", and QGIS then offers the wrong symbols and refuses to append polygons).
+OGRwkbGeometryType geometry_type(const Layer& layer) {
+  if (layer.name == "clutter") return wkbPoint;
+  return layer.lines ? wkbLineString : wkbPolygon;
+}
+
+std::unique_ptr<OGRGeometry> geometry(const Layer& layer, const VectorFeature& f) {
+  auto points = [](OGRSimpleCurve& curve, const std::vector<geom::Vec2>& ps, bool closed) {
+    curve.setNumPoints(static_cast<int>(ps.size() + closed), false);
+    // + 0.0: a -0 as the GeoJSON file writes it (0).
+    for (std::size_t i = 0; i < ps.size(); ++i) curve.setPoint(static_cast<int>(i), ps[i].x + 0.0, ps[i].y + 0.0);
+    if (closed) curve.setPoint(static_cast<int>(ps.size()), ps.front().x + 0.0, ps.front().y + 0.0);
+  };
+  switch (geometry_type(layer)) {
+    case wkbPoint: return std::make_unique<OGRPoint>(f.line.at(0).x + 0.0, f.line.at(0).y + 0.0);
+    case wkbLineString: {
+      auto line = std::make_unique<OGRLineString>();
+      points(*line, f.line, false);
+      return line;
+    }
+    default: {
+      auto polygon = std::make_unique<OGRPolygon>();
+      for (const geom::Ring* ring : [&] {
+             std::vector<const geom::Ring*> rings{&f.polygon.outer};
+             for (const geom::Ring& h : f.polygon.holes) rings.push_back(&h);
+             return rings;
+           }()) {
+        auto r = std::make_unique<OGRLinearRing>();
+        points(*r, *ring, true);
+        polygon->addRingDirectly(r.release());
+      }
+      return polygon;
+    }
+  }
+}
+
+// JSON text as json-c writes it (JSON_C_TO_STRING_SPACED), which GDAL's GeoJSON reader
+// gives a string field holding a list or an object: "[ 1, 2 ]", "{ "a": 0.5 }", doubles
+// to 17 significant digits, '/' escaped.
+void json_c_text(const nlohmann::ordered_json& v, std::string& out) {
+  switch (v.type()) {
+    case nlohmann::json::value_t::null: out += "null"; return;
+    case nlohmann::json::value_t::boolean: out += v.get<bool>() ? "true" : "false"; return;
+    case nlohmann::json::value_t::number_integer: out += std::to_string(v.get<std::int64_t>()); return;
+    case nlohmann::json::value_t::number_unsigned: out += std::to_string(v.get<std::uint64_t>()); return;
+    case nlohmann::json::value_t::number_float: {
+      char text[40];
+      std::snprintf(text, sizeof text, "%.17g", v.get<double>());
+      out += text;
+      if (!std::strpbrk(text, ".e") && (std::isdigit(static_cast<unsigned char>(text[0])) || text[0] == '-')) out += ".0";
+      return;
+    }
+    case nlohmann::json::value_t::string: {
+      out += '"';
+      for (const char c : v.get_ref<const std::string&>()) {
+        switch (c) {
+          case '"': out += "\\\""; break;
+          case '\\': out += "\\\\"; break;
+          case '/': out += "\\/"; break;
+          case '\b': out += "\\b"; break;
+          case '\f': out += "\\f"; break;
+          case '\n': out += "\\n"; break;
+          case '\r': out += "\\r"; break;
+          case '\t': out += "\\t"; break;
+          default:
+            if (static_cast<unsigned char>(c) < 0x20) {
+              char u[8];
+              std::snprintf(u, sizeof u, "\\u%04x", c);
+              out += u;
+            } else {
+              out += c;
+            }
+        }
+      }
+      out += '"';
+      return;
+    }
+    case nlohmann::json::value_t::array: {
+      out += '[';
+      bool first = true;
+      for (const auto& e : v) out += first ? " " : ", ", json_c_text(e, out), first = false;
+      out += " ]";
+      return;
+    }
+    case nlohmann::json::value_t::object: {
+      out += '{';
+      bool first = true;
+      for (const auto& [key, e] : v.items()) {
+        out += first ? " " : ", ";
+        json_c_text(key, out);
+        out += ": ";
+        json_c_text(e, out);
+        first = false;
+      }
+      out += " }";
+      return;
+    }
+    default: out += v.dump();
+  }
+}
+
+// A value in a string field: a string as it is, else its JSON text.
+std::string string_value(const nlohmann::ordered_json& v) {
+  if (v.is_string()) return v.get<std::string>();
+  std::string out;
+  json_c_text(v, out);
   return out;
 }
 
-// A layer's geometry type as the GeoJSON has it; an empty GeoJSON layer has none, and a
-// format whose layer has none shows it as lines or "Unknown" (QGIS then offers the wrong
-// symbols and refuses to append polygons): the type every layer of OUT/vector holds.
-OGRwkbGeometryType geometry_type(const SourceLayer& source) {
-  const OGRwkbGeometryType read = source.layer->GetGeomType();
-  if (read != wkbUnknown) return read;
-  if (source.name == "roads") return wkbLineString;  // centre lines
-  if (source.name == "clutter") return wkbPoint;
-  return wkbPolygon;  // zones, water, road areas, blocks, lots, buildings
-}
-
-// Copies every GeoJSON layer into `target`, one layer each (GeoPackage, FlatGeobuf and
-// Shapefile keep geometry and attributes; CRS set from the sketch's).
-void copy_layers(const std::vector<const SourceLayer*>& layers, GDALDataset& target, OGRSpatialReference* srs,
+// Writes each layer into `target`, one layer each (GeoPackage, FlatGeobuf and Shapefile
+// keep geometry and attributes; CRS set from the sketch's).
+void copy_layers(const std::vector<const Layer*>& layers, GDALDataset& target, OGRSpatialReference* srs,
                  const fs::path& file, CSLConstList layer_options = nullptr) {
   // One transaction where the format has them (GeoPackage): a feature each is far slower.
   const bool transaction = target.StartTransaction() == OGRERR_NONE;
-  for (const SourceLayer* source : layers) {
-    OGRLayer* from = source->layer;
-    from->ResetReading();
-    const std::string& name = source->name;
-    OGRLayer* to = target.CreateLayer(name.c_str(), srs, geometry_type(*source), const_cast<char**>(layer_options));
+  for (const Layer* layer : layers) {
+    const std::string& name = layer->name;
+    OGRLayer* to = target.CreateLayer(name.c_str(), srs, geometry_type(*layer), const_cast<char**>(layer_options));
     if (!to) fail(file, "cannot hold layer " + name);
-    // A list (a block's roads) is written as its JSON text: no format here stores lists.
-    OGRFeatureDefn* defn = from->GetLayerDefn();
-    std::vector<bool> list(defn->GetFieldCount());
-    for (int i = 0; i < defn->GetFieldCount(); ++i) {
-      OGRFieldDefn field(defn->GetFieldDefn(i));
-      list[i] = field.GetType() == OFTIntegerList || field.GetType() == OFTInteger64List ||
-                field.GetType() == OFTRealList || field.GetType() == OFTStringList;
-      if (list[i]) field.SetType(OFTString), field.SetSubType(OFSTJSON);
-      if (to->CreateField(&field) != OGRERR_NONE) fail(file, "cannot hold field " + std::string(field.GetNameRef()));
+    const std::vector<LayerField> fields = layer_fields(*layer);
+    for (const LayerField& f : fields) {
+      OGRFieldDefn field(f.name.c_str(), f.type);
+      field.SetSubType(f.subtype);
+      if (f.subtype == OFSTBoolean) field.SetWidth(1);  // as the GeoJSON reader gives a boolean
+      if (to->CreateField(&field) != OGRERR_NONE) fail(file, "cannot hold field " + f.name);
     }
-    for (OGRFeatureUniquePtr f(from->GetNextFeature()); f; f.reset(from->GetNextFeature())) {
-      OGRFeatureUniquePtr copy(OGRFeature::CreateFeature(to->GetLayerDefn()));
-      copy->SetGeometry(f->GetGeometryRef());
-      for (int i = 0; i < defn->GetFieldCount(); ++i) {
-        if (!f->IsFieldSetAndNotNull(i)) continue;
-        if (!list[i]) {
-          copy->SetField(i, f->GetRawFieldRef(i));
-          continue;
-        }
-        char* json = f->GetFieldAsSerializedJSon(i);
-        const std::string values = json ? json : "[]";
-        CPLFree(json);
-        copy->SetField(i, values.c_str());
+    for (const VectorFeature& f : layer->features) {
+      OGRFeatureUniquePtr feature(OGRFeature::CreateFeature(to->GetLayerDefn()));
+      feature->SetGeometryDirectly(geometry(*layer, f).release());
+      int i = 0;
+      for (const LayerField& field : fields) {
+        const int at = i++;
+        const auto v = f.properties.find(field.name);
+        if (v == f.properties.end() || v->is_null()) continue;
+        if (field.type == OFTString) feature->SetField(at, string_value(*v).c_str());
+        else if (field.type == OFTReal) feature->SetField(at, v->get<double>());
+        else if (v->is_boolean()) feature->SetField(at, v->get<bool>() ? 1 : 0);
+        else feature->SetField(at, static_cast<GIntBig>(v->get<std::int64_t>()));
       }
-      if (to->CreateFeature(copy.get()) != OGRERR_NONE) fail(file, "cannot take a feature of layer " + name);
+      if (to->CreateFeature(feature.get()) != OGRERR_NONE) fail(file, "cannot take a feature of layer " + name);
     }
   }
   if (transaction && target.CommitTransaction() != OGRERR_NONE) fail(file, "cannot be written");
 }
 
 // A DXF file's entities carry their CAD layer in the "Layer" field.
-void write_dxf(const std::vector<SourceLayer>& layers, const fs::path& file) {
+void write_dxf(const std::vector<const Layer*>& layers, const fs::path& file) {
   GDALDatasetUniquePtr ds = create("DXF", file);
   OGRLayer* entities = ds->CreateLayer("entities", nullptr, wkbUnknown, nullptr);
   if (!entities) fail(file, "cannot hold entities");
-  for (const SourceLayer& source : layers) {
-    OGRLayer* from = source.layer;
-    from->ResetReading();
-    for (OGRFeatureUniquePtr f(from->GetNextFeature()); f; f.reset(from->GetNextFeature())) {
+  for (const Layer* layer : layers)
+    for (const VectorFeature& f : layer->features) {
       OGRFeatureUniquePtr entity(OGRFeature::CreateFeature(entities->GetLayerDefn()));
-      entity->SetField("Layer", source.name.c_str());
-      entity->SetGeometry(f->GetGeometryRef());
+      entity->SetField("Layer", layer->name.c_str());
+      entity->SetGeometryDirectly(geometry(*layer, f).release());
       if (entities->CreateFeature(entity.get()) != OGRERR_NONE) fail(file, "cannot take an entity");
     }
-  }
 }
 
 }  // namespace
 
-void write_vector_formats(const fs::path& dir, const std::vector<std::string>& formats, const nlohmann::ordered_json& crs) {
+std::vector<const Layer*> vector_files(const CityLayers& city, const Layer& clutter) {
+  std::vector<const Layer*> layers{&city.zones,  &city.water, &city.roads,     &city.road_areas,
+                                   &city.blocks, &city.lots,  &city.buildings, &clutter};
+  std::sort(layers.begin(), layers.end(), [](const Layer* a, const Layer* b) { return a->name < b->name; });
+  return layers;
+}
+
+void write_vector_formats(const std::vector<const Layer*>& layers, const fs::path& dir,
+                          const std::vector<std::string>& formats, const nlohmann::ordered_json& crs) {
   if (std::all_of(formats.begin(), formats.end(), [](const std::string& f) { return f == "geojson"; })) return;
   start_gdal();
   // Same sketch, same bytes (docs/design.md, Determinism): GeoPackage stamps its tables and
@@ -139,23 +314,21 @@ void write_vector_formats(const fs::path& dir, const std::vector<std::string>& f
     if (srs->importFromEPSG(*epsg) != OGRERR_NONE) srs.reset();
     else srs->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   }
-  const std::vector<SourceLayer> layers = geojson_layers(dir);
-  std::vector<const SourceLayer*> all;
-  for (const SourceLayer& l : layers) all.push_back(&l);
   for (const std::string& format : formats) {
     if (format == "gpkg") {
       GDALDatasetUniquePtr ds = create("GPKG", dir / "city.gpkg");
-      copy_layers(all, *ds, srs.get(), dir / "city.gpkg");
+      copy_layers(layers, *ds, srs.get(), dir / "city.gpkg");
     } else if (format == "fgb") {
-      for (const SourceLayer& layer : layers) {
-        const fs::path file = dir / "vector" / (layer.name + ".fgb");
+      fs::create_directories(dir / "vector");
+      for (const Layer* layer : layers) {
+        const fs::path file = dir / "vector" / (layer->name + ".fgb");
         GDALDatasetUniquePtr ds = create("FlatGeobuf", file);
-        copy_layers({&layer}, *ds, srs.get(), file);
+        copy_layers({layer}, *ds, srs.get(), file);
       }
     } else if (format == "shp") {
       fs::create_directories(dir / "vector" / "shp");
       GDALDatasetUniquePtr ds = create("ESRI Shapefile", dir / "vector" / "shp");
-      copy_layers(all, *ds, srs.get(), dir / "vector" / "shp", dbf_date);
+      copy_layers(layers, *ds, srs.get(), dir / "vector" / "shp", dbf_date);
     } else if (format == "dxf") {
       write_dxf(layers, dir / "city.dxf");
     }

@@ -1,5 +1,6 @@
 // The vector layers in the GIS and CAD formats users open them in (docs/design.md, Outputs),
-// written through OGR from the GeoJSON layers (so every format holds the same doubles), and
+// written through OGR from the layers the GeoJSON files are written from (so every format
+// holds the same features, attributes and doubles, and none reads another's file), and
 // the street network and buildings as an OpenStreetMap file.
 #pragma once
 
@@ -13,14 +14,16 @@
 
 namespace exacity {
 
-// "geojson" (always written: validate reads it), "gpkg" (OUT/city.gpkg, every layer),
-// "fgb" (OUT/vector/NAME.fgb), "shp" (OUT/vector/shp/NAME.shp), "dxf" (OUT/city.dxf, a CAD
-// layer per layer).
-inline constexpr const char* kVectorFormats[] = {"geojson", "gpkg", "fgb", "shp", "dxf"};
+// The layers OUT/vector holds (the city's and the street clutter's), in their files' order.
+std::vector<const Layer*> vector_files(const CityLayers& city, const Layer& clutter);
 
-// Writes `formats` (of kVectorFormats) from OUT/vector/*.geojson, in the sketch's CRS.
-void write_vector_formats(const std::filesystem::path& dir, const std::vector<std::string>& formats,
-                          const nlohmann::ordered_json& crs);
+// Writes `formats` ("gpkg": OUT/city.gpkg, every layer; "fgb": OUT/vector/NAME.fgb; "shp":
+// OUT/vector/shp/NAME.shp; "dxf": OUT/city.dxf, a CAD layer per layer; others are left to
+// their writers: generate/export/formats.h) of `layers` (vector_files) into `dir`, in the
+// sketch's CRS; each layer's fields are its features' properties, typed as GDAL's GeoJSON
+// reader types them, so that each format holds what ogr2ogr makes of the GeoJSON file.
+void write_vector_formats(const std::vector<const Layer*>& layers, const std::filesystem::path& dir,
+                          const std::vector<std::string>& formats, const nlohmann::ordered_json& crs);
 
 // OUT/city.osm: the centre lines as ways (a road read from OSM with the tags it was read
 // with, others with the highway class a mapper would give them: primary, secondary,

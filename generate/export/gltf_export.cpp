@@ -456,11 +456,12 @@ GltfCounts write_city_part(const std::vector<GroundLayer>* ground_layers, const 
 
 }  // namespace
 
-GltfCounts write_gltf(const Ground& ground, const std::vector<GroundLayer>& ground_layers,
-                      const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
-                      const std::vector<Mesh>& meshes, std::uint64_t seed, const ModelLibrary* library,
-                      const std::filesystem::path& file, const std::vector<ModelInstance>& clutter) {
-  return write_city_part(&ground_layers, city_box(ground), buildings, models, meshes, seed, library, file, clutter);
+GltfCounts write_gltf(const MeshedCity& city, const std::filesystem::path& file) {
+  std::vector<ModelInstance> clutter;
+  clutter.reserve(city.clutter.size());
+  for (const Clutter& c : city.clutter) clutter.push_back(c.instance);
+  return write_city_part(&city.ground_layers, city_box(city.ground), city.buildings, city.models, city.meshes, city.seed,
+                         city.library, file, clutter);
 }
 
 GltfCounts write_gltf_structures(const geom::Box& city, const std::vector<Building>& buildings,

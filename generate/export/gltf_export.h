@@ -12,6 +12,7 @@
 
 #include "generate/mesh/building_mesh.h"
 #include "generate/export/ground_layers.h"
+#include "generate/export/meshed_city.h"
 #include "generate/placement/model_library.h"
 #include "generate/city/ground.h"
 #include "generate/placement/buildings.h"
@@ -22,17 +23,12 @@ struct GltfCounts {
   std::size_t meshes = 0, instances = 0, triangles = 0;
 };
 
-// ground_layers are ground_layers(ground, terrain), a primitive each of the mesh "ground";
-// meshes are structure_meshes(buildings, models, library), by id; `seed` the city's, which
-// with each structure's stable id picks its facade and roof albedo (structure_albedos, a
-// material each; the renderer still picks by the structure's index, so the two agree only
-// where they are equal). The street clutter's
-// models are instanced like the lots', sharing their geometry: a node each, in id order,
-// under the root's child "clutter".
-GltfCounts write_gltf(const Ground& ground, const std::vector<GroundLayer>& ground_layers,
-                      const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
-                      const std::vector<Mesh>& meshes, std::uint64_t seed, const ModelLibrary* library,
-                      const std::filesystem::path& file, const std::vector<ModelInstance>& clutter = {});
+// The ground's layers a primitive each of the mesh "ground"; the city's seed with each
+// structure's stable id picks its facade and roof albedo (structure_albedos, a material
+// each; the renderer still picks by the structure's index, so the two agree only where they
+// are equal). The street clutter's models are instanced like the lots', sharing their
+// geometry: a node each, in id order, under the root's child "clutter".
+GltfCounts write_gltf(const MeshedCity& city, const std::filesystem::path& file);
 
 // exacity serve's tiles (docs/design.md, Serving: tiles), in write_gltf's frame for the
 // ground whose city_box is `city` (measured once for all tiles, as the whole ground is

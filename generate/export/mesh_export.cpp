@@ -113,9 +113,12 @@ struct PlyFaces {
 
 }  // namespace
 
-MeshCounts write_meshes(const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
-                        const std::vector<Mesh>& meshes, const std::vector<GroundLayer>& ground,
-                        const std::filesystem::path& obj_file, const std::filesystem::path& ply_file) {
+MeshCounts write_meshes(const MeshedCity& city, const std::filesystem::path& obj_file,
+                        const std::filesystem::path& ply_file) {
+  const std::vector<Building>& buildings = city.buildings;
+  const std::vector<ModelInstance>& models = city.models;
+  const std::vector<Mesh>& meshes = city.meshes;
+  const std::vector<GroundLayer>& ground = city.ground_layers;
   std::filesystem::path mtl_file = obj_file;
   mtl_file.replace_extension(".mtl");
   std::ofstream obj(obj_file, std::ios::binary), mtl(mtl_file, std::ios::binary), ply(ply_file, std::ios::binary);

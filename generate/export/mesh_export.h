@@ -11,6 +11,7 @@
 
 #include "generate/mesh/building_mesh.h"
 #include "generate/export/ground_layers.h"
+#include "generate/export/meshed_city.h"
 
 namespace exacity {
 
@@ -18,10 +19,9 @@ struct MeshCounts {
   std::size_t vertices = 0, faces = 0;
 };
 
-// Writes both files; meshes are structure_meshes(buildings, models, ...), by id; ground is
-// ground_layers(...) or none. The counts are of the whole city, ground included.
-MeshCounts write_meshes(const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
-                        const std::vector<Mesh>& meshes, const std::vector<GroundLayer>& ground,
-                        const std::filesystem::path& obj_file, const std::filesystem::path& ply_file);
+// Writes both files: the city's structures' meshes and its ground's layers. The counts are
+// of the whole city, ground included.
+MeshCounts write_meshes(const MeshedCity& city, const std::filesystem::path& obj_file,
+                        const std::filesystem::path& ply_file);
 
 }  // namespace exacity

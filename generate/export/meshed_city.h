@@ -25,6 +25,7 @@ struct MeshedCity {
   const ModelLibrary* library = nullptr;
   const Terrain* terrain = nullptr;
   const nlohmann::ordered_json& crs;  // the sketch's, as its GeoJSON names it
+  std::uint64_t seed = 0;  // the city's: with each structure's stable id, its facade and roof albedos in city.glb
 };
 
 }  // namespace exacity
