@@ -54,8 +54,11 @@ Cell make_cell(KindRing outer, std::vector<KindRing> holes) {
   double twice_area = 0;
   Box b = Box::none();
   auto add = [&](KindRing& r) {
-    r.rounded.clear();
-    for (const Point& v : r.points) r.rounded.push_back(exact::to_plain(v)), b.add(r.rounded.back());
+    if (r.rounded.size() != r.points.size()) {
+      r.rounded.clear();
+      for (const Point& v : r.points) r.rounded.push_back(exact::to_plain(v));
+    }
+    for (Vec2 v : r.rounded) b.add(v);
   };
   add(outer);
   for (auto& h : holes) add(h);
