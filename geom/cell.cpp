@@ -11,6 +11,7 @@
 
 #include "geom/cell_impl.h"
 #include "geom/grid.h"
+#include "geom/hex_text.h"
 #include "geom/measure.h"
 #include "geom/untangle.h"
 
@@ -55,8 +56,11 @@ Cell make_cell(KindRing outer, std::vector<KindRing> holes) {
   double twice_area = 0;
   Box b = Box::none();
   auto add = [&](KindRing& r) {
-    r.rounded.clear();
-    for (const Point& v : r.points) r.rounded.push_back(exact::to_plain(v)), b.add(r.rounded.back());
+    if (r.rounded.size() != r.points.size()) {
+      r.rounded.clear();
+      for (const Point& v : r.points) r.rounded.push_back(exact::to_plain(v));
+    }
+    for (Vec2 v : r.rounded) b.add(v);
   };
   add(outer);
   for (auto& h : holes) add(h);
@@ -548,15 +552,7 @@ namespace {
 // else 'q' and its rational. Built with to_chars rather than a stream: a build keys every
 // region, block and lot by this text (generate/regenerate.h), and the stream's printf was
 // most of its cost. The text seeds streams and ids (content_id): it must not change.
-void write_double(std::string& out, double v) {
-  char text[40];
-  char* at = text;
-  if (std::signbit(v)) *at++ = '-';
-  *at++ = '0', *at++ = 'x';
-  at = std::to_chars(at, std::end(text), std::fabs(v), std::chars_format::hex).ptr;
-  *at++ = ' ';
-  out.append(text, at);
-}
+void write_double(std::string& out, double v) { append_hex_text(out, v); }
 
 template <typename Exact>
 void write_coordinate(std::string& out, double rounded, const Exact& exact) {

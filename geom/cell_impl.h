@@ -14,7 +14,9 @@ struct Path::Impl {
 struct KindRing {
   std::vector<exact::Point> points;
   std::vector<int> kinds;  // kinds[i]: the edge points[i] -> points[i + 1]
-  std::vector<Vec2> rounded;  // points rounded to doubles, by make_cell: rounding an exact vertex is costly
+  // points rounded to doubles (exact::to_plain), by make_cell unless given one per point:
+  // rounding an exact vertex is costly, and a map's cells share their vertices
+  std::vector<Vec2> rounded;
 };
 
 struct Cell::Impl {

@@ -14,7 +14,9 @@
 
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstdint>
+#include <type_traits>
 
 #include <CGAL/Interval_nt.h>
 
@@ -93,13 +95,32 @@ inline Point constructed(const Point& p) {
 // The nearest double, ties to even: what snap rounding's pixels assume. (CGAL::to_double
 // truncates GMP's rationals towards zero; to_interval gives the two doubles around.)
 template <typename Exact>
-double nearest_double(const Exact& v) {
+double nearest_double_by_halfway(const Exact& v) {
   const auto [below, above] = CGAL::to_interval(v);
   if (below == above) return below;
   const Exact halfway = (Exact(below) + Exact(above)) / 2;
   if (v < halfway) return below;
   if (halfway < v) return above;
   return (std::bit_cast<std::uint64_t>(below) & 1) == 0 ? below : above;
+}
+template <typename Exact>
+double nearest_double(const Exact& v) {
+#if !defined(EXACITY_FLOAT_KERNEL) && defined(CGAL_USE_GMPXX)
+  // A GMP rational: MPFR rounds it once to 53 bits, ties to even, subnormals as doubles
+  // have them (to_interval's way, rounding to nearest): the halfway rational's arithmetic
+  // was most of the cost of rounding a cell's vertices (PlanarMap::cells).
+  if constexpr (std::is_same_v<Exact, mpq_class>) {
+    const mpfr_exp_t emin = mpfr_get_emin();
+    mpfr_set_emin(-1073);
+    MPFR_DECL_INIT(y, 53);
+    const int inexact = mpfr_set_q(y, v.get_mpq_t(), MPFR_RNDN);
+    mpfr_subnormalize(y, inexact, MPFR_RNDN);
+    const double nearest = mpfr_get_d(y, MPFR_RNDN);  // exact, unless past the doubles' range
+    mpfr_set_emin(emin);
+    if (std::isfinite(nearest)) return nearest;
+  }
+#endif
+  return nearest_double_by_halfway(v);
 }
 
 // Rounds the exact value to the nearest doubles, so the result does not depend on how far

@@ -119,18 +119,34 @@ void trace_components(const Arrangement& arr, GroupOf group_of, Emit emit) {
   });
 }
 
-Ring plain_ring(const std::vector<Halfedge>& loop) {
+// Each vertex's to_plain, kept by vertex while the map is unchanged (one tracing): the
+// loops traced share most of their vertices, and rounding an exact one is costly.
+class RoundedVertices {
+ public:
+  Vec2 operator()(const Halfedge& h) {
+    const auto [at, added] = rounded_.try_emplace(&*h->source());
+    if (added) at->second = to_plain(h->source()->point());
+    return at->second;
+  }
+
+ private:
+  std::unordered_map<const void*, Vec2> rounded_;
+};
+
+Ring plain_ring(const std::vector<Halfedge>& loop, RoundedVertices& rounded) {
   Ring ring;
-  for (const Halfedge& h : loop) ring.push_back(to_plain(h->source()->point()));
+  for (const Halfedge& h : loop) ring.push_back(rounded(h));
   return ring;
 }
 
 // Cells from traced polygons; kind_of(h) gives the kind of boundary halfedge h.
 template <typename KindOf>
-void add_cells(const std::vector<LoopPolygon>& polygons, KindOf kind_of, std::vector<Cell>& out) {
+void add_cells(const std::vector<LoopPolygon>& polygons, KindOf kind_of, RoundedVertices& rounded,
+               std::vector<Cell>& out) {
   auto ring = [&](const std::vector<Halfedge>& loop) {
     KindRing r;
-    for (const Halfedge& h : loop) r.points.push_back(h->source()->point()), r.kinds.push_back(kind_of(h));
+    for (const Halfedge& h : loop)
+      r.points.push_back(h->source()->point()), r.kinds.push_back(kind_of(h)), r.rounded.push_back(rounded(h));
     return r;
   };
   for (const LoopPolygon& p : polygons) {
@@ -154,11 +170,12 @@ void PlanarMap::relabel_components(const std::vector<int>& group_of_label, const
 std::vector<std::vector<Dissolved>> PlanarMap::dissolve(const std::vector<int>& group_of_label,
                                                         int group_count) const {
   std::vector<std::vector<Dissolved>> result(group_count);
+  RoundedVertices rounded;
   trace_components(impl_->arr, impl_->group_function(group_of_label),
                    [&](int g, const std::vector<LoopPolygon>& polygons, const std::vector<int>& neighbours) {
                      for (const LoopPolygon& lp : polygons) {
-                       std::vector<Ring> rings{plain_ring(lp.outer)};
-                       for (const auto& h : lp.holes) rings.push_back(plain_ring(h));
+                       std::vector<Ring> rings{plain_ring(lp.outer, rounded)};
+                       for (const auto& h : lp.holes) rings.push_back(plain_ring(h, rounded));
                        for (Polygon& p : untangle(rings)) result[g].push_back({std::move(p), neighbours});
                      }
                    });
@@ -173,9 +190,10 @@ std::vector<Cell> PlanarMap::cells(const std::vector<int>& group_of_label, const
     return l >= 0 && l < static_cast<int>(kind_of_label.size()) ? kind_of_label[l] : 0;
   };
   int component = 0;
+  RoundedVertices rounded;
   trace_components(impl_->arr, impl_->group_function(group_of_label),
                    [&](int g, const std::vector<LoopPolygon>& polygons, const std::vector<int>&) {
-                     add_cells(polygons, kind_of, cells);
+                     add_cells(polygons, kind_of, rounded, cells);
                      if (groups) groups->resize(cells.size(), g);
                      if (components) components->resize(cells.size(), component);
                      ++component;
@@ -217,8 +235,9 @@ std::vector<Cell> split_cell(const Cell& cell, const std::vector<Path>& roads, i
     return kind;
   };
   std::vector<Cell> parts;
+  RoundedVertices rounded;
   trace_components(arr, group_of, [&](int, const std::vector<LoopPolygon>& polygons, const std::vector<int>&) {
-    add_cells(polygons, kind_of, parts);
+    add_cells(polygons, kind_of, rounded, parts);
   });
   return parts;
 }
@@ -250,9 +269,10 @@ std::vector<Cell> inset_cell(const Cell& cell, double s) {
   insert_curves(arr, curves);
   label_all_faces(arr, [](const Windings& w) { return winding_of(w, 0) != 0 && winding_of(w, 1) == 0 ? 1 : -1; });
   std::vector<Cell> parts;
+  RoundedVertices rounded;
   trace_components(arr, [](Face f) { return f->data() == 1 ? 0 : -1; },
                    [&](int, const std::vector<LoopPolygon>& polygons, const std::vector<int>&) {
-                     add_cells(polygons, [](Halfedge) { return 0; }, parts);
+                     add_cells(polygons, [](Halfedge) { return 0; }, rounded, parts);
                    });
   return parts;
 }

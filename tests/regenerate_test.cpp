@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -224,6 +227,25 @@ Built regenerated(const City& previous, const json& text) {
 std::string written(const Built& b, const std::string& name) { return written(b.sketch, b.city, name); }
 
 }  // namespace
+
+// A key's number is C's %a text (keys made before and after must compare alike), whatever
+// the double: zeros, subnormals, the largest, infinities, random bits.
+TEST(Regenerate, AKeysNumberIsPrintfsHexText) {
+  std::vector<double> values{0.0, -0.0, 1.0, -2.5, 0.1, 1e-310, -4.9e-324, 1.7976931348623157e308,
+                             std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  std::mt19937_64 rng(3);
+  for (int i = 0; i < 100000; ++i) {
+    const double v = std::bit_cast<double>(rng());
+    if (!std::isnan(v)) values.push_back(v);
+  }
+  for (const double v : values) {
+    std::string key;
+    append_key(key, v);
+    char text[40];
+    std::snprintf(text, sizeof text, "%a ", v);
+    ASSERT_EQ(key, text);
+  }
+}
 
 TEST(Regenerate, UnchangedSketchReusesEveryRegionBlockLotAndMesh) {
   const Built first = build(town(), std::make_shared<RegionCache>());

@@ -102,6 +102,23 @@ TEST(Rounding, ToTheNearestDoubleTiesToEven) {
       EXPECT_EQ(geom::exact::nearest_double(v), nearest) << base << " + " << k << "/16 of a step";
     }
   }
+  // Rationals of every size, subnormals included, and ties between two doubles: the same
+  // double as comparing with the halfway rational between the two around.
+  std::uniform_int_distribution<int> exponent(-1130, 960);
+  std::uniform_int_distribution<long> numerator(-(1L << 60), 1L << 60), denominator(1, (1L << 40) - 1);
+  for (int i = 0; i < 20000; ++i) {
+    const int e = exponent(rng);
+    const Q scale = Q(std::ldexp(1.0, e / 2)) * Q(std::ldexp(1.0, e - e / 2));
+    Q v = Q(static_cast<double>(numerator(rng))) / Q(static_cast<double>(denominator(rng))) * scale;
+    if (i % 4 == 0) {  // halfway between a double and the next
+      const double d = geom::exact::nearest_double_by_halfway(v);
+      v = (Q(d) + Q(std::nextafter(d, INFINITY))) / 2;
+    }
+    EXPECT_EQ(geom::exact::nearest_double(v), geom::exact::nearest_double_by_halfway(v)) << v;
+  }
+  EXPECT_EQ(geom::exact::nearest_double(Q(Q(std::numeric_limits<double>::denorm_min()) / 2)), 0.0);
+  EXPECT_EQ(geom::exact::nearest_double(Q(Q(std::numeric_limits<double>::denorm_min()) * 3 / 2)),
+            2 * std::numeric_limits<double>::denorm_min());
 }
 
 // The sanitizers make each trial about five times as slow: they run a quarter of them, every
