@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <charconv>
-#include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 #include <utility>
 
 #include "geom/cell.h"
+#include "geom/hex_text.h"
 
 namespace exacity {
 namespace {
@@ -17,11 +17,7 @@ namespace {
 class TextOut {
  public:
   std::string text;
-  void operator()(double v) {
-    char word[40];
-    std::snprintf(word, sizeof word, "%a ", v);
-    text += word;
-  }
+  void operator()(double v) { geom::append_hex_text(text, v); }
   void operator()(long v) { text += std::to_string(v) + ' '; }
   void operator()(std::string_view s) { text += std::to_string(s.size()) + ':', text += s, text += ' '; }
 };
