@@ -675,17 +675,18 @@ void add_generate(CLI::App& app, GenerateCommand& c, SharedOptions& shared) {
 }
 
 void add_plan(CLI::App& app, PlanCommand& plan, PlanTaskCommand& task, MergeCommand& merge, SharedOptions& shared) {
+  constexpr int kMaxTasks = 100000;  // tasks of a step; Slurm allows job arrays of 1,001 unless MaxArraySize says more
   plan.app = app.add_subcommand("plan", "Plan a city as tasks of a job array (scripts/generate_city.sbatch): "
                                         "plan, each step's tasks, then merge");
   plan.app->add_option("SKETCH", plan.sketch, "The sketch, as exacity generate reads it (its files read as one)")->required();
   plan.app->add_option("-o,--output", plan.out, "The plan's folder, new or empty, on storage every node sees")
       ->capture_default_str();
   plan.app->add_option("--tasks", plan.tasks, "Tasks of each step (a job array's size)")
-      ->check(CLI::Range(1, 100000))
+      ->check(CLI::Range(1, kMaxTasks))
       ->capture_default_str();
   task.app = app.add_subcommand("plan-task", "Compute one task's share of a plan's step, into PLAN/tasks/TASK/STEP.items");
   task.app->add_option("PLAN", task.plan, "A folder of exacity plan")->required();
-  task.app->add_option("--task", task.task, "The task, from 0")->required()->check(CLI::NonNegativeNumber);
+  task.app->add_option("--task", task.task, "The task, from 0")->required()->check(CLI::Range(0, kMaxTasks - 1));
   task.app->add_option("--step", task.step,
                        "roads (the regions' road plans), lots (the blocks' lot plans: needs every task's roads) or "
                        "buildings (the lots' structures: needs every task's lots)")

@@ -25,7 +25,7 @@ void add_serve(CLI::App& app, ServeCommand& c) {
       ->add_option("--max-render", c.max_render,
                    "The most samples one render may trace (width x height x samples per pixel, the overview's "
                    "included); a larger one is refused")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 40))
       ->capture_default_str();
 }
 

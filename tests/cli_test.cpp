@@ -298,6 +298,19 @@ TEST(Cli, StatsMeasureTheCityAndRealData) {
   EXPECT_NE(bad.out.find("not an output folder"), std::string::npos) << bad.out;
 }
 
+// A number option out of its range says the range as the option means it (CLI11's checks
+// of any non-negative number printed the largest double, 309 digits).
+TEST(Cli, ANumberOutOfItsRangeSaysTheRange) {
+  for (const auto& [args, expect] : std::vector<std::pair<std::string, std::string>>{
+           {"plan-task plan --task 1e400 --step roads", "--task: Value 1e400 not in range 0 to 99999"},
+           {"plan-task plan --task 100000 --step roads", "--task: Value 100000 not in range 0 to 99999"},
+           {"serve sketch.geojson --max-render -5", "--max-render: Value -5 not in range 1 to 1099511627776"}}) {
+    const Result r = run(args);
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_EQ(r.out.substr(0, r.out.find('\n')), expect) << args;
+  }
+}
+
 TEST(Cli, BadInputExitsTwoWithOneLineAndNoOutput) {
   fs::path dir = testing_util::temp_dir("cli-bad");
   struct Case {
