@@ -116,11 +116,22 @@ TEST(Plan, MergeRefusesAMissingTaskAnotherPlansItemsAndAChangedSketch) {
   const std::string kept = read(items);
   fs::remove(items);
   refused("task 1's buildings missing", items.string() + ": missing: task 1 has not run step buildings");
+  std::ofstream(items, std::ios::binary) << kept;
+  // A digit changed in the middle of task 0's lots, which still read as lots (it merged
+  // into a city of other lots before the items' content id was checked).
+  const fs::path lots = c.plan / "tasks" / "0" / "lots.items";
+  const std::string lots_kept = read(lots);
+  std::string changed = lots_kept;
+  const std::size_t digit = changed.find_first_of("123456789", changed.size() / 2);
+  ASSERT_NE(digit, std::string::npos);
+  changed[digit] = changed[digit] == '9' ? '8' : static_cast<char>(changed[digit] + 1);
+  std::ofstream(lots, std::ios::binary) << changed;
+  refused("a digit of task 0's lots changed", "lots.items: damaged (its items are not the ones its task wrote)");
+  std::ofstream(lots, std::ios::binary) << lots_kept;
   // Another plan's items: task 1 of a plan of 3 tasks.
   const PlannedCity other = planned("plan-refuse-other", 3, "roads");
   fs::copy_file(other.plan / "tasks" / "1" / "roads.items", c.plan / "tasks" / "1" / "roads.items",
                 fs::copy_options::overwrite_existing);
-  std::ofstream(items, std::ios::binary) << kept;
   refused("another plan's roads", "roads.items: not this plan's task 1");
   // The sketch changed after the plan.
   std::ofstream(c.sketch, std::ios::app) << "\n";

@@ -29,6 +29,12 @@ std::string file_bytes(const fs::path& file) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
+std::string hex_id(std::uint64_t id) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(id));
+  return text;
+}
+
 // The plan's id: the version, the task count, the sketch's files' names and bytes, and what
 // every item reads besides its own input (shared_input: the settings and the named files'
 // sizes and times).
@@ -36,19 +42,19 @@ std::string plan_id(const std::vector<fs::path>& files, const Sketch& sketch, in
   std::string text = std::string(kVersion) + " tasks " + std::to_string(tasks) + " ";
   for (const fs::path& file : files) text += file.string() + " " + file_bytes(file) + " ";
   text += shared_input(sketch);
-  char id[17];
-  std::snprintf(id, sizeof id, "%016llx", static_cast<unsigned long long>(content_id(text)));
-  return id;
+  return hex_id(content_id(text));
 }
 
 fs::path items_file(const fs::path& plan, int task, PlanStep step) {
   return plan / "tasks" / std::to_string(task) / (std::string(step_name(step)) + ".items");
 }
 
-// The first line of a task's items: whose they are.
-std::string items_header(const Plan& plan, int task, PlanStep step) {
+// The start of a task's items' first line: whose they are. The line ends with the items'
+// content id: items changed on the way (storage, a copy) may still read as items, and
+// would be merged into another city.
+std::string items_owner(const Plan& plan, int task, PlanStep step) {
   return "exacity plan items; plan " + plan.id + "; task " + std::to_string(task) + " of " +
-         std::to_string(plan.tasks) + "; step " + step_name(step) + "\n";
+         std::to_string(plan.tasks) + "; step " + step_name(step) + "; content ";
 }
 
 // Every task's items of `step` into the cache.
@@ -60,11 +66,15 @@ void load_step(const fs::path& dir, const Plan& plan, PlanStep step, RegionCache
                       step_name(step) + "; run exacity plan-task " + dir.string() + " --task " + std::to_string(task) +
                       " --step " + step_name(step));
     const std::string text = file_bytes(file);
-    const std::string header = items_header(plan, task, step);
-    if (text.compare(0, header.size(), header) != 0)
+    const std::string owner = items_owner(plan, task, step);
+    if (text.compare(0, owner.size(), owner) != 0)
       throw UserError(file.string() + ": not this plan's task " + std::to_string(task) + " (another plan's, or the " +
                       "sketch changed since it ran); run that task's step " + step_name(step) + " again");
-    const std::string_view items = std::string_view(text).substr(header.size());
+    const std::size_t end = text.find('\n', owner.size());
+    const std::string_view items = std::string_view(text).substr(end == std::string::npos ? text.size() : end + 1);
+    if (end == std::string::npos || text.substr(owner.size(), end - owner.size()) != hex_id(content_id(items)))
+      throw UserError(file.string() + ": damaged (its items are not the ones its task wrote); run that task's step " +
+                      step_name(step) + " again");
     try {
       switch (step) {
         case PlanStep::Roads: read_memo_text(items, cache.road_plans); break;
@@ -201,7 +211,7 @@ int run_plan_task(const fs::path& dir, int task, PlanStep step) {
   const fs::path aside = file.string() + ".part";
   {
     std::ofstream out(aside, std::ios::binary);
-    out << items_header(plan, task, step) << items;
+    out << items_owner(plan, task, step) << hex_id(content_id(items)) << "\n" << items;
     if (!out) throw UserError(aside.string() + ": could not be written (disk full?); run the task again");
   }
   fs::rename(aside, file);
