@@ -86,7 +86,7 @@ struct ObjAndPlyVertices {
   }
   template <typename Indices>
   void face(const Indices& vertices, int) {
-    line.assign("f");
+    line.clear(), line += 'f';
     for (std::size_t v : vertices) line += ' ', append_number(line, v + 1);
     line += '\n';
     obj.write(line.data(), static_cast<std::streamsize>(line.size()));

@@ -25,7 +25,7 @@ std::string path_data(const geom::Polygon& poly, const geom::Box& b) {
   CancelCheck().check();
   std::string d;
   auto ring = [&](const geom::Ring& r) {
-    for (std::size_t i = 0; i < r.size(); ++i) d += (i ? "L" : "M") + point(r[i], b);
+    for (std::size_t i = 0; i < r.size(); ++i) d += i ? 'L' : 'M', d += point(r[i], b);
     d += "Z";
   };
   ring(poly.outer);

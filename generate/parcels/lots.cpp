@@ -47,7 +47,7 @@ std::vector<PlannedLot> plan_lots(const std::vector<Block>& blocks, const CitySe
     // Everything the plan reads of the block; the rest (settings, library, channels) is the memo's context.
     std::string key = "block zone " + std::to_string(static_cast<int>(block.zone)) +
                       " density " + block.density + " roads";
-    for (int r : block.roads) key += " " + std::to_string(r);
+    for (int r : block.roads) key += ' ', key += std::to_string(r);
     key += " " + cell_text;
     per_block[bi] = memo->get(key, plan);
     for (PlannedLot& lot : per_block[bi]) lot.block = static_cast<int>(bi);  // its index in this build
