@@ -57,8 +57,8 @@ TEST(Gis, EveryRealRoadWithACentreLineHasAnAreaAndARoadObject) {
 
 // Helsinki's centre generated on its land use and streets without its buildings: with
 // --like its buildings, the generated residential and commercial footprints' median comes
-// from the defaults' houses to within a quarter of the mapped ones', and their p90 and the
-// residential coverage within a quarter too (docs/gis.md, Looking like the place).
+// from the defaults' houses to within a quarter of the mapped ones', and their p90 and
+// coverage within a quarter too (docs/gis.md, Looking like the place).
 TEST(Gis, LikeBringsHelsinkisMedianFootprintToItsBuildings) {
   const fs::path osm = cli_util::kSource / ".." / "shared" / "data" / "osm";
   if (!fs::exists(osm / "helsinki_centre_buildings.geojson"))
@@ -85,9 +85,12 @@ TEST(Gis, LikeBringsHelsinkisMedianFootprintToItsBuildings) {
     const double p90 = after["footprints_by_zone"][zone]["generated"]["p90_m2"].get<double>();
     EXPECT_LT(std::abs(p90 - mapped_p90), 0.25 * mapped_p90) << zone << ": p90 " << p90 << " against " << mapped_p90;
   }
-  // Lots that fill the blocks bring the residential coverage within a quarter (22% under;
-  // the commercial one is 28.9% under, docs/gis.md).
-  const double mapped = after["like"]["zones"]["residential"]["measured"]["coverage_of_land_use"].get<double>();
-  const double is = after["footprints_by_zone"]["residential"]["generated"]["coverage_of_land_use"].get<double>();
-  EXPECT_LT(std::abs(is - mapped), 0.25 * mapped) << "residential coverage " << is << " against " << mapped;
+  // Lots that fill the blocks, and perimeter blocks where the place's buildings touch,
+  // bring the coverage within a quarter (9% and 22% under, docs/gis.md; the commercial one
+  // was 28.9% under with rows of rectangles).
+  for (const char* zone : {"residential", "commercial"}) {
+    const double mapped = after["like"]["zones"][zone]["measured"]["coverage_of_land_use"].get<double>();
+    const double is = after["footprints_by_zone"][zone]["generated"]["coverage_of_land_use"].get<double>();
+    EXPECT_LT(std::abs(is - mapped), 0.25 * mapped) << zone << " coverage " << is << " against " << mapped;
+  }
 }

@@ -88,7 +88,8 @@ TEST(Like, MeasuresKnownFootprintsExactly) {
   const ordered_json& set = z["set"];
   EXPECT_EQ(set["setback"], 5.0);
   EXPECT_EQ(set["building_gap"], 4.0);
-  EXPECT_EQ(set["min_footprint_area"], 120.0);
+  EXPECT_EQ(set["min_footprint_area"], 100.0);  // the smallest: drawn areas do not shrink
+  EXPECT_EQ(set["min_footprint_width"], 10.0);  // the short sides' 40th percentile
   EXPECT_GE(set["max_footprint_area"].get<double>(), 320.0);
   EXPECT_EQ(set["heights"], ordered_json::parse("[7.0, 16.0]"));
   // The road's half inside the land use, 350 m by 5 m, is no block's land: 2,520 m² of
@@ -358,7 +359,7 @@ ordered_json touching_place_report(const std::string& name) {
   return report_of(dir / "out")["like"]["zones"]["residential"];
 }
 
-// What a perimeter block's depth would be read from (docs/gis.md): the street frontage its
+// What a perimeter block's depth is read from (docs/gis.md): the street frontage its
 // land use fronts and each footprint's wing depth, twice its area over its perimeter.
 TEST(Like, MeasuresStreetFrontageAndWingDepths) {
   const ordered_json m = touching_place_report("like_frontage")["measured"];
@@ -370,16 +371,28 @@ TEST(Like, MeasuresStreetFrontageAndWingDepths) {
 // The frontage rule (docs/gis.md): the 350 m of street shared by the eleven footprints'
 // 3,960 m² (no gap beside them) gives each a depth of 11.3 m, and each lot the frontage
 // of its 360 m² at that depth; lots 17 m deep (5 m setback and 11.3 m, over half the
-// widest frontage). Reported, not set.
-TEST(Like, ReportsTheFrontageRule) {
+// widest frontage). The footprints touch (median gap 0), so it is set, not only reported;
+// where they stand apart (the measured place's 4 m) it is only reported.
+TEST(Like, ReportsTheFrontageRuleAndSetsItWhereBuildingsTouch) {
   const ordered_json z = touching_place_report("like_frontage_rule");
   ASSERT_TRUE(z.contains("frontage_rule")) << z.dump();
   const ordered_json& rule = z["frontage_rule"];
   EXPECT_EQ(rule["perimeter_depth"], 11.3);
   EXPECT_EQ(rule["lot_frontages"], ordered_json(std::vector<double>(21, 31.9)));
   EXPECT_EQ(rule["lot_depth"], 17.0);
-  EXPECT_FALSE(z["set"].contains("perimeter_depth"));
-  EXPECT_FALSE(z["set"].contains("lot_frontages"));
+  EXPECT_EQ(z["set"].value("perimeter_depth", ordered_json()), 11.3);
+  EXPECT_EQ(z["set"].value("lot_frontages", ordered_json()), rule["lot_frontages"]);
+  EXPECT_EQ(z["set"].value("lot_depth", ordered_json()), 17.0);
+
+  const fs::path dir = testing_util::temp_dir("like_frontage_rule_apart");
+  write(dir / "place.geojson", measured_place().dump());
+  const auto r = cli_util::run("generate " + (dir / "place.geojson").string() + " --like " + (dir / "place.geojson").string() +
+                               " -q -o " + (dir / "out").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const ordered_json apart = report_of(dir / "out")["like"]["zones"]["residential"];
+  EXPECT_TRUE(apart.contains("frontage_rule"));
+  EXPECT_FALSE(apart["set"].contains("perimeter_depth"));
+  EXPECT_FALSE(apart["set"].contains("lot_frontages"));
 }
 
 // "lot_frontages" draws each allocated lot's frontage from its distribution: 25 m every
@@ -403,4 +416,85 @@ TEST(Like, LotFrontagesDrawEachLotFromTheirDistribution) {
     EXPECT_NEAR(spans[k].first, 25.0 * static_cast<double>(k), 1e-6);
     EXPECT_NEAR(spans[k].second, 25.0 * static_cast<double>(k + 1), 1e-6);
   }
+}
+
+namespace {
+
+// A residential zone 330 m by 100 m along a road on y = 0 (as the measured place) mapping
+// `footprints`, each {width along the road, depth}, 4 m apart and 5 m behind its surface.
+ordered_json place_of(const std::vector<std::pair<double, double>>& footprints) {
+  ordered_json place = measured_place(0);
+  double x = 10;
+  for (auto [w, d] : footprints) {
+    place["features"].push_back({{"type", "Feature"}, {"properties", {{"building", "yes"}}},
+                                 {"geometry", {{"type", "Polygon"}, {"coordinates", rectangle(x, 10, x + w, 10 + d)}}}});
+    x += w + 4;
+  }
+  return place;
+}
+
+// The generated footprints' areas in OUT, sorted.
+std::vector<double> generated_areas(const fs::path& out) {
+  std::vector<double> areas;
+  const ordered_json buildings = ordered_json::parse(cli_util::read(out / "vector" / "buildings.geojson"));
+  for (const ordered_json& b : buildings["features"]) {
+    if (b["properties"]["kind"] != "building" || b["properties"].value("mapped", false)) continue;
+    const ordered_json& ring = b["geometry"]["coordinates"][0];
+    double twice = 0;
+    for (std::size_t i = 0; i + 1 < ring.size(); ++i)
+      twice += ring[i][0].get<double>() * ring[i + 1][1].get<double>() - ring[i + 1][0].get<double>() * ring[i][1].get<double>();
+    areas.push_back(std::abs(twice) / 2);
+  }
+  std::sort(areas.begin(), areas.end());
+  return areas;
+}
+
+}  // namespace
+
+// A place whose five sheds (5 m by 8 m) stand among seven houses 20 m square has its sheds
+// generated at their size: min_footprint_width is the short sides' 40th percentile (5 m),
+// min_footprint_area the smallest area. It was 0.8 of the middle width (16 m), which made
+// every shed drawn a footprint of 256 m² or more.
+TEST(Like, ThePlacesSmallFootprintsAreGeneratedAtTheirSize) {
+  const fs::path dir = testing_util::temp_dir("like_small_footprints");
+  std::vector<std::pair<double, double>> footprints(5, {8, 5});
+  footprints.insert(footprints.end(), 7, {20, 20});
+  write(dir / "place.geojson", place_of(footprints).dump());
+  write(dir / "empty.geojson", empty_place().dump());
+  const auto r = cli_util::run("generate " + (dir / "empty.geojson").string() + " --like " + (dir / "place.geojson").string() +
+                               " -q -o " + (dir / "out").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const ordered_json set = report_of(dir / "out")["like"]["zones"]["residential"]["set"];
+  EXPECT_EQ(set["min_footprint_width"], 5.0);
+  EXPECT_EQ(set["min_footprint_area"], 40.0);
+  const std::vector<double> areas = generated_areas(dir / "out");
+  ASSERT_FALSE(areas.empty());
+  // Two fifths of the draws are sheds (the areas between the place's steps are drawn
+  // linearly, so some lie between 40 and 400 m²).
+  EXPECT_NEAR(areas.front(), 40, 0.01);
+  EXPECT_GE(std::count_if(areas.begin(), areas.end(), [](double a) { return a < 40.01; }), static_cast<long>(areas.size() / 5));
+}
+
+// Lots are sized from the upper part of the place's distribution, so they hold its large
+// footprints: a place of eight houses 10 m square and four halls 50 m by 16 m (p90 800
+// m²) generated on a zone 40 m deep along a street gets lots wide enough for two halls
+// with their gaps (108 to 162 m, at most twice the zone's depth), and its p90 within a
+// quarter of the mapped one (800 m²). Sized for the middle (16 to 26 m wide), no lot held
+// a hall in any of its shapes (p90 240.9 m²).
+TEST(Like, LotsHoldThePlacesLargeFootprints) {
+  const fs::path dir = testing_util::temp_dir("like_lots_hold_large");
+  std::vector<std::pair<double, double>> footprints(8, {10, 10});
+  footprints.insert(footprints.end(), 4, {50, 16});
+  write(dir / "place.geojson", place_of(footprints).dump());
+  ordered_json sketch = one_street({{"layout", "streets"}});
+  sketch["features"][0]["geometry"]["coordinates"] = rectangle(0, 0, 400, 40);
+  sketch["features"][1]["geometry"]["coordinates"] = {{-20, 0}, {420, 0}};
+  write(dir / "street.geojson", sketch.dump());
+  const auto r = cli_util::run("generate " + (dir / "street.geojson").string() + " --like " + (dir / "place.geojson").string() +
+                               " -q -o " + (dir / "out").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const ordered_json report = report_of(dir / "out");
+  EXPECT_EQ(report["like"]["zones"]["residential"]["measured"]["area_m2"]["p90"], 800.0);
+  const ordered_json g = report["footprints_by_zone"]["residential"]["generated"];
+  EXPECT_LT(std::abs(g["p90_m2"].get<double>() - 800), 0.25 * 800) << g.dump();
 }
