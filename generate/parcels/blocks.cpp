@@ -36,13 +36,16 @@ std::vector<Block> cut_blocks(CityMap& city_map, const CitySettings& city, const
     geom::Cell& cell = cells[i];
     Block b;
     b.polygon = cell.to_plain();
-    if (b.polygon.outer.empty()) continue;
     block_of_component[components[i]] = static_cast<int>(blocks.size());
     b.zone = static_cast<ZoneType>(types[i]);
     const BlockSettings& p = city.zone_settings.at(b.zone).blocks;
     double a = geom::area(b.polygon);
     const Terminal* use = use_of(cell, uses);
-    if (a < p.min_block_area || 2 * a / geom::perimeter(b.polygon) < p.min_block_width ||
+    // A block whose outline rounds to nothing (a sliver narrower than a double's step, left
+    // where two zones' edges nearly meet) is green space, not dropped: its faces keep a
+    // block, so the written blocks cover every written zone, whose rounding as one map may
+    // keep the sliver.
+    if (b.polygon.outer.empty() || a < p.min_block_area || 2 * a / geom::perimeter(b.polygon) < p.min_block_width ||
         (use && use->kind == Terminal::Park)) {
       b.green = true;
       b.zone = ZoneType::Park;
