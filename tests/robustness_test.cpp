@@ -89,7 +89,8 @@ TEST(RobustnessFamilies, TheBandFamiliesEdgesRunInTheirBand) {
       const double band = i < 12 ? 3e-7 : 5e-6;
       std::vector<nlohmann::json> edges;
       for (const auto& f : features)
-        if (f["properties"].contains("zone") && f["properties"]["zone"] != "residential") edges.push_back(f["geometry"]["coordinates"][0]);
+        if (f["properties"].contains("zone") && f["properties"]["zone"] != "residential")
+          edges.push_back(f["geometry"]["coordinates"][0]);
       ASSERT_EQ(edges.size(), static_cast<std::size_t>(1 + i % 12));
       // Each zone's edge from its first corner to the one next to it (even zones) or before
       // the closing one (odd zones).
