@@ -324,6 +324,37 @@ json tiny_holes(Random& rng, int index, double& level) {
   return json::array({zone("residential", rings), zone("industrial", {rect(a, 0, a + 200, b)})});
 }
 
+// 10 and 11. Zone edges in a band a few grid steps wide: each of 1 to 12 zones has one long
+// edge from near a point P to near a point Q 400 m away (slanted, on no axis), the zones on
+// alternate sides of it and over one background zone, and a main road crosses them all. In
+// `stacked-edges` each end lies anywhere within half the band of P or Q, so the edges cross
+// each other at angles near 1e-9 rad, each crossing inside the band; in `parallel-edges`
+// both ends of an edge move by the same offset, so the edges run side by side, parallel and
+// less than the band apart, and never cross. The band is 3e-7 m in the first variant (five
+// steps of the 2^-24 m grid the snapped builds round to) and 5e-6 m in the second (five steps
+// of the grid build's 1e-6 m). Snapping merges neither into one line: the band's hot pixels
+// crowd, and each edge is routed through the pixels of the others' ends and crossings, more
+// of them with every edge. Level: how many edges run in the band.
+json edges_in_a_band(Random& rng, int index, double& level, bool crossing) {
+  const int steps = 12, n = 1 + step_of(index, steps);
+  const double band = variant_of(index, steps, 2) == 0 ? 3e-7 : 5e-6;
+  level = n;
+  const P from{rng.uniform(80, 120), rng.uniform(40, 80)}, to{rng.uniform(480, 520), rng.uniform(320, 360)};
+  auto offset = [&] { return P{rng.uniform(-band / 2, band / 2), rng.uniform(-band / 2, band / 2)}; };
+  static const char* const kinds[] = {"park", "commercial", "industrial"};
+  json features = json::array({zone("residential", {rect(0, 0, 600, 420)})});
+  for (int k = 0; k < n; ++k) {
+    const P d = offset(), e = crossing ? offset() : d;
+    const P p{from.x + d.x, from.y + d.y}, q{to.x + e.x, to.y + e.y};
+    const double off = 20 + 15 * k;  // each zone a little wider than the last, so all show
+    const Line ring = k % 2 == 0 ? Line{p, q, {q.x - off, q.y + 0.3 * off}, {p.x - off, p.y + 1.2 * off}}
+                                 : Line{p, {p.x + 1.2 * off, p.y - 0.3 * off}, {q.x + off, q.y - off}, q};
+    features.push_back(zone(kinds[k % 3], {ring}));
+  }
+  features.push_back(road("main", 10, {{rng.uniform(200, 300), -50}, {rng.uniform(300, 400), 450}}));
+  return features;
+}
+
 using Maker = json (*)(Random&, int, double& level);
 struct Entry {
   Family family;
@@ -352,6 +383,11 @@ const std::vector<Entry>& entries() {
       {{"tiny-holes", "holes 1e-1 to 1e-12 m across, or ordinary holes that far inside their outer ring, every step down to the case's",
         "log10(grid / the smallest size or gap)"},
        tiny_holes},
+      {{"stacked-edges", "1 to 12 zone edges in a band 3e-7 or 5e-6 m wide, crossing each other inside it",
+        "edges in the band"},
+       [](Random& rng, int index, double& level) { return edges_in_a_band(rng, index, level, true); }},
+      {{"parallel-edges", "1 to 12 parallel zone edges in a band 3e-7 or 5e-6 m wide", "edges in the band"},
+       [](Random& rng, int index, double& level) { return edges_in_a_band(rng, index, level, false); }},
       {{"random", "small random cities (the control)", "0 (the control)"},
        [](Random& rng, int, double&) { return random_city(rng, {0, 0}); }},
   };

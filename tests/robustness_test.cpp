@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <csignal>
 #include <fstream>
@@ -23,7 +24,7 @@
 using namespace exacity::bench;
 
 TEST(RobustnessFamilies, SameSeedSameSketchesOtherSeedOthers) {
-  ASSERT_EQ(families().size(), 10u);
+  ASSERT_EQ(families().size(), 12u);
   for (const Family& f : families()) {
     SCOPED_TRACE(f.name);
     for (int i = 0; i < 4; ++i) {
@@ -71,6 +72,44 @@ TEST(RobustnessFamilies, EveryCaseHasALevelTheControlsIsZero) {
   // Kettner's corners from 0.1 m off the line down to below a double's step there (on it).
   EXPECT_NEAR(family_case("near-collinear", 0, 7).level, std::log10(grid / 0.1), 0.01);
   EXPECT_GT(family_case("near-collinear", 13, 7).level, 6);
+  // 1 to 12 zone edges in one band.
+  EXPECT_DOUBLE_EQ(family_case("stacked-edges", 0, 7).level, 1);
+  EXPECT_DOUBLE_EQ(family_case("parallel-edges", 23, 7).level, 12);
+}
+
+// The band families: case i holds 1 + i % 12 zones over the background, each with one edge
+// from within half the band (3e-7 m in the first 12 cases, 5e-6 m in the next) of one point
+// to within half the band of another; the parallel family's edges are one another moved.
+TEST(RobustnessFamilies, TheBandFamiliesEdgesRunInTheirBand) {
+  for (const char* family : {"stacked-edges", "parallel-edges"})
+    for (int i : {0, 5, 11, 12, 23}) {
+      SCOPED_TRACE(std::string(family) + " " + std::to_string(i));
+      const auto sketch = nlohmann::json::parse(family_sketch(family, i, 7));
+      const auto& features = sketch["features"];
+      const double band = i < 12 ? 3e-7 : 5e-6;
+      std::vector<nlohmann::json> edges;
+      for (const auto& f : features)
+        if (f["properties"].contains("zone") && f["properties"]["zone"] != "residential")
+          edges.push_back(f["geometry"]["coordinates"][0]);
+      ASSERT_EQ(edges.size(), static_cast<std::size_t>(1 + i % 12));
+      // Each zone's edge from its first corner to the one next to it (even zones) or before
+      // the closing one (odd zones).
+      auto ends = [](const nlohmann::json& ring, std::size_t k) {
+        const auto& p = ring[0];
+        const auto& q = k % 2 == 0 ? ring[1] : ring[ring.size() - 2];
+        return std::array<double, 4>{p[0].get<double>(), p[1].get<double>(), q[0].get<double>(), q[1].get<double>()};
+      };
+      const auto first = ends(edges[0], 0);
+      for (std::size_t k = 0; k < edges.size(); ++k) {
+        const auto e = ends(edges[k], k);
+        for (int c = 0; c < 4; ++c) EXPECT_LE(std::abs(e[c] - first[c]), band) << k << " " << c;
+        if (std::string(family) == "parallel-edges") {
+          // Moved as one: the same offset at both ends, to a few ulps.
+          EXPECT_NEAR(e[0] - first[0], e[2] - first[2], 1e-12) << k;
+          EXPECT_NEAR(e[1] - first[1], e[3] - first[3], 1e-12) << k;
+        }
+      }
+    }
 }
 
 // A distance family is cumulative: a deeper case holds a feature at every step of the sweep
