@@ -67,16 +67,6 @@ TEST(BuildingMesh, CourtyardAndLShapeAreClosed) {
   EXPECT_NEAR(volume(l), 64 * 3, 1e-9);
 }
 
-// The 3D export holds every structure's mesh at once: a mesh's arrays are as long as the
-// mesh, not the capacity its builder grew them to (24 faces would take 32 places).
-TEST(BuildingMesh, AMeshsArraysHoldNoSpareCapacity) {
-  geom::Polygon courtyard{{{0, 0}, {20, 0}, {20, 20}, {0, 20}}, {{{5, 5}, {5, 15}, {15, 15}, {15, 5}}}};
-  const Mesh m = building_mesh(prism(courtyard, 9));
-  ASSERT_EQ(m.n_faces(), 24u);
-  EXPECT_EQ(m.property(surface_property(m)).data_vector().capacity(), m.n_faces());
-  EXPECT_EQ(m.property(m.points_pph()).data_vector().capacity(), m.n_vertices());
-}
-
 TEST(BuildingMesh, ObjHoldsEveryBuildingAtFullPrecision) {
   auto dir = testing_util::temp_dir("obj");
   std::vector<Building> buildings{prism({{{0.1, 0.2}, {10, 0}, {10, 10}, {0, 10}}, {}}, 5),

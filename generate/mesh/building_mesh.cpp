@@ -122,9 +122,7 @@ class MeshBuilder {
       else add({vertex(p.x, p.y, z), vertex(q.x, q.y, z), vertex(r.x, r.y, z)}, s);
     }
   }
-  // A copy, not a move: the copy's arrays are as long as the mesh, the builder's grew by
-  // doubling; the 3D export holds every structure's mesh at once.
-  Mesh take() const { return mesh_; }
+  Mesh take() { return std::move(mesh_); }
   // What comes next is a mesh of its own, sharing no vertex with what came before.
   void next_piece() { vertices_.clear(); }
 
