@@ -148,17 +148,18 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
   city.buildings = std::move(raised.buildings);
   city.models = std::move(raised.models);
   std::vector<PlannedLot>().swap(planned);  // the lots' exact cells: only the lots and buildings read them
-  stages.run("vector layers", [&] {
+  stages.run("ground", [&] {
     give_covered_roads_their_carriageway(city.network.map);
     merge_sliver_road_areas(city.network.map);
     city.ground = extract_ground(city.network.map, city.blocks, city.lots, city.drawn.zones);
-    city.layers = layers_of(city.ground, city.buildings, city.models, city.model_library());
   });
   // After the ground, whose centre lines the clutter dresses and names (docs/design.md, Placement).
   city.clutter = stages.run("clutter", [&] {
     return place_clutter({city.network.map, city.ground, city.lots, city.buildings, city.models}, city.model_library(),
                          city.channels, city.settings, city.drawn.zones, city.heightmap());
   });
+  // After the clutter, which does not read them: the layers are not held through its peak.
+  stages.run("vector layers", [&] { city.layers = layers_of(city.ground, city.buildings, city.models, city.model_library()); });
   return city;
 }
 
@@ -169,6 +170,13 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
 }
 
 namespace {
+
+// Gives the pages of what was just freed back to the system (tcmalloc keeps them, and the
+// exact map's small blocks are not pages the exports' large buffers can reuse); none
+// without tcmalloc.
+void release_freed_memory() {
+  if (MallocExtension_ReleaseFreeMemory) MallocExtension_ReleaseFreeMemory();
+}
 
 // The vector formats of kCityFormats always written and those `options` ask for (from the
 // city's layers and `clutter`), a copy of the sketch and the SVG map, each file written at
@@ -225,7 +233,10 @@ ThreeDCounts write_3d_files(const City& city, const fs::path& dir, const ThreeDF
   ThreeDCounts counts;
   const FormatInput in{.dir = dir, .meshed = &meshed, .cityjson_seq = files.cityjson_seq, .counts = &counts};
   for (const CityFormat& f : kCityFormats)
-    if (f.kind == FormatKind::ThreeD) f.write(in);
+    if (f.kind == FormatKind::ThreeD) {
+      f.write(in);
+      release_freed_memory();  // the writer's buffers: the next one's are of other sizes
+    }
   return counts;
 }
 
@@ -235,13 +246,6 @@ Validation validation_stage(const City& city, const fs::path& dir, StageClock& s
   return stages.run("validation", [&] {
     return city.regions ? validate_output(dir, city.regions->validated) : validate_output(dir);
   });
-}
-
-// Gives the pages of what was just freed back to the system (tcmalloc keeps them, and the
-// exact map's small blocks are not pages the exports' large buffers can reuse); none
-// without tcmalloc.
-void release_freed_memory() {
-  if (MallocExtension_ReleaseFreeMemory) MallocExtension_ReleaseFreeMemory();
 }
 
 // Writes `city`; with `released` (the city itself, which no one reads afterwards), frees

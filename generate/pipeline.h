@@ -53,7 +53,7 @@ class StageClock {
   int count_, index_ = 0;
 };
 
-inline constexpr int kCityStages = 9;
+inline constexpr int kCityStages = 10;
 
 struct RegionCache;  // generate/regenerate.h
 

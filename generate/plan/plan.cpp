@@ -184,7 +184,7 @@ int run_plan_task(const fs::path& dir, int task, PlanStep step) {
         if (!asked.insert(key).second) throw StepDone{};
         return Structures();
       };
-      stop = "vector layers";
+      stop = "ground";
       break;
   }
   StageClock clock([&](int, int, const std::string& stage) {
