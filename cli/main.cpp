@@ -187,13 +187,16 @@ int generate(const std::vector<fs::path>& sketch_paths, const std::vector<fs::pa
   const auto started = process_started();  // --time is the whole command's
   // exacity merge: the plan's sketch, and a cache holding every item its tasks computed.
   Sketch sketch;
-  std::shared_ptr<RegionCache> merged;
+  Plan read;
+  fs::path like = like_given;
   if (plan.empty()) sketch = load_sketch(sketch_paths, true, models, footprints);
-  else merged = merged_cache(plan, read_plan(plan, sketch), sketch);
+  else read = read_plan(plan, sketch), like = read.like;
   // The zone parameters measured from a real place's buildings, before any work.
-  const fs::path like = like_given.empty() ? sketch.like : like_given;
+  if (like.empty()) like = sketch.like;
   nlohmann::ordered_json like_report;
   if (!like.empty()) like_report = like_place(sketch, like);
+  std::shared_ptr<RegionCache> merged;
+  if (!plan.empty()) merged = merged_cache(plan, read, sketch);
   if (rendering) {  // a bad camera or size stops us before any work
     given_camera(sketch.camera, *rendering, sketch.path.string());
     image_size(*rendering);
@@ -530,9 +533,8 @@ struct GenerateCommand {
 
 struct PlanCommand {
   CLI::App* app = nullptr;
-  std::vector<fs::path> sketch;
+  Plan given;  // tasks: 4 unless --tasks (add_plan)
   fs::path out = "plan";
-  int tasks = 4;
 };
 
 struct PlanTaskCommand {
@@ -545,6 +547,7 @@ struct PlanTaskCommand {
 struct MergeCommand {
   CLI::App* app = nullptr;
   fs::path plan, out = "out";
+  ExportOptions exports;
 };
 
 struct RenderCommand {
@@ -634,6 +637,23 @@ void add_image_options(CLI::App* c, RenderOptions& o) {
       ->capture_default_str();
 }
 
+// The options of what is written besides the always-written files: generate's and merge's.
+void add_export_options(CLI::App* app, ExportOptions& exports) {
+  app->add_option("--vector-format", exports.vector_formats,
+                  "Also write the vector layers as " + optional_vector_formats_text() +
+                      "; repeatable; GeoJSON is always written")
+      ->check(CLI::IsMember(vector_format_names()));
+  app->add_flag("--cityjson-seq", exports.cityjson_seq,
+                "Also write the CityJSON as CityJSONSeq (OUT/city.city.jsonl: a first line of what the objects "
+                "share, then one CityJSONFeature a line with its own vertices), the form cjio and 3D BAG stream "
+                "large cities in");
+  app->add_option("--osm-ids-from", exports.osm_first_id,
+                  "Number city.osm's nodes and ways from N up (a range kept for this city) in place of new "
+                  "objects' negative ids, which GDAL's OSM driver (and so QGIS) reads only with "
+                  "OSM_USE_CUSTOM_INDEXING=NO")
+      ->check(CLI::Range(std::int64_t{1}, std::int64_t{1'000'000'000'000'000}));
+}
+
 void add_generate(CLI::App& app, GenerateCommand& c, SharedOptions& shared) {
   c.app = app.add_subcommand("generate", "Generate a city from a sketch: GeoJSON, a grid map, any vector file OGR reads, or an OSM extract");
   c.app->add_option("SKETCH", c.sketch,
@@ -642,19 +662,7 @@ void add_generate(CLI::App& app, GenerateCommand& c, SharedOptions& shared) {
                     "OpenStreetMap extract (.osm, .osm.pbf); several read as one (land use and streets, say), "
                     "sharing a CRS, with the first one's settings")
       ->required();
-  c.app->add_option("--vector-format", c.exports.vector_formats,
-                    "Also write the vector layers as " + optional_vector_formats_text() +
-                        "; repeatable; GeoJSON is always written")
-      ->check(CLI::IsMember(vector_format_names()));
-  c.app->add_flag("--cityjson-seq", c.exports.cityjson_seq,
-                  "Also write the CityJSON as CityJSONSeq (OUT/city.city.jsonl: a first line of what the objects "
-                  "share, then one CityJSONFeature a line with its own vertices), the form cjio and 3D BAG stream "
-                  "large cities in");
-  c.app->add_option("--osm-ids-from", c.exports.osm_first_id,
-                    "Number city.osm's nodes and ways from N up (a range kept for this city) in place of new "
-                    "objects' negative ids, which GDAL's OSM driver (and so QGIS) reads only with "
-                    "OSM_USE_CUSTOM_INDEXING=NO")
-      ->check(CLI::Range(std::int64_t{1}, std::int64_t{1'000'000'000'000'000}));
+  add_export_options(c.app, c.exports);
   c.app->add_option("--buildings", c.buildings,
                     "A file of building footprints in any vector format OGR reads (BAG, Overture, Microsoft's, a "
                     "GeoPackage's layer of polygons), kept as mapped buildings beside the sketch and raised from "
@@ -678,10 +686,17 @@ void add_plan(CLI::App& app, PlanCommand& plan, PlanTaskCommand& task, MergeComm
   constexpr int kMaxTasks = 100000;  // tasks of a step; Slurm allows job arrays of 1,001 unless MaxArraySize says more
   plan.app = app.add_subcommand("plan", "Plan a city as tasks of a job array (scripts/generate_city.sbatch): "
                                         "plan, each step's tasks, then merge");
-  plan.app->add_option("SKETCH", plan.sketch, "The sketch, as exacity generate reads it (its files read as one)")->required();
+  plan.app->add_option("SKETCH", plan.given.sketch, "The sketch, as exacity generate reads it (its files read as one)")
+      ->required();
+  plan.app->add_option("--buildings", plan.given.buildings, "As exacity generate's: files of mapped building footprints; repeatable");
+  plan.app->add_option("--models", plan.given.models, "As exacity generate's: a model library in place of the sketch's own");
+  plan.app->add_option("--like", plan.given.like,
+                       "As exacity generate's: the place whose mapped buildings give the zone parameters, in place of "
+                       "the sketch's own \"like\"");
   plan.app->add_option("-o,--output", plan.out, "The plan's folder, new or empty, on storage every node sees")
       ->capture_default_str();
-  plan.app->add_option("--tasks", plan.tasks, "Tasks of each step (a job array's size)")
+  plan.given.tasks = 4;
+  plan.app->add_option("--tasks", plan.given.tasks, "Tasks of each step (a job array's size)")
       ->check(CLI::Range(1, kMaxTasks))
       ->capture_default_str();
   task.app = app.add_subcommand("plan-task", "Compute one task's share of a plan's step, into PLAN/tasks/TASK/STEP.items");
@@ -699,6 +714,7 @@ void add_plan(CLI::App& app, PlanCommand& plan, PlanTaskCommand& task, MergeComm
   merge.app->add_option("PLAN", merge.plan, "A folder of exacity plan whose tasks ran every step")->required();
   merge.app->add_option("-o,--output", merge.out, "Output folder (replaced if an earlier exacity run wrote it)")
       ->capture_default_str();
+  add_export_options(merge.app, merge.exports);
   merge.app->add_flag("-q,--quiet", shared.quiet, "Hide progress");
   merge.app->add_option("--threads", shared.threads, "Worker threads (0: one per core); the output does not depend on it")
       ->check(CLI::Range(0, 1024));
@@ -865,13 +881,13 @@ int main(int argc, char** argv) {
     if (*gen.app) return generate(gen.sketch, gen.buildings, gen.models, gen.like, gen.out, shared.quiet,
                                   gen.render ? &shared.render : nullptr, gen.exports);
     if (*pla.app) {
-      const Plan plan = write_plan(pla.sketch, pla.out, pla.tasks);
+      const Plan plan = write_plan(pla.given, pla.out);
       std::printf("exacity: wrote %s: %d tasks a step; run steps roads, lots, buildings (scripts/generate_city.sbatch), "
                   "then exacity merge %s\n", pla.out.string().c_str(), plan.tasks, pla.out.string().c_str());
       return 0;
     }
     if (*pta.app) return plan_task(pta);
-    if (*mer.app) return generate({}, {}, {}, {}, mer.out, shared.quiet, nullptr, ExportOptions(), mer.plan);
+    if (*mer.app) return generate({}, {}, {}, {}, mer.out, shared.quiet, nullptr, mer.exports, mer.plan);
     if (*ren.app) return render_folder(ren.folder, shared.render, ren.file, shared.quiet);
     if (*val.app) return validate(val.folder);
     if (*sta.app) return stats(sta.folder, sta.real);

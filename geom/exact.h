@@ -123,18 +123,24 @@ double nearest_double(const Exact& v) {
   return nearest_double_by_halfway(v);
 }
 
+// Zero as +0: an exact zero has no sign, but an interval's bound may be -0 (a point made
+// from -0.0, or from text that says so), and -0 is written "-0" (%a: "-0x0p+0"), so the
+// bytes would follow how the point was made rather than its value.
+inline double unsigned_zero(double v) { return v == 0 ? 0.0 : v; }
+
 // Rounds the exact value to the nearest doubles, so the result does not depend on how far
-// the lazy kernel happened to evaluate it. A point whose interval is a single double is
-// that double; any other is evaluated exactly once, as a point (p.x() would add a lazy
-// node each call).
+// the lazy kernel happened to evaluate it, nor on how the point was made (zero is +0). A
+// point whose interval is a single double is that double; any other is evaluated exactly
+// once, as a point (p.x() would add a lazy node each call).
 inline Vec2 to_plain(const Point& p) {
 #if !defined(EXACITY_FLOAT_KERNEL)
   const auto& a = p.approx();
-  if (a.x().inf() == a.x().sup() && a.y().inf() == a.y().sup()) return {a.x().inf(), a.y().inf()};
+  if (a.x().inf() == a.x().sup() && a.y().inf() == a.y().sup())
+    return {unsigned_zero(a.x().inf()), unsigned_zero(a.y().inf())};
   const auto& e = CGAL::exact(p);
   return {nearest_double(e.x()), nearest_double(e.y())};
 #else
-  return {p.x(), p.y()};
+  return {unsigned_zero(p.x()), unsigned_zero(p.y())};
 #endif
 }
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -62,14 +63,17 @@ struct PlannedCity {
   fs::path dir, sketch, plan;
 };
 
-// The sketch planned as `tasks` tasks, each step run by the job script as Slurm would.
-PlannedCity planned(const std::string& name, int tasks, const std::string& steps = "roads lots buildings") {
+// The sketch planned as `tasks` tasks, each step run by the job script as Slurm would;
+// `options`, given the city's folder, gives plan's other options.
+PlannedCity planned(const std::string& name, int tasks, const std::string& steps = "roads lots buildings",
+                    const std::function<std::string(const fs::path&)>& options = nullptr) {
   PlannedCity c;
   c.dir = testing_util::temp_dir(name);
   c.sketch = c.dir / "city.geojson";
   std::ofstream(c.sketch) << kSketch;
   c.plan = c.dir / "plan";
-  const Result plan = run("plan " + c.sketch.string() + " -o " + c.plan.string() + " --tasks " + std::to_string(tasks));
+  const Result plan = run("plan " + c.sketch.string() + " -o " + c.plan.string() + " --tasks " + std::to_string(tasks) +
+                          (options ? " " + options(c.dir) : std::string()));
   EXPECT_EQ(plan.code, 0) << plan.out;
   std::istringstream each(steps);
   for (std::string step; each >> step;)
@@ -81,13 +85,13 @@ PlannedCity planned(const std::string& name, int tasks, const std::string& steps
   return c;
 }
 
-}  // namespace
-
-TEST(Plan, FourTasksMergedAreTheBytesGenerateWrites) {
-  const PlannedCity c = planned("plan-merge", 4);
-  const Result whole = run("generate " + c.sketch.string() + " -q -o " + (c.dir / "whole").string());
+// The merge of `c`, with `exports` (merge's options), against generate's city of its
+// sketch with `options` and `exports`: every file the same bytes; every region's and
+// block's plan came from the tasks.
+void expect_merged_as_generated(const PlannedCity& c, const std::string& options = "", const std::string& exports = "") {
+  const Result whole = run("generate " + c.sketch.string() + " " + options + " " + exports + " -q -o " + (c.dir / "whole").string());
   ASSERT_EQ(whole.code, 0) << whole.out;
-  const Result merge = run("merge " + c.plan.string() + " -o " + (c.dir / "merged").string());
+  const Result merge = run("merge " + c.plan.string() + " " + exports + " -o " + (c.dir / "merged").string());
   ASSERT_EQ(merge.code, 0) << merge.out;
   // Every region's and block's plan came from the tasks, and lots' structures too but for
   // lots merged after a first placement.
@@ -100,6 +104,38 @@ TEST(Plan, FourTasksMergedAreTheBytesGenerateWrites) {
   EXPECT_GT(std::stoi(m[5]), 0);
   EXPECT_GT(std::stoi(m[1]), 1);
   expect_same_files(c.dir / "whole", c.dir / "merged");
+}
+
+}  // namespace
+
+TEST(Plan, FourTasksMergedAreTheBytesGenerateWrites) { expect_merged_as_generated(planned("plan-merge", 4)); }
+
+// What generate takes besides the sketch: plan carries --models and --like to its tasks and
+// the merge (the zone parameters measured from the place before any item: else the merge
+// would compute every item again), and merge writes the export options. (Plan refused them
+// all before.) One task: the seams are the test above's. --buildings is carried as --models
+// is, but reading footprints through OGR and PROJ costs a second a run in this build.
+TEST(Plan, LikeModelsAndExportsAreGeneratesToo) {
+  // Twelve footprints in metres, as drawn by hand (whole numbers): a place to measure.
+  std::string place = R"({"type": "FeatureCollection", "features": [)";
+  for (int i = 0; i < 12; ++i) {
+    const int x = 210 + 18 * (i % 6), y = 100 + 20 * (i / 6), w = 8 + i % 3;
+    place += std::string(i ? "," : "") + R"({"type": "Feature", "properties": {"building": "house"},
+      "geometry": {"type": "Polygon", "coordinates": [[[)" + std::to_string(x) + ", " + std::to_string(y) + "], [" +
+             std::to_string(x + w) + ", " + std::to_string(y) + "], [" + std::to_string(x + w) + ", " +
+             std::to_string(y + 9) + "], [" + std::to_string(x) + ", " + std::to_string(y + 9) + "], [" +
+             std::to_string(x) + ", " + std::to_string(y) + "]]]}}";
+  }
+  place += "]}";
+  std::string options;
+  const PlannedCity c = planned("plan-options", 1, "roads lots buildings", [&](const fs::path& dir) {
+    std::ofstream(dir / "place.geojson") << place;
+    options = "--like " + (dir / "place.geojson").string() + " --models " +
+              (kSource / "examples" / "models" / "library.json").string();
+    return options;
+  });
+  expect_merged_as_generated(c, options, "--cityjson-seq --osm-ids-from 1000");
+  EXPECT_TRUE(fs::exists(c.dir / "merged" / "city.city.jsonl"));
 }
 
 TEST(Plan, MergeRefusesAMissingTaskAnotherPlansItemsAndAChangedSketch) {

@@ -14,6 +14,7 @@
 #include "generate/pipeline.h"
 #include "generate/plan/memo_text.h"
 #include "generate/regenerate.h"
+#include "generate/sketch/like_place.h"
 #include "generate/version.h"
 
 namespace exacity {
@@ -35,12 +36,14 @@ std::string hex_id(std::uint64_t id) {
   return text;
 }
 
-// The plan's id: the version, the task count, the sketch's files' names and bytes, and what
-// every item reads besides its own input (shared_input: the settings and the named files'
-// sizes and times).
-std::string plan_id(const std::vector<fs::path>& files, const Sketch& sketch, int tasks) {
-  std::string text = std::string(kVersion) + " tasks " + std::to_string(tasks) + " ";
-  for (const fs::path& file : files) text += file.string() + " " + file_bytes(file) + " ";
+// The plan's id: the version, the task count, the names and bytes of the sketch's files,
+// the footprints' and the place like measures, and what every item reads besides its own
+// input (shared_input: the settings and the named files' sizes and times).
+std::string plan_id(const Plan& plan, const Sketch& sketch) {
+  std::string text = std::string(kVersion) + " tasks " + std::to_string(plan.tasks) + " ";
+  for (const fs::path& file : plan.sketch) text += file.string() + " " + file_bytes(file) + " ";
+  for (const fs::path& file : plan.buildings) text += "buildings " + file.string() + " " + file_bytes(file) + " ";
+  if (!plan.like.empty()) text += "like " + plan.like.string() + " " + file_bytes(plan.like) + " ";
   text += shared_input(sketch);
   return hex_id(content_id(text));
 }
@@ -101,17 +104,27 @@ const char* step_name(PlanStep step) {
   return "";
 }
 
-Plan write_plan(const std::vector<fs::path>& sketch_files, const fs::path& dir, int tasks) {
-  if (tasks < 1) throw UserError("--tasks " + std::to_string(tasks) + ": give 1 or more tasks");
+Plan write_plan(const Plan& given, const fs::path& dir) {
+  if (given.tasks < 1) throw UserError("--tasks " + std::to_string(given.tasks) + ": give 1 or more tasks");
   if (fs::exists(dir) && !(fs::is_directory(dir) && fs::is_empty(dir)))
     throw UserError(dir.string() + ": exists and is not an empty folder; give a new folder for the plan with -o");
+  const auto absolute = [](const fs::path& file) { return file.empty() ? file : fs::absolute(file).lexically_normal(); };
   Plan plan;
-  for (const fs::path& file : sketch_files) plan.sketch.push_back(fs::absolute(file).lexically_normal());
-  const Sketch sketch = load_sketch(plan.sketch);
-  plan.tasks = tasks;
-  plan.id = plan_id(plan.sketch, sketch, tasks);
-  nlohmann::ordered_json json{{"format", kPlanFormat}, {"version", kVersion}, {"id", plan.id}, {"tasks", tasks}};
+  for (const fs::path& file : given.sketch) plan.sketch.push_back(absolute(file));
+  for (const fs::path& file : given.buildings) plan.buildings.push_back(absolute(file));
+  plan.models = absolute(given.models);
+  Sketch sketch = load_sketch(plan.sketch, true, plan.models, plan.buildings);
+  plan.like = absolute(given.like.empty() ? sketch.like : given.like);
+  plan.tasks = given.tasks;
+  plan.id = plan_id(plan, sketch);
+  // Measured here once, so that a place too small to measure is refused now, not by every task.
+  if (!plan.like.empty()) like_place(sketch, plan.like);
+  nlohmann::ordered_json json{{"format", kPlanFormat}, {"version", kVersion}, {"id", plan.id}, {"tasks", plan.tasks}};
   for (const fs::path& file : plan.sketch) json["sketch"].push_back(file.string());
+  json["buildings"] = nlohmann::ordered_json::array();
+  for (const fs::path& file : plan.buildings) json["buildings"].push_back(file.string());
+  json["models"] = plan.models.string();
+  json["like"] = plan.like.string();
   json["steps"] = nlohmann::ordered_json::array();
   for (PlanStep step : kPlanSteps) json["steps"].push_back(step_name(step));
   fs::create_directories(dir / "tasks");
@@ -126,6 +139,9 @@ Plan read_plan(const fs::path& dir, Sketch& sketch) {
     const auto json = nlohmann::json::parse(file_bytes(file));
     if (json.at("format") != kPlanFormat) throw std::invalid_argument("format");
     for (const auto& path : json.at("sketch")) plan.sketch.push_back(path.get<std::string>());
+    for (const auto& path : json.value("buildings", nlohmann::json::array())) plan.buildings.push_back(path.get<std::string>());
+    plan.models = json.value("models", std::string());
+    plan.like = json.value("like", std::string());
     plan.tasks = json.at("tasks").get<int>();
     plan.id = json.at("id").get<std::string>();
     if (plan.tasks < 1 || plan.sketch.empty()) throw std::invalid_argument("tasks");
@@ -133,8 +149,8 @@ Plan read_plan(const fs::path& dir, Sketch& sketch) {
     throw UserError(file.string() + ": not a plan of exacity plan (missing or unreadable); make one with exacity plan SKETCH -o " +
                     dir.string());
   }
-  sketch = load_sketch(plan.sketch);
-  if (plan_id(plan.sketch, sketch, plan.tasks) != plan.id)
+  sketch = load_sketch(plan.sketch, true, plan.models, plan.buildings);
+  if (plan_id(plan, sketch) != plan.id)
     throw UserError(file.string() + ": the sketch, a file it names or the program changed since this plan was made; "
                     "make the plan again with exacity plan");
   return plan;
@@ -145,6 +161,8 @@ int run_plan_task(const fs::path& dir, int task, PlanStep step) {
   const Plan plan = read_plan(dir, sketch);
   if (task < 0 || task >= plan.tasks)
     throw UserError("--task " + std::to_string(task) + ": the plan has tasks 0 to " + std::to_string(plan.tasks - 1));
+  // The zone parameters generate takes from the place, so the items are generate's.
+  if (!plan.like.empty()) like_place(sketch, plan.like);
   auto cache = std::make_shared<RegionCache>();
   cache->next_build(sketch);
   for (PlanStep before : kPlanSteps) {

@@ -25,6 +25,10 @@ const char* step_name(PlanStep step);  // "roads", "lots", "buildings"
 
 struct Plan {
   std::vector<std::filesystem::path> sketch;  // the sketch's files, absolute
+  // What generate takes besides the sketch, absolute (empty: none): --buildings' files,
+  // --models' library, and the place --like measures (--like's, else the sketch's own).
+  std::vector<std::filesystem::path> buildings;
+  std::filesystem::path models, like;
   int tasks = 1;
   // What the plan is of: the program's version, the sketch's files and every file they
   // name (Sketch::settings_text, shared_input). A task's items carry it; another means
@@ -32,12 +36,14 @@ struct Plan {
   std::string id;
 };
 
-// Reads the sketch (refusing it as generate would), and writes PLAN/plan.json for `tasks`
-// tasks. PLAN must not exist or be an empty folder.
-Plan write_plan(const std::vector<std::filesystem::path>& sketch, const std::filesystem::path& plan, int tasks);
+// Reads the sketch as generate would with `given`'s buildings, models and like (refusing
+// what it refuses), and writes PLAN/plan.json for `given.tasks` tasks. PLAN must not exist
+// or be an empty folder.
+Plan write_plan(const Plan& given, const std::filesystem::path& plan);
 
-// Reads PLAN/plan.json and the sketch it names; refuses (UserError) a plan that is not one,
-// or whose sketch or files changed since.
+// Reads PLAN/plan.json and the sketch it names, with the plan's buildings and models; refuses
+// (UserError) a plan that is not one, or whose sketch or files changed since. The caller
+// measures plan.like into the sketch (like_place), as generate does, before building.
 Plan read_plan(const std::filesystem::path& plan, Sketch& sketch);
 
 // Task `task`'s share of `step`: builds the city as far as the step needs, from every
