@@ -1549,7 +1549,7 @@ TEST(Gis, AFootprintLayerGivenWithBuildingsIsKeptAsMappedBuildings) {
 
   const fs::path out = dir / "out";
   const cli_util::Result run = cli_util::run("generate -q " + (dir / "town.geojson").string() + " --buildings " +
-                                             (dir / "footprints.gpkg").string() + " -o " + out.string());
+                                             (dir / "footprints.gpkg").string() + " --vector-format gpkg -o " + out.string());
   ASSERT_EQ(run.code, 0) << run.out;
   const ordered_json report = ordered_json::parse(cli_util::read(out / "report.json"))["mapped_buildings"];
   EXPECT_EQ(report["kept"], 4) << report.dump(1);
@@ -1586,6 +1586,16 @@ TEST(Gis, AFootprintLayerGivenWithBuildingsIsKeptAsMappedBuildings) {
       if (object.contains("attributes") && object["attributes"].contains(id))
         ids_in_cityjson.insert(id + std::string("=") + object["attributes"][id].get<std::string>());
   EXPECT_EQ(ids_in_cityjson, (std::set<std::string>{"identificatie=NL.IMBAG.Pand.0503100000030264", "fid=2", "fid=3", "fid=4"}));
+  // The GeoPackage too, whose key column is named apart from the buildings' "fid" field
+  // (GDAL refused the field: "Wrong field type for fid").
+  GDALDatasetUniquePtr gpkg(GDALDataset::Open((out / "city.gpkg").string().c_str(), GDAL_OF_VECTOR));
+  ASSERT_TRUE(gpkg);
+  OGRLayer* gpkg_buildings = gpkg->GetLayerByName("buildings");
+  ASSERT_NE(gpkg_buildings, nullptr);
+  std::set<std::string> fids_in_gpkg;
+  for (const auto& f : *gpkg_buildings)
+    if (f->IsFieldSetAndNotNull(f->GetFieldIndex("fid"))) fids_in_gpkg.insert(f->GetFieldAsString("fid"));
+  EXPECT_EQ(fids_in_gpkg, (std::set<std::string>{"2", "3", "4"}));
   const std::string city_osm = cli_util::read(out / "city.osm");
   EXPECT_NE(city_osm.find("<tag k=\"ref:bag\" v=\"503100000030264\"/>"), std::string::npos);
   EXPECT_NE(city_osm.find("<tag k=\"exacity:fid\" v=\"2\"/>"), std::string::npos);

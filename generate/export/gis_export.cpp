@@ -249,9 +249,16 @@ void copy_layers(const std::vector<const Layer*>& layers, GDALDataset& target, O
   const bool transaction = target.StartTransaction() == OGRERR_NONE;
   for (const Layer* layer : layers) {
     const std::string& name = layer->name;
-    OGRLayer* to = target.CreateLayer(name.c_str(), srs, geometry_type(*layer), const_cast<char**>(layer_options));
-    if (!to) fail(file, "cannot hold layer " + name);
     const std::vector<LayerField> fields = layer_fields(*layer);
+    // A GeoPackage's key column is "fid" unless told otherwise, and the buildings layer has a
+    // field of that name (a mapped footprint's FID in its own file, a string or any number):
+    // the key column is named apart then.
+    CPLStringList options(layer_options);
+    if (EQUAL(target.GetDriverName(), "GPKG") &&
+        std::any_of(fields.begin(), fields.end(), [](const LayerField& f) { return EQUAL(f.name.c_str(), "fid"); }))
+      options.SetNameValue("FID", "gpkg_fid");
+    OGRLayer* to = target.CreateLayer(name.c_str(), srs, geometry_type(*layer), options.List());
+    if (!to) fail(file, "cannot hold layer " + name);
     for (const LayerField& f : fields) {
       OGRFieldDefn field(f.name.c_str(), f.type);
       field.SetSubType(f.subtype);
