@@ -845,7 +845,7 @@ TEST_F(ServeTest, GenerateStreamsStagesThenServesOutputsAndRenders) {
   // The CLI's stage names, in its order, but the 3D files', which are written when first
   // downloaded, and validation's, after the tiles (the page's answer).
   EXPECT_EQ(stages, (std::vector<std::string>{"terrain", "model library", "zone map", "road network", "blocks", "lots",
-                                              "buildings", "vector layers", "clutter", "export", "tiles",
+                                              "buildings", "ground", "clutter", "vector layers", "export", "tiles",
                                               "validation"}));
   EXPECT_EQ(json::parse(client->Get("/api/status")->body)["state"], "done");
 
