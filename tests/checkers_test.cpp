@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstring>
 #include <functional>
 
@@ -179,8 +180,14 @@ TEST_F(Checkers, ValidationsProofsFallBackToTheWholeMapsMessages) {
     std::function<void(json&)> tamper;
   };
   const std::vector<Case> cases = {
-      // A lot moved a metre onto its neighbours and out of its block.
-      {"overlap", "lots", "overlap", [&](json& doc) { shift(ring_of(doc), 1, 1); }},
+      // A lot laid again over itself, and one moved a metre out of its block.
+      {"overlap", "lots", " overlap",
+       [&](json& doc) {
+         json twin = doc["features"][0];
+         twin["properties"]["id"] = 999999;
+         doc["features"].push_back(twin);
+       }},
+      {"shifted", "lots", "leaves its block", [&](json& doc) { shift(ring_of(doc), 1, 1); }},
       // A block's corner pulled in: land of the zone left without a block.
       {"gap", "blocks", "holds no block",
        [&](json& doc) {
@@ -198,11 +205,18 @@ TEST_F(Checkers, ValidationsProofsFallBackToTheWholeMapsMessages) {
            if (f["properties"]["block"] != block) return void(doc["features"][0]["properties"]["block"] = f["properties"]["block"]);
          throw std::runtime_error("one block only");
        }},
-      // A lot's corner moved a nanometre: a sliver over its neighbour or out of its block.
+      // A lot's corner moved a nanometre out (along the sum of its edges' outward normals):
+      // a sliver over its neighbour or out of its block.
       {"sliver", "lots", "lots.geojson features[0]",
        [&](json& doc) {
          json& ring = ring_of(doc);
-         ring[0] = ring.back() = {ring[0][0].get<double>() - 1e-9, ring[0][1].get<double>() - 1e-9};
+         auto at = [&](std::size_t k) { return std::pair{ring[k][0].get<double>(), ring[k][1].get<double>()}; };
+         const auto [ux, uy] = at(ring.size() - 2);
+         const auto [vx, vy] = at(0);
+         const auto [wx, wy] = at(1);
+         const double l1 = std::hypot(vx - ux, vy - uy), l2 = std::hypot(wx - vx, wy - vy);
+         const double nx = (vy - uy) / l1 + (wy - vy) / l2, ny = -(vx - ux) / l1 - (wx - vx) / l2;
+         ring[0] = ring.back() = {vx + 1e-9 * nx, vy + 1e-9 * ny};
        }},
       // A building carried off its lot, and one laid over another.
       {"building-off", "buildings", "leaves its lot", [&](json& doc) { shift(ring_of(doc), 30, 0); }},

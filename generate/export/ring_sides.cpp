@@ -74,10 +74,10 @@ class Region {
     return side(y);  // not reached: x lies on the boundary
   }
 
-  // The side of the piece x-y (no vertex of a inside it, no edge crossing it).
-  int piece_side(Vec2 x, Vec2 y) const {
-    if (const int s = side(x); s != 0) return s;
-    if (const int s = side(y); s != 0) return s;
+  // The side of the piece x-y (no vertex of a inside it, no edge crossing it), given the sides of its ends.
+  int piece_side(Vec2 x, int x_side, Vec2 y, int y_side) const {
+    if (x_side != 0) return x_side;
+    if (y_side != 0) return y_side;
     return piece_side_from(x, y);
   }
 
@@ -93,6 +93,7 @@ RingSides ring_sides(const Ring& b, const Ring& a) {
   RingSides sides;
   const Region region(a);
   std::vector<Vec2> cuts;
+  int p_side = 0, first_side = 0;  // the sides of the edge's first end and of the ring's first vertex
   for (std::size_t k = 0; k < b.size(); ++k) {
     const Vec2 p = b[k], q = b[(k + 1) % b.size()];
     const geom::Box s = box_of(p, q);
@@ -111,14 +112,21 @@ RingSides ring_sides(const Ring& b, const Ring& a) {
       const double cc = by_x ? c.x : c.y, dd = by_x ? d.x : d.y;
       return up ? cc < dd : cc > dd;
     });
+    // The cuts lie on the boundary; each end's side is found once.
+    if (k == 0) p_side = first_side = region.side(p);
+    const int q_side = k + 1 == b.size() ? first_side : region.side(q);
     Vec2 from = p;
-    cuts.push_back(q);
+    int from_side = p_side;
     for (Vec2 to : cuts) {
-      const int side = region.piece_side(from, to);
+      const int side = region.piece_side(from, from_side, to, 0);
       sides.inside |= side > 0;
       sides.outside |= side < 0;
-      from = to;
+      from = to, from_side = 0;
     }
+    const int side = region.piece_side(from, from_side, q, q_side);
+    sides.inside |= side > 0;
+    sides.outside |= side < 0;
+    p_side = q_side;
   }
   return sides;
 }
@@ -147,6 +155,8 @@ bool ring_in_polygon(const Ring& ring, const geom::Polygon& polygon) {
   }
   return true;
 }
+
+int ring_side(const Ring& ring, Vec2 p) { return ring.size() < 3 ? -1 : Region(ring).side(p); }
 
 bool segments_run_along(Vec2 a0, Vec2 a1, Vec2 b0, Vec2 b1) {
   if (orient(a0, a1, b0) != 0 || orient(a0, a1, b1) != 0) return false;

@@ -80,7 +80,7 @@ TEST(RingSides, TheMapsAnswersOnRingsFullOfDegeneracies) {
   }
   // Both answers came up often.
   EXPECT_GT(apart, 100);
-  EXPECT_GT(within, 100);
+  EXPECT_GT(within, 20);
 }
 
 }  // namespace

@@ -623,28 +623,40 @@ std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const 
       proven[p] = lot != lot_at.end() && ring_in_polygon(polygon.outer, *polygons[lot->second]);
     }
   });
-  // Then the pairs whose boxes meet: lots of one block, buildings on one lot or mapped.
-  geom::BoxIndex lot_index(32.0), building_index(32.0);
+  // Then the pairs whose boxes meet, each once: lots of one block, buildings on one lot or
+  // mapped (as the map takes them, the first in polygon order first).
+  std::unordered_map<int, std::vector<int>> by_block, by_lot;  // lots by their block, unmapped buildings by their lot
+  std::vector<int> mapped;
   for (std::size_t p = 0; p < P; ++p) {
-    if (refs[p].kind == Kind::Lot) lot_index.add(static_cast<int>(p), boxes[p]);
-    if (refs[p].kind == Kind::Building) building_index.add(static_cast<int>(p), boxes[p]);
+    if (refs[p].kind == Kind::Lot) by_block[refs[p].block].push_back(static_cast<int>(p));
+    if (refs[p].kind != Kind::Building) continue;
+    if (refs[p].properties->value("mapped", false)) mapped.push_back(static_cast<int>(p));
+    else by_lot[refs[p].lot].push_back(static_cast<int>(p));
   }
-  auto mapped = [&](std::size_t p) { return refs[p].properties->value("mapped", false); };
   std::vector<char> paired(P, 1);  // every pair of p's checked is apart, or nested as the map asks
-  for_each_cancellable(P, [&](std::size_t p) {
-    if (!proven[p]) return;
-    const bool lot = refs[p].kind == Kind::Lot;
-    for (int o : (lot ? lot_index : building_index).meeting(boxes[p])) {
-      if (o == static_cast<int>(p)) continue;
-      const PolygonRef& other = refs[o];
-      if (lot ? other.block != refs[p].block : other.lot != refs[p].lot && !mapped(o)) continue;
-      if (!polygons[o]->holes.empty()) return void(paired[p] = 0);
-      if (interiors_apart(polygons[p]->outer, polygons[o]->outer)) continue;
-      if (lot) return void(paired[p] = 0);
-      const PolygonRef &a = refs[std::min<std::size_t>(p, o)], &b = refs[std::max<std::size_t>(p, o)];
-      if (nested_overlap_problem(*a.properties, a.name, *b.properties, b.name)) return void(paired[p] = 0);
+  const CancelCheck cancel;
+  auto pair = [&](int p, int o) {
+    if (!proven[p] && !proven[o]) return;
+    if (!boxes[p].meets(boxes[o])) return;
+    if (!polygons[p]->holes.empty() || !polygons[o]->holes.empty()) return void(paired[p] = paired[o] = 0);
+    if (interiors_apart(polygons[p]->outer, polygons[o]->outer)) return;
+    const PolygonRef &a = refs[std::min(p, o)], &b = refs[std::max(p, o)];
+    if (a.kind == Kind::Lot || nested_overlap_problem(*a.properties, a.name, *b.properties, b.name)) paired[p] = paired[o] = 0;
+  };
+  for (const auto* groups : {&by_block, &by_lot})
+    for (const auto& [id, group] : *groups) {
+      cancel.check();
+      for (std::size_t i = 0; i < group.size(); ++i)
+        for (std::size_t j = i + 1; j < group.size(); ++j) pair(group[i], group[j]);
     }
-  });
+  if (!mapped.empty()) {
+    geom::BoxIndex building_index(32.0);
+    for (std::size_t p = 0; p < P; ++p)
+      if (refs[p].kind == Kind::Building) building_index.add(static_cast<int>(p), boxes[p]);
+    for (int m : mapped)
+      for (int o : building_index.meeting(boxes[m]))
+        if (o != m) pair(m, o);  // two mapped ones: neither is proven
+  }
   for (std::size_t p = 0; p < P; ++p) proven[p] &= paired[p];
   return proven;
 }
