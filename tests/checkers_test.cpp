@@ -1,13 +1,16 @@
 // The test suite's external checkers are shown to refuse what they exist to catch: the
 // GEOS layer check (tests/check_layers.py), the Khronos glTF validator
 // (tests/js/check_glb.mjs) and the CityJSON content checks (tests/js/check_cityjson.mjs),
+// and exacity's own validation with its proofs,
 // each on a small city that passes, then on a copy broken one way.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstring>
 #include <functional>
 
+#include "generate/export/validate.h"
 #include "generate/pipeline.h"
 #include "tests/cli_util.h"
 #include "tests/test_util.h"
@@ -154,5 +157,94 @@ TEST_F(Checkers, CityJsonContentChecksRefuseAnOpenSolidABadIndexAndAMissingTempl
     Result broken = shell(check + (out / "city.city.json").string());
     EXPECT_EQ(broken.code, 1) << c.name << ": " << broken.out;
     EXPECT_NE(broken.out.find(c.expect), std::string::npos) << c.name << ": " << broken.out;
+  }
+}
+
+// exacity's own validation proves lots and buildings sound before it builds the map of
+// every polygon, and leaves them out of it (docs/design.md, Validation by tiles: proofs).
+// Layers broken one way each: the proofs fail, the map without what they proved finds the
+// problem, and the problems stated are those of the whole map, word for word.
+TEST_F(Checkers, ValidationsProofsFallBackToTheWholeMapsMessages) {
+  using exacity::MapProofs;
+  const fs::path good = copy("proofs-good");
+  EXPECT_TRUE(exacity::validate_output(good, 0, MapProofs::First).ok());
+  EXPECT_TRUE(exacity::validate_output(good, 0, MapProofs::None).ok());
+
+  // The outer ring of feature i, closed as written.
+  auto ring_of = [](json& doc, std::size_t i = 0) -> json& { return doc["features"][i]["geometry"]["coordinates"][0]; };
+  auto shift = [](json& ring, double dx, double dy) {
+    for (auto& p : ring) p = {p[0].get<double>() + dx, p[1].get<double>() + dy};
+  };
+  struct Case {
+    std::string name, layer, expect;
+    std::function<void(json&)> tamper;
+  };
+  const std::vector<Case> cases = {
+      // A lot laid again over itself, and one moved a metre out of its block.
+      {"overlap", "lots", " overlap",
+       [&](json& doc) {
+         json twin = doc["features"][0];
+         twin["properties"]["id"] = 999999;
+         doc["features"].push_back(twin);
+       }},
+      {"shifted", "lots", "leaves its block", [&](json& doc) { shift(ring_of(doc), 1, 1); }},
+      // A block's corner pulled in: land of the zone left without a block.
+      {"gap", "blocks", "holds no block",
+       [&](json& doc) {
+         json& ring = ring_of(doc);
+         double cx = 0, cy = 0;
+         for (std::size_t k = 0; k + 1 < ring.size(); ++k) cx += ring[k][0].get<double>(), cy += ring[k][1].get<double>();
+         cx /= static_cast<double>(ring.size() - 1), cy /= static_cast<double>(ring.size() - 1);
+         ring[0] = ring.back() = {ring[0][0].get<double>() * 0.9 + cx * 0.1, ring[0][1].get<double>() * 0.9 + cy * 0.1};
+       }},
+      // A lot naming another block than the one it lies in.
+      {"lot-outside", "lots", "leaves its block",
+       [&](json& doc) {
+         const int block = doc["features"][0]["properties"]["block"];
+         for (auto& f : doc["features"])
+           if (f["properties"]["block"] != block) return void(doc["features"][0]["properties"]["block"] = f["properties"]["block"]);
+         throw std::runtime_error("one block only");
+       }},
+      // A lot's corner moved a nanometre out (along the sum of its edges' outward normals):
+      // a sliver over its neighbour or out of its block.
+      {"sliver", "lots", "lots.geojson features[0]",
+       [&](json& doc) {
+         json& ring = ring_of(doc);
+         auto at = [&](std::size_t k) { return std::pair{ring[k][0].get<double>(), ring[k][1].get<double>()}; };
+         const auto [ux, uy] = at(ring.size() - 2);
+         const auto [vx, vy] = at(0);
+         const auto [wx, wy] = at(1);
+         const double l1 = std::hypot(vx - ux, vy - uy), l2 = std::hypot(wx - vx, wy - vy);
+         const double nx = (vy - uy) / l1 + (wy - vy) / l2, ny = -(vx - ux) / l1 - (wx - vx) / l2;
+         ring[0] = ring.back() = {vx + 1e-9 * nx, vy + 1e-9 * ny};
+       }},
+      // A building carried off its lot, and one laid over another.
+      {"building-off", "buildings", "leaves its lot", [&](json& doc) { shift(ring_of(doc), 30, 0); }},
+      {"building-twice", "buildings", " overlap",
+       [&](json& doc) {
+         json twin = doc["features"][0];
+         twin["properties"]["id"] = 999999;
+         doc["features"].push_back(twin);
+       }},
+      // A lot shrunk off the road areas.
+      {"no-frontage", "lots", "touches no road area",
+       [&](json& doc) {
+         json& ring = ring_of(doc);
+         double cx = 0, cy = 0;
+         for (std::size_t k = 0; k + 1 < ring.size(); ++k) cx += ring[k][0].get<double>(), cy += ring[k][1].get<double>();
+         cx /= static_cast<double>(ring.size() - 1), cy /= static_cast<double>(ring.size() - 1);
+         for (auto& p : ring) p = {cx + (p[0].get<double>() - cx) * 0.9, cy + (p[1].get<double>() - cy) * 0.9};
+       }},
+  };
+  for (const Case& c : cases) {
+    const fs::path out = copy("proofs-" + c.name);
+    edit_json(out / "vector" / (c.layer + ".geojson"), c.tamper);
+    const exacity::Validation with = exacity::validate_output(out, 0, MapProofs::First);
+    const exacity::Validation whole = exacity::validate_output(out, 0, MapProofs::None);
+    EXPECT_FALSE(with.ok()) << c.name;
+    EXPECT_EQ(with.problems, whole.problems) << c.name;
+    std::string all;
+    for (const std::string& p : with.problems) all += p + "\n";
+    EXPECT_NE(all.find(c.expect), std::string::npos) << c.name << ":\n" << all;
   }
 }

@@ -22,11 +22,13 @@
 #include "generate/errors.h"
 #include "generate/export/geojson.h"
 #include "generate/export/read_lines.h"
+#include "generate/export/ring_sides.h"
 #include "generate/export/validate_nesting.h"
 #include "generate/export/validate_tiles.h"
 #include "generate/export/validate_clutter.h"
 #include "generate/export/vector_layers.h"
 #include "generate/sketch/sketch.h"
+#include "geom/box_index.h"
 #include "geom/measure.h"
 #include "geom/planar_map.h"
 #include "geom/polygon_check.h"
@@ -564,18 +566,110 @@ TileFindings check_tile(const DrawnFeatures& sketch, const std::vector<PolygonRe
   return found;
 }
 
+// Lots and buildings the polygons' map need not hold: each proven, exactly and without a
+// map, to pass every check that map makes of it (docs/design.md, Validation by tiles:
+// proofs). A lot: no holes, in the closed region of the block it names, its interior apart
+// from every other lot of that block, an edge running along a road area's; lots of other
+// blocks lie apart, as the map checks that the blocks do and that every lot it holds lies
+// in its block. A building, not mapped: no holes, in the closed region of the lot it
+// names, and where its interior meets another building's (one on the same lot or a mapped
+// one: those on other lots lie apart with their lots), nested as the map would ask.
+std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const std::vector<const geom::Polygon*>& polygons) {
+  const std::size_t P = refs.size();
+  std::vector<char> proven(P, 0);
+  std::unordered_map<int, int> block_at, lot_at;  // id -> polygon
+  std::vector<geom::Box> boxes(P, geom::Box::none());
+  for (std::size_t p = 0; p < P; ++p) {
+    for (geom::Vec2 q : polygons[p]->outer) boxes[p].add(q);
+    if (refs[p].kind == Kind::Block) block_at.emplace(refs[p].id, static_cast<int>(p));
+    if (refs[p].kind == Kind::Lot) lot_at.emplace(refs[p].id, static_cast<int>(p));
+  }
+  auto edge_box = [](geom::Vec2 a, geom::Vec2 b) {
+    geom::Box box = geom::Box::none();
+    box.add(a), box.add(b);
+    return box;
+  };
+  std::vector<std::pair<geom::Vec2, geom::Vec2>> road_edges;  // every ring's of road areas and bridges
+  geom::BoxIndex road_index(16.0);
+  for (std::size_t p = 0; p < P; ++p) {
+    if (refs[p].kind != Kind::Road && refs[p].kind != Kind::Bridge) continue;
+    for (int r = 0; r <= static_cast<int>(polygons[p]->holes.size()); ++r) {
+      const geom::Ring& ring = ring_of(*polygons[p], r);
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        road_index.add(static_cast<int>(road_edges.size()), edge_box(ring[i], ring[(i + 1) % ring.size()]));
+        road_edges.push_back({ring[i], ring[(i + 1) % ring.size()]});
+      }
+    }
+  }
+  auto fronts_a_road = [&](const geom::Ring& ring) {
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const geom::Vec2 a = ring[i], b = ring[(i + 1) % ring.size()];
+      for (int e : road_index.meeting(edge_box(a, b)))
+        if (segments_run_along(a, b, road_edges[e].first, road_edges[e].second)) return true;
+    }
+    return false;
+  };
+  // Each lot and building on its own, at once.
+  for_each_cancellable(P, [&](std::size_t p) {
+    const PolygonRef& ref = refs[p];
+    const geom::Polygon& polygon = *polygons[p];
+    if (!polygon.holes.empty()) return;
+    if (ref.kind == Kind::Lot) {
+      const auto block = block_at.find(ref.block);
+      proven[p] = block != block_at.end() && ring_in_polygon(polygon.outer, *polygons[block->second]) &&
+                  fronts_a_road(polygon.outer);
+    } else if (ref.kind == Kind::Building && !ref.properties->value("mapped", false)) {
+      const auto lot = lot_at.find(ref.lot);
+      proven[p] = lot != lot_at.end() && ring_in_polygon(polygon.outer, *polygons[lot->second]);
+    }
+  });
+  // Then the pairs whose boxes meet, each once: lots of one block, buildings on one lot or
+  // mapped (as the map takes them, the first in polygon order first).
+  std::unordered_map<int, std::vector<int>> by_block, by_lot;  // lots by their block, unmapped buildings by their lot
+  std::vector<int> mapped;
+  for (std::size_t p = 0; p < P; ++p) {
+    if (refs[p].kind == Kind::Lot) by_block[refs[p].block].push_back(static_cast<int>(p));
+    if (refs[p].kind != Kind::Building) continue;
+    if (refs[p].properties->value("mapped", false)) mapped.push_back(static_cast<int>(p));
+    else by_lot[refs[p].lot].push_back(static_cast<int>(p));
+  }
+  std::vector<char> paired(P, 1);  // every pair of p's checked is apart, or nested as the map asks
+  const CancelCheck cancel;
+  auto pair = [&](int p, int o) {
+    if (!proven[p] && !proven[o]) return;
+    if (!boxes[p].meets(boxes[o])) return;
+    if (!polygons[p]->holes.empty() || !polygons[o]->holes.empty()) return void(paired[p] = paired[o] = 0);
+    if (interiors_apart(polygons[p]->outer, polygons[o]->outer)) return;
+    const PolygonRef &a = refs[std::min(p, o)], &b = refs[std::max(p, o)];
+    if (a.kind == Kind::Lot || nested_overlap_problem(*a.properties, a.name, *b.properties, b.name)) paired[p] = paired[o] = 0;
+  };
+  for (const auto* groups : {&by_block, &by_lot})
+    for (const auto& [id, group] : *groups) {
+      cancel.check();
+      for (std::size_t i = 0; i < group.size(); ++i)
+        for (std::size_t j = i + 1; j < group.size(); ++j) pair(group[i], group[j]);
+    }
+  if (!mapped.empty()) {
+    geom::BoxIndex building_index(32.0);
+    for (std::size_t p = 0; p < P; ++p)
+      if (refs[p].kind == Kind::Building) building_index.add(static_cast<int>(p), boxes[p]);
+    for (int m : mapped)
+      for (int o : building_index.meeting(boxes[m]))
+        if (o != m) pair(m, o);  // two mapped ones: neither is proven
+  }
+  for (std::size_t p = 0; p < P; ++p) proven[p] &= paired[p];
+  return proven;
+}
+
 // The polygons' map, tile by tile at once (docs/design.md, Validation by tiles): each face
 // inside the window (every face without one) labelled with what is wrong there; then the
-// map's edges. Every lot shares an edge with a road area. `in_window` says which polygons
-// the map holds (all without a window), and `fronting` which further road areas it needs
-// for the lots' frontage. Problems are taken tile by tile, each once.
-void check_polygon_map(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
-                       const std::vector<const geom::Polygon*>& polygons, const Grid& grid, double tile_side,
-                       const Window* window, const std::vector<char>& in_window, const std::vector<char>& fronting) {
+// map's edges. Every lot shares an edge with a road area. `held` says which polygons the
+// map holds, `checked` which have their lots' frontage checked. Problems are taken tile by
+// tile, each once.
+void check_polygons_held(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
+                         const std::vector<const geom::Polygon*>& polygons, const Grid& grid, double tile_side,
+                         const Window* window, const std::vector<char>& held, const std::vector<char>& checked) {
   const std::size_t P = refs.size();
-  std::vector<char> held(P, 1);
-  if (window)
-    for (std::size_t p = 0; p < P; ++p) held[p] = in_window[p] || fronting[p];
   const Tiles tiles = tiles_of(grid, polygons, held, tile_side);
   std::vector<TileFindings> found(tiles.rings.size());
   for_each_cancellable(found.size(), [&](std::size_t t) { found[t] = check_tile(sketch, refs, polygons, tiles, t, window); });
@@ -590,23 +684,49 @@ void check_polygon_map(Checker& c, const DrawnFeatures& sketch, const std::vecto
     for (int p : f.fronting) fronts[p] = 1;
   }
   for (const auto& [p, at] : shared) c.problem(refs[p].name + ": two of its rings share an edge" + near(at));
-  for (std::size_t p = 0; p < P; ++p) {
-    const bool checked = !window || in_window[p];  // a road area added for frontage has no lot's verdict
-    if (checked && refs[p].kind == Kind::Lot && !fronts[p]) c.problem(refs[p].name + " touches no road area");
+  for (std::size_t p = 0; p < P; ++p)
+    if (checked[p] && refs[p].kind == Kind::Lot && !fronts[p]) c.problem(refs[p].name + " touches no road area");
+}
+
+// The polygons' map of the whole city, or of a window: `in_window` says which polygons it
+// holds (all without a window), and `fronting` which further road areas it needs for the
+// lots' frontage. Of a whole city, first without the lots and buildings proven to pass
+// (proven_without_map): when that map finds nothing, neither would the whole one; when it
+// finds something, the whole map is checked, so its problems are those of the whole map.
+void check_polygon_map(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
+                       const std::vector<const geom::Polygon*>& polygons, const Grid& grid, double tile_side,
+                       MapProofs proofs, const Window* window, const std::vector<char>& in_window,
+                       const std::vector<char>& fronting) {
+  const std::size_t P = refs.size();
+  std::vector<char> held(P, 1);
+  if (window)
+    for (std::size_t p = 0; p < P; ++p) held[p] = in_window[p] || fronting[p];
+  std::vector<char> checked = window ? in_window : held;  // a road area added for frontage has no lot's verdict
+  if (!window && proofs == MapProofs::First) {
+    const std::vector<char> proven = proven_without_map(refs, polygons);
+    if (std::find(proven.begin(), proven.end(), 1) != proven.end()) {
+      std::vector<char> rest(P);
+      for (std::size_t p = 0; p < P; ++p) rest[p] = !proven[p];
+      Validation without;
+      Checker w(without);
+      check_polygons_held(w, sketch, refs, polygons, grid, tile_side, window, rest, rest);
+      if (without.ok()) return;
+    }
   }
+  check_polygons_held(c, sketch, refs, polygons, grid, tile_side, window, held, checked);
 }
 
 // The polygons' map and the zoning map share nothing: they run at once, the polygons'
 // problems taken first.
 void check_tiling(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
                   const std::vector<const geom::Polygon*>& polygons, const Grid& grid, double tile_side,
-                  const Window* window = nullptr, const std::vector<char>& in_window = {},
+                  MapProofs proofs, const Window* window = nullptr, const std::vector<char>& in_window = {},
                   const std::vector<char>& fronting = {}) {
   Validation polygon_map, zoning;
   invoke_cancellable(
       [&] {
         Checker p(polygon_map);
-        check_polygon_map(p, sketch, refs, polygons, grid, tile_side, window, in_window, fronting);
+        check_polygon_map(p, sketch, refs, polygons, grid, tile_side, proofs, window, in_window, fronting);
       },
       [&] {
         Checker z(zoning);
@@ -853,7 +973,8 @@ void window_polygons(const Window& window, const ValidatedPolygons& now, const s
       fronting[p] = std::any_of(lots.begin(), lots.end(), [&](const geom::Box& b) { return b.meets(now.boxes[p]); });
 }
 
-Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* last, double tile_side) {
+Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* last, double tile_side,
+                    MapProofs proofs = MapProofs::First) {
   // Kept again below only if this city passes.
   const std::shared_ptr<ValidatedPolygons> previous = last ? std::exchange(*last, nullptr) : nullptr;
   std::map<std::string, ReadLines> lines;  // with `last`: the lines read before, then this city's
@@ -931,18 +1052,18 @@ Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* las
           boxes.push_back(b);
         }
         const Grid grid = grid_of(boxes);
-        if (!last) return check_tiling(t, sketch, refs, polygons, grid, tile_side);
+        if (!last) return check_tiling(t, sketch, refs, polygons, grid, tile_side, proofs);
         now = std::make_shared<ValidatedPolygons>(polygons_of(refs, polygons));
-        if (!previous) return check_tiling(t, sketch, refs, polygons, grid, tile_side);
+        if (!previous) return check_tiling(t, sketch, refs, polygons, grid, tile_side, proofs);
         // Within the window of what changed (docs/design.md, Regions and regenerating); a
         // problem there is looked for again in the whole city, whose check states it.
         const Window window = window_of(changed_boxes(*previous, *now, refs), grid);
         std::vector<char> in_window, fronting;
         window_polygons(window, *now, refs, in_window, fronting);
-        check_tiling(t, sketch, refs, polygons, grid, tile_side, &window, in_window, fronting);
+        check_tiling(t, sketch, refs, polygons, grid, tile_side, proofs, &window, in_window, fronting);
         if (tiling.ok()) return;
         tiling = {};
-        check_tiling(t, sketch, refs, polygons, grid, tile_side);
+        check_tiling(t, sketch, refs, polygons, grid, tile_side, proofs);
       },
       [&] {
         Checker r(road_checks);
@@ -963,6 +1084,10 @@ Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* las
 Validation validate_output(const fs::path& dir) { return validate(dir, nullptr, 0); }
 
 Validation validate_output(const fs::path& dir, double tile_side) { return validate(dir, nullptr, tile_side); }
+
+Validation validate_output(const fs::path& dir, double tile_side, MapProofs proofs) {
+  return validate(dir, nullptr, tile_side, proofs);
+}
 
 Validation validate_output(const fs::path& dir, std::shared_ptr<ValidatedPolygons>& last, double tile_side) {
   return validate(dir, &last, tile_side);

@@ -23,4 +23,10 @@ Validation validate_output(const std::filesystem::path& out_dir);
 // city's size, as validate_output does. The problems found do not depend on it.
 Validation validate_output(const std::filesystem::path& out_dir, double tile_side);
 
+// Whether the map of every polygon leaves out the lots and buildings proven to pass its
+// checks without it (docs/design.md, Validation by tiles: proofs), as validate_output does,
+// or holds them all. The problems found are the same either way: tests compare the two.
+enum class MapProofs { First, None };
+Validation validate_output(const std::filesystem::path& out_dir, double tile_side, MapProofs proofs);
+
 }  // namespace exacity

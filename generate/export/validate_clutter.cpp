@@ -1,5 +1,6 @@
 #include "generate/export/validate_clutter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <unordered_map>
 #include <unordered_set>
@@ -7,8 +8,8 @@
 
 #include "generate/cancel.h"
 #include "generate/export/read_lines.h"
+#include "generate/export/ring_sides.h"
 #include "generate/placement/model_library.h"
-#include "geom/polygon_check.h"
 
 namespace exacity {
 namespace {
@@ -19,6 +20,7 @@ constexpr std::size_t kMaxProblems = 20;
 // A polygon of another layer a point is checked against.
 struct Area {
   const geom::Polygon* polygon;
+  geom::Box box;      // of its outer ring: a point outside it lies outside the area
   std::string name;   // "road_areas.geojson features[3] (carriageway)"
   bool stands_on;     // a sidewalk or a lot; else clutter keeps off it
   bool park = false;  // a park zone: a tree stands in it, other clutter keeps off it
@@ -60,6 +62,22 @@ class AreaCells {
   std::vector<std::pair<std::int64_t, std::int64_t>> held_;  // the cells holding points
 };
 
+// Where p lies against the polygon of simple rings: +1 inside, 0 on an edge, -1 outside.
+int point_side(const geom::Polygon& polygon, geom::Vec2 p) {
+  int side = ring_side(polygon.outer, p);
+  for (const geom::Ring& hole : polygon.holes) {
+    if (side <= 0) break;
+    side = std::min(side, -ring_side(hole, p));
+  }
+  return side;
+}
+
+geom::Box box_of(const geom::Polygon& polygon) {
+  geom::Box b = geom::Box::none();
+  for (geom::Vec2 q : polygon.outer) b.add(q);
+  return b;
+}
+
 bool is_clutter_kind(const std::string& kind) {
   for (ModelKind k : kModelKinds)
     if (is_clutter(k) && kind == name(k)) return true;
@@ -89,8 +107,8 @@ void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers
       cancel.check();
       const VectorFeature& f = layer.features[i];
       cells.add(static_cast<int>(areas.size()), f.polygon);
-      areas.push_back(
-          {&f.polygon, layer.name + ".geojson features[" + std::to_string(i) + "]" + what(f), stands_on(f)});
+      areas.push_back({&f.polygon, box_of(f.polygon), layer.name + ".geojson features[" + std::to_string(i) + "]" + what(f),
+                       stands_on(f)});
     }
   };
   const auto no_note = [](const VectorFeature&) { return std::string(); };
@@ -112,7 +130,7 @@ void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers
     const VectorFeature& f = layers.zones.features[i];
     if (f.properties.value("zone", "") != "park") continue;
     cells.add(static_cast<int>(areas.size()), f.polygon);
-    areas.push_back({&f.polygon, "zones.geojson features[" + std::to_string(i) + "]", false, true});
+    areas.push_back({&f.polygon, box_of(f.polygon), "zones.geojson features[" + std::to_string(i) + "]", false, true});
   }
   add(
       layers.buildings, [](const VectorFeature&) { return false; }, no_note);
@@ -124,46 +142,49 @@ void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers
   for (std::size_t i = 0; i < clutter.features.size(); ++i) {
     cancel.check();
     const VectorFeature& f = clutter.features[i];
-    const std::string name = "clutter.geojson features[" + std::to_string(i) + "]";
+    // The feature's name and place, spelt only for a problem.
+    const auto name = [&] { return "clutter.geojson features[" + std::to_string(i) + "]"; };
     if (f.line.size() != 1 || !f.polygon.outer.empty()) {
-      problem(name + ": not a Point");
+      problem(name() + ": not a Point");
       continue;
     }
     const geom::Vec2 p = f.line[0];
-    const std::string at = " at (" + format_number(p.x) + ", " + format_number(p.y) + ")";
+    const auto at = [&] { return " at (" + format_number(p.x) + ", " + format_number(p.y) + ")"; };
     const auto& props = f.properties;
     if (!props.contains("id") || !props["id"].is_number_integer() || !ids.insert(props["id"].get<int>()).second)
-      problem(name + ": its id is missing or not unique");
+      problem(name() + ": its id is missing or not unique");
     if (!props.contains("kind") || !props["kind"].is_string() || !is_clutter_kind(props["kind"].get<std::string>()))
-      problem(name + ": \"kind\" is " + props.value("kind", nlohmann::ordered_json()).dump() + ", no clutter kind");
-    if (!props.contains("model") || !props["model"].is_string()) problem(name + ": no \"model\"");
+      problem(name() + ": \"kind\" is " + props.value("kind", nlohmann::ordered_json()).dump() + ", no clutter kind");
+    if (!props.contains("model") || !props["model"].is_string()) problem(name() + ": no \"model\"");
     const bool tree = props.value("kind", nlohmann::ordered_json()) == "tree";
     // A park's tree dresses no street: its road is null.
     const bool park_tree = tree && props.contains("road") && props["road"].is_null();
     if (!park_tree &&
         (!props.contains("road") || !props["road"].is_number_integer() || !roads.count(props["road"].get<int>())))
-      problem(name + ": \"road\" " + props.value("road", nlohmann::ordered_json()).dump() +
+      problem(name() + ": \"road\" " + props.value("road", nlohmann::ordered_json()).dump() +
               " names no feature of roads.geojson");
     const double heading =
         props.contains("heading") && props["heading"].is_number() ? props["heading"].get<double>() : -1;
-    if (!(heading >= 0 && heading < 360)) problem(name + ": \"heading\" is not degrees in [0, 360)");
+    if (!(heading >= 0 && heading < 360)) problem(name() + ": \"heading\" is not degrees in [0, 360)");
     bool stands = false;
     for (int a : cells.at(p)) {
-      const int side = geom::point_side(*areas[a].polygon, p);
+      const geom::Box& box = areas[a].box;
+      if (p.x < box.min_x || p.x > box.max_x || p.y < box.min_y || p.y > box.max_y) continue;  // outside: no verdict
+      const int side = point_side(*areas[a].polygon, p);
       if (areas[a].park) {
         if (park_tree)
           stands |= side > 0;
         else if (side > 0 && tree)
-          problem(name + at + " stands in " + areas[a].name + ", a park, but names a road");
+          problem(name() + at() + " stands in " + areas[a].name + ", a park, but names a road");
         continue;
       }
       if (areas[a].stands_on)
         stands |= side > 0;
       else if (side >= 0)
-        problem(name + at + (side > 0 ? " stands in " : " stands on the edge of ") + areas[a].name);
+        problem(name() + at() + (side > 0 ? " stands in " : " stands on the edge of ") + areas[a].name);
     }
     if (!stands)
-      problem(name + at +
+      problem(name() + at() +
               (park_tree ? " is a park's tree but stands strictly inside no park"
                          : " stands strictly inside no sidewalk and no lot"));
   }

@@ -1,0 +1,170 @@
+#include "generate/export/ring_sides.h"
+
+#include <algorithm>
+#include <vector>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+namespace exacity {
+namespace {
+
+using geom::Ring;
+using geom::Vec2;
+
+// Doubles in, predicates only: the filtered kernel decides the sign exactly.
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+// +1 when c lies left of the line a -> b, -1 right, 0 on it.
+int orient(Vec2 a, Vec2 b, Vec2 c) {
+  return static_cast<int>(CGAL::orientation(K::Point_2(a.x, a.y), K::Point_2(b.x, b.y), K::Point_2(c.x, c.y)));
+}
+
+// p in the closed box of the segment u-v: on it, when the three are collinear.
+bool in_box(Vec2 u, Vec2 v, Vec2 p) {
+  return std::min(u.x, v.x) <= p.x && p.x <= std::max(u.x, v.x) && std::min(u.y, v.y) <= p.y && p.y <= std::max(u.y, v.y);
+}
+
+geom::Box box_of(Vec2 a, Vec2 b) { return {std::min(a.x, b.x), std::min(a.y, b.y), std::max(a.x, b.x), std::max(a.y, b.y)}; }
+
+// The ring a and where points and pieces lie against its closed region.
+class Region {
+ public:
+  explicit Region(const Ring& a) : a_(a) {}
+
+  // +1 inside, 0 on the boundary, -1 outside.
+  int side(Vec2 p) const {
+    int winding = 0;
+    for (std::size_t i = 0; i < a_.size(); ++i) {
+      const Vec2 u = a_[i], v = a_[(i + 1) % a_.size()];
+      if (in_box(u, v, p) && orient(u, v, p) == 0) return 0;
+      // Sunday's crossing rule: exact, as p lies on no edge.
+      if (u.y <= p.y) {
+        if (v.y > p.y && orient(u, v, p) > 0) ++winding;
+      } else if (v.y <= p.y && orient(u, v, p) < 0) {
+        --winding;
+      }
+    }
+    return winding != 0 ? 1 : -1;
+  }
+
+  // The side of the piece x-y (no vertex of a inside it, no edge of a crossing it), where
+  // x lies on the boundary and y is not x.
+  int piece_side_from(Vec2 x, Vec2 y) const {
+    const std::size_t n = a_.size();
+    // Along an edge: the piece is part of it (it holds no vertex of a).
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec2 v = a_[i], w = a_[(i + 1) % n];
+      if (in_box(v, w, x) && in_box(v, w, y) && orient(v, w, x) == 0 && orient(v, w, y) == 0) return 0;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec2 u = a_[(i + n - 1) % n], v = a_[i], w = a_[(i + 1) % n];
+      if (!(x == v)) continue;
+      // At a vertex: inside its corner (the side left of both edges when it turns left, of
+      // either when it turns right). y lies on neither edge, as that piece would run along it.
+      const int in = orient(u, v, y), out = orient(v, w, y), turn = orient(u, v, w);
+      if (turn > 0) return in > 0 && out > 0 ? 1 : -1;
+      if (turn < 0) return in > 0 || out > 0 ? 1 : -1;
+      return in > 0 ? 1 : -1;
+    }
+    // Inside an edge: its left is the inside.
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec2 v = a_[i], w = a_[(i + 1) % n];
+      if (in_box(v, w, x) && orient(v, w, x) == 0) return orient(v, w, y) > 0 ? 1 : -1;
+    }
+    return side(y);  // not reached: x lies on the boundary
+  }
+
+  // The side of the piece x-y (no vertex of a inside it, no edge crossing it), given the sides of its ends.
+  int piece_side(Vec2 x, int x_side, Vec2 y, int y_side) const {
+    if (x_side != 0) return x_side;
+    if (y_side != 0) return y_side;
+    return piece_side_from(x, y);
+  }
+
+  const Ring& ring() const { return a_; }
+
+ private:
+  const Ring& a_;
+};
+
+}  // namespace
+
+RingSides ring_sides(const Ring& b, const Ring& a) {
+  RingSides sides;
+  const Region region(a);
+  std::vector<Vec2> cuts;
+  int p_side = 0, first_side = 0;  // the sides of the edge's first end and of the ring's first vertex
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    const Vec2 p = b[k], q = b[(k + 1) % b.size()];
+    const geom::Box s = box_of(p, q);
+    cuts.clear();
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const Vec2 u = a[i], v = a[(i + 1) % a.size()];
+      if (!s.meets(box_of(u, v))) continue;
+      const int ou = orient(p, q, u), ov = orient(p, q, v);
+      if (ou * ov < 0 && orient(u, v, p) * orient(u, v, q) < 0) return sides.crosses = true, sides;
+      if (ou == 0 && !(u == p) && !(u == q) && in_box(p, q, u)) cuts.push_back(u);
+    }
+    // The cuts in order from p to q: along x, or along y on an upright edge (collinear, so exact).
+    const bool by_x = p.x != q.x;
+    const bool up = by_x ? p.x < q.x : p.y < q.y;
+    std::sort(cuts.begin(), cuts.end(), [&](Vec2 c, Vec2 d) {
+      const double cc = by_x ? c.x : c.y, dd = by_x ? d.x : d.y;
+      return up ? cc < dd : cc > dd;
+    });
+    // The cuts lie on the boundary; each end's side is found once.
+    if (k == 0) p_side = first_side = region.side(p);
+    const int q_side = k + 1 == b.size() ? first_side : region.side(q);
+    Vec2 from = p;
+    int from_side = p_side;
+    for (Vec2 to : cuts) {
+      const int side = region.piece_side(from, from_side, to, 0);
+      sides.inside |= side > 0;
+      sides.outside |= side < 0;
+      from = to, from_side = 0;
+    }
+    const int side = region.piece_side(from, from_side, q, q_side);
+    sides.inside |= side > 0;
+    sides.outside |= side < 0;
+    p_side = q_side;
+  }
+  return sides;
+}
+
+bool interiors_apart(const Ring& a, const Ring& b) {
+  // No edge crossing and neither ring inside the other's region: the interiors meet only if
+  // each boundary lies on the other (the same region); a piece outside rules that out.
+  const RingSides b_in_a = ring_sides(b, a);
+  if (b_in_a.crosses || b_in_a.inside) return false;
+  const RingSides a_in_b = ring_sides(a, b);
+  if (a_in_b.crosses || a_in_b.inside) return false;
+  return b_in_a.outside || a_in_b.outside;
+}
+
+bool ring_in_polygon(const Ring& ring, const geom::Polygon& polygon) {
+  const RingSides in_outer = ring_sides(ring, polygon.outer);
+  if (in_outer.crosses || in_outer.outside) return false;
+  geom::Box box = geom::Box::none();
+  for (Vec2 p : ring) box.add(p);
+  for (const Ring& hole : polygon.holes) {
+    geom::Box hole_box = geom::Box::none();
+    for (Vec2 p : hole) hole_box.add(p);
+    if (!box.meets(hole_box)) continue;
+    const Ring region(hole.rbegin(), hole.rend());  // the hole's region, counter-clockwise
+    if (!interiors_apart(ring, region)) return false;
+  }
+  return true;
+}
+
+int ring_side(const Ring& ring, Vec2 p) { return ring.size() < 3 ? -1 : Region(ring).side(p); }
+
+bool segments_run_along(Vec2 a0, Vec2 a1, Vec2 b0, Vec2 b1) {
+  if (orient(a0, a1, b0) != 0 || orient(a0, a1, b1) != 0) return false;
+  // On one line: compare along x, or along y when it is upright.
+  const bool by_x = a0.x != a1.x;
+  const double a_lo = by_x ? std::min(a0.x, a1.x) : std::min(a0.y, a1.y), a_hi = by_x ? std::max(a0.x, a1.x) : std::max(a0.y, a1.y);
+  const double b_lo = by_x ? std::min(b0.x, b1.x) : std::min(b0.y, b1.y), b_hi = by_x ? std::max(b0.x, b1.x) : std::max(b0.y, b1.y);
+  return std::max(a_lo, b_lo) < std::min(a_hi, b_hi);
+}
+
+}  // namespace exacity
