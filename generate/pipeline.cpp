@@ -48,13 +48,6 @@ double peak_resident_mib() {
 
 namespace {
 
-// Gives the pages of what was just freed back to the system (tcmalloc keeps them, and the
-// exact map's small blocks are not pages the exports' large buffers can reuse); none
-// without tcmalloc.
-void release_freed_memory() {
-  if (MallocExtension_ReleaseFreeMemory) MallocExtension_ReleaseFreeMemory();
-}
-
 // Lots take their block's density (a grammar's).
 std::vector<Lot> with_density(std::vector<Lot> lots, const std::vector<Block>& blocks) {
   for (Lot& lot : lots) lot.density = blocks[lot.block].density;
@@ -162,9 +155,6 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
   });
   // After the ground, whose centre lines the clutter dresses and names (docs/design.md, Placement).
   city.clutter = stages.run("clutter", [&] {
-    // The lots' plans and the ground's passes over the map leave pages of small blocks that
-    // the clutter's do not reuse: given back, they are not resident beside its peak.
-    release_freed_memory();
     return place_clutter({city.network.map, city.ground, city.lots, city.buildings, city.models}, city.model_library(),
                          city.channels, city.settings, city.drawn.zones, city.heightmap());
   });
@@ -180,6 +170,13 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
 }
 
 namespace {
+
+// Gives the pages of what was just freed back to the system (tcmalloc keeps them, and the
+// exact map's small blocks are not pages the exports' large buffers can reuse); none
+// without tcmalloc.
+void release_freed_memory() {
+  if (MallocExtension_ReleaseFreeMemory) MallocExtension_ReleaseFreeMemory();
+}
 
 // The vector formats of kCityFormats always written and those `options` ask for (from the
 // city's layers and `clutter`), a copy of the sketch and the SVG map, each file written at
