@@ -42,10 +42,7 @@ struct Bounds3 {
 
 Bounds3 mesh_bounds(const Mesh& mesh) {
   Bounds3 b;
-  for (const auto v : mesh.vertices()) {
-    const auto& p = mesh.point(v);
-    b.add(p[0], p[1], p[2]);
-  }
+  for (const Vec3& p : mesh.points) b.add(p[0], p[1], p[2]);
   return b;
 }
 

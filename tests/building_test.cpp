@@ -32,16 +32,31 @@ Building prism(geom::Polygon footprint, double height) {
 // Divergence theorem over the faces, fanned from their first vertex.
 double volume(const Mesh& mesh) {
   double v = 0;
-  for (auto f : mesh.faces()) {
-    std::vector<OpenMesh::Vec3d> p;
-    for (auto vh : mesh.fv_range(f)) p.push_back(mesh.point(vh));
-    for (std::size_t i = 1; i + 1 < p.size(); ++i) v += OpenMesh::dot(p[0], OpenMesh::cross(p[i], p[i + 1])) / 6;
+  for (const Mesh::Face f : mesh.faces()) {
+    const Vec3& a = mesh.points[f.corners[0]];
+    for (std::size_t i = 1; i + 1 < f.corners.size(); ++i) {
+      const Vec3 &b = mesh.points[f.corners[i]], &c = mesh.points[f.corners[i + 1]];
+      v += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6;
+    }
   }
   return v;
 }
 
+// Every edge of a face is met once the other way by another face.
 void expect_closed(const Mesh& mesh) {
-  for (auto e : mesh.edges()) EXPECT_FALSE(mesh.is_boundary(e)) << "open edge";
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+  for (const Mesh::Face f : mesh.faces())
+    for (std::size_t i = 0; i < f.corners.size(); ++i) ++edges[{f.corners[i], f.corners[(i + 1) % f.corners.size()]}];
+  for (const auto& [edge, count] : edges) {
+    EXPECT_EQ(count, 1) << "edge used twice the same way";
+    EXPECT_EQ(edges.count({edge.second, edge.first}), 1u) << "open edge";
+  }
+}
+
+int faces_of(const Mesh& mesh, Surface s) {
+  int n = 0;
+  for (const Mesh::Face f : mesh.faces()) n += f.surface == s;
+  return n;
 }
 
 }  // namespace
@@ -50,11 +65,8 @@ TEST(BuildingMesh, BoxIsClosedWithItsVolume) {
   Mesh m = building_mesh(prism({{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {}}, 5));
   expect_closed(m);
   EXPECT_DOUBLE_EQ(volume(m), 500);  // positive: faces point outwards
-  EXPECT_EQ(m.n_faces(), 4u + 2u + 2u);
-  auto surface = surface_property(m);
-  int roofs = 0;
-  for (auto f : m.faces()) roofs += m.property(surface, f) == static_cast<int>(Surface::Roof);
-  EXPECT_EQ(roofs, 2);
+  EXPECT_EQ(m.face_count(), 4u + 2u + 2u);
+  EXPECT_EQ(faces_of(m, Surface::Roof), 2);
 }
 
 TEST(BuildingMesh, CourtyardAndLShapeAreClosed) {
@@ -180,11 +192,10 @@ Building roofed(geom::Polygon footprint, double height, const std::string& roof)
 
 // Every face of the mesh, seen from above, is a simple polygon (walls are upright and skipped).
 void expect_simple_roof_faces(const Mesh& m) {
-  auto surface = surface_property(m);
-  for (auto f : m.faces()) {
-    if (m.property(surface, f) != static_cast<int>(Surface::Roof)) continue;
+  for (const Mesh::Face f : m.faces()) {
+    if (f.surface != Surface::Roof) continue;
     geom::Ring r;
-    for (auto v : m.fv_range(f)) r.push_back({m.point(v)[0], m.point(v)[1]});
+    for (std::uint32_t v : f.corners) r.push_back({m.points[v][0], m.points[v][1]});
     EXPECT_TRUE(geom::ring_is_simple(r));
   }
 }
@@ -214,10 +225,7 @@ TEST(BuildingMesh, GabledRoofHasItsPrismVolume) {
   Mesh m = building_mesh(b);
   expect_closed(m);
   EXPECT_NEAR(volume(m), 60 * b.eaves + 0.5 * 6 * rise * 10, 1e-9);
-  auto surface = surface_property(m);
-  int walls = 0;
-  for (auto f : m.faces()) walls += m.property(surface, f) == static_cast<int>(Surface::Wall);
-  EXPECT_EQ(walls, 4 + 2);  // four walls and two gables
+  EXPECT_EQ(faces_of(m, Surface::Wall), 4 + 2);  // four walls and two gables
 }
 
 TEST(BuildingMesh, RoofTooTallForTheBuildingFallsBackToFlat) {
@@ -241,7 +249,7 @@ TEST(BuildingMesh, OnASlopeTheWallsReachTheLowestGroundAndTheHeightCountsFromThe
   Mesh m = building_mesh(b);
   expect_closed(m);
   double low = INFINITY, high = -INFINITY;
-  for (auto v : m.vertices()) low = std::min(low, m.point(v)[2]), high = std::max(high, m.point(v)[2]);
+  for (const Vec3& p : m.points) low = std::min(low, p[2]), high = std::max(high, p[2]);
   EXPECT_EQ(low, b.base);
   EXPECT_EQ(high, b.floor + 7);
   EXPECT_NEAR(volume(m), 300 * (b.floor + 7 - b.base), 1e-9);

@@ -154,11 +154,10 @@ bool prism(const geom::Polygon& footprint, double base, double top, Vertices& v,
 // The shell of the building's mesh, each face with its surface class; false when a face
 // collapses under quantisation, unless `skip_collapsed` (for surfaces that need not close).
 bool mesh_shell(const Mesh& mesh, Vertices& v, json& shell, std::vector<int>& classes, bool skip_collapsed = false) {
-  auto surface = surface_property(mesh);
-  for (auto f : mesh.faces()) {
+  for (const Mesh::Face f : mesh.faces()) {
     std::vector<int> ring;
-    for (auto vh : mesh.fv_range(f)) {
-      const auto& p = mesh.point(vh);
+    for (std::uint32_t corner : f.corners) {
+      const Vec3& p = mesh.points[corner];
       ring.push_back(v(p[0], p[1], p[2]));
     }
     std::vector<int> distinct(ring);
@@ -168,7 +167,7 @@ bool mesh_shell(const Mesh& mesh, Vertices& v, json& shell, std::vector<int>& cl
       return false;
     }
     shell.push_back(json::array({ring}));
-    classes.push_back(mesh.property(surface, f));
+    classes.push_back(static_cast<int>(f.surface));
   }
   return true;
 }

@@ -29,21 +29,19 @@ void walk_city(const std::vector<Mesh>& meshes, const std::vector<ZoneType>& zon
   for (std::size_t i = 0; i < meshes.size(); ++i) {
     cancel.check();
     const Mesh& mesh = meshes[i];
-    auto surface = surface_property(mesh);
     out.object(id_of[i]);
-    std::size_t count = 0;
-    for (auto v : mesh.vertices()) out.vertex(mesh.point(v)[0], mesh.point(v)[1], mesh.point(v)[2]), ++count;
+    for (const Vec3& p : mesh.points) out.vertex(p[0], p[1], p[2]);
     std::vector<std::size_t> face;
     for (Surface s : {Surface::Ground, Surface::Wall, Surface::Roof}) {
       out.use(zone_of[i], s);
-      for (auto f : mesh.faces()) {
-        if (mesh.property(surface, f) != static_cast<int>(s)) continue;
+      for (const Mesh::Face f : mesh.faces()) {
+        if (f.surface != s) continue;
         face.clear();
-        for (auto v : mesh.fv_range(f)) face.push_back(first + v.idx());
+        for (std::uint32_t v : f.corners) face.push_back(first + v);
         out.face(face, static_cast<int>(s));
       }
     }
-    first += count;
+    first += mesh.points.size();
   }
   for (const GroundLayer& layer : ground) {
     cancel.check();

@@ -5,6 +5,7 @@
 
 #include <mutex>
 
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 #include <tbb/parallel_for.h>
 
@@ -14,6 +15,13 @@
 namespace exacity {
 
 namespace {
+
+struct MeshTraits : OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;  // city coordinates need doubles
+  using Normal = OpenMesh::Vec3d;
+};
+// The mesh while it is built: OpenMesh joins each face to those sharing its edges.
+using JoinedMesh = OpenMesh::PolyMesh_ArrayKernelT<MeshTraits>;
 
 // A gable: an upright triangle, all its points on one vertical plane (its footprint is a line).
 bool is_gable(const geom::Face3& f) {
@@ -32,10 +40,21 @@ void quiet_openmesh() {
 
 }  // namespace
 
-OpenMesh::FPropHandleT<int> surface_property(const Mesh& mesh) {
-  OpenMesh::FPropHandleT<int> surface;
-  if (!mesh.get_property_handle(surface, "surface")) throw std::logic_error("mesh has no surface property");
-  return surface;
+void Mesh::add_face(Surface s, std::span<const std::uint32_t> corners) {
+  faces_.push_back(static_cast<std::uint32_t>(corners.size()));
+  faces_.push_back(static_cast<std::uint32_t>(s));
+  faces_.insert(faces_.end(), corners.begin(), corners.end());
+}
+
+void Mesh::shrink() {
+  points.shrink_to_fit();
+  faces_.shrink_to_fit();
+}
+
+std::size_t Mesh::face_count() const {
+  std::size_t n = 0;
+  for (FaceIterator f = faces().begin(); !(f == faces().end()); ++f) ++n;
+  return n;
 }
 
 std::vector<Mesh> structure_meshes(const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
@@ -56,18 +75,15 @@ std::vector<Mesh> structure_meshes(const std::vector<Building>& buildings, const
 
 MeshTriangles mesh_triangles(const Mesh& mesh) {
   MeshTriangles out;
-  auto surface = surface_property(mesh);
-  for (auto v : mesh.vertices()) {
-    const auto& p = mesh.point(v);
-    out.vertices.push_back({p[0], p[1], p[2]});
-  }
-  for (auto f : mesh.faces()) {
-    std::vector<int> face;
-    std::vector<Vec3> corners;
-    for (auto v : mesh.fv_range(f)) face.push_back(v.idx()), corners.push_back(out.vertices[v.idx()]);
+  out.vertices = mesh.points;
+  std::vector<Vec3> corners;
+  for (const Mesh::Face f : mesh.faces()) {
+    corners.clear();
+    for (std::uint32_t v : f.corners) corners.push_back(out.vertices[v]);
     for (const auto& t : triangulate_planar(corners)) {
-      out.triangles.push_back({face[t[0]], face[t[1]], face[t[2]]});
-      out.surface.push_back(static_cast<Surface>(mesh.property(surface, f)));
+      out.triangles.push_back({static_cast<int>(f.corners[t[0]]), static_cast<int>(f.corners[t[1]]),
+                               static_cast<int>(f.corners[t[2]])});
+      out.surface.push_back(f.surface);
     }
   }
   return out;
@@ -79,30 +95,27 @@ namespace {
 // and the mesh closes.
 class MeshBuilder {
  public:
-  MeshBuilder() {
-    quiet_openmesh();
-    mesh_.add_property(surface_, "surface");
-  }
-  Mesh::VertexHandle vertex(double x, double y, double z) {
-    auto [it, added] = vertices_.emplace(std::array<double, 3>{x, y, z}, Mesh::VertexHandle());
+  MeshBuilder() { quiet_openmesh(); }
+  JoinedMesh::VertexHandle vertex(double x, double y, double z) {
+    auto [it, added] = vertices_.emplace(std::array<double, 3>{x, y, z}, JoinedMesh::VertexHandle());
     if (added) it->second = mesh_.add_vertex({x, y, z});
     return it->second;
   }
   // A vertex of its own, joined to no other face.
-  Mesh::VertexHandle loose_vertex(const Vec3& p) { return mesh_.add_vertex({p[0], p[1], p[2]}); }
-  void add(const std::vector<Mesh::VertexHandle>& face, Surface s) {
-    Mesh::FaceHandle f = mesh_.add_face(face);
+  JoinedMesh::VertexHandle loose_vertex(const Vec3& p) { return mesh_.add_vertex({p[0], p[1], p[2]}); }
+  void add(const std::vector<JoinedMesh::VertexHandle>& face, Surface s) {
+    JoinedMesh::FaceHandle f = mesh_.add_face(face);
     if (!f.is_valid()) {
       // A model's mesh need not be manifold: a face that cannot join its neighbours
       // stands alone, so nothing of the model is lost.
-      std::vector<Mesh::VertexHandle> own;
+      std::vector<JoinedMesh::VertexHandle> own;
       for (auto v : face) {
-        const Mesh::Point p = mesh_.point(v);  // a copy: adding a vertex may move the points
+        const JoinedMesh::Point p = mesh_.point(v);  // a copy: adding a vertex may move the points
         own.push_back(mesh_.add_vertex(p));
       }
       f = mesh_.add_face(own);
     }
-    if (f.is_valid()) mesh_.property(surface_, f) = static_cast<int>(s);
+    if (f.is_valid()) surfaces_.push_back(s);  // faces are numbered as they are added
   }
   // Walls from `base` up to z: a quad per ring edge, outward (rings run with the inside on
   // their left).
@@ -122,14 +135,31 @@ class MeshBuilder {
       else add({vertex(p.x, p.y, z), vertex(q.x, q.y, z), vertex(r.x, r.y, z)}, s);
     }
   }
-  Mesh take() { return std::move(mesh_); }
+  // The mesh, compact: its points and faces in OpenMesh's order, each face's corners as its
+  // vertex circulator gives them.
+  Mesh take() const {
+    Mesh out;
+    out.points.reserve(mesh_.n_vertices());
+    for (auto v : mesh_.vertices()) {
+      const JoinedMesh::Point& p = mesh_.point(v);
+      out.points.push_back({p[0], p[1], p[2]});
+    }
+    std::vector<std::uint32_t> corners;
+    for (auto f : mesh_.faces()) {
+      corners.clear();
+      for (auto v : mesh_.fv_range(f)) corners.push_back(static_cast<std::uint32_t>(v.idx()));
+      out.add_face(surfaces_[static_cast<std::size_t>(f.idx())], corners);
+    }
+    out.shrink();
+    return out;
+  }
   // What comes next is a mesh of its own, sharing no vertex with what came before.
   void next_piece() { vertices_.clear(); }
 
  private:
-  Mesh mesh_;
-  OpenMesh::FPropHandleT<int> surface_;
-  std::map<std::array<double, 3>, Mesh::VertexHandle> vertices_;
+  JoinedMesh mesh_;
+  std::vector<Surface> surfaces_;  // by face
+  std::map<std::array<double, 3>, JoinedMesh::VertexHandle> vertices_;
 };
 
 // A slope's surface class: facing up a roof, facing down a ground, else a wall.
@@ -151,7 +181,7 @@ Mesh model_mesh(const ModelInstance& m, const ModelLibrary* library) {
   }
   if (!library) return mesh.take();
   const TriangleMesh& model = library->models[m.placed.model].mesh;
-  std::vector<Mesh::VertexHandle> handles;
+  std::vector<JoinedMesh::VertexHandle> handles;
   for (const Vec3& v : model.vertices) handles.push_back(mesh.loose_vertex(m.placed.apply(v, m.floor)));
   for (const auto& t : model.triangles)
     mesh.add({handles[t[0]], handles[t[1]], handles[t[2]]},
@@ -171,7 +201,7 @@ void add_prism(MeshBuilder& mesh, const geom::Polygon& footprint, double base, d
   if (roof_faces.empty()) mesh.cap(footprint, eaves, false, Surface::Roof);
   // Pitched roofs: faces rising from the eaves (a gable's upright triangle counts as wall).
   for (const geom::Face3& f : roof_faces) {
-    std::vector<Mesh::VertexHandle> face;
+    std::vector<JoinedMesh::VertexHandle> face;
     for (const geom::Vec3& v : f) face.push_back(mesh.vertex(v[0], v[1], v[2] + floor));
     mesh.add(face, is_gable(f) ? Surface::Wall : Surface::Roof);
   }

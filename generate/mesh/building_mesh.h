@@ -1,22 +1,55 @@
-// Building meshes (OpenMesh, double precision): a footprint extruded to its height, with
-// walls, a flat roof and a ground face kept as separate surface classes.
+// Building meshes, double precision: a footprint extruded to its height, with walls, a flat
+// roof and a ground face kept as separate surface classes. Built with OpenMesh (which joins
+// faces at their shared edges and refuses a face that cannot join) and kept compact.
 #pragma once
 
-#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <cstdint>
+#include <span>
+#include <vector>
 
 #include "generate/city/surface.h"
 #include "generate/placement/buildings.h"
 
 namespace exacity {
 
-struct MeshTraits : OpenMesh::DefaultTraits {
-  using Point = OpenMesh::Vec3d;  // city coordinates need doubles
-  using Normal = OpenMesh::Vec3d;
+// A structure's mesh as the exports and the renderer read it: its points by index, and its
+// faces in the order they were made, each its corners (indices into `points`, in the face's
+// order) and its surface. Compact, since the 3D export holds every structure's at once
+// (OpenMesh's halfedge structure of the 10 km city's meshes was about 900 MiB).
+class Mesh {
+ public:
+  struct Face {
+    Surface surface;
+    std::span<const std::uint32_t> corners;
+  };
+  class FaceIterator {
+   public:
+    explicit FaceIterator(const std::uint32_t* at) : at_(at) {}
+    Face operator*() const { return {static_cast<Surface>(at_[1]), {at_ + 2, at_[0]}}; }
+    FaceIterator& operator++() { at_ += 2 + at_[0]; return *this; }
+    bool operator==(const FaceIterator& other) const { return at_ == other.at_; }
+
+   private:
+    const std::uint32_t* at_;
+  };
+  struct Faces {
+    const std::vector<std::uint32_t>& list;
+    FaceIterator begin() const { return FaceIterator(list.data()); }
+    FaceIterator end() const { return FaceIterator(list.data() + list.size()); }
+  };
+
+  std::vector<Vec3> points;
+  Faces faces() const { return {faces_}; }
+  std::size_t face_count() const;
+  void add_face(Surface s, std::span<const std::uint32_t> corners);
+  // Gives back the lists' spare capacity.
+  void shrink();
+
+ private:
+  std::vector<std::uint32_t> faces_;  // each face: its corner count, its surface, its corners
 };
-using Mesh = OpenMesh::PolyMesh_ArrayKernelT<MeshTraits>;
 
-
-// Meshes are z up, each face carrying a Surface in the mesh's "surface" face property.
+// Meshes are z up, each face with its Surface.
 // An extruded building's is closed and outward-facing, its walls reaching down to the
 // terrain's lowest point under it.
 // One with building:parts is their prisms, each closed on its own, and not its outline's.
@@ -38,8 +71,5 @@ struct MeshTriangles {
   std::vector<Surface> surface;
 };
 MeshTriangles mesh_triangles(const Mesh& mesh);
-
-// The face property that says which surface a face belongs to.
-OpenMesh::FPropHandleT<int> surface_property(const Mesh& mesh);
 
 }  // namespace exacity
