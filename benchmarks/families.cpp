@@ -355,6 +355,51 @@ json edges_in_a_band(Random& rng, int index, double& level, bool crossing) {
   return features;
 }
 
+// The band families' widths, per variant: a third of a step of the grid the snapped builds
+// round to (2^-24 m) in the first, of the grid build's 1e-6 m in the second.
+double third_of_a_step(int index, int steps) { return variant_of(index, steps, 2) == 0 ? 2e-8 : 3e-7; }
+
+P along(P from, P u, P n, double a, double b) { return {from.x + a * u.x + b * n.x, from.y + a * u.y + b * n.y}; }
+
+// 12. 1 to 12 square zones nested in each other, each a third of a grid step inside the last
+// (2e-8 m in the first variant, 3e-7 m in the second), turned 0.15 to 0.6 rad off the axes
+// and drawn in order over a background zone, each over the last, so every ring nearly
+// touches the next all round, and a main road across. Level: how many rings are nested.
+json nested_rings(Random& rng, int index, double& level) {
+  const int steps = 12, n = 1 + step_of(index, steps);
+  const double gap = third_of_a_step(index, steps);
+  level = n;
+  const double t = rng.uniform(0.15, 0.6), half = rng.uniform(120, 160);
+  const P c{rng.uniform(280, 320), rng.uniform(190, 230)}, u{std::cos(t), std::sin(t)}, v{-u.y, u.x};
+  static const char* const kinds[] = {"park", "commercial", "industrial"};
+  json features = json::array({zone("residential", {rect(0, 0, 600, 420)})});
+  for (int k = 0; k < n; ++k) {
+    const double s = half - k * gap;
+    features.push_back(zone(kinds[k % 3], {{along(c, u, v, -s, -s), along(c, u, v, s, -s), along(c, u, v, s, s), along(c, u, v, -s, s)}}));
+  }
+  features.push_back(road("main", 10, {{rng.uniform(200, 300), -50}, {rng.uniform(300, 400), 450}}));
+  return features;
+}
+
+// 13. 1 to 12 zones side by side, each a third of a grid step wide (2e-8 m in the first
+// variant, 3e-7 m in the second) and 400 m long, along a line 0.15 to 0.6 rad off the axes,
+// over a background zone: slivers stacked, neighbours sharing their long edges, and a main
+// road across. Level: how many slivers are stacked.
+json sliver_stack(Random& rng, int index, double& level) {
+  const int steps = 12, n = 1 + step_of(index, steps);
+  const double w = third_of_a_step(index, steps);
+  level = n;
+  const double t = rng.uniform(0.15, 0.6);
+  const P from{rng.uniform(80, 120), rng.uniform(40, 80)}, u{std::cos(t), std::sin(t)}, v{-u.y, u.x};
+  static const char* const kinds[] = {"park", "commercial", "industrial"};
+  json features = json::array({zone("residential", {rect(0, 0, 600, 420)})});
+  for (int k = 0; k < n; ++k)
+    features.push_back(zone(kinds[k % 3], {{along(from, u, v, 0, k * w), along(from, u, v, 400, k * w),
+                                            along(from, u, v, 400, (k + 1) * w), along(from, u, v, 0, (k + 1) * w)}}));
+  features.push_back(road("main", 10, {{rng.uniform(200, 300), -50}, {rng.uniform(300, 400), 450}}));
+  return features;
+}
+
 using Maker = json (*)(Random&, int, double& level);
 struct Entry {
   Family family;
@@ -388,6 +433,10 @@ const std::vector<Entry>& entries() {
        [](Random& rng, int index, double& level) { return edges_in_a_band(rng, index, level, true); }},
       {{"parallel-edges", "1 to 12 parallel zone edges in a band 3e-7 or 5e-6 m wide", "edges in the band"},
        [](Random& rng, int index, double& level) { return edges_in_a_band(rng, index, level, false); }},
+      {{"nested-rings", "1 to 12 slanted square zones nested each a third of a grid step inside the last", "rings nested"},
+       nested_rings},
+      {{"sliver-stack", "1 to 12 slanted zones a third of a grid step wide, side by side", "slivers stacked"},
+       sliver_stack},
       {{"random", "small random cities (the control)", "0 (the control)"},
        [](Random& rng, int, double&) { return random_city(rng, {0, 0}); }},
   };

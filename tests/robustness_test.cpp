@@ -24,7 +24,7 @@
 using namespace exacity::bench;
 
 TEST(RobustnessFamilies, SameSeedSameSketchesOtherSeedOthers) {
-  ASSERT_EQ(families().size(), 12u);
+  ASSERT_EQ(families().size(), 14u);
   for (const Family& f : families()) {
     SCOPED_TRACE(f.name);
     for (int i = 0; i < 4; ++i) {
@@ -109,6 +109,30 @@ TEST(RobustnessFamilies, TheBandFamiliesEdgesRunInTheirBand) {
           EXPECT_NEAR(e[1] - first[1], e[3] - first[3], 1e-12) << k;
         }
       }
+    }
+}
+
+// The stacked families: case i holds 1 + i % 12 zones over the background, each a third of
+// a grid step (2e-8 m in the first 12 cases, 3e-7 m in the next) from the last: nested
+// squares whose corners move in by that much on each axis of the square, or slivers that wide.
+TEST(RobustnessFamilies, TheStackedFamiliesStepAThirdOfAGridStep) {
+  for (const char* family : {"nested-rings", "sliver-stack"})
+    for (int i : {0, 5, 11, 12, 23}) {
+      SCOPED_TRACE(std::string(family) + " " + std::to_string(i));
+      const FamilyCase c = family_case(family, i, 7);
+      EXPECT_DOUBLE_EQ(c.level, 1 + i % 12);
+      const auto sketch = nlohmann::json::parse(c.sketch);
+      std::vector<std::array<double, 2>> first_corners;
+      for (const auto& f : sketch["features"])
+        if (f["properties"].contains("zone") && f["properties"]["zone"] != "residential") {
+          const auto& p = f["geometry"]["coordinates"][0][0];
+          first_corners.push_back({p[0].get<double>(), p[1].get<double>()});
+        }
+      ASSERT_EQ(first_corners.size(), static_cast<std::size_t>(1 + i % 12));
+      const double step = (i < 12 ? 2e-8 : 3e-7) * (std::string(family) == "nested-rings" ? std::sqrt(2.0) : 1.0);
+      for (std::size_t k = 1; k < first_corners.size(); ++k)
+        EXPECT_NEAR(std::hypot(first_corners[k][0] - first_corners[k - 1][0], first_corners[k][1] - first_corners[k - 1][1]),
+                    step, 1e-12) << k;
     }
 }
 
