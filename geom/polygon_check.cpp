@@ -66,12 +66,22 @@ bool ring_is_simple(const Ring& ring) {
 
 int point_side(const Ring& ring, Vec2 p) {
   if (ring.size() < 3) return -1;
-  const auto pts = points(ring);
-  switch (CGAL::bounded_side_2(pts.begin(), pts.end(), K::Point_2(p.x, p.y), K())) {
-    case CGAL::ON_BOUNDED_SIDE: return 1;
-    case CGAL::ON_BOUNDARY: return 0;
-    default: return -1;
+  // The crossing rule on exact orientations, as CGAL::bounded_side_2 decides it, without
+  // copying the ring into CGAL's points: validation asks this of every clutter point
+  // against every area near it, and of every vertex its proofs look at.
+  const K::Point_2 q(p.x, p.y);
+  bool inside = false;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Vec2 u = ring[i], v = ring[(i + 1) % ring.size()];
+    const CGAL::Orientation o = CGAL::orientation(K::Point_2(u.x, u.y), K::Point_2(v.x, v.y), q);
+    if (o == CGAL::COLLINEAR && std::min(u.x, v.x) <= p.x && p.x <= std::max(u.x, v.x) && std::min(u.y, v.y) <= p.y &&
+        p.y <= std::max(u.y, v.y))
+      return 0;
+    // An edge across the horizontal line through p (its lower end on or below it) crosses
+    // it right of p when p lies left of the edge going up, right of it going down.
+    if ((u.y <= p.y) != (v.y <= p.y) && (v.y > u.y) == (o == CGAL::LEFT_TURN)) inside = !inside;
   }
+  return inside ? 1 : -1;
 }
 
 int point_side(const Polygon& polygon, Vec2 p) {

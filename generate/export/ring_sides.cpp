@@ -5,6 +5,8 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
+#include "geom/polygon_check.h"
+
 namespace exacity {
 namespace {
 
@@ -32,20 +34,7 @@ class Region {
   explicit Region(const Ring& a) : a_(a) {}
 
   // +1 inside, 0 on the boundary, -1 outside.
-  int side(Vec2 p) const {
-    int winding = 0;
-    for (std::size_t i = 0; i < a_.size(); ++i) {
-      const Vec2 u = a_[i], v = a_[(i + 1) % a_.size()];
-      if (in_box(u, v, p) && orient(u, v, p) == 0) return 0;
-      // Sunday's crossing rule: exact, as p lies on no edge.
-      if (u.y <= p.y) {
-        if (v.y > p.y && orient(u, v, p) > 0) ++winding;
-      } else if (v.y <= p.y && orient(u, v, p) < 0) {
-        --winding;
-      }
-    }
-    return winding != 0 ? 1 : -1;
-  }
+  int side(Vec2 p) const { return geom::point_side(a_, p); }
 
   // The side of the piece x-y (no vertex of a inside it, no edge of a crossing it), where
   // x lies on the boundary and y is not x.
@@ -155,8 +144,6 @@ bool ring_in_polygon(const Ring& ring, const geom::Polygon& polygon) {
   }
   return true;
 }
-
-int ring_side(const Ring& ring, Vec2 p) { return ring.size() < 3 ? -1 : Region(ring).side(p); }
 
 bool segments_run_along(Vec2 a0, Vec2 a1, Vec2 b0, Vec2 b1) {
   if (orient(a0, a1, b0) != 0 || orient(a0, a1, b1) != 0) return false;

@@ -27,10 +27,6 @@ bool ring_in_polygon(const geom::Ring& ring, const geom::Polygon& polygon);
 // common (touching along edges or at points is apart).
 bool interiors_apart(const geom::Ring& a, const geom::Ring& b);
 
-// Where p lies against the simple ring: +1 inside, 0 on it, -1 outside (geom::point_side's
-// answer, without making CGAL points of the ring).
-int ring_side(const geom::Ring& ring, geom::Vec2 p);
-
 // Whether the segments a0-a1 and b0-b1 (neither a point) run along each other for a positive length.
 bool segments_run_along(geom::Vec2 a0, geom::Vec2 a1, geom::Vec2 b0, geom::Vec2 b1);
 

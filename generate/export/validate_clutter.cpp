@@ -1,6 +1,5 @@
 #include "generate/export/validate_clutter.h"
 
-#include <algorithm>
 #include <cmath>
 #include <unordered_map>
 #include <unordered_set>
@@ -8,8 +7,8 @@
 
 #include "generate/cancel.h"
 #include "generate/export/read_lines.h"
-#include "generate/export/ring_sides.h"
 #include "generate/placement/model_library.h"
+#include "geom/polygon_check.h"
 
 namespace exacity {
 namespace {
@@ -61,16 +60,6 @@ class AreaCells {
   std::unordered_map<std::int64_t, std::vector<int>> cells_;
   std::vector<std::pair<std::int64_t, std::int64_t>> held_;  // the cells holding points
 };
-
-// Where p lies against the polygon of simple rings: +1 inside, 0 on an edge, -1 outside.
-int point_side(const geom::Polygon& polygon, geom::Vec2 p) {
-  int side = ring_side(polygon.outer, p);
-  for (const geom::Ring& hole : polygon.holes) {
-    if (side <= 0) break;
-    side = std::min(side, -ring_side(hole, p));
-  }
-  return side;
-}
 
 geom::Box box_of(const geom::Polygon& polygon) {
   geom::Box b = geom::Box::none();
@@ -170,7 +159,7 @@ void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers
     for (int a : cells.at(p)) {
       const geom::Box& box = areas[a].box;
       if (p.x < box.min_x || p.x > box.max_x || p.y < box.min_y || p.y > box.max_y) continue;  // outside: no verdict
-      const int side = point_side(*areas[a].polygon, p);
+      const int side = geom::point_side(*areas[a].polygon, p);
       if (areas[a].park) {
         if (park_tree)
           stands |= side > 0;
