@@ -12,6 +12,7 @@
 #include <memory>
 #include <mutex>
 #include <tuple>
+#include <unordered_map>
 #include <vector>
 
 #include <CGAL/Arr_curve_data_traits_2.h>
@@ -216,7 +217,11 @@ struct PlanarMap::Impl {
   mutable std::atomic<const EdgeGrid*> ready_grid{nullptr};
 
   const EdgeGrid& edge_grid() const;
-  // Called before the edges change (never while label_at runs).
+  // Each vertex traced so far (cells, dissolve) rounded to doubles, by vertex, until the
+  // edges change; tracings of one map lock it, one at a time.
+  mutable std::mutex rounded_mutex;
+  mutable std::unordered_map<const void*, Vec2> rounded;
+  // Called before the edges change (never while label_at, cells or dissolve runs).
   void edges_change();
   std::vector<Curve> pending;
   std::vector<std::vector<Curve>> within;  // per region, for insert_within()

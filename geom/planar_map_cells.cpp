@@ -119,10 +119,14 @@ void trace_components(const Arrangement& arr, GroupOf group_of, Emit emit) {
   });
 }
 
-// Each vertex's to_plain, kept by vertex while the map is unchanged (one tracing): the
-// loops traced share most of their vertices, and rounding an exact one is costly.
+// Each vertex's to_plain, kept by vertex while the map's edges are unchanged: the loops
+// traced share most of their vertices, and rounding an exact one is costly. A PlanarMap's
+// own are kept across its tracings (PlanarMap::Impl::rounded), which the lots and ground
+// stages repeat after each relabelling; a small arrangement's, for one tracing.
 class RoundedVertices {
  public:
+  RoundedVertices() : rounded_(own_) {}
+  explicit RoundedVertices(std::unordered_map<const void*, Vec2>& kept) : rounded_(kept) {}
   Vec2 operator()(const Halfedge& h) {
     const auto [at, added] = rounded_.try_emplace(&*h->source());
     if (added) at->second = to_plain(h->source()->point());
@@ -130,7 +134,8 @@ class RoundedVertices {
   }
 
  private:
-  std::unordered_map<const void*, Vec2> rounded_;
+  std::unordered_map<const void*, Vec2> own_;
+  std::unordered_map<const void*, Vec2>& rounded_;
 };
 
 Ring plain_ring(const std::vector<Halfedge>& loop, RoundedVertices& rounded) {
@@ -170,7 +175,8 @@ void PlanarMap::relabel_components(const std::vector<int>& group_of_label, const
 std::vector<std::vector<Dissolved>> PlanarMap::dissolve(const std::vector<int>& group_of_label,
                                                         int group_count) const {
   std::vector<std::vector<Dissolved>> result(group_count);
-  RoundedVertices rounded;
+  const std::lock_guard lock(impl_->rounded_mutex);
+  RoundedVertices rounded(impl_->rounded);
   trace_components(impl_->arr, impl_->group_function(group_of_label),
                    [&](int g, const std::vector<LoopPolygon>& polygons, const std::vector<int>& neighbours) {
                      for (const LoopPolygon& lp : polygons) {
@@ -190,7 +196,8 @@ std::vector<Cell> PlanarMap::cells(const std::vector<int>& group_of_label, const
     return l >= 0 && l < static_cast<int>(kind_of_label.size()) ? kind_of_label[l] : 0;
   };
   int component = 0;
-  RoundedVertices rounded;
+  const std::lock_guard lock(impl_->rounded_mutex);
+  RoundedVertices rounded(impl_->rounded);
   trace_components(impl_->arr, impl_->group_function(group_of_label),
                    [&](int g, const std::vector<LoopPolygon>& polygons, const std::vector<int>&) {
                      add_cells(polygons, kind_of, rounded, cells);

@@ -245,6 +245,8 @@ const EdgeGrid& PlanarMap::Impl::edge_grid() const {
 void PlanarMap::Impl::edges_change() {
   ready_grid.store(nullptr);
   grid.reset();
+  // A vertex removed frees its address for another.
+  std::unordered_map<const void*, Vec2>().swap(rounded);
 }
 
 int PlanarMap::label_at(Vec2 point) const {

@@ -203,6 +203,49 @@ TEST(Rounding, ASliverThatRoundsToASpikeLeavesTheCellAsWritten) {
   EXPECT_EQ(rings[0].kinds, std::vector<int>(rings[0].points.size(), 0));  // the square's own edges are left
 }
 
+TEST(Rounding, AMapTracedBeforeABatchTracesAfterItAsOneNeverTraced) {
+  // A map keeps its vertices' roundings across tracings (cells, dissolve) until its edges
+  // change; a tracing after a later batch and snap rounding must round the vertices the map
+  // has then, as a map built the same way and traced once does.
+  auto add_first = [](geom::PlanarMap& map) {
+    map.add_ring({{0, 0}, {10, 0.1}, {10.3, 10}, {0.2, 9.7}}, 0);
+    map.add_ring({{5.1, -3}, {13, 4.3}, {6.7, 12.9}}, 1);
+  };
+  auto add_second = [](geom::PlanarMap& map) { map.add_ring({{-2, 4.9}, {14.1, 3.3}, {12, 6.1}, {-1.3, 7.7}}, 2); };
+  auto label = [](geom::PlanarMap& map) {
+    map.label_faces([](const geom::Windings& w) { return geom::winding_of(w, 0) == 0 ? -1 : geom::winding_of(w, 1) == 0 ? 0 : 1; });
+  };
+  auto traced = [](const geom::PlanarMap& map) {  // every ring, outer then holes
+    std::vector<Ring> out;
+    auto add = [&](const Polygon& p) {
+      out.push_back(p.outer);
+      out.insert(out.end(), p.holes.begin(), p.holes.end());
+    };
+    for (const geom::Cell& c : map.cells({0, 1}, {0, 0})) add(c.to_plain());
+    for (const auto& group : map.dissolve({0, 0}, 1))
+      for (const geom::Dissolved& d : group) add(d.polygon);
+    return out;
+  };
+  geom::PlanarMap twice, once;
+  add_first(twice);
+  twice.insert_batch();
+  label(twice);
+  const std::vector<Ring> before = traced(twice);
+  add_second(twice);
+  twice.insert_batch();
+  twice.snap_round();
+  label(twice);
+  add_first(once);
+  once.insert_batch();
+  add_second(once);
+  once.insert_batch();
+  once.snap_round();
+  label(once);
+  const std::vector<Ring> after = traced(twice);
+  EXPECT_NE(after, before);  // the second ring cut the faces: new vertices, off the grid
+  EXPECT_EQ(after, traced(once));
+}
+
 TEST(Untangle, RingsWithoutRepeatsComeBackUnchanged) {
   const Ring outer{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, hole{{2, 2}, {2, 8}, {8, 8}, {8, 2}};
   auto out = geom::untangle({outer, hole});
