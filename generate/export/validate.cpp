@@ -60,6 +60,9 @@ struct PolygonRef {
   int block = -1;    // for lots: the block it names
   int lot = -1;      // for lots: their id; for buildings: the lot they stand on
   const nlohmann::ordered_json* properties = nullptr;  // for buildings: their slabs, if nested
+  // For zones: the block of the same rings was proven and left out of the map, so the zone
+  // counts as holding its block (prove_blocks).
+  bool block_left_out = false;
 };
 
 std::string near(geom::Vec2 p) { return " near (" + format_number(p.x) + ", " + format_number(p.y) + ")"; }
@@ -172,9 +175,12 @@ class FaceLabels {
  public:
   // With `drawn`, the zoning map's; else a tile of the polygons' map, whose faces are
   // checked only inside every ring of `inside_of` (the tile's outline, and the window's).
+  // With both `drawn` and `polygon_checks`, the zoning map's faces get every check: the
+  // polygons' first, then the sketch's.
   FaceLabels(const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs, const DrawnZones* drawn, int polygons,
-             std::vector<int> inside_of = {})
-      : sketch_(sketch), refs_(refs), drawn_(drawn), polygons_(polygons), inside_of_(std::move(inside_of)) {}
+             std::vector<int> inside_of = {}, bool polygon_checks = false)
+      : sketch_(sketch), refs_(refs), drawn_(drawn), polygons_(polygons), inside_of_(std::move(inside_of)),
+        polygon_checks_(polygon_checks || !drawn) {}
 
   int of(const geom::Windings& windings) {
     cancel_.check();
@@ -184,9 +190,11 @@ class FaceLabels {
     inside_.clear();
     if (int label = ring_windings(w, inside_)) return label;
     const FaceCover here(refs_, inside_, by_kind_);
-    if (drawn_) return against_sketch(here, w);
-    if (int label = overlaps(here)) return label;
-    return nesting(here);
+    if (polygon_checks_) {
+      if (int label = overlaps(here)) return label;
+      if (int label = nesting(here)) return label;
+    }
+    return drawn_ ? against_sketch(here, w) : 0;
   }
 
   std::vector<std::string> messages{""};
@@ -227,11 +235,11 @@ class FaceLabels {
         (w[i].first % 2 == 0 ? outer : holes) = w[i].second;
       // The zoning map's rings are checked in the polygons' map: a ring wound wrong is not in the face.
       if (outer != 0 && outer != 1) {
-        if (drawn_) continue;
+        if (!polygon_checks_) continue;
         return wrong(refs_[p].name + ": outer ring winds " + std::to_string(outer) + " times");
       }
       if (holes != 0 && (holes != -1 || outer != 1)) {
-        if (drawn_) continue;
+        if (!polygon_checks_) continue;
         return wrong(refs_[p].name + ": holes overlap or leave the outer ring");
       }
       if (outer == 1 && holes == 0) inside.push_back(p);
@@ -244,7 +252,9 @@ class FaceLabels {
     if (here.count(kBlocking) > 1) return wrong(here.names(kBlocking) + " overlap");
     if (here.count({Kind::Bridge}) > 1) return wrong("two bridges overlap");
     if (here.count({Kind::Bridge}) == 1 && here.count({Kind::Water}) == 0) return wrong("a bridge lies outside the water");
-    if (here.count({Kind::Zone}) != here.count({Kind::Block}))
+    std::size_t zones = 0;  // those whose block is in the map
+    for (int z : here.all(Kind::Zone)) zones += !refs_[z].block_left_out;
+    if (zones != here.count({Kind::Block}))
       return wrong((here.count({Kind::Zone}) ? here.names({Kind::Zone}) + " holds no block"
                                              : here.names({Kind::Block}) + " lies outside the zones"));
     return 0;
@@ -308,6 +318,7 @@ class FaceLabels {
   const DrawnZones* drawn_;
   const int polygons_;
   const std::vector<int> inside_of_;
+  const bool polygon_checks_;
   const int stand_ins_ = drawn_ ? INT_MAX : 2 * polygons_ + kStandIns;  // the zoning map's counters from 2P on are the drawn zones
   geom::Windings merged_;  // with_stand_ins' buffer
   const CancelCheck cancel_;
@@ -405,27 +416,6 @@ void add_polygon_rings(geom::PlanarMap& map, const std::vector<const geom::Polyg
   }
 }
 
-// The zoning polygons and the drawn zones in one exact map, each face labelled with what
-// is wrong there against the sketch; rounding slivers are measured here.
-void check_zoning(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
-                  const std::vector<const geom::Polygon*>& polygons) {
-  const geom::SharedEndsByOrientation shared_ends;  // every end is a written double
-  MapPolygons zoning;
-  for (std::size_t p = 0; p < refs.size(); ++p)
-    if (refs[p].kind == Kind::Zone || refs[p].kind == Kind::Park || refs[p].kind == Kind::Water ||
-        refs[p].kind == Kind::Road || refs[p].kind == Kind::Bridge)
-      zoning.add(refs[p], polygons[p]);
-  geom::PlanarMap map;
-  const int P = static_cast<int>(zoning.polygons.size());
-  add_polygon_rings(map, zoning.polygons);
-  DrawnZones drawn(sketch.zones, map, 2 * P);
-  map.insert_batch();
-  FaceLabels labels(sketch, zoning.refs, &drawn, P);
-  map.label_faces([&](const geom::Windings& w) { return labels.of(w); });
-  report_face_problems(map, labels, c.v_.widest_sliver,
-                       [&](const std::string& m, const std::string& at) { c.problem(m + at); });
-}
-
 // What one tile of the polygons' map found.
 struct TileFindings {
   std::vector<std::pair<std::string, std::string>> face_problems;  // each message once, and where
@@ -458,6 +448,43 @@ void check_shared_edges(const geom::PlanarMap& map, const std::vector<PolygonRef
         if (own[j]->counter / 2 == p) found.shared_rings.push_back({p, a});
     }
   });
+}
+
+bool is_zoning(Kind k) { return k == Kind::Zone || k == Kind::Park || k == Kind::Water || k == Kind::Road || k == Kind::Bridge; }
+
+// The zoning polygons and the drawn zones in one exact map, each face labelled with what
+// is wrong there against the sketch; rounding slivers are measured here. With `rest`, the
+// polygons the polygons' map would hold (those of `rest`: the zoning polygons and the few
+// blocks, lots and buildings not proven without it) are all in this map, and its faces
+// and edges get that map's checks too, before the sketch's; returns whether they found anything.
+bool check_zoning(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
+                  const std::vector<const geom::Polygon*>& polygons, const std::vector<char>* rest = nullptr) {
+  const geom::SharedEndsByOrientation shared_ends;  // every end is a written double
+  const bool polygon_checks = rest != nullptr;
+  MapPolygons zoning;
+  for (std::size_t p = 0; p < refs.size(); ++p)
+    if (is_zoning(refs[p].kind) || (rest && (*rest)[p])) zoning.add(refs[p], polygons[p]);
+  geom::PlanarMap map;
+  const int P = static_cast<int>(zoning.polygons.size());
+  add_polygon_rings(map, zoning.polygons);
+  DrawnZones drawn(sketch.zones, map, 2 * P);
+  map.insert_batch();
+  FaceLabels labels(sketch, zoning.refs, &drawn, P, {}, polygon_checks);
+  map.label_faces([&](const geom::Windings& w) { return labels.of(w); });
+  bool polygon_problems = false;
+  if (polygon_checks) {
+    for (std::size_t m = 1; m < labels.messages.size(); ++m) polygon_problems |= !labels.sketch_checks[m];
+    TileFindings found;
+    check_shared_edges(map, zoning.refs, found);
+    polygon_problems |= !found.shared_rings.empty();
+    std::vector<char> fronts(P, 0);
+    for (int p : found.fronting) fronts[p] = 1;
+    for (int p = 0; p < P; ++p) polygon_problems |= zoning.refs[p].kind == Kind::Lot && !fronts[p];
+    if (polygon_problems) return true;  // the caller checks every map again
+  }
+  report_face_problems(map, labels, c.v_.widest_sliver,
+                       [&](const std::string& m, const std::string& at) { c.problem(m + at); });
+  return false;
 }
 
 // A polygon's rings: ring 0 its outer ring, ring h + 1 its hole h.
@@ -661,6 +688,59 @@ std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const 
   return proven;
 }
 
+// Whether two rings are the same: the same vertices in the same order, from any start.
+bool same_ring(const geom::Ring& a, const geom::Ring& b) {
+  if (a.size() != b.size()) return false;
+  if (a.empty()) return true;
+  const auto start = std::find(b.begin(), b.end(), a[0]);
+  if (start == b.end()) return false;
+  const std::size_t k = static_cast<std::size_t>(start - b.begin());
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (!(a[i] == b[(k + i) % b.size()])) return false;
+  return true;
+}
+
+// Blocks the polygons' map need not hold, as zone z holds block b (zone_of_block[b] = z):
+// the block's rings are one zone's, that zone is the one zone and the block the one block
+// with them, the block's zone is that zone's (or the block is green), and every lot that
+// names the block is proven without the map. The zone stays in the map and checks for its
+// block: overlaps with other zones, parks, water and road areas, the windings of its rings
+// and shared edges; other blocks in the map lie in zones it counts (block_left_out), so a
+// block over it is found; lots in the map name blocks in it.
+void prove_blocks(const std::vector<PolygonRef>& refs, const std::vector<const geom::Polygon*>& polygons,
+                  std::vector<char>& proven, std::vector<int>& zone_of_block) {
+  const std::size_t P = refs.size();
+  zone_of_block.assign(P, -1);
+  // Rings by their lowest vertex: the same ring has it whatever its start.
+  auto lowest = [](const geom::Ring& r) {
+    return *std::min_element(r.begin(), r.end(), [](geom::Vec2 a, geom::Vec2 b) { return std::tie(a.x, a.y) < std::tie(b.x, b.y); });
+  };
+  auto same_polygon = [&](std::size_t a, std::size_t b) {
+    const geom::Polygon &x = *polygons[a], &y = *polygons[b];
+    if (!same_ring(x.outer, y.outer) || x.holes.size() != y.holes.size()) return false;
+    for (std::size_t h = 0; h < x.holes.size(); ++h)
+      if (!same_ring(x.holes[h], y.holes[h])) return false;
+    return true;
+  };
+  std::unordered_map<geom::Vec2, std::vector<int>, geom::Vec2Hash> at;  // zones and blocks by their outer ring's lowest vertex
+  std::unordered_set<int> unproven_lots_of;  // blocks named by a lot not proven
+  for (std::size_t p = 0; p < P; ++p) {
+    if ((refs[p].kind == Kind::Zone || refs[p].kind == Kind::Block) && !polygons[p]->outer.empty())
+      at[lowest(polygons[p]->outer)].push_back(static_cast<int>(p));
+    if (refs[p].kind == Kind::Lot && !proven[p]) unproven_lots_of.insert(refs[p].block);
+  }
+  for (const auto& [vertex, here] : at) {
+    for (int b : here) {
+      if (refs[b].kind != Kind::Block || unproven_lots_of.count(refs[b].id)) continue;
+      int zone = -1, same = 0;  // the zone of the same rings, and how many zones and blocks have them
+      for (int o : here)
+        if (same_polygon(b, o)) ++same, zone = refs[o].kind == Kind::Zone ? o : zone;
+      if (same != 2 || zone < 0 || (!refs[b].green && refs[b].zone != refs[zone].zone)) continue;
+      proven[b] = 1, zone_of_block[b] = zone;
+    }
+  }
+}
+
 // The polygons' map, tile by tile at once (docs/design.md, Validation by tiles): each face
 // inside the window (every face without one) labelled with what is wrong there; then the
 // map's edges. Every lot shares an edge with a road area. `held` says which polygons the
@@ -690,43 +770,29 @@ void check_polygons_held(Checker& c, const DrawnFeatures& sketch, const std::vec
 
 // The polygons' map of the whole city, or of a window: `in_window` says which polygons it
 // holds (all without a window), and `fronting` which further road areas it needs for the
-// lots' frontage. Of a whole city, first without the lots and buildings proven to pass
-// (proven_without_map): when that map finds nothing, neither would the whole one; when it
-// finds something, the whole map is checked, so its problems are those of the whole map.
+// lots' frontage.
 void check_polygon_map(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
                        const std::vector<const geom::Polygon*>& polygons, const Grid& grid, double tile_side,
-                       MapProofs proofs, const Window* window, const std::vector<char>& in_window,
-                       const std::vector<char>& fronting) {
+                       const Window* window, const std::vector<char>& in_window, const std::vector<char>& fronting) {
   const std::size_t P = refs.size();
   std::vector<char> held(P, 1);
   if (window)
     for (std::size_t p = 0; p < P; ++p) held[p] = in_window[p] || fronting[p];
-  std::vector<char> checked = window ? in_window : held;  // a road area added for frontage has no lot's verdict
-  if (!window && proofs == MapProofs::First) {
-    const std::vector<char> proven = proven_without_map(refs, polygons);
-    if (std::find(proven.begin(), proven.end(), 1) != proven.end()) {
-      std::vector<char> rest(P);
-      for (std::size_t p = 0; p < P; ++p) rest[p] = !proven[p];
-      Validation without;
-      Checker w(without);
-      check_polygons_held(w, sketch, refs, polygons, grid, tile_side, window, rest, rest);
-      if (without.ok()) return;
-    }
-  }
+  const std::vector<char> checked = window ? in_window : held;  // a road area added for frontage has no lot's verdict
   check_polygons_held(c, sketch, refs, polygons, grid, tile_side, window, held, checked);
 }
 
 // The polygons' map and the zoning map share nothing: they run at once, the polygons'
 // problems taken first.
-void check_tiling(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
-                  const std::vector<const geom::Polygon*>& polygons, const Grid& grid, double tile_side,
-                  MapProofs proofs, const Window* window = nullptr, const std::vector<char>& in_window = {},
-                  const std::vector<char>& fronting = {}) {
+void check_both_maps(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
+                     const std::vector<const geom::Polygon*>& polygons, const Grid& grid, double tile_side,
+                     const Window* window = nullptr, const std::vector<char>& in_window = {},
+                     const std::vector<char>& fronting = {}) {
   Validation polygon_map, zoning;
   invoke_cancellable(
       [&] {
         Checker p(polygon_map);
-        check_polygon_map(p, sketch, refs, polygons, grid, tile_side, proofs, window, in_window, fronting);
+        check_polygon_map(p, sketch, refs, polygons, grid, tile_side, window, in_window, fronting);
       },
       [&] {
         Checker z(zoning);
@@ -736,6 +802,67 @@ void check_tiling(Checker& c, const DrawnFeatures& sketch, const std::vector<Pol
     for (const std::string& p : part->problems) c.problem(p);
     c.v_.widest_sliver = std::max(c.v_.widest_sliver, part->widest_sliver);
   }
+}
+
+// Of a whole city, the maps first without the blocks, lots and buildings proven to pass
+// (proven_without_map, prove_blocks): the polygons' map of the rest beside the zoning map,
+// or, when the rest is the zoning polygons, the zoning map alone with both maps' checks.
+// When the maps without them find nothing, neither would the whole ones; when they find
+// something, the whole maps are checked, so the problems are those of the whole maps.
+void check_tiling(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
+                  const std::vector<const geom::Polygon*>& polygons, const Grid& grid, double tile_side,
+                  MapProofs proofs, const Window* window = nullptr, const std::vector<char>& in_window = {},
+                  const std::vector<char>& fronting = {}) {
+  if (window || proofs == MapProofs::None) return check_both_maps(c, sketch, refs, polygons, grid, tile_side, window, in_window, fronting);
+  const std::size_t P = refs.size();
+  std::vector<char> proven = proven_without_map(refs, polygons);
+  std::vector<int> zone_of_block;
+  prove_blocks(refs, polygons, proven, zone_of_block);
+  if (std::find(proven.begin(), proven.end(), 1) == proven.end()) return check_both_maps(c, sketch, refs, polygons, grid, tile_side);
+  std::vector<PolygonRef> marked = refs;  // the zones whose blocks are left out say so
+  std::vector<char> rest(P);
+  double rest_vertices = 0;  // of the blocks, lots and buildings left
+  for (std::size_t p = 0; p < P; ++p) {
+    if (zone_of_block[p] >= 0) marked[zone_of_block[p]].block_left_out = true;
+    rest[p] = !proven[p];
+    if (rest[p] && !is_zoning(refs[p].kind)) {
+      rest_vertices += static_cast<double>(polygons[p]->outer.size());
+      for (const geom::Ring& h : polygons[p]->holes) rest_vertices += static_cast<double>(h.size());
+    }
+  }
+  // No more of them than a tile holds: the zoning map, a map of the whole city, holds them too.
+  const bool zoning_only = rest_vertices <= kVerticesPerTile;
+  if (zoning_only) {
+    Validation both;
+    Checker b(both);
+    if (!check_zoning(b, sketch, marked, polygons, &rest)) {
+      for (const std::string& p : both.problems) c.problem(p);
+      c.v_.widest_sliver = std::max(c.v_.widest_sliver, both.widest_sliver);
+      return;
+    }
+  } else {
+    Validation without, zoning;
+    invoke_cancellable(
+        [&] {
+          Checker w(without);
+          check_polygons_held(w, sketch, marked, polygons, grid, tile_side, nullptr, rest, rest);
+        },
+        [&] {
+          Checker z(zoning);
+          check_zoning(z, sketch, refs, polygons);
+        });
+    Validation whole;  // the polygons' map of everything, when the rest's found anything
+    if (!without.ok()) {
+      Checker w(whole);
+      check_polygon_map(w, sketch, refs, polygons, grid, tile_side, nullptr, {}, {});
+    }
+    for (const Validation* part : {&whole, &zoning}) {
+      for (const std::string& p : part->problems) c.problem(p);
+      c.v_.widest_sliver = std::max(c.v_.widest_sliver, part->widest_sliver);
+    }
+    return;
+  }
+  check_both_maps(c, sketch, refs, polygons, grid, tile_side);
 }
 
 // The centre lines are a noded network: two of them meet only at a vertex of both. Every
