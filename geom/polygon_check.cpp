@@ -82,6 +82,7 @@ int point_side(const Ring& ring, Vec2 p) {
       if ((u.y <= p.y) != (v.y <= p.y)) inside = !inside;
       continue;
     }
+    if (p == u) return 0;  // a vertex, as validation's proofs ask of shared ones: no predicate
     const CGAL::Orientation o = CGAL::orientation(K::Point_2(u.x, u.y), K::Point_2(v.x, v.y), q);
     if (o == CGAL::COLLINEAR) return 0;  // on the line and in the edge's box: on the edge
     // An edge across the horizontal line through p (its lower end on or below it) crosses
