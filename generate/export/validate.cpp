@@ -601,13 +601,12 @@ TileFindings check_tile(const DrawnFeatures& sketch, const std::vector<PolygonRe
 // in its block. A building, not mapped: no holes, in the closed region of the lot it
 // names, and where its interior meets another building's (one on the same lot or a mapped
 // one: those on other lots lie apart with their lots), nested as the map would ask.
-std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const std::vector<const geom::Polygon*>& polygons) {
+std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const std::vector<const geom::Polygon*>& polygons,
+                                     const std::vector<geom::Box>& boxes) {
   const std::size_t P = refs.size();
   std::vector<char> proven(P, 0);
   std::unordered_map<int, int> block_at, lot_at;  // id -> polygon
-  std::vector<geom::Box> boxes(P, geom::Box::none());
   for (std::size_t p = 0; p < P; ++p) {
-    for (geom::Vec2 q : polygons[p]->outer) boxes[p].add(q);
     if (refs[p].kind == Kind::Block) block_at.emplace(refs[p].id, static_cast<int>(p));
     if (refs[p].kind == Kind::Lot) lot_at.emplace(refs[p].id, static_cast<int>(p));
   }
@@ -810,12 +809,12 @@ void check_both_maps(Checker& c, const DrawnFeatures& sketch, const std::vector<
 // When the maps without them find nothing, neither would the whole ones; when they find
 // something, the whole maps are checked, so the problems are those of the whole maps.
 void check_tiling(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
-                  const std::vector<const geom::Polygon*>& polygons, const Grid& grid, double tile_side,
-                  MapProofs proofs, const Window* window = nullptr, const std::vector<char>& in_window = {},
+                  const std::vector<const geom::Polygon*>& polygons, const std::vector<geom::Box>& boxes, const Grid& grid,
+                  double tile_side, MapProofs proofs, const Window* window = nullptr, const std::vector<char>& in_window = {},
                   const std::vector<char>& fronting = {}) {
   if (window || proofs == MapProofs::None) return check_both_maps(c, sketch, refs, polygons, grid, tile_side, window, in_window, fronting);
   const std::size_t P = refs.size();
-  std::vector<char> proven = proven_without_map(refs, polygons);
+  std::vector<char> proven = proven_without_map(refs, polygons, boxes);
   std::vector<int> zone_of_block;
   prove_blocks(refs, polygons, proven, zone_of_block);
   if (std::find(proven.begin(), proven.end(), 1) == proven.end()) return check_both_maps(c, sketch, refs, polygons, grid, tile_side);
@@ -1012,16 +1011,15 @@ std::string polygon_key(const PolygonRef& ref, const geom::Polygon& polygon) {
   return key;
 }
 
-ValidatedPolygons polygons_of(const std::vector<PolygonRef>& refs, const std::vector<const geom::Polygon*>& polygons) {
+ValidatedPolygons polygons_of(const std::vector<PolygonRef>& refs, const std::vector<const geom::Polygon*>& polygons,
+                              const std::vector<geom::Box>& boxes) {
   ValidatedPolygons out;
   for (std::size_t p = 0; p < refs.size(); ++p) {
     out.keys.push_back(polygon_key(refs[p], *polygons[p]));
     out.ids.push_back(refs[p].id);
     out.names.push_back(refs[p].kind == Kind::Lot ? refs[p].block : refs[p].kind == Kind::Building ? refs[p].lot : -1);
-    geom::Box box = geom::Box::none();
-    for (geom::Vec2 q : polygons[p]->outer) box.add(q);
-    out.boxes.push_back(box);
   }
+  out.boxes = boxes;
   return out;
 }
 
@@ -1172,25 +1170,25 @@ Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* las
   invoke_cancellable(
       [&] {
         Checker t(tiling);
-        std::vector<geom::Box> boxes;  // of the outer rings
+        std::vector<geom::Box> boxes;  // of the outer rings: for the grid, the proofs and the window, made once
         for (const geom::Polygon* polygon : polygons) {
           geom::Box b = geom::Box::none();
           for (geom::Vec2 q : polygon->outer) b.add(q);
           boxes.push_back(b);
         }
         const Grid grid = grid_of(boxes);
-        if (!last) return check_tiling(t, sketch, refs, polygons, grid, tile_side, proofs);
-        now = std::make_shared<ValidatedPolygons>(polygons_of(refs, polygons));
-        if (!previous) return check_tiling(t, sketch, refs, polygons, grid, tile_side, proofs);
+        if (!last) return check_tiling(t, sketch, refs, polygons, boxes, grid, tile_side, proofs);
+        now = std::make_shared<ValidatedPolygons>(polygons_of(refs, polygons, boxes));
+        if (!previous) return check_tiling(t, sketch, refs, polygons, boxes, grid, tile_side, proofs);
         // Within the window of what changed (docs/design.md, Regions and regenerating); a
         // problem there is looked for again in the whole city, whose check states it.
         const Window window = window_of(changed_boxes(*previous, *now, refs), grid);
         std::vector<char> in_window, fronting;
         window_polygons(window, *now, refs, in_window, fronting);
-        check_tiling(t, sketch, refs, polygons, grid, tile_side, proofs, &window, in_window, fronting);
+        check_tiling(t, sketch, refs, polygons, boxes, grid, tile_side, proofs, &window, in_window, fronting);
         if (tiling.ok()) return;
         tiling = {};
-        check_tiling(t, sketch, refs, polygons, grid, tile_side, proofs);
+        check_tiling(t, sketch, refs, polygons, boxes, grid, tile_side, proofs);
       },
       [&] {
         Checker r(road_checks);
