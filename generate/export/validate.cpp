@@ -615,26 +615,31 @@ std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const 
     box.add(a), box.add(b);
     return box;
   };
-  std::vector<std::pair<geom::Vec2, geom::Vec2>> road_edges;  // every ring's of road areas and bridges
-  geom::BoxIndex road_index(16.0);
-  for (std::size_t p = 0; p < P; ++p) {
-    if (refs[p].kind != Kind::Road && refs[p].kind != Kind::Bridge) continue;
-    for (int r = 0; r <= static_cast<int>(polygons[p]->holes.size()); ++r) {
-      const geom::Ring& ring = ring_of(*polygons[p], r);
-      for (std::size_t i = 0; i < ring.size(); ++i) {
-        road_index.add(static_cast<int>(road_edges.size()), edge_box(ring[i], ring[(i + 1) % ring.size()]));
-        road_edges.push_back({ring[i], ring[(i + 1) % ring.size()]});
+  // Frontage: a lot's edge that is a road area's or bridge's edge, both ends the same
+  // (every lot of the 10 km city has one), else one running along such an edge, looked up
+  // in an index of those edges made only for the lots that need it.
+  struct SegmentHash {
+    std::size_t operator()(const geom::SegmentKey& k) const {
+      return geom::Vec2Hash()({k.first.first, k.first.second}) * 31 ^ geom::Vec2Hash()({k.second.first, k.second.second});
+    }
+  };
+  std::unordered_set<geom::SegmentKey, SegmentHash> road_edges;  // every ring's of road areas and bridges
+  auto for_each_road_edge = [&](auto&& f) {
+    for (std::size_t p = 0; p < P; ++p) {
+      if (refs[p].kind != Kind::Road && refs[p].kind != Kind::Bridge) continue;
+      for (int r = 0; r <= static_cast<int>(polygons[p]->holes.size()); ++r) {
+        const geom::Ring& ring = ring_of(*polygons[p], r);
+        for (std::size_t i = 0; i < ring.size(); ++i) f(ring[i], ring[(i + 1) % ring.size()]);
       }
     }
-  }
-  auto fronts_a_road = [&](const geom::Ring& ring) {
-    for (std::size_t i = 0; i < ring.size(); ++i) {
-      const geom::Vec2 a = ring[i], b = ring[(i + 1) % ring.size()];
-      for (int e : road_index.meeting(edge_box(a, b)))
-        if (segments_run_along(a, b, road_edges[e].first, road_edges[e].second)) return true;
-    }
+  };
+  for_each_road_edge([&](geom::Vec2 a, geom::Vec2 b) { road_edges.insert(geom::segment_key(a, b)); });
+  auto has_road_edge = [&](const geom::Ring& ring) {
+    for (std::size_t i = 0; i < ring.size(); ++i)
+      if (road_edges.count(geom::segment_key(ring[i], ring[(i + 1) % ring.size()]))) return true;
     return false;
   };
+  std::vector<char> along_only(P, 0);  // lots proven but for an edge along a road area's
   // Each lot and building on its own, at once.
   for_each_cancellable(P, [&](std::size_t p) {
     const PolygonRef& ref = refs[p];
@@ -642,13 +647,31 @@ std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const 
     if (!polygon.holes.empty()) return;
     if (ref.kind == Kind::Lot) {
       const auto block = block_at.find(ref.block);
-      proven[p] = block != block_at.end() && ring_in_polygon(polygon.outer, *polygons[block->second]) &&
-                  fronts_a_road(polygon.outer);
+      if (block == block_at.end() || !ring_in_polygon(polygon.outer, *polygons[block->second])) return;
+      proven[p] = has_road_edge(polygon.outer);
+      along_only[p] = !proven[p];
     } else if (ref.kind == Kind::Building && !ref.properties->value("mapped", false)) {
       const auto lot = lot_at.find(ref.lot);
       proven[p] = lot != lot_at.end() && ring_in_polygon(polygon.outer, *polygons[lot->second]);
     }
   });
+  if (std::find(along_only.begin(), along_only.end(), 1) != along_only.end()) {
+    std::vector<std::pair<geom::Vec2, geom::Vec2>> edges;
+    geom::BoxIndex index(16.0);
+    for_each_road_edge([&](geom::Vec2 a, geom::Vec2 b) {
+      index.add(static_cast<int>(edges.size()), edge_box(a, b));
+      edges.push_back({a, b});
+    });
+    for_each_cancellable(P, [&](std::size_t p) {
+      if (!along_only[p]) return;
+      const geom::Ring& ring = polygons[p]->outer;
+      for (std::size_t i = 0; i < ring.size() && !proven[p]; ++i) {
+        const geom::Vec2 a = ring[i], b = ring[(i + 1) % ring.size()];
+        for (int e : index.meeting(edge_box(a, b)))
+          if (segments_run_along(a, b, edges[e].first, edges[e].second)) proven[p] = 1;
+      }
+    });
+  }
   // Then the pairs whose boxes meet, each once: lots of one block, buildings on one lot or
   // mapped (as the map takes them, the first in polygon order first).
   std::unordered_map<int, std::vector<int>> by_block, by_lot;  // lots by their block, unmapped buildings by their lot
