@@ -4,6 +4,11 @@
 
 #include "geom/polygon_check.h"
 
+#include <random>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_2_algorithms.h>
+
 namespace geom {
 namespace {
 
@@ -28,6 +33,34 @@ TEST(PointSide, AHoleIsOutsideItsPolygonAndItsEdgeOnTheBoundary) {
   EXPECT_EQ(point_side(frame, {5, 5}), -1);
   EXPECT_EQ(point_side(frame, {3, 5}), 0);
   EXPECT_EQ(point_side(frame, {11, 5}), -1);
+}
+
+// point_side skips, by comparing coordinates, the edges whose box does not hold the point:
+// the same answers as CGAL::bounded_side_2 on random simple rings of a small grid (shared
+// heights, upright and level edges, points on vertices and edges), and off it by a hair.
+TEST(PointSide, AnswersAsCgalsBoundedSideOnRandomRings) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  std::mt19937 random(37);
+  std::uniform_int_distribution<int> coordinate(0, 6), corners(3, 7);
+  int rings = 0;
+  while (rings < 300) {
+    Ring ring;
+    const int n = corners(random);
+    for (int k = 0; k < n; ++k) ring.push_back({static_cast<double>(coordinate(random)), static_cast<double>(coordinate(random))});
+    if (!ring_is_simple(ring)) continue;
+    ++rings;
+    std::vector<K::Point_2> points;
+    for (Vec2 v : ring) points.emplace_back(v.x, v.y);
+    for (int i = -1; i <= 13; ++i)
+      for (int j = -1; j <= 13; ++j)
+        for (double hair : {0.0, 1e-300, -1e-15}) {
+          const Vec2 p{i / 2.0 + hair, j / 2.0 - hair};
+          const CGAL::Bounded_side side = CGAL::bounded_side_2(points.begin(), points.end(), K::Point_2(p.x, p.y), K());
+          const int expected = side == CGAL::ON_BOUNDARY ? 0 : side == CGAL::ON_BOUNDED_SIDE ? 1 : -1;
+          // bounded_side_2 counts the region of a clockwise ring as bounded too.
+          ASSERT_EQ(point_side(ring, p), expected) << "ring " << rings << " point (" << p.x << ", " << p.y << ")";
+        }
+  }
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -160,15 +161,25 @@ TEST_F(Checkers, CityJsonContentChecksRefuseAnOpenSolidABadIndexAndAMissingTempl
   }
 }
 
-// exacity's own validation proves lots and buildings sound before it builds the map of
-// every polygon, and leaves them out of it (docs/design.md, Validation by tiles: proofs).
-// Layers broken one way each: the proofs fail, the map without what they proved finds the
-// problem, and the problems stated are those of the whole map, word for word.
+// exacity's own validation proves blocks, lots and buildings sound before it builds the map
+// of every polygon, and leaves them out of it (docs/design.md, Validation by tiles: proofs);
+// what is left is mapped with the zoning map. Layers broken one way each: the proofs fail,
+// the map without what they proved finds the problem, and the problems stated are those of
+// the whole maps, word for word.
 TEST_F(Checkers, ValidationsProofsFallBackToTheWholeMapsMessages) {
   using exacity::MapProofs;
   const fs::path good = copy("proofs-good");
   EXPECT_TRUE(exacity::validate_output(good, 0, MapProofs::First).ok());
   EXPECT_TRUE(exacity::validate_output(good, 0, MapProofs::None).ok());
+  // A block's ring written from another vertex is still its zone's: proven, and valid.
+  const fs::path rotated = copy("proofs-rotated");
+  edit_json(rotated / "vector" / "blocks.geojson", [](json& doc) {
+    json& ring = doc["features"][0]["geometry"]["coordinates"][0];
+    ring.erase(ring.size() - 1);
+    std::rotate(ring.begin(), ring.begin() + 1, ring.end());
+    ring.push_back(ring[0]);
+  });
+  EXPECT_TRUE(exacity::validate_output(rotated, 0, MapProofs::First).ok());
 
   // The outer ring of feature i, closed as written.
   auto ring_of = [](json& doc, std::size_t i = 0) -> json& { return doc["features"][i]["geometry"]["coordinates"][0]; };
@@ -221,6 +232,43 @@ TEST_F(Checkers, ValidationsProofsFallBackToTheWholeMapsMessages) {
       // A building carried off its lot, and one laid over another.
       {"building-off", "buildings", "leaves its lot", [&](json& doc) { shift(ring_of(doc), 30, 0); }},
       {"building-twice", "buildings", " overlap",
+       [&](json& doc) {
+         json twin = doc["features"][0];
+         twin["properties"]["id"] = 999999;
+         doc["features"].push_back(twin);
+       }},
+      // A block that says another zone than the zone of its rings: a block is proven only
+      // with the zone's type.
+      {"block-zone", "blocks", "says \"commercial\" inside",
+       [&](json& doc) { doc["features"][0]["properties"]["zone"] = "commercial"; }},
+      // A block laid twice, and a zone: a block is proven only as the one block of the one
+      // zone with its rings.
+      {"block-twice", "blocks", " overlap",
+       [&](json& doc) {
+         json twin = doc["features"][0];
+         twin["properties"]["id"] = 999999;
+         doc["features"].push_back(twin);
+       }},
+      {"zone-twice", "zones", " overlap",
+       [&](json& doc) {
+         json twin = doc["features"][0];
+         twin["properties"]["id"] = 999999;
+         doc["features"].push_back(twin);
+       }},
+      // A block's corner moved a nanometre in: a gap in its zone that no block covers, so
+      // the rings are compared exactly.
+      {"block-sliver", "blocks", "holds no block",
+       [&](json& doc) {
+         json& ring = ring_of(doc);
+         double cx = 0, cy = 0;
+         for (std::size_t k = 0; k + 1 < ring.size(); ++k) cx += ring[k][0].get<double>(), cy += ring[k][1].get<double>();
+         cx /= static_cast<double>(ring.size() - 1), cy /= static_cast<double>(ring.size() - 1);
+         const double x = ring[0][0].get<double>(), y = ring[0][1].get<double>(), d = std::hypot(cx - x, cy - y);
+         ring[0] = ring.back() = {x + 1e-9 * (cx - x) / d, y + 1e-9 * (cy - y) / d};
+       }},
+      // A road area laid twice: the zoning map, holding what the proofs left, checks the
+      // polygons too.
+      {"road-twice", "road_areas", " overlap",
        [&](json& doc) {
          json twin = doc["features"][0];
          twin["properties"]["id"] = 999999;

@@ -60,6 +60,9 @@ struct PolygonRef {
   int block = -1;    // for lots: the block it names
   int lot = -1;      // for lots: their id; for buildings: the lot they stand on
   const nlohmann::ordered_json* properties = nullptr;  // for buildings: their slabs, if nested
+  // For zones: the block of the same rings was proven and left out of the map, so the zone
+  // counts as holding its block (prove_blocks).
+  bool block_left_out = false;
 };
 
 std::string near(geom::Vec2 p) { return " near (" + format_number(p.x) + ", " + format_number(p.y) + ")"; }
@@ -172,9 +175,12 @@ class FaceLabels {
  public:
   // With `drawn`, the zoning map's; else a tile of the polygons' map, whose faces are
   // checked only inside every ring of `inside_of` (the tile's outline, and the window's).
+  // With both `drawn` and `polygon_checks`, the zoning map's faces get every check: the
+  // polygons' first, then the sketch's.
   FaceLabels(const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs, const DrawnZones* drawn, int polygons,
-             std::vector<int> inside_of = {})
-      : sketch_(sketch), refs_(refs), drawn_(drawn), polygons_(polygons), inside_of_(std::move(inside_of)) {}
+             std::vector<int> inside_of = {}, bool polygon_checks = false)
+      : sketch_(sketch), refs_(refs), drawn_(drawn), polygons_(polygons), inside_of_(std::move(inside_of)),
+        polygon_checks_(polygon_checks || !drawn) {}
 
   int of(const geom::Windings& windings) {
     cancel_.check();
@@ -184,9 +190,11 @@ class FaceLabels {
     inside_.clear();
     if (int label = ring_windings(w, inside_)) return label;
     const FaceCover here(refs_, inside_, by_kind_);
-    if (drawn_) return against_sketch(here, w);
-    if (int label = overlaps(here)) return label;
-    return nesting(here);
+    if (polygon_checks_) {
+      if (int label = overlaps(here)) return label;
+      if (int label = nesting(here)) return label;
+    }
+    return drawn_ ? against_sketch(here, w) : 0;
   }
 
   std::vector<std::string> messages{""};
@@ -227,11 +235,11 @@ class FaceLabels {
         (w[i].first % 2 == 0 ? outer : holes) = w[i].second;
       // The zoning map's rings are checked in the polygons' map: a ring wound wrong is not in the face.
       if (outer != 0 && outer != 1) {
-        if (drawn_) continue;
+        if (!polygon_checks_) continue;
         return wrong(refs_[p].name + ": outer ring winds " + std::to_string(outer) + " times");
       }
       if (holes != 0 && (holes != -1 || outer != 1)) {
-        if (drawn_) continue;
+        if (!polygon_checks_) continue;
         return wrong(refs_[p].name + ": holes overlap or leave the outer ring");
       }
       if (outer == 1 && holes == 0) inside.push_back(p);
@@ -244,7 +252,9 @@ class FaceLabels {
     if (here.count(kBlocking) > 1) return wrong(here.names(kBlocking) + " overlap");
     if (here.count({Kind::Bridge}) > 1) return wrong("two bridges overlap");
     if (here.count({Kind::Bridge}) == 1 && here.count({Kind::Water}) == 0) return wrong("a bridge lies outside the water");
-    if (here.count({Kind::Zone}) != here.count({Kind::Block}))
+    std::size_t zones = 0;  // those whose block is in the map
+    for (int z : here.all(Kind::Zone)) zones += !refs_[z].block_left_out;
+    if (zones != here.count({Kind::Block}))
       return wrong((here.count({Kind::Zone}) ? here.names({Kind::Zone}) + " holds no block"
                                              : here.names({Kind::Block}) + " lies outside the zones"));
     return 0;
@@ -308,6 +318,7 @@ class FaceLabels {
   const DrawnZones* drawn_;
   const int polygons_;
   const std::vector<int> inside_of_;
+  const bool polygon_checks_;
   const int stand_ins_ = drawn_ ? INT_MAX : 2 * polygons_ + kStandIns;  // the zoning map's counters from 2P on are the drawn zones
   geom::Windings merged_;  // with_stand_ins' buffer
   const CancelCheck cancel_;
@@ -405,27 +416,6 @@ void add_polygon_rings(geom::PlanarMap& map, const std::vector<const geom::Polyg
   }
 }
 
-// The zoning polygons and the drawn zones in one exact map, each face labelled with what
-// is wrong there against the sketch; rounding slivers are measured here.
-void check_zoning(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
-                  const std::vector<const geom::Polygon*>& polygons) {
-  const geom::SharedEndsByOrientation shared_ends;  // every end is a written double
-  MapPolygons zoning;
-  for (std::size_t p = 0; p < refs.size(); ++p)
-    if (refs[p].kind == Kind::Zone || refs[p].kind == Kind::Park || refs[p].kind == Kind::Water ||
-        refs[p].kind == Kind::Road || refs[p].kind == Kind::Bridge)
-      zoning.add(refs[p], polygons[p]);
-  geom::PlanarMap map;
-  const int P = static_cast<int>(zoning.polygons.size());
-  add_polygon_rings(map, zoning.polygons);
-  DrawnZones drawn(sketch.zones, map, 2 * P);
-  map.insert_batch();
-  FaceLabels labels(sketch, zoning.refs, &drawn, P);
-  map.label_faces([&](const geom::Windings& w) { return labels.of(w); });
-  report_face_problems(map, labels, c.v_.widest_sliver,
-                       [&](const std::string& m, const std::string& at) { c.problem(m + at); });
-}
-
 // What one tile of the polygons' map found.
 struct TileFindings {
   std::vector<std::pair<std::string, std::string>> face_problems;  // each message once, and where
@@ -458,6 +448,43 @@ void check_shared_edges(const geom::PlanarMap& map, const std::vector<PolygonRef
         if (own[j]->counter / 2 == p) found.shared_rings.push_back({p, a});
     }
   });
+}
+
+bool is_zoning(Kind k) { return k == Kind::Zone || k == Kind::Park || k == Kind::Water || k == Kind::Road || k == Kind::Bridge; }
+
+// The zoning polygons and the drawn zones in one exact map, each face labelled with what
+// is wrong there against the sketch; rounding slivers are measured here. With `rest`, the
+// polygons the polygons' map would hold (those of `rest`: the zoning polygons and the few
+// blocks, lots and buildings not proven without it) are all in this map, and its faces
+// and edges get that map's checks too, before the sketch's; returns whether they found anything.
+bool check_zoning(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
+                  const std::vector<const geom::Polygon*>& polygons, const std::vector<char>* rest = nullptr) {
+  const geom::SharedEndsByOrientation shared_ends;  // every end is a written double
+  const bool polygon_checks = rest != nullptr;
+  MapPolygons zoning;
+  for (std::size_t p = 0; p < refs.size(); ++p)
+    if (is_zoning(refs[p].kind) || (rest && (*rest)[p])) zoning.add(refs[p], polygons[p]);
+  geom::PlanarMap map;
+  const int P = static_cast<int>(zoning.polygons.size());
+  add_polygon_rings(map, zoning.polygons);
+  DrawnZones drawn(sketch.zones, map, 2 * P);
+  map.insert_batch();
+  FaceLabels labels(sketch, zoning.refs, &drawn, P, {}, polygon_checks);
+  map.label_faces([&](const geom::Windings& w) { return labels.of(w); });
+  bool polygon_problems = false;
+  if (polygon_checks) {
+    for (std::size_t m = 1; m < labels.messages.size(); ++m) polygon_problems |= !labels.sketch_checks[m];
+    TileFindings found;
+    check_shared_edges(map, zoning.refs, found);
+    polygon_problems |= !found.shared_rings.empty();
+    std::vector<char> fronts(P, 0);
+    for (int p : found.fronting) fronts[p] = 1;
+    for (int p = 0; p < P; ++p) polygon_problems |= zoning.refs[p].kind == Kind::Lot && !fronts[p];
+    if (polygon_problems) return true;  // the caller checks every map again
+  }
+  report_face_problems(map, labels, c.v_.widest_sliver,
+                       [&](const std::string& m, const std::string& at) { c.problem(m + at); });
+  return false;
 }
 
 // A polygon's rings: ring 0 its outer ring, ring h + 1 its hole h.
@@ -574,13 +601,12 @@ TileFindings check_tile(const DrawnFeatures& sketch, const std::vector<PolygonRe
 // in its block. A building, not mapped: no holes, in the closed region of the lot it
 // names, and where its interior meets another building's (one on the same lot or a mapped
 // one: those on other lots lie apart with their lots), nested as the map would ask.
-std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const std::vector<const geom::Polygon*>& polygons) {
+std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const std::vector<const geom::Polygon*>& polygons,
+                                     const std::vector<geom::Box>& boxes) {
   const std::size_t P = refs.size();
   std::vector<char> proven(P, 0);
   std::unordered_map<int, int> block_at, lot_at;  // id -> polygon
-  std::vector<geom::Box> boxes(P, geom::Box::none());
   for (std::size_t p = 0; p < P; ++p) {
-    for (geom::Vec2 q : polygons[p]->outer) boxes[p].add(q);
     if (refs[p].kind == Kind::Block) block_at.emplace(refs[p].id, static_cast<int>(p));
     if (refs[p].kind == Kind::Lot) lot_at.emplace(refs[p].id, static_cast<int>(p));
   }
@@ -589,26 +615,31 @@ std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const 
     box.add(a), box.add(b);
     return box;
   };
-  std::vector<std::pair<geom::Vec2, geom::Vec2>> road_edges;  // every ring's of road areas and bridges
-  geom::BoxIndex road_index(16.0);
-  for (std::size_t p = 0; p < P; ++p) {
-    if (refs[p].kind != Kind::Road && refs[p].kind != Kind::Bridge) continue;
-    for (int r = 0; r <= static_cast<int>(polygons[p]->holes.size()); ++r) {
-      const geom::Ring& ring = ring_of(*polygons[p], r);
-      for (std::size_t i = 0; i < ring.size(); ++i) {
-        road_index.add(static_cast<int>(road_edges.size()), edge_box(ring[i], ring[(i + 1) % ring.size()]));
-        road_edges.push_back({ring[i], ring[(i + 1) % ring.size()]});
+  // Frontage: a lot's edge that is a road area's or bridge's edge, both ends the same
+  // (every lot of the 10 km city has one), else one running along such an edge, looked up
+  // in an index of those edges made only for the lots that need it.
+  struct SegmentHash {
+    std::size_t operator()(const geom::SegmentKey& k) const {
+      return geom::Vec2Hash()({k.first.first, k.first.second}) * 31 ^ geom::Vec2Hash()({k.second.first, k.second.second});
+    }
+  };
+  std::unordered_set<geom::SegmentKey, SegmentHash> road_edges;  // every ring's of road areas and bridges
+  auto for_each_road_edge = [&](auto&& f) {
+    for (std::size_t p = 0; p < P; ++p) {
+      if (refs[p].kind != Kind::Road && refs[p].kind != Kind::Bridge) continue;
+      for (int r = 0; r <= static_cast<int>(polygons[p]->holes.size()); ++r) {
+        const geom::Ring& ring = ring_of(*polygons[p], r);
+        for (std::size_t i = 0; i < ring.size(); ++i) f(ring[i], ring[(i + 1) % ring.size()]);
       }
     }
-  }
-  auto fronts_a_road = [&](const geom::Ring& ring) {
-    for (std::size_t i = 0; i < ring.size(); ++i) {
-      const geom::Vec2 a = ring[i], b = ring[(i + 1) % ring.size()];
-      for (int e : road_index.meeting(edge_box(a, b)))
-        if (segments_run_along(a, b, road_edges[e].first, road_edges[e].second)) return true;
-    }
+  };
+  for_each_road_edge([&](geom::Vec2 a, geom::Vec2 b) { road_edges.insert(geom::segment_key(a, b)); });
+  auto has_road_edge = [&](const geom::Ring& ring) {
+    for (std::size_t i = 0; i < ring.size(); ++i)
+      if (road_edges.count(geom::segment_key(ring[i], ring[(i + 1) % ring.size()]))) return true;
     return false;
   };
+  std::vector<char> along_only(P, 0);  // lots proven but for an edge along a road area's
   // Each lot and building on its own, at once.
   for_each_cancellable(P, [&](std::size_t p) {
     const PolygonRef& ref = refs[p];
@@ -616,13 +647,31 @@ std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const 
     if (!polygon.holes.empty()) return;
     if (ref.kind == Kind::Lot) {
       const auto block = block_at.find(ref.block);
-      proven[p] = block != block_at.end() && ring_in_polygon(polygon.outer, *polygons[block->second]) &&
-                  fronts_a_road(polygon.outer);
+      if (block == block_at.end() || !ring_in_polygon(polygon.outer, *polygons[block->second])) return;
+      proven[p] = has_road_edge(polygon.outer);
+      along_only[p] = !proven[p];
     } else if (ref.kind == Kind::Building && !ref.properties->value("mapped", false)) {
       const auto lot = lot_at.find(ref.lot);
       proven[p] = lot != lot_at.end() && ring_in_polygon(polygon.outer, *polygons[lot->second]);
     }
   });
+  if (std::find(along_only.begin(), along_only.end(), 1) != along_only.end()) {
+    std::vector<std::pair<geom::Vec2, geom::Vec2>> edges;
+    geom::BoxIndex index(16.0);
+    for_each_road_edge([&](geom::Vec2 a, geom::Vec2 b) {
+      index.add(static_cast<int>(edges.size()), edge_box(a, b));
+      edges.push_back({a, b});
+    });
+    for_each_cancellable(P, [&](std::size_t p) {
+      if (!along_only[p]) return;
+      const geom::Ring& ring = polygons[p]->outer;
+      for (std::size_t i = 0; i < ring.size() && !proven[p]; ++i) {
+        const geom::Vec2 a = ring[i], b = ring[(i + 1) % ring.size()];
+        for (int e : index.meeting(edge_box(a, b)))
+          if (segments_run_along(a, b, edges[e].first, edges[e].second)) proven[p] = 1;
+      }
+    });
+  }
   // Then the pairs whose boxes meet, each once: lots of one block, buildings on one lot or
   // mapped (as the map takes them, the first in polygon order first).
   std::unordered_map<int, std::vector<int>> by_block, by_lot;  // lots by their block, unmapped buildings by their lot
@@ -661,6 +710,59 @@ std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const 
   return proven;
 }
 
+// Whether two rings are the same: the same vertices in the same order, from any start.
+bool same_ring(const geom::Ring& a, const geom::Ring& b) {
+  if (a.size() != b.size()) return false;
+  if (a.empty()) return true;
+  const auto start = std::find(b.begin(), b.end(), a[0]);
+  if (start == b.end()) return false;
+  const std::size_t k = static_cast<std::size_t>(start - b.begin());
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (!(a[i] == b[(k + i) % b.size()])) return false;
+  return true;
+}
+
+// Blocks the polygons' map need not hold, as zone z holds block b (zone_of_block[b] = z):
+// the block's rings are one zone's, that zone is the one zone and the block the one block
+// with them, the block's zone is that zone's (or the block is green), and every lot that
+// names the block is proven without the map. The zone stays in the map and checks for its
+// block: overlaps with other zones, parks, water and road areas, the windings of its rings
+// and shared edges; other blocks in the map lie in zones it counts (block_left_out), so a
+// block over it is found; lots in the map name blocks in it.
+void prove_blocks(const std::vector<PolygonRef>& refs, const std::vector<const geom::Polygon*>& polygons,
+                  std::vector<char>& proven, std::vector<int>& zone_of_block) {
+  const std::size_t P = refs.size();
+  zone_of_block.assign(P, -1);
+  // Rings by their lowest vertex: the same ring has it whatever its start.
+  auto lowest = [](const geom::Ring& r) {
+    return *std::min_element(r.begin(), r.end(), [](geom::Vec2 a, geom::Vec2 b) { return std::tie(a.x, a.y) < std::tie(b.x, b.y); });
+  };
+  auto same_polygon = [&](std::size_t a, std::size_t b) {
+    const geom::Polygon &x = *polygons[a], &y = *polygons[b];
+    if (!same_ring(x.outer, y.outer) || x.holes.size() != y.holes.size()) return false;
+    for (std::size_t h = 0; h < x.holes.size(); ++h)
+      if (!same_ring(x.holes[h], y.holes[h])) return false;
+    return true;
+  };
+  std::unordered_map<geom::Vec2, std::vector<int>, geom::Vec2Hash> at;  // zones and blocks by their outer ring's lowest vertex
+  std::unordered_set<int> unproven_lots_of;  // blocks named by a lot not proven
+  for (std::size_t p = 0; p < P; ++p) {
+    if ((refs[p].kind == Kind::Zone || refs[p].kind == Kind::Block) && !polygons[p]->outer.empty())
+      at[lowest(polygons[p]->outer)].push_back(static_cast<int>(p));
+    if (refs[p].kind == Kind::Lot && !proven[p]) unproven_lots_of.insert(refs[p].block);
+  }
+  for (const auto& [vertex, here] : at) {
+    for (int b : here) {
+      if (refs[b].kind != Kind::Block || unproven_lots_of.count(refs[b].id)) continue;
+      int zone = -1, same = 0;  // the zone of the same rings, and how many zones and blocks have them
+      for (int o : here)
+        if (same_polygon(b, o)) ++same, zone = refs[o].kind == Kind::Zone ? o : zone;
+      if (same != 2 || zone < 0 || (!refs[b].green && refs[b].zone != refs[zone].zone)) continue;
+      proven[b] = 1, zone_of_block[b] = zone;
+    }
+  }
+}
+
 // The polygons' map, tile by tile at once (docs/design.md, Validation by tiles): each face
 // inside the window (every face without one) labelled with what is wrong there; then the
 // map's edges. Every lot shares an edge with a road area. `held` says which polygons the
@@ -690,43 +792,29 @@ void check_polygons_held(Checker& c, const DrawnFeatures& sketch, const std::vec
 
 // The polygons' map of the whole city, or of a window: `in_window` says which polygons it
 // holds (all without a window), and `fronting` which further road areas it needs for the
-// lots' frontage. Of a whole city, first without the lots and buildings proven to pass
-// (proven_without_map): when that map finds nothing, neither would the whole one; when it
-// finds something, the whole map is checked, so its problems are those of the whole map.
+// lots' frontage.
 void check_polygon_map(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
                        const std::vector<const geom::Polygon*>& polygons, const Grid& grid, double tile_side,
-                       MapProofs proofs, const Window* window, const std::vector<char>& in_window,
-                       const std::vector<char>& fronting) {
+                       const Window* window, const std::vector<char>& in_window, const std::vector<char>& fronting) {
   const std::size_t P = refs.size();
   std::vector<char> held(P, 1);
   if (window)
     for (std::size_t p = 0; p < P; ++p) held[p] = in_window[p] || fronting[p];
-  std::vector<char> checked = window ? in_window : held;  // a road area added for frontage has no lot's verdict
-  if (!window && proofs == MapProofs::First) {
-    const std::vector<char> proven = proven_without_map(refs, polygons);
-    if (std::find(proven.begin(), proven.end(), 1) != proven.end()) {
-      std::vector<char> rest(P);
-      for (std::size_t p = 0; p < P; ++p) rest[p] = !proven[p];
-      Validation without;
-      Checker w(without);
-      check_polygons_held(w, sketch, refs, polygons, grid, tile_side, window, rest, rest);
-      if (without.ok()) return;
-    }
-  }
+  const std::vector<char> checked = window ? in_window : held;  // a road area added for frontage has no lot's verdict
   check_polygons_held(c, sketch, refs, polygons, grid, tile_side, window, held, checked);
 }
 
 // The polygons' map and the zoning map share nothing: they run at once, the polygons'
 // problems taken first.
-void check_tiling(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
-                  const std::vector<const geom::Polygon*>& polygons, const Grid& grid, double tile_side,
-                  MapProofs proofs, const Window* window = nullptr, const std::vector<char>& in_window = {},
-                  const std::vector<char>& fronting = {}) {
+void check_both_maps(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
+                     const std::vector<const geom::Polygon*>& polygons, const Grid& grid, double tile_side,
+                     const Window* window = nullptr, const std::vector<char>& in_window = {},
+                     const std::vector<char>& fronting = {}) {
   Validation polygon_map, zoning;
   invoke_cancellable(
       [&] {
         Checker p(polygon_map);
-        check_polygon_map(p, sketch, refs, polygons, grid, tile_side, proofs, window, in_window, fronting);
+        check_polygon_map(p, sketch, refs, polygons, grid, tile_side, window, in_window, fronting);
       },
       [&] {
         Checker z(zoning);
@@ -736,6 +824,67 @@ void check_tiling(Checker& c, const DrawnFeatures& sketch, const std::vector<Pol
     for (const std::string& p : part->problems) c.problem(p);
     c.v_.widest_sliver = std::max(c.v_.widest_sliver, part->widest_sliver);
   }
+}
+
+// Of a whole city, the maps first without the blocks, lots and buildings proven to pass
+// (proven_without_map, prove_blocks): the polygons' map of the rest beside the zoning map,
+// or, when the rest is the zoning polygons, the zoning map alone with both maps' checks.
+// When the maps without them find nothing, neither would the whole ones; when they find
+// something, the whole maps are checked, so the problems are those of the whole maps.
+void check_tiling(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
+                  const std::vector<const geom::Polygon*>& polygons, const std::vector<geom::Box>& boxes, const Grid& grid,
+                  double tile_side, MapProofs proofs, const Window* window = nullptr, const std::vector<char>& in_window = {},
+                  const std::vector<char>& fronting = {}) {
+  if (window || proofs == MapProofs::None) return check_both_maps(c, sketch, refs, polygons, grid, tile_side, window, in_window, fronting);
+  const std::size_t P = refs.size();
+  std::vector<char> proven = proven_without_map(refs, polygons, boxes);
+  std::vector<int> zone_of_block;
+  prove_blocks(refs, polygons, proven, zone_of_block);
+  if (std::find(proven.begin(), proven.end(), 1) == proven.end()) return check_both_maps(c, sketch, refs, polygons, grid, tile_side);
+  std::vector<PolygonRef> marked = refs;  // the zones whose blocks are left out say so
+  std::vector<char> rest(P);
+  double rest_vertices = 0;  // of the blocks, lots and buildings left
+  for (std::size_t p = 0; p < P; ++p) {
+    if (zone_of_block[p] >= 0) marked[zone_of_block[p]].block_left_out = true;
+    rest[p] = !proven[p];
+    if (rest[p] && !is_zoning(refs[p].kind)) {
+      rest_vertices += static_cast<double>(polygons[p]->outer.size());
+      for (const geom::Ring& h : polygons[p]->holes) rest_vertices += static_cast<double>(h.size());
+    }
+  }
+  // No more of them than a tile holds: the zoning map, a map of the whole city, holds them too.
+  const bool zoning_only = rest_vertices <= kVerticesPerTile;
+  if (zoning_only) {
+    Validation both;
+    Checker b(both);
+    if (!check_zoning(b, sketch, marked, polygons, &rest)) {
+      for (const std::string& p : both.problems) c.problem(p);
+      c.v_.widest_sliver = std::max(c.v_.widest_sliver, both.widest_sliver);
+      return;
+    }
+  } else {
+    Validation without, zoning;
+    invoke_cancellable(
+        [&] {
+          Checker w(without);
+          check_polygons_held(w, sketch, marked, polygons, grid, tile_side, nullptr, rest, rest);
+        },
+        [&] {
+          Checker z(zoning);
+          check_zoning(z, sketch, refs, polygons);
+        });
+    Validation whole;  // the polygons' map of everything, when the rest's found anything
+    if (!without.ok()) {
+      Checker w(whole);
+      check_polygon_map(w, sketch, refs, polygons, grid, tile_side, nullptr, {}, {});
+    }
+    for (const Validation* part : {&whole, &zoning}) {
+      for (const std::string& p : part->problems) c.problem(p);
+      c.v_.widest_sliver = std::max(c.v_.widest_sliver, part->widest_sliver);
+    }
+    return;
+  }
+  check_both_maps(c, sketch, refs, polygons, grid, tile_side);
 }
 
 // The centre lines are a noded network: two of them meet only at a vertex of both. Every
@@ -885,16 +1034,15 @@ std::string polygon_key(const PolygonRef& ref, const geom::Polygon& polygon) {
   return key;
 }
 
-ValidatedPolygons polygons_of(const std::vector<PolygonRef>& refs, const std::vector<const geom::Polygon*>& polygons) {
+ValidatedPolygons polygons_of(const std::vector<PolygonRef>& refs, const std::vector<const geom::Polygon*>& polygons,
+                              const std::vector<geom::Box>& boxes) {
   ValidatedPolygons out;
   for (std::size_t p = 0; p < refs.size(); ++p) {
     out.keys.push_back(polygon_key(refs[p], *polygons[p]));
     out.ids.push_back(refs[p].id);
     out.names.push_back(refs[p].kind == Kind::Lot ? refs[p].block : refs[p].kind == Kind::Building ? refs[p].lot : -1);
-    geom::Box box = geom::Box::none();
-    for (geom::Vec2 q : polygons[p]->outer) box.add(q);
-    out.boxes.push_back(box);
   }
+  out.boxes = boxes;
   return out;
 }
 
@@ -1045,25 +1193,25 @@ Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* las
   invoke_cancellable(
       [&] {
         Checker t(tiling);
-        std::vector<geom::Box> boxes;  // of the outer rings
+        std::vector<geom::Box> boxes;  // of the outer rings: for the grid, the proofs and the window, made once
         for (const geom::Polygon* polygon : polygons) {
           geom::Box b = geom::Box::none();
           for (geom::Vec2 q : polygon->outer) b.add(q);
           boxes.push_back(b);
         }
         const Grid grid = grid_of(boxes);
-        if (!last) return check_tiling(t, sketch, refs, polygons, grid, tile_side, proofs);
-        now = std::make_shared<ValidatedPolygons>(polygons_of(refs, polygons));
-        if (!previous) return check_tiling(t, sketch, refs, polygons, grid, tile_side, proofs);
+        if (!last) return check_tiling(t, sketch, refs, polygons, boxes, grid, tile_side, proofs);
+        now = std::make_shared<ValidatedPolygons>(polygons_of(refs, polygons, boxes));
+        if (!previous) return check_tiling(t, sketch, refs, polygons, boxes, grid, tile_side, proofs);
         // Within the window of what changed (docs/design.md, Regions and regenerating); a
         // problem there is looked for again in the whole city, whose check states it.
         const Window window = window_of(changed_boxes(*previous, *now, refs), grid);
         std::vector<char> in_window, fronting;
         window_polygons(window, *now, refs, in_window, fronting);
-        check_tiling(t, sketch, refs, polygons, grid, tile_side, proofs, &window, in_window, fronting);
+        check_tiling(t, sketch, refs, polygons, boxes, grid, tile_side, proofs, &window, in_window, fronting);
         if (tiling.ok()) return;
         tiling = {};
-        check_tiling(t, sketch, refs, polygons, grid, tile_side, proofs);
+        check_tiling(t, sketch, refs, polygons, boxes, grid, tile_side, proofs);
       },
       [&] {
         Checker r(road_checks);

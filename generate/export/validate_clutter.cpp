@@ -35,9 +35,7 @@ class AreaCells {
     for (geom::Vec2 p : points)
       if (cells_.try_emplace(key(cell(p.x), cell(p.y))).second) held_.push_back({cell(p.x), cell(p.y)});
   }
-  void add(int area, const geom::Polygon& p) {
-    geom::Box b = geom::Box::none();
-    for (geom::Vec2 q : p.outer) b.add(q);
+  void add(int area, const geom::Box& b) {
     const std::int64_t x0 = cell(b.min_x), x1 = cell(b.max_x), y0 = cell(b.min_y), y1 = cell(b.max_y);
     if (static_cast<double>(x1 - x0 + 1) * static_cast<double>(y1 - y0 + 1) <= static_cast<double>(held_.size())) {
       for (auto x = x0; x <= x1; ++x)
@@ -95,9 +93,9 @@ void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers
     for (std::size_t i = 0; i < layer.features.size(); ++i) {
       cancel.check();
       const VectorFeature& f = layer.features[i];
-      cells.add(static_cast<int>(areas.size()), f.polygon);
       areas.push_back({&f.polygon, box_of(f.polygon), layer.name + ".geojson features[" + std::to_string(i) + "]" + what(f),
                        stands_on(f)});
+      cells.add(static_cast<int>(areas.size()) - 1, areas.back().box);
     }
   };
   const auto no_note = [](const VectorFeature&) { return std::string(); };
@@ -118,8 +116,8 @@ void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers
   for (std::size_t i = 0; i < layers.zones.features.size(); ++i) {
     const VectorFeature& f = layers.zones.features[i];
     if (f.properties.value("zone", "") != "park") continue;
-    cells.add(static_cast<int>(areas.size()), f.polygon);
     areas.push_back({&f.polygon, box_of(f.polygon), "zones.geojson features[" + std::to_string(i) + "]", false, true});
+    cells.add(static_cast<int>(areas.size()) - 1, areas.back().box);
   }
   add(
       layers.buildings, [](const VectorFeature&) { return false; }, no_note);
