@@ -20,6 +20,8 @@
 
 namespace geom {
 
+class FaceLocator;  // geom/face_locator.h
+
 struct CurveTag {
   int counter = 0;
   int sign = 0;  // +1: edge of a ring around `counter`; 0: a tagged curve that bounds nothing
@@ -137,6 +139,10 @@ class PlanarMap {
   // call after the edges change indexes them (a grid of squares); later calls only read
   // the index and the map, so threads may call it at once.
   int label_at(Vec2 point) const;
+
+  // label_at's answers without the map, for when it is freed (geom/face_locator.h), with
+  // the faces' labels as they are now.
+  FaceLocator face_locator() const;
 
   // How many polyline edges meet at each vertex where any meet: degree -> vertex count.
   std::map<int, int> polyline_degrees() const;

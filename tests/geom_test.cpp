@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "generate/cancel.h"
+#include "geom/face_locator.h"
 #include "geom/grid.h"
 #include "geom/planar_map.h"
 #include "geom/polygon_check.h"
@@ -602,6 +603,34 @@ TEST(PlanarMap, LabelAtIsExact) {
     for (std::size_t i = 0; i < c.points.size(); ++i)
       ASSERT_EQ(c.map.label_at(c.points[i]), c.expected[i]) << "seed " << seed << ", point " << c.points[i].x << ", " << c.points[i].y;
   }
+}
+
+TEST(FaceLocator, AnswersAsTheMapItWasMadeFrom) {
+  // The clutter asks the locator, once the map is freed, what it asked label_at: the same
+  // face or -1 at every point, on the lattice, at every vertex, straight below and above
+  // each, and at each edge's rounded middle (on the edge or beside it); before snap
+  // rounding (crossings at rational points) and after.
+  for (unsigned seed = 1; seed <= 20; ++seed) {
+    LocateCase c(seed);
+    for (bool rounded : {false, true}) {
+      if (rounded) c.map.snap_round();
+      const geom::FaceLocator faces = c.map.face_locator();
+      std::vector<geom::Vec2> points = c.points;
+      c.map.for_each_edge([&](const std::vector<geom::CurveTag>&, geom::Vec2 a, geom::Vec2 b) {
+        for (geom::Vec2 p : {a, b})
+          points.insert(points.end(), {p, {p.x, p.y - 0.25}, {p.x, p.y + 0.25}, {p.x, std::nextafter(p.y, -1e9)}});
+        points.push_back({(a.x + b.x) / 2, (a.y + b.y) / 2});
+      });
+      int on_edges = 0;
+      for (geom::Vec2 p : points) {
+        const int label = c.map.label_at(p);
+        on_edges += label < 0;
+        ASSERT_EQ(faces.label_at(p), label) << "seed " << seed << (rounded ? ", rounded" : "") << ", point " << p.x << ", " << p.y;
+      }
+      EXPECT_GT(on_edges, 100);
+    }
+  }
+  EXPECT_EQ(geom::FaceLocator().label_at({1, 2}), -1);
 }
 
 TEST(PlanarMap, LabelAtFromManyThreadsAtOnce) {
