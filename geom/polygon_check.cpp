@@ -1,4 +1,5 @@
 #include "geom/polygon_check.h"
+#include "geom/polygon_slabs.h"
 
 #include <algorithm>
 #include <cmath>
@@ -64,32 +65,98 @@ bool ring_is_simple(const Ring& ring) {
   return CGAL::is_simple_2(pts.begin(), pts.end(), K());
 }
 
+namespace {
+
+// point_side's step for the edge u-v: true when p lies on it; else `inside` flips when the
+// edge crosses the horizontal line through p right of p.
+bool on_edge_or_cross(Vec2 u, Vec2 v, Vec2 p, bool& inside) {
+  // An edge whose box leaves p's height holds no p and crosses no line through it; one
+  // wholly left or right of p holds no p either, and its crossing, if any, lies on that
+  // side: the orientation below would say as much, so it is asked only of the edges whose
+  // box holds p (comparisons of written doubles: exact).
+  if (p.y < std::min(u.y, v.y) || p.y > std::max(u.y, v.y) || p.x > std::max(u.x, v.x)) return false;
+  if (p.x < std::min(u.x, v.x)) {
+    if ((u.y <= p.y) != (v.y <= p.y)) inside = !inside;
+    return false;
+  }
+  if (p == u) return true;  // a vertex, as validation's proofs ask of shared ones: no predicate
+  const CGAL::Orientation o = CGAL::orientation(K::Point_2(u.x, u.y), K::Point_2(v.x, v.y), K::Point_2(p.x, p.y));
+  if (o == CGAL::COLLINEAR) return true;  // on the line and in the edge's box: on the edge
+  // An edge across the horizontal line through p (its lower end on or below it) crosses
+  // it right of p when p lies left of the edge going up, right of it going down.
+  if ((u.y <= p.y) != (v.y <= p.y) && (v.y > u.y) == (o == CGAL::LEFT_TURN)) inside = !inside;
+  return false;
+}
+
+}  // namespace
+
 int point_side(const Ring& ring, Vec2 p) {
   if (ring.size() < 3) return -1;
   // The crossing rule on exact orientations, as CGAL::bounded_side_2 decides it, without
   // copying the ring into CGAL's points: validation asks this of every clutter point
   // against every area near it, and of every vertex its proofs look at.
-  const K::Point_2 q(p.x, p.y);
   bool inside = false;
-  for (std::size_t i = 0; i < ring.size(); ++i) {
-    const Vec2 u = ring[i], v = ring[(i + 1) % ring.size()];
-    // An edge whose box leaves p's height holds no p and crosses no line through it; one
-    // wholly left or right of p holds no p either, and its crossing, if any, lies on that
-    // side: the orientation below would say as much, so it is asked only of the edges whose
-    // box holds p (comparisons of written doubles: exact).
-    if (p.y < std::min(u.y, v.y) || p.y > std::max(u.y, v.y) || p.x > std::max(u.x, v.x)) continue;
-    if (p.x < std::min(u.x, v.x)) {
-      if ((u.y <= p.y) != (v.y <= p.y)) inside = !inside;
-      continue;
+  for (std::size_t i = 0; i < ring.size(); ++i)
+    if (on_edge_or_cross(ring[i], ring[(i + 1) % ring.size()], p, inside)) return 0;
+  return inside ? 1 : -1;
+}
+
+PolygonSlabs::RingSlabs PolygonSlabs::slabs_of(const Ring& ring) {
+  RingSlabs r;
+  r.ring = &ring;
+  if (ring.size() < 3) return r;
+  double y1 = ring[0].y;
+  r.y0 = ring[0].y;
+  for (Vec2 v : ring) r.y0 = std::min(r.y0, v.y), y1 = std::max(y1, v.y);
+  const int count = static_cast<int>(std::clamp<std::size_t>(ring.size() / 4, 1, 1024));
+  r.height = (y1 - r.y0) / count;
+  if (!(r.height > 0)) r.height = 1;  // a level ring, or one too thin to divide: one slab holds all
+  r.start.assign(count + 1, 0);
+  // Each edge in every slab from its lower end's to its upper end's: slab() grows with y,
+  // so a point at a height the edge spans lies in one of them.
+  auto each = [&](auto&& f) {
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Vec2 u = ring[i], v = ring[(i + 1) % ring.size()];
+      for (int k = r.slab(std::min(u.y, v.y)); k <= r.slab(std::max(u.y, v.y)); ++k) f(k, i);
     }
-    if (p == u) return 0;  // a vertex, as validation's proofs ask of shared ones: no predicate
-    const CGAL::Orientation o = CGAL::orientation(K::Point_2(u.x, u.y), K::Point_2(v.x, v.y), q);
-    if (o == CGAL::COLLINEAR) return 0;  // on the line and in the edge's box: on the edge
-    // An edge across the horizontal line through p (its lower end on or below it) crosses
-    // it right of p when p lies left of the edge going up, right of it going down.
-    if ((u.y <= p.y) != (v.y <= p.y) && (v.y > u.y) == (o == CGAL::LEFT_TURN)) inside = !inside;
+  };
+  each([&](int k, std::size_t) { ++r.start[k + 1]; });
+  for (int k = 0; k < count; ++k) r.start[k + 1] += r.start[k];
+  r.edges.resize(r.start[count]);
+  std::vector<std::uint32_t> next(r.start.begin(), r.start.end() - 1);
+  each([&](int k, std::size_t i) { r.edges[next[k]++] = static_cast<std::uint32_t>(i); });
+  return r;
+}
+
+int PolygonSlabs::RingSlabs::slab(double y) const {
+  const double k = std::floor((y - y0) / height);
+  return static_cast<int>(std::clamp(k, 0.0, static_cast<double>(start.size() - 2)));
+}
+
+int PolygonSlabs::RingSlabs::side(Vec2 p) const {
+  if (ring->size() < 3) return -1;
+  // An edge outside p's slab does not span p's height: point_side passes it by.
+  bool inside = false;
+  const int k = slab(p.y);
+  for (std::uint32_t e = start[k]; e < start[k + 1]; ++e) {
+    const std::size_t i = edges[e];
+    if (on_edge_or_cross((*ring)[i], (*ring)[(i + 1) % ring->size()], p, inside)) return 0;
   }
   return inside ? 1 : -1;
+}
+
+PolygonSlabs::PolygonSlabs(const Polygon& polygon) {
+  rings_.push_back(slabs_of(polygon.outer));
+  for (const Ring& hole : polygon.holes) rings_.push_back(slabs_of(hole));
+}
+
+int PolygonSlabs::side(Vec2 p) const {
+  int side = rings_[0].side(p);
+  for (std::size_t h = 1; h < rings_.size(); ++h) {
+    if (side <= 0) break;
+    side = std::min(side, -rings_[h].side(p));
+  }
+  return side;
 }
 
 int point_side(const Polygon& polygon, Vec2 p) {

@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include "geom/polygon_check.h"
+#include "geom/polygon_slabs.h"
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -60,6 +63,34 @@ TEST(PointSide, AnswersAsCgalsBoundedSideOnRandomRings) {
           // bounded_side_2 counts the region of a clockwise ring as bounded too.
           ASSERT_EQ(point_side(ring, p), expected) << "ring " << rings << " point (" << p.x << ", " << p.y << ")";
         }
+  }
+}
+
+// PolygonSlabs answers as point_side, whose edges it sorts by slabs of the box: random rings
+// of many vertices on a grid (edges spanning slabs, ending on their lines, level ones), a
+// hole, points on the grid, between and off the box.
+TEST(PointSide, SlabsAnswerAsPointSide) {
+  std::mt19937 random(37);
+  std::uniform_real_distribution<double> angle(0, 6.283185307179586);
+  for (int n : {5, 40, 300}) {
+    // A star-shaped ring: vertices by angle, each at a random radius, on a grid of 0.25.
+    std::vector<double> angles(n);
+    for (double& a : angles) a = angle(random);
+    std::sort(angles.begin(), angles.end());
+    Ring outer;
+    for (double a : angles) {
+      const double r = 4 + std::uniform_int_distribution<int>(0, 16)(random) / 4.0;
+      const Vec2 v{std::round(r * std::cos(a) * 4) / 4, std::round(r * std::sin(a) * 4) / 4};
+      if (outer.empty() || !(outer.back() == v)) outer.push_back(v);
+    }
+    if (!ring_is_simple(outer)) continue;
+    const Polygon polygon{outer, {{{-1, -1}, {-1, 1}, {1, 1}, {1, -1}}}};
+    const PolygonSlabs slabs(polygon);
+    for (int i = -40; i <= 40; ++i)
+      for (int j = -40; j <= 40; ++j) {
+        const Vec2 p{i / 4.0, j / 4.0 + (i % 3 == 0 ? 1e-13 : 0)};
+        ASSERT_EQ(slabs.side(p), point_side(polygon, p)) << n << " vertices, (" << p.x << ", " << p.y << ")";
+      }
   }
 }
 

@@ -1,6 +1,7 @@
 #include "generate/export/validate_clutter.h"
 
 #include <cmath>
+#include <memory>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -9,6 +10,7 @@
 #include "generate/export/read_lines.h"
 #include "generate/placement/model_library.h"
 #include "geom/polygon_check.h"
+#include "geom/polygon_slabs.h"
 
 namespace exacity {
 namespace {
@@ -23,7 +25,20 @@ struct Area {
   std::string name;   // "road_areas.geojson features[3] (carriageway)"
   bool stands_on;     // a sidewalk or a lot; else clutter keeps off it
   bool park = false;  // a park zone: a tree stands in it, other clutter keeps off it
+  // For an area of many vertices (a long carriageway's), its edges by slabs: many points
+  // lie in its box.
+  std::unique_ptr<geom::PolygonSlabs> slabs = nullptr;
+  int side(geom::Vec2 p) const { return slabs ? slabs->side(p) : geom::point_side(*polygon, p); }
 };
+
+// Areas of more vertices than this are asked through their slabs.
+constexpr std::size_t kSlabbedVertices = 64;
+
+std::unique_ptr<geom::PolygonSlabs> slabs_of(const geom::Polygon& polygon) {
+  std::size_t vertices = polygon.outer.size();
+  for (const geom::Ring& h : polygon.holes) vertices += h.size();
+  return vertices > kSlabbedVertices ? std::make_unique<geom::PolygonSlabs>(polygon) : nullptr;
+}
 
 // The areas by the cells of a square grid their boxes meet, kept for the cells that hold a
 // point to check only: the cells of a box are past counting where water covers a map of
@@ -94,7 +109,7 @@ void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers
       cancel.check();
       const VectorFeature& f = layer.features[i];
       areas.push_back({&f.polygon, box_of(f.polygon), layer.name + ".geojson features[" + std::to_string(i) + "]" + what(f),
-                       stands_on(f)});
+                       stands_on(f), false, slabs_of(f.polygon)});
       cells.add(static_cast<int>(areas.size()) - 1, areas.back().box);
     }
   };
@@ -116,7 +131,8 @@ void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers
   for (std::size_t i = 0; i < layers.zones.features.size(); ++i) {
     const VectorFeature& f = layers.zones.features[i];
     if (f.properties.value("zone", "") != "park") continue;
-    areas.push_back({&f.polygon, box_of(f.polygon), "zones.geojson features[" + std::to_string(i) + "]", false, true});
+    areas.push_back({&f.polygon, box_of(f.polygon), "zones.geojson features[" + std::to_string(i) + "]", false, true,
+                     slabs_of(f.polygon)});
     cells.add(static_cast<int>(areas.size()) - 1, areas.back().box);
   }
   add(
@@ -157,7 +173,7 @@ void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers
     for (int a : cells.at(p)) {
       const geom::Box& box = areas[a].box;
       if (p.x < box.min_x || p.x > box.max_x || p.y < box.min_y || p.y > box.max_y) continue;  // outside: no verdict
-      const int side = geom::point_side(*areas[a].polygon, p);
+      const int side = areas[a].side(p);
       if (areas[a].park) {
         if (park_tree)
           stands |= side > 0;
