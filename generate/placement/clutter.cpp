@@ -635,7 +635,8 @@ void check_park_trees(const std::vector<const ZoneArea*>& parks, const ModelLibr
 }  // namespace
 
 StandingMap standing_map(const CityMap& map, const std::vector<Lot>& lots) {
-  StandingMap out{.faces = map.map.face_locator(), .labels = map.labels};
+  StandingMap out;
+  out.faces = map.map.face_locator(), out.labels = map.labels;
   out.lot_cells.reserve(lots.size());
   for (const Lot& lot : lots) out.lot_cells.push_back(lot.cell);
   return out;
