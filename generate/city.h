@@ -7,6 +7,8 @@
 #include <optional>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "generate/city/channels.h"
 #include "generate/city/features.h"
 #include "generate/city/ground.h"
@@ -32,6 +34,8 @@ struct City {
   std::optional<Terrain> terrain;
   Channels channels;  // empty when the sketch has none
   std::optional<ModelLibrary> library;
+  // The network, blocks and lots, and held_lots and held_m2, are empty once the ground is
+  // made, unless build_city was asked to keep them (ExactWork, generate/pipeline.h).
   RoadNetwork network;
   std::vector<Block> blocks;
   std::vector<Lot> lots;
@@ -39,12 +43,15 @@ struct City {
   std::map<ZoneType, LotLand> lot_land;  // where the blocks' land went, as the lots ended
   std::vector<Building> buildings;  // extruded, then the mapped ones kept
   MappedTally mapped;  // what became of the sketch's mapped buildings
-  std::vector<char> held_lots;  // per lot: a mapped building stands on it
+  std::vector<char> held_lots;  // per lot: a mapped building stands on it (empty with the lots)
   std::vector<double> held_m2;  // per lot: the mapped footprints' area on it
   std::vector<ModelInstance> models;  // placed from the library
   StreetClutter clutter;  // along the streets; written as vector/clutter.geojson
   Ground ground;
   CityLayers layers;  // as written into vector/
+  // What report.json says of the network, the blocks and the lots (exact_work_report,
+  // generate/city_report.h), counted before build_city frees them.
+  nlohmann::ordered_json exact_report;
   // What a build kept for the next one (generate/regenerate.h), when built with a cache.
   std::shared_ptr<RegionCache> regions;
 

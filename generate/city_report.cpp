@@ -131,9 +131,7 @@ ordered_json placement_fallbacks_report(const City& city) {
 // The 3D exports' counts are placeholders here, in their place, for complete_report.
 ordered_json counts_report(const City& city) {
   const CityLayers& layers = city.layers;
-  int green = 0;
-  for (const Block& b : city.blocks) green += b.green;
-  auto counts = city.network.map.map.counts();
+  const ordered_json& exact = city.exact_report;
   // The buildings layer holds every structure: buildings, and models of other kinds (trees).
   ordered_json by_kind = ordered_json::object();
   for (const VectorFeature& f : layers.buildings.features) {
@@ -144,13 +142,13 @@ ordered_json counts_report(const City& city) {
           {"water", layers.water.features.size()},
           {"roads", layers.roads.features.size()},
           {"road_areas", layers.road_areas.features.size()},
-          {"blocks", city.blocks.size() - green},
-          {"green_spaces", green},
+          {"blocks", exact.at("blocks")},
+          {"green_spaces", exact.at("green_spaces")},
           {"lots", layers.lots.features.size()},
           {"buildings", layers.buildings.features.size()},
           {"buildings_by_kind", by_kind},
           {"clutter", city.clutter.items.size()},
-          {"map", {{"vertices", counts.vertices}, {"edges", counts.edges}, {"faces", counts.faces}}},
+          {"map", exact.at("map")},
           {"mesh", nullptr},
           {"gltf", nullptr}};
 }
@@ -318,7 +316,7 @@ ordered_json sketch_roads_report(const City& city) {
           {"with_road_area", drawn - without_area},
           {"without_road_area", without_area},
           {"narrowed_for_mapped_buildings", city.mapped.roads_narrowed},
-          {"generated", static_cast<int>(city.network.map.roads.size()) - city.network.map.sketch_roads}};
+          {"generated", city.exact_report.at("generated_roads")}};
 }
 
 // Per zone type, where its blocks' land went (LotLand): m² and the share of the blocks' land.
@@ -342,6 +340,19 @@ ordered_json lot_land_report(const std::map<ZoneType, LotLand>& land) {
 
 }  // namespace
 
+ordered_json exact_work_report(const City& city) {
+  int green = 0;
+  for (const Block& b : city.blocks) green += b.green;
+  const auto counts = city.network.map.map.counts();
+  return {{"road_network", road_network_report(city.network, city.drawn)},
+          {"generated_roads", static_cast<int>(city.network.map.roads.size()) - city.network.map.sketch_roads},
+          {"blocks", city.blocks.size() - green},
+          {"green_spaces", green},
+          {"map", {{"vertices", counts.vertices}, {"edges", counts.edges}, {"faces", counts.faces}}},
+          {"empty_zones", empty_zones_report(city)},
+          {"footprints_by_zone", footprints_by_zone(city)}};
+}
+
 ordered_json city_report(const Sketch& sketch, const City& city, const std::vector<std::string>& vector_formats,
                          bool city_osm) {
   const CitySettings& settings = city.settings;
@@ -357,17 +368,17 @@ ordered_json city_report(const Sketch& sketch, const City& city, const std::vect
       {"exports",
        {{"vector_formats", vector_formats.empty() ? std::vector<std::string>{"geojson"} : vector_formats},
         {"city_osm", city_osm ? "city.osm" : "not written: the sketch has no CRS (EPSG) to place it on Earth"}}},
-      {"road_network", road_network_report(city.network, city.drawn)},
+      {"road_network", city.exact_report.at("road_network")},
       {"sketch_roads", sketch_roads_report(city)},
       {"unbuilt_lots", {{"merged", city.unbuilt_lots.merged}, {"left_open", city.unbuilt_lots.left_open},
                         {"left_open_m2", std::round(city.unbuilt_lots.left_open_m2)}}},
       {"lot_land", lot_land_report(city.lot_land)},
-      {"empty_zones", empty_zones_report(city)},
+      {"empty_zones", city.exact_report.at("empty_zones")},
       {"roads_without_area", roads_without_area_report(city)},
       {"placement_fallbacks", placement_fallbacks_report(city)},
       {"clutter", clutter_report(city.clutter.tally)},
       {"statistics", city_statistics(city.layers, &settings, &city.drawn)},
-      {"footprints_by_zone", footprints_by_zone(city)},
+      {"footprints_by_zone", city.exact_report.at("footprints_by_zone")},
       {"validation", nullptr},  // these two by complete_report
       {"timings_s", nullptr},
   };

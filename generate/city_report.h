@@ -22,6 +22,12 @@ struct WrittenCity {
   bool validation_later = false;         // or it is checked after this report is written (validate_written)
 };
 
+// What report.json says of the network, the blocks and the lots (the road network, the
+// roads generated, the blocks and green spaces, the map's size, the empty zones, the
+// footprints by zone): build_city counts it into City::exact_report before it frees them,
+// and city_report reads it there.
+nlohmann::ordered_json exact_work_report(const City& city);
+
 // The report of what the city holds, made before the 3D export (so that what only it reads
 // of the city, its map and layers, can be freed then): `vector_formats` written beside
 // GeoJSON, `city_osm` whether city.osm was (the sketch has a CRS). The 3D exports' counts,

@@ -48,6 +48,13 @@ double peak_resident_mib() {
 
 namespace {
 
+// Gives the pages of what was just freed back to the system (tcmalloc keeps them, and the
+// exact map's small blocks are not pages the exports' large buffers can reuse); none
+// without tcmalloc.
+void release_freed_memory() {
+  if (MallocExtension_ReleaseFreeMemory) MallocExtension_ReleaseFreeMemory();
+}
+
 // Lots take their block's density (a grammar's).
 std::vector<Lot> with_density(std::vector<Lot> lots, const std::vector<Block>& blocks) {
   for (Lot& lot : lots) lot.density = blocks[lot.block].density;
@@ -87,7 +94,7 @@ Structures build_on_lots(City& city, const std::vector<PlannedLot>& planned, con
 
 }  // namespace
 
-City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<RegionCache> cache) {
+City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<RegionCache> cache, ExactWork exact) {
   City city;
   if (cache) cache->next_build(sketch);
   city.regions = std::move(cache);
@@ -148,16 +155,26 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
   city.buildings = std::move(raised.buildings);
   city.models = std::move(raised.models);
   std::vector<PlannedLot>().swap(planned);  // the lots' exact cells: only the lots and buildings read them
+  StandingMap standing;  // what the clutter asks of the map and the lots
   stages.run("ground", [&] {
     give_covered_roads_their_carriageway(city.network.map);
     merge_sliver_road_areas(city.network.map);
     city.ground = extract_ground(city.network.map, city.blocks, city.lots, city.drawn.zones);
+    // The map's last change was the labels above: what is read of it, the blocks and the
+    // lots from here on is taken now, so that they can be freed before the clutter.
+    city.exact_report = exact_work_report(city);
+    standing = standing_map(city.network.map, city.lots);
   });
+  if (exact == ExactWork::Freed) {
+    city.network = {}, city.blocks = {}, city.lots = {}, city.held_lots = {}, city.held_m2 = {};
+    release_freed_memory();
+  }
   // After the ground, whose centre lines the clutter dresses and names (docs/design.md, Placement).
   city.clutter = stages.run("clutter", [&] {
-    return place_clutter({city.network.map, city.ground, city.lots, city.buildings, city.models}, city.model_library(),
-                         city.channels, city.settings, city.drawn.zones, city.heightmap());
+    return place_clutter({standing, city.ground, city.buildings, city.models}, city.model_library(), city.channels,
+                         city.settings, city.drawn.zones, city.heightmap());
   });
+  standing = {};
   // After the clutter, which does not read them: the layers are not held through its peak.
   stages.run("vector layers", [&] { city.layers = layers_of(city.ground, city.buildings, city.models, city.model_library()); });
   return city;
@@ -170,13 +187,6 @@ GenerateResult generate_city(const Sketch& sketch, const fs::path& dir, const Pr
 }
 
 namespace {
-
-// Gives the pages of what was just freed back to the system (tcmalloc keeps them, and the
-// exact map's small blocks are not pages the exports' large buffers can reuse); none
-// without tcmalloc.
-void release_freed_memory() {
-  if (MallocExtension_ReleaseFreeMemory) MallocExtension_ReleaseFreeMemory();
-}
 
 // The vector formats of kCityFormats always written and those `options` ask for (from the
 // city's layers and `clutter`), a copy of the sketch and the SVG map, each file written at

@@ -57,10 +57,18 @@ inline constexpr int kCityStages = 10;
 
 struct RegionCache;  // generate/regenerate.h
 
+// What build_city keeps of its exact work (the map, the blocks, the lots and what stands
+// on them) once the ground is made: by default nothing, as nothing after the ground reads
+// it (the clutter asks a compact copy, StandingMap, and the report's figures of it are
+// counted then: City::exact_report), so none of it is held through the clutter, the vector
+// layers and the exports. Tests that look into it keep it.
+enum class ExactWork { Freed, Kept };
+
 // Runs the city's stages on `clock` (kCityStages of them). With a cache, each region's road
 // plan, each block's lot plan and each lot's structures are reused from the cache's last
 // build where their input is the same (generate/regenerate.h), and the city keeps the cache.
-City build_city(const Sketch& sketch, StageClock& clock, std::shared_ptr<RegionCache> cache = {});
+City build_city(const Sketch& sketch, StageClock& clock, std::shared_ptr<RegionCache> cache = {},
+                ExactWork exact = ExactWork::Freed);
 
 struct GenerateResult {
   nlohmann::ordered_json report;  // as written to report.json
@@ -98,8 +106,9 @@ struct ExportOptions {
 GenerateResult write_city(const Sketch& sketch, const City& city, const std::filesystem::path& dir, StageClock& clock,
                           const ExportOptions& options = {});
 // The same for a city nothing reads afterwards: what no export reads of it (the exact map,
-// blocks and lots) is freed once the report is made, and the vector layers once they are
-// written, so the exports' files and the 3D export's meshes are not held beside them.
+// blocks and lots, when build_city kept them) is freed once the report is made, and the
+// vector layers once they are written, so the exports' files and the 3D export's meshes
+// are not held beside them.
 GenerateResult write_city(const Sketch& sketch, City&& city, const std::filesystem::path& dir, StageClock& clock,
                           const ExportOptions& options = {});
 inline constexpr int kWriteStages = 3;

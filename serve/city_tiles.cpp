@@ -175,6 +175,14 @@ json write_city_tiles(const City& city, const fs::path& dir) {
   std::vector<std::string> mesh_keys;  // with the city's cache, whose tiles memo reads them
   const std::vector<Mesh> meshes = city_meshes(city, &mesh_keys);
   std::map<std::pair<int, int>, Tile> tiles;  // by column and row: the index's order
+  // A lot's block (Lot::block: the city's lots are freed with the map) from the block piece
+  // it lies in: a block's first piece has its index for id; a lot in no piece names it.
+  std::unordered_map<int, int> block_of_piece;
+  for (const BlockArea& b : city.ground.blocks) block_of_piece.emplace(b.id, b.block);
+  auto block_of = [&](int piece) {
+    const auto it = block_of_piece.find(piece);
+    return it != block_of_piece.end() ? it->second : piece;
+  };
   // `id` indexes the meshes; the box is coloured by the structure's stable id, as city.glb colours it.
   auto place = [&](int id, int stable_id, int lot, ZoneType zone, const geom::Polygon& outline, double floor,
                    double height) -> Tile& {
@@ -184,7 +192,7 @@ json write_city_tiles(const City& city, const fs::path& dir) {
     Tile& t = tiles[tile_of((b.box.min_x + b.box.max_x) / 2, (b.box.min_y + b.box.max_y) / 2)];
     t.bounds.add(b);
     t.boxes.push_back({b.box, b.bottom, b.top, zone, stable_id});
-    const int block = lot >= 0 ? city.lots[lot].block : -1;
+    const int block = lot >= 0 ? block_of(city.ground.lots[lot].block) : -1;
     BlockPart& part = t.blocks[{block, zone}];
     part.bounds.add(b);
     const double area = b.box.width() * b.box.height();

@@ -25,7 +25,7 @@ namespace {
 
 City built(const fs::path& sketch) {
   StageClock clock(nullptr, kCityStages);
-  return build_city(load_sketch(sketch), clock);
+  return build_city(load_sketch(sketch), clock, {}, ExactWork::Kept);  // the checks read the map and lots
 }
 
 // The junction whose node is nearest p.

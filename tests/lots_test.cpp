@@ -199,7 +199,7 @@ TEST(Lots, LotLandTalliesTheMapAsTheLotsEnd) {
   auto dir = testing_util::temp_dir("lots-land-tally");
   std::ofstream(dir / "in.geojson") << three_streets();
   StageClock clock(nullptr, kCityStages);
-  const City city = build_city(load_sketch(dir / "in.geojson"), clock);
+  const City city = build_city(load_sketch(dir / "in.geojson"), clock, {}, ExactWork::Kept);
   const CityMap& map = city.network.map;
   std::vector<int> planned_of;
   const std::vector<geom::Cell> pieces =

@@ -217,7 +217,7 @@ City two_ended_city(const std::string& name, const std::string& zone_settings) {
       {"type": "Feature", "properties": {"road": "main"},
        "geometry": {"type": "LineString", "coordinates": [[-10, 100], [610, 100]]}}]})");
   StageClock stages(nullptr, kCityStages);
-  return build_city(load_sketch(dir / "sketch.geojson"), stages);
+  return build_city(load_sketch(dir / "sketch.geojson"), stages, {}, ExactWork::Kept);  // the tests read the lots
 }
 
 }  // namespace

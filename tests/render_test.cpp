@@ -553,7 +553,7 @@ TEST(Render, ZoneLandWithoutLotsIsGreenFromAbove) {
      "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [400, 0], [400, 400], [0, 400], [0, 0]]]}}]})";
   exacity::StageClock clock(nullptr, exacity::kCityStages);
   const exacity::City city = exacity::build_city(exacity::parse_sketch(text, "garden.geojson"), clock);
-  ASSERT_TRUE(city.lots.empty());
+  ASSERT_TRUE(city.ground.lots.empty());
   auto dir = testing_util::temp_dir("render-garden");
   RenderRequest request;
   request.camera = Camera::look({200, 200, 300}, {200, 200, 0}, 60);

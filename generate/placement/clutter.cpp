@@ -213,7 +213,8 @@ class StandingGround {
  public:
   StandingGround(const ClutterGround& g, const std::vector<ZoneFeature>& zones)
       : g_(g), zones_(zones), lot_rings_(32), footprints_(8) {
-    for (std::size_t i = 0; i < g.lots.size(); ++i) lot_rings_.add(g.lots[i].polygon.outer, static_cast<int>(i));
+    // The ground's lots are the city's, in order, as rounded.
+    for (std::size_t i = 0; i < g.ground.lots.size(); ++i) lot_rings_.add(g.ground.lots[i].polygon.outer, static_cast<int>(i));
     auto add = [&](const geom::Polygon& p) {
       footprints_.add(p.outer, static_cast<int>(footprint_rings_.size()));
       footprint_rings_.push_back(&p.outer);
@@ -224,8 +225,8 @@ class StandingGround {
 
   Where at(Vec2 p) const {
     for (int i : lot_rings_.near({p.x, p.y, p.x, p.y}))
-      if (g_.lots[i].cell.contains(p)) return {i, false, nullptr, g_.lots[i].zone};
-    const int label = g_.map.map.label_at(p);
+      if (g_.map.lot_cells[i].contains(p)) return {i, false, nullptr, g_.ground.lots[i].zone};
+    const int label = g_.map.faces.label_at(p);
     if (label < 0) return {-1, false, kOnEdge, std::nullopt};
     const FaceLabel& l = g_.map.labels[label];
     Where w;
@@ -253,7 +254,7 @@ class StandingGround {
       if (w.park && meets_any(base, footprints_.near(RingBuckets::box_of(base)), footprint_rings_)) return kBuilding;
       return nullptr;
     }
-    if (!g_.lots[w.lot].cell.holds(base)) return kBaseLeaves;
+    if (!g_.map.lot_cells[w.lot].holds(base)) return kBaseLeaves;
     if (meets_any(base, footprints_.near(RingBuckets::box_of(base)), footprint_rings_)) return kBuilding;
     return nullptr;
   }
@@ -632,6 +633,14 @@ void check_park_trees(const std::vector<const ZoneArea*>& parks, const ModelLibr
 }
 
 }  // namespace
+
+StandingMap standing_map(const CityMap& map, const std::vector<Lot>& lots) {
+  StandingMap out;
+  out.faces = map.map.face_locator(), out.labels = map.labels;
+  out.lot_cells.reserve(lots.size());
+  for (const Lot& lot : lots) out.lot_cells.push_back(lot.cell);
+  return out;
+}
 
 StreetClutter place_clutter(const ClutterGround& ground, const ModelLibrary* library, const Channels& channels,
                             const CitySettings& city, const std::vector<ZoneFeature>& zones, const Terrain* terrain) {

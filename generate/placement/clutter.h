@@ -8,7 +8,7 @@
 //
 // A piece of clutter stands on a sidewalk or in a lot (the setback strip between the street
 // and the buildings), decided exactly: its spot strictly inside a sidewalk face of the map
-// (PlanarMap::label_at) or a lot's exact cell, its base (the model's outline at ground level)
+// (PlanarMap::label_at, through StandingMap once the map is freed) or a lot's exact cell, its base (the model's outline at ground level)
 // on sidewalk faces or strictly inside that lot, meeting no footprint and no other clutter.
 // Spots that find no such place are counted by why (report.json's clutter.not_placed).
 #pragma once
@@ -19,6 +19,7 @@
 
 #include "generate/city/channels.h"
 #include "generate/city/city_map.h"
+#include "geom/face_locator.h"
 #include "generate/city/ground.h"
 #include "generate/city/features.h"
 #include "generate/city/zone_settings.h"
@@ -49,11 +50,22 @@ struct StreetClutter {
   ClutterTally tally;
 };
 
-// What the clutter stands among: the final map, its ground and lots, what stands on them.
+// What the clutter asks of the final map and the lots, taken from them so that they can be
+// freed before it (docs/design.md, The pipeline): the map's faces, located as
+// PlanarMap::label_at locates them, and each lot's exact cell (shared with the lot).
+struct StandingMap {
+  geom::FaceLocator faces;
+  std::vector<FaceLabel> labels;  // the faces' labels (CityMap::labels)
+  std::vector<geom::Cell> lot_cells;
+};
+
+// From the final map, with its labels as they are, and its lots.
+StandingMap standing_map(const CityMap& map, const std::vector<Lot>& lots);
+
+// What the clutter stands among: the final map's faces and lots, its ground, what stands on them.
 struct ClutterGround {
-  const CityMap& map;
+  const StandingMap& map;
   const Ground& ground;
-  const std::vector<Lot>& lots;
   const std::vector<Building>& buildings;
   const std::vector<ModelInstance>& models;
 };
