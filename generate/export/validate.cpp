@@ -804,6 +804,12 @@ void check_polygon_map(Checker& c, const DrawnFeatures& sketch, const std::vecto
   check_polygons_held(c, sketch, refs, polygons, grid, tile_side, window, held, checked);
 }
 
+// Adds a part's problems and widest sliver to c's.
+void take_problems(Checker& c, const Validation& part) {
+  for (const std::string& p : part.problems) c.problem(p);
+  c.v_.widest_sliver = std::max(c.v_.widest_sliver, part.widest_sliver);
+}
+
 // The polygons' map and the zoning map share nothing: they run at once, the polygons'
 // problems taken first.
 void check_both_maps(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
@@ -820,10 +826,7 @@ void check_both_maps(Checker& c, const DrawnFeatures& sketch, const std::vector<
         Checker z(zoning);
         check_zoning(z, sketch, refs, polygons);
       });
-  for (const Validation* part : {&polygon_map, &zoning}) {
-    for (const std::string& p : part->problems) c.problem(p);
-    c.v_.widest_sliver = std::max(c.v_.widest_sliver, part->widest_sliver);
-  }
+  for (const Validation* part : {&polygon_map, &zoning}) take_problems(c, *part);
 }
 
 // Of a whole city, the maps first without the blocks, lots and buildings proven to pass
@@ -857,11 +860,7 @@ void check_tiling(Checker& c, const DrawnFeatures& sketch, const std::vector<Pol
   if (zoning_only) {
     Validation both;
     Checker b(both);
-    if (!check_zoning(b, sketch, marked, polygons, &rest)) {
-      for (const std::string& p : both.problems) c.problem(p);
-      c.v_.widest_sliver = std::max(c.v_.widest_sliver, both.widest_sliver);
-      return;
-    }
+    if (!check_zoning(b, sketch, marked, polygons, &rest)) return take_problems(c, both);
   } else {
     Validation without, zoning;
     invoke_cancellable(
@@ -878,10 +877,7 @@ void check_tiling(Checker& c, const DrawnFeatures& sketch, const std::vector<Pol
       Checker w(whole);
       check_polygon_map(w, sketch, refs, polygons, grid, tile_side, nullptr, {}, {});
     }
-    for (const Validation* part : {&whole, &zoning}) {
-      for (const std::string& p : part->problems) c.problem(p);
-      c.v_.widest_sliver = std::max(c.v_.widest_sliver, part->widest_sliver);
-    }
+    for (const Validation* part : {&whole, &zoning}) take_problems(c, *part);
     return;
   }
   check_both_maps(c, sketch, refs, polygons, grid, tile_side);
