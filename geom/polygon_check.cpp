@@ -88,6 +88,15 @@ bool on_edge_or_cross(Vec2 u, Vec2 v, Vec2 p, bool& inside) {
   return false;
 }
 
+// A polygon's side from its rings' (ring 0 the outer one, then the holes): inside its outer
+// ring and outside every hole, on the boundary where on any of them.
+template <class RingSide>
+int polygon_side(std::size_t rings, RingSide side_of) {
+  int side = side_of(0);
+  for (std::size_t r = 1; r < rings && side > 0; ++r) side = std::min(side, -side_of(r));
+  return side;
+}
+
 }  // namespace
 
 int point_side(const Ring& ring, Vec2 p) {
@@ -151,21 +160,12 @@ PolygonSlabs::PolygonSlabs(const Polygon& polygon) {
 }
 
 int PolygonSlabs::side(Vec2 p) const {
-  int side = rings_[0].side(p);
-  for (std::size_t h = 1; h < rings_.size(); ++h) {
-    if (side <= 0) break;
-    side = std::min(side, -rings_[h].side(p));
-  }
-  return side;
+  return polygon_side(rings_.size(), [&](std::size_t r) { return rings_[r].side(p); });
 }
 
 int point_side(const Polygon& polygon, Vec2 p) {
-  int side = point_side(polygon.outer, p);
-  for (const Ring& hole : polygon.holes) {
-    if (side <= 0) break;
-    side = std::min(side, -point_side(hole, p));
-  }
-  return side;
+  return polygon_side(polygon.holes.size() + 1,
+                      [&](std::size_t r) { return point_side(r == 0 ? polygon.outer : polygon.holes[r - 1], p); });
 }
 
 bool rings_meet(const Ring& a, const Ring& b) {
