@@ -326,6 +326,29 @@ TEST(Like, ALotKeepsTheAreasDrawnForIt) {
   EXPECT_NEAR(g["median_m2"].get<double>(), 100, 0.01);
 }
 
+// With lot_coverage, a lot's footprints are drawn at once, as many as cover its share on
+// average: a third of the areas 100 m², a third 1,600 and a third between, on lots 50 m
+// wide that hold one 1,600 m² footprint and seldom one after a small one. Drawn one at a
+// time until the lot was covered, a lot ended at the first large one that did not fit and
+// kept the small ones before it: the median came out 286 m² for the areas' 850.
+TEST(Like, ALotDrawsItsFootprintsAtOnce) {
+  const fs::path dir = testing_util::temp_dir("like_lot_draws_at_once");
+  ordered_json zone{{"layout", "streets"}, {"lot_width", {50, 50}}, {"lot_depth", 60}, {"setback", 3},
+                    {"building_gap", 4}, {"footprint_width", {10, 10}}, {"footprint_depth", {10, 10}},
+                    {"footprint_areas", {100, 100, 1600, 1600}}, {"max_footprint_area", 1600}, {"min_footprint_width", 10},
+                    {"lot_coverage", 0.4}};
+  ordered_json sketch = one_street(zone);
+  sketch["features"][0]["geometry"]["coordinates"] = rectangle(0, 0, 6000, 60);
+  sketch["features"][1]["geometry"]["coordinates"] = {{-20, 0}, {6020, 0}};
+  write(dir / "sketch.geojson", sketch.dump());
+  const auto r = cli_util::run("generate " + (dir / "sketch.geojson").string() + " -q -o " + (dir / "out").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const ordered_json g = report_of(dir / "out")["footprints_by_zone"]["residential"]["generated"];
+  EXPECT_GT(g["footprints"].get<int>(), 100) << g.dump();
+  EXPECT_LT(std::abs(g["median_m2"].get<double>() - 850), 0.25 * 850) << g.dump();
+  EXPECT_LT(std::abs(g["coverage_of_lots"].get<double>() - 0.4), 0.25 * 0.4) << g.dump();
+}
+
 // A file with too few buildings to measure is one line, exit 2, nothing written.
 TEST(Like, TooFewBuildingsIsOneLine) {
   const fs::path dir = testing_util::temp_dir("like_few");
