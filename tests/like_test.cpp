@@ -349,6 +349,26 @@ TEST(Like, ALotDrawsItsFootprintsAtOnce) {
   EXPECT_LT(std::abs(g["coverage_of_lots"].get<double>() - 0.4), 0.25 * 0.4) << g.dump();
 }
 
+// With footprint_areas, a perimeter band larger than max_footprint_area is not built: the
+// lot, 100 m of street 30 m deep, would hold one band of about 1,000 m², and is built in
+// rows of the zone's footprints instead, none over 400 m².
+TEST(Like, APerimeterBandLargerThanThePlacesFootprintsIsBuiltInRows) {
+  const fs::path dir = testing_util::temp_dir("like_band_too_large");
+  ordered_json zone{{"layout", "streets"}, {"lot_width", {100, 100}}, {"lot_depth", 30}, {"setback", 3},
+                    {"building_gap", 2}, {"perimeter_depth", 10}, {"footprint_width", {10, 10}},
+                    {"footprint_depth", {10, 10}}, {"footprint_areas", {100, 400}}, {"max_footprint_area", 400},
+                    {"min_footprint_width", 5}, {"lot_coverage", 0.3}};
+  ordered_json sketch = one_street(zone);
+  sketch["features"][0]["geometry"]["coordinates"] = rectangle(0, 0, 400, 30);
+  sketch["features"][1]["geometry"]["coordinates"] = {{-20, 0}, {420, 0}};
+  write(dir / "sketch.geojson", sketch.dump());
+  const auto r = cli_util::run("generate " + (dir / "sketch.geojson").string() + " -q -o " + (dir / "out").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const ordered_json g = report_of(dir / "out")["footprints_by_zone"]["residential"]["generated"];
+  EXPECT_GT(g["footprints"].get<int>(), 4) << g.dump();
+  EXPECT_LE(g["p90_m2"].get<double>(), 400) << g.dump();
+}
+
 // A file with too few buildings to measure is one line, exit 2, nothing written.
 TEST(Like, TooFewBuildingsIsOneLine) {
   const fs::path dir = testing_util::temp_dir("like_few");
@@ -406,6 +426,12 @@ TEST(Like, ReportsTheFrontageRuleAndSetsItWhereBuildingsTouch) {
   EXPECT_EQ(z["set"].value("perimeter_depth", ordered_json()), 11.3);
   EXPECT_EQ(z["set"].value("lot_frontages", ordered_json()), rule["lot_frontages"]);
   EXPECT_EQ(z["set"].value("lot_depth", ordered_json()), 17.0);
+  // Perimeter footprints from the place's tenth to its 95th percentile area (all 360 m²
+  // here), or the largest rectangle of its sides' ranges if that is larger.
+  EXPECT_EQ(rule["min_footprint_area"], 360.0);
+  EXPECT_GE(rule["max_footprint_area"].get<double>(), 360.0);
+  EXPECT_EQ(z["set"].value("min_footprint_area", ordered_json()), 360.0);
+  EXPECT_EQ(z["set"].value("max_footprint_area", ordered_json()), rule["max_footprint_area"]);
 
   const fs::path dir = testing_util::temp_dir("like_frontage_rule_apart");
   write(dir / "place.geojson", measured_place().dump());

@@ -309,7 +309,8 @@ namespace {
 // roof.
 class Extrusion : public Placer {
   // The perimeter block's footprints the lot takes: those the exact test lets stand whole,
-  // courtyards included, and no smaller than min_footprint_area. The union's rings come
+  // courtyards included, and no smaller than min_footprint_area (with footprint_areas, no
+  // larger than max_footprint_area either). The union's rings come
   // rounded to doubles and a courtyard may touch its outer ring at a vertex
   // (geom::PlanarMap::dissolve), which a building may not: both are checked here.
   static std::vector<geom::Polygon> perimeter(Occupancy& occupancy, const BuildingSettings& p) {
@@ -321,6 +322,11 @@ class Extrusion : public Placer {
                std::all_of(hole.begin(), hole.end(), [&](geom::Vec2 v) { return geom::point_side(footprint.outer, v) == 1; }) &&
                std::all_of(footprint.outer.begin(), footprint.outer.end(), [&](geom::Vec2 v) { return geom::point_side(hole, v) == -1; });
       });
+      // With a place's sizes, none larger: a band runs along every street edge of its lot,
+      // and a lot fronting more street than a drawn frontage (joined pieces, a block's
+      // corner) held bands larger than the place has; with no other band the lot is built
+      // in rows of the place's footprints.
+      if (!p.footprint_areas.empty() && geom::area(footprint) > p.max_footprint_area) continue;
       if (courtyards_inside && geom::area(footprint) >= p.min_footprint_area && geom::ring_is_simple(footprint.outer) &&
           occupancy.take(footprint.outer))
         taken.push_back(std::move(footprint));
