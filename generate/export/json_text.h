@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -19,6 +20,16 @@ inline void append_json_number(std::string& out, double v) {
   char buf[64];
   const char* end = nlohmann::detail::to_chars(buf, buf + sizeof buf, v);
   out.append(buf, static_cast<std::size_t>(end - buf));
+}
+
+// A string as dump() writes it: quoted, escaped where JSON needs it.
+inline void append_json_string(std::string& out, std::string_view s) {
+  for (char c : s)
+    if (c < 0x20 || c > 0x7e || c == '"' || c == '\\') {
+      out += nlohmann::json(std::string(s)).dump();
+      return;
+    }
+  out += '"', out += s, out += '"';
 }
 
 }  // namespace exacity
