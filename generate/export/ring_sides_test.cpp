@@ -83,5 +83,33 @@ TEST(RingSides, TheMapsAnswersOnRingsFullOfDegeneracies) {
   EXPECT_GT(within, 20);
 }
 
+// The exact tests the zoning map's proof places polygons with (validate.cpp, far_zoning).
+TEST(RingSides, SegmentAgainstABoxAndWindingNumbers) {
+  const geom::Box box{0, 0, 2, 2};
+  EXPECT_TRUE(segment_meets_box({-1, 1}, {3, 1}, box));    // through it
+  EXPECT_TRUE(segment_meets_box({2, 2}, {3, 5}, box));     // from a corner
+  EXPECT_TRUE(segment_meets_box({-1, 3}, {3, -1}, box));   // a diagonal across it
+  EXPECT_TRUE(segment_meets_box({0, 4}, {4, 0}, box));     // touching the corner (2, 2)
+  EXPECT_FALSE(segment_meets_box({0, 4 + 1e-12}, {4, 0}, box));  // the boxes meet; the segment passes a hair beyond
+  EXPECT_FALSE(segment_meets_box({3, -1}, {3, 5}, box));   // beside it
+  EXPECT_TRUE(segment_meets_box({1, 1}, {1.5, 1.5}, box)); // inside
+
+  const Ring a = square(0, 0, 4);
+  EXPECT_EQ(exact_winding_number(a, {1, 1}), 1);
+  EXPECT_EQ(exact_winding_number(a, {5, 1}), 0);
+  EXPECT_EQ(exact_winding_number(a, {1, -1}), 0);
+  EXPECT_EQ(exact_winding_number(Ring(a.rbegin(), a.rend()), {1, 1}), -1);
+  Ring twice = a;
+  twice.insert(twice.end(), a.begin(), a.end());
+  EXPECT_EQ(exact_winding_number(twice, {2, 2}), 2);
+  // At a vertex's height: counted once.
+  EXPECT_EQ(exact_winding_number({{0, 0}, {4, 2}, {0, 4}}, {1, 2}), 1);
+  EXPECT_EQ(exact_winding_number({{0, 0}, {4, 2}, {0, 4}}, {-1, 2}), 0);
+  // A bow tie: one lobe each way.
+  const Ring bow{{0, 0}, {4, 4}, {4, 0}, {0, 4}};
+  EXPECT_EQ(exact_winding_number(bow, {1, 2}), 1);
+  EXPECT_EQ(exact_winding_number(bow, {3, 2}), -1);
+}
+
 }  // namespace
 }  // namespace exacity
