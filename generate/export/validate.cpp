@@ -509,10 +509,11 @@ FarZoning far_zoning(const DrawnFeatures& sketch, const std::vector<PolygonRef>&
           drawn_edges.push_back({a, b});
         }
       }
-  geom::BoxIndex mapped_index(32.0);  // what the map holds that is not a far candidate
+  geom::BoxIndex mapped_index(32.0);  // what the map holds that is not a far candidate (ids from 0: its queries pass over them all)
+  int mapped = 0;
   for (std::size_t p = 0; p < P; ++p)
     if (refs[p].kind == Kind::Bridge || (rest && (*rest)[p] && !is_zoning(refs[p].kind)))
-      mapped_index.add(static_cast<int>(p), box_of(polygons[p]->outer));
+      mapped_index.add(mapped++, box_of(polygons[p]->outer));
   // The last drawn zone whose polygon's outer ring winds around p and no hole of it does
   // (DrawnZones::top_zone); p lies on no drawn edge.
   auto top_zone = [&](geom::Vec2 p) {
@@ -543,6 +544,9 @@ FarZoning far_zoning(const DrawnFeatures& sketch, const std::vector<PolygonRef>&
   });
   // Each edge's count, one way less the other (the way from the lower end, as segment_key orders them, counts +1).
   std::unordered_map<geom::SegmentKey, int, SegmentHash> net;
+  std::size_t far_edges = 0;
+  for (std::size_t p = 0; p < P; ++p) far_edges += out.far[p] ? polygons[p]->outer.size() : 0;
+  net.reserve(far_edges);
   auto for_each_far_edge = [&](auto&& f) {
     for (std::size_t p = 0; p < P; ++p) {
       if (!out.far[p]) continue;
