@@ -483,7 +483,7 @@ struct SegmentHash {
 // lies in one far polygon, and passes; any other face it winds around is an overlap.
 struct FarZoning {
   std::vector<char> far;  // by polygon
-  std::vector<std::pair<geom::Vec2, geom::Vec2>> outline;  // directed edges, in polygon order
+  std::vector<std::pair<geom::Vec2, geom::Vec2>> outline;  // directed edges, ordered by their ends
   bool any() const { return !outline.empty(); }
 };
 
@@ -542,27 +542,32 @@ FarZoning far_zoning(const DrawnFeatures& sketch, const std::vector<PolygonRef>&
     }
     out.far[p] = 1;
   });
-  // Each edge's count, one way less the other (the way from the lower end, as segment_key orders them, counts +1).
-  std::unordered_map<geom::SegmentKey, int, SegmentHash> net;
-  std::size_t far_edges = 0;
-  for (std::size_t p = 0; p < P; ++p) far_edges += out.far[p] ? polygons[p]->outer.size() : 0;
-  net.reserve(far_edges);
-  auto for_each_far_edge = [&](auto&& f) {
-    for (std::size_t p = 0; p < P; ++p) {
-      if (!out.far[p]) continue;
-      const geom::Ring& ring = polygons[p]->outer;
-      for (std::size_t i = 0; i < ring.size(); ++i) {
-        const geom::Vec2 a = ring[i], b = ring[(i + 1) % ring.size()];
-        const geom::SegmentKey key = geom::segment_key(a, b);
-        f(a, b, key, key.first == std::pair{a.x, a.y} ? 1 : -1);
-      }
-    }
+  // The far edges sorted by segment (a hash of half a million edges missed the cache at
+  // every edge), each group's count one way less the other (the way from the lower end, as
+  // segment_key orders them, counts +1) left as that many edges in the outline.
+  struct FarEdge {
+    geom::SegmentKey key;
+    int way;
   };
-  for_each_far_edge([&](geom::Vec2, geom::Vec2, const geom::SegmentKey& key, int way) { net[key] += way; });
-  for_each_far_edge([&](geom::Vec2 a, geom::Vec2 b, const geom::SegmentKey& key, int way) {
-    int& left = net.at(key);
-    if (left * way > 0) out.outline.push_back({a, b}), left -= way;
-  });
+  std::vector<FarEdge> edges;
+  for (std::size_t p = 0; p < P; ++p) {
+    if (!out.far[p]) continue;
+    const geom::Ring& ring = polygons[p]->outer;
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const geom::Vec2 a = ring[i], b = ring[(i + 1) % ring.size()];
+      const geom::SegmentKey key = geom::segment_key(a, b);
+      edges.push_back({key, key.first == std::pair{a.x, a.y} ? 1 : -1});
+    }
+  }
+  std::sort(edges.begin(), edges.end(), [](const FarEdge& a, const FarEdge& b) { return a.key < b.key; });
+  for (std::size_t i = 0, j = 0; i < edges.size(); i = j) {
+    int net = 0;
+    for (j = i; j < edges.size() && edges[j].key == edges[i].key; ++j) net += edges[j].way;
+    const geom::Vec2 lower{edges[i].key.first.first, edges[i].key.first.second},
+        upper{edges[i].key.second.first, edges[i].key.second.second};
+    for (; net > 0; --net) out.outline.push_back({lower, upper});
+    for (; net < 0; ++net) out.outline.push_back({upper, lower});
+  }
   return out;
 }
 
