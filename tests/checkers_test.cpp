@@ -393,3 +393,50 @@ TEST_F(Checkers, ZoningMapsOutlineProofFindsWhatTheWholeMapFinds) {
   EXPECT_NE(with.problems[0].find("says zone \"commercial\" where the sketch draws \"residential\""), std::string::npos)
       << with.problems[0];
 }
+
+// The centre lines are proven to meet only at vertices of both, segment against segment,
+// before any map of them (validate.cpp, roads_meet_at_vertices): roads broken one way
+// each, the problems are the map's, word for word.
+TEST_F(Checkers, RoadsProofFindsWhatTheMapFinds) {
+  using exacity::MapProofs;
+  struct Case {
+    std::string name, expect;  // expect empty: whatever the map finds
+    std::function<void(json&)> tamper;
+  };
+  auto added = [](json& doc, json line) {
+    json road = doc["features"][0];
+    road["properties"]["id"] = 999999;
+    road["geometry"]["coordinates"] = std::move(line);
+    doc["features"].push_back(road);
+  };
+  const std::vector<Case> cases = {
+      {"twice", " runs along road ", [&](json& doc) { added(doc, doc["features"][0]["geometry"]["coordinates"]); }},
+      {"across", " meets another centre line between its vertices",
+       [&](json& doc) { added(doc, json::array({{-10, 100.5}, {250, 100.5}})); }},
+      // A road from a vertex of another to a point inside one of its segments.
+      {"inside", " meets another centre line between its vertices",
+       [&](json& doc) {
+         const json& line = doc["features"][0]["geometry"]["coordinates"];
+         const double x = line[0][0], y = line[0][1], u = line[1][0], v = line[1][1];
+         added(doc, json::array({{x, y}, {x + 7, y + 5}, {x + (u - x) / 2, y + (v - y) / 2}}));
+       }},
+      // A road that goes back along its own last segment: the same segment of one line.
+      {"back", "",
+       [&](json& doc) {
+         json& line = doc["features"][0]["geometry"]["coordinates"];
+         line.push_back(line[line.size() - 2]);
+       }},
+  };
+  for (const Case& c : cases) {
+    const fs::path out = copy("roads-" + c.name);
+    edit_json(out / "vector" / "roads.geojson", c.tamper);
+    const exacity::Validation with = exacity::validate_output(out, 0, MapProofs::First);
+    const exacity::Validation whole = exacity::validate_output(out, 0, MapProofs::None);
+    EXPECT_EQ(with.problems, whole.problems) << c.name;
+    std::string all;
+    for (const std::string& p : with.problems) all += p + "\n";
+    if (!c.expect.empty()) {
+      EXPECT_NE(all.find(c.expect), std::string::npos) << c.name << ":\n" << all;
+    }
+  }
+}

@@ -180,6 +180,19 @@ int exact_winding_number(const Ring& ring, Vec2 p) {
   return winding;
 }
 
+SegmentMeeting segment_meeting(Vec2 a0, Vec2 a1, Vec2 b0, Vec2 b1) {
+  if (!box_of(a0, a1).meets(box_of(b0, b1))) return SegmentMeeting::Apart;
+  if ((a0 == b0 && a1 == b1) || (a0 == b1 && a1 == b0)) return SegmentMeeting::Same;
+  const int o0 = orient(a0, a1, b0), o1 = orient(a0, a1, b1);
+  // On one line, not running along each other: they touch at most where an end of each meets.
+  if (o0 == 0 && o1 == 0) return segments_run_along(a0, a1, b0, b1) ? SegmentMeeting::Otherwise : SegmentMeeting::Apart;
+  if (o0 * o1 > 0) return SegmentMeeting::Apart;
+  const int o2 = orient(b0, b1, a0), o3 = orient(b0, b1, a1);
+  if (o2 * o3 > 0) return SegmentMeeting::Apart;
+  // Not on one line, they meet at one point: a shared end, if they have one.
+  return a0 == b0 || a0 == b1 || a1 == b0 || a1 == b1 ? SegmentMeeting::Apart : SegmentMeeting::Otherwise;
+}
+
 bool segments_run_along(Vec2 a0, Vec2 a1, Vec2 b0, Vec2 b1) {
   if (orient(a0, a1, b0) != 0 || orient(a0, a1, b1) != 0) return false;
   // On one line: compare along x, or along y when it is upright.

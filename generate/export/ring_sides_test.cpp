@@ -111,5 +111,23 @@ TEST(RingSides, SegmentAgainstABoxAndWindingNumbers) {
   EXPECT_EQ(exact_winding_number(bow, {3, 2}), -1);
 }
 
+// The exact test the roads' proof meets segments with (validate.cpp, roads_meet_at_vertices).
+TEST(RingSides, HowTwoSegmentsMeet) {
+  using M = SegmentMeeting;
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 0}, {0, 1}, {4, 1}), M::Apart);      // parallel
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 0}, {4, 0}, {6, 3}), M::Apart);      // a shared end
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 0}, {4, 0}, {6, 0}), M::Apart);      // on one line, end to end
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 0}, {6, 0}, {4, 0}), M::Apart);
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 0}, {4, 0}, {0, 0}), M::Same);       // the same, either way
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 0}, {0, 0}, {4, 0}), M::Same);
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 0}, {2, -1}, {2, 1}), M::Otherwise);  // crossing
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 0}, {2, 0}, {2, 1}), M::Otherwise);   // an end inside the other
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 0}, {2, 0}, {6, 0}), M::Otherwise);   // along each other in part
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 0}, {0, 0}, {2, 0}), M::Otherwise);   // a shared end, and along
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 4}, {0, 4}, {2, 2 + 1e-12}), M::Apart);  // a hair short
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 4}, {0, 4}, {2, 2}), M::Otherwise);
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 4}, {0, 4}, {2, 2 - 1e-12}), M::Otherwise);  // a hair over
+}
+
 }  // namespace
 }  // namespace exacity

@@ -1030,13 +1030,50 @@ void check_tiling(Checker& c, const DrawnFeatures& sketch, const std::vector<Pol
   check_both_maps(c, sketch, refs, polygons, grid, tile_side);
 }
 
+// Whether the centre lines pass check_road_meetings without its map: any two of their
+// segments meet nowhere but at an end of both, or are the same segment of one line (each
+// pair whose boxes meet asked exactly, segment_meeting). Then no segment is cut and no
+// piece is two lines'; anything else (a repeated vertex too) is left to the map.
+bool roads_meet_at_vertices(const std::vector<VectorFeature>& features) {
+  struct Segment {
+    geom::Vec2 a, b;
+    int line;
+  };
+  std::vector<Segment> segments;
+  geom::BoxIndex index(64.0);
+  for (std::size_t i = 0; i < features.size(); ++i)
+    for (std::size_t k = 1; k < features[i].line.size(); ++k) {
+      const geom::Vec2 a = features[i].line[k - 1], b = features[i].line[k];
+      if (a == b) return false;
+      geom::Box box = geom::Box::none();
+      box.add(a), box.add(b);
+      index.add(static_cast<int>(segments.size()), box);
+      segments.push_back({a, b, static_cast<int>(i)});
+    }
+  std::vector<char> wrong(segments.size(), 0);
+  for_each_cancellable(segments.size(), [&](std::size_t s) {
+    const Segment& x = segments[s];
+    geom::Box box = geom::Box::none();
+    box.add(x.a), box.add(x.b);
+    for (int o : index.meeting(box)) {
+      if (o <= static_cast<int>(s)) continue;
+      const Segment& y = segments[o];
+      const SegmentMeeting meeting = segment_meeting(x.a, x.b, y.a, y.b);
+      if (meeting == SegmentMeeting::Otherwise || (meeting == SegmentMeeting::Same && x.line != y.line)) return void(wrong[s] = 1);
+    }
+  });
+  return std::find(wrong.begin(), wrong.end(), 1) == wrong.end();
+}
+
 // The centre lines are a noded network: two of them meet only at a vertex of both. Every
 // end of a grown road is a vertex of another centre line (a junction) or lies on the edge
 // of the built city (a drawn zone's ring or water). Every piece of the network holding a
 // region's roads holds a road the sketch drew (in a sketch without roads, all are one).
 // A road's centre line meets another only at its vertices: never between them, nor along
 // a segment both have.
-void check_road_meetings(Checker& c, const std::vector<VectorFeature>& features) {
+// With `proof`, the map only when roads_meet_at_vertices finds anything.
+void check_road_meetings(Checker& c, const std::vector<VectorFeature>& features, bool proof) {
+  if (proof && roads_meet_at_vertices(features)) return;
   const geom::SharedEndsByOrientation shared_ends;  // every end is a written double
   geom::PlanarMap map;
   for (std::size_t i = 0; i < features.size(); ++i) map.add_polyline(features[i].line, static_cast<int>(i));
@@ -1127,8 +1164,8 @@ void check_road_ends(Checker& c, const DrawnFeatures& sketch, const std::vector<
   }
 }
 
-void check_roads(Checker& c, const DrawnFeatures& sketch, const Layer& roads, const Layer& water) {
-  check_road_meetings(c, roads.features);
+void check_roads(Checker& c, const DrawnFeatures& sketch, const Layer& roads, const Layer& water, MapProofs proofs) {
+  check_road_meetings(c, roads.features, proofs != MapProofs::None);
   check_road_connectivity(c, roads.features);
   check_road_ends(c, sketch, roads.features, water);
 }
@@ -1358,7 +1395,7 @@ Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* las
       },
       [&] {
         Checker r(road_checks);
-        check_roads(r, sketch, roads, water);
+        check_roads(r, sketch, roads, water, proofs);
         validate_clutter(dir, layers, clutter, last ? &lines.at("clutter") : nullptr);
       });
   for (const Validation* part : {&tiling, &road_checks, &clutter}) {
