@@ -147,16 +147,18 @@ class WrittenLayout {
     }
     if (!literal(R"(,"geometry":{"type":)")) return false;
     if (literal(R"("Polygon","coordinates":[)")) {
-      do {
+      // The outer ring, then the holes, each closed (its last position its first, dropped).
+      auto ring = [&](geom::Ring& r) {
+        if (!positions(r) || r.size() < 4 || !(r.front() == r.back())) return false;
+        r.pop_back();
+        return true;
+      };
+      if (!ring(f.polygon.outer)) return false;
+      while (literal(",")) {
         f.polygon.holes.emplace_back();
-        if (!positions(f.polygon.holes.back()) || f.polygon.holes.back().size() < 4 ||
-            !(f.polygon.holes.back().front() == f.polygon.holes.back().back()))
-          return false;
-        f.polygon.holes.back().pop_back();
-      } while (literal(","));
+        if (!ring(f.polygon.holes.back())) return false;
+      }
       if (!literal("]")) return false;
-      f.polygon.outer = std::move(f.polygon.holes.front());
-      f.polygon.holes.erase(f.polygon.holes.begin());
     } else if (literal(R"("LineString","coordinates":)")) {
       layer.lines = true;
       if (!literal("[]") && !positions(f.line)) return false;
