@@ -252,18 +252,7 @@ class WrittenLayout {
   bool plain_number(nlohmann::ordered_json& v) {
     const char* const start = p_;
     bool integer = true;
-    if (p_ < end_ && *p_ == '-') ++p_;
-    if (p_ < end_ && *p_ == '0') ++p_;
-    else if (!digits()) return false;
-    if (p_ < end_ && *p_ == '.') {
-      ++p_, integer = false;
-      if (!digits()) return false;
-    }
-    if (p_ < end_ && (*p_ == 'e' || *p_ == 'E')) {
-      ++p_, integer = false;
-      if (p_ < end_ && (*p_ == '+' || *p_ == '-')) ++p_;
-      if (!digits()) return false;
-    }
+    if (!number_text(integer)) return false;
     if (integer && *start == '-') {
       std::int64_t i = 0;
       const auto [end, ec] = std::from_chars(start, p_, i);
@@ -320,6 +309,22 @@ class WrittenLayout {
   bool number(double& v) {
     const char* const start = p_;
     bool integer = true;
+    if (!number_text(integer)) return false;
+    if (integer) {
+      if (*start == '-') {
+        std::int64_t i = 0;
+        if (std::from_chars(start, p_, i).ec == std::errc()) return v = static_cast<double>(i), true;
+      } else {
+        std::uint64_t u = 0;
+        if (std::from_chars(start, p_, u).ec == std::errc()) return v = static_cast<double>(u), true;
+      }
+    }
+    return std::from_chars(start, p_, v).ec == std::errc();
+  }
+
+  // Past a number of JSON's grammar; `integer`: whether it has neither a fraction nor an
+  // exponent.
+  bool number_text(bool& integer) {
     if (p_ < end_ && *p_ == '-') ++p_;
     if (p_ < end_ && *p_ == '0') ++p_;
     else if (!digits()) return false;
@@ -332,16 +337,7 @@ class WrittenLayout {
       if (p_ < end_ && (*p_ == '+' || *p_ == '-')) ++p_;
       if (!digits()) return false;
     }
-    if (integer) {
-      if (*start == '-') {
-        std::int64_t i = 0;
-        if (std::from_chars(start, p_, i).ec == std::errc()) return v = static_cast<double>(i), true;
-      } else {
-        std::uint64_t u = 0;
-        if (std::from_chars(start, p_, u).ec == std::errc()) return v = static_cast<double>(u), true;
-      }
-    }
-    return std::from_chars(start, p_, v).ec == std::errc();
+    return true;
   }
 
   bool digits() {
