@@ -82,6 +82,32 @@ void edit_glb_json(const fs::path& file, const std::function<void(json&)>& edit)
                                         << glb.substr(16, 4) << text << bin;
 }
 
+// Feature i laid again over itself, under an id of its own.
+void add_twin(json& doc, std::size_t i = 0) {
+  json twin = doc["features"][i];
+  twin["properties"]["id"] = 999999;
+  doc["features"].push_back(twin);
+}
+
+// The mean of a closed ring's vertices (the closing one counted once).
+std::pair<double, double> centre_of(const json& ring) {
+  double cx = 0, cy = 0;
+  for (std::size_t k = 0; k + 1 < ring.size(); ++k) cx += ring[k][0].get<double>(), cy += ring[k][1].get<double>();
+  return {cx / static_cast<double>(ring.size() - 1), cy / static_cast<double>(ring.size() - 1)};
+}
+
+// A closed counter-clockwise ring's first corner moved `step` along the sum of its two
+// edges' outward normals (inward where `step` is negative).
+void move_corner(json& ring, double step) {
+  auto at = [&](std::size_t k) { return std::pair{ring[k][0].get<double>(), ring[k][1].get<double>()}; };
+  const auto [ux, uy] = at(ring.size() - 2);
+  const auto [vx, vy] = at(0);
+  const auto [wx, wy] = at(1);
+  const double l1 = std::hypot(vx - ux, vy - uy), l2 = std::hypot(wx - vx, wy - vy);
+  const double nx = (vy - uy) / l1 + (wy - vy) / l2, ny = -(vx - ux) / l1 - (wx - vx) / l2;
+  ring[0] = ring.back() = {vx + step * nx, vy + step * ny};
+}
+
 }  // namespace
 
 TEST_F(Checkers, GeosRefusesOverlappingZonesAndAWronglyTurnedRing) {
@@ -89,11 +115,7 @@ TEST_F(Checkers, GeosRefusesOverlappingZonesAndAWronglyTurnedRing) {
   EXPECT_EQ(good.code, 0) << good.out;
 
   fs::path out = copy("geos-overlap");
-  edit_json(out / "vector" / "zones.geojson", [](json& doc) {
-    json twin = doc["features"][0];
-    twin["properties"]["id"] = 999999;
-    doc["features"].push_back(twin);
-  });
+  edit_json(out / "vector" / "zones.geojson", [](json& doc) { add_twin(doc); });
   Result overlap = shell(geos_check(out));
   EXPECT_EQ(overlap.code, 1) << overlap.out;
   EXPECT_NE(overlap.out.find("zones[0] and zones["), std::string::npos) << overlap.out;
@@ -193,19 +215,13 @@ TEST_F(Checkers, ValidationsProofsFallBackToTheWholeMapsMessages) {
   const std::vector<Case> cases = {
       // A lot laid again over itself, and one moved a metre out of its block.
       {"overlap", "lots", " overlap",
-       [&](json& doc) {
-         json twin = doc["features"][0];
-         twin["properties"]["id"] = 999999;
-         doc["features"].push_back(twin);
-       }},
+       [&](json& doc) { add_twin(doc); }},
       {"shifted", "lots", "leaves its block", [&](json& doc) { shift(ring_of(doc), 1, 1); }},
       // A block's corner pulled in: land of the zone left without a block.
       {"gap", "blocks", "holds no block",
        [&](json& doc) {
          json& ring = ring_of(doc);
-         double cx = 0, cy = 0;
-         for (std::size_t k = 0; k + 1 < ring.size(); ++k) cx += ring[k][0].get<double>(), cy += ring[k][1].get<double>();
-         cx /= static_cast<double>(ring.size() - 1), cy /= static_cast<double>(ring.size() - 1);
+         const auto [cx, cy] = centre_of(ring);
          ring[0] = ring.back() = {ring[0][0].get<double>() * 0.9 + cx * 0.1, ring[0][1].get<double>() * 0.9 + cy * 0.1};
        }},
       // A lot naming another block than the one it lies in.
@@ -218,25 +234,11 @@ TEST_F(Checkers, ValidationsProofsFallBackToTheWholeMapsMessages) {
        }},
       // A lot's corner moved a nanometre out (along the sum of its edges' outward normals):
       // a sliver over its neighbour or out of its block.
-      {"sliver", "lots", "lots.geojson features[0]",
-       [&](json& doc) {
-         json& ring = ring_of(doc);
-         auto at = [&](std::size_t k) { return std::pair{ring[k][0].get<double>(), ring[k][1].get<double>()}; };
-         const auto [ux, uy] = at(ring.size() - 2);
-         const auto [vx, vy] = at(0);
-         const auto [wx, wy] = at(1);
-         const double l1 = std::hypot(vx - ux, vy - uy), l2 = std::hypot(wx - vx, wy - vy);
-         const double nx = (vy - uy) / l1 + (wy - vy) / l2, ny = -(vx - ux) / l1 - (wx - vx) / l2;
-         ring[0] = ring.back() = {vx + 1e-9 * nx, vy + 1e-9 * ny};
-       }},
+      {"sliver", "lots", "lots.geojson features[0]", [&](json& doc) { move_corner(ring_of(doc), 1e-9); }},
       // A building carried off its lot, and one laid over another.
       {"building-off", "buildings", "leaves its lot", [&](json& doc) { shift(ring_of(doc), 30, 0); }},
       {"building-twice", "buildings", " overlap",
-       [&](json& doc) {
-         json twin = doc["features"][0];
-         twin["properties"]["id"] = 999999;
-         doc["features"].push_back(twin);
-       }},
+       [&](json& doc) { add_twin(doc); }},
       // A block that says another zone than the zone of its rings: a block is proven only
       // with the zone's type.
       {"block-zone", "blocks", "says \"commercial\" inside",
@@ -244,43 +246,27 @@ TEST_F(Checkers, ValidationsProofsFallBackToTheWholeMapsMessages) {
       // A block laid twice, and a zone: a block is proven only as the one block of the one
       // zone with its rings.
       {"block-twice", "blocks", " overlap",
-       [&](json& doc) {
-         json twin = doc["features"][0];
-         twin["properties"]["id"] = 999999;
-         doc["features"].push_back(twin);
-       }},
+       [&](json& doc) { add_twin(doc); }},
       {"zone-twice", "zones", " overlap",
-       [&](json& doc) {
-         json twin = doc["features"][0];
-         twin["properties"]["id"] = 999999;
-         doc["features"].push_back(twin);
-       }},
+       [&](json& doc) { add_twin(doc); }},
       // A block's corner moved a nanometre in: a gap in its zone that no block covers, so
       // the rings are compared exactly.
       {"block-sliver", "blocks", "holds no block",
        [&](json& doc) {
          json& ring = ring_of(doc);
-         double cx = 0, cy = 0;
-         for (std::size_t k = 0; k + 1 < ring.size(); ++k) cx += ring[k][0].get<double>(), cy += ring[k][1].get<double>();
-         cx /= static_cast<double>(ring.size() - 1), cy /= static_cast<double>(ring.size() - 1);
+         const auto [cx, cy] = centre_of(ring);
          const double x = ring[0][0].get<double>(), y = ring[0][1].get<double>(), d = std::hypot(cx - x, cy - y);
          ring[0] = ring.back() = {x + 1e-9 * (cx - x) / d, y + 1e-9 * (cy - y) / d};
        }},
       // A road area laid twice: the zoning map, holding what the proofs left, checks the
       // polygons too.
       {"road-twice", "road_areas", " overlap",
-       [&](json& doc) {
-         json twin = doc["features"][0];
-         twin["properties"]["id"] = 999999;
-         doc["features"].push_back(twin);
-       }},
+       [&](json& doc) { add_twin(doc); }},
       // A lot shrunk off the road areas.
       {"no-frontage", "lots", "touches no road area",
        [&](json& doc) {
          json& ring = ring_of(doc);
-         double cx = 0, cy = 0;
-         for (std::size_t k = 0; k + 1 < ring.size(); ++k) cx += ring[k][0].get<double>(), cy += ring[k][1].get<double>();
-         cx /= static_cast<double>(ring.size() - 1), cy /= static_cast<double>(ring.size() - 1);
+         const auto [cx, cy] = centre_of(ring);
          for (auto& p : ring) p = {cx + (p[0].get<double>() - cx) * 0.9, cy + (p[1].get<double>() - cy) * 0.9};
        }},
   };
@@ -322,26 +308,11 @@ TEST_F(Checkers, ZoningMapsOutlineProofFindsWhatTheWholeMapFinds) {
     if (depth <= 1) throw std::runtime_error("no feature inside the square");
     return best;
   };
-  auto twice = [&](const std::string& surface) {
-    return [=](json& doc) {
-      json twin = doc["features"][innermost(doc, surface)];
-      twin["properties"]["id"] = 999999;
-      doc["features"].push_back(twin);
-    };
-  };
+  auto twice = [&](const std::string& surface) { return [=](json& doc) { add_twin(doc, innermost(doc, surface)); }; };
   // A carriageway's corner moved a nanometre in, along its edges' inward normals: a gap
   // between it and what it touches, narrower than rounding.
   auto corner_in = [&](double step) {
-    return [=](json& doc) {
-      json& ring = doc["features"][innermost(doc, "carriageway")]["geometry"]["coordinates"][0];
-      auto at = [&](std::size_t k) { return std::pair{ring[k][0].get<double>(), ring[k][1].get<double>()}; };
-      const auto [ux, uy] = at(ring.size() - 2);
-      const auto [vx, vy] = at(0);
-      const auto [wx, wy] = at(1);
-      const double l1 = std::hypot(vx - ux, vy - uy), l2 = std::hypot(wx - vx, wy - vy);
-      const double nx = -(vy - uy) / l1 - (wy - vy) / l2, ny = (vx - ux) / l1 + (wx - vx) / l2;
-      ring[0] = ring.back() = {vx + step * nx, vy + step * ny};
-    };
+    return [=](json& doc) { move_corner(doc["features"][innermost(doc, "carriageway")]["geometry"]["coordinates"][0], -step); };
   };
   struct Case {
     std::string name, layer, expect;  // expect empty: valid
