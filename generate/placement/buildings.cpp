@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <map>
 #include <cmath>
-#include <optional>
 #include <tuple>
 
 #include <tbb/parallel_for.h>
@@ -190,11 +189,11 @@ Rows fill_rows(Occupancy& occupancy, const BuildingSettings& p, Random& rng, con
           continue;
         }
       }
-      std::vector<std::pair<double, double>> sizes{{w, d}};
-      if (areas) for (double k : {1.25, 1.6, 2.0}) sizes.insert(sizes.end(), {{w * k, d / k}, {w / k, d * k}});
-      else sizes.insert(sizes.end(), {{0.8 * w, 0.8 * d}, {0.64 * w, 0.64 * d}, {0.5 * w, 0.5 * d}, {m, 0.5 * d}, {m, m}});
+      std::vector<std::pair<double, double>> shapes{{w, d}};
+      if (areas) for (double k : {1.25, 1.6, 2.0}) shapes.insert(shapes.end(), {{w * k, d / k}, {w / k, d * k}});
+      else shapes.insert(shapes.end(), {{0.8 * w, 0.8 * d}, {0.64 * w, 0.64 * d}, {0.5 * w, 0.5 * d}, {m, 0.5 * d}, {m, m}});
       bool placed = false;
-      for (auto [ws, ds] : sizes) {
+      for (auto [ws, ds] : shapes) {
         ws = std::max(ws, m), ds = std::max(ds, m);
         // Past the lot's side or its deepest corner (a millimetre's margin): outside it, untried.
         if (t + ws > f.t1 || front + ds + clearance > f.depth + 1e-3 || ws * ds < p.min_footprint_area ||
