@@ -210,9 +210,7 @@ ordered_json footprints_by_zone(const City& city) {
     zones[lot.zone][0].land_m2 += land * mapped_share;
     zones[lot.zone][1].land_m2 += land * (1 - mapped_share);
   }
-  std::map<ZoneType, double> land_use;
-  for (const ZoneFeature& z : city.drawn.zones)
-    for (const geom::Polygon& p : z.polygons) land_use[z.type] += drawn_area(p);
+  std::map<ZoneType, double> land_use = land_by_zone(city.drawn.zones);
   ordered_json out = ordered_json::object();
   for (ZoneType t : {ZoneType::Residential, ZoneType::Commercial, ZoneType::Industrial}) {
     if (!zones.count(t)) continue;

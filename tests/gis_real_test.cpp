@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <set>
 
 #include "generate/sketch/sketch.h"
@@ -114,4 +115,50 @@ TEST(Gis, LikeBringsKotkasFootprintsToItsBuildings) {
   expect_like_the_place(
       place_report("kotka_pyrosm_test", " --like " + (osm / "kotka_pyrosm_test_buildings.geojson").string(), dir / "out"),
       {"residential", "industrial"});
+}
+
+// Completing a place: Helsinki's centre with half its buildings (those whose first corner
+// lies in the dark squares of a 250 m checkerboard), --like all of them. What is mapped is
+// kept, and the land the other half stood on is built with footprints whose median and p90
+// are within a quarter of the place's, covering their lots within a quarter of what the
+// mapped half covers of theirs.
+TEST(Gis, CompletingHalfOfHelsinkisBuildingsBuildsTheRestLikeThePlace) {
+  const fs::path osm = cli_util::kSource / ".." / "shared" / "data" / "osm";
+  if (!fs::exists(osm / "helsinki_centre_buildings.geojson"))
+    GTEST_SKIP() << osm << " is not here (../shared/data holds real data beside the repository)";
+  const fs::path dir = testing_util::temp_dir("complete_helsinki");
+  nlohmann::json buildings = nlohmann::json::parse(cli_util::read(osm / "helsinki_centre_buildings.geojson"));
+  nlohmann::json half = nlohmann::json::array();
+  const double metres_per_degree = 111320 * std::cos(60.17 * M_PI / 180);
+  for (const nlohmann::json& f : buildings["features"]) {
+    const nlohmann::json& g = f["geometry"];
+    const nlohmann::json& corner = g["type"] == "Polygon" ? g["coordinates"][0][0] : g["coordinates"][0][0][0];
+    const long x = std::lround(std::floor(corner[0].get<double>() * metres_per_degree / 250));
+    const long y = std::lround(std::floor(corner[1].get<double>() * 110540 / 250));
+    if ((x + y) % 2 != 0) half.push_back(f);
+  }
+  ASSERT_GT(half.size(), buildings["features"].size() / 3);
+  ASSERT_LT(half.size(), 2 * buildings["features"].size() / 3);
+  const std::size_t mapped = half.size();
+  buildings["features"] = std::move(half);
+  std::ofstream(dir / "half.geojson") << buildings.dump();
+  const nlohmann::json report =
+      place_report("helsinki_centre", " " + (dir / "half.geojson").string() + " --like " +
+                                          (osm / "helsinki_centre_buildings.geojson").string(), dir / "out");
+  EXPECT_TRUE(report["validation"]["ok"].get<bool>()) << report["validation"].dump();
+  // Each polygon of a multipolygon is one in the sketch; all but the unbuildable few kept.
+  const nlohmann::json& tally = report["mapped_buildings"];
+  EXPECT_GE(tally["in_sketch"].get<std::size_t>(), mapped);
+  EXPECT_GT(tally["kept"].get<int>() + tally["repaired"].get<int>(), 0.95 * tally["in_sketch"].get<int>()) << tally.dump(1);
+  for (const char* zone : {"residential", "commercial"}) {
+    const nlohmann::json& measured = report["like"]["zones"][zone]["measured"];
+    const nlohmann::json& figures = report["footprints_by_zone"][zone];
+    const nlohmann::json& generated = figures["generated"];
+    EXPECT_GT(generated["footprints"].get<int>(), 30) << zone;
+    for (const auto& [place, is] : {std::pair{measured["area_m2"]["median"], generated["median_m2"]},
+                                    {measured["area_m2"]["p90"], generated["p90_m2"]},
+                                    {figures["mapped"]["coverage_of_lots"], generated["coverage_of_lots"]}})
+      EXPECT_LT(std::abs(is.get<double>() - place.get<double>()), 0.25 * place.get<double>())
+          << zone << ": " << is << " against " << place;
+  }
 }

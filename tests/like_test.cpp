@@ -8,6 +8,7 @@
 #include <set>
 #include <vector>
 
+#include "generate/sketch/like_place.h"
 #include "tests/cli_util.h"
 #include "tests/place_sketch.h"
 #include "tests/test_util.h"
@@ -538,4 +539,33 @@ TEST(Like, LotsHoldThePlacesLargeFootprints) {
   EXPECT_EQ(report["like"]["zones"]["residential"]["measured"]["area_m2"]["p90"], 800.0);
   const ordered_json g = report["footprints_by_zone"]["residential"]["generated"];
   EXPECT_LT(std::abs(g["p90_m2"].get<double>() - 800), 0.25 * 800) << g.dump();
+}
+
+namespace {
+
+exacity::ZoneFeature zone_feature(exacity::ZoneType type, geom::Ring outer) {
+  exacity::ZoneFeature z;
+  z.type = type;
+  z.polygons.push_back({std::move(outer), {}});
+  return z;
+}
+
+}  // namespace
+
+// A zone's land is what the map gives it: where zones overlap the later wins, so a park
+// drawn over half a residential square takes that half (Seattle's parks over its land use
+// made --like set lot_coverage for land the blocks never get: coverage 29% under), and a
+// park drawn before it takes nothing. A ring crossing itself counts as GEOS makes it valid.
+TEST(Like, AZonesLandIsWhatTheZonesDrawnAfterItLeave) {
+  using exacity::ZoneType;
+  const geom::Ring square{{0, 0}, {100, 0}, {100, 100}, {0, 100}}, west_half{{0, 0}, {50, 0}, {50, 100}, {0, 100}};
+  auto land = exacity::land_by_zone({zone_feature(ZoneType::Residential, square), zone_feature(ZoneType::Park, west_half)});
+  EXPECT_NEAR(land[ZoneType::Residential], 5000, 1e-6);
+  EXPECT_NEAR(land[ZoneType::Park], 5000, 1e-6);
+  land = exacity::land_by_zone({zone_feature(ZoneType::Park, west_half), zone_feature(ZoneType::Residential, square)});
+  EXPECT_NEAR(land[ZoneType::Residential], 10000, 1e-6);
+  EXPECT_NEAR(land[ZoneType::Park], 0, 1e-6);
+  // A bow tie of two 25 m2 triangles, clockwise and anticlockwise, is 50 m2 of land, not 0.
+  land = exacity::land_by_zone({zone_feature(ZoneType::Commercial, {{0, 0}, {10, 10}, {10, 0}, {0, 10}})});
+  EXPECT_NEAR(land[ZoneType::Commercial], 50, 1e-6);
 }

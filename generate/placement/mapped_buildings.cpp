@@ -55,43 +55,68 @@ geom::Ring plain_ring(const OGRLinearRing& r) {
   return out;
 }
 
-// A footprint whose rings are not simple, or that GEOS finds invalid (a hole outside its
-// outer ring), made valid by GEOS's MakeValid: the one polygon of area it leaves, or
-// nothing where it leaves none or several (a bow tie's two triangles).
-std::optional<geom::Polygon> made_valid(const geom::Polygon& p) {
-  std::unique_ptr<OGRGeometry> valid(ogr_polygon(p)->MakeValid());
-  if (!valid) return std::nullopt;
-  std::vector<const OGRPolygon*> parts;
+// The smallest piece of a footprint kept where a repair splits it, in area and in mean width
+// (twice its area over its perimeter): less is not a building (a strip of wall beyond a road).
+constexpr double kSmallestPiece = 1, kNarrowestPiece = 1;
+
+// The polygons of a GEOS result that have area (the lines and points where two polygons
+// only touch have none), as simple rings oriented as every layer writes them; the others
+// (a ring GEOS leaves touching itself, pieces under kSmallestPiece and kNarrowestPiece) are
+// not kept.
+std::vector<geom::Polygon> simple_polygons(const OGRGeometry* g) {
+  std::vector<geom::Polygon> out;
   std::function<void(const OGRGeometry*)> collect = [&](const OGRGeometry* g) {
     if (const auto* polygon = dynamic_cast<const OGRPolygon*>(g)) {
-      if (polygon->get_Area() > 0) parts.push_back(polygon);
+      if (!(polygon->get_Area() >= kSmallestPiece)) return;
+      geom::Polygon p;
+      p.outer = plain_ring(*polygon->getExteriorRing());
+      for (int i = 0; i < polygon->getNumInteriorRings(); ++i) p.holes.push_back(plain_ring(*polygon->getInteriorRing(i)));
+      if (!simple(p)) return;
+      orient(p);
+      if (!(2 * geom::area(p) >= kNarrowestPiece * geom::perimeter(p))) return;
+      out.push_back(std::move(p));
     } else if (const auto* collection = dynamic_cast<const OGRGeometryCollection*>(g)) {
       for (int i = 0; i < collection->getNumGeometries(); ++i) collect(collection->getGeometryRef(i));
     }
   };
-  collect(valid.get());
-  if (parts.size() != 1) return std::nullopt;
-  geom::Polygon out;
-  out.outer = plain_ring(*parts[0]->getExteriorRing());
-  for (int i = 0; i < parts[0]->getNumInteriorRings(); ++i) out.holes.push_back(plain_ring(*parts[0]->getInteriorRing(i)));
-  if (!simple(out)) return std::nullopt;
-  orient(out);
+  if (g) collect(g);
   return out;
 }
 
-bool ogr_valid(const geom::Polygon& p) { return ogr_polygon(p)->IsValid(); }
-
 // A footprint as kept: as drawn where its rings are simple and GEOS finds it valid, else
-// made valid (`repaired`), else nothing; oriented.
-std::optional<geom::Polygon> kept_polygon(geom::Polygon p, bool& repaired) {
-  repaired = !simple(p) || !ogr_valid(p);
-  if (repaired) {
-    std::optional<geom::Polygon> valid = made_valid(p);
-    if (!valid) return std::nullopt;
-    p = std::move(*valid);
-  }
+// made valid by GEOS's MakeValid (`repaired`): the polygons of at least kSmallestPiece m² it
+// leaves (a bow tie's two triangles, a courtyard ring touching the outer one), as QGIS's
+// "Fix geometries" leaves them; none where it leaves none.
+std::vector<geom::Polygon> kept_polygons(geom::Polygon p, bool& repaired) {
+  repaired = !simple(p) || !ogr_polygon(p)->IsValid();
+  if (repaired) return simple_polygons(std::unique_ptr<OGRGeometry>(ogr_polygon(p)->MakeValid()).get());
   orient(p);
-  return p;
+  return {std::move(p)};
+}
+
+// What is left of `footprint` clear of `obstacles` (road surfaces, footprints kept before
+// it): its pieces of at least kSmallestPiece m² (GEOS's difference, each obstacle grown by
+// kClear so that the result's rounding to doubles does not bring an edge back onto it).
+constexpr double kClear = 0.01;
+std::vector<geom::Polygon> cut_back(const geom::Polygon& footprint, const std::vector<const geom::Polygon*>& obstacles) {
+  std::unique_ptr<OGRGeometry> rest = ogr_polygon(footprint);
+  OGREnvelope near;
+  rest->getEnvelope(&near);
+  OGRPolygon reach;  // the footprint's box and a metre round it: a road network's surface is one polygon
+  auto* ring = new OGRLinearRing;
+  for (auto [x, y] : {std::pair{near.MinX - 1, near.MinY - 1}, {near.MaxX + 1, near.MinY - 1}, {near.MaxX + 1, near.MaxY + 1},
+                      {near.MinX - 1, near.MaxY + 1}, {near.MinX - 1, near.MinY - 1}})
+    ring->addPoint(x, y);
+  reach.addRingDirectly(ring);
+  for (const geom::Polygon* o : obstacles) {
+    std::unique_ptr<OGRGeometry> there(ogr_polygon(*o)->Intersection(&reach));
+    if (!there) return {};
+    std::unique_ptr<OGRGeometry> grown(there->Buffer(kClear, 2));
+    if (!grown) return {};
+    rest.reset(rest->Difference(grown.get()));
+    if (!rest) return {};
+  }
+  return simple_polygons(rest.get());
 }
 
 // A point strictly inside the polygon: the centre of its largest triangle.
@@ -132,7 +157,6 @@ std::string format_metres(double v) {
 }  // namespace
 
 void give_way_to_mapped_buildings(DrawnFeatures& drawn, MappedTally& tally) {
-  constexpr double kClear = 0.01;
   struct Footprint {
     std::unique_ptr<OGRPolygon> polygon;
     geom::Box box;
@@ -200,29 +224,35 @@ std::vector<Building> mapped_footprints(const std::vector<MappedBuilding>& drawn
     ++tally.refused[why];
     if (tally.named.size() < kNamed) tally.named.push_back(m.name + ": refused, " + (detail.empty() ? why : detail));
   };
-  // Each footprint simple, or repaired, or refused.
-  std::vector<Building> candidates;
-  std::vector<char> repaired;
+  // Each footprint simple, or made valid (in one piece or several), or refused.
+  struct Candidate {
+    Building building;                // its first piece
+    std::vector<geom::Polygon> pieces;
+    std::vector<std::string> repairs;
+    std::vector<int> kept;            // its pieces' indices in `kept`
+  };
+  std::vector<Candidate> candidates;
   for (std::size_t i = 0; i < drawn.size(); ++i) {
     const MappedBuilding& m = drawn[i];
     if (!m.problem.empty()) {
       refuse(m, m.problem);
       continue;
     }
-    Building b;
-    b.mapped = static_cast<int>(i);
-    b.osm_id = m.osm_id;
-    b.building_tag = m.building;
-    b.source_id = m.source_id;
-    bool was_repaired = false;
-    std::optional<geom::Polygon> polygon = kept_polygon(m.polygon, was_repaired);
-    if (!polygon) {
-      refuse(m, "self-intersecting footprint that GEOS's MakeValid does not make one polygon");
+    Candidate c;
+    c.building.mapped = static_cast<int>(i);
+    c.building.osm_id = m.osm_id;
+    c.building.building_tag = m.building;
+    c.building.source_id = m.source_id;
+    bool repaired = false;
+    c.pieces = kept_polygons(m.polygon, repaired);
+    if (c.pieces.empty()) {
+      refuse(m, "self-intersecting footprint that GEOS's MakeValid leaves no polygon of");
       continue;
     }
-    b.polygon = std::move(*polygon);
-    repaired.push_back(was_repaired);
-    candidates.push_back(std::move(b));
+    if (repaired)
+      c.repairs.push_back(c.pieces.size() == 1 ? "self-intersecting footprint made valid by GEOS's MakeValid"
+                                               : "self-intersecting footprint made valid by GEOS's MakeValid, in pieces");
+    candidates.push_back(std::move(c));
   }
   // The road surfaces (carriageways, sidewalks, junctions, bridges) as the map has them,
   // then the footprints, in one exact map: which footprint crosses a road, which overlap.
@@ -233,37 +263,101 @@ std::vector<Building> mapped_footprints(const std::vector<MappedBuilding>& drawn
   std::vector<const geom::Polygon*> polygons;
   for (const geom::Dissolved& d : surfaces[0]) polygons.push_back(&d.polygon);
   const int roads = static_cast<int>(polygons.size());
-  for (const Building& b : candidates) polygons.push_back(&b.polygon);
-  std::vector<char> on_road(candidates.size(), 0);
-  std::vector<std::vector<int>> earlier(candidates.size());  // the footprints before each that it overlaps
+  std::vector<int> candidate_of;  // each piece's candidate
+  for (std::size_t c = 0; c < candidates.size(); ++c)
+    for (const geom::Polygon& piece : candidates[c].pieces) polygons.push_back(&piece), candidate_of.push_back(static_cast<int>(c));
+  std::vector<std::vector<int>> roads_under(candidates.size()), earlier(candidates.size()), later(candidates.size());
   for (auto [a, b] : geom::overlapping_pairs(polygons)) {
     if (b < roads) continue;
-    if (a < roads) on_road[b - roads] = 1;
-    else earlier[b - roads].push_back(a - roads);
+    const int c = candidate_of[b - roads];
+    if (a < roads) roads_under[c].push_back(a);
+    else if (const int e = candidate_of[a - roads]; e != c) earlier[c].push_back(e), later[e].push_back(c);
   }
-  std::vector<int> kept_as(candidates.size(), -1);
+  // In the sketch's order: a footprint over a road surface or a footprint kept before it is
+  // cut back from them where at least half of it stands clear (a road through a building's
+  // passage, a sidewalk guessed wider than the street has room for, two footprints mapped
+  // over each other's wall), else refused.
+  std::vector<char> cut(candidates.size(), 0);
+  std::vector<geom::Box> boxes;
+  for (const Candidate& candidate : candidates) {
+    boxes.push_back(geom::Box::none());
+    for (const geom::Polygon& piece : candidate.pieces)
+      for (geom::Vec2 v : piece.outer) boxes.back().add(v);
+  }
   for (std::size_t c = 0; c < candidates.size(); ++c) {
-    const MappedBuilding& m = drawn[candidates[c].mapped];
-    if (on_road[c]) {
-      refuse(m, "crosses a road surface");
-      continue;
+    Candidate& candidate = candidates[c];
+    const MappedBuilding& m = drawn[candidate.building.mapped];
+    std::vector<const geom::Polygon*> obstacles;
+    for (int r : roads_under[c]) obstacles.push_back(polygons[r]);
+    std::sort(earlier[c].begin(), earlier[c].end());
+    earlier[c].erase(std::unique(earlier[c].begin(), earlier[c].end()), earlier[c].end());
+    const bool over_kept = std::any_of(earlier[c].begin(), earlier[c].end(), [&](int e) { return !candidates[e].kept.empty(); });
+    if (!obstacles.empty() || over_kept) {
+      double before = 0, after = 0;
+      std::vector<geom::Polygon> pieces;
+      // Besides what it overlaps, the footprints beside it: a piece's new corner on a wall it
+      // shares with one, rounded to doubles, may stand a hair inside it.
+      for (std::size_t e = 0; e < candidates.size(); ++e) {
+        // (Not one after it that it overlaps: that one is cut back from this one.)
+        if (e == c || !boxes[e].meets(boxes[c]) || std::count(later[c].begin(), later[c].end(), static_cast<int>(e))) continue;
+        if (e < c)
+          for (int k : candidates[e].kept) obstacles.push_back(&kept[k].polygon);
+        else
+          for (const geom::Polygon& piece : candidates[e].pieces) obstacles.push_back(&piece);
+      }
+      for (const geom::Polygon& piece : candidate.pieces) {
+        before += geom::area(piece);
+        for (geom::Polygon& p : cut_back(piece, obstacles)) after += geom::area(p), pieces.push_back(std::move(p));
+      }
+      const std::string why = roads_under[c].empty() ? "overlaps a mapped building kept before it" : "crosses a road surface";
+      if (!(after >= before / 2)) {
+        std::ostringstream detail;
+        detail << why << ": " << std::round(after * 10) / 10 << " of its " << std::round(before * 10) / 10 << " m2 stand clear, under half";
+        refuse(m, why, detail.str());
+        continue;
+      }
+      candidate.pieces = std::move(pieces);
+      candidate.repairs.push_back(roads_under[c].empty() ? "cut back from a mapped building kept before it"
+                                                         : "cut back from a road surface");
+      cut[c] = 1;
     }
-    const auto over = std::find_if(earlier[c].begin(), earlier[c].end(), [&](int e) { return kept_as[e] >= 0; });
-    if (over != earlier[c].end()) {
-      refuse(m, "overlaps a mapped building kept before it",
-             "overlaps " + drawn[candidates[*over].mapped].name + ", kept before it");
-      continue;
+    for (geom::Polygon& piece : candidate.pieces) {
+      candidate.kept.push_back(static_cast<int>(kept.size()));
+      kept.push_back(candidate.building);
+      kept.back().polygon = std::move(piece);
     }
-    if (repaired[c]) {
-      ++tally.repaired, ++tally.repairs["self-intersecting footprint made valid by GEOS's MakeValid"];
-      if (tally.named.size() < kNamed) tally.named.push_back(m.name + ": repaired, its self-intersecting footprint made valid by GEOS's MakeValid");
-    } else {
-      ++tally.kept;
-    }
-    kept_as[c] = static_cast<int>(kept.size());
-    kept.push_back(candidates[c]);
   }
-  return kept;
+  // The cut pieces checked exactly, as the footprints were: GEOS's difference is in doubles.
+  std::vector<char> refused(candidates.size(), 0);
+  if (std::find(cut.begin(), cut.end(), 1) != cut.end()) {
+    polygons.resize(roads);
+    candidate_of.clear();
+    for (std::size_t c = 0; c < candidates.size(); ++c)
+      for (int k : candidates[c].kept) polygons.push_back(&kept[k].polygon), candidate_of.push_back(static_cast<int>(c));
+    for (auto [a, b] : geom::overlapping_pairs(polygons)) {
+      if (b < roads) continue;
+      const int c = candidate_of[b - roads], other = a < roads ? -1 : candidate_of[a - roads];
+      if (other == c) continue;
+      const int to_refuse = cut[c] ? c : other;  // only a cut piece can overlap anything now
+      if (to_refuse < 0 || refused[to_refuse]) continue;
+      refused[to_refuse] = 1;
+      refuse(drawn[candidates[to_refuse].building.mapped],
+             a < roads ? "crosses a road surface" : "overlaps a mapped building kept before it");
+    }
+  }
+  std::vector<Building> out;
+  for (const Candidate& c : candidates) {
+    if (c.kept.empty() || refused[&c - candidates.data()]) continue;
+    const MappedBuilding& m = drawn[c.building.mapped];
+    if (c.repairs.empty()) ++tally.kept;
+    else ++tally.repaired;
+    for (const std::string& repair : c.repairs) {
+      ++tally.repairs[repair];
+      if (tally.named.size() < kNamed) tally.named.push_back(m.name + ": repaired, " + repair);
+    }
+    for (int k : c.kept) out.push_back(std::move(kept[k]));
+  }
+  return out;
 }
 
 void attach_building_parts(std::vector<Building>& footprints, const std::vector<MappedBuilding>& drawn, MappedTally& tally) {
@@ -283,26 +377,28 @@ void attach_building_parts(std::vector<Building>& footprints, const std::vector<
       refuse(m, "building:part: " + m.problem);
       continue;
     }
-    BuildingPart part;
-    part.mapped = static_cast<int>(i);
-    part.osm_id = m.osm_id;
-    part.tag = m.building;
     bool repaired = false;
-    std::optional<geom::Polygon> polygon = kept_polygon(m.polygon, repaired);
-    if (!polygon) {
-      refuse(m, "building:part whose self-intersecting ring GEOS's MakeValid does not make one polygon");
+    std::vector<geom::Polygon> pieces = kept_polygons(m.polygon, repaired);
+    if (pieces.empty()) {
+      refuse(m, "building:part whose self-intersecting ring GEOS's MakeValid leaves no polygon of");
       continue;
     }
-    part.polygon = std::move(*polygon);
-    const std::optional<geom::Vec2> inside = point_inside(part.polygon);
-    std::size_t k = 0;
-    for (; inside && k < footprints.size(); ++k)
-      if (boxes[k].meets({inside->x, inside->y, inside->x, inside->y}) && geom::point_side(footprints[k].polygon, *inside) > 0) break;
-    if (!inside || k == footprints.size()) {
-      refuse(m, "building:part in no kept building");
-      continue;
+    for (geom::Polygon& piece : pieces) {
+      const std::optional<geom::Vec2> inside = point_inside(piece);
+      std::size_t k = 0;
+      for (; inside && k < footprints.size(); ++k)
+        if (boxes[k].meets({inside->x, inside->y, inside->x, inside->y}) && geom::point_side(footprints[k].polygon, *inside) > 0) break;
+      if (!inside || k == footprints.size()) {
+        refuse(m, "building:part in no kept building");
+        continue;
+      }
+      BuildingPart part;
+      part.mapped = static_cast<int>(i);
+      part.osm_id = m.osm_id;
+      part.tag = m.building;
+      part.polygon = std::move(piece);
+      footprints[k].parts.push_back(std::move(part));
     }
-    footprints[k].parts.push_back(std::move(part));
   }
 }
 
@@ -401,9 +497,12 @@ void raise_mapped_buildings(std::vector<Building>& footprints, const std::vector
   const double radius = box.holds_nothing() ? 0 : std::hypot(box.width(), box.height()) / 2;
   const std::uint64_t stage = mix(city.seed, static_cast<std::uint64_t>(Stage::Buildings));
   int id = first_id;
+  double walls = 0;  // the height drawn for the building's first piece, which its other pieces take
   for (std::size_t k = 0; k < footprints.size(); ++k) {
     Building& b = footprints[k];
     const MappedBuilding& m = drawn[b.mapped];
+    // A footprint repaired into pieces is one building: counted once, all its pieces as high.
+    const bool first_piece = k == 0 || footprints[k - 1].mapped != b.mapped;
     b.id = id++;
     b.lot = held.lot_of[k];
     const std::optional<geom::Vec2> inside = point_inside(b.polygon);
@@ -418,10 +517,14 @@ void raise_mapped_buildings(std::vector<Building>& footprints, const std::vector
     // The roof first: a height from levels stands its roof on its walls.
     auto [shape, roof] = tagged_roof(m, b.polygon, p.roof_pitch, tally);
     const double rise = geom::roof_top(roof);
+    const char* height_from = m.height ? "height" : m.levels ? "building:levels" : "zone";
+    if (first_piece) ++tally.heights[height_from];
     if (m.height) {
-      b.height = *m.height, ++tally.heights["height"];
+      b.height = *m.height;
     } else if (m.levels) {
-      b.height = *m.levels * p.storey_height + rise, ++tally.heights["building:levels"];
+      b.height = *m.levels * p.storey_height + rise;
+    } else if (!first_piece) {
+      b.height = walls + rise;
     } else {
       std::string key = "mapped ";
       append_key(key, b.polygon);
@@ -431,12 +534,13 @@ void raise_mapped_buildings(std::vector<Building>& footprints, const std::vector
       const double near_centre = channel >= 0 ? channels.value(channel, c)
                                  : radius > 0 ? 1 - std::min(std::hypot(c.x - centre.x, c.y - centre.y) / radius, 1.0)
                                               : 1;
-      b.height = building_height(p, near_centre, rng) + rise, ++tally.heights["zone"];
+      walls = building_height(p, near_centre, rng);
+      b.height = walls + rise;
     }
     b.eaves = put_roof(shape, roof, 0, b.height, tally);
     b.roof = shape;
     b.roof_faces = std::move(roof);
-    ++tally.roofs[b.roof];
+    if (first_piece) ++tally.roofs[b.roof];
     if (terrain) std::tie(b.base, b.floor) = terrain->range_under(b.polygon.outer);
     // Its parts: each from its bottom to its own height, the building's where it tags none.
     std::vector<BuildingPart> parts;

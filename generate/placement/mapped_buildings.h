@@ -49,13 +49,15 @@ struct MappedTally {
 void give_way_to_mapped_buildings(DrawnFeatures& drawn, MappedTally& tally);
 
 // The mapped footprints the city keeps, as drawn: each polygon's rings simple (else
-// mended by GEOS's MakeValid where that leaves one polygon), outer ring counter-clockwise
+// mended by GEOS's MakeValid, each polygon it leaves a piece), outer ring counter-clockwise
 // and holes clockwise, over no road surface of the map, and overlapping no footprint kept
-// before it. `mapped` is each one's index in `drawn`; zone, heights and roof come later.
+// before it: one that does is cut back from them, 1 cm clear, where at least half of it
+// stands clear, else refused. A building's pieces are consecutive, each a Building whose
+// `mapped` is its index in `drawn`; zone, heights and roof come later.
 std::vector<Building> mapped_footprints(const std::vector<MappedBuilding>& drawn, const CityMap& map, MappedTally& tally);
 
 // Gives each kept footprint the building:parts (`drawn`) that lie in it: a point inside the
-// part (simple, else made valid as a footprint is) inside its outline; the others are
+// part (simple, else made valid as a footprint is, each piece a part) inside its outline; the others are
 // counted as refused, as are all of a refused building's. Raised with their building.
 void attach_building_parts(std::vector<Building>& footprints, const std::vector<MappedBuilding>& drawn, MappedTally& tally);
 

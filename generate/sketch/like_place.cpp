@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+
+#include <ogr_api.h>
+#include <ogr_geometry.h>
 
 #include "generate/city/format_number.h"
 #include "generate/errors.h"
@@ -148,6 +152,13 @@ Spread spread_for(double ratio) {
   return {lo, figures(lo).first};
 }
 
+// The area of a polygon as drawn (its rings winding either way): the outer ring's less its holes'.
+double drawn_area(const geom::Polygon& p) {
+  double a = std::abs(geom::signed_area(p.outer));
+  for (const geom::Ring& h : p.holes) a -= std::abs(geom::signed_area(h));
+  return a;
+}
+
 ordered_json summary(const std::vector<double>& values) {
   if (values.empty()) return {{"count", 0}};
   const std::vector<double> v = sorted(values);
@@ -157,10 +168,28 @@ ordered_json summary(const std::vector<double>& values) {
 
 }  // namespace
 
-double drawn_area(const geom::Polygon& p) {
-  double a = std::abs(geom::signed_area(p.outer));
-  for (const geom::Ring& h : p.holes) a -= std::abs(geom::signed_area(h));
-  return a;
+std::map<ZoneType, double> land_by_zone(const std::vector<ZoneFeature>& zones) {
+  std::map<ZoneType, double> out;
+  std::unique_ptr<OGRGeometry> covered;  // by the zones after
+  for (auto z = zones.rbegin(); z != zones.rend(); ++z)
+    for (const geom::Polygon& p : z->polygons) {
+      OGRPolygon drawn;
+      auto add_ring = [&](const geom::Ring& r) {
+        auto* ring = new OGRLinearRing;
+        for (Vec2 v : r) ring->addPoint(v.x, v.y);
+        ring->closeRings();
+        drawn.addRingDirectly(ring);
+      };
+      add_ring(p.outer);
+      for (const geom::Ring& h : p.holes) add_ring(h);
+      std::unique_ptr<OGRGeometry> land(drawn.MakeValid());
+      if (!land) continue;
+      std::unique_ptr<OGRGeometry> seen(covered ? land->Difference(covered.get()) : land->clone());
+      if (seen) out[z->type] += OGR_G_Area(OGRGeometry::ToHandle(seen.get()));
+      covered.reset(covered ? covered->Union(land.get()) : land->clone());
+      if (!covered) break;
+    }
+  return out;
 }
 
 std::optional<ZoneType> built_up_zone_at(const std::vector<ZoneFeature>& zones, const geom::Ring& ring) {
@@ -235,9 +264,9 @@ std::map<ZoneType, PlaceFigures> measure_place(const std::vector<RealFootprint>&
       if (gap <= kGapReach) f.gaps.push_back(gap);
     }
   }
-  for (const ZoneFeature& z : zones)
-    if (out.count(z.type))
-      for (const geom::Polygon& p : z.polygons) out[z.type].land_m2 += drawn_area(p);
+  const std::map<ZoneType, double> land = land_by_zone(zones);
+  for (auto& [type, f] : out)
+    if (land.count(type)) f.land_m2 = land.at(type);
   // Each side of each street fronts the land use a metre past its edge, and lies in the
   // land use where the middle of its half does.
   if (!zones.empty())

@@ -52,8 +52,10 @@ std::map<ZoneType, PlaceFigures> measure_place(const std::vector<RealFootprint>&
 // drawn winning, as zones cover earlier ones); none outside them, or in park or water.
 std::optional<ZoneType> built_up_zone_at(const std::vector<ZoneFeature>& zones, const geom::Ring& ring);
 
-// The area of a polygon as drawn (its rings winding either way): the outer ring's less its holes'.
-double drawn_area(const geom::Polygon& p);
+// Each zone type's land as the map gives it: where zones overlap the later wins
+// (docs/sketch.md), so a park or a pond drawn over the land use takes that land from it.
+// GEOS, through OGR, each polygon made valid; in doubles: a measure.
+std::map<ZoneType, double> land_by_zone(const std::vector<ZoneFeature>& zones);
 
 // The zone settings the figures give, as a sketch writes them ("footprint_width": [a, b], ...);
 // none when there are fewer than kMinBuildingsToMeasure.
