@@ -169,26 +169,37 @@ ordered_json summary(const std::vector<double>& values) {
 }  // namespace
 
 std::map<ZoneType, double> land_by_zone(const std::vector<ZoneFeature>& zones) {
-  std::map<ZoneType, double> out;
-  std::unique_ptr<OGRGeometry> covered;  // by the zones after
-  for (auto z = zones.rbegin(); z != zones.rend(); ++z)
-    for (const geom::Polygon& p : z->polygons) {
-      OGRPolygon drawn;
+  struct Land {
+    ZoneType type;
+    std::unique_ptr<OGRGeometry> geometry;
+    OGREnvelope box;
+  };
+  std::vector<Land> drawn;
+  for (const ZoneFeature& z : zones)
+    for (const geom::Polygon& p : z.polygons) {
+      OGRPolygon polygon;
       auto add_ring = [&](const geom::Ring& r) {
         auto* ring = new OGRLinearRing;
         for (Vec2 v : r) ring->addPoint(v.x, v.y);
         ring->closeRings();
-        drawn.addRingDirectly(ring);
+        polygon.addRingDirectly(ring);
       };
       add_ring(p.outer);
       for (const geom::Ring& h : p.holes) add_ring(h);
-      std::unique_ptr<OGRGeometry> land(drawn.MakeValid());
-      if (!land) continue;
-      std::unique_ptr<OGRGeometry> seen(covered ? land->Difference(covered.get()) : land->clone());
-      if (seen) out[z->type] += OGR_G_Area(OGRGeometry::ToHandle(seen.get()));
-      covered.reset(covered ? covered->Union(land.get()) : land->clone());
-      if (!covered) break;
+      Land land{z.type, std::unique_ptr<OGRGeometry>(polygon.MakeValid()), {}};
+      if (!land.geometry) continue;
+      land.geometry->getEnvelope(&land.box);
+      drawn.push_back(std::move(land));
     }
+  // Each less the ones drawn after it that it meets: a land use's thousands of polygons
+  // overlap only their neighbours.
+  std::map<ZoneType, double> out;
+  for (std::size_t i = 0; i < drawn.size(); ++i) {
+    std::unique_ptr<OGRGeometry> seen(drawn[i].geometry->clone());
+    for (std::size_t j = i + 1; j < drawn.size() && seen; ++j)
+      if (drawn[j].box.Intersects(drawn[i].box)) seen.reset(seen->Difference(drawn[j].geometry.get()));
+    if (seen) out[drawn[i].type] += OGR_G_Area(OGRGeometry::ToHandle(seen.get()));
+  }
   return out;
 }
 
