@@ -83,6 +83,7 @@ std::vector<Mesh> city_meshes(const City& city, std::vector<std::string>* keys) 
     meshes[b.id] = memo.get(key, [&] { return building_mesh(b); });
     if (keys) (*keys)[b.id] = std::move(key);
   });
+  const ModelMeshes model_meshes(library);
   tbb::parallel_for(std::size_t(0), city.models.size(), [&](std::size_t i) {
     cancel.check();
     const ModelInstance& m = city.models[i];
@@ -90,7 +91,7 @@ std::vector<Mesh> city_meshes(const City& city, std::vector<std::string>* keys) 
     for (double v : {m.base, m.floor, m.placed.position.x, m.placed.position.y, m.placed.angle, m.placed.scale})
       append_key(key, v);
     if (m.floor > m.base) append_key(key, m.polygon);
-    meshes[m.id] = memo.get(key, [&] { return model_mesh(m, library); });
+    meshes[m.id] = memo.get(key, [&] { return model_meshes(m); });
     if (keys) (*keys)[m.id] = std::move(key);
   });
   return meshes;

@@ -427,3 +427,46 @@ TEST(Ground, ARoadEndingAtTheWaterStaysOnTheLand) {
   EXPECT_NEAR(low, 40 + kRoadOverTerrain, 1e-6);
   EXPECT_NEAR(high, 40 + kRoadOverTerrain, 1e-6);
 }
+
+// A library model whose third triangle cannot join the first two (it runs along their shared
+// edge the way the first does): every placed instance keeps all three, the third on vertices
+// of its own at the same points, after its foundation where it has one; the many instances'
+// meshes (the model's triangles joined once) are each instance's own (joined for it alone).
+TEST(BuildingMesh, EveryInstanceOfAModelKeepsTheTrianglesThatCannotJoin) {
+  ModelLibrary library;
+  library.models.resize(1);
+  TriangleMesh& fin = library.models[0].mesh;
+  fin.vertices = {{0, 0, 0}, {2, 0, 0}, {1, 1, 0}, {1, -1, 0}, {1, 0, 1}};
+  fin.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  std::vector<ModelInstance> models(2);
+  for (int k = 0; k < 2; ++k) {
+    ModelInstance& m = models[static_cast<std::size_t>(k)];
+    m.id = k;
+    m.polygon.outer = {{10.0 * k, 0}, {10.0 * k + 2, 0}, {10.0 * k + 2, 2}, {10.0 * k, 2}};
+    m.placed.position = {10.0 * k + 1, 1};
+    m.placed.model = 0, m.placed.angle = 0.5 * k;
+    m.floor = 2;
+    m.base = k == 0 ? 2 : 0.5;  // the second on a foundation
+  }
+  const std::vector<Mesh> meshes = structure_meshes({}, models, &library);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const Mesh& mesh = meshes[k];
+    const Mesh alone = model_mesh(models[k], &library);
+    EXPECT_EQ(mesh.points, alone.points);
+    std::vector<std::vector<std::uint32_t>> faces, alone_faces;
+    for (const Mesh::Face f : mesh.faces()) faces.emplace_back(f.corners.begin(), f.corners.end());
+    for (const Mesh::Face f : alone.faces()) alone_faces.emplace_back(f.corners.begin(), f.corners.end());
+    EXPECT_EQ(faces, alone_faces);
+    // The foundation: 4 walls and 2 triangles a cap over 8 points; then 5 + 3 points, 3 triangles.
+    const std::size_t first = k == 0 ? 0 : 8;
+    ASSERT_EQ(mesh.points.size(), first + 8);
+    ASSERT_EQ(faces.size(), (k == 0 ? 0u : 8u) + 3u);
+    const std::vector<std::uint32_t> third = faces.back();
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_GE(third[static_cast<std::size_t>(c)], first + 5) << "the third triangle shares a vertex";
+      EXPECT_EQ(mesh.points[third[static_cast<std::size_t>(c)]],
+                models[k].placed.apply(fin.vertices[static_cast<std::size_t>(fin.triangles[2][static_cast<std::size_t>(c)])],
+                                       models[k].floor));
+    }
+  }
+}

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "generate/cancel.h"
+#include "generate/cancellable_invoke.h"
 #include "generate/city/format_number.h"
 #include "generate/city/random.h"
 #include "generate/export/cancellable_file.h"
@@ -31,13 +32,20 @@ using nlohmann::json;
 
 constexpr double kScale = 0.001;  // millimetres
 
+// The byte before a vertex index in a piece's text (below, ObjectPiece): JSON text holds
+// none (a string escapes it as \u0001), so the indices can be found and renumbered.
+constexpr char kIndexMark = '\x01';
+
 // Quantised vertices, each stored once. The index is open addressing over positions in
 // the list (4 bytes a slot, at most half full) rather than a node-based map: the 10 km
 // city has 2.5 million vertices, looked up once for every corner of every surface.
+// `marked`: a piece's vertices, numbered from 0 in it and renumbered when it is written,
+// so its text marks each index (kIndexMark).
 class Vertices {
  public:
   using Quantised = std::array<long long, 3>;
-  explicit Vertices(geom::Vec2 origin) : origin_(origin), slots_(1 << 10, kEmpty) {}
+  explicit Vertices(geom::Vec2 origin, bool marked = false)
+      : origin_(origin), marked_(marked), slots_(1 << 10, kEmpty) {}
   int operator()(double x, double y, double z) { return at(grid({x, y}), z); }
   // A point's place on the millimetre grid, whole numbers from the origin.
   geom::Vec2 grid(geom::Vec2 p) const { return {std::round((p.x - origin_.x) / kScale), std::round((p.y - origin_.y) / kScale)}; }
@@ -49,16 +57,28 @@ class Vertices {
     q[2] = std::llround(z / kScale);
     return find_or_add(q);
   }
-  // As JSON's array of [x, y, z] integers, written as it goes.
-  void write(std::ostream& out) const {
-    std::string text = "[";
+  // Vertex i's index in a geometry's text.
+  void append_index(std::string& out, int i) const {
+    if (marked_) out += kIndexMark;
+    append_number(out, i);
+  }
+  // Each of `piece`'s vertices here, added where new: its index here by its index there. Added
+  // in the piece's order, so the vertices are numbered as if the piece's objects had been
+  // made here.
+  void merge(const Vertices& piece, std::vector<int>& index) {
+    index.resize(piece.list_.size());
+    for (std::size_t i = 0; i < piece.list_.size(); ++i) index[i] = find_or_add(piece.list_[i]);
+  }
+  // As JSON's array of [x, y, z] integers, appended to `text` (written to `out` as it grows, if given).
+  void append_json(std::string& text, std::ostream* out = nullptr) const {
+    text += '[';
     for (std::size_t i = 0; i < list_.size(); ++i) {
       text += i ? ",[" : "[";
       append_number(text, list_[i][0]), text += ',', append_number(text, list_[i][1]), text += ',';
       append_number(text, list_[i][2]), text += ']';
-      if (text.size() > (1 << 16)) out << text, text.clear();
+      if (out && text.size() > (1 << 16)) *out << text, text.clear();
     }
-    out << text << ']';
+    text += ']';
   }
 
  private:
@@ -70,9 +90,10 @@ class Vertices {
   std::size_t slot(const Quantised& q) const {
     const std::size_t mask = slots_.size() - 1;
     std::size_t s = hash(q) & mask;
-    while (slots_[s] != kEmpty && list_[slots_[s]] != q) s = (s + 1) & mask;
+    while (slots_[s] != kEmpty && !same(list_[slots_[s]], q)) s = (s + 1) & mask;
     return s;
   }
+  static bool same(const Quantised& a, const Quantised& b) { return a[0] == b[0] && a[1] == b[1] && a[2] == b[2]; }
   int find_or_add(const Quantised& q) {
     std::size_t s = slot(q);
     if (slots_[s] != kEmpty) return slots_[s];
@@ -88,6 +109,7 @@ class Vertices {
   }
 
   geom::Vec2 origin_;
+  bool marked_;
   std::vector<int> slots_;  // a power of two in size
   std::vector<Quantised> list_;
 };
@@ -141,8 +163,8 @@ class SurfaceList {
     const int first = r == 0 ? 0 : ring_ends_[r - 1];
     return {indices_.data() + first, static_cast<std::size_t>(ring_ends_[r] - first)};
   }
-  // As JSON: [[[i,...],...],...].
-  void write(std::string& out) const {
+  // As JSON: [[[i,...],...],...], indices of `v`.
+  void write(std::string& out, const Vertices& v) const {
     out += '[';
     std::size_t r = 0;
     for (std::size_t s = 0; s < surface_ends_.size(); ++s) {
@@ -152,7 +174,7 @@ class SurfaceList {
         const std::span<const int> ring = this->ring(r);
         for (std::size_t k = 0; k < ring.size(); ++k) {
           if (k) out += ',';
-          append_number(out, ring[k]);
+          v.append_index(out, ring[k]);
         }
         out += ']';
       }
@@ -182,9 +204,11 @@ void append_ints(std::string& out, const std::vector<int>& list) {
 
 // Flat surfaces from a polygon at height z: each an outer ring then holes, each
 // counter-clockwise seen from the side the surface faces. None when the polygon collapses.
-void surfaces(const geom::Polygon& p, double z, bool facing_down, Vertices& v, SurfaceList& out) {
+// `simple_polygons`: a polygon as quantised() gives it.
+void surfaces(const std::vector<geom::Polygon>& simple_polygons, double z, bool facing_down, Vertices& v,
+              SurfaceList& out) {
   std::vector<int> q;
-  for (const geom::Polygon& simple : quantised(p, v)) {
+  for (const geom::Polygon& simple : simple_polygons) {
     out.begin_surface();
     auto add = [&](const geom::Ring& r) {
       q.clear();
@@ -196,6 +220,9 @@ void surfaces(const geom::Polygon& p, double z, bool facing_down, Vertices& v, S
     for (const geom::Ring& h : simple.holes) add(h);
   }
 }
+void surfaces(const geom::Polygon& p, double z, bool facing_down, Vertices& v, SurfaceList& out) {
+  surfaces(quantised(p, v), z, facing_down, v, out);
+}
 
 // The closed shell of a footprint's prism from `base` to `top`: ground, a wall per edge,
 // roof; with each surface's class. Walls follow the same quantised rings as ground and
@@ -204,8 +231,9 @@ void surfaces(const geom::Polygon& p, double z, bool facing_down, Vertices& v, S
 bool prism(const geom::Polygon& footprint, double base, double top, Vertices& v, SurfaceList& shell,
            std::vector<int>& classes) {
   SurfaceList grounds, roofs;
-  surfaces(footprint, base, true, v, grounds);
-  surfaces(footprint, top, false, v, roofs);
+  const std::vector<geom::Polygon> simple = quantised(footprint, v);  // once for both
+  surfaces(simple, base, true, v, grounds);
+  surfaces(simple, top, false, v, roofs);
   if (grounds.empty()) return false;
   shell.append(grounds), classes.insert(classes.end(), grounds.size(), 0);
   for (std::size_t s = 0; s < roofs.size(); ++s)
@@ -256,9 +284,10 @@ void append_triangles(const GroundMesh& m, Vertices& v, SurfaceList& out) {
 }
 
 // A geometry of surfaces: {"boundaries":...,"lod":"LOD","type":"TYPE"}.
-void append_surface_geometry(std::string& out, const char* type, const char* lod, const SurfaceList& boundaries) {
+void append_surface_geometry(std::string& out, const char* type, const char* lod, const SurfaceList& boundaries,
+                             const Vertices& v) {
   out += "{\"boundaries\":";
-  boundaries.write(out);
+  boundaries.write(out, v);
   out += ",\"lod\":\"", out += lod, out += "\",\"type\":\"", out += type, out += "\"}";
 }
 
@@ -285,7 +314,7 @@ bool multisurface(const std::vector<LevelPolygon>& polygons, const Terrain* terr
     append_triangles(m, v, boundaries);
   }
   if (boundaries.empty()) return false;
-  append_surface_geometry(out, "MultiSurface", "1", boundaries);
+  append_surface_geometry(out, "MultiSurface", "1", boundaries, v);
   return true;
 }
 
@@ -368,7 +397,7 @@ json templates(const ModelLibrary& library, Appearance& appearance) {
 void geometry_instance(const Placement& p, double floor, Vertices& v, std::string& out) {
   const double c = std::cos(p.angle) * p.scale, s = std::sin(p.angle) * p.scale;
   out += "{\"boundaries\":[";
-  append_number(out, v(p.position.x, p.position.y, floor));
+  v.append_index(out, v(p.position.x, p.position.y, floor));
   out += "],\"template\":";
   append_number(out, p.model);
   out += ",\"transformationMatrix\":[";
@@ -382,9 +411,10 @@ constexpr const char* kSemanticSurfaces =
 
 // {"boundaries":[SHELL],"lod":"2","semantics":{...},"type":"Solid"} with each surface's
 // class; a MultiSurface of the surfaces when not `solid`.
-void append_classed_geometry(std::string& out, bool solid, const SurfaceList& surfaces, const std::vector<int>& classes) {
+void append_classed_geometry(std::string& out, bool solid, const SurfaceList& surfaces, const std::vector<int>& classes,
+                             const Vertices& v) {
   out += solid ? "{\"boundaries\":[" : "{\"boundaries\":";
-  surfaces.write(out);
+  surfaces.write(out, v);
   out += solid ? "],\"lod\":\"2\",\"semantics\":{\"surfaces\":" : ",\"lod\":\"2\",\"semantics\":{\"surfaces\":";
   out += kSemanticSurfaces;
   out += solid ? ",\"values\":[" : ",\"values\":";
@@ -404,9 +434,9 @@ bool append_solids(std::string& out, const geom::Polygon& footprint, double base
   std::vector<int> lod2_classes;
   const bool built = mesh_shell(mesh, v, lod2, lod2_classes);
   out += "\"geometry\":[{\"boundaries\":[";
-  shell.write(out);
+  shell.write(out, v);
   out += "],\"lod\":\"1\",\"type\":\"Solid\"},";
-  built ? append_classed_geometry(out, true, lod2, lod2_classes) : append_classed_geometry(out, true, shell, classes);
+  built ? append_classed_geometry(out, true, lod2, lod2_classes, v) : append_classed_geometry(out, true, shell, classes, v);
   out += ']';
   return true;
 }
@@ -507,13 +537,13 @@ bool model_object(const ModelInstance& m, const Ground& ground, const Mesh& mesh
   out += ",\"zone\":";
   append_json_string(out, name(m.zone));
   out += "},\"geometry\":[{\"boundaries\":[";
-  shell.write(out);
+  shell.write(out, v);
   out += "],\"lod\":\"1\",\"type\":\"Solid\"},";
   if (m.kind == ModelKind::Building) {
     SurfaceList faces;
     std::vector<int> face_classes;
     mesh_shell(mesh, v, faces, face_classes, true);
-    append_classed_geometry(out, false, faces, face_classes);
+    append_classed_geometry(out, false, faces, face_classes, v);
   } else {
     geometry_instance(m.placed, m.floor, v, out);
   }
@@ -607,17 +637,66 @@ struct CityObjectText {
   std::string key, text;
 };
 
-// Where the city objects go as they are made, by form: a document's objects share
-// one vertex list and are written in key order once all are made; a sequence's features are
-// written at once, each with its own vertices.
+enum class Form { Document, Sequence };
+
+// A piece of the city's objects, made on any thread: a document's objects with the vertices
+// they share, numbered in the piece (their indices marked) until the writer renumbers them;
+// a sequence's features as their lines, each with its own vertices.
+class ObjectPiece {
+ public:
+  ObjectPiece() = default;
+  ObjectPiece(Form form, geom::Vec2 origin) : form_(form), origin_(origin), vertices_(origin, form == Form::Document) {}
+
+  // The vertices the next feature's geometry indexes.
+  Vertices& next_vertices() {
+    if (form_ == Form::Sequence) vertices_ = Vertices(origin_);
+    return vertices_;
+  }
+
+  // A feature made with next_vertices(): its object's text under `key`, and its children's.
+  void add(const std::string& key, std::string_view object, std::vector<CityObjectText> children = {}) {
+    if (form_ == Form::Document) {
+      for (CityObjectText& child : children) objects_.push_back(std::move(child));
+      objects_.push_back({key, std::string(object)});
+      return;
+    }
+    // A feature's objects in key order, as a JSON object holds them.
+    lines_ += "{\"type\":\"CityJSONFeature\",\"id\":";
+    lines_ += json(key).dump();
+    lines_ += ",\"CityObjects\":{";
+    children.push_back({key, std::string(object)});
+    std::sort(children.begin(), children.end(), [](const auto& a, const auto& b) { return a.key < b.key; });
+    for (std::size_t i = 0; i < children.size(); ++i) {
+      if (i) lines_ += ',';
+      lines_ += json(children[i].key).dump(), lines_ += ':', lines_ += children[i].text;
+    }
+    lines_ += "},\"vertices\":";
+    vertices_.append_json(lines_);
+    lines_ += "}\n";
+  }
+
+  const Vertices& vertices() const { return vertices_; }
+  const std::vector<CityObjectText>& objects() const { return objects_; }
+  const std::string& lines() const { return lines_; }
+
+ private:
+  Form form_ = Form::Document;
+  geom::Vec2 origin_;
+  Vertices vertices_{{0, 0}};
+  std::vector<CityObjectText> objects_;  // a document's, in the order made
+  std::string lines_;                    // a sequence's
+};
+
+// Where the pieces go, in order: a document's objects share one vertex list, each piece's
+// vertices added to it as they come (so numbered as one writer making every object in turn
+// numbers them), and are written in key order once all are made; a sequence's features are
+// written at once.
 class CityObjectWriter {
  public:
-  enum Form { Document, Sequence };
-
   // `shared`: the members every object refers to (transform, templates, appearance, metadata).
   CityObjectWriter(Form form, const std::filesystem::path& file, json shared, geom::Vec2 origin)
-      : form_(form), origin_(origin), vertices_(origin), shared_(std::move(shared)), out_(file) {
-    if (form_ == Document) {
+      : form_(form), vertices_(origin), shared_(std::move(shared)), out_(file) {
+    if (form_ == Form::Document) {
       texts_.emplace(file);
       return;
     }
@@ -627,57 +706,51 @@ class CityObjectWriter {
     out_ << header.dump() << '\n';
   }
 
-  // The vertices the next feature's geometry indexes.
-  Vertices& next_vertices() {
-    if (form_ == Sequence) vertices_ = Vertices(origin_);
-    return vertices_;
-  }
-
-  // A feature made with next_vertices(): its object's text under `key`, and its children's.
-  void add(const std::string& key, std::string_view object, std::vector<CityObjectText> children = {}) {
-    if (form_ == Document) {
-      for (const auto& [child, text] : children) texts_->set(child, text);
-      texts_->set(key, object);
+  void write(const ObjectPiece& piece) {
+    if (form_ == Form::Sequence) {
+      out_ << piece.lines();
       return;
     }
-    // A feature's objects in key order, as a JSON object holds them.
-    line_.assign("{\"type\":\"CityJSONFeature\",\"id\":");
-    line_ += json(key).dump();
-    line_ += ",\"CityObjects\":{";
-    children.push_back({key, std::string(object)});
-    std::sort(children.begin(), children.end(), [](const auto& a, const auto& b) { return a.key < b.key; });
-    for (std::size_t i = 0; i < children.size(); ++i) {
-      if (i) line_ += ',';
-      line_ += json(children[i].key).dump(), line_ += ':', line_ += children[i].text;
+    vertices_.merge(piece.vertices(), index_);
+    for (const auto& [key, text] : piece.objects()) {
+      // The text with each marked index renumbered.
+      renumbered_.clear();
+      std::size_t from = 0;
+      for (std::size_t mark; (mark = text.find(kIndexMark, from)) != std::string::npos;) {
+        renumbered_.append(text, from, mark - from);
+        std::size_t i = 0;
+        for (from = mark + 1; from < text.size() && text[from] >= '0' && text[from] <= '9'; ++from)
+          i = 10 * i + static_cast<std::size_t>(text[from] - '0');
+        append_number(renumbered_, index_[i]);
+      }
+      renumbered_.append(text, from);
+      texts_->set(key, renumbered_);
     }
-    line_ += "},\"vertices\":";
-    out_ << line_;
-    vertices_.write(out_);
-    out_ << "}\n";
   }
 
   void close() {
-    if (form_ == Document) {
+    if (form_ == Form::Document) {
       // In the document's (sorted) order the objects come first and the vertices last, so
       // they are written before and after the other members.
       out_ << "{\"CityObjects\":{";
       texts_->write(out_);
       const std::string members = shared_.dump();
       out_ << "}," << members.substr(1, members.size() - 2) << ",\"vertices\":";
-      vertices_.write(out_);
-      out_ << "}\n";
+      std::string text;
+      vertices_.append_json(text, &out_);
+      out_ << text << "}\n";
     }
     out_.close();
   }
 
  private:
   Form form_;
-  geom::Vec2 origin_;
-  Vertices vertices_;
+  Vertices vertices_;  // a document's
   json shared_;
   std::optional<ObjectTexts> texts_;  // the document's objects, until written in key order
   CancellableFile out_;               // written as it goes, through a buffer that stops once the build is cancelled
-  std::string line_;                  // a sequence's feature
+  std::vector<int> index_;            // a piece's vertices' indices in vertices_
+  std::string renumbered_;            // an object's text, renumbered
 };
 
 // Roads, land use and water as LOD1 surfaces: an object per road (its areas), per zone
@@ -685,7 +758,7 @@ class CityObjectWriter {
 // grouped by their GeoJSON property), each named prefix + n; a road's prefix + its id, so
 // that an edit leaves the names of the roads it does not reach as they were.
 void add_ground_objects(const Ground& ground, const std::vector<GroundLayer>& layers, const Terrain* terrain,
-                        CityObjectWriter& out) {
+                        ObjectPiece& out) {
   using Groups = std::map<std::string, std::pair<json, std::vector<LevelPolygon>>>;
   std::string text;
   auto surfaces = [&](const Groups& groups, const std::string& prefix, const std::string& type, bool by_key = false) {
@@ -726,67 +799,93 @@ void add_ground_objects(const Ground& ground, const std::vector<GroundLayer>& la
   // The decks' sides and undersides and the piers, one Bridge object for every bridge.
   if (const GroundMesh* bridges = layer_mesh(layers, GroundKind::Bridge); terrain && bridges) {
     SurfaceList boundaries;
-    append_triangles(*bridges, out.next_vertices(), boundaries);
+    Vertices& v = out.next_vertices();
+    append_triangles(*bridges, v, boundaries);
     if (!boundaries.empty()) {
       text.assign("{\"geometry\":[");
-      append_surface_geometry(text, "MultiSurface", "1", boundaries);
+      append_surface_geometry(text, "MultiSurface", "1", boundaries, v);
       text += "],\"type\":\"Bridge\"}";
       out.add("bridges", text);
     }
   }
 }
 
-// Every object of the city through `out`, in the order their vertices are made.
-void write_objects(const MeshedCity& city, CityObjectWriter& out) {
-  const Ground& ground = city.ground;
-  const CancelCheck cancel;
-  std::string text;
-  for_each_by_id(
-      city.buildings, city.models,
-      [&](const Building& b) {
-        cancel.check();
-        const std::string key = "building-" + std::to_string(b.stable_id);
-        Vertices& v = out.next_vertices();
-        text.clear();
-        if (b.parts.empty()) {
-          if (building_object(b, ground, city.meshes[b.id], v, text)) out.add(key, text);
-          return;
-        }
-        // Its parts are its 3D (OSM's Simple 3D Buildings): BuildingParts, its children.
-        std::vector<CityObjectText> parts;
-        std::vector<std::string> children;
-        for (std::size_t k = 0; k < b.parts.size(); ++k) {
-          std::string part_key = key + "-part-" + std::to_string(k), part;
-          if (building_part_object(b, b.parts[k], key, v, part)) {
-            children.push_back(part_key);
-            parts.push_back({std::move(part_key), std::move(part)});
-          }
-        }
-        building_with_parts(b, ground, children, text);
-        out.add(key, text, std::move(parts));
-      },
-      [&](const ModelInstance& m) {
-        cancel.check();
-        text.clear();
-        if (model_object(m, ground, city.meshes[m.id], *city.library, out.next_vertices(), text))
-          out.add("building-" + std::to_string(m.stable_id), text);
-      });
-  for (const Clutter& c : city.clutter) {
-    cancel.check();
-    text.clear();
-    clutter_object(c, ground, *city.library, out.next_vertices(), text);
-    out.add("clutter-" + std::to_string(c.instance.stable_id), text);
-  }
-  add_ground_objects(ground, city.ground_layers, city.terrain, out);
-  cancel.check();
+// Structures and clutter a piece: enough that a piece is worth handing to a thread, few
+// enough that the pieces waiting to be written stay small.
+constexpr std::size_t kObjectsAPiece = 1024;
 
-  // The ground under the city: the heightmap over the rectangle around it.
-  SurfaceList tin;
-  append_triangles(*layer_mesh(city.ground_layers, GroundKind::Terrain), out.next_vertices(), tin);
-  text.assign("{\"geometry\":[");
-  append_surface_geometry(text, "CompositeSurface", "1", tin);
-  text += "],\"type\":\"TINRelief\"}";
-  out.add("terrain", text);
+// Every object of the city through `out`, in the order their vertices are numbered: the
+// buildings and models by id, the clutter, the ground's objects, the terrain. Made in pieces
+// at once and written in order, so the bytes are those of one writer making each in turn.
+void write_objects(const MeshedCity& city, Form form, CityObjectWriter& out, geom::Vec2 origin) {
+  const Ground& ground = city.ground;
+  // The structures by id: a building's index, or a model's as ~index.
+  std::vector<int> structures;
+  for_each_by_id(
+      city.buildings, city.models, [&](const Building& b) { structures.push_back(static_cast<int>(&b - city.buildings.data())); },
+      [&](const ModelInstance& m) { structures.push_back(~static_cast<int>(&m - city.models.data())); });
+  auto add_structure = [&](int s, ObjectPiece& piece, std::string& text) {
+    text.clear();
+    if (s < 0) {
+      const ModelInstance& m = city.models[static_cast<std::size_t>(~s)];
+      if (model_object(m, ground, city.meshes[m.id], *city.library, piece.next_vertices(), text))
+        piece.add("building-" + std::to_string(m.stable_id), text);
+      return;
+    }
+    const Building& b = city.buildings[static_cast<std::size_t>(s)];
+    const std::string key = "building-" + std::to_string(b.stable_id);
+    Vertices& v = piece.next_vertices();
+    if (b.parts.empty()) {
+      if (building_object(b, ground, city.meshes[b.id], v, text)) piece.add(key, text);
+      return;
+    }
+    // Its parts are its 3D (OSM's Simple 3D Buildings): BuildingParts, its children.
+    std::vector<CityObjectText> parts;
+    std::vector<std::string> children;
+    for (std::size_t k = 0; k < b.parts.size(); ++k) {
+      std::string part_key = key + "-part-" + std::to_string(k), part;
+      if (building_part_object(b, b.parts[k], key, v, part)) {
+        children.push_back(part_key);
+        parts.push_back({std::move(part_key), std::move(part)});
+      }
+    }
+    building_with_parts(b, ground, children, text);
+    piece.add(key, text, std::move(parts));
+  };
+  // The pieces: runs of structures, runs of clutter, the ground's objects, the terrain.
+  const std::size_t structure_pieces = (structures.size() + kObjectsAPiece - 1) / kObjectsAPiece;
+  const std::size_t clutter_pieces = (city.clutter.size() + kObjectsAPiece - 1) / kObjectsAPiece;
+  const std::size_t ground_piece = structure_pieces + clutter_pieces;
+  make_in_order<ObjectPiece>(
+      ground_piece + 2,
+      [&](std::size_t i, ObjectPiece& piece) {
+        piece = ObjectPiece(form, origin);
+        std::string text;
+        if (i < structure_pieces) {
+          for (std::size_t k = i * kObjectsAPiece; k < std::min(structures.size(), (i + 1) * kObjectsAPiece); ++k)
+            add_structure(structures[k], piece, text);
+        } else if (i < ground_piece) {
+          const std::size_t begin = (i - structure_pieces) * kObjectsAPiece;
+          for (std::size_t k = begin; k < std::min(city.clutter.size(), begin + kObjectsAPiece); ++k) {
+            const Clutter& c = city.clutter[k];
+            text.clear();
+            clutter_object(c, ground, *city.library, piece.next_vertices(), text);
+            piece.add("clutter-" + std::to_string(c.instance.stable_id), text);
+          }
+        } else if (i == ground_piece) {
+          add_ground_objects(ground, city.ground_layers, city.terrain, piece);
+        } else {
+          // The ground under the city: the heightmap over the rectangle around it.
+          SurfaceList tin;
+          Vertices& v = piece.next_vertices();
+          append_triangles(*layer_mesh(city.ground_layers, GroundKind::Terrain), v, tin);
+          text.assign("{\"geometry\":[");
+          append_surface_geometry(text, "CompositeSurface", "1", tin, v);
+          text += "],\"type\":\"TINRelief\"}";
+          piece.add("terrain", text);
+        }
+      },
+      [&](const ObjectPiece& piece) { out.write(piece); });
   out.close();
 }
 
@@ -806,11 +905,11 @@ void write_cityjson(const MeshedCity& city, const std::filesystem::path& documen
   if (const std::optional<int> epsg = epsg_of(city.crs))
     shared["metadata"] = {{"referenceSystem", "https://www.opengis.net/def/crs/EPSG/0/" + std::to_string(*epsg)}};
 
-  CityObjectWriter out(CityObjectWriter::Document, document, shared, origin);
-  write_objects(city, out);
+  CityObjectWriter out(Form::Document, document, shared, origin);
+  write_objects(city, Form::Document, out, origin);
   if (sequence.empty()) return;
-  CityObjectWriter features(CityObjectWriter::Sequence, sequence, std::move(shared), origin);
-  write_objects(city, features);
+  CityObjectWriter features(Form::Sequence, sequence, std::move(shared), origin);
+  write_objects(city, Form::Sequence, features, origin);
 }
 
 }  // namespace exacity

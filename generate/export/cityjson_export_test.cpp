@@ -62,5 +62,67 @@ TEST(CityJson, RingsThatQuantisingMakesTouchAreCutIntoSimpleOnes) {
   EXPECT_EQ(area2, (std::map<std::string, double>{{"landuse-0", 4e8}, {"road-null", 4e8}}));
 }
 
+// Every vertex index of a geometry's boundaries, resolved to its [x, y, z].
+json resolved(const json& b, const json& vertices) {
+  if (b.is_number()) return vertices[b.get<std::size_t>()];
+  json out = json::array();
+  for (const json& x : b) out.push_back(resolved(x, vertices));
+  return out;
+}
+
+// Each object's geometries with their indices resolved.
+json resolved_object(json object, const json& vertices) {
+  for (json& g : object["geometry"])
+    if (g.contains("boundaries")) g["boundaries"] = resolved(g["boundaries"], vertices);
+  return object;
+}
+
+// A row of 2,500 buildings wall to wall, more than one piece of objects holds: the pieces
+// are made apart and their vertices numbered in each, and the document still stores each
+// vertex once (those of the walls between pieces too), every object's surfaces where the
+// sequence's feature has them.
+TEST(CityJson, ObjectsMadeInPiecesShareOneVertexList) {
+  Ground ground;
+  ZoneArea zone;
+  zone.type = ZoneType::Residential, zone.stable_id = 1;
+  const int n = 2500;
+  zone.polygon.outer = {{-1, -1}, {n + 1.0, -1}, {n + 1.0, 2}, {-1, 2}};
+  ground.zones.push_back(zone);
+  std::vector<Building> buildings(n);
+  for (int k = 0; k < n; ++k) {
+    Building& b = buildings[static_cast<std::size_t>(k)];
+    b.id = k, b.stable_id = k + 1;
+    b.polygon.outer = {{double(k), 0}, {k + 1.0, 0}, {k + 1.0, 1}, {double(k), 1}};
+    b.height = b.eaves = 3 + k % 4;
+  }
+  const std::vector<Mesh> meshes = structure_meshes(buildings, {}, nullptr);
+  const std::vector<GroundLayer> layers = ground_layers(ground, nullptr);
+  const nlohmann::ordered_json crs = nlohmann::ordered_json::object();
+  const auto dir = testing_util::temp_dir("cityjson_pieces");
+  write_cityjson({ground, layers, buildings, {}, meshes, {}, nullptr, nullptr, crs}, dir / "city.city.json",
+                 dir / "city.city.jsonl");
+  const json city = json::parse(std::ifstream(dir / "city.city.json"));
+  const json& vertices = city["vertices"];
+  std::set<json> distinct(vertices.begin(), vertices.end());
+  EXPECT_EQ(distinct.size(), vertices.size()) << "a vertex stored twice";
+
+  std::ifstream lines(dir / "city.city.jsonl");
+  std::string line;
+  std::getline(lines, line);  // what the features share
+  std::set<json> in_features;
+  std::size_t features = 0;
+  while (std::getline(lines, line)) {
+    const json feature = json::parse(line);
+    ++features;
+    for (const json& v : feature["vertices"]) in_features.insert(v);
+    for (const auto& [key, object] : feature["CityObjects"].items())
+      ASSERT_EQ(resolved_object(object, feature["vertices"]), resolved_object(city["CityObjects"][key], vertices))
+          << key;
+  }
+  EXPECT_EQ(features, city["CityObjects"].size());
+  EXPECT_EQ(in_features, distinct);
+  EXPECT_TRUE(city["CityObjects"].contains("building-2500"));
+}
+
 }  // namespace
 }  // namespace exacity

@@ -66,9 +66,10 @@ std::vector<Mesh> structure_meshes(const std::vector<Building>& buildings, const
     cancel.check();
     meshes[buildings[i].id] = building_mesh(buildings[i]);
   });
+  const ModelMeshes model_meshes(library);
   tbb::parallel_for(std::size_t(0), models.size(), [&](std::size_t i) {
     cancel.check();
-    meshes[models[i].id] = model_mesh(models[i], library);
+    meshes[models[i].id] = model_meshes(models[i]);
   });
   return meshes;
 }
@@ -169,24 +170,64 @@ Surface slope_class(const Vec3& p, const Vec3& q, const Vec3& r) {
   return nz > 0.5 * len ? Surface::Roof : nz < -0.5 * len ? Surface::Ground : Surface::Wall;
 }
 
-}  // namespace
-
-Mesh model_mesh(const ModelInstance& m, const ModelLibrary* library) {
+// A library model's triangles joined as MeshBuilder joins them, in the model's own frame.
+// OpenMesh's choices (which faces join, which stand alone on vertices of their own) depend
+// only on the triangles, so they are the same for every instance of the model: made once,
+// then placed (joining each instance's triangles again was most of the 3D meshes' time).
+Mesh joined_model(const TriangleMesh& model) {
   MeshBuilder mesh;
-  // A foundation from the lowest terrain under the model up to where it stands.
-  if (m.floor > m.base) {
-    mesh.walls(m.polygon.outer, m.base, m.floor);
-    mesh.cap(m.polygon, m.base, true, Surface::Ground);
-    mesh.cap(m.polygon, m.floor, false, Surface::Roof);
-  }
-  if (!library) return mesh.take();
-  const TriangleMesh& model = library->models[m.placed.model].mesh;
   std::vector<JoinedMesh::VertexHandle> handles;
-  for (const Vec3& v : model.vertices) handles.push_back(mesh.loose_vertex(m.placed.apply(v, m.floor)));
+  for (const Vec3& v : model.vertices) handles.push_back(mesh.loose_vertex(v));
   for (const auto& t : model.triangles)
     mesh.add({handles[t[0]], handles[t[1]], handles[t[2]]},
              slope_class(model.vertices[t[0]], model.vertices[t[1]], model.vertices[t[2]]));
   return mesh.take();
+}
+
+// The instance's mesh: its foundation, then its model's joined mesh placed (none without one).
+Mesh placed_model(const ModelInstance& m, const Mesh* joined) {
+  Mesh out;
+  // A foundation from the lowest terrain under the model up to where it stands.
+  if (m.floor > m.base) {
+    MeshBuilder mesh;
+    mesh.walls(m.polygon.outer, m.base, m.floor);
+    mesh.cap(m.polygon, m.base, true, Surface::Ground);
+    mesh.cap(m.polygon, m.floor, false, Surface::Roof);
+    out = mesh.take();
+  }
+  if (!joined) return out;
+  // The model's vertices after the foundation's, as they were added to one builder; its
+  // faces after the foundation's.
+  const auto first = static_cast<std::uint32_t>(out.points.size());
+  out.points.reserve(out.points.size() + joined->points.size());
+  for (const Vec3& p : joined->points) out.points.push_back(m.placed.apply(p, m.floor));
+  std::vector<std::uint32_t> corners;
+  for (const Mesh::Face f : joined->faces()) {
+    corners.assign(f.corners.begin(), f.corners.end());
+    for (std::uint32_t& c : corners) c += first;
+    out.add_face(f.surface, corners);
+  }
+  out.shrink();
+  return out;
+}
+
+}  // namespace
+
+Mesh model_mesh(const ModelInstance& m, const ModelLibrary* library) {
+  if (!library) return placed_model(m, nullptr);
+  const Mesh joined = joined_model(library->models[m.placed.model].mesh);
+  return placed_model(m, &joined);
+}
+
+ModelMeshes::ModelMeshes(const ModelLibrary* library) : library_(library) {
+  if (!library) return;
+  joined_.resize(library->models.size());
+  tbb::parallel_for(std::size_t(0), joined_.size(),
+                    [&](std::size_t i) { joined_[i] = joined_model(library->models[i].mesh); });
+}
+
+Mesh ModelMeshes::operator()(const ModelInstance& m) const {
+  return placed_model(m, library_ ? &joined_[static_cast<std::size_t>(m.placed.model)] : nullptr);
 }
 
 namespace {

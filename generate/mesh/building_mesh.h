@@ -59,6 +59,16 @@ Mesh building_part_mesh(const Building& b, const BuildingPart& part);
 // A placed model's: its library mesh moved into place (faces classed by their slope) on a
 // foundation where the ground slopes; without a library, only the foundation.
 Mesh model_mesh(const ModelInstance& m, const ModelLibrary* library);
+// model_mesh for many instances of a library's models: each model's triangles joined once.
+class ModelMeshes {
+ public:
+  explicit ModelMeshes(const ModelLibrary* library);
+  Mesh operator()(const ModelInstance& m) const;
+
+ private:
+  const ModelLibrary* library_;
+  std::vector<Mesh> joined_;  // by model, in its own frame
+};
 
 // The mesh of every building and model, by id, in parallel; the exporters share them.
 std::vector<Mesh> structure_meshes(const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
