@@ -495,12 +495,6 @@ void check_shared_edges(const geom::PlanarMap& map, const std::vector<PolygonRef
 
 bool is_zoning(Kind k) { return k == Kind::Zone || k == Kind::Park || k == Kind::Water || k == Kind::Road || k == Kind::Bridge; }
 
-struct SegmentHash {
-  std::size_t operator()(const geom::SegmentKey& k) const {
-    return geom::Vec2Hash()({k.first.first, k.first.second}) * 31 ^ geom::Vec2Hash()({k.second.first, k.second.second});
-  }
-};
-
 // The zoning polygons the zoning map need not hold one by one (docs/design.md, Validation
 // by tiles: the zoning map's proof). A zone, park, water or road area is far when it has
 // no holes, its box meets no drawn edge (so the drawn zones are the same all over it) and
@@ -802,7 +796,7 @@ std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const 
   // Frontage: a lot's edge that is a road area's or bridge's edge, both ends the same
   // (every lot of the 10 km city has one), else one running along such an edge, looked up
   // in an index of those edges made only for the lots that need it.
-  std::unordered_set<geom::SegmentKey, SegmentHash> road_edges;  // every ring's of road areas and bridges
+  std::vector<geom::SegmentKey> road_edges;  // every ring's of road areas and bridges, sorted (a hashed set's nodes cost more)
   auto for_each_road_edge = [&](auto&& f) {
     for (std::size_t p = 0; p < P; ++p) {
       if (refs[p].kind != Kind::Road && refs[p].kind != Kind::Bridge) continue;
@@ -812,10 +806,12 @@ std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const 
       }
     }
   };
-  for_each_road_edge([&](geom::Vec2 a, geom::Vec2 b) { road_edges.insert(geom::segment_key(a, b)); });
+  for_each_road_edge([&](geom::Vec2 a, geom::Vec2 b) { road_edges.push_back(geom::segment_key(a, b)); });
+  std::sort(road_edges.begin(), road_edges.end());
   auto has_road_edge = [&](const geom::Ring& ring) {
     for (std::size_t i = 0; i < ring.size(); ++i)
-      if (road_edges.count(geom::segment_key(ring[i], ring[(i + 1) % ring.size()]))) return true;
+      if (std::binary_search(road_edges.begin(), road_edges.end(), geom::segment_key(ring[i], ring[(i + 1) % ring.size()])))
+        return true;
     return false;
   };
   std::vector<char> along_only(P, 0);  // lots proven but for an edge along a road area's
@@ -853,14 +849,18 @@ std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const 
   }
   // Then the pairs whose boxes meet, each once: lots of one block, buildings on one lot or
   // mapped (as the map takes them, the first in polygon order first).
-  std::unordered_map<int, std::vector<int>> by_block, by_lot;  // lots by their block, unmapped buildings by their lot
+  // Lots by their block, then unmapped buildings by their lot: (group, polygon) sorted, so
+  // each group's polygons are in polygon order.
+  std::vector<std::pair<std::int64_t, int>> grouped;
   std::vector<int> mapped;
+  constexpr std::int64_t kLotGroups = std::int64_t{1} << 32;  // the buildings' groups after every lots' one
   for (std::size_t p = 0; p < P; ++p) {
-    if (refs[p].kind == Kind::Lot) by_block[refs[p].block].push_back(static_cast<int>(p));
+    if (refs[p].kind == Kind::Lot) grouped.push_back({refs[p].block, static_cast<int>(p)});
     if (refs[p].kind != Kind::Building) continue;
     if (refs[p].mapped()) mapped.push_back(static_cast<int>(p));
-    else by_lot[refs[p].lot].push_back(static_cast<int>(p));
+    else grouped.push_back({kLotGroups + refs[p].lot, static_cast<int>(p)});
   }
+  std::sort(grouped.begin(), grouped.end());
   std::vector<char> paired(P, 1);  // every pair of p's checked is apart, or nested as the map asks
   const CancelCheck cancel;
   auto pair = [&](int p, int o) {
@@ -871,12 +871,12 @@ std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const 
     const PolygonRef &a = refs[std::min(p, o)], &b = refs[std::max(p, o)];
     if (a.kind == Kind::Lot || nested_overlap_problem(*a.properties, a.name(), *b.properties, b.name())) paired[p] = paired[o] = 0;
   };
-  for (const auto* groups : {&by_block, &by_lot})
-    for (const auto& [id, group] : *groups) {
-      cancel.check();
-      for (std::size_t i = 0; i < group.size(); ++i)
-        for (std::size_t j = i + 1; j < group.size(); ++j) pair(group[i], group[j]);
-    }
+  for (std::size_t i = 0, end = 0; i < grouped.size(); i = end) {
+    cancel.check();
+    for (end = i; end < grouped.size() && grouped[end].first == grouped[i].first;) ++end;
+    for (std::size_t a = i; a < end; ++a)
+      for (std::size_t b = a + 1; b < end; ++b) pair(grouped[a].second, grouped[b].second);
+  }
   if (!mapped.empty()) {
     geom::BoxIndex building_index(32.0);
     for (std::size_t p = 0; p < P; ++p)
