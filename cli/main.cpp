@@ -757,9 +757,11 @@ void add_render(CLI::App& app, RenderCommand& c, SharedOptions& shared) {
       ->check(CLI::Range(0, 1024));
 }
 
-void add_validate(CLI::App& app, ValidateCommand& c) {
+void add_validate(CLI::App& app, ValidateCommand& c, SharedOptions& shared) {
   c.app = app.add_subcommand("validate", "Re-check every invariant of an output folder exactly");
   c.app->add_option("OUT", c.folder, "An output folder of exacity generate")->required();
+  c.app->add_option("--threads", shared.threads, "Worker threads (0: one per core); the answer does not depend on it")
+      ->check(CLI::Range(0, 1024));
 }
 
 void add_stats(CLI::App& app, StatsCommand& c) {
@@ -869,7 +871,7 @@ int main(int argc, char** argv) {
   add_program_options(app, shared);
   add_generate(app, gen, shared);
   add_render(app, ren, shared);
-  add_validate(app, val);
+  add_validate(app, val, shared);
   add_stats(app, sta);
   add_serve(app, srv);
   add_plan(app, pla, pta, mer, shared);

@@ -59,7 +59,72 @@ int ring_orientation(const Ring& ring) {
   return static_cast<int>(CGAL::orientation_2(pts.begin(), pts.end(), K()));
 }
 
+namespace {
+
+int orient(Vec2 a, Vec2 b, Vec2 c) {
+  return static_cast<int>(CGAL::orientation(K::Point_2(a.x, a.y), K::Point_2(b.x, b.y), K::Point_2(c.x, c.y)));
+}
+
+// p in the closed box of the segment u-v: on it, when the three are collinear.
+bool in_box(Vec2 u, Vec2 v, Vec2 p) {
+  return std::min(u.x, v.x) <= p.x && p.x <= std::max(u.x, v.x) && std::min(u.y, v.y) <= p.y && p.y <= std::max(u.y, v.y);
+}
+
+// Whether the closed segments a-b and c-d meet.
+bool segments_meet(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  // Boxes apart (comparisons of the doubles, exact): most pairs of a ring's edges, asked no predicate.
+  if (std::max(a.x, b.x) < std::min(c.x, d.x) || std::max(c.x, d.x) < std::min(a.x, b.x) ||
+      std::max(a.y, b.y) < std::min(c.y, d.y) || std::max(c.y, d.y) < std::min(a.y, b.y))
+    return false;
+  const int o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  return (o1 == 0 && in_box(a, b, c)) || (o2 == 0 && in_box(a, b, d)) || (o3 == 0 && in_box(c, d, a)) ||
+         (o4 == 0 && in_box(c, d, b));
+}
+
+// Whether u and w (collinear with s, neither s) lie on the same side of s on their line.
+bool same_side_of(Vec2 s, Vec2 u, Vec2 w) {
+  if (u.x != s.x) return (u.x < s.x) == (w.x < s.x);
+  return (u.y < s.y) == (w.y < s.y);  // an upright line
+}
+
+// Rings of up to this many vertices are asked pair of edges by pair (small_ring_is_simple).
+constexpr std::size_t kSmallRing = 64;
+
+// ring_is_simple of a ring of finite coordinates and 3 to kSmallRing vertices, asking every
+// pair of edges exactly: no vertex repeated, edges apart but neighbours, which meet only at
+// their shared vertex (not folding back along each other). CGAL's sweep allocated its way
+// through each footprint, lot and block of a city (a test compares the two).
+bool small_ring_is_simple(const Ring& r) {
+  const std::size_t n = r.size();
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j)
+      if (r[i] == r[j]) return false;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const Vec2 a = r[i], b = r[(i + 1) % n], c = r[j], d = r[(j + 1) % n];
+      if (j == i + 1) {  // b = c
+        if (orient(a, b, d) == 0 && same_side_of(b, a, d)) return false;
+      } else if (i == 0 && j == n - 1) {  // d = a
+        if (orient(c, a, b) == 0 && same_side_of(a, c, b)) return false;
+      } else if (segments_meet(a, b, c, d)) {
+        return false;
+      }
+    }
+  return true;
+}
+
+}  // namespace
+
 bool ring_is_simple(const Ring& ring) {
+  if (ring.size() < 3) return false;
+  if (ring.size() <= kSmallRing &&
+      std::all_of(ring.begin(), ring.end(), [](Vec2 p) { return std::isfinite(p.x) && std::isfinite(p.y); }))
+    return small_ring_is_simple(ring);
+  return cgal_ring_is_simple(ring);
+}
+
+bool cgal_ring_is_simple(const Ring& ring) {
   if (ring.size() < 3) return false;
   auto pts = points(ring);
   return CGAL::is_simple_2(pts.begin(), pts.end(), K());

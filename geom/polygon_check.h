@@ -15,6 +15,10 @@ int ring_orientation(const Ring& ring);
 // No vertex repeated, no two edges meeting except neighbours at their shared vertex.
 bool ring_is_simple(const Ring& ring);
 
+// The same by CGAL's sweep alone, which ring_is_simple asks of rings of many vertices (tests
+// compare the two on small ones).
+bool cgal_ring_is_simple(const Ring& ring);
+
 // The closed regions the two simple rings bound meet (touching counts), decided exactly.
 bool rings_meet(const Ring& a, const Ring& b);
 

@@ -66,6 +66,47 @@ TEST(PointSide, AnswersAsCgalsBoundedSideOnRandomRings) {
   }
 }
 
+// ring_is_simple asks rings of up to 64 vertices pair of edges by pair, not by CGAL's sweep:
+// the same answer on random rings of 3 to 16 vertices on a small grid (repeated vertices, edges
+// folding back, touching and running along others), and with a corner moved by 1e-9 or
+// 1e-300 off the grid (slivers, nearly collinear turns).
+TEST(RingIsSimple, SmallRingsAnswerAsCgalsSweep) {
+  std::mt19937 random(37);
+  std::uniform_int_distribution<int> coordinate(0, 4), corners(3, 16);
+  int simple = 0, not_simple = 0;
+  for (int t = 0; t < 200000; ++t) {
+    Ring ring;
+    const int n = corners(random);
+    for (int k = 0; k < n; ++k) ring.push_back({static_cast<double>(coordinate(random)), static_cast<double>(coordinate(random))});
+    if (t % 3 == 1) ring[t % n].x += 1e-9;
+    if (t % 3 == 2) ring[t % n].y -= 1e-300;
+    const bool expected = cgal_ring_is_simple(ring);
+    ASSERT_EQ(ring_is_simple(ring), expected) << "ring " << t;
+    (expected ? simple : not_simple) += 1;
+  }
+  // Both answers were asked often (small rings on a 5 x 5 grid are mostly not simple).
+  EXPECT_GT(simple, 1000);
+  EXPECT_GT(not_simple, 1000);
+  // Rings of up to 64 vertices around a centre, in the order of their angle (mostly simple;
+  // vertices on one ray from the centre, repeated or nudged by 1e-9, make them not).
+  simple = not_simple = 0;
+  std::uniform_int_distribution<int> wide(0, 40), many(17, 70);
+  for (int t = 0; t < 20000; ++t) {
+    Ring ring;
+    const int n = many(random);
+    for (int k = 0; k < n; ++k) ring.push_back({static_cast<double>(wide(random)), static_cast<double>(wide(random))});
+    std::sort(ring.begin(), ring.end(), [](Vec2 a, Vec2 b) {
+      return std::atan2(a.y - 20.5, a.x - 20.5) < std::atan2(b.y - 20.5, b.x - 20.5);
+    });
+    if (t % 3 == 1) ring[t % n].x += 1e-9;
+    const bool expected = cgal_ring_is_simple(ring);
+    ASSERT_EQ(ring_is_simple(ring), expected) << "ring " << t << " of " << n;
+    (expected ? simple : not_simple) += 1;
+  }
+  EXPECT_GT(simple, 1000);
+  EXPECT_GT(not_simple, 1000);
+}
+
 // PolygonSlabs answers as point_side, whose edges it sorts by slabs of the box: random rings
 // of many vertices on a grid (edges spanning slabs, ending on their lines, level ones), a
 // hole, points on the grid, between and off the box.

@@ -11,6 +11,8 @@
 #include <cstring>
 #include <functional>
 
+#include <tbb/global_control.h>
+
 #include "generate/export/validate.h"
 #include "generate/pipeline.h"
 #include "tests/cli_util.h"
@@ -188,6 +190,39 @@ TEST_F(Checkers, CityJsonContentChecksRefuseAnOpenSolidABadIndexAndAMissingTempl
 // what is left is mapped with the zoning map. Layers broken one way each: the proofs fail,
 // the map without what they proved finds the problem, and the problems stated are those of
 // the whole maps, word for word.
+// The checks of each feature before the maps (its rings asked at once, ids and references
+// through sorted arrays): a lot's ring turned clockwise, a lot written twice under one id
+// (the later named) and a lot naming no block are stated in that order, the same at one
+// thread and at two.
+TEST_F(Checkers, ValidationStatesRingsIdsAndReferencesInTheFeaturesOrder) {
+  const fs::path out = copy("features-order");
+  std::size_t last = 0;
+  edit_json(out / "vector" / "lots.geojson", [&](json& doc) {
+    json& ring = doc["features"][2]["geometry"]["coordinates"][0];
+    std::reverse(ring.begin(), ring.end());
+    doc["features"][1]["properties"]["block"] = 424242;
+    doc["features"].push_back(doc["features"][3]);
+    last = doc["features"].size() - 1;
+  });
+  auto problems = [&](int threads) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    std::string all;
+    for (const std::string& p : exacity::validate_output(out).problems) all += p + "\n";
+    return all;
+  };
+  const std::string found = problems(2);
+  const std::size_t ring = found.find("lots.geojson features[2]: outer ring is not simple and counter-clockwise near (");
+  const std::size_t twice = found.find("lots.geojson features[" + std::to_string(last) + "]: its id is not unique\n");
+  const std::size_t block = found.find("lots.geojson features[1]: \"block\" 424242 names no feature of blocks.geojson\n");
+  ASSERT_NE(ring, std::string::npos) << found;
+  ASSERT_NE(twice, std::string::npos) << found;
+  ASSERT_NE(block, std::string::npos) << found;
+  EXPECT_LT(ring, twice);
+  EXPECT_LT(twice, block);
+  EXPECT_EQ(found.find("features[3]: its id"), std::string::npos) << "the first of two features with one id is not named";
+  EXPECT_EQ(problems(1), found);
+}
+
 TEST_F(Checkers, ValidationsProofsFallBackToTheWholeMapsMessages) {
   using exacity::MapProofs;
   const fs::path good = copy("proofs-good");

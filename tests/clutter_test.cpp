@@ -8,6 +8,8 @@
 
 #include <fstream>
 
+#include <tbb/global_control.h>
+
 #include "generate/errors.h"
 #include "generate/export/validate.h"
 #include "generate/pipeline.h"
@@ -238,6 +240,57 @@ TEST(Clutter, ValidateFindsClutterWhereItMustNotStand) {
             std::string::npos);
   EXPECT_NE(broken([](auto& f) { f[0]["properties"]["kind"] = "building"; }).find("no clutter kind"),
             std::string::npos);
+}
+
+// Validation checks the clutter in runs of pieces at once: on a layer of 10,000 pieces (the
+// city's first one again and again, each with an id of its own), problems broken into
+// different runs are stated in the pieces' order, each once, a repeated id at its later
+// piece, and the same at one thread and at two; a number written "1.0e" sends the layer to
+// the JSON parser, which names it.
+TEST(Clutter, ValidationStatesClutterProblemsInThePiecesOrderAtAnyThreadCount) {
+  const fs::path sketch = four_streets("validate-runs", "", all_of_the_library());
+  const fs::path out = sketch.parent_path() / "out";
+  ASSERT_TRUE(generate_city(load_sketch(sketch), out, nullptr).valid);
+  const fs::path layer = out / "vector" / "clutter.geojson";
+  std::ifstream in(layer);
+  nlohmann::ordered_json doc = nlohmann::ordered_json::parse(std::string((std::istreambuf_iterator<char>(in)), {}));
+  nlohmann::ordered_json& features = doc["features"];
+  ASSERT_FALSE(features.empty());
+  const nlohmann::ordered_json first = features[0];
+  features = nlohmann::ordered_json::array();
+  for (int i = 0; i < 10000; ++i) {
+    features.push_back(first);
+    features.back()["properties"]["id"] = 1000000 + i;
+  }
+  features[9000]["properties"]["road"] = 9999;
+  features[100]["properties"]["kind"] = "fountain";
+  features[9500]["properties"]["id"] = 1005000;  // piece 5000's
+  features[4096]["properties"]["heading"] = 360;
+  // One feature a line, as write_geojson lays a layer out, so the scanner reads it.
+  std::string text = "{\"type\":\"FeatureCollection\",\"name\":\"clutter\",\"features\":[";
+  for (std::size_t i = 0; i < features.size(); ++i) text += (i ? ",\n" : "\n") + features[i].dump();
+  text += "\n]}\n";
+  write(layer, text);
+  auto problems = [&](int threads) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    std::string all;
+    for (const std::string& p : validate_output(out).problems) all += p + "\n";
+    return all;
+  };
+  const std::string expected =
+      "clutter.geojson features[100]: \"kind\" is \"fountain\", no clutter kind\n"
+      "clutter.geojson features[4096]: \"heading\" is not degrees in [0, 360)\n"
+      "clutter.geojson features[9000]: \"road\" 9999 names no feature of roads.geojson\n"
+      "clutter.geojson features[9500]: its id is missing or not unique\n";
+  EXPECT_EQ(problems(1), expected);
+  EXPECT_EQ(problems(2), expected);
+  const std::size_t at = text.find("\"heading\":", text.find("1000007"));
+  ASSERT_NE(at, std::string::npos);
+  text.insert(text.find_first_of(",}", at + 10), ".0e");
+  write(layer, text);
+  const std::string broken = problems(2);
+  EXPECT_NE(broken.find("clutter.geojson: not a GeoJSON FeatureCollection"), std::string::npos) << broken;
+  EXPECT_EQ(problems(1), broken);
 }
 
 TEST(Clutter, NoLampHeadHangsInOrNearATreesCrown) {

@@ -293,13 +293,17 @@ class WrittenLayout {
     return false;
   }
 
-  // "[[x,y],[x,y],...]", at least one position.
+  // "[[x,y],[x,y],...]", at least one position; `out` gets them in as much memory as they
+  // take (read into a buffer kept from line to line, not grown in `out` by doubling).
   bool positions(std::vector<geom::Vec2>& out) {
     if (!literal("[")) return false;
+    static thread_local std::vector<geom::Vec2> read;
+    read.clear();
     do {
-      out.emplace_back();
-      if (!position(out.back())) return false;
+      read.emplace_back();
+      if (!position(read.back())) return false;
     } while (literal(","));
+    out.assign(read.begin(), read.end());
     return literal("]");
   }
 

@@ -89,13 +89,20 @@ class Region {
 RingSides ring_sides(const Ring& b, const Ring& a) {
   RingSides sides;
   const Region region(a);
+  // The edges of a whose boxes meet b's (a lot's in its block's ring of many edges): only
+  // these can meet an edge of b, whose box lies in b's.
+  geom::Box b_box = geom::Box::none();
+  for (Vec2 p : b) b_box.add(p);
+  std::vector<std::size_t> near;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (b_box.meets(box_of(a[i], a[(i + 1) % a.size()]))) near.push_back(i);
   std::vector<Vec2> cuts;
   int p_side = 0, first_side = 0;  // the sides of the edge's first end and of the ring's first vertex
   for (std::size_t k = 0; k < b.size(); ++k) {
     const Vec2 p = b[k], q = b[(k + 1) % b.size()];
     const geom::Box s = box_of(p, q);
     cuts.clear();
-    for (std::size_t i = 0; i < a.size(); ++i) {
+    for (std::size_t i : near) {
       const Vec2 u = a[i], v = a[(i + 1) % a.size()];
       if (!s.meets(box_of(u, v))) continue;
       const int ou = orient(p, q, u), ov = orient(p, q, v);

@@ -53,9 +53,14 @@ enum class Kind { Zone, Park, Water, Road, Bridge, Block, Lot, Building };
 
 struct PolygonRef {
   Kind kind;
-  std::string name;  // "zones.geojson features[3]"
-  std::string zone;  // for zones, blocks and lots
+  const std::string* layer;  // its layer's name: the polygon is that file's features[index]
+  int index = 0;
+  std::string_view zone;     // for zones, blocks and lots: the layer's own text, which outlives the refs
   bool green = false;
+  // For buildings: whether mapped (not standing on a lot); -1 when "mapped" is no boolean,
+  // and the properties are asked each time (which throws, as it did).
+  int mapped_flag = 0;
+  bool mapped() const { return mapped_flag >= 0 ? mapped_flag == 1 : properties->value("mapped", false); }
   int id = -1;       // the feature's id
   int block = -1;    // for lots: the block it names
   int lot = -1;      // for lots: their id; for buildings: the lot they stand on
@@ -63,6 +68,9 @@ struct PolygonRef {
   // For zones: the block of the same rings was proven and left out of the map, so the zone
   // counts as holding its block (prove_blocks).
   bool block_left_out = false;
+  // "zones.geojson features[3]": spelt only for a problem (a string per polygon was made
+  // and copied for every one of a city's 300,000).
+  std::string name() const { return *layer + ".geojson features[" + std::to_string(index) + "]"; }
 };
 
 std::string near(geom::Vec2 p) { return " near (" + format_number(p.x) + ", " + format_number(p.y) + ")"; }
@@ -76,21 +84,45 @@ class Checker {
   Validation& v_;
 };
 
-// Simple rings, outer counter-clockwise, holes clockwise; records each polygon.
+// A string member's text where the feature has it, else "" (as properties.value(key, "")
+// gives it, which throws for a member of another type).
+std::string_view string_member(const nlohmann::ordered_json& properties, const char* key) {
+  const auto it = properties.find(key);
+  if (!properties.is_object()) (void)properties.value(key, std::string());  // throws as it did
+  if (it == properties.end()) return {};
+  if (!it->is_string()) (void)properties.value(key, std::string());  // throws as it did
+  return it->get_ref<const std::string&>();
+}
+
+// PolygonRef::mapped_flag of a building's properties.
+int mapped_flag(const nlohmann::ordered_json& properties) {
+  const auto it = properties.find("mapped");
+  return it == properties.end() ? 0 : it->is_boolean() ? it->get<bool>() : -1;
+}
+
+// Simple rings, outer counter-clockwise, holes clockwise (asked of each ring at once); records
+// each polygon.
 void check_polygons(Checker& c, const Layer& layer, std::vector<PolygonRef>& refs,
                     std::vector<const geom::Polygon*>& polygons) {
   c.v_.features[layer.name] = static_cast<int>(layer.features.size());
+  const std::size_t n = layer.features.size();
+  std::vector<char> outer_wrong(n, 0), hole_wrong(n, 0);  // not simple, or wound the wrong way
+  for_each_cancellable(n, [&](std::size_t i) {
+    const geom::Polygon& polygon = layer.features[i].polygon;
+    outer_wrong[i] = geom::ring_orientation(polygon.outer) != 1;
+    for (const geom::Ring& h : polygon.holes) hole_wrong[i] |= geom::ring_orientation(h) != -1;
+  });
   const CancelCheck cancel;
-  for (std::size_t i = 0; i < layer.features.size(); ++i) {
+  for (std::size_t i = 0; i < n; ++i) {
     cancel.check();
     const VectorFeature& f = layer.features[i];
-    std::string name = layer.name + ".geojson features[" + std::to_string(i) + "]";
-    if (!f.properties.contains("id")) c.problem(name + ": no \"id\"");
-    if (geom::ring_orientation(f.polygon.outer) != 1)
-      c.problem(name + ": outer ring is not simple and counter-clockwise" + near(f.polygon.outer[0]));
-    for (const auto& h : f.polygon.holes)
-      if (geom::ring_orientation(h) != -1) c.problem(name + ": a hole is not simple and clockwise" + near(h[0]));
-    std::string zone = f.properties.value("zone", "");
+    auto name = [&] { return layer.name + ".geojson features[" + std::to_string(i) + "]"; };
+    if (!f.properties.contains("id")) c.problem(name() + ": no \"id\"");
+    if (outer_wrong[i]) c.problem(name() + ": outer ring is not simple and counter-clockwise" + near(f.polygon.outer[0]));
+    if (hole_wrong[i])
+      for (const auto& h : f.polygon.holes)
+        if (geom::ring_orientation(h) != -1) c.problem(name() + ": a hole is not simple and clockwise" + near(h[0]));
+    const std::string_view zone = string_member(f.properties, "zone");
     Kind kind = layer.name == "zones"   ? (zone == "park" ? Kind::Park : Kind::Zone)
                 : layer.name == "water" ? Kind::Water
                 : layer.name == "blocks" ? Kind::Block
@@ -100,7 +132,8 @@ void check_polygons(Checker& c, const Layer& layer, std::vector<PolygonRef>& ref
                                                       : Kind::Road;
     const int id = f.properties.value("id", -1);
     const auto lot = f.properties.find("lot");  // null for a mapped building on no lot
-    refs.push_back({kind, name, zone, f.properties.value("green", false), id, f.properties.value("block", -1),
+    refs.push_back({kind, &layer.name, static_cast<int>(i), zone, f.properties.value("green", false),
+                    kind == Kind::Building ? mapped_flag(f.properties) : 0, id, f.properties.value("block", -1),
                     kind == Kind::Lot ? id : lot != f.properties.end() && lot->is_number_integer() ? lot->get<int>() : -1,
                     &f.properties});
     polygons.push_back(&f.polygon);
@@ -137,7 +170,7 @@ class FaceCover {
   std::string names(std::initializer_list<Kind> kinds) const {
     std::string s;
     for (Kind k : kinds)
-      for (int p : all(k)) s += (s.empty() ? "" : " and ") + refs_[p].name;
+      for (int p : all(k)) s += (s.empty() ? "" : " and ") + refs_[p].name();
     return s;
   }
 
@@ -245,11 +278,11 @@ class FaceLabels {
       // The zoning map's rings are checked in the polygons' map: a ring wound wrong is not in the face.
       if (outer != 0 && outer != 1) {
         if (!polygon_checks_) continue;
-        return wrong(refs_[p].name + ": outer ring winds " + std::to_string(outer) + " times");
+        return wrong(refs_[p].name() + ": outer ring winds " + std::to_string(outer) + " times");
       }
       if (holes != 0 && (holes != -1 || outer != 1)) {
         if (!polygon_checks_) continue;
-        return wrong(refs_[p].name + ": holes overlap or leave the outer ring");
+        return wrong(refs_[p].name() + ": holes overlap or leave the outer ring");
       }
       if (outer == 1 && holes == 0) inside.push_back(p);
     }
@@ -276,7 +309,7 @@ class FaceLabels {
     if (here.count({Kind::Lot}) == 1) {
       const PolygonRef& lot = here.first(Kind::Lot);
       if (here.count({Kind::Block}) == 0 || here.first(Kind::Block).id != lot.block)
-        return wrong(lot.name + " leaves its block " + std::to_string(lot.block));
+        return wrong(lot.name() + " leaves its block " + std::to_string(lot.block));
     }
     // Buildings overlap only where nesting proves one wholly below the other
     // (docs/design.md, Placement: nesting), each pair decided once.
@@ -287,20 +320,20 @@ class FaceLabels {
           const PolygonRef &a = refs_[buildings[i]], &b = refs_[buildings[j]];
           auto [it, added] = nested_.emplace(std::pair{buildings[i], buildings[j]}, 0);
           if (added)
-            if (auto why = nested_overlap_problem(*a.properties, a.name, *b.properties, b.name)) it->second = wrong(*why);
+            if (auto why = nested_overlap_problem(*a.properties, a.name(), *b.properties, b.name())) it->second = wrong(*why);
           if (it->second) return it->second;
         }
       // A mapped building stands as mapped, on lots or not, but never on a road.
       for (int p : buildings)
-        if (refs_[p].properties->value("mapped", false)) {
-          if (here.count({Kind::Road, Kind::Bridge}) > 0) return wrong(refs_[p].name + " stands on a road");
+        if (refs_[p].mapped()) {
+          if (here.count({Kind::Road, Kind::Bridge}) > 0) return wrong(refs_[p].name() + " stands on a road");
         } else if (here.count({Kind::Lot}) == 0 || here.first(Kind::Lot).lot != refs_[p].lot) {
-          return wrong(refs_[p].name + " leaves its lot " + std::to_string(refs_[p].lot));
+          return wrong(refs_[p].name() + " leaves its lot " + std::to_string(refs_[p].lot));
         }
     }
     if (here.count({Kind::Block}) == 1) {
       const PolygonRef &b = here.first(Kind::Block), &z = here.first(Kind::Zone);
-      if (!b.green && b.zone != z.zone) return wrong(b.name + " says \"" + b.zone + "\" inside " + z.name + " (\"" + z.zone + "\")");
+      if (!b.green && b.zone != z.zone) return wrong(b.name() + " says \"" + std::string(b.zone) + "\" inside " + z.name() + " (\"" + std::string(z.zone) + "\")");
     }
     return 0;
   }
@@ -316,7 +349,7 @@ class FaceLabels {
     if (top >= 0 && here.count({Kind::Zone, Kind::Park}) == 1) {
       const PolygonRef& z = here.count({Kind::Zone}) == 0 ? here.first(Kind::Park) : here.first(Kind::Zone);
       if (z.zone != name(sketch_.zones[top].type))
-        return wrong(z.name + " says zone \"" + z.zone + "\" where the sketch draws \"" +
+        return wrong(z.name() + " says zone \"" + std::string(z.zone) + "\" where the sketch draws \"" +
                          std::string(name(sketch_.zones[top].type)) + "\"", true);
     }
     return 0;
@@ -461,12 +494,6 @@ void check_shared_edges(const geom::PlanarMap& map, const std::vector<PolygonRef
 }
 
 bool is_zoning(Kind k) { return k == Kind::Zone || k == Kind::Park || k == Kind::Water || k == Kind::Road || k == Kind::Bridge; }
-
-struct SegmentHash {
-  std::size_t operator()(const geom::SegmentKey& k) const {
-    return geom::Vec2Hash()({k.first.first, k.first.second}) * 31 ^ geom::Vec2Hash()({k.second.first, k.second.second});
-  }
-};
 
 // The zoning polygons the zoning map need not hold one by one (docs/design.md, Validation
 // by tiles: the zoning map's proof). A zone, park, water or road area is far when it has
@@ -769,7 +796,7 @@ std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const 
   // Frontage: a lot's edge that is a road area's or bridge's edge, both ends the same
   // (every lot of the 10 km city has one), else one running along such an edge, looked up
   // in an index of those edges made only for the lots that need it.
-  std::unordered_set<geom::SegmentKey, SegmentHash> road_edges;  // every ring's of road areas and bridges
+  std::vector<geom::SegmentKey> road_edges;  // every ring's of road areas and bridges, sorted (a hashed set's nodes cost more)
   auto for_each_road_edge = [&](auto&& f) {
     for (std::size_t p = 0; p < P; ++p) {
       if (refs[p].kind != Kind::Road && refs[p].kind != Kind::Bridge) continue;
@@ -779,10 +806,12 @@ std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const 
       }
     }
   };
-  for_each_road_edge([&](geom::Vec2 a, geom::Vec2 b) { road_edges.insert(geom::segment_key(a, b)); });
+  for_each_road_edge([&](geom::Vec2 a, geom::Vec2 b) { road_edges.push_back(geom::segment_key(a, b)); });
+  std::sort(road_edges.begin(), road_edges.end());
   auto has_road_edge = [&](const geom::Ring& ring) {
     for (std::size_t i = 0; i < ring.size(); ++i)
-      if (road_edges.count(geom::segment_key(ring[i], ring[(i + 1) % ring.size()]))) return true;
+      if (std::binary_search(road_edges.begin(), road_edges.end(), geom::segment_key(ring[i], ring[(i + 1) % ring.size()])))
+        return true;
     return false;
   };
   std::vector<char> along_only(P, 0);  // lots proven but for an edge along a road area's
@@ -796,7 +825,7 @@ std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const 
       if (block == block_at.end() || !ring_in_polygon(polygon.outer, *polygons[block->second])) return;
       proven[p] = has_road_edge(polygon.outer);
       along_only[p] = !proven[p];
-    } else if (ref.kind == Kind::Building && !ref.properties->value("mapped", false)) {
+    } else if (ref.kind == Kind::Building && !ref.mapped()) {
       const auto lot = lot_at.find(ref.lot);
       proven[p] = lot != lot_at.end() && ring_in_polygon(polygon.outer, *polygons[lot->second]);
     }
@@ -820,14 +849,18 @@ std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const 
   }
   // Then the pairs whose boxes meet, each once: lots of one block, buildings on one lot or
   // mapped (as the map takes them, the first in polygon order first).
-  std::unordered_map<int, std::vector<int>> by_block, by_lot;  // lots by their block, unmapped buildings by their lot
+  // Lots by their block, then unmapped buildings by their lot: (group, polygon) sorted, so
+  // each group's polygons are in polygon order.
+  std::vector<std::pair<std::int64_t, int>> grouped;
   std::vector<int> mapped;
+  constexpr std::int64_t kLotGroups = std::int64_t{1} << 32;  // the buildings' groups after every lots' one
   for (std::size_t p = 0; p < P; ++p) {
-    if (refs[p].kind == Kind::Lot) by_block[refs[p].block].push_back(static_cast<int>(p));
+    if (refs[p].kind == Kind::Lot) grouped.push_back({refs[p].block, static_cast<int>(p)});
     if (refs[p].kind != Kind::Building) continue;
-    if (refs[p].properties->value("mapped", false)) mapped.push_back(static_cast<int>(p));
-    else by_lot[refs[p].lot].push_back(static_cast<int>(p));
+    if (refs[p].mapped()) mapped.push_back(static_cast<int>(p));
+    else grouped.push_back({kLotGroups + refs[p].lot, static_cast<int>(p)});
   }
+  std::sort(grouped.begin(), grouped.end());
   std::vector<char> paired(P, 1);  // every pair of p's checked is apart, or nested as the map asks
   const CancelCheck cancel;
   auto pair = [&](int p, int o) {
@@ -836,14 +869,14 @@ std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const 
     if (!polygons[p]->holes.empty() || !polygons[o]->holes.empty()) return void(paired[p] = paired[o] = 0);
     if (interiors_apart(polygons[p]->outer, polygons[o]->outer)) return;
     const PolygonRef &a = refs[std::min(p, o)], &b = refs[std::max(p, o)];
-    if (a.kind == Kind::Lot || nested_overlap_problem(*a.properties, a.name, *b.properties, b.name)) paired[p] = paired[o] = 0;
+    if (a.kind == Kind::Lot || nested_overlap_problem(*a.properties, a.name(), *b.properties, b.name())) paired[p] = paired[o] = 0;
   };
-  for (const auto* groups : {&by_block, &by_lot})
-    for (const auto& [id, group] : *groups) {
-      cancel.check();
-      for (std::size_t i = 0; i < group.size(); ++i)
-        for (std::size_t j = i + 1; j < group.size(); ++j) pair(group[i], group[j]);
-    }
+  for (std::size_t i = 0, end = 0; i < grouped.size(); i = end) {
+    cancel.check();
+    for (end = i; end < grouped.size() && grouped[end].first == grouped[i].first;) ++end;
+    for (std::size_t a = i; a < end; ++a)
+      for (std::size_t b = a + 1; b < end; ++b) pair(grouped[a].second, grouped[b].second);
+  }
   if (!mapped.empty()) {
     geom::BoxIndex building_index(32.0);
     for (std::size_t p = 0; p < P; ++p)
@@ -931,9 +964,9 @@ void check_polygons_held(Checker& c, const DrawnFeatures& sketch, const std::vec
     for (const auto& [p, at] : f.shared_rings) shared.emplace(p, at);
     for (int p : f.fronting) fronts[p] = 1;
   }
-  for (const auto& [p, at] : shared) c.problem(refs[p].name + ": two of its rings share an edge" + near(at));
+  for (const auto& [p, at] : shared) c.problem(refs[p].name() + ": two of its rings share an edge" + near(at));
   for (std::size_t p = 0; p < P; ++p)
-    if (checked[p] && refs[p].kind == Kind::Lot && !fronts[p]) c.problem(refs[p].name + " touches no road area");
+    if (checked[p] && refs[p].kind == Kind::Lot && !fronts[p]) c.problem(refs[p].name() + " touches no road area");
 }
 
 // The polygons' map of the whole city, or of a window: `in_window` says which polygons it
@@ -1170,19 +1203,52 @@ void check_roads(Checker& c, const DrawnFeatures& sketch, const Layer& roads, co
   check_road_ends(c, sketch, roads.features, water);
 }
 
+// Each feature's "id" (-1 when it has none), and the same sorted. Sorted arrays, not hashed
+// sets: a node per id of half a million was 2% of validating the 10 km city.
+struct LayerIds {
+  std::vector<int> by_feature, sorted;
+  explicit LayerIds(const Layer& layer) {
+    by_feature.reserve(layer.features.size());
+    for (const auto& f : layer.features) by_feature.push_back(f.properties.value("id", -1));
+    sorted = by_feature;
+    std::sort(sorted.begin(), sorted.end());
+  }
+  bool has(int id) const { return std::binary_search(sorted.begin(), sorted.end(), id); }
+};
+
+// The features whose id an earlier feature has, in their order.
+std::vector<std::size_t> repeated_ids(const LayerIds& ids) {
+  std::vector<std::pair<int, std::size_t>> at;
+  at.reserve(ids.by_feature.size());
+  for (std::size_t i = 0; i < ids.by_feature.size(); ++i) at.push_back({ids.by_feature[i], i});
+  std::sort(at.begin(), at.end());
+  std::vector<std::size_t> repeated;
+  for (std::size_t k = 1; k < at.size(); ++k)
+    if (at[k].first == at[k - 1].first) repeated.push_back(at[k].second);
+  std::sort(repeated.begin(), repeated.end());
+  return repeated;
+}
+
 // Every reference names the id of a feature of the layer it refers to.
-void check_references(Checker& c, const Layer& from, const char* key, const Layer& to) {
-  std::unordered_set<int> ids;
-  for (const auto& f : to.features) ids.insert(f.properties.value("id", -1));
+void check_references(Checker& c, const Layer& from, const char* key, const LayerIds& to, const std::string& to_name) {
+  const nlohmann::ordered_json null;
   for (std::size_t i = 0; i < from.features.size(); ++i) {
-    const auto& value = from.features[i].properties.value(key, nlohmann::ordered_json());
-    if (value.is_null() && from.features[i].properties.value("mapped", false)) continue;  // a mapped building on no lot
-    for (const auto& v : value.is_array() ? value : nlohmann::ordered_json::array({value}))
-      if (!v.is_number_integer() || !ids.count(v.get<int>())) {
-        c.problem(from.name + ".geojson features[" + std::to_string(i) + "]: \"" + key + "\" " + v.dump() +
-                  " names no feature of " + to.name + ".geojson");
-        break;
-      }
+    const nlohmann::ordered_json& properties = from.features[i].properties;
+    if (!properties.is_object()) (void)properties.value(key, null);  // throws, as it did
+    const auto member = properties.find(key);
+    const nlohmann::ordered_json& value = member == properties.end() ? null : *member;
+    if (value.is_null() && properties.value("mapped", false)) continue;  // a mapped building on no lot
+    // Whether v names a feature; else the problem, once for the feature.
+    auto names = [&](const nlohmann::ordered_json& v) {
+      if (v.is_number_integer() && to.has(v.get<int>())) return true;
+      c.problem(from.name + ".geojson features[" + std::to_string(i) + "]: \"" + key + "\" " + v.dump() +
+                " names no feature of " + to_name + ".geojson");
+      return false;
+    };
+    if (!value.is_array()) names(value);
+    else
+      for (const auto& v : value)
+        if (!names(v)) break;
   }
 }
 
@@ -1328,10 +1394,17 @@ Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* las
     c.problem(std::string("sketch copy: ") + e.what());
     return v;
   }
-  std::vector<std::string> read_problems;
-  lines["clutter"];  // made before the reads at once
-  const CityLayers layers =
-      last ? read_layers(dir / "vector", read_problems, lines) : read_layers(dir / "vector", read_problems);
+  // The seven layers and the clutter read at once; the clutter's problems are stated with its checks.
+  std::vector<std::string> read_problems, clutter_read_problems;
+  ReadLines& clutter_lines = lines["clutter"];  // made before the reads at once
+  CityLayers layers;
+  Layer clutter_layer;
+  invoke_cancellable(
+      [&] { layers = last ? read_layers(dir / "vector", read_problems, lines) : read_layers(dir / "vector", read_problems); },
+      [&] {
+        const fs::path file = dir / "vector" / "clutter.geojson";
+        clutter_layer = last ? read_geojson(file, clutter_read_problems, clutter_lines) : read_geojson(file, clutter_read_problems);
+      });
   const Layer &zones = layers.zones, &water = layers.water, &road_areas = layers.road_areas, &blocks = layers.blocks,
               &lots = layers.lots, &buildings = layers.buildings, &roads = layers.roads;
   for (auto& p : read_problems) c.problem(p);
@@ -1354,17 +1427,17 @@ Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* las
       if (!f.properties.contains(key)) c.problem("roads.geojson features[" + std::to_string(i) + "]: no \"" + key + "\"");
     if (f.line.size() < 2) c.problem("roads.geojson features[" + std::to_string(i) + "]: fewer than 2 positions");
   }
+  std::map<const Layer*, LayerIds> ids;
   for (const Layer* l : {&zones, &water, &road_areas, &blocks, &lots, &buildings, &roads}) {
-    std::unordered_set<int> ids;
-    for (std::size_t i = 0; i < l->features.size(); ++i)
-      if (!ids.insert(l->features[i].properties.value("id", -1)).second)
-        c.problem(l->name + ".geojson features[" + std::to_string(i) + "]: its id is not unique");
+    const LayerIds& of_layer = ids.emplace(l, LayerIds(*l)).first->second;
+    for (std::size_t i : repeated_ids(of_layer))
+      c.problem(l->name + ".geojson features[" + std::to_string(i) + "]: its id is not unique");
   }
   const bool well_formed = v.ok();  // the checks below need simple rings and whole lines
-  check_references(c, lots, "block", blocks);
-  check_references(c, buildings, "lot", lots);
-  check_references(c, road_areas, "road", roads);
-  check_references(c, blocks, "roads", roads);
+  check_references(c, lots, "block", ids.at(&blocks), blocks.name);
+  check_references(c, buildings, "lot", ids.at(&lots), lots.name);
+  check_references(c, road_areas, "road", ids.at(&roads), roads.name);
+  check_references(c, blocks, "roads", ids.at(&roads), roads.name);
   if (!well_formed) return v;
   // The tiling's map, the roads' checks and the clutter's share nothing: they run at once,
   // each with its own problems, taken in this order as if they had run one after another.
@@ -1396,7 +1469,7 @@ Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* las
       [&] {
         Checker r(road_checks);
         check_roads(r, sketch, roads, water, proofs);
-        validate_clutter(dir, layers, clutter, last ? &lines.at("clutter") : nullptr);
+        validate_clutter(clutter_layer, clutter_read_problems, layers, clutter);
       });
   for (const Validation* part : {&tiling, &road_checks, &clutter}) {
     for (const std::string& p : part->problems) c.problem(p);

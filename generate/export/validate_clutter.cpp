@@ -1,13 +1,13 @@
 #include "generate/export/validate_clutter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <unordered_map>
-#include <unordered_set>
 #include <utility>
 
 #include "generate/cancel.h"
-#include "generate/export/read_lines.h"
+#include "generate/cancellable_invoke.h"
 #include "generate/placement/model_library.h"
 #include "geom/polygon_check.h"
 #include "geom/polygon_slabs.h"
@@ -22,13 +22,21 @@ constexpr std::size_t kMaxProblems = 20;
 struct Area {
   const geom::Polygon* polygon;
   geom::Box box;      // of its outer ring: a point outside it lies outside the area
-  std::string name;   // "road_areas.geojson features[3] (carriageway)"
+  const Layer* layer;  // the area is its features[index]
+  std::size_t index;
   bool stands_on;     // a sidewalk or a lot; else clutter keeps off it
   bool park = false;  // a park zone: a tree stands in it, other clutter keeps off it
   // For an area of many vertices (a long carriageway's), its edges by slabs: many points
   // lie in its box.
   std::unique_ptr<geom::PolygonSlabs> slabs = nullptr;
   int side(geom::Vec2 p) const { return slabs ? slabs->side(p) : geom::point_side(*polygon, p); }
+  // "road_areas.geojson features[3] (carriageway)": spelt only for a problem.
+  std::string name() const {
+    std::string s = layer->name + ".geojson features[" + std::to_string(index) + "]";
+    if (layer->name != "road_areas") return s;
+    const nlohmann::ordered_json& properties = layer->features[index].properties;
+    return s + " (" + properties.value("surface", std::string("?")) + (properties.value("bridge", false) ? " of a bridge)" : ")");
+  }
 };
 
 // Areas of more vertices than this are asked through their slabs.
@@ -88,13 +96,11 @@ bool is_clutter_kind(const std::string& kind) {
 
 }  // namespace
 
-void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers, Validation& v, ReadLines* known) {
+void validate_clutter(const Layer& clutter, const std::vector<std::string>& read_problems, const CityLayers& layers,
+                      Validation& v) {
   auto problem = [&](const std::string& p) {
     if (v.problems.size() < kMaxProblems) v.problems.push_back(p);
   };
-  std::vector<std::string> read_problems;
-  const std::filesystem::path file = dir / "vector" / "clutter.geojson";
-  const Layer clutter = known ? read_geojson(file, read_problems, *known) : read_geojson(file, read_problems);
   for (const std::string& p : read_problems) problem(p);
   v.features["clutter"] = static_cast<int>(clutter.features.size());
 
@@ -104,93 +110,119 @@ void validate_clutter(const std::filesystem::path& dir, const CityLayers& layers
     if (f.line.size() == 1) points.push_back(f.line[0]);
   AreaCells cells(points);
   const CancelCheck cancel;
-  auto add = [&](const Layer& layer, auto&& stands_on, auto&& what) {
+  areas.reserve(layers.road_areas.features.size() + layers.lots.features.size() + layers.water.features.size() +
+                layers.zones.features.size() + layers.buildings.features.size());
+  auto add = [&](const Layer& layer, auto&& stands_on) {
     for (std::size_t i = 0; i < layer.features.size(); ++i) {
       cancel.check();
       const VectorFeature& f = layer.features[i];
-      areas.push_back({&f.polygon, box_of(f.polygon), layer.name + ".geojson features[" + std::to_string(i) + "]" + what(f),
-                       stands_on(f), false, slabs_of(f.polygon)});
+      areas.push_back({&f.polygon, box_of(f.polygon), &layer, i, stands_on(f), false, slabs_of(f.polygon)});
       cells.add(static_cast<int>(areas.size()) - 1, areas.back().box);
     }
   };
-  const auto no_note = [](const VectorFeature&) { return std::string(); };
-  add(
-      layers.road_areas,
-      [](const VectorFeature& f) {
-        return f.properties.value("surface", "") == "sidewalk" && !f.properties.value("bridge", false);
-      },
-      [](const VectorFeature& f) {
-        return " (" + f.properties.value("surface", std::string("?")) +
-               (f.properties.value("bridge", false) ? " of a bridge)" : ")");
-      });
-  add(
-      layers.lots, [](const VectorFeature&) { return true; }, no_note);
-  add(
-      layers.water, [](const VectorFeature&) { return false; }, no_note);
+  add(layers.road_areas, [](const VectorFeature& f) {
+    return f.properties.value("surface", "") == "sidewalk" && !f.properties.value("bridge", false);
+  });
+  add(layers.lots, [](const VectorFeature&) { return true; });
+  add(layers.water, [](const VectorFeature&) { return false; });
   // Parks, where only a park's trees stand (zones lie under sidewalks and lots too).
   for (std::size_t i = 0; i < layers.zones.features.size(); ++i) {
     const VectorFeature& f = layers.zones.features[i];
     if (f.properties.value("zone", "") != "park") continue;
-    areas.push_back({&f.polygon, box_of(f.polygon), "zones.geojson features[" + std::to_string(i) + "]", false, true,
-                     slabs_of(f.polygon)});
+    areas.push_back({&f.polygon, box_of(f.polygon), &layers.zones, i, false, true, slabs_of(f.polygon)});
     cells.add(static_cast<int>(areas.size()) - 1, areas.back().box);
   }
-  add(
-      layers.buildings, [](const VectorFeature&) { return false; }, no_note);
+  add(layers.buildings, [](const VectorFeature&) { return false; });
 
-  // Hashed: a sorted set's insertions of 300,000 clutter ids were 2% of validating the 10 km city.
-  std::unordered_set<int> roads, ids;
-  ids.reserve(clutter.features.size());
-  for (const VectorFeature& f : layers.roads.features) roads.insert(f.properties.value("id", -1));
-  for (std::size_t i = 0; i < clutter.features.size(); ++i) {
-    cancel.check();
-    const VectorFeature& f = clutter.features[i];
-    // The feature's name and place, spelt only for a problem.
-    const auto name = [&] { return "clutter.geojson features[" + std::to_string(i) + "]"; };
-    if (f.line.size() != 1 || !f.polygon.outer.empty()) {
-      problem(name() + ": not a Point");
-      continue;
+  // Sorted arrays, not hashed sets: a node per id of 300,000 was 2% of validating the 10 km
+  // city. A piece's id is not unique when an earlier piece has it.
+  std::vector<int> roads;
+  roads.reserve(layers.roads.features.size());
+  for (const VectorFeature& f : layers.roads.features) roads.push_back(f.properties.value("id", -1));
+  std::sort(roads.begin(), roads.end());
+  const std::size_t n = clutter.features.size();
+  std::vector<char> id_taken(n, 0);  // an earlier piece has this one's id
+  {
+    std::vector<std::pair<int, std::size_t>> ids;  // (id, piece) of those with an integer id
+    ids.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto& props = clutter.features[i].properties;
+      if (clutter.features[i].line.size() != 1 || !clutter.features[i].polygon.outer.empty()) continue;  // not a Point: not checked
+      if (const auto id = props.find("id"); id != props.end() && id->is_number_integer()) ids.push_back({id->get<int>(), i});
     }
-    const geom::Vec2 p = f.line[0];
-    const auto at = [&] { return " at (" + format_number(p.x) + ", " + format_number(p.y) + ")"; };
-    const auto& props = f.properties;
-    if (!props.contains("id") || !props["id"].is_number_integer() || !ids.insert(props["id"].get<int>()).second)
-      problem(name() + ": its id is missing or not unique");
-    if (!props.contains("kind") || !props["kind"].is_string() || !is_clutter_kind(props["kind"].get<std::string>()))
-      problem(name() + ": \"kind\" is " + props.value("kind", nlohmann::ordered_json()).dump() + ", no clutter kind");
-    if (!props.contains("model") || !props["model"].is_string()) problem(name() + ": no \"model\"");
-    const bool tree = props.value("kind", nlohmann::ordered_json()) == "tree";
-    // A park's tree dresses no street: its road is null.
-    const bool park_tree = tree && props.contains("road") && props["road"].is_null();
-    if (!park_tree &&
-        (!props.contains("road") || !props["road"].is_number_integer() || !roads.count(props["road"].get<int>())))
-      problem(name() + ": \"road\" " + props.value("road", nlohmann::ordered_json()).dump() +
-              " names no feature of roads.geojson");
-    const double heading =
-        props.contains("heading") && props["heading"].is_number() ? props["heading"].get<double>() : -1;
-    if (!(heading >= 0 && heading < 360)) problem(name() + ": \"heading\" is not degrees in [0, 360)");
-    bool stands = false;
-    for (int a : cells.at(p)) {
-      const geom::Box& box = areas[a].box;
-      if (p.x < box.min_x || p.x > box.max_x || p.y < box.min_y || p.y > box.max_y) continue;  // outside: no verdict
-      const int side = areas[a].side(p);
-      if (areas[a].park) {
-        if (park_tree)
-          stands |= side > 0;
-        else if (side > 0 && tree)
-          problem(name() + at() + " stands in " + areas[a].name + ", a park, but names a road");
+    std::sort(ids.begin(), ids.end());
+    for (std::size_t k = 1; k < ids.size(); ++k) id_taken[ids[k].second] = ids[k].first == ids[k - 1].first;
+  }
+  // Each piece on its own, at once, in runs whose problems (the first few of each) are
+  // taken in the pieces' order.
+  constexpr std::size_t kRun = 4096;
+  std::vector<std::vector<std::string>> run_problems((n + kRun - 1) / kRun);
+  for_each_cancellable(run_problems.size(), [&](std::size_t r) {
+    std::vector<std::string>& found = run_problems[r];
+    auto problem = [&](const std::string& p) {
+      if (found.size() < kMaxProblems) found.push_back(p);
+    };
+    for (std::size_t i = r * kRun; i < std::min(n, (r + 1) * kRun); ++i) {
+      const VectorFeature& f = clutter.features[i];
+      // The feature's name and place, spelt only for a problem.
+      const auto name = [&] { return "clutter.geojson features[" + std::to_string(i) + "]"; };
+      if (f.line.size() != 1 || !f.polygon.outer.empty()) {
+        problem(name() + ": not a Point");
         continue;
       }
-      if (areas[a].stands_on)
-        stands |= side > 0;
-      else if (side >= 0)
-        problem(name() + at() + (side > 0 ? " stands in " : " stands on the edge of ") + areas[a].name);
+      const geom::Vec2 p = f.line[0];
+      const auto at = [&] { return " at (" + format_number(p.x) + ", " + format_number(p.y) + ")"; };
+      const auto& props = f.properties;
+      // Each member looked up once (as find finds it: the first of its key).
+      const nlohmann::ordered_json *id = nullptr, *kind = nullptr, *model = nullptr, *road = nullptr, *heading = nullptr;
+      if (props.is_object())
+        for (const auto& [key, value] : props.items()) {
+          const nlohmann::ordered_json** member = key == "id"        ? &id
+                                                  : key == "kind"    ? &kind
+                                                  : key == "model"   ? &model
+                                                  : key == "road"    ? &road
+                                                  : key == "heading" ? &heading
+                                                                     : nullptr;
+          if (member && !*member) *member = &value;
+        }
+      const nlohmann::ordered_json null;
+      if (!props.is_object()) (void)props.value("kind", null);  // throws, as the lookups by key did
+      if (!id || !id->is_number_integer() || id_taken[i]) problem(name() + ": its id is missing or not unique");
+      if (!kind || !kind->is_string() || !is_clutter_kind(kind->get_ref<const std::string&>()))
+        problem(name() + ": \"kind\" is " + (kind ? *kind : null).dump() + ", no clutter kind");
+      if (!model || !model->is_string()) problem(name() + ": no \"model\"");
+      const bool tree = kind && *kind == "tree";
+      // A park's tree dresses no street: its road is null.
+      const bool park_tree = tree && road && road->is_null();
+      if (!park_tree && (!road || !road->is_number_integer() || !std::binary_search(roads.begin(), roads.end(), road->get<int>())))
+        problem(name() + ": \"road\" " + (road ? *road : null).dump() + " names no feature of roads.geojson");
+      const double angle = heading && heading->is_number() ? heading->get<double>() : -1;
+      if (!(angle >= 0 && angle < 360)) problem(name() + ": \"heading\" is not degrees in [0, 360)");
+      bool stands = false;
+      for (int a : cells.at(p)) {
+        const geom::Box& box = areas[a].box;
+        if (p.x < box.min_x || p.x > box.max_x || p.y < box.min_y || p.y > box.max_y) continue;  // outside: no verdict
+        const int side = areas[a].side(p);
+        if (areas[a].park) {
+          if (park_tree)
+            stands |= side > 0;
+          else if (side > 0 && tree)
+            problem(name() + at() + " stands in " + areas[a].name() + ", a park, but names a road");
+          continue;
+        }
+        if (areas[a].stands_on)
+          stands |= side > 0;
+        else if (side >= 0)
+          problem(name() + at() + (side > 0 ? " stands in " : " stands on the edge of ") + areas[a].name());
+      }
+      if (!stands)
+        problem(name() + at() +
+                (park_tree ? " is a park's tree but stands strictly inside no park"
+                           : " stands strictly inside no sidewalk and no lot"));
     }
-    if (!stands)
-      problem(name() + at() +
-              (park_tree ? " is a park's tree but stands strictly inside no park"
-                         : " stands strictly inside no sidewalk and no lot"));
-  }
+  });
+  for (const auto& found : run_problems)
+    for (const std::string& p : found) problem(p);
 }
 
 }  // namespace exacity
