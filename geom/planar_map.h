@@ -90,6 +90,13 @@ class PlanarMap {
   // faces (see insert_within); only what lies inside the region's faces reaches the map.
   void add_ring_within(int region, const Ring& ring, int counter);
   void add_cell_within(int region, const Cell& cell, int counter);
+  // A map of one cell alone (a block, for its lots: docs/design.md, Lots): the cell's
+  // edges exactly as it has them, the faces inside it labelled `inside` and the rest
+  // `outside`. Where cells() meets the outside across one of those edges, it takes the
+  // label across to be label_across(the edge's kind in the cell): what the city's map has
+  // across that edge, which the outside, one face, cannot say.
+  static PlanarMap of_cell(const Cell& cell, int inside, int outside, const std::function<int(int)>& label_across);
+
   // Inserts what add_*_within queued, region by region: each region's rings are cut
   // against its faces (region_of_label[label]) in a small arrangement of their own and
   // then added to the map edge by edge, so the rest of the map is not swept again. Each

@@ -193,6 +193,9 @@ std::vector<Cell> PlanarMap::cells(const std::vector<int>& group_of_label, const
   std::vector<Cell> cells;
   auto kind_of = [&](Halfedge h) {
     int l = h->twin()->face()->data();
+    if (l == impl_->cell_outside && l >= 0)  // of_cell: the label across is the cell edge's
+      for (const CurveTag& t : h->curve().data())
+        if (t.counter == kCellEdge) l = t.aux;
     return l >= 0 && l < static_cast<int>(kind_of_label.size()) ? kind_of_label[l] : 0;
   };
   int component = 0;
@@ -206,6 +209,21 @@ std::vector<Cell> PlanarMap::cells(const std::vector<int>& group_of_label, const
                      ++component;
                    });
   return cells;
+}
+
+PlanarMap PlanarMap::of_cell(const Cell& cell, int inside, int outside, const std::function<int(int)>& label_across) {
+  PlanarMap map;
+  std::vector<Curve> curves;
+  auto add_ring = [&](const KindRing& r) {
+    for (std::size_t i = 0; i < r.points.size(); ++i)
+      add_curve(curves, r.points[i], r.points[(i + 1) % r.points.size()], {kCellEdge, +1, label_across(r.kinds[i])});
+  };
+  add_ring(cell.exact().outer);
+  for (const KindRing& h : cell.exact().holes) add_ring(h);
+  insert_curves(map.impl_->arr, curves);
+  label_all_faces(map.impl_->arr, [&](const Windings& w) { return winding_of(w, kCellEdge) != 0 ? inside : outside; });
+  map.impl_->cell_outside = outside;
+  return map;
 }
 
 std::vector<Cell> split_cell(const Cell& cell, const std::vector<Path>& roads, int road_kind) {

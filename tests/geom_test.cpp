@@ -265,6 +265,36 @@ TEST(PlanarMap, InsertWithinKeepsEachRingToItsRegion) {
   });
 }
 
+TEST(PlanarMap, AMapOfACellAloneKnowsWhatLiesAcrossItsEdgesFromTheirKinds) {
+  // A 10 x 10 cell with a road along its foot (kind 7) and nothing along its other sides
+  // (kind -1), as the city's map traces it.
+  PlanarMap city;
+  city.add_ring(square(0, 0, 10), 0);
+  city.add_ring({{0, -4}, {10, -4}, {10, 0}, {0, 0}}, 1);
+  city.insert_batch();
+  city.label_faces([](const Windings& w) { return geom::winding_of(w, 0) != 0 ? 1 : geom::winding_of(w, 1) != 0 ? 2 : 0; });
+  const std::vector<geom::Cell> traced = city.cells({-1, 0, -1}, {-1, -1, 7});
+  ASSERT_EQ(traced.size(), 1u);
+  // Alone, labels 0 (outside), 1 (a road across), 2 (inside); its left half made label 3.
+  PlanarMap alone = PlanarMap::of_cell(traced[0], 2, 0, [](int kind) { return kind == 7 ? 1 : 0; });
+  alone.add_ring_within(0, {{0, 0}, {5, 0}, {5, 10}, {0, 10}}, 5);
+  alone.insert_within({-1, -1, 0}, [](const Windings& w, int previous) { return w.empty() ? previous : 3; });
+  std::vector<int> groups;
+  const std::vector<geom::Cell> halves = alone.cells({-1, -1, 0, 1}, {100, 200, 300, 400}, &groups);
+  ASSERT_EQ(halves.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    // Each half's foot is across the road; its other outer sides are across the outside,
+    // and its middle side across the other half.
+    const geom::Cell& half = halves[i];
+    EXPECT_EQ(half.area(), 50);
+    EXPECT_EQ(half.edge_kinds(), (std::vector<int>{100, 200, groups[i] == 0 ? 400 : 300}));
+    const auto foot = half.edges_of_kind(200);
+    ASSERT_EQ(foot.size(), 1u);
+    EXPECT_EQ(foot[0].first.y, 0);
+    EXPECT_EQ(foot[0].second.y, 0);
+  }
+}
+
 TEST(PlanarMap, InsertWithinLabelsAsOneSweepWould) {
   // Random rectangles across the edges of a square region cut in two by its diagonal:
   // inserted region by region, every face gets the label a sweep of the whole map and
