@@ -4,7 +4,9 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <limits>
 #include <set>
+#include <unordered_map>
 
 #include <tbb/parallel_for.h>
 
@@ -132,13 +134,22 @@ std::vector<int> edge_kinds(const CityMap& city_map) {
   return city_map.per_label([](const FaceLabel& f) { return f.road_surface() ? LotEdge::kStreet : LotEdge::kInner; });
 }
 
+// What the last tracing of a block's map into lots found: its pieces' land (lot_land reports
+// it) and its lot faces (the city's map takes them).
+struct Traced {
+  PiecesLand land;
+  std::vector<std::pair<int, geom::Cell>> faces;
+  // The block's first pieces (FirstPieces), as the lots were first cut.
+  std::vector<std::pair<int, geom::Cell>> first;
+};
+
 // Each planned lot's pieces in the map, those that make sensible lots: on the street, at
 // least min_lot_area, and within kLotShape. A lot's rank orders the kept pieces of its
 // planned lot. The pieces refused once rounded, when `refused` is given, go there. When
-// `land` is given it is made the pieces' land (LotLand's lots and refused, per zone type,
-// in the pieces' order): the last tracing of the map is the one lot_land reports.
+// `traced` is given it is made the pieces' land (LotLand's lots and refused, per zone type,
+// in the pieces' order) and the pieces with their planned lots.
 std::vector<Lot> kept_lots(const CityMap& city_map, const std::vector<PlannedLot>& planned, const CitySettings& city,
-                           std::vector<Lot>* refused = nullptr, PiecesLand* land = nullptr) {
+                           std::vector<Lot>* refused = nullptr, Traced* traced = nullptr) {
   const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
   std::vector<int> planned_of, component;
   std::vector<geom::Cell> pieces = city_map.map.cells(group, edge_kinds(city_map), &planned_of, &component);
@@ -155,12 +166,13 @@ std::vector<Lot> kept_lots(const CityMap& city_map, const std::vector<PlannedLot
     geom::Polygon shape = cell->to_plain();
     kept[i] = Lot{plan.block, plan.zone, {}, std::move(*cell), std::move(shape), planned_of[i], 0, component[i], plan.model};
   });
-  if (land) {
-    land->clear();
+  if (traced) {
+    traced->land.clear(), traced->faces.clear();
     for (std::size_t i = 0; i < pieces.size(); ++i) {
-      LotLand& l = (*land)[planned[planned_of[i]].zone];
+      LotLand& l = traced->land[planned[planned_of[i]].zone];
       LandShare& share = why[i] ? l.refused[why[i]] : l.lots;
       ++share.count, share.area_m2 += pieces[i].area();
+      traced->faces.emplace_back(planned_of[i], pieces[i]);
     }
   }
   std::vector<Lot> lots;
@@ -243,7 +255,7 @@ void make_blocks_whole(CityMap& city_map, const std::map<int, int>& lot_of_block
 // A block none of whose planned lots made a sensible lot (a block a little larger than a
 // lot, cut into corners and slivers) is tried whole, as one lot, rather than left empty.
 std::vector<Lot> with_refused_blocks_whole(CityMap& city_map, const std::vector<PlannedLot>& planned,
-                                           std::vector<Lot> lots, const CitySettings& city, PiecesLand* land) {
+                                           std::vector<Lot> lots, const CitySettings& city, Traced* land) {
   std::set<int> kept_in;
   for (const Lot& lot : lots) kept_in.insert(lot.block);
   std::map<int, int> lot_of_block;
@@ -276,7 +288,7 @@ void relabel_pieces(CityMap& city_map, const std::map<int, int>& lot_of_piece,
 std::vector<Lot> with_refused_pieces_joined(CityMap& city_map, const std::vector<PlannedLot>& planned,
                                             std::vector<Lot> lots, const std::vector<Lot>& refused,
                                             const CitySettings& city, std::map<ZoneType, LandShare>* joined,
-                                            PiecesLand* land) {
+                                            Traced* land) {
   const std::map<int, std::vector<int>> of_block = lots_by_block(lots);
   std::vector<std::vector<const Lot*>> taken(lots.size());  // per lot: the pieces it takes
   std::map<int, int> lot_of_piece;
@@ -306,7 +318,7 @@ std::vector<Lot> with_refused_pieces_joined(CityMap& city_map, const std::vector
 // piece next to no lot stays open.
 std::vector<Lot> with_open_land_joined(CityMap& city_map, const std::vector<PlannedLot>& planned, std::vector<Lot> lots,
                                        const CitySettings& city, std::map<ZoneType, LandShare>* joined,
-                                       PiecesLand* land) {
+                                       Traced* land) {
   std::map<int, ZoneType> zone_of_block;
   for (const PlannedLot& p : planned) zone_of_block.emplace(p.block, p.zone);
   const std::vector<int> group = city_map.per_label([&](const FaceLabel& f) {
@@ -333,10 +345,11 @@ std::vector<Lot> with_open_land_joined(CityMap& city_map, const std::vector<Plan
   return kept_lots(city_map, planned, city, nullptr, land);
 }
 
-}  // namespace
 
-std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
-                             const CitySettings& city, std::map<ZoneType, LandShare>* joined, PiecesLand* land) {
+// The planned lots of a block into its map in one batch, which is then snap-rounded, and
+// traced into lots; pieces refused as lots join a neighbouring lot where they can.
+std::vector<Lot> lots_in_block_map(CityMap& city_map, const std::vector<PlannedLot>& planned,
+                                   const CitySettings& city, std::map<ZoneType, LandShare>* joined, Traced* land) {
   city_map.lots = {city_map.generated_roads.end(), static_cast<int>(planned.size())};
   for (std::size_t l = 0; l < planned.size(); ++l) {
     const int counter = city_map.lots.at(static_cast<int>(l));
@@ -344,9 +357,19 @@ std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& p
     else city_map.map.add_ring_within(planned[l].block, planned[l].ring, counter);
   }
   city_map.insert_lots();
-  // The last batch: the map is snap-rounded now, so every layer written from it, lots
-  // included, rounds without edges crossing.
+  // The block's last batch: its map is snap-rounded now, so its lots round without edges
+  // crossing (the city's map, which takes them, is snap-rounded again: CityLots::insert_into).
   city_map.map.snap_round();
+  if (land) {
+    // The first pieces: each planned lot's, and the open land's (group `n`), before any join.
+    const int n = static_cast<int>(planned.size());
+    const std::vector<int> group = city_map.per_label(
+        [&](const FaceLabel& f) { return f.block < 0 || f.road_surface() ? -1 : f.lot >= 0 ? f.lot : n; });
+    std::vector<int> groups;
+    std::vector<geom::Cell> cells = city_map.map.cells(group, {}, &groups);
+    land->first.clear();
+    for (std::size_t i = 0; i < cells.size(); ++i) land->first.emplace_back(groups[i], std::move(cells[i]));
+  }
 
   std::vector<Lot> refused;
   std::vector<Lot> lots = kept_lots(city_map, planned, city, &refused, land);
@@ -355,9 +378,10 @@ std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& p
   return with_refused_blocks_whole(city_map, planned, std::move(lots), city, land);
 }
 
-std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
-                                    const std::vector<Lot>& lots, const std::vector<char>& built,
-                                    bool last, const CitySettings& city, UnbuiltLots& tally, PiecesLand* land) {
+// CityLots::merge_unbuilt_lots in one block's map.
+std::vector<Lot> merged_unbuilt_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
+                                     const std::vector<Lot>& lots, const std::vector<char>& built, bool last,
+                                     const CitySettings& city, UnbuiltLots& tally, Traced* land) {
   std::map<int, int> lot_of_piece;  // an unbuilt lot's piece -> the planned lot it joins, or -1
   std::vector<char> settled(lots.size(), 0);  // unbuilt lots joined, or kept for another to join
   // The last time, a block still without a building (a small one, cut into lots too small
@@ -391,6 +415,312 @@ std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<Planned
   make_blocks_whole(city_map, lot_of_block);
   return kept_lots(city_map, planned, city, nullptr, land);
 }
+
+
+// A map of the block alone: its faces labelled as a block's (block 0), the outside as
+// nothing, and across each edge of its cell a road area where its cell says a road is.
+std::unique_ptr<CityMap> block_map(const geom::Cell& cell) {
+  auto map = std::make_unique<CityMap>();
+  FaceLabel road, inside;
+  road.cover = Cover::Road, road.road = 0;
+  inside.cover = Cover::Zone, inside.block = 0;
+  const int outside = map->label_index(FaceLabel{}), across = map->label_index(road), in = map->label_index(inside);
+  map->map = geom::PlanarMap::of_cell(cell, in, outside,
+                                      [&](int kind) { return BlockEdge::is_road(kind) ? across : outside; });
+  return map;
+}
+
+// A block's first pieces (the pieces of each planned lot and of the open land as its map was
+// first cut, before any join or merge relabelled them) with the lot each now lies in, as
+// BlockLots::faces holds them: (its planned lot + 1) * (planned + 2) + (its lot now + 1), its
+// planned lot `planned` for open land. Joins and merges relabel whole pieces, so a first piece
+// lies in one lot (or none): the city's map, cut as the block's map was, takes its labels by
+// its first pieces (CityLots::insert_into). `now` are the map's lot pieces with their lots.
+void label_first_pieces(std::vector<std::pair<int, geom::Cell>>& first,
+                        const std::vector<std::pair<int, geom::Cell>>& now, int planned) {
+  const int stride = planned + 2;
+  for (auto& [code, cell] : first) {
+    const int group = code >= stride ? code / stride - 1 : code;  // encoded, or just traced
+    int lot = group < planned ? group : -1;
+    if (const std::optional<geom::Vec2> p = cell.point_inside_near(cell.centroid())) {
+      lot = -1;
+      for (const auto& [l, piece] : now) {
+        const geom::Box box = piece.bounds();
+        if (p->x < box.min_x || p->x > box.max_x || p->y < box.min_y || p->y > box.max_y || !piece.contains(*p)) continue;
+        lot = l;
+        break;
+      }
+    }
+    code = (group + 1) * stride + lot + 1;
+  }
+}
+
+BlockLots first_lots(CityMap& map, const std::vector<PlannedLot>& planned, const CitySettings& city) {
+  BlockLots out;
+  Traced traced;
+  out.lots = lots_in_block_map(map, planned, city, &out.joined, &traced);
+  out.pieces = std::move(traced.land), out.faces = std::move(traced.first);
+  label_first_pieces(out.faces, traced.faces, static_cast<int>(planned.size()));
+  return out;
+}
+
+BlockLots merged(CityMap& map, const std::vector<PlannedLot>& planned, const BlockLots& before,
+                 const std::vector<char>& built, bool last, const CitySettings& city) {
+  BlockLots out;
+  out.joined = before.joined, out.unbuilt = before.unbuilt;
+  Traced traced;
+  out.lots = merged_unbuilt_lots(map, planned, before.lots, built, last, city, out.unbuilt, &traced);
+  out.pieces = std::move(traced.land), out.faces = before.faces;
+  label_first_pieces(out.faces, traced.faces, static_cast<int>(planned.size()));
+  return out;
+}
+
+void add_land(PiecesLand& sum, const PiecesLand& land) {
+  for (const auto& [zone, l] : land) {
+    LotLand& s = sum[zone];
+    s.lots.count += l.lots.count, s.lots.area_m2 += l.lots.area_m2;
+    for (const auto& [why, share] : l.refused) s.refused[why].count += share.count, s.refused[why].area_m2 += share.area_m2;
+  }
+}
+
+}  // namespace
+
+struct CityLots::BlockMap {
+  int index = 0;          // the block's index in the city's blocks
+  int first_planned = 0;  // its first planned lot's index in the city's
+  geom::Cell cell;
+  std::vector<PlannedLot> planned;  // its own, each of block 0
+  std::string key;                  // what its lots so far are made from, with a memo
+  std::vector<std::pair<std::vector<char>, bool>> merges;  // each merge so far: its lots built, and `last`
+  std::unique_ptr<CityMap> map;     // its map as `made` left it, when made in this build
+  BlockLots made;
+
+  // Its map made again up to `made` (after a memo gave it), from its cell, planned lots and merges.
+  void remake(const CitySettings& city) {
+    map = block_map(cell);
+    BlockLots lots = first_lots(*map, planned, city);
+    for (const auto& [built, last] : merges) lots = merged(*map, planned, lots, built, last, city);
+  }
+};
+
+CityLots::CityLots(const std::vector<Block>& blocks, const std::vector<PlannedLot>& planned, const CitySettings& city,
+                   Memo<BlockLots>* memo)
+    : city_(&city), memo_(memo) {
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    blocks_.push_back(std::make_unique<BlockMap>());
+    blocks_.back()->index = static_cast<int>(b), blocks_.back()->cell = blocks[b].cell;
+  }
+  for (std::size_t l = 0; l < planned.size(); ++l) {
+    BlockMap& b = *blocks_.at(planned[l].block);
+    if (b.planned.empty()) b.first_planned = static_cast<int>(l);
+    b.planned.push_back(planned[l]);
+    b.planned.back().block = 0;
+  }
+  const CancelCheck cancel;
+  tbb::parallel_for(std::size_t(0), blocks_.size(), [&](std::size_t i) {
+    cancel.check();
+    BlockMap& b = *blocks_[i];
+    if (b.planned.empty()) return;
+    auto make = [&] {
+      b.map = block_map(b.cell);
+      return first_lots(*b.map, b.planned, city);
+    };
+    if (!memo) {
+      b.made = make();
+      return;
+    }
+    // All its lots are made from: its cell (its edges' kinds say where roads are) and its plan.
+    b.key = "block " + geom::exact_text(b.cell) + " lots";
+    for (const PlannedLot& p : b.planned) {
+      b.key += " zone " + std::to_string(static_cast<int>(p.zone)) + " model " + std::to_string(p.model.value_or(-1)) + " ";
+      if (p.ring.empty()) b.key += geom::exact_text(p.cell);
+      else append_key(b.key, p.ring);
+    }
+    b.made = memo->get(b.key, make);
+  });
+}
+
+CityLots::CityLots() = default;
+CityLots::~CityLots() = default;
+CityLots::CityLots(CityLots&&) noexcept = default;
+CityLots& CityLots::operator=(CityLots&&) noexcept = default;
+
+std::vector<Lot> CityLots::lots() const {
+  std::vector<Lot> lots;
+  for (const auto& b : blocks_)
+    for (Lot lot : b->made.lots) {
+      lot.block = b->index, lot.planned += b->first_planned;
+      lots.push_back(std::move(lot));
+    }
+  return lots;
+}
+
+void CityLots::merge_unbuilt_lots(const std::vector<char>& built, bool last) {
+  std::vector<std::size_t> first_lot(blocks_.size(), 0);
+  for (std::size_t i = 0, n = 0; i < blocks_.size(); ++i) first_lot[i] = n, n += blocks_[i]->made.lots.size();
+  const CancelCheck cancel;
+  tbb::parallel_for(std::size_t(0), blocks_.size(), [&](std::size_t i) {
+    cancel.check();
+    BlockMap& b = *blocks_[i];
+    const auto from = built.begin() + static_cast<std::ptrdiff_t>(first_lot[i]);
+    const std::vector<char> flags(from, from + static_cast<std::ptrdiff_t>(b.made.lots.size()));
+    // A block whose lots are all built keeps them as they are.
+    if (std::all_of(flags.begin(), flags.end(), [](char c) { return c != 0; })) return;
+    bool made_here = false;
+    auto merge = [&] {
+      if (!b.map) b.remake(*city_);
+      made_here = true;
+      return merged(*b.map, b.planned, b.made, flags, last, *city_);
+    };
+    if (!memo_) {
+      b.made = merge();
+    } else {
+      b.key += last ? " merged last " : " merged ";
+      for (char c : flags) b.key += c ? '1' : '0';
+      b.made = memo_->get(b.key, merge);
+    }
+    b.merges.emplace_back(flags, last);
+    if (!made_here) b.map.reset();  // it is as the merge before left it
+  });
+}
+
+PiecesLand CityLots::pieces() const {
+  PiecesLand sum;
+  for (const auto& b : blocks_) add_land(sum, b->made.pieces);
+  return sum;
+}
+
+std::map<ZoneType, LandShare> CityLots::joined() const {
+  std::map<ZoneType, LandShare> sum;
+  for (const auto& b : blocks_)
+    for (const auto& [zone, share] : b->made.joined) sum[zone].count += share.count, sum[zone].area_m2 += share.area_m2;
+  return sum;
+}
+
+UnbuiltLots CityLots::unbuilt() const {
+  UnbuiltLots sum;
+  for (const auto& b : blocks_) {
+    sum.merged += b->made.unbuilt.merged, sum.left_open += b->made.unbuilt.left_open;
+    sum.left_open_m2 += b->made.unbuilt.left_open_m2;
+  }
+  return sum;
+}
+
+namespace {
+
+// A block's map does not see its neighbours: where two blocks meet without a road between,
+// each one's lots put vertices on the edge they share that the other's lots, traced in their
+// own map, lack. Written apart, a lot's straight edge and its block's, bent by such a vertex,
+// cross by a double's step. The lots of blocks that meet another block with lots are
+// written again from the city's map, which has every vertex.
+void with_neighbours_vertices(std::vector<std::unique_ptr<CityLots::BlockMap>>& blocks, const CityMap& city_map) {
+  // Blocks with lots that share a boundary vertex with another such block: they meet without
+  // a road between (or touch at a corner).
+  std::unordered_map<geom::Vec2, int, geom::Vec2Hash> block_at;  // -1: more than one block's
+  std::vector<char> meets(blocks.size(), 0);
+  for (const auto& b : blocks) {
+    if (b->made.faces.empty()) continue;
+    for (const geom::KindedRing& ring : b->cell.kinded_rings())
+      for (geom::Vec2 p : ring.points) {
+        auto [it, added] = block_at.emplace(p, b->index);
+        if (added || it->second == b->index) continue;
+        if (it->second >= 0) meets[it->second] = 1;
+        meets[b->index] = 1, it->second = -1;
+      }
+  }
+  if (std::none_of(meets.begin(), meets.end(), [](char m) { return m != 0; })) return;
+  const std::vector<int> group =
+      city_map.per_label([&](const FaceLabel& f) { return f.lot >= 0 && f.block >= 0 && meets[f.block] ? f.lot : -1; });
+  std::vector<int> planned_of;
+  const std::vector<geom::Cell> pieces = city_map.map.cells(group, edge_kinds(city_map), &planned_of);
+  std::map<int, std::vector<std::size_t>> pieces_of;  // by planned lot
+  for (std::size_t i = 0; i < pieces.size(); ++i) pieces_of[planned_of[i]].push_back(i);
+  const CancelCheck cancel;
+  tbb::parallel_for(std::size_t(0), blocks.size(), [&](std::size_t bi) {
+    if (!meets[bi]) return;
+    cancel.check();
+    CityLots::BlockMap& b = *blocks[bi];
+    for (Lot& lot : b.made.lots) {
+      const auto found = pieces_of.find(b.first_planned + lot.planned);
+      if (found == pieces_of.end()) continue;
+      // The piece the lot was traced from: the one of its planned lot with the same bounds
+      // (vertices added on its edges round within them), nearest as written.
+      const geom::Box box = lot.cell.bounds();
+      auto off = [&](std::size_t i) {
+        const geom::Box p = pieces[i].bounds();
+        return std::abs(p.min_x - box.min_x) + std::abs(p.min_y - box.min_y) + std::abs(p.max_x - box.max_x) +
+               std::abs(p.max_y - box.max_y);
+      };
+      const std::size_t best = *std::min_element(found->second.begin(), found->second.end(),
+                                                 [&](std::size_t i, std::size_t k) { return off(i) < off(k); });
+      if (std::optional<geom::Cell> written = pieces[best].as_written()) {
+        lot.cell = std::move(*written);
+        lot.polygon = lot.cell.to_plain();
+      }
+    }
+  });
+}
+
+}  // namespace
+
+void CityLots::insert_into(CityMap& city_map) {
+  // The planned lots go in as each block's map took them, so the city's map is cut as the
+  // blocks' maps were (and snap-rounded); each block's first pieces then take the lots they
+  // ended in, found by their planned lot and their bounds (vertices the city's map adds on
+  // their edges round within them): one tracing of the lots' land, one relabelling.
+  int total = 0;
+  for (const auto& b : blocks_) total += static_cast<int>(b->planned.size());
+  city_map.lots = {city_map.generated_roads.end(), total};
+  std::vector<int> block_of_planned(total, -1);
+  for (const auto& b : blocks_) {
+    b->map.reset();
+    for (std::size_t l = 0; l < b->planned.size(); ++l) {
+      const PlannedLot& p = b->planned[l];
+      const int counter = city_map.lots.at(b->first_planned + static_cast<int>(l));
+      block_of_planned[b->first_planned + l] = b->index;
+      if (p.ring.empty()) city_map.map.add_cell_within(b->index, p.cell, counter);
+      else city_map.map.add_ring_within(b->index, p.ring, counter);
+    }
+  }
+  city_map.insert_lots();
+  // The last batch: the map is snap-rounded now, so every layer written from it rounds
+  // without edges crossing.
+  city_map.map.snap_round();
+  const std::vector<int> group = city_map.per_label([&](const FaceLabel& f) {
+    if (f.block < 0 || f.road_surface() || blocks_[f.block]->planned.empty()) return -1;
+    return f.lot >= 0 ? f.lot : total + f.block;
+  });
+  std::vector<int> groups, components;
+  const std::vector<geom::Cell> pieces = city_map.map.cells(group, {}, &groups, &components);
+  std::vector<int> lot_of_component(components.empty() ? 0 : components.back() + 1, -2);  // -2: as it is
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const int g = groups[i];
+    const BlockMap& b = *blocks_[g >= total ? g - total : block_of_planned[g]];
+    const int n = static_cast<int>(b.planned.size()), stride = n + 2;
+    const int first = g >= total ? n : g - b.first_planned;
+    const geom::Box box = pieces[i].bounds();
+    double nearest = std::numeric_limits<double>::infinity();
+    int lot = -2;
+    for (const auto& [code, cell] : b.made.faces) {
+      if (code / stride - 1 != first) continue;
+      const geom::Box p = cell.bounds();
+      const double off = std::abs(p.min_x - box.min_x) + std::abs(p.min_y - box.min_y) +
+                         std::abs(p.max_x - box.max_x) + std::abs(p.max_y - box.max_y);
+      if (off < nearest) nearest = off, lot = code % stride - 1;
+    }
+    if (lot == -2) continue;
+    lot_of_component[components[i]] = lot >= 0 ? b.first_planned + lot : -1;
+  }
+  city_map.map.relabel_components(group, [&](int c, int label) {
+    const int lot = lot_of_component[c];
+    if (lot == -2 || city_map.labels[label].lot == lot) return label;
+    FaceLabel l = city_map.labels[label];
+    l.lot = lot;
+    return city_map.label_index(l);
+  });
+  with_neighbours_vertices(blocks_, city_map);
+}
+
 
 std::map<ZoneType, LotLand> lot_land(PiecesLand pieces, const std::vector<Block>& blocks,
                                      const std::map<ZoneType, LandShare>& joined) {
