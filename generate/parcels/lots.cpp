@@ -88,7 +88,6 @@ void check_lot_library(const CitySettings& city, const ModelLibrary* library) {
   }
 }
 
-
 namespace {
 
 // A lot's depth over its width (geom::depth_over_width) across and along its longest
@@ -345,7 +344,6 @@ std::vector<Lot> with_open_land_joined(CityMap& city_map, const std::vector<Plan
   return kept_lots(city_map, planned, city, nullptr, land);
 }
 
-
 // The planned lots of a block into its map in one batch, which is then snap-rounded, and
 // traced into lots; pieces refused as lots join a neighbouring lot where they can.
 std::vector<Lot> lots_in_block_map(CityMap& city_map, const std::vector<PlannedLot>& planned,
@@ -415,7 +413,6 @@ std::vector<Lot> merged_unbuilt_lots(CityMap& city_map, const std::vector<Planne
   make_blocks_whole(city_map, lot_of_block);
   return kept_lots(city_map, planned, city, nullptr, land);
 }
-
 
 // A map of the block alone: its faces labelled as a block's (block 0), the outside as
 // nothing, and across each edge of its cell a road area where its cell says a road is.
@@ -720,7 +717,6 @@ void CityLots::insert_into(CityMap& city_map) {
   });
   with_neighbours_vertices(blocks_, city_map);
 }
-
 
 std::map<ZoneType, LotLand> lot_land(PiecesLand pieces, const std::vector<Block>& blocks,
                                      const std::map<ZoneType, LandShare>& joined) {

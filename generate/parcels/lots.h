@@ -95,8 +95,10 @@ struct BlockLots {
   PiecesLand pieces;      // the land of the pieces of its map's last tracing into lots
   std::map<ZoneType, LandShare> joined;  // pieces refused as lots that a neighbouring lot took
   UnbuiltLots unbuilt;    // what its merges of unbuilt lots did, all of them
-  // Its map's lot land, each component of a lot's faces as an exact cell with its planned
-  // lot: what the city's map takes from it.
+  // Its first pieces (each planned lot's and the open land's, as its map first cut them,
+  // before any join or merge) as exact cells, each with (its planned lot + 1) * (planned lots
+  // + 2) + (the lot it now lies in + 1), open land's planned lot being the planned lots'
+  // count: how the city's map, cut as the block's was, takes its lots (CityLots::insert_into).
   std::vector<std::pair<int, geom::Cell>> faces;
 };
 
@@ -104,6 +106,7 @@ struct BlockLots {
 // a map of the block alone (geom::PlanarMap::of_cell), blocks in parallel, and put into the
 // city's map once they are final (insert_into). Faces of a block then know the lot planned
 // there that they lie in. Pieces refused as lots join a neighbouring lot where they can.
+// (docs/design.md, Lots.)
 class CityLots {
  public:
   // `planned`: plan_lots' lots, block by block in order. With a memo, a block whose cell and
@@ -133,9 +136,11 @@ class CityLots {
   std::map<ZoneType, LandShare> joined() const;
   UnbuiltLots unbuilt() const;
 
-  // Puts every block's lot land into the city's map (CityMap::lots counts the planned lots),
-  // each face labelled with the lot it lies in, and snap-rounds the map again: lots' vertices
-  // on their blocks' edges are the other layers' too. The blocks' maps are freed.
+  // Puts every block's planned lots into the city's map as its own map took them
+  // (CityMap::lots counts them) and snap-rounds it, then gives each block's first pieces the
+  // lots they ended in; the lots of blocks that meet another block with lots are written
+  // again from the city's map, which has the vertices their neighbours' lots put on their
+  // shared edges (lots() changes for them). The blocks' maps are freed.
   void insert_into(CityMap& city_map);
 
   struct BlockMap;  // one block's map and lots (lots.cpp)
