@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <fstream>
+#include <string>
 #include <thread>
 
 #include "generate/cancellable_invoke.h"
@@ -125,6 +126,32 @@ TEST(Cancel, PiecesRunAtOnceTakeTheStartingThreadsFlag) {
   flag = false;
   for_each_cancellable(64, [&](std::size_t) { piece(); });
   EXPECT_EQ(begun.load(), 64);
+}
+
+// Pieces made at once are written in their order, whatever the thread count and however
+// long each takes to make; none is made once the starting thread's flag is up.
+TEST(Cancel, PiecesMadeAtOnceAreWrittenInOrderAndTakeTheStartingThreadsFlag) {
+  for (int threads : {1, 2}) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    std::string written;
+    make_in_order<std::string>(
+        40,
+        [](std::size_t i, std::string& piece) {
+          // The early pieces take longest, so later ones are made first with two threads.
+          std::this_thread::sleep_for(std::chrono::microseconds(i < 8 ? 3000 : 100));
+          piece = std::to_string(i) + ",";
+        },
+        [&](const std::string& piece) { written += piece; });
+    std::string expected;
+    for (int i = 0; i < 40; ++i) expected += std::to_string(i) + ",";
+    EXPECT_EQ(written, expected) << threads << " thread(s)";
+  }
+  const tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
+  std::atomic<bool> flag{true};
+  const CancelScope scope(flag);
+  std::atomic<int> made{0};
+  EXPECT_THROW(make_in_order<int>(16, [&](std::size_t, int&) { ++made; }, [](int) {}), Cancelled);
+  EXPECT_EQ(made.load(), 0);
 }
 
 // A document written in one call stops within its first 64 KiB once cancelled, and a file

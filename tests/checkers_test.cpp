@@ -82,6 +82,32 @@ void edit_glb_json(const fs::path& file, const std::function<void(json&)>& edit)
                                         << glb.substr(16, 4) << text << bin;
 }
 
+// Feature i laid again over itself, under an id of its own.
+void add_twin(json& doc, std::size_t i = 0) {
+  json twin = doc["features"][i];
+  twin["properties"]["id"] = 999999;
+  doc["features"].push_back(twin);
+}
+
+// The mean of a closed ring's vertices (the closing one counted once).
+std::pair<double, double> centre_of(const json& ring) {
+  double cx = 0, cy = 0;
+  for (std::size_t k = 0; k + 1 < ring.size(); ++k) cx += ring[k][0].get<double>(), cy += ring[k][1].get<double>();
+  return {cx / static_cast<double>(ring.size() - 1), cy / static_cast<double>(ring.size() - 1)};
+}
+
+// A closed counter-clockwise ring's first corner moved `step` along the sum of its two
+// edges' outward normals (inward where `step` is negative).
+void move_corner(json& ring, double step) {
+  auto at = [&](std::size_t k) { return std::pair{ring[k][0].get<double>(), ring[k][1].get<double>()}; };
+  const auto [ux, uy] = at(ring.size() - 2);
+  const auto [vx, vy] = at(0);
+  const auto [wx, wy] = at(1);
+  const double l1 = std::hypot(vx - ux, vy - uy), l2 = std::hypot(wx - vx, wy - vy);
+  const double nx = (vy - uy) / l1 + (wy - vy) / l2, ny = -(vx - ux) / l1 - (wx - vx) / l2;
+  ring[0] = ring.back() = {vx + step * nx, vy + step * ny};
+}
+
 }  // namespace
 
 TEST_F(Checkers, GeosRefusesOverlappingZonesAndAWronglyTurnedRing) {
@@ -89,11 +115,7 @@ TEST_F(Checkers, GeosRefusesOverlappingZonesAndAWronglyTurnedRing) {
   EXPECT_EQ(good.code, 0) << good.out;
 
   fs::path out = copy("geos-overlap");
-  edit_json(out / "vector" / "zones.geojson", [](json& doc) {
-    json twin = doc["features"][0];
-    twin["properties"]["id"] = 999999;
-    doc["features"].push_back(twin);
-  });
+  edit_json(out / "vector" / "zones.geojson", [](json& doc) { add_twin(doc); });
   Result overlap = shell(geos_check(out));
   EXPECT_EQ(overlap.code, 1) << overlap.out;
   EXPECT_NE(overlap.out.find("zones[0] and zones["), std::string::npos) << overlap.out;
@@ -193,19 +215,13 @@ TEST_F(Checkers, ValidationsProofsFallBackToTheWholeMapsMessages) {
   const std::vector<Case> cases = {
       // A lot laid again over itself, and one moved a metre out of its block.
       {"overlap", "lots", " overlap",
-       [&](json& doc) {
-         json twin = doc["features"][0];
-         twin["properties"]["id"] = 999999;
-         doc["features"].push_back(twin);
-       }},
+       [&](json& doc) { add_twin(doc); }},
       {"shifted", "lots", "leaves its block", [&](json& doc) { shift(ring_of(doc), 1, 1); }},
       // A block's corner pulled in: land of the zone left without a block.
       {"gap", "blocks", "holds no block",
        [&](json& doc) {
          json& ring = ring_of(doc);
-         double cx = 0, cy = 0;
-         for (std::size_t k = 0; k + 1 < ring.size(); ++k) cx += ring[k][0].get<double>(), cy += ring[k][1].get<double>();
-         cx /= static_cast<double>(ring.size() - 1), cy /= static_cast<double>(ring.size() - 1);
+         const auto [cx, cy] = centre_of(ring);
          ring[0] = ring.back() = {ring[0][0].get<double>() * 0.9 + cx * 0.1, ring[0][1].get<double>() * 0.9 + cy * 0.1};
        }},
       // A lot naming another block than the one it lies in.
@@ -218,25 +234,11 @@ TEST_F(Checkers, ValidationsProofsFallBackToTheWholeMapsMessages) {
        }},
       // A lot's corner moved a nanometre out (along the sum of its edges' outward normals):
       // a sliver over its neighbour or out of its block.
-      {"sliver", "lots", "lots.geojson features[0]",
-       [&](json& doc) {
-         json& ring = ring_of(doc);
-         auto at = [&](std::size_t k) { return std::pair{ring[k][0].get<double>(), ring[k][1].get<double>()}; };
-         const auto [ux, uy] = at(ring.size() - 2);
-         const auto [vx, vy] = at(0);
-         const auto [wx, wy] = at(1);
-         const double l1 = std::hypot(vx - ux, vy - uy), l2 = std::hypot(wx - vx, wy - vy);
-         const double nx = (vy - uy) / l1 + (wy - vy) / l2, ny = -(vx - ux) / l1 - (wx - vx) / l2;
-         ring[0] = ring.back() = {vx + 1e-9 * nx, vy + 1e-9 * ny};
-       }},
+      {"sliver", "lots", "lots.geojson features[0]", [&](json& doc) { move_corner(ring_of(doc), 1e-9); }},
       // A building carried off its lot, and one laid over another.
       {"building-off", "buildings", "leaves its lot", [&](json& doc) { shift(ring_of(doc), 30, 0); }},
       {"building-twice", "buildings", " overlap",
-       [&](json& doc) {
-         json twin = doc["features"][0];
-         twin["properties"]["id"] = 999999;
-         doc["features"].push_back(twin);
-       }},
+       [&](json& doc) { add_twin(doc); }},
       // A block that says another zone than the zone of its rings: a block is proven only
       // with the zone's type.
       {"block-zone", "blocks", "says \"commercial\" inside",
@@ -244,43 +246,27 @@ TEST_F(Checkers, ValidationsProofsFallBackToTheWholeMapsMessages) {
       // A block laid twice, and a zone: a block is proven only as the one block of the one
       // zone with its rings.
       {"block-twice", "blocks", " overlap",
-       [&](json& doc) {
-         json twin = doc["features"][0];
-         twin["properties"]["id"] = 999999;
-         doc["features"].push_back(twin);
-       }},
+       [&](json& doc) { add_twin(doc); }},
       {"zone-twice", "zones", " overlap",
-       [&](json& doc) {
-         json twin = doc["features"][0];
-         twin["properties"]["id"] = 999999;
-         doc["features"].push_back(twin);
-       }},
+       [&](json& doc) { add_twin(doc); }},
       // A block's corner moved a nanometre in: a gap in its zone that no block covers, so
       // the rings are compared exactly.
       {"block-sliver", "blocks", "holds no block",
        [&](json& doc) {
          json& ring = ring_of(doc);
-         double cx = 0, cy = 0;
-         for (std::size_t k = 0; k + 1 < ring.size(); ++k) cx += ring[k][0].get<double>(), cy += ring[k][1].get<double>();
-         cx /= static_cast<double>(ring.size() - 1), cy /= static_cast<double>(ring.size() - 1);
+         const auto [cx, cy] = centre_of(ring);
          const double x = ring[0][0].get<double>(), y = ring[0][1].get<double>(), d = std::hypot(cx - x, cy - y);
          ring[0] = ring.back() = {x + 1e-9 * (cx - x) / d, y + 1e-9 * (cy - y) / d};
        }},
       // A road area laid twice: the zoning map, holding what the proofs left, checks the
       // polygons too.
       {"road-twice", "road_areas", " overlap",
-       [&](json& doc) {
-         json twin = doc["features"][0];
-         twin["properties"]["id"] = 999999;
-         doc["features"].push_back(twin);
-       }},
+       [&](json& doc) { add_twin(doc); }},
       // A lot shrunk off the road areas.
       {"no-frontage", "lots", "touches no road area",
        [&](json& doc) {
          json& ring = ring_of(doc);
-         double cx = 0, cy = 0;
-         for (std::size_t k = 0; k + 1 < ring.size(); ++k) cx += ring[k][0].get<double>(), cy += ring[k][1].get<double>();
-         cx /= static_cast<double>(ring.size() - 1), cy /= static_cast<double>(ring.size() - 1);
+         const auto [cx, cy] = centre_of(ring);
          for (auto& p : ring) p = {cx + (p[0].get<double>() - cx) * 0.9, cy + (p[1].get<double>() - cy) * 0.9};
        }},
   };
@@ -294,5 +280,134 @@ TEST_F(Checkers, ValidationsProofsFallBackToTheWholeMapsMessages) {
     std::string all;
     for (const std::string& p : with.problems) all += p + "\n";
     EXPECT_NE(all.find(c.expect), std::string::npos) << c.name << ":\n" << all;
+  }
+}
+
+// The zoning map holds, in place of the zones and road areas away from the drawn edges, their
+// outline: their edges less those that two of them have, one each way (docs/design.md,
+// Validation by tiles: the zoning map's proof). Layers broken one way each, inside the drawn
+// square, where those polygons are: the problems are the whole zoning map's, word for word,
+// and a gap no wider than rounding is the sliver the whole map measures.
+TEST_F(Checkers, ZoningMapsOutlineProofFindsWhatTheWholeMapFinds) {
+  using exacity::MapProofs;
+  // The feature of the layer (of the surface, if given) whose box lies farthest inside the
+  // drawn square (0, 0)-(240, 200).
+  auto innermost = [](json& doc, const std::string& surface = "") {
+    std::size_t best = 0;
+    double depth = -1;
+    for (std::size_t i = 0; i < doc["features"].size(); ++i) {
+      json& f = doc["features"][i];
+      if (!surface.empty() && f["properties"].value("surface", "") != surface) continue;
+      double d = 1e9;
+      for (const auto& p : f["geometry"]["coordinates"][0]) {
+        const double x = p[0], y = p[1];
+        d = std::min({d, x, y, 240 - x, 200 - y});
+      }
+      if (d > depth) depth = d, best = i;
+    }
+    if (depth <= 1) throw std::runtime_error("no feature inside the square");
+    return best;
+  };
+  auto twice = [&](const std::string& surface) { return [=](json& doc) { add_twin(doc, innermost(doc, surface)); }; };
+  // A carriageway's corner moved a nanometre in, along its edges' inward normals: a gap
+  // between it and what it touches, narrower than rounding.
+  auto corner_in = [&](double step) {
+    return [=](json& doc) { move_corner(doc["features"][innermost(doc, "carriageway")]["geometry"]["coordinates"][0], -step); };
+  };
+  struct Case {
+    std::string name, layer, expect;  // expect empty: valid
+    std::function<void(json&)> tamper;
+  };
+  const std::vector<Case> cases = {
+      {"carriageway-gone", "road_areas", "is not covered",
+       [&](json& doc) { doc["features"].erase(innermost(doc, "carriageway")); }},
+      {"carriageway-twice", "road_areas", " overlap", twice("carriageway")},
+      {"zone-twice", "zones", " overlap", twice("")},
+      {"zone-moved", "zones", " overlap",
+       [&](json& doc) {
+         for (auto& p : doc["features"][innermost(doc)]["geometry"]["coordinates"][0]) p[0] = p[0].get<double>() + 0.5;
+       }},
+      // Wider than rounding: a gap.
+      {"carriageway-corner", "road_areas", "is not covered", corner_in(1e-3)},
+      {"carriageway-sliver", "road_areas", "", corner_in(1e-9)},
+  };
+  for (const Case& c : cases) {
+    const fs::path out = copy("outline-" + c.name);
+    edit_json(out / "vector" / (c.layer + ".geojson"), c.tamper);
+    const exacity::Validation with = exacity::validate_output(out, 0, MapProofs::First);
+    const exacity::Validation whole = exacity::validate_output(out, 0, MapProofs::None);
+    EXPECT_EQ(with.problems, whole.problems) << c.name;
+    EXPECT_EQ(with.widest_sliver, whole.widest_sliver) << c.name;
+    std::string all;
+    for (const std::string& p : with.problems) all += p + "\n";
+    if (c.expect.empty()) {
+      EXPECT_TRUE(with.ok()) << c.name << ":\n" << all;
+      EXPECT_GT(with.widest_sliver, 0) << c.name;
+    } else {
+      EXPECT_NE(all.find(c.expect), std::string::npos) << c.name << ":\n" << all;
+    }
+  }
+  // A zone and its block (the same rings) that say another zone than the sketch draws: the
+  // block is proven, the zone is not far.
+  const fs::path out = copy("outline-zone-type");
+  json zones = json::parse(read(out / "vector" / "zones.geojson"));
+  json& zone = zones["features"][innermost(zones)];
+  zone["properties"]["zone"] = "commercial";
+  std::ofstream(out / "vector" / "zones.geojson") << zones.dump();
+  edit_json(out / "vector" / "blocks.geojson", [&](json& doc) {
+    for (auto& f : doc["features"])
+      if (f["geometry"] == zone["geometry"]) f["properties"]["zone"] = "commercial";
+  });
+  const exacity::Validation with = exacity::validate_output(out, 0, MapProofs::First);
+  EXPECT_EQ(with.problems, exacity::validate_output(out, 0, MapProofs::None).problems);
+  ASSERT_EQ(with.problems.size(), 1u);
+  EXPECT_NE(with.problems[0].find("says zone \"commercial\" where the sketch draws \"residential\""), std::string::npos)
+      << with.problems[0];
+}
+
+// The centre lines are proven to meet only at vertices of both, segment against segment,
+// before any map of them (validate.cpp, roads_meet_at_vertices): roads broken one way
+// each, the problems are the map's, word for word.
+TEST_F(Checkers, RoadsProofFindsWhatTheMapFinds) {
+  using exacity::MapProofs;
+  struct Case {
+    std::string name, expect;  // expect empty: whatever the map finds
+    std::function<void(json&)> tamper;
+  };
+  auto added = [](json& doc, json line) {
+    json road = doc["features"][0];
+    road["properties"]["id"] = 999999;
+    road["geometry"]["coordinates"] = std::move(line);
+    doc["features"].push_back(road);
+  };
+  const std::vector<Case> cases = {
+      {"twice", " runs along road ", [&](json& doc) { added(doc, doc["features"][0]["geometry"]["coordinates"]); }},
+      {"across", " meets another centre line between its vertices",
+       [&](json& doc) { added(doc, json::array({{-10, 100.5}, {250, 100.5}})); }},
+      // A road from a vertex of another to a point inside one of its segments.
+      {"inside", " meets another centre line between its vertices",
+       [&](json& doc) {
+         const json& line = doc["features"][0]["geometry"]["coordinates"];
+         const double x = line[0][0], y = line[0][1], u = line[1][0], v = line[1][1];
+         added(doc, json::array({{x, y}, {x + 7, y + 5}, {x + (u - x) / 2, y + (v - y) / 2}}));
+       }},
+      // A road that goes back along its own last segment: the same segment of one line.
+      {"back", "",
+       [&](json& doc) {
+         json& line = doc["features"][0]["geometry"]["coordinates"];
+         line.push_back(line[line.size() - 2]);
+       }},
+  };
+  for (const Case& c : cases) {
+    const fs::path out = copy("roads-" + c.name);
+    edit_json(out / "vector" / "roads.geojson", c.tamper);
+    const exacity::Validation with = exacity::validate_output(out, 0, MapProofs::First);
+    const exacity::Validation whole = exacity::validate_output(out, 0, MapProofs::None);
+    EXPECT_EQ(with.problems, whole.problems) << c.name;
+    std::string all;
+    for (const std::string& p : with.problems) all += p + "\n";
+    if (!c.expect.empty()) {
+      EXPECT_NE(all.find(c.expect), std::string::npos) << c.name << ":\n" << all;
+    }
   }
 }

@@ -61,6 +61,19 @@ ordered_json square_footprints_zone(double coverage) {
   return zone;
 }
 
+// The zone generated along `length` m of street, the zone `depth` m deep: its generated
+// footprints' figures in report.json.
+ordered_json generated_along_a_street(const std::string& name, const ordered_json& zone, double length, double depth) {
+  const fs::path dir = testing_util::temp_dir(name);
+  ordered_json sketch = one_street(zone);
+  sketch["features"][0]["geometry"]["coordinates"] = rectangle(0, 0, length, depth);
+  sketch["features"][1]["geometry"]["coordinates"] = {{-20, 0}, {length + 20, 0}};
+  write(dir / "sketch.geojson", sketch.dump());
+  const auto r = cli_util::run("generate " + (dir / "sketch.geojson").string() + " -q -o " + (dir / "out").string());
+  EXPECT_EQ(r.code, 0) << r.out;
+  return report_of(dir / "out")["footprints_by_zone"]["residential"]["generated"];
+}
+
 }  // namespace
 
 // The twelve footprints' figures come out exactly, and the settings from them: setback and
@@ -310,20 +323,42 @@ TEST(Like, ADrawnAreaThatFitsNowhereWaitsInsteadOfShrinking) {
 // 100 m² one came (17 footprints of 100 m²): lots filtered the place's sizes
 // down to what their room held (Kotka's completion, 27% under the mapped median).
 TEST(Like, ALotKeepsTheAreasDrawnForIt) {
-  const fs::path dir = testing_util::temp_dir("like_lot_keeps_draws");
   ordered_json zone{{"layout", "streets"}, {"lot_width", {40, 40}}, {"lot_depth", 60}, {"setback", 3},
                     {"building_gap", 4}, {"footprint_width", {10, 10}}, {"footprint_depth", {10, 10}},
                     {"footprint_areas", {100, 100, 20000, 20000}}, {"max_footprint_area", 20000}, {"min_footprint_width", 6}};
-  ordered_json sketch = one_street(zone);
-  sketch["features"][0]["geometry"]["coordinates"] = rectangle(0, 0, 1000, 60);
-  sketch["features"][1]["geometry"]["coordinates"] = {{-20, 0}, {1020, 0}};
-  write(dir / "sketch.geojson", sketch.dump());
-  const auto r = cli_util::run("generate " + (dir / "sketch.geojson").string() + " -q -o " + (dir / "out").string());
-  ASSERT_EQ(r.code, 0) << r.out;
-  const ordered_json g = report_of(dir / "out")["footprints_by_zone"]["residential"]["generated"];
+  const ordered_json g = generated_along_a_street("like_lot_keeps_draws", zone, 1000, 60);
   EXPECT_GE(g["footprints"].get<int>(), 1);
   EXPECT_LT(g["footprints"].get<int>(), 13) << "half the lots built with 100 m²: each redrew until it came";
   EXPECT_NEAR(g["median_m2"].get<double>(), 100, 0.01);
+}
+
+// With lot_coverage, a lot's footprints are drawn at once, as many as cover its share on
+// average: a third of the areas 100 m², a third 1,600 and a third between, on lots 50 m
+// wide that hold one 1,600 m² footprint and seldom one after a small one. Drawn one at a
+// time until the lot was covered, a lot ended at the first large one that did not fit and
+// kept the small ones before it: the median came out 286 m² for the areas' 850.
+TEST(Like, ALotDrawsItsFootprintsAtOnce) {
+  ordered_json zone{{"layout", "streets"}, {"lot_width", {50, 50}}, {"lot_depth", 60}, {"setback", 3},
+                    {"building_gap", 4}, {"footprint_width", {10, 10}}, {"footprint_depth", {10, 10}},
+                    {"footprint_areas", {100, 100, 1600, 1600}}, {"max_footprint_area", 1600}, {"min_footprint_width", 10},
+                    {"lot_coverage", 0.4}};
+  const ordered_json g = generated_along_a_street("like_lot_draws_at_once", zone, 6000, 60);
+  EXPECT_GT(g["footprints"].get<int>(), 100) << g.dump();
+  EXPECT_LT(std::abs(g["median_m2"].get<double>() - 850), 0.25 * 850) << g.dump();
+  EXPECT_LT(std::abs(g["coverage_of_lots"].get<double>() - 0.4), 0.25 * 0.4) << g.dump();
+}
+
+// With footprint_areas, a perimeter band larger than max_footprint_area is not built: the
+// lot, 100 m of street 30 m deep, would hold one band of about 1,000 m², and is built in
+// rows of the zone's footprints instead, none over 400 m².
+TEST(Like, APerimeterBandLargerThanThePlacesFootprintsIsBuiltInRows) {
+  ordered_json zone{{"layout", "streets"}, {"lot_width", {100, 100}}, {"lot_depth", 30}, {"setback", 3},
+                    {"building_gap", 2}, {"perimeter_depth", 10}, {"footprint_width", {10, 10}},
+                    {"footprint_depth", {10, 10}}, {"footprint_areas", {100, 400}}, {"max_footprint_area", 400},
+                    {"min_footprint_width", 5}, {"lot_coverage", 0.3}};
+  const ordered_json g = generated_along_a_street("like_band_too_large", zone, 400, 30);
+  EXPECT_GT(g["footprints"].get<int>(), 4) << g.dump();
+  EXPECT_LE(g["p90_m2"].get<double>(), 400) << g.dump();
 }
 
 // A file with too few buildings to measure is one line, exit 2, nothing written.
@@ -383,6 +418,12 @@ TEST(Like, ReportsTheFrontageRuleAndSetsItWhereBuildingsTouch) {
   EXPECT_EQ(z["set"].value("perimeter_depth", ordered_json()), 11.3);
   EXPECT_EQ(z["set"].value("lot_frontages", ordered_json()), rule["lot_frontages"]);
   EXPECT_EQ(z["set"].value("lot_depth", ordered_json()), 17.0);
+  // Perimeter footprints from the place's tenth to its 95th percentile area (all 360 m²
+  // here), or the largest rectangle of its sides' ranges if that is larger.
+  EXPECT_EQ(rule["min_footprint_area"], 360.0);
+  EXPECT_GE(rule["max_footprint_area"].get<double>(), 360.0);
+  EXPECT_EQ(z["set"].value("min_footprint_area", ordered_json()), 360.0);
+  EXPECT_EQ(z["set"].value("max_footprint_area", ordered_json()), rule["max_footprint_area"]);
 
   const fs::path dir = testing_util::temp_dir("like_frontage_rule_apart");
   write(dir / "place.geojson", measured_place().dump());

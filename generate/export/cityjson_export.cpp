@@ -1,9 +1,12 @@
 #include "generate/export/cityjson_export.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
 #include <optional>
+#include <span>
+#include <string_view>
 #include <utility>
 
 #include "generate/cancel.h"
@@ -13,6 +16,7 @@
 #include "generate/errors.h"
 #include "generate/mesh/bridges.h"
 #include "generate/export/ground_layers.h"
+#include "generate/export/json_text.h"
 #include "generate/export/scratch_file.h"
 #include "generate/export/vector_layers.h"
 #include "generate/gis/projection.h"
@@ -110,84 +114,161 @@ std::vector<geom::Polygon> quantised(const geom::Polygon& p, const Vertices& v) 
   return {std::move(out)};
 }
 
+// Surfaces as CityJSON's boundaries list them (each surface its rings, each ring its vertex
+// indices), kept flat and written straight to text: a JSON value for every index was most
+// of the writer's time.
+class SurfaceList {
+ public:
+  void begin_surface() { surface_ends_.push_back(static_cast<int>(ring_ends_.size())); }
+  // A ring of the surface begun last.
+  void add_ring(std::span<const int> ring) {
+    indices_.insert(indices_.end(), ring.begin(), ring.end());
+    ring_ends_.push_back(static_cast<int>(indices_.size()));
+    surface_ends_.back() = static_cast<int>(ring_ends_.size());
+  }
+  // A surface of one ring.
+  void add(std::span<const int> ring) { begin_surface(), add_ring(ring); }
+  void append(const SurfaceList& other) {
+    const int rings = static_cast<int>(ring_ends_.size()), indices = static_cast<int>(indices_.size());
+    indices_.insert(indices_.end(), other.indices_.begin(), other.indices_.end());
+    for (int e : other.ring_ends_) ring_ends_.push_back(indices + e);
+    for (int e : other.surface_ends_) surface_ends_.push_back(rings + e);
+  }
+  std::size_t size() const { return surface_ends_.size(); }
+  bool empty() const { return surface_ends_.empty(); }
+  // Ring r's vertex indices (rings counted across the surfaces).
+  std::span<const int> ring(std::size_t r) const {
+    const int first = r == 0 ? 0 : ring_ends_[r - 1];
+    return {indices_.data() + first, static_cast<std::size_t>(ring_ends_[r] - first)};
+  }
+  // As JSON: [[[i,...],...],...].
+  void write(std::string& out) const {
+    out += '[';
+    std::size_t r = 0;
+    for (std::size_t s = 0; s < surface_ends_.size(); ++s) {
+      out += s ? ",[" : "[";
+      for (const std::size_t first = r; r < static_cast<std::size_t>(surface_ends_[s]); ++r) {
+        out += r > first ? ",[" : "[";
+        const std::span<const int> ring = this->ring(r);
+        for (std::size_t k = 0; k < ring.size(); ++k) {
+          if (k) out += ',';
+          append_number(out, ring[k]);
+        }
+        out += ']';
+      }
+      out += ']';
+    }
+    out += ']';
+  }
+  // Surface s's rings: the first and one past the last.
+  std::pair<std::size_t, std::size_t> ring_range(std::size_t s) const {
+    return {s == 0 ? 0 : static_cast<std::size_t>(surface_ends_[s - 1]), static_cast<std::size_t>(surface_ends_[s])};
+  }
+
+ private:
+  std::vector<int> indices_;
+  std::vector<int> ring_ends_;     // where each ring ends in indices_
+  std::vector<int> surface_ends_;  // where each surface ends in ring_ends_
+};
+
+void append_ints(std::string& out, const std::vector<int>& list) {
+  out += '[';
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    if (k) out += ',';
+    append_number(out, list[k]);
+  }
+  out += ']';
+}
+
 // Flat surfaces from a polygon at height z: each an outer ring then holes, each
 // counter-clockwise seen from the side the surface faces. None when the polygon collapses.
-std::vector<json> surfaces(const geom::Polygon& p, double z, bool facing_down, Vertices& v) {
-  std::vector<json> out;
+void surfaces(const geom::Polygon& p, double z, bool facing_down, Vertices& v, SurfaceList& out) {
+  std::vector<int> q;
   for (const geom::Polygon& simple : quantised(p, v)) {
-    json s = json::array();
+    out.begin_surface();
     auto add = [&](const geom::Ring& r) {
-      std::vector<int> q;
+      q.clear();
       for (geom::Vec2 g : r) q.push_back(v.at(g, z));
       if (facing_down) std::reverse(q.begin(), q.end());
-      s.push_back(std::move(q));
+      out.add_ring(q);
     };
     add(simple.outer);
     for (const geom::Ring& h : simple.holes) add(h);
-    out.push_back(std::move(s));
   }
-  return out;
 }
 
 // The closed shell of a footprint's prism from `base` to `top`: ground, a wall per edge,
 // roof; with each surface's class. Walls follow the same quantised rings as ground and
 // roof, so the shell stays closed. (A footprint with a neck under a millimetre wide becomes
 // prisms that share an edge there: never seen on a generated footprint.)
-bool prism(const geom::Polygon& footprint, double base, double top, Vertices& v, json& shell, std::vector<int>& classes) {
-  const std::vector<json> grounds = surfaces(footprint, base, true, v), roofs = surfaces(footprint, top, false, v);
+bool prism(const geom::Polygon& footprint, double base, double top, Vertices& v, SurfaceList& shell,
+           std::vector<int>& classes) {
+  SurfaceList grounds, roofs;
+  surfaces(footprint, base, true, v, grounds);
+  surfaces(footprint, top, false, v, roofs);
   if (grounds.empty()) return false;
-  for (const json& ground : grounds) shell.push_back(ground), classes.push_back(0);
-  for (const json& roof : roofs)
-    for (const json& ring_json : roof) {
-      const std::vector<int> ring = ring_json.get<std::vector<int>>();
+  shell.append(grounds), classes.insert(classes.end(), grounds.size(), 0);
+  for (std::size_t s = 0; s < roofs.size(); ++s)
+    for (auto [r, end] = roofs.ring_range(s); r < end; ++r) {
+      const std::span<const int> ring = roofs.ring(r);
       for (std::size_t i = 0; i < ring.size(); ++i) {
         // Roof and ground vertices differ only in z: quantised the same way, so look them up.
-        int a = ring[i], c = ring[(i + 1) % ring.size()];
-        shell.push_back(json::array({json::array({v.below(a, base), v.below(c, base), c, a})}));
+        const int a = ring[i], c = ring[(i + 1) % ring.size()];
+        const int wall[4] = {v.below(a, base), v.below(c, base), c, a};
+        shell.add(wall);
         classes.push_back(1);
       }
     }
-  for (const json& roof : roofs) shell.push_back(roof), classes.push_back(2);
+  shell.append(roofs), classes.insert(classes.end(), roofs.size(), 2);
   return true;
 }
 
 // The shell of the building's mesh, each face with its surface class; false when a face
 // collapses under quantisation, unless `skip_collapsed` (for surfaces that need not close).
-bool mesh_shell(const Mesh& mesh, Vertices& v, json& shell, std::vector<int>& classes, bool skip_collapsed = false) {
+bool mesh_shell(const Mesh& mesh, Vertices& v, SurfaceList& shell, std::vector<int>& classes,
+                bool skip_collapsed = false) {
+  std::vector<int> ring, distinct;
   for (const Mesh::Face f : mesh.faces()) {
-    std::vector<int> ring;
+    ring.clear();
     for (std::uint32_t corner : f.corners) {
       const Vec3& p = mesh.points[corner];
       ring.push_back(v(p[0], p[1], p[2]));
     }
-    std::vector<int> distinct(ring);
+    distinct = ring;
     std::sort(distinct.begin(), distinct.end());
     if (std::unique(distinct.begin(), distinct.end()) != distinct.end()) {
       if (skip_collapsed) continue;
       return false;
     }
-    shell.push_back(json::array({ring}));
+    shell.add(ring);
     classes.push_back(static_cast<int>(f.surface));
   }
   return true;
 }
 
 // Each triangle as a surface, those that quantisation collapses left out.
-void append_triangles(const GroundMesh& m, Vertices& v, json& out) {
+void append_triangles(const GroundMesh& m, Vertices& v, SurfaceList& out) {
   for (const auto& t : m.triangles) {
     std::array<int, 3> q;
     for (int k = 0; k < 3; ++k) q[k] = v(m.vertices[t[k]][0], m.vertices[t[k]][1], m.vertices[t[k]][2]);
-    if (q[0] != q[1] && q[1] != q[2] && q[0] != q[2]) out.push_back(json::array({q}));
+    if (q[0] != q[1] && q[1] != q[2] && q[0] != q[2]) out.add(q);
   }
+}
+
+// A geometry of surfaces: {"boundaries":...,"lod":"LOD","type":"TYPE"}.
+void append_surface_geometry(std::string& out, const char* type, const char* lod, const SurfaceList& boundaries) {
+  out += "{\"boundaries\":";
+  boundaries.write(out);
+  out += ",\"lod\":\"", out += lod, out += "\",\"type\":\"", out += type, out += "\"}";
 }
 
 // A polygon, and the height it lies level at (water, bridge decks) or NaN to drape it.
 using LevelPolygon = std::pair<const geom::Polygon*, double>;
 
-// Polygons smaller than the quantum vanish; null when all do. On terrain each polygon
+// Polygons smaller than the quantum vanish; false when all do. On terrain each polygon
 // becomes the triangles that drape it over the heightmap, or lay it level.
-json multisurface(const std::vector<LevelPolygon>& polygons, const Terrain* terrain, Vertices& v) {
-  json boundaries = json::array();
+bool multisurface(const std::vector<LevelPolygon>& polygons, const Terrain* terrain, Vertices& v, std::string& out) {
+  SurfaceList boundaries;
   for (const auto& [p, level] : polygons) {
     if (terrain && std::isfinite(level)) {
       GroundMesh m;
@@ -196,15 +277,16 @@ json multisurface(const std::vector<LevelPolygon>& polygons, const Terrain* terr
       continue;
     }
     if (!terrain) {
-      for (json& s : surfaces(*p, 0, false, v)) boundaries.push_back(std::move(s));
+      surfaces(*p, 0, false, v, boundaries);
       continue;
     }
     GroundMesh m;
     drape(*p, terrain, 0, m);
     append_triangles(m, v, boundaries);
   }
-  if (boundaries.empty()) return nullptr;
-  return {{"type", "MultiSurface"}, {"lod", "1"}, {"boundaries", std::move(boundaries)}};
+  if (boundaries.empty()) return false;
+  append_surface_geometry(out, "MultiSurface", "1", boundaries);
+  return true;
 }
 
 // Model textures as CityJSON's appearance (docs/design.md, Textured models): CityJSON names
@@ -283,18 +365,57 @@ json templates(const ModelLibrary& library, Appearance& appearance) {
 }
 
 // A model's template placed by a transform about its reference point, standing on `floor`.
-json geometry_instance(const Placement& p, double floor, Vertices& v) {
+void geometry_instance(const Placement& p, double floor, Vertices& v, std::string& out) {
   const double c = std::cos(p.angle) * p.scale, s = std::sin(p.angle) * p.scale;
-  return {{"type", "GeometryInstance"},
-          {"template", p.model},
-          {"boundaries", {v(p.position.x, p.position.y, floor)}},
-          {"transformationMatrix", {c, -s, 0, 0, s, c, 0, 0, 0, 0, p.scale, 0, 0, 0, 0, 1}}};
+  out += "{\"boundaries\":[";
+  append_number(out, v(p.position.x, p.position.y, floor));
+  out += "],\"template\":";
+  append_number(out, p.model);
+  out += ",\"transformationMatrix\":[";
+  append_json_number(out, c), out += ',', append_json_number(out, -s), out += ",0,0,";
+  append_json_number(out, s), out += ',', append_json_number(out, c), out += ",0,0,0,0,";
+  append_json_number(out, p.scale), out += ",0,0,0,0,1],\"type\":\"GeometryInstance\"}";
 }
 
-const json kSemanticSurfaces = json::array({{{"type", "GroundSurface"}}, {{"type", "WallSurface"}}, {{"type", "RoofSurface"}}});
+constexpr const char* kSemanticSurfaces =
+    "[{\"type\":\"GroundSurface\"},{\"type\":\"WallSurface\"},{\"type\":\"RoofSurface\"}]";
+
+// {"boundaries":[SHELL],"lod":"2","semantics":{...},"type":"Solid"} with each surface's
+// class; a MultiSurface of the surfaces when not `solid`.
+void append_classed_geometry(std::string& out, bool solid, const SurfaceList& surfaces, const std::vector<int>& classes) {
+  out += solid ? "{\"boundaries\":[" : "{\"boundaries\":";
+  surfaces.write(out);
+  out += solid ? "],\"lod\":\"2\",\"semantics\":{\"surfaces\":" : ",\"lod\":\"2\",\"semantics\":{\"surfaces\":";
+  out += kSemanticSurfaces;
+  out += solid ? ",\"values\":[" : ",\"values\":";
+  append_ints(out, classes);
+  out += solid ? "]},\"type\":\"Solid\"}" : "},\"type\":\"MultiSurface\"}";
+}
+
+// LOD1 the prism (a closed shell) and LOD2 the mesh's shell, or the prism where quantisation
+// collapses a face of the mesh: "geometry":[LOD1,LOD2]. False, writing nothing, when the
+// prism collapses.
+bool append_solids(std::string& out, const geom::Polygon& footprint, double base, double top, const Mesh& mesh,
+                   Vertices& v) {
+  SurfaceList shell;
+  std::vector<int> classes;
+  if (!prism(footprint, base, top, v, shell, classes)) return false;
+  SurfaceList lod2;
+  std::vector<int> lod2_classes;
+  const bool built = mesh_shell(mesh, v, lod2, lod2_classes);
+  out += "\"geometry\":[{\"boundaries\":[";
+  shell.write(out);
+  out += "],\"lod\":\"1\",\"type\":\"Solid\"},";
+  built ? append_classed_geometry(out, true, lod2, lod2_classes) : append_classed_geometry(out, true, shell, classes);
+  out += ']';
+  return true;
+}
 
 // A lot by its id in the outputs; null for none.
 json lot_id(const Ground& ground, int lot) { return lot >= 0 ? json(ground.lots[lot].stable_id) : json(nullptr); }
+void append_lot(std::string& out, const Ground& ground, int lot) {
+  lot >= 0 ? append_number(out, ground.lots[lot].stable_id) : void(out += "null");
+}
 
 json building_attributes(const Building& b, const Ground& ground) {
   json attributes{{"lot", lot_id(ground, b.lot)}, {"zone", name(b.zone)}, {"measuredHeight", b.height},
@@ -306,96 +427,123 @@ json building_attributes(const Building& b, const Ground& ground) {
   return attributes;
 }
 
-// An extruded building: LOD1 its prism, LOD2 its roof as built (where quantisation
-// collapses a face of it, the prism). Null when the prism collapses.
-json building_object(const Building& b, const Ground& ground, const Mesh& mesh, Vertices& v) {
-  json shell = json::array();
-  std::vector<int> classes;
-  if (!prism(b.polygon, b.base, b.floor + b.height, v, shell, classes)) return nullptr;
-  json lod2_shell = json::array();
-  std::vector<int> lod2_classes;
-  if (!mesh_shell(mesh, v, lod2_shell, lod2_classes)) lod2_shell = shell, lod2_classes = classes;
-  json lod1{{"type", "Solid"}, {"lod", "1"}, {"boundaries", json::array({std::move(shell)})}};
-  json lod2{{"type", "Solid"}, {"lod", "2"}, {"boundaries", json::array({std::move(lod2_shell)})},
-            {"semantics", {{"surfaces", kSemanticSurfaces}, {"values", json::array({lod2_classes})}}}};
-  return {{"type", "Building"},
-          {"attributes", building_attributes(b, ground)},
-          {"geometry", json::array({std::move(lod1), std::move(lod2)})}};
+// A city object's text is its members in name order, as a JSON object's dump() gives them.
+void append_attributes(std::string& out, const json& attributes) {
+  out += "{\"attributes\":";
+  out += attributes.dump();
+  out += ',';
 }
 
-// A mapped building with building:parts: its attributes, its geometry theirs (children
-// added as they are written), since OSM's outline of such a building is 2D only.
-json building_with_parts(const Building& b, const Ground& ground) {
-  return {{"type", "Building"}, {"attributes", building_attributes(b, ground)}, {"geometry", json::array()}, {"children", json::array()}};
+// An extruded building: LOD1 its prism, LOD2 its roof as built (where quantisation
+// collapses a face of it, the prism). False when the prism collapses.
+bool building_object(const Building& b, const Ground& ground, const Mesh& mesh, Vertices& v, std::string& out) {
+  std::string geometry;
+  if (!append_solids(geometry, b.polygon, b.base, b.floor + b.height, mesh, v)) return false;
+  if (b.mapped >= 0) {
+    append_attributes(out, building_attributes(b, ground));
+  } else {
+    // building_attributes' members, written directly (the buildings are most objects).
+    out += "{\"attributes\":{\"lot\":";
+    append_lot(out, ground, b.lot);
+    out += ",\"measuredHeight\":";
+    append_json_number(out, b.height);
+    out += ",\"roofType\":";
+    append_json_string(out, b.roof);
+    out += ",\"zone\":";
+    append_json_string(out, name(b.zone));
+    out += "},";
+  }
+  out += geometry;
+  out += ",\"type\":\"Building\"}";
+  return true;
+}
+
+// A mapped building with building:parts: its attributes, its geometry theirs (its children),
+// since OSM's outline of such a building is 2D only.
+void building_with_parts(const Building& b, const Ground& ground, const std::vector<std::string>& children,
+                         std::string& out) {
+  append_attributes(out, building_attributes(b, ground));
+  out += "\"children\":";
+  out += json(children).dump();
+  out += ",\"geometry\":[],\"type\":\"Building\"}";
 }
 
 // A building:part (OSM's Simple 3D Buildings) of a mapped building: LOD1 its prism from
 // its bottom to its height, LOD2 as built, as an extruded building's; its parent named.
-// Null when the prism collapses.
-json building_part_object(const Building& b, const BuildingPart& part, const std::string& parent, Vertices& v) {
-  json shell = json::array();
-  std::vector<int> classes;
+// False when the prism collapses.
+bool building_part_object(const Building& b, const BuildingPart& part, const std::string& parent, Vertices& v,
+                          std::string& out) {
   const double bottom = part.bottom > 0 ? b.floor + part.bottom : b.base;
-  if (!prism(part.polygon, bottom, b.floor + part.height, v, shell, classes)) return nullptr;
-  json lod2_shell = json::array();
-  std::vector<int> lod2_classes;
-  if (!mesh_shell(building_part_mesh(b, part), v, lod2_shell, lod2_classes)) lod2_shell = shell, lod2_classes = classes;
-  json lod1{{"type", "Solid"}, {"lod", "1"}, {"boundaries", json::array({std::move(shell)})}};
-  json lod2{{"type", "Solid"}, {"lod", "2"}, {"boundaries", json::array({std::move(lod2_shell)})},
-            {"semantics", {{"surfaces", kSemanticSurfaces}, {"values", json::array({lod2_classes})}}}};
-  return {{"type", "BuildingPart"},
-          {"parents", json::array({parent})},
-          {"attributes",
-           {{"osm_id", part.osm_id.empty() ? json(nullptr) : json(part.osm_id)},
-            {"building:part", part.tag},
-            {"measuredHeight", part.height},
-            {"min_height", part.bottom},
-            {"roofType", part.roof}}},
-          {"geometry", json::array({std::move(lod1), std::move(lod2)})}};
+  std::string geometry;
+  if (!append_solids(geometry, part.polygon, bottom, b.floor + part.height, building_part_mesh(b, part), v))
+    return false;
+  append_attributes(out, {{"osm_id", part.osm_id.empty() ? json(nullptr) : json(part.osm_id)},
+                          {"building:part", part.tag},
+                          {"measuredHeight", part.height},
+                          {"min_height", part.bottom},
+                          {"roofType", part.roof}});
+  out += geometry;
+  out += ",\"parents\":";
+  out += json::array({parent}).dump();
+  out += ",\"type\":\"BuildingPart\"}";
+  return true;
 }
 
 // A placed model: LOD1 the prism of its outline; then a library building's surfaces as
 // placed (CityJSON lets no Building hold a GeometryInstance), or for furniture and trees
-// the template stored once, placed by a transform about its reference point. Null when
+// the template stored once, placed by a transform about its reference point. False when
 // the prism collapses.
-json model_object(const ModelInstance& m, const Ground& ground, const Mesh& mesh, const ModelLibrary& library, Vertices& v) {
-  json shell = json::array();
+bool model_object(const ModelInstance& m, const Ground& ground, const Mesh& mesh, const ModelLibrary& library,
+                  Vertices& v, std::string& out) {
+  SurfaceList shell;
   std::vector<int> classes;
-  if (!prism(m.polygon, m.base, m.floor + m.height, v, shell, classes)) return nullptr;
-  json lod1{{"type", "Solid"}, {"lod", "1"}, {"boundaries", json::array({std::move(shell)})}};
-  json placed;
+  if (!prism(m.polygon, m.base, m.floor + m.height, v, shell, classes)) return false;
+  out += "{\"attributes\":{\"lot\":";
+  append_lot(out, ground, m.lot);
+  out += ",\"measuredHeight\":";
+  append_json_number(out, m.height);
+  out += ",\"model\":";
+  append_json_string(out, library.models[m.placed.model].name);
+  out += ",\"zone\":";
+  append_json_string(out, name(m.zone));
+  out += "},\"geometry\":[{\"boundaries\":[";
+  shell.write(out);
+  out += "],\"lod\":\"1\",\"type\":\"Solid\"},";
   if (m.kind == ModelKind::Building) {
-    json faces = json::array();
+    SurfaceList faces;
     std::vector<int> face_classes;
     mesh_shell(mesh, v, faces, face_classes, true);
-    placed = {{"type", "MultiSurface"}, {"lod", "2"}, {"boundaries", std::move(faces)},
-              {"semantics", {{"surfaces", kSemanticSurfaces}, {"values", face_classes}}}};
+    append_classed_geometry(out, false, faces, face_classes);
   } else {
-    placed = geometry_instance(m.placed, m.floor, v);
+    geometry_instance(m.placed, m.floor, v, out);
   }
-  const char* type = m.kind == ModelKind::Tree       ? "SolitaryVegetationObject"
-                     : m.kind == ModelKind::Building ? "Building"
-                                                     : "CityFurniture";
-  return {{"type", type},
-          {"attributes",
-           {{"lot", lot_id(ground, m.lot)}, {"zone", name(m.zone)}, {"measuredHeight", m.height}, {"model", library.models[m.placed.model].name}}},
-          {"geometry", json::array({std::move(lod1), std::move(placed)})}};
+  out += "],\"type\":";
+  out += m.kind == ModelKind::Tree       ? "\"SolitaryVegetationObject\"}"
+         : m.kind == ModelKind::Building ? "\"Building\"}"
+                                         : "\"CityFurniture\"}";
+  return true;
 }
 
 // Street clutter: CityFurniture, or SolitaryVegetationObject for a tree, whose one
 // geometry is its model's template placed; its attributes name the road it dresses (null for
 // a park's tree).
-json clutter_object(const Clutter& c, const Ground& ground, const ModelLibrary& library, Vertices& v) {
+void clutter_object(const Clutter& c, const Ground& ground, const ModelLibrary& library, Vertices& v, std::string& out) {
   const ModelInstance& m = c.instance;
-  json attributes{{"kind", name(m.kind)},
-                  {"road", c.road >= 0 ? json(ground.roads[c.road].stable_id) : json(nullptr)},
-                  {"heading", c.heading},
-                  {"measuredHeight", m.height},
-                  {"model", library.models[m.placed.model].name}};
-  if (m.lot >= 0) attributes["lot"] = ground.lots[m.lot].stable_id;
-  return {{"type", m.kind == ModelKind::Tree ? "SolitaryVegetationObject" : "CityFurniture"},
-          {"attributes", std::move(attributes)},
-          {"geometry", json::array({geometry_instance(m.placed, m.floor, v)})}};
+  out += "{\"attributes\":{\"heading\":";
+  append_json_number(out, c.heading);
+  out += ",\"kind\":";
+  append_json_string(out, name(m.kind));
+  if (m.lot >= 0) out += ",\"lot\":", append_number(out, ground.lots[m.lot].stable_id);
+  out += ",\"measuredHeight\":";
+  append_json_number(out, m.height);
+  out += ",\"model\":";
+  append_json_string(out, library.models[m.placed.model].name);
+  out += ",\"road\":";
+  c.road >= 0 ? append_number(out, ground.roads[c.road].stable_id) : void(out += "null");
+  out += "},";
+  out += "\"geometry\":[";
+  geometry_instance(m.placed, m.floor, v, out);
+  out += m.kind == ModelKind::Tree ? "],\"type\":\"SolitaryVegetationObject\"}" : "],\"type\":\"CityFurniture\"}";
 }
 
 // The city objects' texts by key, kept in a scratch file until they are written in the
@@ -405,26 +553,58 @@ class ObjectTexts {
  public:
   explicit ObjectTexts(const std::filesystem::path& beside) : file_(beside) {}
 
-  // As a map's operator[]: a key given again keeps its last text.
-  void set(const std::string& key, const std::string& text) {
-    at_[key] = {file_.size(), text.size()};
+  // A key given again keeps its last text.
+  void set(const std::string& key, std::string_view text) {
+    at_.push_back({prefix(key), key, file_.size(), text.size()});
     file_.append(text);
   }
 
   // Each object as `"key":text`, comma-separated, in key order.
   void write(std::ostream& out) {
+    // Sorted once (a map of 450,000 keys compared them with memcmp at every insertion),
+    // first by the keys' first 16 bytes as numbers, which mostly decides.
+    std::stable_sort(at_.begin(), at_.end(), [](const Entry& a, const Entry& b) {
+      return a.prefix != b.prefix ? a.prefix < b.prefix : a.key < b.key;
+    });
     std::string text;
     bool first = true;
-    for (const auto& [key, where] : at_) {
-      text.resize(where.second);
-      file_.read(where.first, text.data(), text.size());
-      out << (first ? "" : ",") << json(key).dump() << ':' << text, first = false;
+    for (std::size_t i = 0; i < at_.size(); ++i) {
+      const Entry& e = at_[i];
+      if (i + 1 < at_.size() && at_[i + 1].key == e.key) continue;  // given again later
+      text.assign(first ? "" : ",");
+      text += json(e.key).dump();
+      text += ':';
+      const std::size_t start = text.size();
+      text.resize(start + e.length);
+      file_.read(e.offset, text.data() + start, e.length);
+      out.write(text.data(), static_cast<std::streamsize>(text.size()));
+      first = false;
     }
   }
 
  private:
+  // A key's first 16 bytes, big-endian (unsigned, as strings compare), zeros past its end.
+  static std::pair<std::uint64_t, std::uint64_t> prefix(const std::string& key) {
+    auto word = [&](std::size_t from) {
+      std::uint64_t w = 0;
+      for (std::size_t i = from; i < from + 8; ++i) w = w << 8 | (i < key.size() ? static_cast<unsigned char>(key[i]) : 0u);
+      return w;
+    };
+    return {word(0), word(8)};
+  }
+  struct Entry {
+    std::pair<std::uint64_t, std::uint64_t> prefix;
+    std::string key;
+    std::uint64_t offset;
+    std::size_t length;
+  };
   ScratchFile file_;
-  std::map<std::string, std::pair<std::uint64_t, std::size_t>> at_;  // key -> offset and length
+  std::vector<Entry> at_;  // in the order set
+};
+
+// A city object's key and its text.
+struct CityObjectText {
+  std::string key, text;
 };
 
 // Where the city objects go as they are made, by form: a document's objects share
@@ -453,18 +633,25 @@ class CityObjectWriter {
     return vertices_;
   }
 
-  // A feature made with next_vertices(): its object under `key`, and its children's.
-  void add(const std::string& key, const json& object, const std::vector<std::pair<std::string, json>>& children = {}) {
+  // A feature made with next_vertices(): its object's text under `key`, and its children's.
+  void add(const std::string& key, std::string_view object, std::vector<CityObjectText> children = {}) {
     if (form_ == Document) {
-      for (const auto& [child, o] : children) texts_->set(child, o.dump());
-      texts_->set(key, object.dump());
+      for (const auto& [child, text] : children) texts_->set(child, text);
+      texts_->set(key, object);
       return;
     }
-    json objects = json::object();
-    objects[key] = object;
-    for (const auto& [child, o] : children) objects[child] = o;
-    out_ << "{\"type\":\"CityJSONFeature\",\"id\":" << json(key).dump() << ",\"CityObjects\":" << objects.dump()
-         << ",\"vertices\":";
+    // A feature's objects in key order, as a JSON object holds them.
+    line_.assign("{\"type\":\"CityJSONFeature\",\"id\":");
+    line_ += json(key).dump();
+    line_ += ",\"CityObjects\":{";
+    children.push_back({key, std::string(object)});
+    std::sort(children.begin(), children.end(), [](const auto& a, const auto& b) { return a.key < b.key; });
+    for (std::size_t i = 0; i < children.size(); ++i) {
+      if (i) line_ += ',';
+      line_ += json(children[i].key).dump(), line_ += ':', line_ += children[i].text;
+    }
+    line_ += "},\"vertices\":";
+    out_ << line_;
     vertices_.write(out_);
     out_ << "}\n";
   }
@@ -490,6 +677,7 @@ class CityObjectWriter {
   json shared_;
   std::optional<ObjectTexts> texts_;  // the document's objects, until written in key order
   CancellableFile out_;               // written as it goes, through a buffer that stops once the build is cancelled
+  std::string line_;                  // a sequence's feature
 };
 
 // Roads, land use and water as LOD1 surfaces: an object per road (its areas), per zone
@@ -499,14 +687,16 @@ class CityObjectWriter {
 void add_ground_objects(const Ground& ground, const std::vector<GroundLayer>& layers, const Terrain* terrain,
                         CityObjectWriter& out) {
   using Groups = std::map<std::string, std::pair<json, std::vector<LevelPolygon>>>;
+  std::string text;
   auto surfaces = [&](const Groups& groups, const std::string& prefix, const std::string& type, bool by_key = false) {
     int n = 0;
-    for (const auto& [text, group] : groups) {
-      json geometry = multisurface(group.second, terrain, out.next_vertices());
-      if (geometry.is_null()) continue;
-      json o{{"type", type}, {"geometry", json::array({std::move(geometry)})}};
-      if (!group.first.is_null()) o["attributes"] = group.first;
-      out.add(prefix + (by_key ? text : std::to_string(n++)), o);
+    for (const auto& [key, group] : groups) {
+      text.assign("{");
+      if (!group.first.is_null()) text += "\"attributes\":", text += group.first.dump(), text += ',';
+      text += "\"geometry\":[";
+      if (!multisurface(group.second, terrain, out.next_vertices(), text)) continue;
+      text += "],\"type\":", text += json(type).dump(), text += '}';
+      out.add(prefix + (by_key ? key : std::to_string(n++)), text);
     }
   };
   Groups roads, zones, water;
@@ -535,11 +725,14 @@ void add_ground_objects(const Ground& ground, const std::vector<GroundLayer>& la
   surfaces(water, "water-", "WaterBody");
   // The decks' sides and undersides and the piers, one Bridge object for every bridge.
   if (const GroundMesh* bridges = layer_mesh(layers, GroundKind::Bridge); terrain && bridges) {
-    json boundaries = json::array();
+    SurfaceList boundaries;
     append_triangles(*bridges, out.next_vertices(), boundaries);
-    if (!boundaries.empty())
-      out.add("bridges", {{"type", "Bridge"},
-                          {"geometry", json::array({{{"type", "MultiSurface"}, {"lod", "1"}, {"boundaries", std::move(boundaries)}}})}});
+    if (!boundaries.empty()) {
+      text.assign("{\"geometry\":[");
+      append_surface_geometry(text, "MultiSurface", "1", boundaries);
+      text += "],\"type\":\"Bridge\"}";
+      out.add("bridges", text);
+    }
   }
 }
 
@@ -547,40 +740,53 @@ void add_ground_objects(const Ground& ground, const std::vector<GroundLayer>& la
 void write_objects(const MeshedCity& city, CityObjectWriter& out) {
   const Ground& ground = city.ground;
   const CancelCheck cancel;
+  std::string text;
   for_each_by_id(
       city.buildings, city.models,
       [&](const Building& b) {
         cancel.check();
         const std::string key = "building-" + std::to_string(b.stable_id);
         Vertices& v = out.next_vertices();
-        json o = b.parts.empty() ? building_object(b, ground, city.meshes[b.id], v) : building_with_parts(b, ground);
+        text.clear();
+        if (b.parts.empty()) {
+          if (building_object(b, ground, city.meshes[b.id], v, text)) out.add(key, text);
+          return;
+        }
         // Its parts are its 3D (OSM's Simple 3D Buildings): BuildingParts, its children.
-        std::vector<std::pair<std::string, json>> parts;
+        std::vector<CityObjectText> parts;
+        std::vector<std::string> children;
         for (std::size_t k = 0; k < b.parts.size(); ++k) {
-          const std::string part_key = key + "-part-" + std::to_string(k);
-          if (json part = building_part_object(b, b.parts[k], key, v); !part.is_null()) {
-            o["children"].push_back(part_key);
-            parts.emplace_back(part_key, std::move(part));
+          std::string part_key = key + "-part-" + std::to_string(k), part;
+          if (building_part_object(b, b.parts[k], key, v, part)) {
+            children.push_back(part_key);
+            parts.push_back({std::move(part_key), std::move(part)});
           }
         }
-        if (!o.is_null()) out.add(key, o, parts);
+        building_with_parts(b, ground, children, text);
+        out.add(key, text, std::move(parts));
       },
       [&](const ModelInstance& m) {
         cancel.check();
-        if (json o = model_object(m, ground, city.meshes[m.id], *city.library, out.next_vertices()); !o.is_null())
-          out.add("building-" + std::to_string(m.stable_id), o);
+        text.clear();
+        if (model_object(m, ground, city.meshes[m.id], *city.library, out.next_vertices(), text))
+          out.add("building-" + std::to_string(m.stable_id), text);
       });
   for (const Clutter& c : city.clutter) {
     cancel.check();
-    out.add("clutter-" + std::to_string(c.instance.stable_id), clutter_object(c, ground, *city.library, out.next_vertices()));
+    text.clear();
+    clutter_object(c, ground, *city.library, out.next_vertices(), text);
+    out.add("clutter-" + std::to_string(c.instance.stable_id), text);
   }
   add_ground_objects(ground, city.ground_layers, city.terrain, out);
   cancel.check();
 
   // The ground under the city: the heightmap over the rectangle around it.
-  json tin = json::array();
+  SurfaceList tin;
   append_triangles(*layer_mesh(city.ground_layers, GroundKind::Terrain), out.next_vertices(), tin);
-  out.add("terrain", {{"type", "TINRelief"}, {"geometry", json::array({{{"type", "CompositeSurface"}, {"lod", "1"}, {"boundaries", std::move(tin)}}})}});
+  text.assign("{\"geometry\":[");
+  append_surface_geometry(text, "CompositeSurface", "1", tin);
+  text += "],\"type\":\"TINRelief\"}";
+  out.add("terrain", text);
   out.close();
 }
 

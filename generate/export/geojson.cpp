@@ -1,6 +1,7 @@
 #include "generate/export/geojson.h"
 #include "generate/export/geojson_written.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cstdint>
 #include <fstream>
@@ -136,23 +137,28 @@ class WrittenLayout {
   bool feature(Layer& layer, VectorFeature& f, bool& comma) {
     if (!literal(R"({"type":"Feature","properties":)")) return false;
     const char* const start = p_;
-    if (!skip_object()) return false;
-    // Through nlohmann::json, as the parser below reads them: its keys in its order.
-    const json properties = json::parse(start, p_, nullptr, false);
-    if (!properties.is_object()) return false;
-    f.properties = properties;
+    if (!plain_object(f.properties)) {
+      p_ = start;
+      if (!skip_object()) return false;
+      // Through nlohmann::json, as the parser below reads them: its keys in its order.
+      const json properties = json::parse(start, p_, nullptr, false);
+      if (!properties.is_object()) return false;
+      f.properties = properties;
+    }
     if (!literal(R"(,"geometry":{"type":)")) return false;
     if (literal(R"("Polygon","coordinates":[)")) {
-      do {
+      // The outer ring, then the holes, each closed (its last position its first, dropped).
+      auto ring = [&](geom::Ring& r) {
+        if (!positions(r) || r.size() < 4 || !(r.front() == r.back())) return false;
+        r.pop_back();
+        return true;
+      };
+      if (!ring(f.polygon.outer)) return false;
+      while (literal(",")) {
         f.polygon.holes.emplace_back();
-        if (!positions(f.polygon.holes.back()) || f.polygon.holes.back().size() < 4 ||
-            !(f.polygon.holes.back().front() == f.polygon.holes.back().back()))
-          return false;
-        f.polygon.holes.back().pop_back();
-      } while (literal(","));
+        if (!ring(f.polygon.holes.back())) return false;
+      }
       if (!literal("]")) return false;
-      f.polygon.outer = std::move(f.polygon.holes.front());
-      f.polygon.holes.erase(f.polygon.holes.begin());
     } else if (literal(R"("LineString","coordinates":)")) {
       layer.lines = true;
       if (!literal("[]") && !positions(f.line)) return false;
@@ -171,6 +177,98 @@ class WrittenLayout {
   bool literal(std::string_view s) {
     if (static_cast<std::size_t>(end_ - p_) < s.size() || std::string_view(p_, s.size()) != s) return false;
     p_ += s.size();
+    return true;
+  }
+
+  // A properties object of plain values, as json::parse reads it into nlohmann::json and
+  // ordered_json then holds it (keys sorted, as json's map sorts them), built straight from
+  // the text: nlohmann's lexer and a map node per key were most of validation's reading.
+  // Plain: no spaces, strings of printable ASCII without escapes, numbers, true, false,
+  // null, and arrays of these; anything else (a nested object, an escape, a repeated key,
+  // a number out of range) is false, and nlohmann's parser reads the object as before.
+  bool plain_object(nlohmann::ordered_json& out) {
+    if (!literal("{")) return false;
+    members_.clear();
+    if (!literal("}")) {
+      do {
+        std::string_view key;
+        if (!plain_string(key) || !literal(":")) return false;
+        members_.emplace_back(key, nlohmann::ordered_json());
+        if (!plain_value(members_.back().second, true)) return false;
+      } while (literal(","));
+      if (!literal("}")) return false;
+    }
+    std::sort(members_.begin(), members_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (std::size_t i = 1; i < members_.size(); ++i)
+      if (members_[i - 1].first == members_[i].first) return false;
+    out = nlohmann::ordered_json::object();
+    auto& object = out.get_ref<nlohmann::ordered_json::object_t&>();
+    object.reserve(members_.size());
+    for (auto& [key, value] : members_) object.emplace_back(std::string(key), std::move(value));
+    return true;
+  }
+
+  bool plain_value(nlohmann::ordered_json& v, bool array_allowed) {
+    if (p_ == end_) return false;
+    if (*p_ == '"') {
+      std::string_view text;
+      if (!plain_string(text)) return false;
+      v = std::string(text);
+    } else if (literal("true")) {
+      v = true;
+    } else if (literal("false")) {
+      v = false;
+    } else if (literal("null")) {
+      v = nullptr;
+    } else if (array_allowed && literal("[")) {
+      v = nlohmann::ordered_json::array();
+      if (literal("]")) return true;
+      do {
+        nlohmann::ordered_json element;
+        if (!plain_value(element, false)) return false;
+        v.push_back(std::move(element));
+      } while (literal(","));
+      return literal("]");
+    } else {
+      return plain_number(v);
+    }
+    return true;
+  }
+
+  bool plain_string(std::string_view& text) {
+    if (!literal("\"")) return false;
+    const char* const from = p_;
+    for (; p_ < end_ && *p_ != '"'; ++p_)
+      if (*p_ == '\\' || static_cast<unsigned char>(*p_) < 0x20 || static_cast<unsigned char>(*p_) >= 0x80) return false;
+    if (p_ == end_) return false;
+    text = std::string_view(from, static_cast<std::size_t>(p_ - from));
+    ++p_;
+    return true;
+  }
+
+  // A number of JSON's grammar as nlohmann's lexer types it: an integer as a signed one when
+  // it has a minus sign, else unsigned; anything with a fraction or an exponent as a double
+  // (correctly rounded, as strtod rounds).
+  bool plain_number(nlohmann::ordered_json& v) {
+    const char* const start = p_;
+    bool integer = true;
+    if (!number_text(integer)) return false;
+    if (integer && *start == '-') {
+      std::int64_t i = 0;
+      const auto [end, ec] = std::from_chars(start, p_, i);
+      if (ec != std::errc() || end != p_) return false;
+      v = i;
+    } else if (integer) {
+      std::uint64_t u = 0;
+      const auto [end, ec] = std::from_chars(start, p_, u);
+      if (ec != std::errc() || end != p_) return false;
+      v = u;
+    } else {
+      double d = 0;
+      const auto [end, ec] = std::from_chars(start, p_, d);
+      if (ec != std::errc() || end != p_) return false;
+      v = d;
+    }
     return true;
   }
 
@@ -211,18 +309,7 @@ class WrittenLayout {
   bool number(double& v) {
     const char* const start = p_;
     bool integer = true;
-    if (p_ < end_ && *p_ == '-') ++p_;
-    if (p_ < end_ && *p_ == '0') ++p_;
-    else if (!digits()) return false;
-    if (p_ < end_ && *p_ == '.') {
-      ++p_, integer = false;
-      if (!digits()) return false;
-    }
-    if (p_ < end_ && (*p_ == 'e' || *p_ == 'E')) {
-      ++p_, integer = false;
-      if (p_ < end_ && (*p_ == '+' || *p_ == '-')) ++p_;
-      if (!digits()) return false;
-    }
+    if (!number_text(integer)) return false;
     if (integer) {
       if (*start == '-') {
         std::int64_t i = 0;
@@ -235,6 +322,24 @@ class WrittenLayout {
     return std::from_chars(start, p_, v).ec == std::errc();
   }
 
+  // Past a number of JSON's grammar; `integer`: whether it has neither a fraction nor an
+  // exponent.
+  bool number_text(bool& integer) {
+    if (p_ < end_ && *p_ == '-') ++p_;
+    if (p_ < end_ && *p_ == '0') ++p_;
+    else if (!digits()) return false;
+    if (p_ < end_ && *p_ == '.') {
+      ++p_, integer = false;
+      if (!digits()) return false;
+    }
+    if (p_ < end_ && (*p_ == 'e' || *p_ == 'E')) {
+      ++p_, integer = false;
+      if (p_ < end_ && (*p_ == '+' || *p_ == '-')) ++p_;
+      if (!digits()) return false;
+    }
+    return true;
+  }
+
   bool digits() {
     const char* const from = p_;
     while (p_ < end_ && *p_ >= '0' && *p_ <= '9') ++p_;
@@ -243,6 +348,7 @@ class WrittenLayout {
 
   const char* p_;
   const char* const end_;
+  std::vector<std::pair<std::string_view, nlohmann::ordered_json>> members_;  // plain_object's
 };
 
 // Whether `line` is the written layout's first: with the array closed, a whole object whose

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <optional>
 
 #include "tests/test_util.h"
 
@@ -207,6 +208,45 @@ TEST(GeoJsonRead, AWrittenLayoutWithAProblemIsReadByTheParser) {
   EXPECT_TRUE(trailing.features.empty());
   ASSERT_EQ(problems.size(), 1u);
   EXPECT_NE(problems[0].find("not a GeoJSON FeatureCollection"), std::string::npos) << problems[0];
+}
+
+// A feature's properties of plain values are built by the scanner itself (WrittenLayout::
+// plain_object), any others by nlohmann's parser: each as the parser reads it, key order
+// (sorted), values and their types (signed, unsigned, double) alike.
+TEST(GeoJsonRead, PlainPropertiesReadAsTheParserReadsThem) {
+  const std::vector<std::string> objects{
+      R"({})",
+      R"({"id":7,"zone":"residential","green":false,"block":-3})",
+      R"({"zone":"a","id":1,"b":null,"a":true})",  // not in order
+      R"({"h":1.0,"i":-0,"j":1e2,"k":1E-2,"l":0.30000000000000004,"m":-1.5e-3,"n":0})",
+      R"({"big":18446744073709551615,"bigger":18446744073709551616,"low":-9223372036854775808,"lower":-9223372036854775809})",
+      R"({"roads":[805053434,-1,2.5,"x",null,true],"none":[]})",
+      R"({"name":"a \"quoted\" b","tags":[1,{"k":"]"}]})",  // an escape, a nested object
+      R"({"name":"caf\u00e9","place":"café"})",
+      R"({"a":1,"a":2})",  // a repeated key
+      R"({"slabs":[[0,3],[3,6]],"height":12.5})",
+      R"({"x":1.7976931348623157e308,"y":5e-324,"z":2.2250738585072014e-308})",
+  };
+  for (const std::string& object : objects) {
+    const std::filesystem::path file = testing_util::temp_dir("plain") / "roads.geojson";
+    std::ofstream(file) << "{\"type\":\"FeatureCollection\",\"name\":\"roads\",\"features\":[\n"
+                        << R"({"type":"Feature","properties":)" << object
+                        << R"(,"geometry":{"type":"Point","coordinates":[1,2]}})" << "\n]}\n";
+    const std::optional<Layer> layer = read_written_geojson(file);
+    ASSERT_TRUE(layer) << object;
+    ASSERT_EQ(layer->features.size(), 1u) << object;
+    const nlohmann::ordered_json& read = layer->features[0].properties;
+    const nlohmann::ordered_json parsed = nlohmann::json::parse(object);
+    EXPECT_EQ(read.dump(), parsed.dump()) << object;
+    ASSERT_EQ(read.size(), parsed.size()) << object;
+    for (auto a = read.begin(), b = parsed.begin(); a != read.end(); ++a, ++b) {
+      EXPECT_EQ(a.key(), b.key()) << object;
+      EXPECT_EQ(a->type(), b->type()) << object << ": " << a.key();
+      if (a->is_array()) {
+        for (std::size_t k = 0; k < a->size(); ++k) EXPECT_EQ((*a)[k].type(), (*b)[k].type()) << object << ": " << a.key();
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -9,9 +9,12 @@
 #include <nlohmann/json.hpp>
 
 #include "generate/cancel.h"
+#include "generate/cancellable_invoke.h"
 #include "generate/export/cancellable_file.h"
 #include "generate/errors.h"
+#include "generate/city/format_number.h"
 #include "generate/export/ground_layers.h"
+#include "generate/export/json_text.h"
 #include "generate/export/scratch_file.h"
 #include "generate/city/palette.h"
 #include "generate/city/structure_albedos.h"
@@ -63,9 +66,11 @@ struct Node {
 class JsonArray {
  public:
   explicit JsonArray(const std::filesystem::path& beside) : text_(beside) {}
-  int add(const json& element) {
+  int add(const json& element) { return add_text(element.dump()); }
+  // An element given as its text.
+  int add_text(std::string_view element) {
     if (count_) text_.append(",");
-    text_.append(element.dump());
+    text_.append(element);
     return count_++;
   }
   int size() const { return count_; }
@@ -146,15 +151,41 @@ class Glb {
     return meshes_.add(m);
   }
 
+  // A node's text as its JSON value's dump() gives it (members in name order, numbers as
+  // nlohmann writes them), made directly: the 10 km city has 336,518 nodes.
   int node(const Node& n) {
-    json o = json::object();
-    if (!n.translation.empty()) o["translation"] = n.translation;
-    if (!n.rotation.empty()) o["rotation"] = n.rotation;
-    if (!n.scale.empty()) o["scale"] = n.scale;
-    if (n.mesh != -1) o["mesh"] = n.mesh;
-    if (!n.name.empty()) o["name"] = n.name;
-    if (!n.children.empty()) o["children"] = n.children;
-    return nodes_.add(o);
+    node_text_.assign("{");
+    auto member = [&](const char* key) {
+      node_text_ += node_text_.size() > 1 ? ",\"" : "\"";
+      node_text_ += key;
+      node_text_ += "\":";
+    };
+    auto numbers = [&](const char* key, const std::vector<double>& list) {
+      if (list.empty()) return;
+      member(key);
+      node_text_ += '[';
+      for (std::size_t i = 0; i < list.size(); ++i) {
+        if (i) node_text_ += ',';
+        append_json_number(node_text_, list[i]);
+      }
+      node_text_ += ']';
+    };
+    if (!n.children.empty()) {
+      member("children");
+      node_text_ += '[';
+      for (std::size_t i = 0; i < n.children.size(); ++i) {
+        if (i) node_text_ += ',';
+        append_number(node_text_, n.children[i]);
+      }
+      node_text_ += ']';
+    }
+    if (n.mesh != -1) member("mesh"), append_number(node_text_, n.mesh);
+    if (!n.name.empty()) member("name"), node_text_ += json(n.name).dump();
+    numbers("rotation", n.rotation);
+    numbers("scale", n.scale);
+    numbers("translation", n.translation);
+    node_text_ += '}';
+    return nodes_.add_text(node_text_);
   }
 
   std::size_t triangles() const { return triangles_; }
@@ -267,6 +298,7 @@ class Glb {
   std::map<const TextureImage*, int> image_index_;
   std::map<bool, int> sampler_index_;                 // by clamp
   std::map<std::pair<int, int>, int> texture_index_;  // by (image, sampler)
+  std::string node_text_;
 };
 
 // Exacity's x east, y north, z up to glTF's x, y up, z south, about the local origin.
@@ -330,28 +362,59 @@ int look_material(const Look& look, Glb& glb) {
   return glb.material(name_, colour);
 }
 
-// Extruded buildings and the foundations of placed models, merged by look.
+// Extruded buildings and the foundations of placed models, merged by look. Structures are
+// triangulated a run at a time at once on TBB's threads and merged in their order, so the
+// buffer is the same whatever the thread count.
 Primitives building_primitives(const std::vector<Building>& buildings, const std::vector<ModelInstance>& models,
                                const std::vector<Mesh>& meshes, std::uint64_t seed, const Frame& local, Glb& glb) {
-  std::map<Look, Triangles> merged;
-  const CancelCheck cancel;
-  auto merge = [&](int id, ZoneType zone, const Mesh& mesh) {
-    cancel.check();
-    const StructureAlbedos albedos = structure_albedos(zone, seed, id);
-    const MeshTriangles tris = mesh_triangles(mesh);
-    for (std::size_t k = 0; k < tris.triangles.size(); ++k) {
-      Triangles& t = merged[look_of(zone, tris.surface[k], albedos)];
-      for (int v : tris.triangles[k]) {
-        const Vec3& p = tris.vertices[v];
-        t.indices.push_back(static_cast<std::uint32_t>(t.positions.size()));
-        t.positions.push_back(local(p[0], p[1], p[2]));
-      }
-    }
+  // Each structure by id: its stable id, zone, and its mesh or (a placed model) the model,
+  // whose foundation is made here.
+  struct Structure {
+    int id;
+    ZoneType zone;
+    const Mesh* mesh;
+    const ModelInstance* model;
   };
+  std::vector<Structure> structures;
+  structures.reserve(meshes.size());
   for_each_by_id(
-      buildings, models, [&](const Building& b) { merge(b.stable_id, b.zone, meshes[b.id]); },
-      [&](const ModelInstance& m) {
-        if (m.floor > m.base) merge(m.stable_id, m.zone, model_mesh(m, nullptr));
+      buildings, models, [&](const Building& b) { structures.push_back({b.stable_id, b.zone, &meshes[b.id], nullptr}); },
+      [&](const ModelInstance& m) { structures.push_back({m.stable_id, m.zone, nullptr, &m}); });
+  constexpr std::size_t kStructuresAPiece = 2048;
+  const std::size_t n_pieces = (structures.size() + kStructuresAPiece - 1) / kStructuresAPiece;
+  std::map<Look, Triangles> merged;
+  make_in_order<std::map<Look, Triangles>>(
+      n_pieces,
+      [&](std::size_t piece, std::map<Look, Triangles>& part) {
+        const std::size_t end = std::min(structures.size(), (piece + 1) * kStructuresAPiece);
+        for (std::size_t i = piece * kStructuresAPiece; i < end; ++i) {
+          const Structure& s = structures[i];
+          Mesh foundation;
+          const Mesh* mesh = s.mesh;
+          if (s.model) {
+            if (!(s.model->floor > s.model->base)) continue;
+            foundation = model_mesh(*s.model, nullptr);
+            mesh = &foundation;
+          }
+          const StructureAlbedos albedos = structure_albedos(s.zone, seed, s.id);
+          const MeshTriangles tris = mesh_triangles(*mesh);
+          for (std::size_t k = 0; k < tris.triangles.size(); ++k) {
+            Triangles& t = part[look_of(s.zone, tris.surface[k], albedos)];
+            for (int v : tris.triangles[k]) {
+              const Vec3& p = tris.vertices[v];
+              t.indices.push_back(static_cast<std::uint32_t>(t.positions.size()));
+              t.positions.push_back(local(p[0], p[1], p[2]));
+            }
+          }
+        }
+      },
+      [&](const std::map<Look, Triangles>& part) {
+        for (const auto& [look, t] : part) {
+          Triangles& all = merged[look];
+          const auto first = static_cast<std::uint32_t>(all.positions.size());
+          all.positions.insert(all.positions.end(), t.positions.begin(), t.positions.end());
+          for (std::uint32_t i : t.indices) all.indices.push_back(first + i);
+        }
       });
   Primitives out;
   for (const auto& [look, t] : merged) out.push_back({glb.accessors(t), look_material(look, glb)});

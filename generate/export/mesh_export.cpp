@@ -1,8 +1,9 @@
 #include "generate/export/mesh_export.h"
 
+#include <algorithm>
 #include <fstream>
 
-#include "generate/cancel.h"
+#include "generate/cancellable_invoke.h"
 #include "generate/city/format_number.h"
 #include "generate/city/palette.h"
 #include "generate/errors.h"
@@ -19,19 +20,16 @@ int ply_surface(GroundKind kind) { return 3 + static_cast<int>(kind); }
 // vertices, then its faces by surface (ground, wall, roof; the material named before each
 // surface's faces), then each ground layer's. Faces index vertices counted across the city
 // from 0. `out` takes object(building id or ground layer), use(zone, surface),
-// vertex(x, y, z) and face(indices, PLY surface class). Walked once per pass (PLY's counts,
-// OBJ with PLY's vertices, PLY's faces), so no file is held in memory to be written later.
+// vertex(x, y, z) and face(indices, PLY surface class). The city is walked in pieces (a run
+// of structures, or a ground layer), each from `first`, the number of vertices before it.
 template <typename Out>
-void walk_city(const std::vector<Mesh>& meshes, const std::vector<ZoneType>& zone_of, const std::vector<int>& id_of,
-               const std::vector<GroundLayer>& ground, Out& out) {
-  const CancelCheck cancel;
-  std::size_t first = 0;  // the object's first vertex
-  for (std::size_t i = 0; i < meshes.size(); ++i) {
-    cancel.check();
+void walk_structures(const std::vector<Mesh>& meshes, const std::vector<ZoneType>& zone_of,
+                     const std::vector<int>& id_of, std::size_t begin, std::size_t end, std::size_t first, Out& out) {
+  std::vector<std::size_t> face;
+  for (std::size_t i = begin; i < end; ++i) {
     const Mesh& mesh = meshes[i];
     out.object(id_of[i]);
     for (const Vec3& p : mesh.points) out.vertex(p[0], p[1], p[2]);
-    std::vector<std::size_t> face;
     for (Surface s : {Surface::Ground, Surface::Wall, Surface::Roof}) {
       out.use(zone_of[i], s);
       for (const Mesh::Face f : mesh.faces()) {
@@ -43,13 +41,32 @@ void walk_city(const std::vector<Mesh>& meshes, const std::vector<ZoneType>& zon
     }
     first += mesh.points.size();
   }
-  for (const GroundLayer& layer : ground) {
-    cancel.check();
-    out.object(layer);
-    for (const Vec3& v : layer.mesh.vertices) out.vertex(v[0], v[1], v[2]);
-    for (const auto& t : layer.mesh.triangles)
-      out.face(std::array<std::size_t, 3>{first + t[0], first + t[1], first + t[2]}, ply_surface(layer.kind));
-    first += layer.mesh.vertices.size();
+}
+
+// A piece of the walk: structures [begin, end), or of ground layer `layer` its vertices or
+// (`triangles`) its triangles [begin, end); `first` the number of the vertices before the
+// structures, or before the layer.
+struct WalkPiece {
+  std::size_t begin = 0, end = 0;
+  int layer = -1;
+  bool triangles = false;
+  std::size_t first = 0;
+};
+
+template <typename Out>
+void walk_layer(const GroundLayer& layer, const WalkPiece& piece, Out& out) {
+  if (!piece.triangles) {
+    if (piece.begin == 0) out.object(layer);
+    for (std::size_t i = piece.begin; i < piece.end; ++i) {
+      const Vec3& v = layer.mesh.vertices[i];
+      out.vertex(v[0], v[1], v[2]);
+    }
+    return;
+  }
+  const std::size_t first = piece.first;
+  for (std::size_t i = piece.begin; i < piece.end; ++i) {
+    const auto& t = layer.mesh.triangles[i];
+    out.face(std::array<std::size_t, 3>{first + t[0], first + t[1], first + t[2]}, ply_surface(layer.kind));
   }
 }
 
@@ -57,57 +74,48 @@ std::string material_name(ZoneType zone, Surface s) {
   return std::string(name(zone)) + '_' + kSurfaceNames[static_cast<int>(s)];
 }
 
-// Counts what walk_city gives, for PLY's header.
-struct Counter {
-  MeshCounts counts;
-  void object(int) {}
-  void object(const GroundLayer&) {}
-  void use(ZoneType, Surface) {}
-  void vertex(double, double, double) { ++counts.vertices; }
-  template <typename Indices>
-  void face(const Indices&, int) { ++counts.faces; }
-};
-
-// The OBJ file (its indices from 1) and PLY's vertices, written as walk_city gives them;
-// each line made in a reused buffer and written whole.
+// The OBJ file's text (its indices from 1) and PLY's vertices, as the walk gives them.
 struct ObjAndPlyVertices {
-  std::ostream &obj, &ply;
-  std::string line{};
-  void object(int building) { obj << "o building_" << building << '\n'; }
-  void object(const GroundLayer& layer) { obj << "o " << layer.name << "\nusemtl " << layer.name << '\n'; }
-  void use(ZoneType zone, Surface s) { obj << "usemtl " << material_name(zone, s) << '\n'; }
+  std::string obj, ply;
+  void object(int building) { obj += "o building_", append_number(obj, building), obj += '\n'; }
+  void object(const GroundLayer& layer) { obj += "o " + layer.name + "\nusemtl " + layer.name + '\n'; }
+  void use(ZoneType zone, Surface s) { obj += "usemtl " + material_name(zone, s) + '\n'; }
   void vertex(double x, double y, double z) {
-    line.assign("v ");
-    append_number(line, x), line += ' ', append_number(line, y), line += ' ', append_number(line, z), line += '\n';
-    obj.write(line.data(), static_cast<std::streamsize>(line.size()));
-    ply.write(line.data() + 2, static_cast<std::streamsize>(line.size() - 2));
+    const std::size_t start = obj.size();
+    obj += "v ";
+    append_number(obj, x), obj += ' ', append_number(obj, y), obj += ' ', append_number(obj, z), obj += '\n';
+    ply.append(obj, start + 2);
   }
   template <typename Indices>
   void face(const Indices& vertices, int) {
-    line.clear(), line += 'f';
-    for (std::size_t v : vertices) line += ' ', append_number(line, v + 1);
-    line += '\n';
-    obj.write(line.data(), static_cast<std::streamsize>(line.size()));
+    obj += 'f';
+    for (std::size_t v : vertices) obj += ' ', append_number(obj, v + 1);
+    obj += '\n';
   }
 };
 
-// PLY's faces (indices from 0, then the surface class), written as walk_city gives them.
+// PLY's faces (indices from 0, then the surface class), as the walk gives them.
 struct PlyFaces {
-  std::ostream& ply;
-  std::string line{};
+  std::string ply;
   void object(int) {}
   void object(const GroundLayer&) {}
   void use(ZoneType, Surface) {}
   void vertex(double, double, double) {}
   template <typename Indices>
   void face(const Indices& vertices, int surface) {
-    line.clear();
-    append_number(line, vertices.size());
-    for (std::size_t v : vertices) line += ' ', append_number(line, v);
-    line += ' ', append_number(line, surface), line += '\n';
-    ply.write(line.data(), static_cast<std::streamsize>(line.size()));
+    append_number(ply, vertices.size());
+    for (std::size_t v : vertices) ply += ' ', append_number(ply, v);
+    ply += ' ', append_number(ply, surface), ply += '\n';
   }
 };
+
+// Structures (or a layer's vertices or triangles) a piece: enough that a piece is worth
+// handing to a thread, few enough that the pieces waiting to be written stay small.
+constexpr std::size_t kStructuresAPiece = 2048, kLayerPiece = 1 << 16;
+
+void write_text(std::ostream& out, const std::string& text) {
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+}
 
 }  // namespace
 
@@ -137,17 +145,39 @@ MeshCounts write_meshes(const MeshedCity& city, const std::filesystem::path& obj
   for_each_by_id(
       buildings, models, [&](const Building& b) { zone_of.push_back(b.zone), id_of.push_back(b.stable_id); },
       [&](const ModelInstance& m) { zone_of.push_back(m.zone), id_of.push_back(m.stable_id); });
-  Counter counter;
-  walk_city(meshes, zone_of, id_of, ground, counter);
-  const MeshCounts& counts = counter.counts;
+  // The pieces, each with the number of vertices before it, and the city's counts.
+  std::vector<WalkPiece> pieces;
+  MeshCounts counts;
+  for (std::size_t begin = 0; begin < meshes.size(); begin += kStructuresAPiece) {
+    WalkPiece piece{begin, std::min(begin + kStructuresAPiece, meshes.size()), -1, false, counts.vertices};
+    for (std::size_t i = piece.begin; i < piece.end; ++i)
+      counts.vertices += meshes[i].points.size(), counts.faces += meshes[i].face_count();
+    pieces.push_back(piece);
+  }
+  for (std::size_t k = 0; k < ground.size(); ++k) {
+    const GroundMesh& mesh = ground[k].mesh;
+    for (bool triangles : {false, true}) {
+      const std::size_t n = triangles ? mesh.triangles.size() : mesh.vertices.size();
+      for (std::size_t begin = 0; begin == 0 || begin < n; begin += kLayerPiece)
+        pieces.push_back({begin, std::min(begin + kLayerPiece, n), static_cast<int>(k), triangles, counts.vertices});
+    }
+    counts.vertices += mesh.vertices.size(), counts.faces += mesh.triangles.size();
+  }
+  auto walk = [&](const WalkPiece& piece, auto& out) {
+    if (piece.layer >= 0) walk_layer(ground[static_cast<std::size_t>(piece.layer)], piece, out);
+    else walk_structures(meshes, zone_of, id_of, piece.begin, piece.end, piece.first, out);
+  };
   ply << "ply\nformat ascii 1.0\ncomment Exacity city: x east, y north, z up, metres; surface " << kPlySurfaces
       << "\nelement vertex " << counts.vertices
       << "\nproperty double x\nproperty double y\nproperty double z\nelement face " << counts.faces
       << "\nproperty list uchar int vertex_indices\nproperty uchar surface\nend_header\n";
-  ObjAndPlyVertices obj_and_vertices{obj, ply};
-  walk_city(meshes, zone_of, id_of, ground, obj_and_vertices);
-  PlyFaces faces{ply};
-  walk_city(meshes, zone_of, id_of, ground, faces);
+  // The pieces' text made at once and written in order: OBJ with PLY's vertices, then PLY's faces.
+  make_in_order<ObjAndPlyVertices>(
+      pieces.size(), [&](std::size_t i, ObjAndPlyVertices& text) { walk(pieces[i], text); },
+      [&](const ObjAndPlyVertices& text) { write_text(obj, text.obj), write_text(ply, text.ply); });
+  make_in_order<PlyFaces>(
+      pieces.size(), [&](std::size_t i, PlyFaces& text) { walk(pieces[i], text); },
+      [&](const PlyFaces& text) { write_text(ply, text.ply); });
   if (!obj || !mtl || !ply) throw UserError(obj_file.string() + ": write failed (disk full?)");
   return counts;
 }

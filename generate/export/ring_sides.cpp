@@ -153,6 +153,46 @@ bool ring_in_polygon(const Ring& ring, const geom::Polygon& polygon) {
   return true;
 }
 
+bool segment_meets_box(Vec2 a, Vec2 b, const geom::Box& box) {
+  if (!box_of(a, b).meets(box)) return false;
+  // Separated by the segment's line when all four corners lie strictly on one side of it.
+  int left = 0, right = 0;
+  for (Vec2 corner : {Vec2{box.min_x, box.min_y}, Vec2{box.max_x, box.min_y}, Vec2{box.max_x, box.max_y}, Vec2{box.min_x, box.max_y}}) {
+    const int o = orient(a, b, corner);
+    left += o > 0, right += o < 0;
+  }
+  return left < 4 && right < 4;
+}
+
+int exact_winding_number(const Ring& ring, Vec2 p) {
+  int winding = 0;
+  const std::size_t n = ring.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 u = ring[i], v = ring[(i + 1) % n];
+    // An upward edge with p left of it, or a downward one with p right of it, crosses the
+    // ray from p to the right (each end counted on the side above the ray).
+    if (u.y <= p.y) {
+      if (v.y > p.y && orient(u, v, p) > 0) ++winding;
+    } else if (v.y <= p.y && orient(u, v, p) < 0) {
+      --winding;
+    }
+  }
+  return winding;
+}
+
+SegmentMeeting segment_meeting(Vec2 a0, Vec2 a1, Vec2 b0, Vec2 b1) {
+  if (!box_of(a0, a1).meets(box_of(b0, b1))) return SegmentMeeting::Apart;
+  if ((a0 == b0 && a1 == b1) || (a0 == b1 && a1 == b0)) return SegmentMeeting::Same;
+  const int o0 = orient(a0, a1, b0), o1 = orient(a0, a1, b1);
+  // On one line, not running along each other: they touch at most where an end of each meets.
+  if (o0 == 0 && o1 == 0) return segments_run_along(a0, a1, b0, b1) ? SegmentMeeting::Otherwise : SegmentMeeting::Apart;
+  if (o0 * o1 > 0) return SegmentMeeting::Apart;
+  const int o2 = orient(b0, b1, a0), o3 = orient(b0, b1, a1);
+  if (o2 * o3 > 0) return SegmentMeeting::Apart;
+  // Not on one line, they meet at one point: a shared end, if they have one.
+  return a0 == b0 || a0 == b1 || a1 == b0 || a1 == b1 ? SegmentMeeting::Apart : SegmentMeeting::Otherwise;
+}
+
 bool segments_run_along(Vec2 a0, Vec2 a1, Vec2 b0, Vec2 b1) {
   if (orient(a0, a1, b0) != 0 || orient(a0, a1, b1) != 0) return false;
   // On one line: compare along x, or along y when it is upright.

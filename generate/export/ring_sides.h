@@ -27,6 +27,21 @@ bool ring_in_polygon(const geom::Ring& ring, const geom::Polygon& polygon);
 // common (touching along edges or at points is apart).
 bool interiors_apart(const geom::Ring& a, const geom::Ring& b);
 
+// Whether the segment a-b meets the closed box (touching counts): the boxes meet and the
+// box's corners lie on both sides of the segment's line, or on it.
+bool segment_meets_box(geom::Vec2 a, geom::Vec2 b, const geom::Box& box);
+
+// How many times the ring winds around p (counter-clockwise positive), exactly (geom::winding_number
+// counts in doubles); p on no edge of it.
+// The ring need not be simple.
+int exact_winding_number(const geom::Ring& ring, geom::Vec2 p);
+
+// How the segments a0-a1 and b0-b1 (neither a point) meet, exactly: nowhere but at an end
+// of both (Apart), as the same segment either way (Same), or otherwise (crossing, an end
+// inside the other, running along each other in part).
+enum class SegmentMeeting { Apart, Same, Otherwise };
+SegmentMeeting segment_meeting(geom::Vec2 a0, geom::Vec2 a1, geom::Vec2 b0, geom::Vec2 b1);
+
 // Whether the segments a0-a1 and b0-b1 (neither a point) run along each other for a positive length.
 bool segments_run_along(geom::Vec2 a0, geom::Vec2 a1, geom::Vec2 b0, geom::Vec2 b1);
 

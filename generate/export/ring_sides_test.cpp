@@ -83,5 +83,51 @@ TEST(RingSides, TheMapsAnswersOnRingsFullOfDegeneracies) {
   EXPECT_GT(within, 20);
 }
 
+// The exact tests the zoning map's proof places polygons with (validate.cpp, far_zoning).
+TEST(RingSides, SegmentAgainstABoxAndWindingNumbers) {
+  const geom::Box box{0, 0, 2, 2};
+  EXPECT_TRUE(segment_meets_box({-1, 1}, {3, 1}, box));    // through it
+  EXPECT_TRUE(segment_meets_box({2, 2}, {3, 5}, box));     // from a corner
+  EXPECT_TRUE(segment_meets_box({-1, 3}, {3, -1}, box));   // a diagonal across it
+  EXPECT_TRUE(segment_meets_box({0, 4}, {4, 0}, box));     // touching the corner (2, 2)
+  EXPECT_FALSE(segment_meets_box({0, 4 + 1e-12}, {4, 0}, box));  // the boxes meet; the segment passes a hair beyond
+  EXPECT_FALSE(segment_meets_box({3, -1}, {3, 5}, box));   // beside it
+  EXPECT_TRUE(segment_meets_box({1, 1}, {1.5, 1.5}, box)); // inside
+
+  const Ring a = square(0, 0, 4);
+  EXPECT_EQ(exact_winding_number(a, {1, 1}), 1);
+  EXPECT_EQ(exact_winding_number(a, {5, 1}), 0);
+  EXPECT_EQ(exact_winding_number(a, {1, -1}), 0);
+  EXPECT_EQ(exact_winding_number(Ring(a.rbegin(), a.rend()), {1, 1}), -1);
+  Ring twice = a;
+  twice.insert(twice.end(), a.begin(), a.end());
+  EXPECT_EQ(exact_winding_number(twice, {2, 2}), 2);
+  // At a vertex's height: counted once.
+  EXPECT_EQ(exact_winding_number({{0, 0}, {4, 2}, {0, 4}}, {1, 2}), 1);
+  EXPECT_EQ(exact_winding_number({{0, 0}, {4, 2}, {0, 4}}, {-1, 2}), 0);
+  // A bow tie: one lobe each way.
+  const Ring bow{{0, 0}, {4, 4}, {4, 0}, {0, 4}};
+  EXPECT_EQ(exact_winding_number(bow, {1, 2}), 1);
+  EXPECT_EQ(exact_winding_number(bow, {3, 2}), -1);
+}
+
+// The exact test the roads' proof meets segments with (validate.cpp, roads_meet_at_vertices).
+TEST(RingSides, HowTwoSegmentsMeet) {
+  using M = SegmentMeeting;
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 0}, {0, 1}, {4, 1}), M::Apart);      // parallel
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 0}, {4, 0}, {6, 3}), M::Apart);      // a shared end
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 0}, {4, 0}, {6, 0}), M::Apart);      // on one line, end to end
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 0}, {6, 0}, {4, 0}), M::Apart);
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 0}, {4, 0}, {0, 0}), M::Same);       // the same, either way
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 0}, {0, 0}, {4, 0}), M::Same);
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 0}, {2, -1}, {2, 1}), M::Otherwise);  // crossing
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 0}, {2, 0}, {2, 1}), M::Otherwise);   // an end inside the other
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 0}, {2, 0}, {6, 0}), M::Otherwise);   // along each other in part
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 0}, {0, 0}, {2, 0}), M::Otherwise);   // a shared end, and along
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 4}, {0, 4}, {2, 2 + 1e-12}), M::Apart);  // a hair short
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 4}, {0, 4}, {2, 2}), M::Otherwise);
+  EXPECT_EQ(segment_meeting({0, 0}, {4, 4}, {0, 4}, {2, 2 - 1e-12}), M::Otherwise);  // a hair over
+}
+
 }  // namespace
 }  // namespace exacity

@@ -177,15 +177,24 @@ class FaceLabels {
   // checked only inside every ring of `inside_of` (the tile's outline, and the window's).
   // With both `drawn` and `polygon_checks`, the zoning map's faces get every check: the
   // polygons' first, then the sketch's.
+  // With `far_counter` (the zoning map's), the far zoning polygons' outline winds around
+  // it (far_zoning): a face it winds once around and nothing else lies in one far polygon,
+  // which was proven to pass there; any other face it winds around is no proof.
   FaceLabels(const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs, const DrawnZones* drawn, int polygons,
-             std::vector<int> inside_of = {}, bool polygon_checks = false)
+             std::vector<int> inside_of = {}, bool polygon_checks = false, int far_counter = -1)
       : sketch_(sketch), refs_(refs), drawn_(drawn), polygons_(polygons), inside_of_(std::move(inside_of)),
-        polygon_checks_(polygon_checks || !drawn) {}
+        polygon_checks_(polygon_checks || !drawn), far_counter_(far_counter) {}
 
   int of(const geom::Windings& windings) {
     cancel_.check();
     for (int counter : inside_of_)
       if (geom::winding_of(windings, counter) == 0) return 0;
+    if (far_counter_ >= 0) {
+      if (const int far = geom::winding_of(windings, far_counter_); far != 0) {
+        if (far == 1 && (windings.empty() || windings.front().first >= 2 * polygons_)) return 0;
+        return wrong("far zoning polygons overlap");  // not a sketch check: the whole map decides
+      }
+    }
     const geom::Windings& w = with_stand_ins(windings);
     inside_.clear();
     if (int label = ring_windings(w, inside_)) return label;
@@ -319,6 +328,7 @@ class FaceLabels {
   const int polygons_;
   const std::vector<int> inside_of_;
   const bool polygon_checks_;
+  const int far_counter_;
   const int stand_ins_ = drawn_ ? INT_MAX : 2 * polygons_ + kStandIns;  // the zoning map's counters from 2P on are the drawn zones
   geom::Windings merged_;  // with_stand_ins' buffer
   const CancelCheck cancel_;
@@ -452,24 +462,142 @@ void check_shared_edges(const geom::PlanarMap& map, const std::vector<PolygonRef
 
 bool is_zoning(Kind k) { return k == Kind::Zone || k == Kind::Park || k == Kind::Water || k == Kind::Road || k == Kind::Bridge; }
 
-// The zoning polygons and the drawn zones in one exact map, each face labelled with what
-// is wrong there against the sketch; rounding slivers are measured here. With `rest`, the
-// polygons the polygons' map would hold (those of `rest`: the zoning polygons and the few
-// blocks, lots and buildings not proven without it) are all in this map, and its faces
-// and edges get that map's checks too, before the sketch's; returns whether they found anything.
-bool check_zoning(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
-                  const std::vector<const geom::Polygon*>& polygons, const std::vector<char>* rest = nullptr) {
+struct SegmentHash {
+  std::size_t operator()(const geom::SegmentKey& k) const {
+    return geom::Vec2Hash()({k.first.first, k.first.second}) * 31 ^ geom::Vec2Hash()({k.second.first, k.second.second});
+  }
+};
+
+// The zoning polygons the zoning map need not hold one by one (docs/design.md, Validation
+// by tiles: the zoning map's proof). A zone, park, water or road area is far when it has
+// no holes, its box meets no drawn edge (so the drawn zones are the same all over it) and
+// no box of a polygon the map holds that is not one of these (a bridge; with the polygons'
+// checks, a block, lot or building the proofs left), and, a zone or park, the drawn zone
+// on top there is of its type (a zone, with the polygons' checks, counts as holding its
+// block: block_left_out). Such a polygon passes every check of the map's faces in it unless
+// another zoning polygon overlaps it. The map holds, in place of the far polygons, their
+// outline: their edges less each pair that two of them have, one each way. The far
+// polygons' windings sum to the outline's exactly (the pairs cancel), and both sides of a
+// pair lie in far polygons, so the map's faces outside every far polygon are the whole
+// map's, labelled as there; a face the outline winds once around and nothing else does
+// lies in one far polygon, and passes; any other face it winds around is an overlap.
+struct FarZoning {
+  std::vector<char> far;  // by polygon
+  std::vector<std::pair<geom::Vec2, geom::Vec2>> outline;  // directed edges, ordered by their ends
+  bool any() const { return !outline.empty(); }
+};
+
+FarZoning far_zoning(const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
+                     const std::vector<const geom::Polygon*>& polygons, const std::vector<char>* rest) {
+  const std::size_t P = refs.size();
+  FarZoning out;
+  out.far.assign(P, 0);
+  auto box_of = [](const geom::Ring& ring) {
+    geom::Box b = geom::Box::none();
+    for (geom::Vec2 q : ring) b.add(q);
+    return b;
+  };
+  std::vector<std::pair<geom::Vec2, geom::Vec2>> drawn_edges;
+  geom::BoxIndex drawn_index(64.0);
+  for (const ZoneFeature& z : sketch.zones)
+    for (const geom::Polygon& polygon : z.polygons)
+      for (int r = 0; r <= static_cast<int>(polygon.holes.size()); ++r) {
+        const geom::Ring& ring = r == 0 ? polygon.outer : polygon.holes[r - 1];
+        for (std::size_t i = 0; i < ring.size(); ++i) {
+          const geom::Vec2 a = ring[i], b = ring[(i + 1) % ring.size()];
+          drawn_index.add(static_cast<int>(drawn_edges.size()), box_of({a, b}));
+          drawn_edges.push_back({a, b});
+        }
+      }
+  geom::BoxIndex mapped_index(32.0);  // what the map holds that is not a far candidate (ids from 0: its queries pass over them all)
+  int mapped = 0;
+  for (std::size_t p = 0; p < P; ++p)
+    if (refs[p].kind == Kind::Bridge || (rest && (*rest)[p] && !is_zoning(refs[p].kind)))
+      mapped_index.add(mapped++, box_of(polygons[p]->outer));
+  // The last drawn zone whose polygon's outer ring winds around p and no hole of it does
+  // (DrawnZones::top_zone); p lies on no drawn edge.
+  auto top_zone = [&](geom::Vec2 p) {
+    for (int z = static_cast<int>(sketch.zones.size()) - 1; z >= 0; --z)
+      for (const geom::Polygon& polygon : sketch.zones[z].polygons) {
+        if (exact_winding_number(polygon.outer, p) == 0) continue;
+        bool in_hole = false;
+        for (const geom::Ring& h : polygon.holes) in_hole |= exact_winding_number(h, p) != 0;
+        if (!in_hole) return z;
+      }
+    return -1;
+  };
+  const bool polygon_checks = rest != nullptr;
+  for_each_cancellable(P, [&](std::size_t p) {
+    const PolygonRef& ref = refs[p];
+    const geom::Polygon& polygon = *polygons[p];
+    if (ref.kind == Kind::Bridge || !is_zoning(ref.kind) || !polygon.holes.empty() || polygon.outer.size() < 3) return;
+    if (polygon_checks && ref.kind == Kind::Zone && !ref.block_left_out) return;
+    const geom::Box box = box_of(polygon.outer);
+    for (int e : drawn_index.meeting(box))
+      if (segment_meets_box(drawn_edges[e].first, drawn_edges[e].second, box)) return;
+    if (!mapped_index.meeting(box).empty()) return;
+    if (ref.kind == Kind::Zone || ref.kind == Kind::Park) {
+      const int top = top_zone(polygon.outer[0]);
+      if (top < 0 || ref.zone != name(sketch.zones[top].type)) return;
+    }
+    out.far[p] = 1;
+  });
+  // The far edges sorted by segment (a hash of half a million edges missed the cache at
+  // every edge), each group's count one way less the other (the way from the lower end, as
+  // segment_key orders them, counts +1) left as that many edges in the outline.
+  struct FarEdge {
+    geom::SegmentKey key;
+    int way;
+  };
+  std::vector<FarEdge> edges;
+  for (std::size_t p = 0; p < P; ++p) {
+    if (!out.far[p]) continue;
+    const geom::Ring& ring = polygons[p]->outer;
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const geom::Vec2 a = ring[i], b = ring[(i + 1) % ring.size()];
+      const geom::SegmentKey key = geom::segment_key(a, b);
+      edges.push_back({key, key.first == std::pair{a.x, a.y} ? 1 : -1});
+    }
+  }
+  std::sort(edges.begin(), edges.end(), [](const FarEdge& a, const FarEdge& b) { return a.key < b.key; });
+  for (std::size_t i = 0, j = 0; i < edges.size(); i = j) {
+    int net = 0;
+    for (j = i; j < edges.size() && edges[j].key == edges[i].key; ++j) net += edges[j].way;
+    const geom::Vec2 lower{edges[i].key.first.first, edges[i].key.first.second},
+        upper{edges[i].key.second.first, edges[i].key.second.second};
+    for (; net > 0; --net) out.outline.push_back({lower, upper});
+    for (; net < 0; ++net) out.outline.push_back({upper, lower});
+  }
+  return out;
+}
+
+// What a zoning map found: nothing but rounding slivers, problems of the polygons (the
+// caller checks every map again), or, with far polygons, anything (the whole map decides).
+enum class ZoningFound { Nothing, PolygonProblems, NoProof };
+
+// The zoning polygons (but the far ones, whose outline stands in for them) and the drawn
+// zones in one exact map, each face labelled with what is wrong there against the sketch;
+// rounding slivers are measured here. With `rest`, the polygons the polygons' map would
+// hold (those of `rest`: the zoning polygons and the few blocks, lots and buildings not
+// proven without it) are all in this map, and its faces and edges get that map's checks
+// too, before the sketch's.
+ZoningFound zoning_map(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
+                       const std::vector<const geom::Polygon*>& polygons, const std::vector<char>* rest,
+                       const FarZoning* far) {
   const geom::SharedEndsByOrientation shared_ends;  // every end is a written double
   const bool polygon_checks = rest != nullptr;
   MapPolygons zoning;
   for (std::size_t p = 0; p < refs.size(); ++p)
-    if (is_zoning(refs[p].kind) || (rest && (*rest)[p])) zoning.add(refs[p], polygons[p]);
+    if ((is_zoning(refs[p].kind) || (rest && (*rest)[p])) && !(far && far->far[p])) zoning.add(refs[p], polygons[p]);
   geom::PlanarMap map;
   const int P = static_cast<int>(zoning.polygons.size());
   add_polygon_rings(map, zoning.polygons);
   DrawnZones drawn(sketch.zones, map, 2 * P);
+  const int far_counter = far ? drawn.end_counter() : -1;
+  if (far)
+    for (const auto& [a, b] : far->outline) map.add_edge(a, b, far_counter);
   map.insert_batch();
-  FaceLabels labels(sketch, zoning.refs, &drawn, P, {}, polygon_checks);
+  FaceLabels labels(sketch, zoning.refs, &drawn, P, {}, polygon_checks, far_counter);
   map.label_faces([&](const geom::Windings& w) { return labels.of(w); });
   bool polygon_problems = false;
   if (polygon_checks) {
@@ -480,11 +608,34 @@ bool check_zoning(Checker& c, const DrawnFeatures& sketch, const std::vector<Pol
     std::vector<char> fronts(P, 0);
     for (int p : found.fronting) fronts[p] = 1;
     for (int p = 0; p < P; ++p) polygon_problems |= zoning.refs[p].kind == Kind::Lot && !fronts[p];
-    if (polygon_problems) return true;  // the caller checks every map again
+  } else if (far) {
+    for (std::size_t m = 1; m < labels.messages.size(); ++m) polygon_problems |= !labels.sketch_checks[m];
+  }
+  if (polygon_problems) return far ? ZoningFound::NoProof : ZoningFound::PolygonProblems;
+  if (far) {
+    // Only rounding slivers: the whole map would find these, and no more.
+    double widest = 0;
+    bool problems = false;
+    report_face_problems(map, labels, widest, [&](const std::string&, const std::string&) { problems = true; });
+    if (problems) return ZoningFound::NoProof;
+    c.v_.widest_sliver = std::max(c.v_.widest_sliver, widest);
+    return ZoningFound::Nothing;
   }
   report_face_problems(map, labels, c.v_.widest_sliver,
                        [&](const std::string& m, const std::string& at) { c.problem(m + at); });
-  return false;
+  return ZoningFound::Nothing;
+}
+
+// The zoning map, with the far zoning polygons' proof first (`far_proof`); returns whether
+// the polygons' checks (with `rest`) found anything, when the caller checks every map again.
+bool check_zoning(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
+                  const std::vector<const geom::Polygon*>& polygons, const std::vector<char>* rest = nullptr,
+                  bool far_proof = true) {
+  if (far_proof) {
+    const FarZoning far = far_zoning(sketch, refs, polygons, rest);
+    if (far.any() && zoning_map(c, sketch, refs, polygons, rest, &far) == ZoningFound::Nothing) return false;
+  }
+  return zoning_map(c, sketch, refs, polygons, rest, nullptr) == ZoningFound::PolygonProblems;
 }
 
 // A polygon's rings: ring 0 its outer ring, ring h + 1 its hole h.
@@ -618,11 +769,6 @@ std::vector<char> proven_without_map(const std::vector<PolygonRef>& refs, const 
   // Frontage: a lot's edge that is a road area's or bridge's edge, both ends the same
   // (every lot of the 10 km city has one), else one running along such an edge, looked up
   // in an index of those edges made only for the lots that need it.
-  struct SegmentHash {
-    std::size_t operator()(const geom::SegmentKey& k) const {
-      return geom::Vec2Hash()({k.first.first, k.first.second}) * 31 ^ geom::Vec2Hash()({k.second.first, k.second.second});
-    }
-  };
   std::unordered_set<geom::SegmentKey, SegmentHash> road_edges;  // every ring's of road areas and bridges
   auto for_each_road_edge = [&](auto&& f) {
     for (std::size_t p = 0; p < P; ++p) {
@@ -815,7 +961,7 @@ void take_problems(Checker& c, const Validation& part) {
 void check_both_maps(Checker& c, const DrawnFeatures& sketch, const std::vector<PolygonRef>& refs,
                      const std::vector<const geom::Polygon*>& polygons, const Grid& grid, double tile_side,
                      const Window* window = nullptr, const std::vector<char>& in_window = {},
-                     const std::vector<char>& fronting = {}) {
+                     const std::vector<char>& fronting = {}, bool far_proof = true) {
   Validation polygon_map, zoning;
   invoke_cancellable(
       [&] {
@@ -824,7 +970,7 @@ void check_both_maps(Checker& c, const DrawnFeatures& sketch, const std::vector<
       },
       [&] {
         Checker z(zoning);
-        check_zoning(z, sketch, refs, polygons);
+        check_zoning(z, sketch, refs, polygons, nullptr, far_proof);
       });
   for (const Validation* part : {&polygon_map, &zoning}) take_problems(c, *part);
 }
@@ -838,7 +984,8 @@ void check_tiling(Checker& c, const DrawnFeatures& sketch, const std::vector<Pol
                   const std::vector<const geom::Polygon*>& polygons, const std::vector<geom::Box>& boxes, const Grid& grid,
                   double tile_side, MapProofs proofs, const Window* window = nullptr, const std::vector<char>& in_window = {},
                   const std::vector<char>& fronting = {}) {
-  if (window || proofs == MapProofs::None) return check_both_maps(c, sketch, refs, polygons, grid, tile_side, window, in_window, fronting);
+  if (window || proofs == MapProofs::None)
+    return check_both_maps(c, sketch, refs, polygons, grid, tile_side, window, in_window, fronting, proofs != MapProofs::None);
   const std::size_t P = refs.size();
   std::vector<char> proven = proven_without_map(refs, polygons, boxes);
   std::vector<int> zone_of_block;
@@ -883,13 +1030,50 @@ void check_tiling(Checker& c, const DrawnFeatures& sketch, const std::vector<Pol
   check_both_maps(c, sketch, refs, polygons, grid, tile_side);
 }
 
+// Whether the centre lines pass check_road_meetings without its map: any two of their
+// segments meet nowhere but at an end of both, or are the same segment of one line (each
+// pair whose boxes meet asked exactly, segment_meeting). Then no segment is cut and no
+// piece is two lines'; anything else (a repeated vertex too) is left to the map.
+bool roads_meet_at_vertices(const std::vector<VectorFeature>& features) {
+  struct Segment {
+    geom::Vec2 a, b;
+    int line;
+  };
+  std::vector<Segment> segments;
+  geom::BoxIndex index(64.0);
+  for (std::size_t i = 0; i < features.size(); ++i)
+    for (std::size_t k = 1; k < features[i].line.size(); ++k) {
+      const geom::Vec2 a = features[i].line[k - 1], b = features[i].line[k];
+      if (a == b) return false;
+      geom::Box box = geom::Box::none();
+      box.add(a), box.add(b);
+      index.add(static_cast<int>(segments.size()), box);
+      segments.push_back({a, b, static_cast<int>(i)});
+    }
+  std::vector<char> wrong(segments.size(), 0);
+  for_each_cancellable(segments.size(), [&](std::size_t s) {
+    const Segment& x = segments[s];
+    geom::Box box = geom::Box::none();
+    box.add(x.a), box.add(x.b);
+    for (int o : index.meeting(box)) {
+      if (o <= static_cast<int>(s)) continue;
+      const Segment& y = segments[o];
+      const SegmentMeeting meeting = segment_meeting(x.a, x.b, y.a, y.b);
+      if (meeting == SegmentMeeting::Otherwise || (meeting == SegmentMeeting::Same && x.line != y.line)) return void(wrong[s] = 1);
+    }
+  });
+  return std::find(wrong.begin(), wrong.end(), 1) == wrong.end();
+}
+
 // The centre lines are a noded network: two of them meet only at a vertex of both. Every
 // end of a grown road is a vertex of another centre line (a junction) or lies on the edge
 // of the built city (a drawn zone's ring or water). Every piece of the network holding a
 // region's roads holds a road the sketch drew (in a sketch without roads, all are one).
 // A road's centre line meets another only at its vertices: never between them, nor along
 // a segment both have.
-void check_road_meetings(Checker& c, const std::vector<VectorFeature>& features) {
+// With `proof`, the map only when roads_meet_at_vertices finds anything.
+void check_road_meetings(Checker& c, const std::vector<VectorFeature>& features, bool proof) {
+  if (proof && roads_meet_at_vertices(features)) return;
   const geom::SharedEndsByOrientation shared_ends;  // every end is a written double
   geom::PlanarMap map;
   for (std::size_t i = 0; i < features.size(); ++i) map.add_polyline(features[i].line, static_cast<int>(i));
@@ -980,8 +1164,8 @@ void check_road_ends(Checker& c, const DrawnFeatures& sketch, const std::vector<
   }
 }
 
-void check_roads(Checker& c, const DrawnFeatures& sketch, const Layer& roads, const Layer& water) {
-  check_road_meetings(c, roads.features);
+void check_roads(Checker& c, const DrawnFeatures& sketch, const Layer& roads, const Layer& water, MapProofs proofs) {
+  check_road_meetings(c, roads.features, proofs != MapProofs::None);
   check_road_connectivity(c, roads.features);
   check_road_ends(c, sketch, roads.features, water);
 }
@@ -1211,7 +1395,7 @@ Validation validate(const fs::path& dir, std::shared_ptr<ValidatedPolygons>* las
       },
       [&] {
         Checker r(road_checks);
-        check_roads(r, sketch, roads, water);
+        check_roads(r, sketch, roads, water, proofs);
         validate_clutter(dir, layers, clutter, last ? &lines.at("clutter") : nullptr);
       });
   for (const Validation* part : {&tiling, &road_checks, &clutter}) {

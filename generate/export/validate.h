@@ -23,9 +23,12 @@ Validation validate_output(const std::filesystem::path& out_dir);
 // city's size, as validate_output does. The problems found do not depend on it.
 Validation validate_output(const std::filesystem::path& out_dir, double tile_side);
 
-// Whether the map of every polygon leaves out the lots and buildings proven to pass its
-// checks without it (docs/design.md, Validation by tiles: proofs), as validate_output does,
-// or holds them all. The problems found are the same either way: tests compare the two.
+// Whether the maps leave out what is proven to pass their checks without them (docs/design.md,
+// Validation by tiles: proofs): the polygons' map the lots, buildings and blocks, the zoning
+// map the zoning polygons away from the drawn edges (their outline in their place), and the
+// roads' map everything when the centre lines meet only at vertices; as validate_output
+// does, or hold them all. The problems found, and the widest sliver, are the same either
+// way: tests compare the two.
 enum class MapProofs { First, None };
 Validation validate_output(const std::filesystem::path& out_dir, double tile_side, MapProofs proofs);
 

@@ -343,7 +343,7 @@ namespace {
 // footprints are below min_footprint_area, and their lots would stand empty; lots deep
 // enough for their footprints and for the widest frontage to make a lot, kLotShape); none
 // without frontage to share.
-ordered_json frontage_rule(const PlaceFigures& f, double setback, double gap) {
+ordered_json frontage_rule(const PlaceFigures& f, double setback, double gap, double largest_rectangle) {
   double total_area = 0;
   for (double a : f.areas) total_area += a;
   const double net_frontage = f.frontage_m - static_cast<double>(f.buildings) * gap;
@@ -353,7 +353,19 @@ ordered_json frontage_rule(const PlaceFigures& f, double setback, double gap) {
   ordered_json frontages = ordered_json::array();
   for (int k = 0; k <= 20; ++k) frontages.push_back(std::max(tenth(quantile(areas, 0.1 + 0.9 * k / 20) / depth + gap), 1.0));
   const double lot_depth = std::ceil(std::max(setback + depth + gap / 2, frontages.back().get<double>() * kLotShape.min));
-  return {{"perimeter_depth", depth}, {"lot_frontages", frontages}, {"lot_depth", lot_depth}};
+  // Perimeter footprints from the place's tenth to its 95th percentile area. A band runs
+  // along every street edge of its lot, and lots joined at a block's corners, or from
+  // pieces too small to stand alone, front more street than any frontage drawn: their
+  // bands held Helsinki's commercial p90 25% over the mapped one, while pieces left where
+  // runs of lots meet held footprints of a few square metres (its residential median 26%
+  // under). A lot whose band is larger is built in rows of the place's footprints instead
+  // (which may be as large as the rectangles their sides' ranges make); a piece whose band
+  // is smaller stands empty and joins the lot beside it.
+  return {{"perimeter_depth", depth},
+          {"lot_frontages", frontages},
+          {"lot_depth", lot_depth},
+          {"min_footprint_area", std::max(1.0, std::floor(quantile(areas, 0.1)))},
+          {"max_footprint_area", std::ceil(std::max(quantile(areas, 0.95), largest_rectangle))}};
 }
 
 // The footprints a file maps, and the zones and roads it draws.
@@ -458,7 +470,9 @@ ordered_json like_place(Sketch& sketch, const std::filesystem::path& like) {
     // commercial land 29% under its coverage): the frontage rule's perimeter blocks and lots
     // are set too, where the sketch does not set them. Elsewhere it is only reported.
     if (derived.contains("setback"))
-      if (ordered_json rule = frontage_rule(f, derived["setback"].get<double>(), derived["building_gap"].get<double>()); !rule.is_null()) {
+      if (ordered_json rule = frontage_rule(f, derived["setback"].get<double>(), derived["building_gap"].get<double>(),
+                                                derived["footprint_width"][1].get<double>() * derived["footprint_depth"][1].get<double>());
+          !rule.is_null()) {
         z["frontage_rule"] = rule;
         if (derived["building_gap"].get<double>() < kTouchingGap)
           for (const auto& [key, value] : rule.items()) {
