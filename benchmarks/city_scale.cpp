@@ -75,7 +75,7 @@ void run_road_stages(const Sketch& sketch, bool with_lots) {
   if (with_lots) {
     t = std::chrono::steady_clock::now();
     CityLots city_lots(blocks, plan_lots(blocks, sketch, nullptr, Channels{}), sketch);
-    city_lots.insert_into(net.map);
+    city_lots.put_into(net.map);
     const std::vector<Lot> lots = city_lots.lots();
     row("lots", seconds_since(t), std::to_string(lots.size()) + " lots");
   }

@@ -127,7 +127,7 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
   city.network = stages.run("road network", [&] { return grow_road_network(std::move(city_map), city.settings, city.drawn.zones,
                                                                                regions ? &regions->road_plans : nullptr); });
   city.blocks = stages.run("blocks", [&] { return cut_blocks(city.network.map, city.settings, city.drawn.zones, city.network.uses); });
-  CityLots lots;  // each block's lots in a map of the block alone, until the city's map takes them
+  CityLots lots;  // each block's lots in a map of the block alone, until the buildings stand
   city.lots = stages.run("lots", [&] {
     const std::vector<PlannedLot> planned = plan_lots(city.blocks, city.settings, city.model_library(), city.channels,
                                                       regions ? &regions->lot_plans : nullptr);
@@ -147,9 +147,10 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
     s.buildings.insert(s.buildings.end(), std::make_move_iterator(mapped.begin()), std::make_move_iterator(mapped.end()));
     give_stable_ids(s.buildings, s.models);
     city.lot_land = lot_land(lots.pieces(), city.blocks, lots.joined());
-    // The lots are final: the city's map takes them (the ground and the clutter read them there).
-    lots.insert_into(city.network.map);
-    city.lots = with_density(lots.lots(), city.blocks);  // some written again from the city's map
+    // The lots are final: the city's map takes the vertices they put on the blocks' edges,
+    // which the ground's zones, road areas and blocks share with them.
+    lots.put_into(city.network.map);
+    city.lots = with_density(lots.lots(), city.blocks);  // some with their neighbours' vertices
     return s;
   });
   city.buildings = std::move(raised.buildings);

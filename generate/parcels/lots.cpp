@@ -133,20 +133,16 @@ std::vector<int> edge_kinds(const CityMap& city_map) {
   return city_map.per_label([](const FaceLabel& f) { return f.road_surface() ? LotEdge::kStreet : LotEdge::kInner; });
 }
 
-// What the last tracing of a block's map into lots found: its pieces' land (lot_land reports
-// it) and its lot faces (the city's map takes them).
+// What the last tracing of a block's map into lots found: its pieces' land (lot_land reports it).
 struct Traced {
   PiecesLand land;
-  std::vector<std::pair<int, geom::Cell>> faces;
-  // The block's first pieces (FirstPieces), as the lots were first cut.
-  std::vector<std::pair<int, geom::Cell>> first;
 };
 
 // Each planned lot's pieces in the map, those that make sensible lots: on the street, at
 // least min_lot_area, and within kLotShape. A lot's rank orders the kept pieces of its
 // planned lot. The pieces refused once rounded, when `refused` is given, go there. When
 // `traced` is given it is made the pieces' land (LotLand's lots and refused, per zone type,
-// in the pieces' order) and the pieces with their planned lots.
+// in the pieces' order).
 std::vector<Lot> kept_lots(const CityMap& city_map, const std::vector<PlannedLot>& planned, const CitySettings& city,
                            std::vector<Lot>* refused = nullptr, Traced* traced = nullptr) {
   const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
@@ -166,12 +162,11 @@ std::vector<Lot> kept_lots(const CityMap& city_map, const std::vector<PlannedLot
     kept[i] = Lot{plan.block, plan.zone, {}, std::move(*cell), std::move(shape), planned_of[i], 0, component[i], plan.model};
   });
   if (traced) {
-    traced->land.clear(), traced->faces.clear();
+    traced->land.clear();
     for (std::size_t i = 0; i < pieces.size(); ++i) {
       LotLand& l = traced->land[planned[planned_of[i]].zone];
       LandShare& share = why[i] ? l.refused[why[i]] : l.lots;
       ++share.count, share.area_m2 += pieces[i].area();
-      traced->faces.emplace_back(planned_of[i], pieces[i]);
     }
   }
   std::vector<Lot> lots;
@@ -356,18 +351,9 @@ std::vector<Lot> lots_in_block_map(CityMap& city_map, const std::vector<PlannedL
   }
   city_map.insert_lots();
   // The block's last batch: its map is snap-rounded now, so its lots round without edges
-  // crossing (the city's map, which takes them, is snap-rounded again: CityLots::insert_into).
+  // crossing (the vertices it put on the block's edges go into the city's map:
+  // CityLots::put_into).
   city_map.map.snap_round();
-  if (land) {
-    // The first pieces: each planned lot's, and the open land's (group `n`), before any join.
-    const int n = static_cast<int>(planned.size());
-    const std::vector<int> group = city_map.per_label(
-        [&](const FaceLabel& f) { return f.block < 0 || f.road_surface() ? -1 : f.lot >= 0 ? f.lot : n; });
-    std::vector<int> groups;
-    std::vector<geom::Cell> cells = city_map.map.cells(group, {}, &groups);
-    land->first.clear();
-    for (std::size_t i = 0; i < cells.size(); ++i) land->first.emplace_back(groups[i], std::move(cells[i]));
-  }
 
   std::vector<Lot> refused;
   std::vector<Lot> lots = kept_lots(city_map, planned, city, &refused, land);
@@ -427,37 +413,12 @@ std::unique_ptr<CityMap> block_map(const geom::Cell& cell) {
   return map;
 }
 
-// A block's first pieces (the pieces of each planned lot and of the open land as its map was
-// first cut, before any join or merge relabelled them) with the lot each now lies in, as
-// BlockLots::faces holds them: (its planned lot + 1) * (planned + 2) + (its lot now + 1), its
-// planned lot `planned` for open land. Joins and merges relabel whole pieces, so a first piece
-// lies in one lot (or none): the city's map, cut as the block's map was, takes its labels by
-// its first pieces (CityLots::insert_into). `now` are the map's lot pieces with their lots.
-void label_first_pieces(std::vector<std::pair<int, geom::Cell>>& first,
-                        const std::vector<std::pair<int, geom::Cell>>& now, int planned) {
-  const int stride = planned + 2;
-  for (auto& [code, cell] : first) {
-    const int group = code >= stride ? code / stride - 1 : code;  // encoded, or just traced
-    int lot = group < planned ? group : -1;
-    if (const std::optional<geom::Vec2> p = cell.point_inside_near(cell.centroid())) {
-      lot = -1;
-      for (const auto& [l, piece] : now) {
-        const geom::Box box = piece.bounds();
-        if (p->x < box.min_x || p->x > box.max_x || p->y < box.min_y || p->y > box.max_y || !piece.contains(*p)) continue;
-        lot = l;
-        break;
-      }
-    }
-    code = (group + 1) * stride + lot + 1;
-  }
-}
-
 BlockLots first_lots(CityMap& map, const std::vector<PlannedLot>& planned, const CitySettings& city) {
   BlockLots out;
   Traced traced;
   out.lots = lots_in_block_map(map, planned, city, &out.joined, &traced);
-  out.pieces = std::move(traced.land), out.faces = std::move(traced.first);
-  label_first_pieces(out.faces, traced.faces, static_cast<int>(planned.size()));
+  out.pieces = std::move(traced.land);
+  out.outline = map.map.outline_as_cut();  // merges relabel faces only: it stays
   return out;
 }
 
@@ -467,8 +428,7 @@ BlockLots merged(CityMap& map, const std::vector<PlannedLot>& planned, const Blo
   out.joined = before.joined, out.unbuilt = before.unbuilt;
   Traced traced;
   out.lots = merged_unbuilt_lots(map, planned, before.lots, built, last, city, out.unbuilt, &traced);
-  out.pieces = std::move(traced.land), out.faces = before.faces;
-  label_first_pieces(out.faces, traced.faces, static_cast<int>(planned.size()));
+  out.pieces = std::move(traced.land), out.outline = before.outline;
   return out;
 }
 
@@ -603,119 +563,30 @@ UnbuiltLots CityLots::unbuilt() const {
   return sum;
 }
 
-namespace {
-
-// A block's map does not see its neighbours: where two blocks meet without a road between,
-// each one's lots put vertices on the edge they share that the other's lots, traced in their
-// own map, lack. Written apart, a lot's straight edge and its block's, bent by such a vertex,
-// cross by a double's step. The lots of blocks that meet another block with lots are
-// written again from the city's map, which has every vertex.
-void with_neighbours_vertices(std::vector<std::unique_ptr<CityLots::BlockMap>>& blocks, const CityMap& city_map) {
-  // Blocks with lots that share a boundary vertex with another such block: they meet without
-  // a road between (or touch at a corner).
-  std::unordered_map<geom::Vec2, int, geom::Vec2Hash> block_at;  // -1: more than one block's
-  std::vector<char> meets(blocks.size(), 0);
-  for (const auto& b : blocks) {
-    if (b->made.faces.empty()) continue;
-    for (const geom::KindedRing& ring : b->cell.kinded_rings())
-      for (geom::Vec2 p : ring.points) {
-        auto [it, added] = block_at.emplace(p, b->index);
-        if (added || it->second == b->index) continue;
-        if (it->second >= 0) meets[it->second] = 1;
-        meets[b->index] = 1, it->second = -1;
-      }
-  }
-  if (std::none_of(meets.begin(), meets.end(), [](char m) { return m != 0; })) return;
-  const std::vector<int> group =
-      city_map.per_label([&](const FaceLabel& f) { return f.lot >= 0 && f.block >= 0 && meets[f.block] ? f.lot : -1; });
-  std::vector<int> planned_of;
-  const std::vector<geom::Cell> pieces = city_map.map.cells(group, edge_kinds(city_map), &planned_of);
-  std::map<int, std::vector<std::size_t>> pieces_of;  // by planned lot
-  for (std::size_t i = 0; i < pieces.size(); ++i) pieces_of[planned_of[i]].push_back(i);
-  const CancelCheck cancel;
-  tbb::parallel_for(std::size_t(0), blocks.size(), [&](std::size_t bi) {
-    if (!meets[bi]) return;
-    cancel.check();
-    CityLots::BlockMap& b = *blocks[bi];
-    for (Lot& lot : b.made.lots) {
-      const auto found = pieces_of.find(b.first_planned + lot.planned);
-      if (found == pieces_of.end()) continue;
-      // The piece the lot was traced from: the one of its planned lot with the same bounds
-      // (vertices added on its edges round within them), nearest as written.
-      const geom::Box box = lot.cell.bounds();
-      auto off = [&](std::size_t i) {
-        const geom::Box p = pieces[i].bounds();
-        return std::abs(p.min_x - box.min_x) + std::abs(p.min_y - box.min_y) + std::abs(p.max_x - box.max_x) +
-               std::abs(p.max_y - box.max_y);
-      };
-      const std::size_t best = *std::min_element(found->second.begin(), found->second.end(),
-                                                 [&](std::size_t i, std::size_t k) { return off(i) < off(k); });
-      if (std::optional<geom::Cell> written = pieces[best].as_written()) {
-        lot.cell = std::move(*written);
-        lot.polygon = lot.cell.to_plain();
-      }
-    }
-  });
-}
-
-}  // namespace
-
-void CityLots::insert_into(CityMap& city_map) {
-  // The planned lots go in as each block's map took them, so the city's map is cut as the
-  // blocks' maps were (and snap-rounded); each block's first pieces then take the lots they
-  // ended in, found by their planned lot and their bounds (vertices the city's map adds on
-  // their edges round within them): one tracing of the lots' land, one relabelling.
-  int total = 0;
-  for (const auto& b : blocks_) total += static_cast<int>(b->planned.size());
-  city_map.lots = {city_map.generated_roads.end(), total};
-  std::vector<int> block_of_planned(total, -1);
+void CityLots::put_into(CityMap& city_map) {
+  std::vector<geom::Cell> outlines(blocks_.size());
   for (const auto& b : blocks_) {
     b->map.reset();
-    for (std::size_t l = 0; l < b->planned.size(); ++l) {
-      const PlannedLot& p = b->planned[l];
-      const int counter = city_map.lots.at(b->first_planned + static_cast<int>(l));
-      block_of_planned[b->first_planned + l] = b->index;
-      if (p.ring.empty()) city_map.map.add_cell_within(b->index, p.cell, counter);
-      else city_map.map.add_ring_within(b->index, p.ring, counter);
-    }
+    outlines[b->index] = b->made.outline;
   }
-  city_map.insert_lots();
-  // The last batch: the map is snap-rounded now, so every layer written from it rounds
-  // without edges crossing.
-  city_map.map.snap_round();
-  const std::vector<int> group = city_map.per_label([&](const FaceLabel& f) {
-    if (f.block < 0 || f.road_surface() || blocks_[f.block]->planned.empty()) return -1;
-    return f.lot >= 0 ? f.lot : total + f.block;
-  });
-  std::vector<int> groups, components;
-  const std::vector<geom::Cell> pieces = city_map.map.cells(group, {}, &groups, &components);
-  std::vector<int> lot_of_component(components.empty() ? 0 : components.back() + 1, -2);  // -2: as it is
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    const int g = groups[i];
-    const BlockMap& b = *blocks_[g >= total ? g - total : block_of_planned[g]];
-    const int n = static_cast<int>(b.planned.size()), stride = n + 2;
-    const int first = g >= total ? n : g - b.first_planned;
-    const geom::Box box = pieces[i].bounds();
-    double nearest = std::numeric_limits<double>::infinity();
-    int lot = -2;
-    for (const auto& [code, cell] : b.made.faces) {
-      if (code / stride - 1 != first) continue;
-      const geom::Box p = cell.bounds();
-      const double off = std::abs(p.min_x - box.min_x) + std::abs(p.min_y - box.min_y) +
-                         std::abs(p.max_x - box.max_x) + std::abs(p.max_y - box.max_y);
-      if (off < nearest) nearest = off, lot = code % stride - 1;
+  const std::vector<std::vector<geom::VertexOnEdge>> beyond =
+      city_map.map.add_outlines(city_map.per_label([](const FaceLabel& f) { return f.road_surface() ? -1 : f.block; }),
+                                outlines);
+  // A block's map sees its cell alone: where another block's lots put vertices on an edge
+  // they share (no road between them), or the city's snap rounding split one, its lots along
+  // that edge take those vertices too, so that written they follow their block's edge.
+  const CancelCheck cancel;
+  tbb::parallel_for(std::size_t(0), blocks_.size(), [&](std::size_t i) {
+    BlockMap& b = *blocks_[i];
+    if (beyond[b.index].empty()) return;
+    cancel.check();
+    for (Lot& lot : b.made.lots) {
+      std::optional<geom::Cell> cell = geom::with_vertices_on_edges(lot.cell, beyond[b.index]);
+      if (!cell) continue;
+      lot.cell = std::move(*cell);
+      lot.polygon = lot.cell.to_plain();
     }
-    if (lot == -2) continue;
-    lot_of_component[components[i]] = lot >= 0 ? b.first_planned + lot : -1;
-  }
-  city_map.map.relabel_components(group, [&](int c, int label) {
-    const int lot = lot_of_component[c];
-    if (lot == -2 || city_map.labels[label].lot == lot) return label;
-    FaceLabel l = city_map.labels[label];
-    l.lot = lot;
-    return city_map.label_index(l);
   });
-  with_neighbours_vertices(blocks_, city_map);
 }
 
 std::map<ZoneType, LotLand> lot_land(PiecesLand pieces, const std::vector<Block>& blocks,

@@ -1,5 +1,5 @@
-// Lots inside blocks (docs/design.md, Lots), exact, each block's in a map of the block alone
-// and then in the city's map.
+// Lots inside blocks (docs/design.md, Lots), exact, each block's in a map of the block alone;
+// the city's map takes only the vertices they put on the blocks' edges.
 // Lot corners are computed in doubles and rounded to the grid, so every lot edge is a grid
 // line; a lot is labelled only on faces of its own block, so where it would cross a road it
 // is cut back exactly there, and where lots overlap the first one listed owns the overlap.
@@ -95,17 +95,15 @@ struct BlockLots {
   PiecesLand pieces;      // the land of the pieces of its map's last tracing into lots
   std::map<ZoneType, LandShare> joined;  // pieces refused as lots that a neighbouring lot took
   UnbuiltLots unbuilt;    // what its merges of unbuilt lots did, all of them
-  // Its first pieces (each planned lot's and the open land's, as its map first cut them,
-  // before any join or merge) as exact cells, each with (its planned lot + 1) * (planned lots
-  // + 2) + (the lot it now lies in + 1), open land's planned lot being the planned lots'
-  // count: how the city's map, cut as the block's was, takes its lots (CityLots::insert_into).
-  std::vector<std::pair<int, geom::Cell>> faces;
+  // The block's cell as its map cut it (geom::PlanarMap::outline_as_cut): with the vertices
+  // its lots put on its edges, which the city's map takes (CityLots::put_into).
+  geom::Cell outline;
 };
 
 // The lots of every block: each block's planned lots cut, snap-rounded, traced and merged in
-// a map of the block alone (geom::PlanarMap::of_cell), blocks in parallel, and put into the
-// city's map once they are final (insert_into). Faces of a block then know the lot planned
-// there that they lie in. Pieces refused as lots join a neighbouring lot where they can.
+// a map of the block alone (geom::PlanarMap::of_cell), blocks in parallel. The city's map
+// never holds them: once they are final it takes the vertices they put on the blocks' edges
+// (put_into). Pieces refused as lots join a neighbouring lot where they can.
 // (docs/design.md, Lots.)
 class CityLots {
  public:
@@ -136,12 +134,13 @@ class CityLots {
   std::map<ZoneType, LandShare> joined() const;
   UnbuiltLots unbuilt() const;
 
-  // Puts every block's planned lots into the city's map as its own map took them
-  // (CityMap::lots counts them) and snap-rounds it, then gives each block's first pieces the
-  // lots they ended in; the lots of blocks that meet another block with lots are written
-  // again from the city's map, which has the vertices their neighbours' lots put on their
-  // shared edges (lots() changes for them). The blocks' maps are freed.
-  void insert_into(CityMap& city_map);
+  // Puts into the city's map the vertices each block's map has on the block's edges (the
+  // lots' corners and crossings there, and its snap rounding's), and snap-rounds it, so the
+  // zones, road areas and blocks written from it share every vertex with the lots along
+  // them; the lots themselves stay out of it. A block's lots then take the vertices the
+  // city's map has on their block's edges that its own map lacked (another block's, across
+  // an edge with no road; lots() changes for them). The blocks' maps are freed.
+  void put_into(CityMap& city_map);
 
   struct BlockMap;  // one block's map and lots (lots.cpp)
 
