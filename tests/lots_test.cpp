@@ -235,8 +235,9 @@ TEST(Lots, ABlockOverTwoZonesOfOneTypeHasLotsAcrossTheirEdgeWhole) {
                                              &report);
   ASSERT_TRUE(v.ok()) << v.problems[0];
   std::ifstream in(testing_util::test_dir("lots-two-zones") / "out" / "vector" / "lots.geojson");
+  const nlohmann::json layer = nlohmann::json::parse(in);
   int across = 0, lots = 0;
-  for (const auto& lot : nlohmann::json::parse(in)["features"]) {
+  for (const auto& lot : layer["features"]) {
     if (lot["properties"]["zone"] != "residential") continue;
     ++lots;
     double low = INFINITY, high = -INFINITY;
