@@ -207,11 +207,21 @@ TEST(Clutter, SpotsWithoutGroundAreCountedNotDropped) {
     EXPECT_FALSE(c.spot.x > 110 && c.spot.x < 200 && c.spot.y > 1 && c.spot.y < 60) << "clutter in the park";
 }
 
-TEST(Clutter, ValidateFindsClutterWhereItMustNotStand) {
-  const fs::path sketch = four_streets("validate", "", all_of_the_library());
+namespace {
+
+// The four streets with all of the library, generated valid into `name`/out; its clutter layer.
+fs::path valid_clutter_layer(const std::string& name) {
+  const fs::path sketch = four_streets(name, "", all_of_the_library());
   const fs::path out = sketch.parent_path() / "out";
-  ASSERT_TRUE(generate_city(load_sketch(sketch), out, nullptr).valid);
-  const fs::path layer = out / "vector" / "clutter.geojson";
+  EXPECT_TRUE(generate_city(load_sketch(sketch), out, nullptr).valid);
+  return out / "vector" / "clutter.geojson";
+}
+
+}  // namespace
+
+TEST(Clutter, ValidateFindsClutterWhereItMustNotStand) {
+  const fs::path layer = valid_clutter_layer("validate");
+  const fs::path out = layer.parent_path().parent_path();
   std::ifstream in(layer);
   const std::string good((std::istreambuf_iterator<char>(in)), {});
   auto broken = [&](const std::function<void(nlohmann::ordered_json&)>& edit) {
@@ -248,10 +258,8 @@ TEST(Clutter, ValidateFindsClutterWhereItMustNotStand) {
 // piece, and the same at one thread and at two; a number written "1.0e" sends the layer to
 // the JSON parser, which names it.
 TEST(Clutter, ValidationStatesClutterProblemsInThePiecesOrderAtAnyThreadCount) {
-  const fs::path sketch = four_streets("validate-runs", "", all_of_the_library());
-  const fs::path out = sketch.parent_path() / "out";
-  ASSERT_TRUE(generate_city(load_sketch(sketch), out, nullptr).valid);
-  const fs::path layer = out / "vector" / "clutter.geojson";
+  const fs::path layer = valid_clutter_layer("validate-runs");
+  const fs::path out = layer.parent_path().parent_path();
   std::ifstream in(layer);
   nlohmann::ordered_json doc = nlohmann::ordered_json::parse(std::string((std::istreambuf_iterator<char>(in)), {}));
   nlohmann::ordered_json& features = doc["features"];
