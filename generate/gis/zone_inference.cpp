@@ -8,6 +8,8 @@
 
 #include <ogr_geometry.h>
 
+#include "generate/gis/ogr_polygon.h"
+
 namespace exacity {
 using nlohmann::ordered_json;
 
@@ -122,11 +124,7 @@ void infer_zones(ordered_json& doc) {
   if (!streets.IsEmpty()) {
     OGREnvelope e;
     streets.getEnvelope(&e);
-    OGRLinearRing ring;
-    for (auto [x, y] : {std::pair{e.MinX - 1, e.MinY - 1}, {e.MaxX + 1, e.MinY - 1}, {e.MaxX + 1, e.MaxY + 1}, {e.MinX - 1, e.MaxY + 1}, {e.MinX - 1, e.MinY - 1}})
-      ring.addPoint(x, y);
-    OGRPolygon box;
-    box.addRing(&ring);
+    const OGRPolygon box = box_around(e, 1);
     Geometry lines(streets.Buffer(kHair, 2));
     Geometry between(lines ? box.Difference(lines.get()) : nullptr);
     if (between)

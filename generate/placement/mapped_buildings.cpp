@@ -10,6 +10,7 @@
 
 #include "generate/city/memo.h"
 #include "generate/city/random.h"
+#include "generate/gis/ogr_polygon.h"
 #include "geom/measure.h"
 #include "geom/polygon_check.h"
 #include "geom/triangulate.h"
@@ -31,19 +32,6 @@ void orient(geom::Polygon& p) {
   if (geom::ring_orientation(p.outer) < 0) std::reverse(p.outer.begin(), p.outer.end());
   for (geom::Ring& h : p.holes)
     if (geom::ring_orientation(h) > 0) std::reverse(h.begin(), h.end());
-}
-
-std::unique_ptr<OGRPolygon> ogr_polygon(const geom::Polygon& p) {
-  auto out = std::make_unique<OGRPolygon>();
-  auto ring = [](const geom::Ring& r) {
-    auto o = new OGRLinearRing;
-    for (geom::Vec2 v : r) o->addPoint(v.x, v.y);
-    o->closeRings();
-    return o;
-  };
-  out->addRingDirectly(ring(p.outer));
-  for (const geom::Ring& h : p.holes) out->addRingDirectly(ring(h));
-  return out;
 }
 
 geom::Ring plain_ring(const OGRLinearRing& r) {
@@ -102,12 +90,7 @@ std::vector<geom::Polygon> cut_back(const geom::Polygon& footprint, const std::v
   std::unique_ptr<OGRGeometry> rest = ogr_polygon(footprint);
   OGREnvelope near;
   rest->getEnvelope(&near);
-  OGRPolygon reach;  // the footprint's box and a metre round it: a road network's surface is one polygon
-  auto* ring = new OGRLinearRing;
-  for (auto [x, y] : {std::pair{near.MinX - 1, near.MinY - 1}, {near.MaxX + 1, near.MinY - 1}, {near.MaxX + 1, near.MaxY + 1},
-                      {near.MinX - 1, near.MaxY + 1}, {near.MinX - 1, near.MinY - 1}})
-    ring->addPoint(x, y);
-  reach.addRingDirectly(ring);
+  const OGRPolygon reach = box_around(near, 1);  // a road network's surface is one polygon
   for (const geom::Polygon* o : obstacles) {
     std::unique_ptr<OGRGeometry> there(ogr_polygon(*o)->Intersection(&reach));
     if (!there) return {};

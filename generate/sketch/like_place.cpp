@@ -5,10 +5,10 @@
 #include <memory>
 
 #include <ogr_api.h>
-#include <ogr_geometry.h>
 
 #include "generate/city/format_number.h"
 #include "generate/errors.h"
+#include "generate/gis/ogr_polygon.h"
 #include "generate/input_file.h"
 #include "generate/parcels/lots.h"
 #include "generate/sketch/sketch_document.h"
@@ -177,16 +177,7 @@ std::map<ZoneType, double> land_by_zone(const std::vector<ZoneFeature>& zones) {
   std::vector<Land> drawn;
   for (const ZoneFeature& z : zones)
     for (const geom::Polygon& p : z.polygons) {
-      OGRPolygon polygon;
-      auto add_ring = [&](const geom::Ring& r) {
-        auto* ring = new OGRLinearRing;
-        for (Vec2 v : r) ring->addPoint(v.x, v.y);
-        ring->closeRings();
-        polygon.addRingDirectly(ring);
-      };
-      add_ring(p.outer);
-      for (const geom::Ring& h : p.holes) add_ring(h);
-      Land land{z.type, std::unique_ptr<OGRGeometry>(polygon.MakeValid()), {}};
+      Land land{z.type, std::unique_ptr<OGRGeometry>(ogr_polygon(p)->MakeValid()), {}};
       if (!land.geometry) continue;
       land.geometry->getEnvelope(&land.box);
       drawn.push_back(std::move(land));
