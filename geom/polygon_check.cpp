@@ -11,6 +11,7 @@
 
 #include "geom/exact.h"
 #include "geom/grid.h"
+#include "geom/orientation.h"
 #include "geom/planar_map.h"
 
 namespace geom {
@@ -61,15 +62,6 @@ int ring_orientation(const Ring& ring) {
 
 namespace {
 
-int orient(Vec2 a, Vec2 b, Vec2 c) {
-  return static_cast<int>(CGAL::orientation(K::Point_2(a.x, a.y), K::Point_2(b.x, b.y), K::Point_2(c.x, c.y)));
-}
-
-// p in the closed box of the segment u-v: on it, when the three are collinear.
-bool in_box(Vec2 u, Vec2 v, Vec2 p) {
-  return std::min(u.x, v.x) <= p.x && p.x <= std::max(u.x, v.x) && std::min(u.y, v.y) <= p.y && p.y <= std::max(u.y, v.y);
-}
-
 // Whether the closed segments a-b and c-d meet.
 bool segments_meet(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   // Boxes apart (comparisons of the doubles, exact): most pairs of a ring's edges, asked no predicate.
@@ -78,8 +70,8 @@ bool segments_meet(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
     return false;
   const int o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
   if (o1 * o2 < 0 && o3 * o4 < 0) return true;
-  return (o1 == 0 && in_box(a, b, c)) || (o2 == 0 && in_box(a, b, d)) || (o3 == 0 && in_box(c, d, a)) ||
-         (o4 == 0 && in_box(c, d, b));
+  return (o1 == 0 && in_segment_box(a, b, c)) || (o2 == 0 && in_segment_box(a, b, d)) ||
+         (o3 == 0 && in_segment_box(c, d, a)) || (o4 == 0 && in_segment_box(c, d, b));
 }
 
 // Whether u and w (collinear with s, neither s) lie on the same side of s on their line.

@@ -3,31 +3,16 @@
 #include <algorithm>
 #include <vector>
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-
+#include "geom/orientation.h"
 #include "geom/polygon_check.h"
 
 namespace exacity {
 namespace {
 
+using geom::in_segment_box;
+using geom::orient;
 using geom::Ring;
 using geom::Vec2;
-
-// Doubles in, predicates only: the filtered kernel decides the sign exactly.
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-
-// +1 when c lies left of the line a -> b, -1 right, 0 on it.
-int orient(Vec2 a, Vec2 b, Vec2 c) {
-  // Shared vertices are most of what the proofs meet: no predicate for those (a filtered
-  // one fails on an exact zero and computes again).
-  if (c == a || c == b || a == b) return 0;
-  return static_cast<int>(CGAL::orientation(K::Point_2(a.x, a.y), K::Point_2(b.x, b.y), K::Point_2(c.x, c.y)));
-}
-
-// p in the closed box of the segment u-v: on it, when the three are collinear.
-bool in_box(Vec2 u, Vec2 v, Vec2 p) {
-  return std::min(u.x, v.x) <= p.x && p.x <= std::max(u.x, v.x) && std::min(u.y, v.y) <= p.y && p.y <= std::max(u.y, v.y);
-}
 
 geom::Box box_of(Vec2 a, Vec2 b) { return {std::min(a.x, b.x), std::min(a.y, b.y), std::max(a.x, b.x), std::max(a.y, b.y)}; }
 
@@ -51,7 +36,7 @@ class Region {
     }
     for (std::size_t i = 0; i < n; ++i) {
       const Vec2 v = a_[i], w = a_[(i + 1) % n];
-      if (in_box(v, w, x) && in_box(v, w, y) && orient(v, w, x) == 0 && orient(v, w, y) == 0) return 0;
+      if (in_segment_box(v, w, x) && in_segment_box(v, w, y) && orient(v, w, x) == 0 && orient(v, w, y) == 0) return 0;
     }
     for (std::size_t i = 0; i < n; ++i) {
       const Vec2 u = a_[(i + n - 1) % n], v = a_[i], w = a_[(i + 1) % n];
@@ -66,7 +51,7 @@ class Region {
     // Inside an edge: its left is the inside.
     for (std::size_t i = 0; i < n; ++i) {
       const Vec2 v = a_[i], w = a_[(i + 1) % n];
-      if (in_box(v, w, x) && orient(v, w, x) == 0) return orient(v, w, y) > 0 ? 1 : -1;
+      if (in_segment_box(v, w, x) && orient(v, w, x) == 0) return orient(v, w, y) > 0 ? 1 : -1;
     }
     return side(y);  // not reached: x lies on the boundary
   }
@@ -107,7 +92,7 @@ RingSides ring_sides(const Ring& b, const Ring& a) {
       if (!s.meets(box_of(u, v))) continue;
       const int ou = orient(p, q, u), ov = orient(p, q, v);
       if (ou * ov < 0 && orient(u, v, p) * orient(u, v, q) < 0) return sides.crosses = true, sides;
-      if (ou == 0 && !(u == p) && !(u == q) && in_box(p, q, u)) cuts.push_back(u);
+      if (ou == 0 && !(u == p) && !(u == q) && in_segment_box(p, q, u)) cuts.push_back(u);
     }
     // The cuts in order from p to q: along x, or along y on an upright edge (collinear, so exact).
     const bool by_x = p.x != q.x;
