@@ -68,17 +68,22 @@ nlohmann::json place_report(const std::string& place, const std::string& like, c
   return nlohmann::json::parse(cli_util::read(out / "report.json"));
 }
 
+// A generated figure within a quarter of the place's (the target; docs/gis.md,
+// Looking like the place).
+void expect_within_a_quarter(const std::string& zone, const nlohmann::json& is, const nlohmann::json& place) {
+  EXPECT_LT(std::abs(is.get<double>() - place.get<double>()), 0.25 * place.get<double>())
+      << zone << ": " << is << " against " << place;
+}
+
 // The generated footprints' median, p90 and coverage of the land use in each zone within a
-// quarter of the mapped ones' (the target; docs/gis.md, Looking like the place).
+// quarter of the mapped ones'.
 void expect_like_the_place(const nlohmann::json& report, const std::vector<std::string>& zones) {
   for (const std::string& zone : zones) {
     const nlohmann::json& measured = report["like"]["zones"][zone]["measured"];
     const nlohmann::json& generated = report["footprints_by_zone"][zone]["generated"];
-    for (const auto& [mapped, is] : {std::pair{measured["area_m2"]["median"], generated["median_m2"]},
-                                     {measured["area_m2"]["p90"], generated["p90_m2"]},
-                                     {measured["coverage_of_land_use"], generated["coverage_of_land_use"]}})
-      EXPECT_LT(std::abs(is.get<double>() - mapped.get<double>()), 0.25 * mapped.get<double>())
-          << zone << ": " << is << " against " << mapped;
+    expect_within_a_quarter(zone, generated["median_m2"], measured["area_m2"]["median"]);
+    expect_within_a_quarter(zone, generated["p90_m2"], measured["area_m2"]["p90"]);
+    expect_within_a_quarter(zone, generated["coverage_of_land_use"], measured["coverage_of_land_use"]);
   }
 }
 
@@ -155,10 +160,8 @@ TEST(Gis, CompletingHalfOfHelsinkisBuildingsBuildsTheRestLikeThePlace) {
     const nlohmann::json& figures = report["footprints_by_zone"][zone];
     const nlohmann::json& generated = figures["generated"];
     EXPECT_GT(generated["footprints"].get<int>(), 30) << zone;
-    for (const auto& [place, is] : {std::pair{measured["area_m2"]["median"], generated["median_m2"]},
-                                    {measured["area_m2"]["p90"], generated["p90_m2"]},
-                                    {figures["mapped"]["coverage_of_lots"], generated["coverage_of_lots"]}})
-      EXPECT_LT(std::abs(is.get<double>() - place.get<double>()), 0.25 * place.get<double>())
-          << zone << ": " << is << " against " << place;
+    expect_within_a_quarter(zone, generated["median_m2"], measured["area_m2"]["median"]);
+    expect_within_a_quarter(zone, generated["p90_m2"], measured["area_m2"]["p90"]);
+    expect_within_a_quarter(zone, generated["coverage_of_lots"], figures["mapped"]["coverage_of_lots"]);
   }
 }
