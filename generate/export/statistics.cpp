@@ -89,17 +89,31 @@ std::pair<Vec2, Vec2> undirected(Vec2 a, Vec2 b) {
   return (a.x < b.x || (a.x == b.x && a.y < b.y)) ? std::pair{a, b} : std::pair{b, a};
 }
 
-ordered_json footprint_figures(const std::vector<const geom::Polygon*>& footprints) {
+// Footprints' areas and how many have a sharp corner or are narrow.
+struct FootprintTally {
   std::vector<double> areas;
   std::size_t sharp = 0, narrow = 0;
-  for (const geom::Polygon* p : footprints) {
-    areas.push_back(geom::area(*p));
-    sharp += sharpest_angle(p->outer) < kSharpAngle;
-    narrow += least_width(p->outer) < kNarrow;
-  }
-  return {{"area_m2", summary(areas)},
-          {"share_sharp_angle", share(sharp, footprints.size())},
-          {"share_under_5m_across", share(narrow, footprints.size())}};
+};
+
+struct FootprintMeasure {
+  double area;
+  bool sharp, narrow;
+};
+
+FootprintMeasure measure_footprint(const geom::Polygon& p) {
+  return {geom::area(p), sharpest_angle(p.outer) < kSharpAngle, least_width(p.outer) < kNarrow};
+}
+
+void add(FootprintTally& t, const FootprintMeasure& m) {
+  t.areas.push_back(m.area);
+  t.sharp += m.sharp;
+  t.narrow += m.narrow;
+}
+
+ordered_json footprint_figures(const FootprintTally& t) {
+  return {{"area_m2", summary(t.areas)},
+          {"share_sharp_angle", share(t.sharp, t.areas.size())},
+          {"share_under_5m_across", share(t.narrow, t.areas.size())}};
 }
 
 // Junctions by degree, dead ends (ends that meet nothing and are not on the city's edge),
@@ -166,10 +180,6 @@ RoadEdges road_area_edges(const Layer& road_areas) {
   return road_edges;
 }
 
-bool in_zone(const VectorFeature& f, const std::string& zone) {
-  return zone == "all" || f.properties.value("zone", "") == zone;
-}
-
 // A lot's depth over its width: its extents across and along its longest edge on a road
 // area; 0 for a lot with none.
 double lot_depth_over_width(const geom::Polygon& p, const RoadEdges& road_edges) {
@@ -191,17 +201,21 @@ struct BlockTally {
   double total = 0, oversized = 0;
 };
 
-BlockTally tally_blocks(const Layer& blocks, const std::string& zone, const CitySettings* settings) {
-  BlockTally t;
-  for (const auto& f : blocks.features) {
-    if (!in_zone(f, zone) || f.properties.value("green", false)) continue;
-    double a = geom::area(f.polygon);
-    t.areas.push_back(a);
-    t.total += a;
-    auto type = parse_zone_type(f.properties.value("zone", ""));
-    if (settings && type && a > kOversized * settings->zone_settings.at(*type).roads.growth.block_area) t.oversized += a;
-  }
-  return t;
+struct BlockMeasure {
+  double area;
+  bool oversized;
+};
+
+BlockMeasure measure_block(const VectorFeature& f, const CitySettings* settings) {
+  const double a = geom::area(f.polygon);
+  auto type = parse_zone_type(f.properties.value("zone", ""));
+  return {a, settings && type && a > kOversized * settings->zone_settings.at(*type).roads.growth.block_area};
+}
+
+void add(BlockTally& t, const BlockMeasure& m) {
+  t.areas.push_back(m.area);
+  t.total += m.area;
+  if (m.oversized) t.oversized += m.area;
 }
 
 ordered_json block_figures(const BlockTally& t) {
@@ -211,64 +225,94 @@ ordered_json block_figures(const BlockTally& t) {
 
 struct LotTally {
   std::vector<double> areas;
-  std::size_t fronting = 0, count = 0, odd_shape = 0, sharp = 0, unbuilt = 0;
+  std::size_t fronting = 0, odd_shape = 0, sharp = 0, unbuilt = 0;
 };
+
+struct LotMeasure {
+  double area;
+  bool unbuilt, fronting, odd_shape, sharp;
+};
+
+LotMeasure measure_lot(const VectorFeature& f, const RoadEdges& road_edges, const std::unordered_set<int>& built) {
+  const double ratio = lot_depth_over_width(f.polygon, road_edges);
+  return {geom::area(f.polygon), !f.properties.contains("id") || !built.count(f.properties["id"].get<int>()), ratio > 0,
+          ratio > 0 && (ratio < kLotShape.min || ratio > kLotShape.max), sharpest_angle(f.polygon.outer) < kSharpAngle};
+}
+
+void add(LotTally& t, const LotMeasure& m) {
+  t.areas.push_back(m.area);
+  t.unbuilt += m.unbuilt;
+  t.fronting += m.fronting;
+  t.odd_shape += m.odd_shape;
+  t.sharp += m.sharp;
+}
+
+ordered_json lot_figures(const LotTally& t) {
+  const std::size_t count = t.areas.size();
+  return {{"area_m2", summary(t.areas)},
+          {"share_touching_road", share(t.fronting, count)},
+          {"share_depth_over_width_outside_0.5_5", share(t.odd_shape, count)},
+          {"share_sharp_angle", share(t.sharp, count)},
+          {"share_without_building", share(t.unbuilt, count)}};
+}
+
+// Buildings only: a layer's other kinds of feature have no footprint to measure.
+bool is_building(const VectorFeature& f) { return f.properties.value("kind", "building") == "building"; }
 
 // The ids of the lots a building stands on: an extruded one or a placed building model
 // (street furniture and trees build nothing).
-std::set<int> built_lots(const Layer& buildings) {
-  std::set<int> built;
+std::unordered_set<int> built_lots(const Layer& buildings) {
+  std::unordered_set<int> built;
   for (const auto& f : buildings.features)
-    if (f.properties.value("kind", "building") == "building" && f.properties.contains("lot") && f.properties["lot"].is_number_integer())
+    if (is_building(f) && f.properties.contains("lot") && f.properties["lot"].is_number_integer())
       built.insert(f.properties["lot"].get<int>());
   return built;
 }
 
-LotTally tally_lots(const Layer& lots, const std::string& zone, const RoadEdges& road_edges, const std::set<int>& built) {
-  LotTally t;
-  const CancelCheck cancel;
-  for (const auto& f : lots.features) {
-    cancel.check();
-    if (!in_zone(f, zone)) continue;
-    t.areas.push_back(geom::area(f.polygon));
-    ++t.count;
-    t.unbuilt += !f.properties.contains("id") || !built.count(f.properties["id"].get<int>());
-    const double ratio = lot_depth_over_width(f.polygon, road_edges);
-    t.fronting += ratio > 0;
-    t.odd_shape += ratio > 0 && (ratio < kLotShape.min || ratio > kLotShape.max);
-    t.sharp += sharpest_angle(f.polygon.outer) < kSharpAngle;
+struct ZoneTally {
+  BlockTally blocks;
+  LotTally lots;
+  FootprintTally footprints;
+};
+
+// Every zone's blocks, lots and footprints, and "all"'s: each feature is measured once and
+// counted in "all" and in the zone it says it lies in.
+class ZoneTallies {
+ public:
+  ZoneTallies(const CityLayers& layers, const RoadEdges& road_edges, const CitySettings* settings) {
+    const CancelCheck cancel;
+    for (const auto& f : layers.blocks.features)
+      if (!f.properties.value("green", false)) count(f, &ZoneTally::blocks, measure_block(f, settings));
+    const std::unordered_set<int> built = built_lots(layers.buildings);
+    for (const auto& f : layers.lots.features) {
+      cancel.check();
+      count(f, &ZoneTally::lots, measure_lot(f, road_edges, built));
+    }
+    for (const auto& f : layers.buildings.features)
+      if (is_building(f)) count(f, &ZoneTally::footprints, measure_footprint(f.polygon));
   }
-  return t;
-}
 
-ordered_json lot_figures(const LotTally& t) {
-  return {{"area_m2", summary(t.areas)},
-          {"share_touching_road", share(t.fronting, t.count)},
-          {"share_depth_over_width_outside_0.5_5", share(t.odd_shape, t.count)},
-          {"share_sharp_angle", share(t.sharp, t.count)},
-          {"share_without_building", share(t.unbuilt, t.count)}};
-}
+  // One zone's (or "all"'s) figures; none for a zone with no block, lot or footprint.
+  std::optional<ordered_json> figures(const std::string& zone) const {
+    static const ZoneTally kNone;
+    auto it = by_zone_.find(zone);
+    const ZoneTally& t = zone == "all" ? all_ : it != by_zone_.end() ? it->second : kNone;
+    if (t.blocks.areas.empty() && t.lots.areas.empty() && t.footprints.areas.empty()) return std::nullopt;
+    return ordered_json{{"blocks", block_figures(t.blocks)},
+                        {"lots", lot_figures(t.lots)},
+                        {"footprints", footprint_figures(t.footprints)}};
+  }
 
-// Buildings only: a layer's other kinds of feature have no footprint to measure.
-std::vector<const geom::Polygon*> zone_footprints(const Layer& buildings, const std::string& zone) {
-  std::vector<const geom::Polygon*> footprints;
-  for (const auto& f : buildings.features)
-    if (in_zone(f, zone) && f.properties.value("kind", "building") == "building") footprints.push_back(&f.polygon);
-  return footprints;
-}
+ private:
+  template <class Tally, class Measure>
+  void count(const VectorFeature& f, Tally ZoneTally::*tally, const Measure& m) {
+    add(all_.*tally, m);
+    add(by_zone_[f.properties.value("zone", "")].*tally, m);
+  }
 
-// One zone's (or "all"'s) blocks, lots and footprints; none for a zone with none of them.
-std::optional<ordered_json> zone_figures(const CityLayers& layers, const std::string& zone, const RoadEdges& road_edges,
-                                         const CitySettings* settings) {
-  CancelCheck().check();
-  const BlockTally blocks = tally_blocks(layers.blocks, zone, settings);
-  const LotTally lots = tally_lots(layers.lots, zone, road_edges, built_lots(layers.buildings));
-  const std::vector<const geom::Polygon*> footprints = zone_footprints(layers.buildings, zone);
-  if (blocks.areas.empty() && lots.areas.empty() && footprints.empty()) return std::nullopt;
-  return ordered_json{{"blocks", block_figures(blocks)},
-                      {"lots", lot_figures(lots)},
-                      {"footprints", footprint_figures(footprints)}};
-}
+  ZoneTally all_;
+  std::map<std::string, ZoneTally> by_zone_;
+};
 
 // The city's ground: what zones, water and road areas cover.
 double ground_area(const CityLayers& layers) {
@@ -397,10 +441,10 @@ ordered_json real_street_figures(const std::vector<geom::Polyline>& lines, const
 
 ordered_json city_statistics(const CityLayers& layers, const CitySettings* settings, const DrawnFeatures* drawn) {
   const std::set<std::string> zones = zone_names(layers);
-  const RoadEdges road_edges = road_area_edges(layers.road_areas);
+  const ZoneTallies tallies(layers, road_area_edges(layers.road_areas), settings);
   ordered_json per_zone = ordered_json::object();
   for (const std::string& zone : zones)
-    if (std::optional<ordered_json> z = zone_figures(layers, zone, road_edges, settings)) per_zone[zone] = *z;
+    if (std::optional<ordered_json> z = tallies.figures(zone)) per_zone[zone] = *z;
   const double ground = ground_area(layers);
   const CityEdge edge(layers, drawn);
   auto on_edge = [&](Vec2 p) { return edge.lies_on(p); };
@@ -416,7 +460,11 @@ ordered_json real_statistics(const std::filesystem::path& file) {
   const geom::Box box = bounds(real);
   if (box.holds_nothing()) throw UserError(file.string() + ": holds no usable Polygon or LineString; give footprints or streets");
   ordered_json out{{"file", file.filename().string()}, {"projected", projected}, {"features_skipped", real.skipped}};
-  if (!real.polygons.empty()) out["zones"] = {{"all", {{"footprints", footprint_figures(pointers(real.polygons))}}}};
+  if (!real.polygons.empty()) {
+    FootprintTally t;
+    for (const geom::Polygon& p : real.polygons) add(t, measure_footprint(p));
+    out["zones"] = {{"all", {{"footprints", footprint_figures(t)}}}};
+  }
   if (!real.lines.empty()) out["streets"] = real_street_figures(real.lines, box);
   return out;
 }
