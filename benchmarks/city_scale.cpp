@@ -74,7 +74,9 @@ void run_road_stages(const Sketch& sketch, bool with_lots) {
   row("blocks", blocks_s, std::to_string(blocks.size()) + " blocks");
   if (with_lots) {
     t = std::chrono::steady_clock::now();
-    std::vector<Lot> lots = insert_lots(net.map, plan_lots(blocks, sketch, nullptr, Channels{}), sketch);
+    CityLots city_lots(blocks, plan_lots(blocks, sketch, nullptr, Channels{}), sketch);
+    city_lots.put_into(net.map);
+    const std::vector<Lot> lots = city_lots.lots();
     row("lots", seconds_since(t), std::to_string(lots.size()) + " lots");
   }
   std::printf("\nroads and blocks: %.3f s; peak memory %.0f MiB\n", roads_s + blocks_s, peak_resident_mib());

@@ -159,9 +159,10 @@ int main(int argc, char** argv) {
                 c.road_plans.hits(), c.road_plans.hits() + c.road_plans.misses(), c.lot_plans.hits(),
                 c.lot_plans.hits() + c.lot_plans.misses(), c.placements.hits(), c.placements.hits() + c.placements.misses(),
                 c.meshes.hits(), c.meshes.hits() + c.meshes.misses());
-    std::printf("ground pieces reused: %d of %d, tiles %d of %d\nfeatures the edit changed (lines not in the first city's):",
-                c.ground_pieces.hits(), c.ground_pieces.hits() + c.ground_pieces.misses(), c.tiles.hits(),
-                c.tiles.hits() + c.tiles.misses());
+    std::printf("block lots reused: %d of %d (blocks and their merges), ground pieces %d of %d, tiles %d of %d\n"
+                "features the edit changed (lines not in the first city's):",
+                c.block_lots.hits(), c.block_lots.hits() + c.block_lots.misses(), c.ground_pieces.hits(),
+                c.ground_pieces.hits() + c.ground_pieces.misses(), c.tiles.hits(), c.tiles.hits() + c.tiles.misses());
     for (const auto& [file, lines] : again.features) {
       const std::set<std::string>& before = first.features.at(file);
       std::size_t changed = 0;

@@ -62,13 +62,11 @@ std::vector<Lot> with_density(std::vector<Lot> lots, const std::vector<Block>& b
 }
 
 // Buildings on every lot. Lots no placer could build on are merged into a neighbour or,
-// the last time, left open (merge_unbuilt_lots), and every lot is placed again, twice at
-// most: with lot ids renumbered, every lot draws from its new stream.
+// the last time, left open (CityLots::merge_unbuilt_lots), and every lot is placed again,
+// twice at most: with lot ids renumbered, every lot draws from its new stream.
 // Lots a mapped building stands on (`held`, as the lots end) count as built; only where their
 // zone sets lot_coverage are they built on, around the mapped footprints (place_buildings).
-// `pieces` is kept the pieces' land of the lots as they end.
-Structures build_on_lots(City& city, const std::vector<PlannedLot>& planned, const std::vector<Building>& mapped,
-                         HeldLots& held, PiecesLand& pieces) {
+Structures build_on_lots(City& city, CityLots& lots, const std::vector<Building>& mapped, HeldLots& held) {
   constexpr int kMerges = 2;
   for (int merges = 0;; ++merges) {
     held = lots_holding(city.lots, mapped);
@@ -86,9 +84,9 @@ Structures build_on_lots(City& city, const std::vector<PlannedLot>& planned, con
     city.held_lots = held.held;
     city.held_m2 = held.standing_m2;
     if (merges == kMerges || std::count(built.begin(), built.end(), 0) == 0) return s;
-    city.lots = with_density(merge_unbuilt_lots(city.network.map, planned, city.lots, built, merges + 1 == kMerges,
-                                                city.settings, city.unbuilt_lots, &pieces),
-                             city.blocks);
+    lots.merge_unbuilt_lots(built, merges + 1 == kMerges);
+    city.unbuilt_lots = lots.unbuilt();
+    city.lots = with_density(lots.lots(), city.blocks);
   }
 }
 
@@ -129,19 +127,18 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
   city.network = stages.run("road network", [&] { return grow_road_network(std::move(city_map), city.settings, city.drawn.zones,
                                                                                regions ? &regions->road_plans : nullptr); });
   city.blocks = stages.run("blocks", [&] { return cut_blocks(city.network.map, city.settings, city.drawn.zones, city.network.uses); });
-  std::vector<PlannedLot> planned;
-  std::map<ZoneType, LandShare> joined;  // pieces refused as lots that joined a neighbour, per zone type
-  PiecesLand pieces;                     // the lots' pieces' land, as the map was last traced into lots
+  CityLots lots;  // each block's lots in a map of the block alone, until the buildings stand
   city.lots = stages.run("lots", [&] {
-    planned = plan_lots(city.blocks, city.settings, city.model_library(), city.channels,
-                        regions ? &regions->lot_plans : nullptr);
-    return with_density(insert_lots(city.network.map, planned, city.settings, &joined, &pieces), city.blocks);
+    const std::vector<PlannedLot> planned = plan_lots(city.blocks, city.settings, city.model_library(), city.channels,
+                                                      regions ? &regions->lot_plans : nullptr);
+    lots = CityLots(city.blocks, planned, city.settings, regions ? &regions->block_lots : nullptr);
+    return with_density(lots.lots(), city.blocks);
   });
   Structures raised = stages.run("buildings", [&] {
     std::vector<Building> mapped = mapped_footprints(city.drawn.buildings, city.network.map, city.mapped);
     attach_building_parts(mapped, city.drawn.building_parts, city.mapped);
     HeldLots held;
-    Structures s = build_on_lots(city, planned, mapped, held, pieces);
+    Structures s = build_on_lots(city, lots, mapped, held);
     check_export_size(s.models, city.model_library());
     // After every generated structure, so that their ids are as without mapped buildings.
     raise_mapped_buildings(mapped, city.drawn.buildings, city.drawn.building_parts, held, city.lots, city.network.map, city.drawn.zones, city.settings,
@@ -149,12 +146,16 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
                            city.mapped);
     s.buildings.insert(s.buildings.end(), std::make_move_iterator(mapped.begin()), std::make_move_iterator(mapped.end()));
     give_stable_ids(s.buildings, s.models);
-    city.lot_land = lot_land(std::move(pieces), city.blocks, joined);
+    city.lot_land = lot_land(lots.pieces(), city.blocks, lots.joined());
+    // The lots are final: the city's map takes the vertices they put on the blocks' edges,
+    // which the ground's zones, road areas and blocks share with them.
+    lots.put_into(city.network.map);
+    city.lots = with_density(lots.lots(), city.blocks);  // some with their neighbours' vertices
     return s;
   });
   city.buildings = std::move(raised.buildings);
   city.models = std::move(raised.models);
-  std::vector<PlannedLot>().swap(planned);  // the lots' exact cells: only the lots and buildings read them
+  lots = CityLots();  // the blocks' exact lots: only the lots and buildings read them
   StandingMap standing;  // what the clutter asks of the map and the lots
   stages.run("ground", [&] {
     give_covered_roads_their_carriageway(city.network.map);

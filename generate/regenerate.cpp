@@ -43,6 +43,7 @@ void RegionCache::next_build(const Sketch& sketch) {
       sketch.settings_text.empty() ? "unknown settings " + std::to_string(++unknown_) : shared_input(sketch);
   road_plans.next_build(shared);
   lot_plans.next_build(shared);
+  block_lots.next_build(shared);
   placements.next_build(shared);
   meshes.next_build(shared);
   ground_pieces.next_build(shared);
@@ -103,6 +104,7 @@ nlohmann::ordered_json reuse_report(const RegionCache& cache) {
   };
   return {{"region_plans", counts(cache.road_plans)},
           {"block_plans", counts(cache.lot_plans)},
+          {"block_lots", counts(cache.block_lots)},
           {"lot_placements", counts(cache.placements)},
           {"structure_meshes", counts(cache.meshes)},
           {"ground_pieces", counts(cache.ground_pieces)}};

@@ -31,6 +31,7 @@ struct TileFiles {
 struct RegionCache {
   Memo<RoadPlan> road_plans;                // per region of the road stage
   Memo<std::vector<PlannedLot>> lot_plans;  // per block
+  Memo<BlockLots> block_lots;               // per block and merge of its unbuilt lots: its lots, from its own map
   Memo<Structures> placements;              // per lot, before it stands on the terrain
   Memo<Mesh> meshes;                        // per building or placed model, for the exports and tiles
   Memo<GroundMesh> ground_pieces;           // per zone, water and road area polygon draped, likewise
@@ -43,10 +44,12 @@ struct RegionCache {
   void next_build(const Sketch& sketch);
   // Items reused and computed in the last build, over the memos.
   int hits() const {
-    return road_plans.hits() + lot_plans.hits() + placements.hits() + meshes.hits() + ground_pieces.hits();
+    return road_plans.hits() + lot_plans.hits() + block_lots.hits() + placements.hits() + meshes.hits() +
+           ground_pieces.hits();
   }
   int misses() const {
-    return road_plans.misses() + lot_plans.misses() + placements.misses() + meshes.misses() + ground_pieces.misses();
+    return road_plans.misses() + lot_plans.misses() + block_lots.misses() + placements.misses() + meshes.misses() +
+           ground_pieces.misses();
   }
 
  private:

@@ -281,6 +281,29 @@ std::optional<Cell> Cell::as_written() const {
   return make_cell(written(outer), std::move(written_holes));
 }
 
+std::optional<Cell> with_vertices_on_edges(const Cell& cell, const std::vector<VertexOnEdge>& added) {
+  bool any = false;
+  auto with = [&](const KindRing& r) {
+    KindRing out;
+    const std::size_t n = r.points.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      out.points.push_back(r.points[i]), out.kinds.push_back(r.kinds[i]), out.rounded.push_back(r.rounded[i]);
+      const Vec2 from = r.rounded[i], to = r.rounded[(i + 1) % n];
+      for (const VertexOnEdge& v : added)
+        if (v.from == from && v.to == to) {
+          out.points.push_back(to_exact(v.at)), out.kinds.push_back(r.kinds[i]), out.rounded.push_back(v.at);
+          any = true;
+        }
+    }
+    return out;
+  };
+  KindRing outer = with(cell.exact().outer);
+  std::vector<KindRing> holes;
+  for (const KindRing& h : cell.exact().holes) holes.push_back(with(h));
+  if (!any) return std::nullopt;
+  return make_cell(std::move(outer), std::move(holes));
+}
+
 std::vector<Vec2> Cell::corners() const {
   const auto& pts = impl_->outer.points;
   std::vector<Point> corners;

@@ -87,6 +87,17 @@ class Cell {
   std::shared_ptr<const Impl> impl_;
 };
 
+// A vertex on an edge from -> to (as rounded) that a cell lacks: one a map has on a
+// region's boundary that the region's outline lacks (PlanarMap::add_outlines).
+struct VertexOnEdge {
+  Vec2 from, to, at;
+};
+
+// The cell with each vertex of `added` put into its edge from -> to (ends as the cell
+// rounds them), in the order given, as a double (for a cell as written); edges none lies on
+// stay as they are. None when none lies on its edges.
+std::optional<Cell> with_vertices_on_edges(const Cell& cell, const std::vector<VertexOnEdge>& added);
+
 // Every vertex written exactly (a double as a hex float, any other coordinate as its exact
 // rational) and every edge's kind: two cells with equal texts are the same cell, vertex for
 // vertex from the same start. A cache's key (generate/city/memo.h). Empty for a Cell().

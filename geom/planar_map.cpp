@@ -79,13 +79,17 @@ void insert_curves(Arrangement& arr, std::vector<Curve>& curves, std::size_t giv
     ends.push_back({to_plain(edges.back()->source()->point()), to_plain(edges.back()->target()->point())});
   }
   // Edges the arrangement has (their ends are its vertices: a new end this near one moves
-  // onto it), and map edges a region's arrangement splits: both keep their pieces in order
-  // along them (a region's map edges are split in place in the map).
+  // onto it), map edges a region's arrangement splits, and a cell's edges in a map of the
+  // cell alone (PlanarMap::of_cell: a block's edges as the city's map has them, which its
+  // lots' map must keep where they are, or its lots leave the block the city writes): all
+  // keep their ends and their pieces in order along them (a region's map edges are split in
+  // place in the map).
   std::vector<bool> monotone(edges.size(), true), given(edges.size(), false);
   for (std::size_t i = 0; i < curves.size(); ++i) {
     const Curve& c = curves[i];
     ends.push_back({to_plain(c.source()), to_plain(c.target())});
-    monotone.push_back(std::any_of(c.data().begin(), c.data().end(), [](const CurveTag& t) { return t.counter == kMapEdge; }));
+    monotone.push_back(std::any_of(c.data().begin(), c.data().end(),
+                                   [](const CurveTag& t) { return t.counter == kMapEdge || t.counter == kCellEdge; }));
     given.push_back(i >= given_from);
   }
   const std::vector<Polyline> lines = snap_round_segments(ends, exact::kSnapStep, monotone, given);

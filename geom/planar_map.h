@@ -90,6 +90,28 @@ class PlanarMap {
   // faces (see insert_within); only what lies inside the region's faces reaches the map.
   void add_ring_within(int region, const Ring& ring, int counter);
   void add_cell_within(int region, const Cell& cell, int counter);
+  // A map of one cell alone (a block, for its lots: docs/design.md, Lots): the cell's
+  // edges exactly as it has them, the faces inside it labelled `inside` and the rest
+  // `outside`. Where cells() meets the outside across one of those edges, it takes the
+  // label across to be label_across(the edge's kind in the cell): what the city's map has
+  // across that edge, which the outside, one face, cannot say.
+  static PlanarMap of_cell(const Cell& cell, int inside, int outside, const std::function<int(int)>& label_across);
+  // In a map of one cell (of_cell), the cell's outline as the map has cut it: each of the
+  // cell's edges split at the vertices the map has on it (where later batches met it, or
+  // snap rounding split it), in the cell's order from the same start. Each piece's kind is
+  // the index of the cell's edge it lies on, counting the outer ring's, then each hole's.
+  Cell outline_as_cut() const;
+
+  // Puts regions' outlines (outline_as_cut of a map of the region's cell alone, whose cell
+  // is the region's boundary as this map has it) into the map: each region's boundary edges
+  // split at the vertices its outline has on them, then the map snap-rounded (the last
+  // batch). So the map's edges hold every vertex the regions' own maps put on them, and
+  // nothing inside the regions is swept again. Returns, per region, the vertices its
+  // boundary now has that its outline lacks (another region's on an edge they share, or
+  // snap rounding's), in order along each edge, for what its own map made to take them.
+  std::vector<std::vector<VertexOnEdge>> add_outlines(const std::vector<int>& region_of_label,
+                                                      const std::vector<Cell>& outline_of_region);
+
   // Inserts what add_*_within queued, region by region: each region's rings are cut
   // against its faces (region_of_label[label]) in a small arrangement of their own and
   // then added to the map edge by edge, so the rest of the map is not swept again. Each

@@ -169,6 +169,9 @@ Handle left_to_right(Handle h) {
 }
 
 constexpr int kMapEdge = INT_MIN;  // tag counter of a map edge copied into a region's own arrangement
+// Tag counter of a cell's edge in PlanarMap::of_cell's map; its aux is the edge's index in
+// the cell (the outer ring's edges, then each hole's).
+constexpr int kCellEdge = INT_MIN + 1;
 
 // Inserts the curves into the arrangement in one sweep (the snapped build: noded first). The
 // curves from `given_from` on are edges given as doubles (PlanarMap::add_ring, add_edge).
@@ -223,6 +226,11 @@ struct PlanarMap::Impl {
   mutable std::unordered_map<const void*, Vec2> rounded;
   // Called before the edges change (never while label_at, cells or dissolve runs).
   void edges_change();
+  // In a map of one cell (PlanarMap::of_cell): the cell, its outside's label (else -1), and
+  // the label across each of its edges, by index.
+  Cell cell;
+  int cell_outside = -1;
+  std::vector<int> cell_across;
   std::vector<Curve> pending;
   std::vector<std::vector<Curve>> within;  // per region, for insert_within()
   std::map<int, std::vector<Point>> polylines;

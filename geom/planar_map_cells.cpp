@@ -193,6 +193,9 @@ std::vector<Cell> PlanarMap::cells(const std::vector<int>& group_of_label, const
   std::vector<Cell> cells;
   auto kind_of = [&](Halfedge h) {
     int l = h->twin()->face()->data();
+    if (l == impl_->cell_outside && l >= 0)  // of_cell: the label across is the cell edge's
+      for (const CurveTag& t : h->curve().data())
+        if (t.counter == kCellEdge) l = impl_->cell_across[t.aux];
     return l >= 0 && l < static_cast<int>(kind_of_label.size()) ? kind_of_label[l] : 0;
   };
   int component = 0;
@@ -206,6 +209,64 @@ std::vector<Cell> PlanarMap::cells(const std::vector<int>& group_of_label, const
                      ++component;
                    });
   return cells;
+}
+
+PlanarMap PlanarMap::of_cell(const Cell& cell, int inside, int outside, const std::function<int(int)>& label_across) {
+  PlanarMap map;
+  std::vector<Curve> curves;
+  std::vector<int>& across = map.impl_->cell_across;
+  auto add_ring = [&](const KindRing& r) {
+    for (std::size_t i = 0; i < r.points.size(); ++i) {
+      add_curve(curves, r.points[i], r.points[(i + 1) % r.points.size()],
+                {kCellEdge, +1, static_cast<int>(across.size())});
+      across.push_back(label_across(r.kinds[i]));
+    }
+  };
+  add_ring(cell.exact().outer);
+  for (const KindRing& h : cell.exact().holes) add_ring(h);
+  insert_curves(map.impl_->arr, curves);
+  label_all_faces(map.impl_->arr, [&](const Windings& w) { return winding_of(w, kCellEdge) != 0 ? inside : outside; });
+  map.impl_->cell = cell;
+  map.impl_->cell_outside = outside;
+  return map;
+}
+
+Cell PlanarMap::outline_as_cut() const {
+  const KindRing& outer = impl_->cell.exact().outer;
+  std::vector<const KindRing*> rings{&outer};
+  for (const KindRing& h : impl_->cell.exact().holes) rings.push_back(&h);
+  // The map's vertices on each of the cell's edges: the ends of the pieces it was cut into.
+  std::vector<std::vector<Arrangement::Vertex_const_handle>> on_edge(impl_->cell_across.size());
+  for (auto e = impl_->arr.edges_begin(); e != impl_->arr.edges_end(); ++e)
+    for (const CurveTag& t : e->curve().data())
+      if (t.counter == kCellEdge) on_edge[t.aux].push_back(e->source()), on_edge[t.aux].push_back(e->target());
+  const std::lock_guard lock(impl_->rounded_mutex);
+  std::vector<KindRing> out;
+  int index = 0;
+  for (const KindRing* ring : rings) {
+    KindRing r;
+    for (std::size_t i = 0; i < ring->points.size(); ++i, ++index) {
+      auto& vertices = on_edge[index];
+      std::sort(vertices.begin(), vertices.end(), [](auto a, auto b) { return &*a < &*b; });
+      vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+      // Along the edge, from its start (distinct vertices: compare_xy decides without a tie).
+      const CGAL::Comparison_result forward =
+          CGAL::compare_xy(ring->points[i], ring->points[(i + 1) % ring->points.size()]);
+      std::sort(vertices.begin(), vertices.end(),
+                [&](auto a, auto b) { return CGAL::compare_xy(a->point(), b->point()) == forward; });
+      r.points.push_back(ring->points[i]), r.kinds.push_back(index), r.rounded.push_back(ring->rounded[i]);
+      // The first is the edge's start and the last its end, the next edge's start.
+      for (std::size_t k = 1; k + 1 < vertices.size(); ++k) {
+        const auto [at, added] = impl_->rounded.try_emplace(&*vertices[k]);
+        if (added) at->second = to_plain(vertices[k]->point());
+        r.points.push_back(vertices[k]->point()), r.kinds.push_back(index), r.rounded.push_back(at->second);
+      }
+    }
+    out.push_back(std::move(r));
+  }
+  KindRing outline = std::move(out.front());
+  out.erase(out.begin());
+  return make_cell(std::move(outline), std::move(out));
 }
 
 std::vector<Cell> split_cell(const Cell& cell, const std::vector<Path>& roads, int road_kind) {

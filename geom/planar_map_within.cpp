@@ -204,4 +204,150 @@ void PlanarMap::insert_within(const std::vector<int>& region_of_label,
   impl_->within.clear();
 }
 
+std::vector<std::vector<VertexOnEdge>> PlanarMap::add_outlines(const std::vector<int>& region_of_label,
+                                                                 const std::vector<Cell>& outline_of_region) {
+  using Vertex = Arrangement::Vertex_handle;
+  using MapHalfedge = Arrangement::Halfedge_handle;
+  const int regions = static_cast<int>(outline_of_region.size());
+  std::vector<std::vector<VertexOnEdge>> beyond(regions);
+  Arrangement& arr = impl_->arr;
+  // Splitting edges keeps every vertex, so the roundings traced so far stay true.
+  std::unordered_map<const void*, Vec2> rounded;
+  rounded.swap(impl_->rounded);
+  impl_->edges_change();
+  auto round = [&](Vertex v) {
+    const auto [at, added] = rounded.try_emplace(&*v);
+    if (added) at->second = to_plain(v->point());
+    return at->second;
+  };
+  const auto region_of = impl_->group_function(region_of_label);
+  auto wanted = [&](int r) { return r >= 0 && r < regions && outline_of_region[r].has_value(); };
+
+  // Each region's boundary edges (the region on their left, another face on their right),
+  // found by their ends as rounded: the outline's edges are the same exact segments.
+  struct Boundary {
+    int region;
+    Vec2 from, to;
+    MapHalfedge h;
+  };
+  auto key = [](const Boundary& b) { return std::tuple(b.region, b.from.x, b.from.y, b.to.x, b.to.y); };
+  std::vector<Boundary> boundary;
+  for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
+    const int r = region_of(f);
+    if (!wanted(r)) continue;
+    for_each_boundary_halfedge(f, [&](Halfedge h) {
+      if (region_of(h->twin()->face()) == r) return;
+      MapHalfedge m = arr.non_const_handle(h);
+      boundary.push_back({r, round(m->source()), round(m->target()), m});
+    });
+  }
+  std::sort(boundary.begin(), boundary.end(), [&](const Boundary& a, const Boundary& b) { return key(a) < key(b); });
+
+  // Each outline edge: the region's boundary edge it lies on, and the outline's vertices inside it.
+  struct OwnPoint {
+    Point point;
+    Vec2 rounded;
+    Vertex vertex;  // once the map has it
+  };
+  struct OutlineEdge {
+    int region;
+    Vertex from, to;
+    Vec2 from_rounded, to_rounded;
+    std::vector<OwnPoint> points;  // in order from `from`
+  };
+  std::vector<OutlineEdge> edges;
+  std::unordered_map<const void*, std::vector<std::pair<int, int>>> points_on;  // map edge -> (outline edge, point)
+  std::vector<MapHalfedge> split_order;  // the map edges to split, each once, left to right
+  for (int r = 0; r < regions; ++r) {
+    if (!wanted(r)) continue;
+    const Cell::Impl& outline = outline_of_region[r].exact();
+    std::vector<const KindRing*> rings{&outline.outer};
+    for (const KindRing& h : outline.holes) rings.push_back(&h);
+    for (const KindRing* ring : rings) {
+      const std::size_t n = ring->points.size();
+      for (std::size_t j = 0; j < n; ++j) {
+        if (ring->kinds[j] == ring->kinds[(j + n - 1) % n]) continue;  // inside an edge of the cell, not its start
+        std::size_t end = (j + 1) % n;
+        while (ring->kinds[end] == ring->kinds[j] && end != j) end = (end + 1) % n;
+        const Boundary probe{r, ring->rounded[j], ring->rounded[end], {}};
+        auto [first, last] = std::equal_range(boundary.begin(), boundary.end(), probe,
+                                              [&](const Boundary& a, const Boundary& b) { return key(a) < key(b); });
+        if (last - first > 1)  // ends that round alike: the one with the same exact ends
+          first = std::find_if(first, last, [&](const Boundary& b) {
+            return b.h->source()->point() == ring->points[j] && b.h->target()->point() == ring->points[end];
+          });
+        if (first == last) continue;  // no edge of the region's there: not an outline of it
+        OutlineEdge e{r, first->h->source(), first->h->target(), ring->rounded[j], ring->rounded[end], {}};
+        for (std::size_t k = (j + 1) % n; k != end; k = (k + 1) % n) e.points.push_back({ring->points[k], ring->rounded[k], {}});
+        if (!e.points.empty()) {
+          const MapHalfedge lr = left_to_right(first->h);
+          auto& on = points_on[&*lr];
+          if (on.empty()) split_order.push_back(lr);
+          for (std::size_t k = 0; k < e.points.size(); ++k) on.push_back({static_cast<int>(edges.size()), static_cast<int>(k)});
+        }
+        edges.push_back(std::move(e));
+      }
+    }
+  }
+
+  // Each map edge split once, at the points of every outline on it (two regions share an
+  // edge where no road runs between them), in order left to right; a point both have is
+  // one vertex.
+  const auto split = arr.geometry_traits()->split_2_object();
+  for (MapHalfedge h : split_order) {
+    auto& on = points_on.at(&*h);
+    auto point = [&](std::pair<int, int> p) -> const Point& { return edges[p.first].points[p.second].point; };
+    std::sort(on.begin(), on.end(), [&](auto a, auto b) { return CGAL::compare_xy(point(a), point(b)) == CGAL::SMALLER; });
+    for (std::size_t k = 0; k < on.size(); ++k) {
+      OwnPoint& own = edges[on[k].first].points[on[k].second];
+      if (k > 0 && point(on[k - 1]) == own.point) {
+        own.vertex = edges[on[k - 1].first].points[on[k - 1].second].vertex;
+        continue;
+      }
+      Traits::X_monotone_curve_2 left, right;
+      split(h->curve(), own.point, left, right);
+      h = arr.split_edge(h, left, right);
+      own.vertex = h->target();
+      rounded.emplace(&*own.vertex, own.rounded);
+      h = h->next();
+    }
+  }
+  snap_round();
+
+  // Along each outline edge, the vertices the map has that the outline lacks, between the
+  // outline's vertices they lie between.
+  for (const OutlineEdge& e : edges) {
+    // The boundary edge leaving `from` with the region on its left towards `to`: one, but
+    // where the boundary touches itself at `from`.
+    MapHalfedge start;
+    int found = 0;
+    auto around = e.from->incident_halfedges(), first = around;  // each with `from` as target
+    do {
+      MapHalfedge out = around->twin();
+      if (region_of(out->face()) != e.region || region_of(out->twin()->face()) == e.region) continue;
+      if (found++ == 0 || (CGAL::collinear(e.from->point(), out->target()->point(), e.to->point()) &&
+                           CGAL::collinear_are_ordered_along_line(e.from->point(), out->target()->point(), e.to->point())))
+        start = out;
+    } while (++around != first);
+    if (found == 0) continue;
+    Vec2 last = e.from_rounded;
+    std::vector<Vec2> waiting;  // vertices the outline lacks, since its last vertex
+    std::size_t next = 0;       // the outline's next vertex along the edge
+    for (MapHalfedge h = start; h->target() != e.to; h = h->next()) {
+      const Vertex v = h->target();
+      if (next < e.points.size() && v == e.points[next].vertex) {
+        for (Vec2 at : waiting) beyond[e.region].push_back({last, e.points[next].rounded, at});
+        waiting.clear();
+        last = e.points[next++].rounded;
+      } else {
+        waiting.push_back(round(v));
+      }
+      if (h->next() == start) break;  // not an edge of the outline after all
+    }
+    for (Vec2 at : waiting) beyond[e.region].push_back({last, e.to_rounded, at});
+  }
+  impl_->rounded.swap(rounded);
+  return beyond;
+}
+
 }  // namespace geom

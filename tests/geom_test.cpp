@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <random>
+#include <set>
 #include <thread>
 
 #include "generate/cancel.h"
@@ -263,6 +264,99 @@ TEST(PlanarMap, InsertWithinKeepsEachRingToItsRegion) {
     for (auto [counter, winding] : w) EXPECT_LT(counter, 10);
     return previous;
   });
+}
+
+TEST(PlanarMap, AMapOfACellAloneKnowsWhatLiesAcrossItsEdgesFromTheirKinds) {
+  // A 10 x 10 cell with a road along its foot (kind 7) and nothing along its other sides
+  // (kind -1), as the city's map traces it.
+  PlanarMap city;
+  city.add_ring(square(0, 0, 10), 0);
+  city.add_ring({{0, -4}, {10, -4}, {10, 0}, {0, 0}}, 1);
+  city.insert_batch();
+  city.label_faces([](const Windings& w) { return geom::winding_of(w, 0) != 0 ? 1 : geom::winding_of(w, 1) != 0 ? 2 : 0; });
+  const std::vector<geom::Cell> traced = city.cells({-1, 0, -1}, {-1, -1, 7});
+  ASSERT_EQ(traced.size(), 1u);
+  // Alone, labels 0 (outside), 1 (a road across), 2 (inside); its left half made label 3.
+  PlanarMap alone = PlanarMap::of_cell(traced[0], 2, 0, [](int kind) { return kind == 7 ? 1 : 0; });
+  alone.add_ring_within(0, {{0, 0}, {5, 0}, {5, 10}, {0, 10}}, 5);
+  alone.insert_within({-1, -1, 0}, [](const Windings& w, int previous) { return w.empty() ? previous : 3; });
+  std::vector<int> groups;
+  const std::vector<geom::Cell> halves = alone.cells({-1, -1, 0, 1}, {100, 200, 300, 400}, &groups);
+  ASSERT_EQ(halves.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    // Each half's foot is across the road; its other outer sides are across the outside,
+    // and its middle side across the other half.
+    const geom::Cell& half = halves[i];
+    EXPECT_EQ(half.area(), 50);
+    EXPECT_EQ(half.edge_kinds(), (std::vector<int>{100, 200, groups[i] == 0 ? 400 : 300}));
+    const auto foot = half.edges_of_kind(200);
+    ASSERT_EQ(foot.size(), 1u);
+    EXPECT_EQ(foot[0].first.y, 0);
+    EXPECT_EQ(foot[0].second.y, 0);
+  }
+}
+
+TEST(PlanarMap, OutlinesPutTheirVerticesOnTheMapsEdgesAndNameThoseANeighbourLacks) {
+  // Two 10 x 10 regions side by side (labels 1 and 2), each cut alone by a ring across the
+  // edge they share: A's ring meets it at y = 3 and 6, B's at y = 4 and 5.
+  PlanarMap city;
+  city.add_ring(square(0, 0, 10), 0);
+  city.add_ring(square(10, 0, 10), 1);
+  city.insert_batch();
+  city.label_faces([](const Windings& w) { return geom::winding_of(w, 0) != 0 ? 1 : geom::winding_of(w, 1) != 0 ? 2 : 0; });
+  const std::vector<int> region_of_label{-1, 0, 1};
+  const std::vector<geom::Cell> cells = city.cells(region_of_label, {0, 0, 0});
+  ASSERT_EQ(cells.size(), 2u);
+  auto alone = [](const geom::Cell& cell, const Ring& ring) {
+    PlanarMap map = PlanarMap::of_cell(cell, 1, 0, [](int) { return 0; });
+    map.add_ring_within(0, ring, 5);
+    map.insert_within({-1, 0, -1}, [](const Windings& w, int previous) { return w.empty() ? previous : 2; });
+    map.snap_round();
+    return map;
+  };
+  const PlanarMap a = alone(cells[0], {{5, 3}, {15, 3}, {15, 6}, {5, 6}});
+  const PlanarMap b = alone(cells[1], {{8, 4}, {15, 4}, {15, 5}, {8, 5}});
+  // Each outline: its cell's edges split where its ring met them, each piece's kind the
+  // index of the cell's edge it lies on.
+  const std::vector<geom::Cell> outlines{a.outline_as_cut(), b.outline_as_cut()};
+  for (const geom::Cell& outline : outlines) {
+    const geom::KindedRing ring = outline.kinded_rings().front();
+    EXPECT_EQ(ring.points.size(), 6u);
+    EXPECT_EQ(std::set<int>(ring.kinds.begin(), ring.kinds.end()), (std::set<int>{0, 1, 2, 3}));
+    EXPECT_EQ(outline.area(), 100);
+  }
+  const std::vector<std::vector<geom::VertexOnEdge>> beyond = city.add_outlines(region_of_label, outlines);
+  EXPECT_EQ(city.counts().vertices, 6u + 4u);
+  EXPECT_EQ(city.counts().faces, 3u);
+  // A's edge runs up x = 10 (the region on its left), B's down it.
+  ASSERT_EQ(beyond.size(), 2u);
+  ASSERT_EQ(beyond[0].size(), 2u);
+  EXPECT_EQ(beyond[0][0].from, (geom::Vec2{10, 3}));
+  EXPECT_EQ(beyond[0][0].to, (geom::Vec2{10, 6}));
+  EXPECT_EQ(beyond[0][0].at, (geom::Vec2{10, 4}));
+  EXPECT_EQ(beyond[0][1].at, (geom::Vec2{10, 5}));
+  ASSERT_EQ(beyond[1].size(), 2u);
+  EXPECT_EQ(beyond[1][0].from, (geom::Vec2{10, 10}));
+  EXPECT_EQ(beyond[1][0].to, (geom::Vec2{10, 5}));
+  EXPECT_EQ(beyond[1][0].at, (geom::Vec2{10, 6}));
+  EXPECT_EQ(beyond[1][1].from, (geom::Vec2{10, 4}));
+  EXPECT_EQ(beyond[1][1].to, (geom::Vec2{10, 0}));
+  EXPECT_EQ(beyond[1][1].at, (geom::Vec2{10, 3}));
+  // A's lot, as written, takes B's two vertices on its edge along x = 10, in order.
+  const std::vector<geom::Cell> lots = a.cells({-1, -1, 0}, {0, 0, 0});
+  ASSERT_EQ(lots.size(), 1u);
+  const std::optional<geom::Cell> written = lots[0].as_written();
+  ASSERT_TRUE(written);
+  const std::optional<geom::Cell> taken = geom::with_vertices_on_edges(*written, beyond[0]);
+  ASSERT_TRUE(taken);
+  const Ring ring = taken->kinded_rings().front().points;
+  const auto at = std::find(ring.begin(), ring.end(), geom::Vec2{10, 3});
+  ASSERT_NE(at, ring.end());
+  std::vector<geom::Vec2> along;
+  for (std::size_t k = 0; k < 4; ++k) along.push_back(ring[(at - ring.begin() + k) % ring.size()]);
+  EXPECT_EQ(along, (std::vector<geom::Vec2>{{10, 3}, {10, 4}, {10, 5}, {10, 6}}));
+  EXPECT_EQ(taken->area(), 15);
+  EXPECT_FALSE(geom::with_vertices_on_edges(*written, beyond[1]));  // none on its edges
 }
 
 TEST(PlanarMap, InsertWithinLabelsAsOneSweepWould) {

@@ -269,6 +269,8 @@ TEST(Regenerate, UnchangedSketchReusesEveryRegionBlockLotAndMesh) {
   EXPECT_GT(cache.road_plans.hits(), 0);
   EXPECT_EQ(cache.road_plans.misses(), 0);
   EXPECT_EQ(cache.lot_plans.misses(), 0);
+  EXPECT_GT(cache.block_lots.hits(), 0);  // each block's lots, from its own map
+  EXPECT_EQ(cache.block_lots.misses(), 0);
   EXPECT_EQ(cache.placements.misses(), 0);
   EXPECT_GT(cache.meshes.hits(), 0);
   EXPECT_EQ(cache.meshes.misses(), 0);

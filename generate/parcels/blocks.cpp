@@ -22,6 +22,9 @@ const Terminal* use_of(const geom::Cell& cell, const std::vector<PlannedUse>& us
 
 std::vector<Block> cut_blocks(CityMap& city_map, const CitySettings& city, const std::vector<ZoneFeature>& zones,
                               const std::vector<PlannedUse>& uses) {
+  // The roads are the map's last batch before the lots; each block's lots are made in a map
+  // of its cell alone (CityLots), which must be its edges as the city's map keeps them.
+  city_map.map.snap_round();
   const std::vector<int> group = city_map.per_label([&](const FaceLabel& f) {
     return f.cover == Cover::Zone && grows_roads(zones[f.zone].type) ? static_cast<int>(zones[f.zone].type)
                                                                              : -1;

@@ -31,6 +31,8 @@ struct Block {
 };
 
 // The blocks, in the map's face order; every face of block b gets a label whose `block` is b.
+// The map is snap-rounded first, so a block's cell is its edges as the map keeps them, the
+// edges of the map of the block alone its lots are made in (CityLots).
 // A block takes the use of the layout's land around a point inside it: a grammar's Park
 // makes it green space, its _Dense and _Sparse its density.
 std::vector<Block> cut_blocks(CityMap& city_map, const CitySettings& city, const std::vector<ZoneFeature>& zones,

@@ -4,7 +4,9 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <limits>
 #include <set>
+#include <unordered_map>
 
 #include <tbb/parallel_for.h>
 
@@ -86,7 +88,6 @@ void check_lot_library(const CitySettings& city, const ModelLibrary* library) {
   }
 }
 
-
 namespace {
 
 // A lot's depth over its width (geom::depth_over_width) across and along its longest
@@ -132,13 +133,18 @@ std::vector<int> edge_kinds(const CityMap& city_map) {
   return city_map.per_label([](const FaceLabel& f) { return f.road_surface() ? LotEdge::kStreet : LotEdge::kInner; });
 }
 
+// What the last tracing of a block's map into lots found: its pieces' land (lot_land reports it).
+struct Traced {
+  PiecesLand land;
+};
+
 // Each planned lot's pieces in the map, those that make sensible lots: on the street, at
 // least min_lot_area, and within kLotShape. A lot's rank orders the kept pieces of its
 // planned lot. The pieces refused once rounded, when `refused` is given, go there. When
-// `land` is given it is made the pieces' land (LotLand's lots and refused, per zone type,
-// in the pieces' order): the last tracing of the map is the one lot_land reports.
+// `traced` is given it is made the pieces' land (LotLand's lots and refused, per zone type,
+// in the pieces' order).
 std::vector<Lot> kept_lots(const CityMap& city_map, const std::vector<PlannedLot>& planned, const CitySettings& city,
-                           std::vector<Lot>* refused = nullptr, PiecesLand* land = nullptr) {
+                           std::vector<Lot>* refused = nullptr, Traced* traced = nullptr) {
   const std::vector<int> group = city_map.per_label([](const FaceLabel& f) { return f.lot; });
   std::vector<int> planned_of, component;
   std::vector<geom::Cell> pieces = city_map.map.cells(group, edge_kinds(city_map), &planned_of, &component);
@@ -155,10 +161,10 @@ std::vector<Lot> kept_lots(const CityMap& city_map, const std::vector<PlannedLot
     geom::Polygon shape = cell->to_plain();
     kept[i] = Lot{plan.block, plan.zone, {}, std::move(*cell), std::move(shape), planned_of[i], 0, component[i], plan.model};
   });
-  if (land) {
-    land->clear();
+  if (traced) {
+    traced->land.clear();
     for (std::size_t i = 0; i < pieces.size(); ++i) {
-      LotLand& l = (*land)[planned[planned_of[i]].zone];
+      LotLand& l = traced->land[planned[planned_of[i]].zone];
       LandShare& share = why[i] ? l.refused[why[i]] : l.lots;
       ++share.count, share.area_m2 += pieces[i].area();
     }
@@ -243,7 +249,7 @@ void make_blocks_whole(CityMap& city_map, const std::map<int, int>& lot_of_block
 // A block none of whose planned lots made a sensible lot (a block a little larger than a
 // lot, cut into corners and slivers) is tried whole, as one lot, rather than left empty.
 std::vector<Lot> with_refused_blocks_whole(CityMap& city_map, const std::vector<PlannedLot>& planned,
-                                           std::vector<Lot> lots, const CitySettings& city, PiecesLand* land) {
+                                           std::vector<Lot> lots, const CitySettings& city, Traced* land) {
   std::set<int> kept_in;
   for (const Lot& lot : lots) kept_in.insert(lot.block);
   std::map<int, int> lot_of_block;
@@ -276,7 +282,7 @@ void relabel_pieces(CityMap& city_map, const std::map<int, int>& lot_of_piece,
 std::vector<Lot> with_refused_pieces_joined(CityMap& city_map, const std::vector<PlannedLot>& planned,
                                             std::vector<Lot> lots, const std::vector<Lot>& refused,
                                             const CitySettings& city, std::map<ZoneType, LandShare>* joined,
-                                            PiecesLand* land) {
+                                            Traced* land) {
   const std::map<int, std::vector<int>> of_block = lots_by_block(lots);
   std::vector<std::vector<const Lot*>> taken(lots.size());  // per lot: the pieces it takes
   std::map<int, int> lot_of_piece;
@@ -306,7 +312,7 @@ std::vector<Lot> with_refused_pieces_joined(CityMap& city_map, const std::vector
 // piece next to no lot stays open.
 std::vector<Lot> with_open_land_joined(CityMap& city_map, const std::vector<PlannedLot>& planned, std::vector<Lot> lots,
                                        const CitySettings& city, std::map<ZoneType, LandShare>* joined,
-                                       PiecesLand* land) {
+                                       Traced* land) {
   std::map<int, ZoneType> zone_of_block;
   for (const PlannedLot& p : planned) zone_of_block.emplace(p.block, p.zone);
   const std::vector<int> group = city_map.per_label([&](const FaceLabel& f) {
@@ -333,10 +339,10 @@ std::vector<Lot> with_open_land_joined(CityMap& city_map, const std::vector<Plan
   return kept_lots(city_map, planned, city, nullptr, land);
 }
 
-}  // namespace
-
-std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
-                             const CitySettings& city, std::map<ZoneType, LandShare>* joined, PiecesLand* land) {
+// The planned lots of a block into its map in one batch, which is then snap-rounded, and
+// traced into lots; pieces refused as lots join a neighbouring lot where they can.
+std::vector<Lot> lots_in_block_map(CityMap& city_map, const std::vector<PlannedLot>& planned,
+                                   const CitySettings& city, std::map<ZoneType, LandShare>* joined, Traced* land) {
   city_map.lots = {city_map.generated_roads.end(), static_cast<int>(planned.size())};
   for (std::size_t l = 0; l < planned.size(); ++l) {
     const int counter = city_map.lots.at(static_cast<int>(l));
@@ -344,8 +350,9 @@ std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& p
     else city_map.map.add_ring_within(planned[l].block, planned[l].ring, counter);
   }
   city_map.insert_lots();
-  // The last batch: the map is snap-rounded now, so every layer written from it, lots
-  // included, rounds without edges crossing.
+  // The block's last batch: its map is snap-rounded now, so its lots round without edges
+  // crossing (the vertices it put on the block's edges go into the city's map:
+  // CityLots::put_into).
   city_map.map.snap_round();
 
   std::vector<Lot> refused;
@@ -355,9 +362,10 @@ std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& p
   return with_refused_blocks_whole(city_map, planned, std::move(lots), city, land);
 }
 
-std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
-                                    const std::vector<Lot>& lots, const std::vector<char>& built,
-                                    bool last, const CitySettings& city, UnbuiltLots& tally, PiecesLand* land) {
+// CityLots::merge_unbuilt_lots in one block's map.
+std::vector<Lot> merged_unbuilt_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
+                                     const std::vector<Lot>& lots, const std::vector<char>& built, bool last,
+                                     const CitySettings& city, UnbuiltLots& tally, Traced* land) {
   std::map<int, int> lot_of_piece;  // an unbuilt lot's piece -> the planned lot it joins, or -1
   std::vector<char> settled(lots.size(), 0);  // unbuilt lots joined, or kept for another to join
   // The last time, a block still without a building (a small one, cut into lots too small
@@ -390,6 +398,196 @@ std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<Planned
   relabel_pieces(city_map, lot_of_piece);
   make_blocks_whole(city_map, lot_of_block);
   return kept_lots(city_map, planned, city, nullptr, land);
+}
+
+// A map of the block alone: its faces labelled as a block's (block 0), the outside as
+// nothing, and across each edge of its cell a road area where its cell says a road is.
+std::unique_ptr<CityMap> block_map(const geom::Cell& cell) {
+  auto map = std::make_unique<CityMap>();
+  FaceLabel road, inside;
+  road.cover = Cover::Road, road.road = 0;
+  inside.cover = Cover::Zone, inside.block = 0;
+  const int outside = map->label_index(FaceLabel{}), across = map->label_index(road), in = map->label_index(inside);
+  map->map = geom::PlanarMap::of_cell(cell, in, outside,
+                                      [&](int kind) { return BlockEdge::is_road(kind) ? across : outside; });
+  return map;
+}
+
+BlockLots first_lots(CityMap& map, const std::vector<PlannedLot>& planned, const CitySettings& city) {
+  BlockLots out;
+  Traced traced;
+  out.lots = lots_in_block_map(map, planned, city, &out.joined, &traced);
+  out.pieces = std::move(traced.land);
+  out.outline = map.map.outline_as_cut();  // merges relabel faces only: it stays
+  return out;
+}
+
+BlockLots merged(CityMap& map, const std::vector<PlannedLot>& planned, const BlockLots& before,
+                 const std::vector<char>& built, bool last, const CitySettings& city) {
+  BlockLots out;
+  out.joined = before.joined, out.unbuilt = before.unbuilt;
+  Traced traced;
+  out.lots = merged_unbuilt_lots(map, planned, before.lots, built, last, city, out.unbuilt, &traced);
+  out.pieces = std::move(traced.land), out.outline = before.outline;
+  return out;
+}
+
+void add_land(PiecesLand& sum, const PiecesLand& land) {
+  for (const auto& [zone, l] : land) {
+    LotLand& s = sum[zone];
+    s.lots.count += l.lots.count, s.lots.area_m2 += l.lots.area_m2;
+    for (const auto& [why, share] : l.refused) s.refused[why].count += share.count, s.refused[why].area_m2 += share.area_m2;
+  }
+}
+
+}  // namespace
+
+struct CityLots::BlockMap {
+  int index = 0;          // the block's index in the city's blocks
+  int first_planned = 0;  // its first planned lot's index in the city's
+  geom::Cell cell;
+  std::vector<PlannedLot> planned;  // its own, each of block 0
+  std::string key;                  // what its lots so far are made from, with a memo
+  std::vector<std::pair<std::vector<char>, bool>> merges;  // each merge so far: its lots built, and `last`
+  std::unique_ptr<CityMap> map;     // its map as `made` left it, while a merge made it in this build
+  BlockLots made;
+
+  // Its map made again up to `made` (the lots stage keeps none, nor does a memo), from its
+  // cell, planned lots and merges.
+  void remake(const CitySettings& city) {
+    map = block_map(cell);
+    BlockLots lots = first_lots(*map, planned, city);
+    for (const auto& [built, last] : merges) lots = merged(*map, planned, lots, built, last, city);
+  }
+};
+
+CityLots::CityLots(const std::vector<Block>& blocks, const std::vector<PlannedLot>& planned, const CitySettings& city,
+                   Memo<BlockLots>* memo)
+    : city_(&city), memo_(memo) {
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    blocks_.push_back(std::make_unique<BlockMap>());
+    blocks_.back()->index = static_cast<int>(b), blocks_.back()->cell = blocks[b].cell;
+  }
+  for (std::size_t l = 0; l < planned.size(); ++l) {
+    BlockMap& b = *blocks_.at(planned[l].block);
+    if (b.planned.empty()) b.first_planned = static_cast<int>(l);
+    b.planned.push_back(planned[l]);
+    b.planned.back().block = 0;
+  }
+  const CancelCheck cancel;
+  tbb::parallel_for(std::size_t(0), blocks_.size(), [&](std::size_t i) {
+    cancel.check();
+    BlockMap& b = *blocks_[i];
+    if (b.planned.empty()) return;
+    // The map is not kept: few blocks have lots no placer builds on (about one in twelve
+    // in the 10 km city), and every block's map held through the placing was a quarter of
+    // the memory; a merge makes it again (BlockMap::remake).
+    auto make = [&] { return first_lots(*block_map(b.cell), b.planned, city); };
+    if (!memo) {
+      b.made = make();
+      return;
+    }
+    // All its lots are made from: its cell (its edges' kinds say where roads are) and its plan.
+    b.key = "block " + geom::exact_text(b.cell) + " lots";
+    for (const PlannedLot& p : b.planned) {
+      b.key += " zone " + std::to_string(static_cast<int>(p.zone)) + " model " + std::to_string(p.model.value_or(-1)) + " ";
+      if (p.ring.empty()) b.key += geom::exact_text(p.cell);
+      else append_key(b.key, p.ring);
+    }
+    b.made = memo->get(b.key, make);
+  });
+}
+
+CityLots::CityLots() = default;
+CityLots::~CityLots() = default;
+CityLots::CityLots(CityLots&&) noexcept = default;
+CityLots& CityLots::operator=(CityLots&&) noexcept = default;
+
+std::vector<Lot> CityLots::lots() const {
+  std::vector<Lot> lots;
+  for (const auto& b : blocks_)
+    for (Lot lot : b->made.lots) {
+      lot.block = b->index, lot.planned += b->first_planned;
+      lots.push_back(std::move(lot));
+    }
+  return lots;
+}
+
+void CityLots::merge_unbuilt_lots(const std::vector<char>& built, bool last) {
+  std::vector<std::size_t> first_lot(blocks_.size(), 0);
+  for (std::size_t i = 0, n = 0; i < blocks_.size(); ++i) first_lot[i] = n, n += blocks_[i]->made.lots.size();
+  const CancelCheck cancel;
+  tbb::parallel_for(std::size_t(0), blocks_.size(), [&](std::size_t i) {
+    cancel.check();
+    BlockMap& b = *blocks_[i];
+    const auto from = built.begin() + static_cast<std::ptrdiff_t>(first_lot[i]);
+    const std::vector<char> flags(from, from + static_cast<std::ptrdiff_t>(b.made.lots.size()));
+    // A block whose lots are all built keeps them as they are.
+    if (std::all_of(flags.begin(), flags.end(), [](char c) { return c != 0; })) return;
+    bool made_here = false;
+    auto merge = [&] {
+      if (!b.map) b.remake(*city_);
+      made_here = true;
+      return merged(*b.map, b.planned, b.made, flags, last, *city_);
+    };
+    if (!memo_) {
+      b.made = merge();
+    } else {
+      b.key += last ? " merged last " : " merged ";
+      for (char c : flags) b.key += c ? '1' : '0';
+      b.made = memo_->get(b.key, merge);
+    }
+    b.merges.emplace_back(flags, last);
+    if (!made_here || last) b.map.reset();  // it is as the merge before left it, or no merge follows
+  });
+}
+
+PiecesLand CityLots::pieces() const {
+  PiecesLand sum;
+  for (const auto& b : blocks_) add_land(sum, b->made.pieces);
+  return sum;
+}
+
+std::map<ZoneType, LandShare> CityLots::joined() const {
+  std::map<ZoneType, LandShare> sum;
+  for (const auto& b : blocks_)
+    for (const auto& [zone, share] : b->made.joined) sum[zone].count += share.count, sum[zone].area_m2 += share.area_m2;
+  return sum;
+}
+
+UnbuiltLots CityLots::unbuilt() const {
+  UnbuiltLots sum;
+  for (const auto& b : blocks_) {
+    sum.merged += b->made.unbuilt.merged, sum.left_open += b->made.unbuilt.left_open;
+    sum.left_open_m2 += b->made.unbuilt.left_open_m2;
+  }
+  return sum;
+}
+
+void CityLots::put_into(CityMap& city_map) {
+  std::vector<geom::Cell> outlines(blocks_.size());
+  for (const auto& b : blocks_) {
+    b->map.reset();
+    outlines[b->index] = b->made.outline;
+  }
+  const std::vector<std::vector<geom::VertexOnEdge>> beyond =
+      city_map.map.add_outlines(city_map.per_label([](const FaceLabel& f) { return f.road_surface() ? -1 : f.block; }),
+                                outlines);
+  // A block's map sees its cell alone: where another block's lots put vertices on an edge
+  // they share (no road between them), or the city's snap rounding split one, its lots along
+  // that edge take those vertices too, so that written they follow their block's edge.
+  const CancelCheck cancel;
+  tbb::parallel_for(std::size_t(0), blocks_.size(), [&](std::size_t i) {
+    BlockMap& b = *blocks_[i];
+    if (beyond[b.index].empty()) return;
+    cancel.check();
+    for (Lot& lot : b.made.lots) {
+      std::optional<geom::Cell> cell = geom::with_vertices_on_edges(lot.cell, beyond[b.index]);
+      if (!cell) continue;
+      lot.cell = std::move(*cell);
+      lot.polygon = lot.cell.to_plain();
+    }
+  });
 }
 
 std::map<ZoneType, LotLand> lot_land(PiecesLand pieces, const std::vector<Block>& blocks,

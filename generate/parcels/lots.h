@@ -1,11 +1,13 @@
-// Lots inside blocks (docs/design.md, Lots), exact and in the same planar map.
+// Lots inside blocks (docs/design.md, Lots), exact, each block's in a map of the block alone;
+// the city's map takes only the vertices they put on the blocks' edges.
 // Lot corners are computed in doubles and rounded to the grid, so every lot edge is a grid
 // line; a lot is labelled only on faces of its own block, so where it would cross a road it
 // is cut back exactly there, and where lots overlap the first one listed owns the overlap.
 #pragma once
 
-#include <optional>
 #include <map>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,7 +31,7 @@ struct Lot {
   geom::Polygon polygon;   // the same, as a plain polygon
   int planned = -1;        // the planned lot it is a piece of (its faces' FaceLabel::lot)
   int rank = 0;            // its order among the planned lot's pieces kept as lots
-  int piece = -1;          // its component among the map's lot faces (geom::PlanarMap::cells)
+  int piece = -1;          // its component among its block's map's lot faces (geom::PlanarMap::cells)
   std::optional<int> model = std::nullopt;  // a library lot's model
 };
 // The kind of a lot cell's edge (its geom::Cell edge tag).
@@ -72,17 +74,9 @@ struct LotLand {
 };
 
 // The map's pieces of lot land as they were last traced into lots, per zone type: LotLand's
-// `lots` and `refused` only. insert_lots and merge_unbuilt_lots make it from the tracing that
-// made their lots, so lot_land needs no tracing of its own.
+// `lots` and `refused` only. Each block's map makes it from the tracing that made its lots,
+// so lot_land needs no tracing of its own.
 using PiecesLand = std::map<ZoneType, LotLand>;
-
-// The planned lots into the map in one batch; faces of a block then know the lot planned
-// there that they lie in. Pieces refused as lots join a neighbouring lot where they can
-// (counted in `joined`, per zone type). Returns the lots as they ended up, and their
-// pieces' land in `pieces`.
-std::vector<Lot> insert_lots(CityMap& city_map, const std::vector<PlannedLot>& lots,
-                             const CitySettings& city, std::map<ZoneType, LandShare>* joined = nullptr,
-                             PiecesLand* pieces = nullptr);
 
 // What merge_unbuilt_lots did, for report.json.
 struct UnbuiltLots {
@@ -91,15 +85,70 @@ struct UnbuiltLots {
   double left_open_m2 = 0;  // their land
 };
 
-// Lots no placer could build on (built[i] is 0), too small or too sharp for the zone's
-// smallest building: each is joined, in the map, to the built lot of its block it shares
-// the longest edge with (its neighbour along the street, mostly); else, unless `last`, to
-// such an unbuilt lot, since the two may hold a building together; else, when `last`, it
-// is no lot and its land is open. Returns the lots as they now are, in the map's order, and
-// their pieces' land in `pieces`.
-std::vector<Lot> merge_unbuilt_lots(CityMap& city_map, const std::vector<PlannedLot>& planned,
-                                    const std::vector<Lot>& lots, const std::vector<char>& built, bool last,
-                                    const CitySettings& city, UnbuiltLots& tally, PiecesLand* pieces = nullptr);
+// A block's lots as a map of the block alone makes them (docs/design.md, Lots): a pure
+// function of the block's exact cell, its planned lots and, after a merge, which of its lots
+// were built on, kept in a memo by those (RegionCache::block_lots). Its indices are the
+// block's own: every Lot::block is 0, and Lot::planned and the faces' lots count the block's
+// planned lots.
+struct BlockLots {
+  std::vector<Lot> lots;  // in the block's map's face order
+  PiecesLand pieces;      // the land of the pieces of its map's last tracing into lots
+  std::map<ZoneType, LandShare> joined;  // pieces refused as lots that a neighbouring lot took
+  UnbuiltLots unbuilt;    // what its merges of unbuilt lots did, all of them
+  // The block's cell as its map cut it (geom::PlanarMap::outline_as_cut): with the vertices
+  // its lots put on its edges, which the city's map takes (CityLots::put_into).
+  geom::Cell outline;
+};
+
+// The lots of every block: each block's planned lots cut, snap-rounded, traced and merged in
+// a map of the block alone (geom::PlanarMap::of_cell), blocks in parallel. The city's map
+// never holds them: once they are final it takes the vertices they put on the blocks' edges
+// (put_into). Pieces refused as lots join a neighbouring lot where they can.
+// (docs/design.md, Lots.)
+class CityLots {
+ public:
+  // `planned`: plan_lots' lots, block by block in order. With a memo, a block whose cell and
+  // planned lots are as before takes its lots from it, and so after each merge.
+  CityLots(const std::vector<Block>& blocks, const std::vector<PlannedLot>& planned, const CitySettings& city,
+           Memo<BlockLots>* memo = nullptr);
+  CityLots();  // no blocks
+  ~CityLots();
+  CityLots(CityLots&&) noexcept;
+  CityLots& operator=(CityLots&&) noexcept;
+
+  // The city's lots: block by block, each block's in its map's order; Lot::block and
+  // Lot::planned are the city's, Lot::piece its block map's.
+  std::vector<Lot> lots() const;
+
+  // Lots no placer could build on (built[i] is 0 for lots()[i]), too small or too sharp for
+  // the zone's smallest building: each is joined, in its block's map, to the built lot of its
+  // block it shares the longest edge with (its neighbour along the street, mostly); else,
+  // unless `last`, to such an unbuilt lot, since the two may hold a building together; else,
+  // when `last`, it is no lot and its land is open. The last time, a block still without a
+  // building is tried whole, as one lot. lots() are then the lots as they now are.
+  void merge_unbuilt_lots(const std::vector<char>& built, bool last);
+
+  // The pieces' land of every block's last tracing, the pieces joined to a neighbour, and
+  // what the merges did, summed over the blocks in order.
+  PiecesLand pieces() const;
+  std::map<ZoneType, LandShare> joined() const;
+  UnbuiltLots unbuilt() const;
+
+  // Puts into the city's map the vertices each block's map has on the block's edges (the
+  // lots' corners and crossings there, and its snap rounding's), and snap-rounds it, so the
+  // zones, road areas and blocks written from it share every vertex with the lots along
+  // them; the lots themselves stay out of it. A block's lots then take the vertices the
+  // city's map has on their block's edges that its own map lacked (another block's, across
+  // an edge with no road; lots() changes for them). The blocks' maps are freed.
+  void put_into(CityMap& city_map);
+
+  struct BlockMap;  // one block's map and lots (lots.cpp)
+
+ private:
+  std::vector<std::unique_ptr<BlockMap>> blocks_;
+  const CitySettings* city_ = nullptr;
+  Memo<BlockLots>* memo_ = nullptr;
+};
 
 // The blocks' land (LotLand) from the pieces' land of the map's last tracing, the blocks and
 // the pieces joined to a neighbour.
