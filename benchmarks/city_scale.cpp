@@ -2,6 +2,7 @@
 // counts per stage and the peak memory. Measures; asserts nothing.
 //
 //   build/release/benchmarks/exacity_scale [SKETCH] [--threads N] [--until blocks|lots] [--models LIBRARY]
+//                                          [--3d-export RUNS]
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -41,6 +42,7 @@ struct ScaleOptions {
   fs::path sketch_path = fs::path(EXACITY_SOURCE_DIR) / "benchmarks" / "city_10km.geojson", models;
   int threads = 1;
   std::string until;
+  int three_d_runs = 0;  // --3d-export: the city built once, then only its 3D export, this many times
 };
 
 ScaleOptions parse_options(int argc, char** argv) {
@@ -49,6 +51,7 @@ ScaleOptions parse_options(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) o.threads = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--until") && i + 1 < argc) o.until = argv[++i];
     else if (!std::strcmp(argv[i], "--models") && i + 1 < argc) o.models = argv[++i];
+    else if (!std::strcmp(argv[i], "--3d-export") && i + 1 < argc) o.three_d_runs = std::atoi(argv[++i]);
     else o.sketch_path = argv[i];
   }
   return o;
@@ -80,6 +83,31 @@ void run_road_stages(const Sketch& sketch, bool with_lots) {
     row("lots", seconds_since(t), std::to_string(lots.size()) + " lots");
   }
   std::printf("\nroads and blocks: %.3f s; peak memory %.0f MiB\n", roads_s + blocks_s, peak_resident_mib());
+}
+
+// The city built once, then its 3D export (write_3d_files, as the "3d export" stage runs
+// it) `runs` times into one folder: the runs' spread says how much of a change in that
+// stage's seconds is the machine's.
+void run_3d_export(const Sketch& sketch, int runs) {
+  const fs::path out = fs::temp_directory_path() / ("exacity-scale." + std::to_string(::getpid()));
+  fs::remove_all(out);
+  fs::create_directories(out);
+  StageClock clock(nullptr, kCityStages);
+  const City city = build_city(sketch, clock);
+  std::printf("| run |  seconds | CPU s    | sys s    | faults    | counts\n"
+              "|-----|----------|----------|----------|-----------|-------\n");
+  for (int r = 0; r < runs; ++r) {
+    const auto t = std::chrono::steady_clock::now();
+    const double cpu = bench::cpu_seconds();
+    const bench::KernelUse k = bench::kernel_use();
+    const ThreeDCounts counts = write_3d_files(city, out);
+    const bench::KernelUse k2 = bench::kernel_use();
+    std::printf("| %3d | %8.3f | %8.3f | %8.3f | %9ld | %zu mesh faces; glTF %zu triangles, %zu instances\n", r + 1,
+                seconds_since(t), bench::cpu_seconds() - cpu, k2.system_s - k.system_s, k2.faults - k.faults,
+                counts.mesh.faces, counts.gltf.triangles, counts.gltf.instances);
+    std::fflush(stdout);
+  }
+  std::printf("\noutputs in %s\n", out.string().c_str());
 }
 
 // The counts column of the full run's row for one stage.
@@ -137,9 +165,10 @@ void run_every_stage(const Sketch& sketch) {
 void run(const ScaleOptions& o);
 
 constexpr const char* kUsage =
-    "usage: exacity_scale [SKETCH] [--threads N] [--until blocks|lots] [--models LIBRARY]\n"
+    "usage: exacity_scale [SKETCH] [--threads N] [--until blocks|lots] [--models LIBRARY] [--3d-export RUNS]\n"
     "  runs SKETCH (default benchmarks/city_10km.geojson) through every stage, or until the blocks or lots,\n"
-    "  and prints each stage's seconds and counts and the peak memory\n";
+    "  and prints each stage's seconds and counts and the peak memory; with --3d-export, builds the city once\n"
+    "  and times its 3D export RUNS times\n";
 
 int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i)
@@ -161,5 +190,6 @@ void run(const ScaleOptions& o) {
   std::printf("sketch %s%s%s, %d thread(s)\n\n", o.sketch_path.string().c_str(), sketch.models.empty() ? "" : ", models ",
               sketch.models.string().c_str(), o.threads);
   if (o.until == "blocks" || o.until == "lots") run_road_stages(sketch, o.until == "lots");
+  else if (o.three_d_runs > 0) run_3d_export(sketch, o.three_d_runs);
   else run_every_stage(sketch);
 }

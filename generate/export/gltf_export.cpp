@@ -180,7 +180,7 @@ class Glb {
       node_text_ += ']';
     }
     if (n.mesh != -1) member("mesh"), append_number(node_text_, n.mesh);
-    if (!n.name.empty()) member("name"), node_text_ += json(n.name).dump();
+    if (!n.name.empty()) member("name"), append_json_string(node_text_, n.name);
     numbers("rotation", n.rotation);
     numbers("scale", n.scale);
     numbers("translation", n.translation);

@@ -5,6 +5,7 @@
 
 #include "generate/cancellable_invoke.h"
 #include "generate/city/format_number.h"
+#include "generate/city/number_texts.h"
 #include "generate/city/palette.h"
 #include "generate/errors.h"
 #include "generate/export/geojson.h"
@@ -51,6 +52,7 @@ struct WalkPiece {
   int layer = -1;
   bool triangles = false;
   std::size_t first = 0;
+  std::size_t vertices = 0, faces = 0;  // the piece's, for its text's room
 };
 
 template <typename Out>
@@ -77,13 +79,16 @@ std::string material_name(ZoneType zone, Surface s) {
 // The OBJ file's text (its indices from 1) and PLY's vertices, as the walk gives them.
 struct ObjAndPlyVertices {
   std::string obj, ply;
+  NumberTexts numbers;
   void object(int building) { obj += "o building_", append_number(obj, building), obj += '\n'; }
   void object(const GroundLayer& layer) { obj += "o " + layer.name + "\nusemtl " + layer.name + '\n'; }
-  void use(ZoneType zone, Surface s) { obj += "usemtl " + material_name(zone, s) + '\n'; }
+  void use(ZoneType zone, Surface s) {
+    obj += "usemtl ", obj += name(zone), obj += '_', obj += kSurfaceNames[static_cast<int>(s)], obj += '\n';
+  }
   void vertex(double x, double y, double z) {
     const std::size_t start = obj.size();
     obj += "v ";
-    append_number(obj, x), obj += ' ', append_number(obj, y), obj += ' ', append_number(obj, z), obj += '\n';
+    numbers.append(obj, x), obj += ' ', numbers.append(obj, y), obj += ' ', numbers.append(obj, z), obj += '\n';
     ply.append(obj, start + 2);
   }
   template <typename Indices>
@@ -151,15 +156,19 @@ MeshCounts write_meshes(const MeshedCity& city, const std::filesystem::path& obj
   for (std::size_t begin = 0; begin < meshes.size(); begin += kStructuresAPiece) {
     WalkPiece piece{begin, std::min(begin + kStructuresAPiece, meshes.size()), -1, false, counts.vertices};
     for (std::size_t i = piece.begin; i < piece.end; ++i)
-      counts.vertices += meshes[i].points.size(), counts.faces += meshes[i].face_count();
+      piece.vertices += meshes[i].points.size(), piece.faces += meshes[i].face_count();
+    counts.vertices += piece.vertices, counts.faces += piece.faces;
     pieces.push_back(piece);
   }
   for (std::size_t k = 0; k < ground.size(); ++k) {
     const GroundMesh& mesh = ground[k].mesh;
     for (bool triangles : {false, true}) {
       const std::size_t n = triangles ? mesh.triangles.size() : mesh.vertices.size();
-      for (std::size_t begin = 0; begin == 0 || begin < n; begin += kLayerPiece)
-        pieces.push_back({begin, std::min(begin + kLayerPiece, n), static_cast<int>(k), triangles, counts.vertices});
+      for (std::size_t begin = 0; begin == 0 || begin < n; begin += kLayerPiece) {
+        const std::size_t end = std::min(begin + kLayerPiece, n);
+        pieces.push_back({begin, end, static_cast<int>(k), triangles, counts.vertices, triangles ? 0 : end - begin,
+                          triangles ? end - begin : 0});
+      }
     }
     counts.vertices += mesh.vertices.size(), counts.faces += mesh.triangles.size();
   }
@@ -173,10 +182,19 @@ MeshCounts write_meshes(const MeshedCity& city, const std::filesystem::path& obj
       << "\nproperty list uchar int vertex_indices\nproperty uchar surface\nend_header\n";
   // The pieces' text made at once and written in order: OBJ with PLY's vertices, then PLY's faces.
   make_in_order<ObjAndPlyVertices>(
-      pieces.size(), [&](std::size_t i, ObjAndPlyVertices& text) { walk(pieces[i], text); },
+      pieces.size(),
+      [&](std::size_t i, ObjAndPlyVertices& text) {
+        // Room for the text at once (about a vertex's and a face's line each), not grown by doubling.
+        text.obj.reserve(48 * pieces[i].vertices + 40 * pieces[i].faces), text.ply.reserve(40 * pieces[i].vertices);
+        walk(pieces[i], text);
+      },
       [&](const ObjAndPlyVertices& text) { write_text(obj, text.obj), write_text(ply, text.ply); });
   make_in_order<PlyFaces>(
-      pieces.size(), [&](std::size_t i, PlyFaces& text) { walk(pieces[i], text); },
+      pieces.size(),
+      [&](std::size_t i, PlyFaces& text) {
+        text.ply.reserve(40 * pieces[i].faces);
+        walk(pieces[i], text);
+      },
       [&](const PlyFaces& text) { write_text(ply, text.ply); });
   if (!obj || !mtl || !ply) throw UserError(obj_file.string() + ": write failed (disk full?)");
   return counts;
