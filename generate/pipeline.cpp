@@ -160,11 +160,12 @@ City build_city(const Sketch& sketch, StageClock& stages, std::shared_ptr<Region
   stages.run("ground", [&] {
     give_covered_roads_their_carriageway(city.network.map);
     merge_sliver_road_areas(city.network.map);
-    city.ground = extract_ground(city.network.map, city.blocks, city.lots, city.drawn.zones);
     // The map's last change was the labels above: what is read of it, the blocks and the
-    // lots from here on is taken now, so that they can be freed before the clutter.
-    city.exact_report = exact_work_report(city);
-    standing = standing_map(city.network.map, city.lots);
+    // lots from here on is taken now, so that they can be freed before the clutter; at once,
+    // as each only reads the map (the face locator took a fifth of the stage).
+    invoke_cancellable([&] { city.ground = extract_ground(city.network.map, city.blocks, city.lots, city.drawn.zones); },
+                       [&] { city.exact_report = exact_work_report(city); },
+                       [&] { standing = standing_map(city.network.map, city.lots); });
   });
   if (exact == ExactWork::Freed) {
     city.network = {}, city.blocks = {}, city.lots = {}, city.held_lots = {}, city.held_m2 = {};

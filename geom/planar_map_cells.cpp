@@ -8,6 +8,8 @@
 #include <unordered_map>
 #include <CGAL/Polygon_2_algorithms.h>
 #include <CGAL/Unique_hash_map.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "geom/grid.h"
 #include "geom/split_loops.h"
@@ -123,42 +125,91 @@ void trace_components(const Arrangement& arr, GroupOf group_of, Emit emit) {
 // traced share most of their vertices, and rounding an exact one is costly. A PlanarMap's
 // own are kept across its tracings (PlanarMap::Impl::rounded), which the lots and ground
 // stages repeat after each relabelling; a small arrangement's, for one tracing.
+//
+// A tracing asks for each vertex's place in the table (which stays where it is as the
+// table grows), then rounds the vertices new to it at once on TBB's threads (round_new),
+// then reads the places: each rounding is the vertex's own, so the table is the same
+// whatever the thread count.
 class RoundedVertices {
  public:
   RoundedVertices() : rounded_(own_) {}
   explicit RoundedVertices(std::unordered_map<const void*, Vec2>& kept) : rounded_(kept) {}
-  Vec2 operator()(const Halfedge& h) {
+  const Vec2* place(const Halfedge& h) {
     const auto [at, added] = rounded_.try_emplace(&*h->source());
-    if (added) at->second = to_plain(h->source()->point());
-    return at->second;
+    if (added) new_.push_back({&at->second, h->source()});
+    return &at->second;
+  }
+  void round_new() {
+    auto round = [&](std::size_t i) { *new_[i].first = to_plain(new_[i].second->point()); };
+    if (new_.size() < 512) {  // a small arrangement's: not worth the threads
+      for (std::size_t i = 0; i < new_.size(); ++i) round(i);
+    } else {
+      // Isolated: a thread waiting here takes no other task, which could trace this map
+      // again under the lock the caller holds.
+      tbb::this_task_arena::isolate([&] { tbb::parallel_for(std::size_t(0), new_.size(), round); });
+    }
+    new_.clear();
   }
 
  private:
   std::unordered_map<const void*, Vec2> own_;
   std::unordered_map<const void*, Vec2>& rounded_;
+  std::vector<std::pair<Vec2*, Arrangement::Vertex_const_handle>> new_;
 };
 
-Ring plain_ring(const std::vector<Halfedge>& loop, RoundedVertices& rounded) {
-  Ring ring;
-  for (const Halfedge& h : loop) ring.push_back(rounded(h));
+// A loop's vertices' places in RoundedVertices, rounded once round_new() has run.
+using PlacedLoop = std::vector<const Vec2*>;
+
+PlacedLoop placed_loop(const std::vector<Halfedge>& loop, RoundedVertices& rounded) {
+  PlacedLoop places;
+  places.reserve(loop.size());
+  for (const Halfedge& h : loop) places.push_back(rounded.place(h));
+  return places;
+}
+
+std::vector<Vec2> plain_ring(const PlacedLoop& places) {
+  std::vector<Vec2> ring;
+  ring.reserve(places.size());
+  for (const Vec2* p : places) ring.push_back(*p);
   return ring;
 }
 
-// Cells from traced polygons; kind_of(h) gives the kind of boundary halfedge h.
+// A cell traced, its rings' roundings still to read.
+struct PlacedCell {
+  KindRing outer;
+  std::vector<KindRing> holes;
+  PlacedLoop outer_places;
+  std::vector<PlacedLoop> hole_places;
+};
+
+// Cells from traced polygons, to finish() once rounded; kind_of(h) gives the kind of
+// boundary halfedge h.
 template <typename KindOf>
 void add_cells(const std::vector<LoopPolygon>& polygons, KindOf kind_of, RoundedVertices& rounded,
-               std::vector<Cell>& out) {
+               std::vector<PlacedCell>& out) {
   auto ring = [&](const std::vector<Halfedge>& loop) {
     KindRing r;
-    for (const Halfedge& h : loop)
-      r.points.push_back(h->source()->point()), r.kinds.push_back(kind_of(h)), r.rounded.push_back(rounded(h));
+    r.points.reserve(loop.size()), r.kinds.reserve(loop.size());
+    for (const Halfedge& h : loop) r.points.push_back(h->source()->point()), r.kinds.push_back(kind_of(h));
     return r;
   };
   for (const LoopPolygon& p : polygons) {
-    std::vector<KindRing> holes;
-    for (const auto& h : p.holes) holes.push_back(ring(h));
-    out.push_back(make_cell(ring(p.outer), std::move(holes)));
+    PlacedCell c{ring(p.outer), {}, placed_loop(p.outer, rounded), {}};
+    for (const auto& h : p.holes) c.holes.push_back(ring(h)), c.hole_places.push_back(placed_loop(h, rounded));
+    out.push_back(std::move(c));
   }
+}
+
+// The cells, their vertices rounded (RoundedVertices::round_new).
+std::vector<Cell> finish(std::vector<PlacedCell> placed) {
+  std::vector<Cell> cells;
+  cells.reserve(placed.size());
+  for (PlacedCell& c : placed) {
+    c.outer.rounded = plain_ring(c.outer_places);
+    for (std::size_t k = 0; k < c.holes.size(); ++k) c.holes[k].rounded = plain_ring(c.hole_places[k]);
+    cells.push_back(make_cell(std::move(c.outer), std::move(c.holes)));
+  }
+  return cells;
 }
 
 }  // namespace
@@ -177,20 +228,33 @@ std::vector<std::vector<Dissolved>> PlanarMap::dissolve(const std::vector<int>& 
   std::vector<std::vector<Dissolved>> result(group_count);
   const std::lock_guard lock(impl_->rounded_mutex);
   RoundedVertices rounded(impl_->rounded);
+  struct Placed {
+    int group, component;
+    std::vector<PlacedLoop> loops;  // the outer loop, then the holes
+  };
+  std::vector<Placed> placed;
+  std::vector<std::vector<int>> neighbours;  // per component
   trace_components(impl_->arr, impl_->group_function(group_of_label),
-                   [&](int g, const std::vector<LoopPolygon>& polygons, const std::vector<int>& neighbours) {
+                   [&](int g, const std::vector<LoopPolygon>& polygons, const std::vector<int>& around) {
+                     neighbours.push_back(around);
                      for (const LoopPolygon& lp : polygons) {
-                       std::vector<Ring> rings{plain_ring(lp.outer, rounded)};
-                       for (const auto& h : lp.holes) rings.push_back(plain_ring(h, rounded));
-                       for (Polygon& p : untangle(rings)) result[g].push_back({std::move(p), neighbours});
+                       Placed p{g, static_cast<int>(neighbours.size()) - 1, {placed_loop(lp.outer, rounded)}};
+                       for (const auto& h : lp.holes) p.loops.push_back(placed_loop(h, rounded));
+                       placed.push_back(std::move(p));
                      }
                    });
+  rounded.round_new();
+  for (const Placed& p : placed) {
+    std::vector<Ring> rings;
+    for (const PlacedLoop& loop : p.loops) rings.push_back(plain_ring(loop));
+    for (Polygon& polygon : untangle(rings)) result[p.group].push_back({std::move(polygon), neighbours[p.component]});
+  }
   return result;
 }
 
 std::vector<Cell> PlanarMap::cells(const std::vector<int>& group_of_label, const std::vector<int>& kind_of_label,
                                    std::vector<int>* groups, std::vector<int>* components) const {
-  std::vector<Cell> cells;
+  std::vector<PlacedCell> cells;
   auto kind_of = [&](Halfedge h) {
     int l = h->twin()->face()->data();
     if (l == impl_->cell_outside && l >= 0)  // of_cell: the label across is the cell edge's
@@ -208,7 +272,8 @@ std::vector<Cell> PlanarMap::cells(const std::vector<int>& group_of_label, const
                      if (components) components->resize(cells.size(), component);
                      ++component;
                    });
-  return cells;
+  rounded.round_new();
+  return finish(std::move(cells));
 }
 
 PlanarMap PlanarMap::of_cell(const Cell& cell, int inside, int outside, const std::function<int(int)>& label_across) {
@@ -302,12 +367,13 @@ std::vector<Cell> split_cell(const Cell& cell, const std::vector<Path>& roads, i
     }
     return kind;
   };
-  std::vector<Cell> parts;
+  std::vector<PlacedCell> parts;
   RoundedVertices rounded;
   trace_components(arr, group_of, [&](int, const std::vector<LoopPolygon>& polygons, const std::vector<int>&) {
     add_cells(polygons, kind_of, rounded, parts);
   });
-  return parts;
+  rounded.round_new();
+  return finish(std::move(parts));
 }
 
 std::vector<Cell> inset_cell(const Cell& cell, double s) {
@@ -336,13 +402,14 @@ std::vector<Cell> inset_cell(const Cell& cell, double s) {
   for (const KindRing& h : cell.exact().holes) add_bands(h);
   insert_curves(arr, curves);
   label_all_faces(arr, [](const Windings& w) { return winding_of(w, 0) != 0 && winding_of(w, 1) == 0 ? 1 : -1; });
-  std::vector<Cell> parts;
+  std::vector<PlacedCell> parts;
   RoundedVertices rounded;
   trace_components(arr, [](Face f) { return f->data() == 1 ? 0 : -1; },
                    [&](int, const std::vector<LoopPolygon>& polygons, const std::vector<int>&) {
                      add_cells(polygons, [](Halfedge) { return 0; }, rounded, parts);
                    });
-  return parts;
+  rounded.round_new();
+  return finish(std::move(parts));
 }
 
 }  // namespace geom

@@ -8,6 +8,10 @@
 #include <optional>
 #include <unordered_map>
 
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+#include <tbb/task_arena.h>
+
 #include "geom/face_locator.h"
 
 namespace geom {
@@ -79,7 +83,9 @@ class RayGrid {
       const std::size_t first = cells_.size();
       if (!add_cells(s, static_cast<int>(i))) cells_.resize(first), wide_.push_back(static_cast<int>(i));
     }
-    std::sort(cells_.begin(), cells_.end());
+    // On TBB's threads (the order is total: the same cells whatever the thread count), isolated
+    // as the map's own grid is built under a lock that a stolen task could ask for again.
+    tbb::this_task_arena::isolate([&] { tbb::parallel_sort(cells_.begin(), cells_.end()); });
     cells_.shrink_to_fit();
   }
 
@@ -351,20 +357,29 @@ FaceLocator PlanarMap::face_locator() const {
   out->unbounded = arr.unbounded_face()->data();
   std::unordered_map<const void*, int> index;  // by the vertex's address
   index.reserve(arr.number_of_vertices());
-  out->vertices.reserve(arr.number_of_vertices());
+  std::vector<Arrangement::Vertex_const_handle> vertices;
+  vertices.reserve(arr.number_of_vertices());
   for (auto v = arr.vertices_begin(); v != arr.vertices_end(); ++v) {
     if (v->is_isolated()) {
       out->isolated.push_back(v->point());
       continue;
     }
-    index.emplace(&*v, static_cast<int>(out->vertices.size()));
-    out->vertices.push_back({v->point(), face_below_vertex(v)->data()});
+    index.emplace(&*v, static_cast<int>(vertices.size()));
+    vertices.push_back(v);
   }
-  out->edges.reserve(arr.number_of_edges());
-  for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
-    const Halfedge h = left_to_right(Halfedge(e));
-    out->edges.push_back({index.at(&*h->source()), index.at(&*h->target()), h->twin()->face()->data()});
-  }
+  std::vector<Halfedge> edges;  // left to right
+  edges.reserve(arr.number_of_edges());
+  for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) edges.push_back(left_to_right(Halfedge(e)));
+  // Each vertex's and edge's entry is its own: made at once on TBB's threads, in the map's order.
+  out->vertices.resize(vertices.size());
+  out->edges.resize(edges.size());
+  tbb::parallel_for(std::size_t(0), vertices.size(), [&](std::size_t i) {
+    out->vertices[i] = {vertices[i]->point(), face_below_vertex(vertices[i])->data()};
+  });
+  tbb::parallel_for(std::size_t(0), edges.size(), [&](std::size_t i) {
+    const Halfedge& h = edges[i];
+    out->edges[i] = {index.at(&*h->source()), index.at(&*h->target()), h->twin()->face()->data()};
+  });
   out->rays.emplace(*out);
   return FaceLocator(std::move(out));
 }

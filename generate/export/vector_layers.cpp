@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <optional>
 #include <set>
 #include <unordered_map>
 
@@ -21,17 +22,30 @@ namespace {
 
 using nlohmann::ordered_json;
 
+using Dissolved = std::vector<std::vector<geom::Dissolved>>;
+
+// The faces dissolved into polygons: group_of(label) picks each face's group (-1: none).
+template <typename GroupOf>
+Dissolved dissolved(const CityMap& city_map, int group_count, GroupOf group_of) {
+  CancelCheck().check();
+  return city_map.map.dissolve(city_map.per_label(group_of), group_count);
+}
+
+// add(group, polygon) receives the polygons in a stable order.
+template <typename Add>
+void add_each(Dissolved polygons, Add add) {
+  const CancelCheck cancel;
+  for (std::size_t g = 0; g < polygons.size(); ++g) {
+    cancel.check();
+    for (geom::Dissolved& d : polygons[g]) add(static_cast<int>(g), std::move(d.polygon));
+  }
+}
+
 // Dissolves faces into polygons: group_of(label) picks each face's group (-1: none);
 // add(group, polygon) receives them in a stable order.
 template <typename GroupOf, typename Add>
 void dissolve(const CityMap& city_map, int group_count, GroupOf group_of, Add add) {
-  const CancelCheck cancel;
-  cancel.check();
-  auto polygons = city_map.map.dissolve(city_map.per_label(group_of), group_count);
-  for (int g = 0; g < group_count; ++g) {
-    cancel.check();
-    for (geom::Dissolved& d : polygons[g]) add(g, std::move(d.polygon));
-  }
+  add_each(dissolved(city_map, group_count, group_of), add);
 }
 
 // A nested model's slabs as the buildings layer writes them (docs/design.md, Outputs):
@@ -157,28 +171,34 @@ int road_area_group(const CityMap& city_map, const FaceLabel& l) {
   return 4 * l.road + 2 * (l.surface == RoadSurface::Sidewalk) + l.bridge;
 }
 
-// Road areas by road, surface and bridge (road_area_group).
-void extract_road_areas(const CityMap& city_map, const std::function<int(int, bool)>& road_id, Ground& out) {
+// The road areas' faces dissolved by road, surface and bridge (road_area_group).
+Dissolved dissolve_road_areas(const CityMap& city_map) {
   const int roads = static_cast<int>(city_map.roads.size());
   const int junctions = static_cast<int>(city_map.junction_roads.size());
-  dissolve(city_map, 4 * roads + 2 * junctions, [&](const FaceLabel& l) { return road_area_group(city_map, l); },
-           [&](int g, geom::Polygon p) {
-             const bool junction = g >= 4 * roads, bridge = g % 2 == 1;
-             const int road = junction ? city_map.junction_roads[(g - 4 * roads) / 2] : g / 4;
-             const RoadSurface surface = junction ? RoadSurface::Junction : g % 4 >= 2 ? RoadSurface::Sidewalk : RoadSurface::Carriageway;
-             out.road_areas.push_back({road_id(road, bridge), bridge, surface, std::move(p)});
-           });
+  return dissolved(city_map, 4 * roads + 2 * junctions, [&](const FaceLabel& l) { return road_area_group(city_map, l); });
+}
+
+// Road areas from dissolve_road_areas.
+void extract_road_areas(const CityMap& city_map, Dissolved areas, const std::function<int(int, bool)>& road_id,
+                        Ground& out) {
+  const int roads = static_cast<int>(city_map.roads.size());
+  add_each(std::move(areas), [&](int g, geom::Polygon p) {
+    const bool junction = g >= 4 * roads, bridge = g % 2 == 1;
+    const int road = junction ? city_map.junction_roads[(g - 4 * roads) / 2] : g / 4;
+    const RoadSurface surface = junction ? RoadSurface::Junction : g % 4 >= 2 ? RoadSurface::Sidewalk : RoadSurface::Carriageway;
+    out.road_areas.push_back({road_id(road, bridge), bridge, surface, std::move(p)});
+  });
 }
 
 // Blocks from the final map, so they share every vertex with the other layers (lots add
 // vertices on block edges). Rounding can pinch a block in two: its first polygon keeps
 // the block's id, the others take ids after the last block's, and lots name the polygon
 // they lie in. Returns each block's pieces, as indices into out.blocks.
-std::vector<std::vector<std::size_t>> extract_blocks(const CityMap& city_map, const std::vector<Block>& blocks,
+// `dissolved_blocks`: the faces dissolved by block.
+std::vector<std::vector<std::size_t>> extract_blocks(Dissolved dissolved_blocks, const std::vector<Block>& blocks,
                                                      const std::function<int(int, bool)>& road_id, Ground& out) {
   std::vector<std::vector<geom::Polygon>> block_polygons(blocks.size());
-  dissolve(city_map, static_cast<int>(blocks.size()), [](const FaceLabel& l) { return l.block; },
-           [&](int g, geom::Polygon p) { block_polygons[g].push_back(std::move(p)); });
+  add_each(std::move(dissolved_blocks), [&](int g, geom::Polygon p) { block_polygons[g].push_back(std::move(p)); });
   std::vector<std::vector<std::size_t>> pieces(blocks.size());
   int next_id = static_cast<int>(blocks.size());
   const CancelCheck cancel;
@@ -347,17 +367,25 @@ int merge_sliver_road_areas(CityMap& city_map) {
   for (int r = 0; r < roads; ++r) without[r] = !keeps(r, 1);
   // The road areas beside a sliver, found by their boxes: cells that share an edge share its
   // vertices, which round alike, so their boxes meet.
-  geom::BoxIndex near(10);
+  // Indexed when the first such sliver asks: most maps have none, and indexing every road
+  // area's cell took a quarter of this function.
+  std::optional<geom::BoxIndex> near;
+  auto cells_near = [&](const geom::Box& b) {
+    if (!near) {
+      near.emplace(10);
+      for (std::size_t n = 0; n < cells.size(); ++n) near->add(static_cast<int>(n), cells[n].bounds());
+    }
+    return near->meeting(b);
+  };
   std::vector<geom::Box> box(count, geom::Box::none());
   for (std::size_t n = 0; n < cells.size(); ++n) box[components[n]].add(cells[n].bounds());
-  for (std::size_t n = 0; n < cells.size(); ++n) near.add(static_cast<int>(n), cells[n].bounds());
   std::vector<int> taken_by(count, -1);  // a road area given to a sliver's group
   for (int c = 0; c < count; ++c) {
     if (area[c] >= kSliverRoadArea || !without[road_of(group_of[c])] || keeps(road_of(group_of[c]), 1)) continue;
     const int beside = target[c] - 1;
     target[c] = 0;
     if (beside < 0) continue;
-    for (const int n : near.meeting(box[c])) {
+    for (const int n : cells_near(box[c])) {
       const int other = components[n];
       if (group_of[other] != beside || area[other] < kSliverRoadArea || taken_by[other] >= 0 ||
           !keeps(road_of(beside), 2) || cells[n].edges_of_kind(group_of[c] + 1).empty())
@@ -391,18 +419,28 @@ int merge_sliver_road_areas(CityMap& city_map) {
 Ground extract_ground(const CityMap& city_map, const std::vector<Block>& blocks, const std::vector<Lot>& lots,
                       const std::vector<ZoneFeature>& zones) {
   Ground out;
-  extract_zones_and_water(city_map, zones, out);
-  const std::vector<std::array<int, 2>> first_line = extract_centre_lines(city_map, out);
+  // The centre lines at once with the dissolves (which take turns at the map's vertices'
+  // roundings, PlanarMap::dissolve), each into its own part of `out` or its own polygons,
+  // put together after in one order: the same ground whatever the thread count.
+  Dissolved road_areas, block_polygons;
+  std::vector<std::array<int, 2>> first_line;
+  invoke_cancellable(
+      [&] {
+        extract_zones_and_water(city_map, zones, out);
+        road_areas = dissolve_road_areas(city_map);
+        block_polygons = dissolved(city_map, static_cast<int>(blocks.size()), [](const FaceLabel& l) { return l.block; });
+      },
+      [&] { first_line = extract_centre_lines(city_map, out); });
   const std::function<int(int, bool)> road_id = [&](int r, bool bridge) {
     const auto& f = first_line[r];
     return f[bridge] >= 0 ? f[bridge] : f[!bridge];
   };
-  extract_road_areas(city_map, road_id, out);
+  extract_road_areas(city_map, std::move(road_areas), road_id, out);
   std::set<int> named;
   for (const RoadArea& a : out.road_areas) named.insert(a.road);
   for (const auto& f : first_line)
     if ((f[0] >= 0 || f[1] >= 0) && !named.count(f[0]) && !named.count(f[1])) out.roads_without_area.push_back(f[0] >= 0 ? f[0] : f[1]);
-  const std::vector<std::vector<std::size_t>> pieces = extract_blocks(city_map, blocks, road_id, out);
+  const std::vector<std::vector<std::size_t>> pieces = extract_blocks(std::move(block_polygons), blocks, road_id, out);
   // Lots as they ended up in the map; a lot's id is its index, which buildings name.
   const CancelCheck cancel;
   for (const Lot& lot : lots) {
