@@ -111,15 +111,23 @@ TEST(Gis, LikeBringsHelsinkisMedianFootprintToItsBuildings) {
 
 // Kotka without its buildings, --like them: rows of footprints on lots apart from each
 // other; its industrial land's few large halls among many sheds came out 32% and 43% under
-// at the median and p90 while lots drew their footprints one at a time.
+// at the median and p90 while lots drew their footprints one at a time. Its industrial land
+// gets about 80 footprints, whose p90 (the ninth largest) is one draw's: the same sketch at
+// other seeds gives 959 to 1,920 m2 against the place's 1,682, and 80 footprints drawn from
+// the place's own sizes miss a quarter's window one time in six. So the industrial land is
+// held to its median and coverage; the residential land (about 1,500 footprints) to all three.
 TEST(Gis, LikeBringsKotkasFootprintsToItsBuildings) {
   const fs::path osm = cli_util::kSource / ".." / "shared" / "data" / "osm";
   if (!fs::exists(osm / "kotka_pyrosm_test_buildings.geojson"))
     GTEST_SKIP() << osm << " is not here (../shared/data holds real data beside the repository)";
   const fs::path dir = testing_util::temp_dir("like_kotka");
-  expect_like_the_place(
-      place_report("kotka_pyrosm_test", " --like " + (osm / "kotka_pyrosm_test_buildings.geojson").string(), dir / "out"),
-      {"residential", "industrial"});
+  const nlohmann::json report =
+      place_report("kotka_pyrosm_test", " --like " + (osm / "kotka_pyrosm_test_buildings.geojson").string(), dir / "out");
+  expect_like_the_place(report, {"residential"});
+  const nlohmann::json& measured = report["like"]["zones"]["industrial"]["measured"];
+  const nlohmann::json& generated = report["footprints_by_zone"]["industrial"]["generated"];
+  expect_within_a_quarter("industrial", generated["median_m2"], measured["area_m2"]["median"]);
+  expect_within_a_quarter("industrial", generated["coverage_of_land_use"], measured["coverage_of_land_use"]);
 }
 
 // Completing a place: Helsinki's centre with half its buildings (those whose first corner
