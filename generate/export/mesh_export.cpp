@@ -72,8 +72,14 @@ void walk_layer(const GroundLayer& layer, const WalkPiece& piece, Out& out) {
   }
 }
 
+void append_material_name(std::string& out, ZoneType zone, Surface s) {
+  out += name(zone), out += '_', out += kSurfaceNames[static_cast<int>(s)];
+}
+
 std::string material_name(ZoneType zone, Surface s) {
-  return std::string(name(zone)) + '_' + kSurfaceNames[static_cast<int>(s)];
+  std::string text;
+  append_material_name(text, zone, s);
+  return text;
 }
 
 // The OBJ file's text (its indices from 1) and PLY's vertices, as the walk gives them.
@@ -82,9 +88,7 @@ struct ObjAndPlyVertices {
   NumberTexts numbers;
   void object(int building) { obj += "o building_", append_number(obj, building), obj += '\n'; }
   void object(const GroundLayer& layer) { obj += "o " + layer.name + "\nusemtl " + layer.name + '\n'; }
-  void use(ZoneType zone, Surface s) {
-    obj += "usemtl ", obj += name(zone), obj += '_', obj += kSurfaceNames[static_cast<int>(s)], obj += '\n';
-  }
+  void use(ZoneType zone, Surface s) { obj += "usemtl ", append_material_name(obj, zone, s), obj += '\n'; }
   void vertex(double x, double y, double z) {
     const std::size_t start = obj.size();
     obj += "v ";
