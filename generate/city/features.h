@@ -122,8 +122,8 @@ struct DrawnFeatures {
 inline constexpr double kMaxCoordinate = 1e10;
 // The most blocks one run builds, as the reader counts them (the zones' area over their
 // block_area; about half the blocks built): the 10 km benchmark city counts 6,290 and peaks at
-// 1.9 GB, tiled 3 x 3 it counts 56,581 (a million buildings) and peaks at 15 GB, so this
-// many fit in the project's 24 GiB machine.
+// 1.1 GiB, tiled 3 x 3 it counts 56,581 (a million buildings) and peaks at 8.8 GiB (it was
+// 15 GB when this limit was set), so this many fit in the project's 24 GiB machine.
 inline constexpr double kMaxBlocks = 60000;
 // Pairs of sketch pieces (road strokes, zone edges) crossing or overlapping, past 4 a piece:
 // each is vertices of the exact map (a way zig-zagging over itself makes gigabytes).
