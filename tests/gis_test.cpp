@@ -1682,3 +1682,21 @@ TEST(Formats, TheOutputsPageListsTheFormatsTable) {
   EXPECT_EQ(optional_vector_formats_text(),
             "gpkg (OUT/city.gpkg), fgb (OUT/vector/*.fgb), shp (OUT/vector/shp/) or dxf (OUT/city.dxf)");
 }
+
+// A PBF extract saved under an .osm name (as osm2streets' test data is) is read as the PBF it
+// holds: the features of the XML extract it was written from, not "not a readable extract".
+TEST(Gis, APbfNamedOsmIsReadAsTheExtractItHolds) {
+  const fs::path dir = testing_util::temp_dir("pbf_named_osm");
+  // osmium-tool (scripts/install-deps.sh) writes it.
+  ASSERT_EQ(cli_util::shell("osmium cat " + kVillage.string() + " -f pbf -o " + (dir / "village.osm").string()).code, 0);
+  const nlohmann::ordered_json xml = osm_sketch_document(kVillage), pbf = osm_sketch_document(dir / "village.osm");
+  ASSERT_GT(xml["features"].size(), 5u);
+  ASSERT_EQ(pbf["features"].size(), xml["features"].size());
+  for (std::size_t i = 0; i < xml["features"].size(); ++i) {
+    EXPECT_EQ(pbf["features"][i]["geometry"], xml["features"][i]["geometry"]) << i;
+    EXPECT_EQ(pbf["features"][i]["properties"].value("zone", ""), xml["features"][i]["properties"].value("zone", "")) << i;
+    EXPECT_EQ(pbf["features"][i]["properties"].value("road", ""), xml["features"][i]["properties"].value("road", "")) << i;
+  }
+  const cli_util::Result run = cli_util::run("generate " + (dir / "village.osm").string() + " -q -o " + (dir / "out").string());
+  EXPECT_EQ(run.code, 0) << run.out;
+}

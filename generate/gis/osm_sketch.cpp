@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <string_view>
 #include <tuple>
 #include <vector>
 
@@ -484,13 +485,25 @@ osmium::memory::Buffer in_osmium_order(osmium::io::Reader& reader) {
   return sorted;
 }
 
+// Whether the file holds an OpenStreetMap PBF, by its first blob's header (a length, then
+// the type "OSMHeader"), whatever its name: test data and downloads are saved as .osm too.
+namespace {
+bool holds_pbf(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  char head[15] = {};
+  in.read(head, sizeof head);
+  return in.gcount() == sizeof head && head[4] == '\x0a' && head[5] == '\x09' && std::string_view(head + 6, 9) == "OSMHeader";
+}
+}  // namespace
+
 ordered_json osm_sketch_document(const fs::path& path) {
   const std::string file = path.string();
-  if (path.extension() == ".osm") check_node_coordinates(path);
+  const bool pbf = holds_pbf(path);
+  if (!pbf && path.extension() == ".osm") check_node_coordinates(path);
   ZoneRelations relations;
   Collector collector(file, relations);
   try {
-    const osmium::io::File input(file);
+    const osmium::io::File input(file, pbf ? "pbf" : "");
     osmium::io::Reader reader{input};
     const osmium::Box bounds = reader.header().box();
     osmium::memory::Buffer extract = in_osmium_order(reader);
